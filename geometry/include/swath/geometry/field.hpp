@@ -1,0 +1,46 @@
+#pragma once
+// Survey area files: GeoJSON, KML and CSV readers.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/geometry/local_frame.hpp"
+#include "swath/geometry/polygon.hpp"
+
+namespace swath::geometry {
+
+enum class FieldFormat { geojson, kml, csv };
+
+struct FieldReadOptions {
+  /// CSV only: the columns are x,y in local metres instead of lon,lat.
+  bool local_metres = false;
+  /// Format; when empty it is taken from the file extension (.geojson/.json, .kml, .csv/.txt).
+  std::optional<FieldFormat> format;
+};
+
+/// A survey area ready for planning.
+struct Field {
+  std::string source;  ///< the file name, for messages
+  /// The area in local metres, normalised (outer counter-clockwise, holes clockwise).
+  Polygon polygon;
+  /// Per ring (0 = outer, k = hole k-1): each kept vertex's position in the file's ring, so that
+  /// reports can name vertices as the user numbered them (0-based).
+  std::vector<std::vector<std::size_t>> source_index;
+  /// The frame the polygon is in; empty for a local-metres CSV (no geographic reference).
+  std::optional<LocalFrame> frame;
+};
+
+/// Reads and validates an area file. Throws InputError (file, place and problem in one sentence)
+/// for a missing or empty file, a syntax error, a wrong geometry type, a non-finite coordinate, a
+/// latitude beyond ±90° or longitude beyond ±180°, a ring with fewer than 3 distinct vertices, a
+/// ring of zero area, or a hole that lies outside the outer ring. A self-intersecting area is read
+/// (classify() reports it). The local frame's origin is the mean of the outer ring's vertices.
+Field read_field(const std::filesystem::path& path, const FieldReadOptions& options = {});
+
+/// The same from text already in memory; `source` names it in messages.
+Field parse_field(const std::string& text, FieldFormat format, const std::string& source,
+                  bool local_metres = false);
+
+}  // namespace swath::geometry

@@ -1,0 +1,52 @@
+#pragma once
+// Exact geometric predicates on double coordinates (CGAL's filtered exact kernel underneath):
+// the answers are exact for the given doubles, never wrong by rounding.
+
+#include <vector>
+
+#include "swath/geometry/point.hpp"
+
+namespace swath::geometry {
+
+enum class Orientation { clockwise = -1, collinear = 0, counter_clockwise = 1 };
+
+/// Exact orientation of (a, b, c), decided by CGAL's exact kernel. Use orientation().
+Orientation orientation_exact(Point2 a, Point2 b, Point2 c);
+
+/// Exact orientation of the triangle (a, b, c). The double determinant decides whenever it
+/// exceeds Shewchuk's error bound (orient2d stage A); only near-degenerate cases go to
+/// orientation_exact(). Inline because the sweeps call it millions of times.
+inline Orientation orientation(Point2 a, Point2 b, Point2 c) {
+  const double left = (a.x - c.x) * (b.y - c.y);
+  const double right = (a.y - c.y) * (b.x - c.x);
+  const double det = left - right;
+  double sum;
+  if (left > 0) {
+    if (right <= 0) return det > 0 ? Orientation::counter_clockwise : Orientation::clockwise;
+    sum = left + right;
+  } else if (left < 0) {
+    if (right >= 0) return det < 0 ? Orientation::clockwise : Orientation::counter_clockwise;
+    sum = -left - right;
+  } else {
+    return orientation_exact(a, b, c);
+  }
+  constexpr double kErrorBound = 3.3306690738754716e-16;  // (3 + 16 eps) eps, eps = 2^-53
+  const double bound = kErrorBound * sum;
+  if (det >= bound && det > 0) return Orientation::counter_clockwise;
+  if (-det >= bound && det < 0) return Orientation::clockwise;
+  return orientation_exact(a, b, c);
+}
+
+/// Exact test whether the closed segments [a, b] and [c, d] share at least one point.
+bool segments_intersect(Point2 a, Point2 b, Point2 c, Point2 d);
+
+/// A point shared by the closed segments [a, b] and [c, d] (the crossing, or for overlapping
+/// segments an end point of the overlap). Precondition: segments_intersect(a, b, c, d).
+/// Accuracy: a few ulps of the coordinates (computed in doubles after an exact decision).
+Point2 segments_common_point(Point2 a, Point2 b, Point2 c, Point2 d);
+
+/// Where p lies relative to a ring (even-odd rule, exact).
+enum class Containment { outside, on_boundary, inside };
+Containment locate_point(Point2 p, const std::vector<Point2>& ring);
+
+}  // namespace swath::geometry

@@ -1,0 +1,165 @@
+#include "swath/geometry/field.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "raw_field.hpp"
+#include "swath/geometry/convex_hull.hpp"
+#include "swath/geometry/predicates.hpp"
+
+namespace swath::geometry {
+namespace detail {
+
+std::string position_place(const RawRing& ring, std::size_t i) {
+  std::string place = ring.name + ", position " + std::to_string(i);
+  if (i < ring.line.size() && ring.line[i] > 0)
+    place += " (line " + std::to_string(ring.line[i]) + ")";
+  return place;
+}
+
+std::pair<int, int> line_column(const std::string& text, std::size_t offset) {
+  int line = 1, column = 1;
+  for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::fail;
+using detail::position_place;
+
+FieldFormat format_from_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".geojson" || ext == ".json") return FieldFormat::geojson;
+  if (ext == ".kml") return FieldFormat::kml;
+  if (ext == ".csv" || ext == ".txt") return FieldFormat::csv;
+  throw InputError(path.string() + ": unknown file type '" + ext +
+                   "'; expected .geojson, .json, .kml or .csv");
+}
+
+void check_coordinates(const detail::RawField& raw, const std::string& source, bool geographic) {
+  for (const detail::RawRing& ring : raw.rings) {
+    for (std::size_t i = 0; i < ring.points.size(); ++i) {
+      const Point2 p = ring.points[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        fail(source, position_place(ring, i) + ": coordinate is not a finite number");
+      if (!geographic) continue;
+      if (std::abs(p.y) > 90.0)
+        fail(source, position_place(ring, i) + ": latitude " + detail::number_text(p.y) +
+                         " is beyond ±90 degrees (positions are longitude, latitude)");
+      if (std::abs(p.x) > 180.0)
+        fail(source, position_place(ring, i) + ": longitude " + detail::number_text(p.x) +
+                         " is beyond ±180 degrees");
+    }
+  }
+}
+
+}  // namespace
+
+Field parse_field(const std::string& text, FieldFormat format, const std::string& source,
+                  bool local_metres) {
+  const bool blank =
+      std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isspace(c); });
+  if (blank) fail(source, "the file is empty");
+
+  detail::RawField raw;
+  switch (format) {
+    case FieldFormat::geojson:
+      raw = detail::parse_geojson(text, source);
+      break;
+    case FieldFormat::kml:
+      raw = detail::parse_kml(text, source);
+      break;
+    case FieldFormat::csv:
+      raw = detail::parse_csv(text, source, local_metres);
+      break;
+  }
+  const bool geographic = !(format == FieldFormat::csv && local_metres);
+  check_coordinates(raw, source, geographic);
+
+  Field field;
+  field.source = source;
+  if (geographic) {
+    // Origin at the mean of the outer ring's positions keeps local coordinates small.
+    GeoPoint origin{};
+    for (const Point2& p : raw.rings[0].points) {
+      origin.lon_deg += p.x;
+      origin.lat_deg += p.y;
+    }
+    origin.lon_deg /= static_cast<double>(raw.rings[0].points.size());
+    origin.lat_deg /= static_cast<double>(raw.rings[0].points.size());
+    field.frame.emplace(origin);
+    for (detail::RawRing& ring : raw.rings)
+      for (Point2& p : ring.points) p = field.frame->to_local({p.y, p.x, 0.0});
+  }
+
+  for (std::size_t r = 0; r < raw.rings.size(); ++r) {
+    const detail::RawRing& ring = raw.rings[r];
+    NormalisedRing normalised = normalise_ring(ring.points, r == 0);
+    if (normalised.ring.size() < 3)
+      fail(source, ring.name + " has " + std::to_string(normalised.ring.size()) +
+                       " distinct vertices; a ring needs at least 3");
+    // Degenerate: the convex hull is a sliver (thinner than ~1e-5 of its length), so the ring
+    // encloses no area. The hull, not the shoelace sum, since a crossing ring may sum to zero;
+    // and not an exact collinearity test, since points on a parallel are not collinear in the
+    // local plane.
+    const Ring hull = convex_hull(normalised.ring);
+    const double hull_perimeter = perimeter(hull);
+    if (hull.size() < 3 || signed_area(hull) <= 1e-6 * hull_perimeter * hull_perimeter)
+      fail(source, ring.name + " encloses no area (its vertices lie on one line)");
+    if (r == 0) {
+      field.polygon.outer = std::move(normalised.ring);
+    } else {
+      field.polygon.holes.push_back(std::move(normalised.ring));
+    }
+    field.source_index.push_back(std::move(normalised.source_index));
+  }
+
+  // A hole with no vertex inside the outer ring lies outside it (a hole that is partly outside
+  // crosses the outer ring, which classify() reports as a crossing).
+  for (std::size_t h = 0; h < field.polygon.holes.size(); ++h) {
+    const Ring& hole = field.polygon.holes[h];
+    const bool any_inside = std::any_of(hole.begin(), hole.end(), [&](Point2 p) {
+      return locate_point(p, field.polygon.outer) == Containment::inside;
+    });
+    if (!any_inside)
+      fail(source, raw.rings[h + 1].name + " is a hole that lies outside the outer ring");
+  }
+  return field;
+}
+
+Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {
+  const std::string source = path.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail(source, "is a directory, not an area file");
+  const FieldFormat format = options.format ? *options.format : format_from_extension(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(source, "cannot open the file (" + std::string(std::strerror(errno)) + ")");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_field(buffer.str(), format, source, options.local_metres);
+}
+
+}  // namespace swath::geometry

@@ -1,0 +1,116 @@
+// KML: the one <Polygon> of the document, <outerBoundaryIs> and any <innerBoundaryIs> rings of
+// "lon,lat[,alt]" tuples separated by white space.
+#include <pugixml.hpp>
+
+#include <charconv>
+#include <cstring>
+
+#include "raw_field.hpp"
+
+namespace swath::geometry::detail {
+namespace {
+
+std::string_view local_name(const pugi::xml_node& node) {
+  std::string_view name = node.name();
+  const auto colon = name.find(':');
+  return colon == std::string_view::npos ? name : name.substr(colon + 1);
+}
+
+pugi::xml_node child(const pugi::xml_node& node, std::string_view name) {
+  for (pugi::xml_node c : node.children())
+    if (local_name(c) == name) return c;
+  return {};
+}
+
+void find_all(const pugi::xml_node& node, std::string_view name, std::vector<pugi::xml_node>& out) {
+  for (pugi::xml_node c : node.children()) {
+    if (c.type() != pugi::node_element) continue;
+    if (local_name(c) == name) out.push_back(c);
+    find_all(c, name, out);
+  }
+}
+
+RawRing parse_boundary(const pugi::xml_node& boundary, const std::string& text,
+                       const std::string& source, const std::string& name) {
+  const pugi::xml_node coordinates = child(child(boundary, "LinearRing"), "coordinates");
+  const int boundary_line =
+      line_column(text, static_cast<std::size_t>(boundary.offset_debug())).first;
+  if (!coordinates)
+    fail(source, "line " + std::to_string(boundary_line) + ": " + name +
+                     " has no <LinearRing><coordinates>");
+  RawRing ring;
+  ring.name = name;
+  // Text of the element; its line is where the element's content starts.
+  const pugi::xml_node data = coordinates.first_child();
+  const std::string body = data ? data.value() : "";
+  int line =
+      data ? line_column(text, static_cast<std::size_t>(data.offset_debug())).first : boundary_line;
+  std::size_t i = 0;
+  while (i < body.size()) {
+    if (std::isspace(static_cast<unsigned char>(body[i]))) {
+      if (body[i] == '\n') ++line;
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < body.size() && !std::isspace(static_cast<unsigned char>(body[end]))) ++end;
+    const std::string tuple = body.substr(i, end - i);
+    double values[3] = {0, 0, 0};
+    int count = 0;
+    const char* p = tuple.data();
+    const char* stop = tuple.data() + tuple.size();
+    bool ok = true;
+    while (p < stop && count < 3) {
+      auto [next, error] = std::from_chars(p, stop, values[count]);
+      if (error != std::errc() || (next < stop && *next != ',')) {
+        ok = false;
+        break;
+      }
+      ++count;
+      p = next < stop ? next + 1 : next;
+    }
+    if (!ok || count < 2 || p < stop)
+      fail(source, "line " + std::to_string(line) + ": " + name + ": '" + tuple +
+                       "' is not a lon,lat[,alt] tuple");
+    ring.points.push_back({values[0], values[1]});
+    ring.line.push_back(line);
+    i = end;
+  }
+  return ring;
+}
+
+}  // namespace
+
+RawField parse_kml(const std::string& text, const std::string& source) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result result = doc.load_buffer(text.data(), text.size());
+  if (!result) {
+    const auto [line, column] = line_column(text, static_cast<std::size_t>(result.offset));
+    fail(source, "line " + std::to_string(line) + ", column " + std::to_string(column) +
+                     ": invalid XML (" + result.description() + ")");
+  }
+  std::vector<pugi::xml_node> polygons;
+  find_all(doc, "Polygon", polygons);
+  if (polygons.empty()) fail(source, "the KML document has no <Polygon>");
+  const auto line_of = [&](const pugi::xml_node& n) {
+    return std::to_string(line_column(text, static_cast<std::size_t>(n.offset_debug())).first);
+  };
+  if (polygons.size() > 1)
+    fail(source, "lines " + line_of(polygons[0]) + " and " + line_of(polygons[1]) +
+                     " both hold a <Polygon>; swath plans one area per file");
+  const pugi::xml_node polygon = polygons[0];
+  const pugi::xml_node outer = child(polygon, "outerBoundaryIs");
+  if (!outer) fail(source, "line " + line_of(polygon) + ": the <Polygon> has no <outerBoundaryIs>");
+
+  RawField field;
+  field.rings.push_back(parse_boundary(outer, text, source, "outer boundary"));
+  std::size_t hole = 0;
+  for (pugi::xml_node c : polygon.children()) {
+    if (local_name(c) != "innerBoundaryIs") continue;
+    field.rings.push_back(
+        parse_boundary(c, text, source, "inner boundary " + std::to_string(hole++)));
+  }
+  return field;
+}
+
+}  // namespace swath::geometry::detail

@@ -1,0 +1,41 @@
+#pragma once
+// Internal: what a field parser hands to the common validation (not installed).
+
+#include <string>
+#include <vector>
+
+#include "swath/geometry/input_error.hpp"
+#include "swath/geometry/point.hpp"
+
+namespace swath::geometry::detail {
+
+/// One ring as the file gives it: (lon, lat) or (x, y), with where each position stands.
+struct RawRing {
+  std::string name;            ///< e.g. "feature 0, ring 1" or "outer boundary"
+  std::vector<Point2> points;  ///< x = lon or east, y = lat or north
+  std::vector<int> line;       ///< 1-based file line of each position, or empty if unknown
+};
+
+/// Ring 0 is the outer ring, the others holes.
+struct RawField {
+  std::vector<RawRing> rings;
+};
+
+/// "<name>, position <i>" plus ", line <L>" when known.
+std::string position_place(const RawRing& ring, std::size_t i);
+
+/// 1-based line and column of a byte offset.
+std::pair<int, int> line_column(const std::string& text, std::size_t offset);
+
+/// Shortest round-trip text of a number, for messages.
+std::string number_text(double value);
+
+[[noreturn]] inline void fail(const std::string& source, const std::string& message) {
+  throw InputError(source + ": " + message);
+}
+
+RawField parse_geojson(const std::string& text, const std::string& source);
+RawField parse_kml(const std::string& text, const std::string& source);
+RawField parse_csv(const std::string& text, const std::string& source, bool local_metres);
+
+}  // namespace swath::geometry::detail

@@ -1,0 +1,20 @@
+#pragma once
+// Runs the built command-line programs the way a user does and captures what they say.
+
+#include <string>
+
+namespace swath::test {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs `swath <args>` (args are passed to /bin/sh as written) from the source directory.
+CliRun run_swath(const std::string& args);
+
+/// Path of a file in the source tree.
+std::string source_path(const std::string& relative);
+
+}  // namespace swath::test

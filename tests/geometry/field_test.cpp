@@ -1,0 +1,167 @@
+#include "swath/geometry/field.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "swath/geometry/classification.hpp"
+#include "swath/geometry/input_error.hpp"
+
+namespace swath::geometry {
+namespace {
+
+// An expected-failure check: the message names the source and contains `fragment`.
+void expect_error(const std::string& text, FieldFormat format, const std::string& fragment,
+                  bool local = false) {
+  try {
+    parse_field(text, format, "area.in", local);
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("area.in: ", 0), 0u) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one sentence, one line: " << what;
+  }
+}
+
+const char* kSquareRing = "[[8.0,47.0],[8.001,47.0],[8.001,47.001],[8.0,47.001],[8.0,47.0]]";
+
+TEST(GeoJson, PolygonFeatureCollectionAndMultiPolygonGiveTheSameArea) {
+  const std::string polygon =
+      std::string(R"({"type":"Polygon","coordinates":[)") + kSquareRing + "]}";
+  const std::string feature = R"({"type":"Feature","properties":{},"geometry":)" + polygon + "}";
+  const std::string collection =
+      R"({"type":"FeatureCollection","features":[{"type":"Feature","geometry":{"type":"Point","coordinates":[8,47]}},)" +
+      feature + "]}";
+  const std::string multi =
+      std::string(R"({"type":"MultiPolygon","coordinates":[[)") + kSquareRing + "]]}";
+  const double a = area(parse_field(polygon, FieldFormat::geojson, "p").polygon);
+  // 0.001° of latitude ~ 111.2 m, of longitude at 47° ~ 76.0 m.
+  EXPECT_NEAR(a, 111.2 * 76.0, 0.01 * 111.2 * 76.0);
+  for (const std::string& text : {feature, collection, multi})
+    EXPECT_DOUBLE_EQ(area(parse_field(text, FieldFormat::geojson, "p").polygon), a) << text;
+}
+
+TEST(GeoJson, UnclosedClockwiseRingIsNormalisedAndKeepsFilePositions) {
+  const Field f = parse_field(
+      R"({"type":"Polygon","coordinates":[[[8,47],[8,47.001],[8,47.001],[8.001,47.001],[8.001,47]]]})",
+      FieldFormat::geojson, "p");
+  ASSERT_EQ(f.polygon.outer.size(), 4u);
+  EXPECT_GT(signed_area(f.polygon.outer), 0);
+  EXPECT_EQ(f.source_index[0], (std::vector<std::size_t>{0, 4, 3, 1}));
+  // Positions go back to the file's coordinates.
+  const GeoPoint g = f.frame->to_geo(f.polygon.outer[1]);
+  EXPECT_NEAR(g.lon_deg, 8.001, 1e-10);
+  EXPECT_NEAR(g.lat_deg, 47.0, 1e-10);
+}
+
+TEST(GeoJson, HolesAreClockwiseAndSubtracted) {
+  const Field f = parse_field(
+      R"({"type":"Polygon","coordinates":[[[0,0],[0.01,0],[0.01,0.01],[0,0.01]],[[0.002,0.002],[0.004,0.002],[0.004,0.004],[0.002,0.004]]]})",
+      FieldFormat::geojson, "p");
+  ASSERT_EQ(f.polygon.holes.size(), 1u);
+  EXPECT_LT(signed_area(f.polygon.holes[0]), 0);
+  EXPECT_NEAR(area(f.polygon) / std::abs(signed_area(f.polygon.outer)), 1 - 0.04, 1e-4);
+}
+
+TEST(GeoJson, BadInputIsNamedWithItsPlace) {
+  expect_error("", FieldFormat::geojson, "empty");
+  expect_error("{\"type\": \"Polygon\",\n \"coordinates\": [[[0,0],[1,0]", FieldFormat::geojson,
+               "line 2");
+  expect_error("[1,2]", FieldFormat::geojson, "no \"type\"");
+  expect_error(R"({"type":"LineString","coordinates":[[0,0],[1,1]]})", FieldFormat::geojson,
+               "is a LineString");
+  expect_error(R"({"type":"FeatureCollection","features":[]})", FieldFormat::geojson, "no Polygon");
+  expect_error(R"({"type":"Polygon","coordinates":[[[0,0],[1,0],[0,0]]]})", FieldFormat::geojson,
+               "2 distinct vertices");
+  expect_error(R"({"type":"Polygon","coordinates":[[[0,0],[1,0],[2,0],[0,0]]]})",
+               FieldFormat::geojson, "no area (its vertices lie on one line)");
+  // On one parallel: curved in the local plane, still no area.
+  expect_error(R"({"type":"Polygon","coordinates":[[[8,47],[8.001,47],[8.002,47]]]})",
+               FieldFormat::geojson, "no area");
+  expect_error(R"({"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1e999]]]})",
+               FieldFormat::geojson, "invalid JSON (number overflow parsing '1e999')");
+  expect_error(R"({"type":"Polygon","coordinates":[[[8,47],[8,95.5],[9,47]]]})",
+               FieldFormat::geojson, "position 1: latitude 95.5 is beyond");
+  expect_error(R"({"type":"Polygon","coordinates":[[[8,47],["8",48],[9,47]]]})",
+               FieldFormat::geojson, "ring 0), position 1");
+  expect_error(
+      R"({"type":"Polygon","coordinates":[[[0,0],[0.01,0],[0.01,0.01],[0,0.01]],[[0.02,0.02],[0.03,0.02],[0.03,0.03]]]})",
+      FieldFormat::geojson, "hole 0 (ring 1) is a hole that lies outside the outer ring");
+  expect_error(std::string(R"({"type":"MultiPolygon","coordinates":[[)") + kSquareRing + "],[" +
+                   kSquareRing + "]]}",
+               FieldFormat::geojson, "2 parts");
+}
+
+TEST(Kml, OuterAndInnerBoundariesWithNamespacePrefix) {
+  const std::string kml = R"(<?xml version="1.0"?>
+<kml:kml xmlns:kml="http://www.opengis.net/kml/2.2"><kml:Placemark><kml:Polygon>
+ <kml:outerBoundaryIs><kml:LinearRing><kml:coordinates>
+   0,0,0 0.01,0,0 0.01,0.01,0 0,0.01,0 0,0,0
+ </kml:coordinates></kml:LinearRing></kml:outerBoundaryIs>
+ <kml:innerBoundaryIs><kml:LinearRing><kml:coordinates>0.002,0.002 0.004,0.002 0.004,0.004</kml:coordinates></kml:LinearRing></kml:innerBoundaryIs>
+</kml:Polygon></kml:Placemark></kml:kml>)";
+  const Field f = parse_field(kml, FieldFormat::kml, "k");
+  EXPECT_EQ(f.polygon.outer.size(), 4u);
+  ASSERT_EQ(f.polygon.holes.size(), 1u);
+  EXPECT_EQ(f.polygon.holes[0].size(), 3u);
+  EXPECT_EQ(classify(f.polygon).type, AreaType::concave);
+}
+
+TEST(Kml, BadInputNamesTheLine) {
+  expect_error("<kml><Polygon>\n<outerBoundaryIs>\n</kml>", FieldFormat::kml, "line 3");
+  expect_error("<kml><Placemark/></kml>", FieldFormat::kml, "no <Polygon>");
+  expect_error(
+      "<kml><Polygon><outerBoundaryIs><LinearRing><coordinates>\n0,0 1,0\n1,x "
+      "0,1\n</coordinates></LinearRing></outerBoundaryIs></Polygon></kml>",
+      FieldFormat::kml, "line 3: outer boundary: '1,x' is not a lon,lat[,alt] tuple");
+  expect_error(
+      "<kml><Polygon><outerBoundaryIs><LinearRing><coordinates>\n0,0 1,0\n1,91 "
+      "0,1\n</coordinates></LinearRing></outerBoundaryIs></Polygon></kml>",
+      FieldFormat::kml, "outer boundary, position 2 (line 3): latitude 91");
+  expect_error("<kml><Polygon></Polygon></kml>", FieldFormat::kml, "no <outerBoundaryIs>");
+}
+
+TEST(Csv, HeaderColumnsInAnyOrderRingsBomAndCrlf) {
+  const Field f = parse_field(
+      "\xEF\xBB\xBF# comment\r\nlat,lon,ring\r\n47,8,0\r\n47,8.01,0\r\n47.01,8.01,0\r\n\r\n"
+      "47.002,8.002,1\r\n47.004,8.002,1\r\n47.004,8.004,1\r\n",
+      FieldFormat::csv, "c");
+  ASSERT_EQ(f.polygon.holes.size(), 1u);
+  EXPECT_EQ(f.polygon.outer.size(), 3u);
+  EXPECT_NEAR(f.frame->to_geo(f.polygon.outer[1]).lon_deg, 8.01, 1e-9);
+}
+
+TEST(Csv, LocalMetresNeedNoFrame) {
+  const Field f = parse_field("0,0\n100,0\n100,50\n0,50\n", FieldFormat::csv, "c", true);
+  EXPECT_FALSE(f.frame);
+  EXPECT_DOUBLE_EQ(area(f.polygon), 5000.0);
+  EXPECT_EQ(f.polygon.outer[2], (Point2{100, 50}));
+}
+
+TEST(Csv, BadInputNamesTheLine) {
+  expect_error("# only a comment\n", FieldFormat::csv, "no positions");
+  expect_error("lon,lat\n8,47\n8.1,x\n", FieldFormat::csv, "line 3: lat 'x' is not a number");
+  expect_error("8,47\n8.1\n", FieldFormat::csv,
+               "line 2: expected 2 comma-separated columns, found 1");
+  expect_error("8,47\nnan,47.1\n8.2,47\n", FieldFormat::csv,
+               "position 1 (line 2): coordinate is not a finite number");
+  expect_error("8,47\ninf,47.1\n8.2,47\n", FieldFormat::csv, "not a finite number");
+  expect_error("east,north\n0,0\n", FieldFormat::csv, "header must name the columns lon and lat");
+  expect_error("8,47,1\n8.1,47,1\n8.1,47.1,1\n", FieldFormat::csv, "no outer ring");
+  expect_error("0,0\n1,0\n", FieldFormat::csv, "2 distinct vertices", true);
+}
+
+TEST(ReadField, FileErrors) {
+  try {
+    read_field("/nonexistent/field.geojson");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/field.geojson: cannot open"),
+              std::string::npos);
+  }
+  EXPECT_THROW(read_field("field.shp"), InputError);
+}
+
+}  // namespace
+}  // namespace swath::geometry
