@@ -3,8 +3,10 @@
 #include <memory>
 #include <vector>
 
+#include "cameras_command.hpp"
 #include "classify_command.hpp"
 #include "command.hpp"
+#include "plan_command.hpp"
 #include "swath/geometry/input_error.hpp"
 
 namespace {
@@ -19,6 +21,8 @@ int main(int argc, char** argv) {
   using namespace swath::apps;
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<ClassifyCommand>());
+  commands.push_back(std::make_unique<PlanCommand>());
+  commands.push_back(std::make_unique<CamerasCommand>());
 
   CLI::App app{"swath: drone area survey planner"};
   app.footer(kExitCodes);

@@ -1,0 +1,277 @@
+#include "plan_command.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "data_dir.hpp"
+#include "swath/geometry/input_error.hpp"
+#include "swath/planning/output_files.hpp"
+#include "swath/planning/survey.hpp"
+#include "swath/planning/survey_files.hpp"
+#include "text_format.hpp"
+
+namespace swath::apps {
+namespace {
+
+using geometry::InputError;
+
+// "LAT,LON" in degrees.
+geometry::GeoPoint parse_lat_lon(const std::string& text, const std::string& option) {
+  double lat = 0, lon = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), " %lf , %lf %c", &lat, &lon, &tail) != 2 || !std::isfinite(lat) ||
+      !std::isfinite(lon))
+    throw InputError(option + " '" + text + "': expected LAT,LON in degrees, e.g. 47.397,8.541");
+  if (std::abs(lat) > 90 || std::abs(lon) > 180)
+    throw InputError(option + " '" + text +
+                     "': latitude must be within ±90 and longitude within ±180 degrees");
+  return {lat, lon, 0.0};
+}
+
+std::pair<double, double> parse_pattern(const std::string& text) {
+  double w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), " %lf x %lf %c", &w, &h, &tail) != 2)
+    throw InputError("--pattern '" + text + "': expected WxH in metres, e.g. 1.5x1.5");
+  return {w, h};
+}
+
+// Options a mission YAML may set: every long option of the command, FIELD as "field".
+void apply_config(CLI::App& app, const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path + ": cannot open the mission config");
+  } catch (const YAML::Exception& e) {
+    throw InputError(path + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
+                     e.msg + ")");
+  }
+  if (root.IsNull()) return;
+  if (!root.IsMap()) throw InputError(path + ": a mission config is a mapping of option: value");
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    const std::string where = path + ": line " + std::to_string(kv.first.Mark().line + 1);
+    CLI::Option* option = key == "field"                     ? app.get_option_no_throw("FIELD")
+                          : key == "config" || key == "help" ? nullptr
+                                                             : app.get_option_no_throw("--" + key);
+    if (option == nullptr)
+      throw InputError(where + ": unknown key '" + key +
+                       "' (keys are the long options of swath plan)");
+    if (option->count() > 0) continue;  // the command line wins
+    if (!kv.second.IsScalar()) throw InputError(where + ": " + key + " must be a single value");
+    try {
+      option->add_result(kv.second.as<std::string>());
+      option->run_callback();
+    } catch (const CLI::Error& e) {
+      throw InputError(where + ": " + key + ": " + e.what());
+    }
+  }
+}
+
+template <typename E>
+E lookup(const std::map<std::string, E>& table, const std::string& value) {
+  return table.at(value);  // CLI11 has already checked membership
+}
+
+std::string kilometres(double m) {
+  return fixed(m / 1000, 2) + " km";
+}
+
+std::string duration(double s) {
+  const long total = std::lround(s);
+  return std::to_string(total / 60) + " min " + std::to_string(total % 60) + " s";
+}
+
+}  // namespace
+
+void PlanCommand::setup(CLI::App& app) {
+  app_ = &app;
+  app.add_option("--config", config_,
+                 "Mission YAML holding any of these options (keys = long option names, "
+                 "'field' for FIELD); command-line flags override it")
+      ->check(CLI::ExistingFile);
+  app.add_option("FIELD", field_, "Area file: .geojson/.json, .kml or .csv (lon,lat)");
+  app.add_option("--camera", camera_,
+                 "Camera: an id or name from 'swath cameras', or a camera YAML file");
+  app.add_option("-o,--output", output_,
+                 "Directory to write the mission files into (created if missing)");
+
+  app.add_option("--mode", mode_,
+                 "photogrammetry (altitude or GSD and overlaps) or detection (paper 001: pattern "
+                 "size and pixels)")
+      ->check(CLI::IsMember({"photogrammetry", "detection"}))
+      ->capture_default_str();
+  app.add_option("--altitude", altitude_m_, "Photogrammetry: flight altitude above home, metres");
+  app.add_option("--gsd", gsd_cm_,
+                 "Photogrammetry: ground sample distance, cm per pixel (sets the altitude)");
+  app.add_option("--side-overlap", side_overlap_,
+                 "Photogrammetry: overlap of adjacent lines, fraction in [0, 1)")
+      ->capture_default_str();
+  app.add_option("--front-overlap", front_overlap_,
+                 "Photogrammetry: overlap of successive photos, fraction in [0, 1)")
+      ->capture_default_str();
+  app.add_option("--pattern", pattern_,
+                 "Ground pattern WxH in metres to detect (detection mode; in photogrammetry "
+                 "mode only checked: warns when the altitude is above h_max)");
+  app.add_option("--min-pixels", min_pixels_,
+                 "Pixels the pattern must span at least (with --pattern)");
+  app.add_option("--overlap", overlap_,
+                 "Detection: overlap v in [0, 1], altitude = h_max (1 + v) / 2")
+      ->capture_default_str();
+  app.add_flag("--portrait", portrait_,
+               "Image height across the flight line (default: landscape, width across)");
+
+  app.add_option("--angle", angle_deg_,
+                 "Fly lines at this compass bearing, degrees clockwise from north "
+                 "(default: the exact minimum-height direction)");
+  app.add_option("--angle-search", angle_search_,
+                 "exact (rotating calipers) or scan (paper 001, --angle-step)")
+      ->check(CLI::IsMember({"exact", "scan"}))
+      ->capture_default_str();
+  app.add_option("--angle-step", angle_step_deg_, "Step of --angle-search scan, degrees")
+      ->capture_default_str();
+  app.add_option("--line-placement", placement_,
+                 "centered (fewest lines, centred) or paper (Algorithm 2)")
+      ->check(CLI::IsMember({"centered", "paper"}))
+      ->capture_default_str();
+  app.add_option("--turnaround", turnaround_m_,
+                 "Extend every line by this many metres at both ends")
+      ->capture_default_str();
+  app.add_option("--waypoint-spacing", waypoint_spacing_m_,
+                 "Add waypoints along lines at most this many metres apart");
+  app.add_option("--start", start_,
+                 "Entry corner: nearest-home (shortest home legs), sw, se, nw or ne")
+      ->check(CLI::IsMember({"nearest-home", "sw", "se", "nw", "ne"}))
+      ->capture_default_str();
+  app.add_option("--home", home_,
+                 "Home (take-off and landing) LAT,LON in degrees (default: the survey's entry "
+                 "point, entered from the south-west)");
+  app.add_flag("--local", local_, "The CSV area is x,y in metres (needs --origin)");
+  app.add_option("--origin", origin_,
+                 "LAT,LON of the local frame's origin (0, 0) for a --local area");
+  app.add_option("--concave", concave_,
+                 "Non-convex area: hull (plan over its convex hull; the summary reports the "
+                 "swath outside) or reject")
+      ->check(CLI::IsMember({"hull", "reject"}))
+      ->capture_default_str();
+  app.add_option("--firmware", firmware_, "ardupilot or px4 (QGC firmwareType)")
+      ->check(CLI::IsMember({"ardupilot", "px4"}))
+      ->capture_default_str();
+  app.add_option("--vehicle", vehicle_, "multirotor or fixedwing (QGC vehicleType)")
+      ->check(CLI::IsMember({"multirotor", "fixedwing"}))
+      ->capture_default_str();
+  app.add_option("--speed", speed_m_s_, "Cruise speed, m/s (default 5 multirotor, 15 fixed wing)");
+}
+
+int PlanCommand::run() {
+  if (!config_.empty()) apply_config(*app_, config_);
+  if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
+  if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
+  if (output_.empty()) throw InputError("no output directory: give -o DIR");
+
+  planning::SurveyRequest request;
+  geometry::FieldReadOptions read_options;
+  read_options.local_metres = local_;
+  request.field = geometry::read_field(field_, read_options);
+  if (local_) {
+    if (origin_.empty())
+      throw InputError(field_ + ": a --local area needs --origin LAT,LON to place it on the map");
+    request.field.frame.emplace(parse_lat_lon(origin_, "--origin"));
+  } else if (!origin_.empty()) {
+    throw InputError("--origin only applies to a --local area");
+  }
+  request.camera = planning::find_camera(camera_, share_dir() / "cameras");
+
+  std::optional<planning::DetectionMode> pattern;
+  if (!pattern_.empty() || min_pixels_) {
+    if (pattern_.empty() || !min_pixels_)
+      throw InputError("--pattern and --min-pixels go together");
+    const auto [w, h] = parse_pattern(pattern_);
+    pattern = planning::DetectionMode{w, h, *min_pixels_, overlap_};
+  }
+  if (mode_ == "detection") {
+    if (!pattern) throw InputError("detection mode needs --pattern WxH and --min-pixels N");
+    if (altitude_m_ || gsd_cm_)
+      throw InputError("detection mode sets the altitude from the pattern; drop --altitude/--gsd");
+    request.mode = *pattern;
+  } else {
+    if (!altitude_m_ && !gsd_cm_)
+      throw InputError("photogrammetry mode needs --altitude M or --gsd CM");
+    planning::PhotogrammetryMode m;
+    m.altitude_m = altitude_m_;
+    if (gsd_cm_) m.gsd_m = *gsd_cm_ / 100.0;
+    m.side_overlap = side_overlap_;
+    m.front_overlap = front_overlap_;
+    request.mode = m;
+    request.pattern = pattern;
+  }
+  request.orientation =
+      portrait_ ? planning::ImageOrientation::portrait : planning::ImageOrientation::landscape;
+  if (angle_deg_) {
+    request.angle_search = planning::AngleSearch::fixed;
+    request.line_bearing_deg = *angle_deg_;
+  } else {
+    request.angle_search =
+        angle_search_ == "scan" ? planning::AngleSearch::scan : planning::AngleSearch::exact;
+  }
+  request.angle_step_deg = angle_step_deg_;
+  request.placement =
+      placement_ == "paper" ? planning::LinePlacement::paper : planning::LinePlacement::centered;
+  request.turnaround_m = turnaround_m_;
+  request.waypoint_spacing_m = waypoint_spacing_m_;
+  request.start =
+      lookup<planning::StartCorner>({{"nearest-home", planning::StartCorner::nearest_home},
+                                     {"sw", planning::StartCorner::sw},
+                                     {"se", planning::StartCorner::se},
+                                     {"nw", planning::StartCorner::nw},
+                                     {"ne", planning::StartCorner::ne}},
+                                    start_);
+  if (!home_.empty()) request.home = parse_lat_lon(home_, "--home");
+  request.concave =
+      concave_ == "reject" ? planning::ConcaveMode::reject : planning::ConcaveMode::hull;
+  request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
+  request.vehicle =
+      vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
+  request.speed_m_s = speed_m_s_;
+
+  const planning::SurveyPlan plan = planning::plan_survey(request);
+  const auto files = planning::survey_files(plan);
+  planning::write_files_atomically(output_, files);
+
+  const planning::Imaging& im = plan.imaging;
+  const planning::DroneMission& m = plan.mission;
+  std::printf("swath plan: %s -> %s\n", field_.c_str(), output_.c_str());
+  std::printf("  area       %s, %s ha%s\n",
+              std::string(geometry::to_string(plan.facts.classification.type)).c_str(),
+              fixed(*plan.facts.area_m2 / 1e4, 3).c_str(),
+              plan.facts.classification.type == geometry::AreaType::convex
+                  ? ""
+                  : " (flown over its convex hull)");
+  std::printf("  camera     %s, %s: altitude %s m, GSD %s cm/px, footprint %s x %s m\n",
+              request.camera.name.c_str(), mode_.c_str(), fixed(im.altitude_m, 1).c_str(),
+              fixed(im.gsd_m * 100, 3).c_str(), fixed(im.footprint_across_m, 1).c_str(),
+              fixed(im.footprint_along_m, 1).c_str());
+  std::printf("  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n",
+              plan.sweep.lines.size(),
+              fixed(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
+              fixed(im.line_spacing_m, 2).c_str(), fixed(im.trigger_distance_m, 2).c_str());
+  std::printf("  drone 1    %s (work %s, transit %s), %s at %s m/s, %zu waypoints\n",
+              kilometres(m.path_length_m).c_str(), kilometres(m.work_length_m).c_str(),
+              kilometres(m.transit_length_m).c_str(), duration(m.flight_time_s).c_str(),
+              fixed(plan.speed_m_s, 1).c_str(), m.waypoint_count);
+  std::printf("  coverage   %s %% of the area, %s %% of the swath outside it\n",
+              fixed(plan.coverage.covered_fraction * 100, 3).c_str(),
+              fixed(plan.coverage.outside_fraction * 100, 1).c_str());
+  std::string names;
+  for (const auto& f : files) names += " " + f.first;
+  std::printf("  wrote     %s\n", names.c_str());
+  for (const std::string& w : plan.warnings) std::cerr << "swath plan: warning: " << w << '\n';
+  return kSuccess;
+}
+
+}  // namespace swath::apps

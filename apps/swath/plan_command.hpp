@@ -1,0 +1,52 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "command.hpp"
+
+namespace swath::apps {
+
+/// `swath plan FIELD --camera CAM (--altitude M | --gsd CM | --mode detection ...) -o DIR`.
+class PlanCommand : public Command {
+ public:
+  const char* name() const override { return "plan"; }
+  const char* description() const override {
+    return "Plan a camera survey of an area and write mission files (QGC .plan, WPL 110, GeoJSON, "
+           "CSV, KML) and summary.json into -o DIR";
+  }
+  void setup(CLI::App& app) override;
+  int run() override;
+
+ private:
+  CLI::App* app_ = nullptr;
+  std::string config_;
+  std::string field_;
+  std::string camera_;
+  std::string output_;
+  std::string mode_ = "photogrammetry";
+  std::optional<double> altitude_m_;
+  std::optional<double> gsd_cm_;
+  double side_overlap_ = 0.7;
+  double front_overlap_ = 0.7;
+  std::string pattern_;
+  std::optional<double> min_pixels_;
+  double overlap_ = 0.0;
+  bool portrait_ = false;
+  std::optional<double> angle_deg_;
+  std::string angle_search_ = "exact";
+  double angle_step_deg_ = 0.1;
+  std::string placement_ = "centered";
+  double turnaround_m_ = 0.0;
+  std::optional<double> waypoint_spacing_m_;
+  std::string start_ = "nearest-home";
+  std::string home_;
+  std::string origin_;
+  bool local_ = false;
+  std::string concave_ = "hull";
+  std::string firmware_ = "ardupilot";
+  std::string vehicle_ = "multirotor";
+  std::optional<double> speed_m_s_;
+};
+
+}  // namespace swath::apps

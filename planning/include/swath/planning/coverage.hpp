@@ -1,0 +1,36 @@
+#pragma once
+// How much of an area the camera footprints of a set of flight lines cover, and how much of the
+// flown swath lies outside the area.
+
+#include <vector>
+
+#include "swath/geometry/polygon.hpp"
+#include "swath/planning/sweep.hpp"
+
+namespace swath::planning {
+
+struct CoverageMeasure {
+  double area_m2 = 0.0;           ///< of the area measured
+  double covered_area_m2 = 0.0;   ///< area under at least one footprint
+  double swath_area_m2 = 0.0;     ///< union of the footprints
+  double covered_fraction = 0.0;  ///< covered / area, in [0, 1]
+  double outside_fraction = 0.0;  ///< (swath - covered) / swath, in [0, 1]
+  double line_length_m = 0.0;     ///< total length of the flight lines
+  double line_length_outside_m =
+      0.0;  ///< of it, over ground outside the area (holes count as outside)
+};
+
+/// Length of the segment [a, b] that lies outside `area` (outer ring minus holes), exact up to
+/// rounding: the segment is cut at every boundary crossing and each piece's midpoint located.
+double length_outside(const geometry::Polygon& area, geometry::Point2 a, geometry::Point2 b);
+
+/// Footprint of a line: the rectangle along the whole segment, `footprint_width_m` across, centred
+/// on it (no credit for the photo extending beyond the segment's ends). All lines must share one
+/// direction `angle_deg` (degrees CCW from x). Measured by scanlines perpendicular to the lines:
+/// exact along each scanline, `rows` scanlines (midpoint rule) across, so the error is below
+/// ~perimeter x height / rows² for straight edges. O((n + lines) log + rows x active); the line
+/// lengths outside the area are exact, O(n) per line.
+CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vector<SweepLine>& lines,
+                                 double angle_deg, double footprint_width_m, int rows = 4096);
+
+}  // namespace swath::planning

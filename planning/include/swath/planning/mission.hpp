@@ -1,0 +1,47 @@
+#pragma once
+// A drone's mission: take off at home, fly the sweep lines with the camera triggering by
+// distance, return to launch.
+
+#include <optional>
+#include <vector>
+
+#include "swath/planning/sweep.hpp"
+
+namespace swath::planning {
+
+enum class ItemKind { takeoff, waypoint, trigger_start, trigger_stop, return_to_launch };
+
+struct MissionItem {
+  ItemKind kind = ItemKind::waypoint;
+  geometry::Point2 position;  ///< local metres (takeoff: home); unused by trigger and RTL items
+  double altitude_m = 0.0;    ///< above home
+  double trigger_distance_m = 0.0;  ///< trigger_start only
+};
+
+struct MissionSettings {
+  double altitude_m = 0.0;                   ///< > 0, above home
+  double speed_m_s = 0.0;                    ///< > 0, cruise speed over the whole path
+  double trigger_distance_m = 0.0;           ///< > 0
+  std::optional<double> waypoint_spacing_m;  ///< intermediate waypoints on long lines
+};
+
+struct DroneMission {
+  int drone = 1;  ///< 1-based
+  geometry::Point2 home;
+  std::vector<SweepLine> lines;        ///< in flight order and direction
+  std::vector<MissionItem> items;      ///< what the autopilot gets, in order
+  std::vector<geometry::Point2> path;  ///< home -> every waypoint -> home, local metres
+  double work_length_m = 0.0;          ///< along the sweep lines (camera over the area)
+  double transit_length_m = 0.0;       ///< home legs and the legs between lines
+  double path_length_m = 0.0;          ///< work + transit
+  double flight_time_s = 0.0;      ///< path at cruise speed (climb, descent and turns not modelled)
+  std::size_t waypoint_count = 0;  ///< items with a position (takeoff and waypoints)
+};
+
+/// Builds the mission: takeoff at home to the survey altitude, the first line's start, camera
+/// trigger by distance on, every line's waypoints, trigger off after the last, return to launch.
+DroneMission build_mission(int drone, geometry::Point2 home,
+                           const std::vector<SweepLine>& ordered_lines,
+                           const MissionSettings& settings);
+
+}  // namespace swath::planning

@@ -1,0 +1,74 @@
+#pragma once
+// The whole survey pipeline: area -> imaging -> sweep direction -> lines -> mission -> coverage.
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "swath/geometry/area_facts.hpp"
+#include "swath/geometry/field.hpp"
+#include "swath/planning/coverage.hpp"
+#include "swath/planning/imaging.hpp"
+#include "swath/planning/mission.hpp"
+
+namespace swath::planning {
+
+/// How the sweep direction is chosen.
+enum class AngleSearch {
+  exact,  ///< exact minimum height (rotating calipers)
+  scan,   ///< the paper's scan in `angle_step_deg` steps
+  fixed,  ///< `line_bearing_deg` as given
+};
+
+/// What a non-convex area becomes before sweeping.
+enum class ConcaveMode {
+  hull,    ///< paper 001: its convex hull (flies over ground outside the area; reported)
+  reject,  ///< refuse it
+};
+
+enum class Firmware { ardupilot, px4 };
+enum class Vehicle { multirotor, fixedwing };
+
+struct SurveyRequest {
+  geometry::Field field;
+  Camera camera;
+  std::variant<PhotogrammetryMode, DetectionMode> mode = PhotogrammetryMode{};
+  ImageOrientation orientation = ImageOrientation::landscape;
+  /// Photogrammetry mode with a detection target too: h_max is reported and flying above it warned.
+  std::optional<DetectionMode> pattern;
+  AngleSearch angle_search = AngleSearch::exact;
+  double angle_step_deg = 0.1;    ///< scan only, in (0, 90]
+  double line_bearing_deg = 0.0;  ///< fixed only: compass bearing of the lines
+  LinePlacement placement = LinePlacement::centered;
+  double turnaround_m = 0.0;
+  std::optional<double> waypoint_spacing_m;
+  StartCorner start = StartCorner::nearest_home;
+  std::optional<geometry::GeoPoint> home;  ///< absent: home at the survey's entry point
+  ConcaveMode concave = ConcaveMode::hull;
+  Firmware firmware = Firmware::ardupilot;
+  Vehicle vehicle = Vehicle::multirotor;
+  std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
+};
+
+struct SurveyPlan {
+  SurveyRequest request;
+  geometry::AreaFacts facts;     ///< of the area as given
+  geometry::Polygon flown_area;  ///< what the sweep covers (the hull for a concave area)
+  Imaging imaging;
+  geometry::SweepDirection direction;  ///< angle of the lines (local, CCW from east) and height
+  Sweep sweep;
+  DroneMission mission;
+  double speed_m_s = 0.0;
+  geometry::GeoPoint home;
+  /// Coverage of the area as given by the flown footprints, and the share of swath outside it.
+  CoverageMeasure coverage;
+  std::vector<std::string> warnings;  ///< one sentence each
+};
+
+/// Plans a one-drone survey. Throws geometry::InputError for an area it refuses (self-intersecting,
+/// or non-convex with ConcaveMode::reject), a local-metres area without a geographic frame, or
+/// settings out of range; the message names the problem.
+SurveyPlan plan_survey(const SurveyRequest& request);
+
+}  // namespace swath::planning

@@ -1,0 +1,73 @@
+#pragma once
+// Zigzag sweep of an area (DESIGN.md §6, paper 001 Algorithm 2).
+
+#include <optional>
+#include <vector>
+
+#include "swath/geometry/min_height.hpp"
+#include "swath/geometry/polygon.hpp"
+
+namespace swath::planning {
+
+/// How flight lines are spread over the area's height (perpendicular to the lines).
+enum class LinePlacement {
+  /// The fewest lines whose footprints cover the height, at the given spacing, centred.
+  centered,
+  /// Paper 001 Algorithm 2: first line half a spacing above the bottom, then one spacing apart;
+  /// the last one half a spacing after the one before it (or at the top).
+  paper,
+};
+
+struct SweepSettings {
+  /// Direction of the lines, degrees counter-clockwise from the local x axis (east), any value.
+  double angle_deg = 0.0;
+  double line_spacing_m = 0.0;     ///< > 0
+  double footprint_width_m = 0.0;  ///< camera footprint across the line, >= line_spacing_m
+  LinePlacement placement = LinePlacement::centered;
+  double turnaround_m = 0.0;  ///< extension beyond both ends of every line, >= 0
+};
+
+/// One flight line in the local frame, in the direction it is flown.
+struct SweepLine {
+  geometry::Point2 start;
+  geometry::Point2 end;
+};
+
+struct Sweep {
+  double angle_deg = 0.0;  ///< as in SweepSettings, normalised to [0, 180)
+  double height_m = 0.0;   ///< extent of the area perpendicular to the lines
+  /// Bottom to top in the rotated frame (lines' left side), all flown towards +x of the rotated
+  /// frame. order_lines() turns this into a zigzag.
+  std::vector<SweepLine> lines;
+};
+
+/// Places lines over `area` (all rings; holes ignored for the extent, so pass the area to fly)
+/// and gives each the segment spanning the area's extent within its strip: the band between the
+/// midpoints to its neighbours (the first from the bottom, the last to the top). Every point of
+/// the area then lies in some strip, within the line's segment span and within half a footprint
+/// of the line, so it is seen (DESIGN.md §6 guarantee). Lines whose strip holds no area are
+/// dropped. Throws std::invalid_argument on settings out of range.
+Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& settings);
+
+/// Line offsets (rotated-frame y) for an area spanning [y_min, y_max].
+std::vector<double> line_offsets(double y_min, double y_max, double spacing_m,
+                                 double footprint_width_m, LinePlacement placement);
+
+/// Where the survey starts.
+enum class StartCorner { nearest_home, sw, se, nw, ne };
+
+/// Orders and directs the lines of `sweep` into a zigzag (alternating directions) starting at the
+/// end chosen by `start`: the corner most to the south-west (etc.) of the four possible entry
+/// points, or for nearest_home the variant whose home -> first and last -> home legs are shortest
+/// (`home` required then).
+std::vector<SweepLine> order_lines(const Sweep& sweep, StartCorner start,
+                                   std::optional<geometry::Point2> home = std::nullopt);
+
+/// Points along a line every `spacing_m` at most (evenly), ends included.
+std::vector<geometry::Point2> line_waypoints(const SweepLine& line,
+                                             std::optional<double> spacing_m);
+
+/// Rotates p by angle_deg counter-clockwise about the origin.
+geometry::Point2 rotate(geometry::Point2 p, double angle_deg);
+
+}  // namespace swath::planning

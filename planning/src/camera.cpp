@@ -1,0 +1,122 @@
+#include "swath/planning/camera.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "swath/geometry/input_error.hpp"
+#include "swath/planning/imaging.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::InputError;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+double number(const YAML::Node& node, const std::string& key, const std::string& source) {
+  try {
+    return node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw InputError(source + ": line " + std::to_string(node.Mark().line + 1) + ": " + key +
+                     " must be a number");
+  }
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot open the camera file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+Camera parse_camera(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
+                     e.msg + ")");
+  }
+  if (!root.IsMap())
+    throw InputError(source + ": a camera file is a YAML mapping of name, sensor and image sizes");
+  static const std::set<std::string> known{
+      "name",           "sensor_width_mm", "sensor_height_mm",      "focal_length_mm",
+      "image_width_px", "image_height_px", "min_trigger_interval_s"};
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    if (!known.count(key))
+      throw InputError(source + ": line " + std::to_string(kv.first.Mark().line + 1) +
+                       ": unknown key '" + key + "'");
+  }
+  auto required = [&](const char* key) {
+    if (!root[key]) throw InputError(source + ": the camera has no " + std::string(key));
+    return root[key];
+  };
+  Camera c;
+  c.name = required("name").as<std::string>();
+  c.sensor_width_mm = number(required("sensor_width_mm"), "sensor_width_mm", source);
+  c.sensor_height_mm = number(required("sensor_height_mm"), "sensor_height_mm", source);
+  c.focal_length_mm = number(required("focal_length_mm"), "focal_length_mm", source);
+  const double w = number(required("image_width_px"), "image_width_px", source);
+  const double h = number(required("image_height_px"), "image_height_px", source);
+  if (w != std::floor(w) || h != std::floor(h) || w > 1e6 || h > 1e6 || w <= 0 || h <= 0)
+    throw InputError(source +
+                     ": image_width_px and image_height_px must be whole numbers of pixels > 0");
+  c.image_width_px = static_cast<int>(w);
+  c.image_height_px = static_cast<int>(h);
+  if (root["min_trigger_interval_s"]) {
+    c.min_trigger_interval_s =
+        number(root["min_trigger_interval_s"], "min_trigger_interval_s", source);
+    if (!(*c.min_trigger_interval_s >= 0) || !std::isfinite(*c.min_trigger_interval_s))
+      throw InputError(source + ": min_trigger_interval_s must be >= 0");
+  }
+  validate_camera(c, source);
+  return c;
+}
+
+std::vector<CameraEntry> camera_database(const std::filesystem::path& directory) {
+  std::vector<CameraEntry> entries;
+  std::error_code ec;
+  for (const auto& file : std::filesystem::directory_iterator(directory, ec)) {
+    if (file.path().extension() != ".yaml") continue;
+    entries.push_back(
+        {file.path().stem().string(), parse_camera(read_text(file.path()), file.path().string())});
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const CameraEntry& a, const CameraEntry& b) { return a.id < b.id; });
+  return entries;
+}
+
+Camera find_camera(const std::string& spec, const std::filesystem::path& database_directory) {
+  std::error_code ec;
+  if (spec.find('/') != std::string::npos || spec.ends_with(".yaml") || spec.ends_with(".yml")) {
+    if (!std::filesystem::is_regular_file(spec, ec))
+      throw InputError(spec + ": cannot open the camera file");
+    return parse_camera(read_text(spec), spec);
+  }
+  const std::vector<CameraEntry> entries = camera_database(database_directory);
+  for (const CameraEntry& e : entries)
+    if (e.id == lower(spec) || lower(e.camera.name) == lower(spec)) return e.camera;
+  // Suggest ids that share the first word (the brand) or contain the spec.
+  std::string suggestions;
+  const std::string brand = lower(spec.substr(0, spec.find_first_of(" -")));
+  for (const CameraEntry& e : entries)
+    if (e.id.find(lower(spec)) != std::string::npos || e.id.rfind(brand, 0) == 0)
+      suggestions += (suggestions.empty() ? "" : ", ") + e.id;
+  throw InputError("--camera " + spec + ": no such camera in " + database_directory.string() +
+                   (suggestions.empty() ? "" : " (did you mean " + suggestions + "?)") +
+                   "; 'swath cameras' lists them, or give a camera YAML file");
+}
+
+}  // namespace swath::planning

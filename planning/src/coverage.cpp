@@ -1,0 +1,170 @@
+#include "swath/planning/coverage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "swath/geometry/predicates.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+using Interval = std::pair<double, double>;
+
+// Union of intervals, sorted and merged in place.
+void merge(std::vector<Interval>& v) {
+  std::sort(v.begin(), v.end());
+  std::size_t k = 0;
+  for (const Interval& i : v) {
+    if (k > 0 && i.first <= v[k - 1].second) {
+      v[k - 1].second = std::max(v[k - 1].second, i.second);
+    } else {
+      v[k++] = i;
+    }
+  }
+  v.resize(k);
+}
+
+double length(const std::vector<Interval>& v) {
+  double s = 0;
+  for (const Interval& i : v) s += i.second - i.first;
+  return s;
+}
+
+// Length of the intersection of two merged interval lists.
+double overlap(const std::vector<Interval>& a, const std::vector<Interval>& b) {
+  double s = 0;
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    s += std::max(0.0, std::min(a[i].second, b[j].second) - std::max(a[i].first, b[j].first));
+    if (a[i].second < b[j].second) {
+      ++i;
+    } else {
+      ++j;
+    }
+  }
+  return s;
+}
+
+struct Edge {
+  Point2 lo, hi;  // lo.y <= hi.y
+};
+
+}  // namespace
+
+double length_outside(const geometry::Polygon& area, Point2 a, Point2 b) {
+  const Point2 d = b - a;
+  const double len = geometry::distance(a, b);
+  if (len == 0) return 0.0;
+  std::vector<double> cuts{0.0, 1.0};
+  for (std::size_t r = 0; r < geometry::ring_count(area); ++r) {
+    const geometry::Ring& ring = geometry::ring_at(area, r);
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
+      const Point2 e = q - p;
+      const double denom = geometry::cross(d, e);
+      if (denom == 0) {
+        // Parallel: collinear overlaps contribute their end points as cuts.
+        if (geometry::cross(p - a, d) == 0)
+          for (const Point2 v : {p, q})
+            cuts.push_back(std::clamp(geometry::dot(v - a, d) / (len * len), 0.0, 1.0));
+        continue;
+      }
+      const double t = geometry::cross(p - a, e) / denom;
+      const double u = geometry::cross(p - a, d) / denom;
+      if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts.push_back(t);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double outside = 0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double t0 = cuts[k], t1 = cuts[k + 1];
+    if (t1 <= t0) continue;
+    const Point2 mid = a + d * ((t0 + t1) / 2);
+    bool inside = geometry::locate_point(mid, area.outer) != geometry::Containment::outside;
+    for (const geometry::Ring& hole : area.holes)
+      if (inside && geometry::locate_point(mid, hole) == geometry::Containment::inside)
+        inside = false;
+    if (!inside) outside += (t1 - t0) * len;
+  }
+  return outside;
+}
+
+CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vector<SweepLine>& lines,
+                                 double angle_deg, double footprint_width_m, int rows) {
+  // Rotate so that the lines run along x; scanlines are then rows of constant y.
+  std::vector<Edge> edges;
+  double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
+  for (std::size_t r = 0; r < geometry::ring_count(area); ++r) {
+    const geometry::Ring& ring = geometry::ring_at(area, r);
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      Point2 a = rotate(ring[i], -angle_deg), b = rotate(ring[(i + 1) % ring.size()], -angle_deg);
+      if (a.y > b.y) std::swap(a, b);
+      if (a.y == b.y) continue;  // horizontal edges never cross a scanline's interior
+      edges.push_back({a, b});
+      y_min = std::min(y_min, a.y);
+      y_max = std::max(y_max, b.y);
+    }
+  }
+  struct Band {
+    double y0, y1, x0, x1;
+  };
+  std::vector<Band> bands;
+  for (const SweepLine& l : lines) {
+    const Point2 a = rotate(l.start, -angle_deg), b = rotate(l.end, -angle_deg);
+    const double y = (a.y + b.y) / 2;
+    bands.push_back({y - footprint_width_m / 2, y + footprint_width_m / 2, std::min(a.x, b.x),
+                     std::max(a.x, b.x)});
+    y_min = std::min(y_min, y - footprint_width_m / 2);
+    y_max = std::max(y_max, y + footprint_width_m / 2);
+  }
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& a, const Edge& b) { return a.lo.y < b.lo.y; });
+  std::sort(bands.begin(), bands.end(), [](const Band& a, const Band& b) { return a.y0 < b.y0; });
+
+  CoverageMeasure m;
+  const double dy = (y_max - y_min) / rows;
+  std::vector<const Edge*> active_edges;
+  std::vector<const Band*> active_bands;
+  std::size_t next_edge = 0, next_band = 0;
+  std::vector<double> xs;
+  std::vector<Interval> inside, swath;
+  for (int r = 0; r < rows; ++r) {
+    const double y = y_min + (r + 0.5) * dy;
+    while (next_edge < edges.size() && edges[next_edge].lo.y <= y)
+      active_edges.push_back(&edges[next_edge++]);
+    while (next_band < bands.size() && bands[next_band].y0 <= y)
+      active_bands.push_back(&bands[next_band++]);
+    std::erase_if(active_edges, [y](const Edge* e) { return e->hi.y <= y; });
+    std::erase_if(active_bands, [y](const Band* b) { return b->y1 < y; });
+
+    xs.clear();
+    for (const Edge* e : active_edges)
+      if (e->lo.y <= y && y < e->hi.y)
+        xs.push_back(e->lo.x + (e->hi.x - e->lo.x) * (y - e->lo.y) / (e->hi.y - e->lo.y));
+    std::sort(xs.begin(), xs.end());
+    inside.clear();
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2) inside.push_back({xs[i], xs[i + 1]});
+    swath.clear();
+    for (const Band* b : active_bands) swath.push_back({b->x0, b->x1});
+    merge(swath);
+
+    const double area_len = length(inside);
+    const double swath_len = length(swath);
+    const double covered_len = overlap(inside, swath);
+    m.area_m2 += area_len * dy;
+    m.swath_area_m2 += swath_len * dy;
+    m.covered_area_m2 += covered_len * dy;
+  }
+  for (const SweepLine& l : lines) {
+    m.line_length_m += geometry::distance(l.start, l.end);
+    m.line_length_outside_m += length_outside(area, l.start, l.end);
+  }
+  m.covered_fraction = m.area_m2 > 0 ? m.covered_area_m2 / m.area_m2 : 0.0;
+  m.outside_fraction =
+      m.swath_area_m2 > 0 ? (m.swath_area_m2 - m.covered_area_m2) / m.swath_area_m2 : 0.0;
+  return m;
+}
+
+}  // namespace swath::planning

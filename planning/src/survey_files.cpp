@@ -1,0 +1,371 @@
+#include "swath/planning/survey_files.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace swath::planning {
+namespace {
+
+using geometry::GeoPoint;
+using geometry::Point2;
+using nlohmann::ordered_json;
+
+double round_to(double v, int decimals) {
+  const double scale = std::pow(10.0, decimals);
+  const double r = std::round(v * scale) / scale;
+  return r == 0.0 ? 0.0 : r;
+}
+
+GeoPoint geo(const SurveyPlan& plan, Point2 p) {
+  return plan.request.field.frame->to_geo(p);
+}
+
+ordered_json lon_lat(const SurveyPlan& plan, Point2 p) {
+  const GeoPoint g = geo(plan, p);
+  return {round_to(g.lon_deg, 9), round_to(g.lat_deg, 9)};
+}
+
+std::string format(const char* fmt, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, fmt, v);
+  return buffer;
+}
+
+int mav_command(ItemKind kind) {
+  switch (kind) {
+    case ItemKind::takeoff:
+      return 22;  // MAV_CMD_NAV_TAKEOFF
+    case ItemKind::waypoint:
+      return 16;  // MAV_CMD_NAV_WAYPOINT
+    case ItemKind::trigger_start:
+    case ItemKind::trigger_stop:
+      return 206;  // MAV_CMD_DO_SET_CAM_TRIGG_DIST
+    case ItemKind::return_to_launch:
+      return 20;  // MAV_CMD_NAV_RETURN_TO_LAUNCH
+  }
+  return 0;
+}
+
+bool positional(ItemKind kind) {
+  return kind == ItemKind::takeoff || kind == ItemKind::waypoint;
+}
+
+const char* action_name(ItemKind kind) {
+  switch (kind) {
+    case ItemKind::takeoff:
+      return "takeoff";
+    case ItemKind::waypoint:
+      return "waypoint";
+    case ItemKind::trigger_start:
+      return "trigger_start";
+    case ItemKind::trigger_stop:
+      return "trigger_stop";
+    case ItemKind::return_to_launch:
+      return "return_to_launch";
+  }
+  return "";
+}
+
+// The seven MAVLink params of an item; NaN where QGC writes null (yaw: keep heading).
+std::array<double, 7> params(const SurveyPlan& plan, const MissionItem& item) {
+  const double nan = std::nan("");
+  if (positional(item.kind)) {
+    const GeoPoint g = geo(plan, item.position);
+    return {
+        0, 0, 0, nan, round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), round_to(item.altitude_m, 3)};
+  }
+  if (item.kind == ItemKind::trigger_start)
+    return {round_to(item.trigger_distance_m, 3), 0, 1, 0, 0, 0, 0};
+  return {0, 0, 0, 0, 0, 0, 0};
+}
+
+constexpr int kFrameMission = 2;      // MAV_FRAME_MISSION: no position
+constexpr int kFrameRelativeAlt = 3;  // MAV_FRAME_GLOBAL_RELATIVE_ALT
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string kml_coordinates(const SurveyPlan& plan, const std::vector<Point2>& points,
+                            double altitude_m, bool close) {
+  std::string s;
+  auto add = [&](Point2 p) {
+    const GeoPoint g = geo(plan, p);
+    s += format("%.9f", g.lon_deg) + "," + format("%.9f", g.lat_deg) + "," +
+         format("%.3f", altitude_m) + " ";
+  };
+  for (const Point2& p : points) add(p);
+  if (close && !points.empty()) add(points.front());
+  if (!s.empty()) s.pop_back();
+  return s;
+}
+
+ordered_json ring_json(const SurveyPlan& plan, const geometry::Ring& ring) {
+  ordered_json r = ordered_json::array();
+  for (const Point2& p : ring) r.push_back(lon_lat(plan, p));
+  r.push_back(lon_lat(plan, ring.front()));  // RFC 7946 rings are closed
+  return r;
+}
+
+const char* to_string(LinePlacement p) {
+  return p == LinePlacement::centered ? "centered" : "paper";
+}
+const char* to_string(AngleSearch a) {
+  return a == AngleSearch::exact ? "exact" : a == AngleSearch::scan ? "scan" : "fixed";
+}
+
+ordered_json optional_number(const std::optional<double>& v, int decimals) {
+  return v ? ordered_json(round_to(*v, decimals)) : ordered_json();
+}
+
+}  // namespace
+
+std::string qgc_plan(const SurveyPlan& plan, const DroneMission& mission) {
+  ordered_json items = ordered_json::array();
+  int jump_id = 1;
+  for (const MissionItem& item : mission.items) {
+    ordered_json j;
+    const bool has_position = positional(item.kind);
+    if (has_position) {
+      j["AMSLAltAboveTerrain"] = nullptr;
+      j["Altitude"] = round_to(item.altitude_m, 3);
+      j["AltitudeMode"] = 1;  // relative to home
+    }
+    j["autoContinue"] = true;
+    j["command"] = mav_command(item.kind);
+    j["doJumpId"] = jump_id++;
+    j["frame"] = has_position ? kFrameRelativeAlt : kFrameMission;
+    ordered_json p = ordered_json::array();
+    for (double v : params(plan, item))
+      p.push_back(std::isnan(v) ? ordered_json() : ordered_json(v));
+    j["params"] = p;
+    j["type"] = "SimpleItem";
+    items.push_back(j);
+  }
+  const bool multirotor = plan.request.vehicle == Vehicle::multirotor;
+  ordered_json m;
+  m["cruiseSpeed"] = round_to(plan.speed_m_s, 3);
+  m["firmwareType"] = plan.request.firmware == Firmware::ardupilot ? 3 : 12;
+  m["globalPlanAltitudeMode"] = 1;
+  m["hoverSpeed"] = round_to(plan.speed_m_s, 3);
+  m["items"] = items;
+  m["plannedHomePosition"] = {round_to(plan.home.lat_deg, 9), round_to(plan.home.lon_deg, 9), 0};
+  m["vehicleType"] = multirotor ? 2 : 1;
+  m["version"] = 2;
+  ordered_json root;
+  root["fileType"] = "Plan";
+  root["geoFence"] = {
+      {"circles", ordered_json::array()}, {"polygons", ordered_json::array()}, {"version", 2}};
+  root["groundStation"] = "swath";
+  root["mission"] = m;
+  root["rallyPoints"] = {{"points", ordered_json::array()}, {"version", 2}};
+  root["version"] = 1;
+  return root.dump(4) + "\n";
+}
+
+std::string wpl_110(const SurveyPlan& plan, const DroneMission& mission) {
+  std::string out = "QGC WPL 110\n";
+  auto row = [&](std::size_t index, int current, int frame, int command,
+                 const std::array<double, 7>& p) {
+    out += std::to_string(index) + "\t" + std::to_string(current) + "\t" + std::to_string(frame) +
+           "\t" + std::to_string(command);
+    for (int k = 0; k < 7; ++k) {
+      const double v =
+          std::isnan(p[static_cast<std::size_t>(k)]) ? 0.0 : p[static_cast<std::size_t>(k)];
+      out += '\t';
+      out += format(k == 4 || k == 5 ? "%.9f" : "%.6f", v);
+    }
+    out += "\t1\n";
+  };
+  row(0, 1, 0, 16, {0, 0, 0, 0, round_to(plan.home.lat_deg, 9), round_to(plan.home.lon_deg, 9), 0});
+  std::size_t index = 1;
+  for (const MissionItem& item : mission.items)
+    row(index++, 0, positional(item.kind) ? kFrameRelativeAlt : kFrameMission,
+        mav_command(item.kind), params(plan, item));
+  return out;
+}
+
+std::string waypoints_csv(const SurveyPlan& plan) {
+  std::string out = "drone,seq,lat,lon,alt_m,x_m,y_m,action\n";
+  for (const DroneMission* m : {&plan.mission}) {
+    const std::string drone = std::to_string(m->drone);
+    auto row = [&](std::size_t seq, const MissionItem* item, Point2 p, double alt,
+                   const char* action) {
+      out += drone + "," + std::to_string(seq) + ",";
+      if (item == nullptr || positional(item->kind)) {
+        const GeoPoint g = geo(plan, p);
+        out += format("%.9f", g.lat_deg) + "," + format("%.9f", g.lon_deg) + "," +
+               format("%.3f", alt) + "," + format("%.3f", p.x) + "," + format("%.3f", p.y);
+      } else {
+        out += ",,,,";
+      }
+      out += std::string(",") + action + "\n";
+    };
+    row(0, nullptr, m->home, 0.0, "home");
+    std::size_t seq = 1;
+    for (const MissionItem& item : m->items)
+      row(seq++, &item, item.position, item.altitude_m, action_name(item.kind));
+  }
+  return out;
+}
+
+std::string mission_geojson(const SurveyPlan& plan) {
+  ordered_json features = ordered_json::array();
+  const geometry::Polygon& area = plan.request.field.polygon;
+  ordered_json rings = ordered_json::array();
+  for (std::size_t r = 0; r < geometry::ring_count(area); ++r)
+    rings.push_back(ring_json(plan, geometry::ring_at(area, r)));
+  features.push_back({{"type", "Feature"},
+                      {"properties", {{"role", "area"}}},
+                      {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
+  for (const DroneMission* m : {&plan.mission}) {
+    ordered_json path = ordered_json::array();
+    for (const Point2& p : m->path) path.push_back(lon_lat(plan, p));
+    features.push_back({{"type", "Feature"},
+                        {"properties", {{"role", "path"}, {"drone", m->drone}}},
+                        {"geometry", {{"type", "LineString"}, {"coordinates", path}}}});
+    for (std::size_t i = 0; i < m->lines.size(); ++i) {
+      features.push_back(
+          {{"type", "Feature"},
+           {"properties",
+            {{"role", "sweep"},
+             {"drone", m->drone},
+             {"line", i},
+             {"footprint_width_m", round_to(plan.imaging.footprint_across_m, 4)}}},
+           {"geometry",
+            {{"type", "LineString"},
+             {"coordinates",
+              {lon_lat(plan, m->lines[i].start), lon_lat(plan, m->lines[i].end)}}}}});
+    }
+  }
+  features.push_back(
+      {{"type", "Feature"},
+       {"properties", {{"role", "home"}}},
+       {"geometry",
+        {{"type", "Point"},
+         {"coordinates", {round_to(plan.home.lon_deg, 9), round_to(plan.home.lat_deg, 9)}}}}});
+  return ordered_json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n";
+}
+
+std::string mission_kml(const SurveyPlan& plan) {
+  const geometry::Polygon& area = plan.request.field.polygon;
+  std::string s =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<kml "
+      "xmlns=\"http://www.opengis.net/kml/2.2\">\n<Document>\n";
+  s += "  <name>swath survey of " + xml_escape(plan.request.field.source) + "</name>\n";
+  s += "  <Placemark>\n    <name>Area</name>\n    <Polygon>\n      "
+       "<outerBoundaryIs><LinearRing><coordinates>" +
+       kml_coordinates(plan, area.outer, 0.0, true) +
+       "</coordinates></LinearRing></outerBoundaryIs>\n";
+  for (const geometry::Ring& hole : area.holes)
+    s += "      <innerBoundaryIs><LinearRing><coordinates>" +
+         kml_coordinates(plan, hole, 0.0, true) + "</coordinates></LinearRing></innerBoundaryIs>\n";
+  s += "    </Polygon>\n  </Placemark>\n";
+  for (const DroneMission* m : {&plan.mission}) {
+    s += "  <Placemark>\n    <name>Drone " + std::to_string(m->drone) +
+         " path</name>\n    <LineString>\n" +
+         "      <altitudeMode>relativeToGround</altitudeMode>\n      <coordinates>" +
+         kml_coordinates(plan, m->path, plan.imaging.altitude_m, false) +
+         "</coordinates>\n    </LineString>\n  </Placemark>\n";
+  }
+  s += "  <Placemark>\n    <name>Home</name>\n    <Point><coordinates>" +
+       kml_coordinates(plan, {plan.mission.home}, 0.0, false) +
+       "</coordinates></Point>\n  </Placemark>\n</Document>\n</kml>\n";
+  return s;
+}
+
+std::string summary_json(const SurveyPlan& plan) {
+  const geometry::AreaFacts& f = plan.facts;
+  const SurveyRequest& r = plan.request;
+  ordered_json j;
+  j["swath_version"] = "0.1.0";
+  j["field"] = r.field.source;
+  j["area"] = {{"type", std::string(geometry::to_string(f.classification.type))},
+               {"vertices", f.vertex_count},
+               {"holes", r.field.polygon.holes.size()},
+               {"area_m2", optional_number(f.area_m2, 3)},
+               {"regularity",
+                f.regularity ? ordered_json(round_to(f.regularity->overall, 6)) : ordered_json()},
+               {"concave_mode", r.concave == ConcaveMode::hull ? "hull" : "reject"},
+               {"flown_area_m2", round_to(geometry::area(plan.flown_area), 3)}};
+  j["sweep"] = {{"bearing_deg", round_to(geometry::line_bearing_deg(plan.sweep.angle_deg), 6)},
+                {"angle_local_deg", round_to(plan.sweep.angle_deg, 6)},
+                {"angle_search", to_string(r.angle_search)},
+                {"height_m", round_to(plan.sweep.height_m, 4)},
+                {"line_placement", to_string(r.placement)},
+                {"lines", plan.sweep.lines.size()},
+                {"turnaround_m", round_to(r.turnaround_m, 3)}};
+  const Imaging& im = plan.imaging;
+  j["camera"] = {
+      {"name", r.camera.name},
+      {"mode", std::holds_alternative<PhotogrammetryMode>(r.mode) ? "photogrammetry" : "detection"},
+      {"orientation", r.orientation == ImageOrientation::landscape ? "landscape" : "portrait"},
+      {"altitude_m", round_to(im.altitude_m, 4)},
+      {"gsd_cm_per_px", round_to(im.gsd_m * 100, 5)},
+      {"footprint_across_m", round_to(im.footprint_across_m, 4)},
+      {"footprint_along_m", round_to(im.footprint_along_m, 4)},
+      {"line_spacing_m", round_to(im.line_spacing_m, 4)},
+      {"trigger_distance_m", round_to(im.trigger_distance_m, 4)},
+      {"h_min_m", optional_number(im.h_min_m, 4)},
+      {"h_max_m", optional_number(im.h_max_m, 4)}};
+  ordered_json drones = ordered_json::array();
+  for (const DroneMission* m : {&plan.mission}) {
+    drones.push_back({{"drone", m->drone},
+                      {"capability", 1.0},
+                      {"speed_m_s", round_to(plan.speed_m_s, 3)},
+                      {"path_length_m", round_to(m->path_length_m, 3)},
+                      {"work_length_m", round_to(m->work_length_m, 3)},
+                      {"transit_length_m", round_to(m->transit_length_m, 3)},
+                      {"flight_time_s", round_to(m->flight_time_s, 2)},
+                      {"lines", m->lines.size()},
+                      {"waypoints", m->waypoint_count},
+                      {"region_area_m2", nullptr}});
+  }
+  j["drones"] = drones;
+  j["home"] = {{"lat_deg", round_to(plan.home.lat_deg, 9)},
+               {"lon_deg", round_to(plan.home.lon_deg, 9)}};
+  const CoverageMeasure& c = plan.coverage;
+  j["coverage"] = {
+      {"covered_fraction", round_to(c.covered_fraction, 6)},
+      {"outside_fraction", round_to(c.outside_fraction, 6)},
+      {"uncovered_area_m2", round_to(c.area_m2 - c.covered_area_m2, 3)},
+      {"swath_area_m2", round_to(c.swath_area_m2, 3)},
+      {"line_length_m", round_to(c.line_length_m, 3)},
+      {"line_length_outside_m", round_to(c.line_length_outside_m, 3)},
+      {"line_outside_fraction",
+       round_to(c.line_length_m > 0 ? c.line_length_outside_m / c.line_length_m : 0.0, 6)}};
+  j["warnings"] = plan.warnings;
+  return j.dump(2) + "\n";
+}
+
+std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan) {
+  const std::string drone = "drone-" + std::to_string(plan.mission.drone);
+  return {{"mission.geojson", mission_geojson(plan)},
+          {"summary.json", summary_json(plan)},
+          {drone + ".plan", qgc_plan(plan, plan.mission)},
+          {drone + ".waypoints", wpl_110(plan, plan.mission)},
+          {"waypoints.csv", waypoints_csv(plan)},
+          {"mission.kml", mission_kml(plan)}};
+}
+
+}  // namespace swath::planning
