@@ -6,9 +6,11 @@
 
 #include "data_dir.hpp"
 #include "swath/planning/camera.hpp"
-#include "text_format.hpp"
+#include "swath/planning/number_text.hpp"
 
 namespace swath::apps {
+
+using planning::fixed_text;
 
 void CamerasCommand::setup(CLI::App& app) {
   app.add_flag("--json", json_, "Print a JSON array instead of a table");
@@ -38,12 +40,13 @@ int CamerasCommand::run() {
               "min dt s");
   for (const auto& e : entries) {
     const planning::Camera& c = e.camera;
-    const std::string sensor = fixed(c.sensor_width_mm, 2) + "x" + fixed(c.sensor_height_mm, 2);
+    const std::string sensor =
+        fixed_text(c.sensor_width_mm, 2) + "x" + fixed_text(c.sensor_height_mm, 2);
     const std::string image =
         std::to_string(c.image_width_px) + "x" + std::to_string(c.image_height_px);
     std::printf("%-22s %-30s %13s %8s %12s %9s\n", e.id.c_str(), c.name.c_str(), sensor.c_str(),
-                fixed(c.focal_length_mm, 2).c_str(), image.c_str(),
-                c.min_trigger_interval_s ? fixed(*c.min_trigger_interval_s, 1).c_str() : "-");
+                fixed_text(c.focal_length_mm, 2).c_str(), image.c_str(),
+                c.min_trigger_interval_s ? fixed_text(*c.min_trigger_interval_s, 1).c_str() : "-");
   }
   return kSuccess;
 }

@@ -6,10 +6,13 @@
 
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
-#include "text_format.hpp"
+#include "swath/planning/number_text.hpp"
 
 namespace swath::apps {
 namespace {
+
+using planning::fixed_text;
+using planning::round_to;
 
 using geometry::Field;
 using geometry::Point2;
@@ -37,18 +40,18 @@ ordered_json point_json(const Field& field, Point2 p) {
   ordered_json j;
   if (field.frame) {
     const geometry::GeoPoint g = field.frame->to_geo(p);
-    j["lat_deg"] = rounded(g.lat_deg, 9);
-    j["lon_deg"] = rounded(g.lon_deg, 9);
+    j["lat_deg"] = round_to(g.lat_deg, 9);
+    j["lon_deg"] = round_to(g.lon_deg, 9);
   }
-  j["x_m"] = rounded(p.x, 4);
-  j["y_m"] = rounded(p.y, 4);
+  j["x_m"] = round_to(p.x, 4);
+  j["y_m"] = round_to(p.y, 4);
   return j;
 }
 
 std::string point_text(const Field& field, Point2 p) {
-  if (!field.frame) return fixed(p.x, 3) + ", " + fixed(p.y, 3) + " (x, y m)";
+  if (!field.frame) return fixed_text(p.x, 3) + ", " + fixed_text(p.y, 3) + " (x, y m)";
   const geometry::GeoPoint g = field.frame->to_geo(p);
-  return fixed(g.lat_deg, 7) + ", " + fixed(g.lon_deg, 7) + " (lat, lon)";
+  return fixed_text(g.lat_deg, 7) + ", " + fixed_text(g.lon_deg, 7) + " (lat, lon)";
 }
 
 ordered_json edge_json(const Field& field, RingIndex e) {
@@ -76,19 +79,19 @@ ordered_json to_json(const Field& field, const geometry::AreaFacts& facts) {
   j["type"] = std::string(to_string(facts.classification.type));
   j["vertices"] = facts.vertex_count;
   j["holes"] = field.polygon.holes.size();
-  j["area_m2"] = facts.area_m2 ? ordered_json(rounded(*facts.area_m2, 3)) : ordered_json();
-  j["perimeter_m"] = rounded(facts.perimeter_m, 4);
+  j["area_m2"] = facts.area_m2 ? ordered_json(round_to(*facts.area_m2, 3)) : ordered_json();
+  j["perimeter_m"] = round_to(facts.perimeter_m, 4);
   if (facts.regularity) {
-    j["regularity"] = rounded(facts.regularity->overall, 6);
-    j["angle_regularity"] = rounded(facts.regularity->angle, 6);
-    j["edge_regularity"] = rounded(facts.regularity->edge, 6);
+    j["regularity"] = round_to(facts.regularity->overall, 6);
+    j["angle_regularity"] = round_to(facts.regularity->angle, 6);
+    j["edge_regularity"] = round_to(facts.regularity->edge, 6);
   } else {
     j["regularity"] = nullptr;
   }
   j["centroid"] = facts.centroid ? point_json(field, *facts.centroid) : ordered_json();
-  j["min_height_m"] = rounded(facts.min_height.height_m, 4);
-  j["sweep_bearing_deg"] = rounded(geometry::line_bearing_deg(facts.min_height.angle_deg), 6);
-  j["sweep_angle_local_deg"] = rounded(facts.min_height.angle_deg, 6);
+  j["min_height_m"] = round_to(facts.min_height.height_m, 4);
+  j["sweep_bearing_deg"] = round_to(geometry::line_bearing_deg(facts.min_height.angle_deg), 6);
+  j["sweep_angle_local_deg"] = round_to(facts.min_height.angle_deg, 6);
   ordered_json reflex = ordered_json::array();
   for (const RingIndex& v : reflex_in_file_order(field, facts.classification.reflex_vertices)) {
     ordered_json r = {{"ring", v.ring}, {"position", file_position(field, v)}};
@@ -119,16 +122,17 @@ void print_text(const Field& field, const geometry::AreaFacts& facts) {
                            ? ""
                            : " in " + std::to_string(field.polygon.holes.size() + 1) + " rings"));
   if (facts.area_m2)
-    row("area", fixed(*facts.area_m2, 2) + " m² (" + fixed(*facts.area_m2 / 1e4, 4) + " ha)");
-  row("perimeter", fixed(facts.perimeter_m, 2) + " m");
+    row("area",
+        fixed_text(*facts.area_m2, 2) + " m² (" + fixed_text(*facts.area_m2 / 1e4, 4) + " ha)");
+  row("perimeter", fixed_text(facts.perimeter_m, 2) + " m");
   if (facts.regularity)
-    row("regularity", fixed(facts.regularity->overall, 4) + " (angles " +
-                          fixed(facts.regularity->angle, 4) + ", edges " +
-                          fixed(facts.regularity->edge, 4) + ")");
+    row("regularity", fixed_text(facts.regularity->overall, 4) + " (angles " +
+                          fixed_text(facts.regularity->angle, 4) + ", edges " +
+                          fixed_text(facts.regularity->edge, 4) + ")");
   if (facts.centroid) row("centroid", point_text(field, *facts.centroid));
-  row("min height", fixed(facts.min_height.height_m, 2) + " m, sweep lines at bearing " +
-                        fixed(geometry::line_bearing_deg(facts.min_height.angle_deg), 2) + "° (" +
-                        fixed(facts.min_height.angle_deg, 2) + "° CCW from east)");
+  row("min height", fixed_text(facts.min_height.height_m, 2) + " m, sweep lines at bearing " +
+                        fixed_text(geometry::line_bearing_deg(facts.min_height.angle_deg), 2) +
+                        "° (" + fixed_text(facts.min_height.angle_deg, 2) + "° CCW from east)");
   if (c.type == geometry::AreaType::concave) {
     std::string list = std::to_string(c.reflex_vertices.size());
     for (const RingIndex& v : reflex_in_file_order(field, c.reflex_vertices)) {

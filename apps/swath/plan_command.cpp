@@ -9,13 +9,16 @@
 
 #include "data_dir.hpp"
 #include "swath/geometry/input_error.hpp"
+#include "swath/planning/number_text.hpp"
 #include "swath/planning/output_files.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/planning/survey_files.hpp"
-#include "text_format.hpp"
 
 namespace swath::apps {
 namespace {
+
+using planning::fixed_text;
+using planning::round_to;
 
 using geometry::InputError;
 
@@ -79,7 +82,7 @@ E lookup(const std::map<std::string, E>& table, const std::string& value) {
 }
 
 std::string kilometres(double m) {
-  return fixed(m / 1000, 2) + " km";
+  return fixed_text(m / 1000, 2) + " km";
 }
 
 std::string duration(double s) {
@@ -181,7 +184,7 @@ int PlanCommand::run() {
   if (local_) {
     if (origin_.empty())
       throw InputError(field_ + ": a --local area needs --origin LAT,LON to place it on the map");
-    request.field.frame.emplace(parse_lat_lon(origin_, "--origin"));
+    geometry::place_local_field(request.field, parse_lat_lon(origin_, "--origin"));
   } else if (!origin_.empty()) {
     throw InputError("--origin only applies to a --local area");
   }
@@ -248,25 +251,25 @@ int PlanCommand::run() {
   std::printf("swath plan: %s -> %s\n", field_.c_str(), output_.c_str());
   std::printf("  area       %s, %s ha%s\n",
               std::string(geometry::to_string(plan.facts.classification.type)).c_str(),
-              fixed(*plan.facts.area_m2 / 1e4, 3).c_str(),
+              fixed_text(*plan.facts.area_m2 / 1e4, 3).c_str(),
               plan.facts.classification.type == geometry::AreaType::convex
                   ? ""
                   : " (flown over its convex hull)");
   std::printf("  camera     %s, %s: altitude %s m, GSD %s cm/px, footprint %s x %s m\n",
-              request.camera.name.c_str(), mode_.c_str(), fixed(im.altitude_m, 1).c_str(),
-              fixed(im.gsd_m * 100, 3).c_str(), fixed(im.footprint_across_m, 1).c_str(),
-              fixed(im.footprint_along_m, 1).c_str());
-  std::printf("  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n",
-              plan.sweep.lines.size(),
-              fixed(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
-              fixed(im.line_spacing_m, 2).c_str(), fixed(im.trigger_distance_m, 2).c_str());
+              request.camera.name.c_str(), mode_.c_str(), fixed_text(im.altitude_m, 1).c_str(),
+              fixed_text(im.gsd_m * 100, 3).c_str(), fixed_text(im.footprint_across_m, 1).c_str(),
+              fixed_text(im.footprint_along_m, 1).c_str());
+  std::printf(
+      "  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n", plan.sweep.lines.size(),
+      fixed_text(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
+      fixed_text(im.line_spacing_m, 2).c_str(), fixed_text(im.trigger_distance_m, 2).c_str());
   std::printf("  drone 1    %s (work %s, transit %s), %s at %s m/s, %zu waypoints\n",
               kilometres(m.path_length_m).c_str(), kilometres(m.work_length_m).c_str(),
               kilometres(m.transit_length_m).c_str(), duration(m.flight_time_s).c_str(),
-              fixed(plan.speed_m_s, 1).c_str(), m.waypoint_count);
+              fixed_text(plan.speed_m_s, 1).c_str(), m.waypoint_count);
   std::printf("  coverage   %s %% of the area, %s %% of the swath outside it\n",
-              fixed(plan.coverage.covered_fraction * 100, 3).c_str(),
-              fixed(plan.coverage.outside_fraction * 100, 1).c_str());
+              fixed_text(plan.coverage.covered_fraction * 100, 3).c_str(),
+              fixed_text(plan.coverage.outside_fraction * 100, 1).c_str());
   std::string names;
   for (const auto& f : files) names += " " + f.first;
   std::printf("  wrote     %s\n", names.c_str());

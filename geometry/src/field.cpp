@@ -111,13 +111,21 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
     origin.lon_deg /= static_cast<double>(raw.rings[0].points.size());
     origin.lat_deg /= static_cast<double>(raw.rings[0].points.size());
     field.frame.emplace(origin);
-    for (detail::RawRing& ring : raw.rings)
-      for (Point2& p : ring.points) p = field.frame->to_local({p.y, p.x, 0.0});
   }
 
   for (std::size_t r = 0; r < raw.rings.size(); ++r) {
     const detail::RawRing& ring = raw.rings[r];
+    // Normalise in file coordinates (lon/lat keep orientation and duplicates), then convert.
     NormalisedRing normalised = normalise_ring(ring.points, r == 0);
+    if (geographic) {
+      std::vector<GeoPoint> geo;
+      geo.reserve(normalised.ring.size());
+      for (Point2& p : normalised.ring) {
+        geo.push_back({p.y, p.x, 0.0});
+        p = field.frame->to_local(geo.back());
+      }
+      field.geo_rings.push_back(std::move(geo));
+    }
     if (normalised.ring.size() < 3)
       fail(source, ring.name + " has " + std::to_string(normalised.ring.size()) +
                        " distinct vertices; a ring needs at least 3");
@@ -125,10 +133,15 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
     // encloses no area. The hull, not the shoelace sum, since a crossing ring may sum to zero;
     // and not an exact collinearity test, since points on a parallel are not collinear in the
     // local plane.
-    const Ring hull = convex_hull(normalised.ring);
-    const double hull_perimeter = perimeter(hull);
-    if (hull.size() < 3 || signed_area(hull) <= 1e-6 * hull_perimeter * hull_perimeter)
-      fail(source, ring.name + " encloses no area (its vertices lie on one line)");
+    const double ring_perimeter = perimeter(normalised.ring);
+    const bool clearly_wide =
+        std::abs(signed_area(normalised.ring)) > 1e-6 * ring_perimeter * ring_perimeter;
+    if (!clearly_wide) {
+      const Ring hull = convex_hull(normalised.ring);
+      const double hull_perimeter = perimeter(hull);
+      if (hull.size() < 3 || signed_area(hull) <= 1e-6 * hull_perimeter * hull_perimeter)
+        fail(source, ring.name + " encloses no area (its vertices lie on one line)");
+    }
     if (r == 0) {
       field.polygon.outer = std::move(normalised.ring);
     } else {
@@ -148,6 +161,16 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
       fail(source, raw.rings[h + 1].name + " is a hole that lies outside the outer ring");
   }
   return field;
+}
+
+void place_local_field(Field& field, const GeoPoint& origin) {
+  field.frame.emplace(origin);
+  field.geo_rings.clear();
+  for (std::size_t r = 0; r < ring_count(field.polygon); ++r) {
+    std::vector<GeoPoint> geo;
+    for (const Point2& p : ring_at(field.polygon, r)) geo.push_back(field.frame->to_geo(p));
+    field.geo_rings.push_back(std::move(geo));
+  }
 }
 
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {

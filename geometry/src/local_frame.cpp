@@ -20,7 +20,7 @@ GeoPoint LocalFrame::to_geo(Point2 p, double alt_m) const {
   double lat = 0.0, lon = 0.0, h = 0.0;
   for (int iteration = 0; iteration < 6; ++iteration) {
     frame_.Reverse(p.x, p.y, z, lat, lon, h);
-    if (std::abs(h) < 1e-9) break;
+    if (std::abs(h) < 1e-7) break;  // 0.1 µm: below this, doubles at Earth radius are noise
     z -= h;
   }
   return {lat, lon, alt_m};

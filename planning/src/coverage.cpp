@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "swath/geometry/predicates.hpp"
-
 namespace swath::planning {
 namespace {
 
@@ -53,44 +51,6 @@ struct Edge {
 
 }  // namespace
 
-double length_outside(const geometry::Polygon& area, Point2 a, Point2 b) {
-  const Point2 d = b - a;
-  const double len = geometry::distance(a, b);
-  if (len == 0) return 0.0;
-  std::vector<double> cuts{0.0, 1.0};
-  for (std::size_t r = 0; r < geometry::ring_count(area); ++r) {
-    const geometry::Ring& ring = geometry::ring_at(area, r);
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
-      const Point2 e = q - p;
-      const double denom = geometry::cross(d, e);
-      if (denom == 0) {
-        // Parallel: collinear overlaps contribute their end points as cuts.
-        if (geometry::cross(p - a, d) == 0)
-          for (const Point2 v : {p, q})
-            cuts.push_back(std::clamp(geometry::dot(v - a, d) / (len * len), 0.0, 1.0));
-        continue;
-      }
-      const double t = geometry::cross(p - a, e) / denom;
-      const double u = geometry::cross(p - a, d) / denom;
-      if (t > 0 && t < 1 && u >= 0 && u <= 1) cuts.push_back(t);
-    }
-  }
-  std::sort(cuts.begin(), cuts.end());
-  double outside = 0;
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double t0 = cuts[k], t1 = cuts[k + 1];
-    if (t1 <= t0) continue;
-    const Point2 mid = a + d * ((t0 + t1) / 2);
-    bool inside = geometry::locate_point(mid, area.outer) != geometry::Containment::outside;
-    for (const geometry::Ring& hole : area.holes)
-      if (inside && geometry::locate_point(mid, hole) == geometry::Containment::inside)
-        inside = false;
-    if (!inside) outside += (t1 - t0) * len;
-  }
-  return outside;
-}
-
 CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vector<SweepLine>& lines,
                                  double angle_deg, double footprint_width_m, int rows) {
   // Rotate so that the lines run along x; scanlines are then rows of constant y.
@@ -109,13 +69,14 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
   }
   struct Band {
     double y0, y1, x0, x1;
+    double y;  // the line itself
   };
   std::vector<Band> bands;
   for (const SweepLine& l : lines) {
     const Point2 a = rotate(l.start, -angle_deg), b = rotate(l.end, -angle_deg);
     const double y = (a.y + b.y) / 2;
     bands.push_back({y - footprint_width_m / 2, y + footprint_width_m / 2, std::min(a.x, b.x),
-                     std::max(a.x, b.x)});
+                     std::max(a.x, b.x), y});
     y_min = std::min(y_min, y - footprint_width_m / 2);
     y_max = std::max(y_max, y + footprint_width_m / 2);
   }
@@ -123,15 +84,43 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
             [](const Edge& a, const Edge& b) { return a.lo.y < b.lo.y; });
   std::sort(bands.begin(), bands.end(), [](const Band& a, const Band& b) { return a.y0 < b.y0; });
 
+  // Sample ordinates: between consecutive events (vertex ordinates, footprint band edges) the
+  // active edges and bands do not change, so the lengths vary linearly in y (except where an edge
+  // crosses a band's end) and the midpoint rule is exact; slabs get rows in proportion to height.
+  std::vector<double> events;
+  for (const Edge& e : edges) {
+    events.push_back(e.lo.y);
+    events.push_back(e.hi.y);
+  }
+  for (const Band& b : bands) {
+    events.push_back(b.y0);
+    events.push_back(b.y1);
+  }
+  std::sort(events.begin(), events.end());
+  events.erase(std::unique(events.begin(), events.end()), events.end());
+  struct Sample {
+    double y, weight;
+    const Band* line;  // a line's own ordinate (weight 0): measures its length outside the area
+  };
+  std::vector<Sample> samples;
+  const double total = y_max - y_min;
+  for (std::size_t k = 0; k + 1 < events.size(); ++k) {
+    const double h = events[k + 1] - events[k];
+    if (h <= 0) continue;
+    const int n = std::max(1, static_cast<int>(std::ceil(rows * h / total)));
+    for (int i = 0; i < n; ++i) samples.push_back({events[k] + (i + 0.5) * h / n, h / n, nullptr});
+  }
+  for (const Band& b : bands) samples.push_back({b.y, 0.0, &b});
+  std::sort(samples.begin(), samples.end(),
+            [](const Sample& a, const Sample& b) { return a.y < b.y; });
+
   CoverageMeasure m;
-  const double dy = (y_max - y_min) / rows;
   std::vector<const Edge*> active_edges;
   std::vector<const Band*> active_bands;
   std::size_t next_edge = 0, next_band = 0;
   std::vector<double> xs;
   std::vector<Interval> inside, swath;
-  for (int r = 0; r < rows; ++r) {
-    const double y = y_min + (r + 0.5) * dy;
+  for (const auto& [y, dy, line] : samples) {
     while (next_edge < edges.size() && edges[next_edge].lo.y <= y)
       active_edges.push_back(&edges[next_edge++]);
     while (next_band < bands.size() && bands[next_band].y0 <= y)
@@ -146,20 +135,19 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
     std::sort(xs.begin(), xs.end());
     inside.clear();
     for (std::size_t i = 0; i + 1 < xs.size(); i += 2) inside.push_back({xs[i], xs[i + 1]});
+    if (line != nullptr) {
+      const double length = line->x1 - line->x0;
+      m.line_length_m += length;
+      m.line_length_outside_m += length - overlap(inside, {{line->x0, line->x1}});
+      continue;
+    }
     swath.clear();
     for (const Band* b : active_bands) swath.push_back({b->x0, b->x1});
     merge(swath);
 
-    const double area_len = length(inside);
-    const double swath_len = length(swath);
-    const double covered_len = overlap(inside, swath);
-    m.area_m2 += area_len * dy;
-    m.swath_area_m2 += swath_len * dy;
-    m.covered_area_m2 += covered_len * dy;
-  }
-  for (const SweepLine& l : lines) {
-    m.line_length_m += geometry::distance(l.start, l.end);
-    m.line_length_outside_m += length_outside(area, l.start, l.end);
+    m.area_m2 += length(inside) * dy;
+    m.swath_area_m2 += length(swath) * dy;
+    m.covered_area_m2 += overlap(inside, swath) * dy;
   }
   m.covered_fraction = m.area_m2 > 0 ? m.covered_area_m2 / m.area_m2 : 0.0;
   m.outside_fraction =

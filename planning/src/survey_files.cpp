@@ -1,7 +1,9 @@
 #include "swath/planning/survey_files.hpp"
 
+#include "swath/planning/number_text.hpp"
+
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 
 namespace swath::planning {
@@ -11,12 +13,6 @@ using geometry::GeoPoint;
 using geometry::Point2;
 using nlohmann::ordered_json;
 
-double round_to(double v, int decimals) {
-  const double scale = std::pow(10.0, decimals);
-  const double r = std::round(v * scale) / scale;
-  return r == 0.0 ? 0.0 : r;
-}
-
 GeoPoint geo(const SurveyPlan& plan, Point2 p) {
   return plan.request.field.frame->to_geo(p);
 }
@@ -24,12 +20,6 @@ GeoPoint geo(const SurveyPlan& plan, Point2 p) {
 ordered_json lon_lat(const SurveyPlan& plan, Point2 p) {
   const GeoPoint g = geo(plan, p);
   return {round_to(g.lon_deg, 9), round_to(g.lat_deg, 9)};
-}
-
-std::string format(const char* fmt, double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, fmt, v);
-  return buffer;
 }
 
 int mav_command(ItemKind kind) {
@@ -106,25 +96,39 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
-std::string kml_coordinates(const SurveyPlan& plan, const std::vector<Point2>& points,
-                            double altitude_m, bool close) {
+std::string kml_coordinates(const std::vector<GeoPoint>& points, double altitude_m, bool close) {
   std::string s;
-  auto add = [&](Point2 p) {
-    const GeoPoint g = geo(plan, p);
-    s += format("%.9f", g.lon_deg) + "," + format("%.9f", g.lat_deg) + "," +
-         format("%.3f", altitude_m) + " ";
+  auto add = [&](const GeoPoint& g) {
+    s += fixed_text(g.lon_deg, 9);
+    s += ',';
+    s += fixed_text(g.lat_deg, 9);
+    s += ',';
+    s += fixed_text(altitude_m, 3);
+    s += ' ';
   };
-  for (const Point2& p : points) add(p);
+  for (const GeoPoint& g : points) add(g);
   if (close && !points.empty()) add(points.front());
   if (!s.empty()) s.pop_back();
   return s;
 }
 
-ordered_json ring_json(const SurveyPlan& plan, const geometry::Ring& ring) {
-  ordered_json r = ordered_json::array();
-  for (const Point2& p : ring) r.push_back(lon_lat(plan, p));
-  r.push_back(lon_lat(plan, ring.front()));  // RFC 7946 rings are closed
-  return r;
+std::vector<GeoPoint> geo_points(const SurveyPlan& plan, const std::vector<Point2>& points) {
+  std::vector<GeoPoint> out;
+  out.reserve(points.size());
+  for (const Point2& p : points) out.push_back(geo(plan, p));
+  return out;
+}
+
+// The area's ring r in WGS84: the file's own positions.
+const std::vector<GeoPoint>& area_ring(const SurveyPlan& plan, std::size_t r) {
+  return plan.request.field.geo_rings.at(r);
+}
+
+ordered_json ring_json(const std::vector<GeoPoint>& ring) {
+  ordered_json out = ordered_json::array();
+  for (const GeoPoint& g : ring) out.push_back({round_to(g.lon_deg, 9), round_to(g.lat_deg, 9)});
+  out.push_back(out.front());  // RFC 7946 rings are closed
+  return out;
 }
 
 const char* to_string(LinePlacement p) {
@@ -193,7 +197,7 @@ std::string wpl_110(const SurveyPlan& plan, const DroneMission& mission) {
       const double v =
           std::isnan(p[static_cast<std::size_t>(k)]) ? 0.0 : p[static_cast<std::size_t>(k)];
       out += '\t';
-      out += format(k == 4 || k == 5 ? "%.9f" : "%.6f", v);
+      out += fixed_text(v, k == 4 || k == 5 ? 9 : 6);
     }
     out += "\t1\n";
   };
@@ -214,8 +218,8 @@ std::string waypoints_csv(const SurveyPlan& plan) {
       out += drone + "," + std::to_string(seq) + ",";
       if (item == nullptr || positional(item->kind)) {
         const GeoPoint g = geo(plan, p);
-        out += format("%.9f", g.lat_deg) + "," + format("%.9f", g.lon_deg) + "," +
-               format("%.3f", alt) + "," + format("%.3f", p.x) + "," + format("%.3f", p.y);
+        out += fixed_text(g.lat_deg, 9) + "," + fixed_text(g.lon_deg, 9) + "," +
+               fixed_text(alt, 3) + "," + fixed_text(p.x, 3) + "," + fixed_text(p.y, 3);
       } else {
         out += ",,,,";
       }
@@ -234,7 +238,7 @@ std::string mission_geojson(const SurveyPlan& plan) {
   const geometry::Polygon& area = plan.request.field.polygon;
   ordered_json rings = ordered_json::array();
   for (std::size_t r = 0; r < geometry::ring_count(area); ++r)
-    rings.push_back(ring_json(plan, geometry::ring_at(area, r)));
+    rings.push_back(ring_json(area_ring(plan, r)));
   features.push_back({{"type", "Feature"},
                       {"properties", {{"role", "area"}}},
                       {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
@@ -275,21 +279,22 @@ std::string mission_kml(const SurveyPlan& plan) {
   s += "  <name>swath survey of " + xml_escape(plan.request.field.source) + "</name>\n";
   s += "  <Placemark>\n    <name>Area</name>\n    <Polygon>\n      "
        "<outerBoundaryIs><LinearRing><coordinates>" +
-       kml_coordinates(plan, area.outer, 0.0, true) +
+       kml_coordinates(area_ring(plan, 0), 0.0, true) +
        "</coordinates></LinearRing></outerBoundaryIs>\n";
-  for (const geometry::Ring& hole : area.holes)
+  for (std::size_t h = 1; h < geometry::ring_count(area); ++h)
     s += "      <innerBoundaryIs><LinearRing><coordinates>" +
-         kml_coordinates(plan, hole, 0.0, true) + "</coordinates></LinearRing></innerBoundaryIs>\n";
+         kml_coordinates(area_ring(plan, h), 0.0, true) +
+         "</coordinates></LinearRing></innerBoundaryIs>\n";
   s += "    </Polygon>\n  </Placemark>\n";
   for (const DroneMission* m : {&plan.mission}) {
     s += "  <Placemark>\n    <name>Drone " + std::to_string(m->drone) +
          " path</name>\n    <LineString>\n" +
          "      <altitudeMode>relativeToGround</altitudeMode>\n      <coordinates>" +
-         kml_coordinates(plan, m->path, plan.imaging.altitude_m, false) +
+         kml_coordinates(geo_points(plan, m->path), plan.imaging.altitude_m, false) +
          "</coordinates>\n    </LineString>\n  </Placemark>\n";
   }
   s += "  <Placemark>\n    <name>Home</name>\n    <Point><coordinates>" +
-       kml_coordinates(plan, {plan.mission.home}, 0.0, false) +
+       kml_coordinates({plan.home}, 0.0, false) +
        "</coordinates></Point>\n  </Placemark>\n</Document>\n</kml>\n";
   return s;
 }

@@ -20,6 +20,19 @@ std::string slurp(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::string fresh_dir(const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("swath-cli-" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  return dir.string();
+}
+
+std::string read_text(const std::string& path) {
+  return slurp(path);
+}
+
 std::string source_path(const std::string& relative) {
   return std::string(SWATH_SOURCE_DIR) + "/" + relative;
 }

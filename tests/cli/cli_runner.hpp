@@ -14,6 +14,12 @@ struct CliRun {
 /// Runs `swath <args>` (args are passed to /bin/sh as written) from the source directory.
 CliRun run_swath(const std::string& args);
 
+/// A fresh empty directory under the system's temporary directory (removed first if present).
+std::string fresh_dir(const std::string& name);
+
+/// Whole content of a file ("" if missing).
+std::string read_text(const std::string& path);
+
 /// Path of a file in the source tree.
 std::string source_path(const std::string& relative);
 

@@ -30,6 +30,9 @@ struct Field {
   std::vector<std::vector<std::size_t>> source_index;
   /// The frame the polygon is in; empty for a local-metres CSV (no geographic reference).
   std::optional<LocalFrame> frame;
+  /// Per ring, the file's own WGS84 position of each kept vertex (empty for a local-metres CSV),
+  /// so outputs repeat the input exactly instead of converting back.
+  std::vector<std::vector<GeoPoint>> geo_rings;
 };
 
 /// Reads and validates an area file. Throws InputError (file, place and problem in one sentence)
@@ -38,6 +41,9 @@ struct Field {
 /// ring of zero area, or a hole that lies outside the outer ring. A self-intersecting area is read
 /// (classify() reports it). The local frame's origin is the mean of the outer ring's vertices.
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options = {});
+
+/// Places a local-metres field on the map: its (0, 0) at `origin`; fills frame and geo_rings.
+void place_local_field(Field& field, const GeoPoint& origin);
 
 /// The same from text already in memory; `source` names it in messages.
 Field parse_field(const std::string& text, FieldFormat format, const std::string& source,

@@ -20,16 +20,15 @@ struct CoverageMeasure {
       0.0;  ///< of it, over ground outside the area (holes count as outside)
 };
 
-/// Length of the segment [a, b] that lies outside `area` (outer ring minus holes), exact up to
-/// rounding: the segment is cut at every boundary crossing and each piece's midpoint located.
-double length_outside(const geometry::Polygon& area, geometry::Point2 a, geometry::Point2 b);
-
 /// Footprint of a line: the rectangle along the whole segment, `footprint_width_m` across, centred
 /// on it (no credit for the photo extending beyond the segment's ends). All lines must share one
-/// direction `angle_deg` (degrees CCW from x). Measured by scanlines perpendicular to the lines:
-/// exact along each scanline, `rows` scanlines (midpoint rule) across, so the error is below
-/// ~perimeter x height / rows² for straight edges. O((n + lines) log + rows x active); the line
-/// lengths outside the area are exact, O(n) per line.
+/// direction `angle_deg` (degrees CCW from x). Measured by scanlines along the lines: exact along
+/// each scanline; across, the midpoint rule between consecutive vertex and footprint-edge
+/// ordinates, which is exact where lengths vary linearly, so areas and swath are exact up to
+/// rounding and only the covered part carries an error, where an edge crosses a footprint's end
+/// (bounded by ~ that edge's share of one of `rows` slices). O((n + lines) log(n + lines) +
+/// samples x active); each line's length outside the area is exact (its own ordinate is a
+/// scanline).
 CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vector<SweepLine>& lines,
                                  double angle_deg, double footprint_width_m, int rows = 4096);
 

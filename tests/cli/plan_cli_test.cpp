@@ -1,0 +1,210 @@
+// `swath plan` and `swath cameras` as a user runs them.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace swath::test {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kFiles{"mission.geojson",   "summary.json",  "drone-1.plan",
+                                      "drone-1.waypoints", "waypoints.csv", "mission.kml"};
+
+std::size_t entries(const std::string& dir) {
+  std::error_code ec;
+  std::size_t n = 0;
+  for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); ++it) ++n;
+  return n;
+}
+
+TEST(PlanCli, MeadowWritesEveryFileAndReportsFullCoverage) {
+  const std::string out = fresh_dir("meadow");
+  const CliRun run =
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 80 -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  EXPECT_EQ(entries(out), kFiles.size()) << "exactly the six files, no temporaries";
+  for (const std::string& f : kFiles) EXPECT_FALSE(read_text(out + "/" + f).empty()) << f;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(s["area"]["type"], "convex");
+  EXPECT_DOUBLE_EQ(s["camera"]["altitude_m"].get<double>(), 80.0);
+  EXPECT_NEAR(s["camera"]["line_spacing_m"].get<double>(), 23.2 * 80 / 16 * 0.3, 1e-4);
+  EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.9999);
+  EXPECT_EQ(s["drones"].size(), 1u);
+  EXPECT_NE(run.out.find("coverage   100.000 % of the area"), std::string::npos) << run.out;
+}
+
+TEST(PlanCli, SameInputSameBytes) {
+  const std::string a = fresh_dir("same-a"), b = fresh_dir("same-b");
+  const std::string args =
+      " share/fields/vineyard.kml --camera dji-phantom-4-pro --gsd 2 --home 46.2275,7.5915 -o ";
+  ASSERT_EQ(run_swath("plan" + args + a).exit_code, 0);
+  ASSERT_EQ(run_swath("plan" + args + b).exit_code, 0);
+  for (const std::string& f : kFiles)
+    EXPECT_EQ(read_text(a + "/" + f), read_text(b + "/" + f)) << f;
+}
+
+TEST(PlanCli, FixedAngleHomeAndFirmwareReachTheFiles) {
+  const std::string out = fresh_dir("options");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-a6000-16mm --altitude 60 --angle 0 --home "
+      "47.3965,8.5405 "
+      "--firmware px4 --vehicle fixedwing --speed 14 --turnaround 20 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_NEAR(s["sweep"]["bearing_deg"].get<double>(), 0.0, 1e-9);
+  EXPECT_EQ(s["sweep"]["angle_search"], "fixed");
+  EXPECT_NEAR(s["home"]["lat_deg"].get<double>(), 47.3965, 1e-9);
+  EXPECT_DOUBLE_EQ(s["drones"][0]["speed_m_s"].get<double>(), 14.0);
+  const json plan = json::parse(read_text(out + "/drone-1.plan"));
+  EXPECT_EQ(plan["mission"]["firmwareType"], 12);
+  EXPECT_EQ(plan["mission"]["vehicleType"], 1);
+  // North-south lines: consecutive waypoints of one line share a longitude.
+  const json& items = plan["mission"]["items"];
+  EXPECT_EQ(items[1]["command"], 16);
+  EXPECT_EQ(items[3]["command"], 16);
+  EXPECT_NEAR(items[1]["params"][5].get<double>(), items[3]["params"][5].get<double>(), 1e-6);
+}
+
+TEST(PlanCli, DetectionModeReportsTheAltitudeRange) {
+  const std::string out = fresh_dir("detection");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --mode detection --pattern 1x1 "
+      "--min-pixels 30 --overlap 0.5 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  const double h_max = 1.0 * 5456 / (2 * 30 * (23.2 / 32));
+  EXPECT_NEAR(s["camera"]["h_max_m"].get<double>(), h_max, 1e-3);
+  EXPECT_NEAR(s["camera"]["h_min_m"].get<double>(), h_max / 2, 1e-3);
+  EXPECT_NEAR(s["camera"]["altitude_m"].get<double>(), h_max * 0.75, 1e-3);
+  EXPECT_EQ(s["camera"]["mode"], "detection");
+}
+
+TEST(PlanCli, ConfigFileHoldsTheOptionsAndFlagsOverrideIt) {
+  const std::string dir = fresh_dir("config");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/mission.yaml")
+      << "field: share/fields/meadow.geojson\ncamera: sony-ilce-qx1\naltitude: 80\n"
+         "side-overlap: 0.6\nline-placement: paper\noutput: " +
+             dir + "/out\n";
+  const CliRun run = run_swath("plan --config " + dir + "/mission.yaml --altitude 50");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_DOUBLE_EQ(s["camera"]["altitude_m"].get<double>(), 50.0);  // the flag wins
+  EXPECT_NEAR(s["camera"]["line_spacing_m"].get<double>(), 23.2 * 50 / 16 * 0.4,
+              1e-4);  // from the file
+  EXPECT_EQ(s["sweep"]["line_placement"], "paper");
+
+  std::ofstream(dir + "/bad.yaml") << "camera: sony-ilce-qx1\nzoom: 3\n";
+  const CliRun bad = run_swath("plan --config " + dir + "/bad.yaml");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bad.yaml: line 2: unknown key 'zoom'"), std::string::npos) << bad.err;
+}
+
+TEST(PlanCli, LocalAreaNeedsAnOrigin) {
+  const std::string out = fresh_dir("local");
+  const CliRun no_origin = run_swath(
+      "plan share/fields/yard-local.csv --local --camera sony-ilce-qx1 --altitude 40 -o " + out);
+  EXPECT_EQ(no_origin.exit_code, 2);
+  EXPECT_NE(no_origin.err.find("needs --origin LAT,LON"), std::string::npos) << no_origin.err;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun run = run_swath(
+      "plan share/fields/yard-local.csv --local --origin 52.0,-1.0 --camera sony-ilce-qx1 "
+      "--altitude 40 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_NEAR(s["area"]["area_m2"].get<double>(), 11400.0, 1e-6);
+}
+
+TEST(PlanCli, WarnsWhenTheCameraCannotTriggerThatFast) {
+  const std::string out = fresh_dir("fast");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera dji-phantom-4-pro --altitude 40 --speed 15 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("swath plan: warning: at 15.0 m/s the camera must trigger every"),
+            std::string::npos)
+      << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(s["warnings"].size(), 1u);
+}
+
+struct BadPlan {
+  std::string name, args, fragment;
+  friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }
+};
+
+class PlanBadInput : public ::testing::TestWithParam<BadPlan> {};
+
+TEST_P(PlanBadInput, ExitsTwoAndWritesNothing) {
+  const std::string out = fresh_dir("bad-" + GetParam().name);
+  const CliRun run = run_swath("plan " + GetParam().args + " -o " + out);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find(GetParam().fragment), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << "one line: " << run.err;
+  EXPECT_EQ(entries(out), 0u) << "no output on bad input";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Catalogue, PlanBadInput,
+    ::testing::Values(
+        BadPlan{"crossing", "share/fields/bowtie.geojson --camera sony-ilce-qx1 --altitude 50",
+                "bowtie.geojson: the area crosses itself at 48.13825"},
+        BadPlan{"reject",
+                "share/fields/orchard.csv --camera sony-ilce-qx1 --altitude 50 --concave reject",
+                "orchard.csv: the area is not convex (2 reflex vertices) and --concave reject "
+                "refuses it"},
+        BadPlan{"no_altitude", "share/fields/meadow.geojson --camera sony-ilce-qx1",
+                "needs --altitude M or --gsd CM"},
+        BadPlan{"unknown_camera", "share/fields/meadow.geojson --camera sony-a9 --altitude 50",
+                "did you mean sony-"},
+        BadPlan{"overlap",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --side-overlap 1",
+                "the side overlap must be in [0, 1)"},
+        BadPlan{"negative_altitude",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude -3",
+                "the altitude must be > 0 m"},
+        BadPlan{"zero_speed",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --speed 0",
+                "--speed must be > 0 m/s"},
+        BadPlan{"home",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --home 95,8",
+                "--home '95,8': latitude must be within"},
+        BadPlan{"bad_field", "tests/fixtures/latitude.csv --camera sony-ilce-qx1 --altitude 50",
+                "latitude 91"},
+        BadPlan{"bad_start",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --start middle",
+                "--start"},
+        BadPlan{"detection_needs_pattern",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --mode detection",
+                "detection mode needs --pattern"}),
+    [](const ::testing::TestParamInfo<BadPlan>& param_info) { return param_info.param.name; });
+
+TEST(CamerasCli, ListsTheDatabase) {
+  const CliRun run = run_swath("cameras --json");
+  ASSERT_EQ(run.exit_code, 0);
+  const json list = json::parse(run.out);
+  ASSERT_GE(list.size(), 12u);
+  bool qx1 = false;
+  for (const json& c : list)
+    if (c["id"] == "sony-ilce-qx1") {
+      qx1 = true;
+      EXPECT_DOUBLE_EQ(c["sensor_width_mm"].get<double>(), 23.2);
+      EXPECT_EQ(c["image_width_px"], 5456);
+    }
+  EXPECT_TRUE(qx1);
+  const CliRun table = run_swath("cameras");
+  EXPECT_NE(table.out.find("sony-ilce-qx1          Sony ILCE-QX1"), std::string::npos) << table.out;
+}
+
+}  // namespace
+}  // namespace swath::test

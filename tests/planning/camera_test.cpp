@@ -1,0 +1,76 @@
+#include "swath/planning/camera.hpp"
+
+#include <gtest/gtest.h>
+
+#include "swath/geometry/input_error.hpp"
+#include "swath/planning/imaging.hpp"
+
+namespace swath::planning {
+namespace {
+
+const std::string kDatabase = std::string(SWATH_SOURCE_DIR) + "/share/cameras";
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_camera(yaml, "cam.yaml");
+  } catch (const geometry::InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(CameraFile, ParsesEveryKey) {
+  const Camera c = parse_camera(
+      "name: Test cam\nsensor_width_mm: 13.2\nsensor_height_mm: 8.8\nfocal_length_mm: 8.8\n"
+      "image_width_px: 5472\nimage_height_px: 3648\nmin_trigger_interval_s: 2\n",
+      "t");
+  EXPECT_EQ(c.name, "Test cam");
+  EXPECT_DOUBLE_EQ(c.sensor_width_mm, 13.2);
+  EXPECT_EQ(c.image_height_px, 3648);
+  EXPECT_DOUBLE_EQ(*c.min_trigger_interval_s, 2.0);
+}
+
+TEST(CameraFile, BadFilesNameKeyAndLine) {
+  const std::string base =
+      "name: x\nsensor_width_mm: 10\nsensor_height_mm: 8\nimage_width_px: 100\nimage_height_px: "
+      "80\n";
+  EXPECT_NE(error_of(base).find("cam.yaml: the camera has no focal_length_mm"), std::string::npos);
+  EXPECT_NE(error_of(base + "focal_length_mm: 0\n").find("focal_length_mm must be > 0"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(base + "focal_length_mm: abc\n").find("line 6: focal_length_mm must be a number"),
+      std::string::npos);
+  EXPECT_NE(error_of(base + "focal_length_mm: 5\nzoom: 3\n").find("line 7: unknown key 'zoom'"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: [unclosed\n").find("invalid YAML"), std::string::npos);
+  EXPECT_NE(error_of("- a list\n").find("mapping"), std::string::npos);
+}
+
+TEST(CameraDatabase, HoldsAtLeastTwelveValidRealCameras) {
+  const auto entries = camera_database(kDatabase);
+  ASSERT_GE(entries.size(), 12u);
+  for (const CameraEntry& e : entries) {
+    EXPECT_NO_THROW(validate_camera(e.camera, e.id));
+    // Pixel pitch of real sensors: 1 to 20 µm, nearly square.
+    const double pitch_w = e.camera.sensor_width_mm / e.camera.image_width_px * 1000;
+    const double pitch_h = e.camera.sensor_height_mm / e.camera.image_height_px * 1000;
+    EXPECT_GT(pitch_w, 1.0) << e.id;
+    EXPECT_LT(pitch_w, 20.0) << e.id;
+    EXPECT_NEAR(pitch_w / pitch_h, 1.0, 0.05) << e.id;
+  }
+}
+
+TEST(CameraDatabase, FindsByIdNameOrFileAndSuggestsOtherwise) {
+  EXPECT_EQ(find_camera("sony-ilce-qx1", kDatabase).image_width_px, 5456);
+  EXPECT_EQ(find_camera("sony ilce-qx1", kDatabase).focal_length_mm, 16.0);
+  EXPECT_EQ(find_camera(kDatabase + "/dji-phantom-4-pro.yaml", kDatabase).sensor_width_mm, 13.2);
+  try {
+    find_camera("sony-a9", kDatabase);
+    ADD_FAILURE();
+  } catch (const geometry::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean sony-"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace swath::planning

@@ -1,0 +1,237 @@
+// Every file `swath plan` writes, parsed back and checked against the plan.
+#include "swath/planning/survey_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "swath/planning/output_files.hpp"
+
+namespace swath::planning {
+namespace {
+
+using nlohmann::json;
+
+SurveyPlan meadow_plan(std::optional<geometry::GeoPoint> home = std::nullopt) {
+  SurveyRequest r;
+  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson");
+  r.camera = find_camera("sony-ilce-qx1", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
+  PhotogrammetryMode m;
+  m.altitude_m = 80;
+  r.mode = m;
+  r.home = home;
+  r.waypoint_spacing_m = 150;
+  return plan_survey(r);
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  std::string cell;
+  while (std::getline(s, cell, sep)) cells.push_back(cell);
+  if (!line.empty() && line.back() == sep) cells.push_back("");
+  return cells;
+}
+
+TEST(QgcPlan, ParsesBackWithRequiredKeysCommandsFramesAndPlannedCoordinates) {
+  const SurveyPlan plan = meadow_plan(geometry::GeoPoint{47.3965, 8.5405, 0});
+  const json j = json::parse(qgc_plan(plan, plan.mission));
+  EXPECT_EQ(j["fileType"], "Plan");
+  EXPECT_EQ(j["version"], 1);
+  EXPECT_EQ(j["geoFence"]["version"], 2);
+  EXPECT_EQ(j["rallyPoints"]["version"], 2);
+  const json& m = j["mission"];
+  EXPECT_EQ(m["version"], 2);
+  EXPECT_EQ(m["firmwareType"], 3);
+  EXPECT_EQ(m["vehicleType"], 2);
+  for (const char* key : {"cruiseSpeed", "hoverSpeed", "plannedHomePosition", "items"})
+    EXPECT_TRUE(m.contains(key)) << key;
+  EXPECT_NEAR(m["plannedHomePosition"][0].get<double>(), 47.3965, 1e-9);
+  EXPECT_NEAR(m["plannedHomePosition"][1].get<double>(), 8.5405, 1e-9);
+
+  const json& items = m["items"];
+  ASSERT_EQ(items.size(), plan.mission.items.size());
+  EXPECT_EQ(items.front()["command"], 22);
+  EXPECT_EQ(items.back()["command"], 20);
+  int triggers_on = 0, triggers_off = 0;
+  std::size_t waypoint = 0;
+  std::vector<geometry::Point2> planned;  // the mission's waypoints in order
+  for (const MissionItem& it : plan.mission.items)
+    if (it.kind == ItemKind::waypoint) planned.push_back(it.position);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const json& it = items[i];
+    EXPECT_EQ(it["type"], "SimpleItem");
+    EXPECT_EQ(it["doJumpId"], i + 1);
+    EXPECT_EQ(it["autoContinue"], true);
+    ASSERT_EQ(it["params"].size(), 7u);
+    const int command = it["command"];
+    if (command == 16) {
+      EXPECT_EQ(it["frame"], 3);
+      const geometry::GeoPoint g = plan.request.field.frame->to_geo(planned[waypoint++]);
+      EXPECT_NEAR(it["params"][4].get<double>(), g.lat_deg, 1e-7);
+      EXPECT_NEAR(it["params"][5].get<double>(), g.lon_deg, 1e-7);
+      EXPECT_DOUBLE_EQ(it["params"][6].get<double>(), plan.imaging.altitude_m);
+    } else if (command == 206) {
+      EXPECT_EQ(it["frame"], 2);
+      const double distance = it["params"][0];
+      (distance > 0 ? triggers_on : triggers_off)++;
+      if (distance > 0) {
+        EXPECT_NEAR(distance, plan.imaging.trigger_distance_m, 1e-3);
+      }
+    } else {
+      EXPECT_TRUE(command == 22 || command == 20) << command;
+    }
+  }
+  EXPECT_EQ(waypoint, planned.size());
+  EXPECT_EQ(triggers_on, 1);
+  EXPECT_EQ(triggers_off, 1);
+  // Camera on right after the first survey waypoint.
+  EXPECT_EQ(items[1]["command"], 16);
+  EXPECT_EQ(items[2]["command"], 206);
+}
+
+TEST(QgcPlan, Px4FixedWing) {
+  SurveyPlan plan = meadow_plan();
+  plan.request.firmware = Firmware::px4;
+  plan.request.vehicle = Vehicle::fixedwing;
+  const json j = json::parse(qgc_plan(plan, plan.mission));
+  EXPECT_EQ(j["mission"]["firmwareType"], 12);
+  EXPECT_EQ(j["mission"]["vehicleType"], 1);
+}
+
+TEST(Wpl110, TwelveTabSeparatedColumnsHomeFirstSameItems) {
+  const SurveyPlan plan = meadow_plan();
+  std::stringstream in(wpl_110(plan, plan.mission));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "QGC WPL 110");
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) rows.push_back(split(line, '\t'));
+  ASSERT_EQ(rows.size(), plan.mission.items.size() + 1);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 12u) << i;
+    EXPECT_EQ(std::stoul(rows[i][0]), i);
+    EXPECT_EQ(rows[i][11], "1");
+  }
+  EXPECT_EQ(rows[0][1], "1");  // home is "current"
+  EXPECT_NEAR(std::stod(rows[0][8]), plan.home.lat_deg, 1e-9);
+  EXPECT_NEAR(std::stod(rows[0][9]), plan.home.lon_deg, 1e-9);
+  EXPECT_EQ(rows[1][3], "22");
+  EXPECT_EQ(rows.back()[3], "20");
+  const geometry::GeoPoint first = plan.request.field.frame->to_geo(plan.mission.lines[0].start);
+  EXPECT_EQ(rows[2][3], "16");
+  EXPECT_NEAR(std::stod(rows[2][8]), first.lat_deg, 1e-7);
+  EXPECT_NEAR(std::stod(rows[2][9]), first.lon_deg, 1e-7);
+}
+
+TEST(WaypointsCsv, HeaderAndRowsMatchTheMission) {
+  const SurveyPlan plan = meadow_plan();
+  std::stringstream in(waypoints_csv(plan));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "drone,seq,lat,lon,alt_m,x_m,y_m,action");
+  std::size_t n = 0;
+  while (std::getline(in, line)) {
+    const auto cells = split(line, ',');
+    ASSERT_EQ(cells.size(), 8u) << line;
+    EXPECT_EQ(cells[0], "1");
+    EXPECT_EQ(std::stoul(cells[1]), n);
+    if (cells[7] == "waypoint") {
+      const geometry::Point2 local{std::stod(cells[5]), std::stod(cells[6])};
+      const geometry::GeoPoint g = plan.request.field.frame->to_geo(local);
+      EXPECT_NEAR(std::stod(cells[2]), g.lat_deg, 1e-7);  // x/y and lat/lon agree
+      EXPECT_NEAR(std::stod(cells[3]), g.lon_deg, 1e-7);
+    }
+    ++n;
+  }
+  EXPECT_EQ(n, plan.mission.items.size() + 1);
+}
+
+TEST(MissionGeojson, FeaturesCarryTheRolesOfTheDesign) {
+  const SurveyPlan plan = meadow_plan();
+  const json j = json::parse(mission_geojson(plan));
+  EXPECT_EQ(j["type"], "FeatureCollection");
+  std::map<std::string, int> roles;
+  for (const json& f : j["features"]) {
+    const std::string role = f["properties"]["role"];
+    ++roles[role];
+    if (role == "sweep") {
+      EXPECT_EQ(f["properties"]["drone"], 1);
+      EXPECT_NEAR(f["properties"]["footprint_width_m"].get<double>(),
+                  plan.imaging.footprint_across_m, 1e-4);
+      EXPECT_EQ(f["geometry"]["coordinates"].size(), 2u);
+    }
+    if (role == "path") {
+      const json& c = f["geometry"]["coordinates"];
+      EXPECT_EQ(c.front(), c.back()) << "home to home";
+      EXPECT_EQ(c.size(), plan.mission.path.size());
+    }
+    if (role == "area") {
+      const json& ring = f["geometry"]["coordinates"][0];
+      EXPECT_EQ(ring.front(), ring.back()) << "closed ring";
+      EXPECT_NEAR(ring[0][0].get<double>(), 8.54010, 1e-9);  // the file's first vertex, [lon, lat]
+      EXPECT_NEAR(ring[0][1].get<double>(), 47.39702, 1e-9);
+    }
+  }
+  EXPECT_EQ(roles["area"], 1);
+  EXPECT_EQ(roles["path"], 1);
+  EXPECT_EQ(roles["home"], 1);
+  EXPECT_EQ(roles["sweep"], int(plan.sweep.lines.size()));
+}
+
+TEST(Summary, FiguresAgreeWithTheGeometry) {
+  const SurveyPlan plan = meadow_plan();
+  const json s = json::parse(summary_json(plan));
+  EXPECT_EQ(s["area"]["type"], "convex");
+  EXPECT_NEAR(s["area"]["area_m2"].get<double>(), geometry::area(plan.request.field.polygon), 1e-3);
+  EXPECT_EQ(s["sweep"]["lines"], plan.sweep.lines.size());
+  const double bearing = s["sweep"]["bearing_deg"];
+  EXPECT_NEAR(std::fmod(bearing + s["sweep"]["angle_local_deg"].get<double>(), 180.0), 90.0, 1e-5);
+  EXPECT_NEAR(s["sweep"]["height_m"].get<double>(),
+              geometry::min_height_rotation(plan.request.field.polygon.outer).height_m, 1e-4);
+  const json& d = s["drones"][0];
+  double work = 0;
+  for (const SweepLine& l : plan.mission.lines) work += geometry::distance(l.start, l.end);
+  EXPECT_NEAR(d["work_length_m"].get<double>(), work, 1e-3);
+  double path = 0;
+  for (std::size_t i = 0; i + 1 < plan.mission.path.size(); ++i)
+    path += geometry::distance(plan.mission.path[i], plan.mission.path[i + 1]);
+  EXPECT_NEAR(d["path_length_m"].get<double>(), path, 1e-3);
+  EXPECT_NEAR(d["transit_length_m"].get<double>() + d["work_length_m"].get<double>(), path, 2e-3);
+  EXPECT_NEAR(d["flight_time_s"].get<double>(), path / 5.0, 0.01);
+  EXPECT_NEAR(s["camera"]["line_spacing_m"].get<double>(), 145.0 * 0.8 * 0.3, 1e-4);
+  EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.9999);
+}
+
+TEST(SurveyFiles, SameInputSameBytes) {
+  const auto a = survey_files(meadow_plan());
+  const auto b = survey_files(meadow_plan());
+  ASSERT_EQ(a.size(), 6u);
+  EXPECT_EQ(a, b);
+}
+
+TEST(OutputFiles, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("swath-atomic-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  write_files_atomically(dir, {{"a.txt", "old a"}, {"b.txt", "old b"}});
+  // The second file cannot be created (its directory does not exist): nothing may change.
+  EXPECT_THROW(write_files_atomically(dir, {{"a.txt", "new a"}, {"missing/b.txt", "new b"}}),
+               std::runtime_error);
+  std::ifstream a(dir / "a.txt");
+  std::string content((std::istreambuf_iterator<char>(a)), {});
+  EXPECT_EQ(content, "old a");
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 2u);
+  write_files_atomically(dir, {{"a.txt", "new a"}});
+  std::ifstream a2(dir / "a.txt");
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(a2)), {}), "new a");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace swath::planning
