@@ -157,11 +157,17 @@ void PlanCommand::setup(CLI::App& app) {
   app.add_flag("--local", local_, "The CSV area is x,y in metres (needs --origin)");
   app.add_option("--origin", origin_,
                  "LAT,LON of the local frame's origin (0, 0) for a --local area");
-  app.add_option("--concave", concave_,
-                 "Non-convex area: hull (plan over its convex hull; the summary reports the "
-                 "swath outside) or reject")
-      ->check(CLI::IsMember({"hull", "reject"}))
+  app.add_option(
+         "--concave", concave_,
+         "Non-convex area (reflex vertices or holes): split (cells swept without leaving the "
+         "area, transits routed around holes), hull (paper 001: its convex hull; the summary "
+         "reports the swath outside) or reject")
+      ->check(CLI::IsMember({"split", "hull", "reject"}))
       ->capture_default_str();
+  app.add_option(
+      "--exclude", exclude_,
+      "No-fly zone: an area file (.geojson, .kml, .csv lon,lat) inside the area; repeat for "
+      "more. Honoured by split");
   app.add_option("--firmware", firmware_, "ardupilot or px4 (QGC firmwareType)")
       ->check(CLI::IsMember({"ardupilot", "px4"}))
       ->capture_default_str();
@@ -235,8 +241,16 @@ int PlanCommand::run() {
                                      {"ne", planning::StartCorner::ne}},
                                     start_);
   if (!home_.empty()) request.home = parse_lat_lon(home_, "--home");
-  request.concave =
-      concave_ == "reject" ? planning::ConcaveMode::reject : planning::ConcaveMode::hull;
+  request.concave = concave_ == "reject" ? planning::ConcaveMode::reject
+                    : concave_ == "hull" ? planning::ConcaveMode::hull
+                                         : planning::ConcaveMode::split;
+  for (const std::string& path : exclude_) {
+    const geometry::Field zone = geometry::read_field(path);
+    geometry::Ring ring;
+    for (const geometry::GeoPoint& g : zone.geo_rings.at(0))
+      ring.push_back(request.field.frame->to_local(g));
+    request.exclusions.push_back(std::move(ring));
+  }
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
@@ -252,9 +266,10 @@ int PlanCommand::run() {
   std::printf("  area       %s, %s ha%s\n",
               std::string(geometry::to_string(plan.facts.classification.type)).c_str(),
               fixed_text(*plan.facts.area_m2 / 1e4, 3).c_str(),
-              plan.facts.classification.type == geometry::AreaType::convex
-                  ? ""
-                  : " (flown over its convex hull)");
+              plan.handling == "hull" ? " (flown over its convex hull)"
+              : plan.handling == "split"
+                  ? (" (split into " + std::to_string(plan.cells.size()) + " cells)").c_str()
+                  : "");
   std::printf("  camera     %s, %s: altitude %s m, GSD %s cm/px, footprint %s x %s m\n",
               request.camera.name.c_str(), mode_.c_str(), fixed_text(im.altitude_m, 1).c_str(),
               fixed_text(im.gsd_m * 100, 3).c_str(), fixed_text(im.footprint_across_m, 1).c_str(),
@@ -267,9 +282,13 @@ int PlanCommand::run() {
               kilometres(m.path_length_m).c_str(), kilometres(m.work_length_m).c_str(),
               kilometres(m.transit_length_m).c_str(), duration(m.flight_time_s).c_str(),
               fixed_text(plan.speed_m_s, 1).c_str(), m.waypoint_count);
-  std::printf("  coverage   %s %% of the area, %s %% of the swath outside it\n",
-              fixed_text(plan.coverage.covered_fraction * 100, 3).c_str(),
-              fixed_text(plan.coverage.outside_fraction * 100, 1).c_str());
+  std::printf(
+      "  coverage   %s %% of the area; outside it: %s %% of the swath, %s m of lines, %s m of "
+      "transit\n",
+      fixed_text(plan.coverage.covered_fraction * 100, 3).c_str(),
+      fixed_text(plan.coverage.outside_fraction * 100, 1).c_str(),
+      fixed_text(plan.coverage.line_length_outside_m, 1).c_str(),
+      fixed_text(plan.transit_outside_m, 1).c_str());
   std::string names;
   for (const auto& f : files) names += " " + f.first;
   std::printf("  wrote     %s\n", names.c_str());

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "command.hpp"
 
@@ -43,7 +44,8 @@ class PlanCommand : public Command {
   std::string home_;
   std::string origin_;
   bool local_ = false;
-  std::string concave_ = "hull";
+  std::string concave_ = "split";
+  std::vector<std::string> exclude_;
   std::string firmware_ = "ardupilot";
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;

@@ -49,7 +49,7 @@ SweepDirection min_height_rotation(const std::vector<Point2>& points) {
   std::size_t j = 1;
   auto dist = [&](std::size_t i, std::size_t k) {
     const Point2 e = hull[(i + 1) % h] - hull[i];
-    return cross(e, hull[k % h] - hull[i]) / std::hypot(e.x, e.y);
+    return cross(e, hull[k % h] - hull[i]) / std::sqrt(dot(e, e));
   };
   for (std::size_t i = 0; i < h; ++i) {
     if (j < i + 1) j = i + 1;

@@ -3,14 +3,22 @@
 namespace swath::planning {
 
 DroneMission build_mission(int drone, geometry::Point2 home, const std::vector<SweepLine>& lines,
-                           const MissionSettings& s) {
+                           const MissionSettings& s, const LegRoute& route) {
   DroneMission m;
   m.drone = drone;
   m.home = home;
   m.lines = lines;
   m.items.push_back({ItemKind::takeoff, home, s.altitude_m, 0.0});
   m.path.push_back(home);
+  auto leg_to = [&](geometry::Point2 target) {
+    if (!route) return;
+    for (const geometry::Point2& p : route(m.path.back(), target)) {
+      m.items.push_back({ItemKind::waypoint, p, s.altitude_m, 0.0});
+      m.path.push_back(p);
+    }
+  };
   for (std::size_t i = 0; i < lines.size(); ++i) {
+    leg_to(lines[i].start);
     const std::vector<geometry::Point2> points = line_waypoints(lines[i], s.waypoint_spacing_m);
     for (std::size_t k = 0; k < points.size(); ++k) {
       m.items.push_back({ItemKind::waypoint, points[k], s.altitude_m, 0.0});
@@ -21,6 +29,7 @@ DroneMission build_mission(int drone, geometry::Point2 home, const std::vector<S
     m.work_length_m += geometry::distance(lines[i].start, lines[i].end);
   }
   if (!lines.empty()) m.items.push_back({ItemKind::trigger_stop, {}, 0.0, 0.0});
+  leg_to(home);
   m.items.push_back({ItemKind::return_to_launch, {}, 0.0, 0.0});
   m.path.push_back(home);
   for (std::size_t i = 0; i + 1 < m.path.size(); ++i)

@@ -4,7 +4,9 @@
 #include <sstream>
 
 #include "swath/geometry/convex_hull.hpp"
+#include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/input_error.hpp"
+#include "swath/planning/split.hpp"
 
 namespace swath::planning {
 
@@ -30,8 +32,25 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     throw InputError(field.source +
                      ": the area is in local metres; give --origin LAT,LON to place it on the map");
 
-  plan.facts = geometry::describe_area(field.polygon);
+  plan.area = field.polygon;
+  for (std::size_t k = 0; k < request.exclusions.size(); ++k) {
+    geometry::NormalisedRing hole = geometry::normalise_ring(request.exclusions[k], false);
+    if (hole.ring.size() < 3)
+      throw InputError("no-fly zone " + std::to_string(k) + " has fewer than 3 distinct vertices");
+    plan.area.holes.push_back(std::move(hole.ring));
+  }
+  plan.facts = geometry::describe_area(plan.area);
   const geometry::Classification& c = plan.facts.classification;
+  if (c.type == geometry::AreaType::self_intersecting &&
+      c.crossing->edge_b.ring > field.polygon.holes.size()) {
+    const geometry::GeoPoint p = field.frame->to_geo(c.crossing->point);
+    std::ostringstream s;
+    s.precision(8);
+    s << "no-fly zone " << (c.crossing->edge_b.ring - 1 - field.polygon.holes.size())
+      << " crosses the area's boundary or another zone at " << p.lat_deg << ", " << p.lon_deg
+      << " (lat, lon); give zones inside the area that do not overlap";
+    throw InputError(s.str());
+  }
   if (c.type == geometry::AreaType::self_intersecting) {
     const geometry::GeoPoint p = field.frame->to_geo(c.crossing->point);
     std::ostringstream s;
@@ -45,9 +64,11 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
                      std::to_string(c.reflex_vertices.size()) + " reflex vertices" +
                      (field.polygon.holes.empty() ? "" : ", holes") +
                      ") and --concave reject refuses it; use --concave hull");
-  plan.flown_area = c.type == geometry::AreaType::convex
-                        ? field.polygon
-                        : geometry::Polygon{geometry::convex_hull(field.polygon.outer), {}};
+  const bool convex = c.type == geometry::AreaType::convex;
+  const bool split = !convex && request.concave == ConcaveMode::split;
+  plan.handling = convex ? "convex" : split ? "split" : "hull";
+  plan.flown_area =
+      convex || split ? plan.area : geometry::Polygon{geometry::convex_hull(plan.area.outer), {}};
 
   if (const auto* p = std::get_if<PhotogrammetryMode>(&request.mode)) {
     plan.imaging = photogrammetry_imaging(request.camera, *p, request.orientation);
@@ -89,31 +110,61 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   if (!(plan.speed_m_s > 0 && std::isfinite(plan.speed_m_s)))
     throw InputError("--speed must be > 0 m/s");
 
-  SweepSettings sweep_settings;
-  sweep_settings.angle_deg = plan.direction.angle_deg;
-  sweep_settings.line_spacing_m = plan.imaging.line_spacing_m;
-  sweep_settings.footprint_width_m = plan.imaging.footprint_across_m;
-  sweep_settings.placement = request.placement;
-  sweep_settings.turnaround_m = request.turnaround_m;
-  plan.sweep = plan_sweep(plan.flown_area, sweep_settings);
-
-  std::optional<geometry::Point2> home_local;
-  if (request.home) home_local = field.frame->to_local(*request.home);
-  StartCorner start = request.start;
-  if (start == StartCorner::nearest_home && !home_local) start = StartCorner::sw;
-  const std::vector<SweepLine> ordered = order_lines(plan.sweep, start, home_local);
-  const geometry::Point2 home = home_local ? *home_local : ordered.front().start;
-  plan.home = field.frame->to_geo(home);
+  // Home: given, or the area's south-west-most vertex.
+  geometry::Point2 home = plan.area.outer.front();
+  for (const geometry::Point2& p : plan.area.outer)
+    if (p.x + p.y < home.x + home.y) home = p;
+  if (request.home) home = field.frame->to_local(*request.home);
+  plan.home = request.home ? *request.home : field.frame->to_geo(home);
 
   MissionSettings mission_settings;
   mission_settings.altitude_m = plan.imaging.altitude_m;
   mission_settings.speed_m_s = plan.speed_m_s;
   mission_settings.trigger_distance_m = plan.imaging.trigger_distance_m;
   mission_settings.waypoint_spacing_m = request.waypoint_spacing_m;
-  plan.mission = build_mission(1, home, ordered, mission_settings);
+  const std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
 
-  plan.coverage = measure_coverage(field.polygon, plan.mission.lines, plan.sweep.angle_deg,
+  if (split) {
+    const geometry::VisibilityRouter router(rings);
+    SplitSettings split_settings;
+    split_settings.line_spacing_m = plan.imaging.line_spacing_m;
+    split_settings.footprint_width_m = plan.imaging.footprint_across_m;
+    split_settings.placement = request.placement;
+    split_settings.turnaround_m = request.turnaround_m;
+    split_settings.scan_step_deg = request.split_scan_step_deg;
+    if (request.angle_search == AngleSearch::fixed)
+      split_settings.fixed_angle_deg = plan.direction.angle_deg;
+    const SplitPlan sp = plan_split(rings, home, split_settings, router);
+    plan.direction = {sp.angle_deg, geometry::height_at(plan.area.outer, sp.angle_deg)};
+    plan.sweep = {sp.angle_deg, plan.direction.height_m, sp.lines};
+    plan.cells = sp.cells;
+    plan.direction_candidates = sp.candidates;
+    const LegRoute route = [&router](geometry::Point2 a, geometry::Point2 b) {
+      std::vector<geometry::Point2> p = router.path(a, b);
+      return std::vector<geometry::Point2>(p.begin() + 1, p.end() - 1);
+    };
+    plan.mission = build_mission(1, home, sp.lines, mission_settings, route);
+  } else {
+    SweepSettings sweep_settings;
+    sweep_settings.angle_deg = plan.direction.angle_deg;
+    sweep_settings.line_spacing_m = plan.imaging.line_spacing_m;
+    sweep_settings.footprint_width_m = plan.imaging.footprint_across_m;
+    sweep_settings.placement = request.placement;
+    sweep_settings.turnaround_m = request.turnaround_m;
+    plan.sweep = plan_sweep(plan.flown_area, sweep_settings);
+    plan.cells = {plan.flown_area.outer};
+    plan.mission =
+        build_mission(1, home, order_lines(plan.sweep, request.start, home), mission_settings);
+  }
+
+  plan.coverage = measure_coverage(plan.area, plan.mission.lines, plan.sweep.angle_deg,
                                    plan.imaging.footprint_across_m);
+  // Off-line legs outside the area: the whole path's outside length less the lines' own.
+  const geometry::VisibilityRouter measure(rings, 0);
+  double path_outside = 0;
+  for (std::size_t i = 0; i + 1 < plan.mission.path.size(); ++i)
+    path_outside += measure.length_outside(plan.mission.path[i], plan.mission.path[i + 1]);
+  plan.transit_outside_m = std::max(0.0, path_outside - plan.coverage.line_length_outside_m);
 
   if (const auto& interval = request.camera.min_trigger_interval_s) {
     const double seconds = plan.imaging.trigger_distance_m / plan.speed_m_s;

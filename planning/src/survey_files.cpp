@@ -242,6 +242,14 @@ std::string mission_geojson(const SurveyPlan& plan) {
   features.push_back({{"type", "Feature"},
                       {"properties", {{"role", "area"}}},
                       {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
+  for (std::size_t k = 0; plan.handling == "split" && k < plan.cells.size(); ++k) {
+    ordered_json ring = ordered_json::array();
+    for (const Point2& p : plan.cells[k]) ring.push_back(lon_lat(plan, p));
+    ring.push_back(ring.front());
+    features.push_back({{"type", "Feature"},
+                        {"properties", {{"role", "cell"}, {"cell", k}}},
+                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+  }
   for (const DroneMission* m : {&plan.mission}) {
     ordered_json path = ordered_json::array();
     for (const Point2& p : m->path) path.push_back(lon_lat(plan, p));
@@ -311,11 +319,19 @@ std::string summary_json(const SurveyPlan& plan) {
                {"area_m2", optional_number(f.area_m2, 3)},
                {"regularity",
                 f.regularity ? ordered_json(round_to(f.regularity->overall, 6)) : ordered_json()},
-               {"concave_mode", r.concave == ConcaveMode::hull ? "hull" : "reject"},
+               {"concave_mode", r.concave == ConcaveMode::split  ? "split"
+                                : r.concave == ConcaveMode::hull ? "hull"
+                                                                 : "reject"},
+               {"handling", plan.handling},
+               {"no_fly_zones", r.exclusions.size()},
+               {"cells", plan.cells.size()},
                {"flown_area_m2", round_to(geometry::area(plan.flown_area), 3)}};
   j["sweep"] = {{"bearing_deg", round_to(geometry::line_bearing_deg(plan.sweep.angle_deg), 6)},
                 {"angle_local_deg", round_to(plan.sweep.angle_deg, 6)},
-                {"angle_search", to_string(r.angle_search)},
+                {"angle_search", plan.handling == "split" && r.angle_search != AngleSearch::fixed
+                                     ? "shortest-path"
+                                     : to_string(r.angle_search)},
+                {"directions_evaluated", plan.direction_candidates},
                 {"height_m", round_to(plan.sweep.height_m, 4)},
                 {"line_placement", to_string(r.placement)},
                 {"lines", plan.sweep.lines.size()},
@@ -343,6 +359,7 @@ std::string summary_json(const SurveyPlan& plan) {
                       {"transit_length_m", round_to(m->transit_length_m, 3)},
                       {"flight_time_s", round_to(m->flight_time_s, 2)},
                       {"lines", m->lines.size()},
+                      {"turns", m->lines.empty() ? 0 : m->lines.size() - 1},
                       {"waypoints", m->waypoint_count},
                       {"region_area_m2", nullptr}});
   }
@@ -357,6 +374,7 @@ std::string summary_json(const SurveyPlan& plan) {
       {"swath_area_m2", round_to(c.swath_area_m2, 3)},
       {"line_length_m", round_to(c.line_length_m, 3)},
       {"line_length_outside_m", round_to(c.line_length_outside_m, 3)},
+      {"transit_outside_m", round_to(plan.transit_outside_m, 3)},
       {"line_outside_fraction",
        round_to(c.line_length_m > 0 ? c.line_length_outside_m / c.line_length_m : 0.0, 6)}};
   j["warnings"] = plan.warnings;

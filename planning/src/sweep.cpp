@@ -64,44 +64,117 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     rings.push_back(std::move(ring));
   }
   sweep.height_m = y_max - y_min;
-  const std::vector<double> ys =
-      line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  std::vector<double> ys;
+  if (s.ordinates.empty()) {
+    ys = line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  } else {
+    for (double y : s.ordinates)
+      if (y >= y_min && y <= y_max) ys.push_back(y);
+    if (ys.empty()) ys.push_back((y_min + y_max) / 2);
+  }
 
-  // Strip k spans [bounds[k], bounds[k + 1]].
-  std::vector<double> bounds{y_min};
-  for (std::size_t k = 0; k + 1 < ys.size(); ++k) bounds.push_back((ys[k] + ys[k + 1]) / 2);
-  bounds.push_back(y_max);
-  const std::size_t strips = ys.size();
-  std::vector<double> x_lo(strips, std::numeric_limits<double>::infinity());
-  std::vector<double> x_hi(strips, -std::numeric_limits<double>::infinity());
-
-  // Each edge, clipped to every strip it crosses, widens that strip's x extent.
-  for (const geometry::Ring& ring : rings) {
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
-      if (a.y > b.y) std::swap(a, b);
-      auto k = static_cast<std::size_t>(
-          std::upper_bound(bounds.begin() + 1, bounds.end() - 1, a.y) - bounds.begin() - 1);
-      for (; k < strips && bounds[k] <= b.y; ++k) {
-        const double lo = std::max(a.y, bounds[k]);
-        const double hi = std::min(b.y, bounds[k + 1]);
-        if (lo > hi) continue;
+  // Strip k spans [lo, hi]: between the midpoints to its neighbours (strip rule) or the line's own
+  // ordinate (inside rule). Both bounds increase with k, so an edge finds its first strip by
+  // search.
+  struct Strip {
+    double lo, hi;
+    double x_lo = std::numeric_limits<double>::infinity();
+    double x_hi = -std::numeric_limits<double>::infinity();
+    double y_at_x_lo = 0.0, y_at_x_hi = 0.0;  // where the extremes are reached
+  };
+  auto strips_for = [&](const std::vector<double>& offsets, bool whole_strip) {
+    std::vector<Strip> strips;
+    for (std::size_t k = 0; k < offsets.size(); ++k) {
+      if (!whole_strip) {
+        strips.push_back({offsets[k], offsets[k]});
+      } else {
+        strips.push_back({k == 0 ? y_min : (offsets[k - 1] + offsets[k]) / 2,
+                          k + 1 == offsets.size() ? y_max : (offsets[k] + offsets[k + 1]) / 2});
+      }
+    }
+    // Each edge, clipped to every strip it meets, widens that strip's x extent.
+    for (const geometry::Ring& ring : rings) {
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+        if (a.y > b.y) std::swap(a, b);
         auto x_at = [&](double y) {
           return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
         };
-        const double x0 = b.y == a.y ? std::min(a.x, b.x) : std::min(x_at(lo), x_at(hi));
-        const double x1 = b.y == a.y ? std::max(a.x, b.x) : std::max(x_at(lo), x_at(hi));
-        x_lo[k] = std::min(x_lo[k], x0);
-        x_hi[k] = std::max(x_hi[k], x1);
+        auto strip = std::lower_bound(strips.begin(), strips.end(), a.y,
+                                      [](const Strip& st, double y) { return st.hi < y; });
+        for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
+          const double y0 = std::max(a.y, strip->lo);
+          const double y1 = std::min(b.y, strip->hi);
+          if (y0 > y1) continue;
+          for (const auto& [x, y] : {std::pair{b.y == a.y ? a.x : x_at(y0), y0},
+                                     std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
+            if (x < strip->x_lo) {
+              strip->x_lo = x;
+              strip->y_at_x_lo = y;
+            }
+            if (x > strip->x_hi) {
+              strip->x_hi = x;
+              strip->y_at_x_hi = y;
+            }
+          }
+        }
       }
     }
+    return strips;
+  };
+  std::vector<Strip> strips = strips_for(ys, s.segments == SegmentRule::strip);
+  if (s.segments == SegmentRule::inside && s.fill_protrusions && !ys.empty()) {
+    const std::vector<Strip> whole = strips_for(ys, true);
+    const double slack = 0.02 * s.line_spacing_m;
+    // The extreme may lie on an edge along the lanes, where the extent jumps: the lane goes just
+    // off it, on the side that reaches out (never on the edge: it would run along the boundary).
+    const double inset = std::min(1e-3 * s.line_spacing_m, (y_max - y_min) / 4);
+    auto best_side = [&](double y, bool high) {
+      std::vector<double> sides{std::max(y - inset, y_min + inset),
+                                std::min(y + inset, y_max - inset)};
+      const std::vector<Strip> at = strips_for(sides, false);
+      return high ? (at[1].x_hi >= at[0].x_hi ? sides[1] : sides[0])
+                  : (at[1].x_lo <= at[0].x_lo ? sides[1] : sides[0]);
+    };
+    // Only protrusions that no lane's footprint reaches already.
+    auto seen = [&](double x, double y) {
+      for (std::size_t j = 0; j < ys.size(); ++j)
+        if (std::abs(y - ys[j]) <= s.footprint_width_m / 2 && x >= strips[j].x_lo - slack &&
+            x <= strips[j].x_hi + slack)
+          return true;
+      return false;
+    };
+    std::vector<double> more = ys;
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      if (whole[k].x_hi > strips[k].x_hi + slack && !seen(whole[k].x_hi, whole[k].y_at_x_hi))
+        more.push_back(best_side(whole[k].y_at_x_hi, true));
+      if (whole[k].x_lo < strips[k].x_lo - slack && !seen(whole[k].x_lo, whole[k].y_at_x_lo))
+        more.push_back(best_side(whole[k].y_at_x_lo, false));
+    }
+    if (more.size() > ys.size()) {
+      std::sort(more.begin(), more.end());
+      more.erase(std::unique(more.begin(), more.end()), more.end());
+      ys = more;
+      strips = strips_for(ys, false);
+    }
   }
-  for (std::size_t k = 0; k < strips; ++k) {
-    if (x_lo[k] > x_hi[k]) continue;
-    sweep.lines.push_back({rotate({x_lo[k] - s.turnaround_m, ys[k]}, sweep.angle_deg),
-                           rotate({x_hi[k] + s.turnaround_m, ys[k]}, sweep.angle_deg)});
+  for (std::size_t k = 0; k < strips.size(); ++k) {
+    if (strips[k].x_lo > strips[k].x_hi) continue;
+    sweep.lines.push_back({rotate({strips[k].x_lo - s.turnaround_m, ys[k]}, sweep.angle_deg),
+                           rotate({strips[k].x_hi + s.turnaround_m, ys[k]}, sweep.angle_deg)});
   }
   return sweep;
+}
+
+std::vector<SweepLine> zigzag(const Sweep& sweep, bool top_first, bool reverse_first) {
+  std::vector<SweepLine> out;
+  const std::size_t n = sweep.lines.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    SweepLine line = sweep.lines[top_first ? n - 1 - i : i];
+    if ((i % 2 == 1) != reverse_first) std::swap(line.start, line.end);
+    out.push_back(line);
+  }
+  return out;
 }
 
 std::vector<SweepLine> order_lines(const Sweep& sweep, StartCorner start,
@@ -109,17 +182,6 @@ std::vector<SweepLine> order_lines(const Sweep& sweep, StartCorner start,
   if (sweep.lines.empty()) return {};
   if (start == StartCorner::nearest_home && !home)
     throw std::invalid_argument("order_lines: nearest_home needs a home point");
-  // Variants: (bottom first | top first) x (first line flown +x | -x).
-  auto variant = [&](bool top_first, bool reverse_first) {
-    std::vector<SweepLine> out;
-    const std::size_t n = sweep.lines.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      SweepLine line = sweep.lines[top_first ? n - 1 - i : i];
-      if ((i % 2 == 1) != reverse_first) std::swap(line.start, line.end);
-      out.push_back(line);
-    }
-    return out;
-  };
   auto score = [&](const std::vector<SweepLine>& v) {
     const Point2 p = v.front().start;
     switch (start) {
@@ -140,7 +202,7 @@ std::vector<SweepLine> order_lines(const Sweep& sweep, StartCorner start,
   double best_score = std::numeric_limits<double>::infinity();
   for (bool top_first : {false, true})
     for (bool reverse_first : {false, true}) {
-      std::vector<SweepLine> v = variant(top_first, reverse_first);
+      std::vector<SweepLine> v = zigzag(sweep, top_first, reverse_first);
       const double sc = score(v);
       if (sc < best_score - 1e-9) {
         best_score = sc;

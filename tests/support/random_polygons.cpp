@@ -82,6 +82,32 @@ Ring comb_polygon(int teeth, double w, double h, double b) {
   return ring;
 }
 
+Ring spiral_polygon(int arms, double length, double gap, double half_width) {
+  // Centre line: axis-aligned arms turning left, shortening by `gap` every second arm.
+  std::vector<Point2> centre{{0, 0}};
+  const Point2 directions[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  double arm = length;
+  for (int k = 0; k < arms; ++k) {
+    centre.push_back(centre.back() + directions[k % 4] * arm);
+    if (k % 2 == 1) arm -= gap;
+  }
+  // Offset both sides; at a right-angle corner the offsets of both arms meet at P + h(n1 + n2).
+  auto normal = [&](std::size_t segment) {  // left normal of centre[segment] -> centre[segment + 1]
+    const Point2 d = directions[segment % 4];
+    return Point2{-d.y, d.x};
+  };
+  Ring left, right;
+  const std::size_t n = centre.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Point2 offset = i == 0 ? normal(0) : i + 1 == n ? normal(i - 1) : normal(i - 1) + normal(i);
+    left.push_back(centre[i] + offset * half_width);
+    right.push_back(centre[i] - offset * half_width);
+  }
+  Ring ring = right;
+  ring.insert(ring.end(), left.rbegin(), left.rend());
+  return ring;
+}
+
 Ring transformed(const Ring& ring, double angle_deg, double dx, double dy) {
   const double t = angle_deg * std::numbers::pi / 180.0;
   const double c = std::cos(t), s = std::sin(t);

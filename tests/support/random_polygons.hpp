@@ -30,6 +30,10 @@ geometry::Ring random_grid_ring(Rng& rng, std::size_t n, int grid);
 /// A comb: `teeth` vertical teeth of width w and height h on a base of height b, CCW. Concave.
 geometry::Ring comb_polygon(int teeth, double w, double h, double b);
 
+/// A rectangular spiral corridor `2 half_width` wide whose centre line turns left `arms` times,
+/// arms `gap` apart (gap > 2 half_width), the first `length` long. Counter-clockwise. Concave.
+geometry::Ring spiral_polygon(int arms, double length, double gap, double half_width);
+
 /// `ring` rotated by angle_deg about the origin and moved by (dx, dy).
 geometry::Ring transformed(const geometry::Ring& ring, double angle_deg, double dx, double dy);
 

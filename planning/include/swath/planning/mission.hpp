@@ -2,6 +2,7 @@
 // A drone's mission: take off at home, fly the sweep lines with the camera triggering by
 // distance, return to launch.
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -38,10 +39,14 @@ struct DroneMission {
   std::size_t waypoint_count = 0;  ///< items with a position (takeoff and waypoints)
 };
 
+/// Points strictly between a and b that a leg from a to b flies through (empty: straight).
+using LegRoute = std::function<std::vector<geometry::Point2>(geometry::Point2, geometry::Point2)>;
+
 /// Builds the mission: takeoff at home to the survey altitude, the first line's start, camera
 /// trigger by distance on, every line's waypoints, trigger off after the last, return to launch.
+/// Legs off the lines (home legs, turns, transits) go through `route`'s points when given.
 DroneMission build_mission(int drone, geometry::Point2 home,
                            const std::vector<SweepLine>& ordered_lines,
-                           const MissionSettings& settings);
+                           const MissionSettings& settings, const LegRoute& route = {});
 
 }  // namespace swath::planning

@@ -21,8 +21,9 @@ enum class AngleSearch {
   fixed,  ///< `line_bearing_deg` as given
 };
 
-/// What a non-convex area becomes before sweeping.
+/// What a non-convex area (reflex vertices or holes) becomes before sweeping.
 enum class ConcaveMode {
+  split,   ///< boustrophedon cells swept inside the area, transits routed around holes
   hull,    ///< paper 001: its convex hull (flies over ground outside the area; reported)
   reject,  ///< refuse it
 };
@@ -44,8 +45,11 @@ struct SurveyRequest {
   double turnaround_m = 0.0;
   std::optional<double> waypoint_spacing_m;
   StartCorner start = StartCorner::nearest_home;
-  std::optional<geometry::GeoPoint> home;  ///< absent: home at the survey's entry point
-  ConcaveMode concave = ConcaveMode::hull;
+  std::optional<geometry::GeoPoint> home;  ///< absent: the area's south-west-most vertex
+  ConcaveMode concave = ConcaveMode::split;
+  /// Extra no-fly zones (local frame, any orientation); they become holes of the area.
+  std::vector<geometry::Ring> exclusions;
+  double split_scan_step_deg = 2.0;  ///< split: the scan part of the direction search
   Firmware firmware = Firmware::ardupilot;
   Vehicle vehicle = Vehicle::multirotor;
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
@@ -53,8 +57,14 @@ struct SurveyRequest {
 
 struct SurveyPlan {
   SurveyRequest request;
-  geometry::AreaFacts facts;     ///< of the area as given
+  geometry::AreaFacts facts;     ///< of the area as given, no-fly zones included as holes
+  geometry::Polygon area;        ///< the area to cover: the field minus the no-fly zones
   geometry::Polygon flown_area;  ///< what the sweep covers (the hull for a concave area)
+  /// How the area was flown: "convex" (one sweep, strip rule), "hull" or "split".
+  std::string handling;
+  std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
+  std::size_t direction_candidates = 1;  ///< directions evaluated
+  double transit_outside_m = 0.0;        ///< length of legs off the lines outside the area
   Imaging imaging;
   geometry::SweepDirection direction;  ///< angle of the lines (local, CCW from east) and height
   Sweep sweep;

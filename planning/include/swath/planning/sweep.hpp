@@ -18,6 +18,16 @@ enum class LinePlacement {
   paper,
 };
 
+/// How far a line reaches along its ordinate.
+enum class SegmentRule {
+  /// DESIGN.md §6: the area's extent within the line's whole strip, so slanted edges leave no
+  /// unseen triangles (the line may pass the boundary there).
+  strip,
+  /// The area's own extent at the line's ordinate: never leaves a cell that every line meets in one
+  /// interval (boustrophedon cells); slivers at slanted sides rely on the footprint's width.
+  inside,
+};
+
 struct SweepSettings {
   /// Direction of the lines, degrees counter-clockwise from the local x axis (east), any value.
   double angle_deg = 0.0;
@@ -25,6 +35,15 @@ struct SweepSettings {
   double footprint_width_m = 0.0;  ///< camera footprint across the line, >= line_spacing_m
   LinePlacement placement = LinePlacement::centered;
   double turnaround_m = 0.0;  ///< extension beyond both ends of every line, >= 0
+  SegmentRule segments = SegmentRule::strip;
+  /// When not empty: fly exactly these ordinates (perpendicular offsets in the frame rotated by
+  /// -angle_deg, increasing) that fall within the area, instead of placing lines; one line at
+  /// mid-height if none does. Lets cells of one area share a lane grid.
+  std::vector<double> ordinates;
+  /// Inside rule: where the area juts out along the lines between two lanes (farther than its
+  /// extent at either lane's ordinate, by over 2 % of the spacing), add a lane through the
+  /// outermost point of the protrusion, so that its footprint covers it without leaving the area.
+  bool fill_protrusions = false;
 };
 
 /// One flight line in the local frame, in the direction it is flown.
@@ -41,17 +60,22 @@ struct Sweep {
   std::vector<SweepLine> lines;
 };
 
-/// Places lines over `area` (all rings; holes ignored for the extent, so pass the area to fly)
-/// and gives each the segment spanning the area's extent within its strip: the band between the
-/// midpoints to its neighbours (the first from the bottom, the last to the top). Every point of
-/// the area then lies in some strip, within the line's segment span and within half a footprint
-/// of the line, so it is seen (DESIGN.md §6 guarantee). Lines whose strip holds no area are
+/// Places lines over `area` (all rings; holes ignored for the extent, so pass the area to fly).
+/// With SegmentRule::strip each line's segment spans the area's extent within its strip: the
+/// band between the midpoints to its neighbours (the first from the bottom, the last to the top).
+/// Every point of the area then lies in some strip, within the line's segment span and within
+/// half a footprint of the line, so it is seen (DESIGN.md §6 guarantee). With SegmentRule::inside
+/// the segment is the area's extent at the line's own ordinate. Lines that would hold no area are
 /// dropped. Throws std::invalid_argument on settings out of range.
 Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& settings);
 
 /// Line offsets (rotated-frame y) for an area spanning [y_min, y_max].
 std::vector<double> line_offsets(double y_min, double y_max, double spacing_m,
                                  double footprint_width_m, LinePlacement placement);
+
+/// The lines of `sweep` as a zigzag: from the top or bottom line, the first flown towards -x of
+/// the rotated frame or +x, directions alternating.
+std::vector<SweepLine> zigzag(const Sweep& sweep, bool top_first, bool reverse_first);
 
 /// Where the survey starts.
 enum class StartCorner { nearest_home, sw, se, nw, ne };

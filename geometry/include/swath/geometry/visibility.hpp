@@ -1,0 +1,54 @@
+#pragma once
+// Shortest paths that stay inside an area (closed: running along the boundary is allowed).
+
+#include <cstddef>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "swath/geometry/polygon.hpp"
+
+namespace swath::geometry {
+
+/// Routes between points of an area given as rings (outer counter-clockwise, holes clockwise;
+/// several outer rings allowed): a point is inside when an odd number of rings contain it, or it
+/// lies within 1e-9 of the area's size of the boundary (rounding of computed boundary points). The
+/// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
+/// visibility is decided with exact predicates. Building is O(r² n) for r reflex vertices and n
+/// edges, so areas with more than `max_nodes` reflex vertices are not routed (paths are straight).
+class VisibilityRouter {
+ public:
+  explicit VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes = 300);
+
+  /// True when the closed segment [a, b] lies inside the closed area.
+  bool visible(Point2 a, Point2 b) const;
+  /// The shortest path from a to b inside the area, a and b included; the straight segment when
+  /// it is inside, when no inside path exists (a or b outside, separate pieces) or the area has too
+  /// many reflex vertices to route.
+  std::vector<Point2> path(Point2 a, Point2 b) const;
+  /// Length of [a, b] outside the closed area, metres (exact up to rounding).
+  double length_outside(Point2 a, Point2 b) const;
+  bool routes() const { return routing_; }
+
+ private:
+  bool inside_closed(Point2 p) const;
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Ring> rings_;
+  std::vector<Box> ring_boxes_;
+  std::vector<std::vector<Box>> edge_boxes_;  ///< per ring, per edge
+  std::vector<Point2> nodes_;
+  std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
+  /// Which graph nodes a point sees, per point asked about (routing asks about the same entry
+  /// and exit points many times).
+  const std::vector<char>& sees(Point2 p) const;
+  mutable std::map<std::pair<double, double>, std::vector<char>> sees_;
+  bool routing_ = true;
+  double tolerance_ = 0.0;  ///< distance from the boundary that still counts as on it, metres
+};
+
+/// Sum of the lengths of a polyline.
+double polyline_length(const std::vector<Point2>& points);
+
+}  // namespace swath::geometry

@@ -1,0 +1,176 @@
+#include "swath/geometry/visibility.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <queue>
+
+#include "swath/geometry/predicates.hpp"
+
+namespace swath::geometry {
+namespace {}  // namespace
+
+double polyline_length(const std::vector<Point2>& points) {
+  double length = 0;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) length += distance(points[i], points[i + 1]);
+  return length;
+}
+
+bool VisibilityRouter::inside_closed(Point2 p) const {
+  int count = 0;
+  for (std::size_t r = 0; r < rings_.size(); ++r) {
+    const Box& b = ring_boxes_[r];
+    if (p.x < b.x0 - tolerance_ || p.x > b.x1 + tolerance_ || p.y < b.y0 - tolerance_ ||
+        p.y > b.y1 + tolerance_)
+      continue;
+    const Ring& ring = rings_[r];
+    const Containment c = locate_point(p, ring);
+    if (c == Containment::on_boundary) return true;
+    count += c == Containment::inside;
+  }
+  if (count % 2 == 1) return true;
+  // Within rounding of the boundary counts as on it: legs between two boundary points run along
+  // an edge, a hair to either side of it.
+  for (std::size_t r = 0; r < rings_.size(); ++r)
+    for (std::size_t i = 0; i < rings_[r].size(); ++i) {
+      const Box& b = edge_boxes_[r][i];
+      if (p.x < b.x0 - tolerance_ || p.x > b.x1 + tolerance_ || p.y < b.y0 - tolerance_ ||
+          p.y > b.y1 + tolerance_)
+        continue;
+      const Ring& ring = rings_[r];
+      const Point2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
+      const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+      if (distance(p, a + d * t) <= tolerance_) return true;
+    }
+  return false;
+}
+
+double VisibilityRouter::length_outside(Point2 a, Point2 b) const {
+  // Cut [a, b] where it meets the boundary; each piece is wholly inside or outside.
+  const Point2 d = b - a;
+  const double len2 = dot(d, d);
+  if (len2 == 0) return 0.0;
+  std::vector<double> cuts{0.0, 1.0};
+  const Box seg{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+  auto apart = [&](const Box& e) {
+    return e.x0 > seg.x1 || e.x1 < seg.x0 || e.y0 > seg.y1 || e.y1 < seg.y0;
+  };
+  for (std::size_t r = 0; r < rings_.size(); ++r) {
+    if (apart(ring_boxes_[r])) continue;
+    const Ring& ring = rings_[r];
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      if (apart(edge_boxes_[r][i])) continue;
+      const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
+      if (!segments_intersect(a, b, p, q)) continue;
+      const double denom = cross(d, q - p);
+      if (denom != 0) {
+        cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
+      } else {  // collinear overlap: its ends are cuts
+        cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
+        cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
+      }
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double outside = 0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    if (cuts[k + 1] <= cuts[k]) continue;
+    if (!inside_closed(a + d * ((cuts[k] + cuts[k + 1]) / 2))) outside += (cuts[k + 1] - cuts[k]);
+  }
+  return outside * std::sqrt(len2);
+}
+
+bool VisibilityRouter::visible(Point2 a, Point2 b) const {
+  // Decided by the length outside, with a tolerance: end points computed on the boundary (line
+  // ends, cut points) sit a rounding error off it, and must still see inwards.
+  return length_outside(a, b) <= 1e-9 * (1 + distance(a, b));
+}
+
+VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes)
+    : rings_(std::move(rings)) {
+  double extent = 0;
+  for (const Ring& ring : rings_)
+    for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+  tolerance_ = 1e-9 * (1 + extent);
+  for (const Ring& ring : rings_) {
+    Box rb{ring[0].x, ring[0].y, ring[0].x, ring[0].y};
+    std::vector<Box> boxes;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
+      boxes.push_back(
+          {std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)});
+      rb = {std::min(rb.x0, p.x), std::min(rb.y0, p.y), std::max(rb.x1, p.x), std::max(rb.y1, p.y)};
+    }
+    ring_boxes_.push_back(rb);
+    edge_boxes_.push_back(std::move(boxes));
+  }
+  for (const Ring& ring : rings_) {
+    const std::size_t n = ring.size();
+    for (std::size_t i = 0; i < n; ++i)
+      if (orientation(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]) == Orientation::clockwise)
+        nodes_.push_back(ring[i]);
+  }
+  if (nodes_.size() > max_nodes) {
+    routing_ = false;
+    nodes_.clear();
+    return;
+  }
+  adjacent_.resize(nodes_.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    for (std::size_t j = i + 1; j < nodes_.size(); ++j)
+      if (visible(nodes_[i], nodes_[j])) {
+        const double w = distance(nodes_[i], nodes_[j]);
+        adjacent_[i].push_back({j, w});
+        adjacent_[j].push_back({i, w});
+      }
+}
+
+const std::vector<char>& VisibilityRouter::sees(Point2 p) const {
+  auto [it, added] = sees_.try_emplace({p.x, p.y});
+  if (added) {
+    it->second.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i) it->second[i] = visible(p, nodes_[i]);
+  }
+  return it->second;
+}
+
+std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
+  if (!routing_ || visible(a, b)) return {a, b};
+  // Dijkstra over the reflex vertices, a (index n) and b (index n + 1).
+  const std::size_t n = nodes_.size(), source = n, target = n + 1;
+  std::vector<double> best(n + 2, std::numeric_limits<double>::infinity());
+  std::vector<std::size_t> previous(n + 2, n + 2);
+  const std::vector<char>& from_a = sees(a);
+  const std::vector<char>& to_b = sees(b);
+  using Item = std::pair<double, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  best[source] = 0;
+  queue.push({0, source});
+  auto relax = [&](std::size_t from, std::size_t to, double w) {
+    if (best[from] + w < best[to]) {
+      best[to] = best[from] + w;
+      previous[to] = from;
+      queue.push({best[to], to});
+    }
+  };
+  while (!queue.empty()) {
+    const auto [d, u] = queue.top();
+    queue.pop();
+    if (d > best[u]) continue;
+    if (u == target) break;
+    if (u == source) {
+      for (std::size_t i = 0; i < n; ++i)
+        if (from_a[i]) relax(u, i, distance(a, nodes_[i]));
+      continue;
+    }
+    for (const auto& [v, w] : adjacent_[u]) relax(u, v, w);
+    if (to_b[u]) relax(u, target, distance(nodes_[u], b));
+  }
+  if (previous[target] == n + 2) return {a, b};
+  std::vector<Point2> route{b};
+  for (std::size_t v = previous[target]; v != source; v = previous[v]) route.push_back(nodes_[v]);
+  route.push_back(a);
+  std::reverse(route.begin(), route.end());
+  return route;
+}
+
+}  // namespace swath::geometry

@@ -1,0 +1,41 @@
+#pragma once
+// Concave areas and holes without flying outside (--concave split): boustrophedon cells, each
+// swept inside, visited in the order and direction that make the whole path shortest.
+
+#include <optional>
+#include <vector>
+
+#include "swath/geometry/visibility.hpp"
+#include "swath/planning/sweep.hpp"
+
+namespace swath::planning {
+
+struct SplitSettings {
+  double line_spacing_m = 0.0;
+  double footprint_width_m = 0.0;
+  LinePlacement placement = LinePlacement::centered;
+  double turnaround_m = 0.0;
+  /// Fly this direction (degrees CCW from east) instead of searching.
+  std::optional<double> fixed_angle_deg;
+  /// The scan part of the direction search, degrees; edge directions are always candidates.
+  double scan_step_deg = 2.0;
+  /// Candidates (best by a straight-transit estimate) evaluated with routed transits.
+  std::size_t refined_candidates = 3;
+};
+
+struct SplitPlan {
+  double angle_deg = 0.0;              ///< chosen line direction, degrees CCW from east, [0, 180)
+  std::vector<geometry::Ring> cells;   ///< counter-clockwise, local frame
+  std::vector<SweepLine> lines;        ///< flight order and direction
+  std::vector<std::size_t> line_cell;  ///< cell of each line
+  std::size_t candidates = 0;          ///< directions evaluated
+  double path_length_m = 0.0;          ///< home -> all lines -> home, transits routed
+};
+
+/// Plans the split sweep of an area given as rings (outer counter-clockwise, holes clockwise).
+/// Transits and turns are measured along `router` paths. Throws std::invalid_argument on
+/// settings out of range.
+SplitPlan plan_split(const std::vector<geometry::Ring>& rings, geometry::Point2 home,
+                     const SplitSettings& settings, const geometry::VisibilityRouter& router);
+
+}  // namespace swath::planning

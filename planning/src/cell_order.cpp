@@ -1,0 +1,247 @@
+#include "swath/planning/cell_order.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace swath::planning {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Memoised transit lengths between every entry/exit point and home: the metric may be a routed
+// shortest path, far dearer than the searches that query it.
+class Transit {
+ public:
+  explicit Transit(const CellOrderProblem& p) : p_(p) {
+    std::size_t offset = 0;
+    for (const auto& cell : p.cells) {
+      base_.push_back(offset);
+      offset += cell.size();
+    }
+    const std::size_t n = offset;
+    home_to_entry_.resize(n);
+    exit_to_home_.resize(n);
+    exit_to_entry_.assign(n * n, -1.0);
+    for (std::size_t c = 0; c < p.cells.size(); ++c)
+      for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
+        home_to_entry_[base_[c] + v] = p.distance(p.home, p.cells[c][v].entry);
+        exit_to_home_[base_[c] + v] = p.distance(p.cells[c][v].exit, p.home);
+      }
+    size_ = n;
+  }
+  double from_home(std::size_t c, std::size_t v) const { return home_to_entry_[base_[c] + v]; }
+  double to_home(std::size_t c, std::size_t v) const { return exit_to_home_[base_[c] + v]; }
+  double between(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2) {
+    double& d = exit_to_entry_[(base_[c1] + v1) * size_ + base_[c2] + v2];
+    if (d < 0) d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
+    return d;
+  }
+
+ private:
+  const CellOrderProblem& p_;
+  std::vector<std::size_t> base_;
+  std::vector<double> home_to_entry_, exit_to_home_, exit_to_entry_;
+  std::size_t size_ = 0;
+};
+
+// Best variants for a fixed order of cells: shortest path through a layered graph.
+CellOrder best_variants(const CellOrderProblem& p, Transit& t,
+                        const std::vector<std::size_t>& order) {
+  CellOrder result;
+  if (order.empty()) {
+    result.length_m = 0;
+    return result;
+  }
+  std::vector<std::vector<double>> cost(order.size());
+  std::vector<std::vector<std::size_t>> from(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& variants = p.cells[order[k]];
+    cost[k].assign(variants.size(), kInf);
+    from[k].assign(variants.size(), 0);
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      if (k == 0) {
+        cost[k][v] = t.from_home(order[k], v) + variants[v].internal_m;
+        continue;
+      }
+      for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
+        const double c =
+            cost[k - 1][u] + t.between(order[k - 1], u, order[k], v) + variants[v].internal_m;
+        if (c < cost[k][v]) {
+          cost[k][v] = c;
+          from[k][v] = u;
+        }
+      }
+    }
+  }
+  const std::size_t last = order.size() - 1;
+  std::size_t best = 0;
+  double best_cost = kInf;
+  for (std::size_t v = 0; v < cost[last].size(); ++v) {
+    const double c = cost[last][v] + t.to_home(order[last], v);
+    if (c < best_cost) {
+      best_cost = c;
+      best = v;
+    }
+  }
+  result.visits.resize(order.size());
+  for (std::size_t k = order.size(); k-- > 0;) {
+    result.visits[k] = {order[k], best};
+    best = from[k][best];
+  }
+  result.length_m = best_cost;
+  return result;
+}
+
+}  // namespace
+
+double tour_length(const CellOrderProblem& p, const std::vector<CellVisit>& visits) {
+  if (visits.empty()) return 0.0;
+  double length = p.distance(p.home, p.cells[visits[0].cell][visits[0].variant].entry);
+  for (std::size_t k = 0; k < visits.size(); ++k) {
+    const CellVariant& v = p.cells[visits[k].cell][visits[k].variant];
+    length += v.internal_m;
+    const geometry::Point2 next =
+        k + 1 < visits.size() ? p.cells[visits[k + 1].cell][visits[k + 1].variant].entry : p.home;
+    length += p.distance(v.exit, next);
+  }
+  return length;
+}
+
+CellOrder exact_cell_order(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size();
+  if (n > 16) throw std::invalid_argument("exact_cell_order: more than 16 cells");
+  if (n == 0) return {};
+  Transit t(p);
+  constexpr std::size_t kMaxVariants = 4;
+  // cost[mask][cell * 4 + variant]: shortest start from home visiting `mask`, ending in that state.
+  const std::size_t states = n * kMaxVariants;
+  std::vector<std::vector<double>> cost(std::size_t{1} << n, std::vector<double>(states, kInf));
+  std::vector<std::vector<std::size_t>> parent(std::size_t{1} << n,
+                                               std::vector<std::size_t>(states, states));
+  for (std::size_t c = 0; c < n; ++c)
+    for (std::size_t v = 0; v < p.cells[c].size(); ++v)
+      cost[std::size_t{1} << c][c * kMaxVariants + v] =
+          t.from_home(c, v) + p.cells[c][v].internal_m;
+  for (std::size_t mask = 1; mask < (std::size_t{1} << n); ++mask) {
+    for (std::size_t s = 0; s < states; ++s) {
+      const double here = cost[mask][s];
+      if (here == kInf) continue;
+      const std::size_t c = s / kMaxVariants, v = s % kMaxVariants;
+      for (std::size_t c2 = 0; c2 < n; ++c2) {
+        if (mask & (std::size_t{1} << c2)) continue;
+        const std::size_t next_mask = mask | (std::size_t{1} << c2);
+        for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
+          const double total = here + t.between(c, v, c2, v2) + p.cells[c2][v2].internal_m;
+          double& slot = cost[next_mask][c2 * kMaxVariants + v2];
+          if (total < slot) {
+            slot = total;
+            parent[next_mask][c2 * kMaxVariants + v2] = s;
+          }
+        }
+      }
+    }
+  }
+  const std::size_t full = (std::size_t{1} << n) - 1;
+  CellOrder best;
+  best.length_m = kInf;
+  std::size_t best_state = 0;
+  for (std::size_t s = 0; s < states; ++s) {
+    if (cost[full][s] == kInf) continue;
+    const double total = cost[full][s] + t.to_home(s / kMaxVariants, s % kMaxVariants);
+    if (total < best.length_m) {
+      best.length_m = total;
+      best_state = s;
+    }
+  }
+  for (std::size_t mask = full, s = best_state; mask != 0;) {
+    best.visits.push_back({s / kMaxVariants, s % kMaxVariants});
+    const std::size_t previous = parent[mask][s];
+    mask &= ~(std::size_t{1} << (s / kMaxVariants));
+    s = previous;
+  }
+  std::reverse(best.visits.begin(), best.visits.end());
+  return best;
+}
+
+namespace {
+
+// Nearest neighbour: the cheapest next (transit + internal) from where the drone is.
+std::vector<std::size_t> nearest_neighbour(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size();
+  std::vector<std::size_t> order;
+  std::vector<char> used(n, 0);
+  geometry::Point2 at = p.home;
+  for (std::size_t k = 0; k < n; ++k) {
+    double best = kInf;
+    std::size_t best_cell = 0, best_variant = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+      if (used[c]) continue;
+      for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
+        const double cost = p.distance(at, p.cells[c][v].entry) + p.cells[c][v].internal_m;
+        if (cost < best) {
+          best = cost;
+          best_cell = c;
+          best_variant = v;
+        }
+      }
+    }
+    used[best_cell] = 1;
+    order.push_back(best_cell);
+    at = p.cells[best_cell][best_variant].exit;
+  }
+  return order;
+}
+
+}  // namespace
+
+CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
+  if (p.cells.empty()) return {};
+  Transit t(p);
+  return best_variants(p, t, nearest_neighbour(p));
+}
+
+CellOrder heuristic_cell_order(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size();
+  if (n == 0) return {};
+  Transit t(p);
+  std::vector<std::size_t> order = nearest_neighbour(p);
+  CellOrder best = best_variants(p, t, order);
+  // Local search over orders; variants are re-optimised exactly for each candidate.
+  for (bool improved = true; improved;) {
+    improved = false;
+    for (std::size_t i = 0; i < n && !improved; ++i) {
+      for (std::size_t j = 0; j < n && !improved; ++j) {
+        if (i == j) continue;
+        for (int move = 0; move < 3 && !improved; ++move) {
+          std::vector<std::size_t> candidate = order;
+          if (move == 0) {  // move cell i to position j
+            const std::size_t c = candidate[i];
+            candidate.erase(candidate.begin() + static_cast<std::ptrdiff_t>(i));
+            candidate.insert(candidate.begin() + static_cast<std::ptrdiff_t>(j), c);
+          } else if (move == 1) {  // swap
+            if (j < i) continue;
+            std::swap(candidate[i], candidate[j]);
+          } else {  // reverse the run i..j
+            if (j < i) continue;
+            std::reverse(candidate.begin() + static_cast<std::ptrdiff_t>(i),
+                         candidate.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+          }
+          const CellOrder tried = best_variants(p, t, candidate);
+          if (tried.length_m < best.length_m - 1e-9) {
+            best = tried;
+            order = candidate;
+            improved = true;
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+CellOrder order_cells(const CellOrderProblem& p, std::size_t exact_limit) {
+  return p.cells.size() <= exact_limit ? exact_cell_order(p) : heuristic_cell_order(p);
+}
+
+}  // namespace swath::planning

@@ -1,0 +1,218 @@
+#include "swath/planning/split.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+#include <tuple>
+
+#include "swath/geometry/convex_hull.hpp"
+#include "swath/geometry/decomposition.hpp"
+#include "swath/planning/cell_order.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+using Metric = std::function<double(Point2, Point2)>;
+
+double line_angle(Point2 a, Point2 b) {
+  double deg = std::atan2(b.y - a.y, b.x - a.x) * 180 / std::numbers::pi;
+  deg = std::fmod(deg + 360.0, 180.0);
+  return deg >= 180.0 ? deg - 180.0 : deg;
+}
+
+// Directions worth trying: every edge (hull edges included: lanes along an edge waste least),
+// and a scan. Capped on very detailed areas: the hull plus the longest edges.
+std::vector<double> candidate_angles(const std::vector<geometry::Ring>& rings, double scan_step) {
+  std::vector<std::pair<double, double>> edges;  // (length, angle)
+  std::vector<Point2> all;
+  for (const auto& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      all.push_back(ring[i]);
+      edges.push_back({geometry::distance(ring[i], ring[(i + 1) % ring.size()]),
+                       line_angle(ring[i], ring[(i + 1) % ring.size()])});
+    }
+  std::sort(edges.begin(), edges.end(), std::greater<>());
+  if (edges.size() > 48) edges.resize(48);
+  std::vector<double> angles;
+  for (const auto& e : edges) angles.push_back(e.second);
+  const geometry::Ring hull = geometry::convex_hull(all);
+  for (std::size_t i = 0; i < hull.size(); ++i)
+    angles.push_back(line_angle(hull[i], hull[(i + 1) % hull.size()]));
+  for (double a = 0; a < 180 - 1e-9; a += scan_step) angles.push_back(a);
+  std::sort(angles.begin(), angles.end());
+  std::vector<double> unique;
+  for (double a : angles)
+    if (unique.empty() || a - unique.back() > 1e-6) unique.push_back(a);
+  return unique;
+}
+
+struct Candidate {
+  double angle_deg;
+  std::vector<geometry::Ring> cells;
+  std::vector<Sweep> sweeps;  // per cell, bottom to top
+  CellOrder order;
+  std::vector<std::vector<std::pair<bool, bool>>> variant_flags;  // per cell, per variant
+};
+
+// Sweeps every cell and builds the ordering problem under `metric`.
+CellOrderProblem problem_for(Candidate& c, Point2 home, const Metric& metric) {
+  CellOrderProblem p;
+  p.home = home;
+  p.distance = metric;
+  c.variant_flags.clear();
+  for (const Sweep& sweep : c.sweeps) {
+    std::vector<CellVariant> variants;
+    std::vector<std::pair<bool, bool>> flags;
+    for (bool top_first : {false, true})
+      for (bool reverse_first : {false, true}) {
+        if (sweep.lines.size() == 1 && top_first) continue;  // the same as bottom first
+        const std::vector<SweepLine> z = zigzag(sweep, top_first, reverse_first);
+        double internal = 0;
+        for (std::size_t i = 0; i < z.size(); ++i) {
+          internal += geometry::distance(z[i].start, z[i].end);
+          if (i + 1 < z.size()) internal += metric(z[i].end, z[i + 1].start);
+        }
+        variants.push_back({z.front().start, z.back().end, internal});
+        flags.push_back({top_first, reverse_first});
+      }
+    p.cells.push_back(std::move(variants));
+    c.variant_flags.push_back(std::move(flags));
+  }
+  return p;
+}
+
+Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
+                      const SplitSettings& s) {
+  Candidate c;
+  c.angle_deg = angle;
+  // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart.
+  double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
+  for (const auto& ring : rings)
+    for (const Point2& p : ring) {
+      const double y = rotate(p, -angle).y;
+      y_min = std::min(y_min, y);
+      y_max = std::max(y_max, y);
+    }
+  SweepSettings sweep_settings;
+  sweep_settings.angle_deg = angle;
+  sweep_settings.line_spacing_m = s.line_spacing_m;
+  sweep_settings.footprint_width_m = s.footprint_width_m;
+  sweep_settings.placement = s.placement;
+  sweep_settings.turnaround_m = s.turnaround_m;
+  sweep_settings.segments = SegmentRule::inside;
+  sweep_settings.fill_protrusions = true;
+  sweep_settings.ordinates =
+      line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  // Lanes are placed per piece, so a piece thinner than the grid still gets one; cells (chains of
+  // pieces) only group them for ordering.
+  geometry::Decomposition d = geometry::boustrophedon_decomposition(rings, angle);
+  std::vector<std::vector<SweepLine>> piece_lines(d.pieces.size());
+  for (std::size_t k = 0; k < d.pieces.size(); ++k)
+    if (!d.pieces[k].empty())
+      piece_lines[k] = plan_sweep(geometry::Polygon{d.pieces[k], {}}, sweep_settings).lines;
+  // A lane on a cut between two pieces belongs to both: keep the longer one. Lanes sorted by
+  // ordinate, so only neighbours in that order can coincide.
+  struct Lane {
+    double y, x0, x1;
+    SweepLine* line;
+  };
+  std::vector<Lane> lanes;
+  for (auto& lines : piece_lines)
+    for (SweepLine& l : lines) {
+      const Point2 p = rotate(l.start, -angle), q = rotate(l.end, -angle);
+      lanes.push_back({p.y, std::min(p.x, q.x), std::max(p.x, q.x), &l});
+    }
+  std::sort(lanes.begin(), lanes.end(), [](const Lane& u, const Lane& v) { return u.y < v.y; });
+  for (std::size_t i = 0; i < lanes.size(); ++i)
+    for (std::size_t j = i + 1;
+         j < lanes.size() && lanes[j].y - lanes[i].y <= 1e-9 * (1 + std::abs(lanes[i].y)); ++j) {
+      Lane& u = lanes[i];
+      Lane& v = lanes[j];
+      if (u.line->start == u.line->end || v.line->start == v.line->end) continue;
+      if (std::min(u.x1, v.x1) <= std::max(u.x0, v.x0)) continue;  // side by side, not overlapping
+      SweepLine& shorter = *(u.x1 - u.x0 < v.x1 - v.x0 ? u.line : v.line);
+      shorter.end = shorter.start;  // marked for removal
+    }
+  auto offset = [&](const SweepLine& l) { return rotate(l.start, -angle).y; };
+  for (std::size_t cell = 0; cell < d.cells.size(); ++cell) {
+    Sweep sweep;
+    sweep.angle_deg = angle;
+    for (const std::size_t k : d.cells[cell])
+      for (const SweepLine& l : piece_lines[k])
+        if (!(l.start == l.end)) sweep.lines.push_back(l);
+    std::sort(sweep.lines.begin(), sweep.lines.end(),
+              [&](const SweepLine& x, const SweepLine& y) { return offset(x) < offset(y); });
+    if (sweep.lines.empty()) continue;
+    c.cells.push_back(d.cell_rings[cell]);
+    c.sweeps.push_back(std::move(sweep));
+  }
+  return c;
+}
+
+}  // namespace
+
+SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, const SplitSettings& s,
+                     const geometry::VisibilityRouter& router) {
+  if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m) ||
+      !(s.scan_step_deg > 0))
+    throw std::invalid_argument(
+        "plan_split: need 0 < spacing <= footprint width and a scan step > 0");
+  const Metric straight = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
+  // Routed lengths, memoised: the four variants of a cell share their turns, and the ordering asks
+  // for the same transits again and again.
+  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, double> known;
+  const Metric routed = [&router, &known](Point2 a, Point2 b) {
+    if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);  // the metric is symmetric
+    const auto key = std::make_pair(std::make_pair(a.x, a.y), std::make_pair(b.x, b.y));
+    const auto it = known.find(key);
+    if (it != known.end()) return it->second;
+    return known[key] = geometry::polyline_length(router.path(a, b));
+  };
+
+  const std::vector<double> angles =
+      s.fixed_angle_deg
+          ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
+          : candidate_angles(rings, s.scan_step_deg);
+  // Rank every direction by a cheap estimate: straight transits, heuristic order.
+  std::vector<std::pair<double, std::size_t>> estimates;
+  std::vector<Candidate> candidates;
+  for (double angle : angles) {
+    Candidate c = sweep_cells(rings, angle, s);
+    if (c.cells.empty()) continue;
+    c.order = nearest_neighbour_order(problem_for(c, home, straight));
+    estimates.push_back({c.order.length_m, candidates.size()});
+    candidates.push_back(std::move(c));
+  }
+  if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
+  std::sort(estimates.begin(), estimates.end());
+  if (estimates.size() > s.refined_candidates) estimates.resize(s.refined_candidates);
+
+  // The best few again with transits routed inside the area, ordered exactly where small.
+  SplitPlan best;
+  best.path_length_m = std::numeric_limits<double>::infinity();
+  for (const auto& [estimate, index] : estimates) {
+    Candidate& c = candidates[index];
+    const CellOrderProblem problem = problem_for(c, home, routed);
+    const CellOrder order = order_cells(problem);
+    if (order.length_m >= best.path_length_m) continue;
+    best = SplitPlan{};
+    best.angle_deg = c.angle_deg;
+    best.path_length_m = order.length_m;
+    best.cells = c.cells;
+    for (const CellVisit& v : order.visits) {
+      const auto [top_first, reverse_first] = c.variant_flags[v.cell][v.variant];
+      for (const SweepLine& line : zigzag(c.sweeps[v.cell], top_first, reverse_first)) {
+        best.lines.push_back(line);
+        best.line_cell.push_back(v.cell);
+      }
+    }
+  }
+  best.candidates = candidates.size();
+  return best;
+}
+
+}  // namespace swath::planning

@@ -1,0 +1,145 @@
+#include "swath/geometry/decomposition.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "random_polygons.hpp"
+#include "swath/geometry/classification.hpp"
+#include "swath/geometry/predicates.hpp"
+
+namespace swath::geometry {
+namespace {
+
+double total_area(const std::vector<Ring>& cells) {
+  double a = 0;
+  for (const Ring& c : cells) a += signed_area(c);
+  return a;
+}
+
+// Crossings of the line through `p` at `angle_deg` with the ring (counted half-open).
+int crossings(const Ring& ring, double angle_deg, double offset) {
+  const double t = angle_deg * std::numbers::pi / 180;
+  const Point2 normal{-std::sin(t), std::cos(t)};
+  int count = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const double a = dot(ring[i], normal) - offset,
+                 b = dot(ring[(i + 1) % ring.size()], normal) - offset;
+    if ((a < 0) != (b < 0)) ++count;
+  }
+  return count;
+}
+
+TEST(Boustrophedon, ConvexAndLShapeAreOneCell) {
+  EXPECT_EQ(boustrophedon_cells({{{0, 0}, {10, 0}, {10, 5}, {0, 5}}}, 0).size(), 1u);
+  const Ring l{{0, 0}, {20, 0}, {20, 10}, {10, 10}, {10, 20}, {0, 20}};
+  EXPECT_EQ(boustrophedon_cells({l}, 0).size(), 1u);
+  EXPECT_EQ(boustrophedon_cells({l}, 90).size(), 1u);
+}
+
+TEST(Boustrophedon, UShapeSplitsAtTheNotch) {
+  // U opening upwards: base 30 x 10, arms 10 wide up to 30. Lanes across the arms: the base
+  // continues into one arm, the other arm is a second cell.
+  const Ring u{{0, 0}, {30, 0}, {30, 30}, {20, 30}, {20, 10}, {10, 10}, {10, 30}, {0, 30}};
+  const auto cells = boustrophedon_cells({u}, 0);
+  ASSERT_EQ(cells.size(), 2u);
+  EXPECT_DOUBLE_EQ(total_area(cells), 300 + 200 + 200);
+  // Vertical lanes meet the U in one interval everywhere: one cell.
+  EXPECT_EQ(boustrophedon_cells({u}, 90).size(), 1u);
+}
+
+TEST(Boustrophedon, HoleGivesTwoCells) {
+  // Below, left of and above the hole as one cell; right of it the other.
+  const std::vector<Ring> rings{{{0, 0}, {100, 0}, {100, 100}, {0, 100}},
+                                {{40, 40}, {40, 60}, {60, 60}, {60, 40}}};
+  for (double angle : {0.0, 90.0, 30.0}) {
+    const auto cells = boustrophedon_cells(rings, angle);
+    EXPECT_EQ(cells.size(), 2u) << angle;
+    EXPECT_NEAR(total_area(cells), 10000 - 400, 1e-9) << angle;
+  }
+}
+
+void expect_valid_decomposition(const Polygon& p, double angle, const std::string& what) {
+  const auto cells = boustrophedon_cells(rings_of(p), angle);
+  ASSERT_FALSE(cells.empty()) << what;
+  EXPECT_NEAR(total_area(cells), area(p), 1e-7 * area(p)) << what;
+  const double t = angle * std::numbers::pi / 180;
+  const Point2 normal{-std::sin(t), std::cos(t)};
+  for (const Ring& c : cells) {
+    EXPECT_GT(signed_area(c), 0) << what;
+    double lo = 1e300, hi = -1e300;
+    for (const Point2& q : c) {
+      lo = std::min(lo, dot(q, normal));
+      hi = std::max(hi, dot(q, normal));
+    }
+    for (int k = 1; k < 20; ++k)
+      EXPECT_LE(crossings(c, angle, lo + (hi - lo) * k / 20.0), 2) << what << " monotone";
+  }
+  // Points of the area lie in exactly one cell; points outside in none.
+  test::Rng rng(1);
+  std::uniform_real_distribution<double> u(-600, 600);
+  int inside = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Point2 q{u(rng), u(rng)};
+    bool in_area = locate_point(q, p.outer) == Containment::inside;
+    for (const Ring& h : p.holes)
+      if (locate_point(q, h) != Containment::outside) in_area = false;
+    int in_cells = 0;
+    bool on_cell_boundary = false;
+    for (const Ring& c : cells) {
+      const Containment where = locate_point(q, c);
+      in_cells += where == Containment::inside;
+      on_cell_boundary |= where == Containment::on_boundary;
+    }
+    if (on_cell_boundary) continue;
+    EXPECT_EQ(in_cells, in_area ? 1 : 0) << what << " at " << q.x << "," << q.y;
+    inside += in_area;
+  }
+}
+
+TEST(BoustrophedonProperty, RandomConcavePolygonsAtRandomAngles) {
+  test::Rng rng(41);
+  std::uniform_real_distribution<double> angle(0, 180);
+  for (int k = 0; k < 150; ++k) {
+    Polygon p{normalise_ring(test::random_star_polygon(rng, 4 + k % 40, 100, 500), true).ring, {}};
+    expect_valid_decomposition(p, angle(rng), "star " + std::to_string(k));
+    expect_valid_decomposition(p, 0.0, "star at 0 " + std::to_string(k));
+  }
+}
+
+TEST(BoustrophedonProperty, CombsAndHoles) {
+  test::Rng rng(43);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int teeth = 2; teeth < 12; ++teeth) {
+    const Polygon comb{test::transformed(test::comb_polygon(teeth, 20, 200, 30), 0, -200, -100),
+                       {}};
+    expect_valid_decomposition(comb, 0, "comb across " + std::to_string(teeth));
+    EXPECT_EQ(boustrophedon_cells(rings_of(comb), 0).size(), std::size_t(teeth))
+        << "base + one tooth, the other teeth";
+    EXPECT_EQ(boustrophedon_cells(rings_of(comb), 90).size(), 1u) << "lanes along the teeth";
+    expect_valid_decomposition(comb, 37, "comb 37 " + std::to_string(teeth));
+  }
+  for (int k = 0; k < 60; ++k) {
+    // 1..10 disjoint square holes on a grid inside a 1000 m square.
+    Polygon p{{{-500, -500}, {500, -500}, {500, 500}, {-500, 500}}, {}};
+    std::vector<int> used;
+    for (int h = 0; h < 1 + k % 10; ++h) {
+      const int cell = int(u(rng) * 25);
+      if (std::find(used.begin(), used.end(), cell) != used.end()) continue;
+      used.push_back(cell);
+      const double x = -450 + 180 * (cell % 5) + 40 * u(rng),
+                   y = -450 + 180 * (cell / 5) + 40 * u(rng);
+      p.holes.push_back(
+          normalise_ring(test::transformed({{0, 0}, {60, 0}, {60, 50}, {0, 50}}, 20 * u(rng), x, y),
+                         false)
+              .ring);
+    }
+    ASSERT_NE(classify(p).type, AreaType::self_intersecting);
+    expect_valid_decomposition(p, 180 * u(rng), "holes " + std::to_string(k));
+    expect_valid_decomposition(p, 0, "holes at 0 " + std::to_string(k));
+  }
+}
+
+}  // namespace
+}  // namespace swath::geometry

@@ -1,0 +1,222 @@
+// --concave split: cells, order and the whole survey on concave families and areas with holes.
+#include "swath/planning/split.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "coverage_oracle.hpp"
+#include "random_polygons.hpp"
+#include "swath/geometry/classification.hpp"
+#include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/field.hpp"
+#include "swath/planning/cell_order.hpp"
+#include "swath/planning/survey.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+using geometry::Polygon;
+using geometry::Ring;
+
+// ---- ordering -------------------------------------------------------------------------------
+
+CellOrderProblem random_problem(test::Rng& rng, std::size_t cells) {
+  std::uniform_real_distribution<double> u(0, 1000);
+  CellOrderProblem p;
+  p.home = {u(rng), u(rng)};
+  p.distance = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
+  for (std::size_t c = 0; c < cells; ++c) {
+    // A rectangle-like cell: entries at its corners, exits at the opposite or same side.
+    const Point2 o{u(rng), u(rng)};
+    const double w = 50 + u(rng) / 5, h = 50 + u(rng) / 5;
+    const Point2 corners[4] = {o, o + Point2{w, 0}, o + Point2{0, h}, o + Point2{w, h}};
+    const bool odd = u(rng) < 500;
+    std::vector<CellVariant> variants;
+    for (int v = 0; v < 4; ++v) {
+      const Point2 entry = corners[v];
+      const Point2 exit = odd ? corners[3 - v] : corners[v ^ 2];
+      variants.push_back({entry, exit, 3 * (w + h)});
+    }
+    p.cells.push_back(variants);
+  }
+  return p;
+}
+
+double brute_force(const CellOrderProblem& p) {
+  std::vector<std::size_t> order(p.cells.size());
+  std::iota(order.begin(), order.end(), 0);
+  double best = std::numeric_limits<double>::infinity();
+  do {
+    std::vector<CellVisit> visits(order.size());
+    const std::size_t combos = std::size_t{1} << (2 * order.size());
+    for (std::size_t code = 0; code < combos; ++code) {
+      for (std::size_t k = 0; k < order.size(); ++k) visits[k] = {order[k], (code >> (2 * k)) & 3};
+      best = std::min(best, tour_length(p, visits));
+    }
+  } while (std::next_permutation(order.begin(), order.end()));
+  return best;
+}
+
+TEST(CellOrder, ExactEqualsBruteForceOnSmallInstances) {
+  test::Rng rng(17);
+  for (int k = 0; k < 30; ++k) {
+    const CellOrderProblem p = random_problem(rng, 1 + k % 5);
+    const CellOrder exact = exact_cell_order(p);
+    EXPECT_NEAR(exact.length_m, brute_force(p), 1e-6) << k;
+    EXPECT_NEAR(exact.length_m, tour_length(p, exact.visits), 1e-6) << k;
+    EXPECT_EQ(exact.visits.size(), p.cells.size());
+  }
+}
+
+TEST(CellOrder, HeuristicIsCloseToTheOptimumUpToSevenCells) {
+  test::Rng rng(23);
+  double worst = 0, sum = 0;
+  int optimal = 0;
+  const int runs = 200;
+  for (int k = 0; k < runs; ++k) {
+    const CellOrderProblem p = random_problem(rng, 2 + k % 6);
+    const double exact = exact_cell_order(p).length_m;
+    const CellOrder heuristic = heuristic_cell_order(p);
+    EXPECT_NEAR(heuristic.length_m, tour_length(p, heuristic.visits), 1e-6);
+    EXPECT_GE(heuristic.length_m, exact - 1e-6) << k;
+    const double gap = heuristic.length_m / exact - 1;
+    worst = std::max(worst, gap);
+    sum += gap;
+    optimal += gap < 1e-9;
+  }
+  EXPECT_LT(sum / runs, 0.01) << "mean gap to the optimum";
+  EXPECT_LT(worst, 0.10) << "worst gap to the optimum";
+  RecordProperty("mean_gap", std::to_string(sum / runs));
+  RecordProperty("worst_gap", std::to_string(worst));
+  RecordProperty("optimal_of_200", optimal);
+}
+
+// ---- the survey ----------------------------------------------------------------------------
+
+geometry::Field local_field(Polygon polygon) {
+  geometry::Field f;
+  f.source = "test";
+  polygon.outer = geometry::normalise_ring(polygon.outer, true).ring;
+  for (Ring& h : polygon.holes) h = geometry::normalise_ring(h, false).ring;
+  f.polygon = polygon;
+  for (std::size_t r = 0; r < geometry::ring_count(polygon); ++r) {
+    f.source_index.push_back({});
+    for (std::size_t i = 0; i < geometry::ring_at(polygon, r).size(); ++i)
+      f.source_index.back().push_back(i);
+  }
+  geometry::place_local_field(f, {47.0, 8.0, 0.0});
+  return f;
+}
+
+SurveyPlan plan(const Polygon& area, ConcaveMode mode, double side_overlap = 0.7) {
+  SurveyRequest r;
+  r.field = local_field(area);
+  r.camera = {"test", 23.2, 15.4, 16, 5456, 3632, std::nullopt};
+  PhotogrammetryMode m;
+  m.altitude_m = 40;  // footprint 58 m, spacing 17.4 m at 70 % side overlap
+  m.side_overlap = side_overlap;
+  r.mode = m;
+  r.concave = mode;
+  return plan_survey(r);
+}
+
+// Everything split promises, checked independently of the planner.
+struct Checked {
+  double coverage, path_m;
+};
+
+Checked check_split(const Polygon& raw, const std::string& what) {
+  const SurveyPlan sp = plan(raw, ConcaveMode::split);
+  const Polygon& area = sp.area;
+  EXPECT_EQ(sp.handling, "split") << what;
+  const geometry::VisibilityRouter inside(geometry::rings_of(area), 0);
+  for (const SweepLine& l : sp.mission.lines) {
+    // Not outside the area, not across a hole.
+    EXPECT_LE(inside.length_outside(l.start, l.end), 1e-6) << what;
+    // Inside its own cell: some cell contains the whole line.
+    bool in_a_cell = false;
+    for (const Ring& cell : sp.cells)
+      in_a_cell |= geometry::VisibilityRouter({cell}, 0).length_outside(l.start, l.end) <= 1e-6;
+    EXPECT_TRUE(in_a_cell) << what;
+  }
+  EXPECT_LE(sp.coverage.line_length_outside_m, 1e-6) << what;
+  EXPECT_LE(sp.transit_outside_m, 1e-6) << what;
+  const double sampled =
+      test::sample_coverage(area, sp.mission.lines, sp.imaging.footprint_across_m, 300).fraction();
+  EXPECT_GE(sampled, 0.999) << what;
+  EXPECT_GE(sp.coverage.covered_fraction, 0.999) << what;
+  double cells_area = 0;
+  for (const Ring& c : sp.cells) cells_area += geometry::signed_area(c);
+  EXPECT_NEAR(cells_area, geometry::area(area), 1e-6 * geometry::area(area)) << what;
+  return {sp.coverage.covered_fraction, sp.mission.path_length_m};
+}
+
+TEST(SplitSurvey, CombsFlyNoLongerThanTheHull) {
+  for (int teeth = 2; teeth <= 6; ++teeth) {
+    const Polygon comb{
+        test::transformed(test::comb_polygon(teeth, 40, 300, 40), 15.0 * teeth, 0, 0), {}};
+    const Checked split = check_split(comb, "comb " + std::to_string(teeth));
+    const double hull = plan(comb, ConcaveMode::hull).mission.path_length_m;
+    EXPECT_LE(split.path_m, hull) << teeth;
+    RecordProperty("comb" + std::to_string(teeth) + "_split_over_hull",
+                   std::to_string(split.path_m / hull));
+  }
+}
+
+TEST(SplitSurvey, ConcaveFamiliesAreCoveredWithoutFlyingOutside) {
+  test::Rng rng(404);
+  double ratio_sum = 0, worst_coverage = 1;
+  int n = 0;
+  for (int k = 0; k < 12; ++k) {
+    const Polygon star{test::random_star_polygon(rng, 8 + k, 150, 400), {}};
+    const Checked c = check_split(star, "star " + std::to_string(k));
+    ratio_sum += c.path_m / plan(star, ConcaveMode::hull).mission.path_length_m;
+    RecordProperty("star" + std::to_string(k),
+                   std::to_string(c.path_m / plan(star, ConcaveMode::hull).mission.path_length_m));
+    worst_coverage = std::min(worst_coverage, c.coverage);
+    ++n;
+  }
+  for (int arms = 4; arms <= 7; ++arms) {
+    const Polygon spiral{test::spiral_polygon(arms, 500, 90, 30), {}};
+    ASSERT_EQ(geometry::classify(spiral).type, geometry::AreaType::concave);
+    const Checked c = check_split(spiral, "spiral " + std::to_string(arms));
+    ratio_sum += c.path_m / plan(spiral, ConcaveMode::hull).mission.path_length_m;
+    RecordProperty(
+        "spiral" + std::to_string(arms),
+        std::to_string(c.path_m / plan(spiral, ConcaveMode::hull).mission.path_length_m));
+    worst_coverage = std::min(worst_coverage, c.coverage);
+    ++n;
+  }
+  EXPECT_LT(ratio_sum / n, 1.0) << "split shorter than hull on average";
+  RecordProperty("mean_split_over_hull", std::to_string(ratio_sum / n));
+  RecordProperty("worst_coverage", std::to_string(worst_coverage));
+}
+
+TEST(SplitSurvey, HolesAreAvoided) {
+  test::Rng rng(505);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 10; ++k) {
+    Polygon p{{{-400, -300}, {400, -300}, {400, 300}, {-400, 300}}, {}};
+    std::vector<int> used;
+    for (int h = 0; h < 1 + k; ++h) {
+      const int cell = int(u(rng) * 20);
+      if (std::find(used.begin(), used.end(), cell) != used.end()) continue;
+      used.push_back(cell);
+      const double x = -380 + 160 * (cell % 5) + 30 * u(rng),
+                   y = -280 + 150 * (cell / 5) + 30 * u(rng);
+      p.holes.push_back(test::transformed({{0, 0}, {70, 0}, {70, 50}, {0, 50}}, 30 * u(rng), x, y));
+    }
+    check_split(p, "holes " + std::to_string(k));
+  }
+}
+
+TEST(SplitSurvey, ConvexAreasKeepTheStripRule) {
+  const Polygon square{{{0, 0}, {300, 0}, {300, 200}, {0, 200}}, {}};
+  EXPECT_EQ(plan(square, ConcaveMode::split).handling, "convex");
+}
+
+}  // namespace
+}  // namespace swath::planning
