@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
@@ -64,13 +65,19 @@ bool augment(std::size_t lower, const std::vector<std::vector<std::size_t>>& abo
 // minimum path cover of the "directly above" graph: cells minus a maximum matching.
 std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains>& cells) {
   const std::size_t n = cells.size();
+  std::map<double, std::vector<std::size_t>> by_bottom;  // cells starting on a cut at that ordinate
+  for (std::size_t b = 0; b < n; ++b)
+    if (cells[b].left.front().y == cells[b].right.front().y)
+      by_bottom[cells[b].left.front().y].push_back(b);
   std::vector<std::vector<std::size_t>> above(n);
   for (std::size_t a = 0; a < n; ++a) {
     const Point2 tl = cells[a].left.back(), tr = cells[a].right.back();
+    const auto starting = by_bottom.find(tl.y);
+    if (starting == by_bottom.end() || tr.y != tl.y) continue;
     std::vector<std::pair<double, std::size_t>> candidates;
-    for (std::size_t b = 0; b < n; ++b) {
+    for (const std::size_t b : starting->second) {
       const Point2 bl = cells[b].left.front(), br = cells[b].right.front();
-      if (b == a || bl.y != tl.y || br.y != tl.y) continue;
+      if (b == a) continue;
       const double overlap = std::min(tr.x, br.x) - std::max(tl.x, bl.x);
       if (overlap > 0) candidates.push_back({-overlap, b});  // widest shared cut first
     }

@@ -133,41 +133,51 @@ const std::vector<char>& VisibilityRouter::sees(Point2 p) const {
   return it->second;
 }
 
-std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
-  if (!routing_ || visible(a, b)) return {a, b};
-  // Dijkstra over the reflex vertices, a (index n) and b (index n + 1).
-  const std::size_t n = nodes_.size(), source = n, target = n + 1;
-  std::vector<double> best(n + 2, std::numeric_limits<double>::infinity());
-  std::vector<std::size_t> previous(n + 2, n + 2);
-  const std::vector<char>& from_a = sees(a);
-  const std::vector<char>& to_b = sees(b);
+const VisibilityRouter::Tree& VisibilityRouter::tree_from(Point2 a) const {
+  auto [it, added] = trees_.try_emplace({a.x, a.y});
+  if (!added) return it->second;
+  // Dijkstra from a over the reflex vertices; previous == n means "straight from a".
+  const std::size_t n = nodes_.size();
+  Tree& t = it->second;
+  t.distance.assign(n, std::numeric_limits<double>::infinity());
+  t.previous.assign(n, n);
   using Item = std::pair<double, std::size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  best[source] = 0;
-  queue.push({0, source});
-  auto relax = [&](std::size_t from, std::size_t to, double w) {
-    if (best[from] + w < best[to]) {
-      best[to] = best[from] + w;
-      previous[to] = from;
-      queue.push({best[to], to});
+  const std::vector<char>& from_a = sees(a);
+  for (std::size_t i = 0; i < n; ++i)
+    if (from_a[i]) {
+      t.distance[i] = distance(a, nodes_[i]);
+      queue.push({t.distance[i], i});
     }
-  };
   while (!queue.empty()) {
     const auto [d, u] = queue.top();
     queue.pop();
-    if (d > best[u]) continue;
-    if (u == target) break;
-    if (u == source) {
-      for (std::size_t i = 0; i < n; ++i)
-        if (from_a[i]) relax(u, i, distance(a, nodes_[i]));
-      continue;
-    }
-    for (const auto& [v, w] : adjacent_[u]) relax(u, v, w);
-    if (to_b[u]) relax(u, target, distance(nodes_[u], b));
+    if (d > t.distance[u]) continue;
+    for (const auto& [v, w] : adjacent_[u])
+      if (d + w < t.distance[v]) {
+        t.distance[v] = d + w;
+        t.previous[v] = u;
+        queue.push({t.distance[v], v});
+      }
   }
-  if (previous[target] == n + 2) return {a, b};
+  return t;
+}
+
+std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
+  if (!routing_ || visible(a, b)) return {a, b};
+  const Tree& t = tree_from(a);
+  const std::vector<char>& to_b = sees(b);
+  const std::size_t n = nodes_.size();
+  std::size_t last = n;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i)
+    if (to_b[i] && t.distance[i] + distance(nodes_[i], b) < best) {
+      best = t.distance[i] + distance(nodes_[i], b);
+      last = i;
+    }
+  if (last == n) return {a, b};  // no inside path (separate pieces): straight
   std::vector<Point2> route{b};
-  for (std::size_t v = previous[target]; v != source; v = previous[v]) route.push_back(nodes_[v]);
+  for (std::size_t v = last; v != n; v = t.previous[v]) route.push_back(nodes_[v]);
   route.push_back(a);
   std::reverse(route.begin(), route.end());
   return route;

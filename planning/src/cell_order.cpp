@@ -13,7 +13,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // shortest path, far dearer than the searches that query it.
 class Transit {
  public:
-  explicit Transit(const CellOrderProblem& p) : p_(p) {
+  /// `memoise`: keep exit-to-entry lengths (an n² table) for searches that ask again and again.
+  explicit Transit(const CellOrderProblem& p, bool memoise = true) : p_(p), memoise_(memoise) {
     std::size_t offset = 0;
     for (const auto& cell : p.cells) {
       base_.push_back(offset);
@@ -22,7 +23,7 @@ class Transit {
     const std::size_t n = offset;
     home_to_entry_.resize(n);
     exit_to_home_.resize(n);
-    exit_to_entry_.assign(n * n, -1.0);
+    if (memoise_) exit_to_entry_.assign(n * n, -1.0);
     for (std::size_t c = 0; c < p.cells.size(); ++c)
       for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
         home_to_entry_[base_[c] + v] = p.distance(p.home, p.cells[c][v].entry);
@@ -33,6 +34,7 @@ class Transit {
   double from_home(std::size_t c, std::size_t v) const { return home_to_entry_[base_[c] + v]; }
   double to_home(std::size_t c, std::size_t v) const { return exit_to_home_[base_[c] + v]; }
   double between(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2) {
+    if (!memoise_) return p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     double& d = exit_to_entry_[(base_[c1] + v1) * size_ + base_[c2] + v2];
     if (d < 0) d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     return d;
@@ -40,6 +42,7 @@ class Transit {
 
  private:
   const CellOrderProblem& p_;
+  bool memoise_;
   std::vector<std::size_t> base_;
   std::vector<double> home_to_entry_, exit_to_home_, exit_to_entry_;
   std::size_t size_ = 0;
@@ -197,7 +200,7 @@ std::vector<std::size_t> nearest_neighbour(const CellOrderProblem& p) {
 
 CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
   if (p.cells.empty()) return {};
-  Transit t(p);
+  Transit t(p, false);
   return best_variants(p, t, nearest_neighbour(p));
 }
 
@@ -207,13 +210,18 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
   Transit t(p);
   std::vector<std::size_t> order = nearest_neighbour(p);
   CellOrder best = best_variants(p, t, order);
-  // Local search over orders; variants are re-optimised exactly for each candidate.
-  for (bool improved = true; improved;) {
+  // Local search over orders; variants are re-optimised exactly for each candidate. Moves reach
+  // at most kReach positions, and the evaluations are budgeted: large instances stay fast
+  // (O(n reach v²) DPs of O(n v²) per pass) and still get the local improvements that matter.
+  constexpr std::size_t kReach = 8;
+  std::size_t budget = 200000 / std::max<std::size_t>(1, n);
+  for (bool improved = true; improved && budget > 0;) {
     improved = false;
-    for (std::size_t i = 0; i < n && !improved; ++i) {
-      for (std::size_t j = 0; j < n && !improved; ++j) {
+    for (std::size_t i = 0; i < n && budget > 0; ++i) {
+      for (std::size_t j = i >= kReach ? i - kReach : 0;
+           j < std::min(n, i + kReach + 1) && budget > 0; ++j) {
         if (i == j) continue;
-        for (int move = 0; move < 3 && !improved; ++move) {
+        for (int move = 0; move < 3 && budget > 0; ++move) {
           std::vector<std::size_t> candidate = order;
           if (move == 0) {  // move cell i to position j
             const std::size_t c = candidate[i];
@@ -227,6 +235,7 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
             std::reverse(candidate.begin() + static_cast<std::ptrdiff_t>(i),
                          candidate.begin() + static_cast<std::ptrdiff_t>(j) + 1);
           }
+          --budget;
           const CellOrder tried = best_variants(p, t, candidate);
           if (tried.length_m < best.length_m - 1e-9) {
             best = tried;

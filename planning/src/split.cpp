@@ -24,29 +24,29 @@ double line_angle(Point2 a, Point2 b) {
   return deg >= 180.0 ? deg - 180.0 : deg;
 }
 
-// Directions worth trying: every edge (hull edges included: lanes along an edge waste least),
-// and a scan. Capped on very detailed areas: the hull plus the longest edges.
+// Directions worth trying: along the longest edges (hull edges included: lanes along an edge
+// waste least), and a scan; directions closer than 0.25 degrees count once.
 std::vector<double> candidate_angles(const std::vector<geometry::Ring>& rings, double scan_step) {
   std::vector<std::pair<double, double>> edges;  // (length, angle)
   std::vector<Point2> all;
+  auto add = [&](Point2 a, Point2 b) {
+    edges.push_back({geometry::distance(a, b), line_angle(a, b)});
+  };
   for (const auto& ring : rings)
     for (std::size_t i = 0; i < ring.size(); ++i) {
       all.push_back(ring[i]);
-      edges.push_back({geometry::distance(ring[i], ring[(i + 1) % ring.size()]),
-                       line_angle(ring[i], ring[(i + 1) % ring.size()])});
+      add(ring[i], ring[(i + 1) % ring.size()]);
     }
-  std::sort(edges.begin(), edges.end(), std::greater<>());
-  if (edges.size() > 48) edges.resize(48);
-  std::vector<double> angles;
-  for (const auto& e : edges) angles.push_back(e.second);
   const geometry::Ring hull = geometry::convex_hull(all);
-  for (std::size_t i = 0; i < hull.size(); ++i)
-    angles.push_back(line_angle(hull[i], hull[(i + 1) % hull.size()]));
+  for (std::size_t i = 0; i < hull.size(); ++i) add(hull[i], hull[(i + 1) % hull.size()]);
+  std::sort(edges.begin(), edges.end(), std::greater<>());
+  std::vector<double> angles;
+  for (std::size_t i = 0; i < edges.size() && i < 48; ++i) angles.push_back(edges[i].second);
   for (double a = 0; a < 180 - 1e-9; a += scan_step) angles.push_back(a);
   std::sort(angles.begin(), angles.end());
   std::vector<double> unique;
   for (double a : angles)
-    if (unique.empty() || a - unique.back() > 1e-6) unique.push_back(a);
+    if (unique.empty() || a - unique.back() > 0.25) unique.push_back(a);
   return unique;
 }
 

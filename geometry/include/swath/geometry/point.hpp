@@ -24,8 +24,10 @@ inline double dot(Point2 a, Point2 b) {
 inline double cross(Point2 a, Point2 b) {
   return a.x * b.y - a.y * b.x;
 }
+/// Euclidean distance (sqrt, not hypot: metres never overflow, and hypot is ~5x slower).
 inline double distance(Point2 a, Point2 b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 /// A WGS84 geodetic point. Latitude in [-90, 90] degrees, longitude in [-180, 180] degrees,

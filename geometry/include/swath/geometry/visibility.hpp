@@ -44,6 +44,14 @@ class VisibilityRouter {
   /// and exit points many times).
   const std::vector<char>& sees(Point2 p) const;
   mutable std::map<std::pair<double, double>, std::vector<char>> sees_;
+  /// Shortest-path tree from a point over the graph: distance and predecessor of every node
+  /// (predecessor nodes_.size() = straight from the point).
+  struct Tree {
+    std::vector<double> distance;
+    std::vector<std::size_t> previous;
+  };
+  const Tree& tree_from(Point2 p) const;
+  mutable std::map<std::pair<double, double>, Tree> trees_;
   bool routing_ = true;
   double tolerance_ = 0.0;  ///< distance from the boundary that still counts as on it, metres
 };

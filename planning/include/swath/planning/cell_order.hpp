@@ -47,9 +47,9 @@ CellOrder exact_cell_order(const CellOrderProblem& problem);
 /// quick estimate for ranking candidate directions.
 CellOrder nearest_neighbour_order(const CellOrderProblem& problem);
 
-/// Nearest neighbour, then local search (move a cell, swap two, reverse a run) where every
-/// candidate order gets its best variants by dynamic programming; stops at a local optimum.
-/// O(n³ v²) per improving pass.
+/// Nearest neighbour, then local search (move a cell, swap two, reverse a run, within 8
+/// positions) where every candidate order gets its best variants by dynamic programming; stops at
+/// a local optimum or after about 200,000 / n candidate orders.
 CellOrder heuristic_cell_order(const CellOrderProblem& problem);
 
 /// exact_cell_order() up to `exact_limit` cells, heuristic_cell_order() beyond.
