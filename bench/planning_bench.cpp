@@ -1,5 +1,6 @@
 // The whole planning pipeline, swath's against the paper's, on field-like areas of 10 to 100,000
-// vertices (GeoJSON text in memory; the files are produced as text, not written to disk):
+// vertices (GeoJSON text in memory; the files are produced as text, not written to disk), both
+// flying the convex hull of these slightly concave areas (split: split_bench.cpp):
 //   swath: read -> O(n log n) classify -> exact min height -> centered sweep -> mission -> files
 //   paper: read -> O(n²) TypeDetection -> 0.1° scan -> Algorithm 2 placement -> mission -> files
 #include <benchmark/benchmark.h>
@@ -41,6 +42,8 @@ planning::SurveyRequest request(bool paper) {
   r.mode = m;
   r.angle_search = paper ? planning::AngleSearch::scan : planning::AngleSearch::exact;
   r.placement = paper ? planning::LinePlacement::paper : planning::LinePlacement::centered;
+  // Like for like with the paper: both fly the convex hull (split has its own bench).
+  r.concave = planning::ConcaveMode::hull;
   return r;
 }
 

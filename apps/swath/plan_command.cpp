@@ -164,6 +164,9 @@ void PlanCommand::setup(CLI::App& app) {
          "reports the swath outside) or reject")
       ->check(CLI::IsMember({"split", "hull", "reject"}))
       ->capture_default_str();
+  app.add_flag("--repair", repair_,
+               "An outer ring that crosses itself: plan the areas it encloses (union of its faces) "
+               "instead of refusing it; the summary and a warning say what was done");
   app.add_option(
       "--exclude", exclude_,
       "No-fly zone: an area file (.geojson, .kml, .csv lon,lat) inside the area; repeat for "
@@ -241,6 +244,7 @@ int PlanCommand::run() {
                                      {"ne", planning::StartCorner::ne}},
                                     start_);
   if (!home_.empty()) request.home = parse_lat_lon(home_, "--home");
+  request.repair = repair_;
   request.concave = concave_ == "reject" ? planning::ConcaveMode::reject
                     : concave_ == "hull" ? planning::ConcaveMode::hull
                                          : planning::ConcaveMode::split;

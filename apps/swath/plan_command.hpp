@@ -46,6 +46,7 @@ class PlanCommand : public Command {
   bool local_ = false;
   std::string concave_ = "split";
   std::vector<std::string> exclude_;
+  bool repair_ = false;
   std::string firmware_ = "ardupilot";
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;

@@ -1,11 +1,13 @@
 #include "swath/planning/survey.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/input_error.hpp"
+#include "swath/geometry/repair.hpp"
 #include "swath/planning/split.hpp"
 
 namespace swath::planning {
@@ -22,16 +24,48 @@ std::string fixed1(double v) {
   return s.str();
 }
 
+std::string point_text(const geometry::Field& field, geometry::Point2 p) {
+  const geometry::GeoPoint g = field.frame->to_geo(p);
+  std::ostringstream s;
+  s.precision(8);
+  s << g.lat_deg << ", " << g.lon_deg << " (lat, lon)";
+  return s.str();
+}
+
+// --repair: an outer ring that crosses itself becomes the areas it encloses.
+void repair_outer_ring(SurveyPlan& plan) {
+  geometry::Field& field = plan.request.field;
+  const auto crossing = geometry::find_crossing(geometry::Polygon{field.polygon.outer, {}});
+  if (!crossing) return;
+  std::vector<geometry::Ring> pieces = geometry::enclosed_areas(field.polygon.outer);
+  if (pieces.empty())
+    throw InputError(field.source + ": the outer ring crosses itself and encloses no area");
+  double total = 0;
+  for (const geometry::Ring& p : pieces) total += geometry::signed_area(p);
+  field.polygon.outer = pieces.front();
+  field.source_index[0].assign(pieces.front().size(), 0);
+  for (std::size_t i = 0; i < pieces.front().size(); ++i) field.source_index[0][i] = i;
+  field.geo_rings[0].clear();
+  for (const geometry::Point2& p : pieces.front())
+    field.geo_rings[0].push_back(field.frame->to_geo(p));
+  plan.extra_pieces.assign(pieces.begin() + 1, pieces.end());
+  plan.warnings.push_back("repaired: the outer ring crosses itself at " +
+                          point_text(field, crossing->point) + "; planned the " +
+                          std::to_string(pieces.size()) + " area(s) it encloses, " + fixed1(total) +
+                          " m² in all");
+}
+
 }  // namespace
 
 SurveyPlan plan_survey(const SurveyRequest& request) {
   SurveyPlan plan;
   plan.request = request;
-  const geometry::Field& field = request.field;
+  geometry::Field& field = plan.request.field;
   if (!field.frame)
     throw InputError(field.source +
                      ": the area is in local metres; give --origin LAT,LON to place it on the map");
 
+  if (request.repair) repair_outer_ring(plan);
   plan.area = field.polygon;
   for (std::size_t k = 0; k < request.exclusions.size(); ++k) {
     geometry::NormalisedRing hole = geometry::normalise_ring(request.exclusions[k], false);
@@ -40,6 +74,8 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     plan.area.holes.push_back(std::move(hole.ring));
   }
   plan.facts = geometry::describe_area(plan.area);
+  for (const geometry::Ring& piece : plan.extra_pieces)
+    *plan.facts.area_m2 += geometry::signed_area(piece);
   const geometry::Classification& c = plan.facts.classification;
   if (c.type == geometry::AreaType::self_intersecting &&
       c.crossing->edge_b.ring > field.polygon.holes.size()) {
@@ -56,7 +92,9 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     std::ostringstream s;
     s.precision(8);
     s << field.source << ": the area crosses itself at " << p.lat_deg << ", " << p.lon_deg
-      << " (lat, lon); 'swath classify' names the edges; fix the vertex order";
+      << " (lat, lon); 'swath classify' names the edges; fix the vertex order, or give --repair to "
+         "plan "
+         "the areas it encloses";
     throw InputError(s.str());
   }
   if (c.type == geometry::AreaType::concave && request.concave == ConcaveMode::reject)
@@ -64,11 +102,14 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
                      std::to_string(c.reflex_vertices.size()) + " reflex vertices" +
                      (field.polygon.holes.empty() ? "" : ", holes") +
                      ") and --concave reject refuses it; use --concave hull");
-  const bool convex = c.type == geometry::AreaType::convex;
+  const bool convex = c.type == geometry::AreaType::convex && plan.extra_pieces.empty();
   const bool split = !convex && request.concave == ConcaveMode::split;
   plan.handling = convex ? "convex" : split ? "split" : "hull";
+  std::vector<geometry::Point2> all_outer = plan.area.outer;
+  for (const geometry::Ring& piece : plan.extra_pieces)
+    all_outer.insert(all_outer.end(), piece.begin(), piece.end());
   plan.flown_area =
-      convex || split ? plan.area : geometry::Polygon{geometry::convex_hull(plan.area.outer), {}};
+      convex || split ? plan.area : geometry::Polygon{geometry::convex_hull(all_outer), {}};
 
   if (const auto* p = std::get_if<PhotogrammetryMode>(&request.mode)) {
     plan.imaging = photogrammetry_imaging(request.camera, *p, request.orientation);
@@ -122,7 +163,8 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   mission_settings.speed_m_s = plan.speed_m_s;
   mission_settings.trigger_distance_m = plan.imaging.trigger_distance_m;
   mission_settings.waypoint_spacing_m = request.waypoint_spacing_m;
-  const std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
+  std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
+  rings.insert(rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
 
   if (split) {
     const geometry::VisibilityRouter router(rings);
@@ -157,14 +199,24 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
         build_mission(1, home, order_lines(plan.sweep, request.start, home), mission_settings);
   }
 
-  plan.coverage = measure_coverage(plan.area, plan.mission.lines, plan.sweep.angle_deg,
+  // Extra pieces as further rings: the scanline measure counts by the even-odd rule.
+  geometry::Polygon measured = plan.area;
+  measured.holes.insert(measured.holes.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  plan.coverage = measure_coverage(measured, plan.mission.lines, plan.sweep.angle_deg,
                                    plan.imaging.footprint_across_m);
-  // Off-line legs outside the area: the whole path's outside length less the lines' own.
+  // Turns and transits outside the area: the path from the first line's start to the last
+  // line's end, less the lines' own length outside. The legs to and from home are not counted:
+  // a home outside the area cannot be reached inside it.
   const geometry::VisibilityRouter measure(rings, 0);
-  double path_outside = 0;
-  for (std::size_t i = 0; i + 1 < plan.mission.path.size(); ++i)
-    path_outside += measure.length_outside(plan.mission.path[i], plan.mission.path[i + 1]);
-  plan.transit_outside_m = std::max(0.0, path_outside - plan.coverage.line_length_outside_m);
+  const auto& path = plan.mission.path;
+  if (!plan.mission.lines.empty()) {
+    const auto first = std::find(path.begin(), path.end(), plan.mission.lines.front().start);
+    const auto last = std::find(path.rbegin(), path.rend(), plan.mission.lines.back().end);
+    double outside = 0;
+    for (auto it = first; it != path.end() && it + 1 != path.end() && &*it < &*last; ++it)
+      outside += measure.length_outside(*it, *(it + 1));
+    plan.transit_outside_m = std::max(0.0, outside - plan.coverage.line_length_outside_m);
+  }
 
   if (const auto& interval = request.camera.min_trigger_interval_s) {
     const double seconds = plan.imaging.trigger_distance_m / plan.speed_m_s;

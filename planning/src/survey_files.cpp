@@ -242,6 +242,15 @@ std::string mission_geojson(const SurveyPlan& plan) {
   features.push_back({{"type", "Feature"},
                       {"properties", {{"role", "area"}}},
                       {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
+  for (std::size_t k = 0; k < plan.extra_pieces.size();
+       ++k) {  // --repair: the other enclosed areas
+    ordered_json ring = ordered_json::array();
+    for (const Point2& p : plan.extra_pieces[k]) ring.push_back(lon_lat(plan, p));
+    ring.push_back(ring.front());
+    features.push_back({{"type", "Feature"},
+                        {"properties", {{"role", "area"}, {"piece", k + 1}}},
+                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+  }
   for (std::size_t k = 0; plan.handling == "split" && k < plan.cells.size(); ++k) {
     ordered_json ring = ordered_json::array();
     for (const Point2& p : plan.cells[k]) ring.push_back(lon_lat(plan, p));
@@ -324,6 +333,9 @@ std::string summary_json(const SurveyPlan& plan) {
                                                                  : "reject"},
                {"handling", plan.handling},
                {"no_fly_zones", r.exclusions.size()},
+               {"repaired_pieces", plan.extra_pieces.empty() && !r.repair
+                                       ? ordered_json()
+                                       : ordered_json(1 + plan.extra_pieces.size())},
                {"cells", plan.cells.size()},
                {"flown_area_m2", round_to(geometry::area(plan.flown_area), 3)}};
   j["sweep"] = {{"bearing_deg", round_to(geometry::line_bearing_deg(plan.sweep.angle_deg), 6)},

@@ -1,6 +1,7 @@
 // `swath plan` and `swath cameras` as a user runs them.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -138,6 +139,72 @@ TEST(PlanCli, WarnsWhenTheCameraCannotTriggerThatFast) {
   EXPECT_EQ(s["warnings"].size(), 1u);
 }
 
+TEST(PlanCli, ConcaveAreaIsSplitByDefaultAndNeverFliesOutside) {
+  const std::string split_dir = fresh_dir("split"), hull_dir = fresh_dir("hull");
+  const std::string args =
+      " share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --home 46.2276,7.5917 "
+      "-o ";
+  ASSERT_EQ(run_swath("plan" + args + split_dir).exit_code, 0);
+  ASSERT_EQ(run_swath("plan" + args + hull_dir + " --concave hull").exit_code, 0);
+  const json split = json::parse(read_text(split_dir + "/summary.json"));
+  const json hull = json::parse(read_text(hull_dir + "/summary.json"));
+  EXPECT_EQ(split["area"]["handling"], "split");
+  EXPECT_GE(split["area"]["cells"].get<int>(), 2);
+  EXPECT_EQ(split["coverage"]["line_length_outside_m"].get<double>(), 0.0);
+  EXPECT_EQ(split["coverage"]["transit_outside_m"].get<double>(), 0.0);
+  EXPECT_GE(split["coverage"]["covered_fraction"].get<double>(), 0.999);
+  EXPECT_EQ(split["sweep"]["angle_search"], "shortest-path");
+  EXPECT_EQ(hull["area"]["handling"], "hull");
+  EXPECT_GT(hull["coverage"]["line_length_outside_m"].get<double>(),
+            100.0);  // over the pond and the notch
+  EXPECT_LT(split["drones"][0]["path_length_m"].get<double>(),
+            hull["drones"][0]["path_length_m"].get<double>());
+  // The cells are in the GeoJSON.
+  int cells = 0;
+  const json geojson = json::parse(read_text(split_dir + "/mission.geojson"));
+  for (const json& f : geojson["features"]) cells += f["properties"]["role"] == "cell";
+  EXPECT_EQ(cells, split["area"]["cells"].get<int>());
+}
+
+TEST(PlanCli, NoFlyZoneFromExcludeIsAvoided) {
+  const std::string out = fresh_dir("exclude");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
+      "share/zones/meadow-pond.geojson -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(s["area"]["no_fly_zones"], 1);
+  EXPECT_EQ(s["area"]["handling"], "split");
+  EXPECT_EQ(s["coverage"]["line_length_outside_m"].get<double>(), 0.0);  // nothing over the pond
+  EXPECT_EQ(s["coverage"]["transit_outside_m"].get<double>(), 0.0);
+  // The meadow less the 60 x 56 m pond.
+  EXPECT_LT(s["area"]["area_m2"].get<double>(), 100694.358 - 3000);
+  EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.999);
+}
+
+TEST(PlanCli, RepairPlansTheAreasACrossingRingEncloses) {
+  const std::string out = fresh_dir("repair");
+  const CliRun run = run_swath(
+      "plan share/fields/bowtie.geojson --camera sony-ilce-qx1 --altitude 50 --repair -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find(
+                "swath plan: warning: repaired: the outer ring crosses itself at 48.13825, 11.577"),
+            std::string::npos)
+      << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(s["area"]["repaired_pieces"], 2);
+  // Two triangles of the bowtie: half its bounding box (4 x 0.004 x 0.0025 degrees at 48.14 N).
+  const double box = 0.004 * 111320 * std::cos(48.13825 * 3.14159265358979 / 180) * 0.0025 * 111200;
+  EXPECT_NEAR(s["area"]["area_m2"].get<double>(), box / 2, 0.01 * box);
+  EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.999);
+  EXPECT_EQ(s["coverage"]["line_length_outside_m"].get<double>(), 0.0);
+  const json g = json::parse(read_text(out + "/mission.geojson"));
+  int areas = 0;
+  for (const json& f : g["features"]) areas += f["properties"]["role"] == "area";
+  EXPECT_EQ(areas, 2);
+}
+
 struct BadPlan {
   std::string name, args, fragment;
   friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }
@@ -184,6 +251,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"bad_start",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --start middle",
                 "--start"},
+        BadPlan{"zone_across_boundary",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
+                "tests/fixtures/zone-across-boundary.geojson",
+                "no-fly zone 0 crosses the area's boundary or another zone"},
         BadPlan{"detection_needs_pattern",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --mode detection",
                 "detection mode needs --pattern"}),

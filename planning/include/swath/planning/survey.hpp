@@ -50,6 +50,9 @@ struct SurveyRequest {
   /// Extra no-fly zones (local frame, any orientation); they become holes of the area.
   std::vector<geometry::Ring> exclusions;
   double split_scan_step_deg = 2.0;  ///< split: the scan part of the direction search
+  /// A self-intersecting outer ring is replaced by the areas it encloses (union of the faces of
+  /// its arrangement) instead of refused.
+  bool repair = false;
   Firmware firmware = Firmware::ardupilot;
   Vehicle vehicle = Vehicle::multirotor;
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
@@ -64,7 +67,10 @@ struct SurveyPlan {
   std::string handling;
   std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
   std::size_t direction_candidates = 1;  ///< directions evaluated
-  double transit_outside_m = 0.0;        ///< length of legs off the lines outside the area
+  double transit_outside_m = 0.0;        ///< turns and transits (not home legs) outside the area
+  /// --repair: the enclosed areas beyond the largest one (which became the field's outer ring),
+  /// counter-clockwise, local frame. Planned with the rest.
+  std::vector<geometry::Ring> extra_pieces;
   Imaging imaging;
   geometry::SweepDirection direction;  ///< angle of the lines (local, CCW from east) and height
   Sweep sweep;
