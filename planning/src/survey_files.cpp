@@ -131,6 +131,14 @@ ordered_json ring_json(const std::vector<GeoPoint>& ring) {
   return out;
 }
 
+// A local-frame ring as a closed GeoJSON ring.
+ordered_json local_ring_json(const SurveyPlan& plan, const geometry::Ring& ring) {
+  ordered_json out = ordered_json::array();
+  for (const Point2& p : ring) out.push_back(lon_lat(plan, p));
+  out.push_back(out.front());
+  return out;
+}
+
 const char* to_string(LinePlacement p) {
   return p == LinePlacement::centered ? "centered" : "paper";
 }
@@ -244,20 +252,18 @@ std::string mission_geojson(const SurveyPlan& plan) {
                       {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
   for (std::size_t k = 0; k < plan.extra_pieces.size();
        ++k) {  // --repair: the other enclosed areas
-    ordered_json ring = ordered_json::array();
-    for (const Point2& p : plan.extra_pieces[k]) ring.push_back(lon_lat(plan, p));
-    ring.push_back(ring.front());
-    features.push_back({{"type", "Feature"},
-                        {"properties", {{"role", "area"}, {"piece", k + 1}}},
-                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+    features.push_back(
+        {{"type", "Feature"},
+         {"properties", {{"role", "area"}, {"piece", k + 1}}},
+         {"geometry",
+          {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, plan.extra_pieces[k])}}}}});
   }
   for (std::size_t k = 0; plan.handling == "split" && k < plan.cells.size(); ++k) {
-    ordered_json ring = ordered_json::array();
-    for (const Point2& p : plan.cells[k]) ring.push_back(lon_lat(plan, p));
-    ring.push_back(ring.front());
-    features.push_back({{"type", "Feature"},
-                        {"properties", {{"role", "cell"}, {"cell", k}}},
-                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+    features.push_back(
+        {{"type", "Feature"},
+         {"properties", {{"role", "cell"}, {"cell", k}}},
+         {"geometry",
+          {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, plan.cells[k])}}}}});
   }
   for (const DroneMission* m : {&plan.mission}) {
     ordered_json path = ordered_json::array();
