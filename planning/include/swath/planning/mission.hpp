@@ -39,6 +39,14 @@ struct DroneMission {
   std::size_t waypoint_count = 0;  ///< items with a position (takeoff and waypoints)
 };
 
+/// A flight path over the survey, without the legs to and from home: points, and for each segment
+/// between two points whether it lies on a sweep line (camera work) or is a turn or transit.
+struct SurveyPath {
+  std::vector<geometry::Point2> points;
+  std::vector<char> on_line;  ///< points.size() - 1 flags
+  double length_m() const;
+};
+
 /// Points strictly between a and b that a leg from a to b flies through (empty: straight).
 using LegRoute = std::function<std::vector<geometry::Point2>(geometry::Point2, geometry::Point2)>;
 

@@ -1,0 +1,120 @@
+#include "swath/planning/fleet.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+
+#include "swath/geometry/input_error.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::InputError;
+
+std::string line_of(const YAML::Node& n) {
+  return "line " + std::to_string(n.Mark().line + 1);
+}
+
+double number(const YAML::Node& n, const std::string& where, const std::string& key) {
+  try {
+    const double v = n.as<double>();
+    if (!std::isfinite(v)) throw YAML::Exception(n.Mark(), "not finite");
+    return v;
+  } catch (const YAML::Exception&) {
+    throw InputError(where + ", " + line_of(n) + ": " + key + " must be a number");
+  }
+}
+
+geometry::GeoPoint point(const YAML::Node& n, const std::string& where) {
+  if (!n.IsMap() || !n["lat"] || !n["lon"])
+    throw InputError(where + ", " + line_of(n) + ": a home is {lat: DEG, lon: DEG[, alt: M]}");
+  geometry::GeoPoint p{number(n["lat"], where, "lat"), number(n["lon"], where, "lon"),
+                       n["alt"] ? number(n["alt"], where, "alt") : 0.0};
+  if (std::abs(p.lat_deg) > 90 || std::abs(p.lon_deg) > 180)
+    throw InputError(where + ", " + line_of(n) +
+                     ": home latitude must be within ±90 and longitude within ±180 degrees");
+  return p;
+}
+
+}  // namespace
+
+std::optional<double> Drone::range_m() const {
+  if (!battery_level || !endurance_s || !speed_m_s) return std::nullopt;
+  return *battery_level * *endurance_s * *speed_m_s;
+}
+
+Fleet parse_fleet(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
+                     e.msg + ")");
+  }
+  if (!root.IsMap() || !root["home"] || !root["drones"])
+    throw InputError(source + ": a fleet file needs 'home' and 'drones'");
+  Fleet fleet;
+  fleet.home = point(root["home"], source);
+  const YAML::Node drones = root["drones"];
+  if (!drones.IsSequence() || drones.size() == 0)
+    throw InputError(source + ": 'drones' must list at least one drone");
+  static const std::set<std::string> known{"name",        "capability", "battery_level",
+                                           "endurance_s", "speed_m_s",  "home"};
+  bool any_capability = false, any_range = false;
+  for (std::size_t i = 0; i < drones.size(); ++i) {
+    const YAML::Node d = drones[i];
+    const std::string where = source + ": drone " + std::to_string(i + 1);
+    if (!d.IsMap()) throw InputError(where + ", " + line_of(d) + ": a drone is a mapping");
+    for (const auto& kv : d)
+      if (!known.count(kv.first.as<std::string>()))
+        throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" +
+                         kv.first.as<std::string>() + "'");
+    Drone drone;
+    drone.name = d["name"] ? d["name"].as<std::string>() : "drone-" + std::to_string(i + 1);
+    if (d["capability"]) {
+      drone.capability = number(d["capability"], where, "capability");
+      if (!(*drone.capability > 0 && *drone.capability <= 1))
+        throw InputError(where + " (" + drone.name + "): capability " +
+                         std::to_string(*drone.capability) + " is outside (0, 1]");
+      any_capability = true;
+    } else {
+      for (const char* key : {"battery_level", "endurance_s", "speed_m_s"})
+        if (!d[key])
+          throw InputError(where + " (" + drone.name +
+                           "): give a capability, or battery_level, endurance_s and speed_m_s");
+      drone.battery_level = number(d["battery_level"], where, "battery_level");
+      drone.endurance_s = number(d["endurance_s"], where, "endurance_s");
+      drone.speed_m_s = number(d["speed_m_s"], where, "speed_m_s");
+      if (!(*drone.battery_level >= 0 && *drone.battery_level <= 1))
+        throw InputError(where + " (" + drone.name + "): battery_level must be in [0, 1]");
+      if (!(*drone.endurance_s > 0))
+        throw InputError(where + " (" + drone.name + "): endurance_s must be > 0");
+      if (!(*drone.speed_m_s > 0))
+        throw InputError(where + " (" + drone.name + "): speed_m_s must be > 0");
+      any_range = true;
+    }
+    if (d["home"]) drone.home = point(d["home"], where);
+    fleet.drones.push_back(std::move(drone));
+  }
+  if (any_capability && any_range)
+    throw InputError(source +
+                     ": give every drone a capability, or every drone battery_level, endurance_s "
+                     "and speed_m_s, not a mix");
+  return fleet;
+}
+
+Fleet equal_fleet(int n, const geometry::GeoPoint& home) {
+  if (n < 1) throw InputError("--drones must be at least 1");
+  Fleet fleet;
+  fleet.home = home;
+  for (int i = 0; i < n; ++i) {
+    Drone d;
+    d.name = "drone-" + std::to_string(i + 1);
+    d.capability = 1.0 / n;
+    fleet.drones.push_back(d);
+  }
+  return fleet;
+}
+
+}  // namespace swath::planning
