@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 #include "data_dir.hpp"
 #include "swath/geometry/input_error.hpp"
@@ -164,6 +166,23 @@ void PlanCommand::setup(CLI::App& app) {
          "reports the swath outside) or reject")
       ->check(CLI::IsMember({"split", "hull", "reject"}))
       ->capture_default_str();
+  app.add_option("--drones", drones_, "Divide the survey among N equal drones sharing the home");
+  app.add_option("--fleet", fleet_,
+                 "Fleet YAML: home, and per drone a capability or battery_level, endurance_s and "
+                 "speed_m_s (optional own home); divides the survey among them");
+  app.add_option("--division", division_,
+                 "With a fleet: path (cut the one sweep path, paper Alg. 3) or region "
+                 "(bands along the lanes, paper Alg. 4)")
+      ->check(CLI::IsMember({"path", "region"}))
+      ->capture_default_str();
+  app.add_option("--balance", balance_,
+                 "With a fleet: capability (shares in proportion to the corrected "
+                 "capabilities, the paper) or makespan (shortest longest flight)")
+      ->check(CLI::IsMember({"capability", "makespan"}))
+      ->capture_default_str();
+  app.add_flag("--allow-partial", allow_partial_,
+               "Plan what a fleet short of range can fly (the summary says what stays unflown) "
+               "instead of refusing");
   app.add_flag("--repair", repair_,
                "An outer ring that crosses itself: plan the areas it encloses (union of its faces) "
                "instead of refusing it; the summary and a warning say what was done");
@@ -245,6 +264,26 @@ int PlanCommand::run() {
                                     start_);
   if (!home_.empty()) request.home = parse_lat_lon(home_, "--home");
   request.repair = repair_;
+  if (drones_ && !fleet_.empty()) throw InputError("give --drones or --fleet, not both");
+  if (drones_) {
+    const geometry::GeoPoint fleet_home = request.home ? *request.home : geometry::GeoPoint{};
+    request.fleet = planning::equal_fleet(*drones_, fleet_home);
+    if (!request.home)
+      request.fleet->home = geometry::GeoPoint{std::nan(""), 0, 0};  // the plan's default home
+  }
+  if (!fleet_.empty()) {
+    std::ifstream in(fleet_, std::ios::binary);
+    if (!in) throw InputError(fleet_ + ": cannot open the fleet file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    request.fleet = planning::parse_fleet(text.str(), fleet_);
+    if (!request.home) request.home = request.fleet->home;
+  }
+  request.division =
+      division_ == "region" ? planning::DivisionMode::region : planning::DivisionMode::path;
+  request.balance =
+      balance_ == "makespan" ? planning::Balance::makespan : planning::Balance::capability;
+  request.allow_partial = allow_partial_;
   request.concave = concave_ == "reject" ? planning::ConcaveMode::reject
                     : concave_ == "hull" ? planning::ConcaveMode::hull
                                          : planning::ConcaveMode::split;
@@ -265,7 +304,6 @@ int PlanCommand::run() {
   planning::write_files_atomically(output_, files);
 
   const planning::Imaging& im = plan.imaging;
-  const planning::DroneMission& m = plan.mission;
   std::printf("swath plan: %s -> %s\n", field_.c_str(), output_.c_str());
   std::printf("  area       %s, %s ha%s\n",
               std::string(geometry::to_string(plan.facts.classification.type)).c_str(),
@@ -282,10 +320,16 @@ int PlanCommand::run() {
       "  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n", plan.sweep.lines.size(),
       fixed_text(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
       fixed_text(im.line_spacing_m, 2).c_str(), fixed_text(im.trigger_distance_m, 2).c_str());
-  std::printf("  drone 1    %s (work %s, transit %s), %s at %s m/s, %zu waypoints\n",
-              kilometres(m.path_length_m).c_str(), kilometres(m.work_length_m).c_str(),
-              kilometres(m.transit_length_m).c_str(), duration(m.flight_time_s).c_str(),
-              fixed_text(plan.speed_m_s, 1).c_str(), m.waypoint_count);
+  for (const planning::DroneMission* dm : planning::missions_of(plan)) {
+    const planning::DroneMission& m = *dm;
+    std::printf(
+        "  drone %-4d %s (work %s, transit %s), %s at %s m/s, %zu waypoints\n", m.drone,
+        kilometres(m.path_length_m).c_str(), kilometres(m.work_length_m).c_str(),
+        kilometres(m.transit_length_m).c_str(), duration(m.flight_time_s).c_str(),
+        fixed_text(m.flight_time_s > 0 ? m.path_length_m / m.flight_time_s : plan.speed_m_s, 1)
+            .c_str(),
+        m.waypoint_count);
+  }
   std::printf(
       "  coverage   %s %% of the area; outside it: %s %% of the swath, %s m of lines, %s m of "
       "transit\n",

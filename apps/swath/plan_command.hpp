@@ -47,6 +47,11 @@ class PlanCommand : public Command {
   std::string concave_ = "split";
   std::vector<std::string> exclude_;
   bool repair_ = false;
+  std::optional<int> drones_;
+  std::string fleet_;
+  std::string division_ = "path";
+  std::string balance_ = "capability";
+  bool allow_partial_ = false;
   std::string firmware_ = "ardupilot";
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;

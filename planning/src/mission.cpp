@@ -51,6 +51,7 @@ std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<doubl
       pieces.back().points.push_back(b);
       pieces.back().on_line.push_back(path.on_line[i]);
     }
+    walked += length;
   }
   while (pieces.size() < cuts_m.size() + 1) pieces.push_back({{path.points.back()}, {}});
   return pieces;

@@ -85,8 +85,10 @@ CellOrderProblem problem_for(Candidate& c, Point2 home, const Metric& metric) {
   return p;
 }
 
-Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
-                      const SplitSettings& s) {
+// Lanes for the pieces of a decomposition, grouped by its cells.
+Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
+                              const geometry::Decomposition& d, double angle,
+                              const SplitSettings& s) {
   Candidate c;
   c.angle_deg = angle;
   // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart.
@@ -109,7 +111,6 @@ Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
       line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
   // Lanes are placed per piece, so a piece thinner than the grid still gets one; cells (chains of
   // pieces) only group them for ordering.
-  geometry::Decomposition d = geometry::boustrophedon_decomposition(rings, angle);
   std::vector<std::vector<SweepLine>> piece_lines(d.pieces.size());
   for (std::size_t k = 0; k < d.pieces.size(); ++k)
     if (!d.pieces[k].empty())
@@ -153,7 +154,64 @@ Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
   return c;
 }
 
+Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
+                      const SplitSettings& s) {
+  return sweep_decomposition(rings, geometry::boustrophedon_decomposition(rings, angle), angle, s);
+}
+
+// Routed lengths, memoised: the four variants of a cell share their turns, and the ordering asks
+// for the same transits again and again.
+class RoutedMetric {
+ public:
+  explicit RoutedMetric(const geometry::VisibilityRouter& router) : router_(router) {}
+  double operator()(Point2 a, Point2 b) {
+    if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);  // the metric is symmetric
+    const auto key = std::make_pair(std::make_pair(a.x, a.y), std::make_pair(b.x, b.y));
+    const auto it = known_.find(key);
+    if (it != known_.end()) return it->second;
+    return known_[key] = geometry::polyline_length(router_.path(a, b));
+  }
+
+ private:
+  const geometry::VisibilityRouter& router_;
+  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, double> known_;
+};
+
+// The candidate's cells in their best order (exact where small) as a plan.
+SplitPlan ordered_plan(Candidate& c, Point2 home, const Metric& metric) {
+  const CellOrder order = order_cells(problem_for(c, home, metric));
+  SplitPlan plan;
+  plan.angle_deg = c.angle_deg;
+  plan.path_length_m = order.length_m;
+  plan.cells = c.cells;
+  for (const CellVisit& v : order.visits) {
+    const auto [top_first, reverse_first] = c.variant_flags[v.cell][v.variant];
+    for (const SweepLine& line : zigzag(c.sweeps[v.cell], top_first, reverse_first)) {
+      plan.lines.push_back(line);
+      plan.line_cell.push_back(v.cell);
+    }
+  }
+  return plan;
+}
+
 }  // namespace
+
+SplitPlan plan_pieces(const std::vector<geometry::Ring>& pieces, double angle_deg, Point2 home,
+                      const SplitSettings& s, const geometry::VisibilityRouter& router) {
+  geometry::Decomposition d;
+  for (const geometry::Ring& piece : pieces) {
+    if (piece.size() < 3) continue;
+    d.cells.push_back({d.pieces.size()});
+    d.pieces.push_back(piece);
+    d.cell_rings.push_back(piece);
+  }
+  Candidate c = sweep_decomposition(d.pieces, d, angle_deg, s);
+  if (c.cells.empty()) return {};
+  RoutedMetric routed(router);
+  SplitPlan plan = ordered_plan(c, home, [&routed](Point2 a, Point2 b) { return routed(a, b); });
+  plan.candidates = 1;
+  return plan;
+}
 
 SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, const SplitSettings& s,
                      const geometry::VisibilityRouter& router) {
@@ -162,16 +220,8 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
     throw std::invalid_argument(
         "plan_split: need 0 < spacing <= footprint width and a scan step > 0");
   const Metric straight = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
-  // Routed lengths, memoised: the four variants of a cell share their turns, and the ordering asks
-  // for the same transits again and again.
-  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, double> known;
-  const Metric routed = [&router, &known](Point2 a, Point2 b) {
-    if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);  // the metric is symmetric
-    const auto key = std::make_pair(std::make_pair(a.x, a.y), std::make_pair(b.x, b.y));
-    const auto it = known.find(key);
-    if (it != known.end()) return it->second;
-    return known[key] = geometry::polyline_length(router.path(a, b));
-  };
+  RoutedMetric routed_lengths(router);
+  const Metric routed = [&routed_lengths](Point2 a, Point2 b) { return routed_lengths(a, b); };
 
   const std::vector<double> angles =
       s.fixed_angle_deg
@@ -195,21 +245,8 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   SplitPlan best;
   best.path_length_m = std::numeric_limits<double>::infinity();
   for (const auto& [estimate, index] : estimates) {
-    Candidate& c = candidates[index];
-    const CellOrderProblem problem = problem_for(c, home, routed);
-    const CellOrder order = order_cells(problem);
-    if (order.length_m >= best.path_length_m) continue;
-    best = SplitPlan{};
-    best.angle_deg = c.angle_deg;
-    best.path_length_m = order.length_m;
-    best.cells = c.cells;
-    for (const CellVisit& v : order.visits) {
-      const auto [top_first, reverse_first] = c.variant_flags[v.cell][v.variant];
-      for (const SweepLine& line : zigzag(c.sweeps[v.cell], top_first, reverse_first)) {
-        best.lines.push_back(line);
-        best.line_cell.push_back(v.cell);
-      }
-    }
+    SplitPlan plan = ordered_plan(candidates[index], home, routed);
+    if (plan.path_length_m < best.path_length_m) best = std::move(plan);
   }
   best.candidates = candidates.size();
   return best;

@@ -55,7 +55,82 @@ void repair_outer_ring(SurveyPlan& plan) {
                           " m² in all");
 }
 
+// Divides the planned survey among the request's fleet: one mission per drone.
+void divide_among_fleet(SurveyPlan& plan, geometry::Point2 plan_home,
+                        const std::vector<geometry::Ring>& rings, bool split,
+                        const SplitSettings& split_settings,
+                        const geometry::VisibilityRouter& router, const LegRoute& route,
+                        MissionSettings mission_settings) {
+  const SurveyRequest& request = plan.request;
+  const geometry::Field& field = request.field;
+  std::vector<DroneResource> resources;
+  for (const Drone& d : request.fleet->drones) {
+    DroneResource r;
+    r.name = d.name;
+    // Own home, else the fleet's, else (--drones without --home: NaN) the plan's.
+    r.home = d.home ? field.frame->to_local(*d.home)
+             : std::isfinite(request.fleet->home.lat_deg)
+                 ? field.frame->to_local(request.fleet->home)
+                 : plan_home;
+    r.speed_m_s = d.speed_m_s.value_or(plan.speed_m_s);
+    r.range_m = d.range_m();
+    r.capability = d.capability.value_or(1.0);
+    resources.push_back(r);
+  }
+  const LegRoute leg_route = split ? route : LegRoute{};
+  if (request.division == DivisionMode::path) {
+    const SurveyPath whole = survey_path(plan.mission.lines, request.waypoint_spacing_m, leg_route);
+    plan.division = divide_path(whole, resources, request.balance);
+  } else {
+    const double angle = plan.sweep.angle_deg;
+    const geometry::VisibilityRouter straight(rings, 0);
+    const BandSweep sweep_band = [&](const std::vector<geometry::Ring>& band,
+                                     const DroneResource& drone, bool estimate) -> SurveyPath {
+      if (!split) {  // a convex area (or the hull): each band piece with the strip rule
+        std::vector<SweepLine> lines;
+        for (const geometry::Ring& piece : band) {
+          SweepSettings s;
+          s.angle_deg = angle;
+          s.line_spacing_m = plan.imaging.line_spacing_m;
+          s.footprint_width_m = plan.imaging.footprint_across_m;
+          s.placement = request.placement;
+          s.turnaround_m = request.turnaround_m;
+          const auto ordered = order_lines(plan_sweep(geometry::Polygon{piece, {}}, s),
+                                           StartCorner::nearest_home, drone.home);
+          lines.insert(lines.end(), ordered.begin(), ordered.end());
+        }
+        return survey_path(lines, request.waypoint_spacing_m);
+      }
+      SplitSettings s = split_settings;
+      s.fixed_angle_deg = angle;
+      const SplitPlan sp = plan_pieces(band, angle, drone.home, s, estimate ? straight : router);
+      return survey_path(sp.lines, request.waypoint_spacing_m, estimate ? LegRoute{} : route);
+    };
+    plan.division = divide_region(split ? rings : geometry::rings_of(plan.flown_area), angle,
+                                  resources, request.balance, sweep_band);
+  }
+  for (std::size_t i = 0; i < resources.size(); ++i) {
+    mission_settings.speed_m_s = resources[i].speed_m_s;
+    plan.drone_missions.push_back(mission_for_path(static_cast<int>(i + 1), resources[i].home,
+                                                   plan.division.drones[i].path, mission_settings,
+                                                   leg_route));
+    plan.drone_names.push_back(resources[i].name);
+    plan.drone_speeds_m_s.push_back(resources[i].speed_m_s);
+  }
+  plan.drone_work = plan.division.drones;
+}
+
 }  // namespace
+
+std::vector<const DroneMission*> missions_of(const SurveyPlan& plan) {
+  std::vector<const DroneMission*> out;
+  if (plan.drone_missions.empty()) {
+    out.push_back(&plan.mission);
+  } else {
+    for (const DroneMission& m : plan.drone_missions) out.push_back(&m);
+  }
+  return out;
+}
 
 SurveyPlan plan_survey(const SurveyRequest& request) {
   SurveyPlan plan;
@@ -166,14 +241,18 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
   rings.insert(rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
 
+  const geometry::VisibilityRouter router(rings, split ? 300 : 0);
+  const LegRoute route = [&router](geometry::Point2 a, geometry::Point2 b) {
+    std::vector<geometry::Point2> p = router.path(a, b);
+    return std::vector<geometry::Point2>(p.begin() + 1, p.end() - 1);
+  };
+  SplitSettings split_settings;
+  split_settings.line_spacing_m = plan.imaging.line_spacing_m;
+  split_settings.footprint_width_m = plan.imaging.footprint_across_m;
+  split_settings.placement = request.placement;
+  split_settings.turnaround_m = request.turnaround_m;
+  split_settings.scan_step_deg = request.split_scan_step_deg;
   if (split) {
-    const geometry::VisibilityRouter router(rings);
-    SplitSettings split_settings;
-    split_settings.line_spacing_m = plan.imaging.line_spacing_m;
-    split_settings.footprint_width_m = plan.imaging.footprint_across_m;
-    split_settings.placement = request.placement;
-    split_settings.turnaround_m = request.turnaround_m;
-    split_settings.scan_step_deg = request.split_scan_step_deg;
     if (request.angle_search == AngleSearch::fixed)
       split_settings.fixed_angle_deg = plan.direction.angle_deg;
     const SplitPlan sp = plan_split(rings, home, split_settings, router);
@@ -181,10 +260,6 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     plan.sweep = {sp.angle_deg, plan.direction.height_m, sp.lines};
     plan.cells = sp.cells;
     plan.direction_candidates = sp.candidates;
-    const LegRoute route = [&router](geometry::Point2 a, geometry::Point2 b) {
-      std::vector<geometry::Point2> p = router.path(a, b);
-      return std::vector<geometry::Point2>(p.begin() + 1, p.end() - 1);
-    };
     plan.mission = build_mission(1, home, sp.lines, mission_settings, route);
   } else {
     SweepSettings sweep_settings;
@@ -199,24 +274,36 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
         build_mission(1, home, order_lines(plan.sweep, request.start, home), mission_settings);
   }
 
+  if (request.fleet)
+    divide_among_fleet(plan, home, rings, split, split_settings, router, route, mission_settings);
+
   // Extra pieces as further rings: the scanline measure counts by the even-odd rule.
   geometry::Polygon measured = plan.area;
   measured.holes.insert(measured.holes.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
-  plan.coverage = measure_coverage(measured, plan.mission.lines, plan.sweep.angle_deg,
-                                   plan.imaging.footprint_across_m);
-  // Turns and transits outside the area: the path from the first line's start to the last
+  std::vector<SweepLine> flown;
+  for (const DroneMission* m : missions_of(plan))
+    flown.insert(flown.end(), m->lines.begin(), m->lines.end());
+  plan.coverage =
+      measure_coverage(measured, flown, plan.sweep.angle_deg, plan.imaging.footprint_across_m);
+  if (plan.division.unflown_path_m > 0 && !request.allow_partial)
+    throw InputError(
+        "the fleet cannot fly the whole survey: " + fixed1(plan.division.unflown_path_m) +
+        " m of path and " + fixed1(plan.coverage.area_m2 - plan.coverage.covered_area_m2) +
+        " m² of area stay unflown; add drones or battery, or give --allow-partial");
+  // Turns and transits outside the area: each path from its first line's start to its last
   // line's end, less the lines' own length outside. The legs to and from home are not counted:
   // a home outside the area cannot be reached inside it.
   const geometry::VisibilityRouter measure(rings, 0);
-  const auto& path = plan.mission.path;
-  if (!plan.mission.lines.empty()) {
-    const auto first = std::find(path.begin(), path.end(), plan.mission.lines.front().start);
-    const auto last = std::find(path.rbegin(), path.rend(), plan.mission.lines.back().end);
-    double outside = 0;
+  double outside = 0;
+  for (const DroneMission* m : missions_of(plan)) {
+    if (m->lines.empty()) continue;
+    const auto& path = m->path;
+    const auto first = std::find(path.begin(), path.end(), m->lines.front().start);
+    const auto last = std::find(path.rbegin(), path.rend(), m->lines.back().end);
     for (auto it = first; it != path.end() && it + 1 != path.end() && &*it < &*last; ++it)
       outside += measure.length_outside(*it, *(it + 1));
-    plan.transit_outside_m = std::max(0.0, outside - plan.coverage.line_length_outside_m);
   }
+  plan.transit_outside_m = std::max(0.0, outside - plan.coverage.line_length_outside_m);
 
   if (const auto& interval = request.camera.min_trigger_interval_s) {
     const double seconds = plan.imaging.trigger_distance_m / plan.speed_m_s;

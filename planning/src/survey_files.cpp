@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 namespace swath::planning {
@@ -219,7 +220,7 @@ std::string wpl_110(const SurveyPlan& plan, const DroneMission& mission) {
 
 std::string waypoints_csv(const SurveyPlan& plan) {
   std::string out = "drone,seq,lat,lon,alt_m,x_m,y_m,action\n";
-  for (const DroneMission* m : {&plan.mission}) {
+  for (const DroneMission* m : missions_of(plan)) {
     const std::string drone = std::to_string(m->drone);
     auto row = [&](std::size_t seq, const MissionItem* item, Point2 p, double alt,
                    const char* action) {
@@ -265,7 +266,13 @@ std::string mission_geojson(const SurveyPlan& plan) {
          {"geometry",
           {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, plan.cells[k])}}}}});
   }
-  for (const DroneMission* m : {&plan.mission}) {
+  for (std::size_t i = 0; i < plan.drone_work.size(); ++i)
+    for (const geometry::Ring& piece : plan.drone_work[i].region)
+      features.push_back(
+          {{"type", "Feature"},
+           {"properties", {{"role", "region"}, {"drone", i + 1}}},
+           {"geometry", {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, piece)}}}}});
+  for (const DroneMission* m : missions_of(plan)) {
     ordered_json path = ordered_json::array();
     for (const Point2& p : m->path) path.push_back(lon_lat(plan, p));
     features.push_back({{"type", "Feature"},
@@ -309,7 +316,7 @@ std::string mission_kml(const SurveyPlan& plan) {
          kml_coordinates(area_ring(plan, h), 0.0, true) +
          "</coordinates></LinearRing></innerBoundaryIs>\n";
   s += "    </Polygon>\n  </Placemark>\n";
-  for (const DroneMission* m : {&plan.mission}) {
+  for (const DroneMission* m : missions_of(plan)) {
     s += "  <Placemark>\n    <name>Drone " + std::to_string(m->drone) +
          " path</name>\n    <LineString>\n" +
          "      <altitudeMode>relativeToGround</altitudeMode>\n      <coordinates>" +
@@ -368,20 +375,59 @@ std::string summary_json(const SurveyPlan& plan) {
       {"h_min_m", optional_number(im.h_min_m, 4)},
       {"h_max_m", optional_number(im.h_max_m, 4)}};
   ordered_json drones = ordered_json::array();
-  for (const DroneMission* m : {&plan.mission}) {
-    drones.push_back({{"drone", m->drone},
-                      {"capability", 1.0},
-                      {"speed_m_s", round_to(plan.speed_m_s, 3)},
-                      {"path_length_m", round_to(m->path_length_m, 3)},
-                      {"work_length_m", round_to(m->work_length_m, 3)},
-                      {"transit_length_m", round_to(m->transit_length_m, 3)},
-                      {"flight_time_s", round_to(m->flight_time_s, 2)},
-                      {"lines", m->lines.size()},
-                      {"turns", m->lines.empty() ? 0 : m->lines.size() - 1},
-                      {"waypoints", m->waypoint_count},
-                      {"region_area_m2", nullptr}});
+  for (const DroneMission* m : missions_of(plan)) {
+    const std::size_t i = static_cast<std::size_t>(m->drone - 1);
+    const bool divided = !plan.drone_work.empty();
+    ordered_json d = {
+        {"drone", m->drone},
+        {"name", divided ? plan.drone_names[i] : "drone-1"},
+        {"share", divided ? round_to(plan.drone_work[i].share, 6) : 1.0},
+        {"speed_m_s", round_to(divided ? plan.drone_speeds_m_s[i] : plan.speed_m_s, 3)},
+        {"path_length_m", round_to(m->path_length_m, 3)},
+        {"work_length_m", round_to(m->work_length_m, 3)},
+        {"transit_length_m", round_to(m->transit_length_m, 3)},
+        {"flight_time_s", round_to(m->flight_time_s, 2)},
+        {"lines", m->lines.size()},
+        {"turns", m->lines.empty() ? 0 : m->lines.size() - 1},
+        {"waypoints", m->waypoint_count},
+        {"region_area_m2", nullptr},
+        {"home_cost_m", nullptr},
+        {"budget_m", nullptr}};
+    if (divided) {
+      const DroneWork& w = plan.drone_work[i];
+      if (!w.region.empty()) {
+        double a = 0;
+        for (const geometry::Ring& piece : w.region) a += geometry::signed_area(piece);
+        d["region_area_m2"] = round_to(a, 3);
+      }
+      d["home_cost_m"] = round_to(w.home_cost_m, 3);
+      d["budget_m"] = optional_number(w.budget_m, 3);
+    }
+    drones.push_back(d);
   }
   j["drones"] = drones;
+  if (!plan.drone_work.empty()) {
+    double longest = 0, shortest = std::numeric_limits<double>::infinity();
+    for (const DroneMission* m : missions_of(plan)) {
+      longest = std::max(longest, m->flight_time_s);
+      if (!m->lines.empty()) shortest = std::min(shortest, m->flight_time_s);
+    }
+    const DivisionResult& dv = plan.division;
+    j["division"] = {
+        {"mode", r.division == DivisionMode::path ? "path" : "region"},
+        {"balance", r.balance == Balance::makespan ? "makespan" : "capability"},
+        {"makespan_s", round_to(longest, 2)},
+        {"max_over_min_flight_time", shortest > 0 && std::isfinite(shortest)
+                                         ? ordered_json(round_to(longest / shortest, 4))
+                                         : ordered_json()},
+        {"estimated_makespan_s", round_to(dv.makespan_s, 2)},
+        {"proportional_estimated_makespan_s", round_to(dv.proportional_makespan_s, 2)},
+        {"shorter_than_proportional_percent",
+         ordered_json(dv.proportional_makespan_s > 0
+                          ? round_to(100 * (1 - dv.makespan_s / dv.proportional_makespan_s), 3)
+                          : 0.0)},
+        {"unflown_path_m", round_to(dv.unflown_path_m, 3)}};
+  }
   j["home"] = {{"lat_deg", round_to(plan.home.lat_deg, 9)},
                {"lon_deg", round_to(plan.home.lon_deg, 9)}};
   const CoverageMeasure& c = plan.coverage;
@@ -400,13 +446,16 @@ std::string summary_json(const SurveyPlan& plan) {
 }
 
 std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan) {
-  const std::string drone = "drone-" + std::to_string(plan.mission.drone);
-  return {{"mission.geojson", mission_geojson(plan)},
-          {"summary.json", summary_json(plan)},
-          {drone + ".plan", qgc_plan(plan, plan.mission)},
-          {drone + ".waypoints", wpl_110(plan, plan.mission)},
-          {"waypoints.csv", waypoints_csv(plan)},
-          {"mission.kml", mission_kml(plan)}};
+  std::vector<std::pair<std::string, std::string>> files{{"mission.geojson", mission_geojson(plan)},
+                                                         {"summary.json", summary_json(plan)}};
+  for (const DroneMission* m : missions_of(plan)) {
+    const std::string drone = "drone-" + std::to_string(m->drone);
+    files.push_back({drone + ".plan", qgc_plan(plan, *m)});
+    files.push_back({drone + ".waypoints", wpl_110(plan, *m)});
+  }
+  files.push_back({"waypoints.csv", waypoints_csv(plan)});
+  files.push_back({"mission.kml", mission_kml(plan)});
+  return files;
 }
 
 }  // namespace swath::planning

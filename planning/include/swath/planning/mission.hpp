@@ -50,9 +50,23 @@ struct SurveyPath {
 /// Points strictly between a and b that a leg from a to b flies through (empty: straight).
 using LegRoute = std::function<std::vector<geometry::Point2>(geometry::Point2, geometry::Point2)>;
 
-/// Builds the mission: takeoff at home to the survey altitude, the first line's start, camera
-/// trigger by distance on, every line's waypoints, trigger off after the last, return to launch.
-/// Legs off the lines (home legs, turns, transits) go through `route`'s points when given.
+/// The lines in flight order joined by turns (through `route`'s points when given), with
+/// intermediate points every `waypoint_spacing_m` at most along the lines.
+SurveyPath survey_path(const std::vector<SweepLine>& ordered_lines,
+                       std::optional<double> waypoint_spacing_m, const LegRoute& route = {});
+
+/// Cuts a path at increasing distances from its start (each in (0, length)), inserting a point at
+/// every cut: consecutive pieces that together are the path.
+std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<double>& cuts_m);
+
+/// Builds the mission for a survey path: takeoff at home to the survey altitude, the path's first
+/// point, camera trigger by distance on, every point, trigger off, return to launch. The legs from
+/// and to home go through `route`'s points when given. settings.waypoint_spacing_m is not used
+/// here (survey_path() applies it).
+DroneMission mission_for_path(int drone, geometry::Point2 home, const SurveyPath& path,
+                              const MissionSettings& settings, const LegRoute& route = {});
+
+/// mission_for_path(survey_path(ordered_lines, settings.waypoint_spacing_m, route), ...).
 DroneMission build_mission(int drone, geometry::Point2 home,
                            const std::vector<SweepLine>& ordered_lines,
                            const MissionSettings& settings, const LegRoute& route = {});

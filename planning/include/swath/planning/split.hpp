@@ -38,4 +38,11 @@ struct SplitPlan {
 SplitPlan plan_split(const std::vector<geometry::Ring>& rings, geometry::Point2 home,
                      const SplitSettings& settings, const geometry::VisibilityRouter& router);
 
+/// Sweeps given pieces, each met by every lane at `angle_deg` in one interval (e.g. the band of a
+/// region division cut from boustrophedon pieces), as cells with lanes on one grid over them, and
+/// orders them as plan_split does. Empty lines when the pieces hold none.
+SplitPlan plan_pieces(const std::vector<geometry::Ring>& pieces, double angle_deg,
+                      geometry::Point2 home, const SplitSettings& settings,
+                      const geometry::VisibilityRouter& router);
+
 }  // namespace swath::planning

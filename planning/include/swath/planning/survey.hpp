@@ -9,6 +9,8 @@
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/planning/coverage.hpp"
+#include "swath/planning/division.hpp"
+#include "swath/planning/fleet.hpp"
 #include "swath/planning/imaging.hpp"
 #include "swath/planning/mission.hpp"
 
@@ -50,6 +52,12 @@ struct SurveyRequest {
   /// Extra no-fly zones (local frame, any orientation); they become holes of the area.
   std::vector<geometry::Ring> exclusions;
   double split_scan_step_deg = 2.0;  ///< split: the scan part of the direction search
+  /// Divide the survey among this fleet (absent: one drone).
+  std::optional<Fleet> fleet;
+  DivisionMode division = DivisionMode::path;
+  Balance balance = Balance::capability;
+  /// A fleet that cannot fly the whole path flies what it can instead of refusing.
+  bool allow_partial = false;
   /// A self-intersecting outer ring is replaced by the areas it encloses (union of the faces of
   /// its arrangement) instead of refused.
   bool repair = false;
@@ -68,6 +76,12 @@ struct SurveyPlan {
   std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
   std::size_t direction_candidates = 1;  ///< directions evaluated
   double transit_outside_m = 0.0;        ///< turns and transits (not home legs) outside the area
+  /// With a fleet: one mission per drone (`mission` keeps the undivided survey), and the division.
+  std::vector<DroneMission> drone_missions;
+  std::vector<DroneWork> drone_work;
+  std::vector<std::string> drone_names;
+  std::vector<double> drone_speeds_m_s;
+  DivisionResult division;
   /// --repair: the enclosed areas beyond the largest one (which became the field's outer ring),
   /// counter-clockwise, local frame. Planned with the rest.
   std::vector<geometry::Ring> extra_pieces;
@@ -82,9 +96,12 @@ struct SurveyPlan {
   std::vector<std::string> warnings;  ///< one sentence each
 };
 
-/// Plans a one-drone survey. Throws geometry::InputError for an area it refuses (self-intersecting,
-/// or non-convex with ConcaveMode::reject), a local-metres area without a geographic frame, or
-/// settings out of range; the message names the problem.
+/// The missions to write: one per drone of the fleet, or the single survey mission.
+std::vector<const DroneMission*> missions_of(const SurveyPlan& plan);
+
+/// Plans a survey, divided among a fleet when one is given. Throws geometry::InputError for an area
+/// it refuses (self-intersecting, or non-convex with ConcaveMode::reject), a local-metres area
+/// without a geographic frame, or settings out of range; the message names the problem.
 SurveyPlan plan_survey(const SurveyRequest& request);
 
 }  // namespace swath::planning

@@ -1,0 +1,75 @@
+#pragma once
+// Dividing a survey among drones (paper 001 §V-D, DESIGN.md §7).
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/geometry/polygon.hpp"
+#include "swath/planning/mission.hpp"
+
+namespace swath::planning {
+
+enum class DivisionMode { path, region };
+enum class Balance { capability, makespan };
+
+/// One drone in the local frame, with what it can fly.
+struct DroneResource {
+  std::string name;
+  geometry::Point2 home;
+  double speed_m_s = 5.0;         ///< > 0
+  std::optional<double> range_m;  ///< absent when only a capability is known
+  double capability = 1.0;        ///< relative share when no range is known, > 0
+};
+
+struct DroneWork {
+  SurveyPath path;                     ///< its part of the survey, home legs not included
+  std::vector<geometry::Ring> region;  ///< region division: its band (counter-clockwise pieces)
+  double share = 0.0;                  ///< fraction of the path length (path) or area (region)
+  double home_cost_m = 0.0;            ///< there and back to the farthest point of the path / area
+  std::optional<double> budget_m;      ///< range - home cost, where the range is known
+  double estimated_time_s = 0.0;       ///< straight home legs + its part, at its speed
+};
+
+struct DivisionResult {
+  std::vector<DroneWork> drones;
+  double unflown_path_m = 0.0;           ///< path division: what the fleet's budgets cannot reach
+  double makespan_s = 0.0;               ///< the longest estimated_time_s
+  double proportional_makespan_s = 0.0;  ///< the same for capability-proportional cuts
+};
+
+/// Path division (Algorithm 3): cuts the whole survey path into consecutive pieces, one per drone
+/// in fleet order. Shares follow the corrected capabilities: budgets (range minus the home cost,
+/// twice the distance to the farthest point of the path) where ranges are known, capabilities
+/// otherwise. When the budgets add up to less than the path, each drone flies its budget and the
+/// rest is unflown. Balance::makespan instead cuts where the longest flight time (home legs
+/// included, each at its own speed, within its range) is smallest, by bisection on that time.
+/// Throws geometry::InputError when a drone cannot even fly its home cost.
+DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
+                           Balance balance);
+
+/// Plans a band for a drone: the band's pieces -> its survey path. `estimate`: a quick version
+/// (straight transits) for the makespan search.
+using BandSweep = std::function<SurveyPath(const std::vector<geometry::Ring>& band,
+                                           const DroneResource& drone, bool estimate)>;
+
+/// Region division (Algorithm 4): cuts the area with lines along the sweep (angle_deg, degrees CCW
+/// from x) into one band per drone, areas in proportion to the corrected capabilities (home cost:
+/// twice the distance to the farthest vertex of the area); each cut found by bisection on the area
+/// below it (relative error < 1e-9). Bands are cut from the boustrophedon pieces of the area, so
+/// every band piece is met by each lane in one interval. Balance::makespan: cuts where the longest
+/// flight is shortest. Throws geometry::InputError as divide_path().
+DivisionResult divide_region(const std::vector<geometry::Ring>& rings, double angle_deg,
+                             const std::vector<DroneResource>& drones, Balance balance,
+                             const BandSweep& sweep_band);
+
+/// Area of `rings` (outer counter-clockwise, holes clockwise) with y <= y_cut in the frame rotated
+/// by -angle_deg, m². Exact up to rounding (half-plane clipping of each ring, shoelace).
+double area_below(const std::vector<geometry::Ring>& rings, double angle_deg, double y_cut);
+
+/// A ring clipped to y0 <= y <= y1 in the frame rotated by -angle_deg, in the input frame.
+/// For a ring that every such line meets in one interval the result is one simple ring.
+geometry::Ring clip_band(const geometry::Ring& ring, double angle_deg, double y0, double y1);
+
+}  // namespace swath::planning
