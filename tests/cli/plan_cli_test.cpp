@@ -205,6 +205,57 @@ TEST(PlanCli, RepairPlansTheAreasACrossingRingEncloses) {
   EXPECT_EQ(areas, 2);
 }
 
+TEST(PlanCli, ThreeDronesByPathAndByRegion) {
+  for (const std::string division : {"path", "region"}) {
+    const std::string out = fresh_dir("fleet-" + division);
+    const CliRun run = run_swath(
+        "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --fleet "
+        "share/fleets/three-quads.yaml --division " +
+        division + " -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const json s = json::parse(read_text(out + "/summary.json"));
+    ASSERT_EQ(s["drones"].size(), 3u);
+    EXPECT_EQ(s["division"]["mode"], division);
+    EXPECT_EQ(s["drones"][2]["name"], "charlie");
+    EXPECT_DOUBLE_EQ(s["drones"][2]["speed_m_s"].get<double>(), 8.0);
+    EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.9999);
+    for (int i = 1; i <= 3; ++i) {
+      const json plan = json::parse(read_text(out + "/drone-" + std::to_string(i) + ".plan"));
+      EXPECT_EQ(plan["mission"]["items"].front()["command"], 22);
+      EXPECT_EQ(plan["mission"]["items"].back()["command"], 20);
+    }
+    // Charlie takes off from its own home.
+    const json plan3 = json::parse(read_text(out + "/drone-3.plan"));
+    EXPECT_NEAR(plan3["mission"]["items"][0]["params"][4].get<double>(), 47.3982, 1e-7);
+    int regions = 0;
+    const json g = json::parse(read_text(out + "/mission.geojson"));
+    for (const json& f : g["features"]) regions += f["properties"]["role"] == "region";
+    EXPECT_EQ(regions > 0, division == "region");
+  }
+}
+
+TEST(PlanCli, ShortFleetIsRefusedUnlessPartialIsAllowed) {
+  const std::string out = fresh_dir("short");
+  const std::string args =
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --fleet "
+      "share/fleets/short-range.yaml -o " +
+      out;
+  const CliRun refused = run_swath(args);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("the fleet cannot fly the whole survey:"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("m of path and"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun partial = run_swath(args + " --allow-partial");
+  ASSERT_EQ(partial.exit_code, 0) << partial.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_GT(s["division"]["unflown_path_m"].get<double>(), 0.0);
+  EXPECT_LT(s["coverage"]["covered_fraction"].get<double>(), 1.0);
+  // Each drone flies exactly its range (budget plus home cost, straight legs), no more.
+  for (const json& d : s["drones"])
+    EXPECT_LE(d["path_length_m"].get<double>(), 0.5 * 600 * 5 + 1e-3);
+}
+
 struct BadPlan {
   std::string name, args, fragment;
   friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }
@@ -255,6 +306,21 @@ INSTANTIATE_TEST_SUITE_P(
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
                 "tests/fixtures/zone-across-boundary.geojson",
                 "no-fly zone 0 crosses the area's boundary or another zone"},
+        BadPlan{"fleet_zero_capability",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --fleet "
+                "tests/fixtures/fleet-zero-capability.yaml",
+                "fleet-zero-capability.yaml: drone 1 (zero): capability 0"},
+        BadPlan{"fleet_no_drones",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --fleet "
+                "tests/fixtures/fleet-no-drones.yaml",
+                "'drones' must list at least one drone"},
+        BadPlan{"fleet_home_unreachable",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --fleet "
+                "tests/fixtures/fleet-home-unreachable.yaml",
+                "drone weak: flying to the farthest point of the survey and back"},
+        BadPlan{"zero_drones",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --drones 0",
+                "--drones must be at least 1"},
         BadPlan{"detection_needs_pattern",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --mode detection",
                 "detection mode needs --pattern"}),

@@ -1,0 +1,251 @@
+// Dividing a survey among drones: path pieces, region bands, makespan balance, fleets.
+#include "swath/planning/division.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+#include "random_polygons.hpp"
+#include "swath/geometry/field.hpp"
+#include "swath/geometry/input_error.hpp"
+#include "swath/geometry/predicates.hpp"
+#include "swath/planning/fleet.hpp"
+#include "swath/planning/survey.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+using geometry::Ring;
+
+SurveyPath zigzag_path(int lines, double length, double spacing) {
+  std::vector<SweepLine> l;
+  for (int i = 0; i < lines; ++i) {
+    const double y = i * spacing;
+    l.push_back(i % 2 ? SweepLine{{length, y}, {0, y}} : SweepLine{{0, y}, {length, y}});
+  }
+  return survey_path(l, std::nullopt);
+}
+
+DroneResource drone(std::string name, Point2 home, double capability,
+                    std::optional<double> range = std::nullopt, double speed = 5) {
+  return {std::move(name), home, speed, range, capability};
+}
+
+TEST(CutPath, PiecesConcatenateToThePathExactly) {
+  const SurveyPath path = zigzag_path(7, 300, 40);
+  const std::vector<double> cuts{10, 333.3, 999, 1500.5};
+  const auto pieces = cut_path(path, cuts);
+  ASSERT_EQ(pieces.size(), 5u);
+  std::vector<Point2> joined = pieces[0].points;
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    EXPECT_EQ(pieces[k].points.front(), pieces[k - 1].points.back()) << "pieces meet at the cut";
+    joined.insert(joined.end(), pieces[k].points.begin() + 1, pieces[k].points.end());
+  }
+  // The original points, in order, plus exactly the cut points.
+  std::size_t original = 0;
+  for (const Point2& p : joined)
+    if (original < path.points.size() && p == path.points[original]) ++original;
+  EXPECT_EQ(original, path.points.size());
+  EXPECT_EQ(joined.size(), path.points.size() + cuts.size());
+  double total = 0;
+  for (const SurveyPath& piece : pieces) total += piece.length_m();
+  EXPECT_NEAR(total, path.length_m(), 1e-9 * path.length_m());
+  EXPECT_NEAR(pieces[0].length_m(), 10, 1e-9);
+  EXPECT_NEAR(pieces[1].length_m(), 323.3, 1e-9);
+}
+
+TEST(DividePath, PieceLengthsFollowTheCapabilities) {
+  const SurveyPath path = zigzag_path(9, 400, 30);
+  const std::vector<DroneResource> fleet{drone("a", {0, -50}, 0.5), drone("b", {0, -50}, 0.3),
+                                         drone("c", {0, -50}, 0.2)};
+  const DivisionResult r = divide_path(path, fleet, Balance::capability);
+  ASSERT_EQ(r.drones.size(), 3u);
+  const double shares[3] = {0.5, 0.3, 0.2};
+  double total = 0;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(r.drones[i].path.length_m(), shares[i] * path.length_m(), 1e-6 * path.length_m())
+        << i;
+    EXPECT_NEAR(r.drones[i].share, shares[i], 1e-9);
+    total += r.drones[i].path.length_m();
+  }
+  EXPECT_NEAR(total, path.length_m(), 1e-9 * path.length_m());
+  EXPECT_EQ(r.unflown_path_m, 0.0);
+}
+
+TEST(DividePath, HomeCostComesOffTheRangeBeforeSharing) {
+  // Ranges 3000 and 2000 m, home 100 m from the path's far end: budgets = range - 2 x farthest.
+  const SurveyPath path = zigzag_path(5, 400, 30);
+  double far = 0;
+  for (const Point2& p : path.points) far = std::max(far, geometry::distance({-100, 0}, p));
+  const std::vector<DroneResource> fleet{drone("a", {-100, 0}, 1, 3000.0),
+                                         drone("b", {-100, 0}, 1, 2000.0)};
+  const DivisionResult r = divide_path(path, fleet, Balance::capability);
+  const double b1 = 3000 - 2 * far, b2 = 2000 - 2 * far;
+  EXPECT_NEAR(*r.drones[0].budget_m, b1, 1e-9);
+  EXPECT_NEAR(r.drones[0].path.length_m(), b1 / (b1 + b2) * path.length_m(),
+              1e-6 * path.length_m());
+}
+
+TEST(DividePath, ShortFleetReportsTheUnflownPathExactly) {
+  const SurveyPath path = zigzag_path(10, 500, 30);  // 5000 + 270 m
+  const std::vector<DroneResource> fleet{drone("a", {0, 0}, 1, 2500.0),
+                                         drone("b", {0, 0}, 1, 2000.0)};
+  double far = 0;
+  for (const Point2& p : path.points) far = std::max(far, geometry::distance({0, 0}, p));
+  const DivisionResult r = divide_path(path, fleet, Balance::capability);
+  const double budgets = (2500 - 2 * far) + (2000 - 2 * far);
+  EXPECT_NEAR(r.unflown_path_m, path.length_m() - budgets, 1e-6);
+  EXPECT_NEAR(r.drones[0].path.length_m(), 2500 - 2 * far, 1e-6);
+}
+
+TEST(DividePath, MakespanNeverWorseAndStrictlyBetterWithADistantHome) {
+  test::Rng rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 20; ++k) {
+    const SurveyPath path = zigzag_path(4 + k % 6, 200 + 300 * u(rng), 25);
+    std::vector<DroneResource> fleet;
+    for (int i = 0; i < 2 + k % 3; ++i)
+      fleet.push_back(drone(std::string(1, char('a' + i)), {-500 * u(rng), -500 * u(rng)},
+                            0.2 + u(rng), std::nullopt, 3 + 5 * u(rng)));
+    const DivisionResult prop = divide_path(path, fleet, Balance::capability);
+    const DivisionResult best = divide_path(path, fleet, Balance::makespan);
+    EXPECT_LE(best.makespan_s, prop.makespan_s * (1 + 1e-9)) << k;
+    double total = 0;
+    for (const DroneWork& w : best.drones) total += w.path.length_m();
+    EXPECT_NEAR(total, path.length_m(), 1e-6 * path.length_m()) << k;
+  }
+  // Equal drones, home 1.5 km before the path's start, which runs 2 km away from it: proportional
+  // halves leave the second drone with the long legs; makespan gives it less work.
+  const SurveyPath path = zigzag_path(40, 100, 50);
+  const std::vector<DroneResource> pair{drone("a", {0, -1500}, 0.5), drone("b", {0, -1500}, 0.5)};
+  const DivisionResult prop = divide_path(path, pair, Balance::capability);
+  const DivisionResult best = divide_path(path, pair, Balance::makespan);
+  EXPECT_LT(best.makespan_s, prop.makespan_s * 0.99);
+  EXPECT_NEAR(best.drones[0].estimated_time_s, best.drones[1].estimated_time_s,
+              1e-6 * best.makespan_s);
+}
+
+TEST(DivideRegion, BandsPartitionTheAreaInProportion) {
+  test::Rng rng(8);
+  for (int k = 0; k < 10; ++k) {
+    std::vector<Ring> rings{
+        geometry::normalise_ring(test::random_star_polygon(rng, 12, 200, 400), true).ring};
+    if (k % 2) rings.push_back({{-30, -30}, {-30, 30}, {30, 30}, {30, -30}});  // a hole (clockwise)
+    const double angle = 17.0 * k;
+    const std::vector<DroneResource> fleet{drone("a", {0, -600}, 0.5), drone("b", {0, -600}, 0.2),
+                                           drone("c", {0, -600}, 0.3)};
+    const BandSweep none = [](const std::vector<Ring>&, const DroneResource&, bool) {
+      return SurveyPath{};
+    };
+    const DivisionResult r = divide_region(rings, angle, fleet, Balance::capability, none);
+    double area = 0;
+    for (const Ring& ring : rings) area += geometry::signed_area(ring);
+    double sum = 0;
+    const double shares[3] = {0.5, 0.2, 0.3};
+    for (int i = 0; i < 3; ++i) {
+      double a = 0;
+      for (const Ring& piece : r.drones[i].region) a += geometry::signed_area(piece);
+      EXPECT_NEAR(a / area, shares[i], 1e-9) << k << " drone " << i;
+      sum += a;
+    }
+    EXPECT_NEAR(sum, area, 1e-9 * area) << k;
+    // Pairwise overlap 0 and union = area: sample points lie in exactly one band iff in the area.
+    std::uniform_real_distribution<double> u(-450, 450);
+    for (int s = 0; s < 500; ++s) {
+      const Point2 q{u(rng), u(rng)};
+      bool in_area = geometry::locate_point(q, rings[0]) == geometry::Containment::inside;
+      if (rings.size() > 1 && geometry::locate_point(q, rings[1]) != geometry::Containment::outside)
+        in_area = false;
+      int in_bands = 0;
+      bool on_edge = false;
+      for (const DroneWork& w : r.drones)
+        for (const Ring& piece : w.region) {
+          const auto c = geometry::locate_point(q, piece);
+          in_bands += c == geometry::Containment::inside;
+          on_edge |= c == geometry::Containment::on_boundary;
+        }
+      if (!on_edge) {
+        EXPECT_EQ(in_bands, in_area ? 1 : 0) << k;
+      }
+    }
+  }
+}
+
+TEST(AreaBelow, MatchesClosedForms) {
+  const std::vector<Ring> square{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}};
+  EXPECT_DOUBLE_EQ(area_below(square, 0, 3), 30);
+  EXPECT_DOUBLE_EQ(area_below(square, 0, 20), 100);
+  EXPECT_NEAR(area_below(square, 90, -4), 60, 1e-9);  // frame rotated by -90: y' = -x
+  const std::vector<Ring> holed{{{0, 0}, {10, 0}, {10, 10}, {0, 10}},
+                                {{2, 2}, {2, 4}, {4, 4}, {4, 2}}};
+  EXPECT_DOUBLE_EQ(area_below(holed, 0, 3), 30 - 2);
+}
+
+// ---- whole surveys --------------------------------------------------------------------------
+
+TEST(DividedSurvey, EveryDronesPathStartsAndEndsAtItsHome) {
+  SurveyRequest r;
+  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson");
+  r.camera = find_camera("sony-ilce-qx1", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
+  PhotogrammetryMode m;
+  m.altitude_m = 60;
+  r.mode = m;
+  Fleet fleet = equal_fleet(3, {47.3965, 8.5405, 0});
+  fleet.drones[2].home = geometry::GeoPoint{47.4005, 8.5430, 0};
+  r.fleet = fleet;
+  for (DivisionMode mode : {DivisionMode::path, DivisionMode::region})
+    for (Balance balance : {Balance::capability, Balance::makespan}) {
+      r.division = mode;
+      r.balance = balance;
+      const SurveyPlan plan = plan_survey(r);
+      ASSERT_EQ(plan.drone_missions.size(), 3u);
+      for (std::size_t i = 0; i < 3; ++i) {
+        const DroneMission& d = plan.drone_missions[i];
+        const Point2 home = r.field.frame->to_local(i == 2 ? *fleet.drones[2].home : fleet.home);
+        EXPECT_NEAR(geometry::distance(d.path.front(), home), 0, 1e-6);
+        EXPECT_NEAR(geometry::distance(d.path.back(), home), 0, 1e-6);
+        EXPECT_GT(d.work_length_m, 0);
+      }
+      EXPECT_GE(plan.coverage.covered_fraction, 0.9999);
+      EXPECT_LE(plan.division.makespan_s, plan.division.proportional_makespan_s * (1 + 1e-9));
+    }
+}
+
+TEST(Fleet, BadFleetsAreRefusedWithTheDroneNamed) {
+  auto error = [](const std::string& yaml) {
+    try {
+      parse_fleet(yaml, "fleet.yaml");
+    } catch (const geometry::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string home = "home: {lat: 47.4, lon: 8.5}\n";
+  EXPECT_NE(
+      error(home + "drones:\n  - {name: a, capability: 0}\n").find("drone 1 (a): capability 0"),
+      std::string::npos);
+  EXPECT_NE(error(home + "drones:\n  - {name: a, capability: 1.5}\n").find("outside (0, 1]"),
+            std::string::npos);
+  EXPECT_NE(error(home + "drones: []\n").find("at least one drone"), std::string::npos);
+  EXPECT_NE(error(home + "drones:\n  - {name: a, capability: 0.5}\n  - {name: b, battery_level: 1, "
+                         "endurance_s: 900, speed_m_s: 5}\n")
+                .find("not a mix"),
+            std::string::npos);
+  EXPECT_NE(
+      error(home + "drones:\n  - {name: a, battery_level: 1.2, endurance_s: 900, speed_m_s: 5}\n")
+          .find("battery_level"),
+      std::string::npos);
+  EXPECT_NE(error("drones:\n  - {capability: 1}\n").find("needs 'home'"), std::string::npos);
+  const Fleet f = parse_fleet(
+      home + "drones:\n  - {name: a, battery_level: 0.5, endurance_s: 1200, speed_m_s: 8}\n", "f");
+  EXPECT_DOUBLE_EQ(*f.drones[0].range_m(), 4800.0);
+  EXPECT_THROW(equal_fleet(0, {}), geometry::InputError);
+  // Home unreachable within range.
+  const SurveyPath path = zigzag_path(3, 300, 30);
+  EXPECT_THROW(divide_path(path, {drone("far", {5000, 0}, 1, 4000.0)}, Balance::capability),
+               geometry::InputError);
+}
+
+}  // namespace
+}  // namespace swath::planning
