@@ -196,6 +196,67 @@ DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResour
   return result;
 }
 
+AreaProfile::AreaProfile(const std::vector<Ring>& rings, double angle_deg) {
+  struct Edge {
+    Point2 lo, hi;
+  };
+  std::vector<Edge> edges;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      Point2 a = rotate(ring[i], -angle_deg), b = rotate(ring[(i + 1) % ring.size()], -angle_deg);
+      if (a.y > b.y) std::swap(a, b);
+      y_.push_back(a.y);
+      y_.push_back(b.y);  // a vertex above both its edges is no edge's lower end
+
+      if (a.y != b.y) edges.push_back({a, b});
+    }
+  std::sort(y_.begin(), y_.end());
+  y_.erase(std::unique(y_.begin(), y_.end()), y_.end());
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& a, const Edge& b) { return a.lo.y < b.lo.y; });
+  cumulative_.push_back(0);
+  std::vector<const Edge*> active;
+  std::vector<std::pair<double, double>> crossings;  // (x, dx/dy) at the slab's middle
+  std::size_t next = 0;
+  for (std::size_t k = 0; k + 1 < y_.size(); ++k) {
+    const double h = y_[k + 1] - y_[k], mid = (y_[k] + y_[k + 1]) / 2;
+    while (next < edges.size() && edges[next].lo.y <= mid) active.push_back(&edges[next++]);
+    std::erase_if(active, [mid](const Edge* e) { return e->hi.y <= mid; });
+    crossings.clear();
+    for (const Edge* e : active) {
+      const double dxdy = (e->hi.x - e->lo.x) / (e->hi.y - e->lo.y);
+      crossings.push_back({e->lo.x + dxdy * (mid - e->lo.y), dxdy});
+    }
+    std::sort(crossings.begin(), crossings.end());
+    double width_mid = 0, slope = 0;
+    for (std::size_t i = 0; i + 1 < crossings.size(); i += 2) {  // even-odd: inside between pairs
+      width_mid += crossings[i + 1].first - crossings[i].first;
+      slope += crossings[i + 1].second - crossings[i].second;
+    }
+    width_.push_back(width_mid - slope * h / 2);
+    slope_.push_back(slope);
+    cumulative_.push_back(cumulative_.back() + width_mid * h);  // exact: the width is linear
+  }
+}
+
+double AreaProfile::below(double y) const {
+  if (y_.size() < 2 || y <= y_.front()) return 0.0;
+  if (y >= y_.back()) return total();
+  const auto k =
+      static_cast<std::size_t>(std::upper_bound(y_.begin(), y_.end(), y) - y_.begin()) - 1;
+  const double t = y - y_[k];
+  return cumulative_[k] + width_[k] * t + slope_[k] * t * t / 2;
+}
+
+double AreaProfile::ordinate_for(double area) const {
+  double lo = y_min(), hi = y_max();
+  for (int k = 0; k < 200 && hi - lo > 1e-12 * (1 + std::abs(y_max() - y_min())); ++k) {
+    const double mid = (lo + hi) / 2;
+    (below(mid) < area ? lo : hi) = mid;
+  }
+  return (lo + hi) / 2;
+}
+
 double area_below(const std::vector<Ring>& rings, double angle_deg, double y_cut) {
   double a = 0;
   for (const Ring& ring : rings)
@@ -229,17 +290,9 @@ DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
   std::vector<std::optional<double>> budgets;
   const std::vector<double> w = weights(drones, home_cost, budgets);
   const double total_w = std::accumulate(w.begin(), w.end(), 0.0);
-  const double total_area = area_below(pieces, angle_deg, y_max + 1);
-
-  // The ordinate below which `area` lies: bisection to a relative 1e-12 of the height.
-  auto cut_at = [&](double area) {
-    double lo = y_min, hi = y_max;
-    for (int k = 0; k < 200 && hi - lo > 1e-12 * (1 + std::abs(y_max - y_min)); ++k) {
-      const double mid = (lo + hi) / 2;
-      (area_below(pieces, angle_deg, mid) < area ? lo : hi) = mid;
-    }
-    return (lo + hi) / 2;
-  };
+  const AreaProfile profile(rings, angle_deg);
+  const double total_area = profile.total();
+  auto cut_at = [&](double area) { return profile.ordinate_for(area); };
   auto band = [&](double y0, double y1) {
     std::vector<Ring> out;
     for (const Ring& piece : pieces) {

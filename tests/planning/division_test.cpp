@@ -182,6 +182,30 @@ TEST(AreaBelow, MatchesClosedForms) {
   EXPECT_DOUBLE_EQ(area_below(holed, 0, 3), 30 - 2);
 }
 
+TEST(AreaProfile, AgreesWithClippingOnRandomAreas) {
+  // Two independent computations of the area below a cut: the piecewise-quadratic profile and
+  // half-plane clipping with the shoelace formula.
+  test::Rng rng(12);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 30; ++k) {
+    std::vector<Ring> rings{
+        geometry::normalise_ring(test::random_star_polygon(rng, 5 + k, 100, 400), true).ring};
+    if (k % 3 == 0) rings.push_back({{-40, -40}, {-40, 40}, {40, 40}, {40, -40}});
+    const double angle = 180 * u(rng);
+    const AreaProfile profile(rings, angle);
+    EXPECT_NEAR(
+        profile.total(),
+        geometry::signed_area(rings[0]) + (rings.size() > 1 ? geometry::signed_area(rings[1]) : 0),
+        1e-9 * profile.total());
+    for (int s = 0; s < 20; ++s) {
+      const double y = profile.y_min() + (profile.y_max() - profile.y_min()) * u(rng);
+      EXPECT_NEAR(profile.below(y), area_below(rings, angle, y), 1e-9 * profile.total()) << k;
+    }
+    const double half = profile.ordinate_for(profile.total() / 2);
+    EXPECT_NEAR(area_below(rings, angle, half), profile.total() / 2, 1e-9 * profile.total());
+  }
+}
+
 // ---- whole surveys --------------------------------------------------------------------------
 
 TEST(DividedSurvey, EveryDronesPathStartsAndEndsAtItsHome) {
