@@ -114,6 +114,17 @@ void divide_among_fleet(SurveyPlan& plan, geometry::Point2 plan_home,
     plan.drone_missions.push_back(mission_for_path(static_cast<int>(i + 1), resources[i].home,
                                                    plan.division.drones[i].path, mission_settings,
                                                    leg_route));
+    if (resources[i].range_m && plan.drone_missions.back().path_length_m > *resources[i].range_m) {
+      const std::string what =
+          "drone " + resources[i].name + "'s flight (" +
+          std::to_string(std::lround(plan.drone_missions.back().path_length_m)) +
+          " m) is longer than its range (" + std::to_string(std::lround(*resources[i].range_m)) +
+          " m)";
+      if (!request.allow_partial)
+        throw InputError(
+            what + "; add drones or battery, use --balance makespan, or give --allow-partial");
+      plan.warnings.push_back(what);
+    }
     plan.drone_names.push_back(resources[i].name);
     plan.drone_speeds_m_s.push_back(resources[i].speed_m_s);
   }

@@ -318,6 +318,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --fleet "
                 "tests/fixtures/fleet-home-unreachable.yaml",
                 "drone weak: flying to the farthest point of the survey and back"},
+        BadPlan{"region_beyond_range",
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --fleet "
+                "share/fleets/short-range.yaml "
+                "--division region",
+                "is longer than its range (1500 m)"},
         BadPlan{"zero_drones",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --drones 0",
                 "--drones must be at least 1"},
