@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "swath/geometry/input_error.hpp"
+#include "yaml_input.hpp"
 #include "swath/planning/imaging.hpp"
 
 namespace swath::planning {
@@ -41,13 +42,7 @@ std::string read_text(const std::filesystem::path& path) {
 }  // namespace
 
 Camera parse_camera(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
+  const YAML::Node root = detail::load_yaml(yaml_text, source);
   if (!root.IsMap())
     throw InputError(source + ": a camera file is a YAML mapping of name, sensor and image sizes");
   static const std::set<std::string> known{

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "swath/geometry/input_error.hpp"
+#include "yaml_input.hpp"
 
 namespace swath::planning {
 namespace {
@@ -45,13 +46,7 @@ std::optional<double> Drone::range_m() const {
 }
 
 Fleet parse_fleet(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
+  const YAML::Node root = detail::load_yaml(text, source);
   if (!root.IsMap() || !root["home"] || !root["drones"])
     throw InputError(source + ": a fleet file needs 'home' and 'drones'");
   Fleet fleet;
