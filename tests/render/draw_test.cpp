@@ -1,0 +1,96 @@
+// Pixels at known places of a known scene: a 100 x 100 m square, footprint strips, a path.
+#include "swath/render/image.hpp"
+
+#include <gtest/gtest.h>
+
+namespace swath::render {
+namespace {
+
+using geometry::Point2;
+
+const Color kArea{0.6f, 0.8f, 0.6f, 1};
+const Color kStrip{0.1f, 0.2f, 0.9f, 0.3f};
+const Color kPath{0.9f, 0.1f, 0.1f, 1};
+
+Scene square_scene() {
+  Scene s;
+  s.polygons.push_back({{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}, {{40, 40}, {40, 60}, {60, 60}, {60, 40}}}, kArea});
+  s.strips.push_back({{0, 20}, {100, 20}, 20, kStrip});   // y 10..30
+  s.strips.push_back({{0, 28}, {100, 28}, 20, kStrip});   // y 18..38: overlaps 18..30
+  s.polylines.push_back({{{10, 80}, {90, 80}}, 3, kPath});
+  s.markers.push_back({{95, 95}, 8, kPath, MarkerShape::square});
+  return s;
+}
+
+// The pixel of a world point.
+std::array<int, 3> at(const Image& im, const View& v, Point2 world) {
+  const Point2 p = v.to_pixel(world);
+  const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+  return {im.at(x, y, 0), im.at(x, y, 1), im.at(x, y, 2)};
+}
+
+int channel(float c) { return static_cast<int>(std::lround(c * 255)); }
+
+TEST(Fit, KeepsTheAspectRatioAndCentres) {
+  const View v = fit({0, 0}, {100, 100}, 400, 200, 20);
+  EXPECT_DOUBLE_EQ(v.px_per_m, 1.6);  // height limits: (200 - 40) / 100
+  EXPECT_NEAR(v.to_pixel({50, 50}).x, 200, 1e-9);
+  EXPECT_NEAR(v.to_pixel({50, 50}).y, 100, 1e-9);
+  EXPECT_NEAR(v.to_pixel({0, 100}).y, 20, 1e-9);  // north is up
+  EXPECT_NEAR(v.to_pixel({100, 0}).x - v.to_pixel({0, 0}).x, 160, 1e-9);
+}
+
+TEST(Draw, ColoursAtKnownPlaces) {
+  const View v = fit({0, 0}, {100, 100}, 240, 240, 20);
+  const Image im = draw(square_scene(), v);
+  ASSERT_EQ(im.width, 240);
+  ASSERT_EQ(im.height, 240);
+  // Outside the area: background.
+  EXPECT_EQ(at(im, v, {-5, 50}), (std::array<int, 3>{255, 255, 255}));
+  // Inside, away from everything: the area's colour.
+  EXPECT_EQ(at(im, v, {20, 60}), (std::array<int, 3>{channel(0.6f), channel(0.8f), channel(0.6f)}));
+  // The hole shows the background.
+  EXPECT_EQ(at(im, v, {50, 50}), (std::array<int, 3>{255, 255, 255}));
+  // On the path: its colour.
+  const auto path = at(im, v, {50, 80});
+  EXPECT_NEAR(path[0], channel(0.9f), 2);
+  EXPECT_NEAR(path[1], channel(0.1f), 2);
+  // One strip darkens the area; two overlapping strips darken it more.
+  const auto one = at(im, v, {20, 12}), two = at(im, v, {20, 24}), none = at(im, v, {20, 60});
+  EXPECT_LT(one[0], none[0]);
+  EXPECT_LT(two[0], one[0]);
+  EXPECT_LT(two[1], one[1]);
+  // Blending: one strip over the area is 0.3 strip + 0.7 area.
+  EXPECT_NEAR(one[0], std::lround(255 * (0.3 * 0.1 + 0.7 * 0.6)), 2);
+}
+
+TEST(Draw, SameSceneSameBytes) {
+  const View v = fit({0, 0}, {100, 100}, 300, 200, 10);
+  EXPECT_EQ(encode_png(draw(square_scene(), v)), encode_png(draw(square_scene(), v)));
+  const std::string png = encode_png(draw(square_scene(), v));
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(Draw, ScreenLayerIsInPixels) {
+  Scene s;
+  s.screen_polylines.push_back({{{10, 50}, {110, 50}}, 4, {0, 0, 0, 1}});  // a 100 px bar
+  const View v = fit({0, 0}, {10, 10}, 200, 100, 5);
+  const Image im = draw(s, v);
+  int dark = 0;
+  for (int x = 0; x < im.width; ++x) dark += im.at(x, 50, 0) < 128;
+  EXPECT_NEAR(dark, 100, 2);
+}
+
+TEST(Draw, ImpossibleSizeIsAClearError) {
+  const View v = fit({0, 0}, {10, 10}, 20000, 100, 5);
+  try {
+    draw(Scene{}, v);
+    FAIL();
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace swath::render
