@@ -7,6 +7,7 @@
 #include "classify_command.hpp"
 #include "command.hpp"
 #include "plan_command.hpp"
+#include "render_command.hpp"
 #include "swath/geometry/input_error.hpp"
 
 namespace {
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<ClassifyCommand>());
   commands.push_back(std::make_unique<PlanCommand>());
+  commands.push_back(std::make_unique<RenderCommand>());
   commands.push_back(std::make_unique<CamerasCommand>());
 
   CLI::App app{"swath: drone area survey planner"};

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "coverage_image.hpp"
 #include "data_dir.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/number_text.hpp"
@@ -82,6 +83,19 @@ template <typename E>
 E lookup(const std::map<std::string, E>& table, const std::string& value) {
   return table.at(value);  // CLI11 has already checked membership
 }
+
+}  // namespace
+
+std::pair<int, int> parse_size(const std::string& text) {
+  int w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), " %d x %d %c", &w, &h, &tail) != 2 || w < 64 || h < 64 ||
+      w > 5000 || h > 5000)
+    throw InputError("--size '" + text + "': expected WxH pixels, each 64 to 5000, e.g. 1600x1200");
+  return {w, h};
+}
+
+namespace {
 
 std::string kilometres(double m) {
   return fixed_text(m / 1000, 2) + " km";
@@ -183,6 +197,9 @@ void PlanCommand::setup(CLI::App& app) {
   app.add_flag("--allow-partial", allow_partial_,
                "Plan what a fleet short of range can fly (the summary says what stays unflown) "
                "instead of refusing");
+  app.add_flag("--render", render_,
+               "Also draw coverage.png: the area, camera footprints, paths, home, scale bar");
+  app.add_option("--size", size_, "Size of coverage.png, WxH pixels")->capture_default_str();
   app.add_flag("--repair", repair_,
                "An outer ring that crosses itself: plan the areas it encloses (union of its faces) "
                "instead of refusing it; the summary and a warning say what was done");
@@ -300,7 +317,12 @@ int PlanCommand::run() {
   request.speed_m_s = speed_m_s_;
 
   const planning::SurveyPlan plan = planning::plan_survey(request);
-  const auto files = planning::survey_files(plan);
+  auto files = planning::survey_files(plan);
+  if (render_) {
+    const auto [w, h] = parse_size(size_);
+    const CoverageImage image = coverage_image(files[0].second, files[1].second, w, h, output_);
+    files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
+  }
   planning::write_files_atomically(output_, files);
 
   const planning::Imaging& im = plan.imaging;

@@ -52,6 +52,8 @@ class PlanCommand : public Command {
   std::string division_ = "path";
   std::string balance_ = "capability";
   bool allow_partial_ = false;
+  bool render_ = false;
+  std::string size_ = "1600x1200";
   std::string firmware_ = "ardupilot";
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;

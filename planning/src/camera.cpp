@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "swath/geometry/input_error.hpp"
-#include "yaml_input.hpp"
 #include "swath/planning/imaging.hpp"
+#include "yaml_input.hpp"
 
 namespace swath::planning {
 namespace {

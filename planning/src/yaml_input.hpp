@@ -13,7 +13,8 @@ inline YAML::Node load_yaml(const std::string& text, const std::string& source) 
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw geometry::InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" + e.msg + ")");
+    throw geometry::InputError(source + ": line " + std::to_string(e.mark.line + 1) +
+                               ": invalid YAML (" + e.msg + ")");
   }
 }
 

@@ -20,13 +20,15 @@ using geometry::Point2;
 // RAII: an OSMesa context drawing into our own RGBA buffer, top row first.
 class OffscreenContext {
  public:
-  OffscreenContext(int width, int height) : width_(width), height_(height), buffer_(4 * std::size_t(width) * height) {
+  OffscreenContext(int width, int height)
+      : width_(width), height_(height), buffer_(4 * std::size_t(width) * height) {
     context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 8, 0, nullptr);
-    if (context_ == nullptr) throw RenderError("cannot create an offscreen OpenGL context (OSMesa)");
+    if (context_ == nullptr)
+      throw RenderError("cannot create an offscreen OpenGL context (OSMesa)");
     if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) {
       OSMesaDestroyContext(context_);
-      throw RenderError("cannot draw offscreen at " + std::to_string(width) + " x " + std::to_string(height) +
-                        " pixels (OSMesa refused the buffer)");
+      throw RenderError("cannot draw offscreen at " + std::to_string(width) + " x " +
+                        std::to_string(height) + " pixels (OSMesa refused the buffer)");
     }
     OSMesaPixelStore(OSMESA_Y_UP, 0);
   }
@@ -44,7 +46,9 @@ class OffscreenContext {
   OSMesaContext context_ = nullptr;
 };
 
-void set(const Color& c) { glColor4f(c.r, c.g, c.b, c.a); }
+void set(const Color& c) {
+  glColor4f(c.r, c.g, c.b, c.a);
+}
 
 void quad(Point2 a, Point2 b, Point2 c, Point2 d) {
   glBegin(GL_QUADS);
@@ -74,7 +78,8 @@ void fill_even_odd(const std::vector<std::vector<Point2>>& rings, const Color& c
     glBegin(GL_TRIANGLE_FAN);
     for (const Point2& p : ring) {
       glVertex2d(p.x, p.y);
-      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
+      y1 = std::max(y1, p.y);
     }
     glEnd();
   }
@@ -132,8 +137,8 @@ void marker(Point2 at, double size, MarkerShape shape, const Color& color) {
       disc(at, size / 2);
       break;
     case MarkerShape::square:
-      quad(at + Point2{-size / 2, -size / 2}, at + Point2{size / 2, -size / 2}, at + Point2{size / 2, size / 2},
-           at + Point2{-size / 2, size / 2});
+      quad(at + Point2{-size / 2, -size / 2}, at + Point2{size / 2, -size / 2},
+           at + Point2{size / 2, size / 2}, at + Point2{-size / 2, size / 2});
       break;
     case MarkerShape::triangle:
       glBegin(GL_TRIANGLES);
@@ -155,8 +160,9 @@ Image draw(const Scene& scene, const View& view, int supersample) {
   const int ss = std::max(1, supersample);
   const int w = view.width_px * ss, h = view.height_px * ss;
   if (view.width_px <= 0 || view.height_px <= 0 || w > 16384 || h > 16384)
-    throw RenderError("image size " + std::to_string(view.width_px) + " x " + std::to_string(view.height_px) +
-                      " is out of range (1 to " + std::to_string(16384 / ss) + " pixels a side)");
+    throw RenderError("image size " + std::to_string(view.width_px) + " x " +
+                      std::to_string(view.height_px) + " is out of range (1 to " +
+                      std::to_string(16384 / ss) + " pixels a side)");
   OffscreenContext context(w, h);
   glViewport(0, 0, w, h);
   glMatrixMode(GL_PROJECTION);
@@ -224,9 +230,11 @@ Image draw(const Scene& scene, const View& view, int supersample) {
   cv::cvtColor(big, big_rgb, cv::COLOR_RGBA2RGB);
   cv::resize(big_rgb, small, cv::Size(view.width_px, view.height_px), 0, 0, cv::INTER_AREA);
   for (const Label& label : scene.labels) {
-    const double scale = cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, static_cast<int>(label.height_px), 1);
-    cv::putText(small, label.text, {label.x_px, label.y_px}, cv::FONT_HERSHEY_SIMPLEX, scale, scalar(label.color),
-                std::max(1, static_cast<int>(label.height_px / 12)), cv::LINE_AA);
+    const double scale =
+        cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, static_cast<int>(label.height_px), 1);
+    cv::putText(small, label.text, {label.x_px, label.y_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
+                scalar(label.color), std::max(1, static_cast<int>(label.height_px / 12)),
+                cv::LINE_AA);
   }
   Image image;
   image.width = view.width_px;
@@ -242,6 +250,19 @@ std::string encode_png(const Image& image) {
   std::vector<unsigned char> bytes;
   cv::imencode(".png", bgr, bytes, {cv::IMWRITE_PNG_COMPRESSION, 6});
   return std::string(bytes.begin(), bytes.end());
+}
+
+Image decode_png(const std::string& png) {
+  const std::vector<unsigned char> bytes(png.begin(), png.end());
+  cv::Mat bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  if (bgr.empty()) throw RenderError("not a PNG image");
+  cv::Mat rgb;
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  Image image;
+  image.width = rgb.cols;
+  image.height = rgb.rows;
+  image.rgb.assign(rgb.data, rgb.data + rgb.total() * 3);
+  return image;
 }
 
 }  // namespace swath::render

@@ -14,9 +14,11 @@ const Color kPath{0.9f, 0.1f, 0.1f, 1};
 
 Scene square_scene() {
   Scene s;
-  s.polygons.push_back({{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}, {{40, 40}, {40, 60}, {60, 60}, {60, 40}}}, kArea});
-  s.strips.push_back({{0, 20}, {100, 20}, 20, kStrip});   // y 10..30
-  s.strips.push_back({{0, 28}, {100, 28}, 20, kStrip});   // y 18..38: overlaps 18..30
+  s.polygons.push_back(
+      {{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}, {{40, 40}, {40, 60}, {60, 60}, {60, 40}}},
+       kArea});
+  s.strips.push_back({{0, 20}, {100, 20}, 20, kStrip});  // y 10..30
+  s.strips.push_back({{0, 28}, {100, 28}, 20, kStrip});  // y 18..38: overlaps 18..30
   s.polylines.push_back({{{10, 80}, {90, 80}}, 3, kPath});
   s.markers.push_back({{95, 95}, 8, kPath, MarkerShape::square});
   return s;
@@ -29,7 +31,9 @@ std::array<int, 3> at(const Image& im, const View& v, Point2 world) {
   return {im.at(x, y, 0), im.at(x, y, 1), im.at(x, y, 2)};
 }
 
-int channel(float c) { return static_cast<int>(std::lround(c * 255)); }
+int channel(float c) {
+  return static_cast<int>(std::lround(c * 255));
+}
 
 TEST(Fit, KeepsTheAspectRatioAndCentres) {
   const View v = fit({0, 0}, {100, 100}, 400, 200, 20);

@@ -15,7 +15,9 @@ namespace swath::render {
 struct Image {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgb;
-  std::uint8_t at(int x, int y, int channel) const { return rgb[3 * (static_cast<std::size_t>(y) * width + x) + channel]; }
+  std::uint8_t at(int x, int y, int channel) const {
+    return rgb[3 * (static_cast<std::size_t>(y) * width + x) + channel];
+  }
 };
 
 /// The offscreen context could not be created or used; what() says why.
@@ -31,5 +33,8 @@ Image draw(const Scene& scene, const View& view, int supersample = 3);
 
 /// PNG bytes of the image (deterministic encoder settings).
 std::string encode_png(const Image& image);
+
+/// The image in PNG bytes; throws RenderError if they are not a PNG.
+Image decode_png(const std::string& png);
 
 }  // namespace swath::render

@@ -1,0 +1,56 @@
+#include "render_command.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "coverage_image.hpp"
+#include "swath/geometry/input_error.hpp"
+#include "swath/planning/output_files.hpp"
+
+namespace swath::apps {
+namespace {
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw geometry::InputError(path.string() + ": cannot open (is this a swath plan directory?)");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+void RenderCommand::setup(CLI::App& app) {
+  app.add_option("DIR", dir_, "A directory written by swath plan")->required();
+  app.add_option("--coverage", coverage_, "Coverage picture to write (default DIR/coverage.png)");
+  app.add_option("--paths", paths_, "Also a picture of the flight paths only, without footprints");
+  app.add_option("--size", size_, "Picture size, WxH pixels")->capture_default_str();
+}
+
+int RenderCommand::run() {
+  const std::filesystem::path dir(dir_);
+  const auto [w, h] = parse_size(size_);
+  const std::string geojson =
+      read(dir / "mission.geojson");  // in this order: the message names it first
+  const std::string summary = read(dir / "summary.json");
+  CoverageImage image = coverage_image(geojson, summary, w, h, dir_);
+  const std::filesystem::path coverage =
+      coverage_.empty() ? dir / "coverage.png" : std::filesystem::path(coverage_);
+  std::vector<std::pair<std::filesystem::path, std::string>> out{
+      {coverage, render::encode_png(render::draw(image.scene, image.view))}};
+  if (!paths_.empty()) {
+    image.scene.strips.clear();
+    out.push_back({paths_, render::encode_png(render::draw(image.scene, image.view))});
+  }
+  for (const auto& [path, png] : out) {
+    const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
+    planning::write_files_atomically(parent, {{path.filename().string(), png}});
+    std::cout << "swath render: wrote " << path.string() << '\n';
+  }
+  return kSuccess;
+}
+
+}  // namespace swath::apps
