@@ -8,6 +8,7 @@
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/geometry/repair.hpp"
+#include "swath/planning/number_text.hpp"
 #include "swath/planning/split.hpp"
 
 namespace swath::planning {
@@ -15,14 +16,6 @@ namespace swath::planning {
 using geometry::InputError;
 
 namespace {
-
-std::string fixed1(double v) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(1);
-  s << v;
-  return s.str();
-}
 
 std::string point_text(const geometry::Field& field, geometry::Point2 p) {
   const geometry::GeoPoint g = field.frame->to_geo(p);
@@ -51,8 +44,8 @@ void repair_outer_ring(SurveyPlan& plan) {
   plan.extra_pieces.assign(pieces.begin() + 1, pieces.end());
   plan.warnings.push_back("repaired: the outer ring crosses itself at " +
                           point_text(field, crossing->point) + "; planned the " +
-                          std::to_string(pieces.size()) + " area(s) it encloses, " + fixed1(total) +
-                          " m² in all");
+                          std::to_string(pieces.size()) + " area(s) it encloses, " +
+                          fixed_text(total, 1) + " m² in all");
 }
 
 // Divides the planned survey among the request's fleet: one mission per drone.
@@ -298,8 +291,8 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
       measure_coverage(measured, flown, plan.sweep.angle_deg, plan.imaging.footprint_across_m);
   if (plan.division.unflown_path_m > 0 && !request.allow_partial)
     throw InputError(
-        "the fleet cannot fly the whole survey: " + fixed1(plan.division.unflown_path_m) +
-        " m of path and " + fixed1(plan.coverage.area_m2 - plan.coverage.covered_area_m2) +
+        "the fleet cannot fly the whole survey: " + fixed_text(plan.division.unflown_path_m, 1) +
+        " m of path and " + fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
         " m² of area stay unflown; add drones or battery, or give --allow-partial");
   // Turns and transits outside the area: each path from its first line's start to its last
   // line's end, less the lines' own length outside. The legs to and from home are not counted:
@@ -319,14 +312,15 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   if (const auto& interval = request.camera.min_trigger_interval_s) {
     const double seconds = plan.imaging.trigger_distance_m / plan.speed_m_s;
     if (seconds < *interval)
-      plan.warnings.push_back(
-          "at " + fixed1(plan.speed_m_s) + " m/s the camera must trigger every " + fixed1(seconds) +
-          " s, faster than its " + fixed1(*interval) + " s minimum; fly at most " +
-          fixed1(plan.imaging.trigger_distance_m / *interval) + " m/s");
+      plan.warnings.push_back("at " + fixed_text(plan.speed_m_s, 1) +
+                              " m/s the camera must trigger every " + fixed_text(seconds, 1) +
+                              " s, faster than its " + fixed_text(*interval, 1) +
+                              " s minimum; fly at most " +
+                              fixed_text(plan.imaging.trigger_distance_m / *interval, 1) + " m/s");
   }
   if (request.pattern && plan.imaging.altitude_m > *plan.imaging.h_max_m * (1 + 1e-12))
-    plan.warnings.push_back("the altitude " + fixed1(plan.imaging.altitude_m) +
-                            " m is above h_max " + fixed1(*plan.imaging.h_max_m) +
+    plan.warnings.push_back("the altitude " + fixed_text(plan.imaging.altitude_m, 1) +
+                            " m is above h_max " + fixed_text(*plan.imaging.h_max_m, 1) +
                             " m: the pattern spans fewer pixels than required");
   if (plan.mission.waypoint_count > 700)
     plan.warnings.push_back(std::to_string(plan.mission.waypoint_count) +
