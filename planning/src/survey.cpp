@@ -302,10 +302,15 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   for (const DroneMission* m : missions_of(plan)) {
     if (m->lines.empty()) continue;
     const auto& path = m->path;
-    const auto first = std::find(path.begin(), path.end(), m->lines.front().start);
-    const auto last = std::find(path.rbegin(), path.rend(), m->lines.back().end);
-    for (auto it = first; it != path.end() && it + 1 != path.end() && &*it < &*last; ++it)
-      outside += measure.length_outside(*it, *(it + 1));
+    // From the first line's start to the last line's end, by position in the path.
+    const auto first = static_cast<std::size_t>(
+        std::find(path.begin(), path.end(), m->lines.front().start) - path.begin());
+    const auto last =
+        path.size() - 1 -
+        static_cast<std::size_t>(std::find(path.rbegin(), path.rend(), m->lines.back().end) -
+                                 path.rbegin());
+    for (std::size_t i = first; i < last; ++i)
+      outside += measure.length_outside(path[i], path[i + 1]);
   }
   plan.transit_outside_m = std::max(0.0, outside - plan.coverage.line_length_outside_m);
 

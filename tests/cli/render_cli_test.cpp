@@ -29,7 +29,7 @@ TEST(RenderCli, CoverageImageHasTheSizeAScaleBarAsLongAsItClaimsAndIsRedrawnIden
   int dark = 0;
   for (int x = 0; x < image.width / 2; ++x) dark += image.at(x, row, 0) < 100;
   EXPECT_NEAR(dark, planned.scale_bar_px, 2.0);
-  // Outside the field (left edge, mid height): white; the home marker: dark.
+  // Outside the field (left edge, mid height): white.
   EXPECT_EQ(image.at(3, 300, 0), 255);
   // `swath render DIR` draws the same picture.
   const std::string again = out + "/again.png";
