@@ -9,6 +9,7 @@
 
 #include "swath/energy/expression.hpp"
 #include "swath/geometry/input_error.hpp"
+#include "yaml_fields.hpp"
 
 namespace swath::energy {
 namespace {
@@ -157,13 +158,7 @@ Plan parse_plan(const std::string& text, const std::string& source) {
 }
 
 Plan parse_plan_yaml(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
+  const YAML::Node root = detail::load_yaml(text, source);
   if (!root.IsMap() || !root["stages"] || !root["stages"].IsSequence())
     throw InputError(source + ": a YAML plan is a mapping with a list 'stages'");
   Plan plan;

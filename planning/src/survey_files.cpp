@@ -275,8 +275,14 @@ std::string mission_geojson(const SurveyPlan& plan) {
   for (const DroneMission* m : missions_of(plan)) {
     ordered_json path = ordered_json::array();
     for (const Point2& p : m->path) path.push_back(lon_lat(plan, p));
+    const auto d = static_cast<std::size_t>(m->drone - 1);
+    const double speed = plan.drone_work.empty() ? plan.speed_m_s : plan.drone_speeds_m_s[d];
     features.push_back({{"type", "Feature"},
-                        {"properties", {{"role", "path"}, {"drone", m->drone}}},
+                        {"properties",
+                         {{"role", "path"},
+                          {"drone", m->drone},
+                          {"altitude_m", round_to(plan.imaging.altitude_m, 3)},
+                          {"speed_m_s", round_to(speed, 3)}}},
                         {"geometry", {{"type", "LineString"}, {"coordinates", path}}}});
     for (std::size_t i = 0; i < m->lines.size(); ++i) {
       features.push_back(

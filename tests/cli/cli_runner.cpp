@@ -38,15 +38,22 @@ std::string source_path(const std::string& relative) {
 }
 
 CliRun run_swath(const std::string& args) {
+  return run_program(SWATH_BINARY, args);
+}
+
+CliRun run_swath_energy(const std::string& args) {
+  return run_program(SWATH_ENERGY_BINARY, args);
+}
+
+CliRun run_program(const std::string& binary, const std::string& args) {
   namespace fs = std::filesystem;
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() / ("swath-cli-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path out = dir / ("out" + std::to_string(counter));
   const fs::path err = dir / ("err" + std::to_string(counter++));
-  const std::string command = "cd '" + std::string(SWATH_SOURCE_DIR) + "' && '" + SWATH_BINARY +
-                              "' " + args + " >'" + out.string() + "' 2>'" + err.string() +
-                              "' </dev/null";
+  const std::string command = "cd '" + std::string(SWATH_SOURCE_DIR) + "' && '" + binary + "' " +
+                              args + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
   const int status = std::system(command.c_str());
   CliRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

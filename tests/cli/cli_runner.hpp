@@ -11,8 +11,12 @@ struct CliRun {
   std::string err;
 };
 
-/// Runs `swath <args>` (args are passed to /bin/sh as written) from the source directory.
+/// Runs `binary <args>` (args are passed to /bin/sh as written) from the source directory.
+CliRun run_program(const std::string& binary, const std::string& args);
+/// run_program() of the built `swath`.
 CliRun run_swath(const std::string& args);
+/// run_program() of the built `swath-energy`.
+CliRun run_swath_energy(const std::string& args);
 
 /// A fresh empty directory under the system's temporary directory (removed first if present).
 std::string fresh_dir(const std::string& name);

@@ -33,7 +33,7 @@ TEST(PlanFile, ThePapersSurveyExample) {
   EXPECT_EQ(p.stages[0].computations[1], (Interval{32, 448}));
   EXPECT_EQ(p.stages[4].computations[0],
             (Interval{0, 0}));  // the last stage's computations are off
-  EXPECT_EQ(p.stages[0].line, 13);
+  EXPECT_EQ(p.stages[0].line, 16);
   // The first triggering point sits on the first circle, for any c1 in its bounds.
   const std::vector<std::string> vars{"x", "y", "c1"};
   for (double c1 : {-3000.0, -1000.0, 0.0}) {

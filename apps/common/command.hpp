@@ -1,0 +1,35 @@
+#pragma once
+// A subcommand of `swath` or `swath-energy`: setup() only declares options (parsing binds them to
+// members), run() does the work. Each program registers its commands in its main.cpp.
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace swath::apps {
+
+/// Exit codes of every swath program (documented in --help and the README).
+enum ExitCode : int {
+  kSuccess = 0,
+  kUnexpectedFailure = 1,  ///< a bug or an environment failure (disk full, ...)
+  kBadInput = 2,           ///< bad input file or usage; the message says what and where
+  kCannotFinish = 4,       ///< swath-energy: a drone cannot finish its mission on its battery
+};
+
+class Command {
+ public:
+  virtual ~Command() = default;
+  virtual const char* name() const = 0;
+  virtual const char* description() const = 0;
+  virtual void setup(CLI::App& app) = 0;
+  /// Throws geometry::InputError for bad input; returns the exit code otherwise.
+  virtual int run() = 0;
+};
+
+/// Parses the command line into one of `commands` and runs it: --help, --version, usage errors
+/// (exit 2), geometry::InputError (exit 2, "program command: message"), anything else (exit 1).
+int run_program(const char* program, const char* description, const char* exit_codes,
+                std::vector<std::unique_ptr<Command>>& commands, int argc, char** argv);
+
+}  // namespace swath::apps

@@ -1,0 +1,53 @@
+#include <iostream>
+#include <string>
+
+#include "command.hpp"
+#include "swath/geometry/input_error.hpp"
+
+namespace swath::apps {
+
+int run_program(const char* program, const char* description, const char* exit_codes,
+                std::vector<std::unique_ptr<Command>>& commands, int argc, char** argv) {
+  CLI::App app{description};
+  app.name(program);
+  app.footer(exit_codes);
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(program) + " 0.1.0");
+  std::vector<std::pair<CLI::App*, Command*>> registered;
+  for (auto& command : commands) {
+    CLI::App* sub = app.add_subcommand(command->name(), command->description());
+    sub->footer(exit_codes);
+    command->setup(*sub);
+    registered.emplace_back(sub, command.get());
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << program << ": " << e.what() << " (see " << program << " --help)\n";
+    return kBadInput;
+  }
+
+  for (auto& [sub, command] : registered) {
+    if (!sub->parsed()) continue;
+    try {
+      return command->run();
+    } catch (const swath::geometry::InputError& e) {
+      std::cerr << program << ' ' << command->name() << ": " << e.what() << '\n';
+      return kBadInput;
+    } catch (const std::exception& e) {
+      std::cerr << program << ' ' << command->name() << ": unexpected failure: " << e.what()
+                << '\n';
+      return kUnexpectedFailure;
+    }
+  }
+  return kBadInput;
+}
+
+}  // namespace swath::apps

@@ -1,0 +1,64 @@
+#pragma once
+// Energy, time and state of charge of waypoint missions (swath's mission.geojson or a
+// QGroundControl .plan), drone by drone.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/energy/sim_config.hpp"
+#include "swath/geometry/point.hpp"
+
+namespace swath::energy {
+
+/// One drone's flight as the mission file gives it, in a local frame at `home` (metres, x east,
+/// y north). The drone takes off at home, climbs to the first point's altitude, flies the points
+/// in order and, when `returns_home`, flies back and lands at home.
+struct WaypointMission {
+  std::string drone;  ///< "drone-1", or the file name for a .plan
+  geometry::GeoPoint home;
+  std::vector<geometry::Point2> points;  ///< local metres, in flight order
+  std::vector<double> altitudes_m;       ///< above home, one per point
+  std::vector<double> speeds_mps;        ///< ground speed of the leg into each point; 0: unknown
+  bool returns_home = true;
+};
+
+/// Reads every drone's mission: a GeoJSON FeatureCollection (features with role "path", their
+/// "drone", "altitude_m" and "speed_m_s" properties, and a "home" point; a LineString with 3-D
+/// coordinates needs no altitude_m) or a QGC .plan (takeoff, waypoint, land, return-to-launch,
+/// change-speed items, also inside survey complex items). Throws geometry::InputError naming the
+/// file, the feature or item, and the problem.
+std::vector<WaypointMission> read_waypoint_missions(const std::string& path);
+std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
+                                                     const std::string& source);
+
+/// A moment of the flight.
+struct BudgetPoint {
+  double t_s = 0.0;
+  geometry::Point2 position;  ///< local metres
+  geometry::GeoPoint geo;
+  double altitude_m = 0.0;
+  double soc = 0.0;
+  double energy_j = 0.0;  ///< used so far
+};
+
+/// A drone's budget. Legs are flown at constant speed (accelerations and corner turns are not
+/// modelled), climbs and descents vertically at the profile's rates.
+struct DroneBudget {
+  std::string drone;
+  double distance_m = 0.0;  ///< horizontal
+  double flight_time_s = 0.0;
+  double energy_j = 0.0;
+  double landing_soc = 0.0;     ///< negative: the charge it would lack (it cannot finish)
+  double reserve_margin = 0.0;  ///< landing_soc - reserve_soc (negative: into the reserve)
+  std::optional<BudgetPoint> reserve_crossed;  ///< where the SoC falls to the reserve
+  std::optional<BudgetPoint> battery_empty;    ///< where it falls to 0
+  std::vector<BudgetPoint> timeline;           ///< take-off, every point, landing
+  bool can_finish() const { return !reserve_crossed; }
+};
+
+/// The budget of one mission with one drone profile. Throws geometry::InputError when the drone
+/// cannot fly a leg at all (wind stronger than its airspeed, power beyond the battery's maximum).
+DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone);
+
+}  // namespace swath::energy

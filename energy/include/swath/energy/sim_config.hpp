@@ -1,0 +1,73 @@
+#pragma once
+// Configuration of the flight simulation (DESIGN.md §11) and of a drone for mission budgets.
+
+#include <string>
+#include <vector>
+
+#include "swath/energy/battery.hpp"
+#include "swath/energy/energy_estimator.hpp"
+#include "swath/energy/flight.hpp"
+#include "swath/energy/power_model.hpp"
+#include "swath/geometry/point.hpp"
+
+namespace swath::energy {
+
+/// A measured power signal to replay: rows "t_s, watts" (a header line is allowed), t increasing.
+struct PowerTrace {
+  std::vector<double> t_s, power_w;
+  /// Linear interpolation; NaN outside the recorded span (no measurement).
+  double at(double t) const;
+};
+
+PowerTrace parse_power_trace(const std::string& text, const std::string& source);
+
+/// `swath-energy run --config`. Positions are local metres (x east, y north) like the plan's.
+struct SimConfig {
+  std::string source;
+  double time_step_s = 0.01;       ///< (0, 1]
+  double speed_mps = 12.0;         ///< commanded ground speed, > 0
+  double max_airspeed_mps = 25.0;  ///< >= speed_mps would be flown in calm air
+  Wind wind;
+  double trigger_radius_m = 5.0;   ///< > 0
+  geometry::Point2 start;          ///< take-off point, local metres
+  double max_time_s = 4 * 3600.0;  ///< the simulation gives up after this
+  double stall_time_s = 300.0;     ///< no approach to the triggering point for this long: stall
+  double output_interval_s = 0.1;  ///< rows of trajectory.csv and energy.csv, >= time_step_s
+  std::vector<double> trajectory_parameters;   ///< c1.., clamped into each stage's bounds
+  std::vector<double> computation_parameters;  ///< one per computation, clamped likewise
+  std::vector<double> trajectory_gains_w;      ///< nu: W per unit of each c (eq. 8), default 0
+  int fourier_order = 3;                       ///< r, 0..20
+  double initial_period_s = 60.0;              ///< T before re-estimation, > 0
+  bool estimate_period = true;  ///< re-estimate T each period from the measured signal
+  KalmanSettings kalman;
+  double mpc_horizon_s = 6.0;  ///< used by the replanner (next issue)
+  double mpc_period_s = 0.0;   ///< 0: once per energy period
+  Battery battery;
+  PowerProfile power;
+  std::string replay_csv;  ///< measured power to replay instead of the power model
+  PowerTrace replay;       ///< its contents (read with the config; empty: model)
+};
+
+/// Parses the YAML configuration; `source` names it in errors. Unknown keys, wrong types and out
+/// of range values throw geometry::InputError naming the file, the line and the key.
+SimConfig parse_sim_config(const std::string& text, const std::string& source);
+SimConfig read_sim_config(const std::string& path);
+
+/// A drone for `swath-energy budget`: how it flies a waypoint mission and what that costs.
+struct DroneProfile {
+  std::string source;
+  std::string name = "drone";
+  double speed_mps = 0.0;          ///< cruise ground speed; 0: the mission's own speed
+  double climb_speed_mps = 3.0;    ///< > 0
+  double descent_speed_mps = 2.0;  ///< > 0
+  double max_airspeed_mps = 25.0;
+  Wind wind;
+  Battery battery;
+  PowerProfile power;
+  std::vector<double> computation_parameters;  ///< one per power.computations entry
+};
+
+DroneProfile parse_drone_profile(const std::string& text, const std::string& source);
+DroneProfile read_drone_profile(const std::string& path);
+
+}  // namespace swath::energy

@@ -1,0 +1,72 @@
+#pragma once
+// Flight simulation of a plan of stages with the energy model running alongside (paper 004
+// Algorithm 1 without the replanning: the parameters stay fixed).
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "swath/energy/plan.hpp"
+#include "swath/energy/sim_config.hpp"
+#include "swath/geometry/point.hpp"
+
+namespace swath::energy {
+
+/// How a simulation ended. A stalled plan (the field vanishes, or the drone stops approaching its
+/// triggering point) is bad input and throws geometry::InputError instead.
+enum class FlightStatus {
+  completed,      ///< the last triggering point was reached
+  battery_empty,  ///< the state of charge reached 0 first
+  time_limit,     ///< max_time_s passed first
+};
+
+const char* to_string(FlightStatus status);
+
+struct FlightSample {
+  double t_s = 0.0;
+  geometry::Point2 position;
+  int stage = 0;            ///< 0-based
+  double course_deg = 0.0;  ///< ground track, compass bearing (0 north, 90 east)
+  double ground_speed_mps = 0.0;
+  double airspeed_mps = 0.0;
+  double path_distance_m = 0.0;  ///< |phi| / |grad phi|: distance to the stage's curve, 1st order
+  double measured_w = 0.0;       ///< NaN where a replayed trace has no value
+  double model_w = 0.0;
+  double soc = 0.0;
+  double predicted_total_j = 0.0;  ///< energy used so far + the model's prediction of the rest
+  std::vector<double> coefficients;
+};
+
+struct StageEntry {
+  int stage = 0;
+  double t_s = 0.0;
+  geometry::Point2 position;
+};
+
+struct SimulationResult {
+  FlightStatus status = FlightStatus::completed;
+  std::vector<FlightSample> samples;  ///< every output interval, and the last step
+  std::vector<StageEntry> stages;     ///< when each stage began
+  double flight_time_s = 0.0;
+  double energy_j = 0.0;  ///< measured (model power where no measurement)
+  double final_soc = 0.0;
+  std::optional<double> reserve_crossed_s;
+  double planned_time_s = 0.0;       ///< flight time of the path at these parameters
+  double first_period_s = 0.0;       ///< predictions are scored from here on
+  double mean_relative_error = 0.0;  ///< |predicted total - actual total| / actual, after that
+  double max_relative_error = 0.0;
+  long corrections = 0;  ///< Kalman corrections applied
+  long steps = 0;
+  double final_period_s = 0.0;
+};
+
+/// Flies `plan` with `config`. `progress` (optional) gets the fraction of the planned time flown,
+/// now and then. Throws geometry::InputError for a plan that cannot be flown (stall, field zero,
+/// wind stronger than the drone, triggering point undefined) naming the stage's line.
+SimulationResult simulate(const Plan& plan, const SimConfig& config,
+                          const std::function<void(double)>& progress = {});
+
+/// Only the flight (no power, no estimator): how long the plan takes with these settings.
+double planned_flight_time_s(const Plan& plan, const SimConfig& config);
+
+}  // namespace swath::energy

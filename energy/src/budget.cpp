@@ -1,0 +1,305 @@
+#include "swath/energy/budget.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "swath/geometry/input_error.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/planning/number_text.hpp"
+
+namespace swath::energy {
+namespace {
+
+using geometry::GeoPoint;
+using geometry::InputError;
+using geometry::Point2;
+using nlohmann::json;
+
+double finite_number(const json& j, const std::string& where) {
+  if (!j.is_number() || !std::isfinite(j.get<double>()))
+    throw InputError(where + " must be a number");
+  return j.get<double>();
+}
+
+GeoPoint lon_lat(const json& c, const std::string& where) {
+  if (!c.is_array() || c.size() < 2)
+    throw InputError(where + ": a position is [lon, lat] or [lon, lat, alt]");
+  const GeoPoint g{finite_number(c[1], where + " (latitude)"),
+                   finite_number(c[0], where + " (longitude)"), 0.0};
+  if (std::abs(g.lat_deg) > 90 || std::abs(g.lon_deg) > 180)
+    throw InputError(where + ": latitude must be within ±90 and longitude within ±180 degrees");
+  return g;
+}
+
+std::vector<WaypointMission> parse_geojson(const json& root, const std::string& source) {
+  if (!root.contains("features") || !root["features"].is_array())
+    throw InputError(source + ": a mission GeoJSON is a FeatureCollection with 'features'");
+  const json& features = root["features"];
+  std::optional<GeoPoint> home;
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const json& f = features[i];
+    if (f.value("/properties/role"_json_pointer, std::string()) == "home")
+      home = lon_lat(f.value("/geometry/coordinates"_json_pointer, json()),
+                     source + ": feature " + std::to_string(i));
+  }
+  std::vector<WaypointMission> out;
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const json& f = features[i];
+    const std::string where = source + ": feature " + std::to_string(i);
+    if (f.value("/properties/role"_json_pointer, std::string()) != "path") continue;
+    const json& coords = f.value("/geometry/coordinates"_json_pointer, json());
+    if (f.value("/geometry/type"_json_pointer, std::string()) != "LineString" ||
+        !coords.is_array() || coords.size() < 2)
+      throw InputError(where + ": a path is a LineString of at least two positions");
+    const json& props = f["properties"];
+    WaypointMission m;
+    m.drone = props.contains("drone") && props["drone"].is_number_integer()
+                  ? "drone-" + std::to_string(props["drone"].get<int>())
+                  : "drone-" + std::to_string(out.size() + 1);
+    m.home = home ? *home : lon_lat(coords[0], where);
+    const geometry::LocalFrame frame(m.home);
+    const bool has_alt = props.contains("altitude_m");
+    const double alt = has_alt ? finite_number(props["altitude_m"], where + ": altitude_m") : 0.0;
+    const double speed = props.contains("speed_m_s")
+                             ? finite_number(props["speed_m_s"], where + ": speed_m_s")
+                             : 0.0;
+    if (speed < 0) throw InputError(where + ": speed_m_s must be >= 0");
+    for (std::size_t k = 0; k < coords.size(); ++k) {
+      const std::string at = where + ", position " + std::to_string(k);
+      const GeoPoint g = lon_lat(coords[k], at);
+      double a = alt;
+      if (!has_alt) {
+        if (coords[k].size() < 3)
+          throw InputError(where +
+                           ": the path has no altitude (give properties.altitude_m or "
+                           "[lon, lat, alt] positions)");
+        a = finite_number(coords[k][2], at + " (altitude)");
+      }
+      m.points.push_back(frame.to_local(g));
+      m.altitudes_m.push_back(a);
+      m.speeds_mps.push_back(speed);
+    }
+    // swath's paths start and end at home: the take-off and landing legs are implied.
+    const double home_gap = std::hypot(m.points.front().x, m.points.front().y);
+    if (home_gap < 0.5) {
+      m.points.erase(m.points.begin());
+      m.altitudes_m.erase(m.altitudes_m.begin());
+      m.speeds_mps.erase(m.speeds_mps.begin());
+    }
+    const Point2 last = m.points.back();
+    m.returns_home = std::hypot(last.x, last.y) < 0.5;
+    if (m.returns_home && m.points.size() > 1) {
+      m.points.pop_back();
+      m.altitudes_m.pop_back();
+      m.speeds_mps.pop_back();
+    }
+    out.push_back(std::move(m));
+  }
+  if (out.empty()) throw InputError(source + ": no feature with role 'path' (a drone's flight)");
+  return out;
+}
+
+// QGC items in flight order, complex (survey) items flattened.
+void flatten_items(const json& items, std::vector<const json*>& out) {
+  for (const json& item : items) {
+    if (item.value("type", std::string()) == "ComplexItem") {
+      const json* inner = nullptr;
+      if (item.contains("TransectStyleComplexItem") &&
+          item["TransectStyleComplexItem"].contains("Items"))
+        inner = &item["TransectStyleComplexItem"]["Items"];
+      if (inner && inner->is_array()) flatten_items(*inner, out);
+      continue;
+    }
+    out.push_back(&item);
+  }
+}
+
+std::vector<WaypointMission> parse_qgc(const json& root, const std::string& source) {
+  if (!root.contains("mission") || !root["mission"].is_object())
+    throw InputError(source + ": a QGC plan has a 'mission' object");
+  const json& mission = root["mission"];
+  const json home_pos = mission.value("plannedHomePosition", json());
+  if (!home_pos.is_array() || home_pos.size() < 2)
+    throw InputError(source + ": mission.plannedHomePosition must be [lat, lon, alt]");
+  WaypointMission m;
+  m.drone = std::filesystem::path(source).stem().string();
+  m.home = {finite_number(home_pos[0], source + ": plannedHomePosition latitude"),
+            finite_number(home_pos[1], source + ": plannedHomePosition longitude"), 0.0};
+  if (std::abs(m.home.lat_deg) > 90 || std::abs(m.home.lon_deg) > 180)
+    throw InputError(source + ": plannedHomePosition is not a latitude/longitude");
+  const bool multirotor = mission.value("vehicleType", 2) == 2;
+  double speed = 0.0;
+  const char* speed_key = multirotor ? "hoverSpeed" : "cruiseSpeed";
+  if (mission.contains(speed_key))
+    speed = finite_number(mission[speed_key], source + ": mission." + speed_key);
+  const geometry::LocalFrame frame(m.home);
+  std::vector<const json*> items;
+  if (!mission.contains("items") || !mission["items"].is_array())
+    throw InputError(source + ": mission.items must be a list");
+  flatten_items(mission["items"], items);
+  m.returns_home = false;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const json& item = *items[i];
+    const std::string where = source + ": mission item " + std::to_string(i + 1);
+    const int command = item.value("command", -1);
+    const json params = item.value("params", json());
+    auto param = [&](std::size_t k) {
+      if (!params.is_array() || params.size() < 7)
+        throw InputError(where + ": params must hold 7 values");
+      return finite_number(params[k], where + ": params[" + std::to_string(k) + "]");
+    };
+    switch (command) {
+      case 16:    // waypoint
+      case 22:    // takeoff
+      case 21: {  // land
+        const GeoPoint g{param(4), param(5), 0.0};
+        if (std::abs(g.lat_deg) > 90 || std::abs(g.lon_deg) > 180)
+          throw InputError(where + ": latitude/longitude out of range");
+        if (command == 22 && g.lat_deg == 0 && g.lon_deg == 0) {
+          m.points.push_back({0.0, 0.0});  // take-off where the drone stands
+        } else {
+          m.points.push_back(frame.to_local(g));
+        }
+        m.altitudes_m.push_back(command == 21 ? 0.0 : param(6));
+        m.speeds_mps.push_back(speed);
+        if (command == 21) {
+          m.returns_home = false;
+          i = items.size();  // landing ends the mission
+        }
+        break;
+      }
+      case 20:  // return to launch
+        m.returns_home = true;
+        i = items.size();
+        break;
+      case 178:  // change speed: params[1] m/s, -1 keeps it
+        if (param(1) > 0) speed = param(1);
+        break;
+      default:
+        break;  // camera, gimbal and other actions take no flight time here
+    }
+  }
+  if (m.points.empty()) throw InputError(source + ": the mission has no positional item");
+  return {m};
+}
+
+BudgetPoint point_at(const geometry::LocalFrame& frame, double t, Point2 p, double alt, double soc,
+                     double energy) {
+  return {t, p, frame.to_geo(p, alt), alt, soc, energy};
+}
+
+}  // namespace
+
+std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
+                                                     const std::string& source) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError(source + ": invalid JSON at byte " + std::to_string(e.byte) + "");
+  }
+  if (!root.is_object()) throw InputError(source + ": expected a JSON object");
+  if (root.value("type", std::string()) == "FeatureCollection") return parse_geojson(root, source);
+  if (root.value("fileType", std::string()) == "Plan") return parse_qgc(root, source);
+  throw InputError(source +
+                   ": neither a GeoJSON FeatureCollection (mission.geojson) nor a QGC plan");
+}
+
+std::vector<WaypointMission> read_waypoint_missions(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the mission file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return parse_waypoint_missions(s.str(), path);
+}
+
+DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
+  const geometry::LocalFrame frame(mission.home);
+  const Battery& b = drone.battery;
+  const PowerProfile& power = drone.power;
+  const double always_w =
+      power.payload_w + computations_power_w(power.computations, drone.computation_parameters);
+  const double climb_w = power.climb_w > 0 ? power.climb_w : 1.3 * power.mechanical.cruise_w;
+  const double descent_w = power.descent_w > 0 ? power.descent_w : 0.8 * power.mechanical.cruise_w;
+  const Point2 wind = wind_velocity(drone.wind);
+
+  DroneBudget out;
+  out.drone = mission.drone;
+  double t = 0.0, soc = b.initial_soc, energy = 0.0;
+  Point2 at{0.0, 0.0};
+  double alt = 0.0;
+  out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
+
+  // Flies from (at, alt) to (to, to_alt) in `seconds` at `watts`, noting the reserve and empty
+  // crossings on the way.
+  auto segment = [&](Point2 to, double to_alt, double seconds, double watts,
+                     const std::string& what) {
+    if (std::isnan(battery_current_a(b, watts)))
+      throw InputError(drone.source + ": " + mission.drone + " would draw " +
+                       planning::fixed_text(watts, 0) + " W " + what +
+                       ", beyond what the battery can deliver (" +
+                       planning::fixed_text(max_power_w(b), 0) + " W)");
+    auto crossing = [&](double level) -> std::optional<BudgetPoint> {
+      const double s = seconds_to_soc(b, soc, level, watts);
+      if (soc <= level || s > seconds) return std::nullopt;
+      const double f = seconds > 0 ? s / seconds : 0.0;
+      const Point2 p{at.x + f * (to.x - at.x), at.y + f * (to.y - at.y)};
+      return point_at(frame, t + s, p, alt + f * (to_alt - alt), level, energy + watts * s);
+    };
+    if (!out.reserve_crossed) out.reserve_crossed = crossing(b.reserve_soc);
+    if (!out.battery_empty) out.battery_empty = crossing(0.0);
+    soc = soc_after(b, soc, watts, seconds);
+    energy += watts * seconds;
+    t += seconds;
+    at = to;
+    alt = to_alt;
+  };
+  auto vertical = [&](double to_alt) {
+    if (to_alt > alt)
+      segment(at, to_alt, (to_alt - alt) / drone.climb_speed_mps, climb_w + always_w, "climbing");
+    else if (to_alt < alt)
+      segment(at, to_alt, (alt - to_alt) / drone.descent_speed_mps, descent_w + always_w,
+              "descending");
+  };
+  auto leg = [&](Point2 to, double leg_speed) {
+    const double dx = to.x - at.x, dy = to.y - at.y;
+    const double length = std::hypot(dx, dy);
+    if (length < 1e-9) return;
+    const double speed = drone.speed_mps > 0 ? drone.speed_mps : leg_speed;
+    if (!(speed > 0))
+      throw InputError(drone.source + ": the mission gives no speed for " + mission.drone +
+                       "; set speed_mps in the drone profile");
+    const auto cs = course_speed({dx / length, dy / length}, wind, speed, drone.max_airspeed_mps);
+    if (!cs)
+      throw InputError(drone.source + ": the wind is stronger than " + mission.drone +
+                       "'s maximum airspeed on one of its legs");
+    const double watts = level_flight_power_w(power.mechanical, cs->airspeed_mps) + always_w;
+    out.distance_m += length;
+    segment(to, alt, length / cs->ground_speed_mps, watts, "in cruise");
+  };
+
+  for (std::size_t i = 0; i < mission.points.size(); ++i) {
+    const double target_alt = mission.altitudes_m[i];
+    const bool first = i == 0;
+    if (first) vertical(target_alt);  // take off, then fly over
+    leg(mission.points[i], mission.speeds_mps[i]);
+    if (!first) vertical(target_alt);
+    out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
+  }
+  if (mission.returns_home) {
+    leg({0.0, 0.0}, mission.speeds_mps.back());
+    out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
+  }
+  vertical(0.0);
+  out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
+  out.flight_time_s = t;
+  out.energy_j = energy;
+  out.landing_soc = soc;
+  out.reserve_margin = soc - b.reserve_soc;
+  return out;
+}
+
+}  // namespace swath::energy

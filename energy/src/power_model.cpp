@@ -1,0 +1,63 @@
+#include "swath/energy/power_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace swath::energy {
+
+double level_flight_power_w(const MechanicalPower& m, double airspeed_mps) {
+  const double ratio = airspeed_mps / m.cruise_airspeed_mps;
+  return m.cruise_w * ((1.0 - m.parasitic_share) + m.parasitic_share * ratio * ratio * ratio);
+}
+
+double mechanical_power_w(const MechanicalPower& m, double airspeed_mps,
+                          double lateral_accel_mps2) {
+  constexpr double kGravity = 9.80665;
+  const double a = lateral_accel_mps2 / kGravity;
+  return level_flight_power_w(m, airspeed_mps) * std::pow(1.0 + a * a, 0.75);
+}
+
+double computation_power_w(const PowerCurve& curve, double parameter) {
+  if (parameter == 0.0 || curve.points.empty()) return 0.0;
+  const auto& p = curve.points;
+  if (p.size() == 1) return std::max(0.0, p[0].second);
+  // The segment that holds the parameter, or the end segment it extends.
+  std::size_t i = 1;
+  while (i + 1 < p.size() && parameter > p[i].first) ++i;
+  const auto [c0, w0] = p[i - 1];
+  const auto [c1, w1] = p[i];
+  return std::max(0.0, w0 + (w1 - w0) * (parameter - c0) / (c1 - c0));
+}
+
+double computations_power_w(const std::vector<PowerCurve>& curves,
+                            const std::vector<double>& parameters) {
+  double sum = 0.0;
+  for (std::size_t j = 0; j < curves.size() && j < parameters.size(); ++j)
+    sum += computation_power_w(curves[j], parameters[j]);
+  return sum;
+}
+
+double GaussianNoise::uniform() {
+  // SplitMix64: a fixed, portable sequence.
+  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;  // (0, 1)
+}
+
+double GaussianNoise::next() {
+  if (sigma_ == 0.0) return 0.0;
+  if (has_spare_) {
+    has_spare_ = false;
+    return sigma_ * spare_;
+  }
+  const double r = std::sqrt(-2.0 * std::log(uniform()));
+  const double angle = 2.0 * std::numbers::pi * uniform();
+  spare_ = r * std::sin(angle);
+  has_spare_ = true;
+  return sigma_ * r * std::cos(angle);
+}
+
+}  // namespace swath::energy

@@ -1,0 +1,119 @@
+#include "yaml_fields.hpp"
+
+#include <cmath>
+
+#include "swath/geometry/input_error.hpp"
+#include "swath/planning/number_text.hpp"
+
+namespace swath::energy::detail {
+
+using geometry::InputError;
+
+YAML::Node load_yaml(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
+                     e.msg + ")");
+  }
+}
+
+YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path)
+    : node_(node), source_(std::move(source)), path_(std::move(path)) {
+  if (node_ && !node_.IsNull() && !node_.IsMap()) {
+    std::string msg = source_ + ": line " + std::to_string(node_.Mark().line + 1) + ": ";
+    msg += path_.empty() ? std::string("the file") : "'" + path_ + "'";
+    msg += " must be a mapping of keys";
+    throw InputError(msg);
+  }
+}
+
+std::string YamlMap::where(const char* key) const {
+  const YAML::Node n = node_ && node_.IsMap() && node_[key] ? node_[key] : node_;
+  std::string s = source_;
+  if (n && n.Mark().line >= 0) s += ": line " + std::to_string(n.Mark().line + 1);
+  s += ": ";
+  s += path_.empty() ? std::string(key) : path_ + "." + key;
+  return s;
+}
+
+void YamlMap::allow(std::initializer_list<const char*> keys) const {
+  if (!node_ || !node_.IsMap()) return;
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.as<std::string>();
+    bool ok = false;
+    for (const char* allowed : keys) ok = ok || k == allowed;
+    if (!ok) {
+      std::string msg = source_ + ": line " + std::to_string(kv.first.Mark().line + 1) +
+                        ": unknown key '" + (path_.empty() ? k : path_ + "." + k) + "' (known:";
+      for (const char* allowed : keys) {
+        msg += ' ';
+        msg += allowed;
+      }
+      msg += ")";
+      throw InputError(msg);
+    }
+  }
+}
+
+double YamlMap::number(const char* key, double fallback, double lo, double hi, bool open_lo) const {
+  if (!node_ || !node_.IsMap() || !node_[key]) return fallback;
+  double v = 0.0;
+  try {
+    v = node_[key].as<double>();
+  } catch (const YAML::Exception&) {
+    throw InputError(where(key) + " must be a number");
+  }
+  if (!std::isfinite(v) || v < lo || v > hi || (open_lo && v == lo)) {
+    std::string msg = where(key) + " must be ";
+    if (hi == kInf) {
+      msg += open_lo ? "> " : ">= ";
+      msg += planning::fixed_text(lo, 4);
+    } else {
+      msg += "in ";
+      msg += open_lo ? "(" : "[";
+      msg += planning::fixed_text(lo, 4) + ", " + planning::fixed_text(hi, 4) + "]";
+    }
+    msg += ", found " + node_[key].as<std::string>();
+    throw InputError(msg);
+  }
+  return v;
+}
+
+bool YamlMap::flag(const char* key, bool fallback) const {
+  if (!node_ || !node_.IsMap() || !node_[key]) return fallback;
+  try {
+    return node_[key].as<bool>();
+  } catch (const YAML::Exception&) {
+    throw InputError(where(key) + " must be true or false");
+  }
+}
+
+std::string YamlMap::text(const char* key, const std::string& fallback) const {
+  if (!node_ || !node_.IsMap() || !node_[key]) return fallback;
+  if (!node_[key].IsScalar()) throw InputError(where(key) + " must be a text");
+  return node_[key].as<std::string>();
+}
+
+std::vector<double> YamlMap::numbers(const char* key) const {
+  std::vector<double> out;
+  if (!node_ || !node_.IsMap() || !node_[key]) return out;
+  const YAML::Node n = node_[key];
+  if (!n.IsSequence()) throw InputError(where(key) + " must be a list of numbers");
+  for (const YAML::Node& v : n) {
+    try {
+      out.push_back(v.as<double>());
+    } catch (const YAML::Exception&) {
+      throw InputError(where(key) + " must be a list of numbers");
+    }
+    if (!std::isfinite(out.back())) throw InputError(where(key) + " must hold finite numbers");
+  }
+  return out;
+}
+
+YamlMap YamlMap::map(const char* key) const {
+  const YAML::Node n = node_ && node_.IsMap() && node_[key] ? node_[key] : YAML::Node();
+  return YamlMap(n, source_, path_.empty() ? key : path_ + "." + key);
+}
+
+}  // namespace swath::energy::detail

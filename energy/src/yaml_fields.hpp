@@ -1,0 +1,41 @@
+#pragma once
+// Internal: reading YAML mappings with errors that name the file, the line and the key path.
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace swath::energy::detail {
+
+YAML::Node load_yaml(const std::string& text, const std::string& source);
+
+/// A mapping at `path` ("battery", "power.mechanical", "" for the root) of `source`.
+class YamlMap {
+ public:
+  YamlMap(const YAML::Node& node, std::string source, std::string path);
+
+  /// Throws for a key not in `keys` (a typo would otherwise be silently ignored).
+  void allow(std::initializer_list<const char*> keys) const;
+  bool has(const char* key) const { return static_cast<bool>(node_[key]); }
+  /// The number at `key` (or `fallback` when absent), which must lie in [lo, hi]; `open_lo`
+  /// excludes lo.
+  double number(const char* key, double fallback, double lo, double hi, bool open_lo = false) const;
+  bool flag(const char* key, bool fallback) const;
+  std::string text(const char* key, const std::string& fallback) const;
+  std::vector<double> numbers(const char* key) const;  ///< a list of numbers (absent: empty)
+  YamlMap map(const char* key) const;                  ///< absent: an empty mapping
+  /// "source: line N: path.key" for messages about a key.
+  std::string where(const char* key) const;
+  const YAML::Node& node() const { return node_; }
+
+ private:
+  YAML::Node node_;
+  std::string source_, path_;
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace swath::energy::detail

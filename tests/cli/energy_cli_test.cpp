@@ -1,0 +1,147 @@
+// swath-energy: this input gives this output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.hpp"
+
+namespace swath::test {
+namespace {
+
+using nlohmann::json;
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> row;
+    std::istringstream cells(line);
+    std::string c;
+    while (std::getline(cells, c, ',')) row.push_back(c);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(EnergyCli, RunsThePapersSurvey) {
+  const std::string out = fresh_dir("energy-run");
+  const CliRun run =
+      run_swath_energy("run plans/survey.plan --config plans/survey-sim.yaml --progress -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");  // no progress bar off a terminal
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_TRUE(s["completed"].get<bool>());
+  ASSERT_EQ(s["stages"].size(), 5u);
+  EXPECT_EQ(s["stages"][4]["line"], 40);
+  const auto traj = csv_rows(read_text(out + "/trajectory.csv"));
+  const auto energy = csv_rows(read_text(out + "/energy.csv"));
+  ASSERT_EQ(traj[0][0], "t_s");
+  ASSERT_EQ(energy[0].size(), 5u + 7u);  // t, measured, model, SoC, predicted, q0..q6
+  ASSERT_EQ(traj.size(), energy.size());
+  // The energy is the integral of the measured power (rows every 0.1 s, steps of 0.01 s).
+  double integral = 0.0;
+  for (std::size_t i = 2; i < energy.size(); ++i)
+    integral += std::stod(energy[i][1]) * (std::stod(energy[i][0]) - std::stod(energy[i - 1][0]));
+  EXPECT_NEAR(integral, s["energy_j"].get<double>(), 0.02 * s["energy_j"].get<double>());
+  // The flight ends at the last triggering point: (-3 * 70 + 105, 147) within 5 m.
+  const auto& last = traj.back();
+  EXPECT_LE(std::hypot(std::stod(last[1]) + 105.0, std::stod(last[2]) - 147.0), 5.0 + 1e-6);
+  EXPECT_DOUBLE_EQ(std::stod(last[0]), s["flight_time_s"].get<double>());
+  // SoC at the end as the summary says, and the same bytes from a second run.
+  EXPECT_NEAR(std::stod(energy.back()[3]), s["final_soc"].get<double>(), 1e-6);
+  const std::string again = fresh_dir("energy-run-again");
+  ASSERT_EQ(run_swath_energy("run plans/survey.yaml --config plans/survey-sim.yaml -o " + again)
+                .exit_code,
+            0);
+  EXPECT_EQ(read_text(again + "/energy.csv"), read_text(out + "/energy.csv"));
+}
+
+TEST(EnergyCli, BadPlanIsOneSentenceAndNoOutput) {
+  const std::string out = fresh_dir("energy-bad");
+  const std::string plan = out + ".plan";
+  {
+    std::ofstream f(plan);
+    f << "# a stage with an unknown variable\n0.05; 90; x+z\n0, 10\n[0, 0]\n";
+  }
+  const CliRun run = run_swath_energy("run " + plan + " --config plans/survey-sim.yaml -o " + out);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find(plan + ": line 2 (phi): unknown variable 'z'"), std::string::npos)
+      << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // The config has two computation curves, this plan none.
+  {
+    std::ofstream f(plan);
+    f << "0.05; 90; x\n0, 10\n[0, 0]\n";
+  }
+  const CliRun mismatch =
+      run_swath_energy("run " + plan + " --config plans/survey-sim.yaml -o " + out);
+  EXPECT_EQ(mismatch.exit_code, 2);
+  EXPECT_NE(mismatch.err.find("plans/survey-sim.yaml: power.computations lists 2 computation "
+                              "power curves, the plan " +
+                              plan + " has 0 computations"),
+            std::string::npos)
+      << mismatch.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const CliRun usage = run_swath_energy("run plans/survey.plan -o " + out);
+  EXPECT_EQ(usage.exit_code, 2);
+  EXPECT_NE(usage.err.find("--config is required"), std::string::npos) << usage.err;
+  const CliRun help = run_swath_energy("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("4 a drone cannot finish"), std::string::npos);
+}
+
+TEST(EnergyCli, BudgetOfAPlannedSurveyAndExitFourWhenItCannotFinish) {
+  const std::string plan = fresh_dir("energy-budget-plan");
+  ASSERT_EQ(
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + plan)
+          .exit_code,
+      0);
+  const json summary = json::parse(read_text(plan + "/summary.json"));
+  const std::string out = fresh_dir("energy-budget");
+  const CliRun run = run_swath_energy(
+      "budget " + plan + "/mission.geojson --drone share/drones/quad-5ah.yaml -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json b = json::parse(read_text(out + "/budget.json"));
+  ASSERT_EQ(b["drones"].size(), 1u);
+  const json& d = b["drones"][0];
+  // The path swath planned, flown at its speed, plus climbing to 60 m at 3 m/s and descending at
+  // 2 m/s.
+  const double path_m = summary["drones"][0]["path_length_m"].get<double>();
+  const double speed = summary["drones"][0]["speed_m_s"].get<double>();
+  EXPECT_NEAR(d["distance_m"].get<double>(), path_m, 0.01 * path_m);
+  EXPECT_NEAR(d["flight_time_s"].get<double>(), path_m / speed + 60 / 3.0 + 60 / 2.0,
+              0.01 * path_m / speed);
+  EXPECT_TRUE(d["can_finish"].get<bool>());
+  EXPECT_NE(run.out.find("drone-1"), std::string::npos);
+  // The same mission through the QGC plan swath wrote: the same budget.
+  const CliRun qgc = run_swath_energy("budget " + plan +
+                                      "/drone-1.plan --drone share/drones/quad-5ah.yaml --json");
+  ASSERT_EQ(qgc.exit_code, 0) << qgc.err;
+  const json q = json::parse(qgc.out);
+  EXPECT_NEAR(q["drones"][0]["energy_j"].get<double>(), d["energy_j"].get<double>(),
+              0.01 * d["energy_j"].get<double>());
+  // A small battery: exit 4, and the place where the reserve is crossed.
+  const std::string small = out + "/small.yaml";
+  {
+    std::ofstream f(small);
+    f << read_text(source_path("share/drones/quad-5ah.yaml")) << "\n";
+  }
+  std::string text = read_text(small);
+  text.replace(text.find("capacity_ah: 5"), 14, "capacity_ah: 0.5");
+  {
+    std::ofstream f(small);
+    f << text;
+  }
+  const CliRun weak = run_swath_energy("budget " + plan + "/mission.geojson --drone " + small);
+  EXPECT_EQ(weak.exit_code, 4) << weak.err;
+  EXPECT_NE(weak.out.find("drone-1 reaches the 20 % reserve at t = "), std::string::npos)
+      << weak.out;
+}
+
+}  // namespace
+}  // namespace swath::test

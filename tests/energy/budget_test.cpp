@@ -1,0 +1,174 @@
+#include "swath/energy/budget.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "swath/geometry/input_error.hpp"
+#include "swath/geometry/local_frame.hpp"
+
+namespace swath::energy {
+namespace {
+
+using geometry::GeoPoint;
+using geometry::LocalFrame;
+
+const GeoPoint kHome{47.0, 8.0, 0.0};
+
+// A QGC plan: take off to 50 m, a 100 m square whose first corner is home, return to launch.
+std::string square_plan(double speed) {
+  const LocalFrame frame(kHome);
+  std::string items;
+  auto item = [&](int command, double x, double y, double alt) {
+    const GeoPoint g = frame.to_geo({x, y});
+    char buf[400];
+    std::snprintf(
+        buf, sizeof buf,
+        R"({"type": "SimpleItem", "command": %d, "frame": 3, "params": [0, 0, 0, null, %.10f, %.10f, %.3f]},)",
+        command, g.lat_deg, g.lon_deg, alt);
+    items += buf;
+  };
+  item(22, 0, 0, 50);
+  item(16, 100, 0, 50);
+  item(16, 100, 100, 50);
+  item(16, 0, 100, 50);
+  items += R"({"type": "SimpleItem", "command": 20, "frame": 2, "params": [0, 0, 0, 0, 0, 0, 0]})";
+  char head[300];
+  std::snprintf(
+      head, sizeof head,
+      R"({"fileType": "Plan", "mission": {"vehicleType": 2, "hoverSpeed": %.3f, "plannedHomePosition": [47.0, 8.0, 0], "items": [)",
+      speed);
+  return std::string(head) + items + "]}}";
+}
+
+DroneProfile quad() {
+  DroneProfile d;
+  d.source = "quad.yaml";
+  d.climb_speed_mps = 2.5;
+  d.descent_speed_mps = 2.0;
+  d.power.mechanical = {150.0, 5.0, 0.0, 35.0};  // 150 W at any airspeed
+  d.power.climb_w = 200.0;
+  d.power.descent_w = 120.0;
+  d.power.payload_w = 10.0;
+  return d;
+}
+
+// By hand: climb 50 m at 2.5 m/s = 20 s at 210 W = 4200 J; 400 m at 5 m/s = 80 s at 160 W =
+// 12800 J; descent 50 m at 2 m/s = 25 s at 130 W = 3250 J. Total 125 s, 20250 J.
+TEST(Budget, SquareMissionAgainstTheHandSum) {
+  const auto missions = parse_waypoint_missions(square_plan(5.0), "square.plan");
+  ASSERT_EQ(missions.size(), 1u);
+  EXPECT_TRUE(missions[0].returns_home);
+  const DroneProfile d = quad();
+  const DroneBudget b = budget(missions[0], d);
+  EXPECT_NEAR(b.flight_time_s, 125.0, 1e-3);
+  EXPECT_NEAR(b.energy_j, 20250.0, 0.5);
+  EXPECT_NEAR(b.distance_m, 400.0, 1e-3);
+  // SoC segment by segment with eq. 12.
+  double soc = soc_after(d.battery, 1.0, 210.0, 20.0);
+  soc = soc_after(d.battery, soc, 160.0, 80.0);
+  soc = soc_after(d.battery, soc, 130.0, 25.0);
+  EXPECT_NEAR(b.landing_soc, soc, 1e-9);
+  EXPECT_NEAR(b.reserve_margin, soc - 0.2, 1e-9);
+  EXPECT_TRUE(b.can_finish());
+  // Take-off, four points (the take-off point, three corners), home, landing.
+  ASSERT_EQ(b.timeline.size(), 7u);
+  EXPECT_NEAR(b.timeline[2].t_s, 20.0 + 20.0, 1e-3);  // first corner after 100 m
+  EXPECT_NEAR(b.timeline[2].position.x, 100.0, 1e-3);
+  EXPECT_NEAR(b.timeline[2].geo.lat_deg, kHome.lat_deg, 1e-6);
+}
+
+TEST(Budget, WhereTheReserveIsCrossed) {
+  DroneProfile d = quad();
+  d.battery.capacity_ah = 0.2;  // the climb takes 0.064 Ah, the square 0.195: reserve on a leg
+  const DroneBudget b = budget(parse_waypoint_missions(square_plan(5.0), "s.plan")[0], d);
+  ASSERT_TRUE(b.reserve_crossed);
+  EXPECT_FALSE(b.can_finish());
+  // After the climb, the reserve is reached when the cruise current has drawn the rest.
+  const double after_climb = soc_after(d.battery, 1.0, 210.0, 20.0);
+  const double s = seconds_to_soc(d.battery, after_climb, 0.2, 160.0);
+  ASSERT_LT(s, 80.0);
+  EXPECT_NEAR(b.reserve_crossed->t_s, 20.0 + s, 1e-6);
+  // Along the square: distance 5 s/m.
+  const double along = 5.0 * s;
+  const double x = along < 100 ? along : 100, y = along < 100 ? 0 : along - 100;
+  EXPECT_NEAR(b.reserve_crossed->position.x, x, 1e-4);  // lat/lon printed to 1e-10 degrees
+  EXPECT_NEAR(b.reserve_crossed->position.y, y, 1e-4);
+  EXPECT_NEAR(b.reserve_crossed->soc, 0.2, 1e-12);
+}
+
+TEST(Budget, GeoJsonPathsAndWind) {
+  const LocalFrame frame(kHome);
+  std::string coords;
+  for (auto [x, y] : {std::pair{0.0, 0.0}, {300.0, 0.0}, {300.0, 50.0}, {0.0, 50.0}, {0.0, 0.0}}) {
+    const GeoPoint g = frame.to_geo({x, y});
+    char buf[100];
+    std::snprintf(buf, sizeof buf, "[%.10f, %.10f],", g.lon_deg, g.lat_deg);
+    coords += buf;
+  }
+  coords.pop_back();
+  const std::string geojson =
+      R"({"type": "FeatureCollection", "features": [
+       {"type": "Feature", "properties": {"role": "path", "drone": 2, "altitude_m": 40, "speed_m_s": 10},
+        "geometry": {"type": "LineString", "coordinates": [)" +
+      coords + R"(]}},
+       {"type": "Feature", "properties": {"role": "home"},
+        "geometry": {"type": "Point", "coordinates": [8.0, 47.0]}}]})";
+  const auto missions = parse_waypoint_missions(geojson, "mission.geojson");
+  ASSERT_EQ(missions.size(), 1u);
+  EXPECT_EQ(missions[0].drone, "drone-2");
+  ASSERT_EQ(missions[0].points.size(), 3u);  // home legs implied
+  DroneProfile d = quad();
+  d.power.mechanical = {150.0, 10.0, 1.0, 35.0};  // all parasitic: 150 (v/10)^3
+  d.max_airspeed_mps = 30;
+  const DroneBudget calm = budget(missions[0], d);
+  EXPECT_NEAR(calm.distance_m, 700.0, 1e-3);
+  EXPECT_NEAR(calm.flight_time_s, 40 / 2.5 + 70.0 + 40 / 2.0, 1e-3);
+  // 6 m/s from the east: eastbound legs need 16 m/s of air, westbound 4, north/south sqrt(136).
+  d.wind = {6.0, 90.0};
+  const DroneBudget windy = budget(missions[0], d);
+  const double cruise = [&] {
+    auto p = [](double v) { return 150.0 * std::pow(v / 10.0, 3) + 10.0; };
+    return p(16.0) * 30.0 + p(4.0) * 30.0 + p(std::sqrt(136.0)) * 10.0;
+  }();
+  EXPECT_NEAR(windy.energy_j, cruise + 210.0 * 16.0 + 130.0 * 20.0, 0.5);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_waypoint_missions(text, "m.json");
+  } catch (const geometry::InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(Budget, BadMissionsAreNamed) {
+  EXPECT_EQ(error_of("{"), "m.json: invalid JSON at byte 2");
+  EXPECT_EQ(error_of("[]"), "m.json: expected a JSON object");
+  EXPECT_EQ(error_of(R"({"type": "Feature"})"),
+            "m.json: neither a GeoJSON FeatureCollection (mission.geojson) nor a QGC plan");
+  EXPECT_EQ(error_of(R"({"type": "FeatureCollection", "features": []})"),
+            "m.json: no feature with role 'path' (a drone's flight)");
+  EXPECT_EQ(
+      error_of(R"({"type": "FeatureCollection", "features": [{"properties": {"role": "path"},
+        "geometry": {"type": "LineString", "coordinates": [[8, 47], [8.1, 47]]}}]})"),
+      "m.json: feature 0: the path has no altitude (give properties.altitude_m or [lon, lat, alt] "
+      "positions)");
+  EXPECT_EQ(
+      error_of(
+          R"({"type": "FeatureCollection", "features": [{"properties": {"role": "path", "altitude_m": 30},
+        "geometry": {"type": "LineString", "coordinates": [[8, 47], [8.1, 97]]}}]})"),
+      "m.json: feature 0, position 1: latitude must be within ±90 and longitude within ±180 "
+      "degrees");
+  EXPECT_EQ(error_of(R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0],
+        "items": [{"type": "SimpleItem", "command": 16, "params": [0, 0, 0]}]}})"),
+            "m.json: mission item 1: params must hold 7 values");
+  EXPECT_EQ(
+      error_of(
+          R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0], "items": []}})"),
+      "m.json: the mission has no positional item");
+}
+
+}  // namespace
+}  // namespace swath::energy
