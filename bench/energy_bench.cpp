@@ -28,7 +28,8 @@ SimConfig lawnmower_config() {
   return c;
 }
 
-// 90 lanes of 400 m, 50 m apart, at 12 m/s: 3,585 s of flight, 358,487 steps.
+// 90 lanes of 400 m, 50 m apart, at 12 m/s: 3,585 s of flight, 358,487 steps, replanning the
+// detection rate every second.
 void BM_OneHourMission(benchmark::State& state) {
   const Plan plan = parse_plan(swath::test::lawnmower_plan(90, 50, 400), "lawnmower.plan");
   const SimConfig c = lawnmower_config();
@@ -41,6 +42,15 @@ void BM_OneHourMission(benchmark::State& state) {
   state.counters["flight_s"] = flown;
 }
 BENCHMARK(BM_OneHourMission)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+
+// The same without the replanner (parameters fixed).
+void BM_OneHourMissionFixed(benchmark::State& state) {
+  const Plan plan = parse_plan(swath::test::lawnmower_plan(90, 50, 400), "lawnmower.plan");
+  SimConfig c = lawnmower_config();
+  c.replan = false;
+  for (auto _ : state) benchmark::DoNotOptimize(simulate(plan, c).energy_j);
+}
+BENCHMARK(BM_OneHourMissionFixed)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 
 // The guidance field at one point (phi and its gradient: five expression evaluations).
 void BM_GuidanceStep(benchmark::State& state) {

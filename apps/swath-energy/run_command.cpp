@@ -21,26 +21,42 @@ void RunCommand::setup(CLI::App& app) {
       ->required();
   app.add_option("-o,--output", output_, "Directory for trajectory.csv, energy.csv, summary.json")
       ->required();
+  app.add_flag("--no-replan", no_replan_,
+               "Keep the parameters at the config's values (default: replan them every "
+               "mpc.period_s so that the mission finishes above the battery reserve)");
   app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
 }
 
 int RunCommand::run() {
   const energy::Plan plan = energy::read_plan(plan_);
-  const energy::SimConfig config = energy::read_sim_config(config_);
-  ProgressBar bar(progress_, "simulating");
-  const energy::SimulationResult result =
-      energy::simulate(plan, config, [&](double f) { bar.update(f); });
+  energy::SimConfig config = energy::read_sim_config(config_);
+  if (no_replan_) config.replan = false;
+  energy::SimulationResult result;
+  {
+    ProgressBar bar(progress_, "simulating");
+    result = energy::simulate(plan, config, [&](double f) { bar.update(f); });
+  }
+  const energy::FixedComparison fixed = energy::compare_fixed(plan, config);
   planning::write_files_atomically(
       output_, {{"trajectory.csv", energy::trajectory_csv(result)},
                 {"energy.csv", energy::energy_csv(result)},
-                {"summary.json", energy::simulation_summary_json(result, plan, config)}});
+                {"control.csv", energy::control_csv(result)},
+                {"summary.json", energy::simulation_summary_json(result, plan, config, &fixed)}});
   using planning::fixed_text;
   std::cout << "swath-energy run: " << energy::to_string(result.status) << " after "
             << fixed_text(result.flight_time_s, 1) << " s, "
             << fixed_text(result.energy_j / 3600, 2) << " Wh, final SoC "
-            << fixed_text(100 * result.final_soc, 1) << " %, predicted total energy within "
-            << fixed_text(100 * result.max_relative_error, 2) << " % after the first period; wrote "
-            << output_ << '\n';
+            << fixed_text(100 * result.final_soc, 1) << " %";
+  if (result.status == energy::FlightStatus::completed)
+    std::cout << ", predicted total energy within "
+              << fixed_text(100 * result.max_relative_error, 2) << " % after the first period";
+  if (config.replan)
+    std::cout << ", " << result.replans << " replans, " << result.control.size() - 1 << " changes";
+  std::cout << "; wrote " << output_ << '\n';
+  if (result.infeasible_replans > 0)
+    std::cerr << "swath-energy run: warning: at " << result.infeasible_replans
+              << " replans no parameters fitted the battery above its reserve; the lowest levels "
+                 "were flown\n";
   return result.status == energy::FlightStatus::completed ? kSuccess : kCannotFinish;
 }
 

@@ -10,8 +10,9 @@ class RunCommand : public Command {
  public:
   const char* name() const override { return "run"; }
   const char* description() const override {
-    return "Simulate a plan of flight stages with the energy model and the battery (parameters "
-           "fixed at the config's values); writes trajectory.csv, energy.csv, summary.json";
+    return "Simulate a plan of flight stages with the energy model and the battery, replanning "
+           "its parameters to finish above the reserve; writes trajectory.csv, energy.csv, "
+           "control.csv, summary.json";
   }
   void setup(CLI::App& app) override;
   int run() override;
@@ -19,6 +20,7 @@ class RunCommand : public Command {
  private:
   std::string plan_, config_, output_;
   bool progress_ = false;
+  bool no_replan_ = false;
 };
 
 }  // namespace swath::apps

@@ -62,8 +62,35 @@ std::string energy_csv(const SimulationResult& result) {
   return out;
 }
 
+std::string control_csv(const SimulationResult& result) {
+  std::string out = "t_s";
+  const std::size_t nt = result.control.empty() ? 0 : result.control.front().trajectory.size();
+  const std::size_t nc = result.control.empty() ? 0 : result.control.front().computations.size();
+  for (std::size_t i = 0; i < nt; ++i) out += ",c" + std::to_string(i + 1);
+  for (std::size_t j = 0; j < nc; ++j) out += ",s" + std::to_string(j + 1);
+  out += ",feasible\n";
+  for (const ControlSample& c : result.control) {
+    cell(out, c.t_s, 3);
+    for (double v : c.trajectory) cell(out, v, 4);
+    for (double v : c.computations) cell(out, v, 4);
+    out += c.feasible ? ",true\n" : ",false\n";
+  }
+  return out;
+}
+
+namespace {
+
+ordered_json fixed_run(const SimulationResult& r) {
+  return {
+      {"completed", r.status == FlightStatus::completed}, {"status", to_string(r.status)},
+      {"flight_time_s", round_to(r.flight_time_s, 2)},    {"final_soc", round_to(r.final_soc, 6)},
+      {"mean_power_w", round_to(r.mean_power_w, 3)},      {"computations", r.mean_computations}};
+}
+
+}  // namespace
+
 std::string simulation_summary_json(const SimulationResult& r, const Plan& plan,
-                                    const SimConfig& config) {
+                                    const SimConfig& config, const FixedComparison* comparison) {
   ordered_json stages = ordered_json::array();
   for (const StageEntry& e : r.stages)
     stages.push_back({{"stage", e.stage + 1},
@@ -90,8 +117,22 @@ std::string simulation_summary_json(const SimulationResult& r, const Plan& plan,
                      {"kalman_corrections", r.corrections},
                      {"steps", r.steps},
                      {"final_period_s", round_to(r.final_period_s, 3)}};
-  j["parameters"] = {{"trajectory", config.trajectory_parameters},
-                     {"computations", config.computation_parameters}};
+  ordered_json mean_t = ordered_json::array(), mean_c = ordered_json::array();
+  for (double v : r.mean_trajectory) mean_t.push_back(round_to(v, 4));
+  for (double v : r.mean_computations) mean_c.push_back(round_to(v, 4));
+  j["replanning"] = {{"enabled", config.replan},
+                     {"replans", r.replans},
+                     {"infeasible_replans", r.infeasible_replans},
+                     {"changes", r.control.empty() ? 0 : r.control.size() - 1},
+                     {"mean_trajectory", mean_t},
+                     {"mean_computations", mean_c},
+                     {"mean_power_w", round_to(r.mean_power_w, 3)}};
+  if (comparison) {
+    ordered_json high = fixed_run(comparison->highest), low = fixed_run(comparison->lowest);
+    j["fixed"] = {{"highest", high},
+                  {"lowest", low},
+                  {"lowest_gains_min_per_hour", round_to(comparison->minutes_per_hour, 2)}};
+  }
   j["stages"] = stages;
   return j.dump(1) + "\n";
 }

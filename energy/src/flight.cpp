@@ -27,7 +27,7 @@ std::optional<CourseSpeed> course_speed(Point2 course, Point2 wind, double groun
                                         double max_airspeed_mps) {
   const double ax = ground_speed_mps * course.x - wind.x;
   const double ay = ground_speed_mps * course.y - wind.y;
-  const double airspeed = std::hypot(ax, ay);
+  const double airspeed = std::sqrt(ax * ax + ay * ay);
   if (airspeed <= max_airspeed_mps) return CourseSpeed{ground_speed_mps, airspeed};
   const auto s = ground_speed_at_airspeed(course, wind, max_airspeed_mps);
   if (!s) return std::nullopt;

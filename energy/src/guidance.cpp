@@ -30,20 +30,33 @@ std::vector<StageField> stage_fields(const Plan& plan, const std::vector<double>
     const Stage& s = plan.stages[k];
     std::string where = plan.source;
     where += s.line > 0 ? ": line " + std::to_string(s.line) : ": stage " + std::to_string(k + 1);
-    std::vector<double> values{0.0, 0.0};
-    const std::vector<double> params = stage_parameters(s.trajectory, c);
-    values.insert(values.end(), params.begin(), params.end());
-    const Expression tx(s.trigger_x, names, where), ty(s.trigger_y, names, where);
-    const Point2 trigger{tx(values), ty(values)};
-    if (!std::isfinite(trigger.x) || !std::isfinite(trigger.y)) {
-      std::string msg = where;
-      msg += ": the triggering point is not a finite number for these parameters";
-      throw geometry::InputError(msg);
-    }
-    out.push_back(StageField{static_cast<int>(k), where, Expression(s.phi, names, where), values,
-                             s.gain, s.direction, trigger});
+    const std::vector<double> values(names.size(), 0.0);
+    out.push_back(StageField{static_cast<int>(k),
+                             where,
+                             Expression(s.phi, names, where),
+                             values,
+                             s.gain,
+                             s.direction,
+                             {},
+                             Expression(s.trigger_x, names, where),
+                             Expression(s.trigger_y, names, where),
+                             s.trajectory});
+    set_trajectory_parameters(out.back(), c);
   }
   return out;
+}
+
+void set_trajectory_parameters(StageField& stage, const std::vector<double>& c) {
+  const std::vector<double> params = stage_parameters(stage.bounds, c);
+  std::copy(params.begin(), params.end(), stage.values.begin() + 2);
+  stage.values[0] = stage.values[1] = 0.0;  // a triggering point depends on c1.. only
+  const geometry::Point2 trigger{stage.trigger_x(stage.values), stage.trigger_y(stage.values)};
+  if (!std::isfinite(trigger.x) || !std::isfinite(trigger.y)) {
+    std::string msg = stage.where;
+    msg += ": the triggering point is not a finite number for these parameters";
+    throw geometry::InputError(msg);
+  }
+  stage.trigger = trigger;
 }
 
 FieldSample guidance_field(StageField& stage, Point2 p) {
@@ -66,8 +79,8 @@ FieldSample guidance_field(StageField& stage, Point2 p) {
 
 std::optional<Point2> guidance_direction(StageField& stage, Point2 p) {
   const FieldSample f = guidance_field(stage, p);
-  const double g = std::hypot(f.gradient.x, f.gradient.y);
-  const double v = std::hypot(f.velocity.x, f.velocity.y);
+  const double g = std::sqrt(f.gradient.x * f.gradient.x + f.gradient.y * f.gradient.y);
+  const double v = std::sqrt(f.velocity.x * f.velocity.x + f.velocity.y * f.velocity.y);
   if (!std::isfinite(v) || g < 1e-9 || v < 1e-12 * (1.0 + g)) return std::nullopt;
   return Point2{f.velocity.x / v, f.velocity.y / v};
 }

@@ -15,7 +15,10 @@ double mechanical_power_w(const MechanicalPower& m, double airspeed_mps,
                           double lateral_accel_mps2) {
   constexpr double kGravity = 9.80665;
   const double a = lateral_accel_mps2 / kGravity;
-  return level_flight_power_w(m, airspeed_mps) * std::pow(1.0 + a * a, 0.75);
+  const double level = level_flight_power_w(m, airspeed_mps);
+  if (a == 0.0) return level;  // straight flight: skip the pow
+  const double n2 = 1.0 + a * a;
+  return level * std::sqrt(n2) * std::sqrt(std::sqrt(n2));  // n^1.5 = (n^2)^0.75
 }
 
 double computation_power_w(const PowerCurve& curve, double parameter) {

@@ -188,9 +188,14 @@ SimConfig parse_sim_config(const std::string& text, const std::string& source) {
   c.kalman.initial_w = k.number("initial_w", c.kalman.initial_w, 0.0, 1e6, true);
   c.kalman.gate_w = k.number("gate_w", c.kalman.gate_w, 0.0, 1e6);
   const YamlMap mpc = m.map("mpc");
-  mpc.allow({"horizon_s", "period_s"});
-  c.mpc_horizon_s = mpc.number("horizon_s", c.mpc_horizon_s, 0.0, 1e6, true);
-  c.mpc_period_s = mpc.number("period_s", c.mpc_period_s, 0.0, 1e6);
+  mpc.allow({"replan", "horizon_s", "period_s", "margin", "quality_weights"});
+  c.replan = mpc.flag("replan", c.replan);
+  c.mpc_horizon_s = mpc.number("horizon_s", c.mpc_horizon_s, 0.0, 1e6);
+  c.mpc_period_s = mpc.number("period_s", c.mpc_period_s, 0.0, 1e6, true);
+  c.mpc_margin = mpc.number("margin", c.mpc_margin, 0.0, 0.5);
+  c.quality_weights = mpc.numbers("quality_weights");
+  for (double w : c.quality_weights)
+    if (w < 0) throw InputError(mpc.where("quality_weights") + " must be >= 0");
   c.battery = parse_battery(m.map("battery"));
   c.power = parse_power(m.map("power"));
   c.replay_csv = m.text("replay_csv", "");

@@ -8,6 +8,7 @@
 #include "swath/energy/energy_estimator.hpp"
 #include "swath/energy/guidance.hpp"
 #include "swath/energy/period_estimate.hpp"
+#include "swath/energy/replanner.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/number_text.hpp"
 
@@ -28,6 +29,11 @@ std::string point_text(Point2 p) {
   s += fixed_text(p.y, 1);
   s += ") m";
   return s;
+}
+
+double gap(Point2 a, Point2 b) {  // std::hypot guards overflow we cannot reach, slowly
+  const double dx = a.x - b.x, dy = a.y - b.y;
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 double wrap_pi(double a) {
@@ -61,6 +67,12 @@ class Flight {
   Point2 position() const { return position_; }
   double time_s() const { return t_; }
   const std::vector<StageEntry>& entries() const { return entries_; }
+  double stage_elapsed_s() const { return entries_.empty() ? 0.0 : t_ - entries_.back().t_s; }
+
+  void set_trajectory_parameters(const std::vector<double>& c) {
+    for (StageField& f : fields_) energy::set_trajectory_parameters(f, c);
+    best_distance_ = std::numeric_limits<double>::infinity();  // the triggering point moved
+  }
 
   // Switches stages whose triggering point is within reach; true if the stage changed.
   bool trigger() {
@@ -68,7 +80,7 @@ class Flight {
     if (entries_.empty()) entries_.push_back({0, t_, position_});
     while (!done()) {
       const Point2 tp = fields_[stage_].trigger;
-      if (std::hypot(position_.x - tp.x, position_.y - tp.y) > config_.trigger_radius_m) break;
+      if (gap(position_, tp) > config_.trigger_radius_m) break;
       ++stage_;
       changed = true;
       best_distance_ = std::numeric_limits<double>::infinity();
@@ -118,7 +130,7 @@ class Flight {
     k.airspeed_mps = cs->airspeed_mps;
     k.lateral_accel_mps2 = std::abs(turn) / dt * cs->ground_speed_mps;
     k.course_rad = course_;
-    const double g = std::hypot(f.gradient.x, f.gradient.y);
+    const double g = std::sqrt(f.gradient.x * f.gradient.x + f.gradient.y * f.gradient.y);
     k.path_distance_m = std::abs(f.phi) / g;
     last_ground_speed_ = cs->ground_speed_mps;
     position_.x += u.x * cs->ground_speed_mps * dt;
@@ -130,7 +142,7 @@ class Flight {
 
  private:
   void check_progress(const StageField& field) {
-    const double d = std::hypot(position_.x - field.trigger.x, position_.y - field.trigger.y);
+    const double d = gap(position_, field.trigger);
     if (d < best_distance_) {
       best_distance_ = d;
       best_time_ = t_;
@@ -167,18 +179,16 @@ class Flight {
   std::vector<StageEntry> entries_;
 };
 
-// Power the stage's parameters draw on top of the flight (computations and trajectory gains), W.
-std::vector<double> stage_parameter_power(const Plan& plan, const SimConfig& config) {
-  std::vector<double> out;
-  for (const Stage& s : plan.stages) {
-    const auto comp = stage_parameters(s.computations, config.computation_parameters);
-    const auto traj = stage_parameters(s.trajectory, config.trajectory_parameters);
-    double w = computations_power_w(config.power.computations, comp);
-    for (std::size_t i = 0; i < traj.size() && i < config.trajectory_gains_w.size(); ++i)
-      w += config.trajectory_gains_w[i] * traj[i];
-    out.push_back(w);
-  }
-  return out;
+// The power a stage's parameters add to the flight (computations and trajectory gains), W.
+double parameter_power_w(const Stage& stage, const SimConfig& config,
+                         const std::vector<double>& trajectory,
+                         const std::vector<double>& computations) {
+  const auto comp = stage_parameters(stage.computations, computations);
+  const auto traj = stage_parameters(stage.trajectory, trajectory);
+  double w = computations_power_w(config.power.computations, comp);
+  for (std::size_t i = 0; i < traj.size() && i < config.trajectory_gains_w.size(); ++i)
+    w += config.trajectory_gains_w[i] * traj[i];
+  return w;
 }
 
 // Fixed-width bins of the measured signal, the input of the period estimate.
@@ -231,41 +241,372 @@ void check_config(const Plan& plan, const SimConfig& config) {
   }
 }
 
-struct FlownStep {
-  double t_s;       ///< at the start of the step
-  int stage;        ///< the stage flown during the step
-  Point2 end;       ///< position at the end of the step
-  int stage_after;  ///< the stage after the triggers at the end of the step
-  StepKinematics kinematics;
-};
+// The trajectory parameters move along the diagonal of the first stage's box.
+std::vector<double> trajectory_at(const Plan& plan, double lambda) {
+  std::vector<double> c;
+  for (const Interval& b : plan.stages.front().trajectory)
+    c.push_back(b.lo + lambda * (b.hi - b.lo));
+  return c;
+}
 
-struct PlannedFlight {
-  double time_s = 0.0;
-  bool done = false;
-  std::vector<StageEntry> entries;
-  std::vector<FlownStep> steps;
-};
-
-// The path is planned: the flight does not depend on the power, so it is flown first. That tells
-// when the mission ends and when each stage's parameters change the power.
-PlannedFlight planned_flight(const Plan& plan, const SimConfig& config, bool keep_steps) {
-  Flight flight(stage_fields(plan, config.trajectory_parameters), config);
+// Each stage's duration when the plan is flown from the start with parameters c: the remaining
+// path the trajectory parameters imply.
+std::vector<double> stage_durations(const Plan& plan, const SimConfig& config,
+                                    const std::vector<double>& c, double* total) {
+  Flight flight(stage_fields(plan, c), config);
   flight.trigger();
-  PlannedFlight out;
-  if (keep_steps)
-    out.steps.reserve(
-        static_cast<std::size_t>(std::min(config.max_time_s, 4 * 3600.0) / config.time_step_s + 1));
   while (!flight.done() && flight.time_s() < config.max_time_s) {
+    flight.step(config.time_step_s);
+    flight.trigger();
+  }
+  std::vector<double> d(plan.stages.size(), 0.0);
+  const auto& e = flight.entries();
+  for (std::size_t k = 0; k < e.size(); ++k)
+    d[e[k].stage] = (k + 1 < e.size() ? e[k + 1].t_s : flight.time_s()) - e[k].t_s;
+  if (total) *total = flight.time_s();
+  return d;
+}
+
+// Stage durations at a few lambdas, interpolated between them.
+struct PathTable {
+  std::vector<double> lambdas;                 // ascending
+  std::vector<std::vector<double>> durations;  // [lambda][stage]
+
+  std::vector<double> at(double lambda) const {
+    if (lambdas.size() == 1) return durations[0];
+    std::size_t i = 1;
+    while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
+    const double f =
+        std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
+    std::vector<double> d(durations[0].size());
+    for (std::size_t k = 0; k < d.size(); ++k)
+      d[k] = durations[i - 1][k] + f * (durations[i][k] - durations[i - 1][k]);
+    return d;
+  }
+};
+
+// Remaining seconds in each stage from `stage`, `elapsed` seconds into it.
+std::vector<double> remaining_by_stage(const std::vector<double>& durations, int stage,
+                                       double elapsed) {
+  std::vector<double> r(durations.size(), 0.0);
+  for (std::size_t k = static_cast<std::size_t>(stage); k < durations.size(); ++k)
+    r[k] = durations[k];
+  if (stage < static_cast<int>(r.size())) r[stage] = std::max(0.0, r[stage] - elapsed);
+  return r;
+}
+
+// Stages with the same bounds draw the same parameter power for a choice.
+std::vector<int> bound_groups(const Plan& plan, std::vector<int>* representative) {
+  std::vector<int> group(plan.stages.size());
+  for (std::size_t k = 0; k < plan.stages.size(); ++k) {
+    const Stage& s = plan.stages[k];
+    group[k] = -1;
+    for (std::size_t g = 0; g < representative->size(); ++g) {
+      const Stage& r = plan.stages[(*representative)[g]];
+      if (r.trajectory == s.trajectory && r.computations == s.computations)
+        group[k] = static_cast<int>(g);
+    }
+    if (group[k] < 0) {
+      group[k] = static_cast<int>(representative->size());
+      representative->push_back(static_cast<int>(k));
+    }
+  }
+  return group;
+}
+
+// The remaining time of the mission from a point of it, in total and per group of stages, at
+// each lambda of the path table; linear in between (as the table is).
+struct RestTable {
+  std::vector<double> lambdas;
+  std::vector<double> total;                // [lambda]
+  std::vector<std::vector<double>> groups;  // [lambda][group]
+
+  RestTable(const PathTable& table, const std::vector<int>& group, std::size_t groups_count,
+            int stage, double elapsed)
+      : lambdas(table.lambdas) {
+    for (const auto& d : table.durations) {
+      const std::vector<double> r = remaining_by_stage(d, stage, elapsed);
+      std::vector<double> g(groups_count, 0.0);
+      double sum = 0.0;
+      for (std::size_t k = 0; k < r.size(); ++k) {
+        g[group[k]] += r[k];
+        sum += r[k];
+      }
+      total.push_back(sum);
+      groups.push_back(std::move(g));
+    }
+  }
+
+  // (total, per group) at lambda.
+  std::pair<double, std::vector<double>> at(double lambda) const {
+    if (lambdas.size() == 1) return {total[0], groups[0]};
+    std::size_t i = 1;
+    while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
+    const double f =
+        std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
+    std::vector<double> g(groups[0].size());
+    for (std::size_t j = 0; j < g.size(); ++j)
+      g[j] = groups[i - 1][j] + f * (groups[i][j] - groups[i - 1][j]);
+    return {total[i - 1] + f * (total[i] - total[i - 1]), g};
+  }
+};
+
+SimulationResult fly(const Plan& plan, const SimConfig& config,
+                     const std::function<void(double)>& progress) {
+  check_config(plan, config);
+  const double dt = config.time_step_s;
+  const Stage& first = plan.stages.front();
+  bool trajectory_free = false;
+  for (const Interval& b : first.trajectory) trajectory_free = trajectory_free || b.hi > b.lo;
+  trajectory_free = trajectory_free && config.replan;
+  bool computations_free = false;
+  for (const Stage& st : plan.stages)
+    for (const Interval& b : st.computations) computations_free = computations_free || b.hi > b.lo;
+  const bool replanning = config.replan && (trajectory_free || computations_free);
+
+  // Initial parameters: the config's, else the upper bounds.
+  std::vector<double> traj = stage_parameters(first.trajectory, config.trajectory_parameters);
+  std::vector<double> comps = config.computation_parameters;
+  for (std::size_t j = comps.size(); j < plan.computations(); ++j) {
+    double hi = 0.0;
+    for (const Stage& st : plan.stages) hi = std::max(hi, st.computations[j].hi);
+    comps.push_back(hi);
+  }
+  double lambda = 1.0;
+  if (trajectory_free && !first.trajectory.empty()) {
+    const Interval& b = first.trajectory[0];
+    lambda = b.hi > b.lo ? std::clamp((traj[0] - b.lo) / (b.hi - b.lo), 0.0, 1.0) : 1.0;
+    traj = trajectory_at(plan, lambda);
+  }
+
+  PathTable table;
+  double planned_time = 0.0;
+  if (trajectory_free) {
+    for (int i = 0; i <= 4; ++i) {
+      table.lambdas.push_back(i / 4.0);
+      double total = 0.0;
+      table.durations.push_back(
+          stage_durations(plan, config, trajectory_at(plan, i / 4.0), &total));
+    }
+  } else {
+    table.lambdas.push_back(lambda);
+    table.durations.push_back(stage_durations(plan, config, traj, &planned_time));
+  }
+  if (trajectory_free) {
+    for (double d : table.at(lambda)) planned_time += d;
+  }
+
+  SimulationResult result;
+  result.planned_time_s = planned_time;
+  result.first_period_s = config.initial_period_s;
+  Flight flight(stage_fields(plan, traj), config);
+  flight.trigger();
+  GaussianNoise noise(config.power.seed, config.power.noise_w);
+  const Battery& battery = config.battery;
+  std::optional<EnergyEstimator> estimator;
+  SignalHistory history{config.initial_period_s / 100.0, 1200, {}, 0.0, 0.0, 0.0};
+  double next_period_check = config.initial_period_s;
+  const int last_stage = static_cast<int>(plan.stages.size()) - 1;
+
+  double soc = battery.initial_soc;
+  double energy = 0.0, next_output = 0.0, next_progress = 0.0, next_replan = 0.0;
+  double last_raise = -1e300;
+  std::vector<std::pair<double, double>> predictions;  // (t, predicted total)
+  std::vector<double> traj_sum(traj.size(), 0.0), comp_sum(comps.size(), 0.0);
+  result.control.push_back({0.0, traj, comps, true});
+  double power_now = parameter_power_w(plan.stages[flight.stage()], config, traj, comps);
+
+  // Energy of the rest of the mission for a choice: the model's integral over the remaining time
+  // plus, stage by stage, how much the choice's parameter power differs from what the model has
+  // now. The same prediction drives the replanner and is written to energy.csv.
+  std::vector<int> representative;
+  const std::vector<int> group = bound_groups(plan, &representative);
+  auto rest_table = [&] {
+    return RestTable(table, group, representative.size(), flight.stage(), flight.stage_elapsed_s());
+  };
+  auto rest_energy = [&](const RestTable& rt, double l, const std::vector<double>& t_params,
+                         const std::vector<double>& c_params) {
+    const auto [total, by_group] = rt.at(l);
+    double shift = 0.0;
+    for (std::size_t g = 0; g < by_group.size(); ++g)
+      if (by_group[g] > 0.0)
+        shift += (parameter_power_w(plan.stages[representative[g]], config, t_params, c_params) -
+                  power_now) *
+                 by_group[g];
+    return std::pair{estimator->energy_over_j(total) + shift, total};
+  };
+
+  auto record = [&](const StepKinematics& k, double measured) {
+    FlightSample s;
+    s.t_s = flight.time_s();
+    s.position = flight.position();
+    s.stage = std::min(flight.stage(), last_stage);
+    s.course_deg = std::fmod(450.0 - k.course_rad * 180.0 / kPi, 360.0);
+    s.ground_speed_mps = k.ground_speed_mps;
+    s.airspeed_mps = k.airspeed_mps;
+    s.path_distance_m = k.path_distance_m;
+    s.measured_w = measured;
+    s.model_w = estimator->output_w();
+    s.soc = soc;
+    s.predicted_total_j =
+        energy + (flight.done() ? 0.0 : rest_energy(rest_table(), lambda, traj, comps).first);
+    s.coefficients = estimator->state();
+    predictions.emplace_back(s.t_s, s.predicted_total_j);
+    result.samples.push_back(std::move(s));
+  };
+
+  result.status = FlightStatus::completed;
+  int cached_stage = -1;
+  long params_version = 0, cached_version = 0;
+  double stage_power = power_now;
+  std::vector<double> flown_traj, flown_comp;
+  StepKinematics k{};
+  double measured = 0.0;
+  while (!flight.done()) {
+    if (flight.time_s() >= config.max_time_s) {
+      result.status = FlightStatus::time_limit;
+      break;
+    }
     const double t = flight.time_s();
     const int stage = flight.stage();
-    const StepKinematics k = flight.step(config.time_step_s);
+    double step_w = 0.0;  // a change of the parameter power, for the model's input (eq. 8)
+    if (stage != cached_stage || params_version != cached_version) {
+      cached_stage = stage;
+      cached_version = params_version;
+      stage_power = parameter_power_w(plan.stages[stage], config, traj, comps);
+      flown_traj = stage_parameters(plan.stages[stage].trajectory, traj);
+      flown_comp = stage_parameters(plan.stages[stage].computations, comps);
+    }
+    if (stage_power != power_now) {
+      step_w = stage_power - power_now;
+      power_now = stage_power;
+    }
+    if (replanning && estimator && t + 1e-9 >= next_replan) {
+      next_replan = t + config.mpc_period_s;
+      ReplanProblem problem;
+      problem.computation_bounds = plan.stages[stage].computations;
+      problem.quality_weights = config.quality_weights;
+      problem.trajectory_free = trajectory_free;
+      problem.battery = battery;
+      problem.soc = soc;
+      problem.margin = config.mpc_margin;
+      const RestTable rt = rest_table();
+      problem.rest_energy_j = [&](double l, const std::vector<double>& c) {
+        return rest_energy(rt, l, trajectory_free ? trajectory_at(plan, l) : traj, c).first;
+      };
+      problem.rest_time_s = [&](double l) { return rt.at(l).first; };
+      ReplanChoice choice = choose_parameters(problem);
+      ++result.replans;
+      if (!choice.feasible) ++result.infeasible_replans;
+      const double q_old = computation_quality(problem.computation_bounds, config.quality_weights,
+                                               stage_parameters(problem.computation_bounds, comps));
+      const double q_new = computation_quality(problem.computation_bounds, config.quality_weights,
+                                               choice.computations);
+      const bool raises =
+          q_new > q_old + 1e-12 || (trajectory_free && choice.lambda > lambda + 1e-9);
+      const bool changes =
+          choice.computations != stage_parameters(problem.computation_bounds, comps) ||
+          (trajectory_free && std::abs(choice.lambda - lambda) > 1e-9);
+      if (changes && (!raises || t - last_raise >= config.mpc_horizon_s)) {
+        if (raises) last_raise = t;
+        // Keep the levels of computations the stage switches off (bounds [0, 0]) for later.
+        for (std::size_t j = 0; j < comps.size(); ++j)
+          if (problem.computation_bounds[j].hi > problem.computation_bounds[j].lo)
+            comps[j] = choice.computations[j];
+        if (trajectory_free) {
+          lambda = choice.lambda;
+          traj = trajectory_at(plan, lambda);
+          flight.set_trajectory_parameters(traj);
+        }
+        result.control.push_back({t, traj, comps, choice.feasible});
+        ++params_version;
+        stage_power = parameter_power_w(plan.stages[stage], config, traj, comps);
+        flown_traj = stage_parameters(plan.stages[stage].trajectory, traj);
+        flown_comp = stage_parameters(plan.stages[stage].computations, comps);
+        cached_version = params_version;
+        step_w += stage_power - power_now;
+        power_now = stage_power;
+      } else if (!choice.feasible && result.control.back().feasible) {
+        result.control.push_back({t, traj, comps, false});
+      }
+    }
+    k = flight.step(dt);
+    if (!config.replay.t_s.empty()) {
+      measured = config.replay.at(t);
+    } else {
+      measured = mechanical_power_w(config.power.mechanical, k.airspeed_mps, k.lateral_accel_mps2) +
+                 config.power.payload_w + power_now + noise.next();
+    }
+    if (!estimator) {
+      estimator.emplace(fourier_model(config.fourier_order, config.initial_period_s, dt),
+                        config.kalman,
+                        std::isfinite(measured) ? measured : power_now + config.power.payload_w);
+    } else {
+      estimator->predict(step_w);
+      estimator->correct(measured);
+    }
+    const double power = std::isfinite(measured) ? measured : estimator->output_w();
+    energy += power * dt;
+    soc = soc_after(battery, soc, power, dt);
+    if (!std::isfinite(soc)) soc = 0.0;  // beyond what the battery can deliver
+    if (!result.reserve_crossed_s && soc <= battery.reserve_soc) result.reserve_crossed_s = t + dt;
+    for (std::size_t i = 0; i < traj_sum.size() && i < flown_traj.size(); ++i)
+      traj_sum[i] += flown_traj[i] * dt;
+    for (std::size_t j = 0; j < comp_sum.size(); ++j) comp_sum[j] += flown_comp[j] * dt;
+
+    if (config.estimate_period) {
+      history.add(t, measured);
+      if (t >= next_period_check) {
+        const double period = estimator->model().period_s;
+        const auto found =
+            estimate_period_s(history.bins, history.bin_s, 0.5 * period, 2.0 * period);
+        if (found && std::abs(*found - period) > 0.01 * period) estimator->set_period(*found);
+        next_period_check = t + estimator->model().period_s;
+      }
+    }
     flight.trigger();
-    if (keep_steps) out.steps.push_back({t, stage, flight.position(), flight.stage(), k});
+    ++result.steps;
+    const double now = flight.time_s();
+    if (now + 1e-9 >= next_output || flight.done() || soc <= 0.0) {
+      record(k, measured);
+      next_output += config.output_interval_s;
+    }
+    if (progress && now >= next_progress) {
+      progress(std::min(1.0, now / std::max(planned_time, dt)));
+      next_progress = now + 0.01 * planned_time;
+    }
+    if (soc <= 0.0) {
+      result.status = FlightStatus::battery_empty;
+      break;
+    }
   }
-  out.time_s = flight.time_s();
-  out.done = flight.done();
-  out.entries = flight.entries();
-  return out;
+  if (estimator && (result.samples.empty() || result.samples.back().t_s < flight.time_s()))
+    record(k, measured);
+  result.stages = flight.entries();
+  result.flight_time_s = flight.time_s();
+  result.energy_j = energy;
+  result.final_soc = soc;
+  result.mean_power_w = result.flight_time_s > 0 ? energy / result.flight_time_s : 0.0;
+  result.corrections = estimator ? estimator->corrections() : 0;
+  result.final_period_s = estimator ? estimator->model().period_s : config.initial_period_s;
+  for (double v : traj_sum)
+    result.mean_trajectory.push_back(v / std::max(result.flight_time_s, dt));
+  for (double v : comp_sum)
+    result.mean_computations.push_back(v / std::max(result.flight_time_s, dt));
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& [t, predicted] : predictions) {
+    if (t < result.first_period_s || energy <= 0.0) continue;
+    const double err = std::abs(predicted - energy) / energy;
+    sum += err;
+    ++count;
+    result.max_relative_error = std::max(result.max_relative_error, err);
+  }
+  result.mean_relative_error = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  if (result.status != FlightStatus::completed)  // the prediction was for the whole mission
+    result.mean_relative_error = result.max_relative_error = std::nan("");
+  if (progress) progress(1.0);
+  return result;
 }
 
 }  // namespace
@@ -283,141 +624,41 @@ const char* to_string(FlightStatus status) {
 }
 
 double planned_flight_time_s(const Plan& plan, const SimConfig& config) {
-  return planned_flight(plan, config, false).time_s;
+  double total = 0.0;
+  stage_durations(plan, config, config.trajectory_parameters, &total);
+  return total;
 }
 
 SimulationResult simulate(const Plan& plan, const SimConfig& config,
                           const std::function<void(double)>& progress) {
-  check_config(plan, config);
-  const double dt = config.time_step_s;
-  const std::vector<double> extra_w = stage_parameter_power(plan, config);
+  return fly(plan, config, progress);
+}
 
-  const PlannedFlight planned = planned_flight(plan, config, true);
-  const double planned_time = planned.time_s;
-  const std::vector<StageEntry>& planned_entries = planned.entries;
-  const int last_stage = static_cast<int>(plan.stages.size()) - 1;
-
-  SimulationResult result;
-  result.planned_time_s = planned_time;
-  result.first_period_s = config.initial_period_s;
-  GaussianNoise noise(config.power.seed, config.power.noise_w);
-  const Battery& battery = config.battery;
-  const FourierModel model = fourier_model(config.fourier_order, config.initial_period_s, dt);
-  std::optional<EnergyEstimator> estimator;
-  SignalHistory history{
-      config.initial_period_s / 100.0, static_cast<std::size_t>(1200), {}, 0.0, 0.0, 0.0};
-  double next_period_check = config.initial_period_s;
-
-  double soc = battery.initial_soc;
-  double energy = 0.0;
-  double next_output = 0.0;
-  double next_progress = 0.0;
-  std::vector<std::pair<double, double>> predictions;  // (t, predicted total)
-  int stage_now = 0;
-
-  auto record = [&](const FlownStep& step, double measured, double t) {
-    FlightSample s;
-    const StepKinematics& k = step.kinematics;
-    s.t_s = t;
-    s.position = step.end;
-    s.stage = std::min(step.stage_after, last_stage);
-    s.course_deg = std::fmod(450.0 - k.course_rad * 180.0 / kPi, 360.0);
-    s.ground_speed_mps = k.ground_speed_mps;
-    s.airspeed_mps = k.airspeed_mps;
-    s.path_distance_m = k.path_distance_m;
-    s.measured_w = measured;
-    s.model_w = estimator->output_w();
-    s.soc = soc;
-    double rest = estimator->energy_over_j(std::max(0.0, planned_time - t));
-    for (std::size_t e = 1; e < planned_entries.size(); ++e) {
-      const StageEntry& entry = planned_entries[e];
-      if (entry.t_s <= t || entry.stage <= s.stage) continue;
-      rest += (extra_w[entry.stage] - extra_w[entry.stage - 1]) * (planned_time - entry.t_s);
-    }
-    s.predicted_total_j = energy + rest;
-    s.coefficients = estimator->state();
-    predictions.emplace_back(t, s.predicted_total_j);
-    result.samples.push_back(std::move(s));
-  };
-
-  result.status = planned.done ? FlightStatus::completed : FlightStatus::time_limit;
-  double now = 0.0;
-  for (std::size_t i = 0; i < planned.steps.size(); ++i) {
-    const FlownStep& step = planned.steps[i];
-    const double t = step.t_s;
-    const int stage = step.stage;
-    const StepKinematics& k = step.kinematics;
-    double measured;
-    if (!config.replay.t_s.empty()) {
-      measured = config.replay.at(t);
-    } else {
-      measured = mechanical_power_w(config.power.mechanical, k.airspeed_mps, k.lateral_accel_mps2) +
-                 config.power.payload_w + extra_w[stage] + noise.next();
-    }
-    if (!estimator) {
-      estimator.emplace(
-          model, config.kalman,
-          std::isfinite(measured) ? measured : extra_w[stage] + config.power.payload_w);
-    } else {
-      estimator->predict(stage != stage_now ? extra_w[stage] - extra_w[stage_now] : 0.0);
-      estimator->correct(measured);
-    }
-    stage_now = stage;
-    const double power = std::isfinite(measured) ? measured : estimator->output_w();
-    energy += power * dt;
-    soc = soc_after(battery, soc, power, dt);
-    if (!std::isfinite(soc)) soc = 0.0;  // beyond what the battery can deliver
-    if (!result.reserve_crossed_s && soc <= battery.reserve_soc) result.reserve_crossed_s = t + dt;
-
-    if (config.estimate_period) {
-      history.add(t, measured);
-      if (t >= next_period_check) {
-        const double period = estimator->model().period_s;
-        const auto found =
-            estimate_period_s(history.bins, history.bin_s, 0.5 * period, 2.0 * period);
-        if (found && std::abs(*found - period) > 0.01 * period) estimator->set_period(*found);
-        next_period_check = t + estimator->model().period_s;
+FixedComparison compare_fixed(const Plan& plan, const SimConfig& config) {
+  SimConfig fixed = config;
+  fixed.replan = false;
+  FixedComparison out;
+  auto extreme = [&](bool highest) {
+    fixed.trajectory_parameters.clear();
+    fixed.computation_parameters.clear();
+    for (const Interval& b : plan.stages.front().trajectory)
+      fixed.trajectory_parameters.push_back(highest ? b.hi : b.lo);
+    for (std::size_t j = 0; j < plan.computations(); ++j) {
+      double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+      for (const Stage& st : plan.stages) {
+        if (st.computations[j].hi <= 0) continue;  // switched off there
+        lo = std::min(lo, st.computations[j].lo);
+        hi = std::max(hi, st.computations[j].hi);
       }
+      fixed.computation_parameters.push_back(highest ? hi : (std::isfinite(lo) ? lo : 0.0));
     }
-    now = t + dt;
-    ++result.steps;
-    const bool last = i + 1 == planned.steps.size() || soc <= 0.0;
-    if (now + 1e-9 >= next_output || last) {
-      record(step, measured, now);
-      next_output += config.output_interval_s;
-    }
-    if (progress && now >= next_progress) {
-      progress(std::min(1.0, now / std::max(planned_time, dt)));
-      next_progress = now + 0.01 * planned_time;
-    }
-    if (soc <= 0.0) {
-      result.status = FlightStatus::battery_empty;
-      break;
-    }
-  }
-  result.stages.clear();
-  for (const StageEntry& e : planned_entries)
-    if (e.t_s <= now) result.stages.push_back(e);
-  result.flight_time_s = now;
-  result.energy_j = energy;
-  result.final_soc = soc;
-  result.corrections = estimator ? estimator->corrections() : 0;
-  result.final_period_s = estimator ? estimator->model().period_s : config.initial_period_s;
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (const auto& [t, predicted] : predictions) {
-    if (t < result.first_period_s || energy <= 0.0) continue;
-    const double err = std::abs(predicted - energy) / energy;
-    sum += err;
-    ++count;
-    result.max_relative_error = std::max(result.max_relative_error, err);
-  }
-  result.mean_relative_error = count > 0 ? sum / static_cast<double>(count) : 0.0;
-  if (result.status != FlightStatus::completed) {  // the prediction was for the whole mission
-    result.mean_relative_error = result.max_relative_error = std::nan("");
-  }
-  if (progress) progress(1.0);
-  return result;
+    return fly(plan, fixed, {});
+  };
+  out.highest = extreme(true);
+  out.lowest = extreme(false);
+  if (out.lowest.mean_power_w > 0)
+    out.minutes_per_hour = 60.0 * (out.highest.mean_power_w / out.lowest.mean_power_w - 1.0);
+  return out;
 }
 
 }  // namespace swath::energy

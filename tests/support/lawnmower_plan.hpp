@@ -19,13 +19,13 @@ inline std::string lawnmower_plan(int lanes, double spacing_m, double length_m) 
     const bool up = i % 2 == 0;
     // The lane: phi = x - x_i; +90 turns grad (east) to north.
     s += "0.05; " + std::string(up ? "90" : "270") + "; x-(" + num(x) + ")\n";
-    s += num(x) + ", " + num(up ? length_m : 0.0) + "\n[0, 0]\n[0, 10]\n";
+    s += num(x) + ", " + num(up ? length_m : 0.0) + "\n[0, 0]\n[2, 10]\n";
     if (i + 1 == lanes) break;
     // The turn: a half circle over the top (clockwise) or under the bottom (counter-clockwise).
     const double cx = x + r, cy = up ? length_m : 0.0;
     s += "0.002; " + std::string(up ? "270" : "90") + "; (x-(" + num(cx) + "))^2+(y-(" + num(cy) +
          "))^2-" + num(r * r) + "\n";
-    s += num(x + spacing_m) + ", " + num(cy) + "\n[0, 0]\n[0, 10]\n";
+    s += num(x + spacing_m) + ", " + num(cy) + "\n[0, 0]\n[2, 10]\n";
   }
   return s;
 }

@@ -19,9 +19,14 @@ std::string trajectory_csv(const SimulationResult& result);
 /// has no value).
 std::string energy_csv(const SimulationResult& result);
 
-/// completed, status, times, energy, final SoC, reserve, prediction errors, stages, parameters.
+/// t_s,c1..,s1..,feasible: the parameters from each time on (at take-off and every change).
+std::string control_csv(const SimulationResult& result);
+
+/// completed, status, times, energy, final SoC, reserve, prediction errors, replanning (replans,
+/// time-weighted mean parameters), stages, and, when given, the fixed highest / lowest comparison.
 std::string simulation_summary_json(const SimulationResult& result, const Plan& plan,
-                                    const SimConfig& config);
+                                    const SimConfig& config,
+                                    const FixedComparison* comparison = nullptr);
 
 /// Every drone's budget as JSON (lon/lat of the crossings).
 std::string budget_json(const std::vector<DroneBudget>& budgets, const DroneProfile& drone);

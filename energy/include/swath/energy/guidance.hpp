@@ -13,19 +13,25 @@ namespace swath::energy {
 
 /// One stage with its parameters fixed: phi compiled, triggering point evaluated.
 struct StageField {
-  int stage = 0;               ///< 0-based index in the plan
-  std::string where;           ///< "survey.plan: line 13" for messages
-  Expression phi;              ///< over x, y, c1..
-  std::vector<double> values;  ///< x, y, c1.. (x, y rewritten at each evaluation)
-  double gain = 0.0;           ///< k_e
-  int direction = 1;           ///< +1 counter-clockwise, -1 clockwise
-  geometry::Point2 trigger;    ///< local metres
+  int stage = 0;                    ///< 0-based index in the plan
+  std::string where;                ///< "survey.plan: line 13" for messages
+  Expression phi;                   ///< over x, y, c1..
+  std::vector<double> values;       ///< x, y, c1.. (x, y rewritten at each evaluation)
+  double gain = 0.0;                ///< k_e
+  int direction = 1;                ///< +1 counter-clockwise, -1 clockwise
+  geometry::Point2 trigger;         ///< local metres
+  Expression trigger_x, trigger_y;  ///< over the same variables (x, y read as 0)
+  std::vector<Interval> bounds;     ///< of the trajectory parameters
 };
 
 /// The stages of `plan` with trajectory parameters `c` (one per parameter of the plan), each
 /// clamped into the stage's bounds. Throws geometry::InputError when a triggering point is not
 /// finite for these parameters (e.g. sqrt of a negative number).
 std::vector<StageField> stage_fields(const Plan& plan, const std::vector<double>& c);
+
+/// Changes the stage's trajectory parameters (clamped into its bounds): phi's values and the
+/// triggering point. Throws geometry::InputError when the triggering point is not finite.
+void set_trajectory_parameters(StageField& stage, const std::vector<double>& c);
 
 /// `values` clamped into `bounds`, one per bound (missing values: the bound's upper end).
 std::vector<double> stage_parameters(const std::vector<Interval>& bounds,

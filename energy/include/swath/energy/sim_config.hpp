@@ -33,15 +33,18 @@ struct SimConfig {
   double max_time_s = 4 * 3600.0;  ///< the simulation gives up after this
   double stall_time_s = 300.0;     ///< no approach to the triggering point for this long: stall
   double output_interval_s = 0.1;  ///< rows of trajectory.csv and energy.csv, >= time_step_s
-  std::vector<double> trajectory_parameters;   ///< c1.., clamped into each stage's bounds
-  std::vector<double> computation_parameters;  ///< one per computation, clamped likewise
+  std::vector<double> trajectory_parameters;   ///< c1.. at take-off (default: upper bounds)
+  std::vector<double> computation_parameters;  ///< at take-off (default: upper bounds)
   std::vector<double> trajectory_gains_w;      ///< nu: W per unit of each c (eq. 8), default 0
   int fourier_order = 3;                       ///< r, 0..20
   double initial_period_s = 60.0;              ///< T before re-estimation, > 0
   bool estimate_period = true;  ///< re-estimate T each period from the measured signal
   KalmanSettings kalman;
-  double mpc_horizon_s = 6.0;  ///< used by the replanner (next issue)
-  double mpc_period_s = 0.0;   ///< 0: once per energy period
+  bool replan = true;                   ///< false: the parameters stay at their initial values
+  double mpc_period_s = 1.0;            ///< the parameters are re-chosen this often, s (> 0)
+  double mpc_horizon_s = 6.0;           ///< a raised choice is held at least this long, s (>= 0)
+  double mpc_margin = 0.02;             ///< share of the available energy kept unused, [0, 0.5]
+  std::vector<double> quality_weights;  ///< per computation (empty: all 1)
   Battery battery;
   PowerProfile power;
   std::string replay_csv;  ///< measured power to replay instead of the power model

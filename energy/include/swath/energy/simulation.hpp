@@ -43,6 +43,13 @@ struct StageEntry {
   geometry::Point2 position;
 };
 
+/// The parameters from a time on (control.csv).
+struct ControlSample {
+  double t_s = 0.0;
+  std::vector<double> trajectory, computations;  ///< as chosen (each stage clamps them)
+  bool feasible = true;  ///< false: nothing fitted the battery; the lowest levels were taken
+};
+
 struct SimulationResult {
   FlightStatus status = FlightStatus::completed;
   std::vector<FlightSample> samples;  ///< every output interval, and the last step
@@ -58,7 +65,23 @@ struct SimulationResult {
   long corrections = 0;  ///< Kalman corrections applied
   long steps = 0;
   double final_period_s = 0.0;
+  std::vector<ControlSample> control;  ///< the initial parameters and every change
+  long replans = 0;                    ///< choices made by the replanner
+  long infeasible_replans = 0;         ///< of which nothing fitted
+  std::vector<double> mean_trajectory, mean_computations;  ///< time-weighted, as flown (clamped)
+  double mean_power_w = 0.0;
 };
+
+/// The same plan and battery flown with fixed highest and fixed lowest parameters (no
+/// replanning): what lowering the computations buys.
+struct FixedComparison {
+  SimulationResult highest, lowest;
+  /// Extra flight per hour of flight the lowest levels give over the highest on the same battery:
+  /// 60 (P_highest / P_lowest - 1) minutes, from the two runs' mean powers.
+  double minutes_per_hour = 0.0;
+};
+
+FixedComparison compare_fixed(const Plan& plan, const SimConfig& config);
 
 /// Flies `plan` with `config`. `progress` (optional) gets the fraction of the planned time flown,
 /// now and then. Throws geometry::InputError for a plan that cannot be flown (stall, field zero,
