@@ -22,8 +22,11 @@ std::vector<geometry::Ring> field(std::size_t n) {
 
 std::vector<planning::DroneResource> drones(std::size_t n) {
   std::vector<planning::DroneResource> d;
-  for (std::size_t i = 0; i < n; ++i)
-    d.push_back({"d" + std::to_string(i), {-700, -700}, 5, std::nullopt, 1});
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string name = "d";  // not "d" + ...: GCC 12 warns -Wrestrict on that
+    name += std::to_string(i);
+    d.push_back({name, {-700, -700}, 5, std::nullopt, 1});
+  }
   return d;
 }
 

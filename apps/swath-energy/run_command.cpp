@@ -2,6 +2,8 @@
 
 #include <iostream>
 
+#include "energy_images.hpp"
+#include "map_furniture.hpp"
 #include "progress_bar.hpp"
 #include "swath/energy/energy_files.hpp"
 #include "swath/energy/plan.hpp"
@@ -24,6 +26,8 @@ void RunCommand::setup(CLI::App& app) {
   app.add_flag("--no-replan", no_replan_,
                "Keep the parameters at the config's values (default: replan them every "
                "mpc.period_s so that the mission finishes above the battery reserve)");
+  app.add_option("--size", size_, "Size of trajectory.png and energy.png, WxH pixels")
+      ->capture_default_str();
   app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
 }
 
@@ -37,11 +41,16 @@ int RunCommand::run() {
     result = energy::simulate(plan, config, [&](double f) { bar.update(f); });
   }
   const energy::FixedComparison fixed = energy::compare_fixed(plan, config);
+  const auto [w, h] = parse_size(size_);
+  const TrajectoryImage map = trajectory_image(result, config, w, h);
+  const EnergyImage charts = energy_image(result, plan, config, w, h);
   planning::write_files_atomically(
       output_, {{"trajectory.csv", energy::trajectory_csv(result)},
                 {"energy.csv", energy::energy_csv(result)},
                 {"control.csv", energy::control_csv(result)},
-                {"summary.json", energy::simulation_summary_json(result, plan, config, &fixed)}});
+                {"summary.json", energy::simulation_summary_json(result, plan, config, &fixed)},
+                {"trajectory.png", render::encode_png(render::draw(map.scene, map.view))},
+                {"energy.png", render::encode_png(render::draw(charts.scene, charts.view))}});
   using planning::fixed_text;
   std::cout << "swath-energy run: " << energy::to_string(result.status) << " after "
             << fixed_text(result.flight_time_s, 1) << " s, "

@@ -12,7 +12,7 @@ class RunCommand : public Command {
   const char* description() const override {
     return "Simulate a plan of flight stages with the energy model and the battery, replanning "
            "its parameters to finish above the reserve; writes trajectory.csv, energy.csv, "
-           "control.csv, summary.json";
+           "control.csv, summary.json, trajectory.png, energy.png";
   }
   void setup(CLI::App& app) override;
   int run() override;
@@ -21,6 +21,7 @@ class RunCommand : public Command {
   std::string plan_, config_, output_;
   bool progress_ = false;
   bool no_replan_ = false;
+  std::string size_ = "1200x900";
 };
 
 }  // namespace swath::apps

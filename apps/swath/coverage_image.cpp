@@ -1,5 +1,7 @@
 #include "coverage_image.hpp"
 
+#include "map_furniture.hpp"
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -32,14 +34,6 @@ std::vector<Point2> ring_of(const json& coordinates, const geometry::LocalFrame&
   return ring;
 }
 
-// 1, 2 or 5 times a power of ten, about a quarter of the width.
-double nice_length(double metres) {
-  const double p = std::pow(10.0, std::floor(std::log10(metres)));
-  for (double m : {5.0, 2.0, 1.0})
-    if (m * p <= metres) return m * p;
-  return p;
-}
-
 std::string duration(double s) {
   const long t = std::lround(s);
   return std::to_string(t / 60) + ":" + (t % 60 < 10 ? "0" : "") + std::to_string(t % 60);
@@ -69,11 +63,8 @@ CoverageImage coverage_image(const std::string& geojson_text, const std::string&
 
   CoverageImage out;
   render::Scene& scene = out.scene;
-  Point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-  auto grow = [&](Point2 p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  };
+  MapBounds bounds;
+  auto grow = [&](Point2 p) { bounds.add(p); };
   for (const json& f : g["features"]) {
     const std::string role = f["properties"]["role"];
     const json& geom = f["geometry"];
@@ -112,7 +103,7 @@ CoverageImage coverage_image(const std::string& geojson_text, const std::string&
   const int text_h = std::max(12, height_px / 50);
   const int drones = static_cast<int>(s["drones"].size());
   const int title_lines = 1 + std::min(drones, 6);
-  out.view = render::fit(lo, hi, width_px, height_px,
+  out.view = render::fit(bounds.lo, bounds.hi, width_px, height_px,
                          std::max(height_px / 12, title_lines * (text_h + 6) + 16));
   const render::View& v = out.view;
 
@@ -132,27 +123,11 @@ CoverageImage coverage_image(const std::string& geojson_text, const std::string&
         {10, line++ * (text_h + 6) + 8, text, double(text_h), drone_color(d["drone"].get<int>())});
   }
 
-  // Scale bar, bottom left: a round length about a quarter of the width.
-  out.scale_bar_m = nice_length(width_px / 4.0 / v.px_per_m);
-  out.scale_bar_px = out.scale_bar_m * v.px_per_m;
-  out.scale_bar_start_px = {20, height_px - 20.0};
-  const Point2 a = out.scale_bar_start_px, b = a + Point2{out.scale_bar_px, 0};
-  scene.screen_polylines.push_back({{a, b}, 4, {0.1f, 0.1f, 0.1f, 1}});
-  scene.labels.push_back({static_cast<int>(a.x),
-                          static_cast<int>(a.y) - 8,
-                          planning::fixed_text(out.scale_bar_m, 0) + " m",
-                          double(text_h),
-                          {0.1f, 0.1f, 0.1f, 1}});
-
-  // North arrow, top right.
-  const double nx = width_px - 30.0, ny = 2.5 * text_h + 20;
-  scene.screen_polygons.push_back(
-      {{{{nx, ny - 18}, {nx + 8, ny + 6}, {nx, ny}, {nx - 8, ny + 6}}}, {0.1f, 0.1f, 0.1f, 1}});
-  scene.labels.push_back({static_cast<int>(nx) - text_h / 3,
-                          static_cast<int>(ny) + text_h + 10,
-                          "N",
-                          double(text_h),
-                          {0.1f, 0.1f, 0.1f, 1}});
+  const ScaleBar bar = add_scale_bar(scene, v, width_px, height_px, text_h);
+  out.scale_bar_m = bar.length_m;
+  out.scale_bar_px = bar.length_px;
+  out.scale_bar_start_px = bar.start_px;
+  add_north_arrow(scene, width_px, 2.5 * text_h + 20, text_h);
 
   // Legend, bottom right: swatch and name per entry.
   std::vector<std::pair<Color, std::string>> legend{

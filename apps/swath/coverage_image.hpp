@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "map_furniture.hpp"
 #include "swath/render/image.hpp"
 
 namespace swath::apps {
@@ -19,8 +20,5 @@ struct CoverageImage {
 /// Throws geometry::InputError if the texts are not a swath plan (file names in `source`).
 CoverageImage coverage_image(const std::string& geojson_text, const std::string& summary_text,
                              int width_px, int height_px, const std::string& source);
-
-/// "WxH" pixels (64..5000 each); throws geometry::InputError naming --size.
-std::pair<int, int> parse_size(const std::string& text);
 
 }  // namespace swath::apps

@@ -84,19 +84,6 @@ E lookup(const std::map<std::string, E>& table, const std::string& value) {
   return table.at(value);  // CLI11 has already checked membership
 }
 
-}  // namespace
-
-std::pair<int, int> parse_size(const std::string& text) {
-  int w = 0, h = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), " %d x %d %c", &w, &h, &tail) != 2 || w < 64 || h < 64 ||
-      w > 5000 || h > 5000)
-    throw InputError("--size '" + text + "': expected WxH pixels, each 64 to 5000, e.g. 1600x1200");
-  return {w, h};
-}
-
-namespace {
-
 std::string kilometres(double m) {
   return fixed_text(m / 1000, 2) + " km";
 }

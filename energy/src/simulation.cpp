@@ -252,12 +252,19 @@ std::vector<double> trajectory_at(const Plan& plan, double lambda) {
 // Each stage's duration when the plan is flown from the start with parameters c: the remaining
 // path the trajectory parameters imply.
 std::vector<double> stage_durations(const Plan& plan, const SimConfig& config,
-                                    const std::vector<double>& c, double* total) {
+                                    const std::vector<double>& c, double* total,
+                                    std::vector<Point2>* path = nullptr) {
   Flight flight(stage_fields(plan, c), config);
   flight.trigger();
+  if (path) path->push_back(flight.position());
+  double next = config.output_interval_s;
   while (!flight.done() && flight.time_s() < config.max_time_s) {
     flight.step(config.time_step_s);
     flight.trigger();
+    if (path && (flight.time_s() + 1e-9 >= next || flight.done())) {
+      path->push_back(flight.position());
+      next += config.output_interval_s;
+    }
   }
   std::vector<double> d(plan.stages.size(), 0.0);
   const auto& e = flight.entries();
@@ -381,22 +388,27 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
 
   PathTable table;
   double planned_time = 0.0;
+  SimulationResult result;
   if (trajectory_free) {
     for (int i = 0; i <= 4; ++i) {
       table.lambdas.push_back(i / 4.0);
       double total = 0.0;
-      table.durations.push_back(
-          stage_durations(plan, config, trajectory_at(plan, i / 4.0), &total));
+      const bool initial = std::abs(i / 4.0 - lambda) < 1e-12;
+      table.durations.push_back(stage_durations(plan, config, trajectory_at(plan, i / 4.0), &total,
+                                                initial ? &result.planned_path : nullptr));
     }
+    if (result.planned_path.empty()) {
+      double total = 0.0;
+      stage_durations(plan, config, traj, &total, &result.planned_path);
+    }
+    for (double d : table.at(lambda)) planned_time += d;
   } else {
     table.lambdas.push_back(lambda);
-    table.durations.push_back(stage_durations(plan, config, traj, &planned_time));
+    table.durations.push_back(
+        stage_durations(plan, config, traj, &planned_time, &result.planned_path));
   }
-  if (trajectory_free) {
-    for (double d : table.at(lambda)) planned_time += d;
-  }
+  for (const StageField& f : stage_fields(plan, traj)) result.planned_triggers.push_back(f.trigger);
 
-  SimulationResult result;
   result.planned_time_s = planned_time;
   result.first_period_s = config.initial_period_s;
   Flight flight(stage_fields(plan, traj), config);
@@ -421,6 +433,9 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
   // now. The same prediction drives the replanner and is written to energy.csv.
   std::vector<int> representative;
   const std::vector<int> group = bound_groups(plan, &representative);
+  double measured_sum = 0.0, measured_count = 0.0;
+  double pending_lambda = -1.0;  // >= 0: a trajectory change waiting for the next stage
+  int stage_seen = flight.stage();
   auto rest_table = [&] {
     return RestTable(table, group, representative.size(), flight.stage(), flight.stage_elapsed_s());
   };
@@ -433,7 +448,12 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
         shift += (parameter_power_w(plan.stages[representative[g]], config, t_params, c_params) -
                   power_now) *
                  by_group[g];
-    return std::pair{estimator->energy_over_j(total) + shift, total};
+    // Within the first period the model has not yet told its mean from its harmonics: the mean
+    // measured power so far predicts better.
+    const double base = flight.time_s() < config.initial_period_s && measured_count > 0
+                            ? measured_sum / measured_count * total
+                            : estimator->energy_over_j(total);
+    return std::pair{base + shift, total};
   };
 
   auto record = [&](const StepKinematics& k, double measured) {
@@ -470,6 +490,19 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
     const double t = flight.time_s();
     const int stage = flight.stage();
     double step_w = 0.0;  // a change of the parameter power, for the model's input (eq. 8)
+    if (stage != stage_seen) {
+      stage_seen = stage;
+      // Trajectory parameters change where a stage begins: changed mid-stage they would move
+      // the curve under the drone and make it detour.
+      if (pending_lambda >= 0.0) {
+        lambda = pending_lambda;
+        pending_lambda = -1.0;
+        traj = trajectory_at(plan, lambda);
+        flight.set_trajectory_parameters(traj);
+        result.control.push_back({t, traj, comps, result.control.back().feasible});
+        ++params_version;
+      }
+    }
     if (stage != cached_stage || params_version != cached_version) {
       cached_stage = stage;
       cached_version = params_version;
@@ -502,23 +535,22 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
                                                stage_parameters(problem.computation_bounds, comps));
       const double q_new = computation_quality(problem.computation_bounds, config.quality_weights,
                                                choice.computations);
+      const double planned_lambda = pending_lambda >= 0.0 ? pending_lambda : lambda;
       const bool raises =
-          q_new > q_old + 1e-12 || (trajectory_free && choice.lambda > lambda + 1e-9);
+          q_new > q_old + 1e-12 || (trajectory_free && choice.lambda > planned_lambda + 1e-9);
       const bool changes =
           choice.computations != stage_parameters(problem.computation_bounds, comps) ||
-          (trajectory_free && std::abs(choice.lambda - lambda) > 1e-9);
+          (trajectory_free && std::abs(choice.lambda - planned_lambda) > 1e-9);
       if (changes && (!raises || t - last_raise >= config.mpc_horizon_s)) {
         if (raises) last_raise = t;
         // Keep the levels of computations the stage switches off (bounds [0, 0]) for later.
+        const std::vector<double> before = comps;
         for (std::size_t j = 0; j < comps.size(); ++j)
           if (problem.computation_bounds[j].hi > problem.computation_bounds[j].lo)
             comps[j] = choice.computations[j];
-        if (trajectory_free) {
-          lambda = choice.lambda;
-          traj = trajectory_at(plan, lambda);
-          flight.set_trajectory_parameters(traj);
-        }
-        result.control.push_back({t, traj, comps, choice.feasible});
+        pending_lambda =
+            trajectory_free && std::abs(choice.lambda - lambda) > 1e-9 ? choice.lambda : -1.0;
+        if (comps != before) result.control.push_back({t, traj, comps, choice.feasible});
         ++params_version;
         stage_power = parameter_power_w(plan.stages[stage], config, traj, comps);
         flown_traj = stage_parameters(plan.stages[stage].trajectory, traj);
@@ -546,6 +578,10 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
       estimator->correct(measured);
     }
     const double power = std::isfinite(measured) ? measured : estimator->output_w();
+    if (std::isfinite(measured)) {
+      measured_sum += measured;
+      measured_count += 1.0;
+    }
     energy += power * dt;
     soc = soc_after(battery, soc, power, dt);
     if (!std::isfinite(soc)) soc = 0.0;  // beyond what the battery can deliver

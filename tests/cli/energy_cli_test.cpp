@@ -7,7 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../../apps/swath-energy/energy_images.hpp"
 #include "cli_runner.hpp"
+#include "swath/energy/plan.hpp"
+#include "swath/energy/sim_config.hpp"
+#include "swath/energy/simulation.hpp"
 
 namespace swath::test {
 namespace {
@@ -141,6 +145,57 @@ TEST(EnergyCli, BudgetOfAPlannedSurveyAndExitFourWhenItCannotFinish) {
   EXPECT_EQ(weak.exit_code, 4) << weak.err;
   EXPECT_NE(weak.out.find("drone-1 reaches the 20 % reserve at t = "), std::string::npos)
       << weak.out;
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// The pictures, drawn in-process from a simulation, checked at known pixels; the command writes
+// the same bytes.
+TEST(EnergyImages, TrajectoryAndChartsAtKnownPixels) {
+  const energy::Plan plan = energy::read_plan(source_path("plans/survey.plan"));
+  const energy::SimConfig config = energy::read_sim_config(source_path("plans/survey-sim.yaml"));
+  const energy::SimulationResult r = energy::simulate(plan, config);
+  const apps::TrajectoryImage map = apps::trajectory_image(r, config, 800, 600);
+  const render::Image image = render::draw(map.scene, map.view);
+  // A flight sample halfway: the colour of its piece's state of charge.
+  const std::size_t n = r.samples.size(), piece = std::max<std::size_t>(2, n / 200);
+  const std::size_t mid = n / 2, start = mid / piece * piece;
+  const render::Color expected = apps::soc_color(r.samples[start].soc, config.battery);
+  const geometry::Point2 px = map.view.to_pixel(r.samples[mid].position);
+  const int x = static_cast<int>(std::lround(px.x)), y = static_cast<int>(std::lround(px.y));
+  EXPECT_NEAR(image.at(x, y, 0), 255 * expected.r, 12);
+  EXPECT_NEAR(image.at(x, y, 1), 255 * expected.g, 12);
+  EXPECT_EQ(image.at(3, 300, 0), 255);  // background at the left edge
+  // The scale bar is as long as it claims.
+  int dark = 0;
+  for (int i = 0; i < 400; ++i)
+    dark += image.at(i, static_cast<int>(map.scale_bar.start_px.y), 0) < 100;
+  EXPECT_NEAR(dark, map.scale_bar.length_px, 2.0);
+
+  const apps::EnergyImage charts = apps::energy_image(r, plan, config, 800, 900);
+  ASSERT_EQ(charts.charts.size(), 3u);
+  const render::Image e = render::draw(charts.scene, charts.view);
+  // The state of charge passes through its data point: green there.
+  const auto& soc = charts.charts[1];
+  const auto& s = r.samples[n / 2];
+  const int sx = static_cast<int>(std::lround(soc.to_x_px(s.t_s)));
+  const int sy = static_cast<int>(std::lround(soc.to_y_px(100 * s.soc) + charts.offsets_px[1]));
+  int green = 0;
+  for (int dy = -2; dy <= 2; ++dy) green += e.at(sx, sy + dy, 1) > e.at(sx, sy + dy, 0) + 60;
+  EXPECT_GE(green, 1);
+
+  // swath-energy run writes these bytes.
+  const std::string out = fresh_dir("energy-images");
+  ASSERT_EQ(run_swath_energy(
+                "run plans/survey.plan --config plans/survey-sim.yaml --size 800x600 -o " + out)
+                .exit_code,
+            0);
+  EXPECT_EQ(read_text(out + "/trajectory.png"), render::encode_png(image));
+  EXPECT_EQ(render::decode_png(read_text(out + "/energy.png")).height, 600);
 }
 
 }  // namespace

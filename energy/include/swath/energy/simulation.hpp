@@ -70,6 +70,8 @@ struct SimulationResult {
   long infeasible_replans = 0;         ///< of which nothing fitted
   std::vector<double> mean_trajectory, mean_computations;  ///< time-weighted, as flown (clamped)
   double mean_power_w = 0.0;
+  std::vector<geometry::Point2> planned_path;      ///< the plan flown at the initial parameters
+  std::vector<geometry::Point2> planned_triggers;  ///< each stage's triggering point, likewise
 };
 
 /// The same plan and battery flown with fixed highest and fixed lowest parameters (no
