@@ -80,11 +80,19 @@ std::string control_csv(const SimulationResult& result) {
 
 namespace {
 
+ordered_json rounded(const std::vector<double>& values, int decimals) {
+  ordered_json out = ordered_json::array();
+  for (double v : values) out.push_back(round_to(v, decimals));
+  return out;
+}
+
 ordered_json fixed_run(const SimulationResult& r) {
-  return {
-      {"completed", r.status == FlightStatus::completed}, {"status", to_string(r.status)},
-      {"flight_time_s", round_to(r.flight_time_s, 2)},    {"final_soc", round_to(r.final_soc, 6)},
-      {"mean_power_w", round_to(r.mean_power_w, 3)},      {"computations", r.mean_computations}};
+  return {{"completed", r.status == FlightStatus::completed},
+          {"status", to_string(r.status)},
+          {"flight_time_s", round_to(r.flight_time_s, 2)},
+          {"final_soc", round_to(r.final_soc, 6)},
+          {"mean_power_w", round_to(r.mean_power_w, 3)},
+          {"computations", rounded(r.mean_computations, 4)}};
 }
 
 }  // namespace
@@ -117,15 +125,12 @@ std::string simulation_summary_json(const SimulationResult& r, const Plan& plan,
                      {"kalman_corrections", r.corrections},
                      {"steps", r.steps},
                      {"final_period_s", round_to(r.final_period_s, 3)}};
-  ordered_json mean_t = ordered_json::array(), mean_c = ordered_json::array();
-  for (double v : r.mean_trajectory) mean_t.push_back(round_to(v, 4));
-  for (double v : r.mean_computations) mean_c.push_back(round_to(v, 4));
   j["replanning"] = {{"enabled", config.replan},
                      {"replans", r.replans},
                      {"infeasible_replans", r.infeasible_replans},
                      {"changes", r.control.empty() ? 0 : r.control.size() - 1},
-                     {"mean_trajectory", mean_t},
-                     {"mean_computations", mean_c},
+                     {"mean_trajectory", rounded(r.mean_trajectory, 4)},
+                     {"mean_computations", rounded(r.mean_computations, 4)},
                      {"mean_power_w", round_to(r.mean_power_w, 3)}};
   if (comparison) {
     ordered_json high = fixed_run(comparison->highest), low = fixed_run(comparison->lowest);

@@ -173,10 +173,10 @@ SimConfig parse_sim_config(const std::string& text, const std::string& source) {
   c.trajectory_gains_w = gains.numbers("trajectory_w_per_unit");
   const YamlMap model = m.map("model");
   model.allow({"fourier_order", "initial_period_s", "estimate_period", "kalman"});
-  c.fourier_order = static_cast<int>(model.number("fourier_order", c.fourier_order, 0, 20));
-  if (model.has("fourier_order") && model.number("fourier_order", 0, 0, 20) !=
-                                        std::floor(model.number("fourier_order", 0, 0, 20)))
+  const double order = model.number("fourier_order", c.fourier_order, 0, 20);
+  if (order != std::floor(order))
     throw InputError(model.where("fourier_order") + " must be a whole number");
+  c.fourier_order = static_cast<int>(order);
   c.initial_period_s = model.number("initial_period_s", c.initial_period_s, 0.0, 1e6, true);
   if (c.initial_period_s < 10 * c.time_step_s)
     throw InputError(model.where("initial_period_s") + " must span at least 10 time steps");

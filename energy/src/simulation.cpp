@@ -274,22 +274,25 @@ std::vector<double> stage_durations(const Plan& plan, const SimConfig& config,
   return d;
 }
 
+// rows[i] belongs to lambdas[i] (ascending); linear in between, the end rows beyond.
+std::vector<double> row_at(const std::vector<double>& lambdas,
+                           const std::vector<std::vector<double>>& rows, double lambda) {
+  if (lambdas.size() == 1) return rows[0];
+  std::size_t i = 1;
+  while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
+  const double f = std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
+  std::vector<double> out(rows[0].size());
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k] = rows[i - 1][k] + f * (rows[i][k] - rows[i - 1][k]);
+  return out;
+}
+
 // Stage durations at a few lambdas, interpolated between them.
 struct PathTable {
   std::vector<double> lambdas;                 // ascending
   std::vector<std::vector<double>> durations;  // [lambda][stage]
 
-  std::vector<double> at(double lambda) const {
-    if (lambdas.size() == 1) return durations[0];
-    std::size_t i = 1;
-    while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
-    const double f =
-        std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
-    std::vector<double> d(durations[0].size());
-    for (std::size_t k = 0; k < d.size(); ++k)
-      d[k] = durations[i - 1][k] + f * (durations[i][k] - durations[i - 1][k]);
-    return d;
-  }
+  std::vector<double> at(double lambda) const { return row_at(lambdas, durations, lambda); }
 };
 
 // Remaining seconds in each stage from `stage`, `elapsed` seconds into it.
@@ -325,41 +328,30 @@ std::vector<int> bound_groups(const Plan& plan, std::vector<int>* representative
 // each lambda of the path table; linear in between (as the table is).
 struct RestTable {
   std::vector<double> lambdas;
-  std::vector<double> total;                // [lambda]
-  std::vector<std::vector<double>> groups;  // [lambda][group]
+  std::vector<std::vector<double>> rows;  // [lambda]: total, then per group
 
   RestTable(const PathTable& table, const std::vector<int>& group, std::size_t groups_count,
             int stage, double elapsed)
       : lambdas(table.lambdas) {
     for (const auto& d : table.durations) {
       const std::vector<double> r = remaining_by_stage(d, stage, elapsed);
-      std::vector<double> g(groups_count, 0.0);
-      double sum = 0.0;
+      std::vector<double> row(groups_count + 1, 0.0);
       for (std::size_t k = 0; k < r.size(); ++k) {
-        g[group[k]] += r[k];
-        sum += r[k];
+        row[0] += r[k];
+        row[group[k] + 1] += r[k];
       }
-      total.push_back(sum);
-      groups.push_back(std::move(g));
+      rows.push_back(std::move(row));
     }
   }
 
-  // (total, per group) at lambda.
-  std::pair<double, std::vector<double>> at(double lambda) const {
-    if (lambdas.size() == 1) return {total[0], groups[0]};
-    std::size_t i = 1;
-    while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
-    const double f =
-        std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
-    std::vector<double> g(groups[0].size());
-    for (std::size_t j = 0; j < g.size(); ++j)
-      g[j] = groups[i - 1][j] + f * (groups[i][j] - groups[i - 1][j]);
-    return {total[i - 1] + f * (total[i] - total[i - 1]), g};
-  }
+  // [total, per group...] at lambda.
+  std::vector<double> at(double lambda) const { return row_at(lambdas, rows, lambda); }
 };
 
-SimulationResult fly(const Plan& plan, const SimConfig& config,
-                     const std::function<void(double)>& progress) {
+}  // namespace
+
+SimulationResult simulate(const Plan& plan, const SimConfig& config,
+                          const std::function<void(double)>& progress) {
   check_config(plan, config);
   const double dt = config.time_step_s;
   const Stage& first = plan.stages.front();
@@ -441,13 +433,14 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
   };
   auto rest_energy = [&](const RestTable& rt, double l, const std::vector<double>& t_params,
                          const std::vector<double>& c_params) {
-    const auto [total, by_group] = rt.at(l);
+    const std::vector<double> row = rt.at(l);
+    const double total = row[0];
     double shift = 0.0;
-    for (std::size_t g = 0; g < by_group.size(); ++g)
-      if (by_group[g] > 0.0)
+    for (std::size_t g = 0; g + 1 < row.size(); ++g)
+      if (row[g + 1] > 0.0)
         shift += (parameter_power_w(plan.stages[representative[g]], config, t_params, c_params) -
                   power_now) *
-                 by_group[g];
+                 row[g + 1];
     // Within the first period the model has not yet told its mean from its harmonics: the mean
     // measured power so far predicts better.
     const double base = flight.time_s() < config.initial_period_s && measured_count > 0
@@ -527,7 +520,7 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
       problem.rest_energy_j = [&](double l, const std::vector<double>& c) {
         return rest_energy(rt, l, trajectory_free ? trajectory_at(plan, l) : traj, c).first;
       };
-      problem.rest_time_s = [&](double l) { return rt.at(l).first; };
+      problem.rest_time_s = [&](double l) { return rt.at(l)[0]; };
       ReplanChoice choice = choose_parameters(problem);
       ++result.replans;
       if (!choice.feasible) ++result.infeasible_replans;
@@ -645,8 +638,6 @@ SimulationResult fly(const Plan& plan, const SimConfig& config,
   return result;
 }
 
-}  // namespace
-
 const char* to_string(FlightStatus status) {
   switch (status) {
     case FlightStatus::completed:
@@ -657,17 +648,6 @@ const char* to_string(FlightStatus status) {
       return "time_limit";
   }
   return "";
-}
-
-double planned_flight_time_s(const Plan& plan, const SimConfig& config) {
-  double total = 0.0;
-  stage_durations(plan, config, config.trajectory_parameters, &total);
-  return total;
-}
-
-SimulationResult simulate(const Plan& plan, const SimConfig& config,
-                          const std::function<void(double)>& progress) {
-  return fly(plan, config, progress);
 }
 
 FixedComparison compare_fixed(const Plan& plan, const SimConfig& config) {
@@ -688,7 +668,7 @@ FixedComparison compare_fixed(const Plan& plan, const SimConfig& config) {
       }
       fixed.computation_parameters.push_back(highest ? hi : (std::isfinite(lo) ? lo : 0.0));
     }
-    return fly(plan, fixed, {});
+    return simulate(plan, fixed);
   };
   out.highest = extreme(true);
   out.lowest = extreme(false);

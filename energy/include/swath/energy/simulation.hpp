@@ -91,7 +91,4 @@ FixedComparison compare_fixed(const Plan& plan, const SimConfig& config);
 SimulationResult simulate(const Plan& plan, const SimConfig& config,
                           const std::function<void(double)>& progress = {});
 
-/// Only the flight (no power, no estimator): how long the plan takes with these settings.
-double planned_flight_time_s(const Plan& plan, const SimConfig& config);
-
 }  // namespace swath::energy
