@@ -128,7 +128,17 @@ EnergyImage energy_image(const energy::SimulationResult& r, const energy::Plan& 
               "%",
               {{"SoC", t, soc, {0.1f, 0.6f, 0.2f, 1}, 2.0},
                {"reserve", {0.0, t_end}, {reserve, reserve}, {0.85f, 0.15f, 0.1f, 1}, 1.5}}};
-  // Parameters as steps, each as its level within the first stage's bounds.
+  // Parameters as steps, each as its level within the widest of its stages' bounds ([0, 0], a
+  // computation switched off, does not count: a plan may start with it off).
+  auto widest = [&plan](auto bounds_of) {
+    energy::Interval w{INFINITY, -INFINITY};
+    for (const energy::Stage& stage : plan.stages) {
+      const energy::Interval b = bounds_of(stage);
+      if (b.lo == 0 && b.hi == 0) continue;
+      w = {std::min(w.lo, b.lo), std::max(w.hi, b.hi)};
+    }
+    return w.lo <= w.hi ? w : energy::Interval{0, 0};
+  };
   const energy::Stage& first = plan.stages.front();
   std::vector<render::Series> levels;
   const Color palette[] = {{0.55f, 0.1f, 0.75f, 1},
@@ -154,14 +164,14 @@ EnergyImage energy_image(const energy::SimulationResult& r, const energy::Plan& 
   for (std::size_t i = 0; i < first.trajectory.size(); ++i) {
     std::string name = "c";
     name += std::to_string(i + 1);
-    add_steps(name, first.trajectory[i],
+    add_steps(name, widest([i](const energy::Stage& st) { return st.trajectory[i]; }),
               [i](const energy::ControlSample& c) { return c.trajectory[i]; });
   }
   for (std::size_t j = 0; j < first.computations.size(); ++j) {
     std::string name = "s";
     name += std::to_string(j + 1);
     if (j < config.power.computations.size()) name = config.power.computations[j].name;
-    add_steps(name, first.computations[j],
+    add_steps(name, widest([j](const energy::Stage& st) { return st.computations[j]; }),
               [j](const energy::ControlSample& c) { return c.computations[j]; });
   }
   specs[2] = {"Parameters (0 lowest, 1 highest)", "time (s)", "level", levels};

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -11,6 +12,7 @@
 
 #include "coverage_image.hpp"
 #include "data_dir.hpp"
+#include "energy_plan_files.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/number_text.hpp"
 #include "swath/planning/output_files.hpp"
@@ -201,6 +203,18 @@ void PlanCommand::setup(CLI::App& app) {
       ->check(CLI::IsMember({"multirotor", "fixedwing"}))
       ->capture_default_str();
   app.add_option("--speed", speed_m_s_, "Cruise speed, m/s (default 5 multirotor, 15 fixed wing)");
+  app.add_option("--energy-plan", energy_plan_,
+                 "Also write the zigzag as a stage plan for 'swath-energy run' under this file "
+                 "name in -o DIR (with a fleet, NAME-<drone>.EXT each): lines, half-circle turns, "
+                 "c1 scaling the line spacing");
+  app.add_option("--energy-min-coverage", energy_min_coverage_,
+                 "Energy plan: c1's bounds keep at least this fraction of the area covered")
+      ->capture_default_str();
+  app.add_option("--energy-computation", energy_computations_,
+                 "Energy plan: LO,HI bounds of a computation parameter on lines and turns, one "
+                 "per computation of the simulation config (default: 2,10 and 32,448 as in "
+                 "plans/survey-sim.yaml); 'none' for none")
+      ->capture_default_str();
 }
 
 int PlanCommand::run() {
@@ -305,6 +319,16 @@ int PlanCommand::run() {
 
   const planning::SurveyPlan plan = planning::plan_survey(request);
   auto files = planning::survey_files(plan);
+  std::vector<std::string> warnings = plan.warnings;
+  if (!energy_plan_.empty()) {
+    EnergyPlanRequest energy;
+    energy.file_name = energy_plan_;
+    energy.min_covered_fraction = energy_min_coverage_;
+    energy.field = std::filesystem::path(field_).filename().string();
+    for (const std::string& c : energy_computations_)
+      if (c != "none") energy.computations.push_back(parse_interval(c, "--energy-computation"));
+    for (auto& f : energy_plan_files(plan, energy, warnings)) files.push_back(std::move(f));
+  }
   if (render_) {
     const auto [w, h] = parse_size(size_);
     const CoverageImage image = coverage_image(files[0].second, files[1].second, w, h, output_);
@@ -349,7 +373,7 @@ int PlanCommand::run() {
   std::string names;
   for (const auto& f : files) names += " " + f.first;
   std::printf("  wrote     %s\n", names.c_str());
-  for (const std::string& w : plan.warnings) std::cerr << "swath plan: warning: " << w << '\n';
+  for (const std::string& w : warnings) std::cerr << "swath plan: warning: " << w << '\n';
   return kSuccess;
 }
 

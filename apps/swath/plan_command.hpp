@@ -57,6 +57,9 @@ class PlanCommand : public Command {
   std::string firmware_ = "ardupilot";
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;
+  std::string energy_plan_;
+  double energy_min_coverage_ = 0.99;
+  std::vector<std::string> energy_computations_ = {"2,10", "32,448"};
 };
 
 }  // namespace swath::apps

@@ -9,6 +9,7 @@
 
 #include "swath/energy/expression.hpp"
 #include "swath/geometry/input_error.hpp"
+#include "swath/planning/number_text.hpp"
 #include "yaml_fields.hpp"
 
 namespace swath::energy {
@@ -210,10 +211,12 @@ Plan read_plan(const std::filesystem::path& path) {
 
 std::string format_plan(const Plan& plan) {
   std::ostringstream out;
-  out.precision(17);
-  auto interval = [&](const Interval& iv) { out << '[' << iv.lo << ", " << iv.hi << ']'; };
+  auto interval = [&](const Interval& iv) {
+    out << '[' << planning::shortest_text(iv.lo) << ", " << planning::shortest_text(iv.hi) << ']';
+  };
   for (const Stage& s : plan.stages) {
-    out << s.gain << "; " << (s.direction > 0 ? 90 : 270) << "; " << s.phi << '\n';
+    out << planning::shortest_text(s.gain) << "; " << (s.direction > 0 ? 90 : 270) << "; " << s.phi
+        << '\n';
     out << s.trigger_x << ", " << s.trigger_y << '\n';
     for (std::size_t i = 0; i < s.trajectory.size(); ++i) {
       if (i > 0) out << ", ";

@@ -19,4 +19,10 @@ std::string fixed_text(double value, int decimals) {
   return std::string(buffer, result.ptr);
 }
 
+std::string shortest_text(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value == 0.0 ? 0.0 : value);
+  return std::string(buffer, result.ptr);
+}
+
 }  // namespace swath::planning

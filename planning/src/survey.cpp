@@ -126,6 +126,12 @@ void divide_among_fleet(SurveyPlan& plan, geometry::Point2 plan_home,
 
 }  // namespace
 
+geometry::Polygon measured_area(const SurveyPlan& plan) {
+  geometry::Polygon measured = plan.area;
+  measured.holes.insert(measured.holes.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  return measured;
+}
+
 std::vector<const DroneMission*> missions_of(const SurveyPlan& plan) {
   std::vector<const DroneMission*> out;
   if (plan.drone_missions.empty()) {
@@ -281,9 +287,7 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   if (request.fleet)
     divide_among_fleet(plan, home, rings, split, split_settings, router, route, mission_settings);
 
-  // Extra pieces as further rings: the scanline measure counts by the even-odd rule.
-  geometry::Polygon measured = plan.area;
-  measured.holes.insert(measured.holes.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  const geometry::Polygon measured = measured_area(plan);
   std::vector<SweepLine> flown;
   for (const DroneMission* m : missions_of(plan))
     flown.insert(flown.end(), m->lines.begin(), m->lines.end());

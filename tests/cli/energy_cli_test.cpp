@@ -12,6 +12,7 @@
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
 #include "swath/energy/simulation.hpp"
+#include "swath/planning/number_text.hpp"
 
 namespace swath::test {
 namespace {
@@ -145,6 +146,80 @@ TEST(EnergyCli, BudgetOfAPlannedSurveyAndExitFourWhenItCannotFinish) {
   EXPECT_EQ(weak.exit_code, 4) << weak.err;
   EXPECT_NE(weak.out.find("drone-1 reaches the 20 % reserve at t = "), std::string::npos)
       << weak.out;
+}
+
+// A real survey as a stage plan, flown by swath-energy with a pack too small for the highest
+// computations: the fixed-highest flight ends below the reserve, the replanned one above it.
+TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
+  const std::string dir = fresh_dir("energy-survey-plan");
+  const CliRun plan = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --energy-plan "
+      "meadow.plan -o " +
+      dir);
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  const energy::Plan stages = energy::read_plan(dir + "/meadow.plan");
+  const json summary = json::parse(read_text(dir + "/summary.json"));
+  // Home leg, the lines, a turn between each two, the leg back.
+  const std::size_t lines = summary["drones"][0]["lines"].get<std::size_t>();
+  EXPECT_EQ(stages.stages.size(), 2 * lines - 1 + 2);
+  ASSERT_EQ(stages.computations(), 2u);
+  const energy::Interval c1 = stages.stages[0].trajectory[0];
+  EXPECT_EQ(c1.hi, 1.0);
+  EXPECT_GT(c1.lo, 0.5);
+  EXPECT_LT(c1.lo, 1.0);
+  // The header's home is the config's start (plans/meadow-sim.yaml).
+  const energy::SimConfig config = energy::read_sim_config(source_path("plans/meadow-sim.yaml"));
+  const std::string text = read_text(dir + "/meadow.plan");
+  const std::string home = "start_m: [" + planning::fixed_text(config.start.x, 2) + ", " +
+                           planning::fixed_text(config.start.y, 2) + "]";
+  EXPECT_NE(text.find(home), std::string::npos) << text.substr(0, 400);
+
+  const std::string out = dir + "/energy";
+  const CliRun run =
+      run_swath_energy("run " + dir + "/meadow.plan --config plans/meadow-sim.yaml -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_TRUE(s["completed"].get<bool>());
+  const double reserve = s["reserve_soc"].get<double>();
+  EXPECT_GE(s["final_soc"].get<double>(), reserve);
+  EXPECT_LT(s["fixed"]["highest"]["final_soc"].get<double>(), reserve);
+  EXPECT_GT(s["fixed"]["lowest"]["final_soc"].get<double>(), reserve);
+  const double detection = s["replanning"]["mean_computations"][0].get<double>();
+  EXPECT_GT(detection, s["fixed"]["lowest"]["computations"][0].get<double>());
+  EXPECT_LT(detection, s["fixed"]["highest"]["computations"][0].get<double>());
+  // The survey's path: the drone flies about the planned path length (turns on half circles
+  // instead of straight legs between the lines' ends, so a few per cent apart).
+  const double path_m = summary["drones"][0]["path_length_m"].get<double>();
+  EXPECT_NEAR(s["flight_time_s"].get<double>() * config.speed_mps, path_m, 0.05 * path_m);
+
+  // A fleet: one plan per drone, each its own lines.
+  const std::string fleet = fresh_dir("energy-survey-plan-fleet");
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+                      "--drones 2 --division region --energy-plan m.plan -o " +
+                      fleet)
+                .exit_code,
+            0);
+  const json fleet_summary = json::parse(read_text(fleet + "/summary.json"));
+  for (int drone = 1; drone <= 2; ++drone) {
+    const energy::Plan p = energy::read_plan(fleet + "/m-" + std::to_string(drone) + ".plan");
+    const std::size_t n = fleet_summary["drones"][drone - 1]["lines"].get<std::size_t>();
+    EXPECT_EQ(p.stages.size(), 2 * n - 1 + 2) << drone;
+  }
+  EXPECT_FALSE(std::filesystem::exists(fleet + "/m.plan"));
+
+  // Bad requests: one sentence, exit 2, nothing written.
+  const std::string bad = fresh_dir("energy-survey-plan-bad");
+  for (const std::string& args : {std::string("--energy-plan sub/meadow.plan"),
+                                  std::string("--energy-plan m.plan "
+                                              "--energy-computation 10,2"),
+                                  std::string("--energy-plan m.plan --energy-min-coverage 1.5")}) {
+    const CliRun r =
+        run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 " + args +
+                  " -o " + bad + "/out");
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find("--energy-"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(bad + "/out")) << args;
+  }
 }
 
 }  // namespace

@@ -11,4 +11,7 @@ double round_to(double value, int decimals);
 /// `value` with exactly `decimals` digits after the point (std::to_chars: no locale).
 std::string fixed_text(double value, int decimals);
 
+/// The shortest text that reads back as exactly `value` (std::to_chars: no locale); never "-0".
+std::string shortest_text(double value);
+
 }  // namespace swath::planning

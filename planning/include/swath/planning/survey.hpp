@@ -99,6 +99,10 @@ struct SurveyPlan {
 /// The missions to write: one per drone of the fleet, or the single survey mission.
 std::vector<const DroneMission*> missions_of(const SurveyPlan& plan);
 
+/// What the coverage of a plan is measured over: the area, and --repair's extra pieces as further
+/// rings (the scanline measure counts by the even-odd rule).
+geometry::Polygon measured_area(const SurveyPlan& plan);
+
 /// Plans a survey, divided among a fleet when one is given. Throws geometry::InputError for an area
 /// it refuses (self-intersecting, or non-convex with ConcaveMode::reject), a local-metres area
 /// without a geographic frame, or settings out of range; the message names the problem.
