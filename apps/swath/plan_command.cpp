@@ -1,7 +1,5 @@
 #include "plan_command.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +11,7 @@
 #include "coverage_image.hpp"
 #include "data_dir.hpp"
 #include "energy_plan_files.hpp"
+#include "mission_config.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/number_text.hpp"
 #include "swath/planning/output_files.hpp"
@@ -46,39 +45,6 @@ std::pair<double, double> parse_pattern(const std::string& text) {
   if (std::sscanf(text.c_str(), " %lf x %lf %c", &w, &h, &tail) != 2)
     throw InputError("--pattern '" + text + "': expected WxH in metres, e.g. 1.5x1.5");
   return {w, h};
-}
-
-// Options a mission YAML may set: every long option of the command, FIELD as "field".
-void apply_config(CLI::App& app, const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path + ": cannot open the mission config");
-  } catch (const YAML::Exception& e) {
-    throw InputError(path + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
-  if (root.IsNull()) return;
-  if (!root.IsMap()) throw InputError(path + ": a mission config is a mapping of option: value");
-  for (const auto& kv : root) {
-    const std::string key = kv.first.as<std::string>();
-    const std::string where = path + ": line " + std::to_string(kv.first.Mark().line + 1);
-    CLI::Option* option = key == "field"                     ? app.get_option_no_throw("FIELD")
-                          : key == "config" || key == "help" ? nullptr
-                                                             : app.get_option_no_throw("--" + key);
-    if (option == nullptr)
-      throw InputError(where + ": unknown key '" + key +
-                       "' (keys are the long options of swath plan)");
-    if (option->count() > 0) continue;  // the command line wins
-    if (!kv.second.IsScalar()) throw InputError(where + ": " + key + " must be a single value");
-    try {
-      option->add_result(kv.second.as<std::string>());
-      option->run_callback();
-    } catch (const CLI::Error& e) {
-      throw InputError(where + ": " + key + ": " + e.what());
-    }
-  }
 }
 
 template <typename E>
@@ -218,7 +184,13 @@ void PlanCommand::setup(CLI::App& app) {
 }
 
 int PlanCommand::run() {
-  if (!config_.empty()) apply_config(*app_, config_);
+  if (!config_.empty()) {
+    std::ifstream in(config_, std::ios::binary);
+    if (!in) throw InputError(config_ + ": cannot open the mission config");
+    std::ostringstream text;
+    text << in.rdbuf();
+    apply_mission_config(*app_, text.str(), config_);
+  }
   if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
   if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
   if (output_.empty()) throw InputError("no output directory: give -o DIR");

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "swath/geometry/input_error.hpp"
+#include "swath/geometry/json_document.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/planning/number_text.hpp"
 
@@ -195,12 +196,7 @@ BudgetPoint point_at(const geometry::LocalFrame& frame, double t, Point2 p, doub
 
 std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
                                                      const std::string& source) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(source + ": invalid JSON at byte " + std::to_string(e.byte) + "");
-  }
+  const json root = geometry::parse_json_document(text, source);
   if (!root.is_object()) throw InputError(source + ": expected a JSON object");
   if (root.value("type", std::string()) == "FeatureCollection") return parse_geojson(root, source);
   if (root.value("fileType", std::string()) == "Plan") return parse_qgc(root, source);

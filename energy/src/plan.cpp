@@ -158,7 +158,9 @@ Plan parse_plan(const std::string& text, const std::string& source) {
   return plan;
 }
 
-Plan parse_plan_yaml(const std::string& text, const std::string& source) {
+namespace {
+
+Plan plan_from_yaml(const std::string& text, const std::string& source) {
   const YAML::Node root = detail::load_yaml(text, source);
   if (!root.IsMap() || !root["stages"] || !root["stages"].IsSequence())
     throw InputError(source + ": a YAML plan is a mapping with a list 'stages'");
@@ -166,6 +168,9 @@ Plan parse_plan_yaml(const std::string& text, const std::string& source) {
   plan.source = source;
   for (const YAML::Node& n : root["stages"]) {
     const std::string where = source + ": line " + std::to_string(n.Mark().line + 1);
+    if (!n.IsMap())
+      throw InputError(where + ": a stage is a mapping {gain, rotation, phi, trigger, ..}");
+    planning::detail::check_plain_unique_keys(n, source);
     auto field = [&](const char* key) {
       if (!n[key]) throw InputError(where + ": the stage has no '" + std::string(key) + "'");
       return n[key].as<std::string>();
@@ -197,6 +202,12 @@ Plan parse_plan_yaml(const std::string& text, const std::string& source) {
   }
   check(plan);
   return plan;
+}
+
+}  // namespace
+
+Plan parse_plan_yaml(const std::string& text, const std::string& source) {
+  return detail::yaml_guard(source, [&] { return plan_from_yaml(text, source); });
 }
 
 Plan read_plan(const std::filesystem::path& path) {

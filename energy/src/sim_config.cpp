@@ -142,7 +142,9 @@ PowerTrace parse_power_trace(const std::string& text, const std::string& source)
   return trace;
 }
 
-SimConfig parse_sim_config(const std::string& text, const std::string& source) {
+namespace {
+
+SimConfig sim_config_from_yaml(const std::string& text, const std::string& source) {
   const YAML::Node root = detail::load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source + ": a simulation config is a mapping of keys");
   const YamlMap m(root, source, "");
@@ -161,7 +163,7 @@ SimConfig parse_sim_config(const std::string& text, const std::string& source) {
   if (!start.empty() && start.size() != 2)
     throw InputError(m.where("start_m") + " must be [x, y] in local metres");
   if (start.size() == 2) c.start = {start[0], start[1]};
-  c.max_time_s = m.number("max_time_s", c.max_time_s, 0.0, 1e7, true);
+  c.max_time_s = m.number("max_time_s", c.max_time_s, 0.0, 86400.0, true);  // a day at most
   c.stall_time_s = m.number("stall_time_s", c.stall_time_s, 0.0, 1e7, true);
   c.output_interval_s = m.number("output_interval_s", c.output_interval_s, c.time_step_s, 1e5);
   const YamlMap params = m.map("parameters");
@@ -202,6 +204,12 @@ SimConfig parse_sim_config(const std::string& text, const std::string& source) {
   return c;
 }
 
+}  // namespace
+
+SimConfig parse_sim_config(const std::string& text, const std::string& source) {
+  return detail::yaml_guard(source, [&] { return sim_config_from_yaml(text, source); });
+}
+
 SimConfig read_sim_config(const std::string& path) {
   SimConfig c = parse_sim_config(read_text(path, "simulation config"), path);
   if (!c.replay_csv.empty()) {
@@ -212,7 +220,9 @@ SimConfig read_sim_config(const std::string& path) {
   return c;
 }
 
-DroneProfile parse_drone_profile(const std::string& text, const std::string& source) {
+namespace {
+
+DroneProfile drone_profile_from_yaml(const std::string& text, const std::string& source) {
   const YAML::Node root = detail::load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source + ": a drone profile is a mapping of keys");
   const YamlMap m(root, source, "");
@@ -236,6 +246,12 @@ DroneProfile parse_drone_profile(const std::string& text, const std::string& sou
                      std::to_string(d.computation_parameters.size()) + " values for " +
                      std::to_string(d.power.computations.size()) + " power.computations curves");
   return d;
+}
+
+}  // namespace
+
+DroneProfile parse_drone_profile(const std::string& text, const std::string& source) {
+  return detail::yaml_guard(source, [&] { return drone_profile_from_yaml(text, source); });
 }
 
 DroneProfile read_drone_profile(const std::string& path) {

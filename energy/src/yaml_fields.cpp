@@ -9,15 +9,6 @@ namespace swath::energy::detail {
 
 using geometry::InputError;
 
-YAML::Node load_yaml(const std::string& text, const std::string& source) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
-}
-
 YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path)
     : node_(node), source_(std::move(source)), path_(std::move(path)) {
   if (node_ && !node_.IsNull() && !node_.IsMap()) {
@@ -39,8 +30,10 @@ std::string YamlMap::where(const char* key) const {
 
 void YamlMap::allow(std::initializer_list<const char*> keys) const {
   if (!node_ || !node_.IsMap()) return;
+  planning::detail::check_plain_unique_keys(node_,
+                                            path_.empty() ? source_ : source_ + ": " + path_);
   for (const auto& kv : node_) {
-    const std::string k = kv.first.as<std::string>();
+    const std::string k = kv.first.Scalar();
     bool ok = false;
     for (const char* allowed : keys) ok = ok || k == allowed;
     if (!ok) {

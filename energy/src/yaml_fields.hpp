@@ -8,9 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "swath/planning/detail/yaml_input.hpp"
+
 namespace swath::energy::detail {
 
-YAML::Node load_yaml(const std::string& text, const std::string& source);
+using planning::detail::load_yaml;
+using planning::detail::yaml_guard;
 
 /// A mapping at `path` ("battery", "power.mechanical", "" for the root) of `source`.
 class YamlMap {

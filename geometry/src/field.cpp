@@ -96,6 +96,13 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
       raw = detail::parse_csv(text, source, local_metres);
       break;
   }
+  std::size_t vertices = 0;
+  for (const detail::RawRing& ring : raw.rings) vertices += ring.points.size();
+  if (vertices > kMaxFieldVertices)
+    fail(source, "the area has " + std::to_string(vertices) +
+                     " vertices, more than swath's limit of " + std::to_string(kMaxFieldVertices) +
+                     "; simplify it first (a survey rarely needs "
+                     "vertices closer than a metre)");
   const bool geographic = !(format == FieldFormat::csv && local_metres);
   check_coordinates(raw, source, geographic);
 

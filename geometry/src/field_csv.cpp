@@ -2,6 +2,7 @@
 // column "ring" (0 = outer, 1.. = holes), an optional header naming the columns, '#' comments.
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -103,7 +104,7 @@ RawField parse_csv(const std::string& text, const std::string& source, bool loca
     long ring_id = 0;
     if (cring) {
       const auto r = number(cells[*cring]);
-      if (!r || *r < 0 || *r != static_cast<double>(static_cast<long>(*r)))
+      if (!r || *r < 0 || *r > 1e9 || *r != std::floor(*r))
         fail(source, where + ": ring '" + cells[*cring] + "' is not a whole number >= 0");
       ring_id = static_cast<long>(*r);
     }

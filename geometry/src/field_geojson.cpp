@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raw_field.hpp"
+#include "swath/geometry/json_document.hpp"
 
 namespace swath::geometry::detail {
 namespace {
@@ -67,23 +68,7 @@ RawField parse_geometry(const json& geometry, const std::string& source, const s
 }  // namespace
 
 RawField parse_geojson(const std::string& text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    const auto [line, column] = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
-    std::string reason = e.what();
-    const auto colon = reason.find(": ", reason.find("column"));
-    reason = colon == std::string::npos ? reason : reason.substr(colon + 2);
-    fail(source, "line " + std::to_string(line) + ", column " + std::to_string(column) +
-                     ": invalid JSON (" + reason + ")");
-  } catch (const json::exception& e) {
-    // Not a syntax error but a value JSON cannot hold as a double (e.g. 1e999).
-    std::string reason = e.what();
-    const auto bracket = reason.find("] ");
-    fail(source, "invalid JSON (" +
-                     (bracket == std::string::npos ? reason : reason.substr(bracket + 2)) + ")");
-  }
+  const json root = parse_json_document(text, source);
   const std::string type = type_of(root);
   if (type.empty()) fail(source, "not a GeoJSON object (no \"type\" member at the top level)");
 

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "swath/geometry/input_error.hpp"
+#include "swath/planning/detail/yaml_input.hpp"
 #include "swath/planning/imaging.hpp"
-#include "yaml_input.hpp"
 
 namespace swath::planning {
 namespace {
@@ -41,15 +41,18 @@ std::string read_text(const std::filesystem::path& path) {
 
 }  // namespace
 
-Camera parse_camera(const std::string& yaml_text, const std::string& source) {
+namespace {
+
+Camera camera_from_yaml(const std::string& yaml_text, const std::string& source) {
   const YAML::Node root = detail::load_yaml(yaml_text, source);
   if (!root.IsMap())
     throw InputError(source + ": a camera file is a YAML mapping of name, sensor and image sizes");
   static const std::set<std::string> known{
       "name",           "sensor_width_mm", "sensor_height_mm",      "focal_length_mm",
       "image_width_px", "image_height_px", "min_trigger_interval_s"};
+  detail::check_plain_unique_keys(root, source);
   for (const auto& kv : root) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = kv.first.Scalar();
     if (!known.count(key))
       throw InputError(source + ": line " + std::to_string(kv.first.Mark().line + 1) +
                        ": unknown key '" + key + "'");
@@ -78,6 +81,12 @@ Camera parse_camera(const std::string& yaml_text, const std::string& source) {
   }
   validate_camera(c, source);
   return c;
+}
+
+}  // namespace
+
+Camera parse_camera(const std::string& yaml_text, const std::string& source) {
+  return detail::yaml_guard(source, [&] { return camera_from_yaml(yaml_text, source); });
 }
 
 std::vector<CameraEntry> camera_database(const std::filesystem::path& directory) {

@@ -125,8 +125,9 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
       active_edges.push_back(&edges[next_edge++]);
     while (next_band < bands.size() && bands[next_band].y0 <= y)
       active_bands.push_back(&bands[next_band++]);
-    std::erase_if(active_edges, [y](const Edge* e) { return e->hi.y <= y; });
-    std::erase_if(active_bands, [y](const Band* b) { return b->y1 < y; });
+    // A copy: clang 14 cannot capture a structured binding.
+    std::erase_if(active_edges, [at = y](const Edge* e) { return e->hi.y <= at; });
+    std::erase_if(active_bands, [at = y](const Band* b) { return b->y1 < at; });
 
     xs.clear();
     for (const Edge* e : active_edges)

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "swath/geometry/input_error.hpp"
-#include "yaml_input.hpp"
+#include "swath/planning/detail/yaml_input.hpp"
 
 namespace swath::planning {
 namespace {
@@ -45,8 +45,11 @@ std::optional<double> Drone::range_m() const {
   return *battery_level * *endurance_s * *speed_m_s;
 }
 
-Fleet parse_fleet(const std::string& text, const std::string& source) {
+namespace {
+
+Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
   const YAML::Node root = detail::load_yaml(text, source);
+  detail::check_plain_unique_keys(root, source);
   if (!root.IsMap() || !root["home"] || !root["drones"])
     throw InputError(source + ": a fleet file needs 'home' and 'drones'");
   Fleet fleet;
@@ -61,10 +64,11 @@ Fleet parse_fleet(const std::string& text, const std::string& source) {
     const YAML::Node d = drones[i];
     const std::string where = source + ": drone " + std::to_string(i + 1);
     if (!d.IsMap()) throw InputError(where + ", " + line_of(d) + ": a drone is a mapping");
+    detail::check_plain_unique_keys(d, where);
     for (const auto& kv : d)
-      if (!known.count(kv.first.as<std::string>()))
-        throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" +
-                         kv.first.as<std::string>() + "'");
+      if (!known.count(kv.first.Scalar()))
+        throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + kv.first.Scalar() +
+                         "'");
     Drone drone;
     drone.name = d["name"] ? d["name"].as<std::string>() : "drone-" + std::to_string(i + 1);
     if (d["capability"]) {
@@ -97,6 +101,12 @@ Fleet parse_fleet(const std::string& text, const std::string& source) {
                      ": give every drone a capability, or every drone battery_level, endurance_s "
                      "and speed_m_s, not a mix");
   return fleet;
+}
+
+}  // namespace
+
+Fleet parse_fleet(const std::string& text, const std::string& source) {
+  return detail::yaml_guard(source, [&] { return fleet_from_yaml(text, source); });
 }
 
 Fleet equal_fleet(int n, const geometry::GeoPoint& home) {

@@ -228,6 +228,24 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     }
   }
 
+  // Bounded work: a camera footprint of centimetres over kilometres would ask for millions of
+  // lines or waypoints; refuse that instead of running out of time or memory.
+  const double lines = plan.direction.height_m / plan.imaging.line_spacing_m;
+  if (lines > double(kMaxSweepLines))
+    throw InputError("the area is " + fixed_text(plan.direction.height_m, 1) +
+                     " m across the lines and they are " +
+                     fixed_text(plan.imaging.line_spacing_m, 3) +
+                     " m apart: " + fixed_text(lines, 0) + " lines, more than swath's limit of " +
+                     std::to_string(kMaxSweepLines) + "; fly higher or split the area");
+  if (request.waypoint_spacing_m && *request.waypoint_spacing_m > 0 && plan.facts.area_m2) {
+    const double points =
+        *plan.facts.area_m2 / plan.imaging.line_spacing_m / *request.waypoint_spacing_m;
+    if (points > double(kMaxWaypoints))
+      throw InputError("--waypoint-spacing " + fixed_text(*request.waypoint_spacing_m, 3) +
+                       " m would put about " + fixed_text(points, 0) +
+                       " waypoints on the lines, more than swath's limit of " +
+                       std::to_string(kMaxWaypoints));
+  }
   if (!(request.turnaround_m >= 0 && std::isfinite(request.turnaround_m)))
     throw InputError("--turnaround must be >= 0 m");
   if (request.waypoint_spacing_m && !(*request.waypoint_spacing_m > 0))
@@ -331,9 +349,12 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     plan.warnings.push_back("the altitude " + fixed_text(plan.imaging.altitude_m, 1) +
                             " m is above h_max " + fixed_text(*plan.imaging.h_max_m, 1) +
                             " m: the pattern spans fewer pixels than required");
-  if (plan.mission.waypoint_count > 700)
-    plan.warnings.push_back(std::to_string(plan.mission.waypoint_count) +
-                            " waypoints: more than ArduPilot's classic limit of 700 items");
+  for (const DroneMission* m : missions_of(plan))
+    if (m->items.size() > kAutopilotItemLimit)
+      plan.warnings.push_back("drone " + std::to_string(m->drone) + "'s mission has " +
+                              std::to_string(m->items.size()) +
+                              " items, more than ArduPilot's classic limit of 700 (some autopilots "
+                              "hold fewer): divide it among drones or drop --waypoint-spacing");
   return plan;
 }
 

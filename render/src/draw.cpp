@@ -20,8 +20,7 @@ using geometry::Point2;
 // RAII: an OSMesa context drawing into our own RGBA buffer, top row first.
 class OffscreenContext {
  public:
-  OffscreenContext(int width, int height)
-      : width_(width), height_(height), buffer_(4 * std::size_t(width) * height) {
+  OffscreenContext(int width, int height) : buffer_(4 * std::size_t(width) * height) {
     context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 8, 0, nullptr);
     if (context_ == nullptr)
       throw RenderError("cannot create an offscreen OpenGL context (OSMesa)");
@@ -41,7 +40,6 @@ class OffscreenContext {
   }
 
  private:
-  int width_, height_;
   std::vector<unsigned char> buffer_;
   OSMesaContext context_ = nullptr;
 };

@@ -144,7 +144,14 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(Budget, BadMissionsAreNamed) {
-  EXPECT_EQ(error_of("{"), "m.json: invalid JSON at byte 2");
+  EXPECT_EQ(error_of("{"),
+            "m.json: line 1, column 2: invalid JSON (syntax error while parsing object key - "
+            "unexpected end of input; expected string literal)");
+  EXPECT_EQ(error_of(R"({"fileType": "Plan", "fileType": "Plan"})"),
+            "m.json: the key \"fileType\" appears twice in one object; which one holds is "
+            "ambiguous");
+  EXPECT_EQ(error_of(R"({"fileType": 1e999})"),
+            "m.json: invalid JSON (number overflow parsing '1e999')");
   EXPECT_EQ(error_of("[]"), "m.json: expected a JSON object");
   EXPECT_EQ(error_of(R"({"type": "Feature"})"),
             "m.json: neither a GeoJSON FeatureCollection (mission.geojson) nor a QGC plan");

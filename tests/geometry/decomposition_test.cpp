@@ -76,12 +76,18 @@ void expect_valid_decomposition(const Polygon& p, double angle, const std::strin
     for (int k = 1; k < 20; ++k)
       EXPECT_LE(crossings(c, angle, lo + (hi - lo) * k / 20.0), 2) << what << " monotone";
   }
-  // Points of the area lie in exactly one cell; points outside in none.
+  // Points of the area lie in exactly one cell; points outside in none. Sampled over the area's
+  // bounding box, so that a good share falls inside.
   test::Rng rng(1);
-  std::uniform_real_distribution<double> u(-600, 600);
+  Point2 box_lo{1e300, 1e300}, box_hi{-1e300, -1e300};
+  for (const Point2& q : p.outer) {
+    box_lo = {std::min(box_lo.x, q.x), std::min(box_lo.y, q.y)};
+    box_hi = {std::max(box_hi.x, q.x), std::max(box_hi.y, q.y)};
+  }
+  std::uniform_real_distribution<double> ux(box_lo.x, box_hi.x), uy(box_lo.y, box_hi.y);
   int inside = 0;
   for (int k = 0; k < 400; ++k) {
-    const Point2 q{u(rng), u(rng)};
+    const Point2 q{ux(rng), uy(rng)};
     bool in_area = locate_point(q, p.outer) == Containment::inside;
     for (const Ring& h : p.holes)
       if (locate_point(q, h) != Containment::outside) in_area = false;
@@ -96,6 +102,7 @@ void expect_valid_decomposition(const Polygon& p, double angle, const std::strin
     EXPECT_EQ(in_cells, in_area ? 1 : 0) << what << " at " << q.x << "," << q.y;
     inside += in_area;
   }
+  EXPECT_GT(inside, 40) << what << ": too few samples inside to mean anything";
 }
 
 TEST(BoustrophedonProperty, RandomConcavePolygonsAtRandomAngles) {

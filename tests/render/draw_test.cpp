@@ -65,7 +65,7 @@ TEST(Draw, ColoursAtKnownPlaces) {
   EXPECT_LT(two[0], one[0]);
   EXPECT_LT(two[1], one[1]);
   // Blending: one strip over the area is 0.3 strip + 0.7 area.
-  EXPECT_NEAR(one[0], std::lround(255 * (0.3 * 0.1 + 0.7 * 0.6)), 2);
+  EXPECT_NEAR(one[0], std::round(255 * (0.3 * 0.1 + 0.7 * 0.6)), 2);
 }
 
 TEST(Draw, SameSceneSameBytes) {

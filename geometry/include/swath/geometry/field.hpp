@@ -20,6 +20,10 @@ struct FieldReadOptions {
   std::optional<FieldFormat> format;
 };
 
+/// The most vertices an area file may hold (all rings): beyond it swath refuses the file instead
+/// of spending minutes on it.
+inline constexpr std::size_t kMaxFieldVertices = 1'000'000;
+
 /// A survey area ready for planning.
 struct Field {
   std::string source;  ///< the file name, for messages
@@ -38,8 +42,9 @@ struct Field {
 /// Reads and validates an area file. Throws InputError (file, place and problem in one sentence)
 /// for a missing or empty file, a syntax error, a wrong geometry type, a non-finite coordinate, a
 /// latitude beyond ±90° or longitude beyond ±180°, a ring with fewer than 3 distinct vertices, a
-/// ring of zero area, or a hole that lies outside the outer ring. A self-intersecting area is read
-/// (classify() reports it). The local frame's origin is the mean of the outer ring's vertices.
+/// ring of zero area, a hole that lies outside the outer ring, or more than kMaxFieldVertices. A
+/// self-intersecting area is read (classify() reports it). The local frame's origin is the mean of
+/// the outer ring's vertices.
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options = {});
 
 /// Places a local-metres field on the map: its (0, 0) at `origin`; fills frame and geo_rings.

@@ -66,6 +66,12 @@ struct SurveyRequest {
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
 };
 
+/// Limits that keep the work bounded (plan_survey() refuses beyond them) and the autopilot limit
+/// it warns above.
+inline constexpr std::size_t kMaxSweepLines = 20'000;
+inline constexpr std::size_t kMaxWaypoints = 1'000'000;
+inline constexpr std::size_t kAutopilotItemLimit = 700;  ///< ArduPilot's classic mission size
+
 struct SurveyPlan {
   SurveyRequest request;
   geometry::AreaFacts facts;     ///< of the area as given, no-fly zones included as holes

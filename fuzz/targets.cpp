@@ -1,0 +1,109 @@
+#include "targets.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "mission_config.hpp"
+#include "plan_command.hpp"
+#include "swath/energy/budget.hpp"
+#include "swath/energy/plan.hpp"
+#include "swath/energy/sim_config.hpp"
+#include "swath/geometry/area_facts.hpp"
+#include "swath/geometry/field.hpp"
+#include "swath/geometry/input_error.hpp"
+#include "swath/planning/camera.hpp"
+#include "swath/planning/fleet.hpp"
+
+namespace swath::fuzz {
+namespace {
+
+// Runs `read`; bad input (InputError) is the expected way out.
+template <typename F>
+void expect_input_error_only(F read) {
+  try {
+    read();
+  } catch (const geometry::InputError&) {
+  }
+}
+
+// An area the reader accepts is classified too, as `swath classify` does.
+void field(const std::string& text, geometry::FieldFormat format, const char* name) {
+  expect_input_error_only([&] {
+    const geometry::Field f = geometry::parse_field(text, format, name);
+    geometry::describe_area(f.polygon);
+  });
+}
+
+void mission_config(const std::string& text) {
+  CLI::App app;
+  apps::PlanCommand command;
+  command.setup(app);
+  expect_input_error_only([&] { apps::apply_mission_config(app, text, "fuzz.yaml"); });
+}
+
+}  // namespace
+
+const std::vector<Target>& targets() {
+  static const std::vector<Target> all = {
+      {"geojson",
+       [](const std::string& t) { field(t, geometry::FieldFormat::geojson, "fuzz.geojson"); },
+       {"share/fields/meadow.geojson", "share/fields/bowtie.geojson",
+        "share/zones/meadow-pond.geojson"}},
+      {"kml",
+       [](const std::string& t) { field(t, geometry::FieldFormat::kml, "fuzz.kml"); },
+       {"share/fields/vineyard.kml"}},
+      {"csv",
+       [](const std::string& t) { field(t, geometry::FieldFormat::csv, "fuzz.csv"); },
+       {"share/fields/orchard.csv", "share/fields/yard-local.csv"}},
+      {"camera",
+       [](const std::string& t) {
+         expect_input_error_only([&] { planning::parse_camera(t, "fuzz.yaml"); });
+       },
+       {"share/cameras/dji-phantom-4-pro.yaml", "share/cameras/dji-mavic-3e.yaml"}},
+      {"fleet",
+       [](const std::string& t) {
+         expect_input_error_only([&] { planning::parse_fleet(t, "fuzz.yaml"); });
+       },
+       {"share/fleets/three-quads.yaml", "share/fleets/vineyard-pair.yaml",
+        "share/fleets/short-range.yaml"}},
+      {"mission_config", mission_config, {"tests/bad-input/seeds/mission.yaml"}},
+      {"stage_plan",
+       [](const std::string& t) {
+         expect_input_error_only([&] { energy::parse_plan(t, "fuzz.plan"); });
+       },
+       {"plans/survey.plan"}},
+      {"stage_plan_yaml",
+       [](const std::string& t) {
+         expect_input_error_only([&] { energy::parse_plan_yaml(t, "fuzz.yaml"); });
+       },
+       {"plans/survey.yaml"}},
+      {"sim_config",
+       [](const std::string& t) {
+         expect_input_error_only([&] { energy::parse_sim_config(t, "fuzz.yaml"); });
+       },
+       {"plans/survey-sim.yaml", "plans/meadow-sim.yaml"}},
+      {"drone_profile",
+       [](const std::string& t) {
+         expect_input_error_only([&] { energy::parse_drone_profile(t, "fuzz.yaml"); });
+       },
+       {"share/drones/quad-5ah.yaml"}},
+      {"waypoint_mission",
+       [](const std::string& t) {
+         expect_input_error_only([&] { energy::parse_waypoint_missions(t, "fuzz.plan"); });
+       },
+       {"tests/bad-input/seeds/drone-1.plan", "tests/bad-input/seeds/mission.geojson"}},
+      {"power_trace",
+       [](const std::string& t) {
+         expect_input_error_only([&] { energy::parse_power_trace(t, "fuzz.csv"); });
+       },
+       {"tests/bad-input/seeds/power.csv"}},
+  };
+  return all;
+}
+
+const Target* find_target(const std::string& name) {
+  for (const Target& t : targets())
+    if (name == t.name) return &t;
+  return nullptr;
+}
+
+}  // namespace swath::fuzz

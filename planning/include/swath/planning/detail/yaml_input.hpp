@@ -1,0 +1,52 @@
+#pragma once
+// Internal to swath's YAML readers (planning and energy): loading a document, checking a
+// mapping's keys, and turning whatever yaml-cpp throws into InputError naming the source and line.
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+#include <string>
+
+#include "swath/geometry/input_error.hpp"
+
+namespace swath::planning::detail {
+
+inline std::string yaml_line(const YAML::Node& node) {
+  return "line " + std::to_string(node.Mark().line + 1);
+}
+
+inline YAML::Node load_yaml(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw geometry::InputError(source + ": line " + std::to_string(e.mark.line + 1) +
+                               ": invalid YAML (" + e.msg + ")");
+  }
+}
+
+/// Every key of `map` is a plain name given once; throws InputError ("<place>: line N: ...").
+inline void check_plain_unique_keys(const YAML::Node& map, const std::string& place) {
+  if (!map.IsMap()) return;
+  std::set<std::string> seen;
+  for (const auto& kv : map) {
+    if (!kv.first.IsScalar())
+      throw geometry::InputError(place + ": " + yaml_line(kv.first) +
+                                 ": a key must be a plain name");
+    if (!seen.insert(kv.first.Scalar()).second)
+      throw geometry::InputError(place + ": " + yaml_line(kv.first) + ": '" + kv.first.Scalar() +
+                                 "' is given twice");
+  }
+}
+
+/// `read()`, with a yaml-cpp exception it lets through (a value of the wrong shape where the
+/// reader did not look first) reported as bad input at its line.
+template <typename F>
+auto yaml_guard(const std::string& source, F&& read) {
+  try {
+    return read();
+  } catch (const YAML::Exception& e) {
+    throw geometry::InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+}
+
+}  // namespace swath::planning::detail

@@ -1,0 +1,145 @@
+// The bad-input catalogue (tests/bad-input/cases.tsv): every case gives its exit code and its
+// message, and a refused command leaves no output behind. Plus what a file cannot hold: an area
+// over the vertex limit, and a write that dies part-way.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "swath/geometry/field.hpp"
+
+namespace swath::test {
+namespace {
+
+struct Case {
+  int line = 0;
+  int exit_code = 0;
+  std::string fragment, command;
+};
+
+std::vector<Case> catalogue() {
+  std::ifstream in(source_path("tests/bad-input/cases.tsv"));
+  std::vector<Case> cases;
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    if (text.empty() || text[0] == '#') continue;
+    std::istringstream cells(text);
+    Case c;
+    c.line = line;
+    std::string code;
+    std::getline(cells, code, '\t');
+    std::getline(cells, c.fragment, '\t');
+    std::getline(cells, c.command);
+    c.exit_code = std::stoi(code);
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+std::string with_out(std::string command, const std::string& out) {
+  for (auto at = command.find("{out}"); at != std::string::npos; at = command.find("{out}"))
+    command.replace(at, 5, out);
+  return command;
+}
+
+TEST(BadInput, EveryCaseOfTheCatalogueGivesItsExitCodeMessageAndNoOutput) {
+  const auto cases = catalogue();
+  ASSERT_GE(cases.size(), 50u);
+  for (const Case& c : cases) {
+    const std::string out = fresh_dir("bad-input-case");
+    std::filesystem::remove_all(out);
+    const std::string command = with_out(c.command, out);
+    const bool energy = command.rfind("swath-energy ", 0) == 0;
+    const std::string args = command.substr(energy ? 13 : 6);
+    const CliRun run = energy ? run_swath_energy(args) : run_swath(args);
+    const std::string where = "cases.tsv line " + std::to_string(c.line) + ": " + command;
+    EXPECT_EQ(run.exit_code, c.exit_code) << where << "\n" << run.err;
+    const std::string& said = c.exit_code == 0 ? run.out + run.err : run.err;
+    EXPECT_NE(said.find(c.fragment), std::string::npos) << where << "\nsaid: " << said;
+    if (c.exit_code != 0) {
+      EXPECT_FALSE(std::filesystem::exists(out)) << where << ": output left behind";
+      // One sentence: the program's name, then the message, on one line.
+      EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << where << "\n" << run.err;
+    }
+  }
+}
+
+TEST(BadInput, AnAreaOverTheVertexLimitIsRefusedQuickly) {
+  const std::string dir = fresh_dir("bad-input-vertices");
+  const std::string file = dir + "/huge.csv";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream f(file);
+    f << "x,y\n";
+    const std::size_t n = geometry::kMaxFieldVertices + 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = 6.283185307179586 * double(i) / double(n);
+      f << 1000 * std::cos(a) << ',' << 1000 * std::sin(a) << '\n';
+    }
+  }
+  const CliRun run = run_swath("classify --local " + file);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("the area has 1000001 vertices, more than swath's limit of 1000000"),
+            std::string::npos)
+      << run.err;
+}
+
+// A write that dies part-way (the file-size limit kills the process with SIGXFSZ while it writes
+// its temporary files) leaves the previous complete files; with the signal ignored the write fails
+// cleanly instead: exit 1, a message naming the file, no temporaries, the old files intact.
+TEST(BadInput, AWriteThatDiesPartWayLeavesTheOldCompleteFiles) {
+  const std::string out = fresh_dir("bad-input-killed-write");
+  const std::string plan =
+      "plan share/fields/meadow.geojson --camera dji-phantom-4-pro --altitude 60 -o " + out;
+  ASSERT_EQ(run_swath(plan).exit_code, 0);
+  std::map<std::string, std::string> before;
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    before[e.path().filename().string()] = read_text(e.path().string());
+  ASSERT_GE(before.size(), 6u);
+  auto expect_old_files = [&](const char* what) {
+    for (const auto& [name, text] : before)
+      EXPECT_EQ(read_text(out + "/" + name), text) << what << ": " << name << " changed";
+    for (const auto& e : std::filesystem::directory_iterator(out))
+      EXPECT_TRUE(before.count(e.path().filename().string()) ||
+                  e.path().filename().string().rfind(".", 0) == 0)
+          << what << ": " << e.path();
+  };
+  // A different plan (higher altitude) through a 16 KiB file-size limit: killed mid-write.
+  const std::string other =
+      "plan share/fields/meadow.geojson --camera dji-phantom-4-pro "
+      "--altitude 90 -o " +
+      out;
+  const CliRun killed =
+      run_program("sh", "-c 'ulimit -f 16; exec " + std::string(SWATH_BINARY) + " " + other + "'");
+  EXPECT_NE(killed.exit_code, 0);
+  expect_old_files("killed");
+  // A killed process cannot remove its hidden temporaries (.NAME.tmp-PID); clear them.
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    if (!before.count(e.path().filename().string())) std::filesystem::remove(e.path());
+  // The same with SIGXFSZ ignored: write() fails with EFBIG and swath cleans up.
+  const CliRun failed = run_program("sh", "-c 'trap \"\" XFSZ; ulimit -f 16; exec " +
+                                              std::string(SWATH_BINARY) + " " + other + "'");
+  EXPECT_EQ(failed.exit_code, 1) << failed.err;
+  EXPECT_NE(failed.err.find("cannot write"), std::string::npos) << failed.err;
+  expect_old_files("failed");
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    EXPECT_TRUE(before.count(e.path().filename().string())) << "temporary left: " << e.path();
+  // And into a fresh directory: nothing at all, not half a mission.
+  const std::string fresh = fresh_dir("bad-input-killed-fresh");
+  std::filesystem::remove_all(fresh);
+  run_program("sh", "-c 'trap \"\" XFSZ; ulimit -f 16; exec " + std::string(SWATH_BINARY) +
+                        " plan share/fields/meadow.geojson --camera dji-phantom-4-pro "
+                        "--altitude 90 -o " +
+                        fresh + "'");
+  if (std::filesystem::exists(fresh))
+    for (const auto& e : std::filesystem::directory_iterator(fresh))
+      ADD_FAILURE() << "left behind: " << e.path();
+}
+
+}  // namespace
+}  // namespace swath::test
