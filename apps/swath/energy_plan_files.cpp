@@ -1,9 +1,9 @@
 #include "energy_plan_files.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
+#include "input_text.hpp"
 #include "swath/energy/survey_stages.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/number_text.hpp"
@@ -16,20 +16,17 @@ using planning::fixed_text;
 using planning::shortest_text;
 
 energy::Interval parse_interval(const std::string& text, const std::string& option) {
-  double lo = 0, hi = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), " %lf , %lf %c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
-      !std::isfinite(hi) || lo > hi)
+  const auto pair = parse_number_pair(text, ',');
+  if (!pair || pair->first > pair->second)
     throw InputError(option + " '" + text + "': expected LO,HI with LO <= HI, e.g. 2,10");
-  return {lo, hi};
+  return {pair->first, pair->second};
 }
 
 std::vector<std::pair<std::string, std::string>> energy_plan_files(
     const planning::SurveyPlan& plan, const EnergyPlanRequest& request,
     std::vector<std::string>& warnings) {
   const std::filesystem::path name(request.file_name);
-  if (name.empty() || name.has_parent_path() || name.filename() != name || name == "." ||
-      name == "..")
+  if (name.empty() || name.has_parent_path() || name == "." || name == "..")
     throw InputError("--energy-plan '" + request.file_name +
                      "': give a file name; it is written into the -o directory");
   if (!(request.min_covered_fraction > 0 && request.min_covered_fraction <= 1))

@@ -3,14 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 
 #include "coverage_image.hpp"
 #include "data_dir.hpp"
 #include "energy_plan_files.hpp"
+#include "input_text.hpp"
 #include "mission_config.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/number_text.hpp"
@@ -28,11 +27,10 @@ using geometry::InputError;
 
 // "LAT,LON" in degrees.
 geometry::GeoPoint parse_lat_lon(const std::string& text, const std::string& option) {
-  double lat = 0, lon = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), " %lf , %lf %c", &lat, &lon, &tail) != 2 || !std::isfinite(lat) ||
-      !std::isfinite(lon))
+  const auto pair = parse_number_pair(text, ',');
+  if (!pair)
     throw InputError(option + " '" + text + "': expected LAT,LON in degrees, e.g. 47.397,8.541");
+  const auto [lat, lon] = *pair;
   if (std::abs(lat) > 90 || std::abs(lon) > 180)
     throw InputError(option + " '" + text +
                      "': latitude must be within ±90 and longitude within ±180 degrees");
@@ -40,11 +38,9 @@ geometry::GeoPoint parse_lat_lon(const std::string& text, const std::string& opt
 }
 
 std::pair<double, double> parse_pattern(const std::string& text) {
-  double w = 0, h = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), " %lf x %lf %c", &w, &h, &tail) != 2)
-    throw InputError("--pattern '" + text + "': expected WxH in metres, e.g. 1.5x1.5");
-  return {w, h};
+  const auto pair = parse_number_pair(text, 'x');
+  if (!pair) throw InputError("--pattern '" + text + "': expected WxH in metres, e.g. 1.5x1.5");
+  return *pair;
 }
 
 template <typename E>
@@ -184,13 +180,8 @@ void PlanCommand::setup(CLI::App& app) {
 }
 
 int PlanCommand::run() {
-  if (!config_.empty()) {
-    std::ifstream in(config_, std::ios::binary);
-    if (!in) throw InputError(config_ + ": cannot open the mission config");
-    std::ostringstream text;
-    text << in.rdbuf();
-    apply_mission_config(*app_, text.str(), config_);
-  }
+  if (!config_.empty())
+    apply_mission_config(*app_, read_input_file(config_, " the mission config"), config_);
   if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
   if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
   if (output_.empty()) throw InputError("no output directory: give -o DIR");
@@ -262,11 +253,7 @@ int PlanCommand::run() {
       request.fleet->home = geometry::GeoPoint{std::nan(""), 0, 0};  // the plan's default home
   }
   if (!fleet_.empty()) {
-    std::ifstream in(fleet_, std::ios::binary);
-    if (!in) throw InputError(fleet_ + ": cannot open the fleet file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    request.fleet = planning::parse_fleet(text.str(), fleet_);
+    request.fleet = planning::parse_fleet(read_input_file(fleet_, " the fleet file"), fleet_);
     if (!request.home) request.home = request.fleet->home;
   }
   request.division =

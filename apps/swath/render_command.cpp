@@ -1,11 +1,10 @@
 #include "render_command.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "coverage_image.hpp"
+#include "input_text.hpp"
 #include "swath/geometry/input_error.hpp"
 #include "swath/planning/output_files.hpp"
 
@@ -13,12 +12,7 @@ namespace swath::apps {
 namespace {
 
 std::string read(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw geometry::InputError(path.string() + ": cannot open (is this a swath plan directory?)");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return read_input_file(path.string(), " (is this a swath plan directory?)");
 }
 
 }  // namespace

@@ -63,12 +63,12 @@ struct StageBuilder {
   const SurveyStageSettings& settings;
   Plan plan;
 
-  void add(double gain, int direction, const Linear& phi_linear, const std::string& phi,
-           const Linear& trigger_x, const Linear& trigger_y, bool computing) {
+  void add(double gain, int direction, const std::string& phi, const Linear& trigger_x,
+           const Linear& trigger_y, bool computing) {
     Stage s;
     s.gain = round_to(gain, 9);
     s.direction = direction;
-    s.phi = phi.empty() ? text(phi_linear) : phi;
+    s.phi = phi;
     s.trigger_x = text(trigger_x);
     s.trigger_y = text(trigger_y);
     s.trajectory = {settings.spacing_scale};
@@ -84,7 +84,7 @@ struct StageBuilder {
     const Point2 v{-w.y, w.x};
     Linear phi{-(v.x * to_x.constant + v.y * to_y.constant), -(v.x * to_x.c1 + v.y * to_y.c1), v.x,
                v.y};
-    add(4 / settings.line_spacing_m, -1, phi, "", to_x, to_y, computing);
+    add(4 / settings.line_spacing_m, -1, text(phi), to_x, to_y, computing);
   }
   void straight_to_grid(Point2 w, GridPoint to) { straight(w, frame.x(to), frame.y(to), true); }
 
@@ -94,7 +94,7 @@ struct StageBuilder {
     const Linear cx = frame.x(centre), cy = frame.y(centre);
     const std::string phi = "(x-(" + text(cx) + "))^2+(y-(" + text(cy) + "))^2-(" +
                             text(Linear{0, std::abs(radius_k)}) + ")^2";
-    add(1 / (radius_k * radius_k), ccw ? 1 : -1, {}, phi, frame.x(to), frame.y(to), true);
+    add(1 / (radius_k * radius_k), ccw ? 1 : -1, phi, frame.x(to), frame.y(to), true);
   }
 };
 

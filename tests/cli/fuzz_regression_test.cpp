@@ -10,21 +10,17 @@
 namespace swath::test {
 namespace {
 
-std::string bytes_of(const std::filesystem::path& path) {
-  return read_text(path.string());
-}
-
 TEST(FuzzRegressions, EveryCrashInputAndSeedIsReadOrRefusedCleanly) {
   std::size_t regressions = 0;
   for (const fuzz::Target& t : fuzz::targets()) {
     for (const char* seed : t.seeds) {
       ASSERT_TRUE(std::filesystem::exists(source_path(seed))) << t.name << ": " << seed;
-      EXPECT_NO_THROW(t.run(bytes_of(source_path(seed)))) << t.name << ": " << seed;
+      EXPECT_NO_THROW(t.run(read_text(source_path(seed)))) << t.name << ": " << seed;
     }
     const std::filesystem::path dir = source_path(std::string("tests/fuzz-regressions/") + t.name);
     if (!std::filesystem::is_directory(dir)) continue;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      EXPECT_NO_THROW(t.run(bytes_of(entry.path()))) << t.name << ": " << entry.path();
+      EXPECT_NO_THROW(t.run(read_text(entry.path().string()))) << t.name << ": " << entry.path();
       ++regressions;
     }
   }

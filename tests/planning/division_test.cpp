@@ -1,5 +1,6 @@
 // Dividing a survey among drones: path pieces, region bands, makespan balance, fleets.
 #include "swath/planning/division.hpp"
+#include "meadow_survey.hpp"
 
 #include <gtest/gtest.h>
 
@@ -209,12 +210,7 @@ TEST(AreaProfile, AgreesWithClippingOnRandomAreas) {
 // ---- whole surveys --------------------------------------------------------------------------
 
 TEST(DividedSurvey, EveryDronesPathStartsAndEndsAtItsHome) {
-  SurveyRequest r;
-  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson");
-  r.camera = find_camera("sony-ilce-qx1", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
-  PhotogrammetryMode m;
-  m.altitude_m = 60;
-  r.mode = m;
+  SurveyRequest r = test::meadow_request(60);
   Fleet fleet = equal_fleet(3, {47.3965, 8.5405, 0});
   fleet.drones[2].home = geometry::GeoPoint{47.4005, 8.5430, 0};
   r.fleet = fleet;

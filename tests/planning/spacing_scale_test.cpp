@@ -1,4 +1,5 @@
 #include "swath/planning/spacing_scale.hpp"
+#include "meadow_survey.hpp"
 
 #include <gtest/gtest.h>
 
@@ -79,13 +80,7 @@ TEST(SpacingScaleBounds, MatchesTheClosedFormOnARectangle) {
 // On a real field, the lowest scale still covers the minimum by an independent sampling of the
 // footprints, and a little lower does not.
 TEST(SpacingScaleBounds, TheLowerBoundIsTightByIndependentSampling) {
-  SurveyRequest r;
-  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson");
-  r.camera = find_camera("sony-ilce-qx1", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
-  PhotogrammetryMode m;
-  m.altitude_m = 60;
-  r.mode = m;
-  const SurveyPlan plan = plan_survey(r);
+  const SurveyPlan plan = plan_survey(test::meadow_request(60));
   const double min = 0.97;
   const SpacingScaleBounds b = spacing_scale_bounds(plan, min);
   ASSERT_LT(b.lo, 1.0);

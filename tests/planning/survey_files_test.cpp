@@ -1,5 +1,6 @@
 // Every file `swath plan` writes, parsed back and checked against the plan.
 #include "swath/planning/survey_files.hpp"
+#include "meadow_survey.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,12 +17,7 @@ namespace {
 using nlohmann::json;
 
 SurveyPlan meadow_plan(std::optional<geometry::GeoPoint> home = std::nullopt) {
-  SurveyRequest r;
-  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson");
-  r.camera = find_camera("sony-ilce-qx1", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
-  PhotogrammetryMode m;
-  m.altitude_m = 80;
-  r.mode = m;
+  SurveyRequest r = test::meadow_request(80);
   r.home = home;
   r.waypoint_spacing_m = 150;
   return plan_survey(r);
