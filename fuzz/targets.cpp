@@ -4,12 +4,12 @@
 
 #include "mission_config.hpp"
 #include "plan_command.hpp"
+#include "swath/base/input_error.hpp"
 #include "swath/energy/budget.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
-#include "swath/geometry/input_error.hpp"
 #include "swath/planning/camera.hpp"
 #include "swath/planning/fleet.hpp"
 
@@ -21,7 +21,7 @@ template <typename F>
 void expect_input_error_only(F read) {
   try {
     read();
-  } catch (const geometry::InputError&) {
+  } catch (const base::InputError&) {
   }
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // What each libFuzzer target does with its input: one reader of swath's, fed arbitrary bytes.
-// Bad input must end in geometry::InputError (the one-sentence error, exit 2); anything else that
+// Bad input must end in base::InputError (the one-sentence error, exit 2); anything else that
 // escapes (another exception, a crash, a sanitizer report, a hang) is a bug. Shared by the fuzz
 // executables and by the regression test that replays every input the fuzzers ever broke.
 

@@ -23,12 +23,12 @@ class Command {
   virtual const char* name() const = 0;
   virtual const char* description() const = 0;
   virtual void setup(CLI::App& app) = 0;
-  /// Throws geometry::InputError for bad input; returns the exit code otherwise.
+  /// Throws base::InputError for bad input; returns the exit code otherwise.
   virtual int run() = 0;
 };
 
 /// Parses the command line into one of `commands` and runs it: --help, --version, usage errors
-/// (exit 2), geometry::InputError (exit 2, "program command: message"), anything else (exit 1).
+/// (exit 2), base::InputError (exit 2, "program command: message"), anything else (exit 1).
 int run_program(const char* program, const char* description, const char* exit_codes,
                 std::vector<std::unique_ptr<Command>>& commands, int argc, char** argv);
 

@@ -2,20 +2,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::apps {
-
-std::string read_input_file(const std::string& path, const std::string& why) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw geometry::InputError(path + ": cannot open" + why);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::optional<std::pair<double, double>> parse_number_pair(const std::string& text,
                                                            char separator) {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
-#include "swath/planning/number_text.hpp"
+#include "swath/base/number_text.hpp"
 
 namespace swath::apps {
 
@@ -16,8 +16,8 @@ std::pair<int, int> parse_size(const std::string& text) {
   char tail = 0;
   if (std::sscanf(text.c_str(), " %d x %d %c", &w, &h, &tail) != 2 || w < 64 || h < 64 ||
       w > 5000 || h > 5000)
-    throw geometry::InputError("--size '" + text +
-                               "': expected WxH pixels, each 64 to 5000, e.g. 1600x1200");
+    throw base::InputError("--size '" + text +
+                           "': expected WxH pixels, each 64 to 5000, e.g. 1600x1200");
   return {w, h};
 }
 
@@ -38,7 +38,7 @@ ScaleBar add_scale_bar(render::Scene& scene, const render::View& view, int width
   scene.screen_polylines.push_back({{a, b}, 4, {0.1f, 0.1f, 0.1f, 1}});
   scene.labels.push_back({static_cast<int>(a.x),
                           static_cast<int>(a.y) - 8,
-                          planning::fixed_text(bar.length_m, 0) + " m",
+                          base::fixed_text(bar.length_m, 0) + " m",
                           double(text_h),
                           {0.1f, 0.1f, 0.1f, 1}});
   return bar;

@@ -24,7 +24,7 @@ struct MapBounds {
   }
 };
 
-/// "WxH" pixels (64..5000 each); throws geometry::InputError naming --size.
+/// "WxH" pixels (64..5000 each); throws base::InputError naming --size.
 std::pair<int, int> parse_size(const std::string& text);
 
 /// 1, 2 or 5 times a power of ten, at most `metres`.

@@ -2,7 +2,7 @@
 #include <string>
 
 #include "command.hpp"
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::apps {
 
@@ -38,7 +38,7 @@ int run_program(const char* program, const char* description, const char* exit_c
     if (!sub->parsed()) continue;
     try {
       return command->run();
-    } catch (const swath::geometry::InputError& e) {
+    } catch (const swath::base::InputError& e) {
       std::cerr << program << ' ' << command->name() << ": " << e.what() << '\n';
       return kBadInput;
     } catch (const std::exception& e) {

@@ -2,10 +2,10 @@
 
 #include <iostream>
 
+#include "swath/base/output_files.hpp"
 #include "swath/energy/budget.hpp"
 #include "swath/energy/energy_files.hpp"
 #include "swath/energy/sim_config.hpp"
-#include "swath/planning/output_files.hpp"
 
 namespace swath::apps {
 
@@ -26,8 +26,8 @@ int BudgetCommand::run() {
   for (const auto& m : missions) budgets.push_back(energy::budget(m, drone));
   const std::string json = energy::budget_json(budgets, drone);
   if (!output_.empty())
-    planning::write_files_atomically(
-        output_, {{"budget.json", json}, {"soc.csv", energy::budget_csv(budgets)}});
+    base::write_files_atomically(output_,
+                                 {{"budget.json", json}, {"soc.csv", energy::budget_csv(budgets)}});
   std::cout << (json_ ? json : energy::budget_table(budgets, drone));
   for (const auto& b : budgets)
     if (!b.can_finish()) return kCannotFinish;

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "swath/base/number_text.hpp"
 #include "swath/energy/flight.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::apps {
 namespace {
@@ -71,7 +71,7 @@ TrajectoryImage trajectory_image(const energy::SimulationResult& r, const energy
     scene.markers.push_back({p, 12.0, kInk, render::MarkerShape::triangle});
   scene.markers.push_back({config.start, 10.0, kInk, render::MarkerShape::square});
 
-  using planning::fixed_text;
+  using base::fixed_text;
   std::string title = "swath-energy: ";
   title += energy::to_string(r.status);
   title += " in " + fixed_text(r.flight_time_s, 0) + " s, " + fixed_text(r.energy_j / 3600, 2) +

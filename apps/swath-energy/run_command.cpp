@@ -5,12 +5,12 @@
 #include "energy_images.hpp"
 #include "map_furniture.hpp"
 #include "progress_bar.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/base/output_files.hpp"
 #include "swath/energy/energy_files.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
 #include "swath/energy/simulation.hpp"
-#include "swath/planning/number_text.hpp"
-#include "swath/planning/output_files.hpp"
 
 namespace swath::apps {
 
@@ -44,14 +44,14 @@ int RunCommand::run() {
   const auto [w, h] = parse_size(size_);
   const TrajectoryImage map = trajectory_image(result, config, w, h);
   const EnergyImage charts = energy_image(result, plan, config, w, h);
-  planning::write_files_atomically(
+  base::write_files_atomically(
       output_, {{"trajectory.csv", energy::trajectory_csv(result)},
                 {"energy.csv", energy::energy_csv(result)},
                 {"control.csv", energy::control_csv(result)},
                 {"summary.json", energy::simulation_summary_json(result, plan, config, &fixed)},
                 {"trajectory.png", render::encode_png(render::draw(map.scene, map.view))},
                 {"energy.png", render::encode_png(render::draw(charts.scene, charts.view))}});
-  using planning::fixed_text;
+  using base::fixed_text;
   std::cout << "swath-energy run: " << energy::to_string(result.status) << " after "
             << fixed_text(result.flight_time_s, 1) << " s, "
             << fixed_text(result.energy_j / 3600, 2) << " Wh, final SoC "

@@ -5,12 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include "data_dir.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/planning/camera.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::apps {
 
-using planning::fixed_text;
+using base::fixed_text;
 
 void CamerasCommand::setup(CLI::App& app) {
   app.add_flag("--json", json_, "Print a JSON array instead of a table");

@@ -4,15 +4,15 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "swath/base/number_text.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::apps {
 namespace {
 
-using planning::fixed_text;
-using planning::round_to;
+using base::fixed_text;
+using base::round_to;
 
 using geometry::Field;
 using geometry::Point2;

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/geometry/local_frame.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::apps {
 namespace {
@@ -48,16 +48,16 @@ CoverageImage coverage_image(const std::string& geojson_text, const std::string&
     g = json::parse(geojson_text);
     s = json::parse(summary_text);
   } catch (const json::exception& e) {
-    throw geometry::InputError(source + ": not a swath plan (" + std::string(e.what()) + ")");
+    throw base::InputError(source + ": not a swath plan (" + std::string(e.what()) + ")");
   }
   if (!g.contains("features") || !s.contains("drones"))
-    throw geometry::InputError(
+    throw base::InputError(
         source + ": not a swath plan (mission.geojson needs features, summary.json drones)");
   // A local frame at the first area vertex: drawing in metres, north up.
   const json* area = nullptr;
   for (const json& f : g["features"])
     if (f["properties"]["role"] == "area" && !area) area = &f;
-  if (!area) throw geometry::InputError(source + ": mission.geojson has no area");
+  if (!area) throw base::InputError(source + ": mission.geojson has no area");
   const json& first = (*area)["geometry"]["coordinates"][0][0];
   const geometry::LocalFrame frame({first[1].get<double>(), first[0].get<double>(), 0});
 
@@ -110,14 +110,14 @@ CoverageImage coverage_image(const std::string& geojson_text, const std::string&
   // Title: coverage, lines, each drone's path and time.
   const json& c = s["coverage"];
   const std::string title = "coverage " +
-                            planning::fixed_text(100 * c["covered_fraction"].get<double>(), 2) +
+                            base::fixed_text(100 * c["covered_fraction"].get<double>(), 2) +
                             " %   " + std::to_string(s["sweep"]["lines"].get<int>()) + " lines";
   scene.labels.push_back({10, text_h + 8, title, double(text_h), {0.1f, 0.1f, 0.1f, 1}});
   int line = 2;
   for (const json& d : s["drones"]) {
     if (line > title_lines) break;
     const std::string text = "drone " + std::to_string(d["drone"].get<int>()) + ": " +
-                             planning::fixed_text(d["path_length_m"].get<double>() / 1000, 2) +
+                             base::fixed_text(d["path_length_m"].get<double>() / 1000, 2) +
                              " km, " + duration(d["flight_time_s"].get<double>());
     scene.labels.push_back(
         {10, line++ * (text_h + 6) + 8, text, double(text_h), drone_color(d["drone"].get<int>())});

@@ -17,7 +17,7 @@ struct CoverageImage {
   geometry::Point2 scale_bar_start_px;  ///< left end, on the bar's centre line
 };
 
-/// Throws geometry::InputError if the texts are not a swath plan (file names in `source`).
+/// Throws base::InputError if the texts are not a swath plan (file names in `source`).
 CoverageImage coverage_image(const std::string& geojson_text, const std::string& summary_text,
                              int width_px, int height_px, const std::string& source);
 

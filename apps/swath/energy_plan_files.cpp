@@ -4,16 +4,16 @@
 #include <filesystem>
 
 #include "input_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/energy/survey_stages.hpp"
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/number_text.hpp"
 #include "swath/planning/spacing_scale.hpp"
 
 namespace swath::apps {
 
-using geometry::InputError;
-using planning::fixed_text;
-using planning::shortest_text;
+using base::fixed_text;
+using base::InputError;
+using base::shortest_text;
 
 energy::Interval parse_interval(const std::string& text, const std::string& option) {
   const auto pair = parse_number_pair(text, ',');

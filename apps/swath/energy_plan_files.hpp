@@ -26,7 +26,7 @@ std::vector<std::pair<std::string, std::string>> energy_plan_files(
     const planning::SurveyPlan& plan, const EnergyPlanRequest& request,
     std::vector<std::string>& warnings);
 
-/// "LO,HI" as an interval, lo <= hi; throws geometry::InputError naming `option`.
+/// "LO,HI" as an interval, lo <= hi; throws base::InputError naming `option`.
 energy::Interval parse_interval(const std::string& text, const std::string& option);
 
 }  // namespace swath::apps

@@ -4,11 +4,11 @@
 
 #include <set>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::apps {
 
-using geometry::InputError;
+using base::InputError;
 
 void apply_mission_config(CLI::App& app, const std::string& yaml_text, const std::string& source) {
   YAML::Node root;

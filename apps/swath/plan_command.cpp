@@ -11,19 +11,20 @@
 #include "energy_plan_files.hpp"
 #include "input_text.hpp"
 #include "mission_config.hpp"
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/number_text.hpp"
-#include "swath/planning/output_files.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/base/output_files.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/planning/survey_files.hpp"
 
 namespace swath::apps {
 namespace {
 
-using planning::fixed_text;
-using planning::round_to;
+using base::fixed_text;
+using base::round_to;
 
-using geometry::InputError;
+using base::InputError;
 
 // "LAT,LON" in degrees.
 geometry::GeoPoint parse_lat_lon(const std::string& text, const std::string& option) {
@@ -181,7 +182,8 @@ void PlanCommand::setup(CLI::App& app) {
 
 int PlanCommand::run() {
   if (!config_.empty())
-    apply_mission_config(*app_, read_input_file(config_, " the mission config"), config_);
+    apply_mission_config(
+        *app_, base::read_text_file(config_, "mission config", base::kMaxConfigFileBytes), config_);
   if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
   if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
   if (output_.empty()) throw InputError("no output directory: give -o DIR");
@@ -253,7 +255,8 @@ int PlanCommand::run() {
       request.fleet->home = geometry::GeoPoint{std::nan(""), 0, 0};  // the plan's default home
   }
   if (!fleet_.empty()) {
-    request.fleet = planning::parse_fleet(read_input_file(fleet_, " the fleet file"), fleet_);
+    request.fleet = planning::parse_fleet(
+        base::read_text_file(fleet_, "fleet file", base::kMaxConfigFileBytes), fleet_);
     if (!request.home) request.home = request.fleet->home;
   }
   request.division =
@@ -293,7 +296,7 @@ int PlanCommand::run() {
     const CoverageImage image = coverage_image(files[0].second, files[1].second, w, h, output_);
     files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
   }
-  planning::write_files_atomically(output_, files);
+  base::write_files_atomically(output_, files);
 
   const planning::Imaging& im = plan.imaging;
   std::printf("swath plan: %s -> %s\n", field_.c_str(), output_.c_str());

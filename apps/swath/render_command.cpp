@@ -4,15 +4,18 @@
 #include <iostream>
 
 #include "coverage_image.hpp"
-#include "input_text.hpp"
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/output_files.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/output_files.hpp"
 
 namespace swath::apps {
 namespace {
 
 std::string read(const std::filesystem::path& path) {
-  return read_input_file(path.string(), " (is this a swath plan directory?)");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw base::InputError(path.string() + ": cannot open (is this a swath plan directory?)");
+  return base::read_text_file(path, "swath plan file");
 }
 
 }  // namespace
@@ -41,7 +44,7 @@ int RenderCommand::run() {
   }
   for (const auto& [path, png] : out) {
     const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
-    planning::write_files_atomically(parent, {{path.filename().string(), png}});
+    base::write_files_atomically(parent, {{path.filename().string(), png}});
     std::cout << "swath render: wrote " << path.string() << '\n';
   }
   return kSuccess;

@@ -1,4 +1,5 @@
 #include "swath/energy/budget.hpp"
+#include "swath/base/file_text.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -6,16 +7,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "swath/geometry/input_error.hpp"
-#include "swath/geometry/json_document.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/json_document.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/geometry/local_frame.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::energy {
 namespace {
 
+using base::InputError;
 using geometry::GeoPoint;
-using geometry::InputError;
 using geometry::Point2;
 using nlohmann::json;
 
@@ -196,7 +197,7 @@ BudgetPoint point_at(const geometry::LocalFrame& frame, double t, Point2 p, doub
 
 std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
                                                      const std::string& source) {
-  const json root = geometry::parse_json_document(text, source);
+  const json root = base::parse_json_document(text, source);
   if (!root.is_object()) throw InputError(source + ": expected a JSON object");
   if (root.value("type", std::string()) == "FeatureCollection") return parse_geojson(root, source);
   if (root.value("fileType", std::string()) == "Plan") return parse_qgc(root, source);
@@ -205,11 +206,7 @@ std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
 }
 
 std::vector<WaypointMission> read_waypoint_missions(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the mission file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_waypoint_missions(s.str(), path);
+  return parse_waypoint_missions(base::read_text_file(path, "mission file"), path);
 }
 
 DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
@@ -235,9 +232,9 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
                      const std::string& what) {
     if (std::isnan(battery_current_a(b, watts)))
       throw InputError(drone.source + ": " + mission.drone + " would draw " +
-                       planning::fixed_text(watts, 0) + " W " + what +
+                       base::fixed_text(watts, 0) + " W " + what +
                        ", beyond what the battery can deliver (" +
-                       planning::fixed_text(max_power_w(b), 0) + " W)");
+                       base::fixed_text(max_power_w(b), 0) + " W)");
     auto crossing = [&](double level) -> std::optional<BudgetPoint> {
       const double s = seconds_to_soc(b, soc, level, watts);
       if (soc <= level || s > seconds) return std::nullopt;

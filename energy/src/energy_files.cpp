@@ -3,14 +3,14 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "swath/planning/number_text.hpp"
+#include "swath/base/number_text.hpp"
 
 namespace swath::energy {
 namespace {
 
+using base::fixed_text;
+using base::round_to;
 using nlohmann::ordered_json;
-using planning::fixed_text;
-using planning::round_to;
 
 void cell(std::string& row, double v, int decimals) {
   if (!row.empty() && row.back() != '\n') row += ',';

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::energy {
 
@@ -32,7 +32,7 @@ struct Expression::Impl {
       parser.SetExpr(text);
       parser.Eval();  // parses now: unknown names and syntax errors surface here
     } catch (const mu::Parser::exception_type& e) {
-      throw geometry::InputError(where + ": " + explain(e) + " in '" + text + "'");
+      throw base::InputError(where + ": " + explain(e) + " in '" + text + "'");
     }
   }
 };
@@ -69,8 +69,7 @@ double Expression::operator()(const std::vector<double>& values) const {
 
 double constant(const std::string& text, const std::string& where) {
   const double v = Expression(text, {}, where)({});
-  if (!std::isfinite(v))
-    throw geometry::InputError(where + ": '" + text + "' is not a finite number");
+  if (!std::isfinite(v)) throw base::InputError(where + ": '" + text + "' is not a finite number");
   return v;
 }
 

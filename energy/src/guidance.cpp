@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::energy {
 
@@ -54,7 +54,7 @@ void set_trajectory_parameters(StageField& stage, const std::vector<double>& c) 
   if (!std::isfinite(trigger.x) || !std::isfinite(trigger.y)) {
     std::string msg = stage.where;
     msg += ": the triggering point is not a finite number for these parameters";
-    throw geometry::InputError(msg);
+    throw base::InputError(msg);
   }
   stage.trigger = trigger;
 }

@@ -1,4 +1,5 @@
 #include "swath/energy/plan.hpp"
+#include "swath/base/file_text.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -7,15 +8,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/base/yaml_map.hpp"
 #include "swath/energy/expression.hpp"
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/number_text.hpp"
-#include "yaml_fields.hpp"
 
 namespace swath::energy {
 namespace {
 
-using geometry::InputError;
+using base::InputError;
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
@@ -161,7 +162,7 @@ Plan parse_plan(const std::string& text, const std::string& source) {
 namespace {
 
 Plan plan_from_yaml(const std::string& text, const std::string& source) {
-  const YAML::Node root = detail::load_yaml(text, source);
+  const YAML::Node root = base::load_yaml(text, source);
   if (!root.IsMap() || !root["stages"] || !root["stages"].IsSequence())
     throw InputError(source + ": a YAML plan is a mapping with a list 'stages'");
   Plan plan;
@@ -170,7 +171,7 @@ Plan plan_from_yaml(const std::string& text, const std::string& source) {
     const std::string where = source + ": line " + std::to_string(n.Mark().line + 1);
     if (!n.IsMap())
       throw InputError(where + ": a stage is a mapping {gain, rotation, phi, trigger, ..}");
-    planning::detail::check_plain_unique_keys(n, source);
+    base::check_plain_unique_keys(n, source);
     auto field = [&](const char* key) {
       if (!n[key]) throw InputError(where + ": the stage has no '" + std::string(key) + "'");
       return n[key].as<std::string>();
@@ -207,26 +208,23 @@ Plan plan_from_yaml(const std::string& text, const std::string& source) {
 }  // namespace
 
 Plan parse_plan_yaml(const std::string& text, const std::string& source) {
-  return detail::yaml_guard(source, [&] { return plan_from_yaml(text, source); });
+  return base::yaml_guard(source, [&] { return plan_from_yaml(text, source); });
 }
 
 Plan read_plan(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot open the plan file");
-  std::ostringstream s;
-  s << in.rdbuf();
+  const std::string text = base::read_text_file(path, "plan file");
   const std::string ext = path.extension().string();
-  return ext == ".yaml" || ext == ".yml" ? parse_plan_yaml(s.str(), path.string())
-                                         : parse_plan(s.str(), path.string());
+  return ext == ".yaml" || ext == ".yml" ? parse_plan_yaml(text, path.string())
+                                         : parse_plan(text, path.string());
 }
 
 std::string format_plan(const Plan& plan) {
   std::ostringstream out;
   auto interval = [&](const Interval& iv) {
-    out << '[' << planning::shortest_text(iv.lo) << ", " << planning::shortest_text(iv.hi) << ']';
+    out << '[' << base::shortest_text(iv.lo) << ", " << base::shortest_text(iv.hi) << ']';
   };
   for (const Stage& s : plan.stages) {
-    out << planning::shortest_text(s.gain) << "; " << (s.direction > 0 ? 90 : 270) << "; " << s.phi
+    out << base::shortest_text(s.gain) << "; " << (s.direction > 0 ? 90 : 270) << "; " << s.phi
         << '\n';
     out << s.trigger_x << ", " << s.trigger_y << '\n';
     for (std::size_t i = 0; i < s.trajectory.size(); ++i) {

@@ -1,4 +1,5 @@
 #include "swath/energy/sim_config.hpp"
+#include "swath/base/file_text.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,23 +9,15 @@
 #include <limits>
 #include <sstream>
 
-#include "swath/geometry/input_error.hpp"
-#include "yaml_fields.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/yaml_map.hpp"
 
 namespace swath::energy {
 namespace {
 
-using detail::kInf;
-using detail::YamlMap;
-using geometry::InputError;
-
-std::string read_text(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the " + what);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using base::InputError;
+using base::kInf;
+using base::YamlMap;
 
 Wind parse_wind(const YamlMap& m) {
   m.allow({"speed_mps", "from_deg"});
@@ -145,7 +138,7 @@ PowerTrace parse_power_trace(const std::string& text, const std::string& source)
 namespace {
 
 SimConfig sim_config_from_yaml(const std::string& text, const std::string& source) {
-  const YAML::Node root = detail::load_yaml(text, source);
+  const YAML::Node root = base::load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source + ": a simulation config is a mapping of keys");
   const YamlMap m(root, source, "");
   m.allow({"time_step_s", "speed_mps", "max_airspeed_mps", "wind", "trigger_radius_m", "start_m",
@@ -207,15 +200,16 @@ SimConfig sim_config_from_yaml(const std::string& text, const std::string& sourc
 }  // namespace
 
 SimConfig parse_sim_config(const std::string& text, const std::string& source) {
-  return detail::yaml_guard(source, [&] { return sim_config_from_yaml(text, source); });
+  return base::yaml_guard(source, [&] { return sim_config_from_yaml(text, source); });
 }
 
 SimConfig read_sim_config(const std::string& path) {
-  SimConfig c = parse_sim_config(read_text(path, "simulation config"), path);
+  SimConfig c = parse_sim_config(
+      base::read_text_file(path, "simulation config", base::kMaxConfigFileBytes), path);
   if (!c.replay_csv.empty()) {
     std::filesystem::path csv(c.replay_csv);
     if (csv.is_relative()) csv = std::filesystem::path(path).parent_path() / csv;
-    c.replay = parse_power_trace(read_text(csv.string(), "power trace"), csv.string());
+    c.replay = parse_power_trace(base::read_text_file(csv, "power trace"), csv.string());
   }
   return c;
 }
@@ -223,7 +217,7 @@ SimConfig read_sim_config(const std::string& path) {
 namespace {
 
 DroneProfile drone_profile_from_yaml(const std::string& text, const std::string& source) {
-  const YAML::Node root = detail::load_yaml(text, source);
+  const YAML::Node root = base::load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source + ": a drone profile is a mapping of keys");
   const YamlMap m(root, source, "");
   m.allow({"name", "speed_mps", "climb_speed_mps", "descent_speed_mps", "max_airspeed_mps", "wind",
@@ -251,11 +245,12 @@ DroneProfile drone_profile_from_yaml(const std::string& text, const std::string&
 }  // namespace
 
 DroneProfile parse_drone_profile(const std::string& text, const std::string& source) {
-  return detail::yaml_guard(source, [&] { return drone_profile_from_yaml(text, source); });
+  return base::yaml_guard(source, [&] { return drone_profile_from_yaml(text, source); });
 }
 
 DroneProfile read_drone_profile(const std::string& path) {
-  return parse_drone_profile(read_text(path, "drone profile"), path);
+  return parse_drone_profile(base::read_text_file(path, "drone profile", base::kMaxConfigFileBytes),
+                             path);
 }
 
 }  // namespace swath::energy

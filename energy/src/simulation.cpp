@@ -5,19 +5,19 @@
 #include <numbers>
 #include <sstream>
 
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/energy/energy_estimator.hpp"
 #include "swath/energy/guidance.hpp"
 #include "swath/energy/period_estimate.hpp"
 #include "swath/energy/replanner.hpp"
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::energy {
 namespace {
 
-using geometry::InputError;
+using base::fixed_text;
+using base::InputError;
 using geometry::Point2;
-using planning::fixed_text;
 
 constexpr double kGravity = 9.80665;
 constexpr double kPi = std::numbers::pi;

@@ -5,14 +5,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "swath/planning/number_text.hpp"
+#include "swath/base/number_text.hpp"
 
 namespace swath::energy {
 namespace {
 
+using base::round_to;
+using base::shortest_text;
 using geometry::Point2;
-using planning::round_to;
-using planning::shortest_text;
 
 // `constant + c1_coefficient * c1 (+ x_coefficient * x + y_coefficient * y)` as plan text.
 struct Linear {

@@ -1,17 +1,18 @@
 #include "swath/geometry/field.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "raw_field.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::geometry {
+
+using base::InputError;
 namespace detail {
 
 std::string position_place(const RawRing& ring, std::size_t i) {
@@ -19,26 +20,6 @@ std::string position_place(const RawRing& ring, std::size_t i) {
   if (i < ring.line.size() && ring.line[i] > 0)
     place += " (line " + std::to_string(ring.line[i]) + ")";
   return place;
-}
-
-std::pair<int, int> line_column(const std::string& text, std::size_t offset) {
-  int line = 1, column = 1;
-  for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return {line, column};
-}
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
 }
 
 }  // namespace detail
@@ -67,10 +48,10 @@ void check_coordinates(const detail::RawField& raw, const std::string& source, b
         fail(source, position_place(ring, i) + ": coordinate is not a finite number");
       if (!geographic) continue;
       if (std::abs(p.y) > 90.0)
-        fail(source, position_place(ring, i) + ": latitude " + detail::number_text(p.y) +
+        fail(source, position_place(ring, i) + ": latitude " + base::shortest_text(p.y) +
                          " is beyond ±90 degrees (positions are longitude, latitude)");
       if (std::abs(p.x) > 180.0)
-        fail(source, position_place(ring, i) + ": longitude " + detail::number_text(p.x) +
+        fail(source, position_place(ring, i) + ": longitude " + base::shortest_text(p.x) +
                          " is beyond ±180 degrees");
     }
   }
@@ -182,14 +163,9 @@ void place_local_field(Field& field, const GeoPoint& origin) {
 
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {
   const std::string source = path.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(source, "is a directory, not an area file");
+  std::string text = base::read_text_file(path, "area file");
   const FieldFormat format = options.format ? *options.format : format_from_extension(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(source, "cannot open the file (" + std::string(std::strerror(errno)) + ")");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_field(buffer.str(), format, source, options.local_metres);
+  return parse_field(text, format, source, options.local_metres);
 }
 
 }  // namespace swath::geometry

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raw_field.hpp"
-#include "swath/geometry/json_document.hpp"
+#include "swath/base/json_document.hpp"
 
 namespace swath::geometry::detail {
 namespace {
@@ -68,7 +68,7 @@ RawField parse_geometry(const json& geometry, const std::string& source, const s
 }  // namespace
 
 RawField parse_geojson(const std::string& text, const std::string& source) {
-  const json root = parse_json_document(text, source);
+  const json root = base::parse_json_document(text, source);
   const std::string type = type_of(root);
   if (type.empty()) fail(source, "not a GeoJSON object (no \"type\" member at the top level)");
 

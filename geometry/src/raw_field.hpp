@@ -4,10 +4,15 @@
 #include <string>
 #include <vector>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
 #include "swath/geometry/point.hpp"
 
 namespace swath::geometry::detail {
+
+using base::InputError;
+
+using base::line_column;
 
 /// One ring as the file gives it: (lon, lat) or (x, y), with where each position stands.
 struct RawRing {
@@ -23,12 +28,6 @@ struct RawField {
 
 /// "<name>, position <i>" plus ", line <L>" when known.
 std::string position_place(const RawRing& ring, std::size_t i);
-
-/// 1-based line and column of a byte offset.
-std::pair<int, int> line_column(const std::string& text, std::size_t offset);
-
-/// Shortest round-trip text of a number, for messages.
-std::string number_text(double value);
 
 [[noreturn]] inline void fail(const std::string& source, const std::string& message) {
   throw InputError(source + ": " + message);

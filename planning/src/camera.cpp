@@ -1,4 +1,5 @@
 #include "swath/planning/camera.hpp"
+#include "swath/base/file_text.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -8,14 +9,14 @@
 #include <set>
 #include <sstream>
 
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/detail/yaml_input.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/yaml_input.hpp"
 #include "swath/planning/imaging.hpp"
 
 namespace swath::planning {
 namespace {
 
-using geometry::InputError;
+using base::InputError;
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -32,11 +33,7 @@ double number(const YAML::Node& node, const std::string& key, const std::string&
 }
 
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot open the camera file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return base::read_text_file(path, "camera file", base::kMaxConfigFileBytes);
 }
 
 }  // namespace
@@ -44,13 +41,13 @@ std::string read_text(const std::filesystem::path& path) {
 namespace {
 
 Camera camera_from_yaml(const std::string& yaml_text, const std::string& source) {
-  const YAML::Node root = detail::load_yaml(yaml_text, source);
+  const YAML::Node root = base::load_yaml(yaml_text, source);
   if (!root.IsMap())
     throw InputError(source + ": a camera file is a YAML mapping of name, sensor and image sizes");
   static const std::set<std::string> known{
       "name",           "sensor_width_mm", "sensor_height_mm",      "focal_length_mm",
       "image_width_px", "image_height_px", "min_trigger_interval_s"};
-  detail::check_plain_unique_keys(root, source);
+  base::check_plain_unique_keys(root, source);
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (!known.count(key))
@@ -86,7 +83,7 @@ Camera camera_from_yaml(const std::string& yaml_text, const std::string& source)
 }  // namespace
 
 Camera parse_camera(const std::string& yaml_text, const std::string& source) {
-  return detail::yaml_guard(source, [&] { return camera_from_yaml(yaml_text, source); });
+  return base::yaml_guard(source, [&] { return camera_from_yaml(yaml_text, source); });
 }
 
 std::vector<CameraEntry> camera_database(const std::filesystem::path& directory) {

@@ -5,8 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include "swath/base/input_error.hpp"
 #include "swath/geometry/decomposition.hpp"
-#include "swath/geometry/input_error.hpp"
 #include "swath/planning/sweep.hpp"
 
 namespace swath::planning {
@@ -58,7 +58,7 @@ std::vector<double> weights(const std::vector<DroneResource>& drones,
     if (d.range_m) {
       const double budget = *d.range_m - home_cost[i];
       if (!(budget > 0))
-        throw geometry::InputError(
+        throw base::InputError(
             "drone " + d.name + ": flying to the farthest point of the survey and back (" +
             std::to_string(std::lround(home_cost[i])) + " m) takes its whole range (" +
             std::to_string(std::lround(*d.range_m)) + " m)");

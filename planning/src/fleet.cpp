@@ -5,13 +5,13 @@
 #include <cmath>
 #include <set>
 
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/detail/yaml_input.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/yaml_input.hpp"
 
 namespace swath::planning {
 namespace {
 
-using geometry::InputError;
+using base::InputError;
 
 std::string line_of(const YAML::Node& n) {
   return "line " + std::to_string(n.Mark().line + 1);
@@ -48,8 +48,8 @@ std::optional<double> Drone::range_m() const {
 namespace {
 
 Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
-  const YAML::Node root = detail::load_yaml(text, source);
-  detail::check_plain_unique_keys(root, source);
+  const YAML::Node root = base::load_yaml(text, source);
+  base::check_plain_unique_keys(root, source);
   if (!root.IsMap() || !root["home"] || !root["drones"])
     throw InputError(source + ": a fleet file needs 'home' and 'drones'");
   Fleet fleet;
@@ -64,7 +64,7 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
     const YAML::Node d = drones[i];
     const std::string where = source + ": drone " + std::to_string(i + 1);
     if (!d.IsMap()) throw InputError(where + ", " + line_of(d) + ": a drone is a mapping");
-    detail::check_plain_unique_keys(d, where);
+    base::check_plain_unique_keys(d, where);
     for (const auto& kv : d)
       if (!known.count(kv.first.Scalar()))
         throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + kv.first.Scalar() +
@@ -106,7 +106,7 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
 }  // namespace
 
 Fleet parse_fleet(const std::string& text, const std::string& source) {
-  return detail::yaml_guard(source, [&] { return fleet_from_yaml(text, source); });
+  return base::yaml_guard(source, [&] { return fleet_from_yaml(text, source); });
 }
 
 Fleet equal_fleet(int n, const geometry::GeoPoint& home) {

@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::planning {
 namespace {
 
-using geometry::InputError;
+using base::InputError;
 
 bool positive(double v) {
   return std::isfinite(v) && v > 0;

@@ -4,16 +4,18 @@
 #include <cmath>
 #include <sstream>
 
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
-#include "swath/geometry/input_error.hpp"
 #include "swath/geometry/repair.hpp"
-#include "swath/planning/number_text.hpp"
 #include "swath/planning/split.hpp"
 
 namespace swath::planning {
 
-using geometry::InputError;
+using base::fixed_text;
+
+using base::InputError;
 
 namespace {
 

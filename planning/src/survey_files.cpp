@@ -1,6 +1,6 @@
 #include "swath/planning/survey_files.hpp"
 
-#include "swath/planning/number_text.hpp"
+#include "swath/base/number_text.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -8,6 +8,10 @@
 #include <nlohmann/json.hpp>
 
 namespace swath::planning {
+
+using base::round_to;
+
+using base::fixed_text;
 namespace {
 
 using geometry::GeoPoint;

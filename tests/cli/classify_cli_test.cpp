@@ -136,7 +136,7 @@ INSTANTIATE_TEST_SUITE_P(
     Catalogue, ClassifyBadInput,
     ::testing::Values(
         BadInput{"missing", "tests/fixtures/missing.geojson",
-                 "swath classify: tests/fixtures/missing.geojson: cannot open the file"},
+                 "swath classify: tests/fixtures/missing.geojson: cannot open the area file"},
         BadInput{"empty", "tests/fixtures/empty.geojson",
                  "tests/fixtures/empty.geojson: the file is empty"},
         BadInput{"truncated_json", "tests/fixtures/truncated.geojson",

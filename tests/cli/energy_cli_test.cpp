@@ -9,10 +9,10 @@
 
 #include "../../apps/swath-energy/energy_images.hpp"
 #include "cli_runner.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
 #include "swath/energy/simulation.hpp"
-#include "swath/planning/number_text.hpp"
 
 namespace swath::test {
 namespace {
@@ -170,8 +170,8 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
   // The header's home is the config's start (plans/meadow-sim.yaml).
   const energy::SimConfig config = energy::read_sim_config(source_path("plans/meadow-sim.yaml"));
   const std::string text = read_text(dir + "/meadow.plan");
-  const std::string home = "start_m: [" + planning::fixed_text(config.start.x, 2) + ", " +
-                           planning::fixed_text(config.start.y, 2) + "]";
+  const std::string home = "start_m: [" + base::fixed_text(config.start.x, 2) + ", " +
+                           base::fixed_text(config.start.y, 2) + "]";
   EXPECT_NE(text.find(home), std::string::npos) << text.substr(0, 400);
 
   const std::string out = dir + "/energy";

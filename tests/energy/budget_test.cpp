@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 #include "swath/geometry/local_frame.hpp"
 
 namespace swath::energy {
@@ -137,7 +137,7 @@ TEST(Budget, GeoJsonPathsAndWind) {
 std::string error_of(const std::string& text) {
   try {
     parse_waypoint_missions(text, "m.json");
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     return e.what();
   }
   return "accepted";

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
+#include "swath/base/input_error.hpp"
 #include "swath/energy/expression.hpp"
-#include "swath/geometry/input_error.hpp"
 
 namespace swath::energy {
 namespace {
@@ -15,7 +15,7 @@ const std::string kPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
 std::string error_of(const std::string& text) {
   try {
     parse_plan(text, "p.plan");
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     return e.what();
   }
   return "accepted";
@@ -89,7 +89,7 @@ TEST(Expression, EvaluatesThePapersFunctions) {
   const Expression copy = e;
   EXPECT_NEAR(copy({9, 0, 0}), 4, 1e-12);
   EXPECT_DOUBLE_EQ(constant("-3*10^3", "c"), -3000);
-  EXPECT_THROW(constant("1/0", "c"), geometry::InputError);
+  EXPECT_THROW(constant("1/0", "c"), base::InputError);
 }
 
 }  // namespace

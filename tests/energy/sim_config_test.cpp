@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::energy {
 namespace {
@@ -13,7 +13,7 @@ const std::string kShare = std::string(SWATH_SOURCE_DIR) + "/share/";
 std::string error_of(const std::string& text) {
   try {
     parse_sim_config(text, "c.yaml");
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     return e.what();
   }
   return "accepted";
@@ -66,7 +66,7 @@ TEST(SimConfig, PowerTrace) {
   try {
     parse_power_trace("0,1\n2,x\n", "p.csv");
     FAIL();
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     EXPECT_STREQ(e.what(), "p.csv: line 2: expected 't_s, watts', found '2,x'");
   }
 }

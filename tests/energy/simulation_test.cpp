@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include "lawnmower_plan.hpp"
+#include "swath/base/input_error.hpp"
 #include "swath/energy/flight.hpp"
 #include "swath/energy/guidance.hpp"
 #include "swath/energy/power_model.hpp"
-#include "swath/geometry/input_error.hpp"
 
 namespace swath::energy {
 namespace {
@@ -26,7 +26,7 @@ SimConfig quiet_config() {
 std::string error_of(const Plan& plan, const SimConfig& config) {
   try {
     simulate(plan, config);
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     return e.what();
   }
   return "flew";

@@ -4,10 +4,12 @@
 
 #include <filesystem>
 
+#include "swath/base/input_error.hpp"
 #include "swath/geometry/classification.hpp"
-#include "swath/geometry/input_error.hpp"
 
 namespace swath::geometry {
+
+using base::InputError;
 namespace {
 
 // An expected-failure check: the message names the source and contains `fragment`.

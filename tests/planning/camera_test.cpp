@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 #include "swath/planning/imaging.hpp"
 
 namespace swath::planning {
@@ -13,7 +13,7 @@ const std::string kDatabase = std::string(SWATH_SOURCE_DIR) + "/share/cameras";
 std::string error_of(const std::string& yaml) {
   try {
     parse_camera(yaml, "cam.yaml");
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     return e.what();
   }
   return "accepted";
@@ -67,7 +67,7 @@ TEST(CameraDatabase, FindsByIdNameOrFileAndSuggestsOtherwise) {
   try {
     find_camera("sony-a9", kDatabase);
     ADD_FAILURE();
-  } catch (const geometry::InputError& e) {
+  } catch (const base::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("did you mean sony-"), std::string::npos) << e.what();
   }
 }

@@ -7,8 +7,8 @@
 #include <numeric>
 
 #include "random_polygons.hpp"
+#include "swath/base/input_error.hpp"
 #include "swath/geometry/field.hpp"
-#include "swath/geometry/input_error.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/planning/fleet.hpp"
 #include "swath/planning/survey.hpp"
@@ -236,7 +236,7 @@ TEST(Fleet, BadFleetsAreRefusedWithTheDroneNamed) {
   auto error = [](const std::string& yaml) {
     try {
       parse_fleet(yaml, "fleet.yaml");
-    } catch (const geometry::InputError& e) {
+    } catch (const base::InputError& e) {
       return std::string(e.what());
     }
     return std::string("accepted");
@@ -260,11 +260,11 @@ TEST(Fleet, BadFleetsAreRefusedWithTheDroneNamed) {
   const Fleet f = parse_fleet(
       home + "drones:\n  - {name: a, battery_level: 0.5, endurance_s: 1200, speed_m_s: 8}\n", "f");
   EXPECT_DOUBLE_EQ(*f.drones[0].range_m(), 4800.0);
-  EXPECT_THROW(equal_fleet(0, {}), geometry::InputError);
+  EXPECT_THROW(equal_fleet(0, {}), base::InputError);
   // Home unreachable within range.
   const SurveyPath path = zigzag_path(3, 300, 30);
   EXPECT_THROW(divide_path(path, {drone("far", {5000, 0}, 1, 4000.0)}, Balance::capability),
-               geometry::InputError);
+               base::InputError);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
 namespace swath::planning {
 namespace {
@@ -72,23 +72,22 @@ TEST(Imaging, ImpossibleSettingsAreRefused) {
   PhotogrammetryMode ok;
   ok.altitude_m = 50;
   EXPECT_THROW(photogrammetry_imaging(zero_focal, ok, ImageOrientation::landscape),
-               geometry::InputError);
+               base::InputError);
   PhotogrammetryMode overlap = ok;
   overlap.side_overlap = 1.0;
   EXPECT_THROW(photogrammetry_imaging(kQx1, overlap, ImageOrientation::landscape),
-               geometry::InputError);
+               base::InputError);
   PhotogrammetryMode both = ok;
   both.gsd_m = 0.01;
-  EXPECT_THROW(photogrammetry_imaging(kQx1, both, ImageOrientation::landscape),
-               geometry::InputError);
+  EXPECT_THROW(photogrammetry_imaging(kQx1, both, ImageOrientation::landscape), base::InputError);
   PhotogrammetryMode negative;
   negative.altitude_m = -5;
   EXPECT_THROW(photogrammetry_imaging(kQx1, negative, ImageOrientation::landscape),
-               geometry::InputError);
+               base::InputError);
   EXPECT_THROW(detection_imaging(kQx1, {1, 1, 0, 0.5}, ImageOrientation::landscape),
-               geometry::InputError);
+               base::InputError);
   EXPECT_THROW(detection_imaging(kQx1, {1, 1, 10, 1.5}, ImageOrientation::landscape),
-               geometry::InputError);
+               base::InputError);
 }
 
 }  // namespace

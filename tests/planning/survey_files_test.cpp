@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "swath/planning/output_files.hpp"
+#include "swath/base/output_files.hpp"
 
 namespace swath::planning {
 namespace {
@@ -213,9 +213,9 @@ TEST(OutputFiles, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("swath-atomic-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  write_files_atomically(dir, {{"a.txt", "old a"}, {"b.txt", "old b"}});
+  base::write_files_atomically(dir, {{"a.txt", "old a"}, {"b.txt", "old b"}});
   // The second file cannot be created (its directory does not exist): nothing may change.
-  EXPECT_THROW(write_files_atomically(dir, {{"a.txt", "new a"}, {"missing/b.txt", "new b"}}),
+  EXPECT_THROW(base::write_files_atomically(dir, {{"a.txt", "new a"}, {"missing/b.txt", "new b"}}),
                std::runtime_error);
   std::ifstream a(dir / "a.txt");
   std::string content((std::istreambuf_iterator<char>(a)), {});
@@ -223,7 +223,7 @@ TEST(OutputFiles, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
   EXPECT_EQ(entries, 2u);
-  write_files_atomically(dir, {{"a.txt", "new a"}});
+  base::write_files_atomically(dir, {{"a.txt", "new a"}});
   std::ifstream a2(dir / "a.txt");
   EXPECT_EQ(std::string((std::istreambuf_iterator<char>(a2)), {}), "new a");
   fs::remove_all(dir);

@@ -26,7 +26,7 @@ struct WaypointMission {
 /// Reads every drone's mission: a GeoJSON FeatureCollection (features with role "path", their
 /// "drone", "altitude_m" and "speed_m_s" properties, and a "home" point; a LineString with 3-D
 /// coordinates needs no altitude_m) or a QGC .plan (takeoff, waypoint, land, return-to-launch,
-/// change-speed items, also inside survey complex items). Throws geometry::InputError naming the
+/// change-speed items, also inside survey complex items). Throws base::InputError naming the
 /// file, the feature or item, and the problem.
 std::vector<WaypointMission> read_waypoint_missions(const std::string& path);
 std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
@@ -57,7 +57,7 @@ struct DroneBudget {
   bool can_finish() const { return !reserve_crossed; }
 };
 
-/// The budget of one mission with one drone profile. Throws geometry::InputError when the drone
+/// The budget of one mission with one drone profile. Throws base::InputError when the drone
 /// cannot fly a leg at all (wind stronger than its airspeed, power beyond the battery's maximum).
 DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone);
 

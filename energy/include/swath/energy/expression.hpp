@@ -10,7 +10,7 @@ namespace swath::energy {
 /// A compiled expression over named variables. Copyable; evaluation is not thread-safe.
 class Expression {
  public:
-  /// Compiles `text` with `variables` (e.g. {"x", "y", "c1"}). Throws geometry::InputError
+  /// Compiles `text` with `variables` (e.g. {"x", "y", "c1"}). Throws base::InputError
   /// "`where`: unknown variable 'z'" or "`where`: <syntax problem>".
   Expression(const std::string& text, const std::vector<std::string>& variables,
              const std::string& where);

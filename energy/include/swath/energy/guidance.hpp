@@ -25,12 +25,12 @@ struct StageField {
 };
 
 /// The stages of `plan` with trajectory parameters `c` (one per parameter of the plan), each
-/// clamped into the stage's bounds. Throws geometry::InputError when a triggering point is not
+/// clamped into the stage's bounds. Throws base::InputError when a triggering point is not
 /// finite for these parameters (e.g. sqrt of a negative number).
 std::vector<StageField> stage_fields(const Plan& plan, const std::vector<double>& c);
 
 /// Changes the stage's trajectory parameters (clamped into its bounds): phi's values and the
-/// triggering point. Throws geometry::InputError when the triggering point is not finite.
+/// triggering point. Throws base::InputError when the triggering point is not finite.
 void set_trajectory_parameters(StageField& stage, const std::vector<double>& c);
 
 /// `values` clamped into `bounds`, one per bound (missing values: the bound's upper end).

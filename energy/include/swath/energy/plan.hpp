@@ -36,7 +36,7 @@ struct Plan {
 /// point), a line of trajectory bounds "[lo, hi]" (several for several parameters), then one
 /// "[lo, hi]" line per computation. '#' starts a comment; blank lines are ignored; numbers and
 /// bounds may be expressions ("-3*10^3"). Every stage has the same numbers of trajectory parameters
-/// and computations. Expressions are compiled to check them. Throws geometry::InputError naming the
+/// and computations. Expressions are compiled to check them. Throws base::InputError naming the
 /// file, the line and the problem (unknown variable, bad interval, lo > hi, missing trigger,
 /// inconsistent number of computation lines, bad rotation).
 Plan parse_plan(const std::string& text, const std::string& source);

@@ -52,7 +52,7 @@ struct SimConfig {
 };
 
 /// Parses the YAML configuration; `source` names it in errors. Unknown keys, wrong types and out
-/// of range values throw geometry::InputError naming the file, the line and the key.
+/// of range values throw base::InputError naming the file, the line and the key.
 SimConfig parse_sim_config(const std::string& text, const std::string& source);
 SimConfig read_sim_config(const std::string& path);
 

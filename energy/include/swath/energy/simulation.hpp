@@ -13,7 +13,7 @@
 namespace swath::energy {
 
 /// How a simulation ended. A stalled plan (the field vanishes, or the drone stops approaching its
-/// triggering point) is bad input and throws geometry::InputError instead.
+/// triggering point) is bad input and throws base::InputError instead.
 enum class FlightStatus {
   completed,      ///< the last triggering point was reached
   battery_empty,  ///< the state of charge reached 0 first
@@ -86,7 +86,7 @@ struct FixedComparison {
 FixedComparison compare_fixed(const Plan& plan, const SimConfig& config);
 
 /// Flies `plan` with `config`. `progress` (optional) gets the fraction of the planned time flown,
-/// now and then. Throws geometry::InputError for a plan that cannot be flown (stall, field zero,
+/// now and then. Throws base::InputError for a plan that cannot be flown (stall, field zero,
 /// wind stronger than the drone, triggering point undefined) naming the stage's line.
 SimulationResult simulate(const Plan& plan, const SimConfig& config,
                           const std::function<void(double)>& progress = {});

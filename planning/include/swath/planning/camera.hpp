@@ -28,7 +28,7 @@ struct Camera {
 ///   image_width_px: 5456
 ///   image_height_px: 3632
 ///   min_trigger_interval_s: 1.0   # optional
-/// Throws geometry::InputError naming `source`, the key and the problem (missing key, not a
+/// Throws base::InputError naming `source`, the key and the problem (missing key, not a
 /// number, value <= 0, unknown key).
 Camera parse_camera(const std::string& yaml_text, const std::string& source);
 

@@ -45,7 +45,7 @@ struct DivisionResult {
 /// otherwise. When the budgets add up to less than the path, each drone flies its budget and the
 /// rest is unflown. Balance::makespan instead cuts where the longest flight time (home legs
 /// included, each at its own speed, within its range) is smallest, by bisection on that time.
-/// Throws geometry::InputError when a drone cannot even fly its home cost.
+/// Throws base::InputError when a drone cannot even fly its home cost.
 DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
                            Balance balance);
 
@@ -59,7 +59,7 @@ using BandSweep = std::function<SurveyPath(const std::vector<geometry::Ring>& ba
 /// twice the distance to the farthest vertex of the area); each cut found by bisection on the area
 /// below it (relative error < 1e-9). Bands are cut from the boustrophedon pieces of the area, so
 /// every band piece is met by each lane in one interval. Balance::makespan: cuts where the longest
-/// flight is shortest. Throws geometry::InputError as divide_path().
+/// flight is shortest. Throws base::InputError as divide_path().
 DivisionResult divide_region(const std::vector<geometry::Ring>& rings, double angle_deg,
                              const std::vector<DroneResource>& drones, Balance balance,
                              const BandSweep& sweep_band);

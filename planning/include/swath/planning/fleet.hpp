@@ -38,7 +38,7 @@ struct Fleet {
 ///       capability: 0.4
 ///       home: {lat: 47.398, lon: 8.542}
 /// Every drone gives either `capability` or all of battery_level, endurance_s, speed_m_s, and all
-/// drones the same kind. Throws geometry::InputError naming `source`, the drone and the key:
+/// drones the same kind. Throws base::InputError naming `source`, the drone and the key:
 /// capability <= 0 or > 1, level outside [0, 1], endurance or speed <= 0, zero drones, bad
 /// coordinates, unknown keys.
 Fleet parse_fleet(const std::string& yaml_text, const std::string& source);

@@ -109,7 +109,7 @@ std::vector<const DroneMission*> missions_of(const SurveyPlan& plan);
 /// rings (the scanline measure counts by the even-odd rule).
 geometry::Polygon measured_area(const SurveyPlan& plan);
 
-/// Plans a survey, divided among a fleet when one is given. Throws geometry::InputError for an area
+/// Plans a survey, divided among a fleet when one is given. Throws base::InputError for an area
 /// it refuses (self-intersecting, or non-convex with ConcaveMode::reject), a local-metres area
 /// without a geographic frame, or settings out of range; the message names the problem.
 SurveyPlan plan_survey(const SurveyRequest& request);

@@ -1,9 +1,9 @@
-#include "swath/planning/number_text.hpp"
+#include "swath/base/number_text.hpp"
 
 #include <charconv>
 #include <cmath>
 
-namespace swath::planning {
+namespace swath::base {
 
 double round_to(double value, int decimals) {
   static constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10};
@@ -25,4 +25,4 @@ std::string shortest_text(double value) {
   return std::string(buffer, result.ptr);
 }
 
-}  // namespace swath::planning
+}  // namespace swath::base

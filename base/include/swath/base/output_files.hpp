@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-namespace swath::planning {
+namespace swath::base {
 
 /// Writes every file into `directory` (created if missing) atomically: each goes to a temporary
 /// name in the same directory, is flushed, then renamed over its final name, so a reader sees the
@@ -16,4 +16,4 @@ namespace swath::planning {
 void write_files_atomically(const std::filesystem::path& directory,
                             const std::vector<std::pair<std::string, std::string>>& files);
 
-}  // namespace swath::planning
+}  // namespace swath::base

@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace swath::planning {
+namespace swath::base {
 
 /// `value` rounded half away from zero to `decimals` places (0..10); never "-0".
 double round_to(double value, int decimals);
@@ -14,4 +14,4 @@ std::string fixed_text(double value, int decimals);
 /// The shortest text that reads back as exactly `value` (std::to_chars: no locale); never "-0".
 std::string shortest_text(double value);
 
-}  // namespace swath::planning
+}  // namespace swath::base

@@ -1,4 +1,4 @@
-#include "swath/planning/output_files.hpp"
+#include "swath/base/output_files.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace swath::planning {
+namespace swath::base {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
@@ -56,4 +56,4 @@ void write_files_atomically(const std::filesystem::path& directory,
   }
 }
 
-}  // namespace swath::planning
+}  // namespace swath::base

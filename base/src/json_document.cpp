@@ -1,12 +1,12 @@
-#include "swath/geometry/json_document.hpp"
+#include "swath/base/json_document.hpp"
 
 #include <set>
 #include <vector>
 
-#include "raw_field.hpp"
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
 
-namespace swath::geometry {
+namespace swath::base {
 
 using nlohmann::json;
 
@@ -29,7 +29,7 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
   try {
     root = json::parse(text, check_keys);
   } catch (const json::parse_error& e) {
-    const auto [line, column] = detail::line_column(text, e.byte == 0 ? 0 : e.byte - 1);
+    const auto [line, column] = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string reason = e.what();
     const auto colon = reason.find(": ", reason.find("column"));
     reason = colon == std::string::npos ? reason : reason.substr(colon + 2);
@@ -48,4 +48,4 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
   return root;
 }
 
-}  // namespace swath::geometry
+}  // namespace swath::base

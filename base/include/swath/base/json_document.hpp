@@ -6,11 +6,11 @@
 
 #include <string>
 
-namespace swath::geometry {
+namespace swath::base {
 
 /// Parses `text`. Throws InputError naming `source` for a syntax error (line and column), a
 /// number JSON cannot hold as a double (1e999), or a key given twice in one object (JSON parsers
 /// disagree on which one wins, so swath refuses to guess).
 nlohmann::json parse_json_document(const std::string& text, const std::string& source);
 
-}  // namespace swath::geometry
+}  // namespace swath::base

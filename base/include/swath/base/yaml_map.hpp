@@ -8,12 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "swath/planning/detail/yaml_input.hpp"
+#include "swath/base/yaml_input.hpp"
 
-namespace swath::energy::detail {
-
-using planning::detail::load_yaml;
-using planning::detail::yaml_guard;
+namespace swath::base {
 
 /// A mapping at `path` ("battery", "power.mechanical", "" for the root) of `source`.
 class YamlMap {
@@ -41,4 +38,4 @@ class YamlMap {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-}  // namespace swath::energy::detail
+}  // namespace swath::base

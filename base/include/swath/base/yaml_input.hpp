@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
-#include "swath/geometry/input_error.hpp"
+#include "swath/base/input_error.hpp"
 
-namespace swath::planning::detail {
+namespace swath::base {
 
 inline std::string yaml_line(const YAML::Node& node) {
   return "line " + std::to_string(node.Mark().line + 1);
@@ -19,8 +19,8 @@ inline YAML::Node load_yaml(const std::string& text, const std::string& source) 
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw geometry::InputError(source + ": line " + std::to_string(e.mark.line + 1) +
-                               ": invalid YAML (" + e.msg + ")");
+    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
+                     e.msg + ")");
   }
 }
 
@@ -30,11 +30,10 @@ inline void check_plain_unique_keys(const YAML::Node& map, const std::string& pl
   std::set<std::string> seen;
   for (const auto& kv : map) {
     if (!kv.first.IsScalar())
-      throw geometry::InputError(place + ": " + yaml_line(kv.first) +
-                                 ": a key must be a plain name");
+      throw InputError(place + ": " + yaml_line(kv.first) + ": a key must be a plain name");
     if (!seen.insert(kv.first.Scalar()).second)
-      throw geometry::InputError(place + ": " + yaml_line(kv.first) + ": '" + kv.first.Scalar() +
-                                 "' is given twice");
+      throw InputError(place + ": " + yaml_line(kv.first) + ": '" + kv.first.Scalar() +
+                       "' is given twice");
   }
 }
 
@@ -45,8 +44,8 @@ auto yaml_guard(const std::string& source, F&& read) {
   try {
     return read();
   } catch (const YAML::Exception& e) {
-    throw geometry::InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
 }
 
-}  // namespace swath::planning::detail
+}  // namespace swath::base

@@ -1,13 +1,11 @@
-#include "yaml_fields.hpp"
+#include "swath/base/yaml_map.hpp"
 
 #include <cmath>
 
-#include "swath/geometry/input_error.hpp"
-#include "swath/planning/number_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 
-namespace swath::energy::detail {
-
-using geometry::InputError;
+namespace swath::base {
 
 YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path)
     : node_(node), source_(std::move(source)), path_(std::move(path)) {
@@ -30,8 +28,7 @@ std::string YamlMap::where(const char* key) const {
 
 void YamlMap::allow(std::initializer_list<const char*> keys) const {
   if (!node_ || !node_.IsMap()) return;
-  planning::detail::check_plain_unique_keys(node_,
-                                            path_.empty() ? source_ : source_ + ": " + path_);
+  base::check_plain_unique_keys(node_, path_.empty() ? source_ : source_ + ": " + path_);
   for (const auto& kv : node_) {
     const std::string k = kv.first.Scalar();
     bool ok = false;
@@ -61,11 +58,11 @@ double YamlMap::number(const char* key, double fallback, double lo, double hi, b
     std::string msg = where(key) + " must be ";
     if (hi == kInf) {
       msg += open_lo ? "> " : ">= ";
-      msg += planning::fixed_text(lo, 4);
+      msg += base::fixed_text(lo, 4);
     } else {
       msg += "in ";
       msg += open_lo ? "(" : "[";
-      msg += planning::fixed_text(lo, 4) + ", " + planning::fixed_text(hi, 4) + "]";
+      msg += base::fixed_text(lo, 4) + ", " + base::fixed_text(hi, 4) + "]";
     }
     msg += ", found " + node_[key].as<std::string>();
     throw InputError(msg);
@@ -109,4 +106,4 @@ YamlMap YamlMap::map(const char* key) const {
   return YamlMap(n, source_, path_.empty() ? key : path_ + "." + key);
 }
 
-}  // namespace swath::energy::detail
+}  // namespace swath::base
