@@ -7,15 +7,9 @@
 #include <memory>
 #include <vector>
 
-namespace swath::apps {
+#include "swath/base/input_error.hpp"
 
-/// Exit codes of every swath program (documented in --help and the README).
-enum ExitCode : int {
-  kSuccess = 0,
-  kUnexpectedFailure = 1,  ///< a bug or an environment failure (disk full, ...)
-  kBadInput = 2,           ///< bad input file or usage; the message says what and where
-  kCannotFinish = 4,       ///< swath-energy: a drone cannot finish its mission on its battery
-};
+namespace swath::apps {
 
 class Command {
  public:

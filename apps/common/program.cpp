@@ -31,7 +31,7 @@ int run_program(const char* program, const char* description, const char* exit_c
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << program << ": " << e.what() << " (see " << program << " --help)\n";
-    return kBadInput;
+    return base::kExitBadInput;
   }
 
   for (auto& [sub, command] : registered) {
@@ -40,14 +40,14 @@ int run_program(const char* program, const char* description, const char* exit_c
       return command->run();
     } catch (const swath::base::InputError& e) {
       std::cerr << program << ' ' << command->name() << ": " << e.what() << '\n';
-      return kBadInput;
+      return base::kExitBadInput;
     } catch (const std::exception& e) {
       std::cerr << program << ' ' << command->name() << ": unexpected failure: " << e.what()
                 << '\n';
-      return kUnexpectedFailure;
+      return base::kExitFailure;
     }
   }
-  return kBadInput;
+  return base::kExitBadInput;
 }
 
 }  // namespace swath::apps

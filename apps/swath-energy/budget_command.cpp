@@ -30,8 +30,8 @@ int BudgetCommand::run() {
                                  {{"budget.json", json}, {"soc.csv", energy::budget_csv(budgets)}});
   std::cout << (json_ ? json : energy::budget_table(budgets, drone));
   for (const auto& b : budgets)
-    if (!b.can_finish()) return kCannotFinish;
-  return kSuccess;
+    if (!b.can_finish()) return base::kExitNotCompleted;
+  return base::kExitSuccess;
 }
 
 }  // namespace swath::apps

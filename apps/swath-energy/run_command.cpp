@@ -66,7 +66,7 @@ int RunCommand::run() {
     std::cerr << "swath-energy run: warning: at " << result.infeasible_replans
               << " replans no parameters fitted the battery above its reserve; the lowest levels "
                  "were flown\n";
-  return result.status == energy::FlightStatus::completed ? kSuccess : kCannotFinish;
+  return result.status == energy::FlightStatus::completed ? base::kExitSuccess : base::kExitNotCompleted;
 }
 
 }  // namespace swath::apps

@@ -34,7 +34,7 @@ int CamerasCommand::run() {
                                                 : nlohmann::ordered_json()}});
     }
     std::cout << list.dump(2) << '\n';
-    return kSuccess;
+    return base::kExitSuccess;
   }
   std::printf("%-22s %-30s %13s %8s %12s %9s\n", "id", "name", "sensor mm", "focal mm", "image px",
               "min dt s");
@@ -48,7 +48,7 @@ int CamerasCommand::run() {
                 fixed_text(c.focal_length_mm, 2).c_str(), image.c_str(),
                 c.min_trigger_interval_s ? fixed_text(*c.min_trigger_interval_s, 1).c_str() : "-");
   }
-  return kSuccess;
+  return base::kExitSuccess;
 }
 
 }  // namespace swath::apps

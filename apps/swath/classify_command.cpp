@@ -170,7 +170,7 @@ int ClassifyCommand::run() {
   } else {
     print_text(field, facts);
   }
-  return kSuccess;
+  return base::kExitSuccess;
 }
 
 }  // namespace swath::apps

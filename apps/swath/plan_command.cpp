@@ -336,7 +336,7 @@ int PlanCommand::run() {
   for (const auto& f : files) names += " " + f.first;
   std::printf("  wrote     %s\n", names.c_str());
   for (const std::string& w : warnings) std::cerr << "swath plan: warning: " << w << '\n';
-  return kSuccess;
+  return base::kExitSuccess;
 }
 
 }  // namespace swath::apps

@@ -47,7 +47,7 @@ int RenderCommand::run() {
     base::write_files_atomically(parent, {{path.filename().string(), png}});
     std::cout << "swath render: wrote " << path.string() << '\n';
   }
-  return kSuccess;
+  return base::kExitSuccess;
 }
 
 }  // namespace swath::apps
