@@ -55,3 +55,28 @@ TEST(RenderCli, NotAPlanIsAClearError) {
 
 }  // namespace
 }  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// The drawing stack (OpenGL, OpenCV and the GDAL its codecs bring) is a module opened on the first
+// picture: a plan without --render never loads it (start-up in milliseconds), one with --render
+// does. The dynamic loader's own trace (LD_DEBUG=files) says which libraries a process opened.
+TEST(RenderModule, LoadedOnlyWhenAProgramDraws) {
+  const std::string plan = std::string("LD_DEBUG=files '") + SWATH_BINARY +
+                           "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                           "--altitude 60 -o ";
+  const CliRun quiet = run_program("env", plan + fresh_dir("module-no-render"));
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("libOSMesa"), std::string::npos);
+  EXPECT_EQ(quiet.err.find("libopencv"), std::string::npos);
+  EXPECT_EQ(quiet.err.find("libswath_render_gl"), std::string::npos);
+
+  const CliRun drawn = run_program("env", plan + fresh_dir("module-render") + " --render");
+  ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
+  EXPECT_NE(drawn.err.find("libswath_render_gl"), std::string::npos);
+  EXPECT_NE(drawn.err.find("libOSMesa"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace swath::test

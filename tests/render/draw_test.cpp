@@ -98,3 +98,37 @@ TEST(Draw, ImpossibleSizeIsAClearError) {
 
 }  // namespace
 }  // namespace swath::render
+
+namespace swath::render {
+namespace {
+
+// The measured box must contain the drawn text: every dark pixel of a label lies inside
+// [x, x + width] x [baseline - height, baseline + descent] (a second, pixel-level measure).
+TEST(TextExtent, BoundsTheDrawnTextAndGrowsWithLengthAndHeight) {
+  const TextExtent short_text = text_extent("N", 14), long_text = text_extent("Nordwest 123", 14);
+  const TextExtent tall = text_extent("Nordwest 123", 28);
+  EXPECT_GT(short_text.width_px, 0);
+  EXPECT_GT(long_text.width_px, 5 * short_text.width_px);
+  EXPECT_GT(tall.width_px, long_text.width_px * 3 / 2);
+  EXPECT_GT(tall.height_px, long_text.height_px * 3 / 2);
+
+  Scene s;
+  s.labels.push_back({20, 50, "Nordwest 123 gyp", 20, {0, 0, 0, 1}});
+  const View v = fit({0, 0}, {1, 1}, 300, 100, 0);
+  const Image im = draw(s, v);
+  const TextExtent e = text_extent("Nordwest 123 gyp", 20);
+  int dark = 0, outside = 0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x)
+      if (im.at(x, y, 0) < 128) {
+        ++dark;
+        // One pixel of anti-aliasing slack on each side.
+        outside += x < 20 - 1 || x > 20 + e.width_px + 1 || y < 50 - e.height_px - 1 ||
+                   y > 50 + e.baseline_px + 1;
+      }
+  EXPECT_GT(dark, 100);
+  EXPECT_EQ(outside, 0);
+}
+
+}  // namespace
+}  // namespace swath::render

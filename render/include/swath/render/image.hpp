@@ -1,5 +1,8 @@
 #pragma once
 // Rendering a scene offscreen (OSMesa, software OpenGL: no display, no GPU) to RGB pixels and PNG.
+// The drawing stack is a module loaded on the first call (programs that draw nothing never load
+// OpenGL or OpenCV); it is found next to the program, at $SWATH_RENDER_MODULE, or in the build
+// tree. A missing module is a RenderError saying where it was looked for.
 
 #include <cstdint>
 #include <stdexcept>
@@ -30,6 +33,16 @@ class RenderError : public std::runtime_error {
 /// down to view.width_px x view.height_px (anti-aliasing), then the labels with OpenCV's
 /// anti-aliased text. Deterministic: same scene and view, same pixels. Throws RenderError.
 Image draw(const Scene& scene, const View& view, int supersample = 3);
+
+/// The box a label's text takes, in pixels: `width_px` from the anchor to the right end,
+/// `height_px` above the baseline and `baseline_px` below it (descenders).
+struct TextExtent {
+  int width_px = 0, height_px = 0, baseline_px = 0;
+};
+
+/// The extent of `text` drawn as a Label of `height_px` (same font and thickness as draw()),
+/// so legends can be sized to fit inside the image. Throws RenderError.
+TextExtent text_extent(const std::string& text, double height_px);
 
 /// PNG bytes of the image (deterministic encoder settings).
 std::string encode_png(const Image& image);

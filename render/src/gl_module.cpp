@@ -1,4 +1,5 @@
-// The only translation unit that sees OpenGL (OSMesa) and OpenCV.
+// The drawing module (libswath_render_gl.so): the only translation unit that sees OpenGL
+// (OSMesa) and OpenCV. Loaded on first use by module_loader.cpp (see gl_module.hpp).
 #include <GL/gl.h>
 #include <GL/osmesa.h>
 
@@ -10,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "gl_module.hpp"
 #include "swath/render/image.hpp"
 
 namespace swath::render {
@@ -152,9 +154,7 @@ cv::Scalar scalar(const Color& c) {  // RGB channel order: the Mat holds RGB
   return {std::round(c.r * 255.0), std::round(c.g * 255.0), std::round(c.b * 255.0)};
 }
 
-}  // namespace
-
-Image draw(const Scene& scene, const View& view, int supersample) {
+Image draw_scene(const Scene& scene, const View& view, int supersample) {
   const int ss = std::max(1, supersample);
   const int w = view.width_px * ss, h = view.height_px * ss;
   if (view.width_px <= 0 || view.height_px <= 0 || w > 16384 || h > 16384)
@@ -241,7 +241,7 @@ Image draw(const Scene& scene, const View& view, int supersample) {
   return image;
 }
 
-std::string encode_png(const Image& image) {
+std::string png_of(const Image& image) {
   cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.rgb.data()));
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
@@ -250,7 +250,7 @@ std::string encode_png(const Image& image) {
   return std::string(bytes.begin(), bytes.end());
 }
 
-Image decode_png(const std::string& png) {
+Image image_of_png(const std::string& png) {
   const std::vector<unsigned char> bytes(png.begin(), png.end());
   cv::Mat bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
   if (bgr.empty()) throw RenderError("not a PNG image");
@@ -263,4 +263,49 @@ Image decode_png(const std::string& png) {
   return image;
 }
 
+TextExtent measure_text(const std::string& text, double height_px) {
+  const int height = static_cast<int>(height_px);
+  const double scale = cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, height, 1);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale,
+                                        std::max(1, static_cast<int>(height_px / 12)), &baseline);
+  return {size.width, size.height, baseline};
+}
+
+// Runs `f`, turning any exception into `error` (exceptions do not cross the module boundary).
+template <typename F>
+bool guarded(std::string& error, F&& f) noexcept {
+  try {
+    f();
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+  } catch (...) {
+    error = "unknown error in the drawing module";
+  }
+  return false;
+}
+
+}  // namespace
 }  // namespace swath::render
+
+extern "C" __attribute__((visibility("default"))) const swath::render::detail::GlModule*
+swath_render_gl_module() {
+  using namespace swath::render;
+  static const detail::GlModule module{
+      detail::kGlModuleAbi,
+      [](const Scene& scene, const View& view, int ss, Image& out, std::string& error) noexcept {
+        return guarded(error, [&] { out = draw_scene(scene, view, ss); });
+      },
+      [](const Image& image, std::string& out, std::string& error) noexcept {
+        return guarded(error, [&] { out = png_of(image); });
+      },
+      [](const std::string& png, Image& out, std::string& error) noexcept {
+        return guarded(error, [&] { out = image_of_png(png); });
+      },
+      [](const std::string& text, double height_px, TextExtent& out, std::string& error) noexcept {
+        return guarded(error, [&] { out = measure_text(text, height_px); });
+      },
+  };
+  return &module;
+}
