@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "swath/base/output_files.hpp"
+#include "swath/base/output_set.hpp"
 #include "swath/energy/budget.hpp"
 #include "swath/energy/energy_files.hpp"
 #include "swath/energy/sim_config.hpp"

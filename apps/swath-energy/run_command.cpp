@@ -6,7 +6,7 @@
 #include "map_furniture.hpp"
 #include "progress_bar.hpp"
 #include "swath/base/number_text.hpp"
-#include "swath/base/output_files.hpp"
+#include "swath/base/output_set.hpp"
 #include "swath/energy/energy_files.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
@@ -66,7 +66,8 @@ int RunCommand::run() {
     std::cerr << "swath-energy run: warning: at " << result.infeasible_replans
               << " replans no parameters fitted the battery above its reserve; the lowest levels "
                  "were flown\n";
-  return result.status == energy::FlightStatus::completed ? base::kExitSuccess : base::kExitNotCompleted;
+  return result.status == energy::FlightStatus::completed ? base::kExitSuccess
+                                                          : base::kExitNotCompleted;
 }
 
 }  // namespace swath::apps

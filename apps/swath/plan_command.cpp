@@ -14,7 +14,8 @@
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
-#include "swath/base/output_files.hpp"
+#include "swath/base/output_set.hpp"
+#include "swath/planning/limits.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/planning/survey_files.hpp"
 
@@ -180,6 +181,23 @@ void PlanCommand::setup(CLI::App& app) {
       ->capture_default_str();
 }
 
+void PlanCommand::check_numbers() const {
+  using namespace planning::limits;
+  if (altitude_m_) base::check_range(*altitude_m_, kAltitude_m, "--altitude");
+  if (gsd_cm_) base::check_range(*gsd_cm_, kGsd_cm, "--gsd");
+  check_overlap(side_overlap_, "--side-overlap");
+  check_overlap(front_overlap_, "--front-overlap");
+  base::check_range(overlap_, kDetectionOverlap, "--overlap");
+  if (min_pixels_) base::check_range(*min_pixels_, kMinPixels, "--min-pixels");
+  if (angle_deg_) base::check_range(*angle_deg_, kBearing_deg, "--angle");
+  base::check_range(angle_step_deg_, kAngleStep_deg, "--angle-step");
+  base::check_range(turnaround_m_, kTurnaround_m, "--turnaround");
+  if (waypoint_spacing_m_)
+    base::check_range(*waypoint_spacing_m_, kWaypointSpacing_m, "--waypoint-spacing");
+  if (drones_) base::check_range(*drones_, kDrones, "--drones");
+  if (speed_m_s_) base::check_range(*speed_m_s_, kSpeed_m_s, "--speed");
+}
+
 int PlanCommand::run() {
   if (!config_.empty())
     apply_mission_config(
@@ -187,6 +205,7 @@ int PlanCommand::run() {
   if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
   if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
   if (output_.empty()) throw InputError("no output directory: give -o DIR");
+  check_numbers();
 
   planning::SurveyRequest request;
   geometry::FieldReadOptions read_options;

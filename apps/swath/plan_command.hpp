@@ -20,6 +20,9 @@ class PlanCommand : public Command {
   int run() override;
 
  private:
+  /// Every number given, against planning/limits.hpp's ranges, before any work.
+  void check_numbers() const;
+
   CLI::App* app_ = nullptr;
   std::string config_;
   std::string field_;

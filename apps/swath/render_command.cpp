@@ -6,7 +6,7 @@
 #include "coverage_image.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
-#include "swath/base/output_files.hpp"
+#include "swath/base/output_set.hpp"
 
 namespace swath::apps {
 namespace {

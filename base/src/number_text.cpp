@@ -1,28 +1,40 @@
 #include "swath/base/number_text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
 namespace swath::base {
+namespace {
+
+// Room for any double in fixed notation: 309 integer digits, a sign, a point and 10 decimals.
+constexpr std::size_t kFixedBuffer = 352;
+
+}  // namespace
 
 double round_to(double value, int decimals) {
   static constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10};
-  const double scale = kScale[decimals];
-  const double r = std::round(value * scale) / scale;
+  const double scale = kScale[std::clamp(decimals, 0, 10)];
+  const double scaled = value * scale;
+  // Beyond 2^53 a double has no fraction to round, and scaling could overflow to infinity.
+  if (!std::isfinite(scaled) || std::abs(scaled) >= 0x1p53) return value;
+  const double r = std::round(scaled) / scale;
   return r == 0.0 ? 0.0 : r;
 }
 
 std::string fixed_text(double value, int decimals) {
-  char buffer[64];
+  decimals = std::clamp(decimals, 0, 10);
+  char buffer[kFixedBuffer];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, round_to(value, decimals),
                                     std::chars_format::fixed, decimals);
+  if (result.ec != std::errc()) return shortest_text(value);  // cannot happen: the buffer fits all
   return std::string(buffer, result.ptr);
 }
 
 std::string shortest_text(double value) {
-  char buffer[64];
+  char buffer[64];  // the shortest form of any double is at most 24 characters
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value == 0.0 ? 0.0 : value);
-  return std::string(buffer, result.ptr);
+  return result.ec == std::errc() ? std::string(buffer, result.ptr) : std::string("nan");
 }
 
 }  // namespace swath::base

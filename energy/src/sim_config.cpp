@@ -146,7 +146,8 @@ SimConfig sim_config_from_yaml(const std::string& text, const std::string& sourc
            "battery", "power", "replay_csv"});
   SimConfig c;
   c.source = source;
-  c.time_step_s = m.number("time_step_s", c.time_step_s, 0.0, 1.0, true);
+  // Below 1 ms the guidance field gains nothing and a day's flight would take 10^8+ steps.
+  c.time_step_s = m.number("time_step_s", c.time_step_s, 1e-3, 1.0);
   c.speed_mps = m.number("speed_mps", c.speed_mps, 0.0, 200.0, true);
   c.max_airspeed_mps =
       m.number("max_airspeed_mps", std::max(c.max_airspeed_mps, c.speed_mps), 0.0, 300.0, true);

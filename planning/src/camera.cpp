@@ -12,6 +12,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/yaml_input.hpp"
 #include "swath/planning/imaging.hpp"
+#include "swath/planning/limits.hpp"
 
 namespace swath::planning {
 namespace {
@@ -23,13 +24,18 @@ std::string lower(std::string s) {
   return s;
 }
 
-double number(const YAML::Node& node, const std::string& key, const std::string& source) {
+// The number at `node`, inside its plausible range; errors name the file, line and key.
+double number(const YAML::Node& node, const std::string& key, const std::string& source,
+              const base::Range& range) {
+  const std::string where = source + ": line " + std::to_string(node.Mark().line + 1) + ": " + key;
+  double value = 0;
   try {
-    return node.as<double>();
+    value = node.as<double>();
   } catch (const YAML::Exception&) {
-    throw InputError(source + ": line " + std::to_string(node.Mark().line + 1) + ": " + key +
-                     " must be a number");
+    throw InputError(where + " must be a number");
   }
+  base::check_range(value, range, where);
+  return value;
 }
 
 std::string read_text(const std::filesystem::path& path) {
@@ -60,22 +66,24 @@ Camera camera_from_yaml(const std::string& yaml_text, const std::string& source)
   };
   Camera c;
   c.name = required("name").as<std::string>();
-  c.sensor_width_mm = number(required("sensor_width_mm"), "sensor_width_mm", source);
-  c.sensor_height_mm = number(required("sensor_height_mm"), "sensor_height_mm", source);
-  c.focal_length_mm = number(required("focal_length_mm"), "focal_length_mm", source);
-  const double w = number(required("image_width_px"), "image_width_px", source);
-  const double h = number(required("image_height_px"), "image_height_px", source);
-  if (w != std::floor(w) || h != std::floor(h) || w > 1e6 || h > 1e6 || w <= 0 || h <= 0)
+  c.sensor_width_mm =
+      number(required("sensor_width_mm"), "sensor_width_mm", source, limits::kSensorSize_mm);
+  c.sensor_height_mm =
+      number(required("sensor_height_mm"), "sensor_height_mm", source, limits::kSensorSize_mm);
+  c.focal_length_mm =
+      number(required("focal_length_mm"), "focal_length_mm", source, limits::kFocalLength_mm);
+  const double w =
+      number(required("image_width_px"), "image_width_px", source, limits::kImageSize_px);
+  const double h =
+      number(required("image_height_px"), "image_height_px", source, limits::kImageSize_px);
+  if (w != std::floor(w) || h != std::floor(h))
     throw InputError(source +
-                     ": image_width_px and image_height_px must be whole numbers of pixels > 0");
+                     ": image_width_px and image_height_px must be whole numbers of pixels");
   c.image_width_px = static_cast<int>(w);
   c.image_height_px = static_cast<int>(h);
-  if (root["min_trigger_interval_s"]) {
-    c.min_trigger_interval_s =
-        number(root["min_trigger_interval_s"], "min_trigger_interval_s", source);
-    if (!(*c.min_trigger_interval_s >= 0) || !std::isfinite(*c.min_trigger_interval_s))
-      throw InputError(source + ": min_trigger_interval_s must be >= 0");
-  }
+  if (root["min_trigger_interval_s"])
+    c.min_trigger_interval_s = number(root["min_trigger_interval_s"], "min_trigger_interval_s",
+                                      source, limits::kTriggerInterval_s);
   validate_camera(c, source);
   return c;
 }

@@ -7,6 +7,7 @@
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/yaml_input.hpp"
+#include "swath/planning/limits.hpp"
 
 namespace swath::planning {
 namespace {
@@ -57,6 +58,7 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
   const YAML::Node drones = root["drones"];
   if (!drones.IsSequence() || drones.size() == 0)
     throw InputError(source + ": 'drones' must list at least one drone");
+  base::check_range(static_cast<double>(drones.size()), limits::kDrones, source + ": the fleet of");
   static const std::set<std::string> known{"name",        "capability", "battery_level",
                                            "endurance_s", "speed_m_s",  "home"};
   bool any_capability = false, any_range = false;
@@ -85,12 +87,10 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
       drone.battery_level = number(d["battery_level"], where, "battery_level");
       drone.endurance_s = number(d["endurance_s"], where, "endurance_s");
       drone.speed_m_s = number(d["speed_m_s"], where, "speed_m_s");
-      if (!(*drone.battery_level >= 0 && *drone.battery_level <= 1))
-        throw InputError(where + " (" + drone.name + "): battery_level must be in [0, 1]");
-      if (!(*drone.endurance_s > 0))
-        throw InputError(where + " (" + drone.name + "): endurance_s must be > 0");
-      if (!(*drone.speed_m_s > 0))
-        throw InputError(where + " (" + drone.name + "): speed_m_s must be > 0");
+      const std::string named = where + " (" + drone.name + "): ";
+      base::check_range(*drone.battery_level, limits::kBatteryLevel, named + "battery_level");
+      base::check_range(*drone.endurance_s, limits::kEndurance_s, named + "endurance_s");
+      base::check_range(*drone.speed_m_s, limits::kSpeed_m_s, named + "speed_m_s");
       any_range = true;
     }
     if (d["home"]) drone.home = point(d["home"], where);
@@ -110,7 +110,7 @@ Fleet parse_fleet(const std::string& text, const std::string& source) {
 }
 
 Fleet equal_fleet(int n, const geometry::GeoPoint& home) {
-  if (n < 1) throw InputError("--drones must be at least 1");
+  base::check_range(n, limits::kDrones, "a fleet of");
   Fleet fleet;
   fleet.home = home;
   for (int i = 0; i < n; ++i) {

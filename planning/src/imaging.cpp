@@ -3,15 +3,12 @@
 #include <cmath>
 
 #include "swath/base/input_error.hpp"
+#include "swath/planning/limits.hpp"
 
 namespace swath::planning {
 namespace {
 
 using base::InputError;
-
-bool positive(double v) {
-  return std::isfinite(v) && v > 0;
-}
 
 void require(bool ok, const std::string& where, const std::string& what) {
   if (!ok) throw InputError(where + ": " + what);
@@ -27,14 +24,27 @@ void set_footprint(Imaging& im, const Camera& c, double altitude_m, ImageOrienta
   im.footprint_along_m = orientation == ImageOrientation::landscape ? ground_h : ground_w;
 }
 
+// Spacing and trigger distance follow from camera, altitude and overlaps; either one tiny would
+// ask for millions of lines or photos (and a trigger distance that rounds to 0 means "stop
+// triggering" to MAVLink), so they are bounded too.
+void check_derived(const Imaging& im, const std::string& where) {
+  base::check_range(
+      im.line_spacing_m, limits::kSpacing_m,
+      where + ": the line spacing that follows from the camera, altitude and overlap,");
+  base::check_range(im.trigger_distance_m, limits::kSpacing_m,
+                    where +
+                        ": the trigger distance that follows from the camera, altitude and "
+                        "overlap,");
+}
+
 }  // namespace
 
 void validate_camera(const Camera& c, const std::string& where) {
-  require(positive(c.sensor_width_mm), where, "sensor_width_mm must be > 0");
-  require(positive(c.sensor_height_mm), where, "sensor_height_mm must be > 0");
-  require(positive(c.focal_length_mm), where, "focal_length_mm must be > 0");
-  require(c.image_width_px > 0 && c.image_height_px > 0, where,
-          "the image size must be > 0 pixels");
+  base::check_range(c.sensor_width_mm, limits::kSensorSize_mm, where + ": sensor_width_mm");
+  base::check_range(c.sensor_height_mm, limits::kSensorSize_mm, where + ": sensor_height_mm");
+  base::check_range(c.focal_length_mm, limits::kFocalLength_mm, where + ": focal_length_mm");
+  base::check_range(c.image_width_px, limits::kImageSize_px, where + ": image_width_px");
+  base::check_range(c.image_height_px, limits::kImageSize_px, where + ": image_height_px");
 }
 
 double horizontal_fov_rad(const Camera& c) {
@@ -44,10 +54,10 @@ double horizontal_fov_rad(const Camera& c) {
 Imaging detection_imaging(const Camera& c, const DetectionMode& m, ImageOrientation orientation,
                           const std::string& where) {
   validate_camera(c, where);
-  require(positive(m.pattern_width_m) && positive(m.pattern_height_m), where,
-          "the pattern size must be > 0 m");
-  require(positive(m.min_pixels), where, "the minimum pixels on the pattern must be > 0");
-  require(m.overlap >= 0 && m.overlap <= 1, where, "the overlap must be in [0, 1]");
+  base::check_range(m.pattern_width_m, limits::kPattern_m, where + ": the pattern width");
+  base::check_range(m.pattern_height_m, limits::kPattern_m, where + ": the pattern height");
+  base::check_range(m.min_pixels, limits::kMinPixels, where + ": the pixels on the pattern");
+  base::check_range(m.overlap, limits::kDetectionOverlap, where + ": the overlap");
   const double pattern = std::min(m.pattern_width_m, m.pattern_height_m);
   Imaging im;
   im.h_max_m =
@@ -58,6 +68,7 @@ Imaging detection_imaging(const Camera& c, const DetectionMode& m, ImageOrientat
   // step: half the footprint across at h_max, i.e. the footprint at h divided by (1 + overlap).
   im.line_spacing_m = im.footprint_across_m / (1 + m.overlap);
   im.trigger_distance_m = im.footprint_along_m / (1 + m.overlap);
+  check_derived(im, where);
   return im;
 }
 
@@ -66,21 +77,23 @@ Imaging photogrammetry_imaging(const Camera& c, const PhotogrammetryMode& m,
   validate_camera(c, where);
   require(m.altitude_m.has_value() != m.gsd_m.has_value(), where,
           "give either an altitude or a GSD, not both");
-  require(m.side_overlap >= 0 && m.side_overlap < 1, where, "the side overlap must be in [0, 1)");
-  require(m.front_overlap >= 0 && m.front_overlap < 1, where,
-          "the front overlap must be in [0, 1)");
+  limits::check_overlap(m.side_overlap, where + ": the side overlap");
+  limits::check_overlap(m.front_overlap, where + ": the front overlap");
   double altitude = 0;
   if (m.altitude_m) {
-    require(positive(*m.altitude_m), where, "the altitude must be > 0 m");
+    base::check_range(*m.altitude_m, limits::kAltitude_m, where + ": the altitude");
     altitude = *m.altitude_m;
   } else {
-    require(positive(*m.gsd_m), where, "the GSD must be > 0");
+    base::check_range(*m.gsd_m * 100, limits::kGsd_cm, where + ": the GSD");
     altitude = *m.gsd_m * c.focal_length_mm * c.image_width_px / c.sensor_width_mm;
+    base::check_range(altitude, limits::kAltitude_m,
+                      where + ": the altitude that gives this GSD with this camera,");
   }
   Imaging im;
   set_footprint(im, c, altitude, orientation);
   im.line_spacing_m = im.footprint_across_m * (1 - m.side_overlap);
   im.trigger_distance_m = im.footprint_along_m * (1 - m.front_overlap);
+  check_derived(im, where);
   return im;
 }
 

@@ -35,7 +35,11 @@ TEST(CameraFile, BadFilesNameKeyAndLine) {
       "name: x\nsensor_width_mm: 10\nsensor_height_mm: 8\nimage_width_px: 100\nimage_height_px: "
       "80\n";
   EXPECT_NE(error_of(base).find("cam.yaml: the camera has no focal_length_mm"), std::string::npos);
-  EXPECT_NE(error_of(base + "focal_length_mm: 0\n").find("focal_length_mm must be > 0"),
+  EXPECT_NE(error_of(base + "focal_length_mm: 0\n")
+                .find("line 6: focal_length_mm 0 mm is outside the range swath accepts, 1 to 2000"),
+            std::string::npos);
+  // The overflowing camera of issue 16: refused at the key, before any footprint is computed.
+  EXPECT_NE(error_of(base + "focal_length_mm: 1e-300\n").find("focal_length_mm 1e-300 mm"),
             std::string::npos);
   EXPECT_NE(
       error_of(base + "focal_length_mm: abc\n").find("line 6: focal_length_mm must be a number"),

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "swath/base/output_files.hpp"
+#include "swath/base/output_set.hpp"
 
 namespace swath::planning {
 namespace {
@@ -207,26 +207,6 @@ TEST(SurveyFiles, SameInputSameBytes) {
   const auto b = survey_files(meadow_plan());
   ASSERT_EQ(a.size(), 6u);
   EXPECT_EQ(a, b);
-}
-
-TEST(OutputFiles, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("swath-atomic-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  base::write_files_atomically(dir, {{"a.txt", "old a"}, {"b.txt", "old b"}});
-  // The second file cannot be created (its directory does not exist): nothing may change.
-  EXPECT_THROW(base::write_files_atomically(dir, {{"a.txt", "new a"}, {"missing/b.txt", "new b"}}),
-               std::runtime_error);
-  std::ifstream a(dir / "a.txt");
-  std::string content((std::istreambuf_iterator<char>(a)), {});
-  EXPECT_EQ(content, "old a");
-  std::size_t entries = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
-  EXPECT_EQ(entries, 2u);
-  base::write_files_atomically(dir, {{"a.txt", "new a"}});
-  std::ifstream a2(dir / "a.txt");
-  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(a2)), {}), "new a");
-  fs::remove_all(dir);
 }
 
 }  // namespace

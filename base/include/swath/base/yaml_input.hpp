@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstddef>
 #include <set>
 #include <string>
 
@@ -15,14 +16,13 @@ inline std::string yaml_line(const YAML::Node& node) {
   return "line " + std::to_string(node.Mark().line + 1);
 }
 
-inline YAML::Node load_yaml(const std::string& text, const std::string& source) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
-}
+/// The most nodes a YAML document may expand to, aliases counted at every use: a 27 KB file can
+/// otherwise stand for billions of nodes ("billion laughs") and keep a reader busy for ever.
+inline constexpr std::size_t kMaxYamlNodes = 1'000'000;
+
+/// Parses `text`. Throws InputError naming `source` and the line for invalid YAML, and for a
+/// document that expands to more than kMaxYamlNodes nodes.
+YAML::Node load_yaml(const std::string& text, const std::string& source);
 
 /// Every key of `map` is a plain name given once; throws InputError ("<place>: line N: ...").
 inline void check_plain_unique_keys(const YAML::Node& map, const std::string& place) {

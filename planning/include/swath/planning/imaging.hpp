@@ -47,7 +47,9 @@ struct PhotogrammetryMode {
   double front_overlap = 0.7;        ///< in [0, 1)
 };
 
-/// Throws base::InputError for an impossible camera or mode; `where` prefixes the message.
+/// Throws base::InputError for a camera or mode outside limits.hpp's ranges, or a line spacing
+/// or trigger distance that follows from them outside limits::kSpacing_m; `where` prefixes the
+/// message.
 Imaging detection_imaging(const Camera& camera, const DetectionMode& mode,
                           ImageOrientation orientation,
                           const std::string& where = "detection mode");
@@ -58,7 +60,7 @@ Imaging photogrammetry_imaging(const Camera& camera, const PhotogrammetryMode& m
 /// Horizontal field of view across the image width, radians.
 double horizontal_fov_rad(const Camera& camera);
 
-/// Throws base::InputError unless every figure of the camera is finite and > 0.
+/// Throws base::InputError unless every figure of the camera is inside limits.hpp's ranges.
 void validate_camera(const Camera& camera, const std::string& where);
 
 }  // namespace swath::planning

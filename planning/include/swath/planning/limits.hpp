@@ -1,0 +1,46 @@
+#pragma once
+// The ranges swath accepts for every number a user gives to `swath plan` (README "Limits").
+// Each is wide enough for any real survey aircraft and camera, and narrow enough that the work
+// the number drives (lines, waypoints, scan steps, files) stays bounded: a value outside is a
+// typo or a unit mistake, refused before any work with base::check_range().
+
+#include <string>
+
+#include "swath/base/range_check.hpp"
+
+namespace swath::planning::limits {
+
+// Camera file (share/cameras/*.yaml keys).
+inline constexpr base::Range kSensorSize_mm{0.5, 100, "mm", "phone sensors to medium format"};
+inline constexpr base::Range kFocalLength_mm{1, 2000, "mm", "fisheye to long telephoto"};
+inline constexpr base::Range kImageSize_px{16, 100'000, "px", "thermal cores to 100 k pixels"};
+inline constexpr base::Range kTriggerInterval_s{0, 3600, "s", ""};
+
+// Imaging.
+inline constexpr base::Range kAltitude_m{1, 5000, "m", "above any survey aircraft's ceiling"};
+inline constexpr base::Range kGsd_cm{0.01, 1000, "cm/px", ""};
+/// Both overlaps; 1 would mean photos or lines on top of each other. An overlap given in percent
+/// (> 1 and <= 100) gets its own hint.
+inline constexpr base::Range kOverlap{0, 0.99, "", "a fraction: 0.8 for 80 %"};
+inline constexpr base::Range kDetectionOverlap{0, 1, "", "a fraction, paper 001 eq. 6"};
+inline constexpr base::Range kPattern_m{0.01, 1000, "m", ""};
+inline constexpr base::Range kMinPixels{1, 10'000, "px", ""};
+/// Line spacing and trigger distance that follow from camera, altitude and overlaps.
+inline constexpr base::Range kSpacing_m{0.1, 100'000, "m", "closer than 10 cm is no survey"};
+
+// Route.
+inline constexpr base::Range kSpeed_m_s{0.5, 100, "m/s", "hover-and-capture to fast fixed-wing"};
+inline constexpr base::Range kTurnaround_m{0, 1000, "m", ""};
+inline constexpr base::Range kWaypointSpacing_m{0.5, 100'000, "m", ""};
+inline constexpr base::Range kAngleStep_deg{0.001, 90, "°", "180,000 scan steps at most"};
+inline constexpr base::Range kBearing_deg{-360, 360, "°", ""};
+
+// Fleet.
+inline constexpr base::Range kDrones{1, 100, "drones", "one file set per drone"};
+inline constexpr base::Range kEndurance_s{1, 604'800, "s", "a week"};
+inline constexpr base::Range kBatteryLevel{0, 1, "", "a fraction of a full charge"};
+
+/// An overlap: in kOverlap, with the hint "did you mean 0.80?" for one given in percent.
+void check_overlap(double value, const std::string& where);
+
+}  // namespace swath::planning::limits

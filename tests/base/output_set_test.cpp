@@ -1,0 +1,178 @@
+// The output set (DESIGN.md §14 "Output directory"): whole sets switched in, nothing foreign
+// replaced, stale files of swath's own previous set removed, planted names refused, nothing left
+// behind by a refusal.
+#include "swath/base/output_set.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "swath/base/input_error.hpp"
+
+namespace swath::base {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("swath-output-set-" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+// Every name in the directory, swath's manifests included.
+std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
+  return out;
+}
+
+TEST(OutputSet, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
+  const fs::path dir = fresh("failed");
+  write_files_atomically(dir, {{"a.txt", "old a"}, {"b.txt", "old b"}});
+  // The second name is not a plain file name: nothing may change, no temporary stays.
+  EXPECT_THROW(write_files_atomically(dir, {{"a.txt", "new a"}, {"missing/b.txt", "new b"}}),
+               InputError);
+  EXPECT_EQ(slurp(dir / "a.txt"), "old a");
+  EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-files.files", "a.txt", "b.txt"}));
+  write_files_atomically(dir, {{"a.txt", "new a"}});
+  EXPECT_EQ(slurp(dir / "a.txt"), "new a");
+}
+
+TEST(OutputSet, StaleFilesOfTheSameKindGoFilesOfOthersStay) {
+  const fs::path dir = fresh("stale");
+  fs::create_directories(dir);
+  std::ofstream(dir / "notes.txt") << "the user's own file";
+  write_files_atomically(dir, {{"summary.json", "1"}, {"drone-1.plan", "1"}, {"drone-2.plan", "1"}},
+                         "plan");
+  // A re-plan with one drone: drone-2.plan was the old set's and goes; notes.txt was never ours.
+  write_files_atomically(dir, {{"summary.json", "2"}, {"drone-1.plan", "2"}}, "plan");
+  EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "drone-1.plan", "notes.txt",
+                                                 "summary.json"}));
+  EXPECT_EQ(slurp(dir / "notes.txt"), "the user's own file");
+  // Amending adds to the set without removing anything.
+  {
+    OutputSet amend(dir, "plan", {OutputSet::Mode::amend, 10.0});
+    amend.add("coverage.png", "png");
+    amend.commit();
+  }
+  write_files_atomically(dir, {{"summary.json", "3"}}, "plan");
+  EXPECT_FALSE(fs::exists(dir / "coverage.png")) << "amended files belong to the set too";
+  EXPECT_FALSE(fs::exists(dir / "drone-1.plan"));
+}
+
+TEST(OutputSet, ANameAnotherKindWroteIsRefusedBeforeAnythingIsWritten) {
+  const fs::path dir = fresh("foreign");
+  write_files_atomically(dir, {{"summary.json", "plan"}}, "plan");
+  OutputSet run(dir, "energy-run");
+  run.add("energy.csv", "t");
+  try {
+    run.add("summary.json", "run");
+    FAIL() << "replaced the plan's summary.json";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("summary.json belongs to the files of a swath plan"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "summary.json"), "plan");
+  EXPECT_THROW(run.add("energy.csv", "again"), InputError) << "a name twice in one set";
+}
+
+TEST(OutputSet, ARefusalAfterOpeningLeavesNoDirectoryBehind) {
+  const fs::path dir = fresh("refused") / "deeper";
+  {
+    OutputSet set(dir, "plan");
+    set.add("a.txt", "a");
+    EXPECT_TRUE(fs::exists(dir));
+  }  // destroyed without commit, as when a refusal is thrown after opening
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(OutputSet, StreamsWriteLargeFilesPieceByPiece) {
+  const fs::path dir = fresh("stream");
+  OutputSet set(dir, "energy-run");
+  OutputSet::Stream& rows = set.stream("rows.csv");
+  std::string expected;
+  for (int i = 0; i < 100000; ++i) {
+    const std::string row = std::to_string(i) + "," + std::to_string(long{i} * i) + "\n";
+    rows << row;
+    expected += row;
+  }
+  EXPECT_EQ(rows.size(), expected.size());
+  EXPECT_FALSE(fs::exists(dir / "rows.csv")) << "nothing in place before commit";
+  set.commit();
+  EXPECT_EQ(slurp(dir / "rows.csv"), expected);
+}
+
+// Temporary names are random; the test makes them predictable, plants a symlink (to a file
+// outside the directory) or a file at each of the first names the set will draw, and checks that
+// every planted name is refused, nothing outside changes and the set still lands.
+TEST(OutputSet, PlantedNamesAtTheTemporariesAreNeverOpened) {
+  const fs::path dir = fresh("planted");
+  const fs::path outside = fresh("planted-victim");
+  fs::create_directories(dir);
+  fs::create_directories(outside);
+  std::ofstream(outside / "victim") << "precious";
+  int drawn = 0;
+  testing::set_temporary_suffix_source([&] { return "n" + std::to_string(drawn++); });
+  for (int k = 0; k < 20; ++k) {
+    const fs::path planted = dir / (".summary.json.tmp-n" + std::to_string(k));
+    if (k % 2 == 0)
+      fs::create_symlink(outside / "victim", planted);
+    else
+      std::ofstream(planted) << "planted";
+  }
+  write_files_atomically(dir, {{"summary.json", "ours"}}, "plan");
+  EXPECT_EQ(slurp(outside / "victim"), "precious");
+  EXPECT_EQ(slurp(dir / "summary.json"), "ours");
+  EXPECT_EQ(drawn, 22)
+      << "20 planted names refused, then one for the file and one for the manifest";
+  // Every name planted: the set is refused with a system error, and nothing outside changes.
+  drawn = 0;
+  testing::set_temporary_suffix_source([&] { return "n" + std::to_string(drawn++ % 20); });
+  EXPECT_THROW(write_files_atomically(dir, {{"summary.json", "again"}}, "plan"),
+               std::runtime_error);
+  testing::set_temporary_suffix_source({});
+  EXPECT_EQ(slurp(outside / "victim"), "precious");
+  EXPECT_EQ(slurp(dir / "summary.json"), "ours");
+}
+
+// A second set into a locked directory waits, then is refused naming the holder.
+TEST(OutputSet, ASecondRunWaitsForTheLockThenIsRefusedNamingTheHolder) {
+  const fs::path dir = fresh("locked");
+  OutputSet holder(dir, "plan");
+  const pid_t child = ::fork();
+  if (child == 0) {
+    int code = 3;
+    try {
+      OutputSet second(dir, "plan", {OutputSet::Mode::replace, 0.2});
+      code = 4;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      code = what.find("another swath run (process " + std::to_string(::getppid()) + ")") !=
+                     std::string::npos
+                 ? 0
+                 : 5;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "3: threw another error, 4: not refused, 5: wrong message";
+}
+
+}  // namespace
+}  // namespace swath::base

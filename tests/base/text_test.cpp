@@ -1,0 +1,98 @@
+// base's text helpers: numbers that always fit, ranges refused in one sentence, files read with a
+// cap, YAML documents that expand without bound refused.
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/base/range_check.hpp"
+#include "swath/base/yaml_input.hpp"
+
+namespace swath::base {
+namespace {
+
+// Property: for any double (random bit patterns, fixed seed), fixed_text is printable ASCII of a
+// number (or inf/nan) and reads back within half a unit of its last decimal.
+TEST(NumberText, FixedTextIsAlwaysANumberThatReadsBack) {
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 20000; ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    double value = 0;
+    const std::uint64_t bits = state;
+    std::memcpy(&value, &bits, sizeof value);
+    const int decimals = static_cast<int>(state >> 60) % 11;
+    const std::string text = fixed_text(value, decimals);
+    ASSERT_FALSE(text.empty());
+    for (const char c : text)
+      ASSERT_TRUE((c >= '0' && c <= '9') || c == '.' || c == '-' || c == 'e' || c == '+' ||
+                  c == 'i' || c == 'n' || c == 'f' || c == 'a')
+          << "byte " << int(static_cast<unsigned char>(c)) << " in '" << text << "'";
+    if (!std::isfinite(value)) continue;
+    double back = 0;
+    std::from_chars(text.data(), text.data() + text.size(), back);
+    EXPECT_LE(std::abs(back - value), 0.5 * std::pow(10.0, -decimals) + 1e-15 * std::abs(value))
+        << value << " -> " << text;
+  }
+  EXPECT_EQ(fixed_text(1e308, 1).size(), 311u);  // 309 digits, the point, one decimal
+  EXPECT_EQ(fixed_text(-0.0001, 2), "0.00");
+  EXPECT_EQ(fixed_text(2.5, 0), "3");
+  EXPECT_EQ(shortest_text(0.1), "0.1");
+}
+
+TEST(RangeCheck, NamesWhereTheValueAndTheRange) {
+  const Range r{0.5, 100, "m/s", "a reason"};
+  EXPECT_NO_THROW(check_range(0.5, r, "--speed"));
+  EXPECT_NO_THROW(check_range(100, r, "--speed"));
+  try {
+    check_range(1e-300, r, "--speed");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(
+        e.what(),
+        "--speed 1e-300 m/s is outside the range swath accepts, 0.5 to 100 m/s (a reason)");
+  }
+  EXPECT_THROW(check_range(std::nan(""), r, "x"), InputError);
+  EXPECT_THROW(check_range(std::numeric_limits<double>::infinity(), r, "x"), InputError);
+}
+
+TEST(FileText, EndlessAndLargeFilesAreRefusedAtTheCap) {
+  try {
+    read_text_file("/dev/zero", "fleet file", 1 << 20);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: the fleet file is larger than swath's limit of 1 MiB");
+  }
+  EXPECT_THROW(read_text_file("/", "area file"), InputError);
+  EXPECT_THROW(read_text_file("/nonexistent/x", "area file"), InputError);
+}
+
+TEST(Yaml, AnAliasBombIsRefusedAtTheNodeLimit) {
+  // Each level repeats the one before ten times: 10^7 nodes from a few hundred bytes.
+  std::string doc = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i <= 6; ++i) {
+    const std::string p = "*a" + std::to_string(i - 1);
+    doc += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [" + p;
+    for (int k = 1; k < 10; ++k) doc += ", " + p;
+    doc += "]\n";
+  }
+  try {
+    load_yaml(doc, "bomb.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bomb.yaml: the YAML document expands to more than"),
+              std::string::npos)
+        << e.what();
+  }
+  // Three levels (about 1,100 nodes) are fine.
+  std::string small = doc.substr(0, doc.find("a3:"));
+  EXPECT_NO_THROW(load_yaml(small, "small.yaml"));
+}
+
+}  // namespace
+}  // namespace swath::base
