@@ -76,10 +76,10 @@ TEST(Yaml, AnAliasBombIsRefusedAtTheNodeLimit) {
   // Each level repeats the one before ten times: 10^7 nodes from a few hundred bytes.
   std::string doc = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
   for (int i = 1; i <= 6; ++i) {
-    const std::string p = "*a" + std::to_string(i - 1);
-    doc += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [" + p;
-    for (int k = 1; k < 10; ++k) doc += ", " + p;
-    doc += "]\n";
+    const std::string n = std::to_string(i), previous = "*a" + std::to_string(i - 1);
+    doc.append("a").append(n).append(": &a").append(n).append(" [").append(previous);
+    for (int k = 1; k < 10; ++k) doc.append(", ").append(previous);
+    doc.append("]\n");
   }
   try {
     load_yaml(doc, "bomb.yaml");
