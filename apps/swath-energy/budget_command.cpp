@@ -27,7 +27,8 @@ int BudgetCommand::run() {
   const std::string json = energy::budget_json(budgets, drone);
   if (!output_.empty())
     base::write_files_atomically(output_,
-                                 {{"budget.json", json}, {"soc.csv", energy::budget_csv(budgets)}});
+                                 {{"budget.json", json}, {"soc.csv", energy::budget_csv(budgets)}},
+                                 "energy-budget");
   std::cout << (json_ ? json : energy::budget_table(budgets, drone));
   for (const auto& b : budgets)
     if (!b.can_finish()) return base::kExitNotCompleted;

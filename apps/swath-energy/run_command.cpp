@@ -35,22 +35,35 @@ int RunCommand::run() {
   const energy::Plan plan = energy::read_plan(plan_);
   energy::SimConfig config = energy::read_sim_config(config_);
   if (no_replan_) config.replan = false;
+  // The rows stream into the set's temporaries as they are taken: memory stays flat however
+  // long the flight. Opened only now: bad input above leaves nothing behind.
+  base::OutputSet set(output_, "energy-run");
+  base::OutputSet::Stream& trajectory = set.stream("trajectory.csv");
+  base::OutputSet::Stream& energy_rows = set.stream("energy.csv");
+  trajectory << energy::trajectory_csv_header();
+  bool first = true;
+  const energy::SampleSink sink = [&](const energy::FlightSample& s) {
+    if (first) energy_rows << energy::energy_csv_header(s);
+    first = false;
+    trajectory << energy::trajectory_csv_row(s);
+    energy_rows << energy::energy_csv_row(s);
+  };
   energy::SimulationResult result;
   {
     ProgressBar bar(progress_, "simulating");
-    result = energy::simulate(plan, config, [&](double f) { bar.update(f); });
+    result = energy::simulate(
+        plan, config, [&](double f) { bar.update(f); }, sink);
   }
+  if (first) energy_rows << energy::energy_csv_header({});
   const energy::FixedComparison fixed = energy::compare_fixed(plan, config);
   const auto [w, h] = parse_size(size_);
   const TrajectoryImage map = trajectory_image(result, config, w, h);
   const EnergyImage charts = energy_image(result, plan, config, w, h);
-  base::write_files_atomically(
-      output_, {{"trajectory.csv", energy::trajectory_csv(result)},
-                {"energy.csv", energy::energy_csv(result)},
-                {"control.csv", energy::control_csv(result)},
-                {"summary.json", energy::simulation_summary_json(result, plan, config, &fixed)},
-                {"trajectory.png", render::encode_png(render::draw(map.scene, map.view))},
-                {"energy.png", render::encode_png(render::draw(charts.scene, charts.view))}});
+  set.add("control.csv", energy::control_csv(result));
+  set.add("summary.json", energy::simulation_summary_json(result, plan, config, &fixed));
+  set.add("trajectory.png", render::encode_png(render::draw(map.scene, map.view)));
+  set.add("energy.png", render::encode_png(render::draw(charts.scene, charts.view)));
+  set.commit();
   using base::fixed_text;
   std::cout << "swath-energy run: " << energy::to_string(result.status) << " after "
             << fixed_text(result.flight_time_s, 1) << " s, "

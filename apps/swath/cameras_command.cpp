@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "data_dir.hpp"
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/planning/camera.hpp"
 
@@ -33,7 +34,7 @@ int CamerasCommand::run() {
                        c.min_trigger_interval_s ? nlohmann::ordered_json(*c.min_trigger_interval_s)
                                                 : nlohmann::ordered_json()}});
     }
-    std::cout << list.dump(2) << '\n';
+    std::cout << base::json_text(list, 2) << '\n';
     return base::kExitSuccess;
   }
   std::printf("%-22s %-30s %13s %8s %12s %9s\n", "id", "name", "sensor mm", "focal mm", "image px",

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
@@ -166,7 +167,7 @@ int ClassifyCommand::run() {
   const Field field = geometry::read_field(field_path_, options);
   const geometry::AreaFacts facts = geometry::describe_area(field.polygon);
   if (json_) {
-    std::cout << to_json(field, facts).dump(2) << '\n';
+    std::cout << base::json_text(to_json(field, facts), 2) << '\n';
   } else {
     print_text(field, facts);
   }

@@ -308,14 +308,25 @@ int PlanCommand::run() {
     energy.field = std::filesystem::path(field_).filename().string();
     for (const std::string& c : energy_computations_)
       if (c != "none") energy.computations.push_back(parse_interval(c, "--energy-computation"));
-    for (auto& f : energy_plan_files(plan, energy, warnings)) files.push_back(std::move(f));
+    for (auto& f : energy_plan_files(plan, energy, warnings)) {
+      for (const auto& [name, content] : files)
+        if (name == f.first)
+          throw InputError("--energy-plan " + energy_plan_ +
+                           ": the stage plan would be written as " + f.first +
+                           ", a file of the mission set itself; choose another name");
+      files.push_back(std::move(f));
+    }
   }
   if (render_) {
     const auto [w, h] = parse_size(size_);
     const CoverageImage image = coverage_image(files[0].second, files[1].second, w, h, output_);
     files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
   }
-  base::write_files_atomically(output_, files);
+  // summary.json lists the whole set (DESIGN.md §14 "Output directory").
+  std::vector<std::string> set_names;
+  for (const auto& f : files) set_names.push_back(f.first);
+  files[1].second = planning::summary_json(plan, set_names);
+  base::write_files_atomically(output_, files, "plan");
 
   const planning::Imaging& im = plan.imaging;
   std::printf("swath plan: %s -> %s\n", field_.c_str(), output_.c_str());

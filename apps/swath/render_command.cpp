@@ -43,8 +43,15 @@ int RenderCommand::run() {
     out.push_back({paths_, render::encode_png(render::draw(image.scene, image.view))});
   }
   for (const auto& [path, png] : out) {
+    // Into the plan's own directory the picture joins the plan's set (a re-plan replaces it);
+    // anywhere else it is a set of its own, never a plan's.
     const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
-    base::write_files_atomically(parent, {{path.filename().string(), png}});
+    std::error_code ec;
+    const bool plan_directory = std::filesystem::equivalent(parent, dir, ec);
+    base::OutputSet set(parent, plan_directory ? "plan" : "render",
+                        {base::OutputSet::Mode::amend, 10.0});
+    set.add(path.filename().string(), png);
+    set.commit();
     std::cout << "swath render: wrote " << path.string() << '\n';
   }
   return base::kExitSuccess;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 
 namespace swath::energy {
@@ -28,37 +29,53 @@ ordered_json optional_point(const std::optional<BudgetPoint>& p) {
 
 }  // namespace
 
+std::string trajectory_csv_header() {
+  return "t_s,x_m,y_m,stage,course_deg,ground_speed_mps,airspeed_mps,path_distance_m\n";
+}
+
+std::string trajectory_csv_row(const FlightSample& s) {
+  std::string out;
+  cell(out, s.t_s, 3);
+  cell(out, s.position.x, 3);
+  cell(out, s.position.y, 3);
+  out += ',' + std::to_string(s.stage + 1);
+  cell(out, s.course_deg, 2);
+  cell(out, s.ground_speed_mps, 3);
+  cell(out, s.airspeed_mps, 3);
+  cell(out, s.path_distance_m, 3);
+  out += '\n';
+  return out;
+}
+
 std::string trajectory_csv(const SimulationResult& result) {
-  std::string out = "t_s,x_m,y_m,stage,course_deg,ground_speed_mps,airspeed_mps,path_distance_m\n";
-  for (const FlightSample& s : result.samples) {
-    cell(out, s.t_s, 3);
-    cell(out, s.position.x, 3);
-    cell(out, s.position.y, 3);
-    out += ',' + std::to_string(s.stage + 1);
-    cell(out, s.course_deg, 2);
-    cell(out, s.ground_speed_mps, 3);
-    cell(out, s.airspeed_mps, 3);
-    cell(out, s.path_distance_m, 3);
-    out += '\n';
-  }
+  std::string out = trajectory_csv_header();
+  for (const FlightSample& s : result.samples) out += trajectory_csv_row(s);
+  return out;
+}
+
+std::string energy_csv_header(const FlightSample& first) {
+  std::string out = "t_s,measured_w,model_w,soc,predicted_total_j";
+  for (std::size_t i = 0; i < first.coefficients.size(); ++i) out += ",q" + std::to_string(i);
+  return out + '\n';
+}
+
+std::string energy_csv_row(const FlightSample& s) {
+  std::string out;
+  cell(out, s.t_s, 3);
+  out += ',';
+  if (std::isfinite(s.measured_w)) out += fixed_text(s.measured_w, 3);
+  cell(out, s.model_w, 3);
+  cell(out, s.soc, 6);
+  cell(out, s.predicted_total_j, 1);
+  for (double q : s.coefficients) cell(out, q, 3);
+  out += '\n';
   return out;
 }
 
 std::string energy_csv(const SimulationResult& result) {
-  std::string out = "t_s,measured_w,model_w,soc,predicted_total_j";
-  const std::size_t m = result.samples.empty() ? 0 : result.samples.front().coefficients.size();
-  for (std::size_t i = 0; i < m; ++i) out += ",q" + std::to_string(i);
-  out += '\n';
-  for (const FlightSample& s : result.samples) {
-    cell(out, s.t_s, 3);
-    out += ',';
-    if (std::isfinite(s.measured_w)) out += fixed_text(s.measured_w, 3);
-    cell(out, s.model_w, 3);
-    cell(out, s.soc, 6);
-    cell(out, s.predicted_total_j, 1);
-    for (double q : s.coefficients) cell(out, q, 3);
-    out += '\n';
-  }
+  std::string out =
+      energy_csv_header(result.samples.empty() ? FlightSample{} : result.samples.front());
+  for (const FlightSample& s : result.samples) out += energy_csv_row(s);
   return out;
 }
 
@@ -139,7 +156,7 @@ std::string simulation_summary_json(const SimulationResult& r, const Plan& plan,
                   {"lowest_gains_min_per_hour", round_to(comparison->minutes_per_hour, 2)}};
   }
   j["stages"] = stages;
-  return j.dump(1) + "\n";
+  return base::json_text(j, 1) + "\n";
 }
 
 std::string budget_json(const std::vector<DroneBudget>& budgets, const DroneProfile& drone) {
@@ -164,7 +181,7 @@ std::string budget_json(const std::vector<DroneBudget>& budgets, const DroneProf
   j["drone_profile"] = drone.source;
   j["reserve_soc"] = round_to(drone.battery.reserve_soc, 6);
   j["drones"] = list;
-  return j.dump(1) + "\n";
+  return base::json_text(j, 1) + "\n";
 }
 
 std::string budget_csv(const std::vector<DroneBudget>& budgets) {

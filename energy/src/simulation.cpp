@@ -249,6 +249,40 @@ std::vector<double> trajectory_at(const Plan& plan, double lambda) {
   return c;
 }
 
+// A series kept with bounded memory: every value up to kMaxKeptSamples, then every other one is
+// dropped and only every 2nd, 4th, ... new one kept, so memory stays bounded however long the
+// flight (the run command streams the full series to its files); the last value is always kept.
+template <typename T>
+class BoundedSeries {
+ public:
+  explicit BoundedSeries(std::vector<T>& values) : values_(values) {}
+  void add(T v) {
+    ++count_;
+    if ((count_ - 1) % stride_ != 0) {
+      pending_last_ = std::move(v);
+      return;
+    }
+    pending_last_.reset();
+    values_.push_back(std::move(v));
+    if (values_.size() <= kMaxKeptSamples) return;
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < values_.size(); i += 2) values_[j++] = std::move(values_[i]);
+    values_.resize(j);
+    stride_ *= 2;
+  }
+  /// The last value added (kept or not) ends the series.
+  void finish() {
+    if (pending_last_) values_.push_back(std::move(*pending_last_));
+    pending_last_.reset();
+  }
+  std::size_t count() const { return count_; }
+
+ private:
+  std::vector<T>& values_;
+  std::optional<T> pending_last_;
+  std::size_t count_ = 0, stride_ = 1;
+};
+
 // Each stage's duration when the plan is flown from the start with parameters c: the remaining
 // path the trajectory parameters imply.
 std::vector<double> stage_durations(const Plan& plan, const SimConfig& config,
@@ -256,16 +290,19 @@ std::vector<double> stage_durations(const Plan& plan, const SimConfig& config,
                                     std::vector<Point2>* path = nullptr) {
   Flight flight(stage_fields(plan, c), config);
   flight.trigger();
-  if (path) path->push_back(flight.position());
+  std::vector<Point2> unused;
+  BoundedSeries<Point2> points(path ? *path : unused);
+  if (path) points.add(flight.position());
   double next = config.output_interval_s;
   while (!flight.done() && flight.time_s() < config.max_time_s) {
     flight.step(config.time_step_s);
     flight.trigger();
     if (path && (flight.time_s() + 1e-9 >= next || flight.done())) {
-      path->push_back(flight.position());
+      points.add(flight.position());
       next += config.output_interval_s;
     }
   }
+  points.finish();
   std::vector<double> d(plan.stages.size(), 0.0);
   const auto& e = flight.entries();
   for (std::size_t k = 0; k < e.size(); ++k)
@@ -351,7 +388,7 @@ struct RestTable {
 }  // namespace
 
 SimulationResult simulate(const Plan& plan, const SimConfig& config,
-                          const std::function<void(double)>& progress) {
+                          const std::function<void(double)>& progress, const SampleSink& sink) {
   check_config(plan, config);
   const double dt = config.time_step_s;
   const Stage& first = plan.stages.front();
@@ -415,7 +452,8 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
   double soc = battery.initial_soc;
   double energy = 0.0, next_output = 0.0, next_progress = 0.0, next_replan = 0.0;
   double last_raise = -1e300;
-  std::vector<std::pair<double, double>> predictions;  // (t, predicted total)
+  BoundedSeries<FlightSample> kept(result.samples);
+  double last_recorded_t_s = -INFINITY;
   std::vector<double> traj_sum(traj.size(), 0.0), comp_sum(comps.size(), 0.0);
   result.control.push_back({0.0, traj, comps, true});
   double power_now = parameter_power_w(plan.stages[flight.stage()], config, traj, comps);
@@ -464,8 +502,9 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
     s.predicted_total_j =
         energy + (flight.done() ? 0.0 : rest_energy(rest_table(), lambda, traj, comps).first);
     s.coefficients = estimator->state();
-    predictions.emplace_back(s.t_s, s.predicted_total_j);
-    result.samples.push_back(std::move(s));
+    if (sink) sink(s);
+    last_recorded_t_s = s.t_s;
+    kept.add(std::move(s));
   };
 
   result.status = FlightStatus::completed;
@@ -609,8 +648,8 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
       break;
     }
   }
-  if (estimator && (result.samples.empty() || result.samples.back().t_s < flight.time_s()))
-    record(k, measured);
+  if (estimator && last_recorded_t_s < flight.time_s()) record(k, measured);
+  kept.finish();
   result.stages = flight.entries();
   result.flight_time_s = flight.time_s();
   result.energy_j = energy;
@@ -624,9 +663,9 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
     result.mean_computations.push_back(v / std::max(result.flight_time_s, dt));
   double sum = 0.0;
   std::size_t count = 0;
-  for (const auto& [t, predicted] : predictions) {
-    if (t < result.first_period_s || energy <= 0.0) continue;
-    const double err = std::abs(predicted - energy) / energy;
+  for (const FlightSample& sample : result.samples) {  // every sample, or evenly decimated
+    if (sample.t_s < result.first_period_s || energy <= 0.0) continue;
+    const double err = std::abs(sample.predicted_total_j - energy) / energy;
     sum += err;
     ++count;
     result.max_relative_error = std::max(result.max_relative_error, err);

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "swath/base/input_error.hpp"
+#include "swath/base/utf8.hpp"
 #include "swath/base/yaml_input.hpp"
 #include "swath/planning/limits.hpp"
 
@@ -72,7 +73,10 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
         throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + kv.first.Scalar() +
                          "'");
     Drone drone;
-    drone.name = d["name"] ? d["name"].as<std::string>() : "drone-" + std::to_string(i + 1);
+    // Names reach JSON, KML and the terminal: keep them valid UTF-8 (a stray Latin-1 byte
+    // becomes U+FFFD instead of aborting the plan).
+    drone.name = d["name"] ? base::valid_utf8(d["name"].as<std::string>())
+                           : "drone-" + std::to_string(i + 1);
     if (d["capability"]) {
       drone.capability = number(d["capability"], where, "capability");
       if (!(*drone.capability > 0 && *drone.capability <= 1))

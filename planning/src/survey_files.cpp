@@ -1,6 +1,8 @@
 #include "swath/planning/survey_files.hpp"
 
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/base/utf8.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -78,7 +80,9 @@ std::array<double, 7> params(const SurveyPlan& plan, const MissionItem& item) {
 constexpr int kFrameMission = 2;      // MAV_FRAME_MISSION: no position
 constexpr int kFrameRelativeAlt = 3;  // MAV_FRAME_GLOBAL_RELATIVE_ALT
 
-std::string xml_escape(const std::string& s) {
+// Markup escaped, and bytes that are not UTF-8 replaced (XML allows no others).
+std::string xml_escape(const std::string& text) {
+  const std::string s = base::valid_utf8(text);
   std::string out;
   for (char c : s) {
     switch (c) {
@@ -197,7 +201,7 @@ std::string qgc_plan(const SurveyPlan& plan, const DroneMission& mission) {
   root["mission"] = m;
   root["rallyPoints"] = {{"points", ordered_json::array()}, {"version", 2}};
   root["version"] = 1;
-  return root.dump(4) + "\n";
+  return base::json_text(root, 4) + "\n";
 }
 
 std::string wpl_110(const SurveyPlan& plan, const DroneMission& mission) {
@@ -308,7 +312,8 @@ std::string mission_geojson(const SurveyPlan& plan) {
        {"geometry",
         {{"type", "Point"},
          {"coordinates", {round_to(plan.home.lon_deg, 9), round_to(plan.home.lat_deg, 9)}}}}});
-  return ordered_json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n";
+  return base::json_text(ordered_json{{"type", "FeatureCollection"}, {"features", features}}, 1) +
+         "\n";
 }
 
 std::string mission_kml(const SurveyPlan& plan) {
@@ -339,7 +344,7 @@ std::string mission_kml(const SurveyPlan& plan) {
   return s;
 }
 
-std::string summary_json(const SurveyPlan& plan) {
+std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>& files) {
   const geometry::AreaFacts& f = plan.facts;
   const SurveyRequest& r = plan.request;
   ordered_json j;
@@ -452,7 +457,8 @@ std::string summary_json(const SurveyPlan& plan) {
       {"line_outside_fraction",
        round_to(c.line_length_m > 0 ? c.line_length_outside_m / c.line_length_m : 0.0, 6)}};
   j["warnings"] = plan.warnings;
-  return j.dump(2) + "\n";
+  if (!files.empty()) j["files"] = files;
+  return base::json_text(j, 2) + "\n";
 }
 
 std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan) {

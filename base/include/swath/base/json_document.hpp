@@ -14,3 +14,14 @@ namespace swath::base {
 nlohmann::json parse_json_document(const std::string& text, const std::string& source);
 
 }  // namespace swath::base
+
+namespace swath::base {
+
+/// `j` serialised with `indent`; bytes that are not UTF-8 (a drone name, a file name) become
+/// U+FFFD instead of aborting the write (nlohmann's default throws type_error 316).
+template <typename Json>
+std::string json_text(const Json& j, int indent) {
+  return j.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace swath::base

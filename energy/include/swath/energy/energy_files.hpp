@@ -19,6 +19,13 @@ std::string trajectory_csv(const SimulationResult& result);
 /// has no value).
 std::string energy_csv(const SimulationResult& result);
 
+/// The two files above row by row, for streaming: the header (the energy file's names one
+/// column per coefficient of `first`), then one row per sample, each ending in a newline.
+std::string trajectory_csv_header();
+std::string trajectory_csv_row(const FlightSample& sample);
+std::string energy_csv_header(const FlightSample& first);
+std::string energy_csv_row(const FlightSample& sample);
+
 /// t_s,c1..,s1..,feasible: the parameters from each time on (at take-off and every change).
 std::string control_csv(const SimulationResult& result);
 

@@ -50,10 +50,19 @@ struct ControlSample {
   bool feasible = true;  ///< false: nothing fitted the battery; the lowest levels were taken
 };
 
+/// The most samples a SimulationResult keeps (about 2.4 MB with 8 coefficients).
+inline constexpr std::size_t kMaxKeptSamples = 20'000;
+
+/// Receives every sample as it is taken, in time order (swath-energy run streams them to its CSV
+/// files, so memory does not grow with the flight).
+using SampleSink = std::function<void(const FlightSample&)>;
+
 struct SimulationResult {
   FlightStatus status = FlightStatus::completed;
-  std::vector<FlightSample> samples;  ///< every output interval, and the last step
-  std::vector<StageEntry> stages;     ///< when each stage began
+  /// Every output interval and the last step; beyond kMaxKeptSamples evenly decimated (every 2nd,
+  /// 4th, ... sample; the last one always kept). The prediction errors below are over these.
+  std::vector<FlightSample> samples;
+  std::vector<StageEntry> stages;  ///< when each stage began
   double flight_time_s = 0.0;
   double energy_j = 0.0;  ///< measured (model power where no measurement)
   double final_soc = 0.0;
@@ -70,7 +79,8 @@ struct SimulationResult {
   long infeasible_replans = 0;         ///< of which nothing fitted
   std::vector<double> mean_trajectory, mean_computations;  ///< time-weighted, as flown (clamped)
   double mean_power_w = 0.0;
-  std::vector<geometry::Point2> planned_path;      ///< the plan flown at the initial parameters
+  /// The plan flown at the initial parameters, every output interval (decimated like samples).
+  std::vector<geometry::Point2> planned_path;
   std::vector<geometry::Point2> planned_triggers;  ///< each stage's triggering point, likewise
 };
 
@@ -86,9 +96,11 @@ struct FixedComparison {
 FixedComparison compare_fixed(const Plan& plan, const SimConfig& config);
 
 /// Flies `plan` with `config`. `progress` (optional) gets the fraction of the planned time flown,
-/// now and then. Throws base::InputError for a plan that cannot be flown (stall, field zero,
-/// wind stronger than the drone, triggering point undefined) naming the stage's line.
+/// now and then; `sink` (optional) every sample. Throws base::InputError for a plan that cannot be
+/// flown (stall, field zero, wind stronger than the drone, triggering point undefined) naming the
+/// stage's line.
 SimulationResult simulate(const Plan& plan, const SimConfig& config,
-                          const std::function<void(double)>& progress = {});
+                          const std::function<void(double)>& progress = {},
+                          const SampleSink& sink = {});
 
 }  // namespace swath::energy

@@ -31,8 +31,9 @@ std::string mission_geojson(const SurveyPlan& plan);
 /// KML document: the area, each drone's path (relative altitude), home.
 std::string mission_kml(const SurveyPlan& plan);
 
-/// Every figure of the plan (DESIGN.md §8) as JSON.
-std::string summary_json(const SurveyPlan& plan);
+/// Every figure of the plan (DESIGN.md §8) as JSON; `files`, the names of the set written with it
+/// (DESIGN.md §14 "Output directory"), under "files" when given.
+std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>& files = {});
 
 /// All of the above with their file names, in writing order.
 std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan);
