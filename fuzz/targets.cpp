@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "coverage_image.hpp"
 #include "mission_config.hpp"
 #include "plan_command.hpp"
 #include "swath/base/input_error.hpp"
@@ -12,6 +13,7 @@
 #include "swath/geometry/field.hpp"
 #include "swath/planning/camera.hpp"
 #include "swath/planning/fleet.hpp"
+#include "swath/planning/plan_features.hpp"
 
 namespace swath::fuzz {
 namespace {
@@ -38,6 +40,13 @@ void mission_config(const std::string& text) {
   apps::PlanCommand command;
   command.setup(app);
   expect_input_error_only([&] { apps::apply_mission_config(app, text, "fuzz.yaml"); });
+}
+
+void plan_features(const std::string& text) {
+  expect_input_error_only([&] {
+    const planning::PlanFeatures f = planning::parse_mission_geojson(text, "mission.geojson");
+    apps::coverage_image(f, planning::PlanFigures{}, 640, 480);
+  });
 }
 
 }  // namespace
@@ -96,6 +105,13 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { energy::parse_power_trace(t, "fuzz.csv"); });
        },
        {"tests/bad-input/seeds/power.csv"}},
+      // swath render DIR: mission.geojson read back and drawn into a scene (no pixels).
+      {"plan_features", plan_features, {"tests/bad-input/seeds/mission.geojson"}},
+      {"plan_figures",
+       [](const std::string& t) {
+         expect_input_error_only([&] { planning::parse_plan_figures(t, "summary.json"); });
+       },
+       {"tests/bad-input/seeds/summary.json"}},
   };
   return all;
 }

@@ -3,7 +3,6 @@
 #include "map_furniture.hpp"
 
 #include <cmath>
-#include <nlohmann/json.hpp>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -13,7 +12,6 @@ namespace swath::apps {
 namespace {
 
 using geometry::Point2;
-using nlohmann::json;
 using render::Color;
 
 const Color kArea{0.85f, 0.93f, 0.82f, 1};
@@ -26,12 +24,11 @@ Color drone_color(int drone) {
   return kDrone[(drone - 1 + 6 * 1000) % 6];
 }
 
-std::vector<Point2> ring_of(const json& coordinates, const geometry::LocalFrame& frame) {
-  std::vector<Point2> ring;
-  for (const json& c : coordinates)
-    ring.push_back(frame.to_local({c[1].get<double>(), c[0].get<double>(), 0}));
-  if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
-  return ring;
+std::vector<Point2> local(const std::vector<geometry::GeoPoint>& points,
+                          const geometry::LocalFrame& frame) {
+  std::vector<Point2> out;
+  for (const geometry::GeoPoint& g : points) out.push_back(frame.to_local(g));
+  return out;
 }
 
 std::string duration(double s) {
@@ -41,86 +38,60 @@ std::string duration(double s) {
 
 }  // namespace
 
-CoverageImage coverage_image(const std::string& geojson_text, const std::string& summary_text,
-                             int width_px, int height_px, const std::string& source) {
-  json g, s;
-  try {
-    g = json::parse(geojson_text);
-    s = json::parse(summary_text);
-  } catch (const json::exception& e) {
-    throw base::InputError(source + ": not a swath plan (" + std::string(e.what()) + ")");
-  }
-  if (!g.contains("features") || !s.contains("drones"))
-    throw base::InputError(
-        source + ": not a swath plan (mission.geojson needs features, summary.json drones)");
+CoverageImage coverage_image(const planning::PlanFeatures& features,
+                             const planning::PlanFigures& figures, int width_px, int height_px) {
   // A local frame at the first area vertex: drawing in metres, north up.
-  const json* area = nullptr;
-  for (const json& f : g["features"])
-    if (f["properties"]["role"] == "area" && !area) area = &f;
-  if (!area) throw base::InputError(source + ": mission.geojson has no area");
-  const json& first = (*area)["geometry"]["coordinates"][0][0];
-  const geometry::LocalFrame frame({first[1].get<double>(), first[0].get<double>(), 0});
-
+  const geometry::LocalFrame frame(features.area.front().front());
   CoverageImage out;
   render::Scene& scene = out.scene;
   MapBounds bounds;
-  auto grow = [&](Point2 p) { bounds.add(p); };
-  for (const json& f : g["features"]) {
-    const std::string role = f["properties"]["role"];
-    const json& geom = f["geometry"];
-    if (role == "area") {
-      render::FilledPolygon p{{}, kArea, kOutline, 1.5};
-      for (const json& ring : geom["coordinates"]) {
-        p.rings.push_back(ring_of(ring, frame));
-        for (const Point2& q : p.rings.back()) grow(q);
-      }
-      scene.polygons.push_back(p);
-    } else if (role == "region") {
-      render::FilledPolygon p{{ring_of(geom["coordinates"][0], frame)},
-                              {0, 0, 0, 0},
-                              drone_color(f["properties"]["drone"]),
-                              2};
-      scene.polygons.push_back(p);
-    } else if (role == "sweep") {
-      const auto line = ring_of(geom["coordinates"], frame);
-      if (line.size() == 2)
-        scene.strips.push_back(
-            {line[0], line[1], f["properties"]["footprint_width_m"].get<double>(), kFootprint});
-    } else if (role == "path") {
-      std::vector<Point2> pts;
-      for (const json& c : geom["coordinates"])
-        pts.push_back(frame.to_local({c[1].get<double>(), c[0].get<double>(), 0}));
-      for (const Point2& q : pts) grow(q);
-      scene.polylines.push_back({pts, 2.0, drone_color(f["properties"]["drone"]), 90});
-    } else if (role == "home") {
-      const Point2 h = frame.to_local(
-          {geom["coordinates"][1].get<double>(), geom["coordinates"][0].get<double>(), 0});
-      grow(h);
-      scene.markers.push_back({h, 12, {0.1f, 0.1f, 0.1f, 1}, render::MarkerShape::triangle});
-    }
+  auto grow = [&](const std::vector<Point2>& points) {
+    for (const Point2& p : points) bounds.add(p);
+  };
+  render::FilledPolygon area{{}, kArea, kOutline, 1.5};
+  for (const auto& ring : features.area) {
+    area.rings.push_back(local(ring, frame));
+    grow(area.rings.back());
   }
+  scene.polygons.push_back(area);
+  for (const auto& piece : features.area_pieces) {
+    render::FilledPolygon p{{local(piece, frame)}, kArea, kOutline, 1.5};
+    grow(p.rings.back());
+    scene.polygons.push_back(p);
+  }
+  for (const auto& r : features.regions)
+    scene.polygons.push_back({{local(r.ring, frame)}, {0, 0, 0, 0}, drone_color(r.drone), 2});
+  for (const auto& sw : features.sweeps)
+    scene.strips.push_back(
+        {frame.to_local(sw.start), frame.to_local(sw.end), sw.footprint_width_m, kFootprint});
+  for (const auto& path : features.paths) {
+    const std::vector<Point2> points = local(path.points, frame);
+    grow(points);
+    scene.polylines.push_back({points, 2.0, drone_color(path.drone), 90});
+  }
+  const Point2 home = frame.to_local(features.home);
+  grow({home});
+  scene.markers.push_back({home, 12, {0.1f, 0.1f, 0.1f, 1}, render::MarkerShape::triangle});
   // Room for the title lines above and the scale bar and legend below.
   const int text_h = std::max(12, height_px / 50);
-  const int drones = static_cast<int>(s["drones"].size());
+  const int drones = static_cast<int>(figures.drones.size());
   const int title_lines = 1 + std::min(drones, 6);
   out.view = render::fit(bounds.lo, bounds.hi, width_px, height_px,
                          std::max(height_px / 12, title_lines * (text_h + 6) + 16));
   const render::View& v = out.view;
 
   // Title: coverage, lines, each drone's path and time.
-  const json& c = s["coverage"];
-  const std::string title = "coverage " +
-                            base::fixed_text(100 * c["covered_fraction"].get<double>(), 2) +
-                            " %   " + std::to_string(s["sweep"]["lines"].get<int>()) + " lines";
+  const std::string title = "coverage " + base::fixed_text(100 * figures.covered_fraction, 2) +
+                            " %   " + std::to_string(figures.lines) + " lines";
   scene.labels.push_back({10, text_h + 8, title, double(text_h), {0.1f, 0.1f, 0.1f, 1}});
   int line = 2;
-  for (const json& d : s["drones"]) {
+  for (const auto& d : figures.drones) {
     if (line > title_lines) break;
-    const std::string text = "drone " + std::to_string(d["drone"].get<int>()) + ": " +
-                             base::fixed_text(d["path_length_m"].get<double>() / 1000, 2) +
-                             " km, " + duration(d["flight_time_s"].get<double>());
+    const std::string text = "drone " + std::to_string(d.drone) + ": " +
+                             base::fixed_text(d.path_length_m / 1000, 2) + " km, " +
+                             duration(d.flight_time_s);
     scene.labels.push_back(
-        {10, line++ * (text_h + 6) + 8, text, double(text_h), drone_color(d["drone"].get<int>())});
+        {10, line++ * (text_h + 6) + 8, text, double(text_h), drone_color(d.drone)});
   }
 
   const ScaleBar bar = add_scale_bar(scene, v, width_px, height_px, text_h);
@@ -132,15 +103,14 @@ CoverageImage coverage_image(const std::string& geojson_text, const std::string&
   // Legend, bottom right: swatch and name per entry.
   std::vector<std::pair<Color, std::string>> legend{
       {kArea, "area"}, {{0.15f, 0.35f, 0.85f, 0.35f}, "camera footprint"}};
-  for (const json& d : s["drones"]) {
-    const int id = d["drone"].get<int>();
+  for (const auto& d : figures.drones) {
     std::string name = "drone ";
-    name += std::to_string(id);
-    if (d.contains("name") && d["name"].get<std::string>() != "drone-" + std::to_string(id)) {
+    name += std::to_string(d.drone);
+    if (!d.name.empty() && d.name != "drone-" + std::to_string(d.drone)) {
       name += ' ';
-      name += d["name"].get<std::string>();
+      name += d.name;
     }
-    legend.push_back({drone_color(id), name});
+    legend.push_back({drone_color(d.drone), name});
   }
   double y = height_px - 20.0 - static_cast<double>(legend.size() - 1) * (text_h + 8.0);
   std::size_t longest = 0;

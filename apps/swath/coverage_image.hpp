@@ -1,10 +1,10 @@
 #pragma once
-// The coverage picture of a plan, from its mission.geojson and summary.json (so `plan --render`
-// and `render DIR` draw the same thing).
+// The coverage picture of a plan.
 
 #include <string>
 
 #include "map_furniture.hpp"
+#include "swath/planning/plan_features.hpp"
 #include "swath/render/image.hpp"
 
 namespace swath::apps {
@@ -17,8 +17,9 @@ struct CoverageImage {
   geometry::Point2 scale_bar_start_px;  ///< left end, on the bar's centre line
 };
 
-/// Throws base::InputError if the texts are not a swath plan (file names in `source`).
-CoverageImage coverage_image(const std::string& geojson_text, const std::string& summary_text,
-                             int width_px, int height_px, const std::string& source);
+/// The picture of a plan's features and figures: the same for `plan --render` (from the plan in
+/// memory) and `render DIR` (from the files read back).
+CoverageImage coverage_image(const planning::PlanFeatures& features,
+                             const planning::PlanFigures& figures, int width_px, int height_px);
 
 }  // namespace swath::apps

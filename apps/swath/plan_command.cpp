@@ -16,6 +16,7 @@
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
 #include "swath/planning/limits.hpp"
+#include "swath/planning/plan_features.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/planning/survey_files.hpp"
 
@@ -319,7 +320,8 @@ int PlanCommand::run() {
   }
   if (render_) {
     const auto [w, h] = parse_size(size_);
-    const CoverageImage image = coverage_image(files[0].second, files[1].second, w, h, output_);
+    const CoverageImage image =
+        coverage_image(planning::plan_features(plan), planning::plan_figures(plan), w, h);
     files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
   }
   // summary.json lists the whole set (DESIGN.md §14 "Output directory").

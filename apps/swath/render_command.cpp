@@ -7,6 +7,7 @@
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/planning/plan_features.hpp"
 
 namespace swath::apps {
 namespace {
@@ -30,10 +31,12 @@ void RenderCommand::setup(CLI::App& app) {
 int RenderCommand::run() {
   const std::filesystem::path dir(dir_);
   const auto [w, h] = parse_size(size_);
-  const std::string geojson =
-      read(dir / "mission.geojson");  // in this order: the message names it first
-  const std::string summary = read(dir / "summary.json");
-  CoverageImage image = coverage_image(geojson, summary, w, h, dir_);
+  // In this order: a directory that is no plan is named by its mission.geojson first.
+  const planning::PlanFeatures features = planning::parse_mission_geojson(
+      read(dir / "mission.geojson"), (dir / "mission.geojson").string());
+  const planning::PlanFigures figures =
+      planning::parse_plan_figures(read(dir / "summary.json"), (dir / "summary.json").string());
+  CoverageImage image = coverage_image(features, figures, w, h);
   const std::filesystem::path coverage =
       coverage_.empty() ? dir / "coverage.png" : std::filesystem::path(coverage_);
   std::vector<std::pair<std::filesystem::path, std::string>> out{

@@ -1,5 +1,6 @@
 #include "swath/base/json_document.hpp"
 
+#include <cmath>
 #include <set>
 #include <vector>
 
@@ -46,6 +47,49 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
     throw InputError(source + ": the key \"" + repeated +
                      "\" appears twice in one object; which one holds is ambiguous");
   return root;
+}
+
+const nlohmann::json* json_find(const nlohmann::json& object, const char* key) {
+  if (!object.is_object()) return nullptr;
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+const nlohmann::json& json_member(const nlohmann::json& object, const char* key,
+                                  const std::string& where) {
+  if (!object.is_object()) throw InputError(where + ": expected a JSON object");
+  const nlohmann::json* member = json_find(object, key);
+  if (member == nullptr) throw InputError(where + ": no \"" + key + "\"");
+  return *member;
+}
+
+double json_number(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number()) throw InputError(where + " must be a number");
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) throw InputError(where + " must be a finite number");
+  return v;
+}
+
+long long json_integer(const nlohmann::json& value, long long lo, long long hi,
+                       const std::string& where) {
+  const double v = json_number(value, where);
+  if (v != std::floor(v) || v < static_cast<double>(lo) || v > static_cast<double>(hi))
+    throw InputError(where + " must be a whole number from " + std::to_string(lo) + " to " +
+                     std::to_string(hi));
+  return static_cast<long long>(v);
+}
+
+const std::string& json_string(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_string()) throw InputError(where + " must be a string");
+  return value.get_ref<const std::string&>();
+}
+
+const nlohmann::json& json_array(const nlohmann::json& value, const std::string& where,
+                                 std::size_t min_size) {
+  if (!value.is_array()) throw InputError(where + " must be an array");
+  if (value.size() < min_size)
+    throw InputError(where + " must have at least " + std::to_string(min_size) + " elements");
+  return value;
 }
 
 }  // namespace swath::base

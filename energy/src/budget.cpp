@@ -26,6 +26,23 @@ double finite_number(const json& j, const std::string& where) {
   return j.get<double>();
 }
 
+// Checked lookups: a hand-edited file is input like any other (no const operator[], no value()
+// that throws a library type_error for a member of another type).
+std::string text_or(const json& object, const char* key, const std::string& fallback) {
+  const json* v = base::json_find(object, key);
+  return v != nullptr && v->is_string() ? v->get<std::string>() : fallback;
+}
+
+const json& member_or_null(const json& object, const char* key) {
+  static const json null;
+  const json* v = base::json_find(object, key);
+  return v != nullptr ? *v : null;
+}
+
+std::string role_of(const json& feature) {
+  return text_or(member_or_null(feature, "properties"), "role", "");
+}
+
 GeoPoint lon_lat(const json& c, const std::string& where) {
   if (!c.is_array() || c.size() < 2)
     throw InputError(where + ": a position is [lon, lat] or [lon, lat, alt]");
@@ -37,37 +54,41 @@ GeoPoint lon_lat(const json& c, const std::string& where) {
 }
 
 std::vector<WaypointMission> parse_geojson(const json& root, const std::string& source) {
-  if (!root.contains("features") || !root["features"].is_array())
+  const json& features = member_or_null(root, "features");
+  if (!features.is_array())
     throw InputError(source + ": a mission GeoJSON is a FeatureCollection with 'features'");
-  const json& features = root["features"];
   std::optional<GeoPoint> home;
   for (std::size_t i = 0; i < features.size(); ++i) {
     const json& f = features[i];
-    if (f.value("/properties/role"_json_pointer, std::string()) == "home")
-      home = lon_lat(f.value("/geometry/coordinates"_json_pointer, json()),
+    if (role_of(f) == "home")
+      home = lon_lat(member_or_null(member_or_null(f, "geometry"), "coordinates"),
                      source + ": feature " + std::to_string(i));
   }
   std::vector<WaypointMission> out;
   for (std::size_t i = 0; i < features.size(); ++i) {
     const json& f = features[i];
     const std::string where = source + ": feature " + std::to_string(i);
-    if (f.value("/properties/role"_json_pointer, std::string()) != "path") continue;
-    const json& coords = f.value("/geometry/coordinates"_json_pointer, json());
-    if (f.value("/geometry/type"_json_pointer, std::string()) != "LineString" ||
-        !coords.is_array() || coords.size() < 2)
+    if (role_of(f) != "path") continue;
+    const json& geometry = member_or_null(f, "geometry");
+    const json& coords = member_or_null(geometry, "coordinates");
+    if (text_or(geometry, "type", "") != "LineString" || !coords.is_array() || coords.size() < 2)
       throw InputError(where + ": a path is a LineString of at least two positions");
-    const json& props = f["properties"];
+    const json& props = member_or_null(f, "properties");
     WaypointMission m;
-    m.drone = props.contains("drone") && props["drone"].is_number_integer()
-                  ? "drone-" + std::to_string(props["drone"].get<int>())
+    const json& drone = member_or_null(props, "drone");
+    m.drone = drone.is_number_integer() && drone.get<long long>() >= 0 &&
+                      drone.get<long long>() < 1'000'000
+                  ? "drone-" + std::to_string(drone.get<long long>())
                   : "drone-" + std::to_string(out.size() + 1);
     m.home = home ? *home : lon_lat(coords[0], where);
     const geometry::LocalFrame frame(m.home);
-    const bool has_alt = props.contains("altitude_m");
-    const double alt = has_alt ? finite_number(props["altitude_m"], where + ": altitude_m") : 0.0;
-    const double speed = props.contains("speed_m_s")
-                             ? finite_number(props["speed_m_s"], where + ": speed_m_s")
-                             : 0.0;
+    const bool has_alt = base::json_find(props, "altitude_m") != nullptr;
+    const double alt =
+        has_alt ? finite_number(member_or_null(props, "altitude_m"), where + ": altitude_m") : 0.0;
+    const double speed =
+        base::json_find(props, "speed_m_s")
+            ? finite_number(member_or_null(props, "speed_m_s"), where + ": speed_m_s")
+            : 0.0;
     if (speed < 0) throw InputError(where + ": speed_m_s must be >= 0");
     for (std::size_t k = 0; k < coords.size(); ++k) {
       const std::string at = where + ", position " + std::to_string(k);
@@ -107,12 +128,13 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
 // QGC items in flight order, complex (survey) items flattened.
 void flatten_items(const json& items, std::vector<const json*>& out) {
   for (const json& item : items) {
-    if (item.value("type", std::string()) == "ComplexItem") {
-      const json* inner = nullptr;
-      if (item.contains("TransectStyleComplexItem") &&
-          item["TransectStyleComplexItem"].contains("Items"))
-        inner = &item["TransectStyleComplexItem"]["Items"];
-      if (inner && inner->is_array()) flatten_items(*inner, out);
+    if (text_or(item, "type", "") == "ComplexItem") {
+      const json* inner =
+          base::json_find(member_or_null(item, "TransectStyleComplexItem"), "Items");
+      // A complex item nested in itself is no mission QGC writes: one level only.
+      if (inner != nullptr && inner->is_array())
+        for (const json& leaf : *inner)
+          if (text_or(leaf, "type", "") != "ComplexItem") out.push_back(&leaf);
       continue;
     }
     out.push_back(&item);
@@ -120,10 +142,9 @@ void flatten_items(const json& items, std::vector<const json*>& out) {
 }
 
 std::vector<WaypointMission> parse_qgc(const json& root, const std::string& source) {
-  if (!root.contains("mission") || !root["mission"].is_object())
-    throw InputError(source + ": a QGC plan has a 'mission' object");
-  const json& mission = root["mission"];
-  const json home_pos = mission.value("plannedHomePosition", json());
+  const json& mission = member_or_null(root, "mission");
+  if (!mission.is_object()) throw InputError(source + ": a QGC plan has a 'mission' object");
+  const json& home_pos = member_or_null(mission, "plannedHomePosition");
   if (!home_pos.is_array() || home_pos.size() < 2)
     throw InputError(source + ": mission.plannedHomePosition must be [lat, lon, alt]");
   WaypointMission m;
@@ -132,22 +153,27 @@ std::vector<WaypointMission> parse_qgc(const json& root, const std::string& sour
             finite_number(home_pos[1], source + ": plannedHomePosition longitude"), 0.0};
   if (std::abs(m.home.lat_deg) > 90 || std::abs(m.home.lon_deg) > 180)
     throw InputError(source + ": plannedHomePosition is not a latitude/longitude");
-  const bool multirotor = mission.value("vehicleType", 2) == 2;
+  const json& vehicle = member_or_null(mission, "vehicleType");
+  const bool multirotor = !vehicle.is_number() || vehicle.get<double>() == 2;
   double speed = 0.0;
   const char* speed_key = multirotor ? "hoverSpeed" : "cruiseSpeed";
-  if (mission.contains(speed_key))
-    speed = finite_number(mission[speed_key], source + ": mission." + speed_key);
+  if (base::json_find(mission, speed_key))
+    speed = finite_number(member_or_null(mission, speed_key), source + ": mission." + speed_key);
   const geometry::LocalFrame frame(m.home);
   std::vector<const json*> items;
-  if (!mission.contains("items") || !mission["items"].is_array())
-    throw InputError(source + ": mission.items must be a list");
-  flatten_items(mission["items"], items);
+  const json& all_items = member_or_null(mission, "items");
+  if (!all_items.is_array()) throw InputError(source + ": mission.items must be a list");
+  flatten_items(all_items, items);
   m.returns_home = false;
   for (std::size_t i = 0; i < items.size(); ++i) {
     const json& item = *items[i];
     const std::string where = source + ": mission item " + std::to_string(i + 1);
-    const int command = item.value("command", -1);
-    const json params = item.value("params", json());
+    const json& command_json = member_or_null(item, "command");
+    const int command = command_json.is_number_integer() && command_json.get<long long>() >= 0 &&
+                                command_json.get<long long>() < 100'000
+                            ? static_cast<int>(command_json.get<long long>())
+                            : -1;
+    const json& params = member_or_null(item, "params");
     auto param = [&](std::size_t k) {
       if (!params.is_array() || params.size() < 7)
         throw InputError(where + ": params must hold 7 values");
@@ -199,8 +225,8 @@ std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
                                                      const std::string& source) {
   const json root = base::parse_json_document(text, source);
   if (!root.is_object()) throw InputError(source + ": expected a JSON object");
-  if (root.value("type", std::string()) == "FeatureCollection") return parse_geojson(root, source);
-  if (root.value("fileType", std::string()) == "Plan") return parse_qgc(root, source);
+  if (text_or(root, "type", "") == "FeatureCollection") return parse_geojson(root, source);
+  if (text_or(root, "fileType", "") == "Plan") return parse_qgc(root, source);
   throw InputError(source +
                    ": neither a GeoJSON FeatureCollection (mission.geojson) nor a QGC plan");
 }

@@ -120,8 +120,9 @@ Plan parse_plan(const std::string& text, const std::string& source) {
     const std::string where = source + ": line " + std::to_string(lines[i].number);
     const auto head = split_top(lines[i].text, ';');
     if (head.size() != 3)
-      throw InputError(where + ": a stage starts with 'gain; rotation; phi(x, y, c1..)', found '" +
-                       lines[i].text + "'");
+      throw InputError(where +
+                       ": a stage starts with 'gain; rotation; phi(x, y, c1..)' (three "
+                       "fields separated by ';')");
     Stage stage;
     stage.line = lines[i].number;
     stage.gain = constant(head[0], where + " (gain)");

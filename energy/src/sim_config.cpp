@@ -123,8 +123,10 @@ PowerTrace parse_power_trace(const std::string& text, const std::string& source)
                     parse(line.substr(comma + 1), w);
     if (!ok) {
       if (trace.t_s.empty() && n == 1) continue;  // a header
-      throw InputError(source + ": line " + std::to_string(n) + ": expected 't_s, watts', found '" +
-                       line + "'");
+      // The line itself is not echoed: a config pointed at the wrong file (/etc/passwd) must not
+      // print that file's content.
+      throw InputError(source + ": line " + std::to_string(n) +
+                       ": expected 't_s, watts' (two numbers separated by a comma)");
     }
     if (!trace.t_s.empty() && t <= trace.t_s.back())
       throw InputError(source + ": line " + std::to_string(n) + ": times must increase");

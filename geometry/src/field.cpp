@@ -57,6 +57,48 @@ void check_coordinates(const detail::RawField& raw, const std::string& source, b
   }
 }
 
+// Longitude in [-180, 180), keeping values already inside (180 stays 180).
+double wrap_longitude(double lon) {
+  if (lon >= -180.0 && lon <= 180.0) return lon;
+  return std::fmod(std::fmod(lon + 180.0, 360.0) + 360.0, 360.0) - 180.0;
+}
+
+// Each longitude moved by whole turns to within 180° of `reference`.
+void unwrap_longitudes(detail::RawField& raw, double reference) {
+  for (detail::RawRing& ring : raw.rings)
+    for (Point2& p : ring.points) {
+      while (p.x - reference > 180.0) p.x -= 360.0;
+      while (p.x - reference < -180.0) p.x += 360.0;
+    }
+}
+
+// A hole inside another hole (an island in a pond) is no area swath can sweep in one piece:
+// refused naming both (holes that cross each other are crossings, reported by classify()).
+void check_holes_apart(const std::vector<Ring>& holes, const detail::RawField& raw,
+                       const std::string& source) {
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes;
+  for (const Ring& hole : holes) {
+    Box b{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (const Point2& p : hole)
+      b = {std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x), std::max(b.y1, p.y)};
+    boxes.push_back(b);
+  }
+  for (std::size_t a = 0; a < holes.size(); ++a)
+    for (std::size_t b = 0; b < holes.size(); ++b) {
+      if (a == b) continue;
+      const Box& in = boxes[b];
+      const Point2 p = holes[a].front();
+      if (p.x < in.x0 || p.x > in.x1 || p.y < in.y0 || p.y > in.y1) continue;
+      if (locate_point(p, holes[b]) == Containment::inside)
+        fail(source, raw.rings[a + 1].name + " lies inside " + raw.rings[b + 1].name +
+                         "; nested holes (an island in a pond) are not supported: plan the island "
+                         "as an area of its own");
+    }
+}
+
 }  // namespace
 
 Field parse_field(const std::string& text, FieldFormat format, const std::string& source,
@@ -90,13 +132,18 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
   Field field;
   field.source = source;
   if (geographic) {
+    // A field across the antimeridian: longitudes unwrapped to the first vertex's side (179.9 and
+    // -179.9 are 0.2° apart, not 359.8°), so rings stay continuous and the frame's origin lies in
+    // the field instead of half a world away. ±180 are the same meridian.
+    unwrap_longitudes(raw, raw.rings[0].points.front().x);
     // Origin at the mean of the outer ring's positions keeps local coordinates small.
     GeoPoint origin{};
     for (const Point2& p : raw.rings[0].points) {
       origin.lon_deg += p.x;
       origin.lat_deg += p.y;
     }
-    origin.lon_deg /= static_cast<double>(raw.rings[0].points.size());
+    origin.lon_deg =
+        wrap_longitude(origin.lon_deg / static_cast<double>(raw.rings[0].points.size()));
     origin.lat_deg /= static_cast<double>(raw.rings[0].points.size());
     field.frame.emplace(origin);
   }
@@ -109,7 +156,7 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
       std::vector<GeoPoint> geo;
       geo.reserve(normalised.ring.size());
       for (Point2& p : normalised.ring) {
-        geo.push_back({p.y, p.x, 0.0});
+        geo.push_back({p.y, wrap_longitude(p.x), 0.0});
         p = field.frame->to_local(geo.back());
       }
       field.geo_rings.push_back(std::move(geo));
@@ -148,6 +195,7 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
     if (!any_inside)
       fail(source, raw.rings[h + 1].name + " is a hole that lies outside the outer ring");
   }
+  check_holes_apart(field.polygon.holes, raw, source);
   return field;
 }
 

@@ -22,12 +22,37 @@ pugi::xml_node child(const pugi::xml_node& node, std::string_view name) {
   return {};
 }
 
-void find_all(const pugi::xml_node& node, std::string_view name, std::vector<pugi::xml_node>& out) {
-  for (pugi::xml_node c : node.children()) {
-    if (c.type() != pugi::node_element) continue;
-    if (local_name(c) == name) out.push_back(c);
-    find_all(c, name, out);
+// Deeper nesting than any KML writer produces; a file nested 50,000 deep is refused instead of
+// walked (DESIGN.md §12 "XML structure").
+constexpr int kMaxDepth = 256;
+
+// Every element called `name`, in document order; iterative (no recursion on the file's depth).
+void find_all(const pugi::xml_node& root, std::string_view name, std::vector<pugi::xml_node>& out,
+              const std::string& text, const std::string& source) {
+  std::vector<std::pair<pugi::xml_node, int>> stack;
+  for (pugi::xml_node c = root.last_child(); c; c = c.previous_sibling()) stack.push_back({c, 1});
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    if (node.type() != pugi::node_element) continue;
+    if (depth > kMaxDepth)
+      fail(source, "line " +
+                       std::to_string(
+                           line_column(text, static_cast<std::size_t>(node.offset_debug())).first) +
+                       ": elements nested more than " + std::to_string(kMaxDepth) +
+                       " levels deep; no KML writer does that");
+    if (local_name(node) == name) out.push_back(node);
+    for (pugi::xml_node c = node.last_child(); c; c = c.previous_sibling())
+      stack.push_back({c, depth + 1});
   }
+}
+
+// A piece of the file for a message: at most 40 printable characters.
+std::string shown(const std::string& piece) {
+  std::string out;
+  for (const char c : piece.substr(0, 40))
+    out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+  return piece.size() > 40 ? out + "..." : out;
 }
 
 RawRing parse_boundary(const pugi::xml_node& boundary, const std::string& text,
@@ -40,13 +65,22 @@ RawRing parse_boundary(const pugi::xml_node& boundary, const std::string& text,
                      " has no <LinearRing><coordinates>");
   RawRing ring;
   ring.name = name;
-  // Text of the element; its line is where the element's content starts.
-  const pugi::xml_node data = coordinates.first_child();
-  const std::string body = data ? data.value() : "";
-  int line =
-      data ? line_column(text, static_cast<std::size_t>(data.offset_debug())).first : boundary_line;
+  // The element's text is all its text and CDATA children (a comment may split it); each piece
+  // keeps the line it starts on, for the messages.
+  std::string body;
+  std::vector<std::size_t> piece_end;
+  std::vector<int> piece_line;
+  for (pugi::xml_node data : coordinates.children()) {
+    if (data.type() != pugi::node_pcdata && data.type() != pugi::node_cdata) continue;
+    body += data.value();
+    piece_end.push_back(body.size());
+    piece_line.push_back(line_column(text, static_cast<std::size_t>(data.offset_debug())).first);
+  }
+  std::size_t piece = 0;
+  int line = piece_line.empty() ? boundary_line : piece_line[0];
   std::size_t i = 0;
   while (i < body.size()) {
+    while (piece + 1 < piece_end.size() && i >= piece_end[piece]) line = piece_line[++piece];
     if (std::isspace(static_cast<unsigned char>(body[i]))) {
       if (body[i] == '\n') ++line;
       ++i;
@@ -70,7 +104,7 @@ RawRing parse_boundary(const pugi::xml_node& boundary, const std::string& text,
       p = next < stop ? next + 1 : next;
     }
     if (!ok || count < 2 || p < stop)
-      fail(source, "line " + std::to_string(line) + ": " + name + ": '" + tuple +
+      fail(source, "line " + std::to_string(line) + ": " + name + ": '" + shown(tuple) +
                        "' is not a lon,lat[,alt] tuple");
     ring.points.push_back({values[0], values[1]});
     ring.line.push_back(line);
@@ -90,7 +124,7 @@ RawField parse_kml(const std::string& text, const std::string& source) {
                      ": invalid XML (" + result.description() + ")");
   }
   std::vector<pugi::xml_node> polygons;
-  find_all(doc, "Polygon", polygons);
+  find_all(doc, "Polygon", polygons, text, source);
   if (polygons.empty()) fail(source, "the KML document has no <Polygon>");
   const auto line_of = [&](const pugi::xml_node& n) {
     return std::to_string(line_column(text, static_cast<std::size_t>(n.offset_debug())).first);

@@ -50,6 +50,18 @@ void repair_outer_ring(SurveyPlan& plan) {
                           fixed_text(total, 1) + " m² in all");
 }
 
+// The holes split routes around: bounded before the quadratic work (kMaxSplitHoles).
+void check_split_size(const geometry::Polygon& area) {
+  std::size_t vertices = 0;
+  for (const geometry::Ring& hole : area.holes) vertices += hole.size();
+  if (area.holes.size() > kMaxSplitHoles || vertices > kMaxSplitHoleVertices)
+    throw InputError("the area has " + std::to_string(area.holes.size()) +
+                     " holes and no-fly zones with " + std::to_string(vertices) +
+                     " vertices, more than split's limit of " + std::to_string(kMaxSplitHoles) +
+                     " holes and " + std::to_string(kMaxSplitHoleVertices) +
+                     " vertices; merge or simplify them, or give --concave hull");
+}
+
 // Divides the planned survey among the request's fleet: one mission per drone.
 void divide_among_fleet(SurveyPlan& plan, geometry::Point2 plan_home,
                         const std::vector<geometry::Ring>& rings, bool split,
@@ -191,6 +203,7 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
                      ") and --concave reject refuses it; use --concave hull");
   const bool convex = c.type == geometry::AreaType::convex && plan.extra_pieces.empty();
   const bool split = !convex && request.concave == ConcaveMode::split;
+  if (split) check_split_size(plan.area);
   plan.handling = convex ? "convex" : split ? "split" : "hull";
   std::vector<geometry::Point2> all_outer = plan.area.outer;
   for (const geometry::Ring& piece : plan.extra_pieces)

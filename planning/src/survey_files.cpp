@@ -3,6 +3,7 @@
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
+#include "swath/planning/plan_features.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -22,11 +23,6 @@ using nlohmann::ordered_json;
 
 GeoPoint geo(const SurveyPlan& plan, Point2 p) {
   return plan.request.field.frame->to_geo(p);
-}
-
-ordered_json lon_lat(const SurveyPlan& plan, Point2 p) {
-  const GeoPoint g = geo(plan, p);
-  return {round_to(g.lon_deg, 9), round_to(g.lat_deg, 9)};
 }
 
 int mav_command(ItemKind kind) {
@@ -133,21 +129,6 @@ const std::vector<GeoPoint>& area_ring(const SurveyPlan& plan, std::size_t r) {
   return plan.request.field.geo_rings.at(r);
 }
 
-ordered_json ring_json(const std::vector<GeoPoint>& ring) {
-  ordered_json out = ordered_json::array();
-  for (const GeoPoint& g : ring) out.push_back({round_to(g.lon_deg, 9), round_to(g.lat_deg, 9)});
-  out.push_back(out.front());  // RFC 7946 rings are closed
-  return out;
-}
-
-// A local-frame ring as a closed GeoJSON ring.
-ordered_json local_ring_json(const SurveyPlan& plan, const geometry::Ring& ring) {
-  ordered_json out = ordered_json::array();
-  for (const Point2& p : ring) out.push_back(lon_lat(plan, p));
-  out.push_back(out.front());
-  return out;
-}
-
 const char* to_string(LinePlacement p) {
   return p == LinePlacement::centered ? "centered" : "paper";
 }
@@ -251,69 +232,7 @@ std::string waypoints_csv(const SurveyPlan& plan) {
 }
 
 std::string mission_geojson(const SurveyPlan& plan) {
-  ordered_json features = ordered_json::array();
-  const geometry::Polygon& area = plan.request.field.polygon;
-  ordered_json rings = ordered_json::array();
-  for (std::size_t r = 0; r < geometry::ring_count(area); ++r)
-    rings.push_back(ring_json(area_ring(plan, r)));
-  features.push_back({{"type", "Feature"},
-                      {"properties", {{"role", "area"}}},
-                      {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
-  for (std::size_t k = 0; k < plan.extra_pieces.size();
-       ++k) {  // --repair: the other enclosed areas
-    features.push_back(
-        {{"type", "Feature"},
-         {"properties", {{"role", "area"}, {"piece", k + 1}}},
-         {"geometry",
-          {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, plan.extra_pieces[k])}}}}});
-  }
-  for (std::size_t k = 0; plan.handling == "split" && k < plan.cells.size(); ++k) {
-    features.push_back(
-        {{"type", "Feature"},
-         {"properties", {{"role", "cell"}, {"cell", k}}},
-         {"geometry",
-          {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, plan.cells[k])}}}}});
-  }
-  for (std::size_t i = 0; i < plan.drone_work.size(); ++i)
-    for (const geometry::Ring& piece : plan.drone_work[i].region)
-      features.push_back(
-          {{"type", "Feature"},
-           {"properties", {{"role", "region"}, {"drone", i + 1}}},
-           {"geometry", {{"type", "Polygon"}, {"coordinates", {local_ring_json(plan, piece)}}}}});
-  for (const DroneMission* m : missions_of(plan)) {
-    ordered_json path = ordered_json::array();
-    for (const Point2& p : m->path) path.push_back(lon_lat(plan, p));
-    const auto d = static_cast<std::size_t>(m->drone - 1);
-    const double speed = plan.drone_work.empty() ? plan.speed_m_s : plan.drone_speeds_m_s[d];
-    features.push_back({{"type", "Feature"},
-                        {"properties",
-                         {{"role", "path"},
-                          {"drone", m->drone},
-                          {"altitude_m", round_to(plan.imaging.altitude_m, 3)},
-                          {"speed_m_s", round_to(speed, 3)}}},
-                        {"geometry", {{"type", "LineString"}, {"coordinates", path}}}});
-    for (std::size_t i = 0; i < m->lines.size(); ++i) {
-      features.push_back(
-          {{"type", "Feature"},
-           {"properties",
-            {{"role", "sweep"},
-             {"drone", m->drone},
-             {"line", i},
-             {"footprint_width_m", round_to(plan.imaging.footprint_across_m, 4)}}},
-           {"geometry",
-            {{"type", "LineString"},
-             {"coordinates",
-              {lon_lat(plan, m->lines[i].start), lon_lat(plan, m->lines[i].end)}}}}});
-    }
-  }
-  features.push_back(
-      {{"type", "Feature"},
-       {"properties", {{"role", "home"}}},
-       {"geometry",
-        {{"type", "Point"},
-         {"coordinates", {round_to(plan.home.lon_deg, 9), round_to(plan.home.lat_deg, 9)}}}}});
-  return base::json_text(ordered_json{{"type", "FeatureCollection"}, {"features", features}}, 1) +
-         "\n";
+  return mission_geojson(plan_features(plan));
 }
 
 std::string mission_kml(const SurveyPlan& plan) {

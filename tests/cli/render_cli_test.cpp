@@ -22,7 +22,8 @@ TEST(RenderCli, CoverageImageHasTheSizeAScaleBarAsLongAsItClaimsAndIsRedrawnIden
   EXPECT_EQ(image.height, 600);
   // Where the picture says the bar is and how many metres it claims; then its pixels.
   const apps::CoverageImage planned = apps::coverage_image(
-      read_text(out + "/mission.geojson"), read_text(out + "/summary.json"), 800, 600, out);
+      planning::parse_mission_geojson(read_text(out + "/mission.geojson"), "mission.geojson"),
+      planning::parse_plan_figures(read_text(out + "/summary.json"), "summary.json"), 800, 600);
   EXPECT_GT(planned.scale_bar_m, 0);
   EXPECT_NEAR(planned.scale_bar_px, planned.scale_bar_m * planned.view.px_per_m, 1e-9);
   const int row = static_cast<int>(planned.scale_bar_start_px.y);

@@ -67,7 +67,8 @@ TEST(SimConfig, PowerTrace) {
     parse_power_trace("0,1\n2,x\n", "p.csv");
     FAIL();
   } catch (const base::InputError& e) {
-    EXPECT_STREQ(e.what(), "p.csv: line 2: expected 't_s, watts', found '2,x'");
+    EXPECT_STREQ(e.what(),
+                 "p.csv: line 2: expected 't_s, watts' (two numbers separated by a comma)");
   }
 }
 

@@ -124,6 +124,38 @@ TEST(Kml, BadInputNamesTheLine) {
   expect_error("<kml><Polygon></Polygon></kml>", FieldFormat::kml, "no <outerBoundaryIs>");
 }
 
+// Issue 16: 50,000 nested elements crashed the recursive walk; now refused at 256 levels.
+TEST(Kml, DeepNestingIsRefusedNotWalkedRecursively) {
+  std::string deep = "<kml>";
+  for (int i = 0; i < 50000; ++i) deep += "<Folder>";
+  deep += "<Polygon/>";
+  for (int i = 0; i < 50000; ++i) deep += "</Folder>";
+  deep += "</kml>";
+  expect_error(deep, FieldFormat::kml, "line 1: elements nested more than 256 levels deep");
+  // 200 levels are fine (no KML writer nests that deep, but it is not malicious).
+  std::string nested = "<kml>";
+  for (int i = 0; i < 200; ++i) nested += "<Folder>";
+  nested += R"(<Polygon><outerBoundaryIs><LinearRing><coordinates>8,47 8.001,47 8.001,47.001
+               </coordinates></LinearRing></outerBoundaryIs></Polygon>)";
+  for (int i = 0; i < 200; ++i) nested += "</Folder>";
+  EXPECT_EQ(parse_field(nested + "</kml>", FieldFormat::kml, "n").polygon.outer.size(), 3u);
+}
+
+// Issue 16: a comment or CDATA inside <coordinates> silently dropped the vertices after it.
+TEST(Kml, CoordinatesSplitByCommentsAndCdataKeepEveryVertex) {
+  const std::string kml = R"(<kml><Placemark><Polygon><outerBoundaryIs><LinearRing><coordinates>
+8.0,47.0 8.001,47.0 <!-- a comment -->
+8.001,47.001 <![CDATA[8.0005,47.0015]]>
+8.0,47.001 8.0,47.0
+<!-- more --> </coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark></kml>)";
+  const Field f = parse_field(kml, FieldFormat::kml, "split.kml");
+  EXPECT_EQ(f.polygon.outer.size(), 5u);
+  // A bad tuple after the comment is named on its own line (line 4).
+  std::string bad = kml;
+  bad.replace(bad.find("8.0,47.001 8.0,47.0"), 10, "8.0;47.001");
+  expect_error(bad, FieldFormat::kml, "line 4: outer boundary: '8.0;47.001' is not a lon,lat");
+}
+
 TEST(Csv, HeaderColumnsInAnyOrderRingsBomAndCrlf) {
   const Field f = parse_field(
       "\xEF\xBB\xBF# comment\r\nlat,lon,ring\r\n47,8,0\r\n47,8.01,0\r\n47.01,8.01,0\r\n\r\n"

@@ -17,6 +17,26 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
 
 namespace swath::base {
 
+// Checked access into a parsed document (swath's own files read back are input like any other:
+// DESIGN.md §12). Every failure is an InputError "<where>: ..." naming the place; never
+// operator[] on a const document, never a library exception.
+
+/// The member `key` of `object`; refused when `object` is not an object or has no such key.
+const nlohmann::json& json_member(const nlohmann::json& object, const char* key,
+                                  const std::string& where);
+/// The member `key`, or nullptr when `object` is not an object or has none.
+const nlohmann::json* json_find(const nlohmann::json& object, const char* key);
+/// A finite number.
+double json_number(const nlohmann::json& value, const std::string& where);
+/// A whole number in [lo, hi].
+long long json_integer(const nlohmann::json& value, long long lo, long long hi,
+                       const std::string& where);
+/// A string.
+const std::string& json_string(const nlohmann::json& value, const std::string& where);
+/// An array of at least `min_size` elements.
+const nlohmann::json& json_array(const nlohmann::json& value, const std::string& where,
+                                 std::size_t min_size = 0);
+
 /// `j` serialised with `indent`; bytes that are not UTF-8 (a drone name, a file name) become
 /// U+FFFD instead of aborting the write (nlohmann's default throws type_error 316).
 template <typename Json>

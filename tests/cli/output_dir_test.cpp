@@ -1,0 +1,277 @@
+// The output side of issue 16 (DESIGN.md §14 "Output directory"), as a user and an attacker meet
+// it: concurrent runs into one directory, signals at random moments, re-plans that leave fewer
+// files, other programs writing into a plan's directory, names that collide, bytes that are not
+// UTF-8, and the worst inputs refused within bounded time and memory.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_runner.hpp"
+
+extern char** environ;
+
+namespace swath::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Starts `swath args...` from the source tree with stdout/stderr to /dev/null; returns its pid.
+pid_t start_swath(const std::vector<std::string>& args) {
+  std::vector<std::string> all{SWATH_BINARY};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t io;
+  posix_spawn_file_actions_init(&io);
+  posix_spawn_file_actions_addopen(&io, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&io, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addchdir_np(&io, SWATH_SOURCE_DIR);
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, SWATH_BINARY, &io, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&io);
+  return pid;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::vector<std::string> plan_args(int altitude_m, const std::string& out) {
+  return {"plan",       "share/fields/meadow.geojson", "--camera", "sony-ilce-qx1",
+          "--altitude", std::to_string(altitude_m),    "-o",       out};
+}
+
+// The directory holds exactly one complete plan: summary.json lists the set, every listed file
+// is there and parses as that plan (the .plan's altitude is summary's), nothing else of ours and
+// no temporaries. Returns the altitude of the set, or -1 when the directory holds no plan.
+double one_complete_set(const std::string& dir) {
+  if (!fs::exists(dir + "/summary.json")) {
+    for (const auto& e : fs::directory_iterator(dir))
+      ADD_FAILURE() << "no summary.json but " << e.path().filename();
+    return -1;
+  }
+  const json summary = json::parse(read_text(dir + "/summary.json"));
+  std::set<std::string> listed;
+  for (const auto& f : summary.at("files")) listed.insert(f.get<std::string>());
+  std::set<std::string> present;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(".swath-", 0) == 0) continue;  // the set's manifest
+    present.insert(name);
+  }
+  EXPECT_EQ(present, listed) << "files of another set, or temporaries, in " << dir;
+  const double altitude = summary.at("camera").at("altitude_m").get<double>();
+  const json plan = json::parse(read_text(dir + "/drone-1.plan"));
+  double item_altitude = -1;
+  for (const auto& item : plan.at("mission").at("items"))
+    if (item.at("command") == 16) item_altitude = item.at("params")[6].get<double>();
+  EXPECT_DOUBLE_EQ(item_altitude, altitude) << "drone-1.plan from another run than summary.json";
+  EXPECT_NE(read_text(dir + "/mission.kml").find("</kml>"), std::string::npos);
+  return altitude;
+}
+
+TEST(OutputDir, TwentyConcurrentRunsLeaveOneCompleteSet) {
+  const std::string out = fresh_dir("concurrent");
+  std::vector<pid_t> runs;
+  for (int k = 0; k < 20; ++k) runs.push_back(start_swath(plan_args(40 + k, out)));
+  int succeeded = 0;
+  for (const pid_t pid : runs) succeeded += wait_exit(pid) == 0;
+  EXPECT_EQ(succeeded, 20) << "each waits for the lock (10 s) and then writes its set";
+  const double altitude = one_complete_set(out);
+  EXPECT_GE(altitude, 40);
+  EXPECT_LE(altitude, 59);
+}
+
+TEST(OutputDir, SigtermAtRandomMomentsLeavesTheOldOrTheNewSet) {
+  const std::string out = fresh_dir("sigterm");
+  ASSERT_EQ(
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + out)
+          .exit_code,
+      0);
+  std::mt19937 random(20261124);
+  std::uniform_int_distribution<int> delay_us(0, 40000);
+  int killed = 0;
+  for (int k = 0; k < 50; ++k) {
+    const int altitude = 61 + k % 30;
+    std::vector<std::string> args = plan_args(altitude, out);
+    if (k % 5 == 0) args.push_back("--render");  // a long write: the signal lands mid-set
+    const pid_t pid = start_swath(args);
+    std::this_thread::sleep_for(std::chrono::microseconds(delay_us(random)));
+    kill(pid, SIGTERM);
+    const int code = wait_exit(pid);
+    killed += code == 128 + SIGTERM;
+    EXPECT_TRUE(code == 0 || code == 128 + SIGTERM) << "exit " << code;
+    one_complete_set(out);
+  }
+  EXPECT_GT(killed, 10) << "the signals should land while the runs are at work";
+}
+
+TEST(OutputDir, AReplanRemovesTheStaleFilesOfTheOldPlanOnly) {
+  const std::string out = fresh_dir("stale");
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+                      "--drones 3 -o " +
+                      out)
+                .exit_code,
+            0);
+  ASSERT_TRUE(fs::exists(out + "/drone-3.plan"));
+  { std::ofstream(out + "/pilot-notes.txt") << "mine"; }
+  ASSERT_EQ(
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + out)
+          .exit_code,
+      0);
+  EXPECT_FALSE(fs::exists(out + "/drone-2.plan"));
+  EXPECT_FALSE(fs::exists(out + "/drone-3.waypoints"));
+  EXPECT_EQ(read_text(out + "/pilot-notes.txt"), "mine") << "swath removes only what it wrote";
+}
+
+TEST(OutputDir, OtherProgramsAndExtraNamesNeverReplaceThePlan) {
+  const std::string out = fresh_dir("foreign");
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+                      "--drones 2 -o " +
+                      out)
+                .exit_code,
+            0);
+  const std::string summary = read_text(out + "/summary.json");
+  const std::string drone_1 = read_text(out + "/drone-1.plan");
+  // swath-energy run into the plan's directory would replace summary.json: refused.
+  const CliRun energy =
+      run_swath_energy("run plans/survey.plan --config plans/survey-sim.yaml -o " + out);
+  EXPECT_EQ(energy.exit_code, 2);
+  EXPECT_NE(energy.err.find("summary.json belongs to the files of a swath plan"), std::string::npos)
+      << energy.err;
+  EXPECT_FALSE(fs::exists(out + "/energy.csv"));
+  // An energy plan named like a file of the set: refused before anything is written.
+  // One drone keeps the name (summary.json); with a fleet drone.plan becomes drone-1.plan, ...
+  for (const std::string options :
+       {"--energy-plan summary.json", "--drones 2 --energy-plan drone.plan"}) {
+    const CliRun collide =
+        run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 70 " +
+                  options + " -o " + out);
+    const std::string& name = options;
+    EXPECT_EQ(collide.exit_code, 2) << name;
+    EXPECT_NE(collide.err.find("a file of the mission set itself"), std::string::npos)
+        << collide.err;
+  }
+  EXPECT_EQ(read_text(out + "/summary.json"), summary);
+  EXPECT_EQ(read_text(out + "/drone-1.plan"), drone_1);
+  // render into the plan's own directory joins the plan's set (no refusal).
+  EXPECT_EQ(run_swath("render " + out).exit_code, 0);
+  EXPECT_TRUE(fs::exists(out + "/coverage.png"));
+}
+
+TEST(OutputDir, BytesThatAreNotUtf8AreReplacedNotFatal) {
+  const std::string dir = fresh_dir("latin1");
+  fs::create_directories(dir);
+  const std::string field = dir + "/Wiese-\xE9t\xE9.geojson";  // Latin-1 é in the file name
+  fs::copy_file(source_path("share/fields/meadow.geojson"), field);
+  {
+    std::ofstream fleet(dir + "/fleet.yaml");
+    fleet << "home: {lat: 47.397, lon: 8.540}\ndrones:\n  - {name: \"h\xE9l\xE8ne\", capability: "
+             "0.5}\n  - {name: bravo, capability: 0.5}\n";
+  }
+  const std::string out = dir + "/out";
+  const CliRun run =
+      run_swath("plan '" + field + "' --camera sony-ilce-qx1 --altitude 60 --fleet " + dir +
+                "/fleet.yaml -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json summary = json::parse(read_text(out + "/summary.json"));  // valid UTF-8 throughout
+  EXPECT_EQ(summary.at("drones")[0].at("name").get<std::string>(), "h\uFFFDl\uFFFDne");
+  EXPECT_NE(summary.at("field").get<std::string>().find("Wiese-\uFFFDt\uFFFD"), std::string::npos);
+}
+
+// Runs `command` (through /bin/sh, from the source tree) in a child of a fresh process, and
+// returns (exit code, CPU seconds, peak RSS in MB) of that command alone.
+struct Usage {
+  int exit_code;
+  double cpu_s, rss_mb;
+};
+Usage measured(const std::string& command) {
+  int pipe_fds[2];
+  EXPECT_EQ(pipe(pipe_fds), 0);
+  const pid_t child = fork();
+  if (child == 0) {
+    close(pipe_fds[0]);
+    const std::string full =
+        "cd '" + std::string(SWATH_SOURCE_DIR) + "' && " + command + " >/dev/null 2>&1";
+    const int status = std::system(full.c_str());
+    rusage usage{};
+    getrusage(RUSAGE_CHILDREN, &usage);
+    const Usage u{WIFEXITED(status) ? WEXITSTATUS(status) : -1,
+                  static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                      1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec),
+                  static_cast<double>(usage.ru_maxrss) / 1024.0};
+    if (write(pipe_fds[1], &u, sizeof u) != sizeof u) _exit(1);
+    _exit(0);
+  }
+  close(pipe_fds[1]);
+  Usage u{-1, 0, 0};
+  EXPECT_EQ(read(pipe_fds[0], &u, sizeof u), static_cast<ssize_t>(sizeof u));
+  close(pipe_fds[0]);
+  waitpid(child, nullptr, 0);
+  return u;
+}
+
+// The inputs that once ran for minutes or grew to gigabytes are refused at once: exit 2 within a
+// second of CPU and 200 MB (generous bounds for what takes milliseconds and ~10 MB; the point is
+// that nothing grows with the absurd number).
+TEST(OutputDir, TheWorstInputsAreRefusedInBoundedTimeAndMemory) {
+  const std::string dir = fresh_dir("worst");
+  fs::create_directories(dir);
+  {
+    // 3,000 tiny holes (98 s and 5.6 GB before).
+    std::ofstream csv(dir + "/holes.csv");
+    csv.precision(10);
+    csv << "lon,lat,ring\n8.5,47.4,0\n8.53,47.4,0\n8.53,47.42,0\n8.5,47.42,0\n";
+    int ring = 0;
+    for (int i = 0; i < 60; ++i)
+      for (int j = 0; j < 50; ++j) {
+        const double x = 8.5 + 0.03 * (i + 0.5) / 60, y = 47.4 + 0.02 * (j + 0.5) / 50;
+        ++ring;
+        for (const auto& [dx, dy] : {std::pair{-1, -1}, {-1, 1}, {1, 1}, {1, -1}})
+          csv << x + dx * 0.00005 << ',' << y + dy * 0.00005 << ',' << ring << '\n';
+      }
+  }
+  const std::string swath = std::string("'") + SWATH_BINARY + "' ";
+  const std::string meadow = "plan share/fields/meadow.geojson ";
+  for (const std::string& command :
+       {swath + meadow + "--camera tests/bad-input/camera-overflow.yaml --altitude 60 -o " + dir +
+            "/o",
+        swath + meadow + "--camera sony-ilce-qx1 --gsd 1e308 -o " + dir + "/o",
+        swath + meadow +
+            "--camera sony-ilce-qx1 --altitude 60 --angle-search scan --angle-step "
+            "1e-7 -o " +
+            dir + "/o",
+        swath + meadow + "--camera sony-ilce-qx1 --altitude 60 --drones 10000 -o " + dir + "/o",
+        swath + meadow + "--camera sony-ilce-qx1 --altitude 60 --fleet /dev/zero -o " + dir + "/o",
+        swath + "plan " + dir + "/holes.csv --camera sony-ilce-qx1 --altitude 100 -o " + dir + "/o",
+        std::string("'") + SWATH_ENERGY_BINARY +
+            "' run tests/bad-input/plan-alias-bomb.yaml --config plans/survey-sim.yaml -o " + dir +
+            "/o"}) {
+    const Usage u = measured(command);
+    EXPECT_EQ(u.exit_code, 2) << command;
+    EXPECT_LT(u.cpu_s, 1.0) << command;
+    EXPECT_LT(u.rss_mb, 200.0) << command;
+    EXPECT_FALSE(fs::exists(dir + "/o")) << command;
+  }
+}
+
+}  // namespace
+}  // namespace swath::test
