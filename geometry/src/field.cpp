@@ -131,6 +131,9 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
 
   Field field;
   field.source = source;
+  if (raw.rings.empty() || raw.rings[0].points.empty())
+    fail(source,
+         (raw.rings.empty() ? std::string("the area") : raw.rings[0].name) + " has no positions");
   if (geographic) {
     // A field across the antimeridian: longitudes unwrapped to the first vertex's side (179.9 and
     // -179.9 are 0.2° apart, not 359.8°), so rings stay continuous and the frame's origin lies in

@@ -243,6 +243,14 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     }
   }
 
+  // A sliver (three points on one parallel, 1.5 km by 5 cm) is no area to survey: refused rather
+  // than planned as a flight whose lines lie wholly outside it.
+  const double narrowest_m = geometry::min_height_rotation(plan.area.outer).height_m;
+  if (narrowest_m < kMinAreaWidth_m)
+    throw InputError(field.source + ": the area is " + fixed_text(narrowest_m, 3) +
+                     " m wide at its narrowest, less than swath's minimum of " +
+                     fixed_text(kMinAreaWidth_m, 0) + " m; is it a line drawn as a polygon?");
+
   // Bounded work: a camera footprint of centimetres over kilometres would ask for millions of
   // lines or waypoints; refuse that instead of running out of time or memory.
   const double lines = plan.direction.height_m / plan.imaging.line_spacing_m;
@@ -326,6 +334,10 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     flown.insert(flown.end(), m->lines.begin(), m->lines.end());
   plan.coverage =
       measure_coverage(measured, flown, plan.sweep.angle_deg, plan.imaging.footprint_across_m);
+  if (!(plan.coverage.covered_fraction > 0))
+    throw InputError(field.source + ": the plan covers none of the area (" +
+                     std::to_string(plan.sweep.lines.size()) +
+                     " lines); check the altitude, overlaps and turnaround");
   if (plan.division.unflown_path_m > 0 && !request.allow_partial)
     throw InputError(
         "the fleet cannot fly the whole survey: " + fixed_text(plan.division.unflown_path_m, 1) +

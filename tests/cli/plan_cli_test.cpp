@@ -352,3 +352,32 @@ TEST(CamerasCli, ListsTheDatabase) {
 
 }  // namespace
 }  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// Issue 16: a field across the antimeridian was planned 11,900 km away with exit 0. Every
+// waypoint of every written file must lie in the field's box, on either side of ±180.
+TEST(PlanCli, AFieldAcrossTheAntimeridianIsFlownWhereItIs) {
+  const std::string out = fresh_dir("antimeridian");
+  const CliRun run = run_swath(
+      "plan tests/fixtures/antimeridian.geojson --camera sony-ilce-qx1 --altitude 100 -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json plan = nlohmann::json::parse(read_text(out + "/drone-1.plan"));
+  int positions = 0;
+  for (const auto& item : plan["mission"]["items"]) {
+    if (item["command"] != 16) continue;
+    const double lat = item["params"][4], lon = item["params"][5];
+    EXPECT_GE(lat, -16.5001);
+    EXPECT_LE(lat, -16.4899);
+    EXPECT_GE(std::abs(lon), 179.9899) << lon;  // within 0.01° of ±180, on either side
+    ++positions;
+  }
+  EXPECT_GT(positions, 10);
+  const nlohmann::json summary = nlohmann::json::parse(read_text(out + "/summary.json"));
+  EXPECT_NEAR(summary["area"]["area_m2"].get<double>(), 2.363e6, 0.01e6);
+  EXPECT_LT(summary["drones"][0]["path_length_m"].get<double>(), 60000.0);
+}
+
+}  // namespace
+}  // namespace swath::test

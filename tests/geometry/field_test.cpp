@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "swath/base/input_error.hpp"
@@ -154,6 +155,46 @@ TEST(Kml, CoordinatesSplitByCommentsAndCdataKeepEveryVertex) {
   std::string bad = kml;
   bad.replace(bad.find("8.0,47.001 8.0,47.0"), 10, "8.0;47.001");
   expect_error(bad, FieldFormat::kml, "line 4: outer boundary: '8.0;47.001' is not a lon,lat");
+}
+
+// Issue 16: a field across the antimeridian was planned 11,900 km away (the frame's origin was
+// the mean longitude, about 0). Unwrapped, it is the same field as its twin shifted east by 10°.
+TEST(Geodesy, AFieldAcrossTheAntimeridianIsTheFieldShiftedAway) {
+  const auto field_at = [](double lon_west, double lon_east) {
+    const std::string ring = "[[" + std::to_string(lon_west) + ",-16.5],[" +
+                             std::to_string(lon_east) + ",-16.5],[" + std::to_string(lon_east) +
+                             ",-16.49],[" + std::to_string(lon_west) + ",-16.49],[" +
+                             std::to_string(lon_west) + ",-16.5]]";
+    return parse_field(R"({"type":"Polygon","coordinates":[)" + ring + "]}", FieldFormat::geojson,
+                       "a");
+  };
+  const Field across = field_at(179.99, -179.99), shifted = field_at(169.99, 170.01);
+  EXPECT_NEAR(area(across.polygon), area(shifted.polygon), 1e-6 * area(shifted.polygon));
+  EXPECT_NEAR(area(across.polygon), 2.36e6, 0.02e6);  // 2.13 km x 1.11 km
+  // The frame's origin is in the field, and the file's own positions are kept for the outputs.
+  EXPECT_NEAR(std::abs(across.frame->origin().lon_deg), 180.0, 0.011);
+  int east = 0, west = 0;
+  for (const GeoPoint& g : across.geo_rings[0]) {
+    east += g.lon_deg == -179.99;
+    west += g.lon_deg == 179.99;
+  }
+  EXPECT_EQ(east, 2);
+  EXPECT_EQ(west, 2);
+  for (const Point2& p : across.polygon.outer) EXPECT_LT(std::hypot(p.x, p.y), 2000.0);
+  // ±180 is one meridian: a quadrilateral with vertices on both is convex.
+  const Field meridian = parse_field(
+      R"({"type":"Polygon","coordinates":[[[179.99,-16.5],[180,-16.49],[-180,-16.48],[179.98,-16.49],[179.99,-16.5]]]})",
+      FieldFormat::geojson, "m");
+  EXPECT_EQ(classify(meridian.polygon).type, AreaType::convex);
+}
+
+TEST(Geodesy, NestedHolesAreRefusedNamingBoth) {
+  expect_error(R"({"type":"Polygon","coordinates":[
+      [[8.50,47.40],[8.51,47.40],[8.51,47.41],[8.50,47.41],[8.50,47.40]],
+      [[8.502,47.402],[8.502,47.408],[8.508,47.408],[8.508,47.402],[8.502,47.402]],
+      [[8.504,47.404],[8.504,47.406],[8.506,47.406],[8.506,47.404],[8.504,47.404]]]})",
+               FieldFormat::geojson,
+               "hole 1 (ring 2) lies inside the Polygon, hole 0 (ring 1); nested holes");
 }
 
 TEST(Csv, HeaderColumnsInAnyOrderRingsBomAndCrlf) {

@@ -75,6 +75,8 @@ inline constexpr std::size_t kAutopilotItemLimit = 700;  ///< ArduPilot's classi
 /// the holes' vertices: 500 holes of 4 vertices plan in ~2 s and 150 MB, 3,000 took 98 s and
 /// 5.6 GB. Beyond these, split refuses (hull mode ignores holes and is not limited).
 inline constexpr std::size_t kMaxSplitHoles = 500;
+/// An area narrower than this at its narrowest (minimum height) is degenerate input.
+inline constexpr double kMinAreaWidth_m = 1.0;
 inline constexpr std::size_t kMaxSplitHoleVertices = 4'000;
 
 struct SurveyPlan {
