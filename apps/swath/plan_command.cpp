@@ -124,6 +124,9 @@ void PlanCommand::setup(CLI::App& app) {
   app.add_option("--home", home_,
                  "Home (take-off and landing) LAT,LON in degrees (default: the survey's entry "
                  "point, entered from the south-west)");
+  app.add_flag("--far-home", far_home_,
+               "Plan with a home (--home, or the fleet's) farther than 50 km from the area "
+               "(refused otherwise: usually latitude and longitude swapped)");
   app.add_flag("--local", local_, "The CSV area is x,y in metres (needs --origin)");
   app.add_option("--origin", origin_,
                  "LAT,LON of the local frame's origin (0, 0) for a --local area");
@@ -266,6 +269,7 @@ int PlanCommand::run() {
                                      {"ne", planning::StartCorner::ne}},
                                     start_);
   if (!home_.empty()) request.home = parse_lat_lon(home_, "--home");
+  request.far_home = far_home_;
   request.repair = repair_;
   if (drones_ && !fleet_.empty()) throw InputError("give --drones or --fleet, not both");
   if (drones_) {

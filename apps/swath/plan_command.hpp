@@ -51,6 +51,7 @@ class PlanCommand : public Command {
   std::vector<std::string> exclude_;
   bool repair_ = false;
   std::optional<int> drones_;
+  bool far_home_ = false;
   std::string fleet_;
   std::string division_ = "path";
   std::string balance_ = "capability";

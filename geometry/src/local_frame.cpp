@@ -1,5 +1,7 @@
 #include "swath/geometry/local_frame.hpp"
 
+#include <GeographicLib/Geodesic.hpp>
+
 #include <cmath>
 
 namespace swath::geometry {
@@ -24,6 +26,12 @@ GeoPoint LocalFrame::to_geo(Point2 p, double alt_m) const {
     z -= h;
   }
   return {lat, lon, alt_m};
+}
+
+double geodesic_distance_m(const GeoPoint& a, const GeoPoint& b) {
+  double s12 = 0;
+  GeographicLib::Geodesic::WGS84().Inverse(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg, s12);
+  return s12;
 }
 
 }  // namespace swath::geometry

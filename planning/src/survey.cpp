@@ -50,6 +50,64 @@ void repair_outer_ring(SurveyPlan& plan) {
                           fixed_text(total, 1) + " m² in all");
 }
 
+std::string lat_lon_text(const geometry::GeoPoint& g) {
+  return fixed_text(g.lat_deg, 5) + "," + fixed_text(g.lon_deg, 5);
+}
+
+// Geodesic distance from `p` to the nearest vertex of the area (the area is small beside the
+// distances this judges).
+double distance_to_area_m(const geometry::GeoPoint& p,
+                          const std::vector<geometry::GeoPoint>& ring) {
+  double d = INFINITY;
+  for (const geometry::GeoPoint& v : ring) d = std::min(d, geometry::geodesic_distance_m(p, v));
+  return d;
+}
+
+// A home far from the area is almost always a typo: latitude and longitude swapped, or a sign
+// lost (DESIGN.md §14 "Sanity checks"). Refused naming the distance and, where one of those
+// readings lies within 1 km of the area, the home meant.
+void check_home_near_area(const geometry::GeoPoint& home, const std::string& what,
+                          const geometry::Field& field, bool far_home_allowed) {
+  const std::vector<geometry::GeoPoint>& ring = field.geo_rings.at(0);
+  const double d = distance_to_area_m(home, ring);
+  if (d <= kMaxHomeDistance_m || (far_home_allowed && d <= kMaxFarHomeDistance_m)) return;
+  std::string message = what + " " + lat_lon_text(home) + " (lat, lon) is " +
+                        fixed_text(d / 1000, 0) + " km from the area";
+  const geometry::GeoPoint readings[] = {{home.lon_deg, home.lat_deg, 0},
+                                         {-home.lat_deg, home.lon_deg, 0},
+                                         {home.lat_deg, -home.lon_deg, 0},
+                                         {-home.lat_deg, -home.lon_deg, 0}};
+  const char* how[] = {"latitude and longitude swapped", "the latitude's sign flipped",
+                       "the longitude's sign flipped", "both signs flipped"};
+  std::string tail = "; homes";
+  for (std::size_t k = 0; k < std::size(readings); ++k) {
+    const geometry::GeoPoint& r = readings[k];
+    if (std::abs(r.lat_deg) <= 90 && distance_to_area_m(r, ring) <= 1000) {
+      message += "; did you mean " + lat_lon_text(r) + " (" + how[k] + ")?";
+      tail = " Homes";
+      break;
+    }
+  }
+  if (far_home_allowed)  // beyond what any drone flies, and what the local frame can hold
+    throw InputError(message + tail + " farther than " +
+                     fixed_text(kMaxFarHomeDistance_m / 1000, 0) +
+                     " km are refused even with --far-home");
+  throw InputError(message + tail + " farther than " + fixed_text(kMaxHomeDistance_m / 1000, 0) +
+                   " km are refused unless --far-home is given");
+}
+
+// Every home the plan will use: the request's and the fleet's own.
+void check_homes(const SurveyRequest& request, const geometry::Field& field) {
+  if (request.home) check_home_near_area(*request.home, "the home", field, request.far_home);
+  if (!request.fleet) return;
+  if (std::isfinite(request.fleet->home.lat_deg) &&
+      request.fleet->home != request.home.value_or(geometry::GeoPoint{NAN, NAN, 0}))
+    check_home_near_area(request.fleet->home, "the fleet's home", field, request.far_home);
+  for (const Drone& d : request.fleet->drones)
+    if (d.home)
+      check_home_near_area(*d.home, "drone " + d.name + "'s home", field, request.far_home);
+}
+
 // The holes split routes around: bounded before the quadratic work (kMaxSplitHoles).
 void check_split_size(const geometry::Polygon& area) {
   std::size_t vertices = 0;
@@ -132,6 +190,10 @@ void divide_among_fleet(SurveyPlan& plan, geometry::Point2 plan_home,
             what + "; add drones or battery, use --balance makespan, or give --allow-partial");
       plan.warnings.push_back(what);
     }
+    if (plan.drone_missions.back().work_length_m < 1.0)
+      plan.warnings.push_back("drone " + resources[i].name +
+                              " gets no survey work (its share is used up by the flight to the "
+                              "area and back); leave it out of the fleet");
     plan.drone_names.push_back(resources[i].name);
     plan.drone_speeds_m_s.push_back(resources[i].speed_m_s);
   }
@@ -164,6 +226,7 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
     throw InputError(field.source +
                      ": the area is in local metres; give --origin LAT,LON to place it on the map");
 
+  check_homes(request, field);
   if (request.repair) repair_outer_ring(plan);
   plan.area = field.polygon;
   for (std::size_t k = 0; k < request.exclusions.size(); ++k) {

@@ -39,6 +39,23 @@ TEST(LocalFrame, RoundTripBelowOneMillimetreOver20Kilometres) {
   }
 }
 
+// A far home (--far-home, up to 1,000 km) still converts back to itself: the tangent plane is
+// invertible well inside a hemisphere. At 10,000 km it is not (issue 16: a home moved 2,100 km).
+TEST(LocalFrame, RoundTripHoldsAtTheFarHomeLimitAndGeodesicDistance) {
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  const LocalFrame f({47.4, 8.5, 0});
+  for (double azimuth = 0; azimuth < 360; azimuth += 45) {
+    double lat, lon;
+    g.Direct(47.4, 8.5, azimuth, 1.0e6, lat, lon);
+    const GeoPoint back = f.to_geo(f.to_local({lat, lon, 0}));
+    EXPECT_LT(geodesic_distance_m({lat, lon, 0}, back), 1e-3) << azimuth;
+    EXPECT_NEAR(geodesic_distance_m({47.4, 8.5, 0}, {lat, lon, 0}), 1.0e6, 1e-6);
+  }
+  double lat, lon;
+  g.Direct(47.4, 8.5, 180, 1.05e7, lat, lon);  // beyond the horizon of the tangent plane
+  EXPECT_GT(geodesic_distance_m({lat, lon, 0}, f.to_geo(f.to_local({lat, lon, 0}))), 1e5);
+}
+
 TEST(LocalFrame, PlanarDistancesMatchGeodesicsWithin1e5Relative) {
   const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
   const LocalFrame f({52.0, -1.0, 0});

@@ -27,4 +27,8 @@ class LocalFrame {
   GeographicLib::LocalCartesian frame_;
 };
 
+/// Geodesic distance on the WGS84 ellipsoid between two points (altitudes ignored), metres;
+/// accurate to nanometres at any distance (GeographicLib::Geodesic, Karney 2013).
+double geodesic_distance_m(const GeoPoint& a, const GeoPoint& b);
+
 }  // namespace swath::geometry

@@ -48,6 +48,8 @@ struct SurveyRequest {
   std::optional<double> waypoint_spacing_m;
   StartCorner start = StartCorner::nearest_home;
   std::optional<geometry::GeoPoint> home;  ///< absent: the area's south-west-most vertex
+  /// Plan with homes farther than kMaxHomeDistance_m from the area (refused otherwise).
+  bool far_home = false;
   ConcaveMode concave = ConcaveMode::split;
   /// Extra no-fly zones (local frame, any orientation); they become holes of the area.
   std::vector<geometry::Ring> exclusions;
@@ -75,6 +77,12 @@ inline constexpr std::size_t kAutopilotItemLimit = 700;  ///< ArduPilot's classi
 /// the holes' vertices: 500 holes of 4 vertices plan in ~2 s and 150 MB, 3,000 took 98 s and
 /// 5.6 GB. Beyond these, split refuses (hull mode ignores holes and is not limited).
 inline constexpr std::size_t kMaxSplitHoles = 500;
+/// A home farther than this from the area is refused unless SurveyRequest::far_home.
+inline constexpr double kMaxHomeDistance_m = 50'000;
+/// Farther than this no home is planned even with far_home: no drone flies that far to a survey,
+/// and the local frame the plan is computed in ends beyond it (tangent-plane coordinates stop
+/// being invertible towards the horizon; the tests check the round trip at this distance).
+inline constexpr double kMaxFarHomeDistance_m = 1'000'000;
 /// An area narrower than this at its narrowest (minimum height) is degenerate input.
 inline constexpr double kMinAreaWidth_m = 1.0;
 inline constexpr std::size_t kMaxSplitHoleVertices = 4'000;
