@@ -107,9 +107,9 @@ void BM_StageCoverage(benchmark::State& state) {
                                   geometry::FieldFormat::geojson, "bench");
   const planning::SurveyPlan plan = planning::plan_survey(r);
   for (auto _ : state)
-    benchmark::DoNotOptimize(planning::measure_coverage(plan.request.field.polygon,
-                                                        plan.mission.lines, plan.sweep.angle_deg,
-                                                        plan.imaging.footprint_across_m));
+    benchmark::DoNotOptimize(
+        planning::measure_coverage(plan.request.field.polygon, plan.drones[0].mission.lines,
+                                   plan.sweep.angle_deg, plan.imaging.footprint_across_m));
 }
 
 }  // namespace

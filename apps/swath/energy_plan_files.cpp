@@ -62,11 +62,12 @@ std::vector<std::pair<std::string, std::string>> energy_plan_files(
     computations += shortest_text(c.hi);
     computations += ']';
   }
-  const auto missions = planning::missions_of(plan);
+  const bool several = plan.drones.size() > 1;
   std::vector<std::pair<std::string, std::string>> files;
-  for (const planning::DroneMission* m : missions) {
+  for (const planning::DronePlan& drone : plan.drones) {
+    const planning::DroneMission* m = &drone.mission;
     std::string file = request.file_name;
-    if (missions.size() > 1)
+    if (several)
       file = name.stem().string() + "-" + std::to_string(m->drone) + name.extension().string();
     if (m->lines.empty()) {
       warnings.push_back("drone " + std::to_string(m->drone) + " has no lines; no " + file);
@@ -75,7 +76,7 @@ std::vector<std::pair<std::string, std::string>> energy_plan_files(
     const energy::Plan stages = energy::survey_stage_plan(*m, settings);
     const geometry::GeoPoint origin = plan.request.field.frame->origin();
     std::string text = "# Energy plan of " + request.field;
-    if (missions.size() > 1) text += ", drone " + std::to_string(m->drone);
+    if (several) text += ", drone " + std::to_string(m->drone);
     text += " (swath plan --energy-plan): " + std::to_string(stages.stages.size()) +
             " stages for swath-energy run.\n";
     text += "# Local frame: x east, y north, metres from " + fixed_text(origin.lat_deg, 7) + ", " +

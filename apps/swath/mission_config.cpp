@@ -5,19 +5,14 @@
 #include <set>
 
 #include "swath/base/input_error.hpp"
+#include "swath/base/yaml_input.hpp"
 
 namespace swath::apps {
 
 using base::InputError;
 
 void apply_mission_config(CLI::App& app, const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source + ": line " + std::to_string(e.mark.line + 1) + ": invalid YAML (" +
-                     e.msg + ")");
-  }
+  const YAML::Node root = base::load_yaml(yaml_text, source);  // aliases bounded too
   if (root.IsNull()) return;
   if (!root.IsMap()) throw InputError(source + ": a mission config is a mapping of option: value");
   std::set<std::string> seen;

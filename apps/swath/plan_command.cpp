@@ -55,11 +55,6 @@ std::string kilometres(double m) {
   return fixed_text(m / 1000, 2) + " km";
 }
 
-std::string duration(double s) {
-  const long total = std::lround(s);
-  return std::to_string(total / 60) + " min " + std::to_string(total % 60) + " s";
-}
-
 }  // namespace
 
 void PlanCommand::setup(CLI::App& app) {
@@ -113,8 +108,8 @@ void PlanCommand::setup(CLI::App& app) {
       ->check(CLI::IsMember({"centered", "paper"}))
       ->capture_default_str();
   app.add_option("--turnaround", turnaround_m_,
-                 "Extend every line by this many metres at both ends")
-      ->capture_default_str();
+                 "Extend every line by this many metres at both ends (default 0; fixed-wing: one "
+                 "turn radius, to roll out on the line)");
   app.add_option("--waypoint-spacing", waypoint_spacing_m_,
                  "Add waypoints along lines at most this many metres apart");
   app.add_option("--start", start_,
@@ -171,6 +166,53 @@ void PlanCommand::setup(CLI::App& app) {
       ->check(CLI::IsMember({"multirotor", "fixedwing"}))
       ->capture_default_str();
   app.add_option("--speed", speed_m_s_, "Cruise speed, m/s (default 5 multirotor, 15 fixed wing)");
+  app.add_option("--clearance", clearance_m_,
+                 "Keep every waypoint and leg (lines, turns, transits, legs to and from home) this "
+                 "many metres from holes and no-fly zones; the summary reports what is kept")
+      ->capture_default_str();
+  app.add_option("--boundary-clearance", boundary_clearance_m_,
+                 "Keep lines and turns this many metres inside the outer boundary")
+      ->capture_default_str();
+  app.add_option("--trigger", trigger_,
+                 "Camera: distance (every trigger distance, DO_SET_CAM_TRIGG_DIST), time (every "
+                 "trigger distance / speed seconds, IMAGE_START_CAPTURE) or hover (stop and shoot "
+                 "at each photo point); photos on the lines only")
+      ->check(CLI::IsMember({"distance", "time", "hover"}))
+      ->capture_default_str();
+  app.add_option("--camera-command", camera_command_,
+                 "Hover shots: digicam (DO_DIGICAM_CONTROL, relay/servo cameras) or "
+                 "image-capture (IMAGE_START_CAPTURE, MAVLink cameras)")
+      ->check(CLI::IsMember({"digicam", "image-capture"}))
+      ->capture_default_str();
+  app.add_flag("--photos-in-turns", photos_in_turns_,
+               "Keep the camera on through turns that stay inside the area (default: started at "
+               "each line, stopped before each turn)");
+  app.add_option("--gimbal-pitch", gimbal_pitch_deg_,
+                 "Camera pitch set once at the start, degrees (-90 nadir, 0 level)")
+      ->capture_default_str();
+  app.add_flag("--crosshatch", crosshatch_,
+               "Fly the lines a second time at 90 degrees (for 3-D models)");
+  app.add_option("--fence-margin", fence_margin_m_,
+                 "The .plan's inclusion fence: the area grown by this many metres (default: "
+                 "turnaround + half the footprint width + 10 m)");
+  app.add_flag("--fence-files", fence_files_,
+               "Also write fence.waypoints, fence.fen and rally.waypoints for Mission Planner");
+  app.add_flag("--land", land_,
+               "End with a landing at home (NAV_LAND) instead of return-to-launch");
+  app.add_option("--max-bank", max_bank_deg_,
+                 "Fixed-wing: bank limit, degrees; sets the minimum turn radius v^2 / (g tan bank)")
+      ->capture_default_str();
+  app.add_option("--sorties", sorties_,
+                 "auto: cut each drone's flight into sorties that fit its endurance less the "
+                 "reserve (NAME-1.plan, NAME-2.plan, ...); off: one flight")
+      ->check(CLI::IsMember({"auto", "off"}))
+      ->capture_default_str();
+  app.add_option("--endurance", endurance_s_,
+                 "Flight time on a full battery, seconds, for drones the fleet gives none "
+                 "(sorties, and the warning when a flight is longer)");
+  app.add_option("--reserve", reserve_,
+                 "Share of the endurance kept in hand for sorties and the endurance warning")
+      ->capture_default_str();
   app.add_option("--energy-plan", energy_plan_,
                  "Also write the zigzag as a stage plan for 'swath-energy run' under this file "
                  "name in -o DIR (with a fleet, NAME-<drone>.EXT each): lines, half-circle turns, "
@@ -195,22 +237,21 @@ void PlanCommand::check_numbers() const {
   if (min_pixels_) base::check_range(*min_pixels_, kMinPixels, "--min-pixels");
   if (angle_deg_) base::check_range(*angle_deg_, kBearing_deg, "--angle");
   base::check_range(angle_step_deg_, kAngleStep_deg, "--angle-step");
-  base::check_range(turnaround_m_, kTurnaround_m, "--turnaround");
+  if (turnaround_m_) base::check_range(*turnaround_m_, kTurnaround_m, "--turnaround");
+  base::check_range(clearance_m_, kClearance_m, "--clearance");
+  base::check_range(boundary_clearance_m_, kClearance_m, "--boundary-clearance");
+  base::check_range(gimbal_pitch_deg_, kGimbalPitch_deg, "--gimbal-pitch");
+  if (fence_margin_m_) base::check_range(*fence_margin_m_, kFenceMargin_m, "--fence-margin");
+  base::check_range(max_bank_deg_, kBank_deg, "--max-bank");
+  if (endurance_s_) base::check_range(*endurance_s_, kEndurance_s, "--endurance");
+  base::check_range(reserve_, kReserve, "--reserve");
   if (waypoint_spacing_m_)
     base::check_range(*waypoint_spacing_m_, kWaypointSpacing_m, "--waypoint-spacing");
   if (drones_) base::check_range(*drones_, kDrones, "--drones");
   if (speed_m_s_) base::check_range(*speed_m_s_, kSpeed_m_s, "--speed");
 }
 
-int PlanCommand::run() {
-  if (!config_.empty())
-    apply_mission_config(
-        *app_, base::read_text_file(config_, "mission config", base::kMaxConfigFileBytes), config_);
-  if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
-  if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
-  if (output_.empty()) throw InputError("no output directory: give -o DIR");
-  check_numbers();
-
+planning::SurveyRequest PlanCommand::request() const {
   planning::SurveyRequest request;
   geometry::FieldReadOptions read_options;
   read_options.local_metres = local_;
@@ -291,21 +332,35 @@ int PlanCommand::run() {
   request.concave = concave_ == "reject" ? planning::ConcaveMode::reject
                     : concave_ == "hull" ? planning::ConcaveMode::hull
                                          : planning::ConcaveMode::split;
-  for (const std::string& path : exclude_) {
-    const geometry::Field zone = geometry::read_field(path);
-    geometry::Ring ring;
-    for (const geometry::GeoPoint& g : zone.geo_rings.at(0))
-      ring.push_back(request.field.frame->to_local(g));
-    request.exclusions.push_back(std::move(ring));
-  }
+  for (const std::string& path : exclude_)
+    request.exclusions.push_back(geometry::read_field(path).geo_rings.at(0));
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
   request.speed_m_s = speed_m_s_;
+  request.clearance_m = clearance_m_;
+  request.boundary_clearance_m = boundary_clearance_m_;
+  request.triggering.mode = trigger_ == "time"    ? planning::TriggerMode::time
+                            : trigger_ == "hover" ? planning::TriggerMode::hover
+                                                  : planning::TriggerMode::distance;
+  request.triggering.command = camera_command_ == "image-capture"
+                                   ? planning::CameraCommand::image_capture
+                                   : planning::CameraCommand::digicam;
+  request.triggering.photos_in_turns = photos_in_turns_;
+  request.triggering.gimbal_pitch_deg = gimbal_pitch_deg_;
+  request.crosshatch = crosshatch_;
+  request.fence_margin_m = fence_margin_m_;
+  request.land = land_;
+  request.max_bank_deg = max_bank_deg_;
+  request.sorties = sorties_ == "auto";
+  request.endurance_s = endurance_s_;
+  request.reserve = reserve_;
+  return request;
+}
 
-  const planning::SurveyPlan plan = planning::plan_survey(request);
-  auto files = planning::survey_files(plan);
-  std::vector<std::string> warnings = plan.warnings;
+std::vector<std::pair<std::string, std::string>> PlanCommand::files(
+    const planning::SurveyPlan& plan) const {
+  auto files = planning::survey_files(plan, {fence_files_});
   if (!energy_plan_.empty()) {
     EnergyPlanRequest energy;
     energy.file_name = energy_plan_;
@@ -313,7 +368,7 @@ int PlanCommand::run() {
     energy.field = std::filesystem::path(field_).filename().string();
     for (const std::string& c : energy_computations_)
       if (c != "none") energy.computations.push_back(parse_interval(c, "--energy-computation"));
-    for (auto& f : energy_plan_files(plan, energy, warnings)) {
+    for (auto& f : energy_plan_files(plan, energy, energy_warnings_)) {
       for (const auto& [name, content] : files)
         if (name == f.first)
           throw InputError("--energy-plan " + energy_plan_ +
@@ -332,34 +387,41 @@ int PlanCommand::run() {
   std::vector<std::string> set_names;
   for (const auto& f : files) set_names.push_back(f.first);
   files[1].second = planning::summary_json(plan, set_names);
-  base::write_files_atomically(output_, files, "plan");
+  return files;
+}
 
+void PlanCommand::report(const planning::SurveyPlan& plan,
+                         const std::vector<std::pair<std::string, std::string>>& files) const {
   const planning::Imaging& im = plan.imaging;
   std::printf("swath plan: %s -> %s\n", field_.c_str(), output_.c_str());
+  const std::string handling = plan.handling == planning::Handling::hull
+                                   ? " (flown over its convex hull)"
+                               : plan.handling == planning::Handling::split
+                                   ? " (split into " + std::to_string(plan.cells.size()) + " cells)"
+                                   : "";
   std::printf("  area       %s, %s ha%s\n",
               std::string(geometry::to_string(plan.facts.classification.type)).c_str(),
-              fixed_text(*plan.facts.area_m2 / 1e4, 3).c_str(),
-              plan.handling == "hull" ? " (flown over its convex hull)"
-              : plan.handling == "split"
-                  ? (" (split into " + std::to_string(plan.cells.size()) + " cells)").c_str()
-                  : "");
+              fixed_text(*plan.facts.area_m2 / 1e4, 3).c_str(), handling.c_str());
   std::printf("  camera     %s, %s: altitude %s m, GSD %s cm/px, footprint %s x %s m\n",
-              request.camera.name.c_str(), mode_.c_str(), fixed_text(im.altitude_m, 1).c_str(),
+              plan.request.camera.name.c_str(), mode_.c_str(), fixed_text(im.altitude_m, 1).c_str(),
               fixed_text(im.gsd_m * 100, 3).c_str(), fixed_text(im.footprint_across_m, 1).c_str(),
               fixed_text(im.footprint_along_m, 1).c_str());
   std::printf(
       "  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n", plan.sweep.lines.size(),
       fixed_text(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
       fixed_text(im.line_spacing_m, 2).c_str(), fixed_text(im.trigger_distance_m, 2).c_str());
-  for (const planning::DroneMission* dm : planning::missions_of(plan)) {
-    const planning::DroneMission& m = *dm;
-    std::printf(
-        "  drone %-4d %s (work %s, transit %s), %s at %s m/s, %zu waypoints\n", m.drone,
-        kilometres(m.path_length_m).c_str(), kilometres(m.work_length_m).c_str(),
-        kilometres(m.transit_length_m).c_str(), duration(m.flight_time_s).c_str(),
-        fixed_text(m.flight_time_s > 0 ? m.path_length_m / m.flight_time_s : plan.speed_m_s, 1)
-            .c_str(),
-        m.waypoint_count);
+  for (const planning::DronePlan& d : plan.drones) {
+    const planning::DroneMission& m = d.mission;
+    std::printf("  %-10s %s (work %s, transit %s), %s at %s m/s, %zu waypoints, %zu photos\n",
+                d.name.c_str(), kilometres(m.path_length_m).c_str(),
+                kilometres(m.work_length_m).c_str(), kilometres(m.transit_length_m).c_str(),
+                planning::duration_text(m.flight_time_s).c_str(),
+                fixed_text(d.speed_m_s, 1).c_str(), m.waypoint_count, d.photos.size());
+    for (const planning::Sortie& s : d.sorties)
+      std::printf("    sortie %d  %s, %s work, %zu photos, resumes at %s m, %s m\n", s.number,
+                  planning::duration_text(s.mission.flight_time_s).c_str(),
+                  kilometres(s.mission.work_length_m).c_str(), s.photos.size(),
+                  fixed_text(s.resume.x, 1).c_str(), fixed_text(s.resume.y, 1).c_str());
   }
   std::printf(
       "  coverage   %s %% of the area; outside it: %s %% of the swath, %s m of lines, %s m of "
@@ -368,10 +430,30 @@ int PlanCommand::run() {
       fixed_text(plan.coverage.outside_fraction * 100, 1).c_str(),
       fixed_text(plan.coverage.line_length_outside_m, 1).c_str(),
       fixed_text(plan.transit_outside_m, 1).c_str());
+  if (plan.clearance.no_fly_m)
+    std::printf("  clearance  %s m kept from %zu no-fly zone(s) (asked %s m)\n",
+                fixed_text(*plan.clearance.no_fly_m, 1).c_str(), plan.no_fly.size(),
+                fixed_text(plan.request.clearance_m, 1).c_str());
   std::string names;
   for (const auto& f : files) names += " " + f.first;
   std::printf("  wrote     %s\n", names.c_str());
+  std::vector<std::string> warnings = plan.warnings;
+  warnings.insert(warnings.end(), energy_warnings_.begin(), energy_warnings_.end());
   for (const std::string& w : warnings) std::cerr << "swath plan: warning: " << w << '\n';
+}
+
+int PlanCommand::run() {
+  if (!config_.empty())
+    apply_mission_config(
+        *app_, base::read_text_file(config_, "mission config", base::kMaxConfigFileBytes), config_);
+  if (field_.empty()) throw InputError("no area: give FIELD (or 'field:' in --config)");
+  if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
+  if (output_.empty()) throw InputError("no output directory: give -o DIR");
+  check_numbers();
+  const planning::SurveyPlan plan = planning::plan_survey(request());
+  const auto set = files(plan);
+  base::write_files_atomically(output_, set, "plan");
+  report(plan, set);
   return base::kExitSuccess;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "swath/planning/survey.hpp"
 
 namespace swath::apps {
 
@@ -22,6 +23,11 @@ class PlanCommand : public Command {
  private:
   /// Every number given, against planning/limits.hpp's ranges, before any work.
   void check_numbers() const;
+  /// The steps of run(): the request from the options, the files of the plan, what to print.
+  planning::SurveyRequest request() const;
+  std::vector<std::pair<std::string, std::string>> files(const planning::SurveyPlan& plan) const;
+  void report(const planning::SurveyPlan& plan,
+              const std::vector<std::pair<std::string, std::string>>& files) const;
 
   CLI::App* app_ = nullptr;
   std::string config_;
@@ -41,7 +47,7 @@ class PlanCommand : public Command {
   std::string angle_search_ = "exact";
   double angle_step_deg_ = 0.1;
   std::string placement_ = "centered";
-  double turnaround_m_ = 0.0;
+  std::optional<double> turnaround_m_;
   std::optional<double> waypoint_spacing_m_;
   std::string start_ = "nearest-home";
   std::string home_;
@@ -61,6 +67,21 @@ class PlanCommand : public Command {
   std::string firmware_ = "ardupilot";
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;
+  double clearance_m_ = 5.0;
+  double boundary_clearance_m_ = 0.0;
+  std::string trigger_ = "distance";
+  std::string camera_command_ = "digicam";
+  bool photos_in_turns_ = false;
+  double gimbal_pitch_deg_ = -90.0;
+  bool crosshatch_ = false;
+  std::optional<double> fence_margin_m_;
+  bool fence_files_ = false;
+  bool land_ = false;
+  double max_bank_deg_ = 30.0;
+  std::string sorties_ = "off";
+  std::optional<double> endurance_s_;
+  double reserve_ = 0.2;
+  mutable std::vector<std::string> energy_warnings_;  ///< from files(), printed by report()
   std::string energy_plan_;
   double energy_min_coverage_ = 0.99;
   std::vector<std::string> energy_computations_ = {"2,10", "32,448"};

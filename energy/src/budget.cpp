@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+
+#include <map>
 #include <sstream>
 
 #include "swath/base/input_error.hpp"
@@ -57,12 +59,20 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
   const json& features = member_or_null(root, "features");
   if (!features.is_array())
     throw InputError(source + ": a mission GeoJSON is a FeatureCollection with 'features'");
+  // The plan's home, and each drone's own where it differs (swath writes those with "drone").
   std::optional<GeoPoint> home;
+  std::map<long long, GeoPoint> drone_homes;
   for (std::size_t i = 0; i < features.size(); ++i) {
     const json& f = features[i];
-    if (role_of(f) == "home")
-      home = lon_lat(member_or_null(member_or_null(f, "geometry"), "coordinates"),
-                     source + ": feature " + std::to_string(i));
+    if (role_of(f) != "home") continue;
+    const GeoPoint at = lon_lat(member_or_null(member_or_null(f, "geometry"), "coordinates"),
+                                source + ": feature " + std::to_string(i));
+    const json& drone = member_or_null(member_or_null(f, "properties"), "drone");
+    if (drone.is_number_integer()) {
+      drone_homes[drone.get<long long>()] = at;
+    } else {
+      home = at;
+    }
   }
   std::vector<WaypointMission> out;
   for (std::size_t i = 0; i < features.size(); ++i) {
@@ -80,7 +90,9 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
                       drone.get<long long>() < 1'000'000
                   ? "drone-" + std::to_string(drone.get<long long>())
                   : "drone-" + std::to_string(out.size() + 1);
-    m.home = home ? *home : lon_lat(coords[0], where);
+    const auto own =
+        drone.is_number_integer() ? drone_homes.find(drone.get<long long>()) : drone_homes.end();
+    m.home = own != drone_homes.end() ? own->second : home ? *home : lon_lat(coords[0], where);
     const geometry::LocalFrame frame(m.home);
     const bool has_alt = base::json_find(props, "altitude_m") != nullptr;
     const double alt =

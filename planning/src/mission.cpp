@@ -1,8 +1,126 @@
 #include "swath/planning/mission.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Turn angle at b between legs a-b and b-c, degrees in [0, 180].
+double turn_deg(Point2 a, Point2 b, Point2 c) {
+  const Point2 u = b - a, v = c - b;
+  const double nu = std::hypot(u.x, u.y), nv = std::hypot(v.x, v.y);
+  if (nu == 0 || nv == 0) return 0;
+  const double cosine = std::clamp(geometry::dot(u, v) / (nu * nv), -1.0, 1.0);
+  return std::acos(cosine) * 180 / kPi;
+}
+
+// Time to fly `length` from rest to rest at most `v` with acceleration `a` (trapezoid, or a
+// triangle when the leg is too short to reach v).
+double rest_to_rest_s(double length, double v, double a) {
+  if (length <= 0) return 0;
+  if (length >= v * v / a) return length / v + v / a;
+  return 2 * std::sqrt(length / a);
+}
+
+// Builds the items and the path of one mission step by step.
+class MissionBuilder {
+ public:
+  MissionBuilder(int drone, Point2 home, const MissionSettings& s) : s_(s) {
+    m_.drone = drone;
+    m_.home = home;
+    m_.items.push_back({ItemKind::takeoff, home, s.altitude_m});
+    m_.path.push_back(home);
+    holds_.push_back(0);
+    // The drone's own speed right after take-off: without it ArduCopter flies WPNAV_SPEED
+    // (10 m/s), not the speed the trigger distance and the flight time were planned for.
+    m_.items.push_back({ItemKind::change_speed, {}, 0.0, s.speed_m_s});
+    m_.items.push_back({ItemKind::gimbal_pitch, {}, 0.0, s.triggering.gimbal_pitch_deg});
+  }
+
+  Point2 at() const { return m_.path.back(); }
+
+  void waypoint(Point2 p, double hold_s = 0) {
+    m_.items.push_back({ItemKind::waypoint, p, s_.altitude_m, hold_s});
+    m_.path.push_back(p);
+    holds_.push_back(hold_s);
+  }
+
+  void route_to(Point2 target, const LegRoute& route) {
+    if (route)
+      for (const Point2& p : route(at(), target)) waypoint(p);
+  }
+
+  void camera(bool on) {
+    if (on == camera_on_ || s_.triggering.mode == TriggerMode::hover) return;
+    camera_on_ = on;
+    const double value = s_.triggering.mode == TriggerMode::distance
+                             ? s_.trigger_distance_m
+                             : s_.trigger_distance_m / s_.speed_m_s;
+    m_.items.push_back({on ? ItemKind::trigger_start : ItemKind::trigger_stop,
+                        {},
+                        0.0,
+                        on ? value : 0.0,
+                        s_.triggering.mode});
+  }
+
+  // Hover mode: the line from here to `end` flown photo point by photo point, a held waypoint
+  // and a shot at each.
+  void hover_line(Point2 end) {
+    const std::vector<Point2> shots = photo_positions(at(), end, s_.trigger_distance_m);
+    for (std::size_t k = 0; k < shots.size(); ++k) {
+      if (k == 0) {  // the line's start, already a waypoint: hold there too
+        holds_.back() = s_.triggering.hover_hold_s;
+        m_.items.back().value = s_.triggering.hover_hold_s;
+      } else {
+        waypoint(shots[k], s_.triggering.hover_hold_s);
+      }
+      m_.items.push_back(
+          {ItemKind::camera_shot, {}, 0.0, 0.0, TriggerMode::hover, s_.triggering.command});
+    }
+    if (!(shots.back() == end)) waypoint(end);
+  }
+
+  DroneMission finish(const LegRoute& route) {
+    camera(false);
+    route_to(m_.home, route);
+    if (s_.land) {
+      if (s_.vehicle == Vehicle::fixedwing)
+        m_.items.push_back({ItemKind::land_start, m_.home, 0.0});
+      m_.items.push_back({ItemKind::land, m_.home, 0.0});
+    } else {
+      m_.items.push_back({ItemKind::return_to_launch, {}, 0.0});
+    }
+    m_.path.push_back(m_.home);
+    holds_.push_back(0);
+    for (std::size_t i = 0; i + 1 < m_.path.size(); ++i)
+      m_.path_length_m += geometry::distance(m_.path[i], m_.path[i + 1]);
+    m_.transit_length_m = m_.path_length_m - m_.work_length_m;
+    m_.flight_time_s = path_time_s(m_.path, holds_, s_.speed_m_s, s_.vehicle);
+    if (s_.vehicle == Vehicle::multirotor)
+      m_.flight_time_s += s_.altitude_m / kClimbRate_m_s + s_.altitude_m / kDescentRate_m_s;
+    for (const MissionItem& item : m_.items) m_.waypoint_count += positional(item.kind);
+    return std::move(m_);
+  }
+
+  DroneMission& mission() { return m_; }
+
+ private:
+  const MissionSettings& s_;
+  DroneMission m_;
+  std::vector<double> holds_;
+  bool camera_on_ = false;
+};
+
+}  // namespace
+
+bool positional(ItemKind kind) {
+  return kind == ItemKind::takeoff || kind == ItemKind::waypoint || kind == ItemKind::land;
+}
 
 double SurveyPath::length_m() const {
   double length = 0;
@@ -14,14 +132,14 @@ double SurveyPath::length_m() const {
 SurveyPath survey_path(const std::vector<SweepLine>& lines,
                        std::optional<double> waypoint_spacing_m, const LegRoute& route) {
   SurveyPath path;
-  auto add = [&](geometry::Point2 p, bool on_line) {
+  auto add = [&](Point2 p, bool on_line) {
     if (!path.points.empty()) path.on_line.push_back(on_line);
     path.points.push_back(p);
   };
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (i > 0 && route)
-      for (const geometry::Point2& p : route(path.points.back(), lines[i].start)) add(p, false);
-    const std::vector<geometry::Point2> points = line_waypoints(lines[i], waypoint_spacing_m);
+      for (const Point2& p : route(path.points.back(), lines[i].start)) add(p, false);
+    const std::vector<Point2> points = line_waypoints(lines[i], waypoint_spacing_m);
     for (std::size_t k = 0; k < points.size(); ++k) add(points[k], k > 0);
   }
   return path;
@@ -33,12 +151,12 @@ std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<doubl
   double walked = 0;
   pieces.back().points.push_back(path.points.front());
   for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
-    const geometry::Point2 a = path.points[i], b = path.points[i + 1];
+    const Point2 a = path.points[i], b = path.points[i + 1];
     const double length = geometry::distance(a, b);
     // Every cut inside this segment ends a piece at a new point and starts the next one there.
     while (next_cut < cuts_m.size() && cuts_m[next_cut] < walked + length) {
       const double t = std::clamp((cuts_m[next_cut] - walked) / length, 0.0, 1.0);
-      const geometry::Point2 cut = a + (b - a) * t;
+      const Point2 cut = a + (b - a) * t;
       if (!(cut == pieces.back().points.back())) {
         pieces.back().points.push_back(cut);
         pieces.back().on_line.push_back(path.on_line[i]);
@@ -57,49 +175,122 @@ std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<doubl
   return pieces;
 }
 
-DroneMission mission_for_path(int drone, geometry::Point2 home, const SurveyPath& path,
-                              const MissionSettings& s, const LegRoute& route) {
-  DroneMission m;
-  m.drone = drone;
-  m.home = home;
-  m.items.push_back({ItemKind::takeoff, home, s.altitude_m, 0.0});
-  m.path.push_back(home);
-  auto leg_to = [&](geometry::Point2 target) {
-    if (!route) return;
-    for (const geometry::Point2& p : route(m.path.back(), target)) {
-      m.items.push_back({ItemKind::waypoint, p, s.altitude_m, 0.0});
-      m.path.push_back(p);
-    }
-  };
-  for (std::size_t i = 0; i < path.points.size(); ++i) {
-    if (i == 0) leg_to(path.points[0]);
-    m.items.push_back({ItemKind::waypoint, path.points[i], s.altitude_m, 0.0});
-    if (i == 0) m.items.push_back({ItemKind::trigger_start, {}, 0.0, s.trigger_distance_m});
-    m.path.push_back(path.points[i]);
-    if (i > 0 && path.on_line[i - 1]) {
-      // Consecutive segments on lines are one line (split only by intermediate waypoints).
-      if (i > 1 && path.on_line[i - 2]) {
-        m.lines.back().end = path.points[i];
-      } else {
-        m.lines.push_back({path.points[i - 1], path.points[i]});
-      }
-      m.work_length_m += geometry::distance(path.points[i - 1], path.points[i]);
-    }
-  }
-  if (!path.points.empty()) m.items.push_back({ItemKind::trigger_stop, {}, 0.0, 0.0});
-  leg_to(home);
-  m.items.push_back({ItemKind::return_to_launch, {}, 0.0, 0.0});
-  m.path.push_back(home);
-  for (std::size_t i = 0; i + 1 < m.path.size(); ++i)
-    m.path_length_m += geometry::distance(m.path[i], m.path[i + 1]);
-  m.transit_length_m = m.path_length_m - m.work_length_m;
-  m.flight_time_s = m.path_length_m / s.speed_m_s;
-  for (const MissionItem& item : m.items)
-    m.waypoint_count += item.kind == ItemKind::takeoff || item.kind == ItemKind::waypoint;
-  return m;
+std::vector<Point2> photo_positions(Point2 start, Point2 end, double trigger_distance_m) {
+  std::vector<Point2> out{start};
+  const double length = geometry::distance(start, end);
+  if (!(trigger_distance_m > 0) || length == 0) return out;
+  const auto count = static_cast<std::size_t>(std::floor(length / trigger_distance_m + 1e-9));
+  for (std::size_t k = 1; k <= count; ++k)
+    out.push_back(start + (end - start) * (static_cast<double>(k) * trigger_distance_m / length));
+  return out;
 }
 
-DroneMission build_mission(int drone, geometry::Point2 home, const std::vector<SweepLine>& lines,
+std::vector<PhotoPoint> planned_photos(const DroneMission& m, double trigger_distance_m) {
+  std::vector<PhotoPoint> photos;
+  Point2 at = m.home;
+  bool on = false;
+  double since = 0;  // distance flown since the last photo
+  int line = -1;
+  std::size_t next_line = 0;
+  for (const MissionItem& item : m.items) {
+    if (positional(item.kind)) {
+      const Point2 to = item.position;
+      double remaining = geometry::distance(at, to);
+      if (on && trigger_distance_m > 0 && remaining > 0) {
+        const Point2 step = (to - at) * (1.0 / remaining);
+        Point2 cursor = at;
+        while (since + remaining >= trigger_distance_m - 1e-9) {
+          const double advance = trigger_distance_m - since;
+          cursor = cursor + step * advance;
+          remaining -= advance;
+          photos.push_back({cursor, std::max(line, 0)});
+          since = 0;
+        }
+        since += remaining;
+      }
+      at = to;
+      if (next_line < m.lines.size() && at == m.lines[next_line].start)
+        line = static_cast<int>(next_line++);
+    } else if (item.kind == ItemKind::trigger_start) {
+      on = true;
+      since = 0;
+      photos.push_back({at, std::max(line, 0)});  // param3 = 1: one photo at once
+    } else if (item.kind == ItemKind::trigger_stop) {
+      on = false;
+    } else if (item.kind == ItemKind::camera_shot) {
+      photos.push_back({at, std::max(line, 0)});
+    }
+  }
+  return photos;
+}
+
+double path_time_s(const std::vector<Point2>& path, const std::vector<double>& hold_s,
+                   double speed_m_s, Vehicle vehicle) {
+  double length = 0, time = 0, since_stop = 0;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const double leg = geometry::distance(path[i], path[i + 1]);
+    length += leg;
+    since_stop += leg;
+    const bool last = i + 2 == path.size();
+    const double hold = i + 1 < hold_s.size() ? hold_s[i + 1] : 0.0;
+    const bool stop = last || hold > 0 ||
+                      (vehicle == Vehicle::multirotor &&
+                       turn_deg(path[i], path[i + 1], path[i + 2]) > kStopTurn_deg);
+    if (vehicle == Vehicle::multirotor && stop) {
+      time += rest_to_rest_s(since_stop, speed_m_s, kAcceleration_m_s2) + hold;
+      since_stop = 0;
+    }
+  }
+  return vehicle == Vehicle::multirotor ? time : length / speed_m_s;
+}
+
+DroneMission mission_for_path(int drone, Point2 home, const SurveyPath& path,
+                              const MissionSettings& s, const LegRoute& route,
+                              const InsideTest& inside) {
+  MissionBuilder b(drone, home, s);
+  DroneMission& m = b.mission();
+  const std::size_t n = path.points.size();
+  if (n > 0) b.route_to(path.points[0], route);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 p = path.points[i];
+    const bool from_line = i > 0 && path.on_line[i - 1];
+    if (from_line) {
+      // Consecutive segments on lines are one line (split only by intermediate waypoints).
+      if (i > 1 && path.on_line[i - 2]) {
+        m.lines.back().end = p;
+      } else {
+        m.lines.push_back({path.points[i - 1], p});
+      }
+      m.work_length_m += geometry::distance(path.points[i - 1], p);
+    }
+    if (s.triggering.mode == TriggerMode::hover && from_line) {
+      b.hover_line(p);
+    } else {
+      b.waypoint(p);
+    }
+    const bool to_line = i + 1 < n && path.on_line[i];
+    if (to_line) {
+      b.camera(true);
+    } else if (from_line) {
+      // The end of a line: the camera stays on only through a turn that stays in the area all
+      // the way to the next line (photos_in_turns); otherwise it stops before the turn.
+      bool keep = false;
+      if (s.triggering.photos_in_turns && inside) {
+        std::size_t j = i;
+        bool all_inside = true;
+        while (j + 1 < n && !path.on_line[j]) {
+          all_inside = all_inside && inside(path.points[j], path.points[j + 1]);
+          ++j;
+        }
+        keep = all_inside && j + 1 < n && path.on_line[j];
+      }
+      if (!keep) b.camera(false);
+    }
+  }
+  return b.finish(route);
+}
+
+DroneMission build_mission(int drone, Point2 home, const std::vector<SweepLine>& lines,
                            const MissionSettings& s, const LegRoute& route) {
   return mission_for_path(drone, home, survey_path(lines, s.waypoint_spacing_m, route), s, route);
 }

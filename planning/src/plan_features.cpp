@@ -109,33 +109,45 @@ int drone_of(const json& properties, const std::string& where) {
 PlanFeatures plan_features(const SurveyPlan& plan) {
   PlanFeatures f;
   const geometry::Polygon& area = plan.request.field.polygon;
-  for (std::size_t r = 0; r < geometry::ring_count(area); ++r) {
+  for (std::size_t r = 0; r < 1 && r < geometry::ring_count(area); ++r) {
     GeoRing ring;
     for (const GeoPoint& g : plan.request.field.geo_rings.at(r)) ring.push_back(rounded(g));
     f.area.push_back(std::move(ring));
   }
+  // The field's holes stay holes of the area too (a GIS reads the area as it was given).
+  for (std::size_t r = 1; r < geometry::ring_count(area); ++r) {
+    GeoRing ring;
+    for (const GeoPoint& g : plan.request.field.geo_rings.at(r)) ring.push_back(rounded(g));
+    f.area.push_back(std::move(ring));
+  }
+  for (const auto& zone : plan.no_fly_geo) {
+    GeoRing ring;
+    for (const GeoPoint& g : zone) ring.push_back(rounded(g));
+    f.no_fly.push_back(std::move(ring));
+  }
   for (const geometry::Ring& piece : plan.extra_pieces)
     f.area_pieces.push_back(geo_ring(plan, piece));
-  if (plan.handling == "split")
+  if (plan.handling == Handling::split)
     for (const geometry::Ring& cell : plan.cells) f.cells.push_back(geo_ring(plan, cell));
-  for (std::size_t i = 0; i < plan.drone_work.size(); ++i)
-    for (const geometry::Ring& piece : plan.drone_work[i].region)
-      f.regions.push_back({static_cast<int>(i + 1), geo_ring(plan, piece)});
-  for (const DroneMission* m : missions_of(plan)) {
-    const auto d = static_cast<std::size_t>(m->drone - 1);
+  for (const DronePlan& d : plan.drones)
+    for (const geometry::Ring& piece : d.work.region)
+      f.regions.push_back({d.number, geo_ring(plan, piece)});
+  for (const DronePlan& d : plan.drones) {
+    const DroneMission& m = d.mission;
     PlanFeatures::Path path;
-    path.drone = m->drone;
+    path.drone = d.number;
     path.altitude_m = round_to(plan.imaging.altitude_m, 3);
-    path.speed_m_s =
-        round_to(plan.drone_work.empty() ? plan.speed_m_s : plan.drone_speeds_m_s[d], 3);
-    for (const Point2& p : m->path) path.points.push_back(geo(plan, p));
+    path.speed_m_s = round_to(d.speed_m_s, 3);
+    for (const Point2& p : m.path) path.points.push_back(geo(plan, p));
     f.paths.push_back(std::move(path));
-    for (std::size_t i = 0; i < m->lines.size(); ++i)
-      f.sweeps.push_back({m->drone, static_cast<int>(i),
-                          round_to(plan.imaging.footprint_across_m, 4),
-                          geo(plan, m->lines[i].start), geo(plan, m->lines[i].end)});
+    for (std::size_t i = 0; i < m.lines.size(); ++i)
+      f.sweeps.push_back({d.number, static_cast<int>(i),
+                          round_to(plan.imaging.footprint_across_m, 4), geo(plan, m.lines[i].start),
+                          geo(plan, m.lines[i].end)});
   }
   f.home = rounded(plan.home);
+  for (const DronePlan& d : plan.drones)
+    if (!(rounded(d.home_geo) == f.home)) f.drone_homes.push_back({d.number, rounded(d.home_geo)});
   return f;
 }
 
@@ -147,6 +159,8 @@ std::string mission_geojson(const PlanFeatures& f) {
   for (std::size_t k = 0; k < f.area_pieces.size(); ++k)  // --repair: the other enclosed areas
     features.push_back(
         feature({{"role", "area"}, {"piece", k + 1}}, "Polygon", {ring_json(f.area_pieces[k])}));
+  for (const GeoRing& zone : f.no_fly)
+    features.push_back(feature({{"role", "no_fly"}}, "Polygon", {ring_json(zone)}));
   for (std::size_t k = 0; k < f.cells.size(); ++k)
     features.push_back(
         feature({{"role", "cell"}, {"cell", k}}, "Polygon", {ring_json(f.cells[k])}));
@@ -170,6 +184,9 @@ std::string mission_geojson(const PlanFeatures& f) {
                                    "LineString", {position_json(s.start), position_json(s.end)}));
   }
   features.push_back(feature({{"role", "home"}}, "Point", position_json(f.home)));
+  for (const PlanFeatures::DroneHome& h : f.drone_homes)
+    features.push_back(
+        feature({{"role", "home"}, {"drone", h.drone}}, "Point", position_json(h.at)));
   return base::json_text(ordered_json{{"type", "FeatureCollection"}, {"features", features}}, 1) +
          "\n";
 }
@@ -196,6 +213,8 @@ PlanFeatures parse_mission_geojson(const std::string& text, const std::string& s
         f.area = std::move(rings);
         has_area = true;
       }
+    } else if (role == "no_fly") {
+      f.no_fly.push_back(std::move(polygon_of(geometry, where).front()));
     } else if (role == "cell") {
       f.cells.push_back(std::move(polygon_of(geometry, where).front()));
     } else if (role == "region") {
@@ -227,8 +246,13 @@ PlanFeatures parse_mission_geojson(const std::string& text, const std::string& s
       if (base::json_string(base::json_member(geometry, "type", where), where + ": type") !=
           "Point")
         throw base::InputError(where + ": the home is a Point");
-      f.home = position_of(base::json_member(geometry, "coordinates", where), where);
-      has_home = true;
+      const GeoPoint at = position_of(base::json_member(geometry, "coordinates", where), where);
+      if (base::json_find(*properties, "drone")) {
+        f.drone_homes.push_back({drone_of(*properties, where), at});
+      } else {
+        f.home = at;
+        has_home = true;
+      }
     }
   }
   if (!has_area) throw base::InputError(source + ": no feature with role \"area\"");
@@ -240,12 +264,9 @@ PlanFigures plan_figures(const SurveyPlan& plan) {
   PlanFigures out;
   out.covered_fraction = round_to(plan.coverage.covered_fraction, 6);
   out.lines = static_cast<int>(plan.sweep.lines.size());
-  const bool divided = !plan.drone_work.empty();
-  for (const DroneMission* m : missions_of(plan)) {
-    const auto i = static_cast<std::size_t>(m->drone - 1);
-    out.drones.push_back({m->drone, divided ? plan.drone_names[i] : "drone-1",
-                          round_to(m->path_length_m, 3), round_to(m->flight_time_s, 2)});
-  }
+  for (const DronePlan& d : plan.drones)
+    out.drones.push_back({d.number, d.name, round_to(d.mission.path_length_m, 3),
+                          round_to(d.mission.flight_time_s, 2)});
   return out;
 }
 

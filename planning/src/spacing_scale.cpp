@@ -52,8 +52,8 @@ SpacingScaleBounds spacing_scale_bounds(const SurveyPlan& plan, double min_cover
   if (!(min_scale > 0 && min_scale <= 1 && max_scale >= 1))
     throw std::invalid_argument("spacing_scale_bounds: need 0 < min_scale <= 1 <= max_scale");
   std::vector<SweepLine> lines;
-  for (const DroneMission* m : missions_of(plan))
-    lines.insert(lines.end(), m->lines.begin(), m->lines.end());
+  for (const DronePlan& d : plan.drones)
+    lines.insert(lines.end(), d.mission.lines.begin(), d.mission.lines.end());
   const geometry::Polygon area = measured_area(plan);
   const double angle = plan.sweep.angle_deg;
   const double width = plan.imaging.footprint_across_m;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.hpp"
+#include "swath/base/number_text.hpp"
 
 namespace swath::test {
 namespace {
@@ -15,7 +16,8 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 const std::vector<std::string> kFiles{"mission.geojson",   "summary.json",  "drone-1.plan",
-                                      "drone-1.waypoints", "waypoints.csv", "mission.kml"};
+                                      "drone-1.waypoints", "waypoints.csv", "mission.kml",
+                                      "photos.geojson",    "photos.csv"};
 
 std::size_t entries(const std::string& dir) {
   std::error_code ec;
@@ -32,7 +34,7 @@ TEST(PlanCli, MeadowWritesEveryFileAndReportsFullCoverage) {
       run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 80 -o " + out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
-  EXPECT_EQ(entries(out), kFiles.size()) << "exactly the six files, no temporaries";
+  EXPECT_EQ(entries(out), kFiles.size()) << "exactly the eight files, no temporaries";
   for (const std::string& f : kFiles) EXPECT_FALSE(read_text(out + "/" + f).empty()) << f;
   const json s = json::parse(read_text(out + "/summary.json"));
   EXPECT_EQ(s["area"]["type"], "convex");
@@ -69,11 +71,16 @@ TEST(PlanCli, FixedAngleHomeAndFirmwareReachTheFiles) {
   const json plan = json::parse(read_text(out + "/drone-1.plan"));
   EXPECT_EQ(plan["mission"]["firmwareType"], 12);
   EXPECT_EQ(plan["mission"]["vehicleType"], 1);
-  // North-south lines: consecutive waypoints of one line share a longitude.
+  // Fixed-wing: airspeed (param1 0) at the drone's speed, and gimbal per PX4 (command 1000).
   const json& items = plan["mission"]["items"];
-  EXPECT_EQ(items[1]["command"], 16);
+  EXPECT_EQ(items[1]["command"], 178);
+  EXPECT_EQ(items[1]["params"][0], 0);
+  EXPECT_DOUBLE_EQ(items[1]["params"][1].get<double>(), 14.0);
+  EXPECT_EQ(items[2]["command"], 1000);
+  // North-south lines: the two waypoints of the first line share a longitude.
   EXPECT_EQ(items[3]["command"], 16);
-  EXPECT_NEAR(items[1]["params"][5].get<double>(), items[3]["params"][5].get<double>(), 1e-6);
+  EXPECT_EQ(items[5]["command"], 16);
+  EXPECT_NEAR(items[3]["params"][5].get<double>(), items[5]["params"][5].get<double>(), 1e-6);
 }
 
 TEST(PlanCli, DetectionModeReportsTheAltitudeRange) {
@@ -221,14 +228,37 @@ TEST(PlanCli, ThreeDronesByPathAndByRegion) {
     EXPECT_EQ(s["drones"][2]["name"], "charlie");
     EXPECT_DOUBLE_EQ(s["drones"][2]["speed_m_s"].get<double>(), 8.0);
     EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.9999);
-    for (int i = 1; i <= 3; ++i) {
-      const json plan = json::parse(read_text(out + "/drone-" + std::to_string(i) + ".plan"));
-      EXPECT_EQ(plan["mission"]["items"].front()["command"], 22);
-      EXPECT_EQ(plan["mission"]["items"].back()["command"], 20);
+    // DESIGN.md §14: files after the drones' names, each with its own speed and home.
+    const json fleet_home = s["home"];
+    for (int i = 0; i < 3; ++i) {
+      const std::string name = s["drones"][i]["name"];
+      EXPECT_EQ(s["drones"][i]["file"], name);
+      const json plan = json::parse(read_text(out + "/" + name + ".plan"));
+      const json& items = plan["mission"]["items"];
+      EXPECT_EQ(items.front()["command"], 22);
+      EXPECT_EQ(items.back()["command"], 20);
+      EXPECT_EQ(items[1]["command"], 178);
+      const double speed = s["drones"][i]["speed_m_s"];
+      EXPECT_DOUBLE_EQ(items[1]["params"][1].get<double>(), speed) << name;
+      EXPECT_DOUBLE_EQ(plan["mission"]["cruiseSpeed"].get<double>(), speed) << name;
+      EXPECT_DOUBLE_EQ(plan["mission"]["hoverSpeed"].get<double>(), speed) << name;
+      const json& home = s["drones"][i]["home"];
+      EXPECT_DOUBLE_EQ(plan["mission"]["plannedHomePosition"][0].get<double>(),
+                       home["lat_deg"].get<double>());
+      EXPECT_DOUBLE_EQ(plan["mission"]["plannedHomePosition"][1].get<double>(),
+                       home["lon_deg"].get<double>());
+      std::ifstream wpl(out + "/" + name + ".waypoints");
+      std::string header, row0;
+      std::getline(wpl, header);
+      std::getline(wpl, row0);
+      EXPECT_NE(row0.find(base::fixed_text(home["lat_deg"].get<double>(), 9)), std::string::npos)
+          << "row 0 of the .waypoints is the drone's own home: " << row0;
+      EXPECT_FALSE(fs::exists(out + "/drone-" + std::to_string(i + 1) + ".plan"));
     }
-    // Charlie takes off from its own home.
-    const json plan3 = json::parse(read_text(out + "/drone-3.plan"));
+    // Charlie takes off from its own home, not the fleet's.
+    const json plan3 = json::parse(read_text(out + "/charlie.plan"));
     EXPECT_NEAR(plan3["mission"]["items"][0]["params"][4].get<double>(), 47.3982, 1e-7);
+    EXPECT_NE(s["drones"][2]["home"], fleet_home);
     int regions = 0;
     const json g = json::parse(read_text(out + "/mission.geojson"));
     for (const json& f : g["features"]) regions += f["properties"]["role"] == "region";

@@ -219,9 +219,9 @@ TEST(DividedSurvey, EveryDronesPathStartsAndEndsAtItsHome) {
       r.division = mode;
       r.balance = balance;
       const SurveyPlan plan = plan_survey(r);
-      ASSERT_EQ(plan.drone_missions.size(), 3u);
+      ASSERT_EQ(plan.drones.size(), 3u);
       for (std::size_t i = 0; i < 3; ++i) {
-        const DroneMission& d = plan.drone_missions[i];
+        const DroneMission& d = plan.drones[i].mission;
         const Point2 home = r.field.frame->to_local(i == 2 ? *fleet.drones[2].home : fleet.home);
         EXPECT_NEAR(geometry::distance(d.path.front(), home), 0, 1e-6);
         EXPECT_NEAR(geometry::distance(d.path.back(), home), 0, 1e-6);

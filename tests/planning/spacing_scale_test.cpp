@@ -59,7 +59,7 @@ TEST(SpacingScaleBounds, MatchesTheClosedFormOnARectangle) {
   const double height = 200;
   const SurveyPlan plan = rectangle_plan(300, height);
   const double s = plan.imaging.line_spacing_m, w = plan.imaging.footprint_across_m;
-  const double n = double(plan.mission.lines.size());
+  const double n = double(plan.drones[0].mission.lines.size());
   ASSERT_GE(n, 3);
   for (double min : {0.99, 0.95, 0.9}) {
     const SpacingScaleBounds b = spacing_scale_bounds(plan, min);
@@ -86,10 +86,10 @@ TEST(SpacingScaleBounds, TheLowerBoundIsTightByIndependentSampling) {
   ASSERT_LT(b.lo, 1.0);
   ASSERT_GT(b.lo, 0.5);
   auto sampled = [&](double scale) {
-    return test::sample_coverage(
-               plan.area,
-               scale_line_spacing(plan.mission.lines, plan.sweep.angle_deg, b.middle_m, scale),
-               plan.imaging.footprint_across_m, 800)
+    return test::sample_coverage(plan.area,
+                                 scale_line_spacing(plan.drones[0].mission.lines,
+                                                    plan.sweep.angle_deg, b.middle_m, scale),
+                                 plan.imaging.footprint_across_m, 800)
         .fraction();
   };
   EXPECT_NEAR(sampled(b.lo), min, 2e-3);
@@ -100,7 +100,8 @@ TEST(SpacingScaleBounds, TheLowerBoundIsTightByIndependentSampling) {
 TEST(SpacingScaleBounds, APlanBelowTheMinimumKeepsItsSpacing) {
   const SurveyPlan plan = rectangle_plan(300, 200);
   SurveyPlan shrunk = plan;  // lines closed in to half their spacing: the edges stay unseen
-  shrunk.mission.lines = scale_line_spacing(plan.mission.lines, plan.sweep.angle_deg, 100, 0.5);
+  shrunk.drones[0].mission.lines =
+      scale_line_spacing(plan.drones[0].mission.lines, plan.sweep.angle_deg, 100, 0.5);
   const SpacingScaleBounds b = spacing_scale_bounds(shrunk, 0.999);
   EXPECT_LT(b.nominal_covered_fraction, 0.999);
   EXPECT_EQ(b.lo, 1.0);

@@ -120,6 +120,7 @@ SurveyPlan plan(const Polygon& area, ConcaveMode mode, double side_overlap = 0.7
   m.side_overlap = side_overlap;
   r.mode = m;
   r.concave = mode;
+  r.clearance_m = 0;  // the decomposition itself: cells tile the area exactly
   return plan_survey(r);
 }
 
@@ -131,9 +132,9 @@ struct Checked {
 Checked check_split(const Polygon& raw, const std::string& what) {
   const SurveyPlan sp = plan(raw, ConcaveMode::split);
   const Polygon& area = sp.area;
-  EXPECT_EQ(sp.handling, "split") << what;
+  EXPECT_EQ(sp.handling, Handling::split) << what;
   const geometry::VisibilityRouter inside(geometry::rings_of(area), 0);
-  for (const SweepLine& l : sp.mission.lines) {
+  for (const SweepLine& l : sp.drones[0].mission.lines) {
     // Not outside the area, not across a hole.
     EXPECT_LE(inside.length_outside(l.start, l.end), 1e-6) << what;
     // Inside its own cell: some cell contains the whole line.
@@ -145,13 +146,14 @@ Checked check_split(const Polygon& raw, const std::string& what) {
   EXPECT_LE(sp.coverage.line_length_outside_m, 1e-6) << what;
   EXPECT_LE(sp.transit_outside_m, 1e-6) << what;
   const double sampled =
-      test::sample_coverage(area, sp.mission.lines, sp.imaging.footprint_across_m, 300).fraction();
+      test::sample_coverage(area, sp.drones[0].mission.lines, sp.imaging.footprint_across_m, 300)
+          .fraction();
   EXPECT_GE(sampled, 0.999) << what;
   EXPECT_GE(sp.coverage.covered_fraction, 0.999) << what;
   double cells_area = 0;
   for (const Ring& c : sp.cells) cells_area += geometry::signed_area(c);
   EXPECT_NEAR(cells_area, geometry::area(area), 1e-6 * geometry::area(area)) << what;
-  return {sp.coverage.covered_fraction, sp.mission.path_length_m};
+  return {sp.coverage.covered_fraction, sp.drones[0].mission.path_length_m};
 }
 
 TEST(SplitSurvey, CombsFlyNoLongerThanTheHull) {
@@ -159,7 +161,7 @@ TEST(SplitSurvey, CombsFlyNoLongerThanTheHull) {
     const Polygon comb{
         test::transformed(test::comb_polygon(teeth, 40, 300, 40), 15.0 * teeth, 0, 0), {}};
     const Checked split = check_split(comb, "comb " + std::to_string(teeth));
-    const double hull = plan(comb, ConcaveMode::hull).mission.path_length_m;
+    const double hull = plan(comb, ConcaveMode::hull).drones[0].mission.path_length_m;
     EXPECT_LE(split.path_m, hull) << teeth;
     RecordProperty("comb" + std::to_string(teeth) + "_split_over_hull",
                    std::to_string(split.path_m / hull));
@@ -173,9 +175,10 @@ TEST(SplitSurvey, ConcaveFamiliesAreCoveredWithoutFlyingOutside) {
   for (int k = 0; k < 12; ++k) {
     const Polygon star{test::random_star_polygon(rng, 8 + k, 150, 400), {}};
     const Checked c = check_split(star, "star " + std::to_string(k));
-    ratio_sum += c.path_m / plan(star, ConcaveMode::hull).mission.path_length_m;
-    RecordProperty("star" + std::to_string(k),
-                   std::to_string(c.path_m / plan(star, ConcaveMode::hull).mission.path_length_m));
+    ratio_sum += c.path_m / plan(star, ConcaveMode::hull).drones[0].mission.path_length_m;
+    RecordProperty(
+        "star" + std::to_string(k),
+        std::to_string(c.path_m / plan(star, ConcaveMode::hull).drones[0].mission.path_length_m));
     worst_coverage = std::min(worst_coverage, c.coverage);
     ++n;
   }
@@ -183,10 +186,10 @@ TEST(SplitSurvey, ConcaveFamiliesAreCoveredWithoutFlyingOutside) {
     const Polygon spiral{test::spiral_polygon(arms, 500, 90, 30), {}};
     ASSERT_EQ(geometry::classify(spiral).type, geometry::AreaType::concave);
     const Checked c = check_split(spiral, "spiral " + std::to_string(arms));
-    ratio_sum += c.path_m / plan(spiral, ConcaveMode::hull).mission.path_length_m;
+    ratio_sum += c.path_m / plan(spiral, ConcaveMode::hull).drones[0].mission.path_length_m;
     RecordProperty(
         "spiral" + std::to_string(arms),
-        std::to_string(c.path_m / plan(spiral, ConcaveMode::hull).mission.path_length_m));
+        std::to_string(c.path_m / plan(spiral, ConcaveMode::hull).drones[0].mission.path_length_m));
     worst_coverage = std::min(worst_coverage, c.coverage);
     ++n;
   }
@@ -215,7 +218,7 @@ TEST(SplitSurvey, HolesAreAvoided) {
 
 TEST(SplitSurvey, ConvexAreasKeepTheStripRule) {
   const Polygon square{{{0, 0}, {300, 0}, {300, 200}, {0, 200}}, {}};
-  EXPECT_EQ(plan(square, ConcaveMode::split).handling, "convex");
+  EXPECT_EQ(plan(square, ConcaveMode::split).handling, Handling::convex);
 }
 
 }  // namespace

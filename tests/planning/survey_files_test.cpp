@@ -23,6 +23,15 @@ SurveyPlan meadow_plan(std::optional<geometry::GeoPoint> home = std::nullopt) {
   return plan_survey(r);
 }
 
+// The one flight of a one-drone plan.
+Flight only_flight(const SurveyPlan& plan) {
+  return flights_of(plan).at(0);
+}
+
+const DroneMission& mission_of(const SurveyPlan& plan) {
+  return plan.drones.at(0).mission;
+}
+
 std::vector<std::string> split(const std::string& line, char sep) {
   std::vector<std::string> cells;
   std::stringstream s(line);
@@ -34,7 +43,7 @@ std::vector<std::string> split(const std::string& line, char sep) {
 
 TEST(QgcPlan, ParsesBackWithRequiredKeysCommandsFramesAndPlannedCoordinates) {
   const SurveyPlan plan = meadow_plan(geometry::GeoPoint{47.3965, 8.5405, 0});
-  const json j = json::parse(qgc_plan(plan, plan.mission));
+  const json j = json::parse(qgc_plan(plan, only_flight(plan)));
   EXPECT_EQ(j["fileType"], "Plan");
   EXPECT_EQ(j["version"], 1);
   EXPECT_EQ(j["geoFence"]["version"], 2);
@@ -49,13 +58,13 @@ TEST(QgcPlan, ParsesBackWithRequiredKeysCommandsFramesAndPlannedCoordinates) {
   EXPECT_NEAR(m["plannedHomePosition"][1].get<double>(), 8.5405, 1e-9);
 
   const json& items = m["items"];
-  ASSERT_EQ(items.size(), plan.mission.items.size());
+  ASSERT_EQ(items.size(), mission_of(plan).items.size());
   EXPECT_EQ(items.front()["command"], 22);
   EXPECT_EQ(items.back()["command"], 20);
   int triggers_on = 0, triggers_off = 0;
   std::size_t waypoint = 0;
   std::vector<geometry::Point2> planned;  // the mission's waypoints in order
-  for (const MissionItem& it : plan.mission.items)
+  for (const MissionItem& it : mission_of(plan).items)
     if (it.kind == ItemKind::waypoint) planned.push_back(it.position);
   for (std::size_t i = 0; i < items.size(); ++i) {
     const json& it = items[i];
@@ -76,37 +85,47 @@ TEST(QgcPlan, ParsesBackWithRequiredKeysCommandsFramesAndPlannedCoordinates) {
       (distance > 0 ? triggers_on : triggers_off)++;
       if (distance > 0) {
         EXPECT_NEAR(distance, plan.imaging.trigger_distance_m, 1e-3);
+        EXPECT_EQ(it["params"][2], 1) << "one photo at the start of the line";
       }
+    } else if (command == 178) {
+      EXPECT_EQ(it["params"][0], 1) << "ground speed (multirotor)";
+      EXPECT_DOUBLE_EQ(it["params"][1].get<double>(), plan.speed_m_s);
+      EXPECT_EQ(it["params"][2], -1) << "throttle unchanged";
+    } else if (command == 205) {
+      EXPECT_DOUBLE_EQ(it["params"][0].get<double>(), -90.0);  // nadir
     } else {
       EXPECT_TRUE(command == 22 || command == 20) << command;
     }
   }
   EXPECT_EQ(waypoint, planned.size());
-  EXPECT_EQ(triggers_on, 1);
-  EXPECT_EQ(triggers_off, 1);
-  // Camera on right after the first survey waypoint.
-  EXPECT_EQ(items[1]["command"], 16);
-  EXPECT_EQ(items[2]["command"], 206);
+  // DESIGN.md §14: photos on the lines only, the camera started and stopped at each line.
+  EXPECT_EQ(triggers_on, int(mission_of(plan).lines.size()));
+  EXPECT_EQ(triggers_off, int(mission_of(plan).lines.size()));
+  // Take-off, the drone's speed and the gimbal before the first survey waypoint, then the camera.
+  EXPECT_EQ(items[1]["command"], 178);
+  EXPECT_EQ(items[2]["command"], 205);
+  EXPECT_EQ(items[3]["command"], 16);
+  EXPECT_EQ(items[4]["command"], 206);
 }
 
 TEST(QgcPlan, Px4FixedWing) {
   SurveyPlan plan = meadow_plan();
   plan.request.firmware = Firmware::px4;
   plan.request.vehicle = Vehicle::fixedwing;
-  const json j = json::parse(qgc_plan(plan, plan.mission));
+  const json j = json::parse(qgc_plan(plan, only_flight(plan)));
   EXPECT_EQ(j["mission"]["firmwareType"], 12);
   EXPECT_EQ(j["mission"]["vehicleType"], 1);
 }
 
 TEST(Wpl110, TwelveTabSeparatedColumnsHomeFirstSameItems) {
   const SurveyPlan plan = meadow_plan();
-  std::stringstream in(wpl_110(plan, plan.mission));
+  std::stringstream in(wpl_110(plan, only_flight(plan)));
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "QGC WPL 110");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line)) rows.push_back(split(line, '\t'));
-  ASSERT_EQ(rows.size(), plan.mission.items.size() + 1);
+  ASSERT_EQ(rows.size(), mission_of(plan).items.size() + 1);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     ASSERT_EQ(rows[i].size(), 12u) << i;
     EXPECT_EQ(std::stoul(rows[i][0]), i);
@@ -116,11 +135,13 @@ TEST(Wpl110, TwelveTabSeparatedColumnsHomeFirstSameItems) {
   EXPECT_NEAR(std::stod(rows[0][8]), plan.home.lat_deg, 1e-9);
   EXPECT_NEAR(std::stod(rows[0][9]), plan.home.lon_deg, 1e-9);
   EXPECT_EQ(rows[1][3], "22");
+  EXPECT_EQ(rows[2][3], "178");
   EXPECT_EQ(rows.back()[3], "20");
-  const geometry::GeoPoint first = plan.request.field.frame->to_geo(plan.mission.lines[0].start);
-  EXPECT_EQ(rows[2][3], "16");
-  EXPECT_NEAR(std::stod(rows[2][8]), first.lat_deg, 1e-7);
-  EXPECT_NEAR(std::stod(rows[2][9]), first.lon_deg, 1e-7);
+  const geometry::GeoPoint first =
+      plan.request.field.frame->to_geo(mission_of(plan).lines[0].start);
+  EXPECT_EQ(rows[4][3], "16");
+  EXPECT_NEAR(std::stod(rows[4][8]), first.lat_deg, 1e-7);
+  EXPECT_NEAR(std::stod(rows[4][9]), first.lon_deg, 1e-7);
 }
 
 TEST(WaypointsCsv, HeaderAndRowsMatchTheMission) {
@@ -128,22 +149,23 @@ TEST(WaypointsCsv, HeaderAndRowsMatchTheMission) {
   std::stringstream in(waypoints_csv(plan));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "drone,seq,lat,lon,alt_m,x_m,y_m,action");
+  EXPECT_EQ(line, "drone,flight,seq,lat,lon,alt_m,x_m,y_m,action");
   std::size_t n = 0;
   while (std::getline(in, line)) {
     const auto cells = split(line, ',');
-    ASSERT_EQ(cells.size(), 8u) << line;
+    ASSERT_EQ(cells.size(), 9u) << line;
     EXPECT_EQ(cells[0], "1");
-    EXPECT_EQ(std::stoul(cells[1]), n);
-    if (cells[7] == "waypoint") {
-      const geometry::Point2 local{std::stod(cells[5]), std::stod(cells[6])};
+    EXPECT_EQ(cells[1], "drone-1");
+    EXPECT_EQ(std::stoul(cells[2]), n);
+    if (cells[8] == "waypoint") {
+      const geometry::Point2 local{std::stod(cells[6]), std::stod(cells[7])};
       const geometry::GeoPoint g = plan.request.field.frame->to_geo(local);
-      EXPECT_NEAR(std::stod(cells[2]), g.lat_deg, 1e-7);  // x/y and lat/lon agree
-      EXPECT_NEAR(std::stod(cells[3]), g.lon_deg, 1e-7);
+      EXPECT_NEAR(std::stod(cells[3]), g.lat_deg, 1e-7);  // x/y and lat/lon agree
+      EXPECT_NEAR(std::stod(cells[4]), g.lon_deg, 1e-7);
     }
     ++n;
   }
-  EXPECT_EQ(n, plan.mission.items.size() + 1);
+  EXPECT_EQ(n, mission_of(plan).items.size() + 1);
 }
 
 TEST(MissionGeojson, FeaturesCarryTheRolesOfTheDesign) {
@@ -163,7 +185,7 @@ TEST(MissionGeojson, FeaturesCarryTheRolesOfTheDesign) {
     if (role == "path") {
       const json& c = f["geometry"]["coordinates"];
       EXPECT_EQ(c.front(), c.back()) << "home to home";
-      EXPECT_EQ(c.size(), plan.mission.path.size());
+      EXPECT_EQ(c.size(), mission_of(plan).path.size());
     }
     if (role == "area") {
       const json& ring = f["geometry"]["coordinates"][0];
@@ -190,14 +212,19 @@ TEST(Summary, FiguresAgreeWithTheGeometry) {
               geometry::min_height_rotation(plan.request.field.polygon.outer).height_m, 1e-4);
   const json& d = s["drones"][0];
   double work = 0;
-  for (const SweepLine& l : plan.mission.lines) work += geometry::distance(l.start, l.end);
+  for (const SweepLine& l : mission_of(plan).lines) work += geometry::distance(l.start, l.end);
   EXPECT_NEAR(d["work_length_m"].get<double>(), work, 1e-3);
   double path = 0;
-  for (std::size_t i = 0; i + 1 < plan.mission.path.size(); ++i)
-    path += geometry::distance(plan.mission.path[i], plan.mission.path[i + 1]);
+  for (std::size_t i = 0; i + 1 < mission_of(plan).path.size(); ++i)
+    path += geometry::distance(mission_of(plan).path[i], mission_of(plan).path[i + 1]);
   EXPECT_NEAR(d["path_length_m"].get<double>(), path, 1e-3);
   EXPECT_NEAR(d["transit_length_m"].get<double>() + d["work_length_m"].get<double>(), path, 2e-3);
-  EXPECT_NEAR(d["flight_time_s"].get<double>(), path / 5.0, 0.01);
+  // The cruise at 5 m/s, the climb at 2.5 m/s and the descent at 1.5 m/s, plus at most one
+  // acceleration and braking (v / a = 2 s) per waypoint.
+  const double cruise = path / 5.0 + 80 / 2.5 + 80 / 1.5;
+  EXPECT_GE(d["flight_time_s"].get<double>(), cruise);
+  EXPECT_LE(d["flight_time_s"].get<double>(),
+            cruise + 2.0 * double(mission_of(plan).waypoint_count));
   EXPECT_NEAR(s["camera"]["line_spacing_m"].get<double>(), 145.0 * 0.8 * 0.3, 1e-4);
   EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.9999);
 }
@@ -205,7 +232,7 @@ TEST(Summary, FiguresAgreeWithTheGeometry) {
 TEST(SurveyFiles, SameInputSameBytes) {
   const auto a = survey_files(meadow_plan());
   const auto b = survey_files(meadow_plan());
-  ASSERT_EQ(a.size(), 6u);
+  ASSERT_EQ(a.size(), 8u);
   EXPECT_EQ(a, b);
 }
 

@@ -35,6 +35,13 @@ inline constexpr base::Range kWaypointSpacing_m{0.5, 100'000, "m", ""};
 inline constexpr base::Range kAngleStep_deg{0.001, 90, "°", "180,000 scan steps at most"};
 inline constexpr base::Range kBearing_deg{-360, 360, "°", ""};
 
+// Flight (DESIGN.md §14).
+inline constexpr base::Range kClearance_m{0, 1000, "m", ""};
+inline constexpr base::Range kGimbalPitch_deg{-90, 30, "°", "-90 nadir, 0 level"};
+inline constexpr base::Range kFenceMargin_m{0, 10'000, "m", ""};
+inline constexpr base::Range kBank_deg{5, 60, "°", ""};
+inline constexpr base::Range kReserve{0, 0.9, "", "a fraction of the endurance"};
+
 // Fleet.
 inline constexpr base::Range kDrones{1, 100, "drones", "one file set per drone"};
 inline constexpr base::Range kEndurance_s{1, 604'800, "s", "a week"};

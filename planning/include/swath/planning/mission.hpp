@@ -1,6 +1,7 @@
 #pragma once
-// A drone's mission: take off at home, fly the sweep lines with the camera triggering by
-// distance, return to launch.
+// A drone's mission, item by item as the autopilot gets it (DESIGN.md §14): take off, set the
+// drone's speed, point the camera, fly the lines with the camera triggering on each line only,
+// and return to launch (or land).
 
 #include <functional>
 #include <optional>
@@ -10,20 +11,83 @@
 
 namespace swath::planning {
 
-enum class ItemKind { takeoff, waypoint, trigger_start, trigger_stop, return_to_launch };
+enum class Firmware { ardupilot, px4 };
+enum class Vehicle { multirotor, fixedwing };
+
+/// How photos are taken on the lines.
+enum class TriggerMode {
+  distance,  ///< the autopilot triggers every trigger distance (DO_SET_CAM_TRIGG_DIST, 206)
+  time,      ///< every trigger distance / speed seconds (IMAGE_START_CAPTURE 2000 / STOP 2001)
+  hover,     ///< stop at each photo point and shoot (a waypoint with a hold, then one shot)
+};
+
+/// The command a hover shot uses.
+enum class CameraCommand {
+  digicam,        ///< DO_DIGICAM_CONTROL (203), relay and servo cameras
+  image_capture,  ///< IMAGE_START_CAPTURE (2000) with one image, MAVLink cameras
+};
+
+struct Triggering {
+  TriggerMode mode = TriggerMode::distance;
+  CameraCommand command = CameraCommand::digicam;
+  /// Keep the camera on through turns that stay inside the area (runs of lines in one cell);
+  /// otherwise it is started at each line and stopped at its end.
+  bool photos_in_turns = false;
+  /// Camera pitch set once at the start, degrees (-90: nadir, 0: level); DO_MOUNT_CONTROL (205)
+  /// for ArduPilot, DO_GIMBAL_MANAGER_PITCHYAW (1000) for PX4.
+  double gimbal_pitch_deg = -90.0;
+  /// Hover mode: how long the drone holds at each photo point, seconds (ArduCopter stops for a
+  /// hold of at least 1 s).
+  double hover_hold_s = 1.0;
+};
+
+/// A planned photo: where, and on which of the drone's lines (0-based, flying order).
+struct PhotoPoint {
+  geometry::Point2 position;
+  int line = 0;
+};
+
+enum class ItemKind {
+  takeoff,           ///< NAV_TAKEOFF (22) at home to the survey altitude
+  waypoint,          ///< NAV_WAYPOINT (16); `value`: hold time, seconds
+  change_speed,      ///< DO_CHANGE_SPEED (178); `value`: m/s
+  gimbal_pitch,      ///< DO_MOUNT_CONTROL (205) / DO_GIMBAL_MANAGER_PITCHYAW (1000); `value`: deg
+  trigger_start,     ///< distance: 206 with `value` m; time: 2000 with `value` s between images
+  trigger_stop,      ///< distance: 206 with 0; time: 2001
+  camera_shot,       ///< hover: one photo (203 or 2000 with one image)
+  land_start,        ///< DO_LAND_START (189): where a fixed-wing landing sequence begins
+  land,              ///< NAV_LAND (21) at home
+  return_to_launch,  ///< NAV_RETURN_TO_LAUNCH (20)
+};
 
 struct MissionItem {
   ItemKind kind = ItemKind::waypoint;
-  geometry::Point2 position;  ///< local metres (takeoff: home); unused by trigger and RTL items
+  geometry::Point2 position;  ///< local metres (takeoff and land: home); unused by the others
   double altitude_m = 0.0;    ///< above home
-  double trigger_distance_m = 0.0;  ///< trigger_start only
+  double value = 0.0;         ///< see ItemKind
+  TriggerMode trigger = TriggerMode::distance;     ///< trigger and camera items
+  CameraCommand command = CameraCommand::digicam;  ///< camera_shot
 };
+
+/// Whether an item is a position the drone flies to (takeoff, waypoint, land).
+bool positional(ItemKind kind);
+
+/// ArduCopter's defaults, used for the flight-time estimate (WPNAV_ACCEL 250 cm/s²,
+/// WPNAV_SPEED_UP 250 cm/s, WPNAV_SPEED_DN 150 cm/s) and a corner it stops at (ArduCopter slows
+/// to a stop before turns this sharp; gentler ones it flies through).
+inline constexpr double kAcceleration_m_s2 = 2.5;
+inline constexpr double kClimbRate_m_s = 2.5;
+inline constexpr double kDescentRate_m_s = 1.5;
+inline constexpr double kStopTurn_deg = 45.0;
 
 struct MissionSettings {
   double altitude_m = 0.0;                   ///< > 0, above home
   double speed_m_s = 0.0;                    ///< > 0, cruise speed over the whole path
   double trigger_distance_m = 0.0;           ///< > 0
   std::optional<double> waypoint_spacing_m;  ///< intermediate waypoints on long lines
+  Vehicle vehicle = Vehicle::multirotor;
+  Triggering triggering;
+  bool land = false;  ///< NAV_LAND (fixed-wing: DO_LAND_START then NAV_LAND) instead of RTL
 };
 
 struct DroneMission {
@@ -35,8 +99,10 @@ struct DroneMission {
   double work_length_m = 0.0;          ///< along the sweep lines (camera over the area)
   double transit_length_m = 0.0;       ///< home legs and the legs between lines
   double path_length_m = 0.0;          ///< work + transit
-  double flight_time_s = 0.0;      ///< path at cruise speed (climb, descent and turns not modelled)
-  std::size_t waypoint_count = 0;  ///< items with a position (takeoff and waypoints)
+  /// Climb, the path (accelerating at kAcceleration_m_s2, stopping at corners sharper than
+  /// kStopTurn_deg and for hover holds) and the descent at home; fixed-wing: climb and path.
+  double flight_time_s = 0.0;
+  std::size_t waypoint_count = 0;  ///< items with a position (takeoff, waypoints, land)
 };
 
 /// A flight path over the survey, without the legs to and from home: points, and for each segment
@@ -49,6 +115,8 @@ struct SurveyPath {
 
 /// Points strictly between a and b that a leg from a to b flies through (empty: straight).
 using LegRoute = std::function<std::vector<geometry::Point2>(geometry::Point2, geometry::Point2)>;
+/// Whether the straight leg a-b between two lines stays inside the area (photos in turns).
+using InsideTest = std::function<bool(geometry::Point2, geometry::Point2)>;
 
 /// The lines in flight order joined by turns (through `route`'s points when given), with
 /// intermediate points every `waypoint_spacing_m` at most along the lines.
@@ -59,16 +127,34 @@ SurveyPath survey_path(const std::vector<SweepLine>& ordered_lines,
 /// every cut: consecutive pieces that together are the path.
 std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<double>& cuts_m);
 
-/// Builds the mission for a survey path: takeoff at home to the survey altitude, the path's first
-/// point, camera trigger by distance on, every point, trigger off, return to launch. The legs from
-/// and to home go through `route`'s points when given. settings.waypoint_spacing_m is not used
-/// here (survey_path() applies it).
+/// Builds the mission for a survey path: takeoff at home to the survey altitude, the speed, the
+/// gimbal, the path's first point, then every point with the camera on along the lines only
+/// (started at each line, stopped at its end; with photos_in_turns kept on through turns that
+/// `inside` says stay in the area; hover: a held waypoint and a shot at each photo point), and
+/// return to launch or land. The legs from and to home go through `route`'s points when given.
+/// settings.waypoint_spacing_m is not used here (survey_path() applies it).
 DroneMission mission_for_path(int drone, geometry::Point2 home, const SurveyPath& path,
-                              const MissionSettings& settings, const LegRoute& route = {});
+                              const MissionSettings& settings, const LegRoute& route = {},
+                              const InsideTest& inside = {});
 
 /// mission_for_path(survey_path(ordered_lines, settings.waypoint_spacing_m, route), ...).
 DroneMission build_mission(int drone, geometry::Point2 home,
                            const std::vector<SweepLine>& ordered_lines,
                            const MissionSettings& settings, const LegRoute& route = {});
+
+/// The planned photo positions of a line of `length_m` from `start` to `end`: the first where the
+/// camera starts, then every `trigger_distance_m` (as the autopilot's distance trigger takes them).
+std::vector<geometry::Point2> photo_positions(geometry::Point2 start, geometry::Point2 end,
+                                              double trigger_distance_m);
+
+/// The photos a mission takes, as the autopilot takes them: one where the trigger starts, then
+/// every `trigger_distance_m` flown until it stops (through turns too when it stays on); one at
+/// each hover shot. Each names the line it was taken on or after (0-based).
+std::vector<PhotoPoint> planned_photos(const DroneMission& mission, double trigger_distance_m);
+
+/// The flight time of a path flown from rest to rest (see DroneMission::flight_time_s): legs at
+/// `speed_m_s` with the trapezoid profile between stops. `hold_s` per point (hover photos).
+double path_time_s(const std::vector<geometry::Point2>& path, const std::vector<double>& hold_s,
+                   double speed_m_s, Vehicle vehicle);
 
 }  // namespace swath::planning

@@ -21,7 +21,8 @@ struct PlanFeatures {
   /// The area: outer ring then holes; then --repair's further enclosed areas, one ring each.
   std::vector<GeoRing> area;
   std::vector<GeoRing> area_pieces;
-  std::vector<GeoRing> cells;  ///< split: the cells swept one by one
+  std::vector<GeoRing> no_fly;  ///< holes and --exclude zones, as given (role "no_fly")
+  std::vector<GeoRing> cells;   ///< split: the cells swept one by one
   struct Region {
     int drone = 0;  ///< 1-based
     GeoRing ring;
@@ -40,13 +41,19 @@ struct PlanFeatures {
     geometry::GeoPoint start, end;
   };
   std::vector<Sweep> sweeps;
-  geometry::GeoPoint home;
+  geometry::GeoPoint home;  ///< the plan's (fleet's) home
+  struct DroneHome {
+    int drone = 0;
+    geometry::GeoPoint at;
+  };
+  std::vector<DroneHome> drone_homes;  ///< drones whose own home differs from `home`
 };
 
 /// The features of a plan.
 PlanFeatures plan_features(const SurveyPlan& plan);
 
-/// mission.geojson: a FeatureCollection with `role` area, cell, region, path, sweep and home.
+/// mission.geojson: a FeatureCollection with `role` area, no_fly, cell, region, path, sweep and
+/// home (the plan's, and one per drone whose own home differs, with its "drone").
 std::string mission_geojson(const PlanFeatures& features);
 
 /// Reads mission.geojson back. Throws base::InputError naming `source`, the feature and the

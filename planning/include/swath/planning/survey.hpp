@@ -1,5 +1,8 @@
 #pragma once
-// The whole survey pipeline: area -> imaging -> sweep direction -> lines -> mission -> coverage.
+// The survey: a request, the plan, and plan_survey(), a short pipeline of named steps (DESIGN.md
+// §2): area -> imaging -> direction -> lanes -> drones -> missions -> sorties -> measures.
+// Each step lives in its own file pair (survey_area, imaging, direction, lanes, drones, mission,
+// sorties, photos, clearance, checks); this header holds only the data they share.
 
 #include <optional>
 #include <string>
@@ -30,8 +33,13 @@ enum class ConcaveMode {
   reject,  ///< refuse it
 };
 
-enum class Firmware { ardupilot, px4 };
-enum class Vehicle { multirotor, fixedwing };
+/// How the area was flown.
+enum class Handling {
+  convex,  ///< one sweep, strip rule
+  hull,    ///< one sweep over the convex hull
+  split,   ///< cells swept inside the area
+};
+const char* to_string(Handling handling);
 
 struct SurveyRequest {
   geometry::Field field;
@@ -44,15 +52,17 @@ struct SurveyRequest {
   double angle_step_deg = 0.1;    ///< scan only, in (0, 90]
   double line_bearing_deg = 0.0;  ///< fixed only: compass bearing of the lines
   LinePlacement placement = LinePlacement::centered;
-  double turnaround_m = 0.0;
+  /// Extension of every line beyond both ends, metres; absent: 0 for multirotors, the roll-out
+  /// distance (one turn radius) for fixed-wing.
+  std::optional<double> turnaround_m;
   std::optional<double> waypoint_spacing_m;
   StartCorner start = StartCorner::nearest_home;
   std::optional<geometry::GeoPoint> home;  ///< absent: the area's south-west-most vertex
   /// Plan with homes farther than kMaxHomeDistance_m from the area (refused otherwise).
   bool far_home = false;
   ConcaveMode concave = ConcaveMode::split;
-  /// Extra no-fly zones (local frame, any orientation); they become holes of the area.
-  std::vector<geometry::Ring> exclusions;
+  /// Extra no-fly zones, WGS84 (any orientation); they become holes of the area.
+  std::vector<std::vector<geometry::GeoPoint>> exclusions;
   double split_scan_step_deg = 2.0;  ///< split: the scan part of the direction search
   /// Divide the survey among this fleet (absent: one drone).
   std::optional<Fleet> fleet;
@@ -66,6 +76,26 @@ struct SurveyRequest {
   Firmware firmware = Firmware::ardupilot;
   Vehicle vehicle = Vehicle::multirotor;
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
+  /// DESIGN.md §14 "Clearance": no waypoint and no leg closer than this to a hole or no-fly zone.
+  double clearance_m = 5.0;
+  /// The same for the outer boundary (lines shortened, transits kept inside by this much).
+  double boundary_clearance_m = 0.0;
+  /// Camera triggering and the items that command it (DESIGN.md §14 "Camera triggering").
+  Triggering triggering;
+  /// Fly every line a second time at 90° (crosshatch), after the first pass.
+  bool crosshatch = false;
+  /// Fixed-wing: the bank limit that sets the minimum turn radius r = v² / (g tan(bank)).
+  double max_bank_deg = 30.0;
+  /// End with a landing at home instead of return-to-launch.
+  bool land = false;
+  /// Cut each drone's flight into sorties that fit its endurance above the reserve.
+  bool sorties = false;
+  /// Endurance for sorties and the endurance warning when the fleet does not give one, seconds.
+  std::optional<double> endurance_s;
+  double reserve = 0.2;  ///< share of the endurance kept in hand, [0, 0.9]
+  /// The fence: the area grown by this much, metres; absent: turnaround + half the footprint
+  /// width + 10 m (DESIGN.md §14 "Fences").
+  std::optional<double> fence_margin_m;
 };
 
 /// Limits that keep the work bounded (plan_survey() refuses beyond them) and the autopilot limit
@@ -77,6 +107,7 @@ inline constexpr std::size_t kAutopilotItemLimit = 700;  ///< ArduPilot's classi
 /// the holes' vertices: 500 holes of 4 vertices plan in ~2 s and 150 MB, 3,000 took 98 s and
 /// 5.6 GB. Beyond these, split refuses (hull mode ignores holes and is not limited).
 inline constexpr std::size_t kMaxSplitHoles = 500;
+inline constexpr std::size_t kMaxSplitHoleVertices = 4'000;
 /// A home farther than this from the area is refused unless SurveyRequest::far_home.
 inline constexpr double kMaxHomeDistance_m = 50'000;
 /// Farther than this no home is planned even with far_home: no drone flies that far to a survey,
@@ -85,40 +116,79 @@ inline constexpr double kMaxHomeDistance_m = 50'000;
 inline constexpr double kMaxFarHomeDistance_m = 1'000'000;
 /// An area narrower than this at its narrowest (minimum height) is degenerate input.
 inline constexpr double kMinAreaWidth_m = 1.0;
-inline constexpr std::size_t kMaxSplitHoleVertices = 4'000;
+/// Altitude above home above which a warning names the common legal limit (EU, US: 120 m / 400 ft).
+inline constexpr double kLegalAltitude_m = 120.0;
+
+/// A battery-sized part of one drone's flight (DESIGN.md §14 "Sorties").
+struct Sortie {
+  int number = 1;                  ///< 1-based, in flying order
+  DroneMission mission;            ///< home -> resume point -> ... -> home
+  geometry::Point2 resume;         ///< where its survey work starts
+  std::vector<PhotoPoint> photos;  ///< planned photo positions
+};
+
+/// One drone of the plan: who it is, where it starts, what it flies.
+struct DronePlan {
+  int number = 1;         ///< 1-based, fleet order
+  std::string name;       ///< the fleet's name, "drone-<number>" otherwise
+  std::string file_stem;  ///< its files' name: `name` reduced to [A-Za-z0-9._-]
+  geometry::Point2 home;  ///< local frame
+  geometry::GeoPoint home_geo;
+  double speed_m_s = 0.0;
+  std::optional<double> endurance_s;  ///< flight time on a full charge, when known
+  /// Its part of the survey (with a fleet: the division's share, budgets and region).
+  DroneWork work;
+  DroneMission mission;            ///< the whole flight
+  std::vector<PhotoPoint> photos;  ///< planned photo positions (same rule as the autopilot)
+  std::vector<Sortie> sorties;     ///< with --sorties: the flight cut to fit the battery
+};
+
+/// What the flown paths keep from the no-fly zones and the boundary (measured over every leg of
+/// every flight, home legs included).
+struct ClearanceMeasure {
+  std::optional<double> no_fly_m;   ///< least distance to a hole or zone; absent: there are none
+  double boundary_outside_m = 0.0;  ///< line length outside the outer boundary (--outside-margin)
+};
 
 struct SurveyPlan {
   SurveyRequest request;
   geometry::AreaFacts facts;     ///< of the area as given, no-fly zones included as holes
   geometry::Polygon area;        ///< the area to cover: the field minus the no-fly zones
   geometry::Polygon flown_area;  ///< what the sweep covers (the hull for a concave area)
-  /// How the area was flown: "convex" (one sweep, strip rule), "hull" or "split".
-  std::string handling;
+  Handling handling = Handling::convex;
+  /// The rings lines are laid in and turns and transits stay in: the flown area with its holes and
+  /// zones grown by the clearance and its outer boundary shrunk by the boundary clearance.
+  std::vector<geometry::Ring> planning_rings;
+  /// The no-fly zones (holes of the field, then --exclude zones), local frame and as given.
+  std::vector<geometry::Ring> no_fly;
+  std::vector<std::vector<geometry::GeoPoint>> no_fly_geo;
+  std::vector<geometry::Ring> no_fly_grown;  ///< the zones grown by the clearance, united
+  /// Inclusion fences: the area (each piece) grown by the fence margin; one ring usually.
+  std::vector<geometry::Ring> fence;
+  double fence_margin_m = 0.0;
   std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
   std::size_t direction_candidates = 1;  ///< directions evaluated
   double transit_outside_m = 0.0;        ///< turns and transits (not home legs) outside the area
-  /// With a fleet: one mission per drone (`mission` keeps the undivided survey), and the division.
-  std::vector<DroneMission> drone_missions;
-  std::vector<DroneWork> drone_work;
-  std::vector<std::string> drone_names;
-  std::vector<double> drone_speeds_m_s;
-  DivisionResult division;
   /// --repair: the enclosed areas beyond the largest one (which became the field's outer ring),
   /// counter-clockwise, local frame. Planned with the rest.
   std::vector<geometry::Ring> extra_pieces;
   Imaging imaging;
   geometry::SweepDirection direction;  ///< angle of the lines (local, CCW from east) and height
   Sweep sweep;
-  DroneMission mission;
-  double speed_m_s = 0.0;
-  geometry::GeoPoint home;
+  std::vector<SweepLine> survey_lines;  ///< every line in flying order, before division
+  double speed_m_s = 0.0;               ///< the request's cruise speed
+  double turnaround_m = 0.0;
+  double turn_radius_m = 0.0;  ///< fixed-wing minimum turn radius; 0 for multirotors
+  geometry::GeoPoint home;     ///< the plan's (fleet's) home
+  geometry::Point2 home_local;
+  std::vector<DronePlan> drones;  ///< one per drone; one without a fleet
+  bool divided = false;           ///< the survey is divided among a fleet
+  DivisionResult division;        ///< with a fleet: makespan and what stays unflown
   /// Coverage of the area as given by the flown footprints, and the share of swath outside it.
   CoverageMeasure coverage;
+  ClearanceMeasure clearance;
   std::vector<std::string> warnings;  ///< one sentence each
 };
-
-/// The missions to write: one per drone of the fleet, or the single survey mission.
-std::vector<const DroneMission*> missions_of(const SurveyPlan& plan);
 
 /// What the coverage of a plan is measured over: the area, and --repair's extra pieces as further
 /// rings (the scanline measure counts by the even-odd rule).
@@ -128,5 +198,8 @@ geometry::Polygon measured_area(const SurveyPlan& plan);
 /// it refuses (self-intersecting, or non-convex with ConcaveMode::reject), a local-metres area
 /// without a geographic frame, or settings out of range; the message names the problem.
 SurveyPlan plan_survey(const SurveyRequest& request);
+
+/// `seconds` as text a pilot reads: "7 min 05 s" below an hour, "1:07:05" (h:mm:ss) above.
+std::string duration_text(double seconds);
 
 }  // namespace swath::planning

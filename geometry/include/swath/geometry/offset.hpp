@@ -1,0 +1,34 @@
+#pragma once
+// Growing and shrinking areas by a distance, and distances between paths and areas: the
+// clearance around no-fly zones and the fences of DESIGN.md §14 (Boost.Geometry's buffer and
+// boolean operations, in one .cpp).
+
+#include <vector>
+
+#include "swath/geometry/polygon.hpp"
+
+namespace swath::geometry {
+
+/// `rings` grown outward by `distance_m` (> 0), overlapping results united. Corners are mitred up
+/// to twice the distance, then cut square: the result contains every point within `distance_m`
+/// of the input (the full round buffer) and reaches at most 2 `distance_m` beyond it at a corner.
+/// Each result is a counter-clockwise outer ring (holes that appear inside a union are dropped:
+/// a pocket enclosed by zones is not reachable anyway). `distance_m` = 0 returns the rings
+/// counter-clockwise.
+std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m);
+
+/// The area `outer` shrunk by `inset_m` (>= 0) minus `obstacles` (counter-clockwise rings), as
+/// rings ready for sweeping and routing: each part's outer ring counter-clockwise followed by its
+/// holes clockwise, parts one after another (several when obstacles cut the area in pieces;
+/// none when nothing is left).
+std::vector<Ring> subtract(const Ring& outer, double inset_m, const std::vector<Ring>& obstacles);
+
+/// Least distance between the polyline `path` (its segments) and the closed areas `rings`
+/// (counter-clockwise or clockwise, each a separate area), metres; 0 when the path touches or
+/// enters one. +infinity when `rings` is empty. Exact up to rounding (segment-segment distances).
+double least_distance(const std::vector<Point2>& path, const std::vector<Ring>& rings);
+
+/// Length of the polyline `path` inside the closed areas `rings`, metres.
+double length_inside(const std::vector<Point2>& path, const std::vector<Ring>& rings);
+
+}  // namespace swath::geometry

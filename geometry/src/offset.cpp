@@ -1,0 +1,143 @@
+// The only translation unit that sees Boost.Geometry (its buffer and boolean operations).
+#include "swath/geometry/offset.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "swath/geometry/predicates.hpp"
+
+namespace swath::geometry {
+namespace {
+
+namespace bg = boost::geometry;
+using BPoint = bg::model::d2::point_xy<double>;
+using BPolygon = bg::model::polygon<BPoint, /*clockwise=*/false, /*closed=*/true>;
+using BMulti = bg::model::multi_polygon<BPolygon>;
+using BLine = bg::model::linestring<BPoint>;
+using BMultiLine = bg::model::multi_linestring<BLine>;
+
+BPolygon polygon_of(const Ring& ring) {
+  BPolygon p;
+  for (const Point2& q : ring) p.outer().push_back({q.x, q.y});
+  if (!ring.empty()) p.outer().push_back({ring.front().x, ring.front().y});
+  bg::correct(p);  // orientation and closure as the type wants
+  return p;
+}
+
+Ring ring_of(const bg::model::ring<BPoint, false, true>& r, bool counter_clockwise) {
+  Ring out;
+  for (const BPoint& p : r) out.push_back({p.x(), p.y()});
+  if (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  if ((signed_area(out) > 0) != counter_clockwise) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+BMulti buffered(const BMulti& input, double distance) {
+  // Points per circle only matter where a join falls back to round; mitres keep vertices few.
+  const bg::strategy::buffer::distance_symmetric<double> by(distance);
+  const bg::strategy::buffer::side_straight side;
+  const bg::strategy::buffer::join_miter join(2.0);
+  const bg::strategy::buffer::end_flat end;
+  const bg::strategy::buffer::point_circle circle(16);
+  BMulti out;
+  bg::buffer(input, out, by, side, join, end, circle);
+  return out;
+}
+
+BMulti multi_of(const std::vector<Ring>& rings) {
+  BMulti all;
+  for (const Ring& r : rings) {
+    if (r.size() < 3) continue;
+    BMulti united;
+    bg::union_(all, polygon_of(r), united);
+    all = std::move(united);
+  }
+  return all;
+}
+
+// Squared distance from p to segment [a, b].
+double segment_distance_sq(Point2 p, Point2 a, Point2 b) {
+  const Point2 d = b - a;
+  const double len = dot(d, d);
+  const double t = len > 0 ? std::clamp(dot(p - a, d) / len, 0.0, 1.0) : 0.0;
+  const Point2 q = a + d * t - p;
+  return dot(q, q);
+}
+
+}  // namespace
+
+std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m) {
+  std::vector<Ring> out;
+  const BMulti input = multi_of(rings);
+  const BMulti grown = distance_m > 0 ? buffered(input, distance_m) : input;
+  for (const BPolygon& p : grown) out.push_back(ring_of(p.outer(), true));
+  return out;
+}
+
+std::vector<Ring> subtract(const Ring& outer, double inset_m, const std::vector<Ring>& obstacles) {
+  BMulti area;
+  area.push_back(polygon_of(outer));
+  if (inset_m > 0) area = buffered(area, -inset_m);
+  BMulti result;
+  if (obstacles.empty()) {
+    result = area;
+  } else {
+    bg::difference(area, multi_of(obstacles), result);
+  }
+  std::vector<Ring> out;
+  for (const BPolygon& p : result) {
+    Ring o = ring_of(p.outer(), true);
+    if (o.size() < 3 || std::abs(signed_area(o)) <= 0) continue;
+    out.push_back(std::move(o));
+    for (const auto& inner : p.inners()) {
+      Ring h = ring_of(inner, false);
+      if (h.size() >= 3) out.push_back(std::move(h));
+    }
+  }
+  return out;
+}
+
+double least_distance(const std::vector<Point2>& path, const std::vector<Ring>& rings) {
+  double best_sq = std::numeric_limits<double>::infinity();
+  for (const Ring& ring : rings) {
+    if (ring.size() < 3) continue;
+    // A path point inside the area, or a path segment crossing its boundary: distance 0.
+    for (const Point2& p : path)
+      if (locate_point(p, ring) != Containment::outside) return 0.0;
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+      const Point2 a = path[i], b = path[i + 1];
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const Point2 c = ring[k], d = ring[(k + 1) % ring.size()];
+        if (segments_intersect(a, b, c, d)) return 0.0;
+        best_sq = std::min({best_sq, segment_distance_sq(a, c, d), segment_distance_sq(b, c, d),
+                            segment_distance_sq(c, a, b), segment_distance_sq(d, a, b)});
+      }
+    }
+    if (path.size() == 1)
+      for (std::size_t k = 0; k < ring.size(); ++k)
+        best_sq =
+            std::min(best_sq, segment_distance_sq(path[0], ring[k], ring[(k + 1) % ring.size()]));
+  }
+  return std::sqrt(best_sq);
+}
+
+double length_inside(const std::vector<Point2>& path, const std::vector<Ring>& rings) {
+  if (path.size() < 2 || rings.empty()) return 0.0;
+  BLine line;
+  for (const Point2& p : path) line.push_back({p.x, p.y});
+  double total = 0;
+  for (const Ring& r : rings) {
+    if (r.size() < 3) continue;
+    BMultiLine inside;
+    bg::intersection(line, polygon_of(r), inside);
+    total += bg::length(inside);
+  }
+  return total;
+}
+
+}  // namespace swath::geometry

@@ -1,0 +1,62 @@
+#pragma once
+// The steps of plan_survey(), in pipeline order; each in its own source file
+// (planning/src/steps/<step>.cpp) and each filling its part of the SurveyPlan. Exposed so that
+// tests and benches can run a pipeline up to a step.
+
+#include "swath/geometry/visibility.hpp"
+#include "swath/planning/survey.hpp"
+
+namespace swath::planning::steps {
+
+/// 1. area: the frame, homes near the area (DESIGN.md §14 sanity), --repair, no-fly zones as
+/// holes, the facts and their refusals (crossings, --concave reject), the handling (convex, hull,
+/// split), the flown area, the planning rings (holes and zones grown by the clearance, the outer
+/// ring shrunk by the boundary clearance) and the fence.
+void area(SurveyPlan& plan);
+
+/// 2. imaging: altitude, footprint, spacing and trigger distance from the camera and mode.
+void imaging(SurveyPlan& plan);
+
+/// 3. direction: the sweep direction (exact, scan or fixed), the refusals of degenerate slivers
+/// and of work beyond the limits, speed, turnaround, the fixed-wing turn radius and the home.
+void direction(SurveyPlan& plan);
+
+/// 4. lanes: the lines over the planning rings (one sweep, or split cells) in flying order, the
+/// crosshatch pass, and the fixed-wing interleave.
+void lanes(SurveyPlan& plan);
+
+/// 5. drones: one DronePlan per drone (names, file names, homes, speeds, endurance) and, with a
+/// fleet, the division of the lines among them.
+void drones(SurveyPlan& plan);
+
+/// 6. missions: each drone's items (speed, gimbal, camera per line, routed legs, RTL or land)
+/// and its planned photos.
+void missions(SurveyPlan& plan);
+
+/// 7. sorties: with SurveyRequest::sorties, each drone's flight cut into battery-sized sorties.
+void sorties(SurveyPlan& plan);
+
+/// 8. measures: coverage, the clearance actually kept, turns and transits outside the area.
+void measures(SurveyPlan& plan);
+
+/// 9. checks: the refusals that need the whole plan (covers nothing, fleet short) and the
+/// warnings (trigger interval, h_max, item limit, altitude, endurance, idle drones).
+void checks(SurveyPlan& plan);
+
+/// The routes the steps share: inside the planning rings (split's turns and transits), and in the
+/// open around the grown no-fly zones (legs to and from home, between a drone's pieces).
+struct Routes {
+  explicit Routes(const SurveyPlan& plan);
+  geometry::VisibilityRouter inside;
+  geometry::VisibilityRouter open;
+  /// Points strictly between a and b on the shortest path inside the planning rings (when a and
+  /// b are both inside them), else around the zones.
+  LegRoute leg() const;
+  /// The same in the open only (home legs).
+  LegRoute open_leg() const;
+};
+
+/// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
+MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone);
+
+}  // namespace swath::planning::steps

@@ -1,0 +1,170 @@
+#include "common.hpp"
+
+#include <cmath>
+
+#include "swath/base/number_text.hpp"
+#include "swath/base/utf8.hpp"
+
+namespace swath::planning::files {
+
+using base::fixed_text;
+using base::round_to;
+
+geometry::GeoPoint rounded(const geometry::GeoPoint& g) {
+  return {round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), 0.0};
+}
+
+geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p) {
+  return rounded(plan.request.field.frame->to_geo(p));
+}
+
+int mav_command(const MissionItem& item, Firmware firmware) {
+  switch (item.kind) {
+    case ItemKind::takeoff:
+      return 22;  // MAV_CMD_NAV_TAKEOFF
+    case ItemKind::waypoint:
+      return 16;  // MAV_CMD_NAV_WAYPOINT
+    case ItemKind::change_speed:
+      return 178;  // MAV_CMD_DO_CHANGE_SPEED
+    case ItemKind::gimbal_pitch:
+      // MAV_CMD_DO_MOUNT_CONTROL for ArduPilot; PX4 takes the gimbal manager's command.
+      return firmware == Firmware::ardupilot ? 205 : 1000;
+    case ItemKind::trigger_start:
+      return item.trigger == TriggerMode::time ? 2000 : 206;  // IMAGE_START_CAPTURE, CAM_TRIGG_DIST
+    case ItemKind::trigger_stop:
+      return item.trigger == TriggerMode::time ? 2001 : 206;  // IMAGE_STOP_CAPTURE
+    case ItemKind::camera_shot:
+      return item.command == CameraCommand::digicam ? 203 : 2000;  // DO_DIGICAM_CONTROL
+    case ItemKind::land_start:
+      return 189;  // MAV_CMD_DO_LAND_START
+    case ItemKind::land:
+      return 21;  // MAV_CMD_NAV_LAND
+    case ItemKind::return_to_launch:
+      return 20;  // MAV_CMD_NAV_RETURN_TO_LAUNCH
+  }
+  return 0;
+}
+
+int mav_frame(const MissionItem& item) {
+  return positional(item.kind) || item.kind == ItemKind::land_start ? kFrameRelativeAlt
+                                                                    : kFrameMission;
+}
+
+std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item) {
+  const double nan = std::nan("");
+  const bool fixed_wing = plan.request.vehicle == Vehicle::fixedwing;
+  auto at = [&](double p1) {
+    const geometry::GeoPoint g = geo(plan, item.position);
+    return std::array<double, 7>{p1, 0, 0, nan, g.lat_deg, g.lon_deg, round_to(item.altitude_m, 3)};
+  };
+  switch (item.kind) {
+    case ItemKind::takeoff:
+      return at(0);
+    case ItemKind::waypoint:
+      return at(round_to(item.value, 3));  // param1: hold, seconds
+    case ItemKind::land:
+      return at(0);
+    case ItemKind::land_start: {
+      const geometry::GeoPoint g = geo(plan, item.position);
+      return {0, 0, 0, 0, g.lat_deg, g.lon_deg, 0};
+    }
+    case ItemKind::change_speed:
+      // param1: 1 ground speed (multirotor), 0 airspeed (fixed-wing); param3 -1: throttle kept.
+      return {fixed_wing ? 0.0 : 1.0, round_to(item.value, 3), -1, 0, 0, 0, 0};
+    case ItemKind::gimbal_pitch:
+      if (plan.request.firmware == Firmware::ardupilot)  // pitch, roll, yaw; mode 2: MAVLink
+        return {round_to(item.value, 3), 0, 0, 0, 0, 0, 2};
+      return {round_to(item.value, 3), nan, nan, nan, 0, 0, 0};  // pitch, yaw kept, rates kept
+    case ItemKind::trigger_start:
+      if (item.trigger == TriggerMode::time) return {0, round_to(item.value, 3), 0, 0, 0, 0, 0};
+      return {round_to(item.value, 3), 0, 1, 0, 0, 0, 0};  // param3 1: one photo at once
+    case ItemKind::trigger_stop:
+      return {0, 0, 0, 0, 0, 0, 0};
+    case ItemKind::camera_shot:
+      if (item.command == CameraCommand::digicam) return {0, 0, 0, 0, 1, 0, 0};  // param5: shoot
+      return {0, 0, 1, 0, 0, 0, 0};                                              // one image
+    case ItemKind::return_to_launch:
+      return {0, 0, 0, 0, 0, 0, 0};
+  }
+  return {0, 0, 0, 0, 0, 0, 0};
+}
+
+const char* action_name(ItemKind kind) {
+  switch (kind) {
+    case ItemKind::takeoff:
+      return "takeoff";
+    case ItemKind::waypoint:
+      return "waypoint";
+    case ItemKind::change_speed:
+      return "change_speed";
+    case ItemKind::gimbal_pitch:
+      return "gimbal_pitch";
+    case ItemKind::trigger_start:
+      return "trigger_start";
+    case ItemKind::trigger_stop:
+      return "trigger_stop";
+    case ItemKind::camera_shot:
+      return "camera_shot";
+    case ItemKind::land_start:
+      return "land_start";
+    case ItemKind::land:
+      return "land";
+    case ItemKind::return_to_launch:
+      return "return_to_launch";
+  }
+  return "";
+}
+
+std::string xml_escape(const std::string& text) {
+  const std::string s = base::valid_utf8(text);
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
+                            bool close) {
+  std::string s;
+  auto add = [&](const geometry::GeoPoint& g) {
+    s += fixed_text(g.lon_deg, 9);
+    s += ',';
+    s += fixed_text(g.lat_deg, 9);
+    s += ',';
+    s += fixed_text(altitude_m, 3);
+    s += ' ';
+  };
+  for (const geometry::GeoPoint& g : points) add(g);
+  if (close && !points.empty()) add(points.front());
+  if (!s.empty()) s.pop_back();
+  return s;
+}
+
+std::string wpl_row(std::size_t index, int current, int frame, int command,
+                    const std::array<double, 7>& p) {
+  std::string out = std::to_string(index) + "\t" + std::to_string(current) + "\t" +
+                    std::to_string(frame) + "\t" + std::to_string(command);
+  for (std::size_t k = 0; k < 7; ++k) {
+    out += '\t';
+    out += fixed_text(std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
+  }
+  return out + "\t1\n";
+}
+
+}  // namespace swath::planning::files

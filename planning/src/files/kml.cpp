@@ -1,0 +1,47 @@
+// mission.kml: the area, the no-fly zones, each drone's path, the homes.
+#include "common.hpp"
+
+namespace swath::planning {
+
+std::string mission_kml(const SurveyPlan& plan) {
+  const geometry::Polygon& area = plan.request.field.polygon;
+  const auto& rings = plan.request.field.geo_rings;
+  std::string s =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<kml "
+      "xmlns=\"http://www.opengis.net/kml/2.2\">\n<Document>\n";
+  s += "  <name>swath survey of " + files::xml_escape(plan.request.field.source) + "</name>\n";
+  s += "  <Placemark>\n    <name>Area</name>\n    <Polygon>\n      "
+       "<outerBoundaryIs><LinearRing><coordinates>" +
+       files::kml_coordinates(rings.at(0), 0.0, true) +
+       "</coordinates></LinearRing></outerBoundaryIs>\n";
+  for (std::size_t h = 1; h < geometry::ring_count(area); ++h)
+    s += "      <innerBoundaryIs><LinearRing><coordinates>" +
+         files::kml_coordinates(rings.at(h), 0.0, true) +
+         "</coordinates></LinearRing></innerBoundaryIs>\n";
+  s += "    </Polygon>\n  </Placemark>\n";
+  for (std::size_t k = 0; k < plan.no_fly_geo.size(); ++k)
+    s += "  <Placemark>\n    <name>No-fly zone " + std::to_string(k + 1) +
+         "</name>\n    <Polygon>\n      <outerBoundaryIs><LinearRing><coordinates>" +
+         files::kml_coordinates(plan.no_fly_geo[k], 0.0, true) +
+         "</coordinates></LinearRing></outerBoundaryIs>\n    </Polygon>\n  </Placemark>\n";
+  for (const DronePlan& d : plan.drones) {
+    std::vector<geometry::GeoPoint> path;
+    for (const geometry::Point2& p : d.mission.path) path.push_back(files::geo(plan, p));
+    s += "  <Placemark>\n    <name>Drone " + std::to_string(d.number) +
+         (d.name == "drone-" + std::to_string(d.number) ? "" : " " + files::xml_escape(d.name)) +
+         " path</name>\n    <LineString>\n" +
+         "      <altitudeMode>relativeToGround</altitudeMode>\n      <coordinates>" +
+         files::kml_coordinates(path, plan.imaging.altitude_m, false) +
+         "</coordinates>\n    </LineString>\n  </Placemark>\n";
+  }
+  s += "  <Placemark>\n    <name>Home</name>\n    <Point><coordinates>" +
+       files::kml_coordinates({plan.home}, 0.0, false) + "</coordinates></Point>\n  </Placemark>\n";
+  for (const DronePlan& d : plan.drones)
+    if (!(files::rounded(d.home_geo) == files::rounded(plan.home)))
+      s += "  <Placemark>\n    <name>Home of " + files::xml_escape(d.name) +
+           "</name>\n    <Point><coordinates>" + files::kml_coordinates({d.home_geo}, 0.0, false) +
+           "</coordinates></Point>\n  </Placemark>\n";
+  return s + "</Document>\n</kml>\n";
+}
+
+}  // namespace swath::planning

@@ -1,0 +1,236 @@
+// Step 1 of plan_survey(): the area to fly (survey_steps.hpp).
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/geometry/convex_hull.hpp"
+#include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/offset.hpp"
+#include "swath/geometry/repair.hpp"
+#include "swath/planning/survey_steps.hpp"
+
+namespace swath::planning::steps {
+namespace {
+
+using base::fixed_text;
+using base::InputError;
+using geometry::GeoPoint;
+
+std::string point_text(const geometry::Field& field, geometry::Point2 p) {
+  const GeoPoint g = field.frame->to_geo(p);
+  std::ostringstream s;
+  s.precision(8);
+  s << g.lat_deg << ", " << g.lon_deg << " (lat, lon)";
+  return s.str();
+}
+
+// --repair: an outer ring that crosses itself becomes the areas it encloses.
+void repair_outer_ring(SurveyPlan& plan) {
+  geometry::Field& field = plan.request.field;
+  const auto crossing = geometry::find_crossing(geometry::Polygon{field.polygon.outer, {}});
+  if (!crossing) return;
+  std::vector<geometry::Ring> pieces = geometry::enclosed_areas(field.polygon.outer);
+  if (pieces.empty())
+    throw InputError(field.source + ": the outer ring crosses itself and encloses no area");
+  double total = 0;
+  for (const geometry::Ring& p : pieces) total += geometry::signed_area(p);
+  field.polygon.outer = pieces.front();
+  field.source_index[0].assign(pieces.front().size(), 0);
+  for (std::size_t i = 0; i < pieces.front().size(); ++i) field.source_index[0][i] = i;
+  field.geo_rings[0].clear();
+  for (const geometry::Point2& p : pieces.front())
+    field.geo_rings[0].push_back(field.frame->to_geo(p));
+  plan.extra_pieces.assign(pieces.begin() + 1, pieces.end());
+  plan.warnings.push_back("repaired: the outer ring crosses itself at " +
+                          point_text(field, crossing->point) + "; planned the " +
+                          std::to_string(pieces.size()) + " area(s) it encloses, " +
+                          fixed_text(total, 1) + " m² in all");
+}
+
+std::string lat_lon_text(const GeoPoint& g) {
+  return fixed_text(g.lat_deg, 5) + "," + fixed_text(g.lon_deg, 5);
+}
+
+// Geodesic distance from `p` to the nearest vertex of the area (the area is small beside the
+// distances this judges).
+double distance_to_area_m(const GeoPoint& p, const std::vector<GeoPoint>& ring) {
+  double d = INFINITY;
+  for (const GeoPoint& v : ring) d = std::min(d, geometry::geodesic_distance_m(p, v));
+  return d;
+}
+
+// A home far from the area is almost always a typo: latitude and longitude swapped, or a sign
+// lost (DESIGN.md §14 "Sanity checks"). Refused naming the distance and, where one of those
+// readings lies within 1 km of the area, the home meant.
+void check_home_near_area(const GeoPoint& home, const std::string& what,
+                          const geometry::Field& field, bool far_home_allowed) {
+  const std::vector<GeoPoint>& ring = field.geo_rings.at(0);
+  const double d = distance_to_area_m(home, ring);
+  if (d <= kMaxHomeDistance_m || (far_home_allowed && d <= kMaxFarHomeDistance_m)) return;
+  std::string message = what + " " + lat_lon_text(home) + " (lat, lon) is " +
+                        fixed_text(d / 1000, 0) + " km from the area";
+  const GeoPoint readings[] = {{home.lon_deg, home.lat_deg, 0},
+                               {-home.lat_deg, home.lon_deg, 0},
+                               {home.lat_deg, -home.lon_deg, 0},
+                               {-home.lat_deg, -home.lon_deg, 0}};
+  const char* how[] = {"latitude and longitude swapped", "the latitude's sign flipped",
+                       "the longitude's sign flipped", "both signs flipped"};
+  std::string tail = "; homes";
+  for (std::size_t k = 0; k < std::size(readings); ++k) {
+    const GeoPoint& r = readings[k];
+    if (std::abs(r.lat_deg) <= 90 && distance_to_area_m(r, ring) <= 1000) {
+      message += "; did you mean " + lat_lon_text(r) + " (" + how[k] + ")?";
+      tail = " Homes";
+      break;
+    }
+  }
+  if (far_home_allowed)  // beyond what any drone flies, and what the local frame can hold
+    throw InputError(message + tail + " farther than " +
+                     fixed_text(kMaxFarHomeDistance_m / 1000, 0) +
+                     " km are refused even with --far-home");
+  throw InputError(message + tail + " farther than " + fixed_text(kMaxHomeDistance_m / 1000, 0) +
+                   " km are refused unless --far-home is given");
+}
+
+// Every home the plan will use: the request's and the fleet's own.
+void check_homes(const SurveyRequest& request, const geometry::Field& field) {
+  if (request.home) check_home_near_area(*request.home, "the home", field, request.far_home);
+  if (!request.fleet) return;
+  if (std::isfinite(request.fleet->home.lat_deg) &&
+      request.fleet->home != request.home.value_or(GeoPoint{NAN, NAN, 0}))
+    check_home_near_area(request.fleet->home, "the fleet's home", field, request.far_home);
+  for (const Drone& d : request.fleet->drones)
+    if (d.home)
+      check_home_near_area(*d.home, "drone " + d.name + "'s home", field, request.far_home);
+}
+
+// The no-fly zones: the field's holes, then the --exclude zones (as given and in the frame).
+void collect_no_fly(SurveyPlan& plan) {
+  const geometry::Field& field = plan.request.field;
+  for (std::size_t h = 0; h < field.polygon.holes.size(); ++h) {
+    plan.no_fly.push_back(field.polygon.holes[h]);
+    plan.no_fly_geo.push_back(field.geo_rings.at(h + 1));
+  }
+  for (std::size_t k = 0; k < plan.request.exclusions.size(); ++k) {
+    geometry::Ring local;
+    for (const GeoPoint& g : plan.request.exclusions[k]) local.push_back(field.frame->to_local(g));
+    geometry::NormalisedRing hole = geometry::normalise_ring(local, false);
+    if (hole.ring.size() < 3)
+      throw InputError("no-fly zone " + std::to_string(k) + " has fewer than 3 distinct vertices");
+    plan.area.holes.push_back(hole.ring);
+    plan.no_fly.push_back(std::move(hole.ring));
+    plan.no_fly_geo.push_back(plan.request.exclusions[k]);
+  }
+}
+
+// Refusals that need the classification: zones crossing the area or each other, a crossing
+// outer ring, a concave area with --concave reject.
+void check_classification(const SurveyPlan& plan) {
+  const geometry::Field& field = plan.request.field;
+  const geometry::Classification& c = plan.facts.classification;
+  if (c.type == geometry::AreaType::self_intersecting &&
+      c.crossing->edge_b.ring > field.polygon.holes.size()) {
+    const GeoPoint p = field.frame->to_geo(c.crossing->point);
+    std::ostringstream s;
+    s.precision(8);
+    s << "no-fly zone " << (c.crossing->edge_b.ring - 1 - field.polygon.holes.size())
+      << " crosses the area's boundary or another zone at " << p.lat_deg << ", " << p.lon_deg
+      << " (lat, lon); give zones inside the area that do not overlap";
+    throw InputError(s.str());
+  }
+  if (c.type == geometry::AreaType::self_intersecting) {
+    const GeoPoint p = field.frame->to_geo(c.crossing->point);
+    std::ostringstream s;
+    s.precision(8);
+    s << field.source << ": the area crosses itself at " << p.lat_deg << ", " << p.lon_deg
+      << " (lat, lon); 'swath classify' names the edges; fix the vertex order, or give --repair to "
+         "plan the areas it encloses";
+    throw InputError(s.str());
+  }
+  if (c.type == geometry::AreaType::concave && plan.request.concave == ConcaveMode::reject)
+    throw InputError(field.source + ": the area is not convex (" +
+                     std::to_string(c.reflex_vertices.size()) + " reflex vertices" +
+                     (field.polygon.holes.empty() ? "" : ", holes") +
+                     ") and --concave reject refuses it; use --concave hull");
+}
+
+// The holes split routes around: bounded before the quadratic work (kMaxSplitHoles).
+void check_split_size(const geometry::Polygon& area) {
+  std::size_t vertices = 0;
+  for (const geometry::Ring& hole : area.holes) vertices += hole.size();
+  if (area.holes.size() > kMaxSplitHoles || vertices > kMaxSplitHoleVertices)
+    throw InputError("the area has " + std::to_string(area.holes.size()) +
+                     " holes and no-fly zones with " + std::to_string(vertices) +
+                     " vertices, more than split's limit of " + std::to_string(kMaxSplitHoles) +
+                     " holes and " + std::to_string(kMaxSplitHoleVertices) +
+                     " vertices; merge or simplify them, or give --concave hull");
+}
+
+// The handling and the area the sweep flies.
+void choose_handling(SurveyPlan& plan) {
+  const geometry::Classification& c = plan.facts.classification;
+  const bool convex = c.type == geometry::AreaType::convex && plan.extra_pieces.empty();
+  const bool split = !convex && plan.request.concave == ConcaveMode::split;
+  plan.handling = convex ? Handling::convex : split ? Handling::split : Handling::hull;
+  if (!convex && !plan.no_fly.empty()) check_split_size(plan.area);
+  if (plan.handling == Handling::hull) {
+    std::vector<geometry::Point2> all_outer = plan.area.outer;
+    for (const geometry::Ring& piece : plan.extra_pieces)
+      all_outer.insert(all_outer.end(), piece.begin(), piece.end());
+    // The hull replaces the outline; the no-fly zones stay no-fly.
+    plan.flown_area = geometry::Polygon{geometry::convex_hull(all_outer), plan.area.holes};
+  } else {
+    plan.flown_area = plan.area;
+  }
+}
+
+// Lines and routes keep the clearance: zones grown by it, the outline shrunk by the boundary
+// clearance (DESIGN.md §14 "Clearance").
+void planning_rings(SurveyPlan& plan) {
+  const SurveyRequest& r = plan.request;
+  if (plan.no_fly.empty() && r.boundary_clearance_m == 0) {  // the area itself, as given
+    plan.planning_rings = geometry::rings_of(plan.flown_area);
+    if (plan.handling != Handling::hull)
+      plan.planning_rings.insert(plan.planning_rings.end(), plan.extra_pieces.begin(),
+                                 plan.extra_pieces.end());
+    return;
+  }
+  plan.no_fly_grown = geometry::grow(plan.no_fly, r.clearance_m);
+  plan.planning_rings =
+      geometry::subtract(plan.flown_area.outer, r.boundary_clearance_m, plan.no_fly_grown);
+  if (plan.handling != Handling::hull)
+    for (const geometry::Ring& piece : plan.extra_pieces)
+      for (geometry::Ring& ring :
+           geometry::subtract(piece, r.boundary_clearance_m, plan.no_fly_grown))
+        plan.planning_rings.push_back(std::move(ring));
+  if (plan.planning_rings.empty())
+    throw InputError(r.field.source +
+                     ": nothing of the area is left to fly once the no-fly zones "
+                     "keep " +
+                     fixed_text(r.clearance_m, 1) + " m and the boundary " +
+                     fixed_text(r.boundary_clearance_m, 1) +
+                     " m of clearance; lower --clearance or --boundary-clearance");
+}
+
+}  // namespace
+
+void area(SurveyPlan& plan) {
+  geometry::Field& field = plan.request.field;
+  if (!field.frame)
+    throw InputError(field.source +
+                     ": the area is in local metres; give --origin LAT,LON to place it on the map");
+  check_homes(plan.request, field);
+  if (plan.request.repair) repair_outer_ring(plan);
+  plan.area = field.polygon;
+  collect_no_fly(plan);
+  plan.facts = geometry::describe_area(plan.area);
+  for (const geometry::Ring& piece : plan.extra_pieces)
+    *plan.facts.area_m2 += geometry::signed_area(piece);
+  check_classification(plan);
+  choose_handling(plan);
+  planning_rings(plan);
+}
+
+}  // namespace swath::planning::steps

@@ -1,0 +1,157 @@
+// Step 4 of plan_survey(): the lines (survey_steps.hpp), and the routes the steps share.
+#include <algorithm>
+#include <cmath>
+
+#include "swath/base/number_text.hpp"
+#include "swath/geometry/decomposition.hpp"
+#include "swath/planning/split.hpp"
+#include "swath/planning/survey_steps.hpp"
+
+namespace swath::planning::steps {
+namespace {
+
+using geometry::Point2;
+
+// Whether lines are laid in cells inside the planning rings (a concave area, holes, zones, or
+// several pieces) rather than by one sweep with the strip rule.
+bool in_cells(const SurveyPlan& plan) {
+  return plan.handling == Handling::split || plan.planning_rings.size() > 1;
+}
+
+geometry::Ring bounding_box(const SurveyPlan& plan) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  auto grow = [&](Point2 p) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  };
+  for (const geometry::Ring& r : plan.planning_rings)
+    for (const Point2& p : r) grow(p);
+  for (const geometry::Ring& r : plan.no_fly_grown)
+    for (const Point2& p : r) grow(p);
+  grow(plan.home_local);
+  if (plan.request.fleet)
+    for (const Drone& d : plan.request.fleet->drones)
+      if (d.home) grow(plan.request.field.frame->to_local(*d.home));
+  const double margin = 1000 + std::max(x1 - x0, y1 - y0);
+  return {{x0 - margin, y0 - margin},
+          {x1 + margin, y0 - margin},
+          {x1 + margin, y1 + margin},
+          {x0 - margin, y1 + margin}};
+}
+
+// The open: a box around everything with the grown zones as holes (clockwise).
+std::vector<geometry::Ring> open_rings(const SurveyPlan& plan) {
+  if (plan.no_fly_grown.empty()) return {};
+  std::vector<geometry::Ring> rings{bounding_box(plan)};
+  for (geometry::Ring zone : plan.no_fly_grown) {
+    std::reverse(zone.begin(), zone.end());
+    rings.push_back(std::move(zone));
+  }
+  return rings;
+}
+
+std::vector<Point2> between(const std::vector<Point2>& path) {
+  if (path.size() <= 2) return {};
+  return {path.begin() + 1, path.end() - 1};
+}
+
+SweepSettings sweep_settings(const SurveyPlan& plan, double angle_deg) {
+  SweepSettings s;
+  s.angle_deg = angle_deg;
+  s.line_spacing_m = plan.imaging.line_spacing_m;
+  s.footprint_width_m = plan.imaging.footprint_across_m;
+  s.placement = plan.request.placement;
+  s.turnaround_m = plan.turnaround_m;
+  return s;
+}
+
+SplitSettings split_settings(const SurveyPlan& plan) {
+  SplitSettings s;
+  s.line_spacing_m = plan.imaging.line_spacing_m;
+  s.footprint_width_m = plan.imaging.footprint_across_m;
+  s.placement = plan.request.placement;
+  s.turnaround_m = plan.turnaround_m;
+  s.scan_step_deg = plan.request.split_scan_step_deg;
+  return s;
+}
+
+// The lines of one pass at `angle_deg` (or the searched direction for the first split pass),
+// flown from `from`.
+std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
+                                std::optional<double> angle_deg, Point2 from, bool first) {
+  if (in_cells(plan)) {
+    SplitSettings s = split_settings(plan);
+    if (angle_deg) s.fixed_angle_deg = *angle_deg;
+    const SplitPlan sp = plan_split(plan.planning_rings, from, s, routes.inside);
+    if (first) {
+      plan.direction = {sp.angle_deg, geometry::height_at(plan.area.outer, sp.angle_deg)};
+      plan.sweep = {sp.angle_deg, plan.direction.height_m, sp.lines};
+      plan.cells = sp.cells;
+      plan.direction_candidates = sp.candidates;
+    }
+    return sp.lines;
+  }
+  const geometry::Polygon flown{plan.planning_rings.front(), {}};
+  const Sweep sweep =
+      plan_sweep(flown, sweep_settings(plan, angle_deg.value_or(plan.direction.angle_deg)));
+  if (first) {
+    plan.sweep = sweep;
+    plan.cells = {flown.outer};
+  }
+  return order_lines(sweep, first ? plan.request.start : StartCorner::nearest_home, from);
+}
+
+// Fixed-wing (DESIGN.md §14): where adjacent lines are closer than two turn radii, fly every
+// k-th line, then the next class, so that each U-turn is at least 2r wide; each line is entered
+// from the end nearer the previous one. Same lines, same coverage.
+std::vector<SweepLine> interleave(const std::vector<SweepLine>& lines, double spacing_m,
+                                  double turn_radius_m) {
+  if (turn_radius_m <= 0 || spacing_m >= 2 * turn_radius_m || lines.size() < 3) return lines;
+  const auto k = static_cast<std::size_t>(std::ceil(2 * turn_radius_m / spacing_m - 1e-9));
+  std::vector<SweepLine> out;
+  for (std::size_t c = 0; c < k; ++c)
+    for (std::size_t i = c; i < lines.size(); i += k) {
+      SweepLine line = lines[i];
+      if (!out.empty() && geometry::distance(out.back().end, line.end) <
+                              geometry::distance(out.back().end, line.start))
+        std::swap(line.start, line.end);
+      out.push_back(line);
+    }
+  return out;
+}
+
+}  // namespace
+
+Routes::Routes(const SurveyPlan& plan)
+    : inside(plan.planning_rings, in_cells(plan) ? 300 : 0), open(open_rings(plan), 1000) {}
+
+LegRoute Routes::leg() const {
+  return [this](Point2 a, Point2 b) {
+    if (inside.routes() && inside.visible(a, a) && inside.visible(b, b))
+      return between(inside.path(a, b));
+    return between(open.path(a, b));
+  };
+}
+
+LegRoute Routes::open_leg() const {
+  return [this](Point2 a, Point2 b) { return between(open.path(a, b)); };
+}
+
+void lanes(SurveyPlan& plan) {
+  const Routes routes(plan);
+  const std::optional<double> fixed =
+      plan.request.angle_search == AngleSearch::fixed || !in_cells(plan)
+          ? std::optional<double>(plan.direction.angle_deg)
+          : std::nullopt;
+  plan.survey_lines = one_pass(plan, routes, fixed, plan.home_local, true);
+  plan.survey_lines =
+      interleave(plan.survey_lines, plan.imaging.line_spacing_m, plan.turn_radius_m);
+  if (plan.request.crosshatch && !plan.survey_lines.empty()) {
+    // The second pass at 90°, entered near where the first ended.
+    std::vector<SweepLine> cross =
+        one_pass(plan, routes, plan.sweep.angle_deg + 90, plan.survey_lines.back().end, false);
+    cross = interleave(cross, plan.imaging.line_spacing_m, plan.turn_radius_m);
+    plan.survey_lines.insert(plan.survey_lines.end(), cross.begin(), cross.end());
+  }
+}
+
+}  // namespace swath::planning::steps

@@ -1,0 +1,167 @@
+// Steps 8 and 9 of plan_survey(): what the plan achieves, and what it refuses or warns about
+// (survey_steps.hpp).
+#include <algorithm>
+#include <cmath>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/offset.hpp"
+#include "swath/planning/survey_steps.hpp"
+
+namespace swath::planning::steps {
+namespace {
+
+using base::fixed_text;
+using base::InputError;
+
+// Every flight a drone makes: its sorties, or its one mission.
+std::vector<const DroneMission*> flights_of(const DronePlan& d) {
+  std::vector<const DroneMission*> out;
+  for (const Sortie& s : d.sorties) out.push_back(&s.mission);
+  if (out.empty()) out.push_back(&d.mission);
+  return out;
+}
+
+// Lines of the first pass (parallel to the sweep): the coverage measure takes one direction, and
+// the first pass alone covers the area (the crosshatch pass adds views, not area).
+std::vector<SweepLine> first_pass_lines(const SurveyPlan& plan) {
+  const geometry::Point2 axis = rotate({1, 0}, plan.sweep.angle_deg);
+  std::vector<SweepLine> out;
+  for (const DronePlan& d : plan.drones)
+    for (const SweepLine& l : d.mission.lines) {
+      const geometry::Point2 v = l.end - l.start;
+      const double length = std::hypot(v.x, v.y);
+      if (length == 0 || std::abs(geometry::cross(axis, v)) <= 1e-6 * length) out.push_back(l);
+    }
+  return out;
+}
+
+// Turns and transits outside the area: each path from its first line's start to its last
+// line's end, less the lines' own length outside. The legs to and from home are not counted:
+// a home outside the area cannot be reached inside it.
+double transit_outside_m(const SurveyPlan& plan) {
+  std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
+  rings.insert(rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  const geometry::VisibilityRouter measure(rings, 0);
+  double outside = 0;
+  for (const DronePlan& d : plan.drones) {
+    const DroneMission& m = d.mission;
+    if (m.lines.empty()) continue;
+    const auto& path = m.path;
+    const auto first = static_cast<std::size_t>(
+        std::find(path.begin(), path.end(), m.lines.front().start) - path.begin());
+    const auto last =
+        path.size() - 1 -
+        static_cast<std::size_t>(std::find(path.rbegin(), path.rend(), m.lines.back().end) -
+                                 path.rbegin());
+    for (std::size_t i = first; i < last; ++i)
+      outside += measure.length_outside(path[i], path[i + 1]);
+  }
+  return std::max(0.0, outside - plan.coverage.line_length_outside_m);
+}
+
+void check_range(const SurveyPlan& plan, const DronePlan& d, std::vector<std::string>& warnings) {
+  if (!plan.request.fleet) return;
+  const auto range = plan.request.fleet->drones[static_cast<std::size_t>(d.number - 1)].range_m();
+  if (!range || !d.sorties.empty() || d.mission.path_length_m <= *range) return;
+  const std::string what =
+      "drone " + d.name + "'s flight (" + std::to_string(std::lround(d.mission.path_length_m)) +
+      " m) is longer than its range (" + std::to_string(std::lround(*range)) + " m)";
+  if (!plan.request.allow_partial)
+    throw InputError(what +
+                     "; add drones or battery, use --balance makespan, or give --allow-partial");
+  warnings.push_back(what);
+}
+
+void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
+                      std::vector<std::string>& warnings) {
+  if (plan.divided && d.mission.work_length_m < 1.0)
+    warnings.push_back("drone " + d.name +
+                       " gets no survey work (its share is used up by the flight to the area and "
+                       "back); leave it out of the fleet");
+  for (const DroneMission* m : flights_of(d))
+    if (m->items.size() > kAutopilotItemLimit) {
+      warnings.push_back("drone " + d.name + "'s mission has " + std::to_string(m->items.size()) +
+                         " items, more than ArduPilot's classic limit of 700 (some autopilots "
+                         "hold fewer): divide it among drones or drop --waypoint-spacing");
+      break;
+    }
+  // DESIGN.md §14: a flight longer than the drone's endurance.
+  if (d.endurance_s && d.sorties.empty()) {
+    const double usable = *d.endurance_s * (1 - plan.request.reserve);
+    if (d.mission.flight_time_s > usable)
+      warnings.push_back("drone " + d.name + "'s flight takes " +
+                         duration_text(d.mission.flight_time_s) + ", longer than its " +
+                         duration_text(*d.endurance_s) + " endurance less the " +
+                         fixed_text(100 * plan.request.reserve, 0) +
+                         " % reserve; cut it into sorties with --sorties auto, or add drones");
+  }
+  // Fixed-wing: a U-turn between lines closer than two turn radii (few lines, or split cells).
+  if (plan.turn_radius_m > 0) {
+    int tight = 0;
+    for (std::size_t i = 0; i + 1 < d.mission.lines.size(); ++i)
+      tight += geometry::distance(d.mission.lines[i].end, d.mission.lines[i + 1].start) <
+               2 * plan.turn_radius_m - 1e-6;
+    if (tight > 0)
+      warnings.push_back("drone " + d.name + " has " + std::to_string(tight) +
+                         " turns between lines closer than twice its turn radius (" +
+                         fixed_text(2 * plan.turn_radius_m, 1) +
+                         " m): it will overshoot them; fly slower or bank more");
+  }
+}
+
+}  // namespace
+
+void measures(SurveyPlan& plan) {
+  plan.coverage = measure_coverage(measured_area(plan), first_pass_lines(plan),
+                                   plan.sweep.angle_deg, plan.imaging.footprint_across_m);
+  plan.transit_outside_m = transit_outside_m(plan);
+  // The clearance actually kept, over every leg of every flight, home legs included.
+  if (!plan.no_fly.empty()) {
+    double least = INFINITY;
+    for (const DronePlan& d : plan.drones)
+      for (const DroneMission* m : flights_of(d))
+        least = std::min(least, geometry::least_distance(m->path, plan.no_fly));
+    plan.clearance.no_fly_m = least;
+  }
+}
+
+void checks(SurveyPlan& plan) {
+  const SurveyRequest& r = plan.request;
+  if (!(plan.coverage.covered_fraction > 0))
+    throw InputError(r.field.source + ": the plan covers none of the area (" +
+                     std::to_string(plan.sweep.lines.size()) +
+                     " lines); check the altitude, overlaps and turnaround");
+  if (plan.division.unflown_path_m > 0 && !r.allow_partial)
+    throw InputError(
+        "the fleet cannot fly the whole survey: " + fixed_text(plan.division.unflown_path_m, 1) +
+        " m of path and " + fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
+        " m² of area stay unflown; add drones or battery, or give --allow-partial");
+  std::vector<std::string>& warnings = plan.warnings;
+  for (const DronePlan& d : plan.drones) check_range(plan, d, warnings);
+  if (const auto& interval = r.camera.min_trigger_interval_s) {
+    const double seconds = plan.imaging.trigger_distance_m / plan.speed_m_s;
+    if (seconds < *interval)
+      warnings.push_back("at " + fixed_text(plan.speed_m_s, 1) +
+                         " m/s the camera must trigger every " + fixed_text(seconds, 1) +
+                         " s, faster than its " + fixed_text(*interval, 1) +
+                         " s minimum; fly at most " +
+                         fixed_text(plan.imaging.trigger_distance_m / *interval, 1) + " m/s");
+  }
+  if (r.pattern && plan.imaging.altitude_m > *plan.imaging.h_max_m * (1 + 1e-12))
+    warnings.push_back("the altitude " + fixed_text(plan.imaging.altitude_m, 1) +
+                       " m is above h_max " + fixed_text(*plan.imaging.h_max_m, 1) +
+                       " m: the pattern spans fewer pixels than required");
+  if (plan.imaging.altitude_m > kLegalAltitude_m)
+    warnings.push_back("the altitude " + fixed_text(plan.imaging.altitude_m, 1) +
+                       " m is above 120 m, the common legal limit for drones (EU open category, "
+                       "US Part 107): fly it only with a permit that allows it");
+  for (const DronePlan& d : plan.drones) warn_about_drone(plan, d, warnings);
+  if (plan.clearance.no_fly_m && *plan.clearance.no_fly_m < r.clearance_m - 0.01)
+    warnings.push_back("the flight comes within " + fixed_text(*plan.clearance.no_fly_m, 1) +
+                       " m of a no-fly zone, less than the " + fixed_text(r.clearance_m, 1) +
+                       " m clearance (a home or line end inside the clearance band)");
+}
+
+}  // namespace swath::planning::steps

@@ -1,0 +1,37 @@
+// Step 6 of plan_survey(): each drone's mission and photos, and the fence (survey_steps.hpp).
+#include "swath/geometry/offset.hpp"
+#include "swath/planning/survey_steps.hpp"
+
+namespace swath::planning::steps {
+
+MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone) {
+  MissionSettings s;
+  s.altitude_m = plan.imaging.altitude_m;
+  s.speed_m_s = drone.speed_m_s;
+  s.trigger_distance_m = plan.imaging.trigger_distance_m;
+  s.waypoint_spacing_m = plan.request.waypoint_spacing_m;
+  s.vehicle = plan.request.vehicle;
+  s.triggering = plan.request.triggering;
+  s.land = plan.request.land;
+  return s;
+}
+
+void missions(SurveyPlan& plan) {
+  const Routes routes(plan);
+  const InsideTest inside = [&routes](geometry::Point2 a, geometry::Point2 b) {
+    return routes.inside.visible(a, b);
+  };
+  for (DronePlan& d : plan.drones) {
+    d.mission = mission_for_path(d.number, d.home, d.work.path, mission_settings(plan, d),
+                                 routes.leg(), inside);
+    d.photos = planned_photos(d.mission, plan.imaging.trigger_distance_m);
+  }
+  // The inclusion fence: the area grown by the margin (DESIGN.md §14 "Fences").
+  plan.fence_margin_m = plan.request.fence_margin_m.value_or(
+      plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
+  std::vector<geometry::Ring> outlines{plan.area.outer};
+  outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  plan.fence = geometry::grow(outlines, plan.fence_margin_m);
+}
+
+}  // namespace swath::planning::steps

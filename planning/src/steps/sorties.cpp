@@ -1,0 +1,87 @@
+// Step 7 of plan_survey(): battery-sized sorties (survey_steps.hpp, DESIGN.md §14 "Sorties").
+#include <cmath>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/planning/survey_steps.hpp"
+
+namespace swath::planning::steps {
+namespace {
+
+using base::fixed_text;
+using base::InputError;
+
+// The part of `path` from `from_m` to `to_m` along it.
+SurveyPath piece_of(const SurveyPath& path, double from_m, double to_m) {
+  std::vector<double> cuts;
+  if (from_m > 0) cuts.push_back(from_m);
+  if (to_m < path.length_m()) cuts.push_back(to_m);
+  const std::vector<SurveyPath> pieces = cut_path(path, cuts);
+  return pieces[from_m > 0 ? 1 : 0];
+}
+
+// Cuts one drone's survey path into sorties that each fit `usable_s`, exactly at the length where
+// the next would not (bisection to a millimetre on the sortie's own flight time, which grows with
+// its length: the way home shortens by at most what the line lengthens).
+std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d, double usable_s,
+                                const Routes& routes, const InsideTest& inside) {
+  const MissionSettings settings = mission_settings(plan, d);
+  const SurveyPath& path = d.work.path;
+  const double total = path.length_m();
+  auto sortie = [&](double from, double to) {
+    return mission_for_path(d.number, d.home, piece_of(path, from, to), settings, routes.leg(),
+                            inside);
+  };
+  std::vector<Sortie> out;
+  double from = 0;
+  while (from < total - 1e-6) {
+    double lo = 0, hi = total - from;
+    if (sortie(from, total).flight_time_s > usable_s) {
+      if (sortie(from, from + std::min(hi, 1e-3)).flight_time_s > usable_s)
+        throw InputError("drone " + d.name +
+                         " cannot fly to the survey and back within its "
+                         "endurance less the reserve (" +
+                         duration_text(usable_s) +
+                         "); it cannot fly even one metre of it per sortie");
+      while (hi - lo > 1e-3) {
+        const double mid = (lo + hi) / 2;
+        (sortie(from, from + mid).flight_time_s <= usable_s ? lo : hi) = mid;
+      }
+    } else {
+      lo = total - from;
+    }
+    Sortie s;
+    s.number = static_cast<int>(out.size() + 1);
+    s.mission = sortie(from, from + lo);
+    s.resume = piece_of(path, from, from + lo).points.front();
+    s.photos = planned_photos(s.mission, plan.imaging.trigger_distance_m);
+    out.push_back(std::move(s));
+    from += lo;
+    if (out.size() > 1000)
+      throw InputError("drone " + d.name +
+                       " would need more than 1000 sorties; check its endurance");
+  }
+  return out;
+}
+
+}  // namespace
+
+void sorties(SurveyPlan& plan) {
+  if (!plan.request.sorties) return;
+  const Routes routes(plan);
+  const InsideTest inside = [&routes](geometry::Point2 a, geometry::Point2 b) {
+    return routes.inside.visible(a, b);
+  };
+  for (DronePlan& d : plan.drones) {
+    if (!d.endurance_s)
+      throw InputError(
+          "--sorties needs each drone's endurance: give --endurance S, or endurance_s "
+          "for drone " +
+          d.name + " in the fleet file");
+    const double usable_s = *d.endurance_s * (1 - plan.request.reserve);
+    if (d.mission.flight_time_s <= usable_s) continue;  // one flight does it
+    d.sorties = cut_sorties(plan, d, usable_s, routes, inside);
+  }
+}
+
+}  // namespace swath::planning::steps
