@@ -135,7 +135,7 @@ double length_inside(const std::vector<Point2>& path, const std::vector<Ring>& r
     if (r.size() < 3) continue;
     BMultiLine inside;
     bg::intersection(line, polygon_of(r), inside);
-    total += bg::length(inside);
+    total += static_cast<double>(bg::length(inside));
   }
   return total;
 }

@@ -138,10 +138,9 @@ LegRoute Routes::open_leg() const {
 
 void lanes(SurveyPlan& plan) {
   const Routes routes(plan);
-  const std::optional<double> fixed =
-      plan.request.angle_search == AngleSearch::fixed || !in_cells(plan)
-          ? std::optional<double>(plan.direction.angle_deg)
-          : std::nullopt;
+  std::optional<double> fixed;
+  if (plan.request.angle_search == AngleSearch::fixed || !in_cells(plan))
+    fixed = plan.direction.angle_deg;
   plan.survey_lines = one_pass(plan, routes, fixed, plan.home_local, true);
   plan.survey_lines =
       interleave(plan.survey_lines, plan.imaging.line_spacing_m, plan.turn_radius_m);
