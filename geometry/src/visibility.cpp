@@ -1,6 +1,7 @@
 #include "swath/geometry/visibility.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 
@@ -79,13 +80,31 @@ double VisibilityRouter::length_outside(Point2 a, Point2 b) const {
   return outside * std::sqrt(len2);
 }
 
+Point2 VisibilityRouter::moved_out(Point2 before, Point2 corner, Point2 after,
+                                   double allowance_m) const {
+  if (!(allowance_m > 0)) return corner;
+  const Point2 u = before - corner, v = after - corner;
+  const double nu = std::hypot(u.x, u.y), nv = std::hypot(v.x, v.y);
+  if (nu == 0 || nv == 0) return corner;
+  // Away from the obstacle: against the sum of the two edge directions (the corner is reflex for
+  // the area, so both edges bend towards the obstacle).
+  Point2 out = (u * (1 / nu) + v * (1 / nv)) * -1.0;
+  const double len = std::hypot(out.x, out.y);
+  if (len < 1e-12) return corner;
+  const Point2 moved = corner + out * (allowance_m / len);
+  if (inside_closed(moved) && visible(moved, corner + u * 0.5) && visible(moved, corner + v * 0.5))
+    return moved;
+  return corner;
+}
+
 bool VisibilityRouter::visible(Point2 a, Point2 b) const {
   // Decided by the length outside, with a tolerance: end points computed on the boundary (line
   // ends, cut points) sit a rounding error off it, and must still see inwards.
   return length_outside(a, b) <= 1e-9 * (1 + distance(a, b));
 }
 
-VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes)
+VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes,
+                                   double corner_allowance_m)
     : rings_(std::move(rings)) {
   double extent = 0;
   for (const Ring& ring : rings_)
@@ -107,7 +126,8 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
     const std::size_t n = ring.size();
     for (std::size_t i = 0; i < n; ++i)
       if (orientation(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]) == Orientation::clockwise)
-        nodes_.push_back(ring[i]);
+        nodes_.push_back(
+            moved_out(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n], corner_allowance_m));
   }
   if (nodes_.size() > max_nodes) {
     routing_ = false;

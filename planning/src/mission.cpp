@@ -263,12 +263,13 @@ DroneMission mission_for_path(int drone, Point2 home, const SurveyPath& path,
       }
       m.work_length_m += geometry::distance(path.points[i - 1], p);
     }
+    const bool to_line = i + 1 < n && path.on_line[i];
     if (s.triggering.mode == TriggerMode::hover && from_line) {
       b.hover_line(p);
     } else {
-      b.waypoint(p);
+      const bool line_end = from_line != to_line;
+      b.waypoint(p, line_end && s.stop_at && s.stop_at(p) ? kStopHold_s : 0.0);
     }
-    const bool to_line = i + 1 < n && path.on_line[i];
     if (to_line) {
       b.camera(true);
     } else if (from_line) {

@@ -27,6 +27,17 @@ TEST(VisibilityRouter, GoesAroundAHoleAlongTheShortestSide) {
   EXPECT_TRUE(r.visible({40, 20}, {40, 80}));
 }
 
+TEST(VisibilityRouter, ContainsIsInsideTheClosedAreaNotAZeroLengthLeg) {
+  const VisibilityRouter r = square_with_hole();
+  EXPECT_TRUE(r.contains({20, 50}));
+  EXPECT_TRUE(r.contains({0, 50}));      // on the outer boundary
+  EXPECT_TRUE(r.contains({40, 50}));     // on the hole's boundary
+  EXPECT_FALSE(r.contains({50, 50}));    // in the hole
+  EXPECT_FALSE(r.contains({-60, -40}));  // outside, where a home is
+  // The mistake this guards against: a leg of length 0 is "visible" wherever it is.
+  EXPECT_TRUE(r.visible({-60, -40}, {-60, -40}));
+}
+
 TEST(VisibilityRouter, LengthOutsideCountsHolesAndTheOutside) {
   const VisibilityRouter r = square_with_hole();
   EXPECT_NEAR(r.length_outside({-10, 50}, {110, 50}), 10 + 20 + 10, 1e-9);

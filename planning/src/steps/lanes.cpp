@@ -122,11 +122,12 @@ std::vector<SweepLine> interleave(const std::vector<SweepLine>& lines, double sp
 }  // namespace
 
 Routes::Routes(const SurveyPlan& plan)
-    : inside(plan.planning_rings, in_cells(plan) ? 300 : 0), open(open_rings(plan), 1000) {}
+    : inside(plan.planning_rings, in_cells(plan) ? 300 : 0, kCornerAllowance_m),
+      open(open_rings(plan), 1000, kCornerAllowance_m) {}
 
 LegRoute Routes::leg() const {
   return [this](Point2 a, Point2 b) {
-    if (inside.routes() && inside.visible(a, a) && inside.visible(b, b))
+    if (inside.routes() && inside.contains(a) && inside.contains(b))
       return between(inside.path(a, b));
     return between(open.path(a, b));
   };

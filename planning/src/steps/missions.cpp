@@ -13,6 +13,14 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
   s.vehicle = plan.request.vehicle;
   s.triggering = plan.request.triggering;
   s.land = plan.request.land;
+  // Stop at line ends beside a no-fly zone (within the clearance and the corner allowance): a
+  // turn flown through there would swing towards the zone.
+  if (!plan.no_fly.empty() && plan.request.vehicle == Vehicle::multirotor) {
+    const double near_m = plan.request.clearance_m + kCornerAllowance_m;
+    s.stop_at = [&plan, near_m](geometry::Point2 p) {
+      return geometry::least_distance({p}, plan.no_fly) < near_m;
+    };
+  }
   return s;
 }
 

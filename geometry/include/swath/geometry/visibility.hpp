@@ -16,12 +16,22 @@ namespace swath::geometry {
 /// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
 /// visibility is decided with exact predicates. Building is O(r² n) for r reflex vertices and n
 /// edges, so areas with more than `max_nodes` reflex vertices are not routed (paths are straight).
+///
+/// `corner_allowance_m` (>= 0, metres) moves each bend this far away from its corner, along the
+/// corner's bisector, where the moved point still sees both neighbours of the corner: an autopilot
+/// flying through a bend cuts it (ArduCopter by up to ~1.7 m in SITL), and the allowance keeps the
+/// cut path as far from the corner as the unmoved bend was. Paths stay inside the area; they are
+/// then no longer exactly the shortest (longer by at most ~2 x allowance per bend).
 class VisibilityRouter {
  public:
-  explicit VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes = 300);
+  explicit VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes = 300,
+                            double corner_allowance_m = 0.0);
 
   /// True when the closed segment [a, b] lies inside the closed area.
   bool visible(Point2 a, Point2 b) const;
+  /// True when p lies inside the closed area (its boundary within rounding included). Not
+  /// visible(p, p): a segment of length 0 has no length outside, wherever it is.
+  bool contains(Point2 p) const { return inside_closed(p); }
   /// The shortest path from a to b inside the area, a and b included; the straight segment when
   /// it is inside, when no inside path exists (a or b outside, separate pieces) or the area has too
   /// many reflex vertices to route.
@@ -32,6 +42,7 @@ class VisibilityRouter {
 
  private:
   bool inside_closed(Point2 p) const;
+  Point2 moved_out(Point2 before, Point2 corner, Point2 after, double allowance_m) const;
   struct Box {
     double x0, y0, x1, y1;
   };

@@ -88,7 +88,14 @@ struct MissionSettings {
   Vehicle vehicle = Vehicle::multirotor;
   Triggering triggering;
   bool land = false;  ///< NAV_LAND (fixed-wing: DO_LAND_START then NAV_LAND) instead of RTL
+  /// Line ends (either end) where the drone must stop: a hold of kStopHold_s is written there.
+  /// ArduCopter flies through every waypoint without a hold, and a turn flown through at a line
+  /// end beside a no-fly zone swings into the clearance band (DESIGN.md §14 "Clearance").
+  std::function<bool(geometry::Point2)> stop_at;
 };
+
+/// The hold that makes ArduPilot stop at a waypoint: NAV_WAYPOINT's param1 is whole seconds.
+inline constexpr double kStopHold_s = 1.0;
 
 struct DroneMission {
   int drone = 1;  ///< 1-based

@@ -43,6 +43,11 @@ void measures(SurveyPlan& plan);
 /// warnings (trigger interval, h_max, item limit, altitude, endurance, idle drones).
 void checks(SurveyPlan& plan);
 
+/// How far the bends of routed legs keep from the corners they go round, beyond the clearance:
+/// an autopilot flies through a bend without stopping and cuts it (ArduCopter's waypoint radius
+/// WPNAV_RADIUS is 2 m; its SITL flights of swath's missions left the lines by up to 1.7 m).
+inline constexpr double kCornerAllowance_m = 2.0;
+
 /// The routes the steps share: inside the planning rings (split's turns and transits), and in the
 /// open around the grown no-fly zones (legs to and from home, between a drone's pieces).
 struct Routes {
