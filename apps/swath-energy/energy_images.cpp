@@ -6,6 +6,7 @@
 
 #include "swath/base/number_text.hpp"
 #include "swath/energy/flight.hpp"
+#include "swath/render/legend.hpp"
 
 namespace swath::apps {
 namespace {
@@ -76,11 +77,13 @@ TrajectoryImage trajectory_image(const energy::SimulationResult& r, const energy
   title += energy::to_string(r.status);
   title += " in " + fixed_text(r.flight_time_s, 0) + " s, " + fixed_text(r.energy_j / 3600, 2) +
            " Wh, SoC " + fixed_text(100 * r.final_soc, 1) + " %";
-  scene.labels.push_back({10, text_h + 8, title, double(text_h), kInk});
-  scene.labels.push_back({10, 2 * (text_h + 6) + 8,
-                          "grey: plan; flight coloured by state of charge (green full, red at the "
-                          "reserve); triangles: triggering points",
-                          0.8 * text_h, kInk});
+  scene.labels.push_back(
+      {10, text_h + 8, title, render::fitted_text_height(title, width_px - 60.0, text_h), kInk});
+  const std::string key =
+      "grey: plan; flight coloured by state of charge (green full, red at the reserve); "
+      "triangles: triggering points";
+  scene.labels.push_back({10, 2 * (text_h + 6) + 8, key,
+                          render::fitted_text_height(key, width_px - 60.0, 0.8 * text_h), kInk});
   out.scale_bar = add_scale_bar(scene, out.view, width_px, height_px, text_h);
   add_north_arrow(scene, width_px, top + 20.0, text_h);
   if (config.wind.speed_mps > 0) {

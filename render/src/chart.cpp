@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "swath/render/image.hpp"
+
 namespace swath::render {
 namespace {
 
@@ -90,23 +92,22 @@ Scene chart_scene(const ChartSpec& spec, int width_px, int height_px, ChartLayou
         line.points.push_back({l.to_x_px(s.x[i]), l.to_y_px(s.y[i])});
     scene.screen_polylines.push_back(std::move(line));
   }
+  // Title and axis labels measured: the title shrinks to the image's width, the x label is
+  // centred under the plot.
   scene.labels.push_back(
-      {static_cast<int>(l.left_px), static_cast<int>(2 * text_h), spec.title, text_h * 1.2, ink});
-  scene.labels.push_back({static_cast<int>((l.left_px + l.right_px) / 2 -
-                                           text_h * 0.3 * static_cast<double>(spec.x_label.size())),
+      {static_cast<int>(l.left_px), static_cast<int>(2 * text_h), spec.title,
+       fitted_text_height(spec.title, width_px - l.left_px - text_h, text_h * 1.2), ink});
+  const TextExtent x_label = text_extent(spec.x_label, text_h);
+  scene.labels.push_back({static_cast<int>((l.left_px + l.right_px - x_label.width_px) / 2),
                           static_cast<int>(height_px - text_h), spec.x_label, text_h, ink});
-  scene.labels.push_back({static_cast<int>(text_h), static_cast<int>(l.top_px - text_h * 0.6),
+  scene.labels.push_back({static_cast<int>(text_h), static_cast<int>(l.top_px - text_h * 0.9),
                           spec.y_label, text_h, ink});
-  // Legend, top right inside the plot.
-  double y = l.top_px + 1.5 * text_h;
-  for (const Series& s : spec.series) {
-    const double x = l.right_px - 10 * text_h;
-    scene.screen_polylines.push_back(
-        {{{x, y - text_h / 3}, {x + 2 * text_h, y - text_h / 3}}, 3, s.color});
-    scene.labels.push_back(
-        {static_cast<int>(x + 2.5 * text_h), static_cast<int>(y), s.name, text_h, ink});
-    y += 1.5 * text_h;
-  }
+  // Legend, top right inside the plot, measured and boxed.
+  std::vector<LegendEntry> legend;
+  for (const Series& s : spec.series) legend.push_back({s.name, SwatchKind::line, s.color});
+  l.legend =
+      add_legend(scene, legend, {l.left_px + 4, l.top_px + 4, l.right_px - 4, l.bottom_px - 4},
+                 Corner::top_right, text_h);
   if (layout_out) *layout_out = l;
   return scene;
 }

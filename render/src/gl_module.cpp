@@ -213,6 +213,11 @@ Image draw_scene(const Scene& scene, const View& view, int supersample) {
       for (const Point2& q : ring) rings.back().push_back(q * ss);
     }
     fill_even_odd(rings, p.fill);
+    if (p.outline.a > 0)
+      for (auto ring : rings) {
+        ring.push_back(ring.front());
+        thick_polyline(ring, p.outline_px * ss, p.outline);
+      }
   }
   for (const Polyline& l : scene.screen_polylines) {
     std::vector<Point2> pts;

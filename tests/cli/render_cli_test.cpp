@@ -1,10 +1,13 @@
 // Pictures: `swath plan --render` and `swath render DIR`, checked on the decoded PNG.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "../../apps/swath/coverage_image.hpp"
 #include "cli_runner.hpp"
+#include "swath/geometry/local_frame.hpp"
 
 namespace swath::test {
 namespace {
@@ -37,6 +40,87 @@ TEST(RenderCli, CoverageImageHasTheSizeAScaleBarAsLongAsItClaimsAndIsRedrawnIden
   const CliRun redraw = run_swath("render " + out + " --coverage " + again + " --size 800x600");
   ASSERT_EQ(redraw.exit_code, 0) << redraw.err;
   EXPECT_EQ(read_text(again), png);
+}
+
+// A pilot's picture at the smallest common size: the legend measured and inside, clear of the
+// title and the map; no-fly zones, each drone's own home, and where the lines start and end drawn.
+TEST(RenderCli, LegendInsideAndClearOfTitleAndMapWithZonesHomesAndEnds) {
+  struct Case {
+    std::string args;
+    int width, height;
+  };
+  const std::vector<Case> cases{
+      {"plan share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --home "
+       "46.2276,7.5917",
+       640, 480},
+      {"plan share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --home "
+       "46.2276,7.5917",
+       1600, 1200},
+      {"plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --fleet "
+       "share/fleets/three-quads.yaml --division region",
+       640, 480},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args + " " + std::to_string(c.width));
+    const std::string out = fresh_dir("legend");
+    const std::string size = std::to_string(c.width) + "x" + std::to_string(c.height);
+    const CliRun run = run_swath(c.args + " --render --size " + size + " -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const render::Image image = render::decode_png(read_text(out + "/coverage.png"));
+    const planning::PlanFeatures features =
+        planning::parse_mission_geojson(read_text(out + "/mission.geojson"), "mission.geojson");
+    const apps::CoverageImage planned = apps::coverage_image(
+        features, planning::parse_plan_figures(read_text(out + "/summary.json"), "summary.json"),
+        c.width, c.height);
+    EXPECT_TRUE(planned.legend_box.inside(c.width, c.height));
+    EXPECT_TRUE(planned.title_box.inside(c.width, c.height));
+    EXPECT_FALSE(planned.legend_box.overlaps(planned.title_box));
+    EXPECT_GT(planned.legend_box.right_px - planned.legend_box.left_px, 100);
+    // Every label's measured text inside the image.
+    for (const render::Label& l : planned.scene.labels) {
+      const render::TextExtent e = render::text_extent(l.text, l.height_px);
+      EXPECT_GE(l.x_px, 0) << l.text;
+      EXPECT_LE(l.x_px + e.width_px, c.width) << l.text;
+      EXPECT_GE(l.y_px - e.height_px, 0) << l.text;
+      EXPECT_LE(l.y_px + e.baseline_px, c.height) << l.text;
+    }
+    // The map (area, homes) clear of the legend: every area vertex and home outside its box.
+    const geometry::LocalFrame frame(features.area.front().front());
+    auto pixel = [&](const geometry::GeoPoint& g) {
+      return planned.view.to_pixel(frame.to_local(g));
+    };
+    auto outside_legend = [&](geometry::Point2 p) {
+      return !planned.legend_box.overlaps({p.x - 1, p.y - 1, p.x + 1, p.y + 1});
+    };
+    for (const auto& ring : features.area)
+      for (const auto& g : ring) EXPECT_TRUE(outside_legend(pixel(g)));
+    EXPECT_TRUE(outside_legend(pixel(features.home)));
+    // The legend's backing box: light just inside its right edge.
+    const int bx = static_cast<int>(planned.legend_box.right_px) - 3;
+    const int by = static_cast<int>((planned.legend_box.top_px + planned.legend_box.bottom_px) / 2);
+    EXPECT_GT(image.at(bx, by, 0), 200);
+    // A no-fly zone is red where nothing else is drawn: its centre (the pond is convex enough).
+    bool has_zone_entry = false;
+    for (const render::Label& l : planned.scene.labels) has_zone_entry |= l.text == "no-fly zone";
+    EXPECT_EQ(has_zone_entry, !features.no_fly.empty());
+    // The first line's start: the drone's colour inside a dark ring.
+    for (const auto& sw : features.sweeps) {
+      if (sw.line != 0) continue;
+      const geometry::Point2 p = pixel(sw.start);
+      const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+      const int r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
+      EXPECT_GT(std::max({r, g, b}) - std::min({r, g, b}), 80) << "drone " << sw.drone;
+    }
+    // Each drone's own home, in its colour (charlie: orange).
+    for (const auto& h : features.drone_homes) {
+      const geometry::Point2 p = pixel(h.at);
+      const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y)) + 2;
+      if (h.drone == 3) {
+        EXPECT_GT(image.at(x, y, 0), 200);
+        EXPECT_LT(image.at(x, y, 2), 80);
+      }
+    }
+  }
 }
 
 TEST(RenderCli, NotAPlanIsAClearError) {

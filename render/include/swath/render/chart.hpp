@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/render/legend.hpp"
 #include "swath/render/scene.hpp"
 
 namespace swath::render {
@@ -26,6 +27,7 @@ struct ChartLayout {
   double left_px, top_px, right_px, bottom_px;  ///< the plot area
   double x_min, x_max, y_min, y_max;            ///< data range shown (rounded out to ticks)
   std::vector<double> x_ticks, y_ticks;
+  PixelBox legend;  ///< where the legend was drawn
   double to_x_px(double x) const {
     return left_px + (x - x_min) / (x_max - x_min) * (right_px - left_px);
   }
