@@ -22,6 +22,8 @@ void BudgetCommand::setup(CLI::App& app) {
 int BudgetCommand::run() {
   const auto missions = energy::read_waypoint_missions(mission_);
   const energy::DroneProfile drone = energy::read_drone_profile(drone_);
+  for (const std::string& w : drone.warnings)
+    std::cerr << "swath-energy budget: warning: " << w << '\n';
   std::vector<energy::DroneBudget> budgets;
   for (const auto& m : missions) budgets.push_back(energy::budget(m, drone));
   const std::string json = energy::budget_json(budgets, drone);

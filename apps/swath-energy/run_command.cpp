@@ -34,6 +34,8 @@ void RunCommand::setup(CLI::App& app) {
 int RunCommand::run() {
   const energy::Plan plan = energy::read_plan(plan_);
   energy::SimConfig config = energy::read_sim_config(config_);
+  for (const std::string& w : config.warnings)
+    std::cerr << "swath-energy run: warning: " << w << '\n';
   if (no_replan_) config.replan = false;
   // The rows stream into the set's temporaries as they are taken: memory stays flat however
   // long the flight. Opened only now: bad input above leaves nothing behind.

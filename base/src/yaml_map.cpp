@@ -8,7 +8,15 @@
 namespace swath::base {
 
 YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path)
-    : node_(node), source_(std::move(source)), path_(std::move(path)) {
+    : YamlMap(node, std::move(source), std::move(path),
+              std::make_shared<std::vector<std::string>>()) {}
+
+YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path,
+                 std::shared_ptr<std::vector<std::string>> warnings)
+    : node_(node),
+      source_(std::move(source)),
+      path_(std::move(path)),
+      warnings_(std::move(warnings)) {
   if (node_ && !node_.IsNull() && !node_.IsMap()) {
     std::string msg = source_ + ": line " + std::to_string(node_.Mark().line + 1) + ": ";
     msg += path_.empty() ? std::string("the file") : "'" + path_ + "'";
@@ -26,9 +34,36 @@ std::string YamlMap::where(const char* key) const {
   return s;
 }
 
+void YamlMap::accept_old_spelling(std::initializer_list<const char*> keys) const {
+  static const std::string kOld = "_mps", kNew = "_m_s";
+  std::vector<std::pair<std::string, std::string>> renames;
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.Scalar();
+    if (k.size() <= kOld.size() || k.compare(k.size() - kOld.size(), kOld.size(), kOld) != 0)
+      continue;
+    const std::string renamed = k.substr(0, k.size() - kOld.size()) + kNew;
+    for (const char* allowed : keys)
+      if (renamed == allowed) renames.emplace_back(k, renamed);
+  }
+  YAML::Node node = node_;  // shares the document: the rename is seen by every later read
+  for (const auto& [old_key, key] : renames) {
+    const std::string line = std::to_string(node[old_key].Mark().line + 1);
+    const std::string shown = path_.empty() ? old_key : path_ + "." + old_key;
+    if (node[key])
+      throw InputError(source_ + ": line " + line + ": '" + shown + "' and '" + key +
+                       "' both given: keep '" + key + "'");
+    node[key] = node[old_key];
+    node.remove(old_key);
+    warnings_->push_back(source_ + ": line " + line + ": '" + shown +
+                         "' is the old spelling, read as '" + key + "'; write '" + key +
+                         "' (speeds are in m_s everywhere)");
+  }
+}
+
 void YamlMap::allow(std::initializer_list<const char*> keys) const {
   if (!node_ || !node_.IsMap()) return;
   base::check_plain_unique_keys(node_, path_.empty() ? source_ : source_ + ": " + path_);
+  accept_old_spelling(keys);
   for (const auto& kv : node_) {
     const std::string k = kv.first.Scalar();
     bool ok = false;
@@ -103,7 +138,7 @@ std::vector<double> YamlMap::numbers(const char* key) const {
 
 YamlMap YamlMap::map(const char* key) const {
   const YAML::Node n = node_ && node_.IsMap() && node_[key] ? node_[key] : YAML::Node();
-  return YamlMap(n, source_, path_.empty() ? key : path_ + "." + key);
+  return YamlMap(n, source_, path_.empty() ? key : path_ + "." + key, warnings_);
 }
 
 }  // namespace swath::base

@@ -115,21 +115,21 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
       }
       m.points.push_back(frame.to_local(g));
       m.altitudes_m.push_back(a);
-      m.speeds_mps.push_back(speed);
+      m.speeds_m_s.push_back(speed);
     }
     // swath's paths start and end at home: the take-off and landing legs are implied.
     const double home_gap = std::hypot(m.points.front().x, m.points.front().y);
     if (home_gap < 0.5) {
       m.points.erase(m.points.begin());
       m.altitudes_m.erase(m.altitudes_m.begin());
-      m.speeds_mps.erase(m.speeds_mps.begin());
+      m.speeds_m_s.erase(m.speeds_m_s.begin());
     }
     const Point2 last = m.points.back();
     m.returns_home = std::hypot(last.x, last.y) < 0.5;
     if (m.returns_home && m.points.size() > 1) {
       m.points.pop_back();
       m.altitudes_m.pop_back();
-      m.speeds_mps.pop_back();
+      m.speeds_m_s.pop_back();
     }
     out.push_back(std::move(m));
   }
@@ -204,7 +204,7 @@ std::vector<WaypointMission> parse_qgc(const json& root, const std::string& sour
           m.points.push_back(frame.to_local(g));
         }
         m.altitudes_m.push_back(command == 21 ? 0.0 : param(6));
-        m.speeds_mps.push_back(speed);
+        m.speeds_m_s.push_back(speed);
         if (command == 21) {
           m.returns_home = false;
           i = items.size();  // landing ends the mission
@@ -290,38 +290,38 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
   };
   auto vertical = [&](double to_alt) {
     if (to_alt > alt)
-      segment(at, to_alt, (to_alt - alt) / drone.climb_speed_mps, climb_w + always_w, "climbing");
+      segment(at, to_alt, (to_alt - alt) / drone.climb_speed_m_s, climb_w + always_w, "climbing");
     else if (to_alt < alt)
-      segment(at, to_alt, (alt - to_alt) / drone.descent_speed_mps, descent_w + always_w,
+      segment(at, to_alt, (alt - to_alt) / drone.descent_speed_m_s, descent_w + always_w,
               "descending");
   };
   auto leg = [&](Point2 to, double leg_speed) {
     const double dx = to.x - at.x, dy = to.y - at.y;
     const double length = std::hypot(dx, dy);
     if (length < 1e-9) return;
-    const double speed = drone.speed_mps > 0 ? drone.speed_mps : leg_speed;
+    const double speed = drone.speed_m_s > 0 ? drone.speed_m_s : leg_speed;
     if (!(speed > 0))
       throw InputError(drone.source + ": the mission gives no speed for " + mission.drone +
-                       "; set speed_mps in the drone profile");
-    const auto cs = course_speed({dx / length, dy / length}, wind, speed, drone.max_airspeed_mps);
+                       "; set speed_m_s in the drone profile");
+    const auto cs = course_speed({dx / length, dy / length}, wind, speed, drone.max_airspeed_m_s);
     if (!cs)
       throw InputError(drone.source + ": the wind is stronger than " + mission.drone +
                        "'s maximum airspeed on one of its legs");
-    const double watts = level_flight_power_w(power.mechanical, cs->airspeed_mps) + always_w;
+    const double watts = level_flight_power_w(power.mechanical, cs->airspeed_m_s) + always_w;
     out.distance_m += length;
-    segment(to, alt, length / cs->ground_speed_mps, watts, "in cruise");
+    segment(to, alt, length / cs->ground_speed_m_s, watts, "in cruise");
   };
 
   for (std::size_t i = 0; i < mission.points.size(); ++i) {
     const double target_alt = mission.altitudes_m[i];
     const bool first = i == 0;
     if (first) vertical(target_alt);  // take off, then fly over
-    leg(mission.points[i], mission.speeds_mps[i]);
+    leg(mission.points[i], mission.speeds_m_s[i]);
     if (!first) vertical(target_alt);
     out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
   }
   if (mission.returns_home) {
-    leg({0.0, 0.0}, mission.speeds_mps.back());
+    leg({0.0, 0.0}, mission.speeds_m_s.back());
     out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
   }
   vertical(0.0);

@@ -30,7 +30,7 @@ ordered_json optional_point(const std::optional<BudgetPoint>& p) {
 }  // namespace
 
 std::string trajectory_csv_header() {
-  return "t_s,x_m,y_m,stage,course_deg,ground_speed_mps,airspeed_mps,path_distance_m\n";
+  return "t_s,x_m,y_m,stage,course_deg,ground_speed_m_s,airspeed_m_s,path_distance_m\n";
 }
 
 std::string trajectory_csv_row(const FlightSample& s) {
@@ -40,8 +40,8 @@ std::string trajectory_csv_row(const FlightSample& s) {
   cell(out, s.position.y, 3);
   out += ',' + std::to_string(s.stage + 1);
   cell(out, s.course_deg, 2);
-  cell(out, s.ground_speed_mps, 3);
-  cell(out, s.airspeed_mps, 3);
+  cell(out, s.ground_speed_m_s, 3);
+  cell(out, s.airspeed_m_s, 3);
   cell(out, s.path_distance_m, 3);
   out += '\n';
   return out;

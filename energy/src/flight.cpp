@@ -10,28 +10,28 @@ using geometry::Point2;
 Point2 wind_velocity(const Wind& wind) {
   const double b = wind.from_bearing_deg * std::numbers::pi / 180.0;
   // From bearing b the air moves towards b + 180: east = -sin b, north = -cos b.
-  return {-wind.speed_mps * std::sin(b), -wind.speed_mps * std::cos(b)};
+  return {-wind.speed_m_s * std::sin(b), -wind.speed_m_s * std::cos(b)};
 }
 
-std::optional<double> ground_speed_at_airspeed(Point2 course, Point2 wind, double airspeed_mps) {
+std::optional<double> ground_speed_at_airspeed(Point2 course, Point2 wind, double airspeed_m_s) {
   const double along = course.x * wind.x + course.y * wind.y;
   const double across2 = wind.x * wind.x + wind.y * wind.y - along * along;
-  const double disc = airspeed_mps * airspeed_mps - across2;
+  const double disc = airspeed_m_s * airspeed_m_s - across2;
   if (disc < 0.0) return std::nullopt;
   const double s = along + std::sqrt(disc);
   if (!(s > 1e-6)) return std::nullopt;
   return s;
 }
 
-std::optional<CourseSpeed> course_speed(Point2 course, Point2 wind, double ground_speed_mps,
-                                        double max_airspeed_mps) {
-  const double ax = ground_speed_mps * course.x - wind.x;
-  const double ay = ground_speed_mps * course.y - wind.y;
+std::optional<CourseSpeed> course_speed(Point2 course, Point2 wind, double ground_speed_m_s,
+                                        double max_airspeed_m_s) {
+  const double ax = ground_speed_m_s * course.x - wind.x;
+  const double ay = ground_speed_m_s * course.y - wind.y;
   const double airspeed = std::sqrt(ax * ax + ay * ay);
-  if (airspeed <= max_airspeed_mps) return CourseSpeed{ground_speed_mps, airspeed};
-  const auto s = ground_speed_at_airspeed(course, wind, max_airspeed_mps);
+  if (airspeed <= max_airspeed_m_s) return CourseSpeed{ground_speed_m_s, airspeed};
+  const auto s = ground_speed_at_airspeed(course, wind, max_airspeed_m_s);
   if (!s) return std::nullopt;
-  return CourseSpeed{*s, max_airspeed_mps};
+  return CourseSpeed{*s, max_airspeed_m_s};
 }
 
 }  // namespace swath::energy

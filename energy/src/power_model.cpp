@@ -6,16 +6,16 @@
 
 namespace swath::energy {
 
-double level_flight_power_w(const MechanicalPower& m, double airspeed_mps) {
-  const double ratio = airspeed_mps / m.cruise_airspeed_mps;
+double level_flight_power_w(const MechanicalPower& m, double airspeed_m_s) {
+  const double ratio = airspeed_m_s / m.cruise_airspeed_m_s;
   return m.cruise_w * ((1.0 - m.parasitic_share) + m.parasitic_share * ratio * ratio * ratio);
 }
 
-double mechanical_power_w(const MechanicalPower& m, double airspeed_mps,
-                          double lateral_accel_mps2) {
+double mechanical_power_w(const MechanicalPower& m, double airspeed_m_s,
+                          double lateral_accel_m_s2) {
   constexpr double kGravity = 9.80665;
-  const double a = lateral_accel_mps2 / kGravity;
-  const double level = level_flight_power_w(m, airspeed_mps);
+  const double a = lateral_accel_m_s2 / kGravity;
+  const double level = level_flight_power_w(m, airspeed_m_s);
   if (a == 0.0) return level;  // straight flight: skip the pow
   const double n2 = 1.0 + a * a;
   return level * std::sqrt(n2) * std::sqrt(std::sqrt(n2));  // n^1.5 = (n^2)^0.75

@@ -20,9 +20,9 @@ using base::kInf;
 using base::YamlMap;
 
 Wind parse_wind(const YamlMap& m) {
-  m.allow({"speed_mps", "from_deg"});
+  m.allow({"speed_m_s", "from_deg"});
   Wind w;
-  w.speed_mps = m.number("speed_mps", 0.0, 0.0, 100.0);
+  w.speed_m_s = m.number("speed_m_s", 0.0, 0.0, 100.0);
   w.from_bearing_deg = m.number("from_deg", 0.0, -360.0, 360.0);
   return w;
 }
@@ -47,10 +47,10 @@ PowerProfile parse_power(const YamlMap& m) {
   m.allow({"mechanical", "payload_w", "climb_w", "descent_w", "computations", "noise_w", "seed"});
   PowerProfile p;
   const YamlMap mech = m.map("mechanical");
-  mech.allow({"cruise_w", "cruise_airspeed_mps", "parasitic_share", "max_bank_deg"});
+  mech.allow({"cruise_w", "cruise_airspeed_m_s", "parasitic_share", "max_bank_deg"});
   p.mechanical.cruise_w = mech.number("cruise_w", p.mechanical.cruise_w, 0.0, 1e6, true);
-  p.mechanical.cruise_airspeed_mps =
-      mech.number("cruise_airspeed_mps", p.mechanical.cruise_airspeed_mps, 0.0, 200.0, true);
+  p.mechanical.cruise_airspeed_m_s =
+      mech.number("cruise_airspeed_m_s", p.mechanical.cruise_airspeed_m_s, 0.0, 200.0, true);
   p.mechanical.parasitic_share =
       mech.number("parasitic_share", p.mechanical.parasitic_share, 0.0, 1.0);
   p.mechanical.max_bank_deg =
@@ -143,16 +143,16 @@ SimConfig sim_config_from_yaml(const std::string& text, const std::string& sourc
   const YAML::Node root = base::load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source + ": a simulation config is a mapping of keys");
   const YamlMap m(root, source, "");
-  m.allow({"time_step_s", "speed_mps", "max_airspeed_mps", "wind", "trigger_radius_m", "start_m",
+  m.allow({"time_step_s", "speed_m_s", "max_airspeed_m_s", "wind", "trigger_radius_m", "start_m",
            "max_time_s", "stall_time_s", "output_interval_s", "parameters", "gains", "model", "mpc",
            "battery", "power", "replay_csv"});
   SimConfig c;
   c.source = source;
   // Below 1 ms the guidance field gains nothing and a day's flight would take 10^8+ steps.
   c.time_step_s = m.number("time_step_s", c.time_step_s, 1e-3, 1.0);
-  c.speed_mps = m.number("speed_mps", c.speed_mps, 0.0, 200.0, true);
-  c.max_airspeed_mps =
-      m.number("max_airspeed_mps", std::max(c.max_airspeed_mps, c.speed_mps), 0.0, 300.0, true);
+  c.speed_m_s = m.number("speed_m_s", c.speed_m_s, 0.0, 200.0, true);
+  c.max_airspeed_m_s =
+      m.number("max_airspeed_m_s", std::max(c.max_airspeed_m_s, c.speed_m_s), 0.0, 300.0, true);
   c.wind = parse_wind(m.map("wind"));
   c.trigger_radius_m = m.number("trigger_radius_m", c.trigger_radius_m, 0.0, 1e4, true);
   const auto start = m.numbers("start_m");
@@ -197,6 +197,7 @@ SimConfig sim_config_from_yaml(const std::string& text, const std::string& sourc
   c.battery = parse_battery(m.map("battery"));
   c.power = parse_power(m.map("power"));
   c.replay_csv = m.text("replay_csv", "");
+  c.warnings = m.warnings();
   return c;
 }
 
@@ -223,15 +224,15 @@ DroneProfile drone_profile_from_yaml(const std::string& text, const std::string&
   const YAML::Node root = base::load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source + ": a drone profile is a mapping of keys");
   const YamlMap m(root, source, "");
-  m.allow({"name", "speed_mps", "climb_speed_mps", "descent_speed_mps", "max_airspeed_mps", "wind",
+  m.allow({"name", "speed_m_s", "climb_speed_m_s", "descent_speed_m_s", "max_airspeed_m_s", "wind",
            "battery", "power", "parameters"});
   DroneProfile d;
   d.source = source;
   d.name = m.text("name", d.name);
-  d.speed_mps = m.number("speed_mps", 0.0, 0.0, 200.0);
-  d.climb_speed_mps = m.number("climb_speed_mps", d.climb_speed_mps, 0.0, 100.0, true);
-  d.descent_speed_mps = m.number("descent_speed_mps", d.descent_speed_mps, 0.0, 100.0, true);
-  d.max_airspeed_mps = m.number("max_airspeed_mps", d.max_airspeed_mps, 0.0, 300.0, true);
+  d.speed_m_s = m.number("speed_m_s", 0.0, 0.0, 200.0);
+  d.climb_speed_m_s = m.number("climb_speed_m_s", d.climb_speed_m_s, 0.0, 100.0, true);
+  d.descent_speed_m_s = m.number("descent_speed_m_s", d.descent_speed_m_s, 0.0, 100.0, true);
+  d.max_airspeed_m_s = m.number("max_airspeed_m_s", d.max_airspeed_m_s, 0.0, 300.0, true);
   d.wind = parse_wind(m.map("wind"));
   d.battery = parse_battery(m.map("battery"));
   d.power = parse_power(m.map("power"));
@@ -242,6 +243,7 @@ DroneProfile drone_profile_from_yaml(const std::string& text, const std::string&
     throw InputError(source + ": parameters.computations gives " +
                      std::to_string(d.computation_parameters.size()) + " values for " +
                      std::to_string(d.power.computations.size()) + " power.computations curves");
+  d.warnings = m.warnings();
   return d;
 }
 

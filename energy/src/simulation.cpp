@@ -43,9 +43,9 @@ double wrap_pi(double a) {
 }
 
 struct StepKinematics {
-  double ground_speed_mps = 0.0;
-  double airspeed_mps = 0.0;
-  double lateral_accel_mps2 = 0.0;
+  double ground_speed_m_s = 0.0;
+  double airspeed_m_s = 0.0;
+  double lateral_accel_m_s2 = 0.0;
   double course_rad = 0.0;  ///< local, counter-clockwise from east
   double path_distance_m = 0.0;
 };
@@ -112,29 +112,29 @@ class Flight {
     const double turn = std::clamp(wrap_pi(desired - course_), -max_turn, max_turn);
     course_ = wrap_pi(course_ + turn);
     const Point2 u{std::cos(course_), std::sin(course_)};
-    const auto cs = course_speed(u, wind_, config_.speed_mps, config_.max_airspeed_mps);
+    const auto cs = course_speed(u, wind_, config_.speed_m_s, config_.max_airspeed_m_s);
     if (!cs) {
       std::string msg = field.where;
       msg += ": the wind (";
-      msg += fixed_text(config_.wind.speed_mps, 1);
+      msg += fixed_text(config_.wind.speed_m_s, 1);
       msg += " m/s from ";
       msg += fixed_text(config_.wind.from_bearing_deg, 0);
       msg += " deg) is stronger than the drone's maximum airspeed ";
-      msg += fixed_text(config_.max_airspeed_mps, 1);
+      msg += fixed_text(config_.max_airspeed_m_s, 1);
       msg += " m/s on its course near ";
       msg += point_text(position_);
       throw InputError(msg);
     }
     StepKinematics k;
-    k.ground_speed_mps = cs->ground_speed_mps;
-    k.airspeed_mps = cs->airspeed_mps;
-    k.lateral_accel_mps2 = std::abs(turn) / dt * cs->ground_speed_mps;
+    k.ground_speed_m_s = cs->ground_speed_m_s;
+    k.airspeed_m_s = cs->airspeed_m_s;
+    k.lateral_accel_m_s2 = std::abs(turn) / dt * cs->ground_speed_m_s;
     k.course_rad = course_;
     const double g = std::sqrt(f.gradient.x * f.gradient.x + f.gradient.y * f.gradient.y);
     k.path_distance_m = std::abs(f.phi) / g;
-    last_ground_speed_ = cs->ground_speed_mps;
-    position_.x += u.x * cs->ground_speed_mps * dt;
-    position_.y += u.y * cs->ground_speed_mps * dt;
+    last_ground_speed_ = cs->ground_speed_m_s;
+    position_.x += u.x * cs->ground_speed_m_s * dt;
+    position_.y += u.y * cs->ground_speed_m_s * dt;
     t_ += dt;
     check_progress(field);
     return k;
@@ -493,8 +493,8 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
     s.position = flight.position();
     s.stage = std::min(flight.stage(), last_stage);
     s.course_deg = std::fmod(450.0 - k.course_rad * 180.0 / kPi, 360.0);
-    s.ground_speed_mps = k.ground_speed_mps;
-    s.airspeed_mps = k.airspeed_mps;
+    s.ground_speed_m_s = k.ground_speed_m_s;
+    s.airspeed_m_s = k.airspeed_m_s;
     s.path_distance_m = k.path_distance_m;
     s.measured_w = measured;
     s.model_w = estimator->output_w();
@@ -598,7 +598,7 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
     if (!config.replay.t_s.empty()) {
       measured = config.replay.at(t);
     } else {
-      measured = mechanical_power_w(config.power.mechanical, k.airspeed_mps, k.lateral_accel_mps2) +
+      measured = mechanical_power_w(config.power.mechanical, k.airspeed_m_s, k.lateral_accel_m_s2) +
                  config.power.payload_w + power_now + noise.next();
     }
     if (!estimator) {

@@ -190,7 +190,7 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
   // The survey's path: the drone flies about the planned path length (turns on half circles
   // instead of straight legs between the lines' ends, so a few per cent apart).
   const double path_m = summary["drones"][0]["path_length_m"].get<double>();
-  EXPECT_NEAR(s["flight_time_s"].get<double>() * config.speed_mps, path_m, 0.05 * path_m);
+  EXPECT_NEAR(s["flight_time_s"].get<double>() * config.speed_m_s, path_m, 0.05 * path_m);
 
   // A fleet: one plan per drone, each its own lines.
   const std::string fleet = fresh_dir("energy-survey-plan-fleet");

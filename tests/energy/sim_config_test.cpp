@@ -39,7 +39,7 @@ TEST(SimConfig, ErrorsNameTheLineAndKey) {
             "c.yaml: line 1: invalid YAML (end of sequence flow not found)");
   EXPECT_EQ(error_of("- 1"), "c.yaml: a simulation config is a mapping of keys");
   EXPECT_EQ(error_of("speed: 3"),
-            "c.yaml: line 1: unknown key 'speed' (known: time_step_s speed_mps max_airspeed_mps "
+            "c.yaml: line 1: unknown key 'speed' (known: time_step_s speed_m_s max_airspeed_m_s "
             "wind trigger_radius_m start_m max_time_s stall_time_s output_interval_s parameters "
             "gains model mpc battery power replay_csv)");
   EXPECT_EQ(error_of("time_step_s: fast"), "c.yaml: line 1: time_step_s must be a number");
@@ -57,6 +57,27 @@ TEST(SimConfig, ErrorsNameTheLineAndKey) {
   EXPECT_EQ(error_of("model: {fourier_order: 2.5}"),
             "c.yaml: line 1: model.fourier_order must be a whole number");
   EXPECT_EQ(error_of("wind: 3"), "c.yaml: line 1: 'wind' must be a mapping of keys");
+}
+
+// One spelling of speeds (DESIGN.md §2): the old `_mps` keys still read, with a warning naming the
+// line, in the root and in nested mappings; both spellings at once are refused.
+TEST(SimConfig, OldSpeedSpellingIsReadWithAWarning) {
+  const SimConfig old_keys = parse_sim_config(
+      "speed_mps: 9\nmax_airspeed_m_s: 20\nwind: {speed_mps: 3, from_deg: 90}\n", "c.yaml");
+  EXPECT_DOUBLE_EQ(old_keys.speed_m_s, 9);
+  EXPECT_DOUBLE_EQ(old_keys.wind.speed_m_s, 3);
+  ASSERT_EQ(old_keys.warnings.size(), 2u);
+  EXPECT_EQ(old_keys.warnings[0],
+            "c.yaml: line 1: 'speed_mps' is the old spelling, read as 'speed_m_s'; write "
+            "'speed_m_s' (speeds are in m_s everywhere)");
+  EXPECT_NE(old_keys.warnings[1].find("line 3: 'wind.speed_mps'"), std::string::npos)
+      << old_keys.warnings[1];
+  const SimConfig new_keys = parse_sim_config("speed_m_s: 9\n", "c.yaml");
+  EXPECT_TRUE(new_keys.warnings.empty());
+  EXPECT_EQ(error_of("speed_m_s: 9\nspeed_mps: 8\n"),
+            "c.yaml: line 2: 'speed_mps' and 'speed_m_s' both given: keep 'speed_m_s'");
+  // Only speeds: another key ending in _mps is still unknown.
+  EXPECT_NE(error_of("climb_mps: 3\n").find("unknown key 'climb_mps'"), std::string::npos);
 }
 
 TEST(SimConfig, PowerTrace) {

@@ -91,8 +91,8 @@ TEST(Flight, WindTriangle) {
   EXPECT_NEAR(*ground_speed_at_airspeed({0, 1}, wind_velocity({6, 0}), 10.0), 4.0, 1e-12);
   EXPECT_FALSE(ground_speed_at_airspeed({0, 1}, wind_velocity({12, 0}), 10.0));
   // Commanded 12 m/s with a 6 m/s tailwind needs 6 m/s of air; into it, capped at 15: 9 m/s.
-  EXPECT_NEAR(course_speed({0, 1}, wind_velocity({6, 180}), 12.0, 15.0)->airspeed_mps, 6.0, 1e-12);
-  EXPECT_NEAR(course_speed({0, 1}, wind_velocity({6, 0}), 12.0, 15.0)->ground_speed_mps, 9.0,
+  EXPECT_NEAR(course_speed({0, 1}, wind_velocity({6, 180}), 12.0, 15.0)->airspeed_m_s, 6.0, 1e-12);
+  EXPECT_NEAR(course_speed({0, 1}, wind_velocity({6, 0}), 12.0, 15.0)->ground_speed_m_s, 9.0,
               1e-12);
 }
 
@@ -221,7 +221,7 @@ TEST(Simulation, StallsAreExplained) {
             std::string::npos);
   c.start = {-60, 0};
   c.wind = {30, 0};
-  c.max_airspeed_mps = 20;
+  c.max_airspeed_m_s = 20;
   EXPECT_NE(error_of(line_plan(), c)
                 .find("line.plan: line 1: the wind (30.0 m/s from 0 deg) is "
                       "stronger than the drone's maximum airspeed 20.0 m/s"),

@@ -96,7 +96,7 @@ TEST(SurveyStagePlan, TheSimulatedDroneFliesTheLanesAndLowerC1ShortensOnlyTheTur
   const Plan plan = survey_stage_plan(z.mission, settings_for(z));
   SimConfig config;
   config.source = "test.yaml";
-  config.speed_mps = 5;
+  config.speed_m_s = 5;
   config.trigger_radius_m = 2;
   config.start = z.mission.home;
   config.power.noise_w = 0;

@@ -5,6 +5,7 @@
 
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,12 @@ class YamlMap {
  public:
   YamlMap(const YAML::Node& node, std::string source, std::string path);
 
-  /// Throws for a key not in `keys` (a typo would otherwise be silently ignored).
+  /// Throws for a key not in `keys` (a typo would otherwise be silently ignored). A key spelled
+  /// the old way, `..._mps` for an allowed `..._m_s`, is read as the new one with a warning (one
+  /// spelling of speeds everywhere, DESIGN.md §2); both spellings at once are refused.
   void allow(std::initializer_list<const char*> keys) const;
+  /// Warnings collected while reading this mapping and the mappings below it, in reading order.
+  const std::vector<std::string>& warnings() const { return *warnings_; }
   bool has(const char* key) const { return static_cast<bool>(node_[key]); }
   /// The number at `key` (or `fallback` when absent), which must lie in [lo, hi]; `open_lo`
   /// excludes lo.
@@ -32,8 +37,13 @@ class YamlMap {
   const YAML::Node& node() const { return node_; }
 
  private:
+  YamlMap(const YAML::Node& node, std::string source, std::string path,
+          std::shared_ptr<std::vector<std::string>> warnings);
+  void accept_old_spelling(std::initializer_list<const char*> keys) const;
+
   YAML::Node node_;
   std::string source_, path_;
+  std::shared_ptr<std::vector<std::string>> warnings_;
 };
 
 constexpr double kInf = std::numeric_limits<double>::infinity();

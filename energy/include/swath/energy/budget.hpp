@@ -19,7 +19,7 @@ struct WaypointMission {
   geometry::GeoPoint home;
   std::vector<geometry::Point2> points;  ///< local metres, in flight order
   std::vector<double> altitudes_m;       ///< above home, one per point
-  std::vector<double> speeds_mps;        ///< ground speed of the leg into each point; 0: unknown
+  std::vector<double> speeds_m_s;        ///< ground speed of the leg into each point; 0: unknown
   bool returns_home = true;
 };
 

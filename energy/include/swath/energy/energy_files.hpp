@@ -11,7 +11,7 @@
 
 namespace swath::energy {
 
-/// t_s,x_m,y_m,stage,course_deg,ground_speed_mps,airspeed_mps,path_distance_m (stage 1-based,
+/// t_s,x_m,y_m,stage,course_deg,ground_speed_m_s,airspeed_m_s,path_distance_m (stage 1-based,
 /// course a compass bearing).
 std::string trajectory_csv(const SimulationResult& result);
 

@@ -13,17 +13,17 @@ namespace swath::energy {
 /// whose shape (speed, banking, wind through airspeed) the estimator has to learn.
 struct MechanicalPower {
   double cruise_w = 150.0;            ///< level flight at the reference airspeed, W (> 0)
-  double cruise_airspeed_mps = 12.0;  ///< the reference airspeed, m/s (> 0)
+  double cruise_airspeed_m_s = 12.0;  ///< the reference airspeed, m/s (> 0)
   double parasitic_share = 0.4;       ///< share of cruise power that grows with airspeed^3, [0, 1]
   double max_bank_deg = 35.0;         ///< bank limit (so turn-rate limit), degrees in (0, 80]
 };
 
-/// Level-flight power at `airspeed_mps` (>= 0): cruise_w * ((1 - s) + s * (v / v_ref)^3), W.
-double level_flight_power_w(const MechanicalPower& m, double airspeed_mps);
+/// Level-flight power at `airspeed_m_s` (>= 0): cruise_w * ((1 - s) + s * (v / v_ref)^3), W.
+double level_flight_power_w(const MechanicalPower& m, double airspeed_m_s);
 
-/// Power while the ground track curves with lateral acceleration `lateral_accel_mps2`: a
+/// Power while the ground track curves with lateral acceleration `lateral_accel_m_s2`: a
 /// coordinated turn needs load factor n = sqrt(1 + (a/g)^2) and power grows as n^1.5, W.
-double mechanical_power_w(const MechanicalPower& m, double airspeed_mps, double lateral_accel_mps2);
+double mechanical_power_w(const MechanicalPower& m, double airspeed_m_s, double lateral_accel_m_s2);
 
 /// Power of one on-board computation against its parameter (paper 004 g(c)), piecewise linear
 /// through profiled points (c, W) sorted by c, extended linearly beyond the end points, and 0 for

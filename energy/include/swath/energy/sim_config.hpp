@@ -25,8 +25,8 @@ PowerTrace parse_power_trace(const std::string& text, const std::string& source)
 struct SimConfig {
   std::string source;
   double time_step_s = 0.01;       ///< (0, 1]
-  double speed_mps = 12.0;         ///< commanded ground speed, > 0
-  double max_airspeed_mps = 25.0;  ///< >= speed_mps would be flown in calm air
+  double speed_m_s = 12.0;         ///< commanded ground speed, > 0
+  double max_airspeed_m_s = 25.0;  ///< >= speed_m_s would be flown in calm air
   Wind wind;
   double trigger_radius_m = 5.0;   ///< > 0
   geometry::Point2 start;          ///< take-off point, local metres
@@ -49,6 +49,7 @@ struct SimConfig {
   PowerProfile power;
   std::string replay_csv;  ///< measured power to replay instead of the power model
   PowerTrace replay;       ///< its contents (read with the config; empty: model)
+  std::vector<std::string> warnings;  ///< from reading the file (old key spellings)
 };
 
 /// Parses the YAML configuration; `source` names it in errors. Unknown keys, wrong types and out
@@ -60,14 +61,15 @@ SimConfig read_sim_config(const std::string& path);
 struct DroneProfile {
   std::string source;
   std::string name = "drone";
-  double speed_mps = 0.0;          ///< cruise ground speed; 0: the mission's own speed
-  double climb_speed_mps = 3.0;    ///< > 0
-  double descent_speed_mps = 2.0;  ///< > 0
-  double max_airspeed_mps = 25.0;
+  double speed_m_s = 0.0;          ///< cruise ground speed; 0: the mission's own speed
+  double climb_speed_m_s = 3.0;    ///< > 0
+  double descent_speed_m_s = 2.0;  ///< > 0
+  double max_airspeed_m_s = 25.0;
   Wind wind;
   Battery battery;
   PowerProfile power;
   std::vector<double> computation_parameters;  ///< one per power.computations entry
+  std::vector<std::string> warnings;           ///< from reading the file (old key spellings)
 };
 
 DroneProfile parse_drone_profile(const std::string& text, const std::string& source);

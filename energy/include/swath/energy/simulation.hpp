@@ -27,8 +27,8 @@ struct FlightSample {
   geometry::Point2 position;
   int stage = 0;            ///< 0-based
   double course_deg = 0.0;  ///< ground track, compass bearing (0 north, 90 east)
-  double ground_speed_mps = 0.0;
-  double airspeed_mps = 0.0;
+  double ground_speed_m_s = 0.0;
+  double airspeed_m_s = 0.0;
   double path_distance_m = 0.0;  ///< |phi| / |grad phi|: distance to the stage's curve, 1st order
   double measured_w = 0.0;       ///< NaN where a replayed trace has no value
   double model_w = 0.0;
