@@ -12,7 +12,7 @@
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/planning/camera.hpp"
-#include "swath/planning/fleet.hpp"
+#include "swath/vehicle/drone.hpp"
 #include "swath/planning/plan_features.hpp"
 
 namespace swath::fuzz {
@@ -70,7 +70,7 @@ const std::vector<Target>& targets() {
        {"share/cameras/dji-phantom-4-pro.yaml", "share/cameras/dji-mavic-3e.yaml"}},
       {"fleet",
        [](const std::string& t) {
-         expect_input_error_only([&] { planning::parse_fleet(t, "fuzz.yaml"); });
+         expect_input_error_only([&] { vehicle::parse_fleet(t, "fuzz.yaml"); });
        },
        {"share/fleets/three-quads.yaml", "share/fleets/vineyard-pair.yaml",
         "share/fleets/short-range.yaml"}},

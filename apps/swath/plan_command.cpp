@@ -315,12 +315,12 @@ planning::SurveyRequest PlanCommand::request() const {
   if (drones_ && !fleet_.empty()) throw InputError("give --drones or --fleet, not both");
   if (drones_) {
     const geometry::GeoPoint fleet_home = request.home ? *request.home : geometry::GeoPoint{};
-    request.fleet = planning::equal_fleet(*drones_, fleet_home);
+    request.fleet = vehicle::equal_fleet(*drones_, fleet_home);
     if (!request.home)
       request.fleet->home = geometry::GeoPoint{std::nan(""), 0, 0};  // the plan's default home
   }
   if (!fleet_.empty()) {
-    request.fleet = planning::parse_fleet(
+    request.fleet = vehicle::parse_fleet(
         base::read_text_file(fleet_, "fleet file", base::kMaxConfigFileBytes), fleet_);
     if (!request.home) request.home = request.fleet->home;
   }

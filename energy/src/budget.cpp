@@ -247,15 +247,16 @@ std::vector<WaypointMission> read_waypoint_missions(const std::string& path) {
   return parse_waypoint_missions(base::read_text_file(path, "mission file"), path);
 }
 
-DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
+DroneBudget budget(const WaypointMission& mission, const DroneProfile& profile) {
+  const vehicle::Drone& drone = profile.drone;
   const geometry::LocalFrame frame(mission.home);
-  const Battery& b = drone.battery;
-  const PowerProfile& power = drone.power;
+  const Battery& b = profile.battery;
+  const PowerProfile& power = profile.power;
   const double always_w =
-      power.payload_w + computations_power_w(power.computations, drone.computation_parameters);
+      power.payload_w + computations_power_w(power.computations, profile.computation_parameters);
   const double climb_w = power.climb_w > 0 ? power.climb_w : 1.3 * power.mechanical.cruise_w;
   const double descent_w = power.descent_w > 0 ? power.descent_w : 0.8 * power.mechanical.cruise_w;
-  const Point2 wind = wind_velocity(drone.wind);
+  const Point2 wind = wind_velocity(profile.wind);
 
   DroneBudget out;
   out.drone = mission.drone;
@@ -269,7 +270,7 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
   auto segment = [&](Point2 to, double to_alt, double seconds, double watts,
                      const std::string& what) {
     if (std::isnan(battery_current_a(b, watts)))
-      throw InputError(drone.source + ": " + mission.drone + " would draw " +
+      throw InputError(profile.source + ": " + mission.drone + " would draw " +
                        base::fixed_text(watts, 0) + " W " + what +
                        ", beyond what the battery can deliver (" +
                        base::fixed_text(max_power_w(b), 0) + " W)");
@@ -299,13 +300,13 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& drone) {
     const double dx = to.x - at.x, dy = to.y - at.y;
     const double length = std::hypot(dx, dy);
     if (length < 1e-9) return;
-    const double speed = drone.speed_m_s > 0 ? drone.speed_m_s : leg_speed;
+    const double speed = drone.speed_m_s.value_or(leg_speed);
     if (!(speed > 0))
-      throw InputError(drone.source + ": the mission gives no speed for " + mission.drone +
+      throw InputError(profile.source + ": the mission gives no speed for " + mission.drone +
                        "; set speed_m_s in the drone profile");
     const auto cs = course_speed({dx / length, dy / length}, wind, speed, drone.max_airspeed_m_s);
     if (!cs)
-      throw InputError(drone.source + ": the wind is stronger than " + mission.drone +
+      throw InputError(profile.source + ": the wind is stronger than " + mission.drone +
                        "'s maximum airspeed on one of its legs");
     const double watts = level_flight_power_w(power.mechanical, cs->airspeed_m_s) + always_w;
     out.distance_m += length;

@@ -228,11 +228,15 @@ DroneProfile drone_profile_from_yaml(const std::string& text, const std::string&
            "battery", "power", "parameters"});
   DroneProfile d;
   d.source = source;
-  d.name = m.text("name", d.name);
-  d.speed_m_s = m.number("speed_m_s", 0.0, 0.0, 200.0);
-  d.climb_speed_m_s = m.number("climb_speed_m_s", d.climb_speed_m_s, 0.0, 100.0, true);
-  d.descent_speed_m_s = m.number("descent_speed_m_s", d.descent_speed_m_s, 0.0, 100.0, true);
-  d.max_airspeed_m_s = m.number("max_airspeed_m_s", d.max_airspeed_m_s, 0.0, 300.0, true);
+  vehicle::Drone& drone = d.drone;
+  drone.name = m.text("name", "drone");
+  // 0 (as absence): each leg at the mission's own speed.
+  if (const double speed = m.number("speed_m_s", 0.0, 0.0, 200.0); speed > 0)
+    drone.speed_m_s = speed;
+  drone.climb_speed_m_s = m.number("climb_speed_m_s", drone.climb_speed_m_s, 0.0, 100.0, true);
+  drone.descent_speed_m_s =
+      m.number("descent_speed_m_s", drone.descent_speed_m_s, 0.0, 100.0, true);
+  drone.max_airspeed_m_s = m.number("max_airspeed_m_s", drone.max_airspeed_m_s, 0.0, 300.0, true);
   d.wind = parse_wind(m.map("wind"));
   d.battery = parse_battery(m.map("battery"));
   d.power = parse_power(m.map("power"));

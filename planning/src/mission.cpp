@@ -102,7 +102,7 @@ class MissionBuilder {
     m_.transit_length_m = m_.path_length_m - m_.work_length_m;
     m_.flight_time_s = path_time_s(m_.path, holds_, s_.speed_m_s, s_.vehicle);
     if (s_.vehicle == Vehicle::multirotor)
-      m_.flight_time_s += s_.altitude_m / kClimbRate_m_s + s_.altitude_m / kDescentRate_m_s;
+      m_.flight_time_s += s_.altitude_m / s_.climb_speed_m_s + s_.altitude_m / s_.descent_speed_m_s;
     for (const MissionItem& item : m_.items) m_.waypoint_count += positional(item.kind);
     return std::move(m_);
   }

@@ -44,8 +44,8 @@ std::string square_plan(double speed) {
 DroneProfile quad() {
   DroneProfile d;
   d.source = "quad.yaml";
-  d.climb_speed_m_s = 2.5;
-  d.descent_speed_m_s = 2.0;
+  d.drone.climb_speed_m_s = 2.5;
+  d.drone.descent_speed_m_s = 2.0;
   d.power.mechanical = {150.0, 5.0, 0.0, 35.0};  // 150 W at any airspeed
   d.power.climb_w = 200.0;
   d.power.descent_w = 120.0;
@@ -120,7 +120,7 @@ TEST(Budget, GeoJsonPathsAndWind) {
   ASSERT_EQ(missions[0].points.size(), 3u);  // home legs implied
   DroneProfile d = quad();
   d.power.mechanical = {150.0, 10.0, 1.0, 35.0};  // all parasitic: 150 (v/10)^3
-  d.max_airspeed_m_s = 30;
+  d.drone.max_airspeed_m_s = 30;
   const DroneBudget calm = budget(missions[0], d);
   EXPECT_NEAR(calm.distance_m, 700.0, 1e-3);
   EXPECT_NEAR(calm.flight_time_s, 40 / 2.5 + 70.0 + 40 / 2.0, 1e-3);

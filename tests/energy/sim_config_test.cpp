@@ -32,6 +32,11 @@ TEST(SimConfig, TheBundledConfig) {
   const DroneProfile d = read_drone_profile(kShare + "drones/quad-5ah.yaml");
   EXPECT_DOUBLE_EQ(d.battery.capacity_ah, 5.0);
   EXPECT_DOUBLE_EQ(d.power.payload_w, 8.0);
+  // The drone itself: the same vehicle::Drone a fleet file gives.
+  EXPECT_FALSE(d.drone.speed_m_s.has_value());  // 0 in the file: each leg at its own speed
+  EXPECT_DOUBLE_EQ(d.drone.climb_speed_m_s, 3.0);
+  EXPECT_DOUBLE_EQ(d.drone.descent_speed_m_s, 2.0);
+  EXPECT_DOUBLE_EQ(d.drone.max_airspeed_m_s, 16.0);
 }
 
 TEST(SimConfig, ErrorsNameTheLineAndKey) {

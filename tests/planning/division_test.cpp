@@ -10,14 +10,17 @@
 #include "swath/base/input_error.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/geometry/predicates.hpp"
-#include "swath/planning/fleet.hpp"
 #include "swath/planning/survey.hpp"
+#include "swath/vehicle/drone.hpp"
 
 namespace swath::planning {
 namespace {
 
 using geometry::Point2;
 using geometry::Ring;
+using vehicle::equal_fleet;
+using vehicle::Fleet;
+using vehicle::parse_fleet;
 
 SurveyPath zigzag_path(int lines, double length, double spacing) {
   std::vector<SweepLine> l;
@@ -260,6 +263,17 @@ TEST(Fleet, BadFleetsAreRefusedWithTheDroneNamed) {
   const Fleet f = parse_fleet(
       home + "drones:\n  - {name: a, battery_level: 0.5, endurance_s: 1200, speed_m_s: 8}\n", "f");
   EXPECT_DOUBLE_EQ(*f.drones[0].range_m(), 4800.0);
+  EXPECT_DOUBLE_EQ(f.drones[0].climb_speed_m_s, 2.5);  // vehicle::Drone: ArduCopter defaults
+  const Fleet speeds = parse_fleet(home +
+                                       "drones:\n  - {capability: 1, climb_speed_m_s: 4, "
+                                       "descent_speed_m_s: 1.5, max_airspeed_m_s: 18}\n",
+                                   "f");
+  EXPECT_DOUBLE_EQ(speeds.drones[0].climb_speed_m_s, 4);
+  EXPECT_DOUBLE_EQ(speeds.drones[0].descent_speed_m_s, 1.5);
+  EXPECT_DOUBLE_EQ(speeds.drones[0].max_airspeed_m_s, 18);
+  EXPECT_NE(
+      error(home + "drones:\n  - {capability: 1, climb_speed_m_s: 0}\n").find("climb_speed_m_s"),
+      std::string::npos);
   EXPECT_THROW(equal_fleet(0, {}), base::InputError);
   // Home unreachable within range.
   const SurveyPath path = zigzag_path(3, 300, 30);

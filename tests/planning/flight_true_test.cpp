@@ -27,6 +27,9 @@ using geometry::Point2;
 using geometry::Polygon;
 using geometry::Ring;
 using nlohmann::json;
+using vehicle::Drone;
+using vehicle::Fleet;
+using vehicle::parse_fleet;
 
 // ---- The test's own plane geometry -------------------------------------------------------------
 

@@ -48,9 +48,15 @@ TEST(BuildMission, SpeedGimbalAndTheCameraOnEachLineOnly) {
 TEST(BuildMission, FlightTimeIsTheTrapezoidOfEachLegPlusClimbAndDescent) {
   const DroneMission m = build_mission(1, {0, -50}, kTwoLines, settings());
   const double legs[] = {50, 100, 20, 100, std::hypot(0.0, 70.0)};
-  double expected = 60 / kClimbRate_m_s + 60 / kDescentRate_m_s;
+  double expected = 60 / 2.5 + 60 / 1.5;  // ArduCopter's WPNAV_SPEED_UP and _DN
   for (const double l : legs) expected += l / 4 + 4 / kAcceleration_m_s2;
   EXPECT_NEAR(m.flight_time_s, expected, 1e-9);
+  // The drone's own vertical speeds (a fleet's climb_speed_m_s, descent_speed_m_s).
+  MissionSettings quick = settings();
+  quick.climb_speed_m_s = 5;
+  quick.descent_speed_m_s = 3;
+  EXPECT_NEAR(build_mission(1, {0, -50}, kTwoLines, quick).flight_time_s,
+              expected - (60 / 2.5 + 60 / 1.5) + (60 / 5.0 + 60 / 3.0), 1e-9);
   // A short leg never reaches cruise speed: 2 sqrt(L / a).
   EXPECT_NEAR(path_time_s({{0, 0}, {4, 0}}, {}, 4, Vehicle::multirotor), 2 * std::sqrt(4 / 2.5),
               1e-12);

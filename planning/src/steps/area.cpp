@@ -101,7 +101,7 @@ void check_homes(const SurveyRequest& request, const geometry::Field& field) {
   if (std::isfinite(request.fleet->home.lat_deg) &&
       request.fleet->home != request.home.value_or(GeoPoint{NAN, NAN, 0}))
     check_home_near_area(request.fleet->home, "the fleet's home", field, request.far_home);
-  for (const Drone& d : request.fleet->drones)
+  for (const vehicle::Drone& d : request.fleet->drones)
     if (d.home)
       check_home_near_area(*d.home, "drone " + d.name + "'s home", field, request.far_home);
 }

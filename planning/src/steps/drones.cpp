@@ -44,7 +44,7 @@ void name_drones(SurveyPlan& plan) {
   }
   std::map<std::string, std::string> stems;  // file stem -> the name it came from
   for (std::size_t i = 0; i < r.fleet->drones.size(); ++i) {
-    const Drone& f = r.fleet->drones[i];
+    const vehicle::Drone& f = r.fleet->drones[i];
     DronePlan d;
     d.number = static_cast<int>(i + 1);
     d.name = f.name.empty() ? "drone-" + std::to_string(d.number) : f.name;
@@ -65,6 +65,8 @@ void name_drones(SurveyPlan& plan) {
     d.home = f.home || std::isfinite(r.fleet->home.lat_deg) ? frame.to_local(d.home_geo)
                                                             : plan.home_local;
     d.speed_m_s = f.speed_m_s.value_or(plan.speed_m_s);
+    d.climb_speed_m_s = f.climb_speed_m_s;
+    d.descent_speed_m_s = f.descent_speed_m_s;
     d.endurance_s = f.endurance_s ? f.endurance_s : r.endurance_s;
     plan.drones.push_back(std::move(d));
   }
@@ -73,7 +75,7 @@ void name_drones(SurveyPlan& plan) {
 std::vector<DroneResource> resources_of(const SurveyPlan& plan) {
   std::vector<DroneResource> out;
   for (std::size_t i = 0; i < plan.drones.size(); ++i) {
-    const Drone& f = plan.request.fleet->drones[i];
+    const vehicle::Drone& f = plan.request.fleet->drones[i];
     out.push_back({plan.drones[i].name, plan.drones[i].home, plan.drones[i].speed_m_s, f.range_m(),
                    f.capability.value_or(1.0)});
   }

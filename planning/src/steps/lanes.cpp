@@ -29,7 +29,7 @@ geometry::Ring bounding_box(const SurveyPlan& plan) {
     for (const Point2& p : r) grow(p);
   grow(plan.home_local);
   if (plan.request.fleet)
-    for (const Drone& d : plan.request.fleet->drones)
+    for (const vehicle::Drone& d : plan.request.fleet->drones)
       if (d.home) grow(plan.request.field.frame->to_local(*d.home));
   const double margin = 1000 + std::max(x1 - x0, y1 - y0);
   return {{x0 - margin, y0 - margin},

@@ -13,6 +13,8 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
   s.vehicle = plan.request.vehicle;
   s.triggering = plan.request.triggering;
   s.land = plan.request.land;
+  s.climb_speed_m_s = drone.climb_speed_m_s;
+  s.descent_speed_m_s = drone.descent_speed_m_s;
   // Stop at line ends beside a no-fly zone (within the clearance and the corner allowance): a
   // turn flown through there would swing towards the zone.
   if (!plan.no_fly.empty() && plan.request.vehicle == Vehicle::multirotor) {

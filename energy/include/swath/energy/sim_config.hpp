@@ -9,6 +9,7 @@
 #include "swath/energy/flight.hpp"
 #include "swath/energy/power_model.hpp"
 #include "swath/geometry/point.hpp"
+#include "swath/vehicle/drone.hpp"
 
 namespace swath::energy {
 
@@ -47,8 +48,8 @@ struct SimConfig {
   std::vector<double> quality_weights;  ///< per computation (empty: all 1)
   Battery battery;
   PowerProfile power;
-  std::string replay_csv;  ///< measured power to replay instead of the power model
-  PowerTrace replay;       ///< its contents (read with the config; empty: model)
+  std::string replay_csv;             ///< measured power to replay instead of the power model
+  PowerTrace replay;                  ///< its contents (read with the config; empty: model)
   std::vector<std::string> warnings;  ///< from reading the file (old key spellings)
 };
 
@@ -60,11 +61,8 @@ SimConfig read_sim_config(const std::string& path);
 /// A drone for `swath-energy budget`: how it flies a waypoint mission and what that costs.
 struct DroneProfile {
   std::string source;
-  std::string name = "drone";
-  double speed_m_s = 0.0;          ///< cruise ground speed; 0: the mission's own speed
-  double climb_speed_m_s = 3.0;    ///< > 0
-  double descent_speed_m_s = 2.0;  ///< > 0
-  double max_airspeed_m_s = 25.0;
+  /// The drone: name and speeds (`speed_m_s` absent: each leg at the mission's own speed).
+  vehicle::Drone drone;
   Wind wind;
   Battery battery;
   PowerProfile power;

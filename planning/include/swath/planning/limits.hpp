@@ -7,6 +7,7 @@
 #include <string>
 
 #include "swath/base/range_check.hpp"
+#include "swath/vehicle/drone.hpp"
 
 namespace swath::planning::limits {
 
@@ -29,7 +30,7 @@ inline constexpr base::Range kMinPixels{1, 10'000, "px", ""};
 inline constexpr base::Range kSpacing_m{0.1, 100'000, "m", "closer than 10 cm is no survey"};
 
 // Route.
-inline constexpr base::Range kSpeed_m_s{0.5, 100, "m/s", "hover-and-capture to fast fixed-wing"};
+using vehicle::limits::kSpeed_m_s;
 inline constexpr base::Range kTurnaround_m{0, 1000, "m", ""};
 inline constexpr base::Range kWaypointSpacing_m{0.5, 100'000, "m", ""};
 inline constexpr base::Range kAngleStep_deg{0.001, 90, "°", "180,000 scan steps at most"};
@@ -42,10 +43,10 @@ inline constexpr base::Range kFenceMargin_m{0, 10'000, "m", ""};
 inline constexpr base::Range kBank_deg{5, 60, "°", ""};
 inline constexpr base::Range kReserve{0, 0.9, "", "a fraction of the endurance"};
 
-// Fleet.
-inline constexpr base::Range kDrones{1, 100, "drones", "one file set per drone"};
-inline constexpr base::Range kEndurance_s{1, 604'800, "s", "a week"};
-inline constexpr base::Range kBatteryLevel{0, 1, "", "a fraction of a full charge"};
+// Fleet: the drone's own (vehicle/drone.hpp).
+using vehicle::limits::kBatteryLevel;
+using vehicle::limits::kDrones;
+using vehicle::limits::kEndurance_s;
 
 /// An overlap: in kOverlap, with the hint "did you mean 0.80?" for one given in percent.
 void check_overlap(double value, const std::string& where);

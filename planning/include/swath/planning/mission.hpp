@@ -72,17 +72,17 @@ struct MissionItem {
 /// Whether an item is a position the drone flies to (takeoff, waypoint, land).
 bool positional(ItemKind kind);
 
-/// ArduCopter's defaults, used for the flight-time estimate (WPNAV_ACCEL 250 cm/s²,
-/// WPNAV_SPEED_UP 250 cm/s, WPNAV_SPEED_DN 150 cm/s) and a corner it stops at (ArduCopter slows
-/// to a stop before turns this sharp; gentler ones it flies through).
+/// ArduCopter's defaults, used for the flight-time estimate (WPNAV_ACCEL 250 cm/s²; climb and
+/// descent are the drone's, by default WPNAV_SPEED_UP and _DN: vehicle::Drone) and a corner it
+/// stops at (ArduCopter slows to a stop before turns this sharp; gentler ones it flies through).
 inline constexpr double kAcceleration_m_s2 = 2.5;
-inline constexpr double kClimbRate_m_s = 2.5;
-inline constexpr double kDescentRate_m_s = 1.5;
 inline constexpr double kStopTurn_deg = 45.0;
 
 struct MissionSettings {
   double altitude_m = 0.0;                   ///< > 0, above home
   double speed_m_s = 0.0;                    ///< > 0, cruise speed over the whole path
+  double climb_speed_m_s = 2.5;              ///< > 0, vertical, after take-off
+  double descent_speed_m_s = 1.5;            ///< > 0, vertical, landing at home
   double trigger_distance_m = 0.0;           ///< > 0
   std::optional<double> waypoint_spacing_m;  ///< intermediate waypoints on long lines
   Vehicle vehicle = Vehicle::multirotor;

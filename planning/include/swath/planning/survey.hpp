@@ -13,9 +13,9 @@
 #include "swath/geometry/field.hpp"
 #include "swath/planning/coverage.hpp"
 #include "swath/planning/division.hpp"
-#include "swath/planning/fleet.hpp"
 #include "swath/planning/imaging.hpp"
 #include "swath/planning/mission.hpp"
+#include "swath/vehicle/drone.hpp"
 
 namespace swath::planning {
 
@@ -65,7 +65,7 @@ struct SurveyRequest {
   std::vector<std::vector<geometry::GeoPoint>> exclusions;
   double split_scan_step_deg = 2.0;  ///< split: the scan part of the direction search
   /// Divide the survey among this fleet (absent: one drone).
-  std::optional<Fleet> fleet;
+  std::optional<vehicle::Fleet> fleet;
   DivisionMode division = DivisionMode::path;
   Balance balance = Balance::capability;
   /// A fleet that cannot fly the whole path flies what it can instead of refusing.
@@ -135,6 +135,8 @@ struct DronePlan {
   geometry::Point2 home;  ///< local frame
   geometry::GeoPoint home_geo;
   double speed_m_s = 0.0;
+  double climb_speed_m_s = vehicle::Drone{}.climb_speed_m_s;      ///< the fleet's, or the default
+  double descent_speed_m_s = vehicle::Drone{}.descent_speed_m_s;  ///< the fleet's, or the default
   std::optional<double> endurance_s;  ///< flight time on a full charge, when known
   /// Its part of the survey (with a fleet: the division's share, budgets and region).
   DroneWork work;

@@ -1,4 +1,4 @@
-#include "swath/planning/fleet.hpp"
+#include "swath/vehicle/drone.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -8,9 +8,8 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/base/yaml_input.hpp"
-#include "swath/planning/limits.hpp"
 
-namespace swath::planning {
+namespace swath::vehicle {
 namespace {
 
 using base::InputError;
@@ -60,8 +59,9 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
   if (!drones.IsSequence() || drones.size() == 0)
     throw InputError(source + ": 'drones' must list at least one drone");
   base::check_range(static_cast<double>(drones.size()), limits::kDrones, source + ": the fleet of");
-  static const std::set<std::string> known{"name",        "capability", "battery_level",
-                                           "endurance_s", "speed_m_s",  "home"};
+  static const std::set<std::string> known{
+      "name", "capability",      "battery_level",     "endurance_s",     "speed_m_s",
+      "home", "climb_speed_m_s", "descent_speed_m_s", "max_airspeed_m_s"};
   bool any_capability = false, any_range = false;
   for (std::size_t i = 0; i < drones.size(); ++i) {
     const YAML::Node d = drones[i];
@@ -98,6 +98,15 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
       any_range = true;
     }
     if (d["home"]) drone.home = point(d["home"], where);
+    const std::string named = where + " (" + drone.name + "): ";
+    auto speed = [&](const char* key, double& value, const base::Range& range) {
+      if (!d[key]) return;
+      value = number(d[key], where, key);
+      base::check_range(value, range, named + key);
+    };
+    speed("climb_speed_m_s", drone.climb_speed_m_s, limits::kVerticalSpeed_m_s);
+    speed("descent_speed_m_s", drone.descent_speed_m_s, limits::kVerticalSpeed_m_s);
+    speed("max_airspeed_m_s", drone.max_airspeed_m_s, limits::kSpeed_m_s);
     fleet.drones.push_back(std::move(drone));
   }
   if (any_capability && any_range)
@@ -126,4 +135,4 @@ Fleet equal_fleet(int n, const geometry::GeoPoint& home) {
   return fleet;
 }
 
-}  // namespace swath::planning
+}  // namespace swath::vehicle
