@@ -385,287 +385,409 @@ struct RestTable {
   std::vector<double> at(double lambda) const { return row_at(lambdas, rows, lambda); }
 };
 
-}  // namespace
+// ---- The simulation's parts, each advanced once per time step (simulate() composes them). ----
 
-SimulationResult simulate(const Plan& plan, const SimConfig& config,
-                          const std::function<void(double)>& progress, const SampleSink& sink) {
-  check_config(plan, config);
-  const double dt = config.time_step_s;
-  const Stage& first = plan.stages.front();
-  bool trajectory_free = false;
-  for (const Interval& b : first.trajectory) trajectory_free = trajectory_free || b.hi > b.lo;
-  trajectory_free = trajectory_free && config.replan;
-  bool computations_free = false;
-  for (const Stage& st : plan.stages)
-    for (const Interval& b : st.computations) computations_free = computations_free || b.hi > b.lo;
-  const bool replanning = config.replan && (trajectory_free || computations_free);
+// The plan's parameters as flown: the trajectory (lambda along the first stage's diagonal) and
+// the computation levels; the parameter power of the current stage, and its steps, which are the
+// energy model's input (paper 004 eq. 8). Trajectory changes wait for the next stage: changed
+// mid-stage they would move the curve under the drone and make it detour.
+class Parameters {
+ public:
+  Parameters(const Plan& plan, const SimConfig& config, bool trajectory_free,
+             std::vector<double> trajectory, std::vector<double> computations, double lambda,
+             int stage)
+      : plan_(plan),
+        config_(config),
+        trajectory_free_(trajectory_free),
+        traj_(std::move(trajectory)),
+        comps_(std::move(computations)),
+        lambda_(lambda),
+        stage_seen_(stage),
+        power_now_(parameter_power_w(plan.stages[stage], config, traj_, comps_)),
+        traj_sum_(traj_.size(), 0.0),
+        comp_sum_(comps_.size(), 0.0) {}
 
-  // Initial parameters: the config's, else the upper bounds.
-  std::vector<double> traj = stage_parameters(first.trajectory, config.trajectory_parameters);
-  std::vector<double> comps = config.computation_parameters;
-  for (std::size_t j = comps.size(); j < plan.computations(); ++j) {
-    double hi = 0.0;
-    for (const Stage& st : plan.stages) hi = std::max(hi, st.computations[j].hi);
-    comps.push_back(hi);
-  }
-  double lambda = 1.0;
-  if (trajectory_free && !first.trajectory.empty()) {
-    const Interval& b = first.trajectory[0];
-    lambda = b.hi > b.lo ? std::clamp((traj[0] - b.lo) / (b.hi - b.lo), 0.0, 1.0) : 1.0;
-    traj = trajectory_at(plan, lambda);
-  }
+  const std::vector<double>& trajectory() const { return traj_; }
+  const std::vector<double>& computations() const { return comps_; }
+  double lambda() const { return lambda_; }
+  /// The lambda the drone will fly: a pending change, else the current one.
+  double planned_lambda() const { return pending_lambda_ >= 0.0 ? pending_lambda_ : lambda_; }
+  double power_now() const { return power_now_; }
+  /// The parameter power's step in this time step, W.
+  double step_w() const { return step_w_; }
 
-  PathTable table;
-  double planned_time = 0.0;
-  SimulationResult result;
-  if (trajectory_free) {
-    for (int i = 0; i <= 4; ++i) {
-      table.lambdas.push_back(i / 4.0);
-      double total = 0.0;
-      const bool initial = std::abs(i / 4.0 - lambda) < 1e-12;
-      table.durations.push_back(stage_durations(plan, config, trajectory_at(plan, i / 4.0), &total,
-                                                initial ? &result.planned_path : nullptr));
+  /// Before the step: a new stage takes a pending trajectory change; the stage's power.
+  void begin_step(int stage, double t, Flight& flight, std::vector<ControlSample>& control) {
+    step_w_ = 0.0;
+    if (stage != stage_seen_) {
+      stage_seen_ = stage;
+      if (pending_lambda_ >= 0.0) {
+        lambda_ = pending_lambda_;
+        pending_lambda_ = -1.0;
+        traj_ = trajectory_at(plan_, lambda_);
+        flight.set_trajectory_parameters(traj_);
+        control.push_back({t, traj_, comps_, control.back().feasible});
+        ++version_;
+      }
     }
-    if (result.planned_path.empty()) {
-      double total = 0.0;
-      stage_durations(plan, config, traj, &total, &result.planned_path);
-    }
-    for (double d : table.at(lambda)) planned_time += d;
-  } else {
-    table.lambdas.push_back(lambda);
-    table.durations.push_back(
-        stage_durations(plan, config, traj, &planned_time, &result.planned_path));
+    if (stage != cached_stage_ || version_ != cached_version_) cache(stage);
+    take_stage_power();
   }
-  for (const StageField& f : stage_fields(plan, traj)) result.planned_triggers.push_back(f.trigger);
 
-  result.planned_time_s = planned_time;
-  result.first_period_s = config.initial_period_s;
-  Flight flight(stage_fields(plan, traj), config);
-  flight.trigger();
-  GaussianNoise noise(config.power.seed, config.power.noise_w);
-  const Battery& battery = config.battery;
-  std::optional<EnergyEstimator> estimator;
-  SignalHistory history{config.initial_period_s / 100.0, 1200, {}, 0.0, 0.0, 0.0};
-  double next_period_check = config.initial_period_s;
-  const int last_stage = static_cast<int>(plan.stages.size()) - 1;
+  /// A replanner's choice taken: the computations at once (where the stage lets them vary), the
+  /// trajectory at the next stage.
+  void take(const ReplanChoice& choice, const std::vector<Interval>& computation_bounds, int stage,
+            double t, std::vector<ControlSample>& control) {
+    const std::vector<double> before = comps_;
+    // Keep the levels of computations the stage switches off (bounds [0, 0]) for later.
+    for (std::size_t j = 0; j < comps_.size(); ++j)
+      if (computation_bounds[j].hi > computation_bounds[j].lo) comps_[j] = choice.computations[j];
+    pending_lambda_ =
+        trajectory_free_ && std::abs(choice.lambda - lambda_) > 1e-9 ? choice.lambda : -1.0;
+    if (comps_ != before) control.push_back({t, traj_, comps_, choice.feasible});
+    ++version_;
+    cache(stage);
+    step_w_ += stage_power_ - power_now_;
+    power_now_ = stage_power_;
+  }
 
-  double soc = battery.initial_soc;
-  double energy = 0.0, next_output = 0.0, next_progress = 0.0, next_replan = 0.0;
-  double last_raise = -1e300;
-  BoundedSeries<FlightSample> kept(result.samples);
-  double last_recorded_t_s = -INFINITY;
-  std::vector<double> traj_sum(traj.size(), 0.0), comp_sum(comps.size(), 0.0);
-  result.control.push_back({0.0, traj, comps, true});
-  double power_now = parameter_power_w(plan.stages[flight.stage()], config, traj, comps);
+  /// After the step: the time integrals of the flown levels (their means in the result).
+  void accumulate(double dt) {
+    for (std::size_t i = 0; i < traj_sum_.size() && i < flown_traj_.size(); ++i)
+      traj_sum_[i] += flown_traj_[i] * dt;
+    for (std::size_t j = 0; j < comp_sum_.size(); ++j) comp_sum_[j] += flown_comp_[j] * dt;
+  }
+  std::vector<double> mean_trajectory(double seconds) const { return means(traj_sum_, seconds); }
+  std::vector<double> mean_computations(double seconds) const { return means(comp_sum_, seconds); }
 
-  // Energy of the rest of the mission for a choice: the model's integral over the remaining time
-  // plus, stage by stage, how much the choice's parameter power differs from what the model has
-  // now. The same prediction drives the replanner and is written to energy.csv.
-  std::vector<int> representative;
-  const std::vector<int> group = bound_groups(plan, &representative);
-  double measured_sum = 0.0, measured_count = 0.0;
-  double pending_lambda = -1.0;  // >= 0: a trajectory change waiting for the next stage
-  int stage_seen = flight.stage();
-  auto rest_table = [&] {
-    return RestTable(table, group, representative.size(), flight.stage(), flight.stage_elapsed_s());
-  };
-  auto rest_energy = [&](const RestTable& rt, double l, const std::vector<double>& t_params,
-                         const std::vector<double>& c_params) {
-    const std::vector<double> row = rt.at(l);
-    const double total = row[0];
+ private:
+  void cache(int stage) {
+    cached_stage_ = stage;
+    cached_version_ = version_;
+    stage_power_ = parameter_power_w(plan_.stages[stage], config_, traj_, comps_);
+    flown_traj_ = stage_parameters(plan_.stages[stage].trajectory, traj_);
+    flown_comp_ = stage_parameters(plan_.stages[stage].computations, comps_);
+  }
+  void take_stage_power() {
+    if (stage_power_ != power_now_) {
+      step_w_ = stage_power_ - power_now_;
+      power_now_ = stage_power_;
+    }
+  }
+  static std::vector<double> means(const std::vector<double>& sums, double seconds) {
+    std::vector<double> out;
+    for (double v : sums) out.push_back(v / seconds);
+    return out;
+  }
+
+  const Plan& plan_;
+  const SimConfig& config_;
+  bool trajectory_free_;
+  std::vector<double> traj_, comps_;
+  double lambda_;
+  double pending_lambda_ = -1.0;  // >= 0: a trajectory change waiting for the next stage
+  int stage_seen_;
+  int cached_stage_ = -1;
+  long version_ = 0, cached_version_ = 0;
+  double power_now_, stage_power_ = 0.0, step_w_ = 0.0;
+  std::vector<double> flown_traj_, flown_comp_;
+  std::vector<double> traj_sum_, comp_sum_;
+};
+
+// The power the drone draws in a step: the replayed trace, or the power model of the flight
+// (mechanical, with the turn's lateral acceleration) plus payload, parameters and noise.
+class PowerMeter {
+ public:
+  explicit PowerMeter(const SimConfig& config)
+      : config_(config), noise_(config.power.seed, config.power.noise_w) {}
+  double measure(double t, const StepKinematics& k, double parameter_power_w) {
+    if (!config_.replay.t_s.empty()) return config_.replay.at(t);
+    return mechanical_power_w(config_.power.mechanical, k.airspeed_m_s, k.lateral_accel_m_s2) +
+           config_.power.payload_w + parameter_power_w + noise_.next();
+  }
+
+ private:
+  const SimConfig& config_;
+  GaussianNoise noise_;
+};
+
+// The energy model (paper 004 §4): the periodic model's Kalman filter, fed by the measured power
+// and the parameter power's steps, its period re-estimated once a period from the measured
+// signal; and the mean measured power, which predicts better within the first period.
+class EnergyModel {
+ public:
+  explicit EnergyModel(const SimConfig& config)
+      : config_(config),
+        history_{config.initial_period_s / 100.0, 1200, {}, 0.0, 0.0, 0.0},
+        next_period_check_(config.initial_period_s) {}
+
+  bool started() const { return estimator_.has_value(); }
+  const EnergyEstimator& estimator() const { return *estimator_; }
+
+  /// One step's measurement; returns the power the battery gives (the model's output where
+  /// the measurement is missing).
+  double update(double t, double measured, double step_w, double parameter_power_w) {
+    if (!estimator_) {
+      estimator_.emplace(
+          fourier_model(config_.fourier_order, config_.initial_period_s, config_.time_step_s),
+          config_.kalman,
+          std::isfinite(measured) ? measured : parameter_power_w + config_.power.payload_w);
+    } else {
+      estimator_->predict(step_w);
+      estimator_->correct(measured);
+    }
+    const double power = std::isfinite(measured) ? measured : estimator_->output_w();
+    if (std::isfinite(measured)) {
+      measured_sum_ += measured;
+      measured_count_ += 1.0;
+    }
+    if (config_.estimate_period) estimate_period(t, measured);
+    return power;
+  }
+
+  /// The energy over the next `horizon_s` at the current power level: the mean measured power
+  /// within the first period, the model's integral after.
+  double energy_over_j(double t, double horizon_s) const {
+    return t < config_.initial_period_s && measured_count_ > 0
+               ? measured_sum_ / measured_count_ * horizon_s
+               : estimator_->energy_over_j(horizon_s);
+  }
+
+ private:
+  void estimate_period(double t, double measured) {
+    history_.add(t, measured);
+    if (t < next_period_check_) return;
+    const double period = estimator_->model().period_s;
+    const auto found = estimate_period_s(history_.bins, history_.bin_s, 0.5 * period, 2.0 * period);
+    if (found && std::abs(*found - period) > 0.01 * period) estimator_->set_period(*found);
+    next_period_check_ = t + estimator_->model().period_s;
+  }
+
+  const SimConfig& config_;
+  std::optional<EnergyEstimator> estimator_;
+  SignalHistory history_;
+  double next_period_check_;
+  double measured_sum_ = 0.0, measured_count_ = 0.0;
+};
+
+// Energy of the rest of the mission for a choice: the model's integral over the remaining time
+// plus, stage by stage, how much the choice's parameter power differs from what is drawn now.
+// The same prediction drives the replanner and is written to energy.csv.
+class Outlook {
+ public:
+  Outlook(const Plan& plan, const SimConfig& config, PathTable table)
+      : plan_(plan), config_(config), table_(std::move(table)) {
+    group_ = bound_groups(plan, &representative_);
+  }
+
+  RestTable rest_from(const Flight& flight) const {
+    return RestTable(table_, group_, representative_.size(), flight.stage(),
+                     flight.stage_elapsed_s());
+  }
+
+  double rest_energy_j(const RestTable& rt, double lambda, const std::vector<double>& trajectory,
+                       const std::vector<double>& computations, double power_now_w, double t,
+                       const EnergyModel& model) const {
+    const std::vector<double> row = rt.at(lambda);
     double shift = 0.0;
     for (std::size_t g = 0; g + 1 < row.size(); ++g)
       if (row[g + 1] > 0.0)
-        shift += (parameter_power_w(plan.stages[representative[g]], config, t_params, c_params) -
-                  power_now) *
+        shift += (parameter_power_w(plan_.stages[representative_[g]], config_, trajectory,
+                                    computations) -
+                  power_now_w) *
                  row[g + 1];
-    // Within the first period the model has not yet told its mean from its harmonics: the mean
-    // measured power so far predicts better.
-    const double base = flight.time_s() < config.initial_period_s && measured_count > 0
-                            ? measured_sum / measured_count * total
-                            : estimator->energy_over_j(total);
-    return std::pair{base + shift, total};
-  };
+    return model.energy_over_j(t, row[0]) + shift;
+  }
 
-  auto record = [&](const StepKinematics& k, double measured) {
+ private:
+  const Plan& plan_;
+  const SimConfig& config_;
+  PathTable table_;
+  std::vector<int> representative_, group_;
+};
+
+// The replanner (paper 004 §5): every mpc_period_s, the parameters whose predicted energy fits
+// the battery above its margin at the highest quality; a raise is held at least mpc_horizon_s.
+class Replanner {
+ public:
+  Replanner(const Plan& plan, const SimConfig& config, bool trajectory_free)
+      : plan_(plan), config_(config), trajectory_free_(trajectory_free) {}
+
+  void maybe_replan(double t, int stage, double soc, const Flight& flight, Parameters& params,
+                    const Outlook& outlook, const EnergyModel& model, SimulationResult& result) {
+    if (t + 1e-9 < next_replan_) return;
+    next_replan_ = t + config_.mpc_period_s;
+    ReplanProblem problem;
+    problem.computation_bounds = plan_.stages[stage].computations;
+    problem.quality_weights = config_.quality_weights;
+    problem.trajectory_free = trajectory_free_;
+    problem.battery = config_.battery;
+    problem.soc = soc;
+    problem.margin = config_.mpc_margin;
+    const RestTable rt = outlook.rest_from(flight);
+    problem.rest_energy_j = [&](double l, const std::vector<double>& c) {
+      const std::vector<double> traj =
+          trajectory_free_ ? trajectory_at(plan_, l) : params.trajectory();
+      return outlook.rest_energy_j(rt, l, traj, c, params.power_now(), flight.time_s(), model);
+    };
+    problem.rest_time_s = [&](double l) { return rt.at(l)[0]; };
+    const ReplanChoice choice = choose_parameters(problem);
+    ++result.replans;
+    if (!choice.feasible) ++result.infeasible_replans;
+    const std::vector<double> current =
+        stage_parameters(problem.computation_bounds, params.computations());
+    const double q_old =
+        computation_quality(problem.computation_bounds, config_.quality_weights, current);
+    const double q_new = computation_quality(problem.computation_bounds, config_.quality_weights,
+                                             choice.computations);
+    const double planned = params.planned_lambda();
+    const bool raises =
+        q_new > q_old + 1e-12 || (trajectory_free_ && choice.lambda > planned + 1e-9);
+    const bool changes = choice.computations != current ||
+                         (trajectory_free_ && std::abs(choice.lambda - planned) > 1e-9);
+    if (changes && (!raises || t - last_raise_ >= config_.mpc_horizon_s)) {
+      if (raises) last_raise_ = t;
+      params.take(choice, problem.computation_bounds, stage, t, result.control);
+    } else if (!choice.feasible && result.control.back().feasible) {
+      result.control.push_back({t, params.trajectory(), params.computations(), false});
+    }
+  }
+
+ private:
+  const Plan& plan_;
+  const SimConfig& config_;
+  bool trajectory_free_;
+  double next_replan_ = 0.0;
+  double last_raise_ = -1e300;
+};
+
+// The battery's state of charge and the energy drawn (paper 004 eq. 12).
+struct Charge {
+  double soc = 1.0;
+  double energy_j = 0.0;
+  void drain(const Battery& battery, double power_w, double dt, double t,
+             std::optional<double>& reserve_crossed_s) {
+    energy_j += power_w * dt;
+    soc = soc_after(battery, soc, power_w, dt);
+    if (!std::isfinite(soc)) soc = 0.0;  // beyond what the battery can deliver
+    if (!reserve_crossed_s && soc <= battery.reserve_soc) reserve_crossed_s = t + dt;
+  }
+};
+
+// The samples every output interval (and the last step): streamed to the sink, kept bounded.
+class Recorder {
+ public:
+  Recorder(SimulationResult& result, const SampleSink& sink, int last_stage)
+      : kept_(result.samples), sink_(sink), last_stage_(last_stage) {}
+
+  void record(const Flight& flight, const StepKinematics& k, double measured, const Charge& charge,
+              const EnergyModel& model, double predicted_total_j) {
     FlightSample s;
     s.t_s = flight.time_s();
     s.position = flight.position();
-    s.stage = std::min(flight.stage(), last_stage);
+    s.stage = std::min(flight.stage(), last_stage_);
     s.course_deg = std::fmod(450.0 - k.course_rad * 180.0 / kPi, 360.0);
     s.ground_speed_m_s = k.ground_speed_m_s;
     s.airspeed_m_s = k.airspeed_m_s;
     s.path_distance_m = k.path_distance_m;
     s.measured_w = measured;
-    s.model_w = estimator->output_w();
-    s.soc = soc;
-    s.predicted_total_j =
-        energy + (flight.done() ? 0.0 : rest_energy(rest_table(), lambda, traj, comps).first);
-    s.coefficients = estimator->state();
-    if (sink) sink(s);
-    last_recorded_t_s = s.t_s;
-    kept.add(std::move(s));
-  };
-
-  result.status = FlightStatus::completed;
-  int cached_stage = -1;
-  long params_version = 0, cached_version = 0;
-  double stage_power = power_now;
-  std::vector<double> flown_traj, flown_comp;
-  StepKinematics k{};
-  double measured = 0.0;
-  while (!flight.done()) {
-    if (flight.time_s() >= config.max_time_s) {
-      result.status = FlightStatus::time_limit;
-      break;
-    }
-    const double t = flight.time_s();
-    const int stage = flight.stage();
-    double step_w = 0.0;  // a change of the parameter power, for the model's input (eq. 8)
-    if (stage != stage_seen) {
-      stage_seen = stage;
-      // Trajectory parameters change where a stage begins: changed mid-stage they would move
-      // the curve under the drone and make it detour.
-      if (pending_lambda >= 0.0) {
-        lambda = pending_lambda;
-        pending_lambda = -1.0;
-        traj = trajectory_at(plan, lambda);
-        flight.set_trajectory_parameters(traj);
-        result.control.push_back({t, traj, comps, result.control.back().feasible});
-        ++params_version;
-      }
-    }
-    if (stage != cached_stage || params_version != cached_version) {
-      cached_stage = stage;
-      cached_version = params_version;
-      stage_power = parameter_power_w(plan.stages[stage], config, traj, comps);
-      flown_traj = stage_parameters(plan.stages[stage].trajectory, traj);
-      flown_comp = stage_parameters(plan.stages[stage].computations, comps);
-    }
-    if (stage_power != power_now) {
-      step_w = stage_power - power_now;
-      power_now = stage_power;
-    }
-    if (replanning && estimator && t + 1e-9 >= next_replan) {
-      next_replan = t + config.mpc_period_s;
-      ReplanProblem problem;
-      problem.computation_bounds = plan.stages[stage].computations;
-      problem.quality_weights = config.quality_weights;
-      problem.trajectory_free = trajectory_free;
-      problem.battery = battery;
-      problem.soc = soc;
-      problem.margin = config.mpc_margin;
-      const RestTable rt = rest_table();
-      problem.rest_energy_j = [&](double l, const std::vector<double>& c) {
-        return rest_energy(rt, l, trajectory_free ? trajectory_at(plan, l) : traj, c).first;
-      };
-      problem.rest_time_s = [&](double l) { return rt.at(l)[0]; };
-      ReplanChoice choice = choose_parameters(problem);
-      ++result.replans;
-      if (!choice.feasible) ++result.infeasible_replans;
-      const double q_old = computation_quality(problem.computation_bounds, config.quality_weights,
-                                               stage_parameters(problem.computation_bounds, comps));
-      const double q_new = computation_quality(problem.computation_bounds, config.quality_weights,
-                                               choice.computations);
-      const double planned_lambda = pending_lambda >= 0.0 ? pending_lambda : lambda;
-      const bool raises =
-          q_new > q_old + 1e-12 || (trajectory_free && choice.lambda > planned_lambda + 1e-9);
-      const bool changes =
-          choice.computations != stage_parameters(problem.computation_bounds, comps) ||
-          (trajectory_free && std::abs(choice.lambda - planned_lambda) > 1e-9);
-      if (changes && (!raises || t - last_raise >= config.mpc_horizon_s)) {
-        if (raises) last_raise = t;
-        // Keep the levels of computations the stage switches off (bounds [0, 0]) for later.
-        const std::vector<double> before = comps;
-        for (std::size_t j = 0; j < comps.size(); ++j)
-          if (problem.computation_bounds[j].hi > problem.computation_bounds[j].lo)
-            comps[j] = choice.computations[j];
-        pending_lambda =
-            trajectory_free && std::abs(choice.lambda - lambda) > 1e-9 ? choice.lambda : -1.0;
-        if (comps != before) result.control.push_back({t, traj, comps, choice.feasible});
-        ++params_version;
-        stage_power = parameter_power_w(plan.stages[stage], config, traj, comps);
-        flown_traj = stage_parameters(plan.stages[stage].trajectory, traj);
-        flown_comp = stage_parameters(plan.stages[stage].computations, comps);
-        cached_version = params_version;
-        step_w += stage_power - power_now;
-        power_now = stage_power;
-      } else if (!choice.feasible && result.control.back().feasible) {
-        result.control.push_back({t, traj, comps, false});
-      }
-    }
-    k = flight.step(dt);
-    if (!config.replay.t_s.empty()) {
-      measured = config.replay.at(t);
-    } else {
-      measured = mechanical_power_w(config.power.mechanical, k.airspeed_m_s, k.lateral_accel_m_s2) +
-                 config.power.payload_w + power_now + noise.next();
-    }
-    if (!estimator) {
-      estimator.emplace(fourier_model(config.fourier_order, config.initial_period_s, dt),
-                        config.kalman,
-                        std::isfinite(measured) ? measured : power_now + config.power.payload_w);
-    } else {
-      estimator->predict(step_w);
-      estimator->correct(measured);
-    }
-    const double power = std::isfinite(measured) ? measured : estimator->output_w();
-    if (std::isfinite(measured)) {
-      measured_sum += measured;
-      measured_count += 1.0;
-    }
-    energy += power * dt;
-    soc = soc_after(battery, soc, power, dt);
-    if (!std::isfinite(soc)) soc = 0.0;  // beyond what the battery can deliver
-    if (!result.reserve_crossed_s && soc <= battery.reserve_soc) result.reserve_crossed_s = t + dt;
-    for (std::size_t i = 0; i < traj_sum.size() && i < flown_traj.size(); ++i)
-      traj_sum[i] += flown_traj[i] * dt;
-    for (std::size_t j = 0; j < comp_sum.size(); ++j) comp_sum[j] += flown_comp[j] * dt;
-
-    if (config.estimate_period) {
-      history.add(t, measured);
-      if (t >= next_period_check) {
-        const double period = estimator->model().period_s;
-        const auto found =
-            estimate_period_s(history.bins, history.bin_s, 0.5 * period, 2.0 * period);
-        if (found && std::abs(*found - period) > 0.01 * period) estimator->set_period(*found);
-        next_period_check = t + estimator->model().period_s;
-      }
-    }
-    flight.trigger();
-    ++result.steps;
-    const double now = flight.time_s();
-    if (now + 1e-9 >= next_output || flight.done() || soc <= 0.0) {
-      record(k, measured);
-      next_output += config.output_interval_s;
-    }
-    if (progress && now >= next_progress) {
-      progress(std::min(1.0, now / std::max(planned_time, dt)));
-      next_progress = now + 0.01 * planned_time;
-    }
-    if (soc <= 0.0) {
-      result.status = FlightStatus::battery_empty;
-      break;
-    }
+    s.model_w = model.estimator().output_w();
+    s.soc = charge.soc;
+    s.predicted_total_j = predicted_total_j;
+    s.coefficients = model.estimator().state();
+    if (sink_) sink_(s);
+    last_recorded_t_s_ = s.t_s;
+    kept_.add(std::move(s));
   }
-  if (estimator && last_recorded_t_s < flight.time_s()) record(k, measured);
-  kept.finish();
-  result.stages = flight.entries();
-  result.flight_time_s = flight.time_s();
-  result.energy_j = energy;
-  result.final_soc = soc;
-  result.mean_power_w = result.flight_time_s > 0 ? energy / result.flight_time_s : 0.0;
-  result.corrections = estimator ? estimator->corrections() : 0;
-  result.final_period_s = estimator ? estimator->model().period_s : config.initial_period_s;
-  for (double v : traj_sum)
-    result.mean_trajectory.push_back(v / std::max(result.flight_time_s, dt));
-  for (double v : comp_sum)
-    result.mean_computations.push_back(v / std::max(result.flight_time_s, dt));
+  double last_recorded_t_s() const { return last_recorded_t_s_; }
+  void finish() { kept_.finish(); }
+
+ private:
+  BoundedSeries<FlightSample> kept_;
+  const SampleSink& sink_;
+  int last_stage_;
+  double last_recorded_t_s_ = -INFINITY;
+};
+
+// Whether any parameter of the plan may vary (the replanner has something to choose).
+struct Freedom {
+  bool trajectory = false, computations = false;
+};
+
+Freedom freedom_of(const Plan& plan, const SimConfig& config) {
+  Freedom f;
+  for (const Interval& b : plan.stages.front().trajectory)
+    f.trajectory = f.trajectory || b.hi > b.lo;
+  f.trajectory = f.trajectory && config.replan;
+  for (const Stage& st : plan.stages)
+    for (const Interval& b : st.computations) f.computations = f.computations || b.hi > b.lo;
+  return f;
+}
+
+// The parameters at take-off: the config's, else the upper bounds; the trajectory on the first
+// stage's diagonal at `lambda`.
+struct InitialParameters {
+  std::vector<double> trajectory, computations;
+  double lambda = 1.0;
+};
+
+InitialParameters initial_parameters(const Plan& plan, const SimConfig& config,
+                                     bool trajectory_free) {
+  const Stage& first = plan.stages.front();
+  InitialParameters p;
+  p.trajectory = stage_parameters(first.trajectory, config.trajectory_parameters);
+  p.computations = config.computation_parameters;
+  for (std::size_t j = p.computations.size(); j < plan.computations(); ++j) {
+    double hi = 0.0;
+    for (const Stage& st : plan.stages) hi = std::max(hi, st.computations[j].hi);
+    p.computations.push_back(hi);
+  }
+  if (trajectory_free && !first.trajectory.empty()) {
+    const Interval& b = first.trajectory[0];
+    p.lambda = b.hi > b.lo ? std::clamp((p.trajectory[0] - b.lo) / (b.hi - b.lo), 0.0, 1.0) : 1.0;
+    p.trajectory = trajectory_at(plan, p.lambda);
+  }
+  return p;
+}
+
+// The stage durations at five lambdas (a free trajectory) or the one flown, the planned path and
+// time at the initial parameters.
+PathTable planned_table(const Plan& plan, const SimConfig& config, bool trajectory_free,
+                        const InitialParameters& initial, SimulationResult& result) {
+  PathTable table;
+  double planned_time = 0.0;
+  if (trajectory_free) {
+    for (int i = 0; i <= 4; ++i) {
+      table.lambdas.push_back(i / 4.0);
+      double total = 0.0;
+      const bool here = std::abs(i / 4.0 - initial.lambda) < 1e-12;
+      table.durations.push_back(stage_durations(plan, config, trajectory_at(plan, i / 4.0), &total,
+                                                here ? &result.planned_path : nullptr));
+    }
+    if (result.planned_path.empty()) {
+      double total = 0.0;
+      stage_durations(plan, config, initial.trajectory, &total, &result.planned_path);
+    }
+    for (double d : table.at(initial.lambda)) planned_time += d;
+  } else {
+    table.lambdas.push_back(initial.lambda);
+    table.durations.push_back(
+        stage_durations(plan, config, initial.trajectory, &planned_time, &result.planned_path));
+  }
+  for (const StageField& f : stage_fields(plan, initial.trajectory))
+    result.planned_triggers.push_back(f.trigger);
+  result.planned_time_s = planned_time;
+  return table;
+}
+
+// The relative error of the energy predicted along the flight against what it took, after the
+// first period (the samples kept); undefined for a flight that did not finish.
+void prediction_errors(SimulationResult& result) {
   double sum = 0.0;
   std::size_t count = 0;
-  for (const FlightSample& sample : result.samples) {  // every sample, or evenly decimated
-    if (sample.t_s < result.first_period_s || energy <= 0.0) continue;
-    const double err = std::abs(sample.predicted_total_j - energy) / energy;
+  for (const FlightSample& sample : result.samples) {
+    if (sample.t_s < result.first_period_s || result.energy_j <= 0.0) continue;
+    const double err = std::abs(sample.predicted_total_j - result.energy_j) / result.energy_j;
     sum += err;
     ++count;
     result.max_relative_error = std::max(result.max_relative_error, err);
@@ -673,6 +795,92 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
   result.mean_relative_error = count > 0 ? sum / static_cast<double>(count) : 0.0;
   if (result.status != FlightStatus::completed)  // the prediction was for the whole mission
     result.mean_relative_error = result.max_relative_error = std::nan("");
+}
+
+}  // namespace
+
+SimulationResult simulate(const Plan& plan, const SimConfig& config,
+                          const std::function<void(double)>& progress, const SampleSink& sink) {
+  check_config(plan, config);
+  const double dt = config.time_step_s;
+  const Freedom free = freedom_of(plan, config);
+  const bool replanning = config.replan && (free.trajectory || free.computations);
+  const InitialParameters initial = initial_parameters(plan, config, free.trajectory);
+
+  SimulationResult result;
+  const PathTable table = planned_table(plan, config, free.trajectory, initial, result);
+  const double planned_time = result.planned_time_s;
+  result.first_period_s = config.initial_period_s;
+
+  // The parts, on the flight's clock.
+  Flight flight(stage_fields(plan, initial.trajectory), config);
+  flight.trigger();
+  Parameters params(plan, config, free.trajectory, initial.trajectory, initial.computations,
+                    initial.lambda, flight.stage());
+  PowerMeter meter(config);
+  EnergyModel model(config);
+  const Outlook outlook(plan, config, table);
+  Replanner replanner(plan, config, free.trajectory);
+  Charge charge{config.battery.initial_soc, 0.0};
+  Recorder recorder(result, sink, static_cast<int>(plan.stages.size()) - 1);
+  result.control.push_back({0.0, params.trajectory(), params.computations(), true});
+
+  auto predicted_total_j = [&] {
+    if (flight.done()) return charge.energy_j;
+    return charge.energy_j + outlook.rest_energy_j(outlook.rest_from(flight), params.lambda(),
+                                                   params.trajectory(), params.computations(),
+                                                   params.power_now(), flight.time_s(), model);
+  };
+
+  result.status = FlightStatus::completed;
+  StepKinematics k{};
+  double measured = 0.0, next_output = 0.0, next_progress = 0.0;
+  while (!flight.done()) {
+    if (flight.time_s() >= config.max_time_s) {
+      result.status = FlightStatus::time_limit;
+      break;
+    }
+    const double t = flight.time_s();
+    const int stage = flight.stage();
+    params.begin_step(stage, t, flight, result.control);
+    if (replanning && model.started())
+      replanner.maybe_replan(t, stage, charge.soc, flight, params, outlook, model, result);
+    k = flight.step(dt);
+    measured = meter.measure(t, k, params.power_now());
+    const double power = model.update(t, measured, params.step_w(), params.power_now());
+    charge.drain(config.battery, power, dt, t, result.reserve_crossed_s);
+    params.accumulate(dt);
+    flight.trigger();
+    ++result.steps;
+    const double now = flight.time_s();
+    if (now + 1e-9 >= next_output || flight.done() || charge.soc <= 0.0) {
+      recorder.record(flight, k, measured, charge, model, predicted_total_j());
+      next_output += config.output_interval_s;
+    }
+    if (progress && now >= next_progress) {
+      progress(std::min(1.0, now / std::max(planned_time, dt)));
+      next_progress = now + 0.01 * planned_time;
+    }
+    if (charge.soc <= 0.0) {
+      result.status = FlightStatus::battery_empty;
+      break;
+    }
+  }
+  if (model.started() && recorder.last_recorded_t_s() < flight.time_s())
+    recorder.record(flight, k, measured, charge, model, predicted_total_j());
+  recorder.finish();
+
+  result.stages = flight.entries();
+  result.flight_time_s = flight.time_s();
+  result.energy_j = charge.energy_j;
+  result.final_soc = charge.soc;
+  result.mean_power_w = result.flight_time_s > 0 ? charge.energy_j / result.flight_time_s : 0.0;
+  result.corrections = model.started() ? model.estimator().corrections() : 0;
+  result.final_period_s =
+      model.started() ? model.estimator().model().period_s : config.initial_period_s;
+  result.mean_trajectory = params.mean_trajectory(std::max(result.flight_time_s, dt));
+  result.mean_computations = params.mean_computations(std::max(result.flight_time_s, dt));
+  prediction_errors(result);
   if (progress) progress(1.0);
   return result;
 }
