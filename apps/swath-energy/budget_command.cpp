@@ -10,7 +10,9 @@
 namespace swath::apps {
 
 void BudgetCommand::setup(CLI::App& app) {
-  app.add_option("MISSION", mission_, "mission.geojson written by swath plan, or a QGC .plan")
+  app.add_option(
+         "MISSION", mission_,
+         "mission.geojson written by swath plan, a QGC .plan or a QGC WPL 110 .waypoints file")
       ->required();
   app.add_option("--drone", drone_,
                  "Drone profile YAML: speeds, battery, power (see share/drones/)")

@@ -37,4 +37,11 @@ std::string shortest_text(double value) {
   return result.ec == std::errc() ? std::string(buffer, result.ptr) : std::string("nan");
 }
 
+bool parse_number(std::string_view text, double& value) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return false;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
 }  // namespace swath::base

@@ -136,6 +136,7 @@ PlanFeatures plan_features(const SurveyPlan& plan) {
     const DroneMission& m = d.mission;
     PlanFeatures::Path path;
     path.drone = d.number;
+    path.name = d.name;
     path.altitude_m = round_to(plan.imaging.altitude_m, 3);
     path.speed_m_s = round_to(d.speed_m_s, 3);
     for (const Point2& p : m.path) path.points.push_back(geo(plan, p));
@@ -172,6 +173,7 @@ std::string mission_geojson(const PlanFeatures& f) {
     for (const GeoPoint& g : p.points) points.push_back(position_json(g));
     features.push_back(feature({{"role", "path"},
                                 {"drone", p.drone},
+                                {"name", p.name},
                                 {"altitude_m", p.altitude_m},
                                 {"speed_m_s", p.speed_m_s}},
                                "LineString", points));
@@ -222,6 +224,8 @@ PlanFeatures parse_mission_geojson(const std::string& text, const std::string& s
     } else if (role == "path") {
       PlanFeatures::Path p;
       p.drone = drone_of(*properties, where);
+      if (const json* n = base::json_find(*properties, "name"); n && n->is_string())
+        p.name = base::valid_utf8(n->get<std::string>());
       if (const json* a = base::json_find(*properties, "altitude_m"))
         p.altitude_m = base::json_number(*a, where + ": altitude_m");
       if (const json* s = base::json_find(*properties, "speed_m_s"))

@@ -130,6 +130,24 @@ TEST(EnergyCli, BudgetOfAPlannedSurveyAndExitFourWhenItCannotFinish) {
   const json q = json::parse(qgc.out);
   EXPECT_NEAR(q["drones"][0]["energy_j"].get<double>(), d["energy_j"].get<double>(),
               0.01 * d["energy_j"].get<double>());
+  // And through the WPL file (Mission Planner's): the same again.
+  const CliRun wpl = run_swath_energy(
+      "budget " + plan + "/drone-1.waypoints --drone share/drones/quad-5ah.yaml --json");
+  ASSERT_EQ(wpl.exit_code, 0) << wpl.err;
+  EXPECT_NEAR(json::parse(wpl.out)["drones"][0]["energy_j"].get<double>(),
+              d["energy_j"].get<double>(), 0.01 * d["energy_j"].get<double>());
+  // A fleet's drones are named in the budget as in the plan.
+  const std::string fleet = fresh_dir("energy-budget-fleet");
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+                      "--fleet share/fleets/three-quads.yaml -o " +
+                      fleet)
+                .exit_code,
+            0);
+  const CliRun named =
+      run_swath_energy("budget " + fleet + "/mission.geojson --drone share/drones/quad-5ah.yaml");
+  ASSERT_EQ(named.exit_code, 0) << named.err;
+  for (const char* name : {"\nalpha ", "\nbravo ", "\ncharlie "})
+    EXPECT_NE(named.out.find(name), std::string::npos) << named.out;
   // A small battery: exit 4, and the place where the reserve is crossed.
   const std::string small = out + "/small.yaml";
   {

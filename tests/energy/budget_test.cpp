@@ -41,6 +41,28 @@ std::string square_plan(double speed) {
   return std::string(head) + items + "]}}";
 }
 
+// The same square as a QGC WPL 110 file: home row 0 at 420 m above the sea (frame 0), a speed
+// item, take-off and waypoints relative to home (frame 3) or absolute (frame 0), RTL (frame 2).
+std::string square_wpl(double speed) {
+  const LocalFrame frame(kHome);
+  std::string out = "QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47.0\t8.0\t420\t1\n";
+  int row = 1;
+  auto item = [&](int command, int item_frame, double p2, double x, double y, double alt) {
+    const GeoPoint g = frame.to_geo({x, y});
+    char buf[300];
+    std::snprintf(buf, sizeof buf, "%d\t0\t%d\t%d\t0\t%.3f\t0\t0\t%.10f\t%.10f\t%.3f\t1\r\n", row++,
+                  item_frame, command, p2, g.lat_deg, g.lon_deg, alt);
+    out += buf;
+  };
+  item(22, 3, 0, 0, 0, 50);
+  item(178, 2, speed, 0, 0, 0);
+  item(16, 3, 0, 100, 0, 50);
+  item(16, 0, 0, 100, 100, 470);  // absolute: 50 m above home
+  item(16, 3, 0, 0, 100, 50);
+  item(20, 2, 0, 0, 0, 0);
+  return out;
+}
+
 DroneProfile quad() {
   DroneProfile d;
   d.source = "quad.yaml";
@@ -76,6 +98,46 @@ TEST(Budget, SquareMissionAgainstTheHandSum) {
   EXPECT_NEAR(b.timeline[2].t_s, 20.0 + 20.0, 1e-3);  // first corner after 100 m
   EXPECT_NEAR(b.timeline[2].position.x, 100.0, 1e-3);
   EXPECT_NEAR(b.timeline[2].geo.lat_deg, kHome.lat_deg, 1e-6);
+}
+
+// A WPL file of the same square gives the same mission and budget as the .plan (the speed from
+// its 178 item, absolute altitudes taken above home); its errors name the line.
+TEST(Budget, WplFileIsTheSameMissionAsThePlan) {
+  const auto plan = parse_waypoint_missions(square_plan(5.0), "square.plan");
+  const auto wpl = parse_waypoint_missions(square_wpl(5.0), "square.waypoints");
+  ASSERT_EQ(wpl.size(), 1u);
+  EXPECT_EQ(wpl[0].drone, "square");
+  ASSERT_EQ(wpl[0].points.size(), plan[0].points.size());
+  for (std::size_t i = 0; i < plan[0].points.size(); ++i) {
+    EXPECT_NEAR(wpl[0].points[i].x, plan[0].points[i].x, 1e-6);
+    EXPECT_NEAR(wpl[0].points[i].y, plan[0].points[i].y, 1e-6);
+    EXPECT_NEAR(wpl[0].altitudes_m[i], plan[0].altitudes_m[i], 1e-9);
+  }
+  EXPECT_TRUE(wpl[0].returns_home);
+  // Take-off before the speed item: no speed known yet (0); then 5 m/s.
+  EXPECT_EQ(wpl[0].speeds_m_s.front(), 0.0);
+  EXPECT_EQ(wpl[0].speeds_m_s.back(), 5.0);
+  DroneProfile d = quad();
+  d.drone.speed_m_s = 5.0;
+  EXPECT_NEAR(budget(wpl[0], d).energy_j, budget(plan[0], d).energy_j, 1e-6);
+  auto error = [](const std::string& text) {
+    try {
+      parse_waypoint_missions(text, "m.waypoints");
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n1\t0\t3\t16\t0\n"),
+            "m.waypoints: line 3: a WPL row has 12 fields (index, current, frame, command, 4 "
+            "params, latitude, longitude, altitude, autocontinue); found 5");
+  EXPECT_EQ(error("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"
+                  "1\t0\t3\t16\t0\t0\t0\t0\tnorth\t8\t50\t1\n"),
+            "m.waypoints: line 3: field 9 'north' is not a number");
+  EXPECT_EQ(error("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"
+                  "1\t0\t10\t16\t0\t0\t0\t0\t47\t8\t50\t1\n"),
+            "m.waypoints: line 3: frame 10 is not read (0 global or 3 relative to home)");
+  EXPECT_EQ(error("QGC WPL 110\n"), "m.waypoints: the WPL file has no home row");
 }
 
 TEST(Budget, WhereTheReserveIsCrossed) {
@@ -154,7 +216,8 @@ TEST(Budget, BadMissionsAreNamed) {
             "m.json: invalid JSON (number overflow parsing '1e999')");
   EXPECT_EQ(error_of("[]"), "m.json: expected a JSON object");
   EXPECT_EQ(error_of(R"({"type": "Feature"})"),
-            "m.json: neither a GeoJSON FeatureCollection (mission.geojson) nor a QGC plan");
+            "m.json: neither a GeoJSON FeatureCollection (mission.geojson), a QGC plan nor a QGC WPL "
+            "110 file");
   EXPECT_EQ(error_of(R"({"type": "FeatureCollection", "features": []})"),
             "m.json: no feature with role 'path' (a drone's flight)");
   EXPECT_EQ(

@@ -2,6 +2,7 @@
 // Numbers for reports and files: rounded to a fixed number of decimals, same bytes every run.
 
 #include <string>
+#include <string_view>
 
 namespace swath::base {
 
@@ -13,5 +14,9 @@ std::string fixed_text(double value, int decimals);
 
 /// The shortest text that reads back as exactly `value` (std::to_chars: no locale); never "-0".
 std::string shortest_text(double value);
+
+/// Reads a whole decimal number from `text` (std::from_chars: no locale; an optional leading '+'
+/// is accepted); false when `text` is not entirely one number.
+bool parse_number(std::string_view text, double& value);
 
 }  // namespace swath::base

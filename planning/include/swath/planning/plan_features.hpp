@@ -30,6 +30,7 @@ struct PlanFeatures {
   std::vector<Region> regions;  ///< region division: each drone's share of the area
   struct Path {
     int drone = 0;
+    std::string name;  ///< the drone's (fleet) name; absent in older files: empty
     double altitude_m = 0, speed_m_s = 0;
     std::vector<geometry::GeoPoint> points;  ///< home to home
   };
