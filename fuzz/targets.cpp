@@ -77,9 +77,9 @@ const std::vector<Target>& targets() {
       {"mission_config", mission_config, {"tests/bad-input/seeds/mission.yaml"}},
       {"stage_plan",
        [](const std::string& t) {
-         expect_input_error_only([&] { energy::parse_plan(t, "fuzz.plan"); });
+         expect_input_error_only([&] { energy::parse_plan(t, "fuzz.stages"); });
        },
-       {"plans/survey.plan"}},
+       {"plans/survey.stages"}},
       {"stage_plan_yaml",
        [](const std::string& t) {
          expect_input_error_only([&] { energy::parse_plan_yaml(t, "fuzz.yaml"); });

@@ -15,7 +15,9 @@
 namespace swath::apps {
 
 void RunCommand::setup(CLI::App& app) {
-  app.add_option("PLAN", plan_, "Plan of flight stages: stage format (.plan) or YAML (.yaml)")
+  app.add_option(
+         "PLAN", plan_,
+         "Plan of flight stages: stage format (.stages; .plan read with a warning) or YAML (.yaml)")
       ->required();
   app.add_option("--config", config_,
                  "Simulation config YAML: time step, speed, wind, model, Kalman, battery, power "
@@ -32,7 +34,9 @@ void RunCommand::setup(CLI::App& app) {
 }
 
 int RunCommand::run() {
-  const energy::Plan plan = energy::read_plan(plan_);
+  std::vector<std::string> warnings;
+  const energy::Plan plan = energy::read_plan(plan_, &warnings);
+  for (const std::string& w : warnings) std::cerr << "swath-energy run: warning: " << w << '\n';
   energy::SimConfig config = energy::read_sim_config(config_);
   for (const std::string& w : config.warnings)
     std::cerr << "swath-energy run: warning: " << w << '\n';

@@ -215,8 +215,8 @@ void PlanCommand::setup(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--energy-plan", energy_plan_,
                  "Also write the zigzag as a stage plan for 'swath-energy run' under this file "
-                 "name in -o DIR (with a fleet, NAME-<drone>.EXT each): lines, half-circle turns, "
-                 "c1 scaling the line spacing");
+                 "name in -o DIR (e.g. meadow.stages; with a fleet, NAME-<drone>.EXT each): lines, "
+                 "half-circle turns, c1 scaling the line spacing");
   app.add_option("--energy-min-coverage", energy_min_coverage_,
                  "Energy plan: c1's bounds keep at least this fraction of the area covered")
       ->capture_default_str();

@@ -212,9 +212,20 @@ Plan parse_plan_yaml(const std::string& text, const std::string& source) {
   return base::yaml_guard(source, [&] { return plan_from_yaml(text, source); });
 }
 
-Plan read_plan(const std::filesystem::path& path) {
+Plan read_plan(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   const std::string text = base::read_text_file(path, "plan file");
   const std::string ext = path.extension().string();
+  if (ext == ".plan") {
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (first != std::string::npos && text[first] == '{')
+      throw InputError(path.string() +
+                       ": a QGroundControl mission (JSON), not a plan of stages; swath-energy "
+                       "budget flies QGC missions, run takes stage plans (.stages)");
+    if (warnings)
+      warnings->push_back(path.string() +
+                          ": stage plans are now named .stages (.plan is QGroundControl's); read "
+                          "as a stage plan");
+  }
   return ext == ".yaml" || ext == ".yml" ? parse_plan_yaml(text, path.string())
                                          : parse_plan(text, path.string());
 }

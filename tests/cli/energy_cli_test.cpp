@@ -35,8 +35,8 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
 
 TEST(EnergyCli, RunsThePapersSurvey) {
   const std::string out = fresh_dir("energy-run");
-  const CliRun run =
-      run_swath_energy("run plans/survey.plan --config plans/survey-sim.yaml --progress -o " + out);
+  const CliRun run = run_swath_energy(
+      "run plans/survey.stages --config plans/survey-sim.yaml --progress -o " + out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");  // no progress bar off a terminal
   const json s = json::parse(read_text(out + "/summary.json"));
@@ -68,7 +68,7 @@ TEST(EnergyCli, RunsThePapersSurvey) {
 
 TEST(EnergyCli, BadPlanIsOneSentenceAndNoOutput) {
   const std::string out = fresh_dir("energy-bad");
-  const std::string plan = out + ".plan";
+  const std::string plan = out + ".stages";
   {
     std::ofstream f(plan);
     f << "# a stage with an unknown variable\n0.05; 90; x+z\n0, 10\n[0, 0]\n";
@@ -92,7 +92,7 @@ TEST(EnergyCli, BadPlanIsOneSentenceAndNoOutput) {
             std::string::npos)
       << mismatch.err;
   EXPECT_FALSE(std::filesystem::exists(out));
-  const CliRun usage = run_swath_energy("run plans/survey.plan -o " + out);
+  const CliRun usage = run_swath_energy("run plans/survey.stages -o " + out);
   EXPECT_EQ(usage.exit_code, 2);
   EXPECT_NE(usage.err.find("--config is required"), std::string::npos) << usage.err;
   const CliRun help = run_swath_energy("--help");
@@ -172,10 +172,10 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
   const std::string dir = fresh_dir("energy-survey-plan");
   const CliRun plan = run_swath(
       "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --energy-plan "
-      "meadow.plan -o " +
+      "meadow.stages -o " +
       dir);
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
-  const energy::Plan stages = energy::read_plan(dir + "/meadow.plan");
+  const energy::Plan stages = energy::read_plan(dir + "/meadow.stages");
   const json summary = json::parse(read_text(dir + "/summary.json"));
   // Home leg, the lines, a turn between each two, the leg back.
   const std::size_t lines = summary["drones"][0]["lines"].get<std::size_t>();
@@ -187,14 +187,14 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
   EXPECT_LT(c1.lo, 1.0);
   // The header's home is the config's start (plans/meadow-sim.yaml).
   const energy::SimConfig config = energy::read_sim_config(source_path("plans/meadow-sim.yaml"));
-  const std::string text = read_text(dir + "/meadow.plan");
+  const std::string text = read_text(dir + "/meadow.stages");
   const std::string home = "start_m: [" + base::fixed_text(config.start.x, 2) + ", " +
                            base::fixed_text(config.start.y, 2) + "]";
   EXPECT_NE(text.find(home), std::string::npos) << text.substr(0, 400);
 
   const std::string out = dir + "/energy";
   const CliRun run =
-      run_swath_energy("run " + dir + "/meadow.plan --config plans/meadow-sim.yaml -o " + out);
+      run_swath_energy("run " + dir + "/meadow.stages --config plans/meadow-sim.yaml -o " + out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json s = json::parse(read_text(out + "/summary.json"));
   EXPECT_TRUE(s["completed"].get<bool>());
@@ -213,24 +213,25 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
   // A fleet: one plan per drone, each its own lines.
   const std::string fleet = fresh_dir("energy-survey-plan-fleet");
   ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
-                      "--drones 2 --division region --energy-plan m.plan -o " +
+                      "--drones 2 --division region --energy-plan m.stages -o " +
                       fleet)
                 .exit_code,
             0);
   const json fleet_summary = json::parse(read_text(fleet + "/summary.json"));
   for (int drone = 1; drone <= 2; ++drone) {
-    const energy::Plan p = energy::read_plan(fleet + "/m-" + std::to_string(drone) + ".plan");
+    const energy::Plan p = energy::read_plan(fleet + "/m-" + std::to_string(drone) + ".stages");
     const std::size_t n = fleet_summary["drones"][drone - 1]["lines"].get<std::size_t>();
     EXPECT_EQ(p.stages.size(), 2 * n - 1 + 2) << drone;
   }
-  EXPECT_FALSE(std::filesystem::exists(fleet + "/m.plan"));
+  EXPECT_FALSE(std::filesystem::exists(fleet + "/m.stages"));
 
   // Bad requests: one sentence, exit 2, nothing written.
   const std::string bad = fresh_dir("energy-survey-plan-bad");
-  for (const std::string& args : {std::string("--energy-plan sub/meadow.plan"),
-                                  std::string("--energy-plan m.plan "
-                                              "--energy-computation 10,2"),
-                                  std::string("--energy-plan m.plan --energy-min-coverage 1.5")}) {
+  for (const std::string& args :
+       {std::string("--energy-plan sub/meadow.stages"),
+        std::string("--energy-plan m.stages "
+                    "--energy-computation 10,2"),
+        std::string("--energy-plan m.stages --energy-min-coverage 1.5")}) {
     const CliRun r =
         run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 " + args +
                   " -o " + bad + "/out");
@@ -249,7 +250,7 @@ namespace {
 // The pictures, drawn in-process from a simulation, checked at known pixels; the command writes
 // the same bytes.
 TEST(EnergyImages, TrajectoryAndChartsAtKnownPixels) {
-  const energy::Plan plan = energy::read_plan(source_path("plans/survey.plan"));
+  const energy::Plan plan = energy::read_plan(source_path("plans/survey.stages"));
   const energy::SimConfig config = energy::read_sim_config(source_path("plans/survey-sim.yaml"));
   const energy::SimulationResult r = energy::simulate(plan, config);
   const apps::TrajectoryImage map = apps::trajectory_image(r, config, 800, 600);
@@ -284,7 +285,7 @@ TEST(EnergyImages, TrajectoryAndChartsAtKnownPixels) {
   // swath-energy run writes these bytes.
   const std::string out = fresh_dir("energy-images");
   ASSERT_EQ(run_swath_energy(
-                "run plans/survey.plan --config plans/survey-sim.yaml --size 800x600 -o " + out)
+                "run plans/survey.stages --config plans/survey-sim.yaml --size 800x600 -o " + out)
                 .exit_code,
             0);
   EXPECT_EQ(read_text(out + "/trajectory.png"), render::encode_png(image));

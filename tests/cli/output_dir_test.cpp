@@ -153,7 +153,7 @@ TEST(OutputDir, OtherProgramsAndExtraNamesNeverReplaceThePlan) {
   const std::string drone_1 = read_text(out + "/drone-1.plan");
   // swath-energy run into the plan's directory would replace summary.json: refused.
   const CliRun energy =
-      run_swath_energy("run plans/survey.plan --config plans/survey-sim.yaml -o " + out);
+      run_swath_energy("run plans/survey.stages --config plans/survey-sim.yaml -o " + out);
   EXPECT_EQ(energy.exit_code, 2);
   EXPECT_NE(energy.err.find("summary.json belongs to the files of a swath plan"), std::string::npos)
       << energy.err;

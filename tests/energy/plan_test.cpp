@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include <cmath>
 
 #include "swath/base/input_error.hpp"
@@ -14,7 +17,7 @@ const std::string kPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
 
 std::string error_of(const std::string& text) {
   try {
-    parse_plan(text, "p.plan");
+    parse_plan(text, "p.stages");
   } catch (const base::InputError& e) {
     return e.what();
   }
@@ -22,7 +25,7 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(PlanFile, ThePapersSurveyExample) {
-  const Plan p = read_plan(kPlans + "survey.plan");
+  const Plan p = read_plan(kPlans + "survey.stages");
   ASSERT_EQ(p.stages.size(), 5u);
   EXPECT_EQ(p.trajectory_parameters(), 1u);
   EXPECT_EQ(p.computations(), 2u);
@@ -45,7 +48,7 @@ TEST(PlanFile, ThePapersSurveyExample) {
 }
 
 TEST(PlanFile, YamlAndStageFormatAgreeAndRoundTrip) {
-  const Plan stages = read_plan(kPlans + "survey.plan");
+  const Plan stages = read_plan(kPlans + "survey.stages");
   const Plan yaml = read_plan(kPlans + "survey.yaml");
   ASSERT_EQ(stages.stages.size(), yaml.stages.size());
   for (std::size_t k = 0; k < stages.stages.size(); ++k) {
@@ -63,7 +66,7 @@ TEST(PlanFile, YamlAndStageFormatAgreeAndRoundTrip) {
 
 TEST(PlanFile, ErrorsNameTheLineAndTheProblem) {
   const std::string ok_tail = "1, 2\n[0, 1]\n[2, 10]\n";
-  EXPECT_NE(error_of("0.1; 90; x+z\n" + ok_tail).find("p.plan: line 1 (phi): unknown variable 'z'"),
+  EXPECT_NE(error_of("0.1; 90; x+z\n" + ok_tail).find("p.stages: line 1 (phi): unknown variable 'z'"),
             std::string::npos)
       << error_of("0.1; 90; x+z\n" + ok_tail);
   EXPECT_NE(error_of("0.1; 90; x\n1, 2\n[1, 0]\n").find("line 3: interval '[1, 0]' has lo > hi"),
@@ -90,6 +93,36 @@ TEST(Expression, EvaluatesThePapersFunctions) {
   EXPECT_NEAR(copy({9, 0, 0}), 4, 1e-12);
   EXPECT_DOUBLE_EQ(constant("-3*10^3", "c"), -3000);
   EXPECT_THROW(constant("1/0", "c"), base::InputError);
+}
+
+// Stage plans are .stages; a .plan is QGroundControl's: JSON refused naming the command that
+// reads it, the stage format read with a warning (the old name).
+TEST(Plan, DotPlanIsQgroundcontrolsUnlessItHoldsStages) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "swath-plan-ext";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path old_name = dir / "old.plan", qgc = dir / "qgc.plan";
+  std::ofstream(old_name) << "0.05; 90; x\n0, 600\n[0, 0]\n";
+  std::ofstream(qgc) << "{\"fileType\": \"Plan\", \"mission\": {}}\n";
+  std::vector<std::string> warnings;
+  EXPECT_EQ(read_plan(old_name, &warnings).stages.size(), 1u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], old_name.string() +
+                             ": stage plans are now named .stages (.plan is QGroundControl's); "
+                             "read as a stage plan");
+  try {
+    read_plan(qgc);
+    ADD_FAILURE() << "a QGC plan was read as stages";
+  } catch (const base::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              qgc.string() +
+                  ": a QGroundControl mission (JSON), not a plan of stages; "
+                  "swath-energy budget flies QGC missions, run takes stage plans "
+                  "(.stages)");
+  }
+  warnings.clear();
+  read_plan(std::string(SWATH_SOURCE_DIR) + "/plans/survey.stages", &warnings);
+  EXPECT_TRUE(warnings.empty());
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ SimConfig lawnmower_config(double capacity_ah) {
 }
 
 const Plan& lawnmower() {
-  static const Plan plan = parse_plan(test::lawnmower_plan(24, 50, 400), "lawnmower.plan");
+  static const Plan plan = parse_plan(test::lawnmower_plan(24, 50, 400), "lawnmower.stages");
   return plan;
 }
 

@@ -34,12 +34,12 @@ std::string error_of(const Plan& plan, const SimConfig& config) {
 
 // A circle of radius 200 m about the origin, counter-clockwise, ending at its south point.
 Plan circle_plan() {
-  return parse_plan("0.0003; 90; x^2+y^2-200^2\n0, -200\n[0, 0]\n", "circle.plan");
+  return parse_plan("0.0003; 90; x^2+y^2-200^2\n0, -200\n[0, 0]\n", "circle.stages");
 }
 
 // The line x = 0 flown north, ending 600 m up.
 Plan line_plan() {
-  return parse_plan("0.05; 90; x\n0, 600\n[0, 0]\n", "line.plan");
+  return parse_plan("0.05; 90; x\n0, 600\n[0, 0]\n", "line.stages");
 }
 
 class Guidance : public ::testing::TestWithParam<Wind> {};
@@ -97,7 +97,7 @@ TEST(Flight, WindTriangle) {
 }
 
 TEST(Flight, ThePapersSurveyFliesItsStagesInOrder) {
-  const Plan plan = read_plan(kPlans + "survey.plan");
+  const Plan plan = read_plan(kPlans + "survey.stages");
   SimConfig c = quiet_config();
   c.start = {25, 146};
   c.replan = false;  // the stages' order at fixed parameters
@@ -160,7 +160,7 @@ TEST(Simulation, SameInputSameResult) {
 // A long lawnmower: the period is re-estimated from the power (one lane and one turn: the up and
 // down lanes cost the same), and the predicted total energy converges on the actual total.
 TEST(Simulation, LawnmowerPeriodAndPrediction) {
-  const Plan plan = parse_plan(test::lawnmower_plan(24, 50, 400), "lawnmower.plan");
+  const Plan plan = parse_plan(test::lawnmower_plan(24, 50, 400), "lawnmower.stages");
   SimConfig c = quiet_config();
   c.power.noise_w = 3.0;
   c.start = {0, -20};
@@ -208,28 +208,28 @@ TEST(Simulation, StallsAreExplained) {
   c.stall_time_s = 200.0;
   c.start = {300, 0};
   // The triggering point is off the circle: the drone circles for ever.
-  const Plan off = parse_plan("0.0003; 90; x^2+y^2-200^2\n0, -260\n[0, 0]\n", "off.plan");
+  const Plan off = parse_plan("0.0003; 90; x^2+y^2-200^2\n0, -260\n[0, 0]\n", "off.stages");
   const std::string stalled = error_of(off, c);
-  EXPECT_NE(stalled.find("off.plan: line 1: the drone has not come closer to the triggering point "
+  EXPECT_NE(stalled.find("off.stages: line 1: the drone has not come closer to the triggering point "
                          "(0.0, -260.0) m for 200 s"),
             std::string::npos)
       << stalled;
   c.start = {0, 0};  // the circle's centre: grad phi = 0
   EXPECT_NE(error_of(circle_plan(), c)
-                .find("circle.plan: line 1: the guidance field vanishes at "
+                .find("circle.stages: line 1: the guidance field vanishes at "
                       "(0.0, 0.0) m"),
             std::string::npos);
   c.start = {-60, 0};
   c.wind = {30, 0};
   c.max_airspeed_m_s = 20;
   EXPECT_NE(error_of(line_plan(), c)
-                .find("line.plan: line 1: the wind (30.0 m/s from 0 deg) is "
+                .find("line.stages: line 1: the wind (30.0 m/s from 0 deg) is "
                       "stronger than the drone's maximum airspeed 20.0 m/s"),
             std::string::npos);
   // sqrt of a negative: no triggering point.
-  const Plan undefined = parse_plan("0.05; 90; x\n0, sqrt(c1)\n[-10, -5]\n", "u.plan");
+  const Plan undefined = parse_plan("0.05; 90; x\n0, sqrt(c1)\n[-10, -5]\n", "u.stages");
   EXPECT_NE(error_of(undefined, quiet_config())
-                .find("u.plan: line 1: the triggering point is not "
+                .find("u.stages: line 1: the triggering point is not "
                       "a finite number"),
             std::string::npos);
 }

@@ -14,7 +14,7 @@ namespace swath::energy {
 /// One stage with its parameters fixed: phi compiled, triggering point evaluated.
 struct StageField {
   int stage = 0;                    ///< 0-based index in the plan
-  std::string where;                ///< "survey.plan: line 13" for messages
+  std::string where;                ///< "survey.stages: line 13" for messages
   Expression phi;                   ///< over x, y, c1..
   std::vector<double> values;       ///< x, y, c1.. (x, y rewritten at each evaluation)
   double gain = 0.0;                ///< k_e

@@ -48,8 +48,11 @@ Plan parse_plan(const std::string& text, const std::string& source);
 ///        [32, 448]]}
 Plan parse_plan_yaml(const std::string& text, const std::string& source);
 
-/// By extension: .yaml/.yml as YAML, anything else the stage format.
-Plan read_plan(const std::filesystem::path& path);
+/// By extension: .yaml/.yml as YAML, anything else (.stages) the stage format. A `.plan` file is
+/// what QGroundControl writes: one that is JSON is refused with the command that reads it
+/// (swath-energy budget); one in the stage format (the old name of .stages) is read, with a
+/// warning added to `warnings` when given.
+Plan read_plan(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
 
 /// The plan in the stage format (parse_plan() reads it back to an equal plan).
 std::string format_plan(const Plan& plan);
