@@ -322,20 +322,7 @@ class PointMass {
 
 // ---- Plans -------------------------------------------------------------------------------------
 
-geometry::Field local_field(Polygon polygon) {
-  geometry::Field f;
-  f.source = "test";
-  polygon.outer = geometry::normalise_ring(polygon.outer, true).ring;
-  for (Ring& h : polygon.holes) h = geometry::normalise_ring(h, false).ring;
-  f.polygon = polygon;
-  for (std::size_t r = 0; r < geometry::ring_count(polygon); ++r) {
-    f.source_index.push_back({});
-    for (std::size_t i = 0; i < geometry::ring_at(polygon, r).size(); ++i)
-      f.source_index.back().push_back(i);
-  }
-  geometry::place_local_field(f, {47.0, 8.0, 0.0});
-  return f;
-}
+using test::local_field;
 
 Ring circle(Point2 c, double r, int n) {
   Ring ring;

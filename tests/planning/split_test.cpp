@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "coverage_oracle.hpp"
+#include "meadow_survey.hpp"
 #include "random_polygons.hpp"
 #include "swath/geometry/classification.hpp"
 #include "swath/geometry/decomposition.hpp"
@@ -96,20 +97,7 @@ TEST(CellOrder, HeuristicIsCloseToTheOptimumUpToSevenCells) {
 
 // ---- the survey ----------------------------------------------------------------------------
 
-geometry::Field local_field(Polygon polygon) {
-  geometry::Field f;
-  f.source = "test";
-  polygon.outer = geometry::normalise_ring(polygon.outer, true).ring;
-  for (Ring& h : polygon.holes) h = geometry::normalise_ring(h, false).ring;
-  f.polygon = polygon;
-  for (std::size_t r = 0; r < geometry::ring_count(polygon); ++r) {
-    f.source_index.push_back({});
-    for (std::size_t i = 0; i < geometry::ring_at(polygon, r).size(); ++i)
-      f.source_index.back().push_back(i);
-  }
-  geometry::place_local_field(f, {47.0, 8.0, 0.0});
-  return f;
-}
+using test::local_field;
 
 SurveyPlan plan(const Polygon& area, ConcaveMode mode, double side_overlap = 0.7) {
   SurveyRequest r;
