@@ -1,0 +1,217 @@
+#include "swath/vehicle/multirotor.hpp"
+
+#include <algorithm>
+#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <cmath>
+#include <numbers>
+
+namespace swath::vehicle {
+namespace {
+
+constexpr Vec3 kUp{0, 0, 1};
+constexpr std::size_t kStateSize = 13 + kMaxRotors;
+using StateVector = std::array<double, kStateSize>;
+
+StateVector pack(const MultirotorState& s) {
+  StateVector x{};
+  x[0] = s.position_m.x, x[1] = s.position_m.y, x[2] = s.position_m.z;
+  x[3] = s.velocity_m_s.x, x[4] = s.velocity_m_s.y, x[5] = s.velocity_m_s.z;
+  x[6] = s.attitude.w, x[7] = s.attitude.x, x[8] = s.attitude.y, x[9] = s.attitude.z;
+  x[10] = s.rate_rad_s.x, x[11] = s.rate_rad_s.y, x[12] = s.rate_rad_s.z;
+  for (std::size_t i = 0; i < kMaxRotors; ++i) x[13 + i] = s.rotor_rad_s[i];
+  return x;
+}
+
+MultirotorState unpack(const StateVector& x) {
+  MultirotorState s;
+  s.position_m = {x[0], x[1], x[2]};
+  s.velocity_m_s = {x[3], x[4], x[5]};
+  // Unnormalised within RK4's stages: rotate() below assumes unit length, so normalise here.
+  s.attitude = normalized({x[6], x[7], x[8], x[9]});
+  s.rate_rad_s = {x[10], x[11], x[12]};
+  for (std::size_t i = 0; i < kMaxRotors; ++i) s.rotor_rad_s[i] = x[13 + i];
+  return s;
+}
+
+double clamp_command(const Propulsion& p, double command_rad_s) {
+  return std::clamp(command_rad_s, 0.0, p.max_speed_rad_s);
+}
+
+}  // namespace
+
+std::vector<Rotor> rotor_layout(RotorLayout layout, double arm_m, int first_spin,
+                                double coaxial_lower_efficiency) {
+  std::vector<Rotor> rotors;
+  const double deg = std::numbers::pi / 180;
+  auto at = [&](double angle_deg, double z_m) {
+    return Vec3{arm_m * std::cos(angle_deg * deg), arm_m * std::sin(angle_deg * deg), z_m};
+  };
+  switch (layout) {
+    case RotorLayout::quad_x:
+    case RotorLayout::hexa_x: {
+      const int n = layout == RotorLayout::quad_x ? 4 : 6;
+      const double step = 360.0 / n;
+      for (int k = 0; k < n; ++k)
+        rotors.push_back({at(step / 2 + k * step, 0.0), k % 2 == 0 ? first_spin : -first_spin});
+      break;
+    }
+    case RotorLayout::y6:
+      for (const double angle : {60.0, 180.0, 300.0}) {
+        rotors.push_back({at(angle, 0.05), first_spin, 1.0});
+        rotors.push_back({at(angle, -0.05), -first_spin, coaxial_lower_efficiency});
+      }
+      break;
+  }
+  return rotors;
+}
+
+double Propulsion::motor_constant() const {
+  return 60.0 / (2 * std::numbers::pi * kv_rpm_per_v);
+}
+
+double motor_current_a(const Propulsion& p, double speed_rad_s, double accel_rad_s2) {
+  return (p.torque_coeff_nm_s2 * speed_rad_s * speed_rad_s + p.rotor_inertia_kg_m2 * accel_rad_s2) /
+             p.motor_constant() +
+         p.no_load_current_a;
+}
+
+double motor_power_w(const Propulsion& p, double speed_rad_s, double accel_rad_s2) {
+  const double i = motor_current_a(p, speed_rad_s, accel_rad_s2);
+  return std::max((p.resistance_ohm * i + p.motor_constant() * speed_rad_s) * i, 0.0) /
+         p.esc_efficiency;
+}
+
+Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const MultirotorInputs& in) {
+  const Propulsion& p = a.propulsion;
+  const Frame& f = a.frame;
+  Wrench w;
+  // Air relative to the body, in body axes: drag and flapping depend on it.
+  const Vec3 air = rotate_inverse(s.attitude, s.velocity_m_s - in.wind_m_s);
+  const Vec3 abs_air{std::abs(air.x), std::abs(air.y), std::abs(air.z)};
+  const Vec3 drag = -1.0 * hadamard(f.drag_linear_n_per_m_s, air) -
+                    0.5 * f.air_density_kg_m3 * hadamard(f.drag_cda_m2, hadamard(abs_air, air));
+  Vec3 thrust_body{}, torque = in.torque_noise_nm;
+  Vec3 rotor_momentum{};  // Σ s_i J_r Ω_i e3
+  for (std::size_t i = 0; i < a.rotors.size(); ++i) {
+    const Rotor& r = a.rotors[i];
+    const double omega = s.rotor_rad_s[i];
+    const double accel = (clamp_command(p, in.command_rad_s[i]) - omega) / p.time_constant_s;
+    w.rotor_accel_rad_s2[i] = accel;
+    const Vec3 t = kUp * (r.efficiency * p.thrust_coeff_n_s2 * omega * omega);
+    thrust_body += t;
+    torque += cross(r.position_m, t);
+    // The rotor's drag torque and the reaction to spinning it up, opposite to its spin.
+    torque -=
+        kUp * (r.spin * (p.torque_coeff_nm_s2 * omega * omega + p.rotor_inertia_kg_m2 * accel));
+    rotor_momentum += kUp * (r.spin * p.rotor_inertia_kg_m2 * omega);
+  }
+  torque -= cross(s.rate_rad_s, rotor_momentum);  // gyroscopic moment of the spinning rotors
+  torque -= f.flapping_nm_per_m_s * cross(kUp, air);
+  w.force_world_n = rotate(s.attitude, thrust_body + drag);
+  w.torque_body_nm = torque;
+  return w;
+}
+
+MultirotorState integrate(const Airframe& a, MultirotorState state, const MultirotorInputs& in,
+                          double duration_s, double max_step_s) {
+  if (!(duration_s > 0)) return state;
+  const auto steps = static_cast<long>(std::ceil(duration_s / max_step_s - 1e-9));
+  const double h = duration_s / static_cast<double>(std::max(1L, steps));
+  const Frame& f = a.frame;
+  auto system = [&](const StateVector& x, StateVector& dx, double /*t*/) {
+    const MultirotorState s = unpack(x);
+    const Wrench w = applied_wrench(a, s, in);
+    const Vec3 accel = w.force_world_n / f.mass_kg - kUp * kStandardGravity_m_s2;
+    const Vec3& om = s.rate_rad_s;
+    // J ω̇ = τ − ω × (J ω) (the rotors' part of the momentum is in τ already).
+    const Vec3 jw = hadamard(f.inertia_kg_m2, om);
+    const Vec3 rhs = w.torque_body_nm - cross(om, jw);
+    const Vec3 alpha{rhs.x / f.inertia_kg_m2.x, rhs.y / f.inertia_kg_m2.y,
+                     rhs.z / f.inertia_kg_m2.z};
+    // q̇ = ½ q ⊗ (0, ω), on the unnormalised stage quaternion as RK4 carries it.
+    const Quat q{x[6], x[7], x[8], x[9]};
+    const Quat qd = q * Quat{0, om.x, om.y, om.z};
+    dx[0] = x[3], dx[1] = x[4], dx[2] = x[5];
+    dx[3] = accel.x, dx[4] = accel.y, dx[5] = accel.z;
+    dx[6] = 0.5 * qd.w, dx[7] = 0.5 * qd.x, dx[8] = 0.5 * qd.y, dx[9] = 0.5 * qd.z;
+    dx[10] = alpha.x, dx[11] = alpha.y, dx[12] = alpha.z;
+    for (std::size_t i = 0; i < kMaxRotors; ++i) dx[13 + i] = w.rotor_accel_rad_s2[i];
+  };
+  boost::numeric::odeint::runge_kutta4<StateVector> stepper;
+  StateVector x = pack(state);
+  double t = 0;
+  for (long k = 0; k < std::max(1L, steps); ++k) {
+    stepper.do_step(system, x, t, h);
+    t += h;
+    const Quat q = normalized({x[6], x[7], x[8], x[9]});
+    x[6] = q.w, x[7] = q.x, x[8] = q.y, x[9] = q.z;
+  }
+  return unpack(x);
+}
+
+Hover hover(const Airframe& a) {
+  const Propulsion& p = a.propulsion;
+  double efficiency_sum = 0;
+  for (const Rotor& r : a.rotors) efficiency_sum += r.efficiency;
+  // Σ η_i k_T Ω² = m g with one Ω for all (a symmetric frame needs no moment).
+  const double omega =
+      std::sqrt(a.frame.mass_kg * kStandardGravity_m_s2 / (efficiency_sum * p.thrust_coeff_n_s2));
+  Hover h;
+  for (std::size_t i = 0; i < a.rotors.size(); ++i) {
+    h.rotor_rad_s[i] = omega;
+    h.motor_power_w += motor_power_w(p, omega, 0.0);
+  }
+  return h;
+}
+
+Esc::Esc(const EscSettings& settings, double max_speed_rad_s)
+    : settings_(settings),
+      max_speed_rad_s_(max_speed_rad_s),
+      period_ns_(settings.frame_rate_hz > 0 ? period_of_rate(settings.frame_rate_hz) : 0),
+      applied_us_(settings.pwm_min_us),
+      pending_us_(settings.pwm_min_us) {
+  // A rate that does not divide a second into whole nanoseconds: the nearest whole period.
+  if (settings.frame_rate_hz > 0 && period_ns_ == 0)
+    period_ns_ = std::max<SimTime>(1, std::llround(1e9 / settings.frame_rate_hz));
+}
+
+double Esc::quantised_us(double pwm_us) const {
+  const double clamped = std::clamp(pwm_us, settings_.pwm_min_us, settings_.pwm_max_us);
+  if (!(settings_.resolution_us > 0)) return clamped;
+  const double levels = std::round((clamped - settings_.pwm_min_us) / settings_.resolution_us);
+  return std::min(settings_.pwm_max_us, settings_.pwm_min_us + levels * settings_.resolution_us);
+}
+
+SimTime Esc::next_frame(SimTime t) const {
+  if (period_ns_ <= 0) return t;
+  return (t + period_ns_ - 1) / period_ns_ * period_ns_;
+}
+
+void Esc::command(double pwm_us, SimTime now) {
+  pending_us_ = quantised_us(pwm_us);
+  pending_at_ = next_frame(now);
+  has_pending_ = true;
+}
+
+double Esc::speed_command_rad_s(SimTime now) {
+  if (has_pending_ && now >= pending_at_) {
+    applied_us_ = pending_us_;
+    has_pending_ = false;
+  }
+  const double u =
+      (applied_us_ - settings_.pwm_min_us) / (settings_.pwm_max_us - settings_.pwm_min_us);
+  return max_speed_rad_s_ * (settings_.thrust_linear ? std::sqrt(u) : u);
+}
+
+double body_energy_j(const Airframe& a, const MultirotorState& s) {
+  const Frame& f = a.frame;
+  const Vec3 jw = hadamard(f.inertia_kg_m2, s.rate_rad_s);
+  return 0.5 * f.mass_kg * dot(s.velocity_m_s, s.velocity_m_s) +
+         f.mass_kg * kStandardGravity_m_s2 * s.position_m.z + 0.5 * dot(s.rate_rad_s, jw);
+}
+
+Vec3 body_angular_momentum_world(const Airframe& a, const MultirotorState& s) {
+  return rotate(s.attitude, hadamard(a.frame.inertia_kg_m2, s.rate_rad_s));
+}
+
+}  // namespace swath::vehicle
