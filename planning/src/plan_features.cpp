@@ -41,6 +41,15 @@ ordered_json position_json(const GeoPoint& g) {
   return {g.lon_deg, g.lat_deg};
 }
 
+// A Polygon's coordinates of one ring. Built with push_back: a braced {ring} would be the ring
+// itself under clang and [ring] under GCC (nlohmann's initializer-list ambiguity).
+ordered_json ring_json(const GeoRing& ring);
+ordered_json one_ring(const GeoRing& ring) {
+  ordered_json rings = ordered_json::array();
+  rings.push_back(ring_json(ring));
+  return rings;
+}
+
 ordered_json ring_json(const GeoRing& ring) {
   ordered_json out = ordered_json::array();
   for (const GeoPoint& g : ring) out.push_back(position_json(g));
@@ -159,15 +168,14 @@ std::string mission_geojson(const PlanFeatures& f) {
   features.push_back(feature({{"role", "area"}}, "Polygon", rings));
   for (std::size_t k = 0; k < f.area_pieces.size(); ++k)  // --repair: the other enclosed areas
     features.push_back(
-        feature({{"role", "area"}, {"piece", k + 1}}, "Polygon", {ring_json(f.area_pieces[k])}));
+        feature({{"role", "area"}, {"piece", k + 1}}, "Polygon", one_ring(f.area_pieces[k])));
   for (const GeoRing& zone : f.no_fly)
-    features.push_back(feature({{"role", "no_fly"}}, "Polygon", {ring_json(zone)}));
+    features.push_back(feature({{"role", "no_fly"}}, "Polygon", one_ring(zone)));
   for (std::size_t k = 0; k < f.cells.size(); ++k)
-    features.push_back(
-        feature({{"role", "cell"}, {"cell", k}}, "Polygon", {ring_json(f.cells[k])}));
+    features.push_back(feature({{"role", "cell"}, {"cell", k}}, "Polygon", one_ring(f.cells[k])));
   for (const PlanFeatures::Region& r : f.regions)
     features.push_back(
-        feature({{"role", "region"}, {"drone", r.drone}}, "Polygon", {ring_json(r.ring)}));
+        feature({{"role", "region"}, {"drone", r.drone}}, "Polygon", one_ring(r.ring)));
   for (const PlanFeatures::Path& p : f.paths) {
     ordered_json points = ordered_json::array();
     for (const GeoPoint& g : p.points) points.push_back(position_json(g));
