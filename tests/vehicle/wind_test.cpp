@@ -1,0 +1,150 @@
+// Wind against closed forms: the log profile, MIL-F-8785C's scales, the forming filters' exact
+// discretisation (Φ and Q in closed form, the stationary variance = σ² by the discrete Lyapunov
+// equation), the simulated spectrum against Dryden's PSD per octave, gusts and regions.
+#include "swath/vehicle/wind.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <unsupported/Eigen/FFT>
+#include <vector>
+
+namespace swath::vehicle {
+namespace {
+
+TEST(Wind, MeanWindFollowsTheLogProfileFromItsBearing) {
+  MeanWind w{4.1, 270, 6.1, 0.05, 0.0};
+  const Vec3 at_ref = mean_wind_m_s(w, 6.1, 0);
+  EXPECT_NEAR(at_ref.x, 4.1, 1e-12);  // from the west: towards the east
+  EXPECT_NEAR(at_ref.y, 0, 1e-12);
+  EXPECT_NEAR(norm(mean_wind_m_s(w, 30, 0)), 4.1 * std::log(30 / 0.05) / std::log(6.1 / 0.05),
+              1e-12);
+  EXPECT_EQ(norm(mean_wind_m_s(w, 0.01, 0)), 0.0);  // below the roughness length
+  w.from_deg = 0;                                   // from the north: towards the south
+  EXPECT_NEAR(mean_wind_m_s(w, 6.1, 0).y, -4.1, 1e-12);
+  w.ramp_m_s_per_min = 0.05;
+  EXPECT_NEAR(norm(mean_wind_m_s(w, 6.1, 600)), 4.1 + 0.5, 1e-12);
+}
+
+TEST(Wind, DrydenScalesOfMilF8785cAtFiveMetres) {
+  // DESIGN.md §17.A: at 5 m, W20 4.1 m/s: σ_w 0.41, σ_u 0.80; L_w 5.0 m, L_u 36.6 m.
+  const DrydenScales s = dryden_scales(5.0, 4.1);
+  EXPECT_NEAR(s.sigma_w_m_s, 0.41, 1e-12);
+  EXPECT_NEAR(s.sigma_u_m_s, 0.80, 0.005);
+  EXPECT_EQ(s.sigma_v_m_s, s.sigma_u_m_s);
+  EXPECT_NEAR(s.length_w_m, 5.0, 1e-9);
+  EXPECT_NEAR(s.length_u_m, 36.6, 0.05);
+  // Below 10 ft the scales of 10 ft.
+  EXPECT_NEAR(dryden_scales(1.0, 4.1).length_w_m, 3.048, 1e-12);
+}
+
+TEST(Wind, ExactDiscretisationAndStationaryVarianceIsSigmaSquared) {
+  for (double tau : {0.2, 1.0, 7.3}) {
+    for (double dt : {0.001, 0.005, 0.05}) {
+      const double sigma = 0.8;
+      const DiscreteFilter u = discretise(longitudinal_filter(sigma, tau), dt);
+      // First order in closed form: Φ = e^{−dt/τ}, Q = σ² (1 − e^{−2 dt/τ}).
+      EXPECT_NEAR(u.phi[0], std::exp(-dt / tau), 1e-14);
+      EXPECT_NEAR(u.q[0], sigma * sigma * (1 - std::exp(-2 * dt / tau)), 1e-14);
+      EXPECT_NEAR(u.output_variance(), sigma * sigma, 1e-12 * sigma * sigma);
+      const DiscreteFilter w = discretise(transverse_filter(sigma, tau), dt);
+      EXPECT_NEAR(w.output_variance(), sigma * sigma, 1e-12 * sigma * sigma) << tau << " " << dt;
+      // Φ of the double pole: e^{−dt/τ} [[1 + dt/τ, dt], [−dt/τ², 1 − dt/τ]].
+      const double e = std::exp(-dt / tau);
+      EXPECT_NEAR(w.phi[0], e * (1 + dt / tau), 1e-13);
+      EXPECT_NEAR(w.phi[1], e * dt, 1e-13);
+      EXPECT_NEAR(w.phi[2], -e * dt / (tau * tau), 1e-13 / (tau * tau));
+      EXPECT_NEAR(w.phi[3], e * (1 - dt / tau), 1e-13);
+    }
+  }
+}
+
+// One-sided PSD in m²/s²/Hz of the forming filters driven by unit-intensity white noise:
+// G(f) = 2 |H(j 2π f)|².
+double dryden_psd(bool longitudinal, double sigma, double tau, double f) {
+  const double x = 2 * M_PI * f * tau;
+  if (longitudinal) return 2 * sigma * sigma * 2 * tau / (1 + x * x);
+  return 2 * sigma * sigma * tau * (1 + 3 * x * x) / ((1 + x * x) * (1 + x * x));
+}
+
+TEST(Wind, SimulatedSpectrumIsDrydensWithinFifteenPercentPerOctave) {
+  const DrydenScales s = dryden_scales(5.0, 4.1);
+  const double speed = 5.0, dt = 0.005;
+  DrydenTurbulence turbulence(s, speed, dt, SplitMix64::stream(42, "turbulence"));
+  constexpr int kSegment = 8192, kSegments = 128;
+  std::array<std::vector<double>, 3> psd;
+  for (auto& p : psd) p.assign(kSegment / 2, 0.0);
+  std::vector<double> window(kSegment);
+  double window_power = 0;
+  for (int i = 0; i < kSegment; ++i) {
+    window[i] = 0.5 - 0.5 * std::cos(2 * M_PI * i / kSegment);  // Hann
+    window_power += window[i] * window[i];
+  }
+  Eigen::FFT<double> fft;
+  std::array<std::vector<double>, 3> x;
+  for (auto& v : x) v.resize(kSegment);
+  std::vector<std::complex<double>> spectrum;
+  for (int seg = 0; seg < kSegments; ++seg) {
+    for (int i = 0; i < kSegment; ++i) {
+      const auto sample = turbulence.step();
+      for (int k = 0; k < 3; ++k) x[k][i] = sample[k] * window[i];
+    }
+    for (int k = 0; k < 3; ++k) {
+      fft.fwd(spectrum, x[k]);
+      for (int j = 1; j < kSegment / 2; ++j)
+        psd[k][j] += 2 * dt * std::norm(spectrum[j]) / window_power / kSegments;
+    }
+  }
+  const double df = 1.0 / (kSegment * dt);
+  const double taus[3] = {s.length_u_m / speed, s.length_v_m / speed, s.length_w_m / speed};
+  const double sigmas[3] = {s.sigma_u_m_s, s.sigma_v_m_s, s.sigma_w_m_s};
+  for (int k = 0; k < 3; ++k) {
+    for (double lo = 0.1; lo < 12; lo *= 2) {
+      double measured = 0, expected = 0;
+      for (int j = 1; j < kSegment / 2; ++j) {
+        const double f = j * df;
+        if (f < lo || f >= 2 * lo) continue;
+        measured += psd[k][j];
+        expected += dryden_psd(k == 0, sigmas[k], taus[k], f);
+      }
+      EXPECT_NEAR(measured / expected, 1.0, 0.15) << "axis " << k << ", octave from " << lo;
+    }
+  }
+}
+
+TEST(Wind, GustsRiseHoldAndFallAsOneMinusCosine) {
+  EXPECT_EQ(Gusts::shape(-1, 1, 2), 0.0);
+  EXPECT_NEAR(Gusts::shape(0.5, 1, 2), 0.5, 1e-15);
+  EXPECT_NEAR(Gusts::shape(1.0, 1, 2), 1.0, 1e-15);
+  EXPECT_EQ(Gusts::shape(2.5, 1, 2), 1.0);
+  EXPECT_NEAR(Gusts::shape(3.5, 1, 2), 0.5, 1e-15);
+  EXPECT_EQ(Gusts::shape(4.0 + 1e-9, 1, 2), 0.0);
+  // Arrivals are Poisson: over 10 hours at 3 per minute, 1800 ± 4·√1800 gusts. A gust raises the
+  // wind from zero: count the rises from rest.
+  GustSettings g;
+  g.rate_per_min = 3;
+  g.rise_s = {0.01, 0.01};
+  g.hold_s = {0, 0};
+  Gusts gusts(g, SplitMix64::stream(7, "gusts"));
+  int starts = 0;
+  bool calm = true;
+  double peak = 0;
+  for (double t = 0; t < 36000; t += 0.005) {
+    const double v = norm(gusts.at(t));
+    peak = std::max(peak, v);
+    if (calm && v > 0) ++starts;
+    calm = v == 0;
+  }
+  EXPECT_NEAR(starts, 1800, 4 * std::sqrt(1800.0));
+  EXPECT_LE(peak, 2 * 2.5);  // two overlapping gusts at most, in practice
+}
+
+TEST(Wind, RegionsAddTheirWindInsideTheirCylinder) {
+  const std::vector<WindRegion> duct{{{5, 5}, 1.5, {0, 0, -1}}};
+  EXPECT_EQ(region_wind_m_s(duct, {5.5, 4.0, 3}).z, -1.0);
+  EXPECT_EQ(region_wind_m_s(duct, {7, 5, 3}).z, 0.0);
+}
+
+}  // namespace
+}  // namespace swath::vehicle
