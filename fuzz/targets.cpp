@@ -12,8 +12,9 @@
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/planning/camera.hpp"
-#include "swath/vehicle/drone.hpp"
 #include "swath/planning/plan_features.hpp"
+#include "swath/vehicle/drone.hpp"
+#include "swath/vehicle/vehicle_files.hpp"
 
 namespace swath::fuzz {
 namespace {
@@ -100,6 +101,16 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { energy::parse_waypoint_missions(t, "fuzz.plan"); });
        },
        {"tests/bad-input/seeds/drone-1.plan", "tests/bad-input/seeds/mission.geojson"}},
+      {"vehicle",
+       [](const std::string& t) {
+         expect_input_error_only([&] { vehicle::parse_vehicle(t, "fuzz.yaml"); });
+       },
+       {"share/vehicles/quad-f450.yaml", "share/vehicles/y6.yaml"}},
+      {"environment",
+       [](const std::string& t) {
+         expect_input_error_only([&] { vehicle::parse_environment(t, "fuzz.yaml"); });
+       },
+       {"share/environments/arch.yaml", "share/environments/lab.yaml"}},
       {"power_trace",
        [](const std::string& t) {
          expect_input_error_only([&] { energy::parse_power_trace(t, "fuzz.csv"); });

@@ -56,6 +56,10 @@ struct Frame {
   Vec3 drag_cda_m2{0.02, 0.02, 0.04};            ///< CdA, quadratic body drag per body axis
   double air_density_kg_m3 = 1.225;              ///< ρ
   double flapping_nm_per_m_s = 0.01;             ///< k_f of M_f = −k_f (e3 × v_r)
+  /// M_n: Gauss–Markov torque noise (vibration, imbalance) per body axis; drawn by the
+  /// simulation and given to integrate() as an input.
+  double torque_noise_sigma_nm = 0.002;
+  double torque_noise_time_constant_s = 0.05;
 };
 
 struct Airframe {
