@@ -1,0 +1,83 @@
+#pragma once
+// The plant of a simulated flight (DESIGN.md §17.2 "Clock and integration"): the multirotor, its
+// ESCs, the wind and the sensors on one integer-nanosecond event clock. Events at one instant run
+// in a fixed order: ESC frames, wind, sensors (in file order); between events the body is
+// integrated with RK4 in equal sub-steps of at most max_step_s with the inputs held. The
+// controller (control/) reads the delivered sensor samples and commands PWM between calls.
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "swath/vehicle/multirotor.hpp"
+#include "swath/vehicle/sensors.hpp"
+#include "swath/vehicle/vehicle_files.hpp"
+#include "swath/vehicle/wind.hpp"
+
+namespace swath::vehicle {
+
+struct FlightModelSettings {
+  VehiclePhysics physics = default_vehicle();
+  Environment environment;
+  std::uint64_t seed = 1;
+  double max_step_s = 0.001;       ///< (1e-5, 0.002]
+  double mission_speed_m_s = 3.0;  ///< Dryden's frozen-field speed V takes it into account
+  MultirotorState initial;         ///< rotors at rest unless given
+};
+
+/// A sensor sample with the index of its sensor (in file order).
+struct DeliveredSample {
+  std::size_t sensor = 0;
+  SensorSample sample;
+};
+
+class FlightModel {
+ public:
+  explicit FlightModel(const FlightModelSettings& settings);
+
+  SimTime now() const { return now_; }
+  const MultirotorState& state() const { return state_; }
+  const VehiclePhysics& physics() const { return settings_.physics; }
+  /// The wind at the body, world ENU (held since the last wind event).
+  const Vec3& wind_m_s() const { return wind_; }
+
+  /// Runs every event up to and including `until` (>= now()).
+  void advance_to(SimTime until);
+  /// A PWM command for motor `motor` at now(); its ESC applies it at its next frame.
+  void command_pwm(std::size_t motor, double pwm_us);
+  /// The samples delivered since the last call, in delivery order (ties in sensor order).
+  std::vector<DeliveredSample> take_samples();
+
+  /// The motors' electrical energy drawn so far (trapezoid per sub-step), J.
+  double motor_energy_j() const { return motor_energy_j_; }
+  /// The motors' electrical power now, W.
+  double motor_power_w() const;
+  /// The specific force now (world acceleration without gravity), world ENU.
+  Vec3 acceleration_m_s2() const;
+
+ private:
+  SimTime next_event() const;
+  void integrate_to(SimTime t);
+  void run_events(SimTime t);
+  void update_wind(double t_s);
+  MultirotorInputs inputs() const;
+
+  FlightModelSettings settings_;
+  SimTime now_ = 0;
+  MultirotorState state_;
+  std::vector<Esc> escs_;
+  std::vector<double> rotor_commands_;
+  std::vector<Sensor> sensors_;
+  std::optional<DrydenTurbulence> turbulence_;
+  Gusts gusts_;
+  SplitMix64 torque_random_;
+  SimTime wind_period_ns_;
+  SimTime next_wind_ = 0;
+  SimTime next_esc_frame_ = 0;
+  Vec3 wind_, torque_noise_;
+  double motor_energy_j_ = 0.0;
+  std::vector<DeliveredSample> delivered_;
+};
+
+}  // namespace swath::vehicle
