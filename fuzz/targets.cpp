@@ -6,6 +6,7 @@
 #include "mission_config.hpp"
 #include "plan_command.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/control/config.hpp"
 #include "swath/energy/budget.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
@@ -123,6 +124,17 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { planning::parse_plan_figures(t, "summary.json"); });
        },
        {"tests/bad-input/seeds/summary.json"}},
+      // swath-control: the control sections of a vehicle file, and a scheduler file (§17.A).
+      {"vehicle_control",
+       [](const std::string& t) {
+         expect_input_error_only([&] { control::parse_vehicle_control(t, "fuzz.yaml"); });
+       },
+       {"tests/bad-input/seeds/vehicle-control.yaml"}},
+      {"scheduler",
+       [](const std::string& t) {
+         expect_input_error_only([&] { control::parse_scheduler_config(t, "fuzz.yaml"); });
+       },
+       {"share/schedulers/tt-400.yaml", "tests/bad-input/seeds/scheduler-reactive.yaml"}},
   };
   return all;
 }

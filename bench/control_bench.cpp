@@ -1,0 +1,57 @@
+// The control task's costs (DESIGN.md §17.7: one control execution ≤ 3 µs): one execution with
+// the complementary estimator and every sensor fresh, the mixer alone, and one simulated second
+// of the flight computer under TT400 with 1 kHz samples and the default background work.
+
+#include <benchmark/benchmark.h>
+
+#include "swath/control/computer.hpp"
+#include "swath/control/control_task.hpp"
+
+namespace swath::control {
+namespace {
+
+void ControlExecution(benchmark::State& st) {
+  const ControlTask task = *ControlTask::create(ControlTaskConfig{});
+  TaskState state = task.initial_state({0, 0, 5});
+  TaskInput in;
+  in.sensors.imu = {{1e-4, -2e-4, 5e-5}, {0.001, -0.002, 0.0245}, 0.0025};
+  in.sensors.mag = {{0.1, 0.5, -0.85}, true};
+  in.sensors.baro = {5.01, true};
+  in.sensors.fix = {{0.01, -0.02, 5.0}, {0.0, 0.1, 0.0}, true, true};
+  in.setpoint.position_m = {1, 0, 5};
+  for (auto _ : st) {
+    in.time_ns += 2'500'000;
+    benchmark::DoNotOptimize(task.execute(state, in));
+  }
+}
+BENCHMARK(ControlExecution);
+
+void Mixer(benchmark::State& st) {
+  const RotorLayout layout = standard_layout(FrameKind::hexa_x, 0.275);
+  const MixerMatrices m = *mixer_matrices(layout);
+  double roll = 0;
+  for (auto _ : st) {
+    roll = roll > 1 ? 0 : roll + 1e-3;
+    benchmark::DoNotOptimize(mix(layout, m, Wrench{23.0, {roll, 0.1, 0.02}}));
+  }
+}
+BENCHMARK(Mixer);
+
+void ComputerSecondTt400(benchmark::State& st) {
+  for (auto _ : st) {
+    FlightComputer cpu{ComputerSettings{}};
+    TimeTriggeredScheduler tt = *TimeTriggeredScheduler::at_rate(400);
+    for (SimTime t = 0; t < 1'000'000'000; t += 500'000) {  // 2 kHz of events
+      while (cpu.advance(t)) {
+      }
+      if (t % 1'000'000 == 0) cpu.sample();
+      if (t == tt.next_release_ns()) cpu.request_control(tt.take_release());
+    }
+    benchmark::DoNotOptimize(cpu.stats().busy_ns);
+  }
+}
+BENCHMARK(ComputerSecondTt400)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace swath::control
+BENCHMARK_MAIN();

@@ -1,0 +1,72 @@
+#pragma once
+// When the control task runs (DESIGN.md §17.3). A scheduler is told what happens — sensor samples,
+// setpoint changes, executions starting and ending — and says when it next wants an execution and
+// why. The time-triggered scheduler ignores the events; the reactive one (part 2) is driven by
+// them, behind the same interface.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include "swath/vehicle/clock.hpp"
+
+namespace swath::control {
+
+using vehicle::SimTime;
+
+/// No release pending.
+inline constexpr SimTime kNever = std::numeric_limits<SimTime>::max();
+
+/// Why an execution was requested (§17.4 "executions by cause").
+enum class ReleaseCause : std::uint8_t { time_triggered, boot, trigger, failsafe, setpoint };
+
+/// One sensor sample as a reactive scheduler sees it: the (filtered) value over the sensor's axes.
+struct SensorSample {
+  SimTime time_ns = 0;
+  std::size_t sensor = 0;         ///< index in the vehicle's sensor list
+  std::array<double, 6> value{};  ///< the first `axes` entries are used
+  std::size_t axes = 0;           ///< [1, 6]
+};
+
+class Scheduler {
+ public:
+  virtual ~Scheduler() = default;
+
+  /// The instant of the next requested release, ≥ the last event seen; kNever if none.
+  virtual SimTime next_release_ns() const = 0;
+  /// The caller's clock has reached next_release_ns(): the release is taken (handed to the flight
+  /// computer) and the scheduler moves on. Returns its cause.
+  virtual ReleaseCause take_release() = 0;
+
+  /// Events (a time-triggered scheduler ignores them).
+  virtual void on_sample(const SensorSample& /*sample*/) {}
+  virtual void on_setpoint_change(SimTime /*t_ns*/) {}
+  virtual void on_execution_start(SimTime /*t_ns*/) {}
+  /// `output_changed`: some pulse moved by ≥ change_threshold_us.
+  virtual void on_execution_end(SimTime /*t_ns*/, bool /*output_changed*/) {}
+};
+
+/// Time-triggered (§17.3 "TT"): a release at phase_ns + k · period_ns for k = 0, 1, ….
+class TimeTriggeredScheduler final : public Scheduler {
+ public:
+  /// `period_ns` > 0; `phase_ns` ≥ 0.
+  TimeTriggeredScheduler(SimTime period_ns, SimTime phase_ns = 0)
+      : period_ns_(period_ns), next_ns_(phase_ns) {}
+  /// The scheduler for `rate_hz`, or nullopt when 1/rate_hz is not a whole number of ns (§17.5).
+  static std::optional<TimeTriggeredScheduler> at_rate(double rate_hz, SimTime phase_ns = 0);
+
+  SimTime next_release_ns() const override { return next_ns_; }
+  ReleaseCause take_release() override {
+    next_ns_ += period_ns_;
+    return ReleaseCause::time_triggered;
+  }
+  SimTime period_ns() const { return period_ns_; }
+
+ private:
+  SimTime period_ns_;
+  SimTime next_ns_;
+};
+
+}  // namespace swath::control

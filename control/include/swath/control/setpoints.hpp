@@ -1,0 +1,64 @@
+#pragma once
+// Setpoints along a mission (DESIGN.md §17.2 "Setpoints"): a carrot that moves along each leg with
+// a trapezoid speed profile — accelerate at max_accel_m_s2, cruise at the leg's speed, brake to a
+// stop at the waypoint — sampled at 50 Hz, with the yaw along the leg.
+
+#include <cstddef>
+#include <vector>
+
+#include "swath/vehicle/clock.hpp"
+#include "swath/vehicle/vec3.hpp"
+
+namespace swath::control {
+
+using vehicle::SimTime;
+using vehicle::Vec3;
+
+/// What the control task is asked to do at one instant.
+struct Setpoint {
+  Vec3 position_m;     ///< world ENU, m
+  Vec3 velocity_m_s;   ///< feed-forward, world ENU, m/s
+  double yaw_rad = 0;  ///< heading of body +x, counter-clockwise from east (ENU), rad, (−π, π]
+  std::size_t leg =
+      0;  ///< index of the leg being flown (waypoint leg → leg + 1); legs() at the end
+};
+
+/// Limits of the carrot's motion (§17.A `controller.limits`).
+struct CarrotLimits {
+  double max_speed_m_s = 3.0;   ///< along the leg, m/s, > 0
+  double max_climb_m_s = 1.5;   ///< vertical component, m/s, > 0
+  double max_accel_m_s2 = 1.0;  ///< along the leg, m/s², > 0
+  double update_hz = 50.0;      ///< the carrot moves at this rate (`run.setpoint_rate_hz`), > 0
+};
+
+/// The trapezoid of one leg: time to cover `length_m` (≥ 0) starting and ending at rest with
+/// speed ≤ `speed_m_s` and |acceleration| ≤ `accel_m_s2`; and the distance covered after `t_s`
+/// seconds (0 before the start, length_m after the end).
+double trapezoid_duration_s(double length_m, double speed_m_s, double accel_m_s2);
+double trapezoid_distance_m(double t_s, double length_m, double speed_m_s, double accel_m_s2);
+
+/// A carrot along waypoints (world ENU). The flight starts at rest at the first waypoint at time 0;
+/// each leg starts when the previous one ends; a leg's speed is max_speed_m_s, lowered so that its
+/// vertical component stays within max_climb_m_s. Zero-length legs take no time.
+class CarrotPath {
+ public:
+  /// `waypoints`: at least one point; `limits` valid as documented.
+  CarrotPath(std::vector<Vec3> waypoints, const CarrotLimits& limits);
+
+  /// The setpoint in force at `t_ns` (≥ 0): the carrot as of the latest 50-Hz update at or before
+  /// t. Yaw points along the leg; on a vertical leg it keeps the previous leg's (0 at first).
+  Setpoint at(SimTime t_ns) const;
+  /// When the carrot reaches the last waypoint, ns (unquantised).
+  SimTime end_ns() const { return leg_start_ns_.back(); }
+  std::size_t legs() const { return waypoints_.size() - 1; }
+
+ private:
+  std::vector<Vec3> waypoints_;
+  std::vector<double> speed_m_s_;      // per leg
+  std::vector<double> yaw_rad_;        // per leg
+  std::vector<SimTime> leg_start_ns_;  // per leg, plus the end
+  CarrotLimits limits_;
+  SimTime update_period_ns_;
+};
+
+}  // namespace swath::control

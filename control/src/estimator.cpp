@@ -1,0 +1,144 @@
+#include "swath/control/estimator.hpp"
+
+#include <cmath>
+
+namespace swath::control {
+namespace {
+
+constexpr Vec3 kUp{0, 0, 1};
+// Attitude error (rad, about) below which the gyro bias is learnt.
+constexpr double kBiasLearningMaxError_rad = 0.05;
+// Low-pass of the velocity fixes' differences, s: a 10-Hz GPS with 0.1 m/s noise differences to
+// 1.4 m/s² of noise, which would tilt the estimate by ~1° at rest; manoeuvres last seconds.
+constexpr double kFixAccelerationTimeConstant_s = 0.4;
+
+// The scalar measurement z = h·x of variance r: Kalman update with the covariance in Joseph form,
+// (I − K h) P (I − K h)ᵀ + K r Kᵀ, which stays symmetric positive definite under rounding (papers
+// README: the correct sign of paper 004's update, in its safe form).
+void scalar_update(AxisFilter& a, double h0, double h1, double z, double r) {
+  const double ph0 = a.p_pp * h0 + a.p_pv * h1;  // P hᵀ
+  const double ph1 = a.p_pv * h0 + a.p_vv * h1;
+  const double s = h0 * ph0 + h1 * ph1 + r;
+  const double k0 = ph0 / s, k1 = ph1 / s;
+  const double innovation = z - (h0 * a.position_m + h1 * a.velocity_m_s);
+  a.position_m += k0 * innovation;
+  a.velocity_m_s += k1 * innovation;
+  // A = I − K h.
+  const double a00 = 1 - k0 * h0, a01 = -k0 * h1, a10 = -k1 * h0, a11 = 1 - k1 * h1;
+  // A P.
+  const double b00 = a00 * a.p_pp + a01 * a.p_pv, b01 = a00 * a.p_pv + a01 * a.p_vv;
+  const double b10 = a10 * a.p_pp + a11 * a.p_pv, b11 = a10 * a.p_pv + a11 * a.p_vv;
+  a.p_pp = b00 * a00 + b01 * a01 + k0 * r * k0;
+  a.p_pv = b00 * a10 + b01 * a11 + k0 * r * k1;
+  a.p_vv = b10 * a10 + b11 * a11 + k1 * r * k1;
+}
+
+// Mahony's correction (rad/s, body): towards the measured gravity and, about the estimated up
+// axis only, towards the measured north, so that the magnetometer never tilts the attitude.
+Vec3 attitude_correction(const EstimatorSettings& s, const EstimatorState& state,
+                         const EstimatorInput& in) {
+  Vec3 correction;
+  const Vec3 up_estimated = rotate_inverse(state.attitude, kUp);
+  const Vec3 specific_force = in.imu.delta_velocity_m_s / in.imu.interval_s -
+                              rotate_inverse(state.attitude, state.fix_acceleration_m_s2);
+  const double f = norm(specific_force);
+  if (f > s.gravity_m_s2 * (1 - s.accel_gate) && f < s.gravity_m_s2 * (1 + s.accel_gate))
+    correction += s.attitude_gain_1_s * cross(specific_force / f, up_estimated);
+  // The heading error is the angle of the measured field's horizontal part from north (+y), as
+  // seen through the estimate: a rotation about world up, so it never tilts the attitude. The
+  // angle itself rather than its sine keeps the rate 1/mag_gain from any start and any dip.
+  const Vec3 h = rotate(state.attitude, in.mag.field_body);
+  if (in.mag.fresh && std::hypot(h.x, h.y) > 1e-6 * norm(h)) {
+    const double heading_error = std::atan2(-h.x, h.y);  // estimate's yaw − true yaw
+    correction -= s.mag_gain_1_s * heading_error * up_estimated;
+  }
+  return correction;
+}
+
+void update_attitude(const EstimatorSettings& s, EstimatorState& state, const EstimatorInput& in) {
+  const double dt = in.imu.interval_s;
+  const Vec3 correction = attitude_correction(s, state, in);
+  // The bias is learnt only once the attitude is nearly right: an integrator fed a large start-up
+  // error learns a bias that is not there and takes 1 / (bias_gain · gain) seconds to unlearn.
+  const double gains = s.attitude_gain_1_s + s.mag_gain_1_s;
+  if (gains > 0 && norm(correction) < kBiasLearningMaxError_rad * gains)
+    state.gyro_bias_rad_s -= s.bias_gain_1_s * dt * correction;
+  const Vec3 turn = in.imu.delta_angle_rad - dt * state.gyro_bias_rad_s + dt * correction;
+  state.body_rate_rad_s = in.imu.delta_angle_rad / dt - state.gyro_bias_rad_s;
+  state.attitude = normalized(state.attitude * vehicle::from_rotation_vector(turn));
+}
+
+}  // namespace
+
+void kalman_predict(AxisFilter& a, double accel_m_s2, double dt_s, double sigma_accel_m_s2) {
+  const double dt2 = dt_s * dt_s;
+  const double q = sigma_accel_m_s2 * sigma_accel_m_s2;
+  a.position_m += a.velocity_m_s * dt_s + 0.5 * accel_m_s2 * dt2;
+  a.velocity_m_s += accel_m_s2 * dt_s;
+  a.p_pp += 2 * dt_s * a.p_pv + dt2 * a.p_vv + q * dt2 * dt2 / 4;
+  a.p_pv += dt_s * a.p_vv + q * dt2 * dt_s / 2;
+  a.p_vv += q * dt2;
+}
+
+void kalman_update_position(AxisFilter& axis, double z_m, double sigma_m) {
+  scalar_update(axis, 1, 0, z_m, sigma_m * sigma_m);
+}
+
+void kalman_update_velocity(AxisFilter& axis, double z_m_s, double sigma_m_s) {
+  scalar_update(axis, 0, 1, z_m_s, sigma_m_s * sigma_m_s);
+}
+
+EstimatorState initial_estimate(const Vec3& position_m, const Quat& attitude,
+                                double position_sigma_m, double velocity_sigma_m_s) {
+  EstimatorState s;
+  s.attitude = normalized(attitude);
+  const double p[3] = {position_m.x, position_m.y, position_m.z};
+  for (std::size_t k = 0; k < 3; ++k)
+    s.axes[k] = AxisFilter{p[k], 0, position_sigma_m * position_sigma_m, 0,
+                           velocity_sigma_m_s * velocity_sigma_m_s};
+  return s;
+}
+
+void estimator_update(const EstimatorSettings& s, EstimatorState& state, const EstimatorInput& in) {
+  if (s.type == EstimatorType::truth) {
+    state.attitude = in.truth.attitude;
+    state.body_rate_rad_s = in.truth.body_rate_rad_s;
+    const double p[3] = {in.truth.position_m.x, in.truth.position_m.y, in.truth.position_m.z};
+    const double v[3] = {in.truth.velocity_m_s.x, in.truth.velocity_m_s.y, in.truth.velocity_m_s.z};
+    for (std::size_t k = 0; k < 3; ++k) {
+      state.axes[k].position_m = p[k];
+      state.axes[k].velocity_m_s = v[k];
+    }
+    return;
+  }
+  const double dt = in.imu.interval_s;
+  if (dt > 0 && std::isfinite(dt)) {
+    update_attitude(s, state, in);
+    // Δv is a specific force: rotated to world, gravity removed, it is the acceleration.
+    const Vec3 accel =
+        rotate(state.attitude, in.imu.delta_velocity_m_s / dt) - s.gravity_m_s2 * kUp;
+    const double a[3] = {accel.x, accel.y, accel.z};
+    for (std::size_t k = 0; k < 3; ++k)
+      kalman_predict(state.axes[k], a[k], dt, s.process_accel_m_s2);
+  }
+  if (dt > 0 && std::isfinite(dt)) state.since_fix_s += dt;
+  if (in.fix.velocity_fresh) {
+    if (state.has_fix_velocity && state.since_fix_s > 0)
+      state.fix_acceleration_m_s2 +=
+          (1 - std::exp(-state.since_fix_s / kFixAccelerationTimeConstant_s)) *
+          ((in.fix.velocity_m_s - state.last_fix_velocity_m_s) / state.since_fix_s -
+           state.fix_acceleration_m_s2);
+    state.last_fix_velocity_m_s = in.fix.velocity_m_s;
+    state.since_fix_s = 0;
+    state.has_fix_velocity = true;
+  }
+  const double p[3] = {in.fix.position_m.x, in.fix.position_m.y, in.fix.position_m.z};
+  const double v[3] = {in.fix.velocity_m_s.x, in.fix.velocity_m_s.y, in.fix.velocity_m_s.z};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (in.fix.position_fresh) kalman_update_position(state.axes[k], p[k], s.position_noise_m);
+    if (in.fix.velocity_fresh) kalman_update_velocity(state.axes[k], v[k], s.velocity_noise_m_s);
+  }
+  if (in.baro.fresh) kalman_update_position(state.axes[2], in.baro.altitude_m, s.baro_noise_m);
+}
+
+}  // namespace swath::control

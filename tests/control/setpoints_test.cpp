@@ -1,0 +1,99 @@
+// Carrot setpoints (DESIGN.md §17.2 "Setpoints"): the trapezoid against a numerical integral of
+// its speed profile min(a t, v, a (T − t)), and the carrot along legs: 50-Hz updates, stops at the
+// waypoints, climb-limited legs, yaw along each leg.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "swath/control/setpoints.hpp"
+
+namespace swath::control {
+namespace {
+
+// ∫ min(a τ, v, a (T − τ)) dτ from 0 to t by the midpoint rule, T from the area condition.
+double integrated_distance(double t, double length, double v, double a) {
+  const double peak = std::min(v, std::sqrt(length * a));
+  const double total = peak / a + length / peak;  // ramp up, cruise, ramp down
+  double s = 0;
+  const int n = 200'000;
+  const double h = std::min(t, total) / n;
+  for (int k = 0; k < n; ++k) {
+    const double tau = (k + 0.5) * h;
+    s += h * std::min({a * tau, v, a * (total - tau)});
+  }
+  return s;
+}
+
+TEST(Setpoints, TrapezoidMatchesTheIntegralOfItsSpeed) {
+  struct Case {
+    double length, v, a;
+  };
+  for (const Case c : {Case{20, 3, 1}, Case{4, 3, 1}, Case{9, 3, 1}, Case{100, 5, 0.5}}) {
+    const double total = trapezoid_duration_s(c.length, c.v, c.a);
+    const double peak = std::min(c.v, std::sqrt(c.length * c.a));
+    EXPECT_NEAR(total, peak / c.a + c.length / peak, 1e-12);
+    for (double t = 0; t <= total + 1; t += total / 37) {
+      EXPECT_NEAR(trapezoid_distance_m(t, c.length, c.v, c.a),
+                  integrated_distance(t, c.length, c.v, c.a), 1e-6)
+          << c.length << " at " << t;
+    }
+    EXPECT_EQ(trapezoid_distance_m(total + 0.1, c.length, c.v, c.a), c.length);
+  }
+  EXPECT_EQ(trapezoid_duration_s(0, 3, 1), 0);
+}
+
+TEST(Setpoints, CarrotMovesAt50HzStopsAtWaypointsAndFacesTheLeg) {
+  const std::vector<Vec3> wp{{0, 0, 5}, {20, 0, 5}, {20, 10, 5}, {20, 10, 8}};
+  const CarrotLimits limits;  // 3 m/s, climb 1.5 m/s, 1 m/s², 50 Hz
+  const CarrotPath path(wp, limits);
+  ASSERT_EQ(path.legs(), 3u);
+  // Leg 3 climbs 3 m at most 1.5 m/s: its speed is 1.5 m/s.
+  const double t1 = trapezoid_duration_s(20, 3, 1), t2 = trapezoid_duration_s(10, 3, 1),
+               t3 = trapezoid_duration_s(3, 1.5, 1);
+  EXPECT_EQ(path.end_ns(), vehicle::from_seconds(t1 + t2 + t3));
+  Setpoint previous = path.at(0);
+  double max_climb = 0;
+  for (SimTime t = 0; t < path.end_ns() + 1'000'000'000; t += 1'000'000) {
+    const Setpoint sp = path.at(t);
+    const SimTime sample = t / 20'000'000 * 20'000'000;
+    const double ts = vehicle::seconds(sample);
+    // Held between 50-Hz updates.
+    if (t % 20'000'000 != 0) {
+      EXPECT_EQ(sp.position_m, previous.position_m);
+    }
+    // Position from the trapezoid of the leg in force at the sample.
+    Vec3 expected;
+    double yaw = 0;
+    if (ts < t1) {
+      expected = wp[0] + Vec3{trapezoid_distance_m(ts, 20, 3, 1), 0, 0};
+    } else if (ts < t1 + t2) {
+      expected = wp[1] + Vec3{0, trapezoid_distance_m(ts - t1, 10, 3, 1), 0};
+      yaw = std::numbers::pi / 2;
+    } else {
+      expected = wp[2] + Vec3{0, 0, trapezoid_distance_m(ts - t1 - t2, 3, 1.5, 1)};
+      yaw = std::numbers::pi / 2;  // vertical: the previous leg's heading
+    }
+    EXPECT_NEAR(norm(sp.position_m - expected), 0, 1e-6) << ts;
+    EXPECT_NEAR(sp.yaw_rad, yaw, 1e-12) << ts;
+    max_climb = std::max(max_climb, std::abs(sp.velocity_m_s.z));
+    EXPECT_LE(norm(sp.velocity_m_s), 3 + 1e-12);
+    previous = sp;
+  }
+  EXPECT_NEAR(max_climb, 1.5, 1e-12);
+  // At each waypoint's arrival the carrot is at rest there.
+  const double arrivals[] = {t1, t1 + t2};
+  for (int k = 0; k < 2; ++k) {
+    const SimTime at = (vehicle::from_seconds(arrivals[k]) / 20'000'000 + 1) * 20'000'000;
+    const Setpoint sp = path.at(at);
+    // At most ½ a (20 ms)² = 0.2 mm along the next leg.
+    EXPECT_LT(norm(sp.position_m - wp[static_cast<std::size_t>(k) + 1]), 3e-4);
+    EXPECT_LT(norm(sp.velocity_m_s), 0.021);  // at most a · 20 ms after the stop
+  }
+  EXPECT_EQ(path.at(path.end_ns() + 40'000'000).position_m, wp.back());
+  EXPECT_EQ(path.at(path.end_ns() + 40'000'000).leg, 3u);
+}
+
+}  // namespace
+}  // namespace swath::control
