@@ -4,6 +4,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include "swath/control/control_files.hpp"
+#include "swath/control/mission.hpp"
+#include "swath/control/simulation.hpp"
+
 #include "swath/control/computer.hpp"
 #include "swath/control/control_task.hpp"
 
@@ -51,6 +55,29 @@ void ComputerSecondTt400(benchmark::State& st) {
   }
 }
 BENCHMARK(ComputerSecondTt400)->Unit(benchmark::kMicrosecond);
+
+// DESIGN.md §17.7's target: 10 minutes of flight at 1 ms steps in ≤ 2 s on one core — the whole
+// simulation (plant, sensors, driver, computer model, TT400 control task, carrot, battery,
+// metrics), the rows computed but not written. Arg: the environment (0 calm, 1 arch).
+void TenMinutesOfFlight(benchmark::State& st) {
+  SimulationSettings s;
+  s.environment = vehicle::environment_preset(st.range(0) == 0 ? "calm" : "arch");
+  s.mission = closed_for_loop(random_mission(RandomSpec{8, 170, 170}, 5, 1));
+  s.loop = true;
+  s.speed_m_s = 3;
+  s.scheduler.run.max_time_s = 600;
+  struct Rows : SimulationObserver {
+    std::size_t bytes = 0;
+    void on_row(const TimeseriesRow& r) override { bytes += timeseries_csv_row(r).size(); }
+  } rows;
+  for (auto _ : st) {
+    const SimulationSummary r = simulate(s, &rows);
+    benchmark::DoNotOptimize(r.total_j);
+  }
+  st.counters["simulated_s_per_s"] =
+      benchmark::Counter(600.0 * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(TenMinutesOfFlight)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(2);
 
 }  // namespace
 }  // namespace swath::control

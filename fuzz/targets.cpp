@@ -7,6 +7,7 @@
 #include "plan_command.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/control/config.hpp"
+#include "swath/control/mission.hpp"
 #include "swath/energy/budget.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
@@ -135,6 +136,24 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { control::parse_scheduler_config(t, "fuzz.yaml"); });
        },
        {"share/schedulers/tt-400.yaml", "tests/bad-input/seeds/scheduler-reactive.yaml"}},
+      // swath-control run's other inputs: the first line a `--set KEY=VALUE` (also read as a
+      // random:N@WxH mission), the rest a YAML file it applies to; then the scheduler reader and
+      // the vehicle file's battery section read the result.
+      {"control_inputs",
+       [](const std::string& t) {
+         const std::size_t eol = std::min(t.find('\n'), t.size());
+         const std::string first = t.substr(0, eol), rest = t.substr(std::min(eol + 1, t.size()));
+         expect_input_error_only([&] { control::parse_random_spec(first); });
+         const std::size_t eq = first.find('=');
+         const control::Override o{first.substr(0, eq),
+                                   eq == std::string::npos ? "" : first.substr(eq + 1)};
+         expect_input_error_only([&] {
+           const std::string text = control::apply_overrides(rest, "fuzz.yaml", {o});
+           control::parse_scheduler_config(text, "fuzz.yaml");
+         });
+         expect_input_error_only([&] { energy::parse_battery_section(rest, "fuzz.yaml"); });
+       },
+       {"tests/bad-input/seeds/control-override.txt"}},
   };
   return all;
 }

@@ -17,22 +17,6 @@ using render::Color;
 const Color kInk{0.1f, 0.1f, 0.1f, 1};
 const Color kPlanned{0.62f, 0.62f, 0.62f, 1};
 
-void shift_into(render::Scene& all, const render::Scene& part, double dy) {
-  for (auto p : part.screen_polygons) {
-    for (auto& ring : p.rings)
-      for (auto& pt : ring) pt.y += dy;
-    all.screen_polygons.push_back(std::move(p));
-  }
-  for (auto l : part.screen_polylines) {
-    for (auto& pt : l.points) pt.y += dy;
-    all.screen_polylines.push_back(std::move(l));
-  }
-  for (auto label : part.labels) {
-    label.y_px += static_cast<int>(std::lround(dy));
-    all.labels.push_back(std::move(label));
-  }
-}
-
 }  // namespace
 
 Color soc_color(double soc, const energy::Battery& battery) {
@@ -182,7 +166,7 @@ EnergyImage energy_image(const energy::SimulationResult& r, const energy::Plan& 
     if (specs[k].series.empty() || specs[k].series.front().x.empty()) continue;
     render::ChartLayout layout{};
     const render::Scene part = render::chart_scene(specs[k], width_px, panel, &layout);
-    shift_into(out.scene, part, k * panel);
+    render::stack_scene(out.scene, part, k * panel);
     out.charts.push_back(layout);
     out.offsets_px.push_back(k * panel);
   }

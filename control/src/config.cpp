@@ -5,6 +5,7 @@
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/yaml_input.hpp"
 #include "swath/base/yaml_map.hpp"
 
 namespace swath::control {
@@ -224,6 +225,52 @@ VehicleControlConfig parse_vehicle_control(const std::string& text, const std::s
 VehicleControlConfig read_vehicle_control(const std::string& path) {
   return parse_vehicle_control(
       base::read_text_file(path, "vehicle file", base::kMaxConfigFileBytes), path);
+}
+
+std::string apply_overrides(const std::string& text, const std::string& source,
+                            const std::vector<Override>& overrides) {
+  if (overrides.empty()) return text;
+  return base::yaml_guard(source, [&] {
+    YAML::Node root =
+        text.empty() ? YAML::Node(YAML::NodeType::Map) : base::load_yaml(text, source);
+    if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+    for (const Override& o : overrides) {
+      const std::string where = source + ": --set " + o.key + "=" + o.value;
+      YAML::Node value;
+      try {
+        value = YAML::Load(o.value);
+      } catch (const YAML::Exception&) {
+        throw InputError(where + ": the value is not YAML (a number, a word or [a, b, c])");
+      }
+      // Walk the dotted key with fresh handles (yaml-cpp's operator= on a held handle would
+      // overwrite the node it refers to, not rebind the handle).
+      std::vector<std::string> parts;
+      for (std::size_t start = 0;;) {
+        const std::size_t dot = o.key.find('.', start);
+        parts.push_back(o.key.substr(start, dot - start));
+        if (dot == std::string::npos) break;
+        start = dot + 1;
+      }
+      for (const std::string& part : parts)
+        if (part.empty()) throw InputError(where + ": the key has an empty part");
+      std::vector<YAML::Node> chain{root};
+      for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
+        YAML::Node next = chain.back()[parts[k]];
+        if (!next.IsDefined() || next.IsNull()) {
+          chain.back()[parts[k]] = YAML::Node(YAML::NodeType::Map);
+          next = chain.back()[parts[k]];
+        }
+        if (!next.IsMap())
+          throw InputError(where + ": " + parts[k] + " is not a mapping of keys in the file");
+        chain.push_back(next);
+      }
+      if (!chain.back().IsMap()) throw InputError(where + ": the file is not a mapping of keys");
+      chain.back()[parts.back()] = value;
+    }
+    YAML::Emitter out;
+    out << root;
+    return std::string(out.c_str()) + "\n";
+  });
 }
 
 SchedulerConfig parse_scheduler_config(const std::string& text, const std::string& source) {

@@ -24,53 +24,97 @@ double trapezoid_distance_m(double t_s, double length_m, double speed_m_s, doubl
   return 0.5 * peak * ramp + peak * (t_s - ramp);
 }
 
-CarrotPath::CarrotPath(std::vector<Vec3> waypoints, const CarrotLimits& limits)
-    : waypoints_(std::move(waypoints)),
-      limits_(limits),
+namespace {
+
+std::vector<std::vector<Vec3>> pairs(const std::vector<Vec3>& waypoints) {
+  std::vector<std::vector<Vec3>> legs;
+  for (std::size_t k = 0; k + 1 < waypoints.size(); ++k)
+    legs.push_back({waypoints[k], waypoints[k + 1]});
+  if (legs.empty()) legs.push_back({waypoints.empty() ? Vec3{} : waypoints.front()});
+  return legs;
+}
+
+}  // namespace
+
+CarrotPath::CarrotPath(const std::vector<Vec3>& waypoints, const CarrotLimits& limits)
+    : CarrotPath(pairs(waypoints), limits) {}
+
+CarrotPath::CarrotPath(std::vector<std::vector<Vec3>> legs, const CarrotLimits& limits)
+    : limits_(limits),
       update_period_ns_(std::max<SimTime>(
           vehicle::from_seconds(1.0 / (limits.update_hz > 0 ? limits.update_hz : 50.0)), 1)) {
-  if (waypoints_.empty()) waypoints_.push_back({});
+  if (legs.empty()) legs.push_back({Vec3{}});
   leg_start_ns_.push_back(0);
   double yaw = 0, start_s = 0;
-  for (std::size_t k = 0; k + 1 < waypoints_.size(); ++k) {
-    const Vec3 d = waypoints_[k + 1] - waypoints_[k];
-    const double length = norm(d);
-    double speed = limits_.max_speed_m_s;
-    if (length > 0 && std::abs(d.z) * speed > limits_.max_climb_m_s * length)
-      speed = limits_.max_climb_m_s * length / std::abs(d.z);
-    if (std::hypot(d.x, d.y) > 1e-6) yaw = std::atan2(d.y, d.x);
-    speed_m_s_.push_back(speed);
-    yaw_rad_.push_back(yaw);
+  for (std::vector<Vec3>& points : legs) {
+    if (points.empty()) points.push_back(legs_.empty() ? Vec3{} : legs_.back().points.back());
+    Leg leg;
+    leg.points = std::move(points);
+    leg.arc_m.push_back(0);
+    leg.speed_m_s = limits_.max_speed_m_s;
+    for (std::size_t k = 0; k + 1 < leg.points.size(); ++k) {
+      const Vec3 d = leg.points[k + 1] - leg.points[k];
+      const double length = norm(d);
+      if (length > 0 && std::abs(d.z) * leg.speed_m_s > limits_.max_climb_m_s * length)
+        leg.speed_m_s = limits_.max_climb_m_s * length / std::abs(d.z);
+      if (std::hypot(d.x, d.y) > 1e-6) yaw = std::atan2(d.y, d.x);
+      leg.yaw_rad.push_back(yaw);
+      leg.arc_m.push_back(leg.arc_m.back() + length);
+    }
+    if (leg.yaw_rad.empty()) leg.yaw_rad.push_back(yaw);
     // Leg ends are kept in seconds and rounded once, so rounding never accumulates over legs.
-    start_s += trapezoid_duration_s(length, speed, limits_.max_accel_m_s2);
+    start_s += trapezoid_duration_s(leg.arc_m.back(), leg.speed_m_s, limits_.max_accel_m_s2);
     leg_start_ns_.push_back(vehicle::from_seconds(start_s));
+    legs_.push_back(std::move(leg));
   }
+}
+
+double CarrotPath::length_m() const {
+  double sum = 0;
+  for (const Leg& leg : legs_) sum += leg.arc_m.back();
+  return sum;
 }
 
 Setpoint CarrotPath::at(SimTime t_ns) const {
   const SimTime sample_ns = std::max<SimTime>(t_ns, 0) / update_period_ns_ * update_period_ns_;
   // The leg in force: the last whose start is at or before the sample.
   const auto it = std::upper_bound(leg_start_ns_.begin(), leg_start_ns_.end(), sample_ns);
-  const std::size_t leg = static_cast<std::size_t>(it - leg_start_ns_.begin()) - 1;
+  const std::size_t index = static_cast<std::size_t>(it - leg_start_ns_.begin()) - 1;
   Setpoint sp;
-  sp.leg = std::min(leg, legs());
+  sp.leg = std::min(index, legs());
   if (sp.leg >= legs()) {
-    sp.position_m = waypoints_.back();
-    sp.yaw_rad = yaw_rad_.empty() ? 0.0 : yaw_rad_.back();
+    const Leg& last = legs_.back();
+    sp.position_m = last.points.back();
+    sp.yaw_rad = last.yaw_rad.back();
+    sp.segment = last.yaw_rad.size() - 1;
     return sp;
   }
-  const Vec3 d = waypoints_[sp.leg + 1] - waypoints_[sp.leg];
-  const double length = norm(d);
+  const Leg& leg = legs_[sp.leg];
+  const double length = leg.arc_m.back();
   const double t = vehicle::seconds(sample_ns - leg_start_ns_[sp.leg]);
-  const double a = limits_.max_accel_m_s2, v = speed_m_s_[sp.leg];
+  const double a = limits_.max_accel_m_s2, v = leg.speed_m_s;
   const double s = trapezoid_distance_m(t, length, v, a);
   // Speed along the leg: the derivative of the trapezoid's distance.
   const double total = trapezoid_duration_s(length, v, a);
   const double speed = length > 0 ? std::max(0.0, std::min({a * t, v, a * (total - t)})) : 0.0;
-  const Vec3 direction = length > 0 ? d / length : Vec3{};
-  sp.position_m = waypoints_[sp.leg] + s * direction;
+  // The segment holding arc length s (the first when s = 0, the last at the end).
+  std::size_t k = 0;
+  if (leg.points.size() > 1) {
+    k = static_cast<std::size_t>(std::upper_bound(leg.arc_m.begin(), leg.arc_m.end(), s) -
+                                 leg.arc_m.begin());
+    k = std::clamp<std::size_t>(k, 1, leg.points.size() - 1) - 1;
+  }
+  sp.segment = k;
+  sp.yaw_rad = leg.yaw_rad[std::min(k, leg.yaw_rad.size() - 1)];
+  if (leg.points.size() < 2) {
+    sp.position_m = leg.points.front();
+    return sp;
+  }
+  const Vec3 d = leg.points[k + 1] - leg.points[k];
+  const double segment = leg.arc_m[k + 1] - leg.arc_m[k];
+  const Vec3 direction = segment > 0 ? d / segment : Vec3{};
+  sp.position_m = leg.points[k] + (s - leg.arc_m[k]) * direction;
   sp.velocity_m_s = speed * direction;
-  sp.yaw_rad = yaw_rad_[sp.leg];
   return sp;
 }
 

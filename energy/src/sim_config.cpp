@@ -207,6 +207,14 @@ SimConfig parse_sim_config(const std::string& text, const std::string& source) {
   return base::yaml_guard(source, [&] { return sim_config_from_yaml(text, source); });
 }
 
+Battery parse_battery_section(const std::string& text, const std::string& source) {
+  return base::yaml_guard(source, [&] {
+    const YAML::Node root = base::load_yaml(text, source);
+    if (!root.IsMap()) throw InputError(source + ": expected a mapping of keys");
+    return parse_battery(YamlMap(root, source, "").map("battery"));
+  });
+}
+
 SimConfig read_sim_config(const std::string& path) {
   SimConfig c = parse_sim_config(
       base::read_text_file(path, "simulation config", base::kMaxConfigFileBytes), path);

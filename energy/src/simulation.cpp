@@ -311,6 +311,17 @@ std::vector<double> stage_durations(const Plan& plan, const SimConfig& config,
   return d;
 }
 
+}  // namespace
+
+std::vector<Point2> guided_path(const Plan& plan, const SimConfig& config) {
+  std::vector<Point2> path;
+  double total = 0.0;
+  stage_durations(plan, config, trajectory_at(plan, 1.0), &total, &path);
+  return path;
+}
+
+namespace {
+
 // rows[i] belongs to lambdas[i] (ascending); linear in between, the end rows beyond.
 std::vector<double> row_at(const std::vector<double>& lambdas,
                            const std::vector<std::vector<double>>& rows, double lambda) {

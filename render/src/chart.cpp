@@ -24,6 +24,22 @@ std::string tick_text(double v, double step) {
 
 }  // namespace
 
+void stack_scene(Scene& into, const Scene& part, double dy_px) {
+  for (auto p : part.screen_polygons) {
+    for (auto& ring : p.rings)
+      for (auto& pt : ring) pt.y += dy_px;
+    into.screen_polygons.push_back(std::move(p));
+  }
+  for (auto l : part.screen_polylines) {
+    for (auto& pt : l.points) pt.y += dy_px;
+    into.screen_polylines.push_back(std::move(l));
+  }
+  for (auto label : part.labels) {
+    label.y_px += static_cast<int>(std::lround(dy_px));
+    into.labels.push_back(std::move(label));
+  }
+}
+
 std::vector<double> nice_ticks(double lo, double hi, int count) {
   if (!(hi > lo)) hi = lo + 1;
   const double raw = (hi - lo) / std::max(1, count);

@@ -45,6 +45,10 @@ CliRun run_swath_energy(const std::string& args) {
   return run_program(SWATH_ENERGY_BINARY, args);
 }
 
+CliRun run_swath_control(const std::string& args) {
+  return run_program(SWATH_CONTROL_BINARY, args);
+}
+
 CliRun run_program(const std::string& binary, const std::string& args) {
   namespace fs = std::filesystem;
   static int counter = 0;

@@ -18,6 +18,9 @@ CliRun run_swath(const std::string& args);
 /// run_program() of the built `swath-energy`.
 CliRun run_swath_energy(const std::string& args);
 
+/// run_program() of the built `swath-control`.
+CliRun run_swath_control(const std::string& args);
+
 /// A fresh empty directory under the system's temporary directory (removed first if present).
 std::string fresh_dir(const std::string& name);
 

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "swath/control/control_task.hpp"
+#include "swath/control/driver.hpp"
 #include "swath/control/setpoints.hpp"
 #include "swath/vehicle/flight_model.hpp"
 #include "swath/vehicle/sensors.hpp"
@@ -16,7 +17,6 @@ namespace {
 
 using vehicle::FlightModel;
 using vehicle::FlightModelSettings;
-using vehicle::SensorType;
 
 class Loop {
  public:
@@ -38,35 +38,12 @@ class Loop {
   // One execution at `t`: the plant up to t, the samples into the driver, the task, the PWM out.
   void execute(SimTime t, const Setpoint& setpoint) {
     plant_.advance_to(t);
-    for (const vehicle::DeliveredSample& d : plant_.take_samples()) {
-      const vehicle::SensorSettings& s = plant_.physics().sensors[d.sensor];
-      const double dt = vehicle::seconds(s.period_ns);
-      switch (s.type) {
-        case SensorType::gyro:
-          imu_.add_gyro(d.sample.value, dt);
-          break;
-        case SensorType::accel:
-          imu_.add_accel(d.sample.value, dt);
-          break;
-        case SensorType::mag:
-          input_.sensors.mag = {d.sample.value, true};
-          break;
-        case SensorType::baro:
-          input_.sensors.baro = {d.sample.value.z, true};
-          break;
-        case SensorType::position:
-          input_.sensors.fix = {d.sample.value, d.sample.velocity, true, true};
-          break;
-      }
-    }
-    const vehicle::InertialAccumulator::Deltas d = imu_.take();
-    input_.sensors.imu = {d.angle_rad, d.velocity_m_s, d.gyro_s};
+    for (const vehicle::DeliveredSample& d : plant_.take_samples()) driver_.deliver(d);
+    input_.sensors = driver_.take();
     input_.time_ns = t;
     input_.setpoint = setpoint;
     const ExecutionOutput out = task_.execute(state_, input_);
     for (std::size_t i = 0; i < out.rotor_count; ++i) plant_.command_pwm(i, out.pwm_us[i]);
-    input_.sensors.mag.fresh = input_.sensors.baro.fresh = false;
-    input_.sensors.fix.position_fresh = input_.sensors.fix.velocity_fresh = false;
   }
 
   const FlightModel& plant() const { return plant_; }
@@ -76,7 +53,7 @@ class Loop {
   FlightModel plant_;
   ControlTask task_;
   TaskState state_;
-  vehicle::InertialAccumulator imu_;
+  SensorDriver driver_{plant_.physics().sensors};
   TaskInput input_;
 };
 

@@ -78,6 +78,19 @@ struct SchedulerConfig {
   RunSettings run;
 };
 
+/// One `--set KEY=VALUE`: a dotted key into a YAML file ("controller.position_p",
+/// "run.max_time_s", "mean_wind.speed_m_s") and its value as YAML text ("1.2", "[8, 8, 4]").
+struct Override {
+  std::string key, value;
+};
+
+/// `text` (a YAML mapping) with `overrides` applied, as YAML text: each key's mappings are created
+/// when absent; the value replaces what was there. The file's own reader then checks every key,
+/// so a misspelt key is refused as in the file. Throws base::InputError naming `source` and the
+/// override when the value is not YAML or a key runs into a value that is not a mapping.
+std::string apply_overrides(const std::string& text, const std::string& source,
+                            const std::vector<Override>& overrides);
+
 SchedulerConfig parse_scheduler_config(const std::string& text, const std::string& source);
 SchedulerConfig read_scheduler_config(const std::string& path);
 

@@ -16,11 +16,11 @@ using vehicle::Vec3;
 
 /// What the control task is asked to do at one instant.
 struct Setpoint {
-  Vec3 position_m;     ///< world ENU, m
-  Vec3 velocity_m_s;   ///< feed-forward, world ENU, m/s
-  double yaw_rad = 0;  ///< heading of body +x, counter-clockwise from east (ENU), rad, (−π, π]
-  std::size_t leg =
-      0;  ///< index of the leg being flown (waypoint leg → leg + 1); legs() at the end
+  Vec3 position_m;      ///< world ENU, m
+  Vec3 velocity_m_s;    ///< feed-forward, world ENU, m/s
+  double yaw_rad = 0;   ///< heading of body +x, counter-clockwise from east (ENU), rad, (−π, π]
+  std::size_t leg = 0;  ///< the leg being flown; legs() once the path has ended
+  std::size_t segment = 0;  ///< the segment of that leg (points segment → segment + 1)
 };
 
 /// Limits of the carrot's motion (§17.A `controller.limits`).
@@ -37,25 +37,40 @@ struct CarrotLimits {
 double trapezoid_duration_s(double length_m, double speed_m_s, double accel_m_s2);
 double trapezoid_distance_m(double t_s, double length_m, double speed_m_s, double accel_m_s2);
 
-/// A carrot along waypoints (world ENU). The flight starts at rest at the first waypoint at time 0;
-/// each leg starts when the previous one ends; a leg's speed is max_speed_m_s, lowered so that its
-/// vertical component stays within max_climb_m_s. Zero-length legs take no time.
+/// A carrot along legs (world ENU). A leg is a polyline flown without stopping (a waypoint
+/// mission's leg has two points; a stage plan's guided path is one long leg); the carrot starts
+/// each leg at rest and stops at its end. The flight starts at rest at the first leg's first point
+/// at time 0; each leg starts when the previous one ends. A leg's speed is max_speed_m_s, lowered
+/// so that the vertical component of its steepest segment stays within max_climb_m_s. Zero-length
+/// legs take no time.
 class CarrotPath {
  public:
-  /// `waypoints`: at least one point; `limits` valid as documented.
-  CarrotPath(std::vector<Vec3> waypoints, const CarrotLimits& limits);
+  /// Legs between consecutive `waypoints` (at least one point); `limits` valid as documented.
+  CarrotPath(const std::vector<Vec3>& waypoints, const CarrotLimits& limits);
+  /// `legs`: each at least one point (a leg's start should be the previous leg's end; the carrot
+  /// jumps otherwise); at least one leg.
+  CarrotPath(std::vector<std::vector<Vec3>> legs, const CarrotLimits& limits);
 
-  /// The setpoint in force at `t_ns` (≥ 0): the carrot as of the latest 50-Hz update at or before
-  /// t. Yaw points along the leg; on a vertical leg it keeps the previous leg's (0 at first).
+  /// The setpoint in force at `t_ns` (≥ 0): the carrot as of the latest update at or before t.
+  /// Yaw points along the segment flown; on a vertical segment it keeps the previous one's (0 at
+  /// first).
   Setpoint at(SimTime t_ns) const;
-  /// When the carrot reaches the last waypoint, ns (unquantised).
+  /// When the carrot reaches the end of the last leg, ns (rounded once, never accumulated).
   SimTime end_ns() const { return leg_start_ns_.back(); }
-  std::size_t legs() const { return waypoints_.size() - 1; }
+  std::size_t legs() const { return legs_.size(); }
+  /// The points of leg `k` (< legs()).
+  const std::vector<Vec3>& leg(std::size_t k) const { return legs_[k].points; }
+  /// The path's length, m.
+  double length_m() const;
 
  private:
-  std::vector<Vec3> waypoints_;
-  std::vector<double> speed_m_s_;      // per leg
-  std::vector<double> yaw_rad_;        // per leg
+  struct Leg {
+    std::vector<Vec3> points;
+    std::vector<double> arc_m;    // cumulative length at each point (arc_m[0] = 0)
+    std::vector<double> yaw_rad;  // per segment
+    double speed_m_s = 0;
+  };
+  std::vector<Leg> legs_;
   std::vector<SimTime> leg_start_ns_;  // per leg, plus the end
   CarrotLimits limits_;
   SimTime update_period_ns_;

@@ -56,6 +56,9 @@ struct SimConfig {
 /// Parses the YAML configuration; `source` names it in errors. Unknown keys, wrong types and out
 /// of range values throw base::InputError naming the file, the line and the key.
 SimConfig parse_sim_config(const std::string& text, const std::string& source);
+/// The `battery` section of a YAML mapping whose other keys belong to someone else (a vehicle
+/// file of swath-control); the defaults when it has none. Keys and ranges as in a sim config.
+Battery parse_battery_section(const std::string& text, const std::string& source);
 SimConfig read_sim_config(const std::string& path);
 
 /// A drone for `swath-energy budget`: how it flies a waypoint mission and what that costs.

@@ -84,6 +84,12 @@ struct SimulationResult {
   std::vector<geometry::Point2> planned_triggers;  ///< each stage's triggering point, likewise
 };
 
+/// The path the guidance of `plan` flies with `config` (its start, speed, wind, time step) at the
+/// highest trajectory parameters, every output interval (decimated beyond kMaxKeptSamples), local
+/// metres: what other vehicles (swath-control's multirotor) are asked to follow. Throws
+/// base::InputError as simulate() does.
+std::vector<geometry::Point2> guided_path(const Plan& plan, const SimConfig& config);
+
 /// The same plan and battery flown with fixed highest and fixed lowest parameters (no
 /// replanning): what lowering the computations buys.
 struct FixedComparison {

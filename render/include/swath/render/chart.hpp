@@ -43,6 +43,10 @@ struct ChartLayout {
 Scene chart_scene(const ChartSpec& spec, int width_px, int height_px,
                   ChartLayout* layout = nullptr);
 
+/// Adds `part` (a chart scene's screen layer and labels) to `into`, moved down by `dy_px`: charts
+/// stacked in one picture.
+void stack_scene(Scene& into, const Scene& part, double dy_px);
+
 /// Round tick values covering [lo, hi]: steps of 1, 2 or 5 times a power of ten, about `count`.
 std::vector<double> nice_ticks(double lo, double hi, int count);
 

@@ -42,6 +42,9 @@ class FlightModel {
   /// The wind at the body, world ENU (held since the last wind event).
   const Vec3& wind_m_s() const { return wind_; }
 
+  /// The instant of the next ESC frame, wind update or sensor measurement (samples are delivered
+  /// only at these instants).
+  SimTime next_event() const;
   /// Runs every event up to and including `until` (>= now()).
   void advance_to(SimTime until);
   /// A PWM command for motor `motor` at now(); its ESC applies it at its next frame.
@@ -57,7 +60,6 @@ class FlightModel {
   Vec3 acceleration_m_s2() const;
 
  private:
-  SimTime next_event() const;
   void integrate_to(SimTime t);
   void run_events(SimTime t);
   void update_wind(double t_s);

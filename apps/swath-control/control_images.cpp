@@ -1,0 +1,215 @@
+#include "control_images.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "map_furniture.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/render/legend.hpp"
+
+namespace swath::apps {
+namespace {
+
+using base::fixed_text;
+using geometry::Point2;
+using render::Color;
+
+const Color kInk{0.1f, 0.1f, 0.1f, 1};
+const Color kPlanned{0.62f, 0.62f, 0.62f, 1};
+const Color kArea{0.86f, 0.93f, 0.84f, 1};
+const Color kAreaOutline{0.35f, 0.55f, 0.3f, 1};
+const Color kNoFly{0.95f, 0.72f, 0.72f, 1};
+const Color kNoFlyOutline{0.75f, 0.1f, 0.1f, 1};
+const Color kBlue{0.1f, 0.3f, 0.85f, 1};
+const Color kOrange{0.95f, 0.55f, 0.0f, 1};
+const Color kGreen{0.1f, 0.6f, 0.2f, 1};
+const Color kRed{0.85f, 0.15f, 0.1f, 1};
+const Color kGrey{0.6f, 0.6f, 0.6f, 1};
+
+// Green at 0 through yellow to red at `worst`.
+Color error_color(double e, double worst) {
+  const auto t = static_cast<float>(std::clamp(e / worst, 0.0, 1.0));
+  return t < 0.5f ? Color{0.1f + 1.6f * t, 0.65f, 0.1f, 1}
+                  : Color{0.9f, 0.65f - 1.0f * (t - 0.5f), 0.1f, 1};
+}
+
+std::vector<Point2> flat(const std::vector<control::Vec3>& points) {
+  std::vector<Point2> out;
+  for (const auto& p : points) out.push_back({p.x, p.y});
+  return out;
+}
+
+ControlPicture stacked(std::vector<render::ChartSpec> specs, int width_px, int height_px) {
+  ControlPicture out;
+  out.view = render::View{1.0, 0.0, 0.0, width_px, height_px};
+  const int panel = height_px / static_cast<int>(specs.size());
+  for (std::size_t k = 0; k < specs.size(); ++k) {
+    if (specs[k].series.empty() || specs[k].series.front().x.empty()) continue;
+    render::ChartLayout layout{};
+    const render::Scene part = render::chart_scene(specs[k], width_px, panel, &layout);
+    const double dy = static_cast<double>(k) * panel;
+    render::stack_scene(out.scene, part, dy);
+    out.charts.push_back(layout);
+    out.offsets_px.push_back(dy);
+  }
+  return out;
+}
+
+template <typename F>
+render::Series series(const FlightSeries& flight, std::string name, Color color, double width,
+                      F value) {
+  render::Series s{std::move(name), {}, {}, color, width};
+  for (const auto& r : flight.rows()) {
+    s.x.push_back(r.t_s);
+    s.y.push_back(value(r));
+  }
+  return s;
+}
+
+}  // namespace
+
+void FlightSeries::add(const control::TimeseriesRow& row) {
+  if (seen_++ % stride_ != 0) return;
+  rows_.push_back(row);
+  if (rows_.size() < kMaxKept) return;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < rows_.size(); i += 2) rows_[kept++] = rows_[i];
+  rows_.resize(kept);
+  stride_ *= 2;
+}
+
+ControlPicture trajectory_picture(const control::SimulationSettings& settings,
+                                  const control::SimulationSummary& summary,
+                                  const FlightSeries& flight, int width_px, int height_px) {
+  ControlPicture out;
+  render::Scene& scene = out.scene;
+  const control::FlightMission& mission = settings.mission;
+  MapBounds bounds;
+  for (const auto& leg : mission.legs)
+    for (const auto& p : leg) bounds.add({p.x, p.y});
+  for (const auto& r : flight.rows()) bounds.add({r.position_m.x, r.position_m.y});
+  for (const auto& ring : mission.area)
+    for (Point2 p : ring) bounds.add(p);
+  for (const auto& ring : mission.no_fly)
+    for (Point2 p : ring) bounds.add(p);
+  const int text_h = std::max(12, height_px / 50);
+  const int top = 2 * (text_h + 6) + 16;
+  const render::PixelBox map_box{40.0, static_cast<double>(top), width_px - 40.0, height_px - 60.0};
+  out.view = render::fit_into(bounds.lo, bounds.hi, map_box, width_px, height_px);
+
+  if (!mission.area.empty()) scene.polygons.push_back({mission.area, kArea, kAreaOutline, 1.5});
+  for (const auto& zone : mission.no_fly)
+    scene.polygons.push_back({{zone}, kNoFly, kNoFlyOutline, 2.0});
+  for (const auto& leg : mission.legs) scene.polylines.push_back({flat(leg), 2.0, kPlanned});
+  // The flight in pieces of about one colour.
+  const auto& rows = flight.rows();
+  double worst = 1.0;
+  for (const auto& r : rows) worst = std::max(worst, r.cross_track_m);
+  const std::size_t piece = std::max<std::size_t>(2, rows.size() / 300);
+  for (std::size_t i = 0; i + 1 < rows.size(); i += piece) {
+    render::Polyline line;
+    line.width_px = 3.0;
+    double e = 0;
+    for (std::size_t k = i; k <= std::min(i + piece, rows.size() - 1); ++k) {
+      line.points.push_back({rows[k].position_m.x, rows[k].position_m.y});
+      e = std::max(e, rows[k].cross_track_m);
+    }
+    line.color = error_color(e, worst);
+    scene.polylines.push_back(std::move(line));
+  }
+  const auto& first = mission.legs.front().front();
+  scene.markers.push_back({{first.x, first.y}, 12.0, kInk, render::MarkerShape::square});
+  if (!rows.empty())
+    scene.markers.push_back({{rows.back().position_m.x, rows.back().position_m.y},
+                             11.0,
+                             kInk,
+                             render::MarkerShape::disc});
+
+  std::string title = "swath-control: " + std::string(control::to_string(summary.status)) +
+                      " after " + fixed_text(summary.flight_time_s, 0) + " s; cross-track RMS " +
+                      fixed_text(summary.cross_track_m.rms, 2) + " m, max " +
+                      fixed_text(summary.cross_track_m.max, 2) + " m";
+  if (summary.min_clearance_m)
+    title += "; least clearance " + fixed_text(*summary.min_clearance_m, 2) + " m";
+  scene.labels.push_back(
+      {10, text_h + 8, title, render::fitted_text_height(title, width_px - 60.0, text_h), kInk});
+  const std::string sub = settings.mission.name + ", " + settings.physics.airframe.name + ", " +
+                          settings.environment.name + " wind, seed " +
+                          std::to_string(settings.seed);
+  scene.labels.push_back({10, 2 * (text_h + 6) + 8, sub,
+                          render::fitted_text_height(sub, width_px - 60.0, 0.8 * text_h), kInk});
+  std::vector<render::LegendEntry> legend{
+      {"mission", render::SwatchKind::line, kPlanned},
+      {"flight, cross-track 0 m", render::SwatchKind::line, error_color(0, 1)},
+      {"cross-track " + fixed_text(worst, 1) + " m", render::SwatchKind::line, error_color(1, 1)},
+      {"start", render::SwatchKind::marker, kInk, {0, 0, 0, 0}, render::MarkerShape::square},
+      {"end", render::SwatchKind::marker, kInk, {0, 0, 0, 0}, render::MarkerShape::disc}};
+  if (!mission.area.empty())
+    legend.push_back({"area", render::SwatchKind::fill, kArea, kAreaOutline});
+  if (!mission.no_fly.empty())
+    legend.push_back({"no-fly zone", render::SwatchKind::fill, kNoFly, kNoFlyOutline});
+  render::add_legend(scene, legend, map_box, render::Corner::bottom_right, 0.8 * text_h);
+  add_scale_bar(scene, out.view, width_px, height_px, text_h);
+  add_north_arrow(scene, width_px, top + 20.0, text_h);
+  return out;
+}
+
+ControlPicture attitude_picture(const FlightSeries& flight, int width_px, int height_px) {
+  using R = control::TimeseriesRow;
+  std::vector<render::ChartSpec> specs(3);
+  specs[0] = {"Roll (right wing down)",
+              "time (s)",
+              "deg",
+              {series(flight, "setpoint", kGrey, 1.5, [](const R& r) { return r.setpoint_deg.x; }),
+               series(flight, "true", kBlue, 1.5, [](const R& r) { return r.attitude_deg.x; })}};
+  specs[1] = {"Pitch (nose up)",
+              "time (s)",
+              "deg",
+              {series(flight, "setpoint", kGrey, 1.5, [](const R& r) { return r.setpoint_deg.y; }),
+               series(flight, "true", kBlue, 1.5, [](const R& r) { return r.attitude_deg.y; })}};
+  specs[2] = {
+      "Tracking", "time (s)", "m", {series(flight, "cross-track", kOrange, 1.5, [](const R& r) {
+        return r.cross_track_m;
+      })}};
+  return stacked(std::move(specs), width_px, height_px);
+}
+
+ControlPicture energy_picture(const control::SimulationSettings& settings,
+                              const FlightSeries& flight, int width_px, int height_px) {
+  using R = control::TimeseriesRow;
+  std::vector<render::ChartSpec> specs(3);
+  specs[0] = {
+      "Power",
+      "time (s)",
+      "W",
+      {series(flight, "motors", kBlue, 1.5, [](const R& r) { return r.motors_w; }),
+       series(flight, "avionics", kGreen, 1.5, [](const R& r) { return r.avionics_w; }),
+       series(flight, "flight computer", kOrange, 1.5, [](const R& r) { return r.cpu_w; })}};
+  const double reserve = 100 * settings.battery.reserve_soc;
+  const double t_end = flight.rows().empty() ? 1.0 : flight.rows().back().t_s;
+  specs[1] = {"State of charge",
+              "time (s)",
+              "%",
+              {series(flight, "SoC", kGreen, 2.0, [](const R& r) { return 100 * r.soc; }),
+               {"reserve", {0.0, t_end}, {reserve, reserve}, kRed, 1.5}}};
+  specs[2] = {"Control executions",
+              "time (s)",
+              "per second",
+              {series(flight, "executions in the last second", kBlue, 1.5,
+                      [](const R& r) { return static_cast<double>(r.executions_last_s); })}};
+  return stacked(std::move(specs), width_px, height_px);
+}
+
+void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
+                        const control::SimulationSummary& summary, const FlightSeries& flight,
+                        int width_px, int height_px) {
+  auto png = [](const ControlPicture& p) {
+    return render::encode_png(render::draw(p.scene, p.view));
+  };
+  set.add("trajectory.png",
+          png(trajectory_picture(settings, summary, flight, width_px, height_px)));
+  set.add("attitude.png", png(attitude_picture(flight, width_px, height_px)));
+  set.add("energy.png", png(energy_picture(settings, flight, width_px, height_px)));
+}
+
+}  // namespace swath::apps

@@ -1,0 +1,52 @@
+#pragma once
+// swath-control's pictures (DESIGN.md §17.5): the flight over the mission coloured by cross-track
+// error with the area and no-fly zones (trajectory.png); attitude and its setpoint, and the
+// tracking error, over time (attitude.png); power by consumer, state of charge and executions per
+// second (energy.png).
+
+#include <vector>
+
+#include "swath/base/output_set.hpp"
+#include "swath/control/simulation.hpp"
+#include "swath/render/chart.hpp"
+#include "swath/render/image.hpp"
+
+namespace swath::apps {
+
+/// The rows kept for the pictures: every row until kMaxKept, then every 2nd, 4th, … (the memory
+/// of a flight of any length stays bounded; the CSV has every row).
+class FlightSeries {
+ public:
+  static constexpr std::size_t kMaxKept = 4096;
+  void add(const control::TimeseriesRow& row);
+  const std::vector<control::TimeseriesRow>& rows() const { return rows_; }
+
+ private:
+  std::vector<control::TimeseriesRow> rows_;
+  std::size_t stride_ = 1, seen_ = 0;
+};
+
+struct ControlPicture {
+  render::Scene scene;
+  render::View view;
+  std::vector<render::ChartLayout> charts;  ///< stacked charts (y offsets in offsets_px)
+  std::vector<double> offsets_px;
+};
+
+/// The mission (grey), area and no-fly zones, the flight coloured by cross-track error (green 0,
+/// red at or above max(1 m, the flight's largest)), start and end, a scale bar and north.
+ControlPicture trajectory_picture(const control::SimulationSettings& settings,
+                                  const control::SimulationSummary& summary,
+                                  const FlightSeries& flight, int width_px, int height_px);
+/// Roll and pitch with their setpoints; cross-track error.
+ControlPicture attitude_picture(const FlightSeries& flight, int width_px, int height_px);
+/// Motor, CPU and avionics power; state of charge with the reserve; executions per second.
+ControlPicture energy_picture(const control::SimulationSettings& settings,
+                              const FlightSeries& flight, int width_px, int height_px);
+
+/// The three pictures into the output set as PNG.
+void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
+                        const control::SimulationSummary& summary, const FlightSeries& flight,
+                        int width_px, int height_px);
+
+}  // namespace swath::apps

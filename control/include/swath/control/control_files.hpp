@@ -1,0 +1,33 @@
+#pragma once
+// The files of `swath-control run` (DESIGN.md §17.5, columns of §17.A, with the one spelling of
+// speeds, _m_s): timeseries.csv and rate.csv row by row (streamed by the caller), summary.json.
+// Numbers are written with a fixed number of decimals and without the locale, so the same flight
+// gives the same bytes.
+
+#include <string>
+
+#include "swath/control/simulation.hpp"
+
+namespace swath::control {
+
+/// timeseries.csv: the header for `rotors` rotors, and one row.
+std::string timeseries_csv_header(std::size_t rotors);
+std::string timeseries_csv_row(const TimeseriesRow& row);
+
+/// rate.csv: the header with one triggers_<name> column per trigger sensor, and one row.
+std::string rate_csv_header(const std::vector<std::string>& trigger_sensors);
+std::string rate_csv_row(const RateRow& row);
+
+/// What summary.json names as the inputs.
+struct SummaryInputs {
+  std::string mission, vehicle, scheduler, environment;
+  std::uint64_t seed = 1;
+  double speed_m_s = 0;
+  bool loop = false;
+};
+
+/// summary.json (§17.4's keys; `plan_check` for a swath plan).
+std::string summary_json(const SimulationSummary& summary, const SummaryInputs& inputs,
+                         const SimulationSettings& settings);
+
+}  // namespace swath::control

@@ -1,0 +1,644 @@
+#include "swath/control/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <memory>
+#include <numbers>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/control/driver.hpp"
+#include "swath/control/rotor_layout.hpp"
+#include "swath/control/scheduler.hpp"
+
+namespace swath::control {
+namespace {
+
+using base::InputError;
+using geometry::Point2;
+using vehicle::kNanosecondsPerSecond;
+using vehicle::seconds;
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+constexpr SimTime kMetricsPeriod_ns = 1'000'000;  // §17.4: metrics every 1 ms
+constexpr double kLostTrack_m = 50.0;             // §17.5: 50 m off track for 5 s
+constexpr SimTime kLostTrackFor_ns = 5 * kNanosecondsPerSecond;
+constexpr double kSettle_m = 1.0;  // "completed": within 1 m of the last point ...
+constexpr SimTime kSettleMax_ns = 10 * kNanosecondsPerSecond;  // ... or 10 s after the carrot
+
+// Roll (right wing down), pitch (nose up) and compass yaw of a body FLU → world ENU attitude, deg.
+Vec3 euler_deg(const Quat& q) {
+  const Vec3 x = vehicle::rotate(q, {1, 0, 0}), y = vehicle::rotate(q, {0, 1, 0}),
+             z = vehicle::rotate(q, {0, 0, 1});
+  const double roll = std::atan2(y.z, z.z) * kDeg;
+  const double pitch = std::asin(std::clamp(x.z, -1.0, 1.0)) * kDeg;
+  double yaw = 90.0 - std::atan2(x.y, x.x) * kDeg;
+  yaw = std::fmod(yaw + 360.0, 360.0);
+  return {roll, pitch, yaw};
+}
+
+double wrap_deg(double a) {
+  a = std::fmod(a + 180.0, 360.0);
+  if (a < 0) a += 360.0;
+  return a - 180.0;
+}
+
+double tilt_deg(const Quat& q) {
+  return std::acos(std::clamp(vehicle::rotate(q, {0, 0, 1}).z, -1.0, 1.0)) * kDeg;
+}
+
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double l2 = dot(d, d);
+  const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return norm(p - (a + t * d));
+}
+
+// ---- Preflight: what cannot fly is refused before anything is simulated. ----
+
+ControlTaskConfig task_config(const SimulationSettings& s) {
+  ControlTaskConfig c;
+  c.gains = s.control.controller;
+  // A carrot faster than the velocity limit would run away from the vehicle.
+  c.gains.limits.max_speed_m_s = std::max(c.gains.limits.max_speed_m_s, s.speed_m_s + 1.0);
+  c.estimator = with_sensor_noise(s.control.estimator, s.physics.sensors);
+  c.estimator.gravity_m_s2 = s.environment.gravity_m_s2;
+  const vehicle::Airframe& a = s.physics.airframe;
+  c.airframe.mass_kg = a.frame.mass_kg;
+  c.airframe.inertia_kg_m2 = a.frame.inertia_kg_m2;
+  c.airframe.gravity_m_s2 = s.environment.gravity_m_s2;
+  c.airframe.rotors = layout_of(a, s.physics.esc);
+  c.nominal_rate_hz = s.scheduler.rate_hz;
+  return c;
+}
+
+void check_lift(const SimulationSettings& s) {
+  const vehicle::Airframe& a = s.physics.airframe;
+  double lift = 0;
+  for (const vehicle::Rotor& r : a.rotors)
+    lift += r.efficiency * a.propulsion.thrust_coeff_n_s2 * a.propulsion.max_speed_rad_s *
+            a.propulsion.max_speed_rad_s;
+  const double weight = a.frame.mass_kg * s.environment.gravity_m_s2;
+  if (lift < 1.2 * weight)
+    throw InputError("vehicle " + a.name + ": its rotors lift at most " +
+                     base::fixed_text(lift, 1) + " N, less than 1.2 times its weight (" +
+                     base::fixed_text(1.2 * weight, 1) + " N): it could not be controlled");
+}
+
+std::unique_ptr<Scheduler> make_scheduler(const SchedulerConfig& config) {
+  if (config.mode != SchedulerMode::time_triggered)
+    throw InputError(
+        "scheduler: mode reactive is not available in this version; use mode: time_triggered");
+  auto tt = TimeTriggeredScheduler::at_rate(config.rate_hz);
+  if (!tt)
+    throw InputError("scheduler: rate_hz " + base::shortest_text(config.rate_hz) +
+                     " does not give a whole number of nanoseconds per period");
+  return std::make_unique<TimeTriggeredScheduler>(*tt);
+}
+
+// ---- The battery: paper 004 eq. 12 per metrics step. ----
+
+class BatteryState {
+ public:
+  explicit BatteryState(const energy::Battery& b) : battery_(b), soc_(b.initial_soc) {}
+  /// `energy_j` drawn over `dt_s`; false when the battery cannot deliver that power.
+  bool draw(double energy_j, double dt_s) {
+    if (dt_s <= 0) return true;
+    const double power = energy_j / dt_s;
+    const double current = energy::battery_current_a(battery_, power);
+    if (!std::isfinite(current)) return false;
+    soc_ -= current * dt_s / (3600.0 * battery_.capacity_ah);
+    // What the cell delivers to the load, V I − R I², is V~ P / V by eq. 12.
+    delivered_j_ += (battery_.voltage_v * current - battery_.resistance_ohm * current * current) *
+                    dt_s * battery_.voltage_v / battery_.stabilised_voltage_v;
+    drawn_j_ += energy_j;
+    return soc_ > 0;
+  }
+  double soc() const { return soc_; }
+  double balance_residual() const {
+    return drawn_j_ > 0 ? std::abs(delivered_j_ - drawn_j_) / drawn_j_ : 0.0;
+  }
+
+ private:
+  energy::Battery battery_;
+  double soc_;
+  double delivered_j_ = 0, drawn_j_ = 0;
+};
+
+// ---- Metrics (§17.4). ----
+
+class RunningError {
+ public:
+  void add(double e) {
+    sum2_ += e * e;
+    max_ = std::max(max_, std::abs(e));
+    ++n_;
+  }
+  ErrorStat stat() const { return {n_ > 0 ? std::sqrt(sum2_ / static_cast<double>(n_)) : 0, max_}; }
+  void reset() { *this = {}; }
+
+ private:
+  double sum2_ = 0, max_ = 0;
+  long n_ = 0;
+};
+
+// Latencies in 10 µs bins up to 1 s (bounded memory for any flight length).
+class LatencyHistogram {
+ public:
+  void add(double ms) {
+    const auto bin = static_cast<std::size_t>(std::clamp(ms * 100.0, 0.0, 99'999.0));
+    ++bins_[bin];
+    sum_ += ms;
+    max_ = std::max(max_, ms);
+    ++n_;
+  }
+  double mean() const { return n_ > 0 ? sum_ / static_cast<double>(n_) : 0; }
+  double max() const { return max_; }
+  double quantile(double q) const {
+    if (n_ == 0) return 0;
+    const auto target = static_cast<std::int64_t>(std::ceil(q * static_cast<double>(n_)));
+    std::int64_t seen = 0;
+    for (std::size_t k = 0; k < bins_.size(); ++k)
+      if ((seen += bins_[k]) >= target) return (static_cast<double>(k) + 1) / 100.0;
+    return max_;
+  }
+
+ private:
+  std::vector<std::int64_t> bins_ = std::vector<std::int64_t>(100'000, 0);
+  double sum_ = 0, max_ = 0;
+  std::int64_t n_ = 0;
+};
+
+double quantile(std::vector<int> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+bool inside(const std::vector<Point2>& ring, Point2 p) {
+  bool in = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const Point2 a = ring[i], b = ring[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) in = !in;
+  }
+  return in;
+}
+
+double ring_distance(const std::vector<Point2>& ring, Point2 p) {
+  double best = INFINITY;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+    best = std::min(best, segment_distance({p.x, p.y, 0}, {ring[i].x, ring[i].y, 0},
+                                           {ring[j].x, ring[j].y, 0}));
+  return best;
+}
+
+// The flown track against a swath plan's area and no-fly zones (§14's check).
+class PlanCheck {
+ public:
+  explicit PlanCheck(const FlightMission& m) : mission_(m) {}
+  bool active() const { return !mission_.area.empty(); }
+  void add(const Vec3& p) {
+    const Point2 q{p.x, p.y};
+    if (have_last_) {
+      const double step = std::hypot(q.x - last_.x, q.y - last_.y);
+      const Point2 mid{(q.x + last_.x) / 2, (q.y + last_.y) / 2};
+      if (!inside(mission_.area.front(), mid)) outside_m_ += step;
+      for (const auto& zone : mission_.no_fly)
+        if (inside(zone, mid)) inside_m_ += step;
+    }
+    for (const auto& zone : mission_.no_fly) {
+      const double d = ring_distance(zone, q);
+      const double signed_d = inside(zone, q) ? -d : d;
+      clearance_ = clearance_ ? std::min(*clearance_, signed_d) : signed_d;
+    }
+    last_ = q;
+    have_last_ = true;
+  }
+  void write(SimulationSummary& s) const {
+    s.checked_against_plan = active();
+    s.outside_area_m = outside_m_;
+    s.inside_no_fly_m = inside_m_;
+    s.min_clearance_m = clearance_;
+  }
+
+ private:
+  const FlightMission& mission_;
+  Point2 last_;
+  bool have_last_ = false;
+  double outside_m_ = 0, inside_m_ = 0;
+  std::optional<double> clearance_;
+};
+
+// ---- The flight: the parts on one clock. ----
+
+class Flight {
+ public:
+  Flight(const SimulationSettings& s, SimulationObserver* observer)
+      : s_(s),
+        observer_(observer),
+        task_(create_task(s)),
+        scheduler_(make_scheduler(s.scheduler)),
+        carrot_(s.mission.legs, carrot_limits(s, task_.config())),
+        plant_(plant_settings(s, carrot_)),
+        computer_(s.control.computer),
+        driver_(s.physics.sensors),
+        battery_(s.battery),
+        check_(s.mission),
+        triggers_(trigger_sensor_names(s.physics)),
+        sample_counts_(s.physics.sensors.size(), 0) {
+    state_ = task_.initial_state(carrot_.at(0).position_m);
+    for (const auto& sensor : s.physics.sensors)
+      if (sensor.trigger) trigger_index_.push_back(&sensor - s.physics.sensors.data());
+    output_period_ns_ = std::max<SimTime>(vehicle::from_seconds(s.scheduler.run.output_interval_s),
+                                          kMetricsPeriod_ns) /
+                        kMetricsPeriod_ns * kMetricsPeriod_ns;
+    max_time_ns_ = vehicle::from_seconds(s.scheduler.run.max_time_s);
+    // Metrics from run.metrics_from_s, unless the mission ends before it (then from the start).
+    const double from = s.scheduler.run.metrics_from_s;
+    metrics_from_ns_ = (!s.loop && vehicle::from_seconds(from) >= carrot_.end_ns())
+                           ? 0
+                           : vehicle::from_seconds(from);
+    summary_.metrics_from_s = seconds(metrics_from_ns_);
+    rate_.triggers.assign(triggers_.size(), 0);
+    last_.rotors = task_.config().airframe.rotors.count;
+  }
+
+  SimulationSummary run() {
+    SimTime next_tick = kMetricsPeriod_ns;
+    while (!ended_) {
+      const SimTime t = std::min({plant_.next_event(), scheduler_->next_release_ns(), next_tick});
+      run_computer_to(t);
+      plant_.advance_to(t);
+      deliver_samples();
+      if (scheduler_->next_release_ns() == t) computer_.request_control(scheduler_->take_release());
+      if (t == next_tick) {
+        tick(t);
+        next_tick += kMetricsPeriod_ns;
+      }
+    }
+    return finish();
+  }
+
+ private:
+  static ControlTask create_task(const SimulationSettings& s) {
+    check_lift(s);
+    auto task = ControlTask::create(task_config(s));
+    if (!task)
+      throw InputError("vehicle " + s.physics.airframe.name +
+                       ": its rotors cannot be mixed (4 to 8 rotors with positive coefficients "
+                       "giving rank 4 are needed)");
+    return *task;
+  }
+  static CarrotLimits carrot_limits(const SimulationSettings& s, const ControlTaskConfig& c) {
+    return {s.speed_m_s, c.gains.limits.max_climb_m_s, c.gains.limits.max_accel_m_s2,
+            s.scheduler.run.setpoint_rate_hz};
+  }
+  static vehicle::FlightModelSettings plant_settings(const SimulationSettings& s,
+                                                     const CarrotPath& carrot) {
+    vehicle::FlightModelSettings p;
+    p.physics = s.physics;
+    p.environment = s.environment;
+    p.seed = s.seed;
+    p.max_step_s = s.scheduler.run.max_step_s;
+    p.mission_speed_m_s = s.speed_m_s;
+    p.initial.position_m = carrot.at(0).position_m;
+    p.initial.rotor_rad_s = vehicle::hover(s.physics.airframe).rotor_rad_s;
+    return p;
+  }
+
+  Setpoint setpoint_at(SimTime t) const { return carrot_.at(t - lap_start_ns_); }
+
+  // The computer's events up to t: an execution reads its inputs when it starts; its pulses
+  // reach the ESCs when it ends.
+  void run_computer_to(SimTime t) {
+    while (const std::optional<ComputerEvent> e = computer_.advance(t)) {
+      plant_.advance_to(e->time_ns);
+      deliver_samples();
+      if (e->type == ComputerEvent::Type::control_start) {
+        start_execution(e->time_ns);
+      } else if (e->type == ComputerEvent::Type::control_end) {
+        end_execution(*e);
+      }
+    }
+  }
+
+  void deliver_samples() {
+    for (const vehicle::DeliveredSample& d : plant_.take_samples()) {
+      driver_.deliver(d);
+      computer_.sample(false);
+      if (d.sensor < sample_counts_.size()) ++sample_counts_[d.sensor];
+    }
+  }
+
+  void start_execution(SimTime t) {
+    scheduler_->on_execution_start(t);
+    TaskInput input;
+    input.time_ns = t;
+    input.sensors = driver_.take();
+    const vehicle::MultirotorState& x = plant_.state();
+    input.sensors.truth = {x.position_m, x.velocity_m_s, x.attitude, x.rate_rad_s};
+    input.setpoint = setpoint_at(t);
+    pending_ = task_.execute(state_, input);
+  }
+
+  void end_execution(const ComputerEvent& e) {
+    for (std::size_t i = 0; i < pending_.rotor_count; ++i)
+      plant_.command_pwm(i, pending_.pwm_us[i]);
+    attitude_setpoint_ = pending_.attitude_setpoint;
+    scheduler_->on_execution_end(e.time_ns, pending_.changed);
+    const auto cause = static_cast<std::size_t>(e.cause);
+    ++rate_.executions;
+    ++rate_.by_cause[cause];
+    if (!pending_.changed) ++rate_.unchanged;
+    const double latency_ms = seconds(e.time_ns - e.request_ns) * 1e3;
+    rate_latency_sum_ms_ += latency_ms;
+    recent_ends_.push_back(e.time_ns);
+    last_pwm_ = pending_.pwm_us;
+    if (e.time_ns >= metrics_from_ns_) {
+      ++summary_.executions.total;
+      ++summary_.executions.by_cause[cause];
+      if (!pending_.changed) ++unchanged_;
+      latency_.add(latency_ms);
+    }
+  }
+
+  // Every 1 ms: the battery, the metrics, the end conditions; rows and seconds when due.
+  void tick(SimTime t) {
+    const double dt = seconds(kMetricsPeriod_ns);
+    const double motors = plant_.motor_energy_j(), cpu = computer_.energy_j();
+    const double avionics = s_.physics.avionics_w * seconds(t);
+    const double drawn = (motors - motors_j_) + (cpu - cpu_j_) + (avionics - avionics_j_);
+    motors_j_ = motors;
+    cpu_j_ = cpu;
+    avionics_j_ = avionics;
+    const bool powered = battery_.draw(drawn, dt);
+    const vehicle::MultirotorState& x = plant_.state();
+    if (have_position_) summary_.distance_m += norm(x.position_m - last_position_);
+    last_position_ = x.position_m;
+    have_position_ = true;
+    const Setpoint sp = setpoint_at(t);
+    const double cross = cross_track(x.position_m, sp);
+    const double carrot_error = norm(x.position_m - sp.position_m);
+    measure(t, x, cross, carrot_error);
+    if (t % output_period_ns_ == 0) record(t, x, sp, cross);
+    if (t % kNanosecondsPerSecond == 0) close_second(t);
+    if (check_.active() && t % (20 * kMetricsPeriod_ns) == 0) check_.add(x.position_m);
+    decide_end(t, x, sp, carrot_error, powered);
+  }
+
+  double cross_track(const Vec3& p, const Setpoint& sp) const {
+    const std::size_t leg = std::min(sp.leg, carrot_.legs() - 1);
+    const std::vector<Vec3>& points = carrot_.leg(leg);
+    if (points.size() < 2) return norm(p - points.front());
+    // Segments near the carrot's: a drone lags its carrot by metres, not by kilometres.
+    const std::size_t lo = sp.segment > 50 ? sp.segment - 50 : 0;
+    const std::size_t hi = std::min(points.size() - 1, sp.segment + 51);
+    double best = INFINITY;
+    for (std::size_t k = lo; k < hi; ++k)
+      best = std::min(best, segment_distance(p, points[k], points[k + 1]));
+    return best;
+  }
+
+  void measure(SimTime t, const vehicle::MultirotorState& x, double cross, double carrot_error) {
+    const Vec3 truth = euler_deg(x.attitude), wanted = euler_deg(attitude_setpoint_),
+               estimate = euler_deg(state_.estimate.attitude);
+    const double er = wrap_deg(wanted.x - truth.x), ep = wrap_deg(wanted.y - truth.y);
+    second_attitude_.add(er);
+    second_attitude_.add(ep);
+    if (t < metrics_from_ns_) return;
+    attitude_[0].add(er);
+    attitude_[1].add(ep);
+    attitude_[2].add(wrap_deg(wanted.z - truth.z));
+    estimated_[0].add(wrap_deg(wanted.x - estimate.x));
+    estimated_[1].add(wrap_deg(wanted.y - estimate.y));
+    estimated_[2].add(wrap_deg(wanted.z - estimate.z));
+    cross_.add(cross);
+    position_.add(carrot_error);
+    summary_.max_tilt_deg = std::max(summary_.max_tilt_deg, tilt_deg(x.attitude));
+  }
+
+  void record(SimTime t, const vehicle::MultirotorState& x, const Setpoint& sp, double cross) {
+    TimeseriesRow& r = last_;
+    const double span = seconds(t - last_row_ns_);
+    r.t_s = seconds(t);
+    r.position_m = x.position_m;
+    r.velocity_m_s = x.velocity_m_s;
+    r.attitude_deg = euler_deg(x.attitude);
+    r.setpoint_deg = euler_deg(attitude_setpoint_);
+    r.estimate_deg = euler_deg(state_.estimate.attitude);
+    r.carrot_m = sp.position_m;
+    r.cross_track_m = cross;
+    r.wind_m_s = plant_.wind_m_s();
+    r.pwm_us = last_pwm_;
+    r.rotor_rad_s = x.rotor_rad_s;
+    r.motors_w = span > 0 ? (motors_j_ - row_motors_j_) / span : plant_.motor_power_w();
+    r.cpu_w = span > 0 ? (cpu_j_ - row_cpu_j_) / span : 0;
+    r.avionics_w = s_.physics.avionics_w;
+    r.soc = battery_.soc();
+    while (!recent_ends_.empty() && recent_ends_.front() <= t - kNanosecondsPerSecond)
+      recent_ends_.pop_front();
+    r.executions_last_s = static_cast<int>(recent_ends_.size());
+    row_motors_j_ = motors_j_;
+    row_cpu_j_ = cpu_j_;
+    last_row_ns_ = t;
+    if (observer_) observer_->on_row(r);
+  }
+
+  // `whole`: the row covers a whole second (the last, partial one is reported but not counted in
+  // the per-second statistics).
+  void close_second(SimTime t, bool whole = true) {
+    rate_.second = static_cast<int>(t / kNanosecondsPerSecond);
+    const ComputerStats& c = computer_.stats();
+    rate_.cpu_busy = seconds(c.busy_ns - second_busy_ns_);
+    rate_.overruns = c.overruns - second_overruns_;
+    rate_.latency_mean_ms = rate_.executions > 0 ? rate_latency_sum_ms_ / rate_.executions : 0;
+    rate_.attitude_rms_deg = second_attitude_.stat().rms;
+    second_busy_ns_ = c.busy_ns;
+    second_overruns_ = c.overruns;
+    if (whole && t > metrics_from_ns_) per_second_.push_back(rate_.executions);
+    if (observer_) {
+      observer_->on_second(rate_);
+      observer_->on_progress(progress(t));
+    }
+    rate_ = RateRow{};
+    rate_.triggers.assign(triggers_.size(), 0);
+    rate_latency_sum_ms_ = 0;
+    second_attitude_.reset();
+  }
+
+  double progress(SimTime t) const {
+    if (s_.loop) {
+      const double span = s_.battery.initial_soc - s_.battery.reserve_soc;
+      return span > 0 ? std::clamp((s_.battery.initial_soc - battery_.soc()) / span, 0.0, 1.0)
+                      : 1.0;
+    }
+    return std::clamp(static_cast<double>(t) / static_cast<double>(carrot_.end_ns() + 1), 0.0, 1.0);
+  }
+
+  void decide_end(SimTime t, const vehicle::MultirotorState& x, const Setpoint& sp,
+                  double carrot_error, bool powered) {
+    const double tilt = tilt_deg(x.attitude);
+    off_track_since_ns_ = carrot_error > kLostTrack_m ? std::min(off_track_since_ns_, t) : kNever;
+    if (tilt > s_.control.controller.limits.crash_tilt_deg) {
+      end(t, FlightStatus::lost_control, "tilt " + base::fixed_text(tilt, 1) + " deg");
+    } else if (x.position_m.z < 0) {
+      end(t, FlightStatus::lost_control, "below the ground");
+    } else if (off_track_since_ns_ != kNever && t - off_track_since_ns_ >= kLostTrackFor_ns) {
+      end(t, FlightStatus::lost_control, "more than 50 m off the carrot for 5 s");
+    } else if (!powered) {
+      end(t, FlightStatus::battery_empty, "");
+    } else if (battery_.soc() <= s_.battery.reserve_soc && !summary_.reserve_time_s) {
+      summary_.reserve_time_s = seconds(t);
+      if (s_.loop) end(t, FlightStatus::reserve_reached, "");
+    }
+    if (ended_) return;
+    const SimTime lap_end = lap_start_ns_ + carrot_.end_ns();
+    if (t >= lap_end) {
+      if (s_.loop) {
+        ++summary_.laps;
+        lap_start_ns_ = t;
+      } else if (norm(x.position_m - sp.position_m) < kSettle_m || t >= lap_end + kSettleMax_ns) {
+        summary_.laps = 1;
+        end(t, FlightStatus::completed, "");
+      }
+    }
+    if (!ended_ && t >= max_time_ns_) end(t, FlightStatus::time_limit, "");
+  }
+
+  void end(SimTime t, FlightStatus status, std::string reason) {
+    ended_ = true;
+    summary_.status = status;
+    summary_.lost_control_reason = std::move(reason);
+    summary_.flight_time_s = seconds(t);
+    end_ns_ = t;
+  }
+
+  SimulationSummary finish() {
+    // The last, partial second is reported too, as the second it belongs to.
+    if (end_ns_ % kNanosecondsPerSecond != 0)
+      close_second((end_ns_ / kNanosecondsPerSecond + 1) * kNanosecondsPerSecond, false);
+    SimulationSummary& s = summary_;
+    for (int k = 0; k < 3; ++k) {
+      s.attitude_error_deg[k] = attitude_[k].stat();
+      s.attitude_error_estimated_deg[k] = estimated_[k].stat();
+    }
+    s.cross_track_m = cross_.stat();
+    s.position_error_m = position_.stat();
+    auto& e = s.executions;
+    if (!per_second_.empty()) {
+      double sum = 0;
+      int above = 0;
+      for (int n : per_second_) {
+        sum += n;
+        if (n > s_.scheduler.rate_hz) ++above;
+      }
+      e.per_second_mean = sum / static_cast<double>(per_second_.size());
+      e.per_second_p5 = quantile(per_second_, 0.05);
+      e.per_second_p95 = quantile(per_second_, 0.95);
+      e.per_second_max = *std::max_element(per_second_.begin(), per_second_.end());
+      e.share_seconds_above_rate = above / static_cast<double>(per_second_.size());
+    }
+    e.unchanged_fraction =
+        e.total > 0 ? static_cast<double>(unchanged_) / static_cast<double>(e.total) : 0;
+    e.latency_mean_ms = latency_.mean();
+    e.latency_p95_ms = latency_.quantile(0.95);
+    e.latency_max_ms = latency_.max();
+    const ComputerStats& c = computer_.stats();
+    e.overruns = c.overruns;
+    for (std::size_t k = 0; k < trigger_index_.size(); ++k)
+      s.triggers.push_back({triggers_[k], sample_counts_[trigger_index_[k]], 0});
+    const double time = seconds(end_ns_);
+    s.cpu_utilisation = time > 0 ? seconds(c.busy_ns) / time : 0;
+    s.background_completed = c.background_completed;
+    s.motors_j = motors_j_;
+    s.cpu_j = cpu_j_;
+    s.avionics_j = avionics_j_;
+    s.total_j = motors_j_ + cpu_j_ + avionics_j_;
+    // The control task's own share: its cycles at the active power above idle (§17.6 T3).
+    const ComputerSettings& cs = s_.control.computer;
+    s.cpu_energy_per_execution_mj =
+        1e3 * (cs.active_w - cs.idle_w) * seconds(computer_.duration_ns(cs.control_cycles));
+    s.mean_power_w = time > 0 ? s.total_j / time : 0;
+    s.final_soc = battery_.soc();
+    s.balance_residual = battery_.balance_residual();
+    check_.write(s);
+    return s;
+  }
+
+  const SimulationSettings& s_;
+  SimulationObserver* observer_;
+  ControlTask task_;
+  std::unique_ptr<Scheduler> scheduler_;
+  CarrotPath carrot_;
+  vehicle::FlightModel plant_;
+  FlightComputer computer_;
+  SensorDriver driver_;
+  BatteryState battery_;
+  PlanCheck check_;
+  std::vector<std::string> triggers_;
+  std::vector<std::size_t> trigger_index_;
+  std::vector<std::int64_t> sample_counts_;
+
+  TaskState state_;
+  ExecutionOutput pending_;
+  Quat attitude_setpoint_;
+  std::array<double, vehicle::kMaxRotors> last_pwm_{};
+  SimTime lap_start_ns_ = 0, metrics_from_ns_ = 0, output_period_ns_ = 0, max_time_ns_ = 0;
+  SimTime off_track_since_ns_ = kNever, end_ns_ = 0, last_row_ns_ = 0;
+  bool ended_ = false, have_position_ = false;
+  Vec3 last_position_;
+  double motors_j_ = 0, cpu_j_ = 0, avionics_j_ = 0, row_motors_j_ = 0, row_cpu_j_ = 0;
+
+  SimulationSummary summary_;
+  std::array<RunningError, 3> attitude_, estimated_;
+  RunningError cross_, position_, second_attitude_;
+  LatencyHistogram latency_;
+  std::int64_t unchanged_ = 0;
+  std::vector<int> per_second_;
+  RateRow rate_;
+  double rate_latency_sum_ms_ = 0;
+  SimTime second_busy_ns_ = 0;
+  std::int64_t second_overruns_ = 0;
+  std::deque<SimTime> recent_ends_;
+  TimeseriesRow last_;
+};
+
+}  // namespace
+
+const char* to_string(FlightStatus status) {
+  switch (status) {
+    case FlightStatus::completed:
+      return "completed";
+    case FlightStatus::reserve_reached:
+      return "reserve_reached";
+    case FlightStatus::battery_empty:
+      return "battery_empty";
+    case FlightStatus::time_limit:
+      return "time_limit";
+    case FlightStatus::lost_control:
+      return "lost_control";
+  }
+  return "unknown";
+}
+
+std::vector<std::string> trigger_sensor_names(const vehicle::VehiclePhysics& physics) {
+  std::vector<std::string> names;
+  for (const auto& s : physics.sensors)
+    if (s.trigger) names.push_back(s.name);
+  return names;
+}
+
+SimulationSummary simulate(const SimulationSettings& settings, SimulationObserver* observer) {
+  if (settings.mission.legs.empty())
+    throw InputError("mission: nothing to fly (fewer than 2 points)");
+  if (!(settings.speed_m_s > 0))
+    throw InputError("speed " + base::shortest_text(settings.speed_m_s) + " m/s is not > 0");
+  Flight flight(settings, observer);
+  return flight.run();
+}
+
+}  // namespace swath::control

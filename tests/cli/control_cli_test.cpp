@@ -1,0 +1,175 @@
+// swath-control run as a user runs it: swath's own plan flown in wind and checked against the
+// plan's area, the files parsed back, the exit codes of DESIGN.md §17.5, the same bytes for the
+// same seed, and the picture's pixels where the start and the no-fly zone are.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "control_images.hpp"
+#include "swath/control/mission.hpp"
+#include "swath/render/image.hpp"
+
+namespace swath::test {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+std::vector<std::vector<double>> csv_rows(const std::string& text, std::size_t* columns) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  *columns = static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The yard (120 m x 110 m) planned with swath at 60 m: a two-minute flight.
+const std::string& yard_plan() {
+  static const std::string dir = [] {
+    const std::string d = fresh_dir("control-yard-plan");
+    const CliRun plan = run_swath(
+        "plan share/fields/yard-local.csv --local --origin 47.4,8.5 --camera dji-phantom-4-pro "
+        "--altitude 60 -o " +
+        d);
+    EXPECT_EQ(plan.exit_code, 0) << plan.err;
+    return d;
+  }();
+  return dir;
+}
+
+TEST(ControlCli, SwathsPlanIsFlownInWindAndItsFilesAgree) {
+  const std::string out = fresh_dir("control-yard-run");
+  const CliRun run =
+      run_swath_control("run " + yard_plan() + "/mission.geojson --environment lab -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(s["status"], "completed");
+  EXPECT_EQ(s["inputs"]["speed_m_s"], 5.0);  // the plan's cruise speed
+  // Lines at 5 m/s in LAB's light wind: within 2 m of the path everywhere.
+  EXPECT_LT(s["tracking"]["cross_track_max_m"].get<double>(), 2.0);
+  ASSERT_TRUE(s.contains("plan_check"));
+  EXPECT_EQ(s["plan_check"]["inside_no_fly_m"], 0.0);
+  // The timeseries: one row per 20 ms, each as wide as the header; its last SoC is the summary's.
+  std::size_t columns = 0;
+  const auto rows = csv_rows(read_text(out + "/timeseries.csv"), &columns);
+  EXPECT_EQ(columns, 23u + 4 + 4 + 5);  // 4 rotors: pwm and omega
+  const double t = s["flight_time_s"].get<double>();
+  EXPECT_NEAR(static_cast<double>(rows.size()), t / 0.02, 1.0);
+  for (const auto& r : rows) ASSERT_EQ(r.size(), columns);
+  EXPECT_NEAR(rows.back()[columns - 2], s["energy"]["final_soc"].get<double>(), 2e-3);
+  // The track's length from the rows against the summary's distance (1 ms steps there).
+  double length = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k)
+    length += std::hypot(rows[k][1] - rows[k - 1][1], rows[k][2] - rows[k - 1][2],
+                         rows[k][3] - rows[k - 1][3]);
+  EXPECT_NEAR(length, s["distance_m"].get<double>(), 0.02 * length);
+  // rate.csv: a row per second, 400 time-triggered executions in each whole one.
+  const auto seconds = csv_rows(read_text(out + "/rate.csv"), &columns);
+  ASSERT_GE(seconds.size(), static_cast<std::size_t>(t));
+  for (std::size_t k = 0; k + 1 < seconds.size(); ++k) EXPECT_EQ(seconds[k][1], 400) << k;
+  for (const char* png : {"trajectory.png", "attitude.png", "energy.png"}) {
+    const render::Image image = render::decode_png(read_text(out + "/" + png));
+    EXPECT_EQ(image.width, 1200);
+    EXPECT_EQ(image.height, 900);
+  }
+}
+
+TEST(ControlCli, TheSameSeedWritesTheSameBytes) {
+  const std::string a = fresh_dir("control-same-a"), b = fresh_dir("control-same-b");
+  const std::string args = "run random:4@30x30 --environment arch --seed 3 --size 400x300 -o ";
+  ASSERT_EQ(run_swath_control(args + a).exit_code, 0);
+  ASSERT_EQ(run_swath_control(args + b).exit_code, 0);
+  for (const char* f : {"timeseries.csv", "rate.csv", "summary.json", "trajectory.png",
+                        "attitude.png", "energy.png"})
+    EXPECT_EQ(read_text(a + "/" + f), read_text(b + "/" + f)) << f;
+  const std::string c = fresh_dir("control-same-c");
+  ASSERT_EQ(
+      run_swath_control("run random:4@30x30 --environment arch --seed 4 --size 400x300 -o " + c)
+          .exit_code,
+      0);
+  EXPECT_NE(read_text(a + "/timeseries.csv"), read_text(c + "/timeseries.csv"));
+}
+
+TEST(ControlCli, ExitCodesSayHowTheFlightEnded) {
+  // 5: lost control; the files are still written.
+  std::string out = fresh_dir("control-lost");
+  CliRun run = run_swath_control(
+      "run random:3@20x20 --environment arch --set vehicle.controller.limits.max_tilt_deg=0.5 "
+      "--set vehicle.controller.limits.crash_tilt_deg=1 -o " +
+      out);
+  EXPECT_EQ(run.exit_code, 5) << run.err;
+  EXPECT_EQ(json::parse(read_text(out + "/summary.json"))["status"], "lost_control");
+  // 4: the battery ran empty before the end.
+  out = fresh_dir("control-empty");
+  run = run_swath_control("run random:3@20x20 --set vehicle.battery.capacity_ah=0.002 -o " + out);
+  EXPECT_EQ(run.exit_code, 4) << run.err;
+  EXPECT_EQ(json::parse(read_text(out + "/summary.json"))["status"], "battery_empty");
+}
+
+TEST(ControlCli, BadInputIsOneSentenceExitTwoAndNoFiles) {
+  struct Case {
+    std::string args, says;
+  };
+  const std::vector<Case> cases{
+      {"random:1@20x20", "random:N@WxH"},
+      {"random:8@20x20 --vehicle nosuch", "bundled: "},
+      {"random:8@20x20 --set vehicle.controller.nosuch=1", "nosuch"},
+      {"random:8@20x20 --set wind=3", "FILE.KEY=VALUE"},
+      {"random:8@20x20 --set scheduler.mode=reactive", "reactive"},
+      {"random:8@20x20 --set scheduler.rate_hz=0", "rate_hz"},
+      {"random:8@20x20 --environment storm", "environment"},
+      {"random:8@20x20 --speed 0.0", "--speed"},
+      {"random:8@20x20 --max-time 1e9", "--max-time"},
+      {"share/fields/meadow.geojson", "meadow.geojson"},
+      {yard_plan() + "/mission.geojson --drone 7", "no drone \"7\""},
+  };
+  for (const Case& c : cases) {
+    const std::string out = fresh_dir("control-bad");
+    fs::remove_all(out);
+    const CliRun run = run_swath_control("run " + c.args + " -o " + out);
+    EXPECT_EQ(run.exit_code, 2) << c.args << ": " << run.err;
+    EXPECT_NE(run.err.find(c.says), std::string::npos) << c.args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+TEST(ControlCli, ThePictureShowsTheNoFlyZoneAndTheStartWhereTheyAre) {
+  control::SimulationSettings settings;
+  settings.mission.name = "test";
+  settings.mission.legs = {{{0, 0, 5}, {100, 0, 5}}};
+  settings.mission.area = {{{-10, -40}, {110, -40}, {110, 40}, {-10, 40}}};
+  settings.mission.no_fly = {{{40, 15}, {60, 15}, {60, 35}, {40, 35}}};
+  control::SimulationSummary summary;
+  apps::FlightSeries flight;
+  const apps::ControlPicture p = apps::trajectory_picture(settings, summary, flight, 800, 600);
+  const render::Image image = render::draw(p.scene, p.view);
+  struct Rgb {
+    int r, g, b;
+  };
+  auto pixel = [&](geometry::Point2 world) {
+    const geometry::Point2 px = p.view.to_pixel(world);
+    const int x = static_cast<int>(px.x), y = static_cast<int>(px.y);
+    return Rgb{image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
+  };
+  const auto zone = pixel({50, 25});  // the no-fly fill: reddish
+  EXPECT_GT(zone.r, zone.g + 40);
+  const auto start = pixel({0, 0});  // the start marker: dark
+  EXPECT_LT(start.r + start.g + start.b, 150);
+  const auto area = pixel({80, -20});  // the area fill: greenish
+  EXPECT_GT(area.g, area.r);
+}
+
+}  // namespace
+}  // namespace swath::test

@@ -1,0 +1,246 @@
+// The composed flight (control/simulation): the plant, the sensor driver, the flight computer
+// running the control task on time-triggered releases, the carrot, the battery. Checked against
+// independent truth: release counts on the integer clock, the battery's charge integrated again
+// from the rows, energy parts from their own definitions, clearance from geometry, and byte
+// determinism for a seed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "swath/base/input_error.hpp"
+#include "swath/control/config.hpp"
+#include "swath/control/control_files.hpp"
+#include "swath/control/mission.hpp"
+#include "swath/control/simulation.hpp"
+#include "swath/energy/battery.hpp"
+#include "swath/energy/guidance.hpp"
+#include "swath/energy/plan.hpp"
+
+namespace swath::control {
+namespace {
+
+// Every row and second as the files would hold them.
+struct Capture : SimulationObserver {
+  std::string rows, seconds;
+  std::vector<TimeseriesRow> kept;
+  std::vector<RateRow> rates;
+  void on_row(const TimeseriesRow& r) override {
+    rows += timeseries_csv_row(r);
+    kept.push_back(r);
+  }
+  void on_second(const RateRow& r) override {
+    seconds += rate_csv_row(r);
+    rates.push_back(r);
+  }
+};
+
+FlightMission line_mission(double length_m, double altitude_m) {
+  FlightMission m;
+  m.name = "line";
+  m.legs.push_back({{0, 0, altitude_m}, {length_m, 0, altitude_m}});
+  return m;
+}
+
+SimulationSettings short_flight(const FlightMission& mission, const char* environment = "calm") {
+  SimulationSettings s;
+  s.environment = vehicle::environment_preset(environment);
+  s.mission = mission;
+  s.speed_m_s = 3.0;
+  s.scheduler.run.metrics_from_s = 0;
+  s.scheduler.run.max_time_s = 120;
+  return s;
+}
+
+TEST(Simulation, TimeTriggeredReleasesAreExactlyTheRateAndEveryExecutionReachesTheMotors) {
+  SimulationSettings s = short_flight(line_mission(30, 10));
+  Capture c;
+  const SimulationSummary r = simulate(s, &c);
+  ASSERT_EQ(r.status, FlightStatus::completed);
+  // Releases at k · 2.5 ms from 0: the executions that ended by the end of the flight.
+  const double t = r.flight_time_s;
+  const auto released = static_cast<std::int64_t>(std::floor(t / 0.0025)) + 1;
+  EXPECT_GE(r.executions.total, released - 1);
+  EXPECT_LE(r.executions.total, released);
+  EXPECT_EQ(r.executions.by_cause[0], r.executions.total);
+  EXPECT_EQ(r.executions.overruns, 0);
+  for (const RateRow& row : c.rates) {
+    if (row.second > static_cast<int>(t)) continue;  // the last, partial second
+    EXPECT_EQ(row.executions, 400) << row.second;
+  }
+  // The latency is the control task's cycles on the 168 MHz core (120,000 cycles = 0.714 ms)
+  // plus the driver jobs that preempt it.
+  EXPECT_GE(r.executions.latency_mean_ms, 120'000 / 168e6 * 1e3);
+  EXPECT_LT(r.executions.latency_max_ms, 120'000 / 168e6 * 1e3 + 0.1);
+}
+
+TEST(Simulation, TheFlightEndsAtTheLastPointAndItsDistanceIsThePath) {
+  const SimulationSummary r = simulate(short_flight(line_mission(30, 10)), nullptr);
+  ASSERT_EQ(r.status, FlightStatus::completed);
+  // 30 m at 3 m/s with 1 m/s² ramps: 13 s for the carrot, and the vehicle within 1 m of the end.
+  EXPECT_GE(r.flight_time_s, 13.0);
+  EXPECT_LT(r.flight_time_s, 13.0 + 10.0);
+  EXPECT_NEAR(r.distance_m, 30.0, 3.0);  // plus the hover's noise
+  EXPECT_LT(r.cross_track_m.max, 1.0);
+}
+
+TEST(Simulation, TheBatteryChargeIsTheIntegralOfEquation12OverTheRows) {
+  SimulationSettings s = short_flight(line_mission(30, 10));
+  Capture c;
+  const SimulationSummary r = simulate(s, &c);
+  EXPECT_LT(r.balance_residual, 1e-9);
+  // The parts from their own definitions.
+  EXPECT_NEAR(r.avionics_j, s.physics.avionics_w * r.flight_time_s, 1e-6);
+  EXPECT_NEAR(r.total_j, r.motors_j + r.cpu_j + r.avionics_j, 1e-6);
+  const double busy_share = r.cpu_utilisation;
+  const ComputerSettings& cpu = s.control.computer;
+  EXPECT_NEAR(r.cpu_j, r.flight_time_s * (cpu.idle_w + (cpu.active_w - cpu.idle_w) * busy_share),
+              1e-6 * r.cpu_j);
+  // SoC again from the rows' mean powers (20 ms steps instead of 1 ms): eq. 12 is smooth, so the
+  // two integrals agree to well under a thousandth of the charge used.
+  double soc = s.battery.initial_soc, last_t = 0;
+  for (const TimeseriesRow& row : c.kept) {
+    const double p = row.motors_w + row.cpu_w + row.avionics_w, dt = row.t_s - last_t;
+    soc -= energy::battery_current_a(s.battery, p) * dt / (3600 * s.battery.capacity_ah);
+    last_t = row.t_s;
+    EXPECT_NEAR(row.soc, soc, 1e-3 * (1 - soc) + 1e-9) << row.t_s;
+  }
+  // Hover power dominates: about 195 W of motors for a quad-f450 (the closed form), ±15 %.
+  const double hover_w = vehicle::hover(s.physics.airframe).motor_power_w;
+  EXPECT_NEAR(r.motors_j / r.flight_time_s, hover_w, 0.15 * hover_w);
+}
+
+TEST(Simulation, TheSameSeedGivesTheSameBytesAndAnotherSeedOtherBytes) {
+  const FlightMission m = line_mission(20, 8);
+  auto run = [&](std::uint64_t seed) {
+    SimulationSettings s = short_flight(m, "arch");
+    s.seed = seed;
+    Capture c;
+    const SimulationSummary r = simulate(s, &c);
+    return c.rows + c.seconds + summary_json(r, {"line", "quad", "tt", "arch", seed, 3, false}, s);
+  };
+  const std::string a = run(7), b = run(7), other = run(8);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, other);
+}
+
+TEST(Simulation, LoopFliesLapsUntilTheReserve) {
+  SimulationSettings s = short_flight(closed_for_loop(line_mission(15, 5)));
+  s.loop = true;
+  s.battery.capacity_ah = 0.15;  // about 2 min of hover to the 20 % reserve
+  s.scheduler.run.max_time_s = 600;
+  const SimulationSummary r = simulate(s, nullptr);
+  ASSERT_EQ(r.status, FlightStatus::reserve_reached);
+  ASSERT_TRUE(r.reserve_time_s);
+  EXPECT_DOUBLE_EQ(*r.reserve_time_s, r.flight_time_s);
+  EXPECT_NEAR(r.final_soc, s.battery.reserve_soc, 1e-3);
+  // 15 m there and back at 3 m/s with ramps: 16 s a lap.
+  EXPECT_NEAR(r.laps, r.flight_time_s / 16.0, 1.0);
+  // Without --loop the same battery flies once and lands well above the reserve.
+  s.loop = false;
+  s.mission = line_mission(15, 5);
+  EXPECT_EQ(simulate(s, nullptr).status, FlightStatus::completed);
+}
+
+TEST(Simulation, AnEmptyBatteryAndLostControlAreStatusesNotExceptions) {
+  SimulationSettings s = short_flight(line_mission(30, 10));
+  s.battery.capacity_ah = 0.002;  // a few seconds
+  SimulationSummary r = simulate(s, nullptr);
+  EXPECT_EQ(r.status, FlightStatus::battery_empty);
+  EXPECT_LT(r.flight_time_s, 13.0);
+  EXPECT_LE(r.final_soc, 0.0);
+
+  s = short_flight(line_mission(30, 10), "arch");
+  s.control.controller.limits.crash_tilt_deg = 1.0;  // any gust tilts it beyond
+  r = simulate(s, nullptr);
+  EXPECT_EQ(r.status, FlightStatus::lost_control);
+  EXPECT_NE(r.lost_control_reason.find("tilt"), std::string::npos);
+}
+
+TEST(Simulation, TheTrackIsCheckedAgainstTheAreaAndNoFlyZones) {
+  // A 40 m line along y = 0; a no-fly zone 6 m north of it; an area covering only x <= 20.
+  FlightMission m = line_mission(40, 10);
+  m.area = {{{-5, -10}, {20, -10}, {20, 10}, {-5, 10}}};
+  m.no_fly = {{{10, 6}, {30, 6}, {30, 12}, {10, 12}}};
+  const SimulationSummary r = simulate(short_flight(m), nullptr);
+  ASSERT_TRUE(r.checked_against_plan);
+  ASSERT_TRUE(r.min_clearance_m);
+  EXPECT_NEAR(*r.min_clearance_m, 6.0, 0.6);  // the cross-track error stays under 0.6 m
+  EXPECT_EQ(r.inside_no_fly_m, 0.0);
+  EXPECT_NEAR(r.outside_area_m, 20.0, 1.0);
+}
+
+TEST(Simulation, WhatCannotFlyIsRefusedBeforeFlying) {
+  SimulationSettings s = short_flight(line_mission(10, 5));
+  s.physics.airframe.propulsion.max_speed_rad_s = 500;  // 4 × 2 N < 1.2 × 14.7 N
+  EXPECT_THROW(simulate(s, nullptr), base::InputError);
+  s = short_flight(line_mission(10, 5));
+  s.scheduler.mode = SchedulerMode::reactive;
+  EXPECT_THROW(simulate(s, nullptr), base::InputError);
+}
+
+TEST(Mission, RandomSpecsAreReadAndTheirPointsLieInTheBox) {
+  const auto spec = parse_random_spec("random:8@170x120");
+  ASSERT_TRUE(spec);
+  EXPECT_EQ(spec->waypoints, 8);
+  const FlightMission m = random_mission(*spec, 5, 42);
+  ASSERT_EQ(m.legs.size(), 7u);
+  for (const auto& leg : m.legs)
+    for (const Vec3& p : leg) {
+      EXPECT_GE(p.x, 0);
+      EXPECT_LE(p.x, 170);
+      EXPECT_GE(p.y, 0);
+      EXPECT_LE(p.y, 120);
+      EXPECT_EQ(p.z, 5);
+    }
+  EXPECT_FALSE(parse_random_spec("meadow.geojson"));
+  for (const char* bad : {"random:", "random:1@20x20", "random:8@20", "random:8@-1x5",
+                          "random:8.5@20x20", "random:8@1e9x1", "random:x@ax"})
+    EXPECT_THROW(parse_random_spec(bad), base::InputError) << bad;
+}
+
+TEST(Mission, AStagePlanIsFlownAlongItsGuidedPathThroughEveryTriggeringPoint) {
+  MissionOptions o;
+  o.start_m = {25, 146};  // plans/survey-sim.yaml's start
+  o.stage_speed_m_s = 5;
+  const std::string file = SWATH_SOURCE_DIR "/plans/survey.stages";
+  const FlightMission m = read_flight_mission(file, o, 1, nullptr);
+  ASSERT_EQ(m.legs.size(), 1u);
+  const auto& path = m.legs.front();
+  ASSERT_GT(path.size(), 100u);
+  EXPECT_NEAR(path.front().x, 25, 1e-6);
+  EXPECT_NEAR(path.front().y, 146, 1e-6);
+  // The guidance switches stage within 5 m (trigger_radius_m) of each triggering point, taken
+  // from the plan's own stage fields at the highest parameters; the points are about 0.5 m apart.
+  const energy::Plan plan = energy::read_plan(file);
+  std::vector<double> c;
+  for (const energy::Interval& b : plan.stages.front().trajectory) c.push_back(b.hi);
+  std::size_t from = 0;
+  for (const energy::StageField& f : energy::stage_fields(plan, c)) {
+    double best = INFINITY;
+    std::size_t at = from;
+    for (std::size_t k = from; k < path.size(); ++k) {
+      const double d = std::hypot(path[k].x - f.trigger.x, path[k].y - f.trigger.y);
+      if (d < best) best = d, at = k;
+    }
+    EXPECT_LT(best, 5.0 + 0.6) << "stage " << f.stage;
+    from = at;  // in order
+  }
+  for (const Vec3& p : path) EXPECT_EQ(p.z, 5);
+}
+
+TEST(Config, OverridesReachTheReadersAndMisspeltKeysAreRefused) {
+  const std::string text = "mode: time_triggered\nrate_hz: 400\n";
+  const SchedulerConfig c = parse_scheduler_config(
+      apply_overrides(text, "tt.yaml", {{"rate_hz", "200"}, {"run.max_time_s", "60"}}), "tt.yaml");
+  EXPECT_EQ(c.rate_hz, 200);
+  EXPECT_EQ(c.run.max_time_s, 60);
+  EXPECT_THROW(
+      parse_scheduler_config(apply_overrides(text, "tt.yaml", {{"run.max_tme_s", "60"}}), "x"),
+      base::InputError);
+  EXPECT_THROW(apply_overrides(text, "tt.yaml", {{"rate_hz.x", "1"}}), base::InputError);
+  EXPECT_THROW(apply_overrides(text, "tt.yaml", {{"rate_hz", "[1, "}}), base::InputError);
+}
+
+}  // namespace
+}  // namespace swath::control
