@@ -26,7 +26,7 @@ class ControlRunCommand : public Command {
   std::string output_, drone_, start_, size_ = "1200x900";
   std::vector<std::string> sets_;
   std::uint64_t seed_ = 1;
-  bool loop_ = false, progress_ = false;
+  bool loop_ = false, progress_ = false, no_pictures_ = false;
   std::optional<double> speed_m_s_, altitude_m_, max_time_s_;
 };
 
