@@ -1,5 +1,6 @@
 #include "swath/control/control_files.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "swath/base/json_document.hpp"
@@ -126,9 +127,26 @@ std::string summary_json(const SimulationSummary& s, const SummaryInputs& in,
                        {"max", round_to(e.latency_max_ms, 4)}}},
                      {"overruns", e.overruns}};
   ordered_json triggers = ordered_json::object();
-  for (const auto& t : s.triggers)
-    triggers[t.sensor] = {{"samples", t.samples}, {"triggers", t.triggers}};
+  for (const auto& t : s.triggers) {
+    ordered_json one = {{"samples", t.samples}, {"triggers", t.triggers}};
+    if (s.reactive) {
+      one["beta1"] = round_to(t.beta1, 6);
+      one["beta2"] = round_to(t.beta2, 6);
+      one["threshold"] = std::isfinite(t.threshold) ? ordered_json(round_to(t.threshold, 6))
+                                                    : ordered_json("never");
+      one["refits"] = t.refits;
+      one["dataset"] = t.dataset;
+    }
+    triggers[t.sensor] = one;
+  }
   j["triggers"] = triggers;
+  if (s.reactive) {
+    j["feedback"] = {{"fp_share_after_boot", round_to(s.feedback.fp_share_after_boot, 6)},
+                     {"fp_share_steady", round_to(s.feedback.fp_share_steady, 6)},
+                     {"false_positives", s.feedback.false_positives},
+                     {"false_negatives", s.feedback.false_negatives},
+                     {"multi_cause_excluded", s.feedback.multi_cause_excluded}};
+  }
   j["cpu"] = {{"utilisation", round_to(s.cpu_utilisation, 6)},
               {"energy_j", round_to(s.cpu_j, 3)},
               {"energy_per_execution_mj", round_to(s.cpu_energy_per_execution_mj, 6)},

@@ -9,6 +9,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/control/driver.hpp"
+#include "swath/control/reactive_scheduler.hpp"
 #include "swath/control/rotor_layout.hpp"
 #include "swath/control/scheduler.hpp"
 
@@ -86,10 +87,22 @@ void check_lift(const SimulationSettings& s) {
                      base::fixed_text(1.2 * weight, 1) + " N): it could not be controlled");
 }
 
-std::unique_ptr<Scheduler> make_scheduler(const SchedulerConfig& config) {
-  if (config.mode != SchedulerMode::time_triggered)
-    throw InputError(
-        "scheduler: mode reactive is not available in this version; use mode: time_triggered");
+std::unique_ptr<Scheduler> make_scheduler(const SchedulerConfig& config,
+                                          const vehicle::VehiclePhysics& physics) {
+  if (config.mode == SchedulerMode::reactive) {
+    std::vector<TriggerSensor> sensors;
+    for (std::size_t k = 0; k < physics.sensors.size(); ++k)
+      if (physics.sensors[k].trigger)
+        sensors.push_back({physics.sensors[k].name, k, physics.sensors[k].period_ns});
+    if (sensors.empty())
+      throw InputError("scheduler: mode reactive needs a sensor with trigger: true in vehicle " +
+                       physics.airframe.name);
+    if (config.reactive.boot_s >= config.run.max_time_s)
+      throw InputError("scheduler: reactive.boot_s " + base::shortest_text(config.reactive.boot_s) +
+                       " is not below run.max_time_s " +
+                       base::shortest_text(config.run.max_time_s));
+    return std::make_unique<ReactiveScheduler>(config.reactive, std::move(sensors), config.rate_hz);
+  }
   auto tt = TimeTriggeredScheduler::at_rate(config.rate_hz);
   if (!tt)
     throw InputError("scheduler: rate_hz " + base::shortest_text(config.rate_hz) +
@@ -241,7 +254,8 @@ class Flight {
       : s_(s),
         observer_(observer),
         task_(create_task(s)),
-        scheduler_(make_scheduler(s.scheduler)),
+        scheduler_(make_scheduler(s.scheduler, s.physics)),
+        reactive_(s.scheduler.mode == SchedulerMode::reactive),
         carrot_(s.mission.legs, carrot_limits(s, task_.config())),
         plant_(plant_settings(s, carrot_)),
         computer_(s.control.computer),
@@ -270,11 +284,14 @@ class Flight {
   SimulationSummary run() {
     SimTime next_tick = kMetricsPeriod_ns;
     while (!ended_) {
-      const SimTime t = std::min({plant_.next_event(), scheduler_->next_release_ns(), next_tick});
+      const SimTime t = std::min({plant_.next_event(), scheduler_->next_release_ns(),
+                                  scheduler_->next_refit_ns(), next_tick});
       run_computer_to(t);
       plant_.advance_to(t);
       deliver_samples();
-      if (scheduler_->next_release_ns() == t) computer_.request_control(scheduler_->take_release());
+      if (scheduler_->next_refit_ns() == t) computer_.request_refit(scheduler_->begin_refit(t));
+      while (scheduler_->next_release_ns() == t)
+        computer_.request_control(scheduler_->take_release(), reactive_);
       if (t == next_tick) {
         tick(t);
         next_tick += kMetricsPeriod_ns;
@@ -322,6 +339,8 @@ class Flight {
         start_execution(e->time_ns);
       } else if (e->type == ComputerEvent::Type::control_end) {
         end_execution(*e);
+      } else {
+        scheduler_->end_refit(e->time_ns);
       }
     }
   }
@@ -329,8 +348,18 @@ class Flight {
   void deliver_samples() {
     for (const vehicle::DeliveredSample& d : plant_.take_samples()) {
       driver_.deliver(d);
-      computer_.sample(false);
+      const bool trigger = scheduler_->is_trigger_sensor(d.sensor);
+      computer_.sample(trigger);
       if (d.sensor < sample_counts_.size()) ++sample_counts_[d.sensor];
+      if (!trigger) continue;
+      SensorSample sample;
+      sample.time_ns = plant_.now();
+      sample.sensor = d.sensor;
+      const Vec3& v = d.sample.value;
+      sample.value = {v.x, v.y, v.z};
+      sample.axes = s_.physics.sensors[d.sensor].type == vehicle::SensorType::baro ? 1 : 3;
+      if (sample.axes == 1) sample.value[0] = v.z;
+      scheduler_->on_sample(sample);
     }
   }
 
@@ -381,6 +410,11 @@ class Flight {
     last_position_ = x.position_m;
     have_position_ = true;
     const Setpoint sp = setpoint_at(t);
+    // A new leg is a new setpoint (paper 002 §4: setpoints change at waypoints, not mid-leg).
+    if (sp.leg != last_leg_) {
+      last_leg_ = sp.leg;
+      scheduler_->on_setpoint_change(t);
+    }
     const double cross = cross_track(x.position_m, sp);
     const double carrot_error = norm(x.position_m - sp.position_m);
     measure(t, x, cross, carrot_error);
@@ -457,6 +491,8 @@ class Flight {
     rate_.overruns = c.overruns - second_overruns_;
     rate_.latency_mean_ms = rate_.executions > 0 ? rate_latency_sum_ms_ / rate_.executions : 0;
     rate_.attitude_rms_deg = second_attitude_.stat().rms;
+    if (auto* r = dynamic_cast<ReactiveScheduler*>(scheduler_.get()))
+      rate_.triggers = r->take_trigger_counts();
     second_busy_ns_ = c.busy_ns;
     second_overruns_ = c.overruns;
     if (whole && t > metrics_from_ns_) per_second_.push_back(rate_.executions);
@@ -549,8 +585,23 @@ class Flight {
     e.latency_max_ms = latency_.max();
     const ComputerStats& c = computer_.stats();
     e.overruns = c.overruns;
-    for (std::size_t k = 0; k < trigger_index_.size(); ++k)
-      s.triggers.push_back({triggers_[k], sample_counts_[trigger_index_[k]], 0});
+    s.reactive = reactive_;
+    if (const auto* r = dynamic_cast<const ReactiveScheduler*>(scheduler_.get())) {
+      for (std::size_t k = 0; k < r->stats().size(); ++k) {
+        const TriggerStats& t = r->stats()[k];
+        s.triggers.push_back({r->sensors()[k].name, t.samples, t.triggers, t.refits, t.model.beta1,
+                              t.model.beta2, t.threshold, t.dataset});
+      }
+      const FeedbackStats& f = r->feedback();
+      auto share = [](std::int64_t part, std::int64_t whole) {
+        return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+      };
+      s.feedback = {f.false_positives, f.false_negatives, f.multi_cause_excluded,
+                    share(f.after_boot_fp, f.after_boot), share(f.steady_fp, f.steady)};
+    } else {
+      for (std::size_t k = 0; k < trigger_index_.size(); ++k)
+        s.triggers.push_back({triggers_[k], sample_counts_[trigger_index_[k]], 0, 0, 0, 0, 0, 0});
+    }
     const double time = seconds(end_ns_);
     s.cpu_utilisation = time > 0 ? seconds(c.busy_ns) / time : 0;
     s.background_completed = c.background_completed;
@@ -558,10 +609,12 @@ class Flight {
     s.cpu_j = cpu_j_;
     s.avionics_j = avionics_j_;
     s.total_j = motors_j_ + cpu_j_ + avionics_j_;
-    // The control task's own share: its cycles at the active power above idle (§17.6 T3).
+    // The control task's own share: its cycles (and the reactive dispatch) at the active power
+    // above idle (§17.6 T3).
     const ComputerSettings& cs = s_.control.computer;
+    const std::int64_t cycles = cs.control_cycles + (reactive_ ? cs.dispatch_cycles : 0);
     s.cpu_energy_per_execution_mj =
-        1e3 * (cs.active_w - cs.idle_w) * seconds(computer_.duration_ns(cs.control_cycles));
+        1e3 * (cs.active_w - cs.idle_w) * seconds(computer_.duration_ns(cycles));
     s.mean_power_w = time > 0 ? s.total_j / time : 0;
     s.final_soc = battery_.soc();
     s.balance_residual = battery_.balance_residual();
@@ -573,6 +626,7 @@ class Flight {
   SimulationObserver* observer_;
   ControlTask task_;
   std::unique_ptr<Scheduler> scheduler_;
+  bool reactive_;
   CarrotPath carrot_;
   vehicle::FlightModel plant_;
   FlightComputer computer_;
@@ -590,6 +644,7 @@ class Flight {
   SimTime lap_start_ns_ = 0, metrics_from_ns_ = 0, output_period_ns_ = 0, max_time_ns_ = 0;
   SimTime off_track_since_ns_ = kNever, end_ns_ = 0, last_row_ns_ = 0;
   bool ended_ = false, have_position_ = false;
+  std::size_t last_leg_ = 0;
   Vec3 last_position_;
   double motors_j_ = 0, cpu_j_ = 0, avionics_j_ = 0, row_motors_j_ = 0, row_cpu_j_ = 0;
 

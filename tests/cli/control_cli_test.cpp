@@ -126,7 +126,7 @@ TEST(ControlCli, BadInputIsOneSentenceExitTwoAndNoFiles) {
       {"random:8@20x20 --vehicle nosuch", "bundled: "},
       {"random:8@20x20 --set vehicle.controller.nosuch=1", "nosuch"},
       {"random:8@20x20 --set wind=3", "FILE.KEY=VALUE"},
-      {"random:8@20x20 --set scheduler.mode=reactive", "reactive"},
+      {"random:8@20x20 --scheduler reactive --set scheduler.reactive.p_run=1.5", "p_run"},
       {"random:8@20x20 --set scheduler.rate_hz=0", "rate_hz"},
       {"random:8@20x20 --environment storm", "environment"},
       {"random:8@20x20 --speed 0.0", "--speed"},

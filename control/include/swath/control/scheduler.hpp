@@ -46,6 +46,16 @@ class Scheduler {
   virtual void on_execution_start(SimTime /*t_ns*/) {}
   /// `output_changed`: some pulse moved by ≥ change_threshold_us.
   virtual void on_execution_end(SimTime /*t_ns*/, bool /*output_changed*/) {}
+
+  /// Refits of trigger models, run by the caller as background work on the flight computer: when
+  /// the next is due (kNever: none); begin_refit() at that instant returns its data points (the
+  /// work's size) and end_refit() applies the new models when the computer has done it.
+  virtual SimTime next_refit_ns() const { return kNever; }
+  virtual std::int64_t begin_refit(SimTime /*t_ns*/) { return 0; }
+  virtual void end_refit(SimTime /*t_ns*/) {}
+  /// Whether samples of vehicle sensor `sensor` are checked for triggers (they then cost the
+  /// computer trigger_check_cycles each).
+  virtual bool is_trigger_sensor(std::size_t /*sensor*/) const { return false; }
 };
 
 /// Time-triggered (§17.3 "TT"): a release at phase_ns + k · period_ns for k = 0, 1, ….

@@ -103,9 +103,18 @@ struct SimulationSummary {
   } executions;
   struct Trigger {
     std::string sensor;
-    std::int64_t samples = 0, triggers = 0;
+    std::int64_t samples = 0, triggers = 0, refits = 0;
+    double beta1 = 0, beta2 = 0;  ///< the model in force at the end (reactive)
+    double threshold = 0;         ///< x* in force at the end (+∞: never triggers)
+    std::size_t dataset = 0;      ///< points of the last fit
   };
   std::vector<Trigger> triggers;  ///< per trigger sensor
+  bool reactive = false;
+  /// Reactive: feedback figures (§17.3); shares are of single-trigger executions.
+  struct Feedback {
+    std::int64_t false_positives = 0, false_negatives = 0, multi_cause_excluded = 0;
+    double fp_share_after_boot = 0, fp_share_steady = 0;
+  } feedback;
   double cpu_utilisation = 0, cpu_energy_per_execution_mj = 0;
   std::int64_t background_completed = 0;
   double total_j = 0, motors_j = 0, cpu_j = 0, avionics_j = 0, mean_power_w = 0, final_soc = 0;

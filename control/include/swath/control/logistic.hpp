@@ -1,0 +1,43 @@
+#pragma once
+// The per-sensor trigger model of paper 002 (eq. 1): L(x) = 1 / (1 + e^−(β1 + β2 x)), the
+// probability that a change x of a sensor's value calls for a new control decision, and its fits
+// (DESIGN.md §17.3 "Fit"). The paper fits β by ordinary least squares on the logit of 0/1
+// outcomes, which is undefined (the logit of 0 or 1 is infinite); `logit_ols` makes it defined
+// with grouped empirical logits, `logit_wls` weights the groups by their variance, `mle` is the
+// maximum-likelihood fit by IRLS.
+
+#include <cstddef>
+#include <vector>
+
+#include "swath/control/config.hpp"
+
+namespace swath::control {
+
+/// One observation: a change x (≥ 0, the sensor's units) and whether the output changed.
+struct TriggerPoint {
+  double x = 0;
+  bool changed = false;
+};
+
+struct LogisticModel {
+  double beta1 = 0, beta2 = 0;
+  bool degenerate = false;  ///< one label only, fewer than 2 groups, or no spread in x
+  std::size_t points = 0;   ///< the data set's size
+};
+
+/// L(x) (eq. 1), in [0, 1].
+double trigger_probability(const LogisticModel& m, double x);
+
+/// The change above which L exceeds p_run (eq. 1 inverted, the form §5 programs into sensors):
+/// x* = (ln(p/(1−p)) − β1) / β2 when β2 > 0; otherwise +∞ when L(x) ≤ p_run everywhere (it then
+/// never triggers) and 0 when L(0) > p_run (it always does). p_run in (0, 1).
+double trigger_threshold(const LogisticModel& m, double p_run);
+
+/// The fit of `data` by `method`; `bins` and `min_per_bin` shape the groups of the logit fits
+/// (B = min(bins, ⌊n / min_per_bin⌋) equal-count groups, ties never split). Degenerate data (one
+/// label only, B < 2, S_xx = 0, or IRLS without a finite optimum) gives β2 = 0 and β1 the pooled
+/// logit ln((k + ½) / (n − k + ½)).
+LogisticModel fit_logistic(const std::vector<TriggerPoint>& data, FitMethod method, int bins = 20,
+                           int min_per_bin = 25);
+
+}  // namespace swath::control

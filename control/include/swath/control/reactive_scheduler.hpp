@@ -1,0 +1,122 @@
+#pragma once
+// Reactive control execution (paper 002 §4–5, DESIGN.md §17.3): the control task runs when a
+// sensor's change x_s makes a new decision likely (L_s(x) > P_run, tested as x > x*_s), batched at
+// the hyperperiod of the fast sensors (capped by max_wait_s), with a time-triggered boot that
+// gathers the first data, a failsafe watchdog, executions forced by a new setpoint leg, the
+// feedback of false positives and negatives into per-sensor data sets, and periodic refits that
+// run as background work on the flight computer.
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "swath/control/config.hpp"
+#include "swath/control/logistic.hpp"
+#include "swath/control/scheduler.hpp"
+
+namespace swath::control {
+
+/// A trigger sensor as the scheduler knows it.
+struct TriggerSensor {
+  std::string name;
+  std::size_t index = 0;  ///< in the vehicle's sensor list (SensorSample::sensor)
+  SimTime period_ns = 0;
+};
+
+/// Per-sensor running figures (summary.json's `triggers`).
+struct TriggerStats {
+  std::int64_t samples = 0, triggers = 0, refits = 0;
+  LogisticModel model;
+  double threshold = 0;  ///< x* in force (+∞: never)
+  std::size_t dataset = 0;
+};
+
+/// Feedback totals (summary.json's `feedback`).
+struct FeedbackStats {
+  std::int64_t false_positives = 0;  ///< single-trigger executions that left the output unchanged
+  std::int64_t false_negatives = 0;  ///< failsafe executions that changed it
+  std::int64_t true_positives = 0;
+  std::int64_t single_trigger_executions = 0;  ///< executions caused by one sensor's trigger alone
+  std::int64_t multi_cause_excluded = 0;       ///< several causes: no feedback (§17.8)
+  /// Single-trigger executions and their false positives in the first 10 s after the boot, and
+  /// from 60 s after it (the paper's 7 % → 2 %, §7.3).
+  std::int64_t after_boot = 0, after_boot_fp = 0, steady = 0, steady_fp = 0;
+};
+
+class ReactiveScheduler final : public Scheduler {
+ public:
+  /// `settings` valid as §17.A says; `sensors` the vehicle's trigger sensors (at least one);
+  /// `rate_hz` the file's TT rate (the boot's when boot_rate_hz is 0).
+  ReactiveScheduler(const ReactiveSettings& settings, std::vector<TriggerSensor> sensors,
+                    double rate_hz);
+
+  SimTime next_release_ns() const override;
+  ReleaseCause take_release() override;
+  void on_sample(const SensorSample& sample) override;
+  void on_setpoint_change(SimTime t_ns) override;
+  void on_execution_start(SimTime t_ns) override;
+  void on_execution_end(SimTime t_ns, bool output_changed) override;
+  SimTime next_refit_ns() const override { return next_refit_ns_; }
+  std::int64_t begin_refit(SimTime t_ns) override;
+  void end_refit(SimTime t_ns) override;
+  bool is_trigger_sensor(std::size_t sensor) const override;
+
+  /// Triggers per sensor since the last call (rate.csv), and reset.
+  std::vector<int> take_trigger_counts();
+  const std::vector<TriggerStats>& stats() const { return stats_; }
+  const FeedbackStats& feedback() const { return feedback_; }
+  const std::vector<TriggerSensor>& sensors() const { return sensors_; }
+  /// The hyperperiod of the fast trigger sensors, ns.
+  SimTime hyperperiod_ns() const { return hyperperiod_ns_; }
+
+ private:
+  struct PerSensor {
+    std::array<double, 6> latest{}, reference{}, previous{};
+    std::size_t axes = 0;
+    bool has_latest = false, has_reference = false, new_sample = false;
+    double change_at_start = 0;  // x_s of the execution under way
+    bool new_at_start = false;   // a sample arrived before that execution
+    LogisticModel model;
+    double threshold = 0;
+    std::vector<TriggerPoint> boot;     // the boot's points
+    std::deque<TriggerPoint> ring;      // feedback, bounded
+    std::vector<TriggerPoint> fitting;  // the data of the refit under way
+    int counted = 0;
+  };
+  enum CauseBit : unsigned {
+    kTimeTriggered = 1,
+    kBoot = 2,
+    kTrigger = 4,
+    kFailsafe = 8,
+    kSetpoint = 16
+  };
+
+  bool booting(SimTime t) const { return t < boot_end_ns_; }
+  double change(const PerSensor& s) const;
+  bool fires(const PerSensor& s, double x) const;
+  void request(SimTime at, unsigned cause);
+  void add_point(PerSensor& s, TriggerPoint p);
+
+  ReactiveSettings settings_;
+  std::vector<TriggerSensor> sensors_;
+  std::vector<PerSensor> state_;
+  std::vector<TriggerStats> stats_;
+  std::vector<int> index_of_sensor_;  // vehicle sensor index → ours (−1: not a trigger)
+  FeedbackStats feedback_;
+  SimTime hyperperiod_ns_ = 0, max_wait_ns_ = 0, boot_period_ns_ = 0, boot_end_ns_ = 0;
+  SimTime failsafe_ns_ = 0, refit_period_ns_ = 0;
+  SimTime next_boot_ns_ = 0, request_ns_ = kNever, last_start_ns_ = 0, next_refit_ns_ = kNever;
+  SimTime failsafe_due_ns_ = 0;
+  bool failsafe_armed_ = false;
+  unsigned pending_ = 0;  // causes of the request not yet taken
+  unsigned taken_ = 0;    // causes taken since the last execution start
+  unsigned running_ = 0;  // causes of the execution under way
+  // The sensor whose triggers caused the pending request / the releases taken / the execution
+  // under way: −1 none, −2 several.
+  int pending_trigger_sensor_ = -1, taken_trigger_sensor_ = -1, running_trigger_sensor_ = -1;
+  double p_logit_ = 0;
+};
+
+}  // namespace swath::control

@@ -1,0 +1,174 @@
+#include "swath/control/logistic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace swath::control {
+namespace {
+
+struct Group {
+  double x_mean = 0;
+  double n = 0, k = 0;  // points, of which changed
+};
+
+LogisticModel pooled(const std::vector<TriggerPoint>& data) {
+  double k = 0;
+  for (const TriggerPoint& p : data) k += p.changed ? 1 : 0;
+  const auto n = static_cast<double>(data.size());
+  LogisticModel m;
+  m.beta1 = std::log((k + 0.5) / (n - k + 0.5));
+  m.degenerate = true;
+  m.points = data.size();
+  return m;
+}
+
+// Equal-count groups over x, never splitting a run of equal x.
+std::vector<Group> groups(std::vector<TriggerPoint> data, int bins, int min_per_bin) {
+  std::sort(data.begin(), data.end(),
+            [](const TriggerPoint& a, const TriggerPoint& b) { return a.x < b.x; });
+  const std::size_t n = data.size();
+  const std::size_t count =
+      std::min<std::size_t>(static_cast<std::size_t>(std::max(bins, 1)),
+                            n / static_cast<std::size_t>(std::max(min_per_bin, 1)));
+  std::vector<Group> out;
+  if (count < 2) return out;
+  std::size_t start = 0;
+  for (std::size_t b = 1; b <= count && start < n; ++b) {
+    std::size_t end = b == count ? n : b * n / count;
+    end = std::max(end, start + 1);
+    while (end < n && data[end].x == data[end - 1].x) ++end;  // keep ties together
+    Group g;
+    for (std::size_t i = start; i < end; ++i) {
+      g.x_mean += data[i].x;
+      g.k += data[i].changed ? 1 : 0;
+    }
+    g.n = static_cast<double>(end - start);
+    g.x_mean /= g.n;
+    out.push_back(g);
+    start = end;
+  }
+  return out;
+}
+
+// Weighted least squares of z on x over the groups.
+LogisticModel logit_fit(const std::vector<TriggerPoint>& data, bool weighted, int bins,
+                        int min_per_bin) {
+  const std::vector<Group> g = groups(data, bins, min_per_bin);
+  if (g.size() < 2) return pooled(data);
+  double sw = 0, sx = 0, sz = 0;
+  std::vector<double> z(g.size()), w(g.size());
+  for (std::size_t j = 0; j < g.size(); ++j) {
+    const double a = g[j].k + 0.5, b = g[j].n - g[j].k + 0.5;
+    z[j] = std::log(a / b);
+    w[j] = weighted ? 1.0 / (1.0 / a + 1.0 / b) : 1.0;
+    sw += w[j];
+    sx += w[j] * g[j].x_mean;
+    sz += w[j] * z[j];
+  }
+  const double mx = sx / sw, mz = sz / sw;
+  double sxx = 0, sxz = 0;
+  for (std::size_t j = 0; j < g.size(); ++j) {
+    sxx += w[j] * (g[j].x_mean - mx) * (g[j].x_mean - mx);
+    sxz += w[j] * (g[j].x_mean - mx) * (z[j] - mz);
+  }
+  if (!(sxx > 0)) return pooled(data);
+  LogisticModel m;
+  m.beta2 = sxz / sxx;
+  m.beta1 = mz - m.beta2 * mx;
+  m.points = data.size();
+  return m;
+}
+
+double log_likelihood(const std::vector<TriggerPoint>& data, double b1, double b2) {
+  double ll = 0;
+  for (const TriggerPoint& p : data) {
+    const double eta = b1 + b2 * p.x;
+    // log σ(η) = −log(1 + e^−η), log(1 − σ(η)) = −log(1 + e^η), computed stably.
+    const double log1pexp_neg =
+        eta > 0 ? std::log1p(std::exp(-eta)) : -eta + std::log1p(std::exp(eta));
+    ll += p.changed ? -log1pexp_neg : -(eta + log1pexp_neg);
+  }
+  return ll;
+}
+
+// IRLS (Newton on the log-likelihood) with a 1e-8 ridge and step halving, ≤ 50 iterations.
+LogisticModel mle_fit(const std::vector<TriggerPoint>& data) {
+  double k = 0;
+  for (const TriggerPoint& p : data) k += p.changed ? 1 : 0;
+  if (data.size() < 2 || k == 0 || k == static_cast<double>(data.size())) return pooled(data);
+  double b1 = pooled(data).beta1, b2 = 0;
+  double ll = log_likelihood(data, b1, b2);
+  for (int it = 0; it < 50; ++it) {
+    double g1 = 0, g2 = 0, h11 = 1e-8, h12 = 0, h22 = 1e-8;
+    for (const TriggerPoint& p : data) {
+      const double mu = 1.0 / (1.0 + std::exp(-(b1 + b2 * p.x)));
+      const double r = (p.changed ? 1.0 : 0.0) - mu, w = mu * (1 - mu);
+      g1 += r;
+      g2 += r * p.x;
+      h11 += w;
+      h12 += w * p.x;
+      h22 += w * p.x * p.x;
+    }
+    const double det = h11 * h22 - h12 * h12;
+    if (!(det > 0)) break;
+    double d1 = (h22 * g1 - h12 * g2) / det, d2 = (h11 * g2 - h12 * g1) / det;
+    double step = 1.0, next = -std::numeric_limits<double>::infinity();
+    for (int half = 0; half < 30; ++half, step /= 2) {
+      next = log_likelihood(data, b1 + step * d1, b2 + step * d2);
+      if (next >= ll) break;
+    }
+    if (!(next >= ll)) break;
+    b1 += step * d1;
+    b2 += step * d2;
+    const bool converged = std::abs(next - ll) < 1e-12 * (1 + std::abs(ll));
+    ll = next;
+    if (converged) break;
+  }
+  // Separable data has no finite optimum: the coefficients run away.
+  if (!std::isfinite(b1) || !std::isfinite(b2) || std::abs(b2) > 1e12) return pooled(data);
+  LogisticModel m;
+  m.beta1 = b1;
+  m.beta2 = b2;
+  m.points = data.size();
+  return m;
+}
+
+}  // namespace
+
+double trigger_probability(const LogisticModel& m, double x) {
+  return 1.0 / (1.0 + std::exp(-(m.beta1 + m.beta2 * x)));
+}
+
+double trigger_threshold(const LogisticModel& m, double p_run) {
+  const double logit = std::log(p_run / (1 - p_run));
+  if (m.beta2 > 0) return std::max(0.0, (logit - m.beta1) / m.beta2);
+  // β2 ≤ 0: L is largest at x = 0.
+  return trigger_probability(m, 0.0) > p_run ? 0.0 : std::numeric_limits<double>::infinity();
+}
+
+LogisticModel fit_logistic(const std::vector<TriggerPoint>& data, FitMethod method, int bins,
+                           int min_per_bin) {
+  // One label only: nothing to separate. Completely separated labels (every unchanged x below
+  // every changed x, or above): the likelihood has no finite optimum.
+  double lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
+  for (const TriggerPoint& p : data) {
+    double& lo = p.changed ? lo1 : lo0;
+    double& hi = p.changed ? hi1 : hi0;
+    lo = std::min(lo, p.x);
+    hi = std::max(hi, p.x);
+  }
+  const bool one_label = !(lo0 <= hi0) || !(lo1 <= hi1);
+  if (one_label || (method == FitMethod::mle && (hi0 < lo1 || hi1 < lo0))) return pooled(data);
+  switch (method) {
+    case FitMethod::logit_ols:
+      return logit_fit(data, false, bins, min_per_bin);
+    case FitMethod::logit_wls:
+      return logit_fit(data, true, bins, min_per_bin);
+    case FitMethod::mle:
+      return mle_fit(data);
+  }
+  return pooled(data);
+}
+
+}  // namespace swath::control

@@ -1,0 +1,262 @@
+#include "swath/control/reactive_scheduler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace swath::control {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr SimTime kFeedbackWindowAfterBoot_ns = 10 * vehicle::kNanosecondsPerSecond;
+constexpr SimTime kSteadyAfterBoot_ns = 60 * vehicle::kNanosecondsPerSecond;
+
+int bits(unsigned v) {
+  return __builtin_popcount(v);
+}
+
+}  // namespace
+
+ReactiveScheduler::ReactiveScheduler(const ReactiveSettings& settings,
+                                     std::vector<TriggerSensor> sensors, double rate_hz)
+    : settings_(settings), sensors_(std::move(sensors)) {
+  state_.resize(sensors_.size());
+  stats_.resize(sensors_.size());
+  for (std::size_t k = 0; k < sensors_.size(); ++k) {
+    const std::size_t index = sensors_[k].index;
+    if (index_of_sensor_.size() <= index) index_of_sensor_.resize(index + 1, -1);
+    index_of_sensor_[index] = static_cast<int>(k);
+  }
+  p_logit_ = std::log(settings_.p_run / (1 - settings_.p_run));
+  // The hyperperiod of the fast trigger sensors (§17.8: the literal one, with a 10 Hz GPS, would
+  // hold every trigger for up to 100 ms).
+  hyperperiod_ns_ = 1;
+  for (const TriggerSensor& s : sensors_) {
+    const double rate = 1e9 / static_cast<double>(s.period_ns);
+    if (rate + 1e-9 >= settings_.accumulation_min_rate_hz)
+      hyperperiod_ns_ = std::lcm(hyperperiod_ns_, s.period_ns);
+  }
+  max_wait_ns_ = vehicle::from_seconds(settings_.accumulation_max_wait_s);
+  boot_period_ns_ =
+      vehicle::period_of_rate(settings_.boot_rate_hz > 0 ? settings_.boot_rate_hz : rate_hz);
+  if (boot_period_ns_ <= 0) boot_period_ns_ = vehicle::period_of_rate(400);
+  boot_end_ns_ = vehicle::from_seconds(settings_.boot_s);
+  failsafe_ns_ = std::max<SimTime>(vehicle::from_seconds(settings_.failsafe_s), 1);
+  refit_period_ns_ = std::max<SimTime>(vehicle::from_seconds(settings_.fit_refit_period_s), 1);
+  for (std::size_t k = 0; k < sensors_.size(); ++k) {
+    PerSensor& s = state_[k];
+    s.threshold = kInfinity;  // no trigger before a model exists
+    s.model.beta1 = -1e300;   // L = 0
+    for (const InitialModel& m : settings_.initial_models)
+      if (m.sensor == sensors_[k].name) {
+        s.model = {m.beta1, m.beta2, false, 0};
+        s.threshold = trigger_threshold(s.model, settings_.p_run);
+      }
+    stats_[k].model = s.model;
+    stats_[k].threshold = s.threshold;
+  }
+  // The watchdog runs from the boot's end (the boot's own releases come first).
+  failsafe_armed_ = true;
+  failsafe_due_ns_ = boot_end_ns_;
+  next_refit_ns_ = boot_end_ns_ > 0 ? boot_end_ns_ : refit_period_ns_;
+  if (settings_.fit_feedback == FeedbackRule::none && boot_end_ns_ == 0) next_refit_ns_ = kNever;
+}
+
+bool ReactiveScheduler::is_trigger_sensor(std::size_t sensor) const {
+  return sensor < index_of_sensor_.size() && index_of_sensor_[sensor] >= 0;
+}
+
+SimTime ReactiveScheduler::next_release_ns() const {
+  SimTime t = request_ns_;
+  if (next_boot_ns_ < boot_end_ns_) t = std::min(t, next_boot_ns_);
+  // The failsafe: a watchdog since the last execution started, or a fixed period.
+  if (failsafe_armed_) t = std::min(t, std::max(failsafe_due_ns_, boot_end_ns_));
+  return t;
+}
+
+ReleaseCause ReactiveScheduler::take_release() {
+  const SimTime t = next_release_ns();
+  unsigned cause = 0;
+  if (next_boot_ns_ < boot_end_ns_ && next_boot_ns_ == t) {
+    cause |= kBoot;
+    next_boot_ns_ += boot_period_ns_;
+  }
+  if (request_ns_ == t) {
+    cause |= pending_;
+    pending_ = 0;
+    request_ns_ = kNever;
+    if (taken_trigger_sensor_ == -1)
+      taken_trigger_sensor_ = pending_trigger_sensor_;
+    else if (pending_trigger_sensor_ != -1 && pending_trigger_sensor_ != taken_trigger_sensor_)
+      taken_trigger_sensor_ = -2;
+    pending_trigger_sensor_ = -1;
+  }
+  if (failsafe_armed_ && std::max(failsafe_due_ns_, boot_end_ns_) == t) {
+    cause |= kFailsafe;
+    if (settings_.failsafe_mode == FailsafeMode::periodic) {
+      failsafe_due_ns_ += failsafe_ns_;
+    } else {
+      failsafe_armed_ = false;  // re-armed when an execution starts
+    }
+  }
+  taken_ |= cause;
+  if (cause & kBoot) return ReleaseCause::boot;
+  if (cause & kTrigger) return ReleaseCause::trigger;
+  if (cause & kFailsafe) return ReleaseCause::failsafe;
+  if (cause & kSetpoint) return ReleaseCause::setpoint;
+  return ReleaseCause::time_triggered;
+}
+
+double ReactiveScheduler::change(const PerSensor& s) const {
+  const auto& ref =
+      settings_.delta_reference == DeltaReference::last_sample ? s.previous : s.reference;
+  double sum = 0;
+  for (std::size_t a = 0; a < s.axes; ++a) sum += (s.latest[a] - ref[a]) * (s.latest[a] - ref[a]);
+  return std::sqrt(sum);
+}
+
+bool ReactiveScheduler::fires(const PerSensor& s, double x) const {
+  if (s.model.beta2 > 0) return x > s.threshold;
+  return s.model.beta1 + s.model.beta2 * x > p_logit_;  // L(x) > P_run, evaluated directly
+}
+
+void ReactiveScheduler::request(SimTime at, unsigned cause) {
+  request_ns_ = std::min(request_ns_, at);
+  pending_ |= cause;
+}
+
+void ReactiveScheduler::on_sample(const SensorSample& sample) {
+  if (!is_trigger_sensor(sample.sensor)) return;
+  const auto k = static_cast<std::size_t>(index_of_sensor_[sample.sensor]);
+  PerSensor& s = state_[k];
+  ++stats_[k].samples;
+  s.previous = s.has_latest ? s.latest : sample.value;
+  s.latest = sample.value;
+  s.axes = std::min<std::size_t>(sample.axes, 6);
+  s.has_latest = s.new_sample = true;
+  const SimTime t = sample.time_ns;
+  if (booting(t) || !s.has_reference) return;
+  if (!fires(s, change(s))) return;
+  ++stats_[k].triggers;
+  ++s.counted;
+  // Batched at the hyperperiod, never held longer than max_wait_s.
+  const SimTime batch = (t + hyperperiod_ns_ - 1) / hyperperiod_ns_ * hyperperiod_ns_;
+  request(std::min(batch, t + max_wait_ns_), kTrigger);
+  if (pending_trigger_sensor_ == -1)
+    pending_trigger_sensor_ = static_cast<int>(k);
+  else if (pending_trigger_sensor_ != static_cast<int>(k))
+    pending_trigger_sensor_ = -2;
+}
+
+void ReactiveScheduler::on_setpoint_change(SimTime t_ns) {
+  if (settings_.setpoint_forces_execution && !booting(t_ns)) request(t_ns, kSetpoint);
+}
+
+void ReactiveScheduler::on_execution_start(SimTime t_ns) {
+  running_ = taken_;
+  running_trigger_sensor_ = taken_trigger_sensor_;
+  taken_ = 0;
+  taken_trigger_sensor_ = -1;
+  last_start_ns_ = t_ns;
+  if (settings_.failsafe_mode == FailsafeMode::watchdog) {
+    failsafe_due_ns_ = t_ns + failsafe_ns_;
+    failsafe_armed_ = true;
+  } else if (!failsafe_armed_) {
+    failsafe_due_ns_ = std::max(boot_end_ns_, t_ns + failsafe_ns_);
+    failsafe_armed_ = true;
+  }
+  for (PerSensor& s : state_) {
+    s.change_at_start = s.has_reference ? change(s) : 0.0;
+    s.new_at_start = s.new_sample;
+    if (s.has_latest) {
+      s.reference = s.latest;
+      s.has_reference = true;
+    }
+    s.new_sample = false;
+  }
+}
+
+void ReactiveScheduler::add_point(PerSensor& s, TriggerPoint p) {
+  s.ring.push_back(p);
+  while (s.ring.size() > static_cast<std::size_t>(settings_.fit_dataset_capacity))
+    s.ring.pop_front();
+}
+
+void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
+  if (running_ & kBoot) {
+    for (PerSensor& s : state_)
+      if (s.new_at_start &&
+          s.boot.size() < static_cast<std::size_t>(settings_.fit_dataset_capacity))
+        s.boot.push_back({s.change_at_start, output_changed});
+    return;
+  }
+  const bool single_trigger = running_ == kTrigger && running_trigger_sensor_ >= 0;
+  if (single_trigger) {
+    ++feedback_.single_trigger_executions;
+    const SimTime since_boot = t_ns - boot_end_ns_;
+    if (since_boot < kFeedbackWindowAfterBoot_ns) {
+      ++feedback_.after_boot;
+      if (!output_changed) ++feedback_.after_boot_fp;
+    } else if (since_boot >= kSteadyAfterBoot_ns) {
+      ++feedback_.steady;
+      if (!output_changed) ++feedback_.steady_fp;
+    }
+    PerSensor& s = state_[static_cast<std::size_t>(running_trigger_sensor_)];
+    if (!output_changed) {
+      ++feedback_.false_positives;
+      if (settings_.fit_feedback != FeedbackRule::none) add_point(s, {s.change_at_start, false});
+    } else {
+      ++feedback_.true_positives;
+      if (settings_.fit_feedback == FeedbackRule::all) add_point(s, {s.change_at_start, true});
+    }
+  } else if (running_ == kFailsafe) {
+    if (output_changed) {
+      ++feedback_.false_negatives;
+      if (settings_.fit_feedback != FeedbackRule::none)
+        for (PerSensor& s : state_)
+          if (s.new_at_start) add_point(s, {s.change_at_start, true});
+    }
+  } else if (bits(running_) > 1 || running_trigger_sensor_ == -2) {
+    ++feedback_.multi_cause_excluded;
+  }
+}
+
+std::int64_t ReactiveScheduler::begin_refit(SimTime /*t_ns*/) {
+  std::int64_t points = 0;
+  for (PerSensor& s : state_) {
+    s.fitting.assign(s.boot.begin(), s.boot.end());
+    s.fitting.insert(s.fitting.end(), s.ring.begin(), s.ring.end());
+    points += static_cast<std::int64_t>(s.fitting.size());
+  }
+  next_refit_ns_ = kNever;  // until this one is done
+  return points;
+}
+
+void ReactiveScheduler::end_refit(SimTime t_ns) {
+  for (std::size_t k = 0; k < state_.size(); ++k) {
+    PerSensor& s = state_[k];
+    if (s.fitting.empty()) continue;  // keep what there is
+    s.model = fit_logistic(s.fitting, settings_.fit_method, settings_.fit_bins,
+                           settings_.fit_min_per_bin);
+    s.threshold = trigger_threshold(s.model, settings_.p_run);
+    stats_[k].model = s.model;
+    stats_[k].threshold = s.threshold;
+    stats_[k].dataset = s.fitting.size();
+    ++stats_[k].refits;
+    s.fitting.clear();
+  }
+  // `none` freezes the models after the boot's fit.
+  next_refit_ns_ = settings_.fit_feedback == FeedbackRule::none ? kNever : t_ns + refit_period_ns_;
+}
+
+std::vector<int> ReactiveScheduler::take_trigger_counts() {
+  std::vector<int> out;
+  for (PerSensor& s : state_) {
+    out.push_back(s.counted);
+    s.counted = 0;
+  }
+  return out;
+}
+
+}  // namespace swath::control

@@ -1,0 +1,109 @@
+// The trigger model (paper 002 eq. 1) and its fits (DESIGN.md §17.3): the threshold is eq. 1
+// inverted, synthetic coefficients are recovered, OLS on grouped logits equals its closed form,
+// degenerate data falls back to the pooled logit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "swath/control/logistic.hpp"
+#include "swath/vehicle/random.hpp"
+
+namespace swath::control {
+namespace {
+
+std::vector<TriggerPoint> synthetic(double b1, double b2, int n, std::uint64_t seed) {
+  auto random = vehicle::SplitMix64::stream(seed, "logistic");
+  std::vector<TriggerPoint> data;
+  for (int i = 0; i < n; ++i) {
+    const double x = random.uniform(0, 4);
+    const double p = 1 / (1 + std::exp(-(b1 + b2 * x)));
+    data.push_back({x, random.uniform() < p});
+  }
+  return data;
+}
+
+TEST(Logistic, TheThresholdIsEquationOneInverted) {
+  for (const double p : {0.2, 0.5, 0.6, 0.8}) {
+    const LogisticModel m{-3, 2, false, 0};
+    const double x = trigger_threshold(m, p);
+    EXPECT_NEAR(trigger_probability(m, x), p, 1e-12);
+    for (double probe = 0; probe < 5; probe += 0.01)
+      EXPECT_EQ(trigger_probability(m, probe) > p, probe > x) << p << " " << probe;
+  }
+  // β2 ≤ 0: never or always.
+  EXPECT_TRUE(std::isinf(trigger_threshold({-3, 0, true, 0}, 0.6)));
+  EXPECT_EQ(trigger_threshold({3, 0, true, 0}, 0.6), 0.0);
+  EXPECT_EQ(trigger_threshold({3, -1, false, 0}, 0.6), 0.0);
+}
+
+TEST(Logistic, SyntheticCoefficientsAreRecovered) {
+  // β = (−3, 2) on x uniform in [0, 4], 20,000 points, five seeds.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const auto data = synthetic(-3, 2, 20'000, seed);
+    const LogisticModel mle = fit_logistic(data, FitMethod::mle);
+    // The standard errors from the Fisher information at the estimate.
+    double h11 = 0, h12 = 0, h22 = 0;
+    for (const TriggerPoint& p : data) {
+      const double mu = trigger_probability(mle, p.x), w = mu * (1 - mu);
+      h11 += w;
+      h12 += w * p.x;
+      h22 += w * p.x * p.x;
+    }
+    const double det = h11 * h22 - h12 * h12;
+    const double se1 = std::sqrt(h22 / det), se2 = std::sqrt(h11 / det);
+    EXPECT_NEAR(mle.beta1, -3, 3 * se1) << seed;
+    EXPECT_NEAR(mle.beta2, 2, 3 * se2) << seed;
+    const LogisticModel ols = fit_logistic(data, FitMethod::logit_ols);
+    EXPECT_NEAR(ols.beta1, -3, 0.15 * 3) << seed;  // grouped logits are biased towards 0
+    EXPECT_NEAR(ols.beta2, 2, 0.15 * 2) << seed;
+    const LogisticModel wls = fit_logistic(data, FitMethod::logit_wls);
+    EXPECT_NEAR(wls.beta2, 2, 0.15 * 2) << seed;
+  }
+}
+
+TEST(Logistic, OlsOnGroupedLogitsIsItsClosedForm) {
+  // 4 groups of 25 points at x = 1, 2, 3, 4 with 2, 8, 15, 22 changed: z_j by hand.
+  std::vector<TriggerPoint> data;
+  const int changed[] = {2, 8, 15, 22};
+  for (int g = 0; g < 4; ++g)
+    for (int i = 0; i < 25; ++i) data.push_back({g + 1.0, i < changed[g]});
+  const LogisticModel m = fit_logistic(data, FitMethod::logit_ols, 20, 25);
+  double z[4], zm = 0;
+  for (int g = 0; g < 4; ++g) {
+    z[g] = std::log((changed[g] + 0.5) / (25 - changed[g] + 0.5));
+    zm += z[g] / 4;
+  }
+  double sxz = 0, sxx = 0;
+  for (int g = 0; g < 4; ++g) {
+    sxz += (g + 1 - 2.5) * (z[g] - zm);
+    sxx += (g + 1 - 2.5) * (g + 1 - 2.5);
+  }
+  EXPECT_NEAR(m.beta2, sxz / sxx, 1e-12);
+  EXPECT_NEAR(m.beta1, zm - m.beta2 * 2.5, 1e-12);
+  EXPECT_FALSE(m.degenerate);
+}
+
+TEST(Logistic, DegenerateDataGivesThePooledLogit) {
+  std::vector<TriggerPoint> all_changed(100, {1.0, true});
+  for (int i = 0; i < 100; ++i) all_changed[i].x = i * 0.1;
+  for (FitMethod method : {FitMethod::logit_ols, FitMethod::logit_wls, FitMethod::mle}) {
+    const LogisticModel m = fit_logistic(all_changed, method);
+    EXPECT_TRUE(m.degenerate);
+    EXPECT_EQ(m.beta2, 0);
+    EXPECT_NEAR(m.beta1, std::log(100.5 / 0.5), 1e-12);
+  }
+  // Too few points for two groups; every x the same.
+  const std::vector<TriggerPoint> few{{1, true}, {2, false}, {3, true}};
+  EXPECT_TRUE(fit_logistic(few, FitMethod::logit_ols).degenerate);
+  std::vector<TriggerPoint> same(200, {2.0, false});
+  for (int i = 0; i < 100; ++i) same[i].changed = true;
+  EXPECT_TRUE(fit_logistic(same, FitMethod::logit_ols).degenerate);
+  EXPECT_TRUE(fit_logistic({}, FitMethod::mle).degenerate);
+  // Separable data: no finite optimum, IRLS gives up to the pooled logit.
+  std::vector<TriggerPoint> separable;
+  for (int i = 0; i < 100; ++i) separable.push_back({i * 0.1, i >= 50});
+  EXPECT_TRUE(fit_logistic(separable, FitMethod::mle).degenerate);
+}
+
+}  // namespace
+}  // namespace swath::control
