@@ -3,12 +3,14 @@
 #include <vector>
 
 #include "command.hpp"
+#include "compare_command.hpp"
 #include "run_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace swath::apps;
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<ControlRunCommand>());
+  commands.push_back(std::make_unique<ControlCompareCommand>());
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",
                      "Exit codes: 0 the flight ended as asked (completed, the reserve reached with "

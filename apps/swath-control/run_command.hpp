@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "flight_inputs.hpp"
 
 namespace swath::apps {
 
@@ -22,12 +23,9 @@ class ControlRunCommand : public Command {
   int run() override;
 
  private:
-  std::string mission_, vehicle_ = "quad-f450", scheduler_ = "tt-400", environment_ = "calm";
-  std::string output_, drone_, start_, size_ = "1200x900";
-  std::vector<std::string> sets_;
-  std::uint64_t seed_ = 1;
-  bool loop_ = false, progress_ = false, no_pictures_ = false;
-  std::optional<double> speed_m_s_, altitude_m_, max_time_s_;
+  FlightRequest request_;
+  std::string output_, size_ = "1200x900";
+  bool progress_ = false, no_pictures_ = false;
 };
 
 }  // namespace swath::apps

@@ -145,6 +145,41 @@ TEST(ControlCli, BadInputIsOneSentenceExitTwoAndNoFiles) {
   }
 }
 
+TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
+  const std::string one = fresh_dir("control-compare-1"), two = fresh_dir("control-compare-2");
+  const std::string args = "compare paper --quick --environments lab,arch --tt-rates 200 -o ";
+  CliRun run = run_swath_control(args + one + " --jobs 1");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_EQ(run_swath_control(args + two + " --jobs 2").exit_code, 0);
+  for (const char* f : {"runs.csv", "comparison.json", "comparison.md"})
+    EXPECT_EQ(read_text(one + "/" + f), read_text(two + "/" + f)) << f;
+  // 2 environments x 3 modes (tt-400, reactive, tt-200) x 2 seeds.
+  std::istringstream in(read_text(one + "/runs.csv"));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream c(line);
+    std::string cell;
+    while (std::getline(c, cell, ',')) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), 12u);
+  // The reactive mode's attitude improvement in the lab, recomputed from runs.csv's pairs.
+  double sum = 0;
+  for (int seed = 0; seed < 2; ++seed) {
+    const double b = std::stod(rows[static_cast<std::size_t>(seed)][6]);
+    const double m = std::stod(rows[static_cast<std::size_t>(2 + seed)][6]);
+    EXPECT_EQ(rows[static_cast<std::size_t>(2 + seed)][2], "reactive");
+    sum += (b - m) / b;
+  }
+  const json c = json::parse(read_text(one + "/comparison.json"));
+  ASSERT_EQ(c["comparisons"].size(), 4u);
+  EXPECT_EQ(c["comparisons"][0]["mode"], "reactive");
+  EXPECT_NEAR(c["comparisons"][0]["attitude"]["mean"].get<double>(), sum / 2, 2e-4);
+}
+
 TEST(ControlCli, ThePictureShowsTheNoFlyZoneAndTheStartWhereTheyAre) {
   control::SimulationSettings settings;
   settings.mission.name = "test";

@@ -11,6 +11,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/control/config.hpp"
 #include "swath/control/control_files.hpp"
+#include "swath/control/experiment.hpp"
 #include "swath/control/mission.hpp"
 #include "swath/control/simulation.hpp"
 #include "swath/energy/battery.hpp"
@@ -227,6 +228,28 @@ TEST(Simulation, ReactiveFlightsBootFitAndTriggerAndBothModesSeeTheSameWind) {
   EXPECT_LT(same, 0.05);
   EXPECT_GT(different, 0.3);
   EXPECT_GT(rt.executions.total, 0);
+}
+
+TEST(Experiment, TheIntervalIsStudentsTAndImprovementsArePaired) {
+  // n = 5: t(0.975, 4) = 2.7764451051977987 (tables); mean 3, sample sd √2.5.
+  const MeanInterval m = mean_interval({1, 2, 3, 4, 5});
+  EXPECT_DOUBLE_EQ(m.mean, 3);
+  EXPECT_NEAR(m.high - m.mean, 2.7764451051977987 * std::sqrt(2.5 / 5), 1e-12);
+  EXPECT_NEAR(m.mean - m.low, m.high - m.mean, 1e-12);
+  EXPECT_EQ(mean_interval({7}).low, 7);
+  // Pairs: the baseline's error halves in the mode → +50 %; flight time 10 % longer → +10 %.
+  std::vector<FlightFigures> base(3), mode(3);
+  for (int k = 0; k < 3; ++k) {
+    base[k].attitude_rms_deg = 2.0 + k;
+    mode[k].attitude_rms_deg = (2.0 + k) / 2;
+    base[k].flight_time_s = 100.0 * (k + 1);
+    mode[k].flight_time_s = 110.0 * (k + 1);
+  }
+  const Improvements i = paired_improvements(base, mode);
+  EXPECT_NEAR(i.attitude.mean, 0.5, 1e-12);
+  EXPECT_NEAR(i.attitude.high - i.attitude.low, 0, 1e-12);
+  EXPECT_NEAR(i.flight_time.mean, 0.1, 1e-12);
+  EXPECT_EQ(i.cross_track.n, 0);  // baselines of 0 are skipped
 }
 
 TEST(Mission, RandomSpecsAreReadAndTheirPointsLieInTheBox) {

@@ -1,0 +1,42 @@
+#pragma once
+// Paper 002's experiment (§7; DESIGN.md §17.6): flights paired by seed (common random numbers,
+// so the modes see the same wind and sensor noise) and the paired improvement of a mode over the
+// time-triggered baseline with a 95 % Student-t interval.
+
+#include <string>
+#include <vector>
+
+#include "swath/control/simulation.hpp"
+
+namespace swath::control {
+
+/// A mean over n values with its two-sided 95 % Student-t interval (n − 1 degrees of freedom);
+/// n = 1: the interval is the value; n = 0: all zero.
+struct MeanInterval {
+  double mean = 0, low = 0, high = 0;
+  int n = 0;
+};
+MeanInterval mean_interval(const std::vector<double>& values);
+
+/// The figures a comparison pairs, from one flight's summary.
+struct FlightFigures {
+  double attitude_rms_deg = 0;  ///< roll and pitch together: √((r² + p²) / 2), true vs setpoint
+  double attitude_estimated_rms_deg = 0;  ///< the same against the estimate (the paper's measure)
+  double cross_track_rms_m = 0;
+  double executions_per_s = 0;
+  double unchanged_fraction = 0;
+  double flight_time_s = 0;  ///< to the reserve when it was reached, else the flight's
+  double cpu_j = 0, total_j = 0;
+};
+FlightFigures figures_of(const SimulationSummary& s);
+
+/// Relative improvements of `mode` over `baseline`, paired (same seed, same index):
+/// (b − m) / b for errors and executions (positive: fewer), (m − b) / b for flight time (positive:
+/// longer). Pairs where the baseline is 0 are skipped.
+struct Improvements {
+  MeanInterval attitude, attitude_estimated, cross_track, executions, flight_time;
+};
+Improvements paired_improvements(const std::vector<FlightFigures>& baseline,
+                                 const std::vector<FlightFigures>& mode);
+
+}  // namespace swath::control
