@@ -5,7 +5,9 @@
 #include <benchmark/benchmark.h>
 
 #include "swath/control/control_files.hpp"
+#include "swath/control/logistic.hpp"
 #include "swath/control/mission.hpp"
+#include "swath/control/reactive_scheduler.hpp"
 #include "swath/control/simulation.hpp"
 
 #include "swath/control/computer.hpp"
@@ -78,6 +80,52 @@ void TenMinutesOfFlight(benchmark::State& st) {
       benchmark::Counter(600.0 * static_cast<double>(st.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(TenMinutesOfFlight)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+// The same ten minutes in ARCH with reactive execution (30 s boot, then triggers): the target is
+// at most twice the time-triggered flight's time.
+void TenMinutesOfFlightReactive(benchmark::State& st) {
+  SimulationSettings s;
+  s.environment = vehicle::environment_preset("arch");
+  s.mission = closed_for_loop(random_mission(RandomSpec{8, 170, 170}, 5, 1));
+  s.loop = true;
+  s.speed_m_s = 3;
+  s.scheduler.mode = SchedulerMode::reactive;
+  s.scheduler.run.max_time_s = 600;
+  for (auto _ : st) benchmark::DoNotOptimize(simulate(s, nullptr).total_j);
+}
+BENCHMARK(TenMinutesOfFlightReactive)->Unit(benchmark::kMillisecond)->Iterations(2);
+
+// One sample through the reactive scheduler's trigger check (target ≤ 5 ns).
+void TriggerCheck(benchmark::State& st) {
+  ReactiveSettings r;
+  r.boot_s = 0;
+  r.initial_models = {{"gyro", -3, 2}};
+  ReactiveScheduler sched(r, {{"gyro", 0, 1'000'000}}, 400);
+  sched.on_execution_start(0);
+  SensorSample sample;
+  sample.axes = 3;
+  SimTime t = 0;
+  for (auto _ : st) {
+    sample.time_ns = (t += 1'000'000);
+    sample.value[0] = static_cast<double>(t % 3) * 1e-4;  // below x*: no release
+    sched.on_sample(sample);
+  }
+  benchmark::DoNotOptimize(sched.next_release_ns());
+}
+BENCHMARK(TriggerCheck);
+
+// A refit of 20,000 points (target ≤ 2 ms), each method.
+void Refit(benchmark::State& st) {
+  auto random = vehicle::SplitMix64::stream(1, "bench");
+  std::vector<TriggerPoint> data;
+  for (int i = 0; i < 20'000; ++i) {
+    const double x = random.uniform(0, 4);
+    data.push_back({x, random.uniform() < 1 / (1 + std::exp(3 - 2 * x))});
+  }
+  const auto method = static_cast<FitMethod>(st.range(0));
+  for (auto _ : st) benchmark::DoNotOptimize(fit_logistic(data, method).beta2);
+}
+BENCHMARK(Refit)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace swath::control

@@ -7,6 +7,7 @@
 #include "plan_command.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/control/config.hpp"
+#include "swath/control/logistic.hpp"
 #include "swath/control/mission.hpp"
 #include "swath/energy/budget.hpp"
 #include "swath/energy/plan.hpp"
@@ -154,6 +155,17 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { energy::parse_battery_section(rest, "fuzz.yaml"); });
        },
        {"tests/bad-input/seeds/control-override.txt"}},
+      // swath-control fit: trigger data (x, changed) and the fit of every method.
+      {"trigger_data",
+       [](const std::string& t) {
+         expect_input_error_only([&] {
+           const auto data = control::parse_trigger_data(t, "fuzz.csv");
+           for (auto method : {control::FitMethod::logit_ols, control::FitMethod::logit_wls,
+                               control::FitMethod::mle})
+             control::trigger_threshold(control::fit_logistic(data, method), 0.6);
+         });
+       },
+       {"tests/bad-input/seeds/trigger-data.csv"}},
   };
   return all;
 }

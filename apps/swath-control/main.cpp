@@ -4,6 +4,7 @@
 
 #include "command.hpp"
 #include "compare_command.hpp"
+#include "fit_command.hpp"
 #include "run_command.hpp"
 
 int main(int argc, char** argv) {
@@ -11,6 +12,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<ControlRunCommand>());
   commands.push_back(std::make_unique<ControlCompareCommand>());
+  commands.push_back(std::make_unique<ControlFitCommand>());
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",
                      "Exit codes: 0 the flight ended as asked (completed, the reserve reached with "

@@ -55,8 +55,11 @@ TEST(BadInput, EveryCaseOfTheCatalogueGivesItsExitCodeMessageAndNoOutput) {
     std::filesystem::remove_all(out);
     const std::string command = with_out(c.command, out);
     const bool energy = command.rfind("swath-energy ", 0) == 0;
-    const std::string args = command.substr(energy ? 13 : 6);
-    const CliRun run = energy ? run_swath_energy(args) : run_swath(args);
+    const bool control = command.rfind("swath-control ", 0) == 0;
+    const std::string args = command.substr(energy ? 13 : control ? 14 : 6);
+    const CliRun run = energy    ? run_swath_energy(args)
+                       : control ? run_swath_control(args)
+                                 : run_swath(args);
     const std::string where = "cases.tsv line " + std::to_string(c.line) + ": " + command;
     EXPECT_EQ(run.exit_code, c.exit_code) << where << "\n" << run.err;
     const std::string& said = c.exit_code == 0 ? run.out + run.err : run.err;

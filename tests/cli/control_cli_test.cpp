@@ -3,7 +3,9 @@
 // same seed, and the picture's pixels where the start and the no-fly zone are.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -178,6 +180,31 @@ TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
   ASSERT_EQ(c["comparisons"].size(), 4u);
   EXPECT_EQ(c["comparisons"][0]["mode"], "reactive");
   EXPECT_NEAR(c["comparisons"][0]["attitude"]["mean"].get<double>(), sum / 2, 2e-4);
+}
+
+TEST(ControlCli, FitRecoversTheCoefficientsOfItsData) {
+  // 20,000 points of L(x) with β = (−3, 2), written as a user would.
+  const std::string dir = fresh_dir("control-fit");
+  fs::create_directories(dir);
+  std::string csv = "t_s,x,changed\n";
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 20'000; ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double x = 4.0 * static_cast<double>(state >> 11) * 0x1.0p-53;
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const double u = static_cast<double>(state >> 11) * 0x1.0p-53;
+    csv += std::to_string(i) + "," + std::to_string(x) + "," +
+           (u < 1 / (1 + std::exp(3 - 2 * x)) ? "1" : "0") + "\n";
+  }
+  std::ofstream(dir + "/data.csv") << csv;
+  const CliRun run = run_swath_control("fit " + dir + "/data.csv --method mle --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j["points"], 20'000);
+  EXPECT_NEAR(j["beta1"].get<double>(), -3, 0.25);
+  EXPECT_NEAR(j["beta2"].get<double>(), 2, 0.15);
+  const double b1 = j["beta1"], b2 = j["beta2"];
+  EXPECT_NEAR(j["threshold"].get<double>(), (std::log(0.6 / 0.4) - b1) / b2, 1e-9);
 }
 
 TEST(ControlCli, ThePictureShowsTheNoFlyZoneAndTheStartWhereTheyAre) {

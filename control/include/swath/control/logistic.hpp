@@ -7,6 +7,7 @@
 // maximum-likelihood fit by IRLS.
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "swath/control/config.hpp"
@@ -39,5 +40,11 @@ double trigger_threshold(const LogisticModel& m, double p_run);
 /// logit ln((k + ½) / (n − k + ½)).
 LogisticModel fit_logistic(const std::vector<TriggerPoint>& data, FitMethod method, int bins = 20,
                            int min_per_bin = 25);
+
+/// Reads trigger data (`swath-control fit`): CSV with a header naming the columns `x` and
+/// `changed` (others ignored, any order); x ≥ 0 finite, changed 0 or 1; '#' lines and blank lines
+/// skipped; at most 10,000,000 rows. Throws base::InputError naming `source`, the line and the
+/// problem.
+std::vector<TriggerPoint> parse_trigger_data(const std::string& text, const std::string& source);
 
 }  // namespace swath::control
