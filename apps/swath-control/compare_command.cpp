@@ -1,13 +1,10 @@
 #include "compare_command.hpp"
 
-#include <atomic>
-#include <exception>
 #include <iostream>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "progress_bar.hpp"
+#include "flight_batch.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
@@ -27,13 +24,6 @@ struct Mode {
   std::vector<std::string> sets;
 };
 
-struct Run {
-  std::string environment, vehicle, mode;
-  std::uint64_t seed = 1;
-  control::SimulationSettings settings;
-  control::SimulationSummary summary;
-};
-
 // The paper's missions (§7): the lab's 20 m x 20 m room, a rugby pitch, the arch's square.
 std::string paper_mission(const std::string& environment) {
   if (environment == "rugby") return "random:8@100x70";
@@ -46,51 +36,6 @@ std::string stem(const std::string& name) {
   std::string s = slash == std::string::npos ? name : name.substr(slash + 1);
   const auto dot = s.rfind(".yaml");
   return dot == std::string::npos ? s : s.substr(0, dot);
-}
-
-// Flies every run on `jobs` threads; results land at their own index, so the output does not
-// depend on the number of threads.
-void fly_all(std::vector<Run>& runs, unsigned jobs, bool progress) {
-  std::atomic<std::size_t> next{0}, done{0};
-  std::exception_ptr failure;
-  std::mutex lock;
-  ProgressBar bar(progress, "flying");
-  auto worker = [&] {
-    for (std::size_t i; (i = next++) < runs.size();) {
-      try {
-        runs[i].summary = control::simulate(runs[i].settings, nullptr);
-      } catch (...) {
-        const std::lock_guard<std::mutex> guard(lock);
-        if (!failure) failure = std::current_exception();
-      }
-      const std::lock_guard<std::mutex> guard(lock);
-      bar.update(static_cast<double>(++done) / static_cast<double>(runs.size()));
-    }
-  };
-  std::vector<std::thread> threads;
-  for (unsigned k = 0; k < jobs; ++k) threads.emplace_back(worker);
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-std::string runs_csv(const std::vector<Run>& runs) {
-  std::string out =
-      "environment,vehicle,mode,seed,status,flight_time_s,attitude_rms_deg,"
-      "attitude_estimated_rms_deg,cross_track_rms_m,executions_per_s,unchanged_fraction,"
-      "cpu_utilisation,cpu_j,motors_j,total_j,mean_power_w,final_soc\n";
-  for (const Run& r : runs) {
-    const control::FlightFigures f = control::figures_of(r.summary);
-    const control::SimulationSummary& s = r.summary;
-    out += r.environment + ',' + r.vehicle + ',' + r.mode + ',' + std::to_string(r.seed) + ',' +
-           control::to_string(s.status) + ',' + fixed_text(f.flight_time_s, 3) + ',' +
-           fixed_text(f.attitude_rms_deg, 4) + ',' + fixed_text(f.attitude_estimated_rms_deg, 4) +
-           ',' + fixed_text(f.cross_track_rms_m, 4) + ',' + fixed_text(f.executions_per_s, 2) +
-           ',' + fixed_text(f.unchanged_fraction, 6) + ',' + fixed_text(s.cpu_utilisation, 6) +
-           ',' + fixed_text(s.cpu_j, 3) + ',' + fixed_text(s.motors_j, 1) + ',' +
-           fixed_text(s.total_j, 1) + ',' + fixed_text(s.mean_power_w, 3) + ',' +
-           fixed_text(s.final_soc, 6) + '\n';
-  }
-  return out;
 }
 
 ordered_json interval(const control::MeanInterval& m) {
@@ -166,7 +111,7 @@ int ControlCompareCommand::run() {
          {"scheduler.mode=time_triggered", "scheduler.rate_hz=" + base::shortest_text(rate)}});
 
   // Every flight's settings read and checked before anything is flown or written.
-  std::vector<Run> runs;
+  std::vector<BatchFlight> runs;
   for (const std::string& env : environments_)
     for (const std::string& vehicle : vehicles_)
       for (const Mode& mode : modes)
@@ -178,7 +123,8 @@ int ControlCompareCommand::run() {
           r.scheduler = mode.scheduler;
           r.seed = static_cast<std::uint64_t>(seed);
           r.sets.insert(r.sets.end(), mode.sets.begin(), mode.sets.end());
-          runs.push_back({env, stem(vehicle), mode.name, r.seed, prepare_flight(r).settings, {}});
+          runs.push_back(
+              {env, stem(vehicle), mode.name, "", r.seed, prepare_flight(r).settings, {}});
         }
   base::OutputSet set(output_, "control-compare");
   const unsigned jobs = jobs_ > 0 ? jobs_ : std::max(1u, std::thread::hardware_concurrency());
@@ -209,7 +155,7 @@ int ControlCompareCommand::run() {
     for (std::size_t m = 1; m < modes.size(); ++m) {
       const auto mode = figures(m);
       const control::Improvements imp = control::paired_improvements(baseline, mode);
-      const Run& first = runs[g];
+      const BatchFlight& first = runs[g];
       const double eb = mean_of(baseline, &control::FlightFigures::executions_per_s);
       const double em = mean_of(mode, &control::FlightFigures::executions_per_s);
       const double ub = mean_of(baseline, &control::FlightFigures::unchanged_fraction);

@@ -6,12 +6,14 @@
 #include "compare_command.hpp"
 #include "fit_command.hpp"
 #include "run_command.hpp"
+#include "sweep_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace swath::apps;
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<ControlRunCommand>());
   commands.push_back(std::make_unique<ControlCompareCommand>());
+  commands.push_back(std::make_unique<ControlSweepCommand>());
   commands.push_back(std::make_unique<ControlFitCommand>());
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",

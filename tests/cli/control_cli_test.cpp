@@ -182,6 +182,40 @@ TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
   EXPECT_NEAR(c["comparisons"][0]["attitude"]["mean"].get<double>(), sum / 2, 2e-4);
 }
 
+TEST(ControlCli, SweepFliesEachValueAsRunWouldWithThatSet) {
+  const std::string out = fresh_dir("control-sweep");
+  const CliRun run = run_swath_control(
+      "sweep random:4@20x20 --param scheduler.rate_hz=100:400:150 --seeds 2 --max-time 15 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream in(read_text(out + "/runs.csv"));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("environment,vehicle,mode,value,seed,", 0), 0u);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream c(line);
+    std::string cell;
+    while (std::getline(c, cell, ',')) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  ASSERT_EQ(rows.size(), 6u);  // 100, 250, 400 Hz x seeds 1, 2
+  EXPECT_EQ(rows[2][3], "250");
+  EXPECT_EQ(rows[2][4], "1");
+  EXPECT_EQ(std::stod(rows[2][10]), 250.0);  // executions/s
+  // The same flight by run: --set scheduler.rate_hz=250, seed 1.
+  const std::string single = fresh_dir("control-sweep-single");
+  ASSERT_EQ(run_swath_control("run random:4@20x20 --set scheduler.rate_hz=250 --seed 1 "
+                              "--max-time 15 --no-pictures -o " +
+                              single)
+                .exit_code,
+            0);
+  const json s = json::parse(read_text(single + "/summary.json"));
+  EXPECT_NEAR(std::stod(rows[2][9]), s["tracking"]["cross_track_rms_m"].get<double>(), 1e-4);
+  EXPECT_NEAR(std::stod(rows[2][15]), s["energy"]["total_j"].get<double>(), 0.1);
+}
+
 TEST(ControlCli, FitRecoversTheCoefficientsOfItsData) {
   // 20,000 points of L(x) with β = (−3, 2), written as a user would.
   const std::string dir = fresh_dir("control-fit");

@@ -1,0 +1,64 @@
+#include "flight_batch.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "progress_bar.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/control/experiment.hpp"
+
+namespace swath::apps {
+
+using base::fixed_text;
+
+// Flies every run on `jobs` threads; results land at their own index, so the output does not
+// depend on the number of threads.
+void fly_all(std::vector<BatchFlight>& runs, unsigned jobs, bool progress) {
+  std::atomic<std::size_t> next{0}, done{0};
+  std::exception_ptr failure;
+  std::mutex lock;
+  ProgressBar bar(progress, "flying");
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < runs.size();) {
+      try {
+        runs[i].summary = control::simulate(runs[i].settings, nullptr);
+      } catch (...) {
+        const std::lock_guard<std::mutex> guard(lock);
+        if (!failure) failure = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> guard(lock);
+      bar.update(static_cast<double>(++done) / static_cast<double>(runs.size()));
+    }
+  };
+  std::vector<std::thread> threads;
+  for (unsigned k = 0; k < jobs; ++k) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+std::string runs_csv(const std::vector<BatchFlight>& runs, const std::string& value_column) {
+  std::string out =
+      "environment,vehicle,mode," + (value_column.empty() ? "" : value_column + ",") +
+      "seed,status,flight_time_s,attitude_rms_deg,"
+      "attitude_estimated_rms_deg,cross_track_rms_m,executions_per_s,unchanged_fraction,"
+      "cpu_utilisation,cpu_j,motors_j,total_j,mean_power_w,final_soc\n";
+  for (const BatchFlight& r : runs) {
+    const control::FlightFigures f = control::figures_of(r.summary);
+    const control::SimulationSummary& s = r.summary;
+    out += r.environment + ',' + r.vehicle + ',' + r.mode + ',' +
+           (value_column.empty() ? "" : r.value + ',') + std::to_string(r.seed) + ',' +
+           control::to_string(s.status) + ',' + fixed_text(f.flight_time_s, 3) + ',' +
+           fixed_text(f.attitude_rms_deg, 4) + ',' + fixed_text(f.attitude_estimated_rms_deg, 4) +
+           ',' + fixed_text(f.cross_track_rms_m, 4) + ',' + fixed_text(f.executions_per_s, 2) +
+           ',' + fixed_text(f.unchanged_fraction, 6) + ',' + fixed_text(s.cpu_utilisation, 6) +
+           ',' + fixed_text(s.cpu_j, 3) + ',' + fixed_text(s.motors_j, 1) + ',' +
+           fixed_text(s.total_j, 1) + ',' + fixed_text(s.mean_power_w, 3) + ',' +
+           fixed_text(s.final_soc, 6) + '\n';
+  }
+  return out;
+}
+
+}  // namespace swath::apps

@@ -1,0 +1,26 @@
+#pragma once
+// Many flights at once (compare, sweep): each on its own settings, flown on `jobs` threads, the
+// results at their own index so the files do not depend on the number of threads; and their
+// table, runs.csv.
+
+#include <string>
+#include <vector>
+
+#include "swath/control/simulation.hpp"
+
+namespace swath::apps {
+
+struct BatchFlight {
+  std::string environment, vehicle, mode, value;  ///< value: the swept parameter's (sweep)
+  std::uint64_t seed = 1;
+  control::SimulationSettings settings;
+  control::SimulationSummary summary;
+};
+
+/// Flies every flight; rethrows the first failure after all threads have stopped.
+void fly_all(std::vector<BatchFlight>& flights, unsigned jobs, bool progress);
+
+/// runs.csv: a row per flight; `value_column` non-empty adds that column (sweep).
+std::string runs_csv(const std::vector<BatchFlight>& flights, const std::string& value_column = "");
+
+}  // namespace swath::apps
