@@ -194,14 +194,77 @@ ControlPicture energy_picture(const control::SimulationSettings& settings,
                {"reserve", {0.0, t_end}, {reserve, reserve}, kRed, 1.5}}};
   specs[2] = {"Control executions",
               "time (s)",
-              "per second",
+              "1/s",
               {series(flight, "executions in the last second", kBlue, 1.5,
                       [](const R& r) { return static_cast<double>(r.executions_last_s); })}};
   return stacked(std::move(specs), width_px, height_px);
 }
 
+ControlPicture triggers_picture(const std::vector<control::RateRow>& rates, const Raster& raster,
+                                const std::vector<std::string>& trigger_sensors, int width_px,
+                                int height_px) {
+  static constexpr const char* kCauses[] = {"time-triggered", "boot", "trigger", "failsafe",
+                                            "setpoint"};
+  const Color palette[] = {kGrey, kGreen, kBlue, kRed, kOrange};
+  // 1. Executions per second, in all and by cause.
+  std::vector<render::Series> series;
+  render::Series all{"all", {}, {}, kInk, 2.0};
+  for (const auto& r : rates) {
+    all.x.push_back(r.second);
+    all.y.push_back(r.executions);
+  }
+  series.push_back(all);
+  for (std::size_t c = 0; c < 5; ++c) {
+    render::Series one{kCauses[c], {}, {}, palette[c], 1.5};
+    bool any = false;
+    for (const auto& r : rates) {
+      one.x.push_back(r.second);
+      one.y.push_back(r.by_cause[c]);
+      any = any || r.by_cause[c] > 0;
+    }
+    if (any) series.push_back(std::move(one));
+  }
+  ControlPicture out =
+      stacked({{"Control executions per second (paper 002 Fig. 11)", "time (s)", "1/s", series}},
+              width_px, height_px / 2);
+  out.view.height_px = height_px;
+  // 2. The raster, below: one row per cause, one for unchanged outputs, one per sensor.
+  std::vector<std::pair<std::string, std::vector<double>>> rows;
+  for (std::size_t c = 0; c < 5; ++c) {
+    std::vector<double> ticks;
+    for (const auto& [t, cause] : raster.executions)
+      if (static_cast<std::size_t>(cause) == c) ticks.push_back(t);
+    if (!ticks.empty()) rows.push_back({std::string("execution: ") + kCauses[c], ticks});
+  }
+  rows.push_back({"output unchanged", raster.unchanged});
+  for (std::size_t k = 0; k < trigger_sensors.size(); ++k)
+    rows.push_back({"trigger: " + trigger_sensors[k],
+                    k < raster.triggers.size() ? raster.triggers[k] : std::vector<double>{}});
+  const double top = height_px / 2.0 + 40, bottom = height_px - 40.0;
+  const double left = 200, right = width_px - 30.0;
+  const double row_h = (bottom - top) / static_cast<double>(rows.size());
+  const int text_h = std::max(10, static_cast<int>(std::min(row_h * 0.6, 16.0)));
+  const std::string title = "Two seconds from " + fixed_text(raster.from_s, 1) + " s";
+  out.scene.labels.push_back({static_cast<int>(left), static_cast<int>(top - 12), title,
+                              static_cast<double>(text_h), kInk});
+  const double span = raster.to_s - raster.from_s;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const double y0 = top + static_cast<double>(r) * row_h, y1 = y0 + row_h * 0.8;
+    out.scene.labels.push_back({10, static_cast<int>(y1), rows[r].first,
+                                render::fitted_text_height(rows[r].first, left - 20, text_h),
+                                kInk});
+    out.scene.screen_polylines.push_back({{{left, y1}, {right, y1}}, 1.0, kGrey});
+    for (double t : rows[r].second) {
+      const double x = left + (t - raster.from_s) / span * (right - left);
+      out.scene.screen_polylines.push_back({{{x, y0}, {x, y1}}, 1.0, kBlue});
+    }
+  }
+  return out;
+}
+
 void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
                         const control::SimulationSummary& summary, const FlightSeries& flight,
+                        const std::vector<control::RateRow>& rates, const Raster& raster,
                         int width_px, int height_px) {
   auto png = [](const ControlPicture& p) {
     return render::encode_png(render::draw(p.scene, p.view));
@@ -210,6 +273,9 @@ void add_control_images(base::OutputSet& set, const control::SimulationSettings&
           png(trajectory_picture(settings, summary, flight, width_px, height_px)));
   set.add("attitude.png", png(attitude_picture(flight, width_px, height_px)));
   set.add("energy.png", png(energy_picture(settings, flight, width_px, height_px)));
+  set.add("triggers.png",
+          png(triggers_picture(rates, raster, control::trigger_sensor_names(settings.physics),
+                               width_px, height_px)));
 }
 
 }  // namespace swath::apps

@@ -26,6 +26,24 @@ class FlightSeries {
   std::size_t stride_ = 1, seen_ = 0;
 };
 
+/// Two seconds of events for the raster of triggers.png.
+struct Raster {
+  double from_s = 0, to_s = 2;
+  std::vector<std::pair<double, control::ReleaseCause>> executions;  ///< start, cause
+  std::vector<double> unchanged;                                     ///< starts of those
+  std::vector<std::vector<double>> triggers;                         ///< per trigger sensor
+  void add_execution(double t, control::ReleaseCause cause, bool changed) {
+    if (t < from_s || t >= to_s) return;
+    executions.push_back({t, cause});
+    if (!changed) unchanged.push_back(t);
+  }
+  void add_trigger(double t, std::size_t sensor) {
+    if (t < from_s || t >= to_s) return;
+    if (triggers.size() <= sensor) triggers.resize(sensor + 1);
+    triggers[sensor].push_back(t);
+  }
+};
+
 struct ControlPicture {
   render::Scene scene;
   render::View view;
@@ -44,9 +62,16 @@ ControlPicture attitude_picture(const FlightSeries& flight, int width_px, int he
 ControlPicture energy_picture(const control::SimulationSettings& settings,
                               const FlightSeries& flight, int width_px, int height_px);
 
-/// The three pictures into the output set as PNG.
+/// Executions per second by cause (paper 002 Fig. 11) over the flight, and a raster of two
+/// seconds: a tick per execution in its cause's row, per unchanged output, per sensor trigger.
+ControlPicture triggers_picture(const std::vector<control::RateRow>& rates, const Raster& raster,
+                                const std::vector<std::string>& trigger_sensors, int width_px,
+                                int height_px);
+
+/// The four pictures into the output set as PNG.
 void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
                         const control::SimulationSummary& summary, const FlightSeries& flight,
+                        const std::vector<control::RateRow>& rates, const Raster& raster,
                         int width_px, int height_px);
 
 }  // namespace swath::apps

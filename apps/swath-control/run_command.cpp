@@ -31,8 +31,19 @@ void warn(const std::vector<std::string>& warnings) {
 // Rows into the streams as they come; a bounded copy for the pictures.
 class Recorder : public control::SimulationObserver {
  public:
-  Recorder(base::OutputSet::Stream& rows, base::OutputSet::Stream& seconds, ProgressBar& bar)
-      : rows_(rows), seconds_(seconds), bar_(bar) {}
+  Recorder(base::OutputSet::Stream& rows, base::OutputSet::Stream& seconds,
+           base::OutputSet::Stream& fits, control::FitMethod method, double raster_from_s,
+           ProgressBar& bar)
+      : rows_(rows), seconds_(seconds), fits_(fits), method_(method), bar_(bar) {
+    raster_.from_s = raster_from_s;
+    raster_.to_s = raster_from_s + 2;
+  }
+  void on_execution(double start_s, control::ReleaseCause cause, bool changed) override {
+    raster_.add_execution(start_s, cause, changed);
+  }
+  void on_trigger(double t_s, std::size_t sensor) override { raster_.add_trigger(t_s, sensor); }
+  void on_fit(const control::FitRow& row) override { fits_ << control::fits_csv_row(row, method_); }
+  const Raster& raster() const { return raster_; }
   void on_row(const control::TimeseriesRow& row) override {
     rows_ << control::timeseries_csv_row(row);
     kept_.add(row);
@@ -48,7 +59,10 @@ class Recorder : public control::SimulationObserver {
  private:
   base::OutputSet::Stream& rows_;
   base::OutputSet::Stream& seconds_;
+  base::OutputSet::Stream& fits_;
+  control::FitMethod method_;
   ProgressBar& bar_;
+  Raster raster_;
   FlightSeries kept_;
   std::vector<control::RateRow> rates_;
 };
@@ -62,7 +76,7 @@ void ControlRunCommand::setup(CLI::App& app) {
                  "paper's missions are random:8@20x20, random:8@100x70, random:8@170x170)")
       ->required();
   app.add_option("-o,--output", output_,
-                 "Directory for timeseries.csv, rate.csv, summary.json and the pictures")
+                 "Directory for timeseries.csv, rate.csv, fits.csv, summary.json and the pictures")
       ->required();
   app.add_option("--vehicle", request_.vehicle,
                  "Vehicle file, or a bundled one: quad-f450, hexa-f550, y6, quad-f450-cc3d")
@@ -74,6 +88,10 @@ void ControlRunCommand::setup(CLI::App& app) {
                  "Wind: calm, lab, rugby, arch (paper 002's places) or an environment file")
       ->capture_default_str();
   add_flight_options(app, request_);
+  app.add_option("--raster-at", raster_at_s_,
+                 "Where triggers.png's two-second raster starts, s (default: the scheduler's "
+                 "run.metrics_from_s, 30)")
+      ->check(CLI::Range(0.0, 86'400.0));
   app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
   app.add_flag("--no-pictures", no_pictures_,
                "Write the CSV files and summary.json only (drawing costs ~0.5 s and ~300 MB of "
@@ -95,18 +113,26 @@ int ControlRunCommand::run() {
   const std::vector<std::string> triggers = control::trigger_sensor_names(settings.physics);
   rows << control::timeseries_csv_header(settings.physics.airframe.rotors.size());
   seconds << control::rate_csv_header(triggers);
+  base::OutputSet::Stream& fits = set.stream("fits.csv");
+  fits << control::fits_csv_header();
   control::SimulationSummary summary;
   FlightSeries kept;
+  std::vector<control::RateRow> rates;
+  Raster raster;
   {
     ProgressBar bar(progress_, "flying");
-    Recorder recorder(rows, seconds, bar);
+    Recorder recorder(rows, seconds, fits, settings.scheduler.reactive.fit_method,
+                      raster_at_s_.value_or(settings.scheduler.run.metrics_from_s), bar);
     summary = control::simulate(settings, &recorder);
     kept = recorder.kept();
+    rates = recorder.rates();
+    raster = recorder.raster();
   }
 
   // 3. The summary and the pictures; everything appears at once.
   set.add("summary.json", control::summary_json(summary, prepared.inputs, settings));
-  if (!no_pictures_) add_control_images(set, settings, summary, kept, width_px, height_px);
+  if (!no_pictures_)
+    add_control_images(set, settings, summary, kept, rates, raster, width_px, height_px);
   set.commit();
 
   using base::fixed_text;

@@ -16,8 +16,8 @@ class ControlRunCommand : public Command {
   const char* description() const override {
     return "Fly a mission (swath's mission.geojson or a QGC .plan/.waypoints, a stage plan, or "
            "random:N@WxH) with a simulated multirotor, its sensors, control task, flight computer "
-           "and battery, in wind; writes timeseries.csv, rate.csv, summary.json, trajectory.png, "
-           "attitude.png, energy.png";
+           "and battery, in wind; writes timeseries.csv, rate.csv, fits.csv, summary.json, "
+           "trajectory.png, attitude.png, energy.png, triggers.png";
   }
   void setup(CLI::App& app) override;
   int run() override;
@@ -26,6 +26,7 @@ class ControlRunCommand : public Command {
   FlightRequest request_;
   std::string output_, size_ = "1200x900";
   bool progress_ = false, no_pictures_ = false;
+  std::optional<double> raster_at_s_;
 };
 
 }  // namespace swath::apps

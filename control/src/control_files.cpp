@@ -85,6 +85,22 @@ std::string rate_csv_row(const RateRow& r) {
   return line + '\n';
 }
 
+std::string fits_csv_header() {
+  return "t_s,sensor,n,beta1,beta2,threshold,method\n";
+}
+
+std::string fits_csv_row(const FitRow& r, FitMethod method) {
+  static constexpr const char* kMethods[] = {"logit_ols", "logit_wls", "mle"};
+  std::string line;
+  add(line, r.t_s, 3);
+  line += ',' + r.sensor + ',' + std::to_string(r.points);
+  add(line, r.beta1, 6);
+  add(line, r.beta2, 6);
+  line += ',' + (std::isfinite(r.threshold) ? fixed_text(r.threshold, 6) : std::string("inf"));
+  line += ',' + std::string(kMethods[static_cast<int>(method)]);
+  return line + '\n';
+}
+
 std::string summary_json(const SimulationSummary& s, const SummaryInputs& in,
                          const SimulationSettings& settings) {
   ordered_json j;

@@ -341,6 +341,7 @@ class Flight {
         end_execution(*e);
       } else {
         scheduler_->end_refit(e->time_ns);
+        report_fits(e->time_ns);
       }
     }
   }
@@ -360,6 +361,31 @@ class Flight {
       sample.axes = s_.physics.sensors[d.sensor].type == vehicle::SensorType::baro ? 1 : 3;
       if (sample.axes == 1) sample.value[0] = v.z;
       scheduler_->on_sample(sample);
+      report_trigger(d.sensor);
+    }
+  }
+
+  // A trigger of `sensor` just now (the reactive scheduler's count moved), for the raster.
+  void report_trigger(std::size_t sensor) {
+    const auto* r = dynamic_cast<const ReactiveScheduler*>(scheduler_.get());
+    if (!r || !observer_) return;
+    for (std::size_t k = 0; k < r->sensors().size(); ++k) {
+      if (r->sensors()[k].index != sensor) continue;
+      if (seen_triggers_.size() <= k) seen_triggers_.resize(k + 1, 0);
+      if (r->stats()[k].triggers != seen_triggers_[k]) {
+        seen_triggers_[k] = r->stats()[k].triggers;
+        observer_->on_trigger(seconds(plant_.now()), k);
+      }
+    }
+  }
+
+  void report_fits(SimTime t) {
+    const auto* r = dynamic_cast<const ReactiveScheduler*>(scheduler_.get());
+    if (!r || !observer_) return;
+    for (std::size_t k = 0; k < r->stats().size(); ++k) {
+      const TriggerStats& st = r->stats()[k];
+      observer_->on_fit({seconds(t), r->sensors()[k].name, st.dataset, st.model.beta1,
+                         st.model.beta2, st.threshold});
     }
   }
 
@@ -372,6 +398,7 @@ class Flight {
     input.sensors.truth = {x.position_m, x.velocity_m_s, x.attitude, x.rate_rad_s};
     input.setpoint = setpoint_at(t);
     pending_ = task_.execute(state_, input);
+    started_ns_ = t;
   }
 
   void end_execution(const ComputerEvent& e) {
@@ -379,6 +406,7 @@ class Flight {
       plant_.command_pwm(i, pending_.pwm_us[i]);
     attitude_setpoint_ = pending_.attitude_setpoint;
     scheduler_->on_execution_end(e.time_ns, pending_.changed);
+    if (observer_) observer_->on_execution(seconds(started_ns_), e.cause, pending_.changed);
     const auto cause = static_cast<std::size_t>(e.cause);
     ++rate_.executions;
     ++rate_.by_cause[cause];
@@ -645,6 +673,8 @@ class Flight {
   SimTime off_track_since_ns_ = kNever, end_ns_ = 0, last_row_ns_ = 0;
   bool ended_ = false, have_position_ = false;
   std::size_t last_leg_ = 0;
+  SimTime started_ns_ = 0;
+  std::vector<std::int64_t> seen_triggers_;
   Vec3 last_position_;
   double motors_j_ = 0, cpu_j_ = 0, avionics_j_ = 0, row_motors_j_ = 0, row_cpu_j_ = 0;
 

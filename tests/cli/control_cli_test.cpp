@@ -80,11 +80,36 @@ TEST(ControlCli, SwathsPlanIsFlownInWindAndItsFilesAgree) {
   const auto seconds = csv_rows(read_text(out + "/rate.csv"), &columns);
   ASSERT_GE(seconds.size(), static_cast<std::size_t>(t));
   for (std::size_t k = 0; k + 1 < seconds.size(); ++k) EXPECT_EQ(seconds[k][1], 400) << k;
-  for (const char* png : {"trajectory.png", "attitude.png", "energy.png"}) {
+  for (const char* png : {"trajectory.png", "attitude.png", "energy.png", "triggers.png"}) {
     const render::Image image = render::decode_png(read_text(out + "/" + png));
     EXPECT_EQ(image.width, 1200);
     EXPECT_EQ(image.height, 900);
   }
+}
+
+TEST(ControlCli, AReactiveFlightWritesItsFitsAndTheRaster) {
+  const std::string out = fresh_dir("control-reactive");
+  const CliRun run = run_swath_control(
+      "run random:4@30x30 --scheduler reactive --environment rugby --max-time 12 --set "
+      "scheduler.reactive.boot_s=5 --set scheduler.run.metrics_from_s=5 --raster-at 8 "
+      "--size 600x450 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  // fits.csv: a row per sensor and refit, as many as summary.json counts.
+  std::int64_t refits = 0;
+  for (const auto& [sensor, t] : s["triggers"].items()) refits += t["refits"].get<std::int64_t>();
+  const std::string fits = read_text(out + "/fits.csv");
+  EXPECT_EQ(fits.rfind("t_s,sensor,n,beta1,beta2,threshold,method\n", 0), 0u);
+  EXPECT_EQ(static_cast<std::int64_t>(std::count(fits.begin(), fits.end(), '\n')) - 1, refits);
+  EXPECT_GE(refits, 5 * 5);  // five sensors, a refit a second from 5 s to 12 s
+  // triggers.png: the raster's rows hold ticks (dark blue) where executions happened.
+  const render::Image image = render::decode_png(read_text(out + "/triggers.png"));
+  int blue = 0;
+  for (int y = 450 / 2 + 40; y < 450 - 40; ++y)
+    for (int x = 220; x < 560; ++x)
+      if (image.at(x, y, 2) > 150 && image.at(x, y, 0) < 100) ++blue;
+  EXPECT_GT(blue, 1000);
 }
 
 TEST(ControlCli, TheSameSeedWritesTheSameBytes) {
@@ -92,8 +117,8 @@ TEST(ControlCli, TheSameSeedWritesTheSameBytes) {
   const std::string args = "run random:4@30x30 --environment arch --seed 3 --size 400x300 -o ";
   ASSERT_EQ(run_swath_control(args + a).exit_code, 0);
   ASSERT_EQ(run_swath_control(args + b).exit_code, 0);
-  for (const char* f : {"timeseries.csv", "rate.csv", "summary.json", "trajectory.png",
-                        "attitude.png", "energy.png"})
+  for (const char* f : {"timeseries.csv", "rate.csv", "fits.csv", "summary.json", "trajectory.png",
+                        "attitude.png", "energy.png", "triggers.png"})
     EXPECT_EQ(read_text(a + "/" + f), read_text(b + "/" + f)) << f;
   const std::string c = fresh_dir("control-same-c");
   ASSERT_EQ(

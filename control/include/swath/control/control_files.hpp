@@ -18,6 +18,10 @@ std::string timeseries_csv_row(const TimeseriesRow& row);
 std::string rate_csv_header(const std::vector<std::string>& trigger_sensors);
 std::string rate_csv_row(const RateRow& row);
 
+/// fits.csv: one row per sensor and refit.
+std::string fits_csv_header();
+std::string fits_csv_row(const FitRow& row, FitMethod method);
+
 /// What summary.json names as the inputs.
 struct SummaryInputs {
   std::string mission, vehicle, scheduler, environment;

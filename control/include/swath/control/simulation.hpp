@@ -130,11 +130,26 @@ struct SimulationSummary {
 };
 
 /// Receives what a flight produces as it happens; every method optional.
+/// One sensor's model after a refit (fits.csv).
+struct FitRow {
+  double t_s = 0;  ///< when the refit finished (its models apply from then)
+  std::string sensor;
+  std::size_t points = 0;
+  double beta1 = 0, beta2 = 0;
+  double threshold = 0;  ///< x* (+∞: never)
+};
+
 class SimulationObserver {
  public:
   virtual ~SimulationObserver() = default;
   virtual void on_row(const TimeseriesRow& /*row*/) {}
   virtual void on_second(const RateRow& /*row*/) {}
+  /// Every execution as it ends: when it started, its cause, whether the output changed.
+  virtual void on_execution(double /*start_s*/, ReleaseCause /*cause*/, bool /*changed*/) {}
+  /// Every trigger (reactive): when, and the trigger sensor's index in trigger_sensor_names().
+  virtual void on_trigger(double /*t_s*/, std::size_t /*trigger_sensor*/) {}
+  /// Every sensor's model after each refit (reactive).
+  virtual void on_fit(const FitRow& /*row*/) {}
   /// About every simulated second: the fraction of the expected flight done, [0, 1].
   virtual void on_progress(double /*fraction*/) {}
 };
