@@ -163,6 +163,18 @@ std::string summary_json(const SimulationSummary& s, const SummaryInputs& in,
                      {"false_negatives", s.feedback.false_negatives},
                      {"multi_cause_excluded", s.feedback.multi_cause_excluded}};
   }
+  if (s.oracle) {
+    const auto& o = *s.oracle;
+    auto ratio = [](std::int64_t a, std::int64_t b) {
+      return b > 0 ? round_to(static_cast<double>(a) / static_cast<double>(b), 6) : 0.0;
+    };
+    j["oracle"] = {{"tp", o.tp},
+                   {"fp", o.fp},
+                   {"tn", o.tn},
+                   {"fn", o.fn},
+                   {"precision", ratio(o.tp, o.tp + o.fp)},
+                   {"recall", ratio(o.tp, o.tp + o.fn)}};
+  }
   j["cpu"] = {{"utilisation", round_to(s.cpu_utilisation, 6)},
               {"energy_j", round_to(s.cpu_j, 3)},
               {"energy_per_execution_mj", round_to(s.cpu_energy_per_execution_mj, 6)},

@@ -277,6 +277,7 @@ class Flight {
                            ? 0
                            : vehicle::from_seconds(from);
     summary_.metrics_from_s = seconds(metrics_from_ns_);
+    if (reactive_) boot_end_ns_ = vehicle::from_seconds(s.scheduler.reactive.boot_s);
     rate_.triggers.assign(triggers_.size(), 0);
     last_.rotors = task_.config().airframe.rotors.count;
   }
@@ -361,22 +362,59 @@ class Flight {
       sample.axes = s_.physics.sensors[d.sensor].type == vehicle::SensorType::baro ? 1 : 3;
       if (sample.axes == 1) sample.value[0] = v.z;
       scheduler_->on_sample(sample);
-      report_trigger(d.sensor);
+      const bool fired = report_trigger(d.sensor);
+      if (s_.scheduler.reactive.oracle && has_snapshot_ && plant_.now() >= boot_end_ns_)
+        ask_oracle(d, fired);
     }
   }
 
-  // A trigger of `sensor` just now (the reactive scheduler's count moved), for the raster.
-  void report_trigger(std::size_t sensor) {
+  // Whether `sensor`'s sample just now fired (the reactive scheduler's count moved); told to the
+  // observer for the raster.
+  bool report_trigger(std::size_t sensor) {
     const auto* r = dynamic_cast<const ReactiveScheduler*>(scheduler_.get());
-    if (!r || !observer_) return;
+    if (!r) return false;
     for (std::size_t k = 0; k < r->sensors().size(); ++k) {
       if (r->sensors()[k].index != sensor) continue;
       if (seen_triggers_.size() <= k) seen_triggers_.resize(k + 1, 0);
-      if (r->stats()[k].triggers != seen_triggers_[k]) {
-        seen_triggers_[k] = r->stats()[k].triggers;
-        observer_->on_trigger(seconds(plant_.now()), k);
-      }
+      if (r->stats()[k].triggers == seen_triggers_[k]) return false;
+      seen_triggers_[k] = r->stats()[k].triggers;
+      if (observer_) observer_->on_trigger(seconds(plant_.now()), k);
+      return true;
     }
+    return false;
+  }
+
+  // The oracle (DESIGN.md §17.3, simulation only): the control task copied and run on the last
+  // execution's snapshot with only this sensor's value replaced; the output changing is the
+  // sample's true label. Draws no random numbers, changes no state.
+  void ask_oracle(const vehicle::DeliveredSample& d, bool fired) {
+    TaskState state = snapshot_state_;
+    TaskInput in = snapshot_input_;
+    const Vec3& v = d.sample.value;
+    EstimatorInput& e = in.sensors;
+    switch (s_.physics.sensors[d.sensor].type) {
+      case vehicle::SensorType::gyro:
+        e.imu.delta_angle_rad = v * e.imu.interval_s;
+        break;
+      case vehicle::SensorType::accel:
+        e.imu.delta_velocity_m_s = v * e.imu.interval_s;
+        break;
+      case vehicle::SensorType::mag:
+        e.mag = {v, true};
+        break;
+      case vehicle::SensorType::baro:
+        e.baro = {v.z, true};
+        break;
+      case vehicle::SensorType::position:
+        e.fix = {v, d.sample.velocity, true, true};
+        break;
+    }
+    const ExecutionOutput out = task_.execute(state, in);
+    bool changed = false;
+    for (std::size_t i = 0; i < out.rotor_count; ++i)
+      changed = changed || std::abs(out.pwm_us[i] - snapshot_pwm_[i]) >=
+                               task_.config().gains.change_threshold_us;
+    ++oracle_[(fired ? 2 : 0) + (changed ? 1 : 0)];  // tn, fn, fp, tp
   }
 
   void report_fits(SimTime t) {
@@ -397,7 +435,13 @@ class Flight {
     const vehicle::MultirotorState& x = plant_.state();
     input.sensors.truth = {x.position_m, x.velocity_m_s, x.attitude, x.rate_rad_s};
     input.setpoint = setpoint_at(t);
+    if (s_.scheduler.reactive.oracle) {
+      snapshot_state_ = state_;
+      snapshot_input_ = input;
+      has_snapshot_ = true;
+    }
     pending_ = task_.execute(state_, input);
+    if (s_.scheduler.reactive.oracle) snapshot_pwm_ = pending_.pwm_us;
     started_ns_ = t;
   }
 
@@ -626,6 +670,9 @@ class Flight {
       };
       s.feedback = {f.false_positives, f.false_negatives, f.multi_cause_excluded,
                     share(f.after_boot_fp, f.after_boot), share(f.steady_fp, f.steady)};
+      if (s_.scheduler.reactive.oracle) {
+        s.oracle = SimulationSummary::Oracle{oracle_[3], oracle_[2], oracle_[0], oracle_[1]};
+      }
     } else {
       for (std::size_t k = 0; k < trigger_index_.size(); ++k)
         s.triggers.push_back({triggers_[k], sample_counts_[trigger_index_[k]], 0, 0, 0, 0, 0, 0});
@@ -675,6 +722,14 @@ class Flight {
   std::size_t last_leg_ = 0;
   SimTime started_ns_ = 0;
   std::vector<std::int64_t> seen_triggers_;
+  // The oracle's snapshot: the task's state before the last execution, its input, its output.
+  TaskState snapshot_state_;
+  TaskInput snapshot_input_;
+  std::array<double, vehicle::kMaxRotors> snapshot_pwm_{};
+  bool has_snapshot_ = false;
+  SimTime boot_end_ns_ = 0;
+  std::array<std::int64_t, 4>
+      oracle_{};  // true negatives, false negatives, false positives, true positives
   Vec3 last_position_;
   double motors_j_ = 0, cpu_j_ = 0, avionics_j_ = 0, row_motors_j_ = 0, row_cpu_j_ = 0;
 

@@ -230,6 +230,30 @@ TEST(Simulation, ReactiveFlightsBootFitAndTriggerAndBothModesSeeTheSameWind) {
   EXPECT_GT(rt.executions.total, 0);
 }
 
+TEST(Simulation, TheOracleChangesNothingAndLabelsEverySampleAfterTheBoot) {
+  SimulationSettings off = reactive(short_flight(line_mission(20, 8), "rugby"));
+  off.seed = 5;
+  SimulationSettings on = off;
+  on.scheduler.reactive.oracle = true;
+  Capture a, b;
+  const SimulationSummary ra = simulate(off, &a), rb = simulate(on, &b);
+  EXPECT_EQ(a.rows, b.rows);
+  EXPECT_EQ(a.seconds, b.seconds);
+  EXPECT_FALSE(ra.oracle);
+  ASSERT_TRUE(rb.oracle);
+  const auto& o = *rb.oracle;
+  // Every trigger-sensor sample from the boot's end is labelled once; the samples that fired are
+  // the triggers counted after the boot (the scheduler checks none during it).
+  std::int64_t fired = 0;
+  for (const auto& t : rb.triggers) fired += t.triggers;
+  EXPECT_EQ(o.tp + o.fp, fired);
+  EXPECT_GT(o.tn + o.fn + o.tp + o.fp, 0);
+  SimulationSummary strip = rb;
+  strip.oracle.reset();
+  const SummaryInputs in{"l", "q", "r", "rugby", 5, 3, false};
+  EXPECT_EQ(summary_json(ra, in, off), summary_json(strip, in, on));
+}
+
 TEST(Experiment, TheIntervalIsStudentsTAndImprovementsArePaired) {
   // n = 5: t(0.975, 4) = 2.7764451051977987 (tables); mean 3, sample sd √2.5.
   const MeanInterval m = mean_interval({1, 2, 3, 4, 5});

@@ -115,6 +115,13 @@ struct SimulationSummary {
     std::int64_t false_positives = 0, false_negatives = 0, multi_cause_excluded = 0;
     double fp_share_after_boot = 0, fp_share_steady = 0;
   } feedback;
+  /// Reactive with `oracle: true`: every trigger-sensor sample after the boot, whether it fired
+  /// against whether the task, run on the last snapshot with that sample, would have changed
+  /// its output (the true label by the paper's own definition of a trigger).
+  struct Oracle {
+    std::int64_t tp = 0, fp = 0, tn = 0, fn = 0;
+  };
+  std::optional<Oracle> oracle;
   double cpu_utilisation = 0, cpu_energy_per_execution_mj = 0;
   std::int64_t background_completed = 0;
   double total_j = 0, motors_j = 0, cpu_j = 0, avionics_j = 0, mean_power_w = 0, final_soc = 0;
