@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "control_images.hpp"
 #include "flight_batch.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -86,6 +87,8 @@ void ControlCompareCommand::setup(CLI::App& app) {
   app.add_flag("--quick", quick_,
                "A check, not a result: 2 seeds, 20 s flights, a 5 s boot and metrics from 5 s");
   add_flight_options(app, request_);
+  app.add_flag("--no-pictures", no_pictures_,
+               "Write the tables only (no improvement.png, rate.png)");
   app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
 }
 
@@ -132,6 +135,7 @@ int ControlCompareCommand::run() {
 
   // Pairs: each mode against the baseline (the first scheduler) with the same seed.
   ordered_json groups = ordered_json::array();
+  std::vector<ComparedGroup> picture_groups;
   std::string md =
       "# swath-control compare\n\nPaired by seed (the same wind and sensor noise in every mode); "
       "improvements of each mode over `" +
@@ -152,6 +156,10 @@ int ControlCompareCommand::run() {
       return f;
     };
     const auto baseline = figures(0);
+    ComparedGroup picture_group;
+    picture_group.label = runs[g].environment + " " + runs[g].vehicle;
+    picture_group.executions_per_s.push_back(
+        mean_of(baseline, &control::FlightFigures::executions_per_s));
     for (std::size_t m = 1; m < modes.size(); ++m) {
       const auto mode = figures(m);
       const control::Improvements imp = control::paired_improvements(baseline, mode);
@@ -159,6 +167,10 @@ int ControlCompareCommand::run() {
       const double eb = mean_of(baseline, &control::FlightFigures::executions_per_s);
       const double em = mean_of(mode, &control::FlightFigures::executions_per_s);
       const double ub = mean_of(baseline, &control::FlightFigures::unchanged_fraction);
+      picture_group.executions_per_s.push_back(em);
+      picture_group.attitude.push_back(imp.attitude);
+      picture_group.cross_track.push_back(imp.cross_track);
+      picture_group.flight_time.push_back(imp.flight_time);
       groups.push_back(
           {{"environment", first.environment},
            {"vehicle", first.vehicle},
@@ -176,6 +188,7 @@ int ControlCompareCommand::run() {
             percent(imp.cross_track) + " | " + fixed_text(eb, 1) + " → " + fixed_text(em, 1) +
             " | " + fixed_text(100 * ub, 2) + " % | " + percent(imp.flight_time) + " |\n";
     }
+    picture_groups.push_back(std::move(picture_group));
   }
   ordered_json j;
   j["mission"] = request_.mission;
@@ -187,6 +200,15 @@ int ControlCompareCommand::run() {
   set.add("runs.csv", runs_csv(runs));
   set.add("comparison.json", base::json_text(j, 1) + "\n");
   set.add("comparison.md", md);
+  if (!no_pictures_ && modes.size() > 1) {
+    std::vector<std::string> names;
+    for (const Mode& m : modes) names.push_back(m.name);
+    auto png = [](const ControlPicture& p) {
+      return render::encode_png(render::draw(p.scene, p.view));
+    };
+    set.add("improvement.png", png(improvement_picture(picture_groups, names, 1200, 1200)));
+    set.add("rate.png", png(rate_picture(picture_groups, names, 1200, 600)));
+  }
   set.commit();
   std::cout << "swath-control compare: " << runs.size() << " flights (" << environments_.size()
             << " environments x " << vehicles_.size() << " vehicles x " << modes.size()

@@ -15,7 +15,8 @@ class ControlCompareCommand : public Command {
   const char* description() const override {
     return "Fly a mission in every environment x vehicle x scheduling mode x seed, paired by seed, "
            "and compare each mode with the first (time-triggered) one: runs.csv, "
-           "comparison.json (paired improvements with 95 % Student-t intervals), comparison.md";
+           "comparison.json (paired improvements with 95 % Student-t intervals), comparison.md, "
+           "improvement.png, rate.png";
   }
   void setup(CLI::App& app) override;
   int run() override;
@@ -28,7 +29,7 @@ class ControlCompareCommand : public Command {
   std::vector<double> tt_rates_;
   int seeds_ = 5;
   unsigned jobs_ = 0;
-  bool quick_ = false, progress_ = false;
+  bool quick_ = false, progress_ = false, no_pictures_ = false;
 };
 
 }  // namespace swath::apps

@@ -200,6 +200,71 @@ ControlPicture energy_picture(const control::SimulationSettings& settings,
   return stacked(std::move(specs), width_px, height_px);
 }
 
+namespace {
+
+const Color kModeColors[] = {{0.1f, 0.3f, 0.85f, 1},  {0.95f, 0.55f, 0.0f, 1},
+                             {0.1f, 0.6f, 0.2f, 1},   {0.55f, 0.1f, 0.75f, 1},
+                             {0.85f, 0.15f, 0.1f, 1}, {0.0f, 0.55f, 0.55f, 1}};
+
+std::string group_key(const std::vector<ComparedGroup>& groups) {
+  std::string key;
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    key += (g ? ", " : "") + std::to_string(g + 1) + " " + groups[g].label;
+  return key;
+}
+
+// A mode's means through the groups (named, for the legend) and its intervals as bars.
+void add_intervals(std::vector<render::Series>& series, const std::vector<ComparedGroup>& groups,
+                   std::size_t mode, const std::string& name,
+                   std::vector<control::MeanInterval> ComparedGroup::*metric) {
+  const Color color = kModeColors[mode % 6];
+  render::Series means{name, {}, {}, color, 2.0};
+  const double offset = 0.06 * static_cast<double>(mode);  // bars side by side
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const control::MeanInterval& m = (groups[g].*metric)[mode];
+    const double x = static_cast<double>(g + 1) + offset;
+    means.x.push_back(x);
+    means.y.push_back(100 * m.mean);
+    series.push_back({"", {x, x}, {100 * m.low, 100 * m.high}, color, 3.0});
+  }
+  series.push_back(std::move(means));
+}
+
+}  // namespace
+
+ControlPicture improvement_picture(const std::vector<ComparedGroup>& groups,
+                                   const std::vector<std::string>& modes, int width_px,
+                                   int height_px) {
+  std::vector<render::ChartSpec> specs{
+      {"Attitude RMS improvement over " + modes.front() + " (%, + = smaller error)",
+       "groups: " + group_key(groups),
+       "%",
+       {}},
+      {"Cross-track RMS improvement (%)", "groups: " + group_key(groups), "%", {}},
+      {"Flight time (%, + = longer)", "groups: " + group_key(groups), "%", {}}};
+  for (std::size_t m = 1; m < modes.size(); ++m) {
+    add_intervals(specs[0].series, groups, m - 1, modes[m], &ComparedGroup::attitude);
+    add_intervals(specs[1].series, groups, m - 1, modes[m], &ComparedGroup::cross_track);
+    add_intervals(specs[2].series, groups, m - 1, modes[m], &ComparedGroup::flight_time);
+  }
+  return stacked(std::move(specs), width_px, height_px);
+}
+
+ControlPicture rate_picture(const std::vector<ComparedGroup>& groups,
+                            const std::vector<std::string>& modes, int width_px, int height_px) {
+  render::ChartSpec spec{
+      "Control executions per second", "groups: " + group_key(groups), "1/s", {}};
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    render::Series s{modes[m], {}, {}, m == 0 ? kInk : kModeColors[(m - 1) % 6], 2.0};
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      s.x.push_back(static_cast<double>(g + 1));
+      s.y.push_back(groups[g].executions_per_s[m]);
+    }
+    spec.series.push_back(std::move(s));
+  }
+  return stacked({spec}, width_px, height_px);
+}
+
 ControlPicture triggers_picture(const std::vector<control::RateRow>& rates, const Raster& raster,
                                 const std::vector<std::string>& trigger_sensors, int width_px,
                                 int height_px) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "swath/base/output_set.hpp"
+#include "swath/control/experiment.hpp"
 #include "swath/control/simulation.hpp"
 #include "swath/render/chart.hpp"
 #include "swath/render/image.hpp"
@@ -67,6 +68,23 @@ ControlPicture energy_picture(const control::SimulationSettings& settings,
 ControlPicture triggers_picture(const std::vector<control::RateRow>& rates, const Raster& raster,
                                 const std::vector<std::string>& trigger_sensors, int width_px,
                                 int height_px);
+
+/// One group of a comparison (an environment and vehicle) and each mode's figures in it.
+struct ComparedGroup {
+  std::string label;                     ///< "lab quad-f450"
+  std::vector<double> executions_per_s;  ///< per mode, the baseline first
+  std::vector<control::MeanInterval> attitude, cross_track,
+      flight_time;  ///< per mode but the baseline
+};
+
+/// improvement.png: attitude, cross-track and flight-time improvement of each mode over the
+/// baseline, per group, with 95 % intervals as bars (x: the group's number, listed in the title).
+ControlPicture improvement_picture(const std::vector<ComparedGroup>& groups,
+                                   const std::vector<std::string>& modes, int width_px,
+                                   int height_px);
+/// rate.png: executions per second of every mode, per group.
+ControlPicture rate_picture(const std::vector<ComparedGroup>& groups,
+                            const std::vector<std::string>& modes, int width_px, int height_px);
 
 /// The four pictures into the output set as PNG.
 void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,

@@ -120,7 +120,8 @@ Scene chart_scene(const ChartSpec& spec, int width_px, int height_px, ChartLayou
                           spec.y_label, text_h, ink});
   // Legend, top right inside the plot, measured and boxed.
   std::vector<LegendEntry> legend;
-  for (const Series& s : spec.series) legend.push_back({s.name, SwatchKind::line, s.color});
+  for (const Series& s : spec.series)
+    if (!s.name.empty()) legend.push_back({s.name, SwatchKind::line, s.color});
   l.legend =
       add_legend(scene, legend, {l.left_px + 4, l.top_px + 4, l.right_px - 4, l.bottom_px - 4},
                  Corner::top_right, text_h);

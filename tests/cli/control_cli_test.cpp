@@ -178,8 +178,10 @@ TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
   CliRun run = run_swath_control(args + one + " --jobs 1");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   ASSERT_EQ(run_swath_control(args + two + " --jobs 2").exit_code, 0);
-  for (const char* f : {"runs.csv", "comparison.json", "comparison.md"})
+  for (const char* f :
+       {"runs.csv", "comparison.json", "comparison.md", "improvement.png", "rate.png"})
     EXPECT_EQ(read_text(one + "/" + f), read_text(two + "/" + f)) << f;
+  EXPECT_EQ(render::decode_png(read_text(one + "/improvement.png")).height, 1200);
   // 2 environments x 3 modes (tt-400, reactive, tt-200) x 2 seeds.
   std::istringstream in(read_text(one + "/runs.csv"));
   std::string line;

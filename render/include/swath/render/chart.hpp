@@ -37,7 +37,8 @@ struct ChartLayout {
 };
 
 /// A scene (screen layer and labels only) of the chart at width x height pixels: axes with round
-/// ticks and their numbers, axis labels, one polyline per series, a legend, the title. Draw it with
+/// ticks and their numbers, axis labels, one polyline per series, a legend (series without a
+/// name are drawn but not listed), the title. Draw it with
 /// draw() and any view of that size. Throws std::invalid_argument if a series' x and y differ in
 /// length or there is no finite point.
 Scene chart_scene(const ChartSpec& spec, int width_px, int height_px,
