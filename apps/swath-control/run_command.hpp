@@ -25,7 +25,7 @@ class ControlRunCommand : public Command {
  private:
   FlightRequest request_;
   std::string output_, size_ = "1200x900";
-  bool progress_ = false, no_pictures_ = false;
+  bool progress_ = false, no_pictures_ = false, log_executions_ = false;
   std::optional<double> raster_at_s_;
 };
 

@@ -85,6 +85,25 @@ std::string rate_csv_row(const RateRow& r) {
   return line + '\n';
 }
 
+std::string executions_csv_header(const std::vector<std::string>& trigger_sensors) {
+  std::string h =
+      "t_request_s,t_start_s,t_end_s,cause,sensors,changed,false_positive,false_negative";
+  for (const std::string& s : trigger_sensors) h += ",x_" + s;
+  return h + '\n';
+}
+
+std::string executions_csv_row(const ExecutionRow& r, std::size_t trigger_sensors) {
+  std::string line;
+  add(line, r.request_s, 6);
+  add(line, r.start_s, 6);
+  add(line, r.end_s, 6);
+  line += ',' + std::string(kCauses[static_cast<int>(r.cause)]) + ',' + r.sensors + ',' +
+          (r.changed ? "1" : "0") + ',' + (r.false_positive ? "1" : "0") + ',' +
+          (r.false_negative ? "1" : "0");
+  for (std::size_t k = 0; k < trigger_sensors; ++k) add(line, k < r.x.size() ? r.x[k] : 0.0, 6);
+  return line + '\n';
+}
+
 std::string fits_csv_header() {
   return "t_s,sensor,n,beta1,beta2,threshold,method\n";
 }

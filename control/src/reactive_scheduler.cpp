@@ -184,6 +184,12 @@ void ReactiveScheduler::add_point(PerSensor& s, TriggerPoint p) {
 }
 
 void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
+  record_.causes = running_;
+  record_.trigger_sensor = running_trigger_sensor_;
+  record_.x.resize(state_.size());
+  for (std::size_t k = 0; k < state_.size(); ++k) record_.x[k] = state_[k].change_at_start;
+  record_.false_positive = running_ == kTrigger && running_trigger_sensor_ >= 0 && !output_changed;
+  record_.false_negative = running_ == kFailsafe && output_changed;
   if (running_ & kBoot) {
     for (PerSensor& s : state_)
       if (s.new_at_start &&

@@ -427,6 +427,28 @@ class Flight {
     }
   }
 
+  ExecutionRow execution_row(const ComputerEvent& e) const {
+    ExecutionRow row{seconds(e.request_ns),
+                     seconds(started_ns_),
+                     seconds(e.time_ns),
+                     e.cause,
+                     "",
+                     pending_.changed,
+                     false,
+                     false,
+                     {}};
+    if (const auto* r = dynamic_cast<const ReactiveScheduler*>(scheduler_.get())) {
+      const ExecutionRecord& x = r->last_execution();
+      row.false_positive = x.false_positive;
+      row.false_negative = x.false_negative;
+      row.x = x.x;
+      if (x.trigger_sensor >= 0)
+        row.sensors = r->sensors()[static_cast<std::size_t>(x.trigger_sensor)].name;
+      if (x.trigger_sensor == -2) row.sensors = "several";
+    }
+    return row;
+  }
+
   void start_execution(SimTime t) {
     scheduler_->on_execution_start(t);
     TaskInput input;
@@ -450,7 +472,7 @@ class Flight {
       plant_.command_pwm(i, pending_.pwm_us[i]);
     attitude_setpoint_ = pending_.attitude_setpoint;
     scheduler_->on_execution_end(e.time_ns, pending_.changed);
-    if (observer_) observer_->on_execution(seconds(started_ns_), e.cause, pending_.changed);
+    if (observer_) observer_->on_execution(execution_row(e));
     const auto cause = static_cast<std::size_t>(e.cause);
     ++rate_.executions;
     ++rate_.by_cause[cause];

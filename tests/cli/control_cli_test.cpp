@@ -92,7 +92,7 @@ TEST(ControlCli, AReactiveFlightWritesItsFitsAndTheRaster) {
   const CliRun run = run_swath_control(
       "run random:4@30x30 --scheduler reactive --environment rugby --max-time 12 --set "
       "scheduler.reactive.boot_s=5 --set scheduler.run.metrics_from_s=5 --raster-at 8 "
-      "--size 600x450 -o " +
+      "--size 600x450 --log-executions -o " +
       out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json s = json::parse(read_text(out + "/summary.json"));
@@ -103,6 +103,25 @@ TEST(ControlCli, AReactiveFlightWritesItsFitsAndTheRaster) {
   EXPECT_EQ(fits.rfind("t_s,sensor,n,beta1,beta2,threshold,method\n", 0), 0u);
   EXPECT_EQ(static_cast<std::int64_t>(std::count(fits.begin(), fits.end(), '\n')) - 1, refits);
   EXPECT_GE(refits, 5 * 5);  // five sensors, a refit a second from 5 s to 12 s
+  // executions.csv: a row per execution; those that ended after metrics_from are the summary's.
+  std::istringstream ex(read_text(out + "/executions.csv"));
+  std::string line;
+  std::getline(ex, line);
+  EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7 + 5);
+  std::int64_t counted = 0, false_positives = 0;
+  while (std::getline(ex, line)) {
+    std::vector<std::string> cells;
+    std::istringstream c(line);
+    std::string cell;
+    while (std::getline(c, cell, ',')) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 13u) << line;
+    EXPECT_LE(std::stod(cells[0]), std::stod(cells[1]));  // requested, then started, then ended
+    EXPECT_LT(std::stod(cells[1]), std::stod(cells[2]));
+    if (std::stod(cells[2]) >= 5.0) ++counted;
+    false_positives += cells[6] == "1" ? 1 : 0;
+  }
+  EXPECT_EQ(counted, s["executions"]["total"].get<std::int64_t>());
+  EXPECT_EQ(false_positives, s["feedback"]["false_positives"].get<std::int64_t>());
   // triggers.png: the raster's rows hold ticks (dark blue) where executions happened.
   const render::Image image = render::decode_png(read_text(out + "/triggers.png"));
   int blue = 0;

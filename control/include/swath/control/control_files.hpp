@@ -18,6 +18,10 @@ std::string timeseries_csv_row(const TimeseriesRow& row);
 std::string rate_csv_header(const std::vector<std::string>& trigger_sensors);
 std::string rate_csv_row(const RateRow& row);
 
+/// executions.csv: the header with one x_<name> column per trigger sensor, and one row.
+std::string executions_csv_header(const std::vector<std::string>& trigger_sensors);
+std::string executions_csv_row(const ExecutionRow& row, std::size_t trigger_sensors);
+
 /// fits.csv: one row per sensor and refit.
 std::string fits_csv_header();
 std::string fits_csv_row(const FitRow& row, FitMethod method);

@@ -45,6 +45,14 @@ struct FeedbackStats {
   std::int64_t after_boot = 0, after_boot_fp = 0, steady = 0, steady_fp = 0;
 };
 
+/// What the scheduler knew of the execution that just ended (executions.csv).
+struct ExecutionRecord {
+  unsigned causes = 0;      ///< bits 1 tt, 2 boot, 4 trigger, 8 failsafe, 16 setpoint
+  int trigger_sensor = -1;  ///< the one sensor whose trigger caused it; −1 none, −2 several
+  bool false_positive = false, false_negative = false;
+  std::vector<double> x;  ///< each trigger sensor's change at the start
+};
+
 class ReactiveScheduler final : public Scheduler {
  public:
   /// `settings` valid as §17.A says; `sensors` the vehicle's trigger sensors (at least one);
@@ -63,6 +71,7 @@ class ReactiveScheduler final : public Scheduler {
   void end_refit(SimTime t_ns) override;
   bool is_trigger_sensor(std::size_t sensor) const override;
 
+  const ExecutionRecord& last_execution() const { return record_; }
   /// Triggers per sensor since the last call (rate.csv), and reset.
   std::vector<int> take_trigger_counts();
   const std::vector<TriggerStats>& stats() const { return stats_; }
@@ -105,6 +114,7 @@ class ReactiveScheduler final : public Scheduler {
   std::vector<TriggerStats> stats_;
   std::vector<int> index_of_sensor_;  // vehicle sensor index → ours (−1: not a trigger)
   FeedbackStats feedback_;
+  ExecutionRecord record_;
   SimTime hyperperiod_ns_ = 0, max_wait_ns_ = 0, boot_period_ns_ = 0, boot_end_ns_ = 0;
   SimTime failsafe_ns_ = 0, refit_period_ns_ = 0;
   SimTime next_boot_ns_ = 0, request_ns_ = kNever, last_start_ns_ = 0, next_refit_ns_ = kNever;

@@ -137,6 +137,17 @@ struct SimulationSummary {
 };
 
 /// Receives what a flight produces as it happens; every method optional.
+/// One execution (executions.csv, `--log-executions`).
+struct ExecutionRow {
+  double request_s = 0, start_s = 0, end_s = 0;
+  ReleaseCause cause = ReleaseCause::time_triggered;  ///< the first cause of its request
+  std::string sensors;  ///< reactive: the trigger sensors that caused it, '+'-joined
+  bool changed = false;
+  bool false_positive = false;  ///< one sensor's trigger, output unchanged (the paper's rule)
+  bool false_negative = false;  ///< failsafe alone, output changed
+  std::vector<double> x;        ///< reactive: each trigger sensor's change at the start
+};
+
 /// One sensor's model after a refit (fits.csv).
 struct FitRow {
   double t_s = 0;  ///< when the refit finished (its models apply from then)
@@ -151,8 +162,8 @@ class SimulationObserver {
   virtual ~SimulationObserver() = default;
   virtual void on_row(const TimeseriesRow& /*row*/) {}
   virtual void on_second(const RateRow& /*row*/) {}
-  /// Every execution as it ends: when it started, its cause, whether the output changed.
-  virtual void on_execution(double /*start_s*/, ReleaseCause /*cause*/, bool /*changed*/) {}
+  /// Every execution as it ends.
+  virtual void on_execution(const ExecutionRow& /*row*/) {}
   /// Every trigger (reactive): when, and the trigger sensor's index in trigger_sensor_names().
   virtual void on_trigger(double /*t_s*/, std::size_t /*trigger_sensor*/) {}
   /// Every sensor's model after each refit (reactive).
