@@ -357,7 +357,10 @@ class Flight {
       SensorSample sample;
       sample.time_ns = plant_.now();
       sample.sensor = d.sensor;
-      const Vec3& v = d.sample.value;
+      // The trigger reads the filtered value (the driver's) or the converter's raw one.
+      const Vec3& v = s_.scheduler.reactive.trigger_signal == TriggerSignal::raw
+                          ? d.sample.unfiltered
+                          : d.sample.value;
       sample.value = {v.x, v.y, v.z};
       sample.axes = s_.physics.sensors[d.sensor].type == vehicle::SensorType::baro ? 1 : 3;
       if (sample.axes == 1) sample.value[0] = v.z;

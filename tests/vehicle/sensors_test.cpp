@@ -41,6 +41,26 @@ TEST(Sensors, WhiteNoiseHasTheGivenDeviation) {
   EXPECT_NEAR(std::sqrt(st.variance), 0.01, 0.01 * 0.03);
 }
 
+TEST(Sensors, TheUnfilteredValueIsTheSameSensorWithoutItsLowPass) {
+  // The same noise stream with and without a 20 Hz low-pass: the filtered sensor's unfiltered
+  // value is the unfiltered sensor's value, sample by sample; its filtered value is not.
+  SensorSettings plain;
+  plain.noise = 0.05;
+  SensorSettings filtered = plain;
+  filtered.lpf_hz = 20;
+  Sensor a(plain, SplitMix64::stream(3, "gyro")), b(filtered, SplitMix64::stream(3, "gyro"));
+  double differs = 0;
+  for (SimTime t = 0; t < 200 * plain.period_ns; t += plain.period_ns) {
+    a.measure(t, {});
+    b.measure(t, {});
+    const SensorSample sa = a.deliver(t).back(), sb = b.deliver(t).back();
+    EXPECT_EQ(sb.unfiltered.x, sa.value.x);
+    EXPECT_EQ(sa.unfiltered.x, sa.value.x);
+    differs = std::max(differs, std::abs(sb.value.x - sa.value.x));
+  }
+  EXPECT_GT(differs, 0.05);
+}
+
 TEST(Sensors, BiasWalksWithSigmaTimesRootTime) {
   // 400 sensors for 100 s each: the bias's spread is σ_rw √100.
   SensorSettings s;

@@ -72,6 +72,7 @@ void Sensor::measure(SimTime now, const Truth& truth) {
   sample.measured_at = now;
   sample.delivered_at = now + from_seconds(settings_.latency_s);
   sample.value = filtered_;
+  sample.unfiltered = converted;
   if (settings_.type == SensorType::position)
     sample.velocity =
         truth.velocity_m_s +

@@ -50,8 +50,9 @@ Vec3 magnetic_field_unit();
 
 struct SensorSample {
   SimTime measured_at = 0, delivered_at = 0;
-  Vec3 value;     ///< body axes for gyro/accel/mag; world for position; z only for baro
-  Vec3 velocity;  ///< position fixes: velocity, world ENU
+  Vec3 value;       ///< body axes for gyro/accel/mag; world for position; z only for baro
+  Vec3 velocity;    ///< position fixes: velocity, world ENU
+  Vec3 unfiltered;  ///< the value before the low-pass (converted: LSB and range applied)
 };
 
 class Sensor {
