@@ -83,49 +83,54 @@ LogisticModel logit_fit(const std::vector<TriggerPoint>& data, bool weighted, in
   return m;
 }
 
-double log_likelihood(const std::vector<TriggerPoint>& data, double b1, double b2) {
-  double ll = 0;
+// The log-likelihood at (b1, b2) with its gradient and Hessian (negated), in one pass: each point
+// costs one exp and one log1p.
+struct Evaluation {
+  double ll = 0, g1 = 0, g2 = 0, h11 = 1e-8, h12 = 0, h22 = 1e-8;  // ridge 1e-8
+};
+
+Evaluation evaluate(const std::vector<TriggerPoint>& data, double b1, double b2) {
+  Evaluation e;
   for (const TriggerPoint& p : data) {
     const double eta = b1 + b2 * p.x;
-    // log σ(η) = −log(1 + e^−η), log(1 − σ(η)) = −log(1 + e^η), computed stably.
-    const double log1pexp_neg =
-        eta > 0 ? std::log1p(std::exp(-eta)) : -eta + std::log1p(std::exp(eta));
-    ll += p.changed ? -log1pexp_neg : -(eta + log1pexp_neg);
+    // σ(η) and log(1 + e^−|η|) from one exponential, stable for any η.
+    const double z = std::exp(-std::abs(eta));
+    const double mu = eta >= 0 ? 1 / (1 + z) : z / (1 + z);
+    const double softplus = std::log1p(z) + (eta < 0 ? -eta : 0.0);  // log(1 + e^−η)
+    e.ll += p.changed ? -softplus : -(eta + softplus);
+    const double r = (p.changed ? 1.0 : 0.0) - mu, w = mu * (1 - mu);
+    e.g1 += r;
+    e.g2 += r * p.x;
+    e.h11 += w;
+    e.h12 += w * p.x;
+    e.h22 += w * p.x * p.x;
   }
-  return ll;
+  return e;
 }
 
 // IRLS (Newton on the log-likelihood) with a 1e-8 ridge and step halving, ≤ 50 iterations.
 LogisticModel mle_fit(const std::vector<TriggerPoint>& data) {
-  double k = 0;
-  for (const TriggerPoint& p : data) k += p.changed ? 1 : 0;
-  if (data.size() < 2 || k == 0 || k == static_cast<double>(data.size())) return pooled(data);
   double b1 = pooled(data).beta1, b2 = 0;
-  double ll = log_likelihood(data, b1, b2);
+  Evaluation at = evaluate(data, b1, b2);
   for (int it = 0; it < 50; ++it) {
-    double g1 = 0, g2 = 0, h11 = 1e-8, h12 = 0, h22 = 1e-8;
-    for (const TriggerPoint& p : data) {
-      const double mu = 1.0 / (1.0 + std::exp(-(b1 + b2 * p.x)));
-      const double r = (p.changed ? 1.0 : 0.0) - mu, w = mu * (1 - mu);
-      g1 += r;
-      g2 += r * p.x;
-      h11 += w;
-      h12 += w * p.x;
-      h22 += w * p.x * p.x;
-    }
-    const double det = h11 * h22 - h12 * h12;
+    const double det = at.h11 * at.h22 - at.h12 * at.h12;
     if (!(det > 0)) break;
-    double d1 = (h22 * g1 - h12 * g2) / det, d2 = (h11 * g2 - h12 * g1) / det;
-    double step = 1.0, next = -std::numeric_limits<double>::infinity();
-    for (int half = 0; half < 30; ++half, step /= 2) {
-      next = log_likelihood(data, b1 + step * d1, b2 + step * d2);
-      if (next >= ll) break;
+    const double d1 = (at.h22 * at.g1 - at.h12 * at.g2) / det;
+    const double d2 = (at.h11 * at.g2 - at.h12 * at.g1) / det;
+    double step = 1.0;
+    Evaluation next;
+    bool accepted = false;
+    for (int half = 0; half < 30 && !accepted; ++half, step /= 2) {
+      next = evaluate(data, b1 + step * d1, b2 + step * d2);
+      accepted = next.ll >= at.ll;
+      if (accepted) {
+        b1 += step * d1;
+        b2 += step * d2;
+      }
     }
-    if (!(next >= ll)) break;
-    b1 += step * d1;
-    b2 += step * d2;
-    const bool converged = std::abs(next - ll) < 1e-12 * (1 + std::abs(ll));
-    ll = next;
+    if (!accepted) break;
+    const bool converged = std::abs(next.ll - at.ll) < 1e-12 * (1 + std::abs(at.ll));
+    at = next;
     if (converged) break;
   }
   // Separable data has no finite optimum: the coefficients run away.

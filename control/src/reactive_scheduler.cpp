@@ -131,7 +131,8 @@ void ReactiveScheduler::on_sample(const SensorSample& sample) {
   const auto k = static_cast<std::size_t>(index_of_sensor_[sample.sensor]);
   PerSensor& s = state_[k];
   ++stats_[k].samples;
-  s.previous = s.has_latest ? s.latest : sample.value;
+  if (settings_.delta_reference == DeltaReference::last_sample)
+    s.previous = s.has_latest ? s.latest : sample.value;
   s.latest = sample.value;
   s.axes = std::min<std::size_t>(sample.axes, 6);
   s.has_latest = s.new_sample = true;
