@@ -1,0 +1,117 @@
+#pragma once
+// Which drone serves which request, moment by moment (paper 000 §3.3.1; DESIGN.md §18.5): a
+// snapshot of drones and visible requests in, at most one target per drone out, maximising
+// U(A) = Σ_k w_k u_k(A) in seconds. The sub-utilities here are the pair terms (coverage, closest,
+// fairness, avoid-zigzag, commitment); the forecast and pairwise terms (speculative,
+// avoid-mutual) join with part 2's forecaster. Schedulers are interchangeable behind `Scheduler`:
+// simulated annealing (the paper's), and the baselines greedy, round-robin and Hungarian (exact
+// for pair terms, so also a test oracle).
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/vehicle/random.hpp"
+#include "swath/vehicle/vec3.hpp"
+
+namespace swath::fleet {
+
+using vehicle::Vec3;
+
+/// A drone as the scheduler sees it.
+struct DroneState {
+  Vec3 position_m;            ///< local metres (x east, y north, altitude above home)
+  std::optional<int> target;  ///< the request it flies to now (index into the snapshot)
+  bool busy = false;          ///< mid-action: keeps its target, not reassigned
+};
+
+/// A visible request: a task's head segment.
+struct Request {
+  Vec3 location_m;
+  double service_s = 0;            ///< the actions after the flight, s, ≥ 0
+  double waiting_s = 0;            ///< since it became visible, s, ≥ 0
+  std::optional<int> bound_drone;  ///< `same_drone`: only this drone may serve it
+};
+
+/// Straight-line flight time: accelerate at `accel_m_s2` to `cruise_m_s`, brake to a stop
+/// (DESIGN.md §18.6's kinematics without the approach phase).
+struct EtaModel {
+  double cruise_m_s = 10.0;  ///< > 0
+  double accel_m_s2 = 2.0;   ///< > 0
+  double eta_s(const Vec3& from, const Vec3& to) const;
+};
+
+/// The weights of the sub-utilities (the weights YAML; w_closest ≡ 1).
+struct Weights {
+  double coverage = 1.0;      ///< H per assigned request
+  double fairness = 0.5;      ///< per second of the request's waiting
+  double avoid_zigzag = 0.0;  ///< s per metre from the requests' centre
+  double commitment = 5.0;    ///< s when a drone keeps its target
+};
+
+struct Snapshot {
+  std::vector<DroneState> drones;
+  std::vector<Request> requests;
+  EtaModel eta;
+  Weights weights;
+};
+
+/// drone → request index, or nullopt for none. Each request at most once.
+using Assignment = std::vector<std::optional<int>>;
+
+/// The pair terms of one snapshot, precomputed: value(d, r) is what assigning r to d adds to U;
+/// infeasible pairs (binding) have no value.
+class Utility {
+ public:
+  explicit Utility(const Snapshot& snapshot);
+  std::size_t drones() const { return drones_; }
+  std::size_t requests() const { return requests_; }
+  bool feasible(std::size_t d, std::size_t r) const { return feasible_[d * requests_ + r] != 0; }
+  double value(std::size_t d, std::size_t r) const { return value_[d * requests_ + r]; }
+  double eta_s(std::size_t d, std::size_t r) const { return eta_[d * requests_ + r]; }
+  /// U(A); A must be valid (checked by valid()).
+  double total(const Assignment& a) const;
+  /// Each request at most once, every pair feasible, busy drones keep their target.
+  bool valid(const Assignment& a) const;
+  /// H: 1 + the largest feasible ETA (coverage's unit).
+  double horizon_s() const { return horizon_s_; }
+  const Snapshot& snapshot() const { return snapshot_; }
+
+ private:
+  const Snapshot& snapshot_;
+  std::size_t drones_, requests_;
+  std::vector<double> value_, eta_;
+  std::vector<char> feasible_;
+  double horizon_s_ = 1.0;
+};
+
+class Scheduler {
+ public:
+  virtual ~Scheduler() = default;
+  virtual const char* name() const = 0;
+  /// At most one target per drone; busy drones keep theirs. Deterministic for the RNG's state.
+  virtual Assignment assign(const Snapshot& snapshot, vehicle::SplitMix64& rng) = 0;
+};
+
+/// Smallest ETA first over all feasible pairs.
+std::unique_ptr<Scheduler> greedy_scheduler();
+/// Requests in order to drones in turn (FIFO), nearest-free-drone ignored.
+std::unique_ptr<Scheduler> round_robin_scheduler();
+/// The exact optimum of the pair terms (Hungarian algorithm, O(n²m) with a "none" per drone).
+std::unique_ptr<Scheduler> hungarian_scheduler();
+
+struct AnnealingSettings {
+  int candidates = 16;   ///< nearest feasible requests per drone (plus its target and none)
+  int moves = 20'000;    ///< geometric cooling from T₀ to T₀·10⁻³ over these
+  int probe_moves = 64;  ///< T₀ = median |ΔU| of this many random moves / ln 2
+};
+/// Simulated annealing (paper 000 §3.3.1): starts from the better of greedy and the current
+/// targets; moves retarget one drone (the previous holder drops to none), swap two, clear one.
+std::unique_ptr<Scheduler> annealing_scheduler(const AnnealingSettings& settings = {});
+
+/// The scheduler named greedy, round-robin, hungarian or sa; nullptr for another name.
+std::unique_ptr<Scheduler> make_scheduler(const std::string& name);
+
+}  // namespace swath::fleet

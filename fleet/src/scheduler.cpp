@@ -1,0 +1,385 @@
+#include "swath/fleet/scheduler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace swath::fleet {
+namespace {
+
+constexpr int kNone = -1;
+
+std::size_t draw(vehicle::SplitMix64& rng, std::size_t n) {
+  return std::min(n - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)));
+}
+
+// Busy drones keep their targets: fixed first, their requests taken.
+Assignment fixed_part(const Snapshot& s, std::vector<char>& taken) {
+  Assignment a(s.drones.size());
+  taken.assign(s.requests.size(), 0);
+  for (std::size_t d = 0; d < s.drones.size(); ++d)
+    if (s.drones[d].busy && s.drones[d].target && *s.drones[d].target >= 0 &&
+        static_cast<std::size_t>(*s.drones[d].target) < s.requests.size()) {
+      a[d] = s.drones[d].target;
+      taken[static_cast<std::size_t>(*s.drones[d].target)] = 1;
+    }
+  return a;
+}
+
+Assignment greedy(const Utility& u) {
+  const Snapshot& s = u.snapshot();
+  std::vector<char> taken;
+  Assignment a = fixed_part(s, taken);
+  struct Pair {
+    double eta;
+    std::size_t d, r;
+  };
+  std::vector<Pair> pairs;
+  pairs.reserve(u.drones() * u.requests());
+  for (std::size_t d = 0; d < u.drones(); ++d) {
+    if (s.drones[d].busy) continue;
+    for (std::size_t r = 0; r < u.requests(); ++r)
+      if (u.feasible(d, r) && !taken[r]) pairs.push_back({u.eta_s(d, r), d, r});
+  }
+  // Ties broken by drone, then request: the same order on every standard library.
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {
+    return x.eta != y.eta ? x.eta < y.eta : x.d != y.d ? x.d < y.d : x.r < y.r;
+  });
+  for (const Pair& p : pairs)
+    if (!a[p.d] && !taken[p.r]) {
+      a[p.d] = static_cast<int>(p.r);
+      taken[p.r] = 1;
+    }
+  return a;
+}
+
+class Greedy final : public Scheduler {
+ public:
+  const char* name() const override { return "greedy"; }
+  Assignment assign(const Snapshot& s, vehicle::SplitMix64&) override { return greedy(Utility(s)); }
+};
+
+class RoundRobin final : public Scheduler {
+ public:
+  const char* name() const override { return "round-robin"; }
+  Assignment assign(const Snapshot& s, vehicle::SplitMix64&) override {
+    const Utility u(s);
+    std::vector<char> taken;
+    Assignment a = fixed_part(s, taken);
+    std::size_t next = 0;
+    for (std::size_t r = 0; r < u.requests() && u.drones() > 0; ++r) {
+      if (taken[r]) continue;
+      for (std::size_t k = 0; k < u.drones(); ++k) {
+        const std::size_t d = (next + k) % u.drones();
+        if (s.drones[d].busy || a[d] || !u.feasible(d, r)) continue;
+        a[d] = static_cast<int>(r);
+        next = d + 1;
+        break;
+      }
+    }
+    return a;
+  }
+};
+
+// Hungarian algorithm (shortest augmenting paths with potentials) minimising cost over an
+// n × m matrix with n ≤ m; returns each row's column.
+std::vector<std::size_t> hungarian(const std::vector<double>& cost, std::size_t n, std::size_t m) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> u(n + 1, 0), v(m + 1, 0), way_min(m + 1);
+  std::vector<std::size_t> p(m + 1, 0), way(m + 1, 0);
+  for (std::size_t i = 1; i <= n; ++i) {
+    p[0] = i;
+    std::size_t j0 = 0;
+    std::fill(way_min.begin(), way_min.end(), inf);
+    std::vector<char> used(m + 1, 0);
+    do {
+      used[j0] = 1;
+      const std::size_t i0 = p[j0];
+      double delta = inf;
+      std::size_t j1 = 0;
+      for (std::size_t j = 1; j <= m; ++j) {
+        if (used[j]) continue;
+        const double cur = cost[(i0 - 1) * m + (j - 1)] - u[i0] - v[j];
+        if (cur < way_min[j]) {
+          way_min[j] = cur;
+          way[j] = j0;
+        }
+        if (way_min[j] < delta) {
+          delta = way_min[j];
+          j1 = j;
+        }
+      }
+      for (std::size_t j = 0; j <= m; ++j) {
+        if (used[j]) {
+          u[p[j]] += delta;
+          v[j] -= delta;
+        } else {
+          way_min[j] -= delta;
+        }
+      }
+      j0 = j1;
+    } while (p[j0] != 0);
+    do {
+      const std::size_t j1 = way[j0];
+      p[j0] = p[j1];
+      j0 = j1;
+    } while (j0 != 0);
+  }
+  std::vector<std::size_t> row_to_col(n, 0);
+  for (std::size_t j = 1; j <= m; ++j)
+    if (p[j] != 0) row_to_col[p[j] - 1] = j - 1;
+  return row_to_col;
+}
+
+class Hungarian final : public Scheduler {
+ public:
+  const char* name() const override { return "hungarian"; }
+  Assignment assign(const Snapshot& s, vehicle::SplitMix64&) override {
+    const Utility u(s);
+    std::vector<char> taken;
+    Assignment a = fixed_part(s, taken);
+    std::vector<std::size_t> rows, cols;
+    for (std::size_t d = 0; d < u.drones(); ++d)
+      if (!s.drones[d].busy) rows.push_back(d);
+    for (std::size_t r = 0; r < u.requests(); ++r)
+      if (!taken[r]) cols.push_back(r);
+    if (rows.empty()) return a;
+    // Columns: the free requests, then one "none" per drone (value 0). Infeasible pairs get a
+    // cost no optimum would take.
+    const std::size_t n = rows.size(), m = cols.size() + n;
+    double big = 1;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j : cols)
+        if (u.feasible(rows[i], j)) big = std::max(big, std::abs(u.value(rows[i], j)));
+    big *= 4.0 * static_cast<double>(n + 1);
+    std::vector<double> cost(n * m, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < cols.size(); ++k)
+        cost[i * m + k] = u.feasible(rows[i], cols[k]) ? -u.value(rows[i], cols[k]) : big;
+    const std::vector<std::size_t> chosen = hungarian(cost, n, m);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = chosen[i];
+      if (k < cols.size() && u.feasible(rows[i], cols[k]) && u.value(rows[i], cols[k]) > 0)
+        a[rows[i]] = static_cast<int>(cols[k]);
+    }
+    return a;
+  }
+};
+
+class Annealing final : public Scheduler {
+ public:
+  explicit Annealing(const AnnealingSettings& settings) : settings_(settings) {}
+  const char* name() const override { return "sa"; }
+  Assignment assign(const Snapshot& s, vehicle::SplitMix64& rng) override;
+
+ private:
+  AnnealingSettings settings_;
+};
+
+Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
+  const Utility u(s);
+  const std::size_t nd = u.drones(), nr = u.requests();
+  // Start: the better of greedy and the current targets (when they are a valid assignment).
+  Assignment start = greedy(u);
+  Assignment current(nd);
+  for (std::size_t d = 0; d < nd; ++d) current[d] = s.drones[d].target;
+  if (u.valid(current) && u.total(current) > u.total(start)) start = current;
+  std::vector<int> target(nd, kNone), holder(nr, kNone);
+  for (std::size_t d = 0; d < nd; ++d)
+    if (start[d]) {
+      target[d] = *start[d];
+      holder[static_cast<std::size_t>(*start[d])] = static_cast<int>(d);
+    }
+  // Candidates per free drone: its nearest feasible requests, its current target.
+  std::vector<std::size_t> free_drones;
+  std::vector<std::vector<int>> candidates(nd);
+  for (std::size_t d = 0; d < nd; ++d) {
+    if (s.drones[d].busy) continue;
+    free_drones.push_back(d);
+    std::vector<std::pair<double, int>> near;
+    for (std::size_t r = 0; r < nr; ++r)
+      if (u.feasible(d, r)) near.push_back({u.eta_s(d, r), static_cast<int>(r)});
+    const auto k =
+        std::min<std::size_t>(near.size(), static_cast<std::size_t>(settings_.candidates));
+    std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
+    for (std::size_t i = 0; i < k; ++i) candidates[d].push_back(near[i].second);
+    if (target[d] != kNone &&
+        std::find(candidates[d].begin(), candidates[d].end(), target[d]) == candidates[d].end())
+      candidates[d].push_back(target[d]);
+  }
+  if (free_drones.empty()) return start;
+  auto value = [&](std::size_t d, int r) {
+    return r == kNone ? 0.0 : u.value(d, static_cast<std::size_t>(r));
+  };
+  // A move and its ΔU; apply() makes it.
+  struct Move {
+    int kind = 0;  // 0 retarget, 1 swap, 2 clear
+    std::size_t d1 = 0, d2 = 0;
+    int r = kNone;
+    double delta = 0;
+    bool valid = false;
+  };
+  auto propose = [&]() {
+    Move m;
+    const double pick = rng.uniform();
+    m.d1 = free_drones[draw(rng, free_drones.size())];
+    if (pick < 0.6 && !candidates[m.d1].empty()) {  // retarget
+      m.kind = 0;
+      m.r = candidates[m.d1][draw(rng, candidates[m.d1].size())];
+      if (m.r == target[m.d1]) return m;
+      const int other = holder[static_cast<std::size_t>(m.r)];
+      if (other != kNone && s.drones[static_cast<std::size_t>(other)].busy) return m;
+      m.d2 = other == kNone ? m.d1 : static_cast<std::size_t>(other);
+      m.delta =
+          value(m.d1, m.r) - value(m.d1, target[m.d1]) - (other == kNone ? 0.0 : value(m.d2, m.r));
+      m.valid = true;
+    } else if (pick < 0.85 && free_drones.size() > 1) {  // swap
+      m.kind = 1;
+      m.d2 = free_drones[draw(rng, free_drones.size())];
+      const int t1 = target[m.d1], t2 = target[m.d2];
+      if (m.d1 == m.d2 || t1 == t2) return m;
+      if ((t2 != kNone && !u.feasible(m.d1, static_cast<std::size_t>(t2))) ||
+          (t1 != kNone && !u.feasible(m.d2, static_cast<std::size_t>(t1))))
+        return m;
+      m.delta = value(m.d1, t2) + value(m.d2, t1) - value(m.d1, t1) - value(m.d2, t2);
+      m.valid = true;
+    } else {  // clear
+      m.kind = 2;
+      if (target[m.d1] == kNone) return m;
+      m.delta = -value(m.d1, target[m.d1]);
+      m.valid = true;
+    }
+    return m;
+  };
+  auto apply = [&](const Move& m) {
+    if (m.kind == 0) {
+      if (m.d2 != m.d1) target[m.d2] = kNone;
+      if (target[m.d1] != kNone) holder[static_cast<std::size_t>(target[m.d1])] = kNone;
+      target[m.d1] = m.r;
+      holder[static_cast<std::size_t>(m.r)] = static_cast<int>(m.d1);
+    } else if (m.kind == 1) {
+      std::swap(target[m.d1], target[m.d2]);
+      if (target[m.d1] != kNone)
+        holder[static_cast<std::size_t>(target[m.d1])] = static_cast<int>(m.d1);
+      if (target[m.d2] != kNone)
+        holder[static_cast<std::size_t>(target[m.d2])] = static_cast<int>(m.d2);
+    } else {
+      holder[static_cast<std::size_t>(target[m.d1])] = kNone;
+      target[m.d1] = kNone;
+    }
+  };
+  // T₀ from the median |ΔU| of random moves (not made).
+  std::vector<double> probes;
+  for (int k = 0; k < settings_.probe_moves; ++k)
+    if (const Move m = propose(); m.valid && m.delta != 0) probes.push_back(std::abs(m.delta));
+  double t0 = 1e-9;
+  if (!probes.empty()) {
+    std::nth_element(probes.begin(),
+                     probes.begin() + static_cast<std::ptrdiff_t>(probes.size() / 2), probes.end());
+    t0 = std::max(probes[probes.size() / 2] / std::log(2.0), 1e-9);
+  }
+  double now = u.total(start), best_value = now;
+  std::vector<int> best = target;
+  const double cooling = std::pow(1e-3, 1.0 / std::max(settings_.moves, 1));
+  double temperature = t0;
+  for (int k = 0; k < settings_.moves; ++k, temperature *= cooling) {
+    const Move m = propose();
+    if (!m.valid) continue;
+    if (m.delta < 0 && rng.uniform() >= std::exp(m.delta / temperature)) continue;
+    apply(m);
+    now += m.delta;
+    if (now > best_value + 1e-12) {
+      best_value = now;
+      best = target;
+    }
+  }
+  Assignment out(nd);
+  for (std::size_t d = 0; d < nd; ++d)
+    if (best[d] != kNone) out[d] = best[d];
+  return out;
+}
+
+}  // namespace
+
+double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
+  const double length = norm(to - from);
+  if (!(length > 0)) return 0.0;
+  // Triangle when too short to reach cruise: v_peak = √(L a).
+  if (length < cruise_m_s * cruise_m_s / accel_m_s2) return 2 * std::sqrt(length / accel_m_s2);
+  return length / cruise_m_s + cruise_m_s / accel_m_s2;
+}
+
+Utility::Utility(const Snapshot& s)
+    : snapshot_(s), drones_(s.drones.size()), requests_(s.requests.size()) {
+  value_.assign(drones_ * requests_, 0.0);
+  feasible_.assign(drones_ * requests_, 0);
+  Vec3 centre;
+  for (const Request& r : s.requests) centre = centre + r.location_m;
+  if (requests_ > 0) centre = centre / static_cast<double>(requests_);
+  std::vector<double>& eta = eta_;
+  eta.assign(drones_ * requests_, 0.0);
+  for (std::size_t d = 0; d < drones_; ++d)
+    for (std::size_t r = 0; r < requests_; ++r) {
+      const auto& bound = s.requests[r].bound_drone;
+      const bool ok = !bound || *bound == static_cast<int>(d);
+      feasible_[d * requests_ + r] = ok ? 1 : 0;
+      eta[d * requests_ + r] = s.eta.eta_s(s.drones[d].position_m, s.requests[r].location_m);
+      if (ok) horizon_s_ = std::max(horizon_s_, 1.0 + eta[d * requests_ + r]);
+    }
+  const Weights& w = s.weights;
+  for (std::size_t d = 0; d < drones_; ++d)
+    for (std::size_t r = 0; r < requests_; ++r) {
+      const Request& q = s.requests[r];
+      const bool keeps = s.drones[d].target && *s.drones[d].target == static_cast<int>(r);
+      value_[d * requests_ + r] =
+          w.coverage * horizon_s_ - eta[d * requests_ + r] + w.fairness * q.waiting_s +
+          w.avoid_zigzag * norm(q.location_m - centre) + (keeps ? w.commitment : 0.0);
+    }
+}
+
+double Utility::total(const Assignment& a) const {
+  double sum = 0;
+  for (std::size_t d = 0; d < a.size() && d < drones_; ++d)
+    if (a[d]) sum += value(d, static_cast<std::size_t>(*a[d]));
+  return sum;
+}
+
+bool Utility::valid(const Assignment& a) const {
+  if (a.size() != drones_) return false;
+  std::vector<char> seen(requests_, 0);
+  for (std::size_t d = 0; d < drones_; ++d) {
+    const DroneState& drone = snapshot_.drones[d];
+    if (drone.busy && a[d] != drone.target) return false;
+    if (!a[d]) continue;
+    const int r = *a[d];
+    if (r < 0 || static_cast<std::size_t>(r) >= requests_ || seen[static_cast<std::size_t>(r)] ||
+        !feasible(d, static_cast<std::size_t>(r)))
+      return false;
+    seen[static_cast<std::size_t>(r)] = 1;
+  }
+  return true;
+}
+
+std::unique_ptr<Scheduler> greedy_scheduler() {
+  return std::make_unique<Greedy>();
+}
+std::unique_ptr<Scheduler> round_robin_scheduler() {
+  return std::make_unique<RoundRobin>();
+}
+std::unique_ptr<Scheduler> hungarian_scheduler() {
+  return std::make_unique<Hungarian>();
+}
+std::unique_ptr<Scheduler> annealing_scheduler(const AnnealingSettings& settings) {
+  return std::make_unique<Annealing>(settings);
+}
+
+std::unique_ptr<Scheduler> make_scheduler(const std::string& name) {
+  if (name == "greedy") return greedy_scheduler();
+  if (name == "round-robin") return round_robin_scheduler();
+  if (name == "hungarian") return hungarian_scheduler();
+  if (name == "sa") return annealing_scheduler();
+  return nullptr;
+}
+
+}  // namespace swath::fleet
