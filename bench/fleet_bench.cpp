@@ -11,7 +11,8 @@ Snapshot instance(std::size_t drones, std::size_t requests) {
   auto rng = vehicle::SplitMix64::stream(7, "bench");
   Snapshot s;
   for (std::size_t d = 0; d < drones; ++d)
-    s.drones.push_back({{rng.uniform(0, 3000), rng.uniform(0, 3000), 10}, std::nullopt, false});
+    s.drones.push_back(
+        {{rng.uniform(0, 3000), rng.uniform(0, 3000), 10}, std::nullopt, false, 1.0, {}});
   for (std::size_t r = 0; r < requests; ++r)
     s.requests.push_back(
         {{rng.uniform(0, 3000), rng.uniform(0, 3000), 10}, 5, rng.uniform(0, 60), std::nullopt});

@@ -300,7 +300,27 @@ Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
   return out;
 }
 
+bool inside_fence(const std::vector<std::array<double, 2>>& ring, const Vec3& p) {
+  if (ring.size() < 3) return true;
+  bool in = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const auto& a = ring[i];
+    const auto& b = ring[j];
+    if ((a[1] > p.y) != (b[1] > p.y) && p.x < (b[0] - a[0]) * (p.y - a[1]) / (b[1] - a[1]) + a[0])
+      in = !in;
+  }
+  return in;
+}
+
 }  // namespace
+
+double landing_soc(const EnergyFeasibility& e, const EtaModel& eta, const DroneState& d,
+                   const Request& r) {
+  double soc =
+      energy::soc_after(e.battery, d.soc, e.cruise_power_w, eta.eta_s(d.position_m, r.location_m));
+  soc = energy::soc_after(e.battery, soc, e.hover_power_w, r.service_s);
+  return energy::soc_after(e.battery, soc, e.cruise_power_w, eta.eta_s(r.location_m, d.home_m));
+}
 
 double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
   const double length = norm(to - from);
@@ -322,7 +342,11 @@ Utility::Utility(const Snapshot& s)
   for (std::size_t d = 0; d < drones_; ++d)
     for (std::size_t r = 0; r < requests_; ++r) {
       const auto& bound = s.requests[r].bound_drone;
-      const bool ok = !bound || *bound == static_cast<int>(d);
+      bool ok = (!bound || *bound == static_cast<int>(d)) &&
+                inside_fence(s.fence, s.requests[r].location_m);
+      if (ok && s.energy)
+        ok = landing_soc(*s.energy, s.eta, s.drones[d], s.requests[r]) >=
+             s.energy->battery.reserve_soc;
       feasible_[d * requests_ + r] = ok ? 1 : 0;
       eta[d * requests_ + r] = s.eta.eta_s(s.drones[d].position_m, s.requests[r].location_m);
       if (ok) horizon_s_ = std::max(horizon_s_, 1.0 + eta[d * requests_ + r]);

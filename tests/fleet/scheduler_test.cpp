@@ -136,6 +136,47 @@ TEST(Scheduler, AnnealingIsWithinHalfAPercentOfHungarianAtAHundredDronesAndAThou
   }
 }
 
+TEST(Scheduler, NoDroneIsSentWhereItWouldLandBelowItsReserveOrOutsideTheFence) {
+  // A 5 Ah pack at 200 W: 1 % of charge lasts about 13 s of flight (eq. 12).
+  Snapshot s = random_snapshot(4, 6, 30, 2000);
+  EnergyFeasibility e;
+  e.battery.capacity_ah = 5;
+  s.energy = e;
+  for (std::size_t d = 0; d < s.drones.size(); ++d) {
+    s.drones[d].soc = 0.2 + 0.05 * static_cast<double>(d);  // from at the reserve to 45 %
+    s.drones[d].target.reset();
+    s.drones[d].busy = false;
+  }
+  s.fence = {{0, 0}, {1500, 0}, {1500, 2000}, {0, 2000}};  // the eastern quarter is outside
+  const Utility u(s);
+  std::size_t feasible = 0;
+  for (std::size_t d = 0; d < u.drones(); ++d)
+    for (std::size_t r = 0; r < u.requests(); ++r) {
+      // The closed form, leg by leg: I = (V − √(V² − 4 R V~ P / V)) / (2R), ΔSoC = I t / 3600 Q.
+      auto drop = [&](double p, double t) {
+        const auto& b = e.battery;
+        const double i = (b.voltage_v - std::sqrt(b.voltage_v * b.voltage_v -
+                                                  4 * b.resistance_ohm * b.stabilised_voltage_v *
+                                                      p / b.voltage_v)) /
+                         (2 * b.resistance_ohm);
+        return i * t / (3600 * b.capacity_ah);
+      };
+      const DroneState& dr = s.drones[d];
+      const Request& q = s.requests[r];
+      const double soc = dr.soc - drop(200, s.eta.eta_s(dr.position_m, q.location_m)) -
+                         drop(190, q.service_s) - drop(200, s.eta.eta_s(q.location_m, dr.home_m));
+      const bool bound_ok = !q.bound_drone || *q.bound_drone == static_cast<int>(d);
+      const bool expected = bound_ok && soc >= 0.2 && q.location_m.x <= 1500;
+      EXPECT_EQ(u.feasible(d, r), expected) << d << " " << r;
+      feasible += expected ? 1 : 0;
+    }
+  EXPECT_GT(feasible, 10u);
+  EXPECT_LT(feasible, u.drones() * u.requests() / 2);
+  auto rng = vehicle::SplitMix64::stream(1, "sa");
+  for (const char* name : {"sa", "greedy", "round-robin", "hungarian"})
+    EXPECT_TRUE(u.valid(make_scheduler(name)->assign(s, rng))) << name;
+}
+
 TEST(Scheduler, TheSameSeedGivesTheSameAssignment) {
   const Snapshot s = random_snapshot(9, 20, 60, 500);
   auto a = vehicle::SplitMix64::stream(1, "sa"), b = vehicle::SplitMix64::stream(1, "sa");

@@ -7,12 +7,14 @@
 // simulated annealing (the paper's), and the baselines greedy, round-robin and Hungarian (exact
 // for pair terms, so also a test oracle).
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "swath/energy/battery.hpp"
 #include "swath/vehicle/random.hpp"
 #include "swath/vehicle/vec3.hpp"
 
@@ -25,6 +27,16 @@ struct DroneState {
   Vec3 position_m;            ///< local metres (x east, y north, altitude above home)
   std::optional<int> target;  ///< the request it flies to now (index into the snapshot)
   bool busy = false;          ///< mid-action: keeps its target, not reassigned
+  double soc = 1.0;           ///< state of charge, [0, 1]
+  Vec3 home_m;                ///< where it lands, local metres
+};
+
+/// What a pair costs in charge (paper 004 eq. 12 via energy::Battery): fly there at cruise
+/// power, serve at hover power, fly home; a pair that would land below the reserve is infeasible.
+struct EnergyFeasibility {
+  energy::Battery battery;      ///< capacity, voltages, reserve_soc
+  double cruise_power_w = 200;  ///< > 0
+  double hover_power_w = 190;   ///< > 0
 };
 
 /// A visible request: a task's head segment.
@@ -56,7 +68,14 @@ struct Snapshot {
   std::vector<Request> requests;
   EtaModel eta;
   Weights weights;
+  std::optional<EnergyFeasibility> energy;  ///< none: charge is not checked
+  /// The fence (local metres, x/y; empty: none): requests outside it are infeasible.
+  std::vector<std::array<double, 2>> fence;
 };
+
+/// The state of charge a drone lands with after serving `r` and flying home (eq. 12 per leg).
+double landing_soc(const EnergyFeasibility& e, const EtaModel& eta, const DroneState& d,
+                   const Request& r);
 
 /// drone → request index, or nullopt for none. Each request at most once.
 using Assignment = std::vector<std::optional<int>>;
