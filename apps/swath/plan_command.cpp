@@ -197,6 +197,16 @@ void PlanCommand::setup(CLI::App& app) {
                  "turnaround + half the footprint width + 10 m)");
   app.add_flag("--fence-files", fence_files_,
                "Also write fence.waypoints, fence.fen and rally.waypoints for Mission Planner");
+  app.add_flag("--litchi", litchi_,
+               "Also write each flight as a Litchi mission CSV (NAME-litchi.csv; above 99 "
+               "waypoints NAME-litchi-1.csv, -2, ..., each starting where the last ended): "
+               "heights above the take-off point, the speed, heading along each leg, the gimbal "
+               "pitch, photos by distance or time on the lines; multirotors up to 15 m/s");
+  app.add_flag("--dji", dji_,
+               "Also write each flight as a DJI WPML KMZ for DJI Pilot 2 (NAME.kmz: "
+               "wpmz/template.kml, wpmz/waylines.wpml): the same points, takePhoto every trigger "
+               "distance from each line's start to its end, gimbal pitch, go-home or --land; the "
+               "aircraft and payload from the camera's dji_* keys (warns without them)");
   app.add_flag("--land", land_,
                "End with a landing at home (NAV_LAND) instead of return-to-launch");
   app.add_option("--max-bank", max_bank_deg_,
@@ -360,7 +370,9 @@ planning::SurveyRequest PlanCommand::request() const {
 
 std::vector<std::pair<std::string, std::string>> PlanCommand::files(
     const planning::SurveyPlan& plan) const {
-  auto files = planning::survey_files(plan, {fence_files_});
+  const planning::FileOptions options{fence_files_, litchi_, dji_};
+  auto files = planning::survey_files(plan, options);
+  export_warnings_ = planning::export_warnings(plan, options);
   if (!energy_plan_.empty()) {
     EnergyPlanRequest energy;
     energy.file_name = energy_plan_;
@@ -439,6 +451,7 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
   std::printf("  wrote     %s\n", names.c_str());
   std::vector<std::string> warnings = plan.warnings;
   warnings.insert(warnings.end(), energy_warnings_.begin(), energy_warnings_.end());
+  warnings.insert(warnings.end(), export_warnings_.begin(), export_warnings_.end());
   for (const std::string& w : warnings) std::cerr << "swath plan: warning: " << w << '\n';
 }
 

@@ -76,12 +76,15 @@ class PlanCommand : public Command {
   bool crosshatch_ = false;
   std::optional<double> fence_margin_m_;
   bool fence_files_ = false;
+  bool litchi_ = false;
+  bool dji_ = false;
   bool land_ = false;
   double max_bank_deg_ = 30.0;
   std::string sorties_ = "off";
   std::optional<double> endurance_s_;
   double reserve_ = 0.2;
   mutable std::vector<std::string> energy_warnings_;  ///< from files(), printed by report()
+  mutable std::vector<std::string> export_warnings_;  ///< from files(), printed by report()
   std::string energy_plan_;
   double energy_min_coverage_ = 0.99;
   std::vector<std::string> energy_computations_ = {"2,10", "32,448"};

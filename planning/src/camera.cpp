@@ -46,13 +46,45 @@ std::string read_text(const std::filesystem::path& path) {
 
 namespace {
 
+// The optional DJI WPML enumerations: dji_drone_enum and dji_payload_enum together (a KMZ names
+// both or neither), dji_drone_sub_enum optional; whole numbers in [0, 65535] as WPML's ints.
+std::optional<DjiEnums> dji_enums(const YAML::Node& root, const std::string& source) {
+  static constexpr base::Range kEnum{0, 65535, "", "a DJI WPML enumeration value"};
+  auto integer = [&](const char* key) {
+    const double v = number(root[key], key, source, kEnum);
+    if (v != std::floor(v))
+      throw InputError(source + ": line " + std::to_string(root[key].Mark().line + 1) + ": " + key +
+                       " must be a whole number");
+    return static_cast<int>(v);
+  };
+  if (!root["dji_drone_enum"] && !root["dji_payload_enum"]) {
+    if (root["dji_drone_sub_enum"])
+      throw InputError(source + ": dji_drone_sub_enum needs dji_drone_enum and dji_payload_enum");
+    return std::nullopt;
+  }
+  if (!root["dji_drone_enum"] || !root["dji_payload_enum"])
+    throw InputError(source + ": dji_drone_enum and dji_payload_enum go together");
+  DjiEnums e;
+  e.drone = integer("dji_drone_enum");
+  e.payload = integer("dji_payload_enum");
+  if (root["dji_drone_sub_enum"]) e.drone_sub = integer("dji_drone_sub_enum");
+  return e;
+}
+
 Camera camera_from_yaml(const std::string& yaml_text, const std::string& source) {
   const YAML::Node root = base::load_yaml(yaml_text, source);
   if (!root.IsMap())
     throw InputError(source + ": a camera file is a YAML mapping of name, sensor and image sizes");
-  static const std::set<std::string> known{
-      "name",           "sensor_width_mm", "sensor_height_mm",      "focal_length_mm",
-      "image_width_px", "image_height_px", "min_trigger_interval_s"};
+  static const std::set<std::string> known{"name",
+                                           "sensor_width_mm",
+                                           "sensor_height_mm",
+                                           "focal_length_mm",
+                                           "image_width_px",
+                                           "image_height_px",
+                                           "min_trigger_interval_s",
+                                           "dji_drone_enum",
+                                           "dji_drone_sub_enum",
+                                           "dji_payload_enum"};
   base::check_plain_unique_keys(root, source);
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
@@ -84,6 +116,7 @@ Camera camera_from_yaml(const std::string& yaml_text, const std::string& source)
   if (root["min_trigger_interval_s"])
     c.min_trigger_interval_s = number(root["min_trigger_interval_s"], "min_trigger_interval_s",
                                       source, limits::kTriggerInterval_s);
+  c.dji = dji_enums(root, source);
   validate_camera(c, source);
   return c;
 }

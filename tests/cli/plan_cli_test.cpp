@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "cli_runner.hpp"
 #include "swath/base/number_text.hpp"
@@ -286,6 +287,47 @@ TEST(PlanCli, ShortFleetIsRefusedUnlessPartialIsAllowed) {
   // Each drone flies exactly its range (budget plus home cost, straight legs), no more.
   for (const json& d : s["drones"])
     EXPECT_LE(d["path_length_m"].get<double>(), 0.5 * 600 * 5 + 1e-3);
+}
+
+TEST(PlanCli, LitchiAndDjiExportsJoinTheSetAndLeaveWithIt) {
+  const std::string out = fresh_dir("exports");
+  const std::string base =
+      "plan share/fields/meadow.geojson --camera dji-mavic-3e --altitude 60 -o " + out;
+  const CliRun run = run_swath(base + " --litchi --dji");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  EXPECT_EQ(entries(out), kFiles.size() + 2);
+  const std::string kmz = read_text(out + "/drone-1.kmz");
+  EXPECT_EQ(kmz.substr(0, 4), std::string("PK\x03\x04", 4)) << "a zip archive";
+  EXPECT_NE(kmz.find("wpmz/waylines.wpml"), std::string::npos);
+  const std::string csv = read_text(out + "/drone-1-litchi.csv");
+  EXPECT_EQ(csv.rfind("latitude,longitude,altitude(m),heading(deg),", 0), 0u);
+  const json s = json::parse(read_text(out + "/summary.json"));
+  std::set<std::string> listed;
+  for (const json& f : s["files"]) listed.insert(f.get<std::string>());
+  EXPECT_TRUE(listed.count("drone-1-litchi.csv") && listed.count("drone-1.kmz"));
+  // Planned again without them, the set's manifest removes the exports it no longer writes.
+  ASSERT_EQ(run_swath(base).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out + "/drone-1.kmz"));
+  EXPECT_FALSE(fs::exists(out + "/drone-1-litchi.csv"));
+  EXPECT_EQ(entries(out), kFiles.size());
+}
+
+TEST(PlanCli, ExportsPerSortieAndAWarningForACameraWithoutDjiEnums) {
+  const std::string out = fresh_dir("exports-sorties");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --sorties "
+      "auto --endurance 420 --litchi --dji -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("swath plan: warning: --dji: the camera 'Sony ILCE-QX1' has no DJI enums"),
+            std::string::npos)
+      << run.err;
+  for (int k = 1; k <= 8; ++k) {
+    const std::string stem = out + "/drone-1-" + std::to_string(k);
+    EXPECT_TRUE(fs::exists(stem + ".kmz")) << k;
+    EXPECT_TRUE(fs::exists(stem + "-litchi.csv")) << k;
+  }
 }
 
 struct BadPlan {

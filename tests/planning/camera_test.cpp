@@ -50,6 +50,36 @@ TEST(CameraFile, BadFilesNameKeyAndLine) {
   EXPECT_NE(error_of("- a list\n").find("mapping"), std::string::npos);
 }
 
+TEST(CameraFile, DjiEnumsAreOptionalWholeNumbersThatGoTogether) {
+  const std::string base =
+      "name: x\nsensor_width_mm: 10\nsensor_height_mm: 8\nfocal_length_mm: 5\n"
+      "image_width_px: 100\nimage_height_px: 80\n";
+  EXPECT_FALSE(parse_camera(base, "t").dji);
+  const Camera c =
+      parse_camera(base + "dji_drone_enum: 67\ndji_drone_sub_enum: 1\ndji_payload_enum: 53\n", "t");
+  ASSERT_TRUE(c.dji);
+  EXPECT_EQ(c.dji->drone, 67);
+  EXPECT_EQ(c.dji->drone_sub, 1);
+  EXPECT_EQ(c.dji->payload, 53);
+  EXPECT_EQ(parse_camera(base + "dji_drone_enum: 77\ndji_payload_enum: 66\n", "t").dji->drone_sub,
+            0);
+  EXPECT_NE(error_of(base + "dji_drone_enum: 77\n").find("go together"), std::string::npos);
+  EXPECT_NE(error_of(base + "dji_drone_sub_enum: 1\n").find("needs dji_drone_enum"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "dji_drone_enum: 77.5\ndji_payload_enum: 66\n")
+                .find("line 7: dji_drone_enum must be a whole number"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "dji_drone_enum: 70000\ndji_payload_enum: 66\n")
+                .find("outside the range swath accepts, 0 to 65535"),
+            std::string::npos);
+  // The bundled DJI cameras Pilot 2 flies carry their enums (DJI Cloud API's product table).
+  const Camera m3e = find_camera("dji-mavic-3e", kDatabase);
+  ASSERT_TRUE(m3e.dji);
+  EXPECT_EQ(m3e.dji->drone, 77);
+  EXPECT_EQ(m3e.dji->payload, 66);
+  EXPECT_FALSE(find_camera("sony-ilce-qx1", kDatabase).dji);
+}
+
 TEST(CameraDatabase, HoldsAtLeastTwelveValidRealCameras) {
   const auto entries = camera_database(kDatabase);
   ASSERT_GE(entries.size(), 12u);

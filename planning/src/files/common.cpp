@@ -1,9 +1,12 @@
 #include "common.hpp"
 
+#include <GeographicLib/Geodesic.hpp>
+
 #include <cmath>
 
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
+#include "swath/geometry/local_frame.hpp"
 
 namespace swath::planning::files {
 
@@ -165,6 +168,74 @@ std::string wpl_row(std::size_t index, int current, int frame, int command,
     out += fixed_text(std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
   }
   return out + "\t1\n";
+}
+
+namespace {
+
+// The true bearing of the geodesic from a to b at a (at_end: at b), degrees in [0, 360).
+double bearing_deg(const geometry::GeoPoint& a, const geometry::GeoPoint& b, bool at_end) {
+  double azi1 = 0, azi2 = 0;
+  GeographicLib::Geodesic::WGS84().Inverse(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg, azi1, azi2);
+  const double azi = at_end ? azi2 : azi1;
+  return azi < 0 ? azi + 360.0 : azi;
+}
+
+// The legs' headings: each point faces along the leg it starts, the last along the leg it ends;
+// a point where the flight does not move (a leg shorter than a millimetre) keeps the heading
+// before it.
+void set_headings(std::vector<ExportPoint>& points) {
+  constexpr double kSamePoint_m = 1e-3;
+  double previous = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const bool last = i + 1 == points.size();
+    const ExportPoint& a = last ? (i > 0 ? points[i - 1] : points[i]) : points[i];
+    const ExportPoint& b = last ? points[i] : points[i + 1];
+    if (geometry::geodesic_distance_m(a.geo, b.geo) >= kSamePoint_m)
+      previous = bearing_deg(a.geo, b.geo, last);
+    points[i].heading_deg = previous;
+  }
+}
+
+}  // namespace
+
+std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight) {
+  std::vector<ExportPoint> points;
+  bool camera_on = false;
+  for (const MissionItem& item : flight.mission->items) {
+    switch (item.kind) {
+      case ItemKind::waypoint:
+        if (!points.empty()) points.back().photo_leg = camera_on;
+        points.push_back(
+            {geo(plan, item.position), item.altitude_m, 0.0, false, item.value, false});
+        break;
+      case ItemKind::land:  // the home at the altitude flown, where the app's landing lands
+        if (!points.empty()) {
+          points.back().photo_leg = camera_on;
+          points.push_back(
+              {geo(plan, item.position), points.back().altitude_m, 0.0, false, 0.0, false});
+        }
+        break;
+      case ItemKind::trigger_start:
+        camera_on = true;
+        break;
+      case ItemKind::trigger_stop:
+        camera_on = false;
+        break;
+      case ItemKind::camera_shot:
+        if (!points.empty()) points.back().shot = true;
+        break;
+      default:
+        break;
+    }
+  }
+  set_headings(points);
+  return points;
+}
+
+double trigger_value(const Flight& flight) {
+  for (const MissionItem& item : flight.mission->items)
+    if (item.kind == ItemKind::trigger_start) return item.value;
+  return 0.0;
 }
 
 }  // namespace swath::planning::files

@@ -38,4 +38,31 @@ std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, doubl
 std::string wpl_row(std::size_t index, int current, int frame, int command,
                     const std::array<double, 7>& params);
 
+/// A waypoint of a flight as the DJI and Litchi exports write it (DESIGN.md §15): their apps take
+/// off and return (or land) by themselves, so these are the mission's NAV_WAYPOINTs in order, and
+/// with --land the home again at the survey altitude, where the app's landing finish action lands.
+struct ExportPoint {
+  geometry::GeoPoint geo;   ///< WGS84, rounded to 1e-9 degrees as every file writes it
+  double altitude_m = 0.0;  ///< above home (the take-off point)
+  /// True bearing of the leg that follows, degrees clockwise from north in [0, 360) (the last
+  /// point: of the leg that arrives); the geodesic azimuth at this point (GeographicLib).
+  double heading_deg = 0.0;
+  /// The camera triggers along the leg that follows (distance or time mode; a sweep line, or a
+  /// turn inside the area with --photos-in-turns), as the mission's trigger items say.
+  bool photo_leg = false;
+  double hold_s = 0.0;  ///< hover: the hold here, seconds
+  bool shot = false;    ///< hover: one photo here
+};
+
+/// The export points of a flight (see ExportPoint).
+std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight);
+
+/// The flight's camera trigger value on photo legs: metres between photos (distance mode) or
+/// seconds (time mode); 0 in hover mode.
+double trigger_value(const Flight& flight);
+
+/// A zip archive of `entries` (name, bytes) in order, deflated, with a fixed modification time
+/// (2020-01-01 00:00 in whatever time zone libzip converts with): same entries, same bytes.
+std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& entries);
+
 }  // namespace swath::planning::files

@@ -1,5 +1,9 @@
 // The set of files of a plan, and its flights.
+#include <tuple>
+
 #include "common.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/planning/plan_features.hpp"
 
 namespace swath::planning {
@@ -22,13 +26,64 @@ std::string mission_geojson(const SurveyPlan& plan) {
   return mission_geojson(plan_features(plan));
 }
 
+void check_exports(const SurveyPlan& plan, const FileOptions& options) {
+  using base::InputError;
+  for (const auto& [asked, flag, app] : {std::tuple{options.litchi, "--litchi", "Litchi"},
+                                         std::tuple{options.dji, "--dji", "DJI Pilot 2"}})
+    if (asked && plan.request.vehicle == Vehicle::fixedwing)
+      throw InputError(std::string(flag) + ": " + app +
+                       " flies DJI multirotors, not a fixed-wing plan; drop " + flag +
+                       " or plan for --vehicle multirotor");
+  if (options.dji)  // WPML numbers a wayline's points 0 to 65535 (wpml:index)
+    for (const Flight& f : flights_of(plan)) {
+      std::size_t points = 0;
+      for (const MissionItem& item : f.mission->items)
+        points += item.kind == ItemKind::waypoint || item.kind == ItemKind::land;
+      if (points > kWpmlMaxWaypoints)
+        throw InputError("--dji: flight " + f.file_stem + " has " + std::to_string(points) +
+                         " waypoints, more than a DJI WPML wayline holds (65,536); cut it with "
+                         "--sorties auto or fewer --waypoint-spacing points");
+    }
+  if (!options.litchi) return;
+  if (plan.imaging.altitude_m > kLitchiMaxAltitude_m)
+    throw InputError("--litchi: the altitude " + base::fixed_text(plan.imaging.altitude_m, 1) +
+                     " m is above Litchi's highest waypoint, 500 m above the take-off point");
+  for (const DronePlan& d : plan.drones)
+    if (d.speed_m_s > kLitchiMaxSpeed_m_s)
+      throw InputError("--litchi: drone " + d.name + " flies at " +
+                       base::fixed_text(d.speed_m_s, 1) +
+                       " m/s, faster than Litchi's waypoint speeds (at most 15 m/s); lower "
+                       "--speed or the fleet's speed_m_s");
+}
+
+std::vector<std::string> export_warnings(const SurveyPlan& plan, const FileOptions& options) {
+  std::vector<std::string> out;
+  if (options.dji && !plan.request.camera.dji)
+    out.push_back("--dji: the camera '" + plan.request.camera.name +
+                  "' has no DJI enums (dji_drone_enum, dji_payload_enum in its camera file), so "
+                  "the KMZ names no aircraft and payload (wpml:droneInfo, wpml:payloadInfo); DJI "
+                  "Pilot 2 needs them to open it: add them to a copy of the camera file");
+  return out;
+}
+
 std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan,
                                                               const FileOptions& options) {
+  check_exports(plan, options);
   std::vector<std::pair<std::string, std::string>> files{{"mission.geojson", mission_geojson(plan)},
                                                          {"summary.json", summary_json(plan)}};
   for (const Flight& f : flights_of(plan)) {
     files.push_back({f.file_stem + ".plan", qgc_plan(plan, f)});
     files.push_back({f.file_stem + ".waypoints", wpl_110(plan, f)});
+    if (options.litchi) {
+      // One part: NAME-litchi.csv; several: NAME-litchi-1.csv, -2, ... (as sorties are numbered).
+      std::vector<std::string> parts = litchi_csv(plan, f);
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        std::string name = f.file_stem + "-litchi";
+        if (parts.size() > 1) name += '-' + std::to_string(k + 1);
+        files.push_back({name + ".csv", std::move(parts[k])});
+      }
+    }
+    if (options.dji) files.push_back({f.file_stem + ".kmz", dji_kmz(plan, f)});
   }
   files.push_back({"waypoints.csv", waypoints_csv(plan)});
   files.push_back({"mission.kml", mission_kml(plan)});

@@ -8,6 +8,15 @@
 
 namespace swath::planning {
 
+/// The aircraft and payload a DJI camera is, as DJI WPML names them (`wpml:droneInfo`,
+/// `wpml:payloadInfo`): the `type` / `sub_type` numbers of DJI Cloud API's product table, e.g.
+/// Mavic 3 Enterprise: drone 77, sub-type 0, payload 66. Integers in [0, 65535].
+struct DjiEnums {
+  int drone = 0;      ///< droneEnumValue: 60 M300 RTK, 89 M350 RTK, 67 M30, 77 Mavic 3E/T/M, 91 M3D
+  int drone_sub = 0;  ///< droneSubEnumValue: e.g. 0 M3E, 1 M3T, 2 M3M
+  int payload = 0;    ///< payloadEnumValue: e.g. 66 Mavic 3E camera, 50 Zenmuse P1
+};
+
 /// A camera with a rectilinear lens, as its maker publishes it.
 struct Camera {
   std::string name;
@@ -18,6 +27,8 @@ struct Camera {
   int image_height_px = 0;        ///< > 0
   /// Shortest time between two photos the camera sustains, seconds (absent: no limit known).
   std::optional<double> min_trigger_interval_s;
+  /// The DJI WPML enumerations for `swath plan --dji` (absent: not a camera DJI Pilot 2 flies).
+  std::optional<DjiEnums> dji = std::nullopt;
 };
 
 /// Parses a camera YAML document:
@@ -28,6 +39,9 @@ struct Camera {
 ///   image_width_px: 5456
 ///   image_height_px: 3632
 ///   min_trigger_interval_s: 1.0   # optional
+///   dji_drone_enum: 77            # optional, with dji_payload_enum (DjiEnums)
+///   dji_drone_sub_enum: 0         # optional, default 0
+///   dji_payload_enum: 66
 /// Throws base::InputError naming `source`, the key and the problem (missing key, not a
 /// number, value <= 0, unknown key).
 Camera parse_camera(const std::string& yaml_text, const std::string& source);

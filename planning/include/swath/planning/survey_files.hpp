@@ -53,16 +53,61 @@ std::string fence_waypoints(const SurveyPlan& plan);
 std::string fence_fen(const SurveyPlan& plan);
 std::string rally_waypoints(const SurveyPlan& plan);
 
+/// Litchi's largest mission, waypoints.
+inline constexpr std::size_t kLitchiMaxWaypoints = 99;
+/// Litchi's (DJI's waypoint missions') fastest waypoint speed, m/s.
+inline constexpr double kLitchiMaxSpeed_m_s = 15.0;
+/// Litchi's highest waypoint altitude above the take-off point, m.
+inline constexpr double kLitchiMaxAltitude_m = 500.0;
+/// The most points a DJI WPML wayline numbers (wpml:index 0 to 65535).
+inline constexpr std::size_t kWpmlMaxWaypoints = 65'536;
+
+/// Litchi mission CSV (--litchi, DESIGN.md §15): Litchi's column set (latitude, longitude,
+/// altitude(m), heading(deg), curvesize(m), rotationdir, gimbalmode, gimbalpitchangle,
+/// actiontype1..15/actionparam1..15, altitudemode, speed(m/s), poi_*, photo_timeinterval,
+/// photo_distinterval), one row per waypoint of the flight (Litchi takes off and returns or lands
+/// itself: its finish action is a mission setting the CSV does not hold; with --land the home is
+/// the last row, to land there). Altitudes relative to the take-off point (altitudemode 0),
+/// headings along the leg each point starts (degrees from true north), the gimbal pitch at every
+/// point (gimbalmode 2), the drone's speed, holds as stay actions, hover shots as photo actions,
+/// photo_distinterval (distance) or photo_timeinterval (time) on the waypoints whose next leg the
+/// camera triggers on, -1 elsewhere. One text per part of at most kLitchiMaxWaypoints rows; part
+/// k + 1 starts at the point part k ends at.
+std::vector<std::string> litchi_csv(const SurveyPlan& plan, const Flight& flight);
+
+/// DJI WPML (--dji, DESIGN.md §15): wpmz/waylines.wpml (what the aircraft executes) and
+/// wpmz/template.kml (the waypoint template DJI Pilot 2 edits) of a flight: the points as for
+/// Litchi, heights relativeToStartPoint, the drone's speed, followWayline heading (the leg's
+/// bearing in waypointHeadingAngle), a stop at every point, gimbalRotate to the gimbal pitch at
+/// the first point, takePhoto every trigger distance (multipleDistance) or interval
+/// (multipleTiming) from each run of photo legs' first point to its last, hover and takePhoto at
+/// hover points; finishAction goHome, or autoLand with --land; droneInfo/payloadInfo from the
+/// camera's DJI enums when it has them (omitted otherwise: export_warnings() says so).
+std::string dji_waylines_wpml(const SurveyPlan& plan, const Flight& flight);
+std::string dji_template_kml(const SurveyPlan& plan, const Flight& flight);
+/// The KMZ: a zip (libzip) of wpmz/template.kml and wpmz/waylines.wpml; same plan, same bytes.
+std::string dji_kmz(const SurveyPlan& plan, const Flight& flight);
+
 /// Every figure of the plan (DESIGN.md §8, §14) as JSON; `files`, the names of the set written with
 /// it (DESIGN.md §14 "Output directory"), under "files" when given.
 std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>& files = {});
 
 struct FileOptions {
   bool fence_files = false;  ///< also the Mission Planner fence and rally files
+  bool litchi = false;       ///< also <flight>-litchi.csv (split: <flight>-litchi-<k>.csv)
+  bool dji = false;          ///< also <flight>.kmz
 };
 
+/// Throws base::InputError (one sentence naming the option) when the plan cannot be exported as
+/// `options` asks: Litchi and DJI Pilot 2 fly multirotors only; Litchi flies at most
+/// kLitchiMaxSpeed_m_s and kLitchiMaxAltitude_m; a WPML wayline holds kWpmlMaxWaypoints.
+void check_exports(const SurveyPlan& plan, const FileOptions& options);
+
+/// Warnings about the exports `options` asks for: a --dji camera without DJI enums.
+std::vector<std::string> export_warnings(const SurveyPlan& plan, const FileOptions& options);
+
 /// All of the above with their file names, in writing order (summary.json second, without
-/// "files": the caller knows the whole set only after adding its own).
+/// "files": the caller knows the whole set only after adding its own). Calls check_exports().
 std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan,
                                                               const FileOptions& options = {});
 
