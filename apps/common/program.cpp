@@ -2,6 +2,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "remedy_text.hpp"
 #include "swath/base/input_error.hpp"
 
 namespace swath::apps {
@@ -39,7 +40,8 @@ int run_program(const char* program, const char* description, const char* exit_c
     try {
       return command->run();
     } catch (const swath::base::InputError& e) {
-      std::cerr << program << ' ' << command->name() << ": " << e.what() << '\n';
+      std::cerr << program << ' ' << command->name() << ": "
+                << with_remedies(e.what(), e.remedies()) << '\n';
       return base::kExitBadInput;
     } catch (const std::exception& e) {
       std::cerr << program << ' ' << command->name() << ": unexpected failure: " << e.what()

@@ -84,9 +84,12 @@ RawField parse_csv(const std::string& text, const std::string& source, bool loca
           else if (name == "ring")
             cring = i;
         }
-        if (!hx || !hy)
-          fail(source, where + ": the header must name the columns " + x_name + " and " + y_name +
-                           (local_metres ? "" : " (or use --local for x,y metres)"));
+        if (!hx || !hy) {
+          const std::string what = source + ": " + where + ": the header must name the columns " +
+                                   x_name + " and " + y_name;
+          if (local_metres) throw InputError(what);
+          throw InputError(what, {base::Remedy::local_csv});
+        }
         cx = *hx;
         cy = *hy;
         continue;

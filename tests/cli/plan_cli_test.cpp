@@ -353,8 +353,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "bowtie.geojson: the area crosses itself at 48.13825"},
         BadPlan{"reject",
                 "share/fields/orchard.csv --camera sony-ilce-qx1 --altitude 50 --concave reject",
-                "orchard.csv: the area is not convex (2 reflex vertices) and --concave reject "
-                "refuses it"},
+                "orchard.csv: the area is not convex (2 reflex vertices) and the plan refuses "
+                "concave areas; use --concave hull"},
         BadPlan{"no_altitude", "share/fields/meadow.geojson --camera sony-ilce-qx1",
                 "needs --altitude M or --gsd CM"},
         BadPlan{"unknown_camera", "share/fields/meadow.geojson --camera sony-a9 --altitude 50",

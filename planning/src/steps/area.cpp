@@ -88,10 +88,11 @@ void check_home_near_area(const GeoPoint& home, const std::string& what,
   }
   if (far_home_allowed)  // beyond what any drone flies, and what the local frame can hold
     throw InputError(message + tail + " farther than " +
-                     fixed_text(kMaxFarHomeDistance_m / 1000, 0) +
-                     " km are refused even with --far-home");
+                         fixed_text(kMaxFarHomeDistance_m / 1000, 0) + " km are refused",
+                     {base::Remedy::far_home_limit});
   throw InputError(message + tail + " farther than " + fixed_text(kMaxHomeDistance_m / 1000, 0) +
-                   " km are refused unless --far-home is given");
+                       " km are refused",
+                   {base::Remedy::far_home});
 }
 
 // Every home the plan will use: the request's and the fleet's own.
@@ -145,15 +146,15 @@ void check_classification(const SurveyPlan& plan) {
     std::ostringstream s;
     s.precision(8);
     s << field.source << ": the area crosses itself at " << p.lat_deg << ", " << p.lon_deg
-      << " (lat, lon); 'swath classify' names the edges; fix the vertex order, or give --repair to "
-         "plan the areas it encloses";
-    throw InputError(s.str());
+      << " (lat, lon)";
+    throw InputError(s.str(), {base::Remedy::repair});
   }
   if (c.type == geometry::AreaType::concave && plan.request.concave == ConcaveMode::reject)
     throw InputError(field.source + ": the area is not convex (" +
-                     std::to_string(c.reflex_vertices.size()) + " reflex vertices" +
-                     (field.polygon.holes.empty() ? "" : ", holes") +
-                     ") and --concave reject refuses it; use --concave hull");
+                         std::to_string(c.reflex_vertices.size()) + " reflex vertices" +
+                         (field.polygon.holes.empty() ? "" : ", holes") +
+                         ") and the plan refuses concave areas",
+                     {base::Remedy::concave_hull});
 }
 
 // The holes split routes around: bounded before the quadratic work (kMaxSplitHoles).
@@ -162,10 +163,10 @@ void check_split_size(const geometry::Polygon& area) {
   for (const geometry::Ring& hole : area.holes) vertices += hole.size();
   if (area.holes.size() > kMaxSplitHoles || vertices > kMaxSplitHoleVertices)
     throw InputError("the area has " + std::to_string(area.holes.size()) +
-                     " holes and no-fly zones with " + std::to_string(vertices) +
-                     " vertices, more than split's limit of " + std::to_string(kMaxSplitHoles) +
-                     " holes and " + std::to_string(kMaxSplitHoleVertices) +
-                     " vertices; merge or simplify them, or give --concave hull");
+                         " holes and no-fly zones with " + std::to_string(vertices) +
+                         " vertices, more than split's limit of " + std::to_string(kMaxSplitHoles) +
+                         " holes and " + std::to_string(kMaxSplitHoleVertices) + " vertices",
+                     {base::Remedy::simplify_zones, base::Remedy::concave_hull});
 }
 
 // The handling and the area the sweep flies.
@@ -207,11 +208,11 @@ void planning_rings(SurveyPlan& plan) {
         plan.planning_rings.push_back(std::move(ring));
   if (plan.planning_rings.empty())
     throw InputError(r.field.source +
-                     ": nothing of the area is left to fly once the no-fly zones "
-                     "keep " +
-                     fixed_text(r.clearance_m, 1) + " m and the boundary " +
-                     fixed_text(r.boundary_clearance_m, 1) +
-                     " m of clearance; lower --clearance or --boundary-clearance");
+                         ": nothing of the area is left to fly once the no-fly zones "
+                         "keep " +
+                         fixed_text(r.clearance_m, 1) + " m and the boundary " +
+                         fixed_text(r.boundary_clearance_m, 1) + " m of clearance",
+                     {base::Remedy::lower_clearance});
 }
 
 }  // namespace
@@ -219,8 +220,7 @@ void planning_rings(SurveyPlan& plan) {
 void area(SurveyPlan& plan) {
   geometry::Field& field = plan.request.field;
   if (!field.frame)
-    throw InputError(field.source +
-                     ": the area is in local metres; give --origin LAT,LON to place it on the map");
+    throw InputError(field.source + ": the area is in local metres", {base::Remedy::origin});
   check_homes(plan.request, field);
   if (plan.request.repair) repair_outer_ring(plan);
   plan.area = field.polygon;

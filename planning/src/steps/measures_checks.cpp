@@ -69,8 +69,8 @@ void check_range(const SurveyPlan& plan, const DronePlan& d, std::vector<std::st
       "drone " + d.name + "'s flight (" + std::to_string(std::lround(d.mission.path_length_m)) +
       " m) is longer than its range (" + std::to_string(std::lround(*range)) + " m)";
   if (!plan.request.allow_partial)
-    throw InputError(what +
-                     "; add drones or battery, use --balance makespan, or give --allow-partial");
+    throw InputError(what, {base::Remedy::add_drones_or_battery, base::Remedy::balance_by_time,
+                            base::Remedy::allow_partial});
   warnings.push_back(what);
 }
 
@@ -134,10 +134,11 @@ void checks(SurveyPlan& plan) {
                      std::to_string(plan.sweep.lines.size()) +
                      " lines); check the altitude, overlaps and turnaround");
   if (plan.division.unflown_path_m > 0 && !r.allow_partial)
-    throw InputError(
-        "the fleet cannot fly the whole survey: " + fixed_text(plan.division.unflown_path_m, 1) +
-        " m of path and " + fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
-        " m² of area stay unflown; add drones or battery, or give --allow-partial");
+    throw InputError("the fleet cannot fly the whole survey: " +
+                         fixed_text(plan.division.unflown_path_m, 1) + " m of path and " +
+                         fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
+                         " m² of area stay unflown",
+                     {base::Remedy::add_drones_or_battery, base::Remedy::allow_partial});
   std::vector<std::string>& warnings = plan.warnings;
   for (const DronePlan& d : plan.drones) check_range(plan, d, warnings);
   if (const auto& interval = r.camera.min_trigger_interval_s) {

@@ -74,10 +74,9 @@ void sorties(SurveyPlan& plan) {
   };
   for (DronePlan& d : plan.drones) {
     if (!d.endurance_s)
-      throw InputError(
-          "--sorties needs each drone's endurance: give --endurance S, or endurance_s "
-          "for drone " +
-          d.name + " in the fleet file");
+      throw InputError("cutting flights into sorties needs each drone's endurance; drone " +
+                           d.name + " has none",
+                       {base::Remedy::endurance});
     const double usable_s = *d.endurance_s * (1 - plan.request.reserve);
     if (d.mission.flight_time_s <= usable_s) continue;  // one flight does it
     d.sorties = cut_sorties(plan, d, usable_s, routes, inside);
