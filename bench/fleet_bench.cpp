@@ -10,12 +10,18 @@ namespace {
 Snapshot instance(std::size_t drones, std::size_t requests) {
   auto rng = vehicle::SplitMix64::stream(7, "bench");
   Snapshot s;
-  for (std::size_t d = 0; d < drones; ++d)
-    s.drones.push_back(
-        {{rng.uniform(0, 3000), rng.uniform(0, 3000), 10}, std::nullopt, false, 1.0, {}});
-  for (std::size_t r = 0; r < requests; ++r)
-    s.requests.push_back(
-        {{rng.uniform(0, 3000), rng.uniform(0, 3000), 10}, 5, rng.uniform(0, 60), std::nullopt});
+  for (std::size_t d = 0; d < drones; ++d) {
+    DroneState x;
+    x.position_m = {rng.uniform(0, 3000), rng.uniform(0, 3000), 10};
+    s.drones.push_back(x);
+  }
+  for (std::size_t r = 0; r < requests; ++r) {
+    Request q;
+    q.location_m = {rng.uniform(0, 3000), rng.uniform(0, 3000), 10};
+    q.service_s = 5;
+    q.waiting_s = rng.uniform(0, 60);
+    s.requests.push_back(q);
+  }
   return s;
 }
 

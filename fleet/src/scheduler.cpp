@@ -1,5 +1,7 @@
 #include "swath/fleet/scheduler.hpp"
 
+#include "swath/fleet/leg.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -325,6 +327,8 @@ double landing_soc(const EnergyFeasibility& e, const EtaModel& eta, const DroneS
 double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
   const double length = norm(to - from);
   if (!(length > 0)) return 0.0;
+  if (approach_within_m > 0)
+    return rest_to_rest_s(length, cruise_m_s, approach_m_s, approach_within_m, accel_m_s2);
   // Triangle when too short to reach cruise: v_peak = √(L a).
   if (length < cruise_m_s * cruise_m_s / accel_m_s2) return 2 * std::sqrt(length / accel_m_s2);
   return length / cruise_m_s + cruise_m_s / accel_m_s2;
@@ -342,7 +346,10 @@ Utility::Utility(const Snapshot& s)
   for (std::size_t d = 0; d < drones_; ++d)
     for (std::size_t r = 0; r < requests_; ++r) {
       const auto& bound = s.requests[r].bound_drone;
+      const DroneState& dr = s.drones[d];
       bool ok = (!bound || *bound == static_cast<int>(d)) &&
+                (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
+                (dr.can_sense || !s.requests[r].needs_sensor) &&
                 inside_fence(s.fence, s.requests[r].location_m);
       if (ok && s.energy)
         ok = landing_soc(*s.energy, s.eta, s.drones[d], s.requests[r]) >=

@@ -29,6 +29,10 @@ struct DroneState {
   bool busy = false;          ///< mid-action: keeps its target, not reassigned
   double soc = 1.0;           ///< state of charge, [0, 1]
   Vec3 home_m;                ///< where it lands, local metres
+  bool can_sense = true;      ///< false while its sensor has failed (DESIGN.md §18.7)
+  /// Reserved for a non-interruptible task (DESIGN.md §18.3): only this request (index) may be
+  /// given to it; -1 when that task shows none now.
+  std::optional<int> only_request;
 };
 
 /// What a pair costs in charge (paper 004 eq. 12 via energy::Battery): fly there at cruise
@@ -45,13 +49,18 @@ struct Request {
   double service_s = 0;            ///< the actions after the flight, s, ≥ 0
   double waiting_s = 0;            ///< since it became visible, s, ≥ 0
   std::optional<int> bound_drone;  ///< `same_drone`: only this drone may serve it
+  bool needs_sensor = false;       ///< its segment senses: drones with a failed sensor cannot
 };
 
 /// Straight-line flight time: accelerate at `accel_m_s2` to `cruise_m_s`, brake to a stop
 /// (DESIGN.md §18.6's kinematics without the approach phase).
+/// With `approach_within_m` > 0, also the paper's approach rule (`approach_m_s` within that
+/// distance of the target), as the simulated drones fly (leg.hpp; equal to Leg's level time).
 struct EtaModel {
-  double cruise_m_s = 10.0;  ///< > 0
-  double accel_m_s2 = 2.0;   ///< > 0
+  double cruise_m_s = 10.0;      ///< > 0
+  double accel_m_s2 = 2.0;       ///< > 0
+  double approach_m_s = 2.0;     ///< (0, cruise_m_s]
+  double approach_within_m = 0;  ///< ≥ 0; 0: no approach phase
   double eta_s(const Vec3& from, const Vec3& to) const;
 };
 

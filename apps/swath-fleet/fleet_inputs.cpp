@@ -1,0 +1,160 @@
+#include "fleet_inputs.hpp"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "data_dir.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/fleet/fleet_file.hpp"
+#include "swath/geometry/local_frame.hpp"
+
+namespace swath::apps {
+
+using base::InputError;
+using json = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
+  app.add_option("APP", r.app, "The application: hotspot, road, multiplexing (swath-fleet apps)")
+      ->required();
+  app.add_option("--world", r.world,
+                 "World file, or a bundled world: hotspot, road, sites (share/worlds/)")
+      ->required();
+  app.add_option("--fleet", r.fleet,
+                 "Fleet file (DESIGN.md §7's, with optional profile, max_flight_time_s, "
+                 "approach_speed_m_s, accel_m_s2, recharge_s per drone)");
+  app.add_option("--drones", r.drones,
+                 "Instead of --fleet: N default drones (10 m/s, swath-energy's battery and "
+                 "power) at the world's origin")
+      ->check(CLI::Range(1, 100));
+  if (with_scheduler)
+    app.add_option("--scheduler", r.scheduler,
+                   "sa (simulated annealing), reactive (the paper's baseline: sa without "
+                   "forecasts), greedy, round-robin, hungarian")
+        ->capture_default_str();
+  app.add_option("--seed", r.seed, "Seed of the scheduler's and the app's random numbers")
+      ->capture_default_str();
+  app.add_option("--faults", r.faults,
+                 "Faults file: [{t_s, drone, kind, duration_s, soc}] (link_loss, battery_drop, "
+                 "motor_failure, sensor_failure)");
+  app.add_option("--max-time", r.max_time_s, "Stop a run that has not completed by then, s")
+      ->check(CLI::Range(1.0, 604800.0))
+      ->capture_default_str();
+}
+
+std::string world_path(const std::string& name) {
+  if (fs::exists(name) || name.find('/') != std::string::npos ||
+      name.find('.') != std::string::npos)
+    return name;
+  const fs::path bundled = share_dir() / "worlds" / (name + ".yaml");
+  if (fs::exists(bundled)) return bundled.string();
+  throw InputError("--world " + name +
+                   ": no such file, and no bundled world of that name (hotspot, road, sites)");
+}
+
+PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed) {
+  PreparedRun p;
+  bool found = false;
+  for (fleet::App& a : worlds::builtin_apps())
+    if (a.name == r.app) p.app = std::move(a), found = true;
+  if (!found)
+    throw InputError("unknown app \"" + r.app + "\": the apps are hotspot, multiplexing, road");
+  p.world_source = world_path(r.world);
+  p.world_text = base::read_text_file(p.world_source, "world file");
+  p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);
+  const std::string needs = r.app == "multiplexing" ? "sites" : r.app;
+  if (p.world->kind() != needs)
+    throw InputError(p.world_source + ": a " + p.world->kind() + " world; the " + r.app +
+                     " app needs a " + needs + " world");
+  if (!r.fleet.empty() && r.drones > 0) throw InputError("give --fleet or --drones, not both");
+  if (!r.fleet.empty()) {
+    p.drones = fleet::read_fleet_file(r.fleet, p.world->origin);
+  } else {
+    const int n = r.drones > 0 ? r.drones : 1;
+    for (int i = 0; i < n; ++i) {
+      fleet::DroneSpec d;
+      d.name = "drone-" + std::to_string(i + 1);
+      d.home_m = {3.0 * i, 0, 0};
+      p.drones.push_back(d);
+    }
+  }
+  p.settings.app_name = r.app;
+  p.settings.scheduler = r.scheduler;
+  p.settings.seed = r.seed;
+  p.settings.max_time_s = r.max_time_s;
+  return p;
+}
+
+namespace {
+double r6(double v) {
+  return std::round(v * 1e6) / 1e6;
+}
+}  // namespace
+
+std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
+  json drones = json::array();
+  for (const auto& d : r.drones)
+    drones.push_back(json{{"name", d.name},
+                          {"distance_m", r6(d.distance_m)},
+                          {"flight_s", r6(d.flight_s)},
+                          {"idle_s", r6(d.idle_s)},
+                          {"energy_wh", r6(d.energy_wh)},
+                          {"final_soc", r6(d.final_soc)}});
+  json tasks = json::object();
+  for (const auto& [k, v] : r.tasks_by_outcome) tasks[k] = v;
+  json metrics = json::object();
+  for (const auto& [k, v] : r.metrics) metrics[k] = r6(v);
+  json out{{"app", p.settings.app_name},
+           {"world", p.world->kind()},
+           {"completed", r.completed},
+           {"completion_time_s", r6(r.completion_time_s)},
+           {"end_s", r6(r.end_s)},
+           {"scheduler", p.settings.scheduler},
+           {"seed", p.settings.seed},
+           {"world_seed", p.world->seed},
+           {"drones", drones},
+           {"tasks", tasks},
+           {"schedules", r.schedules},
+           {"requeued", r.requeued},
+           {"duplicate_results", r.duplicate_results},
+           {"faults", p.settings.faults.size()},
+           {"app_metrics", metrics}};
+  if (!r.failure.empty()) out["failure"] = r.failure;
+  return out.dump(2) + "\n";
+}
+
+std::string tracks_geojson(const PreparedRun& p, const fleet::RunRecord& r) {
+  const geometry::LocalFrame frame(p.world->origin);
+  json features = json::array();
+  for (std::size_t i = 0; i < r.drones.size(); ++i) {
+    json coords = json::array();
+    for (const auto& s : r.drones[i].track) {
+      const geometry::GeoPoint g = frame.to_geo({s[1], s[2]});
+      coords.push_back({r6(g.lon_deg * 1e1) / 1e1, r6(g.lat_deg * 1e1) / 1e1, r6(s[3])});
+    }
+    features.push_back(json{{"type", "Feature"},
+                            {"properties", {{"role", "track"}, {"drone", r.drones[i].name}}},
+                            {"geometry", {{"type", "LineString"}, {"coordinates", coords}}}});
+  }
+  for (const auto& s : r.served) {
+    const geometry::GeoPoint g = frame.to_geo({s[1], s[2]});
+    features.push_back(
+        json{{"type", "Feature"},
+             {"properties", {{"role", "sensed"}, {"t_s", r6(s[0])}}},
+             {"geometry",
+              {{"type", "Point"},
+               {"coordinates", {r6(g.lon_deg * 1e1) / 1e1, r6(g.lat_deg * 1e1) / 1e1}}}}});
+  }
+  return json{{"type", "FeatureCollection"}, {"features", features}}.dump() + "\n";
+}
+
+std::string timing_json(const fleet::RunRecord& r) {
+  return json{{"schedules", r.schedules},
+              {"decision_s_total", r.decision_s_total},
+              {"decision_ms_mean", r.schedules > 0 ? 1e3 * r.decision_s_total / r.schedules : 0.0}}
+             .dump(2) +
+         "\n";
+}
+
+}  // namespace swath::apps

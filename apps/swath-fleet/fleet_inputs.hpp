@@ -1,0 +1,46 @@
+#pragma once
+// What swath-fleet's commands read before anything is written: the app by name, the world file
+// (or a bundled one), the fleet file, the faults; and the files a run writes.
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/fleet/runtime.hpp"
+#include "swath/worlds/worlds.hpp"
+
+namespace swath::apps {
+
+/// The options every run shares (run, compare).
+struct FleetRequest {
+  std::string app, world, fleet, scheduler = "sa", faults;
+  std::uint64_t seed = 1;
+  double max_time_s = 3600;
+  int drones = 0;  ///< > 0: that many default drones at the world's origin instead of --fleet
+};
+void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler);
+
+struct PreparedRun {
+  fleet::App app;
+  std::unique_ptr<worlds::BaseWorld> world;
+  std::vector<fleet::DroneSpec> drones;
+  fleet::RunSettings settings;
+  std::string world_text, world_source;
+};
+/// Reads and checks everything (base::InputError on bad input). `world_seed`: re-draws the
+/// world's random parts (compare's scenarios) instead of the file's seed.
+PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed = {});
+
+/// The world file for a name: a path, or a bundled world (share/worlds/NAME.yaml).
+std::string world_path(const std::string& name);
+
+/// summary.json, tracks.geojson and timing.json of a finished run.
+std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r);
+std::string tracks_geojson(const PreparedRun& p, const fleet::RunRecord& r);
+std::string timing_json(const fleet::RunRecord& r);
+
+}  // namespace swath::apps

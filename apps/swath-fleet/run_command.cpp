@@ -1,0 +1,163 @@
+#include "run_command.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/base/output_set.hpp"
+
+namespace swath::apps {
+
+using base::InputError;
+using json = nlohmann::ordered_json;
+
+void FleetRunCommand::setup(CLI::App& app) {
+  add_fleet_options(app, request_, true);
+  app.add_option("-o,--output", output_, "Directory for the run's files")->required();
+}
+
+int FleetRunCommand::run() {
+  PreparedRun p = prepare_run(request_);
+  const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
+  base::OutputSet set(output_, "fleet-run");
+  set.add("events.jsonl", r.events_jsonl);
+  set.add("dtg.json", r.dtg_json);
+  set.add("summary.json", summary_json(p, r));
+  set.add("tracks.geojson", tracks_geojson(p, r));
+  set.add("timing.json", timing_json(r));
+  set.commit();
+  if (r.completed) {
+    std::cout << request_.app << " completed in " << base::fixed_text(r.completion_time_s, 1)
+              << " s with " << p.drones.size() << " drone" << (p.drones.size() == 1 ? "" : "s")
+              << " (" << p.settings.scheduler << ")\n";
+    return base::kExitSuccess;
+  }
+  std::cerr << "swath-fleet run: " << request_.app << " did not complete: " << r.failure
+            << " (files written to " << output_ << ")\n";
+  return base::kExitNotCompleted;
+}
+
+int FleetAppsCommand::run() {
+  for (const fleet::App& a : worlds::builtin_apps())
+    std::cout << a.name << "\t" << a.description << "\n";
+  return base::kExitSuccess;
+}
+
+void FleetCompareCommand::setup(CLI::App& app) {
+  add_fleet_options(app, request_, false);
+  app.add_option("--schedulers", schedulers_, "Comma-separated schedulers to compare")
+      ->capture_default_str();
+  app.add_option("--seeds", seeds_, "Seeds (scenarios) per scheduler")
+      ->check(CLI::Range(2, 10000))
+      ->capture_default_str();
+  app.add_option("-o,--output", output_, "Directory for compare.csv and summary.json")->required();
+}
+
+namespace {
+
+// The two-sided 95 % Student t quantile for n − 1 degrees of freedom (n ≥ 2).
+double t95(int n) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                 2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                 2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                 2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+  const int df = n - 1;
+  if (df <= 30) return table[df - 1];
+  return 1.96 + 2.4 / df;  // within 0.002 of the exact quantile beyond 30
+}
+
+struct Interval {
+  double mean = 0, half = 0;
+};
+Interval interval(const std::vector<double>& x) {
+  Interval out;
+  const double n = static_cast<double>(x.size());
+  for (double v : x) out.mean += v / n;
+  double ss = 0;
+  for (double v : x) ss += (v - out.mean) * (v - out.mean);
+  out.half = t95(static_cast<int>(x.size())) * std::sqrt(ss / (n - 1) / n);
+  return out;
+}
+
+}  // namespace
+
+int FleetCompareCommand::run() {
+  std::vector<std::string> names;
+  {
+    std::stringstream in(schedulers_);
+    for (std::string s; std::getline(in, s, ',');)
+      if (!s.empty()) names.push_back(s);
+  }
+  if (names.empty()) throw InputError("--schedulers names no scheduler");
+  for (const std::string& n : names)
+    if (!fleet::make_scheduler(n == "reactive" ? "sa" : n))
+      throw InputError("--schedulers: unknown scheduler \"" + n +
+                       "\": use sa, reactive, greedy, round-robin or hungarian");
+  PreparedRun check = prepare_run(request_);  // every input read before any run
+  std::string csv = "scheduler,seed,completed,completion_time_s\n";
+  std::map<std::string, std::vector<double>> times;
+  int incomplete = 0;
+  for (const std::string& name : names)
+    for (int k = 0; k < seeds_; ++k) {
+      FleetRequest r = request_;
+      r.scheduler = name;
+      r.seed = request_.seed + static_cast<std::uint64_t>(k);
+      PreparedRun p = prepare_run(r, r.seed);
+      const fleet::RunRecord rec = fleet::run_app(p.app, *p.world, p.drones, p.settings);
+      csv += name + "," + std::to_string(r.seed) + "," + (rec.completed ? "true" : "false") + "," +
+             base::fixed_text(rec.completion_time_s, 3) + "\n";
+      if (rec.completed)
+        times[name].push_back(rec.completion_time_s);
+      else
+        ++incomplete;
+    }
+  json rows = json::array();
+  for (const std::string& name : names) {
+    const auto& x = times[name];
+    json row{{"scheduler", name}, {"runs", seeds_}, {"completed", x.size()}};
+    if (x.size() >= 2) {
+      const Interval i = interval(x);
+      row["completion_time_s_mean"] = std::round(i.mean * 1e3) / 1e3;
+      row["completion_time_s_ci95"] = std::round(i.half * 1e3) / 1e3;
+    }
+    rows.push_back(row);
+    std::cout << name << ": " << x.size() << "/" << seeds_ << " completed";
+    if (x.size() >= 2) {
+      const Interval i = interval(x);
+      std::cout << ", completion " << base::fixed_text(i.mean, 1) << " ± "
+                << base::fixed_text(i.half, 1) << " s (95 %)";
+    }
+    std::cout << "\n";
+  }
+  // Paired differences against the first scheduler (same seeds, same scenarios).
+  json paired = json::array();
+  for (std::size_t j = 1; j < names.size(); ++j) {
+    const auto& a = times[names[0]];
+    const auto& b = times[names[j]];
+    if (a.size() != b.size() || a.size() < 2) continue;
+    std::vector<double> d;
+    for (std::size_t i = 0; i < a.size(); ++i) d.push_back(b[i] / a[i] - 1.0);
+    const Interval i = interval(d);
+    paired.push_back(json{{"scheduler", names[j]},
+                          {"versus", names[0]},
+                          {"relative_change_mean", std::round(i.mean * 1e5) / 1e5},
+                          {"relative_change_ci95", std::round(i.half * 1e5) / 1e5}});
+  }
+  base::OutputSet set(output_, "fleet-compare");
+  set.add("compare.csv", csv);
+  set.add("summary.json", json{{"app", request_.app},
+                               {"world", check.world->kind()},
+                               {"drones", check.drones.size()},
+                               {"first_seed", request_.seed},
+                               {"schedulers", rows},
+                               {"paired", paired}}
+                                  .dump(2) +
+                              "\n");
+  set.commit();
+  return incomplete > 0 ? base::kExitNotCompleted : base::kExitSuccess;
+}
+
+}  // namespace swath::apps

@@ -1,0 +1,51 @@
+#pragma once
+#include <string>
+
+#include "command.hpp"
+#include "fleet_inputs.hpp"
+
+namespace swath::apps {
+
+/// swath-fleet run APP --world W -o DIR: one application on a simulated fleet (DESIGN.md §18.10).
+class FleetRunCommand : public Command {
+ public:
+  const char* name() const override { return "run"; }
+  const char* description() const override {
+    return "Run an application on a simulated fleet; writes events.jsonl, summary.json, "
+           "dtg.json, tracks.geojson and timing.json";
+  }
+  void setup(CLI::App& app) override;
+  int run() override;
+
+ private:
+  FleetRequest request_;
+  std::string output_;
+};
+
+/// swath-fleet apps: the built-in applications.
+class FleetAppsCommand : public Command {
+ public:
+  const char* name() const override { return "apps"; }
+  const char* description() const override { return "List the built-in applications"; }
+  void setup(CLI::App&) override {}
+  int run() override;
+};
+
+/// swath-fleet compare APP --world W -o DIR: schedulers over seeds, with intervals.
+class FleetCompareCommand : public Command {
+ public:
+  const char* name() const override { return "compare"; }
+  const char* description() const override {
+    return "Run an application with several schedulers over many seeds (each seed also a "
+           "scenario of the world); writes compare.csv and summary.json with 95 % intervals";
+  }
+  void setup(CLI::App& app) override;
+  int run() override;
+
+ private:
+  FleetRequest request_;
+  std::string output_, schedulers_ = "reactive,greedy,round-robin";
+  int seeds_ = 20;
+};
+
+}  // namespace swath::apps

@@ -1,0 +1,30 @@
+#pragma once
+// swath-fleet's fleet file (DESIGN.md §18.10): §7's fleet YAML — home, drones with name,
+// battery_level, endurance_s, speed_m_s, climb/descent speeds, their own home — read as simulated
+// drones, plus optional per drone:
+//   profile: quad.yaml          # a swath-energy drone profile (power and battery), relative to
+//                               # the fleet file; default: swath-energy's defaults
+//   max_flight_time_s: 60       # must be home by then (else endurance_s × battery_level)
+//   approach_speed_m_s: 2       # within approach_within_m of a target (paper 000 §4.2)
+//   approach_within_m: 20
+//   accel_m_s2: 2
+//   recharge_s: 30              # from landing to a full charge
+//   home_m: {x_m: 10, y_m: 0}   # local metres at the world's origin, instead of home
+// A drone given only a `capability` cannot be simulated and is refused.
+
+#include <string>
+#include <vector>
+
+#include "swath/fleet/runtime.hpp"
+#include "swath/geometry/point.hpp"
+
+namespace swath::fleet {
+
+/// The drones of `text`, their homes in local metres at `origin` (a drone without a home of its
+/// own starts at the file's `home`, or at the origin when the file has none). Throws
+/// base::InputError naming `source`, the line and the key.
+std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
+                                        const geometry::GeoPoint& origin);
+std::vector<DroneSpec> read_fleet_file(const std::string& path, const geometry::GeoPoint& origin);
+
+}  // namespace swath::fleet

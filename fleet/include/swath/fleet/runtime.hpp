@@ -1,0 +1,114 @@
+#pragma once
+// The runtime (paper 000 §3, §4.1; DESIGN.md §18.3): runs one application against a fleet of
+// simulated drones. Each task's head segment (a fly_to and the non-flying actions after it) is a
+// *request*; every tick (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes
+// the coroutines that can go on, and — when something changed — asks the scheduler which drone
+// serves which request. Time jumps from event to event on the tick grid, so an hour's mission
+// takes milliseconds. Same settings and seed: the same bytes in every output.
+//
+// The simulated backend (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
+// layer (20 m + 3 m × index, the collision rule of §18.3), level flight with the approach rule and
+// bounded accelerations, power through energy::Battery (paper 004 eq. 12) from the drone's
+// energy::PowerProfile (hover = airspeed 0). Faults follow §18.7: every task ends exactly once,
+// every result is delivered at most once.
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "swath/energy/battery.hpp"
+#include "swath/energy/power_model.hpp"
+#include "swath/fleet/leg.hpp"
+#include "swath/fleet/scheduler.hpp"
+#include "swath/fleet/task.hpp"
+#include "swath/fleet/world.hpp"
+
+namespace swath::fleet {
+
+/// An application: its main coroutine, registered by name (DESIGN.md §18.2).
+struct App {
+  std::string name;
+  std::string description;
+  std::function<Co<void>(Ctx&)> main;
+};
+
+/// One simulated drone.
+struct DroneSpec {
+  std::string name;
+  Vec3 home_m;  ///< take-off point, local metres (z = 0)
+  Kinematics kinematics;
+  energy::Battery battery;  ///< initial_soc is where it starts; reserve_soc where it must land
+  energy::PowerProfile power;
+  /// Longest flight before it must be home, s (> 0; case 5's 60 s); infinity: the battery decides.
+  double max_flight_time_s = std::numeric_limits<double>::infinity();
+  double recharge_s = 30;  ///< from landing to a full charge at home, s (≥ 0)
+};
+
+enum class FaultKind { link_loss, battery_drop, motor_failure, sensor_failure };
+const char* fault_name(FaultKind kind);
+
+/// One injected fault (DESIGN.md §18.7).
+struct FaultEvent {
+  double t_s = 0;  ///< when, s since the run began (≥ 0)
+  int drone = 0;   ///< index in the fleet
+  FaultKind kind = FaultKind::link_loss;
+  double duration_s = 10;  ///< link_loss and sensor_failure: how long, s (> 0)
+  double soc = 0.1;        ///< battery_drop: the charge it falls to, [0, 1]
+};
+
+struct RunSettings {
+  std::string app_name;          ///< for the log
+  std::string scheduler = "sa";  ///< sa | reactive | greedy | round-robin | hungarian
+  std::uint64_t seed = 1;
+  double tick_s = 0.1;           ///< the heartbeat (paper §4.1), s, > 0
+  double link_latency_s = 0.05;  ///< command and result latency, s, ≥ 0
+  double hold_s = 10;            ///< non-interruptible tasks keep their drone this long, s
+  double max_time_s = 3600;      ///< a run that has not completed by then ends (exit 4), s
+  double state_period_s = 1.0;   ///< drone_state events, s (> 0)
+  double no_feasible_s = 600;    ///< a request no drone can take fails after this, s
+  double layer_base_m = 20;      ///< altitude of drone 0's layer, m
+  double layer_step_m = 3;       ///< between layers, m
+  Weights weights;
+  std::vector<FaultEvent> faults;  ///< sorted or not; applied in (t_s, drone) order
+};
+
+/// What one drone did.
+struct DroneRecord {
+  std::string name;
+  double distance_m = 0, flight_s = 0, idle_s = 0, energy_wh = 0, final_soc = 0;
+  /// Positions over time (every state change and at state_period_s): t_s, x_m, y_m, alt_m.
+  std::vector<std::array<double, 4>> track;
+  /// What it was doing: [t0_s, t1_s) and the mode (flying, acting, hovering, held, returning,
+  /// charging, lost, unreachable).
+  struct Span {
+    double t0_s, t1_s;
+    std::string mode;
+  };
+  std::vector<Span> spans;
+};
+
+struct RunRecord {
+  bool completed = false;
+  double completion_time_s = 0;  ///< start to the app's main returning (return home not counted)
+  double end_s = 0;              ///< when the run stopped
+  std::string failure;           ///< why main failed or the run stopped, "" when completed
+  std::string events_jsonl;      ///< events.jsonl (DESIGN.md §18.10)
+  std::string dtg_json;          ///< dtg.json (§18.3)
+  std::vector<DroneRecord> drones;
+  std::map<std::string, int> tasks_by_outcome;  ///< done, cancelled, failed
+  std::map<std::string, double> metrics;        ///< the app's (Ctx::metric)
+  int schedules = 0, requeued = 0, duplicate_results = 0;
+  double decision_s_total = 0;  ///< wall time in the scheduler (timing.json only)
+  /// Served and cancelled request places (t_s, x_m, y_m) for the pictures.
+  std::vector<std::array<double, 3>> served, cancelled;
+};
+
+/// Runs `app` in `world` with `drones` (at least one). Throws base::InputError for an unknown
+/// scheduler name; an exception escaping the app's main ends the run as not completed.
+RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
+                  const RunSettings& settings);
+
+}  // namespace swath::fleet

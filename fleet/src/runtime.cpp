@@ -1,0 +1,1221 @@
+#include "swath/fleet/runtime.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+
+#include "swath/base/input_error.hpp"
+
+namespace swath::fleet {
+
+const char* fault_name(FaultKind kind) {
+  switch (kind) {
+    case FaultKind::link_loss:
+      return "link_loss";
+    case FaultKind::battery_drop:
+      return "battery_drop";
+    case FaultKind::motor_failure:
+      return "motor_failure";
+    case FaultKind::sensor_failure:
+      return "sensor_failure";
+  }
+  return "?";
+}
+
+namespace {
+
+using json = nlohmann::ordered_json;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+enum class ActionType { fly_to = 0, sense = 1, hover = 2, custom = 3 };
+enum class ActionState { pending, running, completed, delivered, dropped };
+enum class TaskStatus { running, done, cancelled, failed };
+enum class Mode { landed, hovering, flying, acting, held, returning, charging, lost };
+
+const char* mode_name(Mode m, bool link_up) {
+  if (!link_up && m != Mode::lost) return "unreachable";
+  switch (m) {
+    case Mode::landed:
+      return "landed";
+    case Mode::hovering:
+      return "hovering";
+    case Mode::flying:
+      return "flying";
+    case Mode::acting:
+      return "acting";
+    case Mode::held:
+      return "held";
+    case Mode::returning:
+      return "returning";
+    case Mode::charging:
+      return "charging";
+    case Mode::lost:
+      return "lost";
+  }
+  return "?";
+}
+
+struct Action {
+  ActionType type;
+  Vec3 to;
+  std::string name;
+  double duration_s = 0;
+  std::shared_ptr<detail::State<Reading>> result;
+  ActionState state = ActionState::pending;
+};
+
+struct Task {
+  int id = 0;
+  std::string kind;
+  Flags flags;
+  int parent = -1;
+  std::function<std::coroutine_handle<>(Ctx&)> start;
+  std::shared_ptr<detail::StateBase> result;
+  std::unique_ptr<Ctx> ctx;
+  std::coroutine_handle<> root;
+  TaskStatus status = TaskStatus::running;
+  bool frame_gone = false;
+  std::vector<Action> actions;
+  int serving = -1;          // the drone flying to or acting on its head segment
+  std::optional<int> bound;  // same_drone / not interruptible
+  Vec3 location;             // where its last fly_to goes
+  bool has_location = false;
+  double created_s = 0, ended_s = -1, visible_since_s = -1;
+  std::optional<Vec3> first_loc;
+  std::vector<int> drones_used;
+  int sync_node = -1;      // the sync node its latest awaits formed; -1 after it did something else
+  bool requested = false;  // a request_visible logged for the current head
+  int segment = 0;         // head segments made visible so far
+
+  // The first action not yet done by some drone.
+  std::size_t head() const {
+    std::size_t i = 0;
+    while (i < actions.size() &&
+           (actions[i].state == ActionState::completed ||
+            actions[i].state == ActionState::delivered || actions[i].state == ActionState::dropped))
+      ++i;
+    return i;
+  }
+  bool has_work() const { return status == TaskStatus::running && head() < actions.size(); }
+};
+
+struct Pending {  // a result on its way to the app
+  double deliver_s;
+  int drone, task;
+  std::size_t action;
+  Reading reading;
+  std::uint64_t seq;
+};
+
+struct Drone {
+  DroneSpec spec;
+  int index = 0;
+  Mode mode = Mode::landed;
+  Vec3 pos;           // at t_mark
+  double t_mark = 0;  // energy and position are integrated up to here
+  std::optional<Leg> leg;
+  double leg_start = 0;
+  double act_end = 0, charge_end = 0, hold_until = 0;
+  int task = -1;  // flying to or acting for
+  std::size_t action = 0;
+  int held_for = -1;
+  double soc = 1, energy_j = 0, distance_m = 0, flight_s = 0, idle_s = 0, airborne_since = 0;
+  bool link_up = true, sensor_ok = true;
+  double link_back = 0, sensor_back = 0;
+  std::vector<Pending> buffered;  // results finished while the link was down
+  double layer_m = 20;
+  DroneRecord record;
+  std::string span_mode;
+  double span_start = 0;
+};
+
+double hover_power_w(const DroneSpec& s) {
+  return energy::level_flight_power_w(s.power.mechanical, 0.0) + s.power.payload_w;
+}
+double climb_power_w(const DroneSpec& s) {
+  return (s.power.climb_w > 0 ? s.power.climb_w : 1.3 * s.power.mechanical.cruise_w) +
+         s.power.payload_w;
+}
+double descent_power_w(const DroneSpec& s) {
+  return (s.power.descent_w > 0 ? s.power.descent_w : 0.8 * s.power.mechanical.cruise_w) +
+         s.power.payload_w;
+}
+
+// ∫ f over [a, b] by 5-point Gauss–Legendre: exact for the polynomials of degree ≤ 9 that power
+// is within a piece of constant acceleration (level power is cubic in speed, speed linear in t).
+template <class F>
+double gauss(F f, double a, double b) {
+  static constexpr std::array<double, 5> x{0.0, -0.5384693101056831, 0.5384693101056831,
+                                           -0.9061798459386640, 0.9061798459386640};
+  static constexpr std::array<double, 5> w{0.5688888888888889, 0.4786286704993665,
+                                           0.4786286704993665, 0.2369268850561891,
+                                           0.2369268850561891};
+  const double h = 0.5 * (b - a), m = 0.5 * (a + b);
+  double s = 0;
+  for (std::size_t i = 0; i < 5; ++i) s += w[i] * f(m + h * x[i]);
+  return s * h;
+}
+
+class Runtime final : public detail::Core {
+ public:
+  Runtime(const App& app, const World& world, const std::vector<DroneSpec>& specs,
+          const RunSettings& settings)
+      : app_(app),
+        world_(world),
+        settings_(settings),
+        app_rng_(vehicle::SplitMix64::stream(settings.seed, "app")),
+        sched_rng_(vehicle::SplitMix64::stream(settings.seed, "scheduler")) {
+    std::string name = settings.scheduler == "reactive" ? "sa" : settings.scheduler;
+    scheduler_ = make_scheduler(name);
+    if (!scheduler_)
+      throw base::InputError("unknown scheduler \"" + settings.scheduler +
+                             "\": use sa, reactive, greedy, round-robin or hungarian");
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      Drone d;
+      d.spec = specs[i];
+      d.index = static_cast<int>(i);
+      d.pos = specs[i].home_m;
+      d.pos.z = 0;
+      d.soc = specs[i].battery.initial_soc;
+      d.layer_m = settings.layer_base_m + settings.layer_step_m * static_cast<double>(i);
+      d.record.name = specs[i].name;
+      drones_.push_back(std::move(d));
+    }
+    faults_ = settings.faults;
+    std::stable_sort(faults_.begin(), faults_.end(), [](const FaultEvent& a, const FaultEvent& b) {
+      return a.t_s != b.t_s ? a.t_s < b.t_s : a.drone < b.drone;
+    });
+  }
+
+  RunRecord run();
+
+  // detail::Core
+  int current_task() const override { return current_; }
+  Future<Reading> act(int task, int type, const Vec3& to, const std::string& name,
+                      double duration_s) override;
+  int spawn(int parent, const Kind& kind, Flags flags,
+            std::function<std::coroutine_handle<>(Ctx&)> start,
+            std::shared_ptr<detail::StateBase> result) override;
+  void cancel(int issuer, int task) override;
+  Future<void> delay(int task, double cost_s) override;
+  void suspended(int task, detail::StateBase& awaited, std::coroutine_handle<> h,
+                 std::shared_ptr<bool> armed) override;
+  double now_s() const override { return now_; }
+  const World& world() const override { return world_; }
+  vehicle::SplitMix64& random() override { return app_rng_; }
+  void metric(const std::string& name, double value) override { record_.metrics[name] = value; }
+
+ private:
+  // Logging.
+  void log(json e) {
+    json line;
+    line["t_s"] = round6(now_);
+    for (auto& [k, v] : e.items()) line[k] = v;
+    record_.events_jsonl += line.dump();
+    record_.events_jsonl += '\n';
+  }
+  static double round6(double v) { return std::round(v * 1e6) / 1e6; }
+  static json at_json(json e, const Vec3& p, json more = json::object()) {
+    e["x_m"] = round6(p.x);
+    e["y_m"] = round6(p.y);
+    e["alt_m"] = round6(p.z);
+    for (auto& [k, v] : more.items()) e[k] = v;
+    return e;
+  }
+
+  // Tasks and coroutines.
+  void resume_ready();
+  void finish_task(Task& t, TaskStatus status, const std::string& reason);
+  void wake(detail::StateBase& s);
+  void resolve_action(Task& t, std::size_t a, const Reading& r, int drone);
+  void fail_action_futures(Task& t, std::exception_ptr e);
+  void destroy_frames();
+  int dtg_sync_node(Task& t);
+
+  // Drones.
+  Vec3 position_at(const Drone& d, double t) const;
+  void integrate(Drone& d, double t);
+  double next_event(const Drone& d) const;
+  void step_drone(Drone& d, double t);
+  void start_leg(Drone& d, const Vec3& to, Mode mode, double t);
+  void start_action_or_release(Drone& d, double t);
+  void release(Drone& d, double t);
+  void go_home(Drone& d, double t, const std::string& why);
+  void set_mode(Drone& d, Mode m, double t);
+  void requeue(Drone& d, const std::string& reason);
+  bool must_go_home(const Drone& d, double t) const;
+  bool available(const Drone& d) const;
+
+  // Scheduling.
+  void schedule();
+  void dispatch(Drone& d, Task& t, double at);
+  void apply_fault(const FaultEvent& f);
+  void log_states();
+
+  const App& app_;
+  const World& world_;
+  RunSettings settings_;
+  vehicle::SplitMix64 app_rng_, sched_rng_;
+  std::unique_ptr<Scheduler> scheduler_;
+  std::vector<Drone> drones_;
+  std::deque<Task> tasks_;  // stable addresses, id = index
+  std::vector<FaultEvent> faults_;
+  std::size_t next_fault_ = 0;
+  std::deque<detail::Waiter> ready_;
+  std::vector<Pending> pending_;
+  std::vector<std::pair<double, std::shared_ptr<detail::State<void>>>> delays_;
+  double now_ = 0;
+  int current_ = -1;
+  bool changed_ = true;
+  std::uint64_t seq_ = 0;
+  double next_state_log_ = 0;
+  RunRecord record_;
+  json dtg_nodes_ = json::array(), dtg_edges_ = json::array();
+  std::vector<json> task_nodes_;
+  int sync_count_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Tasks
+
+int Runtime::spawn(int parent, const Kind& kind, Flags flags,
+                   std::function<std::coroutine_handle<>(Ctx&)> start,
+                   std::shared_ptr<detail::StateBase> result) {
+  Task& t = tasks_.emplace_back();
+  t.id = static_cast<int>(tasks_.size()) - 1;
+  t.kind = kind.name;
+  t.flags = flags;
+  t.parent = parent;
+  t.start = std::move(start);
+  t.result = std::move(result);
+  t.result->task = t.id;
+  t.ctx = std::make_unique<Ctx>(*this, t.id, t.id != 0);
+  t.created_s = now_;
+  t.location = world_.start();
+  if (parent >= 0 && static_cast<std::size_t>(parent) < tasks_.size()) {
+    Task& p = tasks_[static_cast<std::size_t>(parent)];
+    t.location = p.location;
+    const std::string from =
+        p.sync_node >= 0 ? "s" + std::to_string(p.sync_node) : "t" + std::to_string(parent);
+    dtg_edges_.push_back(
+        json{{"from", from}, {"to", "t" + std::to_string(t.id)}, {"type", "spawn"}});
+  }
+  task_nodes_.push_back(json::object());
+  log(json{{"ev", "task_created"}, {"task", t.id}, {"kind", t.kind}, {"parent", parent}});
+  t.root = t.start(*t.ctx);
+  ready_.push_back({t.id, t.root, nullptr});
+  return t.id;
+}
+
+Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::string& name,
+                             double duration_s) {
+  Task& t = tasks_.at(static_cast<std::size_t>(task));
+  auto state = std::make_shared<detail::State<Reading>>();
+  Action a{static_cast<ActionType>(type), to,    name,
+           std::max(0.0, duration_s),     state, ActionState::pending};
+  if (a.type == ActionType::sense) a.duration_s = world_.sense_time_s(name);
+  if (a.type == ActionType::fly_to) {
+    t.location = to;
+    t.has_location = true;
+    if (!t.first_loc) t.first_loc = to;
+  }
+  t.actions.push_back(std::move(a));
+  t.sync_node = -1;
+  if (t.serving < 0) changed_ = true;
+  return Future<Reading>(state, this);
+}
+
+Future<void> Runtime::delay(int task, double cost_s) {
+  auto state = std::make_shared<detail::State<void>>();
+  tasks_.at(static_cast<std::size_t>(task)).sync_node = -1;
+  if (!(cost_s > 0)) {
+    state->ready = true;
+  } else {
+    delays_.push_back({now_ + cost_s, state});
+  }
+  return Future<void>(state, this);
+}
+
+int Runtime::dtg_sync_node(Task& t) {
+  if (t.sync_node < 0) {
+    t.sync_node = sync_count_++;
+    dtg_nodes_.push_back(json{{"id", "s" + std::to_string(t.sync_node)},
+                              {"type", "sync"},
+                              {"waiter", t.id},
+                              {"created_s", round6(now_)},
+                              {"awaited", json::array()}});
+  }
+  return t.sync_node;
+}
+
+void Runtime::suspended(int task, detail::StateBase& awaited, std::coroutine_handle<> h,
+                        std::shared_ptr<bool> armed) {
+  awaited.waiters.push_back({task, h, std::move(armed)});
+  if (awaited.task >= 0 && task >= 0) {  // awaiting a task: a sync node of the DTG
+    Task& t = tasks_.at(static_cast<std::size_t>(task));
+    const int node = dtg_sync_node(t);
+    for (auto& n : dtg_nodes_)
+      if (n["id"] == "s" + std::to_string(node)) n["awaited"].push_back(awaited.task);
+    dtg_edges_.push_back(json{{"from", "t" + std::to_string(awaited.task)},
+                              {"to", "s" + std::to_string(node)},
+                              {"type", "sync"}});
+  }
+}
+
+void Runtime::wake(detail::StateBase& s) {
+  s.ready = true;
+  for (auto& w : s.waiters) {
+    if (w.armed) {
+      if (!*w.armed) continue;
+      *w.armed = false;
+    }
+    ready_.push_back(w);
+  }
+  s.waiters.clear();
+}
+
+void Runtime::resume_ready() {
+  while (!ready_.empty()) {
+    const detail::Waiter w = ready_.front();
+    ready_.pop_front();
+    Task& t = tasks_.at(static_cast<std::size_t>(w.task));
+    if (t.status != TaskStatus::running || t.frame_gone) continue;
+    current_ = t.id;
+    w.handle.resume();
+    current_ = -1;
+    if (t.root.done() && t.status == TaskStatus::running) {
+      if (t.result->error) {
+        std::string why = "exception";
+        try {
+          std::rethrow_exception(t.result->error);
+        } catch (const ActionFailed& e) {
+          why = e.reason;
+        } catch (const TaskCancelled&) {
+          why = "awaited_cancelled";
+        } catch (const std::exception& e) {
+          why = e.what();
+        }
+        finish_task(t, TaskStatus::failed, why);
+      } else {
+        finish_task(t, TaskStatus::done, "");
+      }
+    }
+  }
+}
+
+void Runtime::fail_action_futures(Task& t, std::exception_ptr e) {
+  for (auto& a : t.actions)
+    if (!a.result->ready) {
+      a.result->error = e;
+      a.state = ActionState::dropped;
+      wake(*a.result);
+    }
+}
+
+void Runtime::finish_task(Task& t, TaskStatus status, const std::string& reason) {
+  if (t.status != TaskStatus::running) return;
+  t.status = status;
+  t.ended_s = now_;
+  const char* ev = status == TaskStatus::done        ? "task_done"
+                   : status == TaskStatus::cancelled ? "task_cancelled"
+                                                     : "task_failed";
+  json e{{"ev", ev}, {"task", t.id}};
+  if (!reason.empty()) e["reason"] = reason;
+  log(e);
+  record_.tasks_by_outcome[status == TaskStatus::done        ? "done"
+                           : status == TaskStatus::cancelled ? "cancelled"
+                                                             : "failed"] += 1;
+  // A drone still serving it is freed; queued segments are dropped.
+  if (t.serving >= 0) {
+    Drone& d = drones_[static_cast<std::size_t>(t.serving)];
+    t.serving = -1;
+    if (d.task == t.id && (d.mode == Mode::flying || d.mode == Mode::acting)) {
+      if (status == TaskStatus::cancelled && t.has_location)
+        record_.cancelled.push_back({now_, t.location.x, t.location.y});
+      integrate(d, now_);
+      d.task = -1;
+      set_mode(d, Mode::hovering, now_);
+    }
+  }
+  for (auto& d : drones_)
+    if (d.held_for == t.id) {
+      d.held_for = -1;
+      if (d.mode == Mode::held) set_mode(d, Mode::hovering, now_);
+    }
+  for (auto& a : t.actions)
+    if (a.state == ActionState::pending || a.state == ActionState::running)
+      a.state = ActionState::dropped;
+  if (status != TaskStatus::done) {
+    if (!t.result->error)
+      t.result->error = status == TaskStatus::cancelled
+                            ? std::make_exception_ptr(TaskCancelled())
+                            : std::make_exception_ptr(ActionFailed(reason));
+  }
+  wake(*t.result);
+  changed_ = true;
+}
+
+void Runtime::cancel(int issuer, int task) {
+  if (task < 0 || static_cast<std::size_t>(task) >= tasks_.size()) return;
+  Task& t = tasks_[static_cast<std::size_t>(task)];
+  if (t.status != TaskStatus::running) return;
+  if (issuer >= 0) {
+    Task& i = tasks_[static_cast<std::size_t>(issuer)];
+    const std::string from =
+        i.sync_node >= 0 ? "s" + std::to_string(i.sync_node) : "t" + std::to_string(issuer);
+    dtg_edges_.push_back(
+        json{{"from", from}, {"to", "t" + std::to_string(task)}, {"type", "cancel"}});
+  }
+  finish_task(t, TaskStatus::cancelled, "");
+}
+
+void Runtime::destroy_frames() {
+  for (Task& t : tasks_)
+    if (t.status != TaskStatus::running && !t.frame_gone && t.id != current_) {
+      t.frame_gone = true;
+      if (t.root) t.root.destroy();
+    }
+}
+
+void Runtime::resolve_action(Task& t, std::size_t a, const Reading& r, int drone) {
+  Action& act = t.actions[a];
+  if (act.state == ActionState::delivered || t.status != TaskStatus::running ||
+      act.state == ActionState::dropped) {
+    log(json{{"ev", "duplicate_result"},
+             {"drone", drone},
+             {"task", t.id},
+             {"action", static_cast<int>(a)}});
+    ++record_.duplicate_results;
+    return;
+  }
+  act.state = ActionState::delivered;
+  act.result->value = r;
+  log(json{{"ev", "action_done"},
+           {"drone", drone},
+           {"task", t.id},
+           {"action", static_cast<int>(a)},
+           {"name", act.type == ActionType::fly_to ? std::string("fly_to") : act.name}});
+  if (act.type == ActionType::sense) record_.served.push_back({r.t_s, r.at.x, r.at.y});
+  wake(*act.result);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drones
+
+Vec3 Runtime::position_at(const Drone& d, double t) const {
+  if ((d.mode == Mode::flying || d.mode == Mode::returning) && d.leg)
+    return d.leg->position_at(t - d.leg_start);
+  return d.pos;
+}
+
+void Runtime::integrate(Drone& d, double t) {
+  if (t <= d.t_mark) return;
+  const double a = d.t_mark, b = t;
+  const DroneSpec& s = d.spec;
+  double energy = 0, charge_as = 0;  // J, A·s
+  auto constant = [&](double watts, double secs) {
+    energy += watts * secs;
+    charge_as += energy::battery_current_a(s.battery, watts) * secs;
+  };
+  switch (d.mode) {
+    case Mode::landed:
+    case Mode::lost:
+      break;
+    case Mode::charging: {
+      const double rate = s.recharge_s > 0 ? 1.0 / s.recharge_s : kInf;
+      d.soc = std::min(1.0, d.soc + rate * (b - a));
+      break;
+    }
+    case Mode::hovering:
+    case Mode::acting:
+    case Mode::held:
+      constant(hover_power_w(s), b - a);
+      d.idle_s += d.mode == Mode::acting ? 0.0 : b - a;
+      break;
+    case Mode::flying:
+    case Mode::returning: {
+      const Leg& leg = *d.leg;
+      const double la = a - d.leg_start, lb = b - d.leg_start;
+      // Vertical part at the climb or descent power.
+      const double v0 = std::clamp(la, 0.0, leg.vertical_s()),
+                   v1 = std::clamp(lb, 0.0, leg.vertical_s());
+      if (v1 > v0) constant(leg.climbing() ? climb_power_w(s) : descent_power_w(s), v1 - v0);
+      // Level part, piece by piece (constant acceleration within each).
+      const auto& pieces = leg.pieces();
+      for (std::size_t i = 0; i < pieces.size(); ++i) {
+        const double p0 = leg.vertical_s() + pieces[i].t0_s;
+        const double p1 =
+            i + 1 < pieces.size() ? leg.vertical_s() + pieces[i + 1].t0_s : leg.duration_s();
+        const double x0 = std::max(la, p0), x1 = std::min(lb, p1);
+        if (x1 <= x0) continue;
+        auto watts = [&](double tl) {
+          return energy::level_flight_power_w(s.power.mechanical, leg.speed_at(tl)) +
+                 s.power.payload_w;
+        };
+        energy += gauss(watts, x0, x1);
+        charge_as += gauss(
+            [&](double tl) { return energy::battery_current_a(s.battery, watts(tl)); }, x0, x1);
+      }
+      // Hovering at the end if the interval runs past the leg (it stops there).
+      if (lb > leg.duration_s()) constant(hover_power_w(s), lb - std::max(la, leg.duration_s()));
+      const Vec3 p0 = leg.position_at(la), p1 = leg.position_at(lb);
+      d.distance_m += std::hypot(p1.x - p0.x, p1.y - p0.y);
+      break;
+    }
+  }
+  if (d.mode != Mode::landed && d.mode != Mode::lost && d.mode != Mode::charging)
+    d.flight_s += b - a;
+  d.energy_j += energy;
+  d.soc -= charge_as / (3600.0 * s.battery.capacity_ah);
+  d.pos = position_at(d, t);
+  d.t_mark = t;
+}
+
+void Runtime::set_mode(Drone& d, Mode m, double t) {
+  d.mode = m;
+  const std::string name = mode_name(m, d.link_up);
+  if (name != d.span_mode) {
+    if (!d.span_mode.empty() && t > d.span_start)
+      d.record.spans.push_back({round6(d.span_start), round6(t), d.span_mode});
+    d.span_mode = name;
+    d.span_start = t;
+  }
+  d.record.track.push_back({round6(t), round6(d.pos.x), round6(d.pos.y), round6(d.pos.z)});
+}
+
+double Runtime::next_event(const Drone& d) const {
+  double e = kInf;
+  switch (d.mode) {
+    case Mode::flying:
+    case Mode::returning:
+      e = d.leg_start + d.leg->duration_s();
+      break;
+    case Mode::acting:
+      e = d.act_end;
+      break;
+    case Mode::charging:
+      e = d.charge_end;
+      break;
+    case Mode::held:
+      e = d.hold_until;
+      break;
+    default:
+      break;
+  }
+  if (!d.link_up) e = std::min(e, d.link_back);
+  if (!d.sensor_ok) e = std::min(e, d.sensor_back);
+  return e;
+}
+
+void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
+  integrate(d, t);
+  double v0 = 0;
+  if ((d.mode == Mode::flying || d.mode == Mode::returning) && d.leg) {
+    // A retarget keeps the speed along the new course (the component across it is braked).
+    const double along = d.leg->speed_at(t - d.leg_start);
+    const Vec3 old_dir = d.leg->to() - d.leg->from(), new_dir = to - d.pos;
+    const double n0 = std::hypot(old_dir.x, old_dir.y), n1 = std::hypot(new_dir.x, new_dir.y);
+    if (n0 > 0 && n1 > 0)
+      v0 = along * std::max(0.0, (old_dir.x * new_dir.x + old_dir.y * new_dir.y) / (n0 * n1));
+  }
+  if (d.mode == Mode::landed) d.airborne_since = t;
+  d.leg.emplace(d.pos, to, d.spec.kinematics, v0);
+  d.leg_start = t;
+  set_mode(d, mode, t);
+}
+
+bool Runtime::available(const Drone& d) const {
+  return d.link_up && (d.mode == Mode::landed || d.mode == Mode::hovering || d.mode == Mode::held ||
+                       (d.mode == Mode::flying && d.task >= 0));
+}
+
+bool Runtime::must_go_home(const Drone& d, double t) const {
+  if (d.mode == Mode::landed || d.mode == Mode::charging || d.mode == Mode::lost ||
+      d.mode == Mode::returning)
+    return false;
+  const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
+  const Leg back(d.pos, home, d.spec.kinematics);
+  const double back_s = back.duration_s() + d.layer_m / d.spec.kinematics.descent_m_s;
+  if (t - d.airborne_since + back_s + 2 * settings_.tick_s >= d.spec.max_flight_time_s) return true;
+  const double cruise_w =
+      energy::level_flight_power_w(d.spec.power.mechanical, d.spec.kinematics.cruise_m_s) +
+      d.spec.power.payload_w;
+  const double landing =
+      energy::soc_after(d.spec.battery, d.soc, cruise_w, back_s + 2 * settings_.tick_s);
+  return !(landing >= d.spec.battery.reserve_soc);
+}
+
+void Runtime::requeue(Drone& d, const std::string& reason) {
+  if (d.task < 0) return;
+  Task& t = tasks_[static_cast<std::size_t>(d.task)];
+  for (auto& a : t.actions)
+    if (a.state == ActionState::running) a.state = ActionState::pending;
+  t.serving = -1;
+  t.requested = false;
+  log(json{{"ev", "requeued"}, {"task", t.id}, {"drone", d.index}, {"reason", reason}});
+  ++record_.requeued;
+  d.task = -1;
+  changed_ = true;
+}
+
+void Runtime::go_home(Drone& d, double t, const std::string& why) {
+  requeue(d, why);
+  if (d.held_for >= 0) d.held_for = -1;
+  const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
+  start_leg(d, home, Mode::returning, t);
+  changed_ = true;
+}
+
+void Runtime::release(Drone& d, double t) {
+  Task* t_ptr = d.task >= 0 ? &tasks_[static_cast<std::size_t>(d.task)] : nullptr;
+  if (t_ptr) t_ptr->serving = -1;
+  d.task = -1;
+  if (t_ptr && !t_ptr->flags.interruptible && t_ptr->status == TaskStatus::running) {
+    d.held_for = t_ptr->id;
+    d.hold_until = t + settings_.hold_s;
+    set_mode(d, Mode::held, t);
+  } else {
+    set_mode(d, Mode::hovering, t);
+  }
+  changed_ = true;
+  if (must_go_home(d, t)) go_home(d, t, "battery");
+}
+
+// The drone is where its task's head segment is: do the next action, or finish the segment.
+void Runtime::start_action_or_release(Drone& d, double t) {
+  Task& tk = tasks_[static_cast<std::size_t>(d.task)];
+  const std::size_t h = tk.head();
+  if (tk.status != TaskStatus::running || h >= tk.actions.size() ||
+      tk.actions[h].type == ActionType::fly_to || (tk.actions[h].state != ActionState::pending)) {
+    release(d, t);
+    return;
+  }
+  Action& a = tk.actions[h];
+  if (a.type == ActionType::sense && !d.sensor_ok) {
+    requeue(d, "sensor_failure");
+    set_mode(d, Mode::hovering, t);
+    return;
+  }
+  a.state = ActionState::running;
+  d.action = h;
+  d.act_end = t + a.duration_s;
+  set_mode(d, Mode::acting, t);
+}
+
+void Runtime::step_drone(Drone& d, double t) {
+  integrate(d, t);
+  if (!d.link_up && t >= d.link_back) {
+    d.link_up = true;
+    for (Pending& p : d.buffered) {
+      p.deliver_s = t + settings_.link_latency_s;
+      pending_.push_back(p);
+    }
+    d.buffered.clear();
+    set_mode(d, d.mode, t);
+    changed_ = true;
+  }
+  if (!d.sensor_ok && t >= d.sensor_back) {
+    d.sensor_ok = true;
+    changed_ = true;
+  }
+  auto emit = [&](Task& tk, std::size_t a, const Reading& r) {
+    Pending p{t + settings_.link_latency_s, d.index, tk.id, a, r, seq_++};
+    if (d.link_up)
+      pending_.push_back(std::move(p));
+    else
+      d.buffered.push_back(std::move(p));
+  };
+  switch (d.mode) {
+    case Mode::flying:
+      if (t >= d.leg_start + d.leg->duration_s()) {
+        d.pos = d.leg->to();
+        d.leg.reset();
+        if (d.task < 0) {
+          set_mode(d, Mode::hovering, t);
+          break;
+        }
+        Task& tk = tasks_[static_cast<std::size_t>(d.task)];
+        if (std::find(tk.drones_used.begin(), tk.drones_used.end(), d.index) ==
+            tk.drones_used.end())
+          tk.drones_used.push_back(d.index);
+        if ((tk.flags.same_drone || !tk.flags.interruptible) && !tk.bound) tk.bound = d.index;
+        const std::size_t h = tk.head();
+        if (h < tk.actions.size() && tk.actions[h].type == ActionType::fly_to) {
+          tk.actions[h].state = ActionState::completed;
+          Reading r;
+          r.t_s = t;
+          r.drone = d.index;
+          r.at = d.pos;
+          r.sensor = "fly_to";
+          emit(tk, h, r);
+        }
+        if (!d.link_up) {  // the vehicle's own failsafe takes it home
+          requeue(d, "link_loss");
+          go_home(d, t, "link_loss");
+          break;
+        }
+        start_action_or_release(d, t);
+      }
+      break;
+    case Mode::acting:
+      if (t >= d.act_end) {
+        Task& tk = tasks_[static_cast<std::size_t>(d.task)];
+        Action& a = tk.actions[d.action];
+        a.state = ActionState::completed;
+        Reading r;
+        if (a.type == ActionType::sense) r = world_.sense(a.name, d.pos, t);
+        r.t_s = t;
+        r.drone = d.index;
+        r.at = d.pos;
+        if (r.sensor.empty()) r.sensor = a.name;
+        emit(tk, d.action, r);
+        if (!d.link_up) {
+          go_home(d, t, "link_loss");
+          break;
+        }
+        if (must_go_home(d, t)) {
+          go_home(d, t, "battery");
+          break;
+        }
+        start_action_or_release(d, t);
+      }
+      break;
+    case Mode::returning:
+      if (t >= d.leg_start + d.leg->duration_s()) {
+        d.pos = d.leg->to();
+        d.leg.reset();
+        // Lands: the descent from the layer is part of the flight.
+        const double down = d.pos.z / d.spec.kinematics.descent_m_s;
+        const double e = descent_power_w(d.spec) * down;
+        d.energy_j += e;
+        d.soc -= energy::battery_current_a(d.spec.battery, descent_power_w(d.spec)) * down /
+                 (3600.0 * d.spec.battery.capacity_ah);
+        d.flight_s += down;
+        d.pos.z = 0;
+        d.charge_end = t + d.spec.recharge_s * std::max(0.0, 1.0 - d.soc);
+        set_mode(d, Mode::charging, t);
+        changed_ = true;
+      }
+      break;
+    case Mode::charging:
+      if (t >= d.charge_end) {
+        d.soc = 1.0;
+        set_mode(d, Mode::landed, t);
+        changed_ = true;
+      }
+      break;
+    case Mode::held:
+      if (t >= d.hold_until) {
+        Task& tk = tasks_[static_cast<std::size_t>(d.held_for)];
+        if (!tk.flags.same_drone) tk.bound.reset();
+        d.held_for = -1;
+        set_mode(d, Mode::hovering, t);
+        changed_ = true;
+      }
+      break;
+    default:
+      break;
+  }
+}
+
+void Runtime::dispatch(Drone& d, Task& t, double at) {
+  t.serving = d.index;
+  d.task = t.id;
+  if (d.held_for == t.id) d.held_for = -1;
+  const std::size_t h = t.head();
+  Vec3 to = t.location;
+  if (h < t.actions.size() && t.actions[h].type == ActionType::fly_to) to = t.actions[h].to;
+  // Earlier non-flying actions happen where the task's previous fly_to went.
+  for (std::size_t i = h; i-- > 0;)
+    if (t.actions[i].type == ActionType::fly_to) {
+      if (h < t.actions.size() && t.actions[h].type != ActionType::fly_to) to = t.actions[i].to;
+      break;
+    }
+  if (!(to.z > 0)) to.z = d.layer_m;
+  for (std::size_t i = h; i < t.actions.size(); ++i) {
+    if (i > h && t.actions[i].type == ActionType::fly_to) break;
+    if (t.actions[i].state == ActionState::pending && t.actions[i].type == ActionType::fly_to)
+      t.actions[i].state = ActionState::running;
+  }
+  log(at_json(
+      json{{"ev", "dispatch"}, {"drone", d.index}, {"task", t.id}, {"segment", t.segment - 1}},
+      to));
+  const Vec3 here = position_at(d, at);
+  if (std::hypot(here.x - to.x, here.y - to.y) < 1e-9 && std::abs(here.z - to.z) < 1e-9 &&
+      d.mode != Mode::landed) {
+    integrate(d, at);
+    d.leg.emplace(here, to, d.spec.kinematics, 0.0);
+    d.leg_start = at;
+    set_mode(d, Mode::flying, at);
+    return;
+  }
+  if (d.mode == Mode::landed) {
+    integrate(d, at);
+    d.airborne_since = at;
+    // Take off: climb at home, then the leg climbs to the layer and flies.
+  }
+  start_leg(d, to, Mode::flying, at);
+}
+
+void Runtime::schedule() {
+  // Requests: every running task with work whose head is not being acted on.
+  std::vector<int> req_task;
+  Snapshot s;
+  const DroneSpec& first = drones_.front().spec;
+  s.eta.cruise_m_s = first.kinematics.cruise_m_s;
+  s.eta.accel_m_s2 = first.kinematics.accel_m_s2 > 0 ? first.kinematics.accel_m_s2 : 1e9;
+  s.eta.approach_m_s = first.kinematics.approach_m_s;
+  s.eta.approach_within_m = first.kinematics.approach_within_m;
+  s.weights = settings_.weights;
+  s.fence = world_.fence();
+  for (Task& t : tasks_) {
+    if (!t.has_work()) continue;
+    if (t.serving >= 0 && drones_[static_cast<std::size_t>(t.serving)].mode != Mode::flying)
+      continue;
+    const std::size_t h = t.head();
+    Request r;
+    r.location_m = t.actions[h].type == ActionType::fly_to ? t.actions[h].to : t.location;
+    for (std::size_t i = h; i < t.actions.size(); ++i) {
+      if (i > h && t.actions[i].type == ActionType::fly_to) break;
+      r.service_s += t.actions[i].duration_s;
+      if (t.actions[i].type == ActionType::sense) r.needs_sensor = true;
+    }
+    if (!t.requested) {
+      t.requested = true;
+      t.visible_since_s = now_;
+      log(at_json(json{{"ev", "request_visible"}, {"task", t.id}, {"segment", t.segment++}},
+                  r.location_m, json{{"service_s", round6(r.service_s)}}));
+    }
+    r.waiting_s = now_ - t.visible_since_s;
+    if (t.bound) r.bound_drone = *t.bound;
+    req_task.push_back(t.id);
+    s.requests.push_back(r);
+  }
+  std::vector<int> drone_of;  // snapshot drone → fleet index
+  for (Drone& d : drones_) {
+    if (!available(d)) continue;
+    DroneState ds;
+    ds.position_m = position_at(d, now_);
+    if (!(ds.position_m.z > 0)) ds.position_m.z = d.layer_m;
+    ds.home_m = {d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
+    ds.soc = d.soc;
+    ds.can_sense = d.sensor_ok;
+    if (d.mode == Mode::held) ds.only_request = -1;
+    for (std::size_t r = 0; r < req_task.size(); ++r) {
+      if (req_task[r] == d.task) ds.target = static_cast<int>(r);
+      if (d.mode == Mode::held && req_task[r] == d.held_for) ds.only_request = static_cast<int>(r);
+    }
+    drone_of.push_back(d.index);
+    s.drones.push_back(ds);
+  }
+  // Bound requests name fleet indices; the snapshot's are positions in s.drones.
+  for (Request& r : s.requests)
+    if (r.bound_drone) {
+      auto it = std::find(drone_of.begin(), drone_of.end(), *r.bound_drone);
+      r.bound_drone = it == drone_of.end() ? -1 : static_cast<int>(it - drone_of.begin());
+    }
+  if (s.requests.empty() && std::none_of(s.drones.begin(), s.drones.end(),
+                                         [](const DroneState& x) { return x.target.has_value(); }))
+    return;
+  const auto clock0 = std::chrono::steady_clock::now();
+  const Assignment a = s.drones.empty() ? Assignment{} : scheduler_->assign(s, sched_rng_);
+  record_.decision_s_total +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+  ++record_.schedules;
+  json assignment = json::array();
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i])
+      assignment.push_back(
+          json{{"drone", drone_of[i]}, {"task", req_task[static_cast<std::size_t>(*a[i])]}});
+  log(json{{"ev", "schedule"}, {"assignment", assignment}});
+  // Apply the difference.
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    Drone& d = drones_[static_cast<std::size_t>(drone_of[i])];
+    const int want = a[i] ? req_task[static_cast<std::size_t>(*a[i])] : -1;
+    if (want == d.task) continue;
+    if (d.task >= 0) {  // retargeted or stopped on the way
+      Task& old = tasks_[static_cast<std::size_t>(d.task)];
+      old.serving = -1;
+      for (auto& act : old.actions)
+        if (act.state == ActionState::running) act.state = ActionState::pending;
+      d.task = -1;
+      if (want < 0) {
+        integrate(d, now_);
+        d.leg.reset();
+        set_mode(d, Mode::hovering, now_);
+      }
+    }
+    if (want >= 0) {
+      Task& t = tasks_[static_cast<std::size_t>(want)];
+      if (t.serving >= 0 && t.serving != d.index) {
+        Drone& other = drones_[static_cast<std::size_t>(t.serving)];
+        if (other.task == t.id) other.task = -1;
+      }
+      dispatch(d, t, now_);
+    }
+  }
+  // Drones that lost their request to another and got nothing stop where they are.
+  for (Drone& d : drones_)
+    if (d.mode == Mode::flying && d.task < 0) {
+      integrate(d, now_);
+      d.leg.reset();
+      set_mode(d, Mode::hovering, now_);
+    }
+}
+
+void Runtime::apply_fault(const FaultEvent& f) {
+  if (f.drone < 0 || static_cast<std::size_t>(f.drone) >= drones_.size()) return;
+  Drone& d = drones_[static_cast<std::size_t>(f.drone)];
+  integrate(d, now_);
+  log(json{{"ev", "fault"},
+           {"drone", d.index},
+           {"fault", fault_name(f.kind)},
+           {"duration_s", round6(f.duration_s)},
+           {"soc", round6(std::max(0.0, d.soc))}});
+  if (d.mode == Mode::lost) return;
+  switch (f.kind) {
+    case FaultKind::link_loss:
+      if (!d.link_up) {
+        d.link_back = std::max(d.link_back, now_ + f.duration_s);
+        break;
+      }
+      d.link_up = false;
+      d.link_back = now_ + f.duration_s;
+      if (d.mode == Mode::flying || d.mode == Mode::hovering || d.mode == Mode::held) {
+        requeue(d, "link_loss");
+        go_home(d, now_, "link_loss");
+      } else {
+        set_mode(d, d.mode, now_);  // acting: it finishes, then its failsafe takes it home
+      }
+      changed_ = true;
+      break;
+    case FaultKind::battery_drop:
+      d.soc = std::min(d.soc, f.soc);
+      if (must_go_home(d, now_)) go_home(d, now_, "battery");
+      changed_ = true;
+      break;
+    case FaultKind::motor_failure: {
+      if (d.task >= 0) {
+        Task& t = tasks_[static_cast<std::size_t>(d.task)];
+        requeue(d, "motor_failure");
+        if (t.flags.same_drone && t.bound && *t.bound == d.index) {
+          fail_action_futures(t, std::make_exception_ptr(ActionFailed("drone_lost")));
+          finish_task(t, TaskStatus::failed, "drone_lost");
+        }
+      }
+      for (Task& t : tasks_)
+        if (t.status == TaskStatus::running && t.bound && *t.bound == d.index) {
+          if (t.flags.same_drone) {
+            fail_action_futures(t, std::make_exception_ptr(ActionFailed("drone_lost")));
+            finish_task(t, TaskStatus::failed, "drone_lost");
+          } else {
+            t.bound.reset();
+          }
+        }
+      d.held_for = -1;
+      d.leg.reset();
+      for (const Pending& p : d.buffered) {
+        Action& a = tasks_[static_cast<std::size_t>(p.task)].actions[p.action];
+        if (a.state == ActionState::completed) a.state = ActionState::pending;
+      }
+      d.buffered.clear();
+      set_mode(d, Mode::lost, now_);
+      changed_ = true;
+      break;
+    }
+    case FaultKind::sensor_failure:
+      d.sensor_ok = false;
+      d.sensor_back = std::max(d.sensor_back, now_ + f.duration_s);
+      if (d.mode == Mode::acting && d.task >= 0) {
+        Task& t = tasks_[static_cast<std::size_t>(d.task)];
+        if (t.actions[d.action].type == ActionType::sense) {
+          requeue(d, "sensor_failure");
+          set_mode(d, Mode::hovering, now_);
+        }
+      }
+      changed_ = true;
+      break;
+  }
+}
+
+void Runtime::log_states() {
+  for (Drone& d : drones_) {
+    integrate(d, now_);
+    log(at_json(json{{"ev", "drone_state"}, {"drone", d.index}}, d.pos,
+                json{{"soc", round6(d.soc)}, {"state", mode_name(d.mode, d.link_up)}}));
+    d.record.track.push_back({round6(now_), round6(d.pos.x), round6(d.pos.y), round6(d.pos.z)});
+  }
+}
+
+RunRecord Runtime::run() {
+  json drones = json::array();
+  for (const Drone& d : drones_)
+    drones.push_back(json{{"drone", d.index}, {"name", d.spec.name}, {"soc", round6(d.soc)}});
+  log(json{{"ev", "run_start"},
+           {"app", settings_.app_name},
+           {"seed", settings_.seed},
+           {"scheduler", settings_.scheduler},
+           {"max_time_s", settings_.max_time_s},
+           {"drones", drones}});
+  for (Drone& d : drones_) set_mode(d, Mode::landed, 0);
+  auto main_state = std::make_shared<detail::State<void>>();
+  const App& app = app_;
+  spawn(
+      -1, Kind{"main"}, Flags{},
+      [&app](Ctx& c) -> std::coroutine_handle<> { return app.main(c).release(); }, main_state);
+  // The main body writes into its own promise state: mirror it.
+  Task& main = tasks_.front();
+  main.result = main_state;
+  main.result->task = -1;  // awaiting main is not a sync of the DTG
+  {
+    auto h = std::coroutine_handle<Co<void>::promise_type>::from_address(main.root.address());
+    h.promise().result = main_state;
+  }
+  const double tick = settings_.tick_s;
+  std::int64_t tick_index = 0;
+  bool stop = false;
+  while (!stop) {
+    resume_ready();
+    destroy_frames();
+    if (main.status != TaskStatus::running) break;
+    // Requests waiting too long for any drone fail visibly.
+    for (Task& t : tasks_)
+      if (t.has_work() && t.serving < 0 && t.requested &&
+          now_ - t.visible_since_s >= settings_.no_feasible_s) {
+        fail_action_futures(t, std::make_exception_ptr(ActionFailed("no_feasible_drone")));
+        finish_task(t, TaskStatus::failed, "no_feasible_drone");
+      }
+    if (!ready_.empty()) continue;
+    if (changed_) {
+      changed_ = false;
+      schedule();
+    }
+    // The next thing that happens, rounded up to the tick grid.
+    double next = kInf;
+    for (const Drone& d : drones_) next = std::min(next, next_event(d));
+    for (const Pending& p : pending_) next = std::min(next, p.deliver_s);
+    for (const auto& [t, s] : delays_) next = std::min(next, t);
+    if (next_fault_ < faults_.size()) next = std::min(next, faults_[next_fault_].t_s);
+    for (const Task& t : tasks_)
+      if (t.has_work() && t.serving < 0 && t.requested)
+        next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
+    if (!std::isfinite(next)) {
+      record_.failure = "the app waits for something that cannot happen (no drone can serve it)";
+      break;
+    }
+    if (next > settings_.max_time_s) next = std::min(next, settings_.max_time_s + tick);
+    std::int64_t k = static_cast<std::int64_t>(std::ceil(next / tick - 1e-9));
+    k = std::max(k, tick_index + (next > now_ ? 0 : 1));
+    if (k <= tick_index) k = tick_index + 1;
+    // drone_state at state_period_s on the way.
+    while (next_state_log_ < static_cast<double>(k) * tick - 1e-12) {
+      now_ = next_state_log_;
+      log_states();
+      next_state_log_ += settings_.state_period_s;
+    }
+    tick_index = k;
+    now_ = static_cast<double>(k) * tick;
+    if (now_ > settings_.max_time_s) {
+      record_.failure = "not completed within max_time_s (" +
+                        std::to_string(static_cast<long long>(settings_.max_time_s)) + " s)";
+      now_ = settings_.max_time_s;
+      break;
+    }
+    // Drones, in (time, drone) order, each through every event up to now.
+    for (;;) {
+      double best = kInf;
+      Drone* who = nullptr;
+      for (Drone& d : drones_) {
+        const double e = next_event(d);
+        if (e <= now_ + 1e-12 && e < best) best = e, who = &d;
+      }
+      if (!who) break;
+      step_drone(*who, best);
+    }
+    while (next_fault_ < faults_.size() && faults_[next_fault_].t_s <= now_ + 1e-12)
+      apply_fault(faults_[next_fault_++]);
+    std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) {
+      return a.deliver_s != b.deliver_s ? a.deliver_s < b.deliver_s
+             : a.drone != b.drone       ? a.drone < b.drone
+                                        : a.seq < b.seq;
+    });
+    std::size_t n = 0;
+    while (n < pending_.size() && pending_[n].deliver_s <= now_ + 1e-12) ++n;
+    std::vector<Pending> due(pending_.begin(), pending_.begin() + static_cast<long>(n));
+    pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(n));
+    for (const Pending& p : due)
+      resolve_action(tasks_[static_cast<std::size_t>(p.task)], p.action, p.reading, p.drone);
+    for (auto it = delays_.begin(); it != delays_.end();)
+      if (it->first <= now_ + 1e-12) {
+        wake(*it->second);
+        it = delays_.erase(it);
+      } else {
+        ++it;
+      }
+  }
+  record_.completed = main.status == TaskStatus::done;
+  if (main.status == TaskStatus::failed && record_.failure.empty())
+    record_.failure = "the app's main failed";
+  record_.completion_time_s = record_.completed ? main.ended_s : now_;
+  record_.end_s = now_;
+  // Every task ends exactly once: what is still running is cancelled with the run.
+  for (Task& t : tasks_)
+    if (t.status == TaskStatus::running) finish_task(t, TaskStatus::cancelled, "run_ended");
+  destroy_frames();
+  for (Drone& d : drones_) {
+    integrate(d, now_);
+    set_mode(d, d.mode, now_);
+    if (!d.span_mode.empty() && now_ > d.span_start)
+      d.record.spans.push_back({round6(d.span_start), round6(now_), d.span_mode});
+    d.record.distance_m = d.distance_m;
+    d.record.flight_s = d.flight_s;
+    d.record.idle_s = d.idle_s;
+    d.record.energy_wh = d.energy_j / 3600.0;
+    d.record.final_soc = d.soc;
+    record_.drones.push_back(d.record);
+  }
+  log(json{{"ev", "run_end"},
+           {"completed", record_.completed},
+           {"completion_time_s", round6(record_.completion_time_s)}});
+  // dtg.json: task nodes, sync nodes, edges.
+  json nodes = json::array();
+  for (const Task& t : tasks_) {
+    json n{{"id", "t" + std::to_string(t.id)},
+           {"type", "task"},
+           {"kind", t.kind},
+           {"created_s", round6(t.created_s)},
+           {"ended_s", round6(t.ended_s)},
+           {"status", t.status == TaskStatus::done        ? "done"
+                      : t.status == TaskStatus::cancelled ? "cancelled"
+                                                          : "failed"},
+           {"actions", t.actions.size()},
+           {"drones", t.drones_used}};
+    if (t.first_loc)
+      n["first_loc"] = {round6(t.first_loc->x), round6(t.first_loc->y), round6(t.first_loc->z)};
+    nodes.push_back(n);
+  }
+  for (const auto& n : dtg_nodes_) nodes.push_back(n);
+  record_.dtg_json = json{{"app", settings_.app_name},
+                          {"seed", settings_.seed},
+                          {"nodes", nodes},
+                          {"edges", dtg_edges_}}
+                         .dump(1) +
+                     "\n";
+  return std::move(record_);
+}
+
+}  // namespace
+
+RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
+                  const RunSettings& settings) {
+  if (drones.empty()) throw base::InputError("the fleet has no drones");
+  Runtime rt(app, world, drones, settings);
+  return rt.run();
+}
+
+}  // namespace swath::fleet

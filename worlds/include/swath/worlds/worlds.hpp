@@ -1,0 +1,110 @@
+#pragma once
+// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; DESIGN.md §18.9) and their world
+// files. Every sensor's noise is a hash of (seed, sensor, position to the millimetre), not of time
+// or order, so a reading does not depend on the schedule (DESIGN.md §18.12 item 5): two schedulers
+// sensing the same place see the same value, and a case's oracle is exact.
+//
+// World YAML (local metres at `origin`, x east, y north):
+//   kind: hotspot            # hotspot | road | sites
+//   origin: {lat: 42.3601, lon: -71.0942}
+//   seed: 7
+//   fence: {width_m: 200, height_m: 200}     # centred on the origin; optional
+//   ... the kind's own keys (see each struct below)
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/fleet/runtime.hpp"
+#include "swath/fleet/world.hpp"
+#include "swath/geometry/point.hpp"
+
+namespace swath::worlds {
+
+using fleet::Vec3;
+
+/// A sensor: how long a reading takes and its noise.
+struct SensorSpec {
+  std::string name;
+  double time_s = 2.0;   ///< > 0
+  double noise = 1.0;    ///< standard deviation in the sensor's unit (dB, m), ≥ 0
+  double noise_deg = 0;  ///< road_camera: heading noise, degrees, ≥ 0
+};
+
+/// The parts every world has.
+class BaseWorld : public fleet::World {
+ public:
+  std::string kind() const override { return kind_; }
+  Vec3 start() const override { return start_; }
+  std::vector<std::array<double, 2>> fence() const override { return fence_; }
+  double sense_time_s(const std::string& sensor) const override;
+
+  std::string kind_;
+  geometry::GeoPoint origin;
+  std::uint64_t seed = 1;
+  Vec3 start_;
+  std::vector<std::array<double, 2>> fence_;
+  std::vector<SensorSpec> sensors;
+  const SensorSpec& sensor(const std::string& name) const;  ///< throws ActionFailed
+  /// N(0, 1) from (seed, sensor, x, y): the same at the same place whatever the schedule.
+  double place_noise(const std::string& sensor, double x_m, double y_m) const;
+};
+
+/// Case 3 (§5.1.3): a signal source; `signal` reads p0 − 10 n log10(max(d, 1 m)) + noise, dBm.
+/// App `hotspot`: sense at the corners of a square of side `side_m` around the current place,
+/// move `step_m` toward the strongest corner, `steps` times.
+class HotspotWorld final : public BaseWorld {
+ public:
+  fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
+  Vec3 source_m;          ///< default: 60 m from the start at a bearing drawn from the seed
+  double p0_dbm = -30;    ///< at 1 m
+  double exponent = 2.0;  ///< path-loss exponent, > 0
+  int steps = 10;
+  double side_m = 10, step_m = 5;
+};
+
+/// Case 1 (§5.1.1): a road (a polyline, or a smooth random curve from the seed); `road_camera`
+/// reads the nearest road point and the road's heading there (x_m, y_m, heading_deg clockwise
+/// from north), with noise. App `road`: fly to a point, read, step `step_m` along the road,
+/// `steps` times.
+class RoadWorld final : public BaseWorld {
+ public:
+  fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
+  std::vector<std::array<double, 2>> road_m;  ///< ≥ 2 points
+  int steps = 25;
+  double step_m = 6;
+  /// The nearest point of the road to (x, y) and the road's heading there (radians from +x, ccw).
+  std::array<double, 3> nearest(double x_m, double y_m) const;
+};
+
+/// Case 4 (§5.2.1): named sites. App `multiplexing`: a delivery A→F (same drone; interruptible
+/// unless `delivery_interruptible` is false, the paper's baseline), photos at B and E, a video
+/// from C to D (same drone, not interruptible); `camera` takes a photo.
+class SitesWorld final : public BaseWorld {
+ public:
+  fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
+  std::vector<std::pair<std::string, Vec3>> sites;  ///< A..F; B–E drawn in `area_m` when absent
+  double handling_s = 5;                            ///< pick-up and drop, s
+  bool delivery_interruptible = true;
+  Vec3 site(const std::string& name) const;
+};
+
+/// Reads a world file. Throws base::InputError naming `source`, the line and the key.
+/// `seed`: instead of the file's seed (a scenario of the same world; swath-fleet compare).
+std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::string& source,
+                                       std::optional<std::uint64_t> seed = {});
+std::unique_ptr<BaseWorld> read_world(const std::string& path);
+
+/// The built-in applications (hotspot, road, multiplexing), each for its world kind.
+std::vector<fleet::App> builtin_apps();
+
+/// Case 4's lower bound: the fastest order of the multiplexing app's segments for one drone from
+/// `home` flying as `k` (rest to rest per leg, service times added), by brute force over every
+/// order that keeps A before F, B and E anywhere, C then D with nothing between. Seconds.
+double multiplexing_optimum_s(const SitesWorld& w, const Vec3& home, const fleet::Kinematics& k,
+                              double altitude_m);
+
+}  // namespace swath::worlds

@@ -1,0 +1,152 @@
+// The case-study applications of paper 000 §5, written as the paper writes them (Fig. 1, 3, 6):
+// loops over what the drones just measured, so the next request depends on the last reading.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "swath/fleet/leg.hpp"
+#include "swath/worlds/worlds.hpp"
+
+namespace swath::worlds {
+
+using fleet::Co;
+using fleet::Ctx;
+using fleet::Flags;
+using fleet::Kind;
+using fleet::Reading;
+
+namespace {
+
+// ---- case 3: hotspot search (§5.1.3, Fig. 3) ----------------------------------------------
+
+Co<Reading> sense_at(Ctx& t, Vec3 p, std::string sensor) {
+  t.fly_to(p);
+  co_return co_await t.sense(sensor);
+}
+
+Co<void> hotspot_main(Ctx& c) {
+  const auto& w = dynamic_cast<const HotspotWorld&>(c.world());
+  const Kind corner{"hotspot-corner"};
+  Vec3 at = w.start();
+  for (int i = 0; i < w.steps; ++i) {
+    const double h = w.side_m / 2;
+    std::vector<fleet::TaskHandle<Reading>> hs;
+    for (const auto& [dx, dy] :
+         std::array<std::array<double, 2>, 4>{{{-h, -h}, {h, -h}, {h, h}, {-h, h}}})
+      hs.push_back(
+          c.spawn(corner, {}, sense_at, Vec3{at.x + dx, at.y + dy, 0}, std::string("signal")));
+    const std::vector<Reading> rs = co_await fleet::all(hs);
+    const auto best = std::max_element(
+        rs.begin(), rs.end(),
+        [](const Reading& a, const Reading& b) { return a.values.at(0) < b.values.at(0); });
+    const double dx = best->at.x - at.x, dy = best->at.y - at.y, n = std::hypot(dx, dy);
+    if (n > 0) at = {at.x + w.step_m * dx / n, at.y + w.step_m * dy / n, 0};
+  }
+  c.metric("final_distance_to_source_m", std::hypot(at.x - w.source_m.x, at.y - w.source_m.y));
+  c.metric("start_distance_to_source_m",
+           std::hypot(w.start().x - w.source_m.x, w.start().y - w.source_m.y));
+}
+
+// ---- case 1: road tracing (§5.1.1, Fig. 1) --------------------------------------------------
+
+Co<void> road_main(Ctx& c) {
+  const auto& w = dynamic_cast<const RoadWorld&>(c.world());
+  const Kind step{"road-step"};
+  // The first point: the road's start (the user knows where the road begins).
+  Vec3 p{w.road_m.front()[0], w.road_m.front()[1], 0};
+  double worst = 0, sum = 0;
+  for (int i = 0; i < w.steps; ++i) {
+    auto h = c.spawn(step, {}, sense_at, p, std::string("road_camera"));
+    const Reading r = co_await h;
+    const double heading = (90.0 - r.values.at(2)) * std::numbers::pi / 180.0;  // from +x, ccw
+    const auto truth = w.nearest(r.values[0], r.values[1]);
+    const double off = std::hypot(r.values[0] - truth[0], r.values[1] - truth[1]);
+    worst = std::max(worst, off);
+    sum += std::hypot(p.x - w.nearest(p.x, p.y)[0], p.y - w.nearest(p.x, p.y)[1]);
+    p = {r.values[0] + w.step_m * std::cos(heading), r.values[1] + w.step_m * std::sin(heading), 0};
+  }
+  c.metric("mean_offset_from_road_m", sum / w.steps);
+  c.metric("steps", w.steps);
+}
+
+// ---- case 4: multiplexing (§5.2.1, Fig. 6) --------------------------------------------------
+
+Co<void> delivery(Ctx& t, Vec3 from, Vec3 to, double handling_s) {
+  t.fly_to(from);
+  t.custom("pick_up", handling_s);
+  t.fly_to(to);
+  co_await t.custom("drop", handling_s);
+}
+
+Co<void> photo(Ctx& t, Vec3 at) {
+  t.fly_to(at);
+  co_await t.sense("camera");
+}
+
+Co<void> video(Ctx& t, Vec3 from, Vec3 to) {
+  t.fly_to(from);
+  t.custom("video_start", 1.0);
+  t.fly_to(to);
+  co_await t.custom("video_stop", 1.0);
+}
+
+Co<void> multiplexing_main(Ctx& c) {
+  const auto& w = dynamic_cast<const SitesWorld&>(c.world());
+  auto d = c.spawn(Kind{"delivery"},
+                   Flags{.same_drone = true, .interruptible = w.delivery_interruptible}, delivery,
+                   w.site("A"), w.site("F"), w.handling_s);
+  auto b = c.spawn(Kind{"photo"}, {}, photo, w.site("B"));
+  auto e = c.spawn(Kind{"photo"}, {}, photo, w.site("E"));
+  auto v = c.spawn(Kind{"video"}, Flags{.same_drone = true, .interruptible = false}, video,
+                   w.site("C"), w.site("D"));
+  co_await d;
+  co_await b;
+  co_await e;
+  co_await v;
+}
+
+}  // namespace
+
+std::vector<fleet::App> builtin_apps() {
+  return {
+      {"hotspot", "case 3 (paper 000 §5.1.3): find a signal source by sensing square corners",
+       hotspot_main},
+      {"multiplexing",
+       "case 4 (§5.2.1): a delivery, two photos and a video sharing one drone (world kind sites)",
+       multiplexing_main},
+      {"road", "case 1 (§5.1.1): trace a road step by step with a road camera", road_main},
+  };
+}
+
+double multiplexing_optimum_s(const SitesWorld& w, const Vec3& home, const fleet::Kinematics& k,
+                              double altitude_m) {
+  // Segments: place and service. Order constraints by index: 0 A, 1 F, 2 B, 3 E, 4 C, 5 D.
+  const std::array<std::string, 6> names{"A", "F", "B", "E", "C", "D"};
+  const double camera = w.sense_time_s("camera");
+  const std::array<double, 6> service{w.handling_s, w.handling_s, camera, camera, 1.0, 1.0};
+  std::array<int, 6> order{0, 1, 2, 3, 4, 5};
+  double best = std::numeric_limits<double>::infinity();
+  do {
+    std::array<int, 6> pos{};
+    for (int i = 0; i < 6; ++i)
+      pos[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])] = i;
+    if (pos[0] > pos[1] || pos[5] != pos[4] + 1) continue;
+    if (!w.delivery_interruptible && pos[1] != pos[0] + 1) continue;
+    double t = altitude_m / k.climb_m_s;
+    Vec3 at = home;
+    for (int i : order) {
+      const Vec3 p = w.site(names[static_cast<std::size_t>(i)]);
+      t += fleet::rest_to_rest_s(std::hypot(p.x - at.x, p.y - at.y), k.cruise_m_s, k.approach_m_s,
+                                 k.approach_within_m, k.accel_m_s2) +
+           service[static_cast<std::size_t>(i)];
+      at = p;
+    }
+    best = std::min(best, t);
+  } while (std::next_permutation(order.begin(), order.end()));
+  return best;
+}
+
+}  // namespace swath::worlds
