@@ -16,10 +16,12 @@ using json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
-  app.add_option("APP", r.app, "The application: hotspot, road, multiplexing (swath-fleet apps)")
+  app.add_option("APP", r.app,
+                 "The application: hotspot, multiplexing, road, tracking, wifi (swath-fleet apps)")
       ->required();
-  app.add_option("--world", r.world,
-                 "World file, or a bundled world: hotspot, road, sites (share/worlds/)")
+  app.add_option(
+         "--world", r.world,
+         "World file, or a bundled world: hotspot, road, rf_field, sites, tracking (share/worlds/)")
       ->required();
   app.add_option("--fleet", r.fleet,
                  "Fleet file (DESIGN.md §7's, with optional profile, max_flight_time_s, "
@@ -59,11 +61,12 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   for (fleet::App& a : worlds::builtin_apps())
     if (a.name == r.app) p.app = std::move(a), found = true;
   if (!found)
-    throw InputError("unknown app \"" + r.app + "\": the apps are hotspot, multiplexing, road");
+    throw InputError("unknown app \"" + r.app +
+                     "\": the apps are hotspot, multiplexing, road, tracking, wifi");
   p.world_source = world_path(r.world);
   p.world_text = base::read_text_file(p.world_source, "world file");
   p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);
-  const std::string needs = r.app == "multiplexing" ? "sites" : r.app;
+  const std::string needs = worlds::app_world_kind(r.app);
   if (p.world->kind() != needs)
     throw InputError(p.world_source + ": a " + p.world->kind() + " world; the " + r.app +
                      " app needs a " + needs + " world");

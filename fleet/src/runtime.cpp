@@ -249,6 +249,7 @@ class Runtime final : public detail::Core {
   void set_mode(Drone& d, Mode m, double t);
   void requeue(Drone& d, const std::string& reason);
   bool must_go_home(const Drone& d, double t) const;
+  double leave_time(const Drone& d) const;  ///< when a hovering drone must head home
   bool available(const Drone& d) const;
 
   // Scheduling.
@@ -609,7 +610,7 @@ double Runtime::next_event(const Drone& d) const {
   }
   if (!d.link_up) e = std::min(e, d.link_back);
   if (!d.sensor_ok) e = std::min(e, d.sensor_back);
-  return e;
+  return std::min(e, leave_time(d));
 }
 
 void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
@@ -632,6 +633,25 @@ void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
 bool Runtime::available(const Drone& d) const {
   return d.link_up && (d.mode == Mode::landed || d.mode == Mode::hovering || d.mode == Mode::held ||
                        (d.mode == Mode::flying && d.task >= 0));
+}
+
+double Runtime::leave_time(const Drone& d) const {
+  if (d.mode != Mode::hovering && d.mode != Mode::held) return kInf;
+  const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
+  const Leg back(d.pos, home, d.spec.kinematics);
+  const double back_s =
+      back.duration_s() + d.layer_m / d.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
+  double t = d.airborne_since + d.spec.max_flight_time_s - back_s;
+  // Hovering drains the battery at hover power until what is left just takes it home.
+  const double cruise_w =
+      energy::level_flight_power_w(d.spec.power.mechanical, d.spec.kinematics.cruise_m_s) +
+      d.spec.power.payload_w;
+  const double need =
+      d.spec.battery.reserve_soc + energy::battery_current_a(d.spec.battery, cruise_w) * back_s /
+                                       (3600.0 * d.spec.battery.capacity_ah);
+  t = std::min(
+      t, d.t_mark + energy::seconds_to_soc(d.spec.battery, d.soc, need, hover_power_w(d.spec)));
+  return std::max(t, d.t_mark);
 }
 
 bool Runtime::must_go_home(const Drone& d, double t) const {
@@ -809,7 +829,14 @@ void Runtime::step_drone(Drone& d, double t) {
         changed_ = true;
       }
       break;
+    case Mode::hovering:
+      if (t >= leave_time(d) - 1e-9) go_home(d, t, "battery");
+      break;
     case Mode::held:
+      if (t >= leave_time(d) - 1e-9) {
+        go_home(d, t, "battery");
+        break;
+      }
       if (t >= d.hold_until) {
         Task& tk = tasks_[static_cast<std::size_t>(d.held_for)];
         if (!tk.flags.same_drone) tk.bound.reset();
@@ -873,6 +900,14 @@ void Runtime::schedule() {
   s.eta.approach_within_m = first.kinematics.approach_within_m;
   s.weights = settings_.weights;
   s.fence = world_.fence();
+  // Charge: there, serve, home above the reserve (eq. 12; the first drone's battery and powers).
+  EnergyFeasibility e;
+  e.battery = first.battery;
+  e.cruise_power_w =
+      energy::level_flight_power_w(first.power.mechanical, first.kinematics.cruise_m_s) +
+      first.power.payload_w;
+  e.hover_power_w = hover_power_w(first);
+  s.energy = e;
   for (Task& t : tasks_) {
     if (!t.has_work()) continue;
     if (t.serving >= 0 && drones_[static_cast<std::size_t>(t.serving)].mode != Mode::flying)
@@ -905,6 +940,13 @@ void Runtime::schedule() {
     ds.home_m = {d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
     ds.soc = d.soc;
     ds.can_sense = d.sensor_ok;
+    if (std::isfinite(d.spec.max_flight_time_s)) {
+      // What is left once the descent at home and two ticks of margin are set aside.
+      const double used = d.mode == Mode::landed ? 0.0 : now_ - d.airborne_since;
+      const double climb = d.mode == Mode::landed ? d.layer_m / d.spec.kinematics.climb_m_s : 0.0;
+      ds.remaining_flight_s = d.spec.max_flight_time_s - used - climb -
+                              d.layer_m / d.spec.kinematics.descent_m_s - 2 * settings_.tick_s;
+    }
     if (d.mode == Mode::held) ds.only_request = -1;
     for (std::size_t r = 0; r < req_task.size(); ++r) {
       if (req_task[r] == d.task) ds.target = static_cast<int>(r);

@@ -325,7 +325,8 @@ double landing_soc(const EnergyFeasibility& e, const EtaModel& eta, const DroneS
 }
 
 double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
-  const double length = norm(to - from);
+  // Level flight: drones fly at their altitude layers, so only the horizontal distance counts.
+  const double length = std::hypot(to.x - from.x, to.y - from.y);
   if (!(length > 0)) return 0.0;
   if (approach_within_m > 0)
     return rest_to_rest_s(length, cruise_m_s, approach_m_s, approach_within_m, accel_m_s2);
@@ -351,6 +352,10 @@ Utility::Utility(const Snapshot& s)
                 (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
                 (dr.can_sense || !s.requests[r].needs_sensor) &&
                 inside_fence(s.fence, s.requests[r].location_m);
+      if (ok && std::isfinite(dr.remaining_flight_s))
+        ok = s.eta.eta_s(dr.position_m, s.requests[r].location_m) + s.requests[r].service_s +
+                 s.eta.eta_s(s.requests[r].location_m, dr.home_m) <=
+             dr.remaining_flight_s;
       if (ok && s.energy)
         ok = landing_soc(*s.energy, s.eta, s.drones[d], s.requests[r]) >=
              s.energy->battery.reserve_soc;

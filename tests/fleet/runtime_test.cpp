@@ -246,7 +246,7 @@ TEST(Runtime, TheMainIsNoVirtualDrone) {
 
 TEST(Runtime, SameSeedSameBytesAcrossApps) {
   for (const App& app : worlds::builtin_apps()) {
-    const std::string kind = app.name == "multiplexing" ? "sites" : app.name;
+    const std::string kind = worlds::app_world_kind(app.name);
     const auto world = worlds::parse_world("kind: " + kind + "\nseed: 3\n", "w.yaml");
     std::vector<DroneSpec> fleet{drone("a"), drone("b", {10, 0, 0})};
     RunSettings s;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "gaussian_process.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/worlds/worlds.hpp"
 
@@ -108,7 +109,111 @@ Co<void> multiplexing_main(Ctx& c) {
   co_await v;
 }
 
+// ---- case 2: wifi map with Gaussian-process cancellation (§5.1.2, Fig. 8) --------------------
+
+struct WifiMap {
+  explicit WifiMap(const RfFieldWorld& w) : gp(w.gp_length_m, w.gp_sigma_f, w.gp_sigma_n_db) {}
+  GaussianProcess gp;
+  std::vector<Vec3> cells;
+  std::vector<fleet::TaskHandle<void>> tasks;
+  std::vector<char> open;  // neither sensed nor cancelled
+};
+
+Co<void> wifi_cell(Ctx& t, std::size_t i, std::shared_ptr<WifiMap> map, double below_db) {
+  t.fly_to(map->cells[i]);
+  const Reading r = co_await t.sense("rssi");
+  map->open[i] = 0;
+  map->gp.add(r.at.x, r.at.y, r.values.at(0));
+  // Cells the map now knows well enough are not worth a flight: cancel them.
+  for (std::size_t j = 0; j < map->cells.size(); ++j)
+    if (map->open[j] && map->gp.predict(map->cells[j].x, map->cells[j].y)[1] < below_db) {
+      map->open[j] = 0;
+      t.cancel(map->tasks[j]);
+    }
+}
+
+Co<void> wifi_main(Ctx& c) {
+  const auto& w = dynamic_cast<const RfFieldWorld&>(c.world());
+  auto map = std::make_shared<WifiMap>(w);
+  double x0 = 1e18, y0 = 1e18;
+  for (const auto& p : w.fence()) x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]);
+  const int nx = std::max(1, static_cast<int>(std::floor(w.width_m / w.cell_m + 1e-9)));
+  const int ny = std::max(1, static_cast<int>(std::floor(w.height_m / w.cell_m + 1e-9)));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      map->cells.push_back({x0 + (i + 0.5) * w.cell_m, y0 + (j + 0.5) * w.cell_m, 0});
+  map->open.assign(map->cells.size(), 1);
+  const Kind cell{"wifi-cell"};
+  for (std::size_t i = 0; i < map->cells.size(); ++i)
+    map->tasks.push_back(c.spawn(cell, {}, wifi_cell, i, map, w.cancel_below_db));
+  int cancelled = 0;
+  for (auto& h : map->tasks) {
+    try {
+      co_await h;
+    } catch (const fleet::TaskCancelled&) {
+      ++cancelled;
+    }
+  }
+  double se = 0;
+  for (const Vec3& p : map->cells) {
+    const double e = map->gp.predict(p.x, p.y)[0] - w.truth_dbm(p.x, p.y);
+    se += e * e;
+  }
+  c.metric("cells", static_cast<double>(map->cells.size()));
+  c.metric("cells_cancelled", cancelled);
+  c.metric("map_rmse_db", std::sqrt(se / static_cast<double>(map->cells.size())));
+}
+
+// ---- case 5: tracking with hand-off (§5.2.2, Fig. 6) ----------------------------------------
+
+Co<void> tracking_main(Ctx& c) {
+  const auto& w = dynamic_cast<const TrackingWorld&>(c.world());
+  const Kind look{"tracking-look"};
+  // Where to look: the last sighting moved on at the walker's estimated velocity (from the last
+  // two sightings), a couple of seconds ahead for the flight there.
+  Vec3 last = w.start();
+  double vx = 0, vy = 0, t_last = 0, seen_s = 0, longest_gap = 0;
+  int looks = 0, hits = 0, handoffs = 0, last_drone = -1;
+  while (c.now_s() < w.duration_s) {
+    const double ahead = std::min(c.now_s() - t_last + 2.0, 10.0);  // beyond: a guess
+    const Vec3 target{last.x + vx * ahead, last.y + vy * ahead, 0};
+    auto h = c.spawn(look, {}, sense_at, target, std::string("camera"));
+    Reading r;
+    try {
+      r = co_await h;
+    } catch (const fleet::ActionFailed&) {
+      continue;  // a lost look: look again
+    }
+    ++looks;
+    if (last_drone >= 0 && r.drone != last_drone) ++handoffs;
+    last_drone = r.drone;
+    if (r.values.size() == 2) {
+      ++hits;
+      if (looks > 1 && r.t_s > t_last) {
+        vx = (r.values[0] - last.x) / (r.t_s - t_last);
+        vy = (r.values[1] - last.y) / (r.t_s - t_last);
+        const double v = std::hypot(vx, vy), cap = w.walker_speed_m_s;
+        if (v > cap) vx *= cap / v, vy *= cap / v;
+      }
+      longest_gap = std::max(longest_gap, r.t_s - seen_s);
+      seen_s = t_last = r.t_s;
+      last = {r.values[0], r.values[1], 0};
+    }
+  }
+  longest_gap = std::max(longest_gap, c.now_s() - seen_s);
+  c.metric("looks", looks);
+  c.metric("tracked_share", looks > 0 ? static_cast<double>(hits) / looks : 0.0);
+  c.metric("longest_gap_s", longest_gap);
+  c.metric("handoffs", handoffs);
+}
+
 }  // namespace
+
+std::string app_world_kind(const std::string& app) {
+  if (app == "multiplexing") return "sites";
+  if (app == "wifi") return "rf_field";
+  return app;
+}
 
 std::vector<fleet::App> builtin_apps() {
   return {
@@ -118,6 +223,12 @@ std::vector<fleet::App> builtin_apps() {
        "case 4 (§5.2.1): a delivery, two photos and a video sharing one drone (world kind sites)",
        multiplexing_main},
       {"road", "case 1 (§5.1.1): trace a road step by step with a road camera", road_main},
+      {"tracking", "case 5 (§5.2.2): follow a walker, handing over between short-flight drones",
+       tracking_main},
+      {"wifi",
+       "case 2 (§5.1.2): map a Wi-Fi field cell by cell, cancelling cells a Gaussian process "
+       "already knows (world kind rf_field)",
+       wifi_main},
   };
 }
 

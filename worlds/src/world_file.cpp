@@ -84,6 +84,69 @@ fleet::Reading SitesWorld::sense(const std::string& name, const Vec3& at, double
   return r;
 }
 
+double RfFieldWorld::truth_dbm(double x, double y) const {
+  double best = -1e9;
+  for (const AccessPoint& a : access_points) {
+    const double d = std::max(1.0, std::hypot(x - a.x_m, y - a.y_m));
+    best = std::max(best, a.p0_dbm - 10.0 * a.exponent * std::log10(d));
+  }
+  // Random Fourier features of the RBF kernel exp(-d²/(2ℓ²)): w ~ N(0, 1/ℓ²), b ~ U(0, 2π),
+  // shadow = σ √(2/M) Σ cos(w·p + b) has that covariance (Rahimi & Recht 2007).
+  double shadow = 0;
+  for (const auto& f : features) shadow += std::cos(f[0] * x + f[1] * y + f[2]);
+  if (!features.empty())
+    shadow *= shadowing_db * std::sqrt(2.0 / static_cast<double>(features.size()));
+  return best + shadow;
+}
+
+fleet::Reading RfFieldWorld::sense(const std::string& name, const Vec3& at, double) const {
+  const SensorSpec& s = sensor(name);
+  fleet::Reading r;
+  r.sensor = name;
+  r.values = {truth_dbm(at.x, at.y) + s.noise * place_noise(name, at.x, at.y)};
+  r.ref = "rssi_dbm";
+  return r;
+}
+
+std::array<double, 2> TrackingWorld::walker_at(double t) const {
+  // Integrated in 1 s steps (the path is smooth over seconds), the last step partial.
+  double x = start_.x, y = start_.y;
+  const int whole = static_cast<int>(std::floor(std::max(0.0, t)));
+  auto heading = [&](double k) {
+    double h = heading0;
+    for (std::size_t i = 0; i < 3; ++i)
+      h += turn_amp[i] * std::sin(turn_freq[i] * k + turn_phase[i]);
+    return h;
+  };
+  // Beyond `area_radius_m` from the start the walker turns home (it walks about a field).
+  auto step_heading = [&](int k) {
+    const double h = heading(k);
+    const double dx = x - start_.x, dy = y - start_.y;
+    if (std::hypot(dx, dy) <= area_radius_m) return h;
+    return std::atan2(-dy, -dx) + 0.5 * std::sin(h);
+  };
+  for (int k = 0; k < whole; ++k) {
+    const double h = step_heading(k);
+    x += walker_speed_m_s * std::cos(h);
+    y += walker_speed_m_s * std::sin(h);
+  }
+  const double f = std::max(0.0, t) - whole;
+  const double h = step_heading(whole);
+  x += f * walker_speed_m_s * std::cos(h);
+  y += f * walker_speed_m_s * std::sin(h);
+  return {x, y};
+}
+
+fleet::Reading TrackingWorld::sense(const std::string& name, const Vec3& at, double t_s) const {
+  sensor(name);
+  const auto w = walker_at(t_s);
+  fleet::Reading r;
+  r.sensor = name;
+  if (std::hypot(w[0] - at.x, w[1] - at.y) <= camera_range_m) r.values = {w[0], w[1]};
+  r.ref = "walker_x_m,walker_y_m (empty: not in sight)";
+  return r;
+}
+
 Vec3 SitesWorld::site(const std::string& name) const {
   for (const auto& [n, p] : sites)
     if (n == name) return p;
@@ -176,9 +239,34 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
       s->handling_s = root.number("handling_s", 5, 0, 3600);
       s->delivery_interruptible = root.flag("delivery_interruptible", true);
       w = std::move(s);
+    } else if (kind == "rf_field") {
+      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "access_points",
+                  "shadowing", "cell_m", "gp", "cancel_below_db"});
+      auto f = std::make_unique<RfFieldWorld>();
+      f->cell_m = root.number("cell_m", 5, 0.5, 1000);
+      f->cancel_below_db = root.number("cancel_below_db", 3, 0, 100);
+      const YamlMap sh = root.map("shadowing");
+      sh.allow({"sigma_db", "correlation_m"});
+      f->shadowing_db = sh.number("sigma_db", 4, 0, 50);
+      f->correlation_m = sh.number("correlation_m", 15, 0.1, 1e4, true);
+      const YamlMap gp = root.map("gp");
+      gp.allow({"length_m", "sigma_f", "sigma_n_db"});
+      f->gp_length_m = gp.number("length_m", 12, 0.1, 1e4, true);
+      f->gp_sigma_f = gp.number("sigma_f", 6, 0, 100, true);
+      f->gp_sigma_n_db = gp.number("sigma_n_db", 2, 0, 100, true);
+      w = std::move(f);
+    } else if (kind == "tracking") {
+      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "walker_speed_m_s",
+                  "camera_range_m", "duration_s", "area_radius_m"});
+      auto t = std::make_unique<TrackingWorld>();
+      t->walker_speed_m_s = root.number("walker_speed_m_s", 1.4, 0, 50);
+      t->camera_range_m = root.number("camera_range_m", 15, 0, 1e4, true);
+      t->duration_s = root.number("duration_s", 300, 1, 86400);
+      t->area_radius_m = root.number("area_radius_m", 60, 1, 1e4);
+      w = std::move(t);
     } else {
       throw InputError(root.where("kind") + ": unknown world kind \"" + kind +
-                       "\"; the kinds are hotspot, road and sites");
+                       "\"; the kinds are hotspot, road, rf_field, sites and tracking");
     }
     w->kind_ = kind;
     w->seed =
@@ -221,6 +309,47 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
         }
       } else {
         r->road_m = random_road(w->seed, w->start_);
+      }
+    } else if (auto* f = dynamic_cast<RfFieldWorld*>(w.get())) {
+      read_sensors(root, *w, {{"rssi", 2.0, 2.0, 0}});
+      if (w->fence_.empty()) w->fence_ = {{0, 0}, {50, 0}, {50, 70}, {0, 70}};
+      double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+      for (const auto& p : w->fence_)
+        x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]), x1 = std::max(x1, p[0]),
+        y1 = std::max(y1, p[1]);
+      f->width_m = x1 - x0;
+      f->height_m = y1 - y0;
+      if (f->width_m / f->cell_m * f->height_m / f->cell_m > 10000)
+        throw InputError(root.where("cell_m") + ": more than 10,000 cells; use larger cells");
+      if (root.has("access_points")) {
+        const YAML::Node aps = doc["access_points"];
+        if (!aps.IsSequence() || aps.size() == 0)
+          throw InputError(root.where("access_points") +
+                           ": a list of {x_m, y_m, p0_dbm, exponent}");
+        for (std::size_t i = 0; i < aps.size(); ++i) {
+          const YamlMap a(aps[i], source, "access_points[" + std::to_string(i) + "]");
+          a.allow({"x_m", "y_m", "p0_dbm", "exponent"});
+          f->access_points.push_back({a.number("x_m", 0, -1e5, 1e5), a.number("y_m", 0, -1e5, 1e5),
+                                      a.number("p0_dbm", -30, -200, 100),
+                                      a.number("exponent", 2.5, 0, 10, true)});
+        }
+      } else {
+        for (int i = 0; i < 2; ++i)
+          f->access_points.push_back({rng.uniform(x0, x1), rng.uniform(y0, y1), -30, 2.5});
+      }
+      auto frng = vehicle::SplitMix64::stream(w->seed, "shadowing");
+      for (int i = 0; i < 64; ++i)
+        f->features.push_back({frng.normal() / f->correlation_m, frng.normal() / f->correlation_m,
+                               frng.uniform(0, 2 * std::numbers::pi)});
+      if (!root.has("start")) w->start_ = {x0, y0, 0};
+    } else if (auto* t = dynamic_cast<TrackingWorld*>(w.get())) {
+      read_sensors(root, *w, {{"camera", 0.5, 0.0, 0}});
+      auto trng = vehicle::SplitMix64::stream(w->seed, "walker");
+      t->heading0 = trng.uniform(0, 2 * std::numbers::pi);
+      for (std::size_t i = 0; i < 3; ++i) {
+        t->turn_amp[i] = trng.uniform(0.1, 0.5);
+        t->turn_freq[i] = trng.uniform(0.01, 0.05);
+        t->turn_phase[i] = trng.uniform(0, 2 * std::numbers::pi);
       }
     } else if (auto* s = dynamic_cast<SitesWorld*>(w.get())) {
       read_sensors(root, *w, {{"camera", 2.0, 0.0, 0}});

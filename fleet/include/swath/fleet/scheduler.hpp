@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -30,6 +31,9 @@ struct DroneState {
   double soc = 1.0;           ///< state of charge, [0, 1]
   Vec3 home_m;                ///< where it lands, local metres
   bool can_sense = true;      ///< false while its sensor has failed (DESIGN.md §18.7)
+  /// Flight time it has left before it must be home, s (max_flight_time_s; infinity: no limit):
+  /// a request it cannot reach, serve and return from in time is infeasible for it.
+  double remaining_flight_s = std::numeric_limits<double>::infinity();
   /// Reserved for a non-interruptible task (DESIGN.md §18.3): only this request (index) may be
   /// given to it; -1 when that task shows none now.
   std::optional<int> only_request;

@@ -92,14 +92,54 @@ class SitesWorld final : public BaseWorld {
   Vec3 site(const std::string& name) const;
 };
 
+/// Case 2 (§5.1.2): a Wi-Fi field: access points with log-distance path loss and a shadowing
+/// field correlated over `correlation_m` (random Fourier features of an RBF kernel: smooth, from
+/// the seed); `rssi` reads the strongest AP plus noise, dBm. App `wifi`: one sensing task per
+/// cell of a `cell_m` grid over the fence; each reading updates a Gaussian process (RBF length
+/// `gp_length_m`, σ_f `gp_sigma_f`, σ_n `gp_sigma_n_db`) and cancels every cell whose posterior
+/// standard deviation fell below `cancel_below_db` (Fig. 8's cancellation).
+class RfFieldWorld final : public BaseWorld {
+ public:
+  fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
+  struct AccessPoint {
+    double x_m, y_m, p0_dbm, exponent;
+  };
+  std::vector<AccessPoint> access_points;
+  double shadowing_db = 4, correlation_m = 15;
+  double cell_m = 5, gp_length_m = 12, gp_sigma_f = 6, gp_sigma_n_db = 2, cancel_below_db = 3;
+  double width_m = 50, height_m = 70;
+  /// The noiseless signal at (x, y), dBm (the map's truth).
+  double truth_dbm(double x_m, double y_m) const;
+  std::vector<std::array<double, 3>> features;  ///< (wx, wy, phase) of the shadowing field
+};
+
+/// Case 5 (§5.2.2): a walker at `walker_speed_m_s` along a smooth random path within
+/// `area_radius_m` of the start; `camera` sees it
+/// within `camera_range_m` (values: its x_m, y_m; empty when out of sight). App `tracking`: fly
+/// to where it was last seen, look, repeat, for `duration_s`; drones with short flights hand
+/// over (the fleet file's max_flight_time_s and recharge_s).
+class TrackingWorld final : public BaseWorld {
+ public:
+  fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
+  double walker_speed_m_s = 1.4, camera_range_m = 15, duration_s = 300;
+  double area_radius_m = 60;  ///< beyond this distance from the start it turns back
+  /// Where the walker is at `t_s`.
+  std::array<double, 2> walker_at(double t_s) const;
+  double heading0 = 0;
+  std::array<double, 3> turn_amp{}, turn_freq{}, turn_phase{};
+};
+
 /// Reads a world file. Throws base::InputError naming `source`, the line and the key.
 /// `seed`: instead of the file's seed (a scenario of the same world; swath-fleet compare).
 std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::string& source,
                                        std::optional<std::uint64_t> seed = {});
 std::unique_ptr<BaseWorld> read_world(const std::string& path);
 
-/// The built-in applications (hotspot, road, multiplexing), each for its world kind.
+/// The built-in applications (hotspot, multiplexing, road, tracking, wifi), each for its world
+/// kind (app_world_kind).
 std::vector<fleet::App> builtin_apps();
+/// The world kind an app runs in ("multiplexing" → "sites", "wifi" → "rf_field", else its name).
+std::string app_world_kind(const std::string& app);
 
 /// Case 4's lower bound: the fastest order of the multiplexing app's segments for one drone from
 /// `home` flying as `k` (rest to rest per leg, service times added), by brute force over every
