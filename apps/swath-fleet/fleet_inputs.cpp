@@ -86,6 +86,9 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;
   p.settings.max_time_s = r.max_time_s;
+  if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
+    throw InputError("unknown scheduler \"" + r.scheduler +
+                     "\": use sa, reactive, greedy, round-robin or hungarian");
   return p;
 }
 

@@ -56,9 +56,11 @@ TEST(BadInput, EveryCaseOfTheCatalogueGivesItsExitCodeMessageAndNoOutput) {
     const std::string command = with_out(c.command, out);
     const bool energy = command.rfind("swath-energy ", 0) == 0;
     const bool control = command.rfind("swath-control ", 0) == 0;
-    const std::string args = command.substr(energy ? 13 : control ? 14 : 6);
+    const bool fleet = command.rfind("swath-fleet ", 0) == 0;
+    const std::string args = command.substr(energy ? 13 : control ? 14 : fleet ? 12 : 6);
     const CliRun run = energy    ? run_swath_energy(args)
                        : control ? run_swath_control(args)
+                       : fleet   ? run_swath_fleet(args)
                                  : run_swath(args);
     const std::string where = "cases.tsv line " + std::to_string(c.line) + ": " + command;
     EXPECT_EQ(run.exit_code, c.exit_code) << where << "\n" << run.err;

@@ -49,6 +49,10 @@ CliRun run_swath_control(const std::string& args) {
   return run_program(SWATH_CONTROL_BINARY, args);
 }
 
+CliRun run_swath_fleet(const std::string& args) {
+  return run_program(SWATH_FLEET_BINARY, args);
+}
+
 CliRun run_program(const std::string& binary, const std::string& args) {
   namespace fs = std::filesystem;
   static int counter = 0;

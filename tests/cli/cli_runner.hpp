@@ -21,6 +21,9 @@ CliRun run_swath_energy(const std::string& args);
 /// run_program() of the built `swath-control`.
 CliRun run_swath_control(const std::string& args);
 
+/// run_program() of the built `swath-fleet`.
+CliRun run_swath_fleet(const std::string& args);
+
 /// A fresh empty directory under the system's temporary directory (removed first if present).
 std::string fresh_dir(const std::string& name);
 

@@ -1,0 +1,155 @@
+// swath-fleet as a user runs it: the bundled case studies give these outputs — the multiplexing
+// case never faster than the brute-force optimal order of its own world, the same bytes for the
+// same seed (also from four processes at once), exit 4 with the files when the app cannot finish,
+// tracks that start at the drones' homes, and compare's intervals recomputed from its own rows.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/worlds/worlds.hpp"
+
+namespace swath::test {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+TEST(FleetCli, MultiplexingCompletesNoFasterThanTheOptimalOrderOfItsWorld) {
+  const std::string out = fresh_dir("fleet-multiplexing");
+  const CliRun run = run_swath_fleet("run multiplexing --world sites -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("multiplexing completed in"), std::string::npos) << run.out;
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  EXPECT_TRUE(summary["completed"].get<bool>());
+  EXPECT_EQ(summary["tasks"]["done"], 5);  // main, delivery, two photos, video
+  const auto world = worlds::read_world(source_path("share/worlds/sites.yaml"));
+  const double optimum = worlds::multiplexing_optimum_s(
+      dynamic_cast<const worlds::SitesWorld&>(*world), {0, 0, 0}, fleet::Kinematics{}, 20);
+  EXPECT_GE(summary["completion_time_s"].get<double>(), optimum);
+  EXPECT_LE(summary["completion_time_s"].get<double>(), 1.5 * optimum);
+  // Every event line is JSON with a time; the times never go back.
+  std::istringstream events(read_text(out + "/events.jsonl"));
+  double last = 0;
+  int lines = 0;
+  for (std::string line; std::getline(events, line); ++lines) {
+    const json e = json::parse(line);
+    ASSERT_GE(e["t_s"].get<double>(), last) << line;
+    last = e["t_s"].get<double>();
+  }
+  EXPECT_GT(lines, 20);
+}
+
+TEST(FleetCli, SameSeedSameBytesFromOneOrFourProcesses) {
+  const std::string base = fresh_dir("fleet-determinism");
+  const std::string args = "run hotspot --world hotspot --drones 2 --seed 4 -o ";
+  ASSERT_EQ(run_swath_fleet(args + base + "/one").exit_code, 0);
+  std::string four = "-c '";
+  for (int i = 0; i < 4; ++i)
+    four += std::string(SWATH_FLEET_BINARY) + " " + args + base + "/p" + std::to_string(i) + " & ";
+  four += "wait'";
+  ASSERT_EQ(run_program("sh", four).exit_code, 0);
+  for (const char* file : {"events.jsonl", "summary.json", "dtg.json", "tracks.geojson"}) {
+    const std::string one = read_text(base + "/one/" + file);
+    ASSERT_FALSE(one.empty()) << file;
+    for (int i = 0; i < 4; ++i)
+      EXPECT_EQ(read_text(base + "/p" + std::to_string(i) + "/" + file), one) << file << " " << i;
+  }
+  // Another seed: another schedule (the scheduler's random numbers), same world.
+  ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --drones 2 --seed 5 -o " + base + "/other")
+                .exit_code,
+            0);
+  EXPECT_NE(read_text(base + "/other/summary.json"), read_text(base + "/one/summary.json"));
+}
+
+TEST(FleetCli, AnAppThatCannotFinishExitsFourWithItsFiles) {
+  const std::string out = fresh_dir("fleet-timeout");
+  const CliRun run = run_swath_fleet(
+      "run tracking --world tracking --fleet share/fleets/tracking-pair.yaml --max-time 30 -o " +
+      out);
+  EXPECT_EQ(run.exit_code, 4) << run.err;
+  EXPECT_NE(run.err.find("did not complete"), std::string::npos) << run.err;
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  EXPECT_FALSE(summary["completed"].get<bool>());
+  EXPECT_LE(summary["end_s"].get<double>(), 30.0 + 1e-9);
+  // Every task still ends exactly once in the log.
+  std::istringstream events(read_text(out + "/events.jsonl"));
+  std::map<int, int> created, ended;
+  for (std::string line; std::getline(events, line);) {
+    const json e = json::parse(line);
+    const std::string ev = e["ev"];
+    if (ev == "task_created") created[e["task"].get<int>()]++;
+    if (ev == "task_done" || ev == "task_cancelled" || ev == "task_failed")
+      ended[e["task"].get<int>()]++;
+  }
+  EXPECT_EQ(created.size(), ended.size());
+  for (const auto& [task, n] : ended) EXPECT_EQ(n, 1) << "task " << task;
+}
+
+TEST(FleetCli, TracksStartAtTheDronesHomes) {
+  const std::string out = fresh_dir("fleet-tracks");
+  ASSERT_EQ(run_swath_fleet(
+                "run tracking --world tracking --fleet share/fleets/tracking-pair.yaml -o " + out)
+                .exit_code,
+            0);
+  const json tracks = json::parse(read_text(out + "/tracks.geojson"));
+  const auto world = worlds::read_world(source_path("share/worlds/tracking.yaml"));
+  const geometry::LocalFrame frame(world->origin);
+  const std::map<std::string, double> home_x{{"left", -5.0}, {"right", 5.0}};
+  int seen = 0;
+  for (const auto& f : tracks["features"]) {
+    if (f["properties"]["role"] != "track") continue;
+    const auto& c = f["geometry"]["coordinates"][0];
+    const geometry::Point2 p = frame.to_local({c[1].get<double>(), c[0].get<double>(), 0});
+    EXPECT_NEAR(p.x, home_x.at(f["properties"]["drone"]), 0.05);
+    EXPECT_NEAR(p.y, 0.0, 0.05);
+    ++seen;
+  }
+  EXPECT_EQ(seen, 2);
+  // Both drones flew (60 s flights hand the walker over) and the summary says how well it went.
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  EXPECT_GT(summary["app_metrics"]["handoffs"].get<double>(), 0);
+  for (const auto& d : summary["drones"]) EXPECT_GT(d["distance_m"].get<double>(), 10.0);
+}
+
+TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
+  const std::string out = fresh_dir("fleet-compare");
+  const CliRun run = run_swath_fleet(
+      "compare multiplexing --world sites --seeds 4 --schedulers reactive,greedy -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream csv(read_text(out + "/compare.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "scheduler,seed,completed,completion_time_s");
+  std::map<std::string, std::vector<double>> times;
+  while (std::getline(csv, line)) {
+    std::istringstream row(line);
+    std::string name, seed, done, t;
+    std::getline(row, name, ',');
+    std::getline(row, seed, ',');
+    std::getline(row, done, ',');
+    std::getline(row, t, ',');
+    EXPECT_EQ(done, "true");
+    times[name].push_back(std::stod(t));
+  }
+  ASSERT_EQ(times["reactive"].size(), 4u);
+  ASSERT_EQ(times["greedy"].size(), 4u);
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  for (const auto& row : summary["schedulers"]) {
+    const auto& x = times[row["scheduler"].get<std::string>()];
+    double mean = 0;
+    for (double v : x) mean += v / 4;
+    double ss = 0;
+    for (double v : x) ss += (v - mean) * (v - mean);
+    EXPECT_NEAR(row["completion_time_s_mean"].get<double>(), mean, 1e-3 + 1e-3);
+    EXPECT_NEAR(row["completion_time_s_ci95"].get<double>(), 3.182 * std::sqrt(ss / 3 / 4), 2e-3);
+  }
+}
+
+}  // namespace
+}  // namespace swath::test
