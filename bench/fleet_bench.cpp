@@ -2,7 +2,13 @@
 // (target: simulated annealing p50 ≤ 20 ms, p99 ≤ 50 ms), beside the exact Hungarian and greedy.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include "swath/fleet/runtime.hpp"
 #include "swath/fleet/scheduler.hpp"
+#include "swath/worlds/worlds.hpp"
 
 namespace swath::fleet {
 namespace {
@@ -40,6 +46,68 @@ BENCHMARK(Decision)
     ->Args({2, 100, 1000})
     ->Args({0, 10, 50})
     ->Unit(benchmark::kMillisecond);
+
+// SA decisions on 50 different 100 × 1,000 snapshots: the distribution DESIGN.md §18.12 bounds
+// (p50 ≤ 20 ms, p99 ≤ 50 ms), as counters.
+void DecisionPercentiles(benchmark::State& st) {
+  std::vector<Snapshot> snapshots;
+  for (int i = 0; i < 50; ++i) {
+    Snapshot s = instance(100, 1000);
+    auto rng = vehicle::SplitMix64::stream(static_cast<std::uint64_t>(i), "shuffle");
+    for (auto& r : s.requests) r.waiting_s = rng.uniform(0, 60);
+    for (auto& d : s.drones) d.position_m.x += rng.uniform(-100, 100);
+    snapshots.push_back(std::move(s));
+  }
+  auto scheduler = make_scheduler("sa");
+  std::vector<double> ms;
+  for (auto _ : st) {
+    ms.clear();
+    for (const Snapshot& s : snapshots) {
+      auto rng = vehicle::SplitMix64::stream(1, "sa");
+      const auto t0 = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(scheduler->assign(s, rng));
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  std::sort(ms.begin(), ms.end());
+  st.counters["p50_ms"] = ms[ms.size() / 2];
+  st.counters["p99_ms"] = ms[ms.size() * 99 / 100];
+}
+BENCHMARK(DecisionPercentiles)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// One whole simulated case study (DESIGN.md §18.12: ≤ 1 s), each bundled world with its app.
+void CaseStudy(benchmark::State& st) {
+  static const char* apps[] = {"road", "wifi", "hotspot", "multiplexing", "tracking"};
+  const std::string app_name = apps[st.range(0)];
+  App app;
+  for (App& a : worlds::builtin_apps())
+    if (a.name == app_name) app = a;
+  std::filesystem::path path = SWATH_SOURCE_DIR;
+  path /= "share/worlds";
+  path /= worlds::app_world_kind(app_name);
+  path += ".yaml";
+  const auto world = worlds::read_world(path.string());
+  std::vector<DroneSpec> drones(2);
+  for (std::size_t i = 0; i < drones.size(); ++i) {
+    drones[i].name = std::string(1, static_cast<char>('a' + i));
+    drones[i].home_m = {3.0 * static_cast<double>(i), 0, 0};
+  }
+  if (app_name == "tracking")
+    for (auto& d : drones) d.max_flight_time_s = 60;
+  RunSettings settings;
+  settings.app_name = app_name;
+  std::size_t events = 0;
+  for (auto _ : st) {
+    const RunRecord r = run_app(app, *world, drones, settings);
+    events =
+        static_cast<std::size_t>(std::count(r.events_jsonl.begin(), r.events_jsonl.end(), '\n'));
+    benchmark::DoNotOptimize(r.completion_time_s);
+  }
+  st.SetLabel(app_name);
+  st.counters["events"] = static_cast<double>(events);
+}
+BENCHMARK(CaseStudy)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace swath::fleet

@@ -12,12 +12,14 @@
 #include "swath/energy/budget.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
+#include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/planning/camera.hpp"
 #include "swath/planning/plan_features.hpp"
 #include "swath/vehicle/drone.hpp"
 #include "swath/vehicle/vehicle_files.hpp"
+#include "swath/worlds/worlds.hpp"
 
 namespace swath::fuzz {
 namespace {
@@ -166,6 +168,20 @@ const std::vector<Target>& targets() {
          });
        },
        {"tests/bad-input/seeds/trigger-data.csv"}},
+      // swath-fleet: world files (every kind) and the fleet file's simulated drones (§18.10).
+      {"world",
+       [](const std::string& t) {
+         expect_input_error_only([&] { worlds::parse_world(t, "fuzz.yaml"); });
+       },
+       {"share/worlds/hotspot.yaml", "share/worlds/road.yaml", "share/worlds/rf_field.yaml",
+        "share/worlds/sites.yaml", "share/worlds/tracking.yaml"}},
+      {"fleet_file",
+       [](const std::string& t) {
+         expect_input_error_only([&] {
+           fleet::parse_fleet_file(t, "fuzz.yaml", {42.3601, -71.0942, 0});
+         });
+       },
+       {"share/fleets/tracking-pair.yaml", "share/fleets/three-quads.yaml"}},
   };
   return all;
 }
