@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "fleet_images.hpp"
+#include "map_furniture.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
@@ -17,9 +19,12 @@ using json = nlohmann::ordered_json;
 void FleetRunCommand::setup(CLI::App& app) {
   add_fleet_options(app, request_, true);
   app.add_option("-o,--output", output_, "Directory for the run's files")->required();
+  app.add_flag("--render", render_, "Also draw tracks.png and gantt.png");
+  app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
 }
 
 int FleetRunCommand::run() {
+  const auto [width_px, height_px] = parse_size(size_);
   PreparedRun p = prepare_run(request_);
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
   base::OutputSet set(output_, "fleet-run");
@@ -28,6 +33,12 @@ int FleetRunCommand::run() {
   set.add("summary.json", summary_json(p, r));
   set.add("tracks.geojson", tracks_geojson(p, r));
   set.add("timing.json", timing_json(r));
+  if (render_) {
+    const FleetPicture tracks = tracks_picture(*p.world, r, width_px, height_px);
+    set.add("tracks.png", render::encode_png(render::draw(tracks.scene, tracks.view)));
+    const FleetPicture gantt = gantt_picture(r, width_px, std::max(200, height_px / 3));
+    set.add("gantt.png", render::encode_png(render::draw(gantt.scene, gantt.view)));
+  }
   set.commit();
   if (r.completed) {
     std::cout << request_.app << " completed in " << base::fixed_text(r.completion_time_s, 1)

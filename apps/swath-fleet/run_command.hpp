@@ -12,14 +12,16 @@ class FleetRunCommand : public Command {
   const char* name() const override { return "run"; }
   const char* description() const override {
     return "Run an application on a simulated fleet; writes events.jsonl, summary.json, "
-           "dtg.json, tracks.geojson and timing.json";
+           "dtg.json, tracks.geojson and timing.json (with --render also tracks.png and "
+           "gantt.png)";
   }
   void setup(CLI::App& app) override;
   int run() override;
 
  private:
   FleetRequest request_;
-  std::string output_;
+  std::string output_, size_ = "1200x900";
+  bool render_ = false;
 };
 
 /// swath-fleet apps: the built-in applications.

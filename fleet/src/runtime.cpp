@@ -527,11 +527,8 @@ void Runtime::integrate(Drone& d, double t) {
     case Mode::landed:
     case Mode::lost:
       break;
-    case Mode::charging: {
-      const double rate = s.recharge_s > 0 ? 1.0 / s.recharge_s : kInf;
-      d.soc = std::min(1.0, d.soc + rate * (b - a));
-      break;
-    }
+    case Mode::charging:
+      break;  // full when charge_end comes
     case Mode::hovering:
     case Mode::acting:
     case Mode::held:
@@ -817,7 +814,7 @@ void Runtime::step_drone(Drone& d, double t) {
                  (3600.0 * d.spec.battery.capacity_ah);
         d.flight_s += down;
         d.pos.z = 0;
-        d.charge_end = t + d.spec.recharge_s * std::max(0.0, 1.0 - d.soc);
+        d.charge_end = t + d.spec.recharge_s;  // a swap or a charge to full (case 5's 30 s)
         set_mode(d, Mode::charging, t);
         changed_ = true;
       }

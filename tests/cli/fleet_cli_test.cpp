@@ -10,8 +10,10 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
+#include "fleet_images.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/render/image.hpp"
 #include "swath/worlds/worlds.hpp"
 
 namespace swath::test {
@@ -148,6 +150,55 @@ TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
     for (double v : x) ss += (v - mean) * (v - mean);
     EXPECT_NEAR(row["completion_time_s_mean"].get<double>(), mean, 1e-3 + 1e-3);
     EXPECT_NEAR(row["completion_time_s_ci95"].get<double>(), 3.182 * std::sqrt(ss / 3 / 4), 2e-3);
+  }
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
+  const auto world = worlds::read_world(source_path("share/worlds/tracking.yaml"));
+  std::vector<fleet::DroneSpec> drones(2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    drones[i].name = std::string(1, static_cast<char>('a' + i));
+    drones[i].home_m = {-5.0 + 10.0 * static_cast<double>(i), 0, 0};
+    drones[i].max_flight_time_s = 60;
+  }
+  fleet::App app;
+  for (auto& a : worlds::builtin_apps())
+    if (a.name == "tracking") app = a;
+  const fleet::RunRecord r = fleet::run_app(app, *world, drones, fleet::RunSettings{});
+  ASSERT_TRUE(r.completed);
+  const int w = 1200, h = 400;
+  const apps::FleetPicture g = apps::gantt_picture(r, w, h);
+  const render::Image gi = render::draw(g.scene, g.view);
+  int checked = 0;
+  for (std::size_t d = 0; d < 2; ++d)
+    for (const auto& s : r.drones[d].spans) {
+      const double x0 = apps::gantt_x_px(s.t0_s, r.end_s, w),
+                   x1 = apps::gantt_x_px(s.t1_s, r.end_s, w);
+      if (s.mode == "landed" || x1 - x0 < 8) continue;  // too thin to sample cleanly
+      const int x = static_cast<int>(0.5 * (x0 + x1)),
+                y = static_cast<int>(apps::gantt_row_centre_px(d, 2, h));
+      const render::Color c = apps::mode_color(s.mode);
+      EXPECT_NEAR(gi.at(x, y, 0), c.r * 255, 3) << s.mode << " at " << s.t0_s;
+      EXPECT_NEAR(gi.at(x, y, 1), c.g * 255, 3) << s.mode << " at " << s.t0_s;
+      EXPECT_NEAR(gi.at(x, y, 2), c.b * 255, 3) << s.mode << " at " << s.t0_s;
+      ++checked;
+    }
+  EXPECT_GT(checked, 10);
+  // Each drone's home square is drawn in its colour where the view puts its home.
+  const apps::FleetPicture t = apps::tracks_picture(*world, r, w, 900);
+  const render::Image ti = render::draw(t.scene, t.view);
+  for (std::size_t d = 0; d < 2; ++d) {
+    const geometry::Point2 p = t.view.to_pixel({drones[d].home_m.x, drones[d].home_m.y});
+    const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+    const render::Color c = apps::drone_color(d);
+    EXPECT_NEAR(ti.at(x, y, 0), c.r * 255, 30) << d;
+    EXPECT_NEAR(ti.at(x, y, 2), c.b * 255, 30) << d;
   }
 }
 

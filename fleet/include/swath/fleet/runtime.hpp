@@ -44,7 +44,7 @@ struct DroneSpec {
   energy::PowerProfile power;
   /// Longest flight before it must be home, s (> 0; case 5's 60 s); infinity: the battery decides.
   double max_flight_time_s = std::numeric_limits<double>::infinity();
-  double recharge_s = 30;  ///< from landing to a full charge at home, s (≥ 0)
+  double recharge_s = 30;  ///< from landing to a full battery at home (a swap or a charge), s (≥ 0)
 };
 
 enum class FaultKind { link_loss, battery_drop, motor_failure, sensor_failure };

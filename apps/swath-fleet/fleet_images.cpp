@@ -1,0 +1,177 @@
+#include "fleet_images.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "map_furniture.hpp"
+#include "swath/base/number_text.hpp"
+
+namespace swath::apps {
+
+using geometry::Point2;
+using render::Color;
+
+namespace {
+const Color kInk{0.1f, 0.1f, 0.1f, 1};
+const Color kFence{0.35f, 0.55f, 0.3f, 1};
+const Color kWorld{0.55f, 0.45f, 0.35f, 1};
+const Color kSensed{0.1f, 0.1f, 0.1f, 1};
+const Color kCancelled{0.6f, 0.6f, 0.6f, 1};
+}  // namespace
+
+render::Color drone_color(std::size_t i) {
+  static const Color colors[] = {{0.1f, 0.3f, 0.85f, 1},  {0.9f, 0.45f, 0.0f, 1},
+                                 {0.55f, 0.1f, 0.65f, 1}, {0.0f, 0.6f, 0.6f, 1},
+                                 {0.8f, 0.1f, 0.3f, 1},   {0.4f, 0.6f, 0.1f, 1}};
+  return colors[i % std::size(colors)];
+}
+
+render::Color mode_color(const std::string& mode) {
+  if (mode == "flying") return {0.2f, 0.45f, 0.9f, 1};
+  if (mode == "acting") return {0.1f, 0.65f, 0.25f, 1};
+  if (mode == "hovering") return {0.75f, 0.75f, 0.75f, 1};
+  if (mode == "held") return {0.95f, 0.8f, 0.2f, 1};
+  if (mode == "returning") return {0.55f, 0.35f, 0.8f, 1};
+  if (mode == "charging") return {0.95f, 0.55f, 0.1f, 1};
+  if (mode == "lost") return {0.85f, 0.1f, 0.1f, 1};
+  if (mode == "unreachable") return {0.4f, 0.1f, 0.1f, 1};
+  return {1, 1, 1, 1};  // landed: the background
+}
+
+FleetPicture tracks_picture(const worlds::BaseWorld& world, const fleet::RunRecord& record,
+                            int width_px, int height_px) {
+  FleetPicture out;
+  render::Scene& scene = out.scene;
+  MapBounds box;
+  for (const auto& p : world.fence()) box.add({p[0], p[1]});
+  for (const auto& d : record.drones)
+    for (const auto& s : d.track) box.add({s[1], s[2]});
+  box.add({world.start().x, world.start().y});
+  // The world's own layer.
+  if (const auto* road = dynamic_cast<const worlds::RoadWorld*>(&world)) {
+    render::Polyline line;
+    for (const auto& p : road->road_m) line.points.push_back({p[0], p[1]}), box.add({p[0], p[1]});
+    line.width_px = 6;
+    line.color = {0.8f, 0.75f, 0.65f, 1};
+    scene.polylines.push_back(line);
+  } else if (const auto* hot = dynamic_cast<const worlds::HotspotWorld*>(&world)) {
+    box.add({hot->source_m.x, hot->source_m.y});
+    scene.markers.push_back({{hot->source_m.x, hot->source_m.y},
+                             18,
+                             {0.85f, 0.1f, 0.1f, 1},
+                             render::MarkerShape::triangle});
+  } else if (const auto* sites = dynamic_cast<const worlds::SitesWorld*>(&world)) {
+    for (const auto& [name, p] : sites->sites) {
+      box.add({p.x, p.y});
+      scene.markers.push_back({{p.x, p.y}, 14, kWorld, render::MarkerShape::square});
+    }
+  } else if (const auto* walk = dynamic_cast<const worlds::TrackingWorld*>(&world)) {
+    render::Polyline line;
+    for (double t = 0; t <= walk->duration_s; t += 1.0) {
+      const auto p = walk->walker_at(t);
+      line.points.push_back({p[0], p[1]});
+      box.add({p[0], p[1]});
+    }
+    line.width_px = 5;
+    line.color = {0.8f, 0.75f, 0.65f, 1};
+    scene.polylines.push_back(line);
+  } else if (const auto* rf = dynamic_cast<const worlds::RfFieldWorld*>(&world)) {
+    for (const auto& a : rf->access_points) {
+      box.add({a.x_m, a.y_m});
+      scene.markers.push_back({{a.x_m, a.y_m}, 16, kWorld, render::MarkerShape::triangle});
+    }
+  }
+  if (box.lo.x > box.hi.x) box.add({0, 0});
+  box.add({box.lo.x - 5, box.lo.y - 5});
+  box.add({box.hi.x + 5, box.hi.y + 5});
+  out.view = render::fit(box.lo, box.hi, width_px, height_px, 60);
+  if (!world.fence().empty()) {
+    render::Polyline f;
+    for (const auto& p : world.fence()) f.points.push_back({p[0], p[1]});
+    f.points.push_back(f.points.front());
+    f.width_px = 2;
+    f.color = kFence;
+    scene.polylines.push_back(f);
+  }
+  for (std::size_t i = 0; i < record.drones.size(); ++i) {
+    render::Polyline line;
+    for (const auto& s : record.drones[i].track) {
+      const Point2 p{s[1], s[2]};
+      if (line.points.empty() ||
+          std::hypot(p.x - line.points.back().x, p.y - line.points.back().y) > 1e-6)
+        line.points.push_back(p);
+    }
+    line.width_px = 2.5;
+    line.color = drone_color(i);
+    line.arrow_every_px = 120;
+    if (line.points.size() >= 2) scene.polylines.push_back(line);
+    if (!record.drones[i].track.empty())
+      scene.markers.push_back(
+          {{record.drones[i].track.front()[1], record.drones[i].track.front()[2]},
+           12,
+           drone_color(i),
+           render::MarkerShape::square});
+  }
+  for (const auto& s : record.served) scene.markers.push_back({{s[1], s[2]}, 7, kSensed});
+  for (const auto& s : record.cancelled) scene.markers.push_back({{s[1], s[2]}, 7, kCancelled});
+  const int text_h = std::max(12, height_px / 50);
+  add_scale_bar(scene, out.view, width_px, height_px, text_h);
+  add_north_arrow(scene, width_px, 40.0, text_h);
+  int y = 24;
+  for (std::size_t i = 0; i < record.drones.size(); ++i, y += text_h + 6)
+    scene.labels.push_back(
+        {12, y, record.drones[i].name, static_cast<double>(text_h), drone_color(i)});
+  return out;
+}
+
+double gantt_x_px(double t_s, double end_s, int width_px) {
+  return 120.0 + (width_px - 150.0) * (end_s > 0 ? t_s / end_s : 0.0);
+}
+
+double gantt_row_centre_px(std::size_t drone, std::size_t drones, int height_px) {
+  const double row = (height_px - 80.0) / static_cast<double>(std::max<std::size_t>(1, drones));
+  return 40.0 + row * (static_cast<double>(drone) + 0.5);
+}
+
+FleetPicture gantt_picture(const fleet::RunRecord& record, int width_px, int height_px) {
+  FleetPicture out;
+  out.view = render::View{1.0, 0.0, 0.0, width_px, height_px};
+  render::Scene& scene = out.scene;
+  const std::size_t n = record.drones.size();
+  const double row = (height_px - 80.0) / static_cast<double>(std::max<std::size_t>(1, n));
+  const int text_h = std::max(12, static_cast<int>(std::min(row * 0.4, 18.0)));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = gantt_row_centre_px(i, n, height_px), h = row * 0.35;
+    for (const auto& s : record.drones[i].spans) {
+      if (s.mode == "landed") continue;
+      const double x0 = gantt_x_px(s.t0_s, record.end_s, width_px);
+      const double x1 = std::max(x0 + 1.0, gantt_x_px(s.t1_s, record.end_s, width_px));
+      scene.screen_polygons.push_back(
+          {{{{x0, c - h}, {x1, c - h}, {x1, c + h}, {x0, c + h}}}, mode_color(s.mode)});
+    }
+    scene.labels.push_back({10, static_cast<int>(c + text_h / 3), record.drones[i].name,
+                            static_cast<double>(text_h), drone_color(i)});
+  }
+  // Time axis with ticks at round seconds.
+  const double y = height_px - 34.0;
+  scene.screen_polylines.push_back({{{120, y}, {width_px - 30.0, y}}, 1.5, kInk, 0});
+  const double step = nice_length(std::max(1.0, record.end_s / 6));
+  for (double t = 0; t <= record.end_s + 1e-9; t += step) {
+    const double x = gantt_x_px(t, record.end_s, width_px);
+    scene.screen_polylines.push_back({{{x, y}, {x, y + 6}}, 1.5, kInk, 0});
+    scene.labels.push_back({static_cast<int>(x) - 10, static_cast<int>(y) + 8 + text_h,
+                            base::fixed_text(t, 0) + " s", static_cast<double>(text_h), kInk});
+  }
+  // Legend along the top.
+  double x = 120;
+  for (const char* m :
+       {"flying", "acting", "hovering", "held", "returning", "charging", "lost", "unreachable"}) {
+    scene.screen_polygons.push_back(
+        {{{{x, 10}, {x + 14, 10}, {x + 14, 24}, {x, 24}}}, mode_color(m)});
+    scene.labels.push_back({static_cast<int>(x) + 18, 23, m, static_cast<double>(text_h), kInk});
+    x += 30 + render::text_extent(m, text_h).width_px;
+  }
+  return out;
+}
+
+}  // namespace swath::apps
