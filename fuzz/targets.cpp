@@ -12,6 +12,8 @@
 #include "swath/energy/budget.hpp"
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
+#include "swath/fleet/event_check.hpp"
+#include "swath/fleet/faults.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
@@ -182,6 +184,15 @@ const std::vector<Target>& targets() {
          });
        },
        {"share/fleets/tracking-pair.yaml", "share/fleets/three-quads.yaml"}},
+      {"faults",
+       [](const std::string& t) {
+         expect_input_error_only([&] { fleet::parse_faults(t, "fuzz.yaml", {"a", "b"}, 3600); });
+       },
+       {"tests/bad-input/seeds/faults-list.yaml", "tests/bad-input/seeds/faults-random.yaml"}},
+      // The checker judges any text and never throws.
+      {"fleet_events",
+       [](const std::string& t) { fleet::check_events(t); },
+       {"tests/bad-input/seeds/fleet-events.jsonl"}},
   };
   return all;
 }

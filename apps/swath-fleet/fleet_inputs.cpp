@@ -6,6 +6,7 @@
 #include "data_dir.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/faults.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/local_frame.hpp"
 
@@ -86,6 +87,11 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;
   p.settings.max_time_s = r.max_time_s;
+  if (!r.faults.empty()) {
+    std::vector<std::string> names;
+    for (const auto& d : p.drones) names.push_back(d.name);
+    p.settings.faults = fleet::read_faults(r.faults, names, r.max_time_s);
+  }
   if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
     throw InputError("unknown scheduler \"" + r.scheduler +
                      "\": use sa, reactive, greedy, round-robin or hungarian");

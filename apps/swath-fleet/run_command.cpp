@@ -7,9 +7,13 @@
 
 #include "fleet_images.hpp"
 #include "map_furniture.hpp"
+#include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/fleet/event_check.hpp"
+
+#include <filesystem>
 
 namespace swath::apps {
 
@@ -49,6 +53,27 @@ int FleetRunCommand::run() {
   std::cerr << "swath-fleet run: " << request_.app << " did not complete: " << r.failure
             << " (files written to " << output_ << ")\n";
   return base::kExitNotCompleted;
+}
+
+void FleetCheckCommand::setup(CLI::App& app) {
+  app.add_option("RUN", run_, "A run's directory (or its events.jsonl)")->required();
+}
+
+int FleetCheckCommand::run() {
+  std::string path = run_;
+  if (std::filesystem::is_directory(path)) path += "/events.jsonl";
+  const fleet::EventCheck c = fleet::check_events(base::read_text_file(path, "event log"));
+  for (const auto& v : c.violations)
+    std::cout << path << ": line " << v.line << ": " << v.rule << ": " << v.message << "\n";
+  std::cout << path << ": " << c.lines << " events, " << c.tasks << " tasks (";
+  bool first = true;
+  for (const auto& [k, n] : c.terminal)
+    std::cout << (first ? "" : ", ") << n << " " << k.substr(5), first = false;
+  std::cout << "), " << c.results << " results, " << c.duplicates << " duplicates dropped, "
+            << c.faults << " faults: "
+            << (c.ok() ? "every rule holds" : std::to_string(c.violations.size()) + " violations")
+            << "\n";
+  return c.ok() ? base::kExitSuccess : base::kExitNotCompleted;
 }
 
 int FleetAppsCommand::run() {

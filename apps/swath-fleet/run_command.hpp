@@ -33,6 +33,22 @@ class FleetAppsCommand : public Command {
   int run() override;
 };
 
+/// swath-fleet check RUN_DIR: the independent judge of a run's events.jsonl (DESIGN.md §18.12).
+class FleetCheckCommand : public Command {
+ public:
+  const char* name() const override { return "check"; }
+  const char* description() const override {
+    return "Check a run's events.jsonl against the rules of DESIGN.md §18.7 (every task ends "
+           "once, no result twice, charge in [0, 1], termination, no lost drone dispatched); "
+           "exit 4 when a rule is broken";
+  }
+  void setup(CLI::App& app) override;
+  int run() override;
+
+ private:
+  std::string run_;
+};
+
 /// swath-fleet compare APP --world W -o DIR: schedulers over seeds, with intervals.
 class FleetCompareCommand : public Command {
  public:

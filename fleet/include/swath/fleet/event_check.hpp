@@ -1,0 +1,41 @@
+#pragma once
+// An independent judge of a run (DESIGN.md §18.12 item 4): reads only events.jsonl — nothing of
+// the runtime — and checks the promises of §18.7. Rules:
+//   R1 the first line is run_start, the last run_end; times finite, ≥ 0, never going back
+//   R2 each task is created once, before anything names it; its parent was created before
+//   R3 each created task has exactly one terminal event (task_done, task_cancelled, task_failed)
+//   R4 after its terminal event nothing names a task but duplicate_result
+//   R5 a result (task, action) is delivered (action_done) at most once; a task's delivered
+//      actions in increasing order
+//   R6 every state of charge in [0, 1]
+//   R7 the run ends by run_start's max_time_s
+//   R8 drones named are run_start's; after a motor_failure nothing is dispatched to it (results
+//      it sent before are still delivered)
+//   R9 a dispatch names a task and segment made visible before
+// Unknown event kinds are ignored, so the runtime may add events.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace swath::fleet {
+
+struct EventViolation {
+  int line = 0;      ///< 1-based line of events.jsonl
+  std::string rule;  ///< "R1" … "R9"
+  std::string message;
+};
+
+struct EventCheck {
+  std::vector<EventViolation> violations;
+  int lines = 0, tasks = 0, results = 0, duplicates = 0, faults = 0;
+  std::map<std::string, int> terminal;  ///< task_done, task_cancelled, task_failed → count
+  bool ok() const { return violations.empty(); }
+};
+
+/// Checks `text` (the whole events.jsonl). Never throws for any input: malformed lines are
+/// violations of R1 naming their line.
+EventCheck check_events(const std::string& text);
+
+}  // namespace swath::fleet
