@@ -176,14 +176,15 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { worlds::parse_world(t, "fuzz.yaml"); });
        },
        {"share/worlds/hotspot.yaml", "share/worlds/road.yaml", "share/worlds/rf_field.yaml",
-        "share/worlds/sites.yaml", "share/worlds/tracking.yaml"}},
+        "share/worlds/sites.yaml", "share/worlds/tracking.yaml", "share/worlds/static.yaml"}},
       {"fleet_file",
        [](const std::string& t) {
          expect_input_error_only([&] {
            fleet::parse_fleet_file(t, "fuzz.yaml", {42.3601, -71.0942, 0});
          });
        },
-       {"share/fleets/tracking-pair.yaml", "share/fleets/three-quads.yaml"}},
+       {"share/fleets/tracking-pair.yaml", "share/fleets/three-quads.yaml",
+        "share/weights/default.yaml"}},
       {"faults",
        [](const std::string& t) {
          expect_input_error_only([&] { fleet::parse_faults(t, "fuzz.yaml", {"a", "b"}, 3600); });

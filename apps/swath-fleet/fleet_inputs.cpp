@@ -17,12 +17,13 @@ using json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
-  app.add_option("APP", r.app,
-                 "The application: hotspot, multiplexing, road, tracking, wifi (swath-fleet apps)")
-      ->required();
   app.add_option(
-         "--world", r.world,
-         "World file, or a bundled world: hotspot, road, rf_field, sites, tracking (share/worlds/)")
+         "APP", r.app,
+         "The application: hotspot, multiplexing, road, static, tracking, wifi (swath-fleet apps)")
+      ->required();
+  app.add_option("--world", r.world,
+                 "World file, or a bundled world: hotspot, road, rf_field, sites, static, tracking "
+                 "(share/worlds/)")
       ->required();
   app.add_option("--fleet", r.fleet,
                  "Fleet file (DESIGN.md §7's, with optional profile, max_flight_time_s, "
@@ -41,6 +42,9 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
   app.add_option("--faults", r.faults,
                  "Faults file: [{t_s, drone, kind, duration_s, soc}] (link_loss, battery_drop, "
                  "motor_failure, sensor_failure)");
+  app.add_option(
+      "--weights", r.weights,
+      "Weights file of the sub-utilities (coverage, fairness, avoid_zigzag, commitment)");
   app.add_option("--max-time", r.max_time_s, "Stop a run that has not completed by then, s")
       ->check(CLI::Range(1.0, 604800.0))
       ->capture_default_str();
@@ -63,7 +67,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     if (a.name == r.app) p.app = std::move(a), found = true;
   if (!found)
     throw InputError("unknown app \"" + r.app +
-                     "\": the apps are hotspot, multiplexing, road, tracking, wifi");
+                     "\": the apps are hotspot, multiplexing, road, static, tracking, wifi");
   p.world_source = world_path(r.world);
   p.world_text = base::read_text_file(p.world_source, "world file");
   p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);
@@ -87,6 +91,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;
   p.settings.max_time_s = r.max_time_s;
+  if (!r.weights.empty()) p.settings.weights = fleet::read_weights(r.weights);
   if (!r.faults.empty()) {
     std::vector<std::string> names;
     for (const auto& d : p.drones) names.push_back(d.name);

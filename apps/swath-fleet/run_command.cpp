@@ -76,6 +76,45 @@ int FleetCheckCommand::run() {
   return c.ok() ? base::kExitSuccess : base::kExitNotCompleted;
 }
 
+void FleetWorldsCommand::setup(CLI::App& app) {
+  app.add_option("ACTION", action_, "gen")->required();
+  app.add_option("KIND", kind_, "hotspot, road, rf_field, sites or tracking")->required();
+  app.add_option("--seed", seed_, "The world's seed")->capture_default_str();
+}
+
+int FleetWorldsCommand::run() {
+  if (action_ != "gen")
+    throw InputError("worlds: unknown action \"" + action_ + "\"; use: worlds gen KIND");
+  const std::string path = world_path(kind_);
+  const auto w = worlds::parse_world(base::read_text_file(path, "world file"), path, seed_);
+  // The bundled file with its seed replaced, then the drawn parts, written out.
+  std::istringstream in(base::read_text_file(path, "world file"));
+  std::ostringstream out;
+  out << "# swath-fleet worlds gen " << kind_ << " --seed " << seed_ << "\n";
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("seed:", 0) == 0) continue;
+    if (line.rfind("#", 0) == 0) continue;
+    out << line << "\n";
+  }
+  out << "seed: " << seed_ << "\n";
+  auto num = [](double v) { return base::fixed_text(v, 3); };
+  if (const auto* h = dynamic_cast<const worlds::HotspotWorld*>(w.get())) {
+    out << "source: {x_m: " << num(h->source_m.x) << ", y_m: " << num(h->source_m.y) << "}\n";
+  } else if (const auto* r = dynamic_cast<const worlds::RoadWorld*>(w.get())) {
+    if (path.find("road") != std::string::npos &&
+        base::read_text_file(path, "world file").find("road:") == std::string::npos) {
+      out << "road:\n";
+      for (const auto& p : r->road_m) out << "  - [" << num(p[0]) << ", " << num(p[1]) << "]\n";
+    }
+  } else if (const auto* s = dynamic_cast<const worlds::SitesWorld*>(w.get())) {
+    out << "sites:\n";
+    for (const auto& [n, p] : s->sites)
+      out << "  " << n << ": {x_m: " << num(p.x) << ", y_m: " << num(p.y) << "}\n";
+  }
+  std::cout << out.str();
+  return base::kExitSuccess;
+}
+
 int FleetAppsCommand::run() {
   for (const fleet::App& a : worlds::builtin_apps())
     std::cout << a.name << "\t" << a.description << "\n";

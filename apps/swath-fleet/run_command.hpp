@@ -49,6 +49,23 @@ class FleetCheckCommand : public Command {
   std::string run_;
 };
 
+/// swath-fleet worlds gen KIND [--seed N]: a world file with its random parts written out.
+class FleetWorldsCommand : public Command {
+ public:
+  const char* name() const override { return "worlds"; }
+  const char* description() const override {
+    return "worlds gen KIND [--seed N]: print a world of KIND (hotspot, road, rf_field, sites, "
+           "tracking) drawn from the seed, its random parts (source, road, access points, sites) "
+           "written out";
+  }
+  void setup(CLI::App& app) override;
+  int run() override;
+
+ private:
+  std::string action_, kind_;
+  std::uint64_t seed_ = 1;
+};
+
 /// swath-fleet compare APP --world W -o DIR: schedulers over seeds, with intervals.
 class FleetCompareCommand : public Command {
  public:

@@ -110,6 +110,33 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
   });
 }
 
+Weights parse_weights(const std::string& text, const std::string& source) {
+  return base::yaml_guard(source, [&] {
+    const YAML::Node doc = base::load_yaml(text, source);
+    if (!doc.IsMap())
+      throw InputError(source + ": a weights file is a YAML mapping (coverage: 1, ...)");
+    const YamlMap m(doc, source, "");
+    if (m.has("speculative") || m.has("avoid_mutual"))
+      throw InputError(
+          m.where(m.has("speculative") ? "speculative" : "avoid_mutual") +
+          ": the forecast terms come with the forecaster (swath-fleet part 2); "
+          "the weights here are coverage, closest, fairness, avoid_zigzag, commitment");
+    m.allow({"coverage", "closest", "fairness", "avoid_zigzag", "commitment"});
+    Weights w;
+    w.coverage = m.number("coverage", w.coverage, 0, 1000);
+    w.fairness = m.number("fairness", w.fairness, 0, 1000);
+    w.avoid_zigzag = m.number("avoid_zigzag", w.avoid_zigzag, 0, 1000);
+    w.commitment = m.number("commitment", w.commitment, 0, 1000);
+    if (m.has("closest") && m.number("closest", 1, 0, 1000) != 1.0)
+      throw InputError(m.where("closest") + ": closest is fixed at 1 (scale the others instead)");
+    return w;
+  });
+}
+
+Weights read_weights(const std::string& path) {
+  return parse_weights(base::read_text_file(path, "weights file"), path);
+}
+
 std::vector<DroneSpec> read_fleet_file(const std::string& path, const geometry::GeoPoint& origin) {
   return parse_fleet_file(base::read_text_file(path, "fleet file"), path, origin);
 }

@@ -1,6 +1,7 @@
 // No task is lost (DESIGN.md §18.7, §18.12 item 4): 1,000 random fault schedules over the five
-// case-study apps, each run's events.jsonl judged by the checker that reads nothing else; the
-// checker itself must catch every single-rule break of a real log; the faults file reader.
+// case-study apps and `static`, each run's events.jsonl judged by the checker that reads nothing
+// else; the checker itself must catch every single-rule break of a real log; the faults file
+// reader.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -24,6 +25,13 @@ const char* small_world(const std::string& app) {
   if (app == "road") return "kind: road\nseed: 2\nsteps: 6\n";
   if (app == "wifi") return "kind: rf_field\nseed: 2\nfence: {width_m: 20, height_m: 20}\n";
   if (app == "tracking") return "kind: tracking\nseed: 2\nduration_s: 90\n";
+  if (app == "static")
+    return "kind: static\ntasks:\n"
+           "  - {name: a, same_drone: true, actions: [{fly_to: {x_m: 30, y_m: 0}}, {sense: cam},"
+           " {fly_to: {x_m: 0, y_m: 40}}, {hover: 3}]}\n"
+           "  - {name: b, after: [a], interruptible: false, actions: [{fly_to: {x_m: -20, y_m: 5}},"
+           " {custom: {name: x, s: 2}}, {fly_to: {x_m: -30, y_m: 5}}, {sense: cam}]}\n"
+           "  - {name: c, actions: [{fly_to: {x_m: 10, y_m: -30}}, {sense: cam}]}\n";
   return "kind: sites\nseed: 2\narea_m: 120\n";
 }
 
@@ -45,7 +53,7 @@ TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
   const std::vector<FaultKind> kinds{FaultKind::link_loss, FaultKind::battery_drop,
                                      FaultKind::motor_failure, FaultKind::sensor_failure};
   std::vector<App> apps = worlds::builtin_apps();
-  ASSERT_EQ(apps.size(), 5u);
+  ASSERT_EQ(apps.size(), 6u);  // the five case studies and `static`
   int violations = 0, runs = 0, faults = 0, duplicates = 0, failed_tasks = 0, completed = 0;
   // 1,000 schedules; 200 under the sanitizers (they check memory, not counts; ~10x slower).
 #ifdef SWATH_SANITIZED

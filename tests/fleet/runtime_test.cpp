@@ -247,7 +247,11 @@ TEST(Runtime, TheMainIsNoVirtualDrone) {
 TEST(Runtime, SameSeedSameBytesAcrossApps) {
   for (const App& app : worlds::builtin_apps()) {
     const std::string kind = worlds::app_world_kind(app.name);
-    const auto world = worlds::parse_world("kind: " + kind + "\nseed: 3\n", "w.yaml");
+    const std::string tasks =
+        kind == "static" ? "tasks: [{name: a, actions: [{fly_to: {x_m: 9, y_m: 9}}, {sense: c}]},"
+                           " {name: b, after: [a], actions: [{fly_to: {x_m: 0, y_m: 9}}]}]\n"
+                         : "";
+    const auto world = worlds::parse_world("kind: " + kind + "\nseed: 3\n" + tasks, "w.yaml");
     std::vector<DroneSpec> fleet{drone("a"), drone("b", {10, 0, 0})};
     RunSettings s;
     s.app_name = app.name;

@@ -207,6 +207,66 @@ Co<void> tracking_main(Ctx& c) {
   c.metric("handoffs", handoffs);
 }
 
+// ---- static: tasks from a file (DESIGN.md §18.2) ---------------------------------------------
+
+struct StaticRun {
+  std::vector<fleet::TaskHandle<void>> handles;
+};
+
+Co<void> static_task(Ctx& t, const StaticWorld::Task* task, std::shared_ptr<StaticRun> run) {
+  for (std::size_t a : task->after) co_await run->handles[a];
+  fleet::Future<Reading> last;
+  for (const auto& s : task->steps) {
+    switch (s.type) {
+      case 0:
+        last = t.fly_to(s.to);
+        break;
+      case 1:
+        last = t.sense(s.name);
+        break;
+      case 2:
+        last = t.hover(s.seconds);
+        break;
+      default:
+        last = t.custom(s.name, s.seconds);
+        break;
+    }
+  }
+  co_await last;
+}
+
+Co<void> static_main(Ctx& c) {
+  const auto& w = dynamic_cast<const StaticWorld&>(c.world());
+  auto run = std::make_shared<StaticRun>();
+  run->handles.resize(w.tasks.size());
+  // Spawned in an order where every task's predecessors exist first (the file has no cycle).
+  std::vector<char> spawned(w.tasks.size(), 0);
+  for (std::size_t done = 0; done < w.tasks.size();) {
+    for (std::size_t i = 0; i < w.tasks.size(); ++i) {
+      if (spawned[i]) continue;
+      if (std::any_of(w.tasks[i].after.begin(), w.tasks[i].after.end(),
+                      [&](std::size_t a) { return !spawned[a]; }))
+        continue;
+      run->handles[i] =
+          c.spawn(Kind{w.tasks[i].kind}, w.tasks[i].flags, static_task, &w.tasks[i], run);
+      spawned[i] = 1;
+      ++done;
+    }
+  }
+  int failed = 0;
+  for (auto& h : run->handles) {
+    try {
+      co_await h;
+    } catch (const fleet::ActionFailed&) {
+      ++failed;
+    } catch (const fleet::TaskCancelled&) {
+      ++failed;
+    }
+  }
+  c.metric("tasks", static_cast<double>(w.tasks.size()));
+  c.metric("tasks_failed", failed);
+}
+
 }  // namespace
 
 std::string app_world_kind(const std::string& app) {
@@ -223,6 +283,10 @@ std::vector<fleet::App> builtin_apps() {
        "case 4 (§5.2.1): a delivery, two photos and a video sharing one drone (world kind sites)",
        multiplexing_main},
       {"road", "case 1 (§5.1.1): trace a road step by step with a road camera", road_main},
+      {"static",
+       "tasks from a world file (kind static): fly, sense, hover, custom, in order after their "
+       "predecessors",
+       static_main},
       {"tracking", "case 5 (§5.2.2): follow a walker, handing over between short-flight drones",
        tracking_main},
       {"wifi",

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -147,6 +148,15 @@ fleet::Reading TrackingWorld::sense(const std::string& name, const Vec3& at, dou
   return r;
 }
 
+fleet::Reading StaticWorld::sense(const std::string& name, const Vec3& at, double) const {
+  sensor(name);
+  fleet::Reading r;
+  r.sensor = name;
+  r.values = {at.x, at.y};
+  r.ref = "x_m,y_m";
+  return r;
+}
+
 Vec3 SitesWorld::site(const std::string& name) const {
   for (const auto& [n, p] : sites)
     if (n == name) return p;
@@ -203,6 +213,107 @@ std::vector<std::array<double, 2>> random_road(std::uint64_t seed, Vec3 start) {
     out.push_back({x, y});
   }
   return out;
+}
+
+void read_static_tasks(const YAML::Node& doc, const YamlMap& root, const std::string& source,
+                       StaticWorld& w) {
+  const YAML::Node list = doc["tasks"];
+  if (!list || !list.IsSequence() || list.size() == 0)
+    throw InputError(root.where("tasks") + ": a static world lists its tasks under 'tasks:'");
+  if (list.size() > 10000) throw InputError(root.where("tasks") + ": more than 10,000 tasks");
+  std::map<std::string, std::size_t> index;
+  std::vector<std::vector<std::string>> after_names;
+  std::vector<std::string> after_where;
+  // Sensors: those listed, else a 2 s default for any sensor a task names.
+  std::set<std::string> named;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string place = "tasks[" + std::to_string(i) + "]";
+    if (!list[i].IsMap())
+      throw InputError(source + ": " + base::yaml_line(list[i]) + ": " + place +
+                       " is not a mapping");
+    const YamlMap m(list[i], source, place);
+    m.allow({"name", "kind", "same_drone", "interruptible", "after", "actions"});
+    StaticWorld::Task t;
+    t.name = m.text("name", "task-" + std::to_string(i + 1));
+    t.kind = m.text("kind", t.name);
+    t.flags.same_drone = m.flag("same_drone", false);
+    t.flags.interruptible = m.flag("interruptible", true);
+    if (!index.emplace(t.name, i).second)
+      throw InputError(m.where("name") + ": the task name \"" + t.name + "\" is given twice");
+    std::vector<std::string> after;
+    if (const YAML::Node a = list[i]["after"]) {
+      if (!a.IsSequence()) throw InputError(m.where("after") + ": a list of task names");
+      for (const auto& n : a) after.push_back(n.as<std::string>());
+    }
+    after_names.push_back(after);
+    after_where.push_back(m.where("after"));
+    const YAML::Node acts = list[i]["actions"];
+    if (!acts || !acts.IsSequence() || acts.size() == 0)
+      throw InputError(m.where("actions") + ": a task needs a list of actions");
+    for (std::size_t k = 0; k < acts.size(); ++k) {
+      const std::string ap = place + ".actions[" + std::to_string(k) + "]";
+      if (!acts[k].IsMap() || acts[k].size() != 1)
+        throw InputError(source + ": " + base::yaml_line(acts[k]) + ": " + ap +
+                         " is one of {fly_to: {x_m, y_m, alt_m}}, {sense: SENSOR}, {hover: S}, "
+                         "{custom: {name, s}}");
+      const YamlMap am(acts[k], source, ap);
+      StaticWorld::Step step;
+      if (am.has("fly_to")) {
+        const YamlMap p = am.map("fly_to");
+        p.allow({"x_m", "y_m", "alt_m"});
+        step.type = 0;
+        step.to = {p.number("x_m", 0, -1e5, 1e5), p.number("y_m", 0, -1e5, 1e5),
+                   p.number("alt_m", 0, 0, 500)};
+      } else if (am.has("sense")) {
+        step.type = 1;
+        step.name = am.text("sense", "");
+        if (step.name.empty()) throw InputError(am.where("sense") + ": name the sensor");
+        named.insert(step.name);
+      } else if (am.has("hover")) {
+        step.type = 2;
+        step.seconds = am.number("hover", 0, 0, 86400);
+      } else if (am.has("custom")) {
+        const YamlMap c = am.map("custom");
+        c.allow({"name", "s"});
+        step.type = 3;
+        step.name = c.text("name", "custom");
+        step.seconds = c.number("s", 0, 0, 86400);
+      } else {
+        am.allow({"fly_to", "sense", "hover", "custom"});
+      }
+      t.steps.push_back(step);
+    }
+    w.tasks.push_back(std::move(t));
+  }
+  for (std::size_t i = 0; i < w.tasks.size(); ++i)
+    for (const std::string& n : after_names[i]) {
+      const auto it = index.find(n);
+      if (it == index.end()) throw InputError(after_where[i] + ": no task named \"" + n + "\"");
+      if (it->second == i) throw InputError(after_where[i] + ": a task cannot come after itself");
+      w.tasks[i].after.push_back(it->second);
+    }
+  // No cycle: a topological order must exist (Kahn).
+  std::vector<int> indegree(w.tasks.size(), 0);
+  for (std::size_t i = 0; i < w.tasks.size(); ++i)
+    indegree[i] = static_cast<int>(w.tasks[i].after.size());
+  std::vector<std::size_t> ready;
+  for (std::size_t i = 0; i < indegree.size(); ++i)
+    if (indegree[i] == 0) ready.push_back(i);
+  std::size_t seen = 0;
+  while (!ready.empty()) {
+    const std::size_t i = ready.back();
+    ready.pop_back();
+    ++seen;
+    for (std::size_t j = 0; j < w.tasks.size(); ++j)
+      for (std::size_t a : w.tasks[j].after)
+        if (a == i && --indegree[j] == 0) ready.push_back(j);
+  }
+  if (seen != w.tasks.size())
+    throw InputError(root.where("tasks") + ": the tasks' 'after' lists form a cycle");
+  for (const std::string& n : named)
+    if (std::none_of(w.sensors.begin(), w.sensors.end(),
+                     [&](const SensorSpec& x) { return x.name == n; }))
+      w.sensors.push_back({n, 2.0, 0.0, 0});
 }
 
 }  // namespace
@@ -264,9 +375,12 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
       t->duration_s = root.number("duration_s", 300, 1, 86400);
       t->area_radius_m = root.number("area_radius_m", 60, 1, 1e4);
       w = std::move(t);
+    } else if (kind == "static") {
+      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "tasks"});
+      w = std::make_unique<StaticWorld>();
     } else {
       throw InputError(root.where("kind") + ": unknown world kind \"" + kind +
-                       "\"; the kinds are hotspot, road, rf_field, sites and tracking");
+                       "\"; the kinds are hotspot, road, rf_field, sites, tracking and static");
     }
     w->kind_ = kind;
     w->seed =
@@ -319,8 +433,15 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
         y1 = std::max(y1, p[1]);
       f->width_m = x1 - x0;
       f->height_m = y1 - y0;
-      if (f->width_m / f->cell_m * f->height_m / f->cell_m > 10000)
-        throw InputError(root.where("cell_m") + ": more than 10,000 cells; use larger cells");
+      // The app's Gaussian process refits on every reading (O(n³)) and predicts every open cell:
+      // beyond ~600 cells a run takes minutes, so larger maps are refused.
+      if (std::floor(f->width_m / f->cell_m + 1e-9) * std::floor(f->height_m / f->cell_m + 1e-9) >
+          600)
+        throw InputError(
+            root.where("cell_m") + ": more than 600 cells (" +
+            std::to_string(static_cast<long long>(std::floor(f->width_m / f->cell_m + 1e-9) *
+                                                  std::floor(f->height_m / f->cell_m + 1e-9))) +
+            "); use larger cells or a smaller fence");
       if (root.has("access_points")) {
         const YAML::Node aps = doc["access_points"];
         if (!aps.IsSequence() || aps.size() == 0)
@@ -351,6 +472,12 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
         t->turn_freq[i] = trng.uniform(0.01, 0.05);
         t->turn_phase[i] = trng.uniform(0, 2 * std::numbers::pi);
       }
+    } else if (auto* st = dynamic_cast<StaticWorld*>(w.get())) {
+      std::vector<SensorSpec> listed;  // a static world's sensors are whatever it lists
+      if (const YAML::Node sn = doc["sensors"]; sn && sn.IsMap())
+        for (const auto& kv : sn) listed.push_back({kv.first.as<std::string>(), 2.0, 0.0, 0});
+      read_sensors(root, *w, listed);
+      read_static_tasks(doc, root, source, *st);
     } else if (auto* s = dynamic_cast<SitesWorld*>(w.get())) {
       read_sensors(root, *w, {{"camera", 2.0, 0.0, 0}});
       const double area = root.number("area_m", 200, 0, 1e5, true);

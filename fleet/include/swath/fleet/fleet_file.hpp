@@ -27,4 +27,14 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
                                         const geometry::GeoPoint& origin);
 std::vector<DroneSpec> read_fleet_file(const std::string& path, const geometry::GeoPoint& origin);
 
+/// A weights file (DESIGN.md §18.5): the sub-utilities' weights by name —
+///   coverage: 1.0       # × H per assigned request
+///   fairness: 0.5       # per second a request has waited
+///   avoid_zigzag: 0.0   # seconds per metre from the requests' centre
+///   commitment: 5.0     # seconds for a drone keeping its target
+///   closest: 1          # fixed at 1 (the argmax ignores scale)
+/// each in [0, 1000]; absent keys keep the defaults. Throws base::InputError naming the key.
+Weights parse_weights(const std::string& text, const std::string& source);
+Weights read_weights(const std::string& path);
+
 }  // namespace swath::fleet

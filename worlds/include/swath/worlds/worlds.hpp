@@ -129,14 +129,50 @@ class TrackingWorld final : public BaseWorld {
   std::array<double, 3> turn_amp{}, turn_freq{}, turn_phase{};
 };
 
+/// Static work from a file (DESIGN.md §18.2: declarative files only for work that does not
+/// depend on readings). App `static`: each task starts once the tasks it comes `after` are done,
+/// queues its actions and ends with the last. World file:
+///   kind: static
+///   sensors: {camera: {time_s: 2}}
+///   tasks:
+///     - name: north-photo
+///       kind: photo                 # the logic task (default: the name)
+///       same_drone: false           # binding flags (DESIGN.md §18.3)
+///       interruptible: true
+///       after: [pickup]             # names of tasks that must be done first
+///       actions:
+///         - fly_to: {x_m: 10, y_m: 40, alt_m: 0}   # alt_m 0: the drone's altitude layer
+///         - sense: camera
+///         - hover: 5                # seconds
+///         - custom: {name: drop, s: 3}
+/// Names are unique; `after` names earlier or later tasks but no cycle; `sense` names a sensor of
+/// the file (any name gets a 2 s default sensor when `sensors` does not list it).
+class StaticWorld final : public BaseWorld {
+ public:
+  fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
+  struct Step {
+    int type = 0;  ///< 0 fly_to, 1 sense, 2 hover, 3 custom (fleet::Ctx's actions)
+    Vec3 to;
+    std::string name;
+    double seconds = 0;
+  };
+  struct Task {
+    std::string name, kind;
+    fleet::Flags flags;
+    std::vector<std::size_t> after;  ///< indices into tasks
+    std::vector<Step> steps;
+  };
+  std::vector<Task> tasks;
+};
+
 /// Reads a world file. Throws base::InputError naming `source`, the line and the key.
 /// `seed`: instead of the file's seed (a scenario of the same world; swath-fleet compare).
 std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::string& source,
                                        std::optional<std::uint64_t> seed = {});
 std::unique_ptr<BaseWorld> read_world(const std::string& path);
 
-/// The built-in applications (hotspot, multiplexing, road, tracking, wifi), each for its world
-/// kind (app_world_kind).
+/// The built-in applications (hotspot, multiplexing, road, static, tracking, wifi), each for its
+/// world kind (app_world_kind).
 std::vector<fleet::App> builtin_apps();
 /// The world kind an app runs in ("multiplexing" → "sites", "wifi" → "rf_field", else its name).
 std::string app_world_kind(const std::string& app);
