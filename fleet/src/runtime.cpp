@@ -905,6 +905,14 @@ void Runtime::schedule() {
       first.power.payload_w;
   e.hover_power_w = hover_power_w(first);
   s.energy = e;
+  // First come, first served (§18.3): a drone acting, held or bound for a place reserves a 5 m
+  // disc around it; other tasks' requests inside wait until it leaves.
+  std::vector<std::pair<Vec3, int>> discs;
+  for (const Drone& d : drones_) {
+    if (d.mode == Mode::acting || d.mode == Mode::held)
+      discs.push_back({d.pos, d.mode == Mode::acting ? d.task : d.held_for});
+    if (d.mode == Mode::flying && d.task >= 0 && d.leg) discs.push_back({d.leg->to(), d.task});
+  }
   for (Task& t : tasks_) {
     if (!t.has_work()) continue;
     if (t.serving >= 0 && drones_[static_cast<std::size_t>(t.serving)].mode != Mode::flying)
@@ -912,6 +920,12 @@ void Runtime::schedule() {
     const std::size_t h = t.head();
     Request r;
     r.location_m = t.actions[h].type == ActionType::fly_to ? t.actions[h].to : t.location;
+    if (std::any_of(discs.begin(), discs.end(), [&](const std::pair<Vec3, int>& disc) {
+          return disc.second != t.id &&
+                 std::hypot(disc.first.x - r.location_m.x, disc.first.y - r.location_m.y) <
+                     settings_.disc_m;
+        }))
+      continue;
     for (std::size_t i = h; i < t.actions.size(); ++i) {
       if (i > h && t.actions[i].type == ActionType::fly_to) break;
       r.service_s += t.actions[i].duration_s;
@@ -972,10 +986,22 @@ void Runtime::schedule() {
       assignment.push_back(
           json{{"drone", drone_of[i]}, {"task", req_task[static_cast<std::size_t>(*a[i])]}});
   log(json{{"ev", "schedule"}, {"assignment", assignment}});
-  // Apply the difference.
+  // Apply the difference. Two requests of this round inside one disc: the first (by drone) goes.
+  std::vector<Vec3> claimed;
   for (std::size_t i = 0; i < a.size(); ++i) {
     Drone& d = drones_[static_cast<std::size_t>(drone_of[i])];
-    const int want = a[i] ? req_task[static_cast<std::size_t>(*a[i])] : -1;
+    int want = a[i] ? req_task[static_cast<std::size_t>(*a[i])] : -1;
+    if (want >= 0) {
+      const Vec3 at = s.requests[static_cast<std::size_t>(*a[i])].location_m;
+      if (std::any_of(claimed.begin(), claimed.end(), [&](const Vec3& c) {
+            return std::hypot(c.x - at.x, c.y - at.y) < settings_.disc_m;
+          })) {
+        want = d.task;  // keeps what it had; the request waits for the disc
+        changed_ = true;
+      } else {
+        claimed.push_back(at);
+      }
+    }
     if (want == d.task) continue;
     if (d.task >= 0) {  // retargeted or stopped on the way
       Task& old = tasks_[static_cast<std::size_t>(d.task)];

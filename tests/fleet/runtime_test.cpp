@@ -290,3 +290,35 @@ TEST(Runtime, MultiplexingIsNeverFasterThanTheOptimalOrder) {
 
 }  // namespace
 }  // namespace swath::fleet
+
+namespace swath::fleet {
+namespace {
+
+TEST(Runtime, AnyReturnsTheFirstToEndAndDiscsAreFirstComeFirstServed) {
+  const ProbeWorld world;
+  std::size_t first = 99;
+  App app{"any", "", [&first](Ctx& c) -> Co<void> {
+            const Kind probe{"probe"};
+            std::vector<TaskHandle<Reading>> hs;
+            hs.push_back(c.spawn(probe, {}, probe_at, Vec3{400, 0, 0}));
+            hs.push_back(c.spawn(probe, {}, probe_at, Vec3{0, 60, 0}));  // nearest: ends first
+            hs.push_back(c.spawn(probe, {}, probe_at, Vec3{0, 61, 0}));  // inside its 5 m disc
+            first = co_await any(hs);
+            co_await all(hs);
+          }};
+  const RunRecord r = run_app(
+      app, world, {drone("a"), drone("b", {5, 0, 0}), drone("c", {-5, 0, 0})}, RunSettings{});
+  ASSERT_TRUE(r.completed) << r.failure;
+  EXPECT_EQ(first, 1u);
+  // Task 3 (at 0, 61) is dispatched only once task 2's drone has finished at (0, 60).
+  double sensed_2 = -1, dispatched_3 = -1;
+  for (const auto& e : events(r)) {
+    if (e["ev"] == "action_done" && e["task"] == 2 && e["action"] == 1) sensed_2 = e["t_s"];
+    if (e["ev"] == "dispatch" && e["task"] == 3 && dispatched_3 < 0) dispatched_3 = e["t_s"];
+  }
+  ASSERT_GT(sensed_2, 0);
+  EXPECT_GE(dispatched_3, sensed_2 - 0.1 - 1e-9);  // released at completion, delivered a tick on
+}
+
+}  // namespace
+}  // namespace swath::fleet

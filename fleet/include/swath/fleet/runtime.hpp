@@ -71,6 +71,7 @@ struct RunSettings {
   double no_feasible_s = 600;    ///< a request no drone can take fails after this, s
   double layer_base_m = 20;      ///< altitude of drone 0's layer, m
   double layer_step_m = 3;       ///< between layers, m
+  double disc_m = 5;  ///< radius a drone at or bound for a place reserves (first come), m
   Weights weights;
   std::vector<FaultEvent> faults;  ///< sorted or not; applied in (t_s, drone) order
 };

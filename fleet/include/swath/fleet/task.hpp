@@ -133,6 +133,7 @@ class TaskHandle {
   bool ready() const { return state_ && state_->ready; }
   detail::StateAwaiter<T> operator co_await() const { return {state_, core_}; }
   const std::shared_ptr<detail::State<T>>& state() const { return state_; }
+  detail::Core* core() const { return core_; }
 
  private:
   int id_ = -1;
@@ -324,13 +325,47 @@ class Ctx {
   bool acts_;
 };
 
-/// Awaits every handle in order; their values in the same order.
+/// Awaits every handle in order; their values in the same order (DESIGN.md §18.2's `all`).
 template <class T>
 Co<std::vector<T>> all(std::vector<TaskHandle<T>> hs) {
   std::vector<T> out;
   out.reserve(hs.size());
   for (auto& h : hs) out.push_back(co_await h);
   co_return out;
+}
+
+namespace detail {
+/// Suspends until the first of several states is ready; resumes once (a shared `armed` flag).
+struct AnyAwaiter {
+  std::vector<std::shared_ptr<StateBase>> states;
+  Core* core;
+  bool await_ready() const noexcept {
+    for (const auto& s : states)
+      if (s->ready) return true;
+    return states.empty();
+  }
+  void await_suspend(std::coroutine_handle<> h) {
+    auto armed = std::make_shared<bool>(true);
+    for (const auto& s : states) core->suspended(core->current_task(), *s, h, armed);
+  }
+  std::size_t await_resume() const noexcept {
+    for (std::size_t i = 0; i < states.size(); ++i)
+      if (states[i]->ready) return i;
+    return states.size();
+  }
+};
+}  // namespace detail
+
+/// Waits for the first of `hs` to end (done, failed or cancelled) and returns its index; await
+/// that handle for its value or error. Returns hs.size() for an empty list.
+template <class T>
+Co<std::size_t> any(std::vector<TaskHandle<T>> hs) {
+  detail::AnyAwaiter a;
+  for (const auto& h : hs) {
+    a.states.push_back(h.state());
+    a.core = h.core();
+  }
+  co_return co_await a;
 }
 
 }  // namespace swath::fleet
