@@ -109,6 +109,33 @@ void CaseStudy(benchmark::State& st) {
 }
 BENCHMARK(CaseStudy)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
+// The cost of one tick with nothing to schedule (DESIGN.md §18.12: idle tick ≤ 20 µs): an app
+// whose main waits 0.1 s of computation 10,000 times beside ten idle drones, so every tick has
+// one event and no request; time per tick = run time / 10,000.
+void IdleTick(benchmark::State& st) {
+  class Empty final : public World {
+   public:
+    std::string kind() const override { return "empty"; }
+    Vec3 start() const override { return {}; }
+    double sense_time_s(const std::string&) const override { return 1; }
+    Reading sense(const std::string&, const Vec3&, double) const override { return {}; }
+  } world;
+  App app{"idle", "", [](Ctx& c) -> Co<void> {
+            for (int i = 0; i < 10'000; ++i) co_await c.compute([] { return 0; }, 0.1);
+          }};
+  std::vector<DroneSpec> drones(10);
+  for (std::size_t i = 0; i < drones.size(); ++i)
+    drones[i].name = std::string(1, static_cast<char>('a' + i));
+  RunSettings settings;
+  settings.state_period_s = 1e9;  // no drone_state lines: the tick alone
+  settings.max_time_s = 1e5;
+  for (auto _ : st)
+    benchmark::DoNotOptimize(run_app(app, world, drones, settings).completion_time_s);
+  st.counters["ticks_per_s"] =
+      benchmark::Counter(1e4, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(IdleTick)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace swath::fleet
 BENCHMARK_MAIN();
