@@ -170,6 +170,9 @@ const std::vector<Target>& targets() {
          });
        },
        {"tests/bad-input/seeds/trigger-data.csv"}},
+      // GIS areas: WKT through OGR's parser, then swath's checks (DESIGN.md §15).
+      {"ogr_wkt", [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
+       {"tests/bad-input/seeds/field.wkt"}},
       // swath-fleet: world files (every kind) and the fleet file's simulated drones (§18.10).
       {"world",
        [](const std::string& t) {

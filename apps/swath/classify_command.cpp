@@ -155,8 +155,11 @@ void print_text(const Field& field, const geometry::AreaFacts& facts) {
 }  // namespace
 
 void ClassifyCommand::setup(CLI::App& app) {
-  app.add_option("FIELD", field_path_, "Area file: .geojson/.json (lon, lat), .kml, or .csv")
+  app.add_option("FIELD", field_path_,
+                 "Area file: .geojson/.json (lon, lat), .kml, .csv, or any GIS file GDAL reads "
+                 "(.shp, .zip, .gpkg, .kmz, .gpx, .fgb, .gml, .wkt; projected ones reprojected)")
       ->required();
+  area_choice_.add_options(app);
   app.add_flag("--json", json_, "Print one JSON object instead of text");
   app.add_flag("--local", local_, "CSV columns are x,y in local metres instead of lon,lat");
 }
@@ -164,6 +167,7 @@ void ClassifyCommand::setup(CLI::App& app) {
 int ClassifyCommand::run() {
   geometry::FieldReadOptions options;
   options.local_metres = local_;
+  area_choice_.apply(options);
   const Field field = geometry::read_field(field_path_, options);
   const geometry::AreaFacts facts = geometry::describe_area(field.polygon);
   if (json_) {

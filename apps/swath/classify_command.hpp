@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "area_options.hpp"
 #include "command.hpp"
 
 namespace swath::apps {
@@ -21,6 +22,7 @@ class ClassifyCommand : public Command {
   std::string field_path_;
   bool json_ = false;
   bool local_ = false;
+  AreaChoice area_choice_;
 };
 
 }  // namespace swath::apps

@@ -63,7 +63,9 @@ void PlanCommand::setup(CLI::App& app) {
                  "Mission YAML holding any of these options (keys = long option names, "
                  "'field' for FIELD); command-line flags override it")
       ->check(CLI::ExistingFile);
-  app.add_option("FIELD", field_, "Area file: .geojson/.json, .kml or .csv (lon,lat)");
+  app.add_option("FIELD", field_,
+                 "Area file: .geojson/.json, .kml or .csv (lon,lat), or any GIS file GDAL reads "
+                 "(.shp, .zip, .gpkg, .kmz, .gpx, .fgb, .gml, .wkt; projected ones reprojected)");
   app.add_option("--camera", camera_,
                  "Camera: an id or name from 'swath cameras', or a camera YAML file");
   app.add_option("-o,--output", output_,
@@ -123,6 +125,7 @@ void PlanCommand::setup(CLI::App& app) {
                "Plan with a home (--home, or the fleet's) farther than 50 km from the area "
                "(refused otherwise: usually latitude and longitude swapped)");
   app.add_flag("--local", local_, "The CSV area is x,y in metres (needs --origin)");
+  area_choice_.add_options(app);
   app.add_option("--origin", origin_,
                  "LAT,LON of the local frame's origin (0, 0) for a --local area");
   app.add_option(
@@ -265,6 +268,7 @@ planning::SurveyRequest PlanCommand::request() const {
   planning::SurveyRequest request;
   geometry::FieldReadOptions read_options;
   read_options.local_metres = local_;
+  area_choice_.apply(read_options);
   request.field = geometry::read_field(field_, read_options);
   if (local_) {
     if (origin_.empty())

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "area_options.hpp"
 #include "command.hpp"
 #include "swath/planning/survey.hpp"
 
@@ -53,6 +54,7 @@ class PlanCommand : public Command {
   std::string home_;
   std::string origin_;
   bool local_ = false;
+  AreaChoice area_choice_;
   std::string concave_ = "split";
   std::vector<std::string> exclude_;
   bool repair_ = false;

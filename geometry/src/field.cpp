@@ -5,6 +5,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "field_ogr.hpp"
 #include "raw_field.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/convex_hull.hpp"
@@ -36,8 +37,13 @@ FieldFormat format_from_extension(const std::filesystem::path& path) {
   if (ext == ".geojson" || ext == ".json") return FieldFormat::geojson;
   if (ext == ".kml") return FieldFormat::kml;
   if (ext == ".csv" || ext == ".txt") return FieldFormat::csv;
+  if (ext == ".wkt") return FieldFormat::wkt;
+  for (const char* e : {".shp", ".zip", ".gpkg", ".kmz", ".gpx", ".fgb", ".gml", ".sqlite",
+                        ".tab", ".mif", ".dxf", ".fgdb", ".gdb"})
+    if (ext == e) return FieldFormat::ogr;
   throw InputError(path.string() + ": unknown file type '" + ext +
-                   "'; expected .geojson, .json, .kml or .csv");
+                   "'; expected .geojson, .json, .kml, .csv, or a GIS file GDAL reads (.shp, "
+                   ".zip, .gpkg, .kmz, .gpx, .fgb, .gml, .wkt)");
 }
 
 void check_coordinates(const detail::RawField& raw, const std::string& source, bool geographic) {
@@ -101,6 +107,14 @@ void check_holes_apart(const std::vector<Ring>& holes, const detail::RawField& r
 
 }  // namespace
 
+namespace {
+
+// The checks and the conversion every reader shares: rings as the file gives them in, a
+// normalised field in local metres out.
+Field field_from_raw(detail::RawField raw, const std::string& source, bool geographic);
+
+}  // namespace
+
 Field parse_field(const std::string& text, FieldFormat format, const std::string& source,
                   bool local_metres) {
   const bool blank =
@@ -118,7 +132,18 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
     case FieldFormat::csv:
       raw = detail::parse_csv(text, source, local_metres);
       break;
+    case FieldFormat::wkt:
+      raw = detail::parse_wkt(text, source);
+      break;
+    case FieldFormat::ogr:
+      fail(source, "a GIS file is read from its path (read_field), not from text");
   }
+  return field_from_raw(std::move(raw), source, !(format == FieldFormat::csv && local_metres));
+}
+
+namespace {
+
+Field field_from_raw(detail::RawField raw, const std::string& source, bool geographic) {
   std::size_t vertices = 0;
   for (const detail::RawRing& ring : raw.rings) vertices += ring.points.size();
   if (vertices > kMaxFieldVertices)
@@ -126,7 +151,6 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
                      " vertices, more than swath's limit of " + std::to_string(kMaxFieldVertices) +
                      "; simplify it first (a survey rarely needs "
                      "vertices closer than a metre)");
-  const bool geographic = !(format == FieldFormat::csv && local_metres);
   check_coordinates(raw, source, geographic);
 
   Field field;
@@ -202,6 +226,8 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
   return field;
 }
 
+}  // namespace
+
 void place_local_field(Field& field, const GeoPoint& origin) {
   field.frame.emplace(origin);
   field.geo_rings.clear();
@@ -214,8 +240,22 @@ void place_local_field(Field& field, const GeoPoint& origin) {
 
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {
   const std::string source = path.string();
-  std::string text = base::read_text_file(path, "area file");
+  // A missing file or a directory is said so before its extension is looked at.
+  if (!std::filesystem::is_regular_file(path) && path.extension() != ".gdb")
+    (void)base::read_text_file(path, "area file");
   const FieldFormat format = options.format ? *options.format : format_from_extension(path);
+  const bool choosing = options.layer || options.feature || options.name_field;
+  if (format == FieldFormat::ogr ||
+      (choosing && format != FieldFormat::csv && format != FieldFormat::wkt))
+    return field_from_raw(detail::read_ogr(source, options), source, true);
+  if (choosing)
+    fail(source, "a CSV or WKT file holds one area: --layer, --feature and --name-field do not apply");
+  std::string text = base::read_text_file(path, "area file");
+  // A GeoJSON naming a coordinate reference system (the 2008 "crs" member, e.g. EPSG:2056) is
+  // reprojected by OGR; swath's own reader takes RFC 7946's longitude/latitude.
+  if (format == FieldFormat::geojson && text.find("\"crs\"") != std::string::npos &&
+      text.find("CRS84") == std::string::npos && text.find("EPSG::4326") == std::string::npos)
+    return field_from_raw(detail::read_ogr(source, options), source, true);
   return parse_field(text, format, source, options.local_metres);
 }
 

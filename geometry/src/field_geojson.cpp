@@ -87,7 +87,7 @@ RawField parse_geojson(const std::string& text, const std::string& source) {
     if (polygonal.size() > 1)
       fail(source, "features " + std::to_string(polygonal[0]) + " and " +
                        std::to_string(polygonal[1]) +
-                       " are both areas; swath plans one area per file");
+                       " are both areas; choose one with --feature NAME or INDEX");
     const std::string where = "feature " + std::to_string(polygonal[0]);
     return parse_geometry(features[polygonal[0]]["geometry"], source, where);
   }

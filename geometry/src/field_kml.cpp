@@ -131,7 +131,7 @@ RawField parse_kml(const std::string& text, const std::string& source) {
   };
   if (polygons.size() > 1)
     fail(source, "lines " + line_of(polygons[0]) + " and " + line_of(polygons[1]) +
-                     " both hold a <Polygon>; swath plans one area per file");
+                     " both hold a <Polygon>; choose one with --feature NAME or INDEX");
   const pugi::xml_node polygon = polygons[0];
   const pugi::xml_node outer = child(polygon, "outerBoundaryIs");
   if (!outer) fail(source, "line " + line_of(polygon) + ": the <Polygon> has no <outerBoundaryIs>");

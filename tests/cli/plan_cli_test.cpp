@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -449,6 +450,54 @@ TEST(PlanCli, AFieldAcrossTheAntimeridianIsFlownWhereItIs) {
   const nlohmann::json summary = nlohmann::json::parse(read_text(out + "/summary.json"));
   EXPECT_NEAR(summary["area"]["area_m2"].get<double>(), 2.363e6, 0.01e6);
   EXPECT_LT(summary["drones"][0]["path_length_m"].get<double>(), 60000.0);
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// Every number of a JSON document by its path.
+void numbers(const nlohmann::json& j, const std::string& path, std::map<std::string, double>& out) {
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) numbers(v, path + "." + k, out);
+  else if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i) numbers(j[i], path + "[" + std::to_string(i) + "]", out);
+  else if (j.is_number())
+    out[path] = j.get<double>();
+}
+
+TEST(PlanCli, AShapefileInTheSwissGridPlansAsItsGeoJson) {
+  const std::string dir = fresh_dir("plan-ogr");
+  fs::create_directories(dir);
+  const std::string shp = dir + "/meadow-2056.shp";
+  ASSERT_EQ(run_program("ogr2ogr", "-f 'ESRI Shapefile' -t_srs EPSG:2056 " + shp +
+                                       " share/fields/meadow.geojson")
+                .exit_code,
+            0);
+  const std::string args = " --camera sony-ilce-qx1 --altitude 60 -o ";
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson" + args + dir + "/geojson").exit_code, 0);
+  const CliRun run = run_swath("plan " + shp + args + dir + "/shp");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::map<std::string, double> a, b;
+  numbers(nlohmann::json::parse(read_text(dir + "/geojson/summary.json")), "", a);
+  numbers(nlohmann::json::parse(read_text(dir + "/shp/summary.json")), "", b);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, value] : a) {
+    // The home is the field's first vertex: back from the Swiss grid within 1e-7 degrees.
+    const double tolerance = key.find("_deg") != std::string::npos ? 1e-7 : 1e-6 * std::max(1.0, std::abs(value));
+    EXPECT_NEAR(b.at(key), value, tolerance) << key;
+  }
+  // Before GDAL, the same file as GeoJSON in EPSG:2056 read "latitude 1248000 is beyond ±90".
+  const std::string swiss = dir + "/meadow-2056.geojson";
+  ASSERT_EQ(run_program("ogr2ogr", "-f GeoJSON -lco RFC7946=NO -t_srs EPSG:2056 " + swiss +
+                                       " share/fields/meadow.geojson")
+                .exit_code,
+            0);
+  const CliRun c = run_swath("classify " + swiss);
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("100694.3"), std::string::npos) << c.out;
 }
 
 }  // namespace

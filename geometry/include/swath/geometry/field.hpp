@@ -1,5 +1,7 @@
 #pragma once
-// Survey area files: GeoJSON, KML and CSV readers.
+// Survey area files: swath's own GeoJSON, KML and CSV readers (placed messages), and every other
+// format GDAL/OGR opens (Shapefile, GeoPackage, KMZ, GPX, FlatGeobuf, GML, WKT, ...), reprojected
+// to WGS84 (DESIGN.md §15).
 
 #include <filesystem>
 #include <optional>
@@ -11,13 +13,21 @@
 
 namespace swath::geometry {
 
-enum class FieldFormat { geojson, kml, csv };
+enum class FieldFormat { geojson, kml, csv, wkt, ogr };
 
 struct FieldReadOptions {
   /// CSV only: the columns are x,y in local metres instead of lon,lat.
   bool local_metres = false;
-  /// Format; when empty it is taken from the file extension (.geojson/.json, .kml, .csv/.txt).
+  /// Format; when empty it is taken from the file extension (.geojson/.json, .kml, .csv/.txt;
+  /// .shp, .zip, .gpkg, .kmz, .gpx, .fgb, .gml, .wkt, .sqlite, .tab through OGR).
   std::optional<FieldFormat> format;
+  /// A file with several layers: the one to read (name, or 0-based index).
+  std::optional<std::string> layer;
+  /// A layer with several areas: the one to read (0-based index among its polygon features, or
+  /// the value of `name_field`).
+  std::optional<std::string> feature;
+  /// The attribute that names features (default: the first of name, Name, NAME, id).
+  std::optional<std::string> name_field;
 };
 
 /// The most vertices an area file may hold (all rings): beyond it swath refuses the file instead

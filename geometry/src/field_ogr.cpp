@@ -1,0 +1,265 @@
+// Area files through GDAL/OGR (DESIGN.md §15): any vector format GDAL opens, one polygon chosen by
+// layer and feature, reprojected to WGS84 longitude/latitude by OGR itself. GDAL's headers stay in
+// this file.
+
+#include <gdal.h>
+#include <ogr_api.h>
+#include <ogr_geometry.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include "field_ogr.hpp"
+
+namespace swath::geometry::detail {
+namespace {
+
+struct DatasetClose {
+  void operator()(GDALDataset* d) const { GDALClose(d); }
+};
+
+void register_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    GDALAllRegister();
+    CPLSetErrorHandler(CPLQuietErrorHandler);  // errors come back as our sentences
+  });
+}
+
+std::string last_gdal_error() {
+  const char* m = CPLGetLastErrorMsg();
+  return m && *m ? std::string(m) : std::string("GDAL cannot read it");
+}
+
+bool polygonal(OGRwkbGeometryType t) {
+  t = wkbFlatten(t);
+  return t == wkbPolygon || t == wkbMultiPolygon || t == wkbLineString ||
+         t == wkbMultiLineString || t == wkbUnknown || t == wkbGeometryCollection ||
+         t == wkbCurvePolygon || t == wkbMultiSurface;
+}
+
+// The polygon a geometry stands for: a Polygon, a MultiPolygon of one part, or a closed line (a
+// GPX track or route walked around the field). nullptr with `why` otherwise.
+std::unique_ptr<OGRPolygon> as_polygon(const OGRGeometry* g, std::string& why) {
+  if (!g) {
+    why = "has no geometry";
+    return nullptr;
+  }
+  std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
+  const OGRwkbGeometryType t = wkbFlatten(linear->getGeometryType());
+  if (t == wkbPolygon) return std::unique_ptr<OGRPolygon>(linear.release()->toPolygon());
+  if (t == wkbMultiPolygon) {
+    const OGRMultiPolygon* m = linear->toMultiPolygon();
+    if (m->getNumGeometries() != 1) {
+      why = "is a MultiPolygon of " + std::to_string(m->getNumGeometries()) +
+            " parts (plan each part as its own area)";
+      return nullptr;
+    }
+    return std::unique_ptr<OGRPolygon>(m->getGeometryRef(0)->clone());
+  }
+  // Lines: a closed track or route walked around the field; with several closed segments the
+  // first is the boundary and the others holes (a GPX track with a segment around a pond).
+  std::vector<const OGRLineString*> lines;
+  if (t == wkbLineString) lines.push_back(linear->toLineString());
+  if (t == wkbMultiLineString)
+    for (const OGRLineString* l : *linear->toMultiLineString()) lines.push_back(l);
+  if (!lines.empty()) {
+    auto poly = std::make_unique<OGRPolygon>();
+    for (const OGRLineString* line : lines) {
+      const int n = line->getNumPoints();
+      if (n < 4 || line->getX(0) != line->getX(n - 1) || line->getY(0) != line->getY(n - 1)) {
+        why = "is a line that does not close (a track or route must end where it starts)";
+        return nullptr;
+      }
+      auto ring = std::make_unique<OGRLinearRing>();
+      for (int i = 0; i < n; ++i) ring->addPoint(line->getX(i), line->getY(i));
+      poly->addRingDirectly(ring.release());
+    }
+    return poly;
+  }
+  why = std::string("is a ") + OGRGeometryTypeToName(linear->getGeometryType()) + ", not an area";
+  return nullptr;
+}
+
+std::string names_list(const std::vector<std::string>& names) {
+  std::string out;
+  const std::size_t shown = std::min<std::size_t>(names.size(), 10);
+  for (std::size_t i = 0; i < shown; ++i) out += (i ? ", " : "") + names[i];
+  if (names.size() > shown) out += " and " + std::to_string(names.size() - shown) + " more";
+  return out;
+}
+
+RawField to_raw(const OGRPolygon& poly, const std::string& where) {
+  RawField raw;
+  auto add = [&](const OGRLinearRing* r, const std::string& name) {
+    RawRing ring;
+    ring.name = where + ", " + name;
+    for (int i = 0; i < r->getNumPoints(); ++i) ring.points.push_back({r->getX(i), r->getY(i)});
+    raw.rings.push_back(std::move(ring));
+  };
+  add(poly.getExteriorRing(), "outer ring");
+  for (int k = 0; k < poly.getNumInteriorRings(); ++k)
+    add(poly.getInteriorRing(k), "hole " + std::to_string(k));
+  return raw;
+}
+
+// Into WGS84 longitude/latitude (traditional GIS order), when the source has another CRS.
+void to_wgs84(OGRGeometry& g, const OGRSpatialReference* srs, const std::string& source) {
+  if (!srs) return;  // no CRS: taken as longitude/latitude (GeoJSON's and KML's rule)
+  OGRSpatialReference wgs84;
+  wgs84.importFromEPSG(4326);
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRSpatialReference from(*srs);
+  from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (from.IsSame(&wgs84)) return;
+  std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&from, &wgs84));
+  if (!ct || g.transform(ct.get()) != OGRERR_NONE)
+    throw InputError(source + ": its coordinates cannot be transformed to WGS84 (" +
+                     last_gdal_error() + ")");
+}
+
+}  // namespace
+
+RawField parse_wkt(const std::string& text, const std::string& source) {
+  register_once();
+  OGRGeometry* g = nullptr;
+  if (OGRGeometryFactory::createFromWkt(text.c_str(), nullptr, &g) != OGRERR_NONE || !g)
+    throw InputError(source + ": not a WKT geometry (POLYGON ((lon lat, ...)))");
+  std::unique_ptr<OGRGeometry> owned(g);
+  std::string why;
+  auto poly = as_polygon(owned.get(), why);
+  if (!poly) throw InputError(source + ": the geometry " + why);
+  return to_raw(*poly, "the WKT polygon");
+}
+
+RawField read_ogr(const std::string& path, const FieldReadOptions& options) {
+  register_once();
+  const std::string& source = path;
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  // A .zip (a zipped Shapefile) and a .kmz are read through GDAL's /vsizip/.
+  std::string open_path = path;
+  if (lower.size() > 4 && (lower.ends_with(".zip") || lower.ends_with(".kmz")) &&
+      path.rfind("/vsi", 0) != 0)
+    open_path = "/vsizip/" + path;
+  CPLErrorReset();
+  std::unique_ptr<GDALDataset, DatasetClose> ds(static_cast<GDALDataset*>(
+      GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!ds && open_path != path)
+    ds.reset(static_cast<GDALDataset*>(
+        GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!ds) throw InputError(source + ": GDAL cannot open it as a vector file (" + last_gdal_error() + ")");
+
+  // The layer: the one asked for, or the only one with areas.
+  std::vector<OGRLayer*> layers;
+  std::vector<std::string> layer_names;
+  for (int i = 0; i < ds->GetLayerCount(); ++i) {
+    OGRLayer* l = ds->GetLayer(i);
+    layer_names.push_back(l->GetName());
+    if (polygonal(l->GetGeomType())) layers.push_back(l);
+  }
+  OGRLayer* layer = nullptr;
+  if (options.layer) {
+    for (int i = 0; i < ds->GetLayerCount(); ++i)
+      if (layer_names[static_cast<std::size_t>(i)] == *options.layer || std::to_string(i) == *options.layer)
+        layer = ds->GetLayer(i);
+    if (!layer)
+      throw InputError(source + ": no layer \"" + *options.layer + "\"; its layers are " +
+                       names_list(layer_names));
+  } else {
+    // Layers that actually hold a feature with an area (GPX files list empty layers too).
+    std::vector<OGRLayer*> with_areas;
+    for (OGRLayer* l : layers) {
+      l->ResetReading();
+      bool found = false;
+      for (auto& f : *l) {
+        std::string why;
+        if (as_polygon(f->GetGeometryRef(), why)) {
+          found = true;
+          break;
+        }
+      }
+      if (found) with_areas.push_back(l);
+    }
+    if (with_areas.empty()) throw InputError(source + ": no layer holds an area (a polygon or a closed track)");
+    if (with_areas.size() > 1) {
+      std::vector<std::string> names;
+      for (OGRLayer* l : with_areas) names.push_back(l->GetName());
+      throw InputError(source + ": " + std::to_string(with_areas.size()) +
+                       " layers hold areas (" + names_list(names) + "); choose one with --layer");
+    }
+    layer = with_areas.front();
+  }
+
+  // The feature: the one asked for, or the only area of the layer.
+  const OGRFeatureDefn* defn = layer->GetLayerDefn();
+  int name_index = -1;
+  if (options.name_field) {
+    name_index = defn->GetFieldIndex(options.name_field->c_str());
+    if (name_index < 0) {
+      std::vector<std::string> fields;
+      for (int i = 0; i < defn->GetFieldCount(); ++i) fields.push_back(defn->GetFieldDefn(i)->GetNameRef());
+      throw InputError(source + ": layer \"" + layer->GetName() + "\" has no field \"" +
+                       *options.name_field + "\"" +
+                       (fields.empty() ? std::string(" (it has no fields)") : "; its fields are " + names_list(fields)));
+    }
+  } else {
+    for (const char* n : {"name", "Name", "NAME", "id", "ID"})
+      if ((name_index = defn->GetFieldIndex(n)) >= 0) break;
+  }
+  struct Candidate {
+    std::unique_ptr<OGRPolygon> polygon;
+    std::string name;
+    std::size_t index;
+  };
+  std::vector<Candidate> areas;
+  std::string first_refusal;
+  layer->ResetReading();
+  for (auto& f : *layer) {
+    std::string why;
+    auto poly = as_polygon(f->GetGeometryRef(), why);
+    std::string name = std::to_string(areas.size());  // unnamed: its position
+    if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index)) name = f->GetFieldAsString(name_index);
+    if (!poly) {
+      if (first_refusal.empty()) first_refusal = "feature " + name + " " + why;
+      continue;
+    }
+    areas.push_back({std::move(poly), name, areas.size()});
+    if (areas.size() > 100000) throw InputError(source + ": more than 100,000 areas in one layer");
+  }
+  if (areas.empty())
+    throw InputError(source + ": layer \"" + layer->GetName() + "\" holds no area" +
+                     (first_refusal.empty() ? std::string() : " (" + first_refusal + ")"));
+  std::size_t chosen = 0;
+  if (options.feature) {
+    const std::string& want = *options.feature;
+    bool found = false;
+    for (const Candidate& c : areas)
+      if (c.name == want) chosen = c.index, found = true;
+    if (!found && !want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) &&
+        want.size() < 9 && std::stoul(want) < areas.size())
+      chosen = std::stoul(want), found = true;
+    if (!found) {
+      std::vector<std::string> names;
+      for (const Candidate& c : areas) names.push_back(c.name);
+      throw InputError(source + ": no area \"" + want + "\" in layer \"" + layer->GetName() +
+                       "\"; its areas are " + names_list(names) + " (or 0 to " +
+                       std::to_string(areas.size() - 1) + " by position)");
+    }
+  } else if (areas.size() > 1) {
+    std::vector<std::string> names;
+    for (const Candidate& c : areas) names.push_back(c.name);
+    throw InputError(source + ": layer \"" + layer->GetName() + "\" holds " +
+                     std::to_string(areas.size()) + " areas (" + names_list(names) +
+                     "); choose one with --feature NAME or INDEX");
+  }
+  OGRPolygon& poly = *areas[chosen].polygon;
+  to_wgs84(poly, layer->GetSpatialRef(), source);
+  return to_raw(poly, "area " + areas[chosen].name);
+}
+
+}  // namespace swath::geometry::detail

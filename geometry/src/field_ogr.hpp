@@ -1,0 +1,20 @@
+#pragma once
+// Internal: the GDAL/OGR reader behind read_field (GDAL's headers stay in field_ogr.cpp).
+
+#include <string>
+
+#include "raw_field.hpp"
+#include "swath/geometry/field.hpp"
+
+namespace swath::geometry::detail {
+
+/// The one area `options` choose from a file OGR opens, as WGS84 longitude/latitude rings.
+/// Throws InputError: the file cannot be opened, no or several layers/areas without a choice
+/// (listing the names), an unknown layer/feature/field, a non-area geometry, a CRS without a
+/// transformation to WGS84.
+RawField read_ogr(const std::string& path, const FieldReadOptions& options);
+
+/// One WKT geometry (POLYGON, MULTIPOLYGON of one part, a closed LINESTRING) in longitude/latitude.
+RawField parse_wkt(const std::string& text, const std::string& source);
+
+}  // namespace swath::geometry::detail
