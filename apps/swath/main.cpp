@@ -2,6 +2,7 @@
 #include <memory>
 #include <vector>
 
+#include "batch_command.hpp"
 #include "cameras_command.hpp"
 #include "classify_command.hpp"
 #include "command.hpp"
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<ClassifyCommand>());
   commands.push_back(std::make_unique<PlanCommand>());
+  commands.push_back(std::make_unique<BatchCommand>());
   commands.push_back(std::make_unique<RenderCommand>());
   commands.push_back(std::make_unique<CamerasCommand>());
   return run_program("swath", "swath: drone area survey planner",

@@ -238,6 +238,16 @@ void place_local_field(Field& field, const GeoPoint& origin) {
   }
 }
 
+std::vector<AreaEntry> list_areas(const std::filesystem::path& path,
+                                  const FieldReadOptions& options) {
+  const FieldFormat format = options.format ? *options.format : format_from_extension(path);
+  if (format == FieldFormat::csv || format == FieldFormat::wkt) {
+    read_field(path, options);  // refuses a bad file as a plan would
+    return {{path.stem().string(), 0}};
+  }
+  return detail::list_ogr_areas(path.string(), options);
+}
+
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {
   const std::string source = path.string();
   // A missing file or a directory is said so before its extension is looked at.

@@ -136,7 +136,25 @@ RawField parse_wkt(const std::string& text, const std::string& source) {
   return to_raw(*poly, "the WKT polygon");
 }
 
+namespace {
+RawField read_or_list(const std::string& path, const FieldReadOptions& options,
+                      std::vector<AreaEntry>* list);
+}  // namespace
+
 RawField read_ogr(const std::string& path, const FieldReadOptions& options) {
+  return read_or_list(path, options, nullptr);
+}
+
+std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOptions& options) {
+  std::vector<AreaEntry> out;
+  read_or_list(path, options, &out);
+  return out;
+}
+
+namespace {
+
+RawField read_or_list(const std::string& path, const FieldReadOptions& options,
+                      std::vector<AreaEntry>* list) {
   register_once();
   const std::string& source = path;
   std::string lower = path;
@@ -234,6 +252,10 @@ RawField read_ogr(const std::string& path, const FieldReadOptions& options) {
   if (areas.empty())
     throw InputError(source + ": layer \"" + layer->GetName() + "\" holds no area" +
                      (first_refusal.empty() ? std::string() : " (" + first_refusal + ")"));
+  if (list) {  // swath batch: every area of the layer, nothing read
+    for (const Candidate& c : areas) list->push_back({c.name, c.index});
+    return {};
+  }
   std::size_t chosen = 0;
   if (options.feature) {
     const std::string& want = *options.feature;
@@ -261,5 +283,7 @@ RawField read_ogr(const std::string& path, const FieldReadOptions& options) {
   to_wgs84(poly, layer->GetSpatialRef(), source);
   return to_raw(poly, "area " + areas[chosen].name);
 }
+
+}  // namespace
 
 }  // namespace swath::geometry::detail

@@ -14,6 +14,9 @@ namespace swath::geometry::detail {
 /// transformation to WGS84.
 RawField read_ogr(const std::string& path, const FieldReadOptions& options);
 
+/// The areas of the layer `options` choose (names and positions), for swath batch.
+std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOptions& options);
+
 /// One WKT geometry (POLYGON, MULTIPOLYGON of one part, a closed LINESTRING) in longitude/latitude.
 RawField parse_wkt(const std::string& text, const std::string& source);
 

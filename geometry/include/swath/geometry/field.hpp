@@ -57,6 +57,18 @@ struct Field {
 /// the outer ring's vertices.
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options = {});
 
+/// One area of a file with several (swath batch).
+struct AreaEntry {
+  std::string name;   ///< the area's name (its name field), or its position as text
+  std::size_t index;  ///< 0-based position among the layer's areas: --feature INDEX reads it
+};
+
+/// The areas of `path` that read_field could choose with --feature (one entry for a file of one
+/// area; the layer as `options` choose it). Throws InputError when the file cannot be read or
+/// holds no area.
+std::vector<AreaEntry> list_areas(const std::filesystem::path& path,
+                                  const FieldReadOptions& options = {});
+
 /// Places a local-metres field on the map: its (0, 0) at `origin`; fills frame and geo_rings.
 void place_local_field(Field& field, const GeoPoint& origin);
 

@@ -1,0 +1,270 @@
+#include "batch_command.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "progress_bar.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/base/output_set.hpp"
+#include "swath/geometry/field.hpp"
+
+namespace swath::apps {
+
+using base::InputError;
+using json = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+namespace {
+
+// An area to plan: the file, its position in it, its name and the sub-directory it gets.
+struct Job {
+  std::string file, name, dir;
+  std::size_t index = 0;
+  bool single = false;  ///< the file holds only this area: no --feature
+};
+
+// A directory name from an area's name: letters, digits, '-', '_' and '.' kept, the rest '_'.
+std::string directory_name(const std::string& name) {
+  std::string out;
+  for (unsigned char c : name) out += std::isalnum(c) || c == '-' || c == '_' || c == '.' ? static_cast<char>(c) : '_';
+  if (out.empty() || out == "." || out == "..") out = "area";
+  return out.substr(0, 80);
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+bool area_file(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* e : {".geojson", ".json", ".kml", ".csv", ".shp", ".zip", ".gpkg", ".kmz", ".gpx",
+                        ".fgb", ".gml", ".wkt"})
+    if (ext == e) return true;
+  return false;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// The program's own path, to run `swath plan` for each area.
+std::string self_path() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("swath") : p.string();
+}
+
+}  // namespace
+
+void BatchCommand::setup(CLI::App& app) {
+  app.add_option("AREAS", areas_,
+                 "A file of several areas (GeoPackage, Shapefile, GeoJSON FeatureCollection, "
+                 "KML, ...) or a directory of area files")
+      ->required();
+  app.add_option("-o,--output", output_,
+                 "Directory for one sub-directory per area, batch.csv and batch.geojson")
+      ->required();
+  app.add_option("--layer", layer_, "The layer holding the areas (files with several layers)");
+  app.add_option("--name-field", name_field_,
+                 "The attribute that names areas and their sub-directories (default: name, "
+                 "Name, NAME or id; else their position)");
+  app.add_option("--jobs", jobs_, "Areas planned at once (processes); the files do not depend on it")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  app.add_flag("--emit-jobs", emit_jobs_,
+               "Print one `swath plan` command line per area instead (for GNU parallel or a "
+               "Slurm array) and plan nothing");
+  app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
+  app.allow_extras();
+  app.footer(
+      "Every other option goes to `swath plan` for each area, e.g. swath batch farm.gpkg "
+      "-o out --camera sony-ilce-qx1 --altitude 60 --jobs 2.");
+  app.callback([this, &app] { plan_args_ = app.remaining(); });
+}
+
+int BatchCommand::run() {
+  for (const std::string& a : plan_args_)
+    if (a == "-o" || a == "--output" || a.rfind("--output=", 0) == 0 || a == "--feature" ||
+        a == "--layer" || a == "--name-field")
+      throw InputError("batch: " + a + " is the batch's own (each area gets its own directory)");
+  // 1. The areas, each named once.
+  std::vector<Job> jobs;
+  geometry::FieldReadOptions options;
+  if (!layer_.empty()) options.layer = layer_;
+  if (!name_field_.empty()) options.name_field = name_field_;
+  auto add_file = [&](const fs::path& file) {
+    const auto areas = geometry::list_areas(file, options);
+    for (const auto& a : areas)
+      jobs.push_back({file.string(), areas.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name,
+                      "", a.index, areas.size() == 1});
+  };
+  if (fs::is_directory(areas_)) {
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(areas_))
+      if (e.is_regular_file() && area_file(e.path())) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    if (files.empty()) throw InputError(areas_ + ": no area files in this directory");
+    for (const fs::path& f : files) add_file(f);
+  } else {
+    add_file(areas_);
+  }
+  std::set<std::string> used;
+  for (Job& j : jobs) {
+    std::string dir = directory_name(j.name);
+    for (int k = 2; used.count(dir); ++k) dir = directory_name(j.name) + "-" + std::to_string(k);
+    used.insert(dir);
+    j.dir = dir;
+  }
+  auto command = [&](const Job& j) {
+    std::vector<std::string> argv{self_path(), "plan", j.file};
+    if (!j.single) {
+      argv.push_back("--feature");
+      argv.push_back(std::to_string(j.index));
+    }
+    if (!layer_.empty()) argv.insert(argv.end(), {"--layer", layer_});
+    for (const std::string& a : plan_args_) argv.push_back(a);
+    argv.push_back("-o");
+    argv.push_back((fs::path(output_) / j.dir).string());
+    return argv;
+  };
+  if (emit_jobs_) {
+    for (const Job& j : jobs) {
+      std::string line;
+      for (const std::string& a : command(j)) line += (line.empty() ? "" : " ") + quoted(a);
+      std::cout << line << "\n";
+    }
+    return base::kExitSuccess;
+  }
+  // 2. Plan them, `jobs_` processes at once; each writes its own sub-directory atomically.
+  fs::create_directories(output_);
+  struct Result {
+    int exit_code = -1;
+    std::string message;
+  };
+  std::vector<Result> results(jobs.size());
+  std::map<pid_t, std::size_t> running;
+  std::map<pid_t, fs::path> err_files;
+  const fs::path scratch = fs::temp_directory_path() / ("swath-batch-" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  ProgressBar bar(progress_, "planning");
+  std::size_t next = 0, done = 0;
+  auto reap_one = [&] {
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid <= 0) return;
+    const std::size_t i = running.at(pid);
+    running.erase(pid);
+    results[i].exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::string err = base::read_text_file(err_files[pid], "log", 1 << 20);
+    fs::remove(err_files[pid]);
+    const auto nl = err.find('\n');
+    results[i].message = err.substr(0, nl);
+    bar.update(static_cast<double>(++done) / static_cast<double>(jobs.size()));
+  };
+  while (next < jobs.size() || !running.empty()) {
+    while (next < jobs.size() && static_cast<int>(running.size()) < jobs_) {
+      const std::vector<std::string> argv = command(jobs[next]);
+      const fs::path err = scratch / ("err-" + std::to_string(next));
+      const pid_t pid = ::fork();
+      if (pid == 0) {
+        const int out_fd = ::open("/dev/null", O_WRONLY);
+        const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        ::dup2(out_fd, 1);
+        ::dup2(err_fd, 2);
+        std::vector<char*> args;
+        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        ::execv(args[0], args.data());
+        ::_exit(127);
+      }
+      if (pid < 0) throw std::runtime_error("batch: cannot start a process");
+      running[pid] = next;
+      err_files[pid] = err;
+      ++next;
+    }
+    reap_one();
+  }
+  fs::remove_all(scratch);
+  // 3. batch.csv and batch.geojson from each area's summary.json, in the areas' order.
+  std::string csv =
+      "area,file,index,directory,status,exit_code,area_m2,lines,photos,path_length_m,"
+      "flight_time_s,drones,message\n";
+  json features = json::array();
+  int failed = 0;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const Job& j = jobs[i];
+    const Result& r = results[i];
+    const bool ok = r.exit_code == 0;
+    failed += !ok;
+    json props{{"area", j.name}, {"file", j.file}, {"index", j.index}, {"directory", j.dir},
+               {"status", ok ? "planned" : "refused"}, {"exit_code", r.exit_code}};
+    std::string numbers = ",,,,,";
+    if (ok) {
+      const json s = json::parse(base::read_text_file(fs::path(output_) / j.dir / "summary.json", "summary"));
+      double lines = 0, photos = 0, length = 0, time = 0;
+      for (const auto& d : s["drones"]) {
+        lines += d.value("lines", 0.0);
+        photos += d.value("photos", 0.0);
+        length += d.value("path_length_m", 0.0);
+        time = std::max(time, d.value("flight_time_s", 0.0));
+      }
+      const double area_m2 = s["area"].value("area_m2", 0.0);
+      numbers = base::fixed_text(area_m2, 3) + "," + base::fixed_text(lines, 0) + "," +
+                base::fixed_text(photos, 0) + "," + base::fixed_text(length, 3) + "," +
+                base::fixed_text(time, 3) + "," + std::to_string(s["drones"].size());
+      props["area_m2"] = area_m2;
+      props["path_length_m"] = length;
+      props["flight_time_s"] = time;
+      props["photos"] = photos;
+    } else {
+      props["message"] = r.message;
+    }
+    csv += csv_field(j.name) + "," + csv_field(j.file) + "," + std::to_string(j.index) + "," +
+           csv_field(j.dir) + "," + (ok ? "planned" : "refused") + "," +
+           std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : r.message) + "\n";
+    // The outline, read as the plan read it (a refused area has none it could read).
+    json geometry = nullptr;
+    try {
+      geometry::FieldReadOptions o = options;
+      if (!j.single) o.feature = std::to_string(j.index);
+      const geometry::Field f = geometry::read_field(j.file, o);
+      json rings = json::array();
+      for (const auto& ring : f.geo_rings) {
+        json r2 = json::array();
+        for (const auto& g : ring) r2.push_back({g.lon_deg, g.lat_deg});
+        if (!ring.empty()) r2.push_back({ring.front().lon_deg, ring.front().lat_deg});
+        rings.push_back(r2);
+      }
+      geometry = {{"type", "Polygon"}, {"coordinates", rings}};
+    } catch (const InputError&) {
+    }
+    features.push_back(json{{"type", "Feature"}, {"properties", props}, {"geometry", geometry}});
+  }
+  base::OutputSet set(output_, "batch", {base::OutputSet::Mode::amend, 10.0});
+  set.add("batch.csv", csv);
+  set.add("batch.geojson", json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n");
+  set.commit();
+  std::cout << jobs.size() - static_cast<std::size_t>(failed) << " of " << jobs.size()
+            << " areas planned into " << output_ << (failed ? "; see batch.csv for the others" : "")
+            << "\n";
+  return failed ? base::kExitPartial : base::kExitSuccess;
+}
+
+}  // namespace swath::apps
