@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "plan_command.hpp"
 #include "progress_bar.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -37,7 +38,8 @@ struct Job {
 // A directory name from an area's name: letters, digits, '-', '_' and '.' kept, the rest '_'.
 std::string directory_name(const std::string& name) {
   std::string out;
-  for (unsigned char c : name) out += std::isalnum(c) || c == '-' || c == '_' || c == '.' ? static_cast<char>(c) : '_';
+  for (unsigned char c : name)
+    out += std::isalnum(c) || c == '-' || c == '_' || c == '.' ? static_cast<char>(c) : '_';
   if (out.empty() || out == "." || out == "..") out = "area";
   return out.substr(0, 80);
 }
@@ -50,9 +52,10 @@ std::string quoted(const std::string& s) {
 
 bool area_file(const fs::path& p) {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  for (const char* e : {".geojson", ".json", ".kml", ".csv", ".shp", ".zip", ".gpkg", ".kmz", ".gpx",
-                        ".fgb", ".gml", ".wkt"})
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  for (const char* e : {".geojson", ".json", ".kml", ".csv", ".shp", ".zip", ".gpkg", ".kmz",
+                        ".gpx", ".fgb", ".gml", ".wkt"})
     if (ext == e) return true;
   return false;
 }
@@ -64,7 +67,7 @@ std::string csv_field(const std::string& s) {
   return out + "\"";
 }
 
-// The program's own path, to run `swath plan` for each area.
+// The program's own path, for --emit-jobs' command lines.
 std::string self_path() {
   std::error_code ec;
   const fs::path p = fs::read_symlink("/proc/self/exe", ec);
@@ -85,7 +88,8 @@ void BatchCommand::setup(CLI::App& app) {
   app.add_option("--name-field", name_field_,
                  "The attribute that names areas and their sub-directories (default: name, "
                  "Name, NAME or id; else their position)");
-  app.add_option("--jobs", jobs_, "Areas planned at once (processes); the files do not depend on it")
+  app.add_option("--jobs", jobs_,
+                 "Areas planned at once (processes); the files do not depend on it")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   app.add_flag("--emit-jobs", emit_jobs_,
@@ -103,7 +107,22 @@ int BatchCommand::run() {
   for (const std::string& a : plan_args_)
     if (a == "-o" || a == "--output" || a.rfind("--output=", 0) == 0 || a == "--feature" ||
         a == "--layer" || a == "--name-field")
-      throw InputError("batch: " + a + " is the batch's own (each area gets its own directory)");
+      throw InputError(a + " is the batch's own (each area gets its own directory)");
+  // The plan options are parsed once here, as `swath plan` would: a typo is refused before any
+  // area is planned (and before anything is written).
+  {
+    PlanCommand check;
+    CLI::App app{"swath plan"};
+    check.setup(app);
+    std::vector<std::string> args{"-o", (fs::path(output_) / "x").string(), areas_};
+    args.insert(args.end(), plan_args_.begin(), plan_args_.end());
+    std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+    try {
+      app.parse(args);
+    } catch (const CLI::ParseError& e) {
+      throw InputError("the plan options: " + std::string(e.what()));
+    }
+  }
   // 1. The areas, each named once.
   std::vector<Job> jobs;
   geometry::FieldReadOptions options;
@@ -112,8 +131,10 @@ int BatchCommand::run() {
   auto add_file = [&](const fs::path& file) {
     const auto areas = geometry::list_areas(file, options);
     for (const auto& a : areas)
-      jobs.push_back({file.string(), areas.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name,
-                      "", a.index, areas.size() == 1});
+      jobs.push_back(
+          {file.string(),
+           areas.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name, "",
+           a.index, areas.size() == 1});
   };
   if (fs::is_directory(areas_)) {
     std::vector<fs::path> files;
@@ -161,7 +182,8 @@ int BatchCommand::run() {
   std::vector<Result> results(jobs.size());
   std::map<pid_t, std::size_t> running;
   std::map<pid_t, fs::path> err_files;
-  const fs::path scratch = fs::temp_directory_path() / ("swath-batch-" + std::to_string(::getpid()));
+  const fs::path scratch =
+      fs::temp_directory_path() / ("swath-batch-" + std::to_string(::getpid()));
   fs::create_directories(scratch);
   ProgressBar bar(progress_, "planning");
   std::size_t next = 0, done = 0;
@@ -182,8 +204,12 @@ int BatchCommand::run() {
     while (next < jobs.size() && static_cast<int>(running.size()) < jobs_) {
       const std::vector<std::string> argv = command(jobs[next]);
       const fs::path err = scratch / ("err-" + std::to_string(next));
+      std::cout.flush();
+      std::cerr.flush();
       const pid_t pid = ::fork();
       if (pid == 0) {
+        // The child is `swath plan` for this area, run in the forked copy of this process: GDAL
+        // and the area file's layer are already loaded (no exec, no second start-up).
         const int out_fd = ::open("/dev/null", O_WRONLY);
         const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
         ::dup2(out_fd, 1);
@@ -191,8 +217,13 @@ int BatchCommand::run() {
         std::vector<char*> args;
         for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
         args.push_back(nullptr);
-        ::execv(args[0], args.data());
-        ::_exit(127);
+        std::vector<std::unique_ptr<Command>> plan;
+        plan.push_back(std::make_unique<PlanCommand>());
+        const int code = run_program("swath", "swath plan", "", plan, static_cast<int>(argv.size()),
+                                     args.data());
+        std::cout.flush();
+        std::cerr.flush();
+        ::_exit(code);
       }
       if (pid < 0) throw std::runtime_error("batch: cannot start a process");
       running[pid] = next;
@@ -213,11 +244,16 @@ int BatchCommand::run() {
     const Result& r = results[i];
     const bool ok = r.exit_code == 0;
     failed += !ok;
-    json props{{"area", j.name}, {"file", j.file}, {"index", j.index}, {"directory", j.dir},
-               {"status", ok ? "planned" : "refused"}, {"exit_code", r.exit_code}};
+    json props{{"area", j.name},
+               {"file", j.file},
+               {"index", j.index},
+               {"directory", j.dir},
+               {"status", ok ? "planned" : "refused"},
+               {"exit_code", r.exit_code}};
     std::string numbers = ",,,,,";
     if (ok) {
-      const json s = json::parse(base::read_text_file(fs::path(output_) / j.dir / "summary.json", "summary"));
+      const json s =
+          json::parse(base::read_text_file(fs::path(output_) / j.dir / "summary.json", "summary"));
       double lines = 0, photos = 0, length = 0, time = 0;
       for (const auto& d : s["drones"]) {
         lines += d.value("lines", 0.0);
@@ -238,7 +274,8 @@ int BatchCommand::run() {
     }
     csv += csv_field(j.name) + "," + csv_field(j.file) + "," + std::to_string(j.index) + "," +
            csv_field(j.dir) + "," + (ok ? "planned" : "refused") + "," +
-           std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : r.message) + "\n";
+           std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : r.message) +
+           "\n";
     // The outline, read as the plan read it (a refused area has none it could read).
     json geometry = nullptr;
     try {
@@ -259,7 +296,8 @@ int BatchCommand::run() {
   }
   base::OutputSet set(output_, "batch", {base::OutputSet::Mode::amend, 10.0});
   set.add("batch.csv", csv);
-  set.add("batch.geojson", json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n");
+  set.add("batch.geojson",
+          json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n");
   set.commit();
   std::cout << jobs.size() - static_cast<std::size_t>(failed) << " of " << jobs.size()
             << " areas planned into " << output_ << (failed ? "; see batch.csv for the others" : "")

@@ -38,8 +38,8 @@ FieldFormat format_from_extension(const std::filesystem::path& path) {
   if (ext == ".kml") return FieldFormat::kml;
   if (ext == ".csv" || ext == ".txt") return FieldFormat::csv;
   if (ext == ".wkt") return FieldFormat::wkt;
-  for (const char* e : {".shp", ".zip", ".gpkg", ".kmz", ".gpx", ".fgb", ".gml", ".sqlite",
-                        ".tab", ".mif", ".dxf", ".fgdb", ".gdb"})
+  for (const char* e : {".shp", ".zip", ".gpkg", ".kmz", ".gpx", ".fgb", ".gml", ".sqlite", ".tab",
+                        ".mif", ".dxf", ".fgdb", ".gdb"})
     if (ext == e) return FieldFormat::ogr;
   throw InputError(path.string() + ": unknown file type '" + ext +
                    "'; expected .geojson, .json, .kml, .csv, or a GIS file GDAL reads (.shp, "
@@ -259,7 +259,8 @@ Field read_field(const std::filesystem::path& path, const FieldReadOptions& opti
       (choosing && format != FieldFormat::csv && format != FieldFormat::wkt))
     return field_from_raw(detail::read_ogr(source, options), source, true);
   if (choosing)
-    fail(source, "a CSV or WKT file holds one area: --layer, --feature and --name-field do not apply");
+    fail(source,
+         "a CSV or WKT file holds one area: --layer, --feature and --name-field do not apply");
   std::string text = base::read_text_file(path, "area file");
   // A GeoJSON naming a coordinate reference system (the 2008 "crs" member, e.g. EPSG:2056) is
   // reprojected by OGR; swath's own reader takes RFC 7946's longitude/latitude.

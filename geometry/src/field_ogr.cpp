@@ -1,6 +1,6 @@
 // Area files through GDAL/OGR (DESIGN.md §15): any vector format GDAL opens, one polygon chosen by
 // layer and feature, reprojected to WGS84 longitude/latitude by OGR itself. GDAL's headers stay in
-// this file.
+// this file, which is the GIS module libswath_gis.so (gis_module.hpp says why).
 
 #include <gdal.h>
 #include <ogr_api.h>
@@ -14,6 +14,7 @@
 #include <mutex>
 
 #include "field_ogr.hpp"
+#include "gis_module.hpp"
 
 namespace swath::geometry::detail {
 namespace {
@@ -37,9 +38,9 @@ std::string last_gdal_error() {
 
 bool polygonal(OGRwkbGeometryType t) {
   t = wkbFlatten(t);
-  return t == wkbPolygon || t == wkbMultiPolygon || t == wkbLineString ||
-         t == wkbMultiLineString || t == wkbUnknown || t == wkbGeometryCollection ||
-         t == wkbCurvePolygon || t == wkbMultiSurface;
+  return t == wkbPolygon || t == wkbMultiPolygon || t == wkbLineString || t == wkbMultiLineString ||
+         t == wkbUnknown || t == wkbGeometryCollection || t == wkbCurvePolygon ||
+         t == wkbMultiSurface;
 }
 
 // The polygon a geometry stands for: a Polygon, a MultiPolygon of one part, or a closed line (a
@@ -158,7 +159,8 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
   register_once();
   const std::string& source = path;
   std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   // A .zip (a zipped Shapefile) and a .kmz are read through GDAL's /vsizip/.
   std::string open_path = path;
   if (lower.size() > 4 && (lower.ends_with(".zip") || lower.ends_with(".kmz")) &&
@@ -170,7 +172,8 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
   if (!ds && open_path != path)
     ds.reset(static_cast<GDALDataset*>(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!ds) throw InputError(source + ": GDAL cannot open it as a vector file (" + last_gdal_error() + ")");
+  if (!ds)
+    throw InputError(source + ": GDAL cannot open it as a vector file (" + last_gdal_error() + ")");
 
   // The layer: the one asked for, or the only one with areas.
   std::vector<OGRLayer*> layers;
@@ -183,7 +186,8 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
   OGRLayer* layer = nullptr;
   if (options.layer) {
     for (int i = 0; i < ds->GetLayerCount(); ++i)
-      if (layer_names[static_cast<std::size_t>(i)] == *options.layer || std::to_string(i) == *options.layer)
+      if (layer_names[static_cast<std::size_t>(i)] == *options.layer ||
+          std::to_string(i) == *options.layer)
         layer = ds->GetLayer(i);
     if (!layer)
       throw InputError(source + ": no layer \"" + *options.layer + "\"; its layers are " +
@@ -203,12 +207,13 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
       }
       if (found) with_areas.push_back(l);
     }
-    if (with_areas.empty()) throw InputError(source + ": no layer holds an area (a polygon or a closed track)");
+    if (with_areas.empty())
+      throw InputError(source + ": no layer holds an area (a polygon or a closed track)");
     if (with_areas.size() > 1) {
       std::vector<std::string> names;
       for (OGRLayer* l : with_areas) names.push_back(l->GetName());
-      throw InputError(source + ": " + std::to_string(with_areas.size()) +
-                       " layers hold areas (" + names_list(names) + "); choose one with --layer");
+      throw InputError(source + ": " + std::to_string(with_areas.size()) + " layers hold areas (" +
+                       names_list(names) + "); choose one with --layer");
     }
     layer = with_areas.front();
   }
@@ -220,10 +225,12 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
     name_index = defn->GetFieldIndex(options.name_field->c_str());
     if (name_index < 0) {
       std::vector<std::string> fields;
-      for (int i = 0; i < defn->GetFieldCount(); ++i) fields.push_back(defn->GetFieldDefn(i)->GetNameRef());
+      for (int i = 0; i < defn->GetFieldCount(); ++i)
+        fields.push_back(defn->GetFieldDefn(i)->GetNameRef());
       throw InputError(source + ": layer \"" + layer->GetName() + "\" has no field \"" +
                        *options.name_field + "\"" +
-                       (fields.empty() ? std::string(" (it has no fields)") : "; its fields are " + names_list(fields)));
+                       (fields.empty() ? std::string(" (it has no fields)")
+                                       : "; its fields are " + names_list(fields)));
     }
   } else {
     for (const char* n : {"name", "Name", "NAME", "id", "ID"})
@@ -241,7 +248,8 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
     std::string why;
     auto poly = as_polygon(f->GetGeometryRef(), why);
     std::string name = std::to_string(areas.size());  // unnamed: its position
-    if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index)) name = f->GetFieldAsString(name_index);
+    if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index))
+      name = f->GetFieldAsString(name_index);
     if (!poly) {
       if (first_refusal.empty()) first_refusal = "feature " + name + " " + why;
       continue;
@@ -287,3 +295,40 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
 }  // namespace
 
 }  // namespace swath::geometry::detail
+
+namespace {
+
+using namespace swath::geometry;
+
+template <typename F>
+bool guarded(std::string& error, F&& f) {
+  try {
+    f();
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+bool module_read(const std::string& path, const FieldReadOptions& o, detail::RawField& out,
+                 std::string& error) {
+  return guarded(error, [&] { out = detail::read_ogr(path, o); });
+}
+bool module_list(const std::string& path, const FieldReadOptions& o, std::vector<AreaEntry>& out,
+                 std::string& error) {
+  return guarded(error, [&] { out = detail::list_ogr_areas(path, o); });
+}
+bool module_wkt(const std::string& text, const std::string& source, detail::RawField& out,
+                std::string& error) {
+  return guarded(error, [&] { out = detail::parse_wkt(text, source); });
+}
+
+const detail::GisModule kModule{detail::kGisModuleAbi, module_read, module_list, module_wkt};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const swath::geometry::detail::GisModule*
+swath_gis_module() {
+  return &kModule;
+}

@@ -463,7 +463,8 @@ void numbers(const nlohmann::json& j, const std::string& path, std::map<std::str
   if (j.is_object())
     for (const auto& [k, v] : j.items()) numbers(v, path + "." + k, out);
   else if (j.is_array())
-    for (std::size_t i = 0; i < j.size(); ++i) numbers(j[i], path + "[" + std::to_string(i) + "]", out);
+    for (std::size_t i = 0; i < j.size(); ++i)
+      numbers(j[i], path + "[" + std::to_string(i) + "]", out);
   else if (j.is_number())
     out[path] = j.get<double>();
 }
@@ -486,7 +487,8 @@ TEST(PlanCli, AShapefileInTheSwissGridPlansAsItsGeoJson) {
   ASSERT_EQ(a.size(), b.size());
   for (const auto& [key, value] : a) {
     // The home is the field's first vertex: back from the Swiss grid within 1e-7 degrees.
-    const double tolerance = key.find("_deg") != std::string::npos ? 1e-7 : 1e-6 * std::max(1.0, std::abs(value));
+    const double tolerance =
+        key.find("_deg") != std::string::npos ? 1e-7 : 1e-6 * std::max(1.0, std::abs(value));
     EXPECT_NEAR(b.at(key), value, tolerance) << key;
   }
   // Before GDAL, the same file as GeoJSON in EPSG:2056 read "latitude 1248000 is beyond ±90".
@@ -498,6 +500,95 @@ TEST(PlanCli, AShapefileInTheSwissGridPlansAsItsGeoJson) {
   const CliRun c = run_swath("classify " + swiss);
   EXPECT_EQ(c.exit_code, 0) << c.err;
   EXPECT_NE(c.out.find("100694.3"), std::string::npos) << c.out;
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// Every file under `dir` by its relative path, with its bytes.
+std::map<std::string, std::string> tree(const std::string& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file())
+      out[fs::relative(e.path(), dir).string()] = read_text(e.path().string());
+  return out;
+}
+
+// Twelve fields near Zurich, the sixth a bow tie that `swath plan` refuses.
+std::string district_geojson() {
+  std::string out = "{\"type\": \"FeatureCollection\", \"features\": [\n";
+  for (int i = 0; i < 12; ++i) {
+    const double lon = 8.40 + 0.01 * (i % 4), lat = 47.30 + 0.008 * (i / 4);
+    const double w = 0.0015 + 0.0002 * i, h = 0.001 + 0.0001 * (i % 3);
+    std::vector<std::pair<double, double>> ring{
+        {lon, lat}, {lon + w, lat}, {lon + w, lat + h}, {lon, lat + h}};
+    if (i == 5) std::swap(ring[1], ring[2]);  // crosses itself
+    std::string coords;
+    for (const auto& [x, y] : ring)
+      coords += "[" + base::shortest_text(x) + ", " + base::shortest_text(y) + "], ";
+    coords +=
+        "[" + base::shortest_text(ring[0].first) + ", " + base::shortest_text(ring[0].second) + "]";
+    out += std::string(i ? ",\n" : "") +
+           "{\"type\": \"Feature\", \"properties\": {\"name\": \"plot " + std::to_string(i) +
+           "\"}, \"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[" + coords + "]]}}";
+  }
+  return out + "\n]}\n";
+}
+
+TEST(BatchCli, EveryAreaPlannedAsAloneTheSameBytesForAnyJobsAndGnuParallel) {
+  const std::string dir = fresh_dir("batch");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/district.geojson";
+  std::ofstream(areas) << district_geojson();
+  const std::string opts = " --camera sony-ilce-qx1 --altitude 60";
+  const CliRun one = run_swath("batch " + areas + " -o " + dir + "/one --jobs 1" + opts);
+  EXPECT_EQ(one.exit_code, 3) << one.err;  // one area refused
+  EXPECT_NE(one.out.find("11 of 12 areas planned"), std::string::npos) << one.out;
+  ASSERT_EQ(run_swath("batch " + areas + " -o " + dir + "/two --jobs 2" + opts).exit_code, 3);
+  const auto a = tree(dir + "/one"), b = tree(dir + "/two");
+  EXPECT_EQ(a.size(), b.size());
+  for (const auto& [path, bytes] : a) EXPECT_EQ(b.count(path) ? b.at(path) : "", bytes) << path;
+  // batch.csv: each planned row is what `swath plan --feature i` alone gives.
+  std::istringstream csv(a.at("batch.csv"));
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0, refused = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    if (line.find(",refused,") != std::string::npos) {
+      ++refused;
+      EXPECT_NE(line.find("plot 5"), std::string::npos) << line;
+      EXPECT_NE(line.find("crosses itself"), std::string::npos) << line;
+      continue;
+    }
+    if (rows % 4 != 1) continue;  // three of the planned ones, run alone
+    const std::string index = std::to_string(rows - 1);
+    const std::string alone = dir + "/alone-" + index;
+    ASSERT_EQ(run_swath("plan " + areas + " --feature " + index + opts + " -o " + alone).exit_code,
+              0);
+    const std::string sub = "plot_" + index;
+    EXPECT_EQ(read_text(alone + "/summary.json"), a.at(sub + "/summary.json")) << sub;
+    const auto s = nlohmann::json::parse(read_text(alone + "/summary.json"));
+    EXPECT_NE(line.find(base::fixed_text(s["drones"][0]["path_length_m"].get<double>(), 3)),
+              std::string::npos)
+        << line;
+  }
+  EXPECT_EQ(rows, 12);
+  EXPECT_EQ(refused, 1);
+  // --emit-jobs prints the command lines; GNU parallel runs them to the same files.
+  const CliRun jobs = run_swath("batch " + areas + " -o " + dir + "/par --emit-jobs" + opts);
+  ASSERT_EQ(jobs.exit_code, 0);
+  std::ofstream(dir + "/jobs.txt") << jobs.out;
+  const CliRun par = run_program("parallel", "-j2 --will-cite -a " + dir + "/jobs.txt");
+  EXPECT_EQ(par.exit_code, 1) << par.err;  // parallel's exit code: how many jobs failed
+  for (const auto& [path, bytes] : tree(dir + "/par"))
+    EXPECT_EQ(a.count(path) ? a.at(path) : "", bytes) << path;
+  std::size_t planned_files = 0;  // all but batch.csv, batch.geojson and the batch's manifest
+  for (const auto& [path, bytes] : a) planned_files += path.find('/') != std::string::npos;
+  EXPECT_EQ(tree(dir + "/par").size(), planned_files);
 }
 
 }  // namespace

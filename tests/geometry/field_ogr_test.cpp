@@ -101,7 +101,8 @@ TEST(FieldOgr, EveryFormatAndProjectionGivesTheGeoJsonArea) {
   }
   // WKT: one polygon in longitude/latitude.
   const fs::path wkt = scratch() / "square.wkt";
-  std::ofstream(wkt) << "POLYGON ((8.54 47.39, 8.541 47.39, 8.541 47.391, 8.54 47.391, 8.54 47.39))";
+  std::ofstream(wkt)
+      << "POLYGON ((8.54 47.39, 8.541 47.39, 8.541 47.391, 8.54 47.391, 8.54 47.39))";
   const Field square = read_field(wkt);
   EXPECT_NEAR(area(square.polygon), 75.9 * 111.2 * 1e0, 200.0);  // ~75.9 m × ~111.2 m
 }
@@ -129,7 +130,8 @@ TEST(FieldOgr, SeveralAreasAreChosenByNamePositionOrField) {
       << refusal(multi, o);
   o.feature.reset();
   o.name_field = "colour";
-  EXPECT_NE(refusal(multi, o).find("has no field \"colour\""), std::string::npos) << refusal(multi, o);
+  EXPECT_NE(refusal(multi, o).find("has no field \"colour\""), std::string::npos)
+      << refusal(multi, o);
   o.name_field.reset();
   o.layer = "roads";
   EXPECT_NE(refusal(multi, o).find("no layer \"roads\"; its layers are fields"), std::string::npos)

@@ -1,0 +1,28 @@
+#pragma once
+// Internal: the GIS module (libswath_gis.so: field_ogr.cpp and GDAL) is opened on the first GIS
+// file, like the drawing module: a program reading GeoJSON, KML or CSV, or none at all, never
+// loads GDAL and the hundred libraries it brings (65 ms of every start, measured with
+// swath --version). The module hands back these three functions; errors come back as text.
+
+#include <string>
+#include <vector>
+
+#include "raw_field.hpp"
+#include "swath/geometry/field.hpp"
+
+namespace swath::geometry::detail {
+
+/// Bumped whenever GisModule or the types it passes change.
+inline constexpr int kGisModuleAbi = 1;
+
+struct GisModule {
+  int abi;
+  bool (*read)(const std::string& path, const FieldReadOptions& options, RawField& out,
+               std::string& error);
+  bool (*list)(const std::string& path, const FieldReadOptions& options,
+               std::vector<AreaEntry>& out, std::string& error);
+  bool (*wkt)(const std::string& text, const std::string& source, RawField& out,
+              std::string& error);
+};
+
+}  // namespace swath::geometry::detail
