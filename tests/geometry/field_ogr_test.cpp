@@ -7,6 +7,8 @@
 #include <gdal_utils.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -25,7 +27,9 @@ std::string source(const std::string& relative) {
 }
 
 fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / "swath-field-ogr-test";
+  // One per process: CTest runs the tests of this file side by side.
+  const fs::path dir =
+      fs::temp_directory_path() / ("swath-field-ogr-test-" + std::to_string(::getpid()));
   static bool once = [&] {
     fs::remove_all(dir);
     fs::create_directories(dir);
