@@ -67,6 +67,8 @@ struct Action {
   double duration_s = 0;
   std::shared_ptr<detail::State<Reading>> result;
   ActionState state = ActionState::pending;
+  std::string sample_sensor;   ///< fly_sensing: the sensor read on the way
+  double sample_period_s = 0;  ///< fly_sensing: every so many seconds of the flight
 };
 
 struct Task {
@@ -317,8 +319,18 @@ Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::stri
                              double duration_s) {
   Task& t = tasks_.at(static_cast<std::size_t>(task));
   auto state = std::make_shared<detail::State<Reading>>();
-  Action a{static_cast<ActionType>(type), to,    name,
-           std::max(0.0, duration_s),     state, ActionState::pending};
+  Action a{type == 4 ? ActionType::fly_to : static_cast<ActionType>(type),
+           to,
+           type == 4 ? std::string("fly_to") : name,
+           type == 4 ? 0.0 : std::max(0.0, duration_s),
+           state,
+           ActionState::pending};
+  if (type == 4) {  // fly_sensing: a fly_to that reads `name` every duration_s on the way
+    world_.sense_time_s(name);  // an unknown sensor fails here, at the call
+    if (!(duration_s > 0)) throw ActionFailed("fly_sensing needs a period > 0 s");
+    a.sample_sensor = name;
+    a.sample_period_s = duration_s;
+  }
   if (a.type == ActionType::sense) a.duration_s = world_.sense_time_s(name);
   if (a.type == ActionType::fly_to) {
     t.location = to;
@@ -750,6 +762,8 @@ void Runtime::step_drone(Drone& d, double t) {
   switch (d.mode) {
     case Mode::flying:
       if (t >= d.leg_start + d.leg->duration_s()) {
+        const Leg flown = *d.leg;
+        const double flown_from = d.leg_start;
         d.pos = d.leg->to();
         d.leg.reset();
         if (d.task < 0) {
@@ -769,6 +783,23 @@ void Runtime::step_drone(Drone& d, double t) {
           r.drone = d.index;
           r.at = d.pos;
           r.sensor = "fly_to";
+          const Action& fa = tk.actions[h];
+          if (fa.sample_period_s > 0) {
+            // fly_sensing: a reading every period along the leg that reached the target.
+            r.sensor = fa.sample_sensor;
+            std::string ref;
+            for (double s_t = fa.sample_period_s;
+                 s_t <= flown.duration_s() + 1e-9 && r.values.size() < 3 * 100000;
+                 s_t += fa.sample_period_s) {
+              const Vec3 at = flown.position_at(s_t);
+              const Reading one = world_.sense(fa.sample_sensor, at, flown_from + s_t);
+              r.values.push_back(at.x);
+              r.values.push_back(at.y);
+              r.values.insert(r.values.end(), one.values.begin(), one.values.end());
+              ref = one.ref;
+            }
+            r.ref = "samples of x_m,y_m," + ref;
+          }
           emit(tk, h, r);
         }
         if (!d.link_up) {  // the vehicle's own failsafe takes it home

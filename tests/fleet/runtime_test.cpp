@@ -320,5 +320,29 @@ TEST(Runtime, AnyReturnsTheFirstToEndAndDiscsAreFirstComeFirstServed) {
   EXPECT_GE(dispatched_3, sensed_2 - 0.1 - 1e-9);  // released at completion, delivered a tick on
 }
 
+TEST(Runtime, FlySensingReadsAlongTheLegAtItsPeriod) {
+  const ProbeWorld world;  // probe = x + y where it is read
+  Reading got;
+  App app{"sweep", "", [&got](Ctx& c) -> Co<void> {
+            auto h = c.spawn(Kind{"sweep"}, {}, [](Ctx& t) -> Co<Reading> {
+              co_return co_await t.fly_sensing({200, 0, 0}, "probe", 2.0);
+            });
+            got = co_await h;
+          }};
+  DroneSpec d = drone("a");
+  const RunRecord r = run_app(app, world, {d}, RunSettings{});
+  ASSERT_TRUE(r.completed) << r.failure;
+  // The leg: climb 20 m at 3 m/s, then 200 m level; a sample every 2 s of it.
+  const Leg leg({0, 0, 0}, {200, 0, 20}, d.kinematics);
+  const auto samples = static_cast<std::size_t>(std::floor(leg.duration_s() / 2.0 + 1e-9));
+  ASSERT_EQ(got.values.size(), 3 * samples);
+  for (std::size_t k = 0; k < samples; ++k) {
+    const Vec3 p = leg.position_at(2.0 * static_cast<double>(k + 1));
+    EXPECT_NEAR(got.values[3 * k], p.x, 1e-9);
+    EXPECT_NEAR(got.values[3 * k + 2], p.x + p.y, 1e-9);  // the world's reading there
+  }
+  EXPECT_EQ(got.sensor, "probe");
+}
+
 }  // namespace
 }  // namespace swath::fleet

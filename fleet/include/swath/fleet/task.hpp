@@ -264,6 +264,11 @@ class Ctx {
   Future<Reading> fly_to(const Vec3& to) { return act(0, to, "fly_to", 0); }
   /// Senses with `sensor` where the task's last fly_to took it; the world sets the time.
   Future<Reading> sense(const std::string& sensor) { return act(1, {}, sensor, 0); }
+  /// Flies there reading `sensor` every `period_s` (> 0) of the flight (paper Table 1's
+  /// fly_sensing): the reading's `values` are, per sample, x_m, y_m and the sensor's values.
+  Future<Reading> fly_sensing(const Vec3& to, const std::string& sensor, double period_s) {
+    return act(4, to, sensor, period_s);
+  }
   /// Hovers in place for `seconds` (≥ 0).
   Future<Reading> hover(double seconds) { return act(2, {}, "hover", seconds); }
   /// An action of the application's own (drop a parcel, record video) lasting `seconds`.
