@@ -15,6 +15,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/geometry/ground.hpp"
 #include "swath/planning/limits.hpp"
 #include "swath/planning/plan_features.hpp"
 #include "swath/planning/survey.hpp"
@@ -76,7 +77,9 @@ void PlanCommand::setup(CLI::App& app) {
                  "size and pixels)")
       ->check(CLI::IsMember({"photogrammetry", "detection"}))
       ->capture_default_str();
-  app.add_option("--altitude", altitude_m_, "Photogrammetry: flight altitude above home, metres");
+  app.add_option("--altitude", altitude_m_,
+                 "Photogrammetry: flight altitude above home, metres (above the ground with "
+                 "--terrain)");
   app.add_option("--gsd", gsd_cm_,
                  "Photogrammetry: ground sample distance, cm per pixel (sets the altitude)");
   app.add_option("--side-overlap", side_overlap_,
@@ -210,6 +213,27 @@ void PlanCommand::setup(CLI::App& app) {
                "wpmz/template.kml, wpmz/waylines.wpml): the same points, takePhoto every trigger "
                "distance from each line's start to its end, gimbal pitch, go-home or --land; the "
                "aircraft and payload from the camera's dji_* keys (warns without them)");
+  app.add_option("--terrain", terrain_,
+                 "Follow the ground of this DEM (any GDAL raster: GeoTIFF, .asc, .hgt, VRT; any "
+                 "CRS; heights in metres): every waypoint at the altitude above the ground under "
+                 "it, waypoints added where the ground departs from a leg's straight line by more "
+                 "than --terrain-tolerance; the DEM must cover the homes and the area");
+  app.add_option("--terrain-tolerance", terrain_tolerance_m_,
+                 "With --terrain: how far the height above ground may depart from --altitude "
+                 "between waypoints, metres")
+      ->capture_default_str();
+  app.add_option("--altitude-frame", altitude_frame_,
+                 "Altitudes in the .plan and .waypoints files: relative (above the take-off "
+                 "point), amsl (above mean sea level, needs --terrain), terrain (MAV_FRAME_GLOBAL_"
+                 "TERRAIN_ALT: the autopilot's terrain data, needs --terrain for the checks); "
+                 "Litchi and DJI files are always relative to the take-off point")
+      ->check(CLI::IsMember({"relative", "amsl", "terrain"}))
+      ->capture_default_str();
+  app.add_option("--dem-heights", dem_heights_,
+                 "What the DEM's heights are measured from: geoid (mean sea level: SRTM, "
+                 "Copernicus, national DEMs) or ellipsoid (WGS84; EGM96 is subtracted)")
+      ->check(CLI::IsMember({"geoid", "ellipsoid"}))
+      ->capture_default_str();
   app.add_flag("--land", land_,
                "End with a landing at home (NAV_LAND) instead of return-to-launch");
   app.add_option("--max-bank", max_bank_deg_,
@@ -369,7 +393,28 @@ planning::SurveyRequest PlanCommand::request() const {
   request.sorties = sorties_ == "auto";
   request.endurance_s = endurance_s_;
   request.reserve = reserve_;
+  request.terrain = terrain();
   return request;
+}
+
+std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
+  if (terrain_.empty()) {
+    if (altitude_frame_ != "relative")
+      throw InputError("--altitude-frame " + altitude_frame_ +
+                       " needs --terrain DEM (the ground's heights)");
+    return std::nullopt;
+  }
+  base::check_range(terrain_tolerance_m_, planning::limits::kTerrainTolerance_m,
+                    "--terrain-tolerance");
+  planning::TerrainRequest t;
+  t.ground =
+      geometry::dem_ground(terrain_, dem_heights_ == "ellipsoid" ? geometry::DemHeights::ellipsoid
+                                                                 : geometry::DemHeights::geoid);
+  t.tolerance_m = terrain_tolerance_m_;
+  t.frame = altitude_frame_ == "amsl"      ? planning::AltitudeFrame::amsl
+            : altitude_frame_ == "terrain" ? planning::AltitudeFrame::terrain
+                                           : planning::AltitudeFrame::relative;
+  return t;
 }
 
 std::vector<std::pair<std::string, std::string>> PlanCommand::files(
@@ -426,6 +471,16 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
       "  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n", plan.sweep.lines.size(),
       fixed_text(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
       fixed_text(im.line_spacing_m, 2).c_str(), fixed_text(im.trigger_distance_m, 2).c_str());
+  if (plan.terrain) {
+    const planning::TerrainFacts& t = *plan.terrain;
+    std::printf(
+        "  terrain    ground %s to %s m, %s m above it (%s to %s m flown, GSD %s to %s "
+        "cm/px), %zu waypoints added, %s frame\n",
+        fixed_text(t.ground_min_m, 1).c_str(), fixed_text(t.ground_max_m, 1).c_str(),
+        fixed_text(t.height_above_ground_m, 1).c_str(), fixed_text(t.agl_min_m, 1).c_str(),
+        fixed_text(t.agl_max_m, 1).c_str(), fixed_text(t.gsd_min_m * 100, 3).c_str(),
+        fixed_text(t.gsd_max_m * 100, 3).c_str(), t.waypoints_added, planning::frame_name(t.frame));
+  }
   for (const planning::DronePlan& d : plan.drones) {
     const planning::DroneMission& m = d.mission;
     std::printf("  %-10s %s (work %s, transit %s), %s at %s m/s, %zu waypoints, %zu photos\n",

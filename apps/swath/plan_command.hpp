@@ -26,6 +26,7 @@ class PlanCommand : public Command {
   void check_numbers() const;
   /// The steps of run(): the request from the options, the files of the plan, what to print.
   planning::SurveyRequest request() const;
+  std::optional<planning::TerrainRequest> terrain() const;
   std::vector<std::pair<std::string, std::string>> files(const planning::SurveyPlan& plan) const;
   void report(const planning::SurveyPlan& plan,
               const std::vector<std::pair<std::string, std::string>>& files) const;
@@ -80,6 +81,10 @@ class PlanCommand : public Command {
   bool fence_files_ = false;
   bool litchi_ = false;
   bool dji_ = false;
+  std::string terrain_;  ///< --terrain DEM
+  double terrain_tolerance_m_ = 2.0;
+  std::string altitude_frame_ = "relative";
+  std::string dem_heights_ = "geoid";
   bool land_ = false;
   double max_bank_deg_ = 30.0;
   std::string sorties_ = "off";

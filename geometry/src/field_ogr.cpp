@@ -15,6 +15,7 @@
 
 #include "field_ogr.hpp"
 #include "gis_module.hpp"
+#include "raster_gdal.hpp"
 
 namespace swath::geometry::detail {
 namespace {
@@ -324,7 +325,16 @@ bool module_wkt(const std::string& text, const std::string& source, detail::RawF
   return guarded(error, [&] { out = detail::parse_wkt(text, source); });
 }
 
-const detail::GisModule kModule{detail::kGisModuleAbi, module_read, module_list, module_wkt};
+bool module_sample(const std::string& path, const std::vector<GeoPoint>& points,
+                   std::vector<double>& values, double& resolution_m, std::string& error) {
+  return guarded(error, [&] { detail::sample_raster(path, points, values, resolution_m); });
+}
+bool module_grid(const std::string& name, std::string& path, std::string& error) {
+  return guarded(error, [&] { path = detail::proj_grid(name); });
+}
+
+const detail::GisModule kModule{detail::kGisModuleAbi, module_read, module_list, module_wkt,
+                                module_sample,         module_grid};
 
 }  // namespace
 

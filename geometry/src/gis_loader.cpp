@@ -25,7 +25,9 @@ std::vector<std::filesystem::path> candidates() {
   return out;
 }
 
-const GisModule& module() {
+}  // namespace
+
+const GisModule& gis_module() {
   static const GisModule* loaded = nullptr;
   static std::string failure;
   static std::once_flag once;
@@ -61,26 +63,24 @@ const GisModule& module() {
   return *loaded;
 }
 
-}  // namespace
-
 RawField read_ogr(const std::string& path, const FieldReadOptions& options) {
   RawField out;
   std::string error;
-  if (!module().read(path, options, out, error)) throw InputError(error);
+  if (!gis_module().read(path, options, out, error)) throw InputError(error);
   return out;
 }
 
 std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOptions& options) {
   std::vector<AreaEntry> out;
   std::string error;
-  if (!module().list(path, options, out, error)) throw InputError(error);
+  if (!gis_module().list(path, options, out, error)) throw InputError(error);
   return out;
 }
 
 RawField parse_wkt(const std::string& text, const std::string& source) {
   RawField out;
   std::string error;
-  if (!module().wkt(text, source, out, error)) throw InputError(error);
+  if (!gis_module().wkt(text, source, out, error)) throw InputError(error);
   return out;
 }
 

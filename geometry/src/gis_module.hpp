@@ -2,7 +2,7 @@
 // Internal: the GIS module (libswath_gis.so: field_ogr.cpp and GDAL) is opened on the first GIS
 // file, like the drawing module: a program reading GeoJSON, KML or CSV, or none at all, never
 // loads GDAL and the hundred libraries it brings (65 ms of every start, measured with
-// swath --version). The module hands back these three functions; errors come back as text.
+// swath --version). The module hands back these functions; errors come back as text.
 
 #include <string>
 #include <vector>
@@ -13,7 +13,7 @@
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 1;
+inline constexpr int kGisModuleAbi = 2;
 
 struct GisModule {
   int abi;
@@ -23,6 +23,14 @@ struct GisModule {
                std::vector<AreaEntry>& out, std::string& error);
   bool (*wkt)(const std::string& text, const std::string& source, RawField& out,
               std::string& error);
+  /// raster_gdal.hpp's sample_raster and proj_grid.
+  bool (*sample)(const std::string& path, const std::vector<GeoPoint>& points,
+                 std::vector<double>& values, double& resolution_m, std::string& error);
+  bool (*grid)(const std::string& name, std::string& path, std::string& error);
 };
+
+/// The module, opened on the first call (gis_loader.cpp). Throws std::runtime_error when it is
+/// missing or of another build: an installation fault, not bad input.
+const GisModule& gis_module();
 
 }  // namespace swath::geometry::detail

@@ -46,6 +46,7 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   steps::drones(plan);
   steps::missions(plan);
   steps::sorties(plan);
+  steps::terrain(plan);
   steps::measures(plan);
   steps::checks(plan);
   return plan;

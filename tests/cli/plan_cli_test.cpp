@@ -1,12 +1,14 @@
 // `swath plan` and `swath cameras` as a user runs them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "cli_runner.hpp"
 #include "swath/base/number_text.hpp"
@@ -500,6 +502,79 @@ TEST(PlanCli, AShapefileInTheSwissGridPlansAsItsGeoJson) {
   const CliRun c = run_swath("classify " + swiss);
   EXPECT_EQ(c.exit_code, 0) << c.err;
   EXPECT_NE(c.out.find("100694.3"), std::string::npos) << c.out;
+}
+
+// An ESRI ASCII grid in longitude/latitude, read here independently of GDAL, bilinear between
+// cell centres as DESIGN.md §15 defines the DEM's surface.
+struct AsciiGrid {
+  int cols = 0, rows = 0;
+  double x0 = 0, y0 = 0, cell = 0;
+  std::vector<double> z;
+  explicit AsciiGrid(const std::string& path) {
+    std::istringstream in(read_text(path));
+    std::string key;
+    double nodata = 0;
+    in >> key >> cols >> key >> rows >> key >> x0 >> key >> y0 >> key >> cell >> key >> nodata;
+    z.resize(static_cast<std::size_t>(cols * rows));
+    for (double& v : z) in >> v;
+  }
+  double at(double lat, double lon) const {
+    const double u = (lon - x0) / cell - 0.5, v = (y0 + rows * cell - lat) / cell - 0.5;
+    const int i = static_cast<int>(std::floor(u)), j = static_cast<int>(std::floor(v));
+    auto px = [&](int a, int b) {
+      return z[static_cast<std::size_t>(std::clamp(b, 0, rows - 1) * cols +
+                                        std::clamp(a, 0, cols - 1))];
+    };
+    const double fu = u - i, fv = v - j;
+    return (1 - fv) * ((1 - fu) * px(i, j) + fu * px(i + 1, j)) +
+           fv * ((1 - fu) * px(i, j + 1) + fu * px(i + 1, j + 1));
+  }
+};
+
+TEST(PlanCli, OverTheMeadowHillEveryWaypointIsSixtyMetresAboveTheGround) {
+  const std::string out = fresh_dir("plan-terrain");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --terrain "
+      "share/dems/meadow-hill.asc --altitude-frame amsl --litchi -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const AsciiGrid dem(source_path("share/dems/meadow-hill.asc"));
+  const json plan = json::parse(read_text(out + "/drone-1.plan"));
+  EXPECT_EQ(plan["mission"]["globalPlanAltitudeMode"], 2);
+  const json home = plan["mission"]["plannedHomePosition"];
+  const double home_ground = dem.at(home[0], home[1]);
+  EXPECT_NEAR(home[2].get<double>(), home_ground, 0.01);
+  int waypoints = 0;
+  for (const json& item : plan["mission"]["items"]) {
+    if (item["command"] != 16) continue;
+    ++waypoints;
+    EXPECT_EQ(item["frame"], 0);  // MAV_FRAME_GLOBAL
+    EXPECT_EQ(item["AltitudeMode"], 2);
+    const double lat = item["params"][4], lon = item["params"][5];
+    EXPECT_NEAR(item["Altitude"].get<double>() - dem.at(lat, lon), 60.0, 0.01);
+    EXPECT_EQ(item["Altitude"], item["params"][6]);
+  }
+  const json t = json::parse(read_text(out + "/summary.json"))["terrain"];
+  EXPECT_GT(t["waypoints_added"].get<int>(), 5);
+  EXPECT_EQ(waypoints, 11 * 2 + t["waypoints_added"].get<int>());  // the lines' ends, and those
+  EXPECT_GE(t["agl_min_m"].get<double>(), 58.0);
+  EXPECT_LE(t["agl_max_m"].get<double>(), 62.0);
+  EXPECT_LT(t["ground_min_m"].get<double>(), t["ground_max_m"].get<double>() - 30);
+  // Litchi flies above the take-off point: the same points, less the home's ground.
+  std::istringstream litchi(read_text(out + "/drone-1-litchi.csv"));
+  std::string row;
+  std::getline(litchi, row);
+  int rows = 0;
+  while (std::getline(litchi, row)) {
+    std::istringstream cells(row);
+    std::string lat, lon, alt;
+    std::getline(cells, lat, ',');
+    std::getline(cells, lon, ',');
+    std::getline(cells, alt, ',');
+    ++rows;
+    EXPECT_NEAR(std::stod(alt) + home_ground - dem.at(std::stod(lat), std::stod(lon)), 60.0, 0.01);
+  }
+  EXPECT_EQ(rows, waypoints);
 }
 
 }  // namespace

@@ -48,9 +48,34 @@ int mav_command(const MissionItem& item, Firmware firmware) {
   return 0;
 }
 
-int mav_frame(const MissionItem& item) {
-  return positional(item.kind) || item.kind == ItemKind::land_start ? kFrameRelativeAlt
-                                                                    : kFrameMission;
+AltitudeFrame altitude_frame(const SurveyPlan& plan) {
+  return plan.terrain ? plan.terrain->frame : AltitudeFrame::relative;
+}
+
+int mav_frame(const SurveyPlan& plan, const MissionItem& item) {
+  if (item.kind == ItemKind::land_start) return kFrameRelativeAlt;
+  if (!positional(item.kind)) return kFrameMission;
+  switch (altitude_frame(plan)) {
+    case AltitudeFrame::relative:
+      return kFrameRelativeAlt;
+    case AltitudeFrame::amsl:
+      return kFrameGlobal;
+    case AltitudeFrame::terrain:
+      return kFrameTerrainAlt;
+  }
+  return kFrameRelativeAlt;
+}
+
+double mav_altitude_m(const SurveyPlan& plan, const MissionItem& item) {
+  switch (altitude_frame(plan)) {
+    case AltitudeFrame::relative:
+      return round_to(item.altitude_m, 3);
+    case AltitudeFrame::amsl:
+      return round_to(item.altitude_amsl_m, 3);
+    case AltitudeFrame::terrain:
+      return round_to(plan.terrain->height_above_ground_m, 3);
+  }
+  return round_to(item.altitude_m, 3);
 }
 
 std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item) {
@@ -58,7 +83,7 @@ std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item
   const bool fixed_wing = plan.request.vehicle == Vehicle::fixedwing;
   auto at = [&](double p1) {
     const geometry::GeoPoint g = geo(plan, item.position);
-    return std::array<double, 7>{p1, 0, 0, nan, g.lat_deg, g.lon_deg, round_to(item.altitude_m, 3)};
+    return std::array<double, 7>{p1, 0, 0, nan, g.lat_deg, g.lon_deg, mav_altitude_m(plan, item)};
   };
   switch (item.kind) {
     case ItemKind::takeoff:

@@ -13,6 +13,7 @@ namespace swath::planning::files {
 constexpr int kFrameGlobal = 0;       // MAV_FRAME_GLOBAL: AMSL (fence and rally items)
 constexpr int kFrameMission = 2;      // MAV_FRAME_MISSION: no position
 constexpr int kFrameRelativeAlt = 3;  // MAV_FRAME_GLOBAL_RELATIVE_ALT
+constexpr int kFrameTerrainAlt = 10;  // MAV_FRAME_GLOBAL_TERRAIN_ALT
 
 /// A local point in WGS84, rounded to 1e-9 degrees as every file writes it.
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
@@ -20,8 +21,12 @@ geometry::GeoPoint rounded(const geometry::GeoPoint& g);
 
 /// The MAVLink command of an item (depends on the firmware for the gimbal).
 int mav_command(const MissionItem& item, Firmware firmware);
-/// The MAVLink frame an item is written in.
-int mav_frame(const MissionItem& item);
+/// The frame the plan's waypoints are written in (relative without terrain).
+AltitudeFrame altitude_frame(const SurveyPlan& plan);
+/// The MAVLink frame an item is written in (positions: the plan's altitude frame).
+int mav_frame(const SurveyPlan& plan, const MissionItem& item);
+/// A positional item's altitude in the plan's altitude frame, metres.
+double mav_altitude_m(const SurveyPlan& plan, const MissionItem& item);
 /// The seven params of an item; NaN where QGC writes null.
 std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item);
 /// waypoints.csv's name for an item.

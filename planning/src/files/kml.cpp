@@ -2,6 +2,38 @@
 #include "common.hpp"
 
 namespace swath::planning {
+namespace {
+
+// A drone's path in the altitude mode that matches its frame. Without terrain the heights are
+// above the take-off point, which KML cannot say: relativeToGround draws them above the ground
+// under each point, exact over flat ground (the description says so). With terrain the
+// waypoints' heights above sea level are known: absolute; the terrain frame is relativeToGround.
+std::string path_geometry(const SurveyPlan& plan, const DronePlan& d) {
+  std::string mode = "relativeToGround", coordinates;
+  std::string about =
+      "heights above the take-off point, drawn above the ground under each point; plan with "
+      "--terrain DEM for heights above sea level";
+  if (!plan.terrain) {
+    std::vector<geometry::GeoPoint> path;
+    for (const geometry::Point2& p : d.mission.path) path.push_back(files::geo(plan, p));
+    coordinates = files::kml_coordinates(path, plan.imaging.altitude_m, false);
+  } else {
+    const bool agl = plan.terrain->frame == AltitudeFrame::terrain;
+    mode = agl ? "relativeToGround" : "absolute";
+    about = agl ? "heights above the ground (terrain frame)" : "heights above mean sea level";
+    for (const MissionItem& item : d.mission.items) {
+      if (!positional(item.kind)) continue;
+      const geometry::GeoPoint g = files::geo(plan, item.position);
+      const double h = agl ? plan.terrain->height_above_ground_m : item.altitude_amsl_m;
+      coordinates += (coordinates.empty() ? "" : " ") + files::kml_coordinates({g}, h, false);
+    }
+  }
+  return "    <description>" + about + "</description>\n    <LineString>\n      <altitudeMode>" +
+         mode + "</altitudeMode>\n      <coordinates>" + coordinates +
+         "</coordinates>\n    </LineString>\n";
+}
+
+}  // namespace
 
 std::string mission_kml(const SurveyPlan& plan) {
   const geometry::Polygon& area = plan.request.field.polygon;
@@ -25,14 +57,9 @@ std::string mission_kml(const SurveyPlan& plan) {
          files::kml_coordinates(plan.no_fly_geo[k], 0.0, true) +
          "</coordinates></LinearRing></outerBoundaryIs>\n    </Polygon>\n  </Placemark>\n";
   for (const DronePlan& d : plan.drones) {
-    std::vector<geometry::GeoPoint> path;
-    for (const geometry::Point2& p : d.mission.path) path.push_back(files::geo(plan, p));
     s += "  <Placemark>\n    <name>Drone " + std::to_string(d.number) +
          (d.name == "drone-" + std::to_string(d.number) ? "" : " " + files::xml_escape(d.name)) +
-         " path</name>\n    <LineString>\n" +
-         "      <altitudeMode>relativeToGround</altitudeMode>\n      <coordinates>" +
-         files::kml_coordinates(path, plan.imaging.altitude_m, false) +
-         "</coordinates>\n    </LineString>\n  </Placemark>\n";
+         " path</name>\n" + path_geometry(plan, d) + "  </Placemark>\n";
   }
   s += "  <Placemark>\n    <name>Home</name>\n    <Point><coordinates>" +
        files::kml_coordinates({plan.home}, 0.0, false) + "</coordinates></Point>\n  </Placemark>\n";

@@ -43,6 +43,20 @@ ordered_json geofence_json(const SurveyPlan& plan) {
   return {{"circles", ordered_json::array()}, {"polygons", polygons}, {"version", 2}};
 }
 
+// QGroundControl's AltMode: 1 relative, 2 absolute (AMSL), 4 terrain frame (3 is its own
+// "calculated above terrain", which it turns into AMSL altitudes itself).
+int qgc_altitude_mode(const SurveyPlan& plan) {
+  switch (files::altitude_frame(plan)) {
+    case AltitudeFrame::relative:
+      return 1;
+    case AltitudeFrame::amsl:
+      return 2;
+    case AltitudeFrame::terrain:
+      return 4;
+  }
+  return 1;
+}
+
 }  // namespace
 
 std::string qgc_plan(const SurveyPlan& plan, const Flight& flight) {
@@ -53,13 +67,13 @@ std::string qgc_plan(const SurveyPlan& plan, const Flight& flight) {
     ordered_json j;
     if (positional(item.kind)) {
       j["AMSLAltAboveTerrain"] = nullptr;
-      j["Altitude"] = round_to(item.altitude_m, 3);
-      j["AltitudeMode"] = 1;  // relative to home
+      j["Altitude"] = files::mav_altitude_m(plan, item);
+      j["AltitudeMode"] = qgc_altitude_mode(plan);
     }
     j["autoContinue"] = true;
     j["command"] = files::mav_command(item, firmware);
     j["doJumpId"] = jump_id++;
-    j["frame"] = files::mav_frame(item);
+    j["frame"] = files::mav_frame(plan, item);
     ordered_json p = ordered_json::array();
     for (double v : files::mav_params(plan, item))
       p.push_back(std::isnan(v) ? ordered_json() : ordered_json(v));
@@ -72,10 +86,11 @@ std::string qgc_plan(const SurveyPlan& plan, const Flight& flight) {
   ordered_json m;
   m["cruiseSpeed"] = round_to(d.speed_m_s, 3);
   m["firmwareType"] = firmware == Firmware::ardupilot ? 3 : 12;
-  m["globalPlanAltitudeMode"] = 1;
+  m["globalPlanAltitudeMode"] = qgc_altitude_mode(plan);
   m["hoverSpeed"] = round_to(d.speed_m_s, 3);
   m["items"] = items;
-  m["plannedHomePosition"] = {home.lat_deg, home.lon_deg, 0};
+  m["plannedHomePosition"] = {home.lat_deg, home.lon_deg,
+                              round_to(flight.mission->home_amsl_m, 3)};  // AMSL
   m["vehicleType"] = plan.request.vehicle == Vehicle::multirotor ? 2 : 1;
   m["version"] = 2;
   ordered_json root;

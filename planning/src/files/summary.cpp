@@ -152,6 +152,23 @@ std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>&
       {"trigger_distance_m", round_to(im.trigger_distance_m, 4)},
       {"h_min_m", optional_number(im.h_min_m, 4)},
       {"h_max_m", optional_number(im.h_max_m, 4)}};
+  if (plan.terrain) {
+    const TerrainFacts& t = *plan.terrain;
+    j["terrain"] = {{"dem", t.source},
+                    {"altitude_frame", frame_name(t.frame)},
+                    {"height_above_ground_m", round_to(t.height_above_ground_m, 4)},
+                    {"tolerance_m", round_to(t.tolerance_m, 4)},
+                    {"ground_min_m", round_to(t.ground_min_m, 3)},
+                    {"ground_max_m", round_to(t.ground_max_m, 3)},
+                    {"agl_min_m", round_to(t.agl_min_m, 3)},
+                    {"agl_max_m", round_to(t.agl_max_m, 3)},
+                    {"gsd_min_cm_per_px", round_to(t.gsd_min_m * 100, 5)},
+                    {"gsd_max_cm_per_px", round_to(t.gsd_max_m * 100, 5)},
+                    {"waypoints_added", t.waypoints_added},
+                    {"climb_max_m_s", round_to(t.climb_max_m_s, 3)},
+                    {"descent_max_m_s", round_to(-t.descent_max_m_s, 3)},
+                    {"legs_too_steep", t.legs_too_steep}};
+  }
   ordered_json drones = ordered_json::array();
   for (const DronePlan& dp : plan.drones) drones.push_back(drone_json(plan, dp));
   j["drones"] = drones;

@@ -1,4 +1,5 @@
 // The set of files of a plan, and its flights.
+#include <algorithm>
 #include <tuple>
 
 #include "common.hpp"
@@ -45,8 +46,12 @@ void check_exports(const SurveyPlan& plan, const FileOptions& options) {
                          "--sorties auto or fewer --waypoint-spacing points");
     }
   if (!options.litchi) return;
-  if (plan.imaging.altitude_m > kLitchiMaxAltitude_m)
-    throw InputError("--litchi: the altitude " + base::fixed_text(plan.imaging.altitude_m, 1) +
+  double highest_m = plan.imaging.altitude_m;  // with terrain, waypoints climb with the ground
+  for (const Flight& f : flights_of(plan))
+    for (const MissionItem& item : f.mission->items)
+      if (positional(item.kind)) highest_m = std::max(highest_m, item.altitude_m);
+  if (highest_m > kLitchiMaxAltitude_m)
+    throw InputError("--litchi: the altitude " + base::fixed_text(highest_m, 1) +
                      " m is above Litchi's highest waypoint, 500 m above the take-off point");
   for (const DronePlan& d : plan.drones)
     if (d.speed_m_s > kLitchiMaxSpeed_m_s)

@@ -7,10 +7,13 @@ namespace swath::planning {
 std::string wpl_110(const SurveyPlan& plan, const Flight& flight) {
   const geometry::GeoPoint home = files::rounded(flight.drone->home_geo);
   std::string out = "QGC WPL 110\n";
-  out += files::wpl_row(0, 1, files::kFrameGlobal, 16, {0, 0, 0, 0, home.lat_deg, home.lon_deg, 0});
+  // Row 0 is the home, above mean sea level (0 when swath does not know the ground there).
+  out += files::wpl_row(
+      0, 1, files::kFrameGlobal, 16,
+      {0, 0, 0, 0, home.lat_deg, home.lon_deg, base::round_to(flight.mission->home_amsl_m, 3)});
   std::size_t index = 1;
   for (const MissionItem& item : flight.mission->items)
-    out += files::wpl_row(index++, 0, files::mav_frame(item),
+    out += files::wpl_row(index++, 0, files::mav_frame(plan, item),
                           files::mav_command(item, plan.request.firmware),
                           files::mav_params(plan, item));
   return out;

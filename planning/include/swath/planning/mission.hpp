@@ -4,6 +4,7 @@
 // and return to launch (or land).
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -67,6 +68,8 @@ struct MissionItem {
   double value = 0.0;         ///< see ItemKind
   TriggerMode trigger = TriggerMode::distance;     ///< trigger and camera items
   CameraCommand command = CameraCommand::digicam;  ///< camera_shot
+  /// Above mean sea level, with terrain (SurveyRequest::terrain) only; NaN otherwise.
+  double altitude_amsl_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Whether an item is a position the drone flies to (takeoff, waypoint, land).
@@ -110,6 +113,8 @@ struct DroneMission {
   /// kStopTurn_deg and for hover holds) and the descent at home; fixed-wing: climb and path.
   double flight_time_s = 0.0;
   std::size_t waypoint_count = 0;  ///< items with a position (takeoff, waypoints, land)
+  /// The ground at home above mean sea level, with terrain (SurveyRequest::terrain); else 0.
+  double home_amsl_m = 0.0;
 };
 
 /// A flight path over the survey, without the legs to and from home: points, and for each segment

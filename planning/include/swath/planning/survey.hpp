@@ -15,6 +15,7 @@
 #include "swath/planning/division.hpp"
 #include "swath/planning/imaging.hpp"
 #include "swath/planning/mission.hpp"
+#include "swath/planning/terrain.hpp"
 #include "swath/vehicle/drone.hpp"
 
 namespace swath::planning {
@@ -76,6 +77,8 @@ struct SurveyRequest {
   Firmware firmware = Firmware::ardupilot;
   Vehicle vehicle = Vehicle::multirotor;
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
+  /// Fly at the imaging altitude above the ground of a DEM (terrain.hpp) instead of above home.
+  std::optional<TerrainRequest> terrain;
   /// DESIGN.md §14 "Clearance": no waypoint and no leg closer than this to a hole or no-fly zone.
   double clearance_m = 5.0;
   /// The same for the outer boundary (lines shortened, transits kept inside by this much).
@@ -189,7 +192,8 @@ struct SurveyPlan {
   /// Coverage of the area as given by the flown footprints, and the share of swath outside it.
   CoverageMeasure coverage;
   ClearanceMeasure clearance;
-  std::vector<std::string> warnings;  ///< one sentence each
+  std::optional<TerrainFacts> terrain;  ///< with SurveyRequest::terrain
+  std::vector<std::string> warnings;    ///< one sentence each
 };
 
 /// What the coverage of a plan is measured over: the area, and --repair's extra pieces as further

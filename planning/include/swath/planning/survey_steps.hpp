@@ -36,6 +36,11 @@ void missions(SurveyPlan& plan);
 /// 7. sorties: with SurveyRequest::sorties, each drone's flight cut into battery-sized sorties.
 void sorties(SurveyPlan& plan);
 
+/// 7b. terrain: with SurveyRequest::terrain, every flight's waypoints at the imaging altitude
+/// above the DEM's ground, waypoints added where the ground departs from a leg's straight line
+/// by more than the tolerance; the facts (heights flown, steep legs) and their warnings.
+void terrain(SurveyPlan& plan);
+
 /// 8. measures: coverage, the clearance actually kept, turns and transits outside the area.
 void measures(SurveyPlan& plan);
 

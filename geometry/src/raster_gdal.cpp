@@ -1,0 +1,158 @@
+// Raster sampling through GDAL for the GIS module (raster_gdal.hpp).
+#include "raster_gdal.hpp"
+
+#include <cpl_conv.h>
+#include <gdal.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "swath/base/input_error.hpp"
+
+namespace swath::geometry::detail {
+namespace {
+
+using base::InputError;
+
+struct Raster {
+  GDALDataset* dataset = nullptr;  // open for the process
+  GDALRasterBand* band = nullptr;
+  std::unique_ptr<OGRCoordinateTransformation> from_wgs84;  // null: the raster is in WGS84
+  double inverse[6]{};                                      // georeferenced -> pixel/line
+  int width = 0, height = 0;
+  bool has_nodata = false;
+  double nodata = 0.0;
+  double resolution_m = 0.0;
+};
+
+std::string gdal_error() {
+  const char* m = CPLGetLastErrorMsg();
+  return m && *m ? std::string(m) : std::string("GDAL cannot read it");
+}
+
+Raster open_raster(const std::string& path) {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    GDALAllRegister();
+    CPLSetErrorHandler(CPLQuietErrorHandler);
+  });
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw InputError(path + ": cannot open the DEM (no such file)");
+  Raster r;
+  r.dataset = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+  if (!r.dataset) throw InputError(path + ": not a raster GDAL reads (" + gdal_error() + ")");
+  if (r.dataset->GetRasterCount() < 1) throw InputError(path + ": the raster has no band");
+  r.band = r.dataset->GetRasterBand(1);
+  r.width = r.dataset->GetRasterXSize();
+  r.height = r.dataset->GetRasterYSize();
+  int ok = 0;
+  r.nodata = r.band->GetNoDataValue(&ok);
+  r.has_nodata = ok != 0;
+  double gt[6];
+  if (r.dataset->GetGeoTransform(gt) != CE_None)
+    throw InputError(path + ": the raster is not georeferenced (no geotransform)");
+  if (!GDALInvGeoTransform(gt, r.inverse))
+    throw InputError(path + ": the raster's geotransform cannot be inverted");
+  const double px = std::hypot(gt[1], gt[4]), py = std::hypot(gt[2], gt[5]);
+  double unit_m = 1.0;
+  const OGRSpatialReference* srs = r.dataset->GetSpatialRef();
+  if (srs && !srs->IsEmpty()) {
+    OGRSpatialReference wgs84, to(*srs);
+    wgs84.importFromEPSG(4326);
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    if (srs->IsGeographic()) {
+      unit_m = 111'320.0 * srs->GetAngularUnits() / (M_PI / 180.0);
+    } else {
+      unit_m = srs->GetLinearUnits();
+    }
+    if (!to.IsSame(&wgs84)) {
+      r.from_wgs84.reset(OGRCreateCoordinateTransformation(&wgs84, &to));
+      if (!r.from_wgs84)
+        throw InputError(path + ": its CRS cannot be reached from WGS84 (" + gdal_error() + ")");
+    }
+  } else {
+    unit_m = 111'320.0;  // no CRS: longitude/latitude degrees, as for area files
+  }
+  r.resolution_m = std::max(0.05, 0.5 * std::min(px, py) * unit_m);
+  return r;
+}
+
+Raster& raster(const std::string& path) {
+  static std::map<std::string, Raster> open;
+  auto it = open.find(path);
+  if (it == open.end()) it = open.emplace(path, open_raster(path)).first;
+  return it->second;
+}
+
+double pixel(Raster& r, int i, int j) {
+  i = std::clamp(i, 0, r.width - 1);
+  j = std::clamp(j, 0, r.height - 1);
+  double v = 0;
+  if (r.band->RasterIO(GF_Read, i, j, 1, 1, &v, 1, 1, GDT_Float64, 0, 0) != CE_None)
+    return std::numeric_limits<double>::quiet_NaN();
+  if ((r.has_nodata && v == r.nodata) || !std::isfinite(v))
+    return std::numeric_limits<double>::quiet_NaN();
+  return v;
+}
+
+}  // namespace
+
+void sample_raster(const std::string& path, const std::vector<GeoPoint>& points,
+                   std::vector<double>& values, double& resolution_m) {
+  static std::mutex guard;
+  const std::lock_guard<std::mutex> lock(guard);
+  Raster& r = raster(path);
+  resolution_m = r.resolution_m;
+  values.assign(points.size(), std::numeric_limits<double>::quiet_NaN());
+  if (points.empty()) return;
+  std::vector<double> x(points.size()), y(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    x[k] = points[k].lon_deg;
+    y[k] = points[k].lat_deg;
+  }
+  std::vector<int> ok(points.size(), 1);
+  if (r.from_wgs84 && !r.from_wgs84->Transform(static_cast<int>(points.size()), x.data(), y.data(),
+                                               nullptr, ok.data()))
+    std::fill(ok.begin(), ok.end(), 0);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!ok[k]) continue;
+    const double* t = r.inverse;
+    const double pi = t[0] + t[1] * x[k] + t[2] * y[k];  // pixel, line (0 at the raster's edge)
+    const double pj = t[3] + t[4] * x[k] + t[5] * y[k];
+    if (!(pi >= 0 && pi <= r.width && pj >= 0 && pj <= r.height)) continue;
+    const double u = pi - 0.5, v = pj - 0.5;  // between pixel centres
+    const int i0 = static_cast<int>(std::floor(u)), j0 = static_cast<int>(std::floor(v));
+    const double fu = u - i0, fv = v - j0;
+    const double a = pixel(r, i0, j0), b = pixel(r, i0 + 1, j0);
+    const double c = pixel(r, i0, j0 + 1), d = pixel(r, i0 + 1, j0 + 1);
+    values[k] = (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+  }
+}
+
+std::string proj_grid(const std::string& name) {
+  std::vector<std::string> dirs;
+  if (char** paths = OSRGetPROJSearchPaths()) {
+    for (char** p = paths; *p; ++p) dirs.emplace_back(*p);
+    CSLDestroy(paths);
+  }
+  dirs.emplace_back("/usr/share/proj");
+  for (const std::string& d : dirs) {
+    std::error_code ec;
+    const auto f = std::filesystem::path(d) / name;
+    if (std::filesystem::exists(f, ec)) return f.string();
+  }
+  throw InputError("PROJ's geoid grid " + name +
+                   " is not installed (Debian: apt-get install proj-data); it converts "
+                   "ellipsoidal DEM heights to heights above sea level");
+}
+
+}  // namespace swath::geometry::detail

@@ -1,0 +1,170 @@
+// Step 7b of plan_survey(): terrain following (survey_steps.hpp, terrain.hpp, DESIGN.md §15).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/planning/survey_steps.hpp"
+
+namespace swath::planning::steps {
+namespace {
+
+using base::fixed_text;
+
+struct Follower {
+  const SurveyPlan& plan;
+  const TerrainRequest& request;
+  TerrainFacts& facts;
+  double steepest_m_s = 0.0;  // |vertical speed| of the steepest leg, for the warning
+
+  geometry::GeoPoint geo(geometry::Point2 p) const { return plan.request.field.frame->to_geo(p); }
+
+  std::string place(geometry::Point2 p) const {
+    const geometry::GeoPoint g = geo(p);
+    return "(" + fixed_text(g.lat_deg, 6) + ", " + fixed_text(g.lon_deg, 6) + ")";
+  }
+
+  // The ground along a-b at `n` + 1 evenly spaced points, a and b included.
+  std::vector<double> profile(geometry::Point2 a, geometry::Point2 b, std::size_t n,
+                              const std::string& whose) const {
+    std::vector<geometry::GeoPoint> at;
+    for (std::size_t k = 0; k <= n; ++k) {
+      const double t = n == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(n);
+      at.push_back(geo({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}));
+    }
+    std::vector<double> g = request.ground->heights_m(at);
+    for (std::size_t k = 0; k < g.size(); ++k)
+      if (!std::isfinite(g[k]))
+        throw base::InputError(
+            request.ground->source() + ": the DEM has no height at " +
+            place({a.x + (n == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(n)) *
+                             (b.x - a.x),
+                   a.y + (n == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(n)) *
+                             (b.y - a.y)}) +
+            ", on " + whose + ": give a DEM that covers the homes, the area and the legs between");
+    return g;
+  }
+
+  // The waypoints of one flight at the height above ground; waypoints added on the legs.
+  void follow(const DronePlan& d, DroneMission& m) {
+    const std::string whose = "drone " + d.name + "'s flight";
+    const double agl = plan.imaging.altitude_m;
+    const double home_ground = profile(m.home, m.home, 0, whose)[0];
+    m.home_amsl_m = home_ground;
+    const double step = request.ground->resolution_m();
+    std::vector<MissionItem> out;
+    geometry::Point2 prev = m.home;
+    double prev_ground = home_ground;
+    bool airborne = false;
+    auto set = [&](MissionItem& item, double ground) {
+      item.altitude_m = ground + agl - home_ground;
+      item.altitude_amsl_m = ground + agl;
+    };
+    for (MissionItem item : m.items) {
+      const bool leg = item.kind == ItemKind::waypoint || item.kind == ItemKind::land;
+      if (item.kind == ItemKind::takeoff) {
+        set(item, home_ground);
+        airborne = true;
+        prev = m.home;
+        prev_ground = home_ground;
+      } else if (leg && airborne) {
+        const geometry::Point2 to = item.kind == ItemKind::land ? m.home : item.position;
+        const double length = std::hypot(to.x - prev.x, to.y - prev.y);
+        const auto n = static_cast<std::size_t>(std::ceil(length / step));
+        const std::vector<double> g = profile(prev, to, n, whose);
+        std::vector<double> along(g.size());
+        for (std::size_t k = 0; k < g.size(); ++k)
+          along[k] = n == 0 ? 0.0 : length * static_cast<double>(k) / static_cast<double>(n);
+        const std::vector<std::size_t> keep = g.size() < 2
+                                                  ? std::vector<std::size_t>{0}
+                                                  : profile_breaks(along, g, request.tolerance_m);
+        measure(along, g, keep, d);
+        for (std::size_t q = 1; q + 1 < keep.size(); ++q) {
+          const double t = along[keep[q]] / length;
+          MissionItem added;
+          added.kind = ItemKind::waypoint;
+          added.position = {prev.x + t * (to.x - prev.x), prev.y + t * (to.y - prev.y)};
+          set(added, g[keep[q]]);
+          out.push_back(added);
+          ++facts.waypoints_added;
+          ++m.waypoint_count;
+        }
+        // Landing: the drone flies home at the last waypoint's height, then descends.
+        set(item, item.kind == ItemKind::land ? prev_ground : g.back());
+        if (item.kind == ItemKind::land && keep.size() > 1) set(item, g[keep[keep.size() - 2]]);
+        prev = to;
+        prev_ground = g.back();
+      }
+      out.push_back(item);
+    }
+    m.items = std::move(out);
+  }
+
+  // Heights above ground between the kept samples (straight lines), ground range, steepness.
+  void measure(const std::vector<double>& along, const std::vector<double>& g,
+               const std::vector<std::size_t>& keep, const DronePlan& d) {
+    const double agl = plan.imaging.altitude_m;
+    for (std::size_t q = 0; q + 1 < keep.size(); ++q) {
+      const std::size_t a = keep[q], b = keep[q + 1];
+      const double span = along[b] - along[a];
+      for (std::size_t k = a; k <= b; ++k) {
+        const double t = span > 0 ? (along[k] - along[a]) / span : 0.0;
+        const double flown = g[a] + agl + t * (g[b] - g[a]);
+        facts.agl_min_m = std::min(facts.agl_min_m, flown - g[k]);
+        facts.agl_max_m = std::max(facts.agl_max_m, flown - g[k]);
+        facts.ground_min_m = std::min(facts.ground_min_m, g[k]);
+        facts.ground_max_m = std::max(facts.ground_max_m, g[k]);
+      }
+      if (span <= 0) continue;
+      const double vertical_m_s = (g[b] - g[a]) / span * d.speed_m_s;
+      facts.climb_max_m_s = std::max(facts.climb_max_m_s, vertical_m_s);
+      facts.descent_max_m_s = std::min(facts.descent_max_m_s, vertical_m_s);
+      if (vertical_m_s > d.climb_speed_m_s || -vertical_m_s > d.descent_speed_m_s) {
+        ++facts.legs_too_steep;
+        if (std::abs(vertical_m_s) > steepest_m_s) steepest_m_s = std::abs(vertical_m_s);
+      }
+    }
+  }
+};
+
+}  // namespace
+
+void terrain(SurveyPlan& plan) {
+  if (!plan.request.terrain) return;
+  const TerrainRequest& request = *plan.request.terrain;
+  if (!request.ground) throw std::invalid_argument("terrain: no ground");
+  if (!(request.tolerance_m > 0))
+    throw base::InputError("--terrain-tolerance must be > 0 m (got " +
+                           fixed_text(request.tolerance_m, 3) + ")");
+  TerrainFacts facts;
+  facts.source = request.ground->source();
+  facts.frame = request.frame;
+  facts.height_above_ground_m = plan.imaging.altitude_m;
+  facts.tolerance_m = request.tolerance_m;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  facts.ground_min_m = facts.agl_min_m = inf;
+  facts.ground_max_m = facts.agl_max_m = -inf;
+  Follower f{plan, request, facts};
+  for (DronePlan& d : plan.drones) {
+    f.follow(d, d.mission);
+    for (Sortie& s : d.sorties) f.follow(d, s.mission);
+  }
+  if (!std::isfinite(facts.agl_min_m)) {  // nothing flown level (no legs)
+    facts.agl_min_m = facts.agl_max_m = plan.imaging.altitude_m;
+    facts.ground_min_m = facts.ground_max_m = 0.0;
+  }
+  const double per_m = plan.imaging.gsd_m / plan.imaging.altitude_m;
+  facts.gsd_min_m = facts.agl_min_m * per_m;
+  facts.gsd_max_m = facts.agl_max_m * per_m;
+  if (facts.legs_too_steep > 0)
+    plan.warnings.push_back(
+        std::to_string(facts.legs_too_steep) +
+        (facts.legs_too_steep == 1 ? " leg follows" : " legs follow") +
+        " the ground up or down faster than the drone climbs or descends (steepest " +
+        fixed_text(f.steepest_m_s, 1) +
+        " m/s): the autopilot slows down on them; fly slower or lay the lines along the slope");
+  plan.terrain = facts;
+}
+
+}  // namespace swath::planning::steps

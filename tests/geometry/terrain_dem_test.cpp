@@ -1,0 +1,269 @@
+// Terrain following over DEMs GDAL itself writes (DESIGN.md §15 "Terrain"): GeoTIFFs in UTM 32N
+// of closed-form grounds (a slope, a ridge, a pit). The reader is checked against the closed form
+// at the UTM coordinates GeographicLib computes (independent of PROJ, which the reader uses);
+// the plans are checked by sampling that closed form along every leg as flown: the height above
+// ground stays within the tolerance everywhere, and equals the altitude asked for at every
+// waypoint.
+#include <gdal.h>
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogr_spatialref.h>
+#include <unistd.h>
+
+#include <GeographicLib/UTMUPS.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+#include <sstream>
+
+#include "meadow_survey.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/geometry/ground.hpp"
+#include "swath/planning/survey.hpp"
+#include "swath/planning/survey_files.hpp"
+
+namespace swath::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+using Surface = std::function<double(double east_m, double north_m)>;
+
+fs::path scratch() {
+  const fs::path dir =
+      fs::temp_directory_path() / ("swath-terrain-dem-test-" + std::to_string(::getpid()));
+  static bool once = [&] {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return true;
+  }();
+  (void)once;
+  return dir;
+}
+
+struct Utm {
+  double east_m = 0, north_m = 0;
+};
+
+Utm utm32(double lat_deg, double lon_deg) {
+  int zone = 0;
+  bool north = true;
+  Utm u;
+  GeographicLib::UTMUPS::Forward(lat_deg, lon_deg, zone, north, u.east_m, u.north_m, 32);
+  return u;
+}
+
+// The meadow's centre in UTM 32N: the surfaces are centred there.
+const Utm kCentre = utm32(47.3986, 8.5424);
+
+// A GeoTIFF (EPSG:32632) of `f` at pixel centres, `pixel_m` pixels over a square of `half_m`
+// around the centre; pixels where `hole` says so are nodata.
+fs::path write_dem(const std::string& name, const Surface& f, double pixel_m = 2.0,
+                   double half_m = 1500.0, const std::function<bool(double, double)>& hole = {}) {
+  GDALAllRegister();
+  const fs::path path = scratch() / (name + ".tif");
+  const int n = static_cast<int>(2 * half_m / pixel_m);
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDataset* d = gtiff->Create(path.c_str(), n, n, 1, GDT_Float32, nullptr);
+  const double x0 = kCentre.east_m - half_m, y0 = kCentre.north_m + half_m;
+  double gt[6] = {x0, pixel_m, 0, y0, 0, -pixel_m};
+  d->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(32632);
+  d->SetSpatialRef(&srs);
+  GDALRasterBand* band = d->GetRasterBand(1);
+  band->SetNoDataValue(-9999);
+  std::vector<float> row(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const double e = x0 + (i + 0.5) * pixel_m, no = y0 - (j + 0.5) * pixel_m;
+      row[static_cast<std::size_t>(i)] =
+          hole && hole(e - kCentre.east_m, no - kCentre.north_m)
+              ? -9999.0F
+              : static_cast<float>(f(e - kCentre.east_m, no - kCentre.north_m));
+    }
+    EXPECT_EQ(band->RasterIO(GF_Write, 0, j, n, 1, row.data(), n, 1, GDT_Float32, 0, 0), CE_None);
+  }
+  GDALClose(d);
+  return path;
+}
+
+double at(const Surface& f, const GeoPoint& g) {
+  const Utm u = utm32(g.lat_deg, g.lon_deg);
+  return f(u.east_m - kCentre.east_m, u.north_m - kCentre.north_m);
+}
+
+const Surface kSlope = [](double e, double n) { return 420.0 + 0.08 * e - 0.05 * n; };
+// A ridge running north-north-east across the field, 40 m high, and a pit 30 m deep.
+const Surface kRidge = [](double e, double n) {
+  const double d = 0.97 * e - 0.24 * n;
+  return 400.0 + 40.0 * std::exp(-d * d / (2 * 60.0 * 60.0));
+};
+const Surface kPit = [](double e, double n) {
+  return 380.0 - 30.0 * std::exp(-(e * e + n * n) / (2 * 70.0 * 70.0));
+};
+
+TEST(DemGround, AGeoTiffInUtmGivesTheSurfaceAtEveryPoint) {
+  const auto ground = dem_ground(write_dem("slope", kSlope).string());
+  EXPECT_NEAR(ground->resolution_m(), 1.0, 1e-9);  // half the 2 m pixel
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> lat(47.390, 47.406), lon(8.530, 8.555);
+  std::vector<GeoPoint> points;
+  for (int k = 0; k < 500; ++k) points.push_back({lat(rng), lon(rng), 0});
+  const std::vector<double> h = ground->heights_m(points);
+  ASSERT_EQ(h.size(), points.size());
+  // A plane: bilinear interpolation is exact, so what is left is PROJ against GeographicLib.
+  for (std::size_t k = 0; k < points.size(); ++k)
+    EXPECT_NEAR(h[k], at(kSlope, points[k]), 1e-3) << k;
+}
+
+TEST(DemGround, OutsideTheRasterAndNextToNodataThereIsNoHeight) {
+  const auto ground = dem_ground(write_dem("holey", kSlope, 2.0, 1500.0, [](double e, double n) {
+                                   return std::abs(e - 200) < 10 && std::abs(n) < 10;
+                                 }).string());
+  const GeoPoint far{47.6, 8.54, 0};  // 22 km north
+  const std::vector<double> h = ground->heights_m({far, {47.3986, 8.5424, 0}});
+  EXPECT_TRUE(std::isnan(h[0]));
+  EXPECT_FALSE(std::isnan(h[1]));
+  // The hole: 200 m east of the centre.
+  const double lon_200 = 8.5424 + 200 / (111'320.0 * std::cos(47.3986 * M_PI / 180));
+  EXPECT_TRUE(std::isnan(ground->heights_m({{47.3986, lon_200, 0}})[0]));
+}
+
+TEST(DemGround, BadFilesAreRefusedNamingThem) {
+  const fs::path text = scratch() / "not-a-dem.tif";
+  { std::ofstream(text) << "hello"; }
+  for (const std::string& path : {text.string(), (scratch() / "absent.tif").string(),
+                                  std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson"}) {
+    try {
+      dem_ground(path);
+      ADD_FAILURE() << path << " accepted";
+    } catch (const base::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(DemGround, EllipsoidalHeightsLoseTheEgm96Undulation) {
+  // EGM96 at (0, 0): N = 17.16 m (NGA's published value); the 15' grid interpolates it.
+  EXPECT_NEAR(geoid_undulation_m({{0, 0, 0}})[0], 17.16, 0.05);
+  const GeoPoint zurich{47.3986, 8.5424, 0};
+  const double n = geoid_undulation_m({zurich})[0];
+  EXPECT_GT(n, 46.0);  // Central Europe: the geoid is ~47 m above the ellipsoid
+  EXPECT_LT(n, 49.0);
+  const fs::path dem = write_dem("ellipsoidal", [](double, double) { return 500.0; });
+  const double h = dem_ground(dem.string(), DemHeights::ellipsoid)->heights_m({zurich})[0];
+  EXPECT_NEAR(h, 500.0 - n, 1e-9);
+}
+
+// Every flight of the plan over `f`: each waypoint at `agl` above the ground, and every 0.5 m of
+// every leg after take-off within the tolerance of it (plus the DEM's bilinear error, < 0.01 m
+// for these surfaces at 2 m pixels). Returns the waypoints added.
+std::size_t check_plan(const Surface& f, const std::string& name, double tolerance_m) {
+  planning::SurveyRequest r = test::meadow_request(60);
+  r.terrain = planning::TerrainRequest{dem_ground(write_dem(name, f).string()), tolerance_m,
+                                       planning::AltitudeFrame::relative};
+  const planning::SurveyPlan plan = planning::plan_survey(r);
+  const LocalFrame& frame = *plan.request.field.frame;
+  EXPECT_TRUE(plan.terrain.has_value());
+  for (const planning::DronePlan& d : plan.drones) {
+    const double home_ground = at(f, frame.to_geo(d.mission.home));
+    std::optional<planning::MissionItem> prev;
+    for (const planning::MissionItem& item : d.mission.items) {
+      if (item.kind != planning::ItemKind::waypoint) continue;
+      const double ground = at(f, frame.to_geo(item.position));
+      EXPECT_NEAR(item.altitude_m + home_ground - ground, 60.0, 0.01) << name;
+      EXPECT_NEAR(item.altitude_amsl_m, ground + 60.0, 0.01) << name;
+      if (prev) {
+        const Point2 a = prev->position, b = item.position;
+        const double length = std::hypot(b.x - a.x, b.y - a.y);
+        const int n = std::max(1, static_cast<int>(length / 0.5));
+        for (int k = 0; k <= n; ++k) {
+          const double t = static_cast<double>(k) / n;
+          const Point2 p{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+          const double flown =
+              home_ground + prev->altitude_m + t * (item.altitude_m - prev->altitude_m);
+          const double agl = flown - at(f, frame.to_geo(p));
+          EXPECT_LE(std::abs(agl - 60.0), tolerance_m + 0.01)
+              << name << " at " << p.x << "," << p.y;
+        }
+      }
+      prev = item;
+    }
+  }
+  EXPECT_GE(plan.terrain->agl_min_m, 60.0 - tolerance_m - 1e-9);
+  EXPECT_LE(plan.terrain->agl_max_m, 60.0 + tolerance_m + 1e-9);
+  return plan.terrain->waypoints_added;
+}
+
+TEST(TerrainPlan, ASlopeNeedsNoWaypointsAndARidgeAndAPitGetThemWithinTheTolerance) {
+  EXPECT_EQ(check_plan(kSlope, "plan-slope", 1.0), 0u);  // a plane under a straight leg: linear
+  const std::size_t ridge_2 = check_plan(kRidge, "plan-ridge", 2.0);
+  const std::size_t ridge_05 = check_plan(kRidge, "plan-ridge-fine", 0.5);
+  const std::size_t pit = check_plan(kPit, "plan-pit", 2.0);
+  EXPECT_GT(ridge_2, 10u);
+  EXPECT_GT(ridge_05, ridge_2);  // a tighter tolerance needs more waypoints
+  EXPECT_GT(pit, 4u);
+}
+
+TEST(TerrainPlan, TheFramesWriteTheirAltitudes) {
+  planning::SurveyRequest r = test::meadow_request(60);
+  const auto ground = dem_ground(write_dem("frames", kRidge).string());
+  for (const auto frame : {planning::AltitudeFrame::relative, planning::AltitudeFrame::amsl,
+                           planning::AltitudeFrame::terrain}) {
+    r.terrain = planning::TerrainRequest{ground, 2.0, frame};
+    const planning::SurveyPlan plan = planning::plan_survey(r);
+    const auto flights = planning::flights_of(plan);
+    const std::string wpl = planning::wpl_110(plan, flights.at(0));
+    // Row 0: the home at the ground's height above sea level; then the items.
+    std::istringstream in(wpl);
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::vector<double>> rows;
+    while (std::getline(in, line)) {
+      std::istringstream cells(line);
+      std::vector<double> row;
+      for (double v; cells >> v;) row.push_back(v);
+      rows.push_back(row);
+    }
+    const double home_ground = at(kRidge, plan.drones[0].home_geo);
+    EXPECT_NEAR(rows.at(0)[10], home_ground, 0.01);
+    const int want_frame = frame == planning::AltitudeFrame::relative ? 3
+                           : frame == planning::AltitudeFrame::amsl   ? 0
+                                                                      : 10;
+    int waypoints = 0;
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+      if (rows[k][3] != 16) continue;  // NAV_WAYPOINT
+      ++waypoints;
+      EXPECT_EQ(rows[k][2], want_frame);
+      const double ground = at(kRidge, {rows[k][8], rows[k][9], 0});
+      const double agl = frame == planning::AltitudeFrame::relative
+                             ? rows[k][10] + home_ground - ground
+                         : frame == planning::AltitudeFrame::amsl ? rows[k][10] - ground
+                                                                  : rows[k][10];
+      EXPECT_NEAR(agl, 60.0, 0.02) << "row " << k;
+    }
+    EXPECT_GT(waypoints, 20);
+    const std::string kml = planning::mission_kml(plan);
+    EXPECT_NE(kml.find(frame == planning::AltitudeFrame::terrain ? "<altitudeMode>relativeToGround"
+                                                                 : "<altitudeMode>absolute"),
+              std::string::npos);
+  }
+}
+
+TEST(TerrainPlan, ADemThatMissesTheAreaIsRefusedWithThePlace) {
+  planning::SurveyRequest r = test::meadow_request(60);
+  r.terrain = planning::TerrainRequest{dem_ground(write_dem("small", kSlope, 2.0, 100.0).string()),
+                                       2.0, planning::AltitudeFrame::relative};
+  try {
+    planning::plan_survey(r);
+    ADD_FAILURE() << "planned";
+  } catch (const base::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the DEM has no height at ("), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace swath::geometry
