@@ -213,6 +213,10 @@ void PlanCommand::setup(CLI::App& app) {
                "wpmz/template.kml, wpmz/waylines.wpml): the same points, takePhoto every trigger "
                "distance from each line's start to its end, gimbal pitch, go-home or --land; the "
                "aircraft and payload from the camera's dji_* keys (warns without them)");
+  app.add_flag("--qgc-survey", qgc_survey_,
+               "Also write NAME-survey.plan: the flight as a QGroundControl Survey item, editable "
+               "in QGC (area, angle, camera, overlaps, turnaround; QGC flies swath's lines until "
+               "the survey is edited); one drone, a convex area without holes, zones or terrain");
   app.add_option("--terrain", terrain_,
                  "Follow the ground of this DEM (any GDAL raster: GeoTIFF, .asc, .hgt, VRT; any "
                  "CRS; heights in metres): every waypoint at the altitude above the ground under "
@@ -419,7 +423,7 @@ std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
 
 std::vector<std::pair<std::string, std::string>> PlanCommand::files(
     const planning::SurveyPlan& plan) const {
-  const planning::FileOptions options{fence_files_, litchi_, dji_};
+  const planning::FileOptions options{fence_files_, litchi_, dji_, qgc_survey_};
   auto files = planning::survey_files(plan, options);
   export_warnings_ = planning::export_warnings(plan, options);
   if (!energy_plan_.empty()) {

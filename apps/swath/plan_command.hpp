@@ -81,6 +81,7 @@ class PlanCommand : public Command {
   bool fence_files_ = false;
   bool litchi_ = false;
   bool dji_ = false;
+  bool qgc_survey_ = false;
   std::string terrain_;  ///< --terrain DEM
   double terrain_tolerance_m_ = 2.0;
   std::string altitude_frame_ = "relative";

@@ -237,10 +237,10 @@ TEST(TerrainPlan, TheFramesWriteTheirAltitudes) {
       if (rows[k][3] != 16) continue;  // NAV_WAYPOINT
       ++waypoints;
       EXPECT_EQ(rows[k][2], want_frame);
-      const double ground = at(kRidge, {rows[k][8], rows[k][9], 0});
+      const double under = at(kRidge, {rows[k][8], rows[k][9], 0});
       const double agl = frame == planning::AltitudeFrame::relative
-                             ? rows[k][10] + home_ground - ground
-                         : frame == planning::AltitudeFrame::amsl ? rows[k][10] - ground
+                             ? rows[k][10] + home_ground - under
+                         : frame == planning::AltitudeFrame::amsl ? rows[k][10] - under
                                                                   : rows[k][10];
       EXPECT_NEAR(agl, 60.0, 0.02) << "row " << k;
     }

@@ -25,12 +25,18 @@ std::string path_geometry(const SurveyPlan& plan, const DronePlan& d) {
       if (!positional(item.kind)) continue;
       const geometry::GeoPoint g = files::geo(plan, item.position);
       const double h = agl ? plan.terrain->height_above_ground_m : item.altitude_amsl_m;
-      coordinates += (coordinates.empty() ? "" : " ") + files::kml_coordinates({g}, h, false);
+      if (!coordinates.empty()) coordinates += ' ';
+      coordinates += files::kml_coordinates({g}, h, false);
     }
   }
-  return "    <description>" + about + "</description>\n    <LineString>\n      <altitudeMode>" +
-         mode + "</altitudeMode>\n      <coordinates>" + coordinates +
-         "</coordinates>\n    </LineString>\n";
+  std::string out = "    <description>";
+  out += about;
+  out += "</description>\n    <LineString>\n      <altitudeMode>";
+  out += mode;
+  out += "</altitudeMode>\n      <coordinates>";
+  out += coordinates;
+  out += "</coordinates>\n    </LineString>\n";
+  return out;
 }
 
 }  // namespace

@@ -45,6 +45,8 @@ void check_exports(const SurveyPlan& plan, const FileOptions& options) {
                          " waypoints, more than a DJI WPML wayline holds (65,536); cut it with "
                          "--sorties auto or fewer --waypoint-spacing points");
     }
+  if (std::string why; options.qgc_survey && !qgc_survey_possible(plan, &why))
+    throw InputError("--qgc-survey: " + why + "; use the .plan of waypoints instead");
   if (!options.litchi) return;
   double highest_m = plan.imaging.altitude_m;  // with terrain, waypoints climb with the ground
   for (const Flight& f : flights_of(plan))
@@ -78,6 +80,8 @@ std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& 
                                                          {"summary.json", summary_json(plan)}};
   for (const Flight& f : flights_of(plan)) {
     files.push_back({f.file_stem + ".plan", qgc_plan(plan, f)});
+    if (options.qgc_survey)
+      files.push_back({f.file_stem + "-survey.plan", qgc_survey_plan(plan, f)});
     files.push_back({f.file_stem + ".waypoints", wpl_110(plan, f)});
     if (options.litchi) {
       // One part: NAME-litchi.csv; several: NAME-litchi-1.csv, -2, ... (as sorties are numbered).

@@ -28,6 +28,19 @@ std::vector<Flight> flights_of(const SurveyPlan& plan);
 /// exclusion per no-fly zone, and the drone's home as rally point.
 std::string qgc_plan(const SurveyPlan& plan, const Flight& flight);
 
+/// Whether the plan can be written as a QGroundControl Survey complex item (--qgc-survey): one
+/// drone, one flight, a convex area without holes or no-fly zones, no terrain; else `why` says.
+bool qgc_survey_possible(const SurveyPlan& plan, std::string* why = nullptr);
+
+/// QGroundControl plan with the flight as a Survey complex item (--qgc-survey, editable in QGC):
+/// the take-off, then a ComplexItem "survey" version 5 (the area's outline as its polygon, the
+/// lines' bearing as its angle, turnaround, crosshatch, the camera as a "Custom Camera" CameraCalc
+/// version 1 with its sensor, focal length, image size, GSD, overlaps, spacing and trigger
+/// distance, and swath's own items as the TransectStyleComplexItem's Items, which QGC flies as
+/// they are until the survey is edited), then the return or landing; fence and rally as in
+/// qgc_plan(). Requires qgc_survey_possible().
+std::string qgc_survey_plan(const SurveyPlan& plan, const Flight& flight);
+
 /// QGC WPL 110 (Mission Planner): row 0 the drone's own home, then the same items.
 std::string wpl_110(const SurveyPlan& plan, const Flight& flight);
 
@@ -96,11 +109,13 @@ struct FileOptions {
   bool fence_files = false;  ///< also the Mission Planner fence and rally files
   bool litchi = false;       ///< also <flight>-litchi.csv (split: <flight>-litchi-<k>.csv)
   bool dji = false;          ///< also <flight>.kmz
+  bool qgc_survey = false;   ///< also <flight>-survey.plan (qgc_survey_plan())
 };
 
 /// Throws base::InputError (one sentence naming the option) when the plan cannot be exported as
 /// `options` asks: Litchi and DJI Pilot 2 fly multirotors only; Litchi flies at most
-/// kLitchiMaxSpeed_m_s and kLitchiMaxAltitude_m; a WPML wayline holds kWpmlMaxWaypoints.
+/// kLitchiMaxSpeed_m_s and kLitchiMaxAltitude_m; a WPML wayline holds kWpmlMaxWaypoints;
+/// --qgc-survey needs qgc_survey_possible().
 void check_exports(const SurveyPlan& plan, const FileOptions& options);
 
 /// Warnings about the exports `options` asks for: a --dji camera without DJI enums.
