@@ -15,7 +15,9 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/geometry/geotiff.hpp"
 #include "swath/geometry/ground.hpp"
+#include "swath/planning/coverage_grid.hpp"
 #include "swath/planning/limits.hpp"
 #include "swath/planning/plan_features.hpp"
 #include "swath/planning/survey.hpp"
@@ -50,6 +52,21 @@ std::pair<double, double> parse_pattern(const std::string& text) {
 template <typename E>
 E lookup(const std::map<std::string, E>& table, const std::string& value) {
   return table.at(value);  // CLI11 has already checked membership
+}
+
+// coverage.tif: the coverage grid as a GeoTIFF of the plan's local frame.
+std::string coverage_tif(const planning::SurveyPlan& plan, double cell_m) {
+  const planning::CoverageGrid g = planning::coverage_grid(plan, cell_m);
+  geometry::LocalRaster r;
+  r.origin = plan.request.field.frame->origin();
+  r.west_m = g.west_m;
+  r.north_m = g.north_m;
+  r.cell_m = g.cell_m;
+  r.width = g.width;
+  r.height = g.height;
+  r.bands.emplace_back("photos", g.photos);
+  r.bands.emplace_back("area", std::vector<std::uint16_t>(g.inside.begin(), g.inside.end()));
+  return geometry::geotiff_bytes(r);
 }
 
 std::string kilometres(double m) {
@@ -158,6 +175,12 @@ void PlanCommand::setup(CLI::App& app) {
   app.add_flag("--render", render_,
                "Also draw coverage.png: the area, camera footprints, paths, home, scale bar");
   app.add_option("--size", size_, "Size of coverage.png, WxH pixels")->capture_default_str();
+  app.add_flag("--coverage-tif", coverage_tif_,
+               "Also write coverage.tif, a GeoTIFF in the plan's local frame (PROJ ortho about "
+               "its origin): band 1 the planned photos over each cell, band 2 1 inside the area");
+  app.add_option("--coverage-cell", coverage_cell_m_,
+                 "coverage.tif's cell size, metres (enlarged to keep it under 16 million cells)")
+      ->capture_default_str();
   app.add_flag("--repair", repair_,
                "An outer ring that crosses itself: plan the areas it encloses (union of its faces) "
                "instead of refusing it; the summary and a warning say what was done");
@@ -290,6 +313,7 @@ void PlanCommand::check_numbers() const {
     base::check_range(*waypoint_spacing_m_, kWaypointSpacing_m, "--waypoint-spacing");
   if (drones_) base::check_range(*drones_, kDrones, "--drones");
   if (speed_m_s_) base::check_range(*speed_m_s_, kSpeed_m_s, "--speed");
+  base::check_range(coverage_cell_m_, kCoverageCell_m, "--coverage-cell");
 }
 
 planning::SurveyRequest PlanCommand::request() const {
@@ -448,6 +472,7 @@ std::vector<std::pair<std::string, std::string>> PlanCommand::files(
         coverage_image(planning::plan_features(plan), planning::plan_figures(plan), w, h);
     files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
   }
+  if (coverage_tif_) files.push_back({"coverage.tif", coverage_tif(plan, coverage_cell_m_)});
   // summary.json lists the whole set (DESIGN.md §14 "Output directory").
   std::vector<std::string> set_names;
   for (const auto& f : files) set_names.push_back(f.first);

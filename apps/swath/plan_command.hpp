@@ -82,6 +82,8 @@ class PlanCommand : public Command {
   bool litchi_ = false;
   bool dji_ = false;
   bool qgc_survey_ = false;
+  bool coverage_tif_ = false;
+  double coverage_cell_m_ = 0.5;
   std::string terrain_;  ///< --terrain DEM
   double terrain_tolerance_m_ = 2.0;
   std::string altitude_frame_ = "relative";

@@ -333,8 +333,12 @@ bool module_grid(const std::string& name, std::string& path, std::string& error)
   return guarded(error, [&] { path = detail::proj_grid(name); });
 }
 
-const detail::GisModule kModule{detail::kGisModuleAbi, module_read, module_list, module_wkt,
-                                module_sample,         module_grid};
+bool module_geotiff(const LocalRaster& raster, std::string& bytes, std::string& error) {
+  return guarded(error, [&] { bytes = detail::geotiff(raster); });
+}
+
+const detail::GisModule kModule{detail::kGisModuleAbi, module_read, module_list,   module_wkt,
+                                module_sample,         module_grid, module_geotiff};
 
 }  // namespace
 

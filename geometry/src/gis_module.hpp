@@ -9,11 +9,12 @@
 
 #include "raw_field.hpp"
 #include "swath/geometry/field.hpp"
+#include "swath/geometry/geotiff.hpp"
 
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 2;
+inline constexpr int kGisModuleAbi = 3;
 
 struct GisModule {
   int abi;
@@ -27,6 +28,8 @@ struct GisModule {
   bool (*sample)(const std::string& path, const std::vector<GeoPoint>& points,
                  std::vector<double>& values, double& resolution_m, std::string& error);
   bool (*grid)(const std::string& name, std::string& path, std::string& error);
+  /// raster_gdal.hpp's geotiff.
+  bool (*geotiff)(const LocalRaster& raster, std::string& bytes, std::string& error);
 };
 
 /// The module, opened on the first call (gis_loader.cpp). Throws std::runtime_error when it is

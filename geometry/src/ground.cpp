@@ -1,6 +1,8 @@
 // The DEM behind Ground, through the GIS module (ground.hpp).
 #include "swath/geometry/ground.hpp"
 
+#include "swath/geometry/geotiff.hpp"
+
 #include "gis_module.hpp"
 #include "swath/base/input_error.hpp"
 
@@ -52,6 +54,12 @@ class DemGround final : public Ground {
 
 std::shared_ptr<const Ground> dem_ground(const std::string& path, DemHeights heights) {
   return std::make_shared<DemGround>(path, heights);
+}
+
+std::string geotiff_bytes(const LocalRaster& raster) {
+  std::string bytes, error;
+  if (!detail::gis_module().geotiff(raster, bytes, error)) throw std::runtime_error(error);
+  return bytes;
 }
 
 std::vector<double> geoid_undulation_m(const std::vector<GeoPoint>& points) {

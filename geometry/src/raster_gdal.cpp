@@ -2,17 +2,20 @@
 #include "raster_gdal.hpp"
 
 #include <cpl_conv.h>
+#include <cpl_vsi.h>
 #include <gdal.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 
 #include "swath/base/input_error.hpp"
 
@@ -153,6 +156,50 @@ std::string proj_grid(const std::string& name) {
   throw InputError("PROJ's geoid grid " + name +
                    " is not installed (Debian: apt-get install proj-data); it converts "
                    "ellipsoidal DEM heights to heights above sea level");
+}
+
+std::string geotiff(const LocalRaster& raster) {
+  GDALAllRegister();
+  static std::mutex guard;
+  const std::lock_guard<std::mutex> lock(guard);
+  const std::string path = "/vsimem/swath-coverage.tif";
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  if (!gtiff) throw std::runtime_error("GDAL has no GTiff driver");
+  char** options = nullptr;
+  options = CSLSetNameValue(options, "COMPRESS", "DEFLATE");
+  options = CSLSetNameValue(options, "PREDICTOR", "2");
+  const int bands = static_cast<int>(raster.bands.size());
+  GDALDataset* d =
+      gtiff->Create(path.c_str(), raster.width, raster.height, bands, GDT_UInt16, options);
+  CSLDestroy(options);
+  if (!d) throw std::runtime_error("GDAL cannot create a GeoTIFF (" + gdal_error() + ")");
+  double gt[6] = {raster.west_m, raster.cell_m, 0, raster.north_m, 0, -raster.cell_m};
+  d->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  char proj[256];
+  std::snprintf(proj, sizeof proj,
+                "+proj=ortho +lat_0=%.12f +lon_0=%.12f +x_0=0 +y_0=0 +ellps=WGS84 +units=m "
+                "+no_defs",
+                raster.origin.lat_deg, raster.origin.lon_deg);
+  srs.importFromProj4(proj);
+  d->SetSpatialRef(&srs);
+  bool ok = true;
+  for (int b = 0; b < bands; ++b) {
+    GDALRasterBand* band = d->GetRasterBand(b + 1);
+    band->SetDescription(raster.bands[static_cast<std::size_t>(b)].first.c_str());
+    auto& values =
+        const_cast<std::vector<std::uint16_t>&>(raster.bands[static_cast<std::size_t>(b)].second);
+    ok = ok && band->RasterIO(GF_Write, 0, 0, raster.width, raster.height, values.data(),
+                              raster.width, raster.height, GDT_UInt16, 0, 0) == CE_None;
+  }
+  GDALClose(d);
+  vsi_l_offset size = 0;
+  GByte* data = VSIGetMemFileBuffer(path.c_str(), &size, FALSE);
+  std::string bytes = ok && data ? std::string(reinterpret_cast<const char*>(data), size) : "";
+  VSIUnlink(path.c_str());
+  if (bytes.empty())
+    throw std::runtime_error("GDAL cannot write the GeoTIFF (" + gdal_error() + ")");
+  return bytes;
 }
 
 }  // namespace swath::geometry::detail

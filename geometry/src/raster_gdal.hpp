@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/geometry/geotiff.hpp"
 #include "swath/geometry/point.hpp"
 
 namespace swath::geometry::detail {
@@ -18,5 +19,8 @@ void sample_raster(const std::string& path, const std::vector<GeoPoint>& points,
 /// The path of a grid PROJ installs (egm96_15.gtx) in PROJ's search paths; throws InputError
 /// naming the Debian package when it is absent.
 std::string proj_grid(const std::string& name);
+
+/// The GeoTIFF bytes of a raster in the local frame (geotiff.hpp); throws std::runtime_error.
+std::string geotiff(const LocalRaster& raster);
 
 }  // namespace swath::geometry::detail

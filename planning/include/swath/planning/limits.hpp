@@ -33,6 +33,7 @@ inline constexpr base::Range kSpacing_m{0.1, 100'000, "m", "closer than 10 cm is
 using vehicle::limits::kSpeed_m_s;
 inline constexpr base::Range kTurnaround_m{0, 1000, "m", ""};
 inline constexpr base::Range kWaypointSpacing_m{0.5, 100'000, "m", ""};
+inline constexpr base::Range kCoverageCell_m{0.01, 1000, "m", ""};
 inline constexpr base::Range kTerrainTolerance_m{0.1, 1000, "m", "below 0.1 m a DEM's own error"};
 inline constexpr base::Range kAngleStep_deg{0.001, 90, "°", "180,000 scan steps at most"};
 inline constexpr base::Range kBearing_deg{-360, 360, "°", ""};
