@@ -17,10 +17,9 @@ using json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
-  app.add_option(
-         "APP", r.app,
-         "The application: hotspot, multiplexing, road, static, tracking, wifi (swath-fleet apps)")
-      ->required();
+  std::string names;
+  for (const fleet::App& a : worlds::all_apps()) names += (names.empty() ? "" : ", ") + a.name;
+  app.add_option("APP", r.app, "The application: " + names + " (swath-fleet apps)")->required();
   app.add_option("--world", r.world,
                  "World file, or a bundled world: hotspot, road, rf_field, sites, static, tracking "
                  "(share/worlds/)")
@@ -63,11 +62,12 @@ std::string world_path(const std::string& name) {
 PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed) {
   PreparedRun p;
   bool found = false;
-  for (fleet::App& a : worlds::builtin_apps())
+  std::string names;
+  for (fleet::App& a : worlds::all_apps()) {
+    names += (names.empty() ? "" : ", ") + a.name;
     if (a.name == r.app) p.app = std::move(a), found = true;
-  if (!found)
-    throw InputError("unknown app \"" + r.app +
-                     "\": the apps are hotspot, multiplexing, road, static, tracking, wifi");
+  }
+  if (!found) throw InputError("unknown app \"" + r.app + "\": the apps are " + names);
   p.world_source = world_path(r.world);
   p.world_text = base::read_text_file(p.world_source, "world file");
   p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);

@@ -1,24 +1,7 @@
 // swath-fleet: applications written against virtual drones, run on a simulated fleet by a
 // runtime that assigns drones to requests moment by moment (paper 000, BeeCluster).
-#include <memory>
-#include <vector>
-
-#include "command.hpp"
-#include "run_command.hpp"
+#include "fleet_main.hpp"
 
 int main(int argc, char** argv) {
-  using namespace swath::apps;
-  std::vector<std::unique_ptr<Command>> commands;
-  commands.push_back(std::make_unique<FleetRunCommand>());
-  commands.push_back(std::make_unique<FleetCompareCommand>());
-  commands.push_back(std::make_unique<FleetCheckCommand>());
-  commands.push_back(std::make_unique<FleetAppsCommand>());
-  commands.push_back(std::make_unique<FleetWorldsCommand>());
-  return run_program(
-      "swath-fleet", "swath-fleet: swarm applications on a simulated fleet (paper 000)",
-      "Exit codes: 0 the application completed; 2 bad input or usage (the message "
-      "names the file, the place and the problem; nothing is written); 4 the "
-      "application did not complete (time limit, no drone could serve it, its "
-      "main failed; the files are still written; check: a rule is broken); 1 unexpected failure.",
-      commands, argc, argv);
+  return swath::apps::fleet_main(argc, argv);
 }

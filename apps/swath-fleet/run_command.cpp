@@ -116,7 +116,7 @@ int FleetWorldsCommand::run() {
 }
 
 int FleetAppsCommand::run() {
-  for (const fleet::App& a : worlds::builtin_apps())
+  for (const fleet::App& a : worlds::all_apps())
     std::cout << a.name << "\t" << a.description << "\n";
   return base::kExitSuccess;
 }

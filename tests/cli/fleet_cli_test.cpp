@@ -204,3 +204,58 @@ TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
 
 }  // namespace
 }  // namespace swath::test
+
+#include "fleet_main.hpp"
+#include "swath/fleet/event_check.hpp"
+
+namespace swath::test {
+namespace {
+
+// An application of the test's own, as an out-of-tree program would write it: it registers the
+// app and hands its argv to swath-fleet's command line.
+fleet::Co<void> corners_main(fleet::Ctx& c) {
+  for (const fleet::Vec3& p :
+       {fleet::Vec3{60, 0, 0}, fleet::Vec3{60, 60, 0}, fleet::Vec3{0, 60, 0}}) {
+    auto h = c.spawn(fleet::Kind{"corner"}, {}, [p](fleet::Ctx& t) -> fleet::Co<fleet::Reading> {
+      co_await t.fly_to(p);
+      co_return co_await t.hover(2.0);
+    });
+    co_await h;
+  }
+}
+
+int fleet_cli(std::vector<std::string> args) {
+  args.insert(args.begin(), "swath-fleet");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  return apps::fleet_main(static_cast<int>(argv.size()), argv.data());
+}
+
+TEST(FleetCli, AnAppOfOnesOwnIsRegisteredListedAndRunByTheSameCommandLine) {
+  static const bool once = [] {
+    worlds::register_app({"corners", "three corners of a square, a hover at each", corners_main},
+                         "road");
+    return true;
+  }();
+  (void)once;
+  EXPECT_THROW(worlds::register_app({"road", "taken", corners_main}, "road"),
+               std::invalid_argument);
+  EXPECT_THROW(worlds::register_app({"x", "", corners_main}, "moon"), std::invalid_argument);
+  const std::string out = fresh_dir("fleet-own-app");
+  ASSERT_EQ(fleet_cli({"run", "corners", "--world", source_path("share/worlds/road.yaml"),
+                       "--drones", "2", "-o", out}),
+            0);
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(summary["app"], "corners");
+  EXPECT_TRUE(summary["completed"].get<bool>());
+  EXPECT_EQ(summary["tasks"]["done"], 4);  // main and three corners
+  const fleet::EventCheck check = fleet::check_events(read_text(out + "/events.jsonl"));
+  EXPECT_TRUE(check.ok()) << check.violations.front().message;
+  // A kind mismatch is refused like a built-in app's.
+  EXPECT_EQ(fleet_cli({"run", "corners", "--world", source_path("share/worlds/sites.yaml"), "-o",
+                       fresh_dir("fleet-own-app-kind")}),
+            2);
+}
+
+}  // namespace
+}  // namespace swath::test

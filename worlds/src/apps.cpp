@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "gaussian_process.hpp"
 #include "swath/fleet/leg.hpp"
@@ -269,7 +270,42 @@ Co<void> static_main(Ctx& c) {
 
 }  // namespace
 
+namespace {
+
+struct Registered {
+  fleet::App app;
+  std::string world_kind;
+};
+std::vector<Registered>& registered() {
+  static std::vector<Registered> apps;
+  return apps;
+}
+
+}  // namespace
+
+void register_app(fleet::App app, const std::string& world_kind) {
+  static const std::vector<std::string> kinds{"hotspot", "road",   "rf_field",
+                                              "sites",   "static", "tracking"};
+  if (app.name.empty()) throw std::invalid_argument("register_app: an app needs a name");
+  if (std::find(kinds.begin(), kinds.end(), world_kind) == kinds.end())
+    throw std::invalid_argument("register_app: " + app.name + ": unknown world kind \"" +
+                                world_kind + "\"");
+  for (const fleet::App& a : all_apps())
+    if (a.name == app.name)
+      throw std::invalid_argument("register_app: the name " + app.name + " is taken");
+  if (!app.main) throw std::invalid_argument("register_app: " + app.name + " has no main");
+  registered().push_back({std::move(app), world_kind});
+}
+
+std::vector<fleet::App> all_apps() {
+  std::vector<fleet::App> out = builtin_apps();
+  for (const Registered& r : registered()) out.push_back(r.app);
+  return out;
+}
+
 std::string app_world_kind(const std::string& app) {
+  for (const Registered& r : registered())
+    if (r.app.name == app) return r.world_kind;
   if (app == "multiplexing") return "sites";
   if (app == "wifi") return "rf_field";
   return app;

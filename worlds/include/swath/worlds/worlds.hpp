@@ -174,7 +174,15 @@ std::unique_ptr<BaseWorld> read_world(const std::string& path);
 /// The built-in applications (hotspot, multiplexing, road, static, tracking, wifi), each for its
 /// world kind (app_world_kind).
 std::vector<fleet::App> builtin_apps();
-/// The world kind an app runs in ("multiplexing" → "sites", "wifi" → "rf_field", else its name).
+/// An application of a program's own (out of tree: it links swath::fleet and swath-fleet's
+/// commands and calls apps::fleet_main), beside the built-in ones for the rest of the process: it
+/// runs in worlds of `world_kind` (hotspot, road, rf_field, sites, static, tracking). Throws
+/// std::invalid_argument when the name is empty or taken, or the kind unknown.
+void register_app(fleet::App app, const std::string& world_kind);
+/// The built-in applications, then the registered ones.
+std::vector<fleet::App> all_apps();
+/// The world kind an app runs in ("multiplexing" → "sites", "wifi" → "rf_field", a registered
+/// app's own, else its name).
 std::string app_world_kind(const std::string& app);
 
 /// Case 4's lower bound: the fastest order of the multiplexing app's segments for one drone from

@@ -1,0 +1,28 @@
+// swath-fleet's command line (fleet_main.hpp).
+#include "fleet_main.hpp"
+
+#include <memory>
+#include <vector>
+
+#include "command.hpp"
+#include "run_command.hpp"
+
+namespace swath::apps {
+
+int fleet_main(int argc, char** argv) {
+  std::vector<std::unique_ptr<Command>> commands;
+  commands.push_back(std::make_unique<FleetRunCommand>());
+  commands.push_back(std::make_unique<FleetCompareCommand>());
+  commands.push_back(std::make_unique<FleetCheckCommand>());
+  commands.push_back(std::make_unique<FleetAppsCommand>());
+  commands.push_back(std::make_unique<FleetWorldsCommand>());
+  return run_program(
+      "swath-fleet", "swath-fleet: swarm applications on a simulated fleet (paper 000)",
+      "Exit codes: 0 the application completed; 2 bad input or usage (the message "
+      "names the file, the place and the problem; nothing is written); 4 the "
+      "application did not complete (time limit, no drone could serve it, its "
+      "main failed; the files are still written; check: a rule is broken); 1 unexpected failure.",
+      commands, argc, argv);
+}
+
+}  // namespace swath::apps
