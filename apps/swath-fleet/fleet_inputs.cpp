@@ -1,9 +1,11 @@
 #include "fleet_inputs.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "data_dir.hpp"
+#include "input_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/fleet/faults.hpp"
@@ -44,6 +46,9 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
   app.add_option(
       "--weights", r.weights,
       "Weights file of the sub-utilities (coverage, fairness, avoid_zigzag, commitment)");
+  app.add_option("--wind", r.wind,
+                 "A steady wind E,N in m/s (towards east and north, e.g. 4,-3): the drones keep "
+                 "their tracks and times, their rotors work at the airspeed (default: calm)");
   app.add_option("--max-time", r.max_time_s, "Stop a run that has not completed by then, s")
       ->check(CLI::Range(1.0, 604800.0))
       ->capture_default_str();
@@ -91,6 +96,13 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;
   p.settings.max_time_s = r.max_time_s;
+  if (!r.wind.empty()) {
+    const auto w = parse_number_pair(r.wind, ',');
+    if (!w || !(std::hypot(w->first, w->second) <= 30.0))
+      throw InputError("--wind '" + r.wind +
+                       "': expected E,N in m/s, at most 30 m/s together (e.g. 4,-3)");
+    p.settings.wind_m_s = {w->first, w->second, 0};
+  }
   if (!r.weights.empty()) p.settings.weights = fleet::read_weights(r.weights);
   if (!r.faults.empty()) {
     std::vector<std::string> names;
@@ -129,6 +141,7 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"end_s", r6(r.end_s)},
            {"scheduler", p.settings.scheduler},
            {"seed", p.settings.seed},
+           {"wind_m_s", {r6(p.settings.wind_m_s.x), r6(p.settings.wind_m_s.y)}},
            {"world_seed", p.world->seed},
            {"drones", drones},
            {"tasks", tasks},

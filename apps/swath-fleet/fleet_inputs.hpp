@@ -18,6 +18,7 @@ namespace swath::apps {
 /// The options every run shares (run, compare).
 struct FleetRequest {
   std::string app, world, fleet, scheduler = "sa", faults, weights;
+  std::string wind;  ///< "E,N" m/s, empty: calm
   std::uint64_t seed = 1;
   double max_time_s = 3600;
   int drones = 0;  ///< > 0: that many default drones at the world's origin instead of --fleet

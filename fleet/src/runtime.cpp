@@ -136,8 +136,17 @@ struct Drone {
   double span_start = 0;
 };
 
-double hover_power_w(const DroneSpec& s) {
-  return energy::level_flight_power_w(s.power.mechanical, 0.0) + s.power.payload_w;
+// In a steady wind the autopilot holds position and ground track: the rotors fly at the
+// airspeed, ground velocity less wind (RunSettings::wind_m_s).
+double hover_power_w(const DroneSpec& s, const Vec3& wind) {
+  return energy::level_flight_power_w(s.power.mechanical, std::hypot(wind.x, wind.y)) +
+         s.power.payload_w;
+}
+// Cruise into a headwind: what the way home may cost at most (the feasibility checks).
+double cruise_power_w(const DroneSpec& s, const Vec3& wind) {
+  return energy::level_flight_power_w(s.power.mechanical,
+                                      s.kinematics.cruise_m_s + std::hypot(wind.x, wind.y)) +
+         s.power.payload_w;
 }
 double climb_power_w(const DroneSpec& s) {
   return (s.power.climb_w > 0 ? s.power.climb_w : 1.3 * s.power.mechanical.cruise_w) +
@@ -544,7 +553,7 @@ void Runtime::integrate(Drone& d, double t) {
     case Mode::hovering:
     case Mode::acting:
     case Mode::held:
-      constant(hover_power_w(s), b - a);
+      constant(hover_power_w(s, settings_.wind_m_s), b - a);
       d.idle_s += d.mode == Mode::acting ? 0.0 : b - a;
       break;
     case Mode::flying:
@@ -555,8 +564,12 @@ void Runtime::integrate(Drone& d, double t) {
       const double v0 = std::clamp(la, 0.0, leg.vertical_s()),
                    v1 = std::clamp(lb, 0.0, leg.vertical_s());
       if (v1 > v0) constant(leg.climbing() ? climb_power_w(s) : descent_power_w(s), v1 - v0);
-      // Level part, piece by piece (constant acceleration within each).
+      // Level part, piece by piece (constant acceleration within each), at the airspeed.
       const auto& pieces = leg.pieces();
+      const Vec3& wind = settings_.wind_m_s;
+      const double run = std::hypot(leg.to().x - leg.from().x, leg.to().y - leg.from().y);
+      const double ux = run > 0 ? (leg.to().x - leg.from().x) / run : 0.0;
+      const double uy = run > 0 ? (leg.to().y - leg.from().y) / run : 0.0;
       for (std::size_t i = 0; i < pieces.size(); ++i) {
         const double p0 = leg.vertical_s() + pieces[i].t0_s;
         const double p1 =
@@ -564,7 +577,9 @@ void Runtime::integrate(Drone& d, double t) {
         const double x0 = std::max(la, p0), x1 = std::min(lb, p1);
         if (x1 <= x0) continue;
         auto watts = [&](double tl) {
-          return energy::level_flight_power_w(s.power.mechanical, leg.speed_at(tl)) +
+          const double v = leg.speed_at(tl);
+          return energy::level_flight_power_w(s.power.mechanical,
+                                              std::hypot(ux * v - wind.x, uy * v - wind.y)) +
                  s.power.payload_w;
         };
         energy += gauss(watts, x0, x1);
@@ -572,7 +587,8 @@ void Runtime::integrate(Drone& d, double t) {
             [&](double tl) { return energy::battery_current_a(s.battery, watts(tl)); }, x0, x1);
       }
       // Hovering at the end if the interval runs past the leg (it stops there).
-      if (lb > leg.duration_s()) constant(hover_power_w(s), lb - std::max(la, leg.duration_s()));
+      if (lb > leg.duration_s())
+        constant(hover_power_w(s, settings_.wind_m_s), lb - std::max(la, leg.duration_s()));
       const Vec3 p0 = leg.position_at(la), p1 = leg.position_at(lb);
       d.distance_m += std::hypot(p1.x - p0.x, p1.y - p0.y);
       break;
@@ -652,14 +668,12 @@ double Runtime::leave_time(const Drone& d) const {
       back.duration_s() + d.layer_m / d.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
   double t = d.airborne_since + d.spec.max_flight_time_s - back_s;
   // Hovering drains the battery at hover power until what is left just takes it home.
-  const double cruise_w =
-      energy::level_flight_power_w(d.spec.power.mechanical, d.spec.kinematics.cruise_m_s) +
-      d.spec.power.payload_w;
+  const double cruise_w = cruise_power_w(d.spec, settings_.wind_m_s);
   const double need =
       d.spec.battery.reserve_soc + energy::battery_current_a(d.spec.battery, cruise_w) * back_s /
                                        (3600.0 * d.spec.battery.capacity_ah);
-  t = std::min(
-      t, d.t_mark + energy::seconds_to_soc(d.spec.battery, d.soc, need, hover_power_w(d.spec)));
+  t = std::min(t, d.t_mark + energy::seconds_to_soc(d.spec.battery, d.soc, need,
+                                                    hover_power_w(d.spec, settings_.wind_m_s)));
   return std::max(t, d.t_mark);
 }
 
@@ -671,9 +685,7 @@ bool Runtime::must_go_home(const Drone& d, double t) const {
   const Leg back(d.pos, home, d.spec.kinematics);
   const double back_s = back.duration_s() + d.layer_m / d.spec.kinematics.descent_m_s;
   if (t - d.airborne_since + back_s + 2 * settings_.tick_s >= d.spec.max_flight_time_s) return true;
-  const double cruise_w =
-      energy::level_flight_power_w(d.spec.power.mechanical, d.spec.kinematics.cruise_m_s) +
-      d.spec.power.payload_w;
+  const double cruise_w = cruise_power_w(d.spec, settings_.wind_m_s);
   const double landing =
       energy::soc_after(d.spec.battery, d.soc, cruise_w, back_s + 2 * settings_.tick_s);
   return !(landing >= d.spec.battery.reserve_soc);
@@ -931,10 +943,8 @@ void Runtime::schedule() {
   // Charge: there, serve, home above the reserve (eq. 12; the first drone's battery and powers).
   EnergyFeasibility e;
   e.battery = first.battery;
-  e.cruise_power_w =
-      energy::level_flight_power_w(first.power.mechanical, first.kinematics.cruise_m_s) +
-      first.power.payload_w;
-  e.hover_power_w = hover_power_w(first);
+  e.cruise_power_w = cruise_power_w(first, settings_.wind_m_s);
+  e.hover_power_w = hover_power_w(first, settings_.wind_m_s);
   s.energy = e;
   // First come, first served (§18.3): a drone acting, held or bound for a place reserves a 5 m
   // disc around it; other tasks' requests inside wait until it leaves.

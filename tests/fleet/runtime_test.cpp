@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "swath/energy/budget.hpp"
+#include "swath/energy/power_model.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/worlds/worlds.hpp"
@@ -318,6 +319,46 @@ TEST(Runtime, AnyReturnsTheFirstToEndAndDiscsAreFirstComeFirstServed) {
   }
   ASSERT_GT(sensed_2, 0);
   EXPECT_GE(dispatched_3, sensed_2 - 0.1 - 1e-9);  // released at completion, delivered a tick on
+}
+
+TEST(Runtime, WindCostsTheHoverPowerAtTheWindSpeedAndIsSymmetricOnARoundTrip) {
+  const ProbeWorld world;
+  // Straight up, hover 100 s, home: no level flight, so wind changes hover power only.
+  App up{"up", "", [](Ctx& c) -> Co<void> {
+           auto h = c.spawn(Kind{"hover"}, {}, [](Ctx& t) -> Co<Reading> {
+             t.fly_to({0, 0, 0});
+             co_return co_await t.hover(100.0);
+           });
+           co_await h;
+         }};
+  const DroneSpec d = drone("a");
+  RunSettings calm, windy;
+  windy.wind_m_s = {6, -2, 0};
+  const RunRecord a = run_app(up, world, {d}, calm), b = run_app(up, world, {d}, windy);
+  ASSERT_TRUE(a.completed && b.completed);
+  ASSERT_EQ(a.end_s, b.end_s);  // the autopilot holds its ground track: same times
+  const double w = std::hypot(6.0, 2.0);
+  const double dp = energy::level_flight_power_w(d.power.mechanical, w) -
+                    energy::level_flight_power_w(d.power.mechanical, 0.0);
+  const double hover_s = (b.drones[0].energy_wh - a.drones[0].energy_wh) * 3600.0 / dp;
+  // Everything but the 20 m climb at 3 m/s is hovering (flight_s stops where the landing starts).
+  EXPECT_NEAR(hover_s, a.drones[0].flight_s - 20.0 / 3.0, 1e-6);
+  EXPECT_GE(hover_s, 100.0);
+  // Out and back along x: a wind from the east costs what a wind from the west does.
+  App trip{"trip", "", [](Ctx& c) -> Co<void> {
+             auto h = c.spawn(Kind{"trip"}, {}, [](Ctx& t) -> Co<Reading> {
+               t.fly_to({300, 0, 0});
+               co_return co_await t.fly_to({0, 0, 0});
+             });
+             co_await h;
+           }};
+  RunSettings east, west;
+  east.wind_m_s = {5, 0, 0};
+  west.wind_m_s = {-5, 0, 0};
+  const RunRecord e = run_app(trip, world, {d}, east), v = run_app(trip, world, {d}, west),
+                  c0 = run_app(trip, world, {d}, calm);
+  EXPECT_NEAR(e.drones[0].energy_wh, v.drones[0].energy_wh, 1e-9 * e.drones[0].energy_wh);
+  EXPECT_NE(e.drones[0].energy_wh, c0.drones[0].energy_wh);
 }
 
 TEST(Runtime, FlySensingReadsAlongTheLegAtItsPeriod) {

@@ -72,6 +72,10 @@ struct RunSettings {
   double layer_base_m = 20;      ///< altitude of drone 0's layer, m
   double layer_step_m = 3;       ///< between layers, m
   double disc_m = 5;  ///< radius a drone at or bound for a place reserves (first come), m
+  /// A steady horizontal wind, m/s (x east, y north; z ignored): the drones keep their ground
+  /// tracks and speeds, the rotors work at the airspeed (hover: the wind speed), and the way home
+  /// is costed into a headwind. Zero: calm (the paper's experiments).
+  Vec3 wind_m_s{0, 0, 0};
   Weights weights;
   std::vector<FaultEvent> faults;  ///< sorted or not; applied in (t_s, drone) order
 };
