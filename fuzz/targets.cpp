@@ -13,6 +13,7 @@
 #include "swath/energy/plan.hpp"
 #include "swath/energy/sim_config.hpp"
 #include "swath/fleet/event_check.hpp"
+#include "swath/fleet/event_replay.hpp"
 #include "swath/fleet/faults.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/area_facts.hpp"
@@ -171,7 +172,8 @@ const std::vector<Target>& targets() {
        },
        {"tests/bad-input/seeds/trigger-data.csv"}},
       // GIS areas: WKT through OGR's parser, then swath's checks (DESIGN.md §15).
-      {"ogr_wkt", [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
+      {"ogr_wkt",
+       [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
        {"tests/bad-input/seeds/field.wkt"}},
       // swath-fleet: world files (every kind) and the fleet file's simulated drones (§18.10).
       {"world",
@@ -193,9 +195,13 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { fleet::parse_faults(t, "fuzz.yaml", {"a", "b"}, 3600); });
        },
        {"tests/bad-input/seeds/faults-list.yaml", "tests/bad-input/seeds/faults-random.yaml"}},
-      // The checker judges any text and never throws.
+      // The checker judges any text and never throws; the replay (render) refuses it in one
+      // sentence or reads it.
       {"fleet_events",
-       [](const std::string& t) { fleet::check_events(t); },
+       [](const std::string& t) {
+         fleet::check_events(t);
+         expect_input_error_only([&] { fleet::replay_record(t, "fuzz.jsonl"); });
+       },
        {"tests/bad-input/seeds/fleet-events.jsonl"}},
   };
   return all;

@@ -136,6 +136,7 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
   for (const auto& [k, v] : r.metrics) metrics[k] = r6(v);
   json out{{"app", p.settings.app_name},
            {"world", p.world->kind()},
+           {"world_file", p.world_source},
            {"completed", r.completed},
            {"completion_time_s", r6(r.completion_time_s)},
            {"end_s", r6(r.end_s)},

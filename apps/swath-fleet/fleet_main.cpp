@@ -16,6 +16,7 @@ int fleet_main(int argc, char** argv) {
   commands.push_back(std::make_unique<FleetCheckCommand>());
   commands.push_back(std::make_unique<FleetAppsCommand>());
   commands.push_back(std::make_unique<FleetWorldsCommand>());
+  commands.push_back(std::make_unique<FleetRenderCommand>());
   return run_program(
       "swath-fleet", "swath-fleet: swarm applications on a simulated fleet (paper 000)",
       "Exit codes: 0 the application completed; 2 bad input or usage (the message "

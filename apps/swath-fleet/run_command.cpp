@@ -9,9 +9,11 @@
 #include "map_furniture.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
 #include "swath/fleet/event_check.hpp"
+#include "swath/fleet/event_replay.hpp"
 
 #include <filesystem>
 
@@ -74,6 +76,46 @@ int FleetCheckCommand::run() {
             << (c.ok() ? "every rule holds" : std::to_string(c.violations.size()) + " violations")
             << "\n";
   return c.ok() ? base::kExitSuccess : base::kExitNotCompleted;
+}
+
+void FleetRenderCommand::setup(CLI::App& app) {
+  app.add_option("RUN", run_, "A run's directory (run -o DIR)")->required();
+  app.add_option("--world", world_,
+                 "The world file, when it is no longer where summary.json's world_file says");
+  app.add_option("-o,--output", output_, "Where to write the pictures (default: RUN)");
+  app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
+}
+
+int FleetRenderCommand::run() {
+  const auto [width_px, height_px] = parse_size(size_);
+  const std::string events_path = run_ + "/events.jsonl", summary_path = run_ + "/summary.json";
+  const fleet::RunRecord r =
+      fleet::replay_record(base::read_text_file(events_path, "event log"), events_path);
+  const nlohmann::json summary =
+      base::parse_json_document(base::read_text_file(summary_path, "run summary"), summary_path);
+  std::string world_file = world_;
+  if (world_file.empty()) {
+    if (!summary.contains("world_file") || !summary["world_file"].is_string())
+      throw InputError(summary_path + ": no world_file; give --world");
+    world_file = summary["world_file"];
+  }
+  std::optional<std::uint64_t> seed;
+  if (summary.contains("world_seed") && summary["world_seed"].is_number_unsigned())
+    seed = summary["world_seed"].get<std::uint64_t>();
+  const auto world =
+      worlds::parse_world(base::read_text_file(world_file, "world file"), world_file, seed);
+  const bool in_place = output_.empty() || std::filesystem::equivalent(output_, run_);
+  base::OutputSet set(in_place ? run_ : output_, in_place ? "fleet-run" : "fleet-render",
+                      {in_place ? base::OutputSet::Mode::amend : base::OutputSet::Mode::replace});
+  const FleetPicture tracks = tracks_picture(*world, r, width_px, height_px);
+  set.add("tracks.png", render::encode_png(render::draw(tracks.scene, tracks.view)));
+  const FleetPicture gantt = gantt_picture(r, width_px, std::max(200, height_px / 3));
+  set.add("gantt.png", render::encode_png(render::draw(gantt.scene, gantt.view)));
+  set.commit();
+  std::cout << "swath-fleet render: " << r.drones.size() << " drones over "
+            << base::fixed_text(r.end_s, 1) << " s -> " << (in_place ? run_ : output_)
+            << "/tracks.png, gantt.png\n";
+  return base::kExitSuccess;
 }
 
 void FleetWorldsCommand::setup(CLI::App& app) {

@@ -49,6 +49,22 @@ class FleetCheckCommand : public Command {
   std::string run_;
 };
 
+/// swath-fleet render RUN [--world W] [--size WxH] [-o DIR]: tracks.png and gantt.png of a run,
+/// from its files alone (events.jsonl, summary.json and the world file it names).
+class FleetRenderCommand : public Command {
+ public:
+  const char* name() const override { return "render"; }
+  const char* description() const override {
+    return "Draw tracks.png and gantt.png of a finished run from its events.jsonl and "
+           "summary.json (the same pictures run --render draws)";
+  }
+  void setup(CLI::App& app) override;
+  int run() override;
+
+ private:
+  std::string run_, world_, output_, size_ = "1200x900";
+};
+
 /// swath-fleet worlds gen KIND [--seed N]: a world file with its random parts written out.
 class FleetWorldsCommand : public Command {
  public:

@@ -457,8 +457,11 @@ void Runtime::finish_task(Task& t, TaskStatus status, const std::string& reason)
     Drone& d = drones_[static_cast<std::size_t>(t.serving)];
     t.serving = -1;
     if (d.task == t.id && (d.mode == Mode::flying || d.mode == Mode::acting)) {
-      if (status == TaskStatus::cancelled && t.has_location)
-        record_.cancelled.push_back({now_, t.location.x, t.location.y});
+      if (status == TaskStatus::cancelled && t.has_location) {
+        record_.cancelled.push_back({round6(now_), round6(t.location.x), round6(t.location.y)});
+        // After the task's terminal event (R4): the place only, for the pictures.
+        log(at_json(json{{"ev", "request_cancelled"}}, t.location));
+      }
       integrate(d, now_);
       d.task = -1;
       set_mode(d, Mode::hovering, now_);
@@ -517,12 +520,16 @@ void Runtime::resolve_action(Task& t, std::size_t a, const Reading& r, int drone
   }
   act.state = ActionState::delivered;
   act.result->value = r;
-  log(json{{"ev", "action_done"},
-           {"drone", drone},
-           {"task", t.id},
-           {"action", static_cast<int>(a)},
-           {"name", act.type == ActionType::fly_to ? std::string("fly_to") : act.name}});
-  if (act.type == ActionType::sense) record_.served.push_back({r.t_s, r.at.x, r.at.y});
+  json done{{"ev", "action_done"},
+            {"drone", drone},
+            {"task", t.id},
+            {"action", static_cast<int>(a)},
+            {"name", act.type == ActionType::fly_to ? std::string("fly_to") : act.name}};
+  if (act.type == ActionType::sense) {
+    record_.served.push_back({round6(r.t_s), round6(r.at.x), round6(r.at.y)});
+    done = at_json(done, r.at, json{{"at_s", round6(r.t_s)}});  // where it sensed
+  }
+  log(done);
   wake(*act.result);
 }
 
@@ -612,6 +619,10 @@ void Runtime::set_mode(Drone& d, Mode m, double t) {
     d.span_start = t;
   }
   d.record.track.push_back({round6(t), round6(d.pos.x), round6(d.pos.y), round6(d.pos.z)});
+  // Every point of the track and every change of mode, so that `swath-fleet render` redraws the
+  // run from its events alone (the state's own time: a leg may end between ticks).
+  log(at_json(json{{"ev", "drone_mode"}, {"drone", d.index}, {"at_s", round6(t)}}, d.pos,
+              json{{"state", name}}));
 }
 
 double Runtime::next_event(const Drone& d) const {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -255,6 +256,37 @@ TEST(FleetCli, AnAppOfOnesOwnIsRegisteredListedAndRunByTheSameCommandLine) {
   EXPECT_EQ(fleet_cli({"run", "corners", "--world", source_path("share/worlds/sites.yaml"), "-o",
                        fresh_dir("fleet-own-app-kind")}),
             2);
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// render redraws a run from its files alone: the same bytes as run --render drew from memory,
+// with faults (lost and unreachable spans), cancellations (wifi) and in place.
+TEST(FleetCli, RenderRedrawsARunFromItsFilesByteForByte) {
+  const std::string faults = fresh_dir("fleet-render-faults") + ".yaml";
+  std::ofstream(faults) << "- {t_s: 20, drone: drone-1, kind: link_loss, duration_s: 15}\n"
+                           "- {t_s: 60, drone: drone-2, kind: motor_failure}\n";
+  for (const std::string& args : {std::string("wifi --world rf_field --drones 2"),
+                                  std::string("road --world road --drones 2 --faults ") + faults,
+                                  std::string("tracking --world tracking --drones 3")}) {
+    const std::string run = fresh_dir("fleet-render-run"), again = fresh_dir("fleet-render-again");
+    const CliRun r = run_swath_fleet("run " + args + " --render --size 640x480 -o " + run);
+    ASSERT_NE(r.exit_code, 2) << r.err;
+    const CliRun d = run_swath_fleet("render " + run + " --size 640x480 -o " + again);
+    ASSERT_EQ(d.exit_code, 0) << d.err;
+    EXPECT_EQ(read_text(again + "/tracks.png"), read_text(run + "/tracks.png")) << args;
+    EXPECT_EQ(read_text(again + "/gantt.png"), read_text(run + "/gantt.png")) << args;
+    // In place: the pictures join the run's set, the rest untouched.
+    const std::string events = read_text(run + "/events.jsonl");
+    fs::remove(run + "/gantt.png");
+    ASSERT_EQ(run_swath_fleet("render " + run + " --size 640x480").exit_code, 0);
+    EXPECT_EQ(read_text(run + "/gantt.png"), read_text(again + "/gantt.png"));
+    EXPECT_EQ(read_text(run + "/events.jsonl"), events);
+  }
 }
 
 }  // namespace
