@@ -8,6 +8,7 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -33,7 +34,21 @@ struct Raster {
   bool has_nodata = false;
   double nodata = 0.0;
   double resolution_m = 0.0;
+  double metres_per_unit = 1.0;  // the band's unit (GDAL unit type: m, ft, US survey foot)
 };
+
+// Metres per unit of a band's GDAL unit type; 0 for a unit swath does not know.
+double vertical_unit_m(std::string unit) {
+  for (char& c : unit) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" ||
+      unit == "meters")
+    return 1.0;
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot")
+    return 0.3048;
+  if (unit == "us survey foot" || unit == "ftus" || unit == "us-ft" || unit == "us_survey_foot")
+    return 1200.0 / 3937.0;
+  return 0.0;
+}
 
 std::string gdal_error() {
   const char* m = CPLGetLastErrorMsg();
@@ -56,6 +71,10 @@ Raster open_raster(const std::string& path) {
   r.band = r.dataset->GetRasterBand(1);
   r.width = r.dataset->GetRasterXSize();
   r.height = r.dataset->GetRasterYSize();
+  r.metres_per_unit = vertical_unit_m(r.band->GetUnitType());
+  if (r.metres_per_unit == 0.0)
+    throw InputError(path + ": heights in \"" + std::string(r.band->GetUnitType()) +
+                     "\", a unit swath does not know (metres, feet, US survey feet)");
   int ok = 0;
   r.nodata = r.band->GetNoDataValue(&ok);
   r.has_nodata = ok != 0;
@@ -137,7 +156,8 @@ void sample_raster(const std::string& path, const std::vector<GeoPoint>& points,
     const double fu = u - i0, fv = v - j0;
     const double a = pixel(r, i0, j0), b = pixel(r, i0 + 1, j0);
     const double c = pixel(r, i0, j0 + 1), d = pixel(r, i0 + 1, j0 + 1);
-    values[k] = (1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d);
+    values[k] =
+        r.metres_per_unit * ((1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d));
   }
 }
 

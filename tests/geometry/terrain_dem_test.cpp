@@ -60,7 +60,8 @@ const Utm kCentre = utm32(47.3986, 8.5424);
 // A GeoTIFF (EPSG:32632) of `f` at pixel centres, `pixel_m` pixels over a square of `half_m`
 // around the centre; pixels where `hole` says so are nodata.
 fs::path write_dem(const std::string& name, const Surface& f, double pixel_m = 2.0,
-                   double half_m = 1500.0, const std::function<bool(double, double)>& hole = {}) {
+                   double half_m = 1500.0, const std::function<bool(double, double)>& hole = {},
+                   const char* unit = "", double per_metre = 1.0) {
   GDALAllRegister();
   const fs::path path = scratch() / (name + ".tif");
   const int n = static_cast<int>(2 * half_m / pixel_m);
@@ -74,6 +75,7 @@ fs::path write_dem(const std::string& name, const Surface& f, double pixel_m = 2
   d->SetSpatialRef(&srs);
   GDALRasterBand* band = d->GetRasterBand(1);
   band->SetNoDataValue(-9999);
+  band->SetUnitType(unit);
   std::vector<float> row(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
@@ -81,7 +83,7 @@ fs::path write_dem(const std::string& name, const Surface& f, double pixel_m = 2
       row[static_cast<std::size_t>(i)] =
           hole && hole(e - kCentre.east_m, no - kCentre.north_m)
               ? -9999.0F
-              : static_cast<float>(f(e - kCentre.east_m, no - kCentre.north_m));
+              : static_cast<float>(per_metre * f(e - kCentre.east_m, no - kCentre.north_m));
     }
     EXPECT_EQ(band->RasterIO(GF_Write, 0, j, n, 1, row.data(), n, 1, GDT_Float32, 0, 0), CE_None);
   }
@@ -116,6 +118,17 @@ TEST(DemGround, AGeoTiffInUtmGivesTheSurfaceAtEveryPoint) {
   // A plane: bilinear interpolation is exact, so what is left is PROJ against GeographicLib.
   for (std::size_t k = 0; k < points.size(); ++k)
     EXPECT_NEAR(h[k], at(kSlope, points[k]), 1e-3) << k;
+}
+
+TEST(DemGround, HeightsInFeetComeBackInMetresAndAnUnknownUnitIsRefused) {
+  const auto ft = dem_ground(write_dem("feet", kSlope, 2.0, 1500.0, {}, "ft", 1 / 0.3048).string());
+  const auto us = dem_ground(
+      write_dem("us-feet", kSlope, 2.0, 1500.0, {}, "US survey foot", 3937.0 / 1200.0).string());
+  const GeoPoint p{47.3990, 8.5430, 0};
+  EXPECT_NEAR(ft->heights_m({p})[0], at(kSlope, p), 1e-3);
+  EXPECT_NEAR(us->heights_m({p})[0], at(kSlope, p), 1e-3);
+  EXPECT_THROW(dem_ground(write_dem("fathoms", kSlope, 2.0, 1500.0, {}, "fathom").string()),
+               base::InputError);
 }
 
 TEST(DemGround, OutsideTheRasterAndNextToNodataThereIsNoHeight) {

@@ -31,10 +31,12 @@ enum class DemHeights {
 };
 
 /// A single-band raster DEM any GDAL driver reads (GeoTIFF, ASCII grid, .hgt, VRT, ...), in any
-/// CRS GDAL can transform WGS84 into, heights in metres. Sampled bilinearly between pixel centres
-/// (within half a pixel of the border: the border pixels); NaN outside it or next to nodata.
-/// Throws base::InputError (one sentence naming the file) when GDAL cannot open it as a raster
-/// or its CRS cannot be reached from WGS84; std::runtime_error when the GIS module is missing.
+/// CRS GDAL can transform WGS84 into, heights in metres, or in feet or US survey feet when the
+/// band's unit type says so (converted; another unit is refused). Sampled bilinearly between pixel
+/// centres (within half a pixel of the border: the border pixels); NaN outside it or next to
+/// nodata. Throws base::InputError (one sentence naming the file) when GDAL cannot open it as a
+/// raster or its CRS cannot be reached from WGS84; std::runtime_error when the GIS module is
+/// missing.
 std::shared_ptr<const Ground> dem_ground(const std::string& path,
                                          DemHeights heights = DemHeights::geoid);
 
