@@ -220,6 +220,26 @@ TEST(TerrainPlan, ASlopeNeedsNoWaypointsAndARidgeAndAPitGetThemWithinTheToleranc
   EXPECT_GT(pit, 4u);
 }
 
+TEST(TerrainPlan, ALandingFliesHomeOverTheGroundAndDescendsFromAboveHome) {
+  planning::SurveyRequest r = test::meadow_request(60);
+  r.land = true;
+  r.terrain = planning::TerrainRequest{dem_ground(write_dem("land", kPit).string()), 2.0,
+                                       planning::AltitudeFrame::relative};
+  const planning::SurveyPlan plan = planning::plan_survey(r);
+  const auto& items = plan.drones.at(0).mission.items;
+  std::size_t land = 0;
+  while (land < items.size() && items[land].kind != planning::ItemKind::land) ++land;
+  ASSERT_LT(land, items.size());
+  std::size_t before = land;
+  while (before > 0 && items[before - 1].kind != planning::ItemKind::waypoint) --before;
+  ASSERT_GT(before, 0u);
+  const planning::MissionItem& last = items[before - 1];
+  EXPECT_NEAR(std::hypot(last.position.x - plan.drones[0].mission.home.x,
+                         last.position.y - plan.drones[0].mission.home.y),
+              0.0, 1e-6);
+  EXPECT_NEAR(last.altitude_m, 60.0, 1e-9);  // above home, which is the ground there
+}
+
 TEST(TerrainPlan, TheFramesWriteTheirAltitudes) {
   planning::SurveyRequest r = test::meadow_request(60);
   const auto ground = dem_ground(write_dem("frames", kRidge).string());

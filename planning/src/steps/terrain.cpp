@@ -80,7 +80,10 @@ struct Follower {
                                                   ? std::vector<std::size_t>{0}
                                                   : profile_breaks(along, g, request.tolerance_m);
         measure(along, g, keep, d);
-        for (std::size_t q = 1; q + 1 < keep.size(); ++q) {
+        // A landing flies to home level at its last height, then descends: a last waypoint above
+        // home first, so that the leg there follows the ground like the others.
+        const bool landing = item.kind == ItemKind::land && keep.size() > 1 && length > 0;
+        for (std::size_t q = 1; q + (landing ? 0 : 1) < keep.size(); ++q) {
           const double t = along[keep[q]] / length;
           MissionItem added;
           added.kind = ItemKind::waypoint;
@@ -90,9 +93,7 @@ struct Follower {
           ++facts.waypoints_added;
           ++m.waypoint_count;
         }
-        // Landing: the drone flies home at the last waypoint's height, then descends.
-        set(item, item.kind == ItemKind::land ? prev_ground : g.back());
-        if (item.kind == ItemKind::land && keep.size() > 1) set(item, g[keep[keep.size() - 2]]);
+        set(item, g.back());
         prev = to;
         prev_ground = g.back();
       }
