@@ -52,6 +52,10 @@ std::unique_ptr<OGRPolygon> as_polygon(const OGRGeometry* g, std::string& why) {
     return nullptr;
   }
   std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
+  if (!linear || linear->IsEmpty()) {  // POLYGON EMPTY has no exterior ring at all
+    why = "is empty";
+    return nullptr;
+  }
   const OGRwkbGeometryType t = wkbFlatten(linear->getGeometryType());
   if (t == wkbPolygon) return std::unique_ptr<OGRPolygon>(linear.release()->toPolygon());
   if (t == wkbMultiPolygon) {
@@ -103,6 +107,7 @@ RawField to_raw(const OGRPolygon& poly, const std::string& where) {
     for (int i = 0; i < r->getNumPoints(); ++i) ring.points.push_back({r->getX(i), r->getY(i)});
     raw.rings.push_back(std::move(ring));
   };
+  if (!poly.getExteriorRing()) return raw;  // as_polygon refuses empty geometries first
   add(poly.getExteriorRing(), "outer ring");
   for (int k = 0; k < poly.getNumInteriorRings(); ++k)
     add(poly.getInteriorRing(k), "hole " + std::to_string(k));
