@@ -16,7 +16,7 @@
 namespace swath::control {
 namespace {
 
-constexpr double kG = 9.80665;
+constexpr double kStandardGravity = 9.80665;
 
 double angle_between(const Quat& a, const Quat& b) {
   return norm(vehicle::rotation_vector(conjugate(a) * b));
@@ -29,7 +29,7 @@ const Vec3 kField{0, std::cos(60 * std::numbers::pi / 180), -std::sin(60 * std::
 EstimatorInput imu_from_truth(const Quat& q, const Vec3& rate, const Vec3& bias, double dt) {
   EstimatorInput in;
   in.imu.delta_angle_rad = (rate + bias) * dt;
-  in.imu.delta_velocity_m_s = rotate_inverse(q, Vec3{0, 0, kG}) * dt;
+  in.imu.delta_velocity_m_s = rotate_inverse(q, Vec3{0, 0, kStandardGravity}) * dt;
   in.imu.interval_s = dt;
   in.mag = {rotate_inverse(q, kField), true};
   return in;
@@ -79,7 +79,7 @@ TEST(Estimator, DeltaVelocityIsRotatedToWorldWithGravityRemoved) {
   const double dt = 0.0025;
   for (int k = 0; k < 400; ++k) {
     EstimatorInput in;
-    in.imu.delta_velocity_m_s = rotate_inverse(truth, accel + Vec3{0, 0, kG}) * dt;
+    in.imu.delta_velocity_m_s = rotate_inverse(truth, accel + Vec3{0, 0, kStandardGravity}) * dt;
     in.imu.interval_s = dt;
     estimator_update(s, e, in);
   }

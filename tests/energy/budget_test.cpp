@@ -196,7 +196,7 @@ TEST(Budget, GeoJsonPathsAndWind) {
   EXPECT_NEAR(windy.energy_j, cruise + 210.0 * 16.0 + 130.0 * 20.0, 0.5);
 }
 
-std::string error_of(const std::string& text) {
+std::string budget_error_of(const std::string& text) {
   try {
     parse_waypoint_missions(text, "m.json");
   } catch (const base::InputError& e) {
@@ -206,36 +206,37 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(Budget, BadMissionsAreNamed) {
-  EXPECT_EQ(error_of("{"),
+  EXPECT_EQ(budget_error_of("{"),
             "m.json: line 1, column 2: invalid JSON (syntax error while parsing object key - "
             "unexpected end of input; expected string literal)");
-  EXPECT_EQ(error_of(R"({"fileType": "Plan", "fileType": "Plan"})"),
+  EXPECT_EQ(budget_error_of(R"({"fileType": "Plan", "fileType": "Plan"})"),
             "m.json: the key \"fileType\" appears twice in one object; which one holds is "
             "ambiguous");
-  EXPECT_EQ(error_of(R"({"fileType": 1e999})"),
+  EXPECT_EQ(budget_error_of(R"({"fileType": 1e999})"),
             "m.json: invalid JSON (number overflow parsing '1e999')");
-  EXPECT_EQ(error_of("[]"), "m.json: expected a JSON object");
-  EXPECT_EQ(error_of(R"({"type": "Feature"})"),
-            "m.json: neither a GeoJSON FeatureCollection (mission.geojson), a QGC plan nor a QGC WPL "
-            "110 file");
-  EXPECT_EQ(error_of(R"({"type": "FeatureCollection", "features": []})"),
+  EXPECT_EQ(budget_error_of("[]"), "m.json: expected a JSON object");
+  EXPECT_EQ(
+      budget_error_of(R"({"type": "Feature"})"),
+      "m.json: neither a GeoJSON FeatureCollection (mission.geojson), a QGC plan nor a QGC WPL "
+      "110 file");
+  EXPECT_EQ(budget_error_of(R"({"type": "FeatureCollection", "features": []})"),
             "m.json: no feature with role 'path' (a drone's flight)");
   EXPECT_EQ(
-      error_of(R"({"type": "FeatureCollection", "features": [{"properties": {"role": "path"},
+      budget_error_of(R"({"type": "FeatureCollection", "features": [{"properties": {"role": "path"},
         "geometry": {"type": "LineString", "coordinates": [[8, 47], [8.1, 47]]}}]})"),
       "m.json: feature 0: the path has no altitude (give properties.altitude_m or [lon, lat, alt] "
       "positions)");
   EXPECT_EQ(
-      error_of(
+      budget_error_of(
           R"({"type": "FeatureCollection", "features": [{"properties": {"role": "path", "altitude_m": 30},
         "geometry": {"type": "LineString", "coordinates": [[8, 47], [8.1, 97]]}}]})"),
       "m.json: feature 0, position 1: latitude must be within ±90 and longitude within ±180 "
       "degrees");
-  EXPECT_EQ(error_of(R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0],
+  EXPECT_EQ(budget_error_of(R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0],
         "items": [{"type": "SimpleItem", "command": 16, "params": [0, 0, 0]}]}})"),
             "m.json: mission item 1: params must hold 7 values");
   EXPECT_EQ(
-      error_of(
+      budget_error_of(
           R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0], "items": []}})"),
       "m.json: the mission has no positional item");
 }

@@ -11,14 +11,12 @@
 namespace swath::energy {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // h(t) of paper 004 eq. 4.
 double series(double a0, const std::vector<double>& a, const std::vector<double>& b, double T,
               double t) {
   double h = a0 / T;
   for (std::size_t j = 0; j < a.size(); ++j) {
-    const double wj = 2 * kPi / T * static_cast<double>(j + 1);
+    const double wj = 2 * std::numbers::pi / T * static_cast<double>(j + 1);
     h += 2.0 / T * (a[j] * std::cos(wj * t) + b[j] * std::sin(wj * t));
   }
   return h;
@@ -53,7 +51,7 @@ TEST(FourierModel, TransitionIsTheMatrixExponential) {
   const FourierModel m = fourier_model(4, 13.0, 0.37);
   const int n = m.states();
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
-  const double w = 2 * kPi / 13.0;
+  const double w = 2 * std::numbers::pi / 13.0;
   for (int j = 1; j <= 4; ++j) {
     a(2 * j - 1, 2 * j) = w * j;
     a(2 * j, 2 * j - 1) = -w * j;

@@ -15,7 +15,7 @@ namespace {
 
 const std::string kPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
 
-std::string error_of(const std::string& text) {
+std::string plan_error_of(const std::string& text) {
   try {
     parse_plan(text, "p.stages");
   } catch (const base::InputError& e) {
@@ -66,24 +66,27 @@ TEST(PlanFile, YamlAndStageFormatAgreeAndRoundTrip) {
 
 TEST(PlanFile, ErrorsNameTheLineAndTheProblem) {
   const std::string ok_tail = "1, 2\n[0, 1]\n[2, 10]\n";
-  EXPECT_NE(error_of("0.1; 90; x+z\n" + ok_tail).find("p.stages: line 1 (phi): unknown variable 'z'"),
+  EXPECT_NE(plan_error_of("0.1; 90; x+z\n" + ok_tail)
+                .find("p.stages: line 1 (phi): unknown variable 'z'"),
             std::string::npos)
-      << error_of("0.1; 90; x+z\n" + ok_tail);
-  EXPECT_NE(error_of("0.1; 90; x\n1, 2\n[1, 0]\n").find("line 3: interval '[1, 0]' has lo > hi"),
+      << plan_error_of("0.1; 90; x+z\n" + ok_tail);
+  EXPECT_NE(
+      plan_error_of("0.1; 90; x\n1, 2\n[1, 0]\n").find("line 3: interval '[1, 0]' has lo > hi"),
+      std::string::npos);
+  EXPECT_NE(plan_error_of("0.1; 90; x\n1, 2\n[1 0]\n").find("line 3: '[1 0]' is not an interval"),
             std::string::npos);
-  EXPECT_NE(error_of("0.1; 90; x\n1, 2\n[1 0]\n").find("line 3: '[1 0]' is not an interval"),
+  EXPECT_NE(plan_error_of("0.1; 90; x\n[0, 1]\n").find("line 1: the stage has no triggering point"),
             std::string::npos);
-  EXPECT_NE(error_of("0.1; 90; x\n[0, 1]\n").find("line 1: the stage has no triggering point"),
-            std::string::npos);
-  EXPECT_NE(error_of("0.1; 90; x\n" + ok_tail + "0.1; 90; y\n1, 2\n[0, 1]\n")
+  EXPECT_NE(plan_error_of("0.1; 90; x\n" + ok_tail + "0.1; 90; y\n1, 2\n[0, 1]\n")
                 .find("line 5: stage 2 has 0 computation lines, stage 1 has 1"),
             std::string::npos);
-  EXPECT_NE(error_of("0.1; 45; x\n" + ok_tail).find("rotation '45' must be 0 or 90"),
+  EXPECT_NE(plan_error_of("0.1; 45; x\n" + ok_tail).find("rotation '45' must be 0 or 90"),
             std::string::npos);
-  EXPECT_NE(error_of("0.1 90 x\n" + ok_tail).find("a stage starts with 'gain; rotation; phi"),
+  EXPECT_NE(plan_error_of("0.1 90 x\n" + ok_tail).find("a stage starts with 'gain; rotation; phi"),
             std::string::npos);
-  EXPECT_NE(error_of("# only comments\n").find("the plan has no stage"), std::string::npos);
-  EXPECT_NE(error_of("0.1; 90; x+c2\n" + ok_tail).find("unknown variable 'c2'"), std::string::npos);
+  EXPECT_NE(plan_error_of("# only comments\n").find("the plan has no stage"), std::string::npos);
+  EXPECT_NE(plan_error_of("0.1; 90; x+c2\n" + ok_tail).find("unknown variable 'c2'"),
+            std::string::npos);
 }
 
 TEST(Expression, EvaluatesThePapersFunctions) {

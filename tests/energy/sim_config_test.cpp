@@ -7,10 +7,10 @@
 namespace swath::energy {
 namespace {
 
-const std::string kPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
+const std::string kConfigPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
 const std::string kShare = std::string(SWATH_SOURCE_DIR) + "/share/";
 
-std::string error_of(const std::string& text) {
+std::string config_error_of(const std::string& text) {
   try {
     parse_sim_config(text, "c.yaml");
   } catch (const base::InputError& e) {
@@ -20,7 +20,7 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(SimConfig, TheBundledConfig) {
-  const SimConfig c = read_sim_config(kPlans + "survey-sim.yaml");
+  const SimConfig c = read_sim_config(kConfigPlans + "survey-sim.yaml");
   EXPECT_DOUBLE_EQ(c.time_step_s, 0.01);
   EXPECT_DOUBLE_EQ(c.start.x, 25.0);
   EXPECT_EQ(c.fourier_order, 3);
@@ -40,28 +40,28 @@ TEST(SimConfig, TheBundledConfig) {
 }
 
 TEST(SimConfig, ErrorsNameTheLineAndKey) {
-  EXPECT_EQ(error_of("time_step_s: [1"),
+  EXPECT_EQ(config_error_of("time_step_s: [1"),
             "c.yaml: line 1: invalid YAML (end of sequence flow not found)");
-  EXPECT_EQ(error_of("- 1"), "c.yaml: a simulation config is a mapping of keys");
-  EXPECT_EQ(error_of("speed: 3"),
+  EXPECT_EQ(config_error_of("- 1"), "c.yaml: a simulation config is a mapping of keys");
+  EXPECT_EQ(config_error_of("speed: 3"),
             "c.yaml: line 1: unknown key 'speed' (known: time_step_s speed_m_s max_airspeed_m_s "
             "wind trigger_radius_m start_m max_time_s stall_time_s output_interval_s parameters "
             "gains model mpc battery power replay_csv)");
-  EXPECT_EQ(error_of("time_step_s: fast"), "c.yaml: line 1: time_step_s must be a number");
-  EXPECT_EQ(error_of("\nbattery: {capacity_ah: -1}"),
+  EXPECT_EQ(config_error_of("time_step_s: fast"), "c.yaml: line 1: time_step_s must be a number");
+  EXPECT_EQ(config_error_of("\nbattery: {capacity_ah: -1}"),
             "c.yaml: line 2: battery.capacity_ah must be in (0.0000, 1000.0000], found -1");
-  EXPECT_EQ(error_of("battery: {reserve_soc: 0.5, initial_soc: 0.4}"),
+  EXPECT_EQ(config_error_of("battery: {reserve_soc: 0.5, initial_soc: 0.4}"),
             "c.yaml: line 1: battery.reserve_soc must be below battery.initial_soc");
-  EXPECT_EQ(error_of("start_m: [1, 2, 3]"),
+  EXPECT_EQ(config_error_of("start_m: [1, 2, 3]"),
             "c.yaml: line 1: start_m must be [x, y] in local metres");
-  EXPECT_EQ(error_of("power: {computations: [{name: a, points: [[2, 1], [1, 2]]}]}"),
+  EXPECT_EQ(config_error_of("power: {computations: [{name: a, points: [[2, 1], [1, 2]]}]}"),
             "c.yaml: line 1: power.computations[0]: points must have increasing parameters");
   EXPECT_EQ(
-      error_of("model: {kalman: {measurement_w: 0}}"),
+      config_error_of("model: {kalman: {measurement_w: 0}}"),
       "c.yaml: line 1: model.kalman.measurement_w must be in (0.0000, 1000000.0000], found 0");
-  EXPECT_EQ(error_of("model: {fourier_order: 2.5}"),
+  EXPECT_EQ(config_error_of("model: {fourier_order: 2.5}"),
             "c.yaml: line 1: model.fourier_order must be a whole number");
-  EXPECT_EQ(error_of("wind: 3"), "c.yaml: line 1: 'wind' must be a mapping of keys");
+  EXPECT_EQ(config_error_of("wind: 3"), "c.yaml: line 1: 'wind' must be a mapping of keys");
 }
 
 // One spelling of speeds (DESIGN.md §2): the old `_mps` keys still read, with a warning naming the
@@ -79,10 +79,10 @@ TEST(SimConfig, OldSpeedSpellingIsReadWithAWarning) {
       << old_keys.warnings[1];
   const SimConfig new_keys = parse_sim_config("speed_m_s: 9\n", "c.yaml");
   EXPECT_TRUE(new_keys.warnings.empty());
-  EXPECT_EQ(error_of("speed_m_s: 9\nspeed_mps: 8\n"),
+  EXPECT_EQ(config_error_of("speed_m_s: 9\nspeed_mps: 8\n"),
             "c.yaml: line 2: 'speed_mps' and 'speed_m_s' both given: keep 'speed_m_s'");
   // Only speeds: another key ending in _mps is still unknown.
-  EXPECT_NE(error_of("climb_mps: 3\n").find("unknown key 'climb_mps'"), std::string::npos);
+  EXPECT_NE(config_error_of("climb_mps: 3\n").find("unknown key 'climb_mps'"), std::string::npos);
 }
 
 TEST(SimConfig, PowerTrace) {

@@ -13,7 +13,7 @@
 namespace swath::energy {
 namespace {
 
-const std::string kPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
+const std::string kSimulationPlans = std::string(SWATH_SOURCE_DIR) + "/plans/";
 
 SimConfig quiet_config() {
   SimConfig c;
@@ -97,7 +97,7 @@ TEST(Flight, WindTriangle) {
 }
 
 TEST(Flight, ThePapersSurveyFliesItsStagesInOrder) {
-  const Plan plan = read_plan(kPlans + "survey.stages");
+  const Plan plan = read_plan(kSimulationPlans + "survey.stages");
   SimConfig c = quiet_config();
   c.start = {25, 146};
   c.replan = false;  // the stages' order at fixed parameters
@@ -210,9 +210,10 @@ TEST(Simulation, StallsAreExplained) {
   // The triggering point is off the circle: the drone circles for ever.
   const Plan off = parse_plan("0.0003; 90; x^2+y^2-200^2\n0, -260\n[0, 0]\n", "off.stages");
   const std::string stalled = error_of(off, c);
-  EXPECT_NE(stalled.find("off.stages: line 1: the drone has not come closer to the triggering point "
-                         "(0.0, -260.0) m for 200 s"),
-            std::string::npos)
+  EXPECT_NE(
+      stalled.find("off.stages: line 1: the drone has not come closer to the triggering point "
+                   "(0.0, -260.0) m for 200 s"),
+      std::string::npos)
       << stalled;
   c.start = {0, 0};  // the circle's centre: grad phi = 0
   EXPECT_NE(error_of(circle_plan(), c)

@@ -13,8 +13,6 @@ namespace {
 
 using geometry::Point2;
 
-constexpr double kPi = std::numbers::pi;
-
 // Four lanes 20 m apart at `angle_deg`, flown as a zigzag whose ends differ (a slanted field
 // side), from a home 30 m before the first line.
 struct Zigzag {
@@ -27,7 +25,7 @@ struct Zigzag {
 Zigzag zigzag(double angle_deg) {
   Zigzag z;
   z.angle_deg = angle_deg;
-  const double a = angle_deg * kPi / 180;
+  const double a = angle_deg * std::numbers::pi / 180;
   z.u = {std::cos(a), std::sin(a)};
   z.n = {-z.u.y, z.u.x};
   const double lo[] = {0, 5, 10, 15}, hi[] = {200, 190, 205, 180};
@@ -125,7 +123,7 @@ TEST(SurveyStagePlan, TheSimulatedDroneFliesTheLanesAndLowerC1ShortensOnlyTheTur
     } else {
       // Three half circles of radius 10 c1: pi * 10 * 0.2 m shorter each, at 5 m/s; the legs
       // from and to home change a little with the first and last lanes' places.
-      const double turns_s = 3 * kPi * 10 * 0.2 / 5;
+      const double turns_s = 3 * std::numbers::pi * 10 * 0.2 / 5;
       EXPECT_LT(r.flight_time_s, time_at_1);
       EXPECT_NEAR(time_at_1 - r.flight_time_s, turns_s, 0.35 * turns_s);
     }
