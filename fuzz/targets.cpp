@@ -18,6 +18,7 @@
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
+#include "swath/mavlink/frame.hpp"
 #include "swath/planning/camera.hpp"
 #include "swath/planning/plan_features.hpp"
 #include "swath/vehicle/drone.hpp"
@@ -26,6 +27,41 @@
 
 namespace swath::fuzz {
 namespace {
+
+// MAVLink bytes from a link: the frames must not depend on how the bytes are split, every byte is
+// counted once, and each frame re-encodes to the bytes it came from and describes itself.
+void mavlink_frames(const std::string& text) {
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data());
+  mavlink::FrameParser whole, pieces;
+  whole.feed({bytes, text.size()});
+  whole.finish();
+  std::vector<std::vector<std::uint8_t>> a, b;
+  for (mavlink::Frame f; whole.next(f);) {
+    a.push_back(mavlink::serialize(f));
+    mavlink::describe(f);
+  }
+  std::size_t at = 0, step = 1;
+  while (at < text.size()) {  // piece lengths 1, 2, 3, ... 17, 1, ...
+    const std::size_t n = std::min(step, text.size() - at);
+    pieces.feed({bytes + at, n});
+    at += n;
+    step = step % 17 + 1;
+    for (mavlink::Frame f; pieces.next(f);) b.push_back(mavlink::serialize(f));
+  }
+  pieces.finish();
+  for (mavlink::Frame f; pieces.next(f);) b.push_back(mavlink::serialize(f));
+  const mavlink::ParserStats& s = whole.stats();
+  if (a != b ||
+      s.bytes_in_frames + s.bytes_skipped + s.bytes_unknown + s.bytes_signed != text.size() ||
+      whole.pending_bytes() != 0)
+    std::abort();
+  for (const auto& frame_bytes : a) {  // re-encoded frames are found again, alone
+    mavlink::FrameParser again;
+    again.feed(frame_bytes);
+    mavlink::Frame f;
+    if (!again.next(f) || mavlink::serialize(f) != frame_bytes) std::abort();
+  }
+}
 
 // Runs `read`; bad input (InputError) is the expected way out.
 template <typename F>
@@ -171,6 +207,10 @@ const std::vector<Target>& targets() {
          });
        },
        {"tests/bad-input/seeds/trigger-data.csv"}},
+      // MAVLink from a link (DESIGN.md §18.6): the frame parser and every message's decoder.
+      {"mavlink_frames",
+       [](const std::string& t) { mavlink_frames(t); },
+       {"tests/bad-input/seeds/mavlink-frames.bin"}},
       // GIS areas: WKT through OGR's parser, then swath's checks (DESIGN.md §15).
       {"ogr_wkt",
        [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
