@@ -13,7 +13,7 @@ int run_program(const char* program, const char* description, const char* exit_c
   app.name(program);
   app.footer(exit_codes);
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string(program) + " 0.1.0");
+  app.set_version_flag("--version", std::string(program) + " " + SWATH_VERSION);
   std::vector<std::pair<CLI::App*, Command*>> registered;
   for (auto& command : commands) {
     CLI::App* sub = app.add_subcommand(command->name(), command->description());

@@ -1,6 +1,7 @@
 #include "fleet_inputs.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -105,10 +106,18 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   }
   if (!r.weights.empty()) p.settings.weights = fleet::read_weights(r.weights);
   if (!r.faults.empty()) {
-    std::vector<std::string> names;
-    for (const auto& d : p.drones) names.push_back(d.name);
-    p.settings.faults = fleet::read_faults(r.faults, names, r.max_time_s);
+    std::vector<std::string> drone_names;
+    for (const auto& d : p.drones) drone_names.push_back(d.name);
+    p.settings.faults = fleet::read_faults(r.faults, drone_names, r.max_time_s);
   }
+  const auto text_of = [](const std::string& path, const char* what) {
+    return path.empty() ? std::string() : base::read_text_file(path, what);
+  };
+  p.config_text = "app " + r.app + "\nworld\n" + p.world_text + "\nfleet\n" +
+                  text_of(r.fleet, "fleet file") + "\ndrones " + std::to_string(r.drones) +
+                  "\nweights\n" + text_of(r.weights, "weights file") + "\nfaults\n" +
+                  text_of(r.faults, "faults file") + "\nwind " + r.wind + "\nmax_time_s " +
+                  std::to_string(r.max_time_s) + "\n";
   if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
     throw InputError("unknown scheduler \"" + r.scheduler +
                      "\": use sa, reactive, greedy, round-robin or hungarian");
@@ -134,7 +143,13 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
   for (const auto& [k, v] : r.tasks_by_outcome) tasks[k] = v;
   json metrics = json::object();
   for (const auto& [k, v] : r.metrics) metrics[k] = r6(v);
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits
+  for (unsigned char c : p.config_text) hash = (hash ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
   json out{{"app", p.settings.app_name},
+           {"version", SWATH_VERSION},
+           {"config_hash", hex},
            {"world", p.world->kind()},
            {"world_file", p.world_source},
            {"completed", r.completed},

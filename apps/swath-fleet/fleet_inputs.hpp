@@ -31,6 +31,9 @@ struct PreparedRun {
   std::vector<fleet::DroneSpec> drones;
   fleet::RunSettings settings;
   std::string world_text, world_source;
+  /// Everything that makes runs comparable but the scheduler and the seed: the app, the world's,
+  /// fleet's, weights' and faults' text, wind and time limit (summary.json's config_hash).
+  std::string config_text;
 };
 /// Reads and checks everything (base::InputError on bad input). `world_seed`: re-draws the
 /// world's random parts (compare's scenarios) instead of the file's seed.

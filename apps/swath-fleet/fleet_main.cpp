@@ -6,6 +6,7 @@
 
 #include "command.hpp"
 #include "run_command.hpp"
+#include "scale_out_command.hpp"
 
 namespace swath::apps {
 
@@ -17,6 +18,8 @@ int fleet_main(int argc, char** argv) {
   commands.push_back(std::make_unique<FleetAppsCommand>());
   commands.push_back(std::make_unique<FleetWorldsCommand>());
   commands.push_back(std::make_unique<FleetRenderCommand>());
+  commands.push_back(std::make_unique<FleetSweepCommand>());
+  commands.push_back(std::make_unique<FleetCollectCommand>());
   return run_program(
       "swath-fleet", "swath-fleet: swarm applications on a simulated fleet (paper 000)",
       "Exit codes: 0 the application completed; 2 bad input or usage (the message "

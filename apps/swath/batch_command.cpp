@@ -14,6 +14,7 @@
 
 #include "plan_command.hpp"
 #include "progress_bar.hpp"
+#include "shell_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -44,12 +45,6 @@ std::string directory_name(const std::string& name) {
   return out.substr(0, 80);
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 bool area_file(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -58,20 +53,6 @@ bool area_file(const fs::path& p) {
                         ".gpx", ".fgb", ".gml", ".wkt"})
     if (ext == e) return true;
   return false;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-// The program's own path, for --emit-jobs' command lines.
-std::string self_path() {
-  std::error_code ec;
-  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string("swath") : p.string();
 }
 
 }  // namespace
@@ -103,48 +84,56 @@ void BatchCommand::setup(CLI::App& app) {
   app.callback([this, &app] { plan_args_ = app.remaining(); });
 }
 
-int BatchCommand::run() {
-  for (const std::string& a : plan_args_)
+namespace {
+
+// The result of one area's `swath plan`.
+struct Result {
+  int exit_code = -1;
+  std::string message;  ///< the first line it wrote to stderr
+};
+
+// The plan options are parsed once, as `swath plan` would: a typo is refused before any area is
+// planned (and before anything is written).
+void check_plan_options(const std::vector<std::string>& plan_args, const std::string& areas,
+                        const std::string& output) {
+  for (const std::string& a : plan_args)
     if (a == "-o" || a == "--output" || a.rfind("--output=", 0) == 0 || a == "--feature" ||
         a == "--layer" || a == "--name-field")
       throw InputError(a + " is the batch's own (each area gets its own directory)");
-  // The plan options are parsed once here, as `swath plan` would: a typo is refused before any
-  // area is planned (and before anything is written).
-  {
-    PlanCommand check;
-    CLI::App app{"swath plan"};
-    check.setup(app);
-    std::vector<std::string> args{"-o", (fs::path(output_) / "x").string(), areas_};
-    args.insert(args.end(), plan_args_.begin(), plan_args_.end());
-    std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
-    try {
-      app.parse(args);
-    } catch (const CLI::ParseError& e) {
-      throw InputError("the plan options: " + std::string(e.what()));
-    }
+  PlanCommand check;
+  CLI::App app{"swath plan"};
+  check.setup(app);
+  std::vector<std::string> args{"-o", (fs::path(output) / "x").string(), areas};
+  args.insert(args.end(), plan_args.begin(), plan_args.end());
+  std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw InputError("the plan options: " + std::string(e.what()));
   }
-  // 1. The areas, each named once.
+}
+
+// Every area of the file (or of each area file in the directory, by name), each with its own
+// sub-directory name.
+std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOptions& options) {
   std::vector<Job> jobs;
-  geometry::FieldReadOptions options;
-  if (!layer_.empty()) options.layer = layer_;
-  if (!name_field_.empty()) options.name_field = name_field_;
   auto add_file = [&](const fs::path& file) {
-    const auto areas = geometry::list_areas(file, options);
-    for (const auto& a : areas)
+    const auto found = geometry::list_areas(file, options);
+    for (const auto& a : found)
       jobs.push_back(
           {file.string(),
-           areas.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name, "",
-           a.index, areas.size() == 1});
+           found.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name, "",
+           a.index, found.size() == 1});
   };
-  if (fs::is_directory(areas_)) {
+  if (fs::is_directory(areas)) {
     std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(areas_))
+    for (const auto& e : fs::directory_iterator(areas))
       if (e.is_regular_file() && area_file(e.path())) files.push_back(e.path());
     std::sort(files.begin(), files.end());
-    if (files.empty()) throw InputError(areas_ + ": no area files in this directory");
+    if (files.empty()) throw InputError(areas + ": no area files in this directory");
     for (const fs::path& f : files) add_file(f);
   } else {
-    add_file(areas_);
+    add_file(areas);
   }
   std::set<std::string> used;
   for (Job& j : jobs) {
@@ -153,39 +142,38 @@ int BatchCommand::run() {
     used.insert(dir);
     j.dir = dir;
   }
-  auto command = [&](const Job& j) {
-    std::vector<std::string> argv{self_path(), "plan", j.file};
-    if (!j.single) {
-      argv.push_back("--feature");
-      argv.push_back(std::to_string(j.index));
-    }
-    if (!layer_.empty()) argv.insert(argv.end(), {"--layer", layer_});
-    for (const std::string& a : plan_args_) argv.push_back(a);
-    argv.push_back("-o");
-    argv.push_back((fs::path(output_) / j.dir).string());
-    return argv;
-  };
-  if (emit_jobs_) {
-    for (const Job& j : jobs) {
-      std::string line;
-      for (const std::string& a : command(j)) line += (line.empty() ? "" : " ") + quoted(a);
-      std::cout << line << "\n";
-    }
-    return base::kExitSuccess;
-  }
-  // 2. Plan them, `jobs_` processes at once; each writes its own sub-directory atomically.
-  fs::create_directories(output_);
-  struct Result {
-    int exit_code = -1;
-    std::string message;
-  };
-  std::vector<Result> results(jobs.size());
+  return jobs;
+}
+
+// Runs `swath plan` with `argv` in this forked process (GDAL and the area file's layer are already
+// loaded: no exec, no second start-up), stderr to `err`; never returns.
+[[noreturn]] void plan_in_child(const std::vector<std::string>& argv, const fs::path& err) {
+  const int out_fd = ::open("/dev/null", O_WRONLY);
+  const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  ::dup2(out_fd, 1);
+  ::dup2(err_fd, 2);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  std::vector<std::unique_ptr<Command>> plan;
+  plan.push_back(std::make_unique<PlanCommand>());
+  const int code =
+      run_program("swath", "swath plan", "", plan, static_cast<int>(argv.size()), args.data());
+  std::cout.flush();
+  std::cerr.flush();
+  ::_exit(code);
+}
+
+// Plans every job, `parallel` processes at once; each writes its own sub-directory atomically.
+std::vector<Result> plan_all(const std::vector<std::vector<std::string>>& commands, int parallel,
+                             bool progress) {
+  std::vector<Result> results(commands.size());
   std::map<pid_t, std::size_t> running;
   std::map<pid_t, fs::path> err_files;
   const fs::path scratch =
       fs::temp_directory_path() / ("swath-batch-" + std::to_string(::getpid()));
   fs::create_directories(scratch);
-  ProgressBar bar(progress_, "planning");
+  ProgressBar bar(progress, "planning");
   std::size_t next = 0, done = 0;
   auto reap_one = [&] {
     int status = 0;
@@ -194,37 +182,18 @@ int BatchCommand::run() {
     const std::size_t i = running.at(pid);
     running.erase(pid);
     results[i].exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::string err = base::read_text_file(err_files[pid], "log", 1 << 20);
+    const std::string err = base::read_text_file(err_files[pid], "log", 1 << 20);
     fs::remove(err_files[pid]);
-    const auto nl = err.find('\n');
-    results[i].message = err.substr(0, nl);
-    bar.update(static_cast<double>(++done) / static_cast<double>(jobs.size()));
+    results[i].message = err.substr(0, err.find('\n'));
+    bar.update(static_cast<double>(++done) / static_cast<double>(commands.size()));
   };
-  while (next < jobs.size() || !running.empty()) {
-    while (next < jobs.size() && static_cast<int>(running.size()) < jobs_) {
-      const std::vector<std::string> argv = command(jobs[next]);
+  while (next < commands.size() || !running.empty()) {
+    while (next < commands.size() && static_cast<int>(running.size()) < parallel) {
       const fs::path err = scratch / ("err-" + std::to_string(next));
       std::cout.flush();
       std::cerr.flush();
       const pid_t pid = ::fork();
-      if (pid == 0) {
-        // The child is `swath plan` for this area, run in the forked copy of this process: GDAL
-        // and the area file's layer are already loaded (no exec, no second start-up).
-        const int out_fd = ::open("/dev/null", O_WRONLY);
-        const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-        ::dup2(out_fd, 1);
-        ::dup2(err_fd, 2);
-        std::vector<char*> args;
-        for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        std::vector<std::unique_ptr<Command>> plan;
-        plan.push_back(std::make_unique<PlanCommand>());
-        const int code = run_program("swath", "swath plan", "", plan, static_cast<int>(argv.size()),
-                                     args.data());
-        std::cout.flush();
-        std::cerr.flush();
-        ::_exit(code);
-      }
+      if (pid == 0) plan_in_child(commands[next], err);
       if (pid < 0) throw std::runtime_error("batch: cannot start a process");
       running[pid] = next;
       err_files[pid] = err;
@@ -233,17 +202,44 @@ int BatchCommand::run() {
     reap_one();
   }
   fs::remove_all(scratch);
-  // 3. batch.csv and batch.geojson from each area's summary.json, in the areas' order.
-  std::string csv =
+  return results;
+}
+
+// The area's outline as the plan read it, as a GeoJSON polygon (null for one it could not read).
+json outline_geojson(const Job& j, geometry::FieldReadOptions options) {
+  try {
+    if (!j.single) options.feature = std::to_string(j.index);
+    const geometry::Field f = geometry::read_field(j.file, options);
+    json rings = json::array();
+    for (const auto& ring : f.geo_rings) {
+      json r = json::array();
+      for (const auto& g : ring) r.push_back({g.lon_deg, g.lat_deg});
+      if (!ring.empty()) r.push_back({ring.front().lon_deg, ring.front().lat_deg});
+      rings.push_back(r);
+    }
+    return {{"type", "Polygon"}, {"coordinates", rings}};
+  } catch (const InputError&) {
+    return nullptr;
+  }
+}
+
+// batch.csv and batch.geojson from each area's summary.json, in the areas' order.
+struct BatchTables {
+  std::string csv, geojson;
+  int failed = 0;
+};
+BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<Result>& results,
+                         const std::string& output, const geometry::FieldReadOptions& options) {
+  BatchTables t;
+  t.csv =
       "area,file,index,directory,status,exit_code,area_m2,lines,photos,path_length_m,"
       "flight_time_s,drones,message\n";
   json features = json::array();
-  int failed = 0;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const Job& j = jobs[i];
     const Result& r = results[i];
     const bool ok = r.exit_code == 0;
-    failed += !ok;
+    t.failed += !ok;
     json props{{"area", j.name},
                {"file", j.file},
                {"index", j.index},
@@ -253,7 +249,7 @@ int BatchCommand::run() {
     std::string numbers = ",,,,,";
     if (ok) {
       const json s =
-          json::parse(base::read_text_file(fs::path(output_) / j.dir / "summary.json", "summary"));
+          json::parse(base::read_text_file(fs::path(output) / j.dir / "summary.json", "summary"));
       double lines = 0, photos = 0, length = 0, time = 0;
       for (const auto& d : s["drones"]) {
         lines += d.value("lines", 0.0);
@@ -272,37 +268,58 @@ int BatchCommand::run() {
     } else {
       props["message"] = r.message;
     }
-    csv += csv_field(j.name) + "," + csv_field(j.file) + "," + std::to_string(j.index) + "," +
-           csv_field(j.dir) + "," + (ok ? "planned" : "refused") + "," +
-           std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : r.message) +
-           "\n";
-    // The outline, read as the plan read it (a refused area has none it could read).
-    json geometry = nullptr;
-    try {
-      geometry::FieldReadOptions o = options;
-      if (!j.single) o.feature = std::to_string(j.index);
-      const geometry::Field f = geometry::read_field(j.file, o);
-      json rings = json::array();
-      for (const auto& ring : f.geo_rings) {
-        json r2 = json::array();
-        for (const auto& g : ring) r2.push_back({g.lon_deg, g.lat_deg});
-        if (!ring.empty()) r2.push_back({ring.front().lon_deg, ring.front().lat_deg});
-        rings.push_back(r2);
-      }
-      geometry = {{"type", "Polygon"}, {"coordinates", rings}};
-    } catch (const InputError&) {
-    }
-    features.push_back(json{{"type", "Feature"}, {"properties", props}, {"geometry", geometry}});
+    t.csv += csv_field(j.name) + "," + csv_field(j.file) + "," + std::to_string(j.index) + "," +
+             csv_field(j.dir) + "," + (ok ? "planned" : "refused") + "," +
+             std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : r.message) +
+             "\n";
+    features.push_back(json{
+        {"type", "Feature"}, {"properties", props}, {"geometry", outline_geojson(j, options)}});
   }
+  t.geojson = json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n";
+  return t;
+}
+
+// The `swath plan` command line of one area.
+std::vector<std::string> command_line(const Job& j, const std::string& layer,
+                                      const std::vector<std::string>& plan_args,
+                                      const std::string& output) {
+  std::vector<std::string> argv{own_program_path("swath"), "plan", j.file};
+  if (!j.single) argv.insert(argv.end(), {"--feature", std::to_string(j.index)});
+  if (!layer.empty()) argv.insert(argv.end(), {"--layer", layer});
+  argv.insert(argv.end(), plan_args.begin(), plan_args.end());
+  argv.insert(argv.end(), {"-o", (fs::path(output) / j.dir).string()});
+  return argv;
+}
+
+}  // namespace
+
+int BatchCommand::run() {
+  check_plan_options(plan_args_, areas_, output_);
+  geometry::FieldReadOptions options;
+  if (!layer_.empty()) options.layer = layer_;
+  if (!name_field_.empty()) options.name_field = name_field_;
+  const std::vector<Job> jobs = list_jobs(areas_, options);
+  std::vector<std::vector<std::string>> commands;
+  for (const Job& j : jobs) commands.push_back(command_line(j, layer_, plan_args_, output_));
+  if (emit_jobs_) {
+    for (const auto& argv : commands) {
+      std::string line;
+      for (const std::string& a : argv) line += (line.empty() ? "" : " ") + shell_word(a);
+      std::cout << line << "\n";
+    }
+    return base::kExitSuccess;
+  }
+  fs::create_directories(output_);
+  const std::vector<Result> results = plan_all(commands, jobs_, progress_);
+  const BatchTables tables = batch_tables(jobs, results, output_, options);
   base::OutputSet set(output_, "batch", {base::OutputSet::Mode::amend, 10.0});
-  set.add("batch.csv", csv);
-  set.add("batch.geojson",
-          json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n");
+  set.add("batch.csv", tables.csv);
+  set.add("batch.geojson", tables.geojson);
   set.commit();
-  std::cout << jobs.size() - static_cast<std::size_t>(failed) << " of " << jobs.size()
-            << " areas planned into " << output_ << (failed ? "; see batch.csv for the others" : "")
-            << "\n";
-  return failed ? base::kExitPartial : base::kExitSuccess;
+  std::cout << jobs.size() - static_cast<std::size_t>(tables.failed) << " of " << jobs.size()
+            << " areas planned into " << output_
+            << (tables.failed ? "; see batch.csv for the others" : "") << "\n";
+  return tables.failed ? base::kExitPartial : base::kExitSuccess;
 }
 
 }  // namespace swath::apps

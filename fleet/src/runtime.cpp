@@ -333,7 +333,9 @@ Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::stri
            type == 4 ? std::string("fly_to") : name,
            type == 4 ? 0.0 : std::max(0.0, duration_s),
            state,
-           ActionState::pending};
+           ActionState::pending,
+           {},
+           0.0};
   if (type == 4) {  // fly_sensing: a fly_to that reads `name` every duration_s on the way
     world_.sense_time_s(name);  // an unknown sensor fails here, at the call
     if (!(duration_s > 0)) throw ActionFailed("fly_sensing needs a period > 0 s");

@@ -13,8 +13,8 @@
 namespace swath::geometry {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
-using Traits = CGAL::Arr_segment_traits_2<Kernel>;
+using ExactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using Traits = CGAL::Arr_segment_traits_2<ExactKernel>;
 using Arrangement = CGAL::Arrangement_2<Traits>;
 
 // Splits a closed walk that may pass a vertex more than once into simple cycles.
@@ -46,7 +46,7 @@ std::vector<Ring> enclosed_areas(const Ring& ring) {
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
     if (a == b) continue;
-    segments.emplace_back(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y));
+    segments.emplace_back(ExactKernel::Point_2(a.x, a.y), ExactKernel::Point_2(b.x, b.y));
   }
   Arrangement arrangement;
   CGAL::insert(arrangement, segments.begin(), segments.end());

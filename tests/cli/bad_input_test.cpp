@@ -16,20 +16,20 @@
 namespace swath::test {
 namespace {
 
-struct Case {
+struct CatalogueCase {
   int line = 0;
   int exit_code = 0;
   std::string fragment, command;
 };
 
-std::vector<Case> catalogue() {
+std::vector<CatalogueCase> catalogue() {
   std::ifstream in(source_path("tests/bad-input/cases.tsv"));
-  std::vector<Case> cases;
+  std::vector<CatalogueCase> cases;
   std::string text;
   for (int line = 1; std::getline(in, text); ++line) {
     if (text.empty() || text[0] == '#') continue;
     std::istringstream cells(text);
-    Case c;
+    CatalogueCase c;
     c.line = line;
     std::string code;
     std::getline(cells, code, '\t');
@@ -50,7 +50,7 @@ std::string with_out(std::string command, const std::string& out) {
 TEST(BadInput, EveryCaseOfTheCatalogueGivesItsExitCodeMessageAndNoOutput) {
   const auto cases = catalogue();
   ASSERT_GE(cases.size(), 50u);
-  for (const Case& c : cases) {
+  for (const CatalogueCase& c : cases) {
     const std::string out = fresh_dir("bad-input-case");
     std::filesystem::remove_all(out);
     const std::string command = with_out(c.command, out);

@@ -70,6 +70,96 @@ TEST(FleetCli, SameSeedSameBytesFromOneOrFourProcesses) {
   EXPECT_NE(read_text(base + "/other/summary.json"), read_text(base + "/one/summary.json"));
 }
 
+// Scale-out (DESIGN.md §18.11): sweep prints one line per run, GNU parallel runs them (two at a
+// time), each run's files equal a direct run's, and collect's table holds each run's own figures;
+// runs of another configuration, another version or a repeated (scheduler, seed) are refused.
+TEST(FleetCli, SweepLinesRunUnderGnuParallelAndCollectMergesThem) {
+  const std::string dir = fresh_dir("fleet-sweep");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/spec.yaml") << "app: hotspot\nworld: hotspot\ndrones: 2\n"
+                                    << "schedulers: [sa, greedy]\nseeds: {from: 4, to: 6}\n"
+                                    << "wind: \"2,1\"\n";
+  const CliRun sweep = run_swath_fleet("sweep " + dir + "/spec.yaml --runs " + dir + "/runs");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  std::vector<std::string> lines;
+  std::istringstream in(sweep.out);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 6u);
+  const std::string program = fs::canonical(SWATH_FLEET_BINARY).string();
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].rfind(program + " run hotspot ", 0), 0u) << lines[i];
+    const std::string scheduler = i < 3 ? "sa" : "greedy";
+    EXPECT_NE(lines[i].find("--scheduler " + scheduler + " --seed " + std::to_string(4 + i % 3)),
+              std::string::npos)
+        << lines[i];
+  }
+  std::ofstream(dir + "/jobs.txt") << sweep.out;
+  const CliRun parallel = run_program(
+      "parallel", "-j2 --will-cite --joblog " + dir + "/joblog -a " + dir + "/jobs.txt");
+  ASSERT_EQ(parallel.exit_code, 0) << parallel.err;
+  ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --drones 2 --scheduler greedy --seed 5 "
+                            "--wind 2,1 -o " +
+                            dir + "/direct")
+                .exit_code,
+            0);
+  EXPECT_EQ(read_text(dir + "/direct/summary.json"),
+            read_text(dir + "/runs/hotspot-greedy-seed5/summary.json"));
+  EXPECT_EQ(read_text(dir + "/direct/events.jsonl"),
+            read_text(dir + "/runs/hotspot-greedy-seed5/events.jsonl"));
+
+  const CliRun collect = run_swath_fleet("collect " + dir + "/runs/* -o " + dir + "/table");
+  ASSERT_EQ(collect.exit_code, 0) << collect.err;
+  std::istringstream csv(read_text(dir + "/table/collect.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.substr(0, 44), "run,app,scheduler,seed,completed,completion_");
+  std::vector<std::string> order;
+  for (std::string row; std::getline(csv, row);) {
+    std::vector<std::string> f;
+    std::istringstream cells(row);
+    for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
+    ASSERT_EQ(f.size(), 13u) << row;
+    const json summary = json::parse(read_text(f[0] + "/summary.json"));
+    EXPECT_EQ(f[2], summary["scheduler"].get<std::string>());
+    EXPECT_EQ(std::stoull(f[3]), summary["seed"].get<std::uint64_t>());
+    EXPECT_NEAR(std::stod(f[5]), summary["completion_time_s"].get<double>(), 5e-4);
+    double energy = 0;
+    for (const auto& d : summary["drones"]) energy += d["energy_wh"].get<double>();
+    EXPECT_NEAR(std::stod(f[6]), energy, 1e-6);
+    EXPECT_EQ(std::stoll(f[8]), summary["tasks"]["done"].get<long long>());
+    order.push_back(f[2] + f[3]);
+  }
+  EXPECT_EQ(order,
+            (std::vector<std::string>{"greedy4", "greedy5", "greedy6", "sa4", "sa5", "sa6"}));
+
+  // Refusals: nothing written.
+  ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --drones 2 --scheduler sa --seed 9 "
+                            "--wind 3,1 -o " +
+                            dir + "/windier")
+                .exit_code,
+            0);
+  CliRun refused =
+      run_swath_fleet("collect " + dir + "/runs/* " + dir + "/windier -o " + dir + "/refused");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("another configuration"), std::string::npos) << refused.err;
+  refused = run_swath_fleet("collect " + dir + "/runs/hotspot-sa-seed4 " + dir +
+                            "/runs/hotspot-sa-seed4 -o " + dir + "/refused");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("the same scheduler (sa) and seed (4)"), std::string::npos)
+      << refused.err;
+  fs::create_directories(dir + "/old");
+  std::string old = read_text(dir + "/runs/hotspot-sa-seed5/summary.json");
+  const std::size_t v = old.find("\"version\": \"");
+  ASSERT_NE(v, std::string::npos);
+  old.replace(v, old.find('"', v + 12) + 1 - v, "\"version\": \"0.0.9\"");
+  std::ofstream(dir + "/old/summary.json") << old;
+  refused = run_swath_fleet("collect " + dir + "/runs/hotspot-sa-seed4 " + dir + "/old -o " + dir +
+                            "/refused");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("made by swath-fleet 0.0.9"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir + "/refused"));
+}
+
 TEST(FleetCli, AnAppThatCannotFinishExitsFourWithItsFiles) {
   const std::string out = fresh_dir("fleet-timeout");
   const CliRun run = run_swath_fleet(

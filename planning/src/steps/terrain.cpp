@@ -55,7 +55,6 @@ struct Follower {
     const double step = request.ground->resolution_m();
     std::vector<MissionItem> out;
     geometry::Point2 prev = m.home;
-    double prev_ground = home_ground;
     bool airborne = false;
     auto set = [&](MissionItem& item, double ground) {
       item.altitude_m = ground + agl - home_ground;
@@ -67,7 +66,6 @@ struct Follower {
         set(item, home_ground);
         airborne = true;
         prev = m.home;
-        prev_ground = home_ground;
       } else if (leg && airborne) {
         const geometry::Point2 to = item.kind == ItemKind::land ? m.home : item.position;
         const double length = std::hypot(to.x - prev.x, to.y - prev.y);
@@ -95,7 +93,6 @@ struct Follower {
         }
         set(item, g.back());
         prev = to;
-        prev_ground = g.back();
       }
       out.push_back(item);
     }

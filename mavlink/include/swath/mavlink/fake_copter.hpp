@@ -1,0 +1,99 @@
+#pragma once
+// A stand-in for ArduCopter on a MAVLink link, for tests and demos where SITL cannot be built
+// (CI): it answers what CopterDriver sends the way ArduCopter documents — HEARTBEAT at 1 Hz with
+// mode and armed flag, telemetry at the intervals asked by SET_MESSAGE_INTERVAL, COMMAND_ACK for
+// every COMMAND_LONG, arming only in GUIDED on the ground (or a refusal with a STATUSTEXT),
+// take-off to the asked altitude, GUIDED position targets at the set speed, RTL (home, then land)
+// and LAND with disarm on the ground, a photo per IMAGE_START_CAPTURE, and the ground-station
+// failsafe: airborne without a GCS HEARTBEAT for 5 s it returns to launch (FS_GCS_ENABLE = 1).
+// Faults for tests: a cut link, lost commands, a refusal to arm.
+//
+// Kinematics are deliberately simple (constant speeds, no inertia): it checks the driver's
+// protocol, not flight; swath-fleet's simulated backend and swath-control model flight.
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "swath/mavlink/commands.hpp"
+#include "swath/mavlink/endpoint.hpp"
+#include "swath/mavlink/messages.hpp"
+
+namespace swath::mavlink {
+
+struct FakeCopterSettings {
+  double home_lat_deg = 47.397742;  ///< WGS84
+  double home_lon_deg = 8.545594;
+  double home_amsl_m = 488.0;
+  std::uint8_t sysid = 1;
+  double speed_m_s = 10.0;                ///< horizontal speed until DO_CHANGE_SPEED
+  double climb_m_s = 2.5;                 ///< take-off and climb
+  double descent_m_s = 1.0;               ///< landing
+  double gcs_failsafe_s = 5.0;            ///< FS_GCS_TIMEOUT
+  double battery_drain_percent_s = 0.05;  ///< while armed
+};
+
+class FakeCopter {
+ public:
+  FakeCopter(Link& link, FakeCopterSettings settings = {});
+
+  /// Reads commands, moves for the time since the last step, sends what is due.
+  void step(double now_s);
+
+  // Faults.
+  /// Neither sends nor receives from `from_s` until `until_s` (what arrives meanwhile is lost).
+  void cut_link(double from_s, double until_s);
+  /// The next `n` COMMAND_LONGs are lost on the way (so their acknowledgements never come).
+  void lose_commands(int n) { commands_to_lose_ += n; }
+  /// Refuses to arm, with this STATUSTEXT (ArduCopter's "PreArm: ..." sentences).
+  void refuse_arm(std::string why) { refuse_arm_ = std::move(why); }
+
+  // Truth, for tests.
+  double north_m() const { return north_m_; }
+  double east_m() const { return east_m_; }
+  double altitude_m() const { return alt_m_; }  ///< above home
+  bool armed() const { return armed_; }
+  CopterMode mode() const { return mode_; }
+  LandedState landed_state() const { return landed_; }
+  double speed_setting_m_s() const { return speed_m_s_; }
+  /// COMMAND_LONGs received by command number (resends included, lost ones not).
+  int commands_received(Cmd cmd) const;
+  int position_targets_received() const { return targets_received_; }
+  int images_taken() const { return images_; }
+  /// Latitude and longitude in degrees of a point north_m, east_m of home.
+  void to_geodetic(double north_m, double east_m, double& lat_deg, double& lon_deg) const;
+
+ private:
+  void on_frame(const Frame& frame, double now_s);
+  void on_command(const CommandLong& c, double now_s);
+  void move(double dt_s);
+  void send_telemetry(double now_s);
+  bool link_cut(double now_s) const { return now_s >= cut_from_s_ && now_s < cut_until_s_; }
+
+  Endpoint endpoint_;
+  FakeCopterSettings settings_;
+  double last_step_s_ = 0;
+  bool started_ = false;
+  double cut_from_s_ = 0, cut_until_s_ = 0;
+  int commands_to_lose_ = 0;
+  std::string refuse_arm_;
+  double last_gcs_heartbeat_s_ = 0;
+  bool gcs_seen_ = false;
+
+  bool armed_ = false;
+  CopterMode mode_ = CopterMode::stabilize;
+  LandedState landed_ = LandedState::on_ground;
+  double north_m_ = 0, east_m_ = 0, alt_m_ = 0;
+  double v_north_m_s_ = 0, v_east_m_s_ = 0, v_up_m_s_ = 0;
+  double target_north_m_ = 0, target_east_m_ = 0, target_alt_m_ = 0;
+  bool has_target_ = false;
+  double speed_m_s_;
+  double battery_percent_ = 100;
+  int targets_received_ = 0;
+  int images_ = 0;
+  std::map<std::uint16_t, int> received_;
+  std::map<std::uint32_t, double> interval_s_;  // message id -> interval asked
+  std::map<std::uint32_t, double> last_sent_s_;
+};
+
+}  // namespace swath::mavlink

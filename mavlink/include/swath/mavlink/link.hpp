@@ -1,0 +1,50 @@
+#pragma once
+// Byte links a MAVLink node talks over: an interface, and POSIX UDP on IPv4 (ArduPilot SITL and
+// companion routers speak UDP; TCP to SITL's port 5760 + 10 x instance is the same interface).
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace swath::mavlink {
+
+/// Where datagrams or bytes go and come from. Never blocks.
+class Link {
+ public:
+  virtual ~Link() = default;
+  /// Sends bytes to the peer (dropped if there is no peer yet, as a radio would).
+  virtual void send(std::span<const std::uint8_t> bytes) = 0;
+  /// Appends whatever arrived since the last call to `out`; returns the number of bytes appended.
+  virtual std::size_t receive(std::vector<std::uint8_t>& out) = 0;
+};
+
+/// UDP on IPv4. A listening link learns its peer from the first datagram it receives (what
+/// ArduPilot's `--out udp:` and MAVProxy expect of a ground station); a connected link sends to a
+/// fixed peer. Socket errors throw std::system_error naming the address.
+class UdpLink final : public Link {
+ public:
+  /// Listens on host:port (port 0: any free port, see local_port()).
+  static UdpLink listen(const std::string& host, std::uint16_t port);
+  /// Sends to host:port from an ephemeral local port.
+  static UdpLink connect(const std::string& host, std::uint16_t port);
+  UdpLink(UdpLink&& other) noexcept;
+  UdpLink& operator=(UdpLink&& other) noexcept;
+  UdpLink(const UdpLink&) = delete;
+  UdpLink& operator=(const UdpLink&) = delete;
+  ~UdpLink() override;
+
+  void send(std::span<const std::uint8_t> bytes) override;
+  std::size_t receive(std::vector<std::uint8_t>& out) override;
+  std::uint16_t local_port() const;
+
+ private:
+  UdpLink() = default;
+  int fd_ = -1;
+  bool has_peer_ = false;
+  bool learn_peer_ = false;
+  std::uint32_t peer_address_ = 0;  // network byte order
+  std::uint16_t peer_port_ = 0;     // network byte order
+};
+
+}  // namespace swath::mavlink

@@ -1,0 +1,189 @@
+#include "swath/mavlink/copter_driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "swath/geometry/local_frame.hpp"
+
+namespace swath::mavlink {
+namespace {
+
+std::int32_t to_degE7(double deg) {
+  return static_cast<std::int32_t>(std::lround(deg * kDegE7));
+}
+
+}  // namespace
+
+CopterDriver::CopterDriver(Link& link, DriverSettings settings)
+    : endpoint_(link, kGcsSysid, kGcsCompid), settings_(std::move(settings)) {}
+
+int CopterDriver::enqueue(Cmd cmd, float p1, float p2, float p3, float p7) {
+  Pending p;
+  p.message.command = static_cast<std::uint16_t>(cmd);
+  p.message.target_system = settings_.vehicle_sysid;
+  p.message.target_component = settings_.vehicle_compid;
+  p.message.param1 = p1;
+  p.message.param2 = p2;
+  p.message.param3 = p3;
+  p.message.param7 = p7;
+  commands_.push_back(p);
+  return static_cast<int>(commands_.size()) - 1;
+}
+
+int CopterDriver::set_mode(CopterMode mode) {
+  return enqueue(Cmd::do_set_mode, kModeFlagCustomEnabled, static_cast<float>(mode));
+}
+int CopterDriver::arm(bool on) {
+  return enqueue(Cmd::component_arm_disarm, on ? 1.0f : 0.0f);
+}
+int CopterDriver::takeoff(double altitude_m) {
+  return enqueue(Cmd::nav_takeoff, 0, 0, 0, static_cast<float>(altitude_m));
+}
+int CopterDriver::set_speed(double ground_speed_m_s) {
+  return enqueue(Cmd::do_change_speed, 1, static_cast<float>(ground_speed_m_s));
+}
+int CopterDriver::return_to_launch() {
+  target_.reset();
+  return enqueue(Cmd::nav_return_to_launch);
+}
+int CopterDriver::land() {
+  target_.reset();
+  return enqueue(Cmd::nav_land);
+}
+int CopterDriver::capture_image() {
+  return enqueue(Cmd::image_start_capture, 0, 0, 1);
+}
+
+CommandState CopterDriver::command_state(int id) const {
+  return commands_.at(static_cast<std::size_t>(id)).state;
+}
+std::optional<CmdResult> CopterDriver::command_result(int id) const {
+  return commands_.at(static_cast<std::size_t>(id)).result;
+}
+
+bool CopterDriver::go_to(double lat_deg, double lon_deg, double altitude_m) {
+  if (settings_.inside_fence && !settings_.inside_fence(lat_deg, lon_deg)) return false;
+  SetPositionTargetGlobalInt t;
+  t.lat_degE7 = to_degE7(lat_deg);
+  t.lon_degE7 = to_degE7(lon_deg);
+  t.alt_m = static_cast<float>(altitude_m);
+  t.type_mask = kTypeMaskPositionOnly;
+  t.target_system = settings_.vehicle_sysid;
+  t.target_component = settings_.vehicle_compid;
+  t.coordinate_frame = kFrameGlobalRelativeAltInt;
+  target_ = t;
+  target_sent_s_ = -std::numeric_limits<double>::infinity();  // at the next poll
+  return true;
+}
+
+double CopterDriver::distance_to_target_m() const {
+  if (!target_ || !state_.position) return std::numeric_limits<double>::infinity();
+  const double horizontal = geometry::geodesic_distance_m(
+      {state_.position->lat_degE7 / kDegE7, state_.position->lon_degE7 / kDegE7},
+      {target_->lat_degE7 / kDegE7, target_->lon_degE7 / kDegE7});
+  const double vertical = state_.position->relative_alt_mm / 1000.0 - target_->alt_m;
+  return std::hypot(horizontal, vertical);
+}
+
+bool CopterDriver::arrived() const {
+  if (!target_ || !state_.position) return false;
+  const GlobalPositionInt& p = *state_.position;
+  const double speed_m_s = std::sqrt(double(p.vx_cm_s) * p.vx_cm_s + double(p.vy_cm_s) * p.vy_cm_s +
+                                     double(p.vz_cm_s) * p.vz_cm_s) /
+                           100.0;
+  return distance_to_target_m() <= settings_.arrival_radius_m &&
+         speed_m_s < settings_.arrival_speed_m_s;
+}
+
+void CopterDriver::on_link_up(double now_s) {
+  // Telemetry rates and home are asked again after every loss: the vehicle may have rebooted.
+  const auto interval = [&](std::uint32_t id, double s) {
+    enqueue(Cmd::set_message_interval, static_cast<float>(id), static_cast<float>(s * 1e6));
+  };
+  interval(GlobalPositionInt::kId, settings_.position_interval_s);
+  interval(SysStatus::kId, settings_.status_interval_s);
+  interval(BatteryStatus::kId, settings_.status_interval_s);
+  interval(ExtendedSysState::kId, settings_.status_interval_s);
+  enqueue(Cmd::request_message, static_cast<float>(HomePosition::kId));
+  (void)now_s;
+}
+
+void CopterDriver::on_frame(const Frame& frame, double now_s) {
+  if (frame.header.sysid != settings_.vehicle_sysid) return;
+  if (const auto hb = unpack<Heartbeat>(frame)) {
+    if (frame.header.compid != settings_.vehicle_compid) return;
+    state_.last_heard_s = now_s;
+    if (!state_.link_alive) {
+      state_.link_alive = true;
+      on_link_up(now_s);
+    }
+    state_.armed = (hb->base_mode & kModeFlagArmed) != 0;
+    state_.custom_mode = hb->custom_mode;
+  } else if (const auto ack = unpack<CommandAck>(frame)) {
+    // The oldest pending command of that number is the one acknowledged.
+    for (Pending& p : commands_) {
+      if (p.state != CommandState::pending || p.sends == 0 || p.message.command != ack->command)
+        continue;
+      const auto result = static_cast<CmdResult>(ack->result);
+      if (result == CmdResult::in_progress) break;  // a final ack follows
+      p.result = result;
+      p.state = result == CmdResult::accepted ? CommandState::accepted : CommandState::rejected;
+      break;
+    }
+  } else if (const auto pos = unpack<GlobalPositionInt>(frame)) {
+    state_.position = *pos;
+  } else if (const auto home = unpack<HomePosition>(frame)) {
+    state_.home = *home;
+  } else if (const auto ext = unpack<ExtendedSysState>(frame)) {
+    state_.landed = static_cast<LandedState>(ext->landed_state);
+  } else if (const auto sys = unpack<SysStatus>(frame)) {
+    state_.battery_remaining_percent = sys->battery_remaining_percent;
+  } else if (const auto text = unpack<StatusText>(frame)) {
+    const auto end = std::find(text->text.begin(), text->text.end(), '\0');
+    state_.status_texts.emplace_back(text->text.begin(), end);
+  } else if (const auto image = unpack<CameraImageCaptured>(frame)) {
+    state_.images.push_back(*image);
+  }
+}
+
+void CopterDriver::send_due(double now_s) {
+  if (now_s - last_heartbeat_sent_s_ >= settings_.heartbeat_period_s) {
+    endpoint_.send(Heartbeat{.custom_mode = 0,
+                             .type = kMavTypeGcs,
+                             .autopilot = kAutopilotInvalid,
+                             .base_mode = 0,
+                             .system_status = 4});
+    last_heartbeat_sent_s_ = now_s;
+  }
+  if (!state_.link_alive) return;  // commands wait for the vehicle; their clock starts at sending
+  for (Pending& p : commands_) {
+    if (p.state != CommandState::pending || now_s - p.last_sent_s < settings_.ack_timeout_s)
+      continue;
+    if (p.sends >= settings_.attempts) {
+      p.state = CommandState::timed_out;
+      continue;
+    }
+    p.message.confirmation = static_cast<std::uint8_t>(p.sends);
+    endpoint_.send(p.message);
+    ++p.sends;
+    ++commands_sent_;
+    p.last_sent_s = now_s;
+  }
+  if (target_ && !arrived() && now_s - target_sent_s_ >= settings_.target_resend_s &&
+      state_.custom_mode == static_cast<std::uint32_t>(CopterMode::guided)) {
+    endpoint_.send(*target_);
+    target_sent_s_ = now_s;
+  }
+}
+
+void CopterDriver::poll(double now_s) {
+  for (const Frame& f : endpoint_.receive()) on_frame(f, now_s);
+  if (state_.link_alive && now_s - state_.last_heard_s > settings_.lost_after_s) {
+    state_.link_alive = false;
+    ++state_.links_lost;
+  }
+  send_due(now_s);
+}
+
+}  // namespace swath::mavlink

@@ -1,0 +1,259 @@
+#include "swath/mavlink/fake_copter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/messages.hpp"
+
+namespace swath::mavlink {
+namespace {
+
+std::int32_t degE7(double deg) {
+  return static_cast<std::int32_t>(std::lround(deg * kDegE7));
+}
+std::int16_t cm_s(double m_s) {
+  return static_cast<std::int16_t>(std::lround(m_s * 100));
+}
+
+}  // namespace
+
+FakeCopter::FakeCopter(Link& link, FakeCopterSettings settings)
+    : endpoint_(link, settings.sysid, 1), settings_(settings), speed_m_s_(settings.speed_m_s) {}
+
+void FakeCopter::cut_link(double from_s, double until_s) {
+  cut_from_s_ = from_s;
+  cut_until_s_ = until_s;
+}
+
+int FakeCopter::commands_received(Cmd cmd) const {
+  const auto it = received_.find(static_cast<std::uint16_t>(cmd));
+  return it == received_.end() ? 0 : it->second;
+}
+
+void FakeCopter::to_geodetic(double north_m, double east_m, double& lat_deg,
+                             double& lon_deg) const {
+  const geometry::LocalFrame frame({settings_.home_lat_deg, settings_.home_lon_deg});
+  const geometry::GeoPoint p = frame.to_geo({east_m, north_m});
+  lat_deg = p.lat_deg;
+  lon_deg = p.lon_deg;
+}
+
+void FakeCopter::on_command(const CommandLong& c, double now_s) {
+  ++received_[c.command];
+  CmdResult result = CmdResult::accepted;
+  const bool on_ground = landed_ == LandedState::on_ground;
+  switch (static_cast<Cmd>(c.command)) {
+    case Cmd::do_set_mode:
+      mode_ = static_cast<CopterMode>(std::lround(c.param2));
+      if (mode_ == CopterMode::guided) has_target_ = false;  // GUIDED holds position first
+      break;
+    case Cmd::component_arm_disarm:
+      if (c.param1 == 1.0f) {
+        if (!refuse_arm_.empty()) {
+          StatusText t;
+          t.severity = 3;
+          std::copy_n(refuse_arm_.begin(), std::min(refuse_arm_.size(), t.text.size()),
+                      t.text.begin());
+          endpoint_.send(t);
+          result = CmdResult::failed;
+        } else if (mode_ != CopterMode::guided || !on_ground) {
+          result = CmdResult::denied;
+        } else {
+          armed_ = true;
+        }
+      } else {
+        result = on_ground ? CmdResult::accepted : CmdResult::denied;
+        if (on_ground) armed_ = false;
+      }
+      break;
+    case Cmd::nav_takeoff:
+      if (!armed_ || mode_ != CopterMode::guided || !on_ground) {
+        result = CmdResult::failed;
+      } else {
+        landed_ = LandedState::takeoff;
+        has_target_ = true;
+        target_north_m_ = north_m_;
+        target_east_m_ = east_m_;
+        target_alt_m_ = c.param7;
+      }
+      break;
+    case Cmd::do_change_speed:
+      if (c.param2 > 0) speed_m_s_ = c.param2;
+      break;
+    case Cmd::nav_return_to_launch:
+      if (on_ground)
+        result = CmdResult::failed;
+      else
+        mode_ = CopterMode::rtl;
+      break;
+    case Cmd::nav_land:
+      if (on_ground)
+        result = CmdResult::failed;
+      else
+        mode_ = CopterMode::land;
+      break;
+    case Cmd::set_message_interval:
+      interval_s_[static_cast<std::uint32_t>(c.param1)] = c.param2 / 1e6;
+      break;
+    case Cmd::request_message:
+      if (static_cast<std::uint32_t>(c.param1) == HomePosition::kId) {
+        HomePosition h;
+        h.latitude_degE7 = degE7(settings_.home_lat_deg);
+        h.longitude_degE7 = degE7(settings_.home_lon_deg);
+        h.altitude_mm = static_cast<std::int32_t>(std::lround(settings_.home_amsl_m * 1000));
+        h.q = {1, 0, 0, 0};
+        h.time_us = static_cast<std::uint64_t>(now_s * 1e6);
+        endpoint_.send(h);
+      } else {
+        result = CmdResult::unsupported;
+      }
+      break;
+    case Cmd::image_start_capture: {
+      CameraImageCaptured image;
+      image.time_boot_ms = static_cast<std::uint32_t>(now_s * 1000);
+      double lat = 0, lon = 0;
+      to_geodetic(north_m_, east_m_, lat, lon);
+      image.lat_degE7 = degE7(lat);
+      image.lon_degE7 = degE7(lon);
+      image.relative_alt_mm = static_cast<std::int32_t>(std::lround(alt_m_ * 1000));
+      image.image_index = images_++;
+      image.capture_result = 1;
+      endpoint_.send(image);
+      break;
+    }
+    default:
+      result = CmdResult::unsupported;
+  }
+  endpoint_.send(CommandAck{.command = c.command,
+                            .result = static_cast<std::uint8_t>(result),
+                            .target_system = kGcsSysid,
+                            .target_component = kGcsCompid});
+}
+
+void FakeCopter::on_frame(const Frame& frame, double now_s) {
+  if (frame.header.sysid != kGcsSysid) return;
+  if (unpack<Heartbeat>(frame)) {
+    last_gcs_heartbeat_s_ = now_s;
+    gcs_seen_ = true;
+  } else if (const auto c = unpack<CommandLong>(frame)) {
+    if (c->target_system != settings_.sysid) return;
+    if (commands_to_lose_ > 0) {
+      --commands_to_lose_;
+      return;
+    }
+    on_command(*c, now_s);
+  } else if (const auto t = unpack<SetPositionTargetGlobalInt>(frame)) {
+    if (t->target_system != settings_.sysid || mode_ != CopterMode::guided ||
+        landed_ == LandedState::on_ground)
+      return;
+    ++targets_received_;
+    const geometry::LocalFrame local({settings_.home_lat_deg, settings_.home_lon_deg});
+    const geometry::Point2 p = local.to_local({t->lat_degE7 / kDegE7, t->lon_degE7 / kDegE7});
+    target_east_m_ = p.x;
+    target_north_m_ = p.y;
+    target_alt_m_ = t->alt_m;
+    has_target_ = true;
+  }
+}
+
+void FakeCopter::move(double dt_s) {
+  v_north_m_s_ = v_east_m_s_ = v_up_m_s_ = 0;
+  if (!armed_) return;
+  battery_percent_ = std::max(0.0, battery_percent_ - settings_.battery_drain_percent_s * dt_s);
+  if (mode_ == CopterMode::rtl) {  // home at the current altitude, then land
+    has_target_ = true;
+    target_north_m_ = target_east_m_ = 0;
+    target_alt_m_ = alt_m_;
+    if (std::hypot(north_m_, east_m_) < 0.5) mode_ = CopterMode::land;
+  }
+  if (mode_ == CopterMode::land) {
+    landed_ = LandedState::landing;
+    v_up_m_s_ = -settings_.descent_m_s;
+    alt_m_ = std::max(0.0, alt_m_ - settings_.descent_m_s * dt_s);
+    if (alt_m_ <= 0) {
+      landed_ = LandedState::on_ground;
+      armed_ = false;
+      has_target_ = false;
+    }
+    return;
+  }
+  if (!has_target_) return;
+  const double dn = target_north_m_ - north_m_, de = target_east_m_ - east_m_;
+  const double d = std::hypot(dn, de);
+  const double step = std::min(d, speed_m_s_ * dt_s);
+  if (d > 0) {
+    north_m_ += dn / d * step;
+    east_m_ += de / d * step;
+    v_north_m_s_ = dn / d * step / dt_s;
+    v_east_m_s_ = de / d * step / dt_s;
+  }
+  const double dz = target_alt_m_ - alt_m_;
+  const double climb = std::clamp(dz, -settings_.climb_m_s * dt_s, settings_.climb_m_s * dt_s);
+  alt_m_ += climb;
+  v_up_m_s_ = climb / dt_s;
+  if (landed_ == LandedState::takeoff && alt_m_ >= 0.95 * target_alt_m_)
+    landed_ = LandedState::in_air;
+}
+
+void FakeCopter::send_telemetry(double now_s) {
+  const auto due = [&](std::uint32_t id, double default_interval_s) {
+    const auto it = interval_s_.find(id);
+    const double interval = it == interval_s_.end() ? default_interval_s : it->second;
+    if (interval <= 0) return false;
+    auto [last, fresh] = last_sent_s_.try_emplace(id, now_s);
+    if (!fresh && now_s - last->second < interval - 1e-9) return false;
+    last->second = now_s;
+    return true;
+  };
+  if (due(Heartbeat::kId, 1.0)) {
+    endpoint_.send(Heartbeat{.custom_mode = static_cast<std::uint32_t>(mode_),
+                             .type = kMavTypeQuadrotor,
+                             .autopilot = kAutopilotArdupilot,
+                             .base_mode = static_cast<std::uint8_t>(kModeFlagCustomEnabled |
+                                                                    (armed_ ? kModeFlagArmed : 0)),
+                             .system_status = static_cast<std::uint8_t>(armed_ ? 4 : 3)});
+  }
+  if (due(GlobalPositionInt::kId, 0)) {  // nothing until asked, as with SRx rates at 0
+    double lat = 0, lon = 0;
+    to_geodetic(north_m_, east_m_, lat, lon);
+    endpoint_.send(GlobalPositionInt{
+        .time_boot_ms = static_cast<std::uint32_t>(now_s * 1000),
+        .lat_degE7 = degE7(lat),
+        .lon_degE7 = degE7(lon),
+        .alt_mm = static_cast<std::int32_t>(std::lround((settings_.home_amsl_m + alt_m_) * 1000)),
+        .relative_alt_mm = static_cast<std::int32_t>(std::lround(alt_m_ * 1000)),
+        .vx_cm_s = cm_s(v_north_m_s_),
+        .vy_cm_s = cm_s(v_east_m_s_),
+        .vz_cm_s = cm_s(-v_up_m_s_),
+        .hdg_cdeg = 0});
+  }
+  if (due(ExtendedSysState::kId, 0))
+    endpoint_.send(ExtendedSysState{.landed_state = static_cast<std::uint8_t>(landed_)});
+  if (due(SysStatus::kId, 0)) {
+    SysStatus s;
+    s.voltage_battery_mV = static_cast<std::uint16_t>(std::lround(14800 + 10 * battery_percent_));
+    s.current_battery_cA = -1;
+    s.battery_remaining_percent = static_cast<std::int8_t>(std::lround(battery_percent_));
+    endpoint_.send(s);
+  }
+}
+
+void FakeCopter::step(double now_s) {
+  const double dt = started_ ? now_s - last_step_s_ : 0;
+  started_ = true;
+  last_step_s_ = now_s;
+  if (link_cut(now_s)) {
+    (void)endpoint_.receive();  // what arrives during the cut is lost
+  } else {
+    for (const Frame& f : endpoint_.receive()) on_frame(f, now_s);
+  }
+  if (dt > 0) move(dt);
+  const bool airborne = landed_ != LandedState::on_ground;
+  if (armed_ && airborne && gcs_seen_ && now_s - last_gcs_heartbeat_s_ > settings_.gcs_failsafe_s &&
+      mode_ == CopterMode::guided)
+    mode_ = CopterMode::rtl;  // ArduCopter's GCS failsafe
+  if (!link_cut(now_s)) send_telemetry(now_s);
+}
+
+}  // namespace swath::mavlink

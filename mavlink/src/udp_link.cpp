@@ -1,0 +1,122 @@
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <system_error>
+#include <utility>
+
+#include "swath/mavlink/link.hpp"
+
+namespace swath::mavlink {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  throw std::system_error(errno, std::generic_category(), what);
+}
+
+sockaddr_in address_of(const std::string& host, std::uint16_t port) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(port);
+  if (inet_pton(AF_INET, host.c_str(), &a.sin_addr) != 1) {
+    errno = EINVAL;
+    fail("UDP address " + host + ": not an IPv4 address");
+  }
+  return a;
+}
+
+int open_socket(const std::string& where) {
+  const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) fail("UDP socket for " + where);
+  return fd;
+}
+
+}  // namespace
+
+UdpLink UdpLink::listen(const std::string& host, std::uint16_t port) {
+  const std::string where = host + ":" + std::to_string(port);
+  const sockaddr_in a = address_of(host, port);
+  UdpLink link;
+  link.fd_ = open_socket(where);
+  if (bind(link.fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0)
+    fail("UDP listen on " + where);
+  link.learn_peer_ = true;
+  return link;
+}
+
+UdpLink UdpLink::connect(const std::string& host, std::uint16_t port) {
+  const sockaddr_in a = address_of(host, port);
+  UdpLink link;
+  link.fd_ = open_socket(host + ":" + std::to_string(port));
+  link.has_peer_ = true;
+  link.peer_address_ = a.sin_addr.s_addr;
+  link.peer_port_ = a.sin_port;
+  return link;
+}
+
+UdpLink::UdpLink(UdpLink&& other) noexcept {
+  *this = std::move(other);
+}
+
+UdpLink& UdpLink::operator=(UdpLink&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) close(fd_);
+    fd_ = std::exchange(other.fd_, -1);
+    has_peer_ = other.has_peer_;
+    learn_peer_ = other.learn_peer_;
+    peer_address_ = other.peer_address_;
+    peer_port_ = other.peer_port_;
+  }
+  return *this;
+}
+
+UdpLink::~UdpLink() {
+  if (fd_ >= 0) close(fd_);
+}
+
+void UdpLink::send(std::span<const std::uint8_t> bytes) {
+  if (!has_peer_ || bytes.empty()) return;
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_addr.s_addr = peer_address_;
+  to.sin_port = peer_port_;
+  // A full buffer or a peer gone drops the datagram, as the radio link would: MAVLink resends.
+  (void)sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to),
+               sizeof to);
+}
+
+std::size_t UdpLink::receive(std::vector<std::uint8_t>& out) {
+  std::size_t total = 0;
+  std::array<std::uint8_t, 65536> buffer;
+  for (;;) {
+    sockaddr_in from{};
+    socklen_t from_length = sizeof from;
+    const ssize_t n = recvfrom(fd_, buffer.data(), buffer.size(), 0,
+                               reinterpret_cast<sockaddr*>(&from), &from_length);
+    if (n < 0) {
+      if (errno == EAGAIN || errno == EWOULDBLOCK || errno == ECONNREFUSED) return total;
+      if (errno == EINTR) continue;
+      fail("UDP receive");
+    }
+    if (learn_peer_) {  // the latest sender is the peer
+      has_peer_ = true;
+      peer_address_ = from.sin_addr.s_addr;
+      peer_port_ = from.sin_port;
+    }
+    out.insert(out.end(), buffer.begin(), buffer.begin() + n);
+    total += static_cast<std::size_t>(n);
+  }
+}
+
+std::uint16_t UdpLink::local_port() const {
+  sockaddr_in a{};
+  socklen_t length = sizeof a;
+  if (getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &length) != 0) fail("UDP local port");
+  return ntohs(a.sin_port);
+}
+
+}  // namespace swath::mavlink

@@ -1,0 +1,221 @@
+// The ArduCopter driver against the fake ArduCopter over real loopback UDP sockets, on a simulated
+// clock (DESIGN.md §18.6, §18.12 item 6): connect and telemetry, arm, take-off, go-to and arrival
+// checked against the fake's own position; lost commands resent and counted; a refusal to arm
+// with its sentence; a 10 s link cut (lost after 3 s, the vehicle's failsafe, the flight resumed);
+// the fence; return, landing and photos.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <system_error>
+
+#include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/copter_driver.hpp"
+#include "swath/mavlink/fake_copter.hpp"
+#include "swath/mavlink/link.hpp"
+
+namespace swath::mavlink {
+namespace {
+
+constexpr double kStepS = 0.02;
+
+struct Rig {
+  explicit Rig(DriverSettings settings = {})
+      : vehicle_link(UdpLink::listen("127.0.0.1", 0)),
+        gcs_link(UdpLink::connect("127.0.0.1", vehicle_link.local_port())),
+        copter(vehicle_link),
+        driver(gcs_link, std::move(settings)) {}
+
+  // Advances the clock until `done` holds or `limit_s` passed; returns whether `done` held.
+  bool run_until(const std::function<bool()>& done, double limit_s) {
+    const double end = now_s + limit_s;
+    while (now_s < end) {
+      driver.poll(now_s);
+      copter.step(now_s);
+      now_s += kStepS;
+      if (done && done()) return true;
+    }
+    return false;
+  }
+  void run(double seconds) { run_until({}, seconds); }
+  bool command_done(int id, double limit_s = 5) {
+    return run_until([&] { return driver.command_state(id) != CommandState::pending; }, limit_s);
+  }
+  // Connected, GUIDED, armed and at `altitude_m`.
+  void take_off(double altitude_m) {
+    ASSERT_TRUE(run_until([&] { return driver.state().link_alive; }, 3));
+    const int mode = driver.set_mode(CopterMode::guided);
+    ASSERT_TRUE(command_done(mode));
+    ASSERT_EQ(driver.command_state(mode), CommandState::accepted);
+    const int arm = driver.arm();
+    ASSERT_TRUE(command_done(arm));
+    ASSERT_EQ(driver.command_state(arm), CommandState::accepted);
+    const int takeoff = driver.takeoff(altitude_m);
+    ASSERT_TRUE(command_done(takeoff));
+    ASSERT_EQ(driver.command_state(takeoff), CommandState::accepted);
+    ASSERT_TRUE(run_until([&] { return copter.landed_state() == LandedState::in_air; }, 30));
+  }
+
+  UdpLink vehicle_link;
+  UdpLink gcs_link;
+  FakeCopter copter;
+  CopterDriver driver;
+  double now_s = 0;
+};
+
+TEST(CopterDriver, ConnectsAsksForTelemetryArmsTakesOffAndFliesToATarget) {
+  Rig rig;
+  rig.take_off(20);
+  EXPECT_EQ(rig.copter.commands_received(Cmd::set_message_interval), 4);
+  EXPECT_EQ(rig.copter.commands_received(Cmd::request_message), 1);
+  ASSERT_TRUE(rig.driver.state().home.has_value());
+  EXPECT_EQ(rig.driver.state().home->latitude_degE7, 473977420);
+  EXPECT_TRUE(rig.driver.state().armed);
+  EXPECT_EQ(rig.driver.state().custom_mode, static_cast<std::uint32_t>(CopterMode::guided));
+  EXPECT_GE(rig.copter.altitude_m(), 0.95 * 20);  // "in air" from 95 % of the take-off altitude
+  rig.run(1);
+  EXPECT_NEAR(rig.copter.altitude_m(), 20, 1e-9);
+
+  // 80 m north, 60 m east: 100 m at 10 m/s.
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(80, 60, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 20));
+  const double start_s = rig.now_s;
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 30));
+  EXPECT_NEAR(rig.now_s - start_s, 100.0 / 10.0, 0.5);  // + one telemetry period, a poll
+  EXPECT_NEAR(rig.copter.north_m(), 80, 1.5);
+  EXPECT_NEAR(rig.copter.east_m(), 60, 1.5);
+  // What the driver reads equals the vehicle's truth (to the 1e-7 degree of the wire format).
+  const auto& p = *rig.driver.state().position;
+  const geometry::LocalFrame home({47.397742, 8.545594});
+  const geometry::Point2 seen = home.to_local({p.lat_degE7 / 1e7, p.lon_degE7 / 1e7});
+  EXPECT_NEAR(seen.y, rig.copter.north_m(), 0.06);  // up to one 0.1 s report old, < 0.5 m/s
+  EXPECT_NEAR(seen.x, rig.copter.east_m(), 0.06);
+  EXPECT_NEAR(p.relative_alt_mm / 1000.0, rig.copter.altitude_m(), 0.01);
+}
+
+TEST(CopterDriver, LostCommandsAreResentAndTimeOutAfterThreeSends) {
+  Rig rig;
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.state().link_alive; }, 3));
+  rig.run(1);  // the telemetry requests answered
+  rig.copter.lose_commands(2);
+  const std::uint64_t before = rig.driver.commands_sent();
+  const int mode = rig.driver.set_mode(CopterMode::guided);
+  const double sent_s = rig.now_s;
+  ASSERT_TRUE(rig.command_done(mode));
+  EXPECT_EQ(rig.driver.command_state(mode), CommandState::accepted);
+  EXPECT_EQ(rig.driver.commands_sent() - before, 3u);  // two lost, the third acknowledged
+  EXPECT_EQ(rig.copter.commands_received(Cmd::do_set_mode), 1);
+  EXPECT_NEAR(rig.now_s - sent_s, 2.0, 0.1);  // resent after 1 s, twice
+
+  rig.copter.lose_commands(3);
+  const int speed = rig.driver.set_speed(4);
+  ASSERT_TRUE(rig.command_done(speed));
+  EXPECT_EQ(rig.driver.command_state(speed), CommandState::timed_out);
+  EXPECT_EQ(rig.copter.speed_setting_m_s(), 10);  // never arrived
+  EXPECT_EQ(rig.copter.commands_received(Cmd::do_change_speed), 0);
+}
+
+TEST(CopterDriver, ARefusalToArmComesWithTheVehiclesSentence) {
+  Rig rig;
+  rig.copter.refuse_arm("PreArm: Need Position Estimate");
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.state().link_alive; }, 3));
+  ASSERT_TRUE(rig.command_done(rig.driver.set_mode(CopterMode::guided)));
+  const int arm = rig.driver.arm();
+  ASSERT_TRUE(rig.command_done(arm));
+  EXPECT_EQ(rig.driver.command_state(arm), CommandState::rejected);
+  EXPECT_EQ(rig.driver.command_result(arm), CmdResult::failed);
+  ASSERT_EQ(rig.driver.state().status_texts.size(), 1u);
+  EXPECT_EQ(rig.driver.state().status_texts[0], "PreArm: Need Position Estimate");
+  EXPECT_FALSE(rig.copter.armed());
+}
+
+TEST(CopterDriver, TenSecondLinkCutIsDetectedTheVehicleReturnsAndTheFlightResumes) {
+  Rig rig;
+  rig.take_off(15);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(300, 0, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 15));
+  rig.run(5);  // 50 m out
+  const double cut_s = rig.now_s;
+  rig.copter.cut_link(cut_s, cut_s + 10);
+  ASSERT_TRUE(rig.run_until([&] { return !rig.driver.state().link_alive; }, 10));
+  const double lost_after = rig.now_s - cut_s;
+  EXPECT_GT(lost_after, 2.0);  // last heartbeat up to 1 s before the cut, then 3 s of silence
+  EXPECT_LE(lost_after, 3.0 + 2 * kStepS);
+  rig.run(cut_s + 10 - rig.now_s);
+  EXPECT_EQ(rig.copter.mode(), CopterMode::rtl);  // GCS failsafe after 5 s without heartbeat
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.state().link_alive; }, 2));
+  EXPECT_EQ(rig.driver.state().links_lost, 1);
+  rig.run(0.5);
+  EXPECT_EQ(rig.driver.state().custom_mode, static_cast<std::uint32_t>(CopterMode::rtl));
+  EXPECT_EQ(rig.copter.commands_received(Cmd::set_message_interval), 8);  // asked again
+
+  // The flight resumes: GUIDED again, the same target, reached.
+  ASSERT_TRUE(rig.command_done(rig.driver.set_mode(CopterMode::guided)));
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 15));
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 60));
+  EXPECT_NEAR(rig.copter.north_m(), 300, 1.5);
+  EXPECT_TRUE(rig.copter.armed());
+}
+
+TEST(CopterDriver, NeverSendsATargetOutsideTheFence) {
+  DriverSettings settings;
+  settings.inside_fence = [](double lat_deg, double) { return lat_deg < 47.3985; };
+  Rig rig(settings);
+  rig.take_off(10);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(200, 0, lat, lon);  // ~84 m north of the fence line
+  ASSERT_GT(lat, 47.3985);
+  EXPECT_FALSE(rig.driver.go_to(lat, lon, 10));
+  rig.run(3);
+  EXPECT_EQ(rig.copter.position_targets_received(), 0);
+  rig.copter.to_geodetic(50, 0, lat, lon);
+  EXPECT_TRUE(rig.driver.go_to(lat, lon, 10));
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 20));
+  EXPECT_GT(rig.copter.position_targets_received(), 0);
+}
+
+TEST(CopterDriver, PhotosReturnAndLandingEndDisarmedAtHome) {
+  Rig rig;
+  rig.take_off(12);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(-40, 30, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 12));
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 20));
+  ASSERT_TRUE(rig.command_done(rig.driver.capture_image()));
+  ASSERT_EQ(rig.driver.state().images.size(), 1u);
+  const auto& image = rig.driver.state().images[0];
+  EXPECT_NEAR(image.lat_degE7 / 1e7, lat, 2e-7);  // the photo is where the vehicle is
+  EXPECT_NEAR(image.relative_alt_mm / 1000.0, 12, 0.05);
+
+  ASSERT_TRUE(rig.command_done(rig.driver.return_to_launch()));
+  ASSERT_TRUE(rig.run_until(
+      [&] {
+        return !rig.driver.state().armed && rig.driver.state().landed == LandedState::on_ground;
+      },
+      60));
+  EXPECT_NEAR(rig.copter.north_m(), 0, 0.5);
+  EXPECT_NEAR(rig.copter.east_m(), 0, 0.5);
+  EXPECT_EQ(rig.copter.altitude_m(), 0);
+  // On the ground, landing is refused with a reason code.
+  const int land = rig.driver.land();
+  ASSERT_TRUE(rig.command_done(land));
+  EXPECT_EQ(rig.driver.command_result(land), CmdResult::failed);
+}
+
+TEST(UdpLink, ABusyPortIsRefusedNamingTheAddress) {
+  UdpLink first = UdpLink::listen("127.0.0.1", 0);
+  try {
+    UdpLink second = UdpLink::listen("127.0.0.1", first.local_port());
+    FAIL() << "a second listener on the same port";
+  } catch (const std::system_error& e) {
+    EXPECT_NE(std::string(e.what()).find("127.0.0.1:" + std::to_string(first.local_port())),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(UdpLink::connect("not-an-address", 14550), std::system_error);
+}
+
+}  // namespace
+}  // namespace swath::mavlink
