@@ -1,4 +1,6 @@
-// One libFuzzer executable per target: SWATH_FUZZ_TARGET names it (fuzz/CMakeLists.txt).
+// The libFuzzer executable: SWATH_FUZZ_TARGET=<name> in the environment picks the target
+// (fuzz/targets.cpp); `SWATH_FUZZ_TARGET=<name> swath_fuzz --print-seeds` lists its seed files
+// (relative to the source tree) for scripts/fuzz.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -11,12 +13,14 @@ namespace {
 const swath::fuzz::Target* target = nullptr;
 }
 
-// `fuzz_NAME --print-seeds` lists the seed files (relative to the source tree) for scripts/fuzz.
 extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
-  target = swath::fuzz::find_target(SWATH_FUZZ_TARGET);
+  const char* name = std::getenv("SWATH_FUZZ_TARGET");
+  target = name ? swath::fuzz::find_target(name) : nullptr;
   if (target == nullptr) {
-    std::cerr << "no fuzz target '" << SWATH_FUZZ_TARGET << "'\n";
-    std::abort();
+    std::cerr << "swath_fuzz: set SWATH_FUZZ_TARGET to one of:";
+    for (const auto& t : swath::fuzz::targets()) std::cerr << " " << t.name;
+    std::cerr << "\n";
+    std::exit(2);
   }
   if (*argc == 2 && std::string((*argv)[1]) == "--print-seeds") {
     for (const char* seed : target->seeds) std::cout << seed << '\n';

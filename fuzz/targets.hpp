@@ -10,7 +10,7 @@
 namespace swath::fuzz {
 
 struct Target {
-  const char* name;                       ///< fuzz_<name>, tests/fuzz-regressions/<name>/
+  const char* name;                       ///< SWATH_FUZZ_TARGET=<name>, tests/fuzz-regressions/<name>/
   void (*run)(const std::string& input);  ///< throws only what is a bug
   std::vector<const char*> seeds;         ///< seed corpus, paths relative to the source tree
 };
