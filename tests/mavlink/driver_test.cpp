@@ -4,6 +4,9 @@
 // with its sentence; a 10 s link cut (lost after 3 s, the vehicle's failsafe, the flight resumed);
 // the fence; return, landing and photos.
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <functional>
@@ -11,6 +14,7 @@
 
 #include "swath/geometry/local_frame.hpp"
 #include "swath/mavlink/copter_driver.hpp"
+#include "swath/mavlink/endpoint.hpp"
 #include "swath/mavlink/fake_copter.hpp"
 #include "swath/mavlink/link.hpp"
 
@@ -202,6 +206,64 @@ TEST(CopterDriver, PhotosReturnAndLandingEndDisarmedAtHome) {
   const int land = rig.driver.land();
   ASSERT_TRUE(rig.command_done(land));
   EXPECT_EQ(rig.driver.command_result(land), CmdResult::failed);
+}
+
+// TCP (SITL's port 5760): frames written a few bytes at a time arrive whole and in order, the
+// link carries our frames back, and a closed peer ends the link without a signal or a throw.
+TEST(TcpLink, FramesSplitAcrossWritesArriveWholeAndAClosedPeerEndsTheLink) {
+  const int server = socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(server, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  ASSERT_EQ(listen(server, 1), 0);
+  socklen_t length = sizeof a;
+  ASSERT_EQ(getsockname(server, reinterpret_cast<sockaddr*>(&a), &length), 0);
+  const std::uint16_t port = ntohs(a.sin_port);
+
+  TcpLink client = TcpLink::connect("127.0.0.1", port);
+  const int peer = accept(server, nullptr, nullptr);
+  ASSERT_GE(peer, 0);
+  std::vector<std::uint8_t> stream;
+  for (int i = 0; i < 20; ++i) {
+    const auto b = serialize(
+        pack(GlobalPositionInt{.time_boot_ms = std::uint32_t(i), .lat_degE7 = 473977420 + i},
+             FrameHeader{std::uint8_t(i), 1, 1}));
+    stream.insert(stream.end(), b.begin(), b.end());
+  }
+  for (std::size_t at = 0; at < stream.size(); at += 3)  // three bytes per write
+    ASSERT_GT(write(peer, stream.data() + at, std::min<std::size_t>(3, stream.size() - at)), 0);
+  Endpoint gcs(client, kGcsSysid, kGcsCompid);
+  std::vector<Frame> got;
+  for (int tries = 0; tries < 1000 && got.size() < 20; ++tries) {
+    for (const Frame& f : gcs.receive()) got.push_back(f);
+    if (got.size() < 20) usleep(1000);
+  }
+  ASSERT_EQ(got.size(), 20u);
+  for (std::size_t i = 0; i < got.size(); ++i)
+    EXPECT_EQ(unpack<GlobalPositionInt>(got[i])->lat_degE7, 473977420 + int(i));
+
+  gcs.send(Heartbeat{.type = kMavTypeGcs});
+  std::vector<std::uint8_t> back(64);
+  const ssize_t n = read(peer, back.data(), back.size());
+  ASSERT_GT(n, 0);
+  FrameParser parser;
+  parser.feed({back.data(), std::size_t(n)});
+  Frame f;
+  ASSERT_TRUE(parser.next(f));
+  EXPECT_EQ(unpack<Heartbeat>(f)->type, kMavTypeGcs);
+  EXPECT_EQ(f.header.sysid, kGcsSysid);
+
+  close(peer);
+  for (int tries = 0; tries < 1000 && !client.closed(); ++tries) {
+    gcs.receive();
+    if (!client.closed()) usleep(1000);
+  }
+  EXPECT_TRUE(client.closed());
+  gcs.send(Heartbeat{});  // dropped, no SIGPIPE
+  close(server);
+  EXPECT_THROW(TcpLink::connect("127.0.0.1", port), std::system_error);  // nobody listens now
 }
 
 TEST(UdpLink, ABusyPortIsRefusedNamingTheAddress) {

@@ -47,4 +47,27 @@ class UdpLink final : public Link {
   std::uint16_t peer_port_ = 0;     // network byte order
 };
 
+/// TCP on IPv4, as a client (ArduPilot SITL listens on port 5760 + 10 x instance). A byte stream:
+/// frames may arrive split, which the parser joins. Once the peer closes, sends are dropped and
+/// closed() is true. Errors connecting throw std::system_error naming the address.
+class TcpLink final : public Link {
+ public:
+  /// Connects to host:port (blocking until connected or refused), then works without blocking.
+  static TcpLink connect(const std::string& host, std::uint16_t port);
+  TcpLink(TcpLink&& other) noexcept;
+  TcpLink& operator=(TcpLink&& other) noexcept;
+  TcpLink(const TcpLink&) = delete;
+  TcpLink& operator=(const TcpLink&) = delete;
+  ~TcpLink() override;
+
+  void send(std::span<const std::uint8_t> bytes) override;
+  std::size_t receive(std::vector<std::uint8_t>& out) override;
+  bool closed() const { return fd_ < 0; }
+
+ private:
+  TcpLink() = default;
+  void close_socket();
+  int fd_ = -1;
+};
+
 }  // namespace swath::mavlink

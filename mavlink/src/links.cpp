@@ -1,6 +1,7 @@
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -117,6 +118,79 @@ std::uint16_t UdpLink::local_port() const {
   socklen_t length = sizeof a;
   if (getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &length) != 0) fail("UDP local port");
   return ntohs(a.sin_port);
+}
+
+TcpLink TcpLink::connect(const std::string& host, std::uint16_t port) {
+  const std::string where = host + ":" + std::to_string(port);
+  const sockaddr_in a = address_of(host, port);
+  TcpLink link;
+  link.fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (link.fd_ < 0) fail("TCP socket for " + where);
+  if (::connect(link.fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0)
+    fail("TCP connect to " + where);
+  const int one = 1;  // frames are small and latency matters more than packing
+  (void)setsockopt(link.fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+  if (fcntl(link.fd_, F_SETFL, fcntl(link.fd_, F_GETFL) | O_NONBLOCK) != 0)
+    fail("TCP non-blocking mode for " + where);
+  return link;
+}
+
+TcpLink::TcpLink(TcpLink&& other) noexcept {
+  *this = std::move(other);
+}
+
+TcpLink& TcpLink::operator=(TcpLink&& other) noexcept {
+  if (this != &other) {
+    close_socket();
+    fd_ = std::exchange(other.fd_, -1);
+  }
+  return *this;
+}
+
+TcpLink::~TcpLink() {
+  close_socket();
+}
+
+void TcpLink::close_socket() {
+  if (fd_ >= 0) close(fd_);
+  fd_ = -1;
+}
+
+void TcpLink::send(std::span<const std::uint8_t> bytes) {
+  std::size_t done = 0;
+  while (fd_ >= 0 && done < bytes.size()) {
+    const ssize_t n = ::send(fd_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
+    if (n > 0) {
+      done += static_cast<std::size_t>(n);
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+      return;  // a full socket drops the rest of this frame, as a saturated radio would
+    } else {
+      close_socket();  // the peer is gone
+    }
+  }
+}
+
+std::size_t TcpLink::receive(std::vector<std::uint8_t>& out) {
+  std::size_t total = 0;
+  std::array<std::uint8_t, 65536> buffer;
+  while (fd_ >= 0) {
+    const ssize_t n = recv(fd_, buffer.data(), buffer.size(), 0);
+    if (n > 0) {
+      out.insert(out.end(), buffer.begin(), buffer.begin() + n);
+      total += static_cast<std::size_t>(n);
+    } else if (n == 0) {
+      close_socket();  // orderly shutdown by the peer
+    } else if (errno == EINTR) {
+      continue;
+    } else if (errno == EAGAIN || errno == EWOULDBLOCK) {
+      break;
+    } else {
+      close_socket();
+    }
+  }
+  return total;
 }
 
 }  // namespace swath::mavlink
