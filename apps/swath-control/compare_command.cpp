@@ -92,51 +92,20 @@ void ControlCompareCommand::setup(CLI::App& app) {
   app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
 }
 
-int ControlCompareCommand::run() {
-  if (seeds_ < 1 || seeds_ > 1000)
-    throw InputError("--seeds " + std::to_string(seeds_) + ": expected 1 to 1000");
-  if (schedulers_.empty() || environments_.empty() || vehicles_.empty())
-    throw InputError("--schedulers, --environments and --vehicles each need at least one name");
-  FlightRequest base = request_;
-  int seeds = seeds_;
-  if (quick_) {
-    seeds = std::min(seeds, 2);
-    base.max_time_s = std::min(base.max_time_s.value_or(20.0), 20.0);
-    base.sets.push_back("scheduler.reactive.boot_s=5");
-    base.sets.push_back("scheduler.run.metrics_from_s=5");
-  }
-  std::vector<Mode> modes;
-  for (const std::string& s : schedulers_) modes.push_back({stem(s), s, {}});
-  for (double rate : tt_rates_)
-    modes.push_back(
-        {"tt-" + base::shortest_text(rate),
-         schedulers_.front(),
-         {"scheduler.mode=time_triggered", "scheduler.rate_hz=" + base::shortest_text(rate)}});
+namespace {
 
-  // Every flight's settings read and checked before anything is flown or written.
-  std::vector<BatchFlight> runs;
-  for (const std::string& env : environments_)
-    for (const std::string& vehicle : vehicles_)
-      for (const Mode& mode : modes)
-        for (int seed = 1; seed <= seeds; ++seed) {
-          FlightRequest r = base;
-          if (r.mission == "paper") r.mission = paper_mission(env);
-          r.environment = env;
-          r.vehicle = vehicle;
-          r.scheduler = mode.scheduler;
-          r.seed = static_cast<std::uint64_t>(seed);
-          r.sets.insert(r.sets.end(), mode.sets.begin(), mode.sets.end());
-          runs.push_back(
-              {env, stem(vehicle), mode.name, "", r.seed, prepare_flight(r).settings, {}});
-        }
-  base::OutputSet set(output_, "control-compare");
-  const unsigned jobs = jobs_ > 0 ? jobs_ : std::max(1u, std::thread::hardware_concurrency());
-  fly_all(runs, std::min<unsigned>(jobs, static_cast<unsigned>(runs.size())), progress_);
-
-  // Pairs: each mode against the baseline (the first scheduler) with the same seed.
+// The comparison of every mode with the first one, paired by seed: comparison.json's groups,
+// comparison.md and the pictures' groups.
+struct Comparison {
   ordered_json groups = ordered_json::array();
   std::vector<ComparedGroup> picture_groups;
-  std::string md =
+  std::string md;
+};
+
+Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector<Mode>& modes,
+                         int seeds) {
+  Comparison c;
+  c.md =
       "# swath-control compare\n\nPaired by seed (the same wind and sensor noise in every mode); "
       "improvements of each mode over `" +
       modes.front().name +
@@ -171,7 +140,7 @@ int ControlCompareCommand::run() {
       picture_group.attitude.push_back(imp.attitude);
       picture_group.cross_track.push_back(imp.cross_track);
       picture_group.flight_time.push_back(imp.flight_time);
-      groups.push_back(
+      c.groups.push_back(
           {{"environment", first.environment},
            {"vehicle", first.vehicle},
            {"mode", modes[m].name},
@@ -183,31 +152,83 @@ int ControlCompareCommand::run() {
            {"flight_time", interval(imp.flight_time)},
            {"executions_per_s", {{"baseline", round_to(eb, 3)}, {"mode", round_to(em, 3)}}},
            {"unchanged_fraction_baseline", round_to(ub, 6)}});
-      md += "| " + first.environment + " | " + first.vehicle + " | " + modes[m].name + " | " +
-            percent(imp.attitude) + " | " + percent(imp.attitude_estimated) + " | " +
-            percent(imp.cross_track) + " | " + fixed_text(eb, 1) + " → " + fixed_text(em, 1) +
-            " | " + fixed_text(100 * ub, 2) + " % | " + percent(imp.flight_time) + " |\n";
+      c.md += "| " + first.environment + " | " + first.vehicle + " | " + modes[m].name + " | " +
+              percent(imp.attitude) + " | " + percent(imp.attitude_estimated) + " | " +
+              percent(imp.cross_track) + " | " + fixed_text(eb, 1) + " → " + fixed_text(em, 1) +
+              " | " + fixed_text(100 * ub, 2) + " % | " + percent(imp.flight_time) + " |\n";
     }
-    picture_groups.push_back(std::move(picture_group));
+    c.picture_groups.push_back(std::move(picture_group));
   }
+  return c;
+}
+
+// The modes: each scheduler file, then time-triggered runs at each --tt-rate.
+std::vector<Mode> compare_modes(const std::vector<std::string>& schedulers,
+                                const std::vector<double>& tt_rates) {
+  std::vector<Mode> modes;
+  for (const std::string& s : schedulers) modes.push_back({stem(s), s, {}});
+  for (double rate : tt_rates)
+    modes.push_back(
+        {"tt-" + base::shortest_text(rate),
+         schedulers.front(),
+         {"scheduler.mode=time_triggered", "scheduler.rate_hz=" + base::shortest_text(rate)}});
+  return modes;
+}
+
+}  // namespace
+
+int ControlCompareCommand::run() {
+  if (seeds_ < 1 || seeds_ > 1000)
+    throw InputError("--seeds " + std::to_string(seeds_) + ": expected 1 to 1000");
+  if (schedulers_.empty() || environments_.empty() || vehicles_.empty())
+    throw InputError("--schedulers, --environments and --vehicles each need at least one name");
+  FlightRequest base = request_;
+  int seeds = seeds_;
+  if (quick_) {
+    seeds = std::min(seeds, 2);
+    base.max_time_s = std::min(base.max_time_s.value_or(20.0), 20.0);
+    base.sets.push_back("scheduler.reactive.boot_s=5");
+    base.sets.push_back("scheduler.run.metrics_from_s=5");
+  }
+  const std::vector<Mode> modes = compare_modes(schedulers_, tt_rates_);
+  // Every flight's settings read and checked before anything is flown or written.
+  std::vector<BatchFlight> runs;
+  for (const std::string& env : environments_)
+    for (const std::string& vehicle : vehicles_)
+      for (const Mode& mode : modes)
+        for (int seed = 1; seed <= seeds; ++seed) {
+          FlightRequest r = base;
+          if (r.mission == "paper") r.mission = paper_mission(env);
+          r.environment = env;
+          r.vehicle = vehicle;
+          r.scheduler = mode.scheduler;
+          r.seed = static_cast<std::uint64_t>(seed);
+          r.sets.insert(r.sets.end(), mode.sets.begin(), mode.sets.end());
+          runs.push_back(
+              {env, stem(vehicle), mode.name, "", r.seed, prepare_flight(r).settings, {}});
+        }
+  base::OutputSet set(output_, "control-compare");
+  const unsigned jobs = jobs_ > 0 ? jobs_ : std::max(1u, std::thread::hardware_concurrency());
+  fly_all(runs, std::min<unsigned>(jobs, static_cast<unsigned>(runs.size())), progress_);
+  const Comparison c = compare_pairs(runs, modes, seeds);
   ordered_json j;
   j["mission"] = request_.mission;
   j["seeds"] = seeds;
   j["quick"] = quick_;
   j["modes"] = ordered_json::array();
   for (const Mode& m : modes) j["modes"].push_back(m.name);
-  j["comparisons"] = groups;
+  j["comparisons"] = c.groups;
   set.add("runs.csv", runs_csv(runs));
   set.add("comparison.json", base::json_text(j, 1) + "\n");
-  set.add("comparison.md", md);
+  set.add("comparison.md", c.md);
   if (!no_pictures_ && modes.size() > 1) {
     std::vector<std::string> names;
     for (const Mode& m : modes) names.push_back(m.name);
     auto png = [](const ControlPicture& p) {
       return render::encode_png(render::draw(p.scene, p.view));
     };
-    set.add("improvement.png", png(improvement_picture(picture_groups, names, 1200, 1200)));
-    set.add("rate.png", png(rate_picture(picture_groups, names, 1200, 600)));
+    set.add("improvement.png", png(improvement_picture(c.picture_groups, names, 1200, 1200)));
+    set.add("rate.png", png(rate_picture(c.picture_groups, names, 1200, 600)));
   }
   set.commit();
   std::cout << "swath-control compare: " << runs.size() << " flights (" << environments_.size()

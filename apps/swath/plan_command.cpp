@@ -77,6 +77,17 @@ std::string kilometres(double m) {
 
 void PlanCommand::setup(CLI::App& app) {
   app_ = &app;
+  add_input_options(app);
+  add_imaging_options(app);
+  add_sweep_options(app);
+  add_division_options(app);
+  add_output_options(app);
+  add_mission_file_options(app);
+  add_terrain_energy_options(app);
+}
+
+// The area, the camera, the output directory, a mission config.
+void PlanCommand::add_input_options(CLI::App& app) {
   app.add_option("--config", config_,
                  "Mission YAML holding any of these options (keys = long option names, "
                  "'field' for FIELD); command-line flags override it")
@@ -88,7 +99,10 @@ void PlanCommand::setup(CLI::App& app) {
                  "Camera: an id or name from 'swath cameras', or a camera YAML file");
   app.add_option("-o,--output", output_,
                  "Directory to write the mission files into (created if missing)");
+}
 
+// How the camera images: altitude or GSD and overlaps, or detection.
+void PlanCommand::add_imaging_options(CLI::App& app) {
   app.add_option("--mode", mode_,
                  "photogrammetry (altitude or GSD and overlaps) or detection (paper 001: pattern "
                  "size and pixels)")
@@ -115,7 +129,10 @@ void PlanCommand::setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--portrait", portrait_,
                "Image height across the flight line (default: landscape, width across)");
+}
 
+// Lines: direction, placement, turns, start and home.
+void PlanCommand::add_sweep_options(CLI::App& app) {
   app.add_option("--angle", angle_deg_,
                  "Fly lines at this compass bearing, degrees clockwise from north "
                  "(default: the exact minimum-height direction)");
@@ -155,6 +172,10 @@ void PlanCommand::setup(CLI::App& app) {
          "reports the swath outside) or reject")
       ->check(CLI::IsMember({"split", "hull", "reject"}))
       ->capture_default_str();
+}
+
+// Several drones: division and balance.
+void PlanCommand::add_division_options(CLI::App& app) {
   app.add_option("--drones", drones_, "Divide the survey among N equal drones sharing the home");
   app.add_option("--fleet", fleet_,
                  "Fleet YAML: home, and per drone a capability or battery_level, endurance_s and "
@@ -172,6 +193,10 @@ void PlanCommand::setup(CLI::App& app) {
   app.add_flag("--allow-partial", allow_partial_,
                "Plan what a fleet short of range can fly (the summary says what stays unflown) "
                "instead of refusing");
+}
+
+// Pictures, the coverage raster, repair.
+void PlanCommand::add_output_options(CLI::App& app) {
   app.add_flag("--render", render_,
                "Also draw coverage.png: the area, camera footprints, paths, home, scale bar");
   app.add_option("--size", size_, "Size of coverage.png, WxH pixels")->capture_default_str();
@@ -188,6 +213,10 @@ void PlanCommand::setup(CLI::App& app) {
       "--exclude", exclude_,
       "No-fly zone: an area file (.geojson, .kml, .csv lon,lat) inside the area; repeat for "
       "more. Honoured by split");
+}
+
+// What the mission files hold and which formats besides the defaults.
+void PlanCommand::add_mission_file_options(CLI::App& app) {
   app.add_option("--firmware", firmware_, "ardupilot or px4 (QGC firmwareType)")
       ->check(CLI::IsMember({"ardupilot", "px4"}))
       ->capture_default_str();
@@ -240,6 +269,10 @@ void PlanCommand::setup(CLI::App& app) {
                "Also write NAME-survey.plan: the flight as a QGroundControl Survey item, editable "
                "in QGC (area, angle, camera, overlaps, turnaround; QGC flies swath's lines until "
                "the survey is edited); one drone, a convex area without holes, zones or terrain");
+}
+
+// Terrain following, landing, sorties and energy plans.
+void PlanCommand::add_terrain_energy_options(CLI::App& app) {
   app.add_option("--terrain", terrain_,
                  "Follow the ground of this DEM (any GDAL raster: GeoTIFF, .asc, .hgt, VRT; any "
                  "CRS; heights in metres): every waypoint at the altitude above the ground under "

@@ -22,6 +22,14 @@ class PlanCommand : public Command {
   int run() override;
 
  private:
+  /// setup()'s groups of options.
+  void add_input_options(CLI::App& app);
+  void add_imaging_options(CLI::App& app);
+  void add_sweep_options(CLI::App& app);
+  void add_division_options(CLI::App& app);
+  void add_output_options(CLI::App& app);
+  void add_mission_file_options(CLI::App& app);
+  void add_terrain_energy_options(CLI::App& app);
   /// Every number given, against planning/limits.hpp's ranges, before any work.
   void check_numbers() const;
   /// The steps of run(): the request from the options, the files of the plan, what to print.

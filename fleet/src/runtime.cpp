@@ -239,6 +239,23 @@ class Runtime final : public detail::Core {
     return e;
   }
 
+  // One scheduling round's steps (schedule() runs them).
+  Snapshot snapshot_base() const;
+  void add_requests(Snapshot& s, std::vector<int>& req_task);
+  void add_drones(Snapshot& s, const std::vector<int>& req_task, std::vector<int>& drone_of);
+  void apply_assignment(const Snapshot& s, const Assignment& a, const std::vector<int>& req_task,
+                        const std::vector<int>& drone_of);
+
+  // The run's steps (run() is their loop).
+  Task& start_main();
+  void fail_unserved();
+  double next_happening() const;
+  bool advance_clock(double next, std::int64_t& tick_index);
+  void step_drones_to_now();
+  void deliver_due();
+  void finish_run(const Task& main);
+  std::string dtg_json() const;
+
   // Tasks and coroutines.
   void resume_ready();
   void finish_task(Task& t, TaskStatus status, const std::string& reason);
@@ -253,6 +270,12 @@ class Runtime final : public detail::Core {
   void integrate(Drone& d, double t);
   double next_event(const Drone& d) const;
   void step_drone(Drone& d, double t);
+  void recover(Drone& d, double t);
+  void emit(Drone& d, Task& tk, std::size_t a, const Reading& r, double t);
+  void sample_along(const Action& fa, const Leg& flown, double flown_from, Reading& r);
+  void arrive(Drone& d, double t);
+  void finish_action(Drone& d, double t);
+  void land_home(Drone& d, double t);
   void start_leg(Drone& d, const Vec3& to, Mode mode, double t);
   void start_action_or_release(Drone& d, double t);
   void release(Drone& d, double t);
@@ -761,8 +784,8 @@ void Runtime::start_action_or_release(Drone& d, double t) {
   set_mode(d, Mode::acting, t);
 }
 
-void Runtime::step_drone(Drone& d, double t) {
-  integrate(d, t);
+// A link back or a sensor repaired by t.
+void Runtime::recover(Drone& d, double t) {
   if (!d.link_up && t >= d.link_back) {
     d.link_up = true;
     for (Pending& p : d.buffered) {
@@ -777,103 +800,121 @@ void Runtime::step_drone(Drone& d, double t) {
     d.sensor_ok = true;
     changed_ = true;
   }
-  auto emit = [&](Task& tk, std::size_t a, const Reading& r) {
-    Pending p{t + settings_.link_latency_s, d.index, tk.id, a, r, seq_++};
-    if (d.link_up)
-      pending_.push_back(std::move(p));
-    else
-      d.buffered.push_back(std::move(p));
-  };
+}
+
+// A result on its way to the app: after the link's latency, or buffered while the link is down.
+void Runtime::emit(Drone& d, Task& tk, std::size_t a, const Reading& r, double t) {
+  Pending p{t + settings_.link_latency_s, d.index, tk.id, a, r, seq_++};
+  if (d.link_up)
+    pending_.push_back(std::move(p));
+  else
+    d.buffered.push_back(std::move(p));
+}
+
+// fly_sensing: a reading every period along the leg that reached the target (x_m, y_m and the
+// sensor's values per sample).
+void Runtime::sample_along(const Action& fa, const Leg& flown, double flown_from, Reading& r) {
+  r.sensor = fa.sample_sensor;
+  std::string ref;
+  for (double s_t = fa.sample_period_s;
+       s_t <= flown.duration_s() + 1e-9 && r.values.size() < 3 * 100000;
+       s_t += fa.sample_period_s) {
+    const Vec3 at = flown.position_at(s_t);
+    const Reading one = world_.sense(fa.sample_sensor, at, flown_from + s_t);
+    r.values.push_back(at.x);
+    r.values.push_back(at.y);
+    r.values.insert(r.values.end(), one.values.begin(), one.values.end());
+    ref = one.ref;
+  }
+  r.ref = "samples of x_m,y_m," + ref;
+}
+
+// The end of a leg to a task's place: the fly_to done (binding the task where its flags say),
+// then its next action, or home when the link is down.
+void Runtime::arrive(Drone& d, double t) {
+  const Leg flown = *d.leg;
+  const double flown_from = d.leg_start;
+  d.pos = d.leg->to();
+  d.leg.reset();
+  if (d.task < 0) {
+    set_mode(d, Mode::hovering, t);
+    return;
+  }
+  Task& tk = tasks_[static_cast<std::size_t>(d.task)];
+  if (std::find(tk.drones_used.begin(), tk.drones_used.end(), d.index) == tk.drones_used.end())
+    tk.drones_used.push_back(d.index);
+  if ((tk.flags.same_drone || !tk.flags.interruptible) && !tk.bound) tk.bound = d.index;
+  const std::size_t h = tk.head();
+  if (h < tk.actions.size() && tk.actions[h].type == ActionType::fly_to) {
+    tk.actions[h].state = ActionState::completed;
+    Reading r;
+    r.t_s = t;
+    r.drone = d.index;
+    r.at = d.pos;
+    r.sensor = "fly_to";
+    if (tk.actions[h].sample_period_s > 0) sample_along(tk.actions[h], flown, flown_from, r);
+    emit(d, tk, h, r, t);
+  }
+  if (!d.link_up) {  // the vehicle's own failsafe takes it home
+    requeue(d, "link_loss");
+    go_home(d, t, "link_loss");
+    return;
+  }
+  start_action_or_release(d, t);
+}
+
+// The end of an action: its reading, then the next action, or home (link down, battery).
+void Runtime::finish_action(Drone& d, double t) {
+  Task& tk = tasks_[static_cast<std::size_t>(d.task)];
+  Action& a = tk.actions[d.action];
+  a.state = ActionState::completed;
+  Reading r;
+  if (a.type == ActionType::sense) r = world_.sense(a.name, d.pos, t);
+  r.t_s = t;
+  r.drone = d.index;
+  r.at = d.pos;
+  if (r.sensor.empty()) r.sensor = a.name;
+  emit(d, tk, d.action, r, t);
+  if (!d.link_up) {
+    go_home(d, t, "link_loss");
+    return;
+  }
+  if (must_go_home(d, t)) {
+    go_home(d, t, "battery");
+    return;
+  }
+  start_action_or_release(d, t);
+}
+
+// Home reached: the descent from the layer is part of the flight, then the recharge (a swap or a
+// charge to full, case 5's 30 s).
+void Runtime::land_home(Drone& d, double t) {
+  d.pos = d.leg->to();
+  d.leg.reset();
+  const double down = d.pos.z / d.spec.kinematics.descent_m_s;
+  d.energy_j += descent_power_w(d.spec) * down;
+  d.soc -= energy::battery_current_a(d.spec.battery, descent_power_w(d.spec)) * down /
+           (3600.0 * d.spec.battery.capacity_ah);
+  d.flight_s += down;
+  d.pos.z = 0;
+  d.charge_end = t + d.spec.recharge_s;
+  set_mode(d, Mode::charging, t);
+  changed_ = true;
+}
+
+// Everything that happens to drone d at time t (an event of next_event(d)).
+void Runtime::step_drone(Drone& d, double t) {
+  integrate(d, t);
+  recover(d, t);
   switch (d.mode) {
     case Mode::flying:
-      if (t >= d.leg_start + d.leg->duration_s()) {
-        const Leg flown = *d.leg;
-        const double flown_from = d.leg_start;
-        d.pos = d.leg->to();
-        d.leg.reset();
-        if (d.task < 0) {
-          set_mode(d, Mode::hovering, t);
-          break;
-        }
-        Task& tk = tasks_[static_cast<std::size_t>(d.task)];
-        if (std::find(tk.drones_used.begin(), tk.drones_used.end(), d.index) ==
-            tk.drones_used.end())
-          tk.drones_used.push_back(d.index);
-        if ((tk.flags.same_drone || !tk.flags.interruptible) && !tk.bound) tk.bound = d.index;
-        const std::size_t h = tk.head();
-        if (h < tk.actions.size() && tk.actions[h].type == ActionType::fly_to) {
-          tk.actions[h].state = ActionState::completed;
-          Reading r;
-          r.t_s = t;
-          r.drone = d.index;
-          r.at = d.pos;
-          r.sensor = "fly_to";
-          const Action& fa = tk.actions[h];
-          if (fa.sample_period_s > 0) {
-            // fly_sensing: a reading every period along the leg that reached the target.
-            r.sensor = fa.sample_sensor;
-            std::string ref;
-            for (double s_t = fa.sample_period_s;
-                 s_t <= flown.duration_s() + 1e-9 && r.values.size() < 3 * 100000;
-                 s_t += fa.sample_period_s) {
-              const Vec3 at = flown.position_at(s_t);
-              const Reading one = world_.sense(fa.sample_sensor, at, flown_from + s_t);
-              r.values.push_back(at.x);
-              r.values.push_back(at.y);
-              r.values.insert(r.values.end(), one.values.begin(), one.values.end());
-              ref = one.ref;
-            }
-            r.ref = "samples of x_m,y_m," + ref;
-          }
-          emit(tk, h, r);
-        }
-        if (!d.link_up) {  // the vehicle's own failsafe takes it home
-          requeue(d, "link_loss");
-          go_home(d, t, "link_loss");
-          break;
-        }
-        start_action_or_release(d, t);
-      }
+      if (t >= d.leg_start + d.leg->duration_s()) arrive(d, t);
       break;
     case Mode::acting:
-      if (t >= d.act_end) {
-        Task& tk = tasks_[static_cast<std::size_t>(d.task)];
-        Action& a = tk.actions[d.action];
-        a.state = ActionState::completed;
-        Reading r;
-        if (a.type == ActionType::sense) r = world_.sense(a.name, d.pos, t);
-        r.t_s = t;
-        r.drone = d.index;
-        r.at = d.pos;
-        if (r.sensor.empty()) r.sensor = a.name;
-        emit(tk, d.action, r);
-        if (!d.link_up) {
-          go_home(d, t, "link_loss");
-          break;
-        }
-        if (must_go_home(d, t)) {
-          go_home(d, t, "battery");
-          break;
-        }
-        start_action_or_release(d, t);
-      }
+      if (t >= d.act_end) finish_action(d, t);
       break;
     case Mode::returning:
-      if (t >= d.leg_start + d.leg->duration_s()) {
-        d.pos = d.leg->to();
-        d.leg.reset();
-        // Lands: the descent from the layer is part of the flight.
-        const double down = d.pos.z / d.spec.kinematics.descent_m_s;
-        const double e = descent_power_w(d.spec) * down;
-        d.energy_j += e;
-        d.soc -= energy::battery_current_a(d.spec.battery, descent_power_w(d.spec)) * down /
-                 (3600.0 * d.spec.battery.capacity_ah);
-        d.flight_s += down;
-        d.pos.z = 0;
-        d.charge_end = t + d.spec.recharge_s;  // a swap or a charge to full (case 5's 30 s)
-        set_mode(d, Mode::charging, t);
-        changed_ = true;
-      }
+      if (t >= d.leg_start + d.leg->duration_s()) land_home(d, t);
       break;
     case Mode::charging:
       if (t >= d.charge_end) {
@@ -890,7 +931,7 @@ void Runtime::step_drone(Drone& d, double t) {
         go_home(d, t, "battery");
         break;
       }
-      if (t >= d.hold_until) {
+      if (t >= d.hold_until) {  // the hold is over: the task may go to any drone again
         Task& tk = tasks_[static_cast<std::size_t>(d.held_for)];
         if (!tk.flags.same_drone) tk.bound.reset();
         d.held_for = -1;
@@ -942,9 +983,8 @@ void Runtime::dispatch(Drone& d, Task& t, double at) {
   start_leg(d, to, Mode::flying, at);
 }
 
-void Runtime::schedule() {
-  // Requests: every running task with work whose head is not being acted on.
-  std::vector<int> req_task;
+// The scheduler's view of the fleet's kinematics and energy (the first drone's, eq. 12).
+Snapshot Runtime::snapshot_base() const {
   Snapshot s;
   const DroneSpec& first = drones_.front().spec;
   s.eta.cruise_m_s = first.kinematics.cruise_m_s;
@@ -953,14 +993,19 @@ void Runtime::schedule() {
   s.eta.approach_within_m = first.kinematics.approach_within_m;
   s.weights = settings_.weights;
   s.fence = world_.fence();
-  // Charge: there, serve, home above the reserve (eq. 12; the first drone's battery and powers).
+  // Charge: there, serve, home above the reserve.
   EnergyFeasibility e;
   e.battery = first.battery;
   e.cruise_power_w = cruise_power_w(first, settings_.wind_m_s);
   e.hover_power_w = hover_power_w(first, settings_.wind_m_s);
   s.energy = e;
-  // First come, first served (§18.3): a drone acting, held or bound for a place reserves a 5 m
-  // disc around it; other tasks' requests inside wait until it leaves.
+  return s;
+}
+
+// Requests: every running task with work whose head is not being acted on; `req_task` gets their
+// task ids. First come, first served (§18.3): a drone acting, held or bound for a place reserves a
+// 5 m disc around it; other tasks' requests inside wait until it leaves.
+void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
   std::vector<std::pair<Vec3, int>> discs;
   for (const Drone& d : drones_) {
     if (d.mode == Mode::acting || d.mode == Mode::held)
@@ -996,7 +1041,12 @@ void Runtime::schedule() {
     req_task.push_back(t.id);
     s.requests.push_back(r);
   }
-  std::vector<int> drone_of;  // snapshot drone → fleet index
+}
+
+// Drones available to the scheduler; `drone_of` maps snapshot drones to fleet indices. Bound
+// requests are renumbered from fleet indices to snapshot positions.
+void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
+                         std::vector<int>& drone_of) {
   for (Drone& d : drones_) {
     if (!available(d)) continue;
     DroneState ds;
@@ -1020,27 +1070,17 @@ void Runtime::schedule() {
     drone_of.push_back(d.index);
     s.drones.push_back(ds);
   }
-  // Bound requests name fleet indices; the snapshot's are positions in s.drones.
   for (Request& r : s.requests)
     if (r.bound_drone) {
       auto it = std::find(drone_of.begin(), drone_of.end(), *r.bound_drone);
       r.bound_drone = it == drone_of.end() ? -1 : static_cast<int>(it - drone_of.begin());
     }
-  if (s.requests.empty() && std::none_of(s.drones.begin(), s.drones.end(),
-                                         [](const DroneState& x) { return x.target.has_value(); }))
-    return;
-  const auto clock0 = std::chrono::steady_clock::now();
-  const Assignment a = s.drones.empty() ? Assignment{} : scheduler_->assign(s, sched_rng_);
-  record_.decision_s_total +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
-  ++record_.schedules;
-  json assignment = json::array();
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i])
-      assignment.push_back(
-          json{{"drone", drone_of[i]}, {"task", req_task[static_cast<std::size_t>(*a[i])]}});
-  log(json{{"ev", "schedule"}, {"assignment", assignment}});
-  // Apply the difference. Two requests of this round inside one disc: the first (by drone) goes.
+}
+
+// Applies the difference to the fleet. Two requests of this round inside one disc: the first (by
+// drone) goes. Drones that lost their request to another and got nothing stop where they are.
+void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
+                               const std::vector<int>& req_task, const std::vector<int>& drone_of) {
   std::vector<Vec3> claimed;
   for (std::size_t i = 0; i < a.size(); ++i) {
     Drone& d = drones_[static_cast<std::size_t>(drone_of[i])];
@@ -1078,13 +1118,36 @@ void Runtime::schedule() {
       dispatch(d, t, now_);
     }
   }
-  // Drones that lost their request to another and got nothing stop where they are.
   for (Drone& d : drones_)
     if (d.mode == Mode::flying && d.task < 0) {
       integrate(d, now_);
       d.leg.reset();
       set_mode(d, Mode::hovering, now_);
     }
+}
+
+// One scheduling round (§18.5): the snapshot, the scheduler's assignment (timed), its log line,
+// its application.
+void Runtime::schedule() {
+  Snapshot s = snapshot_base();
+  std::vector<int> req_task, drone_of;
+  add_requests(s, req_task);
+  add_drones(s, req_task, drone_of);
+  if (s.requests.empty() && std::none_of(s.drones.begin(), s.drones.end(),
+                                         [](const DroneState& x) { return x.target.has_value(); }))
+    return;
+  const auto clock0 = std::chrono::steady_clock::now();
+  const Assignment a = s.drones.empty() ? Assignment{} : scheduler_->assign(s, sched_rng_);
+  record_.decision_s_total +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+  ++record_.schedules;
+  json assignment = json::array();
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i])
+      assignment.push_back(
+          json{{"drone", drone_of[i]}, {"task", req_task[static_cast<std::size_t>(*a[i])]}});
+  log(json{{"ev", "schedule"}, {"assignment", assignment}});
+  apply_assignment(s, a, req_task, drone_of);
 }
 
 void Runtime::apply_fault(const FaultEvent& f) {
@@ -1171,7 +1234,8 @@ void Runtime::log_states() {
   }
 }
 
-RunRecord Runtime::run() {
+// Logs run_start and spawns the app's main, whose body writes into its own promise state.
+Task& Runtime::start_main() {
   json drones = json::array();
   for (const Drone& d : drones_)
     drones.push_back(json{{"drone", d.index}, {"name", d.spec.name}, {"soc", round6(d.soc)}});
@@ -1187,102 +1251,106 @@ RunRecord Runtime::run() {
   spawn(
       -1, Kind{"main"}, Flags{},
       [&app](Ctx& c) -> std::coroutine_handle<> { return app.main(c).release(); }, main_state);
-  // The main body writes into its own promise state: mirror it.
-  Task& main = tasks_.front();
+  Task& main = tasks_.front();  // mirror the main body's promise state
   main.result = main_state;
   main.result->task = -1;  // awaiting main is not a sync of the DTG
-  {
-    auto h = std::coroutine_handle<Co<void>::promise_type>::from_address(main.root.address());
-    h.promise().result = main_state;
-  }
+  auto h = std::coroutine_handle<Co<void>::promise_type>::from_address(main.root.address());
+  h.promise().result = main_state;
+  return main;
+}
+
+// Requests waiting too long for any drone fail visibly (DESIGN.md §18.7).
+void Runtime::fail_unserved() {
+  for (Task& t : tasks_)
+    if (t.has_work() && t.serving < 0 && t.requested &&
+        now_ - t.visible_since_s >= settings_.no_feasible_s) {
+      fail_action_futures(t, std::make_exception_ptr(ActionFailed("no_feasible_drone")));
+      finish_task(t, TaskStatus::failed, "no_feasible_drone");
+    }
+}
+
+// The time of the next thing that happens: a drone's event, a result's delivery, a delay's end, a
+// fault, a request's no-feasible-drone deadline; infinity when nothing can.
+double Runtime::next_happening() const {
+  double next = kInf;
+  for (const Drone& d : drones_) next = std::min(next, next_event(d));
+  for (const Pending& p : pending_) next = std::min(next, p.deliver_s);
+  for (const auto& [t, s] : delays_) next = std::min(next, t);
+  if (next_fault_ < faults_.size()) next = std::min(next, faults_[next_fault_].t_s);
+  for (const Task& t : tasks_)
+    if (t.has_work() && t.serving < 0 && t.requested)
+      next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
+  return next;
+}
+
+// Moves the clock to `next` rounded up to the tick grid, logging drone_state on the way; false
+// (with the failure set) past max_time_s.
+bool Runtime::advance_clock(double next, std::int64_t& tick_index) {
   const double tick = settings_.tick_s;
-  std::int64_t tick_index = 0;
-  bool stop = false;
-  while (!stop) {
-    resume_ready();
-    destroy_frames();
-    if (main.status != TaskStatus::running) break;
-    // Requests waiting too long for any drone fail visibly.
-    for (Task& t : tasks_)
-      if (t.has_work() && t.serving < 0 && t.requested &&
-          now_ - t.visible_since_s >= settings_.no_feasible_s) {
-        fail_action_futures(t, std::make_exception_ptr(ActionFailed("no_feasible_drone")));
-        finish_task(t, TaskStatus::failed, "no_feasible_drone");
-      }
-    if (!ready_.empty()) continue;
-    if (changed_) {
-      changed_ = false;
-      schedule();
-    }
-    // The next thing that happens, rounded up to the tick grid.
-    double next = kInf;
-    for (const Drone& d : drones_) next = std::min(next, next_event(d));
-    for (const Pending& p : pending_) next = std::min(next, p.deliver_s);
-    for (const auto& [t, s] : delays_) next = std::min(next, t);
-    if (next_fault_ < faults_.size()) next = std::min(next, faults_[next_fault_].t_s);
-    for (const Task& t : tasks_)
-      if (t.has_work() && t.serving < 0 && t.requested)
-        next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
-    if (!std::isfinite(next)) {
-      record_.failure = "the app waits for something that cannot happen (no drone can serve it)";
-      break;
-    }
-    if (next > settings_.max_time_s) next = std::min(next, settings_.max_time_s + tick);
-    std::int64_t k = static_cast<std::int64_t>(std::ceil(next / tick - 1e-9));
-    k = std::max(k, tick_index + (next > now_ ? 0 : 1));
-    if (k <= tick_index) k = tick_index + 1;
-    // drone_state at state_period_s on the way.
-    while (next_state_log_ < static_cast<double>(k) * tick - 1e-12) {
-      now_ = next_state_log_;
-      log_states();
-      next_state_log_ += settings_.state_period_s;
-    }
-    tick_index = k;
-    now_ = static_cast<double>(k) * tick;
-    if (now_ > settings_.max_time_s) {
-      record_.failure = "not completed within max_time_s (" +
-                        std::to_string(static_cast<long long>(settings_.max_time_s)) + " s)";
-      now_ = settings_.max_time_s;
-      break;
-    }
-    // Drones, in (time, drone) order, each through every event up to now.
-    for (;;) {
-      double best = kInf;
-      Drone* who = nullptr;
-      for (Drone& d : drones_) {
-        const double e = next_event(d);
-        if (e <= now_ + 1e-12 && e < best) best = e, who = &d;
-      }
-      if (!who) break;
-      step_drone(*who, best);
-    }
-    while (next_fault_ < faults_.size() && faults_[next_fault_].t_s <= now_ + 1e-12)
-      apply_fault(faults_[next_fault_++]);
-    std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) {
-      return a.deliver_s != b.deliver_s ? a.deliver_s < b.deliver_s
-             : a.drone != b.drone       ? a.drone < b.drone
-                                        : a.seq < b.seq;
-    });
-    std::size_t n = 0;
-    while (n < pending_.size() && pending_[n].deliver_s <= now_ + 1e-12) ++n;
-    std::vector<Pending> due(pending_.begin(), pending_.begin() + static_cast<long>(n));
-    pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(n));
-    for (const Pending& p : due)
-      resolve_action(tasks_[static_cast<std::size_t>(p.task)], p.action, p.reading, p.drone);
-    for (auto it = delays_.begin(); it != delays_.end();)
-      if (it->first <= now_ + 1e-12) {
-        wake(*it->second);
-        it = delays_.erase(it);
-      } else {
-        ++it;
-      }
+  if (next > settings_.max_time_s) next = std::min(next, settings_.max_time_s + tick);
+  std::int64_t k = static_cast<std::int64_t>(std::ceil(next / tick - 1e-9));
+  k = std::max(k, tick_index + (next > now_ ? 0 : 1));
+  if (k <= tick_index) k = tick_index + 1;
+  while (next_state_log_ < static_cast<double>(k) * tick - 1e-12) {
+    now_ = next_state_log_;
+    log_states();
+    next_state_log_ += settings_.state_period_s;
   }
+  tick_index = k;
+  now_ = static_cast<double>(k) * tick;
+  if (now_ <= settings_.max_time_s) return true;
+  record_.failure = "not completed within max_time_s (" +
+                    std::to_string(static_cast<long long>(settings_.max_time_s)) + " s)";
+  now_ = settings_.max_time_s;
+  return false;
+}
+
+// Drones, in (time, drone) order, each through every event up to now.
+void Runtime::step_drones_to_now() {
+  for (;;) {
+    double best = kInf;
+    Drone* who = nullptr;
+    for (Drone& d : drones_) {
+      const double e = next_event(d);
+      if (e <= now_ + 1e-12 && e < best) best = e, who = &d;
+    }
+    if (!who) return;
+    step_drone(*who, best);
+  }
+}
+
+// Faults, results and delays due by now, in (time, drone, sequence) order.
+void Runtime::deliver_due() {
+  while (next_fault_ < faults_.size() && faults_[next_fault_].t_s <= now_ + 1e-12)
+    apply_fault(faults_[next_fault_++]);
+  std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) {
+    return a.deliver_s != b.deliver_s ? a.deliver_s < b.deliver_s
+           : a.drone != b.drone       ? a.drone < b.drone
+                                      : a.seq < b.seq;
+  });
+  std::size_t n = 0;
+  while (n < pending_.size() && pending_[n].deliver_s <= now_ + 1e-12) ++n;
+  std::vector<Pending> due(pending_.begin(), pending_.begin() + static_cast<long>(n));
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(n));
+  for (const Pending& p : due)
+    resolve_action(tasks_[static_cast<std::size_t>(p.task)], p.action, p.reading, p.drone);
+  for (auto it = delays_.begin(); it != delays_.end();)
+    if (it->first <= now_ + 1e-12) {
+      wake(*it->second);
+      it = delays_.erase(it);
+    } else {
+      ++it;
+    }
+}
+
+// The record: outcome, every task ended exactly once (what still runs is cancelled with the
+// run), each drone's figures, run_end.
+void Runtime::finish_run(const Task& main) {
   record_.completed = main.status == TaskStatus::done;
   if (main.status == TaskStatus::failed && record_.failure.empty())
     record_.failure = "the app's main failed";
   record_.completion_time_s = record_.completed ? main.ended_s : now_;
   record_.end_s = now_;
-  // Every task ends exactly once: what is still running is cancelled with the run.
   for (Task& t : tasks_)
     if (t.status == TaskStatus::running) finish_task(t, TaskStatus::cancelled, "run_ended");
   destroy_frames();
@@ -1301,7 +1369,10 @@ RunRecord Runtime::run() {
   log(json{{"ev", "run_end"},
            {"completed", record_.completed},
            {"completion_time_s", round6(record_.completion_time_s)}});
-  // dtg.json: task nodes, sync nodes, edges.
+}
+
+// dtg.json: task nodes, sync nodes, edges (DESIGN.md §18.3).
+std::string Runtime::dtg_json() const {
   json nodes = json::array();
   for (const Task& t : tasks_) {
     json n{{"id", "t" + std::to_string(t.id)},
@@ -1319,12 +1390,40 @@ RunRecord Runtime::run() {
     nodes.push_back(n);
   }
   for (const auto& n : dtg_nodes_) nodes.push_back(n);
-  record_.dtg_json = json{{"app", settings_.app_name},
-                          {"seed", settings_.seed},
-                          {"nodes", nodes},
-                          {"edges", dtg_edges_}}
-                         .dump(1) +
-                     "\n";
+  return json{{"app", settings_.app_name},
+              {"seed", settings_.seed},
+              {"nodes", nodes},
+              {"edges", dtg_edges_}}
+             .dump(1) +
+         "\n";
+}
+
+// The tick loop (DESIGN.md §18.3): resume what is ready, schedule when inputs changed, jump to
+// the next thing that happens, let it happen.
+RunRecord Runtime::run() {
+  Task& main = start_main();
+  std::int64_t tick_index = 0;
+  for (;;) {
+    resume_ready();
+    destroy_frames();
+    if (main.status != TaskStatus::running) break;
+    fail_unserved();
+    if (!ready_.empty()) continue;
+    if (changed_) {
+      changed_ = false;
+      schedule();
+    }
+    const double next = next_happening();
+    if (!std::isfinite(next)) {
+      record_.failure = "the app waits for something that cannot happen (no drone can serve it)";
+      break;
+    }
+    if (!advance_clock(next, tick_index)) break;
+    step_drones_to_now();
+    deliver_due();
+  }
+  finish_run(main);
+  record_.dtg_json = dtg_json();
   return std::move(record_);
 }
 

@@ -160,14 +160,12 @@ std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOp
 
 namespace {
 
-RawField read_or_list(const std::string& path, const FieldReadOptions& options,
-                      std::vector<AreaEntry>* list) {
+// The file through GDAL (a .zip, zipped Shapefile, and a .kmz through /vsizip/).
+std::unique_ptr<GDALDataset, DatasetClose> open_vector(const std::string& path) {
   register_once();
-  const std::string& source = path;
   std::string lower = path;
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  // A .zip (a zipped Shapefile) and a .kmz are read through GDAL's /vsizip/.
   std::string open_path = path;
   if (lower.size() > 4 && (lower.ends_with(".zip") || lower.ends_with(".kmz")) &&
       path.rfind("/vsi", 0) != 0)
@@ -179,53 +177,56 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
     ds.reset(static_cast<GDALDataset*>(
         GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds)
-    throw InputError(source + ": GDAL cannot open it as a vector file (" + last_gdal_error() + ")");
+    throw InputError(path + ": GDAL cannot open it as a vector file (" + last_gdal_error() + ")");
+  return ds;
+}
 
-  // The layer: the one asked for, or the only one with areas.
+// The layer: the one asked for, or the only one that holds a feature with an area (GPX files list
+// empty layers too).
+OGRLayer* choose_layer(GDALDataset& ds, const FieldReadOptions& options,
+                       const std::string& source) {
   std::vector<OGRLayer*> layers;
   std::vector<std::string> layer_names;
-  for (int i = 0; i < ds->GetLayerCount(); ++i) {
-    OGRLayer* l = ds->GetLayer(i);
+  for (int i = 0; i < ds.GetLayerCount(); ++i) {
+    OGRLayer* l = ds.GetLayer(i);
     layer_names.push_back(l->GetName());
     if (polygonal(l->GetGeomType())) layers.push_back(l);
   }
-  OGRLayer* layer = nullptr;
-  if (options.layer) {
-    for (int i = 0; i < ds->GetLayerCount(); ++i)
+  if (options.layer) {  // by name or position; a later name wins over an earlier position
+    OGRLayer* named = nullptr;
+    for (int i = 0; i < ds.GetLayerCount(); ++i)
       if (layer_names[static_cast<std::size_t>(i)] == *options.layer ||
           std::to_string(i) == *options.layer)
-        layer = ds->GetLayer(i);
-    if (!layer)
-      throw InputError(source + ": no layer \"" + *options.layer + "\"; its layers are " +
-                       names_list(layer_names));
-  } else {
-    // Layers that actually hold a feature with an area (GPX files list empty layers too).
-    std::vector<OGRLayer*> with_areas;
-    for (OGRLayer* l : layers) {
-      l->ResetReading();
-      bool found = false;
-      for (auto& f : *l) {
-        std::string why;
-        if (as_polygon(f->GetGeometryRef(), why)) {
-          found = true;
-          break;
-        }
-      }
-      if (found) with_areas.push_back(l);
-    }
-    if (with_areas.empty())
-      throw InputError(source + ": no layer holds an area (a polygon or a closed track)");
-    if (with_areas.size() > 1) {
-      std::vector<std::string> names;
-      for (OGRLayer* l : with_areas) names.push_back(l->GetName());
-      throw InputError(source + ": " + std::to_string(with_areas.size()) + " layers hold areas (" +
-                       names_list(names) + "); choose one with --layer");
-    }
-    layer = with_areas.front();
+        named = ds.GetLayer(i);
+    if (named) return named;
+    throw InputError(source + ": no layer \"" + *options.layer + "\"; its layers are " +
+                     names_list(layer_names));
   }
+  std::vector<OGRLayer*> with_areas;
+  for (OGRLayer* l : layers) {
+    l->ResetReading();
+    for (auto& f : *l) {
+      std::string why;
+      if (as_polygon(f->GetGeometryRef(), why)) {
+        with_areas.push_back(l);
+        break;
+      }
+    }
+  }
+  if (with_areas.empty())
+    throw InputError(source + ": no layer holds an area (a polygon or a closed track)");
+  if (with_areas.size() > 1) {
+    std::vector<std::string> names;
+    for (OGRLayer* l : with_areas) names.push_back(l->GetName());
+    throw InputError(source + ": " + std::to_string(with_areas.size()) + " layers hold areas (" +
+                     names_list(names) + "); choose one with --layer");
+  }
+  return with_areas.front();
+}
 
-  // The feature: the one asked for, or the only area of the layer.
-  const OGRFeatureDefn* defn = layer->GetLayerDefn();
+// The field that names areas: the one asked for, else name, Name, NAME, id or ID; -1 for none.
+int name_field_index(OGRLayer& layer, const FieldReadOptions& options, const std::string& source) {
+  const OGRFeatureDefn* defn = layer.GetLayerDefn();
   int name_index = -1;
   if (options.name_field) {
     name_index = defn->GetFieldIndex(options.name_field->c_str());
@@ -233,7 +234,7 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
       std::vector<std::string> fields;
       for (int i = 0; i < defn->GetFieldCount(); ++i)
         fields.push_back(defn->GetFieldDefn(i)->GetNameRef());
-      throw InputError(source + ": layer \"" + layer->GetName() + "\" has no field \"" +
+      throw InputError(source + ": layer \"" + layer.GetName() + "\" has no field \"" +
                        *options.name_field + "\"" +
                        (fields.empty() ? std::string(" (it has no fields)")
                                        : "; its fields are " + names_list(fields)));
@@ -242,18 +243,24 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
     for (const char* n : {"name", "Name", "NAME", "id", "ID"})
       if ((name_index = defn->GetFieldIndex(n)) >= 0) break;
   }
-  struct Candidate {
-    std::unique_ptr<OGRPolygon> polygon;
-    std::string name;
-    std::size_t index;
-  };
-  std::vector<Candidate> areas;
+  return name_index;
+}
+
+struct LayerArea {
+  std::unique_ptr<OGRPolygon> polygon;
+  std::string name;  ///< its name field, or its position among the layer's areas
+  std::size_t index;
+};
+
+// Every area of the layer (at most 100,000); none: refused with the first feature's reason.
+std::vector<LayerArea> layer_areas(OGRLayer& layer, int name_index, const std::string& source) {
+  std::vector<LayerArea> areas;
   std::string first_refusal;
-  layer->ResetReading();
-  for (auto& f : *layer) {
+  layer.ResetReading();
+  for (auto& f : layer) {
     std::string why;
     auto poly = as_polygon(f->GetGeometryRef(), why);
-    std::string name = std::to_string(areas.size());  // unnamed: its position
+    std::string name = std::to_string(areas.size());
     if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index))
       name = f->GetFieldAsString(name_index);
     if (!poly) {
@@ -264,37 +271,49 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
     if (areas.size() > 100000) throw InputError(source + ": more than 100,000 areas in one layer");
   }
   if (areas.empty())
-    throw InputError(source + ": layer \"" + layer->GetName() + "\" holds no area" +
+    throw InputError(source + ": layer \"" + layer.GetName() + "\" holds no area" +
                      (first_refusal.empty() ? std::string() : " (" + first_refusal + ")"));
-  if (list) {  // swath batch: every area of the layer, nothing read
-    for (const Candidate& c : areas) list->push_back({c.name, c.index});
-    return {};
-  }
-  std::size_t chosen = 0;
-  if (options.feature) {
-    const std::string& want = *options.feature;
-    bool found = false;
-    for (const Candidate& c : areas)
-      if (c.name == want) chosen = c.index, found = true;
-    if (!found && !want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) &&
-        want.size() < 9 && std::stoul(want) < areas.size())
-      chosen = std::stoul(want), found = true;
-    if (!found) {
-      std::vector<std::string> names;
-      for (const Candidate& c : areas) names.push_back(c.name);
-      throw InputError(source + ": no area \"" + want + "\" in layer \"" + layer->GetName() +
-                       "\"; its areas are " + names_list(names) + " (or 0 to " +
-                       std::to_string(areas.size() - 1) + " by position)");
-    }
-  } else if (areas.size() > 1) {
-    std::vector<std::string> names;
-    for (const Candidate& c : areas) names.push_back(c.name);
-    throw InputError(source + ": layer \"" + layer->GetName() + "\" holds " +
+  return areas;
+}
+
+// The area asked for by name or position, or the layer's only one.
+std::size_t choose_area(const std::vector<LayerArea>& areas, const FieldReadOptions& options,
+                        OGRLayer& layer, const std::string& source) {
+  std::vector<std::string> names;
+  for (const LayerArea& c : areas) names.push_back(c.name);
+  if (!options.feature) {
+    if (areas.size() == 1) return 0;
+    throw InputError(source + ": layer \"" + layer.GetName() + "\" holds " +
                      std::to_string(areas.size()) + " areas (" + names_list(names) +
                      "); choose one with --feature NAME or INDEX");
   }
+  const std::string& want = *options.feature;
+  std::size_t chosen = 0;
+  bool found = false;
+  for (const LayerArea& c : areas)
+    if (c.name == want) chosen = c.index, found = true;
+  if (!found && !want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) &&
+      want.size() < 9 && std::stoul(want) < areas.size())
+    chosen = std::stoul(want), found = true;
+  if (!found)
+    throw InputError(source + ": no area \"" + want + "\" in layer \"" + layer.GetName() +
+                     "\"; its areas are " + names_list(names) + " (or 0 to " +
+                     std::to_string(areas.size() - 1) + " by position)");
+  return chosen;
+}
+
+RawField read_or_list(const std::string& path, const FieldReadOptions& options,
+                      std::vector<AreaEntry>* list) {
+  const auto ds = open_vector(path);
+  OGRLayer* layer = choose_layer(*ds, options, path);
+  std::vector<LayerArea> areas = layer_areas(*layer, name_field_index(*layer, options, path), path);
+  if (list) {  // swath batch: every area of the layer, nothing read
+    for (const LayerArea& c : areas) list->push_back({c.name, c.index});
+    return {};
+  }
+  const std::size_t chosen = choose_area(areas, options, *layer, path);
   OGRPolygon& poly = *areas[chosen].polygon;
-  to_wgs84(poly, layer->GetSpatialRef(), source);
+  to_wgs84(poly, layer->GetSpatialRef(), path);
   return to_raw(poly, "area " + areas[chosen].name);
 }
 

@@ -318,6 +318,214 @@ void read_static_tasks(const YAML::Node& doc, const YamlMap& root, const std::st
 
 }  // namespace
 
+namespace {
+
+// The world of `kind` with its own scalar keys read (and every key of the file checked).
+std::unique_ptr<BaseWorld> world_of_kind(const YamlMap& root, const std::string& kind) {
+  if (kind == "hotspot") {
+    root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "source", "p0_dbm",
+                "exponent", "steps", "side_m", "step_m"});
+    auto h = std::make_unique<HotspotWorld>();
+    h->p0_dbm = root.number("p0_dbm", -30, -200, 100);
+    h->exponent = root.number("exponent", 2.0, 0, 10, true);
+    h->steps = static_cast<int>(root.number("steps", 10, 1, 10000));
+    h->side_m = root.number("side_m", 10, 0, 1e4, true);
+    h->step_m = root.number("step_m", 5, 0, 1e4, true);
+    return h;
+  }
+  if (kind == "road") {
+    root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "road", "steps", "step_m"});
+    auto r = std::make_unique<RoadWorld>();
+    r->steps = static_cast<int>(root.number("steps", 25, 1, 10000));
+    r->step_m = root.number("step_m", 6, 0, 1e4, true);
+    return r;
+  }
+  if (kind == "sites") {
+    root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "sites", "area_m",
+                "handling_s", "delivery_interruptible"});
+    auto s = std::make_unique<SitesWorld>();
+    s->handling_s = root.number("handling_s", 5, 0, 3600);
+    s->delivery_interruptible = root.flag("delivery_interruptible", true);
+    return s;
+  }
+  if (kind == "rf_field") {
+    root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "access_points", "shadowing",
+                "cell_m", "gp", "cancel_below_db"});
+    auto f = std::make_unique<RfFieldWorld>();
+    f->cell_m = root.number("cell_m", 5, 0.5, 1000);
+    f->cancel_below_db = root.number("cancel_below_db", 3, 0, 100);
+    const YamlMap sh = root.map("shadowing");
+    sh.allow({"sigma_db", "correlation_m"});
+    f->shadowing_db = sh.number("sigma_db", 4, 0, 50);
+    f->correlation_m = sh.number("correlation_m", 15, 0.1, 1e4, true);
+    const YamlMap gp = root.map("gp");
+    gp.allow({"length_m", "sigma_f", "sigma_n_db"});
+    f->gp_length_m = gp.number("length_m", 12, 0.1, 1e4, true);
+    f->gp_sigma_f = gp.number("sigma_f", 6, 0, 100, true);
+    f->gp_sigma_n_db = gp.number("sigma_n_db", 2, 0, 100, true);
+    return f;
+  }
+  if (kind == "tracking") {
+    root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "walker_speed_m_s",
+                "camera_range_m", "duration_s", "area_radius_m"});
+    auto t = std::make_unique<TrackingWorld>();
+    t->walker_speed_m_s = root.number("walker_speed_m_s", 1.4, 0, 50);
+    t->camera_range_m = root.number("camera_range_m", 15, 0, 1e4, true);
+    t->duration_s = root.number("duration_s", 300, 1, 86400);
+    t->area_radius_m = root.number("area_radius_m", 60, 1, 1e4);
+    return t;
+  }
+  if (kind == "static") {
+    root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "tasks"});
+    return std::make_unique<StaticWorld>();
+  }
+  throw InputError(root.where("kind") + ": unknown world kind \"" + kind +
+                   "\"; the kinds are hotspot, road, rf_field, sites, tracking and static");
+}
+
+// What every world has: seed (or the one given), origin, start, fence.
+void read_common(const YamlMap& root, BaseWorld& w, std::optional<std::uint64_t> seed) {
+  w.seed =
+      seed ? *seed : static_cast<std::uint64_t>(root.number("seed", 1, 0, 9.007199254740992e15));
+  if (root.has("origin")) {
+    const YamlMap o = root.map("origin");
+    o.allow({"lat", "lon", "alt"});
+    w.origin = {o.number("lat", 0, -90, 90), o.number("lon", 0, -180, 180),
+                o.number("alt", 0, -500, 9000)};
+  }
+  w.start_ = xy(root, "start", {0, 0, 0});
+  if (root.has("fence")) {
+    const YamlMap f = root.map("fence");
+    f.allow({"width_m", "height_m"});
+    const double hw = f.number("width_m", 100, 0, 1e5, true) / 2;
+    const double hh = f.number("height_m", 100, 0, 1e5, true) / 2;
+    w.fence_ = {{-hw, -hh}, {hw, -hh}, {hw, hh}, {-hw, hh}};
+  }
+}
+
+// A road as given ([x_m, y_m] points) or a random smooth one.
+void read_road(const YAML::Node& doc, const YamlMap& root, const std::string& source,
+               RoadWorld& r) {
+  read_sensors(root, r, {{"road_camera", 1.0, 0.5, 3.0}});
+  if (!root.has("road")) {
+    r.road_m = random_road(r.seed, r.start_);
+    return;
+  }
+  const YAML::Node pts = doc["road"];
+  if (!pts.IsSequence() || pts.size() < 2)
+    throw InputError(root.where("road") + ": a road is a list of at least two [x_m, y_m]");
+  for (const auto& p : pts) {
+    if (!p.IsSequence() || p.size() != 2)
+      throw InputError(source + ": " + base::yaml_line(p) + ": a road point is [x_m, y_m]");
+    const double px = p[0].as<double>(), py = p[1].as<double>();
+    if (!std::isfinite(px) || !std::isfinite(py) || std::abs(px) > 1e5 || std::abs(py) > 1e5)
+      throw InputError(source + ": " + base::yaml_line(p) +
+                       ": a road point must be finite and within 100 km");
+    r.road_m.push_back({px, py});
+  }
+}
+
+// The field's extent and cells (at most 600: the app's GP refits on every reading, O(n³)), its
+// access points (given or two random), the shadowing's random features.
+void read_rf_field(const YAML::Node& doc, const YamlMap& root, const std::string& source,
+                   RfFieldWorld& f, vehicle::SplitMix64& rng) {
+  read_sensors(root, f, {{"rssi", 2.0, 2.0, 0}});
+  if (f.fence_.empty()) f.fence_ = {{0, 0}, {50, 0}, {50, 70}, {0, 70}};
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  for (const auto& p : f.fence_)
+    x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]), x1 = std::max(x1, p[0]),
+    y1 = std::max(y1, p[1]);
+  f.width_m = x1 - x0;
+  f.height_m = y1 - y0;
+  const double cells =
+      std::floor(f.width_m / f.cell_m + 1e-9) * std::floor(f.height_m / f.cell_m + 1e-9);
+  if (cells > 600)
+    throw InputError(root.where("cell_m") + ": more than 600 cells (" +
+                     std::to_string(static_cast<long long>(cells)) +
+                     "); use larger cells or a smaller fence");
+  if (root.has("access_points")) {
+    const YAML::Node aps = doc["access_points"];
+    if (!aps.IsSequence() || aps.size() == 0)
+      throw InputError(root.where("access_points") + ": a list of {x_m, y_m, p0_dbm, exponent}");
+    for (std::size_t i = 0; i < aps.size(); ++i) {
+      const YamlMap a(aps[i], source, "access_points[" + std::to_string(i) + "]");
+      a.allow({"x_m", "y_m", "p0_dbm", "exponent"});
+      f.access_points.push_back({a.number("x_m", 0, -1e5, 1e5), a.number("y_m", 0, -1e5, 1e5),
+                                 a.number("p0_dbm", -30, -200, 100),
+                                 a.number("exponent", 2.5, 0, 10, true)});
+    }
+  } else {
+    for (int i = 0; i < 2; ++i)
+      f.access_points.push_back({rng.uniform(x0, x1), rng.uniform(y0, y1), -30, 2.5});
+  }
+  auto frng = vehicle::SplitMix64::stream(f.seed, "shadowing");
+  for (int i = 0; i < 64; ++i)
+    f.features.push_back({frng.normal() / f.correlation_m, frng.normal() / f.correlation_m,
+                          frng.uniform(0, 2 * std::numbers::pi)});
+  if (!root.has("start")) f.start_ = {x0, y0, 0};
+}
+
+// Sites A..F: as given, else A and F at the area's ends and the rest random in it.
+void read_sites(const YamlMap& root, SitesWorld& s, vehicle::SplitMix64& rng) {
+  read_sensors(root, s, {{"camera", 2.0, 0.0, 0}});
+  const double area = root.number("area_m", 200, 0, 1e5, true);
+  std::map<std::string, Vec3> given;
+  if (root.has("sites")) {
+    const YamlMap m = root.map("sites");
+    m.allow({"A", "B", "C", "D", "E", "F"});
+    for (const char* n : {"A", "B", "C", "D", "E", "F"})
+      if (m.has(n)) given[n] = xy(m, n, {});
+  }
+  for (const char* n : {"A", "B", "C", "D", "E", "F"}) {
+    Vec3 p;
+    if (auto it = given.find(n); it != given.end()) {
+      p = it->second;
+    } else if (std::string(n) == "A") {
+      p = {-area / 2, 0, 0};
+    } else if (std::string(n) == "F") {
+      p = {area / 2, 0, 0};
+    } else {
+      p = {rng.uniform(-area / 2, area / 2), rng.uniform(-area / 2, area / 2), 0};
+    }
+    s.sites.push_back({n, p});
+  }
+}
+
+// The parts of each kind that need the common ones (start, fence, seed) or the random stream.
+void read_kind_parts(const YAML::Node& doc, const YamlMap& root, const std::string& source,
+                     BaseWorld& w) {
+  vehicle::SplitMix64 rng = vehicle::SplitMix64::stream(w.seed, "world");
+  if (auto* h = dynamic_cast<HotspotWorld*>(&w)) {
+    read_sensors(root, w, {{"signal", 2.0, 1.0, 0}});
+    const double bearing = rng.uniform(0, 2 * std::numbers::pi);
+    h->source_m = xy(root, "source",
+                     {w.start_.x + 60 * std::cos(bearing), w.start_.y + 60 * std::sin(bearing), 0});
+  } else if (auto* r = dynamic_cast<RoadWorld*>(&w)) {
+    read_road(doc, root, source, *r);
+  } else if (auto* f = dynamic_cast<RfFieldWorld*>(&w)) {
+    read_rf_field(doc, root, source, *f, rng);
+  } else if (auto* t = dynamic_cast<TrackingWorld*>(&w)) {
+    read_sensors(root, w, {{"camera", 0.5, 0.0, 0}});
+    auto trng = vehicle::SplitMix64::stream(w.seed, "walker");
+    t->heading0 = trng.uniform(0, 2 * std::numbers::pi);
+    for (std::size_t i = 0; i < 3; ++i) {
+      t->turn_amp[i] = trng.uniform(0.1, 0.5);
+      t->turn_freq[i] = trng.uniform(0.01, 0.05);
+      t->turn_phase[i] = trng.uniform(0, 2 * std::numbers::pi);
+    }
+  } else if (auto* st = dynamic_cast<StaticWorld*>(&w)) {
+    std::vector<SensorSpec> listed;  // a static world's sensors are whatever it lists
+    if (const YAML::Node sn = doc["sensors"]; sn && sn.IsMap())
+      for (const auto& kv : sn) listed.push_back({kv.first.as<std::string>(), 2.0, 0.0, 0});
+    read_sensors(root, w, listed);
+    read_static_tasks(doc, root, source, *st);
+  } else if (auto* s = dynamic_cast<SitesWorld*>(&w)) {
+    read_sites(root, *s, rng);
+  }
+}
+
+}  // namespace
+
 std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::string& source,
                                        std::optional<std::uint64_t> seed) {
   return base::yaml_guard(source, [&]() -> std::unique_ptr<BaseWorld> {
@@ -325,183 +533,10 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
     if (!doc.IsMap()) throw InputError(source + ": a world file is a YAML mapping (kind: ...)");
     const YamlMap root(doc, source, "");
     const std::string kind = root.text("kind", "");
-    std::unique_ptr<BaseWorld> w;
-    if (kind == "hotspot") {
-      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "source", "p0_dbm",
-                  "exponent", "steps", "side_m", "step_m"});
-      auto h = std::make_unique<HotspotWorld>();
-      h->p0_dbm = root.number("p0_dbm", -30, -200, 100);
-      h->exponent = root.number("exponent", 2.0, 0, 10, true);
-      h->steps = static_cast<int>(root.number("steps", 10, 1, 10000));
-      h->side_m = root.number("side_m", 10, 0, 1e4, true);
-      h->step_m = root.number("step_m", 5, 0, 1e4, true);
-      w = std::move(h);
-    } else if (kind == "road") {
-      root.allow(
-          {"kind", "origin", "seed", "fence", "start", "sensors", "road", "steps", "step_m"});
-      auto r = std::make_unique<RoadWorld>();
-      r->steps = static_cast<int>(root.number("steps", 25, 1, 10000));
-      r->step_m = root.number("step_m", 6, 0, 1e4, true);
-      w = std::move(r);
-    } else if (kind == "sites") {
-      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "sites", "area_m",
-                  "handling_s", "delivery_interruptible"});
-      auto s = std::make_unique<SitesWorld>();
-      s->handling_s = root.number("handling_s", 5, 0, 3600);
-      s->delivery_interruptible = root.flag("delivery_interruptible", true);
-      w = std::move(s);
-    } else if (kind == "rf_field") {
-      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "access_points",
-                  "shadowing", "cell_m", "gp", "cancel_below_db"});
-      auto f = std::make_unique<RfFieldWorld>();
-      f->cell_m = root.number("cell_m", 5, 0.5, 1000);
-      f->cancel_below_db = root.number("cancel_below_db", 3, 0, 100);
-      const YamlMap sh = root.map("shadowing");
-      sh.allow({"sigma_db", "correlation_m"});
-      f->shadowing_db = sh.number("sigma_db", 4, 0, 50);
-      f->correlation_m = sh.number("correlation_m", 15, 0.1, 1e4, true);
-      const YamlMap gp = root.map("gp");
-      gp.allow({"length_m", "sigma_f", "sigma_n_db"});
-      f->gp_length_m = gp.number("length_m", 12, 0.1, 1e4, true);
-      f->gp_sigma_f = gp.number("sigma_f", 6, 0, 100, true);
-      f->gp_sigma_n_db = gp.number("sigma_n_db", 2, 0, 100, true);
-      w = std::move(f);
-    } else if (kind == "tracking") {
-      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "walker_speed_m_s",
-                  "camera_range_m", "duration_s", "area_radius_m"});
-      auto t = std::make_unique<TrackingWorld>();
-      t->walker_speed_m_s = root.number("walker_speed_m_s", 1.4, 0, 50);
-      t->camera_range_m = root.number("camera_range_m", 15, 0, 1e4, true);
-      t->duration_s = root.number("duration_s", 300, 1, 86400);
-      t->area_radius_m = root.number("area_radius_m", 60, 1, 1e4);
-      w = std::move(t);
-    } else if (kind == "static") {
-      root.allow({"kind", "origin", "seed", "fence", "start", "sensors", "tasks"});
-      w = std::make_unique<StaticWorld>();
-    } else {
-      throw InputError(root.where("kind") + ": unknown world kind \"" + kind +
-                       "\"; the kinds are hotspot, road, rf_field, sites, tracking and static");
-    }
+    std::unique_ptr<BaseWorld> w = world_of_kind(root, kind);
     w->kind_ = kind;
-    w->seed =
-        seed ? *seed : static_cast<std::uint64_t>(root.number("seed", 1, 0, 9.007199254740992e15));
-    if (root.has("origin")) {
-      const YamlMap o = root.map("origin");
-      o.allow({"lat", "lon", "alt"});
-      w->origin = {o.number("lat", 0, -90, 90), o.number("lon", 0, -180, 180),
-                   o.number("alt", 0, -500, 9000)};
-    }
-    w->start_ = xy(root, "start", {0, 0, 0});
-    if (root.has("fence")) {
-      const YamlMap f = root.map("fence");
-      f.allow({"width_m", "height_m"});
-      const double hw = f.number("width_m", 100, 0, 1e5, true) / 2;
-      const double hh = f.number("height_m", 100, 0, 1e5, true) / 2;
-      w->fence_ = {{-hw, -hh}, {hw, -hh}, {hw, hh}, {-hw, hh}};
-    }
-    vehicle::SplitMix64 rng = vehicle::SplitMix64::stream(w->seed, "world");
-    if (auto* h = dynamic_cast<HotspotWorld*>(w.get())) {
-      read_sensors(root, *w, {{"signal", 2.0, 1.0, 0}});
-      const double bearing = rng.uniform(0, 2 * std::numbers::pi);
-      h->source_m =
-          xy(root, "source",
-             {w->start_.x + 60 * std::cos(bearing), w->start_.y + 60 * std::sin(bearing), 0});
-    } else if (auto* r = dynamic_cast<RoadWorld*>(w.get())) {
-      read_sensors(root, *w, {{"road_camera", 1.0, 0.5, 3.0}});
-      if (root.has("road")) {
-        const YAML::Node pts = doc["road"];
-        if (!pts.IsSequence() || pts.size() < 2)
-          throw InputError(root.where("road") + ": a road is a list of at least two [x_m, y_m]");
-        for (const auto& p : pts) {
-          if (!p.IsSequence() || p.size() != 2)
-            throw InputError(source + ": " + base::yaml_line(p) + ": a road point is [x_m, y_m]");
-          const double px = p[0].as<double>(), py = p[1].as<double>();
-          if (!std::isfinite(px) || !std::isfinite(py) || std::abs(px) > 1e5 || std::abs(py) > 1e5)
-            throw InputError(source + ": " + base::yaml_line(p) +
-                             ": a road point must be finite and within 100 km");
-          r->road_m.push_back({px, py});
-        }
-      } else {
-        r->road_m = random_road(w->seed, w->start_);
-      }
-    } else if (auto* f = dynamic_cast<RfFieldWorld*>(w.get())) {
-      read_sensors(root, *w, {{"rssi", 2.0, 2.0, 0}});
-      if (w->fence_.empty()) w->fence_ = {{0, 0}, {50, 0}, {50, 70}, {0, 70}};
-      double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
-      for (const auto& p : w->fence_)
-        x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]), x1 = std::max(x1, p[0]),
-        y1 = std::max(y1, p[1]);
-      f->width_m = x1 - x0;
-      f->height_m = y1 - y0;
-      // The app's Gaussian process refits on every reading (O(n³)) and predicts every open cell:
-      // beyond ~600 cells a run takes minutes, so larger maps are refused.
-      if (std::floor(f->width_m / f->cell_m + 1e-9) * std::floor(f->height_m / f->cell_m + 1e-9) >
-          600)
-        throw InputError(
-            root.where("cell_m") + ": more than 600 cells (" +
-            std::to_string(static_cast<long long>(std::floor(f->width_m / f->cell_m + 1e-9) *
-                                                  std::floor(f->height_m / f->cell_m + 1e-9))) +
-            "); use larger cells or a smaller fence");
-      if (root.has("access_points")) {
-        const YAML::Node aps = doc["access_points"];
-        if (!aps.IsSequence() || aps.size() == 0)
-          throw InputError(root.where("access_points") +
-                           ": a list of {x_m, y_m, p0_dbm, exponent}");
-        for (std::size_t i = 0; i < aps.size(); ++i) {
-          const YamlMap a(aps[i], source, "access_points[" + std::to_string(i) + "]");
-          a.allow({"x_m", "y_m", "p0_dbm", "exponent"});
-          f->access_points.push_back({a.number("x_m", 0, -1e5, 1e5), a.number("y_m", 0, -1e5, 1e5),
-                                      a.number("p0_dbm", -30, -200, 100),
-                                      a.number("exponent", 2.5, 0, 10, true)});
-        }
-      } else {
-        for (int i = 0; i < 2; ++i)
-          f->access_points.push_back({rng.uniform(x0, x1), rng.uniform(y0, y1), -30, 2.5});
-      }
-      auto frng = vehicle::SplitMix64::stream(w->seed, "shadowing");
-      for (int i = 0; i < 64; ++i)
-        f->features.push_back({frng.normal() / f->correlation_m, frng.normal() / f->correlation_m,
-                               frng.uniform(0, 2 * std::numbers::pi)});
-      if (!root.has("start")) w->start_ = {x0, y0, 0};
-    } else if (auto* t = dynamic_cast<TrackingWorld*>(w.get())) {
-      read_sensors(root, *w, {{"camera", 0.5, 0.0, 0}});
-      auto trng = vehicle::SplitMix64::stream(w->seed, "walker");
-      t->heading0 = trng.uniform(0, 2 * std::numbers::pi);
-      for (std::size_t i = 0; i < 3; ++i) {
-        t->turn_amp[i] = trng.uniform(0.1, 0.5);
-        t->turn_freq[i] = trng.uniform(0.01, 0.05);
-        t->turn_phase[i] = trng.uniform(0, 2 * std::numbers::pi);
-      }
-    } else if (auto* st = dynamic_cast<StaticWorld*>(w.get())) {
-      std::vector<SensorSpec> listed;  // a static world's sensors are whatever it lists
-      if (const YAML::Node sn = doc["sensors"]; sn && sn.IsMap())
-        for (const auto& kv : sn) listed.push_back({kv.first.as<std::string>(), 2.0, 0.0, 0});
-      read_sensors(root, *w, listed);
-      read_static_tasks(doc, root, source, *st);
-    } else if (auto* s = dynamic_cast<SitesWorld*>(w.get())) {
-      read_sensors(root, *w, {{"camera", 2.0, 0.0, 0}});
-      const double area = root.number("area_m", 200, 0, 1e5, true);
-      std::map<std::string, Vec3> given;
-      if (root.has("sites")) {
-        const YamlMap m = root.map("sites");
-        m.allow({"A", "B", "C", "D", "E", "F"});
-        for (const char* n : {"A", "B", "C", "D", "E", "F"})
-          if (m.has(n)) given[n] = xy(m, n, {});
-      }
-      for (const char* n : {"A", "B", "C", "D", "E", "F"}) {
-        Vec3 p;
-        if (auto it = given.find(n); it != given.end()) {
-          p = it->second;
-        } else if (std::string(n) == "A") {
-          p = {-area / 2, 0, 0};
-        } else if (std::string(n) == "F") {
-          p = {area / 2, 0, 0};
-        } else {
-          p = {rng.uniform(-area / 2, area / 2), rng.uniform(-area / 2, area / 2), 0};
-        }
-        s->sites.push_back({n, p});
-      }
-    }
+    read_common(root, *w, seed);
+    read_kind_parts(doc, root, source, *w);
     return w;
   });
 }
