@@ -12,6 +12,7 @@
 #include "swath/fleet/faults.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/vehicle/random.hpp"
 
 namespace swath::apps {
 
@@ -82,8 +83,11 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     throw InputError(p.world_source + ": a " + p.world->kind() + " world; the " + r.app +
                      " app needs a " + needs + " world");
   if (!r.fleet.empty() && r.drones > 0) throw InputError("give --fleet or --drones, not both");
+  // Each file is read once: parsed, and its text kept for config_text.
+  std::string fleet_text, weights_text, faults_text;
   if (!r.fleet.empty()) {
-    p.drones = fleet::read_fleet_file(r.fleet, p.world->origin);
+    fleet_text = base::read_text_file(r.fleet, "fleet file");
+    p.drones = fleet::parse_fleet_file(fleet_text, r.fleet, p.world->origin);
   } else {
     const int n = r.drones > 0 ? r.drones : 1;
     for (int i = 0; i < n; ++i) {
@@ -104,19 +108,19 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
                        "': expected E,N in m/s, at most 30 m/s together (e.g. 4,-3)");
     p.settings.wind_m_s = {w->first, w->second, 0};
   }
-  if (!r.weights.empty()) p.settings.weights = fleet::read_weights(r.weights);
+  if (!r.weights.empty()) {
+    weights_text = base::read_text_file(r.weights, "weights file");
+    p.settings.weights = fleet::parse_weights(weights_text, r.weights);
+  }
   if (!r.faults.empty()) {
     std::vector<std::string> drone_names;
     for (const auto& d : p.drones) drone_names.push_back(d.name);
-    p.settings.faults = fleet::read_faults(r.faults, drone_names, r.max_time_s);
+    faults_text = base::read_text_file(r.faults, "faults file");
+    p.settings.faults = fleet::parse_faults(faults_text, r.faults, drone_names, r.max_time_s);
   }
-  const auto text_of = [](const std::string& path, const char* what) {
-    return path.empty() ? std::string() : base::read_text_file(path, what);
-  };
-  p.config_text = "app " + r.app + "\nworld\n" + p.world_text + "\nfleet\n" +
-                  text_of(r.fleet, "fleet file") + "\ndrones " + std::to_string(r.drones) +
-                  "\nweights\n" + text_of(r.weights, "weights file") + "\nfaults\n" +
-                  text_of(r.faults, "faults file") + "\nwind " + r.wind + "\nmax_time_s " +
+  p.config_text = "app " + r.app + "\nworld\n" + p.world_text + "\nfleet\n" + fleet_text +
+                  "\ndrones " + std::to_string(r.drones) + "\nweights\n" + weights_text +
+                  "\nfaults\n" + faults_text + "\nwind " + r.wind + "\nmax_time_s " +
                   std::to_string(r.max_time_s) + "\n";
   if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
     throw InputError("unknown scheduler \"" + r.scheduler +
@@ -143,10 +147,9 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
   for (const auto& [k, v] : r.tasks_by_outcome) tasks[k] = v;
   json metrics = json::object();
   for (const auto& [k, v] : r.metrics) metrics[k] = r6(v);
-  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bits
-  for (unsigned char c : p.config_text) hash = (hash ^ c) * 1099511628211ull;
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  std::snprintf(hex, sizeof hex, "%016llx",
+                static_cast<unsigned long long>(vehicle::fnv1a(p.config_text)));
   json out{{"app", p.settings.app_name},
            {"version", SWATH_VERSION},
            {"config_hash", hex},

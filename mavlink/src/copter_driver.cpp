@@ -96,7 +96,7 @@ bool CopterDriver::arrived() const {
          speed_m_s < settings_.arrival_speed_m_s;
 }
 
-void CopterDriver::on_link_up(double now_s) {
+void CopterDriver::on_link_up() {
   // Telemetry rates and home are asked again after every loss: the vehicle may have rebooted.
   const auto interval = [&](std::uint32_t id, double s) {
     enqueue(Cmd::set_message_interval, static_cast<float>(id), static_cast<float>(s * 1e6));
@@ -106,7 +106,6 @@ void CopterDriver::on_link_up(double now_s) {
   interval(BatteryStatus::kId, settings_.status_interval_s);
   interval(ExtendedSysState::kId, settings_.status_interval_s);
   enqueue(Cmd::request_message, static_cast<float>(HomePosition::kId));
-  (void)now_s;
 }
 
 void CopterDriver::on_frame(const Frame& frame, double now_s) {
@@ -116,7 +115,7 @@ void CopterDriver::on_frame(const Frame& frame, double now_s) {
     state_.last_heard_s = now_s;
     if (!state_.link_alive) {
       state_.link_alive = true;
-      on_link_up(now_s);
+      on_link_up();
     }
     state_.armed = (hb->base_mode & kModeFlagArmed) != 0;
     state_.custom_mode = hb->custom_mode;

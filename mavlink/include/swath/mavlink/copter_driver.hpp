@@ -94,7 +94,7 @@ class CopterDriver {
   };
   int enqueue(Cmd cmd, float p1 = 0, float p2 = 0, float p3 = 0, float p7 = 0);
   void on_frame(const Frame& frame, double now_s);
-  void on_link_up(double now_s);
+  void on_link_up();
   void send_due(double now_s);
 
   Endpoint endpoint_;

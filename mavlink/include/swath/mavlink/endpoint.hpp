@@ -20,7 +20,7 @@ class Endpoint {
   void send(const M& message) {
     const Frame frame = pack(message, FrameHeader{seq_++, sysid_, compid_});
     std::array<std::uint8_t, kMaxFrameBytes> bytes;
-    const std::size_t n = serialize(frame, find_message(M::kId)->crc_extra, bytes.data());
+    const std::size_t n = serialize(frame, crc_extra<M>(), bytes.data());
     link_.send({bytes.data(), n});
     ++frames_sent_;
   }

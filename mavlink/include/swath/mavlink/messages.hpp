@@ -331,11 +331,9 @@ struct CommandAck {
   }
 };
 
-/// SET_POSITION_TARGET_GLOBAL_INT (86): where GUIDED mode flies to. type_mask bits say which of
-/// position, velocity, acceleration, yaw and yaw rate to ignore (0x0DF8: position only).
-struct SetPositionTargetGlobalInt {
-  static constexpr std::uint32_t kId = 86;
-  static constexpr std::string_view kName = "SET_POSITION_TARGET_GLOBAL_INT";
+/// What SET_POSITION_TARGET_GLOBAL_INT (86) and POSITION_TARGET_GLOBAL_INT (87) share, in wire
+/// order; each adds its own last fields.
+struct GlobalPositionTarget {
   std::uint32_t time_boot_ms = 0;
   std::int32_t lat_degE7 = 0;
   std::int32_t lon_degE7 = 0;
@@ -343,12 +341,11 @@ struct SetPositionTargetGlobalInt {
   float vx_m_s = 0, vy_m_s = 0, vz_m_s = 0;
   float afx_m_s2 = 0, afy_m_s2 = 0, afz_m_s2 = 0;
   float yaw_rad = 0, yaw_rate_rad_s = 0;
-  std::uint16_t type_mask = 0;
-  std::uint8_t target_system = 0;
-  std::uint8_t target_component = 0;
-  std::uint8_t coordinate_frame = 0;
+  std::uint16_t type_mask = 0;  ///< bits of what to ignore (0x0DF8: all but position)
+
+ protected:
   template <class V>
-  constexpr void fields(V& v) {
+  constexpr void target_fields(V& v) {
     v.field(time_boot_ms, "time_boot_ms");
     v.field(lat_degE7, "lat_int");
     v.field(lon_degE7, "lon_int");
@@ -362,6 +359,19 @@ struct SetPositionTargetGlobalInt {
     v.field(yaw_rad, "yaw");
     v.field(yaw_rate_rad_s, "yaw_rate");
     v.field(type_mask, "type_mask");
+  }
+};
+
+/// SET_POSITION_TARGET_GLOBAL_INT (86): where GUIDED mode flies to.
+struct SetPositionTargetGlobalInt : GlobalPositionTarget {
+  static constexpr std::uint32_t kId = 86;
+  static constexpr std::string_view kName = "SET_POSITION_TARGET_GLOBAL_INT";
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t coordinate_frame = 0;
+  template <class V>
+  constexpr void fields(V& v) {
+    target_fields(v);
     v.field(target_system, "target_system");
     v.field(target_component, "target_component");
     v.field(coordinate_frame, "coordinate_frame");
@@ -369,33 +379,13 @@ struct SetPositionTargetGlobalInt {
 };
 
 /// POSITION_TARGET_GLOBAL_INT (87): the target the vehicle is flying to, as it understood it.
-struct PositionTargetGlobalInt {
+struct PositionTargetGlobalInt : GlobalPositionTarget {
   static constexpr std::uint32_t kId = 87;
   static constexpr std::string_view kName = "POSITION_TARGET_GLOBAL_INT";
-  std::uint32_t time_boot_ms = 0;
-  std::int32_t lat_degE7 = 0;
-  std::int32_t lon_degE7 = 0;
-  float alt_m = 0;
-  float vx_m_s = 0, vy_m_s = 0, vz_m_s = 0;
-  float afx_m_s2 = 0, afy_m_s2 = 0, afz_m_s2 = 0;
-  float yaw_rad = 0, yaw_rate_rad_s = 0;
-  std::uint16_t type_mask = 0;
   std::uint8_t coordinate_frame = 0;
   template <class V>
   constexpr void fields(V& v) {
-    v.field(time_boot_ms, "time_boot_ms");
-    v.field(lat_degE7, "lat_int");
-    v.field(lon_degE7, "lon_int");
-    v.field(alt_m, "alt");
-    v.field(vx_m_s, "vx");
-    v.field(vy_m_s, "vy");
-    v.field(vz_m_s, "vz");
-    v.field(afx_m_s2, "afx");
-    v.field(afy_m_s2, "afy");
-    v.field(afz_m_s2, "afz");
-    v.field(yaw_rad, "yaw");
-    v.field(yaw_rate_rad_s, "yaw_rate");
-    v.field(type_mask, "type_mask");
+    target_fields(v);
     v.field(coordinate_frame, "coordinate_frame");
   }
 };
