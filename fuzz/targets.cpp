@@ -15,6 +15,7 @@
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/event_replay.hpp"
 #include "swath/fleet/faults.hpp"
+#include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
@@ -235,6 +236,19 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { fleet::parse_faults(t, "fuzz.yaml", {"a", "b"}, 3600); });
        },
        {"tests/bad-input/seeds/faults-list.yaml", "tests/bad-input/seeds/faults-random.yaml"}},
+      // A run's task graph read back (history for the forecasters): refused in one sentence,
+      // or forecast from and scored whatever its shape (cycles, dangling waiters, no places).
+      {"dtg",
+       [](const std::string& t) {
+         expect_input_error_only([&] {
+           const fleet::Dtg g = fleet::parse_dtg(t, "fuzz.json");
+           auto gmf = fleet::gmf_forecaster({g});
+           fleet::score_forecasts(*gmf, g);
+           auto cv = fleet::constant_velocity_forecaster();
+           fleet::score_forecasts(*cv, g.as_of(1.0));
+         });
+       },
+       {"tests/bad-input/seeds/dtg.json"}},
       // The checker judges any text and never throws; the replay (render) refuses it in one
       // sentence or reads it.
       {"fleet_events",

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "forecasts_command.hpp"
 #include "run_command.hpp"
 #include "scale_out_command.hpp"
 
@@ -14,6 +15,7 @@ int fleet_main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   commands.push_back(std::make_unique<FleetRunCommand>());
   commands.push_back(std::make_unique<FleetCompareCommand>());
+  commands.push_back(std::make_unique<FleetForecastsCommand>());
   commands.push_back(std::make_unique<FleetCheckCommand>());
   commands.push_back(std::make_unique<FleetAppsCommand>());
   commands.push_back(std::make_unique<FleetWorldsCommand>());

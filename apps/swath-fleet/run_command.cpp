@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fleet_images.hpp"
+#include "intervals.hpp"
 #include "map_furniture.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -173,33 +174,6 @@ void FleetCompareCommand::setup(CLI::App& app) {
   app.add_option("-o,--output", output_, "Directory for compare.csv and summary.json")->required();
 }
 
-namespace {
-
-// The two-sided 95 % Student t quantile for n − 1 degrees of freedom (n ≥ 2).
-double t95(int n) {
-  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
-                                 2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
-                                 2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
-                                 2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
-  const int df = n - 1;
-  if (df <= 30) return table[df - 1];
-  return 1.96 + 2.4 / df;  // within 0.002 of the exact quantile beyond 30
-}
-
-struct Interval {
-  double mean = 0, half = 0;
-};
-Interval interval(const std::vector<double>& x) {
-  Interval out;
-  const double n = static_cast<double>(x.size());
-  for (double v : x) out.mean += v / n;
-  double ss = 0;
-  for (double v : x) ss += (v - out.mean) * (v - out.mean);
-  out.half = t95(static_cast<int>(x.size())) * std::sqrt(ss / (n - 1) / n);
-  return out;
-}
-
-}  // namespace
 
 int FleetCompareCommand::run() {
   std::vector<std::string> names;
@@ -236,14 +210,14 @@ int FleetCompareCommand::run() {
     const auto& x = times[name];
     json row{{"scheduler", name}, {"runs", seeds_}, {"completed", x.size()}};
     if (x.size() >= 2) {
-      const Interval i = interval(x);
+      const Interval i = mean_interval95(x);
       row["completion_time_s_mean"] = std::round(i.mean * 1e3) / 1e3;
       row["completion_time_s_ci95"] = std::round(i.half * 1e3) / 1e3;
     }
     rows.push_back(row);
     std::cout << name << ": " << x.size() << "/" << seeds_ << " completed";
     if (x.size() >= 2) {
-      const Interval i = interval(x);
+      const Interval i = mean_interval95(x);
       std::cout << ", completion " << base::fixed_text(i.mean, 1) << " ± "
                 << base::fixed_text(i.half, 1) << " s (95 %)";
     }
@@ -257,7 +231,7 @@ int FleetCompareCommand::run() {
     if (a.size() != b.size() || a.size() < 2) continue;
     std::vector<double> d;
     for (std::size_t i = 0; i < a.size(); ++i) d.push_back(b[i] / a[i] - 1.0);
-    const Interval i = interval(d);
+    const Interval i = mean_interval95(d);
     paired.push_back(json{{"scheduler", names[j]},
                           {"versus", names[0]},
                           {"relative_change_mean", std::round(i.mean * 1e5) / 1e5},

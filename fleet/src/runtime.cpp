@@ -91,6 +91,9 @@ struct Task {
   std::optional<Vec3> first_loc;
   std::vector<int> drones_used;
   int sync_node = -1;      // the sync node its latest awaits formed; -1 after it did something else
+  // It spawned or cancelled since that sync node: edges still leave the node, but its next await
+  // is a new one (an await after work is the next iteration's sync, DESIGN.md §18.3).
+  bool issued_since_sync = false;
   bool requested = false;  // a request_visible logged for the current head
   int segment = 0;         // head segments made visible so far
 
@@ -337,6 +340,7 @@ int Runtime::spawn(int parent, const Kind& kind, Flags flags,
     t.location = p.location;
     const std::string from =
         p.sync_node >= 0 ? "s" + std::to_string(p.sync_node) : "t" + std::to_string(parent);
+    p.issued_since_sync = true;
     dtg_edges_.push_back(
         json{{"from", from}, {"to", "t" + std::to_string(t.id)}, {"type", "spawn"}});
   }
@@ -389,8 +393,9 @@ Future<void> Runtime::delay(int task, double cost_s) {
 }
 
 int Runtime::dtg_sync_node(Task& t) {
-  if (t.sync_node < 0) {
+  if (t.sync_node < 0 || t.issued_since_sync) {
     t.sync_node = sync_count_++;
+    t.issued_since_sync = false;
     dtg_nodes_.push_back(json{{"id", "s" + std::to_string(t.sync_node)},
                               {"type", "sync"},
                               {"waiter", t.id},
@@ -518,6 +523,7 @@ void Runtime::cancel(int issuer, int task) {
     Task& i = tasks_[static_cast<std::size_t>(issuer)];
     const std::string from =
         i.sync_node >= 0 ? "s" + std::to_string(i.sync_node) : "t" + std::to_string(issuer);
+    i.issued_since_sync = true;
     dtg_edges_.push_back(
         json{{"from", from}, {"to", "t" + std::to_string(task)}, {"type", "cancel"}});
   }

@@ -250,6 +250,41 @@ TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
 namespace swath::test {
 namespace {
 
+TEST(FleetCli, ForecastsScoreEveryStepAfterTheFirstAndPoolTheirOwnRows) {
+  // The road app spawns its 25 steps one after another: each run scores 24 next tasks per
+  // forecaster; the summary pools exactly the rows of forecasts.csv.
+  const std::string out = fresh_dir("fleet-forecasts");
+  const CliRun run = run_swath_fleet("forecasts road --world road --seeds 3 -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream csv(read_text(out + "/forecasts.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "forecaster,seed,next_tasks,median_distance_m,recall,cancellation_pairs,brier");
+  std::map<std::string, std::vector<double>> recall;
+  std::map<std::string, long> tasks;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(cell);
+    ASSERT_GE(f.size(), 5u) << line;
+    EXPECT_EQ(f[2], "24") << line;
+    const double r = std::stod(f[4]);
+    EXPECT_GE(r, 0.0);
+    EXPECT_LE(r, 1.0);
+    recall[f[0]].push_back(r);
+    tasks[f[0]] += std::stol(f[2]);
+  }
+  ASSERT_EQ(recall.size(), 2u);
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  for (const auto& row : summary["forecasters"]) {
+    const std::string name = row["forecaster"];
+    ASSERT_EQ(recall[name].size(), 3u) << name;
+    EXPECT_EQ(row["next_tasks"].get<long>(), tasks[name]);
+    const double mean = (recall[name][0] + recall[name][1] + recall[name][2]) / 3;
+    EXPECT_NEAR(row["recall"].get<double>(), mean, 2e-4) << name;
+  }
+}
+
 TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
   const auto world = worlds::read_world(source_path("share/worlds/tracking.yaml"));
   std::vector<fleet::DroneSpec> drones(2);

@@ -91,7 +91,9 @@ TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
   EXPECT_EQ(violations, 0);
   // The schedules did exercise the rules: faults, late duplicates and failures happened.
   EXPECT_GT(faults, static_cast<int>(2 * schedules));
-  if (schedules >= 1000) EXPECT_GT(duplicates, 0);  // rare: 7 in the 1,000 schedules
+  if (schedules >= 1000) {
+    EXPECT_GT(duplicates, 0);
+  }  // rare: 7 in the 1,000 schedules
   EXPECT_GT(failed_tasks, 0);
   EXPECT_GT(completed, static_cast<int>(schedules / 2));
   std::cout << runs << " runs, " << faults << " faults, " << duplicates << " duplicates dropped, "
