@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "data_dir.hpp"
 #include "input_text.hpp"
@@ -54,6 +55,14 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
   app.add_option("--max-time", r.max_time_s, "Stop a run that has not completed by then, s")
       ->check(CLI::Range(1.0, 604800.0))
       ->capture_default_str();
+}
+
+std::vector<std::string> comma_names(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream in(list);
+  for (std::string s; std::getline(in, s, ',');)
+    if (!s.empty()) out.push_back(s);
+  return out;
 }
 
 std::string world_path(const std::string& name) {

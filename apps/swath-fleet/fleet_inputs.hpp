@@ -39,6 +39,9 @@ struct PreparedRun {
 /// world's random parts (compare's scenarios) instead of the file's seed.
 PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed = {});
 
+/// The non-empty names of a comma-separated list ("a,b,,c" → a, b, c).
+std::vector<std::string> comma_names(const std::string& list);
+
 /// The world file for a name: a path, or a bundled world (share/worlds/NAME.yaml).
 std::string world_path(const std::string& name);
 

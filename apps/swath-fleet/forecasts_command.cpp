@@ -5,7 +5,6 @@
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "intervals.hpp"
 #include "swath/base/input_error.hpp"
@@ -46,14 +45,6 @@ void FleetForecastsCommand::setup(CLI::App& app) {
 
 namespace {
 
-std::vector<std::string> split_names(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream in(list);
-  for (std::string s; std::getline(in, s, ',');)
-    if (!s.empty()) out.push_back(s);
-  return out;
-}
-
 // Median with infinities (no confident forecast) counted as the largest values.
 double median(std::vector<double> x) {
   if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -84,7 +75,7 @@ struct Pooled {
 }  // namespace
 
 int FleetForecastsCommand::run() {
-  const std::vector<std::string> names = split_names(forecasters_);
+  const std::vector<std::string> names = comma_names(forecasters_);
   if (names.empty()) throw InputError("--forecasters names no forecaster");
   for (const std::string& n : names)
     if (!fleet::make_forecaster(n, {}))

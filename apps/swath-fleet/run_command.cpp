@@ -174,14 +174,8 @@ void FleetCompareCommand::setup(CLI::App& app) {
   app.add_option("-o,--output", output_, "Directory for compare.csv and summary.json")->required();
 }
 
-
 int FleetCompareCommand::run() {
-  std::vector<std::string> names;
-  {
-    std::stringstream in(schedulers_);
-    for (std::string s; std::getline(in, s, ',');)
-      if (!s.empty()) names.push_back(s);
-  }
+  const std::vector<std::string> names = comma_names(schedulers_);
   if (names.empty()) throw InputError("--schedulers names no scheduler");
   for (const std::string& n : names)
     if (!fleet::make_scheduler(n == "reactive" ? "sa" : n))

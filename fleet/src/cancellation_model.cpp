@@ -40,9 +40,7 @@ std::vector<CancellationPair> cancellation_pairs(const Dtg& g) {
       const DtgNode& b = g.nodes[at(j)];
       if (j == i || !(b.created_s <= a.ended_s) || !(b.ended_s >= a.ended_s)) continue;
       out.push_back(
-          {i, j,
-           std::hypot(b.first_loc_m->x - a.first_loc_m->x, b.first_loc_m->y - a.first_loc_m->y),
-           by_i[at(j)] != 0});
+          {i, j, vehicle::horizontal_distance(*a.first_loc_m, *b.first_loc_m), by_i[at(j)] != 0});
     }
     for (int s : sources)
       for (int c : ix.cancelled[at(s)]) by_i[at(c)] = 0;
@@ -73,7 +71,7 @@ double CancellationModel::q(const std::string& kind_i, const std::string& kind_j
   return (static_cast<double>(c.cancelled[b]) + rate) / (static_cast<double>(c.trials[b]) + 1.0);
 }
 
-double Forecaster::cancel_probability(const Dtg&, int, int) const {
+double Forecaster::cancel_probability(const DtgNode&, const DtgNode&) const {
   return 0;
 }
 

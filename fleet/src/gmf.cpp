@@ -50,9 +50,10 @@ std::vector<std::vector<std::uint64_t>> wl_signatures(const Dtg& g, const DtgInd
   return sig;
 }
 
+/// A DTG with its adjacency and signatures; refers to the graph, which must outlive it.
 struct Graph {
-  Graph(Dtg d, int depth) : g(std::move(d)), ix(g), sig(wl_signatures(g, ix, depth)) {}
-  Dtg g;
+  Graph(const Dtg& d, int depth) : g(d), ix(g), sig(wl_signatures(g, ix, depth)) {}
+  const Dtg& g;
   DtgIndex ix;
   std::vector<std::vector<std::uint64_t>> sig;
 };
@@ -164,7 +165,7 @@ std::vector<Cluster> cluster_points(const std::vector<Point>& points, double rad
     Cluster* home = nullptr;
     for (Cluster& c : out) {
       const Vec3 m = c.centre();
-      if (c.kind == p.kind && std::hypot(m.x - p.loc.x, m.y - p.loc.y) <= radius_m) {
+      if (c.kind == p.kind && vehicle::horizontal_distance(m, p.loc) <= radius_m) {
         home = &c;
         break;
       }
@@ -185,13 +186,14 @@ std::vector<Cluster> cluster_points(const std::vector<Point>& points, double rad
 
 class Gmf final : public Forecaster {
  public:
-  Gmf(std::vector<Dtg> histories, GmfSettings settings) : s_(settings) {
+  Gmf(std::vector<Dtg> histories, GmfSettings settings)
+      : s_(settings), histories_(std::move(histories)) {
     s_.max_depth = std::clamp(s_.max_depth, 0, 64);
     index_.resize(at(s_.max_depth) + 1);
-    graphs_.reserve(histories.size());
-    for (Dtg& h : histories) {
+    graphs_.reserve(histories_.size());
+    for (const Dtg& h : histories_) {
       q_.learn(h);
-      graphs_.emplace_back(std::move(h), s_.max_depth);
+      graphs_.emplace_back(h, s_.max_depth);
     }
     for (const Graph& gr : graphs_)
       for (std::size_t n = 0; n < gr.g.nodes.size(); ++n)
@@ -216,13 +218,9 @@ class Gmf final : public Forecaster {
     return out;
   }
 
-  double cancel_probability(const Dtg& current, int i, int j) const override {
-    const DtgNode& a = current.nodes.at(at(i));
-    const DtgNode& b = current.nodes.at(at(j));
-    if (!a.first_loc_m || !b.first_loc_m) return 0;
-    return q_.q(
-        a.kind, b.kind,
-        std::hypot(b.first_loc_m->x - a.first_loc_m->x, b.first_loc_m->y - a.first_loc_m->y));
+  double cancel_probability(const DtgNode& i, const DtgNode& j) const override {
+    if (!i.first_loc_m || !j.first_loc_m) return 0;
+    return q_.q(i.kind, j.kind, vehicle::horizontal_distance(*i.first_loc_m, *j.first_loc_m));
   }
 
  private:
@@ -241,38 +239,38 @@ class Gmf final : public Forecaster {
     return f;
   }
 
-  /// How many candidates have f's depth-k signature.
-  std::size_t count_matches(const Graph& cur, const std::vector<int>& own, int f, int k) const {
+  /// The candidates whose depth-k signature equals f's: the stored runs' (their index bucket,
+  /// not copied: it may hold tens of thousands), then the current run's.
+  struct Matches {
+    const std::vector<Ref>* stored = nullptr;
+    std::vector<Ref> own;
+    std::size_t size() const { return (stored ? stored->size() : 0) + own.size(); }
+    const Ref& operator[](std::size_t i) const {
+      const std::size_t n = stored ? stored->size() : 0;
+      return i < n ? (*stored)[i] : own[i - n];
+    }
+  };
+  Matches matches(const Graph& cur, const std::vector<int>& own, int f, int k) const {
+    Matches m;
     const std::uint64_t sig = cur.sig[at(k)][at(f)];
-    const auto it = index_[at(k)].find(sig);
-    std::size_t n = it == index_[at(k)].end() ? 0 : it->second.size();
-    for (int o : own) n += cur.sig[at(k)][at(o)] == sig;
-    return n;
-  }
-
-  /// The candidates whose depth-k signature equals f's: stored runs first, then the current run.
-  std::vector<Ref> matches(const Graph& cur, const std::vector<int>& own, int f, int k) const {
-    std::vector<Ref> out;
-    const std::uint64_t sig = cur.sig[at(k)][at(f)];
-    if (const auto it = index_[at(k)].find(sig); it != index_[at(k)].end()) out = it->second;
+    if (const auto it = index_[at(k)].find(sig); it != index_[at(k)].end()) m.stored = &it->second;
     for (int n : own)
-      if (cur.sig[at(k)][at(n)] == sig) out.push_back({&cur, n});
-    return out;
+      if (cur.sig[at(k)][at(n)] == sig) m.own.push_back({&cur, n});
+    return m;
   }
 
   std::vector<ForecastRequest> forecast_from(const Graph& cur, const std::vector<int>& own, int f,
                                              double now_s) const {
     // Step 2: deepen while at least min_candidates remain; an empty level keeps the one before.
-    std::size_t count = count_matches(cur, own, f, 0);
+    Matches cands = matches(cur, own, f, 0);
     int depth = 0;
-    for (int k = 1; k <= s_.max_depth && count >= at(s_.min_candidates); ++k) {
-      const std::size_t deeper = count_matches(cur, own, f, k);
-      if (deeper == 0) break;
-      count = deeper;
+    for (int k = 1; k <= s_.max_depth && cands.size() >= at(s_.min_candidates); ++k) {
+      Matches deeper = matches(cur, own, f, k);
+      if (deeper.size() == 0) break;
+      cands = std::move(deeper);
       depth = k;
     }
-    if (count == 0) return {};
-    const std::vector<Ref> cands = matches(cur, own, f, depth);
+    if (cands.size() == 0) return {};
     // Step 3: rank by the residual of one rigid motion of the neighbourhoods.
     const std::vector<Located> mine = neighbourhood(cur, f, depth);
     const std::size_t ranked = std::min(cands.size(), at(std::max(1, s_.max_ranked)));
@@ -312,8 +310,8 @@ class Gmf final : public Forecaster {
   void merge(std::vector<ForecastRequest>& into, std::vector<ForecastRequest> add) const {
     for (ForecastRequest& a : add) {
       auto same = std::find_if(into.begin(), into.end(), [&](const ForecastRequest& b) {
-        return b.kind == a.kind && std::hypot(b.location_m.x - a.location_m.x,
-                                              b.location_m.y - a.location_m.y) <= s_.cluster_m;
+        return b.kind == a.kind &&
+               vehicle::horizontal_distance(a.location_m, b.location_m) <= s_.cluster_m;
       });
       if (same == into.end())
         into.push_back(std::move(a));
@@ -323,6 +321,7 @@ class Gmf final : public Forecaster {
   }
 
   GmfSettings s_;
+  std::vector<Dtg> histories_;  // graphs_ refer to these
   std::vector<Graph> graphs_;
   std::vector<std::unordered_map<std::uint64_t, std::vector<Ref>>> index_;
   CancellationModel q_;

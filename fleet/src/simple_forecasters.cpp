@@ -84,13 +84,13 @@ ForecastScore score_forecasts(Forecaster& forecaster, const Dtg& run, double p_m
       double best = std::numeric_limits<double>::infinity();
       for (const ForecastRequest& r : f)
         if (r.kind == n->kind && r.p >= p_min)
-          best = std::min(best, std::hypot(r.location_m.x - n->first_loc_m->x,
-                                           r.location_m.y - n->first_loc_m->y));
+          best = std::min(best, vehicle::horizontal_distance(r.location_m, *n->first_loc_m));
       score.distances_m.push_back(best);
     }
   }
   for (const CancellationPair& p : cancellation_pairs(run)) {
-    const double q = forecaster.cancel_probability(run, p.i, p.j);
+    const double q = forecaster.cancel_probability(run.nodes[static_cast<std::size_t>(p.i)],
+                                                   run.nodes[static_cast<std::size_t>(p.j)]);
     score.brier_sum += (q - (p.cancelled ? 1.0 : 0.0)) * (q - (p.cancelled ? 1.0 : 0.0));
     ++score.cancellation_pairs;
   }

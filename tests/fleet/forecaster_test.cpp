@@ -225,7 +225,7 @@ TEST(Gmf, WithoutHistoryItLearnsFromTheRunItselfAndNeverForecastsFromTheFrontier
   }
 }
 
-TEST(ConstantVelocity, ExactOnAStraightWalkSilentOnATurnsFirstStep) {
+TEST(ConstantVelocity, ExactOnAStraightWalkSilentWithOneBatchOrBetweenBatches) {
   std::vector<vehicle::Vec3> line;
   for (int i = 0; i < 10; ++i) line.push_back({3.0 * i, -4.0 * i, 0});
   auto cv = constant_velocity_forecaster();
@@ -243,8 +243,8 @@ TEST(ConstantVelocity, ExactOnAStraightWalkSilentOnATurnsFirstStep) {
 }
 
 TEST(Forecasts, TheScorerMeasuresTheNearestConfidentForecastOfTheKind) {
-  // Constant velocity on a walk that turns once: every step is forecast exactly but the first two
-  // (no displacement yet) and the one after the turn (off by the turn's chord).
+  // Constant velocity on a walk that turns once: every step is forecast exactly but the second
+  // (one batch seen: no displacement yet) and the first after the turn (off by the turn's chord).
   std::vector<vehicle::Vec3> pts;
   for (int i = 0; i < 6; ++i) pts.push_back({4.0 * i, 0, 0});
   for (int i = 1; i <= 4; ++i) pts.push_back({20, 4.0 * i, 0});

@@ -30,9 +30,9 @@ TEST(SplitMix64, NamedStreamsDifferAndRepeat) {
   SplitMix64 gyro2 = SplitMix64::stream(7, "gyro");
   int equal = 0;
   for (int i = 0; i < 1000; ++i) {
-    const std::uint64_t g = gyro.next();
-    equal += g == accel.next();
-    EXPECT_EQ(g, gyro2.next());
+    const std::uint64_t draw = gyro.next();
+    equal += draw == accel.next();
+    EXPECT_EQ(draw, gyro2.next());
   }
   EXPECT_EQ(equal, 0);
 }

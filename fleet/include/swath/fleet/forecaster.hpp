@@ -63,8 +63,8 @@ class Forecaster {
   virtual const char* name() const = 0;
   /// The requests expected next, from `current` (the DTG as it stands at `now_s`). Deterministic.
   virtual std::vector<ForecastRequest> forecast(const Dtg& current, double now_s) = 0;
-  /// q(i→j) for two tasks of `current`; 0 for a forecaster without a cancellation model.
-  virtual double cancel_probability(const Dtg& current, int i, int j) const;
+  /// q(i→j) for two task nodes; 0 for a forecaster without a cancellation model.
+  virtual double cancel_probability(const DtgNode& i, const DtgNode& j) const;
 };
 
 struct GmfSettings {

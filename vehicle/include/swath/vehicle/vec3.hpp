@@ -45,6 +45,10 @@ constexpr Vec3 hadamard(const Vec3& a, const Vec3& b) {
 inline double norm(const Vec3& a) {
   return std::sqrt(dot(a, a));
 }
+/// The distance between a and b in the x-y plane (altitudes ignored).
+inline double horizontal_distance(const Vec3& a, const Vec3& b) {
+  return std::hypot(b.x - a.x, b.y - a.y);
+}
 
 /// A rotation as a unit quaternion w + xi + yj + zk (Hamilton convention). As an attitude it maps
 /// body FLU vectors to world ENU: v_world = q ⊗ (0, v_body) ⊗ q*.
