@@ -28,6 +28,7 @@ render::Color drone_color(std::size_t i) {
 
 render::Color mode_color(const std::string& mode) {
   if (mode == "flying") return {0.2f, 0.45f, 0.9f, 1};
+  if (mode == "positioning") return {0.45f, 0.8f, 0.95f, 1};  // speculation: to a forecast
   if (mode == "acting") return {0.1f, 0.65f, 0.25f, 1};
   if (mode == "hovering") return {0.75f, 0.75f, 0.75f, 1};
   if (mode == "held") return {0.95f, 0.8f, 0.2f, 1};
@@ -164,8 +165,8 @@ FleetPicture gantt_picture(const fleet::RunRecord& record, int width_px, int hei
   }
   // Legend along the top.
   double x = 120;
-  for (const char* m :
-       {"flying", "acting", "hovering", "held", "returning", "charging", "lost", "unreachable"}) {
+  for (const char* m : {"flying", "positioning", "acting", "hovering", "held", "returning",
+                        "charging", "lost", "unreachable"}) {
     scene.screen_polygons.push_back(
         {{{{x, 10}, {x + 14, 10}, {x + 14, 24}, {x, 24}}}, mode_color(m)});
     scene.labels.push_back({static_cast<int>(x) + 18, 23, m, static_cast<double>(text_h), kInk});

@@ -36,11 +36,19 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
                  "Instead of --fleet: N default drones (10 m/s, swath-energy's battery and "
                  "power) at the world's origin")
       ->check(CLI::Range(1, 100));
-  if (with_scheduler)
+  if (with_scheduler) {
     app.add_option("--scheduler", r.scheduler,
                    "sa (simulated annealing), reactive (the paper's baseline: sa without "
                    "forecasts), greedy, round-robin, hungarian")
         ->capture_default_str();
+    app.add_option("--forecast", r.forecast,
+                   "What forecasts the next requests for speculation and avoid-mutual (sa only): "
+                   "gmf (graph matching against --history), constant-velocity, none")
+        ->capture_default_str();
+    app.add_option("--history", r.history,
+                   "Past runs of the same app for gmf and the cancellation model: run "
+                   "directories (swath-fleet run -o DIR) or their dtg.json files");
+  }
   app.add_option("--seed", r.seed, "Seed of the scheduler's and the app's random numbers")
       ->capture_default_str();
   app.add_option("--faults", r.faults,
@@ -48,13 +56,20 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
                  "motor_failure, sensor_failure)");
   app.add_option(
       "--weights", r.weights,
-      "Weights file of the sub-utilities (coverage, fairness, avoid_zigzag, commitment)");
+      "Weights file of the sub-utilities (coverage, fairness, avoid_zigzag, commitment, "
+      "speculative, avoid_mutual)");
   app.add_option("--wind", r.wind,
                  "A steady wind E,N in m/s (towards east and north, e.g. 4,-3): the drones keep "
                  "their tracks and times, their rotors work at the airspeed (default: calm)");
   app.add_option("--max-time", r.max_time_s, "Stop a run that has not completed by then, s")
       ->check(CLI::Range(1.0, 604800.0))
       ->capture_default_str();
+}
+
+fleet::Dtg read_history(const std::string& path) {
+  const std::string file =
+      fs::is_directory(path) ? (fs::path(path) / "dtg.json").string() : path;
+  return fleet::parse_dtg(base::read_text_file(file, "history (dtg.json)"), file);
 }
 
 std::vector<std::string> comma_names(const std::string& list) {
@@ -127,13 +142,29 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     faults_text = base::read_text_file(r.faults, "faults file");
     p.settings.faults = fleet::parse_faults(faults_text, r.faults, drone_names, r.max_time_s);
   }
-  p.config_text = "app " + r.app + "\nworld\n" + p.world_text + "\nfleet\n" + fleet_text +
+  p.config_text = "app " + r.app + (r.forecast == "none" ? "" : "\nforecast " + r.forecast) +
+                  "\nworld\n" + p.world_text + "\nfleet\n" + fleet_text +
                   "\ndrones " + std::to_string(r.drones) + "\nweights\n" + weights_text +
                   "\nfaults\n" + faults_text + "\nwind " + r.wind + "\nmax_time_s " +
                   std::to_string(r.max_time_s) + "\n";
   if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
     throw InputError("unknown scheduler \"" + r.scheduler +
                      "\": use sa, reactive, greedy, round-robin or hungarian");
+  if (!fleet::make_forecaster(r.forecast, {}))
+    throw InputError("--forecast: unknown forecaster \"" + r.forecast +
+                     "\": use gmf, constant-velocity or none");
+  if (r.forecast != "none" && r.scheduler != "sa")
+    throw InputError("--forecast " + r.forecast + " needs --scheduler sa (" + r.scheduler +
+                     " does not use forecasts)");
+  if (!r.history.empty() && r.forecast == "none")
+    throw InputError("--history is read by a forecaster: add --forecast gmf");
+  p.settings.forecaster = r.forecast;
+  for (const std::string& h : r.history) {
+    fleet::Dtg g = read_history(h);
+    if (g.app != r.app)
+      throw InputError(h + ": a history of the " + g.app + " app, not of " + r.app);
+    p.settings.histories.push_back(std::move(g));
+  }
   return p;
 }
 
@@ -174,6 +205,12 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"drones", drones},
            {"tasks", tasks},
            {"schedules", r.schedules},
+           {"forecaster", p.settings.forecaster},
+           {"histories", p.settings.histories.size()},
+           {"speculation",
+            {{"positions", r.speculative_positions},
+             {"hits", r.speculative_hits},
+             {"misses", r.speculative_misses}}},
            {"requeued", r.requeued},
            {"duplicate_results", r.duplicate_results},
            {"faults", p.settings.faults.size()},
@@ -210,7 +247,10 @@ std::string tracks_geojson(const PreparedRun& p, const fleet::RunRecord& r) {
 std::string timing_json(const fleet::RunRecord& r) {
   return json{{"schedules", r.schedules},
               {"decision_s_total", r.decision_s_total},
-              {"decision_ms_mean", r.schedules > 0 ? 1e3 * r.decision_s_total / r.schedules : 0.0}}
+              {"decision_ms_mean", r.schedules > 0 ? 1e3 * r.decision_s_total / r.schedules : 0.0},
+              {"forecasts", r.forecasts},
+              {"forecast_s_total", r.forecast_s_total},
+              {"forecast_ms_mean", r.forecasts > 0 ? 1e3 * r.forecast_s_total / r.forecasts : 0.0}}
              .dump(2) +
          "\n";
 }

@@ -22,6 +22,8 @@ struct FleetRequest {
   std::uint64_t seed = 1;
   double max_time_s = 3600;
   int drones = 0;  ///< > 0: that many default drones at the world's origin instead of --fleet
+  std::string forecast = "none";     ///< gmf | constant-velocity | none
+  std::vector<std::string> history;  ///< past runs: directories holding dtg.json, or the files
 };
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler);
 
@@ -38,6 +40,9 @@ struct PreparedRun {
 /// Reads and checks everything (base::InputError on bad input). `world_seed`: re-draws the
 /// world's random parts (compare's scenarios) instead of the file's seed.
 PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed = {});
+
+/// A past run's DTG: `path` is dtg.json or a run directory holding one.
+fleet::Dtg read_history(const std::string& path);
 
 /// The non-empty names of a comma-separated list ("a,b,,c" → a, b, c).
 std::vector<std::string> comma_names(const std::string& list);

@@ -1,5 +1,6 @@
 #include "run_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -171,34 +172,72 @@ void FleetCompareCommand::setup(CLI::App& app) {
   app.add_option("--seeds", seeds_, "Seeds (scenarios) per scheduler")
       ->check(CLI::Range(2, 10000))
       ->capture_default_str();
+  app.add_option("--histories", histories_,
+                 "predictive: how many reactive runs of the other seeds GMF learns from")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   app.add_option("-o,--output", output_, "Directory for compare.csv and summary.json")->required();
 }
+
+namespace {
+// The DTGs predictive's seed k learns from: reactive's runs on the next `count` seeds (cyclic),
+// never its own (leave one out: the run forecast is not in its history).
+std::vector<fleet::Dtg> histories_for(const std::vector<fleet::Dtg>& reactive, std::size_t k,
+                                      std::size_t count) {
+  std::vector<fleet::Dtg> out;
+  for (std::size_t i = 1; i < reactive.size() && out.size() < count; ++i)
+    out.push_back(reactive[(k + i) % reactive.size()]);
+  return out;
+}
+}  // namespace
 
 int FleetCompareCommand::run() {
   const std::vector<std::string> names = comma_names(schedulers_);
   if (names.empty()) throw InputError("--schedulers names no scheduler");
   for (const std::string& n : names)
-    if (!fleet::make_scheduler(n == "reactive" ? "sa" : n))
+    if (n != "predictive" && !fleet::make_scheduler(n == "reactive" ? "sa" : n))
       throw InputError("--schedulers: unknown scheduler \"" + n +
-                       "\": use sa, reactive, greedy, round-robin or hungarian");
+                       "\": use predictive, reactive, sa, greedy, round-robin or hungarian");
   PreparedRun check = prepare_run(request_);  // every input read before any run
+  // predictive = sa + GMF (+ q) with the default or --weights weights, its histories the
+  // reactive runs of the other seeds: those run first.
+  const bool predictive = std::find(names.begin(), names.end(), "predictive") != names.end();
+  std::vector<std::string> order = names;
+  if (predictive) {
+    order.erase(std::remove(order.begin(), order.end(), "predictive"), order.end());
+    if (std::find(order.begin(), order.end(), "reactive") == order.end())
+      order.push_back("reactive");
+    order.push_back("predictive");
+  }
   std::string csv = "scheduler,seed,completed,completion_time_s\n";
   std::map<std::string, std::vector<double>> times;
+  std::map<std::string, std::vector<std::string>> rows_of;
+  std::vector<fleet::Dtg> reactive_dtgs;
   int incomplete = 0;
-  for (const std::string& name : names)
+  for (const std::string& name : order)
     for (int k = 0; k < seeds_; ++k) {
       FleetRequest r = request_;
-      r.scheduler = name;
+      r.scheduler = name == "predictive" ? "sa" : name;
       r.seed = request_.seed + static_cast<std::uint64_t>(k);
       PreparedRun p = prepare_run(r, r.seed);
+      if (name == "predictive") {
+        p.settings.forecaster = "gmf";
+        p.settings.histories =
+            histories_for(reactive_dtgs, static_cast<std::size_t>(k), histories_);
+      }
       const fleet::RunRecord rec = fleet::run_app(p.app, *p.world, p.drones, p.settings);
-      csv += name + "," + std::to_string(r.seed) + "," + (rec.completed ? "true" : "false") + "," +
-             base::fixed_text(rec.completion_time_s, 3) + "\n";
+      if (name == "reactive") reactive_dtgs.push_back(fleet::parse_dtg(rec.dtg_json, "dtg.json"));
+      if (std::find(names.begin(), names.end(), name) == names.end()) continue;  // history only
+      rows_of[name].push_back(name + "," + std::to_string(r.seed) + "," +
+                              (rec.completed ? "true" : "false") + "," +
+                              base::fixed_text(rec.completion_time_s, 3) + "\n");
       if (rec.completed)
         times[name].push_back(rec.completion_time_s);
       else
         ++incomplete;
     }
+  for (const std::string& name : names)
+    for (const std::string& row : rows_of[name]) csv += row;
   json rows = json::array();
   for (const std::string& name : names) {
     const auto& x = times[name];

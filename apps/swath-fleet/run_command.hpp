@@ -88,15 +88,18 @@ class FleetCompareCommand : public Command {
   const char* name() const override { return "compare"; }
   const char* description() const override {
     return "Run an application with several schedulers over many seeds (each seed also a "
-           "scenario of the world); writes compare.csv and summary.json with 95 % intervals";
+           "scenario of the world): predictive (sa + GMF learning from the reactive runs of "
+           "the other seeds), reactive, sa, greedy, round-robin, hungarian; writes compare.csv "
+           "and summary.json with 95 % intervals and paired changes against the first";
   }
   void setup(CLI::App& app) override;
   int run() override;
 
  private:
   FleetRequest request_;
-  std::string output_, schedulers_ = "reactive,greedy,round-robin";
+  std::string output_, schedulers_ = "reactive,predictive";
   int seeds_ = 20;
+  std::size_t histories_ = 5;
 };
 
 }  // namespace swath::apps

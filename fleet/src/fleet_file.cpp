@@ -116,17 +116,15 @@ Weights parse_weights(const std::string& text, const std::string& source) {
     if (!doc.IsMap())
       throw InputError(source + ": a weights file is a YAML mapping (coverage: 1, ...)");
     const YamlMap m(doc, source, "");
-    if (m.has("speculative") || m.has("avoid_mutual"))
-      throw InputError(
-          m.where(m.has("speculative") ? "speculative" : "avoid_mutual") +
-          ": the forecast terms come with the forecaster (swath-fleet part 2); "
-          "the weights here are coverage, closest, fairness, avoid_zigzag, commitment");
-    m.allow({"coverage", "closest", "fairness", "avoid_zigzag", "commitment"});
+    m.allow({"coverage", "closest", "fairness", "avoid_zigzag", "commitment", "speculative",
+             "avoid_mutual"});
     Weights w;
     w.coverage = m.number("coverage", w.coverage, 0, 1000);
     w.fairness = m.number("fairness", w.fairness, 0, 1000);
     w.avoid_zigzag = m.number("avoid_zigzag", w.avoid_zigzag, 0, 1000);
     w.commitment = m.number("commitment", w.commitment, 0, 1000);
+    w.speculative = m.number("speculative", w.speculative, 0, 1000);
+    w.avoid_mutual = m.number("avoid_mutual", w.avoid_mutual, 0, 1000);
     if (m.has("closest") && m.number("closest", 1, 0, 1000) != 1.0)
       throw InputError(m.where("closest") + ": closest is fixed at 1 (scale the others instead)");
     return w;

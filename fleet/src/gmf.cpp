@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <tuple>
 #include <unordered_map>
 
 #include "dtg_index.hpp"
@@ -52,10 +54,15 @@ std::vector<std::vector<std::uint64_t>> wl_signatures(const Dtg& g, const DtgInd
 
 /// A DTG with its adjacency and signatures; refers to the graph, which must outlive it.
 struct Graph {
-  Graph(const Dtg& d, int depth) : g(d), ix(g), sig(wl_signatures(g, ix, depth)) {}
+  Graph(const Dtg& d, int depth)
+      : g(d), ix(g), sig(wl_signatures(g, ix, depth)), mark(g.nodes.size(), 0) {}
   const Dtg& g;
   DtgIndex ix;
   std::vector<std::vector<std::uint64_t>> sig;
+  // Visit marks of neighbourhood(): a node is seen in this walk when mark == epoch (no clearing;
+  // a sync node awaiting a whole batch has hundreds of parents).
+  mutable std::vector<std::uint32_t> mark;
+  mutable std::uint32_t epoch = 0;
 };
 
 /// A located task node of a neighbourhood, with its canonical sort key.
@@ -72,7 +79,11 @@ struct Located {
 /// signature at the remaining depth, creation time relative to the root, number).
 std::vector<Located> neighbourhood(const Graph& gr, int root, int k) {
   std::vector<Located> out;
-  std::vector<int> seen{root};  // neighbourhoods are small: a linear search beats hashing
+  if (++gr.epoch == 0) {  // wrapped: start the marks again
+    std::fill(gr.mark.begin(), gr.mark.end(), 0);
+    gr.epoch = 1;
+  }
+  gr.mark[at(root)] = gr.epoch;
   std::vector<int> level{root}, next;
   const double t0 = gr.g.nodes[at(root)].created_s;
   for (int d = 0; d <= k && !level.empty(); ++d) {
@@ -84,8 +95,8 @@ std::vector<Located> neighbourhood(const Graph& gr, int root, int k) {
             {d, gr.sig[at(k - d)][at(n)], node.created_s - t0, node.number, *node.first_loc_m});
       if (d < k)
         for (int p : gr.ix.parents[at(n)])
-          if (std::find(seen.begin(), seen.end(), p) == seen.end()) {
-            seen.push_back(p);
+          if (gr.mark[at(p)] != gr.epoch) {
+            gr.mark[at(p)] = gr.epoch;
             next.push_back(p);
           }
     }
@@ -165,7 +176,7 @@ std::vector<Cluster> cluster_points(const std::vector<Point>& points, double rad
     Cluster* home = nullptr;
     for (Cluster& c : out) {
       const Vec3 m = c.centre();
-      if (c.kind == p.kind && vehicle::horizontal_distance(m, p.loc) <= radius_m) {
+      if (vehicle::horizontally_within(m, p.loc, radius_m) && c.kind == p.kind) {
         home = &c;
         break;
       }
@@ -277,7 +288,7 @@ class Gmf final : public Forecaster {
     std::vector<std::pair<Motion, Ref>> fits;
     for (std::size_t r = 0; r < ranked; ++r) {
       const Ref& c = cands[r * cands.size() / ranked];  // an even spread when capped
-      Motion m = rigid_fit(neighbourhood(*c.graph, c.node, depth), mine);
+      Motion m = rigid_fit(stored_neighbourhood(c, depth), mine);
       if (std::isfinite(m.rms_m)) fits.emplace_back(m, c);
     }
     std::stable_sort(fits.begin(), fits.end(),
@@ -306,12 +317,27 @@ class Gmf final : public Forecaster {
     return out;
   }
 
+  /// A candidate's neighbourhood: a stored run's never changes, so it is kept (the same
+  /// candidates come back for every frontier node and every forecast); the current run's is
+  /// walked each time.
+  const std::vector<Located>& stored_neighbourhood(const Ref& c, int depth) const {
+    if (c.graph < graphs_.data() || c.graph >= graphs_.data() + graphs_.size()) {
+      scratch_ = neighbourhood(*c.graph, c.node, depth);
+      return scratch_;
+    }
+    const auto key = std::make_tuple(c.graph - graphs_.data(), c.node, depth);
+    auto it = neighbourhoods_.find(key);
+    if (it == neighbourhoods_.end())
+      it = neighbourhoods_.emplace(key, neighbourhood(*c.graph, c.node, depth)).first;
+    return it->second;
+  }
+
   /// Across frontier nodes the larger probability wins for the same place and kind.
   void merge(std::vector<ForecastRequest>& into, std::vector<ForecastRequest> add) const {
     for (ForecastRequest& a : add) {
       auto same = std::find_if(into.begin(), into.end(), [&](const ForecastRequest& b) {
-        return b.kind == a.kind &&
-               vehicle::horizontal_distance(a.location_m, b.location_m) <= s_.cluster_m;
+        return vehicle::horizontally_within(a.location_m, b.location_m, s_.cluster_m) &&
+               b.kind == a.kind;
       });
       if (same == into.end())
         into.push_back(std::move(a));
@@ -325,6 +351,8 @@ class Gmf final : public Forecaster {
   std::vector<Graph> graphs_;
   std::vector<std::unordered_map<std::uint64_t, std::vector<Ref>>> index_;
   CancellationModel q_;
+  mutable std::map<std::tuple<std::ptrdiff_t, int, int>, std::vector<Located>> neighbourhoods_;
+  mutable std::vector<Located> scratch_;
 };
 
 }  // namespace

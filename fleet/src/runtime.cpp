@@ -35,7 +35,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 enum class ActionType { fly_to = 0, sense = 1, hover = 2, custom = 3 };
 enum class ActionState { pending, running, completed, delivered, dropped };
 enum class TaskStatus { running, done, cancelled, failed };
-enum class Mode { landed, hovering, flying, acting, held, returning, charging, lost };
+// positioning: flying to a forecast place (speculation, DESIGN.md §18.5), serving nothing.
+enum class Mode { landed, hovering, flying, positioning, acting, held, returning, charging, lost };
 
 const char* mode_name(Mode m, bool link_up) {
   if (!link_up && m != Mode::lost) return "unreachable";
@@ -46,6 +47,8 @@ const char* mode_name(Mode m, bool link_up) {
       return "hovering";
     case Mode::flying:
       return "flying";
+    case Mode::positioning:
+      return "positioning";
     case Mode::acting:
       return "acting";
     case Mode::held:
@@ -90,7 +93,7 @@ struct Task {
   double created_s = 0, ended_s = -1, visible_since_s = -1;
   std::optional<Vec3> first_loc;
   std::vector<int> drones_used;
-  int sync_node = -1;      // the sync node its latest awaits formed; -1 after it did something else
+  int sync_node = -1;  // the sync node its latest awaits formed; -1 after it did something else
   // It spawned or cancelled since that sync node: edges still leave the node, but its next await
   // is a new one (an await after work is the next iteration's sync, DESIGN.md §18.3).
   bool issued_since_sync = false;
@@ -137,7 +140,13 @@ struct Drone {
   DroneRecord record;
   std::string span_mode;
   double span_start = 0;
+  std::optional<Vec3> spot;  // the forecast place it was sent to (speculation)
+  bool spot_hit = false;     // a request appeared there
 };
+
+bool on_leg(Mode m) {
+  return m == Mode::flying || m == Mode::positioning || m == Mode::returning;
+}
 
 // In a steady wind the autopilot holds position and ground track: the rotors fly at the
 // airspeed, ground velocity less wind (RunSettings::wind_m_s).
@@ -184,11 +193,20 @@ class Runtime final : public detail::Core {
         settings_(settings),
         app_rng_(vehicle::SplitMix64::stream(settings.seed, "app")),
         sched_rng_(vehicle::SplitMix64::stream(settings.seed, "scheduler")) {
-    std::string name = settings.scheduler == "reactive" ? "sa" : settings.scheduler;
-    scheduler_ = make_scheduler(name);
+    const bool reactive = settings.scheduler == "reactive";
+    scheduler_ = make_scheduler(reactive ? "sa" : settings.scheduler);
     if (!scheduler_)
       throw base::InputError("unknown scheduler \"" + settings.scheduler +
                              "\": use sa, reactive, greedy, round-robin or hungarian");
+    if (reactive) {  // the paper's baseline: SA without the forecast terms
+      settings_.weights.speculative = 0;
+      settings_.weights.avoid_mutual = 0;
+    } else if (settings.forecaster != "none") {
+      forecaster_ = make_forecaster(settings.forecaster, settings.histories, settings.gmf);
+      if (!forecaster_)
+        throw base::InputError("unknown forecaster \"" + settings.forecaster +
+                               "\": use gmf, constant-velocity or none");
+    }
     for (std::size_t i = 0; i < specs.size(); ++i) {
       Drone d;
       d.spec = specs[i];
@@ -242,12 +260,36 @@ class Runtime final : public detail::Core {
     return e;
   }
 
+  // The DTG's sync nodes and edges (its task nodes are tasks_).
+  struct SyncNode {
+    int waiter = 0;  // task id
+    double created_s = 0;
+    std::vector<int> awaited;  // task ids
+  };
+  struct DtgRef {  // a node: task id or sync number
+    bool sync = false;
+    int number = 0;
+  };
+  struct Edge {
+    DtgRef from, to;
+    DtgEdgeType type;
+  };
+  static DtgRef issuer_node(const Task& t) {  // where its spawn and cancel edges leave
+    return t.sync_node >= 0 ? DtgRef{true, t.sync_node} : DtgRef{false, t.id};
+  }
+  Dtg live_dtg() const;
+
   // One scheduling round's steps (schedule() runs them).
   Snapshot snapshot_base() const;
   void add_requests(Snapshot& s, std::vector<int>& req_task);
   void add_drones(Snapshot& s, const std::vector<int>& req_task, std::vector<int>& drone_of);
   void apply_assignment(const Snapshot& s, const Assignment& a, const std::vector<int>& req_task,
                         const std::vector<int>& drone_of);
+  void update_forecasts();
+  void add_forecasts(Snapshot& s, const std::vector<int>& req_task) const;
+  void position(Drone& d, const ForecastRequest& f);
+  void leave_spot(Drone& d);
+  void note_hits(const Vec3& request_at, int task);
 
   // The run's steps (run() is their loop).
   Task& start_main();
@@ -313,9 +355,15 @@ class Runtime final : public detail::Core {
   std::uint64_t seq_ = 0;
   double next_state_log_ = 0;
   RunRecord record_;
-  json dtg_nodes_ = json::array(), dtg_edges_ = json::array();
-  std::vector<json> task_nodes_;
-  int sync_count_ = 0;
+  // The DTG as it grows (DESIGN.md §18.3): task nodes are tasks_, sync nodes and edges here.
+  std::vector<SyncNode> syncs_;
+  std::vector<Edge> edges_;
+  bool dtg_changed_ = true;  // since the last forecast
+
+  // Forecasting and speculation (DESIGN.md §18.4–18.5).
+  std::unique_ptr<Forecaster> forecaster_;
+  std::vector<ForecastRequest> forecasts_;
+  Dtg live_;  // the DTG at the last forecast (q reads its nodes)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -338,13 +386,10 @@ int Runtime::spawn(int parent, const Kind& kind, Flags flags,
   if (parent >= 0 && static_cast<std::size_t>(parent) < tasks_.size()) {
     Task& p = tasks_[static_cast<std::size_t>(parent)];
     t.location = p.location;
-    const std::string from =
-        p.sync_node >= 0 ? "s" + std::to_string(p.sync_node) : "t" + std::to_string(parent);
     p.issued_since_sync = true;
-    dtg_edges_.push_back(
-        json{{"from", from}, {"to", "t" + std::to_string(t.id)}, {"type", "spawn"}});
+    edges_.push_back({issuer_node(p), {false, t.id}, DtgEdgeType::spawn});
   }
-  task_nodes_.push_back(json::object());
+  dtg_changed_ = true;
   log(json{{"ev", "task_created"}, {"task", t.id}, {"kind", t.kind}, {"parent", parent}});
   t.root = t.start(*t.ctx);
   ready_.push_back({t.id, t.root, nullptr});
@@ -394,13 +439,10 @@ Future<void> Runtime::delay(int task, double cost_s) {
 
 int Runtime::dtg_sync_node(Task& t) {
   if (t.sync_node < 0 || t.issued_since_sync) {
-    t.sync_node = sync_count_++;
+    t.sync_node = static_cast<int>(syncs_.size());
     t.issued_since_sync = false;
-    dtg_nodes_.push_back(json{{"id", "s" + std::to_string(t.sync_node)},
-                              {"type", "sync"},
-                              {"waiter", t.id},
-                              {"created_s", round6(now_)},
-                              {"awaited", json::array()}});
+    syncs_.push_back({t.id, now_, {}});
+    dtg_changed_ = true;
   }
   return t.sync_node;
 }
@@ -411,11 +453,9 @@ void Runtime::suspended(int task, detail::StateBase& awaited, std::coroutine_han
   if (awaited.task >= 0 && task >= 0) {  // awaiting a task: a sync node of the DTG
     Task& t = tasks_.at(static_cast<std::size_t>(task));
     const int node = dtg_sync_node(t);
-    for (auto& n : dtg_nodes_)
-      if (n["id"] == "s" + std::to_string(node)) n["awaited"].push_back(awaited.task);
-    dtg_edges_.push_back(json{{"from", "t" + std::to_string(awaited.task)},
-                              {"to", "s" + std::to_string(node)},
-                              {"type", "sync"}});
+    syncs_[static_cast<std::size_t>(node)].awaited.push_back(awaited.task);
+    edges_.push_back({{false, awaited.task}, {true, node}, DtgEdgeType::sync});
+    dtg_changed_ = true;
   }
 }
 
@@ -513,6 +553,7 @@ void Runtime::finish_task(Task& t, TaskStatus status, const std::string& reason)
   }
   wake(*t.result);
   changed_ = true;
+  dtg_changed_ = true;
 }
 
 void Runtime::cancel(int issuer, int task) {
@@ -521,11 +562,8 @@ void Runtime::cancel(int issuer, int task) {
   if (t.status != TaskStatus::running) return;
   if (issuer >= 0) {
     Task& i = tasks_[static_cast<std::size_t>(issuer)];
-    const std::string from =
-        i.sync_node >= 0 ? "s" + std::to_string(i.sync_node) : "t" + std::to_string(issuer);
     i.issued_since_sync = true;
-    dtg_edges_.push_back(
-        json{{"from", from}, {"to", "t" + std::to_string(task)}, {"type", "cancel"}});
+    edges_.push_back({issuer_node(i), {false, task}, DtgEdgeType::cancel});
   }
   finish_task(t, TaskStatus::cancelled, "");
 }
@@ -568,8 +606,7 @@ void Runtime::resolve_action(Task& t, std::size_t a, const Reading& r, int drone
 // Drones
 
 Vec3 Runtime::position_at(const Drone& d, double t) const {
-  if ((d.mode == Mode::flying || d.mode == Mode::returning) && d.leg)
-    return d.leg->position_at(t - d.leg_start);
+  if (on_leg(d.mode) && d.leg) return d.leg->position_at(t - d.leg_start);
   return d.pos;
 }
 
@@ -595,6 +632,7 @@ void Runtime::integrate(Drone& d, double t) {
       d.idle_s += d.mode == Mode::acting ? 0.0 : b - a;
       break;
     case Mode::flying:
+    case Mode::positioning:
     case Mode::returning: {
       const Leg& leg = *d.leg;
       const double la = a - d.leg_start, lb = b - d.leg_start;
@@ -660,6 +698,7 @@ double Runtime::next_event(const Drone& d) const {
   double e = kInf;
   switch (d.mode) {
     case Mode::flying:
+    case Mode::positioning:
     case Mode::returning:
       e = d.leg_start + d.leg->duration_s();
       break;
@@ -683,7 +722,7 @@ double Runtime::next_event(const Drone& d) const {
 void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   integrate(d, t);
   double v0 = 0;
-  if ((d.mode == Mode::flying || d.mode == Mode::returning) && d.leg) {
+  if (on_leg(d.mode) && d.leg) {
     // A retarget keeps the speed along the new course (the component across it is braked).
     const double along = d.leg->speed_at(t - d.leg_start);
     const Vec3 old_dir = d.leg->to() - d.leg->from(), new_dir = to - d.pos;
@@ -699,7 +738,7 @@ void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
 
 bool Runtime::available(const Drone& d) const {
   return d.link_up && (d.mode == Mode::landed || d.mode == Mode::hovering || d.mode == Mode::held ||
-                       (d.mode == Mode::flying && d.task >= 0));
+                       d.mode == Mode::positioning || (d.mode == Mode::flying && d.task >= 0));
 }
 
 double Runtime::leave_time(const Drone& d) const {
@@ -748,6 +787,7 @@ void Runtime::requeue(Drone& d, const std::string& reason) {
 
 void Runtime::go_home(Drone& d, double t, const std::string& why) {
   requeue(d, why);
+  leave_spot(d);
   if (d.held_for >= 0) d.held_for = -1;
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
   start_leg(d, home, Mode::returning, t);
@@ -914,6 +954,7 @@ void Runtime::step_drone(Drone& d, double t) {
   recover(d, t);
   switch (d.mode) {
     case Mode::flying:
+    case Mode::positioning:
       if (t >= d.leg_start + d.leg->duration_s()) arrive(d, t);
       break;
     case Mode::acting:
@@ -1041,6 +1082,7 @@ void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
       t.visible_since_s = now_;
       log(at_json(json{{"ev", "request_visible"}, {"task", t.id}, {"segment", t.segment++}},
                   r.location_m, json{{"service_s", round6(r.service_s)}}));
+      note_hits(r.location_m, t.id);
     }
     r.waiting_s = now_ - t.visible_since_s;
     if (t.bound) r.bound_drone = *t.bound;
@@ -1073,6 +1115,15 @@ void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
       if (req_task[r] == d.task) ds.target = static_cast<int>(r);
       if (d.mode == Mode::held && req_task[r] == d.held_for) ds.only_request = static_cast<int>(r);
     }
+    if (d.spot) {  // speculating: the forecast at its place is its target (commitment)
+      double nearest = settings_.hit_within_m;
+      for (std::size_t f = 0; f < s.forecasts.size(); ++f)
+        if (const double g = vehicle::horizontal_distance(s.forecasts[f].location_m, *d.spot);
+            g <= nearest) {
+          nearest = g;
+          ds.target = static_cast<int>(req_task.size() + f);
+        }
+    }
     drone_of.push_back(d.index);
     s.drones.push_back(ds);
   }
@@ -1088,8 +1139,23 @@ void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
 void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
                                const std::vector<int>& req_task, const std::vector<int>& drone_of) {
   std::vector<Vec3> claimed;
+  const auto visible = static_cast<int>(req_task.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     Drone& d = drones_[static_cast<std::size_t>(drone_of[i])];
+    if (a[i] && *a[i] >= visible) {  // speculation: only a place to wait at
+      const ForecastRequest& f = s.forecasts[static_cast<std::size_t>(*a[i] - visible)];
+      if (d.spot && vehicle::horizontal_distance(*d.spot, f.location_m) < 1e-6) continue;
+      if (d.task >= 0) {
+        Task& old = tasks_[static_cast<std::size_t>(d.task)];
+        old.serving = -1;
+        for (auto& act : old.actions)
+          if (act.state == ActionState::running) act.state = ActionState::pending;
+        d.task = -1;
+      }
+      position(d, f);
+      continue;
+    }
+    leave_spot(d);
     int want = a[i] ? req_task[static_cast<std::size_t>(*a[i])] : -1;
     if (want >= 0) {
       const Vec3 at = s.requests[static_cast<std::size_t>(*a[i])].location_m;
@@ -1125,7 +1191,7 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
     }
   }
   for (Drone& d : drones_)
-    if (d.mode == Mode::flying && d.task < 0) {
+    if ((d.mode == Mode::flying && d.task < 0) || (d.mode == Mode::positioning && !d.spot)) {
       integrate(d, now_);
       d.leg.reset();
       set_mode(d, Mode::hovering, now_);
@@ -1137,10 +1203,13 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
 void Runtime::schedule() {
   Snapshot s = snapshot_base();
   std::vector<int> req_task, drone_of;
+  update_forecasts();
   add_requests(s, req_task);
+  add_forecasts(s, req_task);
   add_drones(s, req_task, drone_of);
-  if (s.requests.empty() && std::none_of(s.drones.begin(), s.drones.end(),
-                                         [](const DroneState& x) { return x.target.has_value(); }))
+  if (s.requests.empty() && s.forecasts.empty() &&
+      std::none_of(s.drones.begin(), s.drones.end(),
+                   [](const DroneState& x) { return x.target.has_value(); }))
     return;
   const auto clock0 = std::chrono::steady_clock::now();
   const Assignment a = s.drones.empty() ? Assignment{} : scheduler_->assign(s, sched_rng_);
@@ -1148,12 +1217,98 @@ void Runtime::schedule() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
   ++record_.schedules;
   json assignment = json::array();
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i])
-      assignment.push_back(
-          json{{"drone", drone_of[i]}, {"task", req_task[static_cast<std::size_t>(*a[i])]}});
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i]) continue;
+    const auto k = static_cast<std::size_t>(*a[i]);
+    if (k < req_task.size())
+      assignment.push_back(json{{"drone", drone_of[i]}, {"task", req_task[k]}});
+    else  // a forecast place (its `position` event follows)
+      assignment.push_back(json{{"drone", drone_of[i]}, {"forecast", k - req_task.size()}});
+  }
   log(json{{"ev", "schedule"}, {"assignment", assignment}});
   apply_assignment(s, a, req_task, drone_of);
+}
+
+// Forecasts again when the DTG changed (§18.3 step 4); a `forecast` event when they differ.
+void Runtime::update_forecasts() {
+  if (!forecaster_ || !dtg_changed_) return;
+  dtg_changed_ = false;
+  const auto clock0 = std::chrono::steady_clock::now();
+  live_ = live_dtg();
+  std::vector<ForecastRequest> next = forecaster_->forecast(live_, now_);
+  record_.forecast_s_total +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+  ++record_.forecasts;
+  auto same = [](const std::vector<ForecastRequest>& a, const std::vector<ForecastRequest>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto& x, const auto& y) {
+      return x.kind == y.kind && x.p == y.p && x.location_m.x == y.location_m.x &&
+             x.location_m.y == y.location_m.y;
+    });
+  };
+  if (same(next, forecasts_)) return;
+  forecasts_ = std::move(next);
+  json list = json::array();
+  for (const ForecastRequest& f : forecasts_)
+    list.push_back(at_json(json{{"kind", f.kind}}, f.location_m,
+                           json{{"p", round6(f.p)}, {"expected_s", round6(f.expected_s)}}));
+  log(json{{"ev", "forecast"}, {"forecasts", list}});
+}
+
+// The forecasts not already shown by a visible request, and q between the visible requests
+// (§18.5's avoid-mutual; pairs below 0.01 left out, as the scheduler's neighbour lists).
+void Runtime::add_forecasts(Snapshot& s, const std::vector<int>& req_task) const {
+  if (!forecaster_) return;
+  for (const ForecastRequest& f : forecasts_)
+    if (f.p > 0 && std::none_of(s.requests.begin(), s.requests.end(), [&](const Request& r) {
+          return vehicle::horizontal_distance(r.location_m, f.location_m) <= settings_.hit_within_m;
+        })) {
+      ForecastRequest g = f;
+      g.location_m.z = 0;  // each drone flies at its layer
+      s.forecasts.push_back(g);
+    }
+  for (std::size_t i = 0; i < req_task.size(); ++i)
+    for (std::size_t j = 0; j < req_task.size(); ++j) {
+      if (i == j) continue;
+      const auto ti = static_cast<std::size_t>(req_task[i]),
+                 tj = static_cast<std::size_t>(req_task[j]);
+      if (ti >= live_.nodes.size() || tj >= live_.nodes.size()) continue;
+      const double q = forecaster_->cancel_probability(live_.nodes[ti], live_.nodes[tj]);
+      if (q > 0.01) s.mutual.push_back({static_cast<int>(i), static_cast<int>(j), q});
+    }
+}
+
+// Speculation positions a drone only (§18.5): it flies to the forecast place at its layer and
+// waits there; it serves what appears only when the scheduler gives it that request.
+void Runtime::position(Drone& d, const ForecastRequest& f) {
+  leave_spot(d);
+  d.spot = f.location_m;
+  d.spot_hit = false;
+  ++record_.speculative_positions;
+  Vec3 to = f.location_m;
+  to.z = d.layer_m;
+  log(at_json(json{{"ev", "position"}, {"drone", d.index}}, to,
+              json{{"kind", f.kind}, {"p", round6(f.p)}}));
+  start_leg(d, to, Mode::positioning, now_);
+}
+
+// The drone leaves its forecast place (another target, home, the run's end): a miss unless a
+// request appeared there.
+void Runtime::leave_spot(Drone& d) {
+  if (!d.spot) return;
+  if (!d.spot_hit) ++record_.speculative_misses;
+  d.spot.reset();
+  d.spot_hit = false;
+}
+
+// A request appeared: a hit for each drone sent to within hit_within_m of it.
+void Runtime::note_hits(const Vec3& request_at, int task) {
+  for (Drone& d : drones_)
+    if (d.spot && !d.spot_hit &&
+        vehicle::horizontal_distance(*d.spot, request_at) <= settings_.hit_within_m) {
+      d.spot_hit = true;
+      ++record_.speculative_hits;
+      log(json{{"ev", "speculation_hit"}, {"drone", d.index}, {"task", task}});
+    }
 }
 
 void Runtime::apply_fault(const FaultEvent& f) {
@@ -1174,7 +1329,8 @@ void Runtime::apply_fault(const FaultEvent& f) {
       }
       d.link_up = false;
       d.link_back = now_ + f.duration_s;
-      if (d.mode == Mode::flying || d.mode == Mode::hovering || d.mode == Mode::held) {
+      if (d.mode == Mode::flying || d.mode == Mode::positioning || d.mode == Mode::hovering ||
+          d.mode == Mode::held) {
         requeue(d, "link_loss");
         go_home(d, now_, "link_loss");
       } else {
@@ -1206,6 +1362,7 @@ void Runtime::apply_fault(const FaultEvent& f) {
           }
         }
       d.held_for = -1;
+      leave_spot(d);
       d.leg.reset();
       for (const Pending& p : d.buffered) {
         Action& a = tasks_[static_cast<std::size_t>(p.task)].actions[p.action];
@@ -1361,6 +1518,7 @@ void Runtime::finish_run(const Task& main) {
     if (t.status == TaskStatus::running) finish_task(t, TaskStatus::cancelled, "run_ended");
   destroy_frames();
   for (Drone& d : drones_) {
+    leave_spot(d);
     integrate(d, now_);
     set_mode(d, d.mode, now_);
     if (!d.span_mode.empty() && now_ > d.span_start)
@@ -1379,6 +1537,7 @@ void Runtime::finish_run(const Task& main) {
 
 // dtg.json: task nodes, sync nodes, edges (DESIGN.md §18.3).
 std::string Runtime::dtg_json() const {
+  auto id = [](const DtgRef& r) { return (r.sync ? "s" : "t") + std::to_string(r.number); };
   json nodes = json::array();
   for (const Task& t : tasks_) {
     json n{{"id", "t" + std::to_string(t.id)},
@@ -1395,13 +1554,61 @@ std::string Runtime::dtg_json() const {
       n["first_loc"] = {round6(t.first_loc->x), round6(t.first_loc->y), round6(t.first_loc->z)};
     nodes.push_back(n);
   }
-  for (const auto& n : dtg_nodes_) nodes.push_back(n);
+  for (std::size_t k = 0; k < syncs_.size(); ++k)
+    nodes.push_back(json{{"id", "s" + std::to_string(k)},
+                         {"type", "sync"},
+                         {"waiter", syncs_[k].waiter},
+                         {"created_s", round6(syncs_[k].created_s)},
+                         {"awaited", syncs_[k].awaited}});
+  json edges = json::array();
+  for (const Edge& e : edges_)
+    edges.push_back(json{{"from", id(e.from)},
+                         {"to", id(e.to)},
+                         {"type", e.type == DtgEdgeType::spawn  ? "spawn"
+                                  : e.type == DtgEdgeType::sync ? "sync"
+                                                                : "cancel"}});
   return json{{"app", settings_.app_name},
               {"seed", settings_.seed},
               {"nodes", nodes},
-              {"edges", dtg_edges_}}
+              {"edges", edges}}
              .dump(1) +
          "\n";
+}
+
+// The DTG as it stands now, as a value (the forecaster's input): tasks still running are its
+// frontier. Node indices as parse_dtg makes them: tasks by id, then sync nodes by number.
+Dtg Runtime::live_dtg() const {
+  Dtg g;
+  g.app = settings_.app_name;
+  g.nodes.reserve(tasks_.size() + syncs_.size());
+  for (const Task& t : tasks_) {
+    DtgNode n;
+    n.number = t.id;
+    n.kind = t.kind;
+    n.created_s = round6(t.created_s);
+    if (t.status != TaskStatus::running) {
+      n.ended_s = round6(t.ended_s);
+      n.status = t.status == TaskStatus::done        ? DtgStatus::done
+                 : t.status == TaskStatus::cancelled ? DtgStatus::cancelled
+                                                     : DtgStatus::failed;
+    }
+    if (t.first_loc)
+      n.first_loc_m = Vec3{round6(t.first_loc->x), round6(t.first_loc->y), round6(t.first_loc->z)};
+    g.nodes.push_back(std::move(n));
+  }
+  for (std::size_t k = 0; k < syncs_.size(); ++k) {
+    DtgNode n;
+    n.type = DtgNodeType::sync;
+    n.number = static_cast<int>(k);
+    n.waiter = syncs_[k].waiter;
+    n.kind = tasks_[static_cast<std::size_t>(n.waiter)].kind;
+    n.created_s = round6(syncs_[k].created_s);
+    g.nodes.push_back(std::move(n));
+  }
+  const int tasks = static_cast<int>(tasks_.size());
+  auto index = [&](const DtgRef& r) { return r.sync ? tasks + r.number : r.number; };
+  for (const Edge& e : edges_) g.edges.push_back({index(e.from), index(e.to), e.type});
+  return g;
 }
 
 // The tick loop (DESIGN.md §18.3): resume what is ready, schedule when inputs changed, jump to

@@ -3,6 +3,7 @@
 #include "swath/fleet/leg.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -19,7 +20,7 @@ std::size_t draw(vehicle::SplitMix64& rng, std::size_t n) {
 // Busy drones keep their targets: fixed first, their requests taken.
 Assignment fixed_part(const Snapshot& s, std::vector<char>& taken) {
   Assignment a(s.drones.size());
-  taken.assign(s.requests.size(), 0);
+  taken.assign(s.requests.size() + s.forecasts.size(), 0);
   for (std::size_t d = 0; d < s.drones.size(); ++d)
     if (s.drones[d].busy && s.drones[d].target && *s.drones[d].target >= 0 &&
         static_cast<std::size_t>(*s.drones[d].target) < s.requests.size()) {
@@ -144,7 +145,7 @@ class Hungarian final : public Scheduler {
     std::vector<std::size_t> rows, cols;
     for (std::size_t d = 0; d < u.drones(); ++d)
       if (!s.drones[d].busy) rows.push_back(d);
-    for (std::size_t r = 0; r < u.requests(); ++r)
+    for (std::size_t r = 0; r < u.targets(); ++r)
       if (!taken[r]) cols.push_back(r);
     if (rows.empty()) return a;
     // Columns: the free requests, then one "none" per drone (value 0). Infeasible pairs get a
@@ -181,7 +182,7 @@ class Annealing final : public Scheduler {
 
 Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
   const Utility u(s);
-  const std::size_t nd = u.drones(), nr = u.requests();
+  const std::size_t nd = u.drones(), nr = u.targets();
   // Start: the better of greedy and the current targets (when they are a valid assignment).
   Assignment start = greedy(u);
   Assignment current(nd);
@@ -193,19 +194,23 @@ Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
       target[d] = *start[d];
       holder[static_cast<std::size_t>(*start[d])] = static_cast<int>(d);
     }
-  // Candidates per free drone: its nearest feasible requests, its current target.
+  // Candidates per free drone: its nearest feasible visible and forecast requests, its current
+  // target.
   std::vector<std::size_t> free_drones;
   std::vector<std::vector<int>> candidates(nd);
   for (std::size_t d = 0; d < nd; ++d) {
     if (s.drones[d].busy) continue;
     free_drones.push_back(d);
-    std::vector<std::pair<double, int>> near;
-    for (std::size_t r = 0; r < nr; ++r)
-      if (u.feasible(d, r)) near.push_back({u.eta_s(d, r), static_cast<int>(r)});
-    const auto k =
-        std::min<std::size_t>(near.size(), static_cast<std::size_t>(settings_.candidates));
-    std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
-    for (std::size_t i = 0; i < k; ++i) candidates[d].push_back(near[i].second);
+    auto nearest = [&](std::size_t from, std::size_t to, int count) {
+      std::vector<std::pair<double, int>> near;
+      for (std::size_t r = from; r < to; ++r)
+        if (u.feasible(d, r)) near.push_back({u.eta_s(d, r), static_cast<int>(r)});
+      const auto k = std::min<std::size_t>(near.size(), static_cast<std::size_t>(count));
+      std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
+      for (std::size_t i = 0; i < k; ++i) candidates[d].push_back(near[i].second);
+    };
+    nearest(0, u.requests(), settings_.candidates);
+    nearest(u.requests(), nr, settings_.forecast_candidates);
     if (target[d] != kNone &&
         std::find(candidates[d].begin(), candidates[d].end(), target[d]) == candidates[d].end())
       candidates[d].push_back(target[d]);
@@ -213,6 +218,29 @@ Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
   if (free_drones.empty()) return start;
   auto value = [&](std::size_t d, int r) {
     return r == kNone ? 0.0 : u.value(d, static_cast<std::size_t>(r));
+  };
+  // avoid-mutual's penalty around the moved drones' requests (each pair once), as they stand.
+  auto local_pairs = [&](const std::array<int, 4>& moved) {
+    double cost = 0;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      const int i = moved[k];
+      if (i == kNone || static_cast<std::size_t>(i) >= u.requests() ||
+          std::find(moved.begin(), moved.begin() + static_cast<std::ptrdiff_t>(k), i) !=
+              moved.begin() + static_cast<std::ptrdiff_t>(k))
+        continue;
+      const int di = holder[static_cast<std::size_t>(i)];
+      if (di == kNone) continue;
+      for (const Utility::Link& l : u.links(static_cast<std::size_t>(i))) {
+        const int dj = holder[l.other];
+        if (dj == kNone) continue;
+        const bool also_moved =
+            std::find(moved.begin(), moved.end(), static_cast<int>(l.other)) != moved.end();
+        if (also_moved && static_cast<int>(l.other) < i) continue;  // counted from its side
+        cost += u.pair_cost(static_cast<std::size_t>(i), static_cast<std::size_t>(di), l,
+                            static_cast<std::size_t>(dj));
+      }
+    }
+    return cost;
   };
   // A move and its ΔU; apply() makes it.
   struct Move {
@@ -222,7 +250,24 @@ Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
     double delta = 0;
     bool valid = false;
   };
-  auto propose = [&]() {
+  auto apply = [&](const Move& m) {
+    if (m.kind == 0) {
+      if (m.d2 != m.d1) target[m.d2] = kNone;
+      if (target[m.d1] != kNone) holder[static_cast<std::size_t>(target[m.d1])] = kNone;
+      target[m.d1] = m.r;
+      holder[static_cast<std::size_t>(m.r)] = static_cast<int>(m.d1);
+    } else if (m.kind == 1) {
+      std::swap(target[m.d1], target[m.d2]);
+      if (target[m.d1] != kNone)
+        holder[static_cast<std::size_t>(target[m.d1])] = static_cast<int>(m.d1);
+      if (target[m.d2] != kNone)
+        holder[static_cast<std::size_t>(target[m.d2])] = static_cast<int>(m.d2);
+    } else {
+      holder[static_cast<std::size_t>(target[m.d1])] = kNone;
+      target[m.d1] = kNone;
+    }
+  };
+  auto propose_pair = [&]() {
     Move m;
     const double pick = rng.uniform();
     m.d1 = free_drones[draw(rng, free_drones.size())];
@@ -254,22 +299,25 @@ Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
     }
     return m;
   };
-  auto apply = [&](const Move& m) {
-    if (m.kind == 0) {
-      if (m.d2 != m.d1) target[m.d2] = kNone;
-      if (target[m.d1] != kNone) holder[static_cast<std::size_t>(target[m.d1])] = kNone;
-      target[m.d1] = m.r;
-      holder[static_cast<std::size_t>(m.r)] = static_cast<int>(m.d1);
-    } else if (m.kind == 1) {
-      std::swap(target[m.d1], target[m.d2]);
-      if (target[m.d1] != kNone)
-        holder[static_cast<std::size_t>(target[m.d1])] = static_cast<int>(m.d1);
-      if (target[m.d2] != kNone)
-        holder[static_cast<std::size_t>(target[m.d2])] = static_cast<int>(m.d2);
-    } else {
-      holder[static_cast<std::size_t>(target[m.d1])] = kNone;
-      target[m.d1] = kNone;
-    }
+  // The pair part of ΔU from the values; the pairwise part by making the move on the moved
+  // drones' entries, measuring, and putting them back.
+  auto propose = [&]() {
+    Move m = propose_pair();
+    if (!m.valid || !u.has_pairwise()) return m;
+    const std::array<int, 4> moved{target[m.d1], target[m.d2], m.r,
+                                   m.kind == 1 ? target[m.d1] : kNone};
+    const double before = local_pairs(moved);
+    const std::array<int, 2> old_target{target[m.d1], target[m.d2]};
+    std::array<int, 4> old_holder{};
+    for (std::size_t k = 0; k < 4; ++k)
+      old_holder[k] = moved[k] == kNone ? kNone : holder[static_cast<std::size_t>(moved[k])];
+    apply(m);
+    m.delta -= local_pairs(moved) - before;
+    target[m.d1] = old_target[0];
+    target[m.d2] = old_target[1];
+    for (std::size_t k = 4; k-- > 0;)
+      if (moved[k] != kNone) holder[static_cast<std::size_t>(moved[k])] = old_holder[k];
+    return m;
   };
   // T₀ from the median |ΔU| of random moves (not made).
   std::vector<double> probes;
@@ -335,61 +383,136 @@ double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
   return length / cruise_m_s + cruise_m_s / accel_m_s2;
 }
 
+// Binding, sensing, fence, flight time and charge (there, serve, home above the reserve). A
+// forecast is a place only: no binding, no sensor, no service.
+bool Utility::pair_feasible(std::size_t d, std::size_t r) const {
+  const Snapshot& s = snapshot_;
+  const DroneState& dr = s.drones[d];
+  Request q;
+  if (is_forecast(r)) {
+    if (dr.only_request) return false;  // reserved for its non-interruptible task
+    q.location_m = s.forecasts[r - requests_].location_m;
+  } else {
+    q = s.requests[r];
+  }
+  bool ok = (!q.bound_drone || *q.bound_drone == static_cast<int>(d)) &&
+            (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
+            (dr.can_sense || !q.needs_sensor) && inside_fence(s.fence, q.location_m);
+  if (ok && std::isfinite(dr.remaining_flight_s))
+    ok = s.eta.eta_s(dr.position_m, q.location_m) + q.service_s +
+             s.eta.eta_s(q.location_m, dr.home_m) <=
+         dr.remaining_flight_s;
+  if (ok && s.energy) ok = landing_soc(*s.energy, s.eta, dr, q) >= s.energy->battery.reserve_soc;
+  return ok;
+}
+
 Utility::Utility(const Snapshot& s)
-    : snapshot_(s), drones_(s.drones.size()), requests_(s.requests.size()) {
-  value_.assign(drones_ * requests_, 0.0);
-  feasible_.assign(drones_ * requests_, 0);
+    : snapshot_(s),
+      drones_(s.drones.size()),
+      requests_(s.requests.size()),
+      targets_(s.requests.size() + s.forecasts.size()) {
+  value_.assign(drones_ * targets_, 0.0);
+  feasible_.assign(drones_ * targets_, 0);
+  eta_.assign(drones_ * targets_, 0.0);
+  auto place = [&](std::size_t r) -> const Vec3& {
+    return is_forecast(r) ? s.forecasts[r - requests_].location_m : s.requests[r].location_m;
+  };
+  // avoid-zigzag's centre: visible requests weigh 1, forecasts their p.
   Vec3 centre;
-  for (const Request& r : s.requests) centre = centre + r.location_m;
-  if (requests_ > 0) centre = centre / static_cast<double>(requests_);
-  std::vector<double>& eta = eta_;
-  eta.assign(drones_ * requests_, 0.0);
+  double weight = 0;
+  for (std::size_t r = 0; r < targets_; ++r) {
+    const double w = is_forecast(r) ? s.forecasts[r - requests_].p : 1.0;
+    centre = centre + place(r) * w;
+    weight += w;
+  }
+  if (weight > 0) centre = centre / weight;
   for (std::size_t d = 0; d < drones_; ++d)
-    for (std::size_t r = 0; r < requests_; ++r) {
-      const auto& bound = s.requests[r].bound_drone;
-      const DroneState& dr = s.drones[d];
-      bool ok = (!bound || *bound == static_cast<int>(d)) &&
-                (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
-                (dr.can_sense || !s.requests[r].needs_sensor) &&
-                inside_fence(s.fence, s.requests[r].location_m);
-      if (ok && std::isfinite(dr.remaining_flight_s))
-        ok = s.eta.eta_s(dr.position_m, s.requests[r].location_m) + s.requests[r].service_s +
-                 s.eta.eta_s(s.requests[r].location_m, dr.home_m) <=
-             dr.remaining_flight_s;
-      if (ok && s.energy)
-        ok = landing_soc(*s.energy, s.eta, s.drones[d], s.requests[r]) >=
-             s.energy->battery.reserve_soc;
-      feasible_[d * requests_ + r] = ok ? 1 : 0;
-      eta[d * requests_ + r] = s.eta.eta_s(s.drones[d].position_m, s.requests[r].location_m);
-      if (ok) horizon_s_ = std::max(horizon_s_, 1.0 + eta[d * requests_ + r]);
+    for (std::size_t r = 0; r < targets_; ++r) {
+      const bool ok = pair_feasible(d, r);
+      feasible_[d * targets_ + r] = ok ? 1 : 0;
+      eta_[d * targets_ + r] = s.eta.eta_s(s.drones[d].position_m, place(r));
+      if (ok) horizon_s_ = std::max(horizon_s_, 1.0 + eta_[d * targets_ + r]);
     }
   const Weights& w = s.weights;
+  // avoid-mutual: each request's links, and the gain of serving it first.
+  links_.assign(requests_, {});
+  std::vector<double> mutual_gain(requests_, 0.0);
+  for (const MutualPair& m : s.mutual) {
+    if (m.i < 0 || m.j < 0 || m.i == m.j || static_cast<std::size_t>(m.i) >= requests_ ||
+        static_cast<std::size_t>(m.j) >= requests_ || !(m.q > 0) || w.avoid_mutual == 0)
+      continue;
+    const auto i = static_cast<std::size_t>(m.i), j = static_cast<std::size_t>(m.j);
+    mutual_gain[i] += m.q * s.requests[j].service_s;
+    auto add = [&](std::size_t a, std::size_t b, double out, double in) {
+      for (Link& l : links_[a])
+        if (l.other == b) {
+          l.q_out += out;
+          l.q_in += in;
+          return;
+        }
+      links_[a].push_back({b, out, in});
+    };
+    add(i, j, m.q, 0);
+    add(j, i, 0, m.q);
+    has_pairwise_ = true;
+  }
+  // Forecasts first: the largest forecast value is what coverage must add to each visible
+  // request so that no drone waits at a forecast place while a request it could serve waits
+  // (speculation is for idle drones: a forecast of the next iteration cannot appear before this
+  // one's requests are served).
+  double best_forecast = 0;
+  for (std::size_t d = 0; d < drones_; ++d)
+    for (std::size_t r = 0; r < targets_; ++r) {
+      const bool keeps = s.drones[d].target && *s.drones[d].target == static_cast<int>(r);
+      double v = w.avoid_zigzag * norm(place(r) - centre) + (keeps ? w.commitment : 0.0);
+      if (is_forecast(r)) {
+        v += w.speculative * s.forecasts[r - requests_].p * (horizon_s_ - eta_[d * targets_ + r]);
+        if (feasible(d, r)) best_forecast = std::max(best_forecast, v);
+      }
+      value_[d * targets_ + r] = v;
+    }
   for (std::size_t d = 0; d < drones_; ++d)
     for (std::size_t r = 0; r < requests_; ++r) {
       const Request& q = s.requests[r];
-      const bool keeps = s.drones[d].target && *s.drones[d].target == static_cast<int>(r);
-      value_[d * requests_ + r] =
-          w.coverage * horizon_s_ - eta[d * requests_ + r] + w.fairness * q.waiting_s +
-          w.avoid_zigzag * norm(q.location_m - centre) + (keeps ? w.commitment : 0.0);
+      value_[d * targets_ + r] += w.coverage * horizon_s_ + best_forecast - eta_[d * targets_ + r] +
+                                  w.fairness * q.waiting_s + w.avoid_mutual * mutual_gain[r];
     }
+}
+
+double Utility::pair_cost(std::size_t i, std::size_t di, const Link& l, std::size_t dj) const {
+  const double si = snapshot_.requests[i].service_s, sj = snapshot_.requests[l.other].service_s;
+  return snapshot_.weights.avoid_mutual *
+         (l.q_out * (eta_s(dj, l.other) + sj) + l.q_in * (eta_s(di, i) + si));
 }
 
 double Utility::total(const Assignment& a) const {
   double sum = 0;
+  std::vector<int> holder(has_pairwise_ ? requests_ : 0, -1);
   for (std::size_t d = 0; d < a.size() && d < drones_; ++d)
-    if (a[d]) sum += value(d, static_cast<std::size_t>(*a[d]));
+    if (a[d]) {
+      const auto r = static_cast<std::size_t>(*a[d]);
+      sum += value(d, r);
+      if (has_pairwise_ && r < requests_) holder[r] = static_cast<int>(d);
+    }
+  if (has_pairwise_)
+    for (std::size_t i = 0; i < requests_; ++i)
+      if (holder[i] >= 0)
+        for (const Link& l : links_[i])
+          if (l.other > i && holder[l.other] >= 0)
+            sum -= pair_cost(i, static_cast<std::size_t>(holder[i]), l,
+                             static_cast<std::size_t>(holder[l.other]));
   return sum;
 }
 
 bool Utility::valid(const Assignment& a) const {
   if (a.size() != drones_) return false;
-  std::vector<char> seen(requests_, 0);
+  std::vector<char> seen(targets_, 0);
   for (std::size_t d = 0; d < drones_; ++d) {
     const DroneState& drone = snapshot_.drones[d];
     if (drone.busy && a[d] != drone.target) return false;
     if (!a[d]) continue;
     const int r = *a[d];
-    if (r < 0 || static_cast<std::size_t>(r) >= requests_ || seen[static_cast<std::size_t>(r)] ||
+    if (r < 0 || static_cast<std::size_t>(r) >= targets_ || seen[static_cast<std::size_t>(r)] ||
         !feasible(d, static_cast<std::size_t>(r)))
       return false;
     seen[static_cast<std::size_t>(r)] = 1;

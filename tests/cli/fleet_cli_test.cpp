@@ -210,6 +210,35 @@ TEST(FleetCli, TracksStartAtTheDronesHomes) {
   for (const auto& d : summary["drones"]) EXPECT_GT(d["distance_m"].get<double>(), 10.0);
 }
 
+// predictive learns from reactive's runs of the other seeds: on case 1 with two drones it wins
+// on every seed, and its paired change is the mean of the per-seed ratios in compare.csv.
+TEST(FleetCli, ComparePredictiveBeatsReactiveOnTheRoadSeedBySeed) {
+  const std::string out = fresh_dir("fleet-compare-predictive");
+  const CliRun run = run_swath_fleet(
+      "compare road --world road --drones 2 --seeds 4 --schedulers reactive,predictive -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream csv(read_text(out + "/compare.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::map<std::string, std::vector<double>> times;
+  while (std::getline(csv, line)) {
+    const auto a = line.find(','), b = line.find(',', a + 1), c = line.find(',', b + 1);
+    EXPECT_EQ(line.substr(b + 1, c - b - 1), "true") << line;
+    times[line.substr(0, a)].push_back(std::stod(line.substr(c + 1)));
+  }
+  ASSERT_EQ(times["reactive"].size(), 4u);
+  ASSERT_EQ(times["predictive"].size(), 4u);
+  double change = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_LT(times["predictive"][i], times["reactive"][i]) << i;
+    change += (times["predictive"][i] / times["reactive"][i] - 1) / 4;
+  }
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  ASSERT_EQ(summary["paired"].size(), 1u);
+  EXPECT_EQ(summary["paired"][0]["scheduler"], "predictive");
+  EXPECT_NEAR(summary["paired"][0]["relative_change_mean"].get<double>(), change, 1e-5);
+}
+
 TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
   const std::string out = fresh_dir("fleet-compare");
   const CliRun run = run_swath_fleet(

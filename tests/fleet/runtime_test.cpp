@@ -4,12 +4,15 @@
 // than the brute-force optimal order; binding, cancellation and byte-identical reruns.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "swath/energy/budget.hpp"
 #include "swath/energy/power_model.hpp"
+#include "swath/fleet/dtg.hpp"
+#include "swath/fleet/event_check.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/worlds/worlds.hpp"
@@ -383,6 +386,77 @@ TEST(Runtime, FlySensingReadsAlongTheLegAtItsPeriod) {
     EXPECT_NEAR(got.values[3 * k + 2], p.x + p.y, 1e-9);  // the world's reading there
   }
   EXPECT_EQ(got.sensor, "probe");
+}
+
+}  // namespace
+}  // namespace swath::fleet
+
+namespace swath::fleet {
+namespace {
+
+// Speculation (DESIGN.md §18.5) on case 1: GMF learns from reactive runs of other seeds; the
+// idle drone waits where the next step will be. Checked from the run's own events: every
+// `position` goes to a forecast the run logged, the drone then flies nothing but its layer, and
+// the independent checker finds every task ended once; the run is faster than reactive and the
+// same bytes twice.
+TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
+  const std::vector<App> apps = worlds::builtin_apps();
+  const auto road =
+      std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "road"; });
+  ASSERT_NE(road, apps.end());
+  const App& app = *road;
+  auto world_of = [](int seed) {
+    return worlds::parse_world("kind: road\nseed: " + std::to_string(seed) + "\n", "w.yaml");
+  };
+  const std::vector<DroneSpec> fleet{drone("a"), drone("b", {3, 0, 0})};
+  std::vector<Dtg> histories;
+  for (int seed = 11; seed <= 13; ++seed) {
+    RunSettings s;
+    s.app_name = "road";
+    s.scheduler = "reactive";
+    s.seed = static_cast<std::uint64_t>(seed);
+    const RunRecord r = run_app(app, *world_of(seed), fleet, s);
+    ASSERT_TRUE(r.completed) << r.failure;
+    histories.push_back(parse_dtg(r.dtg_json, "history"));
+  }
+  for (int seed = 1; seed <= 3; ++seed) {
+    const auto world = world_of(seed);
+    RunSettings s;
+    s.app_name = "road";
+    s.seed = static_cast<std::uint64_t>(seed);
+    s.scheduler = "reactive";
+    const RunRecord reactive = run_app(app, *world, fleet, s);
+    s.scheduler = "sa";
+    s.forecaster = "gmf";
+    s.histories = histories;
+    const RunRecord predictive = run_app(app, *world, fleet, s);
+    ASSERT_TRUE(reactive.completed && predictive.completed) << predictive.failure;
+    EXPECT_EQ(predictive.events_jsonl, run_app(app, *world, fleet, s).events_jsonl);
+    const EventCheck check = check_events(predictive.events_jsonl);
+    EXPECT_TRUE(check.ok()) << check.violations.front().rule;
+    EXPECT_LT(predictive.completion_time_s, 0.95 * reactive.completion_time_s) << seed;
+    EXPECT_EQ(reactive.speculative_positions, 0);
+    EXPECT_GT(predictive.speculative_hits, 0);
+    EXPECT_EQ(predictive.speculative_hits + predictive.speculative_misses,
+              predictive.speculative_positions);
+    // Each position is at a forecast logged before it, at the drone's layer.
+    std::vector<Vec3> forecast;
+    int positions = 0;
+    for (const nlohmann::json& e : events(predictive)) {
+      if (e["ev"] == "forecast") {
+        forecast.clear();
+        for (const auto& f : e["forecasts"]) forecast.push_back({f["x_m"], f["y_m"], 0});
+      } else if (e["ev"] == "position") {
+        ++positions;
+        const Vec3 at{e["x_m"], e["y_m"], 0};
+        EXPECT_TRUE(std::any_of(forecast.begin(), forecast.end(), [&](const Vec3& f) {
+          return horizontal_distance(f, at) < 1e-6;
+        })) << e.dump();
+        EXPECT_EQ(e["alt_m"].get<double>(), 20.0 + 3.0 * e["drone"].get<double>());
+      }
+    }
+    EXPECT_EQ(positions, predictive.speculative_positions);
+  }
 }
 
 }  // namespace

@@ -32,6 +32,8 @@ std::vector<DroneSpec> read_fleet_file(const std::string& path, const geometry::
 ///   fairness: 0.5       # per second a request has waited
 ///   avoid_zigzag: 0.0   # seconds per metre from the requests' centre
 ///   commitment: 5.0     # seconds for a drone keeping its target
+///   speculative: 1.0    # per forecast given to a drone: p (H − eta)
+///   avoid_mutual: 1.0   # q(i→j) service_j gained, q(i→j)(eta_j + service_j) lost per pair
 ///   closest: 1          # fixed at 1 (the argmax ignores scale)
 /// each in [0, 1000]; absent keys keep the defaults. Throws base::InputError naming the key.
 Weights parse_weights(const std::string& text, const std::string& source);

@@ -21,6 +21,8 @@
 
 #include "swath/energy/battery.hpp"
 #include "swath/energy/power_model.hpp"
+#include "swath/fleet/dtg.hpp"
+#include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/scheduler.hpp"
 #include "swath/fleet/task.hpp"
@@ -78,6 +80,14 @@ struct RunSettings {
   Vec3 wind_m_s{0, 0, 0};
   Weights weights;
   std::vector<FaultEvent> faults;  ///< sorted or not; applied in (t_s, drone) order
+  /// What forecasts the next requests and q (DESIGN.md §18.4): none, gmf or constant-velocity.
+  /// The scheduler "reactive" is sa with none and the forecast weights at 0 (the paper's
+  /// baseline); sa with none differs from it only by those weights, which then weigh nothing.
+  std::string forecaster = "none";
+  std::vector<Dtg> histories;  ///< past runs' DTGs (gmf's matches, q's counts)
+  GmfSettings gmf;
+  /// A speculative position is a hit when a request appears within this of it, m (> 0).
+  double hit_within_m = 2;
 };
 
 /// What one drone did.
@@ -106,7 +116,12 @@ struct RunRecord {
   std::map<std::string, int> tasks_by_outcome;  ///< done, cancelled, failed
   std::map<std::string, double> metrics;        ///< the app's (Ctx::metric)
   int schedules = 0, requeued = 0, duplicate_results = 0;
+  int forecasts = 0;  ///< forecast rounds (the DTG had changed)
+  /// Drones sent to forecast places; hits: a request appeared within hit_within_m while it was
+  /// there or on its way; misses: it left (or the run ended) before one did.
+  int speculative_positions = 0, speculative_hits = 0, speculative_misses = 0;
   double decision_s_total = 0;  ///< wall time in the scheduler (timing.json only)
+  double forecast_s_total = 0;  ///< wall time in the forecaster (timing.json only)
   /// Served and cancelled request places (t_s, x_m, y_m) for the pictures.
   std::vector<std::array<double, 3>> served, cancelled;
 };

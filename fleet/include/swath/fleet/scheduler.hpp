@@ -1,9 +1,11 @@
 #pragma once
 // Which drone serves which request, moment by moment (paper 000 §3.3.1; DESIGN.md §18.5): a
 // snapshot of drones and visible requests in, at most one target per drone out, maximising
-// U(A) = Σ_k w_k u_k(A) in seconds. The sub-utilities here are the pair terms (coverage, closest,
-// fairness, avoid-zigzag, commitment); the forecast and pairwise terms (speculative,
-// avoid-mutual) join with part 2's forecaster. Schedulers are interchangeable behind `Scheduler`:
+// U(A) = Σ_k w_k u_k(A) in seconds. Pair terms (coverage, closest, fairness, avoid-zigzag,
+// commitment, speculative, avoid-mutual's per-request gain) depend on one drone and one target;
+// avoid-mutual's penalty depends on two assigned requests. Targets are the visible requests,
+// then the forecast ones (speculation positions drones there, DESIGN.md §18.5).
+// Schedulers are interchangeable behind `Scheduler`:
 // simulated annealing (the paper's), and the baselines greedy, round-robin and Hungarian (exact
 // for pair terms, so also a test oracle).
 
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "swath/energy/battery.hpp"
+#include "swath/fleet/forecaster.hpp"
 #include "swath/vehicle/random.hpp"
 #include "swath/vehicle/vec3.hpp"
 
@@ -70,15 +73,34 @@ struct EtaModel {
 
 /// The weights of the sub-utilities (the weights YAML; w_closest ≡ 1).
 struct Weights {
-  double coverage = 1.0;      ///< H per assigned request
+  /// H per assigned visible request; with forecasts, plus the snapshot's largest forecast value,
+  /// so that a visible request a drone could serve always beats a forecast place (ours).
+  double coverage = 1.0;
   double fairness = 0.5;      ///< per second of the request's waiting
   double avoid_zigzag = 0.0;  ///< s per metre from the requests' centre
   double commitment = 5.0;    ///< s when a drone keeps its target
+  /// Per forecast given to a drone: p (H − eta), s per s (paper §3.3.1's speculative term).
+  double speculative = 1.0;
+  /// Per assigned request i: + Σ_j q(i→j) service_j (serving i may make j's service moot);
+  /// per pair of assigned requests: − q(i→j)(eta_j + service_j) (j's drone may fly for
+  /// nothing). Paper §3.3.1 and Fig. 13; DESIGN.md §18.13 for why both terms.
+  double avoid_mutual = 1.0;
+};
+
+/// q(i→j) between two visible requests (indices into Snapshot::requests): the probability that
+/// j is cancelled once i is done (fleet::CancellationModel).
+struct MutualPair {
+  int i = 0, j = 0;
+  double q = 0;  ///< (0, 1]
 };
 
 struct Snapshot {
   std::vector<DroneState> drones;
   std::vector<Request> requests;
+  /// Requests expected to appear: targets requests.size() + k of an Assignment. A drone given
+  /// one only flies there and hovers (nothing is served); only `speculative` values it.
+  std::vector<ForecastRequest> forecasts;
+  std::vector<MutualPair> mutual;  ///< q between visible requests; pairs absent: 0
   EtaModel eta;
   Weights weights;
   std::optional<EnergyFeasibility> energy;  ///< none: charge is not checked
@@ -90,32 +112,52 @@ struct Snapshot {
 double landing_soc(const EnergyFeasibility& e, const EtaModel& eta, const DroneState& d,
                    const Request& r);
 
-/// drone → request index, or nullopt for none. Each request at most once.
+/// drone → target index (a visible request, or requests.size() + k for forecast k), or nullopt
+/// for none. Each target at most once.
 using Assignment = std::vector<std::optional<int>>;
 
-/// The pair terms of one snapshot, precomputed: value(d, r) is what assigning r to d adds to U;
-/// infeasible pairs (binding) have no value.
+/// The terms of one snapshot, precomputed: value(d, r) is what assigning target r to d adds to U
+/// on its own; pair_cost(...) what two assigned requests take away together (avoid-mutual);
+/// infeasible pairs (binding, fence, charge) have no value.
 class Utility {
  public:
   explicit Utility(const Snapshot& snapshot);
   std::size_t drones() const { return drones_; }
+  /// Visible requests: targets 0 .. requests() − 1.
   std::size_t requests() const { return requests_; }
-  bool feasible(std::size_t d, std::size_t r) const { return feasible_[d * requests_ + r] != 0; }
-  double value(std::size_t d, std::size_t r) const { return value_[d * requests_ + r]; }
-  double eta_s(std::size_t d, std::size_t r) const { return eta_[d * requests_ + r]; }
+  /// Visible and forecast requests.
+  std::size_t targets() const { return targets_; }
+  bool is_forecast(std::size_t r) const { return r >= requests_; }
+  bool feasible(std::size_t d, std::size_t r) const { return feasible_[d * targets_ + r] != 0; }
+  double value(std::size_t d, std::size_t r) const { return value_[d * targets_ + r]; }
+  double eta_s(std::size_t d, std::size_t r) const { return eta_[d * targets_ + r]; }
+  /// A visible request's avoid-mutual partners: (j, q(i→j), q(j→i)).
+  struct Link {
+    std::size_t other;
+    double q_out, q_in;
+  };
+  const std::vector<Link>& links(std::size_t r) const { return links_[r]; }
+  bool has_pairwise() const { return has_pairwise_; }
+  /// What requests i (served by drone di) and j (by dj) cost together, s (≥ 0), given their
+  /// link: w (q(i→j)(eta(dj, j) + service_j) + q(j→i)(eta(di, i) + service_i)).
+  double pair_cost(std::size_t i, std::size_t di, const Link& l, std::size_t dj) const;
   /// U(A); A must be valid (checked by valid()).
   double total(const Assignment& a) const;
-  /// Each request at most once, every pair feasible, busy drones keep their target.
+  /// Each target at most once, every pair feasible, busy drones keep their target.
   bool valid(const Assignment& a) const;
   /// H: 1 + the largest feasible ETA (coverage's unit).
   double horizon_s() const { return horizon_s_; }
   const Snapshot& snapshot() const { return snapshot_; }
 
  private:
+  bool pair_feasible(std::size_t d, std::size_t r) const;
+
   const Snapshot& snapshot_;
-  std::size_t drones_, requests_;
+  std::size_t drones_, requests_, targets_;
   std::vector<double> value_, eta_;
   std::vector<char> feasible_;
+  std::vector<std::vector<Link>> links_;
+  bool has_pairwise_ = false;
   double horizon_s_ = 1.0;
 };
 
@@ -127,20 +169,23 @@ class Scheduler {
   virtual Assignment assign(const Snapshot& snapshot, vehicle::SplitMix64& rng) = 0;
 };
 
-/// Smallest ETA first over all feasible pairs.
+/// Smallest ETA first over all feasible pairs of visible requests (forecasts ignored).
 std::unique_ptr<Scheduler> greedy_scheduler();
-/// Requests in order to drones in turn (FIFO), nearest-free-drone ignored.
+/// Visible requests in order to drones in turn (FIFO), nearest-free-drone ignored.
 std::unique_ptr<Scheduler> round_robin_scheduler();
-/// The exact optimum of the pair terms (Hungarian algorithm, O(n²m) with a "none" per drone).
+/// The exact optimum of the pair terms, forecasts included (Hungarian algorithm, O(n²m) with a
+/// "none" per drone); avoid-mutual's pairwise penalty is not seen.
 std::unique_ptr<Scheduler> hungarian_scheduler();
 
 struct AnnealingSettings {
-  int candidates = 16;   ///< nearest feasible requests per drone (plus its target and none)
-  int moves = 20'000;    ///< geometric cooling from T₀ to T₀·10⁻³ over these
-  int probe_moves = 64;  ///< T₀ = median |ΔU| of this many random moves / ln 2
+  int candidates = 16;  ///< nearest feasible visible requests per drone (plus its target and none)
+  int forecast_candidates = 8;  ///< nearest feasible forecast requests per drone
+  int moves = 20'000;           ///< geometric cooling from T₀ to T₀·10⁻³ over these
+  int probe_moves = 64;         ///< T₀ = median |ΔU| of this many random moves / ln 2
 };
 /// Simulated annealing (paper 000 §3.3.1): starts from the better of greedy and the current
-/// targets; moves retarget one drone (the previous holder drops to none), swap two, clear one.
+/// targets; moves retarget one drone (the previous holder drops to none), swap two, clear one;
+/// ΔU incremental (pairwise terms over the moved requests' links only).
 std::unique_ptr<Scheduler> annealing_scheduler(const AnnealingSettings& settings = {});
 
 /// The scheduler named greedy, round-robin, hungarian or sa; nullptr for another name.

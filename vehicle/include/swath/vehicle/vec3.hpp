@@ -49,6 +49,11 @@ inline double norm(const Vec3& a) {
 inline double horizontal_distance(const Vec3& a, const Vec3& b) {
   return std::hypot(b.x - a.x, b.y - a.y);
 }
+/// horizontal_distance(a, b) ≤ radius, without the square root (hot loops: clustering).
+inline bool horizontally_within(const Vec3& a, const Vec3& b, double radius) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  return dx * dx + dy * dy <= radius * radius;
+}
 
 /// A rotation as a unit quaternion w + xi + yj + zk (Hamilton convention). As an attitude it maps
 /// body FLU vectors to world ENU: v_world = q ⊗ (0, v_body) ⊗ q*.
