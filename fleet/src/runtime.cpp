@@ -327,6 +327,7 @@ class Runtime final : public detail::Core {
   void go_home(Drone& d, double t, const std::string& why);
   void set_mode(Drone& d, Mode m, double t);
   void requeue(Drone& d, const std::string& reason);
+  void unserve(Drone& d);
   bool must_go_home(const Drone& d, double t) const;
   double leave_time(const Drone& d) const;  ///< when a hovering drone must head home
   bool available(const Drone& d) const;
@@ -775,14 +776,21 @@ bool Runtime::must_go_home(const Drone& d, double t) const {
 void Runtime::requeue(Drone& d, const std::string& reason) {
   if (d.task < 0) return;
   Task& t = tasks_[static_cast<std::size_t>(d.task)];
-  for (auto& a : t.actions)
-    if (a.state == ActionState::running) a.state = ActionState::pending;
-  t.serving = -1;
+  unserve(d);
   t.requested = false;
   log(json{{"ev", "requeued"}, {"task", t.id}, {"drone", d.index}, {"reason", reason}});
   ++record_.requeued;
-  d.task = -1;
   changed_ = true;
+}
+
+// The drone no longer serves its task: the segment it was on waits for a drone again.
+void Runtime::unserve(Drone& d) {
+  if (d.task < 0) return;
+  Task& t = tasks_[static_cast<std::size_t>(d.task)];
+  for (auto& a : t.actions)
+    if (a.state == ActionState::running) a.state = ActionState::pending;
+  t.serving = -1;
+  d.task = -1;
 }
 
 void Runtime::go_home(Drone& d, double t, const std::string& why) {
@@ -1145,13 +1153,7 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
     if (a[i] && *a[i] >= visible) {  // speculation: only a place to wait at
       const ForecastRequest& f = s.forecasts[static_cast<std::size_t>(*a[i] - visible)];
       if (d.spot && vehicle::horizontal_distance(*d.spot, f.location_m) < 1e-6) continue;
-      if (d.task >= 0) {
-        Task& old = tasks_[static_cast<std::size_t>(d.task)];
-        old.serving = -1;
-        for (auto& act : old.actions)
-          if (act.state == ActionState::running) act.state = ActionState::pending;
-        d.task = -1;
-      }
+      unserve(d);
       position(d, f);
       continue;
     }
@@ -1170,11 +1172,7 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
     }
     if (want == d.task) continue;
     if (d.task >= 0) {  // retargeted or stopped on the way
-      Task& old = tasks_[static_cast<std::size_t>(d.task)];
-      old.serving = -1;
-      for (auto& act : old.actions)
-        if (act.state == ActionState::running) act.state = ActionState::pending;
-      d.task = -1;
+      unserve(d);
       if (want < 0) {
         integrate(d, now_);
         d.leg.reset();
@@ -1245,8 +1243,9 @@ void Runtime::update_forecasts() {
              x.location_m.y == y.location_m.y;
     });
   };
-  if (same(next, forecasts_)) return;
-  forecasts_ = std::move(next);
+  const bool changed = !same(next, forecasts_);
+  forecasts_ = std::move(next);  // kept even when only the expected times moved
+  if (!changed) return;
   json list = json::array();
   for (const ForecastRequest& f : forecasts_)
     list.push_back(at_json(json{{"kind", f.kind}}, f.location_m,

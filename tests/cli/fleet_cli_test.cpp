@@ -210,6 +210,26 @@ TEST(FleetCli, TracksStartAtTheDronesHomes) {
   for (const auto& d : summary["drones"]) EXPECT_GT(d["distance_m"].get<double>(), 10.0);
 }
 
+// compare.csv read back: completion times by scheduler, in row order; every run completed.
+std::map<std::string, std::vector<double>> compare_times(const std::string& path) {
+  std::istringstream csv(read_text(path));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "scheduler,seed,completed,completion_time_s");
+  std::map<std::string, std::vector<double>> times;
+  while (std::getline(csv, line)) {
+    std::istringstream row(line);
+    std::string name, seed, done, t;
+    std::getline(row, name, ',');
+    std::getline(row, seed, ',');
+    std::getline(row, done, ',');
+    std::getline(row, t, ',');
+    EXPECT_EQ(done, "true") << line;
+    times[name].push_back(std::stod(t));
+  }
+  return times;
+}
+
 // predictive learns from reactive's runs of the other seeds: on case 1 with two drones it wins
 // on every seed, and its paired change is the mean of the per-seed ratios in compare.csv.
 TEST(FleetCli, ComparePredictiveBeatsReactiveOnTheRoadSeedBySeed) {
@@ -217,15 +237,7 @@ TEST(FleetCli, ComparePredictiveBeatsReactiveOnTheRoadSeedBySeed) {
   const CliRun run = run_swath_fleet(
       "compare road --world road --drones 2 --seeds 4 --schedulers reactive,predictive -o " + out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  std::istringstream csv(read_text(out + "/compare.csv"));
-  std::string line;
-  std::getline(csv, line);
-  std::map<std::string, std::vector<double>> times;
-  while (std::getline(csv, line)) {
-    const auto a = line.find(','), b = line.find(',', a + 1), c = line.find(',', b + 1);
-    EXPECT_EQ(line.substr(b + 1, c - b - 1), "true") << line;
-    times[line.substr(0, a)].push_back(std::stod(line.substr(c + 1)));
-  }
+  std::map<std::string, std::vector<double>> times = compare_times(out + "/compare.csv");
   ASSERT_EQ(times["reactive"].size(), 4u);
   ASSERT_EQ(times["predictive"].size(), 4u);
   double change = 0;
@@ -244,21 +256,7 @@ TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
   const CliRun run = run_swath_fleet(
       "compare multiplexing --world sites --seeds 4 --schedulers reactive,greedy -o " + out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  std::istringstream csv(read_text(out + "/compare.csv"));
-  std::string line;
-  std::getline(csv, line);
-  EXPECT_EQ(line, "scheduler,seed,completed,completion_time_s");
-  std::map<std::string, std::vector<double>> times;
-  while (std::getline(csv, line)) {
-    std::istringstream row(line);
-    std::string name, seed, done, t;
-    std::getline(row, name, ',');
-    std::getline(row, seed, ',');
-    std::getline(row, done, ',');
-    std::getline(row, t, ',');
-    EXPECT_EQ(done, "true");
-    times[name].push_back(std::stod(t));
-  }
+  std::map<std::string, std::vector<double>> times = compare_times(out + "/compare.csv");
   ASSERT_EQ(times["reactive"].size(), 4u);
   ASSERT_EQ(times["greedy"].size(), 4u);
   const json summary = json::parse(read_text(out + "/summary.json"));
