@@ -48,16 +48,18 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
     app.add_option("--history", r.history,
                    "Past runs of the same app for gmf and the cancellation model: run "
                    "directories (swath-fleet run -o DIR) or their dtg.json files");
+    app.add_flag("--relief", r.relief,
+                 "Relief: an idle drone flies ahead to stand by where a drone at work will have "
+                 "to leave (flight time or battery) and takes over its next segment");
   }
   app.add_option("--seed", r.seed, "Seed of the scheduler's and the app's random numbers")
       ->capture_default_str();
   app.add_option("--faults", r.faults,
                  "Faults file: [{t_s, drone, kind, duration_s, soc}] (link_loss, battery_drop, "
                  "motor_failure, sensor_failure)");
-  app.add_option(
-      "--weights", r.weights,
-      "Weights file of the sub-utilities (coverage, fairness, avoid_zigzag, commitment, "
-      "speculative, avoid_mutual)");
+  app.add_option("--weights", r.weights,
+                 "Weights file of the sub-utilities (coverage, fairness, avoid_zigzag, commitment, "
+                 "speculative, avoid_mutual)");
   app.add_option("--wind", r.wind,
                  "A steady wind E,N in m/s (towards east and north, e.g. 4,-3): the drones keep "
                  "their tracks and times, their rotors work at the airspeed (default: calm)");
@@ -67,8 +69,7 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
 }
 
 fleet::Dtg read_history(const std::string& path) {
-  const std::string file =
-      fs::is_directory(path) ? (fs::path(path) / "dtg.json").string() : path;
+  const std::string file = fs::is_directory(path) ? (fs::path(path) / "dtg.json").string() : path;
   return fleet::parse_dtg(base::read_text_file(file, "history (dtg.json)"), file);
 }
 
@@ -142,10 +143,11 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     faults_text = base::read_text_file(r.faults, "faults file");
     p.settings.faults = fleet::parse_faults(faults_text, r.faults, drone_names, r.max_time_s);
   }
+  p.settings.relief = r.relief;
   p.config_text = "app " + r.app + (r.forecast == "none" ? "" : "\nforecast " + r.forecast) +
-                  "\nworld\n" + p.world_text + "\nfleet\n" + fleet_text +
-                  "\ndrones " + std::to_string(r.drones) + "\nweights\n" + weights_text +
-                  "\nfaults\n" + faults_text + "\nwind " + r.wind + "\nmax_time_s " +
+                  (r.relief ? "\nrelief" : "") + "\nworld\n" + p.world_text + "\nfleet\n" +
+                  fleet_text + "\ndrones " + std::to_string(r.drones) + "\nweights\n" +
+                  weights_text + "\nfaults\n" + faults_text + "\nwind " + r.wind + "\nmax_time_s " +
                   std::to_string(r.max_time_s) + "\n";
   if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
     throw InputError("unknown scheduler \"" + r.scheduler +
@@ -211,6 +213,8 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
             {{"positions", r.speculative_positions},
              {"hits", r.speculative_hits},
              {"misses", r.speculative_misses}}},
+           {"relief", p.settings.relief},
+           {"reliefs", r.reliefs},
            {"requeued", r.requeued},
            {"duplicate_results", r.duplicate_results},
            {"faults", p.settings.faults.size()},

@@ -199,7 +199,7 @@ int FleetCompareCommand::run() {
       throw InputError("--schedulers: unknown scheduler \"" + n +
                        "\": use predictive, reactive, sa, greedy, round-robin or hungarian");
   PreparedRun check = prepare_run(request_);  // every input read before any run
-  // predictive = sa + GMF (+ q) with the default or --weights weights, its histories the
+  // predictive = sa + GMF (+ q) + relief with the default or --weights weights, its histories the
   // reactive runs of the other seeds: those run first.
   const bool predictive = std::find(names.begin(), names.end(), "predictive") != names.end();
   std::vector<std::string> order = names;
@@ -222,6 +222,7 @@ int FleetCompareCommand::run() {
       PreparedRun p = prepare_run(r, r.seed);
       if (name == "predictive") {
         p.settings.forecaster = "gmf";
+        p.settings.relief = true;
         p.settings.histories =
             histories_for(reactive_dtgs, static_cast<std::size_t>(k), histories_);
       }

@@ -134,6 +134,8 @@ EventCheck check_events(const std::string& text) {
       if (task) visible.insert({*task, id(e, "segment").value_or(-1)});
     } else if (ev == "position") {
       if (drone && lost.count(*drone)) bad(n, "R8", "a lost drone was sent to a forecast place");
+    } else if (ev == "relief") {
+      if (drone && lost.count(*drone)) bad(n, "R8", "a lost drone was sent to stand by");
     } else if (ev == "dispatch") {
       if (drone && lost.count(*drone)) bad(n, "R8", "a lost drone was dispatched");
       if (task && !visible.count({*task, id(e, "segment").value_or(-1)}))

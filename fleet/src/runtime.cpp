@@ -142,6 +142,7 @@ struct Drone {
   double span_start = 0;
   std::optional<Vec3> spot;  // the forecast place it was sent to (speculation)
   bool spot_hit = false;     // a request appeared there
+  int relieving = -1;        // the drone it stands by for (relief, §18.5 Example 5)
 };
 
 bool on_leg(Mode m) {
@@ -290,6 +291,13 @@ class Runtime final : public detail::Core {
   void position(Drone& d, const ForecastRequest& f);
   void leave_spot(Drone& d);
   void note_hits(const Vec3& request_at, int task);
+  // Relief (DESIGN.md §18.5, Example 5).
+  void relieve();
+  bool working(const Drone& d) const;
+  bool idle(const Drone& d) const;
+  double must_leave_at(const Drone& d) const;
+  double endurance_end(const Drone& e, const Vec3& at, double eta_s) const;
+  void stand_by(Drone& e, const Drone& d, const Vec3& at, double leave_s);
 
   // The run's steps (run() is their loop).
   Task& start_main();
@@ -364,7 +372,8 @@ class Runtime final : public detail::Core {
   // Forecasting and speculation (DESIGN.md §18.4–18.5).
   std::unique_ptr<Forecaster> forecaster_;
   std::vector<ForecastRequest> forecasts_;
-  Dtg live_;  // the DTG at the last forecast (q reads its nodes)
+  Dtg live_;                     // the DTG at the last forecast (q reads its nodes)
+  double next_relief_s_ = kInf;  // when relieve() has something to do next
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -744,6 +753,13 @@ bool Runtime::available(const Drone& d) const {
 
 double Runtime::leave_time(const Drone& d) const {
   if (d.mode != Mode::hovering && d.mode != Mode::held) return kInf;
+  return must_leave_at(d);
+}
+
+// When the drone must head home from where it is now: its flight time, or its battery drained at
+// hover power down to what the way home takes (a hovering drone's exact limit; for one on a leg
+// or acting, an estimate from its place at t_mark).
+double Runtime::must_leave_at(const Drone& d) const {
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
   const Leg back(d.pos, home, d.spec.kinematics);
   const double back_s =
@@ -796,6 +812,7 @@ void Runtime::unserve(Drone& d) {
 void Runtime::go_home(Drone& d, double t, const std::string& why) {
   requeue(d, why);
   leave_spot(d);
+  d.relieving = -1;
   if (d.held_for >= 0) d.held_for = -1;
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
   start_leg(d, home, Mode::returning, t);
@@ -1104,7 +1121,7 @@ void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
 void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
                          std::vector<int>& drone_of) {
   for (Drone& d : drones_) {
-    if (!available(d)) continue;
+    if (!available(d) || d.relieving >= 0) continue;  // a stand-by is pinned to its place
     DroneState ds;
     ds.position_m = position_at(d, now_);
     if (!(ds.position_m.z > 0)) ds.position_m.z = d.layer_m;
@@ -1189,7 +1206,8 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
     }
   }
   for (Drone& d : drones_)
-    if ((d.mode == Mode::flying && d.task < 0) || (d.mode == Mode::positioning && !d.spot)) {
+    if ((d.mode == Mode::flying && d.task < 0) ||
+        (d.mode == Mode::positioning && !d.spot && d.relieving < 0)) {
       integrate(d, now_);
       d.leg.reset();
       set_mode(d, Mode::hovering, now_);
@@ -1288,6 +1306,87 @@ void Runtime::position(Drone& d, const ForecastRequest& f) {
   log(at_json(json{{"ev", "position"}, {"drone", d.index}}, to,
               json{{"kind", f.kind}, {"p", round6(f.p)}}));
   start_leg(d, to, Mode::positioning, now_);
+}
+
+// ---- relief (DESIGN.md §18.5, Example 5) ---------------------------------------------------
+// A drone at work that must soon head home is relieved: the idle drone that gets to its place
+// soonest is sent there when the working drone's leave time is within that flight plus
+// relief_margin_s, and waits there, out of the scheduler's hands, until the working drone leaves
+// (home, lost, link down). Then the stand-by is the drone nearest the work it left (requeued on
+// the way home): the scheduler gives it the next segment without a flight from home.
+
+bool Runtime::working(const Drone& d) const {
+  return d.link_up && (d.task >= 0 || d.held_for >= 0) &&
+         (d.mode == Mode::flying || d.mode == Mode::acting || d.mode == Mode::held ||
+          d.mode == Mode::hovering);
+}
+
+bool Runtime::idle(const Drone& d) const {
+  return d.link_up && d.sensor_ok && d.task < 0 && d.held_for < 0 && !d.spot && d.relieving < 0 &&
+         (d.mode == Mode::landed || d.mode == Mode::hovering);
+}
+
+// When a drone that sets off now and arrives at `at` after eta_s must leave it again: its flight
+// time (counted from now when it is landed) less the way home, or its battery at hover power.
+double Runtime::endurance_end(const Drone& e, const Vec3& at, double eta_s) const {
+  const Vec3 home{e.spec.home_m.x, e.spec.home_m.y, e.layer_m};
+  const double back_s = Leg(at, home, e.spec.kinematics).duration_s() +
+                        e.layer_m / e.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
+  const double since = e.mode == Mode::landed ? now_ : e.airborne_since;
+  const double cruise_w = cruise_power_w(e.spec, settings_.wind_m_s);
+  const double need =
+      e.spec.battery.reserve_soc + energy::battery_current_a(e.spec.battery, cruise_w) *
+                                       (back_s + eta_s) / (3600.0 * e.spec.battery.capacity_ah);
+  return std::min(since + e.spec.max_flight_time_s - back_s,
+                  now_ + energy::seconds_to_soc(e.spec.battery, e.soc, need,
+                                                hover_power_w(e.spec, settings_.wind_m_s)));
+}
+
+void Runtime::relieve() {
+  next_relief_s_ = kInf;
+  for (Drone& e : drones_) {  // stand-bys whose drone has left are free again
+    if (e.relieving < 0) continue;
+    const Drone& d = drones_[static_cast<std::size_t>(e.relieving)];
+    if (!d.link_up || d.mode == Mode::returning || d.mode == Mode::landed ||
+        d.mode == Mode::charging || d.mode == Mode::lost) {
+      e.relieving = -1;
+      changed_ = true;
+    }
+  }
+  for (const Drone& d : drones_) {
+    if (!working(d) || std::any_of(drones_.begin(), drones_.end(),
+                                   [&](const Drone& e) { return e.relieving == d.index; }))
+      continue;
+    const double leave_s = must_leave_at(d);
+    if (!std::isfinite(leave_s)) continue;
+    Vec3 at = d.leg && on_leg(d.mode) ? d.leg->to() : position_at(d, now_);
+    Drone* best = nullptr;
+    double best_eta = kInf;
+    for (Drone& e : drones_) {
+      if (&e == &d || !idle(e)) continue;
+      const Vec3 to{at.x, at.y, e.layer_m};
+      Vec3 from = position_at(e, now_);
+      if (e.mode == Mode::landed) from.z = 0;
+      const double eta = Leg(from, to, e.spec.kinematics).duration_s();
+      // Worth it only when it can stay at least the margin beyond the hand-over.
+      if (endurance_end(e, to, eta) < leave_s + settings_.relief_margin_s) continue;
+      if (eta < best_eta) best_eta = eta, best = &e;
+    }
+    if (!best) continue;
+    const double when = leave_s - best_eta - settings_.relief_margin_s;
+    if (when <= now_ + 1e-9)
+      stand_by(*best, d, {at.x, at.y, best->layer_m}, leave_s);
+    else
+      next_relief_s_ = std::min(next_relief_s_, when);
+  }
+}
+
+void Runtime::stand_by(Drone& e, const Drone& d, const Vec3& at, double leave_s) {
+  e.relieving = d.index;
+  ++record_.reliefs;
+  log(at_json(json{{"ev", "relief"}, {"drone", e.index}, {"for", d.index}}, at,
+              json{{"leave_s", round6(leave_s)}}));
+  start_leg(e, at, Mode::positioning, now_);
 }
 
 // The drone leaves its forecast place (another target, home, the run's end): a miss unless a
@@ -1439,6 +1538,7 @@ double Runtime::next_happening() const {
   for (const Pending& p : pending_) next = std::min(next, p.deliver_s);
   for (const auto& [t, s] : delays_) next = std::min(next, t);
   if (next_fault_ < faults_.size()) next = std::min(next, faults_[next_fault_].t_s);
+  next = std::min(next, next_relief_s_);
   for (const Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested)
       next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
@@ -1621,6 +1721,7 @@ RunRecord Runtime::run() {
     if (main.status != TaskStatus::running) break;
     fail_unserved();
     if (!ready_.empty()) continue;
+    if (settings_.relief) relieve();
     if (changed_) {
       changed_ = false;
       schedule();

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -457,6 +458,90 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
     }
     EXPECT_EQ(positions, predictive.speculative_positions);
   }
+}
+
+// Relief (DESIGN.md §18.5, Example 5) on case 5 with 150 s flights: the idle drone is sent to
+// stand by where the drone at work is, out of the scheduler's hands until that drone heads home,
+// and then takes the next look. Read from the events: no stand-by is dispatched before the drone
+// it relieves returns; the first look dispatched after that return goes to the stand-by; and the
+// hand-over (a drone's return to the next look by another) is shorter than without relief.
+TEST(Runtime, ReliefStandsByWhereTheDroneAtWorkIsAndTakesOverItsLooks) {
+  const std::vector<App> apps = worlds::builtin_apps();
+  const auto tracking =
+      std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "tracking"; });
+  ASSERT_NE(tracking, apps.end());
+  std::vector<DroneSpec> fleet{drone("a", {-5, 0, 0}), drone("b", {5, 0, 0})};
+  for (DroneSpec& d : fleet) d.max_flight_time_s = 150, d.recharge_s = 30;
+  // From each return home to the next look done by another drone, s.
+  auto handovers = [](const std::vector<nlohmann::json>& ev) {
+    std::vector<double> out;
+    double left_s = -1;  // < 0: nobody is on the way home
+    int left_by = -1;
+    for (const auto& e : ev) {
+      if (e["ev"] == "drone_mode" && e["state"] == "returning" && left_s < 0)
+        left_s = e["t_s"].get<double>(), left_by = e["drone"].get<int>();
+      else if (e["ev"] == "action_done" && e.value("name", "") == "camera" && left_s >= 0 &&
+               e["drone"].get<int>() != left_by)
+        out.push_back(e["t_s"].get<double>() - left_s), left_s = -1;
+    }
+    return out;
+  };
+  std::vector<double> without_s, with_s;
+  int reliefs = 0;
+  for (int seed = 1; seed <= 4; ++seed) {
+    const auto world = worlds::parse_world(
+        "kind: tracking\nseed: " + std::to_string(seed) + "\nduration_s: 300\n", "w.yaml");
+    RunSettings s;
+    s.app_name = "tracking";
+    s.seed = static_cast<std::uint64_t>(seed);
+    const RunRecord base = run_app(*tracking, *world, fleet, s);
+    s.relief = true;
+    const RunRecord relief = run_app(*tracking, *world, fleet, s);
+    ASSERT_TRUE(base.completed && relief.completed) << relief.failure;
+    EXPECT_TRUE(check_events(relief.events_jsonl).ok());
+    EXPECT_EQ(base.reliefs, 0);
+    reliefs += relief.reliefs;
+    const std::vector<nlohmann::json> ev = events(relief);
+    std::map<int, int> standing_by;  // stand-by -> the drone it relieves
+    int relief_events = 0;
+    for (std::size_t i = 0; i < ev.size(); ++i) {
+      const auto& e = ev[i];
+      if (e["ev"] == "relief") {
+        ++relief_events;
+        const int by = e["drone"], of = e["for"];
+        EXPECT_NE(by, of);
+        EXPECT_EQ(e["alt_m"].get<double>(), 20.0 + 3.0 * by);
+        EXPECT_GT(e["leave_s"].get<double>(), e["t_s"].get<double>() - 1e-9);
+        standing_by[by] = of;
+      } else if (e["ev"] == "dispatch") {
+        EXPECT_FALSE(standing_by.count(e["drone"].get<int>())) << "a stand-by dispatched: " << e;
+      } else if (e["ev"] == "drone_mode" && e["state"] == "returning") {
+        for (auto it = standing_by.begin(); it != standing_by.end();)
+          if (it->second != e["drone"].get<int>()) {
+            ++it;
+          } else {  // the next look dispatched goes to the stand-by
+            for (std::size_t j = i + 1; j < ev.size(); ++j)
+              if (ev[j]["ev"] == "dispatch") {
+                EXPECT_EQ(ev[j]["drone"].get<int>(), it->first) << seed << " " << ev[j];
+                break;
+              }
+            it = standing_by.erase(it);
+          }
+      }
+    }
+    EXPECT_EQ(relief_events, relief.reliefs);
+    for (double g : handovers(events(base))) without_s.push_back(g);
+    for (double g : handovers(ev)) with_s.push_back(g);
+  }
+  EXPECT_GT(reliefs, 0);
+  auto mean = [](const std::vector<double>& v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  };
+  ASSERT_FALSE(without_s.empty());
+  EXPECT_LT(mean(with_s), 0.8 * mean(without_s))
+      << "mean hand-over " << mean(with_s) << " s with relief, " << mean(without_s) << " s without";
 }
 
 }  // namespace

@@ -88,6 +88,11 @@ struct RunSettings {
   GmfSettings gmf;
   /// A speculative position is a hit when a request appears within this of it, m (> 0).
   double hit_within_m = 2;
+  /// Relief (DESIGN.md §18.5, Example 5): a drone at work whose flight time or battery ends
+  /// within the soonest idle drone's flight to its place plus relief_margin_s gets that drone as a
+  /// stand-by there, which takes the next segment when it leaves. Off: the paper's baseline.
+  bool relief = false;
+  double relief_margin_s = 20;  ///< s, ≥ 0
 };
 
 /// What one drone did.
@@ -120,6 +125,7 @@ struct RunRecord {
   /// Drones sent to forecast places; hits: a request appeared within hit_within_m while it was
   /// there or on its way; misses: it left (or the run ended) before one did.
   int speculative_positions = 0, speculative_hits = 0, speculative_misses = 0;
+  int reliefs = 0;              ///< stand-bys sent (relief)
   double decision_s_total = 0;  ///< wall time in the scheduler (timing.json only)
   double forecast_s_total = 0;  ///< wall time in the forecaster (timing.json only)
   /// Served and cancelled request places (t_s, x_m, y_m) for the pictures.
