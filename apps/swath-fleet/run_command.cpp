@@ -141,7 +141,8 @@ int FleetWorldsCommand::run() {
     out << line << "\n";
   }
   out << "seed: " << seed_ << "\n";
-  auto num = [](double v) { return base::fixed_text(v, 3); };
+  // Exact: the printed world is the one compare and tune draw for this seed.
+  auto num = [](double v) { return base::shortest_text(v); };
   if (const auto* h = dynamic_cast<const worlds::HotspotWorld*>(w.get())) {
     out << "source: {x_m: " << num(h->source_m.x) << ", y_m: " << num(h->source_m.y) << "}\n";
   } else if (const auto* r = dynamic_cast<const worlds::RoadWorld*>(w.get())) {

@@ -13,6 +13,7 @@
 #include "cli_runner.hpp"
 #include "fleet_images.hpp"
 #include "swath/base/file_text.hpp"
+#include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/render/image.hpp"
 #include "swath/worlds/worlds.hpp"
@@ -439,6 +440,89 @@ TEST(FleetCli, RenderRedrawsARunFromItsFilesByteForByte) {
     EXPECT_EQ(read_text(run + "/gantt.png"), read_text(again + "/gantt.png"));
     EXPECT_EQ(read_text(run + "/events.jsonl"), events);
   }
+}
+
+// CSV text read back: a row per line, cells split at commas (the header row first).
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// swath-fleet tune (DESIGN.md §18.8) on case 1 with a small budget. weights.yaml reads back as
+// summary.json's winner; tune.csv holds the defaults, reactive's weights (no forecast terms) and
+// the halving's rungs (8 trials on the first tuning seed, 4 on the second); the winner has the
+// smallest mean of the trials that ran both. Then an independent path: `swath-fleet run` with
+// weights.yaml, GMF over the reactive runs of the history seeds and relief, on a world drawn
+// with `worlds gen`, takes exactly held_out.csv's tuned time for that seed.
+TEST(FleetCli, TuneKeepsTheBetterHalfAndRunReproducesItsHeldOutTime) {
+  const std::string out = fresh_dir("fleet-tune");
+  const std::string common = "road --drones 2 ";
+  const CliRun tune = run_swath_fleet("tune " + common +
+                                      "--world road --trials 8 --tuning-seeds 2 --held-out 2 "
+                                      "--histories 2 --seed 3 -o " +
+                                      out);
+  ASSERT_EQ(tune.exit_code, 0) << tune.err;
+  const json summary = json::parse(read_text(out + "/summary.json"));
+  const fleet::Weights w = fleet::read_weights(out + "/weights.yaml");
+  const json& win = summary["winner"]["weights"];
+  EXPECT_EQ(w.coverage, win["coverage"].get<double>());
+  EXPECT_EQ(w.fairness, win["fairness"].get<double>());
+  EXPECT_EQ(w.avoid_zigzag, win["avoid_zigzag"].get<double>());
+  EXPECT_EQ(w.commitment, win["commitment"].get<double>());
+  EXPECT_EQ(w.speculative, win["speculative"].get<double>());
+  EXPECT_EQ(w.avoid_mutual, win["avoid_mutual"].get<double>());
+
+  const auto trials = csv_rows(read_text(out + "/tune.csv"));
+  ASSERT_EQ(trials.size(), 9u);
+  ASSERT_EQ(trials[0].size(), 9u);
+  EXPECT_EQ(trials[0][7], "tuning_seeds");
+  const fleet::Weights defaults;
+  EXPECT_EQ(std::stod(trials[1][2]), defaults.fairness);
+  EXPECT_EQ(std::stod(trials[1][5]), defaults.speculative);
+  EXPECT_EQ(std::stod(trials[2][5]), 0.0);  // reactive's weights: no speculative,
+  EXPECT_EQ(std::stod(trials[2][6]), 0.0);  // no avoid-mutual
+  int on_both = 0;
+  double best_s = 1e300;
+  for (std::size_t i = 1; i < trials.size(); ++i)
+    if (trials[i][7] == "2") ++on_both, best_s = std::min(best_s, std::stod(trials[i][8]));
+  EXPECT_EQ(on_both, 4);
+  const auto winner = summary["winner"]["trial"].get<std::size_t>();
+  EXPECT_EQ(trials[winner + 1][7], "2");
+  EXPECT_EQ(std::stod(trials[winner + 1][8]), best_s);
+
+  // Seeds: histories 3, 4; tuning 5, 6; held out 7, 8.
+  const auto held = csv_rows(read_text(out + "/held_out.csv"));
+  ASSERT_EQ(held.size(), 3u);
+  ASSERT_EQ(held[1][0], "7");
+  std::string histories;
+  for (int seed : {3, 4, 7}) {
+    const CliRun gen = run_swath_fleet("worlds gen road --seed " + std::to_string(seed));
+    ASSERT_EQ(gen.exit_code, 0) << gen.err;
+    std::ofstream(out + "/road-" + std::to_string(seed) + ".yaml") << gen.out;
+  }
+  for (int seed : {3, 4}) {
+    const std::string dir = out + "/history-" + std::to_string(seed);
+    ASSERT_EQ(
+        run_swath_fleet("run " + common + "--world " + out + "/road-" + std::to_string(seed) +
+                        ".yaml --scheduler reactive --seed " + std::to_string(seed) + " -o " + dir)
+            .exit_code,
+        0);
+    histories += " " + dir;
+  }
+  const std::string replay = out + "/replay";
+  const CliRun run = run_swath_fleet("run " + common + "--world " + out + "/road-7.yaml --seed 7 " +
+                                     "--weights " + out + "/weights.yaml --forecast gmf --relief " +
+                                     "--history" + histories + " -o " + replay);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json replayed = json::parse(read_text(replay + "/summary.json"));
+  EXPECT_NEAR(replayed["completion_time_s"].get<double>(), std::stod(held[1][3]), 1e-3);
 }
 
 }  // namespace
