@@ -9,7 +9,7 @@
 namespace swath::control {
 namespace {
 
-constexpr SimTime kMs = 1'000'000;
+constexpr SimTime kMillisecond = 1'000'000;
 
 ReactiveSettings settings_with(double beta1, double beta2) {
   ReactiveSettings r;
@@ -27,7 +27,7 @@ struct Script {
   // its output changed as `changed(t)` says.
   template <typename Value, typename Changed>
   void run(SimTime end, Value value, Changed changed) {
-    for (SimTime t = 0; t <= end; t += kMs) {
+    for (SimTime t = 0; t <= end; t += kMillisecond) {
       release_until(t, changed);
       SensorSample s;
       s.time_ns = t;
@@ -51,9 +51,9 @@ struct Script {
 
 TEST(Reactive, ThresholdZeroRunsAtEveryTriggerSample) {
   // β = (10, 1): L(0) > 0.6, so x* = 0: every change fires.
-  Script s{ReactiveScheduler(settings_with(10, 1), {{"gyro", 0, kMs}}, 400), {}};
+  Script s{ReactiveScheduler(settings_with(10, 1), {{"gyro", 0, kMillisecond}}, 400), {}};
   s.run(
-      300 * kMs, [](SimTime t) { return static_cast<double>(t % 7); },
+      300 * kMillisecond, [](SimTime t) { return static_cast<double>(t % 7); },
       [](SimTime) { return true; });
   // The watchdog's execution at 0 comes before any sample, so the change has a reference only
   // from the next one, at 100 ms; from then on every sample (its value always moves: t mod 7 with
@@ -63,18 +63,18 @@ TEST(Reactive, ThresholdZeroRunsAtEveryTriggerSample) {
     if (cause == ReleaseCause::trigger) triggered.push_back(t);
   ASSERT_EQ(triggered.size(), 201u);
   for (std::size_t k = 0; k < triggered.size(); ++k)
-    EXPECT_EQ(triggered[k], (100 + static_cast<SimTime>(k)) * kMs);
+    EXPECT_EQ(triggered[k], (100 + static_cast<SimTime>(k)) * kMillisecond);
   EXPECT_EQ(s.releases.front().second, ReleaseCause::failsafe);
 }
 
 TEST(Reactive, ThresholdInfinityRunsOnlyAtTheFailsafe) {
-  Script s{ReactiveScheduler(settings_with(-10, 0), {{"gyro", 0, kMs}}, 400), {}};
+  Script s{ReactiveScheduler(settings_with(-10, 0), {{"gyro", 0, kMillisecond}}, 400), {}};
   s.run(
-      1000 * kMs, [](SimTime t) { return static_cast<double>(t % 7); },
+      1000 * kMillisecond, [](SimTime t) { return static_cast<double>(t % 7); },
       [](SimTime) { return false; });
   ASSERT_EQ(s.releases.size(), 11u);  // at 0, 100, ..., 1000 ms
   for (std::size_t k = 0; k < s.releases.size(); ++k) {
-    EXPECT_EQ(s.releases[k].first, static_cast<SimTime>(k) * 100 * kMs);
+    EXPECT_EQ(s.releases[k].first, static_cast<SimTime>(k) * 100 * kMillisecond);
     EXPECT_EQ(s.releases[k].second, ReleaseCause::failsafe);
   }
 }
@@ -82,46 +82,46 @@ TEST(Reactive, ThresholdInfinityRunsOnlyAtTheFailsafe) {
 TEST(Reactive, TriggersWaitForTheHyperperiodButNeverBeyondMaxWait) {
   // Periods of 1 ms and 2.5 ms (both ≥ 400 Hz): H = 5 ms; max_wait 2.5 ms.
   ReactiveSettings r = settings_with(10, 1);
-  ReactiveScheduler sched(r, {{"gyro", 0, kMs}, {"accel", 1, 2'500'000}}, 400);
-  EXPECT_EQ(sched.hyperperiod_ns(), 5 * kMs);
+  ReactiveScheduler sched(r, {{"gyro", 0, kMillisecond}, {"accel", 1, 2'500'000}}, 400);
+  EXPECT_EQ(sched.hyperperiod_ns(), 5 * kMillisecond);
   sched.take_release();  // the watchdog at 0
   sched.on_execution_start(0);
   sched.on_execution_end(0, true);
   SensorSample s;
   s.sensor = 0;
   s.axes = 1;
-  s.time_ns = 1 * kMs;
+  s.time_ns = 1 * kMillisecond;
   s.value = {1};
   sched.on_sample(s);  // the first sample of gyro: no reference yet
-  EXPECT_EQ(sched.next_release_ns(), 100 * kMs);
-  sched.on_execution_start(1 * kMs);  // (an execution takes the reference)
-  sched.on_execution_end(1 * kMs, true);
-  s.time_ns = 6 * kMs;
+  EXPECT_EQ(sched.next_release_ns(), 100 * kMillisecond);
+  sched.on_execution_start(1 * kMillisecond);  // (an execution takes the reference)
+  sched.on_execution_end(1 * kMillisecond, true);
+  s.time_ns = 6 * kMillisecond;
   s.value = {2};
   sched.on_sample(s);  // fires at 6 ms: H boundary 10 ms, cap 8.5 ms
   EXPECT_EQ(sched.next_release_ns(), 8'500'000);
-  s.time_ns = 9 * kMs + 1;  // after the release was taken, fires again: boundary 10 ms first
+  s.time_ns = 9 * kMillisecond + 1;  // after the release was taken, fires again: boundary 10 ms first
   sched.take_release();
   sched.on_execution_start(8'500'000);
   sched.on_execution_end(8'500'000, true);
   s.value = {3};
   sched.on_sample(s);
-  EXPECT_EQ(sched.next_release_ns(), 10 * kMs);
+  EXPECT_EQ(sched.next_release_ns(), 10 * kMillisecond);
   // With min_rate 0 (the literal paper) a 10 Hz sensor makes H 100 ms, so the cap decides.
   r.accumulation_min_rate_hz = 0;
-  ReactiveScheduler literal(r, {{"gyro", 0, kMs}, {"gps", 1, 100 * kMs}}, 400);
-  EXPECT_EQ(literal.hyperperiod_ns(), 100 * kMs);
+  ReactiveScheduler literal(r, {{"gyro", 0, kMillisecond}, {"gps", 1, 100 * kMillisecond}}, 400);
+  EXPECT_EQ(literal.hyperperiod_ns(), 100 * kMillisecond);
 }
 
 // Points in the data set after a flight whose executions leave the output as `changed` says.
 std::int64_t points_after(FeedbackRule rule, bool changed, double beta1) {
   ReactiveSettings r = settings_with(beta1, beta1 > 0 ? 1 : 0);
   r.fit_feedback = rule;
-  Script s{ReactiveScheduler(r, {{"gyro", 0, kMs}}, 400), {}};
+  Script s{ReactiveScheduler(r, {{"gyro", 0, kMillisecond}}, 400), {}};
   s.run(
-      500 * kMs, [](SimTime t) { return static_cast<double>(t % 7); },
+      500 * kMillisecond, [](SimTime t) { return static_cast<double>(t % 7); },
       [changed](SimTime) { return changed; });
-  return s.scheduler.begin_refit(500 * kMs);
+  return s.scheduler.begin_refit(500 * kMillisecond);
 }
 
 TEST(Reactive, FeedbackRulesAddWhatTheySay) {
@@ -142,19 +142,19 @@ TEST(Reactive, TheBootRunsTimeTriggeredAndFitsWhenItEnds) {
   ReactiveSettings r;
   r.boot_s = 0.5;
   r.boot_rate_hz = 100;
-  ReactiveScheduler sched(r, {{"gyro", 0, kMs}}, 400);
+  ReactiveScheduler sched(r, {{"gyro", 0, kMillisecond}}, 400);
   Script s{sched, {}};
   s.run(
-      499 * kMs, [](SimTime t) { return static_cast<double>(t % 7); },
+      499 * kMillisecond, [](SimTime t) { return static_cast<double>(t % 7); },
       [](SimTime t) { return t % 20'000'000 == 0; });
   ASSERT_EQ(s.releases.size(), 50u);  // 100 Hz for 0.5 s
   for (const auto& [t, cause] : s.releases) EXPECT_EQ(cause, ReleaseCause::boot);
-  EXPECT_EQ(s.scheduler.next_refit_ns(), 500 * kMs);
+  EXPECT_EQ(s.scheduler.next_refit_ns(), 500 * kMillisecond);
   // Each boot execution after the first (at 0, before any sample) saw gyro samples: 49 points.
-  EXPECT_EQ(s.scheduler.begin_refit(500 * kMs), 49);
-  s.scheduler.end_refit(510 * kMs);
+  EXPECT_EQ(s.scheduler.begin_refit(500 * kMillisecond), 49);
+  s.scheduler.end_refit(510 * kMillisecond);
   EXPECT_EQ(s.scheduler.stats()[0].refits, 1);
-  EXPECT_EQ(s.scheduler.next_refit_ns(), 1510 * kMs);
+  EXPECT_EQ(s.scheduler.next_refit_ns(), 1510 * kMillisecond);
 }
 
 }  // namespace

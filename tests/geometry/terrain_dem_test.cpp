@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using Surface = std::function<double(double east_m, double north_m)>;
 
-fs::path scratch() {
+fs::path dem_scratch() {
   const fs::path dir =
       fs::temp_directory_path() / ("swath-terrain-dem-test-" + std::to_string(::getpid()));
   static bool once = [&] {
@@ -63,7 +63,7 @@ fs::path write_dem(const std::string& name, const Surface& f, double pixel_m = 2
                    double half_m = 1500.0, const std::function<bool(double, double)>& hole = {},
                    const char* unit = "", double per_metre = 1.0) {
   GDALAllRegister();
-  const fs::path path = scratch() / (name + ".tif");
+  const fs::path path = dem_scratch() / (name + ".tif");
   const int n = static_cast<int>(2 * half_m / pixel_m);
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
   GDALDataset* d = gtiff->Create(path.c_str(), n, n, 1, GDT_Float32, nullptr);
@@ -145,9 +145,9 @@ TEST(DemGround, OutsideTheRasterAndNextToNodataThereIsNoHeight) {
 }
 
 TEST(DemGround, BadFilesAreRefusedNamingThem) {
-  const fs::path text = scratch() / "not-a-dem.tif";
+  const fs::path text = dem_scratch() / "not-a-dem.tif";
   { std::ofstream(text) << "hello"; }
-  for (const std::string& path : {text.string(), (scratch() / "absent.tif").string(),
+  for (const std::string& path : {text.string(), (dem_scratch() / "absent.tif").string(),
                                   std::string(SWATH_SOURCE_DIR) + "/share/fields/meadow.geojson"}) {
     try {
       dem_ground(path);
