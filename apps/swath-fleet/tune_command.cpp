@@ -103,18 +103,82 @@ struct Trial {
   }
 };
 
-}  // namespace
+// Completion times on the held-out seeds, per configuration.
+struct HeldOut {
+  std::vector<double> reactive, start, tuned;
+  std::string csv = "seed,reactive_s,predictive_default_s,predictive_tuned_s\n";
+};
 
-int FleetTuneCommand::run() {
-  // Seeds: the histories', the tuning seeds', the held-out seeds' — three disjoint ranges.
-  const std::uint64_t first = request_.seed;
-  const std::uint64_t tune0 = first + histories_;
-  const std::uint64_t held0 = tune0 + static_cast<std::uint64_t>(tuning_seeds_);
-  PreparedRun check = prepare_run(request_, first);  // every input read and checked up front
+// The tuning's steps over one request: seeds in three disjoint ranges from --seed (histories,
+// tuning, held out), every run a world replay of the app.
+class Tuning {
+ public:
+  Tuning(const FleetRequest& r, std::size_t histories, int tuning_seeds, int held_out)
+      : request_(r),
+        history_count_(histories),
+        tuning_seeds_(tuning_seeds),
+        held_out_(held_out),
+        tune0_(r.seed + histories),
+        held0_(tune0_ + static_cast<std::uint64_t>(tuning_seeds)),
+        progress_(true, "tune " + r.app) {}
 
-  // One run; a run that does not complete counts as twice the time limit.
-  auto run_once = [&](const std::string& mode, const fleet::Weights* w, std::uint64_t seed,
-                      const std::vector<fleet::Dtg>& histories) {
+  void learn_histories() {
+    for (std::size_t k = 0; k < history_count_; ++k)
+      histories_.push_back(fleet::parse_dtg(
+          run_once("reactive", nullptr, request_.seed + k).dtg_json, "history dtg.json"));
+  }
+
+  // Every trial alive runs the next tuning seed; then the better half (ties: lower trial) goes
+  // on. The winner: the best of those that ran every tuning seed.
+  std::size_t halve(std::vector<Trial>& trials) {
+    std::vector<std::size_t> alive(trials.size());
+    for (std::size_t i = 0; i < alive.size(); ++i) alive[i] = i;
+    expected_runs_ = 3.0 * held_out_;
+    for (double a = static_cast<double>(alive.size()), k = 0; k < tuning_seeds_;
+         ++k, a = std::ceil(a / 2))
+      expected_runs_ += a;
+    auto by_mean = [&](std::size_t a, std::size_t b) {
+      const double ma = trials[a].mean_s(), mb = trials[b].mean_s();
+      return ma != mb ? ma < mb : a < b;
+    };
+    for (int k = 0; k < tuning_seeds_; ++k) {
+      if (k > 0) {
+        std::sort(alive.begin(), alive.end(), by_mean);
+        alive.resize((alive.size() + 1) / 2);
+      }
+      for (std::size_t i : alive)
+        trials[i].times_s.push_back(time_of(
+            run_once("predictive", &trials[i].weights, tune0_ + static_cast<std::uint64_t>(k))));
+    }
+    return *std::min_element(alive.begin(), alive.end(), by_mean);
+  }
+
+  // Reactive, predictive with the starting weights and with the winner's, on the held-out seeds.
+  HeldOut score(const fleet::Weights& start, const fleet::Weights& tuned) {
+    HeldOut h;
+    for (int k = 0; k < held_out_; ++k) {
+      const std::uint64_t seed = held0_ + static_cast<std::uint64_t>(k);
+      h.reactive.push_back(time_of(run_once("reactive", nullptr, seed)));
+      h.start.push_back(time_of(run_once("predictive", &start, seed)));
+      h.tuned.push_back(time_of(run_once("predictive", &tuned, seed)));
+      h.csv += std::to_string(seed) + "," + base::fixed_text(h.reactive.back(), 3) + "," +
+               base::fixed_text(h.start.back(), 3) + "," + base::fixed_text(h.tuned.back(), 3) +
+               "\n";
+    }
+    return h;
+  }
+
+  json seeds_json() const {
+    return json{{"histories_first", request_.seed},
+                {"tuning_first", tune0_},
+                {"tuning", tuning_seeds_},
+                {"held_out_first", held0_},
+                {"held_out", held_out_}};
+  }
+
+ private:
+  // One run: reactive, or predictive (sa + GMF over the histories + relief) with `w`.
+  fleet::RunRecord run_once(const std::string& mode, const fleet::Weights* w, std::uint64_t seed) {
     FleetRequest r = request_;
     r.scheduler = mode == "reactive" ? "reactive" : "sa";
     r.seed = seed;
@@ -122,64 +186,28 @@ int FleetTuneCommand::run() {
     if (w) p.settings.weights = *w;
     if (mode == "predictive") {
       p.settings.forecaster = "gmf";
-      p.settings.histories = histories;
+      p.settings.histories = histories_;
       p.settings.relief = true;
     }
-    return fleet::run_app(p.app, *p.world, p.drones, p.settings);
-  };
-  auto time_of = [&](const fleet::RunRecord& r) {
+    fleet::RunRecord rec = fleet::run_app(p.app, *p.world, p.drones, p.settings);
+    if (expected_runs_ > 0) progress_.update(++done_runs_ / expected_runs_);
+    return rec;
+  }
+  // A run that does not complete counts as twice the time limit.
+  double time_of(const fleet::RunRecord& r) const {
     return r.completed ? r.completion_time_s : 2 * request_.max_time_s;
-  };
-
-  ProgressBar progress(true, "tune " + request_.app);  // drawn only on a terminal
-  std::vector<fleet::Dtg> histories;
-  for (std::size_t k = 0; k < histories_; ++k)
-    histories.push_back(fleet::parse_dtg(run_once("reactive", nullptr, first + k, {}).dtg_json,
-                                         "history dtg.json"));
-
-  // Successive halving: every trial alive runs the next tuning seed; the better half goes on.
-  std::vector<Trial> trials;
-  for (const fleet::Weights& w : draw_trials(check.settings.weights, trials_, request_.seed))
-    trials.push_back({w, {}});
-  std::vector<std::size_t> alive(trials.size());
-  for (std::size_t i = 0; i < alive.size(); ++i) alive[i] = i;
-  const double total_runs = [&] {
-    double n = 0, a = static_cast<double>(alive.size());
-    for (int k = 0; k < tuning_seeds_; ++k, a = std::ceil(a / 2)) n += a;
-    return n + 3.0 * held_out_;
-  }();
-  double done_runs = 0;
-  auto by_mean = [&](std::size_t a, std::size_t b) {
-    const double ma = trials[a].mean_s(), mb = trials[b].mean_s();
-    return ma != mb ? ma < mb : a < b;
-  };
-  for (int k = 0; k < tuning_seeds_; ++k) {
-    if (k > 0) {
-      std::sort(alive.begin(), alive.end(), by_mean);
-      alive.resize((alive.size() + 1) / 2);
-    }
-    for (std::size_t i : alive) {
-      trials[i].times_s.push_back(time_of(run_once(
-          "predictive", &trials[i].weights, tune0 + static_cast<std::uint64_t>(k), histories)));
-      progress.update(++done_runs / total_runs);
-    }
-  }
-  const std::size_t winner = *std::min_element(alive.begin(), alive.end(), by_mean);
-
-  // Held out: reactive, predictive with the starting weights, predictive with the winner's.
-  std::vector<double> reactive, start, tuned;
-  std::string held_csv = "seed,reactive_s,predictive_default_s,predictive_tuned_s\n";
-  for (int k = 0; k < held_out_; ++k) {
-    const std::uint64_t seed = held0 + static_cast<std::uint64_t>(k);
-    reactive.push_back(time_of(run_once("reactive", nullptr, seed, {})));
-    start.push_back(time_of(run_once("predictive", &trials[0].weights, seed, histories)));
-    tuned.push_back(time_of(run_once("predictive", &trials[winner].weights, seed, histories)));
-    done_runs += 3;
-    progress.update(done_runs / total_runs);
-    held_csv += std::to_string(seed) + "," + base::fixed_text(reactive.back(), 3) + "," +
-                base::fixed_text(start.back(), 3) + "," + base::fixed_text(tuned.back(), 3) + "\n";
   }
 
+  const FleetRequest& request_;
+  std::size_t history_count_;
+  int tuning_seeds_, held_out_;
+  std::uint64_t tune0_, held0_;
+  std::vector<fleet::Dtg> histories_;
+  ProgressBar progress_;  // drawn only on a terminal
+  double expected_runs_ = 0, done_runs_ = 0;
+};
+
+std::string tune_csv(const std::vector<Trial>& trials) {
   std::string csv = "trial,coverage";
   for (const FreeWeight& f : kFree) csv += std::string(",") + f.name;
   csv += ",tuning_seeds,mean_completion_time_s\n";
@@ -189,6 +217,10 @@ int FleetTuneCommand::run() {
     csv += "," + std::to_string(trials[i].times_s.size()) + "," +
            base::fixed_text(trials[i].mean_s(), 3) + "\n";
   }
+  return csv;
+}
+
+json held_out_json(const HeldOut& h) {
   auto summary_of = [](const std::vector<double>& x) {
     const Interval i = mean_interval95(x);
     return json{{"completion_time_s_mean", base::round_to(i.mean, 3)},
@@ -201,26 +233,39 @@ int FleetTuneCommand::run() {
     return json{{"relative_change_mean", base::round_to(i.mean, 5)},
                 {"relative_change_ci95", base::round_to(i.half, 5)}};
   };
-  json weights{{"coverage", trials[winner].weights.coverage}};
-  for (const FreeWeight& f : kFree) weights[f.name] = trials[winner].weights.*f.member;
-  const json summary{{"app", request_.app},
-                     {"world", check.world->kind()},
-                     {"drones", check.drones.size()},
-                     {"trials", trials.size()},
-                     {"seeds",
-                      {{"histories_first", first},
-                       {"tuning_first", tune0},
-                       {"tuning", tuning_seeds_},
-                       {"held_out_first", held0},
-                       {"held_out", held_out_}}},
-                     {"winner", {{"trial", winner}, {"weights", weights}}},
-                     {"held_out",
-                      {{"reactive", summary_of(reactive)},
-                       {"predictive_default", summary_of(start)},
-                       {"predictive_tuned", summary_of(tuned)},
-                       {"tuned_vs_reactive", paired(reactive, tuned)},
-                       {"tuned_vs_default", paired(start, tuned)}}}};
+  return json{{"reactive", summary_of(h.reactive)},
+              {"predictive_default", summary_of(h.start)},
+              {"predictive_tuned", summary_of(h.tuned)},
+              {"tuned_vs_reactive", paired(h.reactive, h.tuned)},
+              {"tuned_vs_default", paired(h.start, h.tuned)}};
+}
 
+json weights_json(const fleet::Weights& w) {
+  json out{{"coverage", w.coverage}};
+  for (const FreeWeight& f : kFree) out[f.name] = w.*f.member;
+  return out;
+}
+
+}  // namespace
+
+int FleetTuneCommand::run() {
+  const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked first
+  Tuning tuning(request_, histories_, tuning_seeds_, held_out_);
+  tuning.learn_histories();
+  std::vector<Trial> trials;
+  for (const fleet::Weights& w : draw_trials(check.settings.weights, trials_, request_.seed))
+    trials.push_back({w, {}});
+  const std::size_t winner = tuning.halve(trials);
+  const HeldOut held = tuning.score(trials[0].weights, trials[winner].weights);
+
+  const json summary{
+      {"app", request_.app},
+      {"world", check.world->kind()},
+      {"drones", check.drones.size()},
+      {"trials", trials.size()},
+      {"seeds", tuning.seeds_json()},
+      {"winner", {{"trial", winner}, {"weights", weights_json(trials[winner].weights)}}},
+      {"held_out", held_out_json(held)}};
   base::OutputSet set(output_, "fleet-tune");
   set.add("weights.yaml",
           weights_yaml(trials[winner].weights,
@@ -228,11 +273,11 @@ int FleetTuneCommand::run() {
                            " of " + std::to_string(trials.size()) + ", mean " +
                            base::fixed_text(trials[winner].mean_s(), 3) + " s over " +
                            std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
-  set.add("tune.csv", csv);
-  set.add("held_out.csv", held_csv);
+  set.add("tune.csv", tune_csv(trials));
+  set.add("held_out.csv", held.csv);
   set.add("summary.json", summary.dump(2) + "\n");
   set.commit();
-  const Interval r = mean_interval95(reactive), t = mean_interval95(tuned);
+  const Interval r = mean_interval95(held.reactive), t = mean_interval95(held.tuned);
   std::cout << request_.app << ": trial " << winner << " of " << trials.size()
             << " wins; held out (" << held_out_ << " seeds): reactive "
             << base::fixed_text(r.mean, 1) << " ± " << base::fixed_text(r.half, 1)

@@ -180,174 +180,216 @@ class Annealing final : public Scheduler {
   AnnealingSettings settings_;
 };
 
-Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
-  const Utility u(s);
-  const std::size_t nd = u.drones(), nr = u.targets();
-  // Start: the better of greedy and the current targets (when they are a valid assignment).
-  Assignment start = greedy(u);
-  Assignment current(nd);
-  for (std::size_t d = 0; d < nd; ++d) current[d] = s.drones[d].target;
-  if (u.valid(current) && u.total(current) > u.total(start)) start = current;
-  std::vector<int> target(nd, kNone), holder(nr, kNone);
-  for (std::size_t d = 0; d < nd; ++d)
-    if (start[d]) {
-      target[d] = *start[d];
-      holder[static_cast<std::size_t>(*start[d])] = static_cast<int>(d);
-    }
-  // Candidates per free drone: its nearest feasible visible and forecast requests, its current
-  // target.
-  std::vector<std::size_t> free_drones;
-  std::vector<std::vector<int>> candidates(nd);
-  for (std::size_t d = 0; d < nd; ++d) {
-    if (s.drones[d].busy) continue;
-    free_drones.push_back(d);
-    auto nearest = [&](std::size_t from, std::size_t to, int count) {
-      std::vector<std::pair<double, int>> near;
-      for (std::size_t r = from; r < to; ++r)
-        if (u.feasible(d, r)) near.push_back({u.eta_s(d, r), static_cast<int>(r)});
-      const auto k = std::min<std::size_t>(near.size(), static_cast<std::size_t>(count));
-      std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
-      for (std::size_t i = 0; i < k; ++i) candidates[d].push_back(near[i].second);
-    };
-    nearest(0, u.requests(), settings_.candidates);
-    nearest(u.requests(), nr, settings_.forecast_candidates);
-    if (target[d] != kNone &&
-        std::find(candidates[d].begin(), candidates[d].end(), target[d]) == candidates[d].end())
-      candidates[d].push_back(target[d]);
+// One annealing search (DESIGN.md §18.5): the state (each drone's target, each target's holder),
+// the candidates, the moves with their incremental ΔU, the temperature and the cooling loop.
+class AnnealingRun {
+ public:
+  AnnealingRun(const Snapshot& s, const AnnealingSettings& settings, vehicle::SplitMix64& rng)
+      : s_(s), u_(s), settings_(settings), rng_(rng) {}
+
+  Assignment run() {
+    const Assignment start = starting_assignment();
+    find_candidates();
+    if (free_drones_.empty()) return start;
+    return anneal(u_.total(start), initial_temperature());
   }
-  if (free_drones.empty()) return start;
-  auto value = [&](std::size_t d, int r) {
-    return r == kNone ? 0.0 : u.value(d, static_cast<std::size_t>(r));
-  };
-  // avoid-mutual's penalty around the moved drones' requests (each pair once), as they stand.
-  auto local_pairs = [&](const std::array<int, 4>& moved) {
-    double cost = 0;
-    for (std::size_t k = 0; k < moved.size(); ++k) {
-      const int i = moved[k];
-      if (i == kNone || static_cast<std::size_t>(i) >= u.requests() ||
-          std::find(moved.begin(), moved.begin() + static_cast<std::ptrdiff_t>(k), i) !=
-              moved.begin() + static_cast<std::ptrdiff_t>(k))
-        continue;
-      const int di = holder[static_cast<std::size_t>(i)];
-      if (di == kNone) continue;
-      for (const Utility::Link& l : u.links(static_cast<std::size_t>(i))) {
-        const int dj = holder[l.other];
-        if (dj == kNone) continue;
-        const bool also_moved =
-            std::find(moved.begin(), moved.end(), static_cast<int>(l.other)) != moved.end();
-        if (also_moved && static_cast<int>(l.other) < i) continue;  // counted from its side
-        cost += u.pair_cost(static_cast<std::size_t>(i), static_cast<std::size_t>(di), l,
-                            static_cast<std::size_t>(dj));
-      }
-    }
-    return cost;
-  };
-  // A move and its ΔU; apply() makes it.
+
+ private:
+  static constexpr int kRetarget = 0, kSwap = 1, kClear = 2;
   struct Move {
-    int kind = 0;  // 0 retarget, 1 swap, 2 clear
+    int kind = kRetarget;
     std::size_t d1 = 0, d2 = 0;
     int r = kNone;
     double delta = 0;
     bool valid = false;
   };
-  auto apply = [&](const Move& m) {
-    if (m.kind == 0) {
-      if (m.d2 != m.d1) target[m.d2] = kNone;
-      if (target[m.d1] != kNone) holder[static_cast<std::size_t>(target[m.d1])] = kNone;
-      target[m.d1] = m.r;
-      holder[static_cast<std::size_t>(m.r)] = static_cast<int>(m.d1);
-    } else if (m.kind == 1) {
-      std::swap(target[m.d1], target[m.d2]);
-      if (target[m.d1] != kNone)
-        holder[static_cast<std::size_t>(target[m.d1])] = static_cast<int>(m.d1);
-      if (target[m.d2] != kNone)
-        holder[static_cast<std::size_t>(target[m.d2])] = static_cast<int>(m.d2);
-    } else {
-      holder[static_cast<std::size_t>(target[m.d1])] = kNone;
-      target[m.d1] = kNone;
+
+  // The better of greedy and the current targets (when they are a valid assignment).
+  Assignment starting_assignment() {
+    const std::size_t nd = u_.drones();
+    Assignment start = greedy(u_);
+    Assignment current(nd);
+    for (std::size_t d = 0; d < nd; ++d) current[d] = s_.drones[d].target;
+    if (u_.valid(current) && u_.total(current) > u_.total(start)) start = current;
+    target_.assign(nd, kNone);
+    holder_.assign(u_.targets(), kNone);
+    for (std::size_t d = 0; d < nd; ++d)
+      if (start[d]) {
+        target_[d] = *start[d];
+        holder_[static_cast<std::size_t>(*start[d])] = static_cast<int>(d);
+      }
+    return start;
+  }
+
+  // Per free drone: its nearest feasible visible and forecast requests, its current target.
+  void find_candidates() {
+    const std::size_t nd = u_.drones();
+    candidates_.assign(nd, {});
+    for (std::size_t d = 0; d < nd; ++d) {
+      if (s_.drones[d].busy) continue;
+      free_drones_.push_back(d);
+      auto nearest = [&](std::size_t from, std::size_t to, int count) {
+        std::vector<std::pair<double, int>> near;
+        for (std::size_t r = from; r < to; ++r)
+          if (u_.feasible(d, r)) near.push_back({u_.eta_s(d, r), static_cast<int>(r)});
+        const auto k = std::min<std::size_t>(near.size(), static_cast<std::size_t>(count));
+        std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end());
+        for (std::size_t i = 0; i < k; ++i) candidates_[d].push_back(near[i].second);
+      };
+      nearest(0, u_.requests(), settings_.candidates);
+      nearest(u_.requests(), u_.targets(), settings_.forecast_candidates);
+      if (target_[d] != kNone && std::find(candidates_[d].begin(), candidates_[d].end(),
+                                           target_[d]) == candidates_[d].end())
+        candidates_[d].push_back(target_[d]);
     }
-  };
-  auto propose_pair = [&]() {
+  }
+
+  double value(std::size_t d, int r) const {
+    return r == kNone ? 0.0 : u_.value(d, static_cast<std::size_t>(r));
+  }
+
+  // avoid-mutual's penalty around the moved drones' requests (each pair once), as they stand.
+  double local_pairs(const std::array<int, 4>& moved) const {
+    double cost = 0;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      const int i = moved[k];
+      if (i == kNone || static_cast<std::size_t>(i) >= u_.requests() ||
+          std::find(moved.begin(), moved.begin() + static_cast<std::ptrdiff_t>(k), i) !=
+              moved.begin() + static_cast<std::ptrdiff_t>(k))
+        continue;
+      const int di = holder_[static_cast<std::size_t>(i)];
+      if (di == kNone) continue;
+      for (const Utility::Link& l : u_.links(static_cast<std::size_t>(i))) {
+        const int dj = holder_[l.other];
+        if (dj == kNone) continue;
+        const bool also_moved =
+            std::find(moved.begin(), moved.end(), static_cast<int>(l.other)) != moved.end();
+        if (also_moved && static_cast<int>(l.other) < i) continue;  // counted from its side
+        cost += u_.pair_cost(static_cast<std::size_t>(i), static_cast<std::size_t>(di), l,
+                             static_cast<std::size_t>(dj));
+      }
+    }
+    return cost;
+  }
+
+  void apply(const Move& m) {
+    if (m.kind == kRetarget) {
+      if (m.d2 != m.d1) target_[m.d2] = kNone;
+      if (target_[m.d1] != kNone) holder_[static_cast<std::size_t>(target_[m.d1])] = kNone;
+      target_[m.d1] = m.r;
+      holder_[static_cast<std::size_t>(m.r)] = static_cast<int>(m.d1);
+    } else if (m.kind == kSwap) {
+      std::swap(target_[m.d1], target_[m.d2]);
+      if (target_[m.d1] != kNone)
+        holder_[static_cast<std::size_t>(target_[m.d1])] = static_cast<int>(m.d1);
+      if (target_[m.d2] != kNone)
+        holder_[static_cast<std::size_t>(target_[m.d2])] = static_cast<int>(m.d2);
+    } else {
+      holder_[static_cast<std::size_t>(target_[m.d1])] = kNone;
+      target_[m.d1] = kNone;
+    }
+  }
+
+  // A random move with the pair part of its ΔU (from the values).
+  Move propose_pair() {
     Move m;
-    const double pick = rng.uniform();
-    m.d1 = free_drones[draw(rng, free_drones.size())];
-    if (pick < 0.6 && !candidates[m.d1].empty()) {  // retarget
-      m.kind = 0;
-      m.r = candidates[m.d1][draw(rng, candidates[m.d1].size())];
-      if (m.r == target[m.d1]) return m;
-      const int other = holder[static_cast<std::size_t>(m.r)];
-      if (other != kNone && s.drones[static_cast<std::size_t>(other)].busy) return m;
+    const double pick = rng_.uniform();
+    m.d1 = free_drones_[draw(rng_, free_drones_.size())];
+    if (pick < 0.6 && !candidates_[m.d1].empty()) {
+      m.kind = kRetarget;
+      m.r = candidates_[m.d1][draw(rng_, candidates_[m.d1].size())];
+      if (m.r == target_[m.d1]) return m;
+      const int other = holder_[static_cast<std::size_t>(m.r)];
+      if (other != kNone && s_.drones[static_cast<std::size_t>(other)].busy) return m;
       m.d2 = other == kNone ? m.d1 : static_cast<std::size_t>(other);
       m.delta =
-          value(m.d1, m.r) - value(m.d1, target[m.d1]) - (other == kNone ? 0.0 : value(m.d2, m.r));
+          value(m.d1, m.r) - value(m.d1, target_[m.d1]) - (other == kNone ? 0.0 : value(m.d2, m.r));
       m.valid = true;
-    } else if (pick < 0.85 && free_drones.size() > 1) {  // swap
-      m.kind = 1;
-      m.d2 = free_drones[draw(rng, free_drones.size())];
-      const int t1 = target[m.d1], t2 = target[m.d2];
+    } else if (pick < 0.85 && free_drones_.size() > 1) {
+      m.kind = kSwap;
+      m.d2 = free_drones_[draw(rng_, free_drones_.size())];
+      const int t1 = target_[m.d1], t2 = target_[m.d2];
       if (m.d1 == m.d2 || t1 == t2) return m;
-      if ((t2 != kNone && !u.feasible(m.d1, static_cast<std::size_t>(t2))) ||
-          (t1 != kNone && !u.feasible(m.d2, static_cast<std::size_t>(t1))))
+      if ((t2 != kNone && !u_.feasible(m.d1, static_cast<std::size_t>(t2))) ||
+          (t1 != kNone && !u_.feasible(m.d2, static_cast<std::size_t>(t1))))
         return m;
       m.delta = value(m.d1, t2) + value(m.d2, t1) - value(m.d1, t1) - value(m.d2, t2);
       m.valid = true;
-    } else {  // clear
-      m.kind = 2;
-      if (target[m.d1] == kNone) return m;
-      m.delta = -value(m.d1, target[m.d1]);
+    } else {
+      m.kind = kClear;
+      if (target_[m.d1] == kNone) return m;
+      m.delta = -value(m.d1, target_[m.d1]);
       m.valid = true;
     }
     return m;
-  };
-  // The pair part of ΔU from the values; the pairwise part by making the move on the moved
-  // drones' entries, measuring, and putting them back.
-  auto propose = [&]() {
+  }
+
+  // The whole ΔU: the pairwise part by making the move on the moved drones' entries, measuring,
+  // and putting them back.
+  Move propose() {
     Move m = propose_pair();
-    if (!m.valid || !u.has_pairwise()) return m;
-    const std::array<int, 4> moved{target[m.d1], target[m.d2], m.r,
-                                   m.kind == 1 ? target[m.d1] : kNone};
+    if (!m.valid || !u_.has_pairwise()) return m;
+    const std::array<int, 4> moved{target_[m.d1], target_[m.d2], m.r,
+                                   m.kind == kSwap ? target_[m.d1] : kNone};
     const double before = local_pairs(moved);
-    const std::array<int, 2> old_target{target[m.d1], target[m.d2]};
+    const std::array<int, 2> old_target{target_[m.d1], target_[m.d2]};
     std::array<int, 4> old_holder{};
     for (std::size_t k = 0; k < 4; ++k)
-      old_holder[k] = moved[k] == kNone ? kNone : holder[static_cast<std::size_t>(moved[k])];
+      old_holder[k] = moved[k] == kNone ? kNone : holder_[static_cast<std::size_t>(moved[k])];
     apply(m);
     m.delta -= local_pairs(moved) - before;
-    target[m.d1] = old_target[0];
-    target[m.d2] = old_target[1];
+    target_[m.d1] = old_target[0];
+    target_[m.d2] = old_target[1];
     for (std::size_t k = 4; k-- > 0;)
-      if (moved[k] != kNone) holder[static_cast<std::size_t>(moved[k])] = old_holder[k];
+      if (moved[k] != kNone) holder_[static_cast<std::size_t>(moved[k])] = old_holder[k];
     return m;
-  };
-  // T₀ from the median |ΔU| of random moves (not made).
-  std::vector<double> probes;
-  for (int k = 0; k < settings_.probe_moves; ++k)
-    if (const Move m = propose(); m.valid && m.delta != 0) probes.push_back(std::abs(m.delta));
-  double t0 = 1e-9;
-  if (!probes.empty()) {
+  }
+
+  // T₀ from the median |ΔU| of random moves (not made), / ln 2.
+  double initial_temperature() {
+    std::vector<double> probes;
+    for (int k = 0; k < settings_.probe_moves; ++k)
+      if (const Move m = propose(); m.valid && m.delta != 0) probes.push_back(std::abs(m.delta));
+    if (probes.empty()) return 1e-9;
     std::nth_element(probes.begin(),
                      probes.begin() + static_cast<std::ptrdiff_t>(probes.size() / 2), probes.end());
-    t0 = std::max(probes[probes.size() / 2] / std::log(2.0), 1e-9);
+    return std::max(probes[probes.size() / 2] / std::log(2.0), 1e-9);
   }
-  double now = u.total(start), best_value = now;
-  std::vector<int> best = target;
-  const double cooling = std::pow(1e-3, 1.0 / std::max(settings_.moves, 1));
-  double temperature = t0;
-  for (int k = 0; k < settings_.moves; ++k, temperature *= cooling) {
-    const Move m = propose();
-    if (!m.valid) continue;
-    if (m.delta < 0 && rng.uniform() >= std::exp(m.delta / temperature)) continue;
-    apply(m);
-    now += m.delta;
-    if (now > best_value + 1e-12) {
-      best_value = now;
-      best = target;
+
+  // Geometric cooling to T₀·10⁻³; the best assignment seen.
+  Assignment anneal(double now, double t0) {
+    double best_value = now;
+    std::vector<int> best = target_;
+    const double cooling = std::pow(1e-3, 1.0 / std::max(settings_.moves, 1));
+    double temperature = t0;
+    for (int k = 0; k < settings_.moves; ++k, temperature *= cooling) {
+      const Move m = propose();
+      if (!m.valid) continue;
+      if (m.delta < 0 && rng_.uniform() >= std::exp(m.delta / temperature)) continue;
+      apply(m);
+      now += m.delta;
+      if (now > best_value + 1e-12) {
+        best_value = now;
+        best = target_;
+      }
     }
+    Assignment out(best.size());
+    for (std::size_t d = 0; d < best.size(); ++d)
+      if (best[d] != kNone) out[d] = best[d];
+    return out;
   }
-  Assignment out(nd);
-  for (std::size_t d = 0; d < nd; ++d)
-    if (best[d] != kNone) out[d] = best[d];
-  return out;
+
+  const Snapshot& s_;
+  const Utility u_;
+  const AnnealingSettings& settings_;
+  vehicle::SplitMix64& rng_;
+  std::vector<int> target_, holder_;  // drone -> target, target -> drone (kNone: none)
+  std::vector<std::size_t> free_drones_;
+  std::vector<std::vector<int>> candidates_;
+};
+
+Assignment Annealing::assign(const Snapshot& s, vehicle::SplitMix64& rng) {
+  return AnnealingRun(s, settings_, rng).run();
 }
 
 bool inside_fence(const std::vector<std::array<double, 2>>& ring, const Vec3& p) {
