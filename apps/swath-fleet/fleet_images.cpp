@@ -156,21 +156,43 @@ FleetPicture gantt_picture(const fleet::RunRecord& record, int width_px, int hei
   // Time axis with ticks at round seconds.
   const double y = height_px - 34.0;
   scene.screen_polylines.push_back({{{120, y}, {width_px - 30.0, y}}, 1.5, kInk, 0});
-  const double step = nice_length(std::max(1.0, record.end_s / 6));
+  // About six ticks, fewer when their labels would touch (narrow pictures).
+  const double label_px =
+      render::text_extent(base::fixed_text(record.end_s, 0) + " s", text_h).width_px + 16;
+  const double ticks = std::clamp(std::floor((width_px - 150.0) / label_px), 1.0, 6.0);
+  double step = nice_length(std::max(1.0, record.end_s / ticks));
+  while (step / std::max(record.end_s, 1e-9) * (width_px - 150.0) < label_px)
+    step = nice_length(step * 2.5);
   for (double t = 0; t <= record.end_s + 1e-9; t += step) {
     const double x = gantt_x_px(t, record.end_s, width_px);
     scene.screen_polylines.push_back({{{x, y}, {x, y + 6}}, 1.5, kInk, 0});
-    scene.labels.push_back({static_cast<int>(x) - 10, static_cast<int>(y) + 8 + text_h,
-                            base::fixed_text(t, 0) + " s", static_cast<double>(text_h), kInk});
+    const std::string label = base::fixed_text(t, 0) + " s";
+    const double right = width_px - 4 - render::text_extent(label, text_h).width_px;
+    scene.labels.push_back({static_cast<int>(std::min(x - 10, right)),
+                            static_cast<int>(y) + 8 + text_h, label, static_cast<double>(text_h),
+                            kInk});
   }
-  // Legend along the top.
-  double x = 120;
-  for (const char* m : {"flying", "positioning", "acting", "hovering", "held", "returning",
-                        "charging", "lost", "unreachable"}) {
+  // Legend along the top: beside the names' column when it fits, else from the left edge with
+  // its text smaller (down to 10 px), else on more lines (it was cut off at 1,200 px).
+  const std::vector<const char*> modes{"flying",    "positioning", "acting", "hovering",   "held",
+                                       "returning", "charging",    "lost",   "unreachable"};
+  int legend_h = text_h;
+  auto item_width = [&](const char* m) { return 30 + render::text_extent(m, legend_h).width_px; };
+  auto legend_width = [&] {
+    double w = 0;
+    for (const char* m : modes) w += item_width(m);
+    return w;
+  };
+  while (legend_h > 10 && legend_width() > width_px - 20.0) --legend_h;
+  const double left = legend_width() <= width_px - 130.0 ? 120.0 : 10.0;
+  double x = left, top = 10;
+  for (const char* m : modes) {
+    if (x > left && x + item_width(m) - 12 > width_px - 10.0) x = left, top += legend_h + 6;
     scene.screen_polygons.push_back(
-        {{{{x, 10}, {x + 14, 10}, {x + 14, 24}, {x, 24}}}, mode_color(m)});
-    scene.labels.push_back({static_cast<int>(x) + 18, 23, m, static_cast<double>(text_h), kInk});
-    x += 30 + render::text_extent(m, text_h).width_px;
+        {{{{x, top}, {x + 14, top}, {x + 14, top + 14}, {x, top + 14}}}, mode_color(m)});
+    scene.labels.push_back({static_cast<int>(x) + 18, static_cast<int>(top) + 13, m,
+                            static_cast<double>(legend_h), kInk});
+    x += item_width(m);
   }
   return out;
 }

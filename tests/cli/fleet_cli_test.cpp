@@ -344,6 +344,32 @@ TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
       ++checked;
     }
   EXPECT_GT(checked, 10);
+  // The legend's labels end inside the picture at any width (it was cut off at 1,200 px).
+  for (int width : {600, 1000, 1200, 2000}) {
+    const apps::FleetPicture gw = apps::gantt_picture(r, width, h);
+    int legend = 0;
+    for (const render::Label& l : gw.scene.labels)
+      if (l.text == "unreachable" || l.text == "flying") {
+        ++legend;
+        EXPECT_GE(l.x_px, 0) << width;
+        EXPECT_LE(l.x_px + render::text_extent(l.text, l.height_px).width_px, width)
+            << l.text << " at width " << width;
+      }
+    EXPECT_EQ(legend, 2) << width;
+    // The time axis's labels do not touch.
+    std::vector<const render::Label*> ticks;
+    for (const render::Label& l : gw.scene.labels)
+      if (l.text.size() > 2 && l.text.substr(l.text.size() - 2) == " s") ticks.push_back(&l);
+    ASSERT_GE(ticks.size(), 2u) << width;
+    for (std::size_t i = 1; i < ticks.size(); ++i)
+      EXPECT_LT(ticks[i - 1]->x_px +
+                    render::text_extent(ticks[i - 1]->text, ticks[i - 1]->height_px).width_px,
+                ticks[i]->x_px)
+          << ticks[i - 1]->text << " and " << ticks[i]->text << " at width " << width;
+    EXPECT_LE(ticks.back()->x_px +
+                  render::text_extent(ticks.back()->text, ticks.back()->height_px).width_px,
+              width);
+  }
   // Each drone's home square is drawn in its colour where the view puts its home.
   const apps::FleetPicture t = apps::tracks_picture(*world, r, w, 900);
   const render::Image ti = render::draw(t.scene, t.view);
