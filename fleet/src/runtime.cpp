@@ -296,7 +296,8 @@ class Runtime final : public detail::Core {
   bool working(const Drone& d) const;
   bool idle(const Drone& d) const;
   double must_leave_at(const Drone& d) const;
-  double endurance_end(const Drone& e, const Vec3& at, double eta_s) const;
+  double leave_from(const Drone& d, const Vec3& place, double airborne_s, double soc_s,
+                    double extra_flight_s) const;
   void stand_by(Drone& e, const Drone& d, const Vec3& at, double leave_s);
 
   // The run's steps (run() is their loop).
@@ -760,19 +761,24 @@ double Runtime::leave_time(const Drone& d) const {
 // hover power down to what the way home takes (a hovering drone's exact limit; for one on a leg
 // or acting, an estimate from its place at t_mark).
 double Runtime::must_leave_at(const Drone& d) const {
+  return std::max(leave_from(d, d.pos, d.airborne_since, d.t_mark, 0.0), d.t_mark);
+}
+
+// When drone `d`, waiting at `place`, must leave for home: airborne since `airborne_s`, its
+// flight time less the way home; or, its charge d.soc draining at hover power from `soc_s`, when
+// what is left just takes it home plus `extra_flight_s` of cruise (a flight still to make there).
+double Runtime::leave_from(const Drone& d, const Vec3& place, double airborne_s, double soc_s,
+                           double extra_flight_s) const {
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
-  const Leg back(d.pos, home, d.spec.kinematics);
-  const double back_s =
-      back.duration_s() + d.layer_m / d.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
-  double t = d.airborne_since + d.spec.max_flight_time_s - back_s;
-  // Hovering drains the battery at hover power until what is left just takes it home.
+  const double back_s = Leg(place, home, d.spec.kinematics).duration_s() +
+                        d.layer_m / d.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
   const double cruise_w = cruise_power_w(d.spec, settings_.wind_m_s);
-  const double need =
-      d.spec.battery.reserve_soc + energy::battery_current_a(d.spec.battery, cruise_w) * back_s /
-                                       (3600.0 * d.spec.battery.capacity_ah);
-  t = std::min(t, d.t_mark + energy::seconds_to_soc(d.spec.battery, d.soc, need,
-                                                    hover_power_w(d.spec, settings_.wind_m_s)));
-  return std::max(t, d.t_mark);
+  const double need = d.spec.battery.reserve_soc +
+                      energy::battery_current_a(d.spec.battery, cruise_w) *
+                          (back_s + extra_flight_s) / (3600.0 * d.spec.battery.capacity_ah);
+  return std::min(airborne_s + d.spec.max_flight_time_s - back_s,
+                  soc_s + energy::seconds_to_soc(d.spec.battery, d.soc, need,
+                                                 hover_power_w(d.spec, settings_.wind_m_s)));
 }
 
 bool Runtime::must_go_home(const Drone& d, double t) const {
@@ -1326,22 +1332,6 @@ bool Runtime::idle(const Drone& d) const {
          (d.mode == Mode::landed || d.mode == Mode::hovering);
 }
 
-// When a drone that sets off now and arrives at `at` after eta_s must leave it again: its flight
-// time (counted from now when it is landed) less the way home, or its battery at hover power.
-double Runtime::endurance_end(const Drone& e, const Vec3& at, double eta_s) const {
-  const Vec3 home{e.spec.home_m.x, e.spec.home_m.y, e.layer_m};
-  const double back_s = Leg(at, home, e.spec.kinematics).duration_s() +
-                        e.layer_m / e.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
-  const double since = e.mode == Mode::landed ? now_ : e.airborne_since;
-  const double cruise_w = cruise_power_w(e.spec, settings_.wind_m_s);
-  const double need =
-      e.spec.battery.reserve_soc + energy::battery_current_a(e.spec.battery, cruise_w) *
-                                       (back_s + eta_s) / (3600.0 * e.spec.battery.capacity_ah);
-  return std::min(since + e.spec.max_flight_time_s - back_s,
-                  now_ + energy::seconds_to_soc(e.spec.battery, e.soc, need,
-                                                hover_power_w(e.spec, settings_.wind_m_s)));
-}
-
 void Runtime::relieve() {
   next_relief_s_ = kInf;
   for (Drone& e : drones_) {  // stand-bys whose drone has left are free again
@@ -1369,7 +1359,8 @@ void Runtime::relieve() {
       if (e.mode == Mode::landed) from.z = 0;
       const double eta = Leg(from, to, e.spec.kinematics).duration_s();
       // Worth it only when it can stay at least the margin beyond the hand-over.
-      if (endurance_end(e, to, eta) < leave_s + settings_.relief_margin_s) continue;
+      const double airborne_s = e.mode == Mode::landed ? now_ : e.airborne_since;
+      if (leave_from(e, to, airborne_s, now_, eta) < leave_s + settings_.relief_margin_s) continue;
       if (eta < best_eta) best_eta = eta, best = &e;
     }
     if (!best) continue;

@@ -37,6 +37,18 @@ std::string source_path(const std::string& relative) {
   return std::string(SWATH_SOURCE_DIR) + "/" + relative;
 }
 
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
 CliRun run_swath(const std::string& args) {
   return run_program(SWATH_BINARY, args);
 }

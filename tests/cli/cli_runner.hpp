@@ -2,6 +2,7 @@
 // Runs the built command-line programs the way a user does and captures what they say.
 
 #include <string>
+#include <vector>
 
 namespace swath::test {
 
@@ -32,5 +33,8 @@ std::string read_text(const std::string& path);
 
 /// Path of a file in the source tree.
 std::string source_path(const std::string& relative);
+
+/// CSV text read back: a row per line (the header first), cells split at commas.
+std::vector<std::vector<std::string>> csv_rows(const std::string& text);
 
 }  // namespace swath::test

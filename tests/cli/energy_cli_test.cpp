@@ -19,20 +19,6 @@ namespace {
 
 using nlohmann::json;
 
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> row;
-    std::istringstream cells(line);
-    std::string c;
-    while (std::getline(cells, c, ',')) row.push_back(c);
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 TEST(EnergyCli, RunsThePapersSurvey) {
   const std::string out = fresh_dir("energy-run");
   const CliRun run = run_swath_energy(

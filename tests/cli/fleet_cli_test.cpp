@@ -468,19 +468,6 @@ TEST(FleetCli, RenderRedrawsARunFromItsFilesByteForByte) {
   }
 }
 
-// CSV text read back: a row per line, cells split at commas (the header row first).
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::istringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 // swath-fleet tune (DESIGN.md §18.8) on case 1 with a small budget. weights.yaml reads back as
 // summary.json's winner; tune.csv holds the defaults, reactive's weights (no forecast terms) and
 // the halving's rungs (8 trials on the first tuning seed, 4 on the second); the winner has the
