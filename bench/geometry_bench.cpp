@@ -26,6 +26,12 @@ void BM_MinHeightExact(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(geometry::min_height_rotation(p.outer));
 }
 
+// The same for a simple polygon's ring: Melkman's hull, no sort (what swath plan uses).
+void BM_MinHeightSimpleRing(benchmark::State& state) {
+  const geometry::Polygon p = field(state);
+  for (auto _ : state) benchmark::DoNotOptimize(geometry::min_height_of_simple_ring(p.outer));
+}
+
 void BM_MinHeightScan0p1(benchmark::State& state) {
   const geometry::Polygon p = field(state);
   for (auto _ : state) benchmark::DoNotOptimize(geometry::min_height_scan(p.outer, 0.1));
@@ -50,6 +56,7 @@ void Sizes(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_MinHeightExact)->Apply(Sizes);
+BENCHMARK(BM_MinHeightSimpleRing)->Apply(Sizes);
 BENCHMARK(BM_MinHeightScan0p1)->Apply(Sizes);
 BENCHMARK(BM_ClassifySweep)->Apply(Sizes);
 BENCHMARK(BM_ClassifyPaperQuadratic)->Apply(Sizes);

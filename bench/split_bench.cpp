@@ -1,6 +1,7 @@
 // --concave split on field-like areas of 10 to 10,000 vertices with 0 to 50 rectangular no-fly
 // holes: the decomposition alone, and the whole split plan (direction search over ~100
-// directions, lanes per piece, cell order, transits routed inside the area).
+// directions, runs from the lanes and cells, their order, transits routed inside the area),
+// beside the first method alone (cells only).
 #include <benchmark/benchmark.h>
 
 #include "random_polygons.hpp"
@@ -30,18 +31,30 @@ void BM_Decomposition(benchmark::State& state) {
   state.counters["cells"] = double(cells);
 }
 
-void BM_SplitPlan(benchmark::State& state) {
+void split_plan(benchmark::State& state, planning::SplitCells method) {
   const auto rings = area(state);
   planning::SplitSettings s;
   s.line_spacing_m = 43.5;  // QX1 at 100 m, 70 % side overlap
   s.footprint_width_m = 145;
+  s.cells = method;
   std::size_t cells = 0;
+  double path_m = 0;
   for (auto _ : state) {
     const geometry::VisibilityRouter router(rings);
     const planning::SplitPlan plan = planning::plan_split(rings, {-600, -600}, s, router);
     cells = plan.cells.size();
+    path_m = plan.path_length_m;
   }
   state.counters["cells"] = double(cells);
+  state.counters["path_m"] = path_m;
+}
+// The default: runs from the lanes and boustrophedon cells, per direction the shorter.
+void BM_SplitPlan(benchmark::State& state) {
+  split_plan(state, planning::SplitCells::best);
+}
+// The first method alone (the baseline of issue 18): boustrophedon cells only.
+void BM_SplitPlanCells(benchmark::State& state) {
+  split_plan(state, planning::SplitCells::boustrophedon);
 }
 
 void Areas(benchmark::internal::Benchmark* b) {
@@ -54,5 +67,6 @@ void Areas(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Decomposition)->Apply(Areas);
 BENCHMARK(BM_SplitPlan)->Apply(Areas)->Iterations(1);
+BENCHMARK(BM_SplitPlanCells)->Apply(Areas)->Iterations(1);
 
 BENCHMARK_MAIN();

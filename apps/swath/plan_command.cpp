@@ -172,6 +172,12 @@ void PlanCommand::add_sweep_options(CLI::App& app) {
          "reports the swath outside) or reject")
       ->check(CLI::IsMember({"split", "hull", "reject"}))
       ->capture_default_str();
+  app.add_option("--split-cells", split_cells_,
+                 "How split cuts the area: runs (lanes laid first, cut where they meet the "
+                 "boundary, chained into zigzags), boustrophedon (cells of the polygon, the first "
+                 "method) or best (both, per direction; the shorter path wins)")
+      ->check(CLI::IsMember({"runs", "boustrophedon", "best"}))
+      ->capture_default_str();
 }
 
 // Several drones: division and balance.
@@ -230,6 +236,12 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--boundary-clearance", boundary_clearance_m_,
                  "Keep lines and turns this many metres inside the outer boundary")
+      ->capture_default_str();
+  app.add_option("--outside-margin", outside_margin_m_,
+                 "Split: a line may cross up to this many metres outside the outer boundary "
+                 "(never into a no-fly zone or its clearance) to join its pieces into one line, "
+                 "e.g. along a ragged edge; its ends stay inside. The summary reports the line "
+                 "length outside")
       ->capture_default_str();
   app.add_option("--trigger", trigger_,
                  "Camera: distance (every trigger distance, DO_SET_CAM_TRIGG_DIST), time (every "
@@ -337,6 +349,7 @@ void PlanCommand::check_numbers() const {
   if (turnaround_m_) base::check_range(*turnaround_m_, kTurnaround_m, "--turnaround");
   base::check_range(clearance_m_, kClearance_m, "--clearance");
   base::check_range(boundary_clearance_m_, kClearance_m, "--boundary-clearance");
+  base::check_range(outside_margin_m_, kClearance_m, "--outside-margin");
   base::check_range(gimbal_pitch_deg_, kGimbalPitch_deg, "--gimbal-pitch");
   if (fence_margin_m_) base::check_range(*fence_margin_m_, kFenceMargin_m, "--fence-margin");
   base::check_range(max_bank_deg_, kBank_deg, "--max-bank");
@@ -431,6 +444,9 @@ planning::SurveyRequest PlanCommand::request() const {
   request.concave = concave_ == "reject" ? planning::ConcaveMode::reject
                     : concave_ == "hull" ? planning::ConcaveMode::hull
                                          : planning::ConcaveMode::split;
+  request.split_cells = split_cells_ == "runs"            ? planning::SplitCells::runs
+                        : split_cells_ == "boustrophedon" ? planning::SplitCells::boustrophedon
+                                                          : planning::SplitCells::best;
   for (const std::string& path : exclude_)
     request.exclusions.push_back(geometry::read_field(path).geo_rings.at(0));
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
@@ -438,6 +454,7 @@ planning::SurveyRequest PlanCommand::request() const {
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
   request.speed_m_s = speed_m_s_;
   request.clearance_m = clearance_m_;
+  request.outside_margin_m = outside_margin_m_;
   request.boundary_clearance_m = boundary_clearance_m_;
   request.triggering.mode = trigger_ == "time"    ? planning::TriggerMode::time
                             : trigger_ == "hover" ? planning::TriggerMode::hover

@@ -65,6 +65,7 @@ class PlanCommand : public Command {
   bool local_ = false;
   AreaChoice area_choice_;
   std::string concave_ = "split";
+  std::string split_cells_ = "best";
   std::vector<std::string> exclude_;
   bool repair_ = false;
   std::optional<int> drones_;
@@ -80,6 +81,7 @@ class PlanCommand : public Command {
   std::optional<double> speed_m_s_;
   double clearance_m_ = 5.0;
   double boundary_clearance_m_ = 0.0;
+  double outside_margin_m_ = 0.0;
   std::string trigger_ = "distance";
   std::string camera_command_ = "digicam";
   bool photos_in_turns_ = false;

@@ -1,6 +1,7 @@
 #include "swath/planning/cell_order.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <limits>
 #include <stdexcept>
 
@@ -24,6 +25,7 @@ class Transit {
     home_to_entry_.resize(n);
     exit_to_home_.resize(n);
     if (memoise_) exit_to_entry_.assign(n * n, -1.0);
+    if (memoise_ && p.crossed) crossed_.assign(n * n, kUnknown);
     for (std::size_t c = 0; c < p.cells.size(); ++c)
       for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
         home_to_entry_[base_[c] + v] = p.distance(p.home, p.cells[c][v].entry);
@@ -39,14 +41,36 @@ class Transit {
     if (d < 0) d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     return d;
   }
+  /// The cells whose lanes the transit crosses (0 without problem.crossed).
+  std::uint64_t crossed(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2) {
+    if (!p_.crossed) return 0;
+    if (!memoise_) return p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
+    std::uint64_t& m = crossed_[(base_[c1] + v1) * size_ + base_[c2] + v2];
+    if (m == kUnknown) m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
+    return m;
+  }
+  /// Transit length plus its penalty with the cells in `unflown` still to be flown.
+  double cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
+              std::uint64_t unflown) {
+    const double d = between(c1, v1, c2, v2);
+    if (!p_.crossed) return d;
+    return d * (1 + p_.crossing_weight * std::popcount(crossed(c1, v1, c2, v2) & unflown));
+  }
 
  private:
   const CellOrderProblem& p_;
   bool memoise_;
   std::vector<std::size_t> base_;
   std::vector<double> home_to_entry_, exit_to_home_, exit_to_entry_;
+  // Bit 63 marks "not yet asked": cell 63 never counts (the documented limit is cells below 64).
+  static constexpr std::uint64_t kUnknown = std::uint64_t{1} << 63;
+  std::vector<std::uint64_t> crossed_;
   std::size_t size_ = 0;
 };
+
+std::uint64_t bit(std::size_t cell) {
+  return cell < 63 ? std::uint64_t{1} << cell : 0;
+}
 
 // Best variants for a fixed order of cells: shortest path through a layered graph.
 CellOrder best_variants(const CellOrderProblem& p, Transit& t,
@@ -58,6 +82,8 @@ CellOrder best_variants(const CellOrderProblem& p, Transit& t,
   }
   std::vector<std::vector<double>> cost(order.size());
   std::vector<std::vector<std::size_t>> from(order.size());
+  std::vector<std::uint64_t> after(order.size() + 1, 0);  // cells flown after position k
+  for (std::size_t k = order.size(); k-- > 0;) after[k] = after[k + 1] | bit(order[k]);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto& variants = p.cells[order[k]];
     cost[k].assign(variants.size(), kInf);
@@ -68,8 +94,8 @@ CellOrder best_variants(const CellOrderProblem& p, Transit& t,
         continue;
       }
       for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
-        const double c =
-            cost[k - 1][u] + t.between(order[k - 1], u, order[k], v) + variants[v].internal_m;
+        const double c = cost[k - 1][u] + t.cost(order[k - 1], u, order[k], v, after[k + 1]) +
+                         variants[v].internal_m;
         if (c < cost[k][v]) {
           cost[k][v] = c;
           from[k][v] = u;
@@ -92,11 +118,37 @@ CellOrder best_variants(const CellOrderProblem& p, Transit& t,
     result.visits[k] = {order[k], best};
     best = from[k][best];
   }
-  result.length_m = best_cost;
+  result.objective_m = best_cost;
   return result;
 }
 
+// The order's real length and crossings beside the objective the search found.
+CellOrder finished(const CellOrderProblem& p, CellOrder order) {
+  const CellOrder e = evaluate_order(p, order.visits);
+  order.length_m = e.length_m;
+  order.crossings = e.crossings;
+  return order;
+}
+
 }  // namespace
+
+CellOrder evaluate_order(const CellOrderProblem& p, const std::vector<CellVisit>& visits) {
+  CellOrder e;
+  e.visits = visits;
+  e.length_m = tour_length(p, visits);
+  e.objective_m = e.length_m;
+  std::uint64_t unflown = 0;
+  for (const CellVisit& v : visits) unflown |= bit(v.cell);
+  for (std::size_t k = 0; k + 1 < visits.size() && p.crossed; ++k) {
+    unflown &= ~bit(visits[k].cell);
+    const geometry::Point2 a = p.cells[visits[k].cell][visits[k].variant].exit;
+    const geometry::Point2 b = p.cells[visits[k + 1].cell][visits[k + 1].variant].entry;
+    const int n = std::popcount(p.crossed(a, b) & unflown & ~bit(visits[k + 1].cell));
+    e.crossings += std::size_t(n);
+    e.objective_m += p.crossing_weight * n * p.distance(a, b);
+  }
+  return e;
+}
 
 double tour_length(const CellOrderProblem& p, const std::vector<CellVisit>& visits) {
   if (visits.empty()) return 0.0;
@@ -135,7 +187,8 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
         if (mask & (std::size_t{1} << c2)) continue;
         const std::size_t next_mask = mask | (std::size_t{1} << c2);
         for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
-          const double total = here + t.between(c, v, c2, v2) + p.cells[c2][v2].internal_m;
+          const std::uint64_t unflown = ~std::uint64_t{0} & ~next_mask;
+          const double total = here + t.cost(c, v, c2, v2, unflown) + p.cells[c2][v2].internal_m;
           double& slot = cost[next_mask][c2 * kMaxVariants + v2];
           if (total < slot) {
             slot = total;
@@ -147,13 +200,13 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
   }
   const std::size_t full = (std::size_t{1} << n) - 1;
   CellOrder best;
-  best.length_m = kInf;
+  best.objective_m = kInf;
   std::size_t best_state = 0;
   for (std::size_t s = 0; s < states; ++s) {
     if (cost[full][s] == kInf) continue;
     const double total = cost[full][s] + t.to_home(s / kMaxVariants, s % kMaxVariants);
-    if (total < best.length_m) {
-      best.length_m = total;
+    if (total < best.objective_m) {
+      best.objective_m = total;
       best_state = s;
     }
   }
@@ -164,7 +217,7 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
     s = previous;
   }
   std::reverse(best.visits.begin(), best.visits.end());
-  return best;
+  return finished(p, best);
 }
 
 namespace {
@@ -201,7 +254,7 @@ std::vector<std::size_t> nearest_neighbour(const CellOrderProblem& p) {
 CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
   if (p.cells.empty()) return {};
   Transit t(p, false);
-  return best_variants(p, t, nearest_neighbour(p));
+  return finished(p, best_variants(p, t, nearest_neighbour(p)));
 }
 
 CellOrder heuristic_cell_order(const CellOrderProblem& p) {
@@ -237,7 +290,7 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
           }
           --budget;
           const CellOrder tried = best_variants(p, t, candidate);
-          if (tried.length_m < best.length_m - 1e-9) {
+          if (tried.objective_m < best.objective_m - 1e-9) {
             best = tried;
             order = candidate;
             improved = true;
@@ -246,7 +299,7 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
       }
     }
   }
-  return best;
+  return finished(p, best);
 }
 
 CellOrder order_cells(const CellOrderProblem& p, std::size_t exact_limit) {

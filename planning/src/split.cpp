@@ -11,6 +11,7 @@
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/planning/cell_order.hpp"
+#include "swath/planning/lane_runs.hpp"
 
 namespace swath::planning {
 namespace {
@@ -52,6 +53,7 @@ std::vector<double> candidate_angles(const std::vector<geometry::Ring>& rings, d
 
 struct Candidate {
   double angle_deg;
+  SplitCells method = SplitCells::boustrophedon;
   std::vector<geometry::Ring> cells;
   std::vector<Sweep> sweeps;  // per cell, bottom to top
   CellOrder order;
@@ -159,30 +161,119 @@ Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
   return sweep_decomposition(rings, geometry::boustrophedon_decomposition(rings, angle), angle, s);
 }
 
-// Routed lengths, memoised: the four variants of a cell share their turns, and the ordering asks
-// for the same transits again and again.
+Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, const SplitSettings& s,
+                     bool bridged) {
+  LaneRunSettings settings;
+  settings.angle_deg = angle;
+  settings.line_spacing_m = s.line_spacing_m;
+  settings.footprint_width_m = s.footprint_width_m;
+  settings.placement = s.placement;
+  LaneRuns runs = lane_runs(
+      {rings, s.seen_rings, bridged ? s.bridge_rings : std::vector<geometry::Ring>{}}, settings);
+  Candidate c;
+  c.angle_deg = angle;
+  c.method = SplitCells::runs;
+  c.cells = std::move(runs.outlines);
+  c.sweeps = std::move(runs.runs);
+  if (s.turnaround_m > 0)
+    for (Sweep& sweep : c.sweeps)
+      for (SweepLine& l : sweep.lines) {
+        const Point2 d = (l.end - l.start) * (s.turnaround_m / geometry::distance(l.start, l.end));
+        l.start = l.start - d;
+        l.end = l.end + d;
+      }
+  return c;
+}
+
+// Routed paths and their lengths, memoised: the four variants of a cell share their turns, and
+// the ordering asks for the same transits again and again.
 class RoutedMetric {
  public:
   explicit RoutedMetric(const geometry::VisibilityRouter& router) : router_(router) {}
-  double operator()(Point2 a, Point2 b) {
+  double operator()(Point2 a, Point2 b) { return known(a, b).length_m; }
+  const std::vector<Point2>& path(Point2 a, Point2 b) { return known(a, b).path; }
+
+ private:
+  struct Route {
+    std::vector<Point2> path;  // from the lexicographically smaller end
+    double length_m;
+  };
+  const Route& known(Point2 a, Point2 b) {
     if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);  // the metric is symmetric
     const auto key = std::make_pair(std::make_pair(a.x, a.y), std::make_pair(b.x, b.y));
     const auto it = known_.find(key);
     if (it != known_.end()) return it->second;
-    return known_[key] = geometry::polyline_length(router_.path(a, b));
+    std::vector<Point2> path = router_.path(a, b);
+    const double length = geometry::polyline_length(path);
+    return known_[key] = Route{std::move(path), length};
+  }
+  const geometry::VisibilityRouter& router_;
+  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, Route> known_;
+};
+
+// Whether segments pq and ab cross at a point inside both (touching or overlapping is not).
+bool cross_properly(Point2 p, Point2 q, Point2 a, Point2 b) {
+  const double scale = 1e-9 * (geometry::distance(p, q) + geometry::distance(a, b));
+  auto side = [scale](Point2 o, Point2 d, Point2 x) {
+    const double c = geometry::cross(d - o, x - o) / std::max(geometry::distance(o, d), 1e-12);
+    return c > scale ? 1 : c < -scale ? -1 : 0;
+  };
+  return side(p, q, a) * side(p, q, b) < 0 && side(a, b, p) * side(a, b, q) < 0;
+}
+
+// The cells (bits, the first 63) whose lanes a routed transit crosses.
+class LaneCrossings {
+ public:
+  explicit LaneCrossings(const Candidate& c) : c_(c) {
+    for (const Sweep& sweep : c.sweeps) {
+      Box box;
+      for (const SweepLine& l : sweep.lines)
+        for (const Point2& p : {l.start, l.end}) box.add(p);
+      boxes_.push_back(box);
+    }
+  }
+  std::uint64_t operator()(const std::vector<Point2>& path) const {
+    Box span;
+    for (const Point2& p : path) span.add(p);
+    std::uint64_t cells = 0;
+    for (std::size_t k = 0; k < c_.sweeps.size() && k < 63; ++k) {
+      if (!span.meets(boxes_[k])) continue;
+      for (const SweepLine& l : c_.sweeps[k].lines)
+        for (std::size_t i = 0; i + 1 < path.size() && !(cells >> k & 1); ++i)
+          if (cross_properly(path[i], path[i + 1], l.start, l.end)) cells |= std::uint64_t{1} << k;
+    }
+    return cells;
   }
 
  private:
-  const geometry::VisibilityRouter& router_;
-  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, double> known_;
+  struct Box {
+    double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    void add(Point2 p) {
+      x0 = std::min(x0, p.x);
+      y0 = std::min(y0, p.y);
+      x1 = std::max(x1, p.x);
+      y1 = std::max(y1, p.y);
+    }
+    bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+  };
+  const Candidate& c_;
+  std::vector<Box> boxes_;
 };
 
-// The candidate's cells in their best order (exact where small) as a plan.
-SplitPlan ordered_plan(Candidate& c, Point2 home, const Metric& metric) {
-  const CellOrder order = order_cells(problem_for(c, home, metric));
+// The candidate's cells in their best order (exact where small), transits routed and kept off
+// lanes still to be flown where that costs less than flying them again, as a plan.
+SplitPlan ordered_plan(Candidate& c, Point2 home, RoutedMetric& routed) {
+  CellOrderProblem problem =
+      problem_for(c, home, [&routed](Point2 a, Point2 b) { return routed(a, b); });
+  const LaneCrossings crossings(c);
+  problem.crossed = [&](Point2 a, Point2 b) { return crossings(routed.path(a, b)); };
+  const CellOrder order = order_cells(problem);
   SplitPlan plan;
   plan.angle_deg = c.angle_deg;
+  plan.method = c.method;
   plan.path_length_m = order.length_m;
+  plan.objective_m = order.objective_m;
+  plan.transit_crossings = order.crossings;
   plan.cells = c.cells;
   for (const CellVisit& v : order.visits) {
     const auto [top_first, reverse_first] = c.variant_flags[v.cell][v.variant];
@@ -208,7 +299,7 @@ SplitPlan plan_pieces(const std::vector<geometry::Ring>& pieces, double angle_de
   Candidate c = sweep_decomposition(d.pieces, d, angle_deg, s);
   if (c.cells.empty()) return {};
   RoutedMetric routed(router);
-  SplitPlan plan = ordered_plan(c, home, [&routed](Point2 a, Point2 b) { return routed(a, b); });
+  SplitPlan plan = ordered_plan(c, home, routed);
   plan.candidates = 1;
   return plan;
 }
@@ -220,33 +311,43 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
     throw std::invalid_argument(
         "plan_split: need 0 < spacing <= footprint width and a scan step > 0");
   const Metric straight = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
-  RoutedMetric routed_lengths(router);
-  const Metric routed = [&routed_lengths](Point2 a, Point2 b) { return routed_lengths(a, b); };
+  RoutedMetric routed(router);
 
   const std::vector<double> angles =
       s.fixed_angle_deg
           ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
           : candidate_angles(rings, s.scan_step_deg);
   // Rank every direction by a cheap estimate: straight transits, heuristic order.
-  std::vector<std::pair<double, std::size_t>> estimates;
+  std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   std::vector<Candidate> candidates;
   for (double angle : angles) {
-    Candidate c = sweep_cells(rings, angle, s);
-    if (c.cells.empty()) continue;
-    c.order = nearest_neighbour_order(problem_for(c, home, straight));
-    estimates.push_back({c.order.length_m, candidates.size()});
-    candidates.push_back(std::move(c));
+    // Runs bridged across the outside margin where there is one, runs inside, cells.
+    for (const int kind : {0, 1, 2}) {
+      const SplitCells method = kind < 2 ? SplitCells::runs : SplitCells::boustrophedon;
+      if ((s.cells != SplitCells::best && s.cells != method) ||
+          (kind == 0 && s.bridge_rings.empty()))
+        continue;
+      Candidate c =
+          kind < 2 ? sweep_runs(rings, angle, s, kind == 0) : sweep_cells(rings, angle, s);
+      if (c.cells.empty()) continue;
+      c.order = nearest_neighbour_order(problem_for(c, home, straight));
+      estimates.push_back({kind, c.order.length_m, candidates.size()});
+      candidates.push_back(std::move(c));
+    }
   }
   if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
+  // The best few of each kind again with transits routed inside the area, ordered exactly where
+  // small: a straight-line estimate ranks runs and cells differently (runs' transits hop around
+  // what cells' turns go along).
   std::sort(estimates.begin(), estimates.end());
-  if (estimates.size() > s.refined_candidates) estimates.resize(s.refined_candidates);
-
-  // The best few again with transits routed inside the area, ordered exactly where small.
   SplitPlan best;
-  best.path_length_m = std::numeric_limits<double>::infinity();
-  for (const auto& [estimate, index] : estimates) {
-    SplitPlan plan = ordered_plan(candidates[index], home, routed);
-    if (plan.path_length_m < best.path_length_m) best = std::move(plan);
+  best.objective_m = std::numeric_limits<double>::infinity();
+  std::size_t of_kind = 0;
+  for (std::size_t e = 0; e < estimates.size(); ++e) {
+    of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
+    if (of_kind >= s.refined_candidates) continue;
+    SplitPlan plan = ordered_plan(candidates[std::get<2>(estimates[e])], home, routed);
+    if (plan.objective_m < best.objective_m) best = std::move(plan);
   }
   best.candidates = candidates.size();
   return best;

@@ -179,6 +179,26 @@ TEST(PlanCli, ConcaveAreaIsSplitByDefaultAndNeverFliesOutside) {
   EXPECT_EQ(cells, split["area"]["cells"].get<int>());
 }
 
+// --split-cells: runs from the lanes by default on the vineyard, shorter than the cells alone,
+// and what made the plan in the summary; --outside-margin is reported as asked.
+TEST(PlanCli, SplitCellsAndOutsideMarginReachThePlan) {
+  const std::string runs = fresh_dir("split-runs"), cells = fresh_dir("split-cells");
+  const std::string plan =
+      "plan share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --home "
+      "46.2276,7.5917 ";
+  ASSERT_EQ(run_swath(plan + "--outside-margin 0 -o " + runs).exit_code, 0);
+  ASSERT_EQ(run_swath(plan + "--split-cells boustrophedon -o " + cells).exit_code, 0);
+  const json r = json::parse(read_text(runs + "/summary.json"));
+  const json c = json::parse(read_text(cells + "/summary.json"));
+  EXPECT_EQ(r["area"]["cells_from"], "lanes");
+  EXPECT_EQ(c["area"]["cells_from"], "polygon");
+  EXPECT_EQ(r["flight"]["outside_margin_m"].get<double>(), 0.0);
+  EXPECT_LT(r["drones"][0]["path_length_m"].get<double>(),
+            c["drones"][0]["path_length_m"].get<double>());
+  EXPECT_GE(r["coverage"]["covered_fraction"].get<double>(), 0.999);
+  EXPECT_EQ(r["coverage"]["line_length_outside_m"].get<double>(), 0.0);
+}
+
 TEST(PlanCli, NoFlyZoneFromExcludeIsAvoided) {
   const std::string out = fresh_dir("exclude");
   const CliRun run = run_swath(

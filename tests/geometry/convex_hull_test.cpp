@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "field_shapes.hpp"
 #include "random_polygons.hpp"
 #include "swath/geometry/predicates.hpp"
 
@@ -63,6 +64,35 @@ TEST(ConvexHull, EqualsBruteForceExtremePointsOnRandomGrids) {
         EXPECT_EQ(orientation(hull[i], hull[(i + 1) % hull.size()], hull[(i + 2) % hull.size()]),
                   Orientation::counter_clockwise);
     }
+  }
+}
+
+// Melkman's walk over simple rings gives the sorted hull's vertices (as a set, both
+// counter-clockwise): random stars and fields (either orientation, any start vertex), combs,
+// spirals and the split corpus's outlines, which are full of collinear and nearly collinear runs.
+TEST(ConvexHull, MelkmanOnSimpleRingsEqualsTheSortedHull) {
+  test::Rng rng(1987);
+  std::vector<Ring> rings;
+  for (int k = 0; k < 200; ++k) {
+    Ring r = k % 2 ? test::random_star_polygon(rng, 3 + std::size_t(k % 60), 50, 400)
+                   : test::random_field_polygon(rng, 5 + std::size_t(k % 90), 300);
+    if (k % 3 == 0) std::reverse(r.begin(), r.end());
+    std::rotate(r.begin(), r.begin() + std::ptrdiff_t(std::size_t(k) % r.size()), r.end());
+    rings.push_back(r);
+  }
+  for (int teeth = 1; teeth <= 6; ++teeth) rings.push_back(test::comb_polygon(teeth, 30, 200, 40));
+  for (int arms = 2; arms <= 7; ++arms) rings.push_back(test::spiral_polygon(arms, 500, 90, 30));
+  rings.push_back(
+      {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {3, 1}, {3, 2}, {0, 2}, {0, 1}});  // collinear runs
+  for (const test::CorpusShape& shape : test::split_corpus(5, 6)) rings.push_back(shape.area.outer);
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    Ring melkman = convex_hull_of_simple_ring(rings[k]);
+    Ring sorted = convex_hull(rings[k]);
+    EXPECT_GT(signed_area(melkman), 0) << k;
+    auto lexicographic = [](Point2 a, Point2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+    std::sort(melkman.begin(), melkman.end(), lexicographic);
+    std::sort(sorted.begin(), sorted.end(), lexicographic);
+    EXPECT_EQ(melkman, sorted) << k;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "field_shapes.hpp"
 #include "random_polygons.hpp"
 #include "swath/geometry/convex_hull.hpp"
 
@@ -119,6 +120,37 @@ TEST(MinHeight, BearingIsClockwiseFromNorth) {
   EXPECT_DOUBLE_EQ(line_bearing_deg(45.0), 45.0);    // NE-SW
   EXPECT_DOUBLE_EQ(line_bearing_deg(135.0), 135.0);  // NW-SE: bearing 135 (SE)
   EXPECT_DOUBLE_EQ(line_bearing_deg(30.0), 60.0);
+}
+
+}  // namespace
+}  // namespace swath::geometry
+
+namespace swath::geometry {
+namespace {
+
+// The split corpus's combs (seed 1): tooth-top corners lie on one hull line up to rounding. The
+// calipers found 0 m on comb 9, and swath refused the field as "a line drawn as a polygon".
+TEST(MinHeight, NearlyCollinearHullVerticesDoNotStopTheCalipers) {
+  for (const test::CorpusShape& shape : test::split_corpus(1, 10)) {
+    const std::vector<Point2>& ring = shape.area.outer;
+    const SweepDirection exact = min_height_rotation(ring);
+    const SweepDirection scan = min_height_scan(ring, 0.01);
+    EXPECT_GT(exact.height_m, 0.5 * scan.height_m) << shape.family << ' ' << shape.index;
+    EXPECT_LE(exact.height_m, scan.height_m + 1e-9) << shape.family << ' ' << shape.index;
+    EXPECT_NEAR(exact.height_m, height_at(ring, exact.angle_deg), 1e-9);
+  }
+}
+
+// The ring version (Melkman's hull) gives the sorted hull's height on simple rings.
+TEST(MinHeight, SimpleRingVersionEqualsThePointSetVersion) {
+  test::Rng rng(42);
+  for (int k = 0; k < 300; ++k) {
+    const Ring r = k % 2 ? test::random_star_polygon(rng, 3 + std::size_t(k % 200), 100, 400)
+                         : test::random_field_polygon(rng, 5 + std::size_t(k % 300), 300);
+    const SweepDirection a = min_height_rotation(r), b = min_height_of_simple_ring(r);
+    EXPECT_NEAR(a.height_m, b.height_m, 1e-9 * a.height_m) << k;
+    EXPECT_NEAR(height_at(r, b.angle_deg), b.height_m, 1e-9 * b.height_m) << k;
+  }
 }
 
 }  // namespace

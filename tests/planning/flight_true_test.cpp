@@ -367,13 +367,7 @@ SurveyRequest pond_and_barn(int drones, DivisionMode division) {
 }
 
 SurveyRequest vineyard(bool pair) {
-  SurveyRequest r;
-  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/vineyard.kml");
-  r.camera = find_camera("dji-phantom-4-pro", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
-  PhotogrammetryMode m;
-  m.altitude_m = 60;
-  r.mode = m;
-  r.home = GeoPoint{46.2276, 7.5917, 0};
+  SurveyRequest r = test::vineyard_request();
   if (pair)
     r.fleet = parse_fleet(
         "home: {lat: 46.2276, lon: 7.5917}\n"

@@ -1,9 +1,10 @@
 #pragma once
-// The bundled meadow with the Sony QX1 in photogrammetry mode: the real field planning tests use;
-// and fields drawn in local metres for the tests that build their own.
+// The bundled meadow with the Sony QX1 in photogrammetry mode and the vineyard with the Phantom 4
+// Pro: the real fields planning tests use (local_field.hpp: fields drawn in local metres).
 
 #include <string>
 
+#include "local_field.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/geometry/polygon.hpp"
 #include "swath/planning/camera.hpp"
@@ -22,20 +23,18 @@ inline planning::SurveyRequest meadow_request(double altitude_m) {
   return r;
 }
 
-/// A field from a polygon in local metres (rings normalised, placed at 47° N, 8° E).
-inline geometry::Field local_field(geometry::Polygon polygon) {
-  geometry::Field f;
-  f.source = "test";
-  polygon.outer = geometry::normalise_ring(polygon.outer, true).ring;
-  for (geometry::Ring& h : polygon.holes) h = geometry::normalise_ring(h, false).ring;
-  f.polygon = polygon;
-  for (std::size_t r = 0; r < geometry::ring_count(polygon); ++r) {
-    f.source_index.push_back({});
-    for (std::size_t i = 0; i < geometry::ring_at(polygon, r).size(); ++i)
-      f.source_index.back().push_back(i);
-  }
-  geometry::place_local_field(f, {47.0, 8.0, 0.0});
-  return f;
+/// The bundled vineyard (a notch and a pond) with the DJI Phantom 4 Pro at 60 m, home to its
+/// south-west, as the README's examples plan it.
+inline planning::SurveyRequest vineyard_request() {
+  planning::SurveyRequest r;
+  r.field = geometry::read_field(std::string(SWATH_SOURCE_DIR) + "/share/fields/vineyard.kml");
+  r.camera =
+      planning::find_camera("dji-phantom-4-pro", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
+  planning::PhotogrammetryMode m;
+  m.altitude_m = 60;
+  r.mode = m;
+  r.home = geometry::GeoPoint{46.2276, 7.5917, 0};
+  return r;
 }
 
 }  // namespace swath::test

@@ -98,6 +98,7 @@ ordered_json flight_json(const SurveyPlan& plan) {
           {"photos", photos},
           {"clearance_m", round_to(r.clearance_m, 3)},
           {"boundary_clearance_m", round_to(r.boundary_clearance_m, 3)},
+          {"outside_margin_m", round_to(r.outside_margin_m, 3)},
           {"min_no_fly_distance_m", optional_number(plan.clearance.no_fly_m, 3)},
           {"no_fly_zones", plan.no_fly.size()},
           {"fence_margin_m", round_to(plan.fence_margin_m, 3)}};
@@ -126,6 +127,9 @@ std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>&
                                        ? ordered_json()
                                        : ordered_json(1 + plan.extra_pieces.size())},
                {"cells", plan.cells.size()},
+               {"cells_from", !plan.split_method                       ? ordered_json()
+                              : *plan.split_method == SplitCells::runs ? ordered_json("lanes")
+                                                                       : ordered_json("polygon")},
                {"flown_area_m2", round_to(geometry::area(plan.flown_area), 3)}};
   j["sweep"] = {
       {"bearing_deg", round_to(geometry::line_bearing_deg(plan.sweep.angle_deg), 6)},

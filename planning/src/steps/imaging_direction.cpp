@@ -18,8 +18,8 @@ geometry::SweepDirection search_direction(const SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
   const geometry::Ring& outer = plan.flown_area.outer;
   switch (r.angle_search) {
-    case AngleSearch::exact:
-      return geometry::min_height_rotation(outer);
+    case AngleSearch::exact:  // the area is simple here (classified, or repaired)
+      return geometry::min_height_of_simple_ring(outer);
     case AngleSearch::scan:
       if (!(r.angle_step_deg > 0 && r.angle_step_deg <= 90))
         throw InputError("the angle step must be in (0, 90] degrees");
@@ -38,7 +38,7 @@ geometry::SweepDirection search_direction(const SurveyPlan& plan) {
 // points on one parallel, 1.5 km by 5 cm) is no area to survey either.
 void check_work(const SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
-  const double narrowest_m = geometry::min_height_rotation(plan.area.outer).height_m;
+  const double narrowest_m = geometry::min_height_of_simple_ring(plan.area.outer).height_m;
   if (narrowest_m < kMinAreaWidth_m)
     throw InputError(r.field.source + ": the area is " + fixed_text(narrowest_m, 3) +
                      " m wide at its narrowest, less than swath's minimum of " +

@@ -4,6 +4,7 @@
 
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/offset.hpp"
 #include "swath/planning/split.hpp"
 #include "swath/planning/survey_steps.hpp"
 
@@ -71,6 +72,16 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   s.placement = plan.request.placement;
   s.turnaround_m = plan.turnaround_m;
   s.scan_step_deg = plan.request.split_scan_step_deg;
+  s.cells = plan.request.split_cells;
+  s.seen_rings = geometry::rings_of(plan.area);  // and --repair's further pieces
+  s.seen_rings.insert(s.seen_rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  if (plan.request.outside_margin_m > 0) {  // the outlines grown by the margin, less the zones
+    std::vector<geometry::Ring> outlines{plan.flown_area.outer};
+    outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+    for (const geometry::Ring& grown : geometry::grow(outlines, plan.request.outside_margin_m))
+      for (geometry::Ring& ring : geometry::subtract(grown, 0, plan.no_fly_grown))
+        s.bridge_rings.push_back(std::move(ring));
+  }
   return s;
 }
 
@@ -86,6 +97,7 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
       plan.direction = {sp.angle_deg, geometry::height_at(plan.area.outer, sp.angle_deg)};
       plan.sweep = {sp.angle_deg, plan.direction.height_m, sp.lines};
       plan.cells = sp.cells;
+      plan.split_method = sp.method;
       plan.direction_candidates = sp.candidates;
     }
     return sp.lines;

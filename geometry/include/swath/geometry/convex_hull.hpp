@@ -9,4 +9,10 @@ namespace swath::geometry {
 /// orientation), O(n log n). Fewer than 3 non-collinear points give the 1 or 2 extreme points.
 Ring convex_hull(const std::vector<Point2>& points);
 
+/// The same hull of a simple polygon's ring (either orientation, no self-intersection), without
+/// sorting: Melkman's algorithm (1987) walks the ring once with a deque, O(n), exact orientation.
+/// Counter-clockwise without collinear vertices; the start vertex may differ from convex_hull()'s.
+/// Precondition: `ring` is simple (on a crossing ring the result is not the hull).
+Ring convex_hull_of_simple_ring(const Ring& ring);
+
 }  // namespace swath::geometry

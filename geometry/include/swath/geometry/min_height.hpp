@@ -26,6 +26,10 @@ double height_at(const std::vector<Point2>& points, double angle_deg);
 /// O(n log n) for the hull, O(h) after it. Ties go to the smallest angle.
 SweepDirection min_height_rotation(const std::vector<Point2>& points);
 
+/// The same for the ring of a simple polygon, with its hull by Melkman's walk (no sort): O(n).
+/// Precondition: `ring` does not cross itself (after classification or repair).
+SweepDirection min_height_of_simple_ring(const std::vector<Point2>& ring);
+
 /// The paper's scan: heights at 0, step, 2 step, ... < 180 degrees; the smallest wins (ties: the
 /// first). Never below min_height_rotation(); above it by at most diameter * sin(step / 2).
 /// Precondition: 0 < step_deg <= 180.

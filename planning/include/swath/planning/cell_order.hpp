@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -24,6 +25,12 @@ struct CellOrderProblem {
   geometry::Point2 home;
   std::vector<std::vector<CellVariant>> cells;
   std::function<double(geometry::Point2, geometry::Point2)> distance;
+  /// Optional: the cells whose lanes the transit from a cell's exit to another's entry crosses,
+  /// bit k for cell k (cells from 64 on are never counted). A transit over lanes still to be
+  /// flown is what a pilot distrusts (DESIGN.md §16): the orders below minimise the length plus
+  /// `crossing_weight` x the transit's length per such cell (home legs are not counted).
+  std::function<std::uint64_t(geometry::Point2, geometry::Point2)> crossed;
+  double crossing_weight = 1.0;
 };
 
 struct CellVisit {
@@ -33,14 +40,20 @@ struct CellVisit {
 
 struct CellOrder {
   std::vector<CellVisit> visits;
-  double length_m = 0.0;  ///< home -> every cell -> home, internal lengths included
+  double length_m = 0.0;      ///< home -> every cell -> home, internal lengths included
+  double objective_m = 0.0;   ///< what the order minimises: length_m plus the crossing penalty
+  std::size_t crossings = 0;  ///< transits x cells still to be flown whose lanes they cross
 };
 
 /// Total length of visiting the cells in `visits` order with those variants.
 double tour_length(const CellOrderProblem& problem, const std::vector<CellVisit>& visits);
 
-/// The optimum by dynamic programming over subsets (Held-Karp with variants): O(2^n n² v²).
-/// Precondition: at most 16 cells.
+/// The order's length, objective and crossings, from `problem` alone (a check of the searches).
+CellOrder evaluate_order(const CellOrderProblem& problem, const std::vector<CellVisit>& visits);
+
+/// The optimum of the objective by dynamic programming over subsets (Held-Karp with variants; the
+/// cells still to be flown are the complement of the subset): O(2^n n² v²). Precondition: at
+/// most 16 cells.
 CellOrder exact_cell_order(const CellOrderProblem& problem);
 
 /// Nearest neighbour only (from home, the cheapest next transit + cell each time): O(n² v). A
@@ -53,6 +66,6 @@ CellOrder nearest_neighbour_order(const CellOrderProblem& problem);
 CellOrder heuristic_cell_order(const CellOrderProblem& problem);
 
 /// exact_cell_order() up to `exact_limit` cells, heuristic_cell_order() beyond.
-CellOrder order_cells(const CellOrderProblem& problem, std::size_t exact_limit = 10);
+CellOrder order_cells(const CellOrderProblem& problem, std::size_t exact_limit = 12);
 
 }  // namespace swath::planning

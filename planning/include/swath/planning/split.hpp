@@ -10,6 +10,16 @@
 
 namespace swath::planning {
 
+/// How an area is cut into the pieces a zigzag sweeps (each a swappable step of plan_split).
+enum class SplitCells {
+  /// Lanes first, cut where they meet the boundary, chained into runs (lane_runs.hpp).
+  runs,
+  /// Boustrophedon cells of the polygon, lanes placed per piece (the first method; a baseline).
+  boustrophedon,
+  /// Both, per direction: the shorter whole path wins.
+  best,
+};
+
 struct SplitSettings {
   double line_spacing_m = 0.0;
   double footprint_width_m = 0.0;
@@ -19,17 +29,32 @@ struct SplitSettings {
   std::optional<double> fixed_angle_deg;
   /// The scan part of the direction search, degrees; edge directions are always candidates.
   double scan_step_deg = 2.0;
-  /// Candidates (best by a straight-transit estimate) evaluated with routed transits.
+  /// Candidates of each kind (bridged runs, runs, cells; best by a straight-transit estimate)
+  /// evaluated with routed transits.
   std::size_t refined_candidates = 3;
+  SplitCells cells = SplitCells::best;
+  /// The area the footprints must see (rings as plan_split's; empty: the rings lines fly over),
+  /// e.g. without the clearance around no-fly zones.
+  std::vector<geometry::Ring> seen_rings;
+  /// Where lanes may cross outside the rings to join their pieces (--outside-margin: the outline
+  /// grown by the margin, less the grown zones); empty: nowhere. Runs only.
+  std::vector<geometry::Ring> bridge_rings;
 };
 
 struct SplitPlan {
-  double angle_deg = 0.0;              ///< chosen line direction, degrees CCW from east, [0, 180)
-  std::vector<geometry::Ring> cells;   ///< counter-clockwise, local frame
-  std::vector<SweepLine> lines;        ///< flight order and direction
-  std::vector<std::size_t> line_cell;  ///< cell of each line
-  std::size_t candidates = 0;          ///< directions evaluated
-  double path_length_m = 0.0;          ///< home -> all lines -> home, transits routed
+  double angle_deg = 0.0;  ///< chosen line direction, degrees CCW from east, [0, 180)
+  /// Boustrophedon cells (counter-clockwise, tiling the area) or runs' outlines (their lanes'
+  /// strips, half a spacing either side), local frame.
+  std::vector<geometry::Ring> cells;
+  SplitCells method = SplitCells::boustrophedon;  ///< which made the plan (never `best`)
+  std::vector<SweepLine> lines;                   ///< flight order and direction
+  std::vector<std::size_t> line_cell;             ///< cell of each line
+  std::size_t candidates = 0;                     ///< directions evaluated
+  double path_length_m = 0.0;                     ///< home -> all lines -> home, transits routed
+  /// What the choice minimised: the length plus, per transit, its length again for each run or
+  /// cell still to be flown whose lanes it crosses (cell_order.hpp).
+  double objective_m = 0.0;
+  std::size_t transit_crossings = 0;  ///< transits x runs still to be flown they cross
 };
 
 /// Plans the split sweep of an area given as rings (outer counter-clockwise, holes clockwise).

@@ -15,6 +15,7 @@
 #include "swath/planning/division.hpp"
 #include "swath/planning/imaging.hpp"
 #include "swath/planning/mission.hpp"
+#include "swath/planning/split.hpp"
 #include "swath/planning/terrain.hpp"
 #include "swath/vehicle/drone.hpp"
 
@@ -64,7 +65,8 @@ struct SurveyRequest {
   ConcaveMode concave = ConcaveMode::split;
   /// Extra no-fly zones, WGS84 (any orientation); they become holes of the area.
   std::vector<std::vector<geometry::GeoPoint>> exclusions;
-  double split_scan_step_deg = 2.0;  ///< split: the scan part of the direction search
+  double split_scan_step_deg = 2.0;           ///< split: the scan part of the direction search
+  SplitCells split_cells = SplitCells::best;  ///< split: runs from lanes, boustrophedon or both
   /// Divide the survey among this fleet (absent: one drone).
   std::optional<vehicle::Fleet> fleet;
   DivisionMode division = DivisionMode::path;
@@ -83,6 +85,9 @@ struct SurveyRequest {
   double clearance_m = 5.0;
   /// The same for the outer boundary (lines shortened, transits kept inside by this much).
   double boundary_clearance_m = 0.0;
+  /// Split: a lane may cross up to this far outside the outer boundary (never into a no-fly zone
+  /// or its clearance) to join its pieces into one line; its ends stay inside. 0: never.
+  double outside_margin_m = 0.0;
   /// Camera triggering and the items that command it (DESIGN.md §14 "Camera triggering").
   Triggering triggering;
   /// Fly every line a second time at 90° (crosshatch), after the first pass.
@@ -172,8 +177,9 @@ struct SurveyPlan {
   std::vector<geometry::Ring> fence;
   double fence_margin_m = 0.0;
   std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
-  std::size_t direction_candidates = 1;  ///< directions evaluated
-  double transit_outside_m = 0.0;        ///< turns and transits (not home legs) outside the area
+  std::optional<SplitCells> split_method;  ///< split: what made the cells (runs or boustrophedon)
+  std::size_t direction_candidates = 1;    ///< directions evaluated
+  double transit_outside_m = 0.0;          ///< turns and transits (not home legs) outside the area
   /// --repair: the enclosed areas beyond the largest one (which became the field's outer ring),
   /// counter-clockwise, local frame. Planned with the rest.
   std::vector<geometry::Ring> extra_pieces;

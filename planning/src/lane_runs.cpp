@@ -1,0 +1,381 @@
+#include "swath/planning/lane_runs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+using geometry::Ring;
+
+struct Span {
+  double x0, x1;
+};
+
+// The area in the frame turned by -angle: lanes run along x. Which intervals of a horizontal
+// line lie inside, by crossings (a vertex on the line counts for the edge above it only).
+class LaneScan {
+ public:
+  LaneScan(const std::vector<Ring>& rings, double angle_deg) {
+    // rotate()'s arithmetic with its sine and cosine taken once: 10,000-vertex outlines are
+    // turned for every candidate direction.
+    const double t = -angle_deg * std::numbers::pi / 180.0;
+    const double c = std::cos(t), sn = std::sin(t);
+    for (const Ring& ring : rings) {
+      Ring turned;
+      for (const Point2& p : ring) turned.push_back({c * p.x - sn * p.y, sn * p.x + c * p.y});
+      for (std::size_t i = 0; i < turned.size(); ++i) {
+        const Point2 a = turned[i], b = turned[(i + 1) % turned.size()];
+        edges_.push_back({a, b});
+        y_min = std::min(y_min, a.y);
+        y_max = std::max(y_max, a.y);
+      }
+    }
+  }
+
+  std::vector<Span> at(double y) const {
+    std::vector<double> xs;
+    for (const auto& [a, b] : edges_)
+      if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+    return pairs(xs);
+  }
+
+  /// at() for many increasing ordinates: each edge finds its first by search.
+  std::vector<std::vector<Span>> at(const std::vector<double>& ys) const {
+    std::vector<std::vector<double>> xs(ys.size());
+    for (const auto& [a, b] : edges_) {
+      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+      auto k = std::lower_bound(ys.begin(), ys.end(), lo);
+      for (; k != ys.end() && *k < hi; ++k)
+        xs[std::size_t(k - ys.begin())].push_back(a.x + (*k - a.y) * (b.x - a.x) / (b.y - a.y));
+    }
+    std::vector<std::vector<Span>> out;
+    for (auto& x : xs) out.push_back(pairs(x));
+    return out;
+  }
+
+  const std::vector<std::pair<Point2, Point2>>& edges() const { return edges_; }
+  double y_min = std::numeric_limits<double>::infinity();
+  double y_max = -std::numeric_limits<double>::infinity();
+
+ private:
+  static std::vector<Span> pairs(std::vector<double>& xs) {
+    std::sort(xs.begin(), xs.end());
+    std::vector<Span> out;
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
+      if (xs[i + 1] - xs[i] > 1e-6) out.push_back({xs[i], xs[i + 1]});
+    return out;
+  }
+  std::vector<std::pair<Point2, Point2>> edges_;
+};
+
+// Per ordinate, the pieces inside joined across the gaps that one interval of the bridge area
+// spans: from the first piece's start to the last piece's end within it.
+std::vector<std::vector<Span>> bridged(const std::vector<std::vector<Span>>& inside,
+                                       const std::vector<std::vector<Span>>& bridge) {
+  std::vector<std::vector<Span>> out(inside.size());
+  for (std::size_t k = 0; k < inside.size(); ++k) {
+    for (const Span& piece : inside[k]) {
+      const double mid = (piece.x0 + piece.x1) / 2;
+      const auto within = std::find_if(bridge[k].begin(), bridge[k].end(),
+                                       [&](const Span& b) { return mid >= b.x0 && mid <= b.x1; });
+      const bool joins = !out[k].empty() && within != bridge[k].end() &&
+                         out[k].back().x1 >= within->x0 && out[k].back().x1 <= within->x1;
+      if (joins)
+        out[k].back().x1 = piece.x1;
+      else
+        out[k].push_back(piece);
+    }
+  }
+  return out;
+}
+
+struct RunLane {
+  double y, x0, x1;
+  int row;  ///< the grid ordinate's index; -1 for a lane off the grid
+};
+
+// Points the lanes must see, sorted by ordinate: the boundary every eighth of a spacing (vertices
+// included) and the inside on rows a quarter of a spacing apart, half a spacing along them. At
+// most ~200,000: steps grow on very large areas.
+std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
+  double perimeter = 0;
+  for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
+  double step = spacing_m;
+  const double height = scan.y_max - scan.y_min;
+  while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 2) > 2e5 &&
+         step < 1e6 * spacing_m)
+    step *= 1.5;
+  std::vector<Point2> samples;
+  for (const auto& [a, b] : scan.edges()) {
+    const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
+    for (int i = 0; i < n; ++i) samples.push_back(a + (b - a) * (double(i) / n));
+  }
+  std::vector<double> rows;
+  for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
+  const std::vector<std::vector<Span>> inside = scan.at(rows);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (const Span& in : inside[r]) {
+      const int n = std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 2))));
+      for (int i = 0; i < n; ++i)
+        samples.push_back({in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]});
+    }
+  std::sort(samples.begin(), samples.end(),
+            [](Point2 p, Point2 q) { return p.y < q.y || (p.y == q.y && p.x < q.x); });
+  return samples;
+}
+
+// Which lanes see which samples: within half a footprint across and within the lane's length.
+class SeenCount {
+ public:
+  SeenCount(const std::vector<Point2>& samples, double footprint_width_m)
+      : samples_(samples), half_(footprint_width_m / 2 + 1e-9), count_(samples.size(), 0) {}
+
+  template <typename F>
+  void each_seen_by(const RunLane& lane, F f) const {
+    auto it = std::lower_bound(samples_.begin(), samples_.end(), lane.y - half_,
+                               [](Point2 p, double y) { return p.y < y; });
+    for (; it != samples_.end() && it->y <= lane.y + half_; ++it)
+      if (it->x >= lane.x0 - 1e-6 && it->x <= lane.x1 + 1e-6) f(std::size_t(it - samples_.begin()));
+  }
+  void add(const RunLane& lane) {
+    each_seen_by(lane, [&](std::size_t i) { ++count_[i]; });
+  }
+  void remove(const RunLane& lane) {
+    each_seen_by(lane, [&](std::size_t i) { --count_[i]; });
+  }
+  /// Whether every sample the lane sees is seen by another lane too.
+  bool redundant(const RunLane& lane) const {
+    bool all = true;
+    each_seen_by(lane, [&](std::size_t i) { all &= count_[i] >= 2; });
+    return all;
+  }
+  int count(std::size_t i) const { return count_[i]; }
+  const Point2& sample(std::size_t i) const { return samples_[i]; }
+  std::size_t size() const { return samples_.size(); }
+
+ private:
+  const std::vector<Point2>& samples_;
+  double half_;
+  std::vector<int> count_;
+};
+
+// Lanes off the grid for what the grid's lanes do not see: for the first unseen sample (lowest,
+// then leftmost), of the lanes through it or up to half a footprint from it, the one that sees
+// the most unseen samples.
+std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const LaneRunSettings& s,
+                                    std::size_t& unreachable) {
+  const double w = s.footprint_width_m, inset = 1e-3 * s.line_spacing_m;
+  std::vector<std::size_t> unseen;
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    if (seen.count(i) == 0) unseen.push_back(i);
+  std::vector<RunLane> added;
+  std::vector<char> done(seen.size(), 0);
+  for (std::size_t next = 0; next < unseen.size(); ++next) {
+    const std::size_t first = unseen[next];
+    if (done[first] || seen.count(first) > 0) continue;
+    const Point2 b = seen.sample(first);
+    RunLane best{0, 0, 0, -1};
+    long best_count = -1;
+    for (const double dy : {0.0, inset, -inset, w / 4, -w / 4, w / 2 - inset, -(w / 2 - inset)}) {
+      const double y = std::clamp(b.y + dy, scan.y_min + inset, scan.y_max - inset);
+      if (std::abs(y - b.y) > w / 2) continue;
+      for (const Span& in : scan.at(y)) {
+        if (b.x < in.x0 - 1e-6 || b.x > in.x1 + 1e-6) continue;
+        const RunLane lane{y, in.x0, in.x1, -1};
+        long n = 0;
+        seen.each_seen_by(lane, [&](std::size_t i) { n += seen.count(i) == 0 && !done[i]; });
+        if (n > best_count) {
+          best_count = n;
+          best = lane;
+        }
+      }
+    }
+    if (best_count <= 0) {  // a point no lane inside reaches (a needle's tip)
+      done[first] = 1;
+      ++unreachable;
+      continue;
+    }
+    seen.add(best);
+    added.push_back(best);
+  }
+  return added;
+}
+
+// Whether a turn between lane ends on neighbouring grid rows stays inside: no boundary edge
+// crosses it and its middle is inside or on the boundary. Only the edges that reach into the band
+// between the two rows can tell, so they are bucketed by band: O(edges in the band) a turn, not
+// O(n) as a general visibility test (10,000-vertex outlines ask this ~10^5 times).
+class Turns {
+ public:
+  Turns(const LaneScan& scan, const std::vector<double>& ys) : bands_(ys.size()) {
+    const auto& edges = scan.edges();
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const double lo = std::min(edges[e].first.y, edges[e].second.y);
+      const double hi = std::max(edges[e].first.y, edges[e].second.y);
+      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
+      // bottom is below hi.
+      auto r = std::lower_bound(ys.begin() + 1, ys.end(), lo);
+      for (std::size_t b = std::size_t(r - ys.begin()) - 1; b + 1 < ys.size() && ys[b] <= hi; ++b)
+        bands_[b].push_back(edges[e]);
+    }
+  }
+
+  /// a on row `row`, b on the next, both in the rotated frame.
+  bool inside(Point2 a, Point2 b, std::size_t row) const {
+    const auto& edges = bands_[row];
+    const double tolerance = 1e-9 * (1 + geometry::distance(a, b));
+    auto side = [tolerance](Point2 o, Point2 d, Point2 x) {
+      const double c = geometry::cross(d - o, x - o) / std::max(geometry::distance(o, d), 1e-12);
+      return c > tolerance ? 1 : c < -tolerance ? -1 : 0;
+    };
+    for (const auto& [p, q] : edges)
+      if (side(a, b, p) * side(a, b, q) < 0 && side(p, q, a) * side(p, q, b) < 0) return false;
+    // The middle: on an edge counts as inside (closed area), else by crossings to the right.
+    const Point2 m = (a + b) * 0.5;
+    bool in = false;
+    for (const auto& [p, q] : edges) {
+      const Point2 d = q - p;
+      const double len2 = geometry::dot(d, d);
+      const double t = len2 > 0 ? std::clamp(geometry::dot(m - p, d) / len2, 0.0, 1.0) : 0.0;
+      if (geometry::distance(m, p + d * t) <= tolerance) return true;
+      if ((p.y <= m.y) != (q.y <= m.y) && p.x + (m.y - p.y) * (q.x - p.x) / (q.y - p.y) > m.x)
+        in = !in;
+    }
+    return in;
+  }
+
+ private:
+  std::vector<std::vector<std::pair<Point2, Point2>>> bands_;
+};
+
+// Zigzag chains over the grid's ordinates: each lane linked to at most one lane on the next
+// ordinate up, the pairs that overlap most first, when both turns (left ends, right ends) stay
+// inside. Coverage lanes stay runs of their own; the order places them.
+std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes, const Turns& turns) {
+  std::vector<std::vector<std::size_t>> by_row;
+  std::vector<int> rows;
+  std::vector<std::vector<RunLane>> runs;
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    if (lanes[i].row < 0) {
+      runs.push_back({lanes[i]});
+      continue;
+    }
+    if (rows.empty() || lanes[i].row != rows.back()) {
+      rows.push_back(lanes[i].row);
+      by_row.emplace_back();
+    }
+    by_row.back().push_back(i);
+  }
+  const std::size_t none = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> up(lanes.size(), none), down(lanes.size(), none);
+  for (std::size_t r = 0; r + 1 < by_row.size(); ++r) {
+    if (rows[r + 1] != rows[r] + 1) continue;  // a row left out between: no zigzag across it
+    std::vector<std::tuple<double, std::size_t, std::size_t>> links;
+    for (std::size_t u : by_row[r])
+      for (std::size_t v : by_row[r + 1]) {
+        const RunLane &a = lanes[u], &b = lanes[v];
+        const double overlap = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
+        if (overlap <= 0) continue;
+        const auto row = std::size_t(a.row);
+        if (!turns.inside({a.x0, a.y}, {b.x0, b.y}, row) ||
+            !turns.inside({a.x1, a.y}, {b.x1, b.y}, row))
+          continue;
+        links.push_back({-overlap, u, v});
+      }
+    std::sort(links.begin(), links.end());
+    for (const auto& [negative_overlap, u, v] : links)
+      if (up[u] == none && down[v] == none) {
+        up[u] = v;
+        down[v] = u;
+      }
+  }
+  for (const auto& row : by_row)
+    for (std::size_t start : row) {
+      if (down[start] != none) continue;
+      runs.emplace_back();
+      for (std::size_t i = start; i != none; i = up[i]) runs.back().push_back(lanes[i]);
+    }
+  return runs;
+}
+
+Ring outline(const std::vector<RunLane>& run, double half_spacing, double angle_deg) {
+  Ring ring;  // counter-clockwise: up the right ends, down the left ends
+  for (const RunLane& l : run) {
+    ring.push_back(rotate({l.x1, l.y - half_spacing}, angle_deg));
+    ring.push_back(rotate({l.x1, l.y + half_spacing}, angle_deg));
+  }
+  for (auto l = run.rbegin(); l != run.rend(); ++l) {
+    ring.push_back(rotate({l->x0, l->y + half_spacing}, angle_deg));
+    ring.push_back(rotate({l->x0, l->y - half_spacing}, angle_deg));
+  }
+  return ring;
+}
+
+}  // namespace
+
+LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
+  if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m))
+    throw std::invalid_argument("lane_runs: need 0 < spacing <= footprint width");
+  const LaneScan scan(area.fly, s.angle_deg);
+  LaneRuns out;
+  if (!(scan.y_max > scan.y_min)) return out;
+
+  // 1. The grid's lanes, cut where they meet the boundary.
+  const std::vector<double> ys =
+      line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  const std::vector<std::vector<Span>> cut =
+      area.bridge.empty() ? scan.at(ys)
+                          : bridged(scan.at(ys), LaneScan(area.bridge, s.angle_deg).at(ys));
+  std::vector<RunLane> lanes;
+  for (std::size_t k = 0; k < ys.size(); ++k)
+    for (const Span& in : cut[k]) lanes.push_back({ys[k], in.x0, in.x1, int(k)});
+
+  // 2. Lanes for the corners the grid misses.
+  const std::vector<Point2> samples =
+      coverage_samples(area.see.empty() ? scan : LaneScan(area.see, s.angle_deg), s.line_spacing_m);
+  SeenCount seen(samples, s.footprint_width_m);
+  for (const RunLane& l : lanes) seen.add(l);
+  const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);
+  out.coverage_lanes = more.size();
+  lanes.insert(lanes.end(), more.begin(), more.end());
+
+  // 3. Slivers: short lanes whose every sample another lane sees too, shortest first.
+  std::vector<std::size_t> by_length(lanes.size());
+  for (std::size_t i = 0; i < lanes.size(); ++i) by_length[i] = i;
+  std::stable_sort(by_length.begin(), by_length.end(), [&](std::size_t a, std::size_t b) {
+    return lanes[a].x1 - lanes[a].x0 < lanes[b].x1 - lanes[b].x0;
+  });
+  std::vector<char> keep(lanes.size(), 1);
+  for (std::size_t i : by_length) {
+    if (lanes[i].x1 - lanes[i].x0 > s.sliver_length_footprints * s.footprint_width_m) break;
+    if (!seen.redundant(lanes[i])) continue;
+    seen.remove(lanes[i]);
+    keep[i] = 0;
+    out.dropped_slivers += lanes[i].row >= 0;
+  }
+  std::vector<RunLane> kept;
+  for (std::size_t i = 0; i < lanes.size(); ++i)
+    if (keep[i]) kept.push_back(lanes[i]);
+  std::stable_sort(kept.begin(), kept.end(), [](const RunLane& a, const RunLane& b) {
+    return a.y < b.y || (a.y == b.y && a.x0 < b.x0);
+  });
+
+  // 4. Zigzag runs.
+  for (const std::vector<RunLane>& run : chain(kept, Turns(scan, ys))) {
+    Sweep sweep;
+    sweep.angle_deg = s.angle_deg;
+    sweep.height_m = run.back().y - run.front().y;
+    for (const RunLane& l : run)
+      sweep.lines.push_back({rotate({l.x0, l.y}, s.angle_deg), rotate({l.x1, l.y}, s.angle_deg)});
+    out.runs.push_back(std::move(sweep));
+    out.outlines.push_back(outline(run, s.line_spacing_m / 2, s.angle_deg));
+  }
+  return out;
+}
+
+}  // namespace swath::planning

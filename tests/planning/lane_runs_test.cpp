@@ -1,0 +1,188 @@
+// Runs from the lanes (issue 18): lanes inside, coverage by the independent oracle, runs that a
+// pilot would fly, and the split corpus's targets.
+#include "swath/planning/lane_runs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coverage_oracle.hpp"
+#include "field_shapes.hpp"
+#include "meadow_survey.hpp"
+#include "split_measure.hpp"
+#include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/field.hpp"
+#include "swath/geometry/visibility.hpp"
+#include "swath/planning/camera.hpp"
+#include "swath/planning/survey.hpp"
+
+namespace swath::planning {
+namespace {
+
+using geometry::Point2;
+using geometry::Polygon;
+using geometry::Ring;
+
+LaneRunSettings settings(double angle_deg, double spacing_m = 17.4, double footprint_m = 58) {
+  LaneRunSettings s;
+  s.angle_deg = angle_deg;
+  s.line_spacing_m = spacing_m;
+  s.footprint_width_m = footprint_m;
+  return s;
+}
+
+LaneRuns runs_of(const Polygon& area, const LaneRunSettings& s) {
+  return lane_runs({geometry::rings_of(area), {}, {}}, s);
+}
+
+std::vector<SweepLine> all_lines(const LaneRuns& r) {
+  std::vector<SweepLine> lines;
+  for (const Sweep& run : r.runs) lines.insert(lines.end(), run.lines.begin(), run.lines.end());
+  return lines;
+}
+
+// A rectangle with a notch from the top that ends above the top lane: no lane meets its reflex
+// corners, so the area is one run of the nine lanes (boustrophedon cells: more than one). A deeper
+// notch cuts the top lane in two, whose halves cannot turn into the lane below without crossing it.
+TEST(LaneRuns, ANotchNoLaneMeetsMakesNoRun) {
+  const LaneRunSettings s = settings(0, 20, 40);  // centred: 9 lanes at 20, 40, ..., 180
+  auto notched = [](double bottom) {
+    return Polygon{{{0, 0},
+                    {400, 0},
+                    {400, 200},
+                    {220, 200},
+                    {210, bottom},
+                    {190, bottom},
+                    {180, 200},
+                    {0, 200}},
+                   {}};
+  };
+  const Polygon shallow = notched(185), deep = notched(175);
+  const LaneRuns one = runs_of(shallow, s);
+  ASSERT_EQ(one.runs.size(), 1u);
+  EXPECT_EQ(one.runs[0].lines.size(), 9u);
+  EXPECT_GT(geometry::boustrophedon_cells(geometry::rings_of(shallow), 0).size(), 1u);
+  EXPECT_GE(test::sample_coverage(shallow, all_lines(one), 40, 200).fraction(), 0.9999);
+  const LaneRuns three = runs_of(deep, s);
+  ASSERT_EQ(three.runs.size(), 3u);
+  EXPECT_EQ(all_lines(three).size(), 10u);
+  EXPECT_EQ(three.runs[0].lines.size(), 8u);
+  EXPECT_GE(test::sample_coverage(deep, all_lines(three), 40, 200).fraction(), 0.9999);
+}
+
+// A 10 m sliver jutting 30 m out of a side between two lanes: the lanes beside it see it (a
+// footprint of 58 m reaches 29 m), so it gets no lane; 100 m out it does.
+TEST(LaneRuns, ASliverTheNeighboursSeeGetsNoLane) {
+  const LaneRunSettings s = settings(0);
+  auto with_sliver = [](double reach) {
+    return Polygon{{{0, 0},
+                    {300, 0},
+                    {300, 100},
+                    {300 + reach, 100},
+                    {300 + reach, 110},
+                    {300, 110},
+                    {300, 200},
+                    {0, 200}},
+                   {}};
+  };
+  const Polygon near = with_sliver(30), far = with_sliver(100);
+  const LaneRuns a = runs_of(near, s), b = runs_of(far, s);
+  std::size_t longest_a = 0;
+  for (const SweepLine& l : all_lines(a))
+    longest_a = std::max<std::size_t>(longest_a,
+                                      std::size_t(std::lround(geometry::distance(l.start, l.end))));
+  EXPECT_LE(longest_a, 300u + 30u);
+  EXPECT_GE(test::sample_coverage(near, all_lines(a), 58, 300).fraction(), 0.999);
+  EXPECT_GE(test::sample_coverage(far, all_lines(b), 58, 300).fraction(), 0.999);
+  double far_reach = 0;
+  for (const SweepLine& l : all_lines(b)) far_reach = std::max({far_reach, l.start.x, l.end.x});
+  EXPECT_GT(far_reach, 370);  // a lane goes out along the long sliver
+}
+
+// Properties on the corpus's outlines at random directions: lanes inside (exact length outside),
+// runs on consecutive lanes one spacing apart with turns inside, and coverage >= 99.9 % by the
+// independent oracle (a 300 x 300 grid, footprint rectangles tested directly).
+TEST(LaneRuns, LanesInsideRunsFlyableAndTheOracleSeesTheArea) {
+  test::Rng rng(18);
+  std::uniform_real_distribution<double> angle(0, 180);
+  for (const test::CorpusShape& shape : test::split_corpus(18, 3)) {
+    const double a = angle(rng);
+    const LaneRunSettings s = settings(a);
+    const std::vector<Ring> rings = geometry::rings_of(shape.area);
+    const geometry::VisibilityRouter inside(rings, 0);
+    const LaneRuns r = runs_of(shape.area, s);
+    const std::string what = shape.family + " " + std::to_string(shape.index);
+    for (const Sweep& run : r.runs) {
+      for (std::size_t i = 0; i < run.lines.size(); ++i) {
+        const SweepLine& l = run.lines[i];
+        EXPECT_LE(inside.length_outside(l.start, l.end), 1e-6) << what;
+        if (i == 0) continue;
+        const SweepLine& p = run.lines[i - 1];
+        const Point2 d = rotate(l.start, -a) - rotate(p.start, -a);
+        EXPECT_NEAR(d.y, s.line_spacing_m, 1e-6) << what;
+        EXPECT_TRUE(inside.visible(p.start, l.start) && inside.visible(p.end, l.end)) << what;
+      }
+    }
+    const double seen =
+        test::sample_coverage(shape.area, all_lines(r), s.footprint_width_m, 300).fraction();
+    EXPECT_GE(seen, 0.999) << what << " at " << a << " deg";
+  }
+}
+
+// The split corpus (issue 18's targets), a small draw of it: split against the hull at default
+// settings. Every line inside the area and out of the no-fly zones, coverage of the flyable area
+// >= 99.9 % by the oracle, and split/hull mean <= 0.97, worst <= 1.3.
+TEST(SplitCorpus, ShorterThanTheHullInsideAndCovered) {
+  double sum = 0, worst = 0;
+  int n = 0;
+  for (const test::CorpusShape& shape : test::split_corpus(1818, 2)) {
+    const test::SplitRow row = test::measure_split(shape.area);
+    const std::string what = shape.family + " " + std::to_string(shape.index);
+    if (!row.concave) continue;
+    EXPECT_LE(row.line_outside_m, 1e-6) << what;
+    EXPECT_LE(row.transit_outside_m, 1e-6) << what;
+    EXPECT_GE(row.flyable_coverage, 0.999) << what;
+    if (shape.area.holes.empty()) {
+      EXPECT_GE(row.coverage, 0.999) << what;
+    }
+    sum += row.split_m / row.hull_m;
+    worst = std::max(worst, row.split_m / row.hull_m);
+    ++n;
+  }
+  ASSERT_GE(n, 10);
+  EXPECT_LE(sum / n, 0.97);
+  EXPECT_LE(worst, 1.3);
+  RecordProperty("mean_split_over_hull", std::to_string(sum / n));
+  RecordProperty("worst_split_over_hull", std::to_string(worst));
+}
+
+// The vineyard (share/fields): no transit crosses a line still to be flown (checked on the flight
+// order, transits routed inside the area again), and runs make it shorter than cells alone.
+TEST(SplitSurvey, VineyardTransitsStayOffLinesStillToBeFlown) {
+  const SurveyRequest r = test::vineyard_request();
+  const SurveyPlan plan = plan_survey(r);
+  const std::vector<SweepLine>& lines = plan.drones[0].mission.lines;
+  const geometry::VisibilityRouter inside(plan.planning_rings);
+  auto crosses = [](Point2 p, Point2 q, Point2 a, Point2 b) {
+    auto side = [](Point2 o, Point2 d, Point2 x) {
+      const double c = (d.x - o.x) * (x.y - o.y) - (d.y - o.y) * (x.x - o.x);
+      return c > 1e-6 ? 1 : c < -1e-6 ? -1 : 0;
+    };
+    return side(p, q, a) * side(p, q, b) < 0 && side(a, b, p) * side(a, b, q) < 0;
+  };
+  for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+    const std::vector<Point2> path = inside.path(lines[i].end, lines[i + 1].start);
+    for (std::size_t j = i + 2; j < lines.size(); ++j)
+      for (std::size_t k = 0; k + 1 < path.size(); ++k)
+        EXPECT_FALSE(crosses(path[k], path[k + 1], lines[j].start, lines[j].end))
+            << "transit after line " << i << " crosses line " << j << ", flown later";
+  }
+  SurveyRequest cells = r;
+  cells.split_cells = SplitCells::boustrophedon;
+  EXPECT_LT(plan.drones[0].mission.path_length_m,
+            plan_survey(cells).drones[0].mission.path_length_m);
+  EXPECT_EQ(plan.split_method, SplitCells::runs);
+}
+
+}  // namespace
+}  // namespace swath::planning
