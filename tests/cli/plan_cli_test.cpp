@@ -199,6 +199,70 @@ TEST(PlanCli, SplitCellsAndOutsideMarginReachThePlan) {
   EXPECT_EQ(r["coverage"]["line_length_outside_m"].get<double>(), 0.0);
 }
 
+// Zones across the boundary and overlapping each other (issue 18): the area less their union,
+// planned with a warning; no line enters a zone, and the area is the meadow less the zones' parts
+// inside it (the oracle: the meadow's area less each zone's sampled share inside the meadow).
+TEST(PlanCli, ZonesAcrossTheBoundaryAndOverlappingAreCutOut) {
+  const std::string out = fresh_dir("zones-cut");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
+      "tests/fixtures/zone-across-boundary.geojson --exclude share/zones/meadow-pond.geojson "
+      "--exclude tests/fixtures/zone-overlapping-pond.geojson -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("warning: no-fly zones cross the area's boundary or each other"),
+            std::string::npos)
+      << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_EQ(s["area"]["no_fly_zones"], 3);
+  EXPECT_EQ(s["coverage"]["line_length_outside_m"].get<double>(), 0.0);
+  EXPECT_EQ(s["coverage"]["transit_outside_m"].get<double>(), 0.0);
+  EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.999);
+  EXPECT_GE(s["flight"]["min_no_fly_distance_m"].get<double>(), 5.0 - 1e-6);
+  // The oracle: a 400 x 400 grid over the meadow's box in degrees (uniform in area to 1e-4 over
+  // 500 m), each sample tested against the rings as read from the files by ray casting.
+  auto ring_of = [](const std::string& path) {
+    json g = json::parse(read_text(source_path(path)));
+    if (g.contains("features")) g = g["features"][0];
+    if (g.contains("geometry")) g = g["geometry"];
+    std::vector<std::pair<double, double>> ring;
+    for (const json& c : g["coordinates"][0])
+      ring.push_back({c[0].get<double>(), c[1].get<double>()});
+    return ring;
+  };
+  auto inside = [](const std::vector<std::pair<double, double>>& r, double x, double y) {
+    bool in = false;
+    for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+      if ((r[i].second > y) != (r[j].second > y) &&
+          x < r[j].first +
+                  (y - r[j].second) * (r[i].first - r[j].first) / (r[i].second - r[j].second))
+        in = !in;
+    return in;
+  };
+  const auto meadow = ring_of("share/fields/meadow.geojson");
+  const std::vector<std::vector<std::pair<double, double>>> zones{
+      ring_of("tests/fixtures/zone-across-boundary.geojson"),
+      ring_of("share/zones/meadow-pond.geojson"),
+      ring_of("tests/fixtures/zone-overlapping-pond.geojson")};
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  for (const auto& [x, y] : meadow) {
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  long in_meadow = 0, left = 0;
+  for (int i = 0; i < 400; ++i)
+    for (int j = 0; j < 400; ++j) {
+      const double x = x0 + (x1 - x0) * (i + 0.5) / 400, y = y0 + (y1 - y0) * (j + 0.5) / 400;
+      if (!inside(meadow, x, y)) continue;
+      ++in_meadow;
+      bool free = true;
+      for (const auto& z : zones) free &= !inside(z, x, y);
+      left += free;
+    }
+  const double meadow_m2 = 100694.358;  // the meadow alone (as PlanCli.AShapefileInTheSwiss...)
+  EXPECT_NEAR(s["area"]["area_m2"].get<double>(), meadow_m2 * double(left) / double(in_meadow),
+              0.005 * meadow_m2);
+}
+
 TEST(PlanCli, NoFlyZoneFromExcludeIsAvoided) {
   const std::string out = fresh_dir("exclude");
   const CliRun run = run_swath(
@@ -399,10 +463,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"bad_start",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --start middle",
                 "--start"},
-        BadPlan{"zone_across_boundary",
+        BadPlan{"zone_over_area",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
-                "tests/fixtures/zone-across-boundary.geojson",
-                "no-fly zone 0 crosses the area's boundary or another zone"},
+                "tests/fixtures/zone-over-area.geojson",
+                "meadow.geojson: the no-fly zones cover the whole area"},
         BadPlan{"fleet_zero_capability",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --fleet "
                 "tests/fixtures/fleet-zero-capability.yaml",

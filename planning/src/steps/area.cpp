@@ -8,6 +8,7 @@
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/offset.hpp"
+#include "swath/geometry/predicates.hpp"
 #include "swath/geometry/repair.hpp"
 #include "swath/planning/survey_steps.hpp"
 
@@ -126,6 +127,45 @@ void collect_no_fly(SurveyPlan& plan) {
   }
 }
 
+// Whether no-fly zones cross the area's boundary or each other, or lie outside the area: then the
+// area is cut (cut_out_zones) instead of refused.
+bool zones_need_cutting(const SurveyPlan& plan) {
+  const geometry::Field& field = plan.request.field;
+  const geometry::Classification& c = plan.facts.classification;
+  if (c.type == geometry::AreaType::self_intersecting &&
+      c.crossing->edge_b.ring > field.polygon.holes.size())
+    return true;
+  for (std::size_t h = field.polygon.holes.size(); h < plan.area.holes.size(); ++h)
+    for (const geometry::Point2& p : plan.area.holes[h])
+      if (geometry::locate_point(p, plan.area.outer) == geometry::Containment::outside) return true;
+  return false;
+}
+
+// The area less the union of its holes and no-fly zones (Boost.Geometry's boolean difference),
+// in as many parts as that leaves: the largest is the area, the others are planned and joined
+// like --repair's pieces (their own zones stay no-fly through the planning rings).
+void cut_out_zones(SurveyPlan& plan) {
+  const geometry::Field& field = plan.request.field;
+  std::vector<geometry::Polygon> parts;
+  for (geometry::Ring& ring : geometry::subtract(field.polygon.outer, 0, plan.no_fly)) {
+    if (geometry::signed_area(ring) > 0)
+      parts.push_back({std::move(ring), {}});
+    else if (!parts.empty())
+      parts.back().holes.push_back(std::move(ring));
+  }
+  if (parts.empty()) throw InputError(field.source + ": the no-fly zones cover the whole area");
+  std::stable_sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) {
+    return geometry::area(a) > geometry::area(b);
+  });
+  double total = 0;
+  for (const geometry::Polygon& part : parts) total += geometry::area(part);
+  plan.area = parts.front();
+  for (std::size_t k = 1; k < parts.size(); ++k) plan.extra_pieces.push_back(parts[k].outer);
+  plan.warnings.push_back(
+      "no-fly zones cross the area's boundary or each other: planned the area less the zones, " +
+      std::to_string(parts.size()) + " part(s), " + fixed_text(total, 1) + " m² in all");
+}
+
 // Refusals that need the classification: zones crossing the area or each other, a crossing
 // outer ring, a concave area with --concave reject.
 void check_classification(const SurveyPlan& plan) {
@@ -226,6 +266,10 @@ void area(SurveyPlan& plan) {
   plan.area = field.polygon;
   collect_no_fly(plan);
   plan.facts = geometry::describe_area(plan.area);
+  if (zones_need_cutting(plan)) {
+    cut_out_zones(plan);
+    plan.facts = geometry::describe_area(plan.area);
+  }
   for (const geometry::Ring& piece : plan.extra_pieces)
     *plan.facts.area_m2 += geometry::signed_area(piece);
   check_classification(plan);
