@@ -3,7 +3,7 @@
 // Benchmark: a quality table, printed as Markdown, with every row as CSV on request.
 //
 //   swath_split_corpus [--per-family N] [--seed S] [--csv FILE] [--write DIR]
-//                      [--cells runs|boustrophedon|best] [--margin 0|half]
+//                      [--cells runs|boustrophedon|best] [--margin 0|half] [--altitude M]
 //
 // --write DIR puts every shape there as GeoJSON (placed at 47 N 8 E), to plan and draw with swath.
 
@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
       csv = argv[i + 1];
     else if (flag == "--write")
       write_dir = argv[i + 1];
+    else if (flag == "--altitude") settings.altitude_m = std::atof(argv[i + 1]);
     else if (flag == "--margin")
       settings.half_footprint_margin = std::string(argv[i + 1]) == "half";
     else if (flag == "--cells") {
@@ -93,6 +95,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (!write_dir.empty()) std::filesystem::create_directories(write_dir);
   std::ofstream rows;
   if (!csv.empty()) {
     rows.open(csv);

@@ -107,7 +107,7 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
   for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
   double step = spacing_m;
   const double height = scan.y_max - scan.y_min;
-  while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 2) > 2e5 &&
+  while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 4) > 2e5 &&
          step < 1e6 * spacing_m)
     step *= 1.5;
   std::vector<Point2> samples;
@@ -120,7 +120,7 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
   const std::vector<std::vector<Span>> inside = scan.at(rows);
   for (std::size_t r = 0; r < rows.size(); ++r)
     for (const Span& in : inside[r]) {
-      const int n = std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 2))));
+      const int n = std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
       for (int i = 0; i < n; ++i)
         samples.push_back({in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]});
     }

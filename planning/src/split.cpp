@@ -11,6 +11,7 @@
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/planning/cell_order.hpp"
+#include "swath/planning/coverage.hpp"
 #include "swath/planning/lane_runs.hpp"
 
 namespace swath::planning {
@@ -339,15 +340,27 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // The best few of each kind again with transits routed inside the area, ordered exactly where
   // small: a straight-line estimate ranks runs and cells differently (runs' transits hop around
   // what cells' turns go along).
+  // A plan that sees less than 99.9 % of the area (cells' lanes can miss a corner a large
+  // footprint was trusted with) only wins where none sees more.
   std::sort(estimates.begin(), estimates.end());
+  const std::vector<geometry::Ring>& seen = s.seen_rings.empty() ? rings : s.seen_rings;
+  const geometry::Polygon to_see{seen.front(), {seen.begin() + 1, seen.end()}};
   SplitPlan best;
-  best.objective_m = std::numeric_limits<double>::infinity();
+  std::pair<double, double> best_key{std::numeric_limits<double>::infinity(), 0};
   std::size_t of_kind = 0;
   for (std::size_t e = 0; e < estimates.size(); ++e) {
     of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
     if (of_kind >= s.refined_candidates) continue;
     SplitPlan plan = ordered_plan(candidates[std::get<2>(estimates[e])], home, routed);
-    if (plan.objective_m < best.objective_m) best = std::move(plan);
+    const double seen_fraction =
+        measure_coverage(to_see, plan.lines, plan.angle_deg, s.footprint_width_m, 1024)
+            .covered_fraction;
+    const std::pair<double, double> key =
+        seen_fraction >= 0.999 ? std::pair{0.0, plan.objective_m} : std::pair{1.0, -seen_fraction};
+    if (key < best_key) {
+      best_key = key;
+      best = std::move(plan);
+    }
   }
   best.candidates = candidates.size();
   return best;
