@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
       csv = argv[i + 1];
     else if (flag == "--write")
       write_dir = argv[i + 1];
-    else if (flag == "--altitude") settings.altitude_m = std::atof(argv[i + 1]);
+    else if (flag == "--altitude")
+      settings.altitude_m = std::atof(argv[i + 1]);
     else if (flag == "--margin")
       settings.half_footprint_margin = std::string(argv[i + 1]) == "half";
     else if (flag == "--cells") {

@@ -352,6 +352,7 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
     of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
     if (of_kind >= s.refined_candidates) continue;
     SplitPlan plan = ordered_plan(candidates[std::get<2>(estimates[e])], home, routed);
+    if (best_key.first == 0 && plan.objective_m >= best_key.second) continue;  // no need to look
     const double seen_fraction =
         measure_coverage(to_see, plan.lines, plan.angle_deg, s.footprint_width_m, 1024)
             .covered_fraction;
