@@ -182,7 +182,9 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
     RunLane best{0, 0, 0, -1};
     long best_count = -1;
     for (const double dy : {0.0, inset, -inset, w / 4, -w / 4, w / 2 - inset, -(w / 2 - inset)}) {
-      const double y = std::clamp(b.y + dy, scan.y_min + inset, scan.y_max - inset);
+      // Inside the area's height (its middle when the area is thinner than two insets).
+      const double lo = scan.y_min + inset, hi = scan.y_max - inset;
+      const double y = lo <= hi ? std::clamp(b.y + dy, lo, hi) : (scan.y_min + scan.y_max) / 2;
       if (std::abs(y - b.y) > w / 2) continue;
       for (const Span& in : scan.at(y)) {
         if (b.x < in.x0 - 1e-6 || b.x > in.x1 + 1e-6) continue;
@@ -328,6 +330,7 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
   // 1. The grid's lanes, cut where they meet the boundary.
   const std::vector<double> ys =
       line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  if (ys.empty()) return out;
   const std::vector<std::vector<Span>> cut =
       area.bridge.empty() ? scan.at(ys)
                           : bridged(scan.at(ys), LaneScan(area.bridge, s.angle_deg).at(ys));

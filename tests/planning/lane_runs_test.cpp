@@ -70,6 +70,15 @@ TEST(LaneRuns, ANotchNoLaneMeetsMakesNoRun) {
   EXPECT_GE(test::sample_coverage(deep, all_lines(three), 40, 200).fraction(), 0.9999);
 }
 
+// Degenerate scales: a strip 1.5 m thick under a footprint of 1 km (the search's insets, a
+// thousandth of a spacing, are wider than the strip) gets one lane along it that sees all of it.
+TEST(LaneRuns, AStripThinnerThanTheInsetsStillGetsItsLane) {
+  const Polygon strip{{{0, 0}, {300, 0}, {300, 1.5}, {150, 1.0}, {0, 1.5}}, {}};
+  const LaneRuns r = runs_of(strip, settings(0, 1000, 1000));
+  ASSERT_EQ(all_lines(r).size(), 1u);
+  EXPECT_GE(test::sample_coverage(strip, all_lines(r), 1000, 300).fraction(), 0.999);
+}
+
 // A 10 m sliver jutting 30 m out of a side between two lanes: the lanes beside it see it (a
 // footprint of 58 m reaches 29 m), so it gets no lane; 100 m out it does.
 TEST(LaneRuns, ASliverTheNeighboursSeeGetsNoLane) {
