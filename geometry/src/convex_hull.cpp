@@ -72,8 +72,9 @@ Ring convex_hull_of_simple_ring(const Ring& ring) {
   std::vector<std::uint32_t> deque(2 * n + 4);
   std::size_t bottom = n, top = bottom + 3;
   deque[bottom] = deque[top] = std::uint32_t(k);
-  deque[bottom + 1] = std::uint32_t(left(a, b, c) ? 0 : k - 1);
-  deque[bottom + 2] = std::uint32_t(left(a, b, c) ? k - 1 : 0);
+  const bool counter_clockwise = left(a, b, c);
+  deque[bottom + 1] = std::uint32_t(counter_clockwise ? 0 : k - 1);
+  deque[bottom + 2] = std::uint32_t(counter_clockwise ? k - 1 : 0);
   for (std::size_t i = k + 1; i < n; ++i) {
     const Point2 v = ring[i];
     // Inside the hull so far (strictly left of both edges at the last vertex): nothing changes.

@@ -2,6 +2,8 @@
 // exact on doubles and cost a few ns when the floating-point filter succeeds.
 #include "swath/geometry/predicates.hpp"
 
+#include <algorithm>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 
@@ -69,6 +71,21 @@ Containment locate_point(Point2 p, const std::vector<Point2>& ring) {
     }
   }
   return inside ? Containment::inside : Containment::outside;
+}
+
+bool segments_cross_clearly(Point2 p, Point2 q, Point2 a, Point2 b, double tolerance_m) {
+  auto side = [tolerance_m](Point2 o, Point2 d, Point2 x) {
+    const double c = cross(d - o, x - o) / std::max(distance(o, d), 1e-300);
+    return c > tolerance_m ? 1 : c < -tolerance_m ? -1 : 0;
+  };
+  return side(p, q, a) * side(p, q, b) < 0 && side(a, b, p) * side(a, b, q) < 0;
+}
+
+double distance_to_segment(Point2 p, Point2 a, Point2 b) {
+  const Point2 d = b - a;
+  const double len2 = dot(d, d);
+  const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+  return distance(p, a + d * t);
 }
 
 }  // namespace swath::geometry

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "swath/geometry/predicates.hpp"
+
 namespace swath::planning {
 namespace {
 
@@ -100,7 +102,7 @@ struct RunLane {
 };
 
 // Points the lanes must see, sorted by ordinate: the boundary every eighth of a spacing (vertices
-// included) and the inside on rows a quarter of a spacing apart, half a spacing along them. At
+// included) and the inside on rows a quarter of a spacing apart, a quarter along them. At
 // most ~200,000: steps grow on very large areas.
 std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
   double perimeter = 0;
@@ -231,20 +233,13 @@ class Turns {
   bool inside(Point2 a, Point2 b, std::size_t row) const {
     const auto& edges = bands_[row];
     const double tolerance = 1e-9 * (1 + geometry::distance(a, b));
-    auto side = [tolerance](Point2 o, Point2 d, Point2 x) {
-      const double c = geometry::cross(d - o, x - o) / std::max(geometry::distance(o, d), 1e-12);
-      return c > tolerance ? 1 : c < -tolerance ? -1 : 0;
-    };
     for (const auto& [p, q] : edges)
-      if (side(a, b, p) * side(a, b, q) < 0 && side(p, q, a) * side(p, q, b) < 0) return false;
+      if (geometry::segments_cross_clearly(a, b, p, q, tolerance)) return false;
     // The middle: on an edge counts as inside (closed area), else by crossings to the right.
     const Point2 m = (a + b) * 0.5;
     bool in = false;
     for (const auto& [p, q] : edges) {
-      const Point2 d = q - p;
-      const double len2 = geometry::dot(d, d);
-      const double t = len2 > 0 ? std::clamp(geometry::dot(m - p, d) / len2, 0.0, 1.0) : 0.0;
-      if (geometry::distance(m, p + d * t) <= tolerance) return true;
+      if (geometry::distance_to_segment(m, p, q) <= tolerance) return true;
       if ((p.y <= m.y) != (q.y <= m.y) && p.x + (m.y - p.y) * (q.x - p.x) / (q.y - p.y) > m.x)
         in = !in;
     }
@@ -359,7 +354,6 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
     if (!seen.redundant(lanes[i])) continue;
     seen.remove(lanes[i]);
     keep[i] = 0;
-    out.dropped_slivers += lanes[i].row >= 0;
   }
   std::vector<RunLane> kept;
   for (std::size_t i = 0; i < lanes.size(); ++i)

@@ -10,6 +10,7 @@
 
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/predicates.hpp"
 #include "swath/planning/cell_order.hpp"
 #include "swath/planning/coverage.hpp"
 #include "swath/planning/lane_runs.hpp"
@@ -212,16 +213,6 @@ class RoutedMetric {
   std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, Route> known_;
 };
 
-// Whether segments pq and ab cross at a point inside both (touching or overlapping is not).
-bool cross_properly(Point2 p, Point2 q, Point2 a, Point2 b) {
-  const double scale = 1e-9 * (geometry::distance(p, q) + geometry::distance(a, b));
-  auto side = [scale](Point2 o, Point2 d, Point2 x) {
-    const double c = geometry::cross(d - o, x - o) / std::max(geometry::distance(o, d), 1e-12);
-    return c > scale ? 1 : c < -scale ? -1 : 0;
-  };
-  return side(p, q, a) * side(p, q, b) < 0 && side(a, b, p) * side(a, b, q) < 0;
-}
-
 // The cells (bits, the first 63) whose lanes a routed transit crosses.
 class LaneCrossings {
  public:
@@ -241,7 +232,10 @@ class LaneCrossings {
       if (!span.meets(boxes_[k])) continue;
       for (const SweepLine& l : c_.sweeps[k].lines)
         for (std::size_t i = 0; i + 1 < path.size() && !(cells >> k & 1); ++i)
-          if (cross_properly(path[i], path[i + 1], l.start, l.end)) cells |= std::uint64_t{1} << k;
+          if (geometry::segments_cross_clearly(path[i], path[i + 1], l.start, l.end,
+                                               1e-9 * (geometry::distance(path[i], path[i + 1]) +
+                                                       geometry::distance(l.start, l.end))))
+            cells |= std::uint64_t{1} << k;
     }
     return cells;
   }
@@ -274,7 +268,6 @@ SplitPlan ordered_plan(Candidate& c, Point2 home, RoutedMetric& routed) {
   plan.method = c.method;
   plan.path_length_m = order.length_m;
   plan.objective_m = order.objective_m;
-  plan.transit_crossings = order.crossings;
   plan.cells = c.cells;
   for (const CellVisit& v : order.visits) {
     const auto [top_first, reverse_first] = c.variant_flags[v.cell][v.variant];

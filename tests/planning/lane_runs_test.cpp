@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "coverage_oracle.hpp"
@@ -79,33 +80,50 @@ TEST(LaneRuns, AStripThinnerThanTheInsetsStillGetsItsLane) {
   EXPECT_GE(test::sample_coverage(strip, all_lines(r), 1000, 300).fraction(), 0.999);
 }
 
-// A 10 m sliver jutting 30 m out of a side between two lanes: the lanes beside it see it (a
-// footprint of 58 m reaches 29 m), so it gets no lane; 100 m out it does.
+// A 10 m wide sliver jutting out of the top side, across the lanes, with a grid lane through it:
+// when the full lane below is within half a footprint of its tip, the sliver's 10 m lane is left
+// out; 100 m out the tip is beyond every full lane's footprint and a lane covers it.
 TEST(LaneRuns, ASliverTheNeighboursSeeGetsNoLane) {
-  const LaneRunSettings s = settings(0);
+  LaneRunSettings s = settings(0);     // footprint 58 m: 29 m either side
+  s.placement = LinePlacement::paper;  // lanes at 8.7 + 17.4 k: one at 200.1, in the sliver
   auto with_sliver = [](double reach) {
     return Polygon{{{0, 0},
                     {300, 0},
-                    {300, 100},
-                    {300 + reach, 100},
-                    {300 + reach, 110},
-                    {300, 110},
                     {300, 200},
+                    {155, 200},
+                    {155, 200 + reach},
+                    {145, 200 + reach},
+                    {145, 200},
                     {0, 200}},
                    {}};
   };
-  const Polygon near = with_sliver(30), far = with_sliver(100);
+  // A reach with a grid ordinate inside the sliver and the last full lane within 29 m of its tip.
+  double reach = 0;
+  for (double r = 5; r < 29 && reach == 0; r += 0.5) {
+    const std::vector<double> ys =
+        line_offsets(0, 200 + r, s.line_spacing_m, s.footprint_width_m, s.placement);
+    const auto above = std::upper_bound(ys.begin(), ys.end(), 200.0);
+    if (above != ys.end() && above != ys.begin() && *std::prev(above) + 29 >= 200 + r) reach = r;
+  }
+  ASSERT_GT(reach, 0);
+  const Polygon near = with_sliver(reach), far = with_sliver(100);
   const LaneRuns a = runs_of(near, s), b = runs_of(far, s);
-  std::size_t longest_a = 0;
-  for (const SweepLine& l : all_lines(a))
-    longest_a = std::max<std::size_t>(longest_a,
-                                      std::size_t(std::lround(geometry::distance(l.start, l.end))));
-  EXPECT_LE(longest_a, 300u + 30u);
+  auto shortest = [](const LaneRuns& r) {
+    double m = 1e300;
+    for (const SweepLine& l : all_lines(r)) m = std::min(m, geometry::distance(l.start, l.end));
+    return m;
+  };
+  auto highest = [](const LaneRuns& r) {
+    double y = -1e300;
+    for (const SweepLine& l : all_lines(r)) y = std::max(y, l.start.y);
+    return y;
+  };
+  EXPECT_GT(shortest(a), 250);  // only full-width lanes: the sliver's 10 m lane is left out
+  EXPECT_LT(highest(a), 200);
   EXPECT_GE(test::sample_coverage(near, all_lines(a), 58, 300).fraction(), 0.999);
+  EXPECT_GT(highest(b), 200 + 100 - 29);  // a lane in the sliver, within 29 m of its tip
   EXPECT_GE(test::sample_coverage(far, all_lines(b), 58, 300).fraction(), 0.999);
-  double far_reach = 0;
-  for (const SweepLine& l : all_lines(b)) far_reach = std::max({far_reach, l.start.x, l.end.x});
-  EXPECT_GT(far_reach, 370);  // a lane goes out along the long sliver
+  EXPECT_EQ(a.unreachable_points + b.unreachable_points, 0u);
 }
 
 // Properties on the corpus's outlines at random directions: lanes inside (exact length outside),

@@ -44,17 +44,10 @@ Ring centred(Ring ring) {
   return transformed(ring, 0, -(x0 + x1) / 2, -(y0 + y1) / 2);
 }
 
-double segment_distance(Point2 p, Point2 a, Point2 b) {
-  const Point2 d = b - a;
-  const double len2 = geometry::dot(d, d);
-  const double t = len2 > 0 ? std::clamp(geometry::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-  return geometry::distance(p, a + d * t);
-}
-
 double boundary_distance(Point2 p, const Ring& ring) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < ring.size(); ++i)
-    best = std::min(best, segment_distance(p, ring[i], ring[(i + 1) % ring.size()]));
+    best = std::min(best, geometry::distance_to_segment(p, ring[i], ring[(i + 1) % ring.size()]));
   return best;
 }
 

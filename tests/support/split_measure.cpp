@@ -16,14 +16,15 @@ planning::SurveyPlan plan(const geometry::Polygon& area, planning::ConcaveMode m
   planning::SurveyRequest r;
   r.field = local_field(area);
   r.camera = {"test", 23.2, 15.4, 16, 5456, 3632, std::nullopt};
+  // Landscape: the sensor's width across the lines, so the footprint is altitude x 23.2 / 16.
+  const double footprint_m = s.altitude_m * r.camera.sensor_width_mm / r.camera.focal_length_mm;
   planning::PhotogrammetryMode m;
   m.altitude_m = s.altitude_m;
   m.side_overlap = s.side_overlap;
   r.mode = m;
   r.concave = mode;
   r.split_cells = s.cells;
-  // Footprint across of the test camera: altitude x sensor width / focal length.
-  if (s.half_footprint_margin) r.outside_margin_m = s.altitude_m * 23.2 / 16 / 2;
+  if (s.half_footprint_margin) r.outside_margin_m = footprint_m / 2;
   return planning::plan_survey(r);
 }
 

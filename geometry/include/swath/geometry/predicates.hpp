@@ -45,6 +45,15 @@ bool segments_intersect(Point2 a, Point2 b, Point2 c, Point2 d);
 /// Accuracy: a few ulps of the coordinates (computed in doubles after an exact decision).
 Point2 segments_common_point(Point2 a, Point2 b, Point2 c, Point2 d);
 
+/// Whether the segments [p, q] and [a, b] cross at a point inside both, with every end of either
+/// farther than `tolerance_m` from the other's line. Not exact, on purpose: ends computed on a
+/// boundary sit a rounding error off it, and a turn or transit between such ends must not count
+/// as crossing the edges it starts and ends on.
+bool segments_cross_clearly(Point2 p, Point2 q, Point2 a, Point2 b, double tolerance_m);
+
+/// Distance from p to the closed segment [a, b], metres (a point for a = b).
+double distance_to_segment(Point2 p, Point2 a, Point2 b);
+
 /// Where p lies relative to a ring (even-odd rule, exact).
 enum class Containment { outside, on_boundary, inside };
 Containment locate_point(Point2 p, const std::vector<Point2>& ring);

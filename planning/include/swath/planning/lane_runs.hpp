@@ -29,8 +29,7 @@ struct LaneRuns {
   std::vector<Sweep> runs;
   std::vector<geometry::Ring> outlines;
   std::size_t coverage_lanes = 0;      ///< lanes added off the grid to cover corners
-  std::size_t dropped_slivers = 0;     ///< grid lanes left out, covered by their neighbours
-  std::size_t unreachable_points = 0;  ///< boundary samples no lane inside could cover
+  std::size_t unreachable_points = 0;  ///< samples of the area to see that no lane inside reaches
 };
 
 /// The areas lane_runs works with, each as rings (outer counter-clockwise, holes clockwise, no

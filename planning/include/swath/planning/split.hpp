@@ -54,7 +54,6 @@ struct SplitPlan {
   /// What the choice minimised: the length plus, per transit, its length again for each run or
   /// cell still to be flown whose lanes it crosses (cell_order.hpp).
   double objective_m = 0.0;
-  std::size_t transit_crossings = 0;  ///< transits x runs still to be flown they cross
 };
 
 /// Plans the split sweep of an area given as rings (outer counter-clockwise, holes clockwise).
