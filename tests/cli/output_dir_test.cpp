@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -197,8 +198,8 @@ TEST(OutputDir, BytesThatAreNotUtf8AreReplacedNotFatal) {
   EXPECT_NE(summary.at("field").get<std::string>().find("Wiese-\uFFFDt\uFFFD"), std::string::npos);
 }
 
-// Runs `command` (through /bin/sh, from the source tree) in a child of a fresh process, and
-// returns (exit code, CPU seconds, peak RSS in MB) of that command alone.
+// Runs `command` (through /bin/sh, from the source tree) under swath_rusage_probe, and returns
+// (exit code, CPU seconds, peak RSS in MB) of that command alone (the probe says why not directly).
 struct Usage {
   int exit_code;
   double cpu_s, rss_mb;
@@ -206,26 +207,26 @@ struct Usage {
 Usage measured(const std::string& command) {
   int pipe_fds[2];
   EXPECT_EQ(pipe(pipe_fds), 0);
+  const std::string full =
+      "cd '" + std::string(SWATH_SOURCE_DIR) + "' && " + command + " >/dev/null 2>&1";
   const pid_t child = fork();
   if (child == 0) {
     close(pipe_fds[0]);
-    const std::string full =
-        "cd '" + std::string(SWATH_SOURCE_DIR) + "' && " + command + " >/dev/null 2>&1";
-    const int status = std::system(full.c_str());
-    rusage usage{};
-    getrusage(RUSAGE_CHILDREN, &usage);
-    const Usage u{WIFEXITED(status) ? WEXITSTATUS(status) : -1,
-                  static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-                      1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec),
-                  static_cast<double>(usage.ru_maxrss) / 1024.0};
-    if (write(pipe_fds[1], &u, sizeof u) != sizeof u) _exit(1);
-    _exit(0);
+    dup2(pipe_fds[1], STDOUT_FILENO);
+    execl(SWATH_RUSAGE_PROBE, SWATH_RUSAGE_PROBE, full.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
   }
   close(pipe_fds[1]);
-  Usage u{-1, 0, 0};
-  EXPECT_EQ(read(pipe_fds[0], &u, sizeof u), static_cast<ssize_t>(sizeof u));
+  std::string text;
+  char buffer[256];
+  for (ssize_t n; (n = read(pipe_fds[0], buffer, sizeof buffer)) > 0;)
+    text.append(buffer, static_cast<std::size_t>(n));
   close(pipe_fds[0]);
   waitpid(child, nullptr, 0);
+  Usage u{-1, 0, 0};
+  long rss_kb = 0;
+  EXPECT_EQ(std::sscanf(text.c_str(), "%d %lf %ld", &u.exit_code, &u.cpu_s, &rss_kb), 3) << text;
+  u.rss_mb = static_cast<double>(rss_kb) / 1024.0;
   return u;
 }
 
