@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <system_error>
 
 #include "fleet_images.hpp"
 #include "intervals.hpp"
@@ -16,6 +17,7 @@
 #include "swath/base/output_set.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/event_replay.hpp"
+#include "swath/mavlink/mavlink_backend.hpp"
 
 #include <filesystem>
 
@@ -29,11 +31,41 @@ void FleetRunCommand::setup(CLI::App& app) {
   app.add_option("-o,--output", output_, "Directory for the run's files")->required();
   app.add_flag("--render", render_, "Also draw tracks.png and gantt.png");
   app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
+  app.add_option("--backend", backend_,
+                 "sim: the simulated fleet; mavlink: the fleet's drones are ArduCopters over "
+                 "MAVLink (--vehicles), flown on the wall clock")
+      ->check(CLI::IsMember({"sim", "mavlink"}))
+      ->capture_default_str();
+  app.add_option("--vehicles", vehicles_,
+                 "With --backend mavlink: one vehicle per drone of the fleet, in order, "
+                 "comma-separated: udp:HOST:PORT listens there for a vehicle sending to it "
+                 "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
+                 "instance); /SYSID after the port (1..255, default: its place + 1)");
 }
 
 int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
   PreparedRun p = prepare_run(request_);
+  std::unique_ptr<mavlink::MavlinkBackend> vehicles;
+  if (backend_ == "mavlink") {
+    if (vehicles_.empty()) throw InputError("--backend mavlink needs --vehicles");
+    const auto urls = mavlink::parse_vehicle_urls(vehicles_);
+    if (urls.size() != p.drones.size())
+      throw InputError("--vehicles names " + std::to_string(urls.size()) +
+                       " vehicles for a fleet of " + std::to_string(p.drones.size()) + " drones");
+    mavlink::MavlinkBackendSettings settings;
+    settings.origin = p.world->origin;
+    settings.fence_m = p.world->fence();
+    settings.wall_clock = true;
+    try {
+      vehicles = mavlink::open_mavlink_backend(urls, settings);
+    } catch (const std::system_error& e) {
+      throw InputError(std::string("--vehicles: ") + e.what());
+    }
+    p.settings.backend = vehicles.get();
+  } else if (!vehicles_.empty()) {
+    throw InputError("--vehicles needs --backend mavlink");
+  }
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
   base::OutputSet set(output_, "fleet-run");
   set.add("events.jsonl", r.events_jsonl);

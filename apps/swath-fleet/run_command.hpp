@@ -11,7 +11,8 @@ class FleetRunCommand : public Command {
  public:
   const char* name() const override { return "run"; }
   const char* description() const override {
-    return "Run an application on a simulated fleet; writes events.jsonl, summary.json, "
+    return "Run an application on a simulated fleet (or on vehicles over MAVLink with --backend "
+           "mavlink); writes events.jsonl, summary.json, "
            "dtg.json, tracks.geojson and timing.json (with --render also tracks.png and "
            "gantt.png)";
   }
@@ -22,6 +23,7 @@ class FleetRunCommand : public Command {
   FleetRequest request_;
   std::string output_, size_ = "1200x900";
   bool render_ = false;
+  std::string backend_ = "sim", vehicles_;  ///< --backend sim|mavlink, --vehicles URL,..
 };
 
 /// swath-fleet apps: the built-in applications.

@@ -143,6 +143,9 @@ struct Drone {
   std::optional<Vec3> spot;  // the forecast place it was sent to (speculation)
   bool spot_hit = false;     // a request appeared there
   int relieving = -1;        // the drone it stands by for (relief, §18.5 Example 5)
+  // External vehicles (RunSettings::backend): the last reported position; the leg above is then
+  // the model's estimate (energy), the vehicle's report says where it is and when it arrived.
+  std::optional<Vec3> reported;
 };
 
 bool on_leg(Mode m) {
@@ -216,9 +219,18 @@ class Runtime final : public detail::Core {
       d.pos.z = 0;
       d.soc = specs[i].battery.initial_soc;
       d.layer_m = settings.layer_base_m + settings.layer_step_m * static_cast<double>(i);
+      if (settings.backend) {  // an external vehicle is unreachable until first heard
+        d.link_up = false;
+        d.link_back = kInf;
+      }
       d.record.name = specs[i].name;
       drones_.push_back(std::move(d));
     }
+    ext_ = settings.backend;
+    if (ext_ && ext_->vehicles() != static_cast<int>(specs.size()))
+      throw base::InputError("the backend has " + std::to_string(ext_->vehicles()) +
+                             " vehicles for a fleet of " + std::to_string(specs.size()) +
+                             " drones");
     faults_ = settings.faults;
     std::stable_sort(faults_.begin(), faults_.end(), [](const FaultEvent& a, const FaultEvent& b) {
       return a.t_s != b.t_s ? a.t_s < b.t_s : a.drone < b.drone;
@@ -346,6 +358,9 @@ class Runtime final : public detail::Core {
   void dispatch(Drone& d, Task& t, double at);
   void apply_fault(const FaultEvent& f);
   void log_states();
+  // External vehicles (RunSettings::backend).
+  void command_leg(Drone& d, const Vec3& to, Mode mode);
+  void poll_backend();
 
   const App& app_;
   const World& world_;
@@ -375,6 +390,7 @@ class Runtime final : public detail::Core {
   std::vector<ForecastRequest> forecasts_;
   Dtg live_;                     // the DTG at the last forecast (q reads its nodes)
   double next_relief_s_ = kInf;  // when relieve() has something to do next
+  Backend* ext_ = nullptr;       // external vehicles, or null: the simulated fleet
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -617,6 +633,7 @@ void Runtime::resolve_action(Task& t, std::size_t a, const Reading& r, int drone
 // Drones
 
 Vec3 Runtime::position_at(const Drone& d, double t) const {
+  if (ext_ && d.reported && d.mode != Mode::charging && d.mode != Mode::landed) return *d.reported;
   if (on_leg(d.mode) && d.leg) return d.leg->position_at(t - d.leg_start);
   return d.pos;
 }
@@ -711,7 +728,7 @@ double Runtime::next_event(const Drone& d) const {
     case Mode::flying:
     case Mode::positioning:
     case Mode::returning:
-      e = d.leg_start + d.leg->duration_s();
+      if (!ext_) e = d.leg_start + d.leg->duration_s();  // else: the vehicle's report ends it
       break;
     case Mode::acting:
       e = d.act_end;
@@ -745,6 +762,18 @@ void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   d.leg.emplace(d.pos, to, d.spec.kinematics, v0);
   d.leg_start = t;
   set_mode(d, mode, t);
+  command_leg(d, to, mode);
+}
+
+// An external vehicle is told to fly what the model just started (nothing for the simulation).
+void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode) {
+  if (!ext_) return;
+  if (mode == Mode::returning) {
+    ext_->return_home(d.index);
+    return;
+  }
+  const Kinematics& k = d.spec.kinematics;
+  ext_->go_to(d.index, to, k.cruise_m_s, k.approach_m_s, k.approach_within_m);
 }
 
 bool Runtime::available(const Drone& d) const {
@@ -859,6 +888,7 @@ void Runtime::start_action_or_release(Drone& d, double t) {
   d.action = h;
   d.act_end = t + a.duration_s;
   set_mode(d, Mode::acting, t);
+  if (ext_) ext_->act(d.index, a.name, a.type == ActionType::sense);
 }
 
 // A link back or a sensor repaired by t.
@@ -911,7 +941,7 @@ void Runtime::sample_along(const Action& fa, const Leg& flown, double flown_from
 void Runtime::arrive(Drone& d, double t) {
   const Leg flown = *d.leg;
   const double flown_from = d.leg_start;
-  d.pos = d.leg->to();
+  d.pos = ext_ && d.reported ? *d.reported : d.leg->to();
   d.leg.reset();
   if (d.task < 0) {
     set_mode(d, Mode::hovering, t);
@@ -1051,6 +1081,7 @@ void Runtime::dispatch(Drone& d, Task& t, double at) {
     d.leg.emplace(here, to, d.spec.kinematics, 0.0);
     d.leg_start = at;
     set_mode(d, Mode::flying, at);
+    command_leg(d, to, Mode::flying);
     return;
   }
   if (d.mode == Mode::landed) {
@@ -1486,6 +1517,51 @@ void Runtime::log_states() {
   }
 }
 
+// What the external vehicles did since the last tick, in drone order: positions, a link lost
+// (§18.7: after the backend's silence rule the drone is unavailable, its request requeued and the
+// vehicle's own failsafe takes it home, as for an injected link_loss) or up (first heard, or
+// back: buffered results go out; landed, it rejoins), a target reached, home reached, a vehicle
+// refusing to fly.
+void Runtime::poll_backend() {
+  ext_->advance_to(now_);
+  for (Drone& d : drones_) {
+    const VehicleReport r = ext_->report(d.index);
+    if (r.position_known) d.reported = r.position_m;
+    integrate(d, now_);
+    if (d.mode == Mode::lost) continue;
+    if (!r.refusal.empty()) {  // it will not fly: out of the fleet, its work requeued
+      log(json{{"ev", "vehicle_refused"}, {"drone", d.index}, {"reason", r.refusal}});
+      requeue(d, "vehicle_refused");
+      leave_spot(d);
+      d.leg.reset();
+      set_mode(d, Mode::lost, now_);
+      changed_ = true;
+      continue;
+    }
+    if (d.link_up && !r.link_up) {
+      log(at_json(json{{"ev", "link_lost"}, {"drone", d.index}}, d.pos));
+      d.link_up = false;
+      d.link_back = kInf;  // until the backend hears it again
+      if (d.mode == Mode::flying || d.mode == Mode::positioning || d.mode == Mode::hovering ||
+          d.mode == Mode::held) {
+        requeue(d, "link_loss");
+        go_home(d, now_, "link_loss");
+      } else {
+        set_mode(d, d.mode, now_);  // acting: it finishes, then goes home (finish_action)
+      }
+      changed_ = true;
+    } else if (!d.link_up && r.link_up) {
+      log(at_json(json{{"ev", "link_up"}, {"drone", d.index}}, d.pos));
+      d.link_back = now_;
+      recover(d, now_);
+    }
+    if ((d.mode == Mode::flying || d.mode == Mode::positioning) && r.arrived)
+      arrive(d, now_);
+    else if (d.mode == Mode::returning && r.landed_home)
+      land_home(d, now_);
+  }
+}
+
 // Logs run_start and spawns the app's main, whose body writes into its own promise state.
 Task& Runtime::start_main() {
   json drones = json::array();
@@ -1533,6 +1609,9 @@ double Runtime::next_happening() const {
   for (const Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested)
       next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
+  // External vehicles report at any time: every tick (§18.3 step 1, "real runs sleep to the
+  // next tick").
+  if (ext_) next = std::min(next, now_ + settings_.tick_s);
   return next;
 }
 
@@ -1724,8 +1803,10 @@ RunRecord Runtime::run() {
     }
     if (!advance_clock(next, tick_index)) break;
     step_drones_to_now();
+    if (ext_) poll_backend();
     deliver_due();
   }
+  if (ext_) ext_->end_run();
   finish_run(main);
   record_.dtg_json = dtg_json();
   return std::move(record_);

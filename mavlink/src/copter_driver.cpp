@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 
 #include "swath/geometry/local_frame.hpp"
 
@@ -156,11 +157,28 @@ void CopterDriver::send_due(double now_s) {
     last_heartbeat_sent_s_ = now_s;
   }
   if (!state_.link_alive) return;  // commands wait for the vehicle; their clock starts at sending
-  for (Pending& p : commands_) {
+  // A COMMAND_ACK names only the command number: one command of each number in flight at a
+  // time, or an acknowledgement of the second would be taken for a lost first.
+  std::set<std::uint16_t> in_flight;
+  for (const Pending& p : commands_)
+    if (p.state == CommandState::pending && p.sends > 0) in_flight.insert(p.message.command);
+  const std::size_t n = commands_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Pending& p = commands_[i];
     if (p.state != CommandState::pending || now_s - p.last_sent_s < settings_.ack_timeout_s)
       continue;
+    if (p.sends == 0 && !in_flight.insert(p.message.command).second) continue;  // waits its turn
     if (p.sends >= settings_.attempts) {
       p.state = CommandState::timed_out;
+      // Telemetry is what the link is for (without positions no arrival is ever seen): its
+      // requests are asked again, as new commands, until the vehicle answers.
+      const auto cmd = static_cast<Cmd>(p.message.command);
+      if (cmd == Cmd::set_message_interval || cmd == Cmd::request_message) {
+        Pending again;
+        again.message = p.message;
+        again.message.confirmation = 0;
+        commands_.push_back(again);  // may reallocate: p is not used below
+      }
       continue;
     }
     p.message.confirmation = static_cast<std::uint8_t>(p.sends);

@@ -4,6 +4,7 @@
 // tracks that start at the drones' homes, and compare's intervals recomputed from its own rows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -183,6 +184,29 @@ TEST(FleetCli, AnAppThatCannotFinishExitsFourWithItsFiles) {
   }
   EXPECT_EQ(created.size(), ended.size());
   for (const auto& [task, n] : ended) EXPECT_EQ(n, 1) << "task " << task;
+}
+
+// --backend mavlink's inputs are refused in one sentence, exit 2, nothing written (the flights
+// themselves are tested on a stepped clock in tests/mavlink/backend_test.cpp).
+TEST(FleetCli, MavlinkBackendInputsAreRefusedInOneSentence) {
+  const std::string out = fresh_dir("fleet-mavlink-refused");
+  const std::string run = "run hotspot --world hotspot --drones 2 ";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--backend mavlink", "--backend mavlink needs --vehicles"},
+      {"--vehicles udp:127.0.0.1:14550", "--vehicles needs --backend mavlink"},
+      {"--backend mavlink --vehicles serial:/dev/ttyUSB0,udp:127.0.0.1:14560",
+       "\"serial:/dev/ttyUSB0\" is neither udp: nor tcp:"},
+      {"--backend mavlink --vehicles udp:127.0.0.1:14550/300,udp:127.0.0.1:14560",
+       "system id that is not a number in 1..255"},
+      {"--backend mavlink --vehicles udp:127.0.0.1:14550",
+       "--vehicles names 1 vehicles for a fleet of 2 drones"}};
+  for (const auto& [args, sentence] : cases) {
+    const CliRun r = run_swath_fleet(run + args + " -o " + out + "/run");
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(sentence), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out + "/run")) << args;
+  }
 }
 
 TEST(FleetCli, TracksStartAtTheDronesHomes) {

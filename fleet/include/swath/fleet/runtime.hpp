@@ -21,6 +21,7 @@
 
 #include "swath/energy/battery.hpp"
 #include "swath/energy/power_model.hpp"
+#include "swath/fleet/backend.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/leg.hpp"
@@ -93,6 +94,10 @@ struct RunSettings {
   /// stand-by there, which takes the next segment when it leaves. Off: the paper's baseline.
   bool relief = false;
   double relief_margin_s = 20;  ///< s, ≥ 0
+  /// External vehicles (backend.hpp; not owned, outlives the run): null, the simulated fleet
+  /// (event to event); else the runtime ticks every tick_s, commands the backend's vehicle i as
+  /// drone i and takes arrivals, landings, positions and link state from its reports.
+  Backend* backend = nullptr;
 };
 
 /// What one drone did.
@@ -133,7 +138,8 @@ struct RunRecord {
 };
 
 /// Runs `app` in `world` with `drones` (at least one). Throws base::InputError for an unknown
-/// scheduler name; an exception escaping the app's main ends the run as not completed.
+/// scheduler name or a backend whose vehicle count differs from the fleet's; an exception escaping
+/// the app's main ends the run as not completed.
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
                   const RunSettings& settings);
 

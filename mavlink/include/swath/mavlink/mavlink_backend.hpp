@@ -1,0 +1,94 @@
+#pragma once
+// swath-fleet's runtime flying ArduCopters over MAVLink (DESIGN.md §18.6; `swath-fleet run ...
+// --backend mavlink --vehicles V`): one CopterDriver per vehicle, each vehicle steered toward what
+// the runtime last asked of it — at a place (GUIDED; from the ground: GUIDED, arm, NAV_TAKEOFF to
+// the target's altitude, the drone's layer; then the position target and the speed rule:
+// DO_CHANGE_SPEED to cruise, to the approach speed within approach_within_m), a photo for a sense
+// action, or home (RTL, landed and disarmed). The steering is re-applied on every poll from the
+// vehicle's reported state, so a lost acknowledgement, a command timed out or a failsafe RTL
+// during a link cut is followed by the right command once the vehicle answers again.
+//
+// Clock: the runtime's. advance_to(t) polls every poll_step_s up to t; with wall_clock it first
+// waits until t seconds after the first call (a real run), else it does not wait and calls
+// `before_poll(t)` (tests step their in-process fake autopilots there). Positions: local metres
+// at `origin` (x east, y north), altitudes above each vehicle's home.
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swath/fleet/backend.hpp"
+#include "swath/geometry/point.hpp"
+#include "swath/mavlink/copter_driver.hpp"
+#include "swath/mavlink/link.hpp"
+
+namespace swath::mavlink {
+
+/// One vehicle of --vehicles: `udp:HOST:PORT[/SYSID]` listens on HOST:PORT for a vehicle that
+/// sends there (ArduPilot's or MAVProxy's `--out udp:HOST:PORT`); `tcp:HOST:PORT[/SYSID]`
+/// connects to it (SITL: port 5760 + 10 × instance). SYSID 1..255, default: its place in the list
+/// plus 1 (SITL's SYSID_THISMAV = instance + 1).
+struct VehicleUrl {
+  bool tcp = false;
+  std::string host;
+  std::uint16_t port = 0;
+  std::uint8_t sysid = 1;
+};
+
+/// A comma-separated list of vehicle URLs. Throws base::InputError with one sentence naming the
+/// bad entry.
+std::vector<VehicleUrl> parse_vehicle_urls(const std::string& list);
+
+struct MavlinkBackendSettings {
+  geometry::GeoPoint origin;  ///< the world's origin (WGS84 degrees)
+  /// The world's fence, local metres (x, y), counter-clockwise; empty: none. No target outside
+  /// it is ever sent (the vehicle is then refused, "target outside the fence").
+  std::vector<std::array<double, 2>> fence_m;
+  DriverSettings driver;  ///< for every vehicle; vehicle_sysid and inside_fence are set per vehicle
+  bool wall_clock = false;
+  double poll_step_s = 0.02;  ///< polls between two advance_to times, s (> 0)
+  /// Called before each poll with its time (not with wall_clock): tests step their fakes here.
+  std::function<void(double t_s)> before_poll;
+};
+
+class MavlinkBackend final : public fleet::Backend {
+ public:
+  /// One vehicle per link (owned), with its system id.
+  MavlinkBackend(std::vector<std::unique_ptr<Link>> links, const std::vector<std::uint8_t>& sysids,
+                 MavlinkBackendSettings settings);
+  ~MavlinkBackend() override;
+
+  int vehicles() const override { return static_cast<int>(vehicles_.size()); }
+  void go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s, double approach_m_s,
+             double approach_within_m) override;
+  void act(int drone, const std::string& name, bool sense) override;
+  void return_home(int drone) override;
+  void advance_to(double t_s) override;
+  fleet::VehicleReport report(int drone) const override;
+  void end_run() override;
+
+  const CopterDriver& driver(int drone) const;
+  double now_s() const { return now_s_; }
+
+ private:
+  struct Vehicle;
+  void steer(Vehicle& v);
+  Vehicle& at(int drone) const;
+
+  std::vector<std::unique_ptr<Vehicle>> vehicles_;
+  MavlinkBackendSettings settings_;
+  double now_s_ = 0;
+  std::optional<std::chrono::steady_clock::time_point> start_;
+};
+
+/// Opens the links of `urls` and the backend over them. Socket errors throw std::system_error
+/// naming the address.
+std::unique_ptr<MavlinkBackend> open_mavlink_backend(const std::vector<VehicleUrl>& urls,
+                                                     MavlinkBackendSettings settings);
+
+}  // namespace swath::mavlink

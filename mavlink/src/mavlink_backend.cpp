@@ -1,0 +1,277 @@
+#include "swath/mavlink/mavlink_backend.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "swath/base/input_error.hpp"
+#include "swath/geometry/local_frame.hpp"
+
+namespace swath::mavlink {
+
+std::vector<VehicleUrl> parse_vehicle_urls(const std::string& list) {
+  std::vector<VehicleUrl> out;
+  std::size_t begin = 0;
+  while (begin <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', begin), list.size());
+    const std::string item = list.substr(begin, comma - begin);
+    begin = comma + 1;
+    if (item.empty()) {
+      if (comma == list.size()) break;
+      continue;
+    }
+    const auto bad = [&](const std::string& why) {
+      return base::InputError("--vehicles: \"" + item + "\" " + why +
+                              " (use udp:HOST:PORT or tcp:HOST:PORT, optionally /SYSID)");
+    };
+    VehicleUrl u;
+    std::string rest;
+    if (item.rfind("udp:", 0) == 0) {
+      rest = item.substr(4);
+    } else if (item.rfind("tcp:", 0) == 0) {
+      u.tcp = true;
+      rest = item.substr(4);
+    } else {
+      throw bad("is neither udp: nor tcp:");
+    }
+    u.sysid = static_cast<std::uint8_t>(std::min<std::size_t>(out.size() + 1, 255));
+    if (const std::size_t slash = rest.find('/'); slash != std::string::npos) {
+      const std::string s = rest.substr(slash + 1);
+      int v = 0;
+      const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+      if (ec != std::errc() || p != s.data() + s.size() || v < 1 || v > 255)
+        throw bad("has a system id that is not a number in 1..255");
+      u.sysid = static_cast<std::uint8_t>(v);
+      rest = rest.substr(0, slash);
+    }
+    const std::size_t colon = rest.rfind(':');
+    if (colon == std::string::npos || colon == 0) throw bad("has no HOST:PORT");
+    u.host = rest.substr(0, colon);
+    const std::string port = rest.substr(colon + 1);
+    int v = 0;
+    const auto [p, ec] = std::from_chars(port.data(), port.data() + port.size(), v);
+    if (ec != std::errc() || p != port.data() + port.size() || v < 1 || v > 65535)
+      throw bad("has a port that is not a number in 1..65535");
+    u.port = static_cast<std::uint16_t>(v);
+    out.push_back(u);
+  }
+  if (out.empty()) throw base::InputError("--vehicles names no vehicle");
+  return out;
+}
+
+namespace {
+
+// Longer than the vehicle's 1 Hz status messages: an accepted command shows in the state by then.
+constexpr double kSettleS = 1.2;
+
+bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const auto& a = poly[i];
+    const auto& b = poly[j];
+    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
+  }
+  return in;
+}
+
+}  // namespace
+
+// What the runtime last asked of a vehicle, and where its steering stands.
+struct MavlinkBackend::Vehicle {
+  enum class Want { ground, go, home };
+  std::unique_ptr<Link> link;
+  std::unique_ptr<CopterDriver> driver;
+  Want want = Want::ground;
+  double lat_deg = 0, lon_deg = 0, alt_m = 0;
+  double cruise_m_s = 10, approach_m_s = 2, approach_within_m = 20;
+  bool target_sent = false, slowed = false;
+  int gate = -1;              // a command the steering waits for (mode, arm, take-off, RTL)
+  bool gate_arm = false;      // it is the arm command (a refusal ends the vehicle's part)
+  double settle_until_s = 0;  // an accepted command shows in the state only after this
+  std::string refusal;
+};
+
+MavlinkBackend::MavlinkBackend(std::vector<std::unique_ptr<Link>> links,
+                               const std::vector<std::uint8_t>& sysids,
+                               MavlinkBackendSettings settings)
+    : settings_(std::move(settings)) {
+  if (links.size() != sysids.size())
+    throw std::invalid_argument("MavlinkBackend: one system id per link");
+  if (!(settings_.poll_step_s > 0))
+    throw std::invalid_argument("MavlinkBackend: poll_step_s must be > 0");
+  const geometry::LocalFrame frame(settings_.origin);
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    auto v = std::make_unique<Vehicle>();
+    v->link = std::move(links[i]);
+    DriverSettings d = settings_.driver;
+    d.vehicle_sysid = sysids[i];
+    if (settings_.fence_m.size() >= 3) {
+      auto fence = settings_.fence_m;
+      d.inside_fence = [fence, frame](double lat_deg, double lon_deg) {
+        const geometry::Point2 p = frame.to_local({lat_deg, lon_deg});
+        return inside_polygon(fence, p.x, p.y);
+      };
+    }
+    v->driver = std::make_unique<CopterDriver>(*v->link, std::move(d));
+    vehicles_.push_back(std::move(v));
+  }
+}
+
+MavlinkBackend::~MavlinkBackend() = default;
+
+MavlinkBackend::Vehicle& MavlinkBackend::at(int drone) const {
+  return *vehicles_.at(static_cast<std::size_t>(drone));
+}
+
+const CopterDriver& MavlinkBackend::driver(int drone) const {
+  return *at(drone).driver;
+}
+
+void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s,
+                           double approach_m_s, double approach_within_m) {
+  Vehicle& v = at(drone);
+  const geometry::GeoPoint g = geometry::LocalFrame(settings_.origin).to_geo({to_m.x, to_m.y});
+  v.want = Vehicle::Want::go;
+  v.lat_deg = g.lat_deg;
+  v.lon_deg = g.lon_deg;
+  v.alt_m = to_m.z;
+  v.cruise_m_s = cruise_m_s;
+  v.approach_m_s = approach_m_s;
+  v.approach_within_m = approach_within_m;
+  v.target_sent = false;
+  v.slowed = false;
+  steer(v);
+}
+
+void MavlinkBackend::act(int drone, const std::string&, bool sense) {
+  // Hover, custom: GUIDED holds the place. A sense: the vehicle's photo (the reading itself is the
+  // world's sensor at the reported position, DESIGN.md §18.6).
+  if (sense) at(drone).driver->capture_image();
+}
+
+void MavlinkBackend::return_home(int drone) {
+  Vehicle& v = at(drone);
+  v.want = Vehicle::Want::home;
+  v.target_sent = false;
+  steer(v);
+}
+
+void MavlinkBackend::end_run() {
+  for (auto& v : vehicles_)
+    if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()));
+}
+
+// One step of the steering toward what the runtime wants, from the vehicle's reported state.
+void MavlinkBackend::steer(Vehicle& v) {
+  CopterDriver& d = *v.driver;
+  const VehicleState& s = d.state();
+  if (v.gate >= 0) {
+    const CommandState c = d.command_state(v.gate);
+    if (c == CommandState::pending) return;
+    if (c == CommandState::rejected && v.gate_arm)
+      v.refusal = "refused to arm" +
+                  (s.status_texts.empty() ? std::string() : ": " + s.status_texts.back());
+    // Mode and armed come with the 1 Hz HEARTBEAT, landed with the 1 Hz EXTENDED_SYS_STATE:
+    // after an acceptance the state is trusted again once both have been sent since.
+    if (c == CommandState::accepted) v.settle_until_s = now_s_ + kSettleS;
+    v.gate = -1;  // accepted, refused or timed out: the state says what comes next
+    v.gate_arm = false;
+  }
+  if (now_s_ < v.settle_until_s) return;
+  if (!s.link_alive || !v.refusal.empty()) return;
+  const bool armed = s.armed;
+  const bool down = !armed || s.landed == LandedState::on_ground;
+  const auto mode = static_cast<CopterMode>(s.custom_mode);
+  switch (v.want) {
+    case Vehicle::Want::ground:
+      return;
+    case Vehicle::Want::home:
+      if (!down && mode != CopterMode::rtl && mode != CopterMode::land)
+        v.gate = d.return_to_launch();
+      return;
+    case Vehicle::Want::go:
+      break;
+  }
+  if (mode != CopterMode::guided) {  // from the ground, or after a failsafe RTL
+    v.target_sent = false;
+    v.gate = d.set_mode(CopterMode::guided);
+    return;
+  }
+  if (!armed) {
+    v.gate = d.arm();
+    v.gate_arm = true;
+    return;
+  }
+  if (s.landed == LandedState::on_ground) {
+    v.gate = d.takeoff(v.alt_m);
+    return;
+  }
+  if (s.landed == LandedState::takeoff) return;  // climbing to the layer
+  if (!v.target_sent) {
+    if (!d.go_to(v.lat_deg, v.lon_deg, v.alt_m)) {
+      v.refusal = "target outside the fence";
+      return;
+    }
+    d.set_speed(v.cruise_m_s);
+    v.target_sent = true;
+    v.slowed = false;
+  }
+  if (!v.slowed && d.distance_to_target_m() <= v.approach_within_m) {
+    d.set_speed(v.approach_m_s);  // the paper's approach rule (§4.2)
+    v.slowed = true;
+  }
+}
+
+void MavlinkBackend::advance_to(double t_s) {
+  if (settings_.wall_clock && !start_) start_ = std::chrono::steady_clock::now();
+  do {
+    const double next = std::min(t_s, now_s_ + settings_.poll_step_s);
+    if (settings_.wall_clock)
+      std::this_thread::sleep_until(*start_ + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                                  std::chrono::duration<double>(next)));
+    else if (settings_.before_poll)
+      settings_.before_poll(next);
+    now_s_ = std::max(now_s_, next);
+    for (auto& v : vehicles_) {
+      v->driver->poll(now_s_);
+      steer(*v);
+    }
+  } while (now_s_ < t_s);
+}
+
+fleet::VehicleReport MavlinkBackend::report(int drone) const {
+  const Vehicle& v = at(drone);
+  const VehicleState& s = v.driver->state();
+  fleet::VehicleReport r;
+  r.link_up = s.link_alive;
+  r.refusal = v.refusal;
+  if (s.position) {
+    const geometry::Point2 p =
+        geometry::LocalFrame(settings_.origin)
+            .to_local({s.position->lat_degE7 / kDegE7, s.position->lon_degE7 / kDegE7});
+    r.position_known = true;
+    r.position_m = {p.x, p.y, s.position->relative_alt_mm / 1000.0};
+  }
+  if (!s.link_alive) return r;  // what it said last is stale: no arrival, no landing
+  r.arrived = v.want == Vehicle::Want::go && v.target_sent && v.driver->arrived();
+  r.landed_home = v.want == Vehicle::Want::home && !s.armed && s.landed == LandedState::on_ground;
+  return r;
+}
+
+std::unique_ptr<MavlinkBackend> open_mavlink_backend(const std::vector<VehicleUrl>& urls,
+                                                     MavlinkBackendSettings settings) {
+  std::vector<std::unique_ptr<Link>> links;
+  std::vector<std::uint8_t> sysids;
+  for (const VehicleUrl& u : urls) {
+    if (u.tcp)
+      links.push_back(std::make_unique<TcpLink>(TcpLink::connect(u.host, u.port)));
+    else
+      links.push_back(std::make_unique<UdpLink>(UdpLink::listen(u.host, u.port)));
+    sysids.push_back(u.sysid);
+  }
+  return std::make_unique<MavlinkBackend>(std::move(links), sysids, std::move(settings));
+}
+
+}  // namespace swath::mavlink

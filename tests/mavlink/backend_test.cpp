@@ -1,0 +1,259 @@
+// swath-fleet's runtime flying two in-process fake ArduCopters over real loopback UDP through
+// MavlinkBackend, on a stepped clock (DESIGN.md §18.6, §18.7, §18.12 item 6): a three-photo
+// static app completes with every task done exactly once (the independent event checker), each
+// photo taken within the arrival radius of its target at the drone's layer (targets from the world
+// file, positions from the fakes' telemetry); lost commands (acknowledgements never sent, some
+// commands timed out) still complete; a 10 s link cut of one vehicle in flight is detected, its
+// request requeued and served, no task lost, completion later than without the cut; a vehicle
+// refusing to arm leaves the fleet with its sentence; at the end both vehicles return and land at
+// home. The --vehicles parser refuses bad entries.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "swath/base/input_error.hpp"
+#include "swath/fleet/event_check.hpp"
+#include "swath/fleet/runtime.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/fake_copter.hpp"
+#include "swath/mavlink/mavlink_backend.hpp"
+#include "swath/worlds/worlds.hpp"
+
+namespace swath::mavlink {
+namespace {
+
+// Three photos 90–130 m out: legs long enough (≈ 20 s each) for a cut to catch a vehicle flying.
+constexpr const char* kWorld = R"(kind: static
+origin: {lat: 47.397742, lon: 8.545594}
+fence: {width_m: 400, height_m: 400}
+sensors: {camera: {time_s: 2.0}}
+tasks:
+  - {name: north, kind: photo, actions: [{fly_to: {x_m: 10, y_m: 120}}, {sense: camera}]}
+  - {name: east, kind: photo, actions: [{fly_to: {x_m: 110, y_m: -20}}, {sense: camera}]}
+  - {name: west, kind: photo, actions: [{fly_to: {x_m: -90, y_m: 40}}, {sense: camera}]}
+)";
+const std::map<std::string, fleet::Vec3> kTargets{
+    {"north", {10, 120, 0}}, {"east", {110, -20, 0}}, {"west", {-90, 40, 0}}};
+
+struct Mission {
+  std::unique_ptr<worlds::BaseWorld> world = worlds::parse_world(kWorld, "test world");
+  std::vector<fleet::DroneSpec> drones;
+  std::vector<UdpLink> vehicle_links;
+  std::vector<std::unique_ptr<FakeCopter>> fakes;
+  std::unique_ptr<MavlinkBackend> backend;
+  fleet::RunRecord record;
+
+  Mission() {
+    const geometry::LocalFrame frame(world->origin);
+    std::vector<std::unique_ptr<Link>> gcs_links;
+    for (int i = 0; i < 2; ++i) {
+      fleet::DroneSpec d;
+      d.name = "copter-" + std::to_string(i + 1);
+      d.home_m = {3.0 * i, 0, 0};
+      d.recharge_s = 5;
+      drones.push_back(d);
+      vehicle_links.push_back(UdpLink::listen("127.0.0.1", 0));
+    }
+    for (int i = 0; i < 2; ++i) {
+      FakeCopterSettings s;
+      const geometry::GeoPoint home = frame.to_geo({drones[i].home_m.x, drones[i].home_m.y});
+      s.home_lat_deg = home.lat_deg;
+      s.home_lon_deg = home.lon_deg;
+      s.sysid = static_cast<std::uint8_t>(i + 1);
+      fakes.push_back(std::make_unique<FakeCopter>(vehicle_links[i], s));
+      gcs_links.push_back(
+          std::make_unique<UdpLink>(UdpLink::connect("127.0.0.1", vehicle_links[i].local_port())));
+    }
+    MavlinkBackendSettings settings;
+    settings.origin = world->origin;
+    settings.fence_m = world->fence();
+    settings.before_poll = [this](double t_s) {
+      for (auto& f : fakes) f->step(t_s);
+    };
+    backend = std::make_unique<MavlinkBackend>(std::move(gcs_links),
+                                               std::vector<std::uint8_t>{1, 2}, settings);
+  }
+
+  void run() {
+    fleet::RunSettings s;
+    s.app_name = "static";
+    s.max_time_s = 900;
+    s.backend = backend.get();
+    fleet::App app;
+    for (const fleet::App& a : worlds::builtin_apps())
+      if (a.name == "static") app = a;
+    record = fleet::run_app(app, *world, drones, s);
+    // For a failing run: its events on stderr.
+    if (std::getenv("SWATH_DUMP_EVENTS")) std::fputs(record.events_jsonl.c_str(), stderr);
+  }
+
+  std::vector<nlohmann::json> events(const std::string& ev) const {
+    std::vector<nlohmann::json> out;
+    std::istringstream in(record.events_jsonl);
+    for (std::string line; std::getline(in, line);) {
+      auto e = nlohmann::json::parse(line);
+      if (e["ev"] == ev) out.push_back(e);
+    }
+    return out;
+  }
+
+  // Every photo task done exactly once, no result twice (the independent checker), each target
+  // sensed once, within the driver's arrival radius (1.5 m) of it at the sensing drone's layer.
+  void expect_every_photo_taken_once_at_its_target() const {
+    ASSERT_TRUE(record.completed) << record.failure;
+    const fleet::EventCheck c = fleet::check_events(record.events_jsonl);
+    EXPECT_TRUE(c.ok()) << (c.violations.empty() ? "" : c.violations[0].message);
+    EXPECT_EQ(c.terminal.count("task_done") ? c.terminal.at("task_done") : 0, 4);  // main + 3
+    EXPECT_EQ(c.terminal.count("task_failed"), 0u);
+    EXPECT_EQ(c.terminal.count("task_cancelled"), 0u);
+    std::map<std::string, int> sensed;
+    for (const auto& e : events("action_done")) {
+      if (e["name"] != "camera") continue;
+      const int drone = e["drone"];
+      const double layer_m = 20 + 3 * drone;
+      std::string nearest;
+      double off_m = 1e9;
+      for (const auto& [name, target] : kTargets) {
+        const double d = std::hypot(double(e["x_m"]) - target.x, double(e["y_m"]) - target.y,
+                                    double(e["alt_m"]) - layer_m);
+        if (d < off_m) off_m = d, nearest = name;
+      }
+      ++sensed[nearest];
+      EXPECT_LE(off_m, 1.5) << nearest << " sensed " << off_m << " m from its target";
+    }
+    EXPECT_EQ(sensed, (std::map<std::string, int>{{"east", 1}, {"north", 1}, {"west", 1}}));
+  }
+
+  // After the run the vehicles go home (end_run): both land, disarmed, at their homes.
+  void expect_both_land_at_home() {
+    const double end_s = backend->now_s() + 120;
+    backend->advance_to(end_s);
+    for (const auto& f : fakes) {
+      EXPECT_FALSE(f->armed());
+      EXPECT_EQ(f->landed_state(), LandedState::on_ground);
+      EXPECT_LT(std::hypot(f->north_m(), f->east_m()), 0.5);
+    }
+  }
+};
+
+int commands_received(const FakeCopter& f) {
+  int n = 0;
+  for (Cmd c : {Cmd::do_set_mode, Cmd::component_arm_disarm, Cmd::nav_takeoff, Cmd::do_change_speed,
+                Cmd::nav_return_to_launch, Cmd::nav_land, Cmd::set_message_interval,
+                Cmd::request_message, Cmd::image_start_capture})
+    n += f.commands_received(c);
+  return n;
+}
+
+TEST(MavlinkBackend, TwoFakeCoptersFlyAThreePhotoAppThroughTheRuntime) {
+  Mission m;
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  // One photo command per sense, nothing lost on loopback.
+  EXPECT_EQ(m.fakes[0]->images_taken() + m.fakes[1]->images_taken(), 3);
+  // Both flew: take-off to their layers in GUIDED, the speed rule (cruise, then approach).
+  for (const auto& f : m.fakes) {
+    EXPECT_EQ(f->commands_received(Cmd::nav_takeoff), 1);
+    EXPECT_GE(f->commands_received(Cmd::do_change_speed), 2);
+  }
+  EXPECT_TRUE(m.events("link_lost").empty());
+  m.expect_both_land_at_home();
+}
+
+TEST(MavlinkBackend, LostAcknowledgementsAreResentOrReissuedAndTheAppCompletes) {
+  Mission m;
+  // copter-1 loses its first 16 commands (the link-up requests, their resends and GUIDED's: some
+  // time out after 3 sends and the steering issues them again), copter-2 its first 2.
+  m.fakes[0]->lose_commands(16);
+  m.fakes[1]->lose_commands(2);
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  for (int i = 0; i < 2; ++i)  // the sends the fakes never saw are exactly the ones they lost
+    EXPECT_EQ(static_cast<int>(m.backend->driver(i).commands_sent()) -
+                  commands_received(*m.fakes[static_cast<std::size_t>(i)]),
+              i == 0 ? 16 : 2);
+  m.expect_both_land_at_home();
+}
+
+TEST(MavlinkBackend, TenSecondLinkCutLosesNoTaskAndDelaysCompletion) {
+  Mission plain;
+  plain.run();
+  ASSERT_TRUE(plain.record.completed);
+
+  Mission m;
+  const double cut_s = 18;  // copter-2 is on its way to its first photo, at its layer
+  m.fakes[1]->cut_link(cut_s, cut_s + 10);
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  const auto lost = m.events("link_lost");
+  ASSERT_EQ(lost.size(), 1u);
+  EXPECT_EQ(lost[0]["drone"], 1);
+  // Declared lost 2–3 s after the cut (its last heartbeat up to 1 s before), then back once the
+  // cut ends.
+  EXPECT_GT(double(lost[0]["t_s"]), cut_s + 2.0);
+  EXPECT_LE(double(lost[0]["t_s"]), cut_s + 3.0 + 0.2);
+  // Up when first heard (both), and copter-2 again once the cut ends.
+  const auto up = m.events("link_up");
+  ASSERT_EQ(up.size(), 3u);
+  EXPECT_EQ(up[2]["drone"], 1);
+  EXPECT_GE(double(up[2]["t_s"]), cut_s + 10);
+  // Its request was requeued and then served (by whichever drone): done once, above.
+  int requeued_task = -1;
+  for (const auto& e : m.events("requeued"))
+    if (e["drone"] == 1 && e["reason"] == "link_loss") requeued_task = e["task"];
+  ASSERT_GE(requeued_task, 1);
+  bool served_after = false;
+  for (const auto& e : m.events("action_done"))
+    if (e["task"] == requeued_task && e["name"] == "camera" &&
+        double(e["t_s"]) > double(lost[0]["t_s"]))
+      served_after = true;
+  EXPECT_TRUE(served_after);
+  // The vehicle's own failsafe (RTL after 5 s without the ground station) took it home: no RTL
+  // command reached it, yet the runtime saw it land (charging) after the link came back.
+  EXPECT_EQ(m.fakes[1]->commands_received(Cmd::nav_return_to_launch), 0);
+  bool landed_after = false;
+  for (const auto& e : m.events("drone_mode"))
+    if (e["drone"] == 1 && e["state"] == "charging" && double(e["t_s"]) > double(up[2]["t_s"]))
+      landed_after = true;
+  EXPECT_TRUE(landed_after);
+  EXPECT_GE(m.record.completion_time_s, plain.record.completion_time_s + 1.0);
+  m.expect_both_land_at_home();
+}
+
+TEST(MavlinkBackend, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {
+  Mission m;
+  m.fakes[0]->refuse_arm("PreArm: Compass not calibrated");
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  const auto refused = m.events("vehicle_refused");
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_EQ(refused[0]["drone"], 0);
+  EXPECT_EQ(refused[0]["reason"], "refused to arm: PreArm: Compass not calibrated");
+  for (const auto& e : m.events("action_done")) EXPECT_EQ(e["drone"], 1);  // copter-2 did all
+  EXPECT_EQ(m.fakes[0]->images_taken(), 0);
+  EXPECT_EQ(m.fakes[1]->images_taken(), 3);
+}
+
+TEST(MavlinkBackend, VehicleUrlsAreParsedAndBadOnesRefusedInOneSentence) {
+  const auto v = parse_vehicle_urls("udp:0.0.0.0:14550,tcp:127.0.0.1:5770/7");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_FALSE(v[0].tcp);
+  EXPECT_EQ(v[0].host, "0.0.0.0");
+  EXPECT_EQ(v[0].port, 14550);
+  EXPECT_EQ(v[0].sysid, 1);
+  EXPECT_TRUE(v[1].tcp);
+  EXPECT_EQ(v[1].port, 5770);
+  EXPECT_EQ(v[1].sysid, 7);
+  for (const char* bad : {"", "serial:/dev/ttyUSB0", "udp:14550", "udp:h:0", "udp:h:70000",
+                          "tcp:h:5760/0", "tcp:h:5760/x", "udp:h:1x"})
+    EXPECT_THROW(parse_vehicle_urls(bad), base::InputError) << bad;
+}
+
+}  // namespace
+}  // namespace swath::mavlink
