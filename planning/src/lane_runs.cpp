@@ -316,6 +316,12 @@ Ring outline(const std::vector<RunLane>& run, double half_spacing, double angle_
 }  // namespace
 
 LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
+  std::vector<Point2> samples;
+  return lane_runs(area, s, samples);
+}
+
+LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
+                   std::vector<Point2>& samples) {
   if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m))
     throw std::invalid_argument("lane_runs: need 0 < spacing <= footprint width");
   const LaneScan scan(area.fly, s.angle_deg);
@@ -334,8 +340,9 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
     for (const Span& in : cut[k]) lanes.push_back({ys[k], in.x0, in.x1, int(k)});
 
   // 2. Lanes for the corners the grid misses.
-  const std::vector<Point2> samples =
-      coverage_samples(area.see.empty() ? scan : LaneScan(area.see, s.angle_deg), s.line_spacing_m);
+  if (samples.empty())
+    samples = coverage_samples(area.see.empty() ? scan : LaneScan(area.see, s.angle_deg),
+                               s.line_spacing_m);
   SeenCount seen(samples, s.footprint_width_m);
   for (const RunLane& l : lanes) seen.add(l);
   const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);

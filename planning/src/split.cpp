@@ -164,14 +164,15 @@ Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
 }
 
 Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, const SplitSettings& s,
-                     bool bridged) {
+                     bool bridged, std::vector<Point2>& samples) {
   LaneRunSettings settings;
   settings.angle_deg = angle;
   settings.line_spacing_m = s.line_spacing_m;
   settings.footprint_width_m = s.footprint_width_m;
   settings.placement = s.placement;
-  LaneRuns runs = lane_runs(
-      {rings, s.seen_rings, bridged ? s.bridge_rings : std::vector<geometry::Ring>{}}, settings);
+  LaneRuns runs =
+      lane_runs({rings, s.seen_rings, bridged ? s.bridge_rings : std::vector<geometry::Ring>{}},
+                settings, samples);
   Candidate c;
   c.angle_deg = angle;
   c.method = SplitCells::runs;
@@ -315,14 +316,16 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   std::vector<Candidate> candidates;
   for (double angle : angles) {
-    // Runs bridged across the outside margin where there is one, runs inside, cells.
+    // Runs bridged across the outside margin where there is one, runs inside, cells. Both runs
+    // check coverage on the same samples of the area: taken once.
+    std::vector<Point2> samples;
     for (const int kind : {0, 1, 2}) {
       const SplitCells method = kind < 2 ? SplitCells::runs : SplitCells::boustrophedon;
       if ((s.cells != SplitCells::best && s.cells != method) ||
           (kind == 0 && s.bridge_rings.empty()))
         continue;
       Candidate c =
-          kind < 2 ? sweep_runs(rings, angle, s, kind == 0) : sweep_cells(rings, angle, s);
+          kind < 2 ? sweep_runs(rings, angle, s, kind == 0, samples) : sweep_cells(rings, angle, s);
       if (c.cells.empty()) continue;
       c.order = nearest_neighbour_order(problem_for(c, home, straight));
       estimates.push_back({kind, c.order.length_m, candidates.size()});

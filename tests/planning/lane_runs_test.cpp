@@ -80,6 +80,38 @@ TEST(LaneRuns, AStripThinnerThanTheInsetsStillGetsItsLane) {
   EXPECT_GE(test::sample_coverage(strip, all_lines(r), 1000, 300).fraction(), 0.999);
 }
 
+// A direction's bridged and unbridged runs share their coverage samples (split takes them once):
+// runs across an outside margin made with the samples of the runs inside are those made alone,
+// on a U with a pond whose notch a margin bridges, at several directions.
+TEST(LaneRuns, BridgedRunsOnSharedSamplesAreThoseOnTheirOwn) {
+  const Ring u{{0, 0},     {400, 0},   {400, 300}, {260, 300},
+               {260, 120}, {140, 120}, {140, 300}, {0, 300}};
+  const Ring pond{{40, 40}, {40, 90}, {100, 90}, {100, 40}};
+  const Ring margin{{-20, -20}, {420, -20}, {420, 320}, {-20, 320}};
+  for (const double angle : {0.0, 17.0, 90.0, 133.0}) {
+    const LaneRunSettings s = settings(angle);
+    std::vector<Point2> samples;
+    const LaneRuns inside = lane_runs({{u, pond}, {}, {}}, s, samples);
+    ASSERT_FALSE(samples.empty());
+    const std::vector<Point2> taken = samples;
+    const LaneRuns shared = lane_runs({{u, pond}, {}, {margin}}, s, samples);
+    const LaneRuns alone = lane_runs({{u, pond}, {}, {margin}}, s);
+    EXPECT_EQ(samples, taken);  // used, not recomputed
+    const std::vector<SweepLine> a = all_lines(shared), b = all_lines(alone);
+    ASSERT_EQ(a.size(), b.size()) << angle;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].start, b[i].start);
+      EXPECT_EQ(a[i].end, b[i].end);
+    }
+    EXPECT_EQ(shared.outlines, alone.outlines);
+    EXPECT_EQ(shared.coverage_lanes, alone.coverage_lanes);
+    EXPECT_EQ(shared.unreachable_points, alone.unreachable_points);
+    if (angle == 0.0) {
+      EXPECT_LT(a.size(), all_lines(inside).size());  // the margin joins lanes
+    }
+  }
+}
+
 // A 10 m wide sliver jutting out of the top side, across the lanes, with a grid lane through it:
 // when the full lane below is within half a footprint of its tip, the sliver's 10 m lane is left
 // out; 100 m out the tip is beyond every full lane's footprint and a lane covers it.

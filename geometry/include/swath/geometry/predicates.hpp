@@ -2,6 +2,7 @@
 // Exact geometric predicates on double coordinates (CGAL's filtered exact kernel underneath):
 // the answers are exact for the given doubles, never wrong by rounding.
 
+#include <algorithm>
 #include <vector>
 
 #include "swath/geometry/point.hpp"
@@ -28,6 +29,14 @@ inline Orientation orientation(Point2 a, Point2 b, Point2 c) {
     if (right >= 0) return det < 0 ? Orientation::clockwise : Orientation::counter_clockwise;
     sum = -left - right;
   } else {
+    // left is 0. A difference of doubles is 0 only for equal doubles, so when a factor is, the
+    // exact left is 0 and the sign is right's, whose factors' signs are exact: axis-aligned
+    // edges and equal coordinates (rectangular zones, corners on one row) need no exact kernel.
+    if (a.x == c.x || b.y == c.y) {
+      const double u = a.y - c.y, v = b.x - c.x;
+      if (u == 0 || v == 0) return Orientation::collinear;
+      return (u > 0) == (v > 0) ? Orientation::clockwise : Orientation::counter_clockwise;
+    }
     return orientation_exact(a, b, c);
   }
   constexpr double kErrorBound = 3.3306690738754716e-16;  // (3 + 16 eps) eps, eps = 2^-53
@@ -57,5 +66,23 @@ double distance_to_segment(Point2 p, Point2 a, Point2 b);
 /// Where p lies relative to a ring (even-odd rule, exact).
 enum class Containment { outside, on_boundary, inside };
 Containment locate_point(Point2 p, const std::vector<Point2>& ring);
+
+/// One edge [a, b] of a ring in locate_point(): p on it, or whether it crosses the horizontal ray
+/// from p towards +x (half-open in y, so a vertex on the ray counts once). The parity of the
+/// crossings over all edges is the even-odd rule, whatever order the edges are asked in.
+enum class EdgeAndRay { apart, crosses, p_on_edge };
+inline EdgeAndRay edge_and_ray(Point2 p, Point2 a, Point2 b) {
+  // Wholly above, below or left of p: neither holds p nor crosses the ray (no predicate needed).
+  if ((a.y > p.y && b.y > p.y) || (a.y < p.y && b.y < p.y) || (a.x < p.x && b.x < p.x))
+    return EdgeAndRay::apart;
+  const Orientation o = orientation(a, b, p);
+  if (o == Orientation::collinear && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) &&
+      std::min(a.y, b.y) <= p.y && p.y <= std::max(a.y, b.y))
+    return EdgeAndRay::p_on_edge;
+  // An edge across the horizontal through p crosses right of p when p is on its left going up.
+  if ((a.y > p.y) != (b.y > p.y) && (o == Orientation::counter_clockwise) == (b.y > a.y))
+    return EdgeAndRay::crosses;
+  return EdgeAndRay::apart;
+}
 
 }  // namespace swath::geometry

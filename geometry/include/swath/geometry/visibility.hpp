@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "swath/geometry/polygon.hpp"
+#include "swath/geometry/segment_index.hpp"
 
 namespace swath::geometry {
 
@@ -14,8 +15,9 @@ namespace swath::geometry {
 /// several outer rings allowed): a point is inside when an odd number of rings contain it, or it
 /// lies within 1e-9 of the area's size of the boundary (rounding of computed boundary points). The
 /// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
-/// visibility is decided with exact predicates. Building is O(r² n) for r reflex vertices and n
-/// edges, so areas with more than `max_nodes` reflex vertices are not routed (paths are straight).
+/// visibility is decided with exact predicates, on the edges a grid over them (SegmentIndex) finds
+/// near each leg. Building is O(r² k) for r reflex vertices and k edges near a leg, so areas with
+/// more than `max_nodes` reflex vertices are not routed (paths are straight).
 ///
 /// `corner_allowance_m` (>= 0, metres) moves each bend this far away from its corner, along the
 /// corner's bisector, where the moved point still sees both neighbours of the corner: an autopilot
@@ -42,13 +44,16 @@ class VisibilityRouter {
 
  private:
   bool inside_closed(Point2 p) const;
+  /// The part of [a, b] outside the closed area, as a fraction of its length; once that part
+  /// exceeds `stop_m` metres, a partial sum (still above stop_m).
+  double outside_fraction(Point2 a, Point2 b, double stop_m) const;
   Point2 moved_out(Point2 before, Point2 corner, Point2 after, double allowance_m) const;
   struct Box {
     double x0, y0, x1, y1;
   };
   std::vector<Ring> rings_;
-  std::vector<Box> ring_boxes_;
-  std::vector<std::vector<Box>> edge_boxes_;  ///< per ring, per edge
+  SegmentIndex edges_;           ///< every ring's edges, ring after ring, in ring order
+  std::vector<Box> edge_boxes_;  ///< per edge of edges_
   std::vector<Point2> nodes_;
   std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
   /// Which graph nodes a point sees, per point asked about (routing asks about the same entry

@@ -53,5 +53,11 @@ struct LaneRunArea {
 /// and within its length, unless counted in unreachable_points. O((n + lanes) log + samples x
 /// nearby lanes).
 LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& settings);
+/// The same, with the coverage samples kept in `samples` (in the frame turned by -angle): empty,
+/// they are computed and stored there; else used as they are. They depend only on `see` (or `fly`
+/// when `see` is empty), the angle and the spacing, so a direction's runs with and without
+/// `bridge` share them (sampling is a large part of lane_runs).
+LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& settings,
+                   std::vector<geometry::Point2>& samples);
 
 }  // namespace swath::planning
