@@ -2,13 +2,26 @@
 //   path division (cut the sweep path by length), region division (exact bisection on the area
 //   below a cut), and the paper's coarse region search (even heights, then 1/1000-height steps
 //   until each band is within 1 % of its area; eq. 7-8) beside it.
+//
+//   swath_division_bench --balance-table
+// instead prints the balance table of issue 18 (DESIGN.md §16): meadow, vineyard and orchard with
+// three equal drones and with three-quads, path and region division, --balance makespan: each
+// drone's flight time and the longest over the shortest (as summary.json reports them), and the
+// plan's wall time. BM_BalancedPlan times the same plans.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <numeric>
+#include <string>
 
+#include "division_cases.hpp"
 #include "random_polygons.hpp"
 #include "region_division.hpp"
 #include "swath/planning/division.hpp"
+#include "swath/planning/survey.hpp"
 #include "swath/planning/sweep.hpp"
 
 namespace {
@@ -68,6 +81,40 @@ void BM_RegionCutsPaper(benchmark::State& state) {
       benchmark::Counter(double(evaluations), benchmark::Counter::kAvgIterations);
 }
 
+std::vector<test::DivisionCase> balance_cases() {
+  std::vector<test::DivisionCase> all;
+  for (const auto mode : {planning::DivisionMode::path, planning::DivisionMode::region})
+    for (test::DivisionCase& c :
+         test::division_cases(SWATH_SOURCE_DIR, mode, planning::Balance::makespan))
+      all.push_back(std::move(c));
+  return all;
+}
+
+void BM_BalancedPlan(benchmark::State& state) {
+  const test::DivisionCase c = balance_cases()[std::size_t(state.range(0))];
+  state.SetLabel(c.field + " " + c.fleet + " " +
+                 (c.request.division == planning::DivisionMode::path ? "path" : "region"));
+  for (auto _ : state) benchmark::DoNotOptimize(planning::plan_survey(c.request));
+}
+
+int balance_table() {
+  std::printf("| field | drones | division | flight times, s | max / min | plan |\n");
+  std::printf("|---|---|---|---|---:|---:|\n");
+  for (const test::DivisionCase& c : balance_cases()) {
+    const auto start = std::chrono::steady_clock::now();
+    const planning::SurveyPlan plan = planning::plan_survey(c.request);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::string times;
+    for (const planning::DronePlan& d : plan.drones)
+      times += (times.empty() ? "" : ", ") + std::to_string(std::lround(d.mission.flight_time_s));
+    std::printf("| %s | %s | %s | %s | %.4f | %.0f ms |\n", c.field.c_str(), c.fleet.c_str(),
+                c.request.division == planning::DivisionMode::path ? "path" : "region",
+                times.c_str(), test::max_over_min_flight(plan), ms);
+  }
+  return 0;
+}
+
 void Cases(benchmark::internal::Benchmark* b) {
   b->ArgNames({"vertices", "drones"})->Unit(benchmark::kMillisecond);
   for (int n : {10, 1000, 10000})
@@ -80,4 +127,14 @@ BENCHMARK(BM_PathDivision)->Apply(Cases);
 BENCHMARK(BM_RegionDivisionExact)->Apply(Cases);
 BENCHMARK(BM_RegionCutsPaper)->Apply(Cases);
 
-BENCHMARK_MAIN();
+BENCHMARK(BM_BalancedPlan)->DenseRange(0, 11)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--balance-table") == 0) return balance_table();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,9 +1,12 @@
 #include "swath/planning/division.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
+#include <tuple>
 
 #include "swath/base/input_error.hpp"
 #include "swath/geometry/decomposition.hpp"
@@ -15,15 +18,20 @@ namespace {
 using geometry::Point2;
 using geometry::Ring;
 
-// Sutherland-Hodgman against y <= limit (keep_below) or y >= limit, in the rotated frame.
-Ring clip_half(const Ring& ring, double limit, bool keep_below) {
+// Sutherland-Hodgman against p[axis] <= limit (keep_below) or >= limit, in the rotated frame
+// (axis 0: x, 1: y).
+Ring clip_half(const Ring& ring, double limit, bool keep_below, int axis = 1) {
   Ring out;
-  auto inside = [&](Point2 p) { return keep_below ? p.y <= limit : p.y >= limit; };
+  auto coordinate = [axis](Point2 p) { return axis == 0 ? p.x : p.y; };
+  auto inside = [&](Point2 p) {
+    return keep_below ? coordinate(p) <= limit : coordinate(p) >= limit;
+  };
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
     const bool in_a = inside(a), in_b = inside(b);
     if (in_a) out.push_back(a);
-    if (in_a != in_b) out.push_back(a + (b - a) * ((limit - a.y) / (b.y - a.y)));
+    if (in_a != in_b)
+      out.push_back(a + (b - a) * ((limit - coordinate(a)) / (coordinate(b) - coordinate(a))));
   }
   return out;
 }
@@ -90,28 +98,46 @@ struct PathIndex {
   }
 };
 
-// Flight time of drone d over [s, e] of the path, straight home legs; +inf beyond its range.
-double piece_time(const PathIndex& index, const DroneResource& d, double s, double e) {
-  const double distance = geometry::distance(d.home, index.point(s)) + (e - s) +
-                          geometry::distance(index.point(e), d.home);
+// Flight time of drone i over [s, e] of the path: measured where a measure is given, else straight
+// home legs at cruise speed; +inf beyond its range.
+double piece_time(const PathIndex& index, const std::vector<DroneResource>& drones, std::size_t i,
+                  const FlightMeasure& measure, double s, double e) {
+  const DroneResource& d = drones[i];
+  double distance = 0, time_s = 0;
+  if (measure) {
+    if (!(e > s)) return 0.0;
+    std::vector<double> at;
+    if (s > 0) at.push_back(s);
+    if (e < index.length()) at.push_back(e);
+    const FlightCost cost = measure(i, cut_path(index.path, at)[s > 0 ? 1 : 0]);
+    distance = cost.length_m;
+    time_s = cost.time_s;
+  } else {
+    distance = geometry::distance(d.home, index.point(s)) + (e - s) +
+               geometry::distance(index.point(e), d.home);
+    time_s = distance / d.speed_m_s;
+  }
   if (d.range_m && distance > *d.range_m * (1 + 1e-12))
     return std::numeric_limits<double>::infinity();
-  return distance / d.speed_m_s;
+  return time_s;
 }
 
 // Greedy cuts that keep every drone within `makespan`: each takes the longest piece it can.
 std::vector<double> cuts_within(const PathIndex& index, const std::vector<DroneResource>& drones,
-                                double makespan) {
+                                const FlightMeasure& measure, double makespan) {
+  auto time_of = [&](std::size_t i, double s, double e) {
+    return piece_time(index, drones, i, measure, s, e);
+  };
   std::vector<double> cuts;
   double s = 0;
   for (std::size_t i = 0; i < drones.size(); ++i) {
     double lo = s, hi = index.length();
-    if (piece_time(index, drones[i], s, hi) <= makespan) {
+    if (time_of(i, s, hi) <= makespan) {
       lo = hi;
     } else {
       for (int k = 0; k < 60 && hi - lo > 1e-9 * (1 + index.length()); ++k) {
         const double mid = (lo + hi) / 2;
-        (piece_time(index, drones[i], s, mid) <= makespan ? lo : hi) = mid;
+        (time_of(i, s, mid) <= makespan ? lo : hi) = mid;
       }
     }
     s = lo;
@@ -123,7 +149,8 @@ std::vector<double> cuts_within(const PathIndex& index, const std::vector<DroneR
 
 DivisionResult finish_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
                            std::vector<double> cuts, const std::vector<double>& home_cost,
-                           const std::vector<std::optional<double>>& budgets) {
+                           const std::vector<std::optional<double>>& budgets,
+                           const FlightMeasure& measure) {
   const PathIndex index(path);
   DivisionResult r;
   const double reach = cuts.back();
@@ -149,7 +176,7 @@ DivisionResult finish_path(const SurveyPath& path, const std::vector<DroneResour
     w.share = index.length() > 0 ? (e - s) / index.length() : 0;
     w.home_cost_m = home_cost[i];
     w.budget_m = budgets[i];
-    w.estimated_time_s = e > s ? piece_time(index, drones[i], s, e) : 0;
+    w.estimated_time_s = e > s ? piece_time(index, drones, i, measure, s, e) : 0;
     r.makespan_s = std::max(r.makespan_s, w.estimated_time_s);
     r.drones.push_back(std::move(w));
   }
@@ -159,7 +186,7 @@ DivisionResult finish_path(const SurveyPath& path, const std::vector<DroneResour
 }  // namespace
 
 DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
-                           Balance balance) {
+                           Balance balance, const FlightMeasure& measure) {
   const PathIndex index(path);
   const std::vector<double> home_cost = home_costs(path.points, drones);
   std::vector<std::optional<double>> budgets;
@@ -178,19 +205,27 @@ DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResour
     proportional.push_back(std::min(s, length));
   }
   if (!short_of_path) proportional.back() = length;  // the shares' sum rounds short of 1
-  DivisionResult result = finish_path(path, drones, proportional, home_cost, budgets);
+  DivisionResult result = finish_path(path, drones, proportional, home_cost, budgets, measure);
   const double proportional_makespan = result.makespan_s;
   if (balance == Balance::makespan && !short_of_path) {
     // The smallest makespan whose greedy cuts reach the end of the path.
     double lo = 0, hi = proportional_makespan > 0 ? proportional_makespan : 1;
-    while (cuts_within(index, drones, hi).back() < length * (1 - 1e-12)) hi *= 2;
-    for (int k = 0; k < 60 && hi - lo > 1e-9 * hi; ++k) {
+    // Measured times are costlier: 1e-6 of the makespan is far below what the balance can show.
+    const double tolerance = measure ? 1e-6 : 1e-9;
+    for (int guard = 0;
+         guard < 64 && cuts_within(index, drones, measure, hi).back() < length * (1 - 1e-12);
+         ++guard)
+      hi *= 2;
+    for (int k = 0; k < 60 && hi - lo > tolerance * hi; ++k) {
       const double mid = (lo + hi) / 2;
-      (cuts_within(index, drones, mid).back() >= length * (1 - 1e-12) ? hi : lo) = mid;
+      (cuts_within(index, drones, measure, mid).back() >= length * (1 - 1e-12) ? hi : lo) = mid;
     }
-    std::vector<double> cuts = cuts_within(index, drones, hi);
+    std::vector<double> cuts = cuts_within(index, drones, measure, hi);
     cuts.back() = length;
-    result = finish_path(path, drones, cuts, home_cost, budgets);
+    DivisionResult balanced = finish_path(path, drones, cuts, home_cost, budgets, measure);
+    // Measured times need not be monotone in a cut (a corner becomes a stop): never worse than
+    // the proportional cuts.
+    if (!measure || balanced.makespan_s <= result.makespan_s) result = std::move(balanced);
   }
   result.proportional_makespan_s = proportional_makespan;
   return result;
@@ -379,6 +414,472 @@ DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
     cuts_within_time(hi, cuts);
     DivisionResult balanced = result_for(cuts);
     if (balanced.makespan_s < result.makespan_s) result = std::move(balanced);
+  }
+  result.proportional_makespan_s = proportional_makespan;
+  return result;
+}
+
+namespace {
+
+// The lanes of one grid as one line to cut: lanes by ordinate (rows), then along +x.
+class LaneLine {
+ public:
+  // `by_row`: lanes by ordinate, then along +x; otherwise in the order given.
+  LaneLine(const std::vector<SweepLine>& lanes, double angle_deg, bool by_row)
+      : angle_deg_(angle_deg) {
+    for (std::size_t i = 0; i < lanes.size(); ++i) {
+      const Point2 a = rotate(lanes[i].start, -angle_deg), b = rotate(lanes[i].end, -angle_deg);
+      const bool forward = a.x <= b.x;
+      lanes_.push_back({forward ? lanes[i] : SweepLine{lanes[i].end, lanes[i].start}, i,
+                        (a.y + b.y) / 2, std::min(a.x, b.x), std::max(a.x, b.x), 0, 0,
+                        !by_row && !forward});
+    }
+    std::vector<Lane*> sorted;
+    for (Lane& l : lanes_) sorted.push_back(&l);
+    std::sort(sorted.begin(), sorted.end(), [](const Lane* u, const Lane* v) {
+      return std::tie(u->y, u->x0, u->index) < std::tie(v->y, v->x0, v->index);
+    });
+    for (Lane* l : sorted) {
+      // Lanes of one grid share ordinates up to rounding.
+      if (row_y_.empty() || l->y - row_y_.back() > 1e-6 * (1 + std::abs(l->y)))
+        row_y_.push_back(l->y);
+      l->row = row_y_.size() - 1;
+    }
+    if (by_row)
+      std::sort(lanes_.begin(), lanes_.end(), [](const Lane& u, const Lane& v) {
+        return std::tie(u.y, u.x0, u.index) < std::tie(v.y, v.x0, v.index);
+      });
+    for (Lane& l : lanes_) {
+      l.start = total_;
+      total_ += l.x1 - l.x0;
+    }
+  }
+
+  // Lanes in the order given: per lane of [a, b], the box of its row's strip (rows end halfway
+  // between lane ordinates) and of its part along the lane (open where the part reaches the
+  // lane's end), with the lane's index.
+  std::vector<std::pair<std::size_t, std::array<double, 4>>> lane_boxes(double a, double b) const {
+    std::vector<std::pair<std::size_t, std::array<double, 4>>> out;
+    for (const Lane& l : lanes_) {
+      const double length = l.x1 - l.x0;
+      const double from = std::max(a, l.start), to = std::min(b, l.start + length);
+      if (!(to - from > 1e-6)) continue;
+      const double y0 = l.row == 0 ? -kInf : (row_y_[l.row - 1] + row_y_[l.row]) / 2;
+      const double y1 = l.row + 1 >= row_y_.size() ? kInf : (row_y_[l.row] + row_y_[l.row + 1]) / 2;
+      const auto [x0, x1] = along(l, from, to);
+      out.push_back({l.index, {y0, y1, x0 == l.x0 ? -kInf : x0, x1 == l.x1 ? kInf : x1}});
+    }
+    return out;
+  }
+
+  double total() const { return total_; }
+
+  // The pieces of lanes in [a, b] of the line, in lane order; pieces shorter than a micrometre
+  // (a cut at a lane's end) are left out.
+  std::vector<LanePiece> share(double a, double b) const {
+    std::vector<LanePiece> out;
+    for (const Lane& l : lanes_) {
+      const double length = l.x1 - l.x0;
+      const double from = std::max(a, l.start), to = std::min(b, l.start + length);
+      if (!(to - from > 1e-6)) continue;
+      LanePiece piece{l.index, l.line};
+      if (from > l.start || to < l.start + length) {
+        const auto [x0, x1] = along(l, from, to);
+        piece.line.start = x0 == l.x0 ? l.line.start : rotate({x0, l.y}, angle_deg_);
+        piece.line.end = x1 == l.x1 ? l.line.end : rotate({x1, l.y}, angle_deg_);
+      }
+      out.push_back(piece);
+    }
+    return out;
+  }
+
+  // Where a cut at t lies: its row and the abscissa across that row (-inf: the row's start,
+  // +inf: past the last row).
+  std::pair<std::size_t, double> position(double t) const {
+    if (lanes_.empty()) return {0, -kInf};
+    if (t >= total_) return {row_y_.size() - 1, kInf};
+    const auto it = std::upper_bound(lanes_.begin(), lanes_.end(), t,
+                                     [](double v, const Lane& l) { return v < l.start; });
+    const Lane& l = *(it == lanes_.begin() ? it : it - 1);
+    const bool row_start = &l == &lanes_.front() || (&l - 1)->row != l.row;
+    if (t <= l.start && row_start) return {l.row, -kInf};
+    return {l.row, std::clamp(l.x0 + (t - l.start), l.x0, l.x1)};
+  }
+
+  // The boxes (y0, y1, x0, x1 in the rotated frame) of the rows that [a, b] of the line holds:
+  // rows end halfway between lane ordinates, the first and last reach out to infinity.
+  std::vector<std::array<double, 4>> boxes(double a, double b) const {
+    std::vector<std::array<double, 4>> out;
+    if (!(b > a) || lanes_.empty()) return out;
+    const auto [ra, xa] = position(a);
+    const auto [rb, xb] = position(b);
+    auto lo = [&](std::size_t r) { return r == 0 ? -kInf : (row_y_[r - 1] + row_y_[r]) / 2; };
+    auto hi = [&](std::size_t r) {
+      return r + 1 >= row_y_.size() ? kInf : (row_y_[r] + row_y_[r + 1]) / 2;
+    };
+    if (ra == rb) {
+      if (xa == -kInf && xb == kInf) {
+        out.push_back({lo(ra), hi(ra), -kInf, kInf});
+      } else if (xb > xa) {
+        out.push_back({lo(ra), hi(ra), xa, xb});
+      }
+      return out;
+    }
+    // Whole rows between the partial ones (a partial row at -inf or +inf is whole).
+    const double y0 = xa == -kInf ? lo(ra) : hi(ra), y1 = xb == kInf ? hi(rb) : lo(rb);
+    if (xa != -kInf) out.push_back({lo(ra), hi(ra), xa, kInf});
+    if (y1 > y0) out.push_back({y0, y1, -kInf, kInf});
+    if (xb != kInf && xb != -kInf) out.push_back({lo(rb), hi(rb), -kInf, xb});
+    return out;
+  }
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  struct Lane {
+    SweepLine line;     // flown towards +x of the rotated frame
+    std::size_t index;  // in the lanes given
+    double y, x0, x1;   // rotated frame
+    std::size_t row;
+    double start;   // along the line
+    bool reversed;  // the line runs along it towards -x (the order given flies it so)
+  };
+
+  // The part [from, to] of the line on lane l (from < to) as abscissae, increasing.
+  std::pair<double, double> along(const Lane& l, double from, double to) const {
+    if (l.reversed) return {l.x1 - (to - l.start), l.x1 - (from - l.start)};
+    return {l.x0 + (from - l.start), l.x0 + (to - l.start)};
+  }
+  double angle_deg_;
+  std::vector<Lane> lanes_;
+  std::vector<double> row_y_;
+  double total_ = 0;
+};
+
+// `ring` clipped to a box of the frame rotated by -angle_deg (infinite sides not clipped), in the
+// input frame.
+Ring clip_box(const Ring& ring, double angle_deg, const std::array<double, 4>& box) {
+  Ring r = rotated(ring, -angle_deg);
+  if (std::isfinite(box[0])) r = clip_half(r, box[0], false);
+  if (std::isfinite(box[1])) r = clip_half(r, box[1], true);
+  if (std::isfinite(box[2])) r = clip_half(r, box[2], false, 0);
+  if (std::isfinite(box[3])) r = clip_half(r, box[3], true, 0);
+  Ring out;
+  for (const Point2& p : r)
+    if (out.empty() || !(out.back() == p)) out.push_back(rotate(p, angle_deg));
+  while (out.size() > 1 && out.back() == out.front()) out.pop_back();
+  return out;
+}
+
+// Orders of the drones over the bands (band k flown by order[k]) worth balancing: every
+// permutation up to 6 drones, drones that `same` says are interchangeable in one order only.
+std::vector<std::vector<std::size_t>> band_orders(
+    std::size_t n, const std::function<bool(std::size_t, std::size_t)>& same,
+    const std::vector<std::size_t>& heuristic) {
+  std::vector<std::vector<std::size_t>> out{heuristic};
+  if (n > 6) {
+    std::vector<std::size_t> fleet(n);
+    std::iota(fleet.begin(), fleet.end(), 0);
+    if (fleet != heuristic) out.push_back(fleet);
+    return out;
+  }
+  std::vector<std::size_t> p(n);
+  std::iota(p.begin(), p.end(), 0);
+  do {
+    bool canonical = true;  // interchangeable drones in fleet order
+    for (std::size_t i = 0; i < n && canonical; ++i)
+      for (std::size_t j = i + 1; j < n && canonical; ++j)
+        if (p[i] > p[j] && same(p[i], p[j])) canonical = false;
+    if (canonical && p != heuristic) out.push_back(p);
+  } while (std::next_permutation(p.begin(), p.end()));
+  return out;
+}
+
+}  // namespace
+
+DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
+                            const std::vector<SweepLine>& lanes,
+                            const std::vector<DroneResource>& drones, const LaneSweep& sweep,
+                            const FlightMeasure& measure, const std::vector<std::size_t>& lane_cell,
+                            const std::vector<Ring>& cells) {
+  const std::size_t n = drones.size();
+  std::vector<Point2> vertices;
+  for (const Ring& ring : rings) vertices.insert(vertices.end(), ring.begin(), ring.end());
+  const std::vector<double> home_cost = home_costs(vertices, drones);
+  std::vector<std::optional<double>> budgets;
+  const std::vector<double> w = weights(drones, home_cost, budgets);
+  const double total_w = std::accumulate(w.begin(), w.end(), 0.0);
+  const std::vector<Ring> pieces = geometry::boustrophedon_decomposition(rings, angle_deg).pieces;
+  double total_area = 0;
+  for (const Ring& ring : rings) total_area += geometry::signed_area(ring);
+  const bool by_cell = !lane_cell.empty() && lane_cell.size() == lanes.size();
+  const LaneLine line(lanes, angle_deg, !by_cell);
+  const double total = line.total();
+
+  // Drone d flying [a, b] of the line: its measured time, +inf beyond its range. Remembered: the
+  // searches ask for the same shares again (a greedy pass's last band, the
+  // refinement's neighbours).
+  std::map<std::tuple<std::size_t, double, double>, double> known;
+  auto flight_s = [&](std::size_t d, double a, double b) {
+    if (!(b > a)) return 0.0;
+    const auto key = std::make_tuple(d, a, b);
+    if (const auto it = known.find(key); it != known.end()) return it->second;
+    const std::vector<LanePiece> share = line.share(a, b);
+    double t = 0.0;
+    if (!share.empty()) {
+      const FlightCost cost = measure(d, sweep(d, share));
+      t = drones[d].range_m && cost.length_m > *drones[d].range_m * (1 + 1e-12)
+              ? std::numeric_limits<double>::infinity()
+              : cost.time_s;
+    }
+    return known[key] = t;
+  };
+  // Greedy cuts within `makespan`: each band's drone the longest share it flies in time. The
+  // n + 1 bounds; reaching the end of the line means the makespan is feasible.
+  const double tolerance = 1e-6 * (1 + total);
+  auto greedy = [&](const std::vector<std::size_t>& order, double makespan) {
+    std::vector<double> bounds{0};
+    for (std::size_t k = 0; k < n; ++k) {
+      double lo = bounds.back(), hi = total;
+      if (flight_s(order[k], lo, hi) <= makespan) {
+        lo = hi;
+      } else {
+        while (hi - lo > tolerance) {
+          const double mid = (lo + hi) / 2;
+          (flight_s(order[k], bounds.back(), mid) <= makespan ? lo : hi) = mid;
+        }
+      }
+      bounds.push_back(lo);
+    }
+    return bounds;
+  };
+  auto reaches = [&](const std::vector<double>& bounds) { return bounds.back() >= total; };
+
+  auto result_for = [&](const std::vector<std::size_t>& order, const std::vector<double>& bounds) {
+    DivisionResult r;
+    r.drones.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t d = order[k];
+      DroneWork& work = r.drones[d];
+      const double a = bounds[k], b = std::max(bounds[k], bounds[k + 1]);
+      auto add = [&](const Ring& piece, const std::array<double, 4>& box) {
+        Ring clipped = clip_box(piece, angle_deg, box);
+        if (clipped.size() >= 3 && geometry::signed_area(clipped) > 1e-9 * total_area)
+          work.region.push_back(std::move(clipped));
+      };
+      if (by_cell) {
+        // Each cell's whole lanes (consecutive rows of a run) as one box, cut lanes on their own.
+        std::map<std::size_t, std::array<double, 4>> whole;
+        for (const auto& [lane, box] : line.lane_boxes(a, b)) {
+          const std::size_t cell = lane_cell[lane];
+          if (cell >= cells.size()) continue;
+          if (std::isfinite(box[2]) || std::isfinite(box[3])) {
+            add(cells[cell], box);
+            continue;
+          }
+          const auto [it, fresh] = whole.emplace(cell, box);
+          it->second[0] = std::min(it->second[0], box[0]);
+          it->second[1] = std::max(it->second[1], box[1]);
+        }
+        for (const auto& [cell, box] : whole) add(cells[cell], box);
+      } else {
+        for (const auto& box : line.boxes(a, b))
+          for (const Ring& piece : pieces) add(piece, box);
+      }
+      double area = 0;
+      for (const Ring& piece : work.region) area += geometry::signed_area(piece);
+      work.share = total_area > 0 ? area / total_area : 0;
+      const std::vector<LanePiece> share = line.share(a, b);
+      if (!share.empty()) {
+        work.path = sweep(d, share);
+        work.estimated_time_s = measure(d, work.path).time_s;
+      }
+      work.home_cost_m = home_cost[d];
+      work.budget_m = budgets[d];
+      r.makespan_s = std::max(r.makespan_s, work.estimated_time_s);
+    }
+    return r;
+  };
+
+  // Proportional: shares of the lanes' length in proportion to the weights, fleet order.
+  std::vector<std::size_t> fleet(n);
+  std::iota(fleet.begin(), fleet.end(), 0);
+  std::vector<double> proportional{0};
+  for (std::size_t k = 0; k < n; ++k)
+    proportional.push_back(k + 1 == n ? total : proportional.back() + w[k] / total_w * total);
+  DivisionResult result = result_for(fleet, proportional);
+  const double proportional_makespan = result.makespan_s;
+
+  // The drones in the order of their homes across the lanes: nearest band first, a good start.
+  std::vector<std::size_t> heuristic = fleet;
+  std::stable_sort(heuristic.begin(), heuristic.end(), [&](std::size_t i, std::size_t j) {
+    return rotate(drones[i].home, -angle_deg).y < rotate(drones[j].home, -angle_deg).y;
+  });
+  std::vector<double> whole(n);
+  for (std::size_t d = 0; d < n; ++d) whole[d] = flight_s(d, 0, total);
+  const auto same = [&](std::size_t i, std::size_t j) {
+    const DroneResource &a = drones[i], &b = drones[j];
+    return a.home == b.home && a.speed_m_s == b.speed_m_s && a.range_m == b.range_m &&
+           a.capability == b.capability && whole[i] == whole[j];
+  };
+  // Bisection on the makespan per order; an order whose greedy cuts cannot reach the end within
+  // 2 % of the best makespan so far cannot compete and costs one greedy pass.
+  constexpr double kSlack = 1.02;  // how much longer than the smallest makespan a balance may be
+  double best = std::numeric_limits<double>::infinity();
+  struct Balanced {
+    double makespan_s;
+    std::vector<std::size_t> order;
+    std::vector<double> bounds;
+  };
+  std::vector<Balanced> found;
+  auto balance = [&](const std::vector<std::size_t>& order) {
+    double hi = best * kSlack;
+    if (!std::isfinite(hi)) {
+      hi = proportional_makespan > 0 && std::isfinite(proportional_makespan) ? proportional_makespan
+                                                                             : 1.0;
+      for (int guard = 0; guard < 40 && !reaches(greedy(order, hi)); ++guard) hi *= 1.5;
+    }
+    if (!reaches(greedy(order, hi))) return;
+    double lo = 0;
+    while (hi - lo > 1e-5 * hi) {
+      const double mid = (lo + hi) / 2;
+      (reaches(greedy(order, mid)) ? hi : lo) = mid;
+    }
+    std::vector<double> bounds = greedy(order, hi);
+    double longest = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      longest = std::max(longest, flight_s(order[k], bounds[k], bounds[k + 1]));
+    best = std::min(best, longest);
+    found.push_back({longest, order, std::move(bounds)});
+  };
+  if (n > 1 && total > 0) {
+    for (const auto& order : band_orders(n, same, heuristic)) balance(order);
+    if (n > 6 && !found.empty()) {  // beyond the permutations: adjacent swaps of the best once
+      const auto first = std::min_element(
+          found.begin(), found.end(),
+          [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
+      const std::vector<std::size_t> start = first->order;
+      for (std::size_t k = 0; k + 1 < n; ++k) {
+        std::vector<std::size_t> order = start;
+        std::swap(order[k], order[k + 1]);
+        balance(order);
+      }
+    }
+  }
+  if (!found.empty()) {
+    // A drone's time jumps where its share first reaches into a lane (the turn to it, the stops at
+    // its ends, which end of its zigzag it leaves from), so the smallest makespan can leave the
+    // drone beside a jump well short of the others. For each order within 2 % of the smallest
+    // makespan, from greedy cuts within a few makespans up to 2 % above it (from the first band
+    // and from the last), cut by cut the two drones beside a cut are brought to where their times
+    // cross (either side of a jump between them), keeping a change when it narrows the longest
+    // over the shortest flight; the narrowest found within 2 % of the smallest makespan wins.
+    const double makespan_limit = best * kSlack;
+    auto spread = [](const std::vector<double>& t) {
+      double longest = 0, shortest = std::numeric_limits<double>::infinity();
+      for (const double v : t) {
+        longest = std::max(longest, v);
+        if (v > 0) shortest = std::min(shortest, v);
+      }
+      return std::make_pair(std::isfinite(shortest) ? longest / shortest : 1.0, longest);
+    };
+    std::sort(found.begin(), found.end(),
+              [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
+    std::vector<std::size_t> best_order = found.front().order;
+    std::vector<double> best_bounds = found.front().bounds;
+    std::pair<double, double> best_spread{std::numeric_limits<double>::infinity(), 0.0};
+    for (const Balanced& candidate : found) {
+      if (candidate.makespan_s > makespan_limit || best_spread.first <= 1.002) break;
+      const std::vector<std::size_t>& order = candidate.order;
+      auto times_of = [&](const std::vector<double>& bounds) {
+        std::vector<double> t(n);
+        for (std::size_t k = 0; k < n; ++k) t[k] = flight_s(order[k], bounds[k], bounds[k + 1]);
+        return t;
+      };
+      // Greedy from the last band down: each drone the longest share it flies within `makespan`.
+      auto greedy_down = [&](double makespan) {
+        std::vector<double> bounds(n + 1, 0.0);
+        bounds[n] = total;
+        for (std::size_t k = n; k-- > 1;) {
+          double fits = bounds[k + 1], fails = 0;  // the band's start
+          if (flight_s(order[k], 0, fits) <= makespan) {
+            fits = 0;
+          } else {
+            while (fits - fails > tolerance) {
+              const double mid = (fails + fits) / 2;
+              (flight_s(order[k], mid, bounds[k + 1]) <= makespan ? fits : fails) = mid;
+            }
+          }
+          bounds[k] = fits;
+        }
+        return bounds;
+      };
+      // relax: each cut to whichever side of the crossing makes the longer of its two drones
+      // shorter, the narrowest state seen kept (it can pass through wider ones); otherwise a cut
+      // moves only when the whole spread narrows.
+      auto refine = [&](std::vector<double> bounds, bool relax) {
+        std::vector<double> times = times_of(bounds);
+        std::vector<double> kept = bounds;
+        std::pair<double, double> kept_spread = spread(times);
+        for (int round = 0; round < 8; ++round) {
+          bool changed = false;
+          for (std::size_t k = 1; k < n; ++k) {
+            const double a = bounds[k - 1], b = bounds[k + 1];
+            auto gap = [&](double t) {
+              return flight_s(order[k - 1], a, t) - flight_s(order[k], t, b);
+            };
+            double lo = a, hi = b;  // gap(a) <= 0 <= gap(b)
+            while (hi - lo > tolerance) {
+              const double mid = (lo + hi) / 2;
+              (gap(mid) <= 0 ? lo : hi) = mid;
+            }
+            double pair_best = std::max(times[k - 1], times[k]);
+            for (const double t : {lo, hi}) {
+              std::vector<double> trial = times;
+              trial[k - 1] = flight_s(order[k - 1], a, t);
+              trial[k] = flight_s(order[k], t, b);
+              const auto [ratio, longest] = spread(trial);
+              const double pair = std::max(trial[k - 1], trial[k]);
+              const bool better =
+                  relax ? pair < pair_best * (1 - 1e-9) : ratio < spread(times).first * (1 - 1e-9);
+              if (longest <= makespan_limit && better) {
+                times = trial;
+                bounds[k] = t;
+                pair_best = pair;
+                changed = true;
+                if (ratio < kept_spread.first * (1 - 1e-9)) {
+                  kept = bounds;
+                  kept_spread = {ratio, longest};
+                }
+              }
+            }
+          }
+          if (!changed) break;
+        }
+        return std::make_pair(kept, kept_spread);
+      };
+      auto consider = [&](const std::vector<double>& start) {
+        if (start.size() != n + 1 || start.back() < total ||
+            spread(times_of(start)).second > makespan_limit)
+          return;
+        for (const bool relax : {false, true}) {
+          const auto [bounds, sp] = refine(start, relax);
+          if (sp.first < best_spread.first * (1 - 1e-9) ||
+              (sp.first <= best_spread.first * (1 + 1e-9) && sp.second < best_spread.second)) {
+            best_spread = sp;
+            best_order = order;
+            best_bounds = bounds;
+          }
+        }
+      };
+      consider(candidate.bounds);
+      for (const double above : {0.0, 0.005, 0.01, 0.02}) {
+        if (best_spread.first <= 1.002) break;
+        consider(greedy(order, candidate.makespan_s * (1 + above)));
+        consider(greedy_down(candidate.makespan_s * (1 + above)));
+      }
+    }
+    DivisionResult balanced = result_for(best_order, best_bounds);
+    if (balanced.makespan_s <= result.makespan_s) result = std::move(balanced);
   }
   result.proportional_makespan_s = proportional_makespan;
   return result;

@@ -188,6 +188,11 @@ Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, con
   return c;
 }
 
+}  // namespace
+
+// Outside the anonymous namespace: RunOrder's memo (a named class) holds one.
+namespace split_detail {
+
 // Routed paths and their lengths, memoised: the four variants of a cell share their turns, and
 // the ordering asks for the same transits again and again.
 class RoutedMetric {
@@ -213,6 +218,12 @@ class RoutedMetric {
   const geometry::VisibilityRouter& router_;
   std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, Route> known_;
 };
+
+}  // namespace split_detail
+
+namespace {
+
+using split_detail::RoutedMetric;
 
 // The cells (bits, the first 63) whose lanes a routed transit crosses.
 class LaneCrossings {
@@ -295,6 +306,29 @@ SplitPlan plan_pieces(const std::vector<geometry::Ring>& pieces, double angle_de
   if (c.cells.empty()) return {};
   RoutedMetric routed(router);
   SplitPlan plan = ordered_plan(c, home, routed);
+  plan.candidates = 1;
+  return plan;
+}
+
+struct RunOrder::Memo {
+  explicit Memo(const geometry::VisibilityRouter& router) : routed(router) {}
+  RoutedMetric routed;
+};
+
+RunOrder::RunOrder(const geometry::VisibilityRouter& router)
+    : memo_(std::make_unique<Memo>(router)) {}
+
+RunOrder::~RunOrder() = default;
+
+SplitPlan RunOrder::operator()(std::vector<geometry::Ring> outlines, std::vector<Sweep> runs,
+                               double angle_deg, Point2 home) {
+  Candidate c;
+  c.angle_deg = angle_deg;
+  c.method = SplitCells::runs;
+  c.cells = std::move(outlines);
+  c.sweeps = std::move(runs);
+  if (c.sweeps.empty()) return {};
+  SplitPlan plan = ordered_plan(c, home, memo_->routed);
   plan.candidates = 1;
   return plan;
 }

@@ -1,4 +1,5 @@
 // Step 5 of plan_survey(): who flies what (survey_steps.hpp).
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -120,6 +121,85 @@ DivisionResult divide_by_region(const SurveyPlan& plan, const Routes& routes,
   return divide_region(plan.planning_rings, angle, resources, r.balance, sweep_band);
 }
 
+// The flight a drone's mission will make of a survey path (the missions step builds the same).
+FlightMeasure flight_measure(const SurveyPlan& plan, const Routes& routes,
+                             std::vector<MissionSettings>& settings) {
+  settings.clear();
+  for (const DronePlan& d : plan.drones) settings.push_back(mission_settings(plan, d));
+  return [&plan, &routes, &settings](std::size_t i, const SurveyPath& part) -> FlightCost {
+    if (part.points.empty()) return {};
+    const DronePlan& d = plan.drones[i];
+    const DroneMission m = mission_for_path(d.number, d.home, part, settings[i], routes.leg());
+    return {m.flight_time_s, m.path_length_m};
+  };
+}
+
+// Region division balanced on the drones' measured flights (DESIGN.md §16): the plan's lanes cut
+// into bands, a band's last lane cut along its length where the balance needs it. A convex area's
+// share is flown as one zigzag; a split area's as the plan's runs (or cells), each restricted to
+// the share, in the order plan_split would fly them.
+DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
+                               const std::vector<DroneResource>& resources,
+                               std::optional<double> spacing) {
+  const double angle = plan.sweep.angle_deg;
+  const bool cells = plan.handling == Handling::split || plan.planning_rings.size() > 1;
+  const std::vector<SweepLine>& lanes = plan.sweep.lines;
+  const bool by_cell = cells && plan.sweep_line_cell.size() == lanes.size();
+  RunOrder run_order(routes.inside);
+  const LaneSweep sweep = [&](std::size_t i, const std::vector<LanePiece>& pieces) -> SurveyPath {
+    const Point2 home = plan.drones[i].home;
+    if (!cells) {
+      // The zigzag whose whole path (home legs and the turns) is shortest: a piece of a lane at
+      // either end of the share can make the home legs alone pick a long turn to it.
+      Sweep s;
+      s.angle_deg = angle;
+      for (const LanePiece& p : pieces) s.lines.push_back(p.line);
+      std::vector<SweepLine> best;
+      double best_m = INFINITY;
+      for (const bool top_first : {false, true})
+        for (const bool reverse_first : {false, true}) {
+          std::vector<SweepLine> z = zigzag(s, top_first, reverse_first);
+          double length_m =
+              geometry::distance(home, z.front().start) + geometry::distance(z.back().end, home);
+          for (std::size_t k = 0; k + 1 < z.size(); ++k)
+            length_m += geometry::distance(z[k].end, z[k + 1].start);
+          if (length_m < best_m - 1e-9) {
+            best_m = length_m;
+            best = std::move(z);
+          }
+        }
+      return survey_path(best, spacing);
+    }
+    // Each run (a lane alone where the cells are unknown) keeps the pieces it holds.
+    std::map<std::size_t, std::size_t> run_of;  // cell -> index in runs
+    std::vector<Sweep> runs;
+    std::vector<geometry::Ring> outlines;
+    for (const LanePiece& p : pieces) {
+      const std::size_t cell = by_cell ? plan.sweep_line_cell[p.lane] : p.lane;
+      const auto [it, fresh] = run_of.emplace(cell, runs.size());
+      if (fresh) {
+        runs.push_back({angle, 0.0, {}});
+        outlines.push_back(by_cell && cell < plan.cells.size() ? plan.cells[cell]
+                                                               : geometry::Ring{});
+      }
+      runs[it->second].lines.push_back(p.line);
+    }
+    // Pieces come in flight order (a run may have been flown top first): bottom to top.
+    for (Sweep& run : runs)
+      std::sort(run.lines.begin(), run.lines.end(),
+                [angle](const SweepLine& u, const SweepLine& v) {
+                  return rotate(u.start, -angle).y < rotate(v.start, -angle).y;
+                });
+    const SplitPlan sp = run_order(std::move(outlines), std::move(runs), angle, home);
+    return survey_path(sp.lines, spacing, routes.leg());
+  };
+  std::vector<MissionSettings> settings;
+  const FlightMeasure measure = flight_measure(plan, routes, settings);
+  if (!by_cell) return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure);
+  return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure,
+                      plan.sweep_line_cell, plan.cells);
+}
+
 }  // namespace
 
 void drones(SurveyPlan& plan) {
@@ -137,8 +217,15 @@ void drones(SurveyPlan& plan) {
   }
   plan.divided = true;
   const std::vector<DroneResource> resources = resources_of(plan);
-  plan.division = r.division == DivisionMode::path ? divide_path(whole, resources, r.balance)
-                                                   : divide_by_region(plan, routes, resources);
+  std::vector<MissionSettings> settings;
+  const FlightMeasure measure = flight_measure(plan, routes, settings);
+  if (r.division == DivisionMode::path)
+    plan.division = divide_path(whole, resources, r.balance,
+                                r.balance == Balance::makespan ? measure : FlightMeasure{});
+  else if (r.balance == Balance::makespan)
+    plan.division = divide_by_lanes(plan, routes, resources, spacing);
+  else
+    plan.division = divide_by_region(plan, routes, resources);
   for (std::size_t i = 0; i < plan.drones.size(); ++i)
     plan.drones[i].work = plan.division.drones[i];
 }

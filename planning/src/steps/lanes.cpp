@@ -97,6 +97,7 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
       plan.direction = {sp.angle_deg, geometry::height_at(plan.area.outer, sp.angle_deg)};
       plan.sweep = {sp.angle_deg, plan.direction.height_m, sp.lines};
       plan.cells = sp.cells;
+      plan.sweep_line_cell = sp.line_cell;
       plan.split_method = sp.method;
       plan.direction_candidates = sp.candidates;
     }

@@ -29,7 +29,9 @@ struct DroneWork {
   double share = 0.0;                  ///< fraction of the path length (path) or area (region)
   double home_cost_m = 0.0;            ///< there and back to the farthest point of the path / area
   std::optional<double> budget_m;      ///< range - home cost, where the range is known
-  double estimated_time_s = 0.0;       ///< straight home legs + its part, at its speed
+  /// Its flight time: the measured flight where the division was given a FlightMeasure, else
+  /// straight home legs + its part at its speed.
+  double estimated_time_s = 0.0;
 };
 
 struct DivisionResult {
@@ -39,15 +41,29 @@ struct DivisionResult {
   double proportional_makespan_s = 0.0;  ///< the same for capability-proportional cuts
 };
 
+/// A drone's whole flight over a part of the survey, as its mission will fly it.
+struct FlightCost {
+  double time_s = 0.0;    ///< home legs included, at its speed (with stops, climb, descent), >= 0
+  double length_m = 0.0;  ///< home -> part -> home along the routed legs, metres, >= 0
+};
+
+/// The exact flight of drone `drone` (index into the fleet) over `part` (its survey path, home legs
+/// not included; an empty path is no flight). Balancing on it rather than on straight legs at
+/// cruise speed is what brings the longest flight to within a fraction of a percent of the
+/// shortest (the estimate ignores stops at corners, climb and descent, routed legs).
+using FlightMeasure = std::function<FlightCost(std::size_t drone, const SurveyPath& part)>;
+
 /// Path division (Algorithm 3): cuts the whole survey path into consecutive pieces, one per drone
 /// in fleet order. Shares follow the corrected capabilities: budgets (range minus the home cost,
 /// twice the distance to the farthest point of the path) where ranges are known, capabilities
 /// otherwise. When the budgets add up to less than the path, each drone flies its budget and the
 /// rest is unflown. Balance::makespan instead cuts where the longest flight time (home legs
 /// included, each at its own speed, within its range) is smallest, by bisection on that time.
-/// Throws base::InputError when a drone cannot even fly its home cost.
+/// With `measure`, times (estimated_time_s, makespans, the balance) are the measured flights and
+/// a drone's range is checked against the measured length; without it, straight home legs at
+/// cruise speed. Throws base::InputError when a drone cannot even fly its home cost.
 DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
-                           Balance balance);
+                           Balance balance, const FlightMeasure& measure = {});
 
 /// Plans a band for a drone: the band's pieces -> its survey path. `estimate`: a quick version
 /// (straight transits) for the makespan search.
@@ -63,6 +79,46 @@ using BandSweep = std::function<SurveyPath(const std::vector<geometry::Ring>& ba
 DivisionResult divide_region(const std::vector<geometry::Ring>& rings, double angle_deg,
                              const std::vector<DroneResource>& drones, Balance balance,
                              const BandSweep& sweep_band);
+
+/// A piece of a lane given to a drone by divide_lanes(): `lane` indexes the lanes passed in,
+/// `line` is the part of it (the whole lane, or one side of a cut along its length), flown
+/// towards +x of the rotated frame.
+struct LanePiece {
+  std::size_t lane = 0;
+  SweepLine line;
+};
+
+/// Sweeps one drone's pieces of lanes (index into the fleet, its pieces in lane order) into its
+/// survey path (home legs not included).
+using LaneSweep =
+    std::function<SurveyPath(std::size_t drone, const std::vector<LanePiece>& pieces)>;
+
+/// Region division balanced on measured flight times (DESIGN.md §16): the undivided plan's lanes
+/// (`lanes`, at angle_deg, degrees CCW from x, one grid) in order of their ordinate, then along
+/// +x, are one line of length L; n - 1 cuts in [0, L] give each drone a band of lanes, whole ones
+/// and at most one cut along its length at each end, so that a drone's time changes with a cut
+/// continuously but where its share first reaches into a lane (the turn and stops that costs).
+/// The cuts minimise the longest measured flight (bisection on it, each cut the longest share a
+/// drone flies within it, found by bisection) for every assignment of drones to bands (every
+/// permutation up to 6 drones, interchangeable drones once; beyond that the homes' order across
+/// the lanes, the fleet's order and adjacent swaps); then, within 2 % of that makespan, the cuts
+/// whose longest over shortest flight is smallest (each cut moved to where its two drones' times
+/// cross, from several starts). Every lane is flown exactly once: the pieces of a lane add up to
+/// it. Regions: each drone's rows of the area (rows end halfway between lane ordinates; a row
+/// cut along a lane is cut across it there), clipped to `rings` (outer counter-clockwise, holes
+/// clockwise); shares are their areas. With `lane_cell` (the cell, an index into `cells`, of each
+/// lane), the lanes are cut in the order and direction given instead (the undivided plan's
+/// flight: run after run, so that a share is whole runs and parts of one at either end, and the
+/// part of a cut lane a drone gets is the part flown before or after the cut) and the regions are
+/// the cells clipped to each drone's lanes' rows. `proportional_makespan_s`: cuts in proportion
+/// to the corrected capabilities, bands in fleet order. Home costs and budgets as
+/// divide_region(); throws base::InputError as it does.
+DivisionResult divide_lanes(const std::vector<geometry::Ring>& rings, double angle_deg,
+                            const std::vector<SweepLine>& lanes,
+                            const std::vector<DroneResource>& drones, const LaneSweep& sweep,
+                            const FlightMeasure& measure,
+                            const std::vector<std::size_t>& lane_cell = {},
+                            const std::vector<geometry::Ring>& cells = {});
 
 /// Area of `rings` (outer counter-clockwise, holes clockwise) with y <= y_cut in the frame rotated
 /// by -angle_deg, m². Exact up to rounding (half-plane clipping of each ring, shoelace).

@@ -2,6 +2,7 @@
 // Concave areas and holes without flying outside (--concave split): boustrophedon cells, each
 // swept inside, visited in the order and direction that make the whole path shortest.
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -68,5 +69,25 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, geometry::Point2 
 SplitPlan plan_pieces(const std::vector<geometry::Ring>& pieces, double angle_deg,
                       geometry::Point2 home, const SplitSettings& settings,
                       const geometry::VisibilityRouter& router);
+
+/// Orders given runs as plan_split orders its cells (exact where small, transits routed and kept
+/// off lanes still to be flown), remembering routed transits from call to call: region division
+/// orders each drone's share of the same lanes many times.
+class RunOrder {
+ public:
+  explicit RunOrder(const geometry::VisibilityRouter& router);
+  ~RunOrder();
+  RunOrder(const RunOrder&) = delete;
+  RunOrder& operator=(const RunOrder&) = delete;
+  /// `runs`: each a Sweep at `angle_deg` (degrees CCW from east) whose lines lie on consecutive
+  /// lane ordinates, bottom to top, all flown towards +x of the rotated frame; `outlines` one ring
+  /// per run (reported as the plan's cells). Empty lines when there are no runs.
+  SplitPlan operator()(std::vector<geometry::Ring> outlines, std::vector<Sweep> runs,
+                       double angle_deg, geometry::Point2 home);
+
+ private:
+  struct Memo;
+  std::unique_ptr<Memo> memo_;
+};
 
 }  // namespace swath::planning

@@ -186,6 +186,8 @@ struct SurveyPlan {
   Imaging imaging;
   geometry::SweepDirection direction;  ///< angle of the lines (local, CCW from east) and height
   Sweep sweep;
+  /// Split: the cell (index into `cells`) of each of sweep.lines; empty otherwise.
+  std::vector<std::size_t> sweep_line_cell;
   std::vector<SweepLine> survey_lines;  ///< every line in flying order, before division
   double speed_m_s = 0.0;               ///< the request's cruise speed
   double turnaround_m = 0.0;

@@ -1,0 +1,73 @@
+#include "division_cases.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "swath/base/file_text.hpp"
+#include "swath/geometry/field.hpp"
+#include "swath/planning/camera.hpp"
+#include "swath/vehicle/drone.hpp"
+
+namespace swath::test {
+
+std::vector<DivisionCase> division_cases(const std::string& source_dir,
+                                         planning::DivisionMode division,
+                                         planning::Balance balance) {
+  struct Field {
+    std::string file;
+    geometry::GeoPoint fleet_home;
+  };
+  const vehicle::Fleet quads = vehicle::parse_fleet(
+      base::read_text_file(source_dir + "/share/fleets/three-quads.yaml", "fleet file", 1 << 20),
+      "three-quads.yaml");
+  const std::vector<Field> fields{{"meadow.geojson", quads.home},
+                                  {"vineyard.kml", {46.2276, 7.5917, 0}},
+                                  {"orchard.csv", {52.4035, -0.9525, 0}}};
+  std::vector<DivisionCase> out;
+  for (const Field& f : fields)
+    for (const bool equal : {true, false}) {
+      planning::SurveyRequest r;
+      r.field = geometry::read_field(source_dir + "/share/fields/" + f.file);
+      r.camera = planning::find_camera("sony-ilce-qx1", source_dir + "/share/cameras");
+      planning::PhotogrammetryMode m;
+      m.altitude_m = 60;
+      r.mode = m;
+      r.division = division;
+      r.balance = balance;
+      if (equal) {
+        r.fleet = vehicle::equal_fleet(3, {});
+        r.fleet->home = geometry::GeoPoint{std::numeric_limits<double>::quiet_NaN(), 0, 0};
+      } else {
+        vehicle::Fleet fleet = quads;
+        const double dlat = f.fleet_home.lat_deg - quads.home.lat_deg,
+                     dlon = f.fleet_home.lon_deg - quads.home.lon_deg;
+        fleet.home = f.fleet_home;
+        for (vehicle::Drone& d : fleet.drones)
+          if (d.home)
+            d.home = geometry::GeoPoint{d.home->lat_deg + dlat, d.home->lon_deg + dlon, 0};
+        r.home = fleet.home;
+        r.fleet = fleet;
+      }
+      out.push_back({f.file, equal ? "3 equal" : "three-quads", std::move(r)});
+    }
+  return out;
+}
+
+planning::SurveyRequest undivided(const planning::SurveyRequest& request) {
+  planning::SurveyRequest r = request;
+  r.fleet.reset();
+  return r;
+}
+
+double max_over_min_flight(const planning::SurveyPlan& plan) {
+  double longest = 0, shortest = std::numeric_limits<double>::infinity();
+  for (const planning::DronePlan& d : plan.drones) {
+    if (d.mission.lines.empty()) continue;
+    longest = std::max(longest, d.mission.flight_time_s);
+    shortest = std::min(shortest, d.mission.flight_time_s);
+  }
+  return shortest > 0 && std::isfinite(shortest) ? longest / shortest : 0.0;
+}
+
+}  // namespace swath::test
