@@ -17,6 +17,7 @@
 #include "swath/fleet/faults.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/fleet_file.hpp"
+#include "swath/fleet/trace_replay.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/mavlink/frame.hpp"
@@ -246,9 +247,10 @@ const std::vector<Target>& targets() {
            fleet::score_forecasts(*gmf, g);
            auto cv = fleet::constant_velocity_forecaster();
            fleet::score_forecasts(*cv, g.as_of(1.0));
+           fleet::make_trace_app(g);  // trace replay's checks of the scripts
          });
        },
-       {"tests/bad-input/seeds/dtg.json"}},
+       {"tests/bad-input/seeds/dtg.json", "tests/bad-input/seeds/dtg-script.json"}},
       // The checker judges any text and never throws; the replay (render) refuses it in one
       // sentence or reads it.
       {"fleet_events",

@@ -21,14 +21,15 @@ using base::InputError;
 using json = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler) {
+void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool required) {
   std::string names;
   for (const fleet::App& a : worlds::all_apps()) names += (names.empty() ? "" : ", ") + a.name;
-  app.add_option("APP", r.app, "The application: " + names + " (swath-fleet apps)")->required();
+  app.add_option("APP", r.app, "The application: " + names + " (swath-fleet apps)")
+      ->required(required);
   app.add_option("--world", r.world,
                  "World file, or a bundled world: hotspot, road, rf_field, sites, static, tracking "
                  "(share/worlds/)")
-      ->required();
+      ->required(required);
   app.add_option("--fleet", r.fleet,
                  "Fleet file (DESIGN.md §7's, with optional profile, max_flight_time_s, "
                  "approach_speed_m_s, accel_m_s2, recharge_s per drone)");
@@ -110,11 +111,19 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   if (!r.fleet.empty() && r.drones > 0) throw InputError("give --fleet or --drones, not both");
   // Each file is read once: parsed, and its text kept for config_text.
   std::string fleet_text, weights_text, faults_text;
+  const auto absolute = [](const std::string& f) {
+    return f.empty() ? f : fs::absolute(f).lexically_normal().string();
+  };
+  p.fleet_file = absolute(r.fleet);
+  p.weights_file = absolute(r.weights);
+  p.faults_file = absolute(r.faults);
+  for (const std::string& h : r.history) p.history_files.push_back(absolute(h));
   if (!r.fleet.empty()) {
     fleet_text = base::read_text_file(r.fleet, "fleet file");
     p.drones = fleet::parse_fleet_file(fleet_text, r.fleet, p.world->origin);
   } else {
     const int n = r.drones > 0 ? r.drones : 1;
+    p.default_drones = n;
     for (int i = 0; i < n; ++i) {
       fleet::DroneSpec d;
       d.name = "drone-" + std::to_string(i + 1);
@@ -220,6 +229,15 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"faults", p.settings.faults.size()},
            {"app_metrics", metrics}};
   if (!r.failure.empty()) out["failure"] = r.failure;
+  // What `replay` needs to run it again (the world is world_file and world_seed above).
+  json request{{"max_time_s", p.settings.max_time_s}};
+  if (!p.fleet_file.empty()) request["fleet_file"] = p.fleet_file;
+  if (p.default_drones > 0) request["default_drones"] = p.default_drones;
+  if (!p.weights_file.empty()) request["weights_file"] = p.weights_file;
+  if (!p.faults_file.empty()) request["faults_file"] = p.faults_file;
+  if (!p.history_files.empty()) request["history_files"] = p.history_files;
+  out["request"] = request;
+  if (!p.replay_of.empty()) out["replay_of"] = p.replay_of;
   return out.dump(2) + "\n";
 }
 

@@ -26,7 +26,9 @@ struct FleetRequest {
   std::vector<std::string> history;  ///< past runs: directories holding dtg.json, or the files
   bool relief = false;               ///< stand-bys for drones about to leave (§18.5 Example 5)
 };
-void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler);
+/// `required`: APP and --world must be given (false: the command checks them itself, as
+/// `tune`, whose ask and tell subcommands read them from a state file).
+void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool required = true);
 
 struct PreparedRun {
   fleet::App app;
@@ -37,6 +39,13 @@ struct PreparedRun {
   /// Everything that makes runs comparable but the scheduler and the seed: the app, the world's,
   /// fleet's, weights' and faults' text, wind and time limit (summary.json's config_hash).
   std::string config_text;
+  /// What summary.json records for `replay` to run it again: the fleet file (absolute) or the
+  /// count of default drones, the weights, faults and history files (absolute), the time limit.
+  std::string fleet_file, weights_file, faults_file;
+  std::vector<std::string> history_files;
+  int default_drones = 0;
+  /// A trace replay: the run directory it replays ("" for a run of the app itself).
+  std::string replay_of;
 };
 /// Reads and checks everything (base::InputError on bad input). `world_seed`: re-draws the
 /// world's random parts (compare's scenarios) instead of the file's seed.

@@ -6,6 +6,7 @@
 
 #include "command.hpp"
 #include "forecasts_command.hpp"
+#include "replay_command.hpp"
 #include "run_command.hpp"
 #include "scale_out_command.hpp"
 #include "tune_command.hpp"
@@ -17,6 +18,7 @@ int fleet_main(int argc, char** argv) {
   commands.push_back(std::make_unique<FleetRunCommand>());
   commands.push_back(std::make_unique<FleetCompareCommand>());
   commands.push_back(std::make_unique<FleetForecastsCommand>());
+  commands.push_back(std::make_unique<FleetReplayCommand>());
   commands.push_back(std::make_unique<FleetTuneCommand>());
   commands.push_back(std::make_unique<FleetCheckCommand>());
   commands.push_back(std::make_unique<FleetAppsCommand>());

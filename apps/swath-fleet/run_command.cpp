@@ -41,11 +41,16 @@ void FleetRunCommand::setup(CLI::App& app) {
                  "comma-separated: udp:HOST:PORT listens there for a vehicle sending to it "
                  "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
                  "instance); /SYSID after the port (1..255, default: its place + 1)");
+  world_seed_option_ = app.add_option(
+      "--world-seed", world_seed_,
+      "Draw the world's random parts from this seed instead of the file's (the scenarios of "
+      "compare and tune, as `worlds gen KIND --seed N` prints them)");
 }
 
 int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
-  PreparedRun p = prepare_run(request_);
+  PreparedRun p =
+      world_seed_option_->count() > 0 ? prepare_run(request_, world_seed_) : prepare_run(request_);
   std::unique_ptr<mavlink::MavlinkBackend> vehicles;
   if (backend_ == "mavlink") {
     if (vehicles_.empty()) throw InputError("--backend mavlink needs --vehicles");

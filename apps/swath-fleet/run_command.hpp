@@ -24,6 +24,8 @@ class FleetRunCommand : public Command {
   std::string output_, size_ = "1200x900";
   bool render_ = false;
   std::string backend_ = "sim", vehicles_;  ///< --backend sim|mavlink, --vehicles URL,..
+  std::uint64_t world_seed_ = 0;
+  CLI::Option* world_seed_option_ = nullptr;  ///< given: the world's random parts re-drawn
 };
 
 /// swath-fleet apps: the built-in applications.

@@ -2,17 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "intervals.hpp"
 #include "progress_bar.hpp"
+#include "shell_text.hpp"
+#include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/runtime.hpp"
+#include "swath/fleet/trace_replay.hpp"
 #include "swath/vehicle/random.hpp"
 
 namespace swath::apps {
@@ -20,8 +27,8 @@ namespace swath::apps {
 using base::InputError;
 using json = nlohmann::ordered_json;
 
-void FleetTuneCommand::setup(CLI::App& app) {
-  add_fleet_options(app, request_, false);
+void FleetTuneCommand::add_tune_options(CLI::App& app, bool required) {
+  add_fleet_options(app, request_, false, required);
   app.add_option("--trials", trials_,
                  "Weight sets to try (the defaults, or --weights, and reactive's among them)")
       ->check(CLI::Range(2, 4096))
@@ -40,7 +47,32 @@ void FleetTuneCommand::setup(CLI::App& app) {
       ->capture_default_str();
   app.add_option("-o,--output", output_,
                  "Directory for weights.yaml, tune.csv, held_out.csv and summary.json")
-      ->required();
+      ->required(required);
+}
+
+void FleetTuneCommand::setup(CLI::App& app) {
+  // APP, --world and -o are checked in run(): ask and tell read them from their state file.
+  add_tune_options(app, false);
+  app.add_option("--replay", replay_,
+                 "How a trial is scored: world (the app re-run in its world) or trace (the "
+                 "tuning seed's reactive run replayed from its dtg.json; not for wifi)")
+      ->check(CLI::IsMember({"world", "trace"}))
+      ->capture_default_str();
+  ask_ = app.add_subcommand(
+      "ask",
+      "Print the next rung's runs as swath-fleet command lines, one per line (creating STATE, "
+      "a JSON file, from APP and the options when it does not exist)");
+  ask_->add_option("STATE", state_, "The tuning's state file (JSON)")->required();
+  add_tune_options(*ask_, false);
+  ask_->add_option("--runs", runs_dir_,
+                   "Directory the runs go into (default: STATE's name with -runs)");
+  ask_->add_option("--program", program_,
+                   "The swath-fleet to name in the lines (default: this one's absolute path)");
+  tell_ = app.add_subcommand("tell",
+                             "Feed finished runs (directories ask named) back into STATE; after "
+                             "the last rung write weights.yaml and tune.csv to the output");
+  tell_->add_option("STATE", state_, "The tuning's state file (JSON)")->required();
+  tell_->add_option("RUN", told_runs_, "Run directories of the lines ask printed")->required();
 }
 
 namespace {
@@ -113,8 +145,9 @@ struct HeldOut {
 // tuning, held out), every run a world replay of the app.
 class Tuning {
  public:
-  Tuning(const FleetRequest& r, std::size_t histories, int tuning_seeds, int held_out)
+  Tuning(const FleetRequest& r, std::size_t histories, int tuning_seeds, int held_out, bool trace)
       : request_(r),
+        trace_(trace),
         history_count_(histories),
         tuning_seeds_(tuning_seeds),
         held_out_(held_out),
@@ -188,10 +221,27 @@ class Tuning {
       p.settings.forecaster = "gmf";
       p.settings.histories = histories_;
       p.settings.relief = true;
+      if (trace_) p.app = fleet::make_trace_app(trace_of(seed));
     }
     fleet::RunRecord rec = fleet::run_app(p.app, *p.world, p.drones, p.settings);
     if (expected_runs_ > 0) progress_.update(++done_runs_ / expected_runs_);
     return rec;
+  }
+  // The trace a trial replays on `seed`: reactive's world run there, made once.
+  const fleet::Dtg& trace_of(std::uint64_t seed) {
+    auto it = traces_.find(seed);
+    if (it == traces_.end()) {
+      FleetRequest r = request_;
+      r.scheduler = "reactive";
+      r.seed = seed;
+      PreparedRun p = prepare_run(r, seed);
+      it = traces_
+               .emplace(seed, fleet::parse_dtg(
+                                  fleet::run_app(p.app, *p.world, p.drones, p.settings).dtg_json,
+                                  "trace dtg.json"))
+               .first;
+    }
+    return it->second;
   }
   // A run that does not complete counts as twice the time limit.
   double time_of(const fleet::RunRecord& r) const {
@@ -199,6 +249,8 @@ class Tuning {
   }
 
   const FleetRequest& request_;
+  bool trace_;
+  std::map<std::uint64_t, fleet::Dtg> traces_;
   std::size_t history_count_;
   int tuning_seeds_, held_out_;
   std::uint64_t tune0_, held0_;
@@ -249,8 +301,21 @@ json weights_json(const fleet::Weights& w) {
 }  // namespace
 
 int FleetTuneCommand::run() {
+  try {
+    if (ask_->parsed()) return ask();
+    if (tell_->parsed()) return tell();
+  } catch (const nlohmann::json::exception& e) {  // a state file edited or cut short
+    throw InputError(state_ + ": not a tune state file of this swath-fleet (" + e.what() + ")");
+  }
+  if (request_.app.empty() || request_.world.empty() || output_.empty())
+    throw InputError(
+        "tune needs APP, --world and -o DIR (or: tune ask STATE, tune tell STATE "
+        "RUN..)");
   const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked first
-  Tuning tuning(request_, histories_, tuning_seeds_, held_out_);
+  if (replay_ == "trace")
+    if (const std::string why = fleet::schedule_dependence(request_.app); !why.empty())
+      throw InputError("--replay trace: " + why);
+  Tuning tuning(request_, histories_, tuning_seeds_, held_out_, replay_ == "trace");
   tuning.learn_histories();
   std::vector<Trial> trials;
   for (const fleet::Weights& w : draw_trials(check.settings.weights, trials_, request_.seed))
@@ -258,15 +323,15 @@ int FleetTuneCommand::run() {
   const std::size_t winner = tuning.halve(trials);
   const HeldOut held = tuning.score(trials[0].weights, trials[winner].weights);
 
-  const json summary{
-      {"app", request_.app},
-      {"world", check.world->kind()},
-      {"drones", check.drones.size()},
-      {"trials", trials.size()},
-      {"seeds", tuning.seeds_json()},
-      {"winner", {{"trial", winner}, {"weights", weights_json(trials[winner].weights)}}},
-      {"held_out", held_out_json(held)}};
+  json summary{{"app", request_.app},
+               {"world", check.world->kind()},
+               {"drones", check.drones.size()},
+               {"trials", trials.size()},
+               {"seeds", tuning.seeds_json()},
+               {"winner", {{"trial", winner}, {"weights", weights_json(trials[winner].weights)}}},
+               {"held_out", held_out_json(held)}};
   base::OutputSet set(output_, "fleet-tune");
+  if (replay_ == "trace") summary["replay"] = "trace";
   set.add("weights.yaml",
           weights_yaml(trials[winner].weights,
                        "swath-fleet tune " + request_.app + ": trial " + std::to_string(winner) +
@@ -283,6 +348,277 @@ int FleetTuneCommand::run() {
             << base::fixed_text(r.mean, 1) << " ± " << base::fixed_text(r.half, 1)
             << " s, tuned predictive " << base::fixed_text(t.mean, 1) << " ± "
             << base::fixed_text(t.half, 1) << " s\n";
+  return base::kExitSuccess;
+}
+
+// ---- tune ask / tell: the same search as command lines (DESIGN.md §18.11) -------------------
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string absolute_path(const std::string& f) {
+  if (f.empty()) return f;
+  std::string out = fs::absolute(f).lexically_normal().string();
+  while (out.size() > 1 && out.back() == '/') out.pop_back();  // "runs/x/" is "runs/x"
+  return out;
+}
+
+json read_state(const std::string& path) {
+  const json j = json::parse(base::read_text_file(path, "tune state"), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("tune_state"))
+    throw InputError(path + ": not a tune state file (tune ask STATE makes one)");
+  return j;
+}
+
+void write_state(const std::string& path, const json& state) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << state.dump(1) << "\n";
+    if (!out) throw InputError(path + ": cannot write the tune state");
+  }
+  fs::rename(tmp, path);
+}
+
+fleet::Weights weights_of(const json& j) {
+  fleet::Weights w;
+  w.coverage = j.at("coverage").get<double>();
+  for (const FreeWeight& f : kFree) w.*f.member = j.at(f.name).get<double>();
+  return w;
+}
+
+std::string trial_weights_file(const json& st, std::size_t i) {
+  return st["runs"].get<std::string>() + "/weights/trial-" + std::to_string(i) + ".yaml";
+}
+
+// The run directories the state's current phase waits for, with the seed of each.
+std::vector<std::pair<std::string, std::uint64_t>> expected_runs(const json& st) {
+  std::vector<std::pair<std::string, std::uint64_t>> out;
+  const std::string runs = st["runs"].get<std::string>();
+  const std::uint64_t seed = st["seed"].get<std::uint64_t>();
+  const std::string phase = st["phase"].get<std::string>();
+  if (phase == "histories") {
+    for (std::uint64_t k = 0; k < st["histories"].get<std::uint64_t>(); ++k)
+      out.push_back({runs + "/history-seed" + std::to_string(seed + k), seed + k});
+  } else if (phase == "rung") {
+    const int rung = st["rung"].get<int>();
+    const std::uint64_t s =
+        seed + st["histories"].get<std::uint64_t>() + static_cast<std::uint64_t>(rung);
+    for (const auto& i : st["alive"])
+      out.push_back(
+          {runs + "/rung" + std::to_string(rung) + "-trial" + std::to_string(i.get<std::size_t>()),
+           s});
+  }
+  return out;
+}
+
+std::string run_line(const json& st, const std::string& out_dir, std::uint64_t seed,
+                     const std::string& weights_file) {
+  std::ostringstream line;
+  line << shell_word(st["program"].get<std::string>()) << " run "
+       << shell_word(st["app"].get<std::string>()) << " --world "
+       << shell_word(st["world"].get<std::string>()) << " --world-seed " << seed;
+  if (!st["fleet"].get<std::string>().empty())
+    line << " --fleet " << shell_word(st["fleet"].get<std::string>());
+  if (st["drones"].get<int>() > 0) line << " --drones " << st["drones"].get<int>();
+  line << " --seed " << seed;
+  if (weights_file.empty()) {  // a history: reactive with the starting weights
+    line << " --scheduler reactive";
+    if (!st["weights"].get<std::string>().empty())
+      line << " --weights " << shell_word(st["weights"].get<std::string>());
+  } else {  // a trial: predictive (sa + GMF over the histories + relief) with its weights
+    line << " --scheduler sa --forecast gmf";
+    for (const auto& [dir, s] : expected_runs(json{{"phase", "histories"},
+                                                   {"runs", st["runs"]},
+                                                   {"seed", st["seed"]},
+                                                   {"histories", st["histories"]}}))
+      line << " --history " << shell_word(dir);
+    line << " --relief --weights " << shell_word(weights_file);
+  }
+  if (!st["faults"].get<std::string>().empty())
+    line << " --faults " << shell_word(st["faults"].get<std::string>());
+  if (!st["wind"].get<std::string>().empty())
+    line << " --wind " << shell_word(st["wind"].get<std::string>());
+  line << " --max-time " << base::shortest_text(st["max_time_s"].get<double>()) << " -o "
+       << shell_word(out_dir);
+  return line.str();
+}
+
+}  // namespace
+
+int FleetTuneCommand::ask() {
+  json st;
+  if (fs::exists(state_)) {
+    st = read_state(state_);
+    if (!request_.app.empty() && request_.app != st["app"].get<std::string>())
+      throw InputError(state_ + ": the state of a tuning of " + st["app"].get<std::string>() +
+                       ", not of " + request_.app + " (another STATE file, or drop APP)");
+  } else {
+    if (request_.app.empty() || request_.world.empty() || output_.empty())
+      throw InputError(state_ + " does not exist: to start a tuning give APP, --world and -o DIR");
+    const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked
+    const std::string runs = absolute_path(
+        runs_dir_.empty() ? fs::path(state_).replace_extension("").string() + "-runs" : runs_dir_);
+    st = json{{"tune_state", 1},
+              {"version", SWATH_VERSION},
+              {"app", request_.app},
+              {"world", absolute_path(check.world_source)},
+              {"fleet", absolute_path(request_.fleet)},
+              {"drones", request_.fleet.empty() ? check.default_drones : 0},
+              {"weights", absolute_path(request_.weights)},
+              {"faults", absolute_path(request_.faults)},
+              {"wind", request_.wind},
+              {"max_time_s", request_.max_time_s},
+              {"seed", request_.seed},
+              {"histories", histories_},
+              {"tuning_seeds", tuning_seeds_},
+              {"runs", runs},
+              {"output", absolute_path(output_)},
+              {"program", program_.empty() ? own_program_path("swath-fleet") : program_}};
+    json sets = json::array();
+    std::vector<std::pair<std::string, std::string>> files;
+    const auto trials = draw_trials(check.settings.weights, trials_, request_.seed);
+    for (std::size_t i = 0; i < trials.size(); ++i) {
+      sets.push_back(weights_json(trials[i]));
+      files.push_back({"trial-" + std::to_string(i) + ".yaml",
+                       weights_yaml(trials[i], "swath-fleet tune ask: trial " + std::to_string(i) +
+                                                   " of " + std::to_string(trials.size()))});
+    }
+    st["trials"] = sets;
+    st["phase"] = "histories";
+    st["rung"] = 0;
+    st["alive"] = json::array();
+    st["times_s"] = json::array();
+    for (std::size_t i = 0; i < trials.size(); ++i) st["times_s"].push_back(json::array());
+    st["told"] = json::object();
+    base::write_files_atomically(runs + "/weights", files, "fleet-tune-weights");
+    write_state(state_, st);
+  }
+  const std::string phase = st["phase"].get<std::string>();
+  if (phase == "done") {
+    std::cerr << state_ << ": the tuning is done: " << st["output"].get<std::string>()
+              << "/weights.yaml\n";
+    return base::kExitSuccess;
+  }
+  std::ostringstream out;
+  for (const auto& [dir, seed] : expected_runs(st)) {
+    if (st["told"].contains(dir)) continue;
+    std::string weights;
+    if (phase == "rung") {
+      const std::string name = fs::path(dir).filename().string();
+      weights = trial_weights_file(st, std::stoul(name.substr(name.find("-trial") + 6)));
+    }
+    out << run_line(st, dir, seed, weights) << "\n";
+  }
+  std::cout << out.str();
+  return base::kExitSuccess;
+}
+
+int FleetTuneCommand::tell() {
+  json st = read_state(state_);
+  if (st["phase"] == "done")
+    throw InputError(state_ + ": the tuning is done; nothing more to tell");
+  const auto expected = expected_runs(st);
+  const std::string app = st["app"].get<std::string>();
+  const double max_time_s = st["max_time_s"].get<double>();
+  for (const std::string& run : told_runs_) {
+    const std::string dir = absolute_path(run);
+    const auto it = std::find_if(expected.begin(), expected.end(),
+                                 [&](const auto& e) { return e.first == dir; });
+    const std::string summary_path = (fs::path(run) / "summary.json").string();
+    if (!fs::is_directory(run) || !fs::exists(summary_path))
+      throw InputError(run +
+                       ": not a run directory (no summary.json): run the line tune ask "
+                       "printed for it first");
+    if (it == expected.end())
+      throw InputError(run + ": not one of the runs " + state_ + " waits for now (tune ask " +
+                       state_ + " prints them)");
+    const nlohmann::json s =
+        base::parse_json_document(base::read_text_file(summary_path, "run summary"), summary_path);
+    const std::string run_app =
+        base::json_string(base::json_member(s, "app", summary_path), summary_path + ": app");
+    if (run_app != app)
+      throw InputError(run + ": a run of " + run_app + "; " + state_ + " tunes " + app);
+    const std::string version = base::json_string(base::json_member(s, "version", summary_path),
+                                                  summary_path + ": version");
+    if (version != st["version"].get<std::string>())
+      throw InputError(run + ": made by swath-fleet " + version + ", " + state_ + " by " +
+                       st["version"].get<std::string>() + ": one version per tuning");
+    const auto seed = base::json_integer(base::json_member(s, "seed", summary_path), 0,
+                                         9007199254740992LL, summary_path + ": seed");
+    if (static_cast<std::uint64_t>(seed) != it->second)
+      throw InputError(run + ": seed " + std::to_string(seed) + ", expected " +
+                       std::to_string(it->second));
+    const nlohmann::json& completed = base::json_member(s, "completed", summary_path);
+    const double t =
+        completed.is_boolean() && completed.get<bool>()
+            ? base::json_number(base::json_member(s, "completion_time_s", summary_path),
+                                summary_path + ": completion_time_s")
+            : 2 * max_time_s;  // as tune counts a run that does not complete
+    st["told"][dir] = t;
+  }
+  std::size_t told = 0;
+  for (const auto& e : expected) told += st["told"].contains(e.first) ? 1 : 0;
+  if (told < expected.size()) {
+    write_state(state_, st);
+    std::cout << state_ << ": " << told << " of " << expected.size() << " runs told\n";
+    return base::kExitSuccess;
+  }
+  // The phase is complete: on to the next rung, or the winner.
+  std::vector<Trial> trials;
+  for (std::size_t i = 0; i < st["trials"].size(); ++i) {
+    trials.push_back({weights_of(st["trials"][i]), {}});
+    for (const auto& t : st["times_s"][i]) trials[i].times_s.push_back(t.get<double>());
+  }
+  const int tuning_seeds = st["tuning_seeds"].get<int>();
+  std::vector<std::size_t> alive;
+  if (st["phase"] == "histories") {
+    for (std::size_t i = 0; i < trials.size(); ++i) alive.push_back(i);
+    st["phase"] = "rung";
+    st["rung"] = 0;
+  } else {
+    for (const auto& e : expected) {
+      const std::string name = fs::path(e.first).filename().string();
+      const std::size_t i = std::stoul(name.substr(name.find("-trial") + 6));
+      trials[i].times_s.push_back(st["told"][e.first].get<double>());
+      st["times_s"][i].push_back(st["told"][e.first]);
+      alive.push_back(i);
+    }
+    auto by_mean = [&](std::size_t a, std::size_t b) {
+      const double ma = trials[a].mean_s(), mb = trials[b].mean_s();
+      return ma != mb ? ma < mb : a < b;
+    };
+    const int rung = st["rung"].get<int>();
+    if (rung + 1 < tuning_seeds) {  // the better half goes on (tune's halving)
+      std::sort(alive.begin(), alive.end(), by_mean);
+      alive.resize((alive.size() + 1) / 2);
+      std::sort(alive.begin(), alive.end());
+      st["rung"] = rung + 1;
+    } else {
+      const std::size_t winner = *std::min_element(alive.begin(), alive.end(), by_mean);
+      base::OutputSet set(st["output"].get<std::string>(), "fleet-tune");
+      set.add("weights.yaml",
+              weights_yaml(trials[winner].weights,
+                           "swath-fleet tune " + app + ": trial " + std::to_string(winner) +
+                               " of " + std::to_string(trials.size()) + ", mean " +
+                               base::fixed_text(trials[winner].mean_s(), 3) + " s over " +
+                               std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
+      set.add("tune.csv", tune_csv(trials));
+      set.commit();
+      st["phase"] = "done";
+      st["winner"] = winner;
+      alive.clear();
+      std::cout << state_ << ": trial " << winner << " of " << trials.size() << " wins -> "
+                << st["output"].get<std::string>() << "/weights.yaml, tune.csv\n";
+    }
+  }
+  st["alive"] = alive;
+  st["told"] = json::object();
+  write_state(state_, st);
+  if (st["phase"] == "rung")
+    std::cout << state_ << ": rung " << st["rung"].get<int>() << " next (" << alive.size()
+              << " runs): tune ask " << state_ << "\n";
   return base::kExitSuccess;
 }
 

@@ -1,5 +1,6 @@
 #include "swath/fleet/dtg.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -22,7 +23,20 @@ Dtg Dtg::as_of(double t_s) const {
   std::vector<int> index(nodes.size(), -1);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (!(nodes[i].created_s <= t_s)) continue;
-    DtgNode n = nodes[i];
+    // Every field but the script (its indices name nodes of the whole graph), copied without it:
+    // the forecasters' scoring calls this once per batch.
+    const DtgNode& m = nodes[i];
+    DtgNode n;
+    n.type = m.type;
+    n.number = m.number;
+    n.kind = m.kind;
+    n.created_s = m.created_s;
+    n.ended_s = m.ended_s;
+    n.status = m.status;
+    n.first_loc_m = m.first_loc_m;
+    n.waiter = m.waiter;
+    n.same_drone = m.same_drone;
+    n.interruptible = m.interruptible;
     if (n.type == DtgNodeType::task && !(n.ended_s <= t_s)) {
       n.status = DtgStatus::running;
       n.ended_s = std::numeric_limits<double>::infinity();
@@ -68,6 +82,80 @@ std::pair<DtgNodeType, int> parse_id(const std::string& id, const std::string& w
   return {id[0] == 't' ? DtgNodeType::task : DtgNodeType::sync, std::stoi(id.substr(1))};
 }
 
+vehicle::Vec3 parse_vec3(const nlohmann::json& j, const std::string& where) {
+  const auto& a = json_array(j, where, 3);
+  return {json_number(a[0], where + "[0]"), json_number(a[1], where + "[1]"),
+          json_number(a[2], where + "[2]")};
+}
+
+// One script step; `task_index` maps a task id to its node index (-1: none).
+DtgStep parse_step(const nlohmann::json& j, const std::string& where,
+                   const std::map<std::pair<int, int>, int>& index) {
+  if (!j.is_object()) throw InputError(where + ": a script step is an object");
+  DtgStep s;
+  auto task_ref = [&](const nlohmann::json& r, const std::string& at) {
+    const auto [type, number] = parse_id(json_string(r, at), at);
+    const auto it = index.find({0, number});
+    if (type != DtgNodeType::task || it == index.end())
+      throw InputError(at + ": names no task node");
+    return it->second;
+  };
+  auto seconds = [&](const char* key) {
+    const double v = json_number(json_member(j, key, where), where + ": " + key);
+    if (!(v >= 0 && v <= 1e9)) throw InputError(where + ": " + key + ": not in [0, 1e9] s");
+    return v;
+  };
+  if (const auto* a = json_find(j, "act")) {
+    static const char* const kOps[] = {"fly_to", "sense", "hover", "custom", "fly_sensing"};
+    const std::string& op = json_string(*a, where + ": act");
+    s.action = -1;
+    for (int k = 0; k < 5; ++k)
+      if (op == kOps[k]) s.action = k;
+    if (s.action < 0)
+      throw InputError(where + ": act \"" + op +
+                       "\" is none of fly_to, sense, hover, custom, fly_sensing");
+    if (s.action == 0 || s.action == 4)
+      s.to_m = parse_vec3(json_member(j, "to", where), where + ": to");
+    if (s.action == 1 || s.action == 4)
+      s.name = json_string(json_member(j, "sensor", where), where + ": sensor");
+    if (s.action == 3) s.name = json_string(json_member(j, "name", where), where + ": name");
+    if (s.action == 2 || s.action == 3) s.seconds = seconds("s");
+    if (s.action == 4) {
+      s.seconds = seconds("period_s");
+      if (!(s.seconds > 0)) throw InputError(where + ": period_s: must be > 0");
+    }
+  } else if (const auto* aw = json_find(j, "await")) {
+    s.op = DtgStep::Op::await;
+    const auto& refs = json_array(*aw, where + ": await");
+    for (std::size_t k = 0; k < refs.size(); ++k) {
+      const std::string at = where + ": await[" + std::to_string(k) + "]";
+      const std::string& r = json_string(refs[k], at);
+      if (!r.empty() && r[0] == 'a' && r.size() <= 10 &&
+          r.find_first_not_of("0123456789", 1) == std::string::npos && r.size() >= 2)
+        s.actions.push_back(std::stoi(r.substr(1)));
+      else
+        s.tasks.push_back(task_ref(refs[k], at));
+    }
+    if (const auto* any = json_find(j, "any")) {
+      if (!any->is_boolean()) throw InputError(where + ": any: expected true or false");
+      s.any = any->get<bool>();
+    }
+  } else if (const auto* sp = json_find(j, "spawn")) {
+    s.op = DtgStep::Op::spawn;
+    s.tasks.push_back(task_ref(*sp, where + ": spawn"));
+  } else if (const auto* cn = json_find(j, "cancel")) {
+    s.op = DtgStep::Op::cancel;
+    s.tasks.push_back(task_ref(*cn, where + ": cancel"));
+  } else if (json_find(j, "delay_s")) {
+    s.op = DtgStep::Op::delay;
+    s.seconds = seconds("delay_s");
+  } else {
+    throw InputError(where + ": a script step is one of act, await, spawn, cancel, delay_s");
+  }
+  if (const auto* q = json_find(j, "seq")) s.seq = json_integer(*q, 0, 1LL << 53, where + ": seq");
+  return s;
+}
+
 DtgNode parse_node(const nlohmann::json& j, const std::string& where) {
   DtgNode n;
   const std::string& id = json_string(json_member(j, "id", where), where + ": id");
@@ -93,6 +181,16 @@ DtgNode parse_node(const nlohmann::json& j, const std::string& where) {
     n.ended_s = ended;
   else
     n.status = DtgStatus::running;
+  if (const auto* q = json_find(j, "ended_seq"))
+    n.ended_seq = json_integer(*q, -1, 1LL << 53, where + ": ended_seq");
+  if (const auto* f = json_find(j, "same_drone")) {
+    if (!f->is_boolean()) throw InputError(where + ": same_drone: expected true or false");
+    n.same_drone = f->get<bool>();
+  }
+  if (const auto* f = json_find(j, "interruptible")) {
+    if (!f->is_boolean()) throw InputError(where + ": interruptible: expected true or false");
+    n.interruptible = f->get<bool>();
+  }
   if (const auto* loc = json_find(j, "first_loc")) {
     const auto& a = json_array(*loc, where + ": first_loc", 3);
     n.first_loc_m = vehicle::Vec3{json_number(a[0], where + ": first_loc[0]"),
@@ -131,6 +229,31 @@ Dtg parse_dtg(const std::string& text, const std::string& source) {
                        std::to_string(n.waiter) + " is no task node");
     n.waiter = it->second;
     n.kind = g.nodes[static_cast<std::size_t>(it->second)].kind;
+  }
+  // Scripts name tasks by id: read once every node has its index.
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const auto* script = json_find(nodes[i], "script");
+    if (!script) continue;
+    const std::string where = source + ": nodes[" + std::to_string(i) + "]: script";
+    const auto [type, number] =
+        parse_id(json_string(json_member(nodes[i], "id", where), where), where);
+    if (type != DtgNodeType::task) throw InputError(where + ": only task nodes have a script");
+    DtgNode& n = g.nodes[static_cast<std::size_t>(index.at({0, number}))];
+    const auto& steps = json_array(*script, where);
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      DtgStep st = parse_step(steps[k], where + "[" + std::to_string(k) + "]", index);
+      const bool acts = st.op == DtgStep::Op::act;
+      n.script.push_back(std::move(st));
+      // An await names actions queued before it; a spawn follows the spawned task's creation.
+      if (acts) continue;
+      for (int a : n.script.back().actions)
+        if (a < 0 || a >= static_cast<int>(std::count_if(
+                              n.script.begin(), n.script.end(),
+                              [](const DtgStep& x) { return x.op == DtgStep::Op::act; })))
+          throw InputError(where + "[" + std::to_string(k) + "]: awaits action a" +
+                           std::to_string(a) + ", not queued before it");
+    }
+    n.has_script = true;
   }
   const auto& edges = json_array(json_member(doc, "edges", source), source + ": edges");
   for (std::size_t i = 0; i < edges.size(); ++i) {

@@ -74,6 +74,19 @@ struct Action {
   double sample_period_s = 0;  ///< fly_sensing: every so many seconds of the flight
 };
 
+// One step of a task's program (dtg.json "script"; written out by dtg_json()).
+struct ScriptStep {
+  enum Op : std::uint8_t { act, await, spawn, cancel, delay };
+  Op op = act;
+  int act_type = 0;  // Ctx's action types: fly_to 0, sense 1, hover 2, custom 3, fly_sensing 4
+  Vec3 to;
+  std::string name;
+  double s = 0;           // hover/custom duration, fly_sensing period, delay cost
+  std::vector<int> refs;  // await: task id, or -(action + 1); spawn, cancel: the task id
+  bool any = false;
+  std::uint64_t seq = 0;
+};
+
 struct Task {
   int id = 0;
   std::string kind;
@@ -99,6 +112,11 @@ struct Task {
   bool issued_since_sync = false;
   bool requested = false;  // a request_visible logged for the current head
   int segment = 0;         // head segments made visible so far
+  // Its program as the runtime saw it, in order (dtg.json "script", for trace replay): actions
+  // queued, awaits that suspended, spawns, cancels and compute delays.
+  std::vector<ScriptStep> script;
+  std::shared_ptr<bool> last_armed;  // the `any` its latest await step belongs to
+  std::int64_t ended_seq = -1;       // its end in the order of all script steps and ends
 
   // The first action not yet done by some drone.
   std::size_t head() const {
@@ -384,6 +402,9 @@ class Runtime final : public detail::Core {
   std::vector<SyncNode> syncs_;
   std::vector<Edge> edges_;
   bool dtg_changed_ = true;  // since the last forecast
+  // Orders every script step and task end of the run: an await of a task already done leaves no
+  // step, so replay needs to know which tasks had ended before each step (dtg.json "seq").
+  std::uint64_t script_seq_ = 0;
 
   // Forecasting and speculation (DESIGN.md §18.4–18.5).
   std::unique_ptr<Forecaster> forecaster_;
@@ -415,6 +436,8 @@ int Runtime::spawn(int parent, const Kind& kind, Flags flags,
     t.location = p.location;
     p.issued_since_sync = true;
     edges_.push_back({issuer_node(p), {false, t.id}, DtgEdgeType::spawn});
+    p.script.push_back({ScriptStep::spawn, 0, {}, {}, 0, {t.id}, false, script_seq_++});
+    p.last_armed.reset();
   }
   dtg_changed_ = true;
   log(json{{"ev", "task_created"}, {"task", t.id}, {"kind", t.kind}, {"parent", parent}});
@@ -449,13 +472,26 @@ Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::stri
   }
   t.actions.push_back(std::move(a));
   t.sync_node = -1;
+  // The script keeps the call exactly (full precision), so a replay flies the same targets.
+  t.script.push_back({ScriptStep::act,
+                      type >= 0 && type <= 4 ? type : 3,
+                      to,
+                      name,
+                      duration_s,
+                      {},
+                      false,
+                      script_seq_++});
+  t.last_armed.reset();
   if (t.serving < 0) changed_ = true;
   return Future<Reading>(state, this);
 }
 
 Future<void> Runtime::delay(int task, double cost_s) {
   auto state = std::make_shared<detail::State<void>>();
-  tasks_.at(static_cast<std::size_t>(task)).sync_node = -1;
+  Task& t = tasks_.at(static_cast<std::size_t>(task));
+  t.sync_node = -1;
+  t.script.push_back({ScriptStep::delay, 0, {}, {}, cost_s, {}, false, script_seq_++});
+  t.last_armed.reset();
   if (!(cost_s > 0)) {
     state->ready = true;
   } else {
@@ -476,6 +512,22 @@ int Runtime::dtg_sync_node(Task& t) {
 
 void Runtime::suspended(int task, detail::StateBase& awaited, std::coroutine_handle<> h,
                         std::shared_ptr<bool> armed) {
+  if (task >= 0) {  // the script's await step: a task ("tN") or one of its own actions ("aN")
+    Task& t = tasks_.at(static_cast<std::size_t>(task));
+    std::optional<int> ref;
+    if (awaited.task >= 0) ref = awaited.task;
+    for (std::size_t a = 0; !ref && a < t.actions.size(); ++a)
+      if (t.actions[a].result.get() == &awaited) ref = -static_cast<int>(a) - 1;
+    if (ref) {
+      if (armed && armed == t.last_armed && !t.script.empty()) {
+        t.script.back().refs.push_back(*ref);  // one more state of the same `any`
+      } else {
+        t.script.push_back(
+            {ScriptStep::await, 0, {}, {}, 0, {*ref}, armed != nullptr, script_seq_++});
+      }
+      t.last_armed = armed;
+    }
+  }
   awaited.waiters.push_back({task, h, std::move(armed)});
   if (awaited.task >= 0 && task >= 0) {  // awaiting a task: a sync node of the DTG
     Task& t = tasks_.at(static_cast<std::size_t>(task));
@@ -540,6 +592,7 @@ void Runtime::finish_task(Task& t, TaskStatus status, const std::string& reason)
   if (t.status != TaskStatus::running) return;
   t.status = status;
   t.ended_s = now_;
+  t.ended_seq = static_cast<std::int64_t>(script_seq_++);
   const char* ev = status == TaskStatus::done        ? "task_done"
                    : status == TaskStatus::cancelled ? "task_cancelled"
                                                      : "task_failed";
@@ -586,6 +639,11 @@ void Runtime::finish_task(Task& t, TaskStatus status, const std::string& reason)
 void Runtime::cancel(int issuer, int task) {
   if (task < 0 || static_cast<std::size_t>(task) >= tasks_.size()) return;
   Task& t = tasks_[static_cast<std::size_t>(task)];
+  if (issuer >= 0) {  // the call, taking effect or not: a replay fires it at the same point
+    Task& i = tasks_[static_cast<std::size_t>(issuer)];
+    i.script.push_back({ScriptStep::cancel, 0, {}, {}, 0, {task}, false, script_seq_++});
+    i.last_armed.reset();
+  }
   if (t.status != TaskStatus::running) return;
   if (issuer >= 0) {
     Task& i = tasks_[static_cast<std::size_t>(issuer)];
@@ -1718,10 +1776,48 @@ std::string Runtime::dtg_json() const {
                       : t.status == TaskStatus::cancelled ? "cancelled"
                                                           : "failed"},
            {"actions", t.actions.size()},
-           {"drones", t.drones_used}};
+           {"drones", t.drones_used},
+           {"ended_seq", t.ended_seq},
+           {"same_drone", t.flags.same_drone},
+           {"interruptible", t.flags.interruptible}};
+    json script = json::array();
+    for (const ScriptStep& st : t.script) {
+      static const char* const kActs[] = {"fly_to", "sense", "hover", "custom", "fly_sensing"};
+      json step;
+      switch (st.op) {
+        case ScriptStep::act:
+          step["act"] = kActs[st.act_type];
+          if (st.act_type == 0 || st.act_type == 4) step["to"] = {st.to.x, st.to.y, st.to.z};
+          if (st.act_type == 1 || st.act_type == 4) step["sensor"] = st.name;
+          if (st.act_type == 3) step["name"] = st.name;
+          if (st.act_type == 2 || st.act_type == 3) step["s"] = st.s;
+          if (st.act_type == 4) step["period_s"] = st.s;
+          break;
+        case ScriptStep::await: {
+          json refs = json::array();
+          for (int r : st.refs)
+            refs.push_back(r >= 0 ? "t" + std::to_string(r) : "a" + std::to_string(-r - 1));
+          step["await"] = std::move(refs);
+          if (st.any) step["any"] = true;
+          break;
+        }
+        case ScriptStep::spawn:
+          step["spawn"] = "t" + std::to_string(st.refs.front());
+          break;
+        case ScriptStep::cancel:
+          step["cancel"] = "t" + std::to_string(st.refs.front());
+          break;
+        case ScriptStep::delay:
+          step["delay_s"] = st.s;
+          break;
+      }
+      step["seq"] = st.seq;
+      script.push_back(std::move(step));
+    }
+    n["script"] = std::move(script);
     if (t.first_loc)
       n["first_loc"] = {round6(t.first_loc->x), round6(t.first_loc->y), round6(t.first_loc->z)};
-    nodes.push_back(n);
+    nodes.push_back(std::move(n));
   }
   for (std::size_t k = 0; k < syncs_.size(); ++k)
     nodes.push_back(json{{"id", "s" + std::to_string(k)},

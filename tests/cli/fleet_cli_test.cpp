@@ -562,5 +562,122 @@ TEST(FleetCli, TuneKeepsTheBetterHalfAndRunReproducesItsHeldOutTime) {
   EXPECT_NEAR(replayed["completion_time_s"].get<double>(), std::stod(held[1][3]), 1e-3);
 }
 
+// swath-fleet replay (DESIGN.md §18.8): a run's dtg.json played back in the run's own world with
+// its fleet, scheduler and seed gives the run's events byte for byte; with another scheduler it
+// gives what `run` with that scheduler gives (case 1's graph does not depend on the schedule).
+// Refused, writing nothing: the wifi app (its cancels depend on the schedule) unless --force, a
+// directory that is no run, runs of two versions.
+TEST(FleetCli, ReplayOfARunIsTheRunAndRefusesWhatItCannotReplay) {
+  const std::string dir = fresh_dir("fleet-replay");
+  ASSERT_EQ(
+      run_swath_fleet("run road --world road --drones 2 --seed 3 -o " + dir + "/road").exit_code,
+      0);
+  CliRun r = run_swath_fleet("replay " + dir + "/road -o " + dir + "/again");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("trace replay completed in"), std::string::npos) << r.out;
+  EXPECT_EQ(read_text(dir + "/again/events.jsonl"), read_text(dir + "/road/events.jsonl"));
+  EXPECT_EQ(read_text(dir + "/again/dtg.json"), read_text(dir + "/road/dtg.json"));
+  const json summary = json::parse(read_text(dir + "/again/summary.json"));
+  EXPECT_EQ(summary["completion_time_s"],
+            json::parse(read_text(dir + "/road/summary.json"))["completion_time_s"]);
+  EXPECT_EQ(summary["replay_of"].get<std::string>(),
+            fs::path(dir + "/road").lexically_normal().string());
+
+  // Another scheduler and fleet: the replay equals the app run that way; two runs at once go
+  // into a directory each.
+  ASSERT_EQ(run_swath_fleet("run road --world road --drones 3 --scheduler greedy --seed 3 -o " +
+                            dir + "/greedy")
+                .exit_code,
+            0);
+  ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --drones 1 --seed 2 -o " + dir + "/hot")
+                .exit_code,
+            0);
+  r = run_swath_fleet("replay " + dir + "/road " + dir + "/hot --scheduler greedy --drones 3 -o " +
+                      dir + "/both");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir + "/both/road/events.jsonl"), read_text(dir + "/greedy/events.jsonl"));
+  EXPECT_TRUE(fs::exists(dir + "/both/hot/events.jsonl"));
+
+  // Refusals (exit 2, nothing written).
+  ASSERT_EQ(run_swath_fleet("run wifi --world rf_field --drones 2 -o " + dir + "/wifi").exit_code,
+            0);
+  r = run_swath_fleet("replay " + dir + "/wifi -o " + dir + "/refused");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("wifi app (case 2) cancels"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // one sentence
+  r = run_swath_fleet("replay " + dir + "/road-nowhere -o " + dir + "/refused");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not a run directory"), std::string::npos) << r.err;
+  fs::create_directories(dir + "/empty");
+  r = run_swath_fleet("replay " + dir + "/empty -o " + dir + "/refused");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no summary.json or dtg.json"), std::string::npos) << r.err;
+  fs::copy(dir + "/hot", dir + "/old");
+  std::string old = read_text(dir + "/old/summary.json");
+  const std::size_t v = old.find("\"version\": \"");
+  old.replace(v, old.find('"', v + 12) + 1 - v, "\"version\": \"0.0.9\"");
+  std::ofstream(dir + "/old/summary.json", std::ios::trunc) << old;
+  r = run_swath_fleet("replay " + dir + "/road " + dir + "/old -o " + dir + "/refused");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("made by swath-fleet 0.0.9"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/refused"));
+  // Forced: the recorded cancels are replayed as recorded.
+  r = run_swath_fleet("replay " + dir + "/wifi --force -o " + dir + "/forced");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(json::parse(read_text(dir + "/forced/summary.json"))["tasks"],
+            json::parse(read_text(dir + "/wifi/summary.json"))["tasks"]);
+}
+
+// tune ask / tell (DESIGN.md §18.11): the test plays the engine — runs every line ask prints
+// with the real binary, tells the run directories back — until ask has nothing left; the
+// weights.yaml and tune.csv are then tune's own for the same seed and settings. A state file is
+// the same bytes for the same settings; another app's state, a run ask did not name and a
+// directory that is no run are refused.
+TEST(FleetCli, TuneAskTellEndsWithTunesWeights) {
+  const std::string dir = fresh_dir("fleet-tune-ask");
+  const std::string settings =
+      "road --world road --drones 2 --trials 6 --tuning-seeds 2 --held-out 2 --histories 2 "
+      "--seed 4 ";
+  ASSERT_EQ(run_swath_fleet("tune " + settings + "-o " + dir + "/tune").exit_code, 0);
+  const std::string state = dir + "/state.json";
+  CliRun ask = run_swath_fleet("tune ask " + state + " " + settings + "-o " + dir + "/asked");
+  ASSERT_EQ(ask.exit_code, 0) << ask.err;
+  const std::string first_state = read_text(state);
+  int rounds = 0, runs = 0;
+  for (; !ask.out.empty() && rounds < 10; ++rounds) {
+    std::istringstream lines(ask.out);
+    std::string told;
+    for (std::string line; std::getline(lines, line); ++runs) {
+      std::ofstream(dir + "/job.sh", std::ios::trunc) << line << "\n";
+      ASSERT_EQ(run_program("sh", dir + "/job.sh").exit_code, 0) << line;
+      told += " " + line.substr(line.rfind(" -o ") + 4);
+    }
+    if (rounds == 1) {  // refusals mid-way change nothing
+      CliRun bad = run_swath_fleet("tune tell " + state + " " + dir + "/nowhere");
+      EXPECT_EQ(bad.exit_code, 2);
+      EXPECT_NE(bad.err.find("not a run directory"), std::string::npos) << bad.err;
+      bad = run_swath_fleet("tune tell " + state + " " + dir + "/tune");
+      EXPECT_EQ(bad.exit_code, 2);
+      bad = run_swath_fleet("tune ask " + state + " hotspot --world hotspot");
+      EXPECT_EQ(bad.exit_code, 2);
+      EXPECT_NE(bad.err.find("tuning of road, not of hotspot"), std::string::npos) << bad.err;
+    }
+    const CliRun tell = run_swath_fleet("tune tell " + state + told);
+    ASSERT_EQ(tell.exit_code, 0) << tell.err;
+    ask = run_swath_fleet("tune ask " + state);
+    ASSERT_EQ(ask.exit_code, 0) << ask.err;
+  }
+  EXPECT_EQ(rounds, 3);        // histories, then two rungs
+  EXPECT_EQ(runs, 2 + 6 + 3);  // 2 histories, 6 trials, the better half of them
+  EXPECT_EQ(read_text(dir + "/asked/weights.yaml"), read_text(dir + "/tune/weights.yaml"));
+  EXPECT_EQ(read_text(dir + "/asked/tune.csv"), read_text(dir + "/tune/tune.csv"));
+  ASSERT_FALSE(read_text(dir + "/asked/weights.yaml").empty());
+  // Same settings, same state bytes.
+  fs::remove(state);
+  ASSERT_EQ(
+      run_swath_fleet("tune ask " + state + " " + settings + "-o " + dir + "/asked").exit_code, 0);
+  EXPECT_EQ(read_text(state), first_state);
+}
+
 }  // namespace
 }  // namespace swath::test
