@@ -277,4 +277,12 @@ std::string timing_json(const fleet::RunRecord& r) {
          "\n";
 }
 
+void add_run_files(base::OutputSet& set, const PreparedRun& p, const fleet::RunRecord& r) {
+  set.add("events.jsonl", r.events_jsonl);
+  set.add("dtg.json", r.dtg_json);
+  set.add("summary.json", summary_json(p, r));
+  set.add("tracks.geojson", tracks_geojson(p, r));
+  set.add("timing.json", timing_json(r));
+}
+
 }  // namespace swath::apps

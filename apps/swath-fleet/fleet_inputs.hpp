@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/base/output_set.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/worlds/worlds.hpp"
 
@@ -64,5 +65,8 @@ std::string world_path(const std::string& name);
 std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r);
 std::string tracks_geojson(const PreparedRun& p, const fleet::RunRecord& r);
 std::string timing_json(const fleet::RunRecord& r);
+/// The five files of a run (events.jsonl, dtg.json, summary.json, tracks.geojson, timing.json)
+/// added to `set` (run and replay write the same set).
+void add_run_files(base::OutputSet& set, const PreparedRun& p, const fleet::RunRecord& r);
 
 }  // namespace swath::apps

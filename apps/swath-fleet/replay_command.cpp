@@ -174,11 +174,7 @@ int FleetReplayCommand::run() {
       dir /= run.filename().empty() ? run.parent_path().filename() : run.filename();
     }
     base::OutputSet set(dir, "fleet-run");
-    set.add("events.jsonl", r.events_jsonl);
-    set.add("dtg.json", r.dtg_json);
-    set.add("summary.json", summary_json(p, r));
-    set.add("tracks.geojson", tracks_geojson(p, r));
-    set.add("timing.json", timing_json(r));
+    add_run_files(set, p, r);
     set.commit();
     std::cout << runs_[i] << ": trace replay ";
     if (r.completed)

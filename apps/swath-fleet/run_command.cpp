@@ -73,11 +73,7 @@ int FleetRunCommand::run() {
   }
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
   base::OutputSet set(output_, "fleet-run");
-  set.add("events.jsonl", r.events_jsonl);
-  set.add("dtg.json", r.dtg_json);
-  set.add("summary.json", summary_json(p, r));
-  set.add("tracks.geojson", tracks_geojson(p, r));
-  set.add("timing.json", timing_json(r));
+  add_run_files(set, p, r);
   if (render_) {
     const FleetPicture tracks = tracks_picture(*p.world, r, width_px, height_px);
     set.add("tracks.png", render::encode_png(render::draw(tracks.scene, tracks.view)));
