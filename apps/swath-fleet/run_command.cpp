@@ -68,6 +68,10 @@ int FleetRunCommand::run() {
       throw InputError(std::string("--vehicles: ") + e.what());
     }
     p.settings.backend = vehicles.get();
+    std::cerr << "swath-fleet run: " << urls.size()
+              << " vehicles over MAVLink on the wall clock; when the app ends, each is sent home "
+                 "and waited for (up to "
+              << base::fixed_text(settings.end_timeout_s, 0) << " s) until it has landed\n";
   } else if (!vehicles_.empty()) {
     throw InputError("--vehicles needs --backend mavlink");
   }

@@ -1592,6 +1592,9 @@ void Runtime::poll_backend() {
       requeue(d, "vehicle_refused");
       leave_spot(d);
       d.leg.reset();
+      // Refused in the air (a target outside the fence): it still goes home and lands; the
+      // backend does nothing for a vehicle already down.
+      if (d.mode != Mode::landed && d.mode != Mode::charging) ext_->return_home(d.index);
       set_mode(d, Mode::lost, now_);
       changed_ = true;
       continue;

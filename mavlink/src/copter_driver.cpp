@@ -63,6 +63,12 @@ std::optional<CmdResult> CopterDriver::command_result(int id) const {
   return commands_.at(static_cast<std::size_t>(id)).result;
 }
 
+int CopterDriver::commands_pending() const {
+  return static_cast<int>(std::count_if(commands_.begin(), commands_.end(), [](const Pending& p) {
+    return p.state == CommandState::pending;
+  }));
+}
+
 bool CopterDriver::go_to(double lat_deg, double lon_deg, double altitude_m) {
   if (settings_.inside_fence && !settings_.inside_fence(lat_deg, lon_deg)) return false;
   SetPositionTargetGlobalInt t;
@@ -97,16 +103,27 @@ bool CopterDriver::arrived() const {
          speed_m_s < settings_.arrival_speed_m_s;
 }
 
+void CopterDriver::request_telemetry(Cmd cmd, float p1, float p2) {
+  // At most one pending request per message: a link that flaps while a set is still waiting to
+  // go out must not add another set each time it comes up.
+  for (const Pending& p : commands_)
+    if (p.state == CommandState::pending && p.message.command == static_cast<std::uint16_t>(cmd) &&
+        p.message.param1 == p1)
+      return;
+  enqueue(cmd, p1, p2);
+}
+
 void CopterDriver::on_link_up() {
   // Telemetry rates and home are asked again after every loss: the vehicle may have rebooted.
   const auto interval = [&](std::uint32_t id, double s) {
-    enqueue(Cmd::set_message_interval, static_cast<float>(id), static_cast<float>(s * 1e6));
+    request_telemetry(Cmd::set_message_interval, static_cast<float>(id),
+                      static_cast<float>(s * 1e6));
   };
   interval(GlobalPositionInt::kId, settings_.position_interval_s);
   interval(SysStatus::kId, settings_.status_interval_s);
   interval(BatteryStatus::kId, settings_.status_interval_s);
   interval(ExtendedSysState::kId, settings_.status_interval_s);
-  enqueue(Cmd::request_message, static_cast<float>(HomePosition::kId));
+  request_telemetry(Cmd::request_message, static_cast<float>(HomePosition::kId));
 }
 
 void CopterDriver::on_frame(const Frame& frame, double now_s) {
@@ -173,12 +190,9 @@ void CopterDriver::send_due(double now_s) {
       // Telemetry is what the link is for (without positions no arrival is ever seen): its
       // requests are asked again, as new commands, until the vehicle answers.
       const auto cmd = static_cast<Cmd>(p.message.command);
-      if (cmd == Cmd::set_message_interval || cmd == Cmd::request_message) {
-        Pending again;
-        again.message = p.message;
-        again.message.confirmation = 0;
-        commands_.push_back(again);  // may reallocate: p is not used below
-      }
+      if (cmd == Cmd::set_message_interval || cmd == Cmd::request_message)
+        request_telemetry(cmd, p.message.param1, p.message.param2);  // may reallocate: p unused
+
       continue;
     }
     p.message.confirmation = static_cast<std::uint8_t>(p.sends);

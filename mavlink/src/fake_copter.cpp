@@ -39,23 +39,33 @@ void FakeCopter::to_geodetic(double north_m, double east_m, double& lat_deg,
   lon_deg = p.lon_deg;
 }
 
+void FakeCopter::send_status_text(const std::string& text) {
+  StatusText t;
+  t.severity = 3;  // MAV_SEVERITY_ERROR
+  std::copy_n(text.begin(), std::min(text.size(), t.text.size()), t.text.begin());
+  endpoint_.send(t);
+}
+
 void FakeCopter::on_command(const CommandLong& c, double now_s) {
   ++received_[c.command];
   CmdResult result = CmdResult::accepted;
   const bool on_ground = landed_ == LandedState::on_ground;
   switch (static_cast<Cmd>(c.command)) {
-    case Cmd::do_set_mode:
-      mode_ = static_cast<CopterMode>(std::lround(c.param2));
+    case Cmd::do_set_mode: {
+      const auto mode = static_cast<CopterMode>(std::lround(c.param2));
+      if (!refuse_mode_.empty() && mode == refused_mode_) {
+        send_status_text(refuse_mode_);
+        result = CmdResult::failed;
+        break;
+      }
+      mode_ = mode;
       if (mode_ == CopterMode::guided) has_target_ = false;  // GUIDED holds position first
       break;
+    }
     case Cmd::component_arm_disarm:
       if (c.param1 == 1.0f) {
         if (!refuse_arm_.empty()) {
-          StatusText t;
-          t.severity = 3;
-          std::copy_n(refuse_arm_.begin(), std::min(refuse_arm_.size(), t.text.size()),
-                      t.text.begin());
-          endpoint_.send(t);
+          send_status_text(refuse_arm_);
           result = CmdResult::failed;
         } else if (mode_ != CopterMode::guided || !on_ground) {
           result = CmdResult::denied;

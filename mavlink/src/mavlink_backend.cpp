@@ -76,20 +76,40 @@ bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, do
   return in;
 }
 
+// A vehicle rejecting one step of the steering this many times (since it last accepted it) will
+// not do it (a pre-arm check, a mode it refuses): retrying forever would hide that.
+constexpr int kMaxRejections = 3;
+
 }  // namespace
 
 // What the runtime last asked of a vehicle, and where its steering stands.
 struct MavlinkBackend::Vehicle {
   enum class Want { ground, go, home };
+  enum class Step { mode, arm, takeoff, rtl };  // the steering's gated steps
+  static constexpr int kSteps = 4;
+  static const char* refusal_text(Step step) {
+    switch (step) {
+      case Step::mode:
+        return "refused GUIDED";
+      case Step::arm:
+        return "refused to arm";
+      case Step::takeoff:
+        return "refused to take off";
+      case Step::rtl:
+        return "refused to return to launch";
+    }
+    return "refused";
+  }
   std::unique_ptr<Link> link;
   std::unique_ptr<CopterDriver> driver;
   Want want = Want::ground;
   double lat_deg = 0, lon_deg = 0, alt_m = 0;
   double cruise_m_s = 10, approach_m_s = 2, approach_within_m = 20;
   bool target_sent = false, slowed = false;
-  int gate = -1;              // a command the steering waits for (mode, arm, take-off, RTL)
-  bool gate_arm = false;      // it is the arm command (a refusal ends the vehicle's part)
-  double settle_until_s = 0;  // an accepted command shows in the state only after this
+  int gate = -1;  // a command the steering waits for (mode, arm, take-off, RTL)
+  Step gate_step = Step::mode;
+  std::array<int, kSteps> rejections{};  // of each step since it was last accepted
+  double settle_until_s = 0;             // an accepted command shows in the state only after this
   std::string refusal;
 };
 
@@ -99,6 +119,8 @@ MavlinkBackend::MavlinkBackend(std::vector<std::unique_ptr<Link>> links,
     : settings_(std::move(settings)) {
   if (links.size() != sysids.size())
     throw std::invalid_argument("MavlinkBackend: one system id per link");
+  if (!(settings_.end_timeout_s >= 0))
+    throw std::invalid_argument("MavlinkBackend: end_timeout_s must be >= 0");
   if (!(settings_.poll_step_s > 0))
     throw std::invalid_argument("MavlinkBackend: poll_step_s must be > 0");
   const geometry::LocalFrame frame(settings_.origin);
@@ -161,6 +183,24 @@ void MavlinkBackend::return_home(int drone) {
 void MavlinkBackend::end_run() {
   for (auto& v : vehicles_)
     if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()));
+  // The RTL goes out only from poll(): keep polling (and the ground station's heartbeat) until
+  // every vehicle is down, or the deadline, before the caller closes the links.
+  const double deadline_s = now_s_ + settings_.end_timeout_s;
+  while (now_s_ < deadline_s && !all_down()) advance_to(std::min(deadline_s, now_s_ + 1.0));
+}
+
+// Every vehicle on the ground (disarmed or landed) or never heard; one heard before but silent
+// now may still be flying (its own failsafe brings it home) and is waited for.
+bool MavlinkBackend::all_down() const {
+  for (const auto& v : vehicles_) {
+    const VehicleState& s = v->driver->state();
+    if (!s.link_alive) {
+      if (std::isfinite(s.last_heard_s)) return false;
+      continue;
+    }
+    if (s.armed && s.landed != LandedState::on_ground) return false;
+  }
+  return true;
 }
 
 // One step of the steering toward what the runtime wants, from the vehicle's reported state.
@@ -170,42 +210,52 @@ void MavlinkBackend::steer(Vehicle& v) {
   if (v.gate >= 0) {
     const CommandState c = d.command_state(v.gate);
     if (c == CommandState::pending) return;
-    if (c == CommandState::rejected && v.gate_arm)
-      v.refusal = "refused to arm" +
+    int& rejected = v.rejections[static_cast<std::size_t>(v.gate_step)];
+    if (c == CommandState::rejected && ++rejected >= kMaxRejections && v.refusal.empty())
+      v.refusal = Vehicle::refusal_text(v.gate_step) +
                   (s.status_texts.empty() ? std::string() : ": " + s.status_texts.back());
     // Mode and armed come with the 1 Hz HEARTBEAT, landed with the 1 Hz EXTENDED_SYS_STATE:
     // after an acceptance the state is trusted again once both have been sent since.
-    if (c == CommandState::accepted) v.settle_until_s = now_s_ + kSettleS;
+    if (c == CommandState::accepted) {
+      v.settle_until_s = now_s_ + kSettleS;
+      rejected = 0;
+    }
     v.gate = -1;  // accepted, refused or timed out: the state says what comes next
-    v.gate_arm = false;
   }
   if (now_s_ < v.settle_until_s) return;
-  if (!s.link_alive || !v.refusal.empty()) return;
+  if (!s.link_alive) return;
   const bool armed = s.armed;
   const bool down = !armed || s.landed == LandedState::on_ground;
   const auto mode = static_cast<CopterMode>(s.custom_mode);
+  const auto gate = [&](int id, Vehicle::Step step) {
+    v.gate = id;
+    v.gate_step = step;
+  };
   switch (v.want) {
     case Vehicle::Want::ground:
       return;
     case Vehicle::Want::home:
-      if (!down && mode != CopterMode::rtl && mode != CopterMode::land)
-        v.gate = d.return_to_launch();
+      // Still steered after a refusal of anything else (a target outside the fence mid-air):
+      // only a vehicle refusing RTL itself is left to its own failsafe.
+      if (!down && mode != CopterMode::rtl && mode != CopterMode::land &&
+          v.rejections[static_cast<std::size_t>(Vehicle::Step::rtl)] < kMaxRejections)
+        gate(d.return_to_launch(), Vehicle::Step::rtl);
       return;
     case Vehicle::Want::go:
       break;
   }
+  if (!v.refusal.empty()) return;    // a refusal blocks going anywhere but home
   if (mode != CopterMode::guided) {  // from the ground, or after a failsafe RTL
     v.target_sent = false;
-    v.gate = d.set_mode(CopterMode::guided);
+    gate(d.set_mode(CopterMode::guided), Vehicle::Step::mode);
     return;
   }
   if (!armed) {
-    v.gate = d.arm();
-    v.gate_arm = true;
+    gate(d.arm(), Vehicle::Step::arm);
     return;
   }
   if (s.landed == LandedState::on_ground) {
-    v.gate = d.takeoff(v.alt_m);
+    gate(d.takeoff(v.alt_m), Vehicle::Step::takeoff);
     return;
   }
   if (s.landed == LandedState::takeoff) return;  // climbing to the layer

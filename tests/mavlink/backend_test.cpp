@@ -5,13 +5,15 @@
 // file, positions from the fakes' telemetry); lost commands (acknowledgements never sent, some
 // commands timed out) still complete; a 10 s link cut of one vehicle in flight is detected, its
 // request requeued and served, no task lost, completion later than without the cut; a vehicle
-// refusing to arm leaves the fleet with its sentence; at the end both vehicles return and land at
-// home. The --vehicles parser refuses bad entries.
+// refusing to arm or GUIDED (three rejections) leaves the fleet with its sentence; one refused in
+// the air (a target outside the backend's fence) is still sent home and lands; at the end run_app
+// itself has both vehicles return and land at home. The --vehicles parser refuses bad entries.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -49,7 +51,8 @@ struct Mission {
   std::unique_ptr<MavlinkBackend> backend;
   fleet::RunRecord record;
 
-  Mission() {
+  // `adjust` changes the backend's settings before it is made.
+  explicit Mission(const std::function<void(MavlinkBackendSettings&)>& adjust = {}) {
     const geometry::LocalFrame frame(world->origin);
     std::vector<std::unique_ptr<Link>> gcs_links;
     for (int i = 0; i < 2; ++i) {
@@ -76,6 +79,7 @@ struct Mission {
     settings.before_poll = [this](double t_s) {
       for (auto& f : fakes) f->step(t_s);
     };
+    if (adjust) adjust(settings);
     backend = std::make_unique<MavlinkBackend>(std::move(gcs_links),
                                                std::vector<std::uint8_t>{1, 2}, settings);
   }
@@ -130,10 +134,9 @@ struct Mission {
     EXPECT_EQ(sensed, (std::map<std::string, int>{{"east", 1}, {"north", 1}, {"west", 1}}));
   }
 
-  // After the run the vehicles go home (end_run): both land, disarmed, at their homes.
+  // After the run the vehicles go home: run_app returns only once end_run has them landed,
+  // disarmed, at their homes (nothing polls the backend after it).
   void expect_both_land_at_home() {
-    const double end_s = backend->now_s() + 120;
-    backend->advance_to(end_s);
     for (const auto& f : fakes) {
       EXPECT_FALSE(f->armed());
       EXPECT_EQ(f->landed_state(), LandedState::on_ground);
@@ -238,6 +241,49 @@ TEST(MavlinkBackend, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {
   for (const auto& e : m.events("action_done")) EXPECT_EQ(e["drone"], 1);  // copter-2 did all
   EXPECT_EQ(m.fakes[0]->images_taken(), 0);
   EXPECT_EQ(m.fakes[1]->images_taken(), 3);
+}
+
+TEST(MavlinkBackend, AVehicleRefusingGuidedIsRefusedAfterThreeRejectionsWithItsSentence) {
+  Mission m;
+  m.fakes[0]->refuse_mode(CopterMode::guided, "Flight mode change failed");
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  const auto refused = m.events("vehicle_refused");
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_EQ(refused[0]["drone"], 0);
+  EXPECT_EQ(refused[0]["reason"], "refused GUIDED: Flight mode change failed");
+  EXPECT_EQ(m.fakes[0]->commands_received(Cmd::do_set_mode), 3);  // then no more retries
+  EXPECT_EQ(m.fakes[0]->commands_received(Cmd::component_arm_disarm), 0);
+  EXPECT_EQ(m.fakes[0]->images_taken(), 0);
+  EXPECT_EQ(m.fakes[1]->images_taken(), 3);
+  m.expect_both_land_at_home();
+}
+
+TEST(MavlinkBackend, AVehicleRefusedInTheAirIsStillSentHomeAndLands) {
+  // The backend's fence leaves out the west photo (x = -90 m): a drone sent there is refused at
+  // its layer, after take-off. end_run is given no time, so only the runtime's own return_home
+  // at the refusal can bring it back before run_app returns.
+  Mission m([](MavlinkBackendSettings& s) {
+    s.fence_m = {{-50, -200}, {200, -200}, {200, 200}, {-50, 200}};
+    s.end_timeout_s = 0;
+  });
+  m.run();
+  const auto refused = m.events("vehicle_refused");
+  ASSERT_GE(refused.size(), 1u);
+  for (const auto& e : refused) {
+    EXPECT_EQ(e["reason"], "target outside the fence");
+    const FakeCopter& f = *m.fakes[static_cast<std::size_t>(int(e["drone"]))];
+    EXPECT_GE(f.commands_received(Cmd::nav_takeoff), 1);  // it was flying when refused
+    EXPECT_GE(f.commands_received(Cmd::nav_return_to_launch), 1);
+    EXPECT_FALSE(f.armed());
+    EXPECT_EQ(f.landed_state(), LandedState::on_ground);
+    EXPECT_LT(std::hypot(f.north_m(), f.east_m()), 0.5);
+  }
+  // The west photo was never taken outside the fence.
+  for (const auto& e : m.events("action_done"))
+    if (e["name"] == "camera") {
+      EXPECT_GT(double(e["x_m"]), -50.0);
+    }
 }
 
 TEST(MavlinkBackend, VehicleUrlsAreParsedAndBadOnesRefusedInOneSentence) {

@@ -163,6 +163,30 @@ TEST(CopterDriver, TenSecondLinkCutIsDetectedTheVehicleReturnsAndTheFlightResume
   EXPECT_TRUE(rig.copter.armed());
 }
 
+// A vehicle that heartbeats but never answers a command, its link flapping: the telemetry
+// requests stay one pending set (4 intervals and home), not one more set per link-up.
+TEST(CopterDriver, AFlappingSilentVehicleKeepsOneSetOfTelemetryRequests) {
+  UdpLink vehicle_link = UdpLink::listen("127.0.0.1", 0);
+  UdpLink gcs_link = UdpLink::connect("127.0.0.1", vehicle_link.local_port());
+  Endpoint vehicle(vehicle_link, 1, 1);
+  CopterDriver driver(gcs_link);
+  double now_s = 0;
+  for (int flap = 0; flap < 6; ++flap) {
+    // Heard for 4 s (some requests sent 3 times and timed out, then asked again) ...
+    for (int i = 0; i < 200; ++i, now_s += kStepS) {
+      if (i % 50 == 0) vehicle.send(Heartbeat{.custom_mode = 0, .type = 2, .autopilot = 3});
+      driver.poll(now_s);
+      vehicle.receive();  // never acknowledged
+    }
+    EXPECT_EQ(driver.commands_pending(), 5) << "flap " << flap;
+    // ... then silent until declared lost.
+    for (int i = 0; i < 200; ++i, now_s += kStepS) driver.poll(now_s);
+    ASSERT_FALSE(driver.state().link_alive);
+  }
+  EXPECT_EQ(driver.state().links_lost, 6);
+  EXPECT_EQ(driver.commands_pending(), 5);
+}
+
 TEST(CopterDriver, NeverSendsATargetOutsideTheFence) {
   DriverSettings settings;
   settings.inside_fence = [](double lat_deg, double) { return lat_deg < 47.3985; };

@@ -25,7 +25,8 @@ struct VehicleReport {
   Vec3 position_m;           ///< local metres at the world's origin, z above home (if known)
   bool arrived = false;      ///< at the target of the latest go_to, holding there
   bool landed_home = false;  ///< after return_home: on the ground (disarmed)
-  /// Why the vehicle cannot fly (a refused arm and its STATUSTEXT); "" when it can.
+  /// Why the vehicle cannot fly (a step refused three times, with its STATUSTEXT, or a target
+  /// outside the fence); "" when it can. A refused vehicle can still be sent home.
   std::string refusal;
 };
 
@@ -49,6 +50,8 @@ class Backend {
   virtual void advance_to(double t_s) = 0;
   virtual VehicleReport report(int drone) const = 0;
   /// The app's main returned: every airborne vehicle goes home (not counted in completion).
+  /// Returns once they are down, or after the backend's own deadline: the caller may then close
+  /// the links.
   virtual void end_run() = 0;
 };
 

@@ -83,6 +83,8 @@ class CopterDriver {
   double distance_to_target_m() const;
 
   std::uint64_t commands_sent() const { return commands_sent_; }  ///< resends included
+  /// Commands not yet acknowledged, rejected or timed out (queued or in flight).
+  int commands_pending() const;
 
  private:
   struct Pending {
@@ -95,6 +97,8 @@ class CopterDriver {
   int enqueue(Cmd cmd, float p1 = 0, float p2 = 0, float p3 = 0, float p7 = 0);
   void on_frame(const Frame& frame, double now_s);
   void on_link_up();
+  /// Enqueues a telemetry request unless the same one (command, message id) is still pending.
+  void request_telemetry(Cmd cmd, float p1, float p2 = 0);
   void send_due(double now_s);
 
   Endpoint endpoint_;

@@ -6,7 +6,7 @@
 // take-off to the asked altitude, GUIDED position targets at the set speed, RTL (home, then land)
 // and LAND with disarm on the ground, a photo per IMAGE_START_CAPTURE, and the ground-station
 // failsafe: airborne without a GCS HEARTBEAT for 5 s it returns to launch (FS_GCS_ENABLE = 1).
-// Faults for tests: a cut link, lost commands, a refusal to arm.
+// Faults for tests: a cut link, lost commands, a refusal to arm or to enter a mode.
 //
 // Kinematics are deliberately simple (constant speeds, no inertia): it checks the driver's
 // protocol, not flight; swath-fleet's simulated backend and swath-control model flight.
@@ -47,6 +47,11 @@ class FakeCopter {
   void lose_commands(int n) { commands_to_lose_ += n; }
   /// Refuses to arm, with this STATUSTEXT (ArduCopter's "PreArm: ..." sentences).
   void refuse_arm(std::string why) { refuse_arm_ = std::move(why); }
+  /// Refuses DO_SET_MODE to `mode` (the ack FAILED), with this STATUSTEXT.
+  void refuse_mode(CopterMode mode, std::string why) {
+    refused_mode_ = mode;
+    refuse_mode_ = std::move(why);
+  }
 
   // Truth, for tests.
   double north_m() const { return north_m_; }
@@ -66,6 +71,7 @@ class FakeCopter {
  private:
   void on_frame(const Frame& frame, double now_s);
   void on_command(const CommandLong& c, double now_s);
+  void send_status_text(const std::string& text);
   void move(double dt_s);
   void send_telemetry(double now_s);
   bool link_cut(double now_s) const { return now_s >= cut_from_s_ && now_s < cut_until_s_; }
@@ -77,6 +83,8 @@ class FakeCopter {
   double cut_from_s_ = 0, cut_until_s_ = 0;
   int commands_to_lose_ = 0;
   std::string refuse_arm_;
+  CopterMode refused_mode_ = CopterMode::stabilize;
+  std::string refuse_mode_;  // "": no mode refused
   double last_gcs_heartbeat_s_ = 0;
   bool gcs_seen_ = false;
 

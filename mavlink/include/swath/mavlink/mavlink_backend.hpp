@@ -6,7 +6,9 @@
 // DO_CHANGE_SPEED to cruise, to the approach speed within approach_within_m), a photo for a sense
 // action, or home (RTL, landed and disarmed). The steering is re-applied on every poll from the
 // vehicle's reported state, so a lost acknowledgement, a command timed out or a failsafe RTL
-// during a link cut is followed by the right command once the vehicle answers again.
+// during a link cut is followed by the right command once the vehicle answers again. A step
+// (GUIDED, arm, take-off, RTL) rejected three times, or a target outside the fence, refuses the
+// vehicle (report().refusal, with its last STATUSTEXT): it is sent nowhere but home after that.
 //
 // Clock: the runtime's. advance_to(t) polls every poll_step_s up to t; with wall_clock it first
 // waits until t seconds after the first call (a real run), else it does not wait and calls
@@ -54,6 +56,10 @@ struct MavlinkBackendSettings {
   double poll_step_s = 0.02;  ///< polls between two advance_to times, s (> 0)
   /// Called before each poll with its time (not with wall_clock): tests step their fakes here.
   std::function<void(double t_s)> before_poll;
+  /// end_run() polls until every vehicle is down (disarmed or landed) or this long has passed
+  /// on the run's clock, s (>= 0): the return to launch is sent, the vehicles land under the
+  /// ground station's heartbeat.
+  double end_timeout_s = 600;
 };
 
 class MavlinkBackend final : public fleet::Backend {
@@ -70,6 +76,8 @@ class MavlinkBackend final : public fleet::Backend {
   void return_home(int drone) override;
   void advance_to(double t_s) override;
   fleet::VehicleReport report(int drone) const override;
+  /// Every airborne vehicle returns to launch; returns once all are down or after
+  /// settings.end_timeout_s (on the wall clock in a real run, via before_poll in tests).
   void end_run() override;
 
   const CopterDriver& driver(int drone) const;
@@ -78,6 +86,7 @@ class MavlinkBackend final : public fleet::Backend {
  private:
   struct Vehicle;
   void steer(Vehicle& v);
+  bool all_down() const;
   Vehicle& at(int drone) const;
 
   std::vector<std::unique_ptr<Vehicle>> vehicles_;
