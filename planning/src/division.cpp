@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 #include <tuple>
 
 #include "swath/base/input_error.hpp"
@@ -122,6 +123,21 @@ double piece_time(const PathIndex& index, const std::vector<DroneResource>& dron
   return time_s;
 }
 
+// The greedy cuts' one step: the point farthest from `from` towards `to` (either direction)
+// where `fits` holds (`fits(from)` assumed): `to` when it fits, else bisection until the bracket
+// is within `tolerance` or `max_steps` halvings are done.
+template <class Fits>
+double farthest_fitting(double from, double to, double tolerance, const Fits& fits,
+                        int max_steps = std::numeric_limits<int>::max()) {
+  if (fits(to)) return to;
+  double ok = from, fail = to;
+  for (int k = 0; k < max_steps && std::abs(fail - ok) > tolerance; ++k) {
+    const double mid = (ok + fail) / 2;
+    (fits(mid) ? ok : fail) = mid;
+  }
+  return ok;
+}
+
 // Greedy cuts that keep every drone within `makespan`: each takes the longest piece it can.
 std::vector<double> cuts_within(const PathIndex& index, const std::vector<DroneResource>& drones,
                                 const FlightMeasure& measure, double makespan) {
@@ -131,16 +147,10 @@ std::vector<double> cuts_within(const PathIndex& index, const std::vector<DroneR
   std::vector<double> cuts;
   double s = 0;
   for (std::size_t i = 0; i < drones.size(); ++i) {
-    double lo = s, hi = index.length();
-    if (time_of(i, s, hi) <= makespan) {
-      lo = hi;
-    } else {
-      for (int k = 0; k < 60 && hi - lo > 1e-9 * (1 + index.length()); ++k) {
-        const double mid = (lo + hi) / 2;
-        (time_of(i, s, mid) <= makespan ? lo : hi) = mid;
-      }
-    }
-    s = lo;
+    const double start = s;
+    s = farthest_fitting(
+        start, index.length(), 1e-9 * (1 + index.length()),
+        [&](double e) { return time_of(i, start, e) <= makespan; }, 60);
     if (i + 1 < drones.size()) cuts.push_back(s);
   }
   cuts.push_back(s);  // how far the fleet gets
@@ -309,7 +319,7 @@ Ring clip_band(const Ring& ring, double angle_deg, double y0, double y1) {
 }
 
 DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
-                             const std::vector<DroneResource>& drones, Balance balance,
+                             const std::vector<DroneResource>& drones,
                              const BandSweep& sweep_band) {
   // Bands are cut from boustrophedon pieces: each stays one simple ring when clipped.
   const std::vector<Ring> pieces = geometry::boustrophedon_decomposition(rings, angle_deg).pieces;
@@ -337,18 +347,6 @@ DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
     }
     return out;
   };
-  auto band_time = [&](std::size_t i, double y0, double y1, bool estimate) {
-    const std::vector<Ring> b = band(y0, y1);
-    if (b.empty()) return 0.0;
-    const SurveyPath p = sweep_band(b, drones[i], estimate);
-    if (p.points.empty()) return 0.0;
-    const double distance = geometry::distance(drones[i].home, p.points.front()) + p.length_m() +
-                            geometry::distance(p.points.back(), drones[i].home);
-    if (drones[i].range_m && distance > *drones[i].range_m)
-      return std::numeric_limits<double>::infinity();
-    return distance / drones[i].speed_m_s;
-  };
-
   auto result_for = [&](const std::vector<double>& cuts) {  // cuts: n - 1 ordinates
     DivisionResult r;
     std::vector<double> bounds{y_min};
@@ -360,7 +358,7 @@ DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
       double a = 0;
       for (const Ring& piece : work.region) a += geometry::signed_area(piece);
       work.share = total_area > 0 ? a / total_area : 0;
-      if (!work.region.empty()) work.path = sweep_band(work.region, drones[i], false);
+      if (!work.region.empty()) work.path = sweep_band(work.region, drones[i]);
       work.home_cost_m = home_cost[i];
       work.budget_m = budgets[i];
       if (!work.path.points.empty())
@@ -381,41 +379,7 @@ DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
     proportional.push_back(cut_at(cumulative * total_area));
   }
   DivisionResult result = result_for(proportional);
-  const double proportional_makespan = result.makespan_s;
-  if (balance == Balance::makespan && drones.size() > 1) {
-    // Greedy bands within a makespan (each drone the tallest band it can fly in time), bisection
-    // on the makespan; estimates use straight transits.
-    auto cuts_within_time = [&](double makespan, std::vector<double>& cuts) {
-      cuts.clear();
-      double y0 = y_min;
-      for (std::size_t i = 0; i < drones.size(); ++i) {
-        double lo = y0, hi = y_max;
-        if (band_time(i, y0, hi, true) <= makespan) {
-          lo = hi;
-        } else {
-          for (int k = 0; k < 24; ++k) {
-            const double mid = (lo + hi) / 2;
-            (band_time(i, y0, mid, true) <= makespan ? lo : hi) = mid;
-          }
-        }
-        if (i + 1 < drones.size()) cuts.push_back(lo);
-        y0 = lo;
-      }
-      return y0 >= y_max - 1e-9 * (1 + std::abs(y_max));
-    };
-    std::vector<double> cuts;
-    double lo = 0, hi = proportional_makespan > 0 ? proportional_makespan : 1;
-    for (int guard = 0; !cuts_within_time(hi, cuts) && guard < 20; ++guard) hi *= 1.5;
-    for (int k = 0; k < 24; ++k) {
-      const double mid = (lo + hi) / 2;
-      std::vector<double> trial;
-      (cuts_within_time(mid, trial) ? hi : lo) = mid;
-    }
-    cuts_within_time(hi, cuts);
-    DivisionResult balanced = result_for(cuts);
-    if (balanced.makespan_s < result.makespan_s) result = std::move(balanced);
-  }
-  result.proportional_makespan_s = proportional_makespan;
+  result.proportional_makespan_s = result.makespan_s;
   return result;
 }
 
@@ -463,11 +427,14 @@ class LaneLine {
     for (const Lane& l : lanes_) {
       const double length = l.x1 - l.x0;
       const double from = std::max(a, l.start), to = std::min(b, l.start + length);
-      if (!(to - from > 1e-6)) continue;
+      const bool whole_short = holds_short(l, a, b);
+      if (!(to - from > kShortLane_m) && !whole_short) continue;
       const double y0 = l.row == 0 ? -kInf : (row_y_[l.row - 1] + row_y_[l.row]) / 2;
       const double y1 = l.row + 1 >= row_y_.size() ? kInf : (row_y_[l.row] + row_y_[l.row + 1]) / 2;
       const auto [x0, x1] = along(l, from, to);
-      out.push_back({l.index, {y0, y1, x0 == l.x0 ? -kInf : x0, x1 == l.x1 ? kInf : x1}});
+      out.push_back({l.index,
+                     {y0, y1, whole_short || x0 == l.x0 ? -kInf : x0,
+                      whole_short || x1 == l.x1 ? kInf : x1}});
     }
     return out;
   }
@@ -475,15 +442,17 @@ class LaneLine {
   double total() const { return total_; }
 
   // The pieces of lanes in [a, b] of the line, in lane order; pieces shorter than a micrometre
-  // (a cut at a lane's end) are left out.
+  // (a cut at a lane's end) are left out, but a lane that short goes whole to the share that
+  // holds its start (holds_short).
   std::vector<LanePiece> share(double a, double b) const {
     std::vector<LanePiece> out;
     for (const Lane& l : lanes_) {
       const double length = l.x1 - l.x0;
       const double from = std::max(a, l.start), to = std::min(b, l.start + length);
-      if (!(to - from > 1e-6)) continue;
+      const bool whole_short = holds_short(l, a, b);
+      if (!(to - from > kShortLane_m) && !whole_short) continue;
       LanePiece piece{l.index, l.line};
-      if (from > l.start || to < l.start + length) {
+      if (!whole_short && (from > l.start || to < l.start + length)) {
         const auto [x0, x1] = along(l, from, to);
         piece.line.start = x0 == l.x0 ? l.line.start : rotate({x0, l.y}, angle_deg_);
         piece.line.end = x1 == l.x1 ? l.line.end : rotate({x1, l.y}, angle_deg_);
@@ -535,6 +504,7 @@ class LaneLine {
 
  private:
   static constexpr double kInf = std::numeric_limits<double>::infinity();
+  static constexpr double kShortLane_m = 1e-6;  // shorter pieces of a lane are not flown apart
   struct Lane {
     SweepLine line;     // flown towards +x of the rotated frame
     std::size_t index;  // in the lanes given
@@ -543,6 +513,12 @@ class LaneLine {
     double start;   // along the line
     bool reversed;  // the line runs along it towards -x (the order given flies it so)
   };
+
+  // A lane no longer than kShortLane_m belongs whole to the one non-empty share [a, b) that holds
+  // its start, the last share [a, total] closed: cut nowhere, flown once.
+  bool holds_short(const Lane& l, double a, double b) const {
+    return l.x1 - l.x0 <= kShortLane_m && b > a && a <= l.start && (l.start < b || b >= total_);
+  }
 
   // The part [from, to] of the line on lane l (from < to) as abscissae, increasing.
   std::pair<double, double> along(const Lane& l, double from, double to) const {
@@ -570,13 +546,20 @@ Ring clip_box(const Ring& ring, double angle_deg, const std::array<double, 4>& b
   return out;
 }
 
+// Up to this many drones every order of them over the bands is balanced (4! = 24 orders; 6!
+// took tens of seconds on split areas); beyond, the heuristic and fleet orders and swaps of the
+// best: every pair up to kPairwiseSwapDrones, adjacent ones beyond.
+constexpr std::size_t kAllOrdersDrones = 4;
+constexpr std::size_t kPairwiseSwapDrones = 8;
+
 // Orders of the drones over the bands (band k flown by order[k]) worth balancing: every
-// permutation up to 6 drones, drones that `same` says are interchangeable in one order only.
+// permutation up to kAllOrdersDrones, drones that `same` says are interchangeable in one order
+// only; beyond, the heuristic order and the fleet's.
 std::vector<std::vector<std::size_t>> band_orders(
     std::size_t n, const std::function<bool(std::size_t, std::size_t)>& same,
     const std::vector<std::size_t>& heuristic) {
   std::vector<std::vector<std::size_t>> out{heuristic};
-  if (n > 6) {
+  if (n > kAllOrdersDrones) {
     std::vector<std::size_t> fleet(n);
     std::iota(fleet.begin(), fleet.end(), 0);
     if (fleet != heuristic) out.push_back(fleet);
@@ -594,6 +577,350 @@ std::vector<std::vector<std::size_t>> band_orders(
   return out;
 }
 
+// The state one divide_lanes() call shares between its steps: the lanes as one line, the drones,
+// how a share is swept and measured (remembered: the searches ask for the same shares again, a
+// greedy pass's last band, the refinement's neighbours).
+class LaneDivision {
+ public:
+  LaneDivision(const std::vector<Ring>& rings, double angle_deg,
+               const std::vector<SweepLine>& lanes, const std::vector<DroneResource>& drones,
+               const LaneSweep& sweep, const FlightMeasure& measure,
+               const std::vector<std::size_t>& lane_cell, const std::vector<Ring>& cells)
+      : drones_(drones),
+        sweep_(sweep),
+        measure_(measure),
+        angle_deg_(angle_deg),
+        lane_cell_(lane_cell),
+        cells_(cells),
+        pieces_(geometry::boustrophedon_decomposition(rings, angle_deg).pieces),
+        by_cell_(!lane_cell.empty() && lane_cell.size() == lanes.size()),
+        line_(lanes, angle_deg, !by_cell_),
+        tolerance_(1e-6 * (1 + line_.total())) {
+    std::vector<Point2> vertices;
+    for (const Ring& ring : rings) vertices.insert(vertices.end(), ring.begin(), ring.end());
+    home_cost_ = home_costs(vertices, drones);
+    weights_ = weights(drones, home_cost_, budgets_);
+    for (const Ring& ring : rings) total_area_ += geometry::signed_area(ring);
+  }
+
+  std::size_t size() const { return drones_.size(); }
+  double total() const { return line_.total(); }
+  const DroneResource& drone(std::size_t d) const { return drones_[d]; }
+  double angle_deg() const { return angle_deg_; }
+  const std::vector<double>& weight() const { return weights_; }
+
+  // Drone d flying [a, b] of the line: its measured time, +inf beyond its range.
+  double flight_s(std::size_t d, double a, double b) {
+    if (!(b > a)) return 0.0;
+    const auto key = std::make_tuple(d, a, b);
+    if (const auto it = known_.find(key); it != known_.end()) return it->second;
+    const std::vector<LanePiece> share = line_.share(a, b);
+    double t = 0.0;
+    if (!share.empty()) {
+      const FlightCost cost = measure_(d, sweep_(d, share));
+      t = over_range(d, cost) ? kInfinity : cost.time_s;
+    }
+    return known_[key] = t;
+  }
+
+  // Each band's flight time for `bounds` (n + 1 of them) in `order`.
+  std::vector<double> times_of(const std::vector<std::size_t>& order,
+                               const std::vector<double>& bounds) {
+    std::vector<double> t(size());
+    for (std::size_t k = 0; k < size(); ++k) t[k] = flight_s(order[k], bounds[k], bounds[k + 1]);
+    return t;
+  }
+
+  // Greedy cuts within `makespan`: each band's drone the longest share it flies in time. The
+  // n + 1 bounds; reaching the end of the line means the makespan is feasible.
+  std::vector<double> greedy(const std::vector<std::size_t>& order, double makespan) {
+    std::vector<double> bounds{0};
+    for (std::size_t k = 0; k < size(); ++k) {
+      const double start = bounds.back();
+      bounds.push_back(farthest_fitting(start, total(), tolerance_, [&](double end) {
+        return flight_s(order[k], start, end) <= makespan;
+      }));
+    }
+    return bounds;
+  }
+
+  // Greedy from the last band down: each drone the longest share it flies within `makespan`.
+  std::vector<double> greedy_down(const std::vector<std::size_t>& order, double makespan) {
+    const std::size_t n = size();
+    std::vector<double> bounds(n + 1, 0.0);
+    bounds[n] = total();
+    for (std::size_t k = n; k-- > 1;)  // the band's start
+      bounds[k] = farthest_fitting(bounds[k + 1], 0.0, tolerance_, [&](double start) {
+        return flight_s(order[k], start, bounds[k + 1]) <= makespan;
+      });
+    return bounds;
+  }
+
+  bool reaches(const std::vector<double>& bounds) const { return bounds.back() >= total(); }
+
+  // Where the flight times of the drones either side of a cut in [a, b] cross: the bracket
+  // (lo, hi) with lower(lo) <= upper(lo) and lower(hi) > upper(hi), within the tolerance.
+  std::pair<double, double> crossing(std::size_t lower, std::size_t upper, double a, double b) {
+    double lo = a, hi = b;  // gap(a) <= 0 <= gap(b)
+    while (hi - lo > tolerance_) {
+      const double mid = (lo + hi) / 2;
+      (flight_s(lower, a, mid) - flight_s(upper, mid, b) <= 0 ? lo : hi) = mid;
+    }
+    return {lo, hi};
+  }
+
+  // The division for `bounds` in `order` and its score: the longest flight with +inf beyond a
+  // drone's range (as flight_s), so that cuts over a range never win on time.
+  std::pair<DivisionResult, double> result_for(const std::vector<std::size_t>& order,
+                                               const std::vector<double>& bounds) {
+    DivisionResult r;
+    double score_s = 0.0;
+    r.drones.resize(size());
+    for (std::size_t k = 0; k < size(); ++k) {
+      const std::size_t d = order[k];
+      DroneWork& work = r.drones[d];
+      const double a = bounds[k], b = std::max(bounds[k], bounds[k + 1]);
+      work.region = region_of(a, b);
+      double area = 0;
+      for (const Ring& piece : work.region) area += geometry::signed_area(piece);
+      work.share = total_area_ > 0 ? area / total_area_ : 0;
+      const std::vector<LanePiece> share = line_.share(a, b);
+      if (!share.empty()) {
+        work.path = sweep_(d, share);
+        const FlightCost cost = measure_(d, work.path);
+        work.estimated_time_s = cost.time_s;
+        score_s = std::max(score_s, over_range(d, cost) ? kInfinity : cost.time_s);
+      }
+      work.home_cost_m = home_cost_[d];
+      work.budget_m = budgets_[d];
+      r.makespan_s = std::max(r.makespan_s, work.estimated_time_s);
+    }
+    return {std::move(r), score_s};
+  }
+
+ private:
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+  bool over_range(std::size_t d, const FlightCost& cost) const {
+    return drones_[d].range_m && cost.length_m > *drones_[d].range_m * (1 + 1e-12);
+  }
+
+  // The area of the share [a, b] of the line: its rows of the area, or of the cells.
+  std::vector<Ring> region_of(double a, double b) const {
+    std::vector<Ring> region;
+    auto add = [&](const Ring& piece, const std::array<double, 4>& box) {
+      Ring clipped = clip_box(piece, angle_deg_, box);
+      if (clipped.size() >= 3 && geometry::signed_area(clipped) > 1e-9 * total_area_)
+        region.push_back(std::move(clipped));
+    };
+    if (by_cell_) {
+      // Each cell's whole lanes (consecutive rows of a run) as one box, cut lanes on their own.
+      std::map<std::size_t, std::array<double, 4>> whole;
+      for (const auto& [lane, box] : line_.lane_boxes(a, b)) {
+        const std::size_t cell = lane_cell_[lane];
+        if (cell >= cells_.size()) continue;
+        if (std::isfinite(box[2]) || std::isfinite(box[3])) {
+          add(cells_[cell], box);
+          continue;
+        }
+        const auto [it, fresh] = whole.emplace(cell, box);
+        it->second[0] = std::min(it->second[0], box[0]);
+        it->second[1] = std::max(it->second[1], box[1]);
+      }
+      for (const auto& [cell, box] : whole) add(cells_[cell], box);
+    } else {
+      for (const auto& box : line_.boxes(a, b))
+        for (const Ring& piece : pieces_) add(piece, box);
+    }
+    return region;
+  }
+
+  const std::vector<DroneResource>& drones_;
+  const LaneSweep& sweep_;
+  const FlightMeasure& measure_;
+  double angle_deg_;
+  const std::vector<std::size_t>& lane_cell_;
+  const std::vector<Ring>& cells_;
+  std::vector<Ring> pieces_;
+  bool by_cell_;
+  LaneLine line_;
+  double tolerance_;
+  double total_area_ = 0;
+  std::vector<double> home_cost_;
+  std::vector<std::optional<double>> budgets_;
+  std::vector<double> weights_;
+  std::map<std::tuple<std::size_t, double, double>, double> known_;
+};
+
+constexpr double kSlack = 1.02;  // how much longer than the smallest makespan a balance may be
+
+// A balance of one order of the drones over the bands.
+struct Balanced {
+  double makespan_s;
+  std::vector<std::size_t> order;
+  std::vector<double> bounds;
+};
+
+// Step 1: the smallest makespan per order of the drones over the bands (band_orders(), then
+// swaps of the best beyond kAllOrdersDrones), by bisection on the makespan with greedy cuts; an
+// order whose greedy cuts cannot reach the end within 2 % of the best makespan so far cannot
+// compete and costs one greedy pass.
+std::vector<Balanced> balance_orders(LaneDivision& ld, double proportional_makespan) {
+  const std::size_t n = ld.size();
+  // The drones in the order of their homes across the lanes: nearest band first, a good start.
+  std::vector<std::size_t> heuristic(n);
+  std::iota(heuristic.begin(), heuristic.end(), 0);
+  std::stable_sort(heuristic.begin(), heuristic.end(), [&](std::size_t i, std::size_t j) {
+    return rotate(ld.drone(i).home, -ld.angle_deg()).y <
+           rotate(ld.drone(j).home, -ld.angle_deg()).y;
+  });
+  std::vector<double> whole(n);
+  for (std::size_t d = 0; d < n; ++d) whole[d] = ld.flight_s(d, 0, ld.total());
+  const auto same = [&](std::size_t i, std::size_t j) {
+    const DroneResource &a = ld.drone(i), &b = ld.drone(j);
+    return a.home == b.home && a.speed_m_s == b.speed_m_s && a.range_m == b.range_m &&
+           a.capability == b.capability && whole[i] == whole[j];
+  };
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<Balanced> found;
+  auto balance = [&](const std::vector<std::size_t>& order) {
+    double hi = best * kSlack;
+    if (!std::isfinite(hi)) {
+      hi = proportional_makespan > 0 && std::isfinite(proportional_makespan) ? proportional_makespan
+                                                                             : 1.0;
+      for (int guard = 0; guard < 40 && !ld.reaches(ld.greedy(order, hi)); ++guard) hi *= 1.5;
+    }
+    if (!ld.reaches(ld.greedy(order, hi))) return;
+    double lo = 0;
+    while (hi - lo > 1e-5 * hi) {
+      const double mid = (lo + hi) / 2;
+      (ld.reaches(ld.greedy(order, mid)) ? hi : lo) = mid;
+    }
+    std::vector<double> bounds = ld.greedy(order, hi);
+    double longest = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      longest = std::max(longest, ld.flight_s(order[k], bounds[k], bounds[k + 1]));
+    best = std::min(best, longest);
+    found.push_back({longest, order, std::move(bounds)});
+  };
+  if (n < 2 || !(ld.total() > 0)) return found;
+  std::set<std::vector<std::size_t>> tried;
+  for (const auto& order : band_orders(n, same, heuristic)) {
+    tried.insert(order);
+    balance(order);
+  }
+  if (n > kAllOrdersDrones && !found.empty()) {
+    // Beyond the permutations: swaps of the best order once (every pair, or adjacent ones for
+    // large fleets), interchangeable drones not swapped.
+    const auto first = std::min_element(
+        found.begin(), found.end(),
+        [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
+    const std::vector<std::size_t> start = first->order;
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      for (std::size_t j = i + 1; j < (n > kPairwiseSwapDrones ? i + 2 : n); ++j) {
+        if (same(start[i], start[j])) continue;
+        std::vector<std::size_t> order = start;
+        std::swap(order[i], order[j]);
+        if (tried.insert(order).second) balance(order);
+      }
+  }
+  return found;
+}
+
+// Longest over shortest of the flights that fly (1 when none does), and the longest.
+std::pair<double, double> spread(const std::vector<double>& t) {
+  double longest = 0, shortest = std::numeric_limits<double>::infinity();
+  for (const double v : t) {
+    longest = std::max(longest, v);
+    if (v > 0) shortest = std::min(shortest, v);
+  }
+  return std::make_pair(std::isfinite(shortest) ? longest / shortest : 1.0, longest);
+}
+
+// Cut by cut, the two drones beside a cut brought to where their times cross (either side of a
+// jump between them), within `makespan_limit`. relax: each cut to whichever side of the crossing
+// makes the longer of its two drones shorter, the narrowest state seen kept (it can pass through
+// wider ones); otherwise a cut moves only when the whole spread narrows.
+std::pair<std::vector<double>, std::pair<double, double>> refine(
+    LaneDivision& ld, const std::vector<std::size_t>& order, std::vector<double> bounds, bool relax,
+    double makespan_limit) {
+  const std::size_t n = ld.size();
+  std::vector<double> times = ld.times_of(order, bounds);
+  std::vector<double> kept = bounds;
+  std::pair<double, double> kept_spread = spread(times);
+  for (int round = 0; round < 8; ++round) {
+    bool changed = false;
+    for (std::size_t k = 1; k < n; ++k) {
+      const double a = bounds[k - 1], b = bounds[k + 1];
+      const auto [lo, hi] = ld.crossing(order[k - 1], order[k], a, b);
+      double pair_best = std::max(times[k - 1], times[k]);
+      for (const double t : {lo, hi}) {
+        std::vector<double> trial = times;
+        trial[k - 1] = ld.flight_s(order[k - 1], a, t);
+        trial[k] = ld.flight_s(order[k], t, b);
+        const auto [ratio, longest] = spread(trial);
+        const double pair = std::max(trial[k - 1], trial[k]);
+        const bool better =
+            relax ? pair < pair_best * (1 - 1e-9) : ratio < spread(times).first * (1 - 1e-9);
+        if (longest <= makespan_limit && better) {
+          times = trial;
+          bounds[k] = t;
+          pair_best = pair;
+          changed = true;
+          if (ratio < kept_spread.first * (1 - 1e-9)) {
+            kept = bounds;
+            kept_spread = {ratio, longest};
+          }
+        }
+      }
+    }
+    if (!changed) break;
+  }
+  return std::make_pair(kept, kept_spread);
+}
+
+// Step 2: a drone's time jumps where its share first reaches into a lane (the turn to it, the
+// stops at its ends, which end of its zigzag it leaves from), so the smallest makespan can leave
+// the drone beside a jump well short of the others. For each order within 2 % of the smallest
+// makespan, from greedy cuts within a few makespans up to 2 % above it (from the first band and
+// from the last), refine(); the narrowest found within 2 % of the smallest makespan wins.
+// `found`: not empty.
+std::pair<std::vector<std::size_t>, std::vector<double>> narrowest(LaneDivision& ld,
+                                                                   std::vector<Balanced> found) {
+  const std::size_t n = ld.size();
+  std::sort(found.begin(), found.end(),
+            [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
+  const double makespan_limit = found.front().makespan_s * kSlack;
+  std::vector<std::size_t> best_order = found.front().order;
+  std::vector<double> best_bounds = found.front().bounds;
+  std::pair<double, double> best_spread{std::numeric_limits<double>::infinity(), 0.0};
+  for (const Balanced& candidate : found) {
+    if (candidate.makespan_s > makespan_limit || best_spread.first <= 1.002) break;
+    const std::vector<std::size_t>& order = candidate.order;
+    auto consider = [&](const std::vector<double>& start) {
+      if (start.size() != n + 1 || start.back() < ld.total() ||
+          spread(ld.times_of(order, start)).second > makespan_limit)
+        return;
+      for (const bool relax : {false, true}) {
+        const auto [bounds, sp] = refine(ld, order, start, relax, makespan_limit);
+        if (sp.first < best_spread.first * (1 - 1e-9) ||
+            (sp.first <= best_spread.first * (1 + 1e-9) && sp.second < best_spread.second)) {
+          best_spread = sp;
+          best_order = order;
+          best_bounds = bounds;
+        }
+      }
+    };
+    consider(candidate.bounds);
+    for (const double above : {0.0, 0.005, 0.01, 0.02}) {
+      if (best_spread.first <= 1.002) break;
+      consider(ld.greedy(order, candidate.makespan_s * (1 + above)));
+      consider(ld.greedy_down(order, candidate.makespan_s * (1 + above)));
+    }
+  }
+  return {best_order, best_bounds};
+}
+
 }  // namespace
 
 DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
@@ -601,285 +928,25 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
                             const std::vector<DroneResource>& drones, const LaneSweep& sweep,
                             const FlightMeasure& measure, const std::vector<std::size_t>& lane_cell,
                             const std::vector<Ring>& cells) {
-  const std::size_t n = drones.size();
-  std::vector<Point2> vertices;
-  for (const Ring& ring : rings) vertices.insert(vertices.end(), ring.begin(), ring.end());
-  const std::vector<double> home_cost = home_costs(vertices, drones);
-  std::vector<std::optional<double>> budgets;
-  const std::vector<double> w = weights(drones, home_cost, budgets);
-  const double total_w = std::accumulate(w.begin(), w.end(), 0.0);
-  const std::vector<Ring> pieces = geometry::boustrophedon_decomposition(rings, angle_deg).pieces;
-  double total_area = 0;
-  for (const Ring& ring : rings) total_area += geometry::signed_area(ring);
-  const bool by_cell = !lane_cell.empty() && lane_cell.size() == lanes.size();
-  const LaneLine line(lanes, angle_deg, !by_cell);
-  const double total = line.total();
-
-  // Drone d flying [a, b] of the line: its measured time, +inf beyond its range. Remembered: the
-  // searches ask for the same shares again (a greedy pass's last band, the
-  // refinement's neighbours).
-  std::map<std::tuple<std::size_t, double, double>, double> known;
-  auto flight_s = [&](std::size_t d, double a, double b) {
-    if (!(b > a)) return 0.0;
-    const auto key = std::make_tuple(d, a, b);
-    if (const auto it = known.find(key); it != known.end()) return it->second;
-    const std::vector<LanePiece> share = line.share(a, b);
-    double t = 0.0;
-    if (!share.empty()) {
-      const FlightCost cost = measure(d, sweep(d, share));
-      t = drones[d].range_m && cost.length_m > *drones[d].range_m * (1 + 1e-12)
-              ? std::numeric_limits<double>::infinity()
-              : cost.time_s;
-    }
-    return known[key] = t;
-  };
-  // Greedy cuts within `makespan`: each band's drone the longest share it flies in time. The
-  // n + 1 bounds; reaching the end of the line means the makespan is feasible.
-  const double tolerance = 1e-6 * (1 + total);
-  auto greedy = [&](const std::vector<std::size_t>& order, double makespan) {
-    std::vector<double> bounds{0};
-    for (std::size_t k = 0; k < n; ++k) {
-      double lo = bounds.back(), hi = total;
-      if (flight_s(order[k], lo, hi) <= makespan) {
-        lo = hi;
-      } else {
-        while (hi - lo > tolerance) {
-          const double mid = (lo + hi) / 2;
-          (flight_s(order[k], bounds.back(), mid) <= makespan ? lo : hi) = mid;
-        }
-      }
-      bounds.push_back(lo);
-    }
-    return bounds;
-  };
-  auto reaches = [&](const std::vector<double>& bounds) { return bounds.back() >= total; };
-
-  auto result_for = [&](const std::vector<std::size_t>& order, const std::vector<double>& bounds) {
-    DivisionResult r;
-    r.drones.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t d = order[k];
-      DroneWork& work = r.drones[d];
-      const double a = bounds[k], b = std::max(bounds[k], bounds[k + 1]);
-      auto add = [&](const Ring& piece, const std::array<double, 4>& box) {
-        Ring clipped = clip_box(piece, angle_deg, box);
-        if (clipped.size() >= 3 && geometry::signed_area(clipped) > 1e-9 * total_area)
-          work.region.push_back(std::move(clipped));
-      };
-      if (by_cell) {
-        // Each cell's whole lanes (consecutive rows of a run) as one box, cut lanes on their own.
-        std::map<std::size_t, std::array<double, 4>> whole;
-        for (const auto& [lane, box] : line.lane_boxes(a, b)) {
-          const std::size_t cell = lane_cell[lane];
-          if (cell >= cells.size()) continue;
-          if (std::isfinite(box[2]) || std::isfinite(box[3])) {
-            add(cells[cell], box);
-            continue;
-          }
-          const auto [it, fresh] = whole.emplace(cell, box);
-          it->second[0] = std::min(it->second[0], box[0]);
-          it->second[1] = std::max(it->second[1], box[1]);
-        }
-        for (const auto& [cell, box] : whole) add(cells[cell], box);
-      } else {
-        for (const auto& box : line.boxes(a, b))
-          for (const Ring& piece : pieces) add(piece, box);
-      }
-      double area = 0;
-      for (const Ring& piece : work.region) area += geometry::signed_area(piece);
-      work.share = total_area > 0 ? area / total_area : 0;
-      const std::vector<LanePiece> share = line.share(a, b);
-      if (!share.empty()) {
-        work.path = sweep(d, share);
-        work.estimated_time_s = measure(d, work.path).time_s;
-      }
-      work.home_cost_m = home_cost[d];
-      work.budget_m = budgets[d];
-      r.makespan_s = std::max(r.makespan_s, work.estimated_time_s);
-    }
-    return r;
-  };
-
+  LaneDivision ld(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, cells);
+  const std::size_t n = ld.size();
+  const double total = ld.total();
   // Proportional: shares of the lanes' length in proportion to the weights, fleet order.
+  const std::vector<double>& w = ld.weight();
+  const double total_w = std::accumulate(w.begin(), w.end(), 0.0);
   std::vector<std::size_t> fleet(n);
   std::iota(fleet.begin(), fleet.end(), 0);
   std::vector<double> proportional{0};
   for (std::size_t k = 0; k < n; ++k)
     proportional.push_back(k + 1 == n ? total : proportional.back() + w[k] / total_w * total);
-  DivisionResult result = result_for(fleet, proportional);
+  auto [result, result_score] = ld.result_for(fleet, proportional);
   const double proportional_makespan = result.makespan_s;
 
-  // The drones in the order of their homes across the lanes: nearest band first, a good start.
-  std::vector<std::size_t> heuristic = fleet;
-  std::stable_sort(heuristic.begin(), heuristic.end(), [&](std::size_t i, std::size_t j) {
-    return rotate(drones[i].home, -angle_deg).y < rotate(drones[j].home, -angle_deg).y;
-  });
-  std::vector<double> whole(n);
-  for (std::size_t d = 0; d < n; ++d) whole[d] = flight_s(d, 0, total);
-  const auto same = [&](std::size_t i, std::size_t j) {
-    const DroneResource &a = drones[i], &b = drones[j];
-    return a.home == b.home && a.speed_m_s == b.speed_m_s && a.range_m == b.range_m &&
-           a.capability == b.capability && whole[i] == whole[j];
-  };
-  // Bisection on the makespan per order; an order whose greedy cuts cannot reach the end within
-  // 2 % of the best makespan so far cannot compete and costs one greedy pass.
-  constexpr double kSlack = 1.02;  // how much longer than the smallest makespan a balance may be
-  double best = std::numeric_limits<double>::infinity();
-  struct Balanced {
-    double makespan_s;
-    std::vector<std::size_t> order;
-    std::vector<double> bounds;
-  };
-  std::vector<Balanced> found;
-  auto balance = [&](const std::vector<std::size_t>& order) {
-    double hi = best * kSlack;
-    if (!std::isfinite(hi)) {
-      hi = proportional_makespan > 0 && std::isfinite(proportional_makespan) ? proportional_makespan
-                                                                             : 1.0;
-      for (int guard = 0; guard < 40 && !reaches(greedy(order, hi)); ++guard) hi *= 1.5;
-    }
-    if (!reaches(greedy(order, hi))) return;
-    double lo = 0;
-    while (hi - lo > 1e-5 * hi) {
-      const double mid = (lo + hi) / 2;
-      (reaches(greedy(order, mid)) ? hi : lo) = mid;
-    }
-    std::vector<double> bounds = greedy(order, hi);
-    double longest = 0;
-    for (std::size_t k = 0; k < n; ++k)
-      longest = std::max(longest, flight_s(order[k], bounds[k], bounds[k + 1]));
-    best = std::min(best, longest);
-    found.push_back({longest, order, std::move(bounds)});
-  };
-  if (n > 1 && total > 0) {
-    for (const auto& order : band_orders(n, same, heuristic)) balance(order);
-    if (n > 6 && !found.empty()) {  // beyond the permutations: adjacent swaps of the best once
-      const auto first = std::min_element(
-          found.begin(), found.end(),
-          [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
-      const std::vector<std::size_t> start = first->order;
-      for (std::size_t k = 0; k + 1 < n; ++k) {
-        std::vector<std::size_t> order = start;
-        std::swap(order[k], order[k + 1]);
-        balance(order);
-      }
-    }
-  }
+  const std::vector<Balanced> found = balance_orders(ld, proportional_makespan);
   if (!found.empty()) {
-    // A drone's time jumps where its share first reaches into a lane (the turn to it, the stops at
-    // its ends, which end of its zigzag it leaves from), so the smallest makespan can leave the
-    // drone beside a jump well short of the others. For each order within 2 % of the smallest
-    // makespan, from greedy cuts within a few makespans up to 2 % above it (from the first band
-    // and from the last), cut by cut the two drones beside a cut are brought to where their times
-    // cross (either side of a jump between them), keeping a change when it narrows the longest
-    // over the shortest flight; the narrowest found within 2 % of the smallest makespan wins.
-    const double makespan_limit = best * kSlack;
-    auto spread = [](const std::vector<double>& t) {
-      double longest = 0, shortest = std::numeric_limits<double>::infinity();
-      for (const double v : t) {
-        longest = std::max(longest, v);
-        if (v > 0) shortest = std::min(shortest, v);
-      }
-      return std::make_pair(std::isfinite(shortest) ? longest / shortest : 1.0, longest);
-    };
-    std::sort(found.begin(), found.end(),
-              [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
-    std::vector<std::size_t> best_order = found.front().order;
-    std::vector<double> best_bounds = found.front().bounds;
-    std::pair<double, double> best_spread{std::numeric_limits<double>::infinity(), 0.0};
-    for (const Balanced& candidate : found) {
-      if (candidate.makespan_s > makespan_limit || best_spread.first <= 1.002) break;
-      const std::vector<std::size_t>& order = candidate.order;
-      auto times_of = [&](const std::vector<double>& bounds) {
-        std::vector<double> t(n);
-        for (std::size_t k = 0; k < n; ++k) t[k] = flight_s(order[k], bounds[k], bounds[k + 1]);
-        return t;
-      };
-      // Greedy from the last band down: each drone the longest share it flies within `makespan`.
-      auto greedy_down = [&](double makespan) {
-        std::vector<double> bounds(n + 1, 0.0);
-        bounds[n] = total;
-        for (std::size_t k = n; k-- > 1;) {
-          double fits = bounds[k + 1], fails = 0;  // the band's start
-          if (flight_s(order[k], 0, fits) <= makespan) {
-            fits = 0;
-          } else {
-            while (fits - fails > tolerance) {
-              const double mid = (fails + fits) / 2;
-              (flight_s(order[k], mid, bounds[k + 1]) <= makespan ? fits : fails) = mid;
-            }
-          }
-          bounds[k] = fits;
-        }
-        return bounds;
-      };
-      // relax: each cut to whichever side of the crossing makes the longer of its two drones
-      // shorter, the narrowest state seen kept (it can pass through wider ones); otherwise a cut
-      // moves only when the whole spread narrows.
-      auto refine = [&](std::vector<double> bounds, bool relax) {
-        std::vector<double> times = times_of(bounds);
-        std::vector<double> kept = bounds;
-        std::pair<double, double> kept_spread = spread(times);
-        for (int round = 0; round < 8; ++round) {
-          bool changed = false;
-          for (std::size_t k = 1; k < n; ++k) {
-            const double a = bounds[k - 1], b = bounds[k + 1];
-            auto gap = [&](double t) {
-              return flight_s(order[k - 1], a, t) - flight_s(order[k], t, b);
-            };
-            double lo = a, hi = b;  // gap(a) <= 0 <= gap(b)
-            while (hi - lo > tolerance) {
-              const double mid = (lo + hi) / 2;
-              (gap(mid) <= 0 ? lo : hi) = mid;
-            }
-            double pair_best = std::max(times[k - 1], times[k]);
-            for (const double t : {lo, hi}) {
-              std::vector<double> trial = times;
-              trial[k - 1] = flight_s(order[k - 1], a, t);
-              trial[k] = flight_s(order[k], t, b);
-              const auto [ratio, longest] = spread(trial);
-              const double pair = std::max(trial[k - 1], trial[k]);
-              const bool better =
-                  relax ? pair < pair_best * (1 - 1e-9) : ratio < spread(times).first * (1 - 1e-9);
-              if (longest <= makespan_limit && better) {
-                times = trial;
-                bounds[k] = t;
-                pair_best = pair;
-                changed = true;
-                if (ratio < kept_spread.first * (1 - 1e-9)) {
-                  kept = bounds;
-                  kept_spread = {ratio, longest};
-                }
-              }
-            }
-          }
-          if (!changed) break;
-        }
-        return std::make_pair(kept, kept_spread);
-      };
-      auto consider = [&](const std::vector<double>& start) {
-        if (start.size() != n + 1 || start.back() < total ||
-            spread(times_of(start)).second > makespan_limit)
-          return;
-        for (const bool relax : {false, true}) {
-          const auto [bounds, sp] = refine(start, relax);
-          if (sp.first < best_spread.first * (1 - 1e-9) ||
-              (sp.first <= best_spread.first * (1 + 1e-9) && sp.second < best_spread.second)) {
-            best_spread = sp;
-            best_order = order;
-            best_bounds = bounds;
-          }
-        }
-      };
-      consider(candidate.bounds);
-      for (const double above : {0.0, 0.005, 0.01, 0.02}) {
-        if (best_spread.first <= 1.002) break;
-        consider(greedy(order, candidate.makespan_s * (1 + above)));
-        consider(greedy_down(candidate.makespan_s * (1 + above)));
-      }
-    }
-    DivisionResult balanced = result_for(best_order, best_bounds);
-    if (balanced.makespan_s <= result.makespan_s) result = std::move(balanced);
+    const auto [order, bounds] = narrowest(ld, found);
+    auto balanced = ld.result_for(order, bounds);
+    if (balanced.second <= result_score) result = std::move(balanced.first);
   }
   result.proportional_makespan_s = proportional_makespan;
   return result;

@@ -143,10 +143,10 @@ TEST(DivideRegion, BandsPartitionTheAreaInProportion) {
     const double angle = 17.0 * k;
     const std::vector<DroneResource> fleet{drone("a", {0, -600}, 0.5), drone("b", {0, -600}, 0.2),
                                            drone("c", {0, -600}, 0.3)};
-    const BandSweep none = [](const std::vector<Ring>&, const DroneResource&, bool) {
+    const BandSweep none = [](const std::vector<Ring>&, const DroneResource&) {
       return SurveyPath{};
     };
-    const DivisionResult r = divide_region(rings, angle, fleet, Balance::capability, none);
+    const DivisionResult r = divide_region(rings, angle, fleet, none);
     double area = 0;
     for (const Ring& ring : rings) area += geometry::signed_area(ring);
     double sum = 0;
@@ -411,6 +411,91 @@ TEST(DivideLanes, MatchesABruteForceCutAndAssignment) {
     for (const DroneWork& w : r.drones)
       for (const Ring& piece : w.region) area_sum += geometry::signed_area(piece);
     EXPECT_NEAR(area_sum, geometry::signed_area(area), 1e-9 * geometry::signed_area(area)) << k;
+  }
+}
+
+// A 400 m square's ten lanes along x (40 m apart), swept as one zigzag per drone, straight legs
+// at each drone's speed.
+struct SquareLanes {
+  Ring area{{0, 0}, {400, 0}, {400, 400}, {0, 400}};
+  std::vector<SweepLine> lanes;
+  std::vector<DroneResource> fleet;
+  SquareLanes() {
+    for (int i = 0; i < 10; ++i) lanes.push_back({{0, 20.0 + 40 * i}, {400, 20.0 + 40 * i}});
+  }
+  LaneSweep sweep() const {
+    return [this](std::size_t i, const std::vector<LanePiece>& pieces) {
+      Sweep z;
+      z.angle_deg = 0;
+      for (const LanePiece& p : pieces) z.lines.push_back(p.line);
+      return survey_path(order_lines(z, StartCorner::nearest_home, fleet[i].home), std::nullopt);
+    };
+  }
+  FlightMeasure straight() const {
+    return [this](std::size_t i, const SurveyPath& p) -> FlightCost {
+      if (p.points.empty()) return {};
+      const double length_m = geometry::distance(fleet[i].home, p.points.front()) + p.length_m() +
+                              geometry::distance(p.points.back(), fleet[i].home);
+      return {length_m / fleet[i].speed_m_s, length_m};
+    };
+  }
+  DivisionResult divide() const {
+    return divide_lanes({area}, 0, lanes, fleet, sweep(), straight());
+  }
+};
+
+// The metres of the drones' lines that lie on `lane` (parallel to x).
+double flown_on(const SweepLine& lane, const DivisionResult& r) {
+  const double x0 = std::min(lane.start.x, lane.end.x), x1 = std::max(lane.start.x, lane.end.x);
+  double on_m = 0;
+  for (const DroneWork& w : r.drones)
+    for (std::size_t i = 0; i + 1 < w.path.points.size(); ++i) {
+      const Point2 p = w.path.points[i], q = w.path.points[i + 1];
+      if (!w.path.on_line[i] || p.y != lane.start.y || q.y != lane.start.y) continue;
+      on_m += std::max(0.0, std::min(x1, std::max(p.x, q.x)) - std::max(x0, std::min(p.x, q.x)));
+    }
+  return on_m;
+}
+
+// A fast drone with a short range: the even split (its budget against the other's capability of
+// 1) gives it nearly every lane, the shortest flights but beyond its range; the division must
+// score that split as infinitely long and keep the drone within its range.
+TEST(DivideLanes, AFastShortRangeDroneStaysWithinItsRange) {
+  SquareLanes s;
+  s.fleet = {drone("fast", {-10, -10}, 1, 2500.0, 20), drone("slow", {-10, -10}, 1)};
+  const DivisionResult r = s.divide();
+  ASSERT_EQ(r.drones.size(), 2u);
+  const FlightCost fast = s.straight()(0, r.drones[0].path);
+  EXPECT_GT(fast.length_m, 0);
+  EXPECT_LE(fast.length_m, 2500.0 * (1 + 1e-12));
+  EXPECT_GT(r.drones[1].estimated_time_s, 0);
+  // The even split was shorter on time alone: the range is what the division kept.
+  EXPECT_GT(r.makespan_s, r.proportional_makespan_s);
+  for (const SweepLine& lane : s.lanes) EXPECT_NEAR(flown_on(lane, r), 400, 1e-6) << lane.start.y;
+}
+
+// A lane shorter than a micrometre is cut nowhere: the one drone whose share holds it flies it
+// whole, wherever the cuts fall (here between two full lanes, near the balanced cut).
+TEST(DivideLanes, ALaneUnderAMicrometreIsFlownByExactlyOneDrone) {
+  for (const double length_m : {0.0, 4e-7, 9e-7}) {
+    SquareLanes s;
+    const SweepLine tiny{{100, 200}, {100 + length_m, 200}};
+    s.lanes.insert(s.lanes.begin() + 5, tiny);
+    s.fleet = {drone("a", {-10, -10}, 1), drone("b", {-10, 410}, 1)};
+    const DivisionResult r = s.divide();
+    int flown = 0;
+    for (const DroneWork& w : r.drones)
+      for (std::size_t i = 0; i + 1 < w.path.points.size(); ++i) {
+        const Point2 p = w.path.points[i], q = w.path.points[i + 1];
+        const bool on_tiny =
+            (p == tiny.start && q == tiny.end) || (p == tiny.end && q == tiny.start);
+        if (on_tiny && w.path.on_line[i]) ++flown;
+      }
+    EXPECT_EQ(flown, 1) << length_m;
+    for (std::size_t i = 0; i < s.lanes.size(); ++i) {
+      if (i == 5) continue;  // the short lane
+      EXPECT_NEAR(flown_on(s.lanes[i], r), 400, 1e-6) << s.lanes[i].start.y;
+    }
   }
 }
 

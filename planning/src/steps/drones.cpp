@@ -83,15 +83,14 @@ std::vector<DroneResource> resources_of(const SurveyPlan& plan) {
   return out;
 }
 
-// Region division (paper 001 Algorithm 4): bands swept one by one.
+// Region division (paper 001 Algorithm 4) by capability: bands swept one by one.
 DivisionResult divide_by_region(const SurveyPlan& plan, const Routes& routes,
                                 const std::vector<DroneResource>& resources) {
   const SurveyRequest& r = plan.request;
   const double angle = plan.sweep.angle_deg;
   const bool cells = plan.handling == Handling::split || plan.planning_rings.size() > 1;
-  const geometry::VisibilityRouter straight(plan.planning_rings, 0);
   const BandSweep sweep_band = [&](const std::vector<geometry::Ring>& band,
-                                   const DroneResource& drone, bool estimate) -> SurveyPath {
+                                   const DroneResource& drone) -> SurveyPath {
     if (!cells) {  // a convex area (or the hull): each band piece with the strip rule
       std::vector<SweepLine> lines;
       for (const geometry::Ring& piece : band) {
@@ -114,11 +113,10 @@ DivisionResult divide_by_region(const SurveyPlan& plan, const Routes& routes,
     s.turnaround_m = plan.turnaround_m;
     s.scan_step_deg = r.split_scan_step_deg;
     s.fixed_angle_deg = angle;
-    const SplitPlan sp =
-        plan_pieces(band, angle, drone.home, s, estimate ? straight : routes.inside);
-    return survey_path(sp.lines, r.waypoint_spacing_m, estimate ? LegRoute{} : routes.leg());
+    const SplitPlan sp = plan_pieces(band, angle, drone.home, s, routes.inside);
+    return survey_path(sp.lines, r.waypoint_spacing_m, routes.leg());
   };
-  return divide_region(plan.planning_rings, angle, resources, r.balance, sweep_band);
+  return divide_region(plan.planning_rings, angle, resources, sweep_band);
 }
 
 // The flight a drone's mission will make of a survey path (the missions step builds the same).
@@ -216,6 +214,10 @@ void drones(SurveyPlan& plan) {
     return;
   }
   plan.divided = true;
+  if (r.crosshatch && r.division == DivisionMode::region)
+    throw InputError(
+        "--crosshatch cannot be divided by region (the bands are cut across the first pass's "
+        "lanes only and would drop the second pass); use --division path");
   const std::vector<DroneResource> resources = resources_of(plan);
   std::vector<MissionSettings> settings;
   const FlightMeasure measure = flight_measure(plan, routes, settings);

@@ -65,20 +65,18 @@ using FlightMeasure = std::function<FlightCost(std::size_t drone, const SurveyPa
 DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
                            Balance balance, const FlightMeasure& measure = {});
 
-/// Plans a band for a drone: the band's pieces -> its survey path. `estimate`: a quick version
-/// (straight transits) for the makespan search.
-using BandSweep = std::function<SurveyPath(const std::vector<geometry::Ring>& band,
-                                           const DroneResource& drone, bool estimate)>;
+/// Plans a band for a drone: the band's pieces -> its survey path.
+using BandSweep =
+    std::function<SurveyPath(const std::vector<geometry::Ring>& band, const DroneResource& drone)>;
 
 /// Region division (Algorithm 4): cuts the area with lines along the sweep (angle_deg, degrees CCW
 /// from x) into one band per drone, areas in proportion to the corrected capabilities (home cost:
 /// twice the distance to the farthest vertex of the area); each cut found by bisection on the area
 /// below it (relative error < 1e-9). Bands are cut from the boustrophedon pieces of the area, so
-/// every band piece is met by each lane in one interval. Balance::makespan: cuts where the longest
-/// flight is shortest. Throws base::InputError as divide_path().
+/// every band piece is met by each lane in one interval. (Balanced on flight times, region
+/// division is divide_lanes().) Throws base::InputError as divide_path().
 DivisionResult divide_region(const std::vector<geometry::Ring>& rings, double angle_deg,
-                             const std::vector<DroneResource>& drones, Balance balance,
-                             const BandSweep& sweep_band);
+                             const std::vector<DroneResource>& drones, const BandSweep& sweep_band);
 
 /// A piece of a lane given to a drone by divide_lanes(): `lane` indexes the lanes passed in,
 /// `line` is the part of it (the whole lane, or one side of a cut along its length), flown
@@ -100,12 +98,14 @@ using LaneSweep =
 /// continuously but where its share first reaches into a lane (the turn and stops that costs).
 /// The cuts minimise the longest measured flight (bisection on it, each cut the longest share a
 /// drone flies within it, found by bisection) for every assignment of drones to bands (every
-/// permutation up to 6 drones, interchangeable drones once; beyond that the homes' order across
-/// the lanes, the fleet's order and adjacent swaps); then, within 2 % of that makespan, the cuts
-/// whose longest over shortest flight is smallest (each cut moved to where its two drones' times
-/// cross, from several starts). Every lane is flown exactly once: the pieces of a lane add up to
-/// it. Regions: each drone's rows of the area (rows end halfway between lane ordinates; a row
-/// cut along a lane is cut across it there), clipped to `rings` (outer counter-clockwise, holes
+/// permutation up to 4 drones, interchangeable drones once; beyond that the homes' order across
+/// the lanes, the fleet's order and swaps of the best: every pair up to 8 drones, adjacent ones
+/// beyond); then, within 2 % of that makespan, the cuts whose longest over shortest flight is
+/// smallest (each cut moved to where its two drones' times cross, from several starts). A share
+/// over its drone's range counts as infinitely long. Every lane is flown exactly once: the pieces
+/// of a lane add up to it (a lane under a micrometre goes whole to the share holding its start).
+/// Regions: each drone's rows of the area (rows end halfway between lane ordinates; a row cut along
+/// a lane is cut across it there), clipped to `rings` (outer counter-clockwise, holes
 /// clockwise); shares are their areas. With `lane_cell` (the cell, an index into `cells`, of each
 /// lane), the lanes are cut in the order and direction given instead (the undivided plan's
 /// flight: run after run, so that a share is whole runs and parts of one at either end, and the
