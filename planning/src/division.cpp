@@ -927,7 +927,7 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
                             const std::vector<SweepLine>& lanes,
                             const std::vector<DroneResource>& drones, const LaneSweep& sweep,
                             const FlightMeasure& measure, const std::vector<std::size_t>& lane_cell,
-                            const std::vector<Ring>& cells) {
+                            const std::vector<Ring>& cells, Balance balance) {
   LaneDivision ld(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, cells);
   const std::size_t n = ld.size();
   const double total = ld.total();
@@ -941,6 +941,8 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
     proportional.push_back(k + 1 == n ? total : proportional.back() + w[k] / total_w * total);
   auto [result, result_score] = ld.result_for(fleet, proportional);
   const double proportional_makespan = result.makespan_s;
+  result.proportional_makespan_s = proportional_makespan;
+  if (balance == Balance::capability) return result;
 
   const std::vector<Balanced> found = balance_orders(ld, proportional_makespan);
   if (!found.empty()) {

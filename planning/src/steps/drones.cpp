@@ -83,42 +83,6 @@ std::vector<DroneResource> resources_of(const SurveyPlan& plan) {
   return out;
 }
 
-// Region division (paper 001 Algorithm 4) by capability: bands swept one by one.
-DivisionResult divide_by_region(const SurveyPlan& plan, const Routes& routes,
-                                const std::vector<DroneResource>& resources) {
-  const SurveyRequest& r = plan.request;
-  const double angle = plan.sweep.angle_deg;
-  const bool cells = plan.handling == Handling::split || plan.planning_rings.size() > 1;
-  const BandSweep sweep_band = [&](const std::vector<geometry::Ring>& band,
-                                   const DroneResource& drone) -> SurveyPath {
-    if (!cells) {  // a convex area (or the hull): each band piece with the strip rule
-      std::vector<SweepLine> lines;
-      for (const geometry::Ring& piece : band) {
-        SweepSettings s;
-        s.angle_deg = angle;
-        s.line_spacing_m = plan.imaging.line_spacing_m;
-        s.footprint_width_m = plan.imaging.footprint_across_m;
-        s.placement = r.placement;
-        s.turnaround_m = plan.turnaround_m;
-        const auto ordered = order_lines(plan_sweep(geometry::Polygon{piece, {}}, s),
-                                         StartCorner::nearest_home, drone.home);
-        lines.insert(lines.end(), ordered.begin(), ordered.end());
-      }
-      return survey_path(lines, r.waypoint_spacing_m);
-    }
-    SplitSettings s;
-    s.line_spacing_m = plan.imaging.line_spacing_m;
-    s.footprint_width_m = plan.imaging.footprint_across_m;
-    s.placement = r.placement;
-    s.turnaround_m = plan.turnaround_m;
-    s.scan_step_deg = r.split_scan_step_deg;
-    s.fixed_angle_deg = angle;
-    const SplitPlan sp = plan_pieces(band, angle, drone.home, s, routes.inside);
-    return survey_path(sp.lines, r.waypoint_spacing_m, routes.leg());
-  };
-  return divide_region(plan.planning_rings, angle, resources, sweep_band);
-}
-
 // The flight a drone's mission will make of a survey path (the missions step builds the same).
 FlightMeasure flight_measure(const SurveyPlan& plan, const Routes& routes,
                              std::vector<MissionSettings>& settings) {
@@ -132,8 +96,12 @@ FlightMeasure flight_measure(const SurveyPlan& plan, const Routes& routes,
   };
 }
 
-// Region division balanced on the drones' measured flights (DESIGN.md §16): the plan's lanes cut
-// into bands, a band's last lane cut along its length where the balance needs it. A convex area's
+// Region division (paper 001 Algorithm 4 on the plan's own lanes, DESIGN.md §16): the lanes cut
+// into bands in proportion to the capabilities, or balanced on the drones' measured flights
+// (--balance makespan), a band's last lane cut along its length where the shares need it. Every
+// lane is flown, so the side overlap holds across the bands' seams (a band swept on its own with
+// the strip rule needs fewer lanes, but its edge lanes' footprints only touch the next band's:
+// 6 lanes on the meadow with 3 drones where the plan has 11). A convex area's
 // share is flown as one zigzag; a split area's as the plan's runs (or cells), each restricted to
 // the share, in the order plan_split would fly them.
 DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
@@ -193,9 +161,12 @@ DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
   };
   std::vector<MissionSettings> settings;
   const FlightMeasure measure = flight_measure(plan, routes, settings);
-  if (!by_cell) return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure);
+  const Balance balance = plan.request.balance;
+  if (!by_cell)
+    return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure, {}, {},
+                        balance);
   return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure,
-                      plan.sweep_line_cell, plan.cells);
+                      plan.sweep_line_cell, plan.cells, balance);
 }
 
 }  // namespace
@@ -224,10 +195,8 @@ void drones(SurveyPlan& plan) {
   if (r.division == DivisionMode::path)
     plan.division = divide_path(whole, resources, r.balance,
                                 r.balance == Balance::makespan ? measure : FlightMeasure{});
-  else if (r.balance == Balance::makespan)
-    plan.division = divide_by_lanes(plan, routes, resources, spacing);
   else
-    plan.division = divide_by_region(plan, routes, resources);
+    plan.division = divide_by_lanes(plan, routes, resources, spacing);
   for (std::size_t i = 0; i < plan.drones.size(); ++i)
     plan.drones[i].work = plan.division.drones[i];
 }

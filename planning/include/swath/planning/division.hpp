@@ -111,14 +111,17 @@ using LaneSweep =
 /// flight: run after run, so that a share is whole runs and parts of one at either end, and the
 /// part of a cut lane a drone gets is the part flown before or after the cut) and the regions are
 /// the cells clipped to each drone's lanes' rows. `proportional_makespan_s`: cuts in proportion
-/// to the corrected capabilities, bands in fleet order. Home costs and budgets as
+/// to the corrected capabilities, bands in fleet order; Balance::capability returns those cuts
+/// (shares of the lanes' length, the paper's Algorithm 4 on the plan's own lanes: every lane
+/// flown, so the side overlap holds across the bands' seams). Home costs and budgets as
 /// divide_region(); throws base::InputError as it does.
 DivisionResult divide_lanes(const std::vector<geometry::Ring>& rings, double angle_deg,
                             const std::vector<SweepLine>& lanes,
                             const std::vector<DroneResource>& drones, const LaneSweep& sweep,
                             const FlightMeasure& measure,
                             const std::vector<std::size_t>& lane_cell = {},
-                            const std::vector<geometry::Ring>& cells = {});
+                            const std::vector<geometry::Ring>& cells = {},
+                            Balance balance = Balance::makespan);
 
 /// Area of `rings` (outer counter-clockwise, holes clockwise) with y <= y_cut in the frame rotated
 /// by -angle_deg, m². Exact up to rounding (half-plane clipping of each ring, shoelace).
