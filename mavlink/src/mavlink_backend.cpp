@@ -8,6 +8,8 @@
 
 #include "swath/base/input_error.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/geometry/polygon.hpp"
+#include "swath/geometry/predicates.hpp"
 
 namespace swath::mavlink {
 
@@ -66,16 +68,6 @@ namespace {
 // Longer than the vehicle's 1 Hz status messages: an accepted command shows in the state by then.
 constexpr double kSettleS = 1.2;
 
-bool inside_polygon(const std::vector<std::array<double, 2>>& poly, double x, double y) {
-  bool in = false;
-  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const auto& a = poly[i];
-    const auto& b = poly[j];
-    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
-  }
-  return in;
-}
-
 // A vehicle rejecting one step of the steering this many times (since it last accepted it) will
 // not do it (a pre-arm check, a mode it refuses): retrying forever would hide that.
 constexpr int kMaxRejections = 3;
@@ -130,10 +122,11 @@ MavlinkBackend::MavlinkBackend(std::vector<std::unique_ptr<Link>> links,
     DriverSettings d = settings_.driver;
     d.vehicle_sysid = sysids[i];
     if (settings_.fence_m.size() >= 3) {
-      auto fence = settings_.fence_m;
+      geometry::Ring fence;
+      for (const auto& [x, y] : settings_.fence_m) fence.push_back({x, y});
       d.inside_fence = [fence, frame](double lat_deg, double lon_deg) {
-        const geometry::Point2 p = frame.to_local({lat_deg, lon_deg});
-        return inside_polygon(fence, p.x, p.y);
+        return geometry::locate_point(frame.to_local({lat_deg, lon_deg}), fence) ==
+               geometry::Containment::inside;
       };
     }
     v->driver = std::make_unique<CopterDriver>(*v->link, std::move(d));

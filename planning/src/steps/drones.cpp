@@ -106,7 +106,7 @@ FlightMeasure flight_measure(const SurveyPlan& plan, const Routes& routes,
 // the share, in the order plan_split would fly them.
 DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
                                const std::vector<DroneResource>& resources,
-                               std::optional<double> spacing) {
+                               std::optional<double> spacing, const FlightMeasure& measure) {
   const double angle = plan.sweep.angle_deg;
   const bool cells = plan.handling == Handling::split || plan.planning_rings.size() > 1;
   const std::vector<SweepLine>& lanes = plan.sweep.lines;
@@ -159,8 +159,6 @@ DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
     const SplitPlan sp = run_order(std::move(outlines), std::move(runs), angle, home);
     return survey_path(sp.lines, spacing, routes.leg());
   };
-  std::vector<MissionSettings> settings;
-  const FlightMeasure measure = flight_measure(plan, routes, settings);
   const Balance balance = plan.request.balance;
   if (!by_cell)
     return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure, {}, {},
@@ -196,7 +194,7 @@ void drones(SurveyPlan& plan) {
     plan.division = divide_path(whole, resources, r.balance,
                                 r.balance == Balance::makespan ? measure : FlightMeasure{});
   else
-    plan.division = divide_by_lanes(plan, routes, resources, spacing);
+    plan.division = divide_by_lanes(plan, routes, resources, spacing, measure);
   for (std::size_t i = 0; i < plan.drones.size(); ++i)
     plan.drones[i].work = plan.division.drones[i];
 }
