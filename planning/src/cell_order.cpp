@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <random>
 #include <stdexcept>
 
 namespace swath::planning {
@@ -257,37 +258,49 @@ CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
   return finished(p, best_variants(p, t, nearest_neighbour(p)));
 }
 
-CellOrder heuristic_cell_order(const CellOrderProblem& p) {
-  const std::size_t n = p.cells.size();
-  if (n == 0) return {};
-  Transit t(p);
-  std::vector<std::size_t> order = nearest_neighbour(p);
-  CellOrder best = best_variants(p, t, order);
-  // Local search over orders; variants are re-optimised exactly for each candidate. Moves reach
-  // at most kReach positions, and the evaluations are budgeted: large instances stay fast
-  // (O(n reach v²) DPs of O(n v²) per pass) and still get the local improvements that matter.
-  constexpr std::size_t kReach = 8;
-  std::size_t budget = 200000 / std::max<std::size_t>(1, n);
+namespace {
+
+// One candidate order from `order`: move 0 moves the block of `len` cells at i to start at j, move
+// 1 swaps i and j, move 2 reverses i..j. Empty when the move does nothing or does not apply.
+std::vector<std::size_t> moved(const std::vector<std::size_t>& order, int move, std::size_t i,
+                               std::size_t j, std::size_t len) {
+  const std::size_t n = order.size();
+  std::vector<std::size_t> c;
+  if (move == 0) {
+    if (i + len > n || (j >= i && j <= i + len - 1) || j + len > n) return c;
+    c = order;
+    std::vector<std::size_t> block(c.begin() + static_cast<std::ptrdiff_t>(i),
+                                   c.begin() + static_cast<std::ptrdiff_t>(i + len));
+    c.erase(c.begin() + static_cast<std::ptrdiff_t>(i),
+            c.begin() + static_cast<std::ptrdiff_t>(i + len));
+    c.insert(c.begin() + static_cast<std::ptrdiff_t>(j), block.begin(), block.end());
+  } else if (j > i) {
+    c = order;
+    if (move == 1)
+      std::swap(c[i], c[j]);
+    else
+      std::reverse(c.begin() + static_cast<std::ptrdiff_t>(i),
+                   c.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+  }
+  return c;
+}
+
+// Local search over orders (move one cell or a block of two or three, swap two, reverse a run;
+// first improvement); variants are re-optimised exactly for each candidate. Moves reach at most
+// `reach` positions and at most `budget` candidates are evaluated (the budget is spent in place).
+void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t>& order,
+                  CellOrder& best, std::size_t reach, std::size_t& budget) {
+  const std::size_t n = order.size();
   for (bool improved = true; improved && budget > 0;) {
     improved = false;
-    for (std::size_t i = 0; i < n && budget > 0; ++i) {
-      for (std::size_t j = i >= kReach ? i - kReach : 0;
-           j < std::min(n, i + kReach + 1) && budget > 0; ++j) {
-        if (i == j) continue;
-        for (int move = 0; move < 3 && budget > 0; ++move) {
-          std::vector<std::size_t> candidate = order;
-          if (move == 0) {  // move cell i to position j
-            const std::size_t c = candidate[i];
-            candidate.erase(candidate.begin() + static_cast<std::ptrdiff_t>(i));
-            candidate.insert(candidate.begin() + static_cast<std::ptrdiff_t>(j), c);
-          } else if (move == 1) {  // swap
-            if (j < i) continue;
-            std::swap(candidate[i], candidate[j]);
-          } else {  // reverse the run i..j
-            if (j < i) continue;
-            std::reverse(candidate.begin() + static_cast<std::ptrdiff_t>(i),
-                         candidate.begin() + static_cast<std::ptrdiff_t>(j) + 1);
-          }
+    for (std::size_t i = 0; i < n && budget > 0; ++i)
+      for (std::size_t j = i >= reach ? i - reach : 0; j < std::min(n, i + reach + 1) && budget > 0;
+           ++j)
+        for (int kind = 0; kind < 5 && budget > 0; ++kind) {  // block moves of 1-3, swap, reverse
+          const int move = kind < 3 ? 0 : kind - 2;
+          const std::vector<std::size_t> candidate =
+              moved(order, move, i, j, kind < 3 ? std::size_t(kind) + 1 : 1);
+          if (candidate.empty() || i == j) continue;
           --budget;
           const CellOrder tried = best_variants(p, t, candidate);
           if (tried.objective_m < best.objective_m - 1e-9) {
@@ -296,7 +309,46 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
             improved = true;
           }
         }
-      }
+  }
+}
+
+}  // namespace
+
+CellOrder heuristic_cell_order(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size();
+  if (n == 0) return {};
+  Transit t(p);
+  std::vector<std::size_t> order = nearest_neighbour(p);
+  CellOrder best = best_variants(p, t, order);
+  // Moves reach at most 8 positions on large instances (O(n reach) candidates a pass, each a DP of
+  // O(n v²)) and every position below 24 cells; the evaluations are budgeted so large instances
+  // stay fast and still get the local improvements that matter.
+  const std::size_t reach = n <= 24 ? n : 8;
+  std::size_t budget = 200000 / n;
+  local_search(p, t, order, best, reach, budget);
+  // Iterated local search: a local optimum of these moves was up to 9 % above Held-Karp's on 13
+  // scattered cells. Kick the best order (a double bridge: three cut points, the middle two
+  // pieces exchanged, which no single move undoes), search again, keep what is shorter. The
+  // kicks come from a fixed-seed generator (same problem, same order) and share the budget.
+  std::mt19937 kicks(static_cast<std::uint32_t>(n));
+  for (int kick = 0; kick < 24 && budget > 0 && n >= 8; ++kick) {
+    std::size_t cut[3];
+    for (std::size_t& c : cut) c = 1 + kicks() % (n - 1);
+    std::sort(cut, cut + 3);
+    if (cut[0] == cut[1] || cut[1] == cut[2]) continue;
+    std::vector<std::size_t> candidate(order.begin(),
+                                       order.begin() + static_cast<std::ptrdiff_t>(cut[0]));
+    candidate.insert(candidate.end(), order.begin() + static_cast<std::ptrdiff_t>(cut[1]),
+                     order.begin() + static_cast<std::ptrdiff_t>(cut[2]));
+    candidate.insert(candidate.end(), order.begin() + static_cast<std::ptrdiff_t>(cut[0]),
+                     order.begin() + static_cast<std::ptrdiff_t>(cut[1]));
+    candidate.insert(candidate.end(), order.begin() + static_cast<std::ptrdiff_t>(cut[2]),
+                     order.end());
+    CellOrder tried = best_variants(p, t, candidate);
+    local_search(p, t, candidate, tried, reach, budget);
+    if (tried.objective_m < best.objective_m - 1e-9) {
+      best = tried;
+      order = candidate;
     }
   }
   return finished(p, best);

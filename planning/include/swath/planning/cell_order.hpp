@@ -60,9 +60,12 @@ CellOrder exact_cell_order(const CellOrderProblem& problem);
 /// quick estimate for ranking candidate directions.
 CellOrder nearest_neighbour_order(const CellOrderProblem& problem);
 
-/// Nearest neighbour, then local search (move a cell, swap two, reverse a run, within 8
-/// positions) where every candidate order gets its best variants by dynamic programming; stops at
-/// a local optimum or after about 200,000 / n candidate orders.
+/// Nearest neighbour, then local search (move a cell or a block of two or three, swap two,
+/// reverse a run; every position below 24 cells, within 8 beyond) where every candidate order gets
+/// its best variants by dynamic programming, then up to 24 double-bridge kicks each followed by
+/// local search (iterated local search; the kicks from a generator seeded by n: deterministic).
+/// Stops after about 200,000 / n candidate orders. Accuracy: Held-Karp's optimum on 12 of 12
+/// random instances of 13-14 cells (tests/planning/split_test.cpp).
 CellOrder heuristic_cell_order(const CellOrderProblem& problem);
 
 /// exact_cell_order() up to `exact_limit` cells, heuristic_cell_order() beyond.
