@@ -183,11 +183,19 @@ class Flight {
 double parameter_power_w(const Stage& stage, const SimConfig& config,
                          const std::vector<double>& trajectory,
                          const std::vector<double>& computations) {
-  const auto comp = stage_parameters(stage.computations, computations);
-  const auto traj = stage_parameters(stage.trajectory, trajectory);
-  double w = computations_power_w(config.power.computations, comp);
-  for (std::size_t i = 0; i < traj.size() && i < config.trajectory_gains_w.size(); ++i)
-    w += config.trajectory_gains_w[i] * traj[i];
+  // stage_parameters() and computations_power_w() inline, in their order of summation: the
+  // replanner asks this thousands of times a replan, and two vectors a call were most of its
+  // time (and nearly all of it under AddressSanitizer).
+  const auto at = [](const std::vector<Interval>& bounds, const std::vector<double>& values,
+                     std::size_t i) {
+    return i < values.size() ? std::clamp(values[i], bounds[i].lo, bounds[i].hi) : bounds[i].hi;
+  };
+  const std::vector<PowerCurve>& curves = config.power.computations;
+  double w = 0.0;
+  for (std::size_t j = 0; j < curves.size() && j < stage.computations.size(); ++j)
+    w += computation_power_w(curves[j], at(stage.computations, computations, j));
+  for (std::size_t i = 0; i < stage.trajectory.size() && i < config.trajectory_gains_w.size(); ++i)
+    w += config.trajectory_gains_w[i] * at(stage.trajectory, trajectory, i);
   return w;
 }
 
@@ -322,16 +330,29 @@ std::vector<Point2> guided_path(const Plan& plan, const SimConfig& config) {
 
 namespace {
 
-// rows[i] belongs to lambdas[i] (ascending); linear in between, the end rows beyond.
+// Where lambda falls in a table of rows (rows[i] belongs to lambdas[i], ascending): linear in
+// between, the end rows beyond.
+struct RowPlace {
+  std::size_t i = 0;  // between rows i - 1 and i (0: a table of one row)
+  double f = 0.0;
+
+  RowPlace(const std::vector<double>& lambdas, double lambda) {
+    if (lambdas.size() == 1) return;
+    i = 1;
+    while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
+    f = std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
+  }
+  double value(const std::vector<std::vector<double>>& rows, std::size_t k) const {
+    if (i == 0) return rows[0][k];
+    return rows[i - 1][k] + f * (rows[i][k] - rows[i - 1][k]);
+  }
+};
+
 std::vector<double> row_at(const std::vector<double>& lambdas,
                            const std::vector<std::vector<double>>& rows, double lambda) {
-  if (lambdas.size() == 1) return rows[0];
-  std::size_t i = 1;
-  while (i + 1 < lambdas.size() && lambda > lambdas[i]) ++i;
-  const double f = std::clamp((lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]), 0.0, 1.0);
+  const RowPlace place(lambdas, lambda);
   std::vector<double> out(rows[0].size());
-  for (std::size_t k = 0; k < out.size(); ++k)
-    out[k] = rows[i - 1][k] + f * (rows[i][k] - rows[i - 1][k]);
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = place.value(rows, k);
   return out;
 }
 
@@ -599,15 +620,17 @@ class Outlook {
   double rest_energy_j(const RestTable& rt, double lambda, const std::vector<double>& trajectory,
                        const std::vector<double>& computations, double power_now_w, double t,
                        const EnergyModel& model) const {
-    const std::vector<double> row = rt.at(lambda);
+    const RowPlace place(rt.lambdas, lambda);
     double shift = 0.0;
-    for (std::size_t g = 0; g + 1 < row.size(); ++g)
-      if (row[g + 1] > 0.0)
+    for (std::size_t g = 0; g + 1 < rt.rows[0].size(); ++g) {
+      const double seconds = place.value(rt.rows, g + 1);
+      if (seconds > 0.0)
         shift += (parameter_power_w(plan_.stages[representative_[g]], config_, trajectory,
                                     computations) -
                   power_now_w) *
-                 row[g + 1];
-    return model.energy_over_j(t, row[0]) + shift;
+                 seconds;
+    }
+    return model.energy_over_j(t, place.value(rt.rows, 0)) + shift;
   }
 
  private:
@@ -641,7 +664,7 @@ class Replanner {
           trajectory_free_ ? trajectory_at(plan_, l) : params.trajectory();
       return outlook.rest_energy_j(rt, l, traj, c, params.power_now(), flight.time_s(), model);
     };
-    problem.rest_time_s = [&](double l) { return rt.at(l)[0]; };
+    problem.rest_time_s = [&](double l) { return RowPlace(rt.lambdas, l).value(rt.rows, 0); };
     const ReplanChoice choice = choose_parameters(problem);
     ++result.replans;
     if (!choice.feasible) ++result.infeasible_replans;
