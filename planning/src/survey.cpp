@@ -33,6 +33,8 @@ std::string duration_text(double seconds) {
 geometry::Polygon measured_area(const SurveyPlan& plan) {
   geometry::Polygon measured = plan.area;
   measured.holes.insert(measured.holes.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  measured.holes.insert(measured.holes.end(), plan.extra_piece_holes.begin(),
+                        plan.extra_piece_holes.end());
   return measured;
 }
 

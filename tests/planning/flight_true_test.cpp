@@ -524,6 +524,30 @@ TEST(FlightTrue, ExcludedZoneIsFencedAndKeptClearOf) {
   check_flights(plan, "meadow with a zone");
 }
 
+// A zone across the whole field cuts it in two; a second zone lies inside the smaller part, so
+// it is a hole of an extra piece. The area reported is the rectangle less both zones (closed
+// form: 400 x 200 - 20 x 200 - 30 x 30 = 75,100 m²; it was 76,000 when the piece's hole was
+// dropped) and the coverage is measured without the hole (0.988 when it counted as unseen).
+TEST(FlightTrue, ZoneInACutOffPieceIsOutOfTheAreaAndItsCoverage) {
+  SurveyRequest r = pond_and_barn(1, DivisionMode::path);
+  r.field = local_field({{{0, 0}, {400, 0}, {400, 200}, {0, 200}}, {}});
+  const geometry::LocalFrame& frame = *r.field.frame;
+  r.home = frame.to_geo({-30, -30});
+  auto zone = [&](std::vector<Point2> ring) {
+    std::vector<GeoPoint> geo;
+    for (const Point2& v : ring) geo.push_back(frame.to_geo(v));
+    return geo;
+  };
+  r.exclusions = {zone({{200, -20}, {220, -20}, {220, 220}, {200, 220}}),
+                  zone({{300, 80}, {330, 80}, {330, 110}, {300, 110}})};
+  r.clearance_m = 5;
+  const SurveyPlan plan = plan_survey(r);
+  ASSERT_EQ(plan.extra_pieces.size(), 1u);
+  EXPECT_NEAR(*plan.facts.area_m2, 75100.0, 1.0);
+  EXPECT_GE(plan.coverage.covered_fraction, 0.999);
+  check_flights(plan, "field cut in two by a zone, a zone in the cut-off part");
+}
+
 TEST(FlightTrue, HoverAndTimeTriggerModes) {
   for (TriggerMode mode : {TriggerMode::time, TriggerMode::hover}) {
     SurveyRequest r = pond_and_barn(1, DivisionMode::path);

@@ -160,7 +160,11 @@ void cut_out_zones(SurveyPlan& plan) {
   double total = 0;
   for (const geometry::Polygon& part : parts) total += geometry::area(part);
   plan.area = parts.front();
-  for (std::size_t k = 1; k < parts.size(); ++k) plan.extra_pieces.push_back(parts[k].outer);
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    plan.extra_pieces.push_back(parts[k].outer);
+    plan.extra_piece_holes.insert(plan.extra_piece_holes.end(), parts[k].holes.begin(),
+                                  parts[k].holes.end());
+  }
   plan.warnings.push_back(
       "no-fly zones cross the area's boundary or each other: planned the area less the zones, " +
       std::to_string(parts.size()) + " part(s), " + fixed_text(total, 1) + " m² in all");
@@ -272,6 +276,8 @@ void area(SurveyPlan& plan) {
   }
   for (const geometry::Ring& piece : plan.extra_pieces)
     *plan.facts.area_m2 += geometry::signed_area(piece);
+  for (const geometry::Ring& hole : plan.extra_piece_holes)  // clockwise: negative
+    *plan.facts.area_m2 -= std::abs(geometry::signed_area(hole));
   check_classification(plan);
   choose_handling(plan);
   planning_rings(plan);

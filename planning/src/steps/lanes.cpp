@@ -75,6 +75,8 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   s.cells = plan.request.split_cells;
   s.seen_rings = geometry::rings_of(plan.area);  // and --repair's further pieces
   s.seen_rings.insert(s.seen_rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  s.seen_rings.insert(s.seen_rings.end(), plan.extra_piece_holes.begin(),
+                      plan.extra_piece_holes.end());
   if (plan.request.outside_margin_m > 0) {  // the outlines grown by the margin, less the zones
     std::vector<geometry::Ring> outlines{plan.flown_area.outer};
     outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
@@ -140,8 +142,12 @@ Routes::Routes(const SurveyPlan& plan)
 
 LegRoute Routes::leg() const {
   return [this](Point2 a, Point2 b) {
-    if (inside.routes() && inside.contains(a) && inside.contains(b))
-      return between(inside.path(a, b));
+    if (inside.routes() && inside.contains(a) && inside.contains(b)) {
+      // Both ends inside, but in pieces no inside path joins (a zone across the whole field):
+      // the router's straight fallback would cross the zone, so go around it in the open.
+      std::vector<Point2> path = inside.path(a, b);
+      if (path.size() > 2 || inside.visible(a, b)) return between(path);
+    }
     return between(open.path(a, b));
   };
 }

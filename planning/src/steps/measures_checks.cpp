@@ -43,6 +43,7 @@ std::vector<SweepLine> first_pass_lines(const SurveyPlan& plan) {
 double transit_outside_m(const SurveyPlan& plan) {
   std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
   rings.insert(rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  rings.insert(rings.end(), plan.extra_piece_holes.begin(), plan.extra_piece_holes.end());
   const geometry::VisibilityRouter measure(rings, 0);
   double outside = 0;
   for (const DronePlan& d : plan.drones) {

@@ -183,6 +183,9 @@ struct SurveyPlan {
   /// --repair: the enclosed areas beyond the largest one (which became the field's outer ring),
   /// counter-clockwise, local frame. Planned with the rest.
   std::vector<geometry::Ring> extra_pieces;
+  /// Zones cut out across the boundary: the holes the zones leave in the extra pieces (clockwise,
+  /// local frame). Not flown (the zones stay no-fly); counted out of the area and its coverage.
+  std::vector<geometry::Ring> extra_piece_holes;
   Imaging imaging;
   geometry::SweepDirection direction;  ///< angle of the lines (local, CCW from east) and height
   Sweep sweep;
@@ -204,8 +207,9 @@ struct SurveyPlan {
   std::vector<std::string> warnings;    ///< one sentence each
 };
 
-/// What the coverage of a plan is measured over: the area, and --repair's extra pieces as further
-/// rings (the scanline measure counts by the even-odd rule).
+/// What the coverage of a plan is measured over: the area, and the extra pieces (--repair's, or
+/// the parts zones cut off) and their holes as further rings (the scanline measure counts by the
+/// even-odd rule).
 geometry::Polygon measured_area(const SurveyPlan& plan);
 
 /// Plans a survey, divided among a fleet when one is given. Throws base::InputError for an area
