@@ -15,8 +15,8 @@
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/event_replay.hpp"
 #include "swath/fleet/faults.hpp"
-#include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/fleet_file.hpp"
+#include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/trace_replay.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
@@ -231,7 +231,7 @@ const std::vector<Target>& targets() {
          });
        },
        {"share/fleets/tracking-pair.yaml", "share/fleets/three-quads.yaml",
-        "share/weights/default.yaml"}},
+        "share/weights/default.yaml", "tests/bad-input/seeds/fleet-mavlink.yaml"}},
       {"faults",
        [](const std::string& t) {
          expect_input_error_only([&] { fleet::parse_faults(t, "fuzz.yaml", {"a", "b"}, 3600); });

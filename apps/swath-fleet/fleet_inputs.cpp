@@ -206,6 +206,7 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"config_hash", hex},
            {"world", p.world->kind()},
            {"world_file", p.world_source},
+           {"backend", p.vehicles.empty() ? "sim" : "mavlink"},
            {"completed", r.completed},
            {"completion_time_s", r6(r.completion_time_s)},
            {"end_s", r6(r.end_s)},
@@ -229,6 +230,15 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"faults", p.settings.faults.size()},
            {"app_metrics", metrics}};
   if (!r.failure.empty()) out["failure"] = r.failure;
+  // Which vehicle flew which drone (a real run): the address as --vehicles spells it.
+  if (!p.vehicles.empty()) {
+    json vehicles = json::array();
+    for (std::size_t i = 0; i < p.vehicles.size() && i < r.drones.size(); ++i)
+      vehicles.push_back(json{{"drone", r.drones[i].name},
+                              {"url", fleet::vehicle_address_text(p.vehicles[i])},
+                              {"sysid", p.vehicles[i].sysid}});
+    out["vehicles"] = vehicles;
+  }
   // What `replay` needs to run it again (the world is world_file and world_seed above).
   json request{{"max_time_s", p.settings.max_time_s}};
   if (!p.fleet_file.empty()) request["fleet_file"] = p.fleet_file;

@@ -47,6 +47,9 @@ struct PreparedRun {
   int default_drones = 0;
   /// A trace replay: the run directory it replays ("" for a run of the app itself).
   std::string replay_of;
+  /// The vehicles flying the fleet with `run --backend mavlink`, one per drone in fleet order;
+  /// empty: the simulated fleet (summary.json's backend: sim).
+  std::vector<fleet::VehicleAddress> vehicles;
 };
 /// Reads and checks everything (base::InputError on bad input). `world_seed`: re-draws the
 /// world's random parts (compare's scenarios) instead of the file's seed.

@@ -33,19 +33,58 @@ void FleetRunCommand::setup(CLI::App& app) {
   app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
   app.add_option("--backend", backend_,
                  "sim: the simulated fleet; mavlink: the fleet's drones are ArduCopters over "
-                 "MAVLink (--vehicles), flown on the wall clock")
+                 "MAVLink (--vehicles, or the fleet file's mavlink {url, sysid} per drone), "
+                 "flown on the wall clock")
       ->check(CLI::IsMember({"sim", "mavlink"}))
       ->capture_default_str();
-  app.add_option("--vehicles", vehicles_,
-                 "With --backend mavlink: one vehicle per drone of the fleet, in order, "
-                 "comma-separated: udp:HOST:PORT listens there for a vehicle sending to it "
-                 "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
-                 "instance); /SYSID after the port (1..255, default: its place + 1)");
+  app.add_option(
+      "--vehicles", vehicles_,
+      "With --backend mavlink: one vehicle per drone of the fleet, in order, "
+      "comma-separated: udp:HOST:PORT listens there for a vehicle sending to it "
+      "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
+      "instance); /SYSID after the port (1..255, default: its place + 1); overrides the fleet "
+      "file's mavlink {url, sysid}");
   world_seed_option_ = app.add_option(
       "--world-seed", world_seed_,
       "Draw the world's random parts from this seed instead of the file's (the scenarios of "
       "compare and tune, as `worlds gen KIND --seed N` prints them)");
 }
+
+// The vehicles of --backend mavlink: --vehicles when given (it overrides the fleet file), else
+// every drone's `mavlink {url, sysid}` from the fleet file, in fleet order.
+namespace {
+std::vector<mavlink::VehicleUrl> vehicle_urls(const std::string& vehicles,
+                                              const std::string& fleet_file, const PreparedRun& p) {
+  if (!vehicles.empty()) {
+    const auto urls = mavlink::parse_vehicle_urls(vehicles);
+    if (urls.size() != p.drones.size())
+      throw InputError("--vehicles names " + std::to_string(urls.size()) +
+                       " vehicles for a fleet of " + std::to_string(p.drones.size()) + " drones");
+    return urls;
+  }
+  std::vector<mavlink::VehicleUrl> urls;
+  std::string missing;
+  int without = 0;
+  for (const fleet::DroneSpec& d : p.drones) {
+    if (d.vehicle) {
+      urls.push_back(*d.vehicle);
+    } else {
+      missing += (missing.empty() ? "" : ", ") + d.name;
+      ++without;
+    }
+  }
+  if (urls.empty())
+    throw InputError(
+        "--backend mavlink needs --vehicles, or a mavlink {url, sysid} for every "
+        "drone of the fleet file");
+  if (without > 0)
+    throw InputError(fleet_file + ": " + missing + (without == 1 ? " has" : " have") +
+                     " no mavlink {url, sysid} while " + std::to_string(urls.size()) + " of the " +
+                     std::to_string(p.drones.size()) +
+                     " drones do; give every drone one, or give --vehicles");
+  return urls;
+}
+}  // namespace
 
 int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
@@ -53,11 +92,7 @@ int FleetRunCommand::run() {
       world_seed_option_->count() > 0 ? prepare_run(request_, world_seed_) : prepare_run(request_);
   std::unique_ptr<mavlink::MavlinkBackend> vehicles;
   if (backend_ == "mavlink") {
-    if (vehicles_.empty()) throw InputError("--backend mavlink needs --vehicles");
-    const auto urls = mavlink::parse_vehicle_urls(vehicles_);
-    if (urls.size() != p.drones.size())
-      throw InputError("--vehicles names " + std::to_string(urls.size()) +
-                       " vehicles for a fleet of " + std::to_string(p.drones.size()) + " drones");
+    const std::vector<mavlink::VehicleUrl> urls = vehicle_urls(vehicles_, request_.fleet, p);
     mavlink::MavlinkBackendSettings settings;
     settings.origin = p.world->origin;
     settings.fence_m = p.world->fence();
@@ -72,6 +107,7 @@ int FleetRunCommand::run() {
               << " vehicles over MAVLink on the wall clock; when the app ends, each is sent home "
                  "and waited for (up to "
               << base::fixed_text(settings.end_timeout_s, 0) << " s) until it has landed\n";
+    p.vehicles = urls;
   } else if (!vehicles_.empty()) {
     throw InputError("--vehicles needs --backend mavlink");
   }

@@ -139,6 +139,7 @@ namespace {
 
 struct CollectedRun {
   std::string run, app, scheduler, version, config_hash;
+  std::string backend = "sim";  ///< summary.json's backend (absent before it was recorded: sim)
   std::uint64_t seed = 0;
   bool completed = false;
   double completion_time_s = 0, energy_wh = 0, distance_m = 0;
@@ -165,6 +166,7 @@ CollectedRun read_run(const std::string& run) {
   c.config_hash = text("config_hash");
   c.app = text("app");
   c.scheduler = text("scheduler");
+  if (base::json_find(j, "backend")) c.backend = text("backend");
   c.seed = static_cast<std::uint64_t>(base::json_integer(base::json_member(j, "seed", path), 0,
                                                          9007199254740992LL, path + ": seed"));
   const nlohmann::json& completed = base::json_member(j, "completed", path);
@@ -203,6 +205,10 @@ int FleetCollectCommand::run() {
       throw InputError(r.run + ": another configuration than " + first.run + " (config_hash " +
                        r.config_hash + " vs " + first.config_hash +
                        ": app, world, fleet, weights, faults, wind or time limit differ)");
+    // A real flight's time is not a simulated one's: one backend per table.
+    if (r.backend != first.backend)
+      throw InputError(r.run + ": flown with the " + r.backend + " backend, " + first.run +
+                       " with " + first.backend + ": collect merges runs of one backend");
     const auto [it, fresh] = seen.emplace(std::make_pair(r.scheduler, r.seed), r.run);
     if (!fresh)
       throw InputError(r.run + ": the same scheduler (" + r.scheduler + ") and seed (" +

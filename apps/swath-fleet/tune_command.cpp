@@ -70,7 +70,8 @@ void FleetTuneCommand::setup(CLI::App& app) {
                    "The swath-fleet to name in the lines (default: this one's absolute path)");
   tell_ = app.add_subcommand("tell",
                              "Feed finished runs (directories ask named) back into STATE; after "
-                             "the last rung write weights.yaml and tune.csv to the output");
+                             "the last rung write weights.yaml and tune.csv to the output, after "
+                             "the held-out runs held_out.csv and summary.json");
   tell_->add_option("STATE", state_, "The tuning's state file (JSON)")->required();
   tell_->add_option("RUN", told_runs_, "Run directories of the lines ask printed")->required();
 }
@@ -409,8 +410,29 @@ std::vector<std::pair<std::string, std::uint64_t>> expected_runs(const json& st)
       out.push_back(
           {runs + "/rung" + std::to_string(rung) + "-trial" + std::to_string(i.get<std::size_t>()),
            s});
+  } else if (phase == "held_out") {  // tune's score(): reactive, the defaults, the winner
+    const std::uint64_t h0 =
+        seed + st["histories"].get<std::uint64_t>() + st["tuning_seeds"].get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < st["held_out"].get<std::uint64_t>(); ++k)
+      for (const char* which : {"reactive", "default", "tuned"})
+        out.push_back({runs + "/held-seed" + std::to_string(h0 + k) + "-" + which, h0 + k});
   }
   return out;
+}
+
+// The weights file of an expected run ("" for a reactive run: the starting weights).
+std::string weights_file_of(const json& st, const std::string& dir) {
+  const std::string name = fs::path(dir).filename().string();
+  const std::string phase = st["phase"].get<std::string>();
+  if (phase == "rung")
+    return trial_weights_file(st, std::stoul(name.substr(name.find("-trial") + 6)));
+  if (phase == "held_out") {
+    if (name.size() >= 8 && name.compare(name.size() - 8, 8, "-default") == 0)
+      return trial_weights_file(st, 0);  // trial 0: the starting weights
+    if (name.size() >= 6 && name.compare(name.size() - 6, 6, "-tuned") == 0)
+      return trial_weights_file(st, st["winner"].get<std::size_t>());
+  }
+  return "";
 }
 
 std::string run_line(const json& st, const std::string& out_dir, std::uint64_t seed,
@@ -473,6 +495,9 @@ int FleetTuneCommand::ask() {
               {"seed", request_.seed},
               {"histories", histories_},
               {"tuning_seeds", tuning_seeds_},
+              {"held_out", held_out_},
+              {"world_kind", check.world->kind()},
+              {"drone_count", check.drones.size()},
               {"runs", runs},
               {"output", absolute_path(output_)},
               {"program", program_.empty() ? own_program_path("swath-fleet") : program_}};
@@ -504,12 +529,7 @@ int FleetTuneCommand::ask() {
   std::ostringstream out;
   for (const auto& [dir, seed] : expected_runs(st)) {
     if (st["told"].contains(dir)) continue;
-    std::string weights;
-    if (phase == "rung") {
-      const std::string name = fs::path(dir).filename().string();
-      weights = trial_weights_file(st, std::stoul(name.substr(name.find("-trial") + 6)));
-    }
-    out << run_line(st, dir, seed, weights) << "\n";
+    out << run_line(st, dir, seed, weights_file_of(st, dir)) << "\n";
   }
   std::cout << out.str();
   return base::kExitSuccess;
@@ -577,6 +597,46 @@ int FleetTuneCommand::tell() {
     for (std::size_t i = 0; i < trials.size(); ++i) alive.push_back(i);
     st["phase"] = "rung";
     st["rung"] = 0;
+  } else if (st["phase"] == "held_out") {
+    // tune's score(): per held-out seed reactive, the starting weights, the winner's; then tune's
+    // held_out.csv and summary.json next to weights.yaml and tune.csv.
+    HeldOut h;
+    for (std::size_t j = 0; j + 2 < expected.size(); j += 3) {
+      h.reactive.push_back(st["told"][expected[j].first].get<double>());
+      h.start.push_back(st["told"][expected[j + 1].first].get<double>());
+      h.tuned.push_back(st["told"][expected[j + 2].first].get<double>());
+      h.csv += std::to_string(expected[j].second) + "," + base::fixed_text(h.reactive.back(), 3) +
+               "," + base::fixed_text(h.start.back(), 3) + "," +
+               base::fixed_text(h.tuned.back(), 3) + "\n";
+    }
+    const std::size_t winner = st["winner"].get<std::size_t>();
+    const std::uint64_t seed = st["seed"].get<std::uint64_t>();
+    const std::uint64_t tune0 = seed + st["histories"].get<std::uint64_t>();
+    const json seeds{{"histories_first", seed},
+                     {"tuning_first", tune0},
+                     {"tuning", tuning_seeds},
+                     {"held_out_first", tune0 + static_cast<std::uint64_t>(tuning_seeds)},
+                     {"held_out", st["held_out"].get<int>()}};
+    const json summary{
+        {"app", app},
+        {"world", st["world_kind"].get<std::string>()},
+        {"drones", st["drone_count"].get<std::size_t>()},
+        {"trials", trials.size()},
+        {"seeds", seeds},
+        {"winner", {{"trial", winner}, {"weights", weights_json(trials[winner].weights)}}},
+        {"held_out", held_out_json(h)}};
+    base::OutputSet set(st["output"].get<std::string>(), "fleet-tune",
+                        {base::OutputSet::Mode::amend});
+    set.add("held_out.csv", h.csv);
+    set.add("summary.json", summary.dump(2) + "\n");
+    set.commit();
+    st["phase"] = "done";
+    const Interval r = mean_interval95(h.reactive), t = mean_interval95(h.tuned);
+    std::cout << state_ << ": held out (" << h.reactive.size() << " seeds): reactive "
+              << base::fixed_text(r.mean, 1) << " ± " << base::fixed_text(r.half, 1)
+              << " s, tuned predictive " << base::fixed_text(t.mean, 1) << " ± "
+              << base::fixed_text(t.half, 1) << " s -> " << st["output"].get<std::string>()
+              << "/held_out.csv, summary.json\n";
   } else {
     for (const auto& e : expected) {
       const std::string name = fs::path(e.first).filename().string();
@@ -606,7 +666,8 @@ int FleetTuneCommand::tell() {
                                std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
       set.add("tune.csv", tune_csv(trials));
       set.commit();
-      st["phase"] = "done";
+      // Then the held-out rung (tune's score); a state from before it had none.
+      st["phase"] = st.contains("held_out") ? "held_out" : "done";
       st["winner"] = winner;
       alive.clear();
       std::cout << state_ << ": trial " << winner << " of " << trials.size() << " wins -> "
@@ -618,6 +679,9 @@ int FleetTuneCommand::tell() {
   write_state(state_, st);
   if (st["phase"] == "rung")
     std::cout << state_ << ": rung " << st["rung"].get<int>() << " next (" << alive.size()
+              << " runs): tune ask " << state_ << "\n";
+  if (st["phase"] == "held_out")
+    std::cout << state_ << ": the held-out runs next (" << expected_runs(st).size()
               << " runs): tune ask " << state_ << "\n";
   return base::kExitSuccess;
 }

@@ -2,11 +2,14 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/base/yaml_input.hpp"
 #include "swath/base/yaml_map.hpp"
 #include "swath/energy/sim_config.hpp"
@@ -23,6 +26,38 @@ geometry::GeoPoint geo(const YamlMap& m) {
   m.allow({"lat", "lon", "alt"});
   return {m.number("lat", 0, -90, 90), m.number("lon", 0, -180, 180),
           m.number("alt", 0, -500, 9000)};
+}
+
+// A drone's `mavlink: {url: udp:HOST:PORT | tcp:HOST:PORT, sysid: 1..255}` (DESIGN.md §18.10):
+// --vehicles' grammar; sysid defaults to the drone's place + 1 as there. The system id is given
+// once: in `sysid`, or as the url's /SYSID.
+VehicleAddress vehicle_of(const YamlMap& drone, std::size_t index) {
+  if (!drone.node()["mavlink"].IsMap())
+    throw InputError(drone.where("mavlink") +
+                     ": a mapping {url: udp:HOST:PORT or tcp:HOST:PORT, sysid: 1..255}");
+  const YamlMap m = drone.map("mavlink");
+  m.allow({"url", "sysid"});
+  if (!m.has("url"))
+    throw InputError(drone.where("mavlink") + ": no url (udp:HOST:PORT or tcp:HOST:PORT)");
+  const std::string url = m.text("url", "");
+  VehicleAddress a;
+  const auto default_sysid = static_cast<std::uint8_t>(std::min<std::size_t>(index + 1, 255));
+  const std::string why = parse_vehicle_address(url, default_sysid, a);
+  if (!why.empty())
+    throw InputError(m.where("url") + ": \"" + url + "\" " + why +
+                     " (use udp:HOST:PORT or tcp:HOST:PORT)");
+  if (m.has("sysid")) {
+    if (a.sysid_given)
+      throw InputError(m.where("sysid") + ": the system id is given twice (sysid and the url's /" +
+                       std::to_string(a.sysid) + "); give it once");
+    const double s = m.number("sysid", 1, 1, 255);
+    if (s != std::floor(s))
+      throw InputError(m.where("sysid") + ": " + base::shortest_text(s) +
+                       " is not a whole number in 1..255");
+    a.sysid = static_cast<std::uint8_t>(s);
+    a.sysid_given = true;
+  }
+  return a;
 }
 
 }  // namespace
@@ -53,7 +88,7 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
       m.allow({"name", "capability", "battery_level", "endurance_s", "speed_m_s", "home", "home_m",
                "climb_speed_m_s", "descent_speed_m_s", "max_airspeed_m_s", "profile",
                "max_flight_time_s", "approach_speed_m_s", "approach_within_m", "accel_m_s2",
-               "recharge_s"});
+               "recharge_s", "mavlink"});
       DroneSpec d;
       d.name = m.text("name", "drone-" + std::to_string(i + 1));
       if (!names.insert(d.name).second)
@@ -103,6 +138,14 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
                            std::to_string(static_cast<long long>(std::hypot(p.x, p.y) / 1000)) +
                            " km from the world's origin (at most 100 km)");
         d.home_m = {p.x, p.y, 0};
+      }
+      if (m.has("mavlink")) {
+        d.vehicle = vehicle_of(m, i);
+        for (std::size_t j = 0; j < out.size(); ++j)
+          if (out[j].vehicle && out[j].vehicle->tcp == d.vehicle->tcp &&
+              out[j].vehicle->host == d.vehicle->host && out[j].vehicle->port == d.vehicle->port)
+            throw InputError(m.where("mavlink") + ": " + d.name + "'s url is also " + out[j].name +
+                             "'s (one vehicle per link)");
       }
       out.push_back(std::move(d));
     }

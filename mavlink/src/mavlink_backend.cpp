@@ -1,7 +1,6 @@
 #include "swath/mavlink/mavlink_backend.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <thread>
@@ -29,34 +28,9 @@ std::vector<VehicleUrl> parse_vehicle_urls(const std::string& list) {
                               " (use udp:HOST:PORT or tcp:HOST:PORT, optionally /SYSID)");
     };
     VehicleUrl u;
-    std::string rest;
-    if (item.rfind("udp:", 0) == 0) {
-      rest = item.substr(4);
-    } else if (item.rfind("tcp:", 0) == 0) {
-      u.tcp = true;
-      rest = item.substr(4);
-    } else {
-      throw bad("is neither udp: nor tcp:");
-    }
-    u.sysid = static_cast<std::uint8_t>(std::min<std::size_t>(out.size() + 1, 255));
-    if (const std::size_t slash = rest.find('/'); slash != std::string::npos) {
-      const std::string s = rest.substr(slash + 1);
-      int v = 0;
-      const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-      if (ec != std::errc() || p != s.data() + s.size() || v < 1 || v > 255)
-        throw bad("has a system id that is not a number in 1..255");
-      u.sysid = static_cast<std::uint8_t>(v);
-      rest = rest.substr(0, slash);
-    }
-    const std::size_t colon = rest.rfind(':');
-    if (colon == std::string::npos || colon == 0) throw bad("has no HOST:PORT");
-    u.host = rest.substr(0, colon);
-    const std::string port = rest.substr(colon + 1);
-    int v = 0;
-    const auto [p, ec] = std::from_chars(port.data(), port.data() + port.size(), v);
-    if (ec != std::errc() || p != port.data() + port.size() || v < 1 || v > 65535)
-      throw bad("has a port that is not a number in 1..65535");
-    u.port = static_cast<std::uint16_t>(v);
+    const std::string why = fleet::parse_vehicle_address(
+        item, static_cast<std::uint8_t>(std::min<std::size_t>(out.size() + 1, 255)), u);
+    if (!why.empty()) throw bad(why);
     out.push_back(u);
   }
   if (out.empty()) throw base::InputError("--vehicles names no vehicle");

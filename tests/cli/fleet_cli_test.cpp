@@ -159,6 +159,17 @@ TEST(FleetCli, SweepLinesRunUnderGnuParallelAndCollectMergesThem) {
                             "/refused");
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("made by swath-fleet 0.0.9"), std::string::npos) << refused.err;
+  // A real flight (summary.json's backend) is not merged with simulated runs.
+  fs::create_directories(dir + "/flown");
+  std::string flown = read_text(dir + "/runs/hotspot-sa-seed5/summary.json");
+  const std::size_t b = flown.find("\"backend\": \"sim\"");
+  ASSERT_NE(b, std::string::npos);
+  flown.replace(b, 16, "\"backend\": \"mavlink\"");
+  std::ofstream(dir + "/flown/summary.json") << flown;
+  refused = run_swath_fleet("collect " + dir + "/runs/hotspot-sa-seed4 " + dir + "/flown -o " +
+                            dir + "/refused");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("flown with the mavlink backend"), std::string::npos) << refused.err;
   EXPECT_FALSE(fs::exists(dir + "/refused"));
 }
 
@@ -207,6 +218,46 @@ TEST(FleetCli, MavlinkBackendInputsAreRefusedInOneSentence) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(out + "/run")) << args;
   }
+}
+
+// The fleet file's per-drone mavlink {url, sysid} (DESIGN.md §18.10) flies `run --backend
+// mavlink` without --vehicles; --vehicles overrides it; summary.json says the backend and which
+// vehicle flew which drone. No vehicle answers on these ports: the wall-clock run ends at
+// --max-time (exit 4, files written), which is all the addresses need.
+TEST(FleetCli, FleetFileMavlinkKeysNameTheVehiclesAndSummarySaysTheBackend) {
+  const std::string dir = fresh_dir("fleet-mavlink-keys");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/fleet.yaml")
+      << "drones:\n"
+         "  - {name: one, speed_m_s: 10, mavlink: {url: 'udp:127.0.0.1:47651', sysid: 4}}\n"
+         "  - {name: two, speed_m_s: 10, mavlink: {url: 'udp:127.0.0.1:47652'}}\n";
+  const std::string run = "run hotspot --world hotspot --fleet " + dir + "/fleet.yaml ";
+  const CliRun keys = run_swath_fleet(run + "--backend mavlink --max-time 1 -o " + dir + "/keys");
+  ASSERT_EQ(keys.exit_code, 4) << keys.err;
+  const json k = json::parse(read_text(dir + "/keys/summary.json"));
+  EXPECT_EQ(k["backend"], "mavlink");
+  EXPECT_EQ(k["vehicles"], json::parse(R"([{"drone": "one", "url": "udp:127.0.0.1:47651",
+      "sysid": 4}, {"drone": "two", "url": "udp:127.0.0.1:47652", "sysid": 2}])"));
+  const CliRun over = run_swath_fleet(
+      run + "--backend mavlink --vehicles udp:127.0.0.1:47653,udp:127.0.0.1:47654/9 --max-time 1 " +
+      "-o " + dir + "/over");
+  ASSERT_EQ(over.exit_code, 4) << over.err;
+  EXPECT_EQ(json::parse(read_text(dir + "/over/summary.json"))["vehicles"],
+            json::parse(R"([{"drone": "one", "url": "udp:127.0.0.1:47653", "sysid": 1},
+                            {"drone": "two", "url": "udp:127.0.0.1:47654", "sysid": 9}])"));
+  // The simulated fleet ignores the keys: backend sim, no vehicles, the same events as the same
+  // drones without them.
+  std::ofstream(dir + "/plain.yaml") << "drones:\n  - {name: one, speed_m_s: 10}\n"
+                                        "  - {name: two, speed_m_s: 10}\n";
+  ASSERT_EQ(run_swath_fleet(run + "-o " + dir + "/sim").exit_code, 0);
+  ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --fleet " + dir + "/plain.yaml -o " + dir +
+                            "/plain")
+                .exit_code,
+            0);
+  const json sim = json::parse(read_text(dir + "/sim/summary.json"));
+  EXPECT_EQ(sim["backend"], "sim");
+  EXPECT_FALSE(sim.contains("vehicles"));
+  EXPECT_EQ(read_text(dir + "/sim/events.jsonl"), read_text(dir + "/plain/events.jsonl"));
 }
 
 TEST(FleetCli, TracksStartAtTheDronesHomes) {
@@ -630,7 +681,8 @@ TEST(FleetCli, ReplayOfARunIsTheRunAndRefusesWhatItCannotReplay) {
 
 // tune ask / tell (DESIGN.md §18.11): the test plays the engine — runs every line ask prints
 // with the real binary, tells the run directories back — until ask has nothing left; the
-// weights.yaml and tune.csv are then tune's own for the same seed and settings. A state file is
+// weights.yaml, tune.csv, held_out.csv and summary.json are then tune's own for the same seed and
+// settings. A state file is
 // the same bytes for the same settings; another app's state, a run ask did not name and a
 // directory that is no run are refused.
 TEST(FleetCli, TuneAskTellEndsWithTunesWeights) {
@@ -667,10 +719,16 @@ TEST(FleetCli, TuneAskTellEndsWithTunesWeights) {
     ask = run_swath_fleet("tune ask " + state);
     ASSERT_EQ(ask.exit_code, 0) << ask.err;
   }
-  EXPECT_EQ(rounds, 3);        // histories, then two rungs
-  EXPECT_EQ(runs, 2 + 6 + 3);  // 2 histories, 6 trials, the better half of them
+  EXPECT_EQ(rounds, 4);  // histories, two rungs, then the held-out runs
+  // 2 histories, 6 trials, the better half of them, 2 held-out seeds x (reactive, the defaults,
+  // the winner)
+  EXPECT_EQ(runs, 2 + 6 + 3 + 2 * 3);
   EXPECT_EQ(read_text(dir + "/asked/weights.yaml"), read_text(dir + "/tune/weights.yaml"));
   EXPECT_EQ(read_text(dir + "/asked/tune.csv"), read_text(dir + "/tune/tune.csv"));
+  EXPECT_EQ(read_text(dir + "/asked/held_out.csv"), read_text(dir + "/tune/held_out.csv"));
+  EXPECT_EQ(read_text(dir + "/asked/summary.json"), read_text(dir + "/tune/summary.json"));
+  const std::string held_out = read_text(dir + "/asked/held_out.csv");
+  EXPECT_EQ(std::count(held_out.begin(), held_out.end(), '\n'), 3);  // header and 2 seeds
   ASSERT_FALSE(read_text(dir + "/asked/weights.yaml").empty());
   // Same settings, same state bytes.
   fs::remove(state);

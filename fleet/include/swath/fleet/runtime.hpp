@@ -16,6 +16,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/scheduler.hpp"
 #include "swath/fleet/task.hpp"
+#include "swath/fleet/vehicle_address.hpp"
 #include "swath/fleet/world.hpp"
 
 namespace swath::fleet {
@@ -48,6 +50,9 @@ struct DroneSpec {
   /// Longest flight before it must be home, s (> 0; case 5's 60 s); infinity: the battery decides.
   double max_flight_time_s = std::numeric_limits<double>::infinity();
   double recharge_s = 30;  ///< from landing to a full battery at home (a swap or a charge), s (≥ 0)
+  /// The real vehicle flying this drone with `run --backend mavlink` (the fleet file's
+  /// `mavlink {url, sysid}`); absent: none given. The simulated fleet ignores it.
+  std::optional<VehicleAddress> vehicle;
 };
 
 enum class FaultKind { link_loss, battery_drop, motor_failure, sensor_failure };

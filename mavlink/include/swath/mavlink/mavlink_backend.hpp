@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "swath/fleet/backend.hpp"
+#include "swath/fleet/vehicle_address.hpp"
 #include "swath/geometry/point.hpp"
 #include "swath/mavlink/copter_driver.hpp"
 #include "swath/mavlink/link.hpp"
@@ -34,13 +35,9 @@ namespace swath::mavlink {
 /// One vehicle of --vehicles: `udp:HOST:PORT[/SYSID]` listens on HOST:PORT for a vehicle that
 /// sends there (ArduPilot's or MAVProxy's `--out udp:HOST:PORT`); `tcp:HOST:PORT[/SYSID]`
 /// connects to it (SITL: port 5760 + 10 × instance). SYSID 1..255, default: its place in the list
-/// plus 1 (SITL's SYSID_THISMAV = instance + 1).
-struct VehicleUrl {
-  bool tcp = false;
-  std::string host;
-  std::uint16_t port = 0;
-  std::uint8_t sysid = 1;
-};
+/// plus 1 (SITL's SYSID_THISMAV = instance + 1). The grammar is fleet's (the fleet file's
+/// per-drone `mavlink {url, sysid}` reads the same).
+using VehicleUrl = fleet::VehicleAddress;
 
 /// A comma-separated list of vehicle URLs. Throws base::InputError with one sentence naming the
 /// bad entry.
