@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <queue>
 
 #include "swath/geometry/predicates.hpp"
 
@@ -159,69 +158,137 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
     return;
   }
   adjacent_.resize(nodes_.size());
-  for (std::size_t i = 0; i < nodes_.size(); ++i)
-    for (std::size_t j = i + 1; j < nodes_.size(); ++j)
-      if (visible(nodes_[i], nodes_[j])) {
-        const double w = distance(nodes_[i], nodes_[j]);
-        adjacent_[i].push_back({j, w});
-        adjacent_[j].push_back({i, w});
-      }
+  expanded_.assign(nodes_.size(), 0);
+  node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
 }
 
-const std::vector<char>& VisibilityRouter::sees(Point2 p) const {
+std::vector<signed char>& VisibilityRouter::seen_row(Point2 p) const {
   auto [it, added] = sees_.try_emplace({p.x, p.y});
-  if (added) {
-    it->second.resize(nodes_.size());
-    for (std::size_t i = 0; i < nodes_.size(); ++i) it->second[i] = visible(p, nodes_[i]);
-  }
+  if (added) it->second.assign(nodes_.size(), kUnknown);
   return it->second;
 }
 
-const VisibilityRouter::Tree& VisibilityRouter::tree_from(Point2 a) const {
-  auto [it, added] = trees_.try_emplace({a.x, a.y});
-  if (!added) return it->second;
-  // Dijkstra from a over the reflex vertices; previous == n means "straight from a".
+bool VisibilityRouter::sees(Point2 p, std::vector<signed char>& row, std::size_t node) const {
+  if (row[node] == kUnknown) row[node] = visible(p, nodes_[node]);
+  return row[node] != 0;
+}
+
+const std::vector<std::pair<std::size_t, double>>& VisibilityRouter::adjacent(std::size_t u) const {
+  if (expanded_[u]) return adjacent_[u];
+  // Ascending, as the eager graph listed them; each pair tested once (visible(i, j) with i < j,
+  // as the eager build asked it: the test is not symmetric in rounding).
   const std::size_t n = nodes_.size();
-  Tree& t = it->second;
-  t.distance.assign(n, std::numeric_limits<double>::infinity());
-  t.previous.assign(n, n);
-  using Item = std::pair<double, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  const std::vector<char>& from_a = sees(a);
-  for (std::size_t i = 0; i < n; ++i)
-    if (from_a[i]) {
-      t.distance[i] = distance(a, nodes_[i]);
-      queue.push({t.distance[i], i});
-    }
-  while (!queue.empty()) {
-    const auto [d, u] = queue.top();
-    queue.pop();
-    if (d > t.distance[u]) continue;
-    for (const auto& [v, w] : adjacent_[u])
-      if (d + w < t.distance[v]) {
-        t.distance[v] = d + w;
-        t.previous[v] = u;
-        queue.push({t.distance[v], v});
-      }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (v == u) continue;
+    const std::size_t i = std::min(u, v), j = std::max(u, v);
+    signed char& known = node_sees_[i * n + j];
+    if (known == kUnknown) known = visible(nodes_[i], nodes_[j]);
+    if (known) adjacent_[u].push_back({v, distance(nodes_[i], nodes_[j])});
   }
-  return t;
+  expanded_[u] = 1;
+  return adjacent_[u];
+}
+
+VisibilityRouter::Search& VisibilityRouter::search_from(Point2 a) const {
+  auto [it, added] = trees_.try_emplace({a.x, a.y});
+  Search& s = it->second;
+  if (!added) return s;
+  const std::size_t n = nodes_.size();
+  s.distance.assign(n, std::numeric_limits<double>::infinity());
+  s.previous.assign(n, n);
+  s.settled.assign(n, 0);
+  s.from_row = &seen_row(a);
+  // Every node starts as a candidate straight from a; whether a sees it is tested when it would
+  // be settled so, and only then: nodes beyond the paths asked so far are never tested.
+  for (std::size_t i = 0; i < n; ++i) s.queue.push_back({distance(a, nodes_[i]), i, 0});
+  std::make_heap(s.queue.begin(), s.queue.end(), std::greater<>());
+  return s;
+}
+
+std::size_t VisibilityRouter::settle_next(Point2 a, Search& s) const {
+  // Dijkstra as over the eager graph, whose queue held (distance, node) pairs: straight from a
+  // for the nodes a sees, then through settled nodes when strictly shorter. Here the straight
+  // candidates all wait in the queue untested. Popped in the same (distance, node) order, with
+  // the straight candidate first of equal ones, a node is settled with the distance and
+  // predecessor the eager search gave it: a tested straight candidate that is visible and no
+  // longer than the best through a node replaces that (the eager search never took a path
+  // through a node that was not strictly shorter than the straight one); one that is not visible
+  // is dropped, as the eager search never had it.
+  const std::size_t n = nodes_.size();
+  while (!s.queue.empty()) {
+    std::pop_heap(s.queue.begin(), s.queue.end(), std::greater<>());
+    const Search::Item item = s.queue.back();
+    s.queue.pop_back();
+    const std::size_t u = item.node;
+    const double d = item.distance_m;
+    if (s.settled[u] || d > s.distance[u]) continue;
+    if (item.from_point == 0) {
+      if (!sees(a, *s.from_row, u)) continue;
+      s.distance[u] = d;
+      s.previous[u] = n;
+    }
+    s.settled[u] = 1;
+    s.settled_nodes.push_back(u);
+    for (const auto& [v, w] : adjacent(u))
+      if (!s.settled[v] && d + w < s.distance[v]) {
+        s.distance[v] = d + w;
+        s.previous[v] = u;
+        s.queue.push_back({d + w, v, 1});
+        std::push_heap(s.queue.begin(), s.queue.end(), std::greater<>());
+      }
+    return u;
+  }
+  return n;
 }
 
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if (!routing_ || visible(a, b)) return {a, b};
-  const Tree& t = tree_from(a);
-  const std::vector<char>& to_b = sees(b);
+  // The eager answer: of the nodes b sees, the one with the least distance from a plus the
+  // straight leg to b, the lowest index of equal ones. A node's sum is at least its distance,
+  // and nodes are settled in order of distance, so they are taken in that order: those b is
+  // known to see into `best`, those not yet tested into a heap of sums, tested from its least
+  // while that could still win. `best` is final once no node still to take (or to settle) has a
+  // distance below its sum.
+  Search& s = search_from(a);
+  std::vector<signed char>& to_b = seen_row(b);
   const std::size_t n = nodes_.size();
-  std::size_t last = n;
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i)
-    if (to_b[i] && t.distance[i] + distance(nodes_[i], b) < best) {
-      best = t.distance[i] + distance(nodes_[i], b);
-      last = i;
+  thread_local std::vector<std::pair<double, std::size_t>> untested;  // (sum, node), a heap
+  untested.clear();
+  std::pair<double, std::size_t> best{std::numeric_limits<double>::infinity(), n};
+  std::size_t taken = 0;  // s.settled_nodes before this are taken
+  while (true) {
+    double bound = std::numeric_limits<double>::infinity();
+    if (taken < s.settled_nodes.size())
+      bound = s.distance[s.settled_nodes[taken]];
+    else if (!s.queue.empty())
+      bound = s.queue.front().distance_m;
+    const bool untested_first = !untested.empty() && untested.front() < best;
+    if (untested_first && untested.front().first < bound) {
+      std::pop_heap(untested.begin(), untested.end(), std::greater<>());
+      const auto candidate = untested.back();
+      untested.pop_back();
+      if (sees(b, to_b, candidate.second)) best = candidate;
+      continue;
     }
+    if (!untested_first && best.first < bound) break;  // nothing left can do better
+    if (taken < s.settled_nodes.size()) {
+      const std::size_t i = s.settled_nodes[taken++];
+      if (to_b[i] == 0) continue;
+      const std::pair<double, std::size_t> candidate{s.distance[i] + distance(nodes_[i], b), i};
+      if (to_b[i] == kUnknown) {
+        untested.push_back(candidate);
+        std::push_heap(untested.begin(), untested.end(), std::greater<>());
+      } else {
+        best = std::min(best, candidate);
+      }
+      continue;
+    }
+    if (settle_next(a, s) == n && !untested_first) break;  // all settled
+  }
+  const std::size_t last = best.second;
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
   std::vector<Point2> route{b};
-  for (std::size_t v = last; v != n; v = t.previous[v]) route.push_back(nodes_[v]);
+  for (std::size_t v = last; v != n; v = s.previous[v]) route.push_back(nodes_[v]);
   route.push_back(a);
   std::reverse(route.begin(), route.end());
   return route;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -73,7 +74,97 @@ std::uint64_t bit(std::size_t cell) {
   return cell < 63 ? std::uint64_t{1} << cell : 0;
 }
 
-// Best variants for a fixed order of cells: shortest path through a layered graph.
+// Best variants for a fixed order of cells: shortest path through a layered graph, one layer per
+// position. Layer k depends only on the cells at positions up to k and on the set of cells after
+// k (the crossing penalty), so an order that differs from the last one only from position `from`
+// on keeps that one's layers before `from`: the local search's moves change a stretch of at most
+// kReach + 1 positions, and recomputing from there instead of from the start halves its work
+// with the same sums in the same order (the same objective, bit for bit).
+class VariantTable {
+ public:
+  /// Fills the layers of `order` from position `from` (layers before it are kept from the last
+  /// call, whose order had the same cells there); returns the objective. Gives up (returns
+  /// infinity, the layers left unfinished) once the objective is certain to be at least
+  /// `give_up_m`: transits, penalties and internal lengths are never negative, so a layer's least
+  /// cost plus the least internal lengths of the cells after it bound the objective from below
+  /// (the margin covers the rounding of adding them in another order).
+  double fill(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
+              std::size_t from, double give_up_m = kInf) {
+    const std::size_t n = order.size();
+    if (n == 0) return 0;
+    cost_.resize(n * kMaxVariants);
+    from_.resize(n * kMaxVariants);
+    after_.assign(n + 1, 0);  // cells flown after position k
+    for (std::size_t k = n; k-- > 0;) after_[k] = after_[k + 1] | bit(order[k]);
+    const bool may_give_up = give_up_m < kInf && p.crossing_weight >= 0;
+    if (may_give_up) {
+      rest_.assign(n + 1, 0.0);  // least internal lengths of the cells after position k - 1
+      for (std::size_t k = n; k-- > 0;) {
+        double least = kInf;
+        for (const CellVariant& v : p.cells[order[k]]) least = std::min(least, v.internal_m);
+        rest_[k] = rest_[k + 1] + least;
+      }
+    }
+    const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
+    for (std::size_t k = from; k < n; ++k) {
+      const auto& variants = p.cells[order[k]];
+      for (std::size_t v = 0; v < variants.size(); ++v) {
+        double& best = cost_[k * kMaxVariants + v];
+        std::size_t& came = from_[k * kMaxVariants + v];
+        best = kInf;
+        came = 0;
+        if (k == 0) {
+          best = t.from_home(order[k], v) + variants[v].internal_m;
+          continue;
+        }
+        for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
+          const double c = cost_[(k - 1) * kMaxVariants + u] +
+                           t.cost(order[k - 1], u, order[k], v, after_[k + 1]) +
+                           variants[v].internal_m;
+          if (c < best) {
+            best = c;
+            came = u;
+          }
+        }
+      }
+      if (may_give_up) {
+        double least = kInf;
+        for (std::size_t v = 0; v < variants.size(); ++v)
+          least = std::min(least, cost_[k * kMaxVariants + v]);
+        if (least + rest_[k + 1] - margin_m >= give_up_m) return kInf;
+      }
+    }
+    last_ = 0;
+    double best_cost = kInf;
+    for (std::size_t v = 0; v < p.cells[order[n - 1]].size(); ++v) {
+      const double c = cost_[(n - 1) * kMaxVariants + v] + t.to_home(order[n - 1], v);
+      if (c < best_cost) {
+        best_cost = c;
+        last_ = v;
+      }
+    }
+    return best_cost;
+  }
+  /// The visits of the last filled order.
+  std::vector<CellVisit> visits(const std::vector<std::size_t>& order) const {
+    std::vector<CellVisit> out(order.size());
+    std::size_t best = last_;
+    for (std::size_t k = order.size(); k-- > 0;) {
+      out[k] = {order[k], best};
+      best = from_[k * kMaxVariants + best];
+    }
+    return out;
+  }
+
+ private:
+  static constexpr std::size_t kMaxVariants = 4;
+  std::vector<double> cost_;
+  std::vector<std::size_t> from_;
+  std::vector<std::uint64_t> after_;
+  std::vector<double> rest_;
+  std::size_t last_ = 0;
+};
+
 CellOrder best_variants(const CellOrderProblem& p, Transit& t,
                         const std::vector<std::size_t>& order) {
   CellOrder result;
@@ -81,45 +172,9 @@ CellOrder best_variants(const CellOrderProblem& p, Transit& t,
     result.length_m = 0;
     return result;
   }
-  std::vector<std::vector<double>> cost(order.size());
-  std::vector<std::vector<std::size_t>> from(order.size());
-  std::vector<std::uint64_t> after(order.size() + 1, 0);  // cells flown after position k
-  for (std::size_t k = order.size(); k-- > 0;) after[k] = after[k + 1] | bit(order[k]);
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const auto& variants = p.cells[order[k]];
-    cost[k].assign(variants.size(), kInf);
-    from[k].assign(variants.size(), 0);
-    for (std::size_t v = 0; v < variants.size(); ++v) {
-      if (k == 0) {
-        cost[k][v] = t.from_home(order[k], v) + variants[v].internal_m;
-        continue;
-      }
-      for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
-        const double c = cost[k - 1][u] + t.cost(order[k - 1], u, order[k], v, after[k + 1]) +
-                         variants[v].internal_m;
-        if (c < cost[k][v]) {
-          cost[k][v] = c;
-          from[k][v] = u;
-        }
-      }
-    }
-  }
-  const std::size_t last = order.size() - 1;
-  std::size_t best = 0;
-  double best_cost = kInf;
-  for (std::size_t v = 0; v < cost[last].size(); ++v) {
-    const double c = cost[last][v] + t.to_home(order[last], v);
-    if (c < best_cost) {
-      best_cost = c;
-      best = v;
-    }
-  }
-  result.visits.resize(order.size());
-  for (std::size_t k = order.size(); k-- > 0;) {
-    result.visits[k] = {order[k], best};
-    best = from[k][best];
-  }
-  result.objective_m = best_cost;
+  VariantTable table;
+  result.objective_m = table.fill(p, t, order, 0);
+  result.visits = table.visits(order);
   return result;
 }
 
@@ -228,12 +283,19 @@ std::vector<std::size_t> nearest_neighbour(const CellOrderProblem& p) {
   const std::size_t n = p.cells.size();
   std::vector<std::size_t> order;
   std::vector<char> used(n, 0);
+  // A cell whose least internal length is no less than the best cost so far cannot win (its
+  // cost adds a transit of at least 0 to it; ties keep the first), so its transits are not
+  // asked: on 10,000-vertex areas with hundreds of cells this ranking ran for every direction.
+  std::vector<double> least_internal(n, kInf);
+  for (std::size_t c = 0; c < n; ++c)
+    for (const CellVariant& v : p.cells[c])
+      least_internal[c] = std::min(least_internal[c], v.internal_m);
   geometry::Point2 at = p.home;
   for (std::size_t k = 0; k < n; ++k) {
     double best = kInf;
     std::size_t best_cell = 0, best_variant = 0;
     for (std::size_t c = 0; c < n; ++c) {
-      if (used[c]) continue;
+      if (used[c] || least_internal[c] >= best) continue;
       for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
         const double cost = p.distance(at, p.cells[c][v].entry) + p.cells[c][v].internal_m;
         if (cost < best) {
@@ -288,9 +350,12 @@ std::vector<std::size_t> moved(const std::vector<std::size_t>& order, int move, 
 // Local search over orders (move one cell or a block of two or three, swap two, reverse a run;
 // first improvement); variants are re-optimised exactly for each candidate. Moves reach at most
 // `reach` positions and at most `budget` candidates are evaluated (the budget is spent in place).
+// `current` holds the layers of `order`; a candidate is filled into `trial` from the first
+// position it changes, on a copy of the layers before it, and the two swap when it is kept.
 void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t>& order,
-                  CellOrder& best, std::size_t reach, std::size_t& budget) {
+                  CellOrder& best, std::size_t reach, std::size_t& budget, VariantTable& current) {
   const std::size_t n = order.size();
+  VariantTable trial;
   for (bool improved = true; improved && budget > 0;) {
     improved = false;
     for (std::size_t i = 0; i < n && budget > 0; ++i)
@@ -302,10 +367,13 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
               moved(order, move, i, j, kind < 3 ? std::size_t(kind) + 1 : 1);
           if (candidate.empty() || i == j) continue;
           --budget;
-          const CellOrder tried = best_variants(p, t, candidate);
-          if (tried.objective_m < best.objective_m - 1e-9) {
-            best = tried;
+          trial = current;
+          const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9);
+          if (tried < best.objective_m - 1e-9) {
+            best.objective_m = tried;
+            best.visits = trial.visits(candidate);
             order = candidate;
+            std::swap(current, trial);
             improved = true;
           }
         }
@@ -319,13 +387,16 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
   if (n == 0) return {};
   Transit t(p);
   std::vector<std::size_t> order = nearest_neighbour(p);
-  CellOrder best = best_variants(p, t, order);
+  VariantTable current;
+  CellOrder best;
+  best.objective_m = current.fill(p, t, order, 0);
+  best.visits = current.visits(order);
   // Moves reach at most 8 positions on large instances (O(n reach) candidates a pass, each a DP of
   // O(n v²)) and every position below 24 cells; the evaluations are budgeted so large instances
   // stay fast and still get the local improvements that matter.
   const std::size_t reach = n <= 24 ? n : 8;
   std::size_t budget = 200000 / n;
-  local_search(p, t, order, best, reach, budget);
+  local_search(p, t, order, best, reach, budget, current);
   // Iterated local search: a local optimum of these moves was up to 9 % above Held-Karp's on 13
   // scattered cells. Kick the best order (a double bridge: three cut points, the middle two
   // pieces exchanged, which no single move undoes), search again, keep what is shorter. The
@@ -344,8 +415,11 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
                      order.begin() + static_cast<std::ptrdiff_t>(cut[1]));
     candidate.insert(candidate.end(), order.begin() + static_cast<std::ptrdiff_t>(cut[2]),
                      order.end());
-    CellOrder tried = best_variants(p, t, candidate);
-    local_search(p, t, candidate, tried, reach, budget);
+    VariantTable table;
+    CellOrder tried;
+    tried.objective_m = table.fill(p, t, candidate, 0);
+    tried.visits = table.visits(candidate);
+    local_search(p, t, candidate, tried, reach, budget, table);
     if (tried.objective_m < best.objective_m - 1e-9) {
       best = tried;
       order = candidate;

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 
+#include "lane_scan.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::planning {
@@ -14,66 +16,8 @@ namespace {
 using geometry::Point2;
 using geometry::Ring;
 
-struct Span {
-  double x0, x1;
-};
-
-// The area in the frame turned by -angle: lanes run along x. Which intervals of a horizontal
-// line lie inside, by crossings (a vertex on the line counts for the edge above it only).
-class LaneScan {
- public:
-  LaneScan(const std::vector<Ring>& rings, double angle_deg) {
-    // rotate()'s arithmetic with its sine and cosine taken once: 10,000-vertex outlines are
-    // turned for every candidate direction.
-    const double t = -angle_deg * std::numbers::pi / 180.0;
-    const double c = std::cos(t), sn = std::sin(t);
-    for (const Ring& ring : rings) {
-      Ring turned;
-      for (const Point2& p : ring) turned.push_back({c * p.x - sn * p.y, sn * p.x + c * p.y});
-      for (std::size_t i = 0; i < turned.size(); ++i) {
-        const Point2 a = turned[i], b = turned[(i + 1) % turned.size()];
-        edges_.push_back({a, b});
-        y_min = std::min(y_min, a.y);
-        y_max = std::max(y_max, a.y);
-      }
-    }
-  }
-
-  std::vector<Span> at(double y) const {
-    std::vector<double> xs;
-    for (const auto& [a, b] : edges_)
-      if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
-    return pairs(xs);
-  }
-
-  /// at() for many increasing ordinates: each edge finds its first by search.
-  std::vector<std::vector<Span>> at(const std::vector<double>& ys) const {
-    std::vector<std::vector<double>> xs(ys.size());
-    for (const auto& [a, b] : edges_) {
-      const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-      auto k = std::lower_bound(ys.begin(), ys.end(), lo);
-      for (; k != ys.end() && *k < hi; ++k)
-        xs[std::size_t(k - ys.begin())].push_back(a.x + (*k - a.y) * (b.x - a.x) / (b.y - a.y));
-    }
-    std::vector<std::vector<Span>> out;
-    for (auto& x : xs) out.push_back(pairs(x));
-    return out;
-  }
-
-  const std::vector<std::pair<Point2, Point2>>& edges() const { return edges_; }
-  double y_min = std::numeric_limits<double>::infinity();
-  double y_max = -std::numeric_limits<double>::infinity();
-
- private:
-  static std::vector<Span> pairs(std::vector<double>& xs) {
-    std::sort(xs.begin(), xs.end());
-    std::vector<Span> out;
-    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
-      if (xs[i + 1] - xs[i] > 1e-6) out.push_back({xs[i], xs[i + 1]});
-    return out;
-  }
-  std::vector<std::pair<Point2, Point2>> edges_;
-};
+using detail::LaneScan;
+using detail::Span;
 
 // Per ordinate, the pieces inside joined across the gaps that one interval of the bridge area
 // spans: from the first piece's start to the last piece's end within it.
@@ -117,6 +61,14 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
     for (int i = 0; i < n; ++i) samples.push_back(a + (b - a) * (double(i) / n));
   }
+  const auto by_ordinate = [](Point2 p, Point2 q) {
+    return p.y < q.y || (p.y == q.y && p.x < q.x);
+  };
+  // The inside samples come in order already (rows upwards, spans and their samples left to
+  // right): only the boundary's are sorted, then merged in (equal samples are equal points, so
+  // the result is the one sorting all gave).
+  std::sort(samples.begin(), samples.end(), by_ordinate);
+  const std::size_t boundary = samples.size();
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
   const std::vector<std::vector<Span>> inside = scan.at(rows);
@@ -126,8 +78,11 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
       for (int i = 0; i < n; ++i)
         samples.push_back({in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]});
     }
-  std::sort(samples.begin(), samples.end(),
-            [](Point2 p, Point2 q) { return p.y < q.y || (p.y == q.y && p.x < q.x); });
+  const auto middle = samples.begin() + std::ptrdiff_t(boundary);
+  if (std::is_sorted(middle, samples.end(), by_ordinate))
+    std::inplace_merge(samples.begin(), middle, samples.end(), by_ordinate);
+  else  // not expected (spans are disjoint and ascending); kept as the plain sort
+    std::sort(samples.begin(), samples.end(), by_ordinate);
   return samples;
 }
 

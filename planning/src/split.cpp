@@ -1,12 +1,13 @@
 #include "swath/planning/split.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
 
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
@@ -208,15 +209,33 @@ class RoutedMetric {
   };
   const Route& known(Point2 a, Point2 b) {
     if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);  // the metric is symmetric
-    const auto key = std::make_pair(std::make_pair(a.x, a.y), std::make_pair(b.x, b.y));
+    if (!router_.routes()) {
+      // Every path is straight (the router's own answer): nothing worth keeping. The length is
+      // polyline_length's sum of the one leg.
+      straight_.path.assign({a, b});
+      straight_.length_m = geometry::distance(a, b);
+      return straight_;
+    }
+    const Key key{a.x, a.y, b.x, b.y};
     const auto it = known_.find(key);
     if (it != known_.end()) return it->second;
     std::vector<Point2> path = router_.path(a, b);
     const double length = geometry::polyline_length(path);
     return known_[key] = Route{std::move(path), length};
   }
+  // Hashed, not ordered: the ordering asks ~10^5 times a plan. Keys compare as the doubles do
+  // (no NaN reaches here; -0 and 0 are one key, as in the ordered map before).
+  using Key = std::array<double, 4>;
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      std::size_t h = 0;
+      for (const double v : k) h = (h ^ std::hash<double>{}(v)) * 0x9e3779b97f4a7c15ull;
+      return h;
+    }
+  };
   const geometry::VisibilityRouter& router_;
-  std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, Route> known_;
+  std::unordered_map<Key, Route, KeyHash> known_;
+  Route straight_;  ///< the last straight answer (valid until the next question)
 };
 
 }  // namespace split_detail
@@ -231,23 +250,45 @@ class LaneCrossings {
   explicit LaneCrossings(const Candidate& c) : c_(c) {
     for (const Sweep& sweep : c.sweeps) {
       Box box;
-      for (const SweepLine& l : sweep.lines)
-        for (const Point2& p : {l.start, l.end}) box.add(p);
+      std::vector<Box> lanes;
+      for (const SweepLine& l : sweep.lines) {
+        Box lane;
+        for (const Point2& p : {l.start, l.end}) lane.add(p);
+        box.add(lane);
+        lanes.push_back(lane);
+      }
       boxes_.push_back(box);
+      lane_boxes_.push_back(std::move(lanes));
     }
   }
   std::uint64_t operator()(const std::vector<Point2>& path) const {
+    // Two segments that cross clearly share a point, so their bounding boxes meet: only the
+    // lanes whose box meets a leg's are tested (the test itself is unchanged).
+    thread_local std::vector<Box> legs;
+    legs.clear();
     Box span;
-    for (const Point2& p : path) span.add(p);
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+      Box leg;
+      leg.add(path[i]);
+      leg.add(path[i + 1]);
+      span.add(leg);
+      legs.push_back(leg);
+    }
     std::uint64_t cells = 0;
     for (std::size_t k = 0; k < c_.sweeps.size() && k < 63; ++k) {
       if (!span.meets(boxes_[k])) continue;
-      for (const SweepLine& l : c_.sweeps[k].lines)
+      const std::vector<SweepLine>& lines = c_.sweeps[k].lines;
+      for (std::size_t j = 0; j < lines.size() && !(cells >> k & 1); ++j) {
+        const SweepLine& l = lines[j];
+        const Box& lane = lane_boxes_[k][j];
+        if (!span.meets(lane)) continue;
         for (std::size_t i = 0; i + 1 < path.size() && !(cells >> k & 1); ++i)
-          if (geometry::segments_cross_clearly(path[i], path[i + 1], l.start, l.end,
+          if (legs[i].meets(lane) &&
+              geometry::segments_cross_clearly(path[i], path[i + 1], l.start, l.end,
                                                1e-9 * (geometry::distance(path[i], path[i + 1]) +
                                                        geometry::distance(l.start, l.end))))
             cells |= std::uint64_t{1} << k;
+      }
     }
     return cells;
   }
@@ -261,10 +302,17 @@ class LaneCrossings {
       x1 = std::max(x1, p.x);
       y1 = std::max(y1, p.y);
     }
+    void add(const Box& o) {
+      x0 = std::min(x0, o.x0);
+      y0 = std::min(y0, o.y0);
+      x1 = std::max(x1, o.x1);
+      y1 = std::max(y1, o.y1);
+    }
     bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
   };
   const Candidate& c_;
-  std::vector<Box> boxes_;
+  std::vector<Box> boxes_;                    ///< per cell, of its lanes
+  std::vector<std::vector<Box>> lane_boxes_;  ///< per cell, per lane
 };
 
 // The candidate's cells in their best order (exact where small), transits routed and kept off

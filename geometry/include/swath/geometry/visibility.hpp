@@ -16,8 +16,10 @@ namespace swath::geometry {
 /// lies within 1e-9 of the area's size of the boundary (rounding of computed boundary points). The
 /// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
 /// visibility is decided with exact predicates, on the edges a grid over them (SegmentIndex) finds
-/// near each leg. Building is O(r² k) for r reflex vertices and k edges near a leg, so areas with
-/// more than `max_nodes` reflex vertices are not routed (paths are straight).
+/// near each leg. The graph's edges and which nodes a path's ends see are tested lazily, only as
+/// far as a Dijkstra search from the start needs to prove the path shortest (O(r k) per node it
+/// settles, for r reflex vertices and k edges near a leg); areas with more than `max_nodes`
+/// reflex vertices are not routed (paths are straight).
 ///
 /// `corner_allowance_m` (>= 0, metres) moves each bend this far away from its corner, along the
 /// corner's bisector, where the moved point still sees both neighbours of the corner: an autopilot
@@ -55,19 +57,43 @@ class VisibilityRouter {
   SegmentIndex edges_;           ///< every ring's edges, ring after ring, in ring order
   std::vector<Box> edge_boxes_;  ///< per edge of edges_
   std::vector<Point2> nodes_;
-  std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
-  /// Which graph nodes a point sees, per point asked about (routing asks about the same entry
-  /// and exit points many times).
-  const std::vector<char>& sees(Point2 p) const;
-  mutable std::map<std::pair<double, double>, std::vector<char>> sees_;
-  /// Shortest-path tree from a point over the graph: distance and predecessor of every node
-  /// (predecessor nodes_.size() = straight from the point).
-  struct Tree {
+  // Everything below is filled lazily, as paths are asked: a plan asks for ~10^4 paths between
+  // run ends, and testing every run end against every reflex vertex (and every pair of reflex
+  // vertices) up front was most of the routing time. Each answer is the one the eager
+  // computation gave, bit for bit: the same visibility tests decide, and the searches settle
+  // the same nodes with the same distances and predecessors, in the same order, only not all.
+  static constexpr signed char kUnknown = -1;
+  /// Which graph nodes a point sees (kUnknown: not asked yet), per point asked about (routing
+  /// asks about the same entry and exit points many times).
+  std::vector<signed char>& seen_row(Point2 p) const;
+  bool sees(Point2 p, std::vector<signed char>& row, std::size_t node) const;
+  mutable std::map<std::pair<double, double>, std::vector<signed char>> sees_;
+  /// The visibility graph's edges of a node (ascending), built when a search first settles it.
+  const std::vector<std::pair<std::size_t, double>>& adjacent(std::size_t node) const;
+  mutable std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
+  mutable std::vector<char> expanded_;          ///< per node: adjacent_ built
+  mutable std::vector<signed char> node_sees_;  ///< nodes² visibility, kUnknown until asked
+  /// Dijkstra from a point over the graph, resumed as far as each path asked needs: distance
+  /// and predecessor of the settled nodes (predecessor nodes_.size() = straight from the point).
+  /// The point's view of a node is tested only when that node would be settled from it.
+  struct Search {
+    struct Item {
+      double distance_m;
+      std::size_t node;
+      int from_point;  ///< 0: straight from the point (not yet tested), 1: through a node
+      auto operator<=>(const Item&) const = default;
+    };
     std::vector<double> distance;
     std::vector<std::size_t> previous;
+    std::vector<char> settled;
+    std::vector<std::size_t> settled_nodes;  ///< in the order settled
+    std::vector<Item> queue;                 ///< a min-heap (std::push_heap with greater)
+    std::vector<signed char>* from_row = nullptr;
   };
-  const Tree& tree_from(Point2 p) const;
-  mutable std::map<std::pair<double, double>, Tree> trees_;
+  Search& search_from(Point2 a) const;
+  /// Settles the next node of `s` (from point a); nodes_.size() when none is left.
+  std::size_t settle_next(Point2 a, Search& s) const;
+  mutable std::map<std::pair<double, double>, Search> trees_;
   bool routing_ = true;
   double tolerance_ = 0.0;  ///< distance from the boundary that still counts as on it, metres
 };

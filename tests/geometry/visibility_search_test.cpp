@@ -1,0 +1,264 @@
+// VisibilityRouter builds its graph and tests what a path's ends see lazily, and stops its search
+// as soon as the path is proven shortest. Its paths must be the ones the eager computation gives,
+// bit for bit: checked against that computation written out over every edge (every node's view of
+// every node, a full Dijkstra from the start, the best last node over all nodes), on random areas
+// with holes (fixed seeds), integer grids full of collinear edges, combs and spirals, with and
+// without a corner allowance, for ends on vertices, on edges, in line with vertices and at random,
+// asked in random order so that searches are resumed from every depth.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <queue>
+#include <random>
+
+#include "random_polygons.hpp"
+#include "swath/geometry/predicates.hpp"
+#include "swath/geometry/visibility.hpp"
+
+namespace swath::geometry {
+namespace {
+
+// The router before the lazy search, over every edge of every ring: the truth.
+class EagerRouter {
+ public:
+  EagerRouter(std::vector<Ring> rings, std::size_t max_nodes, double allowance_m)
+      : rings_(std::move(rings)) {
+    double extent = 0;
+    for (const Ring& ring : rings_)
+      for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+    tolerance_ = 1e-9 * (1 + extent);
+    for (const Ring& ring : rings_) {
+      const std::size_t n = ring.size();
+      for (std::size_t i = 0; i < n; ++i)
+        if (orientation(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]) ==
+            Orientation::clockwise)
+          nodes_.push_back(
+              moved_out(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n], allowance_m));
+    }
+    routing_ = nodes_.size() <= max_nodes;
+    if (!routing_) return;
+    adjacent_.resize(nodes_.size());
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
+      for (std::size_t j = i + 1; j < nodes_.size(); ++j)
+        if (visible(nodes_[i], nodes_[j])) {
+          const double w = distance(nodes_[i], nodes_[j]);
+          adjacent_[i].push_back({j, w});
+          adjacent_[j].push_back({i, w});
+        }
+  }
+
+  std::vector<Point2> path(Point2 a, Point2 b) {
+    if (!routing_ || visible(a, b)) return {a, b};
+    const std::size_t n = nodes_.size();
+    std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+    std::vector<std::size_t> previous(n, n);
+    using Item = std::pair<double, std::size_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    const std::vector<char>& from_a = sees(a);
+    for (std::size_t i = 0; i < n; ++i)
+      if (from_a[i]) {
+        dist[i] = distance(a, nodes_[i]);
+        queue.push({dist[i], i});
+      }
+    while (!queue.empty()) {
+      const auto [d, u] = queue.top();
+      queue.pop();
+      if (d > dist[u]) continue;
+      for (const auto& [v, w] : adjacent_[u])
+        if (d + w < dist[v]) {
+          dist[v] = d + w;
+          previous[v] = u;
+          queue.push({dist[v], v});
+        }
+    }
+    const std::vector<char>& to_b = sees(b);
+    std::size_t last = n;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i)
+      if (to_b[i] && dist[i] + distance(nodes_[i], b) < best) {
+        best = dist[i] + distance(nodes_[i], b);
+        last = i;
+      }
+    if (last == n) return {a, b};
+    std::vector<Point2> route{b};
+    for (std::size_t v = last; v != n; v = previous[v]) route.push_back(nodes_[v]);
+    route.push_back(a);
+    std::reverse(route.begin(), route.end());
+    return route;
+  }
+
+  std::size_t nodes() const { return nodes_.size(); }
+
+ private:
+  bool contains(Point2 p) const {
+    int count = 0;
+    for (const Ring& ring : rings_) {
+      const Containment c = locate_point(p, ring);
+      if (c == Containment::on_boundary) return true;
+      count += c == Containment::inside;
+    }
+    if (count % 2 == 1) return true;
+    for (const Ring& ring : rings_)
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
+        const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+        if (distance(p, a + d * t) <= tolerance_) return true;
+      }
+    return false;
+  }
+  bool visible(Point2 a, Point2 b) const {
+    const Point2 d = b - a;
+    const double len2 = dot(d, d);
+    double outside = 0;
+    if (len2 > 0) {
+      std::vector<double> cuts{0.0, 1.0};
+      for (const Ring& ring : rings_)
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+          const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
+          if (!segments_intersect(a, b, p, q)) continue;
+          const double denom = cross(d, q - p);
+          if (denom != 0) {
+            cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
+          } else {
+            cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
+            cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
+          }
+        }
+      std::sort(cuts.begin(), cuts.end());
+      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        if (cuts[k + 1] <= cuts[k]) continue;
+        if (!contains(a + d * ((cuts[k] + cuts[k + 1]) / 2))) outside += (cuts[k + 1] - cuts[k]);
+      }
+    }
+    return outside * std::sqrt(len2) <= 1e-9 * (1 + distance(a, b));
+  }
+  Point2 moved_out(Point2 before, Point2 corner, Point2 after, double allowance_m) const {
+    if (!(allowance_m > 0)) return corner;
+    const Point2 u = before - corner, v = after - corner;
+    const double nu = std::hypot(u.x, u.y), nv = std::hypot(v.x, v.y);
+    if (nu == 0 || nv == 0) return corner;
+    Point2 out = (u * (1 / nu) + v * (1 / nv)) * -1.0;
+    const double len = std::hypot(out.x, out.y);
+    if (len < 1e-12) return corner;
+    const Point2 moved = corner + out * (allowance_m / len);
+    if (contains(moved) && visible(moved, corner + u * 0.5) && visible(moved, corner + v * 0.5))
+      return moved;
+    return corner;
+  }
+  const std::vector<char>& sees(Point2 p) {
+    auto [it, added] = sees_.try_emplace({p.x, p.y});
+    if (added)
+      for (const Point2& node : nodes_) it->second.push_back(visible(p, node));
+    return it->second;
+  }
+
+  std::vector<Ring> rings_;
+  double tolerance_ = 0;
+  std::vector<Point2> nodes_;
+  std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
+  std::map<std::pair<double, double>, std::vector<char>> sees_;
+  bool routing_ = true;
+};
+
+// A field with holes: rectangles on a grid (corners in line with each other: collinear legs and
+// equal-length detours) and small random stars, clockwise.
+std::vector<Ring> search_holey_area(test::Rng& rng, std::size_t n, int holes) {
+  std::vector<Ring> rings{test::random_field_polygon(rng, n, 500)};
+  for (int h = 0; h < holes; ++h) {
+    const double x = -300 + 75.0 * (h % 8), y = -300 + 75.0 * (h / 8);
+    if (h % 3 == 2) {
+      Ring star = test::transformed(test::random_star_polygon(rng, 7, 5, 15), 0, x + 12, y + 10);
+      std::reverse(star.begin(), star.end());
+      rings.push_back(star);
+    } else {
+      rings.push_back({{x, y}, {x, y + 20}, {x + 25, y + 20}, {x + 25, y}});
+    }
+  }
+  return rings;
+}
+
+// Path ends: vertices, points on edges (as lanes end), points in line with a vertex (through
+// corners), the midpoints of rectangle sides, and random points (some outside).
+std::vector<Point2> path_ends(test::Rng& rng, const std::vector<Ring>& rings, int count) {
+  std::vector<Point2> vertices;
+  std::vector<std::pair<Point2, Point2>> edges;
+  double extent = 0;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      vertices.push_back(ring[i]);
+      edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+      extent = std::max({extent, std::abs(ring[i].x), std::abs(ring[i].y)});
+    }
+  std::uniform_real_distribution<double> unit(0, 1), coordinate(-extent, extent);
+  std::uniform_int_distribution<std::size_t> vertex(0, vertices.size() - 1),
+      edge(0, edges.size() - 1);
+  std::vector<Point2> out;
+  for (int k = 0; k < count; ++k) {
+    switch (k % 5) {
+      case 0:
+        out.push_back(vertices[vertex(rng)]);
+        break;
+      case 1: {
+        const auto& [a, b] = edges[edge(rng)];
+        out.push_back(a + (b - a) * unit(rng));
+        break;
+      }
+      case 2: {
+        const Point2 v = vertices[vertex(rng)];
+        out.push_back(k % 2 ? Point2{coordinate(rng), v.y} : Point2{v.x, coordinate(rng)});
+        break;
+      }
+      case 3: {
+        const auto& [a, b] = edges[edge(rng)];
+        out.push_back((a + b) * 0.5);
+        break;
+      }
+      default:
+        out.push_back({coordinate(rng), coordinate(rng)});
+    }
+  }
+  return out;
+}
+
+TEST(VisibilityRouterSearch, PathsAreBitForBitTheEagerOnes) {
+  test::Rng rng(1818);
+  std::size_t bent = 0;
+  for (int area = 0; area < 10; ++area) {
+    std::vector<Ring> rings;
+    switch (area % 5) {
+      case 0:
+      case 1:
+        rings = search_holey_area(rng, std::size_t(12) << area % 3, 6 + 7 * area);
+        break;
+      case 2:
+        rings = {test::random_grid_ring(rng, 24, 10)};
+        break;
+      case 3:
+        rings = {test::comb_polygon(6, 10, 40, 10)};
+        break;
+      default:
+        rings = {test::spiral_polygon(5, 200, 40, 10)};
+    }
+    for (const double allowance_m : {0.0, 2.0}) {
+      const VisibilityRouter router(rings, 300, allowance_m);
+      EagerRouter eager(rings, 300, allowance_m);
+      ASSERT_TRUE(router.routes());
+      const std::vector<Point2> points = path_ends(rng, rings, 60);
+      std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+      for (int q = 0; q < 1200; ++q) {
+        const Point2 a = points[pick(rng)], b = points[pick(rng)];
+        const std::vector<Point2> lazy = router.path(a, b), truth = eager.path(a, b);
+        ASSERT_EQ(lazy, truth) << "area " << area << " allowance " << allowance_m << " (" << a.x
+                               << ", " << a.y << ") - (" << b.x << ", " << b.y << ")";
+        bent += truth.size() > 2;
+      }
+    }
+  }
+  EXPECT_GT(bent, 3000u);  // most queries are routed around something, not straight
+}
+
+}  // namespace
+}  // namespace swath::geometry
