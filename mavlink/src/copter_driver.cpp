@@ -81,7 +81,24 @@ bool CopterDriver::go_to(double lat_deg, double lon_deg, double altitude_m) {
   t.coordinate_frame = kFrameGlobalRelativeAltInt;
   target_ = t;
   target_sent_s_ = -std::numeric_limits<double>::infinity();  // at the next poll
+  target_confirmed_ = false;
   return true;
+}
+
+bool CopterDriver::reports_our_target(const PositionTargetGlobalInt& reported) const {
+  if (!target_) return false;
+  const double horizontal =
+      geometry::geodesic_distance_m({reported.lat_degE7 / kDegE7, reported.lon_degE7 / kDegE7},
+                                    {target_->lat_degE7 / kDegE7, target_->lon_degE7 / kDegE7});
+  if (horizontal > settings_.target_match_m) return false;
+  // ArduCopter reports its target above sea level (MAV_FRAME_GLOBAL, 0; GLOBAL_INT, 5); ours is
+  // above home, which GLOBAL_POSITION_INT gives as its two altitudes' difference.
+  double above_home_m = reported.alt_m;
+  if (reported.coordinate_frame == 0 || reported.coordinate_frame == 5) {
+    if (!state_.position) return true;  // the horizontal match is all there is to compare
+    above_home_m -= (state_.position->alt_mm - state_.position->relative_alt_mm) / 1000.0;
+  }
+  return std::abs(above_home_m - target_->alt_m) <= settings_.target_match_m;
 }
 
 double CopterDriver::distance_to_target_m() const {
@@ -150,6 +167,9 @@ void CopterDriver::on_frame(const Frame& frame, double now_s) {
     }
   } else if (const auto pos = unpack<GlobalPositionInt>(frame)) {
     state_.position = *pos;
+  } else if (const auto target = unpack<PositionTargetGlobalInt>(frame)) {
+    state_.target = *target;
+    if (reports_our_target(*target)) target_confirmed_ = true;
   } else if (const auto home = unpack<HomePosition>(frame)) {
     state_.home = *home;
   } else if (const auto ext = unpack<ExtendedSysState>(frame)) {
@@ -190,9 +210,9 @@ void CopterDriver::send_due(double now_s) {
       // Telemetry is what the link is for (without positions no arrival is ever seen): its
       // requests are asked again, as new commands, until the vehicle answers.
       const auto cmd = static_cast<Cmd>(p.message.command);
-      if (cmd == Cmd::set_message_interval || cmd == Cmd::request_message)
+      if (cmd == Cmd::set_message_interval ||
+          (cmd == Cmd::request_message && p.message.param1 == HomePosition::kId))
         request_telemetry(cmd, p.message.param1, p.message.param2);  // may reallocate: p unused
-
       continue;
     }
     p.message.confirmation = static_cast<std::uint8_t>(p.sends);
@@ -201,11 +221,26 @@ void CopterDriver::send_due(double now_s) {
     ++commands_sent_;
     p.last_sent_s = now_s;
   }
-  if (target_ && !arrived() && now_s - target_sent_s_ >= settings_.target_resend_s &&
-      state_.custom_mode == static_cast<std::uint32_t>(CopterMode::guided)) {
-    endpoint_.send(*target_);
-    target_sent_s_ = now_s;
-  }
+  // ArduCopter re-plans a GUIDED leg from its stopping point, at rest, on every target it is
+  // sent before the last was reached (AC_WPNav::set_wp_destination_NEU_cm): a target repeated
+  // each second would hold a 10 m/s leg near 2.5 m/s (WPNAV_ACCEL). So the target is
+  // repeated only until the vehicle reports it as its own (POSITION_TARGET_GLOBAL_INT, asked for
+  // after each send; a lost target or a lost report shows as no match): while the question is
+  // pending nothing is resent. A vehicle that refuses the question gets the target each second.
+  if (!target_ || target_confirmed_ || arrived() ||
+      state_.custom_mode != static_cast<std::uint32_t>(CopterMode::guided) ||
+      now_s - target_sent_s_ < settings_.target_resend_s)
+    return;
+  const auto asking = [&](const Pending& p) {
+    return p.state == CommandState::pending &&
+           p.message.command == static_cast<std::uint16_t>(Cmd::request_message) &&
+           p.message.param1 == static_cast<float>(PositionTargetGlobalInt::kId);
+  };
+  if (std::any_of(commands_.begin(), commands_.end(), asking)) return;
+  endpoint_.send(*target_);
+  ++targets_sent_;
+  target_sent_s_ = now_s;
+  enqueue(Cmd::request_message, static_cast<float>(PositionTargetGlobalInt::kId));
 }
 
 void CopterDriver::poll(double now_s) {

@@ -60,6 +60,7 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
       }
       mode_ = mode;
       if (mode_ == CopterMode::guided) has_target_ = false;  // GUIDED holds position first
+      leg_planned_ = false;
       break;
     }
     case Cmd::component_arm_disarm:
@@ -82,6 +83,7 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
         result = CmdResult::failed;
       } else {
         landed_ = LandedState::takeoff;
+        leg_planned_ = false;
         has_target_ = true;
         target_north_m_ = north_m_;
         target_east_m_ = east_m_;
@@ -115,6 +117,21 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
         h.q = {1, 0, 0, 0};
         h.time_us = static_cast<std::uint64_t>(now_s * 1e6);
         endpoint_.send(h);
+      } else if (static_cast<std::uint32_t>(c.param1) == PositionTargetGlobalInt::kId) {
+        // As ArduCopter: its GUIDED target above sea level, nothing when it has none (the
+        // request is still accepted).
+        if (mode_ == CopterMode::guided && has_target_ && landed_ != LandedState::on_ground) {
+          PositionTargetGlobalInt t;
+          double lat = 0, lon = 0;
+          to_geodetic(target_north_m_, target_east_m_, lat, lon);
+          t.time_boot_ms = static_cast<std::uint32_t>(now_s * 1000);
+          t.lat_degE7 = degE7(lat);
+          t.lon_degE7 = degE7(lon);
+          t.alt_m = static_cast<float>(settings_.home_amsl_m + target_alt_m_);
+          t.type_mask = 0xFFF8;
+          t.coordinate_frame = 0;  // MAV_FRAME_GLOBAL
+          endpoint_.send(t);
+        }
       } else {
         result = CmdResult::unsupported;
       }
@@ -152,12 +169,24 @@ void FakeCopter::on_frame(const Frame& frame, double now_s) {
       --commands_to_lose_;
       return;
     }
+    if (c->command == lose_first_sends_of_ && c->confirmation == 0) return;
     on_command(*c, now_s);
   } else if (const auto t = unpack<SetPositionTargetGlobalInt>(frame)) {
     if (t->target_system != settings_.sysid || mode_ != CopterMode::guided ||
         landed_ == LandedState::on_ground)
       return;
+    if (targets_to_lose_ > 0) {
+      --targets_to_lose_;
+      return;
+    }
     ++targets_received_;
+    leg_speed_m_s_ = 0;  // re-planned from rest (only felt with accel_m_s2)
+    // ArduCopter keeps the speed limit for a leg that follows a reached one (WPNAV_RADIUS 2 m);
+    // otherwise it re-initialises the waypoint controller at WPNAV_SPEED.
+    const bool reached = std::hypot(target_north_m_ - north_m_, target_east_m_ - east_m_) <= 2.0 &&
+                         std::hypot(v_north_m_s_, v_east_m_s_) < 0.5;
+    leg_max_m_s_ = leg_planned_ && reached ? speed_m_s_ : settings_.speed_m_s;
+    leg_planned_ = true;
     const geometry::LocalFrame local({settings_.home_lat_deg, settings_.home_lon_deg});
     const geometry::Point2 p = local.to_local({t->lat_degE7 / kDegE7, t->lon_degE7 / kDegE7});
     target_east_m_ = p.x;
@@ -191,7 +220,14 @@ void FakeCopter::move(double dt_s) {
   if (!has_target_) return;
   const double dn = target_north_m_ - north_m_, de = target_east_m_ - east_m_;
   const double d = std::hypot(dn, de);
-  const double step = std::min(d, speed_m_s_ * dt_s);
+  double speed = settings_.speed_per_leg && mode_ == CopterMode::guided && leg_planned_
+                     ? leg_max_m_s_
+                     : speed_m_s_;
+  if (settings_.accel_m_s2 > 0) {
+    leg_speed_m_s_ = std::min(speed, leg_speed_m_s_ + settings_.accel_m_s2 * dt_s);
+    speed = leg_speed_m_s_;
+  }
+  const double step = std::min(d, speed * dt_s);
   if (d > 0) {
     north_m_ += dn / d * step;
     east_m_ += de / d * step;

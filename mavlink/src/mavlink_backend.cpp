@@ -72,7 +72,8 @@ struct MavlinkBackend::Vehicle {
   double lat_deg = 0, lon_deg = 0, alt_m = 0;
   double cruise_m_s = 10, approach_m_s = 2, approach_within_m = 20;
   bool target_sent = false, slowed = false;
-  int gate = -1;  // a command the steering waits for (mode, arm, take-off, RTL)
+  int speed_cmd = -1;  // the cruise DO_CHANGE_SPEED that goes before the target
+  int gate = -1;       // a command the steering waits for (mode, arm, take-off, RTL)
   Step gate_step = Step::mode;
   std::array<int, kSteps> rejections{};  // of each step since it was last accepted
   double settle_until_s = 0;             // an accepted command shows in the state only after this
@@ -131,6 +132,7 @@ void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s
   v.approach_within_m = approach_within_m;
   v.target_sent = false;
   v.slowed = false;
+  v.speed_cmd = -1;
   steer(v);
 }
 
@@ -214,6 +216,7 @@ void MavlinkBackend::steer(Vehicle& v) {
   if (!v.refusal.empty()) return;    // a refusal blocks going anywhere but home
   if (mode != CopterMode::guided) {  // from the ground, or after a failsafe RTL
     v.target_sent = false;
+    v.speed_cmd = -1;
     gate(d.set_mode(CopterMode::guided), Vehicle::Step::mode);
     return;
   }
@@ -227,11 +230,22 @@ void MavlinkBackend::steer(Vehicle& v) {
   }
   if (s.landed == LandedState::takeoff) return;  // climbing to the layer
   if (!v.target_sent) {
+    // ArduCopter's GUIDED plans a leg at the speed limit in force when its target arrives; a
+    // DO_CHANGE_SPEED during the leg changes only the limit the next leg is planned with
+    // (ModeGuided::set_speed_xy_cms sets AC_PosControl's limit; AC_WPNav plans the s-curve with
+    // it). Sent beside the target, a cruise speed that was lost once, or waited behind another
+    // DO_CHANGE_SPEED, arrived after it and the leg flew at the last approach speed. So the
+    // cruise speed goes first, the target once the vehicle has answered it (accepted, refused or
+    // timed out).
+    if (v.speed_cmd < 0) {
+      v.speed_cmd = d.set_speed(v.cruise_m_s);
+      return;
+    }
+    if (d.command_state(v.speed_cmd) == CommandState::pending) return;
     if (!d.go_to(v.lat_deg, v.lon_deg, v.alt_m)) {
       v.refusal = "target outside the fence";
       return;
     }
-    d.set_speed(v.cruise_m_s);
     v.target_sent = true;
     v.slowed = false;
   }

@@ -52,7 +52,8 @@ struct Mission {
   fleet::RunRecord record;
 
   // `adjust` changes the backend's settings before it is made.
-  explicit Mission(const std::function<void(MavlinkBackendSettings&)>& adjust = {}) {
+  explicit Mission(const std::function<void(MavlinkBackendSettings&)>& adjust = {},
+                   const std::function<void(FakeCopterSettings&)>& adjust_fakes = {}) {
     const geometry::LocalFrame frame(world->origin);
     std::vector<std::unique_ptr<Link>> gcs_links;
     for (int i = 0; i < 2; ++i) {
@@ -69,6 +70,7 @@ struct Mission {
       s.home_lat_deg = home.lat_deg;
       s.home_lon_deg = home.lon_deg;
       s.sysid = static_cast<std::uint8_t>(i + 1);
+      if (adjust_fakes) adjust_fakes(s);
       fakes.push_back(std::make_unique<FakeCopter>(vehicle_links[i], s));
       gcs_links.push_back(
           std::make_unique<UdpLink>(UdpLink::connect("127.0.0.1", vehicle_links[i].local_port())));
@@ -227,6 +229,29 @@ TEST(MavlinkBackend, TenSecondLinkCutLosesNoTaskAndDelaysCompletion) {
   EXPECT_TRUE(landed_after);
   EXPECT_GE(m.record.completion_time_s, plain.record.completion_time_s + 1.0);
   m.expect_both_land_at_home();
+}
+
+// ArduCopter's GUIDED flies a leg at the speed limit in force when its target arrived; a
+// DO_CHANGE_SPEED mid-leg sets only the next leg's (ModeGuided::set_speed_xy_cms). Fakes doing
+// the same fly the approach's last 20 m at cruise, so they complete no later than fakes that
+// slow to 2 m/s there — unless a leg is planned at the previous leg's approach speed: with every
+// DO_CHANGE_SPEED's first send lost, a cruise speed sent beside the target arrives after it (the
+// second photo's 100+ m leg then flew at 2 m/s); answered before the target goes, it does not.
+TEST(MavlinkBackend, EveryLegFliesAtCruiseOnAVehicleThatSetsItsSpeedPerLeg) {
+  Mission plain;
+  plain.run();
+  plain.expect_every_photo_taken_once_at_its_target();
+  Mission per_leg({}, [](FakeCopterSettings& s) { s.speed_per_leg = true; });
+  for (auto& f : per_leg.fakes) f->lose_first_sends(Cmd::do_change_speed);
+  per_leg.run();
+  per_leg.expect_every_photo_taken_once_at_its_target();
+  // One drone took two photos: it flew a leg after an approach.
+  std::map<int, int> photos_by_drone;
+  for (const auto& e : per_leg.events("action_done"))
+    if (e["name"] == "camera") ++photos_by_drone[int(e["drone"])];
+  EXPECT_EQ(std::max(photos_by_drone[0], photos_by_drone[1]), 2);
+  EXPECT_LE(per_leg.record.completion_time_s, plain.record.completion_time_s + 0.5);
+  per_leg.expect_both_land_at_home();
 }
 
 TEST(MavlinkBackend, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {

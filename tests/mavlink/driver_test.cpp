@@ -24,10 +24,10 @@ namespace {
 constexpr double kStepS = 0.02;
 
 struct Rig {
-  explicit Rig(DriverSettings settings = {})
+  explicit Rig(DriverSettings settings = {}, FakeCopterSettings copter_settings = {})
       : vehicle_link(UdpLink::listen("127.0.0.1", 0)),
         gcs_link(UdpLink::connect("127.0.0.1", vehicle_link.local_port())),
-        copter(vehicle_link),
+        copter(vehicle_link, copter_settings),
         driver(gcs_link, std::move(settings)) {}
 
   // Advances the clock until `done` holds or `limit_s` passed; returns whether `done` held.
@@ -96,6 +96,45 @@ TEST(CopterDriver, ConnectsAsksForTelemetryArmsTakesOffAndFliesToATarget) {
   EXPECT_NEAR(seen.y, rig.copter.north_m(), 0.06);  // up to one 0.1 s report old, < 0.5 m/s
   EXPECT_NEAR(seen.x, rig.copter.east_m(), 0.06);
   EXPECT_NEAR(p.relative_alt_mm / 1000.0, rig.copter.altitude_m(), 0.01);
+}
+
+// ArduCopter re-plans a GUIDED leg from rest on every target it receives before reaching the last
+// (AC_WPNav::set_wp_destination_NEU_cm): a target sent each second would hold a 10 m/s leg near
+// 2.5 m/s. The fake does the same with an acceleration: the
+// target goes once, the vehicle's report (POSITION_TARGET_GLOBAL_INT) confirms it, and the leg
+// takes the closed-form time; a lost target is sent again because the report does not match.
+TEST(CopterDriver, ATargetIsSentUntilTheVehicleReportsItNotEachSecond) {
+  FakeCopterSettings fake;
+  fake.accel_m_s2 = 2.5;  // WPNAV_ACCEL's default, 250 cm/s²
+  Rig rig({}, fake);
+  rig.take_off(20);
+  rig.run(1);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(150, 0, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 20));
+  double start_s = rig.now_s;
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 60));
+  // 0 -> 10 m/s at 2.5 m/s²: 4 s and 20 m, then 130 m at 10 m/s: 17 s (+ a poll, a report).
+  EXPECT_NEAR(rig.now_s - start_s, 4.0 + 130.0 / 10.0, 0.3);
+  EXPECT_TRUE(rig.driver.target_confirmed());
+  EXPECT_EQ(rig.driver.targets_sent(), 1u);
+  EXPECT_EQ(rig.copter.position_targets_received(), 1);
+  ASSERT_TRUE(rig.driver.state().target.has_value());
+  EXPECT_EQ(rig.driver.state().target->lat_degE7,
+            static_cast<std::int32_t>(std::lround(lat * 1e7)));
+
+  // The next target is lost on the way: the vehicle still reports the last one, so it is sent
+  // again one resend period later, and only then is the leg flown.
+  rig.copter.lose_targets(1);
+  rig.copter.to_geodetic(150, 40, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 20));
+  start_s = rig.now_s;
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 30));
+  EXPECT_EQ(rig.driver.targets_sent(), 3u);
+  EXPECT_EQ(rig.copter.position_targets_received(), 2);
+  // 1 s until the resend, then 40 m: 4 s and 20 m accelerating, 2 s at 10 m/s.
+  EXPECT_NEAR(rig.now_s - start_s, 1.0 + 4.0 + 2.0, 0.3);
+  EXPECT_NEAR(rig.copter.east_m(), 40, 1.5);
 }
 
 TEST(CopterDriver, LostCommandsAreResentAndTimeOutAfterThreeSends) {

@@ -31,9 +31,13 @@ struct DriverSettings {
   int attempts = 3;                  ///< sends of one command before it times out
   double position_interval_s = 0.1;  ///< GLOBAL_POSITION_INT rate asked for (10 Hz)
   double status_interval_s = 1.0;    ///< SYS_STATUS, BATTERY_STATUS, EXTENDED_SYS_STATE
-  double target_resend_s = 1.0;      ///< a position target is repeated until arrival
-  double arrival_radius_m = 1.5;     ///< arrived: this close to the target ...
-  double arrival_speed_m_s = 0.5;    ///< ... and this slow
+  /// A position target is repeated this often until the vehicle reports it (asked with
+  /// REQUEST_MESSAGE for POSITION_TARGET_GLOBAL_INT after each send) or, from a vehicle that does
+  /// not report it, until arrival, s.
+  double target_resend_s = 1.0;
+  double target_match_m = 1.0;     ///< a reported target this close (each axis' distance) is ours
+  double arrival_radius_m = 1.5;   ///< arrived: this close to the target ...
+  double arrival_speed_m_s = 0.5;  ///< ... and this slow
   /// Whether a point (latitude, longitude in degrees) is inside the fence; empty: no fence.
   std::function<bool(double lat_deg, double lon_deg)> inside_fence;
 };
@@ -48,6 +52,7 @@ struct VehicleState {
   LandedState landed = LandedState::undefined;
   std::optional<GlobalPositionInt> position;
   std::optional<HomePosition> home;
+  std::optional<PositionTargetGlobalInt> target;  ///< the vehicle's report of its GUIDED target
   int battery_remaining_percent = -1;
   std::vector<std::string> status_texts;  ///< every STATUSTEXT, in order
   std::vector<CameraImageCaptured> images;
@@ -81,6 +86,9 @@ class CopterDriver {
   bool arrived() const;
   /// Distance to the last target in metres (infinity without position or target).
   double distance_to_target_m() const;
+  /// The vehicle reported the last target as its own since it was last sent.
+  bool target_confirmed() const { return target_confirmed_; }
+  std::uint64_t targets_sent() const { return targets_sent_; }  ///< resends included
 
   std::uint64_t commands_sent() const { return commands_sent_; }  ///< resends included
   /// Commands not yet acknowledged, rejected or timed out (queued or in flight).
@@ -100,6 +108,8 @@ class CopterDriver {
   /// Enqueues a telemetry request unless the same one (command, message id) is still pending.
   void request_telemetry(Cmd cmd, float p1, float p2 = 0);
   void send_due(double now_s);
+  /// Whether the vehicle's reported target is target_ (within target_match_m on each axis).
+  bool reports_our_target(const PositionTargetGlobalInt& reported) const;
 
   Endpoint endpoint_;
   DriverSettings settings_;
@@ -108,6 +118,8 @@ class CopterDriver {
   double last_heartbeat_sent_s_ = -std::numeric_limits<double>::infinity();
   std::optional<SetPositionTargetGlobalInt> target_;
   double target_sent_s_ = -std::numeric_limits<double>::infinity();
+  bool target_confirmed_ = false;
+  std::uint64_t targets_sent_ = 0;
   std::uint64_t commands_sent_ = 0;
 };
 

@@ -3,8 +3,10 @@
 // (CI): it answers what CopterDriver sends the way ArduCopter documents — HEARTBEAT at 1 Hz with
 // mode and armed flag, telemetry at the intervals asked by SET_MESSAGE_INTERVAL, COMMAND_ACK for
 // every COMMAND_LONG, arming only in GUIDED on the ground (or a refusal with a STATUSTEXT),
-// take-off to the asked altitude, GUIDED position targets at the set speed, RTL (home, then land)
-// and LAND with disarm on the ground, a photo per IMAGE_START_CAPTURE, and the ground-station
+// take-off to the asked altitude, GUIDED position targets at the set speed (optionally with an
+// acceleration, each target received restarting the leg at rest as ArduCopter's does; the target
+// reported as POSITION_TARGET_GLOBAL_INT on REQUEST_MESSAGE, above sea level), RTL (home, then
+// land) and LAND with disarm on the ground, a photo per IMAGE_START_CAPTURE, and the ground-station
 // failsafe: airborne without a GCS HEARTBEAT for 5 s it returns to launch (FS_GCS_ENABLE = 1).
 // Faults for tests: a cut link, lost commands, a refusal to arm or to enter a mode.
 //
@@ -31,6 +33,16 @@ struct FakeCopterSettings {
   double descent_m_s = 1.0;               ///< landing
   double gcs_failsafe_s = 5.0;            ///< FS_GCS_TIMEOUT
   double battery_drain_percent_s = 0.05;  ///< while armed
+  /// Horizontal acceleration, m/s² (> 0), or 0: at speed at once. With it every GUIDED target
+  /// received restarts the leg at rest, as ArduCopter re-plans a leg from its stopping point on
+  /// each SET_POSITION_TARGET_GLOBAL_INT (AC_WPNav::set_wp_destination_NEU_cm).
+  double accel_m_s2 = 0;
+  /// ArduCopter's GUIDED speed: a leg flies at the DO_CHANGE_SPEED in force when its target
+  /// arrived (a DO_CHANGE_SPEED mid-leg only sets the next leg's), and at speed_m_s (WPNAV_SPEED)
+  /// for the first target after entering GUIDED or taking off and for a target re-sent before
+  /// the last was reached (ModeGuided::set_speed_xy_cms, AC_WPNav::set_wp_destination_NEU_cm).
+  /// false: every DO_CHANGE_SPEED applies at once.
+  bool speed_per_leg = false;
 };
 
 class FakeCopter {
@@ -45,6 +57,11 @@ class FakeCopter {
   void cut_link(double from_s, double until_s);
   /// The next `n` COMMAND_LONGs are lost on the way (so their acknowledgements never come).
   void lose_commands(int n) { commands_to_lose_ += n; }
+  /// Every first send (confirmation 0) of `cmd` is lost on the way: its resend, 1 s later, is
+  /// the first the vehicle sees.
+  void lose_first_sends(Cmd cmd) { lose_first_sends_of_ = static_cast<std::uint16_t>(cmd); }
+  /// The next `n` SET_POSITION_TARGET_GLOBAL_INTs are lost on the way.
+  void lose_targets(int n) { targets_to_lose_ += n; }
   /// Refuses to arm, with this STATUSTEXT (ArduCopter's "PreArm: ..." sentences).
   void refuse_arm(std::string why) { refuse_arm_ = std::move(why); }
   /// Refuses DO_SET_MODE to `mode` (the ack FAILED), with this STATUSTEXT.
@@ -82,6 +99,8 @@ class FakeCopter {
   bool started_ = false;
   double cut_from_s_ = 0, cut_until_s_ = 0;
   int commands_to_lose_ = 0;
+  int targets_to_lose_ = 0;
+  std::uint16_t lose_first_sends_of_ = 0xFFFF;  // none
   std::string refuse_arm_;
   CopterMode refused_mode_ = CopterMode::stabilize;
   std::string refuse_mode_;  // "": no mode refused
@@ -93,6 +112,9 @@ class FakeCopter {
   LandedState landed_ = LandedState::on_ground;
   double north_m_ = 0, east_m_ = 0, alt_m_ = 0;
   double v_north_m_s_ = 0, v_east_m_s_ = 0, v_up_m_s_ = 0;
+  double leg_speed_m_s_ = 0;  // with accel_m_s2: the speed reached on this leg
+  double leg_max_m_s_ = 0;    // with speed_per_leg: this leg's planned speed
+  bool leg_planned_ = false;  // with speed_per_leg: a GUIDED leg since GUIDED or take-off
   double target_north_m_ = 0, target_east_m_ = 0, target_alt_m_ = 0;
   bool has_target_ = false;
   double speed_m_s_;

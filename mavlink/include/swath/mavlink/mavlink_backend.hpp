@@ -2,8 +2,10 @@
 // swath-fleet's runtime flying ArduCopters over MAVLink (DESIGN.md §18.6; `swath-fleet run ...
 // --backend mavlink --vehicles V`): one CopterDriver per vehicle, each vehicle steered toward what
 // the runtime last asked of it — at a place (GUIDED; from the ground: GUIDED, arm, NAV_TAKEOFF to
-// the target's altitude, the drone's layer; then the position target and the speed rule:
-// DO_CHANGE_SPEED to cruise, to the approach speed within approach_within_m), a photo for a sense
+// the target's altitude, the drone's layer; then the speed rule: DO_CHANGE_SPEED to cruise,
+// answered before the position target goes, as ArduCopter's GUIDED plans a leg with the speed in
+// force when its target arrives; then to the approach speed within approach_within_m, which
+// ArduCopter's GUIDED applies from the next leg on, not mid-leg), a photo for a sense
 // action, or home (RTL, landed and disarmed). The steering is re-applied on every poll from the
 // vehicle's reported state, so a lost acknowledgement, a command timed out or a failsafe RTL
 // during a link cut is followed by the right command once the vehicle answers again. A step
