@@ -4,6 +4,7 @@
 //
 //   swath_split_corpus [--per-family N] [--seed S] [--csv FILE] [--write DIR]
 //                      [--cells runs|boustrophedon|best] [--margin 0|half] [--altitude M]
+//                      [--directions one|per-region]
 //
 // --write DIR puts every shape there as GeoJSON (placed at 47 N 8 E), to plan and draw with swath.
 
@@ -26,7 +27,7 @@ namespace {
 struct Stats {
   std::vector<double> ratios;
   double worst_coverage = 1, worst_flyable = 1, outside_m = 0, ms = 0;
-  int below = 0, convex = 0;
+  int below = 0, convex = 0, per_region = 0;
 };
 
 double quantile(std::vector<double> v, double q) {
@@ -84,6 +85,10 @@ int main(int argc, char** argv) {
       write_dir = argv[i + 1];
     else if (flag == "--altitude")
       settings.altitude_m = std::atof(argv[i + 1]);
+    else if (flag == "--directions")
+      settings.directions = std::string(argv[i + 1]) == "per-region"
+                                ? swath::planning::SplitDirections::per_region
+                                : swath::planning::SplitDirections::one;
     else if (flag == "--margin")
       settings.half_footprint_margin = std::string(argv[i + 1]) == "half";
     else if (flag == "--cells") {
@@ -102,7 +107,7 @@ int main(int argc, char** argv) {
     rows.open(csv);
     rows << "family,index,vertices,holes,concave,split_m,hull_m,ratio,coverage,flyable_coverage,"
             "reported_coverage,"
-            "line_outside_m,transit_outside_m,cells,lines,plan_ms\n";
+            "line_outside_m,transit_outside_m,cells,lines,regions,plan_ms\n";
   }
   std::map<std::string, Stats> families;
   Stats all;
@@ -123,13 +128,14 @@ int main(int argc, char** argv) {
            << shape.area.holes.size() << ',' << r.concave << ',' << r.split_m << ',' << r.hull_m
            << ',' << r.split_m / r.hull_m << ',' << r.coverage << ',' << r.flyable_coverage << ','
            << r.reported_coverage << ',' << r.line_outside_m << ',' << r.transit_outside_m << ','
-           << r.cells << ',' << r.lines << ',' << r.plan_ms << '\n';
+           << r.cells << ',' << r.lines << ',' << r.regions << ',' << r.plan_ms << '\n';
     for (Stats* s : {&families[shape.family], &all}) {
       if (!r.concave) {
         ++s->convex;
         continue;
       }
       s->ratios.push_back(r.split_m / r.hull_m);
+      s->per_region += r.regions > 0;
       s->worst_coverage = std::min(s->worst_coverage, r.coverage);
       s->worst_flyable = std::min(s->worst_flyable, r.flyable_coverage);
       s->below += r.coverage < 0.999;
@@ -143,5 +149,8 @@ int main(int argc, char** argv) {
       "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& [name, s] : families) print(name, s);
   print("all", all);
+  if (settings.directions == swath::planning::SplitDirections::per_region)
+    std::printf("\nflown with a direction per region: %d of %zu concave shapes\n", all.per_region,
+                all.ratios.size());
   return 0;
 }

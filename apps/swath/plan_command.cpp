@@ -178,6 +178,12 @@ void PlanCommand::add_sweep_options(CLI::App& app) {
                  "method) or best (both, per direction; the shorter path wins)")
       ->check(CLI::IsMember({"runs", "boustrophedon", "best"}))
       ->capture_default_str();
+  app.add_option("--directions", directions_,
+                 "Split line directions: one for the whole area, or per-region (each region of "
+                 "an L or a strip with a wide head at its own direction, where the whole path is "
+                 "shorter and coverage holds; one drone or path division, no --crosshatch)")
+      ->check(CLI::IsMember({"one", "per-region"}))
+      ->capture_default_str();
 }
 
 // Several drones: division and balance.
@@ -447,6 +453,8 @@ planning::SurveyRequest PlanCommand::request() const {
   request.split_cells = split_cells_ == "runs"            ? planning::SplitCells::runs
                         : split_cells_ == "boustrophedon" ? planning::SplitCells::boustrophedon
                                                           : planning::SplitCells::best;
+  request.split_directions = directions_ == "per-region" ? planning::SplitDirections::per_region
+                                                         : planning::SplitDirections::one;
   for (const std::string& path : exclude_)
     request.exclusions.push_back(geometry::read_field(path).geo_rings.at(0));
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
@@ -550,6 +558,15 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
       "  lines      %zu at bearing %s deg, %s m apart, photo every %s m\n", plan.sweep.lines.size(),
       fixed_text(geometry::line_bearing_deg(plan.sweep.angle_deg), 2).c_str(),
       fixed_text(im.line_spacing_m, 2).c_str(), fixed_text(im.trigger_distance_m, 2).c_str());
+  if (!plan.region_angles_deg.empty()) {
+    std::string regions;
+    for (double a : plan.region_angles_deg) {
+      if (!regions.empty()) regions += ", ";
+      regions += fixed_text(geometry::line_bearing_deg(a), 2);
+    }
+    std::printf("  regions    %zu, lines at bearings %s deg\n", plan.region_angles_deg.size(),
+                regions.c_str());
+  }
   if (plan.terrain) {
     const planning::TerrainFacts& t = *plan.terrain;
     std::printf(

@@ -66,6 +66,7 @@ class PlanCommand : public Command {
   AreaChoice area_choice_;
   std::string concave_ = "split";
   std::string split_cells_ = "best";
+  std::string directions_ = "one";
   std::vector<std::string> exclude_;
   bool repair_ = false;
   std::optional<int> drones_;

@@ -1,6 +1,7 @@
 #include "swath/planning/coverage.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -146,6 +147,137 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
     for (const Band* b : active_bands) swath.push_back({b->x0, b->x1});
     merge(swath);
 
+    m.area_m2 += length(inside) * dy;
+    m.swath_area_m2 += length(swath) * dy;
+    m.covered_area_m2 += overlap(inside, swath) * dy;
+  }
+  m.covered_fraction = m.area_m2 > 0 ? m.covered_area_m2 / m.area_m2 : 0.0;
+  m.outside_fraction =
+      m.swath_area_m2 > 0 ? (m.swath_area_m2 - m.covered_area_m2) / m.swath_area_m2 : 0.0;
+  return m;
+}
+
+CoverageMeasure measure_coverage_any_direction(const geometry::Polygon& area,
+                                               const std::vector<SweepLine>& lines,
+                                               double footprint_width_m, int rows) {
+  std::vector<Edge> edges;
+  std::vector<Edge> all_edges;  // every ring edge as given, horizontal ones too: clipping lines
+  double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
+  for (std::size_t r = 0; r < geometry::ring_count(area); ++r) {
+    const geometry::Ring& ring = geometry::ring_at(area, r);
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      all_edges.push_back({a, b});
+      if (a.y > b.y) std::swap(a, b);
+      if (a.y == b.y) continue;
+      edges.push_back({a, b});
+      y_min = std::min(y_min, a.y);
+      y_max = std::max(y_max, b.y);
+    }
+  }
+  // Each footprint a convex quadrilateral: its four edges, and the ordinates it spans.
+  struct Quad {
+    std::array<Edge, 4> sides;
+    double y0, y1;
+  };
+  std::vector<Quad> quads;
+  std::vector<double> events;
+  CoverageMeasure m;
+  for (const SweepLine& l : lines) {
+    const double length = geometry::distance(l.start, l.end);
+    m.line_length_m += length;
+    if (!(length > 0)) continue;  // no rectangle along a point
+    const Point2 across =
+        Point2{-(l.end.y - l.start.y), l.end.x - l.start.x} * (footprint_width_m / 2 / length);
+    const std::array<Point2, 4> c{l.start - across, l.end - across, l.end + across,
+                                  l.start + across};
+    Quad q{};
+    q.y0 = std::numeric_limits<double>::infinity();
+    q.y1 = -q.y0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      Point2 a = c[i], b = c[(i + 1) % 4];
+      if (a.y > b.y) std::swap(a, b);
+      q.sides[i] = {a, b};
+      q.y0 = std::min(q.y0, a.y);
+      q.y1 = std::max(q.y1, b.y);
+      events.push_back(c[i].y);
+    }
+    y_min = std::min(y_min, q.y0);
+    y_max = std::max(y_max, q.y1);
+    quads.push_back(q);
+    // The length outside: the line cut where it crosses a ring edge, each piece inside or out by
+    // its middle (crossing parity over every ring: holes count as outside).
+    std::vector<double> ts{0.0, 1.0};
+    const Point2 d = l.end - l.start;
+    for (const Edge& e : all_edges) {
+      const Point2 f = e.hi - e.lo;
+      const double denominator = geometry::cross(d, f);
+      if (denominator == 0) continue;
+      const double t = geometry::cross(e.lo - l.start, f) / denominator;
+      const double u = geometry::cross(e.lo - l.start, d) / denominator;
+      if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
+    }
+    std::sort(ts.begin(), ts.end());
+    for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+      if (ts[k + 1] <= ts[k]) continue;
+      const Point2 mid = l.start + d * ((ts[k] + ts[k + 1]) / 2);
+      bool in = false;
+      for (const Edge& e : edges)
+        if ((e.lo.y <= mid.y) != (e.hi.y <= mid.y) &&
+            e.lo.x + (e.hi.x - e.lo.x) * (mid.y - e.lo.y) / (e.hi.y - e.lo.y) > mid.x)
+          in = !in;
+      if (!in) m.line_length_outside_m += (ts[k + 1] - ts[k]) * length;
+    }
+  }
+  for (const Edge& e : edges) {
+    events.push_back(e.lo.y);
+    events.push_back(e.hi.y);
+  }
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& a, const Edge& b) { return a.lo.y < b.lo.y; });
+  std::sort(quads.begin(), quads.end(), [](const Quad& a, const Quad& b) { return a.y0 < b.y0; });
+  std::sort(events.begin(), events.end());
+  events.erase(std::unique(events.begin(), events.end()), events.end());
+  std::vector<std::pair<double, double>> samples;  // ordinate, weight
+  const double total = y_max - y_min;
+  for (std::size_t k = 0; k + 1 < events.size(); ++k) {
+    const double h = events[k + 1] - events[k];
+    if (h <= 0) continue;
+    const int n = std::max(1, static_cast<int>(std::ceil(rows * h / total)));
+    for (int i = 0; i < n; ++i) samples.push_back({events[k] + (i + 0.5) * h / n, h / n});
+  }
+
+  std::vector<const Edge*> active_edges;
+  std::vector<const Quad*> active_quads;
+  std::size_t next_edge = 0, next_quad = 0;
+  std::vector<double> xs;
+  std::vector<Interval> inside, swath;
+  for (const auto& [y, dy] : samples) {
+    while (next_edge < edges.size() && edges[next_edge].lo.y <= y)
+      active_edges.push_back(&edges[next_edge++]);
+    while (next_quad < quads.size() && quads[next_quad].y0 <= y)
+      active_quads.push_back(&quads[next_quad++]);
+    std::erase_if(active_edges, [at = y](const Edge* e) { return e->hi.y <= at; });
+    std::erase_if(active_quads, [at = y](const Quad* q) { return q->y1 <= at; });
+    xs.clear();
+    for (const Edge* e : active_edges)
+      if (e->lo.y <= y && y < e->hi.y)
+        xs.push_back(e->lo.x + (e->hi.x - e->lo.x) * (y - e->lo.y) / (e->hi.y - e->lo.y));
+    std::sort(xs.begin(), xs.end());
+    inside.clear();
+    for (std::size_t i = 0; i + 1 < xs.size(); i += 2) inside.push_back({xs[i], xs[i + 1]});
+    swath.clear();
+    for (const Quad* q : active_quads) {
+      double x0 = std::numeric_limits<double>::infinity(), x1 = -x0;
+      for (const Edge& e : q->sides)
+        if (e.lo.y <= y && y <= e.hi.y && e.hi.y > e.lo.y) {
+          const double x = e.lo.x + (e.hi.x - e.lo.x) * (y - e.lo.y) / (e.hi.y - e.lo.y);
+          x0 = std::min(x0, x);
+          x1 = std::max(x1, x);
+        }
+      if (x1 > x0) swath.push_back({x0, x1});
+    }
+    merge(swath);
     m.area_m2 += length(inside) * dy;
     m.swath_area_m2 += length(swath) * dy;
     m.covered_area_m2 += overlap(inside, swath) * dy;

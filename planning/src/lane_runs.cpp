@@ -284,8 +284,20 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   if (!(scan.y_max > scan.y_min)) return out;
 
   // 1. The grid's lanes, cut where they meet the boundary.
-  const std::vector<double> ys =
-      line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  std::vector<double> ys;
+  if (s.grid_ordinate_m) {
+    // The grid's lanes from the last at or below half a footprint above the bottom (inside) to
+    // the first at or above half a footprint below the top: the fewest that reach both edges.
+    const double o = *s.grid_ordinate_m, spacing = s.line_spacing_m;
+    const double half = s.footprint_width_m / 2;
+    double first = std::floor((scan.y_min + half - o) / spacing);
+    if (o + first * spacing <= scan.y_min) first += 1;
+    double last = std::ceil((scan.y_max - half - o) / spacing);
+    if (o + last * spacing >= scan.y_max) last -= 1;
+    for (double k = first; k <= last; ++k) ys.push_back(o + k * spacing);
+  }
+  if (ys.empty())
+    ys = line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
   if (ys.empty()) return out;
   const std::vector<std::vector<Span>> cut =
       area.bridge.empty() ? scan.at(ys)

@@ -24,6 +24,7 @@ planning::SurveyPlan plan(const geometry::Polygon& area, planning::ConcaveMode m
   r.mode = m;
   r.concave = mode;
   r.split_cells = s.cells;
+  r.split_directions = s.directions;
   if (s.half_footprint_margin) r.outside_margin_m = footprint_m / 2;
   return planning::plan_survey(r);
 }
@@ -57,6 +58,7 @@ SplitRow measure_split(const geometry::Polygon& area, const SplitSettingsForCorp
   row.transit_outside_m = split.transit_outside_m;
   row.cells = split.cells.size();
   row.lines = lines.size();
+  row.regions = split.region_angles_deg.size();
   return row;
 }
 

@@ -14,6 +14,7 @@ struct SplitSettingsForCorpus {
   double side_overlap = 0.7;  ///< spacing 17.4 m at 40 m
   planning::SplitCells cells = planning::SplitCells::best;
   bool half_footprint_margin = false;  ///< --outside-margin half the footprint width
+  planning::SplitDirections directions = planning::SplitDirections::one;  ///< --directions
 };
 
 struct SplitRow {
@@ -30,6 +31,7 @@ struct SplitRow {
   double transit_outside_m = 0;  ///< split's turns and transits outside
   std::size_t cells = 0;         ///< split's cells (runs)
   std::size_t lines = 0;         ///< split's lines
+  std::size_t regions = 0;       ///< split's regions with their own direction (0: one direction)
   double plan_ms = 0;            ///< split's planning time, wall clock
 };
 

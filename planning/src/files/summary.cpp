@@ -143,6 +143,15 @@ std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>&
       {"lines", plan.sweep.lines.size()},
       {"turnaround_m", round_to(plan.turnaround_m, 3)},
       {"crosshatch", r.crosshatch}};
+  if (!plan.region_angles_deg.empty()) {  // --directions per-region won: each region's direction
+    ordered_json regions = ordered_json::array();
+    for (std::size_t k = 0; k < plan.region_angles_deg.size(); ++k)
+      regions.push_back(
+          {{"bearing_deg", round_to(geometry::line_bearing_deg(plan.region_angles_deg[k]), 6)},
+           {"angle_local_deg", round_to(plan.region_angles_deg[k], 6)},
+           {"area_m2", round_to(std::abs(geometry::signed_area(plan.regions[k])), 3)}});
+    j["sweep"]["regions"] = regions;
+  }
   const Imaging& im = plan.imaging;
   j["camera"] = {
       {"name", r.camera.name},

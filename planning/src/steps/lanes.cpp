@@ -73,6 +73,12 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   s.turnaround_m = plan.turnaround_m;
   s.scan_step_deg = plan.request.split_scan_step_deg;
   s.cells = plan.request.split_cells;
+  // A direction per region only where the rest of the plan takes lines at several angles: the
+  // crosshatch pass (at 90 degrees to the one direction) and region division (lanes cut along one
+  // direction) keep one.
+  const bool region_division = plan.request.fleet && plan.request.fleet->drones.size() > 1 &&
+                               plan.request.division == DivisionMode::region;
+  if (!plan.request.crosshatch && !region_division) s.directions = plan.request.split_directions;
   s.seen_rings = geometry::rings_of(plan.area);  // and --repair's further pieces
   s.seen_rings.insert(s.seen_rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
   s.seen_rings.insert(s.seen_rings.end(), plan.extra_piece_holes.begin(),
@@ -102,6 +108,8 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
       plan.sweep_line_cell = sp.line_cell;
       plan.split_method = sp.method;
       plan.direction_candidates = sp.candidates;
+      plan.regions = sp.regions;
+      plan.region_angles_deg = sp.region_angles_deg;
     }
     return sp.lines;
   }

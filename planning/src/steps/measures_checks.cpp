@@ -115,8 +115,16 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
 }  // namespace
 
 void measures(SurveyPlan& plan) {
-  plan.coverage = measure_coverage(measured_area(plan), first_pass_lines(plan),
-                                   plan.sweep.angle_deg, plan.imaging.footprint_across_m);
+  if (plan.region_angles_deg.empty()) {
+    plan.coverage = measure_coverage(measured_area(plan), first_pass_lines(plan),
+                                     plan.sweep.angle_deg, plan.imaging.footprint_across_m);
+  } else {  // a direction per region (never with a crosshatch pass): every line, its own way
+    std::vector<SweepLine> lines;
+    for (const DronePlan& d : plan.drones)
+      lines.insert(lines.end(), d.mission.lines.begin(), d.mission.lines.end());
+    plan.coverage =
+        measure_coverage_any_direction(measured_area(plan), lines, plan.imaging.footprint_across_m);
+  }
   plan.transit_outside_m = transit_outside_m(plan);
   // The clearance actually kept, over every leg of every flight, home legs included.
   if (!plan.no_fly.empty()) {

@@ -32,4 +32,14 @@ struct CoverageMeasure {
 CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vector<SweepLine>& lines,
                                  double angle_deg, double footprint_width_m, int rows = 4096);
 
+/// The same for lines at any directions (a split plan with a direction per region): each line's
+/// footprint is the rectangle along it, `footprint_width_m` across, and scanlines run along the
+/// local x axis (exact along each; across, the midpoint rule between consecutive vertex and
+/// rectangle-corner ordinates, exact where lengths vary linearly; `rows` slices over the height).
+/// Each line's length outside the area is exact (the line clipped by the rings). Lines sharing one
+/// direction are better measured by measure_coverage() (fewer events); it is kept for them.
+CoverageMeasure measure_coverage_any_direction(const geometry::Polygon& area,
+                                               const std::vector<SweepLine>& lines,
+                                               double footprint_width_m, int rows = 4096);
+
 }  // namespace swath::planning

@@ -5,6 +5,7 @@
 // neighbouring lanes' footprints already cover gets no lane; a corner they miss gets the lane
 // that covers the most of what is still unseen.
 
+#include <optional>
 #include <vector>
 
 #include "swath/geometry/polygon.hpp"
@@ -20,6 +21,12 @@ struct LaneRunSettings {
   /// A lane shorter than this many footprint widths is a sliver's: dropped when the other lanes'
   /// footprints cover everything it covers.
   double sliver_length_footprints = 2.0;
+  /// Lanes on the grid through this ordinate (metres, in the frame turned by -angle_deg),
+  /// `line_spacing_m` apart, instead of the grid placed on this area alone: regions of one area
+  /// swept at one direction keep the spacing across their seams. The fewest grid lanes whose
+  /// footprints reach both edges (at most one more than the area's own grid); an area that no
+  /// grid lane crosses gets its own.
+  std::optional<double> grid_ordinate_m;
 };
 
 /// Zigzag runs: each a Sweep whose lines lie on consecutive lane ordinates, bottom to top, all

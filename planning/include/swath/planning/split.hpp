@@ -21,6 +21,18 @@ enum class SplitCells {
   best,
 };
 
+/// Whether one split plan flies one direction or a direction per region (issue 18, DESIGN.md §16).
+enum class SplitDirections {
+  /// Every lane at the one direction searched (or fixed).
+  one,
+  /// Also a plan whose regions (one ring cut greedily by chords from reflex vertices along their
+  /// edges while the parts, each at its own best direction, shorten the estimate) each fly their
+  /// own direction; it wins only where its whole routed path is shorter than the best
+  /// one-direction plan's and it sees >= 99.9 % of the area (footprints along each line). Not with
+  /// a fixed direction, bridge rings, holes or several pieces: those keep one direction.
+  per_region,
+};
+
 struct SplitSettings {
   double line_spacing_m = 0.0;
   double footprint_width_m = 0.0;
@@ -40,6 +52,7 @@ struct SplitSettings {
   /// Where lanes may cross outside the rings to join their pieces (--outside-margin: the outline
   /// grown by the margin, less the grown zones); empty: nowhere. Runs only.
   std::vector<geometry::Ring> bridge_rings;
+  SplitDirections directions = SplitDirections::one;
 };
 
 struct SplitPlan {
@@ -55,6 +68,12 @@ struct SplitPlan {
   /// What the choice minimised: the length plus, per transit, its length again for each run or
   /// cell still to be flown whose lanes it crosses (cell_order.hpp).
   double objective_m = 0.0;
+  /// A plan with a direction per region (SplitDirections::per_region won): the regions (counter-
+  /// clockwise rings, local frame, tiling the area) and each one's line direction (degrees CCW
+  /// from east, [0, 180)); `angle_deg` is then the direction of the largest region. Both empty
+  /// for a one-direction plan.
+  std::vector<geometry::Ring> regions;
+  std::vector<double> region_angles_deg;
 };
 
 /// Plans the split sweep of an area given as rings (outer counter-clockwise, holes clockwise).

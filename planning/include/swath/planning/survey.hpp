@@ -67,6 +67,10 @@ struct SurveyRequest {
   std::vector<std::vector<geometry::GeoPoint>> exclusions;
   double split_scan_step_deg = 2.0;           ///< split: the scan part of the direction search
   SplitCells split_cells = SplitCells::best;  ///< split: runs from lanes, boustrophedon or both
+  /// Split: one direction, or a direction per region where that is shorter. Per region applies to
+  /// one drone or path division without --crosshatch (the crosshatch pass and region division cut
+  /// the lanes of one direction); otherwise the one-direction plan is kept.
+  SplitDirections split_directions = SplitDirections::one;
   /// Divide the survey among this fleet (absent: one drone).
   std::optional<vehicle::Fleet> fleet;
   DivisionMode division = DivisionMode::path;
@@ -179,7 +183,12 @@ struct SurveyPlan {
   std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
   std::optional<SplitCells> split_method;  ///< split: what made the cells (runs or boustrophedon)
   std::size_t direction_candidates = 1;    ///< directions evaluated
-  double transit_outside_m = 0.0;          ///< turns and transits (not home legs) outside the area
+  /// Split with a direction per region (SplitPlan::regions): the regions (local frame) and each
+  /// one's line direction (degrees CCW from east); empty for a one-direction plan, whose lines all
+  /// lie at sweep.angle_deg.
+  std::vector<geometry::Ring> regions;
+  std::vector<double> region_angles_deg;
+  double transit_outside_m = 0.0;  ///< turns and transits (not home legs) outside the area
   /// --repair: the enclosed areas beyond the largest one (which became the field's outer ring),
   /// counter-clockwise, local frame. Planned with the rest.
   std::vector<geometry::Ring> extra_pieces;
