@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 #include "lane_scan.hpp"
 #include "swath/geometry/predicates.hpp"

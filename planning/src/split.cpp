@@ -361,7 +361,8 @@ std::vector<double> region_angles(const geometry::Ring& region, const std::vecto
     }
   std::sort(edges.begin(), edges.end(), std::greater<>());
   std::vector<double> angles;
-  for (const auto& [length, angle] : edges) {
+  for (const auto& edge : edges) {  // not a structured binding: clang 14 cannot capture one
+    const double angle = edge.second;
     if (angles.size() >= 4) break;
     if (std::none_of(angles.begin(), angles.end(), [&](double a) {
           const double d = std::abs(a - angle);
