@@ -412,9 +412,7 @@ struct RestTable {
       rows.push_back(std::move(row));
     }
   }
-
-  // [total, per group...] at lambda.
-  std::vector<double> at(double lambda) const { return row_at(lambdas, rows, lambda); }
+  // Read at a lambda with RowPlace (the replanner asks per candidate; no row is built).
 };
 
 // ---- The simulation's parts, each advanced once per time step (simulate() composes them). ----

@@ -50,6 +50,22 @@ struct Edge {
   Point2 lo, hi;  // lo.y <= hi.y
 };
 
+// One scanline's strip of height dy: the area inside, the swath, and their overlap.
+void add_strip(CoverageMeasure& m, const std::vector<Interval>& inside,
+               const std::vector<Interval>& swath, double dy) {
+  m.area_m2 += length(inside) * dy;
+  m.swath_area_m2 += length(swath) * dy;
+  m.covered_area_m2 += overlap(inside, swath) * dy;
+}
+
+// The fractions from the sums.
+CoverageMeasure finished(CoverageMeasure m) {
+  m.covered_fraction = m.area_m2 > 0 ? m.covered_area_m2 / m.area_m2 : 0.0;
+  m.outside_fraction =
+      m.swath_area_m2 > 0 ? (m.swath_area_m2 - m.covered_area_m2) / m.swath_area_m2 : 0.0;
+  return m;
+}
+
 }  // namespace
 
 CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vector<SweepLine>& lines,
@@ -147,14 +163,9 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
     for (const Band* b : active_bands) swath.push_back({b->x0, b->x1});
     merge(swath);
 
-    m.area_m2 += length(inside) * dy;
-    m.swath_area_m2 += length(swath) * dy;
-    m.covered_area_m2 += overlap(inside, swath) * dy;
+    add_strip(m, inside, swath, dy);
   }
-  m.covered_fraction = m.area_m2 > 0 ? m.covered_area_m2 / m.area_m2 : 0.0;
-  m.outside_fraction =
-      m.swath_area_m2 > 0 ? (m.swath_area_m2 - m.covered_area_m2) / m.swath_area_m2 : 0.0;
-  return m;
+  return finished(m);
 }
 
 CoverageMeasure measure_coverage_any_direction(const geometry::Polygon& area,
@@ -278,14 +289,9 @@ CoverageMeasure measure_coverage_any_direction(const geometry::Polygon& area,
       if (x1 > x0) swath.push_back({x0, x1});
     }
     merge(swath);
-    m.area_m2 += length(inside) * dy;
-    m.swath_area_m2 += length(swath) * dy;
-    m.covered_area_m2 += overlap(inside, swath) * dy;
+    add_strip(m, inside, swath, dy);
   }
-  m.covered_fraction = m.area_m2 > 0 ? m.covered_area_m2 / m.area_m2 : 0.0;
-  m.outside_fraction =
-      m.swath_area_m2 > 0 ? (m.swath_area_m2 - m.covered_area_m2) / m.swath_area_m2 : 0.0;
-  return m;
+  return finished(m);
 }
 
 }  // namespace swath::planning

@@ -13,71 +13,13 @@
 #include <map>
 #include <random>
 
+#include "brute_area.hpp"
 #include "random_polygons.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/geometry/visibility.hpp"
 
 namespace swath::geometry {
 namespace {
-
-// VisibilityRouter's queries before the index, over every edge of every ring: the truth.
-class BruteArea {
- public:
-  explicit BruteArea(std::vector<Ring> rings) : rings_(std::move(rings)) {
-    double extent = 0;
-    for (const Ring& ring : rings_)
-      for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
-    tolerance_ = 1e-9 * (1 + extent);
-  }
-  bool contains(Point2 p) const {
-    int count = 0;
-    for (const Ring& ring : rings_) {
-      const Containment c = locate_point(p, ring);
-      if (c == Containment::on_boundary) return true;
-      count += c == Containment::inside;
-    }
-    if (count % 2 == 1) return true;
-    for (const Ring& ring : rings_)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
-        const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-        if (distance(p, a + d * t) <= tolerance_) return true;
-      }
-    return false;
-  }
-  double length_outside(Point2 a, Point2 b) const {
-    const Point2 d = b - a;
-    const double len2 = dot(d, d);
-    if (len2 == 0) return 0.0;
-    std::vector<double> cuts{0.0, 1.0};
-    for (const Ring& ring : rings_)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
-        if (!segments_intersect(a, b, p, q)) continue;
-        const double denom = cross(d, q - p);
-        if (denom != 0) {
-          cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
-        } else {
-          cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
-          cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
-        }
-      }
-    std::sort(cuts.begin(), cuts.end());
-    double outside = 0;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-      if (cuts[k + 1] <= cuts[k]) continue;
-      if (!contains(a + d * ((cuts[k] + cuts[k + 1]) / 2))) outside += (cuts[k + 1] - cuts[k]);
-    }
-    return outside * std::sqrt(len2);
-  }
-  bool visible(Point2 a, Point2 b) const {
-    return length_outside(a, b) <= 1e-9 * (1 + distance(a, b));
-  }
-
- private:
-  std::vector<Ring> rings_;
-  double tolerance_ = 0;
-};
 
 std::vector<Segment> edges_of(const std::vector<Ring>& rings) {
   std::vector<Segment> edges;
@@ -212,7 +154,7 @@ TEST(SegmentIndex, RouterAnswersBitForBitAsOverAllEdges) {
     const std::vector<Ring> rings =
         area % 4 == 3 ? std::vector<Ring>{test::random_grid_ring(rng, 30, 10)}
                       : holey_area(rng, std::size_t(12) << area % 4, 10 + 10 * area);
-    const BruteArea brute(rings);
+    const test::BruteArea brute(rings);
     const VisibilityRouter router(rings, 0);
     for (const Segment& q : queries(rng, rings, 1500)) {
       const double indexed = router.length_outside(q.a, q.b), all = brute.length_outside(q.a, q.b);

@@ -14,6 +14,7 @@
 #include <queue>
 #include <random>
 
+#include "brute_area.hpp"
 #include "random_polygons.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/geometry/visibility.hpp"
@@ -25,11 +26,7 @@ namespace {
 class EagerRouter {
  public:
   EagerRouter(std::vector<Ring> rings, std::size_t max_nodes, double allowance_m)
-      : rings_(std::move(rings)) {
-    double extent = 0;
-    for (const Ring& ring : rings_)
-      for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
-    tolerance_ = 1e-9 * (1 + extent);
+      : rings_(std::move(rings)), area_(rings_) {
     for (const Ring& ring : rings_) {
       const std::size_t n = ring.size();
       for (std::size_t i = 0; i < n; ++i)
@@ -93,48 +90,8 @@ class EagerRouter {
   std::size_t nodes() const { return nodes_.size(); }
 
  private:
-  bool contains(Point2 p) const {
-    int count = 0;
-    for (const Ring& ring : rings_) {
-      const Containment c = locate_point(p, ring);
-      if (c == Containment::on_boundary) return true;
-      count += c == Containment::inside;
-    }
-    if (count % 2 == 1) return true;
-    for (const Ring& ring : rings_)
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
-        const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-        if (distance(p, a + d * t) <= tolerance_) return true;
-      }
-    return false;
-  }
-  bool visible(Point2 a, Point2 b) const {
-    const Point2 d = b - a;
-    const double len2 = dot(d, d);
-    double outside = 0;
-    if (len2 > 0) {
-      std::vector<double> cuts{0.0, 1.0};
-      for (const Ring& ring : rings_)
-        for (std::size_t i = 0; i < ring.size(); ++i) {
-          const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
-          if (!segments_intersect(a, b, p, q)) continue;
-          const double denom = cross(d, q - p);
-          if (denom != 0) {
-            cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
-          } else {
-            cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
-            cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
-          }
-        }
-      std::sort(cuts.begin(), cuts.end());
-      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-        if (cuts[k + 1] <= cuts[k]) continue;
-        if (!contains(a + d * ((cuts[k] + cuts[k + 1]) / 2))) outside += (cuts[k + 1] - cuts[k]);
-      }
-    }
-    return outside * std::sqrt(len2) <= 1e-9 * (1 + distance(a, b));
-  }
+  bool contains(Point2 p) const { return area_.contains(p); }
+  bool visible(Point2 a, Point2 b) const { return area_.visible(a, b); }
   Point2 moved_out(Point2 before, Point2 corner, Point2 after, double allowance_m) const {
     if (!(allowance_m > 0)) return corner;
     const Point2 u = before - corner, v = after - corner;
@@ -156,7 +113,7 @@ class EagerRouter {
   }
 
   std::vector<Ring> rings_;
-  double tolerance_ = 0;
+  test::BruteArea area_;
   std::vector<Point2> nodes_;
   std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
   std::map<std::pair<double, double>, std::vector<char>> sees_;

@@ -113,9 +113,13 @@ TEST(DividePath, MakespanNeverWorseAndStrictlyBetterWithADistantHome) {
   for (int k = 0; k < 20; ++k) {
     const SurveyPath path = zigzag_path(4 + k % 6, 200 + 300 * u(rng), 25);
     std::vector<DroneResource> fleet;
-    for (int i = 0; i < 2 + k % 3; ++i)
-      fleet.push_back(drone(std::string(1, char('a' + i)), {-500 * u(rng), -500 * u(rng)},
-                            0.2 + u(rng), std::nullopt, 3 + 5 * u(rng)));
+    for (int i = 0; i < 2 + k % 3; ++i) {
+      // Drawn one by one, in the order gcc evaluated the call's arguments (unspecified in C++).
+      const double speed_m_s = 3 + 5 * u(rng), capability = 0.2 + u(rng);
+      const double x_m = -500 * u(rng), y_m = -500 * u(rng);
+      fleet.push_back(
+          drone(std::string(1, char('a' + i)), {x_m, y_m}, capability, std::nullopt, speed_m_s));
+    }
     const DivisionResult prop = divide_path(path, fleet, Balance::capability);
     const DivisionResult best = divide_path(path, fleet, Balance::makespan);
     EXPECT_LE(best.makespan_s, prop.makespan_s * (1 + 1e-9)) << k;
