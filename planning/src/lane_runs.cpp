@@ -317,16 +317,35 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   out.coverage_lanes = more.size();
   lanes.insert(lanes.end(), more.begin(), more.end());
 
-  // 3. Slivers: short lanes whose every sample another lane sees too, shortest first.
+  // 3. Slivers: short lanes whose every sample another lane sees too, shortest first. A grid lane
+  // only at the area's edge across the lanes: no lane kept on one of its neighbouring rows
+  // overlaps it. Between lanes on both sides, dropping it would leave two spacings between them,
+  // the side overlap lost (DESIGN.md §16: a sliver is a strip narrower than the footprint, not a
+  // short lane; lanes across an arm narrower than two footprints are all short).
+  std::vector<std::size_t> row_start(ys.size() + 1, 0);  // grid lanes come first, by row
+  for (const RunLane& l : lanes)
+    if (l.row >= 0) ++row_start[std::size_t(l.row) + 1];
+  for (std::size_t k = 0; k < ys.size(); ++k) row_start[k + 1] += row_start[k];
+  std::vector<char> keep(lanes.size(), 1);
+  const auto edge_across = [&](const RunLane& lane) {
+    if (lane.row < 0) return true;
+    for (const int r : {lane.row - 1, lane.row + 1}) {
+      if (r < 0 || std::size_t(r) >= ys.size()) return true;
+      bool overlapped = false;
+      for (std::size_t j = row_start[std::size_t(r)]; j < row_start[std::size_t(r) + 1]; ++j)
+        overlapped |= keep[j] && std::min(lane.x1, lanes[j].x1) > std::max(lane.x0, lanes[j].x0);
+      if (!overlapped) return true;
+    }
+    return false;
+  };
   std::vector<std::size_t> by_length(lanes.size());
   for (std::size_t i = 0; i < lanes.size(); ++i) by_length[i] = i;
   std::stable_sort(by_length.begin(), by_length.end(), [&](std::size_t a, std::size_t b) {
     return lanes[a].x1 - lanes[a].x0 < lanes[b].x1 - lanes[b].x0;
   });
-  std::vector<char> keep(lanes.size(), 1);
   for (std::size_t i : by_length) {
     if (lanes[i].x1 - lanes[i].x0 > s.sliver_length_footprints * s.footprint_width_m) break;
-    if (!seen.redundant(lanes[i])) continue;
+    if (!edge_across(lanes[i]) || !seen.redundant(lanes[i])) continue;
     seen.remove(lanes[i]);
     keep[i] = 0;
   }

@@ -126,12 +126,13 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   struct Lane {
     double y, x0, x1;
     SweepLine* line;
+    std::size_t piece;
   };
   std::vector<Lane> lanes;
-  for (auto& lines : piece_lines)
-    for (SweepLine& l : lines) {
+  for (std::size_t k = 0; k < piece_lines.size(); ++k)
+    for (SweepLine& l : piece_lines[k]) {
       const Point2 p = rotate(l.start, -angle), q = rotate(l.end, -angle);
-      lanes.push_back({p.y, std::min(p.x, q.x), std::max(p.x, q.x), &l});
+      lanes.push_back({p.y, std::min(p.x, q.x), std::max(p.x, q.x), &l, k});
     }
   std::sort(lanes.begin(), lanes.end(), [](const Lane& u, const Lane& v) { return u.y < v.y; });
   for (std::size_t i = 0; i < lanes.size(); ++i)
@@ -144,6 +145,37 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
       SweepLine& shorter = *(u.x1 - u.x0 < v.x1 - v.x0 ? u.line : v.line);
       shorter.end = shorter.start;  // marked for removal
     }
+  // A piece no grid ordinate crosses (its lanes are the mid-height one and protrusion fills) that
+  // the footprint of one grid lane of another piece sees whole gets no lane (DESIGN.md §16,
+  // slivers by coverage): e.g. the 4 cm wedge that an edge 0.004 degrees off the lanes leaves
+  // beside a reflex vertex got two lanes 305 and 458 m long beside the grid lane that sees it.
+  const double half = s.footprint_width_m / 2 + 1e-9;
+  std::vector<std::vector<Point2>> corners(d.pieces.size());
+  std::vector<char> thin(d.pieces.size(), 0), covered(d.pieces.size(), 0);
+  for (std::size_t k = 0; k < d.pieces.size(); ++k) {
+    for (const Point2& p : d.pieces[k]) corners[k].push_back(rotate(p, -angle));
+    if (corners[k].empty()) continue;
+    const auto [lo, hi] = std::minmax_element(corners[k].begin(), corners[k].end(),
+                                              [](Point2 a, Point2 b) { return a.y < b.y; });
+    const auto grid =
+        std::lower_bound(sweep_settings.ordinates.begin(), sweep_settings.ordinates.end(), lo->y);
+    thin[k] = grid == sweep_settings.ordinates.end() || *grid > hi->y;
+  }
+  for (std::size_t k = 0; k < d.pieces.size(); ++k) {
+    if (!thin[k] || piece_lines[k].empty()) continue;
+    for (const Lane& lane : lanes) {
+      if (thin[lane.piece] || lane.line->start == lane.line->end) continue;
+      const double x0 = lane.x0 + s.turnaround_m - 1e-6, x1 = lane.x1 - s.turnaround_m + 1e-6;
+      if (std::all_of(corners[k].begin(), corners[k].end(), [&](Point2 q) {
+            return std::abs(q.y - lane.y) <= half && q.x >= x0 && q.x <= x1;
+          })) {
+        covered[k] = 1;
+        break;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < d.pieces.size(); ++k)
+    if (covered[k]) piece_lines[k].clear();
   auto offset = [&](const SweepLine& l) { return rotate(l.start, -angle).y; };
   for (std::size_t cell = 0; cell < d.cells.size(); ++cell) {
     Sweep sweep;

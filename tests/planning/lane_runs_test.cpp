@@ -112,6 +112,22 @@ TEST(LaneRuns, BridgedRunsOnSharedSamplesAreThoseOnTheirOwn) {
   }
 }
 
+// An L whose 90 m arm the lanes cross (every lane there 90 m long, under two footprints): its
+// lanes all stay one spacing apart (dropping those the neighbours' footprints see would leave
+// them three spacings apart, the side overlap lost); only lanes at the area's edge are slivers.
+TEST(LaneRuns, LanesAcrossANarrowArmKeepTheSpacing) {
+  const Polygon l{{{0, 0}, {700, 0}, {700, 90}, {90, 90}, {90, 600}, {0, 600}}, {}};
+  const LaneRunSettings s = settings(0);
+  const LaneRuns r = runs_of(l, s);
+  std::vector<double> arm;  // the ordinates of the lanes in the arm above the bar
+  for (const SweepLine& line : all_lines(r))
+    if (line.start.y > 90) arm.push_back(line.start.y);
+  std::sort(arm.begin(), arm.end());
+  ASSERT_GE(arm.size(), 28u);  // 510 m / 17.4 m
+  for (std::size_t i = 1; i < arm.size(); ++i) EXPECT_NEAR(arm[i] - arm[i - 1], 17.4, 1e-6);
+  EXPECT_GE(test::sample_coverage(l, all_lines(r), 58, 300).fraction(), 0.999);
+}
+
 // A 10 m wide sliver jutting out of the top side, across the lanes, with a grid lane through it:
 // when the full lane below is within half a footprint of its tip, the sliver's 10 m lane is left
 // out; 100 m out the tip is beyond every full lane's footprint and a lane covers it.
