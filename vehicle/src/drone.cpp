@@ -62,16 +62,28 @@ Fleet fleet_from_yaml(const std::string& text, const std::string& source) {
   static const std::set<std::string> known{
       "name", "capability",      "battery_level",     "endurance_s",     "speed_m_s",
       "home", "climb_speed_m_s", "descent_speed_m_s", "max_airspeed_m_s"};
+  // What only swath-fleet's flights read (fleet/fleet_file.hpp): one fleet file serves both
+  // programs, so the planner accepts these keys and plans without them. `home_m` (a home in the
+  // fleet's local metres) is not among them: planning from the fleet's home instead would be a
+  // different plan, so it is refused with what to give instead.
+  static const std::set<std::string> flight_only{
+      "mavlink",           "recharge_s", "profile", "max_flight_time_s", "approach_speed_m_s",
+      "approach_within_m", "accel_m_s2"};
   bool any_capability = false, any_range = false;
   for (std::size_t i = 0; i < drones.size(); ++i) {
     const YAML::Node d = drones[i];
     const std::string where = source + ": drone " + std::to_string(i + 1);
     if (!d.IsMap()) throw InputError(where + ", " + line_of(d) + ": a drone is a mapping");
     base::check_plain_unique_keys(d, where);
-    for (const auto& kv : d)
-      if (!known.count(kv.first.Scalar()))
-        throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + kv.first.Scalar() +
-                         "'");
+    for (const auto& kv : d) {
+      const std::string key = kv.first.Scalar();
+      if (key == "home_m")
+        throw InputError(where + ", " + line_of(kv.first) +
+                         ": home_m (metres from swath-fleet's origin) cannot place a survey; give "
+                         "home: {lat, lon}");
+      if (!known.count(key) && !flight_only.count(key))
+        throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + key + "'");
+    }
     Drone drone;
     // Names reach JSON, KML and the terminal: keep them valid UTF-8 (a stray Latin-1 byte
     // becomes U+FFFD instead of aborting the plan).

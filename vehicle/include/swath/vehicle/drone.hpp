@@ -56,6 +56,9 @@ struct Fleet {
 ///       home: {lat: 47.398, lon: 8.542}
 /// Every drone gives either `capability` or all of battery_level, endurance_s, speed_m_s, and all
 /// drones the same kind; climb_speed_m_s, descent_speed_m_s and max_airspeed_m_s are optional.
+/// The keys only swath-fleet's flights read (mavlink, recharge_s, profile, max_flight_time_s,
+/// approach_speed_m_s, approach_within_m, accel_m_s2) are accepted and not used, so one fleet
+/// file serves both programs; home_m is refused (a survey needs a home in latitude/longitude).
 /// Throws base::InputError naming `source`, the drone and the key: capability <= 0 or > 1, level
 /// outside [0, 1], endurance or speed <= 0, zero drones, bad coordinates, unknown keys.
 Fleet parse_fleet(const std::string& yaml_text, const std::string& source);
