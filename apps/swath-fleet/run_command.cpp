@@ -32,9 +32,12 @@ void FleetRunCommand::setup(CLI::App& app) {
   app.add_flag("--render", render_, "Also draw tracks.png and gantt.png");
   app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
   app.add_option("--backend", backend_,
-                 "sim: the simulated fleet; mavlink: the fleet's drones are ArduCopters over "
+                 "sim: the simulated fleet; mavlink: the fleet's drones are vehicles over "
                  "MAVLink (--vehicles, or the fleet file's mavlink {url, sysid} per drone), "
-                 "flown on the wall clock")
+                 "flown on the wall clock: ArduCopter, or PX4 when its HEARTBEAT says so (the "
+                 "PX4 driver is UNTESTED on PX4: written from its documentation; a warning "
+                 "names each PX4 vehicle); each vehicle's lost-link failsafe parameters are read "
+                 "at connect and a warning given when it is off")
       ->check(CLI::IsMember({"sim", "mavlink"}))
       ->capture_default_str();
   app.add_option(

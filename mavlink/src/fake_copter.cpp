@@ -1,6 +1,7 @@
 #include "swath/mavlink/fake_copter.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "swath/geometry/local_frame.hpp"
@@ -19,7 +20,105 @@ std::int16_t cm_s(double m_s) {
 }  // namespace
 
 FakeCopter::FakeCopter(Link& link, FakeCopterSettings settings)
-    : endpoint_(link, settings.sysid, 1), settings_(settings), speed_m_s_(settings.speed_m_s) {}
+    : endpoint_(link, settings.sysid, 1), settings_(settings), speed_m_s_(settings.speed_m_s) {
+  if (px4())
+    params_ = {{"COM_DL_LOSS_T", 10}, {"NAV_DLL_ACT", 2}};
+  else
+    params_ = {{"FS_GCS_ENABLE", 1}};
+  for (const auto& [name, value] : settings_.params) params_[name] = value;
+}
+
+std::uint32_t FakeCopter::custom_mode() const {
+  if (!px4()) return static_cast<std::uint32_t>(mode_);
+  switch (mode_) {
+    case CopterMode::guided:  // Hold; climbing after NAV_TAKEOFF: AUTO.TAKEOFF
+      return landed_ == LandedState::takeoff ? px4::kTakeoff : px4::kHold;
+    case CopterMode::rtl:
+      return px4::kRtl;
+    case CopterMode::land:
+      return px4::kLand;
+    case CopterMode::stabilize:
+      break;
+  }
+  return px4::kPosctl;
+}
+
+std::optional<CopterMode> FakeCopter::failsafe_mode() const {
+  if (px4()) {  // NAV_DLL_ACT: 0 disabled, 1 Hold, 2 Return, 3 Land (5, 6: not modelled)
+    switch (std::lround(params_.at("NAV_DLL_ACT"))) {
+      case 1:
+        return CopterMode::guided;
+      case 2:
+        return CopterMode::rtl;
+      case 3:
+        return CopterMode::land;
+      default:
+        return std::nullopt;
+    }
+  }
+  if (params_.at("FS_GCS_ENABLE") == 0) return std::nullopt;
+  return CopterMode::rtl;
+}
+
+double FakeCopter::failsafe_after_s() const {
+  return px4() ? params_.at("COM_DL_LOSS_T") : settings_.gcs_failsafe_s;
+}
+
+void FakeCopter::acknowledge(std::uint16_t command, CmdResult result) {
+  endpoint_.send(CommandAck{.command = command,
+                            .result = static_cast<std::uint8_t>(result),
+                            .target_system = kGcsSysid,
+                            .target_component = kGcsCompid});
+}
+
+void FakeCopter::on_param_request(const ParamRequestRead& r) {
+  ++param_requests_received_;
+  const auto end = std::find(r.param_id.begin(), r.param_id.end(), '\0');
+  const auto it = params_.find(std::string(r.param_id.begin(), end));
+  if (it == params_.end()) return;  // as ArduPilot: an unknown name gets no answer
+  ParamValue v;
+  std::copy(it->first.begin(), it->first.end(), v.param_id.begin());
+  v.param_count = static_cast<std::uint16_t>(params_.size());
+  v.param_index = static_cast<std::uint16_t>(std::distance(params_.begin(), it));
+  if (px4()) {  // INT32, its bytes in the float (PX4's bytewise encoding)
+    v.param_type = kParamTypeInt32;
+    v.param_value = std::bit_cast<float>(static_cast<std::int32_t>(std::lround(it->second)));
+  } else {  // ArduPilot: the value converted to float, FS_GCS_ENABLE an INT8
+    v.param_type = kParamTypeInt8;
+    v.param_value = static_cast<float>(it->second);
+  }
+  endpoint_.send(v);
+}
+
+void FakeCopter::on_command_int(const CommandInt& c, double) {
+  if (static_cast<Cmd>(c.command) != Cmd::do_reposition) {  // the only one the drivers send so
+    acknowledge(c.command, CmdResult::unsupported);
+    return;
+  }
+  ++received_[c.command];
+  // DO_REPOSITION, frame 6 (above home): airborne and armed, with the change-mode flag, the
+  // vehicle switches to Hold (ArduCopter: GUIDED) and flies there; param1 > 0 sets the speed.
+  CmdResult result = CmdResult::accepted;
+  if (c.frame != kFrameGlobalRelativeAltInt) {
+    result = CmdResult::unsupported;
+  } else if (!armed_ || landed_ == LandedState::on_ground ||
+             (mode_ != CopterMode::guided && (static_cast<std::uint32_t>(c.param2) & 1u) == 0)) {
+    result = CmdResult::denied;
+  } else {
+    mode_ = CopterMode::guided;
+    if (c.param1 > 0) speed_m_s_ = c.param1;
+    const geometry::LocalFrame local({settings_.home_lat_deg, settings_.home_lon_deg});
+    const geometry::Point2 p = local.to_local({c.x / kDegE7, c.y / kDegE7});
+    target_east_m_ = p.x;
+    target_north_m_ = p.y;
+    target_alt_m_ = c.z;
+    has_target_ = true;
+    leg_speed_m_s_ = 0;
+    leg_planned_ = false;
+    ++targets_received_;
+  }
+  acknowledge(c.command, result);
+}
 
 void FakeCopter::cut_link(double from_s, double until_s) {
   cut_from_s_ = from_s;
@@ -52,7 +151,23 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
   const bool on_ground = landed_ == LandedState::on_ground;
   switch (static_cast<Cmd>(c.command)) {
     case Cmd::do_set_mode: {
-      const auto mode = static_cast<CopterMode>(std::lround(c.param2));
+      auto mode = static_cast<CopterMode>(std::lround(c.param2));
+      if (px4()) {  // param2 main mode, param3 sub mode
+        const std::uint32_t asked = px4::custom_mode(static_cast<std::uint8_t>(c.param2),
+                                                     static_cast<std::uint8_t>(c.param3));
+        if (asked == px4::kHold)
+          mode = CopterMode::guided;
+        else if (asked == px4::kRtl)
+          mode = CopterMode::rtl;
+        else if (asked == px4::kLand)
+          mode = CopterMode::land;
+        else if (asked == px4::kPosctl)
+          mode = CopterMode::stabilize;
+        else {
+          result = CmdResult::unsupported;
+          break;
+        }
+      }
       if (!refuse_mode_.empty() && mode == refused_mode_) {
         send_status_text(refuse_mode_);
         result = CmdResult::failed;
@@ -79,15 +194,20 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
       }
       break;
     case Cmd::nav_takeoff:
-      if (!armed_ || mode_ != CopterMode::guided || !on_ground) {
+      // ArduCopter: in GUIDED, param7 above home. PX4: from any mode (it switches to
+      // AUTO.TAKEOFF, then holds), param7 above sea level, NaN: MIS_TAKEOFF_ALT (2.5 m).
+      if (!armed_ || (!px4() && mode_ != CopterMode::guided) || !on_ground) {
         result = CmdResult::failed;
       } else {
+        if (px4()) mode_ = CopterMode::guided;
         landed_ = LandedState::takeoff;
         leg_planned_ = false;
         has_target_ = true;
         target_north_m_ = north_m_;
         target_east_m_ = east_m_;
-        target_alt_m_ = c.param7;
+        target_alt_m_ = !px4()                 ? c.param7
+                        : std::isnan(c.param7) ? 2.5
+                                               : c.param7 - settings_.home_amsl_m;
       }
       break;
     case Cmd::do_change_speed:
@@ -152,10 +272,7 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
     default:
       result = CmdResult::unsupported;
   }
-  endpoint_.send(CommandAck{.command = c.command,
-                            .result = static_cast<std::uint8_t>(result),
-                            .target_system = kGcsSysid,
-                            .target_component = kGcsCompid});
+  acknowledge(c.command, result);
 }
 
 void FakeCopter::on_frame(const Frame& frame, double now_s) {
@@ -171,6 +288,16 @@ void FakeCopter::on_frame(const Frame& frame, double now_s) {
     }
     if (c->command == lose_first_sends_of_ && c->confirmation == 0) return;
     on_command(*c, now_s);
+  } else if (const auto ci = unpack<CommandInt>(frame)) {
+    if (ci->target_system != settings_.sysid) return;
+    if (commands_to_lose_ > 0) {
+      --commands_to_lose_;
+      return;
+    }
+    on_command_int(*ci, now_s);
+  } else if (const auto r = unpack<ParamRequestRead>(frame)) {
+    if (r->target_system != settings_.sysid || drop_param_requests_) return;
+    on_param_request(*r);
   } else if (const auto t = unpack<SetPositionTargetGlobalInt>(frame)) {
     if (t->target_system != settings_.sysid || mode_ != CopterMode::guided ||
         landed_ == LandedState::on_ground)
@@ -253,9 +380,9 @@ void FakeCopter::send_telemetry(double now_s) {
     return true;
   };
   if (due(Heartbeat::kId, 1.0)) {
-    endpoint_.send(Heartbeat{.custom_mode = static_cast<std::uint32_t>(mode_),
+    endpoint_.send(Heartbeat{.custom_mode = custom_mode(),
                              .type = kMavTypeQuadrotor,
-                             .autopilot = kAutopilotArdupilot,
+                             .autopilot = px4() ? kAutopilotPx4 : kAutopilotArdupilot,
                              .base_mode = static_cast<std::uint8_t>(kModeFlagCustomEnabled |
                                                                     (armed_ ? kModeFlagArmed : 0)),
                              .system_status = static_cast<std::uint8_t>(armed_ ? 4 : 3)});
@@ -296,9 +423,16 @@ void FakeCopter::step(double now_s) {
   }
   if (dt > 0) move(dt);
   const bool airborne = landed_ != LandedState::on_ground;
-  if (armed_ && airborne && gcs_seen_ && now_s - last_gcs_heartbeat_s_ > settings_.gcs_failsafe_s &&
-      mode_ == CopterMode::guided)
-    mode_ = CopterMode::rtl;  // ArduCopter's GCS failsafe
+  const std::optional<CopterMode> failsafe = failsafe_mode();
+  if (armed_ && airborne && gcs_seen_ && now_s - last_gcs_heartbeat_s_ > failsafe_after_s() &&
+      mode_ == CopterMode::guided && failsafe) {
+    mode_ = *failsafe;                  // the GCS (data-link-loss) failsafe
+    if (mode_ == CopterMode::guided) {  // PX4's Hold: stays where it is
+      target_north_m_ = north_m_;
+      target_east_m_ = east_m_;
+      target_alt_m_ = alt_m_;
+    }
+  }
   if (!link_cut(now_s)) send_telemetry(now_s);
 }
 

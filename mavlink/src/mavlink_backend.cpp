@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 
@@ -9,6 +11,8 @@
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/polygon.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/mavlink/copter_driver.hpp"
+#include "swath/mavlink/px4_driver.hpp"
 
 namespace swath::mavlink {
 
@@ -53,10 +57,10 @@ struct MavlinkBackend::Vehicle {
   enum class Want { ground, go, home };
   enum class Step { mode, arm, takeoff, rtl };  // the steering's gated steps
   static constexpr int kSteps = 4;
-  static const char* refusal_text(Step step) {
+  static std::string refusal_text(Step step, const Driver& d) {
     switch (step) {
       case Step::mode:
-        return "refused GUIDED";
+        return "refused " + d.guided_name();
       case Step::arm:
         return "refused to arm";
       case Step::takeoff:
@@ -67,7 +71,13 @@ struct MavlinkBackend::Vehicle {
     return "refused";
   }
   std::unique_ptr<Link> link;
-  std::unique_ptr<CopterDriver> driver;
+  DriverSettings driver_settings;
+  // Until the vehicle's first HEARTBEAT says which autopilot it runs, the link is read here; then
+  // the driver for it is made and handed what was read.
+  std::unique_ptr<Endpoint> probe;
+  double probe_heartbeat_s = -std::numeric_limits<double>::infinity();  // its GCS heartbeat
+  std::unique_ptr<Driver> driver;
+  std::size_t warnings_told = 0;  // of driver->state().warnings
   Want want = Want::ground;
   double lat_deg = 0, lon_deg = 0, alt_m = 0;
   double cruise_m_s = 10, approach_m_s = 2, approach_within_m = 20;
@@ -104,7 +114,8 @@ MavlinkBackend::MavlinkBackend(std::vector<std::unique_ptr<Link>> links,
                geometry::Containment::inside;
       };
     }
-    v->driver = std::make_unique<CopterDriver>(*v->link, std::move(d));
+    v->driver_settings = std::move(d);
+    v->probe = std::make_unique<Endpoint>(*v->link, kGcsSysid, kGcsCompid);
     vehicles_.push_back(std::move(v));
   }
 }
@@ -115,8 +126,51 @@ MavlinkBackend::Vehicle& MavlinkBackend::at(int drone) const {
   return *vehicles_.at(static_cast<std::size_t>(drone));
 }
 
-const CopterDriver& MavlinkBackend::driver(int drone) const {
-  return *at(drone).driver;
+const Driver* MavlinkBackend::driver(int drone) const {
+  return at(drone).driver.get();
+}
+
+void MavlinkBackend::warn(int drone, const std::string& text) const {
+  if (settings_.warn)
+    settings_.warn(drone, text);
+  else
+    std::cerr << "swath-fleet: vehicle " << drone + 1 << ": warning: " << text << "\n";
+}
+
+// Reads the link until the vehicle's HEARTBEAT names its autopilot (MAV_AUTOPILOT 12: PX4; any
+// other: ArduPilot's driver, the tested one), then polls its driver.
+void MavlinkBackend::poll(Vehicle& v, int drone) {
+  if (v.driver) {
+    v.driver->poll(now_s_);
+  } else {
+    // The ground station's heartbeat goes out meanwhile: a vehicle listening on UDP learns from
+    // it where to send.
+    if (now_s_ - v.probe_heartbeat_s >= v.driver_settings.heartbeat_period_s) {
+      v.probe->send(gcs_heartbeat());
+      v.probe_heartbeat_s = now_s_;
+    }
+    const std::vector<Frame> frames = v.probe->receive();
+    for (const Frame& f : frames) {
+      const auto hb = unpack<Heartbeat>(f);
+      if (!hb || f.header.sysid != v.driver_settings.vehicle_sysid ||
+          f.header.compid != v.driver_settings.vehicle_compid)
+        continue;
+      v.probe.reset();
+      if (hb->autopilot == kAutopilotPx4) {
+        warn(drone,
+             "a PX4 autopilot (HEARTBEAT autopilot 12): swath's PX4 driver is written from PX4's "
+             "documentation and untested on PX4 (confirm in PX4 SITL before flying it)");
+        v.driver = std::make_unique<Px4Driver>(*v.link, v.driver_settings);
+      } else {
+        v.driver = std::make_unique<CopterDriver>(*v.link, v.driver_settings);
+      }
+      v.driver->poll(now_s_, frames);
+      break;
+    }
+    if (!v.driver) return;
+  }
+  const std::vector<std::string>& w = v.driver->state().warnings;
+  for (; v.warnings_told < w.size(); ++v.warnings_told) warn(drone, w[v.warnings_told]);
 }
 
 void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s,
@@ -139,7 +193,8 @@ void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s
 void MavlinkBackend::act(int drone, const std::string&, bool sense) {
   // Hover, custom: GUIDED holds the place. A sense: the vehicle's photo (the reading itself is the
   // world's sensor at the reported position, DESIGN.md §18.6).
-  if (sense) at(drone).driver->capture_image();
+  Vehicle& v = at(drone);
+  if (sense && v.driver) v.driver->capture_image();
 }
 
 void MavlinkBackend::return_home(int drone) {
@@ -162,6 +217,7 @@ void MavlinkBackend::end_run() {
 // now may still be flying (its own failsafe brings it home) and is waited for.
 bool MavlinkBackend::all_down() const {
   for (const auto& v : vehicles_) {
+    if (!v->driver) continue;  // never heard
     const VehicleState& s = v->driver->state();
     if (!s.link_alive) {
       if (std::isfinite(s.last_heard_s)) return false;
@@ -174,14 +230,15 @@ bool MavlinkBackend::all_down() const {
 
 // One step of the steering toward what the runtime wants, from the vehicle's reported state.
 void MavlinkBackend::steer(Vehicle& v) {
-  CopterDriver& d = *v.driver;
+  if (!v.driver) return;
+  Driver& d = *v.driver;
   const VehicleState& s = d.state();
   if (v.gate >= 0) {
     const CommandState c = d.command_state(v.gate);
     if (c == CommandState::pending) return;
     int& rejected = v.rejections[static_cast<std::size_t>(v.gate_step)];
     if (c == CommandState::rejected && ++rejected >= kMaxRejections && v.refusal.empty())
-      v.refusal = Vehicle::refusal_text(v.gate_step) +
+      v.refusal = Vehicle::refusal_text(v.gate_step, d) +
                   (s.status_texts.empty() ? std::string() : ": " + s.status_texts.back());
     // Mode and armed come with the 1 Hz HEARTBEAT, landed with the 1 Hz EXTENDED_SYS_STATE:
     // after an acceptance the state is trusted again once both have been sent since.
@@ -195,7 +252,6 @@ void MavlinkBackend::steer(Vehicle& v) {
   if (!s.link_alive) return;
   const bool armed = s.armed;
   const bool down = !armed || s.landed == LandedState::on_ground;
-  const auto mode = static_cast<CopterMode>(s.custom_mode);
   const auto gate = [&](int id, Vehicle::Step step) {
     v.gate = id;
     v.gate_step = step;
@@ -206,18 +262,18 @@ void MavlinkBackend::steer(Vehicle& v) {
     case Vehicle::Want::home:
       // Still steered after a refusal of anything else (a target outside the fence mid-air):
       // only a vehicle refusing RTL itself is left to its own failsafe.
-      if (!down && mode != CopterMode::rtl && mode != CopterMode::land &&
+      if (!down && !d.returning() &&
           v.rejections[static_cast<std::size_t>(Vehicle::Step::rtl)] < kMaxRejections)
         gate(d.return_to_launch(), Vehicle::Step::rtl);
       return;
     case Vehicle::Want::go:
       break;
   }
-  if (!v.refusal.empty()) return;    // a refusal blocks going anywhere but home
-  if (mode != CopterMode::guided) {  // from the ground, or after a failsafe RTL
+  if (!v.refusal.empty()) return;  // a refusal blocks going anywhere but home
+  if (!d.in_guided()) {            // from the ground, or after a failsafe RTL
     v.target_sent = false;
     v.speed_cmd = -1;
-    gate(d.set_mode(CopterMode::guided), Vehicle::Step::mode);
+    gate(d.enter_guided(), Vehicle::Step::mode);
     return;
   }
   if (!armed) {
@@ -265,19 +321,20 @@ void MavlinkBackend::advance_to(double t_s) {
     else if (settings_.before_poll)
       settings_.before_poll(next);
     now_s_ = std::max(now_s_, next);
-    for (auto& v : vehicles_) {
-      v->driver->poll(now_s_);
-      steer(*v);
+    for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+      poll(*vehicles_[i], static_cast<int>(i));
+      steer(*vehicles_[i]);
     }
   } while (now_s_ < t_s);
 }
 
 fleet::VehicleReport MavlinkBackend::report(int drone) const {
   const Vehicle& v = at(drone);
-  const VehicleState& s = v.driver->state();
   fleet::VehicleReport r;
-  r.link_up = s.link_alive;
   r.refusal = v.refusal;
+  if (!v.driver) return r;  // never heard
+  const VehicleState& s = v.driver->state();
+  r.link_up = s.link_alive;
   if (s.position) {
     const geometry::Point2 p =
         geometry::LocalFrame(settings_.origin)

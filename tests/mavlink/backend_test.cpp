@@ -7,7 +7,10 @@
 // request requeued and served, no task lost, completion later than without the cut; a vehicle
 // refusing to arm or GUIDED (three rejections) leaves the fleet with its sentence; one refused in
 // the air (a target outside the backend's fence) is still sent home and lands; at the end run_app
-// itself has both vehicles return and land at home. The --vehicles parser refuses bad entries.
+// itself has both vehicles return and land at home. Vehicles whose HEARTBEAT names PX4 get the
+// PX4 driver (against the fake's PX4 flavour) and a warning that it is untested; a lost-link
+// failsafe switched off is warned about and holds nothing back. The --vehicles parser refuses bad
+// entries.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,8 +26,10 @@
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/copter_driver.hpp"
 #include "swath/mavlink/fake_copter.hpp"
 #include "swath/mavlink/mavlink_backend.hpp"
+#include "swath/mavlink/px4_driver.hpp"
 #include "swath/worlds/worlds.hpp"
 
 namespace swath::mavlink {
@@ -180,7 +185,7 @@ TEST(MavlinkBackend, LostAcknowledgementsAreResentOrReissuedAndTheAppCompletes) 
   m.run();
   m.expect_every_photo_taken_once_at_its_target();
   for (int i = 0; i < 2; ++i)  // the sends the fakes never saw are exactly the ones they lost
-    EXPECT_EQ(static_cast<int>(m.backend->driver(i).commands_sent()) -
+    EXPECT_EQ(static_cast<int>(m.backend->driver(i)->commands_sent()) -
                   commands_received(*m.fakes[static_cast<std::size_t>(i)]),
               i == 0 ? 16 : 2);
   m.expect_both_land_at_home();
@@ -309,6 +314,57 @@ TEST(MavlinkBackend, AVehicleRefusedInTheAirIsStillSentHomeAndLands) {
     if (e["name"] == "camera") {
       EXPECT_GT(double(e["x_m"]), -50.0);
     }
+}
+
+// The driver is chosen by the autopilot the vehicle's HEARTBEAT names: two fakes in their PX4
+// flavour (autopilot 12) are flown by the PX4 driver (Hold, NAV_TAKEOFF, DO_REPOSITION), the app
+// completes as with ArduCopters, and each vehicle is announced once as flown by an untested
+// driver. (Our reading of PX4's documents against itself, not PX4.)
+TEST(MavlinkBackend, VehiclesNamingPx4AreFlownByThePx4DriverAndSaidUntested) {
+  std::vector<std::pair<int, std::string>> warnings;
+  Mission m(
+      [&](MavlinkBackendSettings& s) {
+        s.warn = [&](int drone, const std::string& text) { warnings.emplace_back(drone, text); };
+      },
+      [](FakeCopterSettings& s) { s.autopilot = FakeAutopilot::px4; });
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  for (int i = 0; i < 2; ++i) {
+    ASSERT_NE(dynamic_cast<const Px4Driver*>(m.backend->driver(i)), nullptr);
+    const FakeCopter& f = *m.fakes[static_cast<std::size_t>(i)];
+    EXPECT_EQ(f.commands_received(Cmd::nav_takeoff), 1);
+    EXPECT_GE(f.commands_received(Cmd::do_reposition), 1);
+    EXPECT_EQ(f.position_targets_received(), f.commands_received(Cmd::do_reposition));
+  }
+  ASSERT_EQ(warnings.size(), 2u);  // NAV_DLL_ACT 2 (Return): no safety warning
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(warnings[static_cast<std::size_t>(i)].first, i);
+    EXPECT_NE(warnings[static_cast<std::size_t>(i)].second.find("untested on PX4"),
+              std::string::npos);
+  }
+  m.expect_both_land_at_home();
+}
+
+// The safety check never holds the mission back: ArduCopters with FS_GCS_ENABLE 0 fly the app
+// as the others do, each reported once.
+TEST(MavlinkBackend, AFailsafeOffIsReportedOnceAndTheAppStillCompletes) {
+  std::vector<std::pair<int, std::string>> warnings;
+  Mission m(
+      [&](MavlinkBackendSettings& s) {
+        s.warn = [&](int drone, const std::string& text) { warnings.emplace_back(drone, text); };
+      },
+      [](FakeCopterSettings& s) { s.params["FS_GCS_ENABLE"] = 0; });
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  ASSERT_NE(dynamic_cast<const CopterDriver*>(m.backend->driver(0)), nullptr);
+  std::map<int, int> per_drone;
+  for (const auto& [drone, text] : warnings) {
+    ++per_drone[drone];
+    EXPECT_EQ(text,
+              "FS_GCS_ENABLE is 0: ArduCopter will not return to launch when the link is lost");
+  }
+  EXPECT_EQ(per_drone, (std::map<int, int>{{0, 1}, {1, 1}}));
+  m.expect_both_land_at_home();
 }
 
 TEST(MavlinkBackend, VehicleUrlsAreParsedAndBadOnesRefusedInOneSentence) {

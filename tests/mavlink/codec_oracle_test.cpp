@@ -4,15 +4,19 @@
 //   - CRC_EXTRA and payload length of each of swath's messages equal node-mavlink's table;
 //   - node-mavlink decodes frames swath encoded (random values, truncated payloads, MAVLink 1)
 //     to the same field values;
+//   - one PARAM_REQUEST_READ, PARAM_VALUE and COMMAND_INT as the drivers send them decode alike;
 //   - swath decodes the capture node-mavlink ships (3,398 MAVLink 2 frames from a PX4 flight)
 //     frame for frame as node-mavlink does, skipping exactly the frames of other messages.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -20,6 +24,7 @@
 #include <vector>
 
 #include "mavlink_test_support.hpp"
+#include "swath/mavlink/commands.hpp"
 #include "swath/mavlink/frame.hpp"
 #include "swath/mavlink/messages.hpp"
 
@@ -165,6 +170,26 @@ void expect_same_fields(const Frame& frame, const std::string& node_line,
   EXPECT_TRUE(rest.empty()) << where << ": node-mavlink has more fields:" << rest;
 }
 
+// node-mavlink's lines for `frames` written one after the other to the temporary file `name`
+// (one per test: ctest runs tests in parallel); `ids`: the message ids it is to decode (" 20 22").
+std::vector<std::string> oracle_lines(const std::vector<Frame>& frames, const std::string& ids,
+                                      const std::string& name) {
+  std::vector<std::uint8_t> bytes;
+  for (const Frame& f : frames) {
+    const auto b = serialize(f);
+    bytes.insert(bytes.end(), b.begin(), b.end());
+  }
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (name + "-" + std::to_string(getpid()) + ".bin"))
+          .string();
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+  const auto lines = lines_of(oracle("frames '" + path + "'" + ids));
+  std::filesystem::remove(path);
+  return lines;
+}
+
 std::string header_text(const Frame& f) {
   return std::to_string(f.version) + " " + std::to_string(f.header.seq) + " " +
          std::to_string(f.header.sysid) + " " + std::to_string(f.header.compid) + " " +
@@ -190,25 +215,58 @@ TEST(NodeMavlink, CrcExtraAndLengthsEqualItsTable) {
 TEST(NodeMavlink, DecodesFramesSwathEncodedToTheSameValues) {
   std::mt19937_64 rng(2026);
   std::vector<Frame> frames;
-  std::vector<std::uint8_t> bytes;
-  for (int i = 0; i < 600; ++i) {
+  for (int i = 0; i < 600; ++i)
     frames.push_back(test::random_frame(rng, static_cast<std::uint8_t>(i)));
-    const auto b = serialize(frames.back());
-    bytes.insert(bytes.end(), b.begin(), b.end());
-  }
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "swath-mavlink-oracle.bin").string();
-  std::ofstream(path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-  const auto lines = lines_of(oracle("frames '" + path + "'" + known_ids()));
+  const auto lines = oracle_lines(frames, known_ids(), "swath-mavlink-oracle");
   ASSERT_EQ(lines.size(), frames.size()) << "node-mavlink accepted a different number of frames";
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const std::string where = "frame " + std::to_string(i);
     EXPECT_EQ(lines[i].substr(0, lines[i].find(" | ")), header_text(frames[i])) << where;
     expect_same_fields(frames[i], lines[i], where);
   }
-  std::filesystem::remove(path);
+}
+
+// The messages of the safety check at connect and of the PX4 driver's go-to, one of each as the
+// drivers and fakes send them (a 16-character name with no NUL, PX4's bytewise INT32, a NaN yaw),
+// decoded by node-mavlink to the same values; their CRC_EXTRA as in its table.
+TEST(NodeMavlink, ParameterMessagesAndCommandIntAsTheDriversSendThem) {
+  ParamRequestRead read;
+  read.target_system = 1;
+  read.target_component = 1;
+  const std::string name = "FS_GCS_ENABLE";
+  std::copy(name.begin(), name.end(), read.param_id.begin());
+  ParamValue value;
+  const std::string full = "SIXTEEN_CHARS_ID";  // exactly 16: no NUL on the wire
+  std::copy(full.begin(), full.end(), value.param_id.begin());
+  value.param_value = std::bit_cast<float>(std::int32_t{2});
+  value.param_type = kParamTypeInt32;
+  value.param_count = 1200;
+  value.param_index = 417;
+  CommandInt go;
+  go.command = static_cast<std::uint16_t>(Cmd::do_reposition);
+  go.frame = kFrameGlobalRelativeAltInt;
+  go.param1 = -1;
+  go.param2 = kRepositionChangeMode;
+  go.param4 = std::numeric_limits<float>::quiet_NaN();
+  go.x = 473977420;
+  go.y = 85455940;
+  go.z = 20;
+  go.target_system = 1;
+  go.target_component = 1;
+  const std::vector<Frame> frames{pack(read, FrameHeader{0, 255, 190}),
+                                  pack(value, FrameHeader{1, 1, 1}),
+                                  pack(go, FrameHeader{2, 255, 190})};
+  const auto lines = oracle_lines(frames, " 20 22 75", "swath-mavlink-oracle-params");
+  ASSERT_EQ(lines.size(), frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(lines[i].substr(0, lines[i].find(" | ")), header_text(frames[i]));
+    expect_same_fields(frames[i], lines[i], "frame " + std::to_string(i));
+  }
+  const auto crc = lines_of(oracle("crc 20 22 75"));
+  ASSERT_EQ(crc.size(), 3u);
+  EXPECT_EQ(crc[0], "20 PARAM_REQUEST_READ " + std::to_string(crc_extra<ParamRequestRead>()));
+  EXPECT_EQ(crc[1], "22 PARAM_VALUE " + std::to_string(crc_extra<ParamValue>()));
+  EXPECT_EQ(crc[2], "75 COMMAND_INT " + std::to_string(crc_extra<CommandInt>()));
 }
 
 TEST(NodeMavlink, TheCaptureItShipsIsDecodedAlike) {

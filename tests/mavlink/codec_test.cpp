@@ -41,7 +41,7 @@ TEST(Crc16, EqualsTheBitwiseDefinitionOnRandomBytes) {
 
 TEST(Registry, KnowsEachMessageOnceWithItsLengths) {
   const auto messages = known_messages();
-  ASSERT_EQ(messages.size(), 21u);
+  ASSERT_EQ(messages.size(), 23u);
   for (const MessageInfo& m : messages) {
     ASSERT_EQ(find_message(m.id), &m) << m.name;
     EXPECT_LE(m.base_length, m.max_length) << m.name;

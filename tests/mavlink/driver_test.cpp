@@ -2,7 +2,9 @@
 // clock (DESIGN.md §18.6, §18.12 item 6): connect and telemetry, arm, take-off, go-to and arrival
 // checked against the fake's own position; lost commands resent and counted; a refusal to arm
 // with its sentence; a 10 s link cut (lost after 3 s, the vehicle's failsafe, the flight resumed);
-// the fence; return, landing and photos.
+// the fence; return, landing and photos; the safety check at connect (FS_GCS_ENABLE). The PX4
+// driver against the fake's PX4 flavour (our reading of PX4's documents, not PX4): Hold, arm,
+// take-off above sea level, DO_REPOSITION, lost acknowledgements, modes, NAV_DLL_ACT.
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -17,14 +19,17 @@
 #include "swath/mavlink/endpoint.hpp"
 #include "swath/mavlink/fake_copter.hpp"
 #include "swath/mavlink/link.hpp"
+#include "swath/mavlink/px4_driver.hpp"
 
 namespace swath::mavlink {
 namespace {
 
 constexpr double kStepS = 0.02;
 
-struct Rig {
-  explicit Rig(DriverSettings settings = {}, FakeCopterSettings copter_settings = {})
+// The driver D against the fake of its flavour (FakeCopterSettings::autopilot).
+template <class D>
+struct BasicRig {
+  explicit BasicRig(DriverSettings settings = {}, FakeCopterSettings copter_settings = {})
       : vehicle_link(UdpLink::listen("127.0.0.1", 0)),
         gcs_link(UdpLink::connect("127.0.0.1", vehicle_link.local_port())),
         copter(vehicle_link, copter_settings),
@@ -48,7 +53,7 @@ struct Rig {
   // Connected, GUIDED, armed and at `altitude_m`.
   void take_off(double altitude_m) {
     ASSERT_TRUE(run_until([&] { return driver.state().link_alive; }, 3));
-    const int mode = driver.set_mode(CopterMode::guided);
+    const int mode = driver.enter_guided();  // ArduCopter: GUIDED; PX4: Hold
     ASSERT_TRUE(command_done(mode));
     ASSERT_EQ(driver.command_state(mode), CommandState::accepted);
     const int arm = driver.arm();
@@ -63,9 +68,10 @@ struct Rig {
   UdpLink vehicle_link;
   UdpLink gcs_link;
   FakeCopter copter;
-  CopterDriver driver;
+  D driver;
   double now_s = 0;
 };
+using Rig = BasicRig<CopterDriver>;
 
 TEST(CopterDriver, ConnectsAsksForTelemetryArmsTakesOffAndFliesToATarget) {
   Rig rig;
@@ -269,6 +275,197 @@ TEST(CopterDriver, PhotosReturnAndLandingEndDisarmedAtHome) {
   const int land = rig.driver.land();
   ASSERT_TRUE(rig.command_done(land));
   EXPECT_EQ(rig.driver.command_result(land), CmdResult::failed);
+}
+
+// The safety check at connect (DESIGN.md §18.A): FS_GCS_ENABLE read with PARAM_REQUEST_READ; a
+// warning when it is 0 (no return on a lost link), none when it is 1, "could not read" once three
+// requests a second apart went unanswered; the flight is never held back by it.
+TEST(CopterDriver, SafetyCheckWarnsWhenTheLostLinkFailsafeIsOff) {
+  FakeCopterSettings off;
+  off.params["FS_GCS_ENABLE"] = 0;
+  Rig rig({}, off);
+  ASSERT_TRUE(rig.run_until([&] { return !rig.driver.state().warnings.empty(); }, 5));
+  ASSERT_EQ(rig.driver.state().warnings.size(), 1u);
+  EXPECT_EQ(rig.driver.state().warnings[0],
+            "FS_GCS_ENABLE is 0: ArduCopter will not return to launch when the link is lost");
+  EXPECT_EQ(rig.driver.state().params.at("FS_GCS_ENABLE"), 0);
+  EXPECT_EQ(rig.copter.param_requests_received(), 1);
+}
+
+TEST(CopterDriver, SafetyCheckIsSilentWhenTheFailsafeReturns) {
+  Rig rig;  // FS_GCS_ENABLE 1
+  rig.take_off(10);
+  rig.run(5);
+  EXPECT_EQ(rig.driver.state().params.at("FS_GCS_ENABLE"), 1);
+  EXPECT_TRUE(rig.driver.state().warnings.empty());
+  EXPECT_EQ(rig.copter.param_requests_received(), 1);
+}
+
+TEST(CopterDriver, SafetyCheckSaysItCouldNotReadAfterThreeRequestsAndTheFlightGoesOn) {
+  Rig rig;
+  rig.copter.drop_param_requests();
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.state().link_alive; }, 3));
+  const double up_s = rig.now_s;
+  ASSERT_TRUE(rig.run_until([&] { return !rig.driver.state().warnings.empty(); }, 10));
+  // Sent at 0, 1 and 2 s after the link came up, timed out 1 s after the third.
+  EXPECT_NEAR(rig.now_s - up_s, 3.0, 2 * kStepS);
+  ASSERT_EQ(rig.driver.state().warnings.size(), 1u);
+  EXPECT_EQ(rig.driver.state().warnings[0].rfind("could not read FS_GCS_ENABLE (no answer to 3 "
+                                                 "requests)",
+                                                 0),
+            0u)
+      << rig.driver.state().warnings[0];
+  EXPECT_TRUE(rig.driver.state().params.empty());
+  rig.take_off(10);  // the check held nothing back
+  EXPECT_EQ(rig.driver.state().warnings.size(), 1u);
+}
+
+// PX4's custom_mode (px4_custom_mode.h: uint16 reserved, uint8 main_mode, uint8 sub_mode over a
+// little-endian uint32), written out by hand.
+TEST(Px4Modes, MainModeInBits16To23SubModeIn24To31) {
+  EXPECT_EQ(px4::kHold, 0x03040000u);     // AUTO 4, LOITER 3
+  EXPECT_EQ(px4::kTakeoff, 0x02040000u);  // AUTO 4, TAKEOFF 2
+  EXPECT_EQ(px4::kRtl, 0x05040000u);      // AUTO 4, RTL 5
+  EXPECT_EQ(px4::kLand, 0x06040000u);     // AUTO 4, LAND 6
+  EXPECT_EQ(px4::kPosctl, 0x00030000u);   // POSCTL 3
+  EXPECT_EQ(px4::custom_mode(px4::kMainOffboard), 0x00060000u);
+  EXPECT_EQ(px4::main_mode(0x05040000u), 4);
+  EXPECT_EQ(px4::sub_mode(0x05040000u), 5);
+}
+
+// The PX4 driver against the fake in its PX4 flavour: this checks the driver against our reading
+// of PX4's documents (the fake encodes the same reading), not against PX4.
+FakeCopterSettings fake_px4() {
+  FakeCopterSettings s;
+  s.autopilot = FakeAutopilot::px4;
+  return s;
+}
+using Px4Rig = BasicRig<Px4Driver>;
+
+TEST(Px4Driver, HoldArmTakeOffAboveSeaLevelAndRepositionToATarget) {
+  Px4Rig rig({}, fake_px4());
+  rig.take_off(20);
+  EXPECT_EQ(rig.driver.state().autopilot, kAutopilotPx4);
+  EXPECT_EQ(rig.copter.commands_received(Cmd::set_message_interval), 4);
+  ASSERT_TRUE(rig.driver.state().home.has_value());
+  // NAV_TAKEOFF went above sea level (home 488 m + 20 m): the fake climbs to 20 m above home.
+  rig.run(2);
+  EXPECT_NEAR(rig.copter.altitude_m(), 20, 1e-3);
+  EXPECT_EQ(rig.driver.state().custom_mode, px4::kHold);  // AUTO.TAKEOFF ends in Hold
+  EXPECT_TRUE(rig.driver.in_guided());
+
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(80, 60, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 25));
+  const double start_s = rig.now_s;
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 30));
+  EXPECT_NEAR(rig.now_s - start_s, 100.0 / 10.0, 0.5);
+  EXPECT_NEAR(rig.copter.north_m(), 80, 1.5);
+  EXPECT_NEAR(rig.copter.east_m(), 60, 1.5);
+  EXPECT_NEAR(rig.copter.altitude_m(), 25, 1.5);
+  EXPECT_TRUE(rig.driver.target_confirmed());
+  EXPECT_EQ(rig.copter.commands_received(Cmd::do_reposition), 1);  // a command, not repeated
+  EXPECT_EQ(rig.copter.position_targets_received(), 1);
+  EXPECT_TRUE(rig.driver.state().warnings.empty());  // NAV_DLL_ACT 2: Return
+}
+
+TEST(Px4Driver, ALostRepositionIsResentAndThreeLostTimeOut) {
+  Px4Rig rig({}, fake_px4());
+  rig.take_off(15);
+  rig.run(2);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(50, 0, lat, lon);
+  rig.copter.lose_commands(2);
+  const std::uint64_t before = rig.driver.commands_sent();
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 15));
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 30));
+  EXPECT_EQ(rig.driver.commands_sent() - before, 3u);  // two lost, the third acknowledged
+  EXPECT_EQ(rig.copter.commands_received(Cmd::do_reposition), 1);
+  EXPECT_TRUE(rig.driver.target_confirmed());
+
+  rig.copter.lose_commands(3);
+  rig.copter.to_geodetic(0, 0, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 15));
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.commands_pending() == 0; }, 10));
+  EXPECT_FALSE(rig.driver.target_confirmed());
+  EXPECT_EQ(rig.copter.commands_received(Cmd::do_reposition), 1);
+  EXPECT_NEAR(rig.copter.north_m(), 50, 1.5);  // never asked to move
+}
+
+TEST(Px4Driver, RefusedArmAndModesComeBackAsPx4ModesReturnAndLand) {
+  Px4Rig rig({}, fake_px4());
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.state().link_alive; }, 3));
+  rig.run(1);
+  EXPECT_EQ(rig.driver.state().custom_mode, px4::kPosctl);  // the fake starts in Position
+  // Arming is refused outside Hold (the fake's rule, as it refuses outside GUIDED).
+  const int arm = rig.driver.arm();
+  ASSERT_TRUE(rig.command_done(arm));
+  EXPECT_EQ(rig.driver.command_state(arm), CommandState::rejected);
+  rig.take_off(10);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(0, 40, lat, lon);  // away from home, so that RTL flies before landing
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 10));
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 20));
+  ASSERT_TRUE(rig.command_done(rig.driver.return_to_launch()));
+  rig.run(1.5);
+  EXPECT_EQ(rig.driver.state().custom_mode, px4::kRtl);
+  EXPECT_TRUE(rig.driver.returning());
+  ASSERT_TRUE(rig.run_until(
+      [&] {
+        return !rig.driver.state().armed && rig.driver.state().landed == LandedState::on_ground;
+      },
+      60));
+}
+
+// PX4 sends integer parameters byte for byte: NAV_DLL_ACT 2 arrives as the float whose bits are
+// 2, which read as a number is 2.8e-45 (and COM_DL_LOSS_T 10 is 1.4e-44, "0 s" in a warning).
+TEST(Px4Driver, SafetyCheckReadsBytewiseParametersAndWarnsOnlyWhenTheLossActionIsOff) {
+  {
+    Px4Rig rig({}, fake_px4());  // NAV_DLL_ACT 2, COM_DL_LOSS_T 10
+    rig.run(6);
+    EXPECT_EQ(rig.driver.state().params.at("NAV_DLL_ACT"), 2);
+    EXPECT_EQ(rig.driver.state().params.at("COM_DL_LOSS_T"), 10);
+    EXPECT_TRUE(rig.driver.state().warnings.empty());
+  }
+  {
+    FakeCopterSettings off = fake_px4();
+    off.params["NAV_DLL_ACT"] = 0;  // PX4's default
+    off.params["COM_DL_LOSS_T"] = 7;
+    Px4Rig rig({}, off);
+    rig.run(6);
+    ASSERT_EQ(rig.driver.state().warnings.size(), 1u);
+    EXPECT_EQ(rig.driver.state().warnings[0],
+              "NAV_DLL_ACT is 0 (disabled): PX4 takes no action when the link is lost (lost "
+              "after COM_DL_LOSS_T = 7 s of silence)");
+  }
+  {
+    Px4Rig rig({}, fake_px4());
+    rig.copter.drop_param_requests();
+    rig.run(6);
+    ASSERT_EQ(rig.driver.state().warnings.size(), 2u);
+    EXPECT_EQ(rig.driver.state().warnings[0].rfind("could not read COM_DL_LOSS_T", 0), 0u);
+    EXPECT_EQ(rig.driver.state().warnings[1].rfind("could not read NAV_DLL_ACT", 0), 0u);
+  }
+}
+
+// PX4's data-link-loss failsafe in the fake follows NAV_DLL_ACT after COM_DL_LOSS_T: with Return
+// (2) a 15 s cut sends the vehicle home; the driver sees the link lost and AUTO.RTL after it.
+TEST(Px4Driver, ALinkCutPastComDlLossTSendsTheVehicleHome) {
+  Px4Rig rig({}, fake_px4());
+  rig.take_off(15);
+  double lat = 0, lon = 0;
+  rig.copter.to_geodetic(300, 0, lat, lon);
+  ASSERT_TRUE(rig.driver.go_to(lat, lon, 15));
+  rig.run(5);
+  const double cut_s = rig.now_s;
+  rig.copter.cut_link(cut_s, cut_s + 15);
+  ASSERT_TRUE(rig.run_until([&] { return !rig.driver.state().link_alive; }, 10));
+  rig.run(cut_s + 15 - rig.now_s);
+  EXPECT_EQ(rig.copter.mode(), CopterMode::rtl);
+  ASSERT_TRUE(rig.run_until([&] { return rig.driver.state().link_alive; }, 2));
+  rig.run(1.5);
+  EXPECT_EQ(rig.driver.state().custom_mode, px4::kRtl);
+  EXPECT_TRUE(rig.driver.returning());
 }
 
 // TCP (SITL's port 5760): frames written a few bytes at a time arrive whole and in order, the

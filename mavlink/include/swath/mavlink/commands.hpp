@@ -33,6 +33,37 @@ enum class CmdResult : std::uint8_t {
 /// ArduCopter's flight modes (HEARTBEAT `custom_mode`).
 enum class CopterMode : std::uint32_t { stabilize = 0, guided = 4, rtl = 6, land = 9 };
 
+/// PX4's flight modes as HEARTBEAT `custom_mode` carries them: PX4's `union px4_custom_mode`
+/// (PX4-Autopilot src/modules/commander/px4_custom_mode.h) lays a uint16 `reserved`, a uint8
+/// `main_mode` and a uint8 `sub_mode` over the little-endian uint32, so the main mode is bits 16–23
+/// and the sub mode bits 24–31. Main modes (enum PX4_CUSTOM_MAIN_MODE): MANUAL 1, ALTCTL 2,
+/// POSCTL 3, AUTO 4, ACRO 5, OFFBOARD 6; AUTO's sub modes (PX4_CUSTOM_SUB_MODE_AUTO): READY 1,
+/// TAKEOFF 2, LOITER 3 (shown as "Hold"), MISSION 4, RTL 5, LAND 6. Untested on PX4 itself.
+namespace px4 {
+inline constexpr std::uint8_t kMainPosctl = 3;
+inline constexpr std::uint8_t kMainAuto = 4;
+inline constexpr std::uint8_t kMainOffboard = 6;
+inline constexpr std::uint8_t kSubTakeoff = 2;
+inline constexpr std::uint8_t kSubLoiter = 3;
+inline constexpr std::uint8_t kSubMission = 4;
+inline constexpr std::uint8_t kSubRtl = 5;
+inline constexpr std::uint8_t kSubLand = 6;
+constexpr std::uint32_t custom_mode(std::uint8_t main_mode, std::uint8_t sub_mode = 0) {
+  return std::uint32_t{main_mode} << 16 | std::uint32_t{sub_mode} << 24;
+}
+constexpr std::uint8_t main_mode(std::uint32_t custom_mode) {
+  return static_cast<std::uint8_t>(custom_mode >> 16);
+}
+constexpr std::uint8_t sub_mode(std::uint32_t custom_mode) {
+  return static_cast<std::uint8_t>(custom_mode >> 24);
+}
+inline constexpr std::uint32_t kHold = custom_mode(kMainAuto, kSubLoiter);
+inline constexpr std::uint32_t kTakeoff = custom_mode(kMainAuto, kSubTakeoff);
+inline constexpr std::uint32_t kRtl = custom_mode(kMainAuto, kSubRtl);
+inline constexpr std::uint32_t kLand = custom_mode(kMainAuto, kSubLand);
+inline constexpr std::uint32_t kPosctl = custom_mode(kMainPosctl);
+}  // namespace px4
+
 /// MAV_LANDED_STATE (EXTENDED_SYS_STATE `landed_state`).
 enum class LandedState : std::uint8_t {
   undefined = 0,
@@ -52,6 +83,13 @@ inline constexpr std::uint8_t kMavTypeQuadrotor = 2;
 inline constexpr std::uint8_t kMavTypeGcs = 6;
 inline constexpr std::uint8_t kAutopilotArdupilot = 3;
 inline constexpr std::uint8_t kAutopilotInvalid = 8;
+inline constexpr std::uint8_t kAutopilotPx4 = 12;
+/// MAV_DO_REPOSITION_FLAGS_CHANGE_MODE (DO_REPOSITION param2): switch to the mode that flies it.
+inline constexpr float kRepositionChangeMode = 1;
+/// MAV_PARAM_TYPE (PARAM_VALUE param_type) values swath reads.
+inline constexpr std::uint8_t kParamTypeInt8 = 2;
+inline constexpr std::uint8_t kParamTypeInt32 = 6;
+inline constexpr std::uint8_t kParamTypeReal32 = 9;
 inline constexpr double kDegE7 = 1e7;           ///< integer latitudes and longitudes: degrees x 1e7
 inline constexpr std::uint8_t kGcsSysid = 255;  ///< DESIGN.md §18.A
 inline constexpr std::uint8_t kGcsCompid = 190;

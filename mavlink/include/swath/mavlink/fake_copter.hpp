@@ -8,13 +8,21 @@
 // reported as POSITION_TARGET_GLOBAL_INT on REQUEST_MESSAGE, above sea level), RTL (home, then
 // land) and LAND with disarm on the ground, a photo per IMAGE_START_CAPTURE, and the ground-station
 // failsafe: airborne without a GCS HEARTBEAT for 5 s it returns to launch (FS_GCS_ENABLE = 1).
-// Faults for tests: a cut link, lost commands, a refusal to arm or to enter a mode.
+// Faults for tests: a cut link, lost commands, a refusal to arm or to enter a mode, parameter
+// requests left unanswered. It answers PARAM_REQUEST_READ for the failsafe parameters.
+//
+// A PX4 flavour (autopilot = px4) speaks as PX4's documents say PX4 does (HEARTBEAT autopilot 12,
+// custom_mode main/sub modes, DO_SET_MODE param2/param3, NAV_TAKEOFF above sea level climbing in
+// AUTO.TAKEOFF and then holding, COMMAND_INT DO_REPOSITION flying there in Hold, integer
+// parameters byte for byte, the data-link-loss failsafe by COM_DL_LOSS_T and NAV_DLL_ACT). It
+// checks Px4Driver against our reading of those documents, not against PX4 (px4_driver.hpp).
 //
 // Kinematics are deliberately simple (constant speeds, no inertia): it checks the driver's
 // protocol, not flight; swath-fleet's simulated backend and swath-control model flight.
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "swath/mavlink/commands.hpp"
@@ -23,15 +31,22 @@
 
 namespace swath::mavlink {
 
+enum class FakeAutopilot { ardupilot, px4 };
+
 struct FakeCopterSettings {
+  FakeAutopilot autopilot = FakeAutopilot::ardupilot;
   double home_lat_deg = 47.397742;  ///< WGS84
   double home_lon_deg = 8.545594;
   double home_amsl_m = 488.0;
   std::uint8_t sysid = 1;
-  double speed_m_s = 10.0;                ///< horizontal speed until DO_CHANGE_SPEED
-  double climb_m_s = 2.5;                 ///< take-off and climb
-  double descent_m_s = 1.0;               ///< landing
-  double gcs_failsafe_s = 5.0;            ///< FS_GCS_TIMEOUT
+  double speed_m_s = 10.0;      ///< horizontal speed until DO_CHANGE_SPEED
+  double climb_m_s = 2.5;       ///< take-off and climb
+  double descent_m_s = 1.0;     ///< landing
+  double gcs_failsafe_s = 5.0;  ///< FS_GCS_TIMEOUT (ArduPilot flavour)
+  /// Parameters answered to PARAM_REQUEST_READ, over the flavour's defaults: ArduPilot
+  /// FS_GCS_ENABLE 1 (RTL on a lost link, 0: no failsafe); PX4 COM_DL_LOSS_T 10 (s) and
+  /// NAV_DLL_ACT 2 (Return; 0: no failsafe, 3: Land; PX4's own default is 0).
+  std::map<std::string, double> params;
   double battery_drain_percent_s = 0.05;  ///< while armed
   /// Horizontal acceleration, m/s² (> 0), or 0: at speed at once. With it every GUIDED target
   /// received restarts the leg at rest, as ArduCopter re-plans a leg from its stopping point on
@@ -55,13 +70,16 @@ class FakeCopter {
   // Faults.
   /// Neither sends nor receives from `from_s` until `until_s` (what arrives meanwhile is lost).
   void cut_link(double from_s, double until_s);
-  /// The next `n` COMMAND_LONGs are lost on the way (so their acknowledgements never come).
+  /// The next `n` COMMAND_LONGs or COMMAND_INTs are lost on the way (so their acknowledgements
+  /// never come).
   void lose_commands(int n) { commands_to_lose_ += n; }
   /// Every first send (confirmation 0) of `cmd` is lost on the way: its resend, 1 s later, is
   /// the first the vehicle sees.
   void lose_first_sends(Cmd cmd) { lose_first_sends_of_ = static_cast<std::uint16_t>(cmd); }
   /// The next `n` SET_POSITION_TARGET_GLOBAL_INTs are lost on the way.
   void lose_targets(int n) { targets_to_lose_ += n; }
+  /// Every PARAM_REQUEST_READ is lost on the way.
+  void drop_param_requests() { drop_param_requests_ = true; }
   /// Refuses to arm, with this STATUSTEXT (ArduCopter's "PreArm: ..." sentences).
   void refuse_arm(std::string why) { refuse_arm_ = std::move(why); }
   /// Refuses DO_SET_MODE to `mode` (the ack FAILED), with this STATUSTEXT.
@@ -78,7 +96,11 @@ class FakeCopter {
   CopterMode mode() const { return mode_; }
   LandedState landed_state() const { return landed_; }
   double speed_setting_m_s() const { return speed_m_s_; }
-  /// COMMAND_LONGs received by command number (resends included, lost ones not).
+  /// The HEARTBEAT custom_mode it sends (its flavour's encoding of mode()).
+  std::uint32_t custom_mode() const;
+  /// PARAM_REQUEST_READs received (resends included, lost ones not).
+  int param_requests_received() const { return param_requests_received_; }
+  /// COMMAND_LONGs and COMMAND_INTs received by command number (resends included, lost ones not).
   int commands_received(Cmd cmd) const;
   int position_targets_received() const { return targets_received_; }
   int images_taken() const { return images_; }
@@ -88,6 +110,13 @@ class FakeCopter {
  private:
   void on_frame(const Frame& frame, double now_s);
   void on_command(const CommandLong& c, double now_s);
+  void on_command_int(const CommandInt& c, double now_s);
+  void on_param_request(const ParamRequestRead& r);
+  void acknowledge(std::uint16_t command, CmdResult result);
+  bool px4() const { return settings_.autopilot == FakeAutopilot::px4; }
+  /// The lost-link failsafe's mode per the parameters (none: stays), and its delay, s.
+  std::optional<CopterMode> failsafe_mode() const;
+  double failsafe_after_s() const;
   void send_status_text(const std::string& text);
   void move(double dt_s);
   void send_telemetry(double now_s);
@@ -104,6 +133,9 @@ class FakeCopter {
   std::string refuse_arm_;
   CopterMode refused_mode_ = CopterMode::stabilize;
   std::string refuse_mode_;  // "": no mode refused
+  bool drop_param_requests_ = false;
+  int param_requests_received_ = 0;
+  std::map<std::string, double> params_;  // the flavour's defaults with settings.params over them
   double last_gcs_heartbeat_s_ = 0;
   bool gcs_seen_ = false;
 

@@ -1,6 +1,8 @@
 #pragma once
-// swath-fleet's runtime flying ArduCopters over MAVLink (DESIGN.md §18.6; `swath-fleet run ...
-// --backend mavlink --vehicles V`): one CopterDriver per vehicle, each vehicle steered toward what
+// swath-fleet's runtime flying multicopters over MAVLink (DESIGN.md §18.6; `swath-fleet run ...
+// --backend mavlink --vehicles V`): one driver per vehicle, chosen by the autopilot its first
+// HEARTBEAT names (12: Px4Driver, untested on PX4 and said so on stderr; else CopterDriver for
+// ArduCopter), each vehicle steered toward what
 // the runtime last asked of it — at a place (GUIDED; from the ground: GUIDED, arm, NAV_TAKEOFF to
 // the target's altitude, the drone's layer; then the speed rule: DO_CHANGE_SPEED to cruise,
 // answered before the position target goes, as ArduCopter's GUIDED plans a leg with the speed in
@@ -11,6 +13,9 @@
 // during a link cut is followed by the right command once the vehicle answers again. A step
 // (GUIDED, arm, take-off, RTL) rejected three times, or a target outside the fence, refuses the
 // vehicle (report().refusal, with its last STATUSTEXT): it is sent nowhere but home after that.
+// (PX4: Hold, AUTO.LOITER, for GUIDED, and DO_REPOSITION for the position target.) The drivers'
+// connect-time safety warnings (a lost-link failsafe off or unreadable) go to `warn`; they never
+// hold the mission back.
 //
 // Clock: the runtime's. advance_to(t) polls every poll_step_s up to t; with wall_clock it first
 // waits until t seconds after the first call (a real run), else it does not wait and calls
@@ -29,7 +34,7 @@
 #include "swath/fleet/backend.hpp"
 #include "swath/fleet/vehicle_address.hpp"
 #include "swath/geometry/point.hpp"
-#include "swath/mavlink/copter_driver.hpp"
+#include "swath/mavlink/driver.hpp"
 #include "swath/mavlink/link.hpp"
 
 namespace swath::mavlink {
@@ -59,6 +64,9 @@ struct MavlinkBackendSettings {
   /// on the run's clock, s (>= 0): the return to launch is sent, the vehicles land under the
   /// ground station's heartbeat.
   double end_timeout_s = 600;
+  /// Told each warning about a vehicle (index from 0): its drivers' safety-check findings and
+  /// that a PX4 driver, untested, flies it. Empty: written to stderr.
+  std::function<void(int drone, const std::string& text)> warn;
 };
 
 class MavlinkBackend final : public fleet::Backend {
@@ -79,12 +87,15 @@ class MavlinkBackend final : public fleet::Backend {
   /// settings.end_timeout_s (on the wall clock in a real run, via before_poll in tests).
   void end_run() override;
 
-  const CopterDriver& driver(int drone) const;
+  /// The vehicle's driver; null until its first HEARTBEAT came.
+  const Driver* driver(int drone) const;
   double now_s() const { return now_s_; }
 
  private:
   struct Vehicle;
   void steer(Vehicle& v);
+  void poll(Vehicle& v, int drone);
+  void warn(int drone, const std::string& text) const;
   bool all_down() const;
   Vehicle& at(int drone) const;
 

@@ -94,6 +94,44 @@ struct SystemTime {
   }
 };
 
+/// PARAM_REQUEST_READ (20): asks for one parameter by name (param_index -1) or by index.
+struct ParamRequestRead {
+  static constexpr std::uint32_t kId = 20;
+  static constexpr std::string_view kName = "PARAM_REQUEST_READ";
+  std::int16_t param_index = -1;  ///< -1: by param_id
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::array<char, 16> param_id{};  ///< NUL-terminated unless 16 characters long
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(param_index, "param_index");
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.field(param_id, "param_id");
+  }
+};
+
+/// PARAM_VALUE (22): one parameter's value, the answer to PARAM_REQUEST_READ. How param_value
+/// carries an integer depends on the autopilot: ArduPilot converts it to a float (C cast), PX4
+/// copies its bytes (MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_BYTEWISE).
+struct ParamValue {
+  static constexpr std::uint32_t kId = 22;
+  static constexpr std::string_view kName = "PARAM_VALUE";
+  float param_value = 0;
+  std::uint16_t param_count = 0;
+  std::uint16_t param_index = 0;
+  std::array<char, 16> param_id{};
+  std::uint8_t param_type = 0;  ///< MAV_PARAM_TYPE (2 int8, 6 int32, 9 real32)
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(param_value, "param_value");
+    v.field(param_count, "param_count");
+    v.field(param_index, "param_index");
+    v.field(param_id, "param_id");
+    v.field(param_type, "param_type");
+  }
+};
+
 /// GPS_RAW_INT (24): the receiver's fix.
 struct GpsRawInt {
   static constexpr std::uint32_t kId = 24;
@@ -537,6 +575,8 @@ constexpr void for_each_message(F&& f) {
   f(Heartbeat{});
   f(SysStatus{});
   f(SystemTime{});
+  f(ParamRequestRead{});
+  f(ParamValue{});
   f(GpsRawInt{});
   f(Attitude{});
   f(LocalPositionNed{});

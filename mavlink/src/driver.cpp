@@ -1,0 +1,319 @@
+#include "swath/mavlink/driver.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "swath/geometry/local_frame.hpp"
+
+namespace swath::mavlink {
+namespace {
+
+std::int32_t to_degE7(double deg) {
+  return static_cast<std::int32_t>(std::lround(deg * kDegE7));
+}
+
+// A PARAM_VALUE's value. ArduPilot converts every parameter to the float it sends; PX4 copies an
+// integer's bytes into the float's (MAVLink's parameter protocol, "bytewise" encoding): its INT32
+// 2 arrives as the float whose bits are 2, 2.8e-45, which read as a number is 0.
+double param_number(const ParamValue& v, bool bytewise) {
+  if (!bytewise) return v.param_value;
+  const auto bits = std::bit_cast<std::uint32_t>(v.param_value);
+  switch (v.param_type) {
+    case 1:  // MAV_PARAM_TYPE_UINT8
+      return static_cast<std::uint8_t>(bits);
+    case kParamTypeInt8:
+      return static_cast<std::int8_t>(static_cast<std::uint8_t>(bits));
+    case 3:  // UINT16
+      return static_cast<std::uint16_t>(bits);
+    case 4:  // INT16
+      return static_cast<std::int16_t>(static_cast<std::uint16_t>(bits));
+    case 5:  // UINT32
+      return bits;
+    case kParamTypeInt32:
+      return static_cast<std::int32_t>(bits);
+    default:  // REAL32, and what a float cannot carry bytewise
+      return v.param_value;
+  }
+}
+
+}  // namespace
+
+Driver::Driver(Link& link, DriverSettings settings)
+    : endpoint_(link, kGcsSysid, kGcsCompid), settings_(std::move(settings)) {}
+
+int Driver::enqueue(const CommandLong& message) {
+  Pending p;
+  p.message = message;
+  p.message.target_system = settings_.vehicle_sysid;
+  p.message.target_component = settings_.vehicle_compid;
+  commands_.push_back(p);
+  return static_cast<int>(commands_.size()) - 1;
+}
+
+int Driver::enqueue(Cmd cmd, float p1, float p2, float p3, float p7) {
+  CommandLong m;
+  m.command = static_cast<std::uint16_t>(cmd);
+  m.param1 = p1;
+  m.param2 = p2;
+  m.param3 = p3;
+  m.param7 = p7;
+  return enqueue(m);
+}
+
+int Driver::enqueue(const CommandInt& message) {
+  Pending p;
+  p.kind = Pending::Kind::command_int;
+  p.int_message = message;
+  p.int_message.target_system = settings_.vehicle_sysid;
+  p.int_message.target_component = settings_.vehicle_compid;
+  p.message.command = message.command;  // what its COMMAND_ACK names
+  commands_.push_back(p);
+  return static_cast<int>(commands_.size()) - 1;
+}
+
+int Driver::read_param(const std::string& name) {
+  Pending p;
+  p.kind = Pending::Kind::param_read;
+  p.param_name = name.substr(0, p.param.param_id.size());
+  p.param.param_index = -1;
+  p.param.target_system = settings_.vehicle_sysid;
+  p.param.target_component = settings_.vehicle_compid;
+  std::copy(p.param_name.begin(), p.param_name.end(), p.param.param_id.begin());
+  commands_.push_back(p);
+  return static_cast<int>(commands_.size()) - 1;
+}
+
+int Driver::arm(bool on) {
+  return enqueue(Cmd::component_arm_disarm, on ? 1.0f : 0.0f);
+}
+int Driver::set_speed(double ground_speed_m_s) {
+  return enqueue(Cmd::do_change_speed, 1, static_cast<float>(ground_speed_m_s));
+}
+int Driver::return_to_launch() {
+  target_.reset();
+  return enqueue(Cmd::nav_return_to_launch);
+}
+int Driver::land() {
+  target_.reset();
+  return enqueue(Cmd::nav_land);
+}
+int Driver::capture_image() {
+  return enqueue(Cmd::image_start_capture, 0, 0, 1);
+}
+
+CommandState Driver::command_state(int id) const {
+  return commands_.at(static_cast<std::size_t>(id)).state;
+}
+std::optional<CmdResult> Driver::command_result(int id) const {
+  return commands_.at(static_cast<std::size_t>(id)).result;
+}
+
+int Driver::commands_pending() const {
+  return static_cast<int>(std::count_if(commands_.begin(), commands_.end(), [](const Pending& p) {
+    return p.kind != Pending::Kind::param_read && p.state == CommandState::pending;
+  }));
+}
+
+bool Driver::set_target(double lat_deg, double lon_deg, double altitude_m) {
+  if (settings_.inside_fence && !settings_.inside_fence(lat_deg, lon_deg)) return false;
+  target_ = Target{to_degE7(lat_deg), to_degE7(lon_deg), static_cast<float>(altitude_m)};
+  target_confirmed_ = false;
+  return true;
+}
+
+bool Driver::reports_our_target(const PositionTargetGlobalInt& reported) const {
+  if (!target_) return false;
+  const double horizontal =
+      geometry::geodesic_distance_m({reported.lat_degE7 / kDegE7, reported.lon_degE7 / kDegE7},
+                                    {target_->lat_degE7 / kDegE7, target_->lon_degE7 / kDegE7});
+  if (horizontal > settings_.target_match_m) return false;
+  // ArduCopter reports its target above sea level (MAV_FRAME_GLOBAL, 0; GLOBAL_INT, 5); ours is
+  // above home, which GLOBAL_POSITION_INT gives as its two altitudes' difference.
+  double above_home_m = reported.alt_m;
+  if (reported.coordinate_frame == 0 || reported.coordinate_frame == 5) {
+    if (!state_.position) return true;  // the horizontal match is all there is to compare
+    above_home_m -= (state_.position->alt_mm - state_.position->relative_alt_mm) / 1000.0;
+  }
+  return std::abs(above_home_m - target_->alt_m) <= settings_.target_match_m;
+}
+
+double Driver::distance_to_target_m() const {
+  if (!target_ || !state_.position) return std::numeric_limits<double>::infinity();
+  const double horizontal = geometry::geodesic_distance_m(
+      {state_.position->lat_degE7 / kDegE7, state_.position->lon_degE7 / kDegE7},
+      {target_->lat_degE7 / kDegE7, target_->lon_degE7 / kDegE7});
+  const double vertical = state_.position->relative_alt_mm / 1000.0 - target_->alt_m;
+  return std::hypot(horizontal, vertical);
+}
+
+bool Driver::arrived() const {
+  if (!target_ || !state_.position) return false;
+  const GlobalPositionInt& p = *state_.position;
+  const double speed_m_s = std::sqrt(double(p.vx_cm_s) * p.vx_cm_s + double(p.vy_cm_s) * p.vy_cm_s +
+                                     double(p.vz_cm_s) * p.vz_cm_s) /
+                           100.0;
+  return distance_to_target_m() <= settings_.arrival_radius_m &&
+         speed_m_s < settings_.arrival_speed_m_s;
+}
+
+void Driver::request_telemetry(Cmd cmd, float p1, float p2) {
+  // At most one pending request per message: a link that flaps while a set is still waiting to
+  // go out must not add another set each time it comes up.
+  for (const Pending& p : commands_)
+    if (p.state == CommandState::pending && p.kind == Pending::Kind::command_long &&
+        p.message.command == static_cast<std::uint16_t>(cmd) && p.message.param1 == p1)
+      return;
+  enqueue(cmd, p1, p2);
+}
+
+void Driver::on_link_up() {
+  // Telemetry rates and home are asked again after every loss: the vehicle may have rebooted.
+  const auto interval = [&](std::uint32_t id, double s) {
+    request_telemetry(Cmd::set_message_interval, static_cast<float>(id),
+                      static_cast<float>(s * 1e6));
+  };
+  interval(GlobalPositionInt::kId, settings_.position_interval_s);
+  interval(SysStatus::kId, settings_.status_interval_s);
+  interval(BatteryStatus::kId, settings_.status_interval_s);
+  interval(ExtendedSysState::kId, settings_.status_interval_s);
+  request_telemetry(Cmd::request_message, static_cast<float>(HomePosition::kId));
+  // The safety check, once per driver: it reads parameters, it never holds a command back.
+  if (!safety_started_) {
+    safety_started_ = true;
+    for (const std::string& name : safety_params()) safety_reads_.push_back(read_param(name));
+  }
+}
+
+void Driver::on_param_value(const ParamValue& value) {
+  const auto end = std::find(value.param_id.begin(), value.param_id.end(), '\0');
+  const std::string name(value.param_id.begin(), end);
+  state_.params[name] = param_number(value, params_bytewise());
+  for (Pending& p : commands_)
+    if (p.kind == Pending::Kind::param_read && p.state == CommandState::pending &&
+        p.param_name == name)
+      p.state = CommandState::accepted;
+}
+
+void Driver::finish_safety_check() {
+  if (safety_reads_.empty()) return;
+  std::vector<std::string> unread;
+  for (int id : safety_reads_) {
+    const Pending& p = commands_.at(static_cast<std::size_t>(id));
+    if (p.state == CommandState::pending) return;  // still asking
+    if (p.state != CommandState::accepted) unread.push_back(p.param_name);
+  }
+  safety_reads_.clear();
+  for (std::string& w : safety_warnings(unread)) state_.warnings.push_back(std::move(w));
+}
+
+void Driver::on_frame(const Frame& frame, double now_s) {
+  if (frame.header.sysid != settings_.vehicle_sysid) return;
+  if (const auto hb = unpack<Heartbeat>(frame)) {
+    if (frame.header.compid != settings_.vehicle_compid) return;
+    state_.last_heard_s = now_s;
+    state_.armed = (hb->base_mode & kModeFlagArmed) != 0;
+    state_.custom_mode = hb->custom_mode;
+    state_.autopilot = hb->autopilot;
+    if (!state_.link_alive) {
+      state_.link_alive = true;
+      on_link_up();
+    }
+  } else if (const auto ack = unpack<CommandAck>(frame)) {
+    // The oldest pending command of that number is the one acknowledged.
+    for (Pending& p : commands_) {
+      if (p.kind == Pending::Kind::param_read || p.state != CommandState::pending || p.sends == 0 ||
+          p.message.command != ack->command)
+        continue;
+      const auto result = static_cast<CmdResult>(ack->result);
+      if (result == CmdResult::in_progress) break;  // a final ack follows
+      p.result = result;
+      p.state = result == CmdResult::accepted ? CommandState::accepted : CommandState::rejected;
+      break;
+    }
+  } else if (const auto pos = unpack<GlobalPositionInt>(frame)) {
+    state_.position = *pos;
+  } else if (const auto target = unpack<PositionTargetGlobalInt>(frame)) {
+    state_.target = *target;
+    if (reports_our_target(*target)) target_confirmed_ = true;
+  } else if (const auto home = unpack<HomePosition>(frame)) {
+    state_.home = *home;
+  } else if (const auto ext = unpack<ExtendedSysState>(frame)) {
+    state_.landed = static_cast<LandedState>(ext->landed_state);
+  } else if (const auto sys = unpack<SysStatus>(frame)) {
+    state_.battery_remaining_percent = sys->battery_remaining_percent;
+  } else if (const auto text = unpack<StatusText>(frame)) {
+    const auto end = std::find(text->text.begin(), text->text.end(), '\0');
+    state_.status_texts.emplace_back(text->text.begin(), end);
+  } else if (const auto image = unpack<CameraImageCaptured>(frame)) {
+    state_.images.push_back(*image);
+  } else if (const auto param = unpack<ParamValue>(frame)) {
+    on_param_value(*param);
+  }
+}
+
+void Driver::send_due(double now_s) {
+  if (now_s - last_heartbeat_sent_s_ >= settings_.heartbeat_period_s) {
+    endpoint_.send(gcs_heartbeat());
+    last_heartbeat_sent_s_ = now_s;
+  }
+  if (!state_.link_alive) return;  // commands wait for the vehicle; their clock starts at sending
+  // A COMMAND_ACK names only the command number: one command of each number in flight at a
+  // time, or an acknowledgement of the second would be taken for a lost first. (A PARAM_VALUE
+  // names its parameter: reads need no such turn.)
+  using Kind = Pending::Kind;
+  std::set<std::uint16_t> in_flight;
+  for (const Pending& p : commands_)
+    if (p.kind != Kind::param_read && p.state == CommandState::pending && p.sends > 0)
+      in_flight.insert(p.message.command);
+  const std::size_t n = commands_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Pending& p = commands_[i];
+    if (p.state != CommandState::pending || now_s - p.last_sent_s < settings_.ack_timeout_s)
+      continue;
+    if (p.kind != Kind::param_read && p.sends == 0 && !in_flight.insert(p.message.command).second)
+      continue;  // waits its turn
+    if (p.sends >= settings_.attempts) {
+      p.state = CommandState::timed_out;
+      // Telemetry is what the link is for (without positions no arrival is ever seen): its
+      // requests are asked again, as new commands, until the vehicle answers.
+      const auto cmd = static_cast<Cmd>(p.message.command);
+      if (p.kind == Kind::command_long &&
+          (cmd == Cmd::set_message_interval ||
+           (cmd == Cmd::request_message && p.message.param1 == HomePosition::kId)))
+        request_telemetry(cmd, p.message.param1, p.message.param2);  // may reallocate: p unused
+      continue;
+    }
+    switch (p.kind) {
+      case Kind::command_long:
+        p.message.confirmation = static_cast<std::uint8_t>(p.sends);
+        endpoint_.send(p.message);
+        break;
+      case Kind::command_int:  // COMMAND_INT has no confirmation counter
+        endpoint_.send(p.int_message);
+        break;
+      case Kind::param_read:
+        endpoint_.send(p.param);
+        break;
+    }
+    ++p.sends;
+    if (p.kind != Kind::param_read) ++commands_sent_;
+    p.last_sent_s = now_s;
+  }
+  send_target(now_s);
+}
+
+void Driver::poll(double now_s, const std::vector<Frame>& first) {
+  for (const Frame& f : first) on_frame(f, now_s);
+  for (const Frame& f : endpoint_.receive()) on_frame(f, now_s);
+  if (state_.link_alive && now_s - state_.last_heard_s > settings_.lost_after_s) {
+    state_.link_alive = false;
+    ++state_.links_lost;
+  }
+  send_due(now_s);
+  finish_safety_check();
+}
+
+}  // namespace swath::mavlink
