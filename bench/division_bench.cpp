@@ -8,12 +8,15 @@
 // three equal drones and with three-quads, path and region division, --balance makespan: each
 // drone's flight time and the longest over the shortest (as summary.json reports them), and the
 // plan's wall time. BM_BalancedPlan times the same plans.
+//   swath_division_bench --balance-corpus
+// prints the same for region division on split-corpus shapes (tests/support/field_shapes.hpp).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <numeric>
 #include <string>
 
@@ -148,6 +151,36 @@ int balance_table() {
   return 0;
 }
 
+// The same on split-corpus shapes (seed 18, two of each family), region division by makespan:
+// one row per shape and fleet, then the mean and the worst max / min per fleet.
+int balance_corpus() {
+  std::printf("| shape | drones | flight times, s | max / min | plan |\n");
+  std::printf("|---|---|---|---:|---:|\n");
+  std::map<std::string, std::pair<double, double>> sum_worst;
+  std::map<std::string, int> count;
+  for (const test::DivisionCase& c : test::corpus_division_cases(
+           SWATH_SOURCE_DIR, 18, 2, planning::DivisionMode::region, planning::Balance::makespan)) {
+    const auto start = std::chrono::steady_clock::now();
+    const planning::SurveyPlan plan = planning::plan_survey(c.request);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::string times;
+    for (const planning::DronePlan& d : plan.drones)
+      times += (times.empty() ? "" : ", ") + std::to_string(std::lround(d.mission.flight_time_s));
+    const double ratio = test::max_over_min_flight(plan);
+    std::printf("| %s | %s | %s | %.4f | %.0f ms |\n", c.field.c_str(), c.fleet.c_str(),
+                times.c_str(), ratio, ms);
+    auto& [sum, worst] = sum_worst[c.fleet];
+    sum += ratio;
+    worst = std::max(worst, ratio);
+    ++count[c.fleet];
+  }
+  for (const auto& [fleet, sw] : sum_worst)
+    std::printf("%s: mean %.4f, worst %.4f over %d shapes\n", fleet.c_str(),
+                sw.first / count[fleet], sw.second, count[fleet]);
+  return 0;
+}
+
 void Cases(benchmark::internal::Benchmark* b) {
   b->ArgNames({"vertices", "drones"})->Unit(benchmark::kMillisecond);
   for (int n : {10, 1000, 10000})
@@ -165,7 +198,10 @@ BENCHMARK(BM_SixDronePlan)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
-    if (std::strcmp(argv[i], "--balance-table") == 0) return balance_table();
+    if (std::strcmp(argv[i], "--balance-table") == 0)
+      return balance_table();
+    else if (std::strcmp(argv[i], "--balance-corpus") == 0)
+      return balance_corpus();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "field_shapes.hpp"
+#include "local_field.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/planning/camera.hpp"
@@ -51,6 +53,52 @@ std::vector<DivisionCase> division_cases(const std::string& source_dir,
       }
       out.push_back({f.file, equal ? "3 equal" : "three-quads", std::move(r)});
     }
+  return out;
+}
+
+std::vector<DivisionCase> corpus_division_cases(const std::string& source_dir, std::uint64_t seed,
+                                                int per_family, planning::DivisionMode division,
+                                                planning::Balance balance) {
+  const vehicle::Fleet quads = vehicle::parse_fleet(
+      base::read_text_file(source_dir + "/share/fleets/three-quads.yaml", "fleet file", 1 << 20),
+      "three-quads.yaml");
+  const planning::Camera camera =
+      planning::find_camera("sony-ilce-qx1", source_dir + "/share/cameras");
+  std::vector<DivisionCase> out;
+  for (const CorpusShape& shape : split_corpus(seed, per_family)) {
+    const geometry::Field field = local_field(shape.area);
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const geometry::Point2& p : shape.area.outer) {
+      x0 = std::min(x0, p.x);
+      y0 = std::min(y0, p.y);
+      x1 = std::max(x1, p.x);
+      y1 = std::max(y1, p.y);
+    }
+    for (const bool equal : {true, false}) {
+      planning::SurveyRequest r;
+      r.field = field;
+      r.camera = camera;
+      planning::PhotogrammetryMode m;
+      m.altitude_m = 60;
+      r.mode = m;
+      r.concave = planning::ConcaveMode::split;
+      r.division = division;
+      r.balance = balance;
+      if (equal) {
+        r.fleet = vehicle::equal_fleet(3, {});
+        r.fleet->home = geometry::GeoPoint{std::numeric_limits<double>::quiet_NaN(), 0, 0};
+      } else {
+        vehicle::Fleet fleet = quads;
+        fleet.home = field.frame->to_geo({x0 - 40, y0 - 40});
+        for (vehicle::Drone& d : fleet.drones)
+          if (d.home) d.home = field.frame->to_geo({x1 + 40, (y0 + y1) / 2});
+        r.home = fleet.home;
+        r.fleet = fleet;
+      }
+      out.push_back({shape.family + " " + std::to_string(shape.index),
+                     equal ? "3 equal" : "three-quads", std::move(r)});
+    }
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 // as the README's division examples plan them. Shared by the division tests and the
 // division bench's --balance-table.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ struct DivisionCase {
 std::vector<DivisionCase> division_cases(const std::string& source_dir,
                                          planning::DivisionMode division,
                                          planning::Balance balance);
+
+/// Region or path division of split-corpus shapes (field_shapes.hpp, `per_family` of each family
+/// from `seed`, the concave ones planned by split), Sony QX1 at 60 m, each with three equal drones
+/// and with three-quads' drones (speeds 5, 5 and 8 m/s, bravo's battery at 0.6): the fleet's home
+/// 40 m beyond the area's south-west corner of its bounding box, charlie's 40 m beyond its
+/// east side. `field` names the family and index.
+std::vector<DivisionCase> corpus_division_cases(const std::string& source_dir, std::uint64_t seed,
+                                                int per_family, planning::DivisionMode division,
+                                                planning::Balance balance);
 
 /// The same request without a fleet, from the fleet's home: the undivided plan.
 planning::SurveyRequest undivided(const planning::SurveyRequest& request);

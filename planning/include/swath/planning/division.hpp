@@ -110,7 +110,11 @@ using LaneSweep =
 /// lane), the lanes are cut in the order and direction given instead (the undivided plan's
 /// flight: run after run, so that a share is whole runs and parts of one at either end, and the
 /// part of a cut lane a drone gets is the part flown before or after the cut) and the regions are
-/// the cells clipped to each drone's lanes' rows. `proportional_makespan_s`: cuts in proportion
+/// the cells clipped to each drone's lanes' rows; where that balance leaves the longest flight
+/// more than 0.2 % above the shortest, the lanes are balanced by row as well (a share's ends then
+/// run across cells side by side instead of reaching into the next cell in the flight order), and
+/// the narrowest of the two within 2 % of the shorter makespan is kept (spreads under 0.2 % equal,
+/// then the shorter makespan). `proportional_makespan_s`: cuts in proportion
 /// to the corrected capabilities, bands in fleet order; Balance::capability returns those cuts
 /// (shares of the lanes' length, the paper's Algorithm 4 on the plan's own lanes: every lane
 /// flown, so the side overlap holds across the bands' seams). Home costs and budgets as
