@@ -180,7 +180,7 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
     }
     case Cmd::component_arm_disarm:
       if (c.param1 == 1.0f) {
-        if (!refuse_arm_.empty()) {
+        if (!refuse_arm_.empty() && now_s < refuse_arm_until_s_) {
           send_status_text(refuse_arm_);
           result = CmdResult::failed;
         } else if (mode_ != CopterMode::guided || !on_ground) {

@@ -50,6 +50,13 @@ constexpr double kSettleS = 1.2;
 // not do it (a pre-arm check, a mode it refuses): retrying forever would hide that.
 constexpr int kMaxRejections = 3;
 
+// Arming is asked again for this long (seconds since its first refusal) before the vehicle is
+// given up: pre-arm checks clear on their own after boot — ArduCopter SITL refused an arm 23 s
+// after start with "Need Position Estimate" (its pre-arm bit already set) and armed at 41 s,
+// once the EKF used GPS. An uncalibrated compass never clears: the vehicle leaves after this.
+constexpr double kArmPatienceS = 60;
+constexpr double kArmRetryS = 2;  // between asks
+
 }  // namespace
 
 // What the runtime last asked of a vehicle, and where its steering stands.
@@ -86,6 +93,7 @@ struct MavlinkBackend::Vehicle {
   int gate = -1;       // a command the steering waits for (mode, arm, take-off, RTL)
   Step gate_step = Step::mode;
   std::array<int, kSteps> rejections{};  // of each step since it was last accepted
+  double first_arm_refusal_s = -1;       // of the current run of refused arms; -1: none
   double settle_until_s = 0;             // an accepted command shows in the state only after this
   std::string refusal;
 };
@@ -237,7 +245,14 @@ void MavlinkBackend::steer(Vehicle& v) {
     const CommandState c = d.command_state(v.gate);
     if (c == CommandState::pending) return;
     int& rejected = v.rejections[static_cast<std::size_t>(v.gate_step)];
-    if (c == CommandState::rejected && ++rejected >= kMaxRejections && v.refusal.empty())
+    const bool arm = v.gate_step == Vehicle::Step::arm;
+    if (c == CommandState::rejected && arm) {
+      if (v.first_arm_refusal_s < 0) v.first_arm_refusal_s = now_s_;
+      v.settle_until_s = now_s_ + kArmRetryS;  // asked again in a while, not at every poll
+    }
+    const bool patience_over = !arm || now_s_ - v.first_arm_refusal_s >= kArmPatienceS;
+    if (c == CommandState::rejected && ++rejected >= kMaxRejections && patience_over &&
+        v.refusal.empty())
       v.refusal = Vehicle::refusal_text(v.gate_step, d) +
                   (s.status_texts.empty() ? std::string() : ": " + s.status_texts.back());
     // Mode and armed come with the 1 Hz HEARTBEAT, landed with the 1 Hz EXTENDED_SYS_STATE:
@@ -245,6 +260,7 @@ void MavlinkBackend::steer(Vehicle& v) {
     if (c == CommandState::accepted) {
       v.settle_until_s = now_s_ + kSettleS;
       rejected = 0;
+      if (arm) v.first_arm_refusal_s = -1;
     }
     v.gate = -1;  // accepted, refused or timed out: the state says what comes next
   }

@@ -273,6 +273,21 @@ TEST(MavlinkBackend, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {
   EXPECT_EQ(m.fakes[1]->images_taken(), 3);
 }
 
+TEST(MavlinkBackend, APreArmCheckThatClearsOnItsOwnDelaysTheVehicleAndKeepsIt) {
+  // ArduCopter SITL refused an arm 23 s after boot ("Need Position Estimate") and armed at 41 s:
+  // a vehicle refusing to arm for 20 s is asked again every 2 s and flies once it accepts.
+  Mission m;
+  m.fakes[0]->refuse_arm("PreArm: Need Position Estimate", 20.0);
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  EXPECT_TRUE(m.events("vehicle_refused").empty());
+  const int arms = m.fakes[0]->commands_received(Cmd::component_arm_disarm);
+  EXPECT_GE(arms, 5);   // refused at ~0, 2, .. 18 s, then accepted (and disarm at the end)
+  EXPECT_LE(arms, 14);  // not at every 0.1 s poll
+  EXPECT_GE(m.fakes[0]->commands_received(Cmd::nav_takeoff), 1);  // it flew
+  m.expect_both_land_at_home();
+}
+
 TEST(MavlinkBackend, AVehicleRefusingGuidedIsRefusedAfterThreeRejectionsWithItsSentence) {
   Mission m;
   m.fakes[0]->refuse_mode(CopterMode::guided, "Flight mode change failed");

@@ -21,6 +21,7 @@
 // protocol, not flight; swath-fleet's simulated backend and swath-control model flight.
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -80,8 +81,13 @@ class FakeCopter {
   void lose_targets(int n) { targets_to_lose_ += n; }
   /// Every PARAM_REQUEST_READ is lost on the way.
   void drop_param_requests() { drop_param_requests_ = true; }
-  /// Refuses to arm, with this STATUSTEXT (ArduCopter's "PreArm: ..." sentences).
-  void refuse_arm(std::string why) { refuse_arm_ = std::move(why); }
+  /// Refuses to arm, with this STATUSTEXT (ArduCopter's "PreArm: ..." sentences), until the
+  /// vehicle's clock (step's now_s, seconds) reaches `until_s`: a check that clears on its own
+  /// (the EKF's position after boot) as against one that never does (an uncalibrated compass).
+  void refuse_arm(std::string why, double until_s = std::numeric_limits<double>::infinity()) {
+    refuse_arm_ = std::move(why);
+    refuse_arm_until_s_ = until_s;
+  }
   /// Refuses DO_SET_MODE to `mode` (the ack FAILED), with this STATUSTEXT.
   void refuse_mode(CopterMode mode, std::string why) {
     refused_mode_ = mode;
@@ -131,6 +137,7 @@ class FakeCopter {
   int targets_to_lose_ = 0;
   std::uint16_t lose_first_sends_of_ = 0xFFFF;  // none
   std::string refuse_arm_;
+  double refuse_arm_until_s_ = 0;
   CopterMode refused_mode_ = CopterMode::stabilize;
   std::string refuse_mode_;  // "": no mode refused
   bool drop_param_requests_ = false;
