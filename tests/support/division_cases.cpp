@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "field_shapes.hpp"
 #include "local_field.hpp"
@@ -12,6 +13,34 @@
 #include "swath/vehicle/drone.hpp"
 
 namespace swath::test {
+
+namespace {
+
+// A photogrammetry request at 60 m over `field` with `camera`, divided as asked among three equal
+// drones (home: the plan's) or the given fleet.
+planning::SurveyRequest division_request(const geometry::Field& field,
+                                         const planning::Camera& camera,
+                                         planning::DivisionMode division, planning::Balance balance,
+                                         const std::optional<vehicle::Fleet>& fleet) {
+  planning::SurveyRequest r;
+  r.field = field;
+  r.camera = camera;
+  planning::PhotogrammetryMode m;
+  m.altitude_m = 60;
+  r.mode = m;
+  r.division = division;
+  r.balance = balance;
+  if (!fleet) {
+    r.fleet = vehicle::equal_fleet(3, {});
+    r.fleet->home = geometry::GeoPoint{std::numeric_limits<double>::quiet_NaN(), 0, 0};
+  } else {
+    r.home = fleet->home;
+    r.fleet = *fleet;
+  }
+  return r;
+}
+
+}  // namespace
 
 std::vector<DivisionCase> division_cases(const std::string& source_dir,
                                          planning::DivisionMode division,
@@ -29,28 +58,20 @@ std::vector<DivisionCase> division_cases(const std::string& source_dir,
   std::vector<DivisionCase> out;
   for (const Field& f : fields)
     for (const bool equal : {true, false}) {
-      planning::SurveyRequest r;
-      r.field = geometry::read_field(source_dir + "/share/fields/" + f.file);
-      r.camera = planning::find_camera("sony-ilce-qx1", source_dir + "/share/cameras");
-      planning::PhotogrammetryMode m;
-      m.altitude_m = 60;
-      r.mode = m;
-      r.division = division;
-      r.balance = balance;
-      if (equal) {
-        r.fleet = vehicle::equal_fleet(3, {});
-        r.fleet->home = geometry::GeoPoint{std::numeric_limits<double>::quiet_NaN(), 0, 0};
-      } else {
-        vehicle::Fleet fleet = quads;
+      std::optional<vehicle::Fleet> fleet;
+      if (!equal) {
+        fleet = quads;
         const double dlat = f.fleet_home.lat_deg - quads.home.lat_deg,
                      dlon = f.fleet_home.lon_deg - quads.home.lon_deg;
-        fleet.home = f.fleet_home;
-        for (vehicle::Drone& d : fleet.drones)
+        fleet->home = f.fleet_home;
+        for (vehicle::Drone& d : fleet->drones)
           if (d.home)
             d.home = geometry::GeoPoint{d.home->lat_deg + dlat, d.home->lon_deg + dlon, 0};
-        r.home = fleet.home;
-        r.fleet = fleet;
       }
+      planning::SurveyRequest r =
+          division_request(geometry::read_field(source_dir + "/share/fields/" + f.file),
+                           planning::find_camera("sony-ilce-qx1", source_dir + "/share/cameras"),
+                           division, balance, fleet);
       out.push_back({f.file, equal ? "3 equal" : "three-quads", std::move(r)});
     }
   return out;
@@ -75,26 +96,15 @@ std::vector<DivisionCase> corpus_division_cases(const std::string& source_dir, s
       y1 = std::max(y1, p.y);
     }
     for (const bool equal : {true, false}) {
-      planning::SurveyRequest r;
-      r.field = field;
-      r.camera = camera;
-      planning::PhotogrammetryMode m;
-      m.altitude_m = 60;
-      r.mode = m;
-      r.concave = planning::ConcaveMode::split;
-      r.division = division;
-      r.balance = balance;
-      if (equal) {
-        r.fleet = vehicle::equal_fleet(3, {});
-        r.fleet->home = geometry::GeoPoint{std::numeric_limits<double>::quiet_NaN(), 0, 0};
-      } else {
-        vehicle::Fleet fleet = quads;
-        fleet.home = field.frame->to_geo({x0 - 40, y0 - 40});
-        for (vehicle::Drone& d : fleet.drones)
+      std::optional<vehicle::Fleet> fleet;
+      if (!equal) {
+        fleet = quads;
+        fleet->home = field.frame->to_geo({x0 - 40, y0 - 40});
+        for (vehicle::Drone& d : fleet->drones)
           if (d.home) d.home = field.frame->to_geo({x1 + 40, (y0 + y1) / 2});
-        r.home = fleet.home;
-        r.fleet = fleet;
       }
+      planning::SurveyRequest r = division_request(field, camera, division, balance, fleet);
+      r.concave = planning::ConcaveMode::split;
       out.push_back({shape.family + " " + std::to_string(shape.index),
                      equal ? "3 equal" : "three-quads", std::move(r)});
     }
