@@ -60,7 +60,63 @@ bool VisibilityRouter::inside_closed(Point2 p) const {
   return near;
 }
 
-double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m) const {
+// The direction of (dx, dy) != 0 as a "diamond angle" in [0, 4): 0 along +x, 1 along +y, 2
+// along -x, 3 along -y, increasing counter-clockwise, and the opposite direction 2 further round.
+// A monotone stand-in for atan2 at a few instructions (fans take two per edge): arcs below pi
+// are arcs below 2. Its rounding is of the order of atan2's.
+static double diamond(double dx, double dy) {
+  if (dy >= 0) return dx >= 0 ? dy / (dx + dy) : 1 - dx / (dy - dx);
+  return dx < 0 ? 2 - dy / (-dx - dy) : 3 + dx / (dx - dy);
+}
+
+long VisibilityRouter::fan_bin(double diamond_angle) const {
+  // Monotone in the angle (rounding included), so an angle within a range lands in a bin
+  // between the bins of the range's ends.
+  return long(std::floor(diamond_angle * bins_per_unit_));
+}
+
+VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
+  // An edge that does not hold a is seen from it within an arc of directions below pi (below 2
+  // in diamond angle): the directions of its ends and the shorter way between them. Legs from a
+  // through any of its points run in a direction of that arc. The computed directions are off by
+  // less than ~1e-9 for points at least near_m from a (differences of coordinates round by ~1e-16
+  // of the larger of the area's and a's extent, near_m is 1e-6 of it); each arc is widened by
+  // 1e-7. An edge nearer than near_m is asked for every leg.
+  constexpr double kMargin = 1e-7;
+  const std::vector<Segment>& segments = edges_.segments();
+  Fan fan;
+  fan.near_m = 1e-6 * (1 + std::max({extent_m_, std::abs(a.x), std::abs(a.y)}));
+  const long bins = long(fan_bins_);
+  std::vector<std::pair<long, long>> range(segments.size(), {1, 0});
+  std::vector<std::uint32_t> count(fan_bins_ + 1, 0);
+  for (std::uint32_t e = 0; e < segments.size(); ++e) {
+    const Point2 p = segments[e].a, q = segments[e].b;
+    if (distance_to_segment(a, p, q) <= fan.near_m) {
+      fan.near.push_back(e);
+      continue;
+    }
+    const double tp = diamond(p.x - a.x, p.y - a.y), tq = diamond(q.x - a.x, q.y - a.y);
+    double turn = tq - tp;
+    if (turn > 2)
+      turn -= 4;
+    else if (turn < -2)
+      turn += 4;
+    const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
+    const long hi = fan_bin(std::max(tp, tp + turn) + kMargin);
+    range[e] = {lo, std::min(hi, lo + bins - 1)};
+    for (long k = lo; k <= range[e].second; ++k)
+      ++count[std::size_t(((k % bins) + bins) % bins) + 1];
+  }
+  for (std::size_t k = 0; k < fan_bins_; ++k) count[k + 1] += count[k];
+  fan.start = count;
+  fan.items.resize(count.back());
+  for (std::uint32_t e = 0; e < segments.size(); ++e)
+    for (long k = range[e].first; k <= range[e].second; ++k)
+      fan.items[count[std::size_t(((k % bins) + bins) % bins)]++] = e;
+  return fan;
+}
+
+double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, const Fan* fan) const {
   // Cut [a, b] where it meets the boundary; each piece is wholly inside or outside.
   const Point2 d = b - a;
   const double len2 = dot(d, d);
@@ -71,9 +127,11 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m) con
   auto apart = [&](const Box& e) {
     return e.x0 > seg.x1 || e.x1 < seg.x0 || e.y0 > seg.y1 || e.y1 < seg.y0;
   };
-  // Only the edges the index finds near [a, b] can meet it. An edge found twice cuts twice at the
-  // same place: the piece between is empty and skipped, so the sum below does not change.
-  edges_.near_segment(a, b, [&](std::uint32_t e) {
+  // Only the edges the index (or a's fan) finds near [a, b] can meet it, and only those that meet
+  // it cut; the cuts are sorted, so the order the edges come in does not matter. An edge found
+  // twice cuts twice at the same place: the piece between is empty and skipped, so the sum below
+  // does not change.
+  const auto cut_by = [&](std::uint32_t e) {
     if (apart(edge_boxes_[e])) return;
     const Point2 p = edges_.segments()[e].a, q = edges_.segments()[e].b;
     if (strictly_one_side(a, d, p, q) || !segments_intersect(a, b, p, q)) return;
@@ -84,7 +142,18 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m) con
       cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
       cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
     }
-  });
+  };
+  // A fan is trusted for legs longer than twice its near_m, to points b within the area's extent
+  // (the nodes): b's direction is then as accurate as the edges' (a shorter leg meets only edges
+  // within its length of a, all in fan->near).
+  if (fan && len2 > 4 * fan->near_m * fan->near_m) {
+    const long bins = long(fan_bins_);
+    const auto k = std::size_t(((fan_bin(diamond(d.x, d.y)) % bins) + bins) % bins);
+    for (std::uint32_t i = fan->start[k]; i < fan->start[k + 1]; ++i) cut_by(fan->items[i]);
+    for (const std::uint32_t e : fan->near) cut_by(e);
+  } else {
+    edges_.near_segment(a, b, cut_by);
+  }
   std::sort(cuts.begin(), cuts.end());
   double outside = 0;
   const double length = std::sqrt(len2);
@@ -122,11 +191,15 @@ Point2 VisibilityRouter::moved_out(Point2 before, Point2 corner, Point2 after,
 }
 
 bool VisibilityRouter::visible(Point2 a, Point2 b) const {
+  return visible_with(a, b, nullptr);
+}
+
+bool VisibilityRouter::visible_with(Point2 a, Point2 b, const Fan* fan) const {
   // Decided by the length outside, with a tolerance: end points computed on the boundary (line
   // ends, cut points) sit a rounding error off it, and must still see inwards. Counting stops
   // as soon as the tolerance is exceeded (most legs between far corners are blocked).
   const double limit_m = 1e-9 * (1 + distance(a, b));
-  return outside_fraction(a, b, limit_m) * std::sqrt(dot(b - a, b - a)) <= limit_m;
+  return outside_fraction(a, b, limit_m, fan) * std::sqrt(dot(b - a, b - a)) <= limit_m;
 }
 
 VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes,
@@ -158,19 +231,27 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
     return;
   }
   adjacent_.resize(nodes_.size());
+  node_fans_.resize(nodes_.size());
+  fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
+  bins_per_unit_ = double(fan_bins_) / 4;
+  extent_m_ = extent;
   expanded_.assign(nodes_.size(), 0);
   node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
 }
 
-std::vector<signed char>& VisibilityRouter::seen_row(Point2 p) const {
+VisibilityRouter::Row& VisibilityRouter::seen_row(Point2 p) const {
   auto [it, added] = sees_.try_emplace({p.x, p.y});
-  if (added) it->second.assign(nodes_.size(), kUnknown);
+  if (added) it->second.seen.assign(nodes_.size(), kUnknown);
   return it->second;
 }
 
-bool VisibilityRouter::sees(Point2 p, std::vector<signed char>& row, std::size_t node) const {
-  if (row[node] == kUnknown) row[node] = visible(p, nodes_[node]);
-  return row[node] != 0;
+bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
+  signed char& known = row.seen[node];
+  if (known == kUnknown) {
+    if (!row.fan && ++row.asked > kFanAfter) row.fan = std::make_unique<Fan>(fan_of(p));
+    known = visible_with(p, nodes_[node], row.fan.get());
+  }
+  return known != 0;
 }
 
 const std::vector<std::pair<std::size_t, double>>& VisibilityRouter::adjacent(std::size_t u) const {
@@ -178,11 +259,14 @@ const std::vector<std::pair<std::size_t, double>>& VisibilityRouter::adjacent(st
   // Ascending, as the eager graph listed them; each pair tested once (visible(i, j) with i < j,
   // as the eager build asked it: the test is not symmetric in rounding).
   const std::size_t n = nodes_.size();
+  // The pairs (u, v > u) are tested from u: through u's fan when there are enough of them.
+  if (!node_fans_[u] && n - u > std::size_t(kFanAfter))
+    node_fans_[u] = std::make_unique<Fan>(fan_of(nodes_[u]));
   for (std::size_t v = 0; v < n; ++v) {
     if (v == u) continue;
     const std::size_t i = std::min(u, v), j = std::max(u, v);
     signed char& known = node_sees_[i * n + j];
-    if (known == kUnknown) known = visible(nodes_[i], nodes_[j]);
+    if (known == kUnknown) known = visible_with(nodes_[i], nodes_[j], node_fans_[i].get());
     if (known) adjacent_[u].push_back({v, distance(nodes_[i], nodes_[j])});
   }
   expanded_[u] = 1;
@@ -250,7 +334,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   // while that could still win. `best` is final once no node still to take (or to settle) has a
   // distance below its sum.
   Search& s = search_from(a);
-  std::vector<signed char>& to_b = seen_row(b);
+  Row& to_b = seen_row(b);
   const std::size_t n = nodes_.size();
   thread_local std::vector<std::pair<double, std::size_t>> untested;  // (sum, node), a heap
   untested.clear();
@@ -273,9 +357,9 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     if (!untested_first && best.first < bound) break;  // nothing left can do better
     if (taken < s.settled_nodes.size()) {
       const std::size_t i = s.settled_nodes[taken++];
-      if (to_b[i] == 0) continue;
+      if (to_b.seen[i] == 0) continue;
       const std::pair<double, std::size_t> candidate{s.distance[i] + distance(nodes_[i], b), i};
-      if (to_b[i] == kUnknown) {
+      if (to_b.seen[i] == kUnknown) {
         untested.push_back(candidate);
         std::push_heap(untested.begin(), untested.end(), std::greater<>());
       } else {

@@ -12,6 +12,17 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// std::popcount without the POPCNT instruction (the build targets plain x86-64) is a call into
+// libgcc, ~2 % of a plan's instructions from the ordering's inner loop; inline, and most masks
+// are 0.
+int bits_set(std::uint64_t x) {
+  if (x == 0) return 0;
+  x = x - ((x >> 1) & 0x5555555555555555ull);
+  x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+  return int((x * 0x0101010101010101ull) >> 56);
+}
+
 // Memoised transit lengths between every entry/exit point and home: the metric may be a routed
 // shortest path, far dearer than the searches that query it.
 class Transit {
@@ -56,7 +67,7 @@ class Transit {
               std::uint64_t unflown) {
     const double d = between(c1, v1, c2, v2);
     if (!p_.crossed) return d;
-    return d * (1 + p_.crossing_weight * std::popcount(crossed(c1, v1, c2, v2) & unflown));
+    return d * (1 + p_.crossing_weight * bits_set(crossed(c1, v1, c2, v2) & unflown));
   }
 
  private:
@@ -314,10 +325,139 @@ std::vector<std::size_t> nearest_neighbour(const CellOrderProblem& p) {
 
 }  // namespace
 
+namespace {
+
+// nearest_neighbour() when the distance is never below the straight one (straight or routed
+// transits), the same order: the brute force asks every cell at every step (O(n² v); on
+// 10,000-vertex areas it ranked ~100 directions of ~250 cells, and with routed transits each
+// question is a shortest-path search, the far ones the dearest), this one only the cells near
+// enough to win. The variants' entries sit in a uniform grid; buckets are taken ring by ring
+// around the drone's bucket, and the search stops once a ring's least straight distance plus the
+// least internal length still unflown exceeds the best cost; an entry whose straight distance
+// plus internal length exceeds it is not asked either (nothing so skipped can reach the best,
+// ties included: a cost is a sum of non-negative terms, rounding is monotone, and the margin
+// covers a routed length's rounding below the straight one). Ties go to the lower cell, then the
+// lower variant, as the brute force's first strict improvement. Empty when it does not apply (a
+// cell without variants, a non-finite value, a negative internal length): the caller then asks
+// the brute force.
+std::vector<std::size_t> nearest_neighbour_grid(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size();
+  struct Entry {
+    geometry::Point2 at;
+    double internal_m;
+    std::size_t cell, variant;
+  };
+  std::vector<Entry> entries;
+  double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+  std::vector<double> least_internal(n, kInf);
+  const auto finite = [](geometry::Point2 q) { return std::isfinite(q.x) && std::isfinite(q.y); };
+  if (!finite(p.home)) return {};
+  for (std::size_t c = 0; c < n; ++c) {
+    if (p.cells[c].empty()) return {};
+    for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
+      const CellVariant& cv = p.cells[c][v];
+      if (!finite(cv.entry) || !finite(cv.exit) || !std::isfinite(cv.internal_m) ||
+          !(cv.internal_m >= 0))
+        return {};
+      entries.push_back({cv.entry, cv.internal_m, c, v});
+      least_internal[c] = std::min(least_internal[c], cv.internal_m);
+      x0 = std::min(x0, cv.entry.x);
+      y0 = std::min(y0, cv.entry.y);
+      x1 = std::max(x1, cv.entry.x);
+      y1 = std::max(y1, cv.entry.y);
+    }
+  }
+  // About two entries a bucket, square buckets, at most 1024 a side.
+  const double w = x1 - x0, h = y1 - y0;
+  const double cell_m = std::max({std::sqrt(w * h * 2 / double(entries.size())),
+                                  std::max(w, h) / 1024, 1e-9 * (1 + std::max(w, h))});
+  const long columns = std::min(1024L, long(w / cell_m) + 1);
+  const long rows = std::min(1024L, long(h / cell_m) + 1);
+  const auto column = [&](double x) {
+    const double f = (x - x0) / cell_m;
+    return f > 0 ? std::min(columns - 1, long(f)) : 0L;
+  };
+  const auto row = [&](double y) {
+    const double f = (y - y0) / cell_m;
+    return f > 0 ? std::min(rows - 1, long(f)) : 0L;
+  };
+  std::vector<std::vector<std::size_t>> bucket(std::size_t(columns * rows));
+  std::vector<std::vector<std::size_t>> buckets_of(n);  // per cell, its variants' buckets
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const std::size_t b = std::size_t(row(entries[k].at.y) * columns + column(entries[k].at.x));
+    bucket[b].push_back(k);
+    buckets_of[entries[k].cell].push_back(b);
+  }
+  std::vector<std::size_t> by_internal(n);  // the least internal length still unflown, in order
+  for (std::size_t c = 0; c < n; ++c) by_internal[c] = c;
+  std::sort(by_internal.begin(), by_internal.end(), [&](std::size_t a, std::size_t b) {
+    return std::pair{least_internal[a], a} < std::pair{least_internal[b], b};
+  });
+  std::size_t least_at = 0;
+  std::vector<char> used(n, 0);
+  std::vector<std::size_t> order;
+  geometry::Point2 at = p.home;
+  for (std::size_t k = 0; k < n; ++k) {
+    while (used[by_internal[least_at]]) ++least_at;
+    const double least = least_internal[by_internal[least_at]];
+    double best = kInf;
+    std::size_t best_cell = n, best_variant = 0;
+    const auto visit = [&](long rr, long cc) {
+      if (rr < 0 || rr >= rows || cc < 0 || cc >= columns) return;
+      for (const std::size_t e : bucket[std::size_t(rr * columns + cc)]) {
+        const Entry& en = entries[e];
+        if (used[en.cell] || least_internal[en.cell] > best ||
+            geometry::distance(at, en.at) * (1 - 1e-12) + en.internal_m > best)
+          continue;
+        const double cost = p.distance(at, en.at) + en.internal_m;
+        if (cost < best ||
+            (cost == best && std::pair{en.cell, en.variant} < std::pair{best_cell, best_variant})) {
+          best = cost;
+          best_cell = en.cell;
+          best_variant = en.variant;
+        }
+      }
+    };
+    // The drone's bucket, clamped to the grid: a point outside is no nearer to any bucket than
+    // its projection onto the grid's box. A bucket r rings out is at least r - 1 buckets away
+    // from it, r - 3 with the rounding of both bucket indices (each off by at most one).
+    const long ci = column(at.x), ri = row(at.y);
+    for (long r = 0; r <= std::max(columns, rows); ++r) {
+      const double ring_m = r > 3 ? double(r - 3) * cell_m * (1 - 1e-9) : 0.0;
+      if (ring_m + least > best) break;
+      if (r == 0) {
+        visit(ri, ci);
+        continue;
+      }
+      for (long cc = ci - r; cc <= ci + r; ++cc) {
+        visit(ri - r, cc);
+        visit(ri + r, cc);
+      }
+      for (long rr = ri - r + 1; rr <= ri + r - 1; ++rr) {
+        visit(rr, ci - r);
+        visit(rr, ci + r);
+      }
+    }
+    if (best_cell == n) return {};  // not expected: every cost is finite
+    used[best_cell] = 1;
+    order.push_back(best_cell);
+    // Its entries leave their buckets: later steps do not walk over them again.
+    for (const std::size_t b : buckets_of[best_cell])
+      std::erase_if(bucket[b], [&](std::size_t e) { return entries[e].cell == best_cell; });
+    at = p.cells[best_cell][best_variant].exit;
+  }
+  return order;
+}
+
+}  // namespace
+
 CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
   if (p.cells.empty()) return {};
   Transit t(p, false);
-  return finished(p, best_variants(p, t, nearest_neighbour(p)));
+  std::vector<std::size_t> order;
+  if (p.distance_at_least_straight) order = nearest_neighbour_grid(p);
+  if (order.empty()) order = nearest_neighbour(p);
+  return finished(p, best_variants(p, t, order));
 }
 
 namespace {
@@ -386,7 +526,9 @@ CellOrder heuristic_cell_order(const CellOrderProblem& p) {
   const std::size_t n = p.cells.size();
   if (n == 0) return {};
   Transit t(p);
-  std::vector<std::size_t> order = nearest_neighbour(p);
+  std::vector<std::size_t> order;
+  if (p.distance_at_least_straight) order = nearest_neighbour_grid(p);
+  if (order.empty()) order = nearest_neighbour(p);
   VariantTable current;
   CellOrder best;
   best.objective_m = current.fill(p, t, order, 0);

@@ -152,18 +152,28 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   const double half = s.footprint_width_m / 2 + 1e-9;
   std::vector<std::vector<Point2>> corners(d.pieces.size());
   std::vector<char> thin(d.pieces.size(), 0), covered(d.pieces.size(), 0);
+  std::vector<std::pair<double, double>> span_y(d.pieces.size());  // a piece's least, greatest y
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
     for (const Point2& p : d.pieces[k]) corners[k].push_back(rotate(p, -angle));
     if (corners[k].empty()) continue;
     const auto [lo, hi] = std::minmax_element(corners[k].begin(), corners[k].end(),
                                               [](Point2 a, Point2 b) { return a.y < b.y; });
+    span_y[k] = {lo->y, hi->y};
     const auto grid =
         std::lower_bound(sweep_settings.ordinates.begin(), sweep_settings.ordinates.end(), lo->y);
     thin[k] = grid == sweep_settings.ordinates.end() || *grid > hi->y;
   }
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
     if (!thin[k] || piece_lines[k].empty()) continue;
-    for (const Lane& lane : lanes) {
+    // Only a lane within half a footprint of the piece's lowest and highest corners can see it
+    // whole: the lanes (sorted by ordinate) in that window, widened well past rounding, are asked
+    // (all lanes were, hundreds of thin pieces by thousands of lanes on 10,000-vertex areas).
+    const auto [y_lo, y_hi] = span_y[k];
+    const double slack = 1e-6 * (1 + std::abs(y_lo) + std::abs(y_hi) + half);
+    const auto first = std::lower_bound(lanes.begin(), lanes.end(), y_hi - half - slack,
+                                        [](const Lane& l, double y) { return l.y < y; });
+    for (auto it = first; it != lanes.end() && it->y <= y_lo + half + slack; ++it) {
+      const Lane& lane = *it;
       if (thin[lane.piece] || lane.line->start == lane.line->end) continue;
       const double x0 = lane.x0 + s.turnaround_m - 1e-6, x1 = lane.x1 - s.turnaround_m + 1e-6;
       if (std::all_of(corners[k].begin(), corners[k].end(), [&](Point2 q) {
@@ -356,6 +366,7 @@ class LaneCrossings {
 SplitPlan ordered_plan(Candidate& c, Point2 home, RoutedMetric& routed) {
   CellOrderProblem problem =
       problem_for(c, home, [&routed](Point2 a, Point2 b) { return routed(a, b); });
+  problem.distance_at_least_straight = true;  // a path inside the area, or the straight leg
   const LaneCrossings crossings(c);
   problem.crossed = [&](Point2 a, Point2 b) { return crossings(routed.path(a, b)); };
   const CellOrder order = order_cells(problem);
@@ -454,7 +465,8 @@ RegionSweep sweep_region(geometry::Ring ring, const geometry::Ring& area, const 
         sweep_runs({ring}, angle, rs, false, samples, false, grid_ordinate(area, angle, s));
     if (c.cells.empty()) continue;
     // Without the legs from and back to the centre: a region is entered from its neighbour.
-    const CellOrderProblem p = problem_for(c, centre, straight_m);
+    CellOrderProblem p = problem_for(c, centre, straight_m);
+    p.distance_at_least_straight = true;
     const CellOrder order = nearest_neighbour_order(p);
     const CellVariant& first = p.cells[order.visits.front().cell][order.visits.front().variant];
     const CellVariant& last = p.cells[order.visits.back().cell][order.visits.back().variant];
@@ -694,7 +706,9 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
       Candidate c =
           kind < 2 ? sweep_runs(rings, angle, s, kind == 0, samples) : sweep_cells(rings, angle, s);
       if (c.cells.empty()) continue;
-      c.order = nearest_neighbour_order(problem_for(c, home, straight));
+      CellOrderProblem straight_problem = problem_for(c, home, straight);
+      straight_problem.distance_at_least_straight = true;
+      c.order = nearest_neighbour_order(straight_problem);
       estimates.push_back({kind, c.order.length_m, candidates.size()});
       candidates.push_back(std::move(c));
     }

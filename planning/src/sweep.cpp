@@ -1,7 +1,9 @@
 #include "swath/planning/sweep.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -11,8 +13,25 @@ namespace swath::planning {
 using geometry::Point2;
 
 Point2 rotate(Point2 p, double angle_deg) {
+  // The cosine and sine of the last two angles asked (by their bits: -0 and 0 differ in the
+  // sine's sign) are kept: callers turn thousands of points by one angle and back, and libm's
+  // sincos per point was a sixth of a 10,000-vertex plan. The same values as taken anew.
+  struct Turn {
+    std::uint64_t angle_bits;
+    double c, s;
+  };
+  thread_local Turn turns[2];
+  thread_local int known = 0, newest = 0;
+  const auto bits = std::bit_cast<std::uint64_t>(angle_deg);
+  for (int k = 0; k < known; ++k)
+    if (turns[k].angle_bits == bits) {
+      const Turn& t = turns[k];
+      return {t.c * p.x - t.s * p.y, t.s * p.x + t.c * p.y};
+    }
   const double t = angle_deg * std::numbers::pi / 180.0;
   const double c = std::cos(t), s = std::sin(t);
+  newest = known < 2 ? known++ : 1 - newest;
+  turns[newest] = {bits, c, s};
   return {c * p.x - s * p.y, s * p.x + c * p.y};
 }
 

@@ -226,5 +226,41 @@ TEST(VisibilityRouterSearch, PathsAreBitForBitTheEagerOnes) {
   EXPECT_GT(bent, std::size_t(3000) * kQueries / 1200);
 }
 
+// A point asked about often gets a fan (the edges by direction from it); edges within a
+// millionth of the area's size of it are asked for every leg, as their direction from it is not
+// to be trusted. Path ends a hair (1e-10 to 1e-4 m) off vertices and along edges just past a
+// vertex, each asked about dozens of times: paths bit for bit the eager ones.
+TEST(VisibilityRouterSearch, EndsAHairFromCornersAreSeenAsByTheEagerSearch) {
+  test::Rng rng(1819);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t bent = 0;
+  for (int area = 0; area < 4; ++area) {
+    const std::vector<Ring> rings =
+        area % 2 ? std::vector<Ring>{test::random_grid_ring(rng, 24, 10)}
+                 : search_holey_area(rng, std::size_t(12) << area, 6 + 7 * area);
+    const VisibilityRouter router(rings, 300, 0.0);
+    EagerRouter eager(rings, 300, 0.0);
+    std::vector<Point2> points;
+    for (int k = 0; k < 30; ++k) {
+      const Ring& ring = rings[std::size_t(k) % rings.size()];
+      const std::size_t i = std::size_t(unit(rng) * double(ring.size())) % ring.size();
+      const Point2 v = ring[i], w = ring[(i + 1) % ring.size()];
+      const double hair_m = std::pow(10.0, -10 + 6 * unit(rng));
+      const double turn = 2 * 3.141592653589793 * unit(rng);
+      points.push_back(k % 2 ? v + Point2{std::cos(turn), std::sin(turn)} * hair_m
+                             : v + (w - v) * (hair_m / distance(v, w)));
+    }
+    std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+    for (int q = 0; q < kQueries / 2; ++q) {
+      const Point2 a = points[pick(rng)], b = points[pick(rng)];
+      const std::vector<Point2> lazy = router.path(a, b), truth = eager.path(a, b);
+      ASSERT_EQ(lazy, truth) << "area " << area << " (" << a.x << ", " << a.y << ") - (" << b.x
+                             << ", " << b.y << ")";
+      bent += truth.size() > 2;
+    }
+  }
+  EXPECT_GT(bent, std::size_t(kQueries / 4));
+}
+
 }  // namespace
 }  // namespace swath::geometry

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <limits>
 #include <random>
 
@@ -223,6 +224,87 @@ TEST(CellOrderSearch, HeuristicAndNearestNeighbourAreBitForBitThePlainSearch) {
       ASSERT_EQ(quick.visits[i].variant, quick_truth.visits[i].variant);
     }
   }
+}
+
+// Nearest neighbour with transits never shorter than straight ones looks only at cells near
+// enough to win (a grid over the entries, the straight distance as a bound): the same order as
+// the plain search's every cell, on problems of 1 to ~700 cells spread over a square, on one line
+// (a grid one bucket high), clustered in a corner with a few far away, on a coarse grid full of
+// equal costs (ties go to the lower cell, then variant), with internal lengths from 0 to far
+// longer than the transits, home inside and far outside; straight transits and longer ones
+// (Manhattan, as routed paths around holes are longer). The local search that starts from it
+// (heuristic_cell_order) gives the same order as without the bound.
+TEST(CellOrderSearch, NearestNeighbourOnTheEntriesGridIsThePlainOne) {
+  std::mt19937_64 rng(1818);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::uniform_int_distribution<int> variants(1, 4), step(-6, 6);
+  const std::size_t sizes[] = {1, 2, 3, 7, 20, 64, 150, 400, 700};
+  int checked = 0;
+  for (int layout = 0; layout < 5; ++layout)
+    for (const std::size_t n : sizes)
+      for (int internal_kind = 0; internal_kind < 3; ++internal_kind) {
+        CellOrderProblem p;
+        p.home = layout % 2 ? geometry::Point2{-5000, 3000} : geometry::Point2{10, -20};
+        auto point = [&]() -> geometry::Point2 {
+          switch (layout) {
+            case 0:  // spread over a square
+              return {1000 * unit(rng), 1000 * unit(rng)};
+            case 1:  // on one line
+              return {2000 * unit(rng), 250};
+            case 2:  // a cluster and a few far away
+              return unit(rng) < 0.9 ? geometry::Point2{5 * unit(rng), 5 * unit(rng)}
+                                     : geometry::Point2{3000 * unit(rng), -4000 * unit(rng)};
+            default:  // a coarse grid: equal entries and equal costs
+              return {50.0 * step(rng), 50.0 * step(rng)};
+          }
+        };
+        for (std::size_t c = 0; c < n; ++c) {
+          std::vector<CellVariant> cell;
+          for (int v = variants(rng); v > 0; --v) {
+            const double internal = internal_kind == 0   ? 0.0
+                                    : internal_kind == 1 ? 100.0 * double(c % 4)
+                                                         : 20000 * unit(rng);
+            cell.push_back({point(), point(), internal});
+          }
+          p.cells.push_back(cell);
+        }
+        for (const bool manhattan : {false, true}) {
+          if (manhattan)
+            p.distance = [](geometry::Point2 a, geometry::Point2 b) {
+              return std::abs(a.x - b.x) + std::abs(a.y - b.y);
+            };
+          else
+            p.distance = [](geometry::Point2 a, geometry::Point2 b) {
+              return geometry::distance(a, b);
+            };
+          p.distance_at_least_straight = false;
+          const std::vector<std::size_t> truth = PlainSearch{p}.nearest();
+          const CellOrder plain = nearest_neighbour_order(p);
+          const CellOrder plain_search = n <= 64 ? heuristic_cell_order(p) : CellOrder{};
+          p.distance_at_least_straight = true;
+          const CellOrder fast = nearest_neighbour_order(p);
+          ASSERT_EQ(fast.visits.size(), truth.size());
+          for (std::size_t i = 0; i < truth.size(); ++i) {
+            ASSERT_EQ(fast.visits[i].cell, truth[i])
+                << "layout " << layout << ", " << n << " cells, internal " << internal_kind
+                << (manhattan ? ", Manhattan" : "") << ", at " << i;
+            ASSERT_EQ(fast.visits[i].cell, plain.visits[i].cell);
+            ASSERT_EQ(fast.visits[i].variant, plain.visits[i].variant);
+          }
+          ASSERT_EQ(fast.objective_m, plain.objective_m);
+          if (n <= 64) {
+            const CellOrder fast_search = heuristic_cell_order(p);
+            ASSERT_EQ(fast_search.objective_m, plain_search.objective_m);
+            ASSERT_EQ(fast_search.visits.size(), plain_search.visits.size());
+            for (std::size_t i = 0; i < n; ++i) {
+              ASSERT_EQ(fast_search.visits[i].cell, plain_search.visits[i].cell);
+              ASSERT_EQ(fast_search.visits[i].variant, plain_search.visits[i].variant);
+            }
+          }
+          ++checked;
+        }
+      }
+  EXPECT_EQ(checked, 5 * 9 * 3 * 2);
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 // Shortest paths that stay inside an area (closed: running along the boundary is allowed).
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -46,9 +48,22 @@ class VisibilityRouter {
 
  private:
   bool inside_closed(Point2 p) const;
+  /// The area's edges by their direction from one point, in bins of angle: a visibility test from
+  /// a point asked about often looks only at the edges in the leg's direction (about a bin's
+  /// worth), not at every grid cell along the leg. Every edge that may share a point with a leg
+  /// from the point is among them (the margins below), so the exact tests decide as before.
+  struct Fan {
+    std::vector<std::uint32_t> start;  ///< per bin, its first item; + the end
+    std::vector<std::uint32_t> items;  ///< edge indices
+    std::vector<std::uint32_t> near;   ///< edges within near_m of the point: asked every time
+    double near_m = 0;  ///< 1e-6 of the larger of the area's and the point's extent, metres
+  };
+  Fan fan_of(Point2 a) const;
+  long fan_bin(double diamond_angle) const;
   /// The part of [a, b] outside the closed area, as a fraction of its length; once that part
-  /// exceeds `stop_m` metres, a partial sum (still above stop_m).
-  double outside_fraction(Point2 a, Point2 b, double stop_m) const;
+  /// exceeds `stop_m` metres, a partial sum (still above stop_m). `fan`: the fan of a, or null.
+  double outside_fraction(Point2 a, Point2 b, double stop_m, const Fan* fan = nullptr) const;
+  bool visible_with(Point2 a, Point2 b, const Fan* fan) const;
   Point2 moved_out(Point2 before, Point2 corner, Point2 after, double allowance_m) const;
   struct Box {
     double x0, y0, x1, y1;
@@ -64,10 +79,21 @@ class VisibilityRouter {
   // the same nodes with the same distances and predecessors, in the same order, only not all.
   static constexpr signed char kUnknown = -1;
   /// Which graph nodes a point sees (kUnknown: not asked yet), per point asked about (routing
-  /// asks about the same entry and exit points many times).
-  std::vector<signed char>& seen_row(Point2 p) const;
-  bool sees(Point2 p, std::vector<signed char>& row, std::size_t node) const;
-  mutable std::map<std::pair<double, double>, std::vector<signed char>> sees_;
+  /// asks about the same entry and exit points many times), and its fan once it has been asked
+  /// kFanAfter times (a fan costs about as much as that many tests along the grid).
+  struct Row {
+    std::vector<signed char> seen;
+    int asked = 0;
+    std::unique_ptr<Fan> fan;
+  };
+  static constexpr int kFanAfter = 12;
+  Row& seen_row(Point2 p) const;
+  bool sees(Point2 p, Row& row, std::size_t node) const;
+  mutable std::map<std::pair<double, double>, Row> sees_;
+  mutable std::vector<std::unique_ptr<Fan>> node_fans_;  ///< per node, built when it is expanded
+  std::size_t fan_bins_ = 0;
+  double bins_per_unit_ = 0;  ///< fan bins per unit of diamond angle (4 a turn)
+  double extent_m_ = 0;       ///< the largest absolute coordinate of the area, metres
   /// The visibility graph's edges of a node (ascending), built when a search first settles it.
   const std::vector<std::pair<std::size_t, double>>& adjacent(std::size_t node) const;
   mutable std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
@@ -88,7 +114,7 @@ class VisibilityRouter {
     std::vector<char> settled;
     std::vector<std::size_t> settled_nodes;  ///< in the order settled
     std::vector<Item> queue;                 ///< a min-heap (std::push_heap with greater)
-    std::vector<signed char>* from_row = nullptr;
+    Row* from_row = nullptr;
   };
   Search& search_from(Point2 a) const;
   /// Settles the next node of `s` (from point a); nodes_.size() when none is left.

@@ -31,6 +31,10 @@ struct CellOrderProblem {
   /// `crossing_weight` x the transit's length per such cell (home legs are not counted).
   std::function<std::uint64_t(geometry::Point2, geometry::Point2)> crossed;
   double crossing_weight = 1.0;
+  /// Set when `distance(a, b)` is never below geometry::distance(a, b) (straight transits, paths
+  /// routed inside an area; rounding aside): nearest neighbour (nearest_neighbour_order(),
+  /// heuristic_cell_order()'s start) then asks only the cells near enough to win, same order.
+  bool distance_at_least_straight = false;
 };
 
 struct CellVisit {
@@ -56,8 +60,9 @@ CellOrder evaluate_order(const CellOrderProblem& problem, const std::vector<Cell
 /// most 16 cells.
 CellOrder exact_cell_order(const CellOrderProblem& problem);
 
-/// Nearest neighbour only (from home, the cheapest next transit + cell each time): O(n² v). A
-/// quick estimate for ranking candidate directions.
+/// Nearest neighbour only (from home, the cheapest next transit + cell each time; ties to the lower
+/// cell, then variant): O(n² v), or about O(n v) for cells spread evenly with
+/// `distance_at_least_straight`. A quick estimate for ranking candidate directions.
 CellOrder nearest_neighbour_order(const CellOrderProblem& problem);
 
 /// Nearest neighbour, then local search (move a cell or a block of two or three, swap two,
