@@ -332,7 +332,9 @@ TEST(BalancedDivision, RegionOnSplitCorpusShapesFliesEveryLaneOnce) {
            SWATH_SOURCE_DIR, 1818, 1, DivisionMode::region, Balance::makespan)) {
     if (c.field.starts_with("holes")) continue;
 #ifdef SWATH_SANITIZED
-    if (c.fleet != "three-quads") continue;  // CI's sanitized pass looks for memory errors
+    // CI's sanitized pass looks for memory errors, not figures: two shapes (each planned twice,
+    // ~10 s under the sanitizers)
+    if (c.fleet != "three-quads" || planned == 2) continue;
 #endif
     check_balanced(c, 10.0);  // lanes, coverage and recomputed times; balance: the bench's table
     const SurveyPlan plan = plan_survey(c.request);
@@ -341,7 +343,7 @@ TEST(BalancedDivision, RegionOnSplitCorpusShapesFliesEveryLaneOnce) {
     ++planned;
   }
 #ifdef SWATH_SANITIZED
-  EXPECT_EQ(planned, 5);
+  EXPECT_EQ(planned, 2);
 #else
   EXPECT_EQ(planned, 10);
 #endif
