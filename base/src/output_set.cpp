@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/mman.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -41,11 +42,15 @@ std::string manifest_name(const std::string& kind) {
 }
 
 // ---- The signal side: temporaries to remove when SIGINT/SIGTERM/SIGHUP/SIGXFSZ end the process.
-// Kept in fixed storage the handler can read without allocating (async-signal-safe).
+// Kept in fixed storage the handler can read without allocating (async-signal-safe): 4,096 paths
+// (16 MiB) mapped on the first registration, not a static array. In .bss the table was scanned
+// by LeakSanitizer at every sanitized process's exit (4,000 of its 9,400 page faults, ~0.06 s of
+// CPU a process; the CLI tests start ~600), and a program that writes nothing needs none of it.
 
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGXFSZ};
 constexpr std::size_t kMaxTemporaries = 4096;
-std::array<std::array<char, PATH_MAX>, kMaxTemporaries> g_temporaries;
+using PathSlot = std::array<char, PATH_MAX>;
+PathSlot* volatile g_temporaries = nullptr;  // kMaxTemporaries slots once mapped; never unmapped
 volatile sig_atomic_t g_temporary_count = 0;
 std::array<char, PATH_MAX> g_created_directory{};  // removed too when the set created it
 struct sigaction g_previous[std::size(kCleanupSignals)];
@@ -86,6 +91,12 @@ void register_temporary(const std::string& path) {
   if (static_cast<std::size_t>(g_temporary_count) >= kMaxTemporaries)
     throw std::runtime_error("more than " + std::to_string(kMaxTemporaries) +
                              " files in one output set");
+  if (g_temporaries == nullptr) {
+    void* table = ::mmap(nullptr, sizeof(PathSlot) * kMaxTemporaries, PROT_READ | PROT_WRITE,
+                         MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (table == MAP_FAILED) fail(path, "cannot map the table of temporary files");
+    g_temporaries = static_cast<PathSlot*>(table);
+  }
   copy_path(g_temporaries[g_temporary_count], path);
   g_temporary_count = g_temporary_count + 1;
 }

@@ -41,12 +41,11 @@ std::vector<std::string> CopterDriver::safety_params() const {
   return {kFsGcsEnable};
 }
 
-std::vector<std::string> CopterDriver::safety_warnings(
-    const std::vector<std::string>& unread) const {
-  if (!unread.empty())
-    return {std::string("could not read ") + kFsGcsEnable + " (no answer to " +
-            std::to_string(settings_.attempts) +
-            " requests): whether the vehicle returns on a lost link is unknown"};
+std::string CopterDriver::unread_consequence() const {
+  return "whether the vehicle returns on a lost link is unknown";
+}
+
+std::vector<std::string> CopterDriver::safety_warnings() const {
   const auto it = state_.params.find(kFsGcsEnable);
   if (it != state_.params.end() && it->second == 0)
     return {std::string(kFsGcsEnable) +

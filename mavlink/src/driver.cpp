@@ -206,7 +206,11 @@ void Driver::finish_safety_check() {
     if (p.state != CommandState::accepted) unread.push_back(p.param_name);
   }
   safety_reads_.clear();
-  for (std::string& w : safety_warnings(unread)) state_.warnings.push_back(std::move(w));
+  for (const std::string& name : unread)
+    state_.warnings.push_back("could not read " + name + " (no answer to " +
+                              std::to_string(settings_.attempts) +
+                              " requests): " + unread_consequence());
+  for (std::string& w : safety_warnings()) state_.warnings.push_back(std::move(w));
 }
 
 void Driver::on_frame(const Frame& frame, double now_s) {

@@ -66,12 +66,12 @@ std::vector<std::string> Px4Driver::safety_params() const {
   return {kLossTimeout, kLossAction};
 }
 
-std::vector<std::string> Px4Driver::safety_warnings(const std::vector<std::string>& unread) const {
+std::string Px4Driver::unread_consequence() const {
+  return "PX4's lost-link failsafe is unknown";
+}
+
+std::vector<std::string> Px4Driver::safety_warnings() const {
   std::vector<std::string> out;
-  for (const std::string& name : unread)
-    out.push_back("could not read " + name + " (no answer to " +
-                  std::to_string(settings_.attempts) +
-                  " requests): PX4's lost-link failsafe is unknown");
   const auto action = state_.params.find(kLossAction);
   if (action != state_.params.end() && action->second == 0) {
     const auto timeout = state_.params.find(kLossTimeout);

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "fleet_images.hpp"
@@ -524,9 +526,12 @@ TEST(FleetCli, RenderRedrawsARunFromItsFilesByteForByte) {
   const std::string faults = fresh_dir("fleet-render-faults") + ".yaml";
   std::ofstream(faults) << "- {t_s: 20, drone: drone-1, kind: link_loss, duration_s: 15}\n"
                            "- {t_s: 60, drone: drone-2, kind: motor_failure}\n";
-  for (const std::string& args : {std::string("wifi --world rf_field --drones 2"),
-                                  std::string("road --world road --drones 2 --faults ") + faults,
-                                  std::string("tracking --world tracking --drones 3")}) {
+  std::vector<std::string> cases{std::string("road --world road --drones 2 --faults ") + faults};
+#ifndef SWATH_SANITIZED  // CI's sanitized pass: the road with faults (its pictures have the most)
+  cases.push_back("wifi --world rf_field --drones 2");
+  cases.push_back("tracking --world tracking --drones 3");
+#endif
+  for (const std::string& args : cases) {
     const std::string run = fresh_dir("fleet-render-run"), again = fresh_dir("fleet-render-again");
     const CliRun r = run_swath_fleet("run " + args + " --render --size 640x480 -o " + run);
     ASSERT_NE(r.exit_code, 2) << r.err;

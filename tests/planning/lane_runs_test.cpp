@@ -208,9 +208,14 @@ TEST(LaneRuns, LanesInsideRunsFlyableAndTheOracleSeesTheArea) {
 // settings. Every line inside the area and out of the no-fly zones, coverage of the flyable area
 // >= 99.9 % by the oracle, and split/hull mean <= 0.97, worst <= 1.3.
 TEST(SplitCorpus, ShorterThanTheHullInsideAndCovered) {
+#ifdef SWATH_SANITIZED
+  const int per_family = 1;  // CI's sanitized pass looks for memory errors: the bounds on 6 shapes
+#else
+  const int per_family = 2;
+#endif
   double sum = 0, worst = 0;
   int n = 0;
-  for (const test::CorpusShape& shape : test::split_corpus(1818, 2)) {
+  for (const test::CorpusShape& shape : test::split_corpus(1818, per_family)) {
     const test::SplitRow row = test::measure_split(shape.area);
     const std::string what = shape.family + " " + std::to_string(shape.index);
     if (!row.concave) continue;
@@ -224,7 +229,7 @@ TEST(SplitCorpus, ShorterThanTheHullInsideAndCovered) {
     worst = std::max(worst, row.split_m / row.hull_m);
     ++n;
   }
-  ASSERT_GE(n, 10);
+  ASSERT_GE(n, 5 * per_family);
   EXPECT_LE(sum / n, 0.97);
   EXPECT_LE(worst, 1.3);
   RecordProperty("mean_split_over_hull", std::to_string(sum / n));

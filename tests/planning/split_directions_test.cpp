@@ -9,6 +9,8 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <set>
+#include <string>
 
 #include "coverage_oracle.hpp"
 #include "field_shapes.hpp"
@@ -148,7 +150,9 @@ void expect_spacing_kept(const SplitPlan& plan, const std::string& what,
     }
     // A lane off the grid (lane_runs' coverage lanes, at a region's slanted edge) may sit up to
     // half a spacing farther; dropped lanes leave whole footprints (>= 2 spacings here) between.
-    if (std::isfinite(nearest)) EXPECT_LE(nearest, 1.55 * spacing_m) << what << " line " << i;
+    if (std::isfinite(nearest)) {
+      EXPECT_LE(nearest, 1.55 * spacing_m) << what << " line " << i;
+    }
   }
 }
 
@@ -270,8 +274,13 @@ TEST(SplitDirections, CoverageAnyDirectionAgreesWithTheOneDirectionMeasure) {
 // per-region plan sound (inside, covered, its path as reported), keeping the side overlap, and
 // shorter than the one-direction plan; the others that plan itself.
 TEST(SplitDirections, CorpusShapesPlannedDirectly) {
+#ifdef SWATH_SANITIZED
+  const int per_family = 1;  // CI's sanitized pass looks for memory errors (28 s at 2 a family)
+#else
+  const int per_family = 2;
+#endif
   int won = 0;
-  for (const test::CorpusShape& shape : test::split_corpus(1818, 2)) {
+  for (const test::CorpusShape& shape : test::split_corpus(1818, per_family)) {
     if (!shape.area.holes.empty()) continue;
     const Ring& ring = shape.area.outer;
     const Both b = plan_both(ring, ring.front(), 17.4, 58.0);
@@ -290,17 +299,21 @@ TEST(SplitDirections, CorpusShapesPlannedDirectly) {
 
 // The split corpus draw through the whole survey: per region is never longer than one direction,
 // never outside, and sees >= 99.9 % (of the flyable area; of the area where there are no holes).
-// Under the sanitizers (CI's second pass looks for memory errors) one shape per family.
+// Under the sanitizers (CI's second pass looks for memory errors) one shape of each family where
+// regions are cut (the ragged strip, the L or T and the random walk: 24 -> ~10 s there).
 TEST(SplitDirections, CorpusNeverLongerInsideAndCovered) {
 #ifdef SWATH_SANITIZED
   const int per_family = 1;
+  const std::set<std::string> families{"ragged-strip", "l-t", "walk"};
 #else
   const int per_family = 2;
+  const std::set<std::string> families{"ragged-strip", "notched", "comb", "l-t", "holes", "walk"};
 #endif
   test::SplitSettingsForCorpus one, per_region;
   per_region.directions = SplitDirections::per_region;
   int n = 0, won = 0;
   for (const test::CorpusShape& shape : test::split_corpus(1818, per_family)) {
+    if (!families.contains(shape.family)) continue;
     const test::SplitRow a = test::measure_split(shape.area, one);
     const test::SplitRow b = test::measure_split(shape.area, per_region);
     const std::string what = shape.family + " " + std::to_string(shape.index);
@@ -319,7 +332,7 @@ TEST(SplitDirections, CorpusNeverLongerInsideAndCovered) {
     won += b.regions > 0;
     ++n;
   }
-  ASSERT_GE(n, 5 * per_family);
+  ASSERT_GE(n, int(families.size() - 1) * per_family);
   RecordProperty("shapes_per_region", std::to_string(won));
 }
 

@@ -27,7 +27,8 @@ class CopterDriver final : public Driver {
 
  private:
   std::vector<std::string> safety_params() const override;
-  std::vector<std::string> safety_warnings(const std::vector<std::string>& unread) const override;
+  std::string unread_consequence() const override;
+  std::vector<std::string> safety_warnings() const override;
   void send_target(double now_s) override;
 
   double target_sent_s_ = -std::numeric_limits<double>::infinity();

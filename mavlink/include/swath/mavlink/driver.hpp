@@ -155,9 +155,11 @@ class Driver {
 
   /// The parameters the safety check reads at the first connection.
   virtual std::vector<std::string> safety_params() const = 0;
-  /// The warnings from what was read (`unread`: names never answered).
-  virtual std::vector<std::string> safety_warnings(
-      const std::vector<std::string>& unread) const = 0;
+  /// What a safety parameter never answered leaves unknown: the end of its "could not read NAME
+  /// (no answer to N requests): ..." warning.
+  virtual std::string unread_consequence() const = 0;
+  /// The warnings from the values read (state_.params; an unread name is absent there).
+  virtual std::vector<std::string> safety_warnings() const = 0;
   /// Sends the position target when due (ArduCopter); nothing by default.
   virtual void send_target(double /*now_s*/) {}
   /// PARAM_VALUE carries integers byte for byte (PX4) rather than converted (ArduPilot).

@@ -49,7 +49,8 @@ class Px4Driver final : public Driver {
 
  private:
   std::vector<std::string> safety_params() const override;
-  std::vector<std::string> safety_warnings(const std::vector<std::string>& unread) const override;
+  std::string unread_consequence() const override;
+  std::vector<std::string> safety_warnings() const override;
   bool params_bytewise() const override { return true; }
 
   int reposition_ = -1;  ///< the last DO_REPOSITION's command id
