@@ -5,8 +5,10 @@
 #include <map>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_runs.hpp"
 
 namespace swath::geometry {
 namespace {
@@ -115,11 +117,15 @@ std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains
 // A ring from chains (right chain up, left chain down), cleaned and rotated back; empty if no area.
 Ring chains_ring(const std::vector<Point2>& left, const std::vector<Point2>& right,
                  double angle_deg) {
-  Ring ring = right;
-  ring.insert(ring.end(), left.rbegin(), left.rend());
+  // Up the right chain, down the left, repeats dropped (taken in place: a 10,000-vertex outline
+  // makes ~10^5 chain points a direction).
   Ring clean;
-  for (const Point2& p : ring)
+  clean.reserve(right.size() + left.size());
+  const auto add = [&clean](const Point2& p) {
     if (clean.empty() || !(clean.back() == p)) clean.push_back(p);
+  };
+  for (const Point2& p : right) add(p);
+  for (auto p = left.rbegin(); p != left.rend(); ++p) add(*p);
   while (clean.size() > 1 && clean.back() == clean.front()) clean.pop_back();
   if (clean.size() < 3 || signed_area(clean) <= 0) return {};
   const Turn back = turn_by(angle_deg);
@@ -172,8 +178,10 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
     }
     rings.push_back(std::move(ring));
   }
-  std::sort(vertices.begin(), vertices.end(),
-            [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); });
+  // In ring order the vertices rise and fall in long stretches: merged, not sorted anew for
+  // every direction (the same order, ties between equal points included).
+  sort_by_runs(
+      vertices, [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); }, false);
 
   std::vector<OpenCell> open;
   std::vector<Chains> pieces;
@@ -181,7 +189,9 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
     // Pieces between two events at one ordinate (an edge along the lanes) have no area.
     Ring ring = c.right_chain;
     ring.insert(ring.end(), c.left_chain.rbegin(), c.left_chain.rend());
-    if (signed_area(ring) > 0) pieces.push_back({c.left_chain, c.right_chain});
+    // Moved, not copied: every closed cell is overwritten or erased next.
+    if (signed_area(ring) > 0)
+      pieces.push_back({std::move(c.left_chain), std::move(c.right_chain)});
   };
   auto find = [&](auto pred) {
     const auto it = std::find_if(open.begin(), open.end(), pred);

@@ -105,12 +105,16 @@ class VariantTable {
     if (n == 0) return 0;
     cost_.resize(n * kMaxVariants);
     from_.resize(n * kMaxVariants);
-    after_.assign(n + 1, 0);  // cells flown after position k
-    for (std::size_t k = n; k-- > 0;) after_[k] = after_[k + 1] | bit(order[k]);
+    // Only the entries after `from` are read below, so only those are recomputed (the rest
+    // stay as they were: a candidate's table is the current one's up to `from`).
+    after_.resize(n + 1);  // cells flown after position k
+    after_[n] = 0;
+    for (std::size_t k = n; k-- > from;) after_[k] = after_[k + 1] | bit(order[k]);
     const bool may_give_up = give_up_m < kInf && p.crossing_weight >= 0;
     if (may_give_up) {
-      rest_.assign(n + 1, 0.0);  // least internal lengths of the cells after position k - 1
-      for (std::size_t k = n; k-- > 0;) {
+      rest_.resize(n + 1);  // least internal lengths of the cells after position k - 1
+      rest_[n] = 0.0;
+      for (std::size_t k = n; k-- > from;) {
         double least = kInf;
         for (const CellVariant& v : p.cells[order[k]]) least = std::min(least, v.internal_m);
         rest_[k] = rest_[k + 1] + least;
@@ -155,6 +159,15 @@ class VariantTable {
       }
     }
     return best_cost;
+  }
+  /// This table's layers before `from` made `other`'s (what fill() from `from` keeps): the
+  /// local search's copy of the current table for each candidate, without the layers it refills.
+  void keep_layers_of(const VariantTable& other, std::size_t from) {
+    cost_.resize(other.cost_.size());
+    from_.resize(other.from_.size());
+    const auto count = std::ptrdiff_t(std::min(from * kMaxVariants, other.cost_.size()));
+    std::copy(other.cost_.begin(), other.cost_.begin() + count, cost_.begin());
+    std::copy(other.from_.begin(), other.from_.begin() + count, from_.begin());
   }
   /// The visits of the last filled order.
   std::vector<CellVisit> visits(const std::vector<std::size_t>& order) const {
@@ -507,7 +520,7 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
               moved(order, move, i, j, kind < 3 ? std::size_t(kind) + 1 : 1);
           if (candidate.empty() || i == j) continue;
           --budget;
-          trial = current;
+          trial.keep_layers_of(current, std::min(i, j));
           const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9);
           if (tried < best.objective_m - 1e-9) {
             best.objective_m = tried;

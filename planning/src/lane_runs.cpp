@@ -10,6 +10,7 @@
 
 #include "lane_scan.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_runs.hpp"
 
 namespace swath::planning {
 namespace {
@@ -67,8 +68,11 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
   };
   // The inside samples come in order already (rows upwards, spans and their samples left to
   // right): only the boundary's are sorted, then merged in (equal samples are equal points, so
-  // the result is the one sorting all gave).
-  std::sort(samples.begin(), samples.end(), by_ordinate);
+  // the result is the one sorting all gave). The boundary's come in runs already sorted one way
+  // or the other (along an edge and on while the boundary keeps rising or falling): where those
+  // are long, they are merged (a field's few hundred samples of a few dozen edges were sorted
+  // anew for every direction).
+  geometry::sort_by_runs(samples, by_ordinate, true);
   const std::size_t boundary = samples.size();
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
@@ -91,14 +95,15 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
 class SeenCount {
  public:
   SeenCount(const std::vector<Point2>& samples, double footprint_width_m)
-      : samples_(samples), half_(footprint_width_m / 2 + 1e-9), count_(samples.size(), 0) {}
+      : samples_(samples),
+        rows_(samples),
+        half_(footprint_width_m / 2 + 1e-9),
+        count_(samples.size(), 0) {}
 
+  /// f(i) for every sample i the lane sees, in increasing i.
   template <typename F>
   void each_seen_by(const RunLane& lane, F f) const {
-    auto it = std::lower_bound(samples_.begin(), samples_.end(), lane.y - half_,
-                               [](Point2 p, double y) { return p.y < y; });
-    for (; it != samples_.end() && it->y <= lane.y + half_; ++it)
-      if (it->x >= lane.x0 - 1e-6 && it->x <= lane.x1 + 1e-6) f(std::size_t(it - samples_.begin()));
+    rows_.each_in(lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6, f);
   }
   void add(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { ++count_[i]; });
@@ -118,6 +123,7 @@ class SeenCount {
 
  private:
   const std::vector<Point2>& samples_;
+  detail::SampleRows rows_;  ///< the samples (sorted by ordinate, then abscissa) by row
   double half_;
   std::vector<int> count_;
 };

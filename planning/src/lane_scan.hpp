@@ -116,4 +116,59 @@ class LaneScan {
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
+// Points sorted by ordinate, then abscissa (lane_runs' coverage samples). A box walks the points
+// in its ordinate range, but a long row of equal ordinate (the inside's rows hold most of the
+// samples) is asked for the box's abscissae by search instead of walked whole: a row crossed by
+// several holes holds several lanes, and each lane walked every sample of every row within its
+// reach. The boundary's samples (rows of one) are walked as before.
+class SampleRows {
+ public:
+  /// `sorted` is kept by reference and must stay as it is.
+  explicit SampleRows(const std::vector<Point2>& sorted) : points_(sorted) {
+    for (std::size_t i = 0; i < points_.size();) {
+      std::size_t j = i + 1;
+      while (j < points_.size() && points_[j].y == points_[i].y) ++j;
+      if (j - i >= kLongRow) long_rows_.push_back({i, j});
+      i = j;
+    }
+  }
+
+  /// f(i) for every point i with y_lo <= y <= y_hi and x_lo <= x <= x_hi, in increasing i.
+  template <typename F>
+  void each_in(double y_lo, double y_hi, double x_lo, double x_hi, F f) const {
+    auto i = std::size_t(std::lower_bound(points_.begin(), points_.end(), y_lo,
+                                          [](Point2 p, double y) { return p.y < y; }) -
+                         points_.begin());
+    // The first point at or above y_lo starts its row: the next long row starts there or later.
+    auto row = std::lower_bound(long_rows_.begin(), long_rows_.end(), i,
+                                [](const Row& r, std::size_t k) { return r.begin < k; });
+    const std::size_t n = points_.size();
+    const std::size_t next_long = row == long_rows_.end() ? n : row->begin;
+    for (std::size_t stop = next_long; i < n && points_[i].y <= y_hi;) {
+      if (i == stop) {  // a long row: its points from x_lo on, up to x_hi
+        const auto first = points_.begin() + std::ptrdiff_t(row->begin);
+        const auto last = points_.begin() + std::ptrdiff_t(row->end);
+        for (auto it =
+                 std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
+             it != last && it->x <= x_hi; ++it)
+          f(std::size_t(it - points_.begin()));
+        i = row->end;
+        ++row;
+        stop = row == long_rows_.end() ? n : row->begin;
+        continue;
+      }
+      if (points_[i].x >= x_lo && points_[i].x <= x_hi) f(i);
+      ++i;
+    }
+  }
+
+ private:
+  static constexpr std::size_t kLongRow = 16;
+  struct Row {
+    std::size_t begin, end;
+  };
+  const std::vector<Point2>& points_;
+  std::vector<Row> long_rows_;  ///< rows of at least kLongRow points of one ordinate, ascending
+};
+
 }  // namespace swath::planning::detail

@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "random_polygons.hpp"
 #include "swath/geometry/classification.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_runs.hpp"
 
 namespace swath::geometry {
 namespace {
@@ -146,6 +149,56 @@ TEST(BoustrophedonProperty, CombsAndHoles) {
     expect_valid_decomposition(p, 180 * u(rng), "holes " + std::to_string(k));
     expect_valid_decomposition(p, 0, "holes at 0 " + std::to_string(k));
   }
+}
+
+// sort_by_runs must give std::sort's order: random points in runs rising and falling (as a
+// boundary's vertices and samples come), with equal ordinates, repeated points and runs of one;
+// few runs (merged) and many (sorted whole). Points alike when equal, and points tagged with
+// their place (equal points then differ: std::sort's own order between them must stay).
+TEST(SortByRuns, GivesTheOrderOfASortOfAll) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> unit(0, 1);
+  struct Tagged {
+    Point2 p;
+    std::size_t tag;
+  };
+  const auto by_ordinate = [](Point2 p, Point2 q) {
+    return p.y < q.y || (p.y == q.y && p.x < q.x);
+  };
+  const auto tagged_less = [&](const Tagged& a, const Tagged& b) { return by_ordinate(a.p, b.p); };
+  int merged = 0, ties = 0;
+  for (int k = 0; k < 400; ++k) {
+    std::vector<Point2> points;
+    const int runs = 1 + int(unit(rng) * (k % 2 == 0 ? 12 : 400));
+    const bool distinct = k % 4 == 0;  // no two points equal: the merge stands
+    for (int r = 0; r < runs; ++r) {
+      const int n = int(unit(rng) * 40);
+      const double y0 = std::floor(unit(rng) * 20), dy = std::floor(unit(rng) * 5 - 2) / 4;
+      const double x0 = std::floor(unit(rng) * 20), dx = std::floor(unit(rng) * 5 - 2) / 4;
+      for (int i = 0; i < n; ++i)
+        points.push_back(
+            distinct ? Point2{double(r) + i * 1e-3, y0 + r * 100 + dy * i + unit(rng) * 1e-9}
+                     : Point2{x0 + dx * i, y0 + dy * i});
+    }
+    std::vector<Point2> truth = points;
+    std::sort(truth.begin(), truth.end(), by_ordinate);
+    std::vector<Point2> sorted = points;
+    sort_by_runs(sorted, by_ordinate, true);
+    ASSERT_EQ(sorted.size(), truth.size());
+    for (std::size_t i = 0; i < truth.size(); ++i)
+      ASSERT_TRUE(sorted[i] == truth[i]) << "set " << k << " at " << i;
+    std::vector<Tagged> tagged;
+    for (std::size_t i = 0; i < points.size(); ++i) tagged.push_back({points[i], i});
+    std::vector<Tagged> tagged_truth = tagged;
+    std::sort(tagged_truth.begin(), tagged_truth.end(), tagged_less);
+    sort_by_runs(tagged, tagged_less, false);
+    for (std::size_t i = 0; i < tagged_truth.size(); ++i)
+      ASSERT_EQ(tagged[i].tag, tagged_truth[i].tag) << "set " << k << " at " << i;
+    merged += runs <= 12;
+    for (std::size_t i = 0; i + 1 < truth.size(); ++i) ties += truth[i] == truth[i + 1];
+  }
+  EXPECT_GT(merged, 100);
+  EXPECT_GT(ties, 100);  // equal points came up: the tagged sort's fallback was asked
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "lane_scan.hpp"
@@ -64,6 +65,50 @@ TEST(LaneScan, BucketsAnswerAsEveryEdge) {
     }
   }
   EXPECT_GT(spans, 50000u);  // the queries mostly cut the area
+}
+
+// SampleRows (lane_runs' samples by row) must find exactly the points a walk over every point
+// finds: random points, most on shared rows (as the inside's samples), some on rows of their own
+// (as the boundary's), abscissae repeated, sorted as lane_runs sorts them; boxes random and with
+// edges exactly on points' coordinates, empty, and beyond every point.
+TEST(SampleRows, BoxesFindWhatAWalkOverEveryPointFinds) {
+  test::Rng rng(1818);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t found = 0;
+  for (int k = 0; k < 40; ++k) {
+    std::vector<Point2> points;
+    const int rows = 1 + int(unit(rng) * 30);
+    for (int i = 0, n = int(unit(rng) * 2000); i < n; ++i) {
+      const double y = unit(rng) < 0.8 ? std::floor(unit(rng) * rows) * 2.5 : unit(rng) * 75;
+      const double x = unit(rng) < 0.2 ? std::floor(unit(rng) * 10) : unit(rng) * 100 - 20;
+      points.push_back({x, y});
+    }
+    std::sort(points.begin(), points.end(),
+              [](Point2 p, Point2 q) { return p.y < q.y || (p.y == q.y && p.x < q.x); });
+    const SampleRows index(points);
+    for (int q = 0; q < 200; ++q) {
+      auto pick = [&](bool along_x) {
+        if (!points.empty() && unit(rng) < 0.3) {
+          const Point2 p = points[std::size_t(unit(rng) * double(points.size()))];
+          return along_x ? p.x : p.y;
+        }
+        return unit(rng) * 120 - 30;
+      };
+      double y0 = pick(false), y1 = pick(false), x0 = pick(true), x1 = pick(true);
+      if (unit(rng) < 0.9) {  // mostly proper boxes; the rest may be empty
+        if (y1 < y0) std::swap(y0, y1);
+        if (x1 < x0) std::swap(x0, x1);
+      }
+      std::vector<std::size_t> walk, searched;
+      for (std::size_t i = 0; i < points.size(); ++i)
+        if (points[i].y >= y0 && points[i].y <= y1 && points[i].x >= x0 && points[i].x <= x1)
+          walk.push_back(i);
+      index.each_in(y0, y1, x0, x1, [&](std::size_t i) { searched.push_back(i); });
+      ASSERT_EQ(searched, walk) << "set " << k << ", box " << q;
+      found += walk.size();
+    }
+  }
+  EXPECT_GT(found, 10000u);  // the boxes mostly hold points
 }
 
 }  // namespace
