@@ -10,12 +10,15 @@
 // plan's wall time. BM_BalancedPlan times the same plans.
 //   swath_division_bench --balance-corpus
 // prints the same for region division on split-corpus shapes (tests/support/field_shapes.hpp).
+//   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY]
+// the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <string>
@@ -23,6 +26,7 @@
 #include "division_cases.hpp"
 #include "random_polygons.hpp"
 #include "region_division.hpp"
+#include "swath/geometry/decomposition.hpp"
 #include "swath/planning/division.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/planning/sweep.hpp"
@@ -192,6 +196,57 @@ int balance_corpus() {
   return 0;
 }
 
+// Issue 18's distribution: region division by makespan on `per_family` split-corpus shapes of
+// each family from `seed` (`family`: one family only, "" all), with 2, 3 and 4 equal drones and
+// three-quads. One row per plan (max / min, makespan, the regions' areas over the area), then per
+// fleet the mean, p90 and worst max / min and how many exceed 1.02.
+int balance_distribution(std::uint64_t seed, int per_family, const std::string& family) {
+  std::map<std::string, std::vector<double>> ratios;
+  double worst_tiling = 0;
+  for (const test::DivisionCase& base :
+       test::corpus_division_cases(SWATH_SOURCE_DIR, seed, per_family,
+                                   planning::DivisionMode::region, planning::Balance::makespan)) {
+    if (!family.empty() && !base.field.starts_with(family + " ")) continue;
+    std::vector<std::pair<std::string, planning::SurveyRequest>> requests;
+    if (base.fleet == "3 equal") {
+      for (const int n : {2, 3, 4}) {
+        planning::SurveyRequest r = base.request;
+        r.fleet = vehicle::equal_fleet(n, {});
+        r.fleet->home = geometry::GeoPoint{std::numeric_limits<double>::quiet_NaN(), 0, 0};
+        requests.push_back({std::to_string(n) + " equal", std::move(r)});
+      }
+    } else {
+      requests.push_back({base.fleet, base.request});
+    }
+    for (const auto& [fleet, request] : requests) {
+      const TimedPlan t = timed_plan(request);
+      const double ratio = test::max_over_min_flight(t.plan);
+      double area = 0, regions = 0;
+      for (const geometry::Ring& ring : geometry::rings_of(t.plan.area))
+        area += geometry::signed_area(ring);
+      for (const planning::DronePlan& d : t.plan.drones)
+        for (const geometry::Ring& piece : d.work.region) regions += geometry::signed_area(piece);
+      worst_tiling = std::max(worst_tiling, std::abs(regions / area - 1));
+      std::printf("| %s | %s | %s | %.4f | %.1f | %.6f | %.0f ms |\n", base.field.c_str(),
+                  fleet.c_str(), t.times.c_str(), ratio, t.plan.division.makespan_s, regions / area,
+                  t.ms);
+      std::fflush(stdout);
+      ratios[fleet].push_back(ratio);
+    }
+  }
+  for (auto& [fleet, r] : ratios) {
+    std::sort(r.begin(), r.end());
+    const double mean = std::accumulate(r.begin(), r.end(), 0.0) / double(r.size());
+    const double p90 =
+        r[std::min(r.size() - 1, std::size_t(std::ceil(0.9 * double(r.size())) - 1))];
+    const auto over = std::count_if(r.begin(), r.end(), [](double v) { return v > 1.02; });
+    std::printf("%s: %zu plans, mean %.4f, p90 %.4f, worst %.4f, %td over 1.02\n", fleet.c_str(),
+                r.size(), mean, p90, r.back(), over);
+  }
+  std::printf("regions' areas over the area: worst |sum / area - 1| %.2e\n", worst_tiling);
+  return 0;
+}
+
 void Cases(benchmark::internal::Benchmark* b) {
   b->ArgNames({"vertices", "drones"})->Unit(benchmark::kMillisecond);
   for (int n : {10, 1000, 10000})
@@ -213,6 +268,9 @@ int main(int argc, char** argv) {
       return balance_table();
     else if (std::strcmp(argv[i], "--balance-corpus") == 0)
       return balance_corpus();
+    else if (std::strcmp(argv[i], "--balance-distribution") == 0 && i + 2 < argc)
+      return balance_distribution(std::stoull(argv[i + 1]), std::stoi(argv[i + 2]),
+                                  i + 3 < argc ? argv[i + 3] : "");
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

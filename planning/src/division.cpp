@@ -385,11 +385,17 @@ DivisionResult divide_region(const std::vector<Ring>& rings, double angle_deg,
 
 namespace {
 
+// Which lanes of a line give the band below a cut along them their part at the other end: none
+// (the part flown first, or towards -x by row), all, or those of every other row (a serpentine).
+enum class LaneFlip { none, all, odd_rows, even_rows };
+
 // The lanes of one grid as one line to cut: lanes by ordinate (rows), then along +x.
 class LaneLine {
  public:
   // `by_row`: lanes by ordinate, then along +x; otherwise in the order given.
-  LaneLine(const std::vector<SweepLine>& lanes, double angle_deg, bool by_row)
+  // `flip`: which lanes give the band below a cut along them the part at their other end.
+  LaneLine(const std::vector<SweepLine>& lanes, double angle_deg, bool by_row,
+           LaneFlip flip = LaneFlip::none)
       : angle_deg_(angle_deg) {
     for (std::size_t i = 0; i < lanes.size(); ++i) {
       const Point2 a = rotate(lanes[i].start, -angle_deg), b = rotate(lanes[i].end, -angle_deg);
@@ -413,30 +419,43 @@ class LaneLine {
       std::sort(lanes_.begin(), lanes_.end(), [](const Lane& u, const Lane& v) {
         return std::tie(u.y, u.x0, u.index) < std::tie(v.y, v.x0, v.index);
       });
+    for (Lane& l : lanes_)
+      if (flip == LaneFlip::all || (flip == LaneFlip::odd_rows && l.row % 2 == 1) ||
+          (flip == LaneFlip::even_rows && l.row % 2 == 0))
+        l.reversed = !l.reversed;
     for (Lane& l : lanes_) {
       l.start = total_;
       total_ += l.x1 - l.x0;
     }
   }
 
-  // Lanes in the order given: per lane of [a, b], the box of its row's strip (rows end halfway
-  // between lane ordinates) and of its part along the lane (open where the part reaches the
-  // lane's end), with the lane's index.
-  std::vector<std::pair<std::size_t, std::array<double, 4>>> lane_boxes(double a, double b) const {
-    std::vector<std::pair<std::size_t, std::array<double, 4>>> out;
+  // A piece of a lane on its row: the row and its abscissae, increasing.
+  struct RowPiece {
+    std::size_t row;
+    double x0, x1;
+  };
+
+  // The pieces of lanes in [a, b] of the line as rows and abscissae (as share() cuts them).
+  std::vector<RowPiece> row_pieces(double a, double b) const {
+    std::vector<RowPiece> out;
     for (const Lane& l : lanes_) {
-      const double length = l.x1 - l.x0;
-      const double from = std::max(a, l.start), to = std::min(b, l.start + length);
-      const bool whole_short = holds_short(l, a, b);
-      if (!(to - from > kShortLane_m) && !whole_short) continue;
-      const double y0 = l.row == 0 ? -kInf : (row_y_[l.row - 1] + row_y_[l.row]) / 2;
-      const double y1 = l.row + 1 >= row_y_.size() ? kInf : (row_y_[l.row] + row_y_[l.row + 1]) / 2;
-      const auto [x0, x1] = along(l, from, to);
-      out.push_back({l.index,
-                     {y0, y1, whole_short || x0 == l.x0 ? -kInf : x0,
-                      whole_short || x1 == l.x1 ? kInf : x1}});
+      const double from = std::max(a, l.start), to = std::min(b, l.start + (l.x1 - l.x0));
+      if (holds_short(l, a, b)) {
+        out.push_back({l.row, l.x0, l.x1});
+      } else if (to - from > kShortLane_m) {
+        const auto [x0, x1] = along(l, from, to);
+        out.push_back({l.row, x0, x1});
+      }
     }
     return out;
+  }
+
+  std::size_t rows() const { return row_y_.size(); }
+  // Where row r's strip starts and ends across the lanes: halfway to the next rows' ordinates,
+  // the first and last rows out to infinity.
+  double row_lo(std::size_t r) const { return r == 0 ? -kInf : (row_y_[r - 1] + row_y_[r]) / 2; }
+  double row_hi(std::size_t r) const {
+    return r + 1 >= row_y_.size() ? kInf : (row_y_[r] + row_y_[r + 1]) / 2;
   }
 
   double total() const { return total_; }
@@ -459,46 +478,6 @@ class LaneLine {
       }
       out.push_back(piece);
     }
-    return out;
-  }
-
-  // Where a cut at t lies: its row and the abscissa across that row (-inf: the row's start,
-  // +inf: past the last row).
-  std::pair<std::size_t, double> position(double t) const {
-    if (lanes_.empty()) return {0, -kInf};
-    if (t >= total_) return {row_y_.size() - 1, kInf};
-    const auto it = std::upper_bound(lanes_.begin(), lanes_.end(), t,
-                                     [](double v, const Lane& l) { return v < l.start; });
-    const Lane& l = *(it == lanes_.begin() ? it : it - 1);
-    const bool row_start = &l == &lanes_.front() || (&l - 1)->row != l.row;
-    if (t <= l.start && row_start) return {l.row, -kInf};
-    return {l.row, std::clamp(l.x0 + (t - l.start), l.x0, l.x1)};
-  }
-
-  // The boxes (y0, y1, x0, x1 in the rotated frame) of the rows that [a, b] of the line holds:
-  // rows end halfway between lane ordinates, the first and last reach out to infinity.
-  std::vector<std::array<double, 4>> boxes(double a, double b) const {
-    std::vector<std::array<double, 4>> out;
-    if (!(b > a) || lanes_.empty()) return out;
-    const auto [ra, xa] = position(a);
-    const auto [rb, xb] = position(b);
-    auto lo = [&](std::size_t r) { return r == 0 ? -kInf : (row_y_[r - 1] + row_y_[r]) / 2; };
-    auto hi = [&](std::size_t r) {
-      return r + 1 >= row_y_.size() ? kInf : (row_y_[r] + row_y_[r + 1]) / 2;
-    };
-    if (ra == rb) {
-      if (xa == -kInf && xb == kInf) {
-        out.push_back({lo(ra), hi(ra), -kInf, kInf});
-      } else if (xb > xa) {
-        out.push_back({lo(ra), hi(ra), xa, xb});
-      }
-      return out;
-    }
-    // Whole rows between the partial ones (a partial row at -inf or +inf is whole).
-    const double y0 = xa == -kInf ? lo(ra) : hi(ra), y1 = xb == kInf ? hi(rb) : lo(rb);
-    if (xa != -kInf) out.push_back({lo(ra), hi(ra), xa, kInf});
-    if (y1 > y0) out.push_back({y0, y1, -kInf, kInf});
-    if (xb != kInf && xb != -kInf) out.push_back({lo(rb), hi(rb), -kInf, xb});
     return out;
   }
 
@@ -585,23 +564,24 @@ class LaneDivision {
   LaneDivision(const std::vector<Ring>& rings, double angle_deg,
                const std::vector<SweepLine>& lanes, const std::vector<DroneResource>& drones,
                const LaneSweep& sweep, const FlightMeasure& measure,
-               const std::vector<std::size_t>& lane_cell, const std::vector<Ring>& cells,
-               bool by_row = false)
+               const std::vector<std::size_t>& lane_cell, const std::vector<Ring>& share_area,
+               bool by_row = false, LaneFlip flip = LaneFlip::none)
       : drones_(drones),
         sweep_(sweep),
         measure_(measure),
         angle_deg_(angle_deg),
-        lane_cell_(lane_cell),
-        cells_(cells),
-        pieces_(geometry::boustrophedon_decomposition(rings, angle_deg).pieces),
+        pieces_(geometry::boustrophedon_decomposition(share_area.empty() ? rings : share_area,
+                                                      angle_deg)
+                    .pieces),
         by_cell_(!lane_cell.empty() && lane_cell.size() == lanes.size()),
-        line_(lanes, angle_deg, !by_cell_ || by_row),
+        line_(lanes, angle_deg, !by_cell_ || by_row, flip),
         tolerance_(1e-6 * (1 + line_.total())) {
     std::vector<Point2> vertices;
     for (const Ring& ring : rings) vertices.insert(vertices.end(), ring.begin(), ring.end());
     home_cost_ = home_costs(vertices, drones);
     weights_ = weights(drones, home_cost_, budgets_);
-    for (const Ring& ring : rings) total_area_ += geometry::signed_area(ring);
+    for (const Ring& ring : share_area.empty() ? rings : share_area)
+      total_area_ += geometry::signed_area(ring);
   }
 
   std::size_t size() const { return drones_.size(); }
@@ -677,11 +657,12 @@ class LaneDivision {
     DivisionResult r;
     double score_s = 0.0;
     r.drones.resize(size());
+    std::vector<std::vector<Ring>> regions = regions_of(bounds);
     for (std::size_t k = 0; k < size(); ++k) {
       const std::size_t d = order[k];
       DroneWork& work = r.drones[d];
       const double a = bounds[k], b = std::max(bounds[k], bounds[k + 1]);
-      work.region = region_of(a, b);
+      work.region = std::move(regions[k]);
       double area = 0;
       for (const Ring& piece : work.region) area += geometry::signed_area(piece);
       work.share = total_area_ > 0 ? area / total_area_ : 0;
@@ -706,43 +687,85 @@ class LaneDivision {
     return drones_[d].range_m && cost.length_m > *drones_[d].range_m * (1 + 1e-12);
   }
 
-  // The area of the share [a, b] of the line: its rows of the area, or of the cells.
-  std::vector<Ring> region_of(double a, double b) const {
-    std::vector<Ring> region;
-    auto add = [&](const Ring& piece, const std::array<double, 4>& box) {
-      Ring clipped = clip_box(piece, angle_deg_, box);
-      if (clipped.size() >= 3 && geometry::signed_area(clipped) > 1e-9 * total_area_)
-        region.push_back(std::move(clipped));
+  // The bands' regions for `bounds` (n + 1 of them), a partition of the area: each row of lanes
+  // (its strip ends halfway between lane ordinates, the first and last reach out to infinity)
+  // goes across to the bands of its pieces of lanes, split halfway between consecutive pieces of
+  // different bands (at the cut where a lane is cut along its length), the ground between two
+  // lanes of a row (a bay, a hole, a comb's gap) to the nearer along the row; strips held by one
+  // band whole are joined with their neighbours of the same band. The strips tile the plane, the
+  // boustrophedon pieces the area, so the regions' areas add up to it (clipping the cells to the
+  // lanes' rows instead lost the cells' ground outside those rows and any ground between cells).
+  std::vector<std::vector<Ring>> regions_of(const std::vector<double>& bounds) const {
+    const std::size_t n = size();
+    struct Owned {
+      double x0, x1;
+      std::size_t band;
     };
-    if (by_cell_) {
-      // Each cell's whole lanes (consecutive rows of a run) as one box, cut lanes on their own.
-      std::map<std::size_t, std::array<double, 4>> whole;
-      for (const auto& [lane, box] : line_.lane_boxes(a, b)) {
-        const std::size_t cell = lane_cell_[lane];
-        if (cell >= cells_.size()) continue;
-        if (std::isfinite(box[2]) || std::isfinite(box[3])) {
-          add(cells_[cell], box);
-          continue;
-        }
-        const auto [it, fresh] = whole.emplace(cell, box);
-        it->second[0] = std::min(it->second[0], box[0]);
-        it->second[1] = std::max(it->second[1], box[1]);
-      }
-      for (const auto& [cell, box] : whole) add(cells_[cell], box);
-    } else {
-      for (const auto& box : line_.boxes(a, b))
-        for (const Ring& piece : pieces_) add(piece, box);
+    std::vector<std::vector<Owned>> rows(line_.rows());
+    for (std::size_t k = 0; k < n; ++k) {
+      const double a = bounds[k], b = std::max(bounds[k], bounds[k + 1]);
+      if (!(b > a)) continue;
+      for (const LaneLine::RowPiece& p : line_.row_pieces(a, b))
+        rows[p.row].push_back({p.x0, p.x1, k});
     }
-    return region;
+    std::vector<std::vector<std::array<double, 4>>> boxes(n);            // y0, y1, x0, x1 per band
+    std::optional<std::pair<std::size_t, std::array<double, 4>>> whole;  // open run of rows
+    auto close_whole = [&] {
+      if (whole) boxes[whole->first].push_back(whole->second);
+      whole.reset();
+    };
+    double y0 = -kInfinity;  // a row without pieces (none is expected) goes to the next
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      std::vector<Owned>& row = rows[r];
+      if (row.empty()) continue;
+      std::sort(row.begin(), row.end(), [](const Owned& u, const Owned& v) {
+        return std::tie(u.x0, u.x1, u.band) < std::tie(v.x0, v.x1, v.band);
+      });
+      const double y1 = line_.row_hi(r);
+      std::vector<std::pair<double, std::size_t>> starts{{-kInfinity, row.front().band}};
+      double reach = row.front().x1;  // the current band's farthest abscissa
+      for (std::size_t i = 1; i < row.size(); ++i) {
+        if (row[i].band != starts.back().second)
+          starts.push_back(
+              {std::clamp((reach + row[i].x0) / 2, starts.back().first, kInfinity), row[i].band});
+        reach = row[i].band == row[i - 1].band ? std::max(reach, row[i].x1) : row[i].x1;
+      }
+      if (starts.size() == 1) {
+        if (whole && whole->first == starts.front().second) {
+          whole->second[1] = y1;
+        } else {
+          close_whole();
+          whole = {starts.front().second, {y0, y1, -kInfinity, kInfinity}};
+        }
+      } else {
+        close_whole();
+        for (std::size_t i = 0; i < starts.size(); ++i)
+          boxes[starts[i].second].push_back(
+              {y0, y1, starts[i].first, i + 1 < starts.size() ? starts[i + 1].first : kInfinity});
+      }
+      y0 = y1;
+    }
+    close_whole();
+    if (std::isfinite(y0) && !boxes.empty()) {  // rows without pieces at the top (none expected)
+      for (auto& band : boxes)
+        if (!band.empty() && band.back()[1] == y0) band.back()[1] = kInfinity;
+    }
+    std::vector<std::vector<Ring>> regions(n);
+    for (std::size_t k = 0; k < n; ++k)
+      for (const std::array<double, 4>& box : boxes[k])
+        for (const Ring& piece : pieces_) {
+          Ring clipped = clip_box(piece, angle_deg_, box);
+          if (clipped.size() >= 3 && geometry::signed_area(clipped) > 1e-9 * total_area_)
+            regions[k].push_back(std::move(clipped));
+        }
+    return regions;
   }
 
   const std::vector<DroneResource>& drones_;
   const LaneSweep& sweep_;
   const FlightMeasure& measure_;
   double angle_deg_;
-  const std::vector<std::size_t>& lane_cell_;
-  const std::vector<Ring>& cells_;
-  std::vector<Ring> pieces_;
+  std::vector<Ring> pieces_;  // of the area the regions tile
   bool by_cell_;
   LaneLine line_;
   double tolerance_;
@@ -756,6 +779,10 @@ class LaneDivision {
 constexpr double kSlack = 1.02;  // how much longer than the smallest makespan a balance may be
 // A spread (longest over shortest flight) this narrow is not worth searching further.
 constexpr double kGoodSpread = 1.002;
+// The cut lanes' parts from their other ends are tried only above this spread (DESIGN.md §16's
+// bound for typical fields): below it they bought little and cost much (the meadow with
+// three-quads at 1.012 planned in 339 ms instead of 34 ms, for the same shares).
+constexpr double kFlipSpread = 1.02;
 
 // A balance of one order of the drones over the bands.
 struct Balanced {
@@ -930,8 +957,8 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
                             const std::vector<SweepLine>& lanes,
                             const std::vector<DroneResource>& drones, const LaneSweep& sweep,
                             const FlightMeasure& measure, const std::vector<std::size_t>& lane_cell,
-                            const std::vector<Ring>& cells, Balance balance) {
-  LaneDivision ld(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, cells);
+                            const std::vector<Ring>& share_area, Balance balance) {
+  LaneDivision ld(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, share_area);
   const std::size_t n = ld.size();
   const double total = ld.total();
   // Proportional: shares of the lanes' length in proportion to the weights, fleet order.
@@ -968,7 +995,7 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
   balance_line(ld);
   if (!lane_cell.empty() && lane_cell.size() == lanes.size() &&
       (candidates.empty() || ratio_of(candidates.front().first) > kGoodSpread)) {
-    LaneDivision rows(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, cells, true);
+    LaneDivision rows(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, share_area, true);
     balance_line(rows);
   }
   double best_score = std::numeric_limits<double>::infinity();
@@ -983,7 +1010,38 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
       chosen = &c;
     }
   }
-  if (chosen && chosen->second <= result_score) result = chosen->first;
+  if (chosen && chosen->second <= result_score) {
+    result = chosen->first;
+    result_score = chosen->second;
+  }
+  // Where the drones are still more than kFlipSpread apart, the same with the lanes' parts taken
+  // from their other ends: a band's zigzag ends at one end of a lane or the other with the parity
+  // of its lanes, so a share one piece of lane longer can jump by a home leg's length (1.0759 on
+  // the corpus's walk 0 with three equal drones: 787, 787, 731 s, the third drone a lane's flight
+  // short or one too long). Below a cut along a lane the band's part is then from its other end:
+  // every lane's (whole rows), every other row's (a serpentine). A variant is kept only if it is
+  // narrower and its longest flight no longer than what it replaces.
+  if (balance == Balance::makespan && n > 1 && ratio_of(result) > kFlipSpread) {
+    const bool by_cell = !lane_cell.empty() && lane_cell.size() == lanes.size();
+    std::vector<std::pair<bool, LaneFlip>> variants;  // (by row, flip)
+    if (by_cell) variants.push_back({false, LaneFlip::all});
+    for (const LaneFlip flip : {LaneFlip::all, LaneFlip::odd_rows, LaneFlip::even_rows})
+      variants.push_back({true, flip});
+    for (const auto& [by_row, flip] : variants) {
+      const double ratio = ratio_of(result);
+      if (ratio <= kGoodSpread) break;
+      LaneDivision line(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, share_area,
+                        by_row, flip);
+      candidates.clear();
+      balance_line(line);
+      if (candidates.empty()) continue;
+      auto& [r, score] = candidates.front();
+      if (score <= result_score && ratio_of(r) < ratio * (1 - 1e-9)) {
+        result = std::move(r);
+        result_score = score;
+      }
+    }
+  }
   result.proportional_makespan_s = proportional_makespan;
   return result;
 }

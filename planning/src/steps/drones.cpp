@@ -4,6 +4,7 @@
 #include <map>
 
 #include "swath/base/input_error.hpp"
+#include "swath/geometry/decomposition.hpp"
 #include "swath/planning/split.hpp"
 #include "swath/planning/survey_steps.hpp"
 
@@ -160,11 +161,13 @@ DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
     return survey_path(sp.lines, spacing, routes.leg());
   };
   const Balance balance = plan.request.balance;
-  if (!by_cell)
-    return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure, {}, {},
-                        balance);
+  // The regions tile the area to cover (the field minus the no-fly zones, with --repair's further
+  // pieces), not the rings the lines keep their clearance in: their areas add up to the field's.
+  std::vector<geometry::Ring> share_area = geometry::rings_of(plan.area);
+  share_area.insert(share_area.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
   return divide_lanes(plan.planning_rings, angle, lanes, resources, sweep, measure,
-                      plan.sweep_line_cell, plan.cells, balance);
+                      by_cell ? plan.sweep_line_cell : std::vector<std::size_t>{}, share_area,
+                      balance);
 }
 
 }  // namespace

@@ -104,27 +104,32 @@ using LaneSweep =
 /// smallest (each cut moved to where its two drones' times cross, from several starts). A share
 /// over its drone's range counts as infinitely long. Every lane is flown exactly once: the pieces
 /// of a lane add up to it (a lane under a micrometre goes whole to the share holding its start).
-/// Regions: each drone's rows of the area (rows end halfway between lane ordinates; a row cut along
-/// a lane is cut across it there), clipped to `rings` (outer counter-clockwise, holes
-/// clockwise); shares are their areas. With `lane_cell` (the cell, an index into `cells`, of each
-/// lane), the lanes are cut in the order and direction given instead (the undivided plan's
+/// Regions: a partition of `share_area` (`rings` when empty; outer rings counter-clockwise, holes
+/// clockwise), their areas the shares: each row of lanes (rows end halfway between lane
+/// ordinates, the first and last reach out to infinity) goes across to the drones of its pieces
+/// of lanes, split at a cut along a lane and halfway between the pieces of two drones on a row
+/// (the ground between them: a bay, a hole, a gap between cells). With `lane_cell` (the cell of
+/// each lane), the lanes are cut in the order and direction given instead (the undivided plan's
 /// flight: run after run, so that a share is whole runs and parts of one at either end, and the
-/// part of a cut lane a drone gets is the part flown before or after the cut) and the regions are
-/// the cells clipped to each drone's lanes' rows; where that balance leaves the longest flight
-/// more than 0.2 % above the shortest, the lanes are balanced by row as well (a share's ends then
-/// run across cells side by side instead of reaching into the next cell in the flight order), and
-/// the narrowest of the two within 2 % of the shorter makespan is kept (spreads under 0.2 % equal,
-/// then the shorter makespan). `proportional_makespan_s`: cuts in proportion
-/// to the corrected capabilities, bands in fleet order; Balance::capability returns those cuts
-/// (shares of the lanes' length, the paper's Algorithm 4 on the plan's own lanes: every lane
-/// flown, so the side overlap holds across the bands' seams). Home costs and budgets as
-/// divide_region(); throws base::InputError as it does.
+/// part of a cut lane a drone gets is the part flown before or after the cut); where that balance
+/// leaves the longest flight more than 0.2 % above the shortest, the lanes are balanced by row as
+/// well (a share's ends then run across cells side by side instead of reaching into the next cell
+/// in the flight order), and the narrowest of the two within 2 % of the shorter makespan is kept
+/// (spreads under 0.2 % equal, then the shorter makespan). Where the drones are still more than
+/// 2 % apart, the same with the parts of cut lanes taken from their other ends (every lane, by row
+/// and in the order given, or every other row's), kept where narrower with a longest flight no
+/// longer: a band's zigzag ends at one end of a lane or the other with the parity of its lanes, so
+/// its time can jump by a lane's flight where its share first reaches into one.
+/// `proportional_makespan_s`: cuts in proportion to the corrected capabilities, bands in fleet
+/// order; Balance::capability returns those cuts (shares of the lanes' length, the paper's
+/// Algorithm 4 on the plan's own lanes: every lane flown, so the side overlap holds across the
+/// bands' seams). Home costs and budgets as divide_region(); throws base::InputError as it does.
 DivisionResult divide_lanes(const std::vector<geometry::Ring>& rings, double angle_deg,
                             const std::vector<SweepLine>& lanes,
                             const std::vector<DroneResource>& drones, const LaneSweep& sweep,
                             const FlightMeasure& measure,
                             const std::vector<std::size_t>& lane_cell = {},
-                            const std::vector<geometry::Ring>& cells = {},
+                            const std::vector<geometry::Ring>& share_area = {},
                             Balance balance = Balance::makespan);
 
 /// Area of `rings` (outer counter-clockwise, holes clockwise) with y <= y_cut in the frame rotated
