@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 
 #include "swath/energy/budget.hpp"
 #include "swath/energy/power_model.hpp"
@@ -490,7 +491,11 @@ TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
     histories.push_back(parse_dtg(run_app(*wifi, *world_of(seed), fleet, s).dtg_json, "h"));
   }
   double worse_db = 0, change_s = 0;
+#ifdef SWATH_SANITIZED
+  const int seeds = 1;  // CI's sanitized pass looks for memory errors (20 s at 4 seeds there)
+#else
   const int seeds = 4;
+#endif
   for (int seed = 1; seed <= seeds; ++seed) {
     const auto world = world_of(seed);
     s.seed = static_cast<std::uint64_t>(seed);
@@ -506,8 +511,12 @@ TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
     worse_db += (predictive.metrics.at("map_rmse_db") - reactive.metrics.at("map_rmse_db")) / seeds;
     change_s += (predictive.completion_time_s - reactive.completion_time_s) / seeds;
   }
+#ifndef SWATH_SANITIZED  // a mean over the seeds
   EXPECT_LE(worse_db, 0.5);
   EXPECT_LE(change_s, 0.0);
+#endif
+  RecordProperty("map_rmse_predictive_minus_reactive_db", std::to_string(worse_db));
+  RecordProperty("completion_predictive_minus_reactive_s", std::to_string(change_s));
 }
 
 // Relief (DESIGN.md §18.5, Example 5) on case 5 with 150 s flights: the idle drone is sent to
