@@ -136,7 +136,6 @@ TEST(Runtime, OneTaskCompletesWhenTheClosedFormSays) {
   EXPECT_NEAR(got.at.z, 20, 1e-9);  // drone 0's altitude layer
   EXPECT_NEAR(got.values.at(0), 170, 1e-9);
   // Climb 20 m at 3 m/s, 130 m level, 3 s sensing; delivered at the first tick after + 50 ms.
-  const Kinematics k;
   const double done = 20.0 / 3.0 + rest_to_rest_s(130, 10, 2, 20, 2) + 3.0;
   EXPECT_NEAR(r.completion_time_s, std::ceil((done + 0.05) / 0.1 - 1e-9) * 0.1, 1e-9);
   // The log: every task created once and ended once; the one result delivered once.

@@ -122,11 +122,11 @@ TEST(Wind, GustsRiseHoldAndFallAsOneMinusCosine) {
   EXPECT_EQ(Gusts::shape(4.0 + 1e-9, 1, 2), 0.0);
   // Arrivals are Poisson: over 10 hours at 3 per minute, 1800 ± 4·√1800 gusts. A gust raises the
   // wind from zero: count the rises from rest.
-  GustSettings g;
-  g.rate_per_min = 3;
-  g.rise_s = {0.01, 0.01};
-  g.hold_s = {0, 0};
-  Gusts gusts(g, SplitMix64::stream(7, "gusts"));
+  GustSettings gust_settings;
+  gust_settings.rate_per_min = 3;
+  gust_settings.rise_s = {0.01, 0.01};
+  gust_settings.hold_s = {0, 0};
+  Gusts gusts(gust_settings, SplitMix64::stream(7, "gusts"));
   int starts = 0;
   bool calm = true;
   double peak = 0;
