@@ -585,6 +585,8 @@ class LaneDivision {
   }
 
   std::size_t size() const { return drones_.size(); }
+  /// Whether the lanes are cut in the flight order of a split area's cells (`lane_cell` given).
+  bool by_cell() const { return by_cell_; }
   double total() const { return line_.total(); }
   const DroneResource& drone(std::size_t d) const { return drones_[d]; }
   double angle_deg() const { return angle_deg_; }
@@ -993,8 +995,7 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
     return spread(t).first;
   };
   balance_line(ld);
-  if (!lane_cell.empty() && lane_cell.size() == lanes.size() &&
-      (candidates.empty() || ratio_of(candidates.front().first) > kGoodSpread)) {
+  if (ld.by_cell() && (candidates.empty() || ratio_of(candidates.front().first) > kGoodSpread)) {
     LaneDivision rows(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, share_area, true);
     balance_line(rows);
   }
@@ -1022,9 +1023,8 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
   // every lane's (whole rows), every other row's (a serpentine). A variant is kept only if it is
   // narrower and its longest flight no longer than what it replaces.
   if (balance == Balance::makespan && n > 1 && ratio_of(result) > kFlipSpread) {
-    const bool by_cell = !lane_cell.empty() && lane_cell.size() == lanes.size();
     std::vector<std::pair<bool, LaneFlip>> variants;  // (by row, flip)
-    if (by_cell) variants.push_back({false, LaneFlip::all});
+    if (ld.by_cell()) variants.push_back({false, LaneFlip::all});
     for (const LaneFlip flip : {LaneFlip::all, LaneFlip::odd_rows, LaneFlip::even_rows})
       variants.push_back({true, flip});
     for (const auto& [by_row, flip] : variants) {
