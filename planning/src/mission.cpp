@@ -244,31 +244,60 @@ double path_time_s(const std::vector<Point2>& path, const std::vector<double>& h
   return vehicle == Vehicle::multirotor ? time : length / speed_m_s;
 }
 
+namespace {
+
+// The path with each stop at a line end beside a no-fly zone (s.stop_at) drawn back along its line
+// by kStoppingMargin_m (a quarter of the line at most), where the leg off the line from there stays
+// inside (`inside`; without it nothing moves).
+std::vector<Point2> stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
+                                     const InsideTest& inside) {
+  std::vector<Point2> points = path.points;
+  const std::size_t n = points.size();
+  if (!s.stop_at || !inside) return points;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool from_line = i > 0 && path.on_line[i - 1];
+    const bool to_line = i + 1 < n && path.on_line[i];
+    if (from_line == to_line || !s.stop_at(path.points[i])) continue;
+    const Point2 p = path.points[i], along = from_line ? path.points[i - 1] : path.points[i + 1];
+    const double length_m = geometry::distance(p, along);
+    if (length_m <= 0) continue;
+    const Point2 q = p + (along - p) * (std::min(kStoppingMargin_m, length_m / 4) / length_m);
+    const bool has_off = from_line ? i + 1 < n : i > 0;
+    if (has_off && !inside(q, from_line ? path.points[i + 1] : path.points[i - 1])) continue;
+    points[i] = q;
+  }
+  return points;
+}
+
+}  // namespace
+
 DroneMission mission_for_path(int drone, Point2 home, const SurveyPath& path,
                               const MissionSettings& s, const LegRoute& route,
                               const InsideTest& inside) {
   MissionBuilder b(drone, home, s);
   DroneMission& m = b.mission();
-  const std::size_t n = path.points.size();
-  if (n > 0) b.route_to(path.points[0], route);
+  const std::vector<Point2> points = stops_drawn_back(path, s, inside);
+  const std::size_t n = points.size();
+  if (n > 0) b.route_to(points[0], route);
   for (std::size_t i = 0; i < n; ++i) {
-    const Point2 p = path.points[i];
+    const Point2 p = points[i];
     const bool from_line = i > 0 && path.on_line[i - 1];
     if (from_line) {
       // Consecutive segments on lines are one line (split only by intermediate waypoints).
       if (i > 1 && path.on_line[i - 2]) {
         m.lines.back().end = p;
       } else {
-        m.lines.push_back({path.points[i - 1], p});
+        m.lines.push_back({points[i - 1], p});
       }
-      m.work_length_m += geometry::distance(path.points[i - 1], p);
+      m.work_length_m += geometry::distance(points[i - 1], p);
     }
     const bool to_line = i + 1 < n && path.on_line[i];
     if (s.triggering.mode == TriggerMode::hover && from_line) {
       b.hover_line(p);
     } else {
       const bool line_end = from_line != to_line;
-      b.waypoint(p, line_end && s.stop_at && s.stop_at(p) ? kStopHold_s : 0.0);
+      // The stop is judged where the line ended (its drawn-back point may sit a metre further off).
+      b.waypoint(p, line_end && s.stop_at && s.stop_at(path.points[i]) ? kStopHold_s : 0.0);
     }
     if (to_line) {
       b.camera(true);
@@ -280,7 +309,7 @@ DroneMission mission_for_path(int drone, Point2 home, const SurveyPath& path,
         std::size_t j = i;
         bool all_inside = true;
         while (j + 1 < n && !path.on_line[j]) {
-          all_inside = all_inside && inside(path.points[j], path.points[j + 1]);
+          all_inside = all_inside && inside(points[j], points[j + 1]);
           ++j;
         }
         keep = all_inside && j + 1 < n && path.on_line[j];

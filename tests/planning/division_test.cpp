@@ -279,12 +279,17 @@ void check_balanced(const test::DivisionCase& c, double bound) {
   ASSERT_GT(shortest, 0) << what;
   EXPECT_LE(longest / shortest, bound) << what;
 
-  // Lanes: the undivided plan's lines of its first pass (the division's lanes).
+  // Lanes: the undivided plan's lines as its drone flies them (the division's lanes, their stops
+  // beside a no-fly zone drawn back by kStoppingMargin_m as the drones' are).
   const double angle = whole.sweep.angle_deg;
   double lanes_m = 0, flown_m = 0;
   for (const DronePlan& d : plan.drones)
     for (const SweepLine& l : d.mission.lines) flown_m += geometry::distance(l.start, l.end);
-  for (const SweepLine& lane : whole.sweep.lines) {
+  std::vector<SweepLine> whole_lanes;
+  for (const DronePlan& d : whole.drones)
+    whole_lanes.insert(whole_lanes.end(), d.mission.lines.begin(), d.mission.lines.end());
+  ASSERT_EQ(whole_lanes.size(), whole.sweep.lines.size()) << what;
+  for (const SweepLine& lane : whole_lanes) {
     const Point2 a = rotate(lane.start, -angle), b = rotate(lane.end, -angle);
     const double x0 = std::min(a.x, b.x), x1 = std::max(a.x, b.x);
     lanes_m += x1 - x0;
@@ -468,10 +473,12 @@ TEST(BalancedDivision, RegionByCapabilityFliesEveryLaneOnceInProportion) {
     check_balanced(c, 10.0);  // lanes and coverage; the balance is not the point here
     if (c.fleet != "3 equal") continue;
     const SurveyPlan plan = plan_survey(c.request);
-    std::vector<double> lane_m;
+    std::vector<double> lane_m;  // each drone's lanes as divided (its missions draw stops back)
     for (const DronePlan& d : plan.drones) {
       double m = 0;
-      for (const SweepLine& l : d.mission.lines) m += geometry::distance(l.start, l.end);
+      const SurveyPath& p = d.work.path;
+      for (std::size_t i = 0; i + 1 < p.points.size(); ++i)
+        if (p.on_line[i]) m += geometry::distance(p.points[i], p.points[i + 1]);
       lane_m.push_back(m);
     }
     ASSERT_EQ(lane_m.size(), 3u);
