@@ -131,9 +131,24 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   // it cut; the cuts are sorted, so the order the edges come in does not matter. An edge found
   // twice cuts twice at the same place: the piece between is empty and skipped, so the sum below
   // does not change.
+  // An edge's end within rounding of [a, b]'s line cuts there too, whichever side of the line
+  // rounding put it: a leg along a row of collinear edges (a comb's tooth tips) otherwise found
+  // either no cut at a gap's corners or one from an intersection of two nearly parallel lines
+  // (any parameter at all), and a leg across the gap's mouth was inside for some of its end
+  // points and not for the next ones.
+  const double off_line_limit = tolerance_ * std::sqrt(len2);
   const auto cut_by = [&](std::uint32_t e) {
-    if (apart(edge_boxes_[e])) return;
+    const Box& box = edge_boxes_[e];
+    if (box.x0 > seg.x1 + tolerance_ || box.x1 < seg.x0 - tolerance_ ||
+        box.y0 > seg.y1 + tolerance_ || box.y1 < seg.y0 - tolerance_)
+      return;
     const Point2 p = edges_.segments()[e].a, q = edges_.segments()[e].b;
+    const bool p_on = std::abs(cross(d, p - a)) <= off_line_limit,
+               q_on = std::abs(cross(d, q - a)) <= off_line_limit;
+    if (p_on) cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
+    if (q_on) cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
+    if (p_on && q_on) return;  // along the line: its ends are its cuts
+    if (apart(box)) return;
     if (strictly_one_side(a, d, p, q) || !segments_intersect(a, b, p, q)) return;
     const double denom = cross(d, q - p);
     if (denom != 0) {

@@ -45,7 +45,13 @@ class BruteArea {
     for (const geometry::Ring& ring : rings_)
       for (std::size_t i = 0; i < ring.size(); ++i) {
         const geometry::Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
-        if (!geometry::segments_intersect(a, b, p, q)) continue;
+        // An edge's end within rounding of the leg's line cuts there (the router's rule).
+        const double off_line_limit = tolerance_ * std::sqrt(len2);
+        const bool p_on = std::abs(geometry::cross(d, p - a)) <= off_line_limit,
+                   q_on = std::abs(geometry::cross(d, q - a)) <= off_line_limit;
+        if (p_on) cuts.push_back(std::clamp(geometry::dot(p - a, d) / len2, 0.0, 1.0));
+        if (q_on) cuts.push_back(std::clamp(geometry::dot(q - a, d) / len2, 0.0, 1.0));
+        if ((p_on && q_on) || !geometry::segments_intersect(a, b, p, q)) continue;
         const double denom = geometry::cross(d, q - p);
         if (denom != 0) {
           cuts.push_back(std::clamp(geometry::cross(p - a, q - p) / denom, 0.0, 1.0));

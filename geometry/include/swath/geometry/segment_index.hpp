@@ -83,22 +83,30 @@ class SegmentIndex {
     return std::size_t(f);
   }
   // Calls visit(row, first column, last column) for each row the closed segment [a, b] passes
-  // through, every cell that holds one of its points among those columns.
+  // through, every cell that holds one of its points among those columns, and those within a
+  // thousandth of a cell of it: segments registered and asked for this way are found when they
+  // come within rounding of each other, not only when they share a point (a leg a hair beside an
+  // edge that lies on a cell boundary; VisibilityRouter cuts a leg where an edge's end is within
+  // rounding of it).
   template <typename Visit>
   void rows_of(Point2 a, Point2 b, Visit visit) const {
-    const double x_lo = std::min(a.x, b.x), x_hi = std::max(a.x, b.x);
-    const double y_lo = std::min(a.y, b.y), y_hi = std::max(a.y, b.y);
+    const double margin_y = 1e-3 * cell_h_ + 1e-12 * (std::abs(a.y) + std::abs(b.y));
+    const double margin_x = 1e-3 * cell_w_ + 1e-12 * (std::abs(a.x) + std::abs(b.x));
+    const double x_lo = std::min(a.x, b.x) - margin_x, x_hi = std::max(a.x, b.x) + margin_x;
+    const double y_lo = std::min(a.y, b.y) - margin_y, y_hi = std::max(a.y, b.y) + margin_y;
     const std::size_t r0 = row(y_lo), r1 = row(y_hi);
     if (r0 == r1) {
       visit(r0, column(x_lo), column(x_hi));
       return;
     }
-    // Rows differ, so b.y != a.y. A row's points have ordinates within its bounds up to rounding
-    // (~1e-16 of the coordinates), their abscissae too: the margins (a thousandth of a cell) are
-    // far wider, and cost an extra cell now and then.
+    // Rows differ. A row's points have ordinates within its bounds up to rounding (~1e-16 of the
+    // coordinates), their abscissae too: the margins are far wider, and cost an extra cell now
+    // and then.
     const double dx = b.x - a.x, dy = b.y - a.y;
-    const double margin_y = 1e-3 * cell_h_ + 1e-12 * (std::abs(y_lo) + std::abs(y_hi));
-    const double margin_x = 1e-3 * cell_w_ + 1e-12 * (std::abs(x_lo) + std::abs(x_hi));
+    if (dy == 0) {  // a horizontal segment across rows only by the margin
+      for (std::size_t r = r0; r <= r1; ++r) visit(r, column(x_lo), column(x_hi));
+      return;
+    }
     for (std::size_t r = r0; r <= r1; ++r) {
       const double bottom = r == r0 ? y_lo : y0_ + double(r) * cell_h_ - margin_y;
       const double top = r == r1 ? y_hi : y0_ + double(r + 1) * cell_h_ + margin_y;
