@@ -221,6 +221,7 @@ TEST(SplitCorpus, ShorterThanTheHullInsideAndCovered) {
     if (!row.concave) continue;
     EXPECT_LE(row.line_outside_m, 1e-6) << what;
     EXPECT_LE(row.transit_outside_m, 1e-6) << what;
+    EXPECT_EQ(row.transit_outside_sampled_m, 0.0) << what;  // not the router's own word
     EXPECT_GE(row.flyable_coverage, 0.999) << what;
     if (shape.area.holes.empty()) {
       EXPECT_GE(row.coverage, 0.999) << what;
