@@ -341,7 +341,15 @@ std::size_t VisibilityRouter::settle_next(Point2 a, Search& s) const {
 }
 
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
-  if (!routing_ || visible(a, b)) return {a, b};
+  if (!routing_) return {a, b};
+  // Through a's fan where a has one (a run end asked about often, home): the same exact tests
+  // on the same edges, without walking the grid along the leg. Only towards b within the area's
+  // extent, as the fan's margins assume (see outside_fraction()).
+  const auto row = sees_.find({a.x, a.y});
+  const Fan* fan = row != sees_.end() && std::max(std::abs(b.x), std::abs(b.y)) <= extent_m_
+                       ? row->second.fan.get()
+                       : nullptr;
+  if (visible_with(a, b, fan)) return {a, b};
   // The eager answer: of the nodes b sees, the one with the least distance from a plus the
   // straight leg to b, the lowest index of equal ones. A node's sum is at least its distance,
   // and nodes are settled in order of distance, so they are taken in that order: those b is

@@ -62,6 +62,23 @@ class Transit {
     if (m == kUnknown) m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
     return m;
   }
+  /// At most cost(c1, v1, c2, v2, unflown), without asking the metric: the cost where known, the
+  /// length without the penalty where only that is known (the penalty only adds, for
+  /// `crossing_weight` >= 0), else the straight length less 1e-12 of it. Precondition:
+  /// `distance_at_least_straight` (the margin covers a routed length's rounding below the
+  /// straight one) and `crossing_weight` >= 0.
+  double lower_cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
+                    std::uint64_t unflown) const {
+    if (memoise_) {
+      const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
+      const double d = exit_to_entry_[at];
+      if (d >= 0) {
+        if (!p_.crossed || crossed_[at] == kUnknown) return d;
+        return d * (1 + p_.crossing_weight * bits_set(crossed_[at] & unflown));
+      }
+    }
+    return geometry::distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
+  }
   /// Transit length plus its penalty with the cells in `unflown` still to be flown.
   double cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
               std::uint64_t unflown) {
@@ -99,8 +116,17 @@ class VariantTable {
   /// `give_up_m`: transits, penalties and internal lengths are never negative, so a layer's least
   /// cost plus the least internal lengths of the cells after it bound the objective from below
   /// (the margin covers the rounding of adding them in another order).
+  ///
+  /// `tail` (optional): a table whose suffix() holds the costs of the rest of an order that has
+  /// the same cells as `order` from position `check_at` on (the local search's current order,
+  /// `check_at` the first position after those a move changes). Once layer `check_at` is filled,
+  /// its costs plus the tail's are the objective up to rounding (the same sums, added from the
+  /// other end): when that is clearly at least `give_up_m` the fill gives up there, where the
+  /// layers after it would have shown the same (the margin is far above the rounding of ~10^3
+  /// additions). Gives up only where the full fill's objective is at least `give_up_m`.
   double fill(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
-              std::size_t from, double give_up_m = kInf) {
+              std::size_t from, double give_up_m = kInf, const VariantTable* tail = nullptr,
+              std::size_t check_at = std::size_t(-1)) {
     const std::size_t n = order.size();
     if (n == 0) return 0;
     cost_.resize(n * kMaxVariants);
@@ -148,6 +174,13 @@ class VariantTable {
           least = std::min(least, cost_[k * kMaxVariants + v]);
         if (least + rest_[k + 1] - margin_m >= give_up_m) return kInf;
       }
+      if (tail && k == check_at && may_give_up) {
+        double whole = kInf;
+        for (std::size_t v = 0; v < variants.size(); ++v)
+          whole =
+              std::min(whole, cost_[k * kMaxVariants + v] + tail->rest_cost_[k * kMaxVariants + v]);
+        if (whole - margin_m >= give_up_m) return kInf;
+      }
     }
     last_ = 0;
     double best_cost = kInf;
@@ -169,6 +202,73 @@ class VariantTable {
     std::copy(other.cost_.begin(), other.cost_.begin() + count, cost_.begin());
     std::copy(other.from_.begin(), other.from_.begin() + count, from_.begin());
   }
+  /// The cost of the rest of `order` (this table's last filled order, filled whole) after each
+  /// layer's variant: transits on (with the penalties of the cells still after them), the later
+  /// cells' internal lengths and the leg home. What fill()'s `tail` reads.
+  void suffix(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order) {
+    const std::size_t n = order.size();
+    rest_cost_.assign(n * kMaxVariants, kInf);
+    after_all_.assign(n + 1, 0);
+    for (std::size_t k = n; k-- > 0;) after_all_[k] = after_all_[k + 1] | bit(order[k]);
+    if (n == 0) return;
+    for (std::size_t v = 0; v < p.cells[order[n - 1]].size(); ++v)
+      rest_cost_[(n - 1) * kMaxVariants + v] = t.to_home(order[n - 1], v);
+    std::uint64_t after = 0;  // cells flown after position k + 1
+    for (std::size_t k = n - 1; k-- > 0;) {
+      const auto& next = p.cells[order[k + 1]];
+      for (std::size_t u = 0; u < p.cells[order[k]].size(); ++u) {
+        double best = kInf;
+        for (std::size_t v = 0; v < next.size(); ++v)
+          best = std::min(best, t.cost(order[k], u, order[k + 1], v, after) + next[v].internal_m +
+                                    rest_cost_[(k + 1) * kMaxVariants + v]);
+        rest_cost_[k * kMaxVariants + u] = best;
+      }
+      after |= bit(order[k + 1]);
+    }
+  }
+  /// Whether `order`, a candidate of the local search whose layers before `from` this table holds
+  /// (keep_layers_of()) and whose cells from `check_at` on are those of the order `tail` last
+  /// took the suffix() of, certainly cannot reach below `give_up_m`: its layers `from` to
+  /// `check_at` with the transits' lower bounds (Transit::lower_cost(), no metric asked) plus
+  /// the tail's costs, less fill()'s margin. Each such layer is at most fill()'s (the same sums
+  /// of terms no larger, rounding is monotone), so fill() would give up at `check_at` (or
+  /// before) too: the same candidates are kept, but the rejected ones ask no routed transit.
+  /// Precondition: as for Transit::lower_cost(); from < check_at < order.size().
+  bool cannot_win(const CellOrderProblem& p, const Transit& t,
+                  const std::vector<std::size_t>& order, std::size_t from, std::size_t check_at,
+                  double give_up_m, const VariantTable& tail) {
+    const std::size_t layers = check_at - from + 1;
+    low_.assign(layers * kMaxVariants, kInf);
+    masks_.resize(layers);
+    std::uint64_t after = tail.after_all_[check_at + 1];  // the cells after position k
+    for (std::size_t k = check_at + 1; k-- > from;) {
+      masks_[k - from] = after;
+      after |= bit(order[k]);
+    }
+    for (std::size_t k = from; k <= check_at; ++k) {
+      const auto& variants = p.cells[order[k]];
+      for (std::size_t v = 0; v < variants.size(); ++v) {
+        double& best = low_[(k - from) * kMaxVariants + v];
+        if (k == 0) {
+          best = t.from_home(order[k], v) + variants[v].internal_m;
+          continue;
+        }
+        for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
+          const double before = k == from ? cost_[(k - 1) * kMaxVariants + u]
+                                          : low_[(k - 1 - from) * kMaxVariants + u];
+          best =
+              std::min(best, before + t.lower_cost(order[k - 1], u, order[k], v, masks_[k - from]) +
+                                 variants[v].internal_m);
+        }
+      }
+    }
+    double whole = kInf;
+    for (std::size_t v = 0; v < p.cells[order[check_at]].size(); ++v)
+      whole = std::min(whole, low_[(check_at - from) * kMaxVariants + v] +
+                                  tail.rest_cost_[check_at * kMaxVariants + v]);
+    const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
+    return whole - margin_m >= give_up_m;
+  }
   /// The visits of the last filled order.
   std::vector<CellVisit> visits(const std::vector<std::size_t>& order) const {
     std::vector<CellVisit> out(order.size());
@@ -186,6 +286,10 @@ class VariantTable {
   std::vector<std::size_t> from_;
   std::vector<std::uint64_t> after_;
   std::vector<double> rest_;
+  std::vector<double> rest_cost_;         ///< suffix(): per layer and variant
+  std::vector<std::uint64_t> after_all_;  ///< suffix(): the cells from position k on
+  std::vector<double> low_;               ///< cannot_win()'s layers
+  std::vector<std::uint64_t> masks_;      ///< cannot_win(): the cells after each of its layers
   std::size_t last_ = 0;
 };
 
@@ -394,13 +498,22 @@ std::vector<std::size_t> nearest_neighbour_grid(const CellOrderProblem& p) {
     const double f = (y - y0) / cell_m;
     return f > 0 ? std::min(rows - 1, long(f)) : 0L;
   };
-  std::vector<std::vector<std::size_t>> bucket(std::size_t(columns * rows));
-  std::vector<std::vector<std::size_t>> buckets_of(n);  // per cell, its variants' buckets
+  // The buckets in one array (bucket b's entries from start[b] to end[b], in entry order), not a
+  // vector each, built and freed for every direction ranked (~1 % of a routed plan's
+  // instructions). A cell's entries are consecutive in `entries`, each with its bucket in
+  // `in_bucket`.
+  const std::size_t buckets = std::size_t(columns * rows);
+  std::vector<std::size_t> in_bucket(entries.size()), start(buckets + 1, 0), end(buckets);
+  std::vector<std::size_t> first_entry(n + 1, entries.size());
+  for (std::size_t k = entries.size(); k-- > 0;) first_entry[entries[k].cell] = k;
   for (std::size_t k = 0; k < entries.size(); ++k) {
-    const std::size_t b = std::size_t(row(entries[k].at.y) * columns + column(entries[k].at.x));
-    bucket[b].push_back(k);
-    buckets_of[entries[k].cell].push_back(b);
+    in_bucket[k] = std::size_t(row(entries[k].at.y) * columns + column(entries[k].at.x));
+    ++start[in_bucket[k] + 1];
   }
+  for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+  std::vector<std::size_t> items(entries.size());
+  std::copy(start.begin(), start.end() - 1, end.begin());
+  for (std::size_t k = 0; k < entries.size(); ++k) items[end[in_bucket[k]]++] = k;
   std::vector<std::size_t> by_internal(n);  // the least internal length still unflown, in order
   for (std::size_t c = 0; c < n; ++c) by_internal[c] = c;
   std::sort(by_internal.begin(), by_internal.end(), [&](std::size_t a, std::size_t b) {
@@ -417,7 +530,9 @@ std::vector<std::size_t> nearest_neighbour_grid(const CellOrderProblem& p) {
     std::size_t best_cell = n, best_variant = 0;
     const auto visit = [&](long rr, long cc) {
       if (rr < 0 || rr >= rows || cc < 0 || cc >= columns) return;
-      for (const std::size_t e : bucket[std::size_t(rr * columns + cc)]) {
+      const std::size_t b = std::size_t(rr * columns + cc);
+      for (std::size_t i = start[b]; i < end[b]; ++i) {
+        const std::size_t e = items[i];
         const Entry& en = entries[e];
         if (used[en.cell] || least_internal[en.cell] > best ||
             geometry::distance(at, en.at) * (1 - 1e-12) + en.internal_m > best)
@@ -455,8 +570,15 @@ std::vector<std::size_t> nearest_neighbour_grid(const CellOrderProblem& p) {
     used[best_cell] = 1;
     order.push_back(best_cell);
     // Its entries leave their buckets: later steps do not walk over them again.
-    for (const std::size_t b : buckets_of[best_cell])
-      std::erase_if(bucket[b], [&](std::size_t e) { return entries[e].cell == best_cell; });
+    for (std::size_t x = first_entry[best_cell]; x < entries.size() && entries[x].cell == best_cell;
+         ++x) {
+      const std::size_t b = in_bucket[x];
+      const auto first = items.begin() + std::ptrdiff_t(start[b]);
+      end[b] =
+          std::size_t(std::remove_if(first, items.begin() + std::ptrdiff_t(end[b]),
+                                     [&](std::size_t e) { return entries[e].cell == best_cell; }) -
+                      items.begin());
+    }
     at = p.cells[best_cell][best_variant].exit;
   }
   return order;
@@ -475,40 +597,52 @@ CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
 
 namespace {
 
-// One candidate order from `order`: move 0 moves the block of `len` cells at i to start at j, move
-// 1 swaps i and j, move 2 reverses i..j. Empty when the move does nothing or does not apply.
-std::vector<std::size_t> moved(const std::vector<std::size_t>& order, int move, std::size_t i,
-                               std::size_t j, std::size_t len) {
+// One candidate order from `order` into `c` (its buffer reused: the local search tries ~10^4 a
+// plan): move 0 moves the block of `len` cells at i to start at j, move 1 swaps i and j, move 2
+// reverses i..j. False when the move does nothing or does not apply. `changed_end`: one past the
+// last position the move changes.
+bool moved(const std::vector<std::size_t>& order, int move, std::size_t i, std::size_t j,
+           std::size_t len, std::vector<std::size_t>& c, std::size_t& changed_end) {
   const std::size_t n = order.size();
-  std::vector<std::size_t> c;
+  const auto at = [&c](std::size_t k) { return c.begin() + static_cast<std::ptrdiff_t>(k); };
   if (move == 0) {
-    if (i + len > n || (j >= i && j <= i + len - 1) || j + len > n) return c;
+    if (i + len > n || (j >= i && j <= i + len - 1) || j + len > n) return false;
     c = order;
-    std::vector<std::size_t> block(c.begin() + static_cast<std::ptrdiff_t>(i),
-                                   c.begin() + static_cast<std::ptrdiff_t>(i + len));
-    c.erase(c.begin() + static_cast<std::ptrdiff_t>(i),
-            c.begin() + static_cast<std::ptrdiff_t>(i + len));
-    c.insert(c.begin() + static_cast<std::ptrdiff_t>(j), block.begin(), block.end());
-  } else if (j > i) {
-    c = order;
-    if (move == 1)
-      std::swap(c[i], c[j]);
+    // The block taken out and put back in at j of what is left: a rotation of the stretch
+    // between.
+    if (j < i)
+      std::rotate(at(j), at(i), at(i + len));
     else
-      std::reverse(c.begin() + static_cast<std::ptrdiff_t>(i),
-                   c.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+      std::rotate(at(i), at(i + len), at(j + len));
+    changed_end = std::max(i, j) + len;
+    return true;
   }
-  return c;
+  if (j <= i) return false;
+  c = order;
+  if (move == 1)
+    std::swap(c[i], c[j]);
+  else
+    std::reverse(at(i), at(j) + 1);
+  changed_end = j + 1;
+  return true;
 }
 
 // Local search over orders (move one cell or a block of two or three, swap two, reverse a run;
 // first improvement); variants are re-optimised exactly for each candidate. Moves reach at most
 // `reach` positions and at most `budget` candidates are evaluated (the budget is spent in place).
 // `current` holds the layers of `order`; a candidate is filled into `trial` from the first
-// position it changes, on a copy of the layers before it, and the two swap when it is kept.
+// position it changes, on a copy of the layers before it, and the two swap when it is kept. The
+// candidate's cells after the positions a move changes are the current order's: once the first
+// of them is filled, the current order's suffix costs tell whether the candidate can win, without
+// the layers after it (fill()'s `tail`; the same candidates are kept).
 void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t>& order,
                   CellOrder& best, std::size_t reach, std::size_t& budget, VariantTable& current) {
   const std::size_t n = order.size();
   VariantTable trial;
+  std::vector<std::size_t> candidate;
+  current.suffix(p, t, order);
+  // Transits bounded from below without asking the metric (routed paths are the dear part).
+  const bool bounded = p.distance_at_least_straight && p.crossing_weight >= 0;
   for (bool improved = true; improved && budget > 0;) {
     improved = false;
     for (std::size_t i = 0; i < n && budget > 0; ++i)
@@ -516,17 +650,24 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
            ++j)
         for (int kind = 0; kind < 5 && budget > 0; ++kind) {  // block moves of 1-3, swap, reverse
           const int move = kind < 3 ? 0 : kind - 2;
-          const std::vector<std::size_t> candidate =
-              moved(order, move, i, j, kind < 3 ? std::size_t(kind) + 1 : 1);
-          if (candidate.empty() || i == j) continue;
+          std::size_t changed_end = n;
+          if (i == j || !moved(order, move, i, j, kind < 3 ? std::size_t(kind) + 1 : 1, candidate,
+                               changed_end))
+            continue;
           --budget;
           trial.keep_layers_of(current, std::min(i, j));
-          const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9);
+          if (bounded && changed_end < n &&
+              trial.cannot_win(p, t, candidate, std::min(i, j), changed_end,
+                               best.objective_m - 1e-9, current))
+            continue;
+          const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9,
+                                          &current, changed_end);
           if (tried < best.objective_m - 1e-9) {
             best.objective_m = tried;
             best.visits = trial.visits(candidate);
-            order = candidate;
+            order.swap(candidate);
             std::swap(current, trial);
+            current.suffix(p, t, order);
             improved = true;
           }
         }
