@@ -10,7 +10,7 @@
 // plan's wall time. BM_BalancedPlan times the same plans.
 //   swath_division_bench --balance-corpus
 // prints the same for region division on split-corpus shapes (tests/support/field_shapes.hpp).
-//   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY]
+//   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY or SHAPE]
 // the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads.
 #include <benchmark/benchmark.h>
 
@@ -197,16 +197,16 @@ int balance_corpus() {
 }
 
 // Issue 18's distribution: region division by makespan on `per_family` split-corpus shapes of
-// each family from `seed` (`family`: one family only, "" all), with 2, 3 and 4 equal drones and
-// three-quads. One row per plan (max / min, makespan, the regions' areas over the area), then per
-// fleet the mean, p90 and worst max / min and how many exceed 1.02.
+// each family from `seed` (`family`: one family or one shape, "comb 0", only; "" all), with 2, 3
+// and 4 equal drones and three-quads. One row per plan (max / min, makespan, the regions' areas
+// over the area), then per fleet the mean, p90 and worst max / min and how many exceed 1.02.
 int balance_distribution(std::uint64_t seed, int per_family, const std::string& family) {
   std::map<std::string, std::vector<double>> ratios;
   double worst_tiling = 0;
   for (const test::DivisionCase& base :
        test::corpus_division_cases(SWATH_SOURCE_DIR, seed, per_family,
                                    planning::DivisionMode::region, planning::Balance::makespan)) {
-    if (!family.empty() && !base.field.starts_with(family + " ")) continue;
+    if (!family.empty() && base.field != family && !base.field.starts_with(family + " ")) continue;
     std::vector<std::pair<std::string, planning::SurveyRequest>> requests;
     if (base.fleet == "3 equal") {
       for (const int n : {2, 3, 4}) {

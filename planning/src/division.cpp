@@ -389,14 +389,33 @@ namespace {
 // (the part flown first, or towards -x by row), all, or those of every other row (a serpentine).
 enum class LaneFlip { none, all, odd_rows, even_rows };
 
-// The lanes of one grid as one line to cut: lanes by ordinate (rows), then along +x.
+// Cuts across the lanes instead of along them: the rows of lanes in blocks of `rows` consecutive
+// rows (0: no blocks, cuts along the lanes; kAllRows: one block), the first block `offset` rows
+// (< rows) shorter; within a block a cut is a line perpendicular to the lanes, the band below it
+// gets every lane's part on its left (towards -x) or, `from_right`, on its right. With every
+// drone at one home beside long lanes a band cut along them grows in steps of a lane flown out and
+// back; a block of two rows cut across lets a band end with a U (out along one row, back along
+// the next) of any length, the whole area one block lets every band fly all rows.
+struct Across {
+  static constexpr std::size_t kAllRows = std::numeric_limits<std::size_t>::max();
+  std::size_t rows = 0;
+  std::size_t offset = 0;
+  bool from_right = false;
+};
+
+// The lanes of one grid as one line to cut: lanes by ordinate (rows), then along +x; or, with
+// blocks of rows cut across (Across), block after block, position s within a block the abscissa
+// X(s) at which the length of the block's lanes on the band's side of it is s, and [a, b] every
+// lane's part between X(a) and X(b).
 class LaneLine {
  public:
   // `by_row`: lanes by ordinate, then along +x; otherwise in the order given.
   // `flip`: which lanes give the band below a cut along them the part at their other end.
+  // `across`: blocks of rows cut across the lanes (the lanes by row; `flip` not used then).
   LaneLine(const std::vector<SweepLine>& lanes, double angle_deg, bool by_row,
-           LaneFlip flip = LaneFlip::none)
-      : angle_deg_(angle_deg) {
+           LaneFlip flip = LaneFlip::none, Across across = {})
+      : angle_deg_(angle_deg), across_(across.rows > 0), from_right_(across.from_right) {
+    by_row = by_row || across_;
     for (std::size_t i = 0; i < lanes.size(); ++i) {
       const Point2 a = rotate(lanes[i].start, -angle_deg), b = rotate(lanes[i].end, -angle_deg);
       const bool forward = a.x <= b.x;
@@ -427,6 +446,42 @@ class LaneLine {
       l.start = total_;
       total_ += l.x1 - l.x0;
     }
+    if (across_) {
+      // Blocks of consecutive rows (the lanes are by row); within one, the summed length on the
+      // band's side of an abscissa is piecewise linear between the lanes' ends. Abscissae are u:
+      // x, or -x from the right.
+      total_ = 0;
+      for (std::size_t i = 0; i < lanes_.size();) {
+        const auto block_of = [&](std::size_t row) {
+          return across.rows == Across::kAllRows
+                     ? 0
+                     : (row + across.rows - across.offset) / across.rows;
+        };
+        Block b;
+        b.first = i;
+        while (i < lanes_.size() && block_of(lanes_[i].row) == block_of(lanes_[b.first].row)) ++i;
+        b.last = i;
+        for (std::size_t k = b.first; k < b.last; ++k) {
+          const auto [u0, u1] = u_of(lanes_[k]);
+          b.us.push_back(u0);
+          b.us.push_back(u1);
+        }
+        std::sort(b.us.begin(), b.us.end());
+        b.us.erase(std::unique(b.us.begin(), b.us.end()), b.us.end());
+        for (const double u : b.us) {
+          double side = 0;
+          for (std::size_t k = b.first; k < b.last; ++k) {
+            const auto [u0, u1] = u_of(lanes_[k]);
+            side += std::clamp(u - u0, 0.0, u1 - u0);
+          }
+          b.side.push_back(side);
+        }
+        b.start = total_;
+        total_ += b.side.back();
+        b.end = total_;
+        blocks_.push_back(std::move(b));
+      }
+    }
   }
 
   // A piece of a lane on its row: the row and its abscissae, increasing.
@@ -438,6 +493,10 @@ class LaneLine {
   // The pieces of lanes in [a, b] of the line as rows and abscissae (as share() cuts them).
   std::vector<RowPiece> row_pieces(double a, double b) const {
     std::vector<RowPiece> out;
+    if (across_) {
+      for (const auto& [l, x0, x1] : across_pieces(a, b)) out.push_back({l->row, x0, x1});
+      return out;
+    }
     for (const Lane& l : lanes_) {
       const double from = std::max(a, l.start), to = std::min(b, l.start + (l.x1 - l.x0));
       if (holds_short(l, a, b)) {
@@ -465,6 +524,15 @@ class LaneLine {
   // holds its start (holds_short).
   std::vector<LanePiece> share(double a, double b) const {
     std::vector<LanePiece> out;
+    if (across_) {
+      for (const auto& [l, x0, x1] : across_pieces(a, b)) {
+        LanePiece piece{l->index, l->line};
+        if (x0 > l->x0) piece.line.start = rotate({x0, l->y}, angle_deg_);
+        if (x1 < l->x1) piece.line.end = rotate({x1, l->y}, angle_deg_);
+        out.push_back(piece);
+      }
+      return out;
+    }
     for (const Lane& l : lanes_) {
       const double length = l.x1 - l.x0;
       const double from = std::max(a, l.start), to = std::min(b, l.start + length);
@@ -499,15 +567,77 @@ class LaneLine {
     return l.x1 - l.x0 <= kShortLane_m && b > a && a <= l.start && (l.start < b || b >= total_);
   }
 
+  // A block of rows cut across: lanes_[first, last), their ends' abscissae u (increasing) and
+  // the summed length of its lanes below each (side), its stretch [start, end] of the line.
+  struct Block {
+    std::size_t first = 0, last = 0;
+    std::vector<double> us, side;
+    double start = 0, end = 0;
+  };
+
+  // Lane l's ends as abscissae u, increasing.
+  std::pair<double, double> u_of(const Lane& l) const {
+    return from_right_ ? std::make_pair(-l.x1, -l.x0) : std::make_pair(l.x0, l.x1);
+  }
+
+  // Within block b: the abscissa u where the summed length of lane below it is s (0 < s < the
+  // block's length; past a stretch without lanes).
+  static double abscissa(const Block& b, double s) {
+    const auto k = static_cast<std::size_t>(std::upper_bound(b.side.begin(), b.side.end(), s) -
+                                            b.side.begin() - 1);
+    if (k + 1 >= b.us.size()) return b.us.back();
+    const double lanes = (b.side[k + 1] - b.side[k]) / (b.us[k + 1] - b.us[k]);  // lanes at u
+    return std::min(b.us[k + 1], b.us[k] + (s - b.side[k]) / lanes);
+  }
+
+  // Across: each lane's part of [a, b] (b > a): in a block within [a, b] whole, in one that holds
+  // a or b its part between the abscissae of a and b; pieces no longer than kShortLane_m left out,
+  // a lane that short whole to the share whose [U(a), U(b)) holds its start (a block of only such
+  // lanes to the share whose [a, b) holds its start, the last share closed). Neighbouring shares
+  // meet at the same abscissa, so the pieces of a lane add up to it.
+  struct AcrossPiece {
+    const Lane* lane;
+    double x0, x1;
+  };
+  std::vector<AcrossPiece> across_pieces(double a, double b) const {
+    std::vector<AcrossPiece> out;
+    if (!(b > a)) return out;
+    for (const Block& block : blocks_) {
+      const bool last = b >= total_;
+      if (block.end > block.start ? !(a < block.end && b > block.start)
+                                  : !(a <= block.start && (block.start < b || last)))
+        continue;
+      const double ua = a <= block.start ? -kInf : abscissa(block, a - block.start);
+      const double ub = b >= block.end ? kInf : abscissa(block, b - block.start);
+      for (std::size_t k = block.first; k < block.last; ++k) {
+        const Lane& l = lanes_[k];
+        const auto [u0, u1] = u_of(l);
+        if (u1 - u0 <= kShortLane_m) {
+          if (ua <= u0 && (u0 < ub || last)) out.push_back({&l, l.x0, l.x1});
+          continue;
+        }
+        const double from = std::max(u0, ua), to = std::min(u1, ub);
+        if (!(to - from > kShortLane_m)) continue;
+        if (from_right_)
+          out.push_back({&l, -to, -from});
+        else
+          out.push_back({&l, from, to});
+      }
+    }
+    return out;
+  }
+
   // The part [from, to] of the line on lane l (from < to) as abscissae, increasing.
   std::pair<double, double> along(const Lane& l, double from, double to) const {
     if (l.reversed) return {l.x1 - (to - l.start), l.x1 - (from - l.start)};
     return {l.x0 + (from - l.start), l.x0 + (to - l.start)};
   }
   double angle_deg_;
+  bool across_, from_right_;
   std::vector<Lane> lanes_;
   std::vector<double> row_y_;
   double total_ = 0;
+  std::vector<Block> blocks_;  // across
 };
 
 // `ring` clipped to a box of the frame rotated by -angle_deg (infinite sides not clipped), in the
@@ -565,7 +695,7 @@ class LaneDivision {
                const std::vector<SweepLine>& lanes, const std::vector<DroneResource>& drones,
                const LaneSweep& sweep, const FlightMeasure& measure,
                const std::vector<std::size_t>& lane_cell, const std::vector<Ring>& share_area,
-               bool by_row = false, LaneFlip flip = LaneFlip::none)
+               bool by_row = false, LaneFlip flip = LaneFlip::none, Across across = {})
       : drones_(drones),
         sweep_(sweep),
         measure_(measure),
@@ -574,7 +704,7 @@ class LaneDivision {
                                                       angle_deg)
                     .pieces),
         by_cell_(!lane_cell.empty() && lane_cell.size() == lanes.size()),
-        line_(lanes, angle_deg, !by_cell_ || by_row, flip),
+        line_(lanes, angle_deg, !by_cell_ || by_row, flip, across),
         tolerance_(1e-6 * (1 + line_.total())) {
     std::vector<Point2> vertices;
     for (const Ring& ring : rings) vertices.insert(vertices.end(), ring.begin(), ring.end());
@@ -915,14 +1045,15 @@ std::pair<std::vector<double>, std::pair<double, double>> refine(
 // stops at its ends, which end of its zigzag it leaves from), so the smallest makespan can leave
 // the drone beside a jump well short of the others. For each order within 2 % of the smallest
 // makespan, from greedy cuts within a few makespans up to 2 % above it (from the first band and
-// from the last), refine(); the narrowest found within 2 % of the smallest makespan wins.
-// `found`: not empty.
-std::pair<std::vector<std::size_t>, std::vector<double>> narrowest(LaneDivision& ld,
-                                                                   std::vector<Balanced> found) {
+// from the last), refine(); the narrowest found within 2 % of the smallest makespan (and within
+// `cap_s`, seconds) wins. `found`: not empty.
+std::pair<std::vector<std::size_t>, std::vector<double>> narrowest(
+    LaneDivision& ld, std::vector<Balanced> found,
+    double cap_s = std::numeric_limits<double>::infinity()) {
   const std::size_t n = ld.size();
   std::sort(found.begin(), found.end(),
             [](const Balanced& u, const Balanced& v) { return u.makespan_s < v.makespan_s; });
-  const double makespan_limit = found.front().makespan_s * kSlack;
+  const double makespan_limit = std::min(found.front().makespan_s * kSlack, cap_s);
   std::vector<std::size_t> best_order = found.front().order;
   std::vector<double> best_bounds = found.front().bounds;
   std::pair<double, double> best_spread{std::numeric_limits<double>::infinity(), 0.0};
@@ -983,11 +1114,18 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
   // the cells side by side). Of the two, the smallest spread within 2 % of the smaller makespan,
   // spreads under kGoodSpread counted as equal and then the shorter makespan.
   std::vector<std::pair<DivisionResult, double>> candidates;
-  auto balance_line = [&](LaneDivision& line) {
+  // cap_s: where the narrowest cuts within 2 % of the line's own makespan are longer, those
+  // within cap_s too (a second candidate).
+  auto balance_line = [&](LaneDivision& line,
+                          double cap_s = std::numeric_limits<double>::infinity()) {
     const std::vector<Balanced> found = balance_orders(line, proportional_makespan);
     if (found.empty()) return;
     const auto [order, bounds] = narrowest(line, found);
     candidates.push_back(line.result_for(order, bounds));
+    if (candidates.back().second > cap_s) {
+      const auto [capped_order, capped_bounds] = narrowest(line, found, cap_s);
+      candidates.push_back(line.result_for(capped_order, capped_bounds));
+    }
   };
   auto ratio_of = [](const DivisionResult& r) {
     std::vector<double> t;
@@ -1039,6 +1177,43 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
       if (score <= result_score && ratio_of(r) < ratio * (1 - 1e-9)) {
         result = std::move(r);
         result_score = score;
+      }
+    }
+  }
+  // Where the drones are still more than kFlipSpread apart, bands cut across the lanes (Across):
+  // blocks of two rows (from either row's parity, the band below a cut given the lanes' parts on
+  // their left or right) or all rows in one block. Cut along the rows only, with every drone at
+  // one home beside long lanes, a band's time steps by a lane flown out and back where its share
+  // first reaches into one more (walk 0 above: 720 s, then 807 s; 768, 768, 731 s at best); a
+  // band ending in a U over two rows grows without that step (764, 764, 764 s). Each variant's
+  // narrowest cuts within 2 % of its own makespan, and where those are longer than the division
+  // so far, also its narrowest within that (its 2 % often ends a few per cent longer: combs, L/T
+  // shapes). Both are needed: refining from greedy cuts can end far below their makespan (the
+  // corpus's l-t 0 with four drones: 337.7 s greedy, 300.0 s refined, 1.0006), and a search
+  // capped below the greedy makespan finds nothing. The narrowest of all within the division's
+  // longest flight so far (spreads under kGoodSpread equal, then the shortest makespan) replaces
+  // it where narrower.
+  if (balance == Balance::makespan && n > 1 && ratio_of(result) > kFlipSpread) {
+    std::vector<Across> variants;
+    for (const bool from_right : {false, true})
+      for (const std::size_t offset : {0, 1}) variants.push_back({2, offset, from_right});
+    for (const bool from_right : {false, true})
+      variants.push_back({Across::kAllRows, 0, from_right});
+    const double limit_s = result_score;
+    std::pair<double, double> best_key{ratio_of(result) * (1 - 1e-9), limit_s};
+    for (const Across& across : variants) {
+      if (best_key.first <= kGoodSpread) break;
+      LaneDivision line(rings, angle_deg, lanes, drones, sweep, measure, lane_cell, share_area,
+                        true, LaneFlip::none, across);
+      candidates.clear();
+      balance_line(line, limit_s);
+      for (auto& [r, score] : candidates) {
+        const std::pair<double, double> key{std::max(ratio_of(r), kGoodSpread), score};
+        if (score <= limit_s && key < best_key) {
+          best_key = key;
+          result = std::move(r);
+          result_score = score;
+        }
       }
     }
   }

@@ -119,7 +119,14 @@ using LaneSweep =
 /// 2 % apart, the same with the parts of cut lanes taken from their other ends (every lane, by row
 /// and in the order given, or every other row's), kept where narrower with a longest flight no
 /// longer: a band's zigzag ends at one end of a lane or the other with the parity of its lanes, so
-/// its time can jump by a lane's flight where its share first reaches into one.
+/// its time can jump by a lane's flight where its share first reaches into one. Where they are
+/// still more than 2 % apart, bands cut across the lanes are tried: the rows in blocks of two
+/// (either parity), or all rows in one block, each block cut by lines perpendicular to the lanes
+/// (the band below a cut gets every lane's part on its left, or on its right), so that a band
+/// ends in a U over two rows of any length instead of stepping by a lane flown out and back; the
+/// narrowest of these whose longest flight is no longer than the division's so far replaces it
+/// where narrower (spreads under 0.2 % equal, then the shorter makespan). The regions still
+/// split each row at the cuts, so they tile the area, and each lane's pieces still add up to it.
 /// `proportional_makespan_s`: cuts in proportion to the corrected capabilities, bands in fleet
 /// order; Balance::capability returns those cuts (shares of the lanes' length, the paper's
 /// Algorithm 4 on the plan's own lanes: every lane flown, so the side overlap holds across the
