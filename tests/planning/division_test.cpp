@@ -360,30 +360,10 @@ TEST(BalancedDivision, RegionOnSplitCorpusShapesFliesEveryLaneOnce) {
 // The corpus's walk 0 of seed 1818 (18 lanes in one run) with three equal drones: with the cut
 // lanes' parts taken from one end only, the third drone's time is flat at 720 s, then 807 s once
 // its share reaches into one more lane (its zigzag must come back along it), and the balance
-// stopped at 787, 787, 731 s (1.0759). Taking the parts from the other end as well reaches 768,
-// 768, 731 s: narrower and 18 s shorter; every lane still flown once, coverage kept.
-TEST(BalancedDivision, CutLanesFromEitherEndNarrowTheCorpusWalk) {
-#ifdef SWATH_SANITIZED
-  GTEST_SKIP() << "a figure, not a memory error: RegionOnSplitCorpusShapesFliesEveryLaneOnce runs "
-                  "the same code under the sanitizers";
-#endif
-  for (const test::DivisionCase& c : test::corpus_division_cases(
-           SWATH_SOURCE_DIR, 1818, 1, DivisionMode::region, Balance::makespan)) {
-    if (c.field != "walk 0" || c.fleet != "3 equal") continue;
-    check_balanced(c, 1.06);
-    const SurveyPlan plan = plan_survey(c.request);
-    EXPECT_LE(test::max_over_min_flight(plan), 1.06);
-    EXPECT_LT(plan.division.makespan_s, 780.0);  // 786.6 s from one end only
-    return;
-  }
-  FAIL() << "walk 0 is not in the corpus";
-}
-
-// The same walk: with the bands cut along the lanes' rows only (either end of a cut lane), the
-// third drone's time still steps from 720 to 807 s where its share reaches into one more lane
-// (flown out and back from the one home beside the lanes), and the balance stopped at 768, 768,
-// 731 s (1.0509). Blocks of rows cut across the lanes (a band ending in a U of two rows, or every
-// band over all rows) have no such step: within 2 %, no longer, every lane still flown once.
+// stopped at 787, 787, 731 s (1.0759); from either end, 768, 768, 731 s (1.0509): bands cut along
+// the lanes' rows only still step where a share reaches into one more lane. Blocks of rows cut
+// across the lanes (a band ending in a U of two rows, or every band over all rows) have no such
+// step: within 2 %, no longer, every lane still flown once.
 TEST(BalancedDivision, BandsCutAcrossTheLanesBalanceTheCorpusWalk) {
 #ifdef SWATH_SANITIZED
   GTEST_SKIP() << "a figure, not a memory error: CutAcrossTheLanesOnCorpusShapes runs the same "
@@ -412,6 +392,31 @@ bool inside_rings(Point2 q, const std::vector<Ring>& rings) {
         in = !in;
     }
   return in;
+}
+
+// Random points over `outer`'s bounding box: how many are in a number of `pieces` other than one
+// (inside `area`) or zero (outside it), and how many are inside `area`.
+std::pair<int, int> misplaced_points(const Ring& outer, const std::vector<Ring>& pieces,
+                                     const std::vector<Ring>& area, int samples,
+                                     std::mt19937_64& rng) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const Point2& p : outer) {
+    x0 = std::min(x0, p.x);
+    y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+  }
+  std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
+  int wrong = 0, in_area = 0;
+  for (int k = 0; k < samples; ++k) {
+    const Point2 q{ux(rng), uy(rng)};
+    int in_regions = 0;
+    for (const Ring& piece : pieces) in_regions += inside_rings(q, {piece});
+    const bool in = inside_rings(q, area);
+    in_area += in;
+    wrong += in_regions != (in ? 1 : 0);
+  }
+  return {wrong, in_area};
 }
 
 double shoelace_m2(const std::vector<Ring>& rings) {
@@ -459,23 +464,7 @@ TEST(BalancedDivision, RegionsTileTheAreaOnSplitCorpusShapes) {
       }
       EXPECT_NEAR(regions_m2, area_m2, 1e-6 * area_m2) << what;
       EXPECT_NEAR(shares, 1.0, 1e-6) << what;
-      double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-      for (const Point2& p : plan.area.outer) {
-        x0 = std::min(x0, p.x);
-        y0 = std::min(y0, p.y);
-        x1 = std::max(x1, p.x);
-        y1 = std::max(y1, p.y);
-      }
-      std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
-      int wrong = 0, in_area = 0;
-      for (int k = 0; k < 3000; ++k) {
-        const Point2 q{ux(rng), uy(rng)};
-        int in_regions = 0;
-        for (const Ring& piece : pieces) in_regions += inside_rings(q, {piece});
-        const bool in = inside_rings(q, area);
-        in_area += in;
-        wrong += in_regions != (in ? 1 : 0);
-      }
+      const auto [wrong, in_area] = misplaced_points(plan.area.outer, pieces, area, 3000, rng);
       EXPECT_EQ(wrong, 0) << what;
       EXPECT_GT(in_area, 300) << what;
       ++planned;
@@ -553,22 +542,7 @@ TEST(BalancedDivision, CutAcrossTheLanesOnCorpusShapes) {
         pieces.insert(pieces.end(), d.work.region.begin(), d.work.region.end());
       }
       EXPECT_NEAR(regions_m2, area_m2, 1e-6 * area_m2) << what;
-      double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-      for (const Point2& p : plan.area.outer) {
-        x0 = std::min(x0, p.x);
-        y0 = std::min(y0, p.y);
-        x1 = std::max(x1, p.x);
-        y1 = std::max(y1, p.y);
-      }
-      std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
-      int wrong = 0;
-      for (int k = 0; k < 1000; ++k) {
-        const Point2 q{ux(rng), uy(rng)};
-        int in_regions = 0;
-        for (const Ring& piece : pieces) in_regions += inside_rings(q, {piece});
-        wrong += in_regions != (inside_rings(q, area) ? 1 : 0);
-      }
-      EXPECT_EQ(wrong, 0) << what;
+      EXPECT_EQ(misplaced_points(plan.area.outer, pieces, area, 1000, rng).first, 0) << what;
       ++planned;
     }
   }
