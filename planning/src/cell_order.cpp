@@ -353,42 +353,143 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
   if (n == 0) return {};
   Transit t(p);
   constexpr std::size_t kMaxVariants = 4;
-  // cost[mask][cell * 4 + variant]: shortest start from home visiting `mask`, ending in that state.
   const std::size_t states = n * kMaxVariants;
-  std::vector<std::vector<double>> cost(std::size_t{1} << n, std::vector<double>(states, kInf));
-  std::vector<std::vector<std::size_t>> parent(std::size_t{1} << n,
-                                               std::vector<std::size_t>(states, states));
+  // Every transition's length and crossed cells first (Held-Karp asks for each of them: every
+  // cell is reachable alone), in flat tables: the search below then reads arrays only. Region
+  // division orders a share's runs for every share it weighs; with vectors per subset and the
+  // memo's checks per transition, 12 runs took ~70 % of a four-drone division's minutes.
+  std::vector<double> between(states * states, kInf);
+  std::vector<std::uint64_t> crossed(p.crossed ? states * states : 0, 0);
   for (std::size_t c = 0; c < n; ++c)
     for (std::size_t v = 0; v < p.cells[c].size(); ++v)
-      cost[std::size_t{1} << c][c * kMaxVariants + v] =
-          t.from_home(c, v) + p.cells[c][v].internal_m;
-  for (std::size_t mask = 1; mask < (std::size_t{1} << n); ++mask) {
-    for (std::size_t s = 0; s < states; ++s) {
-      const double here = cost[mask][s];
-      if (here == kInf) continue;
-      const std::size_t c = s / kMaxVariants, v = s % kMaxVariants;
       for (std::size_t c2 = 0; c2 < n; ++c2) {
-        if (mask & (std::size_t{1} << c2)) continue;
-        const std::size_t next_mask = mask | (std::size_t{1} << c2);
+        if (c2 == c) continue;
         for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
-          const std::uint64_t unflown = ~std::uint64_t{0} & ~next_mask;
-          const double total = here + t.cost(c, v, c2, v2, unflown) + p.cells[c2][v2].internal_m;
-          double& slot = cost[next_mask][c2 * kMaxVariants + v2];
-          if (total < slot) {
-            slot = total;
-            parent[next_mask][c2 * kMaxVariants + v2] = s;
+          const std::size_t at = (c * kMaxVariants + v) * states + c2 * kMaxVariants + v2;
+          between[at] = t.between(c, v, c2, v2);
+          if (p.crossed) crossed[at] = t.crossed(c, v, c2, v2);
+        }
+      }
+  // cost[mask * states + cell * 4 + variant]: shortest start from home visiting `mask`, ending in
+  // that state; parent: the state before (states: none). The same order of updates as a plain
+  // loop over every state of every mask (states outside the mask are never reached), so ties
+  // keep the same parents.
+  const std::size_t masks = std::size_t{1} << n;
+  std::vector<double> cost(masks * states, kInf);
+  std::vector<std::uint8_t> parent(masks * states, static_cast<std::uint8_t>(states));
+  for (std::size_t c = 0; c < n; ++c)
+    for (std::size_t v = 0; v < p.cells[c].size(); ++v)
+      cost[(std::size_t{1} << c) * states + c * kMaxVariants + v] =
+          t.from_home(c, v) + p.cells[c][v].internal_m;
+  std::vector<double> internal(states, 0.0);
+  std::vector<std::size_t> variants(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    variants[c] = p.cells[c].size();
+    for (std::size_t v = 0; v < variants[c]; ++v)
+      internal[c * kMaxVariants + v] = p.cells[c][v].internal_m;
+  }
+  // A bound to prune by: the objective of a greedy tour (from home the cheapest next transit and
+  // cell each time, in the search's own arithmetic), with a margin above its rounding. A state
+  // whose cost plus the least internal lengths of the cells still to fly exceeds it is on no
+  // optimal tour, and every state it would reach is prunable too (its cost grows by at least the
+  // next cell's least internal length), so the states the optimum and its ties read are the
+  // same: the same tour, bit for bit, the search cut to the tours a greedy one does not beat.
+  // Each cell still to fly adds at least its least internal length and its least way in (from
+  // home or another cell's exit; a crossing penalty only adds, for a weight >= 0).
+  std::vector<double> least_internal(n, kInf);
+  double all_least = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    double way_in = kInf;
+    for (std::size_t v = 0; v < variants[c]; ++v) {
+      const std::size_t s2 = c * kMaxVariants + v;
+      least_internal[c] = std::min(least_internal[c], internal[s2]);
+      way_in = std::min(way_in, t.from_home(c, v));
+      for (std::size_t s = 0; s < states; ++s) way_in = std::min(way_in, between[s * states + s2]);
+    }
+    least_internal[c] += std::max(0.0, way_in);
+    all_least += least_internal[c];
+  }
+  const auto greedy_bound = [&] {
+    std::size_t at = states, flown = 0;  // states: at home
+    double objective = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      double best = kInf;
+      std::size_t best_s = states;
+      const std::uint64_t unflown_before = ~std::uint64_t{0} & ~flown;
+      for (std::size_t c2 = 0; c2 < n; ++c2) {
+        if (flown & (std::size_t{1} << c2)) continue;
+        for (std::size_t v2 = 0; v2 < variants[c2]; ++v2) {
+          const std::size_t s2 = c2 * kMaxVariants + v2;
+          double transit = 0;
+          if (at == states) {
+            transit = t.from_home(c2, v2);
+          } else {
+            const std::size_t i = at * states + s2;
+            transit = between[i];
+            if (p.crossed)
+              transit *= 1 + p.crossing_weight *
+                                 bits_set(crossed[i] & unflown_before & ~(std::uint64_t{1} << c2));
+          }
+          if (transit + internal[s2] < best) {
+            best = transit + internal[s2];
+            best_s = s2;
+          }
+        }
+      }
+      objective += best;
+      at = best_s;
+      flown |= std::size_t{1} << (best_s / kMaxVariants);
+    }
+    return objective + t.to_home(at / kMaxVariants, at % kMaxVariants);
+  };
+  const double bound = p.crossing_weight >= 0 ? greedy_bound() * (1 + 1e-9) + 1e-9 : kInf;
+  const auto search = [&]<bool kCrossed>() {
+    for (std::size_t mask = 1; mask < masks; ++mask) {
+      const double* row = &cost[mask * states];
+      double rest = all_least;  // the least internal lengths of the cells not in mask
+      for (std::size_t c = 0; c < n; ++c)
+        if (mask & (std::size_t{1} << c)) rest -= least_internal[c];
+      const double limit = bound - std::max(0.0, rest) * (1 - 1e-9);
+      for (std::size_t c = 0; c < n; ++c) {
+        if (!(mask & (std::size_t{1} << c))) continue;
+        for (std::size_t v = 0; v < variants[c]; ++v) {
+          const std::size_t s = c * kMaxVariants + v;
+          const double here = row[s];
+          if (here == kInf || here > limit) continue;
+          for (std::size_t c2 = 0; c2 < n; ++c2) {
+            if (mask & (std::size_t{1} << c2)) continue;
+            const std::size_t next_mask = mask | (std::size_t{1} << c2);
+            const std::uint64_t unflown = ~std::uint64_t{0} & ~next_mask;
+            double* next_row = &cost[next_mask * states];
+            for (std::size_t v2 = 0; v2 < variants[c2]; ++v2) {
+              const std::size_t s2 = c2 * kMaxVariants + v2, at = s * states + s2;
+              // Transit::cost()'s own expression, for the same bits.
+              const double d = between[at];
+              double transit = d;
+              if constexpr (kCrossed)
+                transit = d * (1 + p.crossing_weight * bits_set(crossed[at] & unflown));
+              const double total = here + transit + internal[s2];
+              if (total < next_row[s2]) {
+                next_row[s2] = total;
+                parent[next_mask * states + s2] = static_cast<std::uint8_t>(s);
+              }
+            }
           }
         }
       }
     }
-  }
+  };
+  if (p.crossed)
+    search.template operator()<true>();
+  else
+    search.template operator()<false>();
   const std::size_t full = (std::size_t{1} << n) - 1;
   CellOrder best;
   best.objective_m = kInf;
   std::size_t best_state = 0;
   for (std::size_t s = 0; s < states; ++s) {
-    if (cost[full][s] == kInf) continue;
-    const double total = cost[full][s] + t.to_home(s / kMaxVariants, s % kMaxVariants);
+    if (cost[full * states + s] == kInf) continue;
+    const double total = cost[full * states + s] + t.to_home(s / kMaxVariants, s % kMaxVariants);
     if (total < best.objective_m) {
       best.objective_m = total;
       best_state = s;
@@ -396,7 +497,7 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
   }
   for (std::size_t mask = full, s = best_state; mask != 0;) {
     best.visits.push_back({s / kMaxVariants, s % kMaxVariants});
-    const std::size_t previous = parent[mask][s];
+    const std::size_t previous = parent[mask * states + s];
     mask &= ~(std::size_t{1} << (s / kMaxVariants));
     s = previous;
   }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <numeric>
 
 #include "coverage_oracle.hpp"
@@ -72,6 +73,95 @@ TEST(CellOrder, ExactEqualsBruteForceOnSmallInstances) {
     EXPECT_NEAR(exact.length_m, brute_force(p), 1e-6) << k;
     EXPECT_NEAR(exact.length_m, tour_length(p, exact.visits), 1e-6) << k;
     EXPECT_EQ(exact.visits.size(), p.cells.size());
+  }
+}
+
+// Held-Karp as first written (a table per subset, every state of every subset, no bound): the
+// pruned search must pick the same visits, ties included (grid coordinates make many), with
+// and without crossings.
+std::vector<CellVisit> plain_held_karp(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size(), states = 4 * n;
+  std::vector<std::vector<double>> cost(std::size_t{1} << n, std::vector<double>(states, kInf));
+  std::vector<std::vector<std::size_t>> parent(std::size_t{1} << n,
+                                               std::vector<std::size_t>(states, states));
+  const auto transit = [&](std::size_t s, std::size_t s2, std::uint64_t unflown) {
+    const Point2 a = p.cells[s / 4][s % 4].exit, b = p.cells[s2 / 4][s2 % 4].entry;
+    const double d = p.distance(a, b);
+    if (!p.crossed) return d;
+    return d * (1 + p.crossing_weight * std::popcount(p.crossed(a, b) & unflown));
+  };
+  for (std::size_t c = 0; c < n; ++c)
+    for (std::size_t v = 0; v < p.cells[c].size(); ++v)
+      cost[std::size_t{1} << c][4 * c + v] =
+          p.distance(p.home, p.cells[c][v].entry) + p.cells[c][v].internal_m;
+  for (std::size_t mask = 1; mask < (std::size_t{1} << n); ++mask)
+    for (std::size_t s = 0; s < states; ++s) {
+      if (cost[mask][s] == kInf) continue;
+      for (std::size_t c2 = 0; c2 < n; ++c2) {
+        if (mask & (std::size_t{1} << c2)) continue;
+        const std::size_t next = mask | (std::size_t{1} << c2);
+        for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
+          const double total = cost[mask][s] + transit(s, 4 * c2 + v2, ~std::uint64_t{0} & ~next) +
+                               p.cells[c2][v2].internal_m;
+          if (total < cost[next][4 * c2 + v2]) {
+            cost[next][4 * c2 + v2] = total;
+            parent[next][4 * c2 + v2] = s;
+          }
+        }
+      }
+    }
+  const std::size_t full = (std::size_t{1} << n) - 1;
+  double best = kInf;
+  std::size_t best_s = 0;
+  for (std::size_t s = 0; s < states; ++s) {
+    if (cost[full][s] == kInf) continue;
+    const double total = cost[full][s] + p.distance(p.cells[s / 4][s % 4].exit, p.home);
+    if (total < best) {
+      best = total;
+      best_s = s;
+    }
+  }
+  std::vector<CellVisit> visits;
+  for (std::size_t mask = full, s = best_s; mask != 0;) {
+    visits.push_back({s / 4, s % 4});
+    const std::size_t previous = parent[mask][s];
+    mask &= ~(std::size_t{1} << (s / 4));
+    s = previous;
+  }
+  std::reverse(visits.begin(), visits.end());
+  return visits;
+}
+
+TEST(CellOrder, BoundedExactSearchPicksThePlainSearchsVisits) {
+  test::Rng rng(23);
+  std::uniform_int_distribution<int> grid(0, 6);
+  for (int k = 0; k < 40; ++k) {
+    CellOrderProblem p = random_problem(rng, 3 + k % 8);
+    if (k % 2) {  // on a coarse grid: equal transits everywhere
+      p.home = {100.0 * grid(rng), 100.0 * grid(rng)};
+      for (auto& variants : p.cells) {
+        const Point2 o{100.0 * grid(rng), 100.0 * grid(rng)};
+        for (std::size_t v = 0; v < variants.size(); ++v) {
+          variants[v].entry = o + Point2{100.0 * double(v & 1), 100.0 * double(v >> 1)};
+          variants[v].exit = o + Point2{100.0 * double(1 - (v & 1)), 100.0 * double(v >> 1)};
+          variants[v].internal_m = 300;
+        }
+      }
+    }
+    if (k % 4 >= 2) {
+      const std::size_t n = p.cells.size();
+      p.crossed = [n](Point2 a, Point2 b) {  // any fixed function of the ends will do
+        const auto h = std::uint64_t(std::llround(a.x * 7 + a.y * 13 + b.x * 17 + b.y * 19));
+        return (h * 0x9E3779B97F4A7C15ull >> 20) & ((std::uint64_t{1} << n) - 1);
+      };
+    }
+    const std::vector<CellVisit> plain = plain_held_karp(p);
+    const CellOrder exact = exact_cell_order(p);
+    ASSERT_EQ(exact.visits.size(), plain.size()) << k;
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      EXPECT_EQ(exact.visits[i].cell, plain[i].cell) << k << " at " << i;
+      EXPECT_EQ(exact.visits[i].variant, plain[i].variant) << k << " at " << i;
+    }
   }
 }
 
