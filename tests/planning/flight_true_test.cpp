@@ -462,7 +462,9 @@ void check_flights(const SurveyPlan& plan, const std::string& what) {
         holds.push_back(it.position);
     std::size_t stops_checked = 0;
     for (const SweepLine& l : f.mission->lines) {
-      for (const auto& [end, from] : {std::pair{l.end, l.start}, std::pair{l.start, l.end}}) {
+      for (const std::pair<Point2, Point2>& ends :
+           {std::pair{l.end, l.start}, std::pair{l.start, l.end}}) {
+        const Point2 end = ends.first, from = ends.second;  // a lambda below captures `end`
         const bool held =
             std::any_of(holds.begin(), holds.end(), [&](Point2 h) { return norm(h - end) < 0.01; });
         const double length_m = norm(end - from);
