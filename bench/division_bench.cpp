@@ -11,7 +11,9 @@
 //   swath_division_bench --balance-corpus
 // prints the same for region division on split-corpus shapes (tests/support/field_shapes.hpp).
 //   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY or SHAPE]
-// the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads.
+// the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads;
+//   swath_division_bench --path-distribution SEED PER_FAMILY [FAMILY or SHAPE]
+// the same with path division (the issue's <= 1.005 for path division).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -196,16 +198,16 @@ int balance_corpus() {
   return 0;
 }
 
-// Issue 18's distribution: region division by makespan on `per_family` split-corpus shapes of
-// each family from `seed` (`family`: one family or one shape, "comb 0", only; "" all), with 2, 3
-// and 4 equal drones and three-quads. One row per plan (max / min, makespan, the regions' areas
-// over the area), then per fleet the mean, p90 and worst max / min and how many exceed 1.02.
-int balance_distribution(std::uint64_t seed, int per_family, const std::string& family) {
+// Issue 18's distribution: region (or path) division by makespan on `per_family` split-corpus
+// shapes of each family from `seed` (`family`: one family or one shape, "comb 0", only; "" all),
+// with 2, 3 and 4 equal drones and three-quads. One row per plan (max / min, makespan, the regions'
+// areas over the area), then per fleet the mean, p90 and worst max / min and how many exceed 1.02.
+int balance_distribution(std::uint64_t seed, int per_family, const std::string& family,
+                         planning::DivisionMode division) {
   std::map<std::string, std::vector<double>> ratios;
   double worst_tiling = 0;
-  for (const test::DivisionCase& base :
-       test::corpus_division_cases(SWATH_SOURCE_DIR, seed, per_family,
-                                   planning::DivisionMode::region, planning::Balance::makespan)) {
+  for (const test::DivisionCase& base : test::corpus_division_cases(
+           SWATH_SOURCE_DIR, seed, per_family, division, planning::Balance::makespan)) {
     if (!family.empty() && base.field != family && !base.field.starts_with(family + " ")) continue;
     std::vector<std::pair<std::string, planning::SurveyRequest>> requests;
     if (base.fleet == "3 equal") {
@@ -243,7 +245,8 @@ int balance_distribution(std::uint64_t seed, int per_family, const std::string& 
     std::printf("%s: %zu plans, mean %.4f, p90 %.4f, worst %.4f, %td over 1.02\n", fleet.c_str(),
                 r.size(), mean, p90, r.back(), over);
   }
-  std::printf("regions' areas over the area: worst |sum / area - 1| %.2e\n", worst_tiling);
+  if (division == planning::DivisionMode::region)
+    std::printf("regions' areas over the area: worst |sum / area - 1| %.2e\n", worst_tiling);
   return 0;
 }
 
@@ -268,9 +271,12 @@ int main(int argc, char** argv) {
       return balance_table();
     else if (std::strcmp(argv[i], "--balance-corpus") == 0)
       return balance_corpus();
-    else if (std::strcmp(argv[i], "--balance-distribution") == 0 && i + 2 < argc)
-      return balance_distribution(std::stoull(argv[i + 1]), std::stoi(argv[i + 2]),
-                                  i + 3 < argc ? argv[i + 3] : "");
+    else if ((std::strcmp(argv[i], "--balance-distribution") == 0 ||
+              std::strcmp(argv[i], "--path-distribution") == 0) &&
+             i + 2 < argc)
+      return balance_distribution(
+          std::stoull(argv[i + 1]), std::stoi(argv[i + 2]), i + 3 < argc ? argv[i + 3] : "",
+          argv[i][2] == 'p' ? planning::DivisionMode::path : planning::DivisionMode::region);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
