@@ -246,27 +246,34 @@ double path_time_s(const std::vector<Point2>& path, const std::vector<double>& h
 
 namespace {
 
-// The path with each stop at a line end beside a no-fly zone (s.stop_at) drawn back along its line
-// by kStoppingMargin_m (a quarter of the line at most), where the leg off the line from there stays
-// inside (`inside`; without it nothing moves).
-std::vector<Point2> stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
-                                     const InsideTest& inside) {
-  std::vector<Point2> points = path.points;
-  const std::size_t n = points.size();
-  if (!s.stop_at || !inside) return points;
+// The path's points with each stop at a line end beside a no-fly zone (s.stop_at, asked once per
+// line end) drawn back along its line by kStoppingMargin_m (a quarter of the line at most), where
+// the leg off the line from there stays inside (`inside`; without it nothing moves), and which
+// points are such stops (their hold is written whether drawn back or not).
+struct DrawnBack {
+  std::vector<Point2> points;
+  std::vector<char> stop;
+};
+DrawnBack stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
+                           const InsideTest& inside) {
+  DrawnBack out{path.points, std::vector<char>(path.points.size(), 0)};
+  const std::size_t n = path.points.size();
+  if (!s.stop_at) return out;
   for (std::size_t i = 0; i < n; ++i) {
     const bool from_line = i > 0 && path.on_line[i - 1];
     const bool to_line = i + 1 < n && path.on_line[i];
     if (from_line == to_line || !s.stop_at(path.points[i])) continue;
+    out.stop[i] = 1;
+    if (!inside) continue;
     const Point2 p = path.points[i], along = from_line ? path.points[i - 1] : path.points[i + 1];
     const double length_m = geometry::distance(p, along);
     if (length_m <= 0) continue;
     const Point2 q = p + (along - p) * (std::min(kStoppingMargin_m, length_m / 4) / length_m);
     const bool has_off = from_line ? i + 1 < n : i > 0;
     if (has_off && !inside(q, from_line ? path.points[i + 1] : path.points[i - 1])) continue;
-    points[i] = q;
+    out.points[i] = q;
   }
-  return points;
+  return out;
 }
 
 }  // namespace
@@ -276,7 +283,8 @@ DroneMission mission_for_path(int drone, Point2 home, const SurveyPath& path,
                               const InsideTest& inside) {
   MissionBuilder b(drone, home, s);
   DroneMission& m = b.mission();
-  const std::vector<Point2> points = stops_drawn_back(path, s, inside);
+  const DrawnBack drawn = stops_drawn_back(path, s, inside);
+  const std::vector<Point2>& points = drawn.points;
   const std::size_t n = points.size();
   if (n > 0) b.route_to(points[0], route);
   for (std::size_t i = 0; i < n; ++i) {
@@ -296,8 +304,7 @@ DroneMission mission_for_path(int drone, Point2 home, const SurveyPath& path,
       b.hover_line(p);
     } else {
       const bool line_end = from_line != to_line;
-      // The stop is judged where the line ended (its drawn-back point may sit a metre further off).
-      b.waypoint(p, line_end && s.stop_at && s.stop_at(path.points[i]) ? kStopHold_s : 0.0);
+      b.waypoint(p, line_end && drawn.stop[i] ? kStopHold_s : 0.0);
     }
     if (to_line) {
       b.camera(true);

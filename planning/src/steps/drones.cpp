@@ -92,9 +92,8 @@ FlightMeasure flight_measure(const SurveyPlan& plan, const Routes& routes,
   return [&plan, &routes, &settings](std::size_t i, const SurveyPath& part) -> FlightCost {
     if (part.points.empty()) return {};
     const DronePlan& d = plan.drones[i];
-    const InsideTest inside = [&routes](Point2 a, Point2 b) { return routes.inside.visible(a, b); };
     const DroneMission m =
-        mission_for_path(d.number, d.home, part, settings[i], routes.leg(), inside);
+        mission_for_path(d.number, d.home, part, settings[i], routes.leg(), routes.inside_test());
     return {m.flight_time_s, m.path_length_m};
   };
 }

@@ -164,6 +164,10 @@ LegRoute Routes::open_leg() const {
   return [this](Point2 a, Point2 b) { return between(open.path(a, b)); };
 }
 
+InsideTest Routes::inside_test() const {
+  return [this](Point2 a, Point2 b) { return inside.visible(a, b); };
+}
+
 void lanes(SurveyPlan& plan) {
   const Routes routes(plan);
   std::optional<double> fixed;

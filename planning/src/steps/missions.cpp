@@ -28,9 +28,7 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
 
 void missions(SurveyPlan& plan) {
   const Routes routes(plan);
-  const InsideTest inside = [&routes](geometry::Point2 a, geometry::Point2 b) {
-    return routes.inside.visible(a, b);
-  };
+  const InsideTest inside = routes.inside_test();
   for (DronePlan& d : plan.drones) {
     d.mission = mission_for_path(d.number, d.home, d.work.path, mission_settings(plan, d),
                                  routes.leg(), inside);

@@ -64,6 +64,9 @@ struct Routes {
   LegRoute leg() const;
   /// The same in the open only (home legs).
   LegRoute open_leg() const;
+  /// Whether a leg stays inside the planning rings (the missions' turns kept with the camera on,
+  /// stops drawn back).
+  InsideTest inside_test() const;
 };
 
 /// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
