@@ -28,6 +28,7 @@
 #include "division_cases.hpp"
 #include "random_polygons.hpp"
 #include "region_division.hpp"
+#include "swath/base/freed_memory.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/planning/division.hpp"
 #include "swath/planning/survey.hpp"
@@ -266,6 +267,7 @@ BENCHMARK(BM_BalancedPlan)->DenseRange(0, 11)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SixDronePlan)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 int main(int argc, char** argv) {
+  swath::base::keep_freed_memory();  // as the swath programs run
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "--balance-table") == 0)
       return balance_table();

@@ -1,10 +1,14 @@
 // --concave split on field-like areas of 10 to 10,000 vertices with 0 to 50 rectangular no-fly
 // holes: the decomposition alone, and the whole split plan (direction search over ~100
 // directions, runs from the lanes and cells, their order, transits routed inside the area),
-// beside the first method alone (cells only).
+// beside the first method alone (cells only). The allocator keeps freed memory as the swath
+// programs' does (base::keep_freed_memory()); --default_allocator times glibc's defaults.
 #include <benchmark/benchmark.h>
 
+#include <cstring>
+
 #include "random_polygons.hpp"
+#include "swath/base/freed_memory.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/planning/split.hpp"
 
@@ -69,4 +73,19 @@ BENCHMARK(BM_Decomposition)->Apply(Areas);
 BENCHMARK(BM_SplitPlan)->Apply(Areas)->Iterations(1);
 BENCHMARK(BM_SplitPlanCells)->Apply(Areas)->Iterations(1);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  bool default_allocator = false;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--default_allocator") == 0)
+      default_allocator = true;
+    else
+      argv[kept++] = argv[i];
+  argc = kept;
+  if (!default_allocator) swath::base::keep_freed_memory();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

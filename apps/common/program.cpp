@@ -3,12 +3,14 @@
 
 #include "command.hpp"
 #include "remedy_text.hpp"
+#include "swath/base/freed_memory.hpp"
 #include "swath/base/input_error.hpp"
 
 namespace swath::apps {
 
 int run_program(const char* program, const char* description, const char* exit_codes,
                 std::vector<std::unique_ptr<Command>>& commands, int argc, char** argv) {
+  base::keep_freed_memory();
   CLI::App app{description};
   app.name(program);
   app.footer(exit_codes);

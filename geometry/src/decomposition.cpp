@@ -156,8 +156,16 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   };
   std::vector<Vertex> vertices;
   double extent = 0;
-  for (const Ring& ring : rings_in)
+  std::size_t total = 0;
+  for (const Ring& ring : rings_in) {
+    total += ring.size();
     for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+  }
+  // Sized once: grown by doubling, a 10,000-vertex area's buffers were most of the fresh pages
+  // (page faults) of a direction search that decomposes it ~100 times.
+  rings.reserve(rings_in.size());
+  edges.reserve(total);
+  vertices.reserve(total);
   // Rotation rounds: an edge along the lanes comes out tilted by ~1e-16 of the coordinates, which
   // would make cuts that meet at one ordinate miss each other. Such edges are made exactly
   // parallel (moves of < 1e-9 of the area's size).
@@ -165,6 +173,7 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   const Turn to_sweep = turn_by(-angle_deg);
   for (std::size_t r = 0; r < rings_in.size(); ++r) {
     Ring ring;
+    ring.reserve(rings_in[r].size());
     for (const Point2& p : rings_in[r]) ring.push_back(rotated(p, to_sweep));
     for (std::size_t i = 0; i + 1 < ring.size(); ++i)
       if (std::abs(ring[i + 1].y - ring[i].y) <= snap) ring[i + 1].y = ring[i].y;

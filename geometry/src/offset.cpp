@@ -79,6 +79,24 @@ std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m) {
   return out;
 }
 
+std::vector<Ring> grow_simplified(const std::vector<Ring>& rings, double distance_m,
+                                  double tolerance_m) {
+  std::vector<Ring> simple;
+  bool fewer = false;
+  for (const Ring& r : rings) {
+    simple.push_back(r);
+    if (r.size() < 4 || !(tolerance_m > 0)) continue;
+    BPolygon s;
+    bg::simplify(polygon_of(r), s, tolerance_m);
+    if (s.outer().size() < 4 || !bg::is_valid(s)) continue;
+    Ring fewer_vertices = ring_of(s.outer(), true);
+    if (fewer_vertices.size() >= r.size()) continue;
+    simple.back() = std::move(fewer_vertices);
+    fewer = true;
+  }
+  return fewer ? grow(simple, distance_m + tolerance_m) : grow(rings, distance_m);
+}
+
 std::vector<Ring> subtract(const Ring& outer, double inset_m, const std::vector<Ring>& obstacles) {
   BMulti area;
   area.push_back(polygon_of(outer));

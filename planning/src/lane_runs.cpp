@@ -50,7 +50,9 @@ struct RunLane {
 // Points the lanes must see, sorted by ordinate: the boundary every eighth of a spacing (vertices
 // included) and the inside on rows a quarter of a spacing apart, a quarter along them. At
 // most ~200,000: steps grow on very large areas.
-std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
+// Into `samples` (cleared; its capacity kept: a direction search samples the area ~100 times,
+// and fresh pages for each were a large part of a 10,000-vertex area's time).
+void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples) {
   double perimeter = 0;
   for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
   double step = spacing_m;
@@ -58,37 +60,50 @@ std::vector<Point2> coverage_samples(const LaneScan& scan, double spacing_m) {
   while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 4) > 2e5 &&
          step < 1e6 * spacing_m)
     step *= 1.5;
-  std::vector<Point2> samples;
+  thread_local std::vector<Point2> boundary;
+  boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
-    for (int i = 0; i < n; ++i) samples.push_back(a + (b - a) * (double(i) / n));
+    for (int i = 0; i < n; ++i) boundary.push_back(a + (b - a) * (double(i) / n));
   }
   const auto by_ordinate = [](Point2 p, Point2 q) {
     return p.y < q.y || (p.y == q.y && p.x < q.x);
   };
   // The inside samples come in order already (rows upwards, spans and their samples left to
-  // right): only the boundary's are sorted, then merged in (equal samples are equal points, so
-  // the result is the one sorting all gave). The boundary's come in runs already sorted one way
-  // or the other (along an edge and on while the boundary keeps rising or falling): where those
-  // are long, they are merged (a field's few hundred samples of a few dozen edges were sorted
-  // anew for every direction).
-  geometry::sort_by_runs(samples, by_ordinate, true);
-  const std::size_t boundary = samples.size();
+  // right): only the boundary's are sorted, then merged in as the inside's are made, a boundary
+  // sample before an equal inside one (as a stable merge of the two; equal samples are equal
+  // points, so the result is the one sorting all gave). The boundary's come in runs already
+  // sorted one way or the other (along an edge and on while the boundary keeps rising or
+  // falling): where those are long, they are merged (a field's few hundred samples of a few
+  // dozen edges were sorted anew for every direction).
+  geometry::sort_by_runs(boundary, by_ordinate, true);
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
   const std::vector<std::vector<Span>> inside = scan.at(rows);
+  const auto count = [&](const Span& in) {
+    return std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
+  };
+  std::size_t total = boundary.size();
+  for (const auto& spans : inside)
+    for (const Span& in : spans) total += std::size_t(count(in));
+  samples.clear();
+  samples.reserve(total);
+  std::size_t next = 0;  // of boundary
+  bool in_order = true;  // the inside's samples ascending (expected: spans are disjoint, ascending)
   for (std::size_t r = 0; r < rows.size(); ++r)
     for (const Span& in : inside[r]) {
-      const int n = std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
-      for (int i = 0; i < n; ++i)
-        samples.push_back({in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]});
+      const int n = count(in);
+      for (int i = 0; i < n; ++i) {
+        const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]};
+        while (next < boundary.size() && !by_ordinate(p, boundary[next]))
+          samples.push_back(boundary[next++]);
+        in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
+        samples.push_back(p);
+      }
     }
-  const auto middle = samples.begin() + std::ptrdiff_t(boundary);
-  if (std::is_sorted(middle, samples.end(), by_ordinate))
-    std::inplace_merge(samples.begin(), middle, samples.end(), by_ordinate);
-  else  // not expected (spans are disjoint and ascending); kept as the plain sort
+  samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
+  if (!in_order)  // not expected; kept as the plain sort
     std::sort(samples.begin(), samples.end(), by_ordinate);
-  return samples;
 }
 
 // Which lanes see which samples: within half a footprint across and within the lane's length.
@@ -315,8 +330,8 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
 
   // 2. Lanes for the corners the grid misses.
   if (samples.empty())
-    samples = coverage_samples(area.see.empty() ? scan : LaneScan(area.see, s.angle_deg),
-                               s.line_spacing_m);
+    coverage_samples(area.see.empty() ? scan : LaneScan(area.see, s.angle_deg), s.line_spacing_m,
+                     samples);
   SeenCount seen(samples, s.footprint_width_m);
   for (const RunLane& l : lanes) seen.add(l);
   const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);

@@ -30,14 +30,21 @@ class LaneScan {
     // turned for every candidate direction.
     const double t = -angle_deg * std::numbers::pi / 180.0;
     const double c = std::cos(t), sn = std::sin(t);
+    // Sized once (grown by doubling, a 10,000-vertex area's edges were fresh pages every time).
+    std::size_t total = 0;
+    for (const Ring& ring : rings) total += ring.size();
+    edges_.reserve(total);
+    const auto turn = [c, sn](Point2 p) { return Point2{c * p.x - sn * p.y, sn * p.x + c * p.y}; };
     for (const Ring& ring : rings) {
-      Ring turned;
-      for (const Point2& p : ring) turned.push_back({c * p.x - sn * p.y, sn * p.x + c * p.y});
-      for (std::size_t i = 0; i < turned.size(); ++i) {
-        const Point2 a = turned[i], b = turned[(i + 1) % turned.size()];
+      if (ring.empty()) continue;
+      const Point2 first = turn(ring.front());
+      Point2 a = first;
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 b = i + 1 < ring.size() ? turn(ring[i + 1]) : first;
         edges_.push_back({a, b});
         y_min = std::min(y_min, a.y);
         y_max = std::max(y_max, a.y);
+        a = b;
       }
     }
   }

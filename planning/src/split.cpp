@@ -454,8 +454,9 @@ RegionSweep sweep_region(geometry::Ring ring, const geometry::Ring& area, const 
   rs.bridge_rings.clear();
   const Point2 centre = geometry::centroid(geometry::Polygon{ring, {}});
   RegionSweep best;
+  std::vector<Point2> samples;  // one buffer for every direction's
   for (const double angle : region_angles(ring, also)) {
-    std::vector<Point2> samples;
+    samples.clear();
     // Every lane of the grid kept: across a region narrower than two footprints every lane is
     // "short", and dropping those the others' footprints already see would keep one lane per
     // footprint width, the side overlap lost (the one-direction plan's slivers are the area's).
@@ -694,10 +695,11 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // Rank every direction by a cheap estimate: straight transits, heuristic order.
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   std::vector<Candidate> candidates;
+  std::vector<Point2> samples;  // one buffer for every direction's (see coverage_samples)
   for (double angle : angles) {
     // Runs bridged across the outside margin where there is one, runs inside, cells. Both runs
     // check coverage on the same samples of the area: taken once.
-    std::vector<Point2> samples;
+    samples.clear();
     for (const int kind : {0, 1, 2}) {
       const SplitCells method = kind < 2 ? SplitCells::runs : SplitCells::boustrophedon;
       if ((s.cells != SplitCells::best && s.cells != method) ||

@@ -39,7 +39,10 @@ void missions(SurveyPlan& plan) {
       plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
   std::vector<geometry::Ring> outlines{plan.area.outer};
   outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
-  plan.fence = geometry::grow(outlines, plan.fence_margin_m);
+  // Simplified within 5 % of the margin (at most 5 m) first: a long outline's wiggles no longer
+  // each give the fence vertices, and the fence still holds everything within the margin.
+  plan.fence = geometry::grow_simplified(outlines, plan.fence_margin_m,
+                                         std::min(5.0, 0.05 * plan.fence_margin_m));
 }
 
 }  // namespace swath::planning::steps

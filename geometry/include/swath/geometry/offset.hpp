@@ -17,6 +17,16 @@ namespace swath::geometry {
 /// counter-clockwise.
 std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m);
 
+/// grow() of the rings first simplified (Douglas-Peucker) within `tolerance_m` (>= 0), by
+/// `distance_m` + `tolerance_m`: still contains every point within `distance_m` of the input
+/// (each input point lies within the tolerance of the simplified rings), and reaches at most
+/// 2 (`distance_m` + `tolerance_m`) + `tolerance_m` beyond it. For long outlines: buffering a
+/// 10,000-vertex field took seconds and gave a fence of ~1,900 vertices (an outline's small
+/// wiggles, each grown). Where simplifying drops no vertex, grow(rings, distance_m) itself; a ring
+/// whose simplification is not a valid polygon is kept whole (the others still simplified).
+std::vector<Ring> grow_simplified(const std::vector<Ring>& rings, double distance_m,
+                                  double tolerance_m);
+
 /// The area `outer` shrunk by `inset_m` (>= 0) minus `obstacles` (counter-clockwise rings), as
 /// rings ready for sweeping and routing: each part's outer ring counter-clockwise followed by its
 /// holes clockwise, parts one after another (several when obstacles cut the area in pieces;

@@ -1,0 +1,85 @@
+// grow_simplified(): a fence for long outlines. Checked against its promise on noisy field
+// outlines (fixed seeds): every point within the margin of the outline lies inside the result,
+// and no result vertex lies further than 2 (margin + tolerance) + tolerance from it (distances by
+// brute force over every edge); where simplifying drops no vertex, the result is grow()'s.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "random_polygons.hpp"
+#include "swath/geometry/offset.hpp"
+
+namespace swath::geometry {
+namespace {
+
+// Even-odd crossing count: inside one of the rings.
+bool inside_any(const std::vector<Ring>& rings, Point2 p) {
+  for (const Ring& ring : rings) {
+    bool odd = false;
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+      if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
+          p.x < ring[j].x + (p.y - ring[j].y) * (ring[i].x - ring[j].x) / (ring[i].y - ring[j].y))
+        odd = !odd;
+    if (odd) return true;
+  }
+  return false;
+}
+
+// Distance from p to the closed area of `ring` (0 inside).
+double distance_to(const Ring& ring, Point2 p) {
+  if (inside_any({ring}, p)) return 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
+    const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+    best = std::min(best, distance(p, a + d * t));
+  }
+  return best;
+}
+
+std::size_t vertices(const std::vector<Ring>& rings) {
+  std::size_t n = 0;
+  for (const Ring& r : rings) n += r.size();
+  return n;
+}
+
+TEST(GrowSimplified, HoldsEveryPointWithinTheMarginAndStaysWithinItsBound) {
+  test::Rng rng(1515);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int k = 0; k < 6; ++k) {
+    const Ring field = test::random_field_polygon(rng, 800 + 400 * std::size_t(k), 300);
+    const double margin_m = 20 + 80 * unit(rng), tolerance_m = std::min(5.0, 0.05 * margin_m);
+    const std::vector<Ring> fence = grow_simplified({field}, margin_m, tolerance_m);
+    const std::vector<Ring> exact = grow({field}, margin_m);
+    // Far fewer vertices than growing every wiggle.
+    EXPECT_LT(vertices(fence) * 4, vertices(exact)) << "field " << k;
+    // Points at the margin (a hair inside it) off every edge's middle along its outward normal
+    // and off every vertex in random directions: all inside.
+    for (std::size_t i = 0; i < field.size(); ++i) {
+      const Point2 a = field[i], b = field[(i + 1) % field.size()];
+      const Point2 d = (b - a) * (1 / distance(a, b));
+      const Point2 out{d.y, -d.x};  // right of a counter-clockwise ring's edge: outside
+      const double turn = 2 * 3.141592653589793 * unit(rng);
+      for (const Point2 p : {(a + b) * 0.5 + out * (margin_m * 0.999),
+                             a + Point2{std::cos(turn), std::sin(turn)} * (margin_m * 0.999)})
+        ASSERT_TRUE(inside_any(fence, p)) << "field " << k << " point " << p.x << ", " << p.y;
+    }
+    // No vertex further out than the bound.
+    const double bound_m = 2 * (margin_m + tolerance_m) + tolerance_m + 1e-6;
+    for (const Ring& r : fence)
+      for (const Point2& v : r) ASSERT_LE(distance_to(field, v), bound_m) << "field " << k;
+  }
+}
+
+TEST(GrowSimplified, IsGrowWhereNoVertexCanGo) {
+  // A comb's corners are all needed at a tolerance below its 10 m teeth and gaps.
+  const Ring comb = test::comb_polygon(6, 10, 40, 10);
+  EXPECT_EQ(grow_simplified({comb}, 30, 1.5), grow({comb}, 30));
+  const Ring square{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  EXPECT_EQ(grow_simplified({square}, 30, 1.5), grow({square}, 30));
+}
+
+}  // namespace
+}  // namespace swath::geometry
