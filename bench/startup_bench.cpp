@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -57,8 +58,9 @@ const std::string kMeadow = std::string(SWATH_SOURCE_DIR) + "/share/fields/meado
 // test::random_field_polygon (10,000 vertices, 500 m across, fixed seed) placed near Zurich, as
 // GeoJSON in a temporary file.
 std::string long_outline() {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "swath-bench-long-outline.geojson").string();
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("swath-bench-long-outline-" + std::to_string(getpid()) + ".geojson"))
+                               .string();
   swath::test::Rng rng(10000);
   const swath::geometry::Ring ring = swath::test::random_field_polygon(rng, 10000, 500);
   const double lat0 = 47.39, lon0 = 8.54, m_per_deg = 111319.49;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -329,9 +330,12 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
     for (const Span& in : cut[k]) lanes.push_back({ys[k], in.x0, in.x1, int(k)});
 
   // 2. Lanes for the corners the grid misses.
-  if (samples.empty())
-    coverage_samples(area.see.empty() ? scan : LaneScan(area.see, s.angle_deg), s.line_spacing_m,
-                     samples);
+  if (samples.empty()) {
+    // Not `see.empty() ? scan : LaneScan(...)`: that copies `scan` (every edge) each direction.
+    std::optional<LaneScan> seen_scan;
+    if (!area.see.empty()) seen_scan.emplace(area.see, s.angle_deg);
+    coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
+  }
   SeenCount seen(samples, s.footprint_width_m);
   for (const RunLane& l : lanes) seen.add(l);
   const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);

@@ -5,7 +5,7 @@ namespace swath::base {
 
 /// Keeps memory the program frees for its next allocations instead of handing it back to the
 /// operating system at once. Call once, at the start of a program (every swath executable does,
-/// and the planning benches, which time what the executables run).
+/// and the split and division benches, which time what the executables run).
 ///
 /// Why: planning repeats the same work for ~100 candidate lane directions, each allocating and
 /// freeing buffers of 0.1–4 MB (a 10,000-vertex outline's edges, coverage samples). With glibc's
@@ -13,7 +13,8 @@ namespace swath::base {
 /// freed: ~30,000 page faults for one plan of a 10,000-vertex field, a third to half of its time
 /// on a virtual machine (bench/split_bench.cpp). With glibc: blocks below 32 MiB come from the heap
 /// (M_MMAP_THRESHOLD), and the heap's free top is returned only beyond 256 MiB (M_TRIM_THRESHOLD),
-/// so a process holds at most its peak plus that. Elsewhere it does nothing.
+/// so a process holds at most its peak plus that per malloc arena (one per thread at most).
+/// Elsewhere it does nothing.
 void keep_freed_memory();
 
 }  // namespace swath::base

@@ -10,20 +10,22 @@
 namespace swath::geometry {
 
 /// `rings` grown outward by `distance_m` (> 0), overlapping results united. Corners are mitred up
-/// to twice the distance, then cut square: the result contains every point within `distance_m`
-/// of the input (the full round buffer) and reaches at most 2 `distance_m` beyond it at a corner.
+/// to twice the distance (Boost's join_miter(2)); where the area's corner is sharper than 60
+/// degrees, and such a mitre would cut into the circle about the corner, a 16-gon about that
+/// circle is added. The result contains every point within `distance_m` of the input (the full
+/// round buffer) and reaches at most 2 `distance_m` beyond it at a corner.
 /// Each result is a counter-clockwise outer ring (holes that appear inside a union are dropped:
 /// a pocket enclosed by zones is not reachable anyway). `distance_m` = 0 returns the rings
 /// counter-clockwise.
 std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m);
 
-/// grow() of the rings first simplified (Douglas-Peucker) within `tolerance_m` (>= 0), by
-/// `distance_m` + `tolerance_m`: still contains every point within `distance_m` of the input
-/// (each input point lies within the tolerance of the simplified rings), and reaches at most
-/// 2 (`distance_m` + `tolerance_m`) + `tolerance_m` beyond it. For long outlines: buffering a
-/// 10,000-vertex field took seconds and gave a fence of ~1,900 vertices (an outline's small
-/// wiggles, each grown). Where simplifying drops no vertex, grow(rings, distance_m) itself; a ring
-/// whose simplification is not a valid polygon is kept whole (the others still simplified).
+/// grow() of the rings first simplified (Douglas-Peucker) within `tolerance_m` (>= 0, metres), by
+/// `distance_m` (>= 0, metres) + `tolerance_m`: every input point lies within the tolerance of the
+/// simplified rings, so the result holds every point within `distance_m` of the input, and
+/// reaches at most 2 (`distance_m` + `tolerance_m`) + `tolerance_m` beyond it. For long outlines:
+/// buffering a 10,000-vertex field took seconds and gave a fence of ~1,900 vertices (an outline's
+/// small wiggles, each grown). Where simplifying drops no vertex, grow(rings, distance_m) itself; a
+/// ring whose simplification is not a valid polygon is kept whole (the others still simplified).
 std::vector<Ring> grow_simplified(const std::vector<Ring>& rings, double distance_m,
                                   double tolerance_m);
 
