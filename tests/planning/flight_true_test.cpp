@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "meadow_survey.hpp"
+#include "random_polygons.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/planning/survey_files.hpp"
@@ -547,6 +548,37 @@ TEST(FlightTrue, ExcludedZoneIsFencedAndKeptClearOf) {
   const SurveyPlan plan = plan_survey(r);
   EXPECT_GE(*plan.clearance.no_fly_m, 8.0 - 1e-6);
   check_flights(plan, "meadow with a zone");
+}
+
+// An outline of 300 (and of 2,000) vertices, as drawn from a detailed survey: grown exactly, its
+// fence had ~300 vertices, more than PX4 stores in one polygon (64). The .plan's inclusion fence
+// fits, and still holds every point within the margin of the outline: points at 0.999 x the
+// margin off every vertex, in 8 directions, read back from the file.
+TEST(FlightTrue, ALongOutlinesFenceFitsAnAutopilotAndHoldsTheMargin) {
+  test::Rng rng(6464);
+  for (const std::size_t n : {std::size_t(300), std::size_t(2000)}) {
+    SCOPED_TRACE(n);
+    SurveyRequest r;
+    r.field = local_field({test::random_field_polygon(rng, n, 250), {}});
+    r.camera = {"test", 23.2, 15.4, 16, 5456, 3632, std::nullopt};
+    PhotogrammetryMode m;
+    m.altitude_m = 60;
+    r.mode = m;
+    const SurveyPlan plan = plan_survey(r);
+    const ReadPlan p =
+        read_plan(qgc_plan(plan, flights_of(plan).front()), *plan.request.field.frame);
+    ASSERT_FALSE(p.inclusions.empty());
+    for (const Ring& in : p.inclusions) EXPECT_LE(in.size(), kFenceVertexLimit);
+    const double reach_m = 0.999 * plan.fence_margin_m;
+    for (const Point2& v : plan.request.field.polygon.outer)
+      for (int k = 0; k < 8; ++k) {
+        const Point2 q = v + Point2{std::cos(k * 0.785398), std::sin(k * 0.785398)} * reach_m;
+        ASSERT_TRUE(std::any_of(p.inclusions.begin(), p.inclusions.end(),
+                                [&](const Ring& in) { return inside(q, in); }))
+            << q.x << ", " << q.y;
+      }
+    EXPECT_TRUE(plan.warnings.empty());
+  }
 }
 
 // A zone across the whole field cuts it in two; a second zone lies inside the smaller part, so

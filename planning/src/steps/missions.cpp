@@ -1,4 +1,7 @@
 // Step 6 of plan_survey(): each drone's mission and photos, and the fence (survey_steps.hpp).
+#include <algorithm>
+#include <string>
+
 #include "swath/geometry/offset.hpp"
 #include "swath/planning/survey_steps.hpp"
 
@@ -26,6 +29,36 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
   return s;
 }
 
+namespace {
+
+// The inclusion fence: `outlines` grown by `margin_m`. A long outline (over 500 vertices) is
+// simplified within 5 % of the margin (at most 5 m) first: its wiggles no longer each give the
+// fence vertices (a 10,000-vertex field's took seconds and gave 1,869), and the fence still holds
+// everything within the margin, reaching up to the tolerance further. A fence of more vertices
+// than an autopilot stores in one polygon (kFenceVertexLimit) is simplified within 10, 20, 40 and
+// 80 % of the margin in turn until it fits: still holding everything within the margin, reaching
+// at most 2 (margin + tolerance) + tolerance beyond the outline. Other outlines are grown exactly,
+// the fence at the margin.
+std::vector<geometry::Ring> fence_for(const std::vector<geometry::Ring>& outlines,
+                                      double margin_m) {
+  std::size_t vertices = 0;
+  for (const geometry::Ring& r : outlines) vertices += r.size();
+  std::vector<geometry::Ring> fence =
+      vertices > 500 ? geometry::grow_simplified(outlines, margin_m, std::min(5.0, 0.05 * margin_m))
+                     : geometry::grow(outlines, margin_m);
+  const auto too_many = [](const std::vector<geometry::Ring>& rings) {
+    return std::any_of(rings.begin(), rings.end(),
+                       [](const geometry::Ring& r) { return r.size() > kFenceVertexLimit; });
+  };
+  for (const double share : {0.1, 0.2, 0.4, 0.8}) {
+    if (!too_many(fence)) break;
+    fence = geometry::grow_simplified(outlines, margin_m, share * margin_m);
+  }
+  return fence;
+}
+
+}  // namespace
+
 void missions(SurveyPlan& plan) {
   const Routes routes(plan);
   const InsideTest inside = routes.inside_test();
@@ -39,15 +72,25 @@ void missions(SurveyPlan& plan) {
       plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
   std::vector<geometry::Ring> outlines{plan.area.outer};
   outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
-  // A long outline (over 500 vertices) simplified within 5 % of the margin (at most 5 m) first:
-  // its wiggles no longer each give the fence vertices (a 10,000-vertex field's took seconds and
-  // gave 1,869), and the fence still holds everything within the margin, reaching up to the
-  // tolerance further. Shorter outlines are grown exactly, the fence at the margin.
-  std::size_t vertices = 0;
-  for (const geometry::Ring& r : outlines) vertices += r.size();
-  plan.fence = vertices > 500 ? geometry::grow_simplified(outlines, plan.fence_margin_m,
-                                                          std::min(5.0, 0.05 * plan.fence_margin_m))
-                              : geometry::grow(outlines, plan.fence_margin_m);
+  plan.fence = fence_for(outlines, plan.fence_margin_m);
+  for (const geometry::Ring& ring : plan.fence)
+    if (ring.size() > kFenceVertexLimit) {
+      plan.warnings.push_back("the inclusion fence keeps " + std::to_string(ring.size()) +
+                              " vertices, more than the " + std::to_string(kFenceVertexLimit) +
+                              " PX4 stores in one polygon; give a smaller --fence-margin or a "
+                              "simpler outline");
+      break;
+    }
+  // Exclusion fences are the zones as given (DESIGN.md §14): a zone of more vertices is named.
+  for (std::size_t z = 0; z < plan.no_fly_geo.size(); ++z)
+    if (plan.no_fly_geo[z].size() > kFenceVertexLimit) {
+      plan.warnings.push_back("no-fly zone " + std::to_string(z) +
+                              " (the field's holes first, then --exclude zones, from 0) has " +
+                              std::to_string(plan.no_fly_geo[z].size()) +
+                              " vertices, more than the " + std::to_string(kFenceVertexLimit) +
+                              " PX4 stores in one exclusion fence; simplify it (outward)");
+      break;
+    }
 }
 
 }  // namespace swath::planning::steps

@@ -115,6 +115,8 @@ struct SurveyRequest {
 inline constexpr std::size_t kMaxSweepLines = 20'000;
 inline constexpr std::size_t kMaxWaypoints = 1'000'000;
 inline constexpr std::size_t kAutopilotItemLimit = 700;  ///< ArduPilot's classic mission size
+/// Vertices of one fence polygon an autopilot stores: PX4's limit (ArduPilot holds more).
+inline constexpr std::size_t kFenceVertexLimit = 64;
 /// Split routes transits around holes on a visibility graph whose size grows with the square of
 /// the holes' vertices: 500 holes of 4 vertices plan in ~2 s and 150 MB, 3,000 took 98 s and
 /// 5.6 GB. Beyond these, split refuses (hull mode ignores holes and is not limited).
