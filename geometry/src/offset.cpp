@@ -100,23 +100,21 @@ BMulti buffered(const BMulti& input, double distance) {
   const bg::strategy::buffer::point_circle circle(16);
   BMulti out;
   bg::buffer(input, out, by, side, join, end, circle);
-  // Boost pulls a mitre longer than the limit back to it, joined straight to the offset edges:
-  // at a corner sharper than 60 degrees that cuts into the circle about the corner (a 10 m
+  // Growing, Boost pulls a mitre longer than the limit back to it, joined straight to the offset
+  // edges: at a corner sharper than 60 degrees that cuts into the circle about the corner (a 10 m
   // clearance was 9.24 m from a 10-degree zone tip). A 16-gon about each such circle is added.
+  // Shrinking (subtract's inset) needs none: there a mitre only keeps further from a corner.
+  if (!(distance > 0)) return out;
   std::vector<BMulti> parts{std::move(out)};
   for (const Point2& c : sharp_corners(input)) parts.push_back({around_circle(c, distance)});
   return parts.size() == 1 ? std::move(parts.front()) : united(std::move(parts));
 }
 
 BMulti multi_of(const std::vector<Ring>& rings) {
-  BMulti all;
-  for (const Ring& r : rings) {
-    if (r.size() < 3) continue;
-    BMulti united;
-    bg::union_(all, polygon_of(r), united);
-    all = std::move(united);
-  }
-  return all;
+  std::vector<BMulti> parts;
+  for (const Ring& r : rings)
+    if (r.size() >= 3) parts.push_back({polygon_of(r)});
+  return united(std::move(parts));
 }
 
 // Squared distance from p to segment [a, b].

@@ -23,6 +23,12 @@ int bits_set(std::uint64_t x) {
   return int((x * 0x0101010101010101ull) >> 56);
 }
 
+// A transit's length `d` with its penalty: `weight` for each cell still to be flown whose lanes it
+// crosses (`crossed_unflown`). One expression for every search, so that they agree bit for bit.
+double penalised(double d, double weight, std::uint64_t crossed_unflown) {
+  return d * (1 + weight * bits_set(crossed_unflown));
+}
+
 // Memoised transit lengths between every entry/exit point and home: the metric may be a routed
 // shortest path, far dearer than the searches that query it.
 class Transit {
@@ -74,7 +80,7 @@ class Transit {
       const double d = exit_to_entry_[at];
       if (d >= 0) {
         if (!p_.crossed || crossed_[at] == kUnknown) return d;
-        return d * (1 + p_.crossing_weight * bits_set(crossed_[at] & unflown));
+        return penalised(d, p_.crossing_weight, crossed_[at] & unflown);
       }
     }
     return geometry::distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
@@ -84,7 +90,7 @@ class Transit {
               std::uint64_t unflown) {
     const double d = between(c1, v1, c2, v2);
     if (!p_.crossed) return d;
-    return d * (1 + p_.crossing_weight * bits_set(crossed(c1, v1, c2, v2) & unflown));
+    return penalised(d, p_.crossing_weight, crossed(c1, v1, c2, v2) & unflown);
   }
 
  private:
@@ -351,7 +357,7 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
   const std::size_t n = p.cells.size();
   if (n > 16) throw std::invalid_argument("exact_cell_order: more than 16 cells");
   if (n == 0) return {};
-  Transit t(p);
+  Transit t(p, /*memoise=*/false);  // every transition is asked once, into the tables below
   constexpr std::size_t kMaxVariants = 4;
   const std::size_t states = n * kMaxVariants;
   // Every transition's length and crossed cells first (Held-Karp asks for each of them: every
@@ -396,18 +402,18 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
   // same: the same tour, bit for bit, the search cut to the tours a greedy one does not beat.
   // Each cell still to fly adds at least its least internal length and its least way in (from
   // home or another cell's exit; a crossing penalty only adds, for a weight >= 0).
-  std::vector<double> least_internal(n, kInf);
+  std::vector<double> least_added(n, kInf);
   double all_least = 0;
   for (std::size_t c = 0; c < n; ++c) {
     double way_in = kInf;
     for (std::size_t v = 0; v < variants[c]; ++v) {
       const std::size_t s2 = c * kMaxVariants + v;
-      least_internal[c] = std::min(least_internal[c], internal[s2]);
+      least_added[c] = std::min(least_added[c], internal[s2]);
       way_in = std::min(way_in, t.from_home(c, v));
       for (std::size_t s = 0; s < states; ++s) way_in = std::min(way_in, between[s * states + s2]);
     }
-    least_internal[c] += std::max(0.0, way_in);
-    all_least += least_internal[c];
+    least_added[c] += std::max(0.0, way_in);
+    all_least += least_added[c];
   }
   const auto greedy_bound = [&] {
     std::size_t at = states, flown = 0;  // states: at home
@@ -427,8 +433,8 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
             const std::size_t i = at * states + s2;
             transit = between[i];
             if (p.crossed)
-              transit *= 1 + p.crossing_weight *
-                                 bits_set(crossed[i] & unflown_before & ~(std::uint64_t{1} << c2));
+              transit = penalised(transit, p.crossing_weight,
+                                  crossed[i] & unflown_before & ~(std::uint64_t{1} << c2));
           }
           if (transit + internal[s2] < best) {
             best = transit + internal[s2];
@@ -446,9 +452,9 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
   const auto search = [&]<bool kCrossed>() {
     for (std::size_t mask = 1; mask < masks; ++mask) {
       const double* row = &cost[mask * states];
-      double rest = all_least;  // the least internal lengths of the cells not in mask
+      double rest = all_least;  // the least the cells not in mask add
       for (std::size_t c = 0; c < n; ++c)
-        if (mask & (std::size_t{1} << c)) rest -= least_internal[c];
+        if (mask & (std::size_t{1} << c)) rest -= least_added[c];
       const double limit = bound - std::max(0.0, rest) * (1 - 1e-9);
       for (std::size_t c = 0; c < n; ++c) {
         if (!(mask & (std::size_t{1} << c))) continue;
@@ -463,11 +469,9 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
             double* next_row = &cost[next_mask * states];
             for (std::size_t v2 = 0; v2 < variants[c2]; ++v2) {
               const std::size_t s2 = c2 * kMaxVariants + v2, at = s * states + s2;
-              // Transit::cost()'s own expression, for the same bits.
-              const double d = between[at];
-              double transit = d;
+              double transit = between[at];
               if constexpr (kCrossed)
-                transit = d * (1 + p.crossing_weight * bits_set(crossed[at] & unflown));
+                transit = penalised(transit, p.crossing_weight, crossed[at] & unflown);
               const double total = here + transit + internal[s2];
               if (total < next_row[s2]) {
                 next_row[s2] = total;

@@ -29,9 +29,8 @@ bool inside_any(const std::vector<Ring>& rings, Point2 p) {
   return false;
 }
 
-// Distance from p to the closed area of `ring` (0 inside).
-double distance_to(const Ring& ring, Point2 p) {
-  if (inside_any({ring}, p)) return 0;
+// Distance from p to the boundary of `ring`, by brute force over its edges.
+double distance_to_boundary(const Ring& ring, Point2 p) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
@@ -39,6 +38,20 @@ double distance_to(const Ring& ring, Point2 p) {
     best = std::min(best, distance(p, a + d * t));
   }
   return best;
+}
+
+// Distance from p to the closed area of `ring` (0 inside).
+double distance_to(const Ring& ring, Point2 p) {
+  return inside_any({ring}, p) ? 0 : distance_to_boundary(ring, p);
+}
+
+// A wedge of `angle` (radians) with its tip at `tip`, sides `length_m`, turned by `turn`
+// (radians), counter-clockwise.
+Ring wedge_at(Point2 tip, double angle, double length_m, double turn) {
+  const auto at = [&](double a) {
+    return tip + Point2{std::cos(turn + a), std::sin(turn + a)} * length_m;
+  };
+  return {tip, at(3.141592653589793 - angle / 2), at(3.141592653589793 + angle / 2)};
 }
 
 std::size_t vertices(const std::vector<Ring>& rings) {
@@ -87,12 +100,7 @@ TEST(Grow, HoldsTheWholeCircleAboutSharpCorners) {
     const double length_m = 20 + 200 * unit(rng), turn = 2 * 3.141592653589793 * unit(rng);
     const double distance_m = 1 + 30 * unit(rng);
     const Point2 tip{500 * unit(rng), 500 * unit(rng)};
-    const auto at = [&](double a, double r) {
-      return tip + Point2{std::cos(turn + a), std::sin(turn + a)} * r;
-    };
-    // The tip, then back along one side and forth along the other: counter-clockwise.
-    const Ring wedge{tip, at(3.141592653589793 - angle / 2, length_m),
-                     at(3.141592653589793 + angle / 2, length_m)};
+    const Ring wedge = wedge_at(tip, angle, length_m, turn);
     const Ring beside{tip + Point2{1000, 0}, tip + Point2{1100, 0}, tip + Point2{1000, 100}};
     const std::vector<Ring> grown = grow({wedge, beside}, distance_m);
     for (int i = 0; i < 720; ++i) {
@@ -105,6 +113,29 @@ TEST(Grow, HoldsTheWholeCircleAboutSharpCorners) {
     for (const Ring& r : grown)
       for (const Point2& v : r)
         ASSERT_LE(std::min(distance_to(wedge, v), distance_to(beside, v)), 2 * distance_m + 1e-6);
+  }
+}
+
+// The inset area (subtract() shrinks by the boundary clearance with the same buffer) of wedges of
+// 20 to 90 degrees: every vertex inside the wedge and at least the inset from its boundary. The
+// 16-gons that grow() adds about sharp corners must not reach an inset area (they reached
+// outside the field at its corners).
+TEST(Subtract, InsetKeepsTheInsetFromEveryEdgeAtSharpCorners) {
+  test::Rng rng(4041);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int k = 0; k < 20; ++k) {
+    const double angle = (20 + 70 * unit(rng)) * 3.141592653589793 / 180;
+    const Ring wedge = wedge_at({0, 0}, angle, 300, 2 * 3.141592653589793 * unit(rng));
+    const double inset_m = 1 + 10 * unit(rng);
+    const std::vector<Ring> inset = subtract(wedge, inset_m, {});
+    ASSERT_FALSE(inset.empty()) << "wedge " << k;
+    for (const Ring& r : inset)
+      for (const Point2& v : r) {
+        ASSERT_TRUE(inside_any({wedge}, v)) << "wedge " << k << ": " << v.x << ", " << v.y;
+        // Within 1e-6 of the wedge's size: Boost's buffer rounds to a grid of the extent (its
+        // points rescaled to integers), 2e-5 m short here.
+        ASSERT_GE(distance_to_boundary(wedge, v), inset_m - 1e-6 * 300) << "wedge " << k;
+      }
   }
 }
 

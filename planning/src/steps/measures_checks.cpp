@@ -112,6 +112,25 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
   }
 }
 
+// Fences an autopilot cannot store: the inclusion fence (missions() simplifies it to fit where it
+// can) and the zones, kept as given (DESIGN.md §14), above kFenceVertexLimit vertices.
+void warn_about_fences(const SurveyPlan& plan, std::vector<std::string>& warnings) {
+  if (const std::size_t most = most_vertices(plan.fence); most > kFenceVertexLimit)
+    warnings.push_back("the inclusion fence keeps " + std::to_string(most) +
+                       " vertices, more than the " + std::to_string(kFenceVertexLimit) +
+                       " PX4 stores in one polygon; give a smaller --fence-margin or a simpler "
+                       "outline");
+  for (std::size_t z = 0; z < plan.no_fly_geo.size(); ++z)
+    if (plan.no_fly_geo[z].size() > kFenceVertexLimit) {
+      warnings.push_back("no-fly zone " + std::to_string(z) +
+                         " (the field's holes first, then --exclude zones, from 0) has " +
+                         std::to_string(plan.no_fly_geo[z].size()) + " vertices, more than the " +
+                         std::to_string(kFenceVertexLimit) +
+                         " PX4 stores in one exclusion fence; simplify it (outward)");
+      break;
+    }
+}
+
 }  // namespace
 
 void measures(SurveyPlan& plan) {
@@ -168,6 +187,7 @@ void checks(SurveyPlan& plan) {
                        " m is above 120 m, the common legal limit for drones (EU open category, "
                        "US Part 107): fly it only with a permit that allows it");
   for (const DronePlan& d : plan.drones) warn_about_drone(plan, d, warnings);
+  warn_about_fences(plan, warnings);
   if (plan.clearance.no_fly_m && *plan.clearance.no_fly_m < r.clearance_m - 0.01)
     warnings.push_back("the flight comes within " + fixed_text(*plan.clearance.no_fly_m, 1) +
                        " m of a no-fly zone, less than the " + fixed_text(r.clearance_m, 1) +

@@ -1,6 +1,5 @@
 // Step 6 of plan_survey(): each drone's mission and photos, and the fence (survey_steps.hpp).
 #include <algorithm>
-#include <string>
 
 #include "swath/geometry/offset.hpp"
 #include "swath/planning/survey_steps.hpp"
@@ -46,18 +45,20 @@ std::vector<geometry::Ring> fence_for(const std::vector<geometry::Ring>& outline
   std::vector<geometry::Ring> fence =
       vertices > 500 ? geometry::grow_simplified(outlines, margin_m, std::min(5.0, 0.05 * margin_m))
                      : geometry::grow(outlines, margin_m);
-  const auto too_many = [](const std::vector<geometry::Ring>& rings) {
-    return std::any_of(rings.begin(), rings.end(),
-                       [](const geometry::Ring& r) { return r.size() > kFenceVertexLimit; });
-  };
   for (const double share : {0.1, 0.2, 0.4, 0.8}) {
-    if (!too_many(fence)) break;
+    if (most_vertices(fence) <= kFenceVertexLimit) break;
     fence = geometry::grow_simplified(outlines, margin_m, share * margin_m);
   }
   return fence;
 }
 
 }  // namespace
+
+std::size_t most_vertices(const std::vector<geometry::Ring>& rings) {
+  std::size_t most = 0;
+  for (const geometry::Ring& r : rings) most = std::max(most, r.size());
+  return most;
+}
 
 void missions(SurveyPlan& plan) {
   const Routes routes(plan);
@@ -73,24 +74,6 @@ void missions(SurveyPlan& plan) {
   std::vector<geometry::Ring> outlines{plan.area.outer};
   outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
   plan.fence = fence_for(outlines, plan.fence_margin_m);
-  for (const geometry::Ring& ring : plan.fence)
-    if (ring.size() > kFenceVertexLimit) {
-      plan.warnings.push_back("the inclusion fence keeps " + std::to_string(ring.size()) +
-                              " vertices, more than the " + std::to_string(kFenceVertexLimit) +
-                              " PX4 stores in one polygon; give a smaller --fence-margin or a "
-                              "simpler outline");
-      break;
-    }
-  // Exclusion fences are the zones as given (DESIGN.md §14): a zone of more vertices is named.
-  for (std::size_t z = 0; z < plan.no_fly_geo.size(); ++z)
-    if (plan.no_fly_geo[z].size() > kFenceVertexLimit) {
-      plan.warnings.push_back("no-fly zone " + std::to_string(z) +
-                              " (the field's holes first, then --exclude zones, from 0) has " +
-                              std::to_string(plan.no_fly_geo[z].size()) +
-                              " vertices, more than the " + std::to_string(kFenceVertexLimit) +
-                              " PX4 stores in one exclusion fence; simplify it (outward)");
-      break;
-    }
 }
 
 }  // namespace swath::planning::steps

@@ -10,11 +10,11 @@ namespace swath::base {
 /// Why: planning repeats the same work for ~100 candidate lane directions, each allocating and
 /// freeing buffers of 0.1–4 MB (a 10,000-vertex outline's edges, coverage samples). With glibc's
 /// default thresholds each such buffer comes as fresh pages from the kernel and goes back when
-/// freed: ~30,000 page faults for one plan of a 10,000-vertex field, a third to half of its time
-/// on a virtual machine (bench/split_bench.cpp). With glibc: blocks below 32 MiB come from the heap
-/// (M_MMAP_THRESHOLD), and the heap's free top is returned only beyond 256 MiB (M_TRIM_THRESHOLD),
-/// so a process holds at most its peak plus that per malloc arena (one per thread at most).
-/// Elsewhere it does nothing.
+/// freed: 20,000 page faults for one plan of a 10,000-vertex field (6,500 with this), and a whole
+/// process 0.70 against 0.53 s on a virtual machine (bench/split_bench.cpp, --default_allocator).
+/// With glibc: blocks below 32 MiB come from the heap (M_MMAP_THRESHOLD), and the heap's free top
+/// is returned only beyond 256 MiB (M_TRIM_THRESHOLD), so a process holds at most its peak plus
+/// that per malloc arena (one per thread at most). Elsewhere it does nothing.
 void keep_freed_memory();
 
 }  // namespace swath::base

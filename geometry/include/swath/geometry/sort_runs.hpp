@@ -39,35 +39,25 @@ void sort_by_runs(std::vector<T>& v, Less less, bool equivalents_alike) {
     std::sort(v.begin(), v.end(), less);
     return;
   }
-  // Merged pass by pass between v and one buffer (std::merge, stable as inplace_merge is): one
-  // allocation, where inplace_merge took a fresh buffer for every merge (fresh pages, for the
-  // 10,000-vertex outlines a direction search sorts ~100 times).
   std::vector<T> first_order;
   if (!equivalents_alike) first_order = v;
-  for (const Run& r : runs)
-    if (r.decreasing)
-      std::reverse(v.begin() + std::ptrdiff_t(r.begin), v.begin() + std::ptrdiff_t(r.end));
+  const auto at = [&](std::size_t k) { return v.begin() + std::ptrdiff_t(k); };
   std::vector<std::size_t> bounds{0};
-  for (const Run& r : runs) bounds.push_back(r.end);
-  std::vector<T> other(bounds.size() > 2 ? v.size() : 0);
-  std::vector<T>* from = &v;
-  std::vector<T>* to = &other;
+  for (const Run& r : runs) {
+    if (r.decreasing) std::reverse(at(r.begin), at(r.end));
+    bounds.push_back(r.end);
+  }
   while (bounds.size() > 2) {
-    const auto at = [](std::vector<T>& w, std::size_t k) { return w.begin() + std::ptrdiff_t(k); };
     std::vector<std::size_t> merged{0};
     for (std::size_t k = 0; k + 1 < bounds.size(); k += 2)
       if (k + 2 < bounds.size()) {
-        std::merge(at(*from, bounds[k]), at(*from, bounds[k + 1]), at(*from, bounds[k + 1]),
-                   at(*from, bounds[k + 2]), at(*to, bounds[k]), less);
+        std::inplace_merge(at(bounds[k]), at(bounds[k + 1]), at(bounds[k + 2]), less);
         merged.push_back(bounds[k + 2]);
       } else {
-        std::copy(at(*from, bounds[k]), at(*from, bounds[k + 1]), at(*to, bounds[k]));
         merged.push_back(bounds[k + 1]);
       }
     bounds = std::move(merged);
-    std::swap(from, to);
   }
-  if (from != &v) v.swap(other);
   if (equivalents_alike) return;
   for (std::size_t i = 0; i + 1 < v.size(); ++i)
     if (!less(v[i], v[i + 1])) {  // sorted, so equivalent: std::sort's own order between them

@@ -29,8 +29,8 @@ void lanes(SurveyPlan& plan);
 /// fleet, the division of the lines among them.
 void drones(SurveyPlan& plan);
 
-/// 6. missions: each drone's items (speed, gimbal, camera per line, routed legs, RTL or land)
-/// and its planned photos.
+/// 6. missions: each drone's items (speed, gimbal, camera per line, routed legs, RTL or land),
+/// its planned photos, and the inclusion fence (within kFenceVertexLimit vertices where it can).
 void missions(SurveyPlan& plan);
 
 /// 7. sorties: with SurveyRequest::sorties, each drone's flight cut into battery-sized sorties.
@@ -45,7 +45,8 @@ void terrain(SurveyPlan& plan);
 void measures(SurveyPlan& plan);
 
 /// 9. checks: the refusals that need the whole plan (covers nothing, fleet short) and the
-/// warnings (trigger interval, h_max, item limit, altitude, endurance, idle drones).
+/// warnings (trigger interval, h_max, item limit, fence vertices, altitude, endurance, idle
+/// drones).
 void checks(SurveyPlan& plan);
 
 /// How far the bends of routed legs keep from the corners they go round, beyond the clearance:
@@ -71,5 +72,8 @@ struct Routes {
 
 /// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
 MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone);
+
+/// The most vertices of one of `rings` (0 for none): what a fence polygon must fit.
+std::size_t most_vertices(const std::vector<geometry::Ring>& rings);
 
 }  // namespace swath::planning::steps
