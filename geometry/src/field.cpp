@@ -186,6 +186,15 @@ Field field_from_raw(detail::RawField raw, const std::string& source, bool geogr
         geo.push_back({p.y, wrap_longitude(p.x), 0.0});
         p = field.frame->to_local(geo.back());
       }
+      // Except about a pole: a ring round the South Pole turns the other way on the ground than
+      // in longitude and latitude (every vertex was reflex, and the cells failed). The local
+      // plane decides, and the first vertex stays first as in normalise_ring().
+      const double a = signed_area(normalised.ring);
+      if ((r == 0 && a < 0) || (r > 0 && a > 0)) {
+        std::reverse(normalised.ring.begin() + 1, normalised.ring.end());
+        std::reverse(normalised.source_index.begin() + 1, normalised.source_index.end());
+        std::reverse(geo.begin() + 1, geo.end());
+      }
       field.geo_rings.push_back(std::move(geo));
     }
     if (normalised.ring.size() < 3)

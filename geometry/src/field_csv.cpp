@@ -102,13 +102,13 @@ RawField parse_csv(const std::string& text, const std::string& source, bool loca
                        " comma-separated columns, found " + std::to_string(cells.size()));
     const auto x = number(cells[cx]);
     const auto y = number(cells[cy]);
-    if (!x) fail(source, where + ": " + x_name + " '" + cells[cx] + "' is not a number");
-    if (!y) fail(source, where + ": " + y_name + " '" + cells[cy] + "' is not a number");
+    if (!x) fail(source, where + ": " + x_name + " '" + shown(cells[cx]) + "' is not a number");
+    if (!y) fail(source, where + ": " + y_name + " '" + shown(cells[cy]) + "' is not a number");
     long ring_id = 0;
     if (cring) {
       const auto r = number(cells[*cring]);
       if (!r || *r < 0 || *r > 1e9 || *r != std::floor(*r))
-        fail(source, where + ": ring '" + cells[*cring] + "' is not a whole number >= 0");
+        fail(source, where + ": ring '" + shown(cells[*cring]) + "' is not a whole number >= 0");
       ring_id = static_cast<long>(*r);
     }
     auto [slot, added] = ring_slot.try_emplace(ring_id, field.rings.size());

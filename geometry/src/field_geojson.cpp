@@ -1,5 +1,7 @@
 // GeoJSON (RFC 7946): Polygon, MultiPolygon with one part, Feature, FeatureCollection with one
 // polygonal feature. Positions are [longitude, latitude(, altitude)].
+#include <cctype>
+
 #include <nlohmann/json.hpp>
 
 #include "raw_field.hpp"
@@ -52,9 +54,17 @@ RawField parse_geometry(const json& geometry, const std::string& source, const s
   const std::string type = type_of(geometry);
   if (!geometry.is_object() || type.empty())
     fail(source, where + " has no geometry object with a \"type\"");
-  if (!is_polygonal(type))
-    fail(source,
-         where + " is a " + type + "; an area must be a Polygon or a MultiPolygon with one part");
+  if (!is_polygonal(type)) {
+    std::string lower = type;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool miscased = lower == "polygon" || lower == "multipolygon";
+    // The top-level geometry is named by its type elsewhere ("the Polygon, hole 0"), which
+    // here would say "the Point is a Point".
+    const std::string owner = where == "the " + type ? "the GeoJSON" : where;
+    fail(source, owner + "'s geometry is a " + shown(type) +
+                     "; an area must be a Polygon or a MultiPolygon with one part" +
+                     (miscased ? " (GeoJSON's type names are case-sensitive)" : ""));
+  }
   if (!geometry.contains("coordinates")) fail(source, where + " has no \"coordinates\"");
   const json& coordinates = geometry["coordinates"];
   if (type == "Polygon") return parse_polygon_coordinates(coordinates, source, where);

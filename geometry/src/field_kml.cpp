@@ -47,17 +47,19 @@ void find_all(const pugi::xml_node& root, std::string_view name, std::vector<pug
   }
 }
 
-// A piece of the file for a message: at most 40 printable characters.
-std::string shown(const std::string& piece) {
-  std::string out;
-  for (const char c : piece.substr(0, 40))
-    out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
-  return piece.size() > 40 ? out + "..." : out;
+// Every child of `node` called `name`, in order.
+std::vector<pugi::xml_node> children(const pugi::xml_node& node, std::string_view name) {
+  std::vector<pugi::xml_node> out;
+  for (pugi::xml_node c : node.children())
+    if (local_name(c) == name) out.push_back(c);
+  return out;
 }
 
-RawRing parse_boundary(const pugi::xml_node& boundary, const std::string& text,
-                       const std::string& source, const std::string& name) {
-  const pugi::xml_node coordinates = child(child(boundary, "LinearRing"), "coordinates");
+// One <LinearRing> of a boundary element (`boundary`, for the messages where the ring has no
+// coordinates).
+RawRing parse_ring(const pugi::xml_node& linear_ring, const pugi::xml_node& boundary,
+                   const std::string& text, const std::string& source, const std::string& name) {
+  const pugi::xml_node coordinates = child(linear_ring, "coordinates");
   const int boundary_line =
       line_column(text, static_cast<std::size_t>(boundary.offset_debug())).first;
   if (!coordinates)
@@ -136,13 +138,28 @@ RawField parse_kml(const std::string& text, const std::string& source) {
   const pugi::xml_node outer = child(polygon, "outerBoundaryIs");
   if (!outer) fail(source, "line " + line_of(polygon) + ": the <Polygon> has no <outerBoundaryIs>");
 
+  // One outer ring; every <LinearRing> of every <innerBoundaryIs> a hole (Google Earth takes
+  // several in one): a ring left out would be a hole flown over, or ground not surveyed.
+  const std::vector<pugi::xml_node> outers = children(polygon, "outerBoundaryIs");
+  if (outers.size() > 1)
+    fail(source, "lines " + line_of(outers[0]) + " and " + line_of(outers[1]) +
+                     ": the <Polygon> has more than one <outerBoundaryIs>; give each part its "
+                     "own <Placemark> and choose one with --feature NAME or INDEX");
+  const std::vector<pugi::xml_node> outer_rings = children(outer, "LinearRing");
+  if (outer_rings.size() > 1)
+    fail(source, "line " + line_of(outer) +
+                     ": the <outerBoundaryIs> holds more than one <LinearRing>; a polygon has "
+                     "one outer boundary");
   RawField field;
-  field.rings.push_back(parse_boundary(outer, text, source, "outer boundary"));
+  field.rings.push_back(
+      parse_ring(child(outer, "LinearRing"), outer, text, source, "outer boundary"));
   std::size_t hole = 0;
-  for (pugi::xml_node c : polygon.children()) {
-    if (local_name(c) != "innerBoundaryIs") continue;
-    field.rings.push_back(
-        parse_boundary(c, text, source, "inner boundary " + std::to_string(hole++)));
+  for (const pugi::xml_node& inner : children(polygon, "innerBoundaryIs")) {
+    std::vector<pugi::xml_node> rings = children(inner, "LinearRing");
+    if (rings.empty()) rings.emplace_back();  // refused by parse_ring: no <LinearRing>
+    for (const pugi::xml_node& ring : rings)
+      field.rings.push_back(
+          parse_ring(ring, inner, text, source, "inner boundary " + std::to_string(hole++)));
   }
   return field;
 }

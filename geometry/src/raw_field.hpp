@@ -1,6 +1,7 @@
 #pragma once
 // Internal: what a field parser hands to the common validation (not installed).
 
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,15 @@ std::string position_place(const RawRing& ring, std::size_t i);
 
 [[noreturn]] inline void fail(const std::string& source, const std::string& message) {
   throw InputError(source + ": " + message);
+}
+
+/// A piece of the file for a message: at most 40 characters, each not printable as '?' (a NUL
+/// cut the message short, a control character garbled the terminal).
+inline std::string shown(const std::string& piece) {
+  std::string out;
+  for (const char c : piece.substr(0, 40))
+    out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+  return piece.size() > 40 ? out + "..." : out;
 }
 
 RawField parse_geojson(const std::string& text, const std::string& source);

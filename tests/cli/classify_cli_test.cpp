@@ -144,7 +144,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"broken_kml", "tests/fixtures/broken.kml",
                  "broken.kml: line 4, column 3: invalid XML"},
         BadInput{"point", "tests/fixtures/point.geojson",
-                 "point.geojson: the Point is a Point; an area must be a Polygon"},
+                 "point.geojson: the GeoJSON's geometry is a Point; an area must be a Polygon"},
         BadInput{"two_vertices", "tests/fixtures/two-vertices.csv",
                  "two-vertices.csv: outer ring (ring 0) has 2 distinct vertices"},
         BadInput{"collinear", "tests/fixtures/collinear.csv",

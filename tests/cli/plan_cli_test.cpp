@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -300,6 +301,52 @@ TEST(PlanCli, RepairPlansTheAreasACrossingRingEncloses) {
   int areas = 0;
   for (const json& f : g["features"]) areas += f["properties"]["role"] == "area";
   EXPECT_EQ(areas, 2);
+}
+
+// A ring that touches itself at a vertex (two notches meeting at one point) repairs into two
+// pieces that share that point; their decomposition ended in "bad merge" (exit 1). They are now
+// planned a millimetre apart.
+TEST(PlanCli, RepairPlansPiecesThatTouchAtAPoint) {
+  for (const std::string cells : {"best", "boustrophedon"}) {
+    const std::string out = fresh_dir("touching-" + cells);
+    const CliRun run = run_swath(
+        "plan tests/fixtures/self-touching.geojson --camera sony-ilce-qx1 --altitude 40 "
+        "--repair --split-cells " +
+        cells + " -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const json s = json::parse(read_text(out + "/summary.json"));
+    EXPECT_EQ(s["area"]["repaired_pieces"], 2);
+    EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.999) << cells;
+    EXPECT_EQ(s["coverage"]["line_length_outside_m"].get<double>(), 0.0) << cells;
+  }
+}
+
+// A strip a few metres wide round a hole that fills the field: the lines cannot reach all of it,
+// and the plan says so (it said nothing at 94 %).
+TEST(PlanCli, CoverageBelowThePromiseIsWarnedAbout) {
+  const std::string out = fresh_dir("thin-ring");
+  const CliRun run = run_swath(
+      "plan tests/fixtures/thin-ring-round-a-hole.geojson --camera sony-ilce-qx1 "
+      "--altitude 60 --clearance 0 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  const double covered = s["coverage"]["covered_fraction"].get<double>();
+  ASSERT_LT(covered, 0.999);
+  char percent[32];
+  std::snprintf(percent, sizeof percent, "the photos cover %.2f %% of the area", 100 * covered);
+  EXPECT_NE(run.err.find(std::string("swath plan: warning: ") + percent), std::string::npos)
+      << run.err;
+  bool in_summary = false;
+  for (const json& w : s["warnings"])
+    in_summary |= w.get<std::string>().find(percent) != std::string::npos;
+  EXPECT_TRUE(in_summary) << s["warnings"].dump();
+  // The bundled meadow is covered whole: no such warning.
+  const std::string meadow = fresh_dir("meadow-covered");
+  const CliRun whole = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + meadow);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.err.find("the photos cover"), std::string::npos) << whole.err;
 }
 
 TEST(PlanCli, ThreeDronesByPathAndByRegion) {

@@ -58,6 +58,35 @@ TEST(GeoJson, UnclosedClockwiseRingIsNormalisedAndKeepsFilePositions) {
   EXPECT_NEAR(g.lat_deg, 47.0, 1e-10);
 }
 
+// About a pole a ring turns one way on the ground and the other (or neither) in longitude and
+// latitude: orientation is the local plane's. A square round the South Pole was read clockwise in
+// one vertex order (every vertex reflex; the plan failed) and counter-clockwise in the other.
+TEST(GeoJson, RingsRoundAPoleAreOrientedOnTheGround) {
+  for (const double lat : {-89.995, 89.995}) {
+    const std::string l = std::to_string(lat);
+    const std::string east = "[[[45," + l + "],[135," + l + "],[-135," + l + "],[-45," + l + "]]]";
+    const std::string west = "[[[45," + l + "],[-45," + l + "],[-135," + l + "],[135," + l + "]]]";
+    std::vector<double> areas;
+    for (const std::string& ring : {east, west}) {
+      const Field f = parse_field(R"({"type":"Polygon","coordinates":)" + ring + "}",
+                                  FieldFormat::geojson, "p");
+      ASSERT_EQ(f.polygon.outer.size(), 4u) << lat;
+      EXPECT_GT(signed_area(f.polygon.outer), 0) << lat << ring;
+      EXPECT_EQ(classify(f.polygon).type, AreaType::convex) << lat << ring;
+      // The vertices keep their file positions, the first first.
+      EXPECT_EQ(f.source_index[0][0], 0u);
+      for (std::size_t i = 0; i < 4; ++i) {
+        const GeoPoint g = f.frame->to_geo(f.polygon.outer[i]);
+        EXPECT_NEAR(g.lat_deg, lat, 1e-9);
+      }
+      areas.push_back(area(f.polygon));
+    }
+    // A square of half-diagonal 0.005 degrees of meridian (~556 m): ~6.2e5 m².
+    EXPECT_NEAR(areas[0], areas[1], 1e-6 * areas[0]) << lat;
+    EXPECT_NEAR(areas[0], 6.2e5, 0.02 * 6.2e5) << lat;
+  }
+}
+
 TEST(GeoJson, HolesAreClockwiseAndSubtracted) {
   const Field f = parse_field(
       R"({"type":"Polygon","coordinates":[[[0,0],[0.01,0],[0.01,0.01],[0,0.01]],[[0.002,0.002],[0.004,0.002],[0.004,0.004],[0.002,0.004]]]})",
@@ -73,7 +102,12 @@ TEST(GeoJson, BadInputIsNamedWithItsPlace) {
                "line 2");
   expect_error("[1,2]", FieldFormat::geojson, "no \"type\"");
   expect_error(R"({"type":"LineString","coordinates":[[0,0],[1,1]]})", FieldFormat::geojson,
-               "is a LineString");
+               "the GeoJSON's geometry is a LineString; an area must be a Polygon");
+  expect_error(R"({"type":"polygon","coordinates":[[[0,0],[1,0],[1,1]]]})", FieldFormat::geojson,
+               "is a polygon; an area must be a Polygon or a MultiPolygon with one part (GeoJSON's "
+               "type names are case-sensitive)");
+  expect_error(R"({"type":"Feature","geometry":{"type":"GeometryCollection","geometries":[]}})",
+               FieldFormat::geojson, "the Feature's geometry is a GeometryCollection");
   expect_error(R"({"type":"FeatureCollection","features":[]})", FieldFormat::geojson, "no Polygon");
   expect_error(R"({"type":"Polygon","coordinates":[[[0,0],[1,0],[0,0]]]})", FieldFormat::geojson,
                "2 distinct vertices");
@@ -109,6 +143,38 @@ TEST(Kml, OuterAndInnerBoundariesWithNamespacePrefix) {
   ASSERT_EQ(f.polygon.holes.size(), 1u);
   EXPECT_EQ(f.polygon.holes[0].size(), 3u);
   EXPECT_EQ(classify(f.polygon).type, AreaType::concave);
+}
+
+// Google Earth writes several <LinearRing> in one <innerBoundaryIs>; each is a hole (the second
+// was dropped, and the drone flew over it). Two outer boundaries are refused, not half read.
+TEST(Kml, EveryRingOfAnInnerBoundaryIsAHole) {
+  const std::string kml = R"(<kml><Placemark><Polygon>
+ <outerBoundaryIs><LinearRing><coordinates>0,0 0.01,0 0.01,0.01 0,0.01 0,0</coordinates></LinearRing></outerBoundaryIs>
+ <innerBoundaryIs>
+  <LinearRing><coordinates>0.002,0.002 0.004,0.002 0.004,0.004</coordinates></LinearRing>
+  <LinearRing><coordinates>0.006,0.006 0.008,0.006 0.008,0.008 0.006,0.008</coordinates></LinearRing>
+ </innerBoundaryIs>
+ <innerBoundaryIs><LinearRing><coordinates>0.002,0.007 0.003,0.007 0.003,0.008</coordinates></LinearRing></innerBoundaryIs>
+</Polygon></Placemark></kml>)";
+  const Field f = parse_field(kml, FieldFormat::kml, "k");
+  ASSERT_EQ(f.polygon.holes.size(), 3u);
+  EXPECT_EQ(f.polygon.holes[0].size(), 3u);
+  EXPECT_EQ(f.polygon.holes[1].size(), 4u);
+  EXPECT_EQ(f.polygon.holes[2].size(), 3u);
+  expect_error(
+      "<kml><Polygon><outerBoundaryIs><LinearRing><coordinates>0,0 1,0 1,1</coordinates>"
+      "</LinearRing></outerBoundaryIs>\n<outerBoundaryIs><LinearRing><coordinates>2,0 3,0 3,1"
+      "</coordinates></LinearRing></outerBoundaryIs></Polygon></kml>",
+      FieldFormat::kml, "lines 1 and 2: the <Polygon> has more than one <outerBoundaryIs>");
+  expect_error(
+      "<kml><Polygon><outerBoundaryIs><LinearRing><coordinates>0,0 1,0 1,1</coordinates>"
+      "</LinearRing><LinearRing><coordinates>2,0 3,0 3,1</coordinates></LinearRing>"
+      "</outerBoundaryIs></Polygon></kml>",
+      FieldFormat::kml, "holds more than one <LinearRing>");
+  expect_error(
+      "<kml><Polygon><outerBoundaryIs><LinearRing><coordinates>0,0 1,0 1,1</coordinates>"
+      "</LinearRing></outerBoundaryIs><innerBoundaryIs/></Polygon></kml>",
+      FieldFormat::kml, "inner boundary 0 has no <LinearRing><coordinates>");
 }
 
 TEST(Kml, BadInputNamesTheLine) {
@@ -217,6 +283,9 @@ TEST(Csv, LocalMetresNeedNoFrame) {
 TEST(Csv, BadInputNamesTheLine) {
   expect_error("# only a comment\n", FieldFormat::csv, "no positions");
   expect_error("lon,lat\n8,47\n8.1,x\n", FieldFormat::csv, "line 3: lat 'x' is not a number");
+  // A NUL or control character in the cell is shown as '?': the message stays one whole sentence.
+  expect_error(std::string("lon,lat\n8,47\n8.1,-33.9\0\x1b\n", 25), FieldFormat::csv,
+               "line 3: lat '-33.9?\?' is not a number");
   expect_error("8,47\n8.1\n", FieldFormat::csv,
                "line 2: expected 2 comma-separated columns, found 1");
   expect_error("8,47\nnan,47.1\n8.2,47\n", FieldFormat::csv,

@@ -233,9 +233,35 @@ void choose_handling(SurveyPlan& plan) {
 
 // Lines and routes keep the clearance: zones grown by it, the outline shrunk by the boundary
 // clearance (DESIGN.md §14 "Clearance").
+// Whether two of `rings` share a point: a vertex of one within a micrometre of another's edge.
+bool rings_touch(const std::vector<geometry::Ring>& rings) {
+  constexpr double kTouch_m = 1e-6;
+  for (std::size_t i = 0; i < rings.size(); ++i)
+    for (std::size_t j = 0; j < rings.size(); ++j) {
+      if (i == j) continue;
+      const geometry::Ring& other = rings[j];
+      for (const geometry::Point2& p : rings[i])
+        for (std::size_t k = 0; k < other.size(); ++k)
+          if (geometry::distance_to_segment(p, other[k], other[(k + 1) % other.size()]) <= kTouch_m)
+            return true;
+    }
+  return false;
+}
+
+// The repaired pieces of an outline that touch at a point (a bowtie's crossing, a ring that
+// touched itself at a vertex) are planned a millimetre apart, each inset by half of it: the
+// decomposition takes rings that share no point (a ring touching itself ended in "bad merge").
+constexpr double kTouchingPiecesGap_m = 1e-3;
+
 void planning_rings(SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
-  if (plan.no_fly.empty() && r.boundary_clearance_m == 0) {  // the area itself, as given
+  double boundary_m = r.boundary_clearance_m;
+  if (plan.handling != Handling::hull && !plan.extra_pieces.empty()) {
+    std::vector<geometry::Ring> pieces{plan.flown_area.outer};
+    pieces.insert(pieces.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+    if (rings_touch(pieces)) boundary_m = std::max(boundary_m, kTouchingPiecesGap_m / 2);
+  }
+  if (plan.no_fly.empty() && boundary_m == 0) {  // the area itself, as given
     plan.planning_rings = geometry::rings_of(plan.flown_area);
     if (plan.handling != Handling::hull)
       plan.planning_rings.insert(plan.planning_rings.end(), plan.extra_pieces.begin(),
@@ -243,12 +269,10 @@ void planning_rings(SurveyPlan& plan) {
     return;
   }
   plan.no_fly_grown = geometry::grow(plan.no_fly, r.clearance_m);
-  plan.planning_rings =
-      geometry::subtract(plan.flown_area.outer, r.boundary_clearance_m, plan.no_fly_grown);
+  plan.planning_rings = geometry::subtract(plan.flown_area.outer, boundary_m, plan.no_fly_grown);
   if (plan.handling != Handling::hull)
     for (const geometry::Ring& piece : plan.extra_pieces)
-      for (geometry::Ring& ring :
-           geometry::subtract(piece, r.boundary_clearance_m, plan.no_fly_grown))
+      for (geometry::Ring& ring : geometry::subtract(piece, boundary_m, plan.no_fly_grown))
         plan.planning_rings.push_back(std::move(ring));
   if (plan.planning_rings.empty())
     throw InputError(r.field.source +
