@@ -117,15 +117,25 @@ void check_plan_options(const std::vector<std::string>& plan_args, const std::st
 // sub-directory name.
 std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOptions& options) {
   std::vector<Job> jobs;
+  const bool directory = fs::is_directory(areas);
   auto add_file = [&](const fs::path& file) {
-    const auto found = geometry::list_areas(file, options);
+    std::vector<geometry::AreaEntry> found;
+    try {
+      found = geometry::list_areas(file, options);
+    } catch (const InputError&) {
+      // One bad file of a directory is its own row: its `swath plan` says why, exit 2 (the
+      // batch's exit 3); the other files are planned. A file given alone is refused as before.
+      if (!directory) throw;
+      jobs.push_back({file.string(), file.stem().string(), "", 0, true});
+      return;
+    }
     for (const auto& a : found)
       jobs.push_back(
           {file.string(),
            found.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name, "",
            a.index, found.size() == 1});
   };
-  if (fs::is_directory(areas)) {
+  if (directory) {
     std::vector<fs::path> files;
     for (const auto& e : fs::directory_iterator(areas))
       if (e.is_regular_file() && area_file(e.path())) files.push_back(e.path());
