@@ -31,9 +31,7 @@ using detail::fail;
 using detail::position_place;
 
 FieldFormat format_from_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = detail::lower(path.extension().string());
   if (ext == ".geojson" || ext == ".json") return FieldFormat::geojson;
   if (ext == ".kml") return FieldFormat::kml;
   if (ext == ".csv" || ext == ".txt") return FieldFormat::csv;
@@ -177,7 +175,8 @@ Field field_from_raw(detail::RawField raw, const std::string& source, bool geogr
 
   for (std::size_t r = 0; r < raw.rings.size(); ++r) {
     const detail::RawRing& ring = raw.rings[r];
-    // Normalise in file coordinates (lon/lat keep orientation and duplicates), then convert.
+    // Normalise in file coordinates (duplicates are the file's; lon/lat keep orientation except
+    // about a pole, set again below in the local plane), then convert.
     NormalisedRing normalised = normalise_ring(ring.points, r == 0);
     if (geographic) {
       std::vector<GeoPoint> geo;

@@ -39,11 +39,6 @@ std::optional<double> number(const std::string& cell) {
   return value;
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 }  // namespace
 
 RawField parse_csv(const std::string& text, const std::string& source, bool local_metres) {

@@ -1,7 +1,5 @@
 // GeoJSON (RFC 7946): Polygon, MultiPolygon with one part, Feature, FeatureCollection with one
 // polygonal feature. Positions are [longitude, latitude(, altitude)].
-#include <cctype>
-
 #include <nlohmann/json.hpp>
 
 #include "raw_field.hpp"
@@ -55,13 +53,8 @@ RawField parse_geometry(const json& geometry, const std::string& source, const s
   if (!geometry.is_object() || type.empty())
     fail(source, where + " has no geometry object with a \"type\"");
   if (!is_polygonal(type)) {
-    std::string lower = type;
-    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const bool miscased = lower == "polygon" || lower == "multipolygon";
-    // The top-level geometry is named by its type elsewhere ("the Polygon, hole 0"), which
-    // here would say "the Point is a Point".
-    const std::string owner = where == "the " + type ? "the GeoJSON" : where;
-    fail(source, owner + "'s geometry is a " + shown(type) +
+    const bool miscased = lower(type) == "polygon" || lower(type) == "multipolygon";
+    fail(source, where + "'s geometry is a " + shown(type) +
                      "; an area must be a Polygon or a MultiPolygon with one part" +
                      (miscased ? " (GeoJSON's type names are case-sensitive)" : ""));
   }
@@ -106,7 +99,9 @@ RawField parse_geojson(const std::string& text, const std::string& source) {
       fail(source, "the Feature has no geometry");
     return parse_geometry(root["geometry"], source, "the Feature");
   }
-  return parse_geometry(root, source, "the " + type);
+  // A polygonal top-level geometry is named by its type ("the Polygon, hole 0"); any other as
+  // the GeoJSON ("the GeoJSON's geometry is a Point", not "the Point is a Point").
+  return parse_geometry(root, source, is_polygonal(type) ? "the " + type : "the GeoJSON");
 }
 
 }  // namespace swath::geometry::detail

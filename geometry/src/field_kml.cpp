@@ -135,12 +135,12 @@ RawField parse_kml(const std::string& text, const std::string& source) {
     fail(source, "lines " + line_of(polygons[0]) + " and " + line_of(polygons[1]) +
                      " both hold a <Polygon>; choose one with --feature NAME or INDEX");
   const pugi::xml_node polygon = polygons[0];
-  const pugi::xml_node outer = child(polygon, "outerBoundaryIs");
-  if (!outer) fail(source, "line " + line_of(polygon) + ": the <Polygon> has no <outerBoundaryIs>");
-
   // One outer ring; every <LinearRing> of every <innerBoundaryIs> a hole (Google Earth takes
   // several in one): a ring left out would be a hole flown over, or ground not surveyed.
   const std::vector<pugi::xml_node> outers = children(polygon, "outerBoundaryIs");
+  if (outers.empty())
+    fail(source, "line " + line_of(polygon) + ": the <Polygon> has no <outerBoundaryIs>");
+  const pugi::xml_node outer = outers[0];
   if (outers.size() > 1)
     fail(source, "lines " + line_of(outers[0]) + " and " + line_of(outers[1]) +
                      ": the <Polygon> has more than one <outerBoundaryIs>; give each part its "
@@ -151,8 +151,8 @@ RawField parse_kml(const std::string& text, const std::string& source) {
                      ": the <outerBoundaryIs> holds more than one <LinearRing>; a polygon has "
                      "one outer boundary");
   RawField field;
-  field.rings.push_back(
-      parse_ring(child(outer, "LinearRing"), outer, text, source, "outer boundary"));
+  field.rings.push_back(parse_ring(outer_rings.empty() ? pugi::xml_node() : outer_rings[0], outer,
+                                   text, source, "outer boundary"));
   std::size_t hole = 0;
   for (const pugi::xml_node& inner : children(polygon, "innerBoundaryIs")) {
     std::vector<pugi::xml_node> rings = children(inner, "LinearRing");

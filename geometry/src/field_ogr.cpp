@@ -163,11 +163,9 @@ namespace {
 // The file through GDAL (a .zip, zipped Shapefile, and a .kmz through /vsizip/).
 std::unique_ptr<GDALDataset, DatasetClose> open_vector(const std::string& path) {
   register_once();
-  std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string name = lower(path);
   std::string open_path = path;
-  if (lower.size() > 4 && (lower.ends_with(".zip") || lower.ends_with(".kmz")) &&
+  if (name.size() > 4 && (name.ends_with(".zip") || name.ends_with(".kmz")) &&
       path.rfind("/vsi", 0) != 0)
     open_path = "/vsizip/" + path;
   CPLErrorReset();

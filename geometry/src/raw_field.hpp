@@ -34,6 +34,12 @@ std::string position_place(const RawRing& ring, std::size_t i);
   throw InputError(source + ": " + message);
 }
 
+/// `s` in lower case (ASCII): column names, type names and extensions compared without case.
+inline std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
 /// A piece of the file for a message: at most 40 characters, each not printable as '?' (a NUL
 /// cut the message short, a control character garbled the terminal).
 inline std::string shown(const std::string& piece) {

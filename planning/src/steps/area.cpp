@@ -141,6 +141,7 @@ bool zones_need_cutting(const SurveyPlan& plan) {
   return false;
 }
 
+// How much the zones are grown for cutting them out of the area (see cut_out_zones), metres.
 constexpr double kCutMargin_m = 1e-3;
 
 // The area less the union of its holes and no-fly zones (Boost.Geometry's boolean difference),
@@ -249,20 +250,15 @@ void choose_handling(SurveyPlan& plan) {
   }
 }
 
-// Lines and routes keep the clearance: zones grown by it, the outline shrunk by the boundary
-// clearance (DESIGN.md §14 "Clearance").
-// Whether two of `rings` share a point: a vertex of one within a micrometre of another's edge.
+// Whether two of `rings` (pieces that do not overlap) come within a micrometre of each other.
 bool rings_touch(const std::vector<geometry::Ring>& rings) {
   constexpr double kTouch_m = 1e-6;
-  for (std::size_t i = 0; i < rings.size(); ++i)
-    for (std::size_t j = 0; j < rings.size(); ++j) {
-      if (i == j) continue;
-      const geometry::Ring& other = rings[j];
-      for (const geometry::Point2& p : rings[i])
-        for (std::size_t k = 0; k < other.size(); ++k)
-          if (geometry::distance_to_segment(p, other[k], other[(k + 1) % other.size()]) <= kTouch_m)
-            return true;
-    }
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    std::vector<geometry::Point2> boundary = rings[i];
+    boundary.push_back(rings[i].front());  // closed: least_distance() takes a path
+    for (std::size_t j = i + 1; j < rings.size(); ++j)
+      if (geometry::least_distance(boundary, {rings[j]}) <= kTouch_m) return true;
+  }
   return false;
 }
 
@@ -271,6 +267,8 @@ bool rings_touch(const std::vector<geometry::Ring>& rings) {
 // decomposition takes rings that share no point (a ring touching itself ended in "bad merge").
 constexpr double kTouchingPiecesGap_m = 1e-3;
 
+// Lines and routes keep the clearance: zones grown by it, the outline shrunk by the boundary
+// clearance (DESIGN.md §14 "Clearance").
 void planning_rings(SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
   double boundary_m = r.boundary_clearance_m;
