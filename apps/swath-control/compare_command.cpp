@@ -2,7 +2,6 @@
 
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "control_images.hpp"
 #include "flight_batch.hpp"
@@ -10,6 +9,7 @@
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/base/parallel.hpp"
 #include "swath/control/experiment.hpp"
 
 namespace swath::apps {
@@ -208,7 +208,7 @@ int ControlCompareCommand::run() {
               {env, stem(vehicle), mode.name, "", r.seed, prepare_flight(r).settings, {}});
         }
   base::OutputSet set(output_, "control-compare");
-  const unsigned jobs = jobs_ > 0 ? jobs_ : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned jobs = jobs_ > 0 ? jobs_ : base::machine_threads();
   fly_all(runs, std::min<unsigned>(jobs, static_cast<unsigned>(runs.size())), progress_);
   const Comparison c = compare_pairs(runs, modes, seeds);
   ordered_json j;

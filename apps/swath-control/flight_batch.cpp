@@ -1,13 +1,11 @@
 #include "flight_batch.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <mutex>
-#include <thread>
 
 #include "progress_bar.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/base/parallel.hpp"
 #include "swath/control/experiment.hpp"
 
 namespace swath::apps {
@@ -17,26 +15,14 @@ using base::fixed_text;
 // Flies every run on `jobs` threads; results land at their own index, so the output does not
 // depend on the number of threads.
 void fly_all(std::vector<BatchFlight>& runs, unsigned jobs, bool progress) {
-  std::atomic<std::size_t> next{0}, done{0};
-  std::exception_ptr failure;
+  std::size_t done = 0;
   std::mutex lock;
   ProgressBar bar(progress, "flying");
-  auto worker = [&] {
-    for (std::size_t i; (i = next++) < runs.size();) {
-      try {
-        runs[i].summary = control::simulate(runs[i].settings, nullptr);
-      } catch (...) {
-        const std::lock_guard<std::mutex> guard(lock);
-        if (!failure) failure = std::current_exception();
-      }
-      const std::lock_guard<std::mutex> guard(lock);
-      bar.update(static_cast<double>(++done) / static_cast<double>(runs.size()));
-    }
-  };
-  std::vector<std::thread> threads;
-  for (unsigned k = 0; k < jobs; ++k) threads.emplace_back(worker);
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
+  base::parallel_for(runs.size(), jobs, [&](std::size_t i) {
+    runs[i].summary = control::simulate(runs[i].settings, nullptr);
+    const std::lock_guard<std::mutex> guard(lock);
+    bar.update(static_cast<double>(++done) / static_cast<double>(runs.size()));
+  });
 }
 
 std::string runs_csv(const std::vector<BatchFlight>& runs, const std::string& value_column) {

@@ -2,12 +2,12 @@
 
 #include <cmath>
 #include <iostream>
-#include <thread>
 
 #include "flight_batch.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/base/parallel.hpp"
 #include "swath/control/experiment.hpp"
 
 namespace swath::apps {
@@ -92,7 +92,7 @@ int ControlSweepCommand::run() {
           {r.environment, r.vehicle, r.scheduler, v, r.seed, prepare_flight(r).settings, {}});
     }
   base::OutputSet set(output_, "control-sweep");
-  const unsigned jobs = jobs_ > 0 ? jobs_ : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned jobs = jobs_ > 0 ? jobs_ : base::machine_threads();
   fly_all(flights, std::min<unsigned>(jobs, static_cast<unsigned>(flights.size())), progress_);
 
   std::string md = "# swath-control sweep of " + key + "\n\n" + request_.mission + ", " +

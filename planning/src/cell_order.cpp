@@ -735,6 +735,52 @@ std::vector<std::size_t> nearest_neighbour_grid(const CellOrderProblem& p) {
 
 }  // namespace
 
+double order_lower_bound(const CellOrderProblem& p) {
+  const std::size_t n = p.cells.size();
+  if (n == 0) return 0.0;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  // Every cell's entries (or exits) sorted by x, with their cell: the nearest one to a point, of
+  // another cell, is found by scanning outwards from the point's x until |dx| alone is no nearer.
+  struct End {
+    geometry::Point2 at;
+    std::size_t cell;
+  };
+  const auto ends = [&p](bool exits) {
+    std::vector<End> e;
+    for (std::size_t c = 0; c < p.cells.size(); ++c)
+      for (const CellVariant& v : p.cells[c]) e.push_back({exits ? v.exit : v.entry, c});
+    std::sort(e.begin(), e.end(), [](const End& a, const End& b) { return a.at.x < b.at.x; });
+    return e;
+  };
+  const auto nearest = [](const std::vector<End>& e, geometry::Point2 q, std::size_t cell) {
+    double best = kNone;
+    const auto mid = std::lower_bound(e.begin(), e.end(), q.x,
+                                      [](const End& a, double x) { return a.at.x < x; });
+    for (auto it = mid; it != e.end() && it->at.x - q.x < best; ++it)
+      if (it->cell != cell) best = std::min(best, geometry::distance(it->at, q));
+    for (auto it = mid; it != e.begin() && q.x - std::prev(it)->at.x < best; --it)
+      if (std::prev(it)->cell != cell)
+        best = std::min(best, geometry::distance(std::prev(it)->at, q));
+    return best;
+  };
+  const std::vector<End> entries = ends(false), exits = ends(true);
+  double in_sum = 0, out_sum = 0, home_back = kNone, home_out = kNone;
+  for (std::size_t c = 0; c < n; ++c) {
+    double best_in = kNone, best_out = kNone;
+    for (const CellVariant& v : p.cells[c]) {
+      const double from_home = geometry::distance(p.home, v.entry);
+      const double to_home = geometry::distance(v.exit, p.home);
+      best_in = std::min(best_in, v.internal_m + std::min(from_home, nearest(exits, v.entry, c)));
+      best_out = std::min(best_out, v.internal_m + std::min(to_home, nearest(entries, v.exit, c)));
+      home_out = std::min(home_out, from_home);
+      home_back = std::min(home_back, to_home);
+    }
+    in_sum += best_in;
+    out_sum += best_out;
+  }
+  return std::max(in_sum + home_back, out_sum + home_out);
+}
+
 CellOrder nearest_neighbour_order(const CellOrderProblem& p) {
   if (p.cells.empty()) return {};
   Transit t(p, false);

@@ -9,6 +9,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "swath/base/parallel.hpp"
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/offset.hpp"
@@ -692,29 +693,35 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
       s.fixed_angle_deg
           ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
           : candidate_angles(rings, s.scan_step_deg);
-  // Rank every direction by a cheap estimate: straight transits, heuristic order.
-  std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
-  std::vector<Candidate> candidates;
-  std::vector<Point2> samples;  // one buffer for every direction's (see coverage_samples)
-  for (double angle : angles) {
+  // Rank every direction by a cheap estimate: straight transits, heuristic order. The directions
+  // are independent: spread over threads, each into its own slot, gathered in order.
+  std::vector<std::vector<std::pair<int, Candidate>>> per_angle(angles.size());
+  base::parallel_for(angles.size(), s.threads, [&](std::size_t a) {
     // Runs bridged across the outside margin where there is one, runs inside, cells. Both runs
-    // check coverage on the same samples of the area: taken once.
+    // check coverage on the same samples of the area: taken once (into a buffer of the thread's).
+    thread_local std::vector<Point2> samples;
     samples.clear();
     for (const int kind : {0, 1, 2}) {
       const SplitCells method = kind < 2 ? SplitCells::runs : SplitCells::boustrophedon;
       if ((s.cells != SplitCells::best && s.cells != method) ||
           (kind == 0 && s.bridge_rings.empty()))
         continue;
-      Candidate c =
-          kind < 2 ? sweep_runs(rings, angle, s, kind == 0, samples) : sweep_cells(rings, angle, s);
+      Candidate c = kind < 2 ? sweep_runs(rings, angles[a], s, kind == 0, samples)
+                             : sweep_cells(rings, angles[a], s);
       if (c.cells.empty()) continue;
       CellOrderProblem straight_problem = problem_for(c, home, straight);
       straight_problem.distance_at_least_straight = true;
       c.order = nearest_neighbour_order(straight_problem);
+      per_angle[a].push_back({kind, std::move(c)});
+    }
+  });
+  std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
+  std::vector<Candidate> candidates;
+  for (auto& of_angle : per_angle)
+    for (auto& [kind, c] : of_angle) {
       estimates.push_back({kind, c.order.length_m, candidates.size()});
       candidates.push_back(std::move(c));
     }
-  }
   if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
   // The best few of each kind again with transits routed inside the area, ordered exactly where
   // small: a straight-line estimate ranks runs and cells differently (runs' transits hop around
@@ -730,7 +737,14 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   for (std::size_t e = 0; e < estimates.size(); ++e) {
     of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
     if (of_kind >= s.refined_candidates) continue;
-    SplitPlan plan = ordered_plan(candidates[std::get<2>(estimates[e])], home, routed);
+    Candidate& c = candidates[std::get<2>(estimates[e])];
+    // A candidate no order of which can beat the best plan so far, by a lower bound on straight
+    // transits, is not ordered with routed ones (most of the time of a plan): it would lose below
+    // anyway. The margin keeps rounding of the two sums from deciding a tie differently.
+    if (best_key.first == 0 &&
+        order_lower_bound(problem_for(c, home, straight)) >= best_key.second * (1 + 1e-9))
+      continue;
+    SplitPlan plan = ordered_plan(c, home, routed);
     if (best_key.first == 0 && plan.objective_m >= best_key.second) continue;  // no need to look
     const double seen_fraction =
         measure_coverage(to_see, plan.lines, plan.angle_deg, s.footprint_width_m, 1024)

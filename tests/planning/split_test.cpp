@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "coverage_oracle.hpp"
@@ -233,6 +235,56 @@ TEST(CellOrder, HeuristicIsCloseToTheOptimumUpToSevenCells) {
   RecordProperty("optimal_of_200", optimal);
 }
 
+// order_lower_bound() is below the optimum of every problem whose transits are at least straight:
+// here the straight problem's bound against Held-Karp on the same cells with every transit
+// lengthened (by up to 60 %, as routes round obstacles are) and crossings penalised. And it is the
+// closed form on a line.
+TEST(CellOrder, LowerBoundIsBelowEveryOrder) {
+  {
+    // Home at 0, a cell at 10 and one at 20 on a line (one variant each, 5 m inside): the best
+    // tour is 10 + 5 + 10 + 5 + 20 = 50; each cell's least way in is 10 (from home or the other),
+    // the least way home 10: 15 + 15 + 10 = 40, and the same with the ways out.
+    CellOrderProblem line;
+    line.distance = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
+    line.cells = {{{{10, 0}, {10, 0}, 5}}, {{{20, 0}, {20, 0}, 5}}};
+    EXPECT_DOUBLE_EQ(order_lower_bound(line), 40);
+    EXPECT_DOUBLE_EQ(exact_cell_order(line).length_m, 50);
+  }
+  test::Rng rng(41);
+  std::uniform_real_distribution<double> stretch(1.0, 1.6);
+  double ratio_sum = 0;
+  const int runs = 60;
+  for (int k = 0; k < runs; ++k) {
+    const CellOrderProblem straight = random_problem(rng, 1 + k % 9);
+    CellOrderProblem longer = straight;
+    const double factor = stretch(rng);
+    // Longer than straight, differently per pair (a deterministic function of the two ends).
+    longer.distance = [factor](Point2 a, Point2 b) {
+      const double wobble = std::fmod(std::abs(a.x * 7.3 + b.y * 3.1 + a.y + b.x), 1.0);
+      return geometry::distance(a, b) * (factor + 0.2 * wobble);
+    };
+    for (auto& variants : longer.cells)
+      for (CellVariant& v : variants) v.internal_m *= factor;
+    longer.crossed = [](Point2 a, Point2 b) { return std::uint64_t(a.x + b.x > 1000 ? 1 : 2); };
+    const double bound = order_lower_bound(straight);
+    const double optimum = exact_cell_order(longer).objective_m;
+    EXPECT_LE(bound, optimum * (1 + 1e-12)) << k;
+    EXPECT_LE(bound, exact_cell_order(straight).length_m * (1 + 1e-12)) << k;
+    // Not vacuous: at least every cell's least internal length.
+    double internal = 0;
+    for (const auto& variants : straight.cells) {
+      double least = std::numeric_limits<double>::infinity();
+      for (const CellVariant& v : variants) least = std::min(least, v.internal_m);
+      internal += least;
+    }
+    EXPECT_GT(bound, internal) << k;
+    ratio_sum += bound / exact_cell_order(straight).length_m;
+  }
+  RecordProperty("mean_bound_over_optimum", std::to_string(ratio_sum / runs));
+  EXPECT_GT(ratio_sum / runs, 0.5);
+  EXPECT_EQ(order_lower_bound(CellOrderProblem{}), 0.0);
+}
+
 // Above order_cells()'s exact limit (12) the split planner trusts the heuristic. Held-Karp still
 // answers at 13 and 14 cells (16 is its precondition, but 2^16 subsets cost seconds): the heuristic
 // against it on scattered cells and on field-like rows of adjacent runs (a strip cut by notches:
@@ -390,6 +442,35 @@ TEST(SplitSurvey, HolesAreAvoided) {
       p.holes.push_back(test::transformed({{0, 0}, {70, 0}, {70, 50}, {0, 50}}, 30 * u(rng), x, y));
     }
     check_split(p, "holes " + std::to_string(k));
+  }
+}
+
+// The direction search runs on several threads; the plan must not depend on how many.
+TEST(SplitSurvey, ThePlanIsTheSameOnAnyNumberOfThreads) {
+  test::Rng rng(100);  // the split bench's field of 100 vertices, with 12 of its holes
+  std::vector<Ring> rings{test::random_field_polygon(rng, 100, 500)};
+  for (int h = 0; h < 12; ++h) {
+    const double x = -300 + 75.0 * (h % 8), y = -300 + 75.0 * (h / 8);
+    rings.push_back({{x, y}, {x, y + 20}, {x + 25, y + 20}, {x + 25, y}});
+  }
+  SplitSettings s;
+  s.line_spacing_m = 30;
+  s.footprint_width_m = 100;
+  const geometry::VisibilityRouter router(rings);
+  s.threads = 1;
+  const SplitPlan one = plan_split(rings, {-500, -500}, s, router);
+  ASSERT_FALSE(one.lines.empty());
+  for (const unsigned threads : {2u, 3u, 8u}) {
+    s.threads = threads;
+    const SplitPlan many = plan_split(rings, {-500, -500}, s, geometry::VisibilityRouter(rings));
+    EXPECT_EQ(many.angle_deg, one.angle_deg) << threads;
+    EXPECT_EQ(many.path_length_m, one.path_length_m) << threads;
+    EXPECT_EQ(many.candidates, one.candidates) << threads;
+    ASSERT_EQ(many.lines.size(), one.lines.size()) << threads;
+    for (std::size_t i = 0; i < one.lines.size(); ++i) {
+      EXPECT_EQ(many.lines[i].start, one.lines[i].start) << threads << " line " << i;
+      EXPECT_EQ(many.lines[i].end, one.lines[i].end) << threads << " line " << i;
+    }
   }
 }
 

@@ -73,6 +73,15 @@ CellOrder nearest_neighbour_order(const CellOrderProblem& problem);
 /// random instances of 13-14 cells (tests/planning/split_test.cpp).
 CellOrder heuristic_cell_order(const CellOrderProblem& problem);
 
+/// A lower bound on the length (so on the objective) of every order of the cells, when `distance`
+/// is never below the straight distance (distance_at_least_straight; only straight distances are
+/// used): each cell is entered once, from home or another cell's exit, and flown by one of its
+/// variants, and the tour comes home once; so the sum over cells of the least (internal length +
+/// straight way in) plus the least way home bounds it, and so does the same with the ways out (the
+/// larger of the two is returned). O(n v log(n v)) for cells spread evenly (nearest ends by a scan
+/// of the ends sorted by x), O((n v)²) at worst; 0 without cells.
+double order_lower_bound(const CellOrderProblem& problem);
+
 /// exact_cell_order() up to `exact_limit` cells, heuristic_cell_order() beyond.
 CellOrder order_cells(const CellOrderProblem& problem, std::size_t exact_limit = 12);
 

@@ -53,6 +53,8 @@ struct SplitSettings {
   /// grown by the margin, less the grown zones); empty: nowhere. Runs only.
   std::vector<geometry::Ring> bridge_rings;
   SplitDirections directions = SplitDirections::one;
+  /// Threads for the direction search (0: the machine's); the plan is the same for any number.
+  unsigned threads = 0;
 };
 
 struct SplitPlan {
