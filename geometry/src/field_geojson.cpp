@@ -62,9 +62,10 @@ RawField parse_geometry(const json& geometry, const std::string& source, const s
   const json& coordinates = geometry["coordinates"];
   if (type == "Polygon") return parse_polygon_coordinates(coordinates, source, where);
   if (!coordinates.is_array() || coordinates.size() != 1)
-    fail(source, where + " is a MultiPolygon with " +
+    fail(source, where + (where == "the MultiPolygon" ? " has " : " is a MultiPolygon with ") +
                      std::to_string(coordinates.is_array() ? coordinates.size() : 0) +
-                     " parts; swath plans one connected area per file");
+                     " parts; swath plans one connected area: swath batch plans each part, "
+                     "--feature INDEX one of them");
   return parse_polygon_coordinates(coordinates[0], source, where);
 }
 

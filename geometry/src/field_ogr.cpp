@@ -91,6 +91,23 @@ std::unique_ptr<OGRPolygon> as_polygon(const OGRGeometry* g, std::string& why) {
   return nullptr;
 }
 
+// The areas a layer's feature holds: each part of a MultiPolygon (swath batch plans them one by
+// one, and --feature picks one), else as_polygon()'s one; none with `why`.
+std::vector<std::unique_ptr<OGRPolygon>> feature_areas(const OGRGeometry* g, std::string& why) {
+  std::vector<std::unique_ptr<OGRPolygon>> out;
+  const std::unique_ptr<OGRGeometry> linear(g ? g->getLinearGeometry() : nullptr);
+  if (linear && !linear->IsEmpty() && wkbFlatten(linear->getGeometryType()) == wkbMultiPolygon) {
+    const OGRMultiPolygon* m = linear->toMultiPolygon();
+    if (m->getNumGeometries() > 1) {
+      for (const OGRPolygon* part : *m)
+        if (part && !part->IsEmpty()) out.emplace_back(part->clone());
+      if (!out.empty()) return out;
+    }
+  }
+  if (auto poly = as_polygon(g, why)) out.push_back(std::move(poly));
+  return out;
+}
+
 std::string names_list(const std::vector<std::string>& names) {
   std::string out;
   const std::size_t shown = std::min<std::size_t>(names.size(), 10);
@@ -205,7 +222,7 @@ OGRLayer* choose_layer(GDALDataset& ds, const FieldReadOptions& options,
     l->ResetReading();
     for (auto& f : *l) {
       std::string why;
-      if (as_polygon(f->GetGeometryRef(), why)) {
+      if (!feature_areas(f->GetGeometryRef(), why).empty()) {
         with_areas.push_back(l);
         break;
       }
@@ -250,23 +267,29 @@ struct LayerArea {
   std::size_t index;
 };
 
-// Every area of the layer (at most 100,000); none: refused with the first feature's reason.
+// Every area of the layer (at most 100,000), a MultiPolygon's parts one by one ("<name>, part
+// K", K from 0); none: refused with the first feature's reason.
 std::vector<LayerArea> layer_areas(OGRLayer& layer, int name_index, const std::string& source) {
   std::vector<LayerArea> areas;
   std::string first_refusal;
   layer.ResetReading();
   for (auto& f : layer) {
     std::string why;
-    auto poly = as_polygon(f->GetGeometryRef(), why);
+    auto parts = feature_areas(f->GetGeometryRef(), why);
     std::string name = std::to_string(areas.size());
     if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index))
       name = f->GetFieldAsString(name_index);
-    if (!poly) {
+    if (parts.empty()) {
       if (first_refusal.empty()) first_refusal = "feature " + name + " " + why;
       continue;
     }
-    areas.push_back({std::move(poly), name, areas.size()});
-    if (areas.size() > 100000) throw InputError(source + ": more than 100,000 areas in one layer");
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      areas.push_back({std::move(parts[k]),
+                       parts.size() == 1 ? name : name + ", part " + std::to_string(k),
+                       areas.size()});
+      if (areas.size() > 100000)
+        throw InputError(source + ": more than 100,000 areas in one layer");
+    }
   }
   if (areas.empty())
     throw InputError(source + ": layer \"" + layer.GetName() + "\" holds no area" +

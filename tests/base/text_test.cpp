@@ -57,6 +57,25 @@ TEST(RangeCheck, NamesWhereTheValueAndTheRange) {
         e.what(),
         "--speed 1e-300 m/s is outside the range swath accepts, 0.5 to 100 m/s (a reason)");
   }
+  // A computed value is shown to 6 digits, a typed one as typed; never rounded into the range.
+  auto said = [&](double value) {
+    try {
+      check_range(value, {1, 5000, "m", ""}, "the altitude");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(said(0.3762758620689655),
+            "the altitude 0.376276 m is outside the range swath "
+            "accepts, 1 to 5000 m");
+  EXPECT_EQ(value_text(0.3762758620689655), "0.376276");
+  EXPECT_EQ(value_text(0.9999999), "0.9999999");
+  EXPECT_EQ(value_text(123456.789), "123456.789");
+  EXPECT_NE(said(5000.000000000001).find("altitude 5000.000000000001 m is outside"),
+            std::string::npos);
+  EXPECT_NE(said(0.99999999999999989).find("altitude 0.9999999999999999 m is outside"),
+            std::string::npos);
   EXPECT_THROW(check_range(std::nan(""), r, "x"), InputError);
   EXPECT_THROW(check_range(std::numeric_limits<double>::infinity(), r, "x"), InputError);
 }

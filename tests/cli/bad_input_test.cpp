@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cli_runner.hpp"
@@ -92,6 +93,39 @@ TEST(BadInput, AnAreaOverTheVertexLimitIsRefusedQuickly) {
   EXPECT_NE(run.err.find("the area has 1000001 vertices, more than swath's limit of 1000000"),
             std::string::npos)
       << run.err;
+}
+
+// The sweep-line limit holds on the lines as laid, not only on the estimate (the area's height
+// over the spacing: 110 lines here): a comb of 201 teeth crossed by every line takes 20,109 and is
+// refused, exit 2, nothing written; one of 199 teeth, 19,909 lines, is planned.
+TEST(BadInput, AConcaveAreaOverTheLineLimitIsRefused) {
+  const std::string dir = fresh_dir("bad-input-lines");
+  std::filesystem::create_directories(dir);
+  auto comb = [&](int teeth) {  // teeth 10 m wide, 10 m apart, 240 m tall on a 20 m base
+    const std::string file = dir + "/comb" + std::to_string(teeth) + ".csv";
+    std::ofstream f(file);
+    f << "x,y\n0,0\n" << teeth * 20 - 10 << ",0\n";
+    for (int t = teeth - 1; t >= 0; --t) {
+      f << t * 20 + 10 << ",240\n" << t * 20 << ",240\n";
+      if (t > 0) f << t * 20 << ",20\n" << t * 20 - 10 << ",20\n";
+    }
+    return file;
+  };
+  const std::string options =
+      " --local --origin 47.4,8.5 --camera sony-ilce-qx1 --altitude 5 --angle 90 -o ";
+  const CliRun over = run_swath("plan " + comb(201) + options + dir + "/over");
+  EXPECT_EQ(over.exit_code, 2) << over.err;
+  EXPECT_NE(over.err.find("the area takes 20109 lines 2.175 m apart (where it is concave, several "
+                          "at one position), more than swath's limit of 20000; fly higher or "
+                          "split the area"),
+            std::string::npos)
+      << over.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/over"));
+  const CliRun under = run_swath("plan " + comb(199) + options + dir + "/under");
+  ASSERT_EQ(under.exit_code, 0) << under.err;
+  const auto s = nlohmann::json::parse(read_text(dir + "/under/summary.json"));
+  EXPECT_EQ(s["sweep"]["lines"], 19909);
+  EXPECT_EQ(s["sweep"]["height_m"], 240.0);
 }
 
 // A write that dies part-way (the file-size limit kills the process with SIGXFSZ while it writes

@@ -211,7 +211,8 @@ TEST(PlanCli, ZonesAcrossTheBoundaryAndOverlappingAreCutOut) {
       "--exclude tests/fixtures/zone-overlapping-pond.geojson -o " +
       out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("warning: no-fly zones cross the area's boundary or each other"),
+  EXPECT_NE(run.err.find("warning: no-fly zone 0 crosses the area's boundary; no-fly zones 1 "
+                         "and 2 overlap; planned the area less the zones, 1 part(s)"),
             std::string::npos)
       << run.err;
   const json s = json::parse(read_text(out + "/summary.json"));
@@ -262,6 +263,34 @@ TEST(PlanCli, ZonesAcrossTheBoundaryAndOverlappingAreCutOut) {
   const double meadow_m2 = 100694.358;  // the meadow alone (as PlanCli.AShapefileInTheSwiss...)
   EXPECT_NEAR(s["area"]["area_m2"].get<double>(), meadow_m2 * double(left) / double(in_meadow),
               0.005 * meadow_m2);
+}
+
+// A zone wholly outside the area was said to "cross the area's boundary or each other": it is
+// said to lie outside, the area is planned whole (the meadow's own area) and the transits keep
+// out of the zone; beside a zone across the boundary, each is named for what it is.
+TEST(PlanCli, AZoneOutsideTheAreaIsSaidToLieOutside) {
+  const std::string out = fresh_dir("zone-outside"), both = fresh_dir("zone-outside-across");
+  const std::string plan =
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
+      "tests/fixtures/zone-outside-area.geojson ";
+  const CliRun run = run_swath(plan + "-o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("warning: no-fly zone 0 lies outside the area; the area is planned "
+                         "whole, 100694.4 m², and transits keep out of the zones"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(run.err.find("cross"), std::string::npos) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  EXPECT_NEAR(s["area"]["area_m2"].get<double>(), 100694.358, 0.01);
+  EXPECT_EQ(s["area"]["no_fly_zones"], 1);
+  EXPECT_GE(s["flight"]["min_no_fly_distance_m"].get<double>(), 5.0 - 1e-6);
+  const CliRun run2 =
+      run_swath(plan + "--exclude tests/fixtures/zone-across-boundary.geojson -o " + both);
+  ASSERT_EQ(run2.exit_code, 0) << run2.err;
+  EXPECT_NE(run2.err.find("warning: no-fly zone 0 lies outside the area; no-fly zone 1 crosses "
+                          "the area's boundary; planned the area less the zones, 1 part(s)"),
+            std::string::npos)
+      << run2.err;
 }
 
 TEST(PlanCli, NoFlyZoneFromExcludeIsAvoided) {
@@ -606,6 +635,60 @@ TEST(BatchCli, ABadFileOfADirectoryIsItsOwnRow) {
                 .exit_code,
             2);
   EXPECT_FALSE(fs::exists(dir + "/alone"));
+}
+
+// The tester's file of one MultiPolygon of 3 parts: the batch said "no layer holds an area". Now
+// one row per part ("<name>, part K"), each planned as the part alone would be (the oracle: each
+// part written as its own Polygon and planned), then the file's next feature.
+TEST(BatchCli, AMultiPolygonIsOneRowPerPart) {
+  const std::string dir = fresh_dir("batch-multi");
+  fs::create_directories(dir);
+  const std::vector<std::string> parts{
+      "[[15.6,78.2],[15.613178413,78.2],[15.613178413,78.201796622],[15.6,78.201796622],[15.6,"
+      "78.2]]",
+      "[[15.621964022,78.2],[15.630749631,78.2],[15.630749631,78.201796622],[15.621964022,78."
+      "201796622],[15.621964022,78.2]]",
+      "[[15.6,78.203593245],[15.608785609,78.203593245],[15.608785609,78.204940711],[15.6,78."
+      "204940711],[15.6,78.203593245]]"};
+  const std::string field = dir + "/fields.geojson";
+  std::ofstream(field) << R"({"type":"FeatureCollection","features":[{"type":"Feature",)"
+                       << R"("properties":{"name":"x"},"geometry":{"type":"MultiPolygon",)"
+                       << R"("coordinates":[[)" << parts[0] << "],[" << parts[1] << "],["
+                       << parts[2] << R"(]]}},{"type":"Feature","properties":{"name":"y"},)"
+                       << R"("geometry":{"type":"Polygon","coordinates":[)" << parts[1]
+                       << "]}}]}\n";
+  const CliRun run =
+      run_swath("batch " + field + " -o " + dir + "/out --camera sony-ilce-qx1 --altitude 60");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json areas = json::parse(read_text(dir + "/out/batch.geojson"))["features"];
+  ASSERT_EQ(areas.size(), 4u);
+  const std::vector<std::string> names{"x, part 0", "x, part 1", "x, part 2", "y"};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const json& p = areas[k]["properties"];
+    EXPECT_EQ(p["area"], names[k]);
+    EXPECT_EQ(p["index"], k);
+    EXPECT_EQ(p["status"], "planned");
+    const std::string alone = dir + "/part-" + std::to_string(k);
+    std::ofstream(alone + ".geojson")
+        << R"({"type":"Polygon","coordinates":[)" << parts[k < 3 ? k : 1] << "]}\n";
+    ASSERT_EQ(
+        run_swath("plan " + alone + ".geojson --camera sony-ilce-qx1 --altitude 60 -o " + alone)
+            .exit_code,
+        0);
+    const json s = json::parse(read_text(alone + "/summary.json"));
+    EXPECT_NEAR(p["area_m2"].get<double>(), s["area"]["area_m2"].get<double>(), 1e-3) << names[k];
+    EXPECT_EQ(p["photos"].get<double>(), s["drones"][0]["photos"].get<double>()) << names[k];
+  }
+  // `swath plan` of the file alone still refuses the MultiPolygon, and says what to do.
+  std::ofstream(dir + "/multi.geojson")
+      << R"({"type":"MultiPolygon","coordinates":[[)" << parts[0] << "],[" << parts[1] << "]]}\n";
+  const CliRun plan = run_swath(
+      "plan " + dir + "/multi.geojson --camera sony-ilce-qx1 --altitude 60 -o " + dir + "/multi");
+  EXPECT_EQ(plan.exit_code, 2);
+  EXPECT_NE(plan.err.find("the MultiPolygon has 2 parts; swath plans one connected area: swath "
+                          "batch plans each part, --feature INDEX one of them"),
+            std::string::npos)
+      << plan.err;
 }
 
 }  // namespace

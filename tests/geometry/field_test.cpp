@@ -296,6 +296,81 @@ TEST(Csv, BadInputNamesTheLine) {
   expect_error("0,0\n1,0\n", FieldFormat::csv, "2 distinct vertices", true);
 }
 
+// The tester's square near Cape Town (lon, lat), read back from each dialect: quoted cells (one
+// holding a comma, one a doubled quote), ';' with decimal commas (with and without a header), tab,
+// CR-only line ends.
+void expect_cape_square(const std::string& text) {
+  SCOPED_TRACE(text);
+  const Field f = parse_field(text, FieldFormat::csv, "c");
+  ASSERT_EQ(f.geo_rings.size(), 1u);
+  ASSERT_EQ(f.geo_rings[0].size(), 4u);
+  EXPECT_EQ(f.geo_rings[0][0].lon_deg, 18.4);
+  EXPECT_EQ(f.geo_rings[0][0].lat_deg, -33.9);
+  EXPECT_EQ(f.geo_rings[0][1].lon_deg, 18.40324686);
+  EXPECT_EQ(f.geo_rings[0][2].lat_deg, -33.898203378);
+  EXPECT_EQ(f.geo_rings[0][3].lon_deg, 18.4);
+}
+
+TEST(Csv, QuotedSemicolonTabAndCrOnlyDialectsReadTheSamePositions) {
+  expect_cape_square(
+      "\"lon\",\"lat\"\n\"18.4\",\"-33.9\"\n\"18.40324686\",\"-33.9\"\n"
+      "\"18.40324686\",\"-33.898203378\"\n\"18.4\",\"-33.898203378\"\n");
+  expect_cape_square(
+      "id,name,lat,lon,alt\n1,\"a, b\",-33.9,18.4,100\n2,\"say \"\"hi\"\", b\",-33.9,18.40324686,"
+      "100\n3, \"c\" ,-33.898203378,18.40324686,100\n4,d,-33.898203378,18.4,100\n");
+  expect_cape_square(
+      "lat;lon\n-33.9;18.4\n-33.9;18.40324686\n-33.898203378;18.40324686\n"
+      "-33.898203378;18.4\n");
+  expect_cape_square(
+      "lat;lon\n-33,9;18,4\n-33,9;18,40324686\n-33,898203378;18,40324686\n"
+      "-33,898203378;18,4\n");
+  expect_cape_square(
+      "18,4;-33,9\n18,40324686;-33,9\n18,40324686;-33,898203378\n18,4;-33,898203378\n");
+  expect_cape_square(
+      "lat\tlon\n-33.9\t18.4\n-33.9\t18.40324686\n-33.898203378\t18.40324686\n"
+      "-33.898203378\t18.4\n");
+  expect_cape_square(
+      "lon,lat\r18.4,-33.9\r18.40324686,-33.9\r18.40324686,-33.898203378\r"
+      "18.4,-33.898203378\r");
+  // A lone CR and CRLF each end one line: the line numbers stay right.
+  expect_error("lon,lat\r\r8,47\r\n8.1,x\r", FieldFormat::csv, "line 4: lat 'x' is not a number");
+  expect_error("lat;lon\n47;8\n47,1;x\n", FieldFormat::csv, "line 3: lon 'x' is not a number");
+  expect_error("lat\tlon\n47\n", FieldFormat::csv,
+               "line 2: expected 2 tab-separated columns, found 1");
+}
+
+TEST(Csv, DialectRefusalsSayWhatWasAssumed) {
+  expect_error("lon,lat,lat\n18.4,-33.9,-33.9\n", FieldFormat::csv,
+               "line 1: the header names the latitude column twice: 'lat' (column 2) and 'lat' "
+               "(column 3)");
+  expect_error("lon,longitude,lat\n", FieldFormat::csv,
+               "the header names the longitude column twice: 'lon' (column 1) and 'longitude'");
+  expect_error("WKT,name\n\"POLYGON((18.4 -33.9,18.41 -33.9,18.41 -33.89,18.4 -33.9))\",a\n",
+               FieldFormat::csv,
+               "line 1: the header must name the columns lon and lat (lng, longitude and latitude "
+               "are taken too); it names WKT, name");
+  expect_error("lat;lon,alt\n-33.9;18.4,1\n", FieldFormat::csv,
+               "it names lat;lon, alt; the separator is taken from the first line: a comma if it "
+               "has one, else ';' or a tab");
+  expect_error("lon,lat\n0,0\n", FieldFormat::csv,
+               "header must name the columns x and y (east and north, or x_m and y_m, are taken "
+               "too); it names lon, lat",
+               true);
+  // No header, three columns: the third is read as the ring number, and the message says so.
+  expect_error("18.4,-33.9,12\n18.41,-33.9,12\n18.41,-33.89,12\n", FieldFormat::csv,
+               "no outer ring: with no header the third column is read as the ring number");
+  expect_error("18.4,-33.9,12.5\n18.41,-33.9,12.5\n18.41,-33.89,12.5\n", FieldFormat::csv,
+               "line 1: the third column '12.5' is not a whole number >= 0; with no header a third "
+               "column is read as the ring number (0 = outer, 1.. = holes): give a header line "
+               "naming the columns (lon,lat,...)");
+  expect_error("lon,lat\n\"18.4,-33.9\n", FieldFormat::csv,
+               "line 2: column 1 opens a quote that the line does not close");
+  expect_error("lon,lat\n\"18.4\"5,-33.9\n", FieldFormat::csv,
+               "line 2: column 1 has text after its closing quote");
+  // A thousands separator is not guessed at: "1.234,5" is no number.
+  expect_error("x;y\n1.234,5;0\n", FieldFormat::csv, "line 2: x '1.234,5' is not a number", true);
+}
+
 TEST(ReadField, FileErrors) {
   try {
     read_field("/nonexistent/field.geojson");

@@ -1,5 +1,6 @@
 // Step 1 of plan_survey(): the area to fly (survey_steps.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -141,6 +142,78 @@ bool zones_need_cutting(const SurveyPlan& plan) {
   return false;
 }
 
+// The area of the part of `ring` outside all of `others` (rings of either orientation), m².
+double area_outside(const geometry::Ring& ring, const std::vector<geometry::Ring>& others) {
+  auto ccw = [](geometry::Ring r) {
+    if (geometry::signed_area(r) < 0) std::reverse(r.begin(), r.end());
+    return r;
+  };
+  std::vector<geometry::Ring> obstacles;
+  for (const geometry::Ring& r : others) obstacles.push_back(ccw(r));
+  double a = 0;  // parts' outer rings counter-clockwise (+), their holes clockwise (-)
+  for (const geometry::Ring& part : geometry::subtract(ccw(ring), 0, obstacles))
+    a += geometry::signed_area(part);
+  return a;
+}
+
+bool boxes_meet(const geometry::Ring& a, const geometry::Ring& b) {
+  auto box = [](const geometry::Ring& r) {
+    std::array<double, 4> x{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (const geometry::Point2& p : r)
+      x = {std::min(x[0], p.x), std::min(x[1], p.y), std::max(x[2], p.x), std::max(x[3], p.y)};
+    return x;
+  };
+  const auto p = box(a), q = box(b);
+  return p[0] <= q[2] && q[0] <= p[2] && p[1] <= q[3] && q[1] <= p[3];
+}
+
+// Why the zones are cut out rather than taken as holes, zone by zone: which cross the area's
+// boundary, which lie outside it, which pairs overlap (one boolean difference per zone and per
+// pair whose boxes meet; beyond 50 zones, one general sentence).
+struct ZonesCut {
+  std::string text;
+  bool outside_only = false;  ///< every zone cut lies outside the area: nothing is cut from it
+};
+ZonesCut zones_cut_text(const SurveyPlan& plan) {
+  const std::size_t holes = plan.request.field.polygon.holes.size();
+  const std::vector<geometry::Ring>& zones = plan.no_fly;
+  if (zones.size() > 50)
+    return {"no-fly zones cross the area's boundary, lie outside it or overlap"};
+  auto name = [&](std::size_t k) {
+    return k < holes ? "hole " + std::to_string(k) : "no-fly zone " + std::to_string(k - holes);
+  };
+  const geometry::Ring& outer = plan.request.field.polygon.outer;
+  std::vector<std::string> said;
+  bool outside_only = true;
+  for (std::size_t k = holes; k < zones.size(); ++k) {  // the file's holes lie inside the area
+    const double whole = std::abs(geometry::signed_area(zones[k]));
+    const double tolerance = 1e-6 * whole + 1e-6;
+    const double outside = boxes_meet(zones[k], outer) ? area_outside(zones[k], {outer}) : whole;
+    if (outside >= whole - tolerance) {
+      said.push_back(name(k) + " lies outside the area");
+      continue;
+    }
+    outside_only = false;
+    if (outside > tolerance) said.push_back(name(k) + " crosses the area's boundary");
+  }
+  for (std::size_t i = 0; i < zones.size(); ++i)
+    for (std::size_t j = std::max(i + 1, holes); j < zones.size(); ++j) {
+      if (!boxes_meet(zones[i], zones[j])) continue;
+      const double whole = std::abs(geometry::signed_area(zones[i]));
+      if (area_outside(zones[i], {zones[j]}) < whole * (1 - 1e-6) - 1e-6)
+        outside_only = false,
+        said.push_back(i < holes ? name(i) + " and " + name(j) + " overlap"
+                                 : "no-fly zones " + std::to_string(i - holes) + " and " +
+                                       std::to_string(j - holes) + " overlap");
+    }
+  // Zones that only touch (the boundary or each other) are cut out too.
+  if (said.empty()) return {"no-fly zones touch the area's boundary or each other"};
+  ZonesCut out{"", outside_only};
+  for (std::size_t k = 0; k < said.size() && k < 6; ++k) out.text += (k ? "; " : "") + said[k];
+  if (said.size() > 6) out.text += "; and " + std::to_string(said.size() - 6) + " more";
+  return out;
+}
+
 // How much the zones are grown for cutting them out of the area (see cut_out_zones), metres.
 constexpr double kCutMargin_m = 1e-3;
 
@@ -172,9 +245,13 @@ void cut_out_zones(SurveyPlan& plan) {
     plan.extra_piece_holes.insert(plan.extra_piece_holes.end(), parts[k].holes.begin(),
                                   parts[k].holes.end());
   }
-  plan.warnings.push_back(
-      "no-fly zones cross the area's boundary or each other: planned the area less the zones, " +
-      std::to_string(parts.size()) + " part(s), " + fixed_text(total, 1) + " m² in all");
+  const ZonesCut why = zones_cut_text(plan);
+  plan.warnings.push_back(why.text + (why.outside_only
+                                          ? "; the area is planned whole, " + fixed_text(total, 1) +
+                                                " m², and transits keep out of the zones"
+                                          : "; planned the area less the zones, " +
+                                                std::to_string(parts.size()) + " part(s), " +
+                                                fixed_text(total, 1) + " m² in all"));
 }
 
 // Refusals that need the classification: zones crossing the area or each other, a crossing

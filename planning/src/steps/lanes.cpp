@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/offset.hpp"
@@ -11,6 +12,7 @@
 namespace swath::planning::steps {
 namespace {
 
+using base::InputError;
 using geometry::Point2;
 
 // Whether lines are laid in cells inside the planning rings (a concave area, holes, zones, or
@@ -93,6 +95,18 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   return s;
 }
 
+// The limit on the lines actually laid (direction() refused on an estimate, the area's height
+// over the spacing; a concave area takes several lines at one position: a 2,000-vertex star
+// estimated below the limit was laid 20,589).
+void check_line_count(const SurveyPlan& plan, std::size_t lines) {
+  if (lines <= kMaxSweepLines) return;
+  throw InputError(plan.request.field.source + ": the area takes " + std::to_string(lines) +
+                   " lines " + base::fixed_text(plan.imaging.line_spacing_m, 3) +
+                   " m apart (where it is concave, several at one position), more than swath's "
+                   "limit of " +
+                   std::to_string(kMaxSweepLines) + "; fly higher or split the area");
+}
+
 // The lines of one pass at `angle_deg` (or the searched direction for the first split pass),
 // flown from `from`.
 std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
@@ -101,6 +115,7 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
     SplitSettings s = split_settings(plan);
     if (angle_deg) s.fixed_angle_deg = *angle_deg;
     const SplitPlan sp = plan_split(plan.planning_rings, from, s, routes.inside);
+    check_line_count(plan, sp.lines.size());
     if (first) {
       plan.direction = {sp.angle_deg, geometry::height_at(plan.area.outer, sp.angle_deg)};
       plan.sweep = {sp.angle_deg, plan.direction.height_m, sp.lines};
@@ -116,6 +131,7 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
   const geometry::Polygon flown{plan.planning_rings.front(), {}};
   const Sweep sweep =
       plan_sweep(flown, sweep_settings(plan, angle_deg.value_or(plan.direction.angle_deg)));
+  check_line_count(plan, sweep.lines.size());
   if (first) {
     plan.sweep = sweep;
     plan.cells = {flown.outer};
