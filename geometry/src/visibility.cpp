@@ -245,12 +245,11 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
     nodes_.clear();
     return;
   }
-  adjacent_.resize(nodes_.size());
   node_fans_.resize(nodes_.size());
+  node_asked_.assign(nodes_.size(), 0);
   fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
   bins_per_unit_ = double(fan_bins_) / 4;
   extent_m_ = extent;
-  expanded_.assign(nodes_.size(), 0);
   node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
 }
 
@@ -265,79 +264,20 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
   if (known == kUnknown) {
     if (!row.fan && ++row.asked > kFanAfter) row.fan = std::make_unique<Fan>(fan_of(p));
     known = visible_with(p, nodes_[node], row.fan.get());
+    ++row.known;
+    row.visible += known != 0;
   }
   return known != 0;
 }
 
-const std::vector<std::pair<std::size_t, double>>& VisibilityRouter::adjacent(std::size_t u) const {
-  if (expanded_[u]) return adjacent_[u];
-  // Ascending, as the eager graph listed them; each pair tested once (visible(i, j) with i < j,
-  // as the eager build asked it: the test is not symmetric in rounding).
-  const std::size_t n = nodes_.size();
-  // The pairs (u, v > u) are tested from u: through u's fan when there are enough of them.
-  if (!node_fans_[u] && n - u > std::size_t(kFanAfter))
-    node_fans_[u] = std::make_unique<Fan>(fan_of(nodes_[u]));
-  for (std::size_t v = 0; v < n; ++v) {
-    if (v == u) continue;
-    const std::size_t i = std::min(u, v), j = std::max(u, v);
-    signed char& known = node_sees_[i * n + j];
-    if (known == kUnknown) known = visible_with(nodes_[i], nodes_[j], node_fans_[i].get());
-    if (known) adjacent_[u].push_back({v, distance(nodes_[i], nodes_[j])});
+bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
+  signed char& known = node_sees_[i * nodes_.size() + j];
+  if (known == kUnknown) {
+    if (!node_fans_[i] && ++node_asked_[i] > kFanAfter)
+      node_fans_[i] = std::make_unique<Fan>(fan_of(nodes_[i]));
+    known = visible_with(nodes_[i], nodes_[j], node_fans_[i].get());
   }
-  expanded_[u] = 1;
-  return adjacent_[u];
-}
-
-VisibilityRouter::Search& VisibilityRouter::search_from(Point2 a) const {
-  auto [it, added] = trees_.try_emplace({a.x, a.y});
-  Search& s = it->second;
-  if (!added) return s;
-  const std::size_t n = nodes_.size();
-  s.distance.assign(n, std::numeric_limits<double>::infinity());
-  s.previous.assign(n, n);
-  s.settled.assign(n, 0);
-  s.from_row = &seen_row(a);
-  // Every node starts as a candidate straight from a; whether a sees it is tested when it would
-  // be settled so, and only then: nodes beyond the paths asked so far are never tested.
-  for (std::size_t i = 0; i < n; ++i) s.queue.push_back({distance(a, nodes_[i]), i, 0});
-  std::make_heap(s.queue.begin(), s.queue.end(), std::greater<>());
-  return s;
-}
-
-std::size_t VisibilityRouter::settle_next(Point2 a, Search& s) const {
-  // Dijkstra as over the eager graph, whose queue held (distance, node) pairs: straight from a
-  // for the nodes a sees, then through settled nodes when strictly shorter. Here the straight
-  // candidates all wait in the queue untested. Popped in the same (distance, node) order, with
-  // the straight candidate first of equal ones, a node is settled with the distance and
-  // predecessor the eager search gave it: a tested straight candidate that is visible and no
-  // longer than the best through a node replaces that (the eager search never took a path
-  // through a node that was not strictly shorter than the straight one); one that is not visible
-  // is dropped, as the eager search never had it.
-  const std::size_t n = nodes_.size();
-  while (!s.queue.empty()) {
-    std::pop_heap(s.queue.begin(), s.queue.end(), std::greater<>());
-    const Search::Item item = s.queue.back();
-    s.queue.pop_back();
-    const std::size_t u = item.node;
-    const double d = item.distance_m;
-    if (s.settled[u] || d > s.distance[u]) continue;
-    if (item.from_point == 0) {
-      if (!sees(a, *s.from_row, u)) continue;
-      s.distance[u] = d;
-      s.previous[u] = n;
-    }
-    s.settled[u] = 1;
-    s.settled_nodes.push_back(u);
-    for (const auto& [v, w] : adjacent(u))
-      if (!s.settled[v] && d + w < s.distance[v]) {
-        s.distance[v] = d + w;
-        s.previous[v] = u;
-        s.queue.push_back({d + w, v, 1});
-        std::push_heap(s.queue.begin(), s.queue.end(), std::greater<>());
-      }
-    return u;
-  }
-  return n;
+  return known != 0;
 }
 
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
@@ -345,57 +285,117 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   // Through a's fan where a has one (a run end asked about often, home): the same exact tests
   // on the same edges, without walking the grid along the leg. Only towards b within the area's
   // extent, as the fan's margins assume (see outside_fraction()).
-  const auto row = sees_.find({a.x, a.y});
-  const Fan* fan = row != sees_.end() && std::max(std::abs(b.x), std::abs(b.y)) <= extent_m_
-                       ? row->second.fan.get()
+  const auto known_a = sees_.find({a.x, a.y});
+  const Fan* fan = known_a != sees_.end() && std::max(std::abs(b.x), std::abs(b.y)) <= extent_m_
+                       ? known_a->second.fan.get()
                        : nullptr;
   if (visible_with(a, b, fan)) return {a, b};
-  // The eager answer: of the nodes b sees, the one with the least distance from a plus the
-  // straight leg to b, the lowest index of equal ones. A node's sum is at least its distance,
-  // and nodes are settled in order of distance, so they are taken in that order: those b is
-  // known to see into `best`, those not yet tested into a heap of sums, tested from its least
-  // while that could still win. `best` is final once no node still to take (or to settle) has a
-  // distance below its sum.
-  Search& s = search_from(a);
-  Row& to_b = seen_row(b);
   const std::size_t n = nodes_.size();
-  thread_local std::vector<std::pair<double, std::size_t>> untested;  // (sum, node), a heap
-  untested.clear();
-  std::pair<double, std::size_t> best{std::numeric_limits<double>::infinity(), n};
-  std::size_t taken = 0;  // s.settled_nodes before this are taken
-  while (true) {
-    double bound = std::numeric_limits<double>::infinity();
-    if (taken < s.settled_nodes.size())
-      bound = s.distance[s.settled_nodes[taken]];
-    else if (!s.queue.empty())
-      bound = s.queue.front().distance_m;
-    const bool untested_first = !untested.empty() && untested.front() < best;
-    if (untested_first && untested.front().first < bound) {
-      std::pop_heap(untested.begin(), untested.end(), std::greater<>());
-      const auto candidate = untested.back();
-      untested.pop_back();
-      if (sees(b, to_b, candidate.second)) best = candidate;
-      continue;
-    }
-    if (!untested_first && best.first < bound) break;  // nothing left can do better
-    if (taken < s.settled_nodes.size()) {
-      const std::size_t i = s.settled_nodes[taken++];
-      if (to_b.seen[i] == 0) continue;
-      const std::pair<double, std::size_t> candidate{s.distance[i] + distance(nodes_[i], b), i};
-      if (to_b.seen[i] == kUnknown) {
-        untested.push_back(candidate);
-        std::push_heap(untested.begin(), untested.end(), std::greater<>());
-      } else {
-        best = std::min(best, candidate);
+  Row& from_a = seen_row(a);
+  Row& to_b = seen_row(b);
+  // An end known to see no node at all (outside the area, home beyond the field): no path.
+  if ((from_a.known == n && from_a.visible == 0) || (to_b.known == n && to_b.visible == 0))
+    return {a, b};
+
+  // The answer is the one Dijkstra's search from a over the whole graph gives (the router before
+  // A*, written out in tests/geometry/visibility_search_test.cpp): a node's distance and
+  // predecessor are what that search settles it with, and the path ends through the node v that
+  // b sees with the least distance(v) + |v b|, the lowest index of equal ones. A* finds it while
+  // settling only the nodes towards b, and testing only the legs it takes:
+  // - Candidates are taken in order of f = g + h, h = (1 - 1e-6) |node b|: a predecessor u of v on
+  //   a shortest path is then settled strictly before v (h(u) <= (1 - 1e-6) w(u, v) + h(v): f
+  //   grows by at least 1e-6 w(u, v) along an edge, far above rounding), and every candidate for
+  //   v of that length is in the queue before v's first is taken.
+  // - A candidate is a leg to a node not yet settled: straight from a, or from a settled node u
+  //   (g = distance(u) + |u v|); its leg is tested when it is taken, and the first seen settles
+  //   the node. Of equal g, the straight leg comes first, then the one from the least (distance,
+  //   index): the node Dijkstra's search settled first, whose candidate it kept.
+  // - The way to b through node v is a candidate of f = distance(v) + |v b| (the sum the full
+  //   search compares), taken after nodes' candidates of equal f: once one b sees is taken, no
+  //   node still to settle can end lower (its f is a lower bound of its sum, and strictly above)
+  //   nor equal with a lower index (those come first, by index).
+  constexpr double kShrink = 1 - 1e-6;
+  struct Item {
+    double f;
+    int to_b;  ///< 0: a leg to `node`, 1: the way to b through `node`
+    double g;
+    int from_node;  ///< 0: straight from a, 1: from `from` (settled with distance `from_g`)
+    double from_g;
+    std::size_t from;
+    std::size_t node;
+    auto operator<=>(const Item&) const = default;
+  };
+  thread_local std::vector<double> h;              // per node: (1 - 1e-6) |node b|
+  thread_local std::vector<std::size_t> previous;  // n: straight from a
+  thread_local std::vector<char> settled;
+  thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
+  thread_local std::vector<Item> queue;        // a min-heap (std::push_heap with greater)
+  h.resize(n);
+  for (std::size_t u = 0; u < n; ++u) h[u] = kShrink * distance(nodes_[u], b);
+  // The search takes candidates in order of f up to the answer's; those above a limit are not
+  // queued. A search that ends without reaching b under the limit is run again with a higher
+  // one: the candidates taken up to the answer, and so the answer, are those of a search without
+  // a limit. The first limit: 1.25 times the straight leg (most transits bend round one
+  // obstacle); each further one at least twice that. A node u whose |a u| + h(u) is above the
+  // limit has every candidate above it (its g is at least |a u|): left out of the search.
+  double limit = 1.25 * distance(a, b) + tolerance_;
+  std::size_t last = n;
+  for (bool found = false; !found;) {
+    double beyond = std::numeric_limits<double>::infinity();  // least f left out
+    previous.assign(n, n);
+    settled.assign(n, 0);
+    queue.clear();
+    near.clear();
+    for (std::size_t u = 0; u < n; ++u) {
+      const double d = distance(a, nodes_[u]), f = d + h[u];
+      if (!(f <= limit)) {
+        beyond = std::min(beyond, f);
+        continue;
       }
-      continue;
+      near.push_back(u);
+      if (from_a.seen[u] != 0) queue.push_back({f, 0, d, 0, 0.0, n, u});  // not known hidden
     }
-    if (settle_next(a, s) == n && !untested_first) break;  // all settled
+    std::make_heap(queue.begin(), queue.end(), std::greater<>());
+    const auto push = [&](const Item& item) {
+      if (!(item.f <= limit)) {
+        beyond = std::min(beyond, item.f);
+        return;
+      }
+      queue.push_back(item);
+      std::push_heap(queue.begin(), queue.end(), std::greater<>());
+    };
+    while (!queue.empty()) {
+      std::pop_heap(queue.begin(), queue.end(), std::greater<>());
+      const Item item = queue.back();
+      queue.pop_back();
+      const std::size_t v = item.node;
+      if (item.to_b) {
+        if (sees(b, to_b, v)) {
+          last = v;
+          break;
+        }
+        continue;
+      }
+      if (settled[v]) continue;
+      if (item.from_node ? !nodes_see(std::min(item.from, v), std::max(item.from, v))
+                         : !sees(a, from_a, v))
+        continue;
+      settled[v] = 1;
+      previous[v] = item.from_node ? item.from : n;
+      if (to_b.seen[v] != 0) push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
+      for (const std::size_t u : near) {
+        if (settled[u] || node_sees_[std::min(u, v) * n + std::max(u, v)] == 0) continue;
+        const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
+        push({through + h[u], 0, through, 1, item.g, v, u});
+      }
+    }
+    // Done: b reached, or every candidate taken (no inside path).
+    found = last != n || beyond == std::numeric_limits<double>::infinity();
+    limit = std::max(2 * limit, beyond);
   }
-  const std::size_t last = best.second;
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
   std::vector<Point2> route{b};
-  for (std::size_t v = last; v != n; v = s.previous[v]) route.push_back(nodes_[v]);
+  for (std::size_t v = last; v != n; v = previous[v]) route.push_back(nodes_[v]);
   route.push_back(a);
   std::reverse(route.begin(), route.end());
   return route;

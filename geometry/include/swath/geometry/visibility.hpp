@@ -19,9 +19,10 @@ namespace swath::geometry {
 /// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
 /// visibility is decided with exact predicates, on the edges a grid over them (SegmentIndex) finds
 /// near each leg. The graph's edges and which nodes a path's ends see are tested lazily, only as
-/// far as a Dijkstra search from the start needs to prove the path shortest (O(r k) per node it
-/// settles, for r reflex vertices and k edges near a leg); areas with more than `max_nodes`
-/// reflex vertices are not routed (paths are straight).
+/// far as an A* search from the start towards the end needs to prove the path shortest (O(r k)
+/// per node it settles, for r reflex vertices and k edges near a leg); areas with more than
+/// `max_nodes` reflex vertices are not routed (paths are straight). The path is the one a full
+/// Dijkstra search over the whole graph picks (ties included; see path()).
 ///
 /// `corner_allowance_m` (>= 0, metres) moves each bend this far away from its corner, along the
 /// corner's bisector, where the moved point still sees both neighbours of the corner: an autopilot
@@ -75,8 +76,8 @@ class VisibilityRouter {
   // Everything below is filled lazily, as paths are asked: a plan asks for ~10^4 paths between
   // run ends, and testing every run end against every reflex vertex (and every pair of reflex
   // vertices) up front was most of the routing time. Each answer is the one the eager
-  // computation gave, bit for bit: the same visibility tests decide, and the searches settle
-  // the same nodes with the same distances and predecessors, in the same order, only not all.
+  // computation gave, bit for bit: the same visibility tests decide, and the A* search settles
+  // the nodes it settles with the distances and predecessors Dijkstra's gave them (path()).
   static constexpr signed char kUnknown = -1;
   /// Which graph nodes a point sees (kUnknown: not asked yet), per point asked about (routing
   /// asks about the same entry and exit points many times), and its fan once it has been asked
@@ -84,42 +85,22 @@ class VisibilityRouter {
   struct Row {
     std::vector<signed char> seen;
     int asked = 0;
+    std::size_t known = 0, visible = 0;  ///< nodes of `seen` tested, and of them seen
     std::unique_ptr<Fan> fan;
   };
   static constexpr int kFanAfter = 12;
   Row& seen_row(Point2 p) const;
   bool sees(Point2 p, Row& row, std::size_t node) const;
   mutable std::map<std::pair<double, double>, Row> sees_;
-  mutable std::vector<std::unique_ptr<Fan>> node_fans_;  ///< per node, built when it is expanded
+  /// Whether nodes i < j see each other, tested from i (as the eager graph did: the test is not
+  /// symmetric in rounding) and kept; through i's fan once i has been asked kFanAfter times.
+  bool nodes_see(std::size_t i, std::size_t j) const;
+  mutable std::vector<std::unique_ptr<Fan>> node_fans_;
+  mutable std::vector<int> node_asked_;         ///< per node: pairs tested from it without a fan
+  mutable std::vector<signed char> node_sees_;  ///< nodes² visibility, kUnknown until asked
   std::size_t fan_bins_ = 0;
   double bins_per_unit_ = 0;  ///< fan bins per unit of diamond angle (4 a turn)
   double extent_m_ = 0;       ///< the largest absolute coordinate of the area, metres
-  /// The visibility graph's edges of a node (ascending), built when a search first settles it.
-  const std::vector<std::pair<std::size_t, double>>& adjacent(std::size_t node) const;
-  mutable std::vector<std::vector<std::pair<std::size_t, double>>> adjacent_;
-  mutable std::vector<char> expanded_;          ///< per node: adjacent_ built
-  mutable std::vector<signed char> node_sees_;  ///< nodes² visibility, kUnknown until asked
-  /// Dijkstra from a point over the graph, resumed as far as each path asked needs: distance
-  /// and predecessor of the settled nodes (predecessor nodes_.size() = straight from the point).
-  /// The point's view of a node is tested only when that node would be settled from it.
-  struct Search {
-    struct Item {
-      double distance_m;
-      std::size_t node;
-      int from_point;  ///< 0: straight from the point (not yet tested), 1: through a node
-      auto operator<=>(const Item&) const = default;
-    };
-    std::vector<double> distance;
-    std::vector<std::size_t> previous;
-    std::vector<char> settled;
-    std::vector<std::size_t> settled_nodes;  ///< in the order settled
-    std::vector<Item> queue;                 ///< a min-heap (std::push_heap with greater)
-    Row* from_row = nullptr;
-  };
-  Search& search_from(Point2 a) const;
-  /// Settles the next node of `s` (from point a); nodes_.size() when none is left.
-  std::size_t settle_next(Point2 a, Search& s) const;
-  mutable std::map<std::pair<double, double>, Search> trees_;
   bool routing_ = true;
   double tolerance_ = 0.0;  ///< distance from the boundary that still counts as on it, metres
 };
