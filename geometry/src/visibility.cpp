@@ -253,6 +253,23 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
   node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
 }
 
+std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
+  std::unique_ptr<VisibilityRouter> copy(new VisibilityRouter);
+  copy->rings_ = rings_;
+  copy->edges_ = edges_;
+  copy->edge_boxes_ = edge_boxes_;
+  copy->nodes_ = nodes_;
+  copy->routing_ = routing_;
+  copy->tolerance_ = tolerance_;
+  copy->fan_bins_ = fan_bins_;
+  copy->bins_per_unit_ = bins_per_unit_;
+  copy->extent_m_ = extent_m_;
+  copy->node_fans_.resize(nodes_.size());
+  copy->node_asked_.assign(nodes_.size(), 0);
+  copy->node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
+  return copy;
+}
+
 VisibilityRouter::Row& VisibilityRouter::seen_row(Point2 p) const {
   auto [it, added] = sees_.try_emplace({p.x, p.y});
   if (added) it->second.seen.assign(nodes_.size(), kUnknown);

@@ -680,6 +680,78 @@ std::optional<SplitPlan> per_region_plan(const std::vector<geometry::Ring>& ring
 
 }  // namespace
 
+namespace {
+
+// The best plan of `to_refine` (candidates in the order of their estimates), each ordered with
+// transits routed inside the area: the least objective of those that see >= 99.9 % of `to_see`,
+// else the one that sees most, the first of equal ones; and its key (0 and the objective, or 1
+// and minus the fraction seen). A plan that sees less than 99.9 % (cells' lanes can miss a corner
+// a large footprint was trusted with) only wins where none sees more.
+//
+// Candidates are ordered a wave at a time, one per thread (the first on `routed`, the others on
+// fresh copies of the router: a router's tables serve one thread), and the waves' plans compared
+// in order, as one at a time would: a candidate that one at a time would have skipped (its bound
+// at or above the best so far, its objective too) cannot win the comparison either.
+std::pair<SplitPlan, std::pair<double, double>> best_refined(
+    std::vector<Candidate>& candidates, const std::vector<std::size_t>& to_refine, Point2 home,
+    const SplitSettings& s, const geometry::Polygon& to_see,
+    const geometry::VisibilityRouter& router, RoutedMetric& routed) {
+  const Metric straight = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
+  const std::size_t wave = std::max<std::size_t>(
+      1, std::min<std::size_t>(s.threads ? s.threads : base::machine_threads(), to_refine.size()));
+  std::vector<std::unique_ptr<geometry::VisibilityRouter>> copies;
+  std::vector<std::unique_ptr<RoutedMetric>> metrics;
+  for (std::size_t k = 1; k < wave; ++k) {
+    copies.push_back(router.fresh_copy());
+    metrics.push_back(std::make_unique<RoutedMetric>(*copies.back()));
+  }
+  SplitPlan best;
+  std::pair<double, double> best_key{std::numeric_limits<double>::infinity(), 0};
+  struct Job {
+    std::size_t candidate;
+    std::optional<SplitPlan> plan;  ///< none: skipped
+    double seen_fraction = -1;      ///< < 0: not measured (the plan cannot win)
+  };
+  for (std::size_t first = 0; first < to_refine.size(); first += wave) {
+    std::vector<Job> jobs;
+    for (std::size_t k = first; k < std::min(first + wave, to_refine.size()); ++k) {
+      jobs.push_back({to_refine[k], std::nullopt});
+      // A candidate no order of which can beat the best plan so far, by a lower bound on
+      // straight transits, is not ordered with routed ones (most of the time of a plan): it
+      // would lose below anyway. The margin keeps rounding of the two sums from deciding a tie
+      // differently.
+      Candidate& c = candidates[to_refine[k]];
+      if (best_key.first == 0 &&
+          order_lower_bound(problem_for(c, home, straight)) >= best_key.second * (1 + 1e-9))
+        jobs.back().candidate = candidates.size();
+    }
+    const std::pair<double, double> wave_key = best_key;
+    base::parallel_for(jobs.size(), unsigned(jobs.size()), [&](std::size_t k) {
+      Job& job = jobs[k];
+      if (job.candidate == candidates.size()) return;
+      job.plan = ordered_plan(candidates[job.candidate], home, k == 0 ? routed : *metrics[k - 1]);
+      if (wave_key.first == 0 && job.plan->objective_m >= wave_key.second) return;
+      job.seen_fraction =
+          measure_coverage(to_see, job.plan->lines, job.plan->angle_deg, s.footprint_width_m, 1024)
+              .covered_fraction;
+    });
+    for (Job& job : jobs) {
+      if (!job.plan) continue;
+      if (best_key.first == 0 && job.plan->objective_m >= best_key.second) continue;
+      const std::pair<double, double> key = job.seen_fraction >= 0.999
+                                                ? std::pair{0.0, job.plan->objective_m}
+                                                : std::pair{1.0, -job.seen_fraction};
+      if (key < best_key) {
+        best_key = key;
+        best = *std::move(job.plan);
+      }
+    }
+  }
+  return {std::move(best), best_key};
+}
+
+}  // namespace
+
 SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, const SplitSettings& s,
                      const geometry::VisibilityRouter& router) {
   if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m) ||
@@ -726,36 +798,15 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // The best few of each kind again with transits routed inside the area, ordered exactly where
   // small: a straight-line estimate ranks runs and cells differently (runs' transits hop around
   // what cells' turns go along).
-  // A plan that sees less than 99.9 % of the area (cells' lanes can miss a corner a large
-  // footprint was trusted with) only wins where none sees more.
   std::sort(estimates.begin(), estimates.end());
   const std::vector<geometry::Ring>& seen = s.seen_rings.empty() ? rings : s.seen_rings;
   const geometry::Polygon to_see{seen.front(), {seen.begin() + 1, seen.end()}};
-  SplitPlan best;
-  std::pair<double, double> best_key{std::numeric_limits<double>::infinity(), 0};
-  std::size_t of_kind = 0;
-  for (std::size_t e = 0; e < estimates.size(); ++e) {
+  std::vector<std::size_t> to_refine;  // candidates, in the order of their estimates
+  for (std::size_t e = 0, of_kind = 0; e < estimates.size(); ++e) {
     of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
-    if (of_kind >= s.refined_candidates) continue;
-    Candidate& c = candidates[std::get<2>(estimates[e])];
-    // A candidate no order of which can beat the best plan so far, by a lower bound on straight
-    // transits, is not ordered with routed ones (most of the time of a plan): it would lose below
-    // anyway. The margin keeps rounding of the two sums from deciding a tie differently.
-    if (best_key.first == 0 &&
-        order_lower_bound(problem_for(c, home, straight)) >= best_key.second * (1 + 1e-9))
-      continue;
-    SplitPlan plan = ordered_plan(c, home, routed);
-    if (best_key.first == 0 && plan.objective_m >= best_key.second) continue;  // no need to look
-    const double seen_fraction =
-        measure_coverage(to_see, plan.lines, plan.angle_deg, s.footprint_width_m, 1024)
-            .covered_fraction;
-    const std::pair<double, double> key =
-        seen_fraction >= 0.999 ? std::pair{0.0, plan.objective_m} : std::pair{1.0, -seen_fraction};
-    if (key < best_key) {
-      best_key = key;
-      best = std::move(plan);
-    }
+    if (of_kind < s.refined_candidates) to_refine.push_back(std::get<2>(estimates[e]));
   }
+  auto [best, best_key] = best_refined(candidates, to_refine, home, s, to_see, router, routed);
   best.candidates = candidates.size();
   if (s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty() &&
       best_key.first == 0)

@@ -226,6 +226,29 @@ TEST(VisibilityRouterSearch, PathsAreBitForBitTheEagerOnes) {
   EXPECT_GT(bent, std::size_t(3000) * kQueries / 1200);
 }
 
+// A fresh copy (another thread's router) answers as the original, whatever the original has been
+// asked before: the same paths bit for bit, asked in a different order.
+TEST(VisibilityRouterSearch, AFreshCopyGivesTheSamePaths) {
+  test::Rng rng(1820);
+  for (int area = 0; area < 3; ++area) {
+    const std::vector<Ring> rings = search_holey_area(rng, std::size_t(24) << area, 10 + 9 * area);
+    const VisibilityRouter router(rings, 300, 1.5);
+    const std::vector<Point2> points = path_ends(rng, rings, 40);
+    std::vector<std::vector<Point2>> first;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      first.push_back(router.path(points[i], points[(i * 7 + 3) % points.size()]));
+    const std::unique_ptr<VisibilityRouter> copy = router.fresh_copy();
+    ASSERT_TRUE(copy->routes());
+    std::size_t bent = 0;
+    for (std::size_t i = points.size(); i-- > 0;) {
+      const std::vector<Point2> again = copy->path(points[i], points[(i * 7 + 3) % points.size()]);
+      EXPECT_EQ(again, first[i]) << "area " << area << " query " << i;
+      bent += again.size() > 2;
+    }
+    EXPECT_GT(bent, std::size_t(5)) << area;
+  }
+}
+
 // A point asked about often gets a fan (the edges by direction from it); edges within a
 // millionth of the area's size of it are asked for every leg, as their direction from it is not
 // to be trusted. Path ends a hair (1e-10 to 1e-4 m) off vertices and along edges just past a

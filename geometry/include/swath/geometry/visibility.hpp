@@ -46,8 +46,12 @@ class VisibilityRouter {
   /// Length of [a, b] outside the closed area, metres (exact up to rounding).
   double length_outside(Point2 a, Point2 b) const;
   bool routes() const { return routing_; }
+  /// A router for the same area (same nodes, same answers) with its own lazy tables, empty: for
+  /// another thread (one router's tables fill as it answers, so it serves one thread at a time).
+  std::unique_ptr<VisibilityRouter> fresh_copy() const;
 
  private:
+  VisibilityRouter() = default;
   bool inside_closed(Point2 p) const;
   /// The area's edges by their direction from one point, in bins of angle: a visibility test from
   /// a point asked about often looks only at the edges in the leg's direction (about a bin's
