@@ -18,6 +18,9 @@
 #include "swath/planning/coverage.hpp"
 #include "swath/planning/lane_runs.hpp"
 
+#include "lane_scan.hpp"
+#include "split_bounds.hpp"
+
 namespace swath::planning {
 namespace {
 
@@ -236,7 +239,47 @@ Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, con
   return c;
 }
 
+// The cells at one direction as a candidate, with its straight-transit estimate (c.order); no
+// cells: none.
+std::optional<Candidate> estimated_cells(const std::vector<geometry::Ring>& rings, double angle,
+                                         const SplitSettings& s, Point2 home) {
+  Candidate c = sweep_cells(rings, angle, s);
+  if (c.cells.empty()) return std::nullopt;
+  CellOrderProblem problem =
+      problem_for(c, home, [](Point2 a, Point2 b) { return geometry::distance(a, b); });
+  problem.distance_at_least_straight = true;
+  c.order = nearest_neighbour_order(problem);
+  return c;
+}
+
 }  // namespace
+
+namespace split_detail {
+
+double cells_estimate_bound(const std::vector<geometry::Ring>& rings, double angle_deg,
+                            const SplitSettings& s, Point2 home) {
+  const detail::LaneScan scan(rings, angle_deg);
+  const std::vector<double> ys =
+      line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  const std::vector<std::vector<detail::Span>> spans = scan.at(ys);
+  double total = 0, lo = rotate(home, -angle_deg).y, hi = lo;
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    for (const detail::Span& span : spans[k]) total += span.x1 - span.x0;
+    if (!spans[k].empty()) {
+      lo = std::min(lo, ys[k]);
+      hi = std::max(hi, ys[k]);
+    }
+  }
+  return (total + 2 * (hi - lo)) * (1 - 1e-6);
+}
+
+double cells_estimate(const std::vector<geometry::Ring>& rings, double angle_deg,
+                      const SplitSettings& s, Point2 home) {
+  const std::optional<Candidate> c = estimated_cells(rings, angle_deg, s, home);
+  return c ? c->order.length_m : 0.0;
+}
+
+}  // namespace split_detail
 
 // Outside the anonymous namespace: RunOrder's memo (a named class) holds one.
 namespace split_detail {
@@ -682,6 +725,76 @@ std::optional<SplitPlan> per_region_plan(const std::vector<geometry::Ring>& ring
 
 namespace {
 
+// Every direction's candidates with their straight-transit estimates (kinds 0 bridged runs, 1
+// runs, 2 cells; per direction in that order), but cells whose estimate could not rank among the
+// refined ones.
+struct DirectionEstimates {
+  std::vector<std::vector<std::pair<int, Candidate>>> per_angle;
+  std::size_t cells_left_out = 0;  ///< directions whose cells' bound ruled them out
+};
+
+DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
+                                       const std::vector<double>& angles, Point2 home,
+                                       const SplitSettings& s) {
+  // Runs at every direction, and the cells' lower bound (split_detail::cells_estimate_bound()).
+  // The directions are independent: spread over threads, each into its own slot.
+  const std::size_t n = angles.size();
+  DirectionEstimates out;
+  out.per_angle.resize(n);
+  const bool cells = s.cells != SplitCells::runs;
+  std::vector<double> bound(n, 0.0);
+  base::parallel_for(n, s.threads, [&](std::size_t a) {
+    // Bridged runs where there is a margin, runs inside: both check coverage on the same samples
+    // of the area, taken once (into a buffer of the thread's).
+    thread_local std::vector<Point2> samples;
+    samples.clear();
+    for (const int kind : {0, 1}) {
+      if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty())) continue;
+      Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
+      if (c.cells.empty()) continue;
+      CellOrderProblem problem =
+          problem_for(c, home, [](Point2 p, Point2 q) { return geometry::distance(p, q); });
+      problem.distance_at_least_straight = true;
+      c.order = nearest_neighbour_order(problem);
+      out.per_angle[a].push_back({kind, std::move(c)});
+    }
+    if (cells) bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
+  });
+  if (!cells) return out;
+  // Cells (the dearer kind: a decomposition per direction) in order of their bound, a wave at a
+  // time, until the next bound is above the refined_candidates-th least estimate found: its
+  // estimate, at least its bound, could not rank among the refined ones. Gathered in direction
+  // order, the ones left out absent: the ranking (by estimate, then order) is the one without.
+  std::vector<std::size_t> order(n);
+  for (std::size_t a = 0; a < n; ++a) order[a] = a;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return bound[x] < bound[y]; });
+  std::vector<std::optional<Candidate>> cell_candidates(n);
+  std::vector<double> least;  // the estimates found, ascending, at most refined_candidates
+  const std::size_t wave = 2 * std::size_t(s.threads ? s.threads : base::machine_threads());
+  std::size_t next = 0;
+  for (; next < n; next += wave) {
+    const double kth = least.size() == s.refined_candidates && s.refined_candidates > 0
+                           ? least.back()
+                           : std::numeric_limits<double>::infinity();
+    if (bound[order[next]] > kth) break;
+    const std::size_t count = std::min(wave, n - next);
+    base::parallel_for(count, s.threads, [&](std::size_t k) {
+      cell_candidates[order[next + k]] = estimated_cells(rings, angles[order[next + k]], s, home);
+    });
+    for (std::size_t k = 0; k < count; ++k)
+      if (const auto& c = cell_candidates[order[next + k]]) {
+        least.insert(std::upper_bound(least.begin(), least.end(), c->order.length_m),
+                     c->order.length_m);
+        if (least.size() > s.refined_candidates) least.pop_back();
+      }
+  }
+  out.cells_left_out = n - std::min(next, n);
+  for (std::size_t a = 0; a < n; ++a)
+    if (cell_candidates[a]) out.per_angle[a].push_back({2, *std::move(cell_candidates[a])});
+  return out;
+}
+
 // The best plan of `to_refine` (candidates in the order of their estimates), each ordered with
 // transits routed inside the area: the least objective of those that see >= 99.9 % of `to_see`,
 // else the one that sees most, the first of equal ones; and its key (0 and the objective, or 1
@@ -765,31 +878,11 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
       s.fixed_angle_deg
           ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
           : candidate_angles(rings, s.scan_step_deg);
-  // Rank every direction by a cheap estimate: straight transits, heuristic order. The directions
-  // are independent: spread over threads, each into its own slot, gathered in order.
-  std::vector<std::vector<std::pair<int, Candidate>>> per_angle(angles.size());
-  base::parallel_for(angles.size(), s.threads, [&](std::size_t a) {
-    // Runs bridged across the outside margin where there is one, runs inside, cells. Both runs
-    // check coverage on the same samples of the area: taken once (into a buffer of the thread's).
-    thread_local std::vector<Point2> samples;
-    samples.clear();
-    for (const int kind : {0, 1, 2}) {
-      const SplitCells method = kind < 2 ? SplitCells::runs : SplitCells::boustrophedon;
-      if ((s.cells != SplitCells::best && s.cells != method) ||
-          (kind == 0 && s.bridge_rings.empty()))
-        continue;
-      Candidate c = kind < 2 ? sweep_runs(rings, angles[a], s, kind == 0, samples)
-                             : sweep_cells(rings, angles[a], s);
-      if (c.cells.empty()) continue;
-      CellOrderProblem straight_problem = problem_for(c, home, straight);
-      straight_problem.distance_at_least_straight = true;
-      c.order = nearest_neighbour_order(straight_problem);
-      per_angle[a].push_back({kind, std::move(c)});
-    }
-  });
+  // Rank every direction by a cheap estimate: straight transits, heuristic order.
+  DirectionEstimates found = estimate_directions(rings, angles, home, s);
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   std::vector<Candidate> candidates;
-  for (auto& of_angle : per_angle)
+  for (std::vector<std::pair<int, Candidate>>& of_angle : found.per_angle)
     for (auto& [kind, c] : of_angle) {
       estimates.push_back({kind, c.order.length_m, candidates.size()});
       candidates.push_back(std::move(c));
@@ -807,7 +900,7 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
     if (of_kind < s.refined_candidates) to_refine.push_back(std::get<2>(estimates[e]));
   }
   auto [best, best_key] = best_refined(candidates, to_refine, home, s, to_see, router, routed);
-  best.candidates = candidates.size();
+  best.candidates = candidates.size() + found.cells_left_out;
   if (s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty() &&
       best_key.first == 0)
     if (std::optional<SplitPlan> mixed = per_region_plan(rings, home, s, to_see, best, routed))
