@@ -771,14 +771,17 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
                    [&](std::size_t x, std::size_t y) { return bound[x] < bound[y]; });
   std::vector<std::optional<Candidate>> cell_candidates(n);
   std::vector<double> least;  // the estimates found, ascending, at most refined_candidates
-  const std::size_t wave = 2 * std::size_t(s.threads ? s.threads : base::machine_threads());
+  // Waves start at two directions a thread and double (where the bound rules little out, as
+  // round holes, few waves; where it rules most out, the first waves hold the least estimates).
   std::size_t next = 0;
-  for (; next < n; next += wave) {
+  for (std::size_t wave = 2 * std::size_t(s.threads ? s.threads : base::machine_threads());
+       next < n; wave *= 2) {
     const double kth = least.size() == s.refined_candidates && s.refined_candidates > 0
                            ? least.back()
                            : std::numeric_limits<double>::infinity();
-    if (bound[order[next]] > kth) break;
-    const std::size_t count = std::min(wave, n - next);
+    std::size_t count = 0;  // the next directions whose bound is not above it, at most a wave
+    while (count < wave && next + count < n && !(bound[order[next + count]] > kth)) ++count;
+    if (count == 0) break;
     base::parallel_for(count, s.threads, [&](std::size_t k) {
       cell_candidates[order[next + k]] = estimated_cells(rings, angles[order[next + k]], s, home);
     });
@@ -788,8 +791,9 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
                      c->order.length_m);
         if (least.size() > s.refined_candidates) least.pop_back();
       }
+    next += count;
   }
-  out.cells_left_out = n - std::min(next, n);
+  out.cells_left_out = n - next;
   for (std::size_t a = 0; a < n; ++a)
     if (cell_candidates[a]) out.per_angle[a].push_back({2, *std::move(cell_candidates[a])});
   return out;
