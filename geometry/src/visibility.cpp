@@ -245,6 +245,10 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
     nodes_.clear();
     return;
   }
+  nodes_by_x_.resize(nodes_.size());
+  for (std::size_t u = 0; u < nodes_.size(); ++u) nodes_by_x_[u] = std::uint32_t(u);
+  std::stable_sort(nodes_by_x_.begin(), nodes_by_x_.end(),
+                   [this](std::uint32_t u, std::uint32_t v) { return nodes_[u].x < nodes_[v].x; });
   node_fans_.resize(nodes_.size());
   node_asked_.assign(nodes_.size(), 0);
   fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
@@ -259,6 +263,7 @@ std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   copy->edges_ = edges_;
   copy->edge_boxes_ = edge_boxes_;
   copy->nodes_ = nodes_;
+  copy->nodes_by_x_ = nodes_by_x_;
   copy->routing_ = routing_;
   copy->tolerance_ = tolerance_;
   copy->fan_bins_ = fan_bins_;
@@ -342,19 +347,21 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     std::size_t node;
     auto operator<=>(const Item&) const = default;
   };
-  thread_local std::vector<double> h;              // per node: (1 - 1e-6) |node b|
+  thread_local std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
   thread_local std::vector<std::size_t> previous;  // n: straight from a
   thread_local std::vector<char> settled;
   thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
   thread_local std::vector<Item> queue;        // a min-heap (std::push_heap with greater)
   h.resize(n);
-  for (std::size_t u = 0; u < n; ++u) h[u] = kShrink * distance(nodes_[u], b);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
   // queued. A search that ends without reaching b under the limit is run again with a higher
   // one: the candidates taken up to the answer, and so the answer, are those of a search without
   // a limit. The first limit: 1.25 times the straight leg (most transits bend round one
   // obstacle); each further one at least twice that. A node u whose |a u| + h(u) is above the
-  // limit has every candidate above it (its g is at least |a u|): left out of the search.
+  // limit has every candidate above it (its g is at least |a u|): left out of the search. Such
+  // a node lies farther than limit / (2 (1 - 1e-6)) from the middle of a b (|a u| + |u b| is at
+  // least twice that distance): only the nodes within that of it in x (by search in the nodes
+  // sorted by x) and in y are asked.
   double limit = 1.25 * distance(a, b) + tolerance_;
   std::size_t last = n;
   for (bool found = false; !found;) {
@@ -363,7 +370,20 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     settled.assign(n, 0);
     queue.clear();
     near.clear();
-    for (std::size_t u = 0; u < n; ++u) {
+    const Point2 middle = (a + b) * 0.5;
+    const double reach = limit / (2 * kShrink) * (1 + 1e-9) + tolerance_;
+    const auto by_x = [this](std::uint32_t u, double x) { return nodes_[u].x < x; };
+    const auto first =
+        std::lower_bound(nodes_by_x_.begin(), nodes_by_x_.end(), middle.x - reach, by_x);
+    const auto end = std::lower_bound(first, nodes_by_x_.end(), middle.x + reach, by_x);
+    bool left_out = end - first < std::ptrdiff_t(n);
+    for (auto it = first; it != end; ++it) {
+      const std::size_t u = *it;
+      if (std::abs(nodes_[u].y - middle.y) > reach) {
+        left_out = true;
+        continue;
+      }
+      h[u] = kShrink * distance(nodes_[u], b);
       const double d = distance(a, nodes_[u]), f = d + h[u];
       if (!(f <= limit)) {
         beyond = std::min(beyond, f);
@@ -372,6 +392,8 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       near.push_back(u);
       if (from_a.seen[u] != 0) queue.push_back({f, 0, d, 0, 0.0, n, u});  // not known hidden
     }
+    // In the order of the nodes' indices, as every node was asked before (the heap's ties).
+    std::sort(near.begin(), near.end());
     std::make_heap(queue.begin(), queue.end(), std::greater<>());
     const auto push = [&](const Item& item) {
       if (!(item.f <= limit)) {
@@ -407,8 +429,8 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       }
     }
     // Done: b reached, or every candidate taken (no inside path).
-    found = last != n || beyond == std::numeric_limits<double>::infinity();
-    limit = std::max(2 * limit, beyond);
+    found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());
+    limit = std::max(2 * limit, beyond == std::numeric_limits<double>::infinity() ? 0 : beyond);
   }
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
   std::vector<Point2> route{b};

@@ -77,6 +77,7 @@ class VisibilityRouter {
   SegmentIndex edges_;           ///< every ring's edges, ring after ring, in ring order
   std::vector<Box> edge_boxes_;  ///< per edge of edges_
   std::vector<Point2> nodes_;
+  std::vector<std::uint32_t> nodes_by_x_;  ///< node indices by ascending x
   // Everything below is filled lazily, as paths are asked: a plan asks for ~10^4 paths between
   // run ends, and testing every run end against every reflex vertex (and every pair of reflex
   // vertices) up front was most of the routing time. Each answer is the one the eager
