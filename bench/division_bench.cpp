@@ -13,12 +13,15 @@
 //   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY or SHAPE]
 // the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads;
 //   swath_division_bench --path-distribution SEED PER_FAMILY [FAMILY or SHAPE]
-// the same with path division (the issue's <= 1.005 for path division).
+// the same with path division (the issue's <= 1.005 for path division). With SWATH_BENCH_EXACT
+// set, these print each plan's flight times as exact doubles and a hash of its regions and paths.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -140,6 +143,36 @@ void BM_SixDronePlan(benchmark::State& state) {
   state.counters["max_over_min"] = ratio;
 }
 
+// With SWATH_BENCH_EXACT set, each plan's flight times as the doubles they are (%a) and a hash of
+// its regions' and paths' coordinates' bits: a change meant to keep the plans can be checked bit
+// for bit, where the tables round.
+void print_exact(const planning::SurveyPlan& plan) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the doubles' bits
+  auto mix = [&h](double v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int i = 0; i < 8; ++i) h = (h ^ ((bits >> (8 * i)) & 0xff)) * 0x100000001b3ull;
+  };
+  std::printf("  exact:");
+  for (const planning::DronePlan& d : plan.drones) {
+    std::printf(" %a", d.mission.flight_time_s);
+    for (const geometry::Ring& ring : d.work.region) {
+      mix(double(ring.size()));
+      for (const geometry::Point2& p : ring) {
+        mix(p.x);
+        mix(p.y);
+      }
+    }
+    mix(double(d.work.path.points.size()));
+    for (const geometry::Point2& p : d.work.path.points) {
+      mix(p.x);
+      mix(p.y);
+    }
+  }
+  std::printf(" makespan %a hash %016llx\n", plan.division.makespan_s,
+              static_cast<unsigned long long>(h));
+}
+
 // One plan, its wall time and its drones' flight times as text ("526, 515, 515").
 struct TimedPlan {
   planning::SurveyPlan plan;
@@ -154,6 +187,7 @@ TimedPlan timed_plan(const planning::SurveyRequest& request) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (const planning::DronePlan& d : t.plan.drones)
     t.times += (t.times.empty() ? "" : ", ") + std::to_string(std::lround(d.mission.flight_time_s));
+  if (std::getenv("SWATH_BENCH_EXACT")) print_exact(t.plan);
   return t;
 }
 

@@ -18,6 +18,8 @@
 #include "swath/geometry/convex_hull.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/visibility.hpp"
+#include "swath/planning/split.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/vehicle/drone.hpp"
 
@@ -744,6 +746,74 @@ TEST(DivideLanes, AFastShortRangeDroneStaysWithinItsRange) {
   // The even split was shorter on time alone: the range is what the division kept.
   EXPECT_GT(r.makespan_s, r.proportional_makespan_s);
   for (const SweepLine& lane : s.lanes) EXPECT_NEAR(flown_on(lane, r), 400, 1e-6) << lane.start.y;
+}
+
+// RunOrder remembers routed transits from share to share (its memo grows to millions on a field
+// with holes): shares cut at random from the runs around two holes, some asked twice, are ordered
+// as a fresh RunOrder (nothing remembered) orders them, bit for bit.
+TEST(RunOrder, RememberedTransitsOrderSharesAsAFreshOrderDoes) {
+  const Ring outer{{0, 0}, {600, 0}, {600, 600}, {0, 600}};
+  const Ring hole_a{{100, 120}, {100, 480}, {200, 480}, {200, 120}};  // clockwise
+  const Ring hole_b{{350, 120}, {350, 480}, {450, 480}, {450, 120}};
+  const geometry::VisibilityRouter router({outer, hole_a, hole_b});
+  ASSERT_TRUE(router.routes());
+  // The lanes as one line, run by run: below the holes, beside them (three columns), above.
+  struct Lane {
+    std::size_t run;
+    double y, x0, x1;
+  };
+  std::vector<Lane> lanes;
+  for (double y = 10; y < 120; y += 20) lanes.push_back({0, y, 0, 600});
+  const std::array<std::pair<double, double>, 3> columns{{{0, 100}, {200, 350}, {450, 600}}};
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    for (double y = 130; y < 480; y += 20)
+      lanes.push_back({1 + c, y, columns[c].first, columns[c].second});
+  for (double y = 490; y < 600; y += 20) lanes.push_back({4, y, 0, 600});
+  // Share [i, j] of the lanes, the first from `from` of its length on, the last up to `to`.
+  auto share = [&](std::size_t i, std::size_t j, double from, double to) {
+    std::vector<Sweep> runs;
+    std::vector<std::size_t> run_of(5, 5);
+    for (std::size_t k = i; k <= j; ++k) {
+      const Lane& l = lanes[k];
+      const double w = l.x1 - l.x0;
+      const double x0 = k == i ? l.x0 + from * w : l.x0, x1 = k == j ? l.x0 + to * w : l.x1;
+      if (run_of[l.run] == 5) {
+        run_of[l.run] = runs.size();
+        runs.push_back({0.0, 0.0, {}});
+      }
+      runs[run_of[l.run]].lines.push_back({{x0, l.y}, {x1, l.y}});
+    }
+    return runs;
+  };
+  RunOrder remembering(router);
+  std::mt19937 rng(7);
+  std::vector<std::tuple<std::size_t, std::size_t, double, double>> asked;
+  for (int n = 0; n < 80; ++n) {
+    if (n % 5 == 4) {  // a share asked before
+      asked.push_back(asked[rng() % asked.size()]);
+    } else {
+      std::size_t i = rng() % lanes.size(), j = rng() % lanes.size();
+      if (i > j) std::swap(i, j);
+      std::uniform_real_distribution<double> part(0.05, 0.95);
+      const double from = part(rng), to = i == j ? std::max(from + 0.01, part(rng)) : part(rng);
+      asked.push_back({i, j, from, std::min(to, 1.0)});
+    }
+    const auto [i, j, from, to] = asked.back();
+    const Point2 home{-40, 300};
+    std::vector<Ring> outlines(share(i, j, from, to).size());
+    const SplitPlan got = remembering(outlines, share(i, j, from, to), 0.0, home);
+    RunOrder fresh(router);
+    const SplitPlan want = fresh(outlines, share(i, j, from, to), 0.0, home);
+    ASSERT_EQ(got.lines.size(), want.lines.size()) << "share " << n;
+    for (std::size_t k = 0; k < got.lines.size(); ++k) {
+      EXPECT_TRUE(got.lines[k].start == want.lines[k].start &&
+                  got.lines[k].end == want.lines[k].end)
+          << "share " << n << ", line " << k;
+    }
+    EXPECT_EQ(got.line_cell, want.line_cell) << "share " << n;
+    EXPECT_EQ(got.path_length_m, want.path_length_m) << "share " << n;
+    EXPECT_EQ(got.objective_m, want.objective_m) << "share " << n;
+  }
 }
 
 // A lane shorter than a micrometre is cut nowhere: the one drone whose share holds it flies it
