@@ -239,16 +239,23 @@ Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, con
   return c;
 }
 
-// The cells at one direction as a candidate, with its straight-transit estimate (c.order); no
-// cells: none.
+double straight_m(Point2 a, Point2 b) {
+  return geometry::distance(a, b);
+}
+
+// The candidate's straight-transit estimate (nearest neighbour from home) into c.order.
+void estimate(Candidate& c, Point2 home) {
+  CellOrderProblem problem = problem_for(c, home, straight_m);
+  problem.distance_at_least_straight = true;
+  c.order = nearest_neighbour_order(problem);
+}
+
+// The cells at one direction as a candidate, with its estimate; no cells: none.
 std::optional<Candidate> estimated_cells(const std::vector<geometry::Ring>& rings, double angle,
                                          const SplitSettings& s, Point2 home) {
   Candidate c = sweep_cells(rings, angle, s);
   if (c.cells.empty()) return std::nullopt;
-  CellOrderProblem problem =
-      problem_for(c, home, [](Point2 a, Point2 b) { return geometry::distance(a, b); });
-  problem.distance_at_least_straight = true;
-  c.order = nearest_neighbour_order(problem);
+  estimate(c, home);
   return c;
 }
 
@@ -431,10 +438,6 @@ SplitPlan ordered_plan(Candidate& c, Point2 home, RoutedMetric& routed) {
 }
 
 // ---- A direction per region (issue 18, DESIGN.md §16) ------------------------------------
-
-double straight_m(Point2 a, Point2 b) {
-  return geometry::distance(a, b);
-}
 
 // Directions worth trying for one region: its four longest edges' (its hull's included), `also`
 // and a scan every 30 degrees; closer than 0.25 degrees count once. Few: every one is a lane_runs.
@@ -752,10 +755,7 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
       if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty())) continue;
       Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
       if (c.cells.empty()) continue;
-      CellOrderProblem problem =
-          problem_for(c, home, [](Point2 p, Point2 q) { return geometry::distance(p, q); });
-      problem.distance_at_least_straight = true;
-      c.order = nearest_neighbour_order(problem);
+      estimate(c, home);
       out.per_angle[a].push_back({kind, std::move(c)});
     }
     if (cells) bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
@@ -813,7 +813,6 @@ std::pair<SplitPlan, std::pair<double, double>> best_refined(
     std::vector<Candidate>& candidates, const std::vector<std::size_t>& to_refine, Point2 home,
     const SplitSettings& s, const geometry::Polygon& to_see,
     const geometry::VisibilityRouter& router, RoutedMetric& routed) {
-  const Metric straight = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
   const std::size_t wave = std::max<std::size_t>(
       1, std::min<std::size_t>(s.threads ? s.threads : base::machine_threads(), to_refine.size()));
   std::vector<std::unique_ptr<geometry::VisibilityRouter>> copies;
@@ -839,7 +838,7 @@ std::pair<SplitPlan, std::pair<double, double>> best_refined(
       // differently.
       Candidate& c = candidates[to_refine[k]];
       if (best_key.first == 0 &&
-          order_lower_bound(problem_for(c, home, straight)) >= best_key.second * (1 + 1e-9))
+          order_lower_bound(problem_for(c, home, straight_m)) >= best_key.second * (1 + 1e-9))
         jobs.back().candidate = candidates.size();
     }
     const std::pair<double, double> wave_key = best_key;
@@ -875,7 +874,6 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
       !(s.scan_step_deg > 0))
     throw std::invalid_argument(
         "plan_split: need 0 < spacing <= footprint width and a scan step > 0");
-  const Metric straight = [](Point2 a, Point2 b) { return geometry::distance(a, b); };
   RoutedMetric routed(router);
 
   const std::vector<double> angles =
