@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 #include <tuple>
@@ -728,24 +730,22 @@ std::optional<SplitPlan> per_region_plan(const std::vector<geometry::Ring>& ring
 
 namespace {
 
-// Every direction's candidates with their straight-transit estimates (kinds 0 bridged runs, 1
-// runs, 2 cells; per direction in that order), but cells whose estimate could not rank among the
-// refined ones.
-struct DirectionEstimates {
+// The runs at every direction (kinds 0 bridged runs, 1 runs; per direction in that order) with
+// their straight-transit estimates, and the cells' lower bound at each direction
+// (split_detail::cells_estimate_bound(); empty when cells are not planned).
+struct RunEstimates {
   std::vector<std::vector<std::pair<int, Candidate>>> per_angle;
-  std::size_t cells_left_out = 0;  ///< directions whose cells' bound ruled them out
+  std::vector<double> cells_bound;
 };
 
-DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
-                                       const std::vector<double>& angles, Point2 home,
-                                       const SplitSettings& s) {
-  // Runs at every direction, and the cells' lower bound (split_detail::cells_estimate_bound()).
+RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
+                           const std::vector<double>& angles, Point2 home, const SplitSettings& s) {
   // The directions are independent: spread over threads, each into its own slot.
   const std::size_t n = angles.size();
-  DirectionEstimates out;
+  RunEstimates out;
   out.per_angle.resize(n);
   const bool cells = s.cells != SplitCells::runs;
-  std::vector<double> bound(n, 0.0);
+  if (cells) out.cells_bound.assign(n, 0.0);
   base::parallel_for(n, s.threads, [&](std::size_t a) {
     // Bridged runs where there is a margin, runs inside: both check coverage on the same samples
     // of the area, taken once (into a buffer of the thread's).
@@ -758,112 +758,179 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
       estimate(c, home);
       out.per_angle[a].push_back({kind, std::move(c)});
     }
-    if (cells) bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
+    if (cells) out.cells_bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
   });
-  if (!cells) return out;
-  // Cells (the dearer kind: a decomposition per direction) in order of their bound, a wave at a
-  // time, until the next bound is above the refined_candidates-th least estimate found: its
-  // estimate, at least its bound, could not rank among the refined ones. Gathered in direction
-  // order, the ones left out absent: the ranking (by estimate, then order) is the one without.
-  std::vector<std::size_t> order(n);
-  for (std::size_t a = 0; a < n; ++a) order[a] = a;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t x, std::size_t y) { return bound[x] < bound[y]; });
-  std::vector<std::optional<Candidate>> cell_candidates(n);
-  std::vector<double> least;  // the estimates found, ascending, at most refined_candidates
-  // Waves start at two directions a thread and double (where the bound rules little out, as
-  // round holes, few waves; where it rules most out, the first waves hold the least estimates).
-  std::size_t next = 0;
-  for (std::size_t wave = 2 * std::size_t(s.threads ? s.threads : base::machine_threads());
-       next < n; wave *= 2) {
-    const double kth = least.size() == s.refined_candidates && s.refined_candidates > 0
-                           ? least.back()
-                           : std::numeric_limits<double>::infinity();
-    std::size_t count = 0;  // the next directions whose bound is not above it, at most a wave
-    while (count < wave && next + count < n && !(bound[order[next + count]] > kth)) ++count;
-    if (count == 0) break;
-    base::parallel_for(count, s.threads, [&](std::size_t k) {
-      cell_candidates[order[next + k]] = estimated_cells(rings, angles[order[next + k]], s, home);
-    });
-    for (std::size_t k = 0; k < count; ++k)
-      if (const auto& c = cell_candidates[order[next + k]]) {
-        least.insert(std::upper_bound(least.begin(), least.end(), c->order.length_m),
-                     c->order.length_m);
-        if (least.size() > s.refined_candidates) least.pop_back();
-      }
-    next += count;
-  }
-  out.cells_left_out = n - next;
-  for (std::size_t a = 0; a < n; ++a)
-    if (cell_candidates[a]) out.per_angle[a].push_back({2, *std::move(cell_candidates[a])});
   return out;
 }
 
-// The best plan of `to_refine` (candidates in the order of their estimates), each ordered with
-// transits routed inside the area: the least objective of those that see >= 99.9 % of `to_see`,
-// else the one that sees most, the first of equal ones; and its key (0 and the objective, or 1
-// and minus the fraction seen). A plan that sees less than 99.9 % (cells' lanes can miss a corner
-// a large footprint was trusted with) only wins where none sees more.
-//
-// Candidates are ordered a wave at a time, one per thread (the first on `routed`, the others on
-// fresh copies of the router: a router's tables serve one thread), and the waves' plans compared
-// in order, as one at a time would: a candidate that one at a time would have skipped (its bound
-// at or above the best so far, its objective too) cannot win the comparison either.
-std::pair<SplitPlan, std::pair<double, double>> best_refined(
-    std::vector<Candidate>& candidates, const std::vector<std::size_t>& to_refine, Point2 home,
-    const SplitSettings& s, const geometry::Polygon& to_see,
-    const geometry::VisibilityRouter& router, RoutedMetric& routed) {
-  const std::size_t wave = std::max<std::size_t>(
-      1, std::min<std::size_t>(s.threads ? s.threads : base::machine_threads(), to_refine.size()));
-  std::vector<std::unique_ptr<geometry::VisibilityRouter>> copies;
-  std::vector<std::unique_ptr<RoutedMetric>> metrics;
-  for (std::size_t k = 1; k < wave; ++k) {
-    copies.push_back(router.fresh_copy());
-    metrics.push_back(std::make_unique<RoutedMetric>(*copies.back()));
+// The candidates to refine: of each kind the `per_kind` least estimates (then the lowest index),
+// kind by kind. estimates: (kind, estimate, candidate).
+std::vector<std::size_t> best_of_each_kind(
+    std::vector<std::tuple<int, double, std::size_t>> estimates, std::size_t per_kind) {
+  std::sort(estimates.begin(), estimates.end());
+  std::vector<std::size_t> chosen;
+  for (std::size_t e = 0, of_kind = 0; e < estimates.size(); ++e) {
+    of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
+    if (of_kind < per_kind) chosen.push_back(std::get<2>(estimates[e]));
   }
-  SplitPlan best;
-  std::pair<double, double> best_key{std::numeric_limits<double>::infinity(), 0};
-  struct Job {
-    std::size_t candidate;
-    std::optional<SplitPlan> plan;  ///< none: skipped
-    double seen_fraction = -1;      ///< < 0: not measured (the plan cannot win)
-  };
-  for (std::size_t first = 0; first < to_refine.size(); first += wave) {
-    std::vector<Job> jobs;
-    for (std::size_t k = first; k < std::min(first + wave, to_refine.size()); ++k) {
-      jobs.push_back({to_refine[k], std::nullopt});
-      // A candidate no order of which can beat the best plan so far, by a lower bound on
-      // straight transits, is not ordered with routed ones (most of the time of a plan): it
-      // would lose below anyway. The margin keeps rounding of the two sums from deciding a tie
-      // differently.
-      Candidate& c = candidates[to_refine[k]];
-      if (best_key.first == 0 &&
-          order_lower_bound(problem_for(c, home, straight_m)) >= best_key.second * (1 + 1e-9))
-        jobs.back().candidate = candidates.size();
+  return chosen;
+}
+
+// One candidate ordered with transits routed inside the area.
+struct Refined {
+  std::optional<SplitPlan> plan;  ///< none: skipped, it could not beat a plan already found
+  double seen_fraction = -1;      ///< < 0: not measured, its plan is longer than one already found
+};
+
+// `c` ordered on `routed` and its coverage of `to_see` measured, unless a plan seeing >= 99.9 %
+// with objective `beaten_m` is already found and this one cannot be shorter: then not ordered when
+// a lower bound on every order's length (straight transits) is at or above it (ordering with
+// routed transits is most of a plan's time; the margin keeps rounding of the two sums from
+// deciding a tie), its coverage not measured when its objective is above it.
+Refined refine(Candidate& c, Point2 home, const SplitSettings& s, const geometry::Polygon& to_see,
+               RoutedMetric& routed, double beaten_m) {
+  Refined r;
+  if (beaten_m < std::numeric_limits<double>::infinity() &&
+      order_lower_bound(problem_for(c, home, straight_m)) >= beaten_m * (1 + 1e-9))
+    return r;
+  r.plan = ordered_plan(c, home, routed);
+  if (r.plan->objective_m > beaten_m) return r;
+  r.seen_fraction =
+      measure_coverage(to_see, r.plan->lines, r.plan->angle_deg, s.footprint_width_m, 1024)
+          .covered_fraction;
+  return r;
+}
+
+// The best plan so far and its key: (0, objective) for a plan that sees >= 99.9 % of the area,
+// else (1, minus the fraction seen); less is better. A plan that sees less than 99.9 % (cells'
+// lanes can miss a corner a large footprint was trusted with) only wins where none sees more.
+struct Best {
+  SplitPlan plan;
+  std::pair<double, double> key{std::numeric_limits<double>::infinity(), 0};
+  /// The objective a candidate must get below to win: +inf until a plan sees >= 99.9 %.
+  double beaten_m() const {
+    return key.first == 0 ? key.second : std::numeric_limits<double>::infinity();
+  }
+};
+
+// `r` compared with the best so far; candidates folded in the order of their estimates, the
+// first of equal ones kept. One not ordered or not measured lost to a plan before it or beside it
+// (refine()): that plan, seeing >= 99.9 % and shorter, is folded too and beats it.
+void fold(Refined& r, Best& best) {
+  if (!r.plan || r.seen_fraction < 0 || r.plan->objective_m >= best.beaten_m()) return;
+  const std::pair<double, double> key = r.seen_fraction >= 0.999
+                                            ? std::pair{0.0, r.plan->objective_m}
+                                            : std::pair{1.0, -r.seen_fraction};
+  if (key < best.key) {
+    best.key = key;
+    best.plan = *std::move(r.plan);
+  }
+}
+
+// Routers for the threads of a pool: thread 0 the caller's, the others fresh copies (a router's
+// tables serve one thread), made when a thread first asks.
+class RouterPerThread {
+ public:
+  RouterPerThread(const geometry::VisibilityRouter& router, RoutedMetric& routed, unsigned threads)
+      : router_(router), routed_(routed), copies_(threads), metrics_(threads) {}
+  RoutedMetric& operator()(unsigned worker) {
+    if (worker == 0) return routed_;
+    if (!metrics_[worker]) {
+      copies_[worker] = router_.fresh_copy();
+      metrics_[worker] = std::make_unique<RoutedMetric>(*copies_[worker]);
     }
-    const std::pair<double, double> wave_key = best_key;
-    base::parallel_for(jobs.size(), unsigned(jobs.size()), [&](std::size_t k) {
-      Job& job = jobs[k];
-      if (job.candidate == candidates.size()) return;
-      job.plan = ordered_plan(candidates[job.candidate], home, k == 0 ? routed : *metrics[k - 1]);
-      if (wave_key.first == 0 && job.plan->objective_m >= wave_key.second) return;
-      job.seen_fraction =
-          measure_coverage(to_see, job.plan->lines, job.plan->angle_deg, s.footprint_width_m, 1024)
-              .covered_fraction;
-    });
-    for (Job& job : jobs) {
-      if (!job.plan) continue;
-      if (best_key.first == 0 && job.plan->objective_m >= best_key.second) continue;
-      const std::pair<double, double> key = job.seen_fraction >= 0.999
-                                                ? std::pair{0.0, job.plan->objective_m}
-                                                : std::pair{1.0, -job.seen_fraction};
-      if (key < best_key) {
-        best_key = key;
-        best = *std::move(job.plan);
+    return *metrics_[worker];
+  }
+
+ private:
+  const geometry::VisibilityRouter& router_;
+  RoutedMetric& routed_;
+  std::vector<std::unique_ptr<geometry::VisibilityRouter>> copies_;
+  std::vector<std::unique_ptr<RoutedMetric>> metrics_;
+};
+
+// The runs to refine, ordered with routed transits (into runs, in the order of `to_refine`), and
+// the cells with their estimates at the directions where they could rank among the refined ones
+// (into cells, per direction; none: no cells there, or left out), in one pool of threads: the runs
+// first (the longest jobs), then the cells in order of their bound (a decomposition per direction,
+// the dearer kind), each left out when its bound is above the refined_candidates-th least estimate
+// found: its estimate, at least its bound, could not rank among the refined ones. Bounds
+// ascend and that estimate only falls, so the ones left out are the last in that order, and the
+// cells that rank are the ones that would with every direction decomposed.
+struct RunsAndCells {
+  std::vector<Refined> runs;
+  std::vector<std::optional<Candidate>> cells;
+};
+
+RunsAndCells refine_runs_and_estimate_cells(const std::vector<geometry::Ring>& rings,
+                                            const std::vector<double>& angles,
+                                            const std::vector<double>& cells_bound,
+                                            std::vector<Candidate>& runs,
+                                            const std::vector<std::size_t>& to_refine, Point2 home,
+                                            const SplitSettings& s, const geometry::Polygon& to_see,
+                                            RouterPerThread& routers) {
+  const std::size_t n = cells_bound.size(), r = to_refine.size();
+  std::vector<std::size_t> by_bound(n);
+  for (std::size_t a = 0; a < n; ++a) by_bound[a] = a;
+  std::stable_sort(by_bound.begin(), by_bound.end(),
+                   [&](std::size_t x, std::size_t y) { return cells_bound[x] < cells_bound[y]; });
+  RunsAndCells out;
+  out.runs.resize(r);
+  out.cells.resize(n);
+  std::mutex lock;                                            // guards the two below
+  double beaten_m = std::numeric_limits<double>::infinity();  // least objective seeing >= 99.9 %
+  std::vector<double> least;  // the cells' estimates found, ascending, at most refined_candidates
+  base::parallel_for(r + n, s.threads, [&](std::size_t j, unsigned worker) {
+    if (j < r) {
+      // Skips against a plan found beside it, not only before it, are as sound (fold()).
+      double beaten = 0;
+      {
+        const std::lock_guard<std::mutex> guard(lock);
+        beaten = beaten_m;
       }
+      Refined& run = out.runs[j] =
+          refine(runs[to_refine[j]], home, s, to_see, routers(worker), beaten);
+      if (run.seen_fraction >= 0.999) {
+        const std::lock_guard<std::mutex> guard(lock);
+        beaten_m = std::min(beaten_m, run.plan->objective_m);
+      }
+      return;
     }
+    const std::size_t a = by_bound[j - r];
+    {
+      const std::lock_guard<std::mutex> guard(lock);
+      if (least.size() == s.refined_candidates && s.refined_candidates > 0 &&
+          cells_bound[a] > least.back())
+        return;
+    }
+    std::optional<Candidate> c = estimated_cells(rings, angles[a], s, home);
+    if (c) {
+      const std::lock_guard<std::mutex> guard(lock);
+      least.insert(std::upper_bound(least.begin(), least.end(), c->order.length_m),
+                   c->order.length_m);
+      if (least.size() > s.refined_candidates) least.pop_back();
+    }
+    out.cells[a] = std::move(c);
+  });
+  return out;
+}
+
+// `best` with the candidates of `to_refine` (in the order of their estimates) folded in, a wave of
+// one per thread at a time, each skipped or not measured against the best before its wave.
+void refine_in_waves(std::vector<Candidate>& candidates, const std::vector<std::size_t>& to_refine,
+                     Point2 home, const SplitSettings& s, const geometry::Polygon& to_see,
+                     RouterPerThread& routers, Best& best) {
+  const std::size_t wave = s.threads ? s.threads : base::machine_threads();
+  for (std::size_t first = 0; first < to_refine.size(); first += wave) {
+    const std::size_t count = std::min(wave, to_refine.size() - first);
+    std::vector<Refined> refined(count);
+    const double beaten = best.beaten_m();
+    base::parallel_for(count, s.threads, [&](std::size_t k, unsigned worker) {
+      refined[k] =
+          refine(candidates[to_refine[first + k]], home, s, to_see, routers(worker), beaten);
+    });
+    for (Refined& r : refined) fold(r, best);
   }
-  return {std::move(best), best_key};
 }
 
 }  // namespace
@@ -875,39 +942,48 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
     throw std::invalid_argument(
         "plan_split: need 0 < spacing <= footprint width and a scan step > 0");
   RoutedMetric routed(router);
+  RouterPerThread routers(router, routed, s.threads ? s.threads : base::machine_threads());
+  const std::vector<geometry::Ring>& seen = s.seen_rings.empty() ? rings : s.seen_rings;
+  const geometry::Polygon to_see{seen.front(), {seen.begin() + 1, seen.end()}};
 
   const std::vector<double> angles =
       s.fixed_angle_deg
           ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
           : candidate_angles(rings, s.scan_step_deg);
-  // Rank every direction by a cheap estimate: straight transits, heuristic order.
-  DirectionEstimates found = estimate_directions(rings, angles, home, s);
-  std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
+  // Rank every direction by a cheap estimate (straight transits, heuristic order), and refine the
+  // best few of each kind with transits routed inside the area, ordered exactly where small: a
+  // straight-line estimate ranks runs and cells differently (runs' transits hop around what cells'
+  // turns go along). Runs are refined while cells are estimated; then the cells.
+  RunEstimates found = estimate_runs(rings, angles, home, s);
   std::vector<Candidate> candidates;
+  std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
+  const auto add = [&](int kind, Candidate c) {
+    estimates.push_back({kind, c.order.length_m, candidates.size()});
+    candidates.push_back(std::move(c));
+  };
   for (std::vector<std::pair<int, Candidate>>& of_angle : found.per_angle)
-    for (auto& [kind, c] : of_angle) {
-      estimates.push_back({kind, c.order.length_m, candidates.size()});
-      candidates.push_back(std::move(c));
-    }
+    for (auto& [kind, c] : of_angle) add(kind, std::move(c));
+  const std::vector<std::size_t> runs_to_refine =
+      best_of_each_kind(estimates, s.refined_candidates);
+  RunsAndCells refined = refine_runs_and_estimate_cells(
+      rings, angles, found.cells_bound, candidates, runs_to_refine, home, s, to_see, routers);
+  Best best;
+  for (Refined& r : refined.runs) fold(r, best);
+
+  const std::size_t run_candidates = candidates.size();
+  estimates.clear();
+  for (std::optional<Candidate>& c : refined.cells)
+    if (c) add(2, *std::move(c));
   if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
-  // The best few of each kind again with transits routed inside the area, ordered exactly where
-  // small: a straight-line estimate ranks runs and cells differently (runs' transits hop around
-  // what cells' turns go along).
-  std::sort(estimates.begin(), estimates.end());
-  const std::vector<geometry::Ring>& seen = s.seen_rings.empty() ? rings : s.seen_rings;
-  const geometry::Polygon to_see{seen.front(), {seen.begin() + 1, seen.end()}};
-  std::vector<std::size_t> to_refine;  // candidates, in the order of their estimates
-  for (std::size_t e = 0, of_kind = 0; e < estimates.size(); ++e) {
-    of_kind = e > 0 && std::get<0>(estimates[e]) == std::get<0>(estimates[e - 1]) ? of_kind + 1 : 0;
-    if (of_kind < s.refined_candidates) to_refine.push_back(std::get<2>(estimates[e]));
-  }
-  auto [best, best_key] = best_refined(candidates, to_refine, home, s, to_see, router, routed);
-  best.candidates = candidates.size() + found.cells_left_out;
+  refine_in_waves(candidates, best_of_each_kind(estimates, s.refined_candidates), home, s, to_see,
+                  routers, best);
+  // Every direction a cells candidate, decomposed or ruled out by its bound.
+  best.plan.candidates = run_candidates + found.cells_bound.size();
   if (s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty() &&
-      best_key.first == 0)
-    if (std::optional<SplitPlan> mixed = per_region_plan(rings, home, s, to_see, best, routed))
+      best.key.first == 0)
+    if (std::optional<SplitPlan> mixed = per_region_plan(rings, home, s, to_see, best.plan, routed))
       return *std::move(mixed);
-  return best;
+  return std::move(best.plan);
 }
 
 }  // namespace swath::planning

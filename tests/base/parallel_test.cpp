@@ -6,8 +6,10 @@
 
 #include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace swath::base {
@@ -59,6 +61,33 @@ TEST(ParallelFor, UsesTheCallersThreadAndNoMoreThreadsThanItems) {
   EXPECT_EQ(calls.load(), 1);
   EXPECT_EQ(ran_on, caller);  // one item: no thread started for it
   EXPECT_GE(machine_threads(), 1u);
+}
+
+TEST(ParallelFor, EachWorkerIndexIsOneThreadTheCallersZero) {
+  for (const unsigned threads : {1u, 2u, 3u, 8u})
+    for (const std::size_t count : {1u, 2u, 5u, 300u}) {
+      const std::thread::id caller = std::this_thread::get_id();
+      std::vector<std::thread::id> of_worker(threads);
+      std::vector<unsigned> worker_of(count, threads);
+      std::mutex lock;
+      bool consistent = true;
+      parallel_for(count, threads, [&](std::size_t i, unsigned worker) {
+        ASSERT_LT(worker, threads);
+        worker_of[i] = worker;
+        const std::lock_guard<std::mutex> guard(lock);
+        if (of_worker[worker] == std::thread::id{}) of_worker[worker] = std::this_thread::get_id();
+        consistent &= of_worker[worker] == std::this_thread::get_id();
+      });
+      EXPECT_TRUE(consistent) << count << " items on " << threads << " threads";
+      EXPECT_TRUE(of_worker[0] == std::thread::id{} || of_worker[0] == caller);
+      for (std::size_t i = 0; i < count; ++i) EXPECT_LT(worker_of[i], threads) << i;
+      // Distinct workers are distinct threads.
+      for (unsigned a = 0; a < threads; ++a)
+        for (unsigned b = a + 1; b < threads; ++b)
+          if (of_worker[a] != std::thread::id{} && of_worker[b] != std::thread::id{})
+            EXPECT_NE(of_worker[a], of_worker[b]) << a << " " << b;
+      if (threads == 1) EXPECT_EQ(of_worker[0], caller);
+    }
 }
 
 }  // namespace

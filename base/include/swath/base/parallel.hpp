@@ -8,6 +8,7 @@
 #include <mutex>
 #include <system_error>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace swath::base {
@@ -23,6 +24,9 @@ inline unsigned machine_threads() {
 /// any number of threads. When calls throw, the exception of the lowest index is rethrown after
 /// every thread has ended (items after it are not started), so that too does not depend on the
 /// number of threads.
+///
+/// f may also take (i, worker): `worker` is which thread calls it, 0 the calling thread, always
+/// below `threads` (resolved), for state a thread keeps to itself (a cache, a scratch buffer).
 template <typename F>
 void parallel_for(std::size_t count, unsigned threads, F&& f) {
   if (threads == 0) threads = machine_threads();
@@ -31,10 +35,13 @@ void parallel_for(std::size_t count, unsigned threads, F&& f) {
   std::atomic<std::size_t> failed_at{count};  // the lowest index that threw, count: none
   std::exception_ptr failure;
   std::mutex lock;
-  const auto work = [&] {
+  const auto work = [&](unsigned worker) {
     for (std::size_t i; (i = next++) < count && i < failed_at;) {
       try {
-        f(i);
+        if constexpr (std::is_invocable_v<F&, std::size_t, unsigned>)
+          f(i, worker);
+        else
+          f(i);
       } catch (...) {
         const std::lock_guard<std::mutex> guard(lock);
         if (i < failed_at) {
@@ -47,12 +54,12 @@ void parallel_for(std::size_t count, unsigned threads, F&& f) {
   std::vector<std::thread> helpers;
   for (std::size_t k = 1; k < workers; ++k) {
     try {
-      helpers.emplace_back(work);
+      helpers.emplace_back(work, unsigned(k));
     } catch (const std::system_error&) {  // no thread to be had: fewer do the work
       break;
     }
   }
-  work();
+  work(0u);
   for (std::thread& t : helpers) t.join();
   if (failure) std::rethrow_exception(failure);
 }
