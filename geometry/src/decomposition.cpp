@@ -81,11 +81,12 @@ std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains
     if (cells[b].left.front().y == cells[b].right.front().y)
       by_bottom[cells[b].left.front().y].push_back(b);
   std::vector<std::vector<std::size_t>> above(n);
+  std::vector<std::pair<double, std::size_t>> candidates;
   for (std::size_t a = 0; a < n; ++a) {
     const Point2 tl = cells[a].left.back(), tr = cells[a].right.back();
     const auto starting = by_bottom.find(tl.y);
     if (starting == by_bottom.end() || tr.y != tl.y) continue;
-    std::vector<std::pair<double, std::size_t>> candidates;
+    candidates.clear();
     for (const std::size_t b : starting->second) {
       const Point2 bl = cells[b].left.front(), br = cells[b].right.front();
       if (b == a) continue;
@@ -96,8 +97,9 @@ std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains
     for (const auto& c : candidates) above[a].push_back(c.second);
   }
   std::vector<long> lower_of(n, -1);  // upper cell -> the cell below it in its chain
+  std::vector<char> seen(n);
   for (std::size_t a = 0; a < n; ++a) {
-    std::vector<char> seen(n, 0);
+    std::fill(seen.begin(), seen.end(), 0);
     augment(a, above, lower_of, seen);
   }
   std::vector<long> upper_of(n, -1);

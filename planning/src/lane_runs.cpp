@@ -24,21 +24,24 @@ using detail::Span;
 
 // Per ordinate, the pieces inside joined across the gaps that one interval of the bridge area
 // spans: from the first piece's start to the last piece's end within it.
-std::vector<std::vector<Span>> bridged(const std::vector<std::vector<Span>>& inside,
-                                       const std::vector<std::vector<Span>>& bridge) {
-  std::vector<std::vector<Span>> out(inside.size());
+detail::SpanRows bridged(const detail::SpanRows& inside, const detail::SpanRows& bridge) {
+  detail::SpanRows out;
+  std::vector<Span> row;
   for (std::size_t k = 0; k < inside.size(); ++k) {
+    row.clear();
     for (const Span& piece : inside[k]) {
       const double mid = (piece.x0 + piece.x1) / 2;
       const auto within = std::find_if(bridge[k].begin(), bridge[k].end(),
                                        [&](const Span& b) { return mid >= b.x0 && mid <= b.x1; });
-      const bool joins = !out[k].empty() && within != bridge[k].end() &&
-                         out[k].back().x1 >= within->x0 && out[k].back().x1 <= within->x1;
+      const bool joins = !row.empty() && within != bridge[k].end() && row.back().x1 >= within->x0 &&
+                         row.back().x1 <= within->x1;
       if (joins)
-        out[k].back().x1 = piece.x1;
+        row.back().x1 = piece.x1;
       else
-        out[k].push_back(piece);
+        row.push_back(piece);
     }
+    out.add_row();
+    for (const Span& s : row) out.add(s);
   }
   return out;
 }
@@ -80,13 +83,13 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   geometry::sort_by_runs(boundary, by_ordinate, true);
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
-  const std::vector<std::vector<Span>> inside = scan.at(rows);
+  const detail::SpanRows inside = scan.at(rows);
   const auto count = [&](const Span& in) {
     return std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
   };
   std::size_t total = boundary.size();
-  for (const auto& spans : inside)
-    for (const Span& in : spans) total += std::size_t(count(in));
+  for (std::size_t r = 0; r < inside.size(); ++r)
+    for (const Span& in : inside[r]) total += std::size_t(count(in));
   samples.clear();
   samples.reserve(total);
   std::size_t next = 0;  // of boundary
@@ -322,7 +325,7 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   if (ys.empty())
     ys = line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
   if (ys.empty()) return out;
-  const std::vector<std::vector<Span>> cut =
+  const detail::SpanRows cut =
       area.bridge.empty() ? scan.at(ys)
                           : bridged(scan.at(ys), LaneScan(area.bridge, s.angle_deg).at(ys));
   std::vector<RunLane> lanes;

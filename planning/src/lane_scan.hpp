@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,30 @@ using geometry::Ring;
 
 struct Span {
   double x0, x1;
+};
+
+// Spans per row in one array (row k's from start[k] to start[k + 1]): rows are asked by the
+// hundred per direction, and a vector each was a tenth of a split plan's allocations.
+class SpanRows {
+ public:
+  std::size_t size() const { return start_.size() - 1; }
+  std::span<const Span> operator[](std::size_t k) const {
+    return {spans_.data() + start_[k], spans_.data() + start_[k + 1]};
+  }
+  /// Appends a span to the last row (add_row() first).
+  void add(Span s) {
+    spans_.push_back(s);
+    ++start_.back();
+  }
+  void add_row() { start_.push_back(start_.back()); }
+  void reserve(std::size_t rows, std::size_t spans) {
+    start_.reserve(rows + 1);
+    spans_.reserve(spans);
+  }
+
+ private:
+  std::vector<std::size_t> start_{0};
+  std::vector<Span> spans_;
 };
 
 // The area in the frame turned by -angle: lanes run along x. Which intervals of a horizontal
@@ -63,20 +88,35 @@ class LaneScan {
     return pairs(xs);
   }
 
-  /// at() for many increasing ordinates: each edge finds its first by search.
-  std::vector<std::vector<Span>> at(const std::vector<double>& ys) const {
-    std::vector<std::vector<double>> xs(ys.size());
-    for (const auto& [a, b] : edges_) {
+  /// at() for many increasing ordinates: each edge finds its first by search. The crossings of a
+  /// row come in edge order as at(y)'s do, so the spans are the same.
+  SpanRows at(const std::vector<double>& ys) const {
+    std::vector<std::uint32_t> first(ys.size() + 1, 0);  // row k's crossings from first[k]
+    const auto rows_of = [&](const std::pair<Point2, Point2>& e, auto f) {
+      const auto& [a, b] = e;
       const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-      auto k = std::lower_bound(ys.begin(), ys.end(), lo);
-      for (; k != ys.end() && *k < hi; ++k)
-        xs[std::size_t(k - ys.begin())].push_back(a.x + (*k - a.y) * (b.x - a.x) / (b.y - a.y));
+      for (auto k = std::lower_bound(ys.begin(), ys.end(), lo); k != ys.end() && *k < hi; ++k)
+        f(std::size_t(k - ys.begin()));
+    };
+    for (const auto& e : edges_) rows_of(e, [&](std::size_t k) { ++first[k + 1]; });
+    for (std::size_t k = 0; k < ys.size(); ++k) first[k + 1] += first[k];
+    std::vector<double> xs(first.back());
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    for (const auto& e : edges_)
+      rows_of(e, [&](std::size_t k) {
+        const auto& [a, b] = e;
+        xs[next[k]++] = a.x + (ys[k] - a.y) * (b.x - a.x) / (b.y - a.y);
+      });
+    SpanRows out;
+    out.reserve(ys.size(), xs.size() / 2);
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      out.add_row();
+      std::sort(xs.begin() + first[k], xs.begin() + first[k + 1]);
+      for (std::size_t i = first[k]; i + 1 < first[k + 1]; i += 2)
+        if (xs[i + 1] - xs[i] > 1e-6) out.add({xs[i], xs[i + 1]});
     }
-    std::vector<std::vector<Span>> out;
-    for (auto& x : xs) out.push_back(pairs(x));
     return out;
   }
-
   const std::vector<std::pair<Point2, Point2>>& edges() const { return edges_; }
   double y_min = std::numeric_limits<double>::infinity();
   double y_max = -std::numeric_limits<double>::infinity();

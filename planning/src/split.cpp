@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <tuple>
 #include <unordered_map>
@@ -76,19 +77,34 @@ CellOrderProblem problem_for(Candidate& c, Point2 home, const Metric& metric) {
   p.home = home;
   p.distance = metric;
   c.variant_flags.clear();
+  p.cells.reserve(c.sweeps.size());
+  c.variant_flags.reserve(c.sweeps.size());
   for (const Sweep& sweep : c.sweeps) {
     std::vector<CellVariant> variants;
     std::vector<std::pair<bool, bool>> flags;
+    variants.reserve(4);
+    flags.reserve(4);
     for (bool top_first : {false, true})
       for (bool reverse_first : {false, true}) {
         if (sweep.lines.size() == 1 && top_first) continue;  // the same as bottom first
-        const std::vector<SweepLine> z = zigzag(sweep, top_first, reverse_first);
+        // zigzag()'s lanes one by one, not built (four variants of every cell of every direction).
+        const std::size_t n = sweep.lines.size();
+        const auto lane = [&](std::size_t i) {
+          SweepLine line = sweep.lines[top_first ? n - 1 - i : i];
+          if ((i % 2 == 1) != reverse_first) std::swap(line.start, line.end);
+          return line;
+        };
         double internal = 0;
-        for (std::size_t i = 0; i < z.size(); ++i) {
-          internal += geometry::distance(z[i].start, z[i].end);
-          if (i + 1 < z.size()) internal += metric(z[i].end, z[i + 1].start);
+        SweepLine here = lane(0);
+        const Point2 entry = here.start;
+        for (std::size_t i = 0; i < n; ++i) {
+          internal += geometry::distance(here.start, here.end);
+          if (i + 1 == n) break;
+          const SweepLine next = lane(i + 1);
+          internal += metric(here.end, next.start);
+          here = next;
         }
-        variants.push_back({z.front().start, z.back().end, internal});
+        variants.push_back({entry, here.end, internal});
         flags.push_back({top_first, reverse_first});
       }
     p.cells.push_back(std::move(variants));
@@ -124,9 +140,12 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   // Lanes are placed per piece, so a piece thinner than the grid still gets one; cells (chains of
   // pieces) only group them for ordering.
   std::vector<std::vector<SweepLine>> piece_lines(d.pieces.size());
+  geometry::Polygon piece;  // one, its capacity kept: copied into for each piece
   for (std::size_t k = 0; k < d.pieces.size(); ++k)
-    if (!d.pieces[k].empty())
-      piece_lines[k] = plan_sweep(geometry::Polygon{d.pieces[k], {}}, sweep_settings).lines;
+    if (!d.pieces[k].empty()) {
+      piece.outer = d.pieces[k];
+      piece_lines[k] = plan_sweep(piece, sweep_settings).lines;
+    }
   // A lane on a cut between two pieces belongs to both: keep the longer one. Lanes sorted by
   // ordinate, so only neighbours in that order can coincide.
   struct Lane {
@@ -156,13 +175,23 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   // slivers by coverage): e.g. the 4 cm wedge that an edge 0.004 degrees off the lanes leaves
   // beside a reflex vertex got two lanes 305 and 458 m long beside the grid lane that sees it.
   const double half = s.footprint_width_m / 2 + 1e-9;
-  std::vector<std::vector<Point2>> corners(d.pieces.size());
+  // Piece k's corners, turned, from corner_start[k] to corner_start[k + 1] (one array: a vector
+  // each was ~18,000 allocations a plan at 100 vertices and 50 holes).
+  std::vector<Point2> corner;
+  std::vector<std::size_t> corner_start{0};
+  for (const geometry::Ring& ring : d.pieces) {
+    for (const Point2& p : ring) corner.push_back(rotate(p, -angle));
+    corner_start.push_back(corner.size());
+  }
+  const auto corners = [&](std::size_t k) {
+    return std::span<const Point2>(corner.data() + corner_start[k],
+                                   corner.data() + corner_start[k + 1]);
+  };
   std::vector<char> thin(d.pieces.size(), 0), covered(d.pieces.size(), 0);
   std::vector<std::pair<double, double>> span_y(d.pieces.size());  // a piece's least, greatest y
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
-    for (const Point2& p : d.pieces[k]) corners[k].push_back(rotate(p, -angle));
-    if (corners[k].empty()) continue;
-    const auto [lo, hi] = std::minmax_element(corners[k].begin(), corners[k].end(),
+    if (corners(k).empty()) continue;
+    const auto [lo, hi] = std::minmax_element(corners(k).begin(), corners(k).end(),
                                               [](Point2 a, Point2 b) { return a.y < b.y; });
     span_y[k] = {lo->y, hi->y};
     const auto grid =
@@ -182,7 +211,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
       const Lane& lane = *it;
       if (thin[lane.piece] || lane.line->start == lane.line->end) continue;
       const double x0 = lane.x0 + s.turnaround_m - 1e-6, x1 = lane.x1 - s.turnaround_m + 1e-6;
-      if (std::all_of(corners[k].begin(), corners[k].end(), [&](Point2 q) {
+      if (std::all_of(corners(k).begin(), corners(k).end(), [&](Point2 q) {
             return std::abs(q.y - lane.y) <= half && q.x >= x0 && q.x <= x1;
           })) {
         covered[k] = 1;
@@ -270,7 +299,7 @@ double cells_estimate_bound(const std::vector<geometry::Ring>& rings, double ang
   const detail::LaneScan scan(rings, angle_deg);
   const std::vector<double> ys =
       line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
-  const std::vector<std::vector<detail::Span>> spans = scan.at(ys);
+  const detail::SpanRows spans = scan.at(ys);
   double total = 0, lo = rotate(home, -angle_deg).y, hi = lo;
   for (std::size_t k = 0; k < ys.size(); ++k) {
     for (const detail::Span& span : spans[k]) total += span.x1 - span.x0;
