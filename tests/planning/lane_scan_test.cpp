@@ -1,7 +1,8 @@
 // LaneScan::at(y) looks only at the edges of y's bucket. It must answer exactly what the crossing
 // rule answers over every edge: checked against that rule on random areas with holes (fixed
 // seeds), integer grids full of horizontal and collinear edges, at directions along the edges,
-// for ordinates through vertices, at the area's bottom and top, between and beyond.
+// for ordinates through vertices, at the area's bottom and top, between and beyond; and at(ys),
+// every ordinate at once, row by row the same.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,6 +62,18 @@ TEST(LaneScan, BucketsAnswerAsEveryEdge) {
           ASSERT_EQ(fast[i].x1, truth[i].x1);
         }
         spans += truth.size();
+      }
+      // at() for every ordinate at once (increasing, repeats kept): the same spans, row by row.
+      std::sort(ys.begin(), ys.end());
+      const SpanRows rows = scan.at(ys);
+      ASSERT_EQ(rows.size(), ys.size());
+      for (std::size_t k = 0; k < ys.size(); ++k) {
+        const std::vector<Span> truth = all_edges_at(scan, ys[k]);
+        ASSERT_EQ(rows[k].size(), truth.size()) << "area " << k << " angle " << angle;
+        for (std::size_t i = 0; i < truth.size(); ++i) {
+          ASSERT_EQ(rows[k][i].x0, truth[i].x0);
+          ASSERT_EQ(rows[k][i].x1, truth[i].x1);
+        }
       }
     }
   }
