@@ -1,6 +1,7 @@
 #include "swath/geometry/visibility.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -249,13 +250,14 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
   for (std::size_t u = 0; u < nodes_.size(); ++u) nodes_by_x_[u] = std::uint32_t(u);
   std::stable_sort(nodes_by_x_.begin(), nodes_by_x_.end(),
                    [this](std::uint32_t u, std::uint32_t v) { return nodes_[u].x < nodes_[v].x; });
-  node_fans_.resize(nodes_.size());
   node_asked_.assign(nodes_.size(), 0);
   fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
   bins_per_unit_ = double(fan_bins_) / 4;
   extent_m_ = extent;
-  node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
+  node_tables_ = std::make_shared<NodeTables>(nodes_.size());
 }
+
+VisibilityRouter::~VisibilityRouter() = default;
 
 std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   std::unique_ptr<VisibilityRouter> copy(new VisibilityRouter);
@@ -269,9 +271,8 @@ std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   copy->fan_bins_ = fan_bins_;
   copy->bins_per_unit_ = bins_per_unit_;
   copy->extent_m_ = extent_m_;
-  copy->node_fans_.resize(nodes_.size());
   copy->node_asked_.assign(nodes_.size(), 0);
-  copy->node_sees_.assign(nodes_.size() * nodes_.size(), kUnknown);
+  copy->node_tables_ = node_tables_;
   return copy;
 }
 
@@ -292,14 +293,45 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
   return known != 0;
 }
 
-bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
-  signed char& known = node_sees_[i * nodes_.size() + j];
-  if (known == kUnknown) {
-    if (!node_fans_[i] && ++node_asked_[i] > kFanAfter)
-      node_fans_[i] = std::make_unique<Fan>(fan_of(nodes_[i]));
-    known = visible_with(nodes_[i], nodes_[j], node_fans_[i].get());
+// Threads that share the tables may test a pair at once: both find the same answer (the same exact
+// tests, with or without a fan), so either store stands. A fan is published whole (release) and
+// only the first one made is kept.
+struct VisibilityRouter::NodeTables {
+  explicit NodeTables(std::size_t n)
+      : sees(new std::atomic<signed char>[n * n]), fans(new std::atomic<Fan*>[n]), nodes(n) {
+    for (std::size_t k = 0; k < n * n; ++k) sees[k].store(kUnknown, std::memory_order_relaxed);
+    for (std::size_t k = 0; k < n; ++k) fans[k].store(nullptr, std::memory_order_relaxed);
   }
-  return known != 0;
+  ~NodeTables() {
+    for (std::size_t k = 0; k < nodes; ++k) delete fans[k].load(std::memory_order_acquire);
+  }
+  NodeTables(const NodeTables&) = delete;
+  NodeTables& operator=(const NodeTables&) = delete;
+  std::unique_ptr<std::atomic<signed char>[]> sees;  ///< nodes², kUnknown until asked
+  std::unique_ptr<std::atomic<Fan*>[]> fans;         ///< per node, null until made
+  std::size_t nodes;
+};
+
+bool VisibilityRouter::nodes_hidden(std::size_t i, std::size_t j) const {
+  return node_tables_->sees[i * nodes_.size() + j].load(std::memory_order_relaxed) == 0;
+}
+
+bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
+  std::atomic<signed char>& known = node_tables_->sees[i * nodes_.size() + j];
+  signed char answer = known.load(std::memory_order_relaxed);
+  if (answer == kUnknown) {
+    std::atomic<Fan*>& shared_fan = node_tables_->fans[i];
+    Fan* fan = shared_fan.load(std::memory_order_acquire);
+    if (!fan && ++node_asked_[i] > kFanAfter) {
+      auto made = std::make_unique<Fan>(fan_of(nodes_[i]));
+      if (shared_fan.compare_exchange_strong(fan, made.get(), std::memory_order_acq_rel,
+                                             std::memory_order_acquire))
+        fan = made.release();  // kept; otherwise `fan` is the one another thread published
+    }
+    answer = visible_with(nodes_[i], nodes_[j], fan) ? 1 : 0;
+    known.store(answer, std::memory_order_relaxed);
+  }
+  return answer != 0;
 }
 
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
@@ -423,7 +455,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       previous[v] = item.from_node ? item.from : n;
       if (to_b.seen[v] != 0) push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
       for (const std::size_t u : near) {
-        if (settled[u] || node_sees_[std::min(u, v) * n + std::max(u, v)] == 0) continue;
+        if (settled[u] || nodes_hidden(std::min(u, v), std::max(u, v))) continue;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
         push({through + h[u], 0, through, 1, item.g, v, u});
       }

@@ -13,6 +13,7 @@
 #include <map>
 #include <queue>
 #include <random>
+#include <thread>
 
 #include "brute_area.hpp"
 #include "random_polygons.hpp"
@@ -246,6 +247,49 @@ TEST(VisibilityRouterSearch, AFreshCopyGivesTheSamePaths) {
       bent += again.size() > 2;
     }
     EXPECT_GT(bent, std::size_t(5)) << area;
+  }
+}
+
+// Copies share which nodes see each other (whoever asks first keeps the answer) and may ask at
+// once: four threads, each on its own copy, asking the same and different paths concurrently, get
+// what a lone router of the same area answers, bit for bit.
+TEST(VisibilityRouterSearch, CopiesAskingAtOnceGiveTheSamePaths) {
+  test::Rng rng(1821);
+  for (int area = 0; area < 3; ++area) {
+    const std::vector<Ring> rings = search_holey_area(rng, std::size_t(24) << area, 12 + 9 * area);
+    const std::vector<Point2> points = path_ends(rng, rings, 48);
+    const auto query = [&](std::size_t k, std::size_t i) {
+      return std::pair{points[i], points[(i * (5 + 2 * (k % 2)) + 3 + k) % points.size()]};
+    };
+    constexpr std::size_t kThreads = 4;
+    std::vector<std::vector<std::vector<Point2>>> truth(kThreads);
+    for (std::size_t k = 0; k < kThreads; ++k) {
+      const VisibilityRouter lone(rings, 300, 1.5);  // tables of its own, nothing shared
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const auto [a, b] = query(k, i);
+        truth[k].push_back(lone.path(a, b));
+      }
+    }
+    const VisibilityRouter router(rings, 300, 1.5);
+    std::vector<std::unique_ptr<VisibilityRouter>> copies;
+    for (std::size_t k = 0; k < kThreads; ++k) copies.push_back(router.fresh_copy());
+    std::vector<std::vector<std::vector<Point2>>> got(kThreads);
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < kThreads; ++k)
+      threads.emplace_back([&, k] {
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          const auto [a, b] = query(k, i);
+          got[k].push_back(copies[k]->path(a, b));
+        }
+      });
+    for (std::thread& t : threads) t.join();
+    std::size_t bent = 0;
+    for (std::size_t k = 0; k < kThreads; ++k)
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        EXPECT_EQ(got[k][i], truth[k][i]) << "area " << area << " thread " << k << " query " << i;
+        bent += truth[k][i].size() > 2;
+      }
+    EXPECT_GT(bent, std::size_t(10)) << area;
   }
 }
 

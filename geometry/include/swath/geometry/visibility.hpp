@@ -46,9 +46,12 @@ class VisibilityRouter {
   /// Length of [a, b] outside the closed area, metres (exact up to rounding).
   double length_outside(Point2 a, Point2 b) const;
   bool routes() const { return routing_; }
-  /// A router for the same area (same nodes, same answers) with its own lazy tables, empty: for
-  /// another thread (one router's tables fill as it answers, so it serves one thread at a time).
+  /// A router for the same area (same nodes, same answers) for another thread: a router serves
+  /// one thread at a time, its tables of the points asked about filling as it answers; the copy's
+  /// are its own, empty. Which graph nodes see each other (the same for every path) is one table
+  /// that this router and its copies share, each answer kept by whichever asks first.
   std::unique_ptr<VisibilityRouter> fresh_copy() const;
+  ~VisibilityRouter();
 
  private:
   VisibilityRouter() = default;
@@ -100,9 +103,11 @@ class VisibilityRouter {
   /// Whether nodes i < j see each other, tested from i (as the eager graph did: the test is not
   /// symmetric in rounding) and kept; through i's fan once i has been asked kFanAfter times.
   bool nodes_see(std::size_t i, std::size_t j) const;
-  mutable std::vector<std::unique_ptr<Fan>> node_fans_;
-  mutable std::vector<int> node_asked_;         ///< per node: pairs tested from it without a fan
-  mutable std::vector<signed char> node_sees_;  ///< nodes² visibility, kUnknown until asked
+  /// Whether nodes i < j are known not to see each other (asked before, by any copy).
+  bool nodes_hidden(std::size_t i, std::size_t j) const;
+  struct NodeTables;  ///< nodes² visibility and the nodes' fans, shared with copies (atomics)
+  std::shared_ptr<NodeTables> node_tables_;
+  mutable std::vector<int> node_asked_;  ///< per node: pairs tested from it without a fan
   std::size_t fan_bins_ = 0;
   double bins_per_unit_ = 0;  ///< fan bins per unit of diamond angle (4 a turn)
   double extent_m_ = 0;       ///< the largest absolute coordinate of the area, metres
