@@ -728,6 +728,70 @@ std::optional<SplitPlan> per_region_plan(const std::vector<geometry::Ring>& ring
 
 namespace {
 
+// Which kinds of candidate (0 bridged runs, 1 runs, 2 cells) each direction may lay within
+// s.max_lines, counted before any lane is laid (grid_lane_count): on a concave area a lane
+// position holds a lane per arm it crosses, and laying and ordering them at every direction ran a
+// 2,000-vertex star (20,663 lanes) out of memory after 145 s, before the limit was asked.
+struct LaneLimits {
+  std::vector<std::array<bool, 3>> fits;  ///< per direction and kind
+  /// The fewest grid lanes of a kind tried, and its direction (0 where none were counted: all
+  /// fit).
+  std::size_t least = 0;
+  double least_angle_deg = 0;
+};
+
+LaneLimits lane_limits(const std::vector<geometry::Ring>& rings, const std::vector<double>& angles,
+                       const SplitSettings& s) {
+  LaneLimits out;
+  out.fits.assign(angles.size(), {true, true, true});
+  if (s.max_lines == 0) return out;
+  // An edge crosses at most |dy| / spacing + 2 lane positions, whatever the direction (+ 2: the
+  // paper placement's last is half a spacing above the one before), and a lane takes two
+  // crossings: where the whole boundary cannot reach the limit (any field but pathological ones),
+  // nothing needs counting.
+  double crossings = 0;
+  for (const geometry::Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      crossings += geometry::distance(ring[i], ring[(i + 1) % ring.size()]) / s.line_spacing_m + 2;
+  if (crossings / 2 <= double(s.max_lines)) return out;
+  out.least = std::numeric_limits<std::size_t>::max();
+  const bool runs = s.cells != SplitCells::boustrophedon;
+  const bool bridged = runs && !s.bridge_rings.empty();
+  const bool cells = s.cells != SplitCells::runs;
+  // Grid lanes at a direction: inside (runs and cells: one grid), and bridged.
+  const auto counts = [&](double angle_deg) {
+    LaneRunSettings ls;
+    ls.angle_deg = angle_deg;
+    ls.line_spacing_m = s.line_spacing_m;
+    ls.footprint_width_m = s.footprint_width_m;
+    ls.placement = s.placement;
+    const std::size_t inside = grid_lane_count({rings, {}, {}}, ls);
+    return std::pair{inside, bridged ? grid_lane_count({rings, {}, s.bridge_rings}, ls) : inside};
+  };
+  std::vector<std::array<std::size_t, 3>> needed(angles.size());
+  base::parallel_for(angles.size(), s.threads, [&](std::size_t a) {
+    const auto [inside, joined] = counts(angles[a]);
+    std::size_t cross = 0;  // the pass at 90 degrees (in [0, 180) as plan_split flies it)
+    if (s.limit_cross_pass) {
+      const auto [cross_inside, cross_joined] =
+          counts(std::fmod(std::fmod(angles[a] + 90, 180.0) + 180.0, 180.0));
+      cross = std::min(cross_inside, cross_joined);
+    }
+    needed[a] = {std::max(joined, cross), std::max(inside, cross), std::max(inside, cross)};
+  });
+  for (std::size_t a = 0; a < angles.size(); ++a)
+    for (const int kind : {0, 1, 2}) {
+      if (!(kind == 0 ? bridged : kind == 1 ? runs : cells)) continue;
+      const std::size_t n = needed[a][std::size_t(kind)];
+      out.fits[a][std::size_t(kind)] = n <= s.max_lines;
+      if (n < out.least) {
+        out.least = n;
+        out.least_angle_deg = angles[a];
+      }
+    }
+  return out;
+}
+
 // Every direction's candidates with their straight-transit estimates (kinds 0 bridged runs, 1
 // runs, 2 cells; per direction in that order), but cells whose estimate could not rank among the
 // refined ones.
@@ -738,7 +802,7 @@ struct DirectionEstimates {
 
 DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
                                        const std::vector<double>& angles, Point2 home,
-                                       const SplitSettings& s) {
+                                       const SplitSettings& s, const LaneLimits& limits) {
   // Runs at every direction, and the cells' lower bound (split_detail::cells_estimate_bound()).
   // The directions are independent: spread over threads, each into its own slot.
   const std::size_t n = angles.size();
@@ -752,21 +816,25 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
     thread_local std::vector<Point2> samples;
     samples.clear();
     for (const int kind : {0, 1}) {
-      if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty())) continue;
+      if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty()) ||
+          !limits.fits[a][std::size_t(kind)])
+        continue;
       Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
       if (c.cells.empty()) continue;
       estimate(c, home);
       out.per_angle[a].push_back({kind, std::move(c)});
     }
-    if (cells) bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
+    if (cells && limits.fits[a][2])
+      bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
   });
   if (!cells) return out;
   // Cells (the dearer kind: a decomposition per direction) in order of their bound, a wave at a
   // time, until the next bound is above the refined_candidates-th least estimate found: its
   // estimate, at least its bound, could not rank among the refined ones. Gathered in direction
   // order, the ones left out absent: the ranking (by estimate, then order) is the one without.
-  std::vector<std::size_t> order(n);
-  for (std::size_t a = 0; a < n; ++a) order[a] = a;
+  std::vector<std::size_t> order;  // the directions whose cells fit the limit
+  for (std::size_t a = 0; a < n; ++a)
+    if (limits.fits[a][2]) order.push_back(a);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t x, std::size_t y) { return bound[x] < bound[y]; });
   std::vector<std::optional<Candidate>> cell_candidates(n);
@@ -775,12 +843,13 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
   // round holes, few waves; where it rules most out, the first waves hold the least estimates).
   std::size_t next = 0;
   for (std::size_t wave = 2 * std::size_t(s.threads ? s.threads : base::machine_threads());
-       next < n; wave *= 2) {
+       next < order.size(); wave *= 2) {
     const double kth = least.size() == s.refined_candidates && s.refined_candidates > 0
                            ? least.back()
                            : std::numeric_limits<double>::infinity();
     std::size_t count = 0;  // the next directions whose bound is not above it, at most a wave
-    while (count < wave && next + count < n && !(bound[order[next + count]] > kth)) ++count;
+    while (count < wave && next + count < order.size() && !(bound[order[next + count]] > kth))
+      ++count;
     if (count == 0) break;
     base::parallel_for(count, s.threads, [&](std::size_t k) {
       cell_candidates[order[next + k]] = estimated_cells(rings, angles[order[next + k]], s, home);
@@ -793,7 +862,7 @@ DirectionEstimates estimate_directions(const std::vector<geometry::Ring>& rings,
       }
     next += count;
   }
-  out.cells_left_out = n - next;
+  out.cells_left_out = order.size() - next;
   for (std::size_t a = 0; a < n; ++a)
     if (cell_candidates[a]) out.per_angle[a].push_back({2, *std::move(cell_candidates[a])});
   return out;
@@ -880,8 +949,11 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
       s.fixed_angle_deg
           ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
           : candidate_angles(rings, s.scan_step_deg);
+  const LaneLimits limits = lane_limits(rings, angles, s);
+  if (s.max_lines > 0 && limits.least > s.max_lines)
+    throw LaneLimitExceeded(limits.least, limits.least_angle_deg);
   // Rank every direction by a cheap estimate: straight transits, heuristic order.
-  DirectionEstimates found = estimate_directions(rings, angles, home, s);
+  DirectionEstimates found = estimate_directions(rings, angles, home, s, limits);
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   std::vector<Candidate> candidates;
   for (std::vector<std::pair<int, Candidate>>& of_angle : found.per_angle)
