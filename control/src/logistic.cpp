@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "swath/base/csv_text.hpp"
 #include "swath/base/input_error.hpp"
-#include "swath/base/number_text.hpp"
 
 namespace swath::control {
 namespace {
@@ -204,29 +205,10 @@ std::vector<TriggerPoint> parse_trigger_data(const std::string& text, const std:
   constexpr std::size_t kMaxRows = 10'000'000;
   std::vector<TriggerPoint> out;
   std::size_t x_col = std::string::npos, changed_col = std::string::npos, columns = 0;
-  int line_no = 0;
-  std::size_t pos = 0;
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::size_t start = 0;
-    for (;;) {
-      const std::size_t comma = line.find(',', start);
-      std::string cell = line.substr(start, comma - start);
-      while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\r')) cell.pop_back();
-      while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
-      cells.push_back(cell);
-      if (comma == std::string::npos) return cells;
-      start = comma + 1;
-    }
-  };
-  while (pos <= text.size()) {
-    const std::size_t eol = std::min(text.find('\n', pos), text.size());
-    const std::string line = text.substr(pos, eol - pos);
-    pos = eol + 1;
-    ++line_no;
-    const std::string where = source + ": line " + std::to_string(line_no);
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
-    const std::vector<std::string> cells = split(line);
+  base::CsvText csv(text, source);
+  while (csv.next()) {
+    const std::vector<std::string>& cells = csv.cells();
+    const std::string where = source + ": line " + std::to_string(csv.line());
     if (columns == 0) {
       for (std::size_t c = 0; c < cells.size(); ++c) {
         if (cells[c] == "x") x_col = c;
@@ -238,11 +220,14 @@ std::vector<TriggerPoint> parse_trigger_data(const std::string& text, const std:
       continue;
     }
     if (cells.size() != columns)
-      throw base::InputError(where + ": " + std::to_string(cells.size()) +
-                             " fields, the header has " + std::to_string(columns));
+      throw base::InputError(where + ": " + std::to_string(cells.size()) + " " +
+                             base::separated_text(csv.separator()) + " fields, the header has " +
+                             std::to_string(columns));
     TriggerPoint p;
-    if (!base::parse_number(cells[x_col], p.x) || !std::isfinite(p.x) || p.x < 0)
+    const std::optional<double> x = csv.number(cells[x_col]);
+    if (!x || !std::isfinite(*x) || *x < 0)
       throw base::InputError(where + ": x '" + cells[x_col] + "' is not a finite number >= 0");
+    p.x = *x;
     if (cells[changed_col] != "0" && cells[changed_col] != "1")
       throw base::InputError(where + ": changed '" + cells[changed_col] + "' is not 0 or 1");
     p.changed = cells[changed_col] == "1";

@@ -294,7 +294,46 @@ Ring outline(const std::vector<RunLane>& run, double half_spacing, double angle_
   return ring;
 }
 
+// The grid's ordinates (in the frame turned by -angle): on the grid through s.grid_ordinate_m,
+// the last at or below half a footprint above the bottom (inside) to the first at or above half a
+// footprint below the top, the fewest that reach both edges; else (or none of those) the area's
+// own grid.
+std::vector<double> grid_ordinates(const LaneScan& scan, const LaneRunSettings& s) {
+  std::vector<double> ys;
+  if (s.grid_ordinate_m) {
+    const double o = *s.grid_ordinate_m, spacing = s.line_spacing_m;
+    const double half = s.footprint_width_m / 2;
+    double first = std::floor((scan.y_min + half - o) / spacing);
+    if (o + first * spacing <= scan.y_min) first += 1;
+    double last = std::ceil((scan.y_max - half - o) / spacing);
+    if (o + last * spacing >= scan.y_max) last -= 1;
+    for (double k = first; k <= last; ++k) ys.push_back(o + k * spacing);
+  }
+  if (ys.empty())
+    ys = line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  return ys;
+}
+
+// The grid's lanes at `ys`: the intervals inside `area.fly`, joined across the gaps `area.bridge`
+// spans.
+detail::SpanRows grid_spans(const LaneRunArea& area, const LaneScan& scan,
+                            const std::vector<double>& ys, double angle_deg) {
+  return area.bridge.empty() ? scan.at(ys)
+                             : bridged(scan.at(ys), LaneScan(area.bridge, angle_deg).at(ys));
+}
+
 }  // namespace
+
+std::size_t grid_lane_count(const LaneRunArea& area, const LaneRunSettings& s) {
+  if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m))
+    throw std::invalid_argument("grid_lane_count: need 0 < spacing <= footprint width");
+  const LaneScan scan(area.fly, s.angle_deg);
+  if (!(scan.y_max > scan.y_min)) return 0;
+  const detail::SpanRows spans = grid_spans(area, scan, grid_ordinates(scan, s), s.angle_deg);
+  std::size_t lanes = 0;
+  for (std::size_t k = 0; k < spans.size(); ++k) lanes += spans[k].size();
+  return lanes;
+}
 
 LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
   std::vector<Point2> samples;
@@ -310,24 +349,9 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   if (!(scan.y_max > scan.y_min)) return out;
 
   // 1. The grid's lanes, cut where they meet the boundary.
-  std::vector<double> ys;
-  if (s.grid_ordinate_m) {
-    // The grid's lanes from the last at or below half a footprint above the bottom (inside) to
-    // the first at or above half a footprint below the top: the fewest that reach both edges.
-    const double o = *s.grid_ordinate_m, spacing = s.line_spacing_m;
-    const double half = s.footprint_width_m / 2;
-    double first = std::floor((scan.y_min + half - o) / spacing);
-    if (o + first * spacing <= scan.y_min) first += 1;
-    double last = std::ceil((scan.y_max - half - o) / spacing);
-    if (o + last * spacing >= scan.y_max) last -= 1;
-    for (double k = first; k <= last; ++k) ys.push_back(o + k * spacing);
-  }
-  if (ys.empty())
-    ys = line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  const std::vector<double> ys = grid_ordinates(scan, s);
   if (ys.empty()) return out;
-  const detail::SpanRows cut =
-      area.bridge.empty() ? scan.at(ys)
-                          : bridged(scan.at(ys), LaneScan(area.bridge, s.angle_deg).at(ys));
+  const detail::SpanRows cut = grid_spans(area, scan, ys, s.angle_deg);
   std::vector<RunLane> lanes;
   for (std::size_t k = 0; k < ys.size(); ++k)
     for (const Span& in : cut[k]) lanes.push_back({ys[k], in.x0, in.x1, int(k)});

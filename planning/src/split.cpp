@@ -759,16 +759,82 @@ std::optional<SplitPlan> per_region_plan(const std::vector<geometry::Ring>& ring
 
 namespace {
 
-// The runs at every direction (kinds 0 bridged runs, 1 runs; per direction in that order) with
-// their straight-transit estimates, and the cells' lower bound at each direction
-// (split_detail::cells_estimate_bound(); empty when cells are not planned).
+// Which kinds of candidate (0 bridged runs, 1 runs, 2 cells) each direction may lay within
+// s.max_lines, counted before any lane is laid (grid_lane_count): on a concave area a lane
+// position holds a lane per arm it crosses, and laying and ordering them at every direction ran a
+// 2,000-vertex star (20,663 lanes) out of memory after 145 s, before the limit was asked.
+struct LaneLimits {
+  std::vector<std::array<bool, 3>> fits;  ///< per direction and kind
+  /// The fewest grid lanes of a kind tried, and its direction (0 where none were counted: all
+  /// fit).
+  std::size_t least = 0;
+  double least_angle_deg = 0;
+};
+
+LaneLimits lane_limits(const std::vector<geometry::Ring>& rings, const std::vector<double>& angles,
+                       const SplitSettings& s) {
+  LaneLimits out;
+  out.fits.assign(angles.size(), {true, true, true});
+  if (s.max_lines == 0) return out;
+  // An edge crosses at most |dy| / spacing + 2 lane positions, whatever the direction (+ 2: the
+  // paper placement's last is half a spacing above the one before), and a lane takes two
+  // crossings: where the whole boundary cannot reach the limit (any field but pathological ones),
+  // nothing needs counting.
+  double crossings = 0;
+  for (const geometry::Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      crossings += geometry::distance(ring[i], ring[(i + 1) % ring.size()]) / s.line_spacing_m + 2;
+  if (crossings / 2 <= double(s.max_lines)) return out;
+  out.least = std::numeric_limits<std::size_t>::max();
+  const bool runs = s.cells != SplitCells::boustrophedon;
+  const bool bridged = runs && !s.bridge_rings.empty();
+  const bool cells = s.cells != SplitCells::runs;
+  // Grid lanes at a direction: inside (runs and cells: one grid), and bridged.
+  const auto counts = [&](double angle_deg) {
+    LaneRunSettings ls;
+    ls.angle_deg = angle_deg;
+    ls.line_spacing_m = s.line_spacing_m;
+    ls.footprint_width_m = s.footprint_width_m;
+    ls.placement = s.placement;
+    const std::size_t inside = grid_lane_count({rings, {}, {}}, ls);
+    return std::pair{inside, bridged ? grid_lane_count({rings, {}, s.bridge_rings}, ls) : inside};
+  };
+  std::vector<std::array<std::size_t, 3>> needed(angles.size());
+  base::parallel_for(angles.size(), s.threads, [&](std::size_t a) {
+    const auto [inside, joined] = counts(angles[a]);
+    std::size_t cross = 0;  // the pass at 90 degrees (in [0, 180) as plan_split flies it)
+    if (s.limit_cross_pass) {
+      const auto [cross_inside, cross_joined] =
+          counts(std::fmod(std::fmod(angles[a] + 90, 180.0) + 180.0, 180.0));
+      cross = std::min(cross_inside, cross_joined);
+    }
+    needed[a] = {std::max(joined, cross), std::max(inside, cross), std::max(inside, cross)};
+  });
+  for (std::size_t a = 0; a < angles.size(); ++a)
+    for (const int kind : {0, 1, 2}) {
+      if (!(kind == 0 ? bridged : kind == 1 ? runs : cells)) continue;
+      const std::size_t n = needed[a][std::size_t(kind)];
+      out.fits[a][std::size_t(kind)] = n <= s.max_lines;
+      if (n < out.least) {
+        out.least = n;
+        out.least_angle_deg = angles[a];
+      }
+    }
+  return out;
+}
+
+// The runs at every direction within the lane limit (kinds 0 bridged runs, 1 runs; per direction
+// in that order) with their straight-transit estimates, and the cells' lower bound
+// (split_detail::cells_estimate_bound()) at each direction whose cells fit the limit.
 struct RunEstimates {
   std::vector<std::vector<std::pair<int, Candidate>>> per_angle;
-  std::vector<double> cells_bound;
+  std::vector<double> cells_bound;            ///< per direction (0 where cells are not planned)
+  std::vector<std::size_t> cells_directions;  ///< where they are, ascending
 };
 
 RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
-                           const std::vector<double>& angles, Point2 home, const SplitSettings& s) {
+                           const std::vector<double>& angles, Point2 home, const SplitSettings& s,
+                           const LaneLimits& limits) {
   // The directions are independent: spread over threads, each into its own slot.
   const std::size_t n = angles.size();
   RunEstimates out;
@@ -781,14 +847,20 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
     thread_local std::vector<Point2> samples;
     samples.clear();
     for (const int kind : {0, 1}) {
-      if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty())) continue;
+      if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty()) ||
+          !limits.fits[a][std::size_t(kind)])
+        continue;
       Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
       if (c.cells.empty()) continue;
       estimate(c, home);
       out.per_angle[a].push_back({kind, std::move(c)});
     }
-    if (cells) out.cells_bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
+    if (cells && limits.fits[a][2])
+      out.cells_bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
   });
+  if (cells)
+    for (std::size_t a = 0; a < n; ++a)
+      if (limits.fits[a][2]) out.cells_directions.push_back(a);
   return out;
 }
 
@@ -893,19 +965,18 @@ struct RunsAndCells {
 
 RunsAndCells refine_runs_and_estimate_cells(const std::vector<geometry::Ring>& rings,
                                             const std::vector<double>& angles,
-                                            const std::vector<double>& cells_bound,
-                                            std::vector<Candidate>& runs,
+                                            const RunEstimates& found, std::vector<Candidate>& runs,
                                             const std::vector<std::size_t>& to_refine, Point2 home,
                                             const SplitSettings& s, const geometry::Polygon& to_see,
                                             RouterPerThread& routers) {
-  const std::size_t n = cells_bound.size(), r = to_refine.size();
-  std::vector<std::size_t> by_bound(n);
-  for (std::size_t a = 0; a < n; ++a) by_bound[a] = a;
+  const std::vector<double>& cells_bound = found.cells_bound;
+  const std::size_t n = found.cells_directions.size(), r = to_refine.size();
+  std::vector<std::size_t> by_bound = found.cells_directions;
   std::stable_sort(by_bound.begin(), by_bound.end(),
                    [&](std::size_t x, std::size_t y) { return cells_bound[x] < cells_bound[y]; });
   RunsAndCells out;
   out.runs.resize(r);
-  out.cells.resize(n);
+  out.cells.resize(angles.size());
   std::mutex lock;                                            // guards the two below
   double beaten_m = std::numeric_limits<double>::infinity();  // least objective seeing >= 99.9 %
   std::vector<double> least;  // the cells' estimates found, ascending, at most refined_candidates
@@ -979,11 +1050,14 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
       s.fixed_angle_deg
           ? std::vector<double>{std::fmod(std::fmod(*s.fixed_angle_deg, 180.0) + 180.0, 180.0)}
           : candidate_angles(rings, s.scan_step_deg);
+  const LaneLimits limits = lane_limits(rings, angles, s);
+  if (s.max_lines > 0 && limits.least > s.max_lines)
+    throw LaneLimitExceeded(limits.least, limits.least_angle_deg);
   // Rank every direction by a cheap estimate (straight transits, heuristic order), and refine the
   // best few of each kind with transits routed inside the area, ordered exactly where small: a
   // straight-line estimate ranks runs and cells differently (runs' transits hop around what cells'
   // turns go along). Runs are refined while cells are estimated; then the cells.
-  RunEstimates found = estimate_runs(rings, angles, home, s);
+  RunEstimates found = estimate_runs(rings, angles, home, s, limits);
   std::vector<Candidate> candidates;
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   const auto add = [&](int kind, Candidate c) {
@@ -994,8 +1068,8 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
     for (auto& [kind, c] : of_angle) add(kind, std::move(c));
   const std::vector<std::size_t> runs_to_refine =
       best_of_each_kind(estimates, s.refined_candidates);
-  RunsAndCells refined = refine_runs_and_estimate_cells(
-      rings, angles, found.cells_bound, candidates, runs_to_refine, home, s, to_see, routers);
+  RunsAndCells refined = refine_runs_and_estimate_cells(rings, angles, found, candidates,
+                                                        runs_to_refine, home, s, to_see, routers);
   Best best;
   for (Refined& r : refined.runs) fold(r, best);
 
@@ -1006,8 +1080,9 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
   refine_in_waves(candidates, best_of_each_kind(estimates, s.refined_candidates), home, s, to_see,
                   routers, best);
-  // Every direction a cells candidate, decomposed or ruled out by its bound.
-  best.plan.candidates = run_candidates + found.cells_bound.size();
+  // Every direction whose cells fit the lane limit a cells candidate, decomposed or ruled out by
+  // its bound.
+  best.plan.candidates = run_candidates + found.cells_directions.size();
   if (s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty() &&
       best.key.first == 0)
     if (std::optional<SplitPlan> mixed = per_region_plan(rings, home, s, to_see, best.plan, routed))

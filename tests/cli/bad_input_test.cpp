@@ -128,6 +128,69 @@ TEST(BadInput, AConcaveAreaOverTheLineLimitIsRefused) {
   EXPECT_EQ(s["sweep"]["height_m"], 240.0);
 }
 
+// A 2,000-vertex star (spikes to 1,000 m, notches at 150 m) whose height over the spacing is 75
+// lines, but every line crosses dozens of spikes: refused on the lines counted at their positions
+// before any is laid (it ran out of memory after 145 s laying and ordering them at every direction
+// before). The count is checked against the boundary crossings over two at each line's ordinate,
+// counted here by brute force (centred lines: the fewest n with (n - 1) spacing + footprint >=
+// height, centred on the area).
+TEST(BadInput, AStarOverTheLineLimitIsRefusedBeforeItsLinesAreLaid) {
+  const std::string dir = fresh_dir("bad-input-star");
+  std::filesystem::create_directories(dir);
+  std::vector<std::pair<double, double>> star;
+  for (int i = 0; i < 2000; ++i) {
+    const double a = 6.283185307179586 * i / 2000, r = i % 2 ? 150 : 1000;
+    star.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  {
+    std::ofstream f(dir + "/star.csv");
+    f.precision(17);
+    f << "x,y\n";
+    for (const auto& [x, y] : star) f << x << ',' << y << '\n';
+  }
+  // Phantom 4 Pro at 58 m (imaging.cpp's footprint: GSD from the image width), 70 % side overlap.
+  const double gsd_m = 13.2 * 58 / (8.8 * 5472), footprint_m = 5472 * gsd_m;
+  const double spacing_m = footprint_m * (1 - 0.7);
+  // --angle 90 (bearing east): lines along x, at ordinates y.
+  double y_min = INFINITY, y_max = -INFINITY;
+  for (const auto& p : star) y_min = std::min(y_min, p.second), y_max = std::max(y_max, p.second);
+  const double height = y_max - y_min;
+  const int n = int(std::ceil((height - footprint_m) / spacing_m - 1e-9)) + 1;
+  long lines = 0;
+  for (int k = 0; k < n; ++k) {
+    const double y = y_min + height / 2 - (n - 1) * spacing_m / 2 + k * spacing_m;
+    int crossings = 0;
+    for (std::size_t i = 0; i < star.size(); ++i)
+      crossings += (star[i].second <= y) != (star[(i + 1) % star.size()].second <= y);
+    EXPECT_EQ(crossings % 2, 0);
+    lines += crossings / 2;
+  }
+  ASSERT_EQ(n, 75);
+  ASSERT_GT(lines, 20000);
+  const std::string plan = "plan " + dir +
+                           "/star.csv --local --origin 47.4,8.5 --camera dji-phantom-4-pro "
+                           "--altitude 58 -o " +
+                           dir + "/out";
+  const CliRun fixed = run_swath(plan + " --angle 90");
+  EXPECT_EQ(fixed.exit_code, 2) << fixed.err;
+  EXPECT_NE(fixed.err.find(": the area takes " + std::to_string(lines) +
+                           " lines 26.100 m apart (where it is concave, several at one position), "
+                           "more than swath's limit of 20000; fly higher or split the area"),
+            std::string::npos)
+      << fixed.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  // The direction searched: no direction fits; the fewest lines of any are named.
+  const CliRun searched = run_swath(plan);
+  EXPECT_EQ(searched.exit_code, 2) << searched.err;
+  const auto at = searched.err.find(": the area takes ");
+  ASSERT_NE(at, std::string::npos) << searched.err;
+  const long fewest = std::stol(searched.err.substr(at + 17));
+  EXPECT_GT(fewest, 20000);
+  EXPECT_LE(fewest, lines);
+  EXPECT_NE(searched.err.find(" lines 26.100 m apart (where it is concave"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}
+
 // A write that dies part-way (the file-size limit kills the process with SIGXFSZ while it writes
 // its temporary files) leaves the previous complete files; with the signal ignored the write fails
 // cleanly instead: exit 1, a message naming the file, no temporaries, the old files intact.

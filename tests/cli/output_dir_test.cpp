@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -257,6 +258,17 @@ TEST(OutputDir, TheWorstInputsAreRefusedInBoundedTimeAndMemory) {
           csv << x + dx * 0.00005 << ',' << y + dy * 0.00005 << ',' << ring << '\n';
       }
   }
+  {
+    // A 2,000-vertex star whose lines cross dozens of spikes each: 20,663 lines, over the limit
+    // (145 s and out of memory before, laying and ordering them at every direction).
+    std::ofstream csv(dir + "/star.csv");
+    csv.precision(10);
+    csv << "x,y\n";
+    for (int i = 0; i < 2000; ++i) {
+      const double a = 6.283185307179586 * i / 2000, r = i % 2 ? 150 : 1000;
+      csv << r * std::cos(a) << ',' << r * std::sin(a) << '\n';
+    }
+  }
   const std::string swath = std::string("'") + SWATH_BINARY + "' ";
   const std::string meadow = "plan share/fields/meadow.geojson ";
   for (const std::string& command :
@@ -270,6 +282,9 @@ TEST(OutputDir, TheWorstInputsAreRefusedInBoundedTimeAndMemory) {
         swath + meadow + "--camera sony-ilce-qx1 --altitude 60 --drones 10000 -o " + dir + "/o",
         swath + meadow + "--camera sony-ilce-qx1 --altitude 60 --fleet /dev/zero -o " + dir + "/o",
         swath + "plan " + dir + "/holes.csv --camera sony-ilce-qx1 --altitude 100 -o " + dir + "/o",
+        swath + "plan " + dir +
+            "/star.csv --local --origin 47.4,8.5 --camera dji-phantom-4-pro --altitude 58 -o " +
+            dir + "/o",
         std::string("'") + SWATH_ENERGY_BINARY +
             "' run tests/bad-input/plan-alias-bomb.yaml --config plans/survey-sim.yaml -o " + dir +
             "/o"}) {

@@ -1,9 +1,12 @@
 // The trigger model (paper 002 eq. 1) and its fits (DESIGN.md §17.3): the threshold is eq. 1
 // inverted, synthetic coefficients are recovered, OLS on grouped logits equals its closed form,
-// degenerate data falls back to the pooled logit.
+// degenerate data falls back to the pooled logit; trigger data reads in every CSV dialect.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+
+#include "swath/base/input_error.hpp"
 
 #include "swath/control/logistic.hpp"
 #include "swath/vehicle/random.hpp"
@@ -103,6 +106,43 @@ TEST(Logistic, DegenerateDataGivesThePooledLogit) {
   std::vector<TriggerPoint> separable;
   for (int i = 0; i < 100; ++i) separable.push_back({i * 0.1, i >= 50});
   EXPECT_TRUE(fit_logistic(separable, FitMethod::mle).degenerate);
+}
+
+// swath-control fit's data in the dialects the area reader takes (base::CsvText): quoted cells,
+// ';' with decimal commas, tabs, CR-only and CRLF line ends, a BOM, trailing comments: the same
+// points, value for value.
+TEST(TriggerData, EveryCsvDialectReadsTheSamePoints) {
+  const std::vector<std::pair<double, bool>> expected{{0.125, false}, {2.5, true}, {17, true}};
+  for (const std::string text : {
+           "x,changed\n0.125,0\n2.5,1\n17,1\n",
+           "# a trial\n\"x\",\"changed\",\"note\"\n\"0.125\",\"0\",\"a, b\"\n2.5,1,\"#3\"\n17,1,\n",
+           "changed;x\n0;0,125\n1;2,5\n1;17\n",
+           "x\tchanged\n0.125\t0\n2.5\t1\n17\t1\n",
+           "x,changed\r0.125,0\r2.5,1\r17,1",
+           "\xEF\xBB\xBFx,changed\r\n0.125,0\r\n\r\n2.5,1 # the second\r\n17,1#\r\n",
+       }) {
+    SCOPED_TRACE(text);
+    const std::vector<TriggerPoint> data = parse_trigger_data(text, "d.csv");
+    ASSERT_EQ(data.size(), expected.size());
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      EXPECT_EQ(data[i].x, expected[i].first) << i;
+      EXPECT_EQ(data[i].changed, expected[i].second) << i;
+    }
+  }
+  auto refusal = [](const std::string& text) {
+    try {
+      parse_trigger_data(text, "d.csv");
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal("x;changed\n1.234,5;1\n"),
+            "d.csv: line 2: x '1.234,5' is not a finite number >= 0");
+  EXPECT_EQ(refusal("x\tchanged\r1\r2\t1\r"),
+            "d.csv: line 2: 1 tab-separated fields, the header has 2");
+  EXPECT_EQ(refusal("x,changed\n1,\"1\n"),
+            "d.csv: line 2: column 2 opens a quote that the line does not close");
 }
 
 }  // namespace

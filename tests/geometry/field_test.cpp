@@ -332,6 +332,20 @@ TEST(Csv, QuotedSemicolonTabAndCrOnlyDialectsReadTheSamePositions) {
   expect_cape_square(
       "lon,lat\r18.4,-33.9\r18.40324686,-33.9\r18.40324686,-33.898203378\r"
       "18.4,-33.898203378\r");
+  // Comments after the values (a tester's "12.5,55.1 # corner" was refused), with each separator;
+  // a '#' inside a quoted cell is text (were it a comment, the line would lose its lat and lon).
+  expect_cape_square(
+      "# the tester's square\nlon,lat # degrees\n18.4,-33.9 # south-west\n18.40324686,-33.9#se\n"
+      "18.40324686,-33.898203378  # north-east\n18.4,-33.898203378\t# north-west\n");
+  expect_cape_square(
+      "lat;lon # decimal commas\n-33,9;18,4 # a, b\n-33,9;18,40324686 #\n"
+      "-33,898203378;18,40324686\n-33,898203378;18,4 # end\n");
+  expect_cape_square(
+      "name,lat,lon\n\"plot #4, south-west\",-33.9,18.4 # corner\n\"#2\",-33.9,18.40324686\n"
+      "\"a \"\"#\"\"\", -33.898203378 ,18.40324686\n#4,-33.898203378,18.4\n"
+      "\"#5\",-33.898203378,18.4\n");
+  expect_error("lon,lat\n18.4,-33.9 # corner\n18.5 # ,-33.9\n", FieldFormat::csv,
+               "line 3: expected 2 comma-separated columns, found 1");
   // A lone CR and CRLF each end one line: the line numbers stay right.
   expect_error("lon,lat\r\r8,47\r\n8.1,x\r", FieldFormat::csv, "line 4: lat 'x' is not a number");
   expect_error("lat;lon\n47;8\n47,1;x\n", FieldFormat::csv, "line 3: lon 'x' is not a number");

@@ -522,6 +522,59 @@ TEST(SplitSurvey, ThePlanIsTheSameOnAnyNumberOfThreads) {
   }
 }
 
+// SplitSettings::max_lines: lanes are counted at their positions before any is laid. A comb of 10
+// teeth (10 m wide, 10 m apart, 200 m tall on a 20 m base): lanes across the teeth (0 degrees)
+// take one per tooth at each position, 807 here by brute force; lanes along them (90 degrees)
+// one per position. Over the limit at a fixed direction: refused with that count; searched: a
+// direction that fits is flown; with the crosshatch pass at 90 degrees to it limited too: none.
+TEST(SplitSurvey, TheLaneLimitIsCountedBeforeLanesAreLaid) {
+  Ring comb{{0, 0}, {190, 0}};
+  for (int t = 9; t >= 0; --t) {
+    comb.push_back({t * 20.0 + 10, 220});
+    comb.push_back({t * 20.0, 220});
+    if (t > 0) comb.push_back({t * 20.0, 20}), comb.push_back({t * 20.0 - 10, 20});
+  }
+  SplitSettings s;
+  s.line_spacing_m = 2.5;
+  s.footprint_width_m = 5;
+  // Lanes across the teeth: y = 2.5 + 2.5 k (centred: 87 lanes, the first half a footprint from
+  // the base); crossings over two by brute force.
+  std::size_t across = 0;
+  for (int k = 0; k < 87; ++k) {
+    const double y = 220.0 / 2 - 43 * 2.5 + k * 2.5;
+    int crossings = 0;
+    for (std::size_t i = 0; i < comb.size(); ++i)
+      crossings += (comb[i].y <= y) != (comb[(i + 1) % comb.size()].y <= y);
+    across += std::size_t(crossings / 2);
+  }
+  ASSERT_EQ(across, 807u);
+  const geometry::VisibilityRouter router({comb});
+  s.max_lines = 500;
+  s.fixed_angle_deg = 0;
+  try {
+    plan_split({comb}, {0, 0}, s, router);
+    ADD_FAILURE() << "laid";
+  } catch (const LaneLimitExceeded& e) {
+    EXPECT_EQ(e.lanes(), across);
+    EXPECT_EQ(e.angle_deg(), 0);
+  }
+  s.fixed_angle_deg.reset();
+  const SplitPlan searched = plan_split({comb}, {0, 0}, s, router);
+  EXPECT_LE(searched.lines.size(), 500u);
+  EXPECT_GT(searched.lines.size(), 70u);
+  // Along the teeth fits; its crosshatch pass across them does not.
+  s.limit_cross_pass = true;
+  s.fixed_angle_deg = 90;
+  try {
+    plan_split({comb}, {0, 0}, s, router);
+    ADD_FAILURE() << "laid";
+  } catch (const LaneLimitExceeded& e) {
+    EXPECT_EQ(e.lanes(), across);
+  }
+  s.max_lines = across;  // at the limit: laid
+  EXPECT_FALSE(plan_split({comb}, {0, 0}, s, router).lines.empty());
+}
+
 TEST(SplitSurvey, ConvexAreasKeepTheStripRule) {
   const Polygon square{{{0, 0}, {300, 0}, {300, 200}, {0, 200}}, {}};
   EXPECT_EQ(plan(square, ConcaveMode::split).handling, Handling::convex);

@@ -95,9 +95,10 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   return s;
 }
 
-// The limit on the lines actually laid (direction() refused on an estimate, the area's height
-// over the spacing; a concave area takes several lines at one position: a 2,000-vertex star
-// estimated below the limit was laid 20,589).
+// The limit on the lines laid (direction() refused on an estimate, the area's height over the
+// spacing; a concave area takes several lines at one position: a 2,000-vertex star estimated
+// below the limit takes 20,589). Split plans count them before laying any (SplitSettings::
+// max_lines), at every direction they would try; this checks the lines as laid too.
 void check_line_count(const SurveyPlan& plan, std::size_t lines) {
   if (lines <= kMaxSweepLines) return;
   throw InputError(plan.request.field.source + ": the area takes " + std::to_string(lines) +
@@ -114,7 +115,15 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
   if (in_cells(plan)) {
     SplitSettings s = split_settings(plan);
     if (angle_deg) s.fixed_angle_deg = *angle_deg;
-    const SplitPlan sp = plan_split(plan.planning_rings, from, s, routes.inside);
+    s.max_lines = kMaxSweepLines;
+    s.limit_cross_pass = first && plan.request.crosshatch;
+    SplitPlan sp;
+    try {
+      sp = plan_split(plan.planning_rings, from, s, routes.inside);
+    } catch (const LaneLimitExceeded& e) {
+      check_line_count(plan, e.lanes());
+      throw;  // not reached: e.lanes() is above the limit
+    }
     check_line_count(plan, sp.lines.size());
     if (first) {
       plan.direction = {sp.angle_deg, geometry::height_at(plan.area.outer, sp.angle_deg)};

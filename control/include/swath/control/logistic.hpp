@@ -42,9 +42,10 @@ LogisticModel fit_logistic(const std::vector<TriggerPoint>& data, FitMethod meth
                            int min_per_bin = 25);
 
 /// Reads trigger data (`swath-control fit`): CSV with a header naming the columns `x` and
-/// `changed` (others ignored, any order); x ≥ 0 finite, changed 0 or 1; '#' lines and blank lines
-/// skipped; at most 10,000,000 rows. Throws base::InputError naming `source`, the line and the
-/// problem.
+/// `changed` (others ignored, any order); x ≥ 0 finite, changed 0 or 1; blank lines and '#'
+/// comments skipped; at most 10,000,000 rows. The dialects (quoted cells, ';' with decimal commas
+/// or tab separators, LF, CRLF or CR line ends, a BOM) are base::CsvText's, as the area reader's.
+/// Throws base::InputError naming `source`, the line and the problem.
 std::vector<TriggerPoint> parse_trigger_data(const std::string& text, const std::string& source);
 
 }  // namespace swath::control

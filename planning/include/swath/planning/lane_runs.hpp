@@ -67,4 +67,11 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& settings);
 LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& settings,
                    std::vector<geometry::Point2>& samples);
 
+/// The grid's lanes lane_runs lays first, counted without laying them: per grid ordinate, the
+/// intervals of the lane inside `area.fly` (joined across `area.bridge`), i.e. its boundary
+/// crossings over two. Where the area is concave a lane position holds several. lane_runs then
+/// adds lanes for corners the grid misses and drops slivers; the boustrophedon cells of the same
+/// direction lay their lanes on the same grid. O(n log n + crossings log crossings).
+std::size_t grid_lane_count(const LaneRunArea& area, const LaneRunSettings& settings);
+
 }  // namespace swath::planning

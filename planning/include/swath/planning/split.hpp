@@ -2,8 +2,10 @@
 // Concave areas and holes without flying outside (--concave split): boustrophedon cells, each
 // swept inside, visited in the order and direction that make the whole path shortest.
 
+#include <cstddef>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "swath/geometry/visibility.hpp"
@@ -55,6 +57,31 @@ struct SplitSettings {
   SplitDirections directions = SplitDirections::one;
   /// Threads for the direction search (0: the machine's); the plan is the same for any number.
   unsigned threads = 0;
+  /// At most this many lanes (0: no limit): a direction, and a kind of candidate at it, whose
+  /// grid lanes (lane_runs.hpp grid_lane_count: counted before any is laid) are more is not
+  /// tried; none left: LaneLimitExceeded. The plan's lines can still differ from the count by
+  /// the lanes added for missed corners and the slivers dropped.
+  std::size_t max_lines = 0;
+  /// The limit holds for the pass at 90 degrees to a direction too (a crosshatch flies both).
+  bool limit_cross_pass = false;
+};
+
+/// plan_split's refusal when no direction it would try lays its grid lanes within
+/// SplitSettings::max_lines (before any lane is laid or ordered).
+class LaneLimitExceeded : public std::runtime_error {
+ public:
+  LaneLimitExceeded(std::size_t lanes, double angle_deg)
+      : std::runtime_error("plan_split: more lanes than the limit at every direction"),
+        lanes_(lanes),
+        angle_deg_(angle_deg) {}
+  /// The fewest grid lanes of any direction tried (with SplitSettings::limit_cross_pass, of the
+  /// larger of its two passes), and that direction.
+  std::size_t lanes() const { return lanes_; }
+  double angle_deg() const { return angle_deg_; }
+
+ private:
+  std::size_t lanes_;
+  double angle_deg_;
 };
 
 struct SplitPlan {

@@ -1,0 +1,56 @@
+#pragma once
+// CSV text as spreadsheets and GIS tools write it, split into cells line by line: the one
+// tokenizer of every swath CSV reader (areas, trigger data).
+//
+// Dialects: cells may be quoted (RFC 4180, "" inside quotes is a quote, a quoted cell may hold
+// the separator or '#'); the separator is ',', or ';' or a tab when the first line holding values
+// has no comma (a line of numbers with decimal commas between semicolons, "12,5;55,1", is ';'
+// too); lines end in LF, CRLF or a lone CR (old Mac); a UTF-8 BOM is skipped. '#' outside quotes
+// starts a comment to the end of the line: a whole line ("# corners") or after the values
+// ("12.5,55.1 # corner"); blank lines and lines of only a comment hold no values.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace swath::base {
+
+class CsvText {
+ public:
+  /// `text` is kept by reference and must outlive the reader; `source` names it in messages.
+  CsvText(std::string_view text, std::string source);
+
+  /// Moves to the next line holding values and splits it into cells, each trimmed of spaces and
+  /// tabs; false at the end of the text. Throws InputError ("SOURCE: line N: column K opens a
+  /// quote that the line does not close", "... has text after its closing quote").
+  bool next();
+  /// The cells of the current line.
+  const std::vector<std::string>& cells() const { return cells_; }
+  /// The current line's number, 1-based (every LF, CRLF or lone CR ends one line).
+  int line() const { return line_; }
+  /// The separator, from the first line holding values: ',', ';' or '\t' (',' before that line).
+  char separator() const { return separator_; }
+  /// A cell's number (std::from_chars, no locale, an optional leading '+'). With ';' as the
+  /// separator a decimal comma ("12,5", as spreadsheets write it in much of Europe) reads as a
+  /// decimal point: a comma cannot separate columns there, so "12,5" has no other reading. Only
+  /// in a cell with no '.': a thousands separator ("1.234,5") stays no number, not guessed at.
+  std::optional<double> number(std::string_view cell) const { return number(cell, separator_); }
+  static std::optional<double> number(std::string_view cell, char separator);
+
+ private:
+  void split(std::string_view line);
+
+  std::string_view text_;
+  std::string source_;
+  std::size_t pos_ = 0;
+  int line_ = 0;
+  bool detected_ = false;
+  char separator_ = ',';
+  std::vector<std::string> cells_;
+};
+
+/// "comma-separated", "semicolon-separated" or "tab-separated", for messages.
+std::string separated_text(char separator);
+
+}  // namespace swath::base

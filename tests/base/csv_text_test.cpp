@@ -1,0 +1,87 @@
+// base::CsvText, the tokenizer of every CSV reader: the dialects split to the same cells, '#'
+// outside quotes ends a line (whole-line and trailing comments), inside quotes it is text, and
+// malformed quoting is refused naming the line and the column.
+#include "swath/base/csv_text.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "swath/base/input_error.hpp"
+
+namespace swath::base {
+namespace {
+
+using Lines = std::vector<std::pair<int, std::vector<std::string>>>;
+
+Lines lines_of(const std::string& text, char* separator = nullptr) {
+  CsvText csv(text, "t.csv");
+  Lines out;
+  while (csv.next()) out.push_back({csv.line(), csv.cells()});
+  if (separator) *separator = csv.separator();
+  return out;
+}
+
+std::string refusal(const std::string& text) {
+  try {
+    lines_of(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(CsvText, DialectsSplitToTheSameCells) {
+  const Lines expected{{1, {"x", "changed"}}, {2, {"0.5", "1"}}, {3, {"a, b", "0"}}};
+  for (const std::string text : {
+           "x,changed\n0.5,1\n\"a, b\",0\n",
+           "\"x\",\"changed\"\r\n\"0.5\",\"1\"\r\n\"a, b\",0\r\n",
+           "x;changed\n0.5;1\na, b;0\n",
+           "x\tchanged\n0.5\t1\na, b\t0\n",
+           "x,changed\r0.5,1\r\"a, b\",0",
+           "\xEF\xBB\xBFx , changed\n 0.5,1 \n\"a, b\" ,0\n",
+       }) {
+    SCOPED_TRACE(text);
+    EXPECT_EQ(lines_of(text), expected);
+  }
+}
+
+TEST(CsvText, ACommentAfterTheValuesEndsTheLineButNotInsideQuotes) {
+  char separator = 0;
+  EXPECT_EQ(lines_of("# corners\nlon,lat # degrees\n12.5,55.1 # corner\n  # indented\n\n"
+                     "12.6,55.1#east\n",
+                     &separator),
+            (Lines{{2, {"lon", "lat"}}, {3, {"12.5", "55.1"}}, {6, {"12.6", "55.1"}}}));
+  EXPECT_EQ(separator, ',');
+  // A '#' inside quotes is text; a comment after a quoted cell ends the line.
+  EXPECT_EQ(lines_of("name,lon\n\"plot #4, north\",12.5 # here\n\"#\",\"1\" #\n"),
+            (Lines{{1, {"name", "lon"}}, {2, {"plot #4, north", "12.5"}}, {3, {"#", "1"}}}));
+  // The comment does not decide the separator: "12,5;55,1 # a, b" is ';' with decimal commas.
+  EXPECT_EQ(lines_of("12,5;55,1 # a, b\n", &separator), (Lines{{1, {"12,5", "55,1"}}}));
+  EXPECT_EQ(separator, ';');
+  EXPECT_EQ(CsvText::number("12,5", separator), 12.5);
+  EXPECT_EQ(lines_of("a\tb # c;d\n", &separator), (Lines{{1, {"a", "b"}}}));
+  EXPECT_EQ(separator, '\t');
+}
+
+TEST(CsvText, NumbersAndDecimalCommas) {
+  EXPECT_EQ(CsvText::number("+12.5", ','), 12.5);
+  EXPECT_EQ(CsvText::number("-33,898203378", ';'), -33.898203378);
+  EXPECT_FALSE(CsvText::number("12,5", ','));
+  EXPECT_FALSE(CsvText::number("1.234,5", ';'));  // a thousands separator is not guessed at
+  EXPECT_FALSE(CsvText::number("", ','));
+  EXPECT_FALSE(CsvText::number("12.5 m", ','));
+}
+
+TEST(CsvText, MalformedQuotingNamesTheLineAndColumn) {
+  EXPECT_EQ(refusal("a,b\n1,\"2\n"),
+            "t.csv: line 2: column 2 opens a quote that the line does not close");
+  EXPECT_EQ(refusal("a,b\n\"1\"5,2\n"), "t.csv: line 2: column 1 has text after its closing quote");
+  // A quote a comment would have closed is still open: the '#' is inside it.
+  EXPECT_EQ(refusal("a,b\r\r\"1 # x\n"),
+            "t.csv: line 3: column 1 opens a quote that the line does not close");
+}
+
+}  // namespace
+}  // namespace swath::base
