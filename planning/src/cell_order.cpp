@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace swath::planning {
 namespace {
@@ -43,8 +44,12 @@ class Transit {
     const std::size_t n = offset;
     home_to_entry_.resize(n);
     exit_to_home_.resize(n);
-    if (memoise_) exit_to_entry_.assign(n * n, -1.0);
-    if (memoise_ && p.crossed) crossed_.assign(n * n, kUnknown);
+    // Every transition in a table where that is small; beyond, only the ones asked, hashed: a
+    // concave area of 18,000 one-lane runs (a star) asked for ~10^10 entries and ran out of
+    // memory, while its search asks for a few per run.
+    dense_ = n <= kDenseVariants;
+    if (memoise_ && dense_) exit_to_entry_.assign(n * n, -1.0);
+    if (memoise_ && dense_ && p.crossed) crossed_.assign(n * n, kUnknown);
     for (std::size_t c = 0; c < p.cells.size(); ++c)
       for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
         home_to_entry_[base_[c] + v] = p.distance(p.home, p.cells[c][v].entry);
@@ -56,7 +61,8 @@ class Transit {
   double to_home(std::size_t c, std::size_t v) const { return exit_to_home_[base_[c] + v]; }
   double between(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2) {
     if (!memoise_) return p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
-    double& d = exit_to_entry_[(base_[c1] + v1) * size_ + base_[c2] + v2];
+    const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
+    double& d = dense_ ? exit_to_entry_[at] : sparse_.try_emplace(at).first->second.length_m;
     if (d < 0) d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     return d;
   }
@@ -64,7 +70,8 @@ class Transit {
   std::uint64_t crossed(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2) {
     if (!p_.crossed) return 0;
     if (!memoise_) return p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
-    std::uint64_t& m = crossed_[(base_[c1] + v1) * size_ + base_[c2] + v2];
+    const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
+    std::uint64_t& m = dense_ ? crossed_[at] : sparse_.try_emplace(at).first->second.crossed;
     if (m == kUnknown) m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
     return m;
   }
@@ -77,10 +84,16 @@ class Transit {
                     std::uint64_t unflown) const {
     if (memoise_) {
       const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
-      const double d = exit_to_entry_[at];
-      if (d >= 0) {
-        if (!p_.crossed || crossed_[at] == kUnknown) return d;
-        return penalised(d, p_.crossing_weight, crossed_[at] & unflown);
+      Known known;
+      if (dense_) {
+        known.length_m = exit_to_entry_[at];
+        if (p_.crossed) known.crossed = crossed_[at];
+      } else if (const auto it = sparse_.find(at); it != sparse_.end()) {
+        known = it->second;
+      }
+      if (known.length_m >= 0) {
+        if (!p_.crossed || known.crossed == kUnknown) return known.length_m;
+        return penalised(known.length_m, p_.crossing_weight, known.crossed & unflown);
       }
     }
     return geometry::distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
@@ -101,6 +114,14 @@ class Transit {
   // Bit 63 marks "not yet asked": cell 63 never counts (the documented limit is cells below 64).
   static constexpr std::uint64_t kUnknown = std::uint64_t{1} << 63;
   std::vector<std::uint64_t> crossed_;
+  /// Up to this many variants in all, the transitions' tables are dense (2 x 32 MB at most).
+  static constexpr std::size_t kDenseVariants = 2048;
+  struct Known {
+    double length_m = -1;              ///< < 0: not asked
+    std::uint64_t crossed = kUnknown;  ///< kUnknown: not asked
+  };
+  bool dense_ = true;
+  std::unordered_map<std::size_t, Known> sparse_;  ///< beyond kDenseVariants: by index
   std::size_t size_ = 0;
 };
 

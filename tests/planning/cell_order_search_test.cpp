@@ -354,3 +354,40 @@ TEST(CellOrderSearch, NearestNeighbourOnTheEntriesGridIsThePlainOne) {
 
 }  // namespace
 }  // namespace swath::planning
+
+namespace swath::planning {
+namespace {
+
+// Beyond 2,048 variants in all the search keeps only the transitions it asks for (hashed), not a
+// table of every pair: a star-shaped field of 18,000 one-lane runs asked for ~5 * 10^9 entries
+// and ran out of memory. The orders are still the plain search's, bit for bit (1,000 cells,
+// ~2,500 variants, with crossings), and 20,000 cells order in bounded memory with the objective
+// the order's own evaluation gives.
+TEST(CellOrderSearch, ManyVariantsKeepOnlyTheTransitionsAsked) {
+  std::mt19937_64 rng(1827);
+  for (const bool crossings : {false, true}) {
+    const CellOrderProblem p = random_problem(rng, 1000, false, crossings);
+    std::size_t variants = 0;
+    for (const auto& cell : p.cells) variants += cell.size();
+    ASSERT_GT(variants, 2048u);
+    const PlainSearch plain{p};
+    const CellOrder fast = heuristic_cell_order(p), truth = plain.heuristic();
+    ASSERT_EQ(fast.objective_m, truth.objective_m) << crossings;
+    ASSERT_EQ(fast.visits.size(), truth.visits.size());
+    for (std::size_t i = 0; i < truth.visits.size(); ++i) {
+      ASSERT_EQ(fast.visits[i].cell, truth.visits[i].cell) << crossings << " at " << i;
+      ASSERT_EQ(fast.visits[i].variant, truth.visits[i].variant);
+    }
+  }
+  CellOrderProblem many = random_problem(rng, 20000, false, false);
+  many.distance_at_least_straight = true;
+  const CellOrder order = heuristic_cell_order(many);
+  ASSERT_EQ(order.visits.size(), many.cells.size());
+  std::vector<char> seen(many.cells.size(), 0);
+  for (const CellVisit& v : order.visits) seen.at(v.cell) += 1;
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(many.cells.size()));
+  EXPECT_DOUBLE_EQ(order.length_m, evaluate_order(many, order.visits).length_m);
+}
+
+}  // namespace
+}  // namespace swath::planning
