@@ -434,11 +434,32 @@ void check_flights(const SurveyPlan& plan, const std::string& what) {
     ASSERT_EQ(p.rally.size(), 1u);
     EXPECT_LT(norm(p.rally[0] - f.drone->home), 0.01);
 
-    // Fences: one exclusion per zone as given, the inclusion the area grown by the margin.
+    // Fences: one exclusion per zone, the inclusion the area grown by the margin. A zone is
+    // fenced as given, or where it has more vertices than PX4 stores in one polygon, by a polygon
+    // of at most that many that holds every vertex of it, lies within half the clearance of it,
+    // and that no commanded leg enters.
     ASSERT_EQ(p.exclusions.size(), zones.size());
-    for (const Ring& z : zones)
-      EXPECT_TRUE(std::any_of(p.exclusions.begin(), p.exclusions.end(),
-                              [&](const Ring& e) { return same_ring(e, z, 0.01); }));
+    for (const Ring& z : zones) {
+      if (z.size() <= kFenceVertexLimit) {
+        EXPECT_TRUE(std::any_of(p.exclusions.begin(), p.exclusions.end(),
+                                [&](const Ring& e) { return same_ring(e, z, 0.01); }));
+        continue;
+      }
+      const auto holding =
+          std::find_if(p.exclusions.begin(), p.exclusions.end(), [&](const Ring& e) {
+            return e.size() <= kFenceVertexLimit &&
+                   std::all_of(z.begin(), z.end(), [&](Point2 v) { return inside(v, e); });
+          });
+      ASSERT_NE(holding, p.exclusions.end()) << "no fence of at most " << kFenceVertexLimit
+                                             << " vertices holds a zone of " << z.size();
+      for (const Point2& v : *holding) {
+        double to_zone = INFINITY;
+        for (std::size_t i = 0; i < z.size(); ++i)
+          to_zone = std::min(to_zone, point_segment_m(v, z[i], z[(i + 1) % z.size()]));
+        EXPECT_LE(to_zone, clearance / 2 + 0.01);
+      }
+      EXPECT_GT(least_clearance(commanded_path(p), {*holding}).distance_m, clearance / 2 - 0.01);
+    }
     ASSERT_FALSE(p.inclusions.empty());
     const Ring& outer = plan.request.field.polygon.outer;
     for (const Point2& v : outer)
@@ -548,6 +569,40 @@ TEST(FlightTrue, ExcludedZoneIsFencedAndKeptClearOf) {
   const SurveyPlan plan = plan_survey(r);
   EXPECT_GE(*plan.clearance.no_fly_m, 8.0 - 1e-6);
   check_flights(plan, "meadow with a zone");
+}
+
+// A pond traced with 200 vertices: PX4 stores at most 64 in one exclusion fence, so the .plan's
+// fence for it is the pond simplified outward (holding it, within half the clearance of it) and
+// no warning is left; the plan keeps the clearance from the pond itself (check_flights). With no
+// clearance there is no room to simplify into: the pond as given, and the warning.
+TEST(FlightTrue, AZoneOfManyVerticesIsFencedWithinWhatAnAutopilotStores) {
+  SurveyRequest r = test::meadow_request(60);
+  Point2 mid{};
+  for (const Point2& v : r.field.polygon.outer)
+    mid = mid + v * (1.0 / static_cast<double>(r.field.polygon.outer.size()));
+  std::vector<GeoPoint> pond;
+  for (int k = 0; k < 200; ++k) {
+    const double a = 2 * 3.14159265358979 * k / 200, radius_m = 35 + 6 * std::sin(5 * a);
+    pond.push_back(r.field.frame->to_geo(mid + Point2{std::cos(a), std::sin(a)} * radius_m));
+  }
+  r.exclusions = {pond};
+  r.clearance_m = 8;
+  const SurveyPlan plan = plan_survey(r);
+  ASSERT_EQ(plan.exclusion_fences_geo.size(), 1u);
+  EXPECT_LE(plan.exclusion_fences_geo[0].size(), kFenceVertexLimit);
+  EXPECT_GE(plan.exclusion_fences_geo[0].size(), 8u);
+  for (const std::string& w : plan.warnings)
+    EXPECT_EQ(w.find("no-fly zone"), std::string::npos) << w;
+  check_flights(plan, "meadow with a 200-vertex pond");
+
+  r.clearance_m = 0;
+  const SurveyPlan tight = plan_survey(r);
+  ASSERT_EQ(tight.exclusion_fences_geo.size(), 1u);
+  EXPECT_EQ(tight.exclusion_fences_geo[0].size(), 200u);
+  EXPECT_TRUE(std::any_of(tight.warnings.begin(), tight.warnings.end(), [](const std::string& w) {
+    return w.find("no-fly zone 0") != std::string::npos &&
+           w.find("more than the 64 PX4 stores") != std::string::npos;
+  }));
 }
 
 // An outline of 300 (and of 2,000) vertices, as drawn from a detailed survey: grown exactly, its

@@ -39,7 +39,7 @@ ordered_json geofence_json(const SurveyPlan& plan) {
   for (const geometry::Ring& ring : plan.fence)
     polygons.push_back(
         {{"inclusion", true}, {"polygon", polygon_json(plan, ring)}, {"version", 1}});
-  for (const auto& zone : plan.no_fly_geo)
+  for (const auto& zone : plan.exclusion_fences_geo)
     polygons.push_back({{"inclusion", false}, {"polygon", geo_polygon_json(zone)}, {"version", 1}});
   return {{"circles", ordered_json::array()}, {"polygons", polygons}, {"version", 2}};
 }

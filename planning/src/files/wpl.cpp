@@ -34,7 +34,7 @@ std::string fence_waypoints(const SurveyPlan& plan) {
     for (const geometry::Point2& p : ring) geo.push_back(files::geo(plan, p));
     polygon(geo, 5001);
   }
-  for (const auto& zone : plan.no_fly_geo) {
+  for (const auto& zone : plan.exclusion_fences_geo) {
     std::vector<geometry::GeoPoint> geo;
     for (const geometry::GeoPoint& g : zone) geo.push_back(files::rounded(g));
     polygon(geo, 5002);

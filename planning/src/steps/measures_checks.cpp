@@ -120,13 +120,18 @@ void warn_about_fences(const SurveyPlan& plan, std::vector<std::string>& warning
                        " vertices, more than the " + std::to_string(kFenceVertexLimit) +
                        " PX4 stores in one polygon; give a smaller --fence-margin or a simpler "
                        "outline");
-  for (std::size_t z = 0; z < plan.no_fly_geo.size(); ++z)
-    if (plan.no_fly_geo[z].size() > kFenceVertexLimit) {
+  // Zones of more vertices are written simplified outward (missions.cpp, exclusion_fences) where
+  // the clearance leaves room; these are the ones where it did not.
+  for (std::size_t z = 0; z < plan.exclusion_fences_geo.size(); ++z)
+    if (plan.exclusion_fences_geo[z].size() > kFenceVertexLimit) {
       warnings.push_back("no-fly zone " + std::to_string(z) +
                          " (the field's holes first, then --exclude zones, from 0) has " +
-                         std::to_string(plan.no_fly_geo[z].size()) + " vertices, more than the " +
-                         std::to_string(kFenceVertexLimit) +
-                         " PX4 stores in one exclusion fence; simplify it (outward)");
+                         std::to_string(plan.exclusion_fences_geo[z].size()) +
+                         " vertices, more than the " + std::to_string(kFenceVertexLimit) +
+                         " PX4 stores in one exclusion fence, and swath could not simplify it "
+                         "within half the clearance (" +
+                         fixed_text(plan.request.clearance_m / 2, 2) +
+                         " m); simplify it (outward) or give a larger --clearance");
       break;
     }
 }

@@ -52,6 +52,30 @@ std::vector<geometry::Ring> fence_for(const std::vector<geometry::Ring>& outline
   return fence;
 }
 
+// The exclusion fence of each no-fly zone as written: the zone as given, or where it has more
+// vertices than an autopilot stores in one polygon, the zone simplified outward (grow_simplified
+// by 0 within c/48, c/24, c/12 and c/6 in turn, c the clearance, until it fits): it holds the whole
+// zone and reaches at most half the clearance beyond it, so the flight, kept the clearance from the
+// zone, never enters it. Where none fits (no clearance, a zone too intricate) the zone as given,
+// and a warning (warn_about_fences).
+std::vector<std::vector<geometry::GeoPoint>> exclusion_fences(const SurveyPlan& plan) {
+  std::vector<std::vector<geometry::GeoPoint>> fences = plan.no_fly_geo;
+  const double c = plan.request.clearance_m;
+  for (std::size_t z = 0; z < fences.size() && z < plan.no_fly.size(); ++z) {
+    if (fences[z].size() <= kFenceVertexLimit || !(c > 0)) continue;
+    for (const double share : {1.0 / 48, 1.0 / 24, 1.0 / 12, 1.0 / 6}) {
+      const std::vector<geometry::Ring> grown =
+          geometry::grow_simplified({plan.no_fly[z]}, 0.0, share * c);
+      if (grown.size() != 1 || grown.front().size() > kFenceVertexLimit) continue;
+      fences[z].clear();
+      for (const geometry::Point2& p : grown.front())
+        fences[z].push_back(plan.request.field.frame->to_geo(p));
+      break;
+    }
+  }
+  return fences;
+}
+
 }  // namespace
 
 std::size_t most_vertices(const std::vector<geometry::Ring>& rings) {
@@ -74,6 +98,7 @@ void missions(SurveyPlan& plan) {
   std::vector<geometry::Ring> outlines{plan.area.outer};
   outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
   plan.fence = fence_for(outlines, plan.fence_margin_m);
+  plan.exclusion_fences_geo = exclusion_fences(plan);
 }
 
 }  // namespace swath::planning::steps

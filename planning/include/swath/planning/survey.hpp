@@ -181,6 +181,10 @@ struct SurveyPlan {
   std::vector<geometry::Ring> no_fly_grown;  ///< the zones grown by the clearance, united
   /// Inclusion fences: the area (each piece) grown by the fence margin; one ring usually.
   std::vector<geometry::Ring> fence;
+  /// Exclusion fences as written, one per no-fly zone (order of no_fly_geo): the zone as given,
+  /// or where it has more than kFenceVertexLimit vertices, a polygon of at most that many holding
+  /// the zone and reaching at most half the clearance beyond it.
+  std::vector<std::vector<geometry::GeoPoint>> exclusion_fences_geo;
   double fence_margin_m = 0.0;
   std::vector<geometry::Ring> cells;  ///< split: the cells; otherwise the flown area's outer ring
   std::optional<SplitCells> split_method;  ///< split: what made the cells (runs or boustrophedon)
