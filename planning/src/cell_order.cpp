@@ -415,20 +415,22 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
       internal[c * kMaxVariants + v] = p.cells[c][v].internal_m;
   }
   // A bound to prune by: the objective of a good tour (improved(greedy_tour()) below, in the
-  // search's own arithmetic), with a margin above its rounding. A state whose cost plus the least
-  // internal lengths of the cells still to fly exceeds it is on no optimal tour, and every state it
-  // would reach is prunable too (its cost grows by at least the next cell's least internal length),
-  // so the states the optimum and its ties read are the same: the same tour, bit for bit, the
-  // search cut to the tours that one does not beat. Each cell still to fly adds at least its least
-  // internal length and its least way in (from home or another cell's exit; a crossing penalty only
-  // adds, for a weight >= 0).
-  std::vector<double> least_added(n, kInf);
+  // search's own arithmetic), with a margin above its rounding. A state whose cost plus a lower
+  // bound on the rest of every tour through it exceeds it is on no optimal tour, nor on a tie of
+  // one, and the states an optimal tour passes through, and those that tie them, keep their costs
+  // and parents (their predecessors are on an optimal tour too, or give strictly more): the same
+  // tour, bit for bit, the search cut to the tours that one does not beat. The rest of a tour
+  // enters each cell still to fly once, adding at least its least internal length and its least
+  // way in (from home or another cell's exit; a crossing penalty only adds, for a weight >= 0),
+  // and comes home once from one of them (`least_home`).
+  std::vector<double> least_added(n, kInf), least_home(n, kInf);
   double all_least = 0;
   for (std::size_t c = 0; c < n; ++c) {
     double way_in = kInf;
     for (std::size_t v = 0; v < variants[c]; ++v) {
       const std::size_t s2 = c * kMaxVariants + v;
       least_added[c] = std::min(least_added[c], internal[s2]);
+      least_home[c] = std::min(least_home[c], t.to_home(c, v));
       way_in = std::min(way_in, t.from_home(c, v));
       for (std::size_t s = 0; s < states; ++s) way_in = std::min(way_in, between[s * states + s2]);
     }
@@ -567,14 +569,33 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
     return objective;
   };
   const double bound = p.crossing_weight >= 0 ? improved(greedy_tour()) * (1 + 1e-9) + 1e-9 : kInf;
+  // The most a state of `mask` may cost and still be within the bound, worked out once a mask
+  // (when first asked: a mask is asked when a state of a mask one cell smaller reaches it).
+  thread_local std::vector<double> limits;
+  thread_local std::vector<std::uint8_t> limit_known;
+  if (limits.size() < masks) limits.resize(masks);
+  limit_known.assign(masks, 0);
+  const auto limit_of = [&](std::size_t mask) {
+    if (limit_known[mask]) return limits[mask];
+    double rest = all_least;  // the least the cells not in mask add
+    double home = kInf;       // the least leg home from one of them
+    for (std::size_t c = 0; c < n; ++c)
+      if (mask & (std::size_t{1} << c))
+        rest -= least_added[c];
+      else
+        home = std::min(home, least_home[c]);
+    if (mask == masks - 1) home = 0;  // the legs home are added after the search
+    limit_known[mask] = 1;
+    return limits[mask] = bound - std::max(0.0, rest + home) * (1 - 1e-9);
+  };
+  // A state is written only within its mask's limit: one beyond it would never be expanded (nor,
+  // in the full mask, be the best: it costs more than the bound), and one that ends within it
+  // costs less than any write beyond it, so the states kept have the same costs and parents.
   const auto search = [&]<bool kCrossed>() {
     for (std::size_t mask = 1; mask < masks; ++mask) {
       if (!reached[mask]) continue;
       const double* row = &cost[mask * states];
-      double rest = all_least;  // the least the cells not in mask add
-      for (std::size_t c = 0; c < n; ++c)
-        if (mask & (std::size_t{1} << c)) rest -= least_added[c];
-      const double limit = bound - std::max(0.0, rest) * (1 - 1e-9);
+      const double limit = limit_of(mask);
       // The cells in the mask, then those out of it, each in ascending order (the plain loops').
       for (std::size_t in = mask; in != 0; in &= in - 1) {
         const auto c = std::size_t(std::countr_zero(in));
@@ -586,7 +607,7 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
             const auto c2 = std::size_t(std::countr_zero(out));
             const std::size_t next_mask = mask | (std::size_t{1} << c2);
             const std::uint64_t unflown = ~std::uint64_t{0} & ~next_mask;
-            reach(next_mask);
+            const double next_limit = limit_of(next_mask);
             double* next_row = &cost[next_mask * states];
             for (std::size_t v2 = 0; v2 < variants[c2]; ++v2) {
               const std::size_t s2 = c2 * kMaxVariants + v2, at = s * states + s2;
@@ -594,6 +615,8 @@ CellOrder exact_cell_order(const CellOrderProblem& p) {
               if constexpr (kCrossed)
                 transit = penalised(transit, p.crossing_weight, crossed[at] & unflown);
               const double total = here + transit + internal[s2];
+              if (total > next_limit) continue;
+              reach(next_mask);
               if (total < next_row[s2]) {
                 next_row[s2] = total;
                 parent[next_mask * states + s2] = static_cast<std::uint8_t>(s);
