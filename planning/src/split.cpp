@@ -362,21 +362,27 @@ class LaneCrossings {
     for (const Sweep& sweep : c.sweeps) {
       Box box;
       std::vector<Box> lanes;
+      std::vector<double> lengths;
       for (const SweepLine& l : sweep.lines) {
         Box lane;
         for (const Point2& p : {l.start, l.end}) lane.add(p);
         box.add(lane);
         lanes.push_back(lane);
+        lengths.push_back(geometry::distance(l.start, l.end));
       }
       boxes_.push_back(box);
       lane_boxes_.push_back(std::move(lanes));
+      lane_lengths_.push_back(std::move(lengths));
     }
   }
   std::uint64_t operator()(const std::vector<Point2>& path) const {
     // Two segments that cross clearly share a point, so their bounding boxes meet: only the
-    // lanes whose box meets a leg's are tested (the test itself is unchanged).
+    // lanes whose box meets a leg's are tested. The test is segments_cross_clearly()'s with the
+    // lengths of the legs and lanes worked out once (the same values, the same answers).
     thread_local std::vector<Box> legs;
+    thread_local std::vector<double> leg_lengths;
     legs.clear();
+    leg_lengths.clear();
     Box span;
     for (std::size_t i = 0; i + 1 < path.size(); ++i) {
       Box leg;
@@ -384,6 +390,7 @@ class LaneCrossings {
       leg.add(path[i + 1]);
       span.add(leg);
       legs.push_back(leg);
+      leg_lengths.push_back(geometry::distance(path[i], path[i + 1]));
     }
     std::uint64_t cells = 0;
     for (std::size_t k = 0; k < c_.sweeps.size() && k < 63; ++k) {
@@ -395,9 +402,8 @@ class LaneCrossings {
         if (!span.meets(lane)) continue;
         for (std::size_t i = 0; i + 1 < path.size() && !(cells >> k & 1); ++i)
           if (legs[i].meets(lane) &&
-              geometry::segments_cross_clearly(path[i], path[i + 1], l.start, l.end,
-                                               1e-9 * (geometry::distance(path[i], path[i + 1]) +
-                                                       geometry::distance(l.start, l.end))))
+              cross_clearly(path[i], path[i + 1], leg_lengths[i], l.start, l.end,
+                            lane_lengths_[k][j], 1e-9 * (leg_lengths[i] + lane_lengths_[k][j])))
             cells |= std::uint64_t{1} << k;
       }
     }
@@ -421,9 +427,19 @@ class LaneCrossings {
     }
     bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
   };
+  // geometry::segments_cross_clearly(p, q, a, b, tolerance_m) given |pq| and |ab|.
+  static bool cross_clearly(Point2 p, Point2 q, double pq, Point2 a, Point2 b, double ab,
+                            double tolerance_m) {
+    const auto side = [tolerance_m](Point2 o, Point2 d, double od, Point2 x) {
+      const double c = geometry::cross(d - o, x - o) / std::max(od, 1e-300);
+      return c > tolerance_m ? 1 : c < -tolerance_m ? -1 : 0;
+    };
+    return side(p, q, pq, a) * side(p, q, pq, b) < 0 && side(a, b, ab, p) * side(a, b, ab, q) < 0;
+  }
   const Candidate& c_;
-  std::vector<Box> boxes_;                    ///< per cell, of its lanes
-  std::vector<std::vector<Box>> lane_boxes_;  ///< per cell, per lane
+  std::vector<Box> boxes_;                         ///< per cell, of its lanes
+  std::vector<std::vector<Box>> lane_boxes_;       ///< per cell, per lane
+  std::vector<std::vector<double>> lane_lengths_;  ///< per cell, per lane
 };
 
 // The candidate's cells in their best order (exact where small), transits routed and kept off
