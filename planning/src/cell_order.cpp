@@ -155,24 +155,32 @@ class VariantTable {
     }
     const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
     for (std::size_t k = from; k < n; ++k) {
-      const auto& variants = p.cells[order[k]];
-      for (std::size_t v = 0; v < variants.size(); ++v) {
-        double& best = cost_[k * kMaxVariants + v];
-        std::size_t& came = from_[k * kMaxVariants + v];
-        best = kInf;
-        came = 0;
-        if (k == 0) {
-          best = t.from_home(order[k], v) + variants[v].internal_m;
-          continue;
+      const std::size_t cell = order[k];
+      const auto& variants = p.cells[cell];
+      double* layer = &cost_[k * kMaxVariants];
+      std::size_t* came_from = &from_[k * kMaxVariants];
+      if (k == 0) {
+        for (std::size_t v = 0; v < variants.size(); ++v) {
+          layer[v] = t.from_home(cell, v) + variants[v].internal_m;
+          came_from[v] = 0;
         }
-        for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
-          const double c = cost_[(k - 1) * kMaxVariants + u] +
-                           t.cost(order[k - 1], u, order[k], v, after_[k + 1]) +
-                           variants[v].internal_m;
-          if (c < best) {
-            best = c;
-            came = u;
+      } else {
+        const std::size_t b = order[k - 1], before_count = p.cells[b].size();
+        const double* before = layer - kMaxVariants;
+        const std::uint64_t unflown = after_[k + 1];
+        for (std::size_t v = 0; v < variants.size(); ++v) {
+          const double internal = variants[v].internal_m;
+          double best = kInf;
+          std::size_t came = 0;
+          for (std::size_t u = 0; u < before_count; ++u) {
+            const double c = before[u] + t.cost(b, u, cell, v, unflown) + internal;
+            if (c < best) {
+              best = c;
+              came = u;
+            }
           }
+          layer[v] = best;
+          came_from[v] = came;
         }
       }
       if (may_give_up) {
@@ -253,20 +261,23 @@ class VariantTable {
       after |= bit(order[k]);
     }
     for (std::size_t k = from; k <= check_at; ++k) {
-      const auto& variants = p.cells[order[k]];
+      const std::size_t c = order[k];
+      const auto& variants = p.cells[c];
+      double* layer = &low_[(k - from) * kMaxVariants];
+      if (k == 0) {
+        for (std::size_t v = 0; v < variants.size(); ++v)
+          layer[v] = t.from_home(c, v) + variants[v].internal_m;
+        continue;
+      }
+      const std::size_t b = order[k - 1], before_count = p.cells[b].size();
+      const double* before = k == from ? &cost_[(k - 1) * kMaxVariants] : layer - kMaxVariants;
+      const std::uint64_t unflown = masks_[k - from];
       for (std::size_t v = 0; v < variants.size(); ++v) {
-        double& best = low_[(k - from) * kMaxVariants + v];
-        if (k == 0) {
-          best = t.from_home(order[k], v) + variants[v].internal_m;
-          continue;
-        }
-        for (std::size_t u = 0; u < p.cells[order[k - 1]].size(); ++u) {
-          const double before = k == from ? cost_[(k - 1) * kMaxVariants + u]
-                                          : low_[(k - 1 - from) * kMaxVariants + u];
-          best =
-              std::min(best, before + t.lower_cost(order[k - 1], u, order[k], v, masks_[k - from]) +
-                                 variants[v].internal_m);
-        }
+        const double internal = variants[v].internal_m;
+        double best = kInf;
+        for (std::size_t u = 0; u < before_count; ++u)
+          best = std::min(best, before[u] + t.lower_cost(b, u, c, v, unflown) + internal);
+        layer[v] = best;
       }
     }
     double whole = kInf;
