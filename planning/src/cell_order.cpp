@@ -86,6 +86,31 @@ class Transit {
     }
     return geometry::distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
   }
+  /// The least of before[u] + lower_cost(c1, u, c2, v2, unflown) + internal_m over u < count,
+  /// summed and compared in that order (a layer of VariantTable::cannot_win()).
+  double least_through(const double* before, std::size_t c1, std::size_t count, std::size_t c2,
+                       std::size_t v2, std::uint64_t unflown, double internal_m) const {
+    double best = kInf;
+    if (!memoise_) {
+      for (std::size_t u = 0; u < count; ++u)
+        best = std::min(best, before[u] + lower_cost(c1, u, c2, v2, unflown) + internal_m);
+      return best;
+    }
+    const bool crossings = bool(p_.crossed);
+    std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
+    for (std::size_t u = 0; u < count; ++u, at += size_) {
+      const double d = exit_to_entry_[at];
+      double low = 0;
+      if (d < 0)
+        low = geometry::distance(p_.cells[c1][u].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
+      else if (!crossings || crossed_[at] == kUnknown)
+        low = d;
+      else
+        low = penalised(d, p_.crossing_weight, crossed_[at] & unflown);
+      best = std::min(best, before[u] + low + internal_m);
+    }
+    return best;
+  }
   /// Transit length plus its penalty with the cells in `unflown` still to be flown.
   double cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
               std::uint64_t unflown) {
@@ -272,13 +297,8 @@ class VariantTable {
       const std::size_t b = order[k - 1], before_count = p.cells[b].size();
       const double* before = k == from ? &cost_[(k - 1) * kMaxVariants] : layer - kMaxVariants;
       const std::uint64_t unflown = masks_[k - from];
-      for (std::size_t v = 0; v < variants.size(); ++v) {
-        const double internal = variants[v].internal_m;
-        double best = kInf;
-        for (std::size_t u = 0; u < before_count; ++u)
-          best = std::min(best, before[u] + t.lower_cost(b, u, c, v, unflown) + internal);
-        layer[v] = best;
-      }
+      for (std::size_t v = 0; v < variants.size(); ++v)
+        layer[v] = t.least_through(before, b, before_count, c, v, unflown, variants[v].internal_m);
     }
     double whole = kInf;
     for (std::size_t v = 0; v < p.cells[order[check_at]].size(); ++v)
