@@ -10,9 +10,10 @@
 // plan's wall time. BM_BalancedPlan times the same plans.
 //   swath_division_bench --balance-corpus
 // prints the same for region division on split-corpus shapes (tests/support/field_shapes.hpp).
-//   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY or SHAPE]
-// the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads;
-//   swath_division_bench --path-distribution SEED PER_FAMILY [FAMILY or SHAPE]
+//   swath_division_bench --balance-distribution SEED PER_FAMILY [FAMILY or SHAPE [FLEET]]
+// the distribution of max / min over many such shapes with 2, 3, 4 equal drones and three-quads
+// (FLEET: only that one, "4 equal", e.g. to profile one plan);
+//   swath_division_bench --path-distribution SEED PER_FAMILY [FAMILY or SHAPE [FLEET]]
 // the same with path division (the issue's <= 1.005 for path division). With SWATH_BENCH_EXACT
 // set, these print each plan's flight times as exact doubles and a hash of its regions and paths.
 #include <benchmark/benchmark.h>
@@ -235,10 +236,11 @@ int balance_corpus() {
 
 // Issue 18's distribution: region (or path) division by makespan on `per_family` split-corpus
 // shapes of each family from `seed` (`family`: one family or one shape, "comb 0", only; "" all),
-// with 2, 3 and 4 equal drones and three-quads. One row per plan (max / min, makespan, the regions'
-// areas over the area), then per fleet the mean, p90 and worst max / min and how many exceed 1.02.
+// with 2, 3 and 4 equal drones and three-quads (`only_fleet`: that one only; "" all). One row per
+// plan (max / min, makespan, the regions' areas over the area), then per fleet the mean, p90 and
+// worst max / min and how many exceed 1.02.
 int balance_distribution(std::uint64_t seed, int per_family, const std::string& family,
-                         planning::DivisionMode division) {
+                         const std::string& only_fleet, planning::DivisionMode division) {
   std::map<std::string, std::vector<double>> ratios;
   double worst_tiling = 0;
   for (const test::DivisionCase& base : test::corpus_division_cases(
@@ -256,6 +258,7 @@ int balance_distribution(std::uint64_t seed, int per_family, const std::string& 
       requests.push_back({base.fleet, base.request});
     }
     for (const auto& [fleet, request] : requests) {
+      if (!only_fleet.empty() && fleet != only_fleet) continue;
       const TimedPlan t = timed_plan(request);
       const double ratio = test::max_over_min_flight(t.plan);
       double area = 0, regions = 0;
@@ -312,6 +315,7 @@ int main(int argc, char** argv) {
              i + 2 < argc)
       return balance_distribution(
           std::stoull(argv[i + 1]), std::stoi(argv[i + 2]), i + 3 < argc ? argv[i + 3] : "",
+          i + 4 < argc ? argv[i + 4] : "",
           argv[i][2] == 'p' ? planning::DivisionMode::path : planning::DivisionMode::region);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

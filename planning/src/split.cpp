@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -345,25 +347,37 @@ class RoutedMetric {
       return straight_;
     }
     const Key key{a.x, a.y, b.x, b.y};
-    const auto it = known_.find(key);
-    if (it != known_.end()) return it->second;
-    std::vector<Point2> path = router_.path(a, b);
-    const double length = geometry::polyline_length(path);
-    return known_[key] = Route{std::move(path), length};
+    // The orderings ask for a transit's length and then for its path (the lanes it crosses):
+    // the last answer is kept beside the map (whose entries stay put).
+    if (last_ && key == last_key_) return *last_;
+    auto it = known_.find(key);
+    if (it == known_.end()) {
+      std::vector<Point2> path = router_.path(a, b);
+      const double length = geometry::polyline_length(path);
+      it = known_.emplace(key, Route{std::move(path), length}).first;
+    }
+    last_key_ = key;
+    last_ = &it->second;
+    return it->second;
   }
   // Hashed, not ordered: the ordering asks ~10^5 times a plan. Keys compare as the doubles do
-  // (no NaN reaches here; -0 and 0 are one key, as in the ordered map before).
+  // (no NaN reaches here; -0 and 0 are one key, as in the ordered map before, and hash alike).
+  // The doubles' bits mixed inline: std::hash<double> calls out to a byte hash, 2.5 % of a
+  // four-drone region division.
   using Key = std::array<double, 4>;
   struct KeyHash {
     std::size_t operator()(const Key& k) const {
-      std::size_t h = 0;
-      for (const double v : k) h = (h ^ std::hash<double>{}(v)) * 0x9e3779b97f4a7c15ull;
-      return h;
+      std::uint64_t h = 0;
+      for (const double v : k)
+        h = (h ^ std::bit_cast<std::uint64_t>(v == 0 ? 0.0 : v)) * 0x9e3779b97f4a7c15ull;
+      return std::size_t(h ^ (h >> 29));
     }
   };
   const geometry::VisibilityRouter& router_;
   std::unordered_map<Key, Route, KeyHash> known_;
-  Route straight_;  ///< the last straight answer (valid until the next question)
+  Key last_key_{};
+  const Route* last_ = nullptr;  ///< known_'s entry for last_key_
+  Route straight_;               ///< the last straight answer (valid until the next question)
 };
 
 }  // namespace split_detail
@@ -379,21 +393,27 @@ class LaneCrossings {
     for (const Sweep& sweep : c.sweeps) {
       Box box;
       std::vector<Box> lanes;
+      std::vector<double> lengths;
       for (const SweepLine& l : sweep.lines) {
         Box lane;
         for (const Point2& p : {l.start, l.end}) lane.add(p);
         box.add(lane);
         lanes.push_back(lane);
+        lengths.push_back(geometry::distance(l.start, l.end));
       }
       boxes_.push_back(box);
       lane_boxes_.push_back(std::move(lanes));
+      lane_lengths_.push_back(std::move(lengths));
     }
   }
   std::uint64_t operator()(const std::vector<Point2>& path) const {
     // Two segments that cross clearly share a point, so their bounding boxes meet: only the
-    // lanes whose box meets a leg's are tested (the test itself is unchanged).
+    // lanes whose box meets a leg's are tested. The test is segments_cross_clearly()'s with the
+    // lengths of the legs and lanes worked out once (the same values, the same answers).
     thread_local std::vector<Box> legs;
+    thread_local std::vector<double> leg_lengths;
     legs.clear();
+    leg_lengths.clear();
     Box span;
     for (std::size_t i = 0; i + 1 < path.size(); ++i) {
       Box leg;
@@ -401,6 +421,7 @@ class LaneCrossings {
       leg.add(path[i + 1]);
       span.add(leg);
       legs.push_back(leg);
+      leg_lengths.push_back(geometry::distance(path[i], path[i + 1]));
     }
     std::uint64_t cells = 0;
     for (std::size_t k = 0; k < c_.sweeps.size() && k < 63; ++k) {
@@ -412,9 +433,8 @@ class LaneCrossings {
         if (!span.meets(lane)) continue;
         for (std::size_t i = 0; i + 1 < path.size() && !(cells >> k & 1); ++i)
           if (legs[i].meets(lane) &&
-              geometry::segments_cross_clearly(path[i], path[i + 1], l.start, l.end,
-                                               1e-9 * (geometry::distance(path[i], path[i + 1]) +
-                                                       geometry::distance(l.start, l.end))))
+              cross_clearly(path[i], path[i + 1], leg_lengths[i], l.start, l.end,
+                            lane_lengths_[k][j], 1e-9 * (leg_lengths[i] + lane_lengths_[k][j])))
             cells |= std::uint64_t{1} << k;
       }
     }
@@ -438,9 +458,19 @@ class LaneCrossings {
     }
     bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
   };
+  // geometry::segments_cross_clearly(p, q, a, b, tolerance_m) given |pq| and |ab|.
+  static bool cross_clearly(Point2 p, Point2 q, double pq, Point2 a, Point2 b, double ab,
+                            double tolerance_m) {
+    const auto side = [tolerance_m](Point2 o, Point2 d, double od, Point2 x) {
+      const double c = geometry::cross(d - o, x - o) / std::max(od, 1e-300);
+      return c > tolerance_m ? 1 : c < -tolerance_m ? -1 : 0;
+    };
+    return side(p, q, pq, a) * side(p, q, pq, b) < 0 && side(a, b, ab, p) * side(a, b, ab, q) < 0;
+  }
   const Candidate& c_;
-  std::vector<Box> boxes_;                    ///< per cell, of its lanes
-  std::vector<std::vector<Box>> lane_boxes_;  ///< per cell, per lane
+  std::vector<Box> boxes_;                         ///< per cell, of its lanes
+  std::vector<std::vector<Box>> lane_boxes_;       ///< per cell, per lane
+  std::vector<std::vector<double>> lane_lengths_;  ///< per cell, per lane
 };
 
 // The candidate's cells in their best order (exact where small), transits routed and kept off
