@@ -104,7 +104,7 @@ class Transit {
   double least_through(const double* before, std::size_t c1, std::size_t count, std::size_t c2,
                        std::size_t v2, std::uint64_t unflown, double internal_m) const {
     double best = kInf;
-    if (!memoise_) {
+    if (!memoise_ || !dense_) {  // lower_cost() asks the memo entry by entry
       for (std::size_t u = 0; u < count; ++u)
         best = std::min(best, before[u] + lower_cost(c1, u, c2, v2, unflown) + internal_m);
       return best;
