@@ -91,22 +91,22 @@ class LaneScan {
   /// at() for many increasing ordinates: each edge finds its first by search. The crossings of a
   /// row come in edge order as at(y)'s do, so the spans are the same.
   SpanRows at(const std::vector<double>& ys) const {
-    std::vector<std::uint32_t> first(ys.size() + 1, 0);  // row k's crossings from first[k]
-    const auto rows_of = [&](const std::pair<Point2, Point2>& e, auto f) {
-      const auto& [a, b] = e;
+    // The crossings (row, x) in edge order, then by row (a counting sort keeps edge order within
+    // a row): each edge searched once.
+    thread_local std::vector<std::pair<std::uint32_t, double>> hits;
+    hits.clear();
+    for (const auto& [a, b] : edges_) {
       const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
       for (auto k = std::lower_bound(ys.begin(), ys.end(), lo); k != ys.end() && *k < hi; ++k)
-        f(std::size_t(k - ys.begin()));
-    };
-    for (const auto& e : edges_) rows_of(e, [&](std::size_t k) { ++first[k + 1]; });
+        hits.push_back(
+            {std::uint32_t(k - ys.begin()), a.x + (*k - a.y) * (b.x - a.x) / (b.y - a.y)});
+    }
+    std::vector<std::uint32_t> first(ys.size() + 1, 0);  // row k's crossings from first[k]
+    for (const auto& hit : hits) ++first[hit.first + 1];
     for (std::size_t k = 0; k < ys.size(); ++k) first[k + 1] += first[k];
-    std::vector<double> xs(first.back());
+    std::vector<double> xs(hits.size());
     std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (const auto& e : edges_)
-      rows_of(e, [&](std::size_t k) {
-        const auto& [a, b] = e;
-        xs[next[k]++] = a.x + (ys[k] - a.y) * (b.x - a.x) / (b.y - a.y);
-      });
+    for (const auto& [k, x] : hits) xs[next[k]++] = x;
     SpanRows out;
     out.reserve(ys.size(), xs.size() / 2);
     for (std::size_t k = 0; k < ys.size(); ++k) {
