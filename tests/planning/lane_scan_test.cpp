@@ -67,12 +67,13 @@ TEST(LaneScan, BucketsAnswerAsEveryEdge) {
       std::sort(ys.begin(), ys.end());
       const SpanRows rows = scan.at(ys);
       ASSERT_EQ(rows.size(), ys.size());
-      for (std::size_t k = 0; k < ys.size(); ++k) {
-        const std::vector<Span> truth = all_edges_at(scan, ys[k]);
-        ASSERT_EQ(rows[k].size(), truth.size()) << "area " << k << " angle " << angle;
+      for (std::size_t r = 0; r < ys.size(); ++r) {
+        const std::vector<Span> truth = all_edges_at(scan, ys[r]);
+        ASSERT_EQ(rows[r].size(), truth.size())
+            << "area " << k << " angle " << angle << " y " << ys[r];
         for (std::size_t i = 0; i < truth.size(); ++i) {
-          ASSERT_EQ(rows[k][i].x0, truth[i].x0);
-          ASSERT_EQ(rows[k][i].x1, truth[i].x1);
+          ASSERT_EQ(rows[r][i].x0, truth[i].x0);
+          ASSERT_EQ(rows[r][i].x1, truth[i].x1);
         }
       }
     }

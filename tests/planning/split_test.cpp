@@ -136,36 +136,46 @@ std::vector<CellVisit> plain_held_karp(const CellOrderProblem& p) {
   return visits;
 }
 
-TEST(CellOrder, BoundedExactSearchPicksThePlainSearchsVisits) {
-  test::Rng rng(23);
+// Odd k: the problem moved onto a coarse grid (equal transits everywhere); k % 4 >= 2: transits
+// cross cells (any fixed function of the ends will do).
+void on_grid_and_crossing(CellOrderProblem& p, test::Rng& rng, int k) {
   std::uniform_int_distribution<int> grid(0, 6);
-  for (int k = 0; k < 40; ++k) {
-    CellOrderProblem p = random_problem(rng, 3 + k % 8);
-    if (k % 2) {  // on a coarse grid: equal transits everywhere
-      p.home = {100.0 * grid(rng), 100.0 * grid(rng)};
-      for (auto& variants : p.cells) {
-        const Point2 o{100.0 * grid(rng), 100.0 * grid(rng)};
-        for (std::size_t v = 0; v < variants.size(); ++v) {
-          variants[v].entry = o + Point2{100.0 * double(v & 1), 100.0 * double(v >> 1)};
-          variants[v].exit = o + Point2{100.0 * double(1 - (v & 1)), 100.0 * double(v >> 1)};
-          variants[v].internal_m = 300;
-        }
+  if (k % 2) {
+    p.home = {100.0 * grid(rng), 100.0 * grid(rng)};
+    for (auto& variants : p.cells) {
+      const Point2 o{100.0 * grid(rng), 100.0 * grid(rng)};
+      for (std::size_t v = 0; v < variants.size(); ++v) {
+        variants[v].entry = o + Point2{100.0 * double(v & 1), 100.0 * double(v >> 1)};
+        variants[v].exit = o + Point2{100.0 * double(1 - (v & 1)), 100.0 * double(v >> 1)};
+        variants[v].internal_m = 300;
       }
     }
-    if (k % 4 >= 2) {
-      const std::size_t n = p.cells.size();
-      p.crossed = [n](Point2 a, Point2 b) {  // any fixed function of the ends will do
-        const auto h = std::uint64_t(std::llround(a.x * 7 + a.y * 13 + b.x * 17 + b.y * 19));
-        return (h * 0x9E3779B97F4A7C15ull >> 20) & ((std::uint64_t{1} << n) - 1);
-      };
-    }
-    const std::vector<CellVisit> plain = plain_held_karp(p);
-    const CellOrder exact = exact_cell_order(p);
-    ASSERT_EQ(exact.visits.size(), plain.size()) << k;
-    for (std::size_t i = 0; i < plain.size(); ++i) {
-      EXPECT_EQ(exact.visits[i].cell, plain[i].cell) << k << " at " << i;
-      EXPECT_EQ(exact.visits[i].variant, plain[i].variant) << k << " at " << i;
-    }
+  }
+  if (k % 4 >= 2) {
+    const std::size_t n = p.cells.size();
+    p.crossed = [n](Point2 a, Point2 b) {
+      const auto h = std::uint64_t(std::llround(a.x * 7 + a.y * 13 + b.x * 17 + b.y * 19));
+      return (h * 0x9E3779B97F4A7C15ull >> 20) & ((std::uint64_t{1} << n) - 1);
+    };
+  }
+}
+
+void expect_plain_held_karps_visits(const CellOrderProblem& p, int k) {
+  const std::vector<CellVisit> plain = plain_held_karp(p);
+  const CellOrder exact = exact_cell_order(p);
+  ASSERT_EQ(exact.visits.size(), plain.size()) << k;
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    EXPECT_EQ(exact.visits[i].cell, plain[i].cell) << k << " at " << i;
+    EXPECT_EQ(exact.visits[i].variant, plain[i].variant) << k << " at " << i;
+  }
+}
+
+TEST(CellOrder, BoundedExactSearchPicksThePlainSearchsVisits) {
+  test::Rng rng(23);
+  for (int k = 0; k < 40; ++k) {
+    CellOrderProblem p = random_problem(rng, 3 + k % 8);
+    on_grid_and_crossing(p, rng, k);
+    expect_plain_held_karps_visits(p, k);
   }
 }
 
@@ -175,36 +185,13 @@ TEST(CellOrder, BoundedExactSearchPicksThePlainSearchsVisits) {
 // limits change which states the search visits, never the tour it picks.
 TEST(CellOrder, BoundedExactSearchPicksThePlainSearchsVisitsOnManyInstances) {
   test::Rng rng(47);
-  std::uniform_int_distribution<int> grid(0, 6), variant_count(1, 4);
+  std::uniform_int_distribution<int> variant_count(1, 4);
   for (int k = 0; k < 240; ++k) {
     CellOrderProblem p = random_problem(rng, 2 + k % 10);
     for (auto& variants : p.cells) variants.resize(std::size_t(variant_count(rng)));
-    if (k % 2) {
-      p.home = {100.0 * grid(rng), 100.0 * grid(rng)};
-      for (auto& variants : p.cells) {
-        const Point2 o{100.0 * grid(rng), 100.0 * grid(rng)};
-        for (std::size_t v = 0; v < variants.size(); ++v) {
-          variants[v].entry = o + Point2{100.0 * double(v & 1), 100.0 * double(v >> 1)};
-          variants[v].exit = o + Point2{100.0 * double(1 - (v & 1)), 100.0 * double(v >> 1)};
-          variants[v].internal_m = 300;
-        }
-      }
-    }
-    if (k % 4 >= 2) {
-      const std::size_t n = p.cells.size();
-      p.crossed = [n](Point2 a, Point2 b) {
-        const auto h = std::uint64_t(std::llround(a.x * 7 + a.y * 13 + b.x * 17 + b.y * 19));
-        return (h * 0x9E3779B97F4A7C15ull >> 20) & ((std::uint64_t{1} << n) - 1);
-      };
-      p.crossing_weight = 0.5 * double(1 + k % 3) * (k % 8 >= 4 ? 2 : 1);
-    }
-    const std::vector<CellVisit> plain = plain_held_karp(p);
-    const CellOrder exact = exact_cell_order(p);
-    ASSERT_EQ(exact.visits.size(), plain.size()) << k;
-    for (std::size_t i = 0; i < plain.size(); ++i) {
-      EXPECT_EQ(exact.visits[i].cell, plain[i].cell) << k << " at " << i;
-      EXPECT_EQ(exact.visits[i].variant, plain[i].variant) << k << " at " << i;
-    }
+    on_grid_and_crossing(p, rng, k);
+    if (p.crossed) p.crossing_weight = 0.5 * double(1 + k % 3) * (k % 8 >= 4 ? 2 : 1);
+    expect_plain_held_karps_visits(p, k);
   }
 }
 
