@@ -80,11 +80,17 @@ Containment locate_point(Point2 p, const std::vector<Point2>& ring) {
 }
 
 bool segments_cross_clearly(Point2 p, Point2 q, Point2 a, Point2 b, double tolerance_m) {
-  auto side = [tolerance_m](Point2 o, Point2 d, Point2 x) {
-    const double c = cross(d - o, x - o) / std::max(distance(o, d), 1e-300);
+  return segments_cross_clearly(p, q, distance(p, q), a, b, distance(a, b), tolerance_m);
+}
+
+bool segments_cross_clearly(Point2 p, Point2 q, double pq_m, Point2 a, Point2 b, double ab_m,
+                            double tolerance_m) {
+  auto side = [tolerance_m](Point2 o, Point2 d, double od_m, Point2 x) {
+    const double c = cross(d - o, x - o) / std::max(od_m, 1e-300);
     return c > tolerance_m ? 1 : c < -tolerance_m ? -1 : 0;
   };
-  return side(p, q, a) * side(p, q, b) < 0 && side(a, b, p) * side(a, b, q) < 0;
+  return side(p, q, pq_m, a) * side(p, q, pq_m, b) < 0 &&
+         side(a, b, ab_m, p) * side(a, b, ab_m, q) < 0;
 }
 
 double distance_to_segment(Point2 p, Point2 a, Point2 b) {

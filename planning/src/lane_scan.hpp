@@ -111,9 +111,7 @@ class LaneScan {
     out.reserve(ys.size(), xs.size() / 2);
     for (std::size_t k = 0; k < ys.size(); ++k) {
       out.add_row();
-      std::sort(xs.begin() + first[k], xs.begin() + first[k + 1]);
-      for (std::size_t i = first[k]; i + 1 < first[k + 1]; i += 2)
-        if (xs[i + 1] - xs[i] > 1e-6) out.add({xs[i], xs[i + 1]});
+      pair_up(xs.data() + first[k], xs.data() + first[k + 1], [&](Span span) { out.add(span); });
     }
     return out;
   }
@@ -122,11 +120,17 @@ class LaneScan {
   double y_max = -std::numeric_limits<double>::infinity();
 
  private:
+  // The crossings [first, last) of one line sorted, and each inside interval longer than a
+  // micrometre to add().
+  template <typename Add>
+  static void pair_up(double* first, double* last, Add add) {
+    std::sort(first, last);
+    for (; last - first >= 2; first += 2)
+      if (first[1] - first[0] > 1e-6) add(Span{first[0], first[1]});
+  }
   static std::vector<Span> pairs(std::vector<double>& xs) {
-    std::sort(xs.begin(), xs.end());
     std::vector<Span> out;
-    for (std::size_t i = 0; i + 1 < xs.size(); i += 2)
-      if (xs[i + 1] - xs[i] > 1e-6) out.push_back({xs[i], xs[i + 1]});
+    pair_up(xs.data(), xs.data() + xs.size(), [&](Span span) { out.push_back(span); });
     return out;
   }
   // Buckets of equal height over [y_min, y_max], each listing the edges whose ordinate range

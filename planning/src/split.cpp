@@ -408,8 +408,8 @@ class LaneCrossings {
   }
   std::uint64_t operator()(const std::vector<Point2>& path) const {
     // Two segments that cross clearly share a point, so their bounding boxes meet: only the
-    // lanes whose box meets a leg's are tested. The test is segments_cross_clearly()'s with the
-    // lengths of the legs and lanes worked out once (the same values, the same answers).
+    // lanes whose box meets a leg's are tested, with the lengths of the legs and lanes worked out
+    // once (segments_cross_clearly()'s form with lengths given: the same answers).
     thread_local std::vector<Box> legs;
     thread_local std::vector<double> leg_lengths;
     legs.clear();
@@ -433,8 +433,9 @@ class LaneCrossings {
         if (!span.meets(lane)) continue;
         for (std::size_t i = 0; i + 1 < path.size() && !(cells >> k & 1); ++i)
           if (legs[i].meets(lane) &&
-              cross_clearly(path[i], path[i + 1], leg_lengths[i], l.start, l.end,
-                            lane_lengths_[k][j], 1e-9 * (leg_lengths[i] + lane_lengths_[k][j])))
+              geometry::segments_cross_clearly(path[i], path[i + 1], leg_lengths[i], l.start, l.end,
+                                               lane_lengths_[k][j],
+                                               1e-9 * (leg_lengths[i] + lane_lengths_[k][j])))
             cells |= std::uint64_t{1} << k;
       }
     }
@@ -458,15 +459,6 @@ class LaneCrossings {
     }
     bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
   };
-  // geometry::segments_cross_clearly(p, q, a, b, tolerance_m) given |pq| and |ab|.
-  static bool cross_clearly(Point2 p, Point2 q, double pq, Point2 a, Point2 b, double ab,
-                            double tolerance_m) {
-    const auto side = [tolerance_m](Point2 o, Point2 d, double od, Point2 x) {
-      const double c = geometry::cross(d - o, x - o) / std::max(od, 1e-300);
-      return c > tolerance_m ? 1 : c < -tolerance_m ? -1 : 0;
-    };
-    return side(p, q, pq, a) * side(p, q, pq, b) < 0 && side(a, b, ab, p) * side(a, b, ab, q) < 0;
-  }
   const Candidate& c_;
   std::vector<Box> boxes_;                         ///< per cell, of its lanes
   std::vector<std::vector<Box>> lane_boxes_;       ///< per cell, per lane

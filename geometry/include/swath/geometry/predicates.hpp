@@ -59,6 +59,10 @@ Point2 segments_common_point(Point2 a, Point2 b, Point2 c, Point2 d);
 /// boundary sit a rounding error off it, and a turn or transit between such ends must not count
 /// as crossing the edges it starts and ends on.
 bool segments_cross_clearly(Point2 p, Point2 q, Point2 a, Point2 b, double tolerance_m);
+/// The same with the segments' lengths |pq| and |ab| (metres) given: for callers that test one
+/// segment against many and keep the lengths (the answers are those of the form above).
+bool segments_cross_clearly(Point2 p, Point2 q, double pq_m, Point2 a, Point2 b, double ab_m,
+                            double tolerance_m);
 
 /// Distance from p to the closed segment [a, b], metres (a point for a = b).
 double distance_to_segment(Point2 p, Point2 a, Point2 b);
