@@ -2,6 +2,7 @@
 // layer and feature, reprojected to WGS84 longitude/latitude by OGR itself. GDAL's headers stay in
 // this file, which is the GIS module libswath_gis.so (gis_module.hpp says why).
 
+#include <cpl_vsi.h>
 #include <gdal.h>
 #include <ogr_api.h>
 #include <ogr_geometry.h>
@@ -14,8 +15,10 @@
 #include <mutex>
 
 #include "field_ogr.hpp"
+#include "gdal_confinement.hpp"
 #include "gis_module.hpp"
 #include "raster_gdal.hpp"
+#include "swath/base/file_text.hpp"
 
 namespace swath::geometry::detail {
 namespace {
@@ -25,11 +28,7 @@ struct DatasetClose {
 };
 
 void register_once() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);  // errors come back as our sentences
-  });
+  confine_gdal();
 }
 
 std::string last_gdal_error() {
@@ -151,9 +150,17 @@ void to_wgs84(OGRGeometry& g, const OGRSpatialReference* srs, const std::string&
 RawField parse_wkt(const std::string& text, const std::string& source) {
   register_once();
   OGRGeometry* g = nullptr;
-  if (OGRGeometryFactory::createFromWkt(text.c_str(), nullptr, &g) != OGRERR_NONE || !g)
+  const char* rest = text.c_str();
+  if (OGRGeometryFactory::createFromWkt(&rest, nullptr, &g) != OGRERR_NONE || !g)
     throw InputError(source + ": not a WKT geometry (POLYGON ((lon lat, ...)))");
   std::unique_ptr<OGRGeometry> owned(g);
+  // OGR stops at the geometry's end: whatever follows (a second geometry, a stray word) would
+  // be silently dropped, so the file is refused instead.
+  const auto after = static_cast<std::size_t>(rest - text.c_str());
+  const auto tail = text.find_first_not_of(" \t\r\n", after);
+  if (tail != std::string::npos)
+    throw InputError(source + ": text follows the WKT geometry at byte " +
+                     std::to_string(tail + 1) + " (one geometry per file)");
   std::string why;
   auto poly = as_polygon(owned.get(), why);
   if (!poly) throw InputError(source + ": the geometry " + why);
@@ -177,20 +184,45 @@ std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOp
 
 namespace {
 
+// Refuses a zip archive (.zip, .kmz) whose members inflate to more than swath reads of any data
+// file (kMaxDataFileBytes): a 2 MB KMZ of repeated text inflated to 4.3 GB in memory, and zipped
+// GeoJSON of several GiB was read for a minute before "no layer". Sizes from the zip's directory,
+// before anything is inflated. An archive GDAL cannot list is left to the open to report.
+void check_archive_size(const std::string& local, const std::string& path) {
+  const std::string root = "/vsizip/" + local;
+  char** names = VSIReadDirRecursive(root.c_str());
+  std::uint64_t total = 0;
+  for (char** n = names; n && *n; ++n) {
+    VSIStatBufL st;
+    if (VSIStatL((root + "/" + *n).c_str(), &st) == 0 && VSI_ISREG(st.st_mode))
+      total += static_cast<std::uint64_t>(st.st_size);
+  }
+  CSLDestroy(names);
+  if (total > base::kMaxDataFileBytes)
+    throw InputError(path + ": the archive inflates to " + std::to_string(total >> 20) +
+                     " MiB, more than swath's limit of " +
+                     std::to_string(base::kMaxDataFileBytes >> 20) + " MiB for an area file");
+}
+
 // The file through GDAL (a .zip, zipped Shapefile, and a .kmz through /vsizip/).
 std::unique_ptr<GDALDataset, DatasetClose> open_vector(const std::string& path) {
   register_once();
+  const std::string local = local_gdal_path(path, "area file");
   const std::string name = lower(path);
-  std::string open_path = path;
-  if (name.size() > 4 && (name.ends_with(".zip") || name.ends_with(".kmz")) &&
-      path.rfind("/vsi", 0) != 0)
-    open_path = "/vsizip/" + path;
+  // A zipped Shapefile through /vsizip/; a KMZ as itself (LIBKML reads it whole, doc.kml with
+  // its layers/), through /vsizip/ only where that fails.
+  std::string open_path = local;
+  if (name.ends_with(".zip")) open_path = "/vsizip/" + local;
+  if (name.ends_with(".zip") || name.ends_with(".kmz")) check_archive_size(local, path);
   CPLErrorReset();
   std::unique_ptr<GDALDataset, DatasetClose> ds(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!ds && open_path != path)
+  const std::string second = open_path != local       ? local
+                             : name.ends_with(".kmz") ? "/vsizip/" + local
+                                                      : "";
+  if (!ds && !second.empty())
     ds.reset(static_cast<GDALDataset*>(
-        GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+        GDALOpenEx(second.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds)
     throw InputError(path + ": GDAL cannot open it as a vector file (" + last_gdal_error() + ")");
   return ds;

@@ -1,6 +1,8 @@
 // Raster sampling through GDAL for the GIS module (raster_gdal.hpp).
 #include "raster_gdal.hpp"
 
+#include "gdal_confinement.hpp"
+
 #include <cpl_conv.h>
 #include <cpl_vsi.h>
 #include <gdal.h>
@@ -56,16 +58,11 @@ std::string gdal_error() {
 }
 
 Raster open_raster(const std::string& path) {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);
-  });
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw InputError(path + ": cannot open the DEM (no such file)");
+  confine_gdal();
+  const std::string local = local_gdal_path(path, "DEM");
+  check_vrt(local);
   Raster r;
-  r.dataset = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
+  r.dataset = GDALDataset::Open(local.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
   if (!r.dataset) throw InputError(path + ": not a raster GDAL reads (" + gdal_error() + ")");
   if (r.dataset->GetRasterCount() < 1) throw InputError(path + ": the raster has no band");
   r.band = r.dataset->GetRasterBand(1);
@@ -179,7 +176,7 @@ std::string proj_grid(const std::string& name) {
 }
 
 std::string geotiff(const LocalRaster& raster) {
-  GDALAllRegister();
+  confine_gdal();
   static std::mutex guard;
   const std::lock_guard<std::mutex> lock(guard);
   const std::string path = "/vsimem/swath-coverage.tif";

@@ -164,6 +164,20 @@ TEST(FieldOgr, WhatIsNotAnAreaIsRefusedInOneSentence) {
   const fs::path bad = scratch() / "bad.wkt";
   std::ofstream(bad) << "POLYGON ((8.54 47.39, 8.541";
   EXPECT_NE(refusal(bad).find("not a WKT geometry"), std::string::npos) << refusal(bad);
+  // A second geometry or stray text after the first is refused, not cut off; a trailing line
+  // break is not text.
+  const std::string square = "POLYGON ((8.54 47.39, 8.541 47.39, 8.541 47.391, 8.54 47.39))";
+  const fs::path two = scratch() / "two.wkt";
+  std::ofstream(two) << square << "\n" << square << "\n";
+  EXPECT_NE(refusal(two).find("text follows the WKT geometry at byte 63"), std::string::npos)
+      << refusal(two);
+  const fs::path trailing = scratch() / "trailing.wkt";
+  std::ofstream(trailing) << square << " junk";
+  EXPECT_NE(refusal(trailing).find("text follows the WKT geometry"), std::string::npos)
+      << refusal(trailing);
+  const fs::path one = scratch() / "one.wkt";
+  std::ofstream(one) << square << "\r\n\n";
+  EXPECT_GT(area(read_field(one).polygon), 0.0);
 }
 
 }  // namespace
