@@ -7,10 +7,13 @@
 namespace swath::apps {
 
 /// `word` as one shell word: as it is when it holds only letters, digits and -_./,:=+@, else in
-/// single quotes (a quote inside written '\'').
+/// single quotes (a quote inside written '\''). Throws base::InputError for a word holding a
+/// control character: a line break ends a job line whatever the quoting.
 std::string shell_word(const std::string& word);
 
-/// A CSV field, in double quotes when it holds a comma, a quote or a line break (RFC 4180).
+/// A CSV text field, in double quotes when it holds a comma, a quote or a line break (RFC 4180);
+/// text a spreadsheet would run as a formula (starting with = + - @, a tab or CR) gets a leading
+/// apostrophe. For text cells only: numbers are written as they are.
 std::string csv_field(const std::string& text);
 
 /// The absolute path of the running program (/proc/self/exe), or `fallback` when it cannot be

@@ -1,6 +1,9 @@
 #include "batch_command.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -156,10 +159,12 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
 }
 
 // Runs `swath plan` with `argv` in this forked process (GDAL and the area file's layer are already
-// loaded: no exec, no second start-up), stderr to `err`; never returns.
-[[noreturn]] void plan_in_child(const std::vector<std::string>& argv, const fs::path& err) {
+// loaded: no exec, no second start-up), stderr to `err_fd`; never returns.
+[[noreturn]] void plan_in_child(const std::vector<std::string>& argv, int err_fd, pid_t parent) {
+  // A batch ended by a signal ends its jobs too (each removes its temporaries as it goes).
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (::getppid() != parent) ::_exit(128 + SIGTERM);  // the parent went before prctl took hold
   const int out_fd = ::open("/dev/null", O_WRONLY);
-  const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   ::dup2(out_fd, 1);
   ::dup2(err_fd, 2);
   std::vector<char*> args;
@@ -174,15 +179,28 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
   ::_exit(code);
 }
 
+// A child's stderr: an anonymous file in memory (memfd), so that no name in a shared folder can
+// be guessed, planted as a symlink or left behind by a signal.
+int child_log() {
+  const int fd = ::memfd_create("swath-batch-log", MFD_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("batch: cannot create a log for a job");
+  return fd;
+}
+
+// The first MiB a child wrote to its log.
+std::string read_child_log(int fd) {
+  std::string text(std::size_t{1} << 20, '\0');
+  const ssize_t n = ::pread(fd, text.data(), text.size(), 0);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  return text;
+}
+
 // Plans every job, `parallel` processes at once; each writes its own sub-directory atomically.
 std::vector<Result> plan_all(const std::vector<std::vector<std::string>>& commands, int parallel,
                              bool progress) {
   std::vector<Result> results(commands.size());
   std::map<pid_t, std::size_t> running;
-  std::map<pid_t, fs::path> err_files;
-  const fs::path scratch =
-      fs::temp_directory_path() / ("swath-batch-" + std::to_string(::getpid()));
-  fs::create_directories(scratch);
+  std::map<pid_t, int> err_files;
   ProgressBar bar(progress, "planning");
   std::size_t next = 0, done = 0;
   auto reap_one = [&] {
@@ -192,18 +210,20 @@ std::vector<Result> plan_all(const std::vector<std::vector<std::string>>& comman
     const std::size_t i = running.at(pid);
     running.erase(pid);
     results[i].exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    const std::string err = base::read_text_file(err_files[pid], "log", 1 << 20);
-    fs::remove(err_files[pid]);
+    const std::string err = read_child_log(err_files[pid]);
+    ::close(err_files[pid]);
+    err_files.erase(pid);
     results[i].message = err.substr(0, err.find('\n'));
     bar.update(static_cast<double>(++done) / static_cast<double>(commands.size()));
   };
   while (next < commands.size() || !running.empty()) {
     while (next < commands.size() && static_cast<int>(running.size()) < parallel) {
-      const fs::path err = scratch / ("err-" + std::to_string(next));
+      const int err = child_log();
       std::cout.flush();
       std::cerr.flush();
+      const pid_t parent = ::getpid();
       const pid_t pid = ::fork();
-      if (pid == 0) plan_in_child(commands[next], err);
+      if (pid == 0) plan_in_child(commands[next], err, parent);
       if (pid < 0) throw std::runtime_error("batch: cannot start a process");
       running[pid] = next;
       err_files[pid] = err;
@@ -211,7 +231,6 @@ std::vector<Result> plan_all(const std::vector<std::vector<std::string>>& comman
     }
     reap_one();
   }
-  fs::remove_all(scratch);
   return results;
 }
 
@@ -312,11 +331,13 @@ int BatchCommand::run() {
   std::vector<std::vector<std::string>> commands;
   for (const Job& j : jobs) commands.push_back(command_line(j, layer_, plan_args_, output_));
   if (emit_jobs_) {
+    std::string lines;  // all of them before any is printed: a refused name prints none
     for (const auto& argv : commands) {
       std::string line;
       for (const std::string& a : argv) line += (line.empty() ? "" : " ") + shell_word(a);
-      std::cout << line << "\n";
+      lines += line + "\n";
     }
+    std::cout << lines;
     return base::kExitSuccess;
   }
   fs::create_directories(output_);

@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <system_error>
@@ -93,7 +94,7 @@ void UdpLink::send(std::span<const std::uint8_t> bytes) {
 std::size_t UdpLink::receive(std::vector<std::uint8_t>& out) {
   std::size_t total = 0;
   std::array<std::uint8_t, 65536> buffer;
-  for (;;) {
+  while (total < kMaxReceiveBytes) {
     sockaddr_in from{};
     socklen_t from_length = sizeof from;
     const ssize_t n = recvfrom(fd_, buffer.data(), buffer.size(), 0,
@@ -111,6 +112,7 @@ std::size_t UdpLink::receive(std::vector<std::uint8_t>& out) {
     out.insert(out.end(), buffer.begin(), buffer.begin() + n);
     total += static_cast<std::size_t>(n);
   }
+  return total;
 }
 
 std::uint16_t UdpLink::local_port() const {
@@ -175,8 +177,9 @@ void TcpLink::send(std::span<const std::uint8_t> bytes) {
 std::size_t TcpLink::receive(std::vector<std::uint8_t>& out) {
   std::size_t total = 0;
   std::array<std::uint8_t, 65536> buffer;
-  while (fd_ >= 0) {
-    const ssize_t n = recv(fd_, buffer.data(), buffer.size(), 0);
+  while (fd_ >= 0 && total < kMaxReceiveBytes) {
+    const ssize_t n =
+        recv(fd_, buffer.data(), std::min(buffer.size(), kMaxReceiveBytes - total), 0);
     if (n > 0) {
       out.insert(out.end(), buffer.begin(), buffer.begin() + n);
       total += static_cast<std::size_t>(n);

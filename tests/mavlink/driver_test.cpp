@@ -13,6 +13,8 @@
 #include <cmath>
 #include <functional>
 #include <system_error>
+#include <thread>
+#include <vector>
 
 #include "swath/geometry/local_frame.hpp"
 #include "swath/mavlink/copter_driver.hpp"
@@ -524,6 +526,53 @@ TEST(TcpLink, FramesSplitAcrossWritesArriveWholeAndAClosedPeerEndsTheLink) {
   gcs.send(Heartbeat{});  // dropped, no SIGPIPE
   close(server);
   EXPECT_THROW(TcpLink::connect("127.0.0.1", port), std::system_error);  // nobody listens now
+}
+
+// A local peer streaming junk as fast as it can: every receive() appends at most
+// kMaxReceiveBytes and leaves the rest in the socket, so a reader's memory stays bounded; every
+// byte still arrives, in order, over later calls.
+TEST(TcpLink, AJunkStreamIsReadInBoundedSlices) {
+  const int server = socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(server, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  ASSERT_EQ(listen(server, 1), 0);
+  socklen_t length = sizeof a;
+  ASSERT_EQ(getsockname(server, reinterpret_cast<sockaddr*>(&a), &length), 0);
+  TcpLink client = TcpLink::connect("127.0.0.1", ntohs(a.sin_port));
+  const int peer = accept(server, nullptr, nullptr);
+  ASSERT_GE(peer, 0);
+  constexpr std::size_t kTotal = 16u << 20;
+  std::thread writer([peer] {
+    std::vector<std::uint8_t> junk(1 << 16);
+    for (std::size_t i = 0; i < junk.size(); ++i) junk[i] = std::uint8_t(i * 131 + 7);
+    for (std::size_t sent = 0; sent < kTotal;) {
+      const ssize_t n = write(peer, junk.data(), std::min(junk.size(), kTotal - sent));
+      if (n <= 0) break;
+      sent += std::size_t(n);
+    }
+    close(peer);
+  });
+  usleep(100'000);  // the socket buffers fill first
+  std::size_t received = 0, largest = 0;
+  std::vector<std::uint8_t> out;
+  for (int tries = 0; tries < 200'000 && !client.closed(); ++tries) {
+    out.clear();
+    const std::size_t n = client.receive(out);
+    ASSERT_EQ(n, out.size());
+    for (std::size_t i = 0; i < n; ++i)
+      ASSERT_EQ(out[i], std::uint8_t(((received + i) % (1 << 16)) * 131 + 7));
+    received += n;
+    largest = std::max(largest, n);
+    if (n == 0) usleep(200);
+  }
+  writer.join();
+  close(server);
+  EXPECT_EQ(received, kTotal);
+  EXPECT_LE(largest, kMaxReceiveBytes);
+  EXPECT_GT(largest, 0u);
 }
 
 TEST(UdpLink, ABusyPortIsRefusedNamingTheAddress) {

@@ -9,13 +9,20 @@
 
 namespace swath::mavlink {
 
+/// The most bytes one receive() appends. A peer that streams faster than the caller reads (junk
+/// from a local process drove a reader without this bound to 16 GB) leaves the rest in the
+/// socket's buffer for the next call, where TCP's flow control holds the sender back; 1 MiB is
+/// ~4,000 full MAVLink 2 frames, far more than a fleet sends between two runtime ticks.
+inline constexpr std::size_t kMaxReceiveBytes = std::size_t{1} << 20;
+
 /// Where datagrams or bytes go and come from. Never blocks.
 class Link {
  public:
   virtual ~Link() = default;
   /// Sends bytes to the peer (dropped if there is no peer yet, as a radio would).
   virtual void send(std::span<const std::uint8_t> bytes) = 0;
-  /// Appends whatever arrived since the last call to `out`; returns the number of bytes appended.
+  /// Appends what arrived since the last call to `out`, at most kMaxReceiveBytes (plus one
+  /// datagram); returns the number of bytes appended.
   virtual std::size_t receive(std::vector<std::uint8_t>& out) = 0;
 };
 
