@@ -1,6 +1,6 @@
 #pragma once
-// One drone, as every program sees it (DESIGN.md §2: one concept, one type): its name, home,
-// speeds and how much it can fly, read from a fleet file (swath plan, swath-fleet) or a drone
+// One drone, as every program sees it (docs/architecture.md: one concept, one type): its name,
+// home, speeds and how much it can fly, read from a fleet file (swath plan, swath-fleet) or a drone
 // profile (swath-energy budget, with energy's battery and power models beside it); and a fleet.
 
 #include <optional>
