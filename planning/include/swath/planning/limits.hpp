@@ -1,5 +1,5 @@
 #pragma once
-// The ranges swath accepts for every number a user gives to `swath plan` (README "Limits").
+// The ranges swath accepts for every number a user gives to `swath plan` (docs/reliability.md).
 // Each is wide enough for any real survey aircraft and camera, and narrow enough that the work
 // the number drives (lines, waypoints, scan steps, files) stays bounded: a value outside is a
 // typo or a unit mistake, refused before any work with base::check_range().

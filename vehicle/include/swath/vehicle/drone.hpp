@@ -13,7 +13,7 @@
 namespace swath::vehicle {
 
 namespace limits {
-// The ranges a fleet file's numbers must lie in (README "Limits").
+// The ranges a fleet file's numbers must lie in (docs/reliability.md).
 inline constexpr base::Range kDrones{1, 100, "drones", "one file set per drone"};
 inline constexpr base::Range kEndurance_s{1, 604'800, "s", "a week"};
 inline constexpr base::Range kBatteryLevel{0, 1, "", "a fraction of a full charge"};
