@@ -40,14 +40,16 @@ foreach(program IN LISTS PROGRAMS)
   swath_man_page("${program}" "${name}" "${description}")
 
   # The subcommands: the lines "  NAME   DESCRIPTION" after "Subcommands:" up to a blank line.
-  string(REPLACE "\n" ";" lines "${help}")
+  # (a description's own semicolons would split CMake's list: held as a placeholder meanwhile)
+  string(REPLACE ";" "@SEMICOLON@" help_text "${help}")
+  string(REPLACE "\n" ";" lines "${help_text}")
   set(in_list FALSE)
   foreach(line IN LISTS lines)
     if(line MATCHES "^[Ss][Uu][Bb][Cc][Oo][Mm][Mm][Aa][Nn][Dd][Ss]:")
       set(in_list TRUE)
     elseif(in_list AND line MATCHES "^  ([a-z][a-z0-9-]*)[ \t]+(.*)$")
       set(sub "${CMAKE_MATCH_1}")
-      set(sub_description "${CMAKE_MATCH_2}")
+      string(REPLACE "@SEMICOLON@" ";" sub_description "${CMAKE_MATCH_2}")
       set(wrapper "${wrappers}/${name}-${sub}")
       file(WRITE "${wrapper}" "#!/bin/sh\nexec '${program}' ${sub} \"$@\"\n")
       file(CHMOD "${wrapper}" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ
