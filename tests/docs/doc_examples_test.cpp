@@ -3,7 +3,7 @@
 //
 // An example is a fenced block whose first line starts with "$ ": each "$ " line (continued on
 // the next line while it ends in a backslash) is run by /bin/sh from a scratch directory that
-// links the source tree's top-level entries, with the built programs first on PATH; what it
+// links the source tree's share/, plans/ and tests/, with the built programs first on PATH; what it
 // prints on stdout and stderr together must equal the lines shown below it, up to the next "$ "
 // line (a blank line just before that one only separates the two). `$?` is the previous
 // command's exit status, so "$ echo $?" shows it. A page runs its examples in order in one
@@ -141,7 +141,11 @@ std::vector<Example> examples_of(const std::vector<std::string>& lines) {
   return examples;
 }
 
-/// A scratch directory whose top-level entries link the source tree's (share/, plans/, ...).
+/// The source tree's folders an example reads from: linked into its scratch directory. Only
+/// these, so that an example's output directory (`-o fleet`) never lands in the source tree.
+const char* const kDataFolders[] = {"share", "plans", "tests"};
+
+/// A scratch directory for a page's examples, with links to the data folders.
 fs::path scratch_for(const std::string& page) {
   std::string name = page;
   std::replace(name.begin(), name.end(), '/', '-');
@@ -149,10 +153,8 @@ fs::path scratch_for(const std::string& page) {
       fs::temp_directory_path() / ("swath-doc-examples-" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
-  for (const auto& entry : fs::directory_iterator(SWATH_SOURCE_DIR)) {
-    const std::string entry_name = entry.path().filename().string();
-    if (starts_with(entry_name, ".") || starts_with(entry_name, "build")) continue;
-    fs::create_symlink(entry.path(), dir / entry_name);
+  for (const char* folder : kDataFolders) {
+    fs::create_symlink(fs::path(SWATH_SOURCE_DIR) / folder, dir / folder);
   }
   return dir;
 }
@@ -229,6 +231,8 @@ TEST_P(DocExamples, PrintWhatThePageShows) {
     }
   }
   std::cout << page << ": " << run << " commands run\n";
+  // Kept after a failure, to look at what the commands wrote.
+  if (!HasFailure()) fs::remove_all(dir);
   if (!updating()) return;
   // Rewrite the examples from the last one up, so that earlier line numbers stay valid.
   for (auto e = examples.rbegin(); e != examples.rend(); ++e) {
