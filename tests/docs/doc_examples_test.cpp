@@ -28,6 +28,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace {
@@ -232,7 +233,11 @@ TEST_P(DocExamples, PrintWhatThePageShows) {
   }
   std::cout << page << ": " << run << " commands run\n";
   // Kept after a failure, to look at what the commands wrote.
-  if (!HasFailure()) fs::remove_all(dir);
+  if (!HasFailure()) {
+    fs::remove_all(dir);
+    std::error_code not_empty;  // the other pages' directories may still be there
+    fs::remove(dir.parent_path(), not_empty);
+  }
   if (!updating()) return;
   // Rewrite the examples from the last one up, so that earlier line numbers stay valid.
   for (auto e = examples.rbegin(); e != examples.rend(); ++e) {
