@@ -1,4 +1,4 @@
-// The control task's costs (DESIGN.md §17.7: one control execution ≤ 3 µs): one execution with
+// The control task's costs (docs/performance.md: one control execution ≤ 3 µs): one execution with
 // the complementary estimator and every sensor fresh, the mixer alone, and one simulated second
 // of the flight computer under TT400 with 1 kHz samples and the default background work.
 
@@ -58,7 +58,7 @@ void ComputerSecondTt400(benchmark::State& st) {
 }
 BENCHMARK(ComputerSecondTt400)->Unit(benchmark::kMicrosecond);
 
-// DESIGN.md §17.7's target: 10 minutes of flight at 1 ms steps in ≤ 2 s on one core — the whole
+// docs/performance.md target: 10 minutes of flight at 1 ms steps in ≤ 2 s on one core — the whole
 // simulation (plant, sensors, driver, computer model, TT400 control task, carrot, battery,
 // metrics), the rows computed but not written. Arg: the environment (0 calm, 1 arch).
 void TenMinutesOfFlight(benchmark::State& st) {

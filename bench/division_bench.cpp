@@ -4,8 +4,8 @@
 //   until each band is within 1 % of its area; eq. 7-8) beside it.
 //
 //   swath_division_bench --balance-table
-// instead prints the balance table of issue 18 (DESIGN.md §16): meadow, vineyard and orchard with
-// three equal drones and with three-quads, path and region division, --balance makespan: each
+// instead prints the balance table of issue 18 (docs/swath-plan.md): meadow, vineyard and orchard
+// with three equal drones and with three-quads, path and region division, --balance makespan: each
 // drone's flight time and the longest over the shortest (as summary.json reports them), and the
 // plan's wall time. BM_BalancedPlan times the same plans.
 //   swath_division_bench --balance-corpus

@@ -1,4 +1,4 @@
-// The fleet schedulers (DESIGN.md §18.12): one decision for 100 drones and 1,000 requests
+// The fleet schedulers (docs/swath-fleet.md): one decision for 100 drones and 1,000 requests
 // (target: simulated annealing p50 ≤ 20 ms, p99 ≤ 50 ms), beside the exact Hungarian and greedy;
 // one GMF forecast over 20 histories of 2,000 nodes (target ≤ 10 ms) beside constant velocity.
 #include <benchmark/benchmark.h>
@@ -49,7 +49,7 @@ BENCHMARK(Decision)
     ->Args({0, 10, 50})
     ->Unit(benchmark::kMillisecond);
 
-// SA decisions on 50 different 100 × 1,000 snapshots: the distribution DESIGN.md §18.12 bounds
+// SA decisions on 50 different 100 × 1,000 snapshots: the distribution docs/swath-fleet.md bounds
 // (p50 ≤ 20 ms, p99 ≤ 50 ms), as counters.
 void DecisionPercentiles(benchmark::State& st) {
   std::vector<Snapshot> snapshots;
@@ -78,7 +78,7 @@ void DecisionPercentiles(benchmark::State& st) {
 }
 BENCHMARK(DecisionPercentiles)->Iterations(1)->Unit(benchmark::kMillisecond);
 
-// One whole simulated case study (DESIGN.md §18.12: ≤ 1 s), each bundled world with its app.
+// One whole simulated case study (docs/swath-fleet.md: ≤ 1 s), each bundled world with its app.
 void CaseStudy(benchmark::State& st) {
   static const char* apps[] = {"road", "wifi", "hotspot", "multiplexing", "tracking"};
   const std::string app_name = apps[st.range(0)];
@@ -111,7 +111,7 @@ void CaseStudy(benchmark::State& st) {
 }
 BENCHMARK(CaseStudy)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
-// The cost of one tick with nothing to schedule (DESIGN.md §18.12: idle tick ≤ 20 µs): an app
+// The cost of one tick with nothing to schedule (docs/swath-fleet.md: idle tick ≤ 20 µs): an app
 // whose main waits 0.1 s of computation 10,000 times beside ten idle drones, so every tick has
 // one event and no request; time per tick = run time / 10,000.
 void IdleTick(benchmark::State& st) {

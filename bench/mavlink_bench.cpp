@@ -1,5 +1,5 @@
-// MAVLink codec throughput (DESIGN.md §18.12: >= 1 M frames/s): the stream parser on a capture of
-// random frames of all 23 messages (with MAVLink 1 frames and 5 % noise between frames), fed in
+// MAVLink codec throughput (docs/swath-fleet.md: >= 1 M frames/s): the stream parser on a capture
+// of random frames of all 23 messages (with MAVLink 1 frames and 5 % noise between frames), fed in
 // 1,400-byte datagrams; and packing + serializing a GLOBAL_POSITION_INT.
 #include <benchmark/benchmark.h>
 

@@ -75,8 +75,8 @@ void BM_StageRead(benchmark::State& state) {
     benchmark::DoNotOptimize(geometry::parse_field(text, geometry::FieldFormat::geojson, "bench"));
 }
 
-// DESIGN.md §13's target set: classify + exact min height + sweep (+ mission) on a field already
-// read.
+// docs/performance.md target set: classify + exact min height + sweep (+ mission) on a field
+// already read.
 void BM_StageGeometry(benchmark::State& state) {
   const geometry::Field field = geometry::parse_field(field_geojson(std::size_t(state.range(0))),
                                                       geometry::FieldFormat::geojson, "bench");

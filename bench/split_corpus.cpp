@@ -1,5 +1,5 @@
-// The split corpus table (issue 18, DESIGN.md §16): split against hull over generated families of
-// areas a pilot meets, with coverage by the tests' independent footprint oracle. Not a Google
+// The split corpus table (issue 18, docs/swath-plan.md): split against hull over generated families
+// of areas a pilot meets, with coverage by the tests' independent footprint oracle. Not a Google
 // Benchmark: a quality table, printed as Markdown, with every row as CSV on request.
 //
 //   swath_split_corpus [--per-family N] [--seed S] [--csv FILE] [--write DIR]

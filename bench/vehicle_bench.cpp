@@ -1,5 +1,5 @@
-// The plant's cost per simulated second (DESIGN.md §17.7: 10 min of flight at 1 ms steps in <= 2 s
-// on one core with the controller; the plant is most of it): the bare rigid body, the body with
+// The plant's cost per simulated second (docs/performance.md: 10 min of flight at 1 ms steps in <=
+// 2 s on one core with the controller; the plant is most of it): the bare rigid body, the body with
 // its ESCs, wind and five sensors on the event clock, in calm air and in ARCH's wind.
 #include <benchmark/benchmark.h>
 

@@ -209,11 +209,11 @@ const std::vector<Target>& targets() {
          });
        },
        {"tests/bad-input/seeds/trigger-data.csv"}},
-      // MAVLink from a link (DESIGN.md §18.6): the frame parser and every message's decoder.
+      // MAVLink from a link (docs/swath-fleet.md): the frame parser and every message's decoder.
       {"mavlink_frames",
        [](const std::string& t) { mavlink_frames(t); },
        {"tests/bad-input/seeds/mavlink-frames.bin"}},
-      // GIS areas: WKT through OGR's parser, then swath's checks (DESIGN.md §15).
+      // GIS areas: WKT through OGR's parser, then swath's checks (docs/swath-plan.md).
       {"ogr_wkt",
        [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
        {"tests/bad-input/seeds/field.wkt"}},

@@ -1,5 +1,5 @@
 #pragma once
-// The options that choose one area from a GIS file holding several (DESIGN.md §15): shared by
+// The options that choose one area from a GIS file holding several (docs/swath-plan.md): shared by
 // every command that reads an area.
 
 #include <CLI/CLI.hpp>

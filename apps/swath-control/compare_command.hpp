@@ -8,7 +8,7 @@
 namespace swath::apps {
 
 /// swath-control compare MISSION|paper -o DIR: paper 002's experiment (§7) on our own missions —
-/// every environment × vehicle × mode × seed, paired by seed (DESIGN.md §17.5, §17.6).
+/// every environment × vehicle × mode × seed, paired by seed (docs/swath-control.md).
 class ControlCompareCommand : public Command {
  public:
   const char* name() const override { return "compare"; }

@@ -1,8 +1,8 @@
 #pragma once
-// swath-control's pictures (DESIGN.md §17.5): the flight over the mission coloured by cross-track
-// error with the area and no-fly zones (trajectory.png); attitude and its setpoint, and the
-// tracking error, over time (attitude.png); power by consumer, state of charge and executions per
-// second (energy.png).
+// swath-control's pictures (docs/swath-control.md): the flight over the mission coloured by
+// cross-track error with the area and no-fly zones (trajectory.png); attitude and its setpoint, and
+// the tracking error, over time (attitude.png); power by consumer, state of charge and executions
+// per second (energy.png).
 
 #include <vector>
 

@@ -18,9 +18,9 @@ int main(int argc, char** argv) {
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",
                      "Exit codes: 0 the flight ended as asked (completed, the reserve reached with "
-                     "--loop, or the time limit); 2 bad input or usage (the message names the "
-                     "file, the place and the problem; nothing is written); 3 the output "
-                     "directory cannot be used; 4 the battery ran empty before the end of the "
+                     "--loop, or the time limit); 2 bad input or usage, or an output directory "
+                     "that cannot be used (the message names the file, the place and the "
+                     "problem; nothing is written); 4 the battery ran empty before the end of the "
                      "mission; 5 the vehicle lost control (tilt, ground, or 50 m off for 5 s; the "
                      "files are still written); 1 unexpected failure.",
                      commands, argc, argv);

@@ -9,7 +9,7 @@
 namespace swath::apps {
 
 /// swath-control run MISSION -o DIR: one mission flown by the simulated multirotor and its
-/// control task (DESIGN.md §17.5).
+/// control task (docs/swath-control.md).
 class ControlRunCommand : public Command {
  public:
   const char* name() const override { return "run"; }

@@ -7,8 +7,8 @@
 namespace swath::apps {
 
 /// swath-control sweep MISSION --param FILE.KEY=V1,V2,..|LO:HI:STEP -o DIR: one key of the
-/// vehicle, scheduler or environment file over values, each flown with seeds 1..N (DESIGN.md
-/// §17.5; T6's P_run and T_failsafe sweeps).
+/// vehicle, scheduler or environment file over values, each flown with seeds 1..N
+/// (docs/swath-control.md; T6's P_run and T_failsafe sweeps).
 class ControlSweepCommand : public Command {
  public:
   const char* name() const override { return "sweep"; }

@@ -1,5 +1,5 @@
 #pragma once
-// swath-fleet's pictures (DESIGN.md §18.10): tracks.png — the world (fence, road, source, sites,
+// swath-fleet's pictures (docs/swath-fleet.md): tracks.png — the world (fence, road, source, sites,
 // access points), each drone's track with direction arrows, where it sensed, where requests were
 // cancelled, a scale bar and north; gantt.png — a row per drone over time: flying, acting,
 // hovering, held for a task, returning, charging, lost or unreachable.

@@ -8,7 +8,7 @@
 namespace swath::apps {
 
 /// swath-fleet forecasts APP --world W --seeds N -o DIR: how well each forecaster predicts the
-/// app's next requests and cancellations on held-out runs (DESIGN.md §18.12 item 2): N runs, each
+/// app's next requests and cancellations on held-out runs (docs/swath-fleet.md): N runs, each
 /// scored with the other N − 1 as history (leave one out).
 class FleetForecastsCommand : public Command {
  public:

@@ -1,5 +1,5 @@
 #pragma once
-// swath-fleet replay RUN.. -o DIR (DESIGN.md §18.8, §18.10): trace replay of recorded runs — each
+// swath-fleet replay RUN.. -o DIR (docs/swath-fleet.md): trace replay of recorded runs — each
 // run's dtg.json played back as an application (fleet/trace_replay.hpp) in the run's own world,
 // with its fleet, scheduler, weights and seed unless the options say otherwise.
 

@@ -6,7 +6,8 @@
 
 namespace swath::apps {
 
-/// swath-fleet run APP --world W -o DIR: one application on a simulated fleet (DESIGN.md §18.10).
+/// swath-fleet run APP --world W -o DIR: one application on a simulated fleet
+/// (docs/swath-fleet.md).
 class FleetRunCommand : public Command {
  public:
   const char* name() const override { return "run"; }
@@ -37,7 +38,7 @@ class FleetAppsCommand : public Command {
   int run() override;
 };
 
-/// swath-fleet check RUN_DIR: the independent judge of a run's events.jsonl (DESIGN.md §18.12).
+/// swath-fleet check RUN_DIR: the independent judge of a run's events.jsonl (docs/swath-fleet.md).
 class FleetCheckCommand : public Command {
  public:
   const char* name() const override { return "check"; }

@@ -1,5 +1,5 @@
 #pragma once
-// swath-fleet's scale-out (DESIGN.md §18.11): a run is one process with deterministic files, so
+// swath-fleet's scale-out (docs/swath-fleet.md): a run is one process with deterministic files, so
 // many runs are spread by an existing engine. `sweep SPEC` prints one command line per run (GNU
 // parallel locally or over SSH, a Slurm job array); `collect RUN... -o DIR` merges the runs'
 // summaries into one table and refuses runs of another swath version or another configuration.

@@ -352,7 +352,7 @@ int FleetTuneCommand::run() {
   return base::kExitSuccess;
 }
 
-// ---- tune ask / tell: the same search as command lines (DESIGN.md §18.11) -------------------
+// ---- tune ask / tell: the same search as command lines (docs/swath-fleet.md) -------------------
 
 namespace {
 

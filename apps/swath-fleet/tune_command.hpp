@@ -1,14 +1,14 @@
 #pragma once
-// swath-fleet tune (DESIGN.md §18.8): the sub-utility weights of `predictive` (sa + GMF + relief)
-// chosen by replaying the app in its worlds. Trials draw the free weights log-uniformly in
+// swath-fleet tune (docs/swath-fleet.md): the sub-utility weights of `predictive` (sa + GMF +
+// relief) chosen by replaying the app in its worlds. Trials draw the free weights log-uniformly in
 // [1e-3, 1e3] or 0; successive halving over the tuning seeds keeps the better half after each
 // seed; the winner, the default weights and `reactive` are re-scored on held-out seeds.
 // `tune ask STATE` / `tune tell STATE RUN..` split the same search into command lines for an
-// engine that runs them (GNU parallel, Slurm; DESIGN.md §18.11): ask prints the runs of the next
+// engine that runs them (GNU parallel, Slurm; docs/swath-fleet.md): ask prints the runs of the next
 // rung, tell feeds their run directories back; after the last rung tell writes weights.yaml and
 // tune.csv as tune does. `--replay trace` scores the trials by trace replay of the tuning seeds'
 // reactive runs instead of re-running the app (valid where the graph does not depend on the
-// schedule, DESIGN.md §18.8).
+// schedule, docs/swath-fleet.md).
 
 #include <cstdint>
 #include <string>

@@ -10,7 +10,7 @@ namespace swath::apps {
 
 /// `swath batch AREAS -o DIR [--jobs N] [--emit-jobs] [PLAN OPTIONS...]`: every area of a
 /// multi-area GIS file (or every area file of a directory) planned as `swath plan` would, one
-/// sub-directory each, with batch.csv and batch.geojson (DESIGN.md §15).
+/// sub-directory each, with batch.csv and batch.geojson (docs/swath-plan.md).
 class BatchCommand : public Command {
  public:
   const char* name() const override { return "batch"; }

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<CamerasCommand>());
   return run_program("swath", "swath: drone area survey planner",
                      "Exit codes: 0 success; 2 bad input or usage (the message names the file, the "
-                     "place and the problem); 1 unexpected failure.",
+                     "place and the problem; nothing is written); 3 batch: some areas could not "
+                     "be planned (their rows in batch.csv say why); 1 unexpected failure.",
                      commands, argc, argv);
 }

@@ -531,7 +531,7 @@ std::vector<std::pair<std::string, std::string>> PlanCommand::files(
     files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
   }
   if (coverage_tif_) files.push_back({"coverage.tif", coverage_tif(plan, coverage_cell_m_)});
-  // summary.json lists the whole set (DESIGN.md §14 "Output directory").
+  // summary.json lists the whole set (docs/swath-plan.md).
   std::vector<std::string> set_names;
   for (const auto& f : files) set_names.push_back(f.first);
   files[1].second = planning::summary_json(plan, set_names);

@@ -14,7 +14,7 @@ constexpr double kFixAccelerationTimeConstant_s = 0.4;
 
 // The scalar measurement z = h·x of variance r: Kalman update with the covariance in Joseph form,
 // (I − K h) P (I − K h)ᵀ + K r Kᵀ, which stays symmetric positive definite under rounding (papers
-// README: the correct sign of paper 004's update, in its safe form).
+// docs/swath-energy.md: the correct sign of paper 004's update, in its safe form).
 void scalar_update(AxisFilter& a, double h0, double h1, double z, double r) {
   const double ph0 = a.p_pp * h0 + a.p_pv * h1;  // P hᵀ
   const double ph1 = a.p_pv * h0 + a.p_vv * h1;

@@ -67,7 +67,7 @@ FlightMission from_waypoints(const energy::WaypointMission& m, const MissionOpti
   };
   if (m.points.empty()) throw InputError(path + ": drone " + m.drone + " has no waypoint");
   // Take-off and landing are not flown: the flight starts in hover above home at the first
-  // point's height and ends there when the mission returns home (DESIGN.md §17.2 "Setpoints").
+  // point's height and ends there when the mission returns home (docs/swath-control.md).
   std::vector<Vec3> points{{0, 0, height(0)}};
   for (std::size_t i = 0; i < m.points.size(); ++i)
     points.push_back({m.points[i].x, m.points[i].y, height(i)});

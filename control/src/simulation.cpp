@@ -387,8 +387,8 @@ class Flight {
     return false;
   }
 
-  // The oracle (DESIGN.md §17.3, simulation only): the control task copied and run on the last
-  // execution's snapshot with only this sensor's value replaced; the output changing is the
+  // The oracle (docs/swath-control.md, simulation only): the control task copied and run on the
+  // last execution's snapshot with only this sensor's value replaced; the output changing is the
   // sample's true label. Draws no random numbers, changes no state.
   void ask_oracle(const vehicle::DeliveredSample& d, bool fired) {
     TaskState state = snapshot_state_;

@@ -1,4 +1,4 @@
-// q(i→j): how likely finishing task i cancels task j (DESIGN.md §18.4 step 5).
+// q(i→j): how likely finishing task i cancels task j (docs/swath-fleet.md).
 
 #include <algorithm>
 #include <cmath>

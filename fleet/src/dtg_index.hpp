@@ -1,6 +1,6 @@
 #pragma once
 // Adjacency of a DTG for the forecaster: parents (backward edges the signatures follow), what a
-// node spawned, which sync nodes await a task, and what a task's "next" is (DESIGN.md §18.4).
+// node spawned, which sync nodes await a task, and what a task's "next" is (docs/swath-fleet.md).
 
 #include <cstddef>
 #include <vector>

@@ -28,7 +28,7 @@ geometry::GeoPoint geo(const YamlMap& m) {
           m.number("alt", 0, -500, 9000)};
 }
 
-// A drone's `mavlink: {url: udp:HOST:PORT | tcp:HOST:PORT, sysid: 1..255}` (DESIGN.md §18.10):
+// A drone's `mavlink: {url: udp:HOST:PORT | tcp:HOST:PORT, sysid: 1..255}` (docs/swath-fleet.md):
 // --vehicles' grammar; sysid defaults to the drone's place + 1 as there. The system id is given
 // once: in `sysid`, or as the url's /SYSID.
 VehicleAddress vehicle_of(const YamlMap& drone, std::size_t index) {

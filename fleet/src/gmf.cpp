@@ -1,4 +1,4 @@
-// GMF: graph-matching forecasts (paper 000 §3.2.2; DESIGN.md §18.4). For each of the newest
+// GMF: graph-matching forecasts (paper 000 §3.2.2; docs/swath-fleet.md). For each of the newest
 // running task nodes f, the past task nodes whose backward neighbourhoods look like f's
 // (Weisfeiler–Lehman signatures, deepened while enough candidates remain) are ranked by how well
 // one rigid motion of the plane carries their located neighbours onto f's; what the best ten's

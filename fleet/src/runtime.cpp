@@ -35,7 +35,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 enum class ActionType { fly_to = 0, sense = 1, hover = 2, custom = 3 };
 enum class ActionState { pending, running, completed, delivered, dropped };
 enum class TaskStatus { running, done, cancelled, failed };
-// positioning: flying to a forecast place (speculation, DESIGN.md §18.5), serving nothing.
+// positioning: flying to a forecast place (speculation, docs/swath-fleet.md), serving nothing.
 enum class Mode { landed, hovering, flying, positioning, acting, held, returning, charging, lost };
 
 const char* mode_name(Mode m, bool link_up) {
@@ -108,7 +108,7 @@ struct Task {
   std::vector<int> drones_used;
   int sync_node = -1;  // the sync node its latest awaits formed; -1 after it did something else
   // It spawned or cancelled since that sync node: edges still leave the node, but its next await
-  // is a new one (an await after work is the next iteration's sync, DESIGN.md §18.3).
+  // is a new one (an await after work is the next iteration's sync, docs/swath-fleet.md).
   bool issued_since_sync = false;
   bool requested = false;  // a request_visible logged for the current head
   int segment = 0;         // head segments made visible so far
@@ -321,7 +321,7 @@ class Runtime final : public detail::Core {
   void position(Drone& d, const ForecastRequest& f);
   void leave_spot(Drone& d);
   void note_hits(const Vec3& request_at, int task);
-  // Relief (DESIGN.md §18.5, Example 5).
+  // Relief (docs/swath-fleet.md, Example 5).
   void relieve();
   bool working(const Drone& d) const;
   bool idle(const Drone& d) const;
@@ -398,7 +398,7 @@ class Runtime final : public detail::Core {
   std::uint64_t seq_ = 0;
   double next_state_log_ = 0;
   RunRecord record_;
-  // The DTG as it grows (DESIGN.md §18.3): task nodes are tasks_, sync nodes and edges here.
+  // The DTG as it grows (docs/swath-fleet.md): task nodes are tasks_, sync nodes and edges here.
   std::vector<SyncNode> syncs_;
   std::vector<Edge> edges_;
   bool dtg_changed_ = true;  // since the last forecast
@@ -406,7 +406,7 @@ class Runtime final : public detail::Core {
   // step, so replay needs to know which tasks had ended before each step (dtg.json "seq").
   std::uint64_t script_seq_ = 0;
 
-  // Forecasting and speculation (DESIGN.md §18.4–18.5).
+  // Forecasting and speculation (docs/swath-fleet.md).
   std::unique_ptr<Forecaster> forecaster_;
   std::vector<ForecastRequest> forecasts_;
   Dtg live_;                     // the DTG at the last forecast (q reads its nodes)
@@ -1403,7 +1403,7 @@ void Runtime::position(Drone& d, const ForecastRequest& f) {
   start_leg(d, to, Mode::positioning, now_);
 }
 
-// ---- relief (DESIGN.md §18.5, Example 5) ---------------------------------------------------
+// ---- relief (docs/swath-fleet.md, Example 5) ---------------------------------------------------
 // A drone at work that must soon head home is relieved: the idle drone that gets to its place
 // soonest is sent there when the working drone's leave time is within that flight plus
 // relief_margin_s, and waits there, out of the scheduler's hands, until the working drone leaves
@@ -1648,7 +1648,7 @@ Task& Runtime::start_main() {
   return main;
 }
 
-// Requests waiting too long for any drone fail visibly (DESIGN.md §18.7).
+// Requests waiting too long for any drone fail visibly (docs/swath-fleet.md).
 void Runtime::fail_unserved() {
   for (Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested &&
@@ -1765,7 +1765,7 @@ void Runtime::finish_run(const Task& main) {
            {"completion_time_s", round6(record_.completion_time_s)}});
 }
 
-// dtg.json: task nodes, sync nodes, edges (DESIGN.md §18.3).
+// dtg.json: task nodes, sync nodes, edges (docs/swath-fleet.md).
 std::string Runtime::dtg_json() const {
   auto id = [](const DtgRef& r) { return (r.sync ? "s" : "t") + std::to_string(r.number); };
   json nodes = json::array();
@@ -1879,7 +1879,7 @@ Dtg Runtime::live_dtg() const {
   return g;
 }
 
-// The tick loop (DESIGN.md §18.3): resume what is ready, schedule when inputs changed, jump to
+// The tick loop (docs/swath-fleet.md): resume what is ready, schedule when inputs changed, jump to
 // the next thing that happens, let it happen.
 RunRecord Runtime::run() {
   Task& main = start_main();

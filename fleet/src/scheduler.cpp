@@ -180,8 +180,9 @@ class Annealing final : public Scheduler {
   AnnealingSettings settings_;
 };
 
-// One annealing search (DESIGN.md §18.5): the state (each drone's target, each target's holder),
-// the candidates, the moves with their incremental ΔU, the temperature and the cooling loop.
+// One annealing search (docs/swath-fleet.md): the state (each drone's target, each target's
+// holder), the candidates, the moves with their incremental ΔU, the temperature and the cooling
+// loop.
 class AnnealingRun {
  public:
   AnnealingRun(const Snapshot& s, const AnnealingSettings& settings, vehicle::SplitMix64& rng)

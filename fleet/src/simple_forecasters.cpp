@@ -1,4 +1,4 @@
-// The forecasters GMF is measured against (DESIGN.md §18.4): none, and constant velocity — each
+// The forecasters GMF is measured against (docs/swath-fleet.md): none, and constant velocity — each
 // kind's newest batch of tasks moved on by the displacement between its two newest batches.
 
 #include <algorithm>

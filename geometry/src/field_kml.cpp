@@ -23,7 +23,7 @@ pugi::xml_node child(const pugi::xml_node& node, std::string_view name) {
 }
 
 // Deeper nesting than any KML writer produces; a file nested 50,000 deep is refused instead of
-// walked (DESIGN.md §12 "XML structure").
+// walked (docs/reliability.md).
 constexpr int kMaxDepth = 256;
 
 // Every element called `name`, in document order; iterative (no recursion on the file's depth).

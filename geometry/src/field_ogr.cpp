@@ -1,6 +1,6 @@
-// Area files through GDAL/OGR (DESIGN.md §15): any vector format GDAL opens, one polygon chosen by
-// layer and feature, reprojected to WGS84 longitude/latitude by OGR itself. GDAL's headers stay in
-// this file, which is the GIS module libswath_gis.so (gis_module.hpp says why).
+// Area files through GDAL/OGR (docs/swath-plan.md): any vector format GDAL opens, one polygon
+// chosen by layer and feature, reprojected to WGS84 longitude/latitude by OGR itself. GDAL's
+// headers stay in this file, which is the GIS module libswath_gis.so (gis_module.hpp says why).
 
 #include <cpl_vsi.h>
 #include <gdal.h>

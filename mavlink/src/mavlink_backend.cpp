@@ -200,7 +200,7 @@ void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s
 
 void MavlinkBackend::act(int drone, const std::string&, bool sense) {
   // Hover, custom: GUIDED holds the place. A sense: the vehicle's photo (the reading itself is the
-  // world's sensor at the reported position, DESIGN.md §18.6).
+  // world's sensor at the reported position, docs/swath-fleet.md).
   Vehicle& v = at(drone);
   if (sense && v.driver) v.driver->capture_image();
 }

@@ -911,7 +911,7 @@ class LaneDivision {
 constexpr double kSlack = 1.02;  // how much longer than the smallest makespan a balance may be
 // A spread (longest over shortest flight) this narrow is not worth searching further.
 constexpr double kGoodSpread = 1.002;
-// The cut lanes' parts from their other ends are tried only above this spread (DESIGN.md §16's
+// The cut lanes' parts from their other ends are tried only above this spread (docs/swath-plan.md
 // bound for typical fields): below it they bought little and cost much (the meadow with
 // three-quads at 1.012 planned in 339 ms instead of 34 ms, for the same shares).
 constexpr double kFlipSpread = 1.02;

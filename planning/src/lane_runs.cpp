@@ -372,8 +372,8 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   // 3. Slivers: short lanes whose every sample another lane sees too, shortest first. A grid lane
   // only at the area's edge across the lanes: no lane kept on one of its neighbouring rows
   // overlaps it. Between lanes on both sides, dropping it would leave two spacings between them,
-  // the side overlap lost (DESIGN.md §16: a sliver is a strip narrower than the footprint, not a
-  // short lane; lanes across an arm narrower than two footprints are all short).
+  // the side overlap lost (docs/swath-plan.md: a sliver is a strip narrower than the footprint, not
+  // a short lane; lanes across an arm narrower than two footprints are all short).
   std::vector<std::size_t> row_start(ys.size() + 1, 0);  // grid lanes come first, by row
   for (const RunLane& l : lanes)
     if (l.row >= 0) ++row_start[std::size_t(l.row) + 1];

@@ -173,7 +173,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
       shorter.end = shorter.start;  // marked for removal
     }
   // A piece no grid ordinate crosses (its lanes are the mid-height one and protrusion fills) that
-  // the footprint of one grid lane of another piece sees whole gets no lane (DESIGN.md §16,
+  // the footprint of one grid lane of another piece sees whole gets no lane (docs/swath-plan.md,
   // slivers by coverage): e.g. the 4 cm wedge that an edge 0.004 degrees off the lanes leaves
   // beside a reflex vertex got two lanes 305 and 458 m long beside the grid lane that sees it.
   const double half = s.footprint_width_m / 2 + 1e-9;
@@ -490,7 +490,7 @@ SplitPlan ordered_plan(Candidate& c, Point2 home, RoutedMetric& routed) {
   return plan;
 }
 
-// ---- A direction per region (issue 18, DESIGN.md §16) ------------------------------------
+// ---- A direction per region (issue 18, docs/swath-plan.md) ------------------------------------
 
 // Directions worth trying for one region: its four longest edges' (its hull's included), `also`
 // and a scan every 30 degrees; closer than 0.25 degrees count once. Few: every one is a lane_runs.

@@ -1,4 +1,4 @@
-// The output set (DESIGN.md §14 "Output directory"): whole sets switched in, nothing foreign
+// The output set (docs/swath-plan.md): whole sets switched in, nothing foreign
 // replaced, stale files of swath's own previous set removed, planted names refused, nothing left
 // behind by a refusal.
 #include "swath/base/output_set.hpp"

@@ -1,6 +1,6 @@
 // swath-control run as a user runs it: swath's own plan flown in wind and checked against the
-// plan's area, the files parsed back, the exit codes of DESIGN.md §17.5, the same bytes for the
-// same seed, and the picture's pixels where the start and the no-fly zone are.
+// plan's area, the files parsed back, the exit codes of docs/swath-control.md, the same bytes for
+// the same seed, and the picture's pixels where the start and the no-fly zone are.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -74,7 +74,7 @@ TEST(FleetCli, SameSeedSameBytesFromOneOrFourProcesses) {
   EXPECT_NE(read_text(base + "/other/summary.json"), read_text(base + "/one/summary.json"));
 }
 
-// Scale-out (DESIGN.md §18.11): sweep prints one line per run, GNU parallel runs them (two at a
+// Scale-out (docs/swath-fleet.md): sweep prints one line per run, GNU parallel runs them (two at a
 // time), each run's files equal a direct run's, and collect's table holds each run's own figures;
 // runs of another configuration, another version or a repeated (scheduler, seed) are refused.
 TEST(FleetCli, SweepLinesRunUnderGnuParallelAndCollectMergesThem) {
@@ -222,7 +222,7 @@ TEST(FleetCli, MavlinkBackendInputsAreRefusedInOneSentence) {
   }
 }
 
-// The fleet file's per-drone mavlink {url, sysid} (DESIGN.md §18.10) flies `run --backend
+// The fleet file's per-drone mavlink {url, sysid} (docs/swath-fleet.md) flies `run --backend
 // mavlink` without --vehicles; --vehicles overrides it; summary.json says the backend and which
 // vehicle flew which drone. No vehicle answers on these ports: the wall-clock run ends at
 // --max-time (exit 4, files written), which is all the addresses need.
@@ -548,7 +548,7 @@ TEST(FleetCli, RenderRedrawsARunFromItsFilesByteForByte) {
   }
 }
 
-// swath-fleet tune (DESIGN.md §18.8) on case 1 with a small budget. weights.yaml reads back as
+// swath-fleet tune (docs/swath-fleet.md) on case 1 with a small budget. weights.yaml reads back as
 // summary.json's winner; tune.csv holds the defaults, reactive's weights (no forecast terms) and
 // the halving's rungs (8 trials on the first tuning seed, 4 on the second); the winner has the
 // smallest mean of the trials that ran both. Then an independent path: `swath-fleet run` with
@@ -618,9 +618,9 @@ TEST(FleetCli, TuneKeepsTheBetterHalfAndRunReproducesItsHeldOutTime) {
   EXPECT_NEAR(replayed["completion_time_s"].get<double>(), std::stod(held[1][3]), 1e-3);
 }
 
-// swath-fleet replay (DESIGN.md §18.8): a run's dtg.json played back in the run's own world with
-// its fleet, scheduler and seed gives the run's events byte for byte; with another scheduler it
-// gives what `run` with that scheduler gives (case 1's graph does not depend on the schedule).
+// swath-fleet replay (docs/swath-fleet.md): a run's dtg.json played back in the run's own world
+// with its fleet, scheduler and seed gives the run's events byte for byte; with another scheduler
+// it gives what `run` with that scheduler gives (case 1's graph does not depend on the schedule).
 // Refused, writing nothing: the wifi app (its cancels depend on the schedule) unless --force, a
 // directory that is no run, runs of two versions.
 TEST(FleetCli, ReplayOfARunIsTheRunAndRefusesWhatItCannotReplay) {
@@ -684,7 +684,7 @@ TEST(FleetCli, ReplayOfARunIsTheRunAndRefusesWhatItCannotReplay) {
             json::parse(read_text(dir + "/wifi/summary.json"))["tasks"]);
 }
 
-// tune ask / tell (DESIGN.md §18.11): the test plays the engine — runs every line ask prints
+// tune ask / tell (docs/swath-fleet.md): the test plays the engine — runs every line ask prints
 // with the real binary, tells the run directories back — until ask has nothing left; the
 // weights.yaml, tune.csv, held_out.csv and summary.json are then tune's own for the same seed and
 // settings. A state file is

@@ -1,4 +1,4 @@
-// The output side of issue 16 (DESIGN.md §14 "Output directory"), as a user and an attacker meet
+// The output side of issue 16 (docs/swath-plan.md), as a user and an attacker meet
 // it: concurrent runs into one directory, signals at random moments, re-plans that leave fewer
 // files, other programs writing into a plan's directory, names that collide, bytes that are not
 // UTF-8, and the worst inputs refused within bounded time and memory.

@@ -411,7 +411,7 @@ TEST(PlanCli, ThreeDronesByPathAndByRegion) {
     EXPECT_EQ(s["drones"][2]["name"], "charlie");
     EXPECT_DOUBLE_EQ(s["drones"][2]["speed_m_s"].get<double>(), 8.0);
     EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.9999);
-    // DESIGN.md §14: files after the drones' names, each with its own speed and home.
+    // docs/swath-plan.md: files after the drones' names, each with its own speed and home.
     const json fleet_home = s["home"];
     for (int i = 0; i < 3; ++i) {
       const std::string name = s["drones"][i]["name"];
@@ -771,7 +771,7 @@ TEST(PlanCli, AShapefileInTheSwissGridPlansAsItsGeoJson) {
 }
 
 // An ESRI ASCII grid in longitude/latitude, read here independently of GDAL, bilinear between
-// cell centres as DESIGN.md §15 defines the DEM's surface.
+// cell centres as docs/swath-plan.md defines the DEM's surface.
 struct AsciiGrid {
   int cols = 0, rows = 0;
   double x0 = 0, y0 = 0, cell = 0;

@@ -1,5 +1,5 @@
-// The flight computer and the TT scheduler (DESIGN.md §17.2 "Flight computer", §17.3 "TT",
-// §17.6 "CPU overruns and energy"): scripted timelines whose busy time, start and end instants,
+// The flight computer and the TT scheduler (docs/swath-control.md; CPU overruns and energy):
+// scripted timelines whose busy time, start and end instants,
 // overruns and energy are worked out by hand or by an independent formula.
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Readers of §17.A's control keys (DESIGN.md §17.5 "Inputs"): every key lands in its field, the
+// Readers of the control keys (docs/swath-control.md): every key lands in its field, the
 // shipped files read back, and bad input is one InputError naming the file, line and key.
 
 #include <gtest/gtest.h>

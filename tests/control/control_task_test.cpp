@@ -1,4 +1,4 @@
-// The control task (DESIGN.md §17.2 "Control task"): closed loops against a small rigid-body
+// The control task (docs/swath-control.md): closed loops against a small rigid-body
 // quad written here (thrust and drag torque ∝ Ω², first-order motors, Euler's equations), fed the
 // accumulated Δθ/Δv the driver would give, with fixes at 10 Hz and the barometer at 50 Hz; the
 // execution's Δt rule; "changed"; the state as a copyable value.

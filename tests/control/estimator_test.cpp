@@ -1,4 +1,4 @@
-// Estimator (DESIGN.md §17.2 step 1): Mahony's attitude converging from a wrong start on
+// Estimator (docs/swath-control.md): Mahony's attitude converging from a wrong start on
 // noise-free data; the per-axis Kalman filter's steady-state gain against the discrete algebraic
 // Riccati equation (solved by the structured doubling algorithm) and against Kalata's closed form
 // for the α-β filter; unbiasedness and consistency over fixed seeds; Δv rotated to world with

@@ -1,4 +1,4 @@
-// The trigger model (paper 002 eq. 1) and its fits (DESIGN.md §17.3): the threshold is eq. 1
+// The trigger model (paper 002 eq. 1) and its fits (docs/swath-control.md): the threshold is eq. 1
 // inverted, synthetic coefficients are recovered, OLS on grouped logits equals its closed form,
 // degenerate data falls back to the pooled logit; trigger data reads in every CSV dialect.
 #include <gtest/gtest.h>

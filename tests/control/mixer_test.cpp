@@ -1,4 +1,4 @@
-// Mixer (DESIGN.md §17.2 steps 6–7, §17.6 "mixer A A⁺ = I"): the pseudo-inverse on the paper's
+// Mixer (docs/swath-control.md: mixer A A⁺ = I): the pseudo-inverse on the paper's
 // airframes, the saturation order (yaw first, then roll and pitch, the collective last) and the
 // quantised pulses.
 

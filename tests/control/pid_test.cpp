@@ -1,4 +1,4 @@
-// PID (DESIGN.md §17.2 step 5, §17.6 "PI and PD closed-form step responses"): closed loops on a
+// PID (docs/swath-control.md: PI and PD closed-form step responses): closed loops on a
 // first-order plant τ ẏ = −y + u against their continuous closed forms, with the error falling
 // linearly in the step (the discrete loop converges to the continuous one); the derivative on the
 // measurement, its low-pass and the integrator clamp against exact recurrences.

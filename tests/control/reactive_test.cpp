@@ -1,4 +1,4 @@
-// The reactive scheduler (DESIGN.md §17.3) in scripted cases: executions happen at once when
+// The reactive scheduler (docs/swath-control.md) in scripted cases: executions happen at once when
 // released, sensor values are chosen by the test. x* = 0 runs at every trigger sample, x* = ∞ only
 // at the failsafe, triggers are batched at the hyperperiod and never held beyond max_wait_s, each
 // feedback rule adds what it says to the data set.

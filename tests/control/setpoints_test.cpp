@@ -1,4 +1,4 @@
-// Carrot setpoints (DESIGN.md §17.2 "Setpoints"): the trapezoid against a numerical integral of
+// Carrot setpoints (docs/swath-control.md): the trapezoid against a numerical integral of
 // its speed profile min(a t, v, a (T − t)), and the carrot along legs: 50-Hz updates, stops at the
 // waypoints, climb-limited legs, yaw along each leg.
 

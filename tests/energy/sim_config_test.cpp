@@ -64,8 +64,8 @@ TEST(SimConfig, ErrorsNameTheLineAndKey) {
   EXPECT_EQ(config_error_of("wind: 3"), "c.yaml: line 1: 'wind' must be a mapping of keys");
 }
 
-// One spelling of speeds (DESIGN.md §2): the old `_mps` keys still read, with a warning naming the
-// line, in the root and in nested mappings; both spellings at once are refused.
+// One spelling of speeds (docs/architecture.md): the old `_mps` keys still read, with a warning
+// naming the line, in the root and in nested mappings; both spellings at once are refused.
 TEST(SimConfig, OldSpeedSpellingIsReadWithAWarning) {
   const SimConfig old_keys = parse_sim_config(
       "speed_mps: 9\nmax_airspeed_m_s: 20\nwind: {speed_mps: 3, from_deg: 90}\n", "c.yaml");

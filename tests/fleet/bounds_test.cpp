@@ -1,10 +1,10 @@
-// DESIGN.md §18.12 item 5, the case studies' bounds (§18.9) against closed forms computed here
+// docs/swath-fleet.md, the case studies' bounds against closed forms computed here
 // from the leg model, not from the runtime:
 // - case 1 on a straight road: two drones with speculation (predictive: sa + GMF + relief, as
 //   `compare`) against one drone (reactive). One drone flies a step (T1) and senses (S) in turn;
 //   two drones alternate, each flying two steps (T2) to the step after next; ρ = S/T1,
 //   φ = T2/T1, T1 and T2 rest-to-rest legs of one and two steps (horizontal_time_s). See the
-//   tests for the closed form (DESIGN.md's 1 − max(ρ, φ)/(1 + ρ) holds for ρ ≥ φ only).
+//   tests for the closed form (the design's 1 − max(ρ, φ)/(1 + ρ) holds for ρ ≥ φ only).
 // - case 3 (hotspot, one drone): predictive's gain over reactive is between 0 and the oracle's,
 //   the oracle flying the best order of every square's four corners knowing all squares. Sensor
 //   noise is a hash of (seed, place), so the squares do not depend on the schedule: they are
@@ -111,7 +111,7 @@ std::vector<double> ratios() {
 }
 
 // With exact sensing (no noise) the forecasts are exact and the formula's timing model is all
-// there is. DESIGN.md §18.9's 1 − max(ρ, φ)/(1 + ρ) lets the flying drone fly only while the
+// there is. docs/swath-fleet.md 1 − max(ρ, φ)/(1 + ρ) lets the flying drone fly only while the
 // other senses; but both may fly at once (A, done at step k, flies to k + 2 while B senses k + 1
 // and then waits; B, done, flies on to k + 3 while A is still on its way), so two steps take
 // S + T2, not 2 max(S, T2): the gain is 1 − max(ρ, (ρ + φ)/2)/(1 + ρ). Both agree for ρ ≥ φ

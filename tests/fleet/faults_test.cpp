@@ -1,4 +1,4 @@
-// No task is lost (DESIGN.md §18.7, §18.12 item 4): 1,000 random fault schedules over the five
+// No task is lost (docs/swath-fleet.md): 1,000 random fault schedules over the five
 // case-study apps and `static`, each run's events.jsonl judged by the checker that reads nothing
 // else; the checker itself must catch every single-rule break of a real log; the faults file
 // reader.

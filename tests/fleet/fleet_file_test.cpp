@@ -1,4 +1,4 @@
-// The fleet file's per-drone `mavlink {url, sysid}` (DESIGN.md §18.10): read with --vehicles'
+// The fleet file's per-drone `mavlink {url, sysid}` (docs/swath-fleet.md): read with --vehicles'
 // grammar (the same parser: each URL --vehicles accepts reads to the same address here), and each
 // bad value refused naming the file, the line and the key.
 #include <gtest/gtest.h>

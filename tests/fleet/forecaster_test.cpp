@@ -1,4 +1,4 @@
-// The task graph read back and the forecasters (DESIGN.md §18.3, §18.4) against independent truth:
+// The task graph read back and the forecasters (docs/swath-fleet.md) against independent truth:
 // dtg.json parsed back equals the JSON read directly; the graph as of a time against a direct
 // filter; GMF invariant under rigid motions of the plane (a moved copy of a history is forecast
 // exactly, a closed form); constant velocity exact on a straight walk; q against counts made

@@ -1,4 +1,4 @@
-// The fleet runtime (DESIGN.md §18.3, §18.6) against independent truth: leg times against a
+// The fleet runtime (docs/swath-fleet.md) against independent truth: leg times against a
 // direct quadrature of the speed limit; a run's completion time against the closed form of its
 // one leg; energy against `swath-energy budget` of the same legs; the case-4 app never faster
 // than the brute-force optimal order; binding, cancellation and byte-identical reruns.
@@ -395,7 +395,7 @@ TEST(Runtime, FlySensingReadsAlongTheLegAtItsPeriod) {
 namespace swath::fleet {
 namespace {
 
-// Speculation (DESIGN.md §18.5) on case 1: GMF learns from reactive runs of other seeds; the
+// Speculation (docs/swath-fleet.md) on case 1: GMF learns from reactive runs of other seeds; the
 // idle drone waits where the next step will be. Checked from the run's own events: every
 // `position` goes to a forecast the run logged, the drone then flies nothing but its layer, and
 // the independent checker finds every task ended once; the run is faster than reactive and the
@@ -460,8 +460,8 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
   }
 }
 
-// Case 2's bound (DESIGN.md §18.9): speculation and avoid-mutual shorten the wifi survey but may
-// cancel cells differently; the map they leave is at most 0.5 dB worse (RMS error of the GP's
+// Case 2's bound (docs/swath-fleet.md): speculation and avoid-mutual shorten the wifi survey but
+// may cancel cells differently; the map they leave is at most 0.5 dB worse (RMS error of the GP's
 // map against the world's truth, mean over seeds, paired with reactive on the same worlds), and
 // the survey is not slower on average.
 TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
@@ -518,7 +518,7 @@ TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
   RecordProperty("completion_predictive_minus_reactive_s", std::to_string(change_s));
 }
 
-// Relief (DESIGN.md §18.5, Example 5) on case 5 with 150 s flights: the idle drone is sent to
+// Relief (docs/swath-fleet.md, Example 5) on case 5 with 150 s flights: the idle drone is sent to
 // stand by where the drone at work is, out of the scheduler's hands until that drone heads home,
 // and then takes the next look. Read from the events: no stand-by is dispatched before the drone
 // it relieves returns; the first look dispatched after that return goes to the stand-by; and the

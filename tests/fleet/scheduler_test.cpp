@@ -1,4 +1,4 @@
-// The schedulers of DESIGN.md §18.5 against independent truth: an exhaustive search over every
+// The schedulers of docs/swath-fleet.md against independent truth: an exhaustive search over every
 // assignment (each drone to none or a distinct feasible request) on small random instances, the
 // Hungarian optimum on large ones, and the invariants every assignment must keep.
 #include "swath/fleet/scheduler.hpp"
@@ -136,7 +136,7 @@ TEST(Scheduler, AnnealingFindsTheExhaustiveOptimumOnSmallInstances) {
   EXPECT_LT(greedy_exact, 480) << greedy_exact;
 }
 
-// DESIGN.md §18.12 item 1 with all terms: ≤ 5 drones, ≤ 7 visible + 4 forecast requests.
+// docs/swath-fleet.md with all terms: ≤ 5 drones, ≤ 7 visible + 4 forecast requests.
 TEST(Scheduler, AnnealingFindsTheExhaustiveOptimumWithForecastsAndMutualTerms) {
   int with_pairs = 0, speculating = 0;
   expect_annealing_optimal(

@@ -1,8 +1,8 @@
-// Trace replay (DESIGN.md §18.8, the paper's level-1 simulator) against a second method: where the
-// task graph does not depend on the schedule (cases 1, 3, 4: sensor noise is a hash of the place,
-// not of the time), replaying one run's dtg.json with another scheduler and fleet must give what
-// re-running the app in its world with that scheduler and fleet gives — the same events, byte for
-// byte. Recorded cancels fire again; a graph without scripts is refused.
+// Trace replay (docs/swath-fleet.md, the paper's level-1 simulator) against a second method: where
+// the task graph does not depend on the schedule (cases 1, 3, 4: sensor noise is a hash of the
+// place, not of the time), replaying one run's dtg.json with another scheduler and fleet must give
+// what re-running the app in its world with that scheduler and fleet gives — the same events, byte
+// for byte. Recorded cancels fire again; a graph without scripts is refused.
 #include <gtest/gtest.h>
 
 #include <map>

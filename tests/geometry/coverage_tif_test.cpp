@@ -1,4 +1,4 @@
-// coverage.tif (DESIGN.md §15): the coverage grid against a brute-force count with exact point
+// coverage.tif (docs/swath-plan.md): the coverage grid against a brute-force count with exact point
 // location in each footprint polygon, its sums against the photos' total footprint and the area's
 // own area, and the GeoTIFF read back by GDAL: bands equal, every cell placed by PROJ where
 // swath's local frame (GeographicLib) puts it.

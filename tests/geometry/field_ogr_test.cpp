@@ -1,4 +1,4 @@
-// GIS area files through OGR (DESIGN.md §15), checked against swath's own GeoJSON reader: the
+// GIS area files through OGR (docs/swath-plan.md), checked against swath's own GeoJSON reader: the
 // bundled fields converted by GDAL itself (GDALVectorTranslate, ogr2ogr's library entry point) to
 // Shapefile, zipped Shapefile, GeoPackage, KMZ, GPX, FlatGeobuf, GML, and reprojected to the Swiss
 // grid (EPSG:2056) and UTM 32N, give the same area to 1e-6; several areas per file are chosen by

@@ -1,4 +1,4 @@
-// Terrain following over DEMs GDAL itself writes (DESIGN.md §15 "Terrain"): GeoTIFFs in UTM 32N
+// Terrain following over DEMs GDAL itself writes (docs/swath-plan.md): GeoTIFFs in UTM 32N
 // of closed-form grounds (a slope, a ridge, a pit). The reader is checked against the closed form
 // at the UTM coordinates GeographicLib computes (independent of PROJ, which the reader uses);
 // the plans are checked by sampling that closed form along every leg as flown: the height above

@@ -1,5 +1,5 @@
 // swath-fleet's runtime flying two in-process fake ArduCopters over real loopback UDP through
-// MavlinkBackend, on a stepped clock (DESIGN.md §18.6, §18.7, §18.12 item 6): a three-photo
+// MavlinkBackend, on a stepped clock (docs/swath-fleet.md): a three-photo
 // static app completes with every task done exactly once (the independent event checker), each
 // photo taken within the arrival radius of its target at the drone's layer (targets from the world
 // file, positions from the fakes' telemetry); lost commands (acknowledgements never sent, some

@@ -1,4 +1,4 @@
-// swath's MAVLink codec against an independent one: npm's node-mavlink 2.3.0 (DESIGN.md §18.6),
+// swath's MAVLink codec against an independent one: npm's node-mavlink 2.3.0 (docs/swath-fleet.md),
 // run by tests/mavlink/oracle/decode.cjs. scripts/setup installs it into .oracles/; these tests
 // fail (not skip) without it, naming the command that installs it.
 //   - CRC_EXTRA and payload length of each of swath's messages equal node-mavlink's table;

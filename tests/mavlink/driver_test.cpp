@@ -1,5 +1,5 @@
 // The ArduCopter driver against the fake ArduCopter over real loopback UDP sockets, on a simulated
-// clock (DESIGN.md §18.6, §18.12 item 6): connect and telemetry, arm, take-off, go-to and arrival
+// clock (docs/swath-fleet.md): connect and telemetry, arm, take-off, go-to and arrival
 // checked against the fake's own position; lost commands resent and counted; a refusal to arm
 // with its sentence; a 10 s link cut (lost after 3 s, the vehicle's failsafe, the flight resumed);
 // the fence; return, landing and photos; the safety check at connect (FS_GCS_ENABLE). The PX4
@@ -279,7 +279,7 @@ TEST(CopterDriver, PhotosReturnAndLandingEndDisarmedAtHome) {
   EXPECT_EQ(rig.driver.command_result(land), CmdResult::failed);
 }
 
-// The safety check at connect (DESIGN.md §18.A): FS_GCS_ENABLE read with PARAM_REQUEST_READ; a
+// The safety check at connect (docs/swath-fleet.md): FS_GCS_ENABLE read with PARAM_REQUEST_READ; a
 // warning when it is 0 (no return on a lost link), none when it is 1, "could not read" once three
 // requests a second apart went unanswered; the flight is never held back by it.
 TEST(CopterDriver, SafetyCheckWarnsWhenTheLostLinkFailsafeIsOff) {

@@ -224,7 +224,8 @@ TEST(AreaProfile, AgreesWithClippingOnRandomAreas) {
   }
 }
 
-// ---- balance on measured flights (issue 18, DESIGN.md §16) -----------------------------------
+// ---- balance on measured flights (issue 18, docs/swath-plan.md)
+// -----------------------------------
 
 // A drone's flight time recomputed from its mission as written: the home -> ... -> home path
 // walked leg by leg, legs between stops flown from rest to rest (trapezoid at kAcceleration_m_s2,

@@ -1,4 +1,4 @@
-// The Litchi CSV and DJI WPML KMZ exports (DESIGN.md §15), read back with readers written here
+// The Litchi CSV and DJI WPML KMZ exports (docs/swath-plan.md), read back with readers written here
 // (CSV split by hand; the KMZ unzipped with libzip's reader and its XML parsed with pugixml) and
 // checked against the planned mission: points, heights, speeds, headings (an independent bearing
 // on the WGS84 ellipsoid's local radii), photos (against the planned photo count), splits.

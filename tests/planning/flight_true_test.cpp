@@ -1,5 +1,5 @@
-// Missions that fly as planned (DESIGN.md §14), checked from the written files with geometry of the
-// test's own (closed-form segment distances, ray casting): every waypoint and leg keeps the
+// Missions that fly as planned (docs/swath-plan.md), checked from the written files with geometry
+// of the test's own (closed-form segment distances, ray casting): every waypoint and leg keeps the
 // clearance from the no-fly zones the .plan fences; the fences are the area and the zones; photos
 // lie on the lines; sorties fit the battery and together fly the whole survey; fixed-wing turns are
 // at least two turn radii wide; and a point-mass multirotor flies each .plan item by item as

@@ -1,4 +1,4 @@
-// --directions per-region (issue 18, DESIGN.md §16 "Direction per region"): an L with long arms
+// --directions per-region (issue 18, docs/swath-plan.md): an L with long arms
 // and a strip with a wide head are flown shorter with a direction per region than with the best
 // one direction, a rectangle keeps one direction, and no plan is ever longer, leaves the area or
 // sees less than 99.9 % of it (the tests' own footprint oracle).

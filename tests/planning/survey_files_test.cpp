@@ -98,7 +98,7 @@ TEST(QgcPlan, ParsesBackWithRequiredKeysCommandsFramesAndPlannedCoordinates) {
     }
   }
   EXPECT_EQ(waypoint, planned.size());
-  // DESIGN.md §14: photos on the lines only, the camera started and stopped at each line.
+  // docs/swath-plan.md: photos on the lines only, the camera started and stopped at each line.
   EXPECT_EQ(triggers_on, int(mission_of(plan).lines.size()));
   EXPECT_EQ(triggers_off, int(mission_of(plan).lines.size()));
   // Take-off, the drone's speed and the gimbal before the first survey waypoint, then the camera.

@@ -1,8 +1,8 @@
 #pragma once
-// The balance cases of issue 18 (DESIGN.md §16): the bundled meadow, vineyard and orchard, each
-// with three equal drones and with the drones of share/fleets/three-quads.yaml, Sony QX1 at 60 m
-// as the README's division examples plan them. Shared by the division tests and the
-// division bench's --balance-table.
+// The balance cases of issue 18 (docs/swath-plan.md): the bundled meadow, vineyard and orchard,
+// each with three equal drones and with the drones of share/fleets/three-quads.yaml, Sony QX1 at 60
+// m as the README's division examples plan them. Shared by the division tests and the division
+// bench's --balance-table.
 
 #include <cstdint>
 #include <string>

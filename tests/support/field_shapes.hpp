@@ -1,6 +1,6 @@
 #pragma once
-// The split corpus (issue 18, DESIGN.md §16): families of areas a pilot meets, generated from a
-// seed so the corpus is a program, not a set of hand-picked files. Every shape is a simple outer
+// The split corpus (issue 18, docs/swath-plan.md): families of areas a pilot meets, generated from
+// a seed so the corpus is a program, not a set of hand-picked files. Every shape is a simple outer
 // ring (counter-clockwise) with disjoint holes inside it (clockwise), in metres, centred near the
 // origin and turned by a random angle, so no family favours the axes.
 

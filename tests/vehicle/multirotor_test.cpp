@@ -1,6 +1,6 @@
-// The multirotor against closed forms and physical invariants (DESIGN.md §17.6): hover speed and
-// power, free fall, torque-free rotation (energy and angular momentum, the intermediate-axis flip),
-// RK4's fourth order against a tight adaptive reference, the work-energy balance, the ESC.
+// The multirotor against closed forms and physical invariants (docs/swath-control.md): hover speed
+// and power, free fall, torque-free rotation (energy and angular momentum, the intermediate-axis
+// flip), RK4's fourth order against a tight adaptive reference, the work-energy balance, the ESC.
 #include "swath/vehicle/multirotor.hpp"
 
 #include <gtest/gtest.h>
@@ -31,7 +31,7 @@ TEST(Multirotor, HoverSpeedAndPowerAgainstTheClosedForm) {
   const ClosedHover c = closed_hover(1.5, 4, quad.propulsion);
   EXPECT_NEAR(h.rotor_rad_s[0], c.omega, 1e-9);
   EXPECT_NEAR(h.motor_power_w, c.power, 1e-9);
-  // DESIGN.md §17.A's figures for the defaults: 678.0 rad/s and 195.3 W.
+  // docs/swath-control.md figures for the defaults: 678.0 rad/s and 195.3 W.
   EXPECT_NEAR(h.rotor_rad_s[0], 678.0, 0.05);
   EXPECT_NEAR(h.motor_power_w, 195.3, 0.05);
   Airframe hexa;

@@ -28,7 +28,7 @@ TEST(Wind, MeanWindFollowsTheLogProfileFromItsBearing) {
 }
 
 TEST(Wind, DrydenScalesOfMilF8785cAtFiveMetres) {
-  // DESIGN.md §17.A: at 5 m, W20 4.1 m/s: σ_w 0.41, σ_u 0.80; L_w 5.0 m, L_u 36.6 m.
+  // docs/swath-control.md: at 5 m, W20 4.1 m/s: σ_w 0.41, σ_u 0.80; L_w 5.0 m, L_u 36.6 m.
   const DrydenScales s = dryden_scales(5.0, 4.1);
   EXPECT_NEAR(s.sigma_w_m_s, 0.41, 1e-12);
   EXPECT_NEAR(s.sigma_u_m_s, 0.80, 0.005);

@@ -208,7 +208,8 @@ Co<void> tracking_main(Ctx& c) {
   c.metric("handoffs", handoffs);
 }
 
-// ---- static: tasks from a file (DESIGN.md §18.2) ---------------------------------------------
+// ---- static: tasks from a file (docs/swath-fleet.md)
+// ---------------------------------------------
 
 struct StaticRun {
   std::vector<fleet::TaskHandle<void>> handles;

@@ -43,9 +43,10 @@ std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, doubl
 std::string wpl_row(std::size_t index, int current, int frame, int command,
                     const std::array<double, 7>& params);
 
-/// A waypoint of a flight as the DJI and Litchi exports write it (DESIGN.md §15): their apps take
-/// off and return (or land) by themselves, so these are the mission's NAV_WAYPOINTs in order, and
-/// with --land the home again at the survey altitude, where the app's landing finish action lands.
+/// A waypoint of a flight as the DJI and Litchi exports write it (docs/swath-plan.md): their apps
+/// take off and return (or land) by themselves, so these are the mission's NAV_WAYPOINTs in order,
+/// and with --land the home again at the survey altitude, where the app's landing finish action
+/// lands.
 struct ExportPoint {
   geometry::GeoPoint geo;   ///< WGS84, rounded to 1e-9 degrees as every file writes it
   double altitude_m = 0.0;  ///< above home (the take-off point)

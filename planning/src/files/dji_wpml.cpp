@@ -1,8 +1,8 @@
-// DJI WPML KMZ (DESIGN.md §15): wpmz/template.kml and wpmz/waylines.wpml as DJI Pilot 2 reads them
-// (DJI Cloud API, "DJI WPML": Template.kml, Waylines.wpml, Common Elements): a waypoint template
-// whose points are the flight's waypoints, heights relative to the take-off point, the drone's
-// speed, the nose along the course, the gimbal pitch set at the first point, photos by distance
-// or time from each line's start to its end, and go-home (or land) at the end.
+// DJI WPML KMZ (docs/swath-plan.md): wpmz/template.kml and wpmz/waylines.wpml as DJI Pilot 2 reads
+// them (DJI Cloud API, "DJI WPML": Template.kml, Waylines.wpml, Common Elements): a waypoint
+// template whose points are the flight's waypoints, heights relative to the take-off point, the
+// drone's speed, the nose along the course, the gimbal pitch set at the first point, photos by
+// distance or time from each line's start to its end, and go-home (or land) at the end.
 #include <algorithm>
 #include <cmath>
 #include <functional>

@@ -1,5 +1,5 @@
-// Litchi mission CSV (DESIGN.md §15): Litchi's column set, one row per waypoint, missions above
-// Litchi's 99 waypoints split into parts that continue one another.
+// Litchi mission CSV (docs/swath-plan.md): Litchi's column set, one row per waypoint, missions
+// above Litchi's 99 waypoints split into parts that continue one another.
 #include <algorithm>
 #include <cmath>
 

@@ -1,4 +1,5 @@
-// QGroundControl .plan (DESIGN.md §8, §14): the items, the drone's home and speed, fences, rally.
+// QGroundControl .plan (docs/formats.md and docs/swath-plan.md): the items, the drone's home and
+// speed, fences, rally.
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -101,7 +102,7 @@ std::string plan_file(const SurveyPlan& plan, const Flight& flight, ordered_json
   root["geoFence"] = geofence_json(plan);
   root["groundStation"] = "swath";
   root["mission"] = m;
-  // The rally point is the drone's own home (DESIGN.md §14 "Fences").
+  // The rally point is the drone's own home (docs/swath-plan.md).
   root["rallyPoints"] = {{"points", {{home.lat_deg, home.lon_deg, 0}}}, {"version", 2}};
   root["version"] = 1;
   return base::json_text(root, 4) + "\n";

@@ -1,4 +1,4 @@
-// summary.json: every figure of the plan (DESIGN.md §8, §14).
+// summary.json: every figure of the plan (docs/formats.md and docs/swath-plan.md).
 #include <nlohmann/json.hpp>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Zip archives (the DJI KMZ) through libzip (DESIGN.md §15: libzip-dev), built in memory.
+// Zip archives (the DJI KMZ) through libzip (docs/swath-plan.md: libzip-dev), built in memory.
 #include <zip.h>
 
 #include <ctime>

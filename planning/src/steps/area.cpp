@@ -64,7 +64,7 @@ double distance_to_area_m(const GeoPoint& p, const std::vector<GeoPoint>& ring) 
 }
 
 // A home far from the area is almost always a typo: latitude and longitude swapped, or a sign
-// lost (DESIGN.md §14 "Sanity checks"). Refused naming the distance and, where one of those
+// lost (docs/swath-plan.md). Refused naming the distance and, where one of those
 // readings lies within 1 km of the area, the home meant.
 void check_home_near_area(const GeoPoint& home, const std::string& what,
                           const geometry::Field& field, bool far_home_allowed) {
@@ -345,7 +345,7 @@ bool rings_touch(const std::vector<geometry::Ring>& rings) {
 constexpr double kTouchingPiecesGap_m = 1e-3;
 
 // Lines and routes keep the clearance: zones grown by it, the outline shrunk by the boundary
-// clearance (DESIGN.md §14 "Clearance").
+// clearance (docs/swath-plan.md).
 void planning_rings(SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
   double boundary_m = r.boundary_clearance_m;

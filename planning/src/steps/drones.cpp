@@ -15,7 +15,7 @@ using base::InputError;
 using geometry::Point2;
 
 // A drone's name as a file name: [A-Za-z0-9._-] kept, spaces as '-', anything else dropped
-// (DESIGN.md §14 "Homes and names"); "drone-<n>" when nothing usable is left.
+// (docs/swath-plan.md); "drone-<n>" when nothing usable is left.
 std::string file_stem_of(const std::string& name, int number) {
   std::string stem;
   for (const char c : name) {
@@ -98,8 +98,8 @@ FlightMeasure flight_measure(const SurveyPlan& plan, const Routes& routes,
   };
 }
 
-// Region division (paper 001 Algorithm 4 on the plan's own lanes, DESIGN.md §16): the lanes cut
-// into bands in proportion to the capabilities, or balanced on the drones' measured flights
+// Region division (paper 001 Algorithm 4 on the plan's own lanes, docs/swath-plan.md): the lanes
+// cut into bands in proportion to the capabilities, or balanced on the drones' measured flights
 // (--balance makespan), a band's last lane cut along its length where the shares need it. Every
 // lane is flown, so the side overlap holds across the bands' seams (a band swept on its own with
 // the strip rule needs fewer lanes, but its edge lanes' footprints only touch the next band's:

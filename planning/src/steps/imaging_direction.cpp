@@ -62,7 +62,7 @@ void check_work(const SurveyPlan& plan) {
     throw InputError("the waypoint spacing must be > 0 m");
 }
 
-// Speed, the fixed-wing turn radius at it, and the turnaround (DESIGN.md §14 "Fixed-wing").
+// Speed, the fixed-wing turn radius at it, and the turnaround (docs/swath-plan.md).
 void flight_figures(SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
   plan.speed_m_s = r.speed_m_s.value_or(r.vehicle == Vehicle::multirotor ? 5.0 : 15.0);

@@ -148,7 +148,7 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
   return order_lines(sweep, first ? plan.request.start : StartCorner::nearest_home, from);
 }
 
-// Fixed-wing (DESIGN.md §14): where adjacent lines are closer than two turn radii, fly every
+// Fixed-wing (docs/swath-plan.md): where adjacent lines are closer than two turn radii, fly every
 // k-th line, then the next class, so that each U-turn is at least 2r wide; each line is entered
 // from the end nearer the previous one. Same lines, same coverage.
 std::vector<SweepLine> interleave(const std::vector<SweepLine>& lines, double spacing_m,

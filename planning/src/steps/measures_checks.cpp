@@ -88,7 +88,7 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
                          "hold fewer): divide it among drones or drop --waypoint-spacing");
       break;
     }
-  // DESIGN.md §14: a flight longer than the drone's endurance.
+  // docs/swath-plan.md: a flight longer than the drone's endurance.
   if (d.endurance_s && d.sorties.empty()) {
     const double usable = *d.endurance_s * (1 - plan.request.reserve);
     if (d.mission.flight_time_s > usable)
@@ -113,7 +113,7 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
 }
 
 // Fences an autopilot cannot store: the inclusion fence (missions() simplifies it to fit where it
-// can) and the zones, kept as given (DESIGN.md §14), above kFenceVertexLimit vertices.
+// can) and the zones, kept as given (docs/swath-plan.md), above kFenceVertexLimit vertices.
 void warn_about_fences(const SurveyPlan& plan, std::vector<std::string>& warnings) {
   if (const std::size_t most = most_vertices(plan.fence); most > kFenceVertexLimit)
     warnings.push_back("the inclusion fence keeps " + std::to_string(most) +
@@ -176,8 +176,8 @@ void checks(SurveyPlan& plan) {
                          " m² of area stay unflown",
                      {base::Remedy::add_drones_or_battery, base::Remedy::allow_partial});
   std::vector<std::string>& warnings = plan.warnings;
-  // Below the coverage swath promises (DESIGN.md §16: 99.9 %): ground thinner than the lines can
-  // reach inside it (a strip round a large hole, a star's points), said rather than left to the
+  // Below the coverage swath promises (docs/swath-plan.md: 99.9 %): ground thinner than the lines
+  // can reach inside it (a strip round a large hole, a star's points), said rather than left to the
   // summary (a 2,000-point star was covered 95 % with no word). Not where the fleet leaves path
   // unflown (--allow-partial): that is said above.
   if (plan.coverage.covered_fraction < kPromisedCoverage && plan.division.unflown_path_m == 0)

@@ -92,7 +92,7 @@ void missions(SurveyPlan& plan) {
                                  routes.leg(), inside);
     d.photos = planned_photos(d.mission, plan.imaging.trigger_distance_m);
   }
-  // The inclusion fence: the area grown by the margin (DESIGN.md §14 "Fences").
+  // The inclusion fence: the area grown by the margin (docs/swath-plan.md).
   plan.fence_margin_m = plan.request.fence_margin_m.value_or(
       plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
   std::vector<geometry::Ring> outlines{plan.area.outer};

@@ -1,4 +1,4 @@
-// Step 7 of plan_survey(): battery-sized sorties (survey_steps.hpp, DESIGN.md §14 "Sorties").
+// Step 7 of plan_survey(): battery-sized sorties (survey_steps.hpp, docs/swath-plan.md).
 #include <cmath>
 
 #include "swath/base/input_error.hpp"

@@ -1,4 +1,4 @@
-// Step 7b of plan_survey(): terrain following (survey_steps.hpp, terrain.hpp, DESIGN.md §15).
+// Step 7b of plan_survey(): terrain following (survey_steps.hpp, terrain.hpp, docs/swath-plan.md).
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -40,7 +40,7 @@ class InputError : public std::runtime_error {
   std::vector<Remedy> remedies_;
 };
 
-/// Exit codes, the same in every program (README "Exit codes").
+/// Exit codes, the same in every program (docs/reliability.md, "Exit codes and errors").
 enum ExitCode : int {
   kExitSuccess = 0,
   kExitFailure = 1,       ///< unexpected failure (a bug, or the system refused a write)

@@ -18,7 +18,7 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
 namespace swath::base {
 
 // Checked access into a parsed document (swath's own files read back are input like any other:
-// DESIGN.md §12). Every failure is an InputError "<where>: ..." naming the place; never
+// docs/reliability.md). Every failure is an InputError "<where>: ..." naming the place; never
 // operator[] on a const document, never a library exception.
 
 /// The member `key` of `object`; refused when `object` is not an object or has no such key.

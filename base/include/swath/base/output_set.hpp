@@ -1,6 +1,6 @@
 #pragma once
 // The set of files a command writes into its output directory, switched in as a whole
-// (DESIGN.md §14 "Output directory", §12 "The output side").
+// (docs/reliability.md).
 //
 // - Each file goes to a temporary in the same directory, created exclusively with a random name
 //   (O_CREAT | O_EXCL | O_NOFOLLOW: a planted file or symlink is never opened, another name is

@@ -20,7 +20,7 @@ class YamlMap {
 
   /// Throws for a key not in `keys` (a typo would otherwise be silently ignored). A key spelled
   /// the old way, `..._mps` for an allowed `..._m_s`, is read as the new one with a warning (one
-  /// spelling of speeds everywhere, DESIGN.md §2); both spellings at once are refused.
+  /// spelling of speeds everywhere, docs/architecture.md); both spellings at once are refused.
   void allow(std::initializer_list<const char*> keys) const;
   /// Warnings collected while reading this mapping and the mappings below it, in reading order.
   const std::vector<std::string>& warnings() const { return *warnings_; }

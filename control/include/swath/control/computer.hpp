@@ -1,5 +1,5 @@
 #pragma once
-// The flight computer (DESIGN.md §17.2 "Flight computer"): one core at clock_hz running the
+// The flight computer (docs/swath-control.md): one core at clock_hz running the
 // sensor drivers, the control task, the trigger models' refits and periodic background work, by
 // fixed priority (drivers > control > refit > background) with preemption, costs in cycles. It
 // counts missed time-triggered releases as overruns and integrates its power

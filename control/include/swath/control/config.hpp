@@ -1,9 +1,9 @@
 #pragma once
-// Readers of the control keys of DESIGN.md §17.A: the `estimator`, `controller` and `computer`
-// sections of a vehicle file, and the scheduler file (`share/schedulers/*.yaml`). Every key is
-// optional unless said otherwise, units are in the key names or documented in §17.A, and unknown
-// keys, wrong types and out-of-range values are refused with base::InputError naming the file,
-// the line and the key.
+// Readers of the control keys of docs/swath-control.md: the `estimator`, `controller` and
+// `computer` sections of a vehicle file, and the scheduler file (`share/schedulers/*.yaml`). Every
+// key is optional unless said otherwise, units are in the key names or documented in §17.A, and
+// unknown keys, wrong types and out-of-range values are refused with base::InputError naming the
+// file, the line and the key.
 
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// The files of `swath-control run` (DESIGN.md §17.5, columns of §17.A, with the one spelling of
+// The files of `swath-control run` (docs/swath-control.md, with the one spelling of
 // speeds, _m_s): timeseries.csv and rate.csv row by row (streamed by the caller), summary.json.
 // Numbers are written with a fixed number of decimals and without the locale, so the same flight
 // gives the same bytes.

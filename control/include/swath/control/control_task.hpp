@@ -1,5 +1,5 @@
 #pragma once
-// The control task (DESIGN.md §17.2 "Control task"): one execution, identical in every scheduling
+// The control task (docs/swath-control.md): one execution, identical in every scheduling
 // mode, in seven steps — estimator; position P → velocity setpoint; velocity PID → tilt-limited
 // acceleration → collective thrust and desired attitude; quaternion attitude P → rate setpoint;
 // rate PID → angular acceleration → torque J ⊙ u; mixer A⁺[T; τ]; quantised PWM. The task's

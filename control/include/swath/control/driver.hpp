@@ -1,5 +1,5 @@
 #pragma once
-// The sensor driver (DESIGN.md §17.2 "Sensors"): the samples the plant delivers between two
+// The sensor driver (docs/swath-control.md): the samples the plant delivers between two
 // executions, turned into one execution's estimator input — gyro and accelerometer integrated to
 // Δθ and Δv (vehicle::InertialAccumulator), the latest magnetometer, barometer and position fix
 // marked fresh until an execution has read them.

@@ -1,5 +1,5 @@
 #pragma once
-// The estimator of the control task (DESIGN.md §17.2 step 1): Mahony's complementary filter for
+// The estimator of the control task (docs/swath-control.md): Mahony's complementary filter for
 // the attitude, driven by the gyro's accumulated Δθ and corrected towards the accelerometer's
 // gravity and the magnetometer's north; and one Kalman filter per world axis for position and
 // velocity, predicted with the accelerometer's Δv (rotated to world, gravity removed) and updated

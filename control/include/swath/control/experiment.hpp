@@ -1,7 +1,7 @@
 #pragma once
-// Paper 002's experiment (§7; DESIGN.md §17.6): flights paired by seed (common random numbers,
-// so the modes see the same wind and sensor noise) and the paired improvement of a mode over the
-// time-triggered baseline with a 95 % Student-t interval.
+// Paper 002's experiment (paper 002 §7; docs/swath-control.md): flights paired by seed (common
+// random numbers, so the modes see the same wind and sensor noise) and the paired improvement of a
+// mode over the time-triggered baseline with a 95 % Student-t interval.
 
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // The per-sensor trigger model of paper 002 (eq. 1): L(x) = 1 / (1 + e^−(β1 + β2 x)), the
 // probability that a change x of a sensor's value calls for a new control decision, and its fits
-// (DESIGN.md §17.3 "Fit"). The paper fits β by ordinary least squares on the logit of 0/1
+// (docs/swath-control.md). The paper fits β by ordinary least squares on the logit of 0/1
 // outcomes, which is undefined (the logit of 0 or 1 is infinite); `logit_ols` makes it defined
 // with grouped empirical logits, `logit_wls` weights the groups by their variance, `mle` is the
 // maximum-likelihood fit by IRLS.

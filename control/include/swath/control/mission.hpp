@@ -1,5 +1,5 @@
 #pragma once
-// What a simulated multirotor is asked to fly (DESIGN.md §17.5 "MISSION"): legs in a local frame
+// What a simulated multirotor is asked to fly (docs/swath-control.md): legs in a local frame
 // (world ENU metres, origin at the mission's home), the speed the file asks for, and — for a swath
 // plan — the area and the no-fly zones the flown track is checked against (§14's "fly it before
 // you fly it"). Built from swath's mission.geojson or a QGroundControl .plan (one drone of it), a

@@ -1,5 +1,5 @@
 #pragma once
-// The mixer (DESIGN.md §17.2 step 6–7): the rotor forces that produce a collective thrust and a
+// The mixer (docs/swath-control.md): the rotor forces that produce a collective thrust and a
 // body torque, by the pseudo-inverse of the layout's effectiveness matrix; under saturation yaw is
 // given up first, then roll and pitch, and the collective last; then normalised pulses quantised
 // to the ESC's resolution.

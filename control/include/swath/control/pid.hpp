@@ -1,8 +1,8 @@
 #pragma once
 // PID with the derivative on the measurement (no kick when the setpoint steps), a first-order
-// low-pass on that derivative, and an integrator whose contribution is clamped (DESIGN.md §17.2
-// step 5). Units follow the loop: for the velocity loop e is m/s and the output m/s²; for the rate
-// loop e is rad/s and the output rad/s².
+// low-pass on that derivative, and an integrator whose contribution is clamped
+// (docs/swath-control.md step 5). Units follow the loop: for the velocity loop e is m/s and the
+// output m/s²; for the rate loop e is rad/s and the output rad/s².
 
 namespace swath::control {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Reactive control execution (paper 002 §4–5, DESIGN.md §17.3): the control task runs when a
+// Reactive control execution (paper 002 §4–5, docs/swath-control.md): the control task runs when a
 // sensor's change x_s makes a new decision likely (L_s(x) > P_run, tested as x > x*_s), batched at
 // the hyperperiod of the fast sensors (capped by max_wait_s), with a time-triggered boot that
 // gathers the first data, a failsafe watchdog, executions forced by a new setpoint leg, the

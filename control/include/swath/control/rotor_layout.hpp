@@ -1,8 +1,8 @@
 #pragma once
-// The rotors as the control task sees them (DESIGN.md §17.2): where each one pushes, which way it
-// spins, how thrust and drag torque follow its speed, and the ESC's PWM range. These are control's
-// own inputs, a small value the caller fills from the vehicle description; they say nothing about
-// the motor dynamics, which only the simulated airframe needs.
+// The rotors as the control task sees them (docs/swath-control.md): where each one pushes, which
+// way it spins, how thrust and drag torque follow its speed, and the ESC's PWM range. These are
+// control's own inputs, a small value the caller fills from the vehicle description; they say
+// nothing about the motor dynamics, which only the simulated airframe needs.
 
 #include <array>
 #include <cstddef>
@@ -15,7 +15,7 @@ namespace swath::control {
 using vehicle::Quat;
 using vehicle::Vec3;
 
-/// The most rotors a layout may have (DESIGN.md §17.2: n ≤ 8).
+/// The most rotors a layout may have (docs/swath-control.md: n ≤ 8).
 inline constexpr std::size_t kMaxRotors = 8;
 
 /// One rotor. Its thrust is `efficiency · thrust_coeff_n_s2 · Ω²` along body +z (up) and its drag

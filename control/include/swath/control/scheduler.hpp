@@ -1,8 +1,8 @@
 #pragma once
-// When the control task runs (DESIGN.md §17.3). A scheduler is told what happens — sensor samples,
-// setpoint changes, executions starting and ending — and says when it next wants an execution and
-// why. The time-triggered scheduler ignores the events; the reactive one (part 2) is driven by
-// them, behind the same interface.
+// When the control task runs (docs/swath-control.md). A scheduler is told what happens — sensor
+// samples, setpoint changes, executions starting and ending — and says when it next wants an
+// execution and why. The time-triggered scheduler ignores the events; the reactive one (part 2) is
+// driven by them, behind the same interface.
 
 #include <array>
 #include <cstddef>

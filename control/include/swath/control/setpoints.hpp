@@ -1,5 +1,5 @@
 #pragma once
-// Setpoints along a mission (DESIGN.md §17.2 "Setpoints"): a carrot that moves along each leg with
+// Setpoints along a mission (docs/swath-control.md): a carrot that moves along each leg with
 // a trapezoid speed profile — accelerate at max_accel_m_s2, cruise at the leg's speed, brake to a
 // stop at the waypoint — sampled at 50 Hz, with the yaw along the leg.
 

@@ -1,5 +1,5 @@
 #pragma once
-// A simulated flight (DESIGN.md §17.2–§17.4): the plant (vehicle::FlightModel: the multirotor, its
+// A simulated flight (docs/swath-control.md): the plant (vehicle::FlightModel: the multirotor, its
 // ESCs, wind and sensors) and the flight computer running the control task when the scheduler
 // releases it, on one integer-nanosecond clock, with the battery fed by motors + CPU + avionics
 // (paper 004 eq. 12, energy::Battery). The parts are composed in simulation.cpp as named steps:

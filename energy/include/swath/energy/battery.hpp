@@ -3,7 +3,7 @@
 
 namespace swath::energy {
 
-/// A battery. Defaults: Seewald's simulator (paper 004, DESIGN.md §11).
+/// A battery. Defaults: Seewald's simulator (paper 004, docs/swath-energy.md).
 struct Battery {
   double voltage_v = 14.8;             ///< internal (open-circuit) voltage V, > 0
   double stabilised_voltage_v = 12.0;  ///< stabilised (regulated) voltage V~, > 0

@@ -1,5 +1,6 @@
 #pragma once
-// Plans of flight stages (paper 004 Appendix II, DESIGN.md §11), in the stage format or YAML.
+// Plans of flight stages (paper 004 Appendix II, docs/swath-energy.md), in the stage format or
+// YAML.
 
 #include <filesystem>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Configuration of the flight simulation (DESIGN.md §11) and of a drone for mission budgets.
+// Configuration of the flight simulation (docs/swath-energy.md) and of a drone for mission budgets.
 
 #include <string>
 #include <vector>

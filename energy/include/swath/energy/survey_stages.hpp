@@ -1,7 +1,7 @@
 #pragma once
-// A survey's zigzag as a plan of flight stages (DESIGN.md §11), so that swath-energy can fly,
-// evaluate and replan a real survey: lines as line stages, turns as half-circle stages, and the
-// trajectory parameter c1 scaling the line spacing.
+// A survey's zigzag as a plan of flight stages (docs/swath-energy.md), so that swath-energy can
+// fly, evaluate and replan a real survey: lines as line stages, turns as half-circle stages, and
+// the trajectory parameter c1 scaling the line spacing.
 
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The seam between the runtime and vehicles that fly outside it (DESIGN.md §18.6): real or
+// The seam between the runtime and vehicles that fly outside it (docs/swath-fleet.md): real or
 // emulated autopilots — MAVLink in swath::mavlink implements it, fleet never includes it.
 //
 // What this seam is, honestly: the simulated fleet is NOT behind it. The runtime keeps its exact

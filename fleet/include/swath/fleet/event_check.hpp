@@ -1,5 +1,5 @@
 #pragma once
-// An independent judge of a run (DESIGN.md §18.12 item 4): reads only events.jsonl — nothing of
+// An independent judge of a run (docs/swath-fleet.md): reads only events.jsonl — nothing of
 // the runtime — and checks the promises of §18.7. Rules:
 //   R1 the first line is run_start, the last run_end; times finite, ≥ 0, never going back
 //   R2 each task is created once, before anything names it; its parent was created before

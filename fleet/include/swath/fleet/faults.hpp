@@ -1,5 +1,5 @@
 #pragma once
-// swath-fleet's faults file (DESIGN.md §18.7), YAML:
+// swath-fleet's faults file (docs/swath-fleet.md), YAML:
 //   - {t_s: 40, drone: alpha, kind: link_loss, duration_s: 10}
 //   - {t_s: 90, drone: bravo, kind: battery_drop, soc: 0.25}
 //   - {t_s: 120, drone: alpha, kind: motor_failure}

@@ -1,5 +1,5 @@
 #pragma once
-// swath-fleet's fleet file (DESIGN.md §18.10): §7's fleet YAML — home, drones with name,
+// swath-fleet's fleet file (docs/formats.md): swath plan's fleet YAML — home, drones with name,
 // battery_level, endurance_s, speed_m_s, climb/descent speeds, their own home — read as simulated
 // drones, plus optional per drone:
 //   profile: quad.yaml          # a swath-energy drone profile (power and battery), relative to
@@ -27,7 +27,7 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
                                         const geometry::GeoPoint& origin);
 std::vector<DroneSpec> read_fleet_file(const std::string& path, const geometry::GeoPoint& origin);
 
-/// A weights file (DESIGN.md §18.5): the sub-utilities' weights by name —
+/// A weights file (docs/swath-fleet.md): the sub-utilities' weights by name —
 ///   coverage: 1.0       # × H per assigned request
 ///   fairness: 0.5       # per second a request has waited
 ///   avoid_zigzag: 0.0   # seconds per metre from the requests' centre

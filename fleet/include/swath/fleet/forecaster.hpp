@@ -1,7 +1,7 @@
 #pragma once
 // Forecasting an application's next requests and cancellations from its task graph (paper 000
-// §3.2.2; DESIGN.md §18.4). A `Forecaster` looks at the DTG as it stands now — its frontier being
-// the task nodes still running — and says where requests will appear next and how likely; the
+// §3.2.2; docs/swath-fleet.md). A `Forecaster` looks at the DTG as it stands now — its frontier
+// being the task nodes still running — and says where requests will appear next and how likely; the
 // scheduler may send drones ahead there (speculation, §18.5) and weighs against serving requests
 // that are about to be cancelled (q, avoid-mutual). Three strategies behind one interface:
 //   gmf               graph matching against past runs (the paper's GMF),
@@ -91,7 +91,7 @@ std::unique_ptr<Forecaster> no_forecaster();
 std::unique_ptr<Forecaster> make_forecaster(const std::string& name, std::vector<Dtg> histories,
                                             const GmfSettings& gmf = {});
 
-/// How good the forecasts of one held-out run were (DESIGN.md §18.12 item 2).
+/// How good the forecasts of one held-out run were (docs/swath-fleet.md).
 struct ForecastScore {
   /// Per task spawned after the first batch (located): horizontal distance from its first
   /// location to the nearest forecast of its kind with p ≥ p_min made when the batch before it

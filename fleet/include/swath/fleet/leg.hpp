@@ -1,5 +1,5 @@
 #pragma once
-// One straight leg of a simulated drone, in closed form (DESIGN.md §18.6; paper 000 §4.2): a
+// One straight leg of a simulated drone, in closed form (docs/swath-fleet.md; paper 000 §4.2): a
 // vertical change of altitude at constant climb or descent rate, then the horizontal flight with
 // the speed limit of the paper (cruise, and the approach speed within `approach_within_m` of the
 // target), bounded accelerations and a stop at the target. Within each piece v² is linear in the
@@ -15,7 +15,8 @@ namespace swath::fleet {
 using vehicle::Vec3;
 
 /// How a simulated drone flies. Defaults: paper 000 §4.2 (10 m/s, 2 m/s within 20 m); 2 m/s² and
-/// 3 m/s climb are our values (the paper's profiled ones are in a lost figure; DESIGN.md §18.6).
+/// 3 m/s climb are our values (the paper's profiled ones are in a lost figure;
+/// docs/swath-fleet.md).
 struct Kinematics {
   double cruise_m_s = 10.0;       ///< horizontal speed far from the target, > 0
   double approach_m_s = 2.0;      ///< horizontal speed within approach_within_m, (0, cruise]

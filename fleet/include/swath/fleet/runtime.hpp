@@ -1,5 +1,5 @@
 #pragma once
-// The runtime (paper 000 §3, §4.1; DESIGN.md §18.3): runs one application against a fleet of
+// The runtime (paper 000 §3, §4.1; docs/swath-fleet.md): runs one application against a fleet of
 // simulated drones. Each task's head segment (a fly_to and the non-flying actions after it) is a
 // *request*; every tick (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes
 // the coroutines that can go on, and — when something changed — asks the scheduler which drone
@@ -33,7 +33,7 @@
 
 namespace swath::fleet {
 
-/// An application: its main coroutine, registered by name (DESIGN.md §18.2).
+/// An application: its main coroutine, registered by name (docs/swath-fleet.md).
 struct App {
   std::string name;
   std::string description;
@@ -58,7 +58,7 @@ struct DroneSpec {
 enum class FaultKind { link_loss, battery_drop, motor_failure, sensor_failure };
 const char* fault_name(FaultKind kind);
 
-/// One injected fault (DESIGN.md §18.7).
+/// One injected fault (docs/swath-fleet.md).
 struct FaultEvent {
   double t_s = 0;  ///< when, s since the run began (≥ 0)
   int drone = 0;   ///< index in the fleet
@@ -86,7 +86,7 @@ struct RunSettings {
   Vec3 wind_m_s{0, 0, 0};
   Weights weights;
   std::vector<FaultEvent> faults;  ///< sorted or not; applied in (t_s, drone) order
-  /// What forecasts the next requests and q (DESIGN.md §18.4): none, gmf or constant-velocity.
+  /// What forecasts the next requests and q (docs/swath-fleet.md): none, gmf or constant-velocity.
   /// The scheduler "reactive" is sa with none and the forecast weights at 0 (the paper's
   /// baseline); sa with none differs from it only by those weights, which then weigh nothing.
   std::string forecaster = "none";
@@ -94,7 +94,7 @@ struct RunSettings {
   GmfSettings gmf;
   /// A speculative position is a hit when a request appears within this of it, m (> 0).
   double hit_within_m = 2;
-  /// Relief (DESIGN.md §18.5, Example 5): a drone at work whose flight time or battery ends
+  /// Relief (docs/swath-fleet.md, Example 5): a drone at work whose flight time or battery ends
   /// within the soonest idle drone's flight to its place plus relief_margin_s gets that drone as a
   /// stand-by there, which takes the next segment when it leaves. Off: the paper's baseline.
   bool relief = false;

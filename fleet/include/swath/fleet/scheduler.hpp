@@ -1,10 +1,10 @@
 #pragma once
-// Which drone serves which request, moment by moment (paper 000 §3.3.1; DESIGN.md §18.5): a
+// Which drone serves which request, moment by moment (paper 000 §3.3.1; docs/swath-fleet.md): a
 // snapshot of drones and visible requests in, at most one target per drone out, maximising
 // U(A) = Σ_k w_k u_k(A) in seconds. Pair terms (coverage, closest, fairness, avoid-zigzag,
 // commitment, speculative, avoid-mutual's per-request gain) depend on one drone and one target;
 // avoid-mutual's penalty depends on two assigned requests. Targets are the visible requests,
-// then the forecast ones (speculation positions drones there, DESIGN.md §18.5).
+// then the forecast ones (speculation positions drones there, docs/swath-fleet.md).
 // Schedulers are interchangeable behind `Scheduler`:
 // simulated annealing (the paper's), and the baselines greedy, round-robin and Hungarian (exact
 // for pair terms, so also a test oracle).
@@ -37,7 +37,7 @@ struct DroneState {
   /// Flight time it has left before it must be home, s (max_flight_time_s; infinity: no limit):
   /// a request it cannot reach, serve and return from in time is infeasible for it.
   double remaining_flight_s = std::numeric_limits<double>::infinity();
-  /// Reserved for a non-interruptible task (DESIGN.md §18.3): only this request (index) may be
+  /// Reserved for a non-interruptible task (docs/swath-fleet.md): only this request (index) may be
   /// given to it; -1 when that task shows none now.
   std::optional<int> only_request;
 };
@@ -60,7 +60,7 @@ struct Request {
 };
 
 /// Straight-line flight time: accelerate at `accel_m_s2` to `cruise_m_s`, brake to a stop
-/// (DESIGN.md §18.6's kinematics without the approach phase).
+/// (docs/swath-fleet.md kinematics without the approach phase).
 /// With `approach_within_m` > 0, also the paper's approach rule (`approach_m_s` within that
 /// distance of the target), as the simulated drones fly (leg.hpp; equal to Leg's level time).
 struct EtaModel {
@@ -83,7 +83,7 @@ struct Weights {
   double speculative = 1.0;
   /// Per assigned request i: + Σ_j q(i→j) service_j (serving i may make j's service moot);
   /// per pair of assigned requests: − q(i→j)(eta_j + service_j) (j's drone may fly for
-  /// nothing). Paper §3.3.1 and Fig. 13; DESIGN.md §18.13 for why both terms.
+  /// nothing). Paper §3.3.1 and Fig. 13; docs/swath-fleet.md for why both terms.
   double avoid_mutual = 1.0;
 };
 

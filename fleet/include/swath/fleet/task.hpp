@@ -1,5 +1,5 @@
 #pragma once
-// Writing swarm applications against virtual drones (paper 000 §3.1, Table 1; DESIGN.md §18.2):
+// Writing swarm applications against virtual drones (paper 000 §3.1, Table 1; docs/swath-fleet.md):
 // C++20 coroutines on one thread. A *task* is a virtual drone: its actions (`fly_to`, `sense`,
 // `hover`, `custom`) are queued at once and return futures; `co_await` is the paper's blocking
 // `.value`; `spawn` is `newTask`, `cancel` is `cancelTasks`. The runtime decides which real drone
@@ -37,7 +37,7 @@ struct Kind {
 };
 
 /// Binding (paper §3.1.2). `same_drone`: every segment on the drone that took the first.
-/// Not `interruptible`: the drone is reserved between segments (DESIGN.md §18.3).
+/// Not `interruptible`: the drone is reserved between segments (docs/swath-fleet.md).
 struct Flags {
   bool same_drone = false;
   bool interruptible = true;
@@ -215,7 +215,7 @@ class [[nodiscard]] Co {
   std::coroutine_handle<promise_type> h_;
 };
 
-/// Sensors and the space the applications act in (worlds/ implements it; DESIGN.md §18.1).
+/// Sensors and the space the applications act in (worlds/ implements it; docs/swath-fleet.md).
 class World;
 
 namespace detail {
@@ -260,7 +260,7 @@ class Ctx {
   int task() const { return task_; }
 
   /// Flies there; the reading's `at` is where it arrived. Throws std::logic_error in the app's
-  /// main, which is no virtual drone (DESIGN.md §18.2).
+  /// main, which is no virtual drone (docs/swath-fleet.md).
   Future<Reading> fly_to(const Vec3& to) { return act(0, to, "fly_to", 0); }
   /// Senses with `sensor` where the task's last fly_to took it; the world sets the time.
   Future<Reading> sense(const std::string& sensor) { return act(1, {}, sensor, 0); }
@@ -306,7 +306,7 @@ class Ctx {
   }
 
   /// Heavy computation: `co_await c.compute(fn, cost_s)` returns fn() after `cost_s` of virtual
-  /// time (inline in simulation; DESIGN.md §18.2).
+  /// time (inline in simulation; docs/swath-fleet.md).
   template <class F>
   Co<std::invoke_result_t<F&>> compute(F fn, double cost_s) {
     co_await core_->delay(task_, cost_s);
@@ -330,7 +330,7 @@ class Ctx {
   bool acts_;
 };
 
-/// Awaits every handle in order; their values in the same order (DESIGN.md §18.2's `all`).
+/// Awaits every handle in order; their values in the same order (docs/swath-fleet.md `all`).
 template <class T>
 Co<std::vector<T>> all(std::vector<TaskHandle<T>> hs) {
   std::vector<T> out;

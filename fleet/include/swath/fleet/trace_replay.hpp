@@ -1,5 +1,5 @@
 #pragma once
-// Trace replay (the paper's level-1 simulator, §3.3.2; DESIGN.md §18.8): a recorded run's task
+// Trace replay (the paper's level-1 simulator, §3.3.2; docs/swath-fleet.md): a recorded run's task
 // graph played back as an application. Each task of dtg.json carries its program as the runtime
 // saw it ("script": actions queued, awaits that suspended, spawns, cancels, compute delays, in
 // order), so the replay's tasks appear when their recorded predecessors are done *in this run*

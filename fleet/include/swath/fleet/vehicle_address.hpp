@@ -1,5 +1,5 @@
 #pragma once
-// Where a real vehicle is reached (DESIGN.md §18.6, §18.10): the one URL grammar shared by
+// Where a real vehicle is reached (docs/swath-fleet.md): the one URL grammar shared by
 // `swath-fleet run --vehicles` and the fleet file's per-drone `mavlink {url, sysid}`. fleet keeps
 // only the address (it opens no socket); swath::mavlink opens the link.
 

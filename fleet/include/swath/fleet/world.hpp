@@ -1,5 +1,5 @@
 #pragma once
-// What the applications act in, as the runtime sees it (DESIGN.md §18.1: fleet sees worlds only
+// What the applications act in, as the runtime sees it (docs/swath-fleet.md: fleet sees worlds only
 // through this interface): where apps start, the fence, and the sensors. Sensor noise is a hash
 // of (seed, position), not of time, so a reading does not depend on the schedule (§18.12 item 5).
 

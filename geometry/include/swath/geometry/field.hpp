@@ -1,7 +1,7 @@
 #pragma once
 // Survey area files: swath's own GeoJSON, KML and CSV readers (placed messages), and every other
 // format GDAL/OGR opens (Shapefile, GeoPackage, KMZ, GPX, FlatGeobuf, GML, WKT, ...), reprojected
-// to WGS84 (DESIGN.md §15).
+// to WGS84 (docs/swath-plan.md).
 
 #include <filesystem>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// A georeferenced raster of swath's local frame as GeoTIFF bytes (DESIGN.md §15 "coverage.tif"),
+// A georeferenced raster of swath's local frame as GeoTIFF bytes (docs/swath-plan.md),
 // written by GDAL through the GIS module. The CRS is the local frame itself: PROJ's ellipsoidal
 // orthographic projection about the frame's origin (+proj=ortho on WGS84), whose easting and
 // northing are the east and north of GeographicLib's LocalCartesian frame for points on the

@@ -1,5 +1,5 @@
 #pragma once
-// The ground under a flight (DESIGN.md §15 "Terrain"): an interface, so that the planner samples
+// The ground under a flight (docs/swath-plan.md): an interface, so that the planner samples
 // a raster DEM in a program and a closed-form surface in a test alike, and its DEM implementation
 // through the GIS module (GDAL, opened on the first DEM like any GIS file).
 

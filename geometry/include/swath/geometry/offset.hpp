@@ -1,6 +1,6 @@
 #pragma once
 // Growing and shrinking areas by a distance, and distances between paths and areas: the
-// clearance around no-fly zones and the fences of DESIGN.md §14 (Boost.Geometry's buffer and
+// clearance around no-fly zones and the fences of docs/swath-plan.md (Boost.Geometry's buffer and
 // boolean operations, in one .cpp).
 
 #include <vector>

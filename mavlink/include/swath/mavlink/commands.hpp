@@ -1,5 +1,5 @@
 #pragma once
-// MAVLink enum values swath sends or reads (DESIGN.md §18.A), named once.
+// MAVLink enum values swath sends or reads (docs/swath-fleet.md), named once.
 
 #include <cstdint>
 

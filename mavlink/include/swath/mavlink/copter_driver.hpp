@@ -1,5 +1,5 @@
 #pragma once
-// Flies one ArduCopter over MAVLink from a ground station (DESIGN.md §18.6 and §18.A), on the
+// Flies one ArduCopter over MAVLink from a ground station (docs/swath-fleet.md), on the
 // shared Driver (link, telemetry, commands resent until acknowledged, parameter reads): modes by
 // DO_SET_MODE with ArduCopter's mode numbers, take-off in GUIDED (NAV_TAKEOFF, param7 above home),
 // position targets as SET_POSITION_TARGET_GLOBAL_INT repeated until the vehicle reports them; the

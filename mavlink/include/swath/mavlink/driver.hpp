@@ -1,6 +1,6 @@
 #pragma once
-// What flying one vehicle over MAVLink from a ground station shares between autopilots (DESIGN.md
-// §18.6 and §18.A): keeps the link alive, asks for telemetry, queues commands and resends each
+// What flying one vehicle over MAVLink from a ground station shares between autopilots
+// (docs/swath-fleet.md): keeps the link alive, asks for telemetry, queues commands and resends each
 // until it is answered (3 sends, 1 s apart), reads parameters the same way (PARAM_REQUEST_READ
 // resent until PARAM_VALUE names it), runs the safety check at connect, keeps the vehicle's state
 // and tells arrival. A target outside the fence is never sent. What differs per autopilot (modes,
@@ -67,7 +67,7 @@ struct VehicleState {
 
 enum class CommandState { pending, accepted, rejected, timed_out };
 
-/// The ground station's HEARTBEAT (DESIGN.md §18.A: type GCS 6, autopilot INVALID 8, active).
+/// The ground station's HEARTBEAT (docs/swath-fleet.md: type GCS 6, autopilot INVALID 8, active).
 constexpr Heartbeat gcs_heartbeat() {
   return Heartbeat{.custom_mode = 0,
                    .type = kMavTypeGcs,

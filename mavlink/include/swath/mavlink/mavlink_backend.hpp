@@ -1,5 +1,5 @@
 #pragma once
-// swath-fleet's runtime flying multicopters over MAVLink (DESIGN.md §18.6; `swath-fleet run ...
+// swath-fleet's runtime flying multicopters over MAVLink (docs/swath-fleet.md; `swath-fleet run ...
 // --backend mavlink --vehicles V`): one driver per vehicle, chosen by the autopilot its first
 // HEARTBEAT names (12: Px4Driver, untested on PX4 and said so on stderr; else CopterDriver for
 // ArduCopter), each vehicle steered toward what

@@ -1,5 +1,5 @@
 #pragma once
-// The MAVLink messages swath speaks (DESIGN.md §18.A), as plain value types.
+// The MAVLink messages swath speaks (docs/swath-fleet.md), as plain value types.
 //
 // Each message lists its fields once, in `fields(v)`, in wire order: the base fields sorted by type
 // size (largest first, stable within a size, as MAVLink's generators order them), then the

@@ -2,10 +2,10 @@
 // UNTESTED ON PX4: written from PX4's and MAVLink's documentation, checked only against swath's
 // own fake PX4 (FakeCopter with autopilot px4), which encodes the same reading of the documents —
 // so the tests check the driver against our reading, not against PX4. Confirm in PX4 SITL before
-// flying it (DESIGN.md §18.A, "PX4 (second; confirm in PX4 SITL)").
+// flying it (docs/swath-fleet.md, "PX4 (second; confirm in PX4 SITL)").
 //
 // Flies one PX4 multicopter over MAVLink on the shared Driver (link, telemetry, commands resent
-// until acknowledged, parameter reads). Per DESIGN.md §18.A:
+// until acknowledged, parameter reads). Per docs/swath-fleet.md:
 //   - modes: DO_SET_MODE (176) param1 = 1 (MAV_MODE_FLAG_CUSTOM_MODE_ENABLED), param2 = PX4 main
 //     mode, param3 = sub mode (PX4 Commander reads them so); HEARTBEAT custom_mode carries main
 //     mode in bits 16–23 and sub mode in bits 24–31 (px4::custom_mode, commands.hpp);

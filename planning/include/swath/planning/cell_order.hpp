@@ -27,8 +27,8 @@ struct CellOrderProblem {
   std::function<double(geometry::Point2, geometry::Point2)> distance;
   /// Optional: the cells whose lanes the transit from a cell's exit to another's entry crosses,
   /// bit k for cell k (cells from 64 on are never counted). A transit over lanes still to be
-  /// flown is what a pilot distrusts (DESIGN.md §16): the orders below minimise the length plus
-  /// `crossing_weight` x the transit's length per such cell (home legs are not counted).
+  /// flown is what a pilot distrusts (docs/swath-plan.md): the orders below minimise the length
+  /// plus `crossing_weight` x the transit's length per such cell (home legs are not counted).
   std::function<std::uint64_t(geometry::Point2, geometry::Point2)> crossed;
   double crossing_weight = 1.0;
   /// Set when `distance(a, b)` is never below geometry::distance(a, b) (straight transits, paths

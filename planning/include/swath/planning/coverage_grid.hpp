@@ -1,5 +1,5 @@
 #pragma once
-// The photos over every spot of the ground, on a grid (DESIGN.md §15 "coverage.tif"): for each
+// The photos over every spot of the ground, on a grid (docs/swath-plan.md): for each
 // cell, how many planned photo footprints cover its centre, and whether the centre lies in the
 // area. What swath plan --coverage-tif writes as a GeoTIFF.
 

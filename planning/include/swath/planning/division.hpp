@@ -1,5 +1,5 @@
 #pragma once
-// Dividing a survey among drones (paper 001 §V-D, DESIGN.md §7).
+// Dividing a survey among drones (paper 001 §V-D, docs/swath-plan.md).
 
 #include <functional>
 #include <optional>
@@ -91,7 +91,8 @@ struct LanePiece {
 using LaneSweep =
     std::function<SurveyPath(std::size_t drone, const std::vector<LanePiece>& pieces)>;
 
-/// Region division balanced on measured flight times (DESIGN.md §16): the undivided plan's lanes
+/// Region division balanced on measured flight times (docs/swath-plan.md): the undivided plan's
+/// lanes
 /// (`lanes`, at angle_deg, degrees CCW from x, one grid) in order of their ordinate, then along
 /// +x, are one line of length L; n - 1 cuts in [0, L] give each drone a band of lanes, whole ones
 /// and at most one cut along its length at each end, so that a drone's time changes with a cut

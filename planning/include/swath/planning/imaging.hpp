@@ -1,5 +1,5 @@
 #pragma once
-// Altitude, footprint and spacing from a camera (DESIGN.md §5, paper 001 eq. 4-6).
+// Altitude, footprint and spacing from a camera (docs/swath-plan.md, paper 001 eq. 4-6).
 
 #include <optional>
 

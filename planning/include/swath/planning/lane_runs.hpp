@@ -1,7 +1,7 @@
 #pragma once
-// Runs from the lanes (issue 18, DESIGN.md §16): lay the lanes over the whole area first, cut each
-// only where it meets the boundary or a no-fly zone, and chain lanes whose turns stay inside into
-// zigzag runs. A notch or reflex vertex that no lane meets makes no cell; a sliver that the
+// Runs from the lanes (issue 18, docs/swath-plan.md): lay the lanes over the whole area first, cut
+// each only where it meets the boundary or a no-fly zone, and chain lanes whose turns stay inside
+// into zigzag runs. A notch or reflex vertex that no lane meets makes no cell; a sliver that the
 // neighbouring lanes' footprints already cover gets no lane; a corner they miss gets the lane
 // that covers the most of what is still unseen.
 

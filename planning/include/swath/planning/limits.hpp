@@ -1,5 +1,5 @@
 #pragma once
-// The ranges swath accepts for every number a user gives to `swath plan` (README "Limits").
+// The ranges swath accepts for every number a user gives to `swath plan` (docs/reliability.md).
 // Each is wide enough for any real survey aircraft and camera, and narrow enough that the work
 // the number drives (lines, waypoints, scan steps, files) stays bounded: a value outside is a
 // typo or a unit mistake, refused before any work with base::check_range().
@@ -38,7 +38,7 @@ inline constexpr base::Range kTerrainTolerance_m{0.1, 1000, "m", "below 0.1 m a 
 inline constexpr base::Range kAngleStep_deg{0.001, 90, "°", "180,000 scan steps at most"};
 inline constexpr base::Range kBearing_deg{-360, 360, "°", ""};
 
-// Flight (DESIGN.md §14).
+// Flight (docs/swath-plan.md).
 inline constexpr base::Range kClearance_m{0, 1000, "m", ""};
 inline constexpr base::Range kGimbalPitch_deg{-90, 30, "°", "-90 nadir, 0 level"};
 inline constexpr base::Range kFenceMargin_m{0, 10'000, "m", ""};

@@ -1,5 +1,5 @@
 #pragma once
-// A drone's mission, item by item as the autopilot gets it (DESIGN.md §14): take off, set the
+// A drone's mission, item by item as the autopilot gets it (docs/swath-plan.md): take off, set the
 // drone's speed, point the camera, fly the lines with the camera triggering on each line only,
 // and return to launch (or land).
 
@@ -94,7 +94,7 @@ struct MissionSettings {
   /// Line ends (either end) where the drone must stop: a hold of kStopHold_s is written there,
   /// kStoppingMargin_m back along the line. ArduCopter flies through every waypoint without a
   /// hold, and a turn flown through at a line end beside a no-fly zone swings into the clearance
-  /// band (DESIGN.md §14 "Clearance").
+  /// band (docs/swath-plan.md).
   std::function<bool(geometry::Point2)> stop_at;
 };
 

@@ -1,9 +1,9 @@
 #pragma once
-// What mission.geojson holds (DESIGN.md §8), as plain data in WGS84: the one in-memory form of a
+// What mission.geojson holds (docs/formats.md), as plain data in WGS84: the one in-memory form of a
 // plan's geometry. The GeoJSON writer serialises it, the pictures are drawn from it, and
 // `swath render DIR` reads a written file back into it (checked: a hand-edited file is input like
-// any other, DESIGN.md §12). Positions are rounded to 1e-9 degrees (~0.1 mm), as written, so a
-// picture drawn before and after writing is the same picture.
+// any other, docs/reliability.md). Positions are rounded to 1e-9 degrees (~0.1 mm), as written, so
+// a picture drawn before and after writing is the same picture.
 
 #include <optional>
 #include <string>
@@ -62,7 +62,7 @@ std::string mission_geojson(const PlanFeatures& features);
 /// a drone number out of range). Features of unknown roles are skipped.
 PlanFeatures parse_mission_geojson(const std::string& text, const std::string& source);
 
-/// The figures the pictures print, from summary.json (DESIGN.md §8).
+/// The figures the pictures print, from summary.json (docs/formats.md).
 struct PlanFigures {
   double covered_fraction = 0;
   int lines = 0;

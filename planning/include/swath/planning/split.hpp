@@ -23,7 +23,8 @@ enum class SplitCells {
   best,
 };
 
-/// Whether one split plan flies one direction or a direction per region (issue 18, DESIGN.md §16).
+/// Whether one split plan flies one direction or a direction per region (issue 18,
+/// docs/swath-plan.md).
 enum class SplitDirections {
   /// Every lane at the one direction searched (or fixed).
   one,

@@ -1,8 +1,8 @@
 #pragma once
-// The survey: a request, the plan, and plan_survey(), a short pipeline of named steps (DESIGN.md
-// §2): area -> imaging -> direction -> lanes -> drones -> missions -> sorties -> measures.
-// Each step lives in its own file pair (survey_area, imaging, direction, lanes, drones, mission,
-// sorties, photos, clearance, checks); this header holds only the data they share.
+// The survey: a request, the plan, and plan_survey(), a short pipeline of named steps
+// (docs/architecture.md): area -> imaging -> direction -> lanes -> drones -> missions -> sorties ->
+// measures. Each step lives in its own file pair (survey_area, imaging, direction, lanes, drones,
+// mission, sorties, photos, clearance, checks); this header holds only the data they share.
 
 #include <optional>
 #include <string>
@@ -85,14 +85,14 @@ struct SurveyRequest {
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
   /// Fly at the imaging altitude above the ground of a DEM (terrain.hpp) instead of above home.
   std::optional<TerrainRequest> terrain;
-  /// DESIGN.md §14 "Clearance": no waypoint and no leg closer than this to a hole or no-fly zone.
+  /// docs/swath-plan.md: no waypoint and no leg closer than this to a hole or no-fly zone.
   double clearance_m = 5.0;
   /// The same for the outer boundary (lines shortened, transits kept inside by this much).
   double boundary_clearance_m = 0.0;
   /// Split: a lane may cross up to this far outside the outer boundary (never into a no-fly zone
   /// or its clearance) to join its pieces into one line; its ends stay inside. 0: never.
   double outside_margin_m = 0.0;
-  /// Camera triggering and the items that command it (DESIGN.md §14 "Camera triggering").
+  /// Camera triggering and the items that command it (docs/swath-plan.md).
   Triggering triggering;
   /// Fly every line a second time at 90° (crosshatch), after the first pass.
   bool crosshatch = false;
@@ -106,7 +106,7 @@ struct SurveyRequest {
   std::optional<double> endurance_s;
   double reserve = 0.2;  ///< share of the endurance kept in hand, [0, 0.9]
   /// The fence: the area grown by this much, metres; absent: turnaround + half the footprint
-  /// width + 10 m (DESIGN.md §14 "Fences").
+  /// width + 10 m (docs/swath-plan.md).
   std::optional<double> fence_margin_m;
 };
 
@@ -133,7 +133,7 @@ inline constexpr double kMinAreaWidth_m = 1.0;
 /// Altitude above home above which a warning names the common legal limit (EU, US: 120 m / 400 ft).
 inline constexpr double kLegalAltitude_m = 120.0;
 
-/// A battery-sized part of one drone's flight (DESIGN.md §14 "Sorties").
+/// A battery-sized part of one drone's flight (docs/swath-plan.md).
 struct Sortie {
   int number = 1;                  ///< 1-based, in flying order
   DroneMission mission;            ///< home -> resume point -> ... -> home

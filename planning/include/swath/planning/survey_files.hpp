@@ -1,6 +1,6 @@
 #pragma once
-// The files `swath plan` writes (DESIGN.md §8, §14), one writer per format in planning/src/files/.
-// Numbers are rounded to fixed decimals: same plan, same bytes.
+// The files `swath plan` writes (docs/formats.md and docs/swath-plan.md), one writer per format in
+// planning/src/files/. Numbers are rounded to fixed decimals: same plan, same bytes.
 
 #include <string>
 #include <utility>
@@ -75,7 +75,7 @@ inline constexpr double kLitchiMaxAltitude_m = 500.0;
 /// The most points a DJI WPML wayline numbers (wpml:index 0 to 65535).
 inline constexpr std::size_t kWpmlMaxWaypoints = 65'536;
 
-/// Litchi mission CSV (--litchi, DESIGN.md §15): Litchi's column set (latitude, longitude,
+/// Litchi mission CSV (--litchi, docs/swath-plan.md): Litchi's column set (latitude, longitude,
 /// altitude(m), heading(deg), curvesize(m), rotationdir, gimbalmode, gimbalpitchangle,
 /// actiontype1..15/actionparam1..15, altitudemode, speed(m/s), poi_*, photo_timeinterval,
 /// photo_distinterval), one row per waypoint of the flight (Litchi takes off and returns or lands
@@ -88,7 +88,7 @@ inline constexpr std::size_t kWpmlMaxWaypoints = 65'536;
 /// k + 1 starts at the point part k ends at.
 std::vector<std::string> litchi_csv(const SurveyPlan& plan, const Flight& flight);
 
-/// DJI WPML (--dji, DESIGN.md §15): wpmz/waylines.wpml (what the aircraft executes) and
+/// DJI WPML (--dji, docs/swath-plan.md): wpmz/waylines.wpml (what the aircraft executes) and
 /// wpmz/template.kml (the waypoint template DJI Pilot 2 edits) of a flight: the points as for
 /// Litchi, heights relativeToStartPoint, the drone's speed, followWayline heading (the leg's
 /// bearing in waypointHeadingAngle), a stop at every point, gimbalRotate to the gimbal pitch at
@@ -101,8 +101,8 @@ std::string dji_template_kml(const SurveyPlan& plan, const Flight& flight);
 /// The KMZ: a zip (libzip) of wpmz/template.kml and wpmz/waylines.wpml; same plan, same bytes.
 std::string dji_kmz(const SurveyPlan& plan, const Flight& flight);
 
-/// Every figure of the plan (DESIGN.md §8, §14) as JSON; `files`, the names of the set written with
-/// it (DESIGN.md §14 "Output directory"), under "files" when given.
+/// Every figure of the plan (docs/formats.md and docs/swath-plan.md) as JSON; `files`, the names of
+/// the set written with it (docs/swath-plan.md), under "files" when given.
 std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>& files = {});
 
 struct FileOptions {

@@ -8,7 +8,7 @@
 
 namespace swath::planning::steps {
 
-/// 1. area: the frame, homes near the area (DESIGN.md §14 sanity), --repair, no-fly zones as
+/// 1. area: the frame, homes near the area (docs/swath-plan.md sanity), --repair, no-fly zones as
 /// holes, the facts and their refusals (crossings, --concave reject), the handling (convex, hull,
 /// split), the flown area, the planning rings (holes and zones grown by the clearance, the outer
 /// ring shrunk by the boundary clearance) and the fence.

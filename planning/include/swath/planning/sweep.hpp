@@ -1,5 +1,5 @@
 #pragma once
-// Zigzag sweep of an area (DESIGN.md §6, paper 001 Algorithm 2).
+// Zigzag sweep of an area (docs/swath-plan.md, paper 001 Algorithm 2).
 
 #include <optional>
 #include <vector>
@@ -20,7 +20,7 @@ enum class LinePlacement {
 
 /// How far a line reaches along its ordinate.
 enum class SegmentRule {
-  /// DESIGN.md §6: the area's extent within the line's whole strip, so slanted edges leave no
+  /// docs/swath-plan.md: the area's extent within the line's whole strip, so slanted edges leave no
   /// unseen triangles (the line may pass the boundary there).
   strip,
   /// The area's own extent at the line's ordinate: never leaves a cell that every line meets in one
@@ -64,9 +64,9 @@ struct Sweep {
 /// With SegmentRule::strip each line's segment spans the area's extent within its strip: the
 /// band between the midpoints to its neighbours (the first from the bottom, the last to the top).
 /// Every point of the area then lies in some strip, within the line's segment span and within
-/// half a footprint of the line, so it is seen (DESIGN.md §6 guarantee). With SegmentRule::inside
-/// the segment is the area's extent at the line's own ordinate. Lines that would hold no area are
-/// dropped. Throws std::invalid_argument on settings out of range.
+/// half a footprint of the line, so it is seen (docs/swath-plan.md guarantee). With
+/// SegmentRule::inside the segment is the area's extent at the line's own ordinate. Lines that
+/// would hold no area are dropped. Throws std::invalid_argument on settings out of range.
 Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& settings);
 
 /// Line offsets (rotated-frame y) for an area spanning [y_min, y_max].

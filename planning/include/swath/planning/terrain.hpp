@@ -1,5 +1,5 @@
 #pragma once
-// Terrain following (DESIGN.md §15 "Terrain"): the flight held at a constant height above the
+// Terrain following (docs/swath-plan.md): the flight held at a constant height above the
 // ground a DEM describes. Every leg between two waypoints is a straight line in space, so the
 // planner adds waypoints where the ground departs from the straight line between the waypoints
 // kept by more than a tolerance (Douglas-Peucker on the ground profile of the leg): between them

@@ -1,7 +1,7 @@
 #pragma once
 // Simulation time: integer nanoseconds, so that sensor periods, ESC frames and control releases
 // fall on exact instants and events at the same instant are recognised as such (no rounding drift
-// over hours of flight; DESIGN.md §17.2).
+// over hours of flight; docs/swath-control.md).
 
 #include <cmath>
 #include <cstdint>
@@ -24,7 +24,7 @@ inline SimTime from_seconds(double s) {
 }
 
 /// The period of a rate in whole nanoseconds, or 0 when `rate_hz` does not divide a second into
-/// whole nanoseconds within 1e-9 relative (callers refuse such rates: DESIGN.md §17.5).
+/// whole nanoseconds within 1e-9 relative (callers refuse such rates: docs/swath-control.md).
 inline SimTime period_of_rate(double rate_hz) {
   if (!(rate_hz > 0)) return 0;
   const double ns = 1e9 / rate_hz;

@@ -1,6 +1,6 @@
 #pragma once
-// One drone, as every program sees it (DESIGN.md §2: one concept, one type): its name, home,
-// speeds and how much it can fly, read from a fleet file (swath plan, swath-fleet) or a drone
+// One drone, as every program sees it (docs/architecture.md: one concept, one type): its name,
+// home, speeds and how much it can fly, read from a fleet file (swath plan, swath-fleet) or a drone
 // profile (swath-energy budget, with energy's battery and power models beside it); and a fleet.
 
 #include <optional>
@@ -13,7 +13,7 @@
 namespace swath::vehicle {
 
 namespace limits {
-// The ranges a fleet file's numbers must lie in (README "Limits").
+// The ranges a fleet file's numbers must lie in (docs/reliability.md).
 inline constexpr base::Range kDrones{1, 100, "drones", "one file set per drone"};
 inline constexpr base::Range kEndurance_s{1, 604'800, "s", "a week"};
 inline constexpr base::Range kBatteryLevel{0, 1, "", "a fraction of a full charge"};

@@ -1,5 +1,5 @@
 #pragma once
-// The plant of a simulated flight (DESIGN.md §17.2 "Clock and integration"): the multirotor, its
+// The plant of a simulated flight (docs/swath-control.md): the multirotor, its
 // ESCs, the wind and the sensors on one integer-nanosecond event clock. Events at one instant run
 // in a fixed order: ESC frames, wind, sensors (in file order); between events the body is
 // integrated with RK4 in equal sub-steps of at most max_step_s with the inputs held. The

@@ -1,8 +1,8 @@
 #pragma once
-// The multirotor of DESIGN.md §17.2: a 6-DoF rigid body carried by n <= 8 rotors whose speeds are
-// state (first-order motors), with rotor and body drag, blade flapping and torque noise; brushless
-// motors with their electrical power; ESCs that quantise PWM and latch it at their frame rate.
-// Frames: world ENU (x east, y north, z up), body FLU (x forward, y left, z up). Integration:
+// The multirotor of docs/swath-control.md: a 6-DoF rigid body carried by n <= 8 rotors whose speeds
+// are state (first-order motors), with rotor and body drag, blade flapping and torque noise;
+// brushless motors with their electrical power; ESCs that quantise PWM and latch it at their frame
+// rate. Frames: world ENU (x east, y north, z up), body FLU (x forward, y left, z up). Integration:
 // classical RK4 (Boost.Odeint) in equal sub-steps with the inputs held over each.
 
 #include <array>

@@ -2,7 +2,7 @@
 // Deterministic random numbers of our own: the same bytes on every library and platform (the
 // std:: distributions differ between standard libraries), and one independent stream per named
 // noise source, so that two runs with the same seed see the same wind and sensor noise whatever
-// else they do differently (common random numbers, DESIGN.md §17.1).
+// else they do differently (common random numbers, docs/swath-control.md).
 
 #include <cstdint>
 #include <string_view>

@@ -1,6 +1,6 @@
 #pragma once
-// The sensors of DESIGN.md §17.2: gyro, accelerometer, magnetometer, barometer and a position fix
-// (GPS or vision), each sampling on its own integer-nanosecond schedule with noise, a bias that
+// The sensors of docs/swath-control.md: gyro, accelerometer, magnetometer, barometer and a position
+// fix (GPS or vision), each sampling on its own integer-nanosecond schedule with noise, a bias that
 // walks, range and LSB of its converter, a first-order low-pass and a latency; and the driver's
 // accumulation of Δθ and Δv between control executions, as ArduPilot's INS backend does, so
 // that executions that are skipped lose no inertial data.

@@ -2,7 +2,7 @@
 // Small value types of 3-D flight: vectors and unit quaternions. Plain, header-only, no Eigen: they
 // cross every interface of vehicle/, control/ and fleet/ (Eigen stays inside the .cpp files that
 // solve with it). Frames are named where the values are used: world ENU (x east, y north, z up),
-// body FLU (x forward, y left, z up) (DESIGN.md §17.2).
+// body FLU (x forward, y left, z up) (docs/swath-control.md).
 
 #include <cmath>
 

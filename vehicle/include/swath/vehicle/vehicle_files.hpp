@@ -1,5 +1,5 @@
 #pragma once
-// Vehicle and environment files of DESIGN.md §17.A (share/vehicles/*.yaml,
+// Vehicle and environment files of docs/swath-control.md (share/vehicles/*.yaml,
 // share/environments/*.yaml): units in every key name (speeds in _m_s; the old _mps spellings
 // read with a warning), unknown keys refused naming file, line and key, numbers outside their
 // range refused. A vehicle file's control sections (estimator, controller, computer) and its

@@ -1,5 +1,5 @@
 #pragma once
-// The wind of DESIGN.md §17.2: a mean wind with a logarithmic profile and an optional ramp,
+// The wind of docs/swath-control.md: a mean wind with a logarithmic profile and an optional ramp,
 // Dryden turbulence (MIL-F-8785C, low altitude) from forming filters discretised exactly, discrete
 // 1 − cos gusts with Poisson arrivals, and regions of fixed added wind. World ENU, m/s. Each part
 // draws from its own named random stream (common random numbers across runs that differ in

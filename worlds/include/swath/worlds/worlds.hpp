@@ -1,7 +1,7 @@
 #pragma once
-// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; DESIGN.md §18.9) and their world
-// files. Every sensor's noise is a hash of (seed, sensor, position to the millimetre), not of time
-// or order, so a reading does not depend on the schedule (DESIGN.md §18.12 item 5): two schedulers
+// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; docs/swath-fleet.md) and their
+// world files. Every sensor's noise is a hash of (seed, sensor, position to the millimetre), not of
+// time or order, so a reading does not depend on the schedule (docs/swath-fleet.md): two schedulers
 // sensing the same place see the same value, and a case's oracle is exact.
 //
 // World YAML (local metres at `origin`, x east, y north):
@@ -129,7 +129,7 @@ class TrackingWorld final : public BaseWorld {
   std::array<double, 3> turn_amp{}, turn_freq{}, turn_phase{};
 };
 
-/// Static work from a file (DESIGN.md §18.2: declarative files only for work that does not
+/// Static work from a file (docs/swath-fleet.md: declarative files only for work that does not
 /// depend on readings). App `static`: each task starts once the tasks it comes `after` are done,
 /// queues its actions and ends with the last. World file:
 ///   kind: static
@@ -137,7 +137,7 @@ class TrackingWorld final : public BaseWorld {
 ///   tasks:
 ///     - name: north-photo
 ///       kind: photo                 # the logic task (default: the name)
-///       same_drone: false           # binding flags (DESIGN.md §18.3)
+///       same_drone: false           # binding flags (docs/swath-fleet.md)
 ///       interruptible: true
 ///       after: [pickup]             # names of tasks that must be done first
 ///       actions:
