@@ -22,6 +22,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/base/utf8.hpp"
 #include "swath/geometry/field.hpp"
 
 namespace swath::apps {
@@ -45,6 +46,7 @@ std::string directory_name(const std::string& name) {
   for (unsigned char c : name)
     out += std::isalnum(c) || c == '-' || c == '_' || c == '.' ? static_cast<char>(c) : '_';
   if (out.empty() || out == "." || out == "..") out = "area";
+  if (out[0] == '.') out[0] = '_';  // never hidden, never the batch's manifest
   return out.substr(0, 80);
 }
 
@@ -125,7 +127,7 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
     std::vector<geometry::AreaEntry> found;
     try {
       found = geometry::list_areas(file, options);
-    } catch (const InputError&) {
+    } catch (const std::exception&) {
       // One bad file of a directory is its own row: its `swath plan` says why, exit 2 (the
       // batch's exit 3); the other files are planned. A file given alone is refused as before.
       if (!directory) throw;
@@ -140,15 +142,20 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
   };
   if (directory) {
     std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(areas))
-      if (e.is_regular_file() && area_file(e.path())) files.push_back(e.path());
+    for (const auto& e : fs::directory_iterator(areas)) {
+      // An entry that cannot be looked at (a symlink loop, a dangling link) is a row too: its
+      // `swath plan` says why.
+      std::error_code ec;
+      const bool regular = e.is_regular_file(ec);
+      if ((regular || ec) && area_file(e.path())) files.push_back(e.path());
+    }
     std::sort(files.begin(), files.end());
     if (files.empty()) throw InputError(areas + ": no area files in this directory");
     for (const fs::path& f : files) add_file(f);
   } else {
     add_file(areas);
   }
-  std::set<std::string> used;
+  std::set<std::string> used = {"batch.csv", "batch.geojson"};  // the batch's own files
   for (Job& j : jobs) {
     std::string dir = directory_name(j.name);
     for (int k = 2; used.count(dir); ++k) dir = directory_name(j.name) + "-" + std::to_string(k);
@@ -247,7 +254,7 @@ json outline_geojson(const Job& j, geometry::FieldReadOptions options) {
       rings.push_back(r);
     }
     return {{"type", "Polygon"}, {"coordinates", rings}};
-  } catch (const InputError&) {
+  } catch (const std::exception&) {  // its row says why
     return nullptr;
   }
 }
@@ -269,12 +276,11 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<Result>
     const Result& r = results[i];
     const bool ok = r.exit_code == 0;
     t.failed += !ok;
-    json props{{"area", j.name},
-               {"file", j.file},
-               {"index", j.index},
-               {"directory", j.dir},
-               {"status", ok ? "planned" : "refused"},
-               {"exit_code", r.exit_code}};
+    // Names and messages are bytes from the user's files: valid UTF-8 before JSON and CSV.
+    const std::string name = base::valid_utf8(j.name), message = base::valid_utf8(r.message);
+    json props{
+        {"area", name},       {"file", base::valid_utf8(j.file)},     {"index", j.index},
+        {"directory", j.dir}, {"status", ok ? "planned" : "refused"}, {"exit_code", r.exit_code}};
     std::string numbers = ",,,,,";
     if (ok) {
       const json s =
@@ -295,12 +301,12 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<Result>
       props["flight_time_s"] = time;
       props["photos"] = photos;
     } else {
-      props["message"] = r.message;
+      props["message"] = message;
     }
-    t.csv += csv_field(j.name) + "," + csv_field(j.file) + "," + std::to_string(j.index) + "," +
-             csv_field(j.dir) + "," + (ok ? "planned" : "refused") + "," +
-             std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : r.message) +
-             "\n";
+    t.csv += csv_field(name) + "," + csv_field(base::valid_utf8(j.file)) + "," +
+             std::to_string(j.index) + "," + csv_field(j.dir) + "," + (ok ? "planned" : "refused") +
+             "," + std::to_string(r.exit_code) + "," + numbers + "," +
+             csv_field(ok ? "" : message) + "\n";
     features.push_back(json{
         {"type", "Feature"}, {"properties", props}, {"geometry", outline_geojson(j, options)}});
   }

@@ -34,6 +34,9 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
     std::string reason = e.what();
     const auto colon = reason.find(": ", reason.find("column"));
     reason = colon == std::string::npos ? reason : reason.substr(colon + 2);
+    // nlohmann's "; last read: '...'" quotes the file's bytes (a symlink to /etc/passwd would
+    // show its first line); the line and column say where.
+    reason = reason.substr(0, reason.find("; last read:"));
     throw InputError(source + ": line " + std::to_string(line) + ", column " +
                      std::to_string(column) + ": invalid JSON (" + reason + ")");
   } catch (const json::exception& e) {
