@@ -1,3 +1,4 @@
+#include <cctype>
 #include <iostream>
 #include <string>
 
@@ -7,6 +8,37 @@
 #include "swath/base/input_error.hpp"
 
 namespace swath::apps {
+namespace {
+
+// Whether `token` is what strtod reads as NaN or an infinity ("nan", "-inf", "Infinity",
+// "nan(0x1)"): CLI11 converts those to doubles, and a range check (x < lo || x > hi) lets NaN
+// through (`--max-time nan` ran with a time limit of -9223372036854775808 s).
+bool non_finite(std::string token) {
+  for (char& c : token) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (!token.empty() && (token[0] == '+' || token[0] == '-')) token.erase(0, 1);
+  return token == "nan" || token == "inf" || token == "infinity" || token.rfind("nan(", 0) == 0;
+}
+
+// Refuses any option of `app` (and of its parsed subcommands) given NaN or an infinity, alone or
+// as part of a pair such as LAT,LON: no option of swath's takes one.
+void refuse_non_finite(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options())
+    for (const std::string& value : option->results()) {
+      std::string token;
+      for (const char c : value + ",") {
+        if (c != ',' && c != ';' && c != ':' && c != ' ') {
+          token += c;
+          continue;
+        }
+        if (non_finite(token))
+          throw base::InputError(option->get_name() + " '" + value + "': not a finite number");
+        token.clear();
+      }
+    }
+  for (const CLI::App* sub : app.get_subcommands()) refuse_non_finite(*sub);
+}
+
+}  // namespace
 
 int run_program(const char* program, const char* description, const char* exit_codes,
                 std::vector<std::unique_ptr<Command>>& commands, int argc, char** argv) {
@@ -40,6 +72,7 @@ int run_program(const char* program, const char* description, const char* exit_c
   for (auto& [sub, command] : registered) {
     if (!sub->parsed()) continue;
     try {
+      refuse_non_finite(*sub);
       return command->run();
     } catch (const swath::base::InputError& e) {
       std::cerr << program << ' ' << command->name() << ": "
