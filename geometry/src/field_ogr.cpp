@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 
@@ -130,6 +131,41 @@ RawField to_raw(const OGRPolygon& poly, const std::string& where) {
   return raw;
 }
 
+// Refuses an area (already in WGS84 longitude/latitude) that lies wholly more than a degree
+// outside the area where its CRS is used: coordinates of another CRS than the file says
+// (longitude/latitude under a Swiss LV95 .prj became a "convex area" of 0 m² in the Atlantic). A
+// CRS without a recorded area of use, or one across the antimeridian, is checked in latitude only.
+void check_area_of_use(const OGRGeometry& g, const OGRSpatialReference& crs,
+                       const std::string& source) {
+  double west = 0, south = 0, east = 0, north = 0;
+  const char* name = nullptr;
+  if (!crs.GetAreaOfUse(&west, &south, &east, &north, &name) || west == -1000) return;
+  OGREnvelope e;
+  g.getEnvelope(&e);
+  constexpr double kMargin_deg = 1.0;
+  const bool lat_outside = e.MaxY < south - kMargin_deg || e.MinY > north + kMargin_deg;
+  const bool lon_outside =
+      west <= east && (e.MaxX < west - kMargin_deg || e.MinX > east + kMargin_deg);
+  if (!lat_outside && !lon_outside) return;
+  const char* crs_name = crs.GetName();
+  throw InputError(source + ": its coordinates lie outside the area where its CRS (" +
+                   std::string(crs_name ? crs_name : "unnamed") + ") is used" +
+                   (name ? std::string(": ") + name : std::string()) +
+                   "; are they in another CRS than the file says?");
+}
+
+// A Shapefile whose .prj GDAL could not read has no CRS, and would be taken as
+// longitude/latitude: refused instead (a misspelt or garbage .prj is not WGS84).
+void refuse_unread_prj(OGRLayer& layer, const std::string& path) {
+  if (layer.GetSpatialRef() || !lower(path).ends_with(".shp")) return;
+  std::error_code ec;
+  for (const char* ext : {".prj", ".PRJ"})
+    if (std::filesystem::exists(std::filesystem::path(path).replace_extension(ext), ec))
+      throw InputError(path +
+                       ": its .prj names no coordinate reference system GDAL knows; fix "
+                       "it, or remove it for longitude/latitude");
+}
+
 // Into WGS84 longitude/latitude (traditional GIS order), when the source has another CRS.
 void to_wgs84(OGRGeometry& g, const OGRSpatialReference* srs, const std::string& source) {
   if (!srs) return;  // no CRS: taken as longitude/latitude (GeoJSON's and KML's rule)
@@ -143,6 +179,7 @@ void to_wgs84(OGRGeometry& g, const OGRSpatialReference* srs, const std::string&
   if (!ct || g.transform(ct.get()) != OGRERR_NONE)
     throw InputError(source + ": its coordinates cannot be transformed to WGS84 (" +
                      last_gdal_error() + ")");
+  check_area_of_use(g, from, source);
 }
 
 }  // namespace
@@ -366,6 +403,7 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
   }
   const std::size_t chosen = choose_area(areas, options, *layer, path);
   OGRPolygon& poly = *areas[chosen].polygon;
+  refuse_unread_prj(*layer, path);
   to_wgs84(poly, layer->GetSpatialRef(), path);
   return to_raw(poly, "area " + areas[chosen].name);
 }

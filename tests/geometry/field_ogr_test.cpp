@@ -180,5 +180,26 @@ TEST(FieldOgr, WhatIsNotAnAreaIsRefusedInOneSentence) {
   EXPECT_GT(area(read_field(one).polygon), 0.0);
 }
 
+// Coordinates in another CRS than the file says are refused, not planned somewhere else:
+// longitude/latitude labelled Swiss LV95 (EPSG:2056) would lie in the Atlantic; a .prj GDAL
+// cannot read is not taken as longitude/latitude. The same field labelled with its real CRS reads.
+TEST(FieldOgr, ACrsThatDoesNotFitItsCoordinatesIsRefused) {
+  const std::string meadow = source("share/fields/meadow.geojson");
+  const fs::path mislabelled = scratch() / "mislabelled.gpkg";
+  translate(mislabelled, meadow, {"-f", "GPKG", "-a_srs", "EPSG:2056"});
+  EXPECT_NE(refusal(mislabelled).find("outside the area where its CRS (CH1903+ / LV95) is used"),
+            std::string::npos)
+      << refusal(mislabelled);
+  const fs::path labelled = scratch() / "labelled.gpkg";
+  translate(labelled, meadow, {"-f", "GPKG", "-a_srs", "EPSG:4326"});
+  EXPECT_EQ(refusal(labelled), "accepted");
+  const fs::path garbage = scratch() / "garbage.shp";
+  translate(garbage, meadow, {"-f", "ESRI Shapefile"});
+  std::ofstream(scratch() / "garbage.prj") << "GARBAGE[\"not a CRS\"]";
+  EXPECT_NE(refusal(garbage).find("its .prj names no coordinate reference system"),
+            std::string::npos)
+      << refusal(garbage);
+}
+
 }  // namespace
 }  // namespace swath::geometry
