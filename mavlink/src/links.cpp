@@ -13,6 +13,8 @@
 
 #include "swath/mavlink/link.hpp"
 
+#include "swath/mavlink/frame.hpp"
+
 namespace swath::mavlink {
 namespace {
 
@@ -39,7 +41,7 @@ int open_socket(const std::string& where) {
 
 }  // namespace
 
-UdpLink UdpLink::listen(const std::string& host, std::uint16_t port) {
+UdpLink UdpLink::listen(const std::string& host, std::uint16_t port, std::uint8_t peer_sysid) {
   const std::string where = host + ":" + std::to_string(port);
   const sockaddr_in a = address_of(host, port);
   UdpLink link;
@@ -47,6 +49,7 @@ UdpLink UdpLink::listen(const std::string& host, std::uint16_t port) {
   if (bind(link.fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0)
     fail("UDP listen on " + where);
   link.learn_peer_ = true;
+  link.peer_sysid_ = peer_sysid;
   return link;
 }
 
@@ -72,6 +75,7 @@ UdpLink& UdpLink::operator=(UdpLink&& other) noexcept {
     learn_peer_ = other.learn_peer_;
     peer_address_ = other.peer_address_;
     peer_port_ = other.peer_port_;
+    peer_sysid_ = other.peer_sysid_;
   }
   return *this;
 }
@@ -104,15 +108,31 @@ std::size_t UdpLink::receive(std::vector<std::uint8_t>& out) {
       if (errno == EINTR) continue;
       fail("UDP receive");
     }
-    if (learn_peer_) {  // the latest sender is the peer
-      has_peer_ = true;
-      peer_address_ = from.sin_addr.s_addr;
-      peer_port_ = from.sin_port;
-    }
+    if (learn_peer_ && !from_peer(from, {buffer.data(), static_cast<std::size_t>(n)})) continue;
     out.insert(out.end(), buffer.begin(), buffer.begin() + n);
     total += static_cast<std::size_t>(n);
   }
   return total;
+}
+
+// The peer is the sender of the latest datagram that holds a good MAVLink frame (CRC and
+// length right, a message swath knows) from the expected system: junk and strangers' datagrams
+// are dropped, so a 1-byte sender no longer takes the vehicle's place as the peer that swath's
+// commands go to. A vehicle that restarts on another port is followed by its first good frame.
+bool UdpLink::from_peer(const sockaddr_in& from, std::span<const std::uint8_t> datagram) {
+  const bool same =
+      has_peer_ && from.sin_addr.s_addr == peer_address_ && from.sin_port == peer_port_;
+  if (same) return true;
+  FrameParser parser;
+  parser.feed(datagram);
+  parser.finish();
+  bool good = false;
+  for (Frame f; parser.next(f);) good = good || peer_sysid_ == 0 || f.header.sysid == peer_sysid_;
+  if (!good) return false;
+  has_peer_ = true;
+  peer_address_ = from.sin_addr.s_addr;
+  peer_port_ = from.sin_port;
+  return true;
 }
 
 std::uint16_t UdpLink::local_port() const {

@@ -588,5 +588,52 @@ TEST(UdpLink, ABusyPortIsRefusedNamingTheAddress) {
   EXPECT_THROW(UdpLink::connect("not-an-address", 14550), std::system_error);
 }
 
+// A listening link answers only a sender of good MAVLink frames from the expected system: a
+// 1-byte sender, a stream of junk and a good frame from another system are dropped and never
+// become the peer; the vehicle's heartbeat does, and a later stranger's junk does not take over.
+TEST(UdpLink, OnlyASenderOfGoodFramesFromTheSystemBecomesThePeer) {
+  UdpLink ground = UdpLink::listen("127.0.0.1", 0, 1);
+  UdpLink junk = UdpLink::connect("127.0.0.1", ground.local_port());
+  UdpLink stranger = UdpLink::connect("127.0.0.1", ground.local_port());
+  UdpLink vehicle = UdpLink::connect("127.0.0.1", ground.local_port());
+  auto drain = [](UdpLink& link) {
+    std::vector<std::uint8_t> got;
+    for (int tries = 0; tries < 50 && got.empty(); ++tries) {
+      link.receive(got);
+      if (got.empty()) usleep(1000);
+    }
+    return got;
+  };
+  auto heartbeat = [](std::uint8_t sysid) {
+    return serialize(pack(Heartbeat{.type = 2}, FrameHeader{0, sysid, 1}));
+  };
+  const std::uint8_t one_byte = 0xfe;
+  junk.send({&one_byte, 1});
+  const auto other_system = heartbeat(7);
+  stranger.send(other_system);
+  usleep(20'000);
+  std::vector<std::uint8_t> got;
+  ground.receive(got);
+  EXPECT_TRUE(got.empty());  // neither reached the reader
+  const std::uint8_t hello = 0x42;
+  ground.send({&hello, 1});  // no peer yet: dropped, as a radio would
+  EXPECT_TRUE(drain(junk).empty());
+  EXPECT_TRUE(drain(stranger).empty());
+
+  const auto beat = heartbeat(1);
+  vehicle.send(beat);
+  EXPECT_EQ(drain(ground), std::vector<std::uint8_t>(beat.begin(), beat.end()));
+  junk.send({&one_byte, 1});
+  stranger.send(other_system);
+  usleep(20'000);
+  got.clear();
+  ground.receive(got);
+  EXPECT_TRUE(got.empty());
+  ground.send({&hello, 1});
+  EXPECT_EQ(drain(vehicle), std::vector<std::uint8_t>{hello});
+  EXPECT_TRUE(drain(junk).empty());
+  EXPECT_TRUE(drain(stranger).empty());
+}
+
 }  // namespace
 }  // namespace swath::mavlink

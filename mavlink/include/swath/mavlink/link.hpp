@@ -2,6 +2,8 @@
 // Byte links a MAVLink node talks over: an interface, and POSIX UDP on IPv4 (ArduPilot SITL and
 // companion routers speak UDP; TCP to SITL's port 5760 + 10 x instance is the same interface).
 
+#include <netinet/in.h>
+
 #include <cstdint>
 #include <span>
 #include <string>
@@ -26,13 +28,16 @@ class Link {
   virtual std::size_t receive(std::vector<std::uint8_t>& out) = 0;
 };
 
-/// UDP on IPv4. A listening link learns its peer from the first datagram it receives (what
-/// ArduPilot's `--out udp:` and MAVProxy expect of a ground station); a connected link sends to a
-/// fixed peer. Socket errors throw std::system_error naming the address.
+/// UDP on IPv4. A listening link learns its peer from the datagrams it receives (what ArduPilot's
+/// `--out udp:` and MAVProxy expect of a ground station): the sender of the latest datagram that
+/// holds a good MAVLink frame from the expected system; other datagrams from other senders are
+/// dropped unread. A connected link sends to a fixed peer. Socket errors throw std::system_error
+/// naming the address.
 class UdpLink final : public Link {
  public:
-  /// Listens on host:port (port 0: any free port, see local_port()).
-  static UdpLink listen(const std::string& host, std::uint16_t port);
+  /// Listens on host:port (port 0: any free port, see local_port()), taking as its peer only a
+  /// sender of good MAVLink frames from system `peer_sysid` (0: from any system).
+  static UdpLink listen(const std::string& host, std::uint16_t port, std::uint8_t peer_sysid = 0);
   /// Sends to host:port from an ephemeral local port.
   static UdpLink connect(const std::string& host, std::uint16_t port);
   UdpLink(UdpLink&& other) noexcept;
@@ -47,11 +52,13 @@ class UdpLink final : public Link {
 
  private:
   UdpLink() = default;
+  bool from_peer(const sockaddr_in& from, std::span<const std::uint8_t> datagram);
   int fd_ = -1;
   bool has_peer_ = false;
   bool learn_peer_ = false;
   std::uint32_t peer_address_ = 0;  // network byte order
   std::uint16_t peer_port_ = 0;     // network byte order
+  std::uint8_t peer_sysid_ = 0;     // 0: any system
 };
 
 /// TCP on IPv4, as a client (ArduPilot SITL listens on port 5760 + 10 x instance). A byte stream:
