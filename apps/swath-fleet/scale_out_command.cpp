@@ -70,6 +70,9 @@ SweepSpec read_sweep(const std::string& source) {
     s.schedulers.clear();
     for (const auto& n : list) {
       if (!n.IsScalar()) throw InputError(m.where("schedulers") + ": a scheduler is a name");
+      // Each scheduler's runs go to their own directories: twice would write one -o twice.
+      if (std::find(s.schedulers.begin(), s.schedulers.end(), n.Scalar()) != s.schedulers.end())
+        throw InputError(m.where("schedulers") + ": \"" + n.Scalar() + "\" appears twice");
       s.schedulers.push_back(n.Scalar());
     }
   }

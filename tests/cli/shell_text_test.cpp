@@ -114,5 +114,17 @@ TEST(ShellText, BatchEmitsNoJobForAFileNamedToInjectACommand) {
   EXPECT_NE(r.err.find("control character"), std::string::npos) << r.err;
 }
 
+// A sweep that names a scheduler twice would print two job lines writing one -o: refused.
+TEST(ShellText, ASweepThatNamesASchedulerTwiceIsRefused) {
+  const std::string dir = fresh_dir("sweep-twice");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/spec.yaml") << "app: hotspot\nworld: hotspot\ndrones: 2\n"
+                                    << "schedulers: [sa, greedy, sa]\nseeds: {from: 1, to: 2}\n";
+  const CliRun r = run_swath_fleet("sweep " + dir + "/spec.yaml --runs " + dir + "/runs");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("\"sa\" appears twice"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace swath::test
