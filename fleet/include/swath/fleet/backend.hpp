@@ -1,6 +1,6 @@
 #pragma once
 // The seam between the runtime and vehicles that fly outside it (DESIGN.md §18.6): real or
-// emulated autopilots — MAVLink in swath::mavlink implements it, fleet never includes it.
+// emulated autopilots — MavlinkFleet (mavlink_fleet.hpp) implements it over swath::mavlink.
 //
 // What this seam is, honestly: the simulated fleet is NOT behind it. The runtime keeps its exact
 // per-leg simulation (leg.hpp, event to event on the tick grid) when RunSettings::backend is null,
