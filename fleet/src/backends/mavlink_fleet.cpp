@@ -155,8 +155,8 @@ void MavlinkFleet::poll(Vehicle& v, int drone) {
   for (; v.warnings_told < w.size(); ++v.warnings_told) warn(drone, w[v.warnings_told]);
 }
 
-void MavlinkFleet::go_to(int drone, const Vec3& to_m, double cruise_m_s, double approach_m_s,
-                         double approach_within_m) {
+void MavlinkFleet::go_to(int drone, double, const Vec3& to_m, double cruise_m_s,
+                         double approach_m_s, double approach_within_m) {
   Vehicle& v = at(drone);
   const geometry::GeoPoint g = geometry::LocalFrame(settings_.origin).to_geo({to_m.x, to_m.y});
   v.want = Vehicle::Want::go;
@@ -179,7 +179,7 @@ void MavlinkFleet::act(int drone, const std::string&, bool sense) {
   if (sense && v.driver) v.driver->capture_image();
 }
 
-void MavlinkFleet::return_home(int drone) {
+void MavlinkFleet::return_home(int drone, double) {
   Vehicle& v = at(drone);
   v.want = Vehicle::Want::home;
   v.target_sent = false;
@@ -188,7 +188,7 @@ void MavlinkFleet::return_home(int drone) {
 
 void MavlinkFleet::end_run() {
   for (auto& v : vehicles_)
-    if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()));
+    if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()), now_s_);
   // The RTL goes out only from poll(): keep polling (and the ground station's heartbeat) until
   // every vehicle is down, or the deadline, before the caller closes the links.
   const double deadline_s = now_s_ + settings_.end_timeout_s;

@@ -5,7 +5,7 @@
 namespace swath::fleet::rt {
 
 Vec3 Runtime::position_at(const Drone& d, double t) const {
-  if (ext_ && d.reported && d.mode != Mode::charging && d.mode != Mode::landed) return *d.reported;
+  if (d.reported && d.mode != Mode::charging && d.mode != Mode::landed) return *d.reported;
   if (on_leg(d.mode) && d.leg) return d.leg->position_at(t - d.leg_start);
   return d.pos;
 }
@@ -32,7 +32,7 @@ double Runtime::next_event(const Drone& d) const {
     case Mode::flying:
     case Mode::positioning:
     case Mode::returning:
-      if (!ext_) e = d.leg_start + d.leg->duration_s();  // else: the vehicle's report ends it
+      e = backend_.arrival_s(d.index);  // infinity when the vehicle's report ends it
       break;
     case Mode::acting:
       e = d.act_end;
@@ -53,31 +53,30 @@ double Runtime::next_event(const Drone& d) const {
 
 void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   integrate(d, t);
-  double v0 = 0;
-  if (on_leg(d.mode) && d.leg) {
-    // A retarget keeps the speed along the new course (the component across it is braked).
-    const double along = d.leg->speed_at(t - d.leg_start);
-    const Vec3 old_dir = d.leg->to() - d.leg->from(), new_dir = to - d.pos;
-    const double n0 = std::hypot(old_dir.x, old_dir.y), n1 = std::hypot(new_dir.x, new_dir.y);
-    if (n0 > 0 && n1 > 0)
-      v0 = along * std::max(0.0, (old_dir.x * new_dir.x + old_dir.y * new_dir.y) / (n0 * n1));
-  }
+  const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
   if (d.mode == Mode::landed) d.airborne_since = t;
-  d.leg.emplace(d.pos, to, d.spec.kinematics, v0);
+  d.leg = next_leg(current, t - d.leg_start, d.pos, to, d.spec.kinematics);
   d.leg_start = t;
   set_mode(d, mode, t);
-  command_leg(d, to, mode);
+  command_leg(d, to, mode, t);
 }
 
-// An external vehicle is told to fly what the model just started (nothing for the simulation).
-void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode) {
-  if (!ext_) return;
+// The vehicle is told to fly what the model just started (the simulated fleet starts the same leg).
+void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   if (mode == Mode::returning) {
-    ext_->return_home(d.index);
+    backend_.return_home(d.index, t);
     return;
   }
   const Kinematics& k = d.spec.kinematics;
-  ext_->go_to(d.index, to, k.cruise_m_s, k.approach_m_s, k.approach_within_m);
+  backend_.go_to(d.index, t, to, k.cruise_m_s, k.approach_m_s, k.approach_within_m);
+}
+
+// The drone stops where it is and hovers (its request taken away or cancelled).
+void Runtime::stop(Drone& d, double t) {
+  integrate(d, t);
+  d.leg.reset();
+  backend_.hold(d.index, t);
+  set_mode(d, Mode::hovering, t);
 }
 
 bool Runtime::available(const Drone& d) const {
@@ -149,7 +148,7 @@ void Runtime::start_action_or_release(Drone& d, double t) {
   d.action = h;
   d.act_end = t + a.duration_s;
   set_mode(d, Mode::acting, t);
-  if (ext_) ext_->act(d.index, a.name, a.type == ActionType::sense);
+  backend_.act(d.index, a.name, a.type == ActionType::sense);
 }
 
 // A link back or a sensor repaired by t.
@@ -202,7 +201,7 @@ void Runtime::sample_along(const Action& fa, const Leg& flown, double flown_from
 void Runtime::arrive(Drone& d, double t) {
   const Leg flown = *d.leg;
   const double flown_from = d.leg_start;
-  d.pos = ext_ && d.reported ? *d.reported : d.leg->to();
+  d.pos = d.reported ? *d.reported : d.leg->to();
   d.leg.reset();
   if (d.task < 0) {
     set_mode(d, Mode::hovering, t);
@@ -277,13 +276,13 @@ void Runtime::step_drone(Drone& d, double t) {
   switch (d.mode) {
     case Mode::flying:
     case Mode::positioning:
-      if (t >= d.leg_start + d.leg->duration_s()) arrive(d, t);
+      if (t >= backend_.arrival_s(d.index)) arrive(d, t);
       break;
     case Mode::acting:
       if (t >= d.act_end) finish_action(d, t);
       break;
     case Mode::returning:
-      if (t >= d.leg_start + d.leg->duration_s()) land_home(d, t);
+      if (t >= backend_.arrival_s(d.index)) land_home(d, t);
       break;
     case Mode::charging:
       if (t >= d.charge_end) {
@@ -335,16 +334,6 @@ void Runtime::dispatch(Drone& d, Task& t, double at) {
   log(at_json(
       json{{"ev", "dispatch"}, {"drone", d.index}, {"task", t.id}, {"segment", t.segment - 1}},
       to));
-  const Vec3 here = position_at(d, at);
-  if (std::hypot(here.x - to.x, here.y - to.y) < 1e-9 && std::abs(here.z - to.z) < 1e-9 &&
-      d.mode != Mode::landed) {
-    integrate(d, at);
-    d.leg.emplace(here, to, d.spec.kinematics, 0.0);
-    d.leg_start = at;
-    set_mode(d, Mode::flying, at);
-    command_leg(d, to, Mode::flying);
-    return;
-  }
   if (d.mode == Mode::landed) {
     integrate(d, at);
     d.airborne_since = at;

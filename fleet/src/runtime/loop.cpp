@@ -3,18 +3,20 @@
 
 #include <chrono>
 
+#include "swath/fleet/simulated_fleet.hpp"
 #include "runtime/runtime_impl.hpp"
 #include "swath/base/input_error.hpp"
 
 namespace swath::fleet::rt {
 
 Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec>& specs,
-                 const RunSettings& settings)
+                 const RunSettings& settings, Backend& backend)
     : app_(app),
       world_(world),
       settings_(settings),
       app_rng_(vehicle::SplitMix64::stream(settings.seed, "app")),
-      sched_rng_(vehicle::SplitMix64::stream(settings.seed, "scheduler")) {
+      sched_rng_(vehicle::SplitMix64::stream(settings.seed, "scheduler")),
+      backend_(backend) {
   const bool reactive = settings.scheduler == "reactive";
   scheduler_ = make_scheduler(reactive ? "sa" : settings.scheduler);
   if (!scheduler_)
@@ -29,6 +31,9 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
       throw base::InputError("unknown forecaster \"" + settings.forecaster +
                              "\": use gmf, constant-velocity or none");
   }
+  if (backend_.vehicles() != static_cast<int>(specs.size()))
+    throw base::InputError("the backend has " + std::to_string(backend_.vehicles()) +
+                           " vehicles for a fleet of " + std::to_string(specs.size()) + " drones");
   for (std::size_t i = 0; i < specs.size(); ++i) {
     Drone d;
     d.spec = specs[i];
@@ -37,17 +42,11 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
     d.pos.z = 0;
     d.soc = specs[i].battery.initial_soc;
     d.layer_m = settings.layer_base_m + settings.layer_step_m * static_cast<double>(i);
-    if (settings.backend) {  // an external vehicle is unreachable until first heard
-      d.link_up = false;
-      d.link_back = kInf;
-    }
+    d.link_up = backend_.report(d.index).link_up;  // a real vehicle: not until first heard
+    if (!d.link_up) d.link_back = kInf;
     d.record.name = specs[i].name;
     drones_.push_back(std::move(d));
   }
-  ext_ = settings.backend;
-  if (ext_ && ext_->vehicles() != static_cast<int>(specs.size()))
-    throw base::InputError("the backend has " + std::to_string(ext_->vehicles()) +
-                           " vehicles for a fleet of " + std::to_string(specs.size()) + " drones");
   faults_ = settings.faults;
   std::stable_sort(faults_.begin(), faults_.end(), [](const FaultEvent& a, const FaultEvent& b) {
     return a.t_s != b.t_s ? a.t_s < b.t_s : a.drone < b.drone;
@@ -69,9 +68,9 @@ void Runtime::log_states() {
 // back: buffered results go out; landed, it rejoins), a target reached, home reached, a vehicle
 // refusing to fly.
 void Runtime::poll_backend() {
-  ext_->advance_to(now_);
+  backend_.advance_to(now_);
   for (Drone& d : drones_) {
-    const VehicleReport r = ext_->report(d.index);
+    const VehicleReport r = backend_.report(d.index);
     if (r.position_known) d.reported = r.position_m;
     integrate(d, now_);
     if (d.mode == Mode::lost) continue;
@@ -82,7 +81,7 @@ void Runtime::poll_backend() {
       d.leg.reset();
       // Refused in the air (a target outside the fence): it still goes home and lands; the
       // backend does nothing for a vehicle already down.
-      if (d.mode != Mode::landed && d.mode != Mode::charging) ext_->return_home(d.index);
+      if (d.mode != Mode::landed && d.mode != Mode::charging) backend_.return_home(d.index, now_);
       set_mode(d, Mode::lost, now_);
       changed_ = true;
       continue;
@@ -160,7 +159,7 @@ double Runtime::next_happening() const {
       next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
   // External vehicles report at any time: every tick (§18.3 step 1, "real runs sleep to the
   // next tick").
-  if (ext_) next = std::min(next, now_ + settings_.tick_s);
+  if (backend_.reports_every_tick()) next = std::min(next, now_ + settings_.tick_s);
   return next;
 }
 
@@ -276,10 +275,10 @@ RunRecord Runtime::run() {
     }
     if (!advance_clock(next, tick_index)) break;
     step_drones_to_now();
-    if (ext_) poll_backend();
+    if (backend_.reports_every_tick()) poll_backend();
     deliver_due();
   }
-  if (ext_) ext_->end_run();
+  backend_.end_run();
   finish_run(main);
   record_.dtg_json = dtg_json();
   return std::move(record_);
@@ -292,7 +291,12 @@ namespace swath::fleet {
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
                   const RunSettings& settings) {
   if (drones.empty()) throw base::InputError("the fleet has no drones");
-  rt::Runtime runtime(app, world, drones, settings);
+  if (settings.backend) {
+    rt::Runtime runtime(app, world, drones, settings, *settings.backend);
+    return runtime.run();
+  }
+  SimulatedFleet simulated(drones, settings.layer_base_m, settings.layer_step_m);
+  rt::Runtime runtime(app, world, drones, settings, simulated);
   return runtime.run();
 }
 

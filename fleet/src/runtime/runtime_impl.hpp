@@ -151,8 +151,8 @@ struct Drone {
   std::optional<Vec3> spot;  // the forecast place it was sent to (speculation)
   bool spot_hit = false;     // a request appeared there
   int relieving = -1;        // the drone it stands by for (relief, §18.5 Example 5)
-  // External vehicles (RunSettings::backend): the last reported position; the leg above is then
-  // the model's estimate (energy), the vehicle's report says where it is and when it arrived.
+  // Vehicles read every tick (real ones): the last reported position; the leg above is then the
+  // model's estimate (energy), the vehicle's report says where it is and when it arrived.
   std::optional<Vec3> reported;
 };
 
@@ -184,7 +184,7 @@ inline double descent_power_w(const DroneSpec& s) {
 class Runtime final : public detail::Core {
  public:
   Runtime(const App& app, const World& world, const std::vector<DroneSpec>& specs,
-          const RunSettings& settings);
+          const RunSettings& settings, Backend& backend);
 
   RunRecord run();
 
@@ -307,8 +307,9 @@ class Runtime final : public detail::Core {
   void dispatch(Drone& d, Task& t, double at);
   void apply_fault(const FaultEvent& f);
   void log_states();
-  // External vehicles (RunSettings::backend).
-  void command_leg(Drone& d, const Vec3& to, Mode mode);
+  // Vehicles read every tick (Backend::reports_every_tick).
+  void command_leg(Drone& d, const Vec3& to, Mode mode, double t);
+  void stop(Drone& d, double t);
   void poll_backend();
 
   const App& app_;
@@ -342,7 +343,7 @@ class Runtime final : public detail::Core {
   std::vector<ForecastRequest> forecasts_;
   Dtg live_;                     // the DTG at the last forecast (q reads its nodes)
   double next_relief_s_ = kInf;  // when relieve() has something to do next
-  Backend* ext_ = nullptr;       // external vehicles, or null: the simulated fleet
+  Backend& backend_;             // the vehicles: the simulated fleet or real ones
 };
 
 }  // namespace swath::fleet::rt

@@ -192,9 +192,8 @@ void Runtime::finish_task(Task& t, TaskStatus status, const std::string& reason)
         // After the task's terminal event (R4): the place only, for the pictures.
         log(at_json(json{{"ev", "request_cancelled"}}, t.location));
       }
-      integrate(d, now_);
       d.task = -1;
-      set_mode(d, Mode::hovering, now_);
+      stop(d, now_);
     }
   }
   for (auto& d : drones_)

@@ -142,11 +142,7 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
     if (want == d.task) continue;
     if (d.task >= 0) {  // retargeted or stopped on the way
       unserve(d);
-      if (want < 0) {
-        integrate(d, now_);
-        d.leg.reset();
-        set_mode(d, Mode::hovering, now_);
-      }
+      if (want < 0) stop(d, now_);
     }
     if (want >= 0) {
       Task& t = tasks_[static_cast<std::size_t>(want)];
@@ -159,11 +155,8 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
   }
   for (Drone& d : drones_)
     if ((d.mode == Mode::flying && d.task < 0) ||
-        (d.mode == Mode::positioning && !d.spot && d.relieving < 0)) {
-      integrate(d, now_);
-      d.leg.reset();
-      set_mode(d, Mode::hovering, now_);
-    }
+        (d.mode == Mode::positioning && !d.spot && d.relieving < 0))
+      stop(d, now_);
 }
 
 // One scheduling round (§18.5): the snapshot, the scheduler's assignment (timed), its log line,

@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,15 +69,21 @@ class MavlinkFleet final : public Backend {
   ~MavlinkFleet() override;
 
   int vehicles() const override { return static_cast<int>(vehicles_.size()); }
-  void go_to(int drone, const Vec3& to_m, double cruise_m_s, double approach_m_s,
+  void go_to(int drone, double t_s, const Vec3& to_m, double cruise_m_s, double approach_m_s,
              double approach_within_m) override;
   void act(int drone, const std::string& name, bool sense) override;
-  void return_home(int drone) override;
+  void return_home(int drone, double t_s) override;
+  /// Nothing is sent: the vehicle flies on to its last target and holds there (GUIDED), as it
+  /// did before the simulated fleet shared this seam; the runtime counts it idle meanwhile.
+  void hold(int, double) override {}
   void advance_to(double t_s) override;
   VehicleReport report(int drone) const override;
   /// Every airborne vehicle returns to launch; returns once all are down or after
   /// settings.end_timeout_s (on the wall clock in a real run, via before_poll in tests).
   void end_run() override;
+  /// Only the vehicle's report says when it arrives.
+  double arrival_s(int) const override { return std::numeric_limits<double>::infinity(); }
+  bool reports_every_tick() const override { return true; }
 
   /// The vehicle's driver; null until its first HEARTBEAT came.
   const mavlink::Driver* driver(int drone) const;

@@ -1,12 +1,13 @@
 #pragma once
 // The runtime (paper 000 §3, §4.1; DESIGN.md §18.3): runs one application against a fleet of
-// simulated drones. Each task's head segment (a fly_to and the non-flying actions after it) is a
-// *request*; every tick (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes
-// the coroutines that can go on, and — when something changed — asks the scheduler which drone
-// serves which request. Time jumps from event to event on the tick grid, so an hour's mission
-// takes milliseconds. Same settings and seed: the same bytes in every output.
+// drones behind a Backend (backend.hpp; the simulated fleet unless RunSettings::backend says). Each
+// task's head segment (a fly_to and the non-flying actions after it) is a *request*; every tick
+// (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes the coroutines that can
+// go on, and — when something changed — asks the scheduler which drone serves which request. Time
+// jumps from event to event on the tick grid, so an hour's mission takes milliseconds. Same
+// settings and seed: the same bytes in every output.
 //
-// The simulated backend (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
+// The simulated fleet (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
 // layer (20 m + 3 m × index, the collision rule of §18.3), level flight with the approach rule and
 // bounded accelerations, power through energy::Battery (paper 004 eq. 12) from the drone's
 // energy::PowerProfile (hover = airspeed 0). Faults follow §18.7: every task ends exactly once,
@@ -99,9 +100,9 @@ struct RunSettings {
   /// stand-by there, which takes the next segment when it leaves. Off: the paper's baseline.
   bool relief = false;
   double relief_margin_s = 20;  ///< s, ≥ 0
-  /// External vehicles (backend.hpp; not owned, outlives the run): null, the simulated fleet
-  /// (event to event); else the runtime ticks every tick_s, commands the backend's vehicle i as
-  /// drone i and takes arrivals, landings, positions and link state from its reports.
+  /// The vehicles (backend.hpp; not owned, outlives the run): null, run_app's own simulated
+  /// fleet (event to event); else e.g. MavlinkFleet, whose vehicle i flies drone i: the runtime
+  /// ticks every tick_s and takes arrivals, landings, positions and link state from its reports.
   Backend* backend = nullptr;
 };
 
