@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/fleet/scheduler.hpp"
@@ -83,11 +84,11 @@ void CaseStudy(benchmark::State& st) {
   static const char* apps[] = {"road", "wifi", "hotspot", "multiplexing", "tracking"};
   const std::string app_name = apps[st.range(0)];
   App app;
-  for (App& a : worlds::builtin_apps())
+  for (App& a : fleet::builtin_apps())
     if (a.name == app_name) app = a;
   std::filesystem::path path = SWATH_SOURCE_DIR;
   path /= "share/worlds";
-  path /= worlds::app_world_kind(app_name);
+  path /= fleet::app_world_kind(app_name);
   path += ".yaml";
   const auto world = worlds::read_world(path.string());
   std::vector<DroneSpec> drones(2);

@@ -15,6 +15,7 @@
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/event_replay.hpp"
 #include "swath/fleet/mavlink_fleet.hpp"
@@ -238,7 +239,7 @@ int FleetWorldsCommand::run() {
 }
 
 int FleetAppsCommand::run() {
-  for (const fleet::App& a : worlds::all_apps())
+  for (const fleet::App& a : fleet::all_apps())
     std::cout << a.name << "\t" << a.description << "\n";
   return base::kExitSuccess;
 }

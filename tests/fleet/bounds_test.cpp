@@ -20,6 +20,7 @@
 #include <sstream>
 #include <vector>
 
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/runtime.hpp"
@@ -29,7 +30,7 @@ namespace swath::fleet {
 namespace bounds {
 
 const App& app_named(const std::string& name) {
-  static const std::vector<App> apps = worlds::builtin_apps();
+  static const std::vector<App> apps = fleet::builtin_apps();
   const auto it =
       std::find_if(apps.begin(), apps.end(), [&](const App& a) { return a.name == name; });
   if (it == apps.end()) throw std::logic_error("no app " + name);

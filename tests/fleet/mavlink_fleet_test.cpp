@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/mavlink_fleet.hpp"
 #include "swath/fleet/runtime.hpp"
@@ -101,7 +102,7 @@ struct Mission {
     s.max_time_s = 900;
     s.backend = backend.get();
     fleet::App app;
-    for (const fleet::App& a : worlds::builtin_apps())
+    for (const fleet::App& a : fleet::builtin_apps())
       if (a.name == "static") app = a;
     record = fleet::run_app(app, *world, drones, s);
     // For a failing run: its events on stderr.

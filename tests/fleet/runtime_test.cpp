@@ -13,6 +13,7 @@
 
 #include "swath/energy/budget.hpp"
 #include "swath/energy/power_model.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/leg.hpp"
@@ -250,8 +251,8 @@ TEST(Runtime, TheMainIsNoVirtualDrone) {
 }
 
 TEST(Runtime, SameSeedSameBytesAcrossApps) {
-  for (const App& app : worlds::builtin_apps()) {
-    const std::string kind = worlds::app_world_kind(app.name);
+  for (const App& app : fleet::builtin_apps()) {
+    const std::string kind = fleet::app_world_kind(app.name);
     const std::string tasks =
         kind == "static" ? "tasks: [{name: a, actions: [{fly_to: {x_m: 9, y_m: 9}}, {sense: c}]},"
                            " {name: b, after: [a], actions: [{fly_to: {x_m: 0, y_m: 9}}]}]\n"
@@ -269,7 +270,7 @@ TEST(Runtime, SameSeedSameBytesAcrossApps) {
 }
 
 TEST(Runtime, MultiplexingIsNeverFasterThanTheOptimalOrder) {
-  const App app = worlds::builtin_apps().at(1);
+  const App app = fleet::builtin_apps().at(1);
   ASSERT_EQ(app.name, "multiplexing");
   for (int seed = 1; seed <= 10; ++seed)
     for (const bool interruptible : {true, false}) {
@@ -284,7 +285,7 @@ TEST(Runtime, MultiplexingIsNeverFasterThanTheOptimalOrder) {
         s.seed = static_cast<std::uint64_t>(seed);
         const RunRecord r = run_app(app, *world, {drone("a")}, s);
         ASSERT_TRUE(r.completed) << r.failure;
-        const double optimum = worlds::multiplexing_optimum_s(sites, {0, 0, 0}, Kinematics{}, 20);
+        const double optimum = fleet::multiplexing_optimum_s(sites, {0, 0, 0}, Kinematics{}, 20);
         EXPECT_GE(r.completion_time_s, optimum) << "seed " << seed << " " << sched;
         // And not absurdly slower: each of six segments costs at most a few ticks of overhead,
         // the rest is the order the scheduler chose (within 2x of the best order here).
@@ -401,7 +402,7 @@ namespace {
 // the independent checker finds every task ended once; the run is faster than reactive and the
 // same bytes twice.
 TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
-  const std::vector<App> apps = worlds::builtin_apps();
+  const std::vector<App> apps = fleet::builtin_apps();
   const auto road =
       std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "road"; });
   ASSERT_NE(road, apps.end());
@@ -465,7 +466,7 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
 // map against the world's truth, mean over seeds, paired with reactive on the same worlds), and
 // the survey is not slower on average.
 TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
-  const std::vector<App> apps = worlds::builtin_apps();
+  const std::vector<App> apps = fleet::builtin_apps();
   const auto wifi =
       std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "wifi"; });
   ASSERT_NE(wifi, apps.end());
@@ -524,7 +525,7 @@ TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
 // it relieves returns; the first look dispatched after that return goes to the stand-by; and the
 // hand-over (a drone's return to the next look by another) is shorter than without relief.
 TEST(Runtime, ReliefStandsByWhereTheDroneAtWorkIsAndTakesOverItsLooks) {
-  const std::vector<App> apps = worlds::builtin_apps();
+  const std::vector<App> apps = fleet::builtin_apps();
   const auto tracking =
       std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "tracking"; });
   ASSERT_NE(tracking, apps.end());

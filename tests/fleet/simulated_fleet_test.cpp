@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/fleet/simulated_fleet.hpp"
@@ -75,8 +76,8 @@ TEST(SimulatedFleet, ARetargetKeepsTheLegRuleAHoldStopsAndAReturnLandsAtHome) {
 }
 
 TEST(SimulatedFleet, AnExplicitSimulatedFleetIsRunAppsOwnByteForByte) {
-  for (const App& app : worlds::builtin_apps()) {
-    const std::string kind = worlds::app_world_kind(app.name);
+  for (const App& app : fleet::builtin_apps()) {
+    const std::string kind = fleet::app_world_kind(app.name);
     if (kind == "static") continue;  // its world needs tasks
     const auto world = worlds::parse_world("kind: " + kind + "\nseed: 4\n", "w.yaml");
     const std::vector<DroneSpec> drones{drone_at("a", {}), drone_at("b", {10, 0, 0})};

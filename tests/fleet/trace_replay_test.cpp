@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/fleet/trace_replay.hpp"
@@ -27,7 +28,7 @@ DroneSpec drone(const std::string& name, Vec3 home = {}) {
 }
 
 const App& app_named(const std::string& name) {
-  static const std::vector<App> apps = worlds::builtin_apps();
+  static const std::vector<App> apps = fleet::builtin_apps();
   for (const App& a : apps)
     if (a.name == name) return a;
   throw std::logic_error("no app " + name);
