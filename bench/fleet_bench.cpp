@@ -98,7 +98,7 @@ void CaseStudy(benchmark::State& st) {
   }
   if (app_name == "tracking")
     for (auto& d : drones) d.max_flight_time_s = 60;
-  RunSettings settings;
+  RuntimeSettings settings;
   settings.app_name = app_name;
   std::size_t events = 0;
   for (auto _ : st) {
@@ -129,7 +129,7 @@ void IdleTick(benchmark::State& st) {
   std::vector<DroneSpec> drones(10);
   for (std::size_t i = 0; i < drones.size(); ++i)
     drones[i].name = std::string(1, static_cast<char>('a' + i));
-  RunSettings settings;
+  RuntimeSettings settings;
   settings.state_period_s = 1e9;  // no drone_state lines: the tick alone
   settings.max_time_s = 1e5;
   for (auto _ : st)

@@ -402,7 +402,7 @@ TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
   fleet::App app;
   for (auto& a : fleet::builtin_apps())
     if (a.name == "tracking") app = a;
-  const fleet::RunRecord r = fleet::run_app(app, *world, drones, fleet::RunSettings{});
+  const fleet::RunRecord r = fleet::run_app(app, *world, drones, fleet::RuntimeSettings{});
   ASSERT_TRUE(r.completed);
   const int w = 1200, h = 400;
   const apps::FleetPicture g = apps::gantt_picture(r, w, h);

@@ -47,7 +47,7 @@ DroneSpec drone(const std::string& name, Vec3 home) {
 // compare's two schedulers: reactive, and predictive with GMF over `histories` and relief.
 RunRecord run(const App& app, const World& w, const std::vector<DroneSpec>& fleet,
               std::uint64_t seed, const std::vector<Dtg>* histories) {
-  RunSettings s;
+  RuntimeSettings s;
   s.app_name = app.name;
   s.seed = seed;
   if (histories) {

@@ -68,7 +68,7 @@ TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
     const std::vector<DroneSpec> drones = three_drones(k);
     std::vector<std::string> names;
     for (const auto& d : drones) names.push_back(d.name);
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = app.name;
     s.seed = k;
     s.scheduler = k % 3 == 0 ? "greedy" : "sa";
@@ -109,7 +109,7 @@ TEST(EventCheck, CatchesEveryRuleBrokenInARealLog) {
   std::vector<DroneSpec> drones(2);
   drones[0].name = "a";
   drones[1].name = "b";
-  RunSettings s;
+  RuntimeSettings s;
   s.faults = {{30, 1, FaultKind::motor_failure, 0, 0}};
   const RunRecord r = run_app(app, *world, drones, s);
   ASSERT_TRUE(check_events(r.events_jsonl).ok());

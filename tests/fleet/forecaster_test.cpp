@@ -34,7 +34,7 @@ std::string run_dtg(const std::string& app_name, std::uint64_t seed, int drones 
       d.home_m = {3.0 * i, 0, 0};
       fleet.push_back(d);
     }
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = app.name;
     s.seed = seed;
     s.scheduler = "greedy";

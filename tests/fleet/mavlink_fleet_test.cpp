@@ -97,7 +97,7 @@ struct Mission {
   }
 
   void run() {
-    fleet::RunSettings s;
+    fleet::RuntimeSettings s;
     s.app_name = "static";
     s.max_time_s = 900;
     s.backend = backend.get();

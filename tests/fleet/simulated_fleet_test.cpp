@@ -81,7 +81,7 @@ TEST(SimulatedFleet, AnExplicitSimulatedFleetIsRunAppsOwnByteForByte) {
     if (kind == "static") continue;  // its world needs tasks
     const auto world = worlds::parse_world("kind: " + kind + "\nseed: 4\n", "w.yaml");
     const std::vector<DroneSpec> drones{drone_at("a", {}), drone_at("b", {10, 0, 0})};
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = app.name;
     s.faults = {{30, 1, FaultKind::link_loss, 8, 0}, {50, 0, FaultKind::sensor_failure, 5, 0}};
     const RunRecord own = run_app(app, *world, drones, s);

@@ -10,7 +10,7 @@
 namespace swath::fleet::rt {
 
 Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec>& specs,
-                 const RunSettings& settings, Backend& backend)
+                 const RuntimeSettings& settings, Backend& backend)
     : app_(app),
       world_(world),
       settings_(settings),
@@ -289,7 +289,7 @@ RunRecord Runtime::run() {
 namespace swath::fleet {
 
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
-                  const RunSettings& settings) {
+                  const RuntimeSettings& settings) {
   if (drones.empty()) throw base::InputError("the fleet has no drones");
   if (settings.backend) {
     rt::Runtime runtime(app, world, drones, settings, *settings.backend);

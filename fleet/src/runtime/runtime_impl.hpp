@@ -161,7 +161,7 @@ inline bool on_leg(Mode m) {
 }
 
 // In a steady wind the autopilot holds position and ground track: the rotors fly at the
-// airspeed, ground velocity less wind (RunSettings::wind_m_s).
+// airspeed, ground velocity less wind (RuntimeSettings::wind_m_s).
 inline double hover_power_w(const DroneSpec& s, const Vec3& wind) {
   return energy::level_flight_power_w(s.power.mechanical, std::hypot(wind.x, wind.y)) +
          s.power.payload_w;
@@ -184,7 +184,7 @@ inline double descent_power_w(const DroneSpec& s) {
 class Runtime final : public detail::Core {
  public:
   Runtime(const App& app, const World& world, const std::vector<DroneSpec>& specs,
-          const RunSettings& settings, Backend& backend);
+          const RuntimeSettings& settings, Backend& backend);
 
   RunRecord run();
 
@@ -314,7 +314,7 @@ class Runtime final : public detail::Core {
 
   const App& app_;
   const World& world_;
-  RunSettings settings_;
+  RuntimeSettings settings_;
   vehicle::SplitMix64 app_rng_, sched_rng_;
   std::unique_ptr<Scheduler> scheduler_;
   std::vector<Drone> drones_;

@@ -1,7 +1,7 @@
 #pragma once
 // The seam between the runtime and the vehicles it flies (DESIGN.md §18.6). The runtime talks to
 // a Backend only: the simulated fleet (backends/, SimulatedFleet: legs in closed form, made by
-// run_app when RunSettings::backend is null) and real or emulated autopilots (MavlinkFleet,
+// run_app when RuntimeSettings::backend is null) and real or emulated autopilots (MavlinkFleet,
 // mavlink_fleet.hpp) implement it.
 //
 // The runtime keeps its own drone records for every backend (modes, reservations, the energy

@@ -1,11 +1,11 @@
 #pragma once
 // The runtime (paper 000 §3, §4.1; DESIGN.md §18.3): runs one application against a fleet of
-// drones behind a Backend (backend.hpp; the simulated fleet unless RunSettings::backend says). Each
-// task's head segment (a fly_to and the non-flying actions after it) is a *request*; every tick
-// (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes the coroutines that can
-// go on, and — when something changed — asks the scheduler which drone serves which request. Time
-// jumps from event to event on the tick grid, so an hour's mission takes milliseconds. Same
-// settings and seed: the same bytes in every output.
+// drones behind a Backend (backend.hpp; the simulated fleet unless RuntimeSettings::backend says).
+// Each task's head segment (a fly_to and the non-flying actions after it) is a *request*; every
+// tick (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes the coroutines
+// that can go on, and — when something changed — asks the scheduler which drone serves which
+// request. Time jumps from event to event on the tick grid, so an hour's mission takes
+// milliseconds. Same settings and seed: the same bytes in every output.
 //
 // The simulated fleet (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
 // layer (20 m + 3 m × index, the collision rule of §18.3), level flight with the approach rule and
@@ -68,7 +68,7 @@ struct FaultEvent {
   double soc = 0.1;        ///< battery_drop: the charge it falls to, [0, 1]
 };
 
-struct RunSettings {
+struct RuntimeSettings {
   std::string app_name;          ///< for the log
   std::string scheduler = "sa";  ///< sa | reactive | greedy | round-robin | hungarian
   std::uint64_t seed = 1;
@@ -147,6 +147,6 @@ struct RunRecord {
 /// scheduler name or a backend whose vehicle count differs from the fleet's; an exception escaping
 /// the app's main ends the run as not completed.
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
-                  const RunSettings& settings);
+                  const RuntimeSettings& settings);
 
 }  // namespace swath::fleet
