@@ -201,7 +201,7 @@ TEST(FleetCli, AnAppThatCannotFinishExitsFourWithItsFiles) {
 }
 
 // --backend mavlink's inputs are refused in one sentence, exit 2, nothing written (the flights
-// themselves are tested on a stepped clock in tests/mavlink/backend_test.cpp).
+// themselves are tested on a stepped clock in tests/fleet/mavlink_fleet_test.cpp).
 TEST(FleetCli, MavlinkBackendInputsAreRefusedInOneSentence) {
   const std::string out = fresh_dir("fleet-mavlink-refused");
   const std::string run = "run hotspot --world hotspot --drones 2 ";
