@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/fleet/scheduler.hpp"
@@ -83,11 +84,11 @@ void CaseStudy(benchmark::State& st) {
   static const char* apps[] = {"road", "wifi", "hotspot", "multiplexing", "tracking"};
   const std::string app_name = apps[st.range(0)];
   App app;
-  for (App& a : worlds::builtin_apps())
+  for (App& a : fleet::builtin_apps())
     if (a.name == app_name) app = a;
   std::filesystem::path path = SWATH_SOURCE_DIR;
   path /= "share/worlds";
-  path /= worlds::app_world_kind(app_name);
+  path /= fleet::app_world_kind(app_name);
   path += ".yaml";
   const auto world = worlds::read_world(path.string());
   std::vector<DroneSpec> drones(2);
@@ -97,7 +98,7 @@ void CaseStudy(benchmark::State& st) {
   }
   if (app_name == "tracking")
     for (auto& d : drones) d.max_flight_time_s = 60;
-  RunSettings settings;
+  RuntimeSettings settings;
   settings.app_name = app_name;
   std::size_t events = 0;
   for (auto _ : st) {
@@ -128,7 +129,7 @@ void IdleTick(benchmark::State& st) {
   std::vector<DroneSpec> drones(10);
   for (std::size_t i = 0; i < drones.size(); ++i)
     drones[i].name = std::string(1, static_cast<char>('a' + i));
-  RunSettings settings;
+  RuntimeSettings settings;
   settings.state_period_s = 1e9;  // no drone_state lines: the tick alone
   settings.max_time_s = 1e5;
   for (auto _ : st)

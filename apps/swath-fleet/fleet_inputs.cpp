@@ -10,6 +10,7 @@
 #include "input_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/faults.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/local_frame.hpp"
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool required) {
   std::string names;
-  for (const fleet::App& a : worlds::all_apps()) names += (names.empty() ? "" : ", ") + a.name;
+  for (const fleet::App& a : fleet::all_apps()) names += (names.empty() ? "" : ", ") + a.name;
   app.add_option("APP", r.app, "The application: " + names + " (swath-fleet apps)")
       ->required(required);
   app.add_option("--world", r.world,
@@ -31,7 +32,7 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool
                  "(share/worlds/)")
       ->required(required);
   app.add_option("--fleet", r.fleet,
-                 "Fleet file (DESIGN.md §7's, with optional profile, max_flight_time_s, "
+                 "Fleet file (swath plan's fleet format, with optional profile, max_flight_time_s, "
                  "approach_speed_m_s, accel_m_s2, recharge_s per drone)");
   app.add_option("--drones", r.drones,
                  "Instead of --fleet: N default drones (10 m/s, swath-energy's battery and "
@@ -96,7 +97,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   PreparedRun p;
   bool found = false;
   std::string names;
-  for (fleet::App& a : worlds::all_apps()) {
+  for (fleet::App& a : fleet::all_apps()) {
     names += (names.empty() ? "" : ", ") + a.name;
     if (a.name == r.app) p.app = std::move(a), found = true;
   }
@@ -104,7 +105,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.world_source = world_path(r.world);
   p.world_text = base::read_text_file(p.world_source, "world file");
   p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);
-  const std::string needs = worlds::app_world_kind(r.app);
+  const std::string needs = fleet::app_world_kind(r.app);
   if (p.world->kind() != needs)
     throw InputError(p.world_source + ": a " + p.world->kind() + " world; the " + r.app +
                      " app needs a " + needs + " world");

@@ -35,7 +35,7 @@ struct PreparedRun {
   fleet::App app;
   std::unique_ptr<worlds::BaseWorld> world;
   std::vector<fleet::DroneSpec> drones;
-  fleet::RunSettings settings;
+  fleet::RuntimeSettings settings;
   std::string world_text, world_source;
   /// Everything that makes runs comparable but the scheduler and the seed: the app, the world's,
   /// fleet's, weights' and faults' text, wind and time limit (summary.json's config_hash).

@@ -15,9 +15,10 @@
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/event_replay.hpp"
-#include "swath/mavlink/mavlink_backend.hpp"
+#include "swath/fleet/mavlink_fleet.hpp"
 
 #include <filesystem>
 
@@ -56,16 +57,17 @@ void FleetRunCommand::setup(CLI::App& app) {
 // The vehicles of --backend mavlink: --vehicles when given (it overrides the fleet file), else
 // every drone's `mavlink {url, sysid}` from the fleet file, in fleet order.
 namespace {
-std::vector<mavlink::VehicleUrl> vehicle_urls(const std::string& vehicles,
-                                              const std::string& fleet_file, const PreparedRun& p) {
+std::vector<fleet::VehicleAddress> vehicle_urls(const std::string& vehicles,
+                                                const std::string& fleet_file,
+                                                const PreparedRun& p) {
   if (!vehicles.empty()) {
-    const auto urls = mavlink::parse_vehicle_urls(vehicles);
+    const auto urls = fleet::parse_vehicle_addresses(vehicles);
     if (urls.size() != p.drones.size())
       throw InputError("--vehicles names " + std::to_string(urls.size()) +
                        " vehicles for a fleet of " + std::to_string(p.drones.size()) + " drones");
     return urls;
   }
-  std::vector<mavlink::VehicleUrl> urls;
+  std::vector<fleet::VehicleAddress> urls;
   std::string missing;
   int without = 0;
   for (const fleet::DroneSpec& d : p.drones) {
@@ -93,15 +95,15 @@ int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
   PreparedRun p =
       world_seed_option_->count() > 0 ? prepare_run(request_, world_seed_) : prepare_run(request_);
-  std::unique_ptr<mavlink::MavlinkBackend> vehicles;
+  std::unique_ptr<fleet::MavlinkFleet> vehicles;
   if (backend_ == "mavlink") {
-    const std::vector<mavlink::VehicleUrl> urls = vehicle_urls(vehicles_, request_.fleet, p);
-    mavlink::MavlinkBackendSettings settings;
+    const std::vector<fleet::VehicleAddress> urls = vehicle_urls(vehicles_, request_.fleet, p);
+    fleet::MavlinkFleetSettings settings;
     settings.origin = p.world->origin;
     settings.fence_m = p.world->fence();
     settings.wall_clock = true;
     try {
-      vehicles = mavlink::open_mavlink_backend(urls, settings);
+      vehicles = fleet::open_mavlink_fleet(urls, settings);
     } catch (const std::system_error& e) {
       throw InputError(std::string("--vehicles: ") + e.what());
     }
@@ -237,7 +239,7 @@ int FleetWorldsCommand::run() {
 }
 
 int FleetAppsCommand::run() {
-  for (const fleet::App& a : worlds::all_apps())
+  for (const fleet::App& a : fleet::all_apps())
     std::cout << a.name << "\t" << a.description << "\n";
   return base::kExitSuccess;
 }

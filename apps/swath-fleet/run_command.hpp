@@ -43,7 +43,7 @@ class FleetCheckCommand : public Command {
  public:
   const char* name() const override { return "check"; }
   const char* description() const override {
-    return "Check a run's events.jsonl against the rules of DESIGN.md §18.7 (every task ends "
+    return "Check a run's events.jsonl against the runtime's rules (every task ends "
            "once, no result twice, charge in [0, 1], termination, no lost drone dispatched); "
            "exit 4 when a rule is broken";
   }

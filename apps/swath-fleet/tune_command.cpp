@@ -20,7 +20,7 @@
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/fleet/trace_replay.hpp"
-#include "swath/vehicle/random.hpp"
+#include "swath/fleet/tuning.hpp"
 
 namespace swath::apps {
 
@@ -78,63 +78,8 @@ void FleetTuneCommand::setup(CLI::App& app) {
 
 namespace {
 
-// The weights a trial may change; coverage stays (it keeps "serve what is visible" above the
-// rest) and closest is fixed at 1 (the argmax ignores scale).
-struct FreeWeight {
-  const char* name;
-  double fleet::Weights::*member;
-};
-constexpr FreeWeight kFree[] = {{"fairness", &fleet::Weights::fairness},
-                                {"avoid_zigzag", &fleet::Weights::avoid_zigzag},
-                                {"commitment", &fleet::Weights::commitment},
-                                {"speculative", &fleet::Weights::speculative},
-                                {"avoid_mutual", &fleet::Weights::avoid_mutual}};
-
-// 0 with probability 1/5, else log-uniform in [1e-3, 1e3], kept to 4 significant digits so that
-// weights.yaml holds exactly the weights that were scored.
-double draw_weight(vehicle::SplitMix64& rng) {
-  if (rng.uniform() < 0.2) return 0.0;
-  const double v = std::pow(10.0, rng.uniform(-3.0, 3.0));
-  // Rounded through its text: 43.41, not 43.410000000000004.
-  const int decimals = std::max(0, 3 - static_cast<int>(std::floor(std::log10(v))));
-  double rounded = 0;
-  base::parse_number(base::fixed_text(v, decimals), rounded);
-  return std::min(1000.0, rounded);
-}
-
-std::vector<fleet::Weights> draw_trials(const fleet::Weights& start, int count,
-                                        std::uint64_t seed) {
-  std::vector<fleet::Weights> out{start};
-  fleet::Weights reactive = start;  // the paper's baseline weights: no forecast terms
-  reactive.speculative = reactive.avoid_mutual = 0;
-  out.push_back(reactive);
-  auto rng = vehicle::SplitMix64::stream(seed, "tune");
-  while (static_cast<int>(out.size()) < count) {
-    fleet::Weights w = start;
-    for (const FreeWeight& f : kFree) w.*f.member = draw_weight(rng);
-    out.push_back(w);
-  }
-  return out;
-}
-
-std::string weights_yaml(const fleet::Weights& w, const std::string& comment) {
-  std::ostringstream out;
-  out << "# " << comment << "\n";
-  out << "coverage: " << base::shortest_text(w.coverage) << "\n";
-  for (const FreeWeight& f : kFree)
-    out << f.name << ": " << base::shortest_text(w.*f.member) << "\n";
-  return out.str();
-}
-
-struct Trial {
-  fleet::Weights weights;
-  std::vector<double> times_s;  // per tuning seed evaluated, in order
-  double mean_s() const {
-    double sum = 0;
-    for (double t : times_s) sum += t;
-    return sum / static_cast<double>(times_s.size());
-  }
-};
+using fleet::FreeWeight;
+using fleet::Trial;
 
 // Completion times on the held-out seeds, per configuration.
 struct HeldOut {
@@ -162,29 +107,17 @@ class Tuning {
           run_once("reactive", nullptr, request_.seed + k).dtg_json, "history dtg.json"));
   }
 
-  // Every trial alive runs the next tuning seed; then the better half (ties: lower trial) goes
-  // on. The winner: the best of those that ran every tuning seed.
+  // Successive halving (fleet::successive_halving) over the tuning seeds, each trial's run a
+  // predictive world replay (or trace replay) of the app.
   std::size_t halve(std::vector<Trial>& trials) {
-    std::vector<std::size_t> alive(trials.size());
-    for (std::size_t i = 0; i < alive.size(); ++i) alive[i] = i;
     expected_runs_ = 3.0 * held_out_;
-    for (double a = static_cast<double>(alive.size()), k = 0; k < tuning_seeds_;
+    for (double a = static_cast<double>(trials.size()), k = 0; k < tuning_seeds_;
          ++k, a = std::ceil(a / 2))
       expected_runs_ += a;
-    auto by_mean = [&](std::size_t a, std::size_t b) {
-      const double ma = trials[a].mean_s(), mb = trials[b].mean_s();
-      return ma != mb ? ma < mb : a < b;
-    };
-    for (int k = 0; k < tuning_seeds_; ++k) {
-      if (k > 0) {
-        std::sort(alive.begin(), alive.end(), by_mean);
-        alive.resize((alive.size() + 1) / 2);
-      }
-      for (std::size_t i : alive)
-        trials[i].times_s.push_back(time_of(
-            run_once("predictive", &trials[i].weights, tune0_ + static_cast<std::uint64_t>(k))));
-    }
-    return *std::min_element(alive.begin(), alive.end(), by_mean);
+    return fleet::successive_halving(trials, tuning_seeds_, [&](std::size_t i, int k) {
+      return time_of(
+          run_once("predictive", &trials[i].weights, tune0_ + static_cast<std::uint64_t>(k)));
+    });
   }
 
   // Reactive, predictive with the starting weights and with the winner's, on the held-out seeds.
@@ -260,19 +193,6 @@ class Tuning {
   double expected_runs_ = 0, done_runs_ = 0;
 };
 
-std::string tune_csv(const std::vector<Trial>& trials) {
-  std::string csv = "trial,coverage";
-  for (const FreeWeight& f : kFree) csv += std::string(",") + f.name;
-  csv += ",tuning_seeds,mean_completion_time_s\n";
-  for (std::size_t i = 0; i < trials.size(); ++i) {
-    csv += std::to_string(i) + "," + base::shortest_text(trials[i].weights.coverage);
-    for (const FreeWeight& f : kFree) csv += "," + base::shortest_text(trials[i].weights.*f.member);
-    csv += "," + std::to_string(trials[i].times_s.size()) + "," +
-           base::fixed_text(trials[i].mean_s(), 3) + "\n";
-  }
-  return csv;
-}
-
 json held_out_json(const HeldOut& h) {
   auto summary_of = [](const std::vector<double>& x) {
     const Interval i = mean_interval95(x);
@@ -295,7 +215,7 @@ json held_out_json(const HeldOut& h) {
 
 json weights_json(const fleet::Weights& w) {
   json out{{"coverage", w.coverage}};
-  for (const FreeWeight& f : kFree) out[f.name] = w.*f.member;
+  for (const FreeWeight& f : fleet::free_weights()) out[f.name] = w.*f.member;
   return out;
 }
 
@@ -319,7 +239,7 @@ int FleetTuneCommand::run() {
   Tuning tuning(request_, histories_, tuning_seeds_, held_out_, replay_ == "trace");
   tuning.learn_histories();
   std::vector<Trial> trials;
-  for (const fleet::Weights& w : draw_trials(check.settings.weights, trials_, request_.seed))
+  for (const fleet::Weights& w : fleet::draw_trials(check.settings.weights, trials_, request_.seed))
     trials.push_back({w, {}});
   const std::size_t winner = tuning.halve(trials);
   const HeldOut held = tuning.score(trials[0].weights, trials[winner].weights);
@@ -333,13 +253,14 @@ int FleetTuneCommand::run() {
                {"held_out", held_out_json(held)}};
   base::OutputSet set(output_, "fleet-tune");
   if (replay_ == "trace") summary["replay"] = "trace";
-  set.add("weights.yaml",
-          weights_yaml(trials[winner].weights,
-                       "swath-fleet tune " + request_.app + ": trial " + std::to_string(winner) +
-                           " of " + std::to_string(trials.size()) + ", mean " +
-                           base::fixed_text(trials[winner].mean_s(), 3) + " s over " +
-                           std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
-  set.add("tune.csv", tune_csv(trials));
+  set.add(
+      "weights.yaml",
+      fleet::weights_yaml(trials[winner].weights,
+                          "swath-fleet tune " + request_.app + ": trial " + std::to_string(winner) +
+                              " of " + std::to_string(trials.size()) + ", mean " +
+                              base::fixed_text(trials[winner].mean_s(), 3) + " s over " +
+                              std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
+  set.add("tune.csv", fleet::tune_csv(trials));
   set.add("held_out.csv", held.csv);
   set.add("summary.json", summary.dump(2) + "\n");
   set.commit();
@@ -385,7 +306,7 @@ void write_state(const std::string& path, const json& state) {
 fleet::Weights weights_of(const json& j) {
   fleet::Weights w;
   w.coverage = j.at("coverage").get<double>();
-  for (const FreeWeight& f : kFree) w.*f.member = j.at(f.name).get<double>();
+  for (const FreeWeight& f : fleet::free_weights()) w.*f.member = j.at(f.name).get<double>();
   return w;
 }
 
@@ -503,12 +424,13 @@ int FleetTuneCommand::ask() {
               {"program", program_.empty() ? own_program_path("swath-fleet") : program_}};
     json sets = json::array();
     std::vector<std::pair<std::string, std::string>> files;
-    const auto trials = draw_trials(check.settings.weights, trials_, request_.seed);
+    const auto trials = fleet::draw_trials(check.settings.weights, trials_, request_.seed);
     for (std::size_t i = 0; i < trials.size(); ++i) {
       sets.push_back(weights_json(trials[i]));
-      files.push_back({"trial-" + std::to_string(i) + ".yaml",
-                       weights_yaml(trials[i], "swath-fleet tune ask: trial " + std::to_string(i) +
-                                                   " of " + std::to_string(trials.size()))});
+      files.push_back(
+          {"trial-" + std::to_string(i) + ".yaml",
+           fleet::weights_yaml(trials[i], "swath-fleet tune ask: trial " + std::to_string(i) +
+                                              " of " + std::to_string(trials.size()))});
     }
     st["trials"] = sets;
     st["phase"] = "histories";
@@ -645,26 +567,22 @@ int FleetTuneCommand::tell() {
       st["times_s"][i].push_back(st["told"][e.first]);
       alive.push_back(i);
     }
-    auto by_mean = [&](std::size_t a, std::size_t b) {
-      const double ma = trials[a].mean_s(), mb = trials[b].mean_s();
-      return ma != mb ? ma < mb : a < b;
-    };
     const int rung = st["rung"].get<int>();
     if (rung + 1 < tuning_seeds) {  // the better half goes on (tune's halving)
-      std::sort(alive.begin(), alive.end(), by_mean);
-      alive.resize((alive.size() + 1) / 2);
+      alive = fleet::better_half(trials, std::move(alive));
       std::sort(alive.begin(), alive.end());
       st["rung"] = rung + 1;
     } else {
-      const std::size_t winner = *std::min_element(alive.begin(), alive.end(), by_mean);
+      const std::size_t winner = fleet::best_trial(trials, alive);
       base::OutputSet set(st["output"].get<std::string>(), "fleet-tune");
-      set.add("weights.yaml",
-              weights_yaml(trials[winner].weights,
-                           "swath-fleet tune " + app + ": trial " + std::to_string(winner) +
-                               " of " + std::to_string(trials.size()) + ", mean " +
-                               base::fixed_text(trials[winner].mean_s(), 3) + " s over " +
-                               std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
-      set.add("tune.csv", tune_csv(trials));
+      set.add(
+          "weights.yaml",
+          fleet::weights_yaml(trials[winner].weights,
+                              "swath-fleet tune " + app + ": trial " + std::to_string(winner) +
+                                  " of " + std::to_string(trials.size()) + ", mean " +
+                                  base::fixed_text(trials[winner].mean_s(), 3) + " s over " +
+                                  std::to_string(trials[winner].times_s.size()) + " tuning seeds"));
+      set.add("tune.csv", fleet::tune_csv(trials));
       set.commit();
       // Then the held-out rung (tune's score); a state from before it had none.
       st["phase"] = st.contains("held_out") ? "held_out" : "done";

@@ -111,6 +111,21 @@ double Leg::speed_at(double t) const {
   return p.beta == 0 ? p.v0_m_s : p.v0_m_s + 0.5 * p.beta * (ht - p.t0_s);
 }
 
+Leg next_leg(const Leg* current, double t_on_s, const Vec3& from, const Vec3& to,
+             const Kinematics& k) {
+  const Vec3 new_dir = to - from;
+  const bool there = std::hypot(new_dir.x, new_dir.y) < 1e-9 && std::abs(new_dir.z) < 1e-9;
+  double v0 = 0;
+  if (current && !there) {
+    const double along = current->speed_at(t_on_s);
+    const Vec3 old_dir = current->to() - current->from();
+    const double n0 = std::hypot(old_dir.x, old_dir.y), n1 = std::hypot(new_dir.x, new_dir.y);
+    if (n0 > 0 && n1 > 0)
+      v0 = along * std::max(0.0, (old_dir.x * new_dir.x + old_dir.y * new_dir.y) / (n0 * n1));
+  }
+  return Leg(from, to, k, v0);
+}
+
 double horizontal_time_s(double length_m, const Kinematics& k) {
   return Leg({0, 0, 0}, {length_m, 0, 0}, k).duration_s();
 }

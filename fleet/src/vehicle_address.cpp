@@ -1,6 +1,9 @@
 #include "swath/fleet/vehicle_address.hpp"
 
+#include <algorithm>
 #include <charconv>
+
+#include "swath/base/input_error.hpp"
 
 namespace swath::fleet {
 
@@ -48,6 +51,31 @@ std::string parse_vehicle_address(const std::string& text, std::uint8_t default_
 
 std::string vehicle_address_text(const VehicleAddress& a) {
   return std::string(a.tcp ? "tcp:" : "udp:") + a.host + ":" + std::to_string(a.port);
+}
+
+std::vector<VehicleAddress> parse_vehicle_addresses(const std::string& list) {
+  std::vector<VehicleAddress> out;
+  std::size_t begin = 0;
+  while (begin <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', begin), list.size());
+    const std::string item = list.substr(begin, comma - begin);
+    begin = comma + 1;
+    if (item.empty()) {
+      if (comma == list.size()) break;
+      continue;
+    }
+    const auto bad = [&](const std::string& why) {
+      return base::InputError("--vehicles: \"" + item + "\" " + why +
+                              " (use udp:HOST:PORT or tcp:HOST:PORT, optionally /SYSID)");
+    };
+    VehicleAddress u;
+    const std::string why = parse_vehicle_address(
+        item, static_cast<std::uint8_t>(std::min<std::size_t>(out.size() + 1, 255)), u);
+    if (!why.empty()) throw bad(why);
+    out.push_back(u);
+  }
+  if (out.empty()) throw base::InputError("--vehicles names no vehicle");
+  return out;
 }
 
 }  // namespace swath::fleet

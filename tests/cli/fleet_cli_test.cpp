@@ -16,6 +16,7 @@
 #include "cli_runner.hpp"
 #include "fleet_images.hpp"
 #include "swath/base/file_text.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/render/image.hpp"
@@ -36,7 +37,7 @@ TEST(FleetCli, MultiplexingCompletesNoFasterThanTheOptimalOrderOfItsWorld) {
   EXPECT_TRUE(summary["completed"].get<bool>());
   EXPECT_EQ(summary["tasks"]["done"], 5);  // main, delivery, two photos, video
   const auto world = worlds::read_world(source_path("share/worlds/sites.yaml"));
-  const double optimum = worlds::multiplexing_optimum_s(
+  const double optimum = fleet::multiplexing_optimum_s(
       dynamic_cast<const worlds::SitesWorld&>(*world), {0, 0, 0}, fleet::Kinematics{}, 20);
   EXPECT_GE(summary["completion_time_s"].get<double>(), optimum);
   EXPECT_LE(summary["completion_time_s"].get<double>(), 1.5 * optimum);
@@ -200,7 +201,7 @@ TEST(FleetCli, AnAppThatCannotFinishExitsFourWithItsFiles) {
 }
 
 // --backend mavlink's inputs are refused in one sentence, exit 2, nothing written (the flights
-// themselves are tested on a stepped clock in tests/mavlink/backend_test.cpp).
+// themselves are tested on a stepped clock in tests/fleet/mavlink_fleet_test.cpp).
 TEST(FleetCli, MavlinkBackendInputsAreRefusedInOneSentence) {
   const std::string out = fresh_dir("fleet-mavlink-refused");
   const std::string run = "run hotspot --world hotspot --drones 2 ";
@@ -399,9 +400,9 @@ TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
     drones[i].max_flight_time_s = 60;
   }
   fleet::App app;
-  for (auto& a : worlds::builtin_apps())
+  for (auto& a : fleet::builtin_apps())
     if (a.name == "tracking") app = a;
-  const fleet::RunRecord r = fleet::run_app(app, *world, drones, fleet::RunSettings{});
+  const fleet::RunRecord r = fleet::run_app(app, *world, drones, fleet::RuntimeSettings{});
   ASSERT_TRUE(r.completed);
   const int w = 1200, h = 400;
   const apps::FleetPicture g = apps::gantt_picture(r, w, h);
@@ -490,14 +491,13 @@ int fleet_cli(std::vector<std::string> args) {
 
 TEST(FleetCli, AnAppOfOnesOwnIsRegisteredListedAndRunByTheSameCommandLine) {
   static const bool once = [] {
-    worlds::register_app({"corners", "three corners of a square, a hover at each", corners_main},
-                         "road");
+    fleet::register_app({"corners", "three corners of a square, a hover at each", corners_main},
+                        "road");
     return true;
   }();
   (void)once;
-  EXPECT_THROW(worlds::register_app({"road", "taken", corners_main}, "road"),
-               std::invalid_argument);
-  EXPECT_THROW(worlds::register_app({"x", "", corners_main}, "moon"), std::invalid_argument);
+  EXPECT_THROW(fleet::register_app({"road", "taken", corners_main}, "road"), std::invalid_argument);
+  EXPECT_THROW(fleet::register_app({"x", "", corners_main}, "moon"), std::invalid_argument);
   const std::string out = fresh_dir("fleet-own-app");
   ASSERT_EQ(fleet_cli({"run", "corners", "--world", source_path("share/worlds/road.yaml"),
                        "--drones", "2", "-o", out}),

@@ -20,6 +20,7 @@
 #include <sstream>
 #include <vector>
 
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/runtime.hpp"
@@ -29,7 +30,7 @@ namespace swath::fleet {
 namespace bounds {
 
 const App& app_named(const std::string& name) {
-  static const std::vector<App> apps = worlds::builtin_apps();
+  static const std::vector<App> apps = fleet::builtin_apps();
   const auto it =
       std::find_if(apps.begin(), apps.end(), [&](const App& a) { return a.name == name; });
   if (it == apps.end()) throw std::logic_error("no app " + name);
@@ -46,7 +47,7 @@ DroneSpec drone(const std::string& name, Vec3 home) {
 // compare's two schedulers: reactive, and predictive with GMF over `histories` and relief.
 RunRecord run(const App& app, const World& w, const std::vector<DroneSpec>& fleet,
               std::uint64_t seed, const std::vector<Dtg>* histories) {
-  RunSettings s;
+  RuntimeSettings s;
   s.app_name = app.name;
   s.seed = seed;
   if (histories) {
@@ -134,7 +135,7 @@ TEST(Bounds, RoadGainOnAStraightRoadFollowsItsClosedForm) {
     const double overlap = 1.0 - std::max(rho, (rho + phi) / 2) / (1.0 + rho);
     const double gain = road_gain(app, rho * t1_s, false);
     std::cout << "rho " << rho << ": gain " << gain << ", closed form " << overlap
-              << ", DESIGN.md's " << design << "\n";
+              << ", the design reference's " << design << "\n";
     EXPECT_NEAR(gain, overlap, rho == 1.0 ? 0.05 : 0.03) << "rho " << rho;
     if (rho >= phi) {
       EXPECT_NEAR(gain, design, 0.03) << "rho " << rho;

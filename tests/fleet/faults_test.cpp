@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/faults.hpp"
 #include "swath/fleet/runtime.hpp"
@@ -52,7 +53,7 @@ std::vector<DroneSpec> three_drones(std::uint64_t seed) {
 TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
   const std::vector<FaultKind> kinds{FaultKind::link_loss, FaultKind::battery_drop,
                                      FaultKind::motor_failure, FaultKind::sensor_failure};
-  std::vector<App> apps = worlds::builtin_apps();
+  std::vector<App> apps = fleet::builtin_apps();
   ASSERT_EQ(apps.size(), 6u);  // the five case studies and `static`
   int violations = 0, runs = 0, faults = 0, duplicates = 0, failed_tasks = 0, completed = 0;
   // 1,000 schedules; 200 under the sanitizers (they check memory, not counts; ~10x slower).
@@ -67,7 +68,7 @@ TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
     const std::vector<DroneSpec> drones = three_drones(k);
     std::vector<std::string> names;
     for (const auto& d : drones) names.push_back(d.name);
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = app.name;
     s.seed = k;
     s.scheduler = k % 3 == 0 ? "greedy" : "sa";
@@ -102,13 +103,13 @@ TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
 
 // A real log, then one line changed at a time: each change breaks exactly the rule it targets.
 TEST(EventCheck, CatchesEveryRuleBrokenInARealLog) {
-  const App app = worlds::builtin_apps().at(1);  // multiplexing
+  const App app = fleet::builtin_apps().at(1);  // multiplexing
   ASSERT_EQ(app.name, "multiplexing");
   const auto world = worlds::parse_world("kind: sites\nseed: 4\n", "w.yaml");
   std::vector<DroneSpec> drones(2);
   drones[0].name = "a";
   drones[1].name = "b";
-  RunSettings s;
+  RuntimeSettings s;
   s.faults = {{30, 1, FaultKind::motor_failure, 0, 0}};
   const RunRecord r = run_app(app, *world, drones, s);
   ASSERT_TRUE(check_events(r.events_jsonl).ok());

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/runtime.hpp"
@@ -21,10 +22,10 @@ namespace swath::fleet {
 namespace {
 
 std::string run_dtg(const std::string& app_name, std::uint64_t seed, int drones = 2) {
-  for (const App& app : worlds::builtin_apps()) {
+  for (const App& app : fleet::builtin_apps()) {
     if (app.name != app_name) continue;
     const auto world = worlds::parse_world(
-        "kind: " + worlds::app_world_kind(app.name) + "\nseed: " + std::to_string(seed) + "\n",
+        "kind: " + fleet::app_world_kind(app.name) + "\nseed: " + std::to_string(seed) + "\n",
         "w.yaml");
     std::vector<DroneSpec> fleet;
     for (int i = 0; i < drones; ++i) {
@@ -33,7 +34,7 @@ std::string run_dtg(const std::string& app_name, std::uint64_t seed, int drones 
       d.home_m = {3.0 * i, 0, 0};
       fleet.push_back(d);
     }
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = app.name;
     s.seed = seed;
     s.scheduler = "greedy";

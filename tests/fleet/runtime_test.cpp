@@ -13,6 +13,7 @@
 
 #include "swath/energy/budget.hpp"
 #include "swath/energy/power_model.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/event_check.hpp"
 #include "swath/fleet/leg.hpp"
@@ -128,7 +129,7 @@ TEST(Runtime, OneTaskCompletesWhenTheClosedFormSays) {
             auto h = c.spawn(Kind{"probe"}, {}, probe_at, Vec3{120, 50, 0});
             got = co_await h;
           }};
-  RunSettings s;
+  RuntimeSettings s;
   const RunRecord r = run_app(app, world, {drone("a")}, s);
   ASSERT_TRUE(r.completed) << r.failure;
   EXPECT_NEAR(got.at.x, 120, 1e-9);
@@ -166,7 +167,7 @@ TEST(Runtime, EnergyEqualsTheBudgetOfTheSameLegs) {
   DroneSpec d = drone("a");
   d.kinematics.accel_m_s2 = 0;
   d.kinematics.approach_within_m = 0;
-  const RunRecord r = run_app(app, world, {d}, RunSettings{});
+  const RunRecord r = run_app(app, world, {d}, RuntimeSettings{});
   ASSERT_TRUE(r.completed) << r.failure;
 
   energy::WaypointMission m;
@@ -221,7 +222,7 @@ TEST(Runtime, SameDroneTasksKeepTheirDroneAndCancelIsSeenAtTheAwait) {
             co_await all(others);
           }};
   const RunRecord r = run_app(
-      app, world, {drone("a"), drone("b", {50, 0, 0}), drone("c", {0, 50, 0})}, RunSettings{});
+      app, world, {drone("a"), drone("b", {50, 0, 0}), drone("c", {0, 50, 0})}, RuntimeSettings{});
   ASSERT_TRUE(r.completed) << r.failure;
   EXPECT_TRUE(caught);
   const auto dtg = nlohmann::json::parse(r.dtg_json);
@@ -243,22 +244,22 @@ TEST(Runtime, SameDroneTasksKeepTheirDroneAndCancelIsSeenAtTheAwait) {
 TEST(Runtime, TheMainIsNoVirtualDrone) {
   const ProbeWorld world;
   App app{"bad", "", [](Ctx& c) -> Co<void> { co_await c.fly_to({10, 0, 0}); }};
-  const RunRecord r = run_app(app, world, {drone("a")}, RunSettings{});
+  const RunRecord r = run_app(app, world, {drone("a")}, RuntimeSettings{});
   EXPECT_FALSE(r.completed);
   EXPECT_EQ(r.tasks_by_outcome.at("failed"), 1);
   EXPECT_NE(r.events_jsonl.find("no virtual drone"), std::string::npos);
 }
 
 TEST(Runtime, SameSeedSameBytesAcrossApps) {
-  for (const App& app : worlds::builtin_apps()) {
-    const std::string kind = worlds::app_world_kind(app.name);
+  for (const App& app : fleet::builtin_apps()) {
+    const std::string kind = fleet::app_world_kind(app.name);
     const std::string tasks =
         kind == "static" ? "tasks: [{name: a, actions: [{fly_to: {x_m: 9, y_m: 9}}, {sense: c}]},"
                            " {name: b, after: [a], actions: [{fly_to: {x_m: 0, y_m: 9}}]}]\n"
                          : "";
     const auto world = worlds::parse_world("kind: " + kind + "\nseed: 3\n" + tasks, "w.yaml");
     std::vector<DroneSpec> fleet{drone("a"), drone("b", {10, 0, 0})};
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = app.name;
     const RunRecord r1 = run_app(app, *world, fleet, s);
     const RunRecord r2 = run_app(app, *world, fleet, s);
@@ -269,7 +270,7 @@ TEST(Runtime, SameSeedSameBytesAcrossApps) {
 }
 
 TEST(Runtime, MultiplexingIsNeverFasterThanTheOptimalOrder) {
-  const App app = worlds::builtin_apps().at(1);
+  const App app = fleet::builtin_apps().at(1);
   ASSERT_EQ(app.name, "multiplexing");
   for (int seed = 1; seed <= 10; ++seed)
     for (const bool interruptible : {true, false}) {
@@ -279,12 +280,12 @@ TEST(Runtime, MultiplexingIsNeverFasterThanTheOptimalOrder) {
           "w.yaml");
       const auto& sites = dynamic_cast<const worlds::SitesWorld&>(*world);
       for (const std::string sched : {"sa", "greedy"}) {
-        RunSettings s;
+        RuntimeSettings s;
         s.scheduler = sched;
         s.seed = static_cast<std::uint64_t>(seed);
         const RunRecord r = run_app(app, *world, {drone("a")}, s);
         ASSERT_TRUE(r.completed) << r.failure;
-        const double optimum = worlds::multiplexing_optimum_s(sites, {0, 0, 0}, Kinematics{}, 20);
+        const double optimum = fleet::multiplexing_optimum_s(sites, {0, 0, 0}, Kinematics{}, 20);
         EXPECT_GE(r.completion_time_s, optimum) << "seed " << seed << " " << sched;
         // And not absurdly slower: each of six segments costs at most a few ticks of overhead,
         // the rest is the order the scheduler chose (within 2x of the best order here).
@@ -312,7 +313,7 @@ TEST(Runtime, AnyReturnsTheFirstToEndAndDiscsAreFirstComeFirstServed) {
             co_await all(hs);
           }};
   const RunRecord r = run_app(
-      app, world, {drone("a"), drone("b", {5, 0, 0}), drone("c", {-5, 0, 0})}, RunSettings{});
+      app, world, {drone("a"), drone("b", {5, 0, 0}), drone("c", {-5, 0, 0})}, RuntimeSettings{});
   ASSERT_TRUE(r.completed) << r.failure;
   EXPECT_EQ(first, 1u);
   // Task 3 (at 0, 61) is dispatched only once task 2's drone has finished at (0, 60).
@@ -336,7 +337,7 @@ TEST(Runtime, WindCostsTheHoverPowerAtTheWindSpeedAndIsSymmetricOnARoundTrip) {
            co_await h;
          }};
   const DroneSpec d = drone("a");
-  RunSettings calm, windy;
+  RuntimeSettings calm, windy;
   windy.wind_m_s = {6, -2, 0};
   const RunRecord a = run_app(up, world, {d}, calm), b = run_app(up, world, {d}, windy);
   ASSERT_TRUE(a.completed && b.completed);
@@ -356,7 +357,7 @@ TEST(Runtime, WindCostsTheHoverPowerAtTheWindSpeedAndIsSymmetricOnARoundTrip) {
              });
              co_await h;
            }};
-  RunSettings east, west;
+  RuntimeSettings east, west;
   east.wind_m_s = {5, 0, 0};
   west.wind_m_s = {-5, 0, 0};
   const RunRecord e = run_app(trip, world, {d}, east), v = run_app(trip, world, {d}, west),
@@ -375,7 +376,7 @@ TEST(Runtime, FlySensingReadsAlongTheLegAtItsPeriod) {
             got = co_await h;
           }};
   DroneSpec d = drone("a");
-  const RunRecord r = run_app(app, world, {d}, RunSettings{});
+  const RunRecord r = run_app(app, world, {d}, RuntimeSettings{});
   ASSERT_TRUE(r.completed) << r.failure;
   // The leg: climb 20 m at 3 m/s, then 200 m level; a sample every 2 s of it.
   const Leg leg({0, 0, 0}, {200, 0, 20}, d.kinematics);
@@ -401,7 +402,7 @@ namespace {
 // the independent checker finds every task ended once; the run is faster than reactive and the
 // same bytes twice.
 TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
-  const std::vector<App> apps = worlds::builtin_apps();
+  const std::vector<App> apps = fleet::builtin_apps();
   const auto road =
       std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "road"; });
   ASSERT_NE(road, apps.end());
@@ -412,7 +413,7 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
   const std::vector<DroneSpec> fleet{drone("a"), drone("b", {3, 0, 0})};
   std::vector<Dtg> histories;
   for (int seed = 11; seed <= 13; ++seed) {
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = "road";
     s.scheduler = "reactive";
     s.seed = static_cast<std::uint64_t>(seed);
@@ -422,7 +423,7 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
   }
   for (int seed = 1; seed <= 3; ++seed) {
     const auto world = world_of(seed);
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = "road";
     s.seed = static_cast<std::uint64_t>(seed);
     s.scheduler = "reactive";
@@ -465,7 +466,7 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
 // map against the world's truth, mean over seeds, paired with reactive on the same worlds), and
 // the survey is not slower on average.
 TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
-  const std::vector<App> apps = worlds::builtin_apps();
+  const std::vector<App> apps = fleet::builtin_apps();
   const auto wifi =
       std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "wifi"; });
   ASSERT_NE(wifi, apps.end());
@@ -481,7 +482,7 @@ TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
         "rf_field.yaml");
   };
   const std::vector<DroneSpec> fleet{drone("a")};
-  RunSettings s;
+  RuntimeSettings s;
   s.app_name = "wifi";
   s.scheduler = "reactive";
   std::vector<Dtg> histories;
@@ -524,7 +525,7 @@ TEST(Runtime, PredictiveWifiMapIsAtMostHalfADecibelWorseThanReactives) {
 // it relieves returns; the first look dispatched after that return goes to the stand-by; and the
 // hand-over (a drone's return to the next look by another) is shorter than without relief.
 TEST(Runtime, ReliefStandsByWhereTheDroneAtWorkIsAndTakesOverItsLooks) {
-  const std::vector<App> apps = worlds::builtin_apps();
+  const std::vector<App> apps = fleet::builtin_apps();
   const auto tracking =
       std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "tracking"; });
   ASSERT_NE(tracking, apps.end());
@@ -549,7 +550,7 @@ TEST(Runtime, ReliefStandsByWhereTheDroneAtWorkIsAndTakesOverItsLooks) {
   for (int seed = 1; seed <= 4; ++seed) {
     const auto world = worlds::parse_world(
         "kind: tracking\nseed: " + std::to_string(seed) + "\nduration_s: 300\n", "w.yaml");
-    RunSettings s;
+    RuntimeSettings s;
     s.app_name = "tracking";
     s.seed = static_cast<std::uint64_t>(seed);
     const RunRecord base = run_app(*tracking, *world, fleet, s);

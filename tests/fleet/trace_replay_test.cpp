@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/fleet/trace_replay.hpp"
@@ -27,7 +28,7 @@ DroneSpec drone(const std::string& name, Vec3 home = {}) {
 }
 
 const App& app_named(const std::string& name) {
-  static const std::vector<App> apps = worlds::builtin_apps();
+  static const std::vector<App> apps = fleet::builtin_apps();
   for (const App& a : apps)
     if (a.name == name) return a;
   throw std::logic_error("no app " + name);
@@ -63,7 +64,7 @@ TEST(TraceReplay, ReproducesTheWorldRunWhereTheGraphDoesNotDependOnTheSchedule) 
           worlds::parse_world("kind: " + kind + "\nseed: " + std::to_string(seed) + "\n", "w.yaml");
       const std::vector<DroneSpec> fleet3{drone("a"), drone("b", {10, 0, 0}),
                                           drone("c", {0, 10, 0})};
-      RunSettings s;
+      RuntimeSettings s;
       s.app_name = name;
       s.seed = seed;
       const RunRecord recorded =
@@ -71,7 +72,7 @@ TEST(TraceReplay, ReproducesTheWorldRunWhereTheGraphDoesNotDependOnTheSchedule) 
       ASSERT_TRUE(recorded.completed) << name << ": " << recorded.failure;
       const App trace = make_trace_app(parse_dtg(recorded.dtg_json, "dtg.json"));
       for (const Setting& st : settings) {
-        RunSettings r = s;
+        RuntimeSettings r = s;
         r.scheduler = st.scheduler;
         const std::vector<DroneSpec> fleet(fleet3.begin(), fleet3.begin() + st.drones);
         const RunRecord world_run = run_app(app_named(name), *world, fleet, r);
@@ -91,7 +92,7 @@ TEST(TraceReplay, ReproducesTheWorldRunWhereTheGraphDoesNotDependOnTheSchedule) 
 TEST(TraceReplay, ReplaysItsOwnRecordingByteForByte) {
   // The replay's own dtg.json holds the same scripts, so a replay of a replay is the same run.
   const auto world = worlds::parse_world("kind: hotspot\nseed: 5\n", "w.yaml");
-  RunSettings s;
+  RuntimeSettings s;
   s.app_name = "hotspot";
   const std::vector<DroneSpec> fleet{drone("a"), drone("b", {10, 0, 0})};
   const RunRecord recorded = run_app(app_named("hotspot"), *world, fleet, s);
@@ -106,7 +107,7 @@ TEST(TraceReplay, RecordedCancelsFireWithTheirTrigger) {
   // Case 2 cancels cells from inside the cell that made them known: replayed with the recorded
   // scheduler and fleet, the same cells are cancelled, by the same issuers.
   const auto world = worlds::parse_world("kind: rf_field\nseed: 4\n", "w.yaml");
-  RunSettings s;
+  RuntimeSettings s;
   s.app_name = "wifi";
   const std::vector<DroneSpec> fleet{drone("a"), drone("b", {10, 0, 0})};
   const RunRecord recorded = run_app(app_named("wifi"), *world, fleet, s);
@@ -161,7 +162,7 @@ TEST(TraceReplay, RecordedCancelsFireWithTheirTrigger) {
                   } catch (const TaskCancelled&) {
                   }
                 }};
-  RunSettings cs;
+  RuntimeSettings cs;
   cs.app_name = "canceller";
   const RunRecord rec = run_app(app, flat, {drone("a")}, cs);
   ASSERT_TRUE(rec.completed) << rec.failure;

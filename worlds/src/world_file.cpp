@@ -545,4 +545,10 @@ std::unique_ptr<BaseWorld> read_world(const std::string& path) {
   return parse_world(base::read_text_file(path, "world file"), path);
 }
 
+const std::vector<std::string>& world_kinds() {
+  static const std::vector<std::string> kinds{"hotspot", "road",   "rf_field",
+                                              "sites",   "static", "tracking"};
+  return kinds;
+}
+
 }  // namespace swath::worlds

@@ -61,6 +61,13 @@ class Leg {
   std::vector<LegPiece> pieces_;
 };
 
+/// The leg a drone at `from` flies to `to` when told to at `t_on_s` after it began `current` (null:
+/// it was not moving). A retarget keeps the speed along the new course (the component across it
+/// is braked); a drone already at the target (within 1e-9 m) starts from rest. The runtime's
+/// model and the simulated fleet both start their legs with it, so they agree to the bit.
+Leg next_leg(const Leg* current, double t_on_s, const Vec3& from, const Vec3& to,
+             const Kinematics& k);
+
 /// The horizontal time alone for a leg of `length_m` from rest to rest under `k` (the closed form
 /// the scheduler's ETA uses; equal to Leg(..).duration_s() without the vertical part).
 double horizontal_time_s(double length_m, const Kinematics& k);

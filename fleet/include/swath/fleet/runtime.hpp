@@ -1,12 +1,13 @@
 #pragma once
 // The runtime (paper 000 §3, §4.1; docs/swath-fleet.md): runs one application against a fleet of
-// simulated drones. Each task's head segment (a fly_to and the non-flying actions after it) is a
-// *request*; every tick (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes
-// the coroutines that can go on, and — when something changed — asks the scheduler which drone
-// serves which request. Time jumps from event to event on the tick grid, so an hour's mission
-// takes milliseconds. Same settings and seed: the same bytes in every output.
+// drones behind a Backend (backend.hpp; the simulated fleet unless RuntimeSettings::backend says).
+// Each task's head segment (a fly_to and the non-flying actions after it) is a *request*; every
+// tick (0.1 s, the paper's heartbeat) the runtime applies what happened, resumes the coroutines
+// that can go on, and — when something changed — asks the scheduler which drone serves which
+// request. Time jumps from event to event on the tick grid, so an hour's mission takes
+// milliseconds. Same settings and seed: the same bytes in every output.
 //
-// The simulated backend (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
+// The simulated fleet (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
 // layer (20 m + 3 m × index, the collision rule of §18.3), level flight with the approach rule and
 // bounded accelerations, power through energy::Battery (paper 004 eq. 12) from the drone's
 // energy::PowerProfile (hover = airspeed 0). Faults follow §18.7: every task ends exactly once,
@@ -67,7 +68,7 @@ struct FaultEvent {
   double soc = 0.1;        ///< battery_drop: the charge it falls to, [0, 1]
 };
 
-struct RunSettings {
+struct RuntimeSettings {
   std::string app_name;          ///< for the log
   std::string scheduler = "sa";  ///< sa | reactive | greedy | round-robin | hungarian
   std::uint64_t seed = 1;
@@ -99,9 +100,9 @@ struct RunSettings {
   /// stand-by there, which takes the next segment when it leaves. Off: the paper's baseline.
   bool relief = false;
   double relief_margin_s = 20;  ///< s, ≥ 0
-  /// External vehicles (backend.hpp; not owned, outlives the run): null, the simulated fleet
-  /// (event to event); else the runtime ticks every tick_s, commands the backend's vehicle i as
-  /// drone i and takes arrivals, landings, positions and link state from its reports.
+  /// The vehicles (backend.hpp; not owned, outlives the run): null, run_app's own simulated
+  /// fleet (event to event); else e.g. MavlinkFleet, whose vehicle i flies drone i: the runtime
+  /// ticks every tick_s and takes arrivals, landings, positions and link state from its reports.
   Backend* backend = nullptr;
 };
 
@@ -125,7 +126,7 @@ struct RunRecord {
   double completion_time_s = 0;  ///< start to the app's main returning (return home not counted)
   double end_s = 0;              ///< when the run stopped
   std::string failure;           ///< why main failed or the run stopped, "" when completed
-  std::string events_jsonl;      ///< events.jsonl (DESIGN.md §18.10)
+  std::string events_jsonl;      ///< events.jsonl (docs/swath-fleet.md)
   std::string dtg_json;          ///< dtg.json (§18.3)
   std::vector<DroneRecord> drones;
   std::map<std::string, int> tasks_by_outcome;  ///< done, cancelled, failed
@@ -146,6 +147,6 @@ struct RunRecord {
 /// scheduler name or a backend whose vehicle count differs from the fleet's; an exception escaping
 /// the app's main ends the run as not completed.
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
-                  const RunSettings& settings);
+                  const RuntimeSettings& settings);
 
 }  // namespace swath::fleet

@@ -33,7 +33,7 @@ struct DroneState {
   bool busy = false;          ///< mid-action: keeps its target, not reassigned
   double soc = 1.0;           ///< state of charge, [0, 1]
   Vec3 home_m;                ///< where it lands, local metres
-  bool can_sense = true;      ///< false while its sensor has failed (DESIGN.md §18.7)
+  bool can_sense = true;      ///< false while its sensor has failed (docs/swath-fleet.md)
   /// Flight time it has left before it must be home, s (max_flight_time_s; infinity: no limit):
   /// a request it cannot reach, serve and return from in time is infeasible for it.
   double remaining_flight_s = std::numeric_limits<double>::infinity();

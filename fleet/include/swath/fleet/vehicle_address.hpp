@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace swath::fleet {
 
@@ -25,5 +26,10 @@ std::string parse_vehicle_address(const std::string& text, std::uint8_t default_
 
 /// `udp:HOST:PORT` or `tcp:HOST:PORT` (without the system id): what summary.json records.
 std::string vehicle_address_text(const VehicleAddress& a);
+
+/// A comma-separated list of addresses (`--vehicles`), each without /SYSID taking its place in
+/// the list plus 1 (SITL's SYSID_THISMAV = instance + 1). Throws base::InputError with one
+/// sentence naming the bad entry.
+std::vector<VehicleAddress> parse_vehicle_addresses(const std::string& list);
 
 }  // namespace swath::fleet

@@ -91,7 +91,7 @@ inline constexpr std::uint8_t kParamTypeInt8 = 2;
 inline constexpr std::uint8_t kParamTypeInt32 = 6;
 inline constexpr std::uint8_t kParamTypeReal32 = 9;
 inline constexpr double kDegE7 = 1e7;           ///< integer latitudes and longitudes: degrees x 1e7
-inline constexpr std::uint8_t kGcsSysid = 255;  ///< DESIGN.md §18.A
+inline constexpr std::uint8_t kGcsSysid = 255;  ///< docs/swath-fleet.mdA
 inline constexpr std::uint8_t kGcsCompid = 190;
 
 }  // namespace swath::mavlink

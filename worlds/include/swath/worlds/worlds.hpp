@@ -1,7 +1,8 @@
 #pragma once
-// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; docs/swath-fleet.md) and their
-// world files. Every sensor's noise is a hash of (seed, sensor, position to the millimetre), not of
-// time or order, so a reading does not depend on the schedule (docs/swath-fleet.md): two schedulers
+// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; docs/swath-fleet.md) and their world
+// files: what the applications act in (the apps themselves are fleet/apps/, swath/fleet/apps.hpp).
+// Every sensor's noise is a hash of (seed, sensor, position to the millimetre), not of time or
+// order, so a reading does not depend on the schedule (docs/swath-fleet.md): two schedulers
 // sensing the same place see the same value, and a case's oracle is exact.
 //
 // World YAML (local metres at `origin`, x east, y north):
@@ -171,24 +172,7 @@ std::unique_ptr<BaseWorld> parse_world(const std::string& text, const std::strin
                                        std::optional<std::uint64_t> seed = {});
 std::unique_ptr<BaseWorld> read_world(const std::string& path);
 
-/// The built-in applications (hotspot, multiplexing, road, static, tracking, wifi), each for its
-/// world kind (app_world_kind).
-std::vector<fleet::App> builtin_apps();
-/// An application of a program's own (out of tree: it links swath::fleet and swath-fleet's
-/// commands and calls apps::fleet_main), beside the built-in ones for the rest of the process: it
-/// runs in worlds of `world_kind` (hotspot, road, rf_field, sites, static, tracking). Throws
-/// std::invalid_argument when the name is empty or taken, or the kind unknown.
-void register_app(fleet::App app, const std::string& world_kind);
-/// The built-in applications, then the registered ones.
-std::vector<fleet::App> all_apps();
-/// The world kind an app runs in ("multiplexing" → "sites", "wifi" → "rf_field", a registered
-/// app's own, else its name).
-std::string app_world_kind(const std::string& app);
-
-/// Case 4's lower bound: the fastest order of the multiplexing app's segments for one drone from
-/// `home` flying as `k` (rest to rest per leg, service times added), by brute force over every
-/// order that keeps A before F, B and E anywhere, C then D with nothing between. Seconds.
-double multiplexing_optimum_s(const SitesWorld& w, const Vec3& home, const fleet::Kinematics& k,
-                              double altitude_m);
+/// The world kinds: hotspot, road, rf_field, sites, static, tracking.
+const std::vector<std::string>& world_kinds();
 
 }  // namespace swath::worlds

@@ -4,7 +4,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-namespace swath::worlds {
+namespace swath::fleet {
 
 struct GaussianProcess::Fit {
   Eigen::LLT<Eigen::MatrixXd> llt;
@@ -53,4 +53,4 @@ std::array<double, 2> GaussianProcess::predict(double x, double y) const {
   return {mean, std::sqrt(std::max(0.0, sf2_ - v.squaredNorm()))};
 }
 
-}  // namespace swath::worlds
+}  // namespace swath::fleet

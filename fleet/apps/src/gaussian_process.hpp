@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-namespace swath::worlds {
+namespace swath::fleet {
 
 class GaussianProcess {
  public:
@@ -26,4 +26,4 @@ class GaussianProcess {
   std::unique_ptr<Fit> fit_;
 };
 
-}  // namespace swath::worlds
+}  // namespace swath::fleet

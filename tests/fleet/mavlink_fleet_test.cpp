@@ -1,5 +1,5 @@
 // swath-fleet's runtime flying two in-process fake ArduCopters over real loopback UDP through
-// MavlinkBackend, on a stepped clock (docs/swath-fleet.md): a three-photo
+// MavlinkFleet, on a stepped clock (docs/swath-fleet.md): a three-photo
 // static app completes with every task done exactly once (the independent event checker), each
 // photo taken within the arrival radius of its target at the drone's layer (targets from the world
 // file, positions from the fakes' telemetry); lost commands (acknowledgements never sent, some
@@ -23,17 +23,22 @@
 #include <sstream>
 
 #include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/event_check.hpp"
+#include "swath/fleet/mavlink_fleet.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/mavlink/copter_driver.hpp"
 #include "swath/mavlink/fake_copter.hpp"
-#include "swath/mavlink/mavlink_backend.hpp"
 #include "swath/mavlink/px4_driver.hpp"
 #include "swath/worlds/worlds.hpp"
 
 namespace swath::mavlink {
 namespace {
+
+// The adapter is fleet's (fleet -> mavlink); the fakes and drivers it flies are mavlink's.
+using fleet::MavlinkFleet;
+using fleet::MavlinkFleetSettings;
 
 // Three photos 90–130 m out: legs long enough (≈ 20 s each) for a cut to catch a vehicle flying.
 constexpr const char* kWorld = R"(kind: static
@@ -53,11 +58,11 @@ struct Mission {
   std::vector<fleet::DroneSpec> drones;
   std::vector<UdpLink> vehicle_links;
   std::vector<std::unique_ptr<FakeCopter>> fakes;
-  std::unique_ptr<MavlinkBackend> backend;
+  std::unique_ptr<MavlinkFleet> backend;
   fleet::RunRecord record;
 
   // `adjust` changes the backend's settings before it is made.
-  explicit Mission(const std::function<void(MavlinkBackendSettings&)>& adjust = {},
+  explicit Mission(const std::function<void(MavlinkFleetSettings&)>& adjust = {},
                    const std::function<void(FakeCopterSettings&)>& adjust_fakes = {}) {
     const geometry::LocalFrame frame(world->origin);
     std::vector<std::unique_ptr<Link>> gcs_links;
@@ -80,24 +85,24 @@ struct Mission {
       gcs_links.push_back(
           std::make_unique<UdpLink>(UdpLink::connect("127.0.0.1", vehicle_links[i].local_port())));
     }
-    MavlinkBackendSettings settings;
+    MavlinkFleetSettings settings;
     settings.origin = world->origin;
     settings.fence_m = world->fence();
     settings.before_poll = [this](double t_s) {
       for (auto& f : fakes) f->step(t_s);
     };
     if (adjust) adjust(settings);
-    backend = std::make_unique<MavlinkBackend>(std::move(gcs_links),
-                                               std::vector<std::uint8_t>{1, 2}, settings);
+    backend = std::make_unique<MavlinkFleet>(std::move(gcs_links), std::vector<std::uint8_t>{1, 2},
+                                             settings);
   }
 
   void run() {
-    fleet::RunSettings s;
+    fleet::RuntimeSettings s;
     s.app_name = "static";
     s.max_time_s = 900;
     s.backend = backend.get();
     fleet::App app;
-    for (const fleet::App& a : worlds::builtin_apps())
+    for (const fleet::App& a : fleet::builtin_apps())
       if (a.name == "static") app = a;
     record = fleet::run_app(app, *world, drones, s);
     // For a failing run: its events on stderr.
@@ -161,7 +166,7 @@ int commands_received(const FakeCopter& f) {
   return n;
 }
 
-TEST(MavlinkBackend, TwoFakeCoptersFlyAThreePhotoAppThroughTheRuntime) {
+TEST(MavlinkFleet, TwoFakeCoptersFlyAThreePhotoAppThroughTheRuntime) {
   Mission m;
   m.run();
   m.expect_every_photo_taken_once_at_its_target();
@@ -176,7 +181,7 @@ TEST(MavlinkBackend, TwoFakeCoptersFlyAThreePhotoAppThroughTheRuntime) {
   m.expect_both_land_at_home();
 }
 
-TEST(MavlinkBackend, LostAcknowledgementsAreResentOrReissuedAndTheAppCompletes) {
+TEST(MavlinkFleet, LostAcknowledgementsAreResentOrReissuedAndTheAppCompletes) {
   Mission m;
   // copter-1 loses its first 16 commands (the link-up requests, their resends and GUIDED's: some
   // time out after 3 sends and the steering issues them again), copter-2 its first 2.
@@ -191,7 +196,7 @@ TEST(MavlinkBackend, LostAcknowledgementsAreResentOrReissuedAndTheAppCompletes) 
   m.expect_both_land_at_home();
 }
 
-TEST(MavlinkBackend, TenSecondLinkCutLosesNoTaskAndDelaysCompletion) {
+TEST(MavlinkFleet, TenSecondLinkCutLosesNoTaskAndDelaysCompletion) {
   Mission plain;
   plain.run();
   ASSERT_TRUE(plain.record.completed);
@@ -242,7 +247,7 @@ TEST(MavlinkBackend, TenSecondLinkCutLosesNoTaskAndDelaysCompletion) {
 // slow to 2 m/s there — unless a leg is planned at the previous leg's approach speed: with every
 // DO_CHANGE_SPEED's first send lost, a cruise speed sent beside the target arrives after it (the
 // second photo's 100+ m leg then flew at 2 m/s); answered before the target goes, it does not.
-TEST(MavlinkBackend, EveryLegFliesAtCruiseOnAVehicleThatSetsItsSpeedPerLeg) {
+TEST(MavlinkFleet, EveryLegFliesAtCruiseOnAVehicleThatSetsItsSpeedPerLeg) {
   Mission plain;
   plain.run();
   plain.expect_every_photo_taken_once_at_its_target();
@@ -259,7 +264,7 @@ TEST(MavlinkBackend, EveryLegFliesAtCruiseOnAVehicleThatSetsItsSpeedPerLeg) {
   per_leg.expect_both_land_at_home();
 }
 
-TEST(MavlinkBackend, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {
+TEST(MavlinkFleet, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {
   Mission m;
   m.fakes[0]->refuse_arm("PreArm: Compass not calibrated");
   m.run();
@@ -273,7 +278,7 @@ TEST(MavlinkBackend, AVehicleRefusingToArmLeavesTheFleetWithItsSentence) {
   EXPECT_EQ(m.fakes[1]->images_taken(), 3);
 }
 
-TEST(MavlinkBackend, APreArmCheckThatClearsOnItsOwnDelaysTheVehicleAndKeepsIt) {
+TEST(MavlinkFleet, APreArmCheckThatClearsOnItsOwnDelaysTheVehicleAndKeepsIt) {
   // ArduCopter SITL refused an arm 23 s after boot ("Need Position Estimate") and armed at 41 s:
   // a vehicle refusing to arm for 20 s is asked again every 2 s and flies once it accepts.
   Mission m;
@@ -288,7 +293,7 @@ TEST(MavlinkBackend, APreArmCheckThatClearsOnItsOwnDelaysTheVehicleAndKeepsIt) {
   m.expect_both_land_at_home();
 }
 
-TEST(MavlinkBackend, AVehicleRefusingGuidedIsRefusedAfterThreeRejectionsWithItsSentence) {
+TEST(MavlinkFleet, AVehicleRefusingGuidedIsRefusedAfterThreeRejectionsWithItsSentence) {
   Mission m;
   m.fakes[0]->refuse_mode(CopterMode::guided, "Flight mode change failed");
   m.run();
@@ -304,11 +309,11 @@ TEST(MavlinkBackend, AVehicleRefusingGuidedIsRefusedAfterThreeRejectionsWithItsS
   m.expect_both_land_at_home();
 }
 
-TEST(MavlinkBackend, AVehicleRefusedInTheAirIsStillSentHomeAndLands) {
+TEST(MavlinkFleet, AVehicleRefusedInTheAirIsStillSentHomeAndLands) {
   // The backend's fence leaves out the west photo (x = -90 m): a drone sent there is refused at
   // its layer, after take-off. end_run is given no time, so only the runtime's own return_home
   // at the refusal can bring it back before run_app returns.
-  Mission m([](MavlinkBackendSettings& s) {
+  Mission m([](MavlinkFleetSettings& s) {
     s.fence_m = {{-50, -200}, {200, -200}, {200, 200}, {-50, 200}};
     s.end_timeout_s = 0;
   });
@@ -335,10 +340,10 @@ TEST(MavlinkBackend, AVehicleRefusedInTheAirIsStillSentHomeAndLands) {
 // flavour (autopilot 12) are flown by the PX4 driver (Hold, NAV_TAKEOFF, DO_REPOSITION), the app
 // completes as with ArduCopters, and each vehicle is announced once as flown by an untested
 // driver. (Our reading of PX4's documents against itself, not PX4.)
-TEST(MavlinkBackend, VehiclesNamingPx4AreFlownByThePx4DriverAndSaidUntested) {
+TEST(MavlinkFleet, VehiclesNamingPx4AreFlownByThePx4DriverAndSaidUntested) {
   std::vector<std::pair<int, std::string>> warnings;
   Mission m(
-      [&](MavlinkBackendSettings& s) {
+      [&](MavlinkFleetSettings& s) {
         s.warn = [&](int drone, const std::string& text) { warnings.emplace_back(drone, text); };
       },
       [](FakeCopterSettings& s) { s.autopilot = FakeAutopilot::px4; });
@@ -362,10 +367,10 @@ TEST(MavlinkBackend, VehiclesNamingPx4AreFlownByThePx4DriverAndSaidUntested) {
 
 // The safety check never holds the mission back: ArduCopters with FS_GCS_ENABLE 0 fly the app
 // as the others do, each reported once.
-TEST(MavlinkBackend, AFailsafeOffIsReportedOnceAndTheAppStillCompletes) {
+TEST(MavlinkFleet, AFailsafeOffIsReportedOnceAndTheAppStillCompletes) {
   std::vector<std::pair<int, std::string>> warnings;
   Mission m(
-      [&](MavlinkBackendSettings& s) {
+      [&](MavlinkFleetSettings& s) {
         s.warn = [&](int drone, const std::string& text) { warnings.emplace_back(drone, text); };
       },
       [](FakeCopterSettings& s) { s.params["FS_GCS_ENABLE"] = 0; });
@@ -382,8 +387,8 @@ TEST(MavlinkBackend, AFailsafeOffIsReportedOnceAndTheAppStillCompletes) {
   m.expect_both_land_at_home();
 }
 
-TEST(MavlinkBackend, VehicleUrlsAreParsedAndBadOnesRefusedInOneSentence) {
-  const auto v = parse_vehicle_urls("udp:0.0.0.0:14550,tcp:127.0.0.1:5770/7");
+TEST(MavlinkFleet, VehicleUrlsAreParsedAndBadOnesRefusedInOneSentence) {
+  const auto v = fleet::parse_vehicle_addresses("udp:0.0.0.0:14550,tcp:127.0.0.1:5770/7");
   ASSERT_EQ(v.size(), 2u);
   EXPECT_FALSE(v[0].tcp);
   EXPECT_EQ(v[0].host, "0.0.0.0");
@@ -394,7 +399,7 @@ TEST(MavlinkBackend, VehicleUrlsAreParsedAndBadOnesRefusedInOneSentence) {
   EXPECT_EQ(v[1].sysid, 7);
   for (const char* bad : {"", "serial:/dev/ttyUSB0", "udp:14550", "udp:h:0", "udp:h:70000",
                           "tcp:h:5760/0", "tcp:h:5760/x", "udp:h:1x"})
-    EXPECT_THROW(parse_vehicle_urls(bad), base::InputError) << bad;
+    EXPECT_THROW(fleet::parse_vehicle_addresses(bad), base::InputError) << bad;
 }
 
 }  // namespace

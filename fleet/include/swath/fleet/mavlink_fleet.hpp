@@ -1,5 +1,6 @@
 #pragma once
-// swath-fleet's runtime flying multicopters over MAVLink (docs/swath-fleet.md; `swath-fleet run ...
+// swath-fleet's runtime flying multicopters over MAVLink: the fleet's adapter to swath::mavlink's
+// drivers (fleet -> mavlink, never the reverse) (docs/swath-fleet.md; `swath-fleet run ...
 // --backend mavlink --vehicles V`): one driver per vehicle, chosen by the autopilot its first
 // HEARTBEAT names (12: Px4Driver, untested on PX4 and said so on stderr; else CopterDriver for
 // ArduCopter), each vehicle steered toward what
@@ -26,6 +27,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -37,25 +39,15 @@
 #include "swath/mavlink/driver.hpp"
 #include "swath/mavlink/link.hpp"
 
-namespace swath::mavlink {
+namespace swath::fleet {
 
-/// One vehicle of --vehicles: `udp:HOST:PORT[/SYSID]` listens on HOST:PORT for a vehicle that
-/// sends there (ArduPilot's or MAVProxy's `--out udp:HOST:PORT`); `tcp:HOST:PORT[/SYSID]`
-/// connects to it (SITL: port 5760 + 10 × instance). SYSID 1..255, default: its place in the list
-/// plus 1 (SITL's SYSID_THISMAV = instance + 1). The grammar is fleet's (the fleet file's
-/// per-drone `mavlink {url, sysid}` reads the same).
-using VehicleUrl = fleet::VehicleAddress;
-
-/// A comma-separated list of vehicle URLs. Throws base::InputError with one sentence naming the
-/// bad entry.
-std::vector<VehicleUrl> parse_vehicle_urls(const std::string& list);
-
-struct MavlinkBackendSettings {
+struct MavlinkFleetSettings {
   geometry::GeoPoint origin;  ///< the world's origin (WGS84 degrees)
   /// The world's fence, local metres (x, y), counter-clockwise; empty: none. No target outside
   /// it is ever sent (the vehicle is then refused, "target outside the fence").
   std::vector<std::array<double, 2>> fence_m;
-  DriverSettings driver;  ///< for every vehicle; vehicle_sysid and inside_fence are set per vehicle
+  mavlink::DriverSettings
+      driver;  ///< for every vehicle; vehicle_sysid and inside_fence are set per vehicle
   bool wall_clock = false;
   double poll_step_s = 0.02;  ///< polls between two advance_to times, s (> 0)
   /// Called before each poll with its time (not with wall_clock): tests step their fakes here.
@@ -69,26 +61,32 @@ struct MavlinkBackendSettings {
   std::function<void(int drone, const std::string& text)> warn;
 };
 
-class MavlinkBackend final : public fleet::Backend {
+class MavlinkFleet final : public Backend {
  public:
   /// One vehicle per link (owned), with its system id.
-  MavlinkBackend(std::vector<std::unique_ptr<Link>> links, const std::vector<std::uint8_t>& sysids,
-                 MavlinkBackendSettings settings);
-  ~MavlinkBackend() override;
+  MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
+               const std::vector<std::uint8_t>& sysids, MavlinkFleetSettings settings);
+  ~MavlinkFleet() override;
 
   int vehicles() const override { return static_cast<int>(vehicles_.size()); }
-  void go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s, double approach_m_s,
+  void go_to(int drone, double t_s, const Vec3& to_m, double cruise_m_s, double approach_m_s,
              double approach_within_m) override;
   void act(int drone, const std::string& name, bool sense) override;
-  void return_home(int drone) override;
+  void return_home(int drone, double t_s) override;
+  /// Nothing is sent: the vehicle flies on to its last target and holds there (GUIDED), as it
+  /// did before the simulated fleet shared this seam; the runtime counts it idle meanwhile.
+  void hold(int, double) override {}
   void advance_to(double t_s) override;
-  fleet::VehicleReport report(int drone) const override;
+  VehicleReport report(int drone) const override;
   /// Every airborne vehicle returns to launch; returns once all are down or after
   /// settings.end_timeout_s (on the wall clock in a real run, via before_poll in tests).
   void end_run() override;
+  /// Only the vehicle's report says when it arrives.
+  double arrival_s(int) const override { return std::numeric_limits<double>::infinity(); }
+  bool reports_every_tick() const override { return true; }
 
   /// The vehicle's driver; null until its first HEARTBEAT came.
-  const Driver* driver(int drone) const;
+  const mavlink::Driver* driver(int drone) const;
   double now_s() const { return now_s_; }
 
  private:
@@ -100,14 +98,14 @@ class MavlinkBackend final : public fleet::Backend {
   Vehicle& at(int drone) const;
 
   std::vector<std::unique_ptr<Vehicle>> vehicles_;
-  MavlinkBackendSettings settings_;
+  MavlinkFleetSettings settings_;
   double now_s_ = 0;
   std::optional<std::chrono::steady_clock::time_point> start_;
 };
 
 /// Opens the links of `urls` and the backend over them. Socket errors throw std::system_error
 /// naming the address.
-std::unique_ptr<MavlinkBackend> open_mavlink_backend(const std::vector<VehicleUrl>& urls,
-                                                     MavlinkBackendSettings settings);
+std::unique_ptr<MavlinkFleet> open_mavlink_fleet(const std::vector<VehicleAddress>& urls,
+                                                 MavlinkFleetSettings settings);
 
-}  // namespace swath::mavlink
+}  // namespace swath::fleet

@@ -9,16 +9,17 @@
 #include <stdexcept>
 
 #include "gaussian_process.hpp"
+#include "swath/fleet/apps.hpp"
 #include "swath/fleet/leg.hpp"
-#include "swath/worlds/worlds.hpp"
 
-namespace swath::worlds {
+namespace swath::fleet {
 
-using fleet::Co;
-using fleet::Ctx;
-using fleet::Flags;
-using fleet::Kind;
-using fleet::Reading;
+using worlds::HotspotWorld;
+using worlds::RfFieldWorld;
+using worlds::RoadWorld;
+using worlds::SitesWorld;
+using worlds::StaticWorld;
+using worlds::TrackingWorld;
 
 namespace {
 
@@ -285,8 +286,7 @@ std::vector<Registered>& registered() {
 }  // namespace
 
 void register_app(fleet::App app, const std::string& world_kind) {
-  static const std::vector<std::string> kinds{"hotspot", "road",   "rf_field",
-                                              "sites",   "static", "tracking"};
+  const std::vector<std::string>& kinds = worlds::world_kinds();
   if (app.name.empty()) throw std::invalid_argument("register_app: an app needs a name");
   if (std::find(kinds.begin(), kinds.end(), world_kind) == kinds.end())
     throw std::invalid_argument("register_app: " + app.name + ": unknown world kind \"" +
@@ -333,7 +333,7 @@ std::vector<fleet::App> builtin_apps() {
   };
 }
 
-double multiplexing_optimum_s(const SitesWorld& w, const Vec3& home, const fleet::Kinematics& k,
+double multiplexing_optimum_s(const worlds::SitesWorld& w, const Vec3& home, const Kinematics& k,
                               double altitude_m) {
   // Segments: place and service. Order constraints by index: 0 A, 1 F, 2 B, 3 E, 4 C, 5 D.
   const std::array<std::string, 6> names{"A", "F", "B", "E", "C", "D"};
@@ -361,4 +361,4 @@ double multiplexing_optimum_s(const SitesWorld& w, const Vec3& home, const fleet
   return best;
 }
 
-}  // namespace swath::worlds
+}  // namespace swath::fleet

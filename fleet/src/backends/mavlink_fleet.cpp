@@ -1,4 +1,4 @@
-#include "swath/mavlink/mavlink_backend.hpp"
+#include "swath/fleet/mavlink_fleet.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,39 +7,13 @@
 #include <stdexcept>
 #include <thread>
 
-#include "swath/base/input_error.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/polygon.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/mavlink/copter_driver.hpp"
 #include "swath/mavlink/px4_driver.hpp"
 
-namespace swath::mavlink {
-
-std::vector<VehicleUrl> parse_vehicle_urls(const std::string& list) {
-  std::vector<VehicleUrl> out;
-  std::size_t begin = 0;
-  while (begin <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', begin), list.size());
-    const std::string item = list.substr(begin, comma - begin);
-    begin = comma + 1;
-    if (item.empty()) {
-      if (comma == list.size()) break;
-      continue;
-    }
-    const auto bad = [&](const std::string& why) {
-      return base::InputError("--vehicles: \"" + item + "\" " + why +
-                              " (use udp:HOST:PORT or tcp:HOST:PORT, optionally /SYSID)");
-    };
-    VehicleUrl u;
-    const std::string why = fleet::parse_vehicle_address(
-        item, static_cast<std::uint8_t>(std::min<std::size_t>(out.size() + 1, 255)), u);
-    if (!why.empty()) throw bad(why);
-    out.push_back(u);
-  }
-  if (out.empty()) throw base::InputError("--vehicles names no vehicle");
-  return out;
-}
+namespace swath::fleet {
 
 namespace {
 
@@ -60,11 +34,11 @@ constexpr double kArmRetryS = 2;  // between asks
 }  // namespace
 
 // What the runtime last asked of a vehicle, and where its steering stands.
-struct MavlinkBackend::Vehicle {
+struct MavlinkFleet::Vehicle {
   enum class Want { ground, go, home };
   enum class Step { mode, arm, takeoff, rtl };  // the steering's gated steps
   static constexpr int kSteps = 4;
-  static std::string refusal_text(Step step, const Driver& d) {
+  static std::string refusal_text(Step step, const mavlink::Driver& d) {
     switch (step) {
       case Step::mode:
         return "refused " + d.guided_name();
@@ -77,13 +51,13 @@ struct MavlinkBackend::Vehicle {
     }
     return "refused";
   }
-  std::unique_ptr<Link> link;
-  DriverSettings driver_settings;
+  std::unique_ptr<mavlink::Link> link;
+  mavlink::DriverSettings driver_settings;
   // Until the vehicle's first HEARTBEAT says which autopilot it runs, the link is read here; then
   // the driver for it is made and handed what was read.
-  std::unique_ptr<Endpoint> probe;
+  std::unique_ptr<mavlink::Endpoint> probe;
   double probe_heartbeat_s = -std::numeric_limits<double>::infinity();  // its GCS heartbeat
-  std::unique_ptr<Driver> driver;
+  std::unique_ptr<mavlink::Driver> driver;
   std::size_t warnings_told = 0;  // of driver->state().warnings
   Want want = Want::ground;
   double lat_deg = 0, lon_deg = 0, alt_m = 0;
@@ -98,21 +72,20 @@ struct MavlinkBackend::Vehicle {
   std::string refusal;
 };
 
-MavlinkBackend::MavlinkBackend(std::vector<std::unique_ptr<Link>> links,
-                               const std::vector<std::uint8_t>& sysids,
-                               MavlinkBackendSettings settings)
+MavlinkFleet::MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
+                           const std::vector<std::uint8_t>& sysids, MavlinkFleetSettings settings)
     : settings_(std::move(settings)) {
   if (links.size() != sysids.size())
-    throw std::invalid_argument("MavlinkBackend: one system id per link");
+    throw std::invalid_argument("MavlinkFleet: one system id per link");
   if (!(settings_.end_timeout_s >= 0))
-    throw std::invalid_argument("MavlinkBackend: end_timeout_s must be >= 0");
+    throw std::invalid_argument("MavlinkFleet: end_timeout_s must be >= 0");
   if (!(settings_.poll_step_s > 0))
-    throw std::invalid_argument("MavlinkBackend: poll_step_s must be > 0");
+    throw std::invalid_argument("MavlinkFleet: poll_step_s must be > 0");
   const geometry::LocalFrame frame(settings_.origin);
   for (std::size_t i = 0; i < links.size(); ++i) {
     auto v = std::make_unique<Vehicle>();
     v->link = std::move(links[i]);
-    DriverSettings d = settings_.driver;
+    mavlink::DriverSettings d = settings_.driver;
     d.vehicle_sysid = sysids[i];
     if (settings_.fence_m.size() >= 3) {
       geometry::Ring fence;
@@ -123,22 +96,23 @@ MavlinkBackend::MavlinkBackend(std::vector<std::unique_ptr<Link>> links,
       };
     }
     v->driver_settings = std::move(d);
-    v->probe = std::make_unique<Endpoint>(*v->link, kGcsSysid, kGcsCompid);
+    v->probe =
+        std::make_unique<mavlink::Endpoint>(*v->link, mavlink::kGcsSysid, mavlink::kGcsCompid);
     vehicles_.push_back(std::move(v));
   }
 }
 
-MavlinkBackend::~MavlinkBackend() = default;
+MavlinkFleet::~MavlinkFleet() = default;
 
-MavlinkBackend::Vehicle& MavlinkBackend::at(int drone) const {
+MavlinkFleet::Vehicle& MavlinkFleet::at(int drone) const {
   return *vehicles_.at(static_cast<std::size_t>(drone));
 }
 
-const Driver* MavlinkBackend::driver(int drone) const {
+const mavlink::Driver* MavlinkFleet::driver(int drone) const {
   return at(drone).driver.get();
 }
 
-void MavlinkBackend::warn(int drone, const std::string& text) const {
+void MavlinkFleet::warn(int drone, const std::string& text) const {
   if (settings_.warn)
     settings_.warn(drone, text);
   else
@@ -147,30 +121,30 @@ void MavlinkBackend::warn(int drone, const std::string& text) const {
 
 // Reads the link until the vehicle's HEARTBEAT names its autopilot (MAV_AUTOPILOT 12: PX4; any
 // other: ArduPilot's driver, the tested one), then polls its driver.
-void MavlinkBackend::poll(Vehicle& v, int drone) {
+void MavlinkFleet::poll(Vehicle& v, int drone) {
   if (v.driver) {
     v.driver->poll(now_s_);
   } else {
     // The ground station's heartbeat goes out meanwhile: a vehicle listening on UDP learns from
     // it where to send.
     if (now_s_ - v.probe_heartbeat_s >= v.driver_settings.heartbeat_period_s) {
-      v.probe->send(gcs_heartbeat());
+      v.probe->send(mavlink::gcs_heartbeat());
       v.probe_heartbeat_s = now_s_;
     }
-    const std::vector<Frame> frames = v.probe->receive();
-    for (const Frame& f : frames) {
-      const auto hb = unpack<Heartbeat>(f);
+    const std::vector<mavlink::Frame> frames = v.probe->receive();
+    for (const mavlink::Frame& f : frames) {
+      const auto hb = mavlink::unpack<mavlink::Heartbeat>(f);
       if (!hb || f.header.sysid != v.driver_settings.vehicle_sysid ||
           f.header.compid != v.driver_settings.vehicle_compid)
         continue;
       v.probe.reset();
-      if (hb->autopilot == kAutopilotPx4) {
+      if (hb->autopilot == mavlink::kAutopilotPx4) {
         warn(drone,
              "a PX4 autopilot (HEARTBEAT autopilot 12): swath's PX4 driver is written from PX4's "
              "documentation and untested on PX4 (confirm in PX4 SITL before flying it)");
-        v.driver = std::make_unique<Px4Driver>(*v.link, v.driver_settings);
+        v.driver = std::make_unique<mavlink::Px4Driver>(*v.link, v.driver_settings);
       } else {
-        v.driver = std::make_unique<CopterDriver>(*v.link, v.driver_settings);
+        v.driver = std::make_unique<mavlink::CopterDriver>(*v.link, v.driver_settings);
       }
       v.driver->poll(now_s_, frames);
       break;
@@ -181,8 +155,8 @@ void MavlinkBackend::poll(Vehicle& v, int drone) {
   for (; v.warnings_told < w.size(); ++v.warnings_told) warn(drone, w[v.warnings_told]);
 }
 
-void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s,
-                           double approach_m_s, double approach_within_m) {
+void MavlinkFleet::go_to(int drone, double, const Vec3& to_m, double cruise_m_s,
+                         double approach_m_s, double approach_within_m) {
   Vehicle& v = at(drone);
   const geometry::GeoPoint g = geometry::LocalFrame(settings_.origin).to_geo({to_m.x, to_m.y});
   v.want = Vehicle::Want::go;
@@ -198,23 +172,23 @@ void MavlinkBackend::go_to(int drone, const fleet::Vec3& to_m, double cruise_m_s
   steer(v);
 }
 
-void MavlinkBackend::act(int drone, const std::string&, bool sense) {
+void MavlinkFleet::act(int drone, const std::string&, bool sense) {
   // Hover, custom: GUIDED holds the place. A sense: the vehicle's photo (the reading itself is the
   // world's sensor at the reported position, docs/swath-fleet.md).
   Vehicle& v = at(drone);
   if (sense && v.driver) v.driver->capture_image();
 }
 
-void MavlinkBackend::return_home(int drone) {
+void MavlinkFleet::return_home(int drone, double) {
   Vehicle& v = at(drone);
   v.want = Vehicle::Want::home;
   v.target_sent = false;
   steer(v);
 }
 
-void MavlinkBackend::end_run() {
+void MavlinkFleet::end_run() {
   for (auto& v : vehicles_)
-    if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()));
+    if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()), now_s_);
   // The RTL goes out only from poll(): keep polling (and the ground station's heartbeat) until
   // every vehicle is down, or the deadline, before the caller closes the links.
   const double deadline_s = now_s_ + settings_.end_timeout_s;
@@ -223,41 +197,41 @@ void MavlinkBackend::end_run() {
 
 // Every vehicle on the ground (disarmed or landed) or never heard; one heard before but silent
 // now may still be flying (its own failsafe brings it home) and is waited for.
-bool MavlinkBackend::all_down() const {
+bool MavlinkFleet::all_down() const {
   for (const auto& v : vehicles_) {
     if (!v->driver) continue;  // never heard
-    const VehicleState& s = v->driver->state();
+    const mavlink::VehicleState& s = v->driver->state();
     if (!s.link_alive) {
       if (std::isfinite(s.last_heard_s)) return false;
       continue;
     }
-    if (s.armed && s.landed != LandedState::on_ground) return false;
+    if (s.armed && s.landed != mavlink::LandedState::on_ground) return false;
   }
   return true;
 }
 
 // One step of the steering toward what the runtime wants, from the vehicle's reported state.
-void MavlinkBackend::steer(Vehicle& v) {
+void MavlinkFleet::steer(Vehicle& v) {
   if (!v.driver) return;
-  Driver& d = *v.driver;
-  const VehicleState& s = d.state();
+  mavlink::Driver& d = *v.driver;
+  const mavlink::VehicleState& s = d.state();
   if (v.gate >= 0) {
-    const CommandState c = d.command_state(v.gate);
-    if (c == CommandState::pending) return;
+    const mavlink::CommandState c = d.command_state(v.gate);
+    if (c == mavlink::CommandState::pending) return;
     int& rejected = v.rejections[static_cast<std::size_t>(v.gate_step)];
     const bool arm = v.gate_step == Vehicle::Step::arm;
-    if (c == CommandState::rejected && arm) {
+    if (c == mavlink::CommandState::rejected && arm) {
       if (v.first_arm_refusal_s < 0) v.first_arm_refusal_s = now_s_;
       v.settle_until_s = now_s_ + kArmRetryS;  // asked again in a while, not at every poll
     }
     const bool patience_over = !arm || now_s_ - v.first_arm_refusal_s >= kArmPatienceS;
-    if (c == CommandState::rejected && ++rejected >= kMaxRejections && patience_over &&
+    if (c == mavlink::CommandState::rejected && ++rejected >= kMaxRejections && patience_over &&
         v.refusal.empty())
       v.refusal = Vehicle::refusal_text(v.gate_step, d) +
                   (s.status_texts.empty() ? std::string() : ": " + s.status_texts.back());
     // Mode and armed come with the 1 Hz HEARTBEAT, landed with the 1 Hz EXTENDED_SYS_STATE:
     // after an acceptance the state is trusted again once both have been sent since.
-    if (c == CommandState::accepted) {
+    if (c == mavlink::CommandState::accepted) {
       v.settle_until_s = now_s_ + kSettleS;
       rejected = 0;
       if (arm) v.first_arm_refusal_s = -1;
@@ -267,7 +241,7 @@ void MavlinkBackend::steer(Vehicle& v) {
   if (now_s_ < v.settle_until_s) return;
   if (!s.link_alive) return;
   const bool armed = s.armed;
-  const bool down = !armed || s.landed == LandedState::on_ground;
+  const bool down = !armed || s.landed == mavlink::LandedState::on_ground;
   const auto gate = [&](int id, Vehicle::Step step) {
     v.gate = id;
     v.gate_step = step;
@@ -296,11 +270,11 @@ void MavlinkBackend::steer(Vehicle& v) {
     gate(d.arm(), Vehicle::Step::arm);
     return;
   }
-  if (s.landed == LandedState::on_ground) {
+  if (s.landed == mavlink::LandedState::on_ground) {
     gate(d.takeoff(v.alt_m), Vehicle::Step::takeoff);
     return;
   }
-  if (s.landed == LandedState::takeoff) return;  // climbing to the layer
+  if (s.landed == mavlink::LandedState::takeoff) return;  // climbing to the layer
   if (!v.target_sent) {
     // ArduCopter's GUIDED plans a leg at the speed limit in force when its target arrives; a
     // DO_CHANGE_SPEED during the leg changes only the limit the next leg is planned with
@@ -313,7 +287,7 @@ void MavlinkBackend::steer(Vehicle& v) {
       v.speed_cmd = d.set_speed(v.cruise_m_s);
       return;
     }
-    if (d.command_state(v.speed_cmd) == CommandState::pending) return;
+    if (d.command_state(v.speed_cmd) == mavlink::CommandState::pending) return;
     if (!d.go_to(v.lat_deg, v.lon_deg, v.alt_m)) {
       v.refusal = "target outside the fence";
       return;
@@ -327,7 +301,7 @@ void MavlinkBackend::steer(Vehicle& v) {
   }
 }
 
-void MavlinkBackend::advance_to(double t_s) {
+void MavlinkFleet::advance_to(double t_s) {
   if (settings_.wall_clock && !start_) start_ = std::chrono::steady_clock::now();
   do {
     const double next = std::min(t_s, now_s_ + settings_.poll_step_s);
@@ -344,38 +318,40 @@ void MavlinkBackend::advance_to(double t_s) {
   } while (now_s_ < t_s);
 }
 
-fleet::VehicleReport MavlinkBackend::report(int drone) const {
+VehicleReport MavlinkFleet::report(int drone) const {
   const Vehicle& v = at(drone);
-  fleet::VehicleReport r;
+  VehicleReport r;
   r.refusal = v.refusal;
   if (!v.driver) return r;  // never heard
-  const VehicleState& s = v.driver->state();
+  const mavlink::VehicleState& s = v.driver->state();
   r.link_up = s.link_alive;
   if (s.position) {
-    const geometry::Point2 p =
-        geometry::LocalFrame(settings_.origin)
-            .to_local({s.position->lat_degE7 / kDegE7, s.position->lon_degE7 / kDegE7});
+    const geometry::Point2 p = geometry::LocalFrame(settings_.origin)
+                                   .to_local({s.position->lat_degE7 / mavlink::kDegE7,
+                                              s.position->lon_degE7 / mavlink::kDegE7});
     r.position_known = true;
     r.position_m = {p.x, p.y, s.position->relative_alt_mm / 1000.0};
   }
   if (!s.link_alive) return r;  // what it said last is stale: no arrival, no landing
   r.arrived = v.want == Vehicle::Want::go && v.target_sent && v.driver->arrived();
-  r.landed_home = v.want == Vehicle::Want::home && !s.armed && s.landed == LandedState::on_ground;
+  r.landed_home =
+      v.want == Vehicle::Want::home && !s.armed && s.landed == mavlink::LandedState::on_ground;
   return r;
 }
 
-std::unique_ptr<MavlinkBackend> open_mavlink_backend(const std::vector<VehicleUrl>& urls,
-                                                     MavlinkBackendSettings settings) {
-  std::vector<std::unique_ptr<Link>> links;
+std::unique_ptr<MavlinkFleet> open_mavlink_fleet(const std::vector<VehicleAddress>& urls,
+                                                 MavlinkFleetSettings settings) {
+  std::vector<std::unique_ptr<mavlink::Link>> links;
   std::vector<std::uint8_t> sysids;
-  for (const VehicleUrl& u : urls) {
+  for (const VehicleAddress& u : urls) {
     if (u.tcp)
-      links.push_back(std::make_unique<TcpLink>(TcpLink::connect(u.host, u.port)));
+      links.push_back(
+          std::make_unique<mavlink::TcpLink>(mavlink::TcpLink::connect(u.host, u.port)));
     else
-      links.push_back(std::make_unique<UdpLink>(UdpLink::listen(u.host, u.port)));
+      links.push_back(std::make_unique<mavlink::UdpLink>(mavlink::UdpLink::listen(u.host, u.port)));
     sysids.push_back(u.sysid);
   }
-  return std::make_unique<MavlinkBackend>(std::move(links), sysids, std::move(settings));
+  return std::make_unique<MavlinkFleet>(std::move(links), sysids, std::move(settings));
 }
 
-}  // namespace swath::mavlink
+}  // namespace swath::fleet

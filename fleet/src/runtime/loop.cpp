@@ -1,0 +1,303 @@
+// The tick loop (docs/swath-fleet.md) and what it steps: the clock, the drones' events, results
+// and delays due, the external vehicles' reports, the run's record.
+
+#include <chrono>
+
+#include "swath/fleet/simulated_fleet.hpp"
+#include "runtime/runtime_impl.hpp"
+#include "swath/base/input_error.hpp"
+
+namespace swath::fleet::rt {
+
+Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec>& specs,
+                 const RuntimeSettings& settings, Backend& backend)
+    : app_(app),
+      world_(world),
+      settings_(settings),
+      app_rng_(vehicle::SplitMix64::stream(settings.seed, "app")),
+      sched_rng_(vehicle::SplitMix64::stream(settings.seed, "scheduler")),
+      backend_(backend) {
+  const bool reactive = settings.scheduler == "reactive";
+  scheduler_ = make_scheduler(reactive ? "sa" : settings.scheduler);
+  if (!scheduler_)
+    throw base::InputError("unknown scheduler \"" + settings.scheduler +
+                           "\": use sa, reactive, greedy, round-robin or hungarian");
+  if (reactive) {  // the paper's baseline: SA without the forecast terms
+    settings_.weights.speculative = 0;
+    settings_.weights.avoid_mutual = 0;
+  } else if (settings.forecaster != "none") {
+    forecaster_ = make_forecaster(settings.forecaster, settings.histories, settings.gmf);
+    if (!forecaster_)
+      throw base::InputError("unknown forecaster \"" + settings.forecaster +
+                             "\": use gmf, constant-velocity or none");
+  }
+  if (backend_.vehicles() != static_cast<int>(specs.size()))
+    throw base::InputError("the backend has " + std::to_string(backend_.vehicles()) +
+                           " vehicles for a fleet of " + std::to_string(specs.size()) + " drones");
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    Drone d;
+    d.spec = specs[i];
+    d.index = static_cast<int>(i);
+    d.pos = specs[i].home_m;
+    d.pos.z = 0;
+    d.soc = specs[i].battery.initial_soc;
+    d.layer_m = settings.layer_base_m + settings.layer_step_m * static_cast<double>(i);
+    d.link_up = backend_.report(d.index).link_up;  // a real vehicle: not until first heard
+    if (!d.link_up) d.link_back = kInf;
+    d.record.name = specs[i].name;
+    drones_.push_back(std::move(d));
+  }
+  faults_ = settings.faults;
+  std::stable_sort(faults_.begin(), faults_.end(), [](const FaultEvent& a, const FaultEvent& b) {
+    return a.t_s != b.t_s ? a.t_s < b.t_s : a.drone < b.drone;
+  });
+}
+
+void Runtime::log_states() {
+  for (Drone& d : drones_) {
+    integrate(d, now_);
+    log(at_json(json{{"ev", "drone_state"}, {"drone", d.index}}, d.pos,
+                json{{"soc", round6(d.soc)}, {"state", mode_name(d.mode, d.link_up)}}));
+    d.record.track.push_back({round6(now_), round6(d.pos.x), round6(d.pos.y), round6(d.pos.z)});
+  }
+}
+
+// What the external vehicles did since the last tick, in drone order: positions, a link lost
+// (§18.7: after the backend's silence rule the drone is unavailable, its request requeued and the
+// vehicle's own failsafe takes it home, as for an injected link_loss) or up (first heard, or
+// back: buffered results go out; landed, it rejoins), a target reached, home reached, a vehicle
+// refusing to fly.
+void Runtime::poll_backend() {
+  backend_.advance_to(now_);
+  for (Drone& d : drones_) {
+    const VehicleReport r = backend_.report(d.index);
+    if (r.position_known) d.reported = r.position_m;
+    integrate(d, now_);
+    if (d.mode == Mode::lost) continue;
+    if (!r.refusal.empty()) {  // it will not fly: out of the fleet, its work requeued
+      log(json{{"ev", "vehicle_refused"}, {"drone", d.index}, {"reason", r.refusal}});
+      requeue(d, "vehicle_refused");
+      leave_spot(d);
+      d.leg.reset();
+      // Refused in the air (a target outside the fence): it still goes home and lands; the
+      // backend does nothing for a vehicle already down.
+      if (d.mode != Mode::landed && d.mode != Mode::charging) backend_.return_home(d.index, now_);
+      set_mode(d, Mode::lost, now_);
+      changed_ = true;
+      continue;
+    }
+    if (d.link_up && !r.link_up) {
+      log(at_json(json{{"ev", "link_lost"}, {"drone", d.index}}, d.pos));
+      d.link_up = false;
+      d.link_back = kInf;  // until the backend hears it again
+      if (d.mode == Mode::flying || d.mode == Mode::positioning || d.mode == Mode::hovering ||
+          d.mode == Mode::held) {
+        requeue(d, "link_loss");
+        go_home(d, now_, "link_loss");
+      } else {
+        set_mode(d, d.mode, now_);  // acting: it finishes, then goes home (finish_action)
+      }
+      changed_ = true;
+    } else if (!d.link_up && r.link_up) {
+      log(at_json(json{{"ev", "link_up"}, {"drone", d.index}}, d.pos));
+      d.link_back = now_;
+      recover(d, now_);
+    }
+    if ((d.mode == Mode::flying || d.mode == Mode::positioning) && r.arrived)
+      arrive(d, now_);
+    else if (d.mode == Mode::returning && r.landed_home)
+      land_home(d, now_);
+  }
+}
+
+// Logs run_start and spawns the app's main, whose body writes into its own promise state.
+Task& Runtime::start_main() {
+  json drones = json::array();
+  for (const Drone& d : drones_)
+    drones.push_back(json{{"drone", d.index}, {"name", d.spec.name}, {"soc", round6(d.soc)}});
+  log(json{{"ev", "run_start"},
+           {"app", settings_.app_name},
+           {"seed", settings_.seed},
+           {"scheduler", settings_.scheduler},
+           {"max_time_s", settings_.max_time_s},
+           {"drones", drones}});
+  for (Drone& d : drones_) set_mode(d, Mode::landed, 0);
+  auto main_state = std::make_shared<detail::State<void>>();
+  const App& app = app_;
+  spawn(
+      -1, Kind{"main"}, Flags{},
+      [&app](Ctx& c) -> std::coroutine_handle<> { return app.main(c).release(); }, main_state);
+  Task& main = tasks_.front();  // mirror the main body's promise state
+  main.result = main_state;
+  main.result->task = -1;  // awaiting main is not a sync of the DTG
+  auto h = std::coroutine_handle<Co<void>::promise_type>::from_address(main.root.address());
+  h.promise().result = main_state;
+  return main;
+}
+
+// Requests waiting too long for any drone fail visibly (docs/swath-fleet.md).
+void Runtime::fail_unserved() {
+  for (Task& t : tasks_)
+    if (t.has_work() && t.serving < 0 && t.requested &&
+        now_ - t.visible_since_s >= settings_.no_feasible_s) {
+      fail_action_futures(t, std::make_exception_ptr(ActionFailed("no_feasible_drone")));
+      finish_task(t, TaskStatus::failed, "no_feasible_drone");
+    }
+}
+
+// The time of the next thing that happens: a drone's event, a result's delivery, a delay's end, a
+// fault, a request's no-feasible-drone deadline; infinity when nothing can.
+double Runtime::next_happening() const {
+  double next = kInf;
+  for (const Drone& d : drones_) next = std::min(next, next_event(d));
+  for (const Pending& p : pending_) next = std::min(next, p.deliver_s);
+  for (const auto& [t, s] : delays_) next = std::min(next, t);
+  if (next_fault_ < faults_.size()) next = std::min(next, faults_[next_fault_].t_s);
+  next = std::min(next, next_relief_s_);
+  for (const Task& t : tasks_)
+    if (t.has_work() && t.serving < 0 && t.requested)
+      next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
+  // External vehicles report at any time: every tick (§18.3 step 1, "real runs sleep to the
+  // next tick").
+  if (backend_.reports_every_tick()) next = std::min(next, now_ + settings_.tick_s);
+  return next;
+}
+
+// Moves the clock to `next` rounded up to the tick grid, logging drone_state on the way; false
+// (with the failure set) past max_time_s.
+bool Runtime::advance_clock(double next, std::int64_t& tick_index) {
+  const double tick = settings_.tick_s;
+  if (next > settings_.max_time_s) next = std::min(next, settings_.max_time_s + tick);
+  std::int64_t k = static_cast<std::int64_t>(std::ceil(next / tick - 1e-9));
+  k = std::max(k, tick_index + (next > now_ ? 0 : 1));
+  if (k <= tick_index) k = tick_index + 1;
+  while (next_state_log_ < static_cast<double>(k) * tick - 1e-12) {
+    now_ = next_state_log_;
+    log_states();
+    next_state_log_ += settings_.state_period_s;
+  }
+  tick_index = k;
+  now_ = static_cast<double>(k) * tick;
+  if (now_ <= settings_.max_time_s) return true;
+  record_.failure = "not completed within max_time_s (" +
+                    std::to_string(static_cast<long long>(settings_.max_time_s)) + " s)";
+  now_ = settings_.max_time_s;
+  return false;
+}
+
+// Drones, in (time, drone) order, each through every event up to now.
+void Runtime::step_drones_to_now() {
+  for (;;) {
+    double best = kInf;
+    Drone* who = nullptr;
+    for (Drone& d : drones_) {
+      const double e = next_event(d);
+      if (e <= now_ + 1e-12 && e < best) best = e, who = &d;
+    }
+    if (!who) return;
+    step_drone(*who, best);
+  }
+}
+
+// Faults, results and delays due by now, in (time, drone, sequence) order.
+void Runtime::deliver_due() {
+  while (next_fault_ < faults_.size() && faults_[next_fault_].t_s <= now_ + 1e-12)
+    apply_fault(faults_[next_fault_++]);
+  std::stable_sort(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) {
+    return a.deliver_s != b.deliver_s ? a.deliver_s < b.deliver_s
+           : a.drone != b.drone       ? a.drone < b.drone
+                                      : a.seq < b.seq;
+  });
+  std::size_t n = 0;
+  while (n < pending_.size() && pending_[n].deliver_s <= now_ + 1e-12) ++n;
+  std::vector<Pending> due(pending_.begin(), pending_.begin() + static_cast<long>(n));
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(n));
+  for (const Pending& p : due)
+    resolve_action(tasks_[static_cast<std::size_t>(p.task)], p.action, p.reading, p.drone);
+  for (auto it = delays_.begin(); it != delays_.end();)
+    if (it->first <= now_ + 1e-12) {
+      wake(*it->second);
+      it = delays_.erase(it);
+    } else {
+      ++it;
+    }
+}
+
+// The record: outcome, every task ended exactly once (what still runs is cancelled with the
+// run), each drone's figures, run_end.
+void Runtime::finish_run(const Task& main) {
+  record_.completed = main.status == TaskStatus::done;
+  if (main.status == TaskStatus::failed && record_.failure.empty())
+    record_.failure = "the app's main failed";
+  record_.completion_time_s = record_.completed ? main.ended_s : now_;
+  record_.end_s = now_;
+  for (Task& t : tasks_)
+    if (t.status == TaskStatus::running) finish_task(t, TaskStatus::cancelled, "run_ended");
+  destroy_frames();
+  for (Drone& d : drones_) {
+    leave_spot(d);
+    integrate(d, now_);
+    set_mode(d, d.mode, now_);
+    if (!d.span_mode.empty() && now_ > d.span_start)
+      d.record.spans.push_back({round6(d.span_start), round6(now_), d.span_mode});
+    d.record.distance_m = d.distance_m;
+    d.record.flight_s = d.flight_s;
+    d.record.idle_s = d.idle_s;
+    d.record.energy_wh = d.energy_j / 3600.0;
+    d.record.final_soc = d.soc;
+    record_.drones.push_back(d.record);
+  }
+  log(json{{"ev", "run_end"},
+           {"completed", record_.completed},
+           {"completion_time_s", round6(record_.completion_time_s)}});
+}
+
+// The tick loop (docs/swath-fleet.md): resume what is ready, schedule when inputs changed, jump to
+// the next thing that happens, let it happen.
+RunRecord Runtime::run() {
+  Task& main = start_main();
+  std::int64_t tick_index = 0;
+  for (;;) {
+    resume_ready();
+    destroy_frames();
+    if (main.status != TaskStatus::running) break;
+    fail_unserved();
+    if (!ready_.empty()) continue;
+    if (settings_.relief) relieve();
+    if (changed_) {
+      changed_ = false;
+      schedule();
+    }
+    const double next = next_happening();
+    if (!std::isfinite(next)) {
+      record_.failure = "the app waits for something that cannot happen (no drone can serve it)";
+      break;
+    }
+    if (!advance_clock(next, tick_index)) break;
+    step_drones_to_now();
+    if (backend_.reports_every_tick()) poll_backend();
+    deliver_due();
+  }
+  backend_.end_run();
+  finish_run(main);
+  record_.dtg_json = dtg_json();
+  return std::move(record_);
+}
+
+}  // namespace swath::fleet::rt
+
+namespace swath::fleet {
+
+RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
+                  const RuntimeSettings& settings) {
+  if (drones.empty()) throw base::InputError("the fleet has no drones");
+  if (settings.backend) {
+    rt::Runtime runtime(app, world, drones, settings, *settings.backend);
+    return runtime.run();
+  }
+  SimulatedFleet simulated(drones, settings.layer_base_m, settings.layer_step_m);
+  rt::Runtime runtime(app, world, drones, settings, simulated);
+  return runtime.run();
+}
+
+}  // namespace swath::fleet
