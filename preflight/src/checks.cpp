@@ -87,7 +87,8 @@ void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, doub
         out.least_clearance_m = d.distance_m;
         out.least_clearance_where = zone.name;
       }
-      if (d.distance_m < asked - kTolerance_m)
+      // Touching a zone counts as entering it, whatever the clearance asked.
+      if (d.distance_m <= 0 || d.distance_m < asked - kTolerance_m)
         out.violations.push_back(
             {"no-fly zone", piece_name(piece), f.frame->to_geo(d.at), asked - d.distance_m,
              piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +

@@ -129,7 +129,10 @@ void check_separation(const std::vector<DroneFile>& drones, const std::vector<Fl
 }
 
 void check_energy(const DroneFile& d, const CheckOptions& options, Report& report) {
-  const energy::DroneBudget b = energy::budget(energy::waypoint_mission(d.mission), *options.drone);
+  energy::WaypointMission m = energy::waypoint_mission(d.mission);
+  for (double& speed : m.speeds_m_s)  // a file without a speed flies the autopilot's default
+    if (!(speed > 0)) speed = options.model.speed_m_s;
+  const energy::DroneBudget b = energy::budget(m, *options.drone);
   const std::string figure = d.mission.source + ": " + fixed_text(b.flight_time_s / 60, 1) +
                              " min, lands at " + fixed_text(b.landing_soc * 100, 1) +
                              " % charge (reserve " +
