@@ -52,15 +52,15 @@ GeoPoint lat_lon(const json& pair, const std::string& where) {
 
 AltitudeFrame altitude_frame_of(int frame, int command, const std::string& where) {
   if (!is_navigation(command)) return AltitudeFrame::none;
-  switch (static_cast<mavlink::Frame>(frame)) {
-    case mavlink::Frame::global:
-    case mavlink::Frame::global_int:
+  switch (static_cast<mavlink::MavFrame>(frame)) {
+    case mavlink::MavFrame::global:
+    case mavlink::MavFrame::global_int:
       return AltitudeFrame::amsl;
-    case mavlink::Frame::global_relative_alt:
-    case mavlink::Frame::global_relative_alt_int:
+    case mavlink::MavFrame::global_relative_alt:
+    case mavlink::MavFrame::global_relative_alt_int:
       return AltitudeFrame::relative;
-    case mavlink::Frame::global_terrain_alt:
-    case mavlink::Frame::global_terrain_alt_int:
+    case mavlink::MavFrame::global_terrain_alt:
+    case mavlink::MavFrame::global_terrain_alt_int:
       return AltitudeFrame::terrain;
     default:
       throw InputError(where + ": frame " + std::to_string(frame) +

@@ -91,9 +91,12 @@ void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, doub
       if (d.distance_m <= 0 || d.distance_m < asked - kTolerance_m)
         out.violations.push_back(
             {"no-fly zone", piece_name(piece), f.frame->to_geo(d.at), asked - d.distance_m,
-             piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +
-                 zone.name + " (" + fixed_text(asked, 2) + " m asked: " +
-                 fixed_text(asked - d.distance_m, 2) + " m short)"});
+             d.distance_m <= 0
+                 ? piece_name(piece) + " enters " + zone.name + " (" + fixed_text(asked, 2) +
+                       " m clearance asked)"
+                 : piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +
+                       zone.name + " (" + fixed_text(asked, 2) + " m asked: " +
+                       fixed_text(asked - d.distance_m, 2) + " m short)"});
     }
 }
 
@@ -194,7 +197,7 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
                (ground ? "the ground" : "home") + ", " +
                fixed_text(worst_high - options.ceiling_m, 1) + " m above the " +
                fixed_text(options.ceiling_m, 1) + " m ceiling"});
-    if (ground && l.kind == LegKind::cruise) {
+    if (ground && (l.kind == LegKind::cruise || l.kind == LegKind::rtl)) {
       out.min_height_m = std::min(out.min_height_m, worst_low);
       if (worst_low < options.min_height_m - kTolerance_m)
         out.violations.push_back(

@@ -173,7 +173,7 @@ void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report&
   if (o.ground)
     report.figures.push_back({"ground", true, c.min_height_m,
                               "lowest " + fixed_text(c.min_height_m, 1) +
-                                  " m above the ground on cruise legs (least " +
+                                  " m above the ground on cruise and return legs (least " +
                                   fixed_text(o.min_height_m, 1) + " m)"});
   else
     report.figures.push_back({"ground", false, {}, "no DEM (--terrain): the ceiling is above home"});

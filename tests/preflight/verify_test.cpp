@@ -2,7 +2,9 @@
 // on a planted violation and silent on the clean mission, distances against brute force.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -150,6 +152,41 @@ TEST(Verify, ALegAboveTheCeiling) {
   CheckOptions higher;
   higher.ceiling_m = 130;
   EXPECT_EQ(find(verify({drone(rows, "a.waypoints")}, higher), "ceiling"), nullptr);
+}
+
+// Ground rising 0.5 m per metre east of x = 50 (500 m above sea level west of it): closed form.
+class RampGround : public geometry::Ground {
+ public:
+  std::vector<double> heights_m(const std::vector<geometry::GeoPoint>& points) const override {
+    std::vector<double> out;
+    for (const geometry::GeoPoint& g : points)
+      out.push_back(500.0 + 0.5 * std::max(0.0, frame_.to_local(g).x - 50.0));
+    return out;
+  }
+  double resolution_m() const override { return 1.0; }
+  std::string source() const override { return "ramp"; }
+
+ private:
+  geometry::LocalFrame frame_{kOrigin};
+};
+
+TEST(Verify, WithADemTheGroundRisesUnderTheLine) {
+  // The line flies at 20 m above home; at x = 100 the ground is 25 m above home: 5 m under it.
+  CheckOptions o;
+  o.ground = std::make_shared<RampGround>();
+  const Report r = verify({drone(survey_rows(), "a.waypoints")}, o);
+  const Violation* v = find(r, "ground");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, 5.0 - (20.0 - 25.0), 1e-3);  // 10 m below the least 5 m
+  for (const Figure& f : r.figures)
+    if (f.check == "ground") EXPECT_NEAR(*f.value, -5.0, 1e-3);
+  // Terrain-relative items (frame 10) follow it: 20 m above the ground everywhere.
+  std::string text = wpl(survey_rows());
+  for (std::size_t at = text.find("\t0\t3\t"); at != std::string::npos;
+       at = text.find("\t0\t3\t", at))
+    text.replace(at, 5, "\t0\t10\t");
+  const Report follow = verify({{missions::parse_mission(text, "t.waypoints"), 0}}, o);
+  EXPECT_EQ(find(follow, "ground"), nullptr) << report_text(follow);
 }
 
 TEST(Verify, TwoDronesCrossingAtOneHeightAndTime) {

@@ -37,7 +37,7 @@ enum class Cmd : std::uint16_t {
 };
 
 /// MAV_FRAME values of mission items: what param7 (altitude) is measured from.
-enum class Frame : std::uint8_t {
+enum class MavFrame : std::uint8_t {
   global = 0,                ///< above mean sea level
   mission = 2,               ///< no position (a command)
   global_relative_alt = 3,   ///< above home
