@@ -622,7 +622,11 @@ preflight::CheckOptions PlanCommand::check_options(const planning::SurveyPlan& p
   // The zones as the user gave them (not as grown or simplified for the fences), the area's holes.
   for (std::size_t k = 0; k < plan.no_fly_geo.size(); ++k)
     options.zones.push_back({"no-fly zone " + std::to_string(k + 1), plan.no_fly_geo[k]});
-  add_area_rings(plan.request.field.geo_rings, field_, options);
+  // The area's holes; not its outline for the photo check: a repaired or split area's lines are
+  // planned over pieces the file's ring does not describe.
+  const auto& rings = plan.request.field.geo_rings;
+  for (std::size_t k = 1; k < rings.size(); ++k)
+    options.zones.push_back({"hole " + std::to_string(k) + " of " + field_, rings[k]});
   options.clearance_m = plan.request.clearance_m;
   options.ceiling_m = ceiling_m_;
   if (plan.request.terrain) options.ground = plan.request.terrain->ground;

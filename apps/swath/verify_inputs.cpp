@@ -24,19 +24,13 @@ std::vector<preflight::Zone> zones_from_files(const std::vector<std::string>& pa
   return zones;
 }
 
-void add_area_rings(const std::vector<std::vector<geometry::GeoPoint>>& geo_rings,
-                    const std::string& name, preflight::CheckOptions& options) {
-  if (geo_rings.empty()) return;
-  options.area.push_back(geo_rings.front());
-  for (std::size_t k = 1; k < geo_rings.size(); ++k)
-    options.zones.push_back({"hole " + std::to_string(k) + " of " + name, geo_rings[k]});
-}
-
 void add_area(const std::string& path, preflight::CheckOptions& options) {
   const geometry::Field field = geometry::read_field(path);
   if (field.geo_rings.empty())
     throw base::InputError(path + ": --area needs an area on the map, not local metres");
-  add_area_rings(field.geo_rings, path, options);
+  options.area.push_back(field.geo_rings.front());
+  for (std::size_t k = 1; k < field.geo_rings.size(); ++k)
+    options.zones.push_back({"hole " + std::to_string(k) + " of " + path, field.geo_rings[k]});
 }
 
 void verify_before_writing(const std::vector<std::pair<std::string, std::string>>& files,

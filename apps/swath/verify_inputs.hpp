@@ -15,8 +15,6 @@ std::vector<preflight::Zone> zones_from_files(const std::vector<std::string>& pa
 
 /// The area's holes as zones ("hole K of FIELD") and its outer ring as the surveyed area.
 void add_area(const std::string& path, preflight::CheckOptions& options);
-void add_area_rings(const std::vector<std::vector<geometry::GeoPoint>>& geo_rings,
-                    const std::string& name, preflight::CheckOptions& options);
 
 /// swath plan's check of the files it is about to write; throws base::InputError naming the
 /// first violation (file, item, check, amount) when one fails. SWATH_PLAN_VERIFY=0 turns it off.

@@ -217,7 +217,27 @@ bool meets_area(const Leg& l, const std::vector<geometry::Ring>& area) {
   return false;
 }
 
-const char* transit_kind(const Leg& l, Point2 home, const std::vector<geometry::Ring>& area) {
+// Per leg: whether the straight run it belongs to (legs flown through without a stop, as a survey
+// line split into several waypoints is) meets the area. A line reaching beyond the boundary is
+// still a line; a run that never meets the area is a transit.
+std::vector<bool> runs_meeting_area(const std::vector<Leg>& legs,
+                                    const std::vector<geometry::Ring>& area) {
+  std::vector<bool> out(legs.size(), true);
+  if (area.empty()) return out;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < legs.size(); ++i) {
+    const bool run_ends = legs[i].kind != LegKind::cruise || legs[i].stops_at_end ||
+                          i + 1 == legs.size() || legs[i + 1].kind != LegKind::cruise;
+    if (!run_ends) continue;
+    bool meets = false;
+    for (std::size_t k = start; k <= i && !meets; ++k) meets = meets_area(legs[k], area);
+    for (std::size_t k = start; k <= i; ++k) out[k] = meets;
+    start = i + 1;
+  }
+  return out;
+}
+
+const char* transit_kind(const Leg& l, bool run_meets_area) {
   switch (l.kind) {
     case LegKind::climb:
       return "the take-off climb";
@@ -230,22 +250,23 @@ const char* transit_kind(const Leg& l, Point2 home, const std::vector<geometry::
     case LegKind::cruise:
       break;
   }
-  if (geometry::distance(l.from.xy(), home) < 1.0) return "the leg out from home";
-  if (geometry::distance(l.to.xy(), home) < 1.0) return "the leg home";
-  if (!area.empty() && !meets_area(l, area)) return "a transit outside the area";
+  // A cruise leg is a transit only where the area says so: a survey line may start or end at home.
+  if (!run_meets_area) return "a transit outside the area";
   return nullptr;
 }
 
 }  // namespace
 
 void check_photos(const FileContext& f, const std::vector<geometry::Ring>& area, Checked& out) {
-  for (const Leg& l : f.path->legs) {
+  const std::vector<bool> meets = runs_meeting_area(f.path->legs, area);
+  for (std::size_t i = 0; i < f.path->legs.size(); ++i) {
+    const Leg& l = f.path->legs[i];
     if (l.trigger_distance_m <= 0 && l.trigger_interval_s <= 0) continue;
     const double h = geometry::distance(l.from.xy(), l.to.xy());
     const double photos =
         l.trigger_distance_m > 0 ? std::floor(h / l.trigger_distance_m) + 1
                                  : std::floor((l.t_end_s - l.t_start_s) / l.trigger_interval_s) + 1;
-    const char* transit = transit_kind(l, f.path->home.xy(), area);
+    const char* transit = transit_kind(l, meets[i]);
     if (transit == nullptr) {
       out.photos += photos;
       ++out.photo_legs;

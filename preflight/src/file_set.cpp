@@ -26,9 +26,15 @@ std::string stem_of(const std::string& name, const std::string& tail) {
   return name.substr(0, name.size() - tail.size());
 }
 
-// summary.json's drones[].file -> launch_offset_s (absent: 0).
-std::map<std::string, double> launch_offsets(const Files& files) {
-  std::map<std::string, double> out;
+// What summary.json says of each file: its launch offset (absent: 0) and, for a sortie, the drone
+// that flies it.
+struct Launch {
+  double offset_s = 0.0;
+  std::string sorties_of;
+};
+
+std::map<std::string, Launch> launches(const Files& files) {
+  std::map<std::string, Launch> out;
   for (const auto& [name, text] : files) {
     if (name != "summary.json" && !ends_with(name, "/summary.json")) continue;
     const nlohmann::json root = base::parse_json_document(text, name);
@@ -36,9 +42,16 @@ std::map<std::string, double> launch_offsets(const Files& files) {
     if (drones == nullptr || !drones->is_array()) continue;
     for (const auto& d : *drones) {
       const nlohmann::json* file = base::json_find(d, "file");
+      if (file == nullptr || !file->is_string()) continue;
       const nlohmann::json* offset = base::json_find(d, "launch_offset_s");
-      if (file && file->is_string() && offset && offset->is_number())
-        out[file->get<std::string>()] = offset->get<double>();
+      Launch launch{offset && offset->is_number() ? offset->get<double>() : 0.0, ""};
+      out[file->get<std::string>()] = launch;
+      const nlohmann::json* sorties = base::json_find(d, "sorties");
+      for (std::size_t k = 0; sorties && sorties->is_array() && k < sorties->size(); ++k) {
+        const nlohmann::json* sortie_file = base::json_find((*sorties)[k], "file");
+        if (sortie_file && sortie_file->is_string())
+          out[sortie_file->get<std::string>()] = {launch.offset_s, file->get<std::string>()};
+      }
     }
   }
   return out;
@@ -104,16 +117,19 @@ Report verify_files(const Files& files, const CheckOptions& options) {
   if (drones.empty())
     throw base::InputError(
         "no mission file among the files given (.plan, .waypoints or -litchi.csv)");
-  const auto offsets = launch_offsets(files);
+  const auto by_file = launches(files);
   std::vector<DroneFile> set;
   std::vector<std::pair<std::size_t, missions::Mission>> twins;
   for (const std::string& name : drones) {
-    DroneFile d{missions::parse_mission(by_name[name], name), 0.0};
+    DroneFile d{missions::parse_mission(by_name[name], name), 0.0, ""};
     for (const auto& [fence_name, text] : files)
       if (is_fence_file(fence_name)) missions::add_wpl_fences(d.mission, text, fence_name);
     const std::string base_name = name.substr(name.find_last_of('/') + 1);
     const std::string stem = stem_of(base_name, base_name.substr(base_name.find_last_of('.')));
-    if (const auto it = offsets.find(stem); it != offsets.end()) d.launch_offset_s = it->second;
+    if (const auto it = by_file.find(stem); it != by_file.end()) {
+      d.launch_offset_s = it->second.offset_s;
+      d.sorties_of = it->second.sorties_of;
+    }
     if (ends_with(name, ".plan")) {
       const std::string dir_stem = stem_of(name, ".plan");
       for (const char* tail : {".waypoints", "-litchi.csv", "-survey.plan"})

@@ -108,6 +108,7 @@ void check_separation(const std::vector<DroneFile>& drones, const std::vector<Fl
   Approach least;
   for (std::size_t i = 0; i < paths.size(); ++i)
     for (std::size_t j = i + 1; j < paths.size(); ++j) {
+      if (!drones[i].sorties_of.empty() && drones[i].sorties_of == drones[j].sorties_of) continue;
       const Approach a = least_separation(paths[i], drones[i].launch_offset_s, paths[j],
                                           drones[j].launch_offset_s, options.separation_m);
       least.distance_m = std::min(least.distance_m, a.distance_m);
@@ -198,6 +199,20 @@ std::vector<Violation> worst_per_place(std::vector<Violation> all) {
   return out;
 }
 
+// Each sortie after the first of its drone launches when the one before it has landed.
+std::vector<DroneFile> sorties_in_turn(std::vector<DroneFile> drones,
+                                       const std::vector<FlownPath>& paths) {
+  for (std::size_t i = 0; i < drones.size(); ++i) {
+    if (drones[i].sorties_of.empty()) continue;
+    for (std::size_t k = i; k-- > 0;)
+      if (drones[k].sorties_of == drones[i].sorties_of) {
+        drones[i].launch_offset_s = drones[k].launch_offset_s + paths[k].duration_s;
+        break;
+      }
+  }
+  return drones;
+}
+
 }  // namespace
 
 Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options) {
@@ -230,11 +245,12 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
     for (const DroneFile& d : drones) check_energy(d, options, report);
   else
     report.figures.push_back({"energy", false, {}, "no drone profile (--drone)"});
-  check_separation(drones, paths, frame, options, report);
+  const std::vector<DroneFile> launched = sorties_in_turn(drones, paths);
+  check_separation(launched, paths, frame, options, report);
   std::string times;
   for (std::size_t i = 0; i < paths.size(); ++i)
     times += (i ? ", " : "") + paths[i].source + " " + fixed_text(paths[i].duration_s / 60, 1) +
-             " min from t = " + fixed_text(drones[i].launch_offset_s, 0) + " s";
+             " min from t = " + fixed_text(launched[i].launch_offset_s, 0) + " s";
   report.figures.push_back({"flight", true, {}, "as the autopilot flies it: " + times});
   return report;
 }

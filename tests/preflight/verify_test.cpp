@@ -206,6 +206,21 @@ TEST(Verify, TwoDronesCrossingAtOneHeightAndTime) {
   EXPECT_EQ(find(later, "separation"), nullptr) << report_text(later);
 }
 
+TEST(Verify, SortiesOfOneDroneFlyInTurn) {
+  const std::vector<Row> a = {{22, 0, 0, 20}, {16, 0, 50, 20}, {16, 100, 50, 20}, {20}};
+  DroneFile first = drone(a, "d-1.waypoints"), second = drone(a, "d-2.waypoints");
+  first.sorties_of = second.sorties_of = "d";
+  const Report r = verify({first, second}, CheckOptions{});
+  EXPECT_EQ(find(r, "separation"), nullptr) << report_text(r);
+  const double t = fly(first.mission, geometry::LocalFrame(kOrigin), {}).duration_s;
+  bool said = false;  // the second launches when the first has landed
+  for (const Figure& f : r.figures)
+    said = said || (f.check == "flight" &&
+                    f.text.find("d-2.waypoints " + base::fixed_text(t / 60, 1) + " min from t = " + base::fixed_text(t, 0) +
+                                " s") != std::string::npos);
+  EXPECT_TRUE(said) << report_text(r);
+}
+
 TEST(Verify, SeparationAgreesWithBruteForceInTime) {
   const std::vector<Row> a = {{22, 0, 0, 20}, {16, 0, 50, 20}, {16, 100, 50, 20}, {20}};
   const std::vector<Row> b = {{22, 60, -40, 25}, {16, 60, 10, 25}, {16, 60, 120, 25}, {20}};

@@ -41,6 +41,9 @@ struct CheckOptions {
 struct DroneFile {
   missions::Mission mission;
   double launch_offset_s = 0.0;
+  /// Sorties of one drone share a name here: they fly one after another (each launched when the
+  /// one before lands, its own offset ignored), never against each other. Empty: a drone alone.
+  std::string sorties_of;
 };
 
 /// A check that failed somewhere.
@@ -76,7 +79,8 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
 /// before it is written): each NAME.plan is a drone (NAME.waypoints, NAME-litchi.csv and
 /// NAME-survey.plan are its twins, which must agree with it); without .plan files, the .waypoints
 /// or -litchi.csv files are the drones. fence.waypoints and rally.waypoints add to every drone's
-/// fences, and summary.json's drones[].launch_offset_s sets launch times. Other files are
+/// fences, summary.json's drones[].launch_offset_s sets launch times and drones[].sorties[].file
+/// names the files one drone flies in turn. Other files are
 /// ignored. Throws base::InputError naming the file for one that cannot be read.
 Report verify_files(const std::vector<std::pair<std::string, std::string>>& files,
                     const CheckOptions& options);
