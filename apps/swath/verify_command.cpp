@@ -41,7 +41,8 @@ std::vector<std::pair<std::string, std::string>> read_inputs(const std::vector<s
         names.push_back(entry.path().string());
     std::sort(names.begin(), names.end());
     if (names.empty()) throw InputError(path + ": the directory holds no mission file");
-    for (const std::string& n : names) files.push_back({n, base::read_text_file(n, "mission file")});
+    for (const std::string& n : names)
+      files.push_back({n, base::read_text_file(n, "mission file")});
   }
   return files;
 }
@@ -62,7 +63,8 @@ void VerifyCommand::setup(CLI::App& app) {
   app.add_option("--terrain", terrain_,
                  "DEM of the ground (GeoTIFF, any GDAL raster): the ceiling and the least height "
                  "above the ground along every leg");
-  app.add_option("--drone", drone_, "Drone profile YAML (as swath-energy budget): the battery check");
+  app.add_option("--drone", drone_,
+                 "Drone profile YAML (as swath-energy budget): the battery check");
   app.add_option("--ceiling", ceiling_m_,
                  "Highest flight, metres above the ground (above home without --terrain); "
                  "default 120, the common legal limit");

@@ -93,8 +93,8 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
                       drone.get<long long>() < 1'000'000
                   ? "drone-" + std::to_string(drone.get<long long>())
                   : "drone-" + std::to_string(out.size() + 1);
-    if (const json* name = base::json_find(props, "name"); name && name->is_string() &&
-                                                           !name->get<std::string>().empty())
+    if (const json* name = base::json_find(props, "name");
+        name && name->is_string() && !name->get<std::string>().empty())
       m.drone = base::valid_utf8(name->get<std::string>());
     const auto own =
         drone.is_number_integer() ? drone_homes.find(drone.get<long long>()) : drone_homes.end();

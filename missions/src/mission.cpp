@@ -19,10 +19,12 @@ namespace {
 
 using base::InputError;
 using geometry::GeoPoint;
-using nlohmann::json;
 using mavlink::Cmd;
+using nlohmann::json;
 
-constexpr int cmd(Cmd c) { return static_cast<int>(c); }
+constexpr int cmd(Cmd c) {
+  return static_cast<int>(c);
+}
 
 const json& member(const json& object, const char* key) {
   static const json null;
@@ -46,8 +48,8 @@ GeoPoint checked_position(double lat_deg, double lon_deg, const std::string& whe
 GeoPoint lat_lon(const json& pair, const std::string& where) {
   if (!pair.is_array() || pair.size() < 2)
     throw InputError(where + ": a position is [latitude, longitude]");
-  return checked_position(number(pair[0], where + " latitude"), number(pair[1], where + " longitude"),
-                          where);
+  return checked_position(number(pair[0], where + " latitude"),
+                          number(pair[1], where + " longitude"), where);
 }
 
 AltitudeFrame altitude_frame_of(int frame, int command, const std::string& where) {
@@ -202,10 +204,13 @@ std::vector<WplRow> wpl_rows(const std::string& text, const std::string& source)
     for (std::size_t k = 0; k < f.size(); ++k) {
       std::string field;
       if (!(row >> field))
-        throw InputError(where + ": a WPL row has 12 fields; found " + std::to_string(k));
+        throw InputError(where +
+                         ": a WPL row has 12 fields (index, current, frame, command, 4 params, "
+                         "latitude, longitude, altitude, autocontinue); found " +
+                         std::to_string(k));
       if (!base::parse_number(field, f[k]) || !std::isfinite(f[k]))
-        throw InputError(where + ": field " + std::to_string(k + 1) + " '" +
-                         field.substr(0, 40) + "' is not a number");
+        throw InputError(where + ": field " + std::to_string(k + 1) + " '" + field.substr(0, 40) +
+                         "' is not a number");
     }
     WplRow r{static_cast<int>(f[2]), static_cast<int>(f[3]), {}, where};
     std::copy(f.begin() + 4, f.begin() + 11, r.params.begin());
@@ -299,8 +304,8 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
     const int frame = value(mode) == 1 ? 10 : 3;
     if (value(speed) > 0 && value(speed) != speed_m_s) {
       speed_m_s = value(speed);
-      m.items.push_back(make_item(cmd(Cmd::do_change_speed), 2,
-                                  {1, speed_m_s, -1, 0, 0, 0, 0}, where));
+      m.items.push_back(
+          make_item(cmd(Cmd::do_change_speed), 2, {1, speed_m_s, -1, 0, 0, 0, 0}, where));
     }
     double hold_s = 0.0;
     bool photo = false;
@@ -397,7 +402,7 @@ void add_wpl_fences(Mission& mission, const std::string& text, const std::string
       ring.push_back(g);
       if (ring.size() == ring_size) {
         (ring_command == cmd(Cmd::nav_fence_polygon_vertex_inclusion) ? mission.inclusion_fences
-                                                                       : mission.exclusion_fences)
+                                                                      : mission.exclusion_fences)
             .push_back(ring);
         ring.clear();
       }

@@ -95,8 +95,8 @@ void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, doub
                  ? piece_name(piece) + " enters " + zone.name + " (" + fixed_text(asked, 2) +
                        " m clearance asked)"
                  : piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +
-                       zone.name + " (" + fixed_text(asked, 2) + " m asked: " +
-                       fixed_text(asked - d.distance_m, 2) + " m short)"});
+                       zone.name + " (" + fixed_text(asked, 2) +
+                       " m asked: " + fixed_text(asked - d.distance_m, 2) + " m short)"});
     }
 }
 
@@ -191,12 +191,12 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
     }
     if (worst_high > out.max_height_m) out.max_height_m = worst_high;
     if (worst_high > options.ceiling_m + kTolerance_m)
-      out.violations.push_back(
-          {"ceiling", l.place, geo[high_k], worst_high - options.ceiling_m,
-           l.place + " flies at " + fixed_text(worst_high, 1) + " m above " +
-               (ground ? "the ground" : "home") + ", " +
-               fixed_text(worst_high - options.ceiling_m, 1) + " m above the " +
-               fixed_text(options.ceiling_m, 1) + " m ceiling"});
+      out.violations.push_back({"ceiling", l.place, geo[high_k], worst_high - options.ceiling_m,
+                                l.place + " flies at " + fixed_text(worst_high, 1) + " m above " +
+                                    (ground ? "the ground" : "home") + ", " +
+                                    fixed_text(worst_high - options.ceiling_m, 1) +
+                                    " m above the " + fixed_text(options.ceiling_m, 1) +
+                                    " m ceiling"});
     if (ground && (l.kind == LegKind::cruise || l.kind == LegKind::rtl)) {
       out.min_height_m = std::min(out.min_height_m, worst_low);
       if (worst_low < options.min_height_m - kTolerance_m)
@@ -263,9 +263,9 @@ void check_photos(const FileContext& f, const std::vector<geometry::Ring>& area,
     const Leg& l = f.path->legs[i];
     if (l.trigger_distance_m <= 0 && l.trigger_interval_s <= 0) continue;
     const double h = geometry::distance(l.from.xy(), l.to.xy());
-    const double photos =
-        l.trigger_distance_m > 0 ? std::floor(h / l.trigger_distance_m) + 1
-                                 : std::floor((l.t_end_s - l.t_start_s) / l.trigger_interval_s) + 1;
+    const double photos = l.trigger_distance_m > 0
+                              ? std::floor(h / l.trigger_distance_m) + 1
+                              : std::floor((l.t_end_s - l.t_start_s) / l.trigger_interval_s) + 1;
     const char* transit = transit_kind(l, meets[i]);
     if (transit == nullptr) {
       out.photos += photos;

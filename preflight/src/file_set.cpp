@@ -110,8 +110,8 @@ Report verify_files(const Files& files, const CheckOptions& options) {
     any_plan = any_plan || (ends_with(name, ".plan") && !ends_with(name, "-survey.plan"));
   for (const auto& [name, text] : files) {
     const bool plan = ends_with(name, ".plan") && !ends_with(name, "-survey.plan");
-    const bool other = ends_with(name, ".waypoints") ? !is_fence_file(name)
-                                                     : ends_with(name, "-litchi.csv");
+    const bool other =
+        ends_with(name, ".waypoints") ? !is_fence_file(name) : ends_with(name, "-litchi.csv");
     if (any_plan ? plan : other) drones.push_back(name);
   }
   if (drones.empty())
@@ -170,9 +170,9 @@ std::string report_text(const Report& report) {
              " (lat, lon)";
     out += "\n";
   }
-  out += report.ok() ? "  result     every check holds\n"
-                     : "  result     " + std::to_string(report.violations.size()) +
-                           " violation(s)\n";
+  out += report.ok()
+             ? "  result     every check holds\n"
+             : "  result     " + std::to_string(report.violations.size()) + " violation(s)\n";
   return out;
 }
 
@@ -195,10 +195,10 @@ std::string report_json(const Report& report) {
                              {"place", v.place},
                              {"amount", base::round_to(v.amount, 3)},
                              {"text", v.text}};
-    o["lat_deg"] = v.at ? nlohmann::ordered_json(base::round_to(v.at->lat_deg, 9))
-                        : nlohmann::ordered_json();
-    o["lon_deg"] = v.at ? nlohmann::ordered_json(base::round_to(v.at->lon_deg, 9))
-                        : nlohmann::ordered_json();
+    o["lat_deg"] =
+        v.at ? nlohmann::ordered_json(base::round_to(v.at->lat_deg, 9)) : nlohmann::ordered_json();
+    o["lon_deg"] =
+        v.at ? nlohmann::ordered_json(base::round_to(v.at->lon_deg, 9)) : nlohmann::ordered_json();
     violations.push_back(o);
   }
   j["violations"] = violations;

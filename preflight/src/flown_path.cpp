@@ -13,7 +13,9 @@ using mavlink::Cmd;
 using missions::AltitudeFrame;
 using missions::Item;
 
-double horizontal_m(const Leg& leg) { return geometry::distance(leg.from.xy(), leg.to.xy()); }
+double horizontal_m(const Leg& leg) {
+  return geometry::distance(leg.from.xy(), leg.to.xy());
+}
 
 // Time over `length_m` at cruise speed v with a trapezoidal profile: a stop at either end costs
 // v / (2 a) (the distance v^2 / (2 a) flown at half speed); a leg too short to reach v is flown
@@ -59,9 +61,8 @@ class PathBuilder {
   }
 
   void leg(Point3 to, LegKind kind, const std::string& place, double hold_s = 0.0) {
-    if (kind != LegKind::hold && std::abs(to.x - at_.x) + std::abs(to.y - at_.y) +
-                                         std::abs(to.z_m - at_.z_m) <
-                                     1e-6)
+    if (kind != LegKind::hold &&
+        std::abs(to.x - at_.x) + std::abs(to.y - at_.y) + std::abs(to.z_m - at_.z_m) < 1e-6)
       return;
     Leg l;
     l.from = at_;

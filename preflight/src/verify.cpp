@@ -54,13 +54,14 @@ std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::Lo
 // r0 + v t, least |r| where the derivative of |r|^2 vanishes, clamped to the interval.
 std::pair<double, double> closest_approach(Point3 r0, Point3 v, double span_s) {
   const double vv = v.x * v.x + v.y * v.y + v.z_m * v.z_m;
-  const double t = vv > 0 ? std::clamp(-(r0.x * v.x + r0.y * v.y + r0.z_m * v.z_m) / vv, 0.0,
-                                       span_s)
-                          : 0.0;
+  const double t =
+      vv > 0 ? std::clamp(-(r0.x * v.x + r0.y * v.y + r0.z_m * v.z_m) / vv, 0.0, span_s) : 0.0;
   return {std::hypot(r0.x + v.x * t, r0.y + v.y * t, r0.z_m + v.z_m * t), t};
 }
 
-Point3 minus(Point3 a, Point3 b) { return {a.x - b.x, a.y - b.y, a.z_m - b.z_m}; }
+Point3 minus(Point3 a, Point3 b) {
+  return {a.x - b.x, a.y - b.y, a.z_m - b.z_m};
+}
 
 struct Approach {
   double distance_m = std::numeric_limits<double>::infinity();
@@ -89,9 +90,9 @@ Approach least_separation(const FlownPath& a, double a_launch_s, const FlownPath
     const Point3 r0 = minus(position_at(a, t0 - a_launch_s), position_at(b, t0 - b_launch_s));
     const Point3 r1 = minus(position_at(a, t1 - a_launch_s), position_at(b, t1 - b_launch_s));
     const double span = t1 - t0;
-    const Point3 v = span > 0 ? Point3{(r1.x - r0.x) / span, (r1.y - r0.y) / span,
-                                       (r1.z_m - r0.z_m) / span}
-                              : Point3{};
+    const Point3 v =
+        span > 0 ? Point3{(r1.x - r0.x) / span, (r1.y - r0.y) / span, (r1.z_m - r0.z_m) / span}
+                 : Point3{};
     const auto [d, t] = closest_approach(r0, v, span);
     if (d < best.distance_m) best = {d, t0 + t};
   }
@@ -143,10 +144,10 @@ void check_energy(const DroneFile& d, const CheckOptions& options, Report& repor
   const energy::BudgetPoint& at = *b.reserve_crossed;
   report.violations.push_back(
       {"energy", d.mission.source, at.geo, -b.reserve_margin,
-       d.mission.source + " reaches the " + fixed_text(options.drone->battery.reserve_soc * 100, 1) +
-           " % reserve at t = " + fixed_text(at.t_s, 0) + " s of " +
-           fixed_text(b.flight_time_s, 0) + " s and would land at " +
-           fixed_text(b.landing_soc * 100, 1) + " % (" +
+       d.mission.source + " reaches the " +
+           fixed_text(options.drone->battery.reserve_soc * 100, 1) + " % reserve at t = " +
+           fixed_text(at.t_s, 0) + " s of " + fixed_text(b.flight_time_s, 0) +
+           " s and would land at " + fixed_text(b.landing_soc * 100, 1) + " % (" +
            fixed_text(-b.reserve_margin * 100, 1) + " % into the reserve)"});
 }
 
@@ -177,11 +178,11 @@ void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report&
                                   " m above the ground on cruise and return legs (least " +
                                   fixed_text(o.min_height_m, 1) + " m)"});
   else
-    report.figures.push_back({"ground", false, {}, "no DEM (--terrain): the ceiling is above home"});
+    report.figures.push_back(
+        {"ground", false, {}, "no DEM (--terrain): the ceiling is above home"});
   report.figures.push_back({"photos", true, c.photos,
-                            fixed_text(c.photos, 0) + " photos on " +
-                                std::to_string(c.photo_legs) + " legs, " +
-                                fixed_text(c.transit_photos, 0) + " in transits"});
+                            fixed_text(c.photos, 0) + " photos on " + std::to_string(c.photo_legs) +
+                                " legs, " + fixed_text(c.transit_photos, 0) + " in transits"});
 }
 
 // One violation per check and place (a leg's pieces, a waypoint's two legs): the worst.

@@ -134,7 +134,8 @@ TEST(MissionReaders, BadFilesNameTheFileAndThePlace) {
   };
   EXPECT_EQ(message("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n1\t0\t3\t16\t0\t0\n",
                     "a.waypoints"),
-            "a.waypoints: line 3: a WPL row has 12 fields; found 6");
+            "a.waypoints: line 3: a WPL row has 12 fields (index, current, frame, command, 4 params, "
+            "latitude, longitude, altitude, autocontinue); found 6");
   EXPECT_EQ(message("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"
                     "1\t0\t7\t16\t0\t0\t0\t0\t47\t8\t30\t1\n",
                     "b.waypoints"),

@@ -60,8 +60,8 @@ std::vector<geometry::GeoPoint> square(double x0, double y0, double x1, double y
 
 // Take off to 20 m, a line east with the camera on from (0, 20) to (100, 20), camera off, RTL.
 std::vector<Row> survey_rows() {
-  return {{22, 0, 0, 20},       {16, 0, 20, 20},     {206, 0, 0, 0, 10}, {16, 100, 20, 20},
-          {206, 0, 0, 0, 0},    {20}};
+  return {{22, 0, 0, 20},    {16, 0, 20, 20},   {206, 0, 0, 0, 10},
+          {16, 100, 20, 20}, {206, 0, 0, 0, 0}, {20}};
 }
 
 const Violation* find(const Report& r, const std::string& check) {
@@ -194,15 +194,15 @@ TEST(Verify, TwoDronesCrossingAtOneHeightAndTime) {
   // climb (8 s), north 20 m (6 s), hold 4 s, north 120 m: at (50, 50) 13 s in, t = 31 s. Same 20 m.
   const std::vector<Row> a = {{22, 0, 0, 20}, {16, 0, 50, 20}, {16, 100, 50, 20}, {20}};
   const std::vector<Row> b = {{22, 50, -30, 20}, {16, 50, -10, 20, 4}, {16, 50, 110, 20}, {20}};
-  const Report r = verify(
-      {drone(a, "a.waypoints"), drone(b, "b.waypoints", 0, {50, -30})}, CheckOptions{});
+  const Report r =
+      verify({drone(a, "a.waypoints"), drone(b, "b.waypoints", 0, {50, -30})}, CheckOptions{});
   const Violation* v = find(r, "separation");
   ASSERT_NE(v, nullptr) << report_text(r);
   EXPECT_NEAR(v->amount, 10.0, 1e-3);  // they meet
   EXPECT_NE(v->text.find("t = 31.0 s"), std::string::npos) << v->text;
   // b launched after a has landed: never airborne together, homes 58 m apart.
-  const Report later = verify(
-      {drone(a, "a.waypoints"), drone(b, "b.waypoints", 300, {50, -30})}, CheckOptions{});
+  const Report later =
+      verify({drone(a, "a.waypoints"), drone(b, "b.waypoints", 300, {50, -30})}, CheckOptions{});
   EXPECT_EQ(find(later, "separation"), nullptr) << report_text(later);
 }
 
@@ -216,8 +216,8 @@ TEST(Verify, SortiesOfOneDroneFlyInTurn) {
   bool said = false;  // the second launches when the first has landed
   for (const Figure& f : r.figures)
     said = said || (f.check == "flight" &&
-                    f.text.find("d-2.waypoints " + base::fixed_text(t / 60, 1) + " min from t = " + base::fixed_text(t, 0) +
-                                " s") != std::string::npos);
+                    f.text.find("d-2.waypoints " + base::fixed_text(t / 60, 1) + " min from t = " +
+                                base::fixed_text(t, 0) + " s") != std::string::npos);
   EXPECT_TRUE(said) << report_text(r);
 }
 
