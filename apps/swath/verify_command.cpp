@@ -24,7 +24,8 @@ bool mission_name(const std::string& name) {
     const std::string t(tail);
     return name.size() >= t.size() && name.compare(name.size() - t.size(), t.size(), t) == 0;
   };
-  return ends(".plan") || ends(".waypoints") || ends(".csv") || ends("summary.json");
+  return ends(".plan") || ends(".waypoints") || ends(".csv") || ends(".kmz") ||
+         ends("summary.json");
 }
 
 // Every FILE as given, every DIR's mission files (and summary.json) in name order.
@@ -51,7 +52,7 @@ std::vector<std::pair<std::string, std::string>> read_inputs(const std::vector<s
 
 void VerifyCommand::setup(CLI::App& app) {
   app.add_option("INPUT", inputs_,
-                 "Mission files (.plan, .waypoints, -litchi.csv) or plan directories (every "
+                 "Mission files (.plan, .waypoints, -litchi.csv, .kmz) or plan directories (every "
                  "mission file in it; twins must agree with their .plan)")
       ->required();
   app.add_option("--exclude", exclude_,

@@ -15,7 +15,8 @@ class VerifyCommand : public Command {
  public:
   const char* name() const override { return "verify"; }
   const char* description() const override {
-    return "Check written mission files (.plan, .waypoints, Litchi CSV) as the autopilot flies "
+    return "Check written mission files (.plan, .waypoints, Litchi CSV, DJI KMZ) as the autopilot "
+           "flies "
            "them: no-fly zones, fences, ceiling, ground, battery, drone separation, photos "
            "(exit 0 all hold, 4 a check fails)";
   }

@@ -1,6 +1,8 @@
 // Mission readers (issue 45): QGC .plan, WPL 110 and Litchi CSV into one Mission value.
 #include "swath/missions/mission.hpp"
 
+#include "dji_kmz.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -373,12 +375,13 @@ std::optional<double> home_amsl_m(const Mission& mission) {
 
 Mission parse_mission(const std::string& text, const std::string& source) {
   if (text.rfind("QGC WPL 110", 0) == 0) return parse_wpl(text, source);
+  if (text.rfind("PK\x03\x04", 0) == 0) return parse_dji_kmz(text, source);
   if (text.rfind("latitude,longitude,altitude(m)", 0) == 0) return parse_litchi(text, source);
   const json root = base::parse_json_document(text, source);
   if (member(root, "fileType") != "Plan")
     throw InputError(source +
-                     ": neither a QGC plan (fileType \"Plan\"), a QGC WPL 110 file nor a Litchi "
-                     "CSV");
+                     ": neither a QGC plan (fileType \"Plan\"), a QGC WPL 110 file, a Litchi CSV "
+                     "nor a DJI KMZ");
   return parse_qgc(root, source);
 }
 

@@ -72,10 +72,11 @@ std::vector<Waypoint> waypoints(const missions::Mission& m) {
 }
 
 // A twin agrees when it flies the .plan's waypoints, in order, at the same heights (to the
-// writers' rounding); a Litchi file may add its last row at home (the landing).
+// writers' rounding); a Litchi or DJI file may add its last row at home (the landing).
 void check_twin(const missions::Mission& plan, const missions::Mission& twin, Report& report) {
   const std::vector<Waypoint> a = waypoints(plan), b = waypoints(twin);
-  const bool litchi = twin.format == "Litchi CSV";
+  // Litchi and DJI files add their landing point at home as a last waypoint.
+  const bool litchi = twin.format == "Litchi CSV" || twin.format == "DJI WPML";
   std::string problem;
   std::size_t k = 0;
   for (; k < std::min(a.size(), b.size()) && problem.empty(); ++k) {
@@ -110,13 +111,14 @@ Report verify_files(const Files& files, const CheckOptions& options) {
     any_plan = any_plan || (ends_with(name, ".plan") && !ends_with(name, "-survey.plan"));
   for (const auto& [name, text] : files) {
     const bool plan = ends_with(name, ".plan") && !ends_with(name, "-survey.plan");
-    const bool other =
-        ends_with(name, ".waypoints") ? !is_fence_file(name) : ends_with(name, "-litchi.csv");
+    const bool other = ends_with(name, ".waypoints")
+                           ? !is_fence_file(name)
+                           : ends_with(name, "-litchi.csv") || ends_with(name, ".kmz");
     if (any_plan ? plan : other) drones.push_back(name);
   }
   if (drones.empty())
     throw base::InputError(
-        "no mission file among the files given (.plan, .waypoints or -litchi.csv)");
+        "no mission file among the files given (.plan, .waypoints, -litchi.csv or .kmz)");
   const auto by_file = launches(files);
   std::vector<DroneFile> set;
   std::vector<std::pair<std::size_t, missions::Mission>> twins;
@@ -132,7 +134,7 @@ Report verify_files(const Files& files, const CheckOptions& options) {
     }
     if (ends_with(name, ".plan")) {
       const std::string dir_stem = stem_of(name, ".plan");
-      for (const char* tail : {".waypoints", "-litchi.csv", "-survey.plan"})
+      for (const char* tail : {".waypoints", "-litchi.csv", "-survey.plan", ".kmz"})
         if (const auto t = by_name.find(dir_stem + tail); t != by_name.end())
           twins.push_back({set.size(), missions::parse_mission(t->second, t->first)});
     }
@@ -149,7 +151,7 @@ Report verify_files(const Files& files, const CheckOptions& options) {
     report.figures.push_back({"agreement", true, static_cast<double>(disagree),
                               std::to_string(twins.size() - disagree) + " of " +
                                   std::to_string(twins.size()) +
-                                  " twin files (.waypoints, -litchi.csv, -survey.plan) fly "
+                                  " twin files (.waypoints, -litchi.csv, -survey.plan, .kmz) fly "
                                   "their .plan's waypoints"});
   return report;
 }

@@ -22,14 +22,17 @@ void write(const std::string& path, const std::string& text) {
 
 TEST(VerifyCli, PassesTheFilesOfARealPlanAndTheirTwins) {
   const std::string dir = fresh_dir("swath-verify-clean");
-  const CliRun plan = run_swath("plan " + kMeadow + " --litchi -o " + dir + "/out");
+  const CliRun plan = run_swath("plan " + kMeadow + " --litchi --dji -o " + dir + "/out");
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
   const CliRun run = run_swath("verify " + dir + "/out --area share/fields/meadow.geojson --json");
   EXPECT_EQ(run.exit_code, 0) << run.out;
   const json j = json::parse(run.out);
   EXPECT_TRUE(j["ok"].get<bool>());
   for (const json& c : j["checks"]) {
-    if (c["check"] == "agreement") EXPECT_EQ(c["value"], 0) << c["text"];  // none differ
+    if (c["check"] == "agreement") {  // none of the three twins differs
+      EXPECT_EQ(c["value"], 0) << c["text"];
+      EXPECT_NE(c["text"].get<std::string>().find("3 of 3 twin files"), std::string::npos);
+    }
     if (c["check"] == "ceiling") EXPECT_DOUBLE_EQ(c["value"].get<double>(), 60.0);
     if (c["check"] == "ground") EXPECT_FALSE(c["ran"].get<bool>());  // no DEM: said so
   }
@@ -70,10 +73,11 @@ TEST(VerifyCli, BadInputIsOneSentenceAndExitTwo) {
   write(dir + "/a.waypoints", "QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n1\t0\t3\t16\n");
   const CliRun run = run_swath("verify " + dir + "/a.waypoints");
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.err.find(dir + "/a.waypoints: line 3: a WPL row has 12 fields (index, current, frame, "
-                                     "command, 4 params, latitude, longitude, altitude, "
-                                     "autocontinue); found 4"),
-            std::string::npos)
+  EXPECT_NE(
+      run.err.find(dir + "/a.waypoints: line 3: a WPL row has 12 fields (index, current, frame, "
+                         "command, 4 params, latitude, longitude, altitude, "
+                         "autocontinue); found 4"),
+      std::string::npos)
       << run.err;
   EXPECT_EQ(run.out, "");
 }

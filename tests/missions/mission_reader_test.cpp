@@ -1,4 +1,5 @@
-// The mission readers (issue 45) against swath's own writers (a real meadow plan, round trip),
+// The mission readers (issue 45) against swath's own writers (a real meadow plan, round trip of
+// its .plan, .waypoints, Litchi CSV and DJI KMZ),
 // a hand-written QGroundControl-style .plan, altitude frames, and bad input.
 #include <gtest/gtest.h>
 
@@ -31,7 +32,7 @@ TEST(MissionReaders, ReadBackSwathsOwnFilesOfTheMeadow) {
   planning::SurveyRequest r = test::meadow_request(60);
   r.home = geometry::GeoPoint{47.3965, 8.5405, 0};
   const planning::SurveyPlan plan = planning::plan_survey(r);
-  const auto files = planning::survey_files(plan, {true, true, false, false});
+  const auto files = planning::survey_files(plan, {true, true, true, false});
   const planning::DronePlan& drone = plan.drones.at(0);
   std::vector<geometry::GeoPoint> planned;
   for (const planning::MissionItem& item : drone.mission.items)
@@ -40,14 +41,15 @@ TEST(MissionReaders, ReadBackSwathsOwnFilesOfTheMeadow) {
   ASSERT_GT(planned.size(), 10u);
   int read = 0;
   for (const auto& [name, text] : files) {
-    if (name != "drone-1.plan" && name != "drone-1.waypoints" && name != "drone-1-litchi.csv")
+    if (name != "drone-1.plan" && name != "drone-1.waypoints" && name != "drone-1-litchi.csv" &&
+        name != "drone-1.kmz")
       continue;
     ++read;
     const missions::Mission m = missions::parse_mission(text, name);
     std::vector<const missions::Item*> waypoints;
     for (const missions::Item& item : m.items)
       if (item.command == 16) waypoints.push_back(&item);
-    // Litchi adds its landing point at home as a last row.
+    // Litchi and DJI add their landing point at home as a last waypoint.
     ASSERT_GE(waypoints.size(), planned.size()) << name;
     for (std::size_t k = 0; k < planned.size(); ++k) {
       EXPECT_LT(geometry::geodesic_distance_m(waypoints[k]->position, planned[k]), 1e-3)
@@ -60,7 +62,7 @@ TEST(MissionReaders, ReadBackSwathsOwnFilesOfTheMeadow) {
       EXPECT_NEAR(m.cruise_speed_m_s, drone.speed_m_s, 1e-3);
     }
   }
-  EXPECT_EQ(read, 3);
+  EXPECT_EQ(read, 4);
 }
 
 TEST(MissionReaders, ReadsAQgcStylePlanWithItsFencesAndRally) {
@@ -132,10 +134,11 @@ TEST(MissionReaders, BadFilesNameTheFileAndThePlace) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n1\t0\t3\t16\t0\t0\n",
-                    "a.waypoints"),
-            "a.waypoints: line 3: a WPL row has 12 fields (index, current, frame, command, 4 params, "
-            "latitude, longitude, altitude, autocontinue); found 6");
+  EXPECT_EQ(
+      message("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n1\t0\t3\t16\t0\t0\n",
+              "a.waypoints"),
+      "a.waypoints: line 3: a WPL row has 12 fields (index, current, frame, command, 4 params, "
+      "latitude, longitude, altitude, autocontinue); found 6");
   EXPECT_EQ(message("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"
                     "1\t0\t7\t16\t0\t0\t0\t0\t47\t8\t30\t1\n",
                     "b.waypoints"),

@@ -41,7 +41,7 @@ struct FenceCircle {
 /// One drone's mission file.
 struct Mission {
   std::string source;  ///< the file name, for messages
-  std::string format;  ///< "QGC plan", "WPL 110", "Litchi CSV"
+  std::string format;  ///< "QGC plan", "WPL 110", "Litchi CSV", "DJI WPML"
   geometry::GeoPoint home;
   double home_amsl_m = 0.0;  ///< home's height above mean sea level as the file gives it
   bool home_amsl_known = false;
@@ -65,7 +65,8 @@ double above_home_m(const Item& item, std::optional<double> home_amsl_m,
 std::optional<double> home_amsl_m(const Mission& mission);
 
 /// Reads a mission by its content: "QGC WPL 110" starts a WPL file, a JSON object with fileType
-/// "Plan" a QGC plan, a header with latitude,longitude,altitude(m) a Litchi CSV. A complex QGC item
+/// "Plan" a QGC plan, a header with latitude,longitude,altitude(m) a Litchi CSV, a zip archive a
+/// DJI WPML KMZ (its wpmz/waylines.wpml). A complex QGC item
 /// (a survey) is flattened into its simple items. Throws base::InputError naming the file, the
 /// place (item, line) and the problem.
 Mission parse_mission(const std::string& text, const std::string& source);

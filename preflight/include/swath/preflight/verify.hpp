@@ -76,9 +76,9 @@ struct Report {
 Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options);
 
 /// Checks a set of written files by name and content (a plan directory, or `swath plan`'s output
-/// before it is written): each NAME.plan is a drone (NAME.waypoints, NAME-litchi.csv and
-/// NAME-survey.plan are its twins, which must agree with it); without .plan files, the .waypoints
-/// or -litchi.csv files are the drones. fence.waypoints and rally.waypoints add to every drone's
+/// before it is written): each NAME.plan is a drone (NAME.waypoints, NAME-litchi.csv,
+/// NAME-survey.plan and NAME.kmz are its twins, which must agree with it); without .plan files,
+/// the .waypoints, -litchi.csv or .kmz files are the drones. fence.waypoints and rally.waypoints add to every drone's
 /// fences, summary.json's drones[].launch_offset_s sets launch times and drones[].sorties[].file
 /// names the files one drone flies in turn. Other files are
 /// ignored. Throws base::InputError naming the file for one that cannot be read.
