@@ -8,6 +8,7 @@
 #include "command.hpp"
 #include "plan_command.hpp"
 #include "render_command.hpp"
+#include "verify_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace swath::apps;
@@ -16,10 +17,12 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<PlanCommand>());
   commands.push_back(std::make_unique<BatchCommand>());
   commands.push_back(std::make_unique<RenderCommand>());
+  commands.push_back(std::make_unique<VerifyCommand>());
   commands.push_back(std::make_unique<CamerasCommand>());
   return run_program("swath", "swath: drone area survey planner",
                      "Exit codes: 0 success; 2 bad input or usage (the message names the file, the "
                      "place and the problem; nothing is written); 3 batch: some areas could not "
-                     "be planned (their rows in batch.csv say why); 1 unexpected failure.",
+                     "be planned (their rows in batch.csv say why); 4 swath verify: a check "
+                     "fails; 1 unexpected failure.",
                      commands, argc, argv);
 }

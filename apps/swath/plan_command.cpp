@@ -22,6 +22,7 @@
 #include "swath/planning/plan_features.hpp"
 #include "swath/planning/survey.hpp"
 #include "swath/planning/survey_files.hpp"
+#include "verify_inputs.hpp"
 
 namespace swath::apps {
 namespace {
@@ -240,6 +241,11 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
                  "Keep every waypoint and leg (lines, turns, transits, legs to and from home) this "
                  "many metres from holes and no-fly zones; the summary reports what is kept")
       ->capture_default_str();
+  app.add_option("--ceiling", ceiling_m_,
+                 "Refuse to write a mission that flies higher than this, metres above the ground "
+                 "(with --terrain) or above home (default 120, the common legal limit; the files "
+                 "are checked as written, see swath verify)")
+      ->capture_default_str();
   app.add_option("--boundary-clearance", boundary_clearance_m_,
                  "Keep lines and turns this many metres inside the outer boundary")
       ->capture_default_str();
@@ -354,6 +360,7 @@ void PlanCommand::check_numbers() const {
   base::check_range(angle_step_deg_, kAngleStep_deg, "--angle-step");
   if (turnaround_m_) base::check_range(*turnaround_m_, kTurnaround_m, "--turnaround");
   base::check_range(clearance_m_, kClearance_m, "--clearance");
+  base::check_range(ceiling_m_, kAltitude_m, "--ceiling");
   base::check_range(boundary_clearance_m_, kClearance_m, "--boundary-clearance");
   base::check_range(outside_margin_m_, kClearance_m, "--outside-margin");
   base::check_range(gimbal_pitch_deg_, kGimbalPitch_deg, "--gimbal-pitch");
@@ -610,6 +617,22 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
   for (const std::string& w : warnings) std::cerr << "swath plan: warning: " << w << '\n';
 }
 
+preflight::CheckOptions PlanCommand::check_options(const planning::SurveyPlan& plan) const {
+  preflight::CheckOptions options;
+  // The zones as the user gave them (not as grown or simplified for the fences), the area's holes.
+  for (std::size_t k = 0; k < plan.no_fly_geo.size(); ++k)
+    options.zones.push_back({"no-fly zone " + std::to_string(k + 1), plan.no_fly_geo[k]});
+  // The area's holes; not its outline for the photo check: a repaired or split area's lines are
+  // planned over pieces the file's ring does not describe.
+  const auto& rings = plan.request.field.geo_rings;
+  for (std::size_t k = 1; k < rings.size(); ++k)
+    options.zones.push_back({"hole " + std::to_string(k) + " of " + field_, rings[k]});
+  options.clearance_m = plan.request.clearance_m;
+  options.ceiling_m = ceiling_m_;
+  if (plan.request.terrain) options.ground = plan.request.terrain->ground;
+  return options;
+}
+
 int PlanCommand::run() {
   if (!config_.empty())
     apply_mission_config(
@@ -620,6 +643,7 @@ int PlanCommand::run() {
   check_numbers();
   const planning::SurveyPlan plan = planning::plan_survey(request());
   const auto set = files(plan);
+  verify_before_writing(set, check_options(plan));
   base::write_files_atomically(output_, set, "plan");
   report(plan, set);
   return base::kExitSuccess;

@@ -7,6 +7,7 @@
 #include "area_options.hpp"
 #include "command.hpp"
 #include "swath/planning/survey.hpp"
+#include "swath/preflight/verify.hpp"
 
 namespace swath::apps {
 
@@ -36,6 +37,8 @@ class PlanCommand : public Command {
   planning::SurveyRequest request() const;
   std::optional<planning::TerrainRequest> terrain() const;
   std::vector<std::pair<std::string, std::string>> files(const planning::SurveyPlan& plan) const;
+  /// What the files about to be written are checked against (swath verify's checks).
+  preflight::CheckOptions check_options(const planning::SurveyPlan& plan) const;
   void report(const planning::SurveyPlan& plan,
               const std::vector<std::pair<std::string, std::string>>& files) const;
 
@@ -81,6 +84,7 @@ class PlanCommand : public Command {
   std::string vehicle_ = "multirotor";
   std::optional<double> speed_m_s_;
   double clearance_m_ = 5.0;
+  double ceiling_m_ = 120.0;
   double boundary_clearance_m_ = 0.0;
   double outside_margin_m_ = 0.0;
   std::string trigger_ = "distance";

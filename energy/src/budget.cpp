@@ -2,21 +2,20 @@
 
 #include "swath/base/file_text.hpp"
 
-#include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include <map>
 #include <optional>
-#include <sstream>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/commands.hpp"
+#include "swath/missions/mission.hpp"
 
 namespace swath::energy {
 namespace {
@@ -94,8 +93,8 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
                       drone.get<long long>() < 1'000'000
                   ? "drone-" + std::to_string(drone.get<long long>())
                   : "drone-" + std::to_string(out.size() + 1);
-    if (const json* name = base::json_find(props, "name"); name && name->is_string() &&
-                                                           !name->get<std::string>().empty())
+    if (const json* name = base::json_find(props, "name");
+        name && name->is_string() && !name->get<std::string>().empty())
       m.drone = base::valid_utf8(name->get<std::string>());
     const auto own =
         drone.is_number_integer() ? drone_homes.find(drone.get<long long>()) : drone_homes.end();
@@ -144,181 +143,49 @@ std::vector<WaypointMission> parse_geojson(const json& root, const std::string& 
   return out;
 }
 
-// QGC items in flight order, complex (survey) items flattened.
-void flatten_items(const json& items, std::vector<const json*>& out) {
-  for (const json& item : items) {
-    if (text_or(item, "type", "") == "ComplexItem") {
-      const json* inner =
-          base::json_find(member_or_null(item, "TransectStyleComplexItem"), "Items");
-      // A complex item nested in itself is no mission QGC writes: one level only.
-      if (inner != nullptr && inner->is_array())
-        for (const json& leaf : *inner)
-          if (text_or(leaf, "type", "") != "ComplexItem") out.push_back(&leaf);
-      continue;
-    }
-    out.push_back(&item);
-  }
-}
+}  // namespace
 
-// The items that move the drone or set its speed: takeoff (22), waypoint (16), land (21), return
-// to launch (20), change speed (178). Camera, gimbal and other actions take no flight time here.
-bool positional_or_speed(int command) {
-  return command == 16 || command == 22 || command == 21 || command == 20 || command == 178;
-}
-
-// A mission read item by item, the same for QGC .plan and WPL files: params as MAVLink's
-// MISSION_ITEM (param1..4, latitude, longitude, altitude above home).
-class MissionItems {
- public:
-  MissionItems(WaypointMission& m, double speed_m_s) : m_(m), frame_(m.home), speed_(speed_m_s) {}
-  bool ended() const { return ended_; }
-
-  /// `altitude_offset_m` is subtracted from param 7 (an absolute frame's home altitude).
-  void add(int command, const std::array<double, 7>& p, double altitude_offset_m,
-           const std::string& where) {
-    switch (command) {
-      case 16:    // waypoint
-      case 22:    // takeoff
-      case 21: {  // land
-        const GeoPoint g{p[4], p[5], 0.0};
-        if (!(std::abs(g.lat_deg) <= 90 && std::abs(g.lon_deg) <= 180))
-          throw InputError(where + ": latitude/longitude missing or out of range");
-        if (command != 21 && !std::isfinite(p[6]))
-          throw InputError(where + ": the altitude (param 7) is missing");
-        if (command == 22 && g.lat_deg == 0 && g.lon_deg == 0) {
-          m_.points.push_back({0.0, 0.0});  // take-off where the drone stands
-        } else {
-          m_.points.push_back(frame_.to_local(g));
-        }
-        m_.altitudes_m.push_back(command == 21 ? 0.0 : p[6] - altitude_offset_m);
-        m_.speeds_m_s.push_back(speed_);
-        if (command == 21) {
-          m_.returns_home = false;
-          ended_ = true;  // landing ends the mission
-        }
+// A mission file's items as the budget flies them: take-off (22), waypoint (16), loiter (19), land
+// (21) and return to launch (20) move the drone, change speed (178) sets its speed; altitudes above
+// home from each item's frame (AMSL less the home's altitude; terrain-relative read as above home,
+// the budget having no ground). Camera, gimbal and other actions take no flight time here.
+WaypointMission waypoint_mission(const missions::Mission& file) {
+  WaypointMission m;
+  m.drone = std::filesystem::path(file.source).stem().string();
+  m.home = file.home;
+  m.returns_home = false;
+  const geometry::LocalFrame frame(m.home);
+  double speed = file.cruise_speed_m_s;
+  for (const missions::Item& item : file.items) {
+    const bool here = item.position.lat_deg == 0 && item.position.lon_deg == 0;
+    const Point2 last = m.points.empty() ? Point2{0.0, 0.0} : m.points.back();
+    switch (static_cast<mavlink::Cmd>(item.command)) {
+      case mavlink::Cmd::nav_takeoff:
+      case mavlink::Cmd::nav_waypoint:
+      case mavlink::Cmd::nav_loiter_time:
+      case mavlink::Cmd::nav_land: {
+        const bool land = item.command == static_cast<int>(mavlink::Cmd::nav_land);
+        m.points.push_back(here ? last : frame.to_local(item.position));
+        m.altitudes_m.push_back(land ? 0.0
+                                     : missions::above_home_m(item, missions::home_amsl_m(file)));
+        m.speeds_m_s.push_back(speed);
+        if (land) return m;  // landing ends the mission
         break;
       }
-      case 20:  // return to launch
-        m_.returns_home = true;
-        ended_ = true;
-        break;
-      case 178:  // change speed: param2 m/s, -1 keeps it
-        if (p[1] > 0) speed_ = p[1];
+      case mavlink::Cmd::nav_return_to_launch:
+        m.returns_home = true;
+        return m;
+      case mavlink::Cmd::do_change_speed:  // param2 m/s, -1 keeps it
+        if (item.params[1] > 0) speed = item.params[1];
         break;
       default:
         break;
     }
   }
-
- private:
-  WaypointMission& m_;
-  geometry::LocalFrame frame_;
-  double speed_;
-  bool ended_ = false;
-};
-
-std::vector<WaypointMission> parse_qgc(const json& root, const std::string& source) {
-  const json& mission = member_or_null(root, "mission");
-  if (!mission.is_object()) throw InputError(source + ": a QGC plan has a 'mission' object");
-  const json& home_pos = member_or_null(mission, "plannedHomePosition");
-  if (!home_pos.is_array() || home_pos.size() < 2)
-    throw InputError(source + ": mission.plannedHomePosition must be [lat, lon, alt]");
-  WaypointMission m;
-  m.drone = std::filesystem::path(source).stem().string();
-  m.home = {finite_number(home_pos[0], source + ": plannedHomePosition latitude"),
-            finite_number(home_pos[1], source + ": plannedHomePosition longitude"), 0.0};
-  if (std::abs(m.home.lat_deg) > 90 || std::abs(m.home.lon_deg) > 180)
-    throw InputError(source + ": plannedHomePosition is not a latitude/longitude");
-  const json& vehicle = member_or_null(mission, "vehicleType");
-  const bool multirotor = !vehicle.is_number() || vehicle.get<double>() == 2;
-  double speed = 0.0;
-  const char* speed_key = multirotor ? "hoverSpeed" : "cruiseSpeed";
-  if (base::json_find(mission, speed_key))
-    speed = finite_number(member_or_null(mission, speed_key), source + ": mission." + speed_key);
-  std::vector<const json*> items;
-  const json& all_items = member_or_null(mission, "items");
-  if (!all_items.is_array()) throw InputError(source + ": mission.items must be a list");
-  flatten_items(all_items, items);
-  m.returns_home = false;
-  MissionItems reader(m, speed);
-  for (std::size_t i = 0; i < items.size() && !reader.ended(); ++i) {
-    const json& item = *items[i];
-    const std::string where = source + ": mission item " + std::to_string(i + 1);
-    const json& command_json = member_or_null(item, "command");
-    const int command = command_json.is_number_integer() && command_json.get<long long>() >= 0 &&
-                                command_json.get<long long>() < 100'000
-                            ? static_cast<int>(command_json.get<long long>())
-                            : -1;
-    const json& params = member_or_null(item, "params");
-    std::array<double, 7> values{};
-    if (positional_or_speed(command)) {
-      if (!params.is_array() || params.size() < 7)
-        throw InputError(where + ": params must hold 7 values");
-      // QGC writes unused params as null (NaN); the ones an item uses are checked in add().
-      for (std::size_t k = 0; k < 7; ++k)
-        values[k] = params[k].is_null()
-                        ? std::nan("")
-                        : finite_number(params[k], where + ": params[" + std::to_string(k) + "]");
-    }
-    reader.add(command, values, 0.0, where);
-  }
-  if (m.points.empty()) throw InputError(source + ": the mission has no positional item");
-  return {m};
+  return m;
 }
 
-// QGC WPL 110 (Mission Planner, swath's .waypoints): a header line, then rows of index, current,
-// frame, command, param1..4, latitude, longitude, altitude, autocontinue, tab- or space-separated;
-// row 0 is home (absolute altitude). Frames 0 (global, absolute) and 3 (relative to home) are
-// read; altitudes end up above home.
-std::vector<WaypointMission> parse_wpl(const std::string& text, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
-  WaypointMission m;
-  m.drone = std::filesystem::path(source).stem().string();
-  std::optional<MissionItems> reader;
-  double home_alt_m = 0.0;
-  int line_no = 1, rows = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    const std::string where = source + ": line " + std::to_string(line_no);
-    std::istringstream row(line);
-    std::array<double, 12> f{};
-    for (std::size_t k = 0; k < f.size(); ++k) {
-      std::string field;
-      if (!(row >> field))
-        throw InputError(where +
-                         ": a WPL row has 12 fields (index, current, frame, command, 4 "
-                         "params, latitude, longitude, altitude, autocontinue); found " +
-                         std::to_string(k));
-      if (!base::parse_number(field, f[k]) || !std::isfinite(f[k]))
-        throw InputError(where + ": field " + std::to_string(k + 1) + " '" + field.substr(0, 40) +
-                         "' is not a number");
-    }
-    std::array<double, 7> params;
-    std::copy(f.begin() + 4, f.begin() + 11, params.begin());
-    const int frame = static_cast<int>(f[2]), command = static_cast<int>(f[3]);
-    if (rows++ == 0) {  // home
-      m.home = {params[4], params[5], 0.0};
-      if (std::abs(m.home.lat_deg) > 90 || std::abs(m.home.lon_deg) > 180)
-        throw InputError(where + ": the home row's latitude/longitude are out of range");
-      home_alt_m = params[6];
-      m.returns_home = false;
-      reader.emplace(m, 0.0);
-      continue;
-    }
-    if (reader->ended()) break;
-    if ((command == 16 || command == 22 || command == 21) && frame != 0 && frame != 3)
-      throw InputError(where + ": frame " + std::to_string(frame) +
-                       " is not read (0 global or 3 relative to home)");
-    reader->add(command, params, frame == 0 ? home_alt_m : 0.0, where);
-  }
-  if (rows == 0) throw InputError(source + ": the WPL file has no home row");
-  if (m.points.empty()) throw InputError(source + ": the mission has no positional item");
-  return {m};
-}
+namespace {
 
 BudgetPoint point_at(const geometry::LocalFrame& frame, double t, Point2 p, double alt, double soc,
                      double energy) {
@@ -329,11 +196,16 @@ BudgetPoint point_at(const geometry::LocalFrame& frame, double t, Point2 p, doub
 
 std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
                                                      const std::string& source) {
-  if (text.rfind("QGC WPL", 0) == 0) return parse_wpl(text, source);
+  auto mission_file = [&] {
+    WaypointMission m = waypoint_mission(missions::parse_mission(text, source));
+    if (m.points.empty()) throw InputError(source + ": the mission has no positional item");
+    return std::vector<WaypointMission>{std::move(m)};
+  };
+  if (text.rfind("QGC WPL", 0) == 0) return mission_file();
   const json root = base::parse_json_document(text, source);
   if (!root.is_object()) throw InputError(source + ": expected a JSON object");
   if (text_or(root, "type", "") == "FeatureCollection") return parse_geojson(root, source);
-  if (text_or(root, "fileType", "") == "Plan") return parse_qgc(root, source);
+  if (text_or(root, "fileType", "") == "Plan") return mission_file();
   throw InputError(source +
                    ": neither a GeoJSON FeatureCollection (mission.geojson), a QGC plan nor a QGC "
                    "WPL 110 file");

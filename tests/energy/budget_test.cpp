@@ -135,8 +135,9 @@ TEST(Budget, WplFileIsTheSameMissionAsThePlan) {
                   "1\t0\t3\t16\t0\t0\t0\t0\tnorth\t8\t50\t1\n"),
             "m.waypoints: line 3: field 9 'north' is not a number");
   EXPECT_EQ(error("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"
-                  "1\t0\t10\t16\t0\t0\t0\t0\t47\t8\t50\t1\n"),
-            "m.waypoints: line 3: frame 10 is not read (0 global or 3 relative to home)");
+                  "1\t0\t7\t16\t0\t0\t0\t0\t47\t8\t50\t1\n"),
+            "m.waypoints: item 1 (line 3): frame 7 is not a position frame (0 AMSL, 3 relative to "
+            "home, 10 terrain)");
   EXPECT_EQ(error("QGC WPL 110\n"), "m.waypoints: the WPL file has no home row");
 }
 
@@ -233,8 +234,8 @@ TEST(Budget, BadMissionsAreNamed) {
       "m.json: feature 0, position 1: latitude must be within ±90 and longitude within ±180 "
       "degrees");
   EXPECT_EQ(budget_error_of(R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0],
-        "items": [{"type": "SimpleItem", "command": 16, "params": [0, 0, 0]}]}})"),
-            "m.json: mission item 1: params must hold 7 values");
+        "items": [{"type": "SimpleItem", "command": 16, "frame": 3, "params": [0, 0, 0]}]}})"),
+            "m.json: item 1: 'params' must hold 7 values");
   EXPECT_EQ(
       budget_error_of(
           R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0], "items": []}})"),

@@ -8,6 +8,7 @@
 
 #include "swath/energy/sim_config.hpp"
 #include "swath/geometry/point.hpp"
+#include "swath/missions/mission.hpp"
 
 namespace swath::energy {
 
@@ -25,12 +26,17 @@ struct WaypointMission {
 
 /// Reads every drone's mission: a GeoJSON FeatureCollection (features with role "path", their
 /// "drone", "altitude_m" and "speed_m_s" properties, and a "home" point; a LineString with 3-D
-/// coordinates needs no altitude_m) or a QGC .plan (takeoff, waypoint, land, return-to-launch,
-/// change-speed items, also inside survey complex items). Throws base::InputError naming the
+/// coordinates needs no altitude_m), a QGC .plan or a WPL 110 file (read by swath::missions, each
+/// item's altitude frame honoured). Throws base::InputError naming the
 /// file, the feature or item, and the problem.
 std::vector<WaypointMission> read_waypoint_missions(const std::string& path);
 std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
                                                      const std::string& source);
+
+/// One mission file's flight as the budget flies it: take-off, waypoints, loiters, landing and
+/// return to launch, speeds from DO_CHANGE_SPEED, altitudes above home from each item's frame
+/// (AMSL less the file's home altitude; terrain-relative read as above home).
+WaypointMission waypoint_mission(const missions::Mission& mission);
 
 /// A moment of the flight.
 struct BudgetPoint {

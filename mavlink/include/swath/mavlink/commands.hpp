@@ -7,17 +7,44 @@ namespace swath::mavlink {
 
 /// MAV_CMD values (COMMAND_LONG / COMMAND_INT `command`).
 enum class Cmd : std::uint16_t {
+  nav_waypoint = 16,     ///< param1: hold, s; param5-7: position
+  nav_loiter_time = 19,  ///< param1: hold, s
   nav_return_to_launch = 20,
   nav_land = 21,
   nav_takeoff = 22,       ///< param7: altitude above home, m
+  nav_delay = 93,         ///< param1: seconds
+  condition_delay = 112,  ///< param1: seconds
   do_set_mode = 176,      ///< param1: 1 (custom mode enabled), param2: custom mode
   do_change_speed = 178,  ///< param1: 1 (ground speed), param2: m/s
+  do_land_start = 189,
   do_reposition = 192,
+  do_set_roi_location = 195,
+  do_set_roi = 201,
   do_digicam_control = 203,
-  component_arm_disarm = 400,  ///< param1: 1 arm, 0 disarm
-  set_message_interval = 511,  ///< param1: message id, param2: interval in microseconds
-  request_message = 512,       ///< param1: message id
-  image_start_capture = 2000,  ///< param3: number of images (1)
+  do_mount_control = 205,
+  do_set_cam_trigg_dist = 206,  ///< param1: distance, m (0: stop)
+  component_arm_disarm = 400,   ///< param1: 1 arm, 0 disarm
+  set_message_interval = 511,   ///< param1: message id, param2: interval in microseconds
+  request_message = 512,        ///< param1: message id
+  do_gimbal_manager_pitchyaw = 1000,
+  image_start_capture = 2000,  ///< param2: interval, s; param3: number of images (1)
+  image_stop_capture = 2001,
+  nav_fence_polygon_vertex_inclusion = 5001,
+  nav_fence_polygon_vertex_exclusion = 5002,
+  nav_fence_circle_inclusion = 5003,
+  nav_fence_circle_exclusion = 5004,
+  nav_rally_point = 5100,
+};
+
+/// MAV_FRAME values of mission items: what param7 (altitude) is measured from.
+enum class MavFrame : std::uint8_t {
+  global = 0,               ///< above mean sea level
+  mission = 2,              ///< no position (a command)
+  global_relative_alt = 3,  ///< above home
+  global_int = 5,           ///< as global, integer positions
+  global_relative_alt_int = 6,
+  global_terrain_alt = 10,  ///< above the ground under the point
+  global_terrain_alt_int = 11,
 };
 
 /// MAV_RESULT values (COMMAND_ACK `result`).

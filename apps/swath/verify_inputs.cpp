@@ -1,0 +1,52 @@
+#include "verify_inputs.hpp"
+
+#include <cstdlib>
+#include <cstring>
+
+#include "swath/base/input_error.hpp"
+#include "swath/geometry/field.hpp"
+
+namespace swath::apps {
+
+std::vector<preflight::Zone> zones_from_files(const std::vector<std::string>& paths) {
+  std::vector<preflight::Zone> zones;
+  for (const std::string& path : paths) {
+    const auto areas = geometry::list_areas(path);
+    for (const geometry::AreaEntry& entry : areas) {
+      geometry::FieldReadOptions options;
+      if (areas.size() > 1) options.feature = std::to_string(entry.index);
+      const geometry::Field field = geometry::read_field(path, options);
+      const std::string name =
+          areas.size() > 1 ? path + " feature " + std::to_string(entry.index) : path;
+      zones.push_back({name, field.geo_rings.at(0)});
+    }
+  }
+  return zones;
+}
+
+void add_area(const std::string& path, preflight::CheckOptions& options) {
+  const geometry::Field field = geometry::read_field(path);
+  if (field.geo_rings.empty())
+    throw base::InputError(path + ": --area needs an area on the map, not local metres");
+  options.area.push_back(field.geo_rings.front());
+  for (std::size_t k = 1; k < field.geo_rings.size(); ++k)
+    options.zones.push_back({"hole " + std::to_string(k) + " of " + path, field.geo_rings[k]});
+}
+
+void verify_before_writing(const std::vector<std::pair<std::string, std::string>>& files,
+                           const preflight::CheckOptions& options) {
+  const char* env = std::getenv("SWATH_PLAN_VERIFY");
+  if (env != nullptr && std::strcmp(env, "0") == 0) return;
+  const preflight::Report report = preflight::verify_files(files, options);
+  if (report.ok()) return;
+  const preflight::Violation& v = report.violations.front();
+  std::string more;
+  if (report.violations.size() > 1)
+    more = " (and " + std::to_string(report.violations.size() - 1) + " more violation(s))";
+  const std::string hint =
+      v.check == "ceiling" ? "; give --ceiling M to fly higher where a permit allows it" : "";
+  throw base::InputError("the plan's files fail the preflight check (" + v.check + "): " + v.text +
+                         more + "; nothing written" + hint);
+}
+
+}  // namespace swath::apps

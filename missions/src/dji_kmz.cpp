@@ -1,0 +1,140 @@
+// DJI WPML KMZ (DJI Pilot 2): wpmz/waylines.wpml, the file the aircraft executes, read into the
+// same Mission as a MAVLink file (issue 45).
+#include <zip.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <pugixml.hpp>
+
+#include "dji_kmz.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/mavlink/commands.hpp"
+
+namespace swath::missions {
+namespace {
+
+using base::InputError;
+using mavlink::Cmd;
+
+// The bytes of one entry of an in-memory zip archive.
+std::string zip_entry(const std::string& bytes, const char* name, const std::string& source) {
+  zip_error_t error;
+  zip_error_init(&error);
+  zip_source_t* memory = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
+  zip_t* archive = memory ? zip_open_from_source(memory, ZIP_RDONLY, &error) : nullptr;
+  if (archive == nullptr) {
+    if (memory) zip_source_free(memory);
+    throw InputError(source + ": not a readable zip archive (a DJI KMZ)");
+  }
+  std::unique_ptr<zip_t, decltype(&zip_discard)> guard(archive, &zip_discard);
+  zip_stat_t stat;
+  zip_file_t* file = zip_stat(archive, name, 0, &stat) == 0 ? zip_fopen(archive, name, 0) : nullptr;
+  if (file == nullptr) throw InputError(source + ": the KMZ has no " + name);
+  std::string out(stat.size, '\0');
+  const zip_int64_t read = zip_fread(file, out.data(), stat.size);
+  zip_fclose(file);
+  if (read < 0 || static_cast<zip_uint64_t>(read) != stat.size)
+    throw InputError(source + ": " + name + " cannot be read from the KMZ");
+  return out;
+}
+
+double number(const pugi::xml_node& node, const char* name, const std::string& where) {
+  double v = 0;
+  const std::string text = node.child(name).text().get();
+  if (!base::parse_number(text, v) || !std::isfinite(v))
+    throw InputError(where + ": wpml:" + std::string(name).substr(5) + " '" + text.substr(0, 40) +
+                     "' is not a number");
+  return v;
+}
+
+int frame_of(const std::string& mode, const std::string& where) {
+  if (mode == "relativeToStartPoint") return 3;
+  if (mode == "WGS84") return 0;  // ellipsoidal heights, read as above mean sea level
+  if (mode == "realTimeFollowSurface") return 10;
+  throw InputError(where + ": executeHeightMode '" + mode +
+                   "' is not read (relativeToStartPoint, WGS84, realTimeFollowSurface)");
+}
+
+Item command(Cmd c, double p1, double p2, const std::string& where) {
+  Item item;
+  item.command = static_cast<int>(c);
+  item.frame = 2;
+  item.params = {p1, p2, 0, 0};
+  item.place = where;
+  return item;
+}
+
+}  // namespace
+
+Mission parse_dji_kmz(const std::string& bytes, const std::string& source) {
+  const std::string wpml = zip_entry(bytes, "wpmz/waylines.wpml", source);
+  pugi::xml_document doc;
+  if (!doc.load_string(wpml.c_str())) throw InputError(source + ": wpmz/waylines.wpml is not XML");
+  const pugi::xml_node document = doc.child("kml").child("Document");
+  const pugi::xml_node folder = document.child("Folder");
+  const std::string in = source + ": waylines.wpml";
+  const int frame = frame_of(folder.child("wpml:executeHeightMode").text().get(), in);
+  Mission m;
+  m.source = source;
+  m.format = "DJI WPML";
+  std::vector<std::pair<std::size_t, std::size_t>> index;  // placemark -> items position
+  double speed = -1;
+  for (const pugi::xml_node& p : folder.children("Placemark")) {
+    const std::string where = in + ": waypoint " + std::to_string(index.size());
+    double lon = 0, lat = 0;
+    if (std::sscanf(p.child("Point").child("coordinates").text().get(), " %lf , %lf", &lon, &lat) !=
+            2 ||
+        !(std::abs(lat) <= 90 && std::abs(lon) <= 180))
+      throw InputError(where + ": coordinates must be 'longitude,latitude'");
+    if (index.empty()) m.home = {lat, lon, 0.0};  // DJI flies from where the aircraft stands
+    const double v = number(p, "wpml:waypointSpeed", where);
+    if (v > 0 && v != speed) m.items.push_back(command(Cmd::do_change_speed, 1, speed = v, where));
+    Item w;
+    w.command = static_cast<int>(Cmd::nav_waypoint);
+    w.frame = frame;
+    w.altitude_frame = frame == 3   ? AltitudeFrame::relative
+                       : frame == 0 ? AltitudeFrame::amsl
+                                    : AltitudeFrame::terrain;
+    w.position = {lat, lon, 0.0};
+    w.altitude_m = number(p, "wpml:executeHeight", where);
+    w.place = where;
+    m.items.push_back(w);
+    index.push_back({index.size(), m.items.size()});
+  }
+  if (index.empty()) throw InputError(in + ": no Placemark (waypoint)");
+  // Photos every distance or interval from a group's first waypoint to its last.
+  std::vector<std::pair<std::size_t, Item>> inserts;
+  for (const pugi::xml_node& p : folder.children("Placemark"))
+    for (const pugi::xml_node& g : p.children("wpml:actionGroup")) {
+      const std::string type =
+          g.child("wpml:actionTrigger").child("wpml:actionTriggerType").text().get();
+      if (type != "multipleDistance" && type != "multipleTiming") continue;
+      const std::string where = in + ": action group " + g.child("wpml:actionGroupId").text().get();
+      const double start = number(g, "wpml:actionGroupStartIndex", where);
+      const double end = number(g, "wpml:actionGroupEndIndex", where);
+      const double value = number(g.child("wpml:actionTrigger"), "wpml:actionTriggerParam", where);
+      if (!(start >= 0 && end >= start && end < static_cast<double>(index.size())))
+        throw InputError(where + ": its waypoint indices are out of range");
+      const bool distance = type == "multipleDistance";
+      inserts.push_back({index[static_cast<std::size_t>(start)].second,
+                         distance ? command(Cmd::do_set_cam_trigg_dist, value, 0, where)
+                                  : command(Cmd::image_start_capture, 0, value, where)});
+      inserts.push_back({index[static_cast<std::size_t>(end)].second,
+                         distance ? command(Cmd::do_set_cam_trigg_dist, 0, 0, where)
+                                  : command(Cmd::image_stop_capture, 0, 0, where)});
+    }
+  std::stable_sort(inserts.begin(), inserts.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto it = inserts.rbegin(); it != inserts.rend(); ++it)
+    m.items.insert(m.items.begin() + static_cast<std::ptrdiff_t>(it->first), it->second);
+  const std::string finish =
+      document.child("wpml:missionConfig").child("wpml:finishAction").text().get();
+  m.items.push_back(command(finish == "autoLand" ? Cmd::nav_land : Cmd::nav_return_to_launch, 0, 0,
+                            in + ": finishAction " + finish));
+  return m;
+}
+
+}  // namespace swath::missions

@@ -1,0 +1,107 @@
+#pragma once
+// The flight a mission file makes an ArduCopter-like autopilot fly (issue 45), rebuilt from the
+// file alone: home, the take-off climb, the items in order, and the return to launch or landing.
+//
+// Model and why:
+// - Legs are straight lines in 3-D between item positions (ArduCopter's WPNAV without splines);
+//   altitudes are converted to metres above home from each item's own frame (relative, AMSL
+//   through the file's home altitude, terrain through the DEM, or as relative without one).
+// - Each leg is timed at the speed in force (DO_CHANGE_SPEED 178, else the file's cruise speed,
+//   else the drone's) with a trapezoidal speed profile: the vehicle stops, accelerating and
+//   decelerating at `deceleration_m_s2`, where the path turns sharply (more than
+//   `sharp_turn_deg`) or holds, and flies through gentler corners at speed. Climbs and descents
+//   take |dz| / vertical speed; a leg takes the longer of its horizontal and vertical times. Two
+//   drones' files are thus comparable in time to within the corner rounding, which is not modelled.
+// - RETURN_TO_LAUNCH climbs to max(current, RTL altitude) (ArduCopter RTL_ALT, 15 m), flies home
+//   and descends; a mission that ends without RTL or LAND is given one (the vehicle would loiter
+//   there until the pilot or the battery failsafe brings it home: checking the way home is safer
+//   than ignoring it).
+// - Stopping margin: where the vehicle stops (sharp turn, hold, end), it may overrun the waypoint
+//   along its incoming direction by v^2 / (2 a) (missions::stopping_distance_m with the speed it
+//   reached on that leg): ArduCopter plans its braking before the waypoint, but a late braking
+//   point, a pilot's pause, or a lagging position estimate put it up to this far beyond; the checks
+//   treat that segment as part of the flight.
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "swath/geometry/ground.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/missions/mission.hpp"
+#include "swath/missions/stopping.hpp"
+
+namespace swath::preflight {
+
+/// A point of the flight: local metres (x east, y north) in the check's common frame, z metres
+/// above the drone's home.
+struct Point3 {
+  double x = 0.0, y = 0.0, z_m = 0.0;
+  geometry::Point2 xy() const { return {x, y}; }
+};
+
+/// The autopilot's parameters the model needs (defaults: ArduCopter's).
+struct FlightModel {
+  double speed_m_s = 5.0;    ///< when the file gives none (WPNAV_SPEED)
+  double climb_m_s = 2.5;    ///< WPNAV_SPEED_UP
+  double descent_m_s = 1.5;  ///< WPNAV_SPEED_DN
+  double deceleration_m_s2 = missions::kDefaultDeceleration_m_s2;  ///< WPNAV_ACCEL
+  double rtl_altitude_m = 15.0;                                    ///< RTL_ALT
+  double sharp_turn_deg = 45.0;  ///< a change of course above which the vehicle stops
+};
+
+enum class LegKind { climb, cruise, hold, rtl, descent };
+
+/// One piece of the flight, flown in a straight line at constant speed from t_start_s to t_end_s.
+struct Leg {
+  Point3 from, to;
+  double t_start_s = 0.0, t_end_s = 0.0;  ///< from the drone's launch
+  double speed_m_s = 0.0;                 ///< horizontal cruise speed in force
+  LegKind kind = LegKind::cruise;
+  std::string place;  ///< the item that flies it ("drone-1.plan: item 7") or "return to launch"
+  double trigger_distance_m = 0.0;  ///< DO_SET_CAM_TRIGG_DIST in force (0: off)
+  double trigger_interval_s = 0.0;  ///< IMAGE_START_CAPTURE interval in force (0: off)
+  bool stops_at_end = false;
+};
+
+/// The overrun past a waypoint where the vehicle stops.
+struct Overrun {
+  Point3 from, to;
+  std::string place;
+};
+
+struct FlownPath {
+  std::string source;
+  Point3 home;  ///< on the ground
+  std::vector<Leg> legs;
+  std::vector<Overrun> overruns;
+  double duration_s = 0.0;
+};
+
+/// Heights of points above the drone's home, metres, for an item in its frame. Without `ground`,
+/// terrain-relative altitudes are read as above home (flat ground); AMSL ones need the file's home
+/// altitude (or the DEM's at home).
+class HeightConverter {
+ public:
+  HeightConverter(const missions::Mission& mission, const geometry::Ground* ground);
+  double above_home_m(const missions::Item& item) const;
+  /// The ground's height above home at `p` (0 without a DEM or outside it).
+  double ground_above_home_m(const geometry::GeoPoint& p) const;
+
+ private:
+  const missions::Mission& mission_;
+  const geometry::Ground* ground_;
+  double home_amsl_m_ = 0.0;
+  bool home_amsl_known_ = false;
+};
+
+/// The flight of `mission` in `frame` (the check's common local frame). Throws base::InputError
+/// for an AMSL item when the home's altitude is unknown.
+FlownPath fly(const missions::Mission& mission, const geometry::LocalFrame& frame,
+              const FlightModel& model, const geometry::Ground* ground = nullptr);
+
+/// The position at time t_s (before the first leg: home on the ground; after the last: home).
+Point3 position_at(const FlownPath& path, double t_s);
+
+}  // namespace swath::preflight

@@ -1,0 +1,285 @@
+// The per-file checks of a flown path: zones, fences, ceiling and ground, photos (issue 45).
+#include "checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "swath/base/number_text.hpp"
+#include "swath/geometry/predicates.hpp"
+
+namespace swath::preflight {
+namespace {
+
+using base::fixed_text;
+using geometry::Point2;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Positions are written to 1e-9 degrees (0.1 mm) and altitudes to 1 mm: closer calls are rounding.
+constexpr double kTolerance_m = 1e-3;
+
+Point2 closest_on_segment(Point2 p, Point2 a, Point2 b) {
+  const Point2 d = b - a;
+  const double len2 = geometry::dot(d, d);
+  if (len2 <= 0) return a;
+  const double t = std::clamp(geometry::dot(p - a, d) / len2, 0.0, 1.0);
+  return a + d * t;
+}
+
+}  // namespace
+
+SegmentDistance segment_distance(Point2 p, Point2 q, Point2 a, Point2 b) {
+  if (geometry::segments_intersect(p, q, a, b))
+    return {0.0, geometry::segments_common_point(p, q, a, b)};
+  SegmentDistance best{kInf, p};
+  auto consider = [&](Point2 on_pq, Point2 other) {
+    const double d = geometry::distance(on_pq, other);
+    if (d < best.distance_m) best = {d, on_pq};
+  };
+  consider(p, closest_on_segment(p, a, b));
+  consider(q, closest_on_segment(q, a, b));
+  consider(closest_on_segment(a, p, q), a);
+  consider(closest_on_segment(b, p, q), b);
+  return best;
+}
+
+SegmentDistance ring_distance(Point2 p, Point2 q, const geometry::Ring& ring) {
+  SegmentDistance best{kInf, p};
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const SegmentDistance d = segment_distance(p, q, ring[i], ring[(i + 1) % ring.size()]);
+    if (d.distance_m < best.distance_m) best = d;
+  }
+  return best;
+}
+
+SegmentDistance zone_distance(Point2 p, Point2 q, const geometry::Ring& ring) {
+  if (geometry::locate_point(p, ring) != geometry::Containment::outside) return {0.0, p};
+  return ring_distance(p, q, ring);
+}
+
+std::vector<PathPiece> pieces(const FlownPath& path) {
+  std::vector<PathPiece> out;
+  for (const Leg& l : path.legs)
+    if (l.kind != LegKind::hold) out.push_back({l.from, l.to, l.place, false});
+  for (const Overrun& o : path.overruns) out.push_back({o.from, o.to, o.place, true});
+  if (out.empty()) out.push_back({path.home, path.home, path.source + ": home", false});
+  return out;
+}
+
+std::string piece_name(const PathPiece& piece) {
+  return piece.place + (piece.overrun ? " (its stopping margin)" : "");
+}
+
+void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, double clearance_m,
+                 Checked& out) {
+  for (const PathPiece& piece : pieces(*f.path))
+    for (const LocalZone& zone : zones) {
+      const double asked = zone.own_fence ? 0.0 : clearance_m;
+      SegmentDistance d{kInf, {}};
+      if (zone.radius_m > 0) {
+        const Point2 c = zone.ring.front();
+        const Point2 at = closest_on_segment(c, piece.from.xy(), piece.to.xy());
+        d = {std::max(0.0, geometry::distance(at, c) - zone.radius_m), at};
+      } else {
+        d = zone_distance(piece.from.xy(), piece.to.xy(), zone.ring);
+      }
+      if (d.distance_m < out.least_clearance_m) {
+        out.least_clearance_m = d.distance_m;
+        out.least_clearance_where = zone.name;
+      }
+      // Touching a zone counts as entering it, whatever the clearance asked.
+      if (d.distance_m <= 0 || d.distance_m < asked - kTolerance_m)
+        out.violations.push_back(
+            {"no-fly zone", piece_name(piece), f.frame->to_geo(d.at), asked - d.distance_m,
+             d.distance_m <= 0
+                 ? piece_name(piece) + " enters " + zone.name + " (" + fixed_text(asked, 2) +
+                       " m clearance asked)"
+                 : piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +
+                       zone.name + " (" + fixed_text(asked, 2) +
+                       " m asked: " + fixed_text(asked - d.distance_m, 2) + " m short)"});
+    }
+}
+
+namespace {
+
+// A piece whose ends are inside a fence but which touches or crosses its boundary: how far out it
+// goes (sampled every 1/64 of its length; 0 when it only touches).
+SegmentDistance notch_depth(const PathPiece& piece, const geometry::Ring& ring) {
+  SegmentDistance worst{0.0, piece.from.xy()};
+  for (int k = 1; k < 64; ++k) {
+    const Point2 p = piece.from.xy() + (piece.to.xy() - piece.from.xy()) * (k / 64.0);
+    if (geometry::locate_point(p, ring) != geometry::Containment::outside) continue;
+    const double out_m = ring_distance(p, p, ring).distance_m;
+    if (-out_m < worst.distance_m) worst = {-out_m, p};
+  }
+  return worst;
+}
+
+// How far inside the inclusion fences a piece stays (negative: outside by that much), and where.
+SegmentDistance fence_margin(const PathPiece& piece, const std::vector<LocalZone>& fences) {
+  SegmentDistance best{-kInf, piece.from.xy()};
+  for (const LocalZone& fence : fences) {
+    SegmentDistance margin{kInf, piece.from.xy()};
+    if (fence.radius_m > 0) {
+      for (Point2 p : {piece.from.xy(), piece.to.xy()}) {
+        const double m = fence.radius_m - geometry::distance(p, fence.ring.front());
+        if (m < margin.distance_m) margin = {m, p};
+      }
+    } else {
+      const SegmentDistance edge = ring_distance(piece.from.xy(), piece.to.xy(), fence.ring);
+      bool inside = true;
+      for (Point2 p : {piece.from.xy(), piece.to.xy()})
+        if (geometry::locate_point(p, fence.ring) == geometry::Containment::outside) {
+          inside = false;
+          const double out_m = ring_distance(p, p, fence.ring).distance_m;
+          if (-out_m < margin.distance_m) margin = {-out_m, p};
+        }
+      if (inside) margin = edge.distance_m > 0 ? edge : notch_depth(piece, fence.ring);
+    }
+    if (margin.distance_m > best.distance_m) best = margin;
+  }
+  return best;
+}
+
+}  // namespace
+
+void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, Checked& out) {
+  if (fences.empty()) return;
+  out.fence_checked = true;
+  std::vector<PathPiece> all = pieces(*f.path);
+  for (Point2 r : f.rally_points)
+    all.push_back({{r.x, r.y, 0}, {r.x, r.y, 0}, f.source + ": rally point", false});
+  all.push_back({f.path->home, f.path->home, f.source + ": home", false});
+  for (const PathPiece& piece : all) {
+    const SegmentDistance m = fence_margin(piece, fences);
+    out.least_fence_margin_m = std::min(out.least_fence_margin_m, m.distance_m);
+    if (m.distance_m < -kTolerance_m)
+      out.violations.push_back({"fence", piece_name(piece), f.frame->to_geo(m.at), -m.distance_m,
+                                piece_name(piece) + " is " + fixed_text(-m.distance_m, 2) +
+                                    " m outside the inclusion fence"});
+  }
+}
+
+void check_heights(const FileContext& f, const CheckOptions& options, Checked& out) {
+  const geometry::Ground* ground = options.ground.get();
+  for (const Leg& l : f.path->legs) {
+    if (l.kind == LegKind::hold) continue;
+    // Points along the leg: its ends without a DEM (a straight leg is highest at an end), every
+    // half DEM pixel with one.
+    const double h = geometry::distance(l.from.xy(), l.to.xy());
+    const int n = ground ? std::max(1, static_cast<int>(std::ceil(h / ground->resolution_m()))) : 1;
+    std::vector<Point3> at;
+    std::vector<geometry::GeoPoint> geo;
+    for (int k = 0; k <= n; ++k) {
+      const double s = static_cast<double>(k) / n;
+      at.push_back({l.from.x + s * (l.to.x - l.from.x), l.from.y + s * (l.to.y - l.from.y),
+                    l.from.z_m + s * (l.to.z_m - l.from.z_m)});
+      geo.push_back(f.frame->to_geo(at.back().xy()));
+    }
+    std::vector<double> ground_m(at.size(), 0.0);
+    if (ground) {
+      ground_m = ground->heights_m(geo);
+      const double home = f.home_ground_amsl_m;
+      for (double& g : ground_m) g = std::isfinite(g) && std::isfinite(home) ? g - home : 0.0;
+    }
+    double worst_high = -kInf, worst_low = kInf;
+    std::size_t high_k = 0, low_k = 0;
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      const double above = at[k].z_m - ground_m[k];
+      if (above > worst_high) worst_high = above, high_k = k;
+      if (above < worst_low) worst_low = above, low_k = k;
+    }
+    if (worst_high > out.max_height_m) out.max_height_m = worst_high;
+    if (worst_high > options.ceiling_m + kTolerance_m)
+      out.violations.push_back({"ceiling", l.place, geo[high_k], worst_high - options.ceiling_m,
+                                l.place + " flies at " + fixed_text(worst_high, 1) + " m above " +
+                                    (ground ? "the ground" : "home") + ", " +
+                                    fixed_text(worst_high - options.ceiling_m, 1) +
+                                    " m above the " + fixed_text(options.ceiling_m, 1) +
+                                    " m ceiling"});
+    if (ground && (l.kind == LegKind::cruise || l.kind == LegKind::rtl)) {
+      out.min_height_m = std::min(out.min_height_m, worst_low);
+      if (worst_low < options.min_height_m - kTolerance_m)
+        out.violations.push_back(
+            {"ground", l.place, geo[low_k], options.min_height_m - worst_low,
+             l.place + " passes " + fixed_text(worst_low, 1) + " m above the ground, " +
+                 fixed_text(options.min_height_m - worst_low, 1) + " m below the least " +
+                 fixed_text(options.min_height_m, 1) + " m"});
+    }
+  }
+}
+
+namespace {
+
+bool meets_area(const Leg& l, const std::vector<geometry::Ring>& area) {
+  for (const geometry::Ring& ring : area)
+    if (zone_distance(l.from.xy(), l.to.xy(), ring).distance_m <= 0) return true;
+  return false;
+}
+
+// Per leg: whether the straight run it belongs to (legs flown through without a stop, as a survey
+// line split into several waypoints is) meets the area. A line reaching beyond the boundary is
+// still a line; a run that never meets the area is a transit.
+std::vector<bool> runs_meeting_area(const std::vector<Leg>& legs,
+                                    const std::vector<geometry::Ring>& area) {
+  std::vector<bool> out(legs.size(), true);
+  if (area.empty()) return out;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < legs.size(); ++i) {
+    const bool run_ends = legs[i].kind != LegKind::cruise || legs[i].stops_at_end ||
+                          i + 1 == legs.size() || legs[i + 1].kind != LegKind::cruise;
+    if (!run_ends) continue;
+    bool meets = false;
+    for (std::size_t k = start; k <= i && !meets; ++k) meets = meets_area(legs[k], area);
+    for (std::size_t k = start; k <= i; ++k) out[k] = meets;
+    start = i + 1;
+  }
+  return out;
+}
+
+const char* transit_kind(const Leg& l, bool run_meets_area) {
+  switch (l.kind) {
+    case LegKind::climb:
+      return "the take-off climb";
+    case LegKind::rtl:
+      return "the return to launch";
+    case LegKind::descent:
+      return "the landing";
+    case LegKind::hold:
+      return nullptr;
+    case LegKind::cruise:
+      break;
+  }
+  // A cruise leg is a transit only where the area says so: a survey line may start or end at home.
+  if (!run_meets_area) return "a transit outside the area";
+  return nullptr;
+}
+
+}  // namespace
+
+void check_photos(const FileContext& f, const std::vector<geometry::Ring>& area, Checked& out) {
+  const std::vector<bool> meets = runs_meeting_area(f.path->legs, area);
+  for (std::size_t i = 0; i < f.path->legs.size(); ++i) {
+    const Leg& l = f.path->legs[i];
+    if (l.trigger_distance_m <= 0 && l.trigger_interval_s <= 0) continue;
+    const double h = geometry::distance(l.from.xy(), l.to.xy());
+    const double photos = l.trigger_distance_m > 0
+                              ? std::floor(h / l.trigger_distance_m) + 1
+                              : std::floor((l.t_end_s - l.t_start_s) / l.trigger_interval_s) + 1;
+    const char* transit = transit_kind(l, meets[i]);
+    if (transit == nullptr) {
+      out.photos += photos;
+      ++out.photo_legs;
+      continue;
+    }
+    out.transit_photos += photos;
+    out.violations.push_back(
+        {"photos", l.place, f.frame->to_geo(l.from.xy()), photos,
+         l.place + " leaves the camera triggering (" +
+             (l.trigger_distance_m > 0 ? "every " + fixed_text(l.trigger_distance_m, 2) + " m"
+                                       : "every " + fixed_text(l.trigger_interval_s, 2) + " s") +
+             ") on in " + transit + ": " + fixed_text(photos, 0) + " photos"});
+  }
+}
+
+}  // namespace swath::preflight

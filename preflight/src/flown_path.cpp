@@ -1,0 +1,228 @@
+#include "swath/preflight/flown_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "swath/mavlink/commands.hpp"
+
+namespace swath::preflight {
+namespace {
+
+using mavlink::Cmd;
+using missions::AltitudeFrame;
+using missions::Item;
+
+double horizontal_m(const Leg& leg) {
+  return geometry::distance(leg.from.xy(), leg.to.xy());
+}
+
+// Time over `length_m` at cruise speed v with a trapezoidal profile: a stop at either end costs
+// v / (2 a) (the distance v^2 / (2 a) flown at half speed); a leg too short to reach v is flown
+// accelerating then braking.
+double horizontal_time_s(double length_m, double v, double a, bool stop_start, bool stop_end) {
+  const int stops = int{stop_start} + int{stop_end};
+  if (length_m <= 0 || v <= 0) return 0.0;
+  if (length_m >= stops * v * v / (2 * a)) return length_m / v + stops * v / (2 * a);
+  return stops == 2 ? 2 * std::sqrt(length_m / a) : std::sqrt(2 * length_m / a);
+}
+
+double turn_deg(const Leg& in, const Leg& out) {
+  const geometry::Point2 a = in.to.xy() - in.from.xy(), b = out.to.xy() - out.from.xy();
+  return std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b))) * 180 / std::numbers::pi;
+}
+
+class PathBuilder {
+ public:
+  PathBuilder(const missions::Mission& m, const geometry::LocalFrame& frame,
+              const FlightModel& model, const geometry::Ground* ground)
+      : mission_(m), frame_(frame), model_(model), heights_(m, ground) {
+    path_.source = m.source;
+    const geometry::Point2 h = frame.to_local(m.home);
+    path_.home = at_ = {h.x, h.y, 0.0};
+    speed_ = m.cruise_speed_m_s > 0 ? m.cruise_speed_m_s : model.speed_m_s;
+  }
+
+  FlownPath build() {
+    for (const Item& item : mission_.items) {
+      if (ended_) break;
+      add(item);
+    }
+    if (!ended_) return_to_launch("return to launch after " + mission_.source + "'s last item");
+    time_legs();
+    return std::move(path_);
+  }
+
+ private:
+  // Where an item flies to; (0, 0) means "where the vehicle is" (take-off, land).
+  geometry::Point2 target_xy(const Item& item) const {
+    if (item.position.lat_deg == 0 && item.position.lon_deg == 0) return at_.xy();
+    return frame_.to_local(item.position);
+  }
+
+  void leg(Point3 to, LegKind kind, const std::string& place, double hold_s = 0.0) {
+    if (kind != LegKind::hold &&
+        std::abs(to.x - at_.x) + std::abs(to.y - at_.y) + std::abs(to.z_m - at_.z_m) < 1e-6)
+      return;
+    Leg l;
+    l.from = at_;
+    l.to = to;
+    l.kind = kind;
+    l.place = place;
+    l.speed_m_s = speed_;
+    l.trigger_distance_m = trigger_distance_m_;
+    l.trigger_interval_s = trigger_interval_s_;
+    path_.legs.push_back(l);
+    holds_s_.push_back(hold_s);
+    at_ = to;
+  }
+
+  void take_off_to(double z_m, const std::string& place) {
+    leg({at_.x, at_.y, z_m}, LegKind::climb, place);
+    airborne_ = true;
+  }
+
+  void add(const Item& item) {
+    switch (static_cast<Cmd>(item.command)) {
+      case Cmd::do_change_speed:
+        if (item.params[1] > 0) speed_ = item.params[1];
+        break;
+      case Cmd::do_set_cam_trigg_dist:
+        trigger_distance_m_ = std::max(0.0, item.params[0]);
+        break;
+      case Cmd::image_start_capture:
+        if (item.params[1] > 0) trigger_interval_s_ = item.params[1];
+        break;
+      case Cmd::image_stop_capture:
+        trigger_interval_s_ = 0.0;
+        break;
+      case Cmd::nav_takeoff:
+        take_off_to(heights_.above_home_m(item), item.place);
+        fly_to(item);
+        break;
+      case Cmd::nav_waypoint:
+      case Cmd::nav_loiter_time:
+        if (!airborne_) take_off_to(heights_.above_home_m(item), item.place);
+        fly_to(item);
+        if (item.params[0] > 0) leg(at_, LegKind::hold, item.place, item.params[0]);
+        break;
+      case Cmd::nav_delay:
+      case Cmd::condition_delay:
+        if (item.params[0] > 0) leg(at_, LegKind::hold, item.place, item.params[0]);
+        break;
+      case Cmd::nav_land: {
+        const geometry::Point2 p = target_xy(item);
+        leg({p.x, p.y, at_.z_m}, LegKind::cruise, item.place);
+        leg({p.x, p.y, 0.0}, LegKind::descent, item.place);
+        ended_ = true;
+        break;
+      }
+      case Cmd::nav_return_to_launch:
+        return_to_launch(item.place);
+        break;
+      default:
+        break;
+    }
+  }
+
+  void fly_to(const Item& item) {
+    const geometry::Point2 p = target_xy(item);
+    leg({p.x, p.y, heights_.above_home_m(item)}, LegKind::cruise, item.place);
+  }
+
+  void return_to_launch(const std::string& place) {
+    const double z = std::max(at_.z_m, model_.rtl_altitude_m);
+    leg({at_.x, at_.y, z}, LegKind::rtl, place);
+    leg({path_.home.x, path_.home.y, z}, LegKind::rtl, place);
+    leg(path_.home, LegKind::descent, place);
+    ended_ = true;
+  }
+
+  bool stops_after(std::size_t i) const {
+    const Leg& l = path_.legs[i];
+    if (i + 1 == path_.legs.size()) return true;
+    const Leg& next = path_.legs[i + 1];
+    if (next.kind == LegKind::hold || horizontal_m(next) < 1e-6) return true;
+    return turn_deg(l, next) > model_.sharp_turn_deg;
+  }
+
+  void time_legs() {
+    const double a = model_.deceleration_m_s2;
+    double t = 0.0;
+    bool stopped = true;
+    for (std::size_t i = 0; i < path_.legs.size(); ++i) {
+      Leg& l = path_.legs[i];
+      const double h = horizontal_m(l), dz = l.to.z_m - l.from.z_m;
+      l.stops_at_end = h > 0 && stops_after(i);
+      const double th = horizontal_time_s(h, l.speed_m_s, a, stopped, l.stops_at_end);
+      const double tv = dz > 0 ? dz / model_.climb_m_s : -dz / model_.descent_m_s;
+      l.t_start_s = t;
+      t += l.kind == LegKind::hold ? holds_s_[i] : std::max(th, tv);
+      l.t_end_s = t;
+      stopped = h <= 0 || l.stops_at_end;
+      if (l.stops_at_end) {
+        const double run_m = std::min(missions::stopping_distance_m(l.speed_m_s, a), h);
+        const geometry::Point2 d = (l.to.xy() - l.from.xy()) * (run_m / h);
+        path_.overruns.push_back({l.to, {l.to.x + d.x, l.to.y + d.y, l.to.z_m}, l.place});
+      }
+    }
+    path_.duration_s = t;
+  }
+
+  const missions::Mission& mission_;
+  const geometry::LocalFrame& frame_;
+  FlightModel model_;
+  HeightConverter heights_;
+  FlownPath path_;
+  std::vector<double> holds_s_;
+  Point3 at_;
+  double speed_ = 0.0, trigger_distance_m_ = 0.0, trigger_interval_s_ = 0.0;
+  bool airborne_ = false, ended_ = false;
+};
+
+}  // namespace
+
+HeightConverter::HeightConverter(const missions::Mission& mission, const geometry::Ground* ground)
+    : mission_(mission),
+      ground_(ground),
+      home_amsl_m_(mission.home_amsl_m),
+      home_amsl_known_(mission.home_amsl_known) {
+  if (!home_amsl_known_ && ground_ != nullptr) {
+    const double h = ground_->heights_m({mission.home}).at(0);
+    if (std::isfinite(h)) {
+      home_amsl_m_ = h;
+      home_amsl_known_ = true;
+    }
+  }
+}
+
+double HeightConverter::ground_above_home_m(const geometry::GeoPoint& p) const {
+  if (ground_ == nullptr) return 0.0;
+  const auto h = ground_->heights_m({p, mission_.home});
+  return std::isfinite(h[0]) && std::isfinite(h[1]) ? h[0] - h[1] : 0.0;
+}
+
+double HeightConverter::above_home_m(const Item& item) const {
+  return missions::above_home_m(
+      item, home_amsl_known_ ? std::optional<double>(home_amsl_m_) : std::nullopt,
+      item.altitude_frame == AltitudeFrame::terrain ? ground_above_home_m(item.position) : 0.0);
+}
+
+FlownPath fly(const missions::Mission& mission, const geometry::LocalFrame& frame,
+              const FlightModel& model, const geometry::Ground* ground) {
+  return PathBuilder(mission, frame, model, ground).build();
+}
+
+Point3 position_at(const FlownPath& path, double t_s) {
+  if (path.legs.empty() || t_s <= path.legs.front().t_start_s) return path.home;
+  if (t_s >= path.legs.back().t_end_s) return path.legs.back().to;
+  const auto it = std::upper_bound(path.legs.begin(), path.legs.end(), t_s,
+                                   [](double t, const Leg& l) { return t < l.t_end_s; });
+  const Leg& l = *it;
+  const double span = l.t_end_s - l.t_start_s;
+  const double f = span > 0 ? (t_s - l.t_start_s) / span : 1.0;
+  return {l.from.x + f * (l.to.x - l.from.x), l.from.y + f * (l.to.y - l.from.y),
+          l.from.z_m + f * (l.to.z_m - l.from.z_m)};
+}
+
+}  // namespace swath::preflight

@@ -1,0 +1,259 @@
+// verify(): every file flown and checked, then the drones against each other (issue 45).
+#include <algorithm>
+#include <cmath>
+
+#include "checks.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/energy/budget.hpp"
+#include "swath/preflight/verify.hpp"
+
+namespace swath::preflight {
+namespace {
+
+using base::fixed_text;
+using geometry::Point2;
+
+geometry::Ring local_ring(const geometry::LocalFrame& frame,
+                          const std::vector<geometry::GeoPoint>& ring) {
+  geometry::Ring out;
+  for (const geometry::GeoPoint& g : ring) out.push_back(frame.to_local(g));
+  if (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  return out;
+}
+
+std::vector<LocalZone> user_zones(const CheckOptions& options, const geometry::LocalFrame& frame) {
+  std::vector<LocalZone> out;
+  for (const Zone& z : options.zones) out.push_back({z.name, local_ring(frame, z.ring), 0, false});
+  return out;
+}
+
+std::vector<LocalZone> own_exclusions(const missions::Mission& m,
+                                      const geometry::LocalFrame& frame) {
+  std::vector<LocalZone> out;
+  for (std::size_t i = 0; i < m.exclusion_fences.size(); ++i)
+    out.push_back({m.source + "'s exclusion fence " + std::to_string(i + 1),
+                   local_ring(frame, m.exclusion_fences[i]), 0, true});
+  for (std::size_t i = 0; i < m.exclusion_circles.size(); ++i)
+    out.push_back({m.source + "'s exclusion circle " + std::to_string(i + 1),
+                   {frame.to_local(m.exclusion_circles[i].centre)},
+                   m.exclusion_circles[i].radius_m,
+                   true});
+  return out;
+}
+
+std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::LocalFrame& frame) {
+  std::vector<LocalZone> out;
+  for (const auto& ring : m.inclusion_fences)
+    out.push_back({"inclusion fence", local_ring(frame, ring), 0, false});
+  for (const auto& c : m.inclusion_circles)
+    out.push_back({"inclusion circle", {frame.to_local(c.centre)}, c.radius_m, false});
+  return out;
+}
+
+// The least distance between two points moving linearly over [0, span]: relative position
+// r0 + v t, least |r| where the derivative of |r|^2 vanishes, clamped to the interval.
+std::pair<double, double> closest_approach(Point3 r0, Point3 v, double span_s) {
+  const double vv = v.x * v.x + v.y * v.y + v.z_m * v.z_m;
+  const double t =
+      vv > 0 ? std::clamp(-(r0.x * v.x + r0.y * v.y + r0.z_m * v.z_m) / vv, 0.0, span_s) : 0.0;
+  return {std::hypot(r0.x + v.x * t, r0.y + v.y * t, r0.z_m + v.z_m * t), t};
+}
+
+Point3 minus(Point3 a, Point3 b) {
+  return {a.x - b.x, a.y - b.y, a.z_m - b.z_m};
+}
+
+struct Approach {
+  double distance_m = std::numeric_limits<double>::infinity();
+  double t_s = 0.0;
+};
+
+// Two drones over the time both are airborne (and on the ground too when their homes lie within
+// the separation: a drone waiting on the same pad is in the way). Between consecutive leg ends of
+// either, both move linearly: the least distance there is closed-form, so the minimum is exact
+// for the model.
+Approach least_separation(const FlownPath& a, double a_launch_s, const FlownPath& b,
+                          double b_launch_s, double separation_m) {
+  const bool shared_ground = geometry::distance(a.home.xy(), b.home.xy()) < separation_m;
+  const double a_end = a_launch_s + a.duration_s, b_end = b_launch_s + b.duration_s;
+  double from = std::max(a_launch_s, b_launch_s), to = std::min(a_end, b_end);
+  if (shared_ground) from = std::min(a_launch_s, b_launch_s), to = std::max(a_end, b_end);
+  Approach best;
+  if (to < from) return best;
+  std::vector<double> times{from, to};
+  for (const Leg& l : a.legs) times.push_back(a_launch_s + l.t_end_s);
+  for (const Leg& l : b.legs) times.push_back(b_launch_s + l.t_end_s);
+  std::sort(times.begin(), times.end());
+  for (std::size_t i = 0; i + 1 < times.size(); ++i) {
+    const double t0 = std::max(times[i], from), t1 = std::min(times[i + 1], to);
+    if (t1 < t0) continue;
+    const Point3 r0 = minus(position_at(a, t0 - a_launch_s), position_at(b, t0 - b_launch_s));
+    const Point3 r1 = minus(position_at(a, t1 - a_launch_s), position_at(b, t1 - b_launch_s));
+    const double span = t1 - t0;
+    const Point3 v =
+        span > 0 ? Point3{(r1.x - r0.x) / span, (r1.y - r0.y) / span, (r1.z_m - r0.z_m) / span}
+                 : Point3{};
+    const auto [d, t] = closest_approach(r0, v, span);
+    if (d < best.distance_m) best = {d, t0 + t};
+  }
+  return best;
+}
+
+void check_separation(const std::vector<DroneFile>& drones, const std::vector<FlownPath>& paths,
+                      const geometry::LocalFrame& frame, const CheckOptions& options,
+                      Report& report) {
+  if (drones.size() < 2) {
+    report.figures.push_back({"separation", false, {}, "one drone: nothing to keep apart"});
+    return;
+  }
+  Approach least;
+  for (std::size_t i = 0; i < paths.size(); ++i)
+    for (std::size_t j = i + 1; j < paths.size(); ++j) {
+      if (!drones[i].sorties_of.empty() && drones[i].sorties_of == drones[j].sorties_of) continue;
+      const Approach a = least_separation(paths[i], drones[i].launch_offset_s, paths[j],
+                                          drones[j].launch_offset_s, options.separation_m);
+      least.distance_m = std::min(least.distance_m, a.distance_m);
+      if (a.distance_m >= options.separation_m - 1e-3) continue;
+      const Point3 p = position_at(paths[i], a.t_s - drones[i].launch_offset_s);
+      report.violations.push_back(
+          {"separation", paths[i].source, frame.to_geo(p.xy()), options.separation_m - a.distance_m,
+           paths[i].source + " and " + paths[j].source + " come within " +
+               fixed_text(a.distance_m, 2) + " m of each other at t = " + fixed_text(a.t_s, 1) +
+               " s (" + fixed_text(p.z_m, 1) + " m up; " + fixed_text(options.separation_m, 1) +
+               " m asked)"});
+    }
+  report.figures.push_back({"separation", true, least.distance_m,
+                            std::isfinite(least.distance_m)
+                                ? "least " + fixed_text(least.distance_m, 2) +
+                                      " m between two drones at the same time (" +
+                                      fixed_text(options.separation_m, 1) + " m asked)"
+                                : "the drones are never airborne at the same time"});
+}
+
+void check_energy(const DroneFile& d, const CheckOptions& options, Report& report) {
+  energy::WaypointMission m = energy::waypoint_mission(d.mission);
+  for (double& speed : m.speeds_m_s)  // a file without a speed flies the autopilot's default
+    if (!(speed > 0)) speed = options.model.speed_m_s;
+  const energy::DroneBudget b = energy::budget(m, *options.drone);
+  const std::string figure = d.mission.source + ": " + fixed_text(b.flight_time_s / 60, 1) +
+                             " min, lands at " + fixed_text(b.landing_soc * 100, 1) +
+                             " % charge (reserve " +
+                             fixed_text(options.drone->battery.reserve_soc * 100, 1) + " %)";
+  report.figures.push_back({"energy", true, b.flight_time_s, figure});
+  if (b.can_finish()) return;
+  const energy::BudgetPoint& at = *b.reserve_crossed;
+  report.violations.push_back(
+      {"energy", d.mission.source, at.geo, -b.reserve_margin,
+       d.mission.source + " reaches the " +
+           fixed_text(options.drone->battery.reserve_soc * 100, 1) + " % reserve at t = " +
+           fixed_text(at.t_s, 0) + " s of " + fixed_text(b.flight_time_s, 0) +
+           " s and would land at " + fixed_text(b.landing_soc * 100, 1) + " % (" +
+           fixed_text(-b.reserve_margin * 100, 1) + " % into the reserve)"});
+}
+
+void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report& report) {
+  if (any_zone)
+    report.figures.push_back({"zones", true, c.least_clearance_m,
+                              "least clearance " + fixed_text(c.least_clearance_m, 2) +
+                                  " m, from " + c.least_clearance_where + " (" +
+                                  fixed_text(o.clearance_m, 1) + " m asked)"});
+  else
+    report.figures.push_back({"zones", false, {}, "no zone given and no exclusion fence"});
+  if (c.fence_checked)
+    report.figures.push_back(
+        {"fence", true, c.least_fence_margin_m,
+         (c.least_fence_margin_m >= 0
+              ? "least margin " + fixed_text(c.least_fence_margin_m, 2) + " m inside"
+              : "reaches " + fixed_text(-c.least_fence_margin_m, 2) + " m outside") +
+             " the inclusion fence (home, rally points, every leg and stopping margin)"});
+  else
+    report.figures.push_back({"fence", false, {}, "no inclusion fence in the files"});
+  report.figures.push_back({"ceiling", true, c.max_height_m,
+                            "highest " + fixed_text(c.max_height_m, 1) + " m above " +
+                                (o.ground ? "the ground" : "home") + " (ceiling " +
+                                fixed_text(o.ceiling_m, 1) + " m)"});
+  if (o.ground)
+    report.figures.push_back({"ground", true, c.min_height_m,
+                              "lowest " + fixed_text(c.min_height_m, 1) +
+                                  " m above the ground on cruise and return legs (least " +
+                                  fixed_text(o.min_height_m, 1) + " m)"});
+  else
+    report.figures.push_back(
+        {"ground", false, {}, "no DEM (--terrain): the ceiling is above home"});
+  report.figures.push_back({"photos", true, c.photos,
+                            fixed_text(c.photos, 0) + " photos on " + std::to_string(c.photo_legs) +
+                                " legs, " + fixed_text(c.transit_photos, 0) + " in transits"});
+}
+
+// One violation per check and place (a leg's pieces, a waypoint's two legs): the worst.
+std::vector<Violation> worst_per_place(std::vector<Violation> all) {
+  std::vector<Violation> out;
+  for (Violation& v : all) {
+    auto same = std::find_if(out.begin(), out.end(), [&](const Violation& o) {
+      return o.check == v.check && o.place == v.place;
+    });
+    if (same == out.end())
+      out.push_back(std::move(v));
+    else if (v.amount > same->amount)
+      *same = std::move(v);
+  }
+  return out;
+}
+
+// Each sortie after the first of its drone launches when the one before it has landed.
+std::vector<DroneFile> sorties_in_turn(std::vector<DroneFile> drones,
+                                       const std::vector<FlownPath>& paths) {
+  for (std::size_t i = 0; i < drones.size(); ++i) {
+    if (drones[i].sorties_of.empty()) continue;
+    for (std::size_t k = i; k-- > 0;)
+      if (drones[k].sorties_of == drones[i].sorties_of) {
+        drones[i].launch_offset_s = drones[k].launch_offset_s + paths[k].duration_s;
+        break;
+      }
+  }
+  return drones;
+}
+
+}  // namespace
+
+Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options) {
+  Report report;
+  if (drones.empty()) return report;
+  const geometry::LocalFrame frame(drones.front().mission.home);
+  const std::vector<LocalZone> zones = user_zones(options, frame);
+  std::vector<geometry::Ring> area;
+  for (const auto& ring : options.area) area.push_back(local_ring(frame, ring));
+  std::vector<FlownPath> paths;
+  Checked checked;
+  bool any_zone = !zones.empty();
+  for (const DroneFile& d : drones) {
+    report.files.push_back(d.mission.source);
+    paths.push_back(fly(d.mission, frame, options.model, options.ground.get()));
+    FileContext f{d.mission.source, &paths.back(), &frame, {}, 0.0};
+    for (const auto& r : d.mission.rally_points) f.rally_points.push_back(frame.to_local(r));
+    if (options.ground) f.home_ground_amsl_m = options.ground->heights_m({d.mission.home}).at(0);
+    std::vector<LocalZone> all = zones;
+    for (LocalZone& z : own_exclusions(d.mission, frame)) all.push_back(std::move(z));
+    any_zone = any_zone || all.size() > zones.size();
+    check_zones(f, all, options.clearance_m, checked);
+    check_fences(f, inclusions(d.mission, frame), checked);
+    check_heights(f, options, checked);
+    check_photos(f, area, checked);
+  }
+  add_figures(checked, options, any_zone, report);
+  report.violations = worst_per_place(std::move(checked.violations));
+  if (options.drone)
+    for (const DroneFile& d : drones) check_energy(d, options, report);
+  else
+    report.figures.push_back({"energy", false, {}, "no drone profile (--drone)"});
+  const std::vector<DroneFile> launched = sorties_in_turn(drones, paths);
+  check_separation(launched, paths, frame, options, report);
+  std::string times;
+  for (std::size_t i = 0; i < paths.size(); ++i)
+    times += (i ? ", " : "") + paths[i].source + " " + fixed_text(paths[i].duration_s / 60, 1) +
+             " min from t = " + fixed_text(launched[i].launch_offset_s, 0) + " s";
+  report.figures.push_back({"flight", true, {}, "as the autopilot flies it: " + times});
+  return report;
+}
+
+}  // namespace swath::preflight

@@ -1,0 +1,287 @@
+// The preflight check (issue 45): the flown path's timing against closed forms, each check caught
+// on a planted violation and silent on the clean mission, distances against brute force.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../../preflight/src/checks.hpp"
+#include "swath/base/file_text.hpp"
+#include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/energy/sim_config.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/geometry/predicates.hpp"
+#include "swath/missions/mission.hpp"
+#include "swath/preflight/verify.hpp"
+
+namespace swath::preflight {
+namespace {
+
+const geometry::GeoPoint kOrigin{47.0, 8.0, 0.0};
+
+struct Row {
+  int command;
+  double x = 0, y = 0, alt_m = 0, p1 = 0;
+};
+
+// A WPL 110 file of rows placed in local metres around kOrigin, home at `home`.
+std::string wpl(const std::vector<Row>& rows, geometry::Point2 home = {0, 0}) {
+  const geometry::LocalFrame frame(kOrigin);
+  const geometry::GeoPoint h = frame.to_geo(home);
+  std::string out = "QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t" + base::fixed_text(h.lat_deg, 9) +
+                    "\t" + base::fixed_text(h.lon_deg, 9) + "\t0\t1\n";
+  int index = 1;
+  for (const Row& r : rows) {
+    const bool nav = missions::is_navigation(r.command);
+    const geometry::GeoPoint g = nav ? frame.to_geo({r.x, r.y}) : geometry::GeoPoint{0, 0, 0};
+    out += std::to_string(index++) + "\t0\t" + (nav ? "3" : "2") + "\t" +
+           std::to_string(r.command) + "\t" + base::fixed_text(r.p1, 3) + "\t0\t0\t0\t" +
+           base::fixed_text(g.lat_deg, 9) + "\t" + base::fixed_text(g.lon_deg, 9) + "\t" +
+           base::fixed_text(r.alt_m, 3) + "\t1\n";
+  }
+  return out;
+}
+
+DroneFile drone(const std::vector<Row>& rows, const std::string& name, double launch_s = 0,
+                geometry::Point2 home = {0, 0}) {
+  return {missions::parse_mission(wpl(rows, home), name), launch_s};
+}
+
+std::vector<geometry::GeoPoint> square(double x0, double y0, double x1, double y1) {
+  const geometry::LocalFrame frame(kOrigin);
+  return {frame.to_geo({x0, y0}), frame.to_geo({x1, y0}), frame.to_geo({x1, y1}),
+          frame.to_geo({x0, y1})};
+}
+
+// Take off to 20 m, a line east with the camera on from (0, 20) to (100, 20), camera off, RTL.
+std::vector<Row> survey_rows() {
+  return {{22, 0, 0, 20},    {16, 0, 20, 20},   {206, 0, 0, 0, 10},
+          {16, 100, 20, 20}, {206, 0, 0, 0, 0}, {20}};
+}
+
+const Violation* find(const Report& r, const std::string& check) {
+  for (const Violation& v : r.violations)
+    if (v.check == check) return &v;
+  return nullptr;
+}
+
+TEST(FlownPath, TimesLegsWithStopsAsClosedForms) {
+  // Climb 20 m at 2.5 m/s (8 s); 100 m east at 5 m/s stopping at both ends (100/5 + 2 * 5/5 =
+  // 22 s); RTL: 20 m is above RTL_ALT's 15 m (no climb), 100 m back (22 s), 20 m down at 1.5 m/s.
+  const DroneFile d = drone({{22, 0, 0, 20}, {16, 100, 0, 20}, {20}}, "a.waypoints");
+  const FlownPath p = fly(d.mission, geometry::LocalFrame(kOrigin), FlightModel{});
+  EXPECT_NEAR(p.duration_s, 8 + 22 + 22 + 20 / 1.5, 1e-4);  // positions written to 0.1 mm
+  // Stops where it turns back and at home: each overrun is v^2 / 2a = 5 m along the leg.
+  ASSERT_EQ(p.overruns.size(), 2u);
+  EXPECT_NEAR(p.overruns[0].to.x, 105.0, 1e-3);
+  EXPECT_NEAR(p.overruns[1].to.x, -5.0, 1e-3);
+  EXPECT_DOUBLE_EQ(missions::stopping_distance_m(5.0), 5.0);
+}
+
+TEST(FlownPath, ShortLegsNeverReachCruiseAndGentleCornersDoNotStop) {
+  // 4 m between stops at a = 2.5: 2 sqrt(L / a) = 2.53 s (cruise speed 5 m/s is never reached).
+  const DroneFile d = drone({{22, 0, 0, 10}, {16, 4, 0, 10}, {16, 104, 10, 10}, {20}}, "b");
+  const FlownPath p = fly(d.mission, geometry::LocalFrame(kOrigin), FlightModel{});
+  ASSERT_GE(p.legs.size(), 3u);
+  const Leg& short_leg = p.legs[1];
+  // The corner at (4, 0) turns by 5.7 degrees: no stop there, so this leg stops at its start only.
+  EXPECT_FALSE(short_leg.stops_at_end);
+  EXPECT_NEAR(short_leg.t_end_s - short_leg.t_start_s, std::sqrt(2 * 4 / 2.5), 1e-4);
+}
+
+TEST(Verify, CleanMissionPassesEveryCheck) {
+  CheckOptions o;
+  o.zones = {{"pond", square(40, 40, 60, 60)}};  // 20 m north of the line
+  const Report r = verify({drone(survey_rows(), "a.waypoints")}, o);
+  EXPECT_TRUE(r.ok()) << report_text(r);
+  // The least clearance is the line's 20 m to the pond (closed form).
+  for (const Figure& f : r.figures)
+    if (f.check == "zones") EXPECT_NEAR(*f.value, 20.0, 1e-3);
+}
+
+TEST(Verify, AWaypointMovedIntoAZone) {
+  std::vector<Row> rows = survey_rows();
+  rows[3].x = 50, rows[3].y = 50;  // the line's end inside the pond
+  CheckOptions o;
+  o.zones = {{"pond", square(40, 40, 60, 60)}};
+  const Report r = verify({drone(rows, "a.waypoints")}, o);
+  const Violation* v = find(r, "no-fly zone");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NE(v->place.find("a.waypoints: item"), std::string::npos);
+  EXPECT_NEAR(v->amount, 5.0, 1e-3);  // inside it: 0 m of the 5 m asked
+}
+
+TEST(Verify, TheStoppingMarginAloneReachesAZone) {
+  // The line ends 3 m short of a wall; the 5 m stop overrun enters it.
+  CheckOptions o;
+  o.clearance_m = 0;
+  o.zones = {{"wall", square(103, 0, 110, 40)}};
+  const Report r = verify({drone(survey_rows(), "a.waypoints")}, o);
+  const Violation* v = find(r, "no-fly zone");
+  ASSERT_NE(v, nullptr);
+  EXPECT_NE(v->place.find("stopping margin"), std::string::npos);
+}
+
+TEST(Verify, AFenceShrunkOffTheHome) {
+  missions::Mission m = missions::parse_mission(wpl(survey_rows()), "a.waypoints");
+  m.inclusion_fences = {square(-20, -20, 120, 40)};
+  EXPECT_TRUE(verify({{m, 0}}, {}).ok());
+  m.inclusion_fences = {square(-20, 10, 120, 40)};  // the home (0, 0) 10 m outside
+  const Report r = verify({{m, 0}}, {});
+  bool home = false;
+  for (const Violation& v : r.violations)
+    if (v.check == "fence" && v.place == "a.waypoints: home") {
+      home = true;
+      EXPECT_NEAR(v.amount, 10.0, 1e-3);
+    }
+  EXPECT_TRUE(home) << report_text(r);
+}
+
+TEST(Verify, ALegAboveTheCeiling) {
+  std::vector<Row> rows = survey_rows();
+  rows[3].alt_m = 130;
+  const Report r = verify({drone(rows, "a.waypoints")}, {});
+  const Violation* v = find(r, "ceiling");
+  ASSERT_NE(v, nullptr);
+  EXPECT_NEAR(v->amount, 10.0, 1e-6);
+  CheckOptions higher;
+  higher.ceiling_m = 130;
+  EXPECT_EQ(find(verify({drone(rows, "a.waypoints")}, higher), "ceiling"), nullptr);
+}
+
+// Ground rising 0.5 m per metre east of x = 50 (500 m above sea level west of it): closed form.
+class RampGround : public geometry::Ground {
+ public:
+  std::vector<double> heights_m(const std::vector<geometry::GeoPoint>& points) const override {
+    std::vector<double> out;
+    for (const geometry::GeoPoint& g : points)
+      out.push_back(500.0 + 0.5 * std::max(0.0, frame_.to_local(g).x - 50.0));
+    return out;
+  }
+  double resolution_m() const override { return 1.0; }
+  std::string source() const override { return "ramp"; }
+
+ private:
+  geometry::LocalFrame frame_{kOrigin};
+};
+
+TEST(Verify, WithADemTheGroundRisesUnderTheLine) {
+  // The line flies at 20 m above home; at x = 100 the ground is 25 m above home: 5 m under it.
+  CheckOptions o;
+  o.ground = std::make_shared<RampGround>();
+  const Report r = verify({drone(survey_rows(), "a.waypoints")}, o);
+  const Violation* v = find(r, "ground");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, 5.0 - (20.0 - 25.0), 1e-3);  // 10 m below the least 5 m
+  for (const Figure& f : r.figures)
+    if (f.check == "ground") EXPECT_NEAR(*f.value, -5.0, 1e-3);
+  // Terrain-relative items (frame 10) follow it: 20 m above the ground everywhere.
+  std::string text = wpl(survey_rows());
+  for (std::size_t at = text.find("\t0\t3\t"); at != std::string::npos;
+       at = text.find("\t0\t3\t", at))
+    text.replace(at, 5, "\t0\t10\t");
+  const Report follow = verify({{missions::parse_mission(text, "t.waypoints"), 0}}, o);
+  EXPECT_EQ(find(follow, "ground"), nullptr) << report_text(follow);
+}
+
+TEST(Verify, TwoDronesCrossingAtOneHeightAndTime) {
+  // a: climb (8 s), north 50 m (12 s), east 100 m: at (50, 50) 11 s in, t = 31 s. b from (50, -30):
+  // climb (8 s), north 20 m (6 s), hold 4 s, north 120 m: at (50, 50) 13 s in, t = 31 s. Same 20 m.
+  const std::vector<Row> a = {{22, 0, 0, 20}, {16, 0, 50, 20}, {16, 100, 50, 20}, {20}};
+  const std::vector<Row> b = {{22, 50, -30, 20}, {16, 50, -10, 20, 4}, {16, 50, 110, 20}, {20}};
+  const Report r =
+      verify({drone(a, "a.waypoints"), drone(b, "b.waypoints", 0, {50, -30})}, CheckOptions{});
+  const Violation* v = find(r, "separation");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, 10.0, 1e-3);  // they meet
+  EXPECT_NE(v->text.find("t = 31.0 s"), std::string::npos) << v->text;
+  // b launched after a has landed: never airborne together, homes 58 m apart.
+  const Report later =
+      verify({drone(a, "a.waypoints"), drone(b, "b.waypoints", 300, {50, -30})}, CheckOptions{});
+  EXPECT_EQ(find(later, "separation"), nullptr) << report_text(later);
+}
+
+TEST(Verify, SortiesOfOneDroneFlyInTurn) {
+  const std::vector<Row> a = {{22, 0, 0, 20}, {16, 0, 50, 20}, {16, 100, 50, 20}, {20}};
+  DroneFile first = drone(a, "d-1.waypoints"), second = drone(a, "d-2.waypoints");
+  first.sorties_of = second.sorties_of = "d";
+  const Report r = verify({first, second}, CheckOptions{});
+  EXPECT_EQ(find(r, "separation"), nullptr) << report_text(r);
+  const double t = fly(first.mission, geometry::LocalFrame(kOrigin), {}).duration_s;
+  bool said = false;  // the second launches when the first has landed
+  for (const Figure& f : r.figures)
+    said = said || (f.check == "flight" &&
+                    f.text.find("d-2.waypoints " + base::fixed_text(t / 60, 1) + " min from t = " +
+                                base::fixed_text(t, 0) + " s") != std::string::npos);
+  EXPECT_TRUE(said) << report_text(r);
+}
+
+TEST(Verify, SeparationAgreesWithBruteForceInTime) {
+  const std::vector<Row> a = {{22, 0, 0, 20}, {16, 0, 50, 20}, {16, 100, 50, 20}, {20}};
+  const std::vector<Row> b = {{22, 60, -40, 25}, {16, 60, 10, 25}, {16, 60, 120, 25}, {20}};
+  const DroneFile da = drone(a, "a"), db = drone(b, "b", 3.0, {60, -40});
+  const geometry::LocalFrame frame(kOrigin);
+  const FlownPath pa = fly(da.mission, frame, {}), pb = fly(db.mission, frame, {});
+  double brute = 1e9;
+  for (double t = 3.0; t <= std::min(pa.duration_s, pb.duration_s + 3.0); t += 1e-3) {
+    const Point3 p = position_at(pa, t), q = position_at(pb, t - 3.0);
+    brute = std::min(brute, std::hypot(p.x - q.x, p.y - q.y, p.z_m - q.z_m));
+  }
+  CheckOptions o;
+  o.separation_m = 0;
+  for (const Figure& f : verify({da, db}, o).figures)
+    if (f.check == "separation") EXPECT_NEAR(*f.value, brute, 1e-2);
+}
+
+TEST(Verify, ABatteryTooSmall) {
+  std::string yaml = base::read_text_file(
+      std::string(SWATH_SOURCE_DIR) + "/share/drones/quad-5ah.yaml", "profile");
+  CheckOptions o;
+  o.drone = energy::parse_drone_profile(yaml, "quad-5ah.yaml");
+  EXPECT_EQ(find(verify({drone(survey_rows(), "a")}, o), "energy"), nullptr);
+  yaml.replace(yaml.find("capacity_ah: 5"), 14, "capacity_ah: 0.05");
+  o.drone = energy::parse_drone_profile(yaml, "tiny.yaml");
+  const Violation* v = find(verify({drone(survey_rows(), "a")}, o), "energy");
+  ASSERT_NE(v, nullptr);
+  EXPECT_GT(v->amount, 0.0);
+}
+
+TEST(Verify, ATriggerLeftOnInTheWayHome) {
+  std::vector<Row> rows = survey_rows();
+  rows.erase(rows.begin() + 4);  // no 206 0 after the line: photos all the way home
+  const Report r = verify({drone(rows, "a.waypoints")}, {});
+  const Violation* v = find(r, "photos");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NE(v->text.find("the return to launch"), std::string::npos);
+  EXPECT_TRUE(verify({drone(survey_rows(), "a.waypoints")}, {}).ok());
+}
+
+// segment_distance against sampling both segments, on random segments (fixed seed).
+TEST(Checks, SegmentDistanceAgreesWithSampling) {
+  std::mt19937 rng(45);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int trial = 0; trial < 200; ++trial) {
+    const geometry::Point2 p{u(rng), u(rng)}, q{u(rng), u(rng)}, a{u(rng), u(rng)},
+        b{u(rng), u(rng)};
+    double brute = 1e9;
+    for (int i = 0; i <= 400; ++i)
+      brute = std::min(brute, geometry::distance_to_segment(p + (q - p) * (i / 400.0), a, b));
+    const SegmentDistance d = segment_distance(p, q, a, b);
+    EXPECT_LE(d.distance_m, brute + 1e-9);
+    EXPECT_NEAR(d.distance_m, brute, geometry::distance(p, q) / 400 + 1e-9);  // the sample step
+    EXPECT_NEAR(geometry::distance_to_segment(d.at, a, b), d.distance_m, 1e-9);
+  }
+}
+
+TEST(VerifyFiles, ASetWithoutAMissionFileIsBadInput) {
+  EXPECT_TRUE(verify_files({{"a.waypoints", wpl(survey_rows())}}, {}).ok());
+  EXPECT_THROW(verify_files({{"notes.txt", "x"}}, {}), base::InputError);
+}
+
+}  // namespace
+}  // namespace swath::preflight
