@@ -271,6 +271,14 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
   app.add_option("--fence-margin", fence_margin_m_,
                  "The .plan's inclusion fence: the area grown by this many metres (default: "
                  "turnaround + half the footprint width + 10 m)");
+  app.add_option("--layer-spacing", layer_spacing_m_,
+                 "Drones of one plan whose paths come within 10 m of each other fly this many "
+                 "metres apart in height (altitude layers above the imaging altitude)")
+      ->capture_default_str();
+  app.add_option("--ceiling", ceiling_m_,
+                 "No altitude layer above this height above home, metres; a fleet needing more "
+                 "layers is refused")
+      ->capture_default_str();
   app.add_flag("--fence-files", fence_files_,
                "Also write fence.waypoints, fence.fen and rally.waypoints for Mission Planner");
   app.add_flag("--litchi", litchi_,
@@ -358,6 +366,8 @@ void PlanCommand::check_numbers() const {
   base::check_range(outside_margin_m_, kClearance_m, "--outside-margin");
   base::check_range(gimbal_pitch_deg_, kGimbalPitch_deg, "--gimbal-pitch");
   if (fence_margin_m_) base::check_range(*fence_margin_m_, kFenceMargin_m, "--fence-margin");
+  base::check_range(layer_spacing_m_, kLayerSpacing_m, "--layer-spacing");
+  base::check_range(ceiling_m_, kCeiling_m, "--ceiling");
   base::check_range(max_bank_deg_, kBank_deg, "--max-bank");
   if (endurance_s_) base::check_range(*endurance_s_, kEndurance_s, "--endurance");
   base::check_range(reserve_, kReserve, "--reserve");
@@ -474,6 +484,8 @@ planning::SurveyRequest PlanCommand::request() const {
   request.triggering.gimbal_pitch_deg = gimbal_pitch_deg_;
   request.crosshatch = crosshatch_;
   request.fence_margin_m = fence_margin_m_;
+  request.layer_spacing_m = layer_spacing_m_;
+  request.ceiling_m = ceiling_m_;
   request.land = land_;
   request.max_bank_deg = max_bank_deg_;
   request.sorties = sorties_ == "auto";
@@ -584,6 +596,10 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
                 kilometres(m.work_length_m).c_str(), kilometres(m.transit_length_m).c_str(),
                 planning::duration_text(m.flight_time_s).c_str(),
                 fixed_text(d.speed_m_s, 1).c_str(), m.waypoint_count, d.photos.size());
+    if (plan.drones.size() > 1)
+      std::printf("    at %s m above home, launched %s after the first\n",
+                  fixed_text(plan.imaging.altitude_m + d.layer_m, 1).c_str(),
+                  planning::duration_text(d.launch_offset_s).c_str());
     for (const planning::Sortie& s : d.sorties)
       std::printf("    sortie %d  %s, %s work, %zu photos, resumes at %s m, %s m\n", s.number,
                   planning::duration_text(s.mission.flight_time_s).c_str(),

@@ -284,7 +284,7 @@ void check_balanced(const test::DivisionCase& c, double bound) {
   EXPECT_LE(longest / shortest, bound) << what;
 
   // Lanes: the undivided plan's lines as its drone flies them (the division's lanes, their stops
-  // beside a no-fly zone drawn back by kStoppingMargin_m as the drones' are).
+  // beside a no-fly zone drawn back by the stopping overrun as the drones' are).
   const double angle = whole.sweep.angle_deg;
   double lanes_m = 0, flown_m = 0;
   for (const DronePlan& d : plan.drones)
