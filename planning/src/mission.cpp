@@ -34,6 +34,7 @@ double rest_to_rest_s(double length, double v, double a) {
 // least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
 constexpr double kSlowApproach_m = 2.0;
 constexpr double kSlowest_m_s = 0.2;
+constexpr double kMergeWithin_m = 0.05;
 
 class MissionBuilder {
  public:
@@ -52,6 +53,18 @@ class MissionBuilder {
   Point2 at() const { return m_.path.back(); }
 
   void waypoint(Point2 p, double hold_s = 0) {
+    // A waypoint within kMergeWithin_m of the last one is that one (its hold the longer): the leg
+    // between them, written in rounded degrees, would point anywhere, and the overrun past a stop
+    // runs along the leg into it.
+    if (m_.path.size() > 1 && geometry::distance(p, at()) < kMergeWithin_m) {
+      for (auto it = m_.items.rbegin(); it != m_.items.rend(); ++it)
+        if (it->kind == ItemKind::waypoint) {
+          it->value = std::max(it->value, hold_s);
+          break;
+        }
+      holds_.back() = std::max(holds_.back(), hold_s);
+      return;
+    }
     m_.items.push_back({ItemKind::waypoint, p, s_.altitude_m, hold_s});
     m_.path.push_back(p);
     holds_.push_back(hold_s);
@@ -136,8 +149,10 @@ class MissionBuilder {
     for (std::size_t i = m_.path.size() - 2; i >= 1 && i < item_of.size(); --i) {
       const Point2 p = m_.path[i], before = m_.path[i - 1], after = m_.path[i + 1];
       const double in_m = geometry::distance(before, p), out_m = geometry::distance(p, after);
-      if (in_m <= 0 || out_m <= 0) continue;
-      if (!(holds_[i] > 0 || turn_deg(before, p, after) > kStopTurn_deg)) continue;
+      if (in_m <= 0) continue;
+      // A hold on a waypoint repeated at the stop is the stop's.
+      const bool held = holds_[i] > 0 || (out_m <= 0 && holds_[i + 1] > 0);
+      if (!(held || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg))) continue;
       const Point2 u = (p - before) * (1 / in_m);
       const double free_m = s_.free_run_m(p, u);
       if (free_m >= overrun_m) continue;
@@ -145,20 +160,33 @@ class MissionBuilder {
           std::max(kSlowest_m_s, std::sqrt(2 * s_.accel_m_s2 * std::max(free_m - 0.05, 0.0)));
       if (slow_m_s >= s_.speed_m_s) continue;
       const double lead_m = std::min(kSlowApproach_m, in_m / 2), past_m = std::min(1.0, out_m / 2);
-      const Point2 w_in = p - u * lead_m, w_out = p + (after - p) * (past_m / out_m);
+      const Point2 w_in = p - u * lead_m;
+      const Point2 w_out = out_m > 0 ? p + (after - p) * (past_m / out_m) : p;
       // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
+      // (A next waypoint on the stop itself: the cruise speed after that one instead.)
       const std::size_t next = i + 1 < item_of.size() ? item_of[i + 1] : m_.items.size() - 1;
-      m_.items.insert(m_.items.begin() + static_cast<long>(next),
-                      {{ItemKind::waypoint, w_out, s_.altitude_m, 0.0},
-                       {ItemKind::change_speed, {}, 0.0, s_.speed_m_s}});
-      m_.items.insert(m_.items.begin() + static_cast<long>(item_of[i]),
-                      {{ItemKind::waypoint, w_in, s_.altitude_m, 0.0},
-                       {ItemKind::change_speed, {}, 0.0, slow_m_s}});
-      m_.path.insert(m_.path.begin() + static_cast<long>(i) + 1, w_out);
-      holds_.insert(holds_.begin() + static_cast<long>(i) + 1, 0.0);
+      if (out_m > 0)
+        m_.items.insert(m_.items.begin() + static_cast<long>(next),
+                        {{ItemKind::waypoint, w_out, s_.altitude_m, 0.0},
+                         {ItemKind::change_speed, {}, 0.0, s_.speed_m_s}});
+      else
+        m_.items.insert(m_.items.begin() + static_cast<long>(next) + 1,
+                        {ItemKind::change_speed, {}, 0.0, s_.speed_m_s});
+      added_s += (std::min(lead_m, in_m) + past_m) * (1 / slow_m_s - 1 / s_.speed_m_s);
+      if (out_m > 0) {
+        m_.path.insert(m_.path.begin() + static_cast<long>(i) + 1, w_out);
+        holds_.insert(holds_.begin() + static_cast<long>(i) + 1, 0.0);
+      }
+      // (An incoming leg under a metre: slow from the waypoint before, no waypoint added.)
+      const auto at = m_.items.begin() + static_cast<long>(item_of[i]);
+      if (in_m < 1.0) {
+        m_.items.insert(at, {ItemKind::change_speed, {}, 0.0, slow_m_s});
+        continue;
+      }
+      m_.items.insert(at, {{ItemKind::waypoint, w_in, s_.altitude_m, 0.0},
+                           {ItemKind::change_speed, {}, 0.0, slow_m_s}});
       m_.path.insert(m_.path.begin() + static_cast<long>(i), w_in);
       holds_.insert(holds_.begin() + static_cast<long>(i), 0.0);
-      added_s += (lead_m + past_m) * (1 / slow_m_s - 1 / s_.speed_m_s);
     }
     return added_s;
   }

@@ -50,12 +50,17 @@ double transit_outside_m(const SurveyPlan& plan) {
     const DroneMission& m = d.mission;
     if (m.lines.empty()) continue;
     const auto& path = m.path;
+    // The first line's start and the last one's end among the path's points (a waypoint within
+    // 5 cm of the one before it is merged into it: mission.cpp's MissionBuilder::waypoint).
+    auto at = [](geometry::Point2 q) {
+      return [q](geometry::Point2 p) { return geometry::distance(p, q) < 0.051; };
+    };
     const auto first = static_cast<std::size_t>(
-        std::find(path.begin(), path.end(), m.lines.front().start) - path.begin());
-    const auto last =
-        path.size() - 1 -
-        static_cast<std::size_t>(std::find(path.rbegin(), path.rend(), m.lines.back().end) -
-                                 path.rbegin());
+        std::find_if(path.begin(), path.end(), at(m.lines.front().start)) - path.begin());
+    const auto from_end = static_cast<std::size_t>(
+        std::find_if(path.rbegin(), path.rend(), at(m.lines.back().end)) - path.rbegin());
+    if (first >= path.size() || from_end >= path.size()) continue;
+    const std::size_t last = path.size() - 1 - from_end;
     for (std::size_t i = first; i < last; ++i)
       outside += measure.length_outside(path[i], path[i + 1]);
   }
