@@ -32,7 +32,7 @@ double rest_to_rest_s(double length, double v, double a) {
 // the slow speed is set, metres (ArduCopter brakes to a stop at the waypoint anyway; the model
 // of the overrun takes the speed commanded there), and the slowest speed set, m/s (ArduCopter's
 // least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
-constexpr double kSlowApproach_m = 2.0;
+constexpr double kSlowApproach_m = 0.5;
 constexpr double kSlowest_m_s = 0.2;
 constexpr double kMergeWithin_m = 0.05;
 
@@ -134,7 +134,7 @@ class MissionBuilder {
   // Stops (a hold, a turn sharper than kStopTurn_deg) where the overrun at the cruise speed would
   // reach a zone's clearance band (s.free_run_m) are approached slowly: a waypoint kSlowApproach_m
   // before the stop, the speed there cut to what stops within the free run (at least
-  // kSlowest_m_s), and back to the cruise speed at a waypoint 1 m past it. The change after a
+  // kSlowest_m_s), and back to the cruise speed at a waypoint kSlowApproach_m past it. The change after a
   // waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
   // waypoint before them) earlier: slow from at latest kSlowApproach_m before the stop, fast
   // again from no earlier than the stop itself. Returns the time the slow legs add, seconds.
@@ -159,7 +159,7 @@ class MissionBuilder {
       const double slow_m_s =
           std::max(kSlowest_m_s, std::sqrt(2 * s_.accel_m_s2 * std::max(free_m - 0.05, 0.0)));
       if (slow_m_s >= s_.speed_m_s) continue;
-      const double lead_m = std::min(kSlowApproach_m, in_m / 2), past_m = std::min(1.0, out_m / 2);
+      const double lead_m = std::min(kSlowApproach_m, in_m / 2), past_m = std::min(kSlowApproach_m, out_m / 2);
       const Point2 w_in = p - u * lead_m;
       const Point2 w_out = out_m > 0 ? p + (after - p) * (past_m / out_m) : p;
       // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
@@ -172,7 +172,7 @@ class MissionBuilder {
       else
         m_.items.insert(m_.items.begin() + static_cast<long>(next) + 1,
                         {ItemKind::change_speed, {}, 0.0, s_.speed_m_s});
-      added_s += (std::min(lead_m, in_m) + past_m) * (1 / slow_m_s - 1 / s_.speed_m_s);
+      added_s += ((in_m < 1.0 ? in_m : lead_m) + past_m) * (1 / slow_m_s - 1 / s_.speed_m_s);
       if (out_m > 0) {
         m_.path.insert(m_.path.begin() + static_cast<long>(i) + 1, w_out);
         holds_.insert(holds_.begin() + static_cast<long>(i) + 1, 0.0);

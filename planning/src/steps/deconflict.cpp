@@ -127,11 +127,22 @@ bool overlap(const std::vector<Window>& a, double shift_a, const std::vector<Win
   return false;
 }
 
+// How much the flight's estimate (stops, accelerations) exceeds flying it at constant speed,
+// seconds: how far its time near any point may be off either way.
+double unsure_s(const DronePlan& d) {
+  const DroneMission& m = d.mission;
+  const double altitude_m = m.items.empty() ? 0.0 : m.items.front().altitude_m;
+  const double constant_s = altitude_m / d.climb_speed_m_s + m.path_length_m / d.speed_m_s +
+                            altitude_m / d.descent_speed_m_s;
+  return std::max(0.0, m.flight_time_s - constant_s);
+}
+
 // Launch offsets: a drone climbs and descends at its home through every lower layer, so no drone
 // of a lower layer may be near that home then. Drones are launched lowest layer first, each at
 // the first 10 s step where its climb and descent miss every placed lower drone's time near its
 // home and every placed higher drone's climb and descent miss its own time near theirs; the
-// windows are widened by 15 s and 5 % of the longer flight for timing the estimate gets wrong.
+// windows are widened by 15 s, 5 % of the longer flight and the larger unsure_s() for the timing
+// the estimate may get wrong.
 std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<int>& layer) {
   const std::size_t n = plan.drones.size();
   std::vector<std::size_t> order(n);
@@ -154,8 +165,8 @@ std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<int
       for (const std::size_t j : placed) {
         if (layer[i] == layer[j]) continue;  // apart everywhere, whenever (layers())
         const std::size_t hi = layer[i] > layer[j] ? i : j, lo = hi == i ? j : i;
-        const double slack_s =
-            15 + 0.05 * std::max(legs[i].back().to_s, legs[j].back().to_s);
+        const double slack_s = 15 + 0.05 * std::max(legs[i].back().to_s, legs[j].back().to_s) +
+                               std::max(unsure_s(plan.drones[i]), unsure_s(plan.drones[j]));
         clash = overlap(column(hi), offset[hi],
                         near_point(legs[lo], plan.drones[hi].home, near_m), offset[lo], slack_s);
         if (clash) break;
