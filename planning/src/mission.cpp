@@ -17,8 +17,6 @@ namespace {
 
 using geometry::Point2;
 
-
-
 // Time to fly `length` from rest to rest at most `v` with acceleration `a` (trapezoid, or a
 // triangle when the leg is too short to reach v).
 double rest_to_rest_s(double length, double v, double a) {
@@ -53,10 +51,10 @@ class MissionBuilder {
   Point2 at() const { return m_.path.back(); }
 
   void waypoint(Point2 p, double hold_s = 0) {
-    // A waypoint within kMergeWithin_m of the last one is that one (its hold the longer): the leg
-    // between them, written in rounded degrees, would point anywhere, and the overrun past a stop
-    // runs along the leg into it.
-    if (m_.path.size() > 1 && geometry::distance(p, at()) < kMergeWithin_m) {
+    // Beside zones, a waypoint within kMergeWithin_m of the last one is that one (its hold the
+    // longer): the leg between them, written in rounded degrees, would point anywhere, and the
+    // overrun past a stop runs along the leg into it.
+    if (s_.free_run_m && m_.path.size() > 1 && geometry::distance(p, at()) < kMergeWithin_m) {
       for (auto it = m_.items.rbegin(); it != m_.items.rend(); ++it)
         if (it->kind == ItemKind::waypoint) {
           it->value = std::max(it->value, hold_s);
@@ -134,8 +132,8 @@ class MissionBuilder {
   // Stops (a hold, a turn sharper than kStopTurn_deg) where the overrun at the cruise speed would
   // reach a zone's clearance band (s.free_run_m) are approached slowly: a waypoint kSlowApproach_m
   // before the stop, the speed there cut to what stops within the free run (at least
-  // kSlowest_m_s), and back to the cruise speed at a waypoint kSlowApproach_m past it. The change after a
-  // waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
+  // kSlowest_m_s), and back to the cruise speed at a waypoint kSlowApproach_m past it. The change
+  // after a waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
   // waypoint before them) earlier: slow from at latest kSlowApproach_m before the stop, fast
   // again from no earlier than the stop itself. Returns the time the slow legs add, seconds.
   double slow_approaches() {
@@ -159,7 +157,8 @@ class MissionBuilder {
       const double slow_m_s =
           std::max(kSlowest_m_s, std::sqrt(2 * s_.accel_m_s2 * std::max(free_m - 0.05, 0.0)));
       if (slow_m_s >= s_.speed_m_s) continue;
-      const double lead_m = std::min(kSlowApproach_m, in_m / 2), past_m = std::min(kSlowApproach_m, out_m / 2);
+      const double lead_m = std::min(kSlowApproach_m, in_m / 2),
+                   past_m = std::min(kSlowApproach_m, out_m / 2);
       const Point2 w_in = p - u * lead_m;
       const Point2 w_out = out_m > 0 ? p + (after - p) * (past_m / out_m) : p;
       // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
@@ -371,8 +370,8 @@ DrawnBack stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
     if (from_line == to_line) continue;
     const Point2 p = path.points[i];
     out.stop[i] = s.stop_at && s.stop_at(p);
-    const bool sharp = i > 0 && i + 1 < n &&
-                       turn_deg(out.points[i - 1], p, path.points[i + 1]) > kStopTurn_deg;
+    const bool sharp =
+        i > 0 && i + 1 < n && turn_deg(out.points[i - 1], p, path.points[i + 1]) > kStopTurn_deg;
     if (!inside || !s.free_run_m || !(out.stop[i] || sharp || i + 1 == n)) continue;
     const Point2 along = from_line ? path.points[i - 1] : path.points[i + 1];
     const double length_m = geometry::distance(p, along);

@@ -289,8 +289,7 @@ void check_balanced(const test::DivisionCase& c, double bound) {
     // Flown at its altitude layer; balanced before the layers were laid (their climb is apart).
     const double t = recomputed_flight_s(d, plan.imaging.altitude_m + d.layer_m);
     EXPECT_NEAR(t, d.mission.flight_time_s, 1e-6 * t) << what << " " << d.name;
-    const double balanced_s =
-        t - d.layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
+    const double balanced_s = t - d.layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
     longest = std::max(longest, balanced_s);
     shortest = std::min(shortest, balanced_s);
   }

@@ -24,11 +24,7 @@ namespace swath::planning {
 namespace {
 
 using geometry::GeoPoint;
-using geometry::Point2;
-using geometry::Polygon;
-using geometry::Ring;
-using nlohmann::json;
-using namespace plan_reader;  // NOLINT: the reader is the test's vocabulary
+using namespace plan_reader;  // NOLINT: the reader is the test's vocabulary (Point2, Ring, json)
 
 // ---- Random layouts ----------------------------------------------------------------------------
 
@@ -167,17 +163,14 @@ Closest least_overrun_clearance(const ReadPlan& p, const std::vector<Point2>& pa
   for (std::size_t i = 1; i + 1 < path.size(); ++i) {
     const Point2 in = path[i] - path[i - 1], out = path[i + 1] - path[i];
     if (norm(in) < 1e-6) continue;
-    bool stop = std::any_of(held.begin(), held.end(),
-                            [&](Point2 h) { return norm(h - path[i]) < 0.01; });
+    bool stop =
+        std::any_of(held.begin(), held.end(), [&](Point2 h) { return norm(h - path[i]) < 0.01; });
     if (!stop && norm(out) > 1e-6)
       stop = (in.x * out.x + in.y * out.y) / (norm(in) * norm(out)) < std::cos(M_PI / 4);
     if (!stop) continue;
     const double overrun_m = speed.at(i) * speed.at(i) / (2 * 2.5);
     Closest c = least_clearance({path[i], path[i] + in * (overrun_m / norm(in))}, zones);
     c.leg = i;
-    if (std::getenv("SAFE_DEBUG") && c.distance_m < std::atof(std::getenv("SAFE_DEBUG")))
-      std::printf("stop %zu: speed %.2f from (%.2f %.2f) at (%.2f %.2f) to (%.2f %.2f)\n", i, speed.at(i),
-                  path[i - 1].x, path[i - 1].y, path[i].x, path[i].y, path[i + 1].x, path[i + 1].y);
     if (c.distance_m < least.distance_m) least = c;
   }
   return least;
@@ -323,7 +316,9 @@ TEST(SafePlans, RandomLayoutsAreFlownSafelyOrRefused) {
   const int n = layout_count();
   for (int k = 0; k < n; ++k) {
     const Layout l = random_layout(rng);
-    if (std::getenv("SAFE_ONLY") && std::atoi(std::getenv("SAFE_ONLY")) != k) continue;
+    // SWATH_SAFE_PLAN_ONLY=K: only layout K (to look at one that fails).
+    if (const char* only = std::getenv("SWATH_SAFE_PLAN_ONLY"); only && std::atoi(only) != k)
+      continue;
     SCOPED_TRACE("layout " + std::to_string(k));
     const Outcome o = check_layout(l, failing < 5);
     refused += o.refused;

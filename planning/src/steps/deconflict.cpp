@@ -91,9 +91,10 @@ struct Leg {
 std::vector<Leg> timeline(const DronePlan& d) {
   const DroneMission& m = d.mission;
   const double altitude_m = d.mission.items.empty() ? 0.0 : d.mission.items.front().altitude_m;
-  const double climb_s = altitude_m / d.climb_speed_m_s, descent_s = altitude_m / d.descent_speed_m_s;
-  const double cruise_s = std::max(m.path_length_m / d.speed_m_s,
-                                   m.flight_time_s - climb_s - descent_s);
+  const double climb_s = altitude_m / d.climb_speed_m_s,
+               descent_s = altitude_m / d.descent_speed_m_s;
+  const double cruise_s =
+      std::max(m.path_length_m / d.speed_m_s, m.flight_time_s - climb_s - descent_s);
   const double scale = m.path_length_m > 0 ? cruise_s / m.path_length_m : 0.0;
   std::vector<Leg> out{{0.0, climb_s, m.home, m.home}};
   double now = climb_s;
@@ -122,7 +123,8 @@ bool overlap(const std::vector<Window>& a, double shift_a, const std::vector<Win
              double shift_b, double slack_s) {
   for (const Window& x : a)
     for (const Window& y : b)
-      if (x.from_s + shift_a - slack_s < y.to_s + shift_b && y.from_s + shift_b - slack_s < x.to_s + shift_a)
+      if (x.from_s + shift_a - slack_s < y.to_s + shift_b &&
+          y.from_s + shift_b - slack_s < x.to_s + shift_a)
         return true;
   return false;
 }
@@ -167,8 +169,8 @@ std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<int
         const std::size_t hi = layer[i] > layer[j] ? i : j, lo = hi == i ? j : i;
         const double slack_s = 15 + 0.05 * std::max(legs[i].back().to_s, legs[j].back().to_s) +
                                std::max(unsure_s(plan.drones[i]), unsure_s(plan.drones[j]));
-        clash = overlap(column(hi), offset[hi],
-                        near_point(legs[lo], plan.drones[hi].home, near_m), offset[lo], slack_s);
+        clash = overlap(column(hi), offset[hi], near_point(legs[lo], plan.drones[hi].home, near_m),
+                        offset[lo], slack_s);
         if (clash) break;
       }
       if (!clash) break;
@@ -193,13 +195,14 @@ void deconflict(SurveyPlan& plan) {
   const double spacing_m = plan.request.layer_spacing_m;
   const double highest_m = plan.imaging.altitude_m + top * spacing_m;
   if (top > 0 && highest_m > plan.request.ceiling_m + 1e-9)
-    throw base::InputError(
-        "the " + std::to_string(plan.drones.size()) + " drones need " + std::to_string(top + 1) +
-        " altitude layers " + base::fixed_text(spacing_m, 1) + " m apart to keep " +
-        base::fixed_text(kSeparation_m, 0) + " m from each other, up to " +
-        base::fixed_text(highest_m, 1) + " m, above the ceiling of " +
-        base::fixed_text(plan.request.ceiling_m, 1) +
-        " m; give a lower --altitude, a smaller --layer-spacing, a higher --ceiling or fewer drones");
+    throw base::InputError("the " + std::to_string(plan.drones.size()) + " drones need " +
+                           std::to_string(top + 1) + " altitude layers " +
+                           base::fixed_text(spacing_m, 1) + " m apart to keep " +
+                           base::fixed_text(kSeparation_m, 0) + " m from each other, up to " +
+                           base::fixed_text(highest_m, 1) + " m, above the ceiling of " +
+                           base::fixed_text(plan.request.ceiling_m, 1) +
+                           " m; give a lower --altitude, a smaller --layer-spacing, a higher "
+                           "--ceiling or fewer drones");
   for (std::size_t i = 0; i < plan.drones.size(); ++i) {
     DronePlan& d = plan.drones[i];
     d.layer_m = layer[i] * spacing_m;

@@ -15,7 +15,8 @@ namespace {
 // How far from p along the unit direction u before the closed areas `rings` (the zones grown by
 // the clearance): 0 when p is inside one or on its edge heading in, +infinity when the ray meets
 // none. A point on an edge heading out (a line end on the clearance band) is free.
-double ray_to_rings_m(geometry::Point2 p, geometry::Point2 u, const std::vector<geometry::Ring>& rings) {
+double ray_to_rings_m(geometry::Point2 p, geometry::Point2 u,
+                      const std::vector<geometry::Ring>& rings) {
   constexpr double kStep_m = 1e-4;
   const geometry::Point2 ahead = p + u * kStep_m;
   double least = INFINITY;

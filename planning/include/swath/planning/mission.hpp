@@ -104,9 +104,9 @@ struct MissionSettings {
   Triggering triggering;
   bool land = false;  ///< NAV_LAND (fixed-wing: DO_LAND_START then NAV_LAND) instead of RTL
   /// Line ends (either end) where the drone must stop: a hold of kStopHold_s is written there
-  /// (drawn back along the line as free_run_m asks). ArduCopter flies through every waypoint without a
-  /// hold, and a turn flown through at a line end beside a no-fly zone swings into the clearance
-  /// band (DESIGN.md §14 "Clearance").
+  /// (drawn back along the line as free_run_m asks). ArduCopter flies through every waypoint
+  /// without a hold, and a turn flown through at a line end beside a no-fly zone swings into the
+  /// clearance band (DESIGN.md §14 "Clearance").
   std::function<bool(geometry::Point2)> stop_at;
   /// From a point along a unit direction, how far the vehicle may fly before it comes within the
   /// clearance of a no-fly zone, metres (+infinity: never). Line ends where a stop would overrun
