@@ -496,7 +496,8 @@ TEST(FlightTrue, ALongOutlinesFenceFitsAnAutopilotAndHoldsTheMargin) {
                                 [&](const Ring& in) { return inside(q, in); }))
             << q.x << ", " << q.y;
       }
-    EXPECT_TRUE(plan.warnings.empty());
+    // No warning about the fence (these flights are long: the endurance warning may be there).
+    for (const std::string& w : plan.warnings) EXPECT_EQ(w.find("fence"), std::string::npos) << w;
   }
 }
 

@@ -428,5 +428,28 @@ TEST(SafePlans, DronesFromOneHomeFlyInLayersAndLaunchInTurn) {
   }
 }
 
+// A flight longer than any endurance given is warned about; with none given, longer than a
+// typical multirotor's 30 min (an 18-hour single-drone plan went unwarned).
+TEST(SafePlans, ALongFlightWithoutAnEnduranceIsWarnedAbout) {
+  SurveyRequest r = rectangle_with_pond(8);
+  r.field = test::local_field({{{0, 0}, {1200, 0}, {1200, 800}, {0, 800}}, {}});
+  r.home = r.field.frame->to_geo({-100, -100});
+  auto warned = [](const SurveyPlan& plan) {
+    return std::any_of(plan.warnings.begin(), plan.warnings.end(), [](const std::string& w) {
+      return w.find("longer than a typical multirotor's 30 min") != std::string::npos;
+    });
+  };
+  const SurveyPlan plan = plan_survey(r);
+  ASSERT_GT(plan.drones[0].mission.flight_time_s, 30 * 60);
+  EXPECT_TRUE(warned(plan));
+  r.endurance_s = 4 * 3600;  // given: its own warning only above it
+  EXPECT_FALSE(warned(plan_survey(r)));
+  r.field = test::local_field({{{0, 0}, {300, 0}, {300, 200}, {0, 200}}, {}});
+  r.endurance_s.reset();
+  const SurveyPlan short_plan = plan_survey(r);
+  ASSERT_LT(short_plan.drones[0].mission.flight_time_s, 30 * 60);
+  EXPECT_FALSE(warned(short_plan));
+}
+
 }  // namespace
 }  // namespace swath::planning

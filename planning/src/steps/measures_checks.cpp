@@ -102,6 +102,19 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
                          duration_text(*d.endurance_s) + " endurance less the " +
                          fixed_text(100 * plan.request.reserve, 0) +
                          " % reserve; cut it into sorties with --sorties auto, or add drones");
+  } else if (!d.endurance_s && d.sorties.empty()) {
+    // No endurance given: against a typical one (an 18-hour single-drone plan went unwarned).
+    const double typical_s = plan.request.vehicle == Vehicle::multirotor
+                                 ? kTypicalMultirotorEndurance_s
+                                 : kTypicalFixedWingEndurance_s;
+    if (d.mission.flight_time_s > typical_s)
+      warnings.push_back(
+          "drone " + d.name + "'s flight takes " + duration_text(d.mission.flight_time_s) +
+          ", longer than a typical " +
+          (plan.request.vehicle == Vehicle::multirotor ? "multirotor's " : "fixed-wing's ") +
+          duration_text(typical_s) +
+          " on one battery, and no endurance was given; give --endurance (or the fleet's "
+          "endurance_s) and --sorties auto, or add drones");
   }
   // Fixed-wing: a U-turn between lines closer than two turn radii (few lines, or split cells).
   if (plan.turn_radius_m > 0) {

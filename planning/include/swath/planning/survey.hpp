@@ -115,6 +115,10 @@ struct SurveyRequest {
   double ceiling_m = 120.0;
 };
 
+/// Flight times on one battery the endurance warning assumes when none is given, seconds.
+inline constexpr double kTypicalMultirotorEndurance_s = 30 * 60;
+inline constexpr double kTypicalFixedWingEndurance_s = 90 * 60;
+
 /// How far apart two drones of one plan stay at every moment (altitude layers, staggered
 /// launches), metres.
 inline constexpr double kSeparation_m = 10.0;
