@@ -223,8 +223,8 @@ void PlanCommand::add_output_options(CLI::App& app) {
                "instead of refusing it; the summary and a warning say what was done");
   app.add_option(
       "--exclude", exclude_,
-      "No-fly zone: an area file (.geojson, .kml, .csv lon,lat) inside the area; repeat for "
-      "more. Honoured by split");
+      "No-fly zones: an area file (.geojson, .kml, .csv lon,lat); every polygon of it (each "
+      "feature, each part of a MultiPolygon) is a zone; repeat for more. Honoured by split");
 }
 
 // What the mission files hold and which formats besides the defaults.
@@ -465,8 +465,14 @@ planning::SurveyRequest PlanCommand::request() const {
                                                           : planning::SplitCells::best;
   request.split_directions = directions_ == "per-region" ? planning::SplitDirections::per_region
                                                          : planning::SplitDirections::one;
+  // Every area of an --exclude file is a zone (each feature of a FeatureCollection, each part of
+  // a MultiPolygon): a file of several zones planned only its first.
   for (const std::string& path : exclude_)
-    request.exclusions.push_back(geometry::read_field(path).geo_rings.at(0));
+    for (const geometry::AreaEntry& zone : geometry::list_areas(path)) {
+      geometry::FieldReadOptions options;
+      options.feature = std::to_string(zone.index);
+      request.exclusions.push_back(geometry::read_field(path, options).geo_rings.at(0));
+    }
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
