@@ -451,5 +451,34 @@ TEST(SafePlans, ALongFlightWithoutAnEnduranceIsWarnedAbout) {
   EXPECT_FALSE(warned(short_plan));
 }
 
+// A fleet whose batteries cannot fly a 1.2 x 0.8 km field in one go each is refused without
+// sorties and, with them, flies it in sorties cut to each drone's endurance (it was refused "add
+// drones or battery" either way).
+TEST(SafePlans, SortiesLetAShortFleetFlyItsShares) {
+  SurveyRequest r = rectangle_with_pond(8);
+  r.field = test::local_field({{{0, 0}, {1200, 0}, {1200, 800}, {0, 800}}, {}});
+  r.home = r.field.frame->to_geo({-100, -100});
+  vehicle::Fleet fleet;
+  fleet.home = *r.home;
+  for (int i = 0; i < 2; ++i) {
+    vehicle::Drone d;
+    d.name = "q" + std::to_string(i);
+    d.battery_level = 1.0;
+    d.endurance_s = 900;
+    d.speed_m_s = 5 + 3 * i;
+    fleet.drones.push_back(d);
+  }
+  r.fleet = fleet;
+  EXPECT_THROW(plan_survey(r), base::InputError);
+  r.sorties = true;
+  const SurveyPlan plan = plan_survey(r);
+  for (const DronePlan& d : plan.drones) {
+    EXPECT_GT(d.sorties.size(), 1u) << d.name;
+    for (const Sortie& s : d.sorties) EXPECT_LE(s.mission.flight_time_s, 900 * 0.8 + 1e-6);
+  }
+  // Shares in proportion to the ranges (5 and 8 m/s for 900 s): within 15 % of 5 / 13.
+  EXPECT_NEAR(plan.drones[0].work.share, 5.0 / 13, 0.15 * 5 / 13);
+}
+
 }  // namespace
 }  // namespace swath::planning
