@@ -224,8 +224,8 @@ void PlanCommand::add_output_options(CLI::App& app) {
                "instead of refusing it; the summary and a warning say what was done");
   app.add_option(
       "--exclude", exclude_,
-      "No-fly zone: an area file (.geojson, .kml, .csv lon,lat) inside the area; repeat for "
-      "more. Honoured by split");
+      "No-fly zones: an area file (.geojson, .kml, .csv lon,lat); every polygon of it (each "
+      "feature, each part of a MultiPolygon) is a zone; repeat for more. Honoured by split");
 }
 
 // What the mission files hold and which formats besides the defaults.
@@ -242,9 +242,10 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
                  "many metres from holes and no-fly zones; the summary reports what is kept")
       ->capture_default_str();
   app.add_option("--ceiling", ceiling_m_,
-                 "Refuse to write a mission that flies higher than this, metres above the ground "
-                 "(with --terrain) or above home (default 120, the common legal limit; the files "
-                 "are checked as written, see swath verify)")
+                 "The highest a mission may fly, metres above the ground (with --terrain) or above "
+                 "home (default 120, the common legal limit): altitude layers stay under it (a "
+                 "fleet needing more is refused), and files that fly higher are refused as "
+                 "written (see swath verify)")
       ->capture_default_str();
   app.add_option("--boundary-clearance", boundary_clearance_m_,
                  "Keep lines and turns this many metres inside the outer boundary")
@@ -277,6 +278,10 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
   app.add_option("--fence-margin", fence_margin_m_,
                  "The .plan's inclusion fence: the area grown by this many metres (default: "
                  "turnaround + half the footprint width + 10 m)");
+  app.add_option("--layer-spacing", layer_spacing_m_,
+                 "Drones of one plan whose paths come within 10 m of each other fly this many "
+                 "metres apart in height (altitude layers above the imaging altitude)")
+      ->capture_default_str();
   app.add_flag("--fence-files", fence_files_,
                "Also write fence.waypoints, fence.fen and rally.waypoints for Mission Planner");
   app.add_flag("--litchi", litchi_,
@@ -360,11 +365,12 @@ void PlanCommand::check_numbers() const {
   base::check_range(angle_step_deg_, kAngleStep_deg, "--angle-step");
   if (turnaround_m_) base::check_range(*turnaround_m_, kTurnaround_m, "--turnaround");
   base::check_range(clearance_m_, kClearance_m, "--clearance");
-  base::check_range(ceiling_m_, kAltitude_m, "--ceiling");
   base::check_range(boundary_clearance_m_, kClearance_m, "--boundary-clearance");
   base::check_range(outside_margin_m_, kClearance_m, "--outside-margin");
   base::check_range(gimbal_pitch_deg_, kGimbalPitch_deg, "--gimbal-pitch");
   if (fence_margin_m_) base::check_range(*fence_margin_m_, kFenceMargin_m, "--fence-margin");
+  base::check_range(layer_spacing_m_, kLayerSpacing_m, "--layer-spacing");
+  base::check_range(ceiling_m_, kCeiling_m, "--ceiling");
   base::check_range(max_bank_deg_, kBank_deg, "--max-bank");
   if (endurance_s_) base::check_range(*endurance_s_, kEndurance_s, "--endurance");
   base::check_range(reserve_, kReserve, "--reserve");
@@ -462,8 +468,14 @@ planning::SurveyRequest PlanCommand::request() const {
                                                           : planning::SplitCells::best;
   request.split_directions = directions_ == "per-region" ? planning::SplitDirections::per_region
                                                          : planning::SplitDirections::one;
+  // Every area of an --exclude file is a zone (each feature of a FeatureCollection, each part of
+  // a MultiPolygon): a file of several zones planned only its first.
   for (const std::string& path : exclude_)
-    request.exclusions.push_back(geometry::read_field(path).geo_rings.at(0));
+    for (const geometry::AreaEntry& zone : geometry::list_areas(path)) {
+      geometry::FieldReadOptions options;
+      options.feature = std::to_string(zone.index);
+      request.exclusions.push_back(geometry::read_field(path, options).geo_rings.at(0));
+    }
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
@@ -481,6 +493,8 @@ planning::SurveyRequest PlanCommand::request() const {
   request.triggering.gimbal_pitch_deg = gimbal_pitch_deg_;
   request.crosshatch = crosshatch_;
   request.fence_margin_m = fence_margin_m_;
+  request.layer_spacing_m = layer_spacing_m_;
+  request.ceiling_m = ceiling_m_;
   request.land = land_;
   request.max_bank_deg = max_bank_deg_;
   request.sorties = sorties_ == "auto";
@@ -591,6 +605,10 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
                 kilometres(m.work_length_m).c_str(), kilometres(m.transit_length_m).c_str(),
                 planning::duration_text(m.flight_time_s).c_str(),
                 fixed_text(d.speed_m_s, 1).c_str(), m.waypoint_count, d.photos.size());
+    if (plan.drones.size() > 1)
+      std::printf("    at %s m above home, launched %s after the first\n",
+                  fixed_text(plan.imaging.altitude_m + d.layer_m, 1).c_str(),
+                  planning::duration_text(d.launch_offset_s).c_str());
     for (const planning::Sortie& s : d.sorties)
       std::printf("    sortie %d  %s, %s work, %zu photos, resumes at %s m, %s m\n", s.number,
                   planning::duration_text(s.mission.flight_time_s).c_str(),

@@ -93,6 +93,7 @@ class PlanCommand : public Command {
   double gimbal_pitch_deg_ = -90.0;
   bool crosshatch_ = false;
   std::optional<double> fence_margin_m_;
+  double layer_spacing_m_ = 10.0;
   bool fence_files_ = false;
   bool litchi_ = false;
   bool dji_ = false;

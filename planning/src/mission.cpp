@@ -4,20 +4,18 @@
 #include <cmath>
 
 namespace swath::planning {
-namespace {
 
-using geometry::Point2;
-
-constexpr double kPi = 3.14159265358979323846;
-
-// Turn angle at b between legs a-b and b-c, degrees in [0, 180].
-double turn_deg(Point2 a, Point2 b, Point2 c) {
-  const Point2 u = b - a, v = c - b;
+double turn_deg(geometry::Point2 a, geometry::Point2 b, geometry::Point2 c) {
+  const geometry::Point2 u = b - a, v = c - b;
   const double nu = std::hypot(u.x, u.y), nv = std::hypot(v.x, v.y);
   if (nu == 0 || nv == 0) return 0;
   const double cosine = std::clamp(geometry::dot(u, v) / (nu * nv), -1.0, 1.0);
-  return std::acos(cosine) * 180 / kPi;
+  return std::acos(cosine) * 180 / 3.14159265358979323846;  // π
 }
+
+namespace {
+
+using geometry::Point2;
 
 // Time to fly `length` from rest to rest at most `v` with acceleration `a` (trapezoid, or a
 // triangle when the leg is too short to reach v).
@@ -28,6 +26,14 @@ double rest_to_rest_s(double length, double v, double a) {
 }
 
 // Builds the items and the path of one mission step by step.
+// Approaches to stops beside the zones (MissionBuilder::slow_approaches): how far before the stop
+// the slow speed is set, metres (ArduCopter brakes to a stop at the waypoint anyway; the model
+// of the overrun takes the speed commanded there), and the slowest speed set, m/s (ArduCopter's
+// least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
+constexpr double kSlowApproach_m = 0.5;
+constexpr double kSlowest_m_s = 0.2;
+constexpr double kMergeWithin_m = 0.05;
+
 class MissionBuilder {
  public:
   MissionBuilder(int drone, Point2 home, const MissionSettings& s) : s_(s) {
@@ -45,6 +51,18 @@ class MissionBuilder {
   Point2 at() const { return m_.path.back(); }
 
   void waypoint(Point2 p, double hold_s = 0) {
+    // Beside zones, a waypoint within kMergeWithin_m of the last one is that one (its hold the
+    // longer): the leg between them, written in rounded degrees, would point anywhere, and the
+    // overrun past a stop runs along the leg into it.
+    if (s_.free_run_m && m_.path.size() > 1 && geometry::distance(p, at()) < kMergeWithin_m) {
+      for (auto it = m_.items.rbegin(); it != m_.items.rend(); ++it)
+        if (it->kind == ItemKind::waypoint) {
+          it->value = std::max(it->value, hold_s);
+          break;
+        }
+      holds_.back() = std::max(holds_.back(), hold_s);
+      return;
+    }
     m_.items.push_back({ItemKind::waypoint, p, s_.altitude_m, hold_s});
     m_.path.push_back(p);
     holds_.push_back(hold_s);
@@ -97,10 +115,11 @@ class MissionBuilder {
     }
     m_.path.push_back(m_.home);
     holds_.push_back(0);
+    const double slowed_s = slow_approaches();
     for (std::size_t i = 0; i + 1 < m_.path.size(); ++i)
       m_.path_length_m += geometry::distance(m_.path[i], m_.path[i + 1]);
     m_.transit_length_m = m_.path_length_m - m_.work_length_m;
-    m_.flight_time_s = path_time_s(m_.path, holds_, s_.speed_m_s, s_.vehicle);
+    m_.flight_time_s = path_time_s(m_.path, holds_, s_.speed_m_s, s_.vehicle) + slowed_s;
     if (s_.vehicle == Vehicle::multirotor)
       m_.flight_time_s += s_.altitude_m / s_.climb_speed_m_s + s_.altitude_m / s_.descent_speed_m_s;
     for (const MissionItem& item : m_.items) m_.waypoint_count += positional(item.kind);
@@ -110,6 +129,67 @@ class MissionBuilder {
   DroneMission& mission() { return m_; }
 
  private:
+  // Stops (a hold, a turn sharper than kStopTurn_deg) where the overrun at the cruise speed would
+  // reach a zone's clearance band (s.free_run_m) are approached slowly: a waypoint kSlowApproach_m
+  // before the stop, the speed there cut to what stops within the free run (at least
+  // kSlowest_m_s), and back to the cruise speed at a waypoint kSlowApproach_m past it. The change
+  // after a waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
+  // waypoint before them) earlier: slow from at latest kSlowApproach_m before the stop, fast
+  // again from no earlier than the stop itself. Returns the time the slow legs add, seconds.
+  double slow_approaches() {
+    if (!s_.free_run_m || s_.vehicle != Vehicle::multirotor || m_.path.size() < 3) return 0.0;
+    const double overrun_m = stop_overrun_m(s_.speed_m_s, s_.accel_m_s2);
+    std::vector<std::size_t> item_of{0};  // path index -> item index (0: takeoff at home)
+    for (std::size_t k = 1; k < m_.items.size(); ++k)
+      if (m_.items[k].kind == ItemKind::waypoint) item_of.push_back(k);
+    double added_s = 0;
+    // Backwards, so that insertions leave the indices still to visit as they were.
+    for (std::size_t i = m_.path.size() - 2; i >= 1 && i < item_of.size(); --i) {
+      const Point2 p = m_.path[i], before = m_.path[i - 1], after = m_.path[i + 1];
+      const double in_m = geometry::distance(before, p), out_m = geometry::distance(p, after);
+      if (in_m <= 0) continue;
+      // A hold on a waypoint repeated at the stop is the stop's.
+      const bool held = holds_[i] > 0 || (out_m <= 0 && holds_[i + 1] > 0);
+      if (!(held || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg))) continue;
+      const Point2 u = (p - before) * (1 / in_m);
+      const double free_m = s_.free_run_m(p, u);
+      if (free_m >= overrun_m) continue;
+      const double slow_m_s =
+          std::max(kSlowest_m_s, std::sqrt(2 * s_.accel_m_s2 * std::max(free_m - 0.05, 0.0)));
+      if (slow_m_s >= s_.speed_m_s) continue;
+      const double lead_m = std::min(kSlowApproach_m, in_m / 2),
+                   past_m = std::min(kSlowApproach_m, out_m / 2);
+      const Point2 w_in = p - u * lead_m;
+      const Point2 w_out = out_m > 0 ? p + (after - p) * (past_m / out_m) : p;
+      // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
+      // (A next waypoint on the stop itself: the cruise speed after that one instead.)
+      const std::size_t next = i + 1 < item_of.size() ? item_of[i + 1] : m_.items.size() - 1;
+      if (out_m > 0)
+        m_.items.insert(m_.items.begin() + static_cast<long>(next),
+                        {{ItemKind::waypoint, w_out, s_.altitude_m, 0.0},
+                         {ItemKind::change_speed, {}, 0.0, s_.speed_m_s}});
+      else
+        m_.items.insert(m_.items.begin() + static_cast<long>(next) + 1,
+                        {ItemKind::change_speed, {}, 0.0, s_.speed_m_s});
+      added_s += ((in_m < 1.0 ? in_m : lead_m) + past_m) * (1 / slow_m_s - 1 / s_.speed_m_s);
+      if (out_m > 0) {
+        m_.path.insert(m_.path.begin() + static_cast<long>(i) + 1, w_out);
+        holds_.insert(holds_.begin() + static_cast<long>(i) + 1, 0.0);
+      }
+      // (An incoming leg under a metre: slow from the waypoint before, no waypoint added.)
+      const auto at = m_.items.begin() + static_cast<long>(item_of[i]);
+      if (in_m < 1.0) {
+        m_.items.insert(at, {ItemKind::change_speed, {}, 0.0, slow_m_s});
+        continue;
+      }
+      m_.items.insert(at, {{ItemKind::waypoint, w_in, s_.altitude_m, 0.0},
+                           {ItemKind::change_speed, {}, 0.0, slow_m_s}});
+      m_.path.insert(m_.path.begin() + static_cast<long>(i), w_in);
+      holds_.insert(holds_.begin() + static_cast<long>(i), 0.0);
+    }
+    return added_s;
+  }
+
   const MissionSettings& s_;
   DroneMission m_;
   std::vector<double> holds_;
@@ -246,31 +326,61 @@ double path_time_s(const std::vector<Point2>& path, const std::vector<double>& h
 
 namespace {
 
-// The path's points with each stop at a line end beside a no-fly zone (s.stop_at, asked once per
-// line end) drawn back along its line by kStoppingMargin_m (a quarter of the line at most), where
-// the leg off the line from there stays inside (`inside`; without it nothing moves), and which
-// points are such stops (their hold is written whether drawn back or not).
+// The path's points with the line ends drawn back along their lines where a stop there would
+// overrun into a no-fly zone's clearance band: a multirotor may run stop_overrun_m() past a stop
+// (a hold at a line end beside a zone, s.stop_at, or a turn sharper than kStopTurn_deg) along its
+// incoming leg, and s.free_run_m says how far it may go; an end is drawn back by the shortfall (at
+// most half its segment), where the leg off the line from there stays inside (`inside`; without
+// it nothing moves). A line's start is entered along the leg from the point before it (already
+// final), so its shortfall is found again from the moved point, a few times. Also which points are
+// held stops (their hold is written whether drawn back or not).
 struct DrawnBack {
   std::vector<Point2> points;
   std::vector<char> stop;
 };
+
+// How far the end p of a segment from `along` must move towards `along` so that a stop there,
+// entered from `before`, overruns no further than the free run allows (0: not at all).
+double shortfall_m(const MissionSettings& s, Point2 p, Point2 along, Point2 before, bool end) {
+  const double overrun_m = stop_overrun_m(s.speed_m_s, s.accel_m_s2);
+  const double length_m = geometry::distance(p, along);
+  double t = 0;
+  for (int round = 0; round < (end ? 1 : 4); ++round) {
+    const Point2 q = p + (along - p) * (t / length_m);
+    const Point2 in = end ? p - along : q - before;
+    const double in_m = std::hypot(in.x, in.y);
+    if (in_m <= 0) break;
+    // Along the line itself the free run from q is the free run from p plus t.
+    const double free_m = s.free_run_m(end ? p : q, in * (1 / in_m)) + (end ? t : 0.0);
+    if (free_m >= overrun_m) break;
+    t = std::min(t + (overrun_m - free_m) + 1e-3, length_m / 2);
+    if (t >= length_m / 2) break;
+  }
+  return t;
+}
+
 DrawnBack stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
                            const InsideTest& inside) {
   DrawnBack out{path.points, std::vector<char>(path.points.size(), 0)};
   const std::size_t n = path.points.size();
-  if (!s.stop_at) return out;
+  if (!s.stop_at && !s.free_run_m) return out;
   for (std::size_t i = 0; i < n; ++i) {
     const bool from_line = i > 0 && path.on_line[i - 1];
     const bool to_line = i + 1 < n && path.on_line[i];
-    if (from_line == to_line || !s.stop_at(path.points[i])) continue;
-    out.stop[i] = 1;
-    if (!inside) continue;
-    const Point2 p = path.points[i], along = from_line ? path.points[i - 1] : path.points[i + 1];
+    if (from_line == to_line) continue;
+    const Point2 p = path.points[i];
+    out.stop[i] = s.stop_at && s.stop_at(p);
+    const bool sharp =
+        i > 0 && i + 1 < n && turn_deg(out.points[i - 1], p, path.points[i + 1]) > kStopTurn_deg;
+    if (!inside || !s.free_run_m || !(out.stop[i] || sharp || i + 1 == n)) continue;
+    const Point2 along = from_line ? path.points[i - 1] : path.points[i + 1];
     const double length_m = geometry::distance(p, along);
-    if (length_m <= 0) continue;
-    const Point2 q = p + (along - p) * (std::min(kStoppingMargin_m, length_m / 4) / length_m);
+    if (length_m <= 0 || (!from_line && i == 0)) continue;
+    const double t = shortfall_m(s, p, along, from_line ? p : out.points[i - 1], from_line);
+    if (t <= 0) continue;
+    const Point2 q = p + (along - p) * (t / length_m);
     const bool has_off = from_line ? i + 1 < n : i > 0;
-    if (has_off && !inside(q, from_line ? path.points[i + 1] : path.points[i - 1])) continue;
+    if (has_off && !inside(q, from_line ? path.points[i + 1] : out.points[i - 1])) continue;
     out.points[i] = q;
   }
   return out;

@@ -48,7 +48,9 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   steps::drones(plan);
   steps::missions(plan);
   steps::sorties(plan);
+  steps::deconflict(plan);
   steps::terrain(plan);
+  steps::fences(plan);
   steps::measures(plan);
   steps::checks(plan);
   return plan;

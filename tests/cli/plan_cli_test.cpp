@@ -310,6 +310,42 @@ TEST(PlanCli, NoFlyZoneFromExcludeIsAvoided) {
   EXPECT_GE(s["coverage"]["covered_fraction"].get<double>(), 0.999);
 }
 
+// Every polygon of an --exclude file is a zone: the features of a FeatureCollection and the parts
+// of a MultiPolygon (a file of two zones planned only its first).
+TEST(PlanCli, EveryZoneOfAnExcludeFileIsAvoided) {
+  const std::string out = fresh_dir("exclude-several");
+  std::filesystem::create_directories(out);
+  const std::string pond =
+      "[[8.5418,47.3983],[8.5426,47.3983],[8.5426,47.3988],[8.5418,47.3988],"
+      "[8.5418,47.3983]]";
+  const std::string barn =
+      "[[8.5432,47.3978],[8.5436,47.3978],[8.5436,47.3981],[8.5432,47.3981],"
+      "[8.5432,47.3978]]";
+  const std::string features =
+      R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+      R"("geometry":{"type":"Polygon","coordinates":[)" +
+      pond +
+      R"(]}},{"type":"Feature","properties":{},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[)" +
+      barn + "]}}]}";
+  const std::string multi = R"({"type":"Feature","properties":{},"geometry":{"type":)"
+                            R"("MultiPolygon","coordinates":[[)" +
+                            pond + "],[" + barn + "]]}}";
+  for (const auto& [name, text] : {std::pair{"features", features}, std::pair{"multi", multi}}) {
+    SCOPED_TRACE(name);
+    const std::string zones = out + "/" + name + ".geojson";
+    std::ofstream(zones) << text;
+    const std::string dir = out + "/" + name;
+    const CliRun run = run_swath(
+        "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude " + zones +
+        " -o " + dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const json s = json::parse(read_text(dir + "/summary.json"));
+    EXPECT_EQ(s["area"]["no_fly_zones"], 2);
+    EXPECT_GE(s["flight"]["min_no_fly_distance_m"].get<double>(), 5.0 - 1e-3);
+  }
+}
+
 TEST(PlanCli, RepairPlansTheAreasACrossingRingEncloses) {
   const std::string out = fresh_dir("repair");
   const CliRun run = run_swath(

@@ -231,13 +231,22 @@ TEST(AreaProfile, AgreesWithClippingOnRandomAreas) {
 // walked leg by leg, legs between stops flown from rest to rest (trapezoid at kAcceleration_m_s2,
 // triangle when too short), a stop where the heading turns by more than kStopTurn_deg (measured
 // with atan2 here, not the planner's dot product), at a held waypoint and at the end, plus the
-// climb to and descent from the survey altitude. Written apart from path_time_s() on purpose.
+// climb to and descent from the survey altitude; a leg commanded slower (an approach to a stop
+// beside a zone) adds its length at its speed less its length at the cruise speed. Written apart
+// from path_time_s() on purpose.
 double recomputed_flight_s(const DronePlan& d, double altitude_m) {
   const DroneMission& m = d.mission;
   std::vector<double> hold{0};  // per path point: the waypoint items in order, then home
-  for (const MissionItem& item : m.items)
-    if (item.kind == ItemKind::waypoint) hold.push_back(item.value);
+  std::vector<double> speed_into{d.speed_m_s};  // per path point: the speed of the leg into it
+  double speed = d.speed_m_s;
+  for (const MissionItem& item : m.items) {
+    if (item.kind == ItemKind::change_speed) speed = item.value;
+    if (item.kind != ItemKind::waypoint) continue;
+    hold.push_back(item.value);
+    speed_into.push_back(speed);
+  }
   hold.push_back(0);
+  speed_into.push_back(speed);
   EXPECT_EQ(hold.size(), m.path.size()) << d.name;
   const double v = d.speed_m_s, a = kAcceleration_m_s2;
   auto stretch_s = [&](double length) {
@@ -247,7 +256,9 @@ double recomputed_flight_s(const DronePlan& d, double altitude_m) {
   double time = altitude_m / d.climb_speed_m_s + altitude_m / d.descent_speed_m_s;
   double since_stop = 0;
   for (std::size_t k = 1; k < m.path.size(); ++k) {
-    since_stop += std::hypot(m.path[k].x - m.path[k - 1].x, m.path[k].y - m.path[k - 1].y);
+    const double leg_m = std::hypot(m.path[k].x - m.path[k - 1].x, m.path[k].y - m.path[k - 1].y);
+    since_stop += leg_m;
+    if (speed_into[k] < v) time += leg_m * (1 / speed_into[k] - 1 / v);
     bool stop = k + 1 == m.path.size() || (k < hold.size() && hold[k] > 0);
     if (!stop) {
       const Point2 u = m.path[k] - m.path[k - 1], w = m.path[k + 1] - m.path[k];
@@ -276,16 +287,24 @@ void check_balanced(const test::DivisionCase& c, double bound) {
   double longest = 0, shortest = INFINITY;
   for (const DronePlan& d : plan.drones) {
     if (d.mission.lines.empty()) continue;
-    const double t = recomputed_flight_s(d, plan.imaging.altitude_m);
+    // Flown at its altitude layer; balanced before the layers were laid (their climb is apart).
+    const double t = recomputed_flight_s(d, plan.imaging.altitude_m + d.layer_m);
     EXPECT_NEAR(t, d.mission.flight_time_s, 1e-6 * t) << what << " " << d.name;
-    longest = std::max(longest, t);
-    shortest = std::min(shortest, t);
+    const double balanced_s = t - d.layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
+    longest = std::max(longest, balanced_s);
+    shortest = std::min(shortest, balanced_s);
   }
   ASSERT_GT(shortest, 0) << what;
   EXPECT_LE(longest / shortest, bound) << what;
 
-  // Lanes: the undivided plan's lines as its drone flies them (the division's lanes, their stops
-  // beside a no-fly zone drawn back by kStoppingMargin_m as the drones' are).
+  // Lanes: the undivided plan's lines as its drone flies them (the division's lanes). Line ends
+  // beside a no-fly zone are drawn back by the overrun past a stop at each drone's own speed
+  // (speed² / 2a): a lane's ends may differ by up to the fastest drone's overrun from the twin's.
+  double overrun_m = 0;
+  for (const DronePlan& d : plan.drones)
+    overrun_m = std::max(overrun_m, stop_overrun_m(d.speed_m_s));
+  for (const DronePlan& d : whole.drones)
+    overrun_m = std::max(overrun_m, stop_overrun_m(d.speed_m_s));
   const double angle = whole.sweep.angle_deg;
   double lanes_m = 0, flown_m = 0;
   for (const DronePlan& d : plan.drones)
@@ -306,9 +325,10 @@ void check_balanced(const test::DivisionCase& c, double bound) {
         on_lane +=
             std::max(0.0, std::min(x1, std::max(p.x, q.x)) - std::max(x0, std::min(p.x, q.x)));
       }
-    EXPECT_NEAR(on_lane, x1 - x0, 1e-6) << what << ": lane at " << a.y;
+    EXPECT_NEAR(on_lane, x1 - x0, 2 * overrun_m + 1e-6) << what << ": lane at " << a.y;
   }
-  EXPECT_NEAR(flown_m, lanes_m, 1e-6 * lanes_m) << what << ": lines beside the lanes";
+  EXPECT_NEAR(flown_m, lanes_m, 1e-6 * lanes_m + 2 * overrun_m * double(whole_lanes.size()))
+      << what << ": lines beside the lanes";
   EXPECT_GE(plan.coverage.covered_fraction, whole.coverage.covered_fraction - 1e-9) << what;
   // The union of the drones' shares seen by the independent oracle (footprint rectangles tested
   // directly on a grid): as much of the area as the undivided plan's lines see.

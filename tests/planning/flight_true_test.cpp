@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "meadow_survey.hpp"
+#include "plan_reader.hpp"
 #include "random_polygons.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/geometry/field.hpp"
@@ -32,146 +33,7 @@ using vehicle::Drone;
 using vehicle::Fleet;
 using vehicle::parse_fleet;
 
-// ---- The test's own plane geometry -------------------------------------------------------------
-
-double cross(Point2 o, Point2 a, Point2 b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-double norm(Point2 v) {
-  return std::hypot(v.x, v.y);
-}
-
-double point_segment_m(Point2 p, Point2 a, Point2 b) {
-  const Point2 ab = b - a;
-  const double len2 = ab.x * ab.x + ab.y * ab.y;
-  double t = len2 > 0 ? ((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return norm(p - (a + ab * t));
-}
-
-bool segments_cross(Point2 a, Point2 b, Point2 c, Point2 d) {
-  const double d1 = cross(c, d, a), d2 = cross(c, d, b), d3 = cross(a, b, c), d4 = cross(a, b, d);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
-         d4 != 0;
-}
-
-double segment_segment_m(Point2 a, Point2 b, Point2 c, Point2 d) {
-  if (segments_cross(a, b, c, d)) return 0.0;
-  return std::min({point_segment_m(a, c, d), point_segment_m(b, c, d), point_segment_m(c, a, b),
-                   point_segment_m(d, a, b)});
-}
-
-bool inside(Point2 p, const Ring& ring) {  // ray casting, even-odd
-  bool in = false;
-  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    const Point2 a = ring[i], b = ring[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) in = !in;
-  }
-  return in;
-}
-
-// Distance from the leg a-b to the zone (0 when the leg enters it).
-double leg_zone_m(Point2 a, Point2 b, const Ring& zone) {
-  if (inside(a, zone) || inside(b, zone)) return 0.0;
-  double least = INFINITY;
-  for (std::size_t i = 0; i < zone.size(); ++i)
-    least = std::min(least, segment_segment_m(a, b, zone[i], zone[(i + 1) % zone.size()]));
-  return least;
-}
-
-double ring_ring_m(const Ring& p, const Ring& q) {
-  double least = INFINITY;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    least = std::min(least, leg_zone_m(p[i], p[(i + 1) % p.size()], q));
-  return least;
-}
-
-// ---- The .plan read back as QGroundControl uploads it ------------------------------------------
-
-struct PlanItem {
-  int command = 0;
-  std::vector<double> params;  // NaN for null, as QGC sends it
-  Point2 position;             // local metres (positional items)
-  double altitude_m = 0.0;
-};
-
-struct ReadPlan {
-  Point2 home;  // seq 0
-  double cruise_m_s = 0.0;
-  std::vector<PlanItem> items;
-  std::vector<Ring> inclusions, exclusions;
-  std::vector<Point2> rally;
-};
-
-Ring ring_of(const json& points, const geometry::LocalFrame& frame) {
-  Ring ring;
-  for (const json& p : points)
-    ring.push_back(frame.to_local({p[0].get<double>(), p[1].get<double>(), 0}));
-  return ring;
-}
-
-ReadPlan read_plan(const std::string& text, const geometry::LocalFrame& frame) {
-  const json j = json::parse(text);
-  ReadPlan out;
-  const json& m = j.at("mission");
-  const json& h = m.at("plannedHomePosition");
-  out.home = frame.to_local({h[0].get<double>(), h[1].get<double>(), 0});
-  out.cruise_m_s = m.at("cruiseSpeed").get<double>();
-  for (const json& it : m.at("items")) {
-    PlanItem item;
-    item.command = it.at("command").get<int>();
-    for (const json& v : it.at("params"))
-      item.params.push_back(v.is_null() ? NAN : v.get<double>());
-    if (it.contains("Altitude")) {
-      item.position = frame.to_local({item.params.at(4), item.params.at(5), 0});
-      item.altitude_m = it.at("Altitude").get<double>();
-    }
-    out.items.push_back(item);
-  }
-  for (const json& poly : j.at("geoFence").at("polygons"))
-    (poly.at("inclusion").get<bool>() ? out.inclusions : out.exclusions)
-        .push_back(ring_of(poly.at("polygon"), frame));
-  for (const json& p : j.at("rallyPoints").at("points"))
-    out.rally.push_back(frame.to_local({p[0].get<double>(), p[1].get<double>(), 0}));
-  return out;
-}
-
-bool positional(int command) {
-  return command == 16 || command == 21 || command == 22;
-}
-
-// The horizontal legs the mission commands: home, each positional item, home again on RTL.
-std::vector<Point2> commanded_path(const ReadPlan& p) {
-  std::vector<Point2> path{p.home};
-  for (const PlanItem& it : p.items)
-    if (positional(it.command) && it.command != 22)
-      path.push_back(it.position);
-    else if (it.command == 20)
-      path.push_back(p.home);
-  return path;
-}
-
-// The least distance of the legs from the zones, and where it is.
-struct Closest {
-  double distance_m = INFINITY;
-  std::size_t leg = 0;
-  Point2 from, to;
-};
-
-Closest least_clearance(const std::vector<Point2>& path, const std::vector<Ring>& zones) {
-  Closest c;
-  for (std::size_t i = 0; i + 1 < path.size(); ++i)
-    for (const Ring& z : zones) {
-      const double d = leg_zone_m(path[i], path[i + 1], z);
-      if (d < c.distance_m) c = {d, i, path[i], path[i + 1]};
-    }
-  return c;
-}
-
-std::ostream& operator<<(std::ostream& os, const Closest& c) {
-  return os << c.distance_m << " m on leg " << c.leg << " (" << c.from.x << ", " << c.from.y
-            << ") -> (" << c.to.x << ", " << c.to.y << ")";
-}
+using namespace plan_reader;  // NOLINT: the reader is the test's vocabulary
 
 // ---- A point-mass multirotor flying the items as ArduCopter does -------------------------------
 
@@ -477,7 +339,8 @@ void check_flights(const SurveyPlan& plan, const std::string& what) {
     }
 
     // A stop beside a zone is drawn back along its line: a drone that overshoots it by
-    // kStoppingMargin_m, straight on (ArduCopter SITL: 0.42 m at 5 m/s), still keeps the clearance.
+    // speed² / (2 x 2.5 m/s²), straight on (ArduCopter SITL: 0.42 m at 5 m/s; the bound of a
+    // vehicle that starts braking at the waypoint), still keeps the clearance.
     std::vector<Point2> holds;
     for (const PlanItem& it : p.items)
       if (it.command == 16 && !std::isnan(it.params.at(0)) && it.params.at(0) > 0)
@@ -490,8 +353,9 @@ void check_flights(const SurveyPlan& plan, const std::string& what) {
         const bool held =
             std::any_of(holds.begin(), holds.end(), [&](Point2 h) { return norm(h - end) < 0.01; });
         const double length_m = norm(end - from);
-        if (!held || zones.empty() || length_m < 4 * kStoppingMargin_m) continue;
-        const Point2 past = end + (end - from) * (kStoppingMargin_m / length_m);
+        const double overrun_m = stop_overrun_m(f.drone->speed_m_s);
+        if (!held || zones.empty() || length_m < 2 * overrun_m) continue;
+        const Point2 past = end + (end - from) * (overrun_m / length_m);
         const Closest c = least_clearance({end, past}, zones);
         EXPECT_GE(c.distance_m, clearance - 0.01) << "overshooting a stop: " << c;
         ++stops_checked;
@@ -632,7 +496,8 @@ TEST(FlightTrue, ALongOutlinesFenceFitsAnAutopilotAndHoldsTheMargin) {
                                 [&](const Ring& in) { return inside(q, in); }))
             << q.x << ", " << q.y;
       }
-    EXPECT_TRUE(plan.warnings.empty());
+    // No warning about the fence (these flights are long: the endurance warning may be there).
+    for (const std::string& w : plan.warnings) EXPECT_EQ(w.find("fence"), std::string::npos) << w;
   }
 }
 

@@ -122,8 +122,11 @@ double max_over_min_flight(const planning::SurveyPlan& plan) {
   double longest = 0, shortest = std::numeric_limits<double>::infinity();
   for (const planning::DronePlan& d : plan.drones) {
     if (d.mission.lines.empty()) continue;
-    longest = std::max(longest, d.mission.flight_time_s);
-    shortest = std::min(shortest, d.mission.flight_time_s);
+    // Balanced before the altitude layers were laid: their extra climb and descent apart.
+    const double t =
+        d.mission.flight_time_s - d.layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
+    longest = std::max(longest, t);
+    shortest = std::min(shortest, t);
   }
   return shortest > 0 && std::isfinite(shortest) ? longest / shortest : 0.0;
 }

@@ -78,7 +78,16 @@ std::vector<DroneResource> resources_of(const SurveyPlan& plan) {
   std::vector<DroneResource> out;
   for (std::size_t i = 0; i < plan.drones.size(); ++i) {
     const vehicle::Drone& f = plan.request.fleet->drones[i];
-    out.push_back({plan.drones[i].name, plan.drones[i].home, plan.drones[i].speed_m_s, f.range_m(),
+    // With sorties a drone flies as many batteries as its share needs: no range limits it, and
+    // the shares stay in proportion to the ranges (a fleet short of one battery each was refused
+    // "add drones or battery" under --sorties auto).
+    const std::optional<double> range_m = f.range_m();
+    if (plan.request.sorties && range_m) {
+      out.push_back({plan.drones[i].name, plan.drones[i].home, plan.drones[i].speed_m_s,
+                     std::nullopt, *range_m});
+      continue;
+    }
+    out.push_back({plan.drones[i].name, plan.drones[i].home, plan.drones[i].speed_m_s, range_m,
                    f.capability.value_or(1.0)});
   }
   return out;

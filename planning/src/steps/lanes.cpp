@@ -41,11 +41,21 @@ geometry::Ring bounding_box(const SurveyPlan& plan) {
           {x0 - margin, y1 + margin}};
 }
 
-// The open: a box around everything with the grown zones as holes (clockwise).
+// How much less than the clearance the open router's zones are grown, metres: line ends lie on
+// the clearance band (the planning rings less the grown zones, Boost's difference, then lines
+// cut at its edges), some a few micrometres inside it by rounding, where the router counted
+// them outside its area and flew the turn straight through the zone (a strip across a field).
+constexpr double kOpenSlack_m = 0.005;
+
+// The open: a box around everything with the zones grown by the clearance (less kOpenSlack_m) as
+// holes (clockwise).
 std::vector<geometry::Ring> open_rings(const SurveyPlan& plan) {
   if (plan.no_fly_grown.empty()) return {};
   std::vector<geometry::Ring> rings{bounding_box(plan)};
-  for (geometry::Ring zone : plan.no_fly_grown) {
+  const double grown_m = plan.request.clearance_m - kOpenSlack_m;
+  const std::vector<geometry::Ring> zones =
+      grown_m > 0 ? geometry::grow(plan.no_fly, grown_m) : plan.no_fly_grown;
+  for (geometry::Ring zone : zones) {
     std::reverse(zone.begin(), zone.end());
     rings.push_back(std::move(zone));
   }
@@ -171,7 +181,8 @@ std::vector<SweepLine> interleave(const std::vector<SweepLine>& lines, double sp
 
 Routes::Routes(const SurveyPlan& plan)
     : inside(plan.planning_rings, in_cells(plan) ? 300 : 0, kCornerAllowance_m),
-      open(open_rings(plan), 1000, kCornerAllowance_m) {}
+      open(open_rings(plan), 1000, kCornerAllowance_m),
+      no_fly_(&plan.no_fly) {}
 
 LegRoute Routes::leg() const {
   return [this](Point2 a, Point2 b) {
@@ -181,12 +192,25 @@ LegRoute Routes::leg() const {
       std::vector<Point2> path = inside.path(a, b);
       if (path.size() > 2 || inside.visible(a, b)) return between(path);
     }
-    return between(open.path(a, b));
+    return around(a, b);
   };
 }
 
 LegRoute Routes::open_leg() const {
-  return [this](Point2 a, Point2 b) { return between(open.path(a, b)); };
+  return [this](Point2 a, Point2 b) { return around(a, b); };
+}
+
+std::vector<Point2> Routes::around(Point2 a, Point2 b) const {
+  std::vector<Point2> path = open.path(a, b);
+  // No way round (an end within a zone's clearance band, or shut in by zones): a straight leg
+  // may not enter a zone itself.
+  if (path.size() == 2 && !open.visible(a, b) && !no_fly_->empty() &&
+      geometry::least_distance({a, b}, *no_fly_) <= 0)
+    throw InputError("the leg from (" + base::fixed_text(a.x, 1) + ", " + base::fixed_text(a.y, 1) +
+                     ") to (" + base::fixed_text(b.x, 1) + ", " + base::fixed_text(b.y, 1) +
+                     ") m (east, north of the area's frame) finds no way round the no-fly zones "
+                     "and would cross one; move the home or the zones, or lower --clearance");
+  return between(path);
 }
 
 InsideTest Routes::inside_test() const {

@@ -50,12 +50,17 @@ double transit_outside_m(const SurveyPlan& plan) {
     const DroneMission& m = d.mission;
     if (m.lines.empty()) continue;
     const auto& path = m.path;
+    // The first line's start and the last one's end among the path's points (a waypoint within
+    // 5 cm of the one before it is merged into it: mission.cpp's MissionBuilder::waypoint).
+    auto at = [](geometry::Point2 q) {
+      return [q](geometry::Point2 p) { return geometry::distance(p, q) < 0.051; };
+    };
     const auto first = static_cast<std::size_t>(
-        std::find(path.begin(), path.end(), m.lines.front().start) - path.begin());
-    const auto last =
-        path.size() - 1 -
-        static_cast<std::size_t>(std::find(path.rbegin(), path.rend(), m.lines.back().end) -
-                                 path.rbegin());
+        std::find_if(path.begin(), path.end(), at(m.lines.front().start)) - path.begin());
+    const auto from_end = static_cast<std::size_t>(
+        std::find_if(path.rbegin(), path.rend(), at(m.lines.back().end)) - path.rbegin());
+    if (first >= path.size() || from_end >= path.size()) continue;
+    const std::size_t last = path.size() - 1 - from_end;
     for (std::size_t i = first; i < last; ++i)
       outside += measure.length_outside(path[i], path[i + 1]);
   }
@@ -97,6 +102,19 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
                          duration_text(*d.endurance_s) + " endurance less the " +
                          fixed_text(100 * plan.request.reserve, 0) +
                          " % reserve; cut it into sorties with --sorties auto, or add drones");
+  } else if (!d.endurance_s && d.sorties.empty()) {
+    // No endurance given: against a typical one (an 18-hour single-drone plan went unwarned).
+    const double typical_s = plan.request.vehicle == Vehicle::multirotor
+                                 ? kTypicalMultirotorEndurance_s
+                                 : kTypicalFixedWingEndurance_s;
+    if (d.mission.flight_time_s > typical_s)
+      warnings.push_back(
+          "drone " + d.name + "'s flight takes " + duration_text(d.mission.flight_time_s) +
+          ", longer than a typical " +
+          (plan.request.vehicle == Vehicle::multirotor ? "multirotor's " : "fixed-wing's ") +
+          duration_text(typical_s) +
+          " on one battery, and no endurance was given; give --endurance (or the fleet's "
+          "endurance_s) and --sorties auto, or add drones");
   }
   // Fixed-wing: a U-turn between lines closer than two turn radii (few lines, or split cells).
   if (plan.turn_radius_m > 0) {

@@ -1,10 +1,39 @@
 // Step 6 of plan_survey(): each drone's mission and photos, and the fence (survey_steps.hpp).
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "swath/geometry/offset.hpp"
+#include "swath/geometry/predicates.hpp"
+#include "swath/planning/survey_files.hpp"
 #include "swath/planning/survey_steps.hpp"
 
 namespace swath::planning::steps {
+
+namespace {
+
+// How far from p along the unit direction u before the closed areas `rings` (the zones grown by
+// the clearance): 0 when p is inside one or on its edge heading in, +infinity when the ray meets
+// none. A point on an edge heading out (a line end on the clearance band) is free.
+double ray_to_rings_m(geometry::Point2 p, geometry::Point2 u,
+                      const std::vector<geometry::Ring>& rings) {
+  constexpr double kStep_m = 1e-4;
+  const geometry::Point2 ahead = p + u * kStep_m;
+  double least = INFINITY;
+  for (const geometry::Ring& r : rings) {
+    if (geometry::locate_point(ahead, r) != geometry::Containment::outside) return 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const geometry::Point2 a = r[i], e = r[(i + 1) % r.size()] - a, w = a - p;
+      const double det = e.x * u.y - e.y * u.x;  // u x e, solving p + t u = a + s e
+      if (std::abs(det) < 1e-12) continue;
+      const double t = (e.x * w.y - e.y * w.x) / det, sa = (u.x * w.y - u.y * w.x) / det;
+      if (t > kStep_m && sa >= 0 && sa <= 1) least = std::min(least, t);
+    }
+  }
+  return least;
+}
+
+}  // namespace
 
 MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone) {
   MissionSettings s;
@@ -23,6 +52,9 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
     const double near_m = plan.request.clearance_m + kCornerAllowance_m;
     s.stop_at = [&plan, near_m](geometry::Point2 p) {
       return geometry::least_distance({p}, plan.no_fly) < near_m;
+    };
+    s.free_run_m = [&plan](geometry::Point2 p, geometry::Point2 u) {
+      return ray_to_rings_m(p, u, plan.no_fly_grown);
     };
   }
   return s;
@@ -76,6 +108,44 @@ std::vector<std::vector<geometry::GeoPoint>> exclusion_fences(const SurveyPlan& 
   return fences;
 }
 
+// Whether the leg a-b (a point when a == b) lies inside one of `rings` (closed).
+bool leg_within(geometry::Point2 a, geometry::Point2 b, const std::vector<geometry::Ring>& rings) {
+  const double length_m = geometry::distance(a, b);
+  if (length_m > 0) return geometry::length_inside({a, b}, rings) >= length_m - 1e-6;
+  return std::any_of(rings.begin(), rings.end(), [a](const geometry::Ring& r) {
+    return geometry::locate_point(a, r) != geometry::Containment::outside;
+  });
+}
+
+// A counter-clockwise rectangle `half_width_m` either side of a-b and past its ends.
+geometry::Ring strip_along(geometry::Point2 a, geometry::Point2 b, double half_width_m) {
+  const double length_m = geometry::distance(a, b);
+  const geometry::Point2 u = length_m > 0 ? (b - a) * (1 / length_m) : geometry::Point2{1, 0};
+  const geometry::Point2 along = u * half_width_m, side{-along.y, along.x};
+  return {a - along - side, b + along - side, b + along + side, a - along + side};
+}
+
+// Every leg of every flight as written (sorties where there are), and past each stop (a hold, a
+// turn sharper than kStopTurn_deg, the end) the overrun along the incoming leg (stop_overrun_m).
+std::vector<std::pair<geometry::Point2, geometry::Point2>> flown_legs(const SurveyPlan& plan) {
+  std::vector<std::pair<geometry::Point2, geometry::Point2>> legs;
+  for (const Flight& f : flights_of(plan)) {
+    const std::vector<geometry::Point2>& path = f.mission->path;
+    const double overrun_m = stop_overrun_m(f.drone->speed_m_s);
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      legs.push_back({path[i], i + 1 < path.size() ? path[i + 1] : path[i]});
+      if (i == 0 || plan.request.vehicle != Vehicle::multirotor) continue;
+      const geometry::Point2 in = path[i] - path[i - 1];
+      const double in_m = geometry::distance(path[i - 1], path[i]);
+      if (in_m <= 0) continue;
+      const bool stop =
+          i + 1 == path.size() || turn_deg(path[i - 1], path[i], path[i + 1]) > kStopTurn_deg;
+      if (stop) legs.push_back({path[i], path[i] + in * (overrun_m / in_m)});
+    }
+  }
+  return legs;
+}
+
 }  // namespace
 
 std::size_t most_vertices(const std::vector<geometry::Ring>& rings) {
@@ -92,13 +162,25 @@ void missions(SurveyPlan& plan) {
                                  routes.leg(), inside);
     d.photos = planned_photos(d.mission, plan.imaging.trigger_distance_m);
   }
-  // The inclusion fence: the area grown by the margin (docs/swath-plan.md).
   plan.fence_margin_m = plan.request.fence_margin_m.value_or(
       plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
+  plan.exclusion_fences_geo = exclusion_fences(plan);
+}
+
+void fences(SurveyPlan& plan) {
+  // The inclusion fence holds what is flown (docs/swath-plan.md): the area, and every leg of
+  // every flight (home legs, transits around zones past the area's edge) with the overrun past
+  // each stop, grown by the margin. Legs already inside the area's own fence add nothing; each
+  // other one adds a metre-wide strip along it (a home alone, a metre square about it).
   std::vector<geometry::Ring> outlines{plan.area.outer};
   outlines.insert(outlines.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
   plan.fence = fence_for(outlines, plan.fence_margin_m);
-  plan.exclusion_fences_geo = exclusion_fences(plan);
+  std::vector<geometry::Ring> strips;
+  for (const auto& [a, b] : flown_legs(plan))
+    if (!leg_within(a, b, plan.fence)) strips.push_back(strip_along(a, b, 0.5));
+  if (strips.empty()) return;
+  outlines.insert(outlines.end(), strips.begin(), strips.end());
+  plan.fence = fence_for(outlines, plan.fence_margin_m);
 }
 
 }  // namespace swath::planning::steps

@@ -77,7 +77,12 @@ void sorties(SurveyPlan& plan) {
       throw InputError("cutting flights into sorties needs each drone's endurance; drone " +
                            d.name + " has none",
                        {base::Remedy::endurance});
-    const double usable_s = *d.endurance_s * (1 - plan.request.reserve);
+    // Room for the climb to and descent from the highest altitude layer the drone may be given
+    // afterwards (deconflict: one layer per other drone at most).
+    const double layer_m =
+        static_cast<double>(plan.drones.size() - 1) * plan.request.layer_spacing_m;
+    const double usable_s = *d.endurance_s * (1 - plan.request.reserve) -
+                            layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
     if (d.mission.flight_time_s <= usable_s) continue;  // one flight does it
     d.sorties = cut_sorties(plan, d, usable_s, routes, inside);
   }

@@ -49,7 +49,7 @@ struct Follower {
   // The waypoints of one flight at the height above ground; waypoints added on the legs.
   void follow(const DronePlan& d, DroneMission& m) {
     const std::string whose = "drone " + d.name + "'s flight";
-    const double agl = plan.imaging.altitude_m;
+    const double agl = plan.imaging.altitude_m + d.layer_m;
     const double home_ground = profile(m.home, m.home, 0, whose)[0];
     m.home_amsl_m = home_ground;
     const double step = request.ground->resolution_m();
@@ -102,7 +102,7 @@ struct Follower {
   // Heights above ground between the kept samples (straight lines), ground range, steepness.
   void measure(const std::vector<double>& along, const std::vector<double>& g,
                const std::vector<std::size_t>& keep, const DronePlan& d) {
-    const double agl = plan.imaging.altitude_m;
+    const double agl = plan.imaging.altitude_m + d.layer_m;
     for (std::size_t q = 0; q + 1 < keep.size(); ++q) {
       const std::size_t a = keep[q], b = keep[q + 1];
       const double span = along[b] - along[a];

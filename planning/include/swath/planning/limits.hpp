@@ -42,6 +42,8 @@ inline constexpr base::Range kBearing_deg{-360, 360, "°", ""};
 inline constexpr base::Range kClearance_m{0, 1000, "m", ""};
 inline constexpr base::Range kGimbalPitch_deg{-90, 30, "°", "-90 nadir, 0 level"};
 inline constexpr base::Range kFenceMargin_m{0, 10'000, "m", ""};
+inline constexpr base::Range kLayerSpacing_m{1, 1000, "m", ""};
+inline constexpr base::Range kCeiling_m{1, 10'000, "m", "above home"};
 inline constexpr base::Range kBank_deg{5, 60, "°", ""};
 inline constexpr base::Range kReserve{0, 0.9, "", "a fraction of the endurance"};
 

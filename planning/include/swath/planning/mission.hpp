@@ -81,6 +81,18 @@ bool positional(ItemKind kind);
 inline constexpr double kAcceleration_m_s2 = 2.5;
 inline constexpr double kStopTurn_deg = 45.0;
 
+/// Turn angle at b between legs a-b and b-c, degrees in [0, 180].
+double turn_deg(geometry::Point2 a, geometry::Point2 b, geometry::Point2 c);
+
+/// How far a multirotor may run past a stop (a hold, a turn sharper than kStopTurn_deg, the last
+/// waypoint) along its incoming leg: braking from `speed_m_s` at `accel_m_s2` (ArduCopter's
+/// WPNAV_ACCEL, 2.5 m/s² by default), speed² / (2 accel), metres. ArduCopter plans its braking
+/// and stopped 0.42 m past in SITL at 5 m/s; this is what a vehicle that starts braking only at
+/// the waypoint covers, the bound `swath verify` checks too.
+inline double stop_overrun_m(double speed_m_s, double accel_m_s2 = kAcceleration_m_s2) {
+  return speed_m_s * speed_m_s / (2 * accel_m_s2);
+}
+
 struct MissionSettings {
   double altitude_m = 0.0;                   ///< > 0, above home
   double speed_m_s = 0.0;                    ///< > 0, cruise speed over the whole path
@@ -91,20 +103,20 @@ struct MissionSettings {
   Vehicle vehicle = Vehicle::multirotor;
   Triggering triggering;
   bool land = false;  ///< NAV_LAND (fixed-wing: DO_LAND_START then NAV_LAND) instead of RTL
-  /// Line ends (either end) where the drone must stop: a hold of kStopHold_s is written there,
-  /// kStoppingMargin_m back along the line. ArduCopter flies through every waypoint without a
-  /// hold, and a turn flown through at a line end beside a no-fly zone swings into the clearance
-  /// band (docs/swath-plan.md).
+  /// Line ends (either end) where the drone must stop: a hold of kStopHold_s is written there
+  /// (drawn back along the line as free_run_m asks). ArduCopter flies through every waypoint
+  /// without a hold, and a turn flown through at a line end beside a no-fly zone swings into the
+  /// clearance band (docs/swath-plan.md).
   std::function<bool(geometry::Point2)> stop_at;
+  /// From a point along a unit direction, how far the vehicle may fly before it comes within the
+  /// clearance of a no-fly zone, metres (+infinity: never). Line ends where a stop would overrun
+  /// further (stop_overrun_m) are drawn back along their lines. Empty: nothing is drawn back.
+  std::function<double(geometry::Point2, geometry::Point2)> free_run_m;
+  double accel_m_s2 = kAcceleration_m_s2;  ///< braking, for stop_overrun_m(), > 0
 };
 
 /// The hold that makes ArduPilot stop at a waypoint: NAV_WAYPOINT's param1 is whole seconds.
 inline constexpr double kStopHold_s = 1.0;
-/// How far a stop at a line end beside a no-fly zone is drawn back along its line (at most a
-/// quarter of the line): a multirotor overshoots its stop (ArduCopter SITL at 5 m/s stopped 0.42 m
-/// past the meadow's line ends beside the mast, 9.58 m of a 10 m clearance). Only there: growing
-/// the zones by it instead lengthened split plans on fields with ponds by 2.2 % (300 shapes).
-inline constexpr double kStoppingMargin_m = 1.0;
 
 struct DroneMission {
   int drone = 1;  ///< 1-based

@@ -108,7 +108,20 @@ struct SurveyRequest {
   /// The fence: the area grown by this much, metres; absent: turnaround + half the footprint
   /// width + 10 m (docs/swath-plan.md).
   std::optional<double> fence_margin_m;
+  /// Drones of one plan whose paths come within kSeparation_m of each other fly this far apart in
+  /// height (altitude layers above the imaging altitude), metres, > 0.
+  double layer_spacing_m = 10.0;
+  /// No layer above this height above home, metres: a fleet that needs more layers is refused.
+  double ceiling_m = 120.0;
 };
+
+/// Flight times on one battery the endurance warning assumes when none is given, seconds.
+inline constexpr double kTypicalMultirotorEndurance_s = 30 * 60;
+inline constexpr double kTypicalFixedWingEndurance_s = 90 * 60;
+
+/// How far apart two drones of one plan stay at every moment (altitude layers, staggered
+/// launches), metres.
+inline constexpr double kSeparation_m = 10.0;
 
 /// Limits that keep the work bounded (plan_survey() refuses beyond them) and the autopilot limit
 /// it warns above.
@@ -157,6 +170,10 @@ struct DronePlan {
   DroneMission mission;            ///< the whole flight
   std::vector<PhotoPoint> photos;  ///< planned photo positions (same rule as the autopilot)
   std::vector<Sortie> sorties;     ///< with --sorties: the flight cut to fit the battery
+  /// Its altitude layer: flown this much above the imaging altitude, metres (>= 0).
+  double layer_m = 0.0;
+  /// Launched this long after the plan's first drone, seconds (>= 0).
+  double launch_offset_s = 0.0;
 };
 
 /// What the flown paths keep from the no-fly zones and the boundary (measured over every leg of

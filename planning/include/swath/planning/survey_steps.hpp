@@ -30,16 +30,27 @@ void lanes(SurveyPlan& plan);
 void drones(SurveyPlan& plan);
 
 /// 6. missions: each drone's items (speed, gimbal, camera per line, routed legs, RTL or land),
-/// its planned photos, and the inclusion fence (within kFenceVertexLimit vertices where it can).
+/// its planned photos, the fence margin and the exclusion fences.
 void missions(SurveyPlan& plan);
 
 /// 7. sorties: with SurveyRequest::sorties, each drone's flight cut into battery-sized sorties.
 void sorties(SurveyPlan& plan);
 
+/// 7a. deconflict: with several drones, altitude layers (SurveyRequest::layer_spacing_m apart,
+/// refused above SurveyRequest::ceiling_m) for drones whose paths come within kSeparation_m
+/// (plus cut corners and overruns) of each other, and launch offsets where a drone climbs or
+/// descends at its home through the layer of another that is near that home then.
+void deconflict(SurveyPlan& plan);
+
 /// 7b. terrain: with SurveyRequest::terrain, every flight's waypoints at the imaging altitude
 /// above the DEM's ground, waypoints added where the ground departs from a leg's straight line
 /// by more than the tolerance; the facts (heights flown, steep legs) and their warnings.
 void terrain(SurveyPlan& plan);
+
+/// 7c. fences: the inclusion fence from what is flown: the area and every leg of every flight
+/// (home legs, transits, the overrun past each stop), grown by the fence margin and simplified
+/// outward to kFenceVertexLimit vertices where it can; each home inside.
+void fences(SurveyPlan& plan);
 
 /// 8. measures: coverage, the clearance actually kept, turns and transits outside the area.
 void measures(SurveyPlan& plan);
@@ -68,6 +79,12 @@ struct Routes {
   /// Whether a leg stays inside the planning rings (the missions' turns kept with the camera on,
   /// stops drawn back).
   InsideTest inside_test() const;
+
+ private:
+  /// The path around the zones in the open, its inner points; refused (InputError) where there is
+  /// none and the straight leg would cross a zone.
+  std::vector<geometry::Point2> around(geometry::Point2 a, geometry::Point2 b) const;
+  const std::vector<geometry::Ring>* no_fly_;
 };
 
 /// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
