@@ -346,6 +346,21 @@ SurveyRequest rectangle_with_pond(double clearance_m) {
   return r;
 }
 
+// Drones q0, q1, ... at one home, full batteries of `endurance_s`, at these speeds.
+vehicle::Fleet fleet_at(GeoPoint home, const std::vector<double>& speeds_m_s, double endurance_s) {
+  vehicle::Fleet fleet;
+  fleet.home = home;
+  for (std::size_t i = 0; i < speeds_m_s.size(); ++i) {
+    vehicle::Drone d;
+    d.name = "q" + std::to_string(i);
+    d.battery_level = 1.0;
+    d.endurance_s = endurance_s;
+    d.speed_m_s = speeds_m_s[i];
+    fleet.drones.push_back(d);
+  }
+  return fleet;
+}
+
 // The inclusion fence was the area grown by the margin (~45 m here): the home 141 m off the
 // corner and its legs lay outside it, and ArduPilot with its fence enabled refuses to arm there.
 TEST(SafePlans, TheInclusionFenceHoldsTheHomeAndEveryLeg) {
@@ -390,17 +405,7 @@ TEST(SafePlans, StopsBesideAZoneAreDrawnBackByTheOverrun) {
 // tracks read back from the files keep 10 m. Above the ceiling the plan is refused.
 TEST(SafePlans, DronesFromOneHomeFlyInLayersAndLaunchInTurn) {
   SurveyRequest r = rectangle_with_pond(8);
-  vehicle::Fleet fleet;
-  fleet.home = *r.home;
-  for (int i = 0; i < 3; ++i) {
-    vehicle::Drone d;
-    d.name = "q" + std::to_string(i);
-    d.battery_level = 1.0;
-    d.endurance_s = 1800;
-    d.speed_m_s = 5 + i;
-    fleet.drones.push_back(d);
-  }
-  r.fleet = fleet;
+  r.fleet = fleet_at(*r.home, {5, 6, 7}, 1800);
   Layout l{r, {{{170, 120}, {230, 120}, {230, 180}, {170, 180}}}};
   const Outcome o = check_layout(l, true);
   EXPECT_FALSE(o.refused);
@@ -458,17 +463,7 @@ TEST(SafePlans, SortiesLetAShortFleetFlyItsShares) {
   SurveyRequest r = rectangle_with_pond(8);
   r.field = test::local_field({{{0, 0}, {1200, 0}, {1200, 800}, {0, 800}}, {}});
   r.home = r.field.frame->to_geo({-100, -100});
-  vehicle::Fleet fleet;
-  fleet.home = *r.home;
-  for (int i = 0; i < 2; ++i) {
-    vehicle::Drone d;
-    d.name = "q" + std::to_string(i);
-    d.battery_level = 1.0;
-    d.endurance_s = 900;
-    d.speed_m_s = 5 + 3 * i;
-    fleet.drones.push_back(d);
-  }
-  r.fleet = fleet;
+  r.fleet = fleet_at(*r.home, {5, 8}, 900);
   EXPECT_THROW(plan_survey(r), base::InputError);
   r.sorties = true;
   const SurveyPlan plan = plan_survey(r);
