@@ -35,6 +35,7 @@ struct Raster {
   int width = 0, height = 0;
   bool has_nodata = false;
   double nodata = 0.0;
+  bool float32 = false;  // the band's type: its NoData value is compared as a float
   double resolution_m = 0.0;
   double metres_per_unit = 1.0;  // the band's unit (GDAL unit type: m, ft, US survey foot)
 };
@@ -74,6 +75,7 @@ Raster open_raster(const std::string& path) {
                      "\", a unit swath does not know (metres, feet, US survey feet)");
   int ok = 0;
   r.nodata = r.band->GetNoDataValue(&ok);
+  r.float32 = r.band->GetRasterDataType() == GDT_Float32;
   r.has_nodata = ok != 0;
   double gt[6];
   if (r.dataset->GetGeoTransform(gt) != CE_None)
@@ -118,9 +120,27 @@ double pixel(Raster& r, int i, int j) {
   double v = 0;
   if (r.band->RasterIO(GF_Read, i, j, 1, 1, &v, 1, 1, GDT_Float64, 0, 0) != CE_None)
     return std::numeric_limits<double>::quiet_NaN();
-  if ((r.has_nodata && v == r.nodata) || !std::isfinite(v))
-    return std::numeric_limits<double>::quiet_NaN();
+  // A Float32 band holds its NoData value rounded to float (1e30 is 1.0000000150e30 there).
+  const bool nodata =
+      r.has_nodata &&
+      (v == r.nodata || (r.float32 && static_cast<float>(v) == static_cast<float>(r.nodata)));
+  if (nodata || !std::isfinite(v)) return std::numeric_limits<double>::quiet_NaN();
   return v;
+}
+
+// A height no ground on Earth has (the Dead Sea shore is -430 m, Everest 8,849 m): an undeclared
+// void (SRTM's -32768 in a GeoTIFF without a NoData tag, a 1e30 fill) or heights in another unit.
+// Read as ground it put waypoints at -33,128 m or 1e30 m: refused with its place instead.
+void check_on_earth(double height_m, const GeoPoint& at, const std::string& path) {
+  constexpr double kLowest_m = -430.0, kHighest_m = 8'850.0;
+  if (std::isnan(height_m) || (height_m >= kLowest_m && height_m <= kHighest_m)) return;
+  char place[96];
+  std::snprintf(place, sizeof place, "%.7f, %.7f", at.lat_deg, at.lon_deg);
+  char value[32];
+  std::snprintf(value, sizeof value, "%.6g", height_m);
+  throw InputError(path + ": the ground near " + place + " (lat, lon) is " + value +
+                   " m, beyond any on Earth (-430 to 8,850 m): a void without a NoData value, or "
+                   "heights in another unit? Give the DEM a NoData value or its unit");
 }
 
 }  // namespace
@@ -153,6 +173,7 @@ void sample_raster(const std::string& path, const std::vector<GeoPoint>& points,
     const double fu = u - i0, fv = v - j0;
     const double a = pixel(r, i0, j0), b = pixel(r, i0 + 1, j0);
     const double c = pixel(r, i0, j0 + 1), d = pixel(r, i0 + 1, j0 + 1);
+    for (const double h : {a, b, c, d}) check_on_earth(r.metres_per_unit * h, points[k], path);
     values[k] =
         r.metres_per_unit * ((1 - fv) * ((1 - fu) * a + fu * b) + fv * ((1 - fu) * c + fu * d));
   }

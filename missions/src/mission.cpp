@@ -165,6 +165,7 @@ Mission parse_qgc(const json& root, const std::string& source) {
   m.home_amsl_m = number(home[2], source + ": plannedHomePosition altitude");
   m.home_amsl_known = true;
   const bool multirotor = member(mission, "vehicleType") != 1;  // MAV_TYPE_FIXED_WING
+  m.fixed_wing = !multirotor;
   const json& speed = member(mission, multirotor ? "hoverSpeed" : "cruiseSpeed");
   if (!speed.is_null()) m.cruise_speed_m_s = number(speed, source + ": mission speed");
   const json& items = member(mission, "items");

@@ -160,7 +160,7 @@ class PathBuilder {
       t += l.kind == LegKind::hold ? holds_s_[i] : std::max(th, tv);
       l.t_end_s = t;
       stopped = h <= 0 || l.stops_at_end;
-      if (l.stops_at_end) {
+      if (l.stops_at_end && !mission_.fixed_wing) {
         const double run_m = std::min(missions::stopping_distance_m(l.speed_m_s, a), h);
         const geometry::Point2 d = (l.to.xy() - l.from.xy()) * (run_m / h);
         path_.overruns.push_back({l.to, {l.to.x + d.x, l.to.y + d.y, l.to.z_m}, l.place});

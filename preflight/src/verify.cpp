@@ -68,16 +68,16 @@ struct Approach {
   double t_s = 0.0;
 };
 
-// Two drones over the time both are airborne (and on the ground too when their homes lie within
-// the separation: a drone waiting on the same pad is in the way). Between consecutive leg ends of
-// either, both move linearly: the least distance there is closed-form, so the minimum is exact
-// for the model.
+// Two drones over the time both are airborne, from the later launch to the earlier landing. A
+// drone on the ground (before its launch, after it lands) is not checked: one home in the files
+// stands for the pads the pilot sets the drones down on, a few metres apart, and a drone waiting
+// there is the pilot's to place; the climb and descent through another drone's height are in the
+// air and checked. Between consecutive leg ends of either, both move linearly: the least
+// distance there is closed-form, so the minimum is exact for the model.
 Approach least_separation(const FlownPath& a, double a_launch_s, const FlownPath& b,
-                          double b_launch_s, double separation_m) {
-  const bool shared_ground = geometry::distance(a.home.xy(), b.home.xy()) < separation_m;
+                          double b_launch_s) {
   const double a_end = a_launch_s + a.duration_s, b_end = b_launch_s + b.duration_s;
-  double from = std::max(a_launch_s, b_launch_s), to = std::min(a_end, b_end);
-  if (shared_ground) from = std::min(a_launch_s, b_launch_s), to = std::max(a_end, b_end);
+  const double from = std::max(a_launch_s, b_launch_s), to = std::min(a_end, b_end);
   Approach best;
   if (to < from) return best;
   std::vector<double> times{from, to};
@@ -111,7 +111,7 @@ void check_separation(const std::vector<DroneFile>& drones, const std::vector<Fl
     for (std::size_t j = i + 1; j < paths.size(); ++j) {
       if (!drones[i].sorties_of.empty() && drones[i].sorties_of == drones[j].sorties_of) continue;
       const Approach a = least_separation(paths[i], drones[i].launch_offset_s, paths[j],
-                                          drones[j].launch_offset_s, options.separation_m);
+                                          drones[j].launch_offset_s);
       least.distance_m = std::min(least.distance_m, a.distance_m);
       if (a.distance_m >= options.separation_m - 1e-3) continue;
       const Point3 p = position_at(paths[i], a.t_s - drones[i].launch_offset_s);

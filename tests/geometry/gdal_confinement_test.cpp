@@ -148,6 +148,31 @@ TEST(GdalConfinement, AVrtDemReadsNothingOutsideItsFolder) {
   expect_refused([&] { height_m(raw); }, "raw band");
 }
 
+// Heights no ground on Earth has are refused with their place, not flown: an SRTM void of
+// -32768 in a grid without a NODATA value, a 1e30 fill. The same grid with its NODATA value
+// declared reads (no height where the void is).
+TEST(GdalConfinement, AGroundBeyondTheEarthsIsRefusedWithItsPlace) {
+  for (const std::string fill : {"-32768", "1e30"}) {
+    std::string t = "ncols 4\nnrows 4\nxllcorner 8.540\nyllcorner 47.396\ncellsize 0.001\n";
+    for (int row = 0; row < 4; ++row) t += "400 410 " + fill + " 430\n";
+    const fs::path void_grid = write(confinement_scratch() / ("void" + fill + ".asc"), t);
+    expect_refused(
+        [&] {
+          dem_ground(void_grid.string())->heights_m({{47.398, 8.5425, 0}});
+        },
+        "beyond any on Earth");
+    expect_refused(
+        [&] {
+          dem_ground(void_grid.string())->heights_m({{47.398, 8.5425, 0}});
+        },
+        "47.3980000, 8.5425000 (lat, lon)");
+    const fs::path declared = write(confinement_scratch() / ("declared" + fill + ".asc"),
+                                    t.insert(t.find("400"), "NODATA_value " + fill + "\n"));
+    const auto h = dem_ground(declared.string())->heights_m({{47.398, 8.5405, 0}});
+    EXPECT_NEAR(h[0], 400.0, 1e-6);
+  }
+}
+
 TEST(GdalConfinement, NoDemOrAreaReachesTheNetwork) {
   const Listener listener;
   const fs::path remote_vrt = write(confinement_scratch() / "inner" / "remote.vrt",

@@ -49,7 +49,7 @@ std::string wpl(const std::vector<Row>& rows, geometry::Point2 home = {0, 0}) {
 
 DroneFile drone(const std::vector<Row>& rows, const std::string& name, double launch_s = 0,
                 geometry::Point2 home = {0, 0}) {
-  return {missions::parse_mission(wpl(rows, home), name), launch_s};
+  return {missions::parse_mission(wpl(rows, home), name), launch_s, ""};
 }
 
 std::vector<geometry::GeoPoint> square(double x0, double y0, double x1, double y1) {
@@ -130,9 +130,9 @@ TEST(Verify, TheStoppingMarginAloneReachesAZone) {
 TEST(Verify, AFenceShrunkOffTheHome) {
   missions::Mission m = missions::parse_mission(wpl(survey_rows()), "a.waypoints");
   m.inclusion_fences = {square(-20, -20, 120, 40)};
-  EXPECT_TRUE(verify({{m, 0}}, {}).ok());
+  EXPECT_TRUE(verify({{m, 0, ""}}, {}).ok());
   m.inclusion_fences = {square(-20, 10, 120, 40)};  // the home (0, 0) 10 m outside
-  const Report r = verify({{m, 0}}, {});
+  const Report r = verify({{m, 0, ""}}, {});
   bool home = false;
   for (const Violation& v : r.violations)
     if (v.check == "fence" && v.place == "a.waypoints: home") {
@@ -185,7 +185,7 @@ TEST(Verify, WithADemTheGroundRisesUnderTheLine) {
   for (std::size_t at = text.find("\t0\t3\t"); at != std::string::npos;
        at = text.find("\t0\t3\t", at))
     text.replace(at, 5, "\t0\t10\t");
-  const Report follow = verify({{missions::parse_mission(text, "t.waypoints"), 0}}, o);
+  const Report follow = verify({{missions::parse_mission(text, "t.waypoints"), 0, ""}}, o);
   EXPECT_EQ(find(follow, "ground"), nullptr) << report_text(follow);
 }
 

@@ -50,6 +50,9 @@ struct Mission {
   std::vector<FenceCircle> inclusion_circles, exclusion_circles;
   std::vector<geometry::GeoPoint> rally_points;
   double cruise_speed_m_s = 0.0;  ///< the file's speed before any DO_CHANGE_SPEED; 0: none
+  /// A fixed wing (a QGC plan's vehicleType 1): it flies through its waypoints on turns of its
+  /// radius and never stops at them, so no stopping margin is drawn past them.
+  bool fixed_wing = false;
 };
 
 /// Is this MAV_CMD a position the vehicle flies to (waypoint, take-off, land, loiter)?
