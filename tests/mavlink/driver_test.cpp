@@ -470,19 +470,27 @@ TEST(Px4Driver, ALinkCutPastComDlLossTSendsTheVehicleHome) {
   EXPECT_TRUE(rig.driver.returning());
 }
 
-// TCP (SITL's port 5760): frames written a few bytes at a time arrive whole and in order, the
-// link carries our frames back, and a closed peer ends the link without a signal or a throw.
-TEST(TcpLink, FramesSplitAcrossWritesArriveWholeAndAClosedPeerEndsTheLink) {
+// A TCP listener on the loopback address at a port of the kernel's choice (written to `port`);
+// -1 when the socket cannot be made.
+int tcp_listener(std::uint16_t& port) {
   const int server = socket(AF_INET, SOCK_STREAM, 0);
-  ASSERT_GE(server, 0);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-  ASSERT_EQ(listen(server, 1), 0);
   socklen_t length = sizeof a;
-  ASSERT_EQ(getsockname(server, reinterpret_cast<sockaddr*>(&a), &length), 0);
-  const std::uint16_t port = ntohs(a.sin_port);
+  if (server < 0 || bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+      listen(server, 1) != 0 || getsockname(server, reinterpret_cast<sockaddr*>(&a), &length) != 0)
+    return -1;
+  port = ntohs(a.sin_port);
+  return server;
+}
+
+// TCP (SITL's port 5760): frames written a few bytes at a time arrive whole and in order, the
+// link carries our frames back, and a closed peer ends the link without a signal or a throw.
+TEST(TcpLink, FramesSplitAcrossWritesArriveWholeAndAClosedPeerEndsTheLink) {
+  std::uint16_t port = 0;
+  const int server = tcp_listener(port);
+  ASSERT_GE(server, 0);
 
   TcpLink client = TcpLink::connect("127.0.0.1", port);
   const int peer = accept(server, nullptr, nullptr);
@@ -532,16 +540,10 @@ TEST(TcpLink, FramesSplitAcrossWritesArriveWholeAndAClosedPeerEndsTheLink) {
 // kMaxReceiveBytes and leaves the rest in the socket, so a reader's memory stays bounded; every
 // byte still arrives, in order, over later calls.
 TEST(TcpLink, AJunkStreamIsReadInBoundedSlices) {
-  const int server = socket(AF_INET, SOCK_STREAM, 0);
+  std::uint16_t port = 0;
+  const int server = tcp_listener(port);
   ASSERT_GE(server, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-  ASSERT_EQ(listen(server, 1), 0);
-  socklen_t length = sizeof a;
-  ASSERT_EQ(getsockname(server, reinterpret_cast<sockaddr*>(&a), &length), 0);
-  TcpLink client = TcpLink::connect("127.0.0.1", ntohs(a.sin_port));
+  TcpLink client = TcpLink::connect("127.0.0.1", port);
   const int peer = accept(server, nullptr, nullptr);
   ASSERT_GE(peer, 0);
   constexpr std::size_t kTotal = 16u << 20;
