@@ -348,7 +348,8 @@ std::unique_ptr<MavlinkFleet> open_mavlink_fleet(const std::vector<VehicleAddres
       links.push_back(
           std::make_unique<mavlink::TcpLink>(mavlink::TcpLink::connect(u.host, u.port)));
     else
-      links.push_back(std::make_unique<mavlink::UdpLink>(mavlink::UdpLink::listen(u.host, u.port)));
+      links.push_back(std::make_unique<mavlink::UdpLink>(  // answers only its vehicle's system
+          mavlink::UdpLink::listen(u.host, u.port, u.sysid)));
     sysids.push_back(u.sysid);
   }
   return std::make_unique<MavlinkFleet>(std::move(links), sysids, std::move(settings));
