@@ -246,7 +246,8 @@ TEST(Verify, ABatteryTooSmall) {
   EXPECT_EQ(find(verify({drone(survey_rows(), "a")}, o), "energy"), nullptr);
   yaml.replace(yaml.find("capacity_ah: 5"), 14, "capacity_ah: 0.05");
   o.drone = energy::parse_drone_profile(yaml, "tiny.yaml");
-  const Violation* v = find(verify({drone(survey_rows(), "a")}, o), "energy");
+  const Report small = verify({drone(survey_rows(), "a")}, o);  // outlives the pointer below
+  const Violation* v = find(small, "energy");
   ASSERT_NE(v, nullptr);
   EXPECT_GT(v->amount, 0.0);
 }
