@@ -468,14 +468,9 @@ planning::SurveyRequest PlanCommand::request() const {
                                                           : planning::SplitCells::best;
   request.split_directions = directions_ == "per-region" ? planning::SplitDirections::per_region
                                                          : planning::SplitDirections::one;
-  // Every area of an --exclude file is a zone (each feature of a FeatureCollection, each part of
-  // a MultiPolygon): a file of several zones planned only its first.
-  for (const std::string& path : exclude_)
-    for (const geometry::AreaEntry& zone : geometry::list_areas(path)) {
-      geometry::FieldReadOptions options;
-      options.feature = std::to_string(zone.index);
-      request.exclusions.push_back(geometry::read_field(path, options).geo_rings.at(0));
-    }
+  // Every area of an --exclude file is a zone, read as swath verify reads them.
+  for (const preflight::Zone& zone : zones_from_files(exclude_))
+    request.exclusions.push_back(zone.ring);
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;

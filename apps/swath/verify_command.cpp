@@ -78,10 +78,10 @@ void VerifyCommand::setup(CLI::App& app) {
 
 int VerifyCommand::run() {
   preflight::CheckOptions options;
-  using planning::limits::kAltitude_m;
+  using planning::limits::kCeiling_m;
   using planning::limits::kClearance_m;
   base::check_range(clearance_m_, kClearance_m, "--clearance");
-  base::check_range(ceiling_m_, kAltitude_m, "--ceiling");
+  base::check_range(ceiling_m_, kCeiling_m, "--ceiling");  // the range swath plan's --ceiling has
   base::check_range(min_height_m_, kClearance_m, "--min-height");
   base::check_range(separation_m_, kClearance_m, "--separation");
   options.clearance_m = clearance_m_;

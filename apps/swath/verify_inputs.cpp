@@ -8,6 +8,8 @@
 
 namespace swath::apps {
 
+// Every area of each file is a zone (each feature of a FeatureCollection, each part of a
+// MultiPolygon): `swath plan --exclude` and `swath verify --exclude` read them alike.
 std::vector<preflight::Zone> zones_from_files(const std::vector<std::string>& paths) {
   std::vector<preflight::Zone> zones;
   for (const std::string& path : paths) {
