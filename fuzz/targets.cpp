@@ -1,10 +1,14 @@
 #include "targets.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <string_view>
+#include <vector>
 
 #include "coverage_image.hpp"
 #include "mission_config.hpp"
 #include "plan_command.hpp"
+#include "shell_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/control/config.hpp"
 #include "swath/control/logistic.hpp"
@@ -29,6 +33,57 @@
 
 namespace swath::fuzz {
 namespace {
+
+// A POSIX shell's reading of one line into words (quote removal; no expansions: a word holding
+// one of $ ` * ? [ ~ unquoted, or an operator, fails the target, since the shell would act on
+// it). Written from the standard, not from shell_word(): the fuzzer checks one against the other.
+std::vector<std::string> shell_words_of(const std::string& line) {
+  std::vector<std::string> words;
+  std::string word;
+  bool in_word = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == ' ' || c == '\t') {
+      if (in_word) words.push_back(word), word.clear(), in_word = false;
+    } else if (c == '\'') {
+      const std::size_t close = line.find('\'', i + 1);
+      if (close == std::string::npos) std::abort();  // unterminated quote: the shell reads on
+      word += line.substr(i + 1, close - i - 1), i = close, in_word = true;
+    } else if (c == '\\') {
+      if (i + 1 == line.size()) std::abort();
+      word += line[++i], in_word = true;
+    } else if (std::string_view("$`*?[~#\"|&;<>(){}!").find(c) != std::string_view::npos &&
+               !(c == '#' && in_word) && !(c == '~' && in_word)) {
+      std::abort();  // a character the shell would act on, outside quotes
+    } else {
+      word += c, in_word = true;
+    }
+  }
+  if (in_word) words.push_back(word);
+  return words;
+}
+
+// Job lines (swath batch --emit-jobs, swath-fleet sweep, tune ask): the input's NUL-separated
+// words, each quoted by shell_word() or refused in one sentence; a line of the quoted words must
+// read back, word for word, as a POSIX shell reads it, and hold no control character.
+void job_words(const std::string& text) {
+  std::vector<std::string> words;
+  for (std::size_t at = 0;;) {
+    const std::size_t nul = text.find('\0', at);
+    words.push_back(text.substr(at, nul == std::string::npos ? std::string::npos : nul - at));
+    if (nul == std::string::npos) break;
+    at = nul + 1;
+  }
+  std::string line;
+  try {
+    for (const std::string& w : words) line += (line.empty() ? "" : " ") + apps::shell_word(w);
+  } catch (const base::InputError&) {
+    return;
+  }
+  for (const char c : line)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) std::abort();
+  if (shell_words_of(line) != words) std::abort();
+}
 
 // MAVLink bytes from a link: the frames must not depend on how the bytes are split, every byte is
 // counted once, and each frame re-encodes to the bytes it came from and describes itself.
@@ -213,6 +268,10 @@ const std::vector<Target>& targets() {
       {"mavlink_frames",
        [](const std::string& t) { mavlink_frames(t); },
        {"tests/bad-input/seeds/mavlink-frames.bin"}},
+      // Job lines for a shell, GNU parallel or Slurm (docs/swath-plan.md, docs/swath-fleet.md).
+      {"job_words",
+       [](const std::string& t) { job_words(t); },
+       {"tests/bad-input/seeds/job-words.bin"}},
       // GIS areas: WKT through OGR's parser, then swath's checks (docs/swath-plan.md).
       {"ogr_wkt",
        [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },

@@ -11,24 +11,50 @@ namespace swath::base {
 
 using nlohmann::json;
 
-nlohmann::json parse_json_document(const std::string& text, const std::string& source) {
-  // One set of keys per open object; a callback sees every key as it is read.
-  std::vector<std::set<std::string>> open_objects;
-  std::string repeated;
-  const json::parser_callback_t check_keys = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) {
-      open_objects.emplace_back();
-    } else if (event == json::parse_event_t::object_end) {
-      if (!open_objects.empty()) open_objects.pop_back();
-    } else if (event == json::parse_event_t::key && !open_objects.empty()) {
-      const std::string& key = parsed.get_ref<const std::string&>();
-      if (!open_objects.back().insert(key).second && repeated.empty()) repeated = key;
-    }
+namespace {
+
+// A key repeated in one object, found by a SAX pass: one set of keys per open object. (Not
+// nlohmann's parser callback: its DOM builder then scans the enclosing container at every
+// object's end, quadratic in an array's length — a 93,000-item .plan took 22 s to read.)
+class RepeatedKeyFinder : public nlohmann::json_sax<json> {
+ public:
+  const std::string& repeated() const { return repeated_; }
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override {
+    open_objects_.emplace_back();
     return true;
-  };
+  }
+  bool key(string_t& key) override {
+    if (!open_objects_.back().insert(key).second && repeated_.empty()) repeated_ = key;
+    return true;
+  }
+  bool end_object() override {
+    open_objects_.pop_back();
+    return true;
+  }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;  // json::parse has already read the same text without error
+  }
+
+ private:
+  std::vector<std::set<std::string>> open_objects_;
+  std::string repeated_;
+};
+
+}  // namespace
+
+nlohmann::json parse_json_document(const std::string& text, const std::string& source) {
   json root;
   try {
-    root = json::parse(text, check_keys);
+    root = json::parse(text);
   } catch (const json::parse_error& e) {
     const auto [line, column] = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string reason = e.what();
@@ -46,8 +72,10 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
     throw InputError(source + ": invalid JSON (" +
                      (bracket == std::string::npos ? reason : reason.substr(bracket + 2)) + ")");
   }
-  if (!repeated.empty())
-    throw InputError(source + ": the key \"" + repeated +
+  RepeatedKeyFinder keys;
+  json::sax_parse(text, &keys);
+  if (!keys.repeated().empty())
+    throw InputError(source + ": the key \"" + keys.repeated() +
                      "\" appears twice in one object; which one holds is ambiguous");
   return root;
 }

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "swath/planning/survey.hpp"
 
 extern char** environ;
 
@@ -294,6 +295,50 @@ TEST(OutputDir, TheWorstInputsAreRefusedInBoundedTimeAndMemory) {
     EXPECT_LT(u.rss_mb, 200.0) << command;
     EXPECT_FALSE(fs::exists(dir + "/o")) << command;
   }
+}
+
+// The documented limits bound the work (survey.hpp kMaxWaypoints, kMaxPhotos; docs/reliability.md):
+// a plan just inside each stays under 1 GB and a minute of CPU, files written and read back by the
+// preflight check included; one just over it is refused before any file is made. Squares at 5 m
+// with the QX1: 800 m takes ~202,000 photos, 1,000 m ~316,000 (over 250,000); the meadow with a
+// waypoint every 0.5 m ~93,000 items (under 100,000). The accepted ones are left out under the
+// sanitizers, whose memory and time are several times the program's own.
+TEST(OutputDir, PlansAtTheWaypointAndPhotoLimitsStayUnderAGigabyteAndAMinute) {
+  const std::string dir = fresh_dir("limits");
+  fs::create_directories(dir);
+  auto square = [&](int side_m) {
+    const std::string file = dir + "/square" + std::to_string(side_m) + ".csv";
+    std::ofstream csv(file);
+    csv << "x,y\n0,0\n" << side_m << ",0\n" << side_m << ',' << side_m << "\n0," << side_m << '\n';
+    return file;
+  };
+  const std::string swath = std::string("'") + SWATH_BINARY + "' plan ";
+  const std::string local = " --local --origin 47.4,8.5 --camera sony-ilce-qx1 --altitude 5 -o ";
+  const CliRun over = run_swath("plan " + square(1000) + local + dir + "/over");
+  EXPECT_EQ(over.exit_code, 2) << over.err;
+  EXPECT_NE(over.err.find(" photos, more than swath's limit of 250000; fly higher"),
+            std::string::npos)
+      << over.err;
+  EXPECT_FALSE(fs::exists(dir + "/over"));
+#ifndef SWATH_SANITIZED
+  const std::string photos = swath + square(800) + local + dir + "/photos";
+  const std::string items = swath +
+                            "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 5 "
+                            "--waypoint-spacing 0.5 -o " +
+                            dir + "/items";
+  for (const std::string& command : {photos, items}) {
+    const Usage u = measured(command);
+    EXPECT_EQ(u.exit_code, 0) << command;
+    EXPECT_LT(u.cpu_s, 60.0) << command;
+    EXPECT_LT(u.rss_mb, 1024.0) << command;
+  }
+  const json p = json::parse(read_text(dir + "/photos/summary.json"));
+  const json i = json::parse(read_text(dir + "/items/summary.json"));
+  // Near the limits, or the test proves little: within 25 % of each.
+  EXPECT_GT(p.at("drones")[0].at("photos").get<double>(), 0.75 * planning::kMaxPhotos);
+  EXPECT_LE(p.at("drones")[0].at("photos").get<double>(), planning::kMaxPhotos);
+  EXPECT_GT(i.at("drones")[0].at("waypoints").get<double>(), 0.75 * planning::kMaxWaypoints);
+#endif
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // Step 6 of plan_survey(): each drone's mission and photos, and the fence (survey_steps.hpp).
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
+#include "swath/base/input_error.hpp"
 #include "swath/geometry/offset.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/planning/survey_files.hpp"
@@ -154,6 +156,21 @@ std::size_t most_vertices(const std::vector<geometry::Ring>& rings) {
   return most;
 }
 
+// The plan's items and photos within swath's limits (survey.hpp: they bound the memory of the
+// files), counted on the missions as built, before any file is made.
+void check_counts(const SurveyPlan& plan) {
+  std::size_t items = 0, photos = 0;
+  for (const DronePlan& d : plan.drones) items += d.mission.items.size(), photos += d.photos.size();
+  if (items > kMaxWaypoints)
+    throw base::InputError(
+        "the plan takes " + std::to_string(items) + " mission items, more than swath's limit of " +
+        std::to_string(kMaxWaypoints) + "; drop --waypoint-spacing or split the area");
+  if (photos > kMaxPhotos)
+    throw base::InputError("the plan takes " + std::to_string(photos) +
+                           " photos, more than swath's limit of " + std::to_string(kMaxPhotos) +
+                           "; fly higher, lower the overlaps or split the area");
+}
+
 void missions(SurveyPlan& plan) {
   const Routes routes(plan);
   const InsideTest inside = routes.inside_test();
@@ -162,6 +179,7 @@ void missions(SurveyPlan& plan) {
                                  routes.leg(), inside);
     d.photos = planned_photos(d.mission, plan.imaging.trigger_distance_m);
   }
+  check_counts(plan);
   plan.fence_margin_m = plan.request.fence_margin_m.value_or(
       plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
   plan.exclusion_fences_geo = exclusion_fences(plan);

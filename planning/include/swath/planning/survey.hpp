@@ -124,9 +124,13 @@ inline constexpr double kTypicalFixedWingEndurance_s = 90 * 60;
 inline constexpr double kSeparation_m = 10.0;
 
 /// Limits that keep the work bounded (plan_survey() refuses beyond them) and the autopilot limit
-/// it warns above.
+/// it warns above. Waypoints and photos bound the memory of the files written (each waypoint
+/// ~3.6 KB and each photo ~2.7 KB at the peak, measured: 93,034 items took 340 MB and 24 s of
+/// CPU, 202,398 photos 543 MB): at the limits a plan stays under 1 GB and 60 s. Both are far
+/// above what an autopilot holds (kAutopilotItemLimit) or a camera card takes in one flight.
 inline constexpr std::size_t kMaxSweepLines = 20'000;
-inline constexpr std::size_t kMaxWaypoints = 1'000'000;
+inline constexpr std::size_t kMaxWaypoints = 100'000;
+inline constexpr std::size_t kMaxPhotos = 250'000;
 inline constexpr std::size_t kAutopilotItemLimit = 700;  ///< ArduPilot's classic mission size
 /// Vertices of one fence polygon an autopilot stores: PX4's limit (ArduPilot holds more).
 inline constexpr std::size_t kFenceVertexLimit = 64;
