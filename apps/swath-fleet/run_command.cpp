@@ -426,6 +426,9 @@ int FleetCompareCommand::run() {
     if (n != "predictive" && !fleet::make_scheduler(n == "reactive" ? "sa" : n))
       throw InputError("--schedulers: unknown scheduler \"" + n +
                        "\": use predictive, reactive, sa, greedy, round-robin or hungarian");
+  if (request_.seed > kMaxSeed - static_cast<std::uint64_t>(seeds_ - 1))
+    throw InputError("--seed " + std::to_string(request_.seed) + " --seeds " +
+                     std::to_string(seeds_) + ": the last seed would be beyond 9007199254740991");
   PreparedRun check = prepare_run(request_);  // every input read before any run
   // predictive = sa + GMF (+ q) + relief with the default or --weights weights, its histories the
   // reactive runs of the other seeds: those run first.

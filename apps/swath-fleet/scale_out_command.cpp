@@ -80,9 +80,9 @@ SweepSpec read_sweep(const std::string& source) {
   }
   const base::YamlMap seeds = m.map("seeds");
   seeds.allow({"from", "to"});
-  s.seed_from = static_cast<std::uint64_t>(seeds.number("from", 1, 0, 9.007199254740992e15));
+  s.seed_from = static_cast<std::uint64_t>(seeds.number("from", 1, 0, 9007199254740991.0));
   s.seed_to =
-      static_cast<std::uint64_t>(seeds.number("to", double(s.seed_from), 0, 9.007199254740992e15));
+      static_cast<std::uint64_t>(seeds.number("to", double(s.seed_from), 0, 9007199254740991.0));
   if (s.seed_to < s.seed_from)
     throw InputError(seeds.where("to") + ": the last seed comes before the first");
   if (s.seed_to - s.seed_from >= 100000)

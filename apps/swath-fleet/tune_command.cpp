@@ -11,6 +11,7 @@
 
 #include "intervals.hpp"
 #include "progress_bar.hpp"
+#include "seed_option.hpp"
 #include "shell_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -221,6 +222,16 @@ json weights_json(const fleet::Weights& w) {
 
 }  // namespace
 
+// The tuning's seeds run from --seed over histories, tuning and held-out seeds: the last one is
+// a seed too.
+void FleetTuneCommand::check_last_seed() const {
+  const std::uint64_t span = histories_ + static_cast<std::uint64_t>(tuning_seeds_ + held_out_);
+  if (request_.seed > kMaxSeed - span)
+    throw InputError("--seed " + std::to_string(request_.seed) +
+                     ": the tuning's last seed (--seed + --histories + --tuning-seeds + "
+                     "--held-out) would be beyond 9007199254740991");
+}
+
 int FleetTuneCommand::run() {
   try {
     if (ask_->parsed()) return ask();
@@ -232,6 +243,7 @@ int FleetTuneCommand::run() {
     throw InputError(
         "tune needs APP, --world and -o DIR (or: tune ask STATE, tune tell STATE "
         "RUN..)");
+  check_last_seed();
   const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked first
   if (replay_ == "trace")
     if (const std::string why = fleet::schedule_dependence(request_.app); !why.empty())
@@ -505,6 +517,7 @@ int FleetTuneCommand::ask() {
   } else {
     if (request_.app.empty() || request_.world.empty() || output_.empty())
       throw InputError(state_ + " does not exist: to start a tuning give APP, --world and -o DIR");
+    check_last_seed();
     const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked
     const std::string runs = absolute_path(
         runs_dir_.empty() ? fs::path(state_).replace_extension("").string() + "-runs" : runs_dir_);
