@@ -20,7 +20,9 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "fleet_images.hpp"
 #include "intervals.hpp"
+#include "swath/fleet/event_replay.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/worlds/worlds.hpp"
 
@@ -417,6 +419,41 @@ TEST(FleetStats, TuneStateFieldsOutOfRangeAreRefusedInOneSentence) {
     EXPECT_EQ(ask.exit_code, 2) << e.key << ": " << ask.out;
     EXPECT_NE(ask.err.find("state.json: " + e.fragment), std::string::npos) << ask.err;
     EXPECT_EQ(ask.out, "");
+  }
+}
+
+// tracks.png's legend: each drone's name beside a swatch of its track's colour, inside the picture.
+TEST(FleetStats, TracksLegendNamesEachDroneInItsColour) {
+  const std::string out = fresh_dir("fleet-tracks-legend");
+  ASSERT_EQ(run_swath_fleet(
+                "run tracking --world tracking --fleet share/fleets/tracking-pair.yaml -o " + out)
+                .exit_code,
+            0);
+  const fleet::RunRecord r =
+      fleet::replay_record(read_text(out + "/events.jsonl"), out + "/events.jsonl");
+  const auto world = worlds::read_world(source_path("share/worlds/tracking.yaml"));
+  for (const auto& [width_px, height_px] : {std::pair{1000, 700}, std::pair{500, 400}}) {
+    const apps::FleetPicture p = apps::tracks_picture(*world, r, width_px, height_px);
+    ASSERT_EQ(r.drones.size(), 2u);
+    for (std::size_t i = 0; i < r.drones.size(); ++i) {
+      const auto label =
+          std::find_if(p.scene.labels.begin(), p.scene.labels.end(),
+                       [&](const render::Label& l) { return l.text == r.drones[i].name; });
+      ASSERT_NE(label, p.scene.labels.end()) << r.drones[i].name;
+      EXPECT_GE(label->x_px, 0);
+      EXPECT_LE(label->y_px, height_px);
+      EXPECT_GE(label->y_px - label->height_px, 0);
+      // Its swatch: a short screen line of the drone's colour, left of the name, on its row.
+      const render::Color c = apps::drone_color(i);
+      bool swatch = false;
+      for (const render::Polyline& line : p.scene.screen_polylines) {
+        if (line.color.r != c.r || line.color.g != c.g || line.color.b != c.b) continue;
+        for (const auto& q : line.points)
+          swatch |= q.x < label->x_px && q.x > label->x_px - 60 &&
+                    std::abs(q.y - (label->y_px - label->height_px / 2)) < label->height_px;
+      }
+      EXPECT_TRUE(swatch) << r.drones[i].name << " at " << width_px;
+    }
   }
 }
 
