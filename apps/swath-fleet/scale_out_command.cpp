@@ -100,10 +100,12 @@ SweepSpec read_sweep(const std::string& source) {
 }  // namespace
 
 void FleetSweepCommand::setup(CLI::App& app) {
-  app.add_option("SPEC", spec_,
-                 "Sweep file (YAML): app, world, fleet or drones, schedulers [list], seeds "
-                 "{from, to}, and optionally wind, weights, faults, max_time_s; paths relative "
-                 "to the file")
+  app.add_option(
+         "SPEC", spec_,
+         "Sweep file (YAML): app, world, fleet or drones, schedulers [list], seeds "
+         "{from, to}, and optionally wind, weights, faults, max_time_s, histories (predictive's "
+         "reactive runs, default 5); paths relative to the file; each line's world is "
+         "drawn from its seed (--world-seed)")
       ->required();
   app.add_option("--runs", runs_dir_,
                  "Directory the runs' own directories go into (written absolute in the lines)")
