@@ -31,6 +31,9 @@ void ControlFitCommand::setup(CLI::App& app) {
 int ControlFitCommand::run() {
   const std::vector<control::TriggerPoint> data =
       control::parse_trigger_data(base::read_text_file(data_, "trigger data file"), data_);
+  // A header alone fits nothing: refused rather than printing a model of no points.
+  if (data.empty())
+    throw base::InputError(data_ + ": no data rows after the header (x,changed): nothing to fit");
   const control::FitMethod method = method_ == "mle"         ? control::FitMethod::mle
                                     : method_ == "logit_wls" ? control::FitMethod::logit_wls
                                                              : control::FitMethod::logit_ols;

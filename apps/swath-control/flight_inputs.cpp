@@ -4,6 +4,7 @@
 
 #include "data_dir.hpp"
 #include "input_text.hpp"
+#include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -71,6 +72,7 @@ std::vector<control::Override> overrides_for(const std::vector<std::string>& set
 
 void add_flight_options(CLI::App& app, FlightRequest& r) {
   app.add_option("--seed", r.seed, "Seed of every noise source (wind, sensors, random missions)")
+      ->check(seed_check())
       ->capture_default_str();
   app.add_flag("--loop", r.loop,
                "Repeat the mission until the battery reaches its reserve (paper 002 §7)");

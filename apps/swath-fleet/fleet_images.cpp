@@ -5,6 +5,7 @@
 
 #include "map_furniture.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/render/legend.hpp"
 
 namespace swath::apps {
 
@@ -118,10 +119,16 @@ FleetPicture tracks_picture(const worlds::BaseWorld& world, const fleet::RunReco
   const int text_h = std::max(12, height_px / 50);
   add_scale_bar(scene, out.view, width_px, height_px, text_h);
   add_north_arrow(scene, width_px, 40.0, text_h);
-  int y = 24;
-  for (std::size_t i = 0; i < record.drones.size(); ++i, y += text_h + 6)
-    scene.labels.push_back(
-        {12, y, record.drones[i].name, static_cast<double>(text_h), drone_color(i)});
+  // The legend: each drone's colour and name (its home the square at the track's start), then
+  // the markers; bottom right, clear of the north arrow and the scale bar.
+  std::vector<render::LegendEntry> legend;
+  for (std::size_t i = 0; i < record.drones.size(); ++i)
+    legend.push_back({record.drones[i].name, render::SwatchKind::line, drone_color(i)});
+  if (!record.served.empty()) legend.push_back({"sensed", render::SwatchKind::marker, kSensed});
+  if (!record.cancelled.empty())
+    legend.push_back({"cancelled", render::SwatchKind::marker, kCancelled});
+  render::add_legend(scene, legend, {8.0, 8.0, width_px - 8.0, height_px - 8.0},
+                     render::Corner::bottom_right, 0.8 * text_h);
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include "data_dir.hpp"
 #include "input_text.hpp"
+#include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/fleet/apps.hpp"
@@ -55,6 +56,7 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool
                  "to leave (flight time or battery) and takes over its next segment");
   }
   app.add_option("--seed", r.seed, "Seed of the scheduler's and the app's random numbers")
+      ->check(seed_check())
       ->capture_default_str();
   app.add_option("--faults", r.faults,
                  "Faults file: [{t_s, drone, kind, duration_s, soc}] (link_loss, battery_drop, "
@@ -103,7 +105,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   }
   if (!found) throw InputError("unknown app \"" + r.app + "\": the apps are " + names);
   p.world_source = world_path(r.world);
-  p.world_text = base::read_text_file(p.world_source, "world file");
+  p.world_text = base::read_text_file(p.world_source, "world file", base::kMaxConfigFileBytes);
   p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);
   const std::string needs = fleet::app_world_kind(r.app);
   if (p.world->kind() != needs)
@@ -120,7 +122,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.faults_file = absolute(r.faults);
   for (const std::string& h : r.history) p.history_files.push_back(absolute(h));
   if (!r.fleet.empty()) {
-    fleet_text = base::read_text_file(r.fleet, "fleet file");
+    fleet_text = base::read_text_file(r.fleet, "fleet file", base::kMaxConfigFileBytes);
     p.drones = fleet::parse_fleet_file(fleet_text, r.fleet, p.world->origin);
   } else {
     const int n = r.drones > 0 ? r.drones : 1;
@@ -144,20 +146,20 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     p.settings.wind_m_s = {w->first, w->second, 0};
   }
   if (!r.weights.empty()) {
-    weights_text = base::read_text_file(r.weights, "weights file");
+    weights_text = base::read_text_file(r.weights, "weights file", base::kMaxConfigFileBytes);
     p.settings.weights = fleet::parse_weights(weights_text, r.weights);
   }
   if (!r.faults.empty()) {
     std::vector<std::string> drone_names;
     for (const auto& d : p.drones) drone_names.push_back(d.name);
-    faults_text = base::read_text_file(r.faults, "faults file");
+    faults_text = base::read_text_file(r.faults, "faults file", base::kMaxConfigFileBytes);
     p.settings.faults = fleet::parse_faults(faults_text, r.faults, drone_names, r.max_time_s);
   }
   p.settings.relief = r.relief;
-  p.config_text = "app " + r.app + (r.forecast == "none" ? "" : "\nforecast " + r.forecast) +
-                  (r.relief ? "\nrelief" : "") + "\nworld\n" + p.world_text + "\nfleet\n" +
-                  fleet_text + "\ndrones " + std::to_string(r.drones) + "\nweights\n" +
-                  weights_text + "\nfaults\n" + faults_text + "\nwind " + r.wind + "\nmax_time_s " +
+  // The forecaster and relief are the scheduler's, as the scheduler itself: not in the hash.
+  p.config_text = "app " + r.app + "\nworld\n" + p.world_text + "\nfleet\n" + fleet_text +
+                  "\ndrones " + std::to_string(r.drones) + "\nweights\n" + weights_text +
+                  "\nfaults\n" + faults_text + "\nwind " + r.wind + "\nmax_time_s " +
                   std::to_string(r.max_time_s) + "\n";
   if (!fleet::make_scheduler(r.scheduler == "reactive" ? "sa" : r.scheduler))
     throw InputError("unknown scheduler \"" + r.scheduler +
@@ -256,14 +258,18 @@ std::string tracks_geojson(const PreparedRun& p, const fleet::RunRecord& r) {
   const geometry::LocalFrame frame(p.world->origin);
   json features = json::array();
   for (std::size_t i = 0; i < r.drones.size(); ++i) {
-    json coords = json::array();
+    // times_s: seconds since the run's start of each vertex, aligned with the coordinates (a
+    // property array GIS tools read as it is; a 4th coordinate most of them drop).
+    json coords = json::array(), times_s = json::array();
     for (const auto& s : r.drones[i].track) {
       const geometry::GeoPoint g = frame.to_geo({s[1], s[2]});
       coords.push_back({r6(g.lon_deg * 1e1) / 1e1, r6(g.lat_deg * 1e1) / 1e1, r6(s[3])});
+      times_s.push_back(r6(s[0]));
     }
-    features.push_back(json{{"type", "Feature"},
-                            {"properties", {{"role", "track"}, {"drone", r.drones[i].name}}},
-                            {"geometry", {{"type", "LineString"}, {"coordinates", coords}}}});
+    features.push_back(
+        json{{"type", "Feature"},
+             {"properties", {{"role", "track"}, {"drone", r.drones[i].name}, {"times_s", times_s}}},
+             {"geometry", {{"type", "LineString"}, {"coordinates", coords}}}});
   }
   for (const auto& s : r.served) {
     const geometry::GeoPoint g = frame.to_geo({s[1], s[2]});

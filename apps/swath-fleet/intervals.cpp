@@ -1,5 +1,6 @@
 #include "intervals.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace swath::apps {
@@ -22,6 +23,45 @@ Interval mean_interval95(const std::vector<double>& x) {
   for (double v : x) ss += (v - out.mean) * (v - out.mean);
   out.half = t95(static_cast<int>(x.size())) * std::sqrt(ss / (n - 1) / n);
   return out;
+}
+
+}  // namespace swath::apps
+
+namespace swath::apps {
+
+std::optional<double> kaplan_meier_median_s(std::vector<TimeObservation> runs) {
+  // Completions before censorings at one time: a run censored at t was still running at t.
+  std::sort(runs.begin(), runs.end(), [](const TimeObservation& a, const TimeObservation& b) {
+    return a.time_s != b.time_s ? a.time_s < b.time_s : a.completed > b.completed;
+  });
+  double surviving = 1.0;
+  std::size_t i = 0;
+  while (i < runs.size()) {
+    const double t = runs[i].time_s;
+    const double at_risk = static_cast<double>(runs.size() - i);
+    double completions = 0;
+    for (; i < runs.size() && runs[i].time_s == t && runs[i].completed; ++i) ++completions;
+    for (; i < runs.size() && runs[i].time_s == t; ++i) {
+    }  // censored at t: they leave the risk set after t
+    if (completions == 0) continue;
+    surviving *= 1.0 - completions / at_risk;
+    if (surviving <= 0.5 + 1e-12) return t;
+  }
+  return std::nullopt;
+}
+
+PairedRuns pair_runs(const TimeObservation& first, const TimeObservation& other) {
+  PairedRuns p;
+  if (first.completed && other.completed) {
+    p.relative_change = other.time_s / first.time_s - 1.0;
+    p.sign = other.time_s < first.time_s ? -1 : (other.time_s > first.time_s ? 1 : 0);
+    p.known = true;
+  } else if (first.completed && other.time_s >= first.time_s) {  // other still running later
+    p.sign = 1, p.known = true;
+  } else if (other.completed && first.time_s >= other.time_s) {
+    p.sign = -1, p.known = true;
+  }
+  return p;
 }
 
 }  // namespace swath::apps

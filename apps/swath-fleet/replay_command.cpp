@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -32,8 +33,9 @@ RecordedRun read_recorded(const std::string& run) {
   r.dtg_path = (fs::path(run) / "dtg.json").string();
   if (!fs::exists(r.summary_path) || !fs::exists(r.dtg_path))
     throw InputError(run + ": not a run directory: no summary.json or dtg.json in it");
-  r.summary = base::parse_json_document(base::read_text_file(r.summary_path, "run summary"),
-                                        r.summary_path);
+  r.summary = base::parse_json_document(
+      base::read_text_file(r.summary_path, "run summary", base::kMaxConfigFileBytes),
+      r.summary_path);
   r.dtg_text = base::read_text_file(r.dtg_path, "task graph (dtg.json)");
   return r;
 }
@@ -130,7 +132,8 @@ void FleetReplayCommand::setup(CLI::App& app) {
   app.add_option("--fleet", o_.fleet, "Fleet file (default: the run's fleet)");
   app.add_option("--drones", o_.drones, "Instead of --fleet: N default drones")
       ->check(CLI::Range(1, 100));
-  seed_option_ = app.add_option("--seed", o_.seed, "The scheduler's seed (default: the run's)");
+  seed_option_ = app.add_option("--seed", o_.seed, "The scheduler's seed (default: the run's)")
+                     ->check(seed_check());
   app.add_option("--forecast", o_.forecast, "gmf, constant-velocity or none (default: the run's)");
   app.add_option("--history", o_.history, "Past runs for gmf (default: the run's)");
   app.add_flag("--relief", o_.relief, "Relief on (default: as the run had it)");
@@ -149,8 +152,8 @@ int FleetReplayCommand::run() {
   for (const std::string& run : runs_) {
     const std::string path = (fs::path(run) / "summary.json").string();
     prepared.push_back(prepare_replay(run, o_));
-    const nlohmann::json s =
-        base::parse_json_document(base::read_text_file(path, "run summary"), path);
+    const nlohmann::json s = base::parse_json_document(
+        base::read_text_file(path, "run summary", base::kMaxConfigFileBytes), path);
     const std::string version = text_of(s, "version", path);
     if (first_version.empty()) first_version = version;
     if (version != first_version)

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
 #include "fleet_images.hpp"
 #include "intervals.hpp"
 #include "map_furniture.hpp"
+#include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -48,10 +51,12 @@ void FleetRunCommand::setup(CLI::App& app) {
       "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
       "instance); /SYSID after the port (1..255, default: its place + 1); overrides the fleet "
       "file's mavlink {url, sysid}");
-  world_seed_option_ = app.add_option(
-      "--world-seed", world_seed_,
-      "Draw the world's random parts from this seed instead of the file's (the scenarios of "
-      "compare and tune, as `worlds gen KIND --seed N` prints them)");
+  world_seed_option_ =
+      app.add_option(
+             "--world-seed", world_seed_,
+             "Draw the world's random parts from this seed instead of the file's (the scenarios of "
+             "compare and tune, as `worlds gen KIND --seed N` prints them)")
+          ->check(seed_check());
 }
 
 // The vehicles of --backend mavlink: --vehicles when given (it overrides the fleet file), else
@@ -137,6 +142,28 @@ int FleetRunCommand::run() {
   return base::kExitNotCompleted;
 }
 
+namespace {
+// An event of a run's log is short: run_start of the largest fleet (100 drones) is a few kB. A
+// longer line is refused before it is parsed, so that a log declaring millions of drones or
+// tasks on one line cannot take gigabytes.
+constexpr std::size_t kMaxEventLineBytes = std::size_t{1} << 20;
+
+std::string read_event_log(const std::string& path) {
+  std::string text = base::read_text_file(path, "event log");
+  std::size_t start = 0;
+  for (long long line = 1; start < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (end - start > kMaxEventLineBytes)
+      throw InputError(path + ": line " + std::to_string(line) + ": an event of " +
+                       std::to_string(end - start) +
+                       " bytes; an event of swath-fleet is at most 1 MiB (a fleet of at most "
+                       "100 drones)");
+    start = end + 1;
+  }
+  return text;
+}
+}  // namespace
+
 void FleetCheckCommand::setup(CLI::App& app) {
   app.add_option("RUN", run_, "A run's directory (or its events.jsonl)")->required();
 }
@@ -144,7 +171,7 @@ void FleetCheckCommand::setup(CLI::App& app) {
 int FleetCheckCommand::run() {
   std::string path = run_;
   if (std::filesystem::is_directory(path)) path += "/events.jsonl";
-  const fleet::EventCheck c = fleet::check_events(base::read_text_file(path, "event log"));
+  const fleet::EventCheck c = fleet::check_events(read_event_log(path));
   for (const auto& v : c.violations)
     std::cout << path << ": line " << v.line << ": " << v.rule << ": " << v.message << "\n";
   std::cout << path << ": " << c.lines << " events, " << c.tasks << " tasks (";
@@ -169,10 +196,9 @@ void FleetRenderCommand::setup(CLI::App& app) {
 int FleetRenderCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
   const std::string events_path = run_ + "/events.jsonl", summary_path = run_ + "/summary.json";
-  const fleet::RunRecord r =
-      fleet::replay_record(base::read_text_file(events_path, "event log"), events_path);
-  const nlohmann::json summary =
-      base::parse_json_document(base::read_text_file(summary_path, "run summary"), summary_path);
+  const fleet::RunRecord r = fleet::replay_record(read_event_log(events_path), events_path);
+  const nlohmann::json summary = base::parse_json_document(
+      base::read_text_file(summary_path, "run summary", base::kMaxConfigFileBytes), summary_path);
   std::string world_file = world_;
   if (world_file.empty()) {
     if (!summary.contains("world_file") || !summary["world_file"].is_string())
@@ -182,8 +208,8 @@ int FleetRenderCommand::run() {
   std::optional<std::uint64_t> seed;
   if (summary.contains("world_seed") && summary["world_seed"].is_number_unsigned())
     seed = summary["world_seed"].get<std::uint64_t>();
-  const auto world =
-      worlds::parse_world(base::read_text_file(world_file, "world file"), world_file, seed);
+  const auto world = worlds::parse_world(
+      base::read_text_file(world_file, "world file", base::kMaxConfigFileBytes), world_file, seed);
   const bool in_place = output_.empty() || std::filesystem::equivalent(output_, run_);
   base::OutputSet set(in_place ? run_ : output_, in_place ? "fleet-run" : "fleet-render",
                       {in_place ? base::OutputSet::Mode::amend : base::OutputSet::Mode::replace});
@@ -201,7 +227,7 @@ int FleetRenderCommand::run() {
 void FleetWorldsCommand::setup(CLI::App& app) {
   app.add_option("ACTION", action_, "gen")->required();
   app.add_option("KIND", kind_, "hotspot, road, rf_field, sites or tracking")->required();
-  app.add_option("--seed", seed_, "The world's seed")->capture_default_str();
+  app.add_option("--seed", seed_, "The world's seed")->check(seed_check())->capture_default_str();
 }
 
 int FleetWorldsCommand::run() {
@@ -268,6 +294,129 @@ std::vector<fleet::Dtg> histories_for(const std::vector<fleet::Dtg>& reactive, s
     out.push_back(reactive[(k + i) % reactive.size()]);
   return out;
 }
+
+using SeedRuns = std::map<std::uint64_t, TimeObservation>;
+
+// compare.csv: a row per run; a censored run's time is in censored_at_s (its end), not in
+// completion_time_s.
+std::string compare_csv(const std::vector<std::string>& names,
+                        std::map<std::string, SeedRuns>& runs_of) {
+  std::string csv = "scheduler,seed,completed,completion_time_s,censored_at_s\n";
+  for (const std::string& name : names)
+    for (const auto& [seed, o] : runs_of[name])
+      csv += name + "," + std::to_string(seed) + "," + (o.completed ? "true," : "false,") +
+             (o.completed ? base::fixed_text(o.time_s, 3) + ","
+                          : "," + base::fixed_text(o.time_s, 3)) +
+             "\n";
+  return csv;
+}
+
+struct SchedulerSummary {
+  std::size_t runs = 0, censored = 0;
+  std::vector<double> completed_s;
+  std::optional<double> median_s;  ///< Kaplan–Meier
+  double lower_bound_mean_s = 0;   ///< censored runs counted at their end
+};
+
+SchedulerSummary summarise(const SeedRuns& runs) {
+  SchedulerSummary s;
+  std::vector<TimeObservation> all;
+  for (const auto& [seed, o] : runs) {
+    all.push_back(o);
+    if (o.completed)
+      s.completed_s.push_back(o.time_s);
+    else
+      ++s.censored;
+    s.lower_bound_mean_s += o.time_s;
+  }
+  s.runs = all.size();
+  if (s.runs > 0) s.lower_bound_mean_s /= static_cast<double>(s.runs);
+  s.median_s = kaplan_meier_median_s(all);
+  return s;
+}
+
+double round3(double v) {
+  return std::round(v * 1e3) / 1e3;
+}
+
+json scheduler_json(const std::string& name, const SchedulerSummary& s) {
+  json row{{"scheduler", name},
+           {"runs", s.runs},
+           {"completed", s.completed_s.size()},
+           {"censored", s.censored}};
+  if (s.completed_s.size() >= 2) {  // over the completed runs only
+    const Interval i = mean_interval95(s.completed_s);
+    row["completion_time_s_mean"] = round3(i.mean);
+    row["completion_time_s_ci95"] = round3(i.half);
+  }
+  row["completion_time_s_km_median"] = s.median_s ? json(round3(*s.median_s)) : json(nullptr);
+  row["completion_time_s_mean_lower_bound"] = round3(s.lower_bound_mean_s);
+  return row;
+}
+
+std::string scheduler_line(const std::string& name, const SchedulerSummary& s) {
+  std::ostringstream out;
+  out << name << ": " << s.completed_s.size() << "/" << s.runs << " completed";
+  if (s.censored > 0) out << ", " << s.censored << " censored (ended without completing)";
+  if (s.completed_s.size() >= 2) {
+    const Interval i = mean_interval95(s.completed_s);
+    out << (s.censored > 0 ? "; completed runs " : ", completion ") << base::fixed_text(i.mean, 1)
+        << " ± " << base::fixed_text(i.half, 1) << " s (95 %)";
+  }
+  if (s.median_s)
+    out << "; Kaplan–Meier median " << base::fixed_text(*s.median_s, 1) << " s";
+  else
+    out << "; Kaplan–Meier median unknown (over half the runs censored)";
+  return out.str();
+}
+
+json paired_json(const std::string& name, const std::string& versus, const SeedRuns& first,
+                 const SeedRuns& other) {
+  json per_seed = json::array();
+  std::vector<double> changes;
+  int faster = 0, slower = 0, equal = 0, unknown = 0;
+  for (const auto& [seed, a] : first) {
+    const auto it = other.find(seed);
+    if (it == other.end()) continue;
+    const PairedRuns p = pair_runs(a, it->second);
+    std::string sign = "unknown";
+    if (p.known) sign = p.sign < 0 ? "faster" : (p.sign > 0 ? "slower" : "equal");
+    (sign == "faster" ? faster : sign == "slower" ? slower : sign == "equal" ? equal : unknown)++;
+    if (p.relative_change) changes.push_back(*p.relative_change);
+    per_seed.push_back(
+        json{{"seed", seed},
+             {"relative_change",
+              p.relative_change ? json(std::round(*p.relative_change * 1e5) / 1e5) : json(nullptr)},
+             {"sign", sign}});
+  }
+  json out{{"scheduler", name},        {"versus", versus},
+           {"seeds", per_seed.size()}, {"both_completed", changes.size()},
+           {"faster", faster},         {"slower", slower},
+           {"equal", equal},           {"unknown", unknown}};
+  if (changes.size() >= 2) {  // over the seeds both completed
+    const Interval i = mean_interval95(changes);
+    out["relative_change_mean"] = std::round(i.mean * 1e5) / 1e5;
+    out["relative_change_ci95"] = std::round(i.half * 1e5) / 1e5;
+  }
+  out["per_seed"] = per_seed;
+  return out;
+}
+
+std::string paired_line(const json& p) {
+  std::ostringstream out;
+  out << p["scheduler"].get<std::string>() << " vs " << p["versus"].get<std::string>() << ", "
+      << p["seeds"].get<std::size_t>() << " seeds paired: " << p["faster"].get<int>() << " faster, "
+      << p["slower"].get<int>() << " slower";
+  if (p["equal"].get<int>() > 0) out << ", " << p["equal"].get<int>() << " equal";
+  if (p["unknown"].get<int>() > 0)
+    out << ", " << p["unknown"].get<int>() << " unknown (both censored, or censored first)";
+  if (p.contains("relative_change_mean"))
+    out << "; change where both completed (" << p["both_completed"].get<std::size_t>()
+        << "): " << base::fixed_text(100 * p["relative_change_mean"].get<double>(), 1) << " ± "
+        << base::fixed_text(100 * p["relative_change_ci95"].get<double>(), 1) << " % (95 %)";
+  return out.str();
+}
+
 }  // namespace
 
 int FleetCompareCommand::run() {
@@ -277,6 +426,9 @@ int FleetCompareCommand::run() {
     if (n != "predictive" && !fleet::make_scheduler(n == "reactive" ? "sa" : n))
       throw InputError("--schedulers: unknown scheduler \"" + n +
                        "\": use predictive, reactive, sa, greedy, round-robin or hungarian");
+  if (request_.seed > kMaxSeed - static_cast<std::uint64_t>(seeds_ - 1))
+    throw InputError("--seed " + std::to_string(request_.seed) + " --seeds " +
+                     std::to_string(seeds_) + ": the last seed would be beyond 9007199254740991");
   PreparedRun check = prepare_run(request_);  // every input read before any run
   // predictive = sa + GMF (+ q) + relief with the default or --weights weights, its histories the
   // reactive runs of the other seeds: those run first.
@@ -288,9 +440,8 @@ int FleetCompareCommand::run() {
       order.push_back("reactive");
     order.push_back("predictive");
   }
-  std::string csv = "scheduler,seed,completed,completion_time_s\n";
-  std::map<std::string, std::vector<double>> times;
-  std::map<std::string, std::vector<std::string>> rows_of;
+  // Each scheduler's runs by seed: a run that did not complete is censored at its end.
+  std::map<std::string, std::map<std::uint64_t, TimeObservation>> runs_of;
   std::vector<fleet::Dtg> reactive_dtgs;
   int incomplete = 0;
   for (const std::string& name : order)
@@ -308,47 +459,22 @@ int FleetCompareCommand::run() {
       const fleet::RunRecord rec = fleet::run_app(p.app, *p.world, p.drones, p.settings);
       if (name == "reactive") reactive_dtgs.push_back(fleet::parse_dtg(rec.dtg_json, "dtg.json"));
       if (std::find(names.begin(), names.end(), name) == names.end()) continue;  // history only
-      rows_of[name].push_back(name + "," + std::to_string(r.seed) + "," +
-                              (rec.completed ? "true" : "false") + "," +
-                              base::fixed_text(rec.completion_time_s, 3) + "\n");
-      if (rec.completed)
-        times[name].push_back(rec.completion_time_s);
-      else
-        ++incomplete;
+      runs_of[name][r.seed] = {rec.completed ? rec.completion_time_s : rec.end_s, rec.completed};
+      if (!rec.completed) ++incomplete;
     }
-  for (const std::string& name : names)
-    for (const std::string& row : rows_of[name]) csv += row;
+  const std::string csv = compare_csv(names, runs_of);
   json rows = json::array();
   for (const std::string& name : names) {
-    const auto& x = times[name];
-    json row{{"scheduler", name}, {"runs", seeds_}, {"completed", x.size()}};
-    if (x.size() >= 2) {
-      const Interval i = mean_interval95(x);
-      row["completion_time_s_mean"] = std::round(i.mean * 1e3) / 1e3;
-      row["completion_time_s_ci95"] = std::round(i.half * 1e3) / 1e3;
-    }
-    rows.push_back(row);
-    std::cout << name << ": " << x.size() << "/" << seeds_ << " completed";
-    if (x.size() >= 2) {
-      const Interval i = mean_interval95(x);
-      std::cout << ", completion " << base::fixed_text(i.mean, 1) << " ± "
-                << base::fixed_text(i.half, 1) << " s (95 %)";
-    }
-    std::cout << "\n";
+    const SchedulerSummary s = summarise(runs_of[name]);
+    rows.push_back(scheduler_json(name, s));
+    std::cout << scheduler_line(name, s) << "\n";
   }
-  // Paired differences against the first scheduler (same seeds, same scenarios).
+  // Paired against the first scheduler seed by seed (same seeds, same scenarios); every seed
+  // kept, a censored side giving the sign of the change when it is known.
   json paired = json::array();
   for (std::size_t j = 1; j < names.size(); ++j) {
-    const auto& a = times[names[0]];
-    const auto& b = times[names[j]];
-    if (a.size() != b.size() || a.size() < 2) continue;
-    std::vector<double> d;
-    for (std::size_t i = 0; i < a.size(); ++i) d.push_back(b[i] / a[i] - 1.0);
-    const Interval i = mean_interval95(d);
-    paired.push_back(json{{"scheduler", names[j]},
-                          {"versus", names[0]},
-                          {"relative_change_mean", std::round(i.mean * 1e5) / 1e5},
-                          {"relative_change_ci95", std::round(i.half * 1e5) / 1e5}});
+    paired.push_back(paired_json(names[j], names[0], runs_of[names[0]], runs_of[names[j]]));
+    std::cout << paired_line(paired.back()) << "\n";
   }
   base::OutputSet set(output_, "fleet-compare");
   set.add("compare.csv", csv);

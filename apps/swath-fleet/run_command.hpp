@@ -95,7 +95,9 @@ class FleetCompareCommand : public Command {
     return "Run an application with several schedulers over many seeds (each seed also a "
            "scenario of the world): predictive (sa + GMF learning from the reactive runs of "
            "the other seeds), reactive, sa, greedy, round-robin, hungarian; writes compare.csv "
-           "and summary.json with 95 % intervals and paired changes against the first";
+           "and summary.json with 95 % intervals over the completed runs, runs that did not "
+           "complete "
+           "counted as censored (Kaplan–Meier median) and every seed paired against the first";
   }
   void setup(CLI::App& app) override;
   int run() override;

@@ -22,7 +22,7 @@ class FleetSweepCommand : public Command {
   int run() override;
 
  private:
-  std::string spec_, runs_dir_ = "runs", program_;
+  std::string spec_, runs_dir_ = "runs", program_, part_ = "all";
 };
 
 class FleetCollectCommand : public Command {

@@ -11,6 +11,7 @@
 
 #include "intervals.hpp"
 #include "progress_bar.hpp"
+#include "seed_option.hpp"
 #include "shell_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -221,6 +222,16 @@ json weights_json(const fleet::Weights& w) {
 
 }  // namespace
 
+// The tuning's seeds run from --seed over histories, tuning and held-out seeds: the last one is
+// a seed too.
+void FleetTuneCommand::check_last_seed() const {
+  const std::uint64_t span = histories_ + static_cast<std::uint64_t>(tuning_seeds_ + held_out_);
+  if (request_.seed > kMaxSeed - span)
+    throw InputError("--seed " + std::to_string(request_.seed) +
+                     ": the tuning's last seed (--seed + --histories + --tuning-seeds + "
+                     "--held-out) would be beyond 9007199254740991");
+}
+
 int FleetTuneCommand::run() {
   try {
     if (ask_->parsed()) return ask();
@@ -232,6 +243,7 @@ int FleetTuneCommand::run() {
     throw InputError(
         "tune needs APP, --world and -o DIR (or: tune ask STATE, tune tell STATE "
         "RUN..)");
+  check_last_seed();
   const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked first
   if (replay_ == "trace")
     if (const std::string why = fleet::schedule_dependence(request_.app); !why.empty())
@@ -286,10 +298,115 @@ std::string absolute_path(const std::string& f) {
   return out;
 }
 
+// Checked fields of a state file (edited, cut short or of another swath-fleet): each refusal a
+// sentence naming the file and the field, before any field is used.
+class StateFields {
+ public:
+  StateFields(const json& st, const std::string& path) : st_(st), path_(path) {}
+
+  const json& member(const char* key) const {
+    const auto it = st_.find(key);
+    if (it == st_.end()) throw InputError(path_ + ": no " + key + " (not a complete tune state)");
+    return *it;
+  }
+  void text(const char* key, bool non_empty = false) const {
+    const json& v = member(key);
+    if (!v.is_string() || (non_empty && v.get_ref<const std::string&>().empty()))
+      throw InputError(path_ + ": " + key + " must be a" + (non_empty ? " non-empty" : "") +
+                       " string");
+  }
+  double number(const json& v, const std::string& what, double lo, double hi) const {
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lo ||
+        v.get<double>() > hi)
+      throw InputError(path_ + ": " + what + " must be a number from " + base::shortest_text(lo) +
+                       " to " + base::shortest_text(hi) + ", found " + v.dump());
+    return v.get<double>();
+  }
+  long long whole(const json& v, const std::string& what, long long lo, long long hi) const {
+    const bool ok = v.is_number() && std::isfinite(v.get<double>()) &&
+                    v.get<double>() == std::floor(v.get<double>()) &&
+                    v.get<double>() >= static_cast<double>(lo) &&
+                    v.get<double>() <= static_cast<double>(hi);
+    if (!ok)
+      throw InputError(path_ + ": " + what + " must be a whole number from " + std::to_string(lo) +
+                       " to " + std::to_string(hi) + ", found " + v.dump());
+    return v.is_number_float() ? static_cast<long long>(v.get<double>()) : v.get<long long>();
+  }
+  long long whole(const char* key, long long lo, long long hi) const {
+    return whole(member(key), key, lo, hi);
+  }
+  const json& array(const char* key, std::size_t lo, std::size_t hi) const {
+    const json& v = member(key);
+    if (!v.is_array() || v.size() < lo || v.size() > hi)
+      throw InputError(path_ + ": " + key + " must be a list of " + std::to_string(lo) + " to " +
+                       std::to_string(hi) + " entries");
+    return v;
+  }
+
+ private:
+  const json& st_;
+  const std::string& path_;
+};
+
+// Every field tune ask and tell read, with tune's own ranges (a done state needs only its app
+// and output).
+void check_state(const json& st, const std::string& path) {
+  const StateFields f(st, path);
+  if (f.whole("tune_state", 0, 1000) != 1)
+    throw InputError(path + ": tune_state " + st["tune_state"].dump() +
+                     ": a tune state of another swath-fleet");
+  f.text("version", true);
+  f.text("app", true);
+  f.text("output", true);
+  f.text("phase", true);
+  const std::string phase = st["phase"].get<std::string>();
+  if (phase != "histories" && phase != "rung" && phase != "held_out" && phase != "done")
+    throw InputError(path + ": phase \"" + phase +
+                     "\" is none of histories, rung, held_out and done");
+  if (phase == "done") return;
+  for (const char* key : {"world", "runs", "program", "world_kind"}) f.text(key, true);
+  for (const char* key : {"fleet", "weights", "faults", "wind"}) f.text(key);
+  f.whole("drones", 0, 100);
+  f.whole("drone_count", 1, 100);
+  f.number(f.member("max_time_s"), "max_time_s", 1, 604800);
+  f.whole("seed", 0, 9007199254740991LL);
+  f.whole("histories", 1, 1000);
+  const long long tuning_seeds = f.whole("tuning_seeds", 1, 100);
+  if (phase == "held_out" || st.contains("held_out")) f.whole("held_out", 2, 1000);
+  const json& trials = f.array("trials", 2, 4096);
+  const long long n = static_cast<long long>(trials.size());
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    const std::string at = "trials[" + std::to_string(i) + "]";
+    if (!trials[i].is_object()) throw InputError(path + ": " + at + " must be a weights object");
+    f.number(StateFields(trials[i], path).member("coverage"), at + ".coverage", 0, 1000);
+    for (const FreeWeight& w : fleet::free_weights())
+      f.number(StateFields(trials[i], path).member(w.name), at + "." + w.name, 0, 1000);
+  }
+  f.whole("rung", 0, tuning_seeds - 1);
+  std::vector<bool> seen(trials.size(), false);
+  for (const json& i : f.array("alive", 0, trials.size())) {
+    const auto k = static_cast<std::size_t>(f.whole(i, "alive", 0, n - 1));
+    if (seen[k]) throw InputError(path + ": alive names trial " + std::to_string(k) + " twice");
+    seen[k] = true;
+  }
+  const json& times = f.array("times_s", trials.size(), trials.size());
+  for (const json& t : times) {
+    if (!t.is_array() || t.size() > static_cast<std::size_t>(tuning_seeds))
+      throw InputError(path + ": times_s must hold a list of at most tuning_seeds times per trial");
+    for (const json& v : t) f.number(v, "times_s", 0, 2 * 604800);
+  }
+  const json& told = f.member("told");
+  if (!told.is_object()) throw InputError(path + ": told must be an object (run: time)");
+  for (const auto& [dir, t] : told.items()) f.number(t, "told[" + dir + "]", 0, 2 * 604800);
+  if (phase == "held_out" || st.contains("winner")) f.whole("winner", 0, n - 1);
+}
+
 json read_state(const std::string& path) {
-  const json j = json::parse(base::read_text_file(path, "tune state"), nullptr, false);
+  const json j = json::parse(base::read_text_file(path, "tune state", base::kMaxConfigFileBytes),
+                             nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("tune_state"))
     throw InputError(path + ": not a tune state file (tune ask STATE makes one)");
+  check_state(j, path);
   return j;
 }
 
@@ -400,6 +517,7 @@ int FleetTuneCommand::ask() {
   } else {
     if (request_.app.empty() || request_.world.empty() || output_.empty())
       throw InputError(state_ + " does not exist: to start a tuning give APP, --world and -o DIR");
+    check_last_seed();
     const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked
     const std::string runs = absolute_path(
         runs_dir_.empty() ? fs::path(state_).replace_extension("").string() + "-runs" : runs_dir_);
@@ -476,8 +594,8 @@ int FleetTuneCommand::tell() {
     if (it == expected.end())
       throw InputError(run + ": not one of the runs " + state_ + " waits for now (tune ask " +
                        state_ + " prints them)");
-    const nlohmann::json s =
-        base::parse_json_document(base::read_text_file(summary_path, "run summary"), summary_path);
+    const nlohmann::json s = base::parse_json_document(
+        base::read_text_file(summary_path, "run summary", base::kMaxConfigFileBytes), summary_path);
     const std::string run_app =
         base::json_string(base::json_member(s, "app", summary_path), summary_path + ": app");
     if (run_app != app)

@@ -34,6 +34,7 @@ class FleetTuneCommand : public Command {
   void add_tune_options(CLI::App& app, bool required);
   int ask();
   int tell();
+  void check_last_seed() const;
 
   FleetRequest request_;
   std::string output_;

@@ -103,7 +103,7 @@ TEST(FleetCli, SweepLinesRunUnderGnuParallelAndCollectMergesThem) {
       "parallel", "-j2 --will-cite --joblog " + dir + "/joblog -a " + dir + "/jobs.txt");
   ASSERT_EQ(parallel.exit_code, 0) << parallel.err;
   ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --drones 2 --scheduler greedy --seed 5 "
-                            "--wind 2,1 -o " +
+                            "--world-seed 5 --wind 2,1 -o " +
                             dir + "/direct")
                 .exit_code,
             0);
@@ -294,7 +294,7 @@ std::map<std::string, std::vector<double>> compare_times(const std::string& path
   std::istringstream csv(read_text(path));
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "scheduler,seed,completed,completion_time_s");
+  EXPECT_EQ(line, "scheduler,seed,completed,completion_time_s,censored_at_s");
   std::map<std::string, std::vector<double>> times;
   while (std::getline(csv, line)) {
     std::istringstream row(line);
