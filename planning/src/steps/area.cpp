@@ -344,15 +344,8 @@ bool rings_touch(const std::vector<geometry::Ring>& rings) {
 // decomposition takes rings that share no point (a ring touching itself ended in "bad merge").
 constexpr double kTouchingPiecesGap_m = 1e-3;
 
-// How much further than the clearance lines keep from the zones, metres: a line end on the band's
-// edge leaves no room for the overrun past a stop there, and where the end cannot be drawn back
-// (the leg off the line would leave the area) the slowest approach (0.2 m/s, mission.cpp) still
-// runs 8 mm past it, into the band (the preflight check refused such plans, 0.01 m short). 2 cm
-// holds that overrun and the rounding of the files' degrees (1e-9 deg, ~0.1 mm).
-constexpr double kLineEndRoom_m = 0.02;
-
-// Lines and routes keep the clearance: zones grown by it (the lines' area by kLineEndRoom_m more),
-// the outline shrunk by the boundary clearance (docs/swath-plan.md).
+// Lines and routes keep the clearance: zones grown by it (the lines' area by kLineEndRoom_m more,
+// survey_steps.hpp), the outline shrunk by the boundary clearance (docs/swath-plan.md).
 void planning_rings(SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
   double boundary_m = r.boundary_clearance_m;
