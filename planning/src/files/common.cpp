@@ -7,11 +7,48 @@
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/commands.hpp"
 
 namespace swath::planning::files {
 
 using base::fixed_text;
 using base::round_to;
+using mavlink::Cmd;
+
+namespace {
+
+Cmd mav_cmd(const MissionItem& item, Firmware firmware) {
+  switch (item.kind) {
+    case ItemKind::takeoff:
+      return Cmd::nav_takeoff;
+    case ItemKind::waypoint:
+      return Cmd::nav_waypoint;
+    case ItemKind::change_speed:
+      return Cmd::do_change_speed;
+    case ItemKind::gimbal_pitch:
+      // DO_MOUNT_CONTROL for ArduPilot; PX4 takes the gimbal manager's command.
+      return firmware == Firmware::ardupilot ? Cmd::do_mount_control
+                                             : Cmd::do_gimbal_manager_pitchyaw;
+    case ItemKind::trigger_start:
+      return item.trigger == TriggerMode::time ? Cmd::image_start_capture
+                                               : Cmd::do_set_cam_trigg_dist;
+    case ItemKind::trigger_stop:
+      return item.trigger == TriggerMode::time ? Cmd::image_stop_capture
+                                               : Cmd::do_set_cam_trigg_dist;
+    case ItemKind::camera_shot:
+      return item.command == CameraCommand::digicam ? Cmd::do_digicam_control
+                                                    : Cmd::image_start_capture;
+    case ItemKind::land_start:
+      return Cmd::do_land_start;
+    case ItemKind::land:
+      return Cmd::nav_land;
+    case ItemKind::return_to_launch:
+      return Cmd::nav_return_to_launch;
+  }
+  return Cmd{};
+}
+
+}  // namespace
 
 geometry::GeoPoint rounded(const geometry::GeoPoint& g) {
   return {round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), 0.0};
@@ -22,30 +59,7 @@ geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p) {
 }
 
 int mav_command(const MissionItem& item, Firmware firmware) {
-  switch (item.kind) {
-    case ItemKind::takeoff:
-      return 22;  // MAV_CMD_NAV_TAKEOFF
-    case ItemKind::waypoint:
-      return 16;  // MAV_CMD_NAV_WAYPOINT
-    case ItemKind::change_speed:
-      return 178;  // MAV_CMD_DO_CHANGE_SPEED
-    case ItemKind::gimbal_pitch:
-      // MAV_CMD_DO_MOUNT_CONTROL for ArduPilot; PX4 takes the gimbal manager's command.
-      return firmware == Firmware::ardupilot ? 205 : 1000;
-    case ItemKind::trigger_start:
-      return item.trigger == TriggerMode::time ? 2000 : 206;  // IMAGE_START_CAPTURE, CAM_TRIGG_DIST
-    case ItemKind::trigger_stop:
-      return item.trigger == TriggerMode::time ? 2001 : 206;  // IMAGE_STOP_CAPTURE
-    case ItemKind::camera_shot:
-      return item.command == CameraCommand::digicam ? 203 : 2000;  // DO_DIGICAM_CONTROL
-    case ItemKind::land_start:
-      return 189;  // MAV_CMD_DO_LAND_START
-    case ItemKind::land:
-      return 21;  // MAV_CMD_NAV_LAND
-    case ItemKind::return_to_launch:
-      return 20;  // MAV_CMD_NAV_RETURN_TO_LAUNCH
-  }
-  return 0;
+  return static_cast<int>(mav_cmd(item, firmware));
 }
 
 AltitudeFrame altitude_frame(const SurveyPlan& plan) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/mavlink/commands.hpp"
 #include "swath/planning/survey_files.hpp"
 
 namespace swath::planning::files {
@@ -18,6 +19,11 @@ constexpr int kFrameTerrainAlt = 10;  // MAV_FRAME_GLOBAL_TERRAIN_ALT
 /// A local point in WGS84, rounded to 1e-9 degrees as every file writes it.
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
 geometry::GeoPoint rounded(const geometry::GeoPoint& g);
+
+/// A MAV_CMD as the files write it.
+constexpr int cmd(mavlink::Cmd command) {
+  return static_cast<int>(command);
+}
 
 /// The MAVLink command of an item (depends on the firmware for the gimbal).
 int mav_command(const MissionItem& item, Firmware firmware);

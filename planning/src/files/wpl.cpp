@@ -4,12 +4,14 @@
 
 namespace swath::planning {
 
+using mavlink::Cmd;
+
 std::string wpl_110(const SurveyPlan& plan, const Flight& flight) {
   const geometry::GeoPoint home = files::rounded(flight.drone->home_geo);
   std::string out = "QGC WPL 110\n";
   // Row 0 is the home, above mean sea level (0 when swath does not know the ground there).
   out += files::wpl_row(
-      0, 1, files::kFrameGlobal, 16,
+      0, 1, files::kFrameGlobal, files::cmd(Cmd::nav_waypoint),
       {0, 0, 0, 0, home.lat_deg, home.lon_deg, base::round_to(flight.mission->home_amsl_m, 3)});
   std::size_t index = 1;
   for (const MissionItem& item : flight.mission->items)
@@ -20,8 +22,8 @@ std::string wpl_110(const SurveyPlan& plan, const Flight& flight) {
 }
 
 std::string fence_waypoints(const SurveyPlan& plan) {
-  // MAV_CMD_NAV_FENCE_POLYGON_VERTEX_INCLUSION (5001) / _EXCLUSION (5002): param1 is the polygon's
-  // vertex count, repeated on each of its vertices.
+  // MAV_CMD_NAV_FENCE_POLYGON_VERTEX_INCLUSION / _EXCLUSION: param1 is the polygon's vertex count,
+  // repeated on each of its vertices.
   std::string out = "QGC WPL 110\n";
   std::size_t index = 0;
   auto polygon = [&](const std::vector<geometry::GeoPoint>& ring, int command) {
@@ -32,12 +34,12 @@ std::string fence_waypoints(const SurveyPlan& plan) {
   for (const geometry::Ring& ring : plan.fence) {
     std::vector<geometry::GeoPoint> geo;
     for (const geometry::Point2& p : ring) geo.push_back(files::geo(plan, p));
-    polygon(geo, 5001);
+    polygon(geo, files::cmd(Cmd::nav_fence_polygon_vertex_inclusion));
   }
   for (const auto& zone : plan.exclusion_fences_geo) {
     std::vector<geometry::GeoPoint> geo;
     for (const geometry::GeoPoint& g : zone) geo.push_back(files::rounded(g));
-    polygon(geo, 5002);
+    polygon(geo, files::cmd(Cmd::nav_fence_polygon_vertex_exclusion));
   }
   return out;
 }
@@ -60,7 +62,7 @@ std::string rally_waypoints(const SurveyPlan& plan) {
   std::size_t index = 0;
   for (const DronePlan& d : plan.drones) {
     const geometry::GeoPoint g = files::rounded(d.home_geo);
-    out += files::wpl_row(index++, 0, files::kFrameRelativeAlt, 5100,  // MAV_CMD_NAV_RALLY_POINT
+    out += files::wpl_row(index++, 0, files::kFrameRelativeAlt, files::cmd(Cmd::nav_rally_point),
                           {0, 0, 0, 0, g.lat_deg, g.lon_deg, 0});
   }
   return out;
