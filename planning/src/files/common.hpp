@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "swath/mavlink/commands.hpp"
+#include "swath/missions/writers.hpp"
 #include "swath/planning/survey_files.hpp"
 
 namespace swath::planning::files {
@@ -35,6 +36,16 @@ int mav_frame(const SurveyPlan& plan, const MissionItem& item);
 double mav_altitude_m(const SurveyPlan& plan, const MissionItem& item);
 /// The seven params of an item; NaN where QGC writes null.
 std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item);
+/// The flight as the mission writers take it (swath/missions/writers.hpp): its items' commands,
+/// frames and params as written, the drone's home (AMSL altitude) and speed, the fence, the
+/// no-fly zones' exclusion fences, the drone's home as rally point.
+missions::Mission mission_file(const SurveyPlan& plan, const Flight& flight);
+/// The plan's fences (inclusion: the area grown by the margin; exclusion: one per no-fly zone)
+/// with the plan's home as return point.
+missions::Mission fence_file(const SurveyPlan& plan);
+/// QGC's firmware type and altitude mode of the plan.
+missions::QgcPlanSettings qgc_settings(const SurveyPlan& plan);
+
 /// waypoints.csv's name for an item.
 const char* action_name(ItemKind kind);
 
@@ -44,10 +55,6 @@ std::string xml_escape(const std::string& text);
 /// "lon,lat,alt lon,lat,alt ..." (closed: the first point again at the end).
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close);
-
-/// A QGC WPL 110 row: index, current, frame, command, seven params (NaN as 0), autocontinue 1.
-std::string wpl_row(std::size_t index, int current, int frame, int command,
-                    const std::array<double, 7>& params);
 
 /// A waypoint of a flight as the DJI and Litchi exports write it (docs/swath-plan.md): their apps
 /// take off and return (or land) by themselves, so these are the mission's NAV_WAYPOINTs in order,
