@@ -56,22 +56,11 @@ std::string xml_escape(const std::string& text);
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close);
 
-/// A waypoint of a flight as the DJI and Litchi exports write it (docs/swath-plan.md): their apps
-/// take off and return (or land) by themselves, so these are the mission's NAV_WAYPOINTs in order,
-/// and with --land the home again at the survey altitude, where the app's landing finish action
-/// lands.
-struct ExportPoint {
-  geometry::GeoPoint geo;   ///< WGS84, rounded to 1e-9 degrees as every file writes it
-  double altitude_m = 0.0;  ///< above home (the take-off point)
-  /// True bearing of the leg that follows, degrees clockwise from north in [0, 360) (the last
-  /// point: of the leg that arrives); the geodesic azimuth at this point (GeographicLib).
-  double heading_deg = 0.0;
-  /// The camera triggers along the leg that follows (distance or time mode; a sweep line, or a
-  /// turn inside the area with --photos-in-turns), as the mission's trigger items say.
-  bool photo_leg = false;
-  double hold_s = 0.0;  ///< hover: the hold here, seconds
-  bool shot = false;    ///< hover: one photo here
-};
+/// A waypoint as the DJI and Litchi exports write it (swath/missions/writers.hpp).
+using ExportPoint = missions::ExportPoint;
+
+/// The writers' name for the trigger mode.
+missions::PhotoTrigger photo_trigger(TriggerMode mode);
 
 /// The export points of a flight (see ExportPoint).
 std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight);
