@@ -69,8 +69,4 @@ std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& fli
 /// seconds (time mode); 0 in hover mode.
 double trigger_value(const Flight& flight);
 
-/// A zip archive of `entries` (name, bytes) in order, deflated, with a fixed modification time
-/// (2020-01-01 00:00 in whatever time zone libzip converts with): same entries, same bytes.
-std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& entries);
-
 }  // namespace swath::planning::files

@@ -1,12 +1,14 @@
 #pragma once
 // Mission files as swath writes them (docs/formats.md, docs/swath-plan.md), beside their readers
-// (mission.hpp): QGC .plan, WPL 110 missions, fences and rally points, Mission Planner's .fen.
+// (mission.hpp, dji_kmz.cpp): QGC .plan, WPL 110 missions, fences and rally points, Mission
+// Planner's .fen, Litchi CSV, DJI WPML KMZ.
 // Written from a Mission value holding the numbers as the file shows them (the caller rounds):
 // same value, same bytes. Items are written as MISSION_ITEM's seven params: params[0..3],
 // position (param5 latitude, param6 longitude) and altitude_m (param7), whatever the command;
 // an item with an altitude_frame other than none is a position QGC gives an altitude mode.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,33 @@ struct LitchiSettings {
 /// starting at the point part k ends at.
 std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points,
                                           const LitchiSettings& settings);
+
+/// The DJI WPML enumerations of the aircraft and payload (droneInfo, payloadInfo).
+struct DjiEnums {
+  int drone = 0;      ///< droneEnumValue
+  int drone_sub = 0;  ///< droneSubEnumValue
+  int payload = 0;    ///< payloadEnumValue
+};
+
+/// What a DJI WPML wayline says beside its points.
+struct DjiSettings {
+  bool land = false;              ///< finishAction autoLand (else goHome)
+  std::optional<DjiEnums> enums;  ///< absent: no droneInfo and payloadInfo
+  double speed_m_s = 0.0;         ///< every point's, and the transitional speed (at most 15)
+  double altitude_m = 0.0;        ///< the survey altitude: global height, RTH and take-off security
+  double gimbal_pitch_deg = 0.0;  ///< set at the first point
+  PhotoTrigger trigger = PhotoTrigger::distance;
+  double trigger_value = 0.0;  ///< metres between photos (distance) or seconds (time)
+};
+
+/// DJI WPML (--dji; see planning::dji_waylines_wpml for what is written): wpmz/waylines.wpml (what
+/// the aircraft executes) and wpmz/template.kml (the template DJI Pilot 2 edits) of the points,
+/// and the KMZ, a zip of both (libzip); same points, same bytes.
+std::string write_dji_waylines_wpml(const std::vector<ExportPoint>& points,
+                                    const DjiSettings& settings);
+std::string write_dji_template_kml(const std::vector<ExportPoint>& points,
+                                   const DjiSettings& settings);
+std::string write_dji_kmz(const std::vector<ExportPoint>& points, const DjiSettings& settings);
 
 /// What a QGC plan says beside the mission's items.
 struct QgcPlanSettings {
