@@ -144,7 +144,7 @@ std::string action_groups(const Wayline& w, std::size_t i, int& next_group) {
   if (p.photo_leg && (i == 0 || !w.points[i - 1].photo_leg)) {
     std::size_t end = i;
     while (end + 1 < w.points.size() && w.points[end].photo_leg) ++end;
-    const bool timed = w.settings.trigger == PhotoTrigger::time;
+    const bool timed = w.settings.trigger == TriggerMode::time;
     s += group(in, next_group++, i, end, timed ? "multipleTiming" : "multipleDistance",
                number(w.settings.trigger_value), take_photo(in + "  ", 0));
   }

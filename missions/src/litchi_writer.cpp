@@ -68,8 +68,8 @@ std::string row_text(const Row& row, const LitchiSettings& s) {
   // (as DJI's waypoint missions read it, for the flight to the next waypoint); -1: none.
   const bool photos = p.photo_leg && row.next != nullptr;
   const double interval = s.trigger_value;
-  out += (photos && s.trigger == PhotoTrigger::time ? fixed_text(interval, 3) : "-1") + ",";
-  out += (photos && s.trigger == PhotoTrigger::distance ? fixed_text(interval, 3) : "-1") + "\n";
+  out += (photos && s.trigger == TriggerMode::time ? fixed_text(interval, 3) : "-1") + ",";
+  out += (photos && s.trigger == TriggerMode::distance ? fixed_text(interval, 3) : "-1") + "\n";
   return out;
 }
 

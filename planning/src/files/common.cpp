@@ -341,18 +341,6 @@ std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& fli
   return points;
 }
 
-missions::PhotoTrigger photo_trigger(TriggerMode mode) {
-  switch (mode) {
-    case TriggerMode::distance:
-      return missions::PhotoTrigger::distance;
-    case TriggerMode::time:
-      return missions::PhotoTrigger::time;
-    case TriggerMode::hover:
-      return missions::PhotoTrigger::hover;
-  }
-  return missions::PhotoTrigger::distance;
-}
-
 double trigger_value(const Flight& flight) {
   for (const MissionItem& item : flight.mission->items)
     if (item.kind == ItemKind::trigger_start) return item.value;

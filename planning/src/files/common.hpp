@@ -12,19 +12,15 @@
 
 namespace swath::planning::files {
 
-constexpr int kFrameGlobal = 0;       // MAV_FRAME_GLOBAL: AMSL (fence and rally items)
-constexpr int kFrameMission = 2;      // MAV_FRAME_MISSION: no position
-constexpr int kFrameRelativeAlt = 3;  // MAV_FRAME_GLOBAL_RELATIVE_ALT
-constexpr int kFrameTerrainAlt = 10;  // MAV_FRAME_GLOBAL_TERRAIN_ALT
+// The MAV_FRAME values items are written in (swath/mavlink/commands.hpp).
+constexpr int kFrameGlobal = static_cast<int>(mavlink::MavFrame::global);    // AMSL
+constexpr int kFrameMission = static_cast<int>(mavlink::MavFrame::mission);  // no position
+constexpr int kFrameRelativeAlt = static_cast<int>(mavlink::MavFrame::global_relative_alt);
+constexpr int kFrameTerrainAlt = static_cast<int>(mavlink::MavFrame::global_terrain_alt);
 
 /// A local point in WGS84, rounded to 1e-9 degrees as every file writes it.
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
 geometry::GeoPoint rounded(const geometry::GeoPoint& g);
-
-/// A MAV_CMD as the files write it.
-constexpr int cmd(mavlink::Cmd command) {
-  return static_cast<int>(command);
-}
 
 /// The MAVLink command of an item (depends on the firmware for the gimbal).
 int mav_command(const MissionItem& item, Firmware firmware);
@@ -58,9 +54,6 @@ std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, doubl
 
 /// A waypoint as the DJI and Litchi exports write it (swath/missions/writers.hpp).
 using ExportPoint = missions::ExportPoint;
-
-/// The writers' name for the trigger mode.
-missions::PhotoTrigger photo_trigger(TriggerMode mode);
 
 /// The export points of a flight (see ExportPoint).
 std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight);

@@ -8,12 +8,11 @@ namespace {
 missions::DjiSettings dji_settings(const SurveyPlan& plan, const Flight& flight) {
   missions::DjiSettings s;
   s.land = plan.request.land;
-  if (const auto& dji = plan.request.camera.dji)
-    s.enums = missions::DjiEnums{dji->drone, dji->drone_sub, dji->payload};
+  s.enums = plan.request.camera.dji;
   s.speed_m_s = flight.drone->speed_m_s;
   s.altitude_m = plan.imaging.altitude_m;
   s.gimbal_pitch_deg = plan.request.triggering.gimbal_pitch_deg;
-  s.trigger = files::photo_trigger(plan.request.triggering.mode);
+  s.trigger = plan.request.triggering.mode;
   s.trigger_value = files::trigger_value(flight);
   return s;
 }

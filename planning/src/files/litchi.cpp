@@ -9,7 +9,7 @@ std::vector<std::string> litchi_csv(const SurveyPlan& plan, const Flight& flight
   settings.max_rows = kLitchiMaxWaypoints;
   settings.gimbal_pitch_deg = plan.request.triggering.gimbal_pitch_deg;
   settings.speed_m_s = flight.drone->speed_m_s;
-  settings.trigger = files::photo_trigger(plan.request.triggering.mode);
+  settings.trigger = plan.request.triggering.mode;
   settings.trigger_value = files::trigger_value(flight);
   return missions::write_litchi_csv(files::export_points(plan, flight), settings);
 }

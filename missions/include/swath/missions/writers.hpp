@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/missions/export_types.hpp"
 #include "swath/missions/mission.hpp"
 
 namespace swath::missions {
@@ -33,15 +34,12 @@ struct ExportPoint {
   bool shot = false;    ///< hover: one photo here
 };
 
-/// How the camera is triggered on photo legs.
-enum class PhotoTrigger { distance, time, hover };
-
 /// What a Litchi mission says beside its points.
 struct LitchiSettings {
   std::size_t max_rows = 99;      ///< Litchi's largest mission, waypoints
   double gimbal_pitch_deg = 0.0;  ///< at every point (gimbalmode 2)
   double speed_m_s = 0.0;         ///< at every point
-  PhotoTrigger trigger = PhotoTrigger::distance;
+  TriggerMode trigger = TriggerMode::distance;
   double trigger_value = 0.0;  ///< metres between photos (distance) or seconds (time)
 };
 
@@ -51,13 +49,6 @@ struct LitchiSettings {
 std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points,
                                           const LitchiSettings& settings);
 
-/// The DJI WPML enumerations of the aircraft and payload (droneInfo, payloadInfo).
-struct DjiEnums {
-  int drone = 0;      ///< droneEnumValue
-  int drone_sub = 0;  ///< droneSubEnumValue
-  int payload = 0;    ///< payloadEnumValue
-};
-
 /// What a DJI WPML wayline says beside its points.
 struct DjiSettings {
   bool land = false;              ///< finishAction autoLand (else goHome)
@@ -65,7 +56,7 @@ struct DjiSettings {
   double speed_m_s = 0.0;         ///< every point's, and the transitional speed (at most 15)
   double altitude_m = 0.0;        ///< the survey altitude: global height, RTH and take-off security
   double gimbal_pitch_deg = 0.0;  ///< set at the first point
-  PhotoTrigger trigger = PhotoTrigger::distance;
+  TriggerMode trigger = TriggerMode::distance;
   double trigger_value = 0.0;  ///< metres between photos (distance) or seconds (time)
 };
 
