@@ -153,8 +153,11 @@ void plan_features(const std::string& text) {
 
 }  // namespace
 
-const std::vector<Target>& targets() {
-  static const std::vector<Target> all = {
+namespace {
+
+// The area, camera, fleet, mission and stage-plan readers of swath and swath-energy.
+std::vector<Target> planning_and_energy_targets() {
+  return {
       {"geojson",
        [](const std::string& t) { field(t, geometry::FieldFormat::geojson, "fuzz.geojson"); },
        {"share/fields/meadow.geojson", "share/fields/bowtie.geojson",
@@ -224,6 +227,12 @@ const std::vector<Target>& targets() {
          expect_input_error_only([&] { planning::parse_plan_figures(t, "summary.json"); });
        },
        {"tests/bad-input/seeds/summary.json"}},
+  };
+}
+
+// swath-control's inputs, MAVLink from a link, and GIS areas.
+std::vector<Target> control_and_link_targets() {
+  return {
       // swath-control: the control sections of a vehicle file, and a scheduler file (§17.A).
       {"vehicle_control",
        [](const std::string& t) {
@@ -276,6 +285,12 @@ const std::vector<Target>& targets() {
       {"ogr_wkt",
        [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
        {"tests/bad-input/seeds/field.wkt"}},
+  };
+}
+
+// swath-fleet's world, fleet, fault, task-graph and event files.
+std::vector<Target> fleet_targets() {
+  return {
       // swath-fleet: world files (every kind) and the fleet file's simulated drones (§18.10).
       {"world",
        [](const std::string& t) {
@@ -319,6 +334,17 @@ const std::vector<Target>& targets() {
        },
        {"tests/bad-input/seeds/fleet-events.jsonl"}},
   };
+}
+
+}  // namespace
+
+const std::vector<Target>& targets() {
+  static const std::vector<Target> all = [] {
+    std::vector<Target> out = planning_and_energy_targets();
+    for (auto group : {control_and_link_targets, fleet_targets})
+      for (Target& t : group()) out.push_back(std::move(t));
+    return out;
+  }();
   return all;
 }
 

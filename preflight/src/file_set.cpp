@@ -10,6 +10,7 @@
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/commands.hpp"
 #include "swath/preflight/verify.hpp"
 
 namespace swath::preflight {
@@ -57,7 +58,7 @@ std::map<std::string, Launch> launches(const Files& files) {
   return out;
 }
 
-// The waypoints (16) of a mission with their altitude above home, for comparing twins.
+// The waypoints (NAV_WAYPOINT) of a mission with their altitude above home, for comparing twins.
 struct Waypoint {
   geometry::GeoPoint at;
   double above_home_m;
@@ -66,7 +67,7 @@ struct Waypoint {
 std::vector<Waypoint> waypoints(const missions::Mission& m) {
   std::vector<Waypoint> out;
   for (const missions::Item& item : m.items)
-    if (item.command == 16)
+    if (item.command == static_cast<int>(mavlink::Cmd::nav_waypoint))
       out.push_back({item.position, missions::above_home_m(item, missions::home_amsl_m(m))});
   return out;
 }

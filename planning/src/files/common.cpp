@@ -7,11 +7,48 @@
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/mavlink/commands.hpp"
 
 namespace swath::planning::files {
 
 using base::fixed_text;
 using base::round_to;
+using mavlink::Cmd;
+
+namespace {
+
+Cmd mav_cmd(const MissionItem& item, Firmware firmware) {
+  switch (item.kind) {
+    case ItemKind::takeoff:
+      return Cmd::nav_takeoff;
+    case ItemKind::waypoint:
+      return Cmd::nav_waypoint;
+    case ItemKind::change_speed:
+      return Cmd::do_change_speed;
+    case ItemKind::gimbal_pitch:
+      // DO_MOUNT_CONTROL for ArduPilot; PX4 takes the gimbal manager's command.
+      return firmware == Firmware::ardupilot ? Cmd::do_mount_control
+                                             : Cmd::do_gimbal_manager_pitchyaw;
+    case ItemKind::trigger_start:
+      return item.trigger == TriggerMode::time ? Cmd::image_start_capture
+                                               : Cmd::do_set_cam_trigg_dist;
+    case ItemKind::trigger_stop:
+      return item.trigger == TriggerMode::time ? Cmd::image_stop_capture
+                                               : Cmd::do_set_cam_trigg_dist;
+    case ItemKind::camera_shot:
+      return item.command == CameraCommand::digicam ? Cmd::do_digicam_control
+                                                    : Cmd::image_start_capture;
+    case ItemKind::land_start:
+      return Cmd::do_land_start;
+    case ItemKind::land:
+      return Cmd::nav_land;
+    case ItemKind::return_to_launch:
+      return Cmd::nav_return_to_launch;
+  }
+  return Cmd{};
+}
+
+}  // namespace
 
 geometry::GeoPoint rounded(const geometry::GeoPoint& g) {
   return {round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), 0.0};
@@ -22,30 +59,7 @@ geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p) {
 }
 
 int mav_command(const MissionItem& item, Firmware firmware) {
-  switch (item.kind) {
-    case ItemKind::takeoff:
-      return 22;  // MAV_CMD_NAV_TAKEOFF
-    case ItemKind::waypoint:
-      return 16;  // MAV_CMD_NAV_WAYPOINT
-    case ItemKind::change_speed:
-      return 178;  // MAV_CMD_DO_CHANGE_SPEED
-    case ItemKind::gimbal_pitch:
-      // MAV_CMD_DO_MOUNT_CONTROL for ArduPilot; PX4 takes the gimbal manager's command.
-      return firmware == Firmware::ardupilot ? 205 : 1000;
-    case ItemKind::trigger_start:
-      return item.trigger == TriggerMode::time ? 2000 : 206;  // IMAGE_START_CAPTURE, CAM_TRIGG_DIST
-    case ItemKind::trigger_stop:
-      return item.trigger == TriggerMode::time ? 2001 : 206;  // IMAGE_STOP_CAPTURE
-    case ItemKind::camera_shot:
-      return item.command == CameraCommand::digicam ? 203 : 2000;  // DO_DIGICAM_CONTROL
-    case ItemKind::land_start:
-      return 189;  // MAV_CMD_DO_LAND_START
-    case ItemKind::land:
-      return 21;  // MAV_CMD_NAV_LAND
-    case ItemKind::return_to_launch:
-      return 20;  // MAV_CMD_NAV_RETURN_TO_LAUNCH
-  }
-  return 0;
+  return static_cast<int>(mav_cmd(item, firmware));
 }
 
 AltitudeFrame altitude_frame(const SurveyPlan& plan) {
@@ -117,6 +131,87 @@ std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item
   return {0, 0, 0, 0, 0, 0, 0};
 }
 
+namespace {
+
+missions::AltitudeFrame item_altitude_frame(const SurveyPlan& plan, const MissionItem& item) {
+  if (!positional(item.kind)) return missions::AltitudeFrame::none;
+  switch (altitude_frame(plan)) {
+    case AltitudeFrame::relative:
+      return missions::AltitudeFrame::relative;
+    case AltitudeFrame::amsl:
+      return missions::AltitudeFrame::amsl;
+    case AltitudeFrame::terrain:
+      return missions::AltitudeFrame::terrain;
+  }
+  return missions::AltitudeFrame::relative;
+}
+
+void add_fences(const SurveyPlan& plan, missions::Mission& m) {
+  for (const geometry::Ring& ring : plan.fence) {
+    std::vector<geometry::GeoPoint> geo_ring;
+    for (const geometry::Point2& p : ring) geo_ring.push_back(geo(plan, p));
+    m.inclusion_fences.push_back(std::move(geo_ring));
+  }
+  for (const auto& zone : plan.exclusion_fences_geo) {
+    std::vector<geometry::GeoPoint> geo_ring;
+    for (const geometry::GeoPoint& g : zone) geo_ring.push_back(rounded(g));
+    m.exclusion_fences.push_back(std::move(geo_ring));
+  }
+}
+
+}  // namespace
+
+missions::Mission mission_file(const SurveyPlan& plan, const Flight& flight) {
+  const DronePlan& d = *flight.drone;
+  missions::Mission m;
+  m.source = flight.file_stem;
+  m.home = rounded(d.home_geo);
+  m.home_amsl_m = round_to(flight.mission->home_amsl_m, 3);
+  m.home_amsl_known = true;
+  m.cruise_speed_m_s = round_to(d.speed_m_s, 3);
+  m.fixed_wing = plan.request.vehicle != Vehicle::multirotor;
+  for (const MissionItem& item : flight.mission->items) {
+    const std::array<double, 7> p = mav_params(plan, item);
+    missions::Item written;
+    written.command = mav_command(item, plan.request.firmware);
+    written.frame = mav_frame(plan, item);
+    written.altitude_frame = item_altitude_frame(plan, item);
+    written.params = {p[0], p[1], p[2], p[3]};
+    written.position = {p[4], p[5], 0.0};
+    written.altitude_m = p[6];
+    m.items.push_back(written);
+  }
+  add_fences(plan, m);
+  m.rally_points.push_back(m.home);  // the drone's own home (docs/swath-plan.md)
+  return m;
+}
+
+missions::Mission fence_file(const SurveyPlan& plan) {
+  missions::Mission m;
+  m.home = rounded(plan.home);
+  add_fences(plan, m);
+  return m;
+}
+
+missions::QgcPlanSettings qgc_settings(const SurveyPlan& plan) {
+  missions::QgcPlanSettings s;
+  s.firmware_type = plan.request.firmware == Firmware::ardupilot ? 3 : 12;
+  // QGroundControl's AltMode: 1 relative, 2 absolute (AMSL), 4 terrain frame (3 is its own
+  // "calculated above terrain", which it turns into AMSL altitudes itself).
+  switch (altitude_frame(plan)) {
+    case AltitudeFrame::relative:
+      s.altitude_mode = 1;
+      break;
+    case AltitudeFrame::amsl:
+      s.altitude_mode = 2;
+      break;
+    case AltitudeFrame::terrain:
+      s.altitude_mode = 4;
+      break;
+  }
+  return s;
+}
+
 const char* action_name(ItemKind kind) {
   switch (kind) {
     case ItemKind::takeoff:
@@ -182,17 +277,6 @@ std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, doubl
   if (close && !points.empty()) add(points.front());
   if (!s.empty()) s.pop_back();
   return s;
-}
-
-std::string wpl_row(std::size_t index, int current, int frame, int command,
-                    const std::array<double, 7>& p) {
-  std::string out = std::to_string(index) + "\t" + std::to_string(current) + "\t" +
-                    std::to_string(frame) + "\t" + std::to_string(command);
-  for (std::size_t k = 0; k < 7; ++k) {
-    out += '\t';
-    out += fixed_text(std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
-  }
-  return out + "\t1\n";
 }
 
 namespace {

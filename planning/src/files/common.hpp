@@ -6,14 +6,17 @@
 #include <string>
 #include <vector>
 
+#include "swath/mavlink/commands.hpp"
+#include "swath/missions/writers.hpp"
 #include "swath/planning/survey_files.hpp"
 
 namespace swath::planning::files {
 
-constexpr int kFrameGlobal = 0;       // MAV_FRAME_GLOBAL: AMSL (fence and rally items)
-constexpr int kFrameMission = 2;      // MAV_FRAME_MISSION: no position
-constexpr int kFrameRelativeAlt = 3;  // MAV_FRAME_GLOBAL_RELATIVE_ALT
-constexpr int kFrameTerrainAlt = 10;  // MAV_FRAME_GLOBAL_TERRAIN_ALT
+// The MAV_FRAME values items are written in (swath/mavlink/commands.hpp).
+constexpr int kFrameGlobal = static_cast<int>(mavlink::MavFrame::global);    // AMSL
+constexpr int kFrameMission = static_cast<int>(mavlink::MavFrame::mission);  // no position
+constexpr int kFrameRelativeAlt = static_cast<int>(mavlink::MavFrame::global_relative_alt);
+constexpr int kFrameTerrainAlt = static_cast<int>(mavlink::MavFrame::global_terrain_alt);
 
 /// A local point in WGS84, rounded to 1e-9 degrees as every file writes it.
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
@@ -29,6 +32,16 @@ int mav_frame(const SurveyPlan& plan, const MissionItem& item);
 double mav_altitude_m(const SurveyPlan& plan, const MissionItem& item);
 /// The seven params of an item; NaN where QGC writes null.
 std::array<double, 7> mav_params(const SurveyPlan& plan, const MissionItem& item);
+/// The flight as the mission writers take it (swath/missions/writers.hpp): its items' commands,
+/// frames and params as written, the drone's home (AMSL altitude) and speed, the fence, the
+/// no-fly zones' exclusion fences, the drone's home as rally point.
+missions::Mission mission_file(const SurveyPlan& plan, const Flight& flight);
+/// The plan's fences (inclusion: the area grown by the margin; exclusion: one per no-fly zone)
+/// with the plan's home as return point.
+missions::Mission fence_file(const SurveyPlan& plan);
+/// QGC's firmware type and altitude mode of the plan.
+missions::QgcPlanSettings qgc_settings(const SurveyPlan& plan);
+
 /// waypoints.csv's name for an item.
 const char* action_name(ItemKind kind);
 
@@ -39,26 +52,8 @@ std::string xml_escape(const std::string& text);
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close);
 
-/// A QGC WPL 110 row: index, current, frame, command, seven params (NaN as 0), autocontinue 1.
-std::string wpl_row(std::size_t index, int current, int frame, int command,
-                    const std::array<double, 7>& params);
-
-/// A waypoint of a flight as the DJI and Litchi exports write it (docs/swath-plan.md): their apps
-/// take off and return (or land) by themselves, so these are the mission's NAV_WAYPOINTs in order,
-/// and with --land the home again at the survey altitude, where the app's landing finish action
-/// lands.
-struct ExportPoint {
-  geometry::GeoPoint geo;   ///< WGS84, rounded to 1e-9 degrees as every file writes it
-  double altitude_m = 0.0;  ///< above home (the take-off point)
-  /// True bearing of the leg that follows, degrees clockwise from north in [0, 360) (the last
-  /// point: of the leg that arrives); the geodesic azimuth at this point (GeographicLib).
-  double heading_deg = 0.0;
-  /// The camera triggers along the leg that follows (distance or time mode; a sweep line, or a
-  /// turn inside the area with --photos-in-turns), as the mission's trigger items say.
-  bool photo_leg = false;
-  double hold_s = 0.0;  ///< hover: the hold here, seconds
-  bool shot = false;    ///< hover: one photo here
-};
+/// A waypoint as the DJI and Litchi exports write it (swath/missions/writers.hpp).
+using ExportPoint = missions::ExportPoint;
 
 /// The export points of a flight (see ExportPoint).
 std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight);
@@ -66,9 +61,5 @@ std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& fli
 /// The flight's camera trigger value on photo legs: metres between photos (distance mode) or
 /// seconds (time mode); 0 in hover mode.
 double trigger_value(const Flight& flight);
-
-/// A zip archive of `entries` (name, bytes) in order, deflated, with a fixed modification time
-/// (2020-01-01 00:00 in whatever time zone libzip converts with): same entries, same bytes.
-std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& entries);
 
 }  // namespace swath::planning::files

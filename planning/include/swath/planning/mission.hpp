@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "swath/missions/export_types.hpp"
 #include "swath/planning/sweep.hpp"
 
 namespace swath::planning {
@@ -15,12 +16,8 @@ namespace swath::planning {
 enum class Firmware { ardupilot, px4 };
 enum class Vehicle { multirotor, fixedwing };
 
-/// How photos are taken on the lines.
-enum class TriggerMode {
-  distance,  ///< the autopilot triggers every trigger distance (DO_SET_CAM_TRIGG_DIST, 206)
-  time,      ///< every trigger distance / speed seconds (IMAGE_START_CAPTURE 2000 / STOP 2001)
-  hover,     ///< stop at each photo point and shoot (a waypoint with a hold, then one shot)
-};
+/// How photos are taken on the lines (distance, time, hover), as the mission writers take it.
+using TriggerMode = missions::TriggerMode;
 
 /// The command a hover shot uses.
 enum class CameraCommand {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "common.hpp"
+#include "zip_archive.hpp"
 
-namespace swath::planning::files {
+namespace swath::missions {
 namespace {
 
 [[noreturn]] void fail(const std::string& what, const std::string& why) {
@@ -82,4 +82,4 @@ std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& 
   return source_bytes(memory);
 }
 
-}  // namespace swath::planning::files
+}  // namespace swath::missions
