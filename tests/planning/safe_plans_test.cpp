@@ -250,6 +250,7 @@ constexpr double kTolerance_m = 1e-3;
 
 struct Outcome {
   bool refused = false;
+  std::string why_refused;
   int failures = 0;
 };
 
@@ -259,8 +260,9 @@ Outcome check_layout(const Layout& l, bool report) {
   SurveyPlan plan;
   try {
     plan = plan_survey(l.request);
-  } catch (const base::InputError&) {
+  } catch (const base::InputError& e) {
     out.refused = true;
+    out.why_refused = e.what();
     return out;
   }
   const geometry::LocalFrame& frame = *l.request.field.frame;
@@ -328,6 +330,7 @@ TEST(SafePlans, RandomLayoutsAreFlownSafelyOrRefused) {
     SCOPED_TRACE("layout " + std::to_string(k));
     const Outcome o = check_layout(l, failing < 5);
     refused += o.refused;
+    if (o.refused) std::printf("layout %d refused: %s\n", k, o.why_refused.c_str());
     failing += o.failures > 0;
   }
   RecordProperty("failing", failing);
