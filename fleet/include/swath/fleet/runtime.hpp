@@ -149,7 +149,8 @@ struct RunRecord {
 };
 
 /// Runs `app` in `world` with `drones` (at least one). Throws base::InputError for an unknown
-/// scheduler name or a backend whose vehicle count differs from the fleet's; an exception escaping
+/// scheduler name, a backend whose vehicle count differs from the fleet's, or a fleet outside
+/// settings.envelope (layers above the ceiling, a home outside the fence); an exception escaping
 /// the app's main ends the run as not completed.
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
                   const RuntimeSettings& settings);
