@@ -12,6 +12,7 @@
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/fleet/apps.hpp"
+#include "swath/fleet/envelope.hpp"
 #include "swath/fleet/faults.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/geometry/local_frame.hpp"
@@ -37,7 +38,8 @@ void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool
                  "approach_speed_m_s, accel_m_s2, recharge_s per drone)");
   app.add_option("--drones", r.drones,
                  "Instead of --fleet: N default drones (10 m/s, swath-energy's battery and "
-                 "power) at the world's origin")
+                 "power) in a row east of the world's origin, 6 m apart; at most 21 fit under "
+                 "the default 120 m ceiling")
       ->check(CLI::Range(1, 100));
   if (with_scheduler) {
     app.add_option("--scheduler", r.scheduler,
@@ -114,6 +116,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   if (!r.fleet.empty() && r.drones > 0) throw InputError("give --fleet or --drones, not both");
   // Each file is read once: parsed, and its text kept for config_text.
   std::string fleet_text, weights_text, faults_text;
+  fleet::Envelope envelope;  // the fleet file's, else the defaults
   const auto absolute = [](const std::string& f) {
     return f.empty() ? f : fs::absolute(f).lexically_normal().string();
   };
@@ -124,16 +127,32 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   if (!r.fleet.empty()) {
     fleet_text = base::read_text_file(r.fleet, "fleet file", base::kMaxConfigFileBytes);
     p.drones = fleet::parse_fleet_file(fleet_text, r.fleet, p.world->origin);
+    envelope = fleet::parse_fleet_envelope(fleet_text, r.fleet);
   } else {
     const int n = r.drones > 0 ? r.drones : 1;
     p.default_drones = n;
     for (int i = 0; i < n; ++i) {
       fleet::DroneSpec d;
       d.name = "drone-" + std::to_string(i + 1);
-      d.home_m = {3.0 * i, 0, 0};
+      // A row, the separation and a metre (the separation rule's margin) apart: neighbours can
+      // climb at once (docs/swath-fleet.md).
+      d.home_m = {(envelope.separation_m + 1) * i, 0, 0};
       p.drones.push_back(d);
     }
   }
+  p.settings.envelope = fleet::local_envelope(envelope, p.world->origin);
+  // Checked again by the runtime; here too so that nothing (no vehicle link) is opened first.
+  const std::string fit =
+      fleet::layers_refusal(static_cast<int>(p.drones.size()), p.settings.layer_base_m,
+                            std::max(p.settings.layer_step_m, envelope.separation_m),
+                            std::min(envelope.ceiling_m, envelope.fence.max_altitude_m));
+  if (!fit.empty())
+    throw InputError((r.fleet.empty() ? "--drones " + std::to_string(p.drones.size()) : r.fleet) +
+                     ": " + fit);
+  for (const fleet::DroneSpec& d : p.drones)
+    if (const std::string why = p.settings.envelope.refusal_xy(d.home_m.x, d.home_m.y);
+        !why.empty())
+      throw InputError(r.fleet + ": " + d.name + "'s home is " + why);
   p.settings.app_name = r.app;
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;
@@ -230,7 +249,8 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"reliefs", r.reliefs},
            {"requeued", r.requeued},
            {"duplicate_results", r.duplicate_results},
-           {"faults", p.settings.faults.size()},
+           {"faults", r.faults_happened},
+           {"faults_scheduled", p.settings.faults.size()},
            {"app_metrics", metrics}};
   if (!r.failure.empty()) out["failure"] = r.failure;
   // Which vehicle flew which drone (a real run): the address as --vehicles spells it.

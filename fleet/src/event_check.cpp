@@ -1,5 +1,6 @@
 #include "swath/fleet/event_check.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -46,11 +47,14 @@ class Checker {
     if (ev == "run_start") return run_start(e);
     if (ev == "run_end") return run_end(e);
     const auto drone = id(e, "drone");
+    if (ev != "drone_state") close_state_batch();
     check_names(e, ev, drone);
     event(e, ev, drone, id(e, "task"));
+    envelope(e, ev, drone);
   }
 
   EventCheck finish() {
+    close_state_batch();
     if (n_ == 0)
       bad(0, "R1", "no events");
     else if (!ended_)
@@ -81,6 +85,14 @@ class Checker {
   void run_start(const json& e) {
     if (started_) bad(n_, "R1", "a second run_start");
     started_ = true;
+    if (e.contains("envelope") && e["envelope"].is_object()) {
+      const json& env = e["envelope"];
+      ceiling_m_ = number(env, "ceiling_m").value_or(ceiling_m_);
+      separation_m_ = number(env, "separation_m").value_or(separation_m_);
+      ceiling_m_ = std::min(ceiling_m_, number(env, "fence_max_altitude_m").value_or(ceiling_m_));
+      inclusions_ = rings(env, "inclusions");
+      exclusions_ = rings(env, "exclusions");
+    }
     if (const auto m = number(e, "max_time_s")) max_time_ = *m;
     if (e.contains("drones") && e["drones"].is_array())
       for (const auto& d : e["drones"]) {
@@ -121,15 +133,21 @@ class Checker {
     } else if (ev == "duplicate_result") {
       ++out_.duplicates;
     } else if (ev == "request_visible") {
-      if (task) visible_.insert({*task, id(e, "segment").value_or(-1)});
+      if (task) request_visible(*task, id(e, "segment").value_or(-1));
     } else if (ev == "position") {
       if (drone && lost_.count(*drone)) bad(n_, "R8", "a lost drone was sent to a forecast place");
     } else if (ev == "relief") {
       if (drone && lost_.count(*drone)) bad(n_, "R8", "a lost drone was sent to stand by");
     } else if (ev == "dispatch") {
       if (drone && lost_.count(*drone)) bad(n_, "R8", "a lost drone was dispatched");
-      if (task && !visible_.count({*task, id(e, "segment").value_or(-1)}))
+      const long long segment = id(e, "segment").value_or(-1);
+      if (task && !visible_.count({*task, segment}))
         bad(n_, "R9", "dispatch of a segment never made visible");
+      else if (task && segment != latest_segment_[*task])
+        bad(n_, "R9",
+            "dispatch of task " + std::to_string(*task) + "'s segment " + std::to_string(segment) +
+                " while its segment " + std::to_string(latest_segment_[*task]) + " is the one due");
+      if (task && drone) same_drone(*task, *drone, "dispatched to");
     } else if (ev == "fault") {
       ++out_.faults;
       if (drone && e.value("fault", "") == "motor_failure") lost_.insert(*drone);
@@ -144,6 +162,7 @@ class Checker {
     if (created_at_.count(*task)) bad(n_, "R2", "task " + std::to_string(*task) + " created twice");
     created_at_[*task] = n_;
     ++out_.tasks;
+    if (e.value("same_drone", false)) same_drone_tasks_.insert(*task);
     const auto parent = id(e, "parent");
     if (parent && *parent >= 0 && !created_at_.count(*parent))
       bad(n_, "R2", "its parent " + std::to_string(*parent) + " was not created before");
@@ -165,6 +184,10 @@ class Checker {
   void action_done(const json& e, std::optional<long long> task) {
     ++out_.results;
     const auto action = id(e, "action");
+    if (task && id(e, "drone")) {
+      same_drone(*task, *id(e, "drone"), "a result from");
+      if (same_drone_tasks_.count(*task) && !bound_.count(*task)) bound_[*task] = *id(e, "drone");
+    }
     if (!task || !action) return;
     if (!delivered_.insert({*task, *action}).second)
       bad(n_, "R5",
@@ -175,8 +198,109 @@ class Checker {
     last_action_[*task] = std::max(last_action_.count(*task) ? last_action_[*task] : -1, *action);
   }
 
+  // R9: a task's segments are announced in order; a requeued one again under its index.
+  void request_visible(long long task, long long segment) {
+    const auto it = latest_segment_.find(task);
+    const long long expected = it == latest_segment_.end() ? 0 : it->second + 1;
+    if (segment != expected && (it == latest_segment_.end() || segment != it->second))
+      bad(n_, "R9",
+          "task " + std::to_string(task) + "'s segment " + std::to_string(segment) +
+              " announced after segment " +
+              (it == latest_segment_.end() ? std::string("none") : std::to_string(it->second)));
+    latest_segment_[task] = segment;
+    visible_.insert({task, segment});
+  }
+
+  // R10: a same_drone task stays on the drone of its first result.
+  void same_drone(long long task, long long drone, const char* what) {
+    const auto it = bound_.find(task);
+    if (it != bound_.end() && it->second != drone)
+      bad(n_, "R10",
+          "same_drone task " + std::to_string(task) + " " + what + " drone " +
+              std::to_string(drone) + ", bound to drone " + std::to_string(it->second));
+  }
+
+  static std::vector<std::vector<std::array<double, 2>>> rings(const json& env, const char* key) {
+    std::vector<std::vector<std::array<double, 2>>> out;
+    if (!env.contains(key) || !env[key].is_array()) return out;
+    for (const json& r : env[key]) {
+      std::vector<std::array<double, 2>> ring;
+      if (r.is_array())
+        for (const json& p : r)
+          if (p.is_array() && p.size() >= 2 && p[0].is_number() && p[1].is_number())
+            ring.push_back({p[0].get<double>(), p[1].get<double>()});
+      if (ring.size() >= 3) out.push_back(std::move(ring));
+    }
+    return out;
+  }
+  // Even-odd rule; a point on an edge counts as inside (the checker's own, not geometry's).
+  static bool inside(const std::vector<std::array<double, 2>>& ring, double x, double y) {
+    bool in = false;
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const auto& a = ring[i];
+      const auto& b = ring[j];
+      const double cross = (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+      if (std::abs(cross) < 1e-9 && x >= std::min(a[0], b[0]) - 1e-9 &&
+          x <= std::max(a[0], b[0]) + 1e-9 && y >= std::min(a[1], b[1]) - 1e-9 &&
+          y <= std::max(a[1], b[1]) + 1e-9)
+        return true;
+      if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0])
+        in = !in;
+    }
+    return in;
+  }
+
+  // R11–R13 for the positions an event carries: drones' (drone_state, drone_mode) and targets
+  // (dispatch).
+  void envelope(const json& e, const std::string& ev, std::optional<long long> drone) {
+    if (ev != "drone_state" && ev != "drone_mode" && ev != "dispatch") return;
+    const auto x = number(e, "x_m"), y = number(e, "y_m"), z = number(e, "alt_m");
+    if (!x || !y || !z) return;
+    const std::string who =
+        ev == "dispatch" ? "a dispatch target" : "drone " + std::to_string(drone.value_or(-1));
+    if (ev != "dispatch") out_.max_altitude_m = std::max(out_.max_altitude_m, *z);
+    if (*z > ceiling_m_ + 1e-6)
+      bad(n_, "R12",
+          who + " at " + std::to_string(*z) + " m, above the ceiling of " +
+              std::to_string(ceiling_m_) + " m");
+    bool in = inclusions_.empty();
+    for (const auto& r : inclusions_) in = in || inside(r, *x, *y);
+    if (!in) bad(n_, "R13", who + " outside the inclusion fence");
+    for (const auto& r : exclusions_)
+      if (inside(r, *x, *y)) bad(n_, "R13", who + " inside an exclusion fence");
+    if (ev == "drone_state" && drone) {
+      const auto t = number(e, "t_s").value_or(-1);
+      if (t != batch_t_) close_state_batch();
+      batch_t_ = t;
+      if (*z > 0 && e.value("state", "") != "lost") batch_.push_back({*x, *y, *z});
+    }
+  }
+
+  // R11: the airborne drones of one drone_state time, pairwise.
+  void close_state_batch() {
+    for (std::size_t i = 0; i < batch_.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) {
+        const double d = std::hypot(batch_[i][0] - batch_[j][0], batch_[i][1] - batch_[j][1],
+                                    batch_[i][2] - batch_[j][2]);
+        out_.least_separation_m = std::min(out_.least_separation_m, d);
+        if (d < separation_m_ - 1e-6)
+          bad(n_, "R11",
+              "two airborne drones " + std::to_string(d) + " m apart at t " +
+                  std::to_string(batch_t_) + " s (separation " + std::to_string(separation_m_) +
+                  " m)");
+      }
+    batch_.clear();
+    batch_t_ = -1;
+  }
+
   EventCheck out_;
   int n_ = 0;
+  double ceiling_m_ = 120, separation_m_ = 5;
+  std::vector<std::vector<std::array<double, 2>>> inclusions_, exclusions_;
+  std::vector<std::array<double, 3>> batch_;  // airborne drones at batch_t_
+  double batch_t_ = -1;
+  std::map<long long, long long> latest_segment_, bound_;  // task → segment; same_drone → drone
+  std::set<long long> same_drone_tasks_;
   double last_t_ = 0, max_time_ = std::numeric_limits<double>::infinity();
   bool started_ = false, ended_ = false;
   std::set<long long> drones_, lost_;

@@ -13,6 +13,7 @@
 #include "swath/base/yaml_input.hpp"
 #include "swath/base/yaml_map.hpp"
 #include "swath/energy/sim_config.hpp"
+#include "swath/fleet/envelope.hpp"
 #include "swath/geometry/local_frame.hpp"
 
 namespace swath::fleet {
@@ -68,7 +69,7 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
     const YAML::Node doc = base::load_yaml(text, source);
     if (!doc.IsMap()) throw InputError(source + ": a fleet file is a YAML mapping (home, drones)");
     const YamlMap root(doc, source, "");
-    root.allow({"home", "drones"});
+    root.allow({"home", "drones", "ceiling_m", "separation_m", "fence"});  // envelope.hpp
     const geometry::LocalFrame frame(origin);
     const geometry::GeoPoint fleet_home = root.has("home") ? geo(root.map("home")) : origin;
     const YAML::Node list = doc["drones"];
@@ -79,6 +80,11 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
                        " drones; swath-fleet simulates at most 100");
     std::vector<DroneSpec> out;
     std::set<std::string> names;
+    // Drones sharing the file's home stand in a row east of it, separation_m + 1 m apart
+    // (envelope.hpp).
+    const double spacing_m =
+        root.number("separation_m", Envelope{}.separation_m, 0, 1000, true) + 1;
+    int shared_home = 0;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string place = "drones[" + std::to_string(i) + "]";
       if (!list[i].IsMap())
@@ -131,7 +137,8 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
         d.home_m = {h.number("x_m", 0, -1e5, 1e5), h.number("y_m", 0, -1e5, 1e5), 0};
       } else {
         const geometry::GeoPoint g = m.has("home") ? geo(m.map("home")) : fleet_home;
-        const geometry::Point2 p = frame.to_local(g);
+        geometry::Point2 p = frame.to_local(g);
+        if (!m.has("home")) p.x += spacing_m * shared_home++;
         if (std::hypot(p.x, p.y) > 1e5)
           throw InputError(m.where(m.has("home") ? "home" : "name") + ": " + d.name +
                            "'s home is " +

@@ -350,6 +350,32 @@ TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
   }
 }
 
+// The safety envelope at the command line: 100 default drones do not fit under the 120 m ceiling
+// (layers 5 m apart from 20 m): exit 2, one sentence, nothing written; 21 fly, none above 120 m.
+TEST(FleetCli, AHundredDronesAreRefusedUnderTheCeilingAndTwentyOneFly) {
+  const std::string dir = fresh_dir("fleet-envelope");
+  const CliRun refused =
+      run_swath_fleet("run wifi --world rf_field --drones 100 -o " + dir + "/hundred");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--drones 100: a fleet of 100 drones needs altitude layers up to "
+                             "515 m"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir + "/hundred"));
+  ASSERT_EQ(run_swath_fleet("run wifi --world rf_field --drones 21 -o " + dir + "/fit").exit_code,
+            0);
+  double top_m = 0;
+  std::istringstream events(read_text(dir + "/fit/events.jsonl"));
+  for (std::string line; std::getline(events, line);) {
+    const auto e = nlohmann::json::parse(line);
+    if (e.contains("alt_m") && e["ev"] != "request_visible")
+      top_m = std::max(top_m, e["alt_m"].get<double>());
+  }
+  EXPECT_LE(top_m, 120.0);
+  EXPECT_EQ(top_m, 120.0);  // drone 21's layer: 20 + 5 × 20
+  EXPECT_EQ(run_swath_fleet("check " + dir + "/fit").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace swath::test
 

@@ -132,7 +132,7 @@ struct Mission {
     for (const auto& e : events("action_done")) {
       if (e["name"] != "camera") continue;
       const int drone = e["drone"];
-      const double layer_m = 20 + 3 * drone;
+      const double layer_m = 20 + 5 * drone;
       std::string nearest;
       double off_m = 1e9;
       for (const auto& [name, target] : kTargets) {
@@ -202,7 +202,9 @@ TEST(MavlinkFleet, TenSecondLinkCutLosesNoTaskAndDelaysCompletion) {
   ASSERT_TRUE(plain.record.completed);
 
   Mission m;
-  const double cut_s = 18;  // copter-2 is on its way to its first photo, at its layer
+  // copter-2 is on its way to its first photo, at its layer (it took off at 12.6 s, once copter-1,
+  // 3 m away, had climbed clear: the separation rule)
+  const double cut_s = 25;
   m.fakes[1]->cut_link(cut_s, cut_s + 10);
   m.run();
   m.expect_every_photo_taken_once_at_its_target();

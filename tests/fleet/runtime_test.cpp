@@ -454,7 +454,7 @@ TEST(Runtime, SpeculationSendsTheIdleDroneToTheForecastStepAndWins) {
         EXPECT_TRUE(std::any_of(forecast.begin(), forecast.end(), [&](const Vec3& f) {
           return horizontal_distance(f, at) < 1e-6;
         })) << e.dump();
-        EXPECT_EQ(e["alt_m"].get<double>(), 20.0 + 3.0 * e["drone"].get<double>());
+        EXPECT_EQ(e["alt_m"].get<double>(), 20.0 + 5.0 * e["drone"].get<double>());
       }
     }
     EXPECT_EQ(positions, predictive.speculative_positions);
@@ -569,7 +569,7 @@ TEST(Runtime, ReliefStandsByWhereTheDroneAtWorkIsAndTakesOverItsLooks) {
         ++relief_events;
         const int by = e["drone"], of = e["for"];
         EXPECT_NE(by, of);
-        EXPECT_EQ(e["alt_m"].get<double>(), 20.0 + 3.0 * by);
+        EXPECT_EQ(e["alt_m"].get<double>(), 20.0 + 5.0 * by);
         EXPECT_GT(e["leave_s"].get<double>(), e["t_s"].get<double>() - 1e-9);
         standing_by[by] = of;
       } else if (e["ev"] == "dispatch") {

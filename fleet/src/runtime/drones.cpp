@@ -48,6 +48,7 @@ double Runtime::next_event(const Drone& d) const {
   }
   if (!d.link_up) e = std::min(e, d.link_back);
   if (!d.sensor_ok) e = std::min(e, d.sensor_back);
+  if (std::isfinite(d.home_retry_s)) return std::min(e, d.home_retry_s);  // instead of leaving
   return std::min(e, leave_time(d));
 }
 
@@ -74,6 +75,14 @@ void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode, double t) {
 // The drone stops where it is and hovers (its request taken away or cancelled).
 void Runtime::stop(Drone& d, double t) {
   integrate(d, t);
+  // Hovering here must be clear of every climb (separation.cpp), and not between layers (it
+  // finishes its climb first); else it flies on to the end of its leg (then hovers there, as
+  // checked) and is asked again.
+  if (d.leg && on_leg(d.mode) &&
+      (d.pos.z < d.layer_m - 1e-6 || !clear_to_fly(d, std::nullopt, t))) {
+    retry_s_ = std::min(retry_s_, t + settings_.tick_s);
+    return;
+  }
   d.leg.reset();
   backend_.hold(d.index, t);
   set_mode(d, Mode::hovering, t);
@@ -109,7 +118,18 @@ void Runtime::go_home(Drone& d, double t, const std::string& why) {
   leave_spot(d);
   d.relieving = -1;
   if (d.held_for >= 0) d.held_for = -1;
+  integrate(d, t);
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
+  d.home_retry_s = kInf;
+  // A real vehicle out of reach flies home by its own failsafe: nothing the runtime can hold.
+  const bool failsafe = !d.link_up && backend_.reports_every_tick();
+  if (!failsafe && !clear_to_fly(d, candidate_leg(d, home, t), t)) {  // next tick; as it is
+    d.home_retry_s = t + settings_.tick_s;
+    d.home_why = why;
+    if (d.mode == Mode::acting || d.mode == Mode::held) set_mode(d, Mode::hovering, t);
+    changed_ = true;
+    return;
+  }
   start_leg(d, home, Mode::returning, t);
   changed_ = true;
 }
@@ -273,6 +293,13 @@ void Runtime::land_home(Drone& d, double t) {
 void Runtime::step_drone(Drone& d, double t) {
   integrate(d, t);
   recover(d, t);
+  if (std::isfinite(d.home_retry_s) && t >= d.home_retry_s - 1e-9) {
+    d.home_retry_s = kInf;
+    if (d.mode != Mode::landed && d.mode != Mode::charging && d.mode != Mode::lost) {
+      go_home(d, t, d.home_why);
+      return;
+    }
+  }
   switch (d.mode) {
     case Mode::flying:
     case Mode::positioning:
@@ -312,10 +339,9 @@ void Runtime::step_drone(Drone& d, double t) {
   }
 }
 
-void Runtime::dispatch(Drone& d, Task& t, double at) {
-  t.serving = d.index;
-  d.task = t.id;
-  if (d.held_for == t.id) d.held_for = -1;
+// Where a dispatch of t's head segment sends d: its fly_to, or where the task's previous fly_to
+// went; always at d's own layer.
+Vec3 Runtime::dispatch_target(const Drone& d, const Task& t) const {
   const std::size_t h = t.head();
   Vec3 to = t.location;
   if (h < t.actions.size() && t.actions[h].type == ActionType::fly_to) to = t.actions[h].to;
@@ -325,15 +351,25 @@ void Runtime::dispatch(Drone& d, Task& t, double at) {
       if (h < t.actions.size() && t.actions[h].type != ActionType::fly_to) to = t.actions[i].to;
       break;
     }
-  if (!(to.z > 0)) to.z = d.layer_m;
+  // Every leg at the drone's own layer: layers separation_m apart keep level flights apart
+  // (docs/swath-fleet.md, "Safety envelope"); a fly_to's height was checked, not flown.
+  to.z = d.layer_m;
+  return to;
+}
+
+void Runtime::dispatch(Drone& d, Task& t, double at) {
+  t.serving = d.index;
+  d.task = t.id;
+  if (d.held_for == t.id) d.held_for = -1;
+  const std::size_t h = t.head();
+  const Vec3 to = dispatch_target(d, t);
   for (std::size_t i = h; i < t.actions.size(); ++i) {
     if (i > h && t.actions[i].type == ActionType::fly_to) break;
     if (t.actions[i].state == ActionState::pending && t.actions[i].type == ActionType::fly_to)
       t.actions[i].state = ActionState::running;
   }
-  log(at_json(
-      json{{"ev", "dispatch"}, {"drone", d.index}, {"task", t.id}, {"segment", t.segment - 1}},
-      to));
+  log(at_json(json{{"ev", "dispatch"}, {"drone", d.index}, {"task", t.id}, {"segment", t.segment}},
+              to));
   if (d.mode == Mode::landed) {
     integrate(d, at);
     d.airborne_since = at;

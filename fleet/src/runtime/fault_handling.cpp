@@ -31,6 +31,7 @@ void Runtime::apply_fault(const FaultEvent& f) {
            {"fault", fault_name(f.kind)},
            {"duration_s", round6(f.duration_s)},
            {"soc", round6(std::max(0.0, d.soc))}});
+  ++record_.faults_happened;
   if (d.mode == Mode::lost) return;
   switch (f.kind) {
     case FaultKind::link_loss:

@@ -3,9 +3,10 @@
 
 #include <chrono>
 
-#include "swath/fleet/simulated_fleet.hpp"
 #include "runtime/runtime_impl.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
+#include "swath/fleet/simulated_fleet.hpp"
 
 namespace swath::fleet::rt {
 
@@ -34,6 +35,9 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
   if (backend_.vehicles() != static_cast<int>(specs.size()))
     throw base::InputError("the backend has " + std::to_string(backend_.vehicles()) +
                            " vehicles for a fleet of " + std::to_string(specs.size()) + " drones");
+  settings_.layer_step_m = std::max(settings.layer_step_m, settings.envelope.separation_m);
+  settings_.disc_m = std::max(settings.disc_m, settings.envelope.separation_m);
+  check_envelope(specs);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     Drone d;
     d.spec = specs[i];
@@ -41,7 +45,7 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
     d.pos = specs[i].home_m;
     d.pos.z = 0;
     d.soc = specs[i].battery.initial_soc;
-    d.layer_m = settings.layer_base_m + settings.layer_step_m * static_cast<double>(i);
+    d.layer_m = settings_.layer_base_m + settings_.layer_step_m * static_cast<double>(i);
     d.link_up = backend_.report(d.index).link_up;  // a real vehicle: not until first heard
     if (!d.link_up) d.link_back = kInf;
     d.record.name = specs[i].name;
@@ -51,6 +55,25 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
   std::stable_sort(faults_.begin(), faults_.end(), [](const FaultEvent& a, const FaultEvent& b) {
     return a.t_s != b.t_s ? a.t_s < b.t_s : a.drone < b.drone;
   });
+}
+
+// The fleet must fit the envelope before anything flies: every layer under the ceiling (and the
+// fence's height), every home inside the fence. Homes nearer than separation_m are allowed: the
+// take-off rule (separation.cpp) then lets one drone climb there at a time.
+void Runtime::check_envelope(const std::vector<DroneSpec>& specs) const {
+  const LocalEnvelope& e = settings_.envelope;
+  const double top_m = std::min(e.ceiling_m, e.fence_max_altitude_m);
+  const std::string layers = layers_refusal(static_cast<int>(specs.size()), settings_.layer_base_m,
+                                            settings_.layer_step_m, top_m);
+  if (!layers.empty()) throw base::InputError(layers);
+  const auto where = [](const Vec3& p) {
+    return "(" + base::fixed_text(p.x, 1) + ", " + base::fixed_text(p.y, 1) + ") m";
+  };
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const Vec3& h = specs[i].home_m;
+    if (const std::string why = e.refusal_xy(h.x, h.y); !why.empty())
+      throw base::InputError(specs[i].name + "'s home " + where(h) + " is " + why);
+  }
 }
 
 void Runtime::log_states() {
@@ -110,6 +133,25 @@ void Runtime::poll_backend() {
   }
 }
 
+// The envelope as the checker reads it (local metres; a fence's rings as [x_m, y_m] pairs).
+json Runtime::envelope_json() const {
+  const LocalEnvelope& e = settings_.envelope;
+  json env{{"ceiling_m", e.ceiling_m}, {"separation_m", e.separation_m}};
+  if (std::isfinite(e.fence_max_altitude_m)) env["fence_max_altitude_m"] = e.fence_max_altitude_m;
+  const auto rings = [](const std::vector<std::vector<std::array<double, 2>>>& rs) {
+    json out = json::array();
+    for (const auto& r : rs) {
+      json ring = json::array();
+      for (const auto& [x, y] : r) ring.push_back(json::array({round6(x), round6(y)}));
+      out.push_back(ring);
+    }
+    return out;
+  };
+  if (!e.inclusions.empty()) env["inclusions"] = rings(e.inclusions);
+  if (!e.exclusions.empty()) env["exclusions"] = rings(e.exclusions);
+  return env;
+}
+
 // Logs run_start and spawns the app's main, whose body writes into its own promise state.
 Task& Runtime::start_main() {
   json drones = json::array();
@@ -120,7 +162,8 @@ Task& Runtime::start_main() {
            {"seed", settings_.seed},
            {"scheduler", settings_.scheduler},
            {"max_time_s", settings_.max_time_s},
-           {"drones", drones}});
+           {"drones", drones},
+           {"envelope", envelope_json()}});
   for (Drone& d : drones_) set_mode(d, Mode::landed, 0);
   auto main_state = std::make_shared<detail::State<void>>();
   const App& app = app_;
@@ -154,6 +197,7 @@ double Runtime::next_happening() const {
   for (const auto& [t, s] : delays_) next = std::min(next, t);
   if (next_fault_ < faults_.size()) next = std::min(next, faults_[next_fault_].t_s);
   next = std::min(next, next_relief_s_);
+  next = std::min(next, retry_s_);
   for (const Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested)
       next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
@@ -264,6 +308,10 @@ RunRecord Runtime::run() {
     fail_unserved();
     if (!ready_.empty()) continue;
     if (settings_.relief) relieve();
+    if (now_ >= retry_s_ - 1e-9) {
+      retry_s_ = kInf;
+      changed_ = true;
+    }
     if (changed_) {
       changed_ = false;
       schedule();
@@ -295,7 +343,8 @@ RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpe
     rt::Runtime runtime(app, world, drones, settings, *settings.backend);
     return runtime.run();
   }
-  SimulatedFleet simulated(drones, settings.layer_base_m, settings.layer_step_m);
+  SimulatedFleet simulated(drones, settings.layer_base_m,
+                           std::max(settings.layer_step_m, settings.envelope.separation_m));
   rt::Runtime runtime(app, world, drones, settings, simulated);
   return runtime.run();
 }

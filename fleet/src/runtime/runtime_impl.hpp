@@ -101,7 +101,8 @@ struct Task {
   // is a new one (an await after work is the next iteration's sync, docs/swath-fleet.md).
   bool issued_since_sync = false;
   bool requested = false;  // a request_visible logged for the current head
-  int segment = 0;         // head segments made visible so far
+  int segment = -1;        // the head segment's index (0, 1, ...: each new head is the next)
+  std::size_t segment_head = static_cast<std::size_t>(-1);  // its first action
   // Its program as the runtime saw it, in order (dtg.json "script", for trace replay): actions
   // queued, awaits that suspended, spawns, cancels and compute delays.
   std::vector<ScriptStep> script;
@@ -154,6 +155,9 @@ struct Drone {
   // Vehicles read every tick (real ones): the last reported position; the leg above is then the
   // model's estimate (energy), the vehicle's report says where it is and when it arrived.
   std::optional<Vec3> reported;
+  // Sent home but its way was not clear (separation.cpp): tries again then, for this reason.
+  double home_retry_s = std::numeric_limits<double>::infinity();
+  std::string home_why;
 };
 
 inline bool on_leg(Mode m) {
@@ -260,6 +264,16 @@ class Runtime final : public detail::Core {
   double leave_from(const Drone& d, const Vec3& place, double airborne_s, double soc_s,
                     double extra_flight_s) const;
   void stand_by(Drone& e, const Drone& d, const Vec3& at, double leave_s);
+
+  void check_envelope(const std::vector<DroneSpec>& specs) const;
+  json envelope_json() const;
+  void check_target(const Vec3& to) const;
+  // Separation (runtime/separation.cpp): is the leg (none: hovering where it is) that d would
+  // begin at t0 clear of every climb and, when it climbs, of every airborne drone?
+  Leg candidate_leg(const Drone& d, const Vec3& to, double t) const;
+  bool clear_to_fly(const Drone& d, const std::optional<Leg>& leg, double t0) const;
+  Vec3 dispatch_target(const Drone& d, const Task& t) const;
+  double retry_s_ = kInf;  // a plan waited for separation: schedule again then
 
   // The run's steps (run() is their loop).
   Task& start_main();

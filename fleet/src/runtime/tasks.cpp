@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "runtime/runtime_impl.hpp"
+#include "swath/base/number_text.hpp"
 
 namespace swath::fleet::rt {
 
@@ -30,10 +31,27 @@ int Runtime::spawn(int parent, const Kind& kind, Flags flags,
     p.last_armed.reset();
   }
   dtg_changed_ = true;
-  log(json{{"ev", "task_created"}, {"task", t.id}, {"kind", t.kind}, {"parent", parent}});
+  log(json{{"ev", "task_created"},
+           {"task", t.id},
+           {"kind", t.kind},
+           {"parent", parent},
+           {"same_drone", t.flags.same_drone},
+           {"interruptible", t.flags.interruptible}});
   t.root = t.start(*t.ctx);
   ready_.push_back({t.id, t.root, nullptr});
   return t.id;
+}
+
+// A fly_to inside the envelope or an error to the app, never flown: a height of 0 is the drone's
+// own layer, else in (0, ceiling] and under the fence's height; the place inside the fence.
+void Runtime::check_target(const Vec3& to) const {
+  const auto at = [&] {
+    return "fly_to (" + base::shortest_text(to.x) + ", " + base::shortest_text(to.y) + ", " +
+           base::shortest_text(to.z) + ") m is ";
+  };
+  if (!(to.z >= 0)) throw ActionFailed(at() + "below home (heights are 0 < h ≤ the ceiling)");
+  const std::string why = settings_.envelope.refusal(to);
+  if (!why.empty()) throw ActionFailed(at() + why);
 }
 
 Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::string& name,
@@ -55,6 +73,7 @@ Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::stri
     a.sample_period_s = duration_s;
   }
   if (a.type == ActionType::sense) a.duration_s = world_.sense_time_s(name);
+  if (a.type == ActionType::fly_to) check_target(to);
   if (a.type == ActionType::fly_to) {
     t.location = to;
     t.has_location = true;

@@ -19,7 +19,7 @@ bool Runtime::working(const Drone& d) const {
 
 bool Runtime::idle(const Drone& d) const {
   return d.link_up && d.sensor_ok && d.task < 0 && d.held_for < 0 && !d.spot && d.relieving < 0 &&
-         (d.mode == Mode::landed || d.mode == Mode::hovering);
+         !std::isfinite(d.home_retry_s) && (d.mode == Mode::landed || d.mode == Mode::hovering);
 }
 
 void Runtime::relieve() {
@@ -63,6 +63,10 @@ void Runtime::relieve() {
 }
 
 void Runtime::stand_by(Drone& e, const Drone& d, const Vec3& at, double leave_s) {
+  if (!clear_to_fly(e, candidate_leg(e, at, now_), now_)) {  // separation: asked again next tick
+    next_relief_s_ = std::min(next_relief_s_, now_ + settings_.tick_s);
+    return;
+  }
   e.relieving = d.index;
   ++record_.reliefs;
   log(at_json(json{{"ev", "relief"}, {"drone", e.index}, {"for", d.index}}, at,

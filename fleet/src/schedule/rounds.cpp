@@ -54,10 +54,18 @@ void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
       r.service_s += t.actions[i].duration_s;
       if (t.actions[i].type == ActionType::sense) r.needs_sensor = true;
     }
+    // Every segment is announced on its own (its own index, its wait counted from then): a head
+    // that moved since the last announcement is the next segment, unless the segment was
+    // requeued part-done (requeue() clears `requested`), which is announced again as itself.
+    if (t.segment < 0 || (h != t.segment_head && t.requested)) {
+      ++t.segment;
+      t.requested = false;
+    }
+    t.segment_head = h;
     if (!t.requested) {
       t.requested = true;
       t.visible_since_s = now_;
-      log(at_json(json{{"ev", "request_visible"}, {"task", t.id}, {"segment", t.segment++}},
+      log(at_json(json{{"ev", "request_visible"}, {"task", t.id}, {"segment", t.segment}},
                   r.location_m, json{{"service_s", round6(r.service_s)}}));
       note_hits(r.location_m, t.id);
     }
@@ -74,6 +82,15 @@ void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
                          std::vector<int>& drone_of) {
   for (Drone& d : drones_) {
     if (!available(d) || d.relieving >= 0) continue;  // a stand-by is pinned to its place
+    if (std::isfinite(d.home_retry_s)) continue;      // it is waiting to head home
+    // On the ground with its climb not clear (separation.cpp): not offered this round, so the
+    // scheduler does not keep giving it work it cannot start.
+    if (d.mode == Mode::landed &&
+        !clear_to_fly(d, candidate_leg(d, {d.spec.home_m.x, d.spec.home_m.y, d.layer_m}, now_),
+                      now_)) {
+      retry_s_ = std::min(retry_s_, now_ + settings_.tick_s);
+      continue;
+    }
     DroneState ds;
     ds.position_m = position_at(d, now_);
     if (!(ds.position_m.z > 0)) ds.position_m.z = d.layer_m;
@@ -122,6 +139,11 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
     if (a[i] && *a[i] >= visible) {  // speculation: only a place to wait at
       const ForecastRequest& f = s.forecasts[static_cast<std::size_t>(*a[i] - visible)];
       if (d.spot && vehicle::horizontal_distance(*d.spot, f.location_m) < 1e-6) continue;
+      const Vec3 to{f.location_m.x, f.location_m.y, d.layer_m};
+      if (!clear_to_fly(d, candidate_leg(d, to, now_), now_)) {  // separation: not now
+        retry_s_ = std::min(retry_s_, now_ + settings_.tick_s);
+        continue;
+      }
       unserve(d);
       position(d, f);
       continue;
@@ -140,6 +162,13 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
       }
     }
     if (want == d.task) continue;
+    if (want >= 0 &&
+        !clear_to_fly(
+            d, candidate_leg(d, dispatch_target(d, tasks_[static_cast<std::size_t>(want)]), now_),
+            now_)) {  // separation: it keeps its plan, asked again next tick
+      retry_s_ = std::min(retry_s_, now_ + settings_.tick_s);
+      continue;
+    }
     if (d.task >= 0) {  // retargeted or stopped on the way
       unserve(d);
       if (want < 0) stop(d, now_);

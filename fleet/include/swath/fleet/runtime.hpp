@@ -8,10 +8,10 @@
 // milliseconds. Same settings and seed: the same bytes in every output.
 //
 // The simulated fleet (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
-// layer (20 m + 3 m × index, the collision rule of §18.3), level flight with the approach rule and
-// bounded accelerations, power through energy::Battery (paper 004 eq. 12) from the drone's
-// energy::PowerProfile (hover = airspeed 0). Faults follow §18.7: every task ends exactly once,
-// every result is delivered at most once.
+// layer (20 m + separation × index, the collision rule of §18.3; envelope.hpp), level flight with
+// the approach rule and bounded accelerations, power through energy::Battery (paper 004 eq. 12)
+// from the drone's energy::PowerProfile (hover = airspeed 0). Faults follow §18.7: every task ends
+// exactly once, every result is delivered at most once.
 
 #include <cstdint>
 #include <functional>
@@ -25,6 +25,7 @@
 #include "swath/energy/power_model.hpp"
 #include "swath/fleet/backend.hpp"
 #include "swath/fleet/dtg.hpp"
+#include "swath/fleet/envelope.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/fleet/leg.hpp"
 #include "swath/fleet/scheduler.hpp"
@@ -79,7 +80,10 @@ struct RuntimeSettings {
   double state_period_s = 1.0;   ///< drone_state events, s (> 0)
   double no_feasible_s = 600;    ///< a request no drone can take fails after this, s
   double layer_base_m = 20;      ///< altitude of drone 0's layer, m
-  double layer_step_m = 3;       ///< between layers, m
+  double layer_step_m = 5;       ///< between layers, m (at least envelope.separation_m is used)
+  /// The safety envelope (envelope.hpp): ceiling, separation, fence. Every fly_to is checked
+  /// against it, the layers must fit under the ceiling and the homes inside the fence.
+  LocalEnvelope envelope;
   double disc_m = 5;  ///< radius a drone at or bound for a place reserves (first come), m
   /// A steady horizontal wind, m/s (x east, y north; z ignored): the drones keep their ground
   /// tracks and speeds, the rotors work at the airspeed (hover: the wind speed), and the way home
@@ -137,6 +141,7 @@ struct RunRecord {
   /// there or on its way; misses: it left (or the run ended) before one did.
   int speculative_positions = 0, speculative_hits = 0, speculative_misses = 0;
   int reliefs = 0;              ///< stand-bys sent (relief)
+  int faults_happened = 0;      ///< faults applied during the run (a `fault` event each)
   double decision_s_total = 0;  ///< wall time in the scheduler (timing.json only)
   double forecast_s_total = 0;  ///< wall time in the forecaster (timing.json only)
   /// Served and cancelled request places (t_s, x_m, y_m) for the pictures.
@@ -144,7 +149,8 @@ struct RunRecord {
 };
 
 /// Runs `app` in `world` with `drones` (at least one). Throws base::InputError for an unknown
-/// scheduler name or a backend whose vehicle count differs from the fleet's; an exception escaping
+/// scheduler name, a backend whose vehicle count differs from the fleet's, or a fleet outside
+/// settings.envelope (layers above the ceiling, a home outside the fence); an exception escaping
 /// the app's main ends the run as not completed.
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
                   const RuntimeSettings& settings);

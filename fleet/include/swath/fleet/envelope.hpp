@@ -1,0 +1,76 @@
+#pragma once
+// swath-fleet's safety envelope (docs/swath-fleet.md, "Safety envelope"): a ceiling above home,
+// the least 3-D separation between airborne drones, and a geofence of inclusion and exclusion
+// polygons with a height limit. The fleet file gives it (ceiling_m, separation_m, fence); the
+// runtime keeps every drone inside it and `swath-fleet check` judges a log against it.
+//
+//   ceiling_m: 120        # m above home; the top drone's layer must fit under it
+//   separation_m: 5       # m; layers and default homes are spaced at least this
+//   fence:
+//     geojson: field.geojson   # Polygon / MultiPolygon features, lat/lon degrees (WGS84);
+//                              # properties.fence: inclusion (default) or exclusion
+//     max_altitude_m: 100      # m above home; optional, else the ceiling
+
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "swath/geometry/point.hpp"
+#include "swath/vehicle/vec3.hpp"
+
+namespace swath::fleet {
+
+/// One fence polygon, its outer ring in WGS84 degrees (not closed: the last vertex is not the
+/// first again).
+struct FencePolygon {
+  std::vector<geometry::GeoPoint> ring_deg;
+  bool inclusion = true;  ///< false: an exclusion (no target inside)
+};
+
+/// The geofence as a value a MAVLink backend can upload (inclusion and exclusion polygons,
+/// mission_type FENCE) and the runtime checks every target against.
+struct Fence {
+  std::vector<FencePolygon> polygons;
+  double max_altitude_m = std::numeric_limits<double>::infinity();  ///< above home, m
+};
+
+/// The envelope as the fleet file gives it.
+struct Envelope {
+  double ceiling_m = 120;   ///< above home, m (0, 10000]
+  double separation_m = 5;  ///< least 3-D distance between airborne drones, m (0, 1000]
+  Fence fence;
+};
+
+/// The envelope in a world's local metres (x east, y north, z above home): what the runtime and
+/// the checker test positions against.
+struct LocalEnvelope {
+  double ceiling_m = 120;
+  double separation_m = 5;
+  double fence_max_altitude_m = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<std::array<double, 2>>> inclusions, exclusions;  ///< rings, local m
+  /// "" when a drone may be at `p` (z: above home, m); else why not, one phrase ("above the
+  /// ceiling of 120 m", "outside the inclusion fence", "inside an exclusion fence").
+  std::string refusal(const vehicle::Vec3& p) const;
+  /// The same for the horizontal position alone (homes, fly_to targets before their height).
+  std::string refusal_xy(double x_m, double y_m) const;
+};
+
+/// `fence` in the local frame at `origin`.
+LocalEnvelope local_envelope(const Envelope& e, const geometry::GeoPoint& origin);
+
+/// The envelope keys of a fleet file's text (ceiling_m, separation_m, fence; the drones are
+/// parse_fleet_file's); the fence's GeoJSON relative to the fleet file. Throws base::InputError
+/// naming the file, line and key.
+Envelope parse_fleet_envelope(const std::string& text, const std::string& source);
+
+/// A fence file: GeoJSON Polygon or MultiPolygon (a geometry, Feature or FeatureCollection),
+/// lon/lat degrees; a feature's properties.fence is "inclusion" (default) or "exclusion".
+/// Throws base::InputError naming `source` and the feature.
+std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std::string& source);
+
+/// The altitude layers (drone i at base_m + step_m × i) of `drones` drones under `ceiling_m`:
+/// "" when they fit, else one sentence saying why not.
+std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m);
+
+}  // namespace swath::fleet

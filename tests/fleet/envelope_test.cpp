@@ -1,0 +1,346 @@
+// The safety envelope (docs/swath-fleet.md, "Safety envelope") and the checker's rules R9–R13:
+// real runs judged by the checker that reads only events.jsonl, each rule seen to catch a
+// planted breach of a real log; separation and ceiling measured on whole runs of every app.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "swath/base/input_error.hpp"
+#include "swath/fleet/apps.hpp"
+#include "swath/fleet/envelope.hpp"
+#include "swath/fleet/event_check.hpp"
+#include "swath/fleet/fleet_file.hpp"
+#include "swath/fleet/runtime.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/worlds/worlds.hpp"
+
+namespace swath::fleet {
+namespace {
+
+using json = nlohmann::json;
+
+App app_named(const std::string& name) {
+  for (App& a : builtin_apps())
+    if (a.name == name) return a;
+  ADD_FAILURE() << "no app " << name;
+  return {};
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+std::string join(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& l : v) out += l + "\n";
+  return out;
+}
+std::set<std::string> rules_broken(const std::vector<std::string>& v) {
+  std::set<std::string> rules;
+  for (const auto& x : check_events(join(v)).violations) rules.insert(x.rule);
+  return rules;
+}
+
+std::vector<DroneSpec> drones_in_a_row(int n, double spacing_m) {
+  std::vector<DroneSpec> out(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    out[static_cast<std::size_t>(i)].name = "d" + std::to_string(i);
+    out[static_cast<std::size_t>(i)].home_m = {spacing_m * i, 0, 0};
+  }
+  return out;
+}
+
+// A static world: task a is same_drone with two legs, b has two legs, c one.
+const char* kStaticWorld =
+    "kind: static\ntasks:\n"
+    "  - {name: a, same_drone: true, actions: [{fly_to: {x_m: 30, y_m: 0}}, {sense: cam},"
+    " {fly_to: {x_m: 0, y_m: 40}}, {hover: 3}]}\n"
+    "  - {name: b, actions: [{fly_to: {x_m: -20, y_m: 5}}, {hover: 2},"
+    " {fly_to: {x_m: -30, y_m: 5}}, {sense: cam}]}\n"
+    "  - {name: c, actions: [{fly_to: {x_m: 10, y_m: -30}}, {sense: cam}]}\n";
+
+RunRecord static_run(const std::string& world_text, const RuntimeSettings& s, int drones = 3) {
+  const auto world = worlds::parse_world(world_text, "w.yaml");
+  return run_app(app_named("static"), *world, drones_in_a_row(drones, 5), s);
+}
+
+// R10: a same_drone task's second leg moved to another drone in the log (its dispatch and its
+// result) is caught; the real log passes.
+TEST(EventCheck, SameDroneLegMovedToAnotherDroneFails) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  const RunRecord r = static_run(kStaticWorld, s);
+  ASSERT_TRUE(r.completed) << r.failure;
+  const EventCheck real = check_events(r.events_jsonl);
+  ASSERT_TRUE(real.ok()) << real.violations.front().rule << " " << real.violations.front().message;
+  std::vector<std::string> v = lines_of(r.events_jsonl);
+  long long task = -1;
+  for (const auto& l : v) {
+    const json e = json::parse(l);
+    if (e["ev"] == "task_created" && e.value("same_drone", false)) task = e["task"];
+  }
+  ASSERT_GE(task, 0) << "task_created logs same_drone";
+  // The results of the task: the last one (its second leg's hover) moved to another drone.
+  std::size_t last = 0;
+  long long drone = -1;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const json e = json::parse(v[i]);
+    if (e["ev"] == "action_done" && e["task"] == task) last = i, drone = e["drone"];
+  }
+  ASSERT_GT(last, 0u);
+  json moved = json::parse(v[last]);
+  moved["drone"] = (drone + 1) % 3;
+  v[last] = moved.dump();
+  EXPECT_TRUE(rules_broken(v).count("R10"));
+}
+
+// R9: every segment is announced with its own index and dispatched under it; fairness counts
+// each segment's wait from its own announcement.
+TEST(EventCheck, EverySegmentIsAnnouncedAndDispatchedUnderItsOwnIndex) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  const RunRecord r = static_run(kStaticWorld, s);
+  std::map<long long, std::set<long long>> announced, dispatched;
+  for (const auto& l : lines_of(r.events_jsonl)) {
+    const json e = json::parse(l);
+    if (e["ev"] == "request_visible") announced[e["task"]].insert(e["segment"].get<long long>());
+    if (e["ev"] == "dispatch") dispatched[e["task"]].insert(e["segment"].get<long long>());
+  }
+  // Tasks a and b have two legs each: segments 0 and 1 both announced and dispatched.
+  int two_legged = 0;
+  for (const auto& [task, segs] : announced)
+    if (segs == std::set<long long>{0, 1}) {
+      ++two_legged;
+      EXPECT_EQ(dispatched[task], segs) << "task " << task;
+    }
+  EXPECT_EQ(two_legged, 2);
+  // A dispatch of segment 1 relabelled 0 (the old log's habit) is caught.
+  std::vector<std::string> v = lines_of(r.events_jsonl);
+  for (auto& l : v) {
+    json e = json::parse(l);
+    if (e["ev"] == "dispatch" && e["segment"] == 1) {
+      e["segment"] = 0;
+      l = e.dump();
+      break;
+    }
+  }
+  EXPECT_TRUE(rules_broken(v).count("R9"));
+}
+
+// R11: two airborne drones placed within the separation at one drone_state time are caught.
+TEST(EventCheck, TwoAirborneDronesWithinTheSeparationFail) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  const RunRecord r = static_run(kStaticWorld, s);
+  std::vector<std::string> v = lines_of(r.events_jsonl);
+  ASSERT_TRUE(check_events(r.events_jsonl).ok());
+  // The first drone_state time with two drones airborne: the second put 3 m from the first.
+  for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+    json a = json::parse(v[i]), b = json::parse(v[i + 1]);
+    if (a["ev"] != "drone_state" || b["ev"] != "drone_state" || a["t_s"] != b["t_s"] ||
+        !(a["alt_m"].get<double>() > 0) || !(b["alt_m"].get<double>() > 0))
+      continue;
+    b["x_m"] = a["x_m"].get<double>() + 3;
+    b["y_m"] = a["y_m"];
+    b["alt_m"] = a["alt_m"];
+    v[i + 1] = b.dump();
+    EXPECT_TRUE(rules_broken(v).count("R11"));
+    return;
+  }
+  FAIL() << "no time with two drones airborne";
+}
+
+// R12 and R13: a position above the ceiling, outside the inclusion fence, inside an exclusion.
+TEST(EventCheck, CeilingAndFenceBreachesFail) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  s.envelope.inclusions = {{{-100, -100}, {100, -100}, {100, 100}, {-100, 100}}};
+  s.envelope.exclusions = {{{60, 60}, {80, 60}, {80, 80}, {60, 80}}};
+  const RunRecord r = static_run(kStaticWorld, s);
+  ASSERT_TRUE(r.completed) << r.failure;
+  ASSERT_TRUE(check_events(r.events_jsonl).ok());
+  const std::vector<std::string> lines = lines_of(r.events_jsonl);
+  std::size_t state = 0;
+  for (std::size_t i = 0; i < lines.size() && !state; ++i)
+    if (lines[i].find("\"drone_state\"") != std::string::npos) state = i;
+  const auto with = [&](double x, double y, double z) {
+    std::vector<std::string> v = lines;
+    json e = json::parse(v[state]);
+    e["x_m"] = x, e["y_m"] = y, e["alt_m"] = z;
+    v[state] = e.dump();
+    return rules_broken(v);
+  };
+  EXPECT_TRUE(with(0, 0, 121).count("R12"));
+  EXPECT_FALSE(with(0, 0, 119).count("R12"));
+  EXPECT_TRUE(with(150, 0, 20).count("R13"));  // outside the inclusion
+  EXPECT_TRUE(with(70, 70, 20).count("R13"));  // inside the exclusion
+  EXPECT_FALSE(with(50, 50, 20).count("R13"));
+}
+
+// Targets outside the envelope are errors to the app, never flown: above the ceiling, outside
+// the inclusion fence, inside an exclusion; the rest of the app goes on.
+TEST(Envelope, TargetsOutsideTheEnvelopeAreRefusedNeverFlown) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  s.envelope.inclusions = {{{-100, -100}, {100, -100}, {100, 100}, {-100, 100}}};
+  s.envelope.exclusions = {{{60, 60}, {80, 60}, {80, 80}, {60, 80}}};
+  const std::string world =
+      "kind: static\ntasks:\n"
+      "  - {name: high, actions: [{fly_to: {x_m: 10, y_m: 0, alt_m: 200}}]}\n"
+      "  - {name: out, actions: [{fly_to: {x_m: 300, y_m: 0}}]}\n"
+      "  - {name: excl, actions: [{fly_to: {x_m: 70, y_m: 70}}]}\n"
+      "  - {name: fine, actions: [{fly_to: {x_m: 20, y_m: 20, alt_m: 40}}, {sense: cam}]}\n";
+  const RunRecord r = static_run(world, s);
+  const EventCheck c = check_events(r.events_jsonl);
+  EXPECT_TRUE(c.ok()) << c.violations.front().rule << " " << c.violations.front().message;
+  int failed = 0, done = 0;
+  for (const auto& l : lines_of(r.events_jsonl)) {
+    const json e = json::parse(l);
+    if (e["ev"] == "dispatch") {
+      EXPECT_LT(std::abs(e["x_m"].get<double>()), 100);
+      EXPECT_LE(e["alt_m"].get<double>(), 120);
+    }
+    if (e["ev"] == "task_failed") ++failed;
+    if (e["ev"] == "task_done") ++done;
+  }
+  EXPECT_EQ(failed, 3);
+  EXPECT_GE(done, 1);
+  EXPECT_LE(c.max_altitude_m, 120);
+}
+
+// The fleet must fit: 100 drones 5 m apart from 20 m do not fit under 120 m (21 do, 22 do not);
+// a home outside the inclusion fence is refused before anything flies.
+TEST(Envelope, AFleetThatCannotFitIsRefused) {
+  const auto world = worlds::parse_world("kind: rf_field\nseed: 2\n", "w.yaml");
+  RuntimeSettings s;
+  s.app_name = "wifi";
+  s.max_time_s = 1;
+  const auto refusal = [&](int n, const RuntimeSettings& st) {
+    try {
+      run_app(app_named("wifi"), *world, drones_in_a_row(n, 5), st);
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refusal(100, s).find("above the ceiling of 120 m"), std::string::npos);
+  EXPECT_NE(refusal(22, s).find("at most 21 drones fit"), std::string::npos);
+  EXPECT_EQ(refusal(21, s), "");
+  EXPECT_EQ(layers_refusal(21, 20, 5, 120), "");
+  EXPECT_NE(layers_refusal(22, 20, 5, 120), "");
+  RuntimeSettings fenced = s;
+  fenced.envelope.inclusions = {{{-10, -10}, {8, -10}, {8, 10}, {-10, 10}}};
+  EXPECT_NE(refusal(3, fenced).find("d2's home (10.0, 0.0) m is outside the inclusion fence"),
+            std::string::npos);
+}
+
+// Whole runs of every app with 8 drones: the checker finds no violation (R11 included), the least
+// distance between airborne drones is at least the separation, the highest point under the
+// ceiling — also with all homes at one point (the take-off rule lets one climb at a time).
+TEST(Envelope, EveryAppKeepsItsDronesApartAndUnderTheCeiling) {
+  const std::map<std::string, std::string> worlds{
+      {"multiplexing", "kind: sites\nseed: 3\n"},
+      {"hotspot", "kind: hotspot\nseed: 3\nsteps: 4\n"},
+      {"wifi", "kind: rf_field\nseed: 3\n"},
+      {"road", "kind: road\nseed: 3\nsteps: 8\n"},
+      {"tracking", "kind: tracking\nseed: 3\nduration_s: 120\n"},
+      {"static", kStaticWorld}};
+  for (const double spacing_m : {5.0, 0.0}) {
+    for (const auto& [app, text] : worlds) {
+      const auto world = worlds::parse_world(text, "w.yaml");
+      RuntimeSettings s;
+      s.app_name = app;
+      s.max_time_s = 1200;
+      const RunRecord r = run_app(app_named(app), *world, drones_in_a_row(8, spacing_m), s);
+      const EventCheck c = check_events(r.events_jsonl);
+      for (const auto& v : c.violations)
+        ADD_FAILURE() << app << " homes " << spacing_m << " m apart: line " << v.line << ": "
+                      << v.rule << ": " << v.message;
+      EXPECT_GE(c.least_separation_m, 5.0 - 1e-6) << app;
+      EXPECT_LE(c.max_altitude_m, 120.0) << app;
+      EXPECT_GE(c.max_altitude_m, 20.0) << app;  // something flew
+    }
+  }
+}
+
+// The fleet file's envelope keys and its GeoJSON fence.
+TEST(Envelope, FleetFileKeysAndGeoJsonFence) {
+  const auto dir = std::filesystem::temp_directory_path() / "swath-envelope-test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream f(dir / "fence.geojson");
+    f << R"({"type":"FeatureCollection","features":[
+      {"type":"Feature","properties":{"fence":"inclusion"},"geometry":{"type":"Polygon",
+       "coordinates":[[[8.0,47.0],[8.01,47.0],[8.01,47.01],[8.0,47.01],[8.0,47.0]]]}},
+      {"type":"Feature","properties":{"fence":"exclusion"},"geometry":{"type":"Polygon",
+       "coordinates":[[[8.004,47.004],[8.005,47.004],[8.005,47.005]]]}}]})";
+  }
+  const std::string fleet =
+      "ceiling_m: 90\nseparation_m: 8\nfence: {geojson: fence.geojson, max_altitude_m: 80}\n"
+      "drones:\n  - {name: a, speed_m_s: 10}\n  - {name: b, speed_m_s: 10}\n";
+  const std::string source = (dir / "fleet.yaml").string();
+  const Envelope e = parse_fleet_envelope(fleet, source);
+  EXPECT_EQ(e.ceiling_m, 90);
+  EXPECT_EQ(e.separation_m, 8);
+  EXPECT_EQ(e.fence.max_altitude_m, 80);
+  ASSERT_EQ(e.fence.polygons.size(), 2u);
+  EXPECT_TRUE(e.fence.polygons[0].inclusion);
+  EXPECT_EQ(e.fence.polygons[0].ring_deg.size(), 4u);  // closed ring: the repeat dropped
+  EXPECT_FALSE(e.fence.polygons[1].inclusion);
+  EXPECT_DOUBLE_EQ(e.fence.polygons[1].ring_deg[0].lat_deg, 47.004);
+  // Shared homes stand separation_m + 1 m apart.
+  const auto drones = parse_fleet_file(fleet, source, {47.0, 8.0, 0});
+  ASSERT_EQ(drones.size(), 2u);
+  EXPECT_NEAR(drones[1].home_m.x - drones[0].home_m.x, 9, 1e-9);
+  // The local envelope: a point at the origin's corner is inside (on the boundary), one west of
+  // it outside, the exclusion's middle refused, heights above 80 m refused.
+  const LocalEnvelope l = local_envelope(e, {47.0, 8.0, 0});
+  EXPECT_EQ(l.refusal({1, 1, 50}), "");
+  EXPECT_EQ(l.refusal({-5, 1, 50}), "outside the inclusion fence");
+  EXPECT_EQ(l.refusal({1, 1, 85}), "above the fence's 80 m");
+  EXPECT_EQ(l.refusal({1, 1, 95}), "above the ceiling of 90 m");
+  const geometry::Point2 in_triangle =
+      geometry::LocalFrame({47.0, 8.0, 0}).to_local({47.0041, 8.0049, 0});
+  EXPECT_EQ(l.refusal_xy(in_triangle.x, in_triangle.y), "inside an exclusion fence");
+  const auto error = [&](const std::string& text) {
+    try {
+      parse_fleet_envelope(text, source);
+    } catch (const base::InputError& x) {
+      return std::string(x.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(error("ceiling_m: -3\ndrones: []\n").find("ceiling_m"), std::string::npos);
+  EXPECT_NE(error("fence: {max_altitude_m: 3}\n").find("no geojson"), std::string::npos);
+  EXPECT_NE(error("fence: {geojson: missing.geojson}\n").find("missing.geojson"),
+            std::string::npos);
+  {
+    std::ofstream f(dir / "line.geojson");
+    f << R"({"type":"LineString","coordinates":[[8,47],[8.1,47]]})";
+  }
+  EXPECT_NE(error("fence: {geojson: line.geojson}\n").find("Polygon or MultiPolygon"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// summary's faults: those that happened; a fault scheduled after the run ended did not.
+TEST(Envelope, FaultsCountedAsTheyHappened) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  s.faults = {{5, 1, FaultKind::link_loss, 3, 0}, {99999, 0, FaultKind::link_loss, 3, 0}};
+  const RunRecord r = static_run(kStaticWorld, s);
+  const EventCheck c = check_events(r.events_jsonl);
+  EXPECT_EQ(r.faults_happened, 1);
+  EXPECT_EQ(c.faults, 1);
+}
+
+}  // namespace
+}  // namespace swath::fleet
