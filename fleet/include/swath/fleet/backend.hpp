@@ -29,6 +29,8 @@ struct VehicleReport {
   bool link_up = false;  ///< telemetry heard lately (a backend's own rule: MAVLink 3 s)
   bool position_known = false;
   Vec3 position_m;           ///< local metres at the world's origin, z above home (if known)
+  /// The vehicle's own battery report (MAVLink BATTERY_STATUS), state of charge [0, 1]; < 0: none.
+  double battery_soc = -1;
   bool arrived = false;      ///< at the target of the latest go_to, holding there
   bool landed_home = false;  ///< after return_home: on the ground (disarmed)
   /// Why the vehicle cannot fly (a step refused three times, with its STATUSTEXT, or a target
@@ -51,6 +53,11 @@ class Backend {
   virtual void act(int drone, const std::string& name, bool sense) = 0;
   /// Home and land (a return to launch).
   virtual void return_home(int drone, double t_s) = 0;
+  /// Lands where it is (an abort with `--on-abort land`, `swath-fleet ctl land-all`).
+  virtual void land(int drone, double t_s) = 0;
+  /// A pause (`swath-fleet ctl pause`): the vehicle stops where it is and holds there. By
+  /// default what hold() does.
+  virtual void pause(int drone, double t_s) { hold(drone, t_s); }
   /// The runtime took the vehicle's request away and gave it nothing else: it stops where it is.
   virtual void hold(int drone, double t_s) = 0;
   /// Brings the backend to time `t_s` (s since the run began, non-decreasing): its I/O and
@@ -61,6 +68,9 @@ class Backend {
   /// Returns once they are down, or after the backend's own deadline: the caller may then close
   /// the links.
   virtual void end_run() = 0;
+  /// The run was aborted after every airborne vehicle was told to return or land: returns once
+  /// each has taken the order (or after the backend's own deadline). By default end_run().
+  virtual void end_abort() { end_run(); }
   /// When vehicle `drone` reaches the target of its latest go_to or return_home (landed, for the
   /// latter), s, when the backend knows it ahead (a model); infinity when only its report will say.
   virtual double arrival_s(int drone) const = 0;
