@@ -22,6 +22,9 @@
 #include "swath/fleet/mavlink_fleet.hpp"
 
 #include <filesystem>
+#include <fstream>
+
+#include "swath/mavlink/signing.hpp"
 
 namespace swath::apps {
 
@@ -67,6 +70,10 @@ void FleetRunCommand::setup(CLI::App& app) {
   app.add_flag("--allow-no-gcs-failsafe", allow_no_gcs_failsafe_,
                "With --backend mavlink: let vehicles whose lost-link failsafe reads as off "
                "(ArduCopter FS_GCS_ENABLE 0, PX4 NAV_DLL_ACT 0) take off, with a warning");
+  app.add_option("--signing-key", signing_key_,
+                 "With --backend mavlink: sign every frame sent with MAVLink 2 signing and read "
+                 "only frames signed with this key; FILE holds the 32-byte secret, raw or as 64 "
+                 "hexadecimal digits (e.g. from `openssl rand -hex 32`)");
   app.add_option("--pace", pace_,
                  "With --backend sim: fly the simulation at FACTOR times the wall clock (1: real "
                  "time), so that ctl orders and signals come mid-run; default 0: as fast as it "
@@ -112,6 +119,17 @@ std::vector<fleet::VehicleAddress> vehicle_urls(const std::string& vehicles,
 }  // namespace
 
 namespace {
+// --signing-key FILE: its bytes (a key is 32 raw bytes or 64 hex digits: anything over 1 KiB is
+// not one).
+mavlink::SigningKey read_signing_key(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("--signing-key " + path + ": cannot be read");
+  std::string contents(1025, '\0');
+  in.read(contents.data(), static_cast<std::streamsize>(contents.size()));
+  contents.resize(static_cast<std::size_t>(in.gcount()));
+  return mavlink::parse_signing_key(contents, path);
+}
+
 // The run was aborted; its files are written. Exit 128 + the signal (130 SIGINT, 143 SIGTERM) as
 // a shell reports a program a signal ended, 4 for a ctl order, 1 for an unexpected error.
 int aborted_exit(const fleet::RunRecord& r, int signal_number, fleet::AbortAction on_abort,
@@ -139,6 +157,7 @@ int FleetRunCommand::run() {
     settings.fence_m = p.world->fence();
     settings.wall_clock = true;
     settings.allow_no_gcs_failsafe = allow_no_gcs_failsafe_;
+    if (!signing_key_.empty()) settings.signing_key = read_signing_key(signing_key_);
     try {
       vehicles = fleet::open_mavlink_fleet(urls, settings);
     } catch (const std::system_error& e) {
@@ -154,6 +173,8 @@ int FleetRunCommand::run() {
     throw InputError("--vehicles needs --backend mavlink");
   } else if (allow_no_gcs_failsafe_) {
     throw InputError("--allow-no-gcs-failsafe needs --backend mavlink");
+  } else if (!signing_key_.empty()) {
+    throw InputError("--signing-key needs --backend mavlink");
   }
   if (pace_ > 0 && backend_ == "mavlink")
     throw InputError("--pace is for --backend sim (vehicles fly on the wall clock)");

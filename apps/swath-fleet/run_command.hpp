@@ -32,6 +32,7 @@ class FleetRunCommand : public Command {
   std::string on_abort_ = "rtl", ctl_socket_;
   double pace_ = 0;
   bool allow_no_gcs_failsafe_ = false;
+  std::string signing_key_;  ///< --signing-key FILE
 };
 
 /// swath-fleet apps: the built-in applications.

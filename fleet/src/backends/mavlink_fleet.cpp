@@ -13,6 +13,7 @@
 #include "swath/mavlink/copter_driver.hpp"
 #include "swath/mavlink/px4_driver.hpp"
 #include "swath/mavlink/shared_link.hpp"
+#include "swath/mavlink/signing_link.hpp"
 
 namespace swath::fleet {
 
@@ -89,6 +90,9 @@ MavlinkFleet::MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
   for (std::size_t i = 0; i < links.size(); ++i) {
     auto v = std::make_unique<Vehicle>();
     v->link = std::move(links[i]);
+    if (settings_.signing_key)
+      v->link = std::make_unique<mavlink::SigningLink>(std::move(v->link), *settings_.signing_key,
+                                                       static_cast<std::uint8_t>(i));
     if (settings_.wall_clock && settings_.keepalive) {
       v->link = std::make_unique<mavlink::SharedLink>(std::move(v->link));
       v->keepalive =

@@ -42,6 +42,7 @@
 #include "swath/geometry/point.hpp"
 #include "swath/mavlink/driver.hpp"
 #include "swath/mavlink/link.hpp"
+#include "swath/mavlink/signing.hpp"
 
 namespace swath::fleet {
 
@@ -72,6 +73,9 @@ struct MavlinkFleetSettings {
   /// vehicle whenever the runtime has not polled for heartbeat period (the app's compute() or
   /// the scheduler busy), so that no vehicle's GCS failsafe fires because swath thinks.
   bool keepalive = true;
+  /// MAVLink 2 signing (`--signing-key FILE`): every frame sent is signed with this key, and only
+  /// frames signed with it are read (mavlink/signing_link.hpp); vehicle i's link id is i.
+  std::optional<mavlink::SigningKey> signing_key;
   /// Told each warning about a vehicle (index from 0): its drivers' safety-check findings and
   /// that a PX4 driver, untested, flies it. Empty: written to stderr.
   std::function<void(int drone, const std::string& text)> warn;
