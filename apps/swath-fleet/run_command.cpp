@@ -149,6 +149,8 @@ int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
   PreparedRun p =
       world_seed_option_->count() > 0 ? prepare_run(request_, world_seed_) : prepare_run(request_);
+  if (pace_ > 0 && backend_ == "mavlink")
+    throw InputError("--pace is for --backend sim (vehicles fly on the wall clock)");
   std::unique_ptr<fleet::MavlinkFleet> vehicles;
   if (backend_ == "mavlink") {
     const std::vector<fleet::VehicleAddress> urls = vehicle_urls(vehicles_, request_.fleet, p);
@@ -176,8 +178,6 @@ int FleetRunCommand::run() {
   } else if (!signing_key_.empty()) {
     throw InputError("--signing-key needs --backend mavlink");
   }
-  if (pace_ > 0 && backend_ == "mavlink")
-    throw InputError("--pace is for --backend sim (vehicles fly on the wall clock)");
   p.settings.pace = pace_;
   p.settings.on_abort = on_abort_ == "land" ? fleet::AbortAction::land : fleet::AbortAction::rtl;
   RunControl control(p.settings.on_abort, ctl_socket_);

@@ -285,5 +285,29 @@ TEST(FleetAbortCli, ACtlSocketPathThatIsNotASocketIsRefusedAndKept) {
   EXPECT_NE(c.err.find("no swath-fleet run listens there"), std::string::npos) << c.err;
 }
 
+// The vehicle-only options are refused on the simulated fleet, --pace on vehicles, and a key file
+// that is not 32 bytes or 64 hex digits: one sentence each, exit 2, nothing written.
+TEST(FleetAbortCli, VehicleOptionsAndBadKeyFilesAreRefusedInOneSentence) {
+  const std::string dir = socket_dir("fleet-option-refusals");
+  const std::string out = dir + "/run", key = dir + "/fleet.key";
+  { std::ofstream(key) << "0011223344\n"; }
+  const std::string run = "run multiplexing --world sites --drones 1 -o " + out + " ";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--signing-key " + key, "--signing-key needs --backend mavlink"},
+      {"--allow-no-gcs-failsafe", "--allow-no-gcs-failsafe needs --backend mavlink"},
+      {"--backend mavlink --vehicles udp:127.0.0.1:14999 --pace 2", "--pace is for --backend sim"},
+      {"--backend mavlink --vehicles udp:127.0.0.1:14999 --signing-key " + key,
+       key + ": a signing key is 32 bytes, or 64 hexadecimal digits (11 bytes here)"},
+      {"--backend mavlink --vehicles udp:127.0.0.1:14999 --signing-key " + dir + "/none.key",
+       "--signing-key " + dir + "/none.key: cannot be read"},
+  };
+  for (const auto& [args, sentence] : cases) {
+    const CliRun r = run_swath_fleet(run + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(sentence), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+}
+
 }  // namespace
 }  // namespace swath::test::fleet_abort
