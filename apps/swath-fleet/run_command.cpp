@@ -152,6 +152,7 @@ int FleetRunCommand::run() {
   if (pace_ > 0 && backend_ == "mavlink")
     throw InputError("--pace is for --backend sim (vehicles fly on the wall clock)");
   std::unique_ptr<fleet::MavlinkFleet> vehicles;
+  const RunControl* control_made = nullptr;  // once made: a signal cuts the final wait short
   if (backend_ == "mavlink") {
     const std::vector<fleet::VehicleAddress> urls = vehicle_urls(vehicles_, request_.fleet, p);
     fleet::MavlinkFleetSettings settings;
@@ -159,6 +160,9 @@ int FleetRunCommand::run() {
     settings.fence_m = p.world->fence();
     settings.wall_clock = true;
     settings.allow_no_gcs_failsafe = allow_no_gcs_failsafe_;
+    settings.stop_waiting = [&control_made] {
+      return control_made != nullptr && control_made->signal_number() != 0;
+    };
     if (!signing_key_.empty()) settings.signing_key = read_signing_key(signing_key_);
     try {
       vehicles = fleet::open_mavlink_fleet(urls, settings);
@@ -181,6 +185,7 @@ int FleetRunCommand::run() {
   p.settings.pace = pace_;
   p.settings.on_abort = on_abort_ == "land" ? fleet::AbortAction::land : fleet::AbortAction::rtl;
   RunControl control(p.settings.on_abort, ctl_socket_);
+  control_made = &control;
   p.settings.control = [&control] { return control.poll(); };
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
   // Aborted: a second signal must not cost the run its record (it waits until the files are in).

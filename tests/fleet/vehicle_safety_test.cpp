@@ -10,11 +10,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <cmath>
 #include <chrono>
+#include <cmath>
+#include <functional>
 #include <memory>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -46,6 +47,7 @@ struct AbortedMission {
   std::vector<fleet::DroneSpec> drones;
   std::vector<UdpLink> vehicle_links;
   std::vector<std::unique_ptr<Link>> signing_links;  // the fakes' own, when they sign
+  std::function<bool()> stop_waiting;                // the backend's, at the end of the run
   std::vector<std::unique_ptr<FakeCopter>> fakes;
   std::unique_ptr<fleet::MavlinkFleet> backend;
   fleet::RunRecord record;
@@ -76,9 +78,9 @@ struct AbortedMission {
           std::make_unique<UdpLink>(UdpLink::connect("127.0.0.1", vehicle_links[i].local_port())));
       Link* fake_link = &vehicle_links[i];
       if (vehicle_key) {
-        signing_links.push_back(std::make_unique<SigningLink>(
-            std::make_unique<UdpLink>(std::move(vehicle_links[i])), *vehicle_key,
-            static_cast<std::uint8_t>(10 + i)));
+        signing_links.push_back(
+            std::make_unique<SigningLink>(std::make_unique<UdpLink>(std::move(vehicle_links[i])),
+                                          *vehicle_key, static_cast<std::uint8_t>(10 + i)));
         fake_link = signing_links.back().get();
       }
       fakes.push_back(std::make_unique<FakeCopter>(*fake_link, s));
@@ -91,6 +93,7 @@ struct AbortedMission {
     };
     settings.warn = [](int, const std::string&) {};
     settings.signing_key = fleet_key;
+    settings.stop_waiting = [this] { return stop_waiting && stop_waiting(); };
     backend = std::make_unique<fleet::MavlinkFleet>(std::move(gcs_links),
                                                     std::vector<std::uint8_t>{1, 2}, settings);
   }
@@ -209,6 +212,20 @@ TEST(FleetGcsFailsafe, VehiclesWithFsGcsEnableOneTakeOffAndComplete) {
   m.run({});
   EXPECT_TRUE(m.record.completed) << m.record.failure;
   for (const auto& f : m.fakes) EXPECT_GE(f->param_requests_received(), 1);
+}
+
+// A signal while the run waits for the vehicles to land at its end (stop_waiting: what `swath-fleet
+// run` sets from its signal handler's note) ends the wait at once: the vehicles were told to return
+// and go on in RTL on their own. Without it the same run waits until both have landed (the
+// MavlinkFleet tests).
+TEST(FleetAbort, ASignalDuringTheFinalWaitEndsItWithTheVehiclesInRtl) {
+  AbortedMission m;
+  m.stop_waiting = [] { return true; };
+  m.run({});
+  EXPECT_TRUE(m.record.completed) << m.record.failure;
+  int in_rtl = 0;
+  for (const auto& f : m.fakes) in_rtl += f->armed() && f->mode() == CopterMode::rtl;
+  EXPECT_EQ(in_rtl, 2) << "both told to return and still on their way when the wait ended";
 }
 
 // The vehicles' battery is theirs, not the model's: fakes draining 3 % a second while armed report

@@ -271,9 +271,14 @@ void MavlinkFleet::end_run() {
   for (auto& v : vehicles_)
     if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()), now_s_);
   // The RTL goes out only from poll(): keep polling (and the ground station's heartbeat) until
-  // every vehicle is down, or the deadline, before the caller closes the links.
+  // every vehicle is down, or the deadline, before the caller closes the links. Asked to stop
+  // waiting, it still waits until every vehicle has taken its RTL.
   const double deadline_s = now_s_ + settings_.end_timeout_s;
-  while (now_s_ < deadline_s && !all_down()) advance_to(std::min(deadline_s, now_s_ + 1.0));
+  const auto stop = [&] {
+    return settings_.stop_waiting && settings_.stop_waiting() && all_told();
+  };
+  while (now_s_ < deadline_s && !all_down() && !stop())
+    advance_to(std::min(deadline_s, now_s_ + 1.0));
 }
 
 // Every vehicle on the ground (disarmed or landed) or never heard; one heard before but silent

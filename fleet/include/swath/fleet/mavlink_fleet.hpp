@@ -61,6 +61,10 @@ struct MavlinkFleetSettings {
   /// on the run's clock, s (>= 0): the return to launch is sent, the vehicles land under the
   /// ground station's heartbeat.
   double end_timeout_s = 600;
+  /// Once this returns true, end_run() stops waiting for the vehicles to land as soon as every
+  /// one has taken its RTL (`swath-fleet run`: a SIGINT or SIGTERM during the wait); empty: it
+  /// waits. The abort's shorter wait (end_abort) is never cut short.
+  std::function<bool()> stop_waiting;
   /// After an abort, end_abort() polls until every vehicle told has taken its order (RTL or LAND,
   /// or down) or this long has passed, s (>= 0).
   double abort_timeout_s = 10;
