@@ -29,13 +29,13 @@ struct VehicleReport {
   bool link_up = false;  ///< telemetry heard lately (a backend's own rule: MAVLink 3 s)
   bool position_known = false;
   Vec3 position_m;           ///< local metres at the world's origin, z above home (if known)
-  /// The vehicle's own battery report (MAVLink BATTERY_STATUS), state of charge [0, 1]; < 0: none.
-  double battery_soc = -1;
   bool arrived = false;      ///< at the target of the latest go_to, holding there
   bool landed_home = false;  ///< after return_home: on the ground (disarmed)
   /// Why the vehicle cannot fly (a step refused three times, with its STATUSTEXT, or a target
   /// outside the fence); "" when it can. A refused vehicle can still be sent home.
   std::string refusal;
+  /// The vehicle's own battery report (MAVLink BATTERY_STATUS), state of charge [0, 1]; < 0: none.
+  double battery_soc = -1;
 };
 
 class Backend {
