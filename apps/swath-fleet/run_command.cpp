@@ -12,6 +12,7 @@
 #include "fleet_images.hpp"
 #include "intervals.hpp"
 #include "map_furniture.hpp"
+#include "run_control.hpp"
 #include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -24,6 +25,9 @@
 #include "swath/fleet/mavlink_fleet.hpp"
 
 #include <filesystem>
+#include <fstream>
+
+#include "swath/mavlink/signing.hpp"
 
 namespace swath::apps {
 
@@ -41,7 +45,8 @@ void FleetRunCommand::setup(CLI::App& app) {
                  "flown on the wall clock: ArduCopter, or PX4 when its HEARTBEAT says so (the "
                  "PX4 driver is UNTESTED on PX4: written from its documentation; a warning "
                  "names each PX4 vehicle); each vehicle's lost-link failsafe parameters are read "
-                 "at connect and a warning given when it is off")
+                 "at connect: off, the vehicle is refused take-off (see "
+                 "--allow-no-gcs-failsafe)")
       ->check(CLI::IsMember({"sim", "mavlink"}))
       ->capture_default_str();
   app.add_option(
@@ -51,12 +56,33 @@ void FleetRunCommand::setup(CLI::App& app) {
       "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
       "instance); /SYSID after the port (1..255, default: its place + 1); overrides the fleet "
       "file's mavlink {url, sysid}");
-  world_seed_option_ =
-      app.add_option(
-             "--world-seed", world_seed_,
-             "Draw the world's random parts from this seed instead of the file's (the scenarios of "
-             "compare and tune, as `worlds gen KIND --seed N` prints them)")
-          ->check(seed_check());
+  world_seed_option_ = app.add_option(
+      "--world-seed", world_seed_,
+      "Draw the world's random parts from this seed instead of the file's (the scenarios of "
+      "compare and tune, as `worlds gen KIND --seed N` prints them)")
+      ->check(seed_check());
+  app.add_option("--on-abort", on_abort_,
+                 "What SIGINT, SIGTERM or an unexpected error tells every airborne vehicle before "
+                 "the run ends and its files are written: rtl (return to launch) or land (where "
+                 "it is)")
+      ->check(CLI::IsMember({"rtl", "land"}))
+      ->capture_default_str();
+  app.add_option("--ctl-socket", ctl_socket_,
+                 "Listen for `swath-fleet ctl` orders (pause, resume, rtl-all, land-all) on this "
+                 "Unix socket, made with mode 0600 (its directory must be yours and closed to "
+                 "others, e.g. $XDG_RUNTIME_DIR/swath-fleet.sock) and removed at the end");
+  app.add_flag("--allow-no-gcs-failsafe", allow_no_gcs_failsafe_,
+               "With --backend mavlink: let vehicles whose lost-link failsafe reads as off "
+               "(ArduCopter FS_GCS_ENABLE 0, PX4 NAV_DLL_ACT 0) take off, with a warning");
+  app.add_option("--signing-key", signing_key_,
+                 "With --backend mavlink: sign every frame sent with MAVLink 2 signing and read "
+                 "only frames signed with this key; FILE holds the 32-byte secret, raw or as 64 "
+                 "hexadecimal digits (e.g. from `openssl rand -hex 32`)");
+  app.add_option("--pace", pace_,
+                 "With --backend sim: fly the simulation at FACTOR times the wall clock (1: real "
+                 "time), so that ctl orders and signals come mid-run; default 0: as fast as it "
+                 "computes")
+      ->check(CLI::Range(0.0, 1e6));
 }
 
 // The vehicles of --backend mavlink: --vehicles when given (it overrides the fleet file), else
@@ -96,17 +122,52 @@ std::vector<fleet::VehicleAddress> vehicle_urls(const std::string& vehicles,
 }
 }  // namespace
 
+namespace {
+// --signing-key FILE: its bytes (a key is 32 raw bytes or 64 hex digits: anything over 1 KiB is
+// not one).
+mavlink::SigningKey read_signing_key(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("--signing-key " + path + ": cannot be read");
+  std::string contents(1025, '\0');
+  in.read(contents.data(), static_cast<std::streamsize>(contents.size()));
+  contents.resize(static_cast<std::size_t>(in.gcount()));
+  return mavlink::parse_signing_key(contents, path);
+}
+
+// The run was aborted; its files are written. Exit 128 + the signal (130 SIGINT, 143 SIGTERM) as
+// a shell reports a program a signal ended, 4 for a ctl order, 1 for an unexpected error.
+int aborted_exit(const fleet::RunRecord& r, int signal_number, fleet::AbortAction on_abort,
+                 const std::string& output) {
+  const bool land = r.aborted == "ctl land-all" ||
+                    (r.aborted != "ctl rtl-all" && on_abort == fleet::AbortAction::land);
+  std::cerr << "swath-fleet run: aborted (" << r.aborted << "): every airborne vehicle was told to "
+            << (land ? "land where it is" : "return to launch") << "; the run's files are in "
+            << output << "\n";
+  if (r.aborted_by_error) return base::kExitFailure;
+  if (r.aborted == "SIGINT" || r.aborted == "SIGTERM") return 128 + signal_number;
+  return base::kExitNotCompleted;
+}
+}  // namespace
+
 int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
   PreparedRun p =
       world_seed_option_->count() > 0 ? prepare_run(request_, world_seed_) : prepare_run(request_);
+  if (pace_ > 0 && backend_ == "mavlink")
+    throw InputError("--pace is for --backend sim (vehicles fly on the wall clock)");
   std::unique_ptr<fleet::MavlinkFleet> vehicles;
+  const RunControl* control_made = nullptr;  // once made: a signal cuts the final wait short
   if (backend_ == "mavlink") {
     const std::vector<fleet::VehicleAddress> urls = vehicle_urls(vehicles_, request_.fleet, p);
     fleet::MavlinkFleetSettings settings;
     settings.origin = p.world->origin;
     settings.fence_m = p.world->fence();
     settings.wall_clock = true;
+    settings.allow_no_gcs_failsafe = allow_no_gcs_failsafe_;
+    settings.stop_waiting = [&control_made] {
+      return control_made != nullptr && control_made->signal_number() != 0;
+    };
+    if (!signing_key_.empty()) settings.signing_key = read_signing_key(signing_key_);
     try {
       vehicles = fleet::open_mavlink_fleet(urls, settings);
     } catch (const std::system_error& e) {
@@ -120,8 +181,19 @@ int FleetRunCommand::run() {
     p.vehicles = urls;
   } else if (!vehicles_.empty()) {
     throw InputError("--vehicles needs --backend mavlink");
+  } else if (allow_no_gcs_failsafe_) {
+    throw InputError("--allow-no-gcs-failsafe needs --backend mavlink");
+  } else if (!signing_key_.empty()) {
+    throw InputError("--signing-key needs --backend mavlink");
   }
+  p.settings.pace = pace_;
+  p.settings.on_abort = on_abort_ == "land" ? fleet::AbortAction::land : fleet::AbortAction::rtl;
+  RunControl control(p.settings.on_abort, ctl_socket_);
+  control_made = &control;
+  p.settings.control = [&control] { return control.poll(); };
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
+  // Aborted: a second signal must not cost the run its record (it waits until the files are in).
+  if (!r.aborted.empty()) control.hold_signals();
   base::OutputSet set(output_, "fleet-run");
   add_run_files(set, p, r);
   if (render_) {
@@ -131,6 +203,8 @@ int FleetRunCommand::run() {
     set.add("gantt.png", render::encode_png(render::draw(gantt.scene, gantt.view)));
   }
   set.commit();
+  if (!r.aborted.empty())
+    return aborted_exit(r, control.signal_number(), p.settings.on_abort, output_);
   if (r.completed) {
     std::cout << request_.app << " completed in " << base::fixed_text(r.completion_time_s, 1)
               << " s with " << p.drones.size() << " drone" << (p.drones.size() == 1 ? "" : "s")

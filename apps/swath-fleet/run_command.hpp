@@ -27,6 +27,12 @@ class FleetRunCommand : public Command {
   std::string backend_ = "sim", vehicles_;  ///< --backend sim|mavlink, --vehicles URL,..
   std::uint64_t world_seed_ = 0;
   CLI::Option* world_seed_option_ = nullptr;  ///< given: the world's random parts re-drawn
+  // --on-abort rtl|land, --ctl-socket PATH, --pace FACTOR (simulated fleet),
+  // --allow-no-gcs-failsafe.
+  std::string on_abort_ = "rtl", ctl_socket_;
+  double pace_ = 0;
+  bool allow_no_gcs_failsafe_ = false;
+  std::string signing_key_;  ///< --signing-key FILE
 };
 
 /// swath-fleet apps: the built-in applications.

@@ -210,7 +210,10 @@ void Driver::finish_safety_check() {
     state_.warnings.push_back("could not read " + name + " (no answer to " +
                               std::to_string(settings_.attempts) +
                               " requests): " + unread_consequence());
-  for (std::string& w : safety_warnings()) state_.warnings.push_back(std::move(w));
+  // The drivers warn about nothing but a failsafe read as off.
+  std::vector<std::string> found = safety_warnings();
+  failsafe_off_ = !found.empty();
+  for (std::string& w : found) state_.warnings.push_back(std::move(w));
 }
 
 void Driver::on_frame(const Frame& frame, double now_s) {
@@ -247,7 +250,15 @@ void Driver::on_frame(const Frame& frame, double now_s) {
   } else if (const auto ext = unpack<ExtendedSysState>(frame)) {
     state_.landed = static_cast<LandedState>(ext->landed_state);
   } else if (const auto sys = unpack<SysStatus>(frame)) {
-    state_.battery_remaining_percent = sys->battery_remaining_percent;
+    // BATTERY_STATUS is the battery's own report (per battery); SYS_STATUS's copy only until it
+    // comes.
+    if (!state_.battery_status_heard)
+      state_.battery_remaining_percent = sys->battery_remaining_percent;
+  } else if (const auto battery = unpack<BatteryStatus>(frame)) {
+    if (battery->id == 0 && battery->battery_remaining_percent >= 0) {  // -1: not known
+      state_.battery_status_heard = true;
+      state_.battery_remaining_percent = battery->battery_remaining_percent;
+    }
   } else if (const auto text = unpack<StatusText>(frame)) {
     const auto end = std::find(text->text.begin(), text->text.end(), '\0');
     state_.status_texts.emplace_back(text->text.begin(), end);

@@ -278,6 +278,8 @@ void FakeCopter::on_command(const CommandLong& c, double now_s) {
 void FakeCopter::on_frame(const Frame& frame, double now_s) {
   if (frame.header.sysid != kGcsSysid) return;
   if (unpack<Heartbeat>(frame)) {
+    if (gcs_heartbeats_++ > 0)
+      longest_gcs_silence_s_ = std::max(longest_gcs_silence_s_, now_s - last_gcs_heartbeat_s_);
     last_gcs_heartbeat_s_ = now_s;
     gcs_seen_ = true;
   } else if (const auto c = unpack<CommandLong>(frame)) {
@@ -409,6 +411,15 @@ void FakeCopter::send_telemetry(double now_s) {
     s.current_battery_cA = -1;
     s.battery_remaining_percent = static_cast<std::int8_t>(std::lround(battery_percent_));
     endpoint_.send(s);
+  }
+  if (due(BatteryStatus::kId, 0)) {
+    BatteryStatus b;
+    b.id = 0;
+    b.voltages_mV.fill(UINT16_MAX);  // not known per cell
+    b.voltages_mV[0] = static_cast<std::uint16_t>(std::lround(14800 + 10 * battery_percent_));
+    b.current_battery_cA = -1;
+    b.battery_remaining_percent = static_cast<std::int8_t>(std::lround(battery_percent_));
+    endpoint_.send(b);
   }
 }
 

@@ -128,6 +128,10 @@ bool UdpLink::from_peer(const sockaddr_in& from, std::span<const std::uint8_t> d
   parser.finish();
   bool good = false;
   for (Frame f; parser.next(f);) good = good || peer_sysid_ == 0 || f.header.sysid == peer_sysid_;
+  // A signed frame (MAVLink 2 signing, signing_link.hpp) with a good checksum, from the expected
+  // system, also names the peer: the link cannot check its signature, the SigningLink above does.
+  good = good || (parser.stats().signed_dropped > 0 && datagram.size() > 5 &&
+                  datagram[0] == kStxV2 && (peer_sysid_ == 0 || datagram[5] == peer_sysid_));
   if (!good) return false;
   has_peer_ = true;
   peer_address_ = from.sin_addr.s_addr;

@@ -367,13 +367,15 @@ TEST(MavlinkFleet, VehiclesNamingPx4AreFlownByThePx4DriverAndSaidUntested) {
   m.expect_both_land_at_home();
 }
 
-// The safety check never holds the mission back: ArduCopters with FS_GCS_ENABLE 0 fly the app
-// as the others do, each reported once.
+// With --allow-no-gcs-failsafe the safety check does not hold the mission back: ArduCopters with
+// FS_GCS_ENABLE 0 fly the app as the others do, each reported once (without it they are refused:
+// abort_test.cpp).
 TEST(MavlinkFleet, AFailsafeOffIsReportedOnceAndTheAppStillCompletes) {
   std::vector<std::pair<int, std::string>> warnings;
   Mission m(
       [&](MavlinkFleetSettings& s) {
         s.warn = [&](int drone, const std::string& text) { warnings.emplace_back(drone, text); };
+        s.allow_no_gcs_failsafe = true;
       },
       [](FakeCopterSettings& s) { s.params["FS_GCS_ENABLE"] = 0; });
   m.run();

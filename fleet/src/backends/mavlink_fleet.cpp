@@ -12,6 +12,8 @@
 #include "swath/geometry/predicates.hpp"
 #include "swath/mavlink/copter_driver.hpp"
 #include "swath/mavlink/px4_driver.hpp"
+#include "swath/mavlink/shared_link.hpp"
+#include "swath/mavlink/signing_link.hpp"
 
 namespace swath::fleet {
 
@@ -35,9 +37,9 @@ constexpr double kArmRetryS = 2;  // between asks
 
 // What the runtime last asked of a vehicle, and where its steering stands.
 struct MavlinkFleet::Vehicle {
-  enum class Want { ground, go, home };
-  enum class Step { mode, arm, takeoff, rtl };  // the steering's gated steps
-  static constexpr int kSteps = 4;
+  enum class Want { ground, go, home, land };
+  enum class Step { mode, arm, takeoff, rtl, land };  // the steering's gated steps
+  static constexpr int kSteps = 5;
   static std::string refusal_text(Step step, const mavlink::Driver& d) {
     switch (step) {
       case Step::mode:
@@ -48,10 +50,13 @@ struct MavlinkFleet::Vehicle {
         return "refused to take off";
       case Step::rtl:
         return "refused to return to launch";
+      case Step::land:
+        return "refused to land";
     }
     return "refused";
   }
   std::unique_ptr<mavlink::Link> link;
+  std::unique_ptr<mavlink::Endpoint> keepalive;  // the keep-alive thread's own, on the same link
   mavlink::DriverSettings driver_settings;
   // Until the vehicle's first HEARTBEAT says which autopilot it runs, the link is read here; then
   // the driver for it is made and handed what was read.
@@ -85,6 +90,14 @@ MavlinkFleet::MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
   for (std::size_t i = 0; i < links.size(); ++i) {
     auto v = std::make_unique<Vehicle>();
     v->link = std::move(links[i]);
+    if (settings_.signing_key)
+      v->link = std::make_unique<mavlink::SigningLink>(std::move(v->link), *settings_.signing_key,
+                                                       static_cast<std::uint8_t>(i));
+    if (settings_.wall_clock && settings_.keepalive) {
+      v->link = std::make_unique<mavlink::SharedLink>(std::move(v->link));
+      v->keepalive =
+          std::make_unique<mavlink::Endpoint>(*v->link, mavlink::kGcsSysid, mavlink::kGcsCompid);
+    }
     mavlink::DriverSettings d = settings_.driver;
     d.vehicle_sysid = sysids[i];
     if (settings_.fence_m.size() >= 3) {
@@ -100,9 +113,38 @@ MavlinkFleet::MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
         std::make_unique<mavlink::Endpoint>(*v->link, mavlink::kGcsSysid, mavlink::kGcsCompid);
     vehicles_.push_back(std::move(v));
   }
+  if (settings_.wall_clock && settings_.keepalive)
+    keepalive_ = std::thread([this] { keep_alive(); });
 }
 
-MavlinkFleet::~MavlinkFleet() = default;
+MavlinkFleet::~MavlinkFleet() {
+  if (!keepalive_.joinable()) return;
+  {
+    const std::lock_guard lock(keepalive_mutex_);
+    stopping_ = true;
+  }
+  keepalive_stop_.notify_all();
+  keepalive_.join();
+}
+
+// The keep-alive thread: every quarter period it looks at when the runtime last polled; silent
+// for a heartbeat period or more (compute() or the scheduler holding the runtime's thread), it
+// sends each vehicle the ground station's HEARTBEAT itself, through the shared link and its own
+// sequence. While the runtime polls, the drivers' own heartbeats go out and it sends nothing.
+void MavlinkFleet::keep_alive() {
+  using clock = std::chrono::steady_clock;
+  const auto period = std::chrono::duration_cast<clock::duration>(
+      std::chrono::duration<double>(settings_.driver.heartbeat_period_s));
+  auto last_sent = clock::now();
+  std::unique_lock lock(keepalive_mutex_);
+  while (!keepalive_stop_.wait_for(lock, period / 4, [this] { return stopping_; })) {
+    const auto now = clock::now();
+    const clock::time_point polled{clock::duration(last_poll_ns_.load())};
+    if (now - polled < period || now - last_sent < period) continue;
+    for (const auto& v : vehicles_) v->keepalive->send(mavlink::gcs_heartbeat());
+    last_sent = now;
+  }
+}
 
 MavlinkFleet::Vehicle& MavlinkFleet::at(int drone) const {
   return *vehicles_.at(static_cast<std::size_t>(drone));
@@ -186,13 +228,57 @@ void MavlinkFleet::return_home(int drone, double) {
   steer(v);
 }
 
+void MavlinkFleet::land(int drone, double) {
+  Vehicle& v = at(drone);
+  v.want = Vehicle::Want::land;
+  v.target_sent = false;
+  steer(v);
+}
+
+// Holds where the vehicle last reported itself: its own position as the GUIDED target (a vehicle
+// not heard yet, or without a position, has nowhere to be stopped at and is left as it is).
+void MavlinkFleet::pause(int drone, double t_s) {
+  Vehicle& v = at(drone);
+  if (!v.driver || !v.driver->state().position) return;
+  const mavlink::GlobalPositionInt& p = *v.driver->state().position;
+  const geometry::Point2 here =
+      geometry::LocalFrame(settings_.origin)
+          .to_local({p.lat_degE7 / mavlink::kDegE7, p.lon_degE7 / mavlink::kDegE7});
+  go_to(drone, t_s, {here.x, here.y, std::max(1.0, p.relative_alt_mm / 1000.0)}, v.cruise_m_s,
+        v.approach_m_s, v.approach_within_m);
+}
+
+// After an abort: polls (the ground station's heartbeat going on) until every vehicle told to
+// return or land has taken the order — in RTL or LAND, or down — or settings.abort_timeout_s.
+// They fly the rest on their own.
+void MavlinkFleet::end_abort() {
+  const double deadline_s = now_s_ + settings_.abort_timeout_s;
+  while (now_s_ < deadline_s && !all_told()) advance_to(std::min(deadline_s, now_s_ + 0.5));
+}
+
+bool MavlinkFleet::all_told() const {
+  for (const auto& v : vehicles_) {
+    if (v->want != Vehicle::Want::home && v->want != Vehicle::Want::land) continue;
+    if (!v->driver) continue;  // never heard: nothing to tell it
+    const mavlink::VehicleState& s = v->driver->state();
+    const bool down = !s.armed || s.landed == mavlink::LandedState::on_ground;
+    if (!down && !v->driver->returning()) return false;
+  }
+  return true;
+}
+
 void MavlinkFleet::end_run() {
   for (auto& v : vehicles_)
     if (v->want == Vehicle::Want::go) return_home(static_cast<int>(&v - vehicles_.data()), now_s_);
   // The RTL goes out only from poll(): keep polling (and the ground station's heartbeat) until
-  // every vehicle is down, or the deadline, before the caller closes the links.
+  // every vehicle is down, or the deadline, before the caller closes the links. Asked to stop
+  // waiting, it still waits until every vehicle has taken its RTL.
   const double deadline_s = now_s_ + settings_.end_timeout_s;
-  while (now_s_ < deadline_s && !all_down()) advance_to(std::min(deadline_s, now_s_ + 1.0));
+  const auto stop = [&] {
+    return settings_.stop_waiting && settings_.stop_waiting() && all_told();
+  };
+  while (now_s_ < deadline_s && !all_down() && !stop())
+    advance_to(std::min(deadline_s, now_s_ + 1.0));
 }
 
 // Every vehicle on the ground (disarmed or landed) or never heard; one heard before but silent
@@ -256,11 +342,25 @@ void MavlinkFleet::steer(Vehicle& v) {
           v.rejections[static_cast<std::size_t>(Vehicle::Step::rtl)] < kMaxRejections)
         gate(d.return_to_launch(), Vehicle::Step::rtl);
       return;
+    case Vehicle::Want::land:  // a vehicle already returning or landing is left to it
+      if (!down && !d.returning() &&
+          v.rejections[static_cast<std::size_t>(Vehicle::Step::land)] < kMaxRejections)
+        gate(d.land(), Vehicle::Step::land);
+      return;
     case Vehicle::Want::go:
       break;
   }
-  if (!v.refusal.empty()) return;  // a refusal blocks going anywhere but home
-  if (!d.in_guided()) {            // from the ground, or after a failsafe RTL
+  if (!v.refusal.empty()) return;                  // a refusal blocks going anywhere but home
+  if (down && !settings_.allow_no_gcs_failsafe) {  // no take-off without the lost-link failsafe
+    const std::optional<bool> off = d.failsafe_off();
+    if (!off) return;  // the check still reads
+    if (*off) {
+      v.refusal = "its lost-link failsafe is off (" + s.warnings.back() +
+                  "); --allow-no-gcs-failsafe flies it anyway";
+      return;
+    }
+  }
+  if (!d.in_guided()) {  // from the ground, or after a failsafe RTL
     v.target_sent = false;
     v.speed_cmd = -1;
     gate(d.enter_guided(), Vehicle::Step::mode);
@@ -311,6 +411,7 @@ void MavlinkFleet::advance_to(double t_s) {
     else if (settings_.before_poll)
       settings_.before_poll(next);
     now_s_ = std::max(now_s_, next);
+    last_poll_ns_.store(std::chrono::steady_clock::now().time_since_epoch().count());
     for (std::size_t i = 0; i < vehicles_.size(); ++i) {
       poll(*vehicles_[i], static_cast<int>(i));
       steer(*vehicles_[i]);
@@ -332,6 +433,7 @@ VehicleReport MavlinkFleet::report(int drone) const {
     r.position_known = true;
     r.position_m = {p.x, p.y, s.position->relative_alt_mm / 1000.0};
   }
+  if (s.battery_remaining_percent >= 0) r.battery_soc = s.battery_remaining_percent / 100.0;
   if (!s.link_alive) return r;  // what it said last is stale: no arrival, no landing
   r.arrived = v.want == Vehicle::Want::go && v.target_sent && v.driver->arrived();
   r.landed_home =

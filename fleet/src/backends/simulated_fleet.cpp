@@ -65,6 +65,16 @@ void SimulatedFleet::hold(int drone, double t_s) {
   v.homing = false;
 }
 
+// Down where it is. The run ends with the landing order (an abort), so the descent is not
+// flown: the vehicle is on the ground at once.
+void SimulatedFleet::land(int drone, double t_s) {
+  Vehicle& v = at(drone);
+  const Vec3 here = position(v, t_s);
+  v.at_m = {here.x, here.y, 0};
+  v.leg.reset();
+  v.homing = false;
+}
+
 void SimulatedFleet::advance_to(double t_s) {
   now_s_ = std::max(now_s_, t_s);
 }

@@ -96,6 +96,9 @@ void Runtime::poll_backend() {
     const VehicleReport r = backend_.report(d.index);
     if (r.position_known) d.reported = r.position_m;
     integrate(d, now_);
+    // A vehicle's own battery report replaces the model's estimate (the model's energy figures
+    // stay); the decisions to head home read it from here on.
+    if (r.battery_soc >= 0) d.soc = r.battery_soc;
     if (d.mode == Mode::lost) continue;
     if (!r.refusal.empty()) {  // it will not fly: out of the fleet, its work requeued
       log(json{{"ev", "vehicle_refused"}, {"drone", d.index}, {"reason", r.refusal}});
@@ -296,37 +299,58 @@ void Runtime::finish_run(const Task& main) {
            {"completion_time_s", round6(record_.completion_time_s)}});
 }
 
-// The tick loop (docs/swath-fleet.md): resume what is ready, schedule when inputs changed, jump to
-// the next thing that happens, let it happen.
-RunRecord Runtime::run() {
-  Task& main = start_main();
+// The tick loop (docs/swath-fleet.md): take orders from outside, resume what is ready, schedule
+// when inputs changed (not while paused), jump to the next thing that happens, let it happen.
+// False: an order aborted the run.
+bool Runtime::loop(Task& main) {
   std::int64_t tick_index = 0;
   for (;;) {
+    if (take_orders()) return false;
     resume_ready();
     destroy_frames();
-    if (main.status != TaskStatus::running) break;
-    fail_unserved();
+    if (main.status != TaskStatus::running) return true;
+    if (!paused_) fail_unserved();
     if (!ready_.empty()) continue;
-    if (settings_.relief) relieve();
+    if (settings_.relief && !paused_) relieve();
     if (now_ >= retry_s_ - 1e-9) {
       retry_s_ = kInf;
       changed_ = true;
     }
-    if (changed_) {
+    if (changed_ && !paused_) {
       changed_ = false;
       schedule();
     }
-    const double next = next_happening();
+    double next = next_happening();
+    // Paused or paced, the clock goes tick by tick: orders are read at every tick.
+    if (paused_ || settings_.pace > 0) next = std::min(next, now_ + settings_.tick_s);
     if (!std::isfinite(next)) {
       record_.failure = "the app waits for something that cannot happen (no drone can serve it)";
-      break;
+      return true;
     }
-    if (!advance_clock(next, tick_index)) break;
+    if (!advance_clock(next, tick_index)) return true;
+    if (settings_.pace > 0 && !backend_.reports_every_tick()) wait_for_wall_clock();
     step_drones_to_now();
     if (backend_.reports_every_tick()) poll_backend();
     deliver_due();
   }
-  backend_.end_run();
+}
+
+// The run: the loop, then every vehicle home (or, aborted, told to return or land), the record.
+// An exception escaping the loop aborts the run as an order would (settings.on_abort): the
+// vehicles are told, the log closed; the record says why.
+RunRecord Runtime::run() {
+  Task& main = start_main();
+  bool ended = true;
+  try {
+    ended = loop(main);
+  } catch (const std::exception& e) {
+    abort_run(std::string("exception: ") + e.what(), settings_.on_abort, true);
+    ended = false;
+  }
+  if (ended)
+    backend_.end_run();
+  else
+    backend_.end_abort();
   finish_run(main);
   record_.dtg_json = dtg_json();
   return std::move(record_);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -325,6 +326,16 @@ class Runtime final : public detail::Core {
   void command_leg(Drone& d, const Vec3& to, Mode mode, double t);
   void stop(Drone& d, double t);
   void poll_backend();
+  // Orders from outside (runtime/control.cpp).
+  ControlRequest next_order();
+  bool take_orders();  ///< true: an abort was carried out, the run ends
+  static bool airborne(const Drone& d);
+  void abort_run(const std::string& reason, AbortAction action, bool by_error);
+  void model_abort(Drone& d, AbortAction action);
+  void pause_run(const std::string& reason);
+  void resume_run(const std::string& reason);
+  void wait_for_wall_clock();
+  bool loop(Task& main);  ///< false: aborted
 
   const App& app_;
   const World& world_;
@@ -358,6 +369,11 @@ class Runtime final : public detail::Core {
   Dtg live_;                     // the DTG at the last forecast (q reads its nodes)
   double next_relief_s_ = kInf;  // when relieve() has something to do next
   Backend& backend_;             // the vehicles: the simulated fleet or real ones
+  // Orders from outside (runtime/control.cpp).
+  bool paused_ = false;
+  double paused_since_s_ = 0;
+  ControlRequest waiting_order_;  // taken while waiting for the wall clock, not yet carried out
+  std::optional<std::chrono::steady_clock::time_point> pace_start_;
 };
 
 }  // namespace swath::fleet::rt

@@ -34,6 +34,8 @@ struct VehicleReport {
   /// Why the vehicle cannot fly (a step refused three times, with its STATUSTEXT, or a target
   /// outside the fence); "" when it can. A refused vehicle can still be sent home.
   std::string refusal;
+  /// The vehicle's own battery report (MAVLink BATTERY_STATUS), state of charge [0, 1]; < 0: none.
+  double battery_soc = -1;
 };
 
 class Backend {
@@ -51,6 +53,11 @@ class Backend {
   virtual void act(int drone, const std::string& name, bool sense) = 0;
   /// Home and land (a return to launch).
   virtual void return_home(int drone, double t_s) = 0;
+  /// Lands where it is (an abort with `--on-abort land`, `swath-fleet ctl land-all`).
+  virtual void land(int drone, double t_s) = 0;
+  /// A pause (`swath-fleet ctl pause`): the vehicle stops where it is and holds there. By
+  /// default what hold() does.
+  virtual void pause(int drone, double t_s) { hold(drone, t_s); }
   /// The runtime took the vehicle's request away and gave it nothing else: it stops where it is.
   virtual void hold(int drone, double t_s) = 0;
   /// Brings the backend to time `t_s` (s since the run began, non-decreasing): its I/O and
@@ -61,6 +68,9 @@ class Backend {
   /// Returns once they are down, or after the backend's own deadline: the caller may then close
   /// the links.
   virtual void end_run() = 0;
+  /// The run was aborted after every airborne vehicle was told to return or land: returns once
+  /// each has taken the order (or after the backend's own deadline). By default end_run().
+  virtual void end_abort() { end_run(); }
   /// When vehicle `drone` reaches the target of its latest go_to or return_home (landed, for the
   /// latter), s, when the backend knows it ahead (a model); infinity when only its report will say.
   virtual double arrival_s(int drone) const = 0;

@@ -24,13 +24,17 @@
 // at `origin` (x east, y north), altitudes above each vehicle's home.
 
 #include <array>
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "swath/fleet/backend.hpp"
@@ -38,6 +42,7 @@
 #include "swath/geometry/point.hpp"
 #include "swath/mavlink/driver.hpp"
 #include "swath/mavlink/link.hpp"
+#include "swath/mavlink/signing.hpp"
 
 namespace swath::fleet {
 
@@ -56,6 +61,25 @@ struct MavlinkFleetSettings {
   /// on the run's clock, s (>= 0): the return to launch is sent, the vehicles land under the
   /// ground station's heartbeat.
   double end_timeout_s = 600;
+  /// Once this returns true, end_run() stops waiting for the vehicles to land as soon as every
+  /// one has taken its RTL (`swath-fleet run`: a SIGINT or SIGTERM during the wait); empty: it
+  /// waits. The abort's shorter wait (end_abort) is never cut short.
+  std::function<bool()> stop_waiting;
+  /// After an abort, end_abort() polls until every vehicle told has taken its order (RTL or LAND,
+  /// or down) or this long has passed, s (>= 0).
+  double abort_timeout_s = 10;
+  /// false: a vehicle on the ground whose safety check read its lost-link failsafe as off
+  /// (ArduCopter FS_GCS_ENABLE 0, PX4 NAV_DLL_ACT 0) is refused (report().refusal) instead of
+  /// taking off, and none takes off before its check has read the parameters (answered or timed
+  /// out; unreadable: the warning only). true: `--allow-no-gcs-failsafe`, the warning only.
+  bool allow_no_gcs_failsafe = false;
+  /// With wall_clock: a thread of the backend's own sends the ground station's HEARTBEAT to every
+  /// vehicle whenever the runtime has not polled for heartbeat period (the app's compute() or
+  /// the scheduler busy), so that no vehicle's GCS failsafe fires because swath thinks.
+  bool keepalive = true;
+  /// MAVLink 2 signing (`--signing-key FILE`): every frame sent is signed with this key, and only
+  /// frames signed with it are read (mavlink/signing_link.hpp); vehicle i's link id is i.
+  std::optional<mavlink::SigningKey> signing_key;
   /// Told each warning about a vehicle (index from 0): its drivers' safety-check findings and
   /// that a PX4 driver, untested, flies it. Empty: written to stderr.
   std::function<void(int drone, const std::string& text)> warn;
@@ -76,6 +100,13 @@ class MavlinkFleet final : public Backend {
   /// Nothing is sent: the vehicle flies on to its last target and holds there (GUIDED), as it
   /// did before the simulated fleet shared this seam; the runtime counts it idle meanwhile.
   void hold(int, double) override {}
+  /// LAND where it is (ArduCopter: NAV_LAND).
+  void land(int drone, double t_s) override;
+  /// A GUIDED target at the vehicle's reported position: it stops and holds there.
+  void pause(int drone, double t_s) override;
+  /// Polls until every vehicle told to return or land has taken the order, or
+  /// settings.abort_timeout_s.
+  void end_abort() override;
   void advance_to(double t_s) override;
   VehicleReport report(int drone) const override;
   /// Every airborne vehicle returns to launch; returns once all are down or after
@@ -95,12 +126,20 @@ class MavlinkFleet final : public Backend {
   void poll(Vehicle& v, int drone);
   void warn(int drone, const std::string& text) const;
   bool all_down() const;
+  bool all_told() const;
   Vehicle& at(int drone) const;
 
   std::vector<std::unique_ptr<Vehicle>> vehicles_;
   MavlinkFleetSettings settings_;
   double now_s_ = 0;
   std::optional<std::chrono::steady_clock::time_point> start_;
+  // The keep-alive thread (settings.keepalive with wall_clock): see keep_alive().
+  void keep_alive();
+  std::atomic<std::int64_t> last_poll_ns_{0};  // steady_clock of the runtime's last poll
+  std::mutex keepalive_mutex_;
+  std::condition_variable keepalive_stop_;
+  bool stopping_ = false;
+  std::thread keepalive_;
 };
 
 /// Opens the links of `urls` and the backend over them. Socket errors throw std::system_error

@@ -24,6 +24,7 @@
 #include "swath/energy/battery.hpp"
 #include "swath/energy/power_model.hpp"
 #include "swath/fleet/backend.hpp"
+#include "swath/fleet/control.hpp"
 #include "swath/fleet/dtg.hpp"
 #include "swath/fleet/envelope.hpp"
 #include "swath/fleet/forecaster.hpp"
@@ -108,6 +109,14 @@ struct RuntimeSettings {
   /// fleet (event to event); else e.g. MavlinkFleet, whose vehicle i flies drone i: the runtime
   /// ticks every tick_s and takes arrivals, landings, positions and link state from its reports.
   Backend* backend = nullptr;
+  /// Orders from outside (control.hpp), polled between steps; empty: none ever come.
+  ControlSource control;
+  /// What a signal's abort (ControlOrder::rtl_all from `control`) or an exception escaping the
+  /// run tells the vehicles.
+  AbortAction on_abort = AbortAction::rtl;
+  /// The simulated fleet only: simulated seconds per wall-clock second (1: real time), so that a
+  /// person or `swath-fleet ctl` can act during the run; 0: as fast as it computes.
+  double pace = 0;
 };
 
 /// What one drone did.
@@ -146,6 +155,10 @@ struct RunRecord {
   double forecast_s_total = 0;  ///< wall time in the forecaster (timing.json only)
   /// Served and cancelled request places (t_s, x_m, y_m) for the pictures.
   std::vector<std::array<double, 3>> served, cancelled;
+  /// Why the run was aborted (the `aborted` event's reason: "SIGINT", "ctl rtl-all", "exception:
+  /// ..."); "" when it was not.
+  std::string aborted;
+  bool aborted_by_error = false;  ///< the abort was an exception escaping the run
 };
 
 /// Runs `app` in `world` with `drones` (at least one). Throws base::InputError for an unknown

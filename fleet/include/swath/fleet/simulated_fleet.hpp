@@ -28,6 +28,7 @@ class SimulatedFleet final : public Backend {
   void act(int, const std::string&, bool) override {}
   void return_home(int drone, double t_s) override;
   void hold(int drone, double t_s) override;
+  void land(int drone, double t_s) override;
   void advance_to(double t_s) override;
   VehicleReport report(int drone) const override;
   void end_run() override {}

@@ -57,7 +57,8 @@ struct VehicleState {
   std::optional<GlobalPositionInt> position;
   std::optional<HomePosition> home;
   std::optional<PositionTargetGlobalInt> target;  ///< the vehicle's report of its GUIDED target
-  int battery_remaining_percent = -1;
+  int battery_remaining_percent = -1;  ///< BATTERY_STATUS (battery 0), else SYS_STATUS; -1: unknown
+  bool battery_status_heard = false;   ///< a BATTERY_STATUS with a remaining charge came
   std::vector<std::string> status_texts;  ///< every STATUSTEXT, in order
   std::vector<CameraImageCaptured> images;
   std::map<std::string, double> params;  ///< parameters read (PARAM_VALUE), decoded
@@ -121,6 +122,10 @@ class Driver {
   /// The vehicle took the last target as its own (ArduCopter: reported it; PX4: accepted it).
   virtual bool target_confirmed() const { return target_confirmed_; }
   std::uint64_t targets_sent() const { return targets_sent_; }  ///< resends included
+
+  /// The safety check's verdict: true when it read the lost-link failsafe as off (the check's
+  /// warning says which parameter), false when on or unreadable; nothing while it still reads.
+  std::optional<bool> failsafe_off() const { return failsafe_off_; }
 
   /// COMMAND_LONGs and COMMAND_INTs sent, resends included (parameter reads not counted).
   std::uint64_t commands_sent() const { return commands_sent_; }
@@ -189,6 +194,7 @@ class Driver {
   std::uint64_t commands_sent_ = 0;
   bool safety_started_ = false;
   std::vector<int> safety_reads_;  ///< read_param ids of the check in progress
+  std::optional<bool> failsafe_off_;
 };
 
 }  // namespace swath::mavlink

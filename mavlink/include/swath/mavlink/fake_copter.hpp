@@ -104,6 +104,10 @@ class FakeCopter {
   double speed_setting_m_s() const { return speed_m_s_; }
   /// The HEARTBEAT custom_mode it sends (its flavour's encoding of mode()).
   std::uint32_t custom_mode() const;
+  /// The ground station's HEARTBEATs received, and the longest time between two of them (the
+  /// vehicle's clock, s; 0 before the second).
+  int gcs_heartbeats_received() const { return gcs_heartbeats_; }
+  double longest_gcs_silence_s() const { return longest_gcs_silence_s_; }
   /// PARAM_REQUEST_READs received (resends included, lost ones not).
   int param_requests_received() const { return param_requests_received_; }
   /// COMMAND_LONGs and COMMAND_INTs received by command number (resends included, lost ones not).
@@ -145,6 +149,8 @@ class FakeCopter {
   std::map<std::string, double> params_;  // the flavour's defaults with settings.params over them
   double last_gcs_heartbeat_s_ = 0;
   bool gcs_seen_ = false;
+  int gcs_heartbeats_ = 0;
+  double longest_gcs_silence_s_ = 0;
 
   bool armed_ = false;
   CopterMode mode_ = CopterMode::stabilize;

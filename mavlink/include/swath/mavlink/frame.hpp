@@ -4,8 +4,9 @@
 // Wire format (MAVLink 2): 0xFD, payload length, incompat flags, compat flags, sequence, system id,
 // component id, message id (3 bytes, little endian), payload, checksum (2 bytes, crc.hpp), and a
 // 13-byte signature when incompat flag 0x01 is set. MAVLink 1: 0xFE, length, sequence, system id,
-// component id, message id (1 byte), payload, checksum. swath sends unsigned MAVLink 2; it reads
-// both versions, and counts and drops signed frames (it cannot check their signature).
+// component id, message id (1 byte), payload, checksum. These functions send unsigned MAVLink 2
+// and read both versions, counting and dropping signed frames; signing and checking signatures is
+// a layer below them (signing_link.hpp: signed frames are checked there and handed up unsigned).
 
 #include <array>
 #include <cstddef>
