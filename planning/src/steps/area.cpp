@@ -344,8 +344,8 @@ bool rings_touch(const std::vector<geometry::Ring>& rings) {
 // decomposition takes rings that share no point (a ring touching itself ended in "bad merge").
 constexpr double kTouchingPiecesGap_m = 1e-3;
 
-// Lines and routes keep the clearance: zones grown by it (the lines' area by kLineEndRoom_m more,
-// survey_steps.hpp), the outline shrunk by the boundary clearance (docs/swath-plan.md).
+// Lines and routes keep the clearance: zones grown by it, the outline shrunk by the boundary
+// clearance (docs/swath-plan.md).
 void planning_rings(SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
   double boundary_m = r.boundary_clearance_m;
@@ -362,13 +362,10 @@ void planning_rings(SurveyPlan& plan) {
     return;
   }
   plan.no_fly_grown = geometry::grow(plan.no_fly, r.clearance_m);
-  const std::vector<geometry::Ring> kept_off =
-      plan.no_fly.empty() ? plan.no_fly_grown
-                          : geometry::grow(plan.no_fly, r.clearance_m + kLineEndRoom_m);
-  plan.planning_rings = geometry::subtract(plan.flown_area.outer, boundary_m, kept_off);
+  plan.planning_rings = geometry::subtract(plan.flown_area.outer, boundary_m, plan.no_fly_grown);
   if (plan.handling != Handling::hull)
     for (const geometry::Ring& piece : plan.extra_pieces)
-      for (geometry::Ring& ring : geometry::subtract(piece, boundary_m, kept_off))
+      for (geometry::Ring& ring : geometry::subtract(piece, boundary_m, plan.no_fly_grown))
         plan.planning_rings.push_back(std::move(ring));
   if (plan.planning_rings.empty())
     throw InputError(r.field.source +

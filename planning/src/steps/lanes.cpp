@@ -41,15 +41,20 @@ geometry::Ring bounding_box(const SurveyPlan& plan) {
           {x0 - margin, y1 + margin}};
 }
 
-// The open: a box around everything with the zones grown by the clearance and kRouteRoom_m as holes
-// (clockwise). Line ends lie kLineEndRoom_m beyond the clearance, outside these holes: a line end a
-// few micrometres inside the router's zone by rounding was counted outside its area, and the turn
-// flown straight through the zone (a strip across a field).
+// How much less than the clearance the open router's zones are grown, metres: line ends lie on
+// the clearance band (the planning rings less the grown zones, Boost's difference, then lines
+// cut at its edges), some a few micrometres inside it by rounding, where the router counted
+// them outside its area and flew the turn straight through the zone (a strip across a field).
+constexpr double kOpenSlack_m = 0.005;
+
+// The open: a box around everything with the zones grown by the clearance (less kOpenSlack_m) as
+// holes (clockwise).
 std::vector<geometry::Ring> open_rings(const SurveyPlan& plan) {
   if (plan.no_fly_grown.empty()) return {};
   std::vector<geometry::Ring> rings{bounding_box(plan)};
+  const double grown_m = plan.request.clearance_m - kOpenSlack_m;
   const std::vector<geometry::Ring> zones =
-      geometry::grow(plan.no_fly, plan.request.clearance_m + kRouteRoom_m);
+      grown_m > 0 ? geometry::grow(plan.no_fly, grown_m) : plan.no_fly_grown;
   for (geometry::Ring zone : zones) {
     std::reverse(zone.begin(), zone.end());
     rings.push_back(std::move(zone));

@@ -125,7 +125,7 @@ inline constexpr double kSeparation_m = 10.0;
 
 /// Limits that keep the work bounded (plan_survey() refuses beyond them) and the autopilot limit
 /// it warns above. Waypoints and photos bound the memory of the files written (each waypoint
-/// ~3.6 KB and each photo ~2.7 KB at the peak, measured: 93,034 items took 340 MB and 24 s of
+/// ~3.6 KB and each photo ~2.7 KB at the peak, measured: 93,034 items took 340 MB and 2.7 s of
 /// CPU, 202,398 photos 543 MB): at the limits a plan stays under 1 GB and 60 s. Both are far
 /// above what an autopilot holds (kAutopilotItemLimit) or a camera card takes in one flight.
 inline constexpr std::size_t kMaxSweepLines = 20'000;

@@ -65,17 +65,6 @@ void checks(SurveyPlan& plan);
 /// WPNAV_RADIUS is 2 m; its SITL flights of swath's missions left the lines by up to 1.7 m).
 inline constexpr double kCornerAllowance_m = 2.0;
 
-/// Room beyond the clearance, metres. A multirotor may overrun a stop (a hold, a sharp turn) by
-/// v^2 / (2 a) along its incoming leg; beside a zone the approach is slowed so that the overrun
-/// stays out of the clearance band, but never below ArduCopter's least speed, 0.2 m/s, which still
-/// runs 8 mm on. Stops therefore need a little room outside the band: the routes in the open go
-/// round the zones grown by the clearance plus kRouteRoom_m (their bends are stops), and the lines
-/// keep kLineEndRoom_m, more than the routes', so that a line end is outside the routes' zones
-/// whatever the rounding of the polygon operations (micrometres). Without them the preflight check
-/// refused plans 1 to 8 mm short of the clearance.
-inline constexpr double kRouteRoom_m = 0.02;
-inline constexpr double kLineEndRoom_m = 0.03;
-
 /// The routes the steps share: inside the planning rings (split's turns and transits), and in the
 /// open around the grown no-fly zones (legs to and from home, between a drone's pieces).
 struct Routes {
