@@ -242,7 +242,10 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
   }
   // The search's pruning (taut()) holds where each corner has the area's outside between its two
   // edges alone: rings that neither cross nor touch.
-  if (!rings_.empty()) {
+  // A bend moved off its corner (the allowance) is no corner: a shortest path through the moved
+  // bends may turn at one the other way, so with an allowance the search is not pruned.
+  prune_ = !(corner_allowance_m > 0);
+  if (prune_ && !rings_.empty()) {
     try {
       prune_ = !find_crossing(Polygon{rings_.front(), {rings_.begin() + 1, rings_.end()}});
     } catch (const std::exception&) {
@@ -254,10 +257,9 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
     for (std::size_t i = 0; i < n; ++i) {
       const Point2 before = ring[(i + n - 1) % n], after = ring[(i + 1) % n];
       if (orientation(before, ring[i], after) != Orientation::clockwise) continue;
-      nodes_.push_back(ring[i]);
+      nodes_.push_back(moved_out(before, ring[i], after, corner_allowance_m));
       before_.push_back(before);
       after_.push_back(after);
-      moved_.push_back(moved_out(before, ring[i], after, corner_allowance_m));
     }
   }
   nodes_by_x_.resize(nodes_.size());
@@ -277,12 +279,12 @@ void VisibilityRouter::build_node_grid() {
   for (const Point2& p : nodes_)
     x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
   if (n == 0) x0 = y0 = x1 = y1 = 0;
-  // About two nodes a cell; cells no smaller than 1e-4 of the area's extent, so that a node
+  // About eight nodes a cell; cells no smaller than 1e-4 of the area's extent, so that a node
   // outside the 3 x 3 cells round a corner is far enough from it for its direction to be
   // computed well (onward()).
-  const double w = x1 - x0, h = y1 - y0, half = double(n) / 8 + 1;
-  grid_.cell_m =
-      std::max({std::sqrt(w * h / half), std::max(w, h) / (double(n) + 1), 1e-4 * (1 + extent_m_)});
+  const double w = x1 - x0, h = y1 - y0, cells = double(n) / 8 + 1;
+  grid_.cell_m = std::max(
+      {std::sqrt(w * h / cells), std::max(w, h) / (double(n) + 1), 1e-4 * (1 + extent_m_)});
   grid_.x0 = x0, grid_.y0 = y0;
   grid_.nx = long(w / grid_.cell_m) + 1, grid_.ny = long(h / grid_.cell_m) + 1;
   const auto cell_of = [this](Point2 p) {
@@ -410,7 +412,6 @@ std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   copy->nodes_ = nodes_;
   copy->before_ = before_;
   copy->after_ = after_;
-  copy->moved_ = moved_;
   copy->bowties_ = bowties_;
   copy->prune_ = prune_;
   copy->grid_ = grid_;
@@ -549,22 +550,6 @@ bool VisibilityRouter::taut(Sides in, Point2 p, std::size_t v, Point2 q) const {
   return left ? out.left : out.right;
 }
 
-std::vector<Point2> VisibilityRouter::bent_path(Point2 a, const std::vector<std::size_t>& chain,
-                                                Point2 b) const {
-  // The corners' path is inside; a moved bend is taken only where both its legs are (from the
-  // bend before, as taken, and to the next corner, which that bend then sees either way).
-  std::vector<Point2> route{a};
-  for (std::size_t k = 0; k < chain.size(); ++k) {
-    const std::size_t v = chain[k];
-    const Point2 next = k + 1 < chain.size() ? nodes_[chain[k + 1]] : b;
-    const Point2 moved = moved_[v];
-    const bool move = moved != nodes_[v] && visible(route.back(), moved) && visible(moved, next);
-    route.push_back(move ? moved : nodes_[v]);
-  }
-  route.push_back(b);
-  return route;
-}
-
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if (!routing_) return {a, b};
   // Through a's fan where a has one (a run end asked about often, home): the same exact tests
@@ -697,23 +682,28 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       if (!in.left && !in.right) continue;
       if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
         push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
-      onward(v, in, box_lo, box_hi, [&](std::size_t u) {
+      const auto onward_to = [&](std::size_t u) {
         if (!is_near[u] || settled[u] || nodes_hidden(std::min(u, v), std::max(u, v)) ||
             !taut(in, in_from, v, nodes_[u]))
           return;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
         push({through + h[u], 0, through, 1, item.g, v, u});
-      });
+      };
+      if (prune_)
+        onward(v, in, box_lo, box_hi, onward_to);
+      else
+        for (const std::size_t u : near) onward_to(u);
     }
     // Done: b reached, or every candidate taken (no inside path).
     found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());
     limit = std::max(2 * limit, beyond == std::numeric_limits<double>::infinity() ? 0 : beyond);
   }
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
-  std::vector<std::size_t> chain;
-  for (std::size_t v = last; v != n; v = previous[v]) chain.push_back(v);
-  std::reverse(chain.begin(), chain.end());
-  return bent_path(a, chain, b);
+  std::vector<Point2> route{b};
+  for (std::size_t v = last; v != n; v = previous[v]) route.push_back(nodes_[v]);
+  route.push_back(a);
+  std::reverse(route.begin(), route.end());
+  return route;
 }
 
 }  // namespace swath::geometry

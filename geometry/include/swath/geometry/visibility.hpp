@@ -23,20 +23,21 @@ enum class Routing : bool { measure_only, routed };
 /// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
 /// visibility is decided with exact predicates, on the edges a grid over them (SegmentIndex) finds
 /// near each leg. The graph's edges and which nodes a path's ends see are tested lazily, only as
-/// far as an A* search from the start towards the end needs to prove the path shortest. The
-/// search only continues a path round a corner the way a shortest path can (it turns towards the
-/// corner's obstacle, which lies on the inner side of both legs; decided with exact orientation
-/// tests): at a nearly flat corner of a traced outline that leaves a narrow fan of directions,
-/// so big outlines (10^4 reflex vertices) route at about the cost of small ones. There is no
-/// limit on the number of reflex vertices.
+/// far as an A* search from the start towards the end needs to prove the path shortest. There is
+/// no limit on the number of reflex vertices. Without a corner allowance, on rings that neither
+/// cross nor touch, the search continues a path round a corner only the way a shortest path can
+/// (the corner's obstacle on the inner side of both legs; exact orientation tests, with the
+/// boundary's rounding tolerance), looking at the nodes in that cone of directions only (a grid of
+/// nodes): at the nearly flat corners of a traced outline a narrow cone. Between paths of equal
+/// length (up to rounding) it may then pick another than the full search.
 ///
-/// `corner_allowance_m` (>= 0, metres) moves each bend of the shortest path this far away from
-/// its corner, along the corner's bisector, where the moved point still sees both neighbours of
-/// the corner and the legs to the bends before and after it stay inside (else the bend stays on
-/// the corner): an autopilot flying through a bend cuts it (ArduCopter by up to ~1.7 m in SITL),
-/// and the allowance keeps the cut path as far from the corner as the unmoved bend was. Paths
-/// stay inside the area; they are then no longer exactly the shortest (longer by at most 2 x
-/// allowance per bend).
+/// `corner_allowance_m` (>= 0, metres) moves each bend this far away from its corner, along the
+/// corner's bisector, where the moved point still sees both neighbours of the corner: an autopilot
+/// flying through a bend cuts it (ArduCopter by up to ~1.7 m in SITL), and the allowance keeps the
+/// cut path as far from the corner as the unmoved bend was. Paths stay inside the area; they are
+/// then no longer exactly the shortest (longer by at most ~2 x allowance per bend). The moved bends
+/// are no corners, so with an allowance the search is the full A* (the path the full Dijkstra
+/// search over the moved bends picks, ties included), at O(r) per node it settles.
 class VisibilityRouter {
  public:
   explicit VisibilityRouter(std::vector<Ring> rings, Routing routing = Routing::routed,
@@ -90,19 +91,15 @@ class VisibilityRouter {
   /// Whether a path from p bending at node v on to q turns round v's corner (`in`: the sides of
   /// p -> v; see visibility.cpp).
   bool taut(Sides in, Point2 p, std::size_t v, Point2 q) const;
-  /// The path a -> nodes of `chain` -> b, each bend moved by the corner allowance where that
-  /// stays inside.
-  std::vector<Point2> bent_path(Point2 a, const std::vector<std::size_t>& chain, Point2 b) const;
   struct Box {
     double x0, y0, x1, y1;
   };
   std::vector<Ring> rings_;
   SegmentIndex edges_;           ///< every ring's edges, ring after ring, in ring order
   std::vector<Box> edge_boxes_;  ///< per edge of edges_
-  std::vector<Point2> nodes_;    ///< the reflex corners
+  std::vector<Point2> nodes_;    ///< the reflex corners (moved by the corner allowance)
   std::vector<Point2> before_;   ///< per node, the corner's ring neighbour before it
   std::vector<Point2> after_;    ///< per node, the corner's ring neighbour after it
-  std::vector<Point2> moved_;    ///< per node, its bend moved by the corner allowance (or itself)
   /// The directions a shortest path can leave a node in (taut()) lie within a double cone about a
   /// line through its corner: at angles up to (pi - the obstacle's angle) / 2 from `axis`. Nodes by
   /// cell of a grid let a search look at the cells that cone meets only (onward()).
