@@ -97,7 +97,9 @@ TEST(BadInput, AnAreaOverTheVertexLimitIsRefusedQuickly) {
 
 // The sweep-line limit holds on the lines as laid, not only on the estimate (the area's height
 // over the spacing: 110 lines here): a comb of 201 teeth crossed by every line takes 20,109 and is
-// refused, exit 2, nothing written; one of 199 teeth, 19,909 lines, is planned.
+// refused, exit 2, nothing written; one of 199 teeth, 19,909 lanes, is planned (with its transits
+// routed inside the comb, the plan may fly a lane in two pieces where cells meet: within the
+// limit).
 TEST(BadInput, AConcaveAreaOverTheLineLimitIsRefused) {
   const std::string dir = fresh_dir("bad-input-lines");
   std::filesystem::create_directories(dir);
@@ -124,7 +126,8 @@ TEST(BadInput, AConcaveAreaOverTheLineLimitIsRefused) {
   const CliRun under = run_swath("plan " + comb(199) + options + dir + "/under");
   ASSERT_EQ(under.exit_code, 0) << under.err;
   const auto s = nlohmann::json::parse(read_text(dir + "/under/summary.json"));
-  EXPECT_EQ(s["sweep"]["lines"], 19909);
+  EXPECT_GE(s["sweep"]["lines"].get<int>(), 19909);
+  EXPECT_LE(s["sweep"]["lines"].get<int>(), 20000);
   EXPECT_EQ(s["sweep"]["height_m"], 240.0);
 }
 
