@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "swath/geometry/classification.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::geometry {
@@ -218,13 +219,14 @@ bool VisibilityRouter::visible_with(Point2 a, Point2 b, const Fan* fan) const {
   return outside_fraction(a, b, limit_m, fan) * std::sqrt(dot(b - a, b - a)) <= limit_m;
 }
 
-VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes,
+VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
                                    double corner_allowance_m)
     : rings_(std::move(rings)) {
   double extent = 0;
   for (const Ring& ring : rings_)
     for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
   tolerance_ = 1e-9 * (1 + extent);
+  extent_m_ = extent;
   std::vector<Segment> edges;
   for (const Ring& ring : rings_)
     for (std::size_t i = 0; i < ring.size(); ++i) {
@@ -234,27 +236,170 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, std::size_t max_node
           {std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)});
     }
   edges_ = SegmentIndex(std::move(edges));
+  if (routing == Routing::measure_only) {
+    routing_ = false;
+    return;
+  }
+  // The search's pruning (taut()) holds where each corner has the area's outside between its two
+  // edges alone: rings that neither cross nor touch.
+  // A bend moved off its corner (the allowance) is no corner: a shortest path through the moved
+  // bends may turn at one the other way, so with an allowance the search is not pruned.
+  prune_ = !(corner_allowance_m > 0);
+  if (prune_ && !rings_.empty()) {
+    try {
+      prune_ = !find_crossing(Polygon{rings_.front(), {rings_.begin() + 1, rings_.end()}});
+    } catch (const std::exception&) {
+      prune_ = false;
+    }
+  }
   for (const Ring& ring : rings_) {
     const std::size_t n = ring.size();
-    for (std::size_t i = 0; i < n; ++i)
-      if (orientation(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]) == Orientation::clockwise)
-        nodes_.push_back(
-            moved_out(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n], corner_allowance_m));
-  }
-  if (nodes_.size() > max_nodes) {
-    routing_ = false;
-    nodes_.clear();
-    return;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 before = ring[(i + n - 1) % n], after = ring[(i + 1) % n];
+      if (orientation(before, ring[i], after) != Orientation::clockwise) continue;
+      nodes_.push_back(moved_out(before, ring[i], after, corner_allowance_m));
+      before_.push_back(before);
+      after_.push_back(after);
+    }
   }
   nodes_by_x_.resize(nodes_.size());
   for (std::size_t u = 0; u < nodes_.size(); ++u) nodes_by_x_[u] = std::uint32_t(u);
   std::stable_sort(nodes_by_x_.begin(), nodes_by_x_.end(),
                    [this](std::uint32_t u, std::uint32_t v) { return nodes_[u].x < nodes_[v].x; });
+  build_node_grid();
   node_asked_.assign(nodes_.size(), 0);
   fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
   bins_per_unit_ = double(fan_bins_) / 4;
-  extent_m_ = extent;
   node_tables_ = std::make_shared<NodeTables>(nodes_.size());
+}
+
+void VisibilityRouter::build_node_grid() {
+  const std::size_t n = nodes_.size();
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const Point2& p : nodes_)
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  if (n == 0) x0 = y0 = x1 = y1 = 0;
+  // About eight nodes a cell; cells no smaller than 1e-4 of the area's extent, so that a node
+  // outside the 3 x 3 cells round a corner is far enough from it for its direction to be
+  // computed well (onward()).
+  const double w = x1 - x0, h = y1 - y0, cells = double(n) / 8 + 1;
+  grid_.cell_m = std::max(
+      {std::sqrt(w * h / cells), std::max(w, h) / (double(n) + 1), 1e-4 * (1 + extent_m_)});
+  grid_.x0 = x0, grid_.y0 = y0;
+  grid_.nx = long(w / grid_.cell_m) + 1, grid_.ny = long(h / grid_.cell_m) + 1;
+  const auto cell_of = [this](Point2 p) {
+    const long cx = std::clamp(long((p.x - grid_.x0) / grid_.cell_m), 0L, grid_.nx - 1);
+    const long cy = std::clamp(long((p.y - grid_.y0) / grid_.cell_m), 0L, grid_.ny - 1);
+    return std::size_t(cy * grid_.nx + cx);
+  };
+  grid_.start.assign(std::size_t(grid_.nx * grid_.ny) + 1, 0);
+  for (const Point2& p : nodes_) ++grid_.start[cell_of(p) + 1];
+  for (std::size_t k = 1; k < grid_.start.size(); ++k) grid_.start[k] += grid_.start[k - 1];
+  grid_.items.resize(n);
+  std::vector<std::uint32_t> fill(grid_.start.begin(), grid_.start.end() - 1);
+  for (std::size_t u = 0; u < n; ++u) grid_.items[fill[cell_of(nodes_[u])]++] = std::uint32_t(u);
+  // The cone (taut()): the line of a leg on from the corner must not pass through the obstacle's
+  // angle w between the unit edge vectors e1, e2, so it makes an angle of at most (pi - w) / 2
+  // with e2 - e1 (at right angles to the bisector e1 + e2), whose tan is |e1 + e2| / |e2 - e1|.
+  // Widened by 1e-9 radians for rounding of the unit vectors (~1e-16).
+  bowties_.clear();
+  for (std::size_t v = 0; v < n; ++v) {
+    const Point2 c = nodes_[v];
+    const Point2 e1 = (before_[v] - c) * (1 / distance(before_[v], c));
+    const Point2 e2 = (after_[v] - c) * (1 / distance(after_[v], c));
+    const Point2 sum = e1 + e2, difference = e2 - e1;
+    const double along = std::hypot(difference.x, difference.y);
+    if (!prune_ || !(along > 1e-6)) {  // a spike: (nearly) any direction
+      bowties_.push_back({{1, 0}, {0, 1}, INFINITY, true});
+      continue;
+    }
+    const Point2 axis = difference * (1 / along);
+    // Widened by the angle corner_sides() lets a leg's line pass within an edge: 4 tolerance over
+    // the shorter of the edge and the leg (legs to nodes outside the 3 x 3 cells round the corner
+    // are at least a cell long).
+    const double shortest =
+        std::min({distance(before_[v], c), distance(after_[v], c), grid_.cell_m});
+    const double half =
+        std::atan(std::hypot(sum.x, sum.y) / along) + 8 * tolerance_ / shortest + 1e-9;
+    if (!(half < 1.5707)) {
+      bowties_.push_back({{1, 0}, {0, 1}, INFINITY, true});
+      continue;
+    }
+    const double spread = std::tan(half);
+    // Both edges lie on one side of +axis (cross(e2 - e1, e1) = cross(e2 - e1, e2)): left of it,
+    // the half along +axis is where left turns go on.
+    bowties_.push_back({axis, {-axis.y, axis.x}, spread, cross(axis, sum) > 0});
+  }
+}
+
+template <class F>
+void VisibilityRouter::onward(std::size_t v, Sides in, Point2 lo, Point2 hi, F&& f) const {
+  // Cells from the corner's outwards (the cells the cone meets are connected, as the cone's two
+  // halves and the box are convex), each cell looked at once (its stamp).
+  thread_local std::vector<std::uint64_t> stamps;
+  thread_local std::uint64_t stamp = 0;
+  thread_local std::vector<long> todo;
+  const std::size_t cells = std::size_t(grid_.nx * grid_.ny);
+  if (stamps.size() < cells) stamps.resize(cells, 0);
+  ++stamp;
+  const Point2 c = nodes_[v];
+  const Bowtie& cone = bowties_[v];
+  const double cell = grid_.cell_m;
+  const long cx = std::clamp(long((c.x - grid_.x0) / cell), 0L, grid_.nx - 1);
+  const long cy = std::clamp(long((c.y - grid_.y0) / cell), 0L, grid_.ny - 1);
+  const long bx0 = std::max(0L, long(std::floor((lo.x - grid_.x0) / cell)) - 1),
+             bx1 = std::min(grid_.nx - 1, long(std::floor((hi.x - grid_.x0) / cell)) + 1),
+             by0 = std::max(0L, long(std::floor((lo.y - grid_.y0) / cell)) - 1),
+             by1 = std::min(grid_.ny - 1, long(std::floor((hi.y - grid_.y0) / cell)) + 1);
+  // Rounding of the products below is ~1e-16 of the extent; slack far above it.
+  const double slack = 1e-9 * (1 + extent_m_);
+  const bool everywhere = !(cone.spread < 1e12);
+  // The half along +axis takes the turns to the side the edges lie on of +axis; the other half
+  // the others.
+  const bool plus = cone.axis_left ? in.left : in.right,
+             minus = cone.axis_left ? in.right : in.left;
+  const auto meets = [&](long x, long y) {
+    if (everywhere || (std::abs(x - cx) <= 1 && std::abs(y - cy) <= 1)) return true;
+    // The cone's half along +axis is the points with t along - across >= 0 and t along + across
+    // >= 0, the other half with -t along -+ across >= 0: a cell misses a half when all its
+    // corners break one of its two conditions.
+    double m[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 4; ++k) {
+      const Point2 q =
+          Point2{grid_.x0 + cell * double(x + (k & 1)), grid_.y0 + cell * double(y + (k >> 1))} - c;
+      const double along = cone.spread * dot(q, cone.axis), across = dot(q, cone.across);
+      m[0] = std::max(m[0], along - across), m[1] = std::max(m[1], along + across);
+      m[2] = std::max(m[2], -along - across), m[3] = std::max(m[3], -along + across);
+    }
+    return (plus && m[0] >= -slack && m[1] >= -slack) ||
+           (minus && m[2] >= -slack && m[3] >= -slack);
+  };
+  todo.assign({cy * grid_.nx + cx});
+  stamps[std::size_t(todo.back())] = stamp;
+  while (!todo.empty()) {
+    const long k = todo.back();
+    todo.pop_back();
+    const long x = k % grid_.nx, y = k / grid_.nx;
+    const bool round_corner = std::abs(x - cx) <= 1 && std::abs(y - cy) <= 1;
+    for (std::uint32_t i = grid_.start[std::size_t(k)]; i < grid_.start[std::size_t(k) + 1]; ++i) {
+      const std::uint32_t u = grid_.items[i];
+      if (!round_corner && !everywhere) {
+        const Point2 q = nodes_[u] - c;
+        const double along = cone.spread * dot(q, cone.axis),
+                     across = std::abs(dot(q, cone.across));
+        if (!(plus && across <= along + slack) && !(minus && across <= -along + slack)) continue;
+      }
+      f(std::size_t(u));
+    }
+    for (const auto& [dx, dy] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
+      const long nx = x + dx, ny = y + dy;
+      if (nx < bx0 || nx > bx1 || ny < by0 || ny > by1) continue;
+      std::uint64_t& seen = stamps[std::size_t(ny * grid_.nx + nx)];
+      if (seen == stamp || !meets(nx, ny)) continue;
+      seen = stamp;
+      todo.push_back(ny * grid_.nx + nx);
+    }
+  }
 }
 
 VisibilityRouter::~VisibilityRouter() = default;
@@ -265,6 +410,11 @@ std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   copy->edges_ = edges_;
   copy->edge_boxes_ = edge_boxes_;
   copy->nodes_ = nodes_;
+  copy->before_ = before_;
+  copy->after_ = after_;
+  copy->bowties_ = bowties_;
+  copy->prune_ = prune_;
+  copy->grid_ = grid_;
   copy->nodes_by_x_ = nodes_by_x_;
   copy->routing_ = routing_;
   copy->tolerance_ = tolerance_;
@@ -294,30 +444,58 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
 }
 
 // Threads that share the tables may test a pair at once: both find the same answer (the same exact
-// tests, with or without a fan), so either store stands. A fan is published whole (release) and
-// only the first one made is kept.
+// tests, with or without a fan), so either store stands. A fan and a chunk of the table are
+// published whole (release) and only the first one made is kept. The table comes in chunks made
+// when first written: a search asks about the pairs near its path only, and a full table of 10^4
+// nodes would be 10^8 bytes.
 struct VisibilityRouter::NodeTables {
+  static constexpr std::size_t kChunk = 4096;  ///< pairs per chunk, of one row
+  using Chunk = std::atomic<signed char>;
   explicit NodeTables(std::size_t n)
-      : sees(new std::atomic<signed char>[n * n]), fans(new std::atomic<Fan*>[n]), nodes(n) {
-    for (std::size_t k = 0; k < n * n; ++k) sees[k].store(kUnknown, std::memory_order_relaxed);
+      : nodes(n),
+        per_row((n + kChunk - 1) / kChunk),
+        chunks(new std::atomic<Chunk*>[n * per_row]),
+        fans(new std::atomic<Fan*>[n]) {
+    for (std::size_t k = 0; k < n * per_row; ++k)
+      chunks[k].store(nullptr, std::memory_order_relaxed);
     for (std::size_t k = 0; k < n; ++k) fans[k].store(nullptr, std::memory_order_relaxed);
   }
   ~NodeTables() {
+    for (std::size_t k = 0; k < nodes * per_row; ++k)
+      delete[] chunks[k].load(std::memory_order_acquire);
     for (std::size_t k = 0; k < nodes; ++k) delete fans[k].load(std::memory_order_acquire);
   }
   NodeTables(const NodeTables&) = delete;
   NodeTables& operator=(const NodeTables&) = delete;
-  std::unique_ptr<std::atomic<signed char>[]> sees;  ///< nodes², kUnknown until asked
-  std::unique_ptr<std::atomic<Fan*>[]> fans;         ///< per node, null until made
-  std::size_t nodes;
+  /// Whether i sees j: kUnknown until asked; null where nothing of its chunk has been asked.
+  const Chunk* find(std::size_t i, std::size_t j) const {
+    const Chunk* chunk = chunks[i * per_row + j / kChunk].load(std::memory_order_acquire);
+    return chunk ? chunk + j % kChunk : nullptr;
+  }
+  Chunk& at(std::size_t i, std::size_t j) {
+    std::atomic<Chunk*>& slot = chunks[i * per_row + j / kChunk];
+    Chunk* chunk = slot.load(std::memory_order_acquire);
+    if (!chunk) {
+      auto made = std::make_unique<Chunk[]>(kChunk);
+      for (std::size_t k = 0; k < kChunk; ++k) made[k].store(kUnknown, std::memory_order_relaxed);
+      if (slot.compare_exchange_strong(chunk, made.get(), std::memory_order_acq_rel,
+                                       std::memory_order_acquire))
+        chunk = made.release();  // kept; otherwise `chunk` is the one another thread published
+    }
+    return chunk[j % kChunk];
+  }
+  std::size_t nodes, per_row;
+  std::unique_ptr<std::atomic<Chunk*>[]> chunks;  ///< per row, per chunk of it
+  std::unique_ptr<std::atomic<Fan*>[]> fans;      ///< per node, null until made
 };
 
 bool VisibilityRouter::nodes_hidden(std::size_t i, std::size_t j) const {
-  return node_tables_->sees[i * nodes_.size() + j].load(std::memory_order_relaxed) == 0;
+  const NodeTables::Chunk* known = node_tables_->find(i, j);
+  return known && known->load(std::memory_order_relaxed) == 0;
 }
 
 bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
-  std::atomic<signed char>& known = node_tables_->sees[i * nodes_.size() + j];
+  std::atomic<signed char>& known = node_tables_->at(i, j);
   signed char answer = known.load(std::memory_order_relaxed);
   if (answer == kUnknown) {
     std::atomic<Fan*>& shared_fan = node_tables_->fans[i];
@@ -332,6 +510,44 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
     known.store(answer, std::memory_order_relaxed);
   }
   return answer != 0;
+}
+
+// A shortest path bends at a corner only round it: near the corner, the corner's obstacle (between
+// its two edges, an angle below pi) lies on the inner side of both legs. Were it otherwise, two
+// points on the legs near the corner would see each other (the triangle they make with the corner
+// holds none of the obstacle) and the path would not be shortest. So the edges, towards the ring
+// neighbours before and after the corner, lie left of (or on) both directed legs when the path
+// turns left, right when it turns right. A path straight on (or back: never shortest, harmless)
+// passes.
+VisibilityRouter::Sides VisibilityRouter::corner_sides(Point2 p, Point2 c, std::size_t v) const {
+  // An end of a leg computed on an edge lies a rounding error to either side of it, and the leg
+  // still counts as inside (visible()): an edge within an angle of ~4 tolerance / (the shorter of
+  // the leg and the edge) of the leg's line counts as on it. Too many legs kept only costs time.
+  // Without the wedge a simple area has at each corner (rings that cross or touch), or for a leg
+  // from within a millionth of the area's size of the corner (its direction is rounding), any.
+  if (!prune_ || distance(p, c) <= 1e-6 * (1 + extent_m_)) return {true, true};
+  const auto side = [&](Point2 x) {
+    const Orientation o = orientation(p, c, x);
+    if (o == Orientation::collinear) return o;
+    const Point2 leg = p - c, edge = x - c;
+    const double slack =
+        4 * tolerance_ * std::max(std::hypot(leg.x, leg.y), std::hypot(edge.x, edge.y));
+    return std::abs(cross(leg, edge)) <= slack ? Orientation::collinear : o;
+  };
+  const Orientation o1 = side(before_[v]), o2 = side(after_[v]);
+  return {o1 != Orientation::clockwise && o2 != Orientation::clockwise,
+          o1 != Orientation::counter_clockwise && o2 != Orientation::counter_clockwise};
+}
+
+bool VisibilityRouter::taut(Sides in, Point2 p, std::size_t v, Point2 q) const {
+  if (!prune_) return true;
+  const Point2 c = nodes_[v];
+  const Orientation turn = orientation(p, c, q);
+  if (turn == Orientation::collinear) return true;
+  const bool left = turn == Orientation::counter_clockwise;
+  if (!(left ? in.left : in.right)) return false;
+  const Sides out = corner_sides(c, q, v);
+  return left ? out.left : out.right;
 }
 
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
@@ -351,11 +567,13 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if ((from_a.known == n && from_a.visible == 0) || (to_b.known == n && to_b.visible == 0))
     return {a, b};
 
-  // The answer is the one Dijkstra's search from a over the whole graph gives (the router before
-  // A*, written out in tests/geometry/visibility_search_test.cpp): a node's distance and
-  // predecessor are what that search settles it with, and the path ends through the node v that
-  // b sees with the least distance(v) + |v b|, the lowest index of equal ones. A* finds it while
-  // settling only the nodes towards b, and testing only the legs it takes:
+  // The answer is a shortest path through the graph of corners (its length is the one a full
+  // Dijkstra search over the whole graph gives, written out in
+  // tests/geometry/visibility_search_test.cpp). A shortest path bends only round its corners
+  // (taut()), so the search goes on from a node only along such legs: at the nearly flat corners
+  // of a traced outline, a narrow fan of them. Between paths of equal length (up to rounding) it
+  // may pick another than the full search. A* finds it while settling only the nodes towards b,
+  // and testing only the legs it takes:
   // - Candidates are taken in order of f = g + h, h = (1 - 1e-6) |node b|: a predecessor u of v on
   //   a shortest path is then settled strictly before v (h(u) <= (1 - 1e-6) w(u, v) + h(v): f
   //   grows by at least 1e-6 w(u, v) along an edge, far above rounding), and every candidate for
@@ -383,6 +601,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   thread_local std::vector<std::size_t> previous;  // n: straight from a
   thread_local std::vector<char> settled;
   thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
+  thread_local std::vector<char> is_near;      // per node: in `near`
   thread_local std::vector<Item> queue;        // a min-heap (std::push_heap with greater)
   h.resize(n);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
@@ -400,10 +619,12 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     double beyond = std::numeric_limits<double>::infinity();  // least f left out
     previous.assign(n, n);
     settled.assign(n, 0);
+    is_near.assign(n, 0);
     queue.clear();
     near.clear();
     const Point2 middle = (a + b) * 0.5;
     const double reach = limit / (2 * kShrink) * (1 + 1e-9) + tolerance_;
+    const Point2 box_lo = middle - Point2{reach, reach}, box_hi = middle + Point2{reach, reach};
     const auto by_x = [this](std::uint32_t u, double x) { return nodes_[u].x < x; };
     const auto first =
         std::lower_bound(nodes_by_x_.begin(), nodes_by_x_.end(), middle.x - reach, by_x);
@@ -422,6 +643,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         continue;
       }
       near.push_back(u);
+      is_near[u] = 1;
       if (from_a.seen[u] != 0) queue.push_back({f, 0, d, 0, 0.0, n, u});  // not known hidden
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
@@ -453,12 +675,24 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         continue;
       settled[v] = 1;
       previous[v] = item.from_node ? item.from : n;
-      if (to_b.seen[v] != 0) push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
-      for (const std::size_t u : near) {
-        if (settled[u] || nodes_hidden(std::min(u, v), std::max(u, v))) continue;
+      // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
+      // on both sides of the leg in, none goes on.
+      const Point2 in_from = item.from_node ? nodes_[item.from] : a;
+      const Sides in = corner_sides(in_from, nodes_[v], v);
+      if (!in.left && !in.right) continue;
+      if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
+        push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
+      const auto onward_to = [&](std::size_t u) {
+        if (!is_near[u] || settled[u] || nodes_hidden(std::min(u, v), std::max(u, v)) ||
+            !taut(in, in_from, v, nodes_[u]))
+          return;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
         push({through + h[u], 0, through, 1, item.g, v, u});
-      }
+      };
+      if (prune_)
+        onward(v, in, box_lo, box_hi, onward_to);
+      else
+        for (const std::size_t u : near) onward_to(u);
     }
     // Done: b reached, or every candidate taken (no inside path).
     found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());

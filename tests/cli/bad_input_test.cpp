@@ -97,7 +97,9 @@ TEST(BadInput, AnAreaOverTheVertexLimitIsRefusedQuickly) {
 
 // The sweep-line limit holds on the lines as laid, not only on the estimate (the area's height
 // over the spacing: 110 lines here): a comb of 201 teeth crossed by every line takes 20,109 and is
-// refused, exit 2, nothing written; one of 199 teeth, 19,909 lines, is planned.
+// refused, exit 2, nothing written; one of 199 teeth, 19,909 lanes, is planned (with its transits
+// routed inside the comb, the plan may fly a lane in two pieces where cells meet: within the
+// limit).
 std::string comb_area(const std::string& dir, int teeth) {
   // teeth 10 m wide, 10 m apart, 240 m tall on a 20 m base
   const std::string file = dir + "/comb" + std::to_string(teeth) + ".csv";
@@ -125,19 +127,20 @@ TEST(BadInput, AConcaveAreaOverTheLineLimitIsRefused) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/over"));
 }
 
-// The same comb just under the limit is planned in full: 19,909 lines. Planning them takes ~20 s in
+// The same comb just under the limit is planned in full: 19,909 lanes. Planning them takes ~20 s in
 // Release and over 200 s under the sanitizers, where it is left out (the refusal above runs there;
 // the code path is the same as every other plan's).
 TEST(BadInput, AConcaveAreaJustUnderTheLineLimitIsPlanned) {
 #ifdef SWATH_SANITIZED
-  GTEST_SKIP() << "19,909 lines take minutes under the sanitizers";
+  GTEST_SKIP() << "19,909 lanes take minutes under the sanitizers";
 #endif
   const std::string dir = fresh_dir("bad-input-lines-under");
   std::filesystem::create_directories(dir);
   const CliRun under = run_swath("plan " + comb_area(dir, 199) + kCombOptions + dir + "/under");
   ASSERT_EQ(under.exit_code, 0) << under.err;
   const auto s = nlohmann::json::parse(read_text(dir + "/under/summary.json"));
-  EXPECT_EQ(s["sweep"]["lines"], 19909);
+  EXPECT_GE(s["sweep"]["lines"].get<int>(), 19909);
+  EXPECT_LE(s["sweep"]["lines"].get<int>(), 20000);
   EXPECT_EQ(s["sweep"]["height_m"], 240.0);
 }
 

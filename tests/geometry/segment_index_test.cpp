@@ -155,7 +155,7 @@ TEST(SegmentIndex, RouterAnswersBitForBitAsOverAllEdges) {
         area % 4 == 3 ? std::vector<Ring>{test::random_grid_ring(rng, 30, 10)}
                       : holey_area(rng, std::size_t(12) << area % 4, 10 + 10 * area);
     const test::BruteArea brute(rings);
-    const VisibilityRouter router(rings, 0);
+    const VisibilityRouter router(rings, Routing::measure_only);
     for (const Segment& q : queries(rng, rings, 1500)) {
       const double indexed = router.length_outside(q.a, q.b), all = brute.length_outside(q.a, q.b);
       ASSERT_EQ(indexed, all) << "area " << area << " (" << q.a.x << ", " << q.a.y << ") - ("

@@ -94,9 +94,10 @@ TEST(VisibilityRouter, UShapeRoutesOverTheNotchFloor) {
   EXPECT_NEAR(polyline_length(path), 2 * std::hypot(5.0, 15.0) + 10, 1e-9);
 }
 
-TEST(VisibilityRouter, TooComplexAreasAreNotRouted) {
+TEST(VisibilityRouter, AMeasuringRouterDoesNotRoute) {
   const VisibilityRouter r(
-      {{{0, 0}, {30, 0}, {30, 30}, {20, 30}, {20, 10}, {10, 10}, {10, 30}, {0, 30}}}, 1);
+      {{{0, 0}, {30, 0}, {30, 30}, {20, 30}, {20, 10}, {10, 10}, {10, 30}, {0, 30}}},
+      Routing::measure_only);
   EXPECT_FALSE(r.routes());
   EXPECT_EQ(r.path({5, 25}, {25, 25}).size(), 2u);
   EXPECT_NEAR(r.length_outside({5, 25}, {25, 25}), 10, 1e-9);

@@ -184,7 +184,7 @@ TEST(LaneRuns, LanesInsideRunsFlyableAndTheOracleSeesTheArea) {
     const double a = angle(rng);
     const LaneRunSettings s = settings(a);
     const std::vector<Ring> rings = geometry::rings_of(shape.area);
-    const geometry::VisibilityRouter inside(rings, 0);
+    const geometry::VisibilityRouter inside(rings, geometry::Routing::measure_only);
     const LaneRuns r = runs_of(shape.area, s);
     const std::string what = shape.family + " " + std::to_string(shape.index);
     for (const Sweep& run : r.runs) {

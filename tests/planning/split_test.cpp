@@ -382,14 +382,16 @@ Checked check_split(const Polygon& raw, const std::string& what) {
   const SurveyPlan sp = plan(raw, ConcaveMode::split);
   const Polygon& area = sp.area;
   EXPECT_EQ(sp.handling, Handling::split) << what;
-  const geometry::VisibilityRouter inside(geometry::rings_of(area), 0);
+  const geometry::VisibilityRouter inside(geometry::rings_of(area),
+                                          geometry::Routing::measure_only);
   for (const SweepLine& l : sp.drones[0].mission.lines) {
     // Not outside the area, not across a hole.
     EXPECT_LE(inside.length_outside(l.start, l.end), 1e-6) << what;
     // Inside its own cell: some cell contains the whole line.
     bool in_a_cell = false;
     for (const Ring& cell : sp.cells)
-      in_a_cell |= geometry::VisibilityRouter({cell}, 0).length_outside(l.start, l.end) <= 1e-6;
+      in_a_cell |= geometry::VisibilityRouter({cell}, geometry::Routing::measure_only)
+                       .length_outside(l.start, l.end) <= 1e-6;
     EXPECT_TRUE(in_a_cell) << what;
   }
   EXPECT_LE(sp.coverage.line_length_outside_m, 1e-6) << what;

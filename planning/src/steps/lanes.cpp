@@ -180,8 +180,10 @@ std::vector<SweepLine> interleave(const std::vector<SweepLine>& lines, double sp
 }  // namespace
 
 Routes::Routes(const SurveyPlan& plan)
-    : inside(plan.planning_rings, in_cells(plan) ? 300 : 0, kCornerAllowance_m),
-      open(open_rings(plan), 1000, kCornerAllowance_m),
+    : inside(plan.planning_rings,
+             in_cells(plan) ? geometry::Routing::routed : geometry::Routing::measure_only,
+             kCornerAllowance_m),
+      open(open_rings(plan), geometry::Routing::routed, kCornerAllowance_m),
       no_fly_(&plan.no_fly) {}
 
 LegRoute Routes::leg() const {

@@ -44,7 +44,7 @@ double transit_outside_m(const SurveyPlan& plan) {
   std::vector<geometry::Ring> rings = geometry::rings_of(plan.area);
   rings.insert(rings.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
   rings.insert(rings.end(), plan.extra_piece_holes.begin(), plan.extra_piece_holes.end());
-  const geometry::VisibilityRouter measure(rings, 0);
+  const geometry::VisibilityRouter measure(rings, geometry::Routing::measure_only);
   double outside = 0;
   for (const DronePlan& d : plan.drones) {
     const DroneMission& m = d.mission;

@@ -13,25 +13,34 @@
 
 namespace swath::geometry {
 
+/// Whether a VisibilityRouter finds paths or only measures legs (length_outside, visible): a
+/// router that only measures skips the graph's set-up.
+enum class Routing : bool { measure_only, routed };
+
 /// Routes between points of an area given as rings (outer counter-clockwise, holes clockwise;
 /// several outer rings allowed): a point is inside when an odd number of rings contain it, or it
 /// lies within 1e-9 of the area's size of the boundary (rounding of computed boundary points). The
 /// shortest path inside a polygonal area bends only at reflex vertices, so the graph holds those;
 /// visibility is decided with exact predicates, on the edges a grid over them (SegmentIndex) finds
 /// near each leg. The graph's edges and which nodes a path's ends see are tested lazily, only as
-/// far as an A* search from the start towards the end needs to prove the path shortest (O(r k)
-/// per node it settles, for r reflex vertices and k edges near a leg); areas with more than
-/// `max_nodes` reflex vertices are not routed (paths are straight). The path is the one a full
-/// Dijkstra search over the whole graph picks (ties included; see path()).
+/// far as an A* search from the start towards the end needs to prove the path shortest. There is
+/// no limit on the number of reflex vertices. Without a corner allowance, on rings that neither
+/// cross nor touch, the search continues a path round a corner only the way a shortest path can
+/// (the corner's obstacle on the inner side of both legs; exact orientation tests, with the
+/// boundary's rounding tolerance), looking at the nodes in that cone of directions only (a grid of
+/// nodes): at the nearly flat corners of a traced outline a narrow cone. Between paths of equal
+/// length (up to rounding) it may then pick another than the full search.
 ///
 /// `corner_allowance_m` (>= 0, metres) moves each bend this far away from its corner, along the
 /// corner's bisector, where the moved point still sees both neighbours of the corner: an autopilot
 /// flying through a bend cuts it (ArduCopter by up to ~1.7 m in SITL), and the allowance keeps the
 /// cut path as far from the corner as the unmoved bend was. Paths stay inside the area; they are
-/// then no longer exactly the shortest (longer by at most ~2 x allowance per bend).
+/// then no longer exactly the shortest (longer by at most ~2 x allowance per bend). The moved bends
+/// are no corners, so with an allowance the search is the full A* (the path the full Dijkstra
+/// search over the moved bends picks, ties included), at O(r) per node it settles.
 class VisibilityRouter {
  public:
-  explicit VisibilityRouter(std::vector<Ring> rings, std::size_t max_nodes = 300,
+  explicit VisibilityRouter(std::vector<Ring> rings, Routing routing = Routing::routed,
                             double corner_allowance_m = 0.0);
 
   /// True when the closed segment [a, b] lies inside the closed area.
@@ -40,8 +49,8 @@ class VisibilityRouter {
   /// visible(p, p): a segment of length 0 has no length outside, wherever it is.
   bool contains(Point2 p) const { return inside_closed(p); }
   /// The shortest path from a to b inside the area, a and b included; the straight segment when
-  /// it is inside, when no inside path exists (a or b outside, separate pieces) or the area has too
-  /// many reflex vertices to route.
+  /// it is inside, when no inside path exists (a or b outside, separate pieces) or the router only
+  /// measures (Routing::measure_only).
   std::vector<Point2> path(Point2 a, Point2 b) const;
   /// Length of [a, b] outside the closed area, metres (exact up to rounding).
   double length_outside(Point2 a, Point2 b) const;
@@ -73,13 +82,46 @@ class VisibilityRouter {
   double outside_fraction(Point2 a, Point2 b, double stop_m, const Fan* fan = nullptr) const;
   bool visible_with(Point2 a, Point2 b, const Fan* fan) const;
   Point2 moved_out(Point2 before, Point2 corner, Point2 after, double allowance_m) const;
+  /// Which sides of the directed line p -> c (c: node v) the edges of v's corner lie on, each
+  /// side with the line itself.
+  struct Sides {
+    bool left, right;
+  };
+  Sides corner_sides(Point2 p, Point2 c, std::size_t v) const;
+  /// Whether a path from p bending at node v on to q turns round v's corner (`in`: the sides of
+  /// p -> v; see visibility.cpp).
+  bool taut(Sides in, Point2 p, std::size_t v, Point2 q) const;
   struct Box {
     double x0, y0, x1, y1;
   };
   std::vector<Ring> rings_;
   SegmentIndex edges_;           ///< every ring's edges, ring after ring, in ring order
   std::vector<Box> edge_boxes_;  ///< per edge of edges_
-  std::vector<Point2> nodes_;
+  std::vector<Point2> nodes_;    ///< the reflex corners (moved by the corner allowance)
+  std::vector<Point2> before_;   ///< per node, the corner's ring neighbour before it
+  std::vector<Point2> after_;    ///< per node, the corner's ring neighbour after it
+  /// The directions a shortest path can leave a node in (taut()) lie within a double cone about a
+  /// line through its corner: at angles up to (pi - the obstacle's angle) / 2 from `axis`. Nodes by
+  /// cell of a grid let a search look at the cells that cone meets only (onward()).
+  struct Bowtie {
+    Point2 axis;     ///< unit vector along the cone's middle
+    Point2 across;   ///< unit vector at right angles to it
+    double spread;   ///< tan of the half angle, widened for rounding; infinity: every direction
+    bool axis_left;  ///< the corner's edges lie left of +axis
+  };
+  std::vector<Bowtie> bowties_;
+  struct NodeGrid {
+    double x0 = 0, y0 = 0, cell_m = 1;
+    long nx = 0, ny = 0;
+    std::vector<std::uint32_t> start;  ///< per cell (row after row), its first item; + the end
+    std::vector<std::uint32_t> items;  ///< node indices
+  };
+  NodeGrid grid_;
+  void build_node_grid();
+  /// Calls f(u) for every node u that a path bending at node v may go on to (and a few more),
+  /// among those in cells meeting the box [lo, hi]; `in`: the sides of the leg into v.
+  template <class F>
+  void onward(std::size_t v, Sides in, Point2 lo, Point2 hi, F&& f) const;
   std::vector<std::uint32_t> nodes_by_x_;  ///< node indices by ascending x
   // Everything below is filled lazily, as paths are asked: a plan asks for ~10^4 paths between
   // run ends, and testing every run end against every reflex vertex (and every pair of reflex
@@ -105,13 +147,16 @@ class VisibilityRouter {
   bool nodes_see(std::size_t i, std::size_t j) const;
   /// Whether nodes i < j are known not to see each other (asked before, by any copy).
   bool nodes_hidden(std::size_t i, std::size_t j) const;
-  struct NodeTables;  ///< nodes² visibility and the nodes' fans, shared with copies (atomics)
+  /// Which nodes see each other (in chunks of rows, made as they are first asked) and the nodes'
+  /// fans, shared with copies (atomics).
+  struct NodeTables;
   std::shared_ptr<NodeTables> node_tables_;
   mutable std::vector<int> node_asked_;  ///< per node: pairs tested from it without a fan
   std::size_t fan_bins_ = 0;
   double bins_per_unit_ = 0;  ///< fan bins per unit of diamond angle (4 a turn)
   double extent_m_ = 0;       ///< the largest absolute coordinate of the area, metres
   bool routing_ = true;
+  bool prune_ = true;       ///< the rings neither cross nor touch: taut() prunes the search
   double tolerance_ = 0.0;  ///< distance from the boundary that still counts as on it, metres
 };
 
