@@ -550,6 +550,33 @@ bool VisibilityRouter::taut(Sides in, Point2 p, std::size_t v, Point2 q) const {
   return left ? out.left : out.right;
 }
 
+namespace {
+
+// A candidate of path()'s search, ordered as the search takes them (see there).
+struct SearchItem {
+  double f;
+  int to_b;  ///< 0: a leg to `node`, 1: the way to b through `node`
+  double g;
+  int from_node;  ///< 0: straight from a, 1: from `from` (settled with distance `from_g`)
+  double from_g;
+  std::size_t from;
+  std::size_t node;
+  auto operator<=>(const SearchItem&) const = default;
+};
+
+// The path a, the nodes back from `last` along `previous` (nodes.size(): straight from a), b.
+std::vector<Point2> route_back(Point2 a, Point2 b, std::size_t last,
+                               const std::vector<std::size_t>& previous,
+                               const std::vector<Point2>& nodes) {
+  std::vector<Point2> route{b};
+  for (std::size_t v = last; v != nodes.size(); v = previous[v]) route.push_back(nodes[v]);
+  route.push_back(a);
+  std::reverse(route.begin(), route.end());
+  return route;
+}
+
+}  // namespace
+
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if (!routing_) return {a, b};
   // Through a's fan where a has one (a run end asked about often, home): the same exact tests
@@ -587,22 +614,12 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   //   node still to settle can end lower (its f is a lower bound of its sum, and strictly above)
   //   nor equal with a lower index (those come first, by index).
   constexpr double kShrink = 1 - 1e-6;
-  struct Item {
-    double f;
-    int to_b;  ///< 0: a leg to `node`, 1: the way to b through `node`
-    double g;
-    int from_node;  ///< 0: straight from a, 1: from `from` (settled with distance `from_g`)
-    double from_g;
-    std::size_t from;
-    std::size_t node;
-    auto operator<=>(const Item&) const = default;
-  };
   thread_local std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
   thread_local std::vector<std::size_t> previous;  // n: straight from a
   thread_local std::vector<char> settled;
   thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
   thread_local std::vector<char> is_near;      // per node: in `near`
-  thread_local std::vector<Item> queue;        // a min-heap (std::push_heap with greater)
+  thread_local std::vector<SearchItem> queue;  // a min-heap (std::push_heap with greater)
   h.resize(n);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
   // queued. A search that ends without reaching b under the limit is run again with a higher
@@ -649,7 +666,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(near.begin(), near.end());
     std::make_heap(queue.begin(), queue.end(), std::greater<>());
-    const auto push = [&](const Item& item) {
+    const auto push = [&](const SearchItem& item) {
       if (!(item.f <= limit)) {
         beyond = std::min(beyond, item.f);
         return;
@@ -659,7 +676,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     };
     while (!queue.empty()) {
       std::pop_heap(queue.begin(), queue.end(), std::greater<>());
-      const Item item = queue.back();
+      const SearchItem item = queue.back();
       queue.pop_back();
       const std::size_t v = item.node;
       if (item.to_b) {
@@ -699,11 +716,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     limit = std::max(2 * limit, beyond == std::numeric_limits<double>::infinity() ? 0 : beyond);
   }
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
-  std::vector<Point2> route{b};
-  for (std::size_t v = last; v != n; v = previous[v]) route.push_back(nodes_[v]);
-  route.push_back(a);
-  std::reverse(route.begin(), route.end());
-  return route;
+  return route_back(a, b, last, previous, nodes_);
 }
 
 }  // namespace swath::geometry

@@ -129,7 +129,8 @@ struct AbortedMission {
       if (f->altitude_m() < 0.5 && !f->armed()) continue;
       ++airborne;
       EXPECT_GE(f->commands_received(command), 1);
-      EXPECT_EQ(f->mode(), mode);
+      // A vehicle near home ends its RTL descending in LAND (the FakeCopter as ArduCopter).
+      if (!(mode == CopterMode::rtl && f->mode() == CopterMode::land)) EXPECT_EQ(f->mode(), mode);
     }
     EXPECT_EQ(airborne, 2) << "both vehicles should be flying when the abort comes";
     const std::vector<nlohmann::json> e = events();
@@ -147,6 +148,11 @@ struct AbortedMission {
   }
 };
 
+// When the aborts below come: both vehicles in the air (copter-2, 3 m from copter-1's home, takes
+// off at ~12.7 s, once copter-1's climb is clear of it by the separation; at 15 s it was still
+// arming on the ground, where no RTL is sent).
+constexpr double kAbortAt_s = 25;
+
 // What SIGINT becomes in `swath-fleet run` (RunControl): one rtl_all from the control source.
 fleet::ControlSource order_at(const fleet::MavlinkFleet& backend, double t_s,
                               fleet::ControlOrder order, const std::string& reason) {
@@ -159,14 +165,14 @@ fleet::ControlSource order_at(const fleet::MavlinkFleet& backend, double t_s,
 
 TEST(FleetAbort, AnAbortMidMissionPutsEveryFlyingFakeCopterInRtl) {
   AbortedMission m;
-  m.run(order_at(*m.backend, 15, fleet::ControlOrder::rtl_all, "SIGINT"));
+  m.run(order_at(*m.backend, kAbortAt_s, fleet::ControlOrder::rtl_all, "SIGINT"));
   m.expect_aborted("SIGINT", Cmd::nav_return_to_launch, CopterMode::rtl);
   EXPECT_FALSE(m.record.aborted_by_error);
 }
 
 TEST(FleetAbort, LandAllPutsEveryFlyingFakeCopterInLand) {
   AbortedMission m;
-  m.run(order_at(*m.backend, 15, fleet::ControlOrder::land_all, "ctl land-all"));
+  m.run(order_at(*m.backend, kAbortAt_s, fleet::ControlOrder::land_all, "ctl land-all"));
   m.expect_aborted("ctl land-all", Cmd::nav_land, CopterMode::land);
 }
 
@@ -176,7 +182,7 @@ TEST(FleetAbort, AnExceptionEscapingTheRunStillSendsEveryVehicleHome) {
   AbortedMission m;
   const fleet::MavlinkFleet& b = *m.backend;
   m.run([&b]() -> fleet::ControlRequest {
-    if (b.now_s() >= 15) throw std::runtime_error("planted failure");
+    if (b.now_s() >= kAbortAt_s) throw std::runtime_error("planted failure");
     return {};
   });
   m.expect_aborted("exception: planted failure", Cmd::nav_return_to_launch, CopterMode::rtl);
