@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace swath::planning {
 
@@ -32,6 +33,9 @@ double rest_to_rest_s(double length, double v, double a) {
 // least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
 constexpr double kSlowApproach_m = 0.5;
 constexpr double kSlowest_m_s = 0.2;
+// How far a stop with less free run than the overrun at kSlowest_m_s (8 mm at 2.5 m/s²) is moved
+// back along its incoming leg at most, metres (MissionBuilder::slow_approaches).
+constexpr double kMostNudge_m = 0.02;
 constexpr double kMergeWithin_m = 0.05;
 
 class MissionBuilder {
@@ -139,20 +143,35 @@ class MissionBuilder {
   double slow_approaches() {
     if (!s_.free_run_m || s_.vehicle != Vehicle::multirotor || m_.path.size() < 3) return 0.0;
     const double overrun_m = stop_overrun_m(s_.speed_m_s, s_.accel_m_s2);
+    const double slowest_overrun_m = stop_overrun_m(kSlowest_m_s, s_.accel_m_s2);
     std::vector<std::size_t> item_of{0};  // path index -> item index (0: takeoff at home)
     for (std::size_t k = 1; k < m_.items.size(); ++k)
       if (m_.items[k].kind == ItemKind::waypoint) item_of.push_back(k);
     double added_s = 0;
     // Backwards, so that insertions leave the indices still to visit as they were.
     for (std::size_t i = m_.path.size() - 2; i >= 1 && i < item_of.size(); --i) {
-      const Point2 p = m_.path[i], before = m_.path[i - 1], after = m_.path[i + 1];
-      const double in_m = geometry::distance(before, p), out_m = geometry::distance(p, after);
+      Point2 p = m_.path[i];
+      const Point2 before = m_.path[i - 1], after = m_.path[i + 1];
+      double in_m = geometry::distance(before, p);
+      const double out_m = geometry::distance(p, after);
       if (in_m <= 0) continue;
       // A hold on a waypoint repeated at the stop is the stop's.
       const bool held = holds_[i] > 0 || (out_m <= 0 && holds_[i + 1] > 0);
       if (!(held || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg))) continue;
       const Point2 u = (p - before) * (1 / in_m);
-      const double free_m = s_.free_run_m(p, u);
+      double free_m = s_.free_run_m(p, u);
+      if (free_m < slowest_overrun_m + 1e-3 && out_m > 0) {
+        // Even the slowest approach runs slowest_overrun_m on: a stop with less free run (on the
+        // clearance band's edge: a line start entered from the home leg, the bend of a route, a
+        // line end that could not be drawn back) moves back along its incoming leg by what that
+        // needs and 2 mm, at most kMostNudge_m (the preflight check refused such plans 1 to 8 mm
+        // short: half of a test's random layouts with zones).
+        if (const auto q = nudged(p, before, u, slowest_overrun_m)) {
+          p = nudge(i, item_of[i], *q);
+          in_m = geometry::distance(before, p);
+          free_m = s_.free_run_m(p, (p - before) * (1 / in_m));
+        }
+      }
       if (free_m >= overrun_m) continue;
       const double slow_m_s =
           std::max(kSlowest_m_s, std::sqrt(2 * s_.accel_m_s2 * std::max(free_m - 0.05, 0.0)));
@@ -188,6 +207,45 @@ class MissionBuilder {
       holds_.insert(holds_.begin() + static_cast<long>(i), 0.0);
     }
     return added_s;
+  }
+
+  // Where a stop at p, entered from `before` (direction u), has the free run the slowest approach
+  // needs and 2 mm more: moved along its line (into it from a start, back from an end; a line's
+  // ends stay on it, inside the area) or, off the lines, back along u; at most kMostNudge_m and
+  // half the way to the next point on that side. None where that does not do.
+  std::optional<Point2> nudged(Point2 p, Point2 before, Point2 u, double slowest_m) const {
+    Point2 d = u * -1.0;
+    double room_m = geometry::distance(before, p) / 2;
+    for (const SweepLine& l : m_.lines)
+      if (l.start == p || l.end == p) {
+        const Point2 other = l.start == p ? l.end : l.start;
+        room_m = geometry::distance(p, other) / 2;
+        d = (other - p) * (1 / (2 * room_m));
+        break;
+      }
+    double t = 0;
+    for (int round = 0; round < 4; ++round) {
+      const Point2 q = p + d * t;
+      const double in_m = geometry::distance(before, q);
+      if (in_m <= 0) return std::nullopt;
+      const double free_m = s_.free_run_m(q, (q - before) * (1 / in_m));
+      if (free_m >= slowest_m + 1e-3) return t > 0 ? std::optional<Point2>(q) : std::nullopt;
+      t += slowest_m + 2e-3 - free_m;
+      if (t > kMostNudge_m || t >= room_m) return std::nullopt;
+    }
+    return std::nullopt;
+  }
+
+  // Moves path point i (item k, and a line starting or ending there) to q; returns q.
+  Point2 nudge(std::size_t i, std::size_t k, Point2 q) {
+    const Point2 old = m_.path[i];
+    m_.path[i] = q;
+    m_.items[k].position = q;
+    for (SweepLine& l : m_.lines) {
+      if (l.start == old) l.start = q;
+      if (l.end == old) l.end = q;
+    }
+    return q;
   }
 
   const MissionSettings& s_;
@@ -340,9 +398,9 @@ struct DrawnBack {
 };
 
 // How far the end p of a segment from `along` must move towards `along` so that a stop there,
-// entered from `before`, overruns no further than the free run allows (0: not at all).
-double shortfall_m(const MissionSettings& s, Point2 p, Point2 along, Point2 before, bool end) {
-  const double overrun_m = stop_overrun_m(s.speed_m_s, s.accel_m_s2);
+// entered from `before`, overruns `overrun_m` no further than the free run allows (0: not at all).
+double shortfall_m(const MissionSettings& s, Point2 p, Point2 along, Point2 before, bool end,
+                   double overrun_m) {
   const double length_m = geometry::distance(p, along);
   double t = 0;
   for (int round = 0; round < (end ? 1 : 4); ++round) {
@@ -376,11 +434,26 @@ DrawnBack stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
     const Point2 along = from_line ? path.points[i - 1] : path.points[i + 1];
     const double length_m = geometry::distance(p, along);
     if (length_m <= 0 || (!from_line && i == 0)) continue;
-    const double t = shortfall_m(s, p, along, from_line ? p : out.points[i - 1], from_line);
+    const Point2 before = from_line ? p : out.points[i - 1];
+    const double t =
+        shortfall_m(s, p, along, before, from_line, stop_overrun_m(s.speed_m_s, s.accel_m_s2));
     if (t <= 0) continue;
-    const Point2 q = p + (along - p) * (t / length_m);
+    Point2 q = p + (along - p) * (t / length_m);
     const bool has_off = from_line ? i + 1 < n : i > 0;
-    if (has_off && !inside(q, from_line ? path.points[i + 1] : out.points[i - 1])) continue;
+    const Point2 off = from_line ? (has_off ? path.points[i + 1] : p) : out.points[i - 1];
+    if (has_off && !inside(q, off)) {
+      // Too far to draw back with the leg off the line kept inside: the slow approach takes over
+      // (slow_approaches()). Even at its slowest it runs stop_overrun_m(kSlowest_m_s) on, 8 mm at
+      // 0.2 m/s: where the free run is shorter (an end on the clearance band's edge), the end
+      // still moves back by what the slowest stop needs and 2 mm, a centimetre at most, where the
+      // leg off the line then stays inside or was outside already (a turn round the end of a
+      // zone that cuts the area): the preflight check refused such plans 8 mm short.
+      const double small = shortfall_m(s, p, along, before, from_line,
+                                       stop_overrun_m(kSlowest_m_s, s.accel_m_s2) + 2e-3);
+      if (!(small > 0 && small < t)) continue;
+      q = p + (along - p) * (small / length_m);
+      if (!inside(q, off) && inside(p, off)) continue;
+    }
     out.points[i] = q;
   }
   return out;
