@@ -166,7 +166,8 @@ class MissionBuilder {
         // line end that could not be drawn back) moves back along its incoming leg by what that
         // needs and 2 mm, at most kMostNudge_m (the preflight check refused such plans 1 to 8 mm
         // short: half of a test's random layouts with zones).
-        if (const auto q = nudged(p, before, u, slowest_overrun_m)) {
+        const auto q = nudged(p, before, u, slowest_overrun_m);
+        if (q && geometry::distance(before, *q) > 0) {
           p = nudge(i, item_of[i], *q);
           in_m = geometry::distance(before, p);
           free_m = s_.free_run_m(p, (p - before) * (1 / in_m));
@@ -220,6 +221,7 @@ class MissionBuilder {
       if (l.start == p || l.end == p) {
         const Point2 other = l.start == p ? l.end : l.start;
         room_m = geometry::distance(p, other) / 2;
+        if (!(room_m > 0)) return std::nullopt;  // a line of no length: nowhere to go
         d = (other - p) * (1 / (2 * room_m));
         break;
       }
@@ -227,7 +229,7 @@ class MissionBuilder {
     for (int round = 0; round < 4; ++round) {
       const Point2 q = p + d * t;
       const double in_m = geometry::distance(before, q);
-      if (in_m <= 0) return std::nullopt;
+      if (!(in_m > 0 && std::isfinite(in_m))) return std::nullopt;
       const double free_m = s_.free_run_m(q, (q - before) * (1 / in_m));
       if (free_m >= slowest_m + 1e-3) return t > 0 ? std::optional<Point2>(q) : std::nullopt;
       t += slowest_m + 2e-3 - free_m;
