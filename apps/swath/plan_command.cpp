@@ -11,6 +11,7 @@
 #include "energy_plan_files.hpp"
 #include "input_text.hpp"
 #include "mission_config.hpp"
+#include "plan_html.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -213,6 +214,12 @@ void PlanCommand::add_output_options(CLI::App& app) {
   app.add_flag("--render", render_,
                "Also draw coverage.png: the area, camera footprints, paths, home, scale bar");
   app.add_option("--size", size_, "Size of coverage.png, WxH pixels")->capture_default_str();
+  app.add_flag("--html", html_,
+               "Also write plan.html: the plan on a map, one self-contained page (layers, "
+               "waypoint details, summary); it fetches nothing unless --basemap-url is given");
+  app.add_option("--basemap-url", basemap_url_,
+                 "plan.html: XYZ tile template drawn behind the plan "
+                 "(http(s)://host/{z}/{x}/{y}.png; the page then fetches these tiles)");
   app.add_flag("--coverage-tif", coverage_tif_,
                "Also write coverage.tif, a GeoTIFF in the plan's local frame (PROJ ortho about "
                "its origin): band 1 the planned photos over each cell, band 2 1 inside the area");
@@ -521,6 +528,8 @@ std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
 
 std::vector<std::pair<std::string, std::string>> PlanCommand::files(
     const planning::SurveyPlan& plan) const {
+  if (!basemap_url_.empty() && !html_)
+    throw InputError("--basemap-url draws behind plan.html: give --html too");
   const planning::FileOptions options{fence_files_, litchi_, dji_, qgc_survey_};
   auto files = planning::survey_files(plan, options);
   export_warnings_ = planning::export_warnings(plan, options);
@@ -550,7 +559,17 @@ std::vector<std::pair<std::string, std::string>> PlanCommand::files(
   // summary.json lists the whole set (docs/swath-plan.md).
   std::vector<std::string> set_names;
   for (const auto& f : files) set_names.push_back(f.first);
+  if (html_) set_names.push_back("plan.html");
   files[1].second = planning::summary_json(plan, set_names);
+  // Last: the page holds the other files as written, summary.json included.
+  if (html_) {
+    const auto lookup = [&files](const std::string& name) -> std::optional<std::string> {
+      for (const auto& [n, text] : files)
+        if (n == name) return text;
+      return std::nullopt;
+    };
+    files.push_back({"plan.html", plan_html(lookup, output_, basemap_url_)});
+  }
   return files;
 }
 

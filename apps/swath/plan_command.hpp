@@ -99,6 +99,8 @@ class PlanCommand : public Command {
   bool dji_ = false;
   bool qgc_survey_ = false;
   bool coverage_tif_ = false;
+  bool html_ = false;
+  std::string basemap_url_;
   double coverage_cell_m_ = 0.5;
   std::string terrain_;  ///< --terrain DEM
   double terrain_tolerance_m_ = 2.0;

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "coverage_image.hpp"
+#include "plan_html.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/output_set.hpp"
@@ -21,15 +22,40 @@ std::string read(const std::filesystem::path& path) {
 
 }  // namespace
 
+void RenderCommand::write_html(const std::filesystem::path& dir) const {
+  // Read (and check) everything first: a plan directory that is not one gets no page.
+  read(dir / "mission.geojson");
+  const auto lookup = [&dir](const std::string& name) -> std::optional<std::string> {
+    std::error_code ec;
+    if (!std::filesystem::exists(dir / name, ec)) return std::nullopt;
+    return base::read_text_file(dir / name, "swath plan file");
+  };
+  const std::string page = plan_html(lookup, dir_, basemap_url_);
+  base::OutputSet set(dir, "plan", {base::OutputSet::Mode::amend, 10.0});
+  set.add("plan.html", page);
+  set.commit();
+  std::cout << "swath render: wrote " << (dir / "plan.html").string() << '\n';
+}
+
 void RenderCommand::setup(CLI::App& app) {
   app.add_option("DIR", dir_, "A directory written by swath plan")->required();
   app.add_option("--coverage", coverage_, "Coverage picture to write (default DIR/coverage.png)");
   app.add_option("--paths", paths_, "Also a picture of the flight paths only, without footprints");
   app.add_option("--size", size_, "Picture size, WxH pixels")->capture_default_str();
+  app.add_flag("--html", html_,
+               "Write DIR/plan.html, the plan on a map (one self-contained page), instead of "
+               "coverage.png (which --coverage still asks for)");
+  app.add_option("--basemap-url", basemap_url_,
+                 "plan.html: XYZ tile template drawn behind the plan "
+                 "(http(s)://host/{z}/{x}/{y}.png; the page then fetches these tiles)");
 }
 
 int RenderCommand::run() {
   const std::filesystem::path dir(dir_);
+  if (!basemap_url_.empty() && !html_)
+    throw base::InputError("--basemap-url draws behind plan.html: give --html too");
+  if (html_) write_html(dir);
+  if (html_ && coverage_.empty() && paths_.empty()) return base::kExitSuccess;
   const auto [w, h] = parse_size(size_);
   // In this order: a directory that is no plan is named by its mission.geojson first.
   const planning::PlanFeatures features = planning::parse_mission_geojson(

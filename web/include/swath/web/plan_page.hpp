@@ -1,0 +1,28 @@
+#pragma once
+// plan.html: one self-contained page (Leaflet, the page's script and the plan's files inlined)
+// that shows a plan on a map. The page reads the files exactly as swath wrote them.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace swath::web {
+
+struct PlanPage {
+  std::string title;  ///< the page's title and heading, e.g. the plan directory
+  /// The plan's files by name (mission.geojson, summary.json, photos.csv, waypoints.csv and the
+  /// flights' .plan files), their text as written.
+  std::vector<std::pair<std::string, std::string>> files;
+  /// An XYZ tile template ({z}, {x}, {y}, optional {s}) of http(s) tiles behind the plan, or empty:
+  /// no basemap, and the page fetches nothing at all (its Content-Security-Policy forbids it).
+  std::string basemap_url;
+};
+
+/// The page. Throws base::InputError when basemap_url is no http(s) XYZ template.
+std::string plan_page(const PlanPage& page);
+
+/// The page with its placeholders (/*SWATH_TITLE*/, /*SWATH_CSP*/, /*SWATH_DATA*/): generated at
+/// build time from web/page and Leaflet (web/embed_page.cmake).
+const std::string& plan_page_template();
+
+}  // namespace swath::web

@@ -1,0 +1,82 @@
+#include "swath/web/plan_page.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <regex>
+
+#include "swath/base/input_error.hpp"
+
+namespace swath::web {
+namespace {
+
+void replace_once(std::string& text, const std::string& placeholder, const std::string& with) {
+  const std::size_t at = text.find(placeholder);
+  if (at != std::string::npos) text.replace(at, placeholder.size(), with);
+}
+
+std::string html_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// The tile server's origin for the Content-Security-Policy ({s} subdomains become a wildcard).
+std::string tile_origin(const std::string& url) {
+  static const std::regex xyz(R"(^(https?://[A-Za-z0-9.{}:-]+)/[^\s"';<>]*$)");
+  std::smatch m;
+  const bool has_xyz = url.find("{z}") != std::string::npos &&
+                       url.find("{x}") != std::string::npos && url.find("{y}") != std::string::npos;
+  if (!std::regex_match(url, m, xyz) || !has_xyz)
+    throw base::InputError("--basemap-url " + url +
+                           ": not an XYZ tile template (http(s)://host/.../{z}/{x}/{y}.png)");
+  std::string origin = m[1];
+  const std::size_t s = origin.find("{s}");
+  if (s != std::string::npos) origin.replace(s, 3, "*");
+  if (origin.find_first_of("{}") != std::string::npos)
+    throw base::InputError("--basemap-url " + url + ": only {s} may stand in the host name");
+  return origin;
+}
+
+}  // namespace
+
+std::string plan_page(const PlanPage& page) {
+  std::string csp =
+      "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:";
+  if (!page.basemap_url.empty()) csp += " " + tile_origin(page.basemap_url);
+  nlohmann::ordered_json files = nlohmann::ordered_json::object();
+  for (const auto& [name, text] : page.files) files[name] = text;
+  const nlohmann::ordered_json data = {
+      {"title", page.title},
+      {"basemap_url", page.basemap_url.empty() ? nlohmann::ordered_json()
+                                               : nlohmann::ordered_json(page.basemap_url)},
+      {"files", files}};
+  // '<' only ever stands inside JSON strings: as \u003c no "</script>" can end the script early.
+  std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string safe;
+  safe.reserve(json.size());
+  for (char c : json) {
+    if (c == '<')
+      safe += "\\u003c";
+    else
+      safe += c;
+  }
+  // From the last placeholder to the first: what is put in cannot be taken for a placeholder.
+  std::string html = plan_page_template();
+  replace_once(html, "/*SWATH_DATA*/", safe);
+  replace_once(html, "/*SWATH_TITLE*/", html_text(page.title));
+  replace_once(html, "/*SWATH_CSP*/", csp);
+  return html;
+}
+
+}  // namespace swath::web
