@@ -39,8 +39,12 @@ std::string plan_html(const PlanFileLookup& file, const std::string& title,
     if (std::optional<std::string> text = file(name))
       page.files.emplace_back(name, std::move(*text));
   for (const std::string& stem : flight_stems(page.files[1].second))
-    if (std::optional<std::string> text = file(stem + ".plan"))
+    if (std::optional<std::string> text = file(stem + ".plan")) {
+      // The page reads it as JSON: a broken one is named here, not left to fail in the browser.
+      if (!nlohmann::json::accept(*text))
+        throw base::InputError(title + "/" + stem + ".plan: not JSON (a QGroundControl plan)");
       page.files.emplace_back(stem + ".plan", std::move(*text));
+    }
   return web::plan_page(page);
 }
 

@@ -23,8 +23,10 @@ std::string read(const std::filesystem::path& path) {
 }  // namespace
 
 void RenderCommand::write_html(const std::filesystem::path& dir) const {
-  // Read (and check) everything first: a plan directory that is not one gets no page.
-  read(dir / "mission.geojson");
+  // Read and check the plan first, as the pictures do: a directory that is no plan gets no page.
+  planning::parse_mission_geojson(read(dir / "mission.geojson"),
+                                  (dir / "mission.geojson").string());
+  planning::parse_plan_figures(read(dir / "summary.json"), (dir / "summary.json").string());
   const auto lookup = [&dir](const std::string& name) -> std::optional<std::string> {
     std::error_code ec;
     if (!std::filesystem::exists(dir / name, ec)) return std::nullopt;

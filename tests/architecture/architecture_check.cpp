@@ -348,7 +348,7 @@ Options parse(int argc, char** argv) {
   if (o.dirs.empty())
     o.dirs = {"base",      "geometry", "vehicle", "mavlink", "missions", "planning",
               "preflight", "energy",   "control", "fleet",   "worlds",   "render",
-              "apps",      "bench",    "fuzz",    "tests"};
+              "web",       "apps",     "bench",   "fuzz",    "tests"};
   if (o.commands.empty()) o.commands = o.root / "mavlink/include/swath/mavlink/commands.hpp";
   return o;
 }

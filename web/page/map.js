@@ -300,8 +300,16 @@
 
   // The view: every feature of mission.geojson, 20 px from the map's edges.
   const all = L.geoJSON(mission);
-  if (all.getBounds().isValid()) map.fitBounds(all.getBounds(), {padding: [20, 20], animate: false});
-  else map.setView([0, 0], 2);
+  const fit = () => {
+    if (all.getBounds().isValid()) map.fitBounds(all.getBounds(), {padding: [20, 20], animate: false});
+    else map.setView([0, 0], 2);
+  };
+  fit();
+  // A resized window is fitted again until the pilot moves the map.
+  let moved = false;
+  for (const what of ['mousedown', 'wheel', 'touchstart', 'keydown'])
+    document.getElementById('map').addEventListener(what, () => { moved = true; }, {passive: true});
+  map.on('resize', () => { if (!moved) fit(); });
 
   // What the headless-browser tests read back: script errors, requests made, each layer's count.
   const check = {errors: window.swathErrors, resources: performance.getEntriesByType('resource').map((r) => r.name),
@@ -309,10 +317,13 @@
                  // From the navigation's start: the page read, Leaflet and this script run, then drawn.
                  script_ms: performance.now(), drawn_ms: null};
   const out = document.getElementById('swath-check');
-  out.textContent = JSON.stringify(check);
-  requestAnimationFrame(() => {
-    check.drawn_ms = performance.now();
+  const record = () => {
     check.resources = performance.getEntriesByType('resource').map((r) => r.name);
     out.textContent = JSON.stringify(check);
-  });
+  };
+  record();
+  requestAnimationFrame(() => { check.drawn_ms = performance.now(); record(); });
+  // Requests end later (tiles): each one that ends is recorded too.
+  new PerformanceObserver(record).observe({type: 'resource', buffered: true});
+  window.addEventListener('load', record);
 })();

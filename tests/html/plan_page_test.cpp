@@ -1,0 +1,409 @@
+// plan.html in a real browser: headless Chromium opens the page swath wrote, and what it drew is
+// checked against the plan's own files, read here independently of the page's script.
+// - --dump-dom: the page's self-check (#swath-check): no script error, no request made, and each
+//   layer's feature count, compared with counts parsed from mission.geojson, photos.csv,
+//   waypoints.csv, summary.json and the .plan files.
+// - --screenshot: the area layer alone, each pixel compared with where Web Mercator and Leaflet's
+//   fitBounds (zoomSnap 0, 20 px padding) put the area: fill inside, background outside.
+// Without Chromium (/usr/bin/chromium or $SWATH_CHROMIUM) the browser tests skip, saying so.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include <GeographicLib/LocalCartesian.hpp>
+
+#include <regex>
+
+#include "swath/render/image.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct ShellRun {
+  int exit_code = -1;
+  std::string out;
+};
+
+// `command` through /bin/sh from the source directory, standard output and error together.
+ShellRun run(const std::string& command) {
+  const std::string full = "cd '" SWATH_SOURCE_DIR "' && " + command + " 2>&1";
+  ShellRun r;
+  FILE* pipe = ::popen(full.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buffer{};
+  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
+    r.out.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("swath-html-" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  return dir;
+}
+
+std::string chromium() {
+  const char* env = std::getenv("SWATH_CHROMIUM");
+  const std::string path = env && *env ? env : "/usr/bin/chromium";
+  return fs::exists(path) ? path : "";
+}
+
+#define REQUIRE_CHROMIUM()                                                                     \
+  if (chromium().empty())                                                                      \
+  GTEST_SKIP() << "no Chromium at /usr/bin/chromium or $SWATH_CHROMIUM: the browser tests of " \
+                  "plan.html need it (scripts/setup installs it)"
+
+// Chromium headless, offline: every host name fails to resolve, so a request could reach nothing
+// even if one were made (the page's own record of requests is what is checked).
+std::string browser(const fs::path& profile, const std::string& mode, const std::string& url) {
+  return "'" + chromium() + "' --headless --no-sandbox --disable-gpu --no-first-run " +
+         "--no-default-browser-check --user-data-dir='" + profile.string() +
+         "' --host-resolver-rules='MAP * ~NOTFOUND' --virtual-time-budget=10000 " + mode + " '" +
+         url + "'";
+}
+
+// The DOM Chromium dumps after the page ran; `fragment` is the address's part after '#'.
+std::string dom(const fs::path& page, const std::string& fragment = "") {
+  const std::string url =
+      "file://" + fs::absolute(page).string() + (fragment.empty() ? "" : "#" + fragment);
+  return run(browser(page.parent_path() / "profile", "--dump-dom", url) + " 2>/dev/null").out;
+}
+
+// The page's self-check, read from the DOM.
+json self_check(const fs::path& page) {
+  ShellRun r;
+  r.out = dom(page);
+  const std::string open = "<pre id=\"swath-check\" hidden=\"\">";
+  const std::size_t at = r.out.find(open);
+  if (at == std::string::npos) return json();
+  const std::size_t end = r.out.find("</pre>", at);
+  std::string text = r.out.substr(at + open.size(), end - at - open.size());
+  for (const auto& [entity, c] : std::map<std::string, std::string>{
+           {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}})
+    for (std::size_t k; (k = text.find(entity)) != std::string::npos;)
+      text.replace(k, entity.size(), c);
+  return json::parse(text, nullptr, false);
+}
+
+std::vector<std::vector<std::string>> csv(const fs::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(slurp(path));
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// Each layer's feature count as the plan's files give it.
+std::map<std::string, int> expected_layers(const fs::path& dir) {
+  std::map<std::string, int> n;
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  for (const json& f : mission["features"]) {
+    const std::string role = f["properties"]["role"];
+    if (role == "area") ++n["area"];
+    if (role == "no_fly") ++n["no_fly"];
+    if (role == "region") ++n["regions"];
+    if (role == "home") ++n["homes"];
+    if (role == "path") ++n["path-" + std::to_string(f["properties"]["drone"].get<int>())];
+  }
+  const json summary = json::parse(slurp(dir / "summary.json"));
+  if (summary["flight"]["clearance_m"].get<double>() > 0) n["clearance"] = n["no_fly"];
+  for (const json& d : summary["drones"]) n["resume"] += static_cast<int>(d["sorties"].size());
+  const auto photos = csv(dir / "photos.csv");
+  n["photos"] = n["footprints"] = static_cast<int>(photos.size()) - 1;
+  const auto waypoints = csv(dir / "waypoints.csv");
+  for (std::size_t k = 1; k < waypoints.size(); ++k)
+    if (waypoints[k].back() == "waypoint") ++n["waypoints"];
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".plan") continue;
+    const json plan = json::parse(slurp(entry.path()));
+    n["fences"] +=
+        static_cast<int>(plan["geoFence"]["polygons"].size() + plan["geoFence"]["circles"].size());
+    n["rally"] += static_cast<int>(plan["rallyPoints"]["points"].size());
+  }
+  return n;
+}
+
+// The layers the page reports, those with no feature left out (the page lists no empty layer).
+std::map<std::string, int> drawn_layers(const json& check) {
+  std::map<std::string, int> n;
+  for (const auto& [key, count] : check["layers"].items())
+    if (count.get<int>() > 0) n[key] = count.get<int>();
+  return n;
+}
+
+std::map<std::string, int> without_empty(std::map<std::string, int> n) {
+  std::erase_if(n, [](const auto& kv) { return kv.second == 0; });
+  return n;
+}
+
+void expect_clean_page(const fs::path& dir, const std::string& what) {
+  const json check = self_check(dir / "plan.html");
+  ASSERT_TRUE(check.is_object()) << what << ": no self-check in the page's DOM";
+  EXPECT_EQ(check["errors"], json::array()) << what;
+  EXPECT_EQ(check["resources"], json::array()) << what << ": the page made requests";
+  EXPECT_EQ(drawn_layers(check), without_empty(expected_layers(dir))) << what;
+  std::cout << what << ": page " << fs::file_size(dir / "plan.html") << " bytes, script "
+            << check["script_ms"] << " ms (virtual time)\n";
+}
+
+const char* kMeadowFleet =
+    "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --fleet "
+    "share/fleets/three-quads.yaml --division region --balance makespan --exclude "
+    "share/zones/meadow-mast.geojson --clearance 10 --html";
+
+TEST(PlanPage, MeadowFleetDrawsEveryLayerWithoutErrorsOrRequests) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("meadow-fleet");
+  const ShellRun plan =
+      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  expect_clean_page(dir, "meadow, three quads, a mast");
+  EXPECT_LT(fs::file_size(dir / "plan.html"), 1'000'000u);
+}
+
+TEST(PlanPage, SortiesShowTheirResumePoints) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("sorties");
+  const ShellRun plan = run("'" SWATH_BINARY
+                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                            "--altitude 40 --sorties auto --endurance 420 --html -o " +
+                            dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_GT(expected_layers(dir)["resume"], 1);
+  expect_clean_page(dir, "meadow in sorties");
+}
+
+double segment_distance(std::array<double, 2> p, std::array<double, 2> a, std::array<double, 2> b);
+
+// The waypoint nearest a no-fly zone (found here over all waypoints, distances in GeographicLib's
+// local Cartesian frame), selected as a click would: the panel shows its item, height, clearance.
+TEST(PlanPage, SelectedWaypointShowsItsItemHeightAndClearance) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("select");
+  const ShellRun plan =
+      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  std::vector<json> zones;
+  for (const json& f : mission["features"])
+    if (f["properties"]["role"] == "no_fly") zones.push_back(f["geometry"]["coordinates"][0]);
+  ASSERT_EQ(zones.size(), 1u);
+  const GeographicLib::LocalCartesian frame(zones[0][0][1], zones[0][0][0], 0);
+  const auto local = [&frame](double lat, double lon) {
+    double x, y, z;
+    frame.Forward(lat, lon, 0, x, y, z);
+    return std::array<double, 2>{x, y};
+  };
+  const auto waypoints = csv(dir / "waypoints.csv");
+  double nearest_m = 1e9;
+  std::vector<std::string> chosen;
+  for (std::size_t k = 1; k < waypoints.size(); ++k) {
+    const auto& w = waypoints[k];  // drone,flight,seq,lat,lon,alt_m,x_m,y_m,action
+    if (w[8] != "waypoint") continue;
+    const auto p = local(std::stod(w[3]), std::stod(w[4]));
+    for (std::size_t i = 0; i + 1 < zones[0].size(); ++i) {
+      const double d = segment_distance(p, local(zones[0][i][1], zones[0][i][0]),
+                                        local(zones[0][i + 1][1], zones[0][i + 1][0]));
+      if (d < nearest_m) nearest_m = d, chosen = w;
+    }
+  }
+  ASSERT_FALSE(chosen.empty());
+  const std::string page = dom(dir / "plan.html", "select=" + chosen[1] + ":" + chosen[2]);
+  const std::size_t at = page.find("<div id=\"selected\">");
+  ASSERT_NE(at, std::string::npos);
+  const std::string panel = page.substr(at, page.find("</div>", at) - at);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      panel, m,
+      std::regex("<td>flight</td><td>([^<]*)</td></tr><tr><td>item</td><td>([0-9]+)</td></tr>"
+                 "<tr><td>height \\(relative\\)</td><td>([0-9.]+) m</td></tr><tr><td>clearance"
+                 "</td><td>([0-9.]+) m to the nearest no-fly zone")))
+      << panel;
+  EXPECT_EQ(m[1], chosen[1]);
+  EXPECT_EQ(m[2], chosen[2]);
+  EXPECT_NEAR(std::stod(m[3]), std::stod(chosen[5]), 0.051);
+  EXPECT_NEAR(std::stod(m[4]), nearest_m, 0.1);
+  EXPECT_GE(nearest_m, 10 - 0.01);  // --clearance 10
+}
+
+// A page with a basemap does fetch its tiles: the check above would see requests.
+TEST(PlanPage, BasemapUrlIsTheOnlyThingFetched) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("basemap");
+  const ShellRun plan =
+      run("'" SWATH_BINARY
+          "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+          "--altitude 60 --html --basemap-url 'http://127.0.0.1:9/{z}/{x}/{y}.png' -o " +
+          dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  const json check = self_check(dir / "plan.html");
+  ASSERT_TRUE(check.is_object());
+  ASSERT_FALSE(check["resources"].empty());
+  for (const json& url : check["resources"])
+    EXPECT_EQ(url.get<std::string>().rfind("http://127.0.0.1:9/", 0), 0u) << url;
+}
+
+// Web Mercator, radians: x east, y north.
+std::array<double, 2> mercator(double lon_deg, double lat_deg) {
+  const double k = std::numbers::pi / 180;
+  return {lon_deg * k, std::log(std::tan(std::numbers::pi / 4 + lat_deg * k / 2))};
+}
+
+double segment_distance(std::array<double, 2> p, std::array<double, 2> a, std::array<double, 2> b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+  const double t =
+      len2 > 0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0.0;
+  return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
+TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("vineyard");
+  const ShellRun plan = run("'" SWATH_BINARY
+                            "' plan share/fields/vineyard.kml --camera "
+                            "dji-phantom-4-pro --altitude 60 --home 46.2276,7.5917 --html -o " +
+                            dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  const fs::path png = dir / "area.png";
+  const ShellRun shot =
+      run(browser(dir / "profile",
+                  "--hide-scrollbars --force-device-scale-factor=1 "
+                  "--window-size=1200,900 --screenshot='" +
+                      png.string() + "'",
+                  "file://" + fs::absolute(dir / "plan.html").string() + "#layers=area"));
+  ASSERT_TRUE(fs::exists(png)) << shot.out;
+  const swath::render::Image image = swath::render::decode_png(slurp(png));
+  ASSERT_EQ(image.width, 1200);
+  ASSERT_EQ(image.height, 900);
+
+  // The view: the bounds of every position in mission.geojson, fitted into the map (x from 300,
+  // the side panel's width) 20 px from its edges, centred.
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  std::vector<std::vector<std::array<double, 2>>> rings;  // the area's, projected
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  const auto grow = [&](const json& position) {
+    const auto m = mercator(position[0], position[1]);
+    x0 = std::min(x0, m[0]), x1 = std::max(x1, m[0]), y0 = std::min(y0, m[1]),
+    y1 = std::max(y1, m[1]);
+    return m;
+  };
+  for (const json& f : mission["features"]) {
+    const json& g = f["geometry"];
+    if (g["type"] == "Point") grow(g["coordinates"]);
+    if (g["type"] == "LineString")
+      for (const json& p : g["coordinates"]) grow(p);
+    if (g["type"] == "Polygon")
+      for (const json& ring : g["coordinates"]) {
+        std::vector<std::array<double, 2>> r;
+        for (const json& p : ring) r.push_back(grow(p));
+        if (f["properties"]["role"] == "area") rings.push_back(r);
+      }
+  }
+  ASSERT_FALSE(rings.empty());
+  const double map_x = 300, map_w = 900, map_h = 900, pad = 20;
+  const double scale = std::min((map_w - 2 * pad) / (x1 - x0), (map_h - 2 * pad) / (y1 - y0));
+  const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+  for (auto& ring : rings)
+    for (auto& p : ring)
+      p = {map_x + map_w / 2 + (p[0] - cx) * scale, map_h / 2 - (p[1] - cy) * scale};
+
+  // Every 5th pixel at least 3 px from the area's edges and clear of the zoom buttons: inside
+  // the area (even-odd over its rings: holes are outside) the fill, #7fbf5f at half opacity over
+  // white; outside white.
+  int inside_n = 0, inside_ok = 0, outside_n = 0, outside_ok = 0;
+  std::string wrong;  // the first pixels that are not what the data says
+  for (int y = 2; y < 900; y += 5)
+    for (int x = 302; x < 1200; x += 5) {
+      if (x < 360 && y < 90) continue;
+      const std::array<double, 2> p{x + 0.5, y + 0.5};
+      bool inside = false;
+      double edge = 1e9;
+      for (const auto& r : rings)
+        for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+          if ((r[i][1] > p[1]) != (r[j][1] > p[1]) &&
+              p[0] < (r[j][0] - r[i][0]) * (p[1] - r[i][1]) / (r[j][1] - r[i][1]) + r[i][0])
+            inside = !inside;
+          edge = std::min(edge, segment_distance(p, r[i], r[j]));
+        }
+      if (edge < 3) continue;
+      const int red = image.at(x, y, 0), green = image.at(x, y, 1), blue = image.at(x, y, 2);
+      const bool ok = inside ? std::abs(red - 191) <= 12 && std::abs(green - 223) <= 12 &&
+                                   std::abs(blue - 175) <= 12
+                             : red >= 248 && green >= 248 && blue >= 248;
+      (inside ? inside_n : outside_n) += 1;
+      (inside ? inside_ok : outside_ok) += ok;
+      if (!ok && wrong.size() < 400)
+        wrong += " (" + std::to_string(x) + "," + std::to_string(y) + (inside ? " in" : " out") +
+                 ": " + std::to_string(red) + "," + std::to_string(green) + "," +
+                 std::to_string(blue) + ")";
+    }
+  EXPECT_GT(inside_n, 1000);
+  EXPECT_GT(outside_n, 1000);
+  EXPECT_GE(inside_ok, inside_n * 99 / 100) << inside_ok << " of " << inside_n << wrong;
+  EXPECT_GE(outside_ok, outside_n * 99 / 100) << outside_ok << " of " << outside_n << wrong;
+}
+
+// No browser needed: the same plan gives the same page from `plan --html` and `render --html`.
+TEST(PlanPage, RenderWritesThePageThePlanWrote) {
+  const fs::path dir = scratch("render");
+  const ShellRun plan =
+      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  const std::string written = slurp(dir / "plan.html");
+  fs::remove(dir / "plan.html");
+  const ShellRun render = run("'" SWATH_BINARY "' render " + dir.string() + " --html");
+  ASSERT_EQ(render.exit_code, 0) << render.out;
+  EXPECT_EQ(render.out, "swath render: wrote " + (dir / "plan.html").string() + "\n");
+  EXPECT_EQ(slurp(dir / "plan.html"), written);
+  EXPECT_FALSE(fs::exists(dir / "coverage.png"));
+}
+
+TEST(PlanPage, BadBasemapUrlIsRefusedAndNothingWritten) {
+  const fs::path dir = scratch("bad-url");
+  const ShellRun plan = run("'" SWATH_BINARY
+                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                            "--altitude 60 --html --basemap-url 'ftp://tiles/{z}/{x}/{y}.png' -o " +
+                            dir.string());
+  EXPECT_EQ(plan.exit_code, 2) << plan.out;
+  EXPECT_NE(plan.out.find("--basemap-url ftp://tiles/{z}/{x}/{y}.png: not an XYZ tile template"),
+            std::string::npos)
+      << plan.out;
+  EXPECT_FALSE(fs::exists(dir));
+  const ShellRun alone = run("'" SWATH_BINARY
+                             "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                             "--altitude 60 --basemap-url 'https://t/{z}/{x}/{y}.png' -o " +
+                             dir.string());
+  EXPECT_EQ(alone.exit_code, 2) << alone.out;
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+}  // namespace
