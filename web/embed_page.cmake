@@ -9,6 +9,10 @@ file(READ ${LEAFLET_DIR}/leaflet.css leaflet_css)
 # icons) the page never shows, and its script a source map.
 string(REGEX REPLACE "url\\([^)]*\\)" "none" leaflet_css "${leaflet_css}")
 string(REGEX REPLACE "//# sourceMappingURL=[^\n]*" "" leaflet_js "${leaflet_js}")
+# Leaflet's BSD-2-Clause licence goes with every copy of it: at the head of its script.
+file(READ ${LEAFLET_DIR}/../LICENSE leaflet_license)
+string(REPLACE "*/" "* /" leaflet_license "${leaflet_license}")
+set(leaflet_js "/*\n${leaflet_license}*/\n${leaflet_js}")
 string(REPLACE "/*SWATH_LEAFLET_CSS*/" "${leaflet_css}" page "${page}")
 string(REPLACE "/*SWATH_PAGE_CSS*/" "${page_css}" page "${page}")
 string(REPLACE "/*SWATH_LEAFLET_JS*/" "${leaflet_js}" page "${page}")
