@@ -58,9 +58,22 @@ ShellRun run(const std::string& command) {
   return r;
 }
 
+fs::path scratch_root() {
+  return fs::temp_directory_path() / ("swath-html-" + std::to_string(::getpid()));
+}
+
+// The plans and Chromium's profiles (some MB each) go when every test passed; kept to look at
+// otherwise.
+class RemoveScratch : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (!::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(scratch_root());
+  }
+};
+const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
+
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("swath-html-" + std::to_string(::getpid())) / name;
+  const fs::path dir = scratch_root() / name;
   fs::remove_all(dir);
   fs::create_directories(dir.parent_path());
   return dir;
@@ -253,6 +266,46 @@ TEST(PlanPage, SelectedWaypointShowsItsItemHeightAndClearance) {
   EXPECT_NEAR(std::stod(m[3]), std::stod(chosen[5]), 0.051);
   EXPECT_NEAR(std::stod(m[4]), nearest_m, 0.1);
   EXPECT_GE(nearest_m, 10 - 0.01);  // --clearance 10
+}
+
+// With --terrain the panel draws each flight's waypoint heights along its path: as many points
+// as the flight has waypoints, from the lowest to the highest height waypoints.csv gives.
+TEST(PlanPage, TerrainPlanShowsHeightsAlongEachPath) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("terrain");
+  const ShellRun plan = run("'" SWATH_BINARY
+                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                            "--altitude 60 --terrain share/dems/meadow-hill.asc --html -o " +
+                            dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  expect_clean_page(dir, "meadow over its hill");
+  std::map<std::string, int> expected;
+  std::map<std::string, std::pair<double, double>> heights;  // lowest, highest
+  const auto waypoints = csv(dir / "waypoints.csv");
+  for (std::size_t k = 1; k < waypoints.size(); ++k) {
+    const auto& w = waypoints[k];  // drone,flight,seq,lat,lon,alt_m,x_m,y_m,action
+    if (w[8] != "waypoint") continue;
+    ++expected[w[1]];
+    auto [it, fresh] = heights.try_emplace(w[1], std::stod(w[5]), std::stod(w[5]));
+    it->second = {std::min(it->second.first, std::stod(w[5])),
+                  std::max(it->second.second, std::stod(w[5]))};
+  }
+  const json check = self_check(dir / "plan.html");
+  ASSERT_TRUE(check.is_object());
+  const auto profiles = check["profiles"].get<std::map<std::string, int>>();
+  EXPECT_EQ(profiles, expected);
+  const std::string page = dom(dir / "plan.html");
+  const std::size_t at = page.find("<div id=\"profiles\">");
+  ASSERT_NE(at, std::string::npos);
+  const std::string panel = page.substr(at, 4000);
+  for (const auto& [flight, range] : heights) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(panel, m, std::regex(flight + ": ([0-9.]+) to ([0-9.]+) m over")))
+        << panel;
+    EXPECT_NEAR(std::stod(m[1]), range.first, 0.051);
+    EXPECT_NEAR(std::stod(m[2]), range.second, 0.051);
+    EXPECT_GT(range.second - range.first, 5.0);  // the hill is followed
+  }
 }
 
 // A page with a basemap does fetch its tiles: the check above would see requests.

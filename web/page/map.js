@@ -277,6 +277,32 @@
     rows.push(['terrain', `ground ${summary.terrain.ground_min_m} to ${summary.terrain.ground_max_m} m, ${summary.terrain.agl_min_m} to ${summary.terrain.agl_max_m} m above it`]);
   document.getElementById('summary').innerHTML = table(rows);
 
+  // With --terrain: each flight's waypoint heights along its path, in the plan's altitude frame.
+  const profiles = {};
+  if (summary.terrain) {
+    const byFlight = {};
+    for (const w of waypoints.filter((w) => w.action === 'waypoint')) (byFlight[w.flight] ||= []).push(w);
+    let html = `<h2>Heights along the path (${text(frameName)})</h2>`;
+    for (const [flight, ws] of Object.entries(byFlight)) {
+      let along_m = 0;
+      const points = ws.map((w, k) => {
+        if (k > 0) {
+          const a = toLocal(+ws[k - 1].lon, +ws[k - 1].lat), b = toLocal(+w.lon, +w.lat);
+          along_m += Math.hypot(b[0] - a[0], b[1] - a[1]);
+        }
+        return [along_m, +w.alt_m];
+      });
+      const lo = Math.min(...points.map((p) => p[1])), hi = Math.max(...points.map((p) => p[1]));
+      const x = (d) => (280 * d) / Math.max(along_m, 1), y = (h) => 70 - (60 * (h - lo)) / Math.max(hi - lo, 1e-9);
+      const line = points.map((p) => `${x(p[0]).toFixed(1)},${y(p[1]).toFixed(1)}`).join(' ');
+      html += `<div>${text(flight)}: ${lo.toFixed(1)} to ${hi.toFixed(1)} m over ${(along_m / 1000).toFixed(2)} km</div>` +
+              `<svg width="280" height="76" data-flight="${text(flight)}" data-points="${points.length}">` +
+              `<polyline fill="none" stroke="${droneColour(+ws[0].drone)}" stroke-width="1.5" points="${line}"/></svg>`;
+      profiles[flight] = points.length;
+    }
+    document.getElementById('profiles').innerHTML = html;
+  }
+
   // Layers shown: all but the footprints, or those the address names (#layers=area,photos).
   const wanted = (/[#&]layers=([^&]*)/.exec(location.hash) || [])[1];
   const shown = wanted === undefined ? null : new Set(wanted.split(',').filter(Boolean));
@@ -313,7 +339,7 @@
 
   // What the headless-browser tests read back: script errors, requests made, each layer's count.
   const check = {errors: window.swathErrors, resources: performance.getEntriesByType('resource').map((r) => r.name),
-                 layers: Object.fromEntries(layers.map((e) => [e.key, e.count])),
+                 layers: Object.fromEntries(layers.map((e) => [e.key, e.count])), profiles,
                  // From the navigation's start: the page read, Leaflet and this script run, then drawn.
                  script_ms: performance.now(), drawn_ms: null};
   const out = document.getElementById('swath-check');
