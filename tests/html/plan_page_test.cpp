@@ -308,6 +308,25 @@ TEST(PlanPage, TerrainPlanShowsHeightsAlongEachPath) {
   }
 }
 
+// Names come from the user's files: the page shows them as text, never as HTML (an <img> in a
+// drone's name would be a request).
+TEST(PlanPage, DroneNamesAreText) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("names");
+  fs::create_directories(dir.parent_path() / "fleet");
+  std::string fleet = slurp(fs::path(SWATH_SOURCE_DIR) / "share/fleets/three-quads.yaml");
+  fleet.replace(fleet.find("name: alpha"), 11, "name: \"<img src=planted.png>\"");
+  std::ofstream(dir.parent_path() / "fleet/evil.yaml") << fleet;
+  const ShellRun plan =
+      run("'" SWATH_BINARY
+          "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
+          "--altitude 60 --html --fleet '" +
+          (dir.parent_path() / "fleet/evil.yaml").string() + "' -o " + dir.string());
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  expect_clean_page(dir, "a drone named <img src=planted.png>");
+  EXPECT_NE(dom(dir / "plan.html").find("Path &lt;img src=planted.png&gt;"), std::string::npos);
+}
+
 // A page with a basemap does fetch its tiles: the check above would see requests.
 TEST(PlanPage, BasemapUrlIsTheOnlyThingFetched) {
   REQUIRE_CHROMIUM();

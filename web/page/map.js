@@ -11,6 +11,9 @@
   const kArea = '#7fbf5f';
   const kNoFly = '#bf1a0d';
 
+  // Names from the files (flights, drones) as HTML text: tooltips and the panel take HTML.
+  const text = (s) => String(s).replace(/[&<>"]/g, (c) => ({'&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;'}[c]));
+
   // ---- reading the files --------------------------------------------------------------------
   const json = (name) => (files[name] === undefined ? null : JSON.parse(files[name]));
   // RFC 4180 rows (swath quotes a cell only when it holds a comma or a quote).
@@ -232,12 +235,12 @@
     for (const s of d.sorties || [])
       add(resume, L.circleMarker([s.resume.lat_deg, s.resume.lon_deg],
                                  {radius: 5, color: '#000000', weight: 2, fillColor: droneColour(d.drone), fillOpacity: 1})
-          .bindTooltip(`${d.name}: sortie ${s.sortie} (${s.file}) resumes here`));
+          .bindTooltip(text(`${d.name}: sortie ${s.sortie} (${s.file}) resumes here`)));
   const homes = layer('homes', 'Homes', '#1a1a1a');
   for (const f of byRole('home')) {
     const colour = f.properties.drone ? droneColour(f.properties.drone) : '#1a1a1a';
     add(homes, L.circleMarker(ll(f.geometry.coordinates), {radius: 7, color: colour, weight: 3, fillColor: '#ffffff', fillOpacity: 1})
-        .bindTooltip(f.properties.drone ? 'home of ' + (droneOf[f.properties.drone] || {}).name : 'home'));
+        .bindTooltip(text(f.properties.drone ? 'home of ' + (droneOf[f.properties.drone] || {}).name : 'home')));
   }
 
   // The fences and rally points as each .plan file writes them.
@@ -248,17 +251,16 @@
     const fence = plan.geoFence || {};
     for (const p of fence.polygons || [])
       add(fences, L.polygon(p.polygon, {color: p.inclusion ? '#bf8f00' : kNoFly, weight: 1.5, dashArray: '4 3', fill: false})
-          .bindTooltip(`${name}: ${p.inclusion ? 'inclusion' : 'exclusion'} fence`));
+          .bindTooltip(text(`${name}: ${p.inclusion ? 'inclusion' : 'exclusion'} fence`)));
     for (const c of fence.circles || [])
       add(fences, L.circle(c.circle.center, {radius: c.circle.radius, color: c.inclusion ? '#bf8f00' : kNoFly, weight: 1.5, dashArray: '4 3', fill: false})
-          .bindTooltip(`${name}: ${c.inclusion ? 'inclusion' : 'exclusion'} circle`));
+          .bindTooltip(text(`${name}: ${c.inclusion ? 'inclusion' : 'exclusion'} circle`)));
     for (const r of (plan.rallyPoints || {}).points || [])
       add(rally, L.circleMarker([r[0], r[1]], {radius: 4, color: '#bf8f00', weight: 2, fill: false})
-          .bindTooltip(name + ': rally point'));
+          .bindTooltip(text(name + ': rally point')));
   }
 
   // ---- the side panel -----------------------------------------------------------------------
-  const text = (s) => String(s).replace(/[&<>"]/g, (c) => ({'&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;'}[c]));
   const table = (rows) => '<table>' + rows.map(([k, v]) => `<tr><td>${text(k)}</td><td>${text(v)}</td></tr>`).join('') + '</table>';
   function showSelected(rows) { document.getElementById('selected').innerHTML = table(rows); }
   const minutes = (s) => `${Math.floor(s / 60)} min ${String(Math.round(s % 60)).padStart(2, '0')} s`;
