@@ -49,4 +49,9 @@ int too_long() {
   return n;
 }
 
+// Planted: a second fleet-file reader. One key in a JSON summary is not one.
+double flight_time_s(const YAML::Node& drone) {
+  return drone["endurance_s"].as<double>() * drone["battery_level"].as<double>();
+}
+
 }  // namespace swath::planning
