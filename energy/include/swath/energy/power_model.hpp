@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "swath/vehicle/random.hpp"
+
 namespace swath::energy {
 
 /// Level-flight and turning power of the airframe. Not a physics truth: a smooth, plausible model
@@ -50,16 +52,16 @@ struct PowerProfile {
 double computations_power_w(const std::vector<PowerCurve>& curves,
                             const std::vector<double>& parameters);
 
-/// Gaussian noise from a fixed seed, the same numbers on every platform (SplitMix64 +
-/// Box-Muller; std::normal_distribution is implementation-defined).
+/// Gaussian noise from a fixed seed, the same numbers on every platform (vehicle::SplitMix64,
+/// swath's one generator, + Box-Muller; std::normal_distribution is implementation-defined).
 class GaussianNoise {
  public:
-  GaussianNoise(std::uint64_t seed, double sigma) : state_(seed), sigma_(sigma) {}
+  GaussianNoise(std::uint64_t seed, double sigma) : bits_(seed), sigma_(sigma) {}
   double next();
 
  private:
   double uniform();
-  std::uint64_t state_;
+  vehicle::SplitMix64 bits_;
   double sigma_;
   double spare_ = 0.0;
   bool has_spare_ = false;
