@@ -41,6 +41,14 @@ double computations_power_w(const std::vector<PowerCurve>& curves,
   return sum;
 }
 
+double climbing_power_w(const PowerProfile& p) {
+  return p.climb_w > 0 ? p.climb_w : kClimbPowerFactor * p.mechanical.cruise_w;
+}
+
+double descending_power_w(const PowerProfile& p) {
+  return p.descent_w > 0 ? p.descent_w : kDescentPowerFactor * p.mechanical.cruise_w;
+}
+
 double GaussianNoise::uniform() {
   // The open interval (0, 1): Box-Muller takes its logarithm (SplitMix64::uniform is [0, 1)).
   return (static_cast<double>(bits_.next() >> 11) + 0.5) * 0x1.0p-53;

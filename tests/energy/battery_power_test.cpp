@@ -58,6 +58,27 @@ TEST(PowerModel, MechanicalPowerGrowsWithSpeedAndBank) {
   EXPECT_NEAR(mechanical_power_w(m, 12.0, 9.80665), 150.0 * std::pow(2.0, 0.75), 1e-9);
 }
 
+// The one state-of-charge integrator (vehicle::soc_after_charge, what swath-energy, swath-fleet
+// and swath-control draw through): the capacity's worth of charge empties the pack (5 Ah: 5 A
+// for an hour), and a flight drawn in random pieces ends where it ends drawn at once.
+TEST(Battery, OneIntegratorEmptiesThePackAtItsCapacityAndAddsUpInPieces) {
+  Battery b;
+  b.capacity_ah = 5.0;
+  EXPECT_DOUBLE_EQ(soc_after_charge(b, 1.0, 5.0 * 3600.0), 0.0);
+  EXPECT_DOUBLE_EQ(soc_after_charge(b, 0.8, 2.5 * 1800.0), 0.55);
+  std::uint64_t x = 46;
+  double soc = 1.0, total_as = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;  // fixed-seed LCG
+    const double power_w = 50.0 + static_cast<double>(x >> 40) / (1 << 24) * 300.0;
+    const double dt_s = 0.5;
+    total_as += battery_current_a(b, power_w) * dt_s;
+    soc = soc_after(b, soc, power_w, dt_s);
+  }
+  EXPECT_NEAR(soc, soc_after_charge(b, 1.0, total_as), 1e-12);
+  EXPECT_NEAR(soc, 1.0 - total_as / (3600.0 * 5.0), 1e-12);
+}
+
 // The noise as it was written before it drew from vehicle::SplitMix64 (its own SplitMix64 and
 // Box-Muller on (0, 1)): the same numbers, so every seeded flight keeps its bytes.
 class OwnSplitMixNoise {

@@ -48,6 +48,14 @@ struct PowerProfile {
   std::uint64_t seed = 1;                ///< noise seed: same seed, same signal
 };
 
+/// Power while climbing and while descending, without the payload, W: climb_w and descent_w, or
+/// when not given 1.3 and 0.8 x the cruise power (defined here only: swath-energy budget and
+/// swath-fleet's drones use these).
+inline constexpr double kClimbPowerFactor = 1.3;
+inline constexpr double kDescentPowerFactor = 0.8;
+double climbing_power_w(const PowerProfile& p);
+double descending_power_w(const PowerProfile& p);
+
 /// Sum of g_j(c_j) over the computations, W. `parameters.size()` must equal curves' count.
 double computations_power_w(const std::vector<PowerCurve>& curves,
                             const std::vector<double>& parameters);
