@@ -75,7 +75,7 @@ int RunCommand::run() {
             << fixed_text(result.flight_time_s, 1) << " s, "
             << fixed_text(result.energy_j / 3600, 2) << " Wh, final SoC "
             << fixed_text(100 * result.final_soc, 1) << " %";
-  if (result.status == energy::FlightStatus::completed)
+  if (result.status == energy::SimulationEnd::completed)
     std::cout << ", predicted total energy within "
               << fixed_text(100 * result.max_relative_error, 2) << " % after the first period";
   if (config.replan)
@@ -85,8 +85,8 @@ int RunCommand::run() {
     std::cerr << "swath-energy run: warning: at " << result.infeasible_replans
               << " replans no parameters fitted the battery above its reserve; the lowest levels "
                  "were flown\n";
-  return result.status == energy::FlightStatus::completed ? base::kExitSuccess
-                                                          : base::kExitNotCompleted;
+  return result.status == energy::SimulationEnd::completed ? base::kExitSuccess
+                                                           : base::kExitNotCompleted;
 }
 
 }  // namespace swath::apps

@@ -9,7 +9,7 @@ namespace {
 
 using Forces = std::array<double, kMaxRotors>;
 
-bool layout_valid(const RotorLayout& l) {
+bool layout_valid(const MixerRotors& l) {
   if (l.count < 4 || l.count > kMaxRotors) return false;
   if (!(l.thrust_coeff_n_s2 > 0) || !(l.torque_coeff_nm_s2 > 0) || !(l.max_speed_rad_s > 0))
     return false;
@@ -44,7 +44,7 @@ void add_scaled(Forces& f, const Forces& dir, double k, std::size_t n) {
 
 }  // namespace
 
-std::optional<MixerMatrices> mixer_matrices(const RotorLayout& layout) {
+std::optional<MixerMatrices> mixer_matrices(const MixerRotors& layout) {
   if (!layout_valid(layout)) return std::nullopt;
   const auto n = static_cast<Eigen::Index>(layout.count);
   Eigen::MatrixXd a(4, n);
@@ -74,7 +74,7 @@ std::optional<MixerMatrices> mixer_matrices(const RotorLayout& layout) {
   return m;
 }
 
-double quantise_pwm_us(const RotorLayout& layout, double u) {
+double quantise_pwm_us(const MixerRotors& layout, double u) {
   const double span = layout.pwm_max_us - layout.pwm_min_us;
   const double levels = std::floor(span / layout.resolution_us + 1e-9);
   const double share = u >= 0 ? std::min(u, 1.0) : 0.0;  // NaN: no thrust
@@ -82,7 +82,7 @@ double quantise_pwm_us(const RotorLayout& layout, double u) {
   return layout.pwm_min_us + level * layout.resolution_us;
 }
 
-MixerOutput mix(const RotorLayout& layout, const MixerMatrices& m, const Wrench& request) {
+MixerOutput mix(const MixerRotors& layout, const MixerMatrices& m, const Wrench& request) {
   MixerOutput out;
   const std::size_t n = m.count;
   const double f_max = layout.max_rotor_force_n();

@@ -4,8 +4,8 @@
 
 namespace swath::control {
 
-RotorLayout layout_of(const vehicle::Airframe& airframe, const vehicle::EscSettings& esc) {
-  RotorLayout layout;
+MixerRotors layout_of(const vehicle::Airframe& airframe, const vehicle::EscSettings& esc) {
+  MixerRotors layout;
   layout.count = std::min(airframe.rotors.size(), kMaxRotors);
   for (std::size_t i = 0; i < layout.count; ++i) {
     const vehicle::Rotor& r = airframe.rotors[i];
@@ -23,7 +23,7 @@ RotorLayout layout_of(const vehicle::Airframe& airframe, const vehicle::EscSetti
   return layout;
 }
 
-RotorLayout standard_layout(FrameKind kind, double arm_m, bool first_ccw,
+MixerRotors standard_layout(FrameKind kind, double arm_m, bool first_ccw,
                             double coaxial_lower_efficiency) {
   // One geometry for the plant and the controller: vehicle's layouts.
   const vehicle::RotorLayout plant = kind == FrameKind::quad_x   ? vehicle::RotorLayout::quad_x

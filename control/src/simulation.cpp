@@ -121,7 +121,7 @@ class BatteryState {
     const double power = energy_j / dt_s;
     const double current = energy::battery_current_a(battery_, power);
     if (!std::isfinite(current)) return false;
-    soc_ -= current * dt_s / (3600.0 * battery_.capacity_ah);
+    soc_ = vehicle::soc_after_charge(battery_, soc_, current * dt_s);
     // What the cell delivers to the load, V I − R I², is V~ P / V by eq. 12.
     delivered_j_ += (battery_.voltage_v * current - battery_.resistance_ohm * current * current) *
                     dt_s * battery_.voltage_v / battery_.stabilised_voltage_v;

@@ -222,8 +222,8 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& profile) 
   const PowerProfile& power = profile.power;
   const double always_w =
       power.payload_w + computations_power_w(power.computations, profile.computation_parameters);
-  const double climb_w = power.climb_w > 0 ? power.climb_w : 1.3 * power.mechanical.cruise_w;
-  const double descent_w = power.descent_w > 0 ? power.descent_w : 0.8 * power.mechanical.cruise_w;
+  const double climb_w = climbing_power_w(power);
+  const double descent_w = descending_power_w(power);
   const Point2 wind = wind_velocity(profile.wind);
 
   DroneBudget out;

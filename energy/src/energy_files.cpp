@@ -104,7 +104,7 @@ ordered_json rounded(const std::vector<double>& values, int decimals) {
 }
 
 ordered_json fixed_run(const SimulationResult& r) {
-  return {{"completed", r.status == FlightStatus::completed},
+  return {{"completed", r.status == SimulationEnd::completed},
           {"status", to_string(r.status)},
           {"flight_time_s", round_to(r.flight_time_s, 2)},
           {"final_soc", round_to(r.final_soc, 6)},
@@ -127,7 +127,7 @@ std::string simulation_summary_json(const SimulationResult& r, const Plan& plan,
   j["swath_version"] = "0.1.0";
   j["plan"] = plan.source;
   j["config"] = config.source;
-  j["completed"] = r.status == FlightStatus::completed;
+  j["completed"] = r.status == SimulationEnd::completed;
   j["status"] = to_string(r.status);
   j["flight_time_s"] = round_to(r.flight_time_s, 2);
   j["planned_time_s"] = round_to(r.planned_time_s, 2);

@@ -41,13 +41,17 @@ double computations_power_w(const std::vector<PowerCurve>& curves,
   return sum;
 }
 
+double climbing_power_w(const PowerProfile& p) {
+  return p.climb_w > 0 ? p.climb_w : kClimbPowerFactor * p.mechanical.cruise_w;
+}
+
+double descending_power_w(const PowerProfile& p) {
+  return p.descent_w > 0 ? p.descent_w : kDescentPowerFactor * p.mechanical.cruise_w;
+}
+
 double GaussianNoise::uniform() {
-  // SplitMix64: a fixed, portable sequence.
-  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;  // (0, 1)
+  // The open interval (0, 1): Box-Muller takes its logarithm (SplitMix64::uniform is [0, 1)).
+  return (static_cast<double>(bits_.next() >> 11) + 0.5) * 0x1.0p-53;
 }
 
 double GaussianNoise::next() {

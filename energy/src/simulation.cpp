@@ -825,7 +825,7 @@ void prediction_errors(SimulationResult& result) {
     result.max_relative_error = std::max(result.max_relative_error, err);
   }
   result.mean_relative_error = count > 0 ? sum / static_cast<double>(count) : 0.0;
-  if (result.status != FlightStatus::completed)  // the prediction was for the whole mission
+  if (result.status != SimulationEnd::completed)  // the prediction was for the whole mission
     result.mean_relative_error = result.max_relative_error = std::nan("");
 }
 
@@ -864,12 +864,12 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
                                                    params.power_now(), flight.time_s(), model);
   };
 
-  result.status = FlightStatus::completed;
+  result.status = SimulationEnd::completed;
   StepKinematics k{};
   double measured = 0.0, next_output = 0.0, next_progress = 0.0;
   while (!flight.done()) {
     if (flight.time_s() >= config.max_time_s) {
-      result.status = FlightStatus::time_limit;
+      result.status = SimulationEnd::time_limit;
       break;
     }
     const double t = flight.time_s();
@@ -894,7 +894,7 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
       next_progress = now + 0.01 * planned_time;
     }
     if (charge.soc <= 0.0) {
-      result.status = FlightStatus::battery_empty;
+      result.status = SimulationEnd::battery_empty;
       break;
     }
   }
@@ -917,13 +917,13 @@ SimulationResult simulate(const Plan& plan, const SimConfig& config,
   return result;
 }
 
-const char* to_string(FlightStatus status) {
+const char* to_string(SimulationEnd status) {
   switch (status) {
-    case FlightStatus::completed:
+    case SimulationEnd::completed:
       return "completed";
-    case FlightStatus::battery_empty:
+    case SimulationEnd::battery_empty:
       return "battery_empty";
-    case FlightStatus::time_limit:
+    case SimulationEnd::time_limit:
       return "time_limit";
   }
   return "";

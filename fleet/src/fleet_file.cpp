@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <set>
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -15,6 +14,7 @@
 #include "swath/energy/sim_config.hpp"
 #include "swath/fleet/envelope.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/vehicle/fleet_file.hpp"
 
 namespace swath::fleet {
 
@@ -23,37 +23,23 @@ using base::YamlMap;
 
 namespace {
 
-geometry::GeoPoint geo(const YamlMap& m) {
-  m.allow({"lat", "lon", "alt"});
-  return {m.number("lat", 0, -90, 90), m.number("lon", 0, -180, 180),
-          m.number("alt", 0, -500, 9000)};
-}
-
 // A drone's `mavlink: {url: udp:HOST:PORT | tcp:HOST:PORT, sysid: 1..255}` (docs/swath-fleet.md):
 // --vehicles' grammar; sysid defaults to the drone's place + 1 as there. The system id is given
 // once: in `sysid`, or as the url's /SYSID.
-VehicleAddress vehicle_of(const YamlMap& drone, std::size_t index) {
-  if (!drone.node()["mavlink"].IsMap())
-    throw InputError(drone.where("mavlink") +
-                     ": a mapping {url: udp:HOST:PORT or tcp:HOST:PORT, sysid: 1..255}");
-  const YamlMap m = drone.map("mavlink");
-  m.allow({"url", "sysid"});
-  if (!m.has("url"))
-    throw InputError(drone.where("mavlink") + ": no url (udp:HOST:PORT or tcp:HOST:PORT)");
-  const std::string url = m.text("url", "");
+VehicleAddress vehicle_of(const vehicle::FleetFileLink& link, std::size_t index) {
   VehicleAddress a;
   const auto default_sysid = static_cast<std::uint8_t>(std::min<std::size_t>(index + 1, 255));
-  const std::string why = parse_vehicle_address(url, default_sysid, a);
+  const std::string why = parse_vehicle_address(link.url, default_sysid, a);
   if (!why.empty())
-    throw InputError(m.where("url") + ": \"" + url + "\" " + why +
+    throw InputError(link.url_where + ": \"" + link.url + "\" " + why +
                      " (use udp:HOST:PORT or tcp:HOST:PORT)");
-  if (m.has("sysid")) {
+  if (link.sysid) {
     if (a.sysid_given)
-      throw InputError(m.where("sysid") + ": the system id is given twice (sysid and the url's /" +
+      throw InputError(link.sysid_where + ": the system id is given twice (sysid and the url's /" +
                        std::to_string(a.sysid) + "); give it once");
-    const double s = m.number("sysid", 1, 1, 255);
+    const double s = *link.sysid;
     if (s != std::floor(s))
-      throw InputError(m.where("sysid") + ": " + base::shortest_text(s) +
+      throw InputError(link.sysid_where + ": " + base::shortest_text(s) +
                        " is not a whole number in 1..255");
     a.sysid = static_cast<std::uint8_t>(s);
     a.sysid_given = true;
@@ -61,103 +47,90 @@ VehicleAddress vehicle_of(const YamlMap& drone, std::size_t index) {
   return a;
 }
 
+// A swath-energy drone profile (power, battery, speeds), relative to the fleet file.
+void apply_profile(const std::string& profile, const std::string& source, DroneSpec& d) {
+  std::filesystem::path p = profile;
+  if (p.is_relative()) p = std::filesystem::path(source).parent_path() / p;
+  const energy::DroneProfile prof = energy::read_drone_profile(p.string());
+  d.power = prof.power;
+  d.battery = prof.battery;
+  if (prof.drone.speed_m_s) d.kinematics.cruise_m_s = *prof.drone.speed_m_s;
+  d.kinematics.climb_m_s = prof.drone.climb_speed_m_s;
+  d.kinematics.descent_m_s = prof.drone.descent_speed_m_s;
+}
+
+// The fleet file's values over the profile's, the profile's over the defaults.
+void apply_flight_keys(const vehicle::FleetFileDrone& f, DroneSpec& d) {
+  d.battery.initial_soc = f.drone.battery_level.value_or(d.battery.initial_soc);
+  if (d.battery.reserve_soc >= d.battery.initial_soc)
+    d.battery.reserve_soc = 0.5 * d.battery.initial_soc;
+  Kinematics& k = d.kinematics;
+  k.cruise_m_s = f.drone.speed_m_s.value_or(k.cruise_m_s);
+  if (f.climb_given || !f.profile) k.climb_m_s = f.drone.climb_speed_m_s;
+  if (f.descent_given || !f.profile) k.descent_m_s = f.drone.descent_speed_m_s;
+  k.approach_m_s = std::min(k.cruise_m_s, f.approach_speed_m_s.value_or(k.approach_m_s));
+  k.approach_within_m = f.approach_within_m.value_or(k.approach_within_m);
+  k.accel_m_s2 = f.accel_m_s2.value_or(k.accel_m_s2);
+  d.recharge_s = f.recharge_s.value_or(d.recharge_s);
+  if (f.drone.endurance_s) d.max_flight_time_s = *f.drone.endurance_s * d.battery.initial_soc;
+  d.max_flight_time_s = f.max_flight_time_s.value_or(d.max_flight_time_s);
+}
+
+// Drones sharing the file's home stand in a row east of it, `spacing_m` apart (envelope.hpp).
+Vec3 home_of(const vehicle::FleetFileDrone& f, const geometry::LocalFrame& frame,
+             const geometry::GeoPoint& fleet_home, double spacing_m, int& shared_home) {
+  if (f.home_m) return {f.home_m->x, f.home_m->y, 0};
+  geometry::Point2 p = frame.to_local(f.drone.home.value_or(fleet_home));
+  if (!f.drone.home) p.x += spacing_m * shared_home++;
+  if (std::hypot(p.x, p.y) > 1e5)
+    throw InputError(f.where_home + ": " + f.drone.name + "'s home is " +
+                     std::to_string(static_cast<long long>(std::hypot(p.x, p.y) / 1000)) +
+                     " km from the world's origin (at most 100 km)");
+  return {p.x, p.y, 0};
+}
+
+bool same_link(const VehicleAddress& a, const VehicleAddress& b) {
+  return a.tcp == b.tcp && a.host == b.host && a.port == b.port;
+}
+
+// swath-fleet's vertical speeds when the file gives none are the flight defaults (leg.hpp),
+// not the planner's (docs/formats.md).
+vehicle::FleetFileRules fleet_file_rules() {
+  vehicle::FleetFileRules rules;
+  rules.climb_speed_m_s = Kinematics{}.climb_m_s;
+  rules.descent_speed_m_s = Kinematics{}.descent_m_s;
+  rules.flights = true;
+  return rules;
+}
+
 }  // namespace
 
 std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
                                         const geometry::GeoPoint& origin) {
-  return base::yaml_guard(source, [&] {
-    const YAML::Node doc = base::load_yaml(text, source);
-    if (!doc.IsMap()) throw InputError(source + ": a fleet file is a YAML mapping (home, drones)");
-    const YamlMap root(doc, source, "");
-    root.allow({"home", "drones", "ceiling_m", "separation_m", "fence"});  // envelope.hpp
-    const geometry::LocalFrame frame(origin);
-    const geometry::GeoPoint fleet_home = root.has("home") ? geo(root.map("home")) : origin;
-    const YAML::Node list = doc["drones"];
-    if (!list || !list.IsSequence() || list.size() == 0)
-      throw InputError(source + ": the fleet has no drones (a list under 'drones:')");
-    if (list.size() > 100)
-      throw InputError(source + ": " + std::to_string(list.size()) +
-                       " drones; swath-fleet simulates at most 100");
-    std::vector<DroneSpec> out;
-    std::set<std::string> names;
-    // Drones sharing the file's home stand in a row east of it, separation_m + 1 m apart
-    // (envelope.hpp).
-    const double spacing_m =
-        root.number("separation_m", Envelope{}.separation_m, 0, 1000, true) + 1;
-    int shared_home = 0;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string place = "drones[" + std::to_string(i) + "]";
-      if (!list[i].IsMap())
-        throw InputError(source + ": " + base::yaml_line(list[i]) + ": " + place +
-                         " is not a mapping");
-      const YamlMap m(list[i], source, place);
-      m.allow({"name", "capability", "battery_level", "endurance_s", "speed_m_s", "home", "home_m",
-               "climb_speed_m_s", "descent_speed_m_s", "max_airspeed_m_s", "profile",
-               "max_flight_time_s", "approach_speed_m_s", "approach_within_m", "accel_m_s2",
-               "recharge_s", "mavlink"});
-      DroneSpec d;
-      d.name = m.text("name", "drone-" + std::to_string(i + 1));
-      if (!names.insert(d.name).second)
-        throw InputError(m.where("name") + ": the name \"" + d.name + "\" is given twice");
-      const bool physical = m.has("battery_level") || m.has("endurance_s") || m.has("speed_m_s") ||
-                            m.has("profile") || m.has("max_flight_time_s");
-      if (m.has("capability") && !physical)
-        throw InputError(m.where("capability") + ": " + d.name +
-                         " has only a capability; swath-fleet flies drones with a speed_m_s, "
-                         "battery_level and endurance_s (or a profile)");
-      if (m.has("profile")) {
-        std::filesystem::path p = m.text("profile", "");
-        if (p.is_relative()) p = std::filesystem::path(source).parent_path() / p;
-        const energy::DroneProfile prof = energy::read_drone_profile(p.string());
-        d.power = prof.power;
-        d.battery = prof.battery;
-        if (prof.drone.speed_m_s) d.kinematics.cruise_m_s = *prof.drone.speed_m_s;
-        d.kinematics.climb_m_s = prof.drone.climb_speed_m_s;
-        d.kinematics.descent_m_s = prof.drone.descent_speed_m_s;
-      }
-      d.battery.initial_soc = m.number("battery_level", d.battery.initial_soc, 0, 1, true);
-      if (d.battery.reserve_soc >= d.battery.initial_soc)
-        d.battery.reserve_soc = 0.5 * d.battery.initial_soc;
-      d.kinematics.cruise_m_s = m.number("speed_m_s", d.kinematics.cruise_m_s, 0.5, 100);
-      d.kinematics.climb_m_s = m.number("climb_speed_m_s", d.kinematics.climb_m_s, 0.1, 30);
-      d.kinematics.descent_m_s = m.number("descent_speed_m_s", d.kinematics.descent_m_s, 0.1, 30);
-      d.kinematics.approach_m_s =
-          std::min(d.kinematics.cruise_m_s,
-                   m.number("approach_speed_m_s", d.kinematics.approach_m_s, 0.1, 100));
-      d.kinematics.approach_within_m =
-          m.number("approach_within_m", d.kinematics.approach_within_m, 0, 1000);
-      d.kinematics.accel_m_s2 = m.number("accel_m_s2", d.kinematics.accel_m_s2, 0, 50);
-      d.recharge_s = m.number("recharge_s", d.recharge_s, 0, 86400);
-      if (m.has("endurance_s"))
-        d.max_flight_time_s = m.number("endurance_s", 0, 1, 604800, true) * d.battery.initial_soc;
-      d.max_flight_time_s = m.number("max_flight_time_s", d.max_flight_time_s, 1, 604800, true);
-      if (m.has("home_m")) {
-        const YamlMap h = m.map("home_m");
-        h.allow({"x_m", "y_m"});
-        d.home_m = {h.number("x_m", 0, -1e5, 1e5), h.number("y_m", 0, -1e5, 1e5), 0};
-      } else {
-        const geometry::GeoPoint g = m.has("home") ? geo(m.map("home")) : fleet_home;
-        geometry::Point2 p = frame.to_local(g);
-        if (!m.has("home")) p.x += spacing_m * shared_home++;
-        if (std::hypot(p.x, p.y) > 1e5)
-          throw InputError(m.where(m.has("home") ? "home" : "name") + ": " + d.name +
-                           "'s home is " +
-                           std::to_string(static_cast<long long>(std::hypot(p.x, p.y) / 1000)) +
-                           " km from the world's origin (at most 100 km)");
-        d.home_m = {p.x, p.y, 0};
-      }
-      if (m.has("mavlink")) {
-        d.vehicle = vehicle_of(m, i);
-        for (std::size_t j = 0; j < out.size(); ++j)
-          if (out[j].vehicle && out[j].vehicle->tcp == d.vehicle->tcp &&
-              out[j].vehicle->host == d.vehicle->host && out[j].vehicle->port == d.vehicle->port)
-            throw InputError(m.where("mavlink") + ": " + d.name + "'s url is also " + out[j].name +
-                             "'s (one vehicle per link)");
-      }
-      out.push_back(std::move(d));
+  const vehicle::FleetFile file = vehicle::parse_fleet_file(text, source, fleet_file_rules());
+  const geometry::LocalFrame frame(origin);
+  const geometry::GeoPoint fleet_home = file.home.value_or(origin);
+  // separation_m + 1 m: the separation rule's margin (envelope.hpp).
+  const double spacing_m = file.separation_m.value_or(Envelope{}.separation_m) + 1;
+  int shared_home = 0;
+  std::vector<DroneSpec> out;
+  for (std::size_t i = 0; i < file.drones.size(); ++i) {
+    const vehicle::FleetFileDrone& f = file.drones[i];
+    DroneSpec d;
+    d.name = f.drone.name;
+    if (f.profile) apply_profile(*f.profile, source, d);
+    apply_flight_keys(f, d);
+    d.home_m = home_of(f, frame, fleet_home, spacing_m, shared_home);
+    if (f.mavlink) {
+      d.vehicle = vehicle_of(*f.mavlink, i);
+      for (const DroneSpec& before : out)
+        if (before.vehicle && same_link(*before.vehicle, *d.vehicle))
+          throw InputError(f.mavlink->where + ": " + d.name + "'s url is also " + before.name +
+                           "'s (one vehicle per link)");
     }
-    return out;
-  });
+    out.push_back(std::move(d));
+  }
+  return out;
 }
 
 Weights parse_weights(const std::string& text, const std::string& source) {

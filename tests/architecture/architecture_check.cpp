@@ -2,6 +2,10 @@
 //  - MAVLink command numbers are named once, in mavlink/include/swath/mavlink/commands.hpp: no
 //    MAV_CMD value typed by hand as a command outside mavlink/ (and tests/, whose hand-typed
 //    numbers are the independent truth the writers are checked against);
+//  - the fleet file is read in one place, vehicle/src/fleet_file.cpp: no other source (tests/
+//    aside, which write fleet files) names two or more of its drones' keys as string literals;
+//  - the state of charge is integrated in one place, vehicle/src/battery.cpp: no other source
+//    (tests/ aside) turns a charge into a share of the capacity (3600 x capacity_ah);
 //  - no source file over --max-file-lines lines (1,000);
 //  - no function body over --max-function-lines lines (150), found by matching braces at
 //    namespace and class scope.
@@ -208,6 +212,35 @@ void check_commands(const Source& s, const std::set<long>& commands) {
   check_switches(s, commands);
 }
 
+// The keys only a fleet file's drones have (docs/formats.md). One of them may name a value in a
+// JSON summary; two or more in one file are a reader of the fleet file (or a writer of it, which
+// belongs beside the reader).
+void check_fleet_file_readers(const Source& s) {
+  static const std::regex key(
+      R"re("(battery_level|endurance_s|max_flight_time_s|approach_speed_m_s|approach_within_m|)re"
+      R"re(accel_m_s2|recharge_s|home_m)")re");
+  std::set<std::string> keys;
+  std::size_t first = std::string::npos;
+  for (auto m = std::sregex_iterator(s.no_notes.begin(), s.no_notes.end(), key);
+       m != std::sregex_iterator(); ++m) {
+    keys.insert((*m)[1].str());
+    first = std::min(first, static_cast<std::size_t>(m->position(0)));
+  }
+  if (keys.size() < 2) return;
+  std::string named;
+  for (const std::string& k : keys) named += (named.empty() ? "" : ", ") + k;
+  report(s, first, "a second fleet-file reader (" + named + ")");
+}
+
+// A charge turned into a share of the capacity, q / (3600 Q_c): a state-of-charge integrator.
+void check_soc_integrators(const Source& s) {
+  static const std::regex share(
+      R"(\b3600(?:\.0*)?\s*\*\s*[\w.\[\]>-]*capacity_ah\b|\bcapacity_ah\s*\*\s*3600\b)");
+  for (auto m = std::sregex_iterator(s.code.begin(), s.code.end(), share);
+       m != std::sregex_iterator(); ++m)
+    report(s, static_cast<std::size_t>(m->position(0)), "a second state-of-charge integrator");
+}
+
 // A `{` at namespace or class scope opens a function body when what precedes it (since the last
 // `;`, `{` or `}`) has a parameter list and is not an initializer or a class.
 enum class Scope { transparent, function, other, init };
@@ -317,6 +350,16 @@ bool commands_exempt(const std::string& relative) {
   return relative.rfind("mavlink/", 0) == 0 || relative.rfind("tests/", 0) == 0;
 }
 
+// The one state-of-charge integrator, and the tests' independent truth.
+bool soc_exempt(const std::string& relative) {
+  return relative == "vehicle/src/battery.cpp" || relative.rfind("tests/", 0) == 0;
+}
+
+// The fleet file's one reader, and the tests, which write fleet files as text.
+bool fleet_keys_exempt(const std::string& relative) {
+  return relative == "vehicle/src/fleet_file.cpp" || relative.rfind("tests/", 0) == 0;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   std::vector<std::string> positional;
@@ -386,6 +429,8 @@ int main(int argc, char** argv) {
     const bool check_commands_here = !commands_exempt(s.name);
     check_functions(s, o.max_function_lines, check_commands_here ? &commands : nullptr);
     if (check_commands_here) check_commands(s, commands);
+    if (!fleet_keys_exempt(s.name)) check_fleet_file_readers(s);
+    if (!soc_exempt(s.name)) check_soc_integrators(s);
   }
   for (const Violation& v : violations)
     std::cout << v.file << (v.line ? ":" + std::to_string(v.line) : std::string()) << ": "
@@ -394,6 +439,16 @@ int main(int argc, char** argv) {
                   [](const Violation& v) { return v.problem.rfind("MAV_CMD", 0) == 0; }))
     std::cout << "Name MAV_CMD values with swath::mavlink::Cmd "
                  "(mavlink/include/swath/mavlink/commands.hpp).\n";
+  if (std::any_of(violations.begin(), violations.end(), [](const Violation& v) {
+        return v.problem.rfind("a second fleet-file reader", 0) == 0;
+      }))
+    std::cout << "Read fleet files with swath::vehicle::parse_fleet_file "
+                 "(vehicle/include/swath/vehicle/fleet_file.hpp).\n";
+  if (std::any_of(violations.begin(), violations.end(), [](const Violation& v) {
+        return v.problem == "a second state-of-charge integrator";
+      }))
+    std::cout << "Draw charge with swath::vehicle::soc_after_charge "
+                 "(vehicle/include/swath/vehicle/battery.hpp).\n";
   std::cout << files.size() << " files checked, " << violations.size() << " violation"
             << (violations.size() == 1 ? "" : "s") << "\n";
   return violations.empty() ? 0 : 1;

@@ -37,7 +37,7 @@ class Quad {
   double delta_t = 0;
 
   void step(const std::array<double, kMaxRotors>& omega_cmd, double h) {
-    const RotorLayout& l = c_.airframe.rotors;
+    const MixerRotors& l = c_.airframe.rotors;
     const double lag = 1 - std::exp(-h / 0.03);
     double thrust = 0;
     Vec3 torque;
@@ -79,7 +79,7 @@ Flight fly(const ControlTaskConfig& config, double plant_mass_kg, const Vec3& st
   const ControlTask task = *ControlTask::create(config);
   Quad quad(config, plant_mass_kg);
   quad.body.p = start;
-  const RotorLayout& l = config.airframe.rotors;
+  const MixerRotors& l = config.airframe.rotors;
   double efficiency = 0;  // equal speeds hover every symmetric frame, Y6 included
   for (std::size_t i = 0; i < l.count; ++i) efficiency += l.rotors[i].efficiency;
   const double hover = std::sqrt(plant_mass_kg * kG / (efficiency * l.thrust_coeff_n_s2));

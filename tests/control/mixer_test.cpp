@@ -12,12 +12,12 @@
 namespace swath::control {
 namespace {
 
-RotorLayout layout_of(FrameKind kind) {
+MixerRotors layout_of(FrameKind kind) {
   return standard_layout(kind, kind == FrameKind::hexa_x ? 0.275 : 0.225, true, 0.8);
 }
 
 // The wrench A f, computed from the rotor list itself rather than from the matrices under test.
-Wrench wrench_of(const RotorLayout& l, const MixerOutput& out) {
+Wrench wrench_of(const MixerRotors& l, const MixerOutput& out) {
   Wrench w;
   for (std::size_t i = 0; i < l.count; ++i) {
     const Rotor& r = l.rotors[i];
@@ -32,7 +32,7 @@ Wrench wrench_of(const RotorLayout& l, const MixerOutput& out) {
 
 TEST(Mixer, PseudoInverseIsARightInverseOnEveryFrame) {
   for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
-    const RotorLayout l = layout_of(kind);
+    const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     ASSERT_TRUE(m.has_value());
     for (std::size_t r = 0; r < 4; ++r)
@@ -46,14 +46,14 @@ TEST(Mixer, PseudoInverseIsARightInverseOnEveryFrame) {
 }
 
 TEST(Mixer, HoverOfASymmetricQuadSharesTheWeightEqually) {
-  const RotorLayout l = layout_of(FrameKind::quad_x);
+  const MixerRotors l = layout_of(FrameKind::quad_x);
   const auto m = mixer_matrices(l);
   const MixerOutput out = mix(l, *m, Wrench{1.5 * 9.80665, {}});
   for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(out.force_n[i], 1.5 * 9.80665 / 4, 1e-12);
   // §17.6's hover speed: √(m g / (4 k_T)) = 678.0 rad/s before quantisation.
   EXPECT_NEAR(std::sqrt(out.force_n[0] / l.thrust_coeff_n_s2), 678.0, 0.05);
   // §17.A's hexa-f550: 2.4 kg on six rotors hovers at 700.2 rad/s.
-  const RotorLayout hexa = layout_of(FrameKind::hexa_x);
+  const MixerRotors hexa = layout_of(FrameKind::hexa_x);
   const MixerOutput h = mix(hexa, *mixer_matrices(hexa), Wrench{2.4 * 9.80665, {}});
   for (std::size_t i = 0; i < 6; ++i)
     EXPECT_NEAR(std::sqrt(h.force_n[i] / hexa.thrust_coeff_n_s2), 700.2, 0.05);
@@ -62,7 +62,7 @@ TEST(Mixer, HoverOfASymmetricQuadSharesTheWeightEqually) {
 TEST(Mixer, RequestsWithinReachAreProducedExactly) {
   vehicle::SplitMix64 rng(7);
   for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
-    const RotorLayout l = layout_of(kind);
+    const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     for (int trial = 0; trial < 200; ++trial) {
       const Wrench want{rng.uniform(10, 20),
@@ -81,7 +81,7 @@ TEST(Mixer, RequestsWithinReachAreProducedExactly) {
 
 TEST(Mixer, YawIsGivenUpFirstThenRollAndPitch) {
   for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
-    const RotorLayout l = layout_of(kind);
+    const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     const double f_max = l.max_rotor_force_n();
     const double thrust = 0.5 * f_max * static_cast<double>(l.count) * 0.9;
@@ -123,7 +123,7 @@ TEST(Mixer, YawIsGivenUpFirstThenRollAndPitch) {
 }
 
 TEST(Mixer, PulsesAreQuantisedToTheNearestLevel) {
-  RotorLayout l = layout_of(FrameKind::quad_x);
+  MixerRotors l = layout_of(FrameKind::quad_x);
   l.resolution_us = 4.0;
   const auto m = mixer_matrices(l);
   vehicle::SplitMix64 rng(11);
@@ -152,14 +152,14 @@ TEST(Mixer, PulsesAreQuantisedToTheNearestLevel) {
 }
 
 TEST(Mixer, FramesThatCannotControlFourAxesAreRefused) {
-  RotorLayout line = standard_layout(FrameKind::quad_x, 0.2);
+  MixerRotors line = standard_layout(FrameKind::quad_x, 0.2);
   for (std::size_t i = 0; i < 4; ++i)
     line.rotors[i].position_m = {0.1 * static_cast<double>(i), 0, 0};
   EXPECT_FALSE(mixer_matrices(line).has_value());  // no roll authority
-  RotorLayout same_spin = standard_layout(FrameKind::quad_x, 0.2);
+  MixerRotors same_spin = standard_layout(FrameKind::quad_x, 0.2);
   for (std::size_t i = 0; i < 4; ++i) same_spin.rotors[i].ccw = true;
   EXPECT_FALSE(mixer_matrices(same_spin).has_value());  // yaw column parallel to thrust
-  RotorLayout three = standard_layout(FrameKind::quad_x, 0.2);
+  MixerRotors three = standard_layout(FrameKind::quad_x, 0.2);
   three.count = 3;
   EXPECT_FALSE(mixer_matrices(three).has_value());
 }

@@ -87,7 +87,7 @@ const Plan& lawnmower() {
 
 TEST(Replanning, EnoughBatteryKeepsTheHighestParameters) {
   const SimulationResult r = simulate(lawnmower(), lawnmower_config(5.0));
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   EXPECT_GT(r.replans, 900);
   EXPECT_EQ(r.control.size(), 1u);  // never changed
   EXPECT_NEAR(r.mean_computations[0], 10.0, 1e-9);
@@ -97,12 +97,12 @@ TEST(Replanning, EnoughBatteryKeepsTheHighestParameters) {
 TEST(Replanning, TightBatteryFinishesAboveTheReserveBetweenTheLevels) {
   const SimConfig c = lawnmower_config(0.51);
   const FixedComparison fixed = compare_fixed(lawnmower(), c);
-  EXPECT_EQ(fixed.highest.status, FlightStatus::battery_empty);
-  ASSERT_EQ(fixed.lowest.status, FlightStatus::completed);
+  EXPECT_EQ(fixed.highest.status, SimulationEnd::battery_empty);
+  ASSERT_EQ(fixed.lowest.status, SimulationEnd::completed);
   EXPECT_GT(fixed.lowest.final_soc, c.battery.reserve_soc);
   EXPECT_GT(fixed.minutes_per_hour, 5.0);
   const SimulationResult r = simulate(lawnmower(), c);
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   EXPECT_GE(r.final_soc, c.battery.reserve_soc);
   EXPECT_GT(r.mean_computations[0], 2.2);
   EXPECT_LT(r.mean_computations[0], 9.8);
@@ -111,7 +111,7 @@ TEST(Replanning, TightBatteryFinishesAboveTheReserveBetweenTheLevels) {
 
 TEST(Replanning, TooSmallForAnythingSaysSo) {
   const SimulationResult r = simulate(lawnmower(), lawnmower_config(0.3));
-  EXPECT_EQ(r.status, FlightStatus::battery_empty);
+  EXPECT_EQ(r.status, SimulationEnd::battery_empty);
   EXPECT_GT(r.infeasible_replans, 0);
   ASSERT_GE(r.control.size(), 2u);
   EXPECT_FALSE(r.control.back().feasible);

@@ -49,7 +49,7 @@ TEST_P(Guidance, ConvergesOntoACircle) {
   c.start = {300, 0};
   c.wind = GetParam();
   const SimulationResult r = simulate(circle_plan(), c);
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   double worst = 0.0, turned = 0.0;
   for (std::size_t i = 1; i < r.samples.size(); ++i) {
     const auto& s = r.samples[i];
@@ -69,7 +69,7 @@ TEST_P(Guidance, ConvergesOntoALine) {
   c.start = {-60, 0};
   c.wind = GetParam();
   const SimulationResult r = simulate(line_plan(), c);
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   double worst = 0.0;
   for (const auto& s : r.samples)
     if (s.position.y > 150.0) worst = std::max(worst, std::abs(s.position.x));
@@ -105,7 +105,7 @@ TEST(Flight, ThePapersSurveyFliesItsStagesInOrder) {
   c.computation_parameters = {10, 448};
   c.power.computations = {{"fps", {{2, 4.75}, {10, 9.75}}}, {"key", {{32, 0.5}, {448, 2.0}}}};
   const SimulationResult r = simulate(plan, c);
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   ASSERT_EQ(r.stages.size(), 5u);
   const auto fields = stage_fields(plan, c.trajectory_parameters);
   for (std::size_t k = 0; k < r.stages.size(); ++k) {
@@ -137,7 +137,7 @@ TEST(Simulation, EnergyIsThePowerIntegralAndTheBatteryFollowsIt) {
   c.power.mechanical.parasitic_share = 0.0;  // constant mechanical power
   c.power.payload_w = 10.0;
   const SimulationResult r = simulate(line_plan(), c);
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   const double p = c.power.mechanical.cruise_w + 10.0;
   EXPECT_NEAR(r.energy_j, p * r.flight_time_s, 1e-6 * r.energy_j);
   EXPECT_NEAR(r.final_soc, soc_after(c.battery, 1.0, p, r.flight_time_s), 1e-9);
@@ -170,7 +170,7 @@ TEST(Simulation, LawnmowerPeriodAndPrediction) {
   c.power.computations = {{"fps", {{2, 4.75}, {10, 9.75}}}};
   c.computation_parameters = {10};
   const SimulationResult r = simulate(plan, c);
-  ASSERT_EQ(r.status, FlightStatus::completed);
+  ASSERT_EQ(r.status, SimulationEnd::completed);
   const double lane_and_turn = (400.0 + 3.14159265 * 25.0) / 12.0;  // 39.88 s
   EXPECT_NEAR(r.final_period_s, lane_and_turn, 0.03 * lane_and_turn);
   EXPECT_LT(r.mean_relative_error, 0.01);
@@ -187,7 +187,7 @@ TEST(Simulation, BatteryRunsOut) {
   c.battery.capacity_ah = 0.1;  // ~ 0.1 * 3600 * 14.8^2 / 12 / 160 W ~ 41 s
   c.start = {0, 0};
   const SimulationResult r = simulate(line_plan(), c);
-  EXPECT_EQ(r.status, FlightStatus::battery_empty);
+  EXPECT_EQ(r.status, SimulationEnd::battery_empty);
   EXPECT_LE(r.final_soc, 0.0);
   EXPECT_LT(r.flight_time_s, 49.0);
   ASSERT_TRUE(r.reserve_crossed_s);

@@ -105,7 +105,7 @@ TEST(SurveyStagePlan, TheSimulatedDroneFliesTheLanesAndLowerC1ShortensOnlyTheTur
   for (double c1 : {1.0, 0.8}) {
     config.trajectory_parameters = {c1};
     const SimulationResult r = simulate(plan, config);
-    ASSERT_EQ(r.status, FlightStatus::completed) << c1;
+    ASSERT_EQ(r.status, SimulationEnd::completed) << c1;
     // Once on a lane (past its first 20 m), the drone stays within 0.3 m of it.
     double worst = 0;
     for (const FlightSample& s : r.samples) {

@@ -3,9 +3,15 @@
 // bad value refused naming the file, the line and the key.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
 #include "swath/base/input_error.hpp"
 #include "swath/fleet/fleet_file.hpp"
 #include "swath/fleet/vehicle_address.hpp"
+#include "swath/vehicle/drone.hpp"
 
 namespace swath::fleet {
 namespace {
@@ -91,6 +97,111 @@ TEST(FleetFile, MavlinkUrlsFollowTheVehiclesGrammar) {
     } catch (const base::InputError& e) {
       EXPECT_FALSE(good) << url << ": " << e.what();
     }
+  }
+}
+
+// One reader for swath plan and swath-fleet (vehicle::parse_fleet_file): on random fleets (fixed
+// seed), both programs read the values written into the text, and a vertical speed the file
+// does not give is each program's documented default (docs/formats.md: swath plan 2.5 m/s up,
+// 1.5 m/s down; swath-fleet 3 m/s both ways).
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+TEST(FleetFile, SwathPlanAndSwathFleetReadTheSameDrones) {
+  std::mt19937 rng(46);
+  std::uniform_real_distribution<double> level(0.05, 1), endurance(60, 3600), speed(1, 20),
+      vertical(0.5, 8);
+  for (int fleet = 0; fleet < 40; ++fleet) {
+    const int n = 1 + static_cast<int>(rng() % 6);
+    struct Written {
+      double level, endurance, speed;
+      std::optional<double> climb, descent;
+    };
+    std::vector<Written> written;
+    std::string text = "home: {lat: 42.3601, lon: -71.0942}\ndrones:\n";
+    for (int i = 0; i < n; ++i) {
+      Written w{level(rng), endurance(rng), speed(rng), {}, {}};
+      if (rng() % 2) w.climb = vertical(rng);
+      if (rng() % 2) w.descent = vertical(rng);
+      text += "  - {name: d" + std::to_string(i) + ", battery_level: " + number_text(w.level) +
+              ", endurance_s: " + number_text(w.endurance) + ", speed_m_s: " + number_text(w.speed);
+      if (w.climb) text += ", climb_speed_m_s: " + number_text(*w.climb);
+      if (w.descent) text += ", descent_speed_m_s: " + number_text(*w.descent);
+      text += "}\n";
+      written.push_back(w);
+    }
+    const vehicle::Fleet plan = vehicle::parse_fleet(text, "f.yaml");
+    const std::vector<DroneSpec> flown = parse_fleet_file(text, "f.yaml", kOrigin);
+    ASSERT_EQ(plan.drones.size(), written.size());
+    ASSERT_EQ(flown.size(), written.size());
+    for (std::size_t i = 0; i < written.size(); ++i) {
+      const Written& w = written[i];
+      const vehicle::Drone& p = plan.drones[i];
+      const DroneSpec& f = flown[i];
+      EXPECT_EQ(p.name, f.name);
+      EXPECT_EQ(*p.battery_level, w.level);
+      EXPECT_EQ(f.battery.initial_soc, w.level);
+      EXPECT_EQ(*p.endurance_s, w.endurance);
+      EXPECT_EQ(f.max_flight_time_s, w.endurance * w.level);
+      EXPECT_EQ(*p.speed_m_s, w.speed);
+      EXPECT_EQ(f.kinematics.cruise_m_s, w.speed);
+      EXPECT_EQ(p.climb_speed_m_s, w.climb.value_or(2.5));
+      EXPECT_EQ(f.kinematics.climb_m_s, w.climb.value_or(3.0));
+      EXPECT_EQ(p.descent_speed_m_s, w.descent.value_or(1.5));
+      EXPECT_EQ(f.kinematics.descent_m_s, w.descent.value_or(3.0));
+    }
+  }
+}
+
+// A drone's profile gives the vertical speeds the fleet file does not; the file's own win.
+TEST(FleetFile, TheFileSpeedsOverTheProfiles) {
+  const auto dir = std::filesystem::temp_directory_path() / "swath-fleet-file-profile-test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "quad.yaml") << "name: quad\nclimb_speed_m_s: 4\ndescent_speed_m_s: 2\n";
+  const auto d = parse_fleet_file(
+      "drones:\n  - {name: a, profile: quad.yaml}\n"
+      "  - {name: b, profile: quad.yaml, climb_speed_m_s: 6}\n",
+      (dir / "fleet.yaml").string(), kOrigin);
+  EXPECT_EQ(d[0].kinematics.climb_m_s, 4);
+  EXPECT_EQ(d[0].kinematics.descent_m_s, 2);
+  EXPECT_EQ(d[1].kinematics.climb_m_s, 6);
+  EXPECT_EQ(d[1].kinematics.descent_m_s, 2);
+  std::filesystem::remove_all(dir);
+}
+
+// A key both programs read is refused by both in the same sentence: one reader.
+TEST(FleetFile, BothProgramsRefuseABadDroneInOneSentence) {
+  const std::string head = "home: {lat: 42.3601, lon: -71.0942}\ndrones:\n";
+  const std::string good = "{battery_level: 1, endurance_s: 600, speed_m_s: 5";
+  const std::vector<std::string> bad_drones{
+      "  - " + good + ", sped_m_s: 5}\n",
+      "  - {battery_level: 1, endurance_s: 600, speed_m_s: 0}\n",
+      "  - {battery_level: 2, endurance_s: 600, speed_m_s: 5}\n",
+      "  - {battery_level: 1, endurance_s: -1, speed_m_s: 5}\n",
+      "  - " + good + ", climb_speed_m_s: 0}\n",
+      "  - " + good + ", descent_speed_m_s: fast}\n",
+      "  - " + good + ", home: {lat: 91, lon: 0}}\n",
+      "  - " + good + ", recharge_s: -3}\n",
+      "  - " + good + ", mavlink: {url: 'udp:h:1', autopilot: px4}}\n",
+      "  - {name: a, " + good.substr(1) + "}\n  - {name: a, " + good.substr(1) + "}\n"};
+  const auto error = [](const auto& read) {
+    try {
+      read();
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  for (const std::string& drones : bad_drones) {
+    const std::string text = head + drones;
+    const std::string plan = error([&] { vehicle::parse_fleet(text, "f.yaml"); });
+    const std::string flown = error([&] { parse_fleet_file(text, "f.yaml", kOrigin); });
+    EXPECT_NE(plan, "accepted") << drones;
+    EXPECT_EQ(plan, flown) << drones;
+    EXPECT_EQ(plan.rfind("f.yaml", 0), 0u) << plan;
   }
 }
 

@@ -87,7 +87,7 @@ void Runtime::integrate(Drone& d, double t) {
   if (d.mode != Mode::landed && d.mode != Mode::lost && d.mode != Mode::charging)
     d.flight_s += b - a;
   d.energy_j += energy;
-  d.soc -= charge_as / (3600.0 * s.battery.capacity_ah);
+  d.soc = vehicle::soc_after_charge(s.battery, d.soc, charge_as);
   d.pos = position_at(d, t);
   d.t_mark = t;
 }
@@ -113,9 +113,10 @@ double Runtime::leave_from(const Drone& d, const Vec3& place, double airborne_s,
   const double back_s = Leg(place, home, d.spec.kinematics).duration_s() +
                         d.layer_m / d.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
   const double cruise_w = cruise_power_w(d.spec, settings_.wind_m_s);
-  const double need = d.spec.battery.reserve_soc +
-                      energy::battery_current_a(d.spec.battery, cruise_w) *
-                          (back_s + extra_flight_s) / (3600.0 * d.spec.battery.capacity_ah);
+  const double need =
+      d.spec.battery.reserve_soc +
+      vehicle::soc_of_charge(d.spec.battery, energy::battery_current_a(d.spec.battery, cruise_w) *
+                                                 (back_s + extra_flight_s));
   return std::min(airborne_s + d.spec.max_flight_time_s - back_s,
                   soc_s + energy::seconds_to_soc(d.spec.battery, d.soc, need,
                                                  hover_power_w(d.spec, settings_.wind_m_s)));

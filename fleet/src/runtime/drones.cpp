@@ -280,8 +280,9 @@ void Runtime::land_home(Drone& d, double t) {
   d.leg.reset();
   const double down = d.pos.z / d.spec.kinematics.descent_m_s;
   d.energy_j += descent_power_w(d.spec) * down;
-  d.soc -= energy::battery_current_a(d.spec.battery, descent_power_w(d.spec)) * down /
-           (3600.0 * d.spec.battery.capacity_ah);
+  d.soc = vehicle::soc_after_charge(
+      d.spec.battery, d.soc,
+      energy::battery_current_a(d.spec.battery, descent_power_w(d.spec)) * down);
   d.flight_s += down;
   d.pos.z = 0;
   d.charge_end = t + d.spec.recharge_s;

@@ -178,12 +178,10 @@ inline double cruise_power_w(const DroneSpec& s, const Vec3& wind) {
          s.power.payload_w;
 }
 inline double climb_power_w(const DroneSpec& s) {
-  return (s.power.climb_w > 0 ? s.power.climb_w : 1.3 * s.power.mechanical.cruise_w) +
-         s.power.payload_w;
+  return energy::climbing_power_w(s.power) + s.power.payload_w;
 }
 inline double descent_power_w(const DroneSpec& s) {
-  return (s.power.descent_w > 0 ? s.power.descent_w : 0.8 * s.power.mechanical.cruise_w) +
-         s.power.payload_w;
+  return energy::descending_power_w(s.power) + s.power.payload_w;
 }
 
 class Runtime final : public detail::Core {

@@ -28,7 +28,7 @@ struct MixerMatrices {
 
 /// A and A⁺ of `layout`, or nullopt when the layout is invalid (count outside [4, 8], a coefficient
 /// not positive) or A has rank < 4 (the frame cannot control all four axes: §17.5 refuses it).
-std::optional<MixerMatrices> mixer_matrices(const RotorLayout& layout);
+std::optional<MixerMatrices> mixer_matrices(const MixerRotors& layout);
 
 /// What one mix produced.
 struct MixerOutput {
@@ -49,9 +49,9 @@ struct MixerOutput {
 /// 4. the pulse u_i = f_i / f_max (thrust_linear) or √(f_i / f_max) (linear) is quantised to the
 ///    nearest level.
 /// So a request within reach is produced exactly (A f = w), and one beyond it loses yaw first.
-MixerOutput mix(const RotorLayout& layout, const MixerMatrices& m, const Wrench& request);
+MixerOutput mix(const MixerRotors& layout, const MixerMatrices& m, const Wrench& request);
 
 /// The nearest quantised pulse for normalised command u (clamped to [0, 1]), µs.
-double quantise_pwm_us(const RotorLayout& layout, double u);
+double quantise_pwm_us(const MixerRotors& layout, double u);
 
 }  // namespace swath::control

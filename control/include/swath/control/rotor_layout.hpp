@@ -33,7 +33,7 @@ enum class EscMapping { thrust_linear, linear };
 
 /// Everything the mixer needs. Valid when 4 ≤ count ≤ 8, coefficients > 0, pwm_min_us <
 /// pwm_max_us, 0 < resolution_us ≤ pwm_max_us − pwm_min_us, and the effectiveness has rank 4.
-struct RotorLayout {
+struct MixerRotors {
   std::array<Rotor, kMaxRotors> rotors{};
   std::size_t count = 0;                ///< rotors in use, [4, 8]
   double thrust_coeff_n_s2 = 8.0e-6;    ///< k_T, N/(rad/s)², > 0 (§17.A propeller)
@@ -55,10 +55,10 @@ enum class FrameKind { quad_x, hexa_x, y6 };
 /// quad_x and hexa_x arms every 90° / 60° from 45° / 30° left of forward, spins alternating from
 /// `first_ccw`; y6 three arms at 60°, 180°, 300°, each an upper rotor of `first_ccw` and a lower
 /// one of the other spin at `coaxial_lower_efficiency`, upper and lower alternating.
-RotorLayout standard_layout(FrameKind kind, double arm_m, bool first_ccw = true,
+MixerRotors standard_layout(FrameKind kind, double arm_m, bool first_ccw = true,
                             double coaxial_lower_efficiency = 0.8);
 
 /// The layout of the plant's airframe and ESCs, as the controller believes them to be.
-RotorLayout layout_of(const vehicle::Airframe& airframe, const vehicle::EscSettings& esc);
+MixerRotors layout_of(const vehicle::Airframe& airframe, const vehicle::EscSettings& esc);
 
 }  // namespace swath::control

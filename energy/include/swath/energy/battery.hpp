@@ -1,34 +1,18 @@
 #pragma once
-// Battery state of charge from the power drawn, paper 004 eq. 12.
+// Battery state of charge from the power drawn, paper 004 eq. 12: the battery of what flies,
+// vehicle/battery.hpp, named in energy as before.
+
+#include "swath/vehicle/battery.hpp"
 
 namespace swath::energy {
 
-/// A battery. Defaults: Seewald's simulator (paper 004, docs/swath-energy.md).
-struct Battery {
-  double voltage_v = 14.8;             ///< internal (open-circuit) voltage V, > 0
-  double stabilised_voltage_v = 12.0;  ///< stabilised (regulated) voltage V~, > 0
-  double resistance_ohm = 0.0012;      ///< internal resistance R_r, > 0
-  double capacity_ah = 5.0;            ///< nominal capacity Q_c, ampere-hours, > 0
-  double initial_soc = 1.0;            ///< state of charge at take-off, (0, 1]
-  double reserve_soc = 0.2;            ///< land with at least this, [0, initial_soc)
-};
-
-/// Current drawn for `power_w` (eq. 12 without the capacity):
-/// I = (V - sqrt(V^2 - 4 R V~ P / V)) / (2 R), amperes. NaN when P exceeds max_power_w().
-double battery_current_a(const Battery& b, double power_w);
-
-/// The largest power eq. 12 can deliver (its square root's argument is zero): V^3 / (4 R V~), W.
-double max_power_w(const Battery& b);
-
-/// State of charge after drawing `power_w` for `seconds`: SoC - I t / (3600 Q_c). May go below 0
-/// (the caller decides what an empty battery means); NaN beyond max_power_w().
-double soc_after(const Battery& b, double soc, double power_w, double seconds);
-
-/// Seconds until the state of charge falls from `soc` to `target_soc` at constant `power_w`
-/// (infinity when power_w <= 0, 0 when soc <= target_soc).
-double seconds_to_soc(const Battery& b, double soc, double target_soc, double power_w);
-
-/// Energy the battery's charge between `soc` and `target_soc` delivers at constant `power_w`, J.
-double usable_energy_j(const Battery& b, double soc, double target_soc, double power_w);
+using vehicle::Battery;
+using vehicle::battery_current_a;
+using vehicle::max_power_w;
+using vehicle::seconds_to_soc;
+using vehicle::soc_after;
+using vehicle::soc_after_charge;
+using vehicle::soc_of_charge;
+using vehicle::usable_energy_j;
 
 }  // namespace swath::energy

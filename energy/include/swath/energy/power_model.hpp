@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "swath/vehicle/random.hpp"
+
 namespace swath::energy {
 
 /// Level-flight and turning power of the airframe. Not a physics truth: a smooth, plausible model
@@ -46,20 +48,28 @@ struct PowerProfile {
   std::uint64_t seed = 1;                ///< noise seed: same seed, same signal
 };
 
+/// Power while climbing and while descending, without the payload, W: climb_w and descent_w, or
+/// when not given 1.3 and 0.8 x the cruise power (defined here only: swath-energy budget and
+/// swath-fleet's drones use these).
+inline constexpr double kClimbPowerFactor = 1.3;
+inline constexpr double kDescentPowerFactor = 0.8;
+double climbing_power_w(const PowerProfile& p);
+double descending_power_w(const PowerProfile& p);
+
 /// Sum of g_j(c_j) over the computations, W. `parameters.size()` must equal curves' count.
 double computations_power_w(const std::vector<PowerCurve>& curves,
                             const std::vector<double>& parameters);
 
-/// Gaussian noise from a fixed seed, the same numbers on every platform (SplitMix64 +
-/// Box-Muller; std::normal_distribution is implementation-defined).
+/// Gaussian noise from a fixed seed, the same numbers on every platform (vehicle::SplitMix64,
+/// swath's one generator, + Box-Muller; std::normal_distribution is implementation-defined).
 class GaussianNoise {
  public:
-  GaussianNoise(std::uint64_t seed, double sigma) : state_(seed), sigma_(sigma) {}
+  GaussianNoise(std::uint64_t seed, double sigma) : bits_(seed), sigma_(sigma) {}
   double next();
 
  private:
   double uniform();
-  std::uint64_t state_;
+  vehicle::SplitMix64 bits_;
   double sigma_;
   double spare_ = 0.0;
   bool has_spare_ = false;

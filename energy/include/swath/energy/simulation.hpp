@@ -14,13 +14,13 @@ namespace swath::energy {
 
 /// How a simulation ended. A stalled plan (the field vanishes, or the drone stops approaching its
 /// triggering point) is bad input and throws base::InputError instead.
-enum class FlightStatus {
+enum class SimulationEnd {
   completed,      ///< the last triggering point was reached
   battery_empty,  ///< the state of charge reached 0 first
   time_limit,     ///< max_time_s passed first
 };
 
-const char* to_string(FlightStatus status);
+const char* to_string(SimulationEnd status);
 
 struct FlightSample {
   double t_s = 0.0;
@@ -58,7 +58,7 @@ inline constexpr std::size_t kMaxKeptSamples = 20'000;
 using SampleSink = std::function<void(const FlightSample&)>;
 
 struct SimulationResult {
-  FlightStatus status = FlightStatus::completed;
+  SimulationEnd status = SimulationEnd::completed;
   /// Every output interval and the last step; beyond kMaxKeptSamples evenly decimated (every 2nd,
   /// 4th, ... sample; the last one always kept). The prediction errors below are over these.
   std::vector<FlightSample> samples;

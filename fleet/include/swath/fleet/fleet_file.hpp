@@ -1,7 +1,7 @@
 #pragma once
-// swath-fleet's fleet file (docs/formats.md): swath plan's fleet YAML — home, drones with name,
-// battery_level, endurance_s, speed_m_s, climb/descent speeds, their own home — read as simulated
-// drones, plus optional per drone:
+// swath-fleet's fleet file (docs/formats.md), read by vehicle::parse_fleet_file: swath plan's fleet
+// YAML — home, drones with name, battery_level, endurance_s, speed_m_s, climb/descent speeds, their
+// own home — read as simulated drones, plus optional per drone:
 //   profile: quad.yaml          # a swath-energy drone profile (power and battery), relative to
 //                               # the fleet file; default: swath-energy's defaults
 //   max_flight_time_s: 60       # must be home by then (else endurance_s × battery_level)

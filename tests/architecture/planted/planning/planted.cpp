@@ -49,4 +49,14 @@ int too_long() {
   return n;
 }
 
+// Planted: a second fleet-file reader. One key in a JSON summary is not one.
+double flight_time_s(const YAML::Node& drone) {
+  return drone["endurance_s"].as<double>() * drone["battery_level"].as<double>();
+}
+
+// Planted: a second state-of-charge integrator.
+double drained(double soc, double current_a, double dt_s, const Pack& pack) {
+  return soc - current_a * dt_s / (3600.0 * pack.capacity_ah);
+}
+
 }  // namespace swath::planning

@@ -1,9 +1,9 @@
-#include "swath/energy/battery.hpp"
+#include "swath/vehicle/battery.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace swath::energy {
+namespace swath::vehicle {
 
 double battery_current_a(const Battery& b, double power_w) {
   const double v = b.voltage_v;
@@ -18,8 +18,16 @@ double max_power_w(const Battery& b) {
          (4.0 * b.resistance_ohm * b.stabilised_voltage_v);
 }
 
+double soc_of_charge(const Battery& b, double charge_as) {
+  return charge_as / (3600.0 * b.capacity_ah);
+}
+
+double soc_after_charge(const Battery& b, double soc, double charge_as) {
+  return soc - soc_of_charge(b, charge_as);
+}
+
 double soc_after(const Battery& b, double soc, double power_w, double seconds) {
-  return soc - battery_current_a(b, power_w) * seconds / (3600.0 * b.capacity_ah);
+  return soc_after_charge(b, soc, battery_current_a(b, power_w) * seconds);
 }
 
 double seconds_to_soc(const Battery& b, double soc, double target_soc, double power_w) {
@@ -33,4 +41,4 @@ double usable_energy_j(const Battery& b, double soc, double target_soc, double p
   return power_w * seconds_to_soc(b, soc, target_soc, power_w);
 }
 
-}  // namespace swath::energy
+}  // namespace swath::vehicle

@@ -1,0 +1,255 @@
+#include "swath/vehicle/fleet_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+
+#include "swath/base/input_error.hpp"
+#include "swath/base/utf8.hpp"
+#include "swath/base/yaml_input.hpp"
+#include "swath/base/yaml_map.hpp"
+
+namespace swath::vehicle {
+namespace {
+
+using base::InputError;
+using base::YamlMap;
+
+std::string line_of(const YAML::Node& n) {
+  return "line " + std::to_string(n.Mark().line + 1);
+}
+
+double number(const YAML::Node& n, const std::string& where, const std::string& key) {
+  try {
+    const double v = n.as<double>();
+    if (!std::isfinite(v)) throw YAML::Exception(n.Mark(), "not finite");
+    return v;
+  } catch (const YAML::Exception&) {
+    throw InputError(where + ", " + line_of(n) + ": " + key + " must be a number");
+  }
+}
+
+geometry::GeoPoint point(const YAML::Node& n, const std::string& where) {
+  if (!n.IsMap() || !n["lat"] || !n["lon"])
+    throw InputError(where + ", " + line_of(n) + ": a home is {lat: DEG, lon: DEG[, alt: M]}");
+  for (const auto& kv : n)
+    if (kv.first.Scalar() != "lat" && kv.first.Scalar() != "lon" && kv.first.Scalar() != "alt")
+      throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + kv.first.Scalar() +
+                       "' in a home (lat, lon, alt)");
+  geometry::GeoPoint p{number(n["lat"], where, "lat"), number(n["lon"], where, "lon"),
+                       n["alt"] ? number(n["alt"], where, "alt") : 0.0};
+  if (std::abs(p.lat_deg) > 90 || std::abs(p.lon_deg) > 180)
+    throw InputError(where + ", " + line_of(n) +
+                     ": home latitude must be within ±90 and longitude within ±180 degrees");
+  return p;
+}
+
+// Every key a drone of the format may have; home_m only where drones are flown (a survey needs
+// a home in latitude/longitude: planning from the fleet's home instead would be another plan).
+void check_drone_keys(const YAML::Node& d, const std::string& where, const FleetFileRules& rules) {
+  static const std::set<std::string> known{"name",
+                                           "capability",
+                                           "battery_level",
+                                           "endurance_s",
+                                           "speed_m_s",
+                                           "home",
+                                           "home_m",
+                                           "climb_speed_m_s",
+                                           "descent_speed_m_s",
+                                           "max_airspeed_m_s",
+                                           "mavlink",
+                                           "recharge_s",
+                                           "profile",
+                                           "max_flight_time_s",
+                                           "approach_speed_m_s",
+                                           "accel_m_s2",
+                                           "approach_within_m"};
+  base::check_plain_unique_keys(d, where);
+  for (const auto& kv : d) {
+    const std::string key = kv.first.Scalar();
+    if (key == "home_m" && !rules.flights)
+      throw InputError(where + ", " + line_of(kv.first) +
+                       ": home_m (metres from swath-fleet's origin) cannot place a survey; give "
+                       "home: {lat, lon}");
+    if (!known.count(key))
+      throw InputError(where + ", " + line_of(kv.first) + ": unknown key '" + key + "'");
+  }
+}
+
+// battery_level, endurance_s and speed_m_s: each checked when given; a plan needs all three
+// unless the drone gives a capability (then they are not used).
+void read_range(const YAML::Node& d, const std::string& where, const FleetFileRules& rules,
+                Drone& drone) {
+  const std::string named = where + " (" + drone.name + "): ";
+  auto value = [&](const char* key, const base::Range& range) -> std::optional<double> {
+    if (!d[key]) return std::nullopt;
+    const double v = number(d[key], where, key);
+    base::check_range(v, range, named + key);
+    return v;
+  };
+  const auto level = value("battery_level", limits::kBatteryLevel);
+  const auto endurance = value("endurance_s", limits::kEndurance_s);
+  const auto speed = value("speed_m_s", limits::kSpeed_m_s);
+  if (rules.flights && level && *level == 0)
+    throw InputError(named + "battery_level 0: a drone flown needs some charge (> 0)");
+  if (!rules.flights && drone.capability) return;
+  if (!rules.flights && !(level && endurance && speed))
+    throw InputError(named + "give a capability, or battery_level, endurance_s and speed_m_s");
+  drone.battery_level = level;
+  drone.endurance_s = endurance;
+  drone.speed_m_s = speed;
+}
+
+void read_capability(const YAML::Node& d, const std::string& where, Drone& drone) {
+  if (!d["capability"]) return;
+  drone.capability = number(d["capability"], where, "capability");
+  if (!(*drone.capability > 0 && *drone.capability <= 1))
+    throw InputError(where + " (" + drone.name + "): capability " +
+                     std::to_string(*drone.capability) + " is outside (0, 1]");
+}
+
+void read_speeds(const YAML::Node& d, const std::string& where, const FleetFileRules& rules,
+                 FleetFileDrone& out) {
+  Drone& drone = out.drone;
+  drone.climb_speed_m_s = rules.climb_speed_m_s;
+  drone.descent_speed_m_s = rules.descent_speed_m_s;
+  const std::string named = where + " (" + drone.name + "): ";
+  auto speed = [&](const char* key, double& value, const base::Range& range) {
+    if (!d[key]) return false;
+    value = number(d[key], where, key);
+    base::check_range(value, range, named + key);
+    return true;
+  };
+  out.climb_given = speed("climb_speed_m_s", drone.climb_speed_m_s, limits::kVerticalSpeed_m_s);
+  out.descent_given =
+      speed("descent_speed_m_s", drone.descent_speed_m_s, limits::kVerticalSpeed_m_s);
+  speed("max_airspeed_m_s", drone.max_airspeed_m_s, limits::kSpeed_m_s);
+}
+
+std::optional<double> optional_number(const YamlMap& m, const char* key, double lo, double hi,
+                                      bool open_lo = false) {
+  if (!m.has(key)) return std::nullopt;
+  return m.number(key, 0, lo, hi, open_lo);
+}
+
+// `mavlink: {url, sysid}`: its shape here, its URL grammar in swath-fleet.
+FleetFileLink read_link(const YamlMap& drone) {
+  if (!drone.node()["mavlink"].IsMap())
+    throw InputError(drone.where("mavlink") +
+                     ": a mapping {url: udp:HOST:PORT or tcp:HOST:PORT, sysid: 1..255}");
+  const YamlMap m = drone.map("mavlink");
+  m.allow({"url", "sysid"});
+  if (!m.has("url"))
+    throw InputError(drone.where("mavlink") + ": no url (udp:HOST:PORT or tcp:HOST:PORT)");
+  FleetFileLink link;
+  link.url = m.text("url", "");
+  if (m.has("sysid")) link.sysid = m.number("sysid", 1, 1, 255);
+  link.where = drone.where("mavlink");
+  link.url_where = m.where("url");
+  link.sysid_where = m.where("sysid");
+  return link;
+}
+
+// The keys only flights read (the planner accepts them and plans without them).
+void read_flight_keys(const YamlMap& m, FleetFileDrone& out) {
+  if (m.has("profile")) out.profile = m.text("profile", "");
+  out.max_flight_time_s = optional_number(m, "max_flight_time_s", 1, 604800, true);
+  out.approach_speed_m_s = optional_number(m, "approach_speed_m_s", 0.1, 100);
+  out.approach_within_m = optional_number(m, "approach_within_m", 0, 1000);
+  out.accel_m_s2 = optional_number(m, "accel_m_s2", 0, 50);
+  out.recharge_s = optional_number(m, "recharge_s", 0, 86400);
+  if (m.has("home_m")) {
+    const YamlMap h = m.map("home_m");
+    h.allow({"x_m", "y_m"});
+    out.home_m = geometry::Point2{h.number("x_m", 0, -1e5, 1e5), h.number("y_m", 0, -1e5, 1e5)};
+  }
+  if (m.has("mavlink")) out.mavlink = read_link(m);
+}
+
+// swath-fleet flies what has a speed, a battery or a flight time; a capability alone (a share
+// of a survey) says nothing it could fly.
+void check_flyable(const YamlMap& m, const Drone& drone) {
+  const bool physical = m.has("battery_level") || m.has("endurance_s") || m.has("speed_m_s") ||
+                        m.has("profile") || m.has("max_flight_time_s");
+  if (m.has("capability") && !physical)
+    throw InputError(m.where("capability") + ": " + drone.name +
+                     " has only a capability; swath-fleet flies drones with a speed_m_s, "
+                     "battery_level and endurance_s (or a profile)");
+}
+
+FleetFileDrone read_drone(const YAML::Node& d, std::size_t i, const std::string& source,
+                          const FleetFileRules& rules) {
+  const std::string where = source + ": drone " + std::to_string(i + 1);
+  if (!d.IsMap()) throw InputError(where + ", " + line_of(d) + ": a drone is a mapping");
+  check_drone_keys(d, where, rules);
+  const YamlMap m(d, source, "drones[" + std::to_string(i) + "]");
+  FleetFileDrone out;
+  Drone& drone = out.drone;
+  // Names reach JSON, KML and the terminal: keep them valid UTF-8 (a stray Latin-1 byte
+  // becomes U+FFFD instead of aborting the plan).
+  drone.name =
+      d["name"] ? base::valid_utf8(d["name"].as<std::string>()) : "drone-" + std::to_string(i + 1);
+  read_capability(d, where, drone);
+  if (rules.flights) check_flyable(m, drone);
+  read_range(d, where, rules, drone);
+  if (d["home"]) drone.home = point(d["home"], where);
+  read_speeds(d, where, rules, out);
+  read_flight_keys(m, out);
+  out.where_home = m.where(m.has("home") ? "home" : "name");
+  return out;
+}
+
+void check_names_once(const YAML::Node& drones, const std::vector<FleetFileDrone>& read,
+                      const std::string& source) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < read.size(); ++i)
+    if (!names.insert(read[i].drone.name).second)
+      throw InputError(
+          YamlMap(drones[i], source, "drones[" + std::to_string(i) + "]").where("name") +
+          ": the name \"" + read[i].drone.name + "\" is given twice");
+}
+
+// A plan shares the work by capability or by range, one way for the whole fleet.
+void check_one_kind(const std::vector<FleetFileDrone>& drones, const std::string& source) {
+  bool any_capability = false, any_range = false;
+  for (const FleetFileDrone& d : drones) {
+    any_capability = any_capability || d.drone.capability.has_value();
+    any_range = any_range || !d.drone.capability.has_value();
+  }
+  if (any_capability && any_range)
+    throw InputError(source +
+                     ": give every drone a capability, or every drone battery_level, endurance_s "
+                     "and speed_m_s, not a mix");
+}
+
+FleetFile fleet_from_yaml(const std::string& text, const std::string& source,
+                          const FleetFileRules& rules) {
+  const YAML::Node root = base::load_yaml(text, source);
+  if (!root.IsMap()) throw InputError(source + ": a fleet file is a YAML mapping (home, drones)");
+  const YamlMap top(root, source, "");
+  top.allow({"home", "drones", "ceiling_m", "separation_m", "fence"});  // fence: swath-fleet's
+  if ((!rules.flights && !root["home"]) || !root["drones"])
+    throw InputError(source + ": a fleet file needs 'home' and 'drones'");
+  FleetFile fleet;
+  if (root["home"]) fleet.home = point(root["home"], source);
+  if (top.has("separation_m")) fleet.separation_m = top.number("separation_m", 0, 0, 1000, true);
+  const YAML::Node drones = root["drones"];
+  if (!drones.IsSequence() || drones.size() == 0)
+    throw InputError(source + ": 'drones' must list at least one drone");
+  base::check_range(static_cast<double>(drones.size()), limits::kDrones, source + ": the fleet of");
+  for (std::size_t i = 0; i < drones.size(); ++i)
+    fleet.drones.push_back(read_drone(drones[i], i, source, rules));
+  check_names_once(drones, fleet.drones, source);
+  if (!rules.flights) check_one_kind(fleet.drones, source);
+  return fleet;
+}
+
+}  // namespace
+
+FleetFile parse_fleet_file(const std::string& text, const std::string& source,
+                           const FleetFileRules& rules) {
+  return base::yaml_guard(source, [&] { return fleet_from_yaml(text, source, rules); });
+}
+
+}  // namespace swath::vehicle
