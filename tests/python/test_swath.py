@@ -238,3 +238,22 @@ def test_a_moved_tree_draws_with_its_own_module(prefix, tmp_path):
     mapped = {line.split()[-1] for line in run.stdout.splitlines() if line.strip()}
     assert mapped == {module}
     assert (tmp_path / "py/coverage.png").read_bytes() == (tmp_path / "cli/coverage.png").read_bytes()
+
+
+def test_swath_share_dir_overrides_the_installed_data(prefix, tmp_path):
+    """SWATH_SHARE_DIR wins over the installed tree, for the program and for the module."""
+    share = tmp_path / "share"
+    shutil.copytree(prefix / "share/swath", share)
+    camera = (share / "cameras/sony-ilce-qx1.yaml").read_text()
+    (share / "cameras/override-test-camera.yaml").write_text(
+        camera.replace("Sony ILCE-QX1", "Override Test Camera"))
+    env = {**os.environ, "SWATH_SHARE_DIR": str(share)}
+    listed = subprocess.run([str(prefix / "bin/swath"), "cameras"], capture_output=True,
+                            text=True, env=env)
+    assert "override-test-camera" in listed.stdout
+    script = ("import swath, sys; print(swath.plan('share/fields/meadow.geojson', "
+              "camera='override-test-camera', altitude_m=60, out=sys.argv[1]).report)")
+    run = subprocess.run([sys.executable, "-c", script, str(tmp_path / "out")],
+                         capture_output=True, text=True, env=env)
+    assert run.returncode == 0, run.stderr
+    assert "Override Test Camera" in run.stdout
