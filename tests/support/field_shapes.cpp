@@ -53,18 +53,22 @@ double boundary_distance(Point2 p, const Ring& ring) {
 }
 
 // The ring as a GPS track of it looks: every edge resampled about every `spacing_m` metres (its
-// corners kept, as a walker turns there) and every vertex moved by up to `jitter_m` across and
-// along the edge. May cross itself where the ring is sharp: the caller checks.
+// corners kept, as a walker turns there) and moved off the edge by an error of `jitter_m` (standard
+// deviation) that drifts slowly from one vertex to the next, as a receiver's does (an AR(1) walk),
+// so that neighbouring vertices stay nearly collinear. May cross itself where the ring is sharp:
+// the caller checks.
 Ring gps_trace(Rng& rng, const Ring& ring, double spacing_m, double jitter_m) {
+  const double keep = 0.95;  // of the error from one vertex to the next
+  std::normal_distribution<double> innovation(0, jitter_m * std::sqrt(1 - keep * keep));
+  Point2 error{0, 0};
   Ring out;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
     const double length = geometry::distance(a, b);
     const int steps = std::max(1, int(std::lround(length / spacing_m)));
-    const Point2 u = (b - a) * (1 / length), n{-u.y, u.x};
     for (int k = 0; k < steps; ++k) {
-      const double along = length * k / steps + (k ? uniform(rng, -jitter_m, jitter_m) : 0);
-      out.push_back(a + u * along + n * uniform(rng, -jitter_m, jitter_m));
+      error = error * keep + Point2{innovation(rng), innovation(rng)};
+      out.push_back(a + (b - a) * (double(k) / steps) + error);
     }
   }
   return out;
@@ -158,8 +162,8 @@ Polygon traced_outline(Rng& rng) {
   const double across_m = 300 * std::pow(10.0, uniform(rng, 0, 1));  // 0.3-3 km, log-uniform
   const Ring coarse = coarse_outline(rng, across_m);
   const double vertices = uniform(rng, 150, 900);
-  const double spacing_m = std::max(2.0, geometry::perimeter(coarse) / vertices);
-  double jitter_m = std::min(uniform(rng, 0.2, 1.2), 0.25 * spacing_m);
+  const double spacing_m = std::clamp(geometry::perimeter(coarse) / vertices, 2.0, 12.0);
+  double jitter_m = std::min(uniform(rng, 0.2, 1.2), 0.15 * spacing_m);
   const bool with_holes = uniform(rng, 0, 1) < 0.4;
   for (int attempt = 1;; ++attempt) {
     Polygon p{gps_trace(rng, coarse, spacing_m, jitter_m), {}};
