@@ -489,9 +489,9 @@ struct VisibilityRouter::NodeTables {
   std::unique_ptr<std::atomic<Fan*>[]> fans;      ///< per node, null until made
 };
 
-bool VisibilityRouter::nodes_hidden(std::size_t i, std::size_t j) const {
+signed char VisibilityRouter::nodes_known(std::size_t i, std::size_t j) const {
   const NodeTables::Chunk* known = node_tables_->find(i, j);
-  return known && known->load(std::memory_order_relaxed) == 0;
+  return known ? known->load(std::memory_order_relaxed) : kUnknown;
 }
 
 bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
@@ -564,6 +564,26 @@ struct SearchItem {
   auto operator<=>(const SearchItem&) const = default;
 };
 
+// Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
+// settles the node (if none before it has), so a candidate after it is never used: path() does
+// not queue it (most of a long search's queue, once the tables know the corners near its path).
+struct Settlers {
+  std::vector<SearchItem> item;
+  std::vector<char> has;
+  void reset(std::size_t n) {
+    item.resize(n);
+    has.assign(n, 0);
+  }
+  /// Whether `c` comes after its node's settler: the node is settled before `c` is taken.
+  bool after(const SearchItem& c) const { return has[c.node] && item[c.node] < c; }
+  /// `c`, whose leg is known to be seen, as its node's settler unless it comes after it.
+  void offer(const SearchItem& c) {
+    if (after(c)) return;
+    item[c.node] = c;
+    has[c.node] = 1;
+  }
+};
+
 // The path a, the nodes back from `last` along `previous` (nodes.size(): straight from a), b.
 std::vector<Point2> route_back(Point2 a, Point2 b, std::size_t last,
                                const std::vector<std::size_t>& previous,
@@ -620,6 +640,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
   thread_local std::vector<char> is_near;      // per node: in `near`
   thread_local std::vector<SearchItem> queue;  // a min-heap (std::push_heap with greater)
+  thread_local Settlers settlers;
   h.resize(n);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
   // queued. A search that ends without reaching b under the limit is run again with a higher
@@ -637,6 +658,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     previous.assign(n, n);
     settled.assign(n, 0);
     is_near.assign(n, 0);
+    settlers.reset(n);
     queue.clear();
     near.clear();
     const Point2 middle = (a + b) * 0.5;
@@ -662,6 +684,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       near.push_back(u);
       is_near[u] = 1;
       if (from_a.seen[u] != 0) queue.push_back({f, 0, d, 0, 0.0, n, u});  // not known hidden
+      if (from_a.seen[u] == 1) settlers.offer(queue.back());  // the only one from a for u
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(near.begin(), near.end());
@@ -700,11 +723,15 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
         push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
       const auto onward_to = [&](std::size_t u) {
-        if (!is_near[u] || settled[u] || nodes_hidden(std::min(u, v), std::max(u, v)) ||
-            !taut(in, in_from, v, nodes_[u]))
-          return;
+        if (!is_near[u] || settled[u]) return;
+        const signed char seen = nodes_known(std::min(u, v), std::max(u, v));
+        if (seen == 0 || !taut(in, in_from, v, nodes_[u])) return;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
-        push({through + h[u], 0, through, 1, item.g, v, u});
+        const SearchItem next{through + h[u], 0, through, 1, item.g, v, u};
+        // (One above the limit is counted in `beyond` by push(), as before.)
+        if (next.f <= limit && settlers.after(next)) return;
+        if (next.f <= limit && seen == 1) settlers.offer(next);
+        push(next);
       };
       if (prune_)
         onward(v, in, box_lo, box_hi, onward_to);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "swath/geometry/classification.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::test {
@@ -51,7 +52,126 @@ double boundary_distance(Point2 p, const Ring& ring) {
   return best;
 }
 
+// The ring as a GPS track of it looks: every edge resampled about every `spacing_m` metres (its
+// corners kept, as a walker turns there) and moved off the edge by an error of `jitter_m` (standard
+// deviation) that drifts slowly from one vertex to the next, as a receiver's does (an AR(1) walk),
+// so that neighbouring vertices stay nearly collinear. May cross itself where the ring is sharp:
+// the caller checks.
+Ring gps_trace(Rng& rng, const Ring& ring, double spacing_m, double jitter_m) {
+  const double keep = 0.95;  // of the error from one vertex to the next
+  std::normal_distribution<double> innovation(0, jitter_m * std::sqrt(1 - keep * keep));
+  Point2 error{0, 0};
+  Ring out;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    const double length = geometry::distance(a, b);
+    const int steps = std::max(1, int(std::lround(length / spacing_m)));
+    for (int k = 0; k < steps; ++k) {
+      error = error * keep + Point2{innovation(rng), innovation(rng)};
+      out.push_back(a + (b - a) * (double(k) / steps) + error);
+    }
+  }
+  return out;
+}
+
+// A narrow arm (a strip `width_m` wide, `reach_m` long, slightly slanted) jutting out of the
+// middle of edge `i` of a counter-clockwise ring.
+Ring with_arm(const Ring& ring, std::size_t i, double width_m, double reach_m, double lean_m) {
+  const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+  const double length = geometry::distance(a, b);
+  const Point2 u = (b - a) * (1 / length), out{u.y, -u.x};
+  const double t = (length - width_m) / 2;
+  Ring r(ring.begin(), ring.begin() + std::ptrdiff_t(i) + 1);
+  r.push_back(a + u * t);
+  r.push_back(a + u * (t + lean_m) + out * reach_m);
+  r.push_back(a + u * (t + lean_m + width_m) + out * reach_m);
+  r.push_back(a + u * (t + width_m));
+  r.insert(r.end(), ring.begin() + std::ptrdiff_t(i) + 1, ring.end());
+  return r;
+}
+
+bool simple(const Polygon& p) {
+  return !geometry::find_crossing(p).has_value();
+}
+
+// The coarse outline of a traced field: a concave random walk scaled to `across_m`, centred, with
+// 0-2 narrow arms (an arm that would cross the outline is left out).
+Ring coarse_outline(Rng& rng, double across_m) {
+  Ring ring = random_walk_outline(rng, std::size_t(uniform_int(rng, 12, 40))).outer;
+  double x0 = ring[0].x, x1 = x0, y0 = ring[0].y, y1 = y0;
+  for (const Point2& p : ring) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  const double scale = across_m / std::max(x1 - x0, y1 - y0);
+  for (Point2& p : ring) p = p * scale;
+  ring = centred(ring);
+  for (int arms = uniform_int(rng, 0, 2); arms > 0; --arms) {
+    const std::size_t i = std::size_t(uniform_int(rng, 0, int(ring.size()) - 1));
+    const double width = uniform(rng, 20, 70), reach = uniform(rng, 0.1, 0.35) * across_m;
+    if (geometry::distance(ring[i], ring[(i + 1) % ring.size()]) < width + 20) continue;
+    Ring armed = with_arm(ring, i, width, reach, uniform(rng, -0.3, 0.3) * reach);
+    if (simple({armed, {}})) ring = std::move(armed);
+  }
+  return ring;
+}
+
+// 1-4 traced holes (round ponds, rectangular buildings) at least 20 m from the outline and from
+// each other, clockwise.
+std::vector<Ring> traced_holes(Rng& rng, const Ring& outer, double spacing_m, double jitter_m) {
+  double x0 = outer[0].x, x1 = x0, y0 = outer[0].y, y1 = y0;
+  for (const Point2& p : outer) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  std::vector<Ring> holes;
+  std::vector<std::pair<Point2, double>> placed;  // centre, radius
+  const int wanted = uniform_int(rng, 1, 4);
+  for (int attempt = 0; attempt < 300 && int(placed.size()) < wanted; ++attempt) {
+    const bool pond = uniform_int(rng, 0, 1) == 0;
+    const double size = uniform(rng, 15, 60), radius = pond ? size : size * std::sqrt(2.0);
+    const Point2 c{uniform(rng, x0, x1), uniform(rng, y0, y1)};
+    if (geometry::locate_point(c, outer) != geometry::Containment::inside ||
+        boundary_distance(c, outer) < radius + 20)
+      continue;
+    bool apart = true;
+    for (const auto& [other, other_radius] : placed)
+      apart &= geometry::distance(c, other) >= radius + other_radius + 20;
+    if (!apart) continue;
+    Ring hole;
+    if (pond) {
+      const int n = std::max(12, int(2 * std::numbers::pi * size / spacing_m));
+      const double phase = uniform(rng, 0, 2 * std::numbers::pi);
+      for (int k = 0; k < n; ++k) {
+        const double t = phase + 2 * std::numbers::pi * k / n;
+        const double rr = size * (1 + 0.15 * std::sin(2 * t)) + uniform(rng, -jitter_m, jitter_m);
+        hole.push_back(c + Point2{rr * std::cos(t), rr * std::sin(t)});
+      }
+    } else {  // a building, drawn by its corners
+      const double a = size, b = size * uniform(rng, 0.4, 1.0), turn = uniform(rng, 0, 90);
+      hole = transformed({{-a, -b}, {a, -b}, {a, b}, {-a, b}}, turn, c.x, c.y);
+    }
+    std::reverse(hole.begin(), hole.end());
+    holes.push_back(hole);
+    placed.push_back({c, radius});
+  }
+  return holes;
+}
+
 }  // namespace
+
+Polygon traced_outline(Rng& rng) {
+  const double across_m = 300 * std::pow(10.0, uniform(rng, 0, 1));  // 0.3-3 km, log-uniform
+  const Ring coarse = coarse_outline(rng, across_m);
+  const double vertices = uniform(rng, 150, 900);
+  const double spacing_m = std::clamp(geometry::perimeter(coarse) / vertices, 2.0, 12.0);
+  double jitter_m = std::min(uniform(rng, 0.2, 1.2), 0.15 * spacing_m);
+  const bool with_holes = uniform(rng, 0, 1) < 0.4;
+  for (int attempt = 1;; ++attempt) {
+    Polygon p{gps_trace(rng, coarse, spacing_m, jitter_m), {}};
+    if (with_holes) p.holes = traced_holes(rng, p.outer, spacing_m, jitter_m);
+    if (simple(p)) return turned(rng, p);
+    if (attempt % 5 == 0) jitter_m /= 2;  // a sharp corner the jitter keeps folding
+  }
+}
 
 Polygon ragged_strip(Rng& rng) {
   const double length = uniform(rng, 250, 1400), width = uniform(rng, 60, 300);

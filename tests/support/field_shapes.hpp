@@ -35,6 +35,14 @@ geometry::Polygon field_with_holes(Rng& rng);
 /// about a centre (star-shaped, so simple), 200-500 m across, squashed by up to 2:1.
 geometry::Polygon random_walk_outline(Rng& rng, std::size_t n);
 
+/// A traced outline (issue 52's farm-scale corpus), as a boundary walked with a GPS or traced from
+/// imagery looks: 0.3-3 km across (log-uniform), a concave smoothed random walk of the radius with
+/// 0-2 narrow arms (20-70 m wide) jutting out, its edges resampled into 150-900 vertices (2-12 m
+/// apart, so more on the largest) with a slowly drifting error of 0.2-1.2 m (at most 0.15 of the
+/// spacing), so most vertices are nearly collinear and a few metres apart; about 40 % have 1-4
+/// holes (traced ponds and buildings). Simple (checked exactly).
+geometry::Polygon traced_outline(Rng& rng);
+
 struct CorpusShape {
   std::string family;  ///< "ragged-strip", "notched", "comb", "l-t", "holes", "walk"
   int index = 0;       ///< within its family
