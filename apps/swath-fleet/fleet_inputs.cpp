@@ -126,8 +126,10 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   for (const std::string& h : r.history) p.history_files.push_back(absolute(h));
   if (!r.fleet.empty()) {
     fleet_text = base::read_text_file(r.fleet, "fleet file", base::kMaxConfigFileBytes);
-    p.drones = fleet::parse_fleet_file(fleet_text, r.fleet, p.world->origin);
-    envelope = fleet::parse_fleet_envelope(fleet_text, r.fleet);
+    fleet::FleetFileContents contents =
+        fleet::parse_fleet_file_contents(fleet_text, r.fleet, p.world->origin);
+    p.drones = std::move(contents.drones);
+    envelope = std::move(contents.envelope);
   } else {
     const int n = r.drones > 0 ? r.drones : 1;
     p.default_drones = n;

@@ -105,15 +105,17 @@ vehicle::FleetFileRules fleet_file_rules() {
 
 }  // namespace
 
-std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
-                                        const geometry::GeoPoint& origin) {
+FleetFileContents parse_fleet_file_contents(const std::string& text, const std::string& source,
+                                            const geometry::GeoPoint& origin) {
   const vehicle::FleetFile file = vehicle::parse_fleet_file(text, source, fleet_file_rules());
+  FleetFileContents contents;
+  contents.envelope = envelope_of(file);
   const geometry::LocalFrame frame(origin);
   const geometry::GeoPoint fleet_home = file.home.value_or(origin);
   // separation_m + 1 m: the separation rule's margin (envelope.hpp).
-  const double spacing_m = file.separation_m.value_or(Envelope{}.separation_m) + 1;
+  const double spacing_m = contents.envelope.separation_m + 1;
   int shared_home = 0;
-  std::vector<DroneSpec> out;
+  std::vector<DroneSpec>& out = contents.drones;
   for (std::size_t i = 0; i < file.drones.size(); ++i) {
     const vehicle::FleetFileDrone& f = file.drones[i];
     DroneSpec d;
@@ -130,7 +132,12 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
     }
     out.push_back(std::move(d));
   }
-  return out;
+  return contents;
+}
+
+std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
+                                        const geometry::GeoPoint& origin) {
+  return parse_fleet_file_contents(text, source, origin).drones;
 }
 
 Weights parse_weights(const std::string& text, const std::string& source) {

@@ -54,17 +54,40 @@ struct FleetFileDrone {
   std::string where_home;
 };
 
+/// One fence polygon, its outer ring in WGS84 degrees (not closed: the last vertex is not the
+/// first again).
+struct FencePolygon {
+  std::vector<geometry::GeoPoint> ring_deg;
+  bool inclusion = true;  ///< false: an exclusion (no target inside)
+};
+
+/// The fleet file's `fence: {geojson: FILE, max_altitude_m: M}`, its GeoJSON read.
+struct FleetFileFence {
+  std::vector<FencePolygon> polygons;
+  std::optional<double> max_altitude_m;  ///< above home, m, (0, 10000]
+};
+
 struct FleetFile {
   std::optional<geometry::GeoPoint> home;  ///< the fleet's home
   /// swath-fleet's spacing of drones sharing the home (and its envelope's separation), m, > 0.
   std::optional<double> separation_m;
+  /// swath-fleet's envelope: the ceiling above home, m, (0, 10000], and the geofence. Read only
+  /// where drones are flown (FleetFileRules::flights); swath plan accepts and ignores them.
+  std::optional<double> ceiling_m;
+  std::optional<FleetFileFence> fence;
   std::vector<FleetFileDrone> drones;
 };
 
 /// Reads a fleet file. Throws base::InputError naming `source`, the drone, the line and the key:
 /// unknown keys, numbers out of range, bad coordinates, zero or more than 100 drones, names given
 /// twice, and what `rules` refuse.
+/// `fence` is read from its GeoJSON file, relative to `source`.
 FleetFile parse_fleet_file(const std::string& yaml_text, const std::string& source,
                            const FleetFileRules& rules);
+
+/// A fence file: GeoJSON Polygon or MultiPolygon (a geometry, Feature or FeatureCollection),
+/// lon/lat degrees; a feature's properties.fence is "inclusion" (default) or "exclusion".
+/// Throws base::InputError naming `source` and the feature.
+std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std::string& source);
 
 }  // namespace swath::vehicle
