@@ -70,7 +70,7 @@ void apply_flight_keys(const vehicle::FleetFileDrone& f, DroneSpec& d) {
   if (f.descent_given || !f.profile) k.descent_m_s = f.drone.descent_speed_m_s;
   k.approach_m_s = std::min(k.cruise_m_s, f.approach_speed_m_s.value_or(k.approach_m_s));
   k.approach_within_m = f.approach_within_m.value_or(k.approach_within_m);
-  k.accel_m_s2 = f.accel_m_s2.value_or(k.accel_m_s2);
+  k.accel_m_s2 = f.drone.accel_m_s2;  // the file's, else Kinematics' (fleet_file_rules)
   d.recharge_s = f.recharge_s.value_or(d.recharge_s);
   if (f.drone.endurance_s) d.max_flight_time_s = *f.drone.endurance_s * d.battery.initial_soc;
   d.max_flight_time_s = f.max_flight_time_s.value_or(d.max_flight_time_s);
@@ -99,6 +99,7 @@ vehicle::FleetFileRules fleet_file_rules() {
   vehicle::FleetFileRules rules;
   rules.climb_speed_m_s = Kinematics{}.climb_m_s;
   rules.descent_speed_m_s = Kinematics{}.descent_m_s;
+  rules.accel_m_s2 = Kinematics{}.accel_m_s2;
   rules.flights = true;
   return rules;
 }

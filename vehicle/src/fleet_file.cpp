@@ -119,6 +119,7 @@ void read_speeds(const YAML::Node& d, const std::string& where, const FleetFileR
   Drone& drone = out.drone;
   drone.climb_speed_m_s = rules.climb_speed_m_s;
   drone.descent_speed_m_s = rules.descent_speed_m_s;
+  drone.accel_m_s2 = rules.accel_m_s2;
   const std::string named = where + " (" + drone.name + "): ";
   auto speed = [&](const char* key, double& value, const base::Range& range) {
     if (!d[key]) return false;
@@ -157,12 +158,13 @@ FleetFileLink read_link(const YamlMap& drone) {
 }
 
 // The keys only flights read (the planner accepts them and plans without them).
-void read_flight_keys(const YamlMap& m, FleetFileDrone& out) {
+void read_flight_keys(const YamlMap& m, const FleetFileRules& rules, FleetFileDrone& out) {
   if (m.has("profile")) out.profile = m.text("profile", "");
   out.max_flight_time_s = optional_number(m, "max_flight_time_s", 1, 604800, true);
   out.approach_speed_m_s = optional_number(m, "approach_speed_m_s", 0.1, 100);
   out.approach_within_m = optional_number(m, "approach_within_m", 0, 1000);
-  out.accel_m_s2 = optional_number(m, "accel_m_s2", 0, 50);
+  const auto accel_m_s2 = optional_number(m, "accel_m_s2", 0, 50);
+  if (accel_m_s2 && rules.flights) out.drone.accel_m_s2 = *accel_m_s2;
   out.recharge_s = optional_number(m, "recharge_s", 0, 86400);
   if (m.has("home_m")) {
     const YamlMap h = m.map("home_m");
@@ -200,7 +202,7 @@ FleetFileDrone read_drone(const YAML::Node& d, std::size_t i, const std::string&
   read_range(d, where, rules, drone);
   if (d["home"]) drone.home = point(d["home"], where);
   read_speeds(d, where, rules, out);
-  read_flight_keys(m, out);
+  read_flight_keys(m, rules, out);
   out.where_home = m.where(m.has("home") ? "home" : "name");
   return out;
 }

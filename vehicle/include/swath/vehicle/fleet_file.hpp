@@ -19,6 +19,9 @@ namespace swath::vehicle {
 struct FleetFileRules {
   double climb_speed_m_s = 2.5;    ///< default climb_speed_m_s, m/s
   double descent_speed_m_s = 1.5;  ///< default descent_speed_m_s, m/s
+  /// The drones' accel_m_s2, m/s²; flights take the file's accel_m_s2 over it (swath plan checks
+  /// the key's range and plans with this).
+  double accel_m_s2 = 2.5;
   /// true (swath-fleet): the drones are flown — a drone needs a speed_m_s, battery_level,
   /// endurance_s, profile or max_flight_time_s (a capability alone is refused), any may be
   /// missing (the flight defaults), `home` is optional and `home_m` allowed.
@@ -45,7 +48,6 @@ struct FleetFileDrone {
   std::optional<double> max_flight_time_s;          ///< s, (1, 604800]
   std::optional<double> approach_speed_m_s;         ///< m/s, [0.1, 100]
   std::optional<double> approach_within_m;          ///< m, [0, 1000]
-  std::optional<double> accel_m_s2;                 ///< m/s², [0, 50]
   std::optional<double> recharge_s;                 ///< s, [0, 86400]
   std::optional<geometry::Point2> home_m;           ///< local metres at swath-fleet's origin
   std::optional<FleetFileLink> mavlink;
