@@ -72,8 +72,8 @@ TEST(PlannerFleet, HomeInMetresAndUnknownKeysAreRefusedByName) {
 }
 
 // The envelope keys (ceiling_m, separation_m, fence) are read by the one reader: swath-fleet's
-// rules read the fence's GeoJSON next to the fleet file; swath plan's accept the keys and never
-// open the fence (a plan does not fly it).
+// rules read the fence's GeoJSON next to the fleet file; swath plan's check the numbers the same
+// way and never open the fence (a plan does not fly it).
 TEST(FleetFileEnvelope, FlightsReadTheFencePlansIgnoreIt) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "swath-vehicle-fence-test";
@@ -107,7 +107,7 @@ TEST(FleetFileEnvelope, FlightsReadTheFencePlansIgnoreIt) {
   const swath::vehicle::FleetFile plan =
       swath::vehicle::parse_fleet_file(text, source, swath::vehicle::FleetFileRules{});
   EXPECT_FALSE(plan.fence.has_value());
-  EXPECT_FALSE(plan.ceiling_m.has_value());
+  EXPECT_EQ(plan.ceiling_m, 60);
   EXPECT_EQ(plan.drones.size(), 2u);
   fs::remove_all(dir);
 }

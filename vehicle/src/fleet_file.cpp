@@ -284,10 +284,12 @@ FleetFileFence read_fence(const YamlMap& top, const std::string& source) {
   return fence;
 }
 
-// swath-fleet's envelope keys, after the drones (their errors come first).
-void read_envelope(const YamlMap& top, const std::string& source, FleetFile& fleet) {
+// swath-fleet's envelope keys, after the drones (their errors come first): the ceiling checked
+// for every program, the fence's GeoJSON opened only where drones are flown.
+void read_envelope(const YamlMap& top, const std::string& source, const FleetFileRules& rules,
+                   FleetFile& fleet) {
   if (top.has("ceiling_m")) fleet.ceiling_m = top.number("ceiling_m", 0, 0, 10000, true);
-  if (top.has("fence")) fleet.fence = read_fence(top, source);
+  if (top.has("fence") && rules.flights) fleet.fence = read_fence(top, source);
 }
 
 FleetFile fleet_from_yaml(const std::string& text, const std::string& source,
@@ -309,7 +311,7 @@ FleetFile fleet_from_yaml(const std::string& text, const std::string& source,
     fleet.drones.push_back(read_drone(drones[i], i, source, rules));
   check_names_once(drones, fleet.drones, source);
   if (!rules.flights) check_one_kind(fleet.drones, source);
-  if (rules.flights) read_envelope(top, source, fleet);
+  read_envelope(top, source, rules, fleet);
   return fleet;
 }
 

@@ -73,8 +73,9 @@ struct FleetFile {
   std::optional<geometry::GeoPoint> home;  ///< the fleet's home
   /// swath-fleet's spacing of drones sharing the home (and its envelope's separation), m, > 0.
   std::optional<double> separation_m;
-  /// swath-fleet's envelope: the ceiling above home, m, (0, 10000], and the geofence. Read only
-  /// where drones are flown (FleetFileRules::flights); swath plan accepts and ignores them.
+  /// swath-fleet's envelope: the ceiling above home, m, (0, 10000] (checked for every program),
+  /// and the geofence, read only where drones are flown (FleetFileRules::flights: swath plan
+  /// accepts the key and does not open its GeoJSON).
   std::optional<double> ceiling_m;
   std::optional<FleetFileFence> fence;
   std::vector<FleetFileDrone> drones;
