@@ -33,7 +33,7 @@ void ControlExecution(benchmark::State& st) {
 BENCHMARK(ControlExecution);
 
 void Mixer(benchmark::State& st) {
-  const MixerRotors layout = standard_layout(FrameKind::hexa_x, 0.275);
+  const MixerRotors layout = standard_layout(vehicle::RotorLayout::hexa_x, 0.275);
   const MixerMatrices m = *mixer_matrices(layout);
   double roll = 0;
   for (auto _ : st) {

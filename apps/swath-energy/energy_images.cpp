@@ -70,9 +70,9 @@ TrajectoryImage trajectory_image(const energy::SimulationResult& r, const energy
                           render::fitted_text_height(key, width_px - 60.0, 0.8 * text_h), kInk});
   out.scale_bar = add_scale_bar(scene, out.view, width_px, height_px, text_h);
   add_north_arrow(scene, width_px, top + 20.0, text_h);
-  if (config.wind.speed_m_s > 0) {
+  if (config.wind.speed_m_s() > 0) {
     // An arrow the way the air moves, bottom right.
-    const Point2 w = energy::wind_velocity(config.wind);
+    const Point2 w = config.wind.velocity_m_s();
     const double n = std::hypot(w.x, w.y);
     const Point2 dir{w.x / n, -w.y / n};  // pixels: y down
     const Point2 c{width_px - 50.0, height_px - 50.0};
@@ -84,7 +84,7 @@ TrajectoryImage trajectory_image(const energy::SimulationResult& r, const energy
                                        {b.x - 6 * side.x, b.y - 6 * side.y}}},
                                      kInk});
     scene.labels.push_back({static_cast<int>(c.x) - 40, static_cast<int>(c.y) - 30,
-                            "wind " + fixed_text(config.wind.speed_m_s, 1) + " m/s", 0.8 * text_h,
+                            "wind " + fixed_text(config.wind.speed_m_s(), 1) + " m/s", 0.8 * text_h,
                             kInk});
   }
   return out;

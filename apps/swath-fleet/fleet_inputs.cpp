@@ -126,8 +126,10 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   for (const std::string& h : r.history) p.history_files.push_back(absolute(h));
   if (!r.fleet.empty()) {
     fleet_text = base::read_text_file(r.fleet, "fleet file", base::kMaxConfigFileBytes);
-    p.drones = fleet::parse_fleet_file(fleet_text, r.fleet, p.world->origin);
-    envelope = fleet::parse_fleet_envelope(fleet_text, r.fleet);
+    fleet::FleetFileContents contents =
+        fleet::parse_fleet_file_contents(fleet_text, r.fleet, p.world->origin);
+    p.drones = std::move(contents.drones);
+    envelope = std::move(contents.envelope);
   } else {
     const int n = r.drones > 0 ? r.drones : 1;
     p.default_drones = n;
@@ -162,7 +164,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     if (!w || !(std::hypot(w->first, w->second) <= 30.0))
       throw InputError("--wind '" + r.wind +
                        "': expected E,N in m/s, at most 30 m/s together (e.g. 4,-3)");
-    p.settings.wind_m_s = {w->first, w->second, 0};
+    p.settings.wind = vehicle::Wind::from_velocity(w->first, w->second);  // --wind: E,N
   }
   if (!r.weights.empty()) {
     weights_text = base::read_text_file(r.weights, "weights file", base::kMaxConfigFileBytes);
@@ -223,6 +225,7 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx",
                 static_cast<unsigned long long>(vehicle::fnv1a(p.config_text)));
+  const geometry::Point2 wind = p.settings.wind.velocity_m_s();
   json out{{"app", p.settings.app_name},
            {"version", SWATH_VERSION},
            {"config_hash", hex},
@@ -234,7 +237,7 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"end_s", r6(r.end_s)},
            {"scheduler", p.settings.scheduler},
            {"seed", p.settings.seed},
-           {"wind_m_s", {r6(p.settings.wind_m_s.x), r6(p.settings.wind_m_s.y)}},
+           {"wind_m_s", {r6(wind.x), r6(wind.y)}},
            {"world_seed", p.world->seed},
            {"drones", drones},
            {"tasks", tasks},

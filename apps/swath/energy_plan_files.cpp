@@ -7,6 +7,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/energy/survey_stages.hpp"
+#include "swath/planning/mission.hpp"
 #include "swath/planning/spacing_scale.hpp"
 
 namespace swath::apps {
@@ -73,7 +74,9 @@ std::vector<std::pair<std::string, std::string>> energy_plan_files(
       warnings.push_back("drone " + std::to_string(m->drone) + " has no lines; no " + file);
       continue;
     }
-    const energy::Plan stages = energy::survey_stage_plan(*m, settings);
+    energy::SurveyLines survey{m->drone, m->home, {}};
+    for (const planning::SweepLine& l : m->lines) survey.lines.push_back({l.start, l.end});
+    const energy::Plan stages = energy::survey_stage_plan(survey, settings);
     const geometry::GeoPoint origin = plan.request.field.frame->origin();
     std::string text = "# Energy plan of " + request.field;
     if (several) text += ", drone " + std::to_string(m->drone);

@@ -23,15 +23,12 @@ MixerRotors layout_of(const vehicle::Airframe& airframe, const vehicle::EscSetti
   return layout;
 }
 
-MixerRotors standard_layout(FrameKind kind, double arm_m, bool first_ccw,
+MixerRotors standard_layout(vehicle::RotorLayout kind, double arm_m, bool first_ccw,
                             double coaxial_lower_efficiency) {
   // One geometry for the plant and the controller: vehicle's layouts.
-  const vehicle::RotorLayout plant = kind == FrameKind::quad_x   ? vehicle::RotorLayout::quad_x
-                                     : kind == FrameKind::hexa_x ? vehicle::RotorLayout::hexa_x
-                                                                 : vehicle::RotorLayout::y6;
   vehicle::Airframe airframe;
   airframe.rotors =
-      vehicle::rotor_layout(plant, arm_m, first_ccw ? +1 : -1, coaxial_lower_efficiency);
+      vehicle::rotor_layout(kind, arm_m, first_ccw ? +1 : -1, coaxial_lower_efficiency);
   return layout_of(airframe, vehicle::EscSettings{});
 }
 

@@ -224,7 +224,7 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& profile) 
       power.payload_w + computations_power_w(power.computations, profile.computation_parameters);
   const double climb_w = climbing_power_w(power);
   const double descent_w = descending_power_w(power);
-  const Point2 wind = wind_velocity(profile.wind);
+  const Point2 wind = profile.wind.velocity_m_s();
 
   DroneBudget out;
   out.drone = mission.drone;

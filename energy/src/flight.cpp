@@ -7,12 +7,6 @@ namespace swath::energy {
 
 using geometry::Point2;
 
-Point2 wind_velocity(const Wind& wind) {
-  const double b = wind.from_bearing_deg * std::numbers::pi / 180.0;
-  // From bearing b the air moves towards b + 180: east = -sin b, north = -cos b.
-  return {-wind.speed_m_s * std::sin(b), -wind.speed_m_s * std::cos(b)};
-}
-
 std::optional<double> ground_speed_at_airspeed(Point2 course, Point2 wind, double airspeed_m_s) {
   const double along = course.x * wind.x + course.y * wind.y;
   const double across2 = wind.x * wind.x + wind.y * wind.y - along * along;

@@ -21,10 +21,8 @@ using base::YamlMap;
 
 Wind parse_wind(const YamlMap& m) {
   m.allow({"speed_m_s", "from_deg"});
-  Wind w;
-  w.speed_m_s = m.number("speed_m_s", 0.0, 0.0, 100.0);
-  w.from_bearing_deg = m.number("from_deg", 0.0, -360.0, 360.0);
-  return w;
+  const double speed_m_s = m.number("speed_m_s", 0.0, 0.0, 100.0);
+  return Wind(speed_m_s, m.number("from_deg", 0.0, -360.0, 360.0));
 }
 
 Battery parse_battery(const YamlMap& m) {

@@ -56,7 +56,7 @@ class Flight {
   Flight(std::vector<StageField> fields, const SimConfig& config)
       : fields_(std::move(fields)),
         config_(config),
-        wind_(wind_velocity(config.wind)),
+        wind_(config.wind.velocity_m_s()),
         position_(config.start) {
     const double bank = config.power.mechanical.max_bank_deg * kPi / 180.0;
     max_lateral_accel_ = kGravity * std::tan(bank);
@@ -116,9 +116,9 @@ class Flight {
     if (!cs) {
       std::string msg = field.where;
       msg += ": the wind (";
-      msg += fixed_text(config_.wind.speed_m_s, 1);
+      msg += fixed_text(config_.wind.speed_m_s(), 1);
       msg += " m/s from ";
-      msg += fixed_text(config_.wind.from_bearing_deg, 0);
+      msg += fixed_text(config_.wind.from_deg(), 0);
       msg += " deg) is stronger than the drone's maximum airspeed ";
       msg += fixed_text(config_.max_airspeed_m_s, 1);
       msg += " m/s on its course near ";

@@ -100,7 +100,7 @@ struct StageBuilder {
 
 }  // namespace
 
-Plan survey_stage_plan(const planning::DroneMission& mission, const SurveyStageSettings& settings) {
+Plan survey_stage_plan(const SurveyLines& mission, const SurveyStageSettings& settings) {
   if (mission.lines.empty())
     throw std::invalid_argument("survey_stage_plan: drone " + std::to_string(mission.drone) +
                                 " has no lines");

@@ -1,23 +1,12 @@
 #include "swath/fleet/envelope.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
-#include <filesystem>
-#include <nlohmann/json.hpp>
 
-#include "swath/base/file_text.hpp"
-#include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
-#include "swath/base/yaml_input.hpp"
-#include "swath/base/yaml_map.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::fleet {
-
-using base::InputError;
-using json = nlohmann::json;
 
 namespace {
 
@@ -27,44 +16,6 @@ bool inside(const std::vector<std::array<double, 2>>& ring, double x_m, double y
   r.reserve(ring.size());
   for (const auto& [x, y] : ring) r.push_back({x, y});
   return geometry::locate_point({x_m, y_m}, r) != geometry::Containment::outside;
-}
-
-// A GeoJSON linear ring: [[lon, lat], ...], at least 3 distinct vertices, closed or not.
-std::vector<geometry::GeoPoint> ring_of(const json& coords, const std::string& where) {
-  if (!coords.is_array()) throw InputError(where + ": a ring is a list of [lon, lat] positions");
-  std::vector<geometry::GeoPoint> out;
-  for (const json& p : coords) {
-    if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number())
-      throw InputError(where + ": a position is [lon, lat] in degrees");
-    const double lon = p[0].get<double>(), lat = p[1].get<double>();
-    if (!(std::abs(lat) <= 90) || !(std::abs(lon) <= 180))
-      throw InputError(where + ": [" + base::shortest_text(lon) + ", " + base::shortest_text(lat) +
-                       "] is not a lon/lat in degrees");
-    out.push_back({lat, lon, 0});
-  }
-  if (out.size() > 1 && out.front() == out.back()) out.pop_back();
-  if (out.size() < 3) throw InputError(where + ": a fence polygon needs at least 3 vertices");
-  return out;
-}
-
-// A geometry's polygons (outer rings; holes are refused: give an exclusion instead).
-void add_geometry(const json& g, bool inclusion, const std::string& where,
-                  std::vector<FencePolygon>& out) {
-  const std::string type = g.is_object() ? g.value("type", "") : "";
-  const auto polygon = [&](const json& rings) {
-    if (!rings.is_array() || rings.empty())
-      throw InputError(where + ": a Polygon's coordinates are a list of rings");
-    if (rings.size() > 1)
-      throw InputError(where + ": a fence polygon with holes; give each hole as an exclusion");
-    out.push_back({ring_of(rings[0], where), inclusion});
-  };
-  if (type == "Polygon") {
-    polygon(g.value("coordinates", json()));
-  } else if (type == "MultiPolygon") {
-    for (const json& p : g.value("coordinates", json::array())) polygon(p);
-  } else {
-    throw InputError(where + ": a fence is a Polygon or MultiPolygon, not \"" + type + "\"");
-  }
 }
 
 }  // namespace
@@ -106,64 +57,15 @@ LocalEnvelope local_envelope(const Envelope& e, const geometry::GeoPoint& origin
   return l;
 }
 
-std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std::string& source) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception&) {
-    throw InputError(source + ": not JSON (a GeoJSON fence: Polygon or MultiPolygon features)");
+Envelope envelope_of(const vehicle::FleetFile& file) {
+  Envelope e;
+  e.ceiling_m = file.ceiling_m.value_or(e.ceiling_m);
+  e.separation_m = file.separation_m.value_or(e.separation_m);
+  if (file.fence) {
+    e.fence.polygons = file.fence->polygons;
+    e.fence.max_altitude_m = file.fence->max_altitude_m.value_or(e.fence.max_altitude_m);
   }
-  std::vector<FencePolygon> out;
-  const auto feature = [&](const json& f, const std::string& where) {
-    bool inclusion = true;
-    if (f.contains("properties") && f["properties"].is_object() &&
-        f["properties"].contains("fence")) {
-      const json& kind = f["properties"]["fence"];
-      if (kind == "exclusion")
-        inclusion = false;
-      else if (kind != "inclusion")
-        throw InputError(where + ": properties.fence is \"inclusion\" or \"exclusion\"");
-    }
-    add_geometry(f.value("geometry", json()), inclusion, where, out);
-  };
-  const std::string type = doc.is_object() ? doc.value("type", "") : "";
-  if (type == "FeatureCollection") {
-    const json features = doc.value("features", json::array());
-    for (std::size_t i = 0; i < features.size(); ++i)
-      feature(features[i], source + ": features[" + std::to_string(i) + "]");
-  } else if (type == "Feature") {
-    feature(doc, source);
-  } else {
-    add_geometry(doc, true, source, out);
-  }
-  if (out.empty()) throw InputError(source + ": the fence has no polygons");
-  return out;
-}
-
-Envelope parse_fleet_envelope(const std::string& text, const std::string& source) {
-  return base::yaml_guard(source, [&] {
-    const YAML::Node doc = base::load_yaml(text, source);
-    Envelope e;
-    if (!doc.IsMap()) return e;  // parse_fleet_file says what is wrong
-    const base::YamlMap root(doc, source, "");
-    e.ceiling_m = root.number("ceiling_m", e.ceiling_m, 0, 10000, true);
-    e.separation_m = root.number("separation_m", e.separation_m, 0, 1000, true);
-    if (root.has("fence")) {
-      if (!doc["fence"].IsMap())
-        throw InputError(root.where("fence") + ": a mapping {geojson: FILE, max_altitude_m: M}");
-      const base::YamlMap f = root.map("fence");
-      f.allow({"geojson", "max_altitude_m"});
-      if (!f.has("geojson"))
-        throw InputError(root.where("fence") + ": no geojson (the fence's polygons)");
-      std::filesystem::path p = f.text("geojson", "");
-      if (p.is_relative()) p = std::filesystem::path(source).parent_path() / p;
-      e.fence.polygons =
-          parse_fence_geojson(base::read_text_file(p.string(), "fence file"), p.string());
-      if (f.has("max_altitude_m"))
-        e.fence.max_altitude_m = f.number("max_altitude_m", 0, 0, 10000, true);
-    }
-    return e;
-  });
+  return e;
 }
 
 std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m) {

@@ -70,7 +70,7 @@ void apply_flight_keys(const vehicle::FleetFileDrone& f, DroneSpec& d) {
   if (f.descent_given || !f.profile) k.descent_m_s = f.drone.descent_speed_m_s;
   k.approach_m_s = std::min(k.cruise_m_s, f.approach_speed_m_s.value_or(k.approach_m_s));
   k.approach_within_m = f.approach_within_m.value_or(k.approach_within_m);
-  k.accel_m_s2 = f.accel_m_s2.value_or(k.accel_m_s2);
+  k.accel_m_s2 = f.drone.accel_m_s2;  // the file's, else Kinematics' (fleet_file_rules)
   d.recharge_s = f.recharge_s.value_or(d.recharge_s);
   if (f.drone.endurance_s) d.max_flight_time_s = *f.drone.endurance_s * d.battery.initial_soc;
   d.max_flight_time_s = f.max_flight_time_s.value_or(d.max_flight_time_s);
@@ -99,21 +99,24 @@ vehicle::FleetFileRules fleet_file_rules() {
   vehicle::FleetFileRules rules;
   rules.climb_speed_m_s = Kinematics{}.climb_m_s;
   rules.descent_speed_m_s = Kinematics{}.descent_m_s;
+  rules.accel_m_s2 = Kinematics{}.accel_m_s2;
   rules.flights = true;
   return rules;
 }
 
 }  // namespace
 
-std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
-                                        const geometry::GeoPoint& origin) {
+FleetFileContents parse_fleet_file_contents(const std::string& text, const std::string& source,
+                                            const geometry::GeoPoint& origin) {
   const vehicle::FleetFile file = vehicle::parse_fleet_file(text, source, fleet_file_rules());
+  FleetFileContents contents;
+  contents.envelope = envelope_of(file);
   const geometry::LocalFrame frame(origin);
   const geometry::GeoPoint fleet_home = file.home.value_or(origin);
   // separation_m + 1 m: the separation rule's margin (envelope.hpp).
-  const double spacing_m = file.separation_m.value_or(Envelope{}.separation_m) + 1;
+  const double spacing_m = contents.envelope.separation_m + 1;
   int shared_home = 0;
-  std::vector<DroneSpec> out;
+  std::vector<DroneSpec>& out = contents.drones;
   for (std::size_t i = 0; i < file.drones.size(); ++i) {
     const vehicle::FleetFileDrone& f = file.drones[i];
     DroneSpec d;
@@ -130,7 +133,12 @@ std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::stri
     }
     out.push_back(std::move(d));
   }
-  return out;
+  return contents;
+}
+
+std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
+                                        const geometry::GeoPoint& origin) {
+  return parse_fleet_file_contents(text, source, origin).drones;
 }
 
 Weights parse_weights(const std::string& text, const std::string& source) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "swath/vehicle/kinematics.hpp"
+
 namespace swath::planning {
 
 double turn_deg(geometry::Point2 a, geometry::Point2 b, geometry::Point2 c) {
@@ -17,14 +19,6 @@ double turn_deg(geometry::Point2 a, geometry::Point2 b, geometry::Point2 c) {
 namespace {
 
 using geometry::Point2;
-
-// Time to fly `length` from rest to rest at most `v` with acceleration `a` (trapezoid, or a
-// triangle when the leg is too short to reach v).
-double rest_to_rest_s(double length, double v, double a) {
-  if (length <= 0) return 0;
-  if (length >= v * v / a) return length / v + v / a;
-  return 2 * std::sqrt(length / a);
-}
 
 // Builds the items and the path of one mission step by step.
 // Approaches to stops beside the zones (MissionBuilder::slow_approaches): how far before the stop
@@ -123,7 +117,8 @@ class MissionBuilder {
     for (std::size_t i = 0; i + 1 < m_.path.size(); ++i)
       m_.path_length_m += geometry::distance(m_.path[i], m_.path[i + 1]);
     m_.transit_length_m = m_.path_length_m - m_.work_length_m;
-    m_.flight_time_s = path_time_s(m_.path, holds_, s_.speed_m_s, s_.vehicle) + slowed_s;
+    m_.flight_time_s =
+        path_time_s(m_.path, holds_, s_.speed_m_s, s_.vehicle, s_.accel_m_s2) + slowed_s;
     if (s_.vehicle == Vehicle::multirotor)
       m_.flight_time_s += s_.altitude_m / s_.climb_speed_m_s + s_.altitude_m / s_.descent_speed_m_s;
     for (const MissionItem& item : m_.items) m_.waypoint_count += positional(item.kind);
@@ -365,7 +360,7 @@ std::vector<PhotoPoint> planned_photos(const DroneMission& m, double trigger_dis
 }
 
 double path_time_s(const std::vector<Point2>& path, const std::vector<double>& hold_s,
-                   double speed_m_s, Vehicle vehicle) {
+                   double speed_m_s, Vehicle vehicle, double accel_m_s2) {
   double length = 0, time = 0, since_stop = 0;
   for (std::size_t i = 0; i + 1 < path.size(); ++i) {
     const double leg = geometry::distance(path[i], path[i + 1]);
@@ -377,7 +372,7 @@ double path_time_s(const std::vector<Point2>& path, const std::vector<double>& h
                       (vehicle == Vehicle::multirotor &&
                        turn_deg(path[i], path[i + 1], path[i + 2]) > kStopTurn_deg);
     if (vehicle == Vehicle::multirotor && stop) {
-      time += rest_to_rest_s(since_stop, speed_m_s, kAcceleration_m_s2) + hold;
+      time += vehicle::rest_to_rest_s(since_stop, speed_m_s, accel_m_s2) + hold;
       since_stop = 0;
     }
   }

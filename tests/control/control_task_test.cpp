@@ -199,13 +199,13 @@ TEST(ControlTask, PositionStepSettlesWithBoundedOvershoot) {
 TEST(ControlTask, EveryFrameReachesAPoseAndHeading) {
   // §17.A's three airframes: a move of (1, −1, 1) m and a turn to 0.5 rad, all at once.
   struct Frame {
-    FrameKind kind;
+    vehicle::RotorLayout kind;
     double arm_m, mass_kg;
     Vec3 inertia_kg_m2;
   };
-  for (const Frame fr : {Frame{FrameKind::quad_x, 0.225, 1.5, {0.015, 0.015, 0.027}},
-                         Frame{FrameKind::hexa_x, 0.275, 2.4, {0.035, 0.035, 0.065}},
-                         Frame{FrameKind::y6, 0.30, 2.0, {0.03, 0.03, 0.05}}}) {
+  for (const Frame fr : {Frame{vehicle::RotorLayout::quad_x, 0.225, 1.5, {0.015, 0.015, 0.027}},
+                         Frame{vehicle::RotorLayout::hexa_x, 0.275, 2.4, {0.035, 0.035, 0.065}},
+                         Frame{vehicle::RotorLayout::y6, 0.30, 2.0, {0.03, 0.03, 0.05}}}) {
     ControlTaskConfig config;
     config.airframe = {fr.mass_kg, fr.inertia_kg_m2, kG, standard_layout(fr.kind, fr.arm_m)};
     const Vec3 start{0, 0, 5}, goal{1, -1, 6};

@@ -12,8 +12,8 @@
 namespace swath::control {
 namespace {
 
-MixerRotors layout_of(FrameKind kind) {
-  return standard_layout(kind, kind == FrameKind::hexa_x ? 0.275 : 0.225, true, 0.8);
+MixerRotors layout_of(vehicle::RotorLayout kind) {
+  return standard_layout(kind, kind == vehicle::RotorLayout::hexa_x ? 0.275 : 0.225, true, 0.8);
 }
 
 // The wrench A f, computed from the rotor list itself rather than from the matrices under test.
@@ -31,7 +31,8 @@ Wrench wrench_of(const MixerRotors& l, const MixerOutput& out) {
 }
 
 TEST(Mixer, PseudoInverseIsARightInverseOnEveryFrame) {
-  for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
+  for (const vehicle::RotorLayout kind :
+       {vehicle::RotorLayout::quad_x, vehicle::RotorLayout::hexa_x, vehicle::RotorLayout::y6}) {
     const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     ASSERT_TRUE(m.has_value());
@@ -46,14 +47,14 @@ TEST(Mixer, PseudoInverseIsARightInverseOnEveryFrame) {
 }
 
 TEST(Mixer, HoverOfASymmetricQuadSharesTheWeightEqually) {
-  const MixerRotors l = layout_of(FrameKind::quad_x);
+  const MixerRotors l = layout_of(vehicle::RotorLayout::quad_x);
   const auto m = mixer_matrices(l);
   const MixerOutput out = mix(l, *m, Wrench{1.5 * 9.80665, {}});
   for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(out.force_n[i], 1.5 * 9.80665 / 4, 1e-12);
   // §17.6's hover speed: √(m g / (4 k_T)) = 678.0 rad/s before quantisation.
   EXPECT_NEAR(std::sqrt(out.force_n[0] / l.thrust_coeff_n_s2), 678.0, 0.05);
   // §17.A's hexa-f550: 2.4 kg on six rotors hovers at 700.2 rad/s.
-  const MixerRotors hexa = layout_of(FrameKind::hexa_x);
+  const MixerRotors hexa = layout_of(vehicle::RotorLayout::hexa_x);
   const MixerOutput h = mix(hexa, *mixer_matrices(hexa), Wrench{2.4 * 9.80665, {}});
   for (std::size_t i = 0; i < 6; ++i)
     EXPECT_NEAR(std::sqrt(h.force_n[i] / hexa.thrust_coeff_n_s2), 700.2, 0.05);
@@ -61,7 +62,8 @@ TEST(Mixer, HoverOfASymmetricQuadSharesTheWeightEqually) {
 
 TEST(Mixer, RequestsWithinReachAreProducedExactly) {
   vehicle::SplitMix64 rng(7);
-  for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
+  for (const vehicle::RotorLayout kind :
+       {vehicle::RotorLayout::quad_x, vehicle::RotorLayout::hexa_x, vehicle::RotorLayout::y6}) {
     const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     for (int trial = 0; trial < 200; ++trial) {
@@ -80,7 +82,8 @@ TEST(Mixer, RequestsWithinReachAreProducedExactly) {
 }
 
 TEST(Mixer, YawIsGivenUpFirstThenRollAndPitch) {
-  for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
+  for (const vehicle::RotorLayout kind :
+       {vehicle::RotorLayout::quad_x, vehicle::RotorLayout::hexa_x, vehicle::RotorLayout::y6}) {
     const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     const double f_max = l.max_rotor_force_n();
@@ -123,7 +126,7 @@ TEST(Mixer, YawIsGivenUpFirstThenRollAndPitch) {
 }
 
 TEST(Mixer, PulsesAreQuantisedToTheNearestLevel) {
-  MixerRotors l = layout_of(FrameKind::quad_x);
+  MixerRotors l = layout_of(vehicle::RotorLayout::quad_x);
   l.resolution_us = 4.0;
   const auto m = mixer_matrices(l);
   vehicle::SplitMix64 rng(11);
@@ -152,14 +155,14 @@ TEST(Mixer, PulsesAreQuantisedToTheNearestLevel) {
 }
 
 TEST(Mixer, FramesThatCannotControlFourAxesAreRefused) {
-  MixerRotors line = standard_layout(FrameKind::quad_x, 0.2);
+  MixerRotors line = standard_layout(vehicle::RotorLayout::quad_x, 0.2);
   for (std::size_t i = 0; i < 4; ++i)
     line.rotors[i].position_m = {0.1 * static_cast<double>(i), 0, 0};
   EXPECT_FALSE(mixer_matrices(line).has_value());  // no roll authority
-  MixerRotors same_spin = standard_layout(FrameKind::quad_x, 0.2);
+  MixerRotors same_spin = standard_layout(vehicle::RotorLayout::quad_x, 0.2);
   for (std::size_t i = 0; i < 4; ++i) same_spin.rotors[i].ccw = true;
   EXPECT_FALSE(mixer_matrices(same_spin).has_value());  // yaw column parallel to thrust
-  MixerRotors three = standard_layout(FrameKind::quad_x, 0.2);
+  MixerRotors three = standard_layout(vehicle::RotorLayout::quad_x, 0.2);
   three.count = 3;
   EXPECT_FALSE(mixer_matrices(three).has_value());
 }

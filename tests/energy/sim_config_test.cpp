@@ -70,7 +70,7 @@ TEST(SimConfig, OldSpeedSpellingIsReadWithAWarning) {
   const SimConfig old_keys = parse_sim_config(
       "speed_mps: 9\nmax_airspeed_m_s: 20\nwind: {speed_mps: 3, from_deg: 90}\n", "c.yaml");
   EXPECT_DOUBLE_EQ(old_keys.speed_m_s, 9);
-  EXPECT_DOUBLE_EQ(old_keys.wind.speed_m_s, 3);
+  EXPECT_DOUBLE_EQ(old_keys.wind.speed_m_s(), 3);
   ASSERT_EQ(old_keys.warnings.size(), 2u);
   EXPECT_EQ(old_keys.warnings[0],
             "c.yaml: line 1: 'speed_mps' is the old spelling, read as 'speed_m_s'; write "

@@ -83,16 +83,17 @@ INSTANTIATE_TEST_SUITE_P(Winds, Guidance,
 TEST(Flight, WindTriangle) {
   // 10 m/s airspeed, course north, 6 m/s wind from the west (blowing east): the drone crabs
   // west and makes 8 m/s over the ground.
-  const geometry::Point2 wind = wind_velocity({6, 270});
+  const geometry::Point2 wind = Wind(6, 270).velocity_m_s();
   EXPECT_NEAR(wind.x, 6.0, 1e-12);
   EXPECT_NEAR(wind.y, 0.0, 1e-12);
   EXPECT_NEAR(*ground_speed_at_airspeed({0, 1}, wind, 10.0), 8.0, 1e-12);
   // Headwind 6 from the north: 4 m/s over the ground; 12 m/s against 10 m/s airspeed: none.
-  EXPECT_NEAR(*ground_speed_at_airspeed({0, 1}, wind_velocity({6, 0}), 10.0), 4.0, 1e-12);
-  EXPECT_FALSE(ground_speed_at_airspeed({0, 1}, wind_velocity({12, 0}), 10.0));
+  EXPECT_NEAR(*ground_speed_at_airspeed({0, 1}, Wind(6, 0).velocity_m_s(), 10.0), 4.0, 1e-12);
+  EXPECT_FALSE(ground_speed_at_airspeed({0, 1}, Wind(12, 0).velocity_m_s(), 10.0));
   // Commanded 12 m/s with a 6 m/s tailwind needs 6 m/s of air; into it, capped at 15: 9 m/s.
-  EXPECT_NEAR(course_speed({0, 1}, wind_velocity({6, 180}), 12.0, 15.0)->airspeed_m_s, 6.0, 1e-12);
-  EXPECT_NEAR(course_speed({0, 1}, wind_velocity({6, 0}), 12.0, 15.0)->ground_speed_m_s, 9.0,
+  EXPECT_NEAR(course_speed({0, 1}, Wind(6, 180).velocity_m_s(), 12.0, 15.0)->airspeed_m_s, 6.0,
+              1e-12);
+  EXPECT_NEAR(course_speed({0, 1}, Wind(6, 0).velocity_m_s(), 12.0, 15.0)->ground_speed_m_s, 9.0,
               1e-12);
 }
 

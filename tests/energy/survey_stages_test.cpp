@@ -18,7 +18,7 @@ using geometry::Point2;
 struct Zigzag {
   double angle_deg = 0, spacing_m = 20;
   Point2 u, n;
-  planning::DroneMission mission;
+  SurveyLines mission;
   Point2 at(double t, double d) const { return u * t + n * d; }
 };
 
@@ -32,8 +32,8 @@ Zigzag zigzag(double angle_deg) {
   for (int i = 0; i < 4; ++i) {
     const double d = 50 + i * z.spacing_m;
     const Point2 a_end = z.at(lo[i], d), b_end = z.at(hi[i], d);
-    z.mission.lines.push_back(i % 2 == 0 ? planning::SweepLine{a_end, b_end}
-                                         : planning::SweepLine{b_end, a_end});
+    z.mission.lines.push_back(i % 2 == 0 ? SurveyLines::Line{a_end, b_end}
+                                         : SurveyLines::Line{b_end, a_end});
   }
   z.mission.home = z.at(-30, 50);
   return z;
@@ -141,7 +141,7 @@ TEST(SurveyStagePlan, FarApartOrSameDirectionLinesAreJoinedByTransits) {
   ASSERT_EQ(fields.size(), 9u);
   EXPECT_EQ(fields[4].phi.text().find('^'), std::string::npos);  // straight
   EXPECT_NEAR(geometry::distance(fields[4].trigger, z.mission.lines[2].start), 0, 1e-6);
-  EXPECT_THROW(survey_stage_plan(planning::DroneMission{}, settings_for(z)), std::invalid_argument);
+  EXPECT_THROW(survey_stage_plan(SurveyLines{}, settings_for(z)), std::invalid_argument);
 }
 
 }  // namespace

@@ -287,7 +287,8 @@ TEST(Envelope, FleetFileKeysAndGeoJsonFence) {
       "ceiling_m: 90\nseparation_m: 8\nfence: {geojson: fence.geojson, max_altitude_m: 80}\n"
       "drones:\n  - {name: a, speed_m_s: 10}\n  - {name: b, speed_m_s: 10}\n";
   const std::string source = (dir / "fleet.yaml").string();
-  const Envelope e = parse_fleet_envelope(fleet, source);
+  const FleetFileContents contents = parse_fleet_file_contents(fleet, source, {47.0, 8.0, 0});
+  const Envelope& e = contents.envelope;
   EXPECT_EQ(e.ceiling_m, 90);
   EXPECT_EQ(e.separation_m, 8);
   EXPECT_EQ(e.fence.max_altitude_m, 80);
@@ -296,8 +297,8 @@ TEST(Envelope, FleetFileKeysAndGeoJsonFence) {
   EXPECT_EQ(e.fence.polygons[0].ring_deg.size(), 4u);  // closed ring: the repeat dropped
   EXPECT_FALSE(e.fence.polygons[1].inclusion);
   EXPECT_DOUBLE_EQ(e.fence.polygons[1].ring_deg[0].lat_deg, 47.004);
-  // Shared homes stand separation_m + 1 m apart.
-  const auto drones = parse_fleet_file(fleet, source, {47.0, 8.0, 0});
+  // Shared homes stand separation_m + 1 m apart: the separation read once serves both.
+  const auto& drones = contents.drones;
   ASSERT_EQ(drones.size(), 2u);
   EXPECT_NEAR(drones[1].home_m.x - drones[0].home_m.x, 9, 1e-9);
   // The local envelope: a point at the origin's corner is inside (on the boundary), one west of
@@ -312,13 +313,14 @@ TEST(Envelope, FleetFileKeysAndGeoJsonFence) {
   EXPECT_EQ(l.refusal_xy(in_triangle.x, in_triangle.y), "inside an exclusion fence");
   const auto error = [&](const std::string& text) {
     try {
-      parse_fleet_envelope(text, source);
+      parse_fleet_file_contents(text + "drones: [{name: a, speed_m_s: 10}]\n", source,
+                                {47.0, 8.0, 0});
     } catch (const base::InputError& x) {
       return std::string(x.what());
     }
     return std::string("accepted");
   };
-  EXPECT_NE(error("ceiling_m: -3\ndrones: []\n").find("ceiling_m"), std::string::npos);
+  EXPECT_NE(error("ceiling_m: -3\n").find("ceiling_m"), std::string::npos);
   EXPECT_NE(error("fence: {max_altitude_m: 3}\n").find("no geojson"), std::string::npos);
   EXPECT_NE(error("fence: {geojson: missing.geojson}\n").find("missing.geojson"),
             std::string::npos);

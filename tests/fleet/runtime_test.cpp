@@ -338,7 +338,7 @@ TEST(Runtime, WindCostsTheHoverPowerAtTheWindSpeedAndIsSymmetricOnARoundTrip) {
          }};
   const DroneSpec d = drone("a");
   RuntimeSettings calm, windy;
-  windy.wind_m_s = {6, -2, 0};
+  windy.wind = vehicle::Wind::from_velocity(6, -2);
   const RunRecord a = run_app(up, world, {d}, calm), b = run_app(up, world, {d}, windy);
   ASSERT_TRUE(a.completed && b.completed);
   ASSERT_EQ(a.end_s, b.end_s);  // the autopilot holds its ground track: same times
@@ -358,8 +358,8 @@ TEST(Runtime, WindCostsTheHoverPowerAtTheWindSpeedAndIsSymmetricOnARoundTrip) {
              co_await h;
            }};
   RuntimeSettings east, west;
-  east.wind_m_s = {5, 0, 0};
-  west.wind_m_s = {-5, 0, 0};
+  east.wind = vehicle::Wind::from_velocity(5, 0);
+  west.wind = vehicle::Wind::from_velocity(-5, 0);
   const RunRecord e = run_app(trip, world, {d}, east), v = run_app(trip, world, {d}, west),
                   c0 = run_app(trip, world, {d}, calm);
   EXPECT_NEAR(e.drones[0].energy_wh, v.drones[0].energy_wh, 1e-9 * e.drones[0].energy_wh);

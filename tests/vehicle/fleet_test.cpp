@@ -1,10 +1,13 @@
 // The planner's fleet reader and swath-fleet's keys: one fleet file serves both programs.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "swath/base/input_error.hpp"
 #include "swath/vehicle/drone.hpp"
+#include "swath/vehicle/fleet_file.hpp"
 
 namespace {
 
@@ -66,6 +69,47 @@ TEST(PlannerFleet, HomeInMetresAndUnknownKeysAreRefusedByName) {
   const std::string u = error_of(typo);
   EXPECT_NE(u.find("drone 2"), std::string::npos) << u;
   EXPECT_NE(u.find("unknown key 'sped_m_s'"), std::string::npos) << u;
+}
+
+// The envelope keys (ceiling_m, separation_m, fence) are read by the one reader: swath-fleet's
+// rules read the fence's GeoJSON next to the fleet file; swath plan's check the numbers the same
+// way and never open the fence (a plan does not fly it).
+TEST(FleetFileEnvelope, FlightsReadTheFencePlansIgnoreIt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "swath-vehicle-fence-test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "fence.geojson")
+      << R"({"type":"MultiPolygon","coordinates":[[[[8.5,47.3],[8.6,47.3],[8.6,47.4],[8.5,47.3]]],)"
+         R"([[[8.51,47.31],[8.52,47.31],[8.52,47.32]]]]})";
+  const std::string text = kPlain + "ceiling_m: 60\nseparation_m: 7\n" +
+                           "fence: {geojson: fence.geojson, max_altitude_m: 50}\n";
+  const std::string source = (dir / "fleet.yaml").string();
+  swath::vehicle::FleetFileRules flights;
+  flights.flights = true;
+  const swath::vehicle::FleetFile f = swath::vehicle::parse_fleet_file(text, source, flights);
+  EXPECT_EQ(f.ceiling_m, 60);
+  EXPECT_EQ(f.separation_m, 7);
+  ASSERT_TRUE(f.fence.has_value());
+  EXPECT_EQ(f.fence->max_altitude_m, 50);
+  ASSERT_EQ(f.fence->polygons.size(), 2u);
+  EXPECT_EQ(f.fence->polygons[0].ring_deg.size(), 3u);  // closed ring: the repeat dropped
+  EXPECT_EQ(f.fence->polygons[0].ring_deg[1].lon_deg, 8.6);
+  EXPECT_EQ(f.fence->polygons[0].ring_deg[1].lat_deg, 47.3);
+  EXPECT_TRUE(f.fence->polygons[1].inclusion);  // a bare geometry is an inclusion
+  // Without the fence file: flights name it, the planner does not look for it.
+  fs::remove(dir / "fence.geojson");
+  try {
+    swath::vehicle::parse_fleet_file(text, source, flights);
+    ADD_FAILURE() << "a missing fence file was accepted";
+  } catch (const swath::base::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fence.geojson"), std::string::npos) << e.what();
+  }
+  const swath::vehicle::FleetFile plan =
+      swath::vehicle::parse_fleet_file(text, source, swath::vehicle::FleetFileRules{});
+  EXPECT_FALSE(plan.fence.has_value());
+  EXPECT_EQ(plan.ceiling_m, 60);
+  EXPECT_EQ(plan.drones.size(), 2u);
+  fs::remove_all(dir);
 }
 
 }  // namespace

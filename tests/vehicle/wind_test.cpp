@@ -146,5 +146,43 @@ TEST(Wind, RegionsAddTheirWindInsideTheirCylinder) {
   EXPECT_EQ(region_wind_m_s(duct, {7, 5, 3}).z, 0.0);
 }
 
+// The one wind convention: FROM a bearing clockwise from north; the velocity points where the
+// air goes. The compass points by hand (independent truth), then a seeded property: a velocity
+// taken to its bearing and speed and back is the same velocity, and each form is kept exactly.
+TEST(Wind, BlowsFromItsBearingAndKeepsTheFormItWasMadeIn) {
+  struct Point {
+    double from_deg, east_m_s, north_m_s;
+  };
+  // 5 m/s from the north blows south; from the east blows west; and so on.
+  for (const Point& p : {Point{0, 0, -5}, Point{90, -5, 0}, Point{180, 0, 5}, Point{270, 5, 0}}) {
+    const geometry::Point2 v = Wind(5, p.from_deg).velocity_m_s();
+    EXPECT_NEAR(v.x, p.east_m_s, 1e-12) << p.from_deg;
+    EXPECT_NEAR(v.y, p.north_m_s, 1e-12) << p.from_deg;
+    const Wind w = Wind::from_velocity(p.east_m_s, p.north_m_s);
+    EXPECT_NEAR(w.from_deg(), p.from_deg, 1e-12) << p.from_deg;
+    EXPECT_EQ(w.speed_m_s(), 5.0);
+  }
+  EXPECT_EQ(Wind().speed_m_s(), 0.0);
+  EXPECT_EQ(Wind::from_velocity(0, 0).from_deg(), 0.0);
+  EXPECT_FALSE(std::signbit(Wind::from_velocity(0.0, -3).from_deg()));  // 0, not -0
+  SplitMix64 random(46);
+  for (int i = 0; i < 2000; ++i) {
+    const double east_m_s = 40 * random.uniform() - 20, north_m_s = 40 * random.uniform() - 20;
+    const Wind w = Wind::from_velocity(east_m_s, north_m_s);
+    // Kept exactly: the velocity as given, bit for bit.
+    EXPECT_EQ(w.velocity_m_s().x, east_m_s);
+    EXPECT_EQ(w.velocity3_m_s().y, north_m_s);
+    EXPECT_GE(w.from_deg(), 0.0);
+    EXPECT_LT(w.from_deg(), 360.0);
+    const geometry::Point2 back = Wind(w.speed_m_s(), w.from_deg()).velocity_m_s();
+    EXPECT_NEAR(back.x, east_m_s, 1e-12);
+    EXPECT_NEAR(back.y, north_m_s, 1e-12);
+    // And a bearing as given, bit for bit (a velocity round trip would not be).
+    const double from_deg = 360 * random.uniform();
+    EXPECT_EQ(Wind(3.7, from_deg).from_deg(), from_deg);
+    EXPECT_EQ(Wind(3.7, from_deg).speed_m_s(), 3.7);
+  }
+}
+
 }  // namespace
 }  // namespace swath::vehicle

@@ -3,9 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 
+#include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/base/yaml_input.hpp"
 #include "swath/base/yaml_map.hpp"
@@ -15,6 +19,7 @@ namespace {
 
 using base::InputError;
 using base::YamlMap;
+using json = nlohmann::json;
 
 std::string line_of(const YAML::Node& n) {
   return "line " + std::to_string(n.Mark().line + 1);
@@ -114,6 +119,7 @@ void read_speeds(const YAML::Node& d, const std::string& where, const FleetFileR
   Drone& drone = out.drone;
   drone.climb_speed_m_s = rules.climb_speed_m_s;
   drone.descent_speed_m_s = rules.descent_speed_m_s;
+  drone.accel_m_s2 = rules.accel_m_s2;
   const std::string named = where + " (" + drone.name + "): ";
   auto speed = [&](const char* key, double& value, const base::Range& range) {
     if (!d[key]) return false;
@@ -152,12 +158,13 @@ FleetFileLink read_link(const YamlMap& drone) {
 }
 
 // The keys only flights read (the planner accepts them and plans without them).
-void read_flight_keys(const YamlMap& m, FleetFileDrone& out) {
+void read_flight_keys(const YamlMap& m, const FleetFileRules& rules, FleetFileDrone& out) {
   if (m.has("profile")) out.profile = m.text("profile", "");
   out.max_flight_time_s = optional_number(m, "max_flight_time_s", 1, 604800, true);
   out.approach_speed_m_s = optional_number(m, "approach_speed_m_s", 0.1, 100);
   out.approach_within_m = optional_number(m, "approach_within_m", 0, 1000);
-  out.accel_m_s2 = optional_number(m, "accel_m_s2", 0, 50);
+  const auto accel_m_s2 = optional_number(m, "accel_m_s2", 0, 50);
+  if (accel_m_s2 && rules.flights) out.drone.accel_m_s2 = *accel_m_s2;
   out.recharge_s = optional_number(m, "recharge_s", 0, 86400);
   if (m.has("home_m")) {
     const YamlMap h = m.map("home_m");
@@ -195,7 +202,7 @@ FleetFileDrone read_drone(const YAML::Node& d, std::size_t i, const std::string&
   read_range(d, where, rules, drone);
   if (d["home"]) drone.home = point(d["home"], where);
   read_speeds(d, where, rules, out);
-  read_flight_keys(m, out);
+  read_flight_keys(m, rules, out);
   out.where_home = m.where(m.has("home") ? "home" : "name");
   return out;
 }
@@ -223,6 +230,68 @@ void check_one_kind(const std::vector<FleetFileDrone>& drones, const std::string
                      "and speed_m_s, not a mix");
 }
 
+// A GeoJSON linear ring: [[lon, lat], ...], at least 3 distinct vertices, closed or not.
+std::vector<geometry::GeoPoint> ring_of(const json& coords, const std::string& where) {
+  if (!coords.is_array()) throw InputError(where + ": a ring is a list of [lon, lat] positions");
+  std::vector<geometry::GeoPoint> out;
+  for (const json& p : coords) {
+    if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number())
+      throw InputError(where + ": a position is [lon, lat] in degrees");
+    const double lon = p[0].get<double>(), lat = p[1].get<double>();
+    if (!(std::abs(lat) <= 90) || !(std::abs(lon) <= 180))
+      throw InputError(where + ": [" + base::shortest_text(lon) + ", " + base::shortest_text(lat) +
+                       "] is not a lon/lat in degrees");
+    out.push_back({lat, lon, 0});
+  }
+  if (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  if (out.size() < 3) throw InputError(where + ": a fence polygon needs at least 3 vertices");
+  return out;
+}
+
+// A geometry's polygons (outer rings; holes are refused: give an exclusion instead).
+void add_geometry(const json& g, bool inclusion, const std::string& where,
+                  std::vector<FencePolygon>& out) {
+  const std::string type = g.is_object() ? g.value("type", "") : "";
+  const auto polygon = [&](const json& rings) {
+    if (!rings.is_array() || rings.empty())
+      throw InputError(where + ": a Polygon's coordinates are a list of rings");
+    if (rings.size() > 1)
+      throw InputError(where + ": a fence polygon with holes; give each hole as an exclusion");
+    out.push_back({ring_of(rings[0], where), inclusion});
+  };
+  if (type == "Polygon") {
+    polygon(g.value("coordinates", json()));
+  } else if (type == "MultiPolygon") {
+    for (const json& p : g.value("coordinates", json::array())) polygon(p);
+  } else {
+    throw InputError(where + ": a fence is a Polygon or MultiPolygon, not \"" + type + "\"");
+  }
+}
+
+// `fence: {geojson: FILE, max_altitude_m: M}`, the GeoJSON relative to the fleet file.
+FleetFileFence read_fence(const YamlMap& top, const std::string& source) {
+  if (!top.node()["fence"].IsMap())
+    throw InputError(top.where("fence") + ": a mapping {geojson: FILE, max_altitude_m: M}");
+  const YamlMap f = top.map("fence");
+  f.allow({"geojson", "max_altitude_m"});
+  if (!f.has("geojson"))
+    throw InputError(top.where("fence") + ": no geojson (the fence's polygons)");
+  std::filesystem::path p = f.text("geojson", "");
+  if (p.is_relative()) p = std::filesystem::path(source).parent_path() / p;
+  FleetFileFence fence;
+  fence.polygons = parse_fence_geojson(base::read_text_file(p.string(), "fence file"), p.string());
+  if (f.has("max_altitude_m")) fence.max_altitude_m = f.number("max_altitude_m", 0, 0, 10000, true);
+  return fence;
+}
+
+// swath-fleet's envelope keys, after the drones (their errors come first): the ceiling checked
+// for every program, the fence's GeoJSON opened only where drones are flown.
+void read_envelope(const YamlMap& top, const std::string& source, const FleetFileRules& rules,
+                   FleetFile& fleet) {
+  if (top.has("ceiling_m")) fleet.ceiling_m = top.number("ceiling_m", 0, 0, 10000, true);
+  if (top.has("fence") && rules.flights) fleet.fence = read_fence(top, source);
+}
+
 FleetFile fleet_from_yaml(const std::string& text, const std::string& source,
                           const FleetFileRules& rules) {
   const YAML::Node root = base::load_yaml(text, source);
@@ -242,6 +311,7 @@ FleetFile fleet_from_yaml(const std::string& text, const std::string& source,
     fleet.drones.push_back(read_drone(drones[i], i, source, rules));
   check_names_once(drones, fleet.drones, source);
   if (!rules.flights) check_one_kind(fleet.drones, source);
+  read_envelope(top, source, rules, fleet);
   return fleet;
 }
 
@@ -250,6 +320,40 @@ FleetFile fleet_from_yaml(const std::string& text, const std::string& source,
 FleetFile parse_fleet_file(const std::string& text, const std::string& source,
                            const FleetFileRules& rules) {
   return base::yaml_guard(source, [&] { return fleet_from_yaml(text, source, rules); });
+}
+
+std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std::string& source) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception&) {
+    throw InputError(source + ": not JSON (a GeoJSON fence: Polygon or MultiPolygon features)");
+  }
+  std::vector<FencePolygon> out;
+  const auto feature = [&](const json& f, const std::string& where) {
+    bool inclusion = true;
+    if (f.contains("properties") && f["properties"].is_object() &&
+        f["properties"].contains("fence")) {
+      const json& kind = f["properties"]["fence"];
+      if (kind == "exclusion")
+        inclusion = false;
+      else if (kind != "inclusion")
+        throw InputError(where + ": properties.fence is \"inclusion\" or \"exclusion\"");
+    }
+    add_geometry(f.value("geometry", json()), inclusion, where, out);
+  };
+  const std::string type = doc.is_object() ? doc.value("type", "") : "";
+  if (type == "FeatureCollection") {
+    const json features = doc.value("features", json::array());
+    for (std::size_t i = 0; i < features.size(); ++i)
+      feature(features[i], source + ": features[" + std::to_string(i) + "]");
+  } else if (type == "Feature") {
+    feature(doc, source);
+  } else {
+    add_geometry(doc, true, source, out);
+  }
+  if (out.empty()) throw InputError(source + ": the fence has no polygons");
+  return out;
 }
 
 }  // namespace swath::vehicle

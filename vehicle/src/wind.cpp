@@ -19,6 +19,40 @@ Vec3 towards(double from_deg) {
 
 }  // namespace
 
+Wind Wind::from_velocity(double east_m_s, double north_m_s) {
+  Wind w;
+  w.from_vector_ = true;
+  w.first_ = east_m_s;
+  w.second_ = north_m_s;
+  return w;
+}
+
+double Wind::speed_m_s() const {
+  return from_vector_ ? std::hypot(first_, second_) : first_;
+}
+
+double Wind::from_deg() const {
+  if (!from_vector_) return second_;
+  if (first_ == 0.0 && second_ == 0.0) return 0.0;
+  // The air moves towards b + 180: it comes from the bearing of (-east, -north).
+  const double b = std::atan2(-first_, -second_) / kDeg;
+  const double wrapped = b < 0.0 ? b + 360.0 : b + 0.0;  // + 0.0: no -0
+  return wrapped >= 360.0 ? 0.0 : wrapped;               // a tiny negative bearing rounds up to 360
+}
+
+geometry::Point2 Wind::velocity_m_s() const {
+  if (from_vector_) return {first_, second_};
+  // From bearing b the air moves towards b + 180: east = -sin b, north = -cos b (written as
+  // swath-energy always computed it, so its outputs keep every bit).
+  const double b = second_ * std::numbers::pi / 180.0;
+  return {-first_ * std::sin(b), -first_ * std::cos(b)};
+}
+
+Vec3 Wind::velocity3_m_s() const {
+  const geometry::Point2 v = velocity_m_s();
+  return {v.x, v.y, 0.0};
+}
+
 Vec3 mean_wind_m_s(const MeanWind& w, double height_m, double t_s) {
   const double speed_ref = std::max(0.0, w.speed_m_s + w.ramp_m_s_per_min * t_s / 60.0);
   if (!(height_m > w.roughness_m) || speed_ref == 0.0) return {};

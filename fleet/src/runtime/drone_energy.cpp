@@ -42,7 +42,7 @@ void Runtime::integrate(Drone& d, double t) {
     case Mode::hovering:
     case Mode::acting:
     case Mode::held:
-      constant(hover_power_w(s, settings_.wind_m_s), b - a);
+      constant(hover_power_w(s, settings_.wind.velocity3_m_s()), b - a);
       d.idle_s += d.mode == Mode::acting ? 0.0 : b - a;
       break;
     case Mode::flying:
@@ -56,7 +56,7 @@ void Runtime::integrate(Drone& d, double t) {
       if (v1 > v0) constant(leg.climbing() ? climb_power_w(s) : descent_power_w(s), v1 - v0);
       // Level part, piece by piece (constant acceleration within each), at the airspeed.
       const auto& pieces = leg.pieces();
-      const Vec3& wind = settings_.wind_m_s;
+      const Vec3 wind = settings_.wind.velocity3_m_s();
       const double run = std::hypot(leg.to().x - leg.from().x, leg.to().y - leg.from().y);
       const double ux = run > 0 ? (leg.to().x - leg.from().x) / run : 0.0;
       const double uy = run > 0 ? (leg.to().y - leg.from().y) / run : 0.0;
@@ -78,7 +78,8 @@ void Runtime::integrate(Drone& d, double t) {
       }
       // Hovering at the end if the interval runs past the leg (it stops there).
       if (lb > leg.duration_s())
-        constant(hover_power_w(s, settings_.wind_m_s), lb - std::max(la, leg.duration_s()));
+        constant(hover_power_w(s, settings_.wind.velocity3_m_s()),
+                 lb - std::max(la, leg.duration_s()));
       const Vec3 p0 = leg.position_at(la), p1 = leg.position_at(lb);
       d.distance_m += std::hypot(p1.x - p0.x, p1.y - p0.y);
       break;
@@ -112,14 +113,15 @@ double Runtime::leave_from(const Drone& d, const Vec3& place, double airborne_s,
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
   const double back_s = Leg(place, home, d.spec.kinematics).duration_s() +
                         d.layer_m / d.spec.kinematics.descent_m_s + 2 * settings_.tick_s;
-  const double cruise_w = cruise_power_w(d.spec, settings_.wind_m_s);
+  const double cruise_w = cruise_power_w(d.spec, settings_.wind.velocity3_m_s());
   const double need =
       d.spec.battery.reserve_soc +
       vehicle::soc_of_charge(d.spec.battery, energy::battery_current_a(d.spec.battery, cruise_w) *
                                                  (back_s + extra_flight_s));
-  return std::min(airborne_s + d.spec.max_flight_time_s - back_s,
-                  soc_s + energy::seconds_to_soc(d.spec.battery, d.soc, need,
-                                                 hover_power_w(d.spec, settings_.wind_m_s)));
+  return std::min(
+      airborne_s + d.spec.max_flight_time_s - back_s,
+      soc_s + energy::seconds_to_soc(d.spec.battery, d.soc, need,
+                                     hover_power_w(d.spec, settings_.wind.velocity3_m_s())));
 }
 
 bool Runtime::must_go_home(const Drone& d, double t) const {
@@ -130,7 +132,7 @@ bool Runtime::must_go_home(const Drone& d, double t) const {
   const Leg back(d.pos, home, d.spec.kinematics);
   const double back_s = back.duration_s() + d.layer_m / d.spec.kinematics.descent_m_s;
   if (t - d.airborne_since + back_s + 2 * settings_.tick_s >= d.spec.max_flight_time_s) return true;
-  const double cruise_w = cruise_power_w(d.spec, settings_.wind_m_s);
+  const double cruise_w = cruise_power_w(d.spec, settings_.wind.velocity3_m_s());
   const double landing =
       energy::soc_after(d.spec.battery, d.soc, cruise_w, back_s + 2 * settings_.tick_s);
   return !(landing >= d.spec.battery.reserve_soc);

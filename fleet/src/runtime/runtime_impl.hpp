@@ -166,7 +166,7 @@ inline bool on_leg(Mode m) {
 }
 
 // In a steady wind the autopilot holds position and ground track: the rotors fly at the
-// airspeed, ground velocity less wind (RuntimeSettings::wind_m_s).
+// airspeed, ground velocity less wind (RuntimeSettings::wind, its air velocity).
 inline double hover_power_w(const DroneSpec& s, const Vec3& wind) {
   return energy::level_flight_power_w(s.power.mechanical, std::hypot(wind.x, wind.y)) +
          s.power.payload_w;

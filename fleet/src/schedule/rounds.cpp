@@ -20,8 +20,8 @@ Snapshot Runtime::snapshot_base() const {
   // Charge: there, serve, home above the reserve.
   EnergyFeasibility e;
   e.battery = first.battery;
-  e.cruise_power_w = cruise_power_w(first, settings_.wind_m_s);
-  e.hover_power_w = hover_power_w(first, settings_.wind_m_s);
+  e.cruise_power_w = cruise_power_w(first, settings_.wind.velocity3_m_s());
+  e.hover_power_w = hover_power_w(first, settings_.wind.velocity3_m_s());
   s.energy = e;
   return s;
 }

@@ -69,6 +69,7 @@ void name_drones(SurveyPlan& plan) {
     d.speed_m_s = f.speed_m_s.value_or(plan.speed_m_s);
     d.climb_speed_m_s = f.climb_speed_m_s;
     d.descent_speed_m_s = f.descent_speed_m_s;
+    d.accel_m_s2 = f.accel_m_s2;
     d.endurance_s = f.endurance_s ? f.endurance_s : r.endurance_s;
     plan.drones.push_back(std::move(d));
   }

@@ -48,6 +48,7 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
   s.land = plan.request.land;
   s.climb_speed_m_s = drone.climb_speed_m_s;
   s.descent_speed_m_s = drone.descent_speed_m_s;
+  s.accel_m_s2 = drone.accel_m_s2;
   // Stop at line ends beside a no-fly zone (within the clearance and the corner allowance): a
   // turn flown through there would swing towards the zone.
   if (!plan.no_fly.empty() && plan.request.vehicle == Vehicle::multirotor) {

@@ -49,7 +49,7 @@ struct ControlAirframe {
   double mass_kg = 1.5;                     ///< > 0
   Vec3 inertia_kg_m2{0.015, 0.015, 0.027};  ///< principal, body FLU, kg m², > 0
   double gravity_m_s2 = 9.80665;            ///< > 0
-  MixerRotors rotors = standard_layout(FrameKind::quad_x, 0.225);
+  MixerRotors rotors = standard_layout(vehicle::RotorLayout::quad_x, 0.225);
 };
 
 /// Everything fixed about the task.

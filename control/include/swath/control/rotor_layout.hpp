@@ -48,14 +48,12 @@ struct MixerRotors {
   double max_rotor_force_n() const { return thrust_coeff_n_s2 * max_speed_rad_s * max_speed_rad_s; }
 };
 
-/// The standard frames of §17.A `rotors.layout`.
-enum class FrameKind { quad_x, hexa_x, y6 };
-
-/// The standard frames (vehicle::rotor_layout: the plant's own geometry and rotor order):
-/// quad_x and hexa_x arms every 90° / 60° from 45° / 30° left of forward, spins alternating from
-/// `first_ccw`; y6 three arms at 60°, 180°, 300°, each an upper rotor of `first_ccw` and a lower
-/// one of the other spin at `coaxial_lower_efficiency`, upper and lower alternating.
-MixerRotors standard_layout(FrameKind kind, double arm_m, bool first_ccw = true,
+/// The standard frames of `rotors.layout` (vehicle::RotorLayout, vehicle::rotor_layout: the plant's
+/// own geometry and rotor order): quad_x and hexa_x arms every 90° / 60° from 45° / 30° left of
+/// forward, spins alternating from `first_ccw`; y6 three arms at 60°, 180°, 300°, each an upper
+/// rotor of `first_ccw` and a lower one of the other spin at `coaxial_lower_efficiency`, upper and
+/// lower alternating.
+MixerRotors standard_layout(vehicle::RotorLayout kind, double arm_m, bool first_ccw = true,
                             double coaxial_lower_efficiency = 0.8);
 
 /// The layout of the plant's airframe and ESCs, as the controller believes them to be.

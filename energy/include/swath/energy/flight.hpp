@@ -4,18 +4,13 @@
 #include <optional>
 
 #include "swath/geometry/point.hpp"
+#include "swath/vehicle/wind.hpp"
 
 namespace swath::energy {
 
-/// Wind as weather reports give it. `from_bearing_deg` is a compass bearing (0 = from north,
-/// 90 = from east, clockwise): the air moves towards from_bearing_deg + 180.
-struct Wind {
-  double speed_m_s = 0.0;         ///< >= 0
-  double from_bearing_deg = 0.0;  ///< compass degrees
-};
-
-/// The wind's velocity in the local frame (x east, y north), m/s.
-geometry::Point2 wind_velocity(const Wind& wind);
+/// Wind as weather reports give it: vehicle::Wind (from a compass bearing, degrees clockwise
+/// from north; velocity_m_s() the air's velocity in the local frame, x east, y north).
+using vehicle::Wind;
 
 /// Ground speed along the unit course `course` when the drone flies at `airspeed_m_s` through
 /// `wind` (m/s, local frame): the positive s with |s course - wind| = airspeed. Empty when no

@@ -6,9 +6,20 @@
 #include <vector>
 
 #include "swath/energy/plan.hpp"
-#include "swath/planning/mission.hpp"
+#include "swath/geometry/point.hpp"
 
 namespace swath::energy {
+
+/// One drone's survey as a plan flies it (swath plan's planning::DroneMission gives it): its home
+/// and its lines in flight order, each flown from start to end; local metres (x east, y north).
+struct SurveyLines {
+  struct Line {
+    geometry::Point2 start, end;
+  };
+  int drone = 1;  ///< 1-based, for messages
+  geometry::Point2 home;
+  std::vector<Line> lines;
+};
 
 struct SurveyStageSettings {
   double angle_deg = 0.0;       ///< the lines' angle, degrees counter-clockwise from local x (east)
@@ -22,7 +33,7 @@ struct SurveyStageSettings {
   std::vector<Interval> computations;
 };
 
-/// One drone's mission as stages in its local frame (x east, y north, metres): the leg from home
+/// One drone's survey as stages in its local frame (x east, y north, metres): the leg from home
 /// to the first line (left out when shorter than 1 m), each line, between two lines that are
 /// flown in opposite directions at most 1.5 spacings apart a half circle whose diameter joins
 /// them (the shorter line extended to the longer one's end, so that the circle closes), otherwise
@@ -32,6 +43,6 @@ struct SurveyStageSettings {
 /// c1; the along-track extents do not change with it. The lanes' directions are fixed, so a
 /// transit whose ends move with c1 is aimed at its end along the direction planned for c1 = 1.
 /// Throws std::invalid_argument for a mission without lines or settings out of range.
-Plan survey_stage_plan(const planning::DroneMission& mission, const SurveyStageSettings& settings);
+Plan survey_stage_plan(const SurveyLines& mission, const SurveyStageSettings& settings);
 
 }  // namespace swath::energy

@@ -1,8 +1,9 @@
 #pragma once
 // swath-fleet's safety envelope (docs/swath-fleet.md, "Safety envelope"): a ceiling above home,
 // the least 3-D separation between airborne drones, and a geofence of inclusion and exclusion
-// polygons with a height limit. The fleet file gives it (ceiling_m, separation_m, fence); the
-// runtime keeps every drone inside it and `swath-fleet check` judges a log against it.
+// polygons with a height limit. The fleet file gives it (ceiling_m, separation_m, fence; read by
+// vehicle::parse_fleet_file, the one fleet-file reader); the runtime keeps every drone inside it
+// and `swath-fleet check` judges a log against it.
 //
 //   ceiling_m: 120        # m above home; the top drone's layer must fit under it
 //   separation_m: 5       # m; layers and default homes are spaced at least this
@@ -17,16 +18,15 @@
 #include <vector>
 
 #include "swath/geometry/point.hpp"
+#include "swath/vehicle/fleet_file.hpp"
 #include "swath/vehicle/vec3.hpp"
 
 namespace swath::fleet {
 
-/// One fence polygon, its outer ring in WGS84 degrees (not closed: the last vertex is not the
-/// first again).
-struct FencePolygon {
-  std::vector<geometry::GeoPoint> ring_deg;
-  bool inclusion = true;  ///< false: an exclusion (no target inside)
-};
+/// One fence polygon as the fleet file's reader gives it (WGS84 degrees, not closed).
+using vehicle::FencePolygon;
+/// A fence file's polygons (read by the fleet file's reader; here for the fence's other users).
+using vehicle::parse_fence_geojson;
 
 /// The geofence as a value a MAVLink backend can upload (inclusion and exclusion polygons,
 /// mission_type FENCE) and the runtime checks every target against.
@@ -59,15 +59,9 @@ struct LocalEnvelope {
 /// `fence` in the local frame at `origin`.
 LocalEnvelope local_envelope(const Envelope& e, const geometry::GeoPoint& origin);
 
-/// The envelope keys of a fleet file's text (ceiling_m, separation_m, fence; the drones are
-/// parse_fleet_file's); the fence's GeoJSON relative to the fleet file. Throws base::InputError
-/// naming the file, line and key.
-Envelope parse_fleet_envelope(const std::string& text, const std::string& source);
-
-/// A fence file: GeoJSON Polygon or MultiPolygon (a geometry, Feature or FeatureCollection),
-/// lon/lat degrees; a feature's properties.fence is "inclusion" (default) or "exclusion".
-/// Throws base::InputError naming `source` and the feature.
-std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std::string& source);
+/// The envelope a fleet file gives (vehicle::parse_fleet_file read its ceiling_m, separation_m
+/// and fence), the defaults for what it does not give.
+Envelope envelope_of(const vehicle::FleetFile& file);
 
 /// The altitude layers (drone i at base_m + step_m × i) of `drones` drones under `ceiling_m`:
 /// "" when they fit, else one sentence saying why not.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/fleet/envelope.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/geometry/point.hpp"
 
@@ -25,6 +26,15 @@ namespace swath::fleet {
 /// base::InputError naming `source`, the line and the key.
 std::vector<DroneSpec> parse_fleet_file(const std::string& text, const std::string& source,
                                         const geometry::GeoPoint& origin);
+
+/// A fleet file read once: its drones (as parse_fleet_file) and its envelope (ceiling_m,
+/// separation_m, fence; envelope.hpp).
+struct FleetFileContents {
+  std::vector<DroneSpec> drones;
+  Envelope envelope;
+};
+FleetFileContents parse_fleet_file_contents(const std::string& text, const std::string& source,
+                                            const geometry::GeoPoint& origin);
 std::vector<DroneSpec> read_fleet_file(const std::string& path, const geometry::GeoPoint& origin);
 
 /// A weights file (docs/swath-fleet.md): the sub-utilities' weights by name —

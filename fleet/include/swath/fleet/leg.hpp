@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "swath/vehicle/kinematics.hpp"
 #include "swath/vehicle/vec3.hpp"
 
 namespace swath::fleet {
@@ -73,9 +74,7 @@ Leg next_leg(const Leg* current, double t_on_s, const Vec3& from, const Vec3& to
 double horizontal_time_s(double length_m, const Kinematics& k);
 
 /// The same time in closed form without building the profile (the scheduler's ETA, evaluated for
-/// every drone–request pair): rest to rest over `length_m` at ≤ `cruise_m_s`, ≤ `approach_m_s`
-/// within `approach_within_m` of the end, accelerating and braking at `accel_m_s2` (> 0), s.
-double rest_to_rest_s(double length_m, double cruise_m_s, double approach_m_s,
-                      double approach_within_m, double accel_m_s2);
+/// every drone–request pair): vehicle::rest_to_rest_s (vehicle/kinematics.hpp).
+using vehicle::rest_to_rest_s;
 
 }  // namespace swath::fleet

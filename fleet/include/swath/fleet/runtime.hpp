@@ -33,6 +33,7 @@
 #include "swath/fleet/task.hpp"
 #include "swath/fleet/vehicle_address.hpp"
 #include "swath/fleet/world.hpp"
+#include "swath/vehicle/wind.hpp"
 
 namespace swath::fleet {
 
@@ -86,10 +87,11 @@ struct RuntimeSettings {
   /// against it, the layers must fit under the ceiling and the homes inside the fence.
   LocalEnvelope envelope;
   double disc_m = 5;  ///< radius a drone at or bound for a place reserves (first come), m
-  /// A steady horizontal wind, m/s (x east, y north; z ignored): the drones keep their ground
-  /// tracks and speeds, the rotors work at the airspeed (hover: the wind speed), and the way home
-  /// is costed into a headwind. Zero: calm (the paper's experiments).
-  Vec3 wind_m_s{0, 0, 0};
+  /// A steady horizontal wind (vehicle::Wind; swath-fleet's --wind E,N gives its air velocity):
+  /// the drones keep their ground tracks and speeds, the rotors work at the airspeed (hover: the
+  /// wind speed), and the way home is costed into a headwind. Calm by default (the paper's
+  /// experiments).
+  vehicle::Wind wind = vehicle::Wind::from_velocity(0, 0);  // calm: +0 east and north
   Weights weights;
   std::vector<FaultEvent> faults;  ///< sorted or not; applied in (t_s, drone) order
   /// What forecasts the next requests and q (docs/swath-fleet.md): none, gmf or constant-velocity.

@@ -72,8 +72,9 @@ struct MissionItem {
 /// Whether an item is a position the drone flies to (takeoff, waypoint, land).
 bool positional(ItemKind kind);
 
-/// ArduCopter's defaults, used for the flight-time estimate (WPNAV_ACCEL 250 cm/s²; climb and
-/// descent are the drone's, by default WPNAV_SPEED_UP and _DN: vehicle::Drone) and a corner it
+/// ArduCopter's defaults, used for the flight-time estimate (WPNAV_ACCEL 250 cm/s², the default
+/// of vehicle::Drone::accel_m_s2 and swath plan's; climb and descent are the drone's, by default
+/// WPNAV_SPEED_UP and _DN: vehicle::Drone) and a corner it
 /// stops at (ArduCopter slows to a stop before turns this sharp; gentler ones it flies through).
 inline constexpr double kAcceleration_m_s2 = 2.5;
 inline constexpr double kStopTurn_deg = 45.0;
@@ -109,7 +110,9 @@ struct MissionSettings {
   /// clearance of a no-fly zone, metres (+infinity: never). Line ends where a stop would overrun
   /// further (stop_overrun_m) are drawn back along their lines. Empty: nothing is drawn back.
   std::function<double(geometry::Point2, geometry::Point2)> free_run_m;
-  double accel_m_s2 = kAcceleration_m_s2;  ///< braking, for stop_overrun_m(), > 0
+  /// The drone's acceleration and braking (vehicle::Drone::accel_m_s2): the flight time's legs
+  /// and stop_overrun_m(), > 0.
+  double accel_m_s2 = kAcceleration_m_s2;
 };
 
 /// The hold that makes ArduPilot stop at a waypoint: NAV_WAYPOINT's param1 is whole seconds.
@@ -180,8 +183,9 @@ std::vector<geometry::Point2> photo_positions(geometry::Point2 start, geometry::
 std::vector<PhotoPoint> planned_photos(const DroneMission& mission, double trigger_distance_m);
 
 /// The flight time of a path flown from rest to rest (see DroneMission::flight_time_s): legs at
-/// `speed_m_s` with the trapezoid profile between stops. `hold_s` per point (hover photos).
+/// `speed_m_s` with the trapezoid profile between stops (vehicle::rest_to_rest_s at
+/// `accel_m_s2`). `hold_s` per point (hover photos).
 double path_time_s(const std::vector<geometry::Point2>& path, const std::vector<double>& hold_s,
-                   double speed_m_s, Vehicle vehicle);
+                   double speed_m_s, Vehicle vehicle, double accel_m_s2 = kAcceleration_m_s2);
 
 }  // namespace swath::planning

@@ -168,7 +168,8 @@ struct DronePlan {
   double speed_m_s = 0.0;
   double climb_speed_m_s = vehicle::Drone{}.climb_speed_m_s;      ///< the fleet's, or the default
   double descent_speed_m_s = vehicle::Drone{}.descent_speed_m_s;  ///< the fleet's, or the default
-  std::optional<double> endurance_s;  ///< flight time on a full charge, when known
+  double accel_m_s2 = vehicle::Drone{}.accel_m_s2;  ///< the drone's (ArduCopter's WPNAV_ACCEL)
+  std::optional<double> endurance_s;                ///< flight time on a full charge, when known
   /// Its part of the survey (with a fleet: the division's share, budgets and region).
   DroneWork work;
   DroneMission mission;            ///< the whole flight

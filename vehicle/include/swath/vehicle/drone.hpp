@@ -34,6 +34,10 @@ struct Drone {
   double climb_speed_m_s = 2.5;
   double descent_speed_m_s = 1.5;
   double max_airspeed_m_s = 25.0;  ///< the airframe's limit through the air, > 0
+  /// Horizontal acceleration and braking, m/s² (the legs from rest to rest, kinematics.hpp).
+  /// Default: ArduCopter's WPNAV_ACCEL, 2.5 (swath plan's); swath-fleet's is 2 unless the fleet
+  /// file gives accel_m_s2 (FleetFileRules).
+  double accel_m_s2 = 2.5;
 
   /// Maximum distance it can fly: level x endurance x speed; empty when only a capability is given.
   std::optional<double> range_m() const;

@@ -19,6 +19,9 @@ namespace swath::vehicle {
 struct FleetFileRules {
   double climb_speed_m_s = 2.5;    ///< default climb_speed_m_s, m/s
   double descent_speed_m_s = 1.5;  ///< default descent_speed_m_s, m/s
+  /// The drones' accel_m_s2, m/s²; flights take the file's accel_m_s2 over it (swath plan checks
+  /// the key's range and plans with this).
+  double accel_m_s2 = 2.5;
   /// true (swath-fleet): the drones are flown — a drone needs a speed_m_s, battery_level,
   /// endurance_s, profile or max_flight_time_s (a capability alone is refused), any may be
   /// missing (the flight defaults), `home` is optional and `home_m` allowed.
@@ -45,7 +48,6 @@ struct FleetFileDrone {
   std::optional<double> max_flight_time_s;          ///< s, (1, 604800]
   std::optional<double> approach_speed_m_s;         ///< m/s, [0.1, 100]
   std::optional<double> approach_within_m;          ///< m, [0, 1000]
-  std::optional<double> accel_m_s2;                 ///< m/s², [0, 50]
   std::optional<double> recharge_s;                 ///< s, [0, 86400]
   std::optional<geometry::Point2> home_m;           ///< local metres at swath-fleet's origin
   std::optional<FleetFileLink> mavlink;
@@ -54,17 +56,41 @@ struct FleetFileDrone {
   std::string where_home;
 };
 
+/// One fence polygon, its outer ring in WGS84 degrees (not closed: the last vertex is not the
+/// first again).
+struct FencePolygon {
+  std::vector<geometry::GeoPoint> ring_deg;
+  bool inclusion = true;  ///< false: an exclusion (no target inside)
+};
+
+/// The fleet file's `fence: {geojson: FILE, max_altitude_m: M}`, its GeoJSON read.
+struct FleetFileFence {
+  std::vector<FencePolygon> polygons;
+  std::optional<double> max_altitude_m;  ///< above home, m, (0, 10000]
+};
+
 struct FleetFile {
   std::optional<geometry::GeoPoint> home;  ///< the fleet's home
   /// swath-fleet's spacing of drones sharing the home (and its envelope's separation), m, > 0.
   std::optional<double> separation_m;
+  /// swath-fleet's envelope: the ceiling above home, m, (0, 10000] (checked for every program),
+  /// and the geofence, read only where drones are flown (FleetFileRules::flights: swath plan
+  /// accepts the key and does not open its GeoJSON).
+  std::optional<double> ceiling_m;
+  std::optional<FleetFileFence> fence;
   std::vector<FleetFileDrone> drones;
 };
 
 /// Reads a fleet file. Throws base::InputError naming `source`, the drone, the line and the key:
 /// unknown keys, numbers out of range, bad coordinates, zero or more than 100 drones, names given
 /// twice, and what `rules` refuse.
+/// `fence` is read from its GeoJSON file, relative to `source`.
 FleetFile parse_fleet_file(const std::string& yaml_text, const std::string& source,
                            const FleetFileRules& rules);
+
+/// A fence file: GeoJSON Polygon or MultiPolygon (a geometry, Feature or FeatureCollection),
+/// lon/lat degrees; a feature's properties.fence is "inclusion" (default) or "exclusion".
+/// Throws base::InputError naming `source` and the feature.
+std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std::string& source);
 
 }  // namespace swath::vehicle

@@ -9,10 +9,39 @@
 #include <cstdint>
 #include <vector>
 
+#include "swath/geometry/point.hpp"
 #include "swath/vehicle/random.hpp"
 #include "swath/vehicle/vec3.hpp"
 
 namespace swath::vehicle {
+
+/// A steady wind, swath's one convention: the direction it blows FROM, degrees clockwise from
+/// north (0 from the north, 90 from the east), and its speed, m/s; velocity_m_s() is the air's
+/// velocity (east, north, m/s: it points where the wind blows TO). A wind keeps the form it was
+/// made in exactly and computes the other on request — a bearing-to-vector round trip is not
+/// bit-exact, and each program's outputs stay those of the form its users give (swath-energy's
+/// `wind: {speed_m_s, from_deg}`, swath-fleet's `--wind E,N`).
+class Wind {
+ public:
+  Wind() = default;  ///< calm
+  /// `speed_m_s` (>= 0) blowing from the compass bearing `from_deg` (degrees clockwise from north).
+  Wind(double speed_m_s, double from_deg) : first_(speed_m_s), second_(from_deg) {}
+  /// The wind whose air moves at (east_m_s, north_m_s).
+  static Wind from_velocity(double east_m_s, double north_m_s);
+
+  double speed_m_s() const;
+  /// Degrees clockwise from north the wind blows from: as given when made from a bearing; in
+  /// [0, 360) when made from a velocity (0 when calm).
+  double from_deg() const;
+  /// The air's velocity, x east and y north, m/s.
+  geometry::Point2 velocity_m_s() const;
+  /// The same with z = 0 (world ENU).
+  Vec3 velocity3_m_s() const;
+
+ private:
+  bool from_vector_ = false;
+  double first_ = 0.0, second_ = 0.0;  ///< speed and bearing, or east and north
+};
 
 /// Mean wind given at `reference_height_m`, blowing FROM the compass bearing `from_deg`
 /// (degrees clockwise from north), growing by `ramp_m_s_per_min`.
