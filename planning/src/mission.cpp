@@ -28,6 +28,12 @@ double rest_to_rest_s(double length, double v, double a) {
   return 2 * std::sqrt(length / a);
 }
 
+// How much longer braking from v to `slow` at a takes than flying its (v² - slow²) / (2 a) at v,
+// seconds: (v - slow) / a - (v² - slow²) / (2 a v) = (v - slow)² / (2 a v).
+double braking_s(double v, double slow, double a) {
+  return (v - slow) * (v - slow) / (2 * a * v);
+}
+
 // Builds the items and the path of one mission step by step.
 // Approaches to stops beside the zones (MissionBuilder::slow_approaches): the least distance
 // before the stop the slow speed is set and how far past it the cruise speed is set again, metres,
@@ -201,7 +207,8 @@ class MissionBuilder {
         holds_.insert(holds_.begin() + static_cast<long>(i), 0.0);
         cut_after_.insert(cut_after_.begin() + static_cast<long>(i), 0);
         speed_after_.insert(speed_after_.begin() + static_cast<long>(i), slow_m_s);
-        added_s += (lead_m + past_m) * (1 / slow_m_s - 1 / v);
+        added_s += braking_s(v, slow_m_s, a) +
+                   (lead_m - (brake_m - kBrakeMargin_m) + past_m) * (1 / slow_m_s - 1 / v);
         continue;
       }
       // The incoming leg is too short to brake on: slow from the waypoint back along the path
@@ -219,7 +226,11 @@ class MissionBuilder {
       // A stop passed on the way back (a turn just over kStopTurn_deg, which the walk does not
       // take for sure) gets the speed up to no more than this one's again.
       for (std::size_t k = j; k < i; ++k) speed_after_[k] = std::min(speed_after_[k], slow_m_s);
-      added_s += (back_m + past_m) * (1 / slow_m_s - 1 / v);
+      // Braking from the cruise speed where the walk found room, else from rest at the stop before.
+      added_s += back_m >= brake_m
+                     ? braking_s(v, slow_m_s, a) +
+                           (back_m - (brake_m - kBrakeMargin_m) + past_m) * (1 / slow_m_s - 1 / v)
+                     : (back_m + past_m) * (1 / slow_m_s - 1 / v);
     }
     return added_s;
   }
