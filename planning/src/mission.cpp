@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "swath/base/number_text.hpp"
 #include "swath/vehicle/kinematics.hpp"
 
 namespace swath::planning {
@@ -20,17 +21,25 @@ namespace {
 
 using geometry::Point2;
 
+// How much longer braking from v to `slow` at a takes than flying its (v² - slow²) / (2 a) at v,
+// seconds: (v - slow) / a - (v² - slow²) / (2 a v) = (v - slow)² / (2 a v).
+double braking_s(double v, double slow, double a) {
+  return (v - slow) * (v - slow) / (2 * a * v);
+}
+
 // Builds the items and the path of one mission step by step.
-// Approaches to stops beside the zones (MissionBuilder::slow_approaches): how far before the stop
-// the slow speed is set, metres (ArduCopter brakes to a stop at the waypoint anyway; the model
-// of the overrun takes the speed commanded there), and the slowest speed set, m/s (ArduCopter's
-// least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
+// Approaches to stops beside the zones (MissionBuilder::slow_approaches): the least distance
+// before the stop the slow speed is set and how far past it the cruise speed is set again, metres,
+// and the slowest speed set, m/s (ArduCopter's least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
 constexpr double kSlowApproach_m = 0.5;
 constexpr double kSlowest_m_s = 0.2;
 // How far a stop with less free run than the overrun at kSlowest_m_s (8 mm at 2.5 m/s²) is moved
 // back along its incoming leg at most, metres (MissionBuilder::slow_approaches).
 constexpr double kMostNudge_m = 0.02;
 constexpr double kMergeWithin_m = 0.05;
+// Braking room kept beyond what braking to the slow speed takes, metres: the files' rounding and
+// the 2 cm a stop before may still be moved (MissionBuilder::nudged).
+constexpr double kBrakeMargin_m = 0.05;
 
 class MissionBuilder {
  public:
@@ -129,80 +138,134 @@ class MissionBuilder {
 
  private:
   // Stops (a hold, a turn sharper than kStopTurn_deg) where the overrun at the cruise speed would
-  // reach a zone's clearance band (s.free_run_m) are approached slowly: a waypoint kSlowApproach_m
-  // before the stop, the speed there cut to what stops within the free run (at least
-  // kSlowest_m_s), and back to the cruise speed at a waypoint kSlowApproach_m past it. The change
-  // after a waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
-  // waypoint before them) earlier: slow from at latest kSlowApproach_m before the stop, fast
-  // again from no earlier than the stop itself. Returns the time the slow legs add, seconds.
+  // reach a zone's clearance band (s.free_run_m) are approached slowly: the speed cut to what stops
+  // within the free run (at least kSlowest_m_s) early enough that the vehicle, braking at no more
+  // than s.accel_m_s2 from the cruise speed, is that slow at the stop (reachable_speed_m_s; a cut
+  // kSlowApproach_m before the stop left ArduCopter SITL flights 2 to 7 cm inside the clearance),
+  // and back to the cruise speed at a waypoint kSlowApproach_m past it. A DO_CHANGE_SPEED after a
+  // waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
+  // waypoint before them) earlier: the cut follows a waypoint added that far before the stop on
+  // its incoming leg, or where that leg is too short, an earlier waypoint far enough back or the
+  // stop before (at rest there anyway). Fast again from no earlier than the stop itself. Returns
+  // the time the slow legs add, seconds.
   double slow_approaches() {
     if (!s_.free_run_m || s_.vehicle != Vehicle::multirotor || m_.path.size() < 3) return 0.0;
-    const double overrun_m = stop_overrun_m(s_.speed_m_s, s_.accel_m_s2);
-    const double slowest_overrun_m = stop_overrun_m(kSlowest_m_s, s_.accel_m_s2);
+    const double v = s_.speed_m_s, a = s_.accel_m_s2;
+    const double overrun_m = stop_overrun_m(v, a);
+    const double slowest_overrun_m = stop_overrun_m(kSlowest_m_s, a);
     std::vector<std::size_t> item_of{0};  // path index -> item index (0: takeoff at home)
     for (std::size_t k = 1; k < m_.items.size(); ++k)
       if (m_.items[k].kind == ItemKind::waypoint) item_of.push_back(k);
+    // Even the slowest approach runs slowest_overrun_m on: a stop with less free run (on the
+    // clearance band's edge: a line start entered from the home leg, the bend of a route, a line
+    // end that could not be drawn back) moves back along its incoming leg by what that needs and
+    // 2 mm, at most kMostNudge_m (the preflight check refused such plans 1 to 8 mm short: half of
+    // a test's random layouts with zones). First, in flight order: a stop moved turns the leg
+    // into the next one, and with it the direction that stop overruns in.
+    for (std::size_t i = 1; i + 1 < m_.path.size() && i < item_of.size(); ++i) {
+      const Point2 p = m_.path[i], before = m_.path[i - 1];
+      const double in_m = geometry::distance(before, p);
+      if (!stop_here(i) || !(geometry::distance(p, m_.path[i + 1]) > 0)) continue;
+      const Point2 u = (p - before) * (1 / in_m);
+      if (s_.free_run_m(p, u) >= slowest_overrun_m + 1e-3) continue;
+      const auto q = nudged(p, before, u, slowest_overrun_m);
+      if (q && geometry::distance(before, *q) > 0) nudge(i, item_of[i], *q);
+    }
+    cut_after_.assign(m_.path.size(), 0);
+    speed_after_.assign(m_.path.size(), v);
     double added_s = 0;
     // Backwards, so that insertions leave the indices still to visit as they were.
     for (std::size_t i = m_.path.size() - 2; i >= 1 && i < item_of.size(); --i) {
-      Point2 p = m_.path[i];
+      const Point2 p = m_.path[i];
       const Point2 before = m_.path[i - 1], after = m_.path[i + 1];
-      double in_m = geometry::distance(before, p);
+      const double in_m = geometry::distance(before, p);
       const double out_m = geometry::distance(p, after);
-      if (in_m <= 0) continue;
-      // A hold on a waypoint repeated at the stop is the stop's.
-      const bool held = holds_[i] > 0 || (out_m <= 0 && holds_[i + 1] > 0);
-      if (!(held || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg))) continue;
+      if (!stop_here(i)) continue;
       const Point2 u = (p - before) * (1 / in_m);
-      double free_m = s_.free_run_m(p, u);
-      if (free_m < slowest_overrun_m + 1e-3 && out_m > 0) {
-        // Even the slowest approach runs slowest_overrun_m on: a stop with less free run (on the
-        // clearance band's edge: a line start entered from the home leg, the bend of a route, a
-        // line end that could not be drawn back) moves back along its incoming leg by what that
-        // needs and 2 mm, at most kMostNudge_m (the preflight check refused such plans 1 to 8 mm
-        // short: half of a test's random layouts with zones).
-        const auto q = nudged(p, before, u, slowest_overrun_m);
-        if (q && geometry::distance(before, *q) > 0) {
-          p = nudge(i, item_of[i], *q);
-          in_m = geometry::distance(before, p);
-          free_m = s_.free_run_m(p, (p - before) * (1 / in_m));
-        }
-      }
+      const double free_m = s_.free_run_m(p, u);
       if (free_m >= overrun_m) continue;
       const double slow_m_s =
-          std::max(kSlowest_m_s, std::sqrt(2 * s_.accel_m_s2 * std::max(free_m - 0.05, 0.0)));
-      if (slow_m_s >= s_.speed_m_s) continue;
-      const double lead_m = std::min(kSlowApproach_m, in_m / 2),
-                   past_m = std::min(kSlowApproach_m, out_m / 2);
-      const Point2 w_in = p - u * lead_m;
-      const Point2 w_out = out_m > 0 ? p + (after - p) * (past_m / out_m) : p;
-      // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
-      // (A next waypoint on the stop itself: the cruise speed after that one instead.)
-      const std::size_t next = i + 1 < item_of.size() ? item_of[i + 1] : m_.items.size() - 1;
-      if (out_m > 0)
-        m_.items.insert(m_.items.begin() + static_cast<long>(next),
-                        {{ItemKind::waypoint, w_out, s_.altitude_m, 0.0},
-                         {ItemKind::change_speed, {}, 0.0, s_.speed_m_s}});
-      else
-        m_.items.insert(m_.items.begin() + static_cast<long>(next) + 1,
-                        {ItemKind::change_speed, {}, 0.0, s_.speed_m_s});
-      added_s += ((in_m < 1.0 ? in_m : lead_m) + past_m) * (1 / slow_m_s - 1 / s_.speed_m_s);
-      if (out_m > 0) {
-        m_.path.insert(m_.path.begin() + static_cast<long>(i) + 1, w_out);
-        holds_.insert(holds_.begin() + static_cast<long>(i) + 1, 0.0);
-      }
-      // (An incoming leg under a metre: slow from the waypoint before, no waypoint added.)
-      const auto at = m_.items.begin() + static_cast<long>(item_of[i]);
-      if (in_m < 1.0) {
-        m_.items.insert(at, {ItemKind::change_speed, {}, 0.0, slow_m_s});
+          std::max(kSlowest_m_s, std::sqrt(2 * a * std::max(free_m - 0.05, 0.0)));
+      if (slow_m_s >= v) continue;
+      const double brake_m = (v * v - slow_m_s * slow_m_s) / (2 * a) + kBrakeMargin_m;
+      const double lead_m = std::max(kSlowApproach_m, brake_m);
+      const double past_m = std::min(kSlowApproach_m, out_m / 2);
+      if (!cut_after_[i]) fast_again(i, item_of, p, after, out_m, past_m);
+      if (lead_m < in_m - kMergeWithin_m) {
+        // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
+        const Point2 w_in = p - u * lead_m;
+        m_.items.insert(m_.items.begin() + static_cast<long>(item_of[i]),
+                        {{ItemKind::waypoint, w_in, s_.altitude_m, 0.0},
+                         {ItemKind::change_speed, {}, 0.0, slow_m_s}});
+        m_.path.insert(m_.path.begin() + static_cast<long>(i), w_in);
+        holds_.insert(holds_.begin() + static_cast<long>(i), 0.0);
+        cut_after_.insert(cut_after_.begin() + static_cast<long>(i), 0);
+        speed_after_.insert(speed_after_.begin() + static_cast<long>(i), slow_m_s);
+        added_s += braking_s(v, slow_m_s, a) +
+                   (lead_m - (brake_m - kBrakeMargin_m) + past_m) * (1 / slow_m_s - 1 / v);
         continue;
       }
-      m_.items.insert(at, {{ItemKind::waypoint, w_in, s_.altitude_m, 0.0},
-                           {ItemKind::change_speed, {}, 0.0, slow_m_s}});
-      m_.path.insert(m_.path.begin() + static_cast<long>(i), w_in);
-      holds_.insert(holds_.begin() + static_cast<long>(i), 0.0);
+      // The incoming leg is too short to brake on: slow from the waypoint back along the path
+      // where braking has room, or from the stop before, whichever comes first.
+      std::size_t j = i - 1;
+      double back_m = in_m;
+      while (j > 0 && back_m < brake_m && !stops_at(j)) {
+        back_m += geometry::distance(m_.path[j - 1], m_.path[j]);
+        --j;
+      }
+      m_.items.insert(m_.items.begin() + static_cast<long>(item_of[j + 1]),
+                      {ItemKind::change_speed, {}, 0.0, slow_m_s});
+      for (std::size_t k = j + 1; k < i; ++k) ++item_of[k];
+      cut_after_[j] = 1;
+      // A stop passed on the way back (a turn just over kStopTurn_deg, which the walk does not
+      // take for sure) gets the speed up to no more than this one's again.
+      for (std::size_t k = j; k < i; ++k) speed_after_[k] = std::min(speed_after_[k], slow_m_s);
+      // Braking from the cruise speed where the walk found room, else from rest at the stop before.
+      added_s += back_m >= brake_m
+                     ? braking_s(v, slow_m_s, a) +
+                           (back_m - (brake_m - kBrakeMargin_m) + past_m) * (1 / slow_m_s - 1 / v)
+                     : (back_m + past_m) * (1 / slow_m_s - 1 / v);
     }
     return added_s;
+  }
+
+  // Back to the cruise speed (speed_after_) after the stop at path point i: at a waypoint past_m
+  // along the outgoing leg (a next waypoint on the stop itself: after that one instead).
+  void fast_again(std::size_t i, const std::vector<std::size_t>& item_of, Point2 p, Point2 after,
+                  double out_m, double past_m) {
+    const std::size_t next = i + 1 < item_of.size() ? item_of[i + 1] : m_.items.size() - 1;
+    if (!(out_m > 0)) {
+      m_.items.insert(m_.items.begin() + static_cast<long>(next) + 1,
+                      {ItemKind::change_speed, {}, 0.0, speed_after_[i]});
+      return;
+    }
+    const Point2 w_out = p + (after - p) * (past_m / out_m);
+    m_.items.insert(m_.items.begin() + static_cast<long>(next),
+                    {{ItemKind::waypoint, w_out, s_.altitude_m, 0.0},
+                     {ItemKind::change_speed, {}, 0.0, speed_after_[i]}});
+    m_.path.insert(m_.path.begin() + static_cast<long>(i) + 1, w_out);
+    holds_.insert(holds_.begin() + static_cast<long>(i) + 1, 0.0);
+    cut_after_.insert(cut_after_.begin() + static_cast<long>(i) + 1, 0);
+    speed_after_.insert(speed_after_.begin() + static_cast<long>(i) + 1, speed_after_[i]);
+  }
+
+  // Whether path point i is a stop slow_approaches() looks at: a hold (on it, or on a waypoint
+  // repeated there) or a turn sharper than kStopTurn_deg, entered along a leg of some length.
+  bool stop_here(std::size_t i) const {
+    const Point2 before = m_.path[i - 1], p = m_.path[i], after = m_.path[i + 1];
+    const double out_m = geometry::distance(p, after);
+    if (!(geometry::distance(before, p) > 0)) return false;
+    const bool held = holds_[i] > 0 || (out_m <= 0 && holds_[i + 1] > 0);
+    return held || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg);
+  }
+
+  // Whether the vehicle surely stops at path point j (a hold, or a turn a degree sharper than
+  // kStopTurn_deg: the check of the written files, reading rounded degrees, must agree).
+  bool stops_at(std::size_t j) const {
+    if (holds_[j] > 0) return true;
+    const Point2 b = m_.path[j - 1], p = m_.path[j], c = m_.path[j + 1];
+    return geometry::distance(b, p) > 0 && geometry::distance(p, c) > 0 &&
+           turn_deg(b, p, c) > kStopTurn_deg + 1;
   }
 
   // Where a stop at p, entered from `before` (direction u), has the free run the slowest approach
@@ -248,6 +311,12 @@ class MissionBuilder {
   const MissionSettings& s_;
   DroneMission m_;
   std::vector<double> holds_;
+  // slow_approaches(): path points right after whose items a later stop's speed cut was put (no
+  // cruise speed again there).
+  std::vector<char> cut_after_;
+  // slow_approaches(): the speed set again after each path point's stop (the cruise speed, or
+  // less before a later stop whose cut lies further back).
+  std::vector<double> speed_after_;
   bool camera_on_ = false;
 };
 
@@ -321,6 +390,10 @@ std::vector<Point2> photo_positions(Point2 start, Point2 end, double trigger_dis
 }
 
 std::vector<PhotoPoint> planned_photos(const DroneMission& m, double trigger_distance_m) {
+  // The autopilot triggers at the distance the files carry, to the millimetre: over a long line
+  // the unrounded spacing put the last photo up to centimetres off, and a line's count one off
+  // from what the written file takes (swath verify's count).
+  trigger_distance_m = base::round_to(trigger_distance_m, 3);
   std::vector<PhotoPoint> photos;
   Point2 at = m.home;
   bool on = false;

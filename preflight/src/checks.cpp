@@ -255,17 +255,41 @@ const char* transit_kind(const Leg& l, bool run_meets_area) {
   return nullptr;
 }
 
+// Photos triggered on each leg: a photo each time the distance (or time) since the last one
+// reaches the trigger's, counted on across legs while the trigger stays on (a line split by
+// waypoints is one run of photos, as ArduPilot triggers it), anew from a trigger item (with its
+// photo at once where it asks for one).
+class PhotoCounter {
+ public:
+  double photos_on(const Leg& l) {
+    const bool distance = l.trigger_distance_m > 0;
+    const double every = distance ? l.trigger_distance_m : l.trigger_interval_s;
+    if (l.trigger_started || every != every_ || distance != distance_) since_ = 0;
+    every_ = every, distance_ = distance;
+    since_ += distance ? geometry::distance(l.from.xy(), l.to.xy()) : l.t_end_s - l.t_start_s;
+    const double n = std::floor(since_ / every + 1e-9);
+    since_ = std::max(since_ - n * every, 0.0);
+    return n + (l.photo_at_start ? 1 : 0);
+  }
+  void off() { every_ = 0; }
+
+ private:
+  double since_ = 0, every_ = 0;
+  bool distance_ = true;
+};
+
 }  // namespace
 
 void check_photos(const FileContext& f, const std::vector<geometry::Ring>& area, Checked& out) {
   const std::vector<bool> meets = runs_meeting_area(f.path->legs, area);
+  PhotoCounter counter;
   for (std::size_t i = 0; i < f.path->legs.size(); ++i) {
     const Leg& l = f.path->legs[i];
-    if (l.trigger_distance_m <= 0 && l.trigger_interval_s <= 0) continue;
-    const double h = geometry::distance(l.from.xy(), l.to.xy());
-    const double photos = l.trigger_distance_m > 0
-                              ? std::floor(h / l.trigger_distance_m) + 1
-                              : std::floor((l.t_end_s - l.t_start_s) / l.trigger_interval_s) + 1;
+    if (l.trigger_distance_m <= 0 && l.trigger_interval_s <= 0) {
+      counter.off();
+      continue;
+    }
+    const double photos = counter.photos_on(l);
     const char* transit = transit_kind(l, meets[i]);
     if (transit == nullptr) {
       out.photos += photos;

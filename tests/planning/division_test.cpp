@@ -232,8 +232,10 @@ TEST(AreaProfile, AgreesWithClippingOnRandomAreas) {
 // triangle when too short), a stop where the heading turns by more than kStopTurn_deg (measured
 // with atan2 here, not the planner's dot product), at a held waypoint and at the end, plus the
 // climb to and descent from the survey altitude; a leg commanded slower (an approach to a stop
-// beside a zone) adds its length at its speed less its length at the cruise speed. Written apart
-// from path_time_s() on purpose.
+// beside a zone) adds its length at its speed less its length at the cruise speed, except where
+// the drone arrives faster (flown through the point before it at a higher speed): braking there at
+// kAcceleration_m_s2 takes (v0 - v1) / a over (v0² - v1²) / (2 a) (speeds raised are taken as
+// reached at once). Written apart from path_time_s() on purpose.
 double recomputed_flight_s(const DronePlan& d, double altitude_m) {
   const DroneMission& m = d.mission;
   std::vector<double> hold{0};  // per path point: the waypoint items in order, then home
@@ -255,10 +257,20 @@ double recomputed_flight_s(const DronePlan& d, double altitude_m) {
   };
   double time = altitude_m / d.climb_speed_m_s + altitude_m / d.descent_speed_m_s;
   double since_stop = 0;
+  double moving = 0;  // the speed at the point before, 0 at a stop
   for (std::size_t k = 1; k < m.path.size(); ++k) {
     const double leg_m = std::hypot(m.path[k].x - m.path[k - 1].x, m.path[k].y - m.path[k - 1].y);
     since_stop += leg_m;
-    if (speed_into[k] < v) time += leg_m * (1 / speed_into[k] - 1 / v);
+    const double c = speed_into[k];
+    double braked_m = 0;
+    if (moving > c) {  // braking from `moving` to c over at most the leg
+      braked_m = std::min(leg_m, (moving * moving - c * c) / (2 * a));
+      const double after = std::sqrt(moving * moving - 2 * a * braked_m);
+      time += (moving - after) / a - braked_m / v;
+      moving = after;
+    }
+    if (c < v) time += (leg_m - braked_m) * (1 / c - 1 / v);
+    moving = braked_m < leg_m || moving <= c ? c : moving;
     bool stop = k + 1 == m.path.size() || (k < hold.size() && hold[k] > 0);
     if (!stop) {
       const Point2 u = m.path[k] - m.path[k - 1], w = m.path[k + 1] - m.path[k];
@@ -272,6 +284,7 @@ double recomputed_flight_s(const DronePlan& d, double altitude_m) {
     if (stop) {
       time += stretch_s(since_stop) + (k < hold.size() ? hold[k] : 0);
       since_stop = 0;
+      moving = 0;
     }
   }
   return time;

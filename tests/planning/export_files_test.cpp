@@ -440,6 +440,49 @@ TEST(DjiKmz, UnzipsToTemplateAndWaylinesThatParseBackToThePlan) {
   EXPECT_EQ(template_points, planned.size());
 }
 
+// Drones from one home fly in altitude layers (deconfliction): each drone's KMZ returns home at
+// its own layer's height (globalRTHHeight), the height its waypoints are flown at, not at one
+// shared height where the drones would meet on the way home.
+TEST(DjiKmz, EachDroneReturnsHomeInItsOwnLayer) {
+  const SurveyPlan plan = meadow(80, [](SurveyRequest& r) {
+    r.camera = find_camera("dji-mavic-3e", std::string(SWATH_SOURCE_DIR) + "/share/cameras");
+    vehicle::Fleet fleet;
+    fleet.home = *r.home;
+    for (const char* name : {"a", "b", "c"}) {
+      vehicle::Drone d;
+      d.name = name;
+      d.battery_level = 1.0;
+      d.endurance_s = 3600;
+      fleet.drones.push_back(d);
+    }
+    r.fleet = fleet;
+  });
+  std::set<double> rth_heights;
+  for (const Flight& flight : flights_of(plan)) {
+    SCOPED_TRACE(flight.file_stem);
+    const auto entries = unzip(dji_kmz(plan, flight));
+    pugi::xml_document w;
+    ASSERT_TRUE(w.load_string(entries.at("wpmz/waylines.wpml").c_str()));
+    const pugi::xml_node doc = w.child("kml").child("Document");
+    const double rth_m = value(doc.child("wpml:missionConfig"), "wpml:globalRTHHeight");
+    std::set<double> flown;
+    for (const pugi::xml_node& pm : doc.child("Folder").children("Placemark"))
+      flown.insert(value(pm, "wpml:executeHeight"));
+    ASSERT_EQ(flown.size(), 1u);
+    EXPECT_DOUBLE_EQ(rth_m, *flown.begin());
+    rth_heights.insert(rth_m);
+    // The template DJI Pilot 2 edits: the layer as its global height, every point on it.
+    pugi::xml_document t;
+    ASSERT_TRUE(t.load_string(entries.at("wpmz/template.kml").c_str()));
+    const pugi::xml_node tf = t.child("kml").child("Document").child("Folder");
+    EXPECT_DOUBLE_EQ(value(tf, "wpml:globalHeight"), rth_m);
+    for (const pugi::xml_node& pm : tf.children("Placemark"))
+      EXPECT_EQ(text(pm, "wpml:useGlobalHeight"), "1");
+  }
+  // Three drones from one home: three layers, 10 m apart from the imaging altitude up.
+  EXPECT_EQ(rth_heights, (std::set<double>{80, 90, 100}));
+}
+
 TEST(DjiKmz, LandingUnknownCameraAndTimeTrigger) {
   // The Sony has no DJI enums: no droneInfo or payloadInfo, and a warning saying so.
   const SurveyPlan plan = meadow(80, [](SurveyRequest& r) {

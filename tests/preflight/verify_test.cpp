@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "../../preflight/src/checks.hpp"
+#include "local_field.hpp"
+#include "meadow_survey.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -17,6 +19,7 @@
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/missions/mission.hpp"
+#include "swath/planning/survey_files.hpp"
 #include "swath/preflight/verify.hpp"
 
 namespace swath::preflight {
@@ -26,7 +29,7 @@ const geometry::GeoPoint kOrigin{47.0, 8.0, 0.0};
 
 struct Row {
   int command;
-  double x = 0, y = 0, alt_m = 0, p1 = 0;
+  double x = 0, y = 0, alt_m = 0, p1 = 0, p2 = 0, p3 = 0;
 };
 
 // A WPL 110 file of rows placed in local metres around kOrigin, home at `home`.
@@ -40,7 +43,8 @@ std::string wpl(const std::vector<Row>& rows, geometry::Point2 home = {0, 0}) {
     const bool nav = missions::is_navigation(r.command);
     const geometry::GeoPoint g = nav ? frame.to_geo({r.x, r.y}) : geometry::GeoPoint{0, 0, 0};
     out += std::to_string(index++) + "\t0\t" + (nav ? "3" : "2") + "\t" +
-           std::to_string(r.command) + "\t" + base::fixed_text(r.p1, 3) + "\t0\t0\t0\t" +
+           std::to_string(r.command) + "\t" + base::fixed_text(r.p1, 3) + "\t" +
+           base::fixed_text(r.p2, 3) + "\t" + base::fixed_text(r.p3, 3) + "\t0\t" +
            base::fixed_text(g.lat_deg, 9) + "\t" + base::fixed_text(g.lon_deg, 9) + "\t" +
            base::fixed_text(r.alt_m, 3) + "\t1\n";
   }
@@ -92,6 +96,70 @@ TEST(FlownPath, ShortLegsNeverReachCruiseAndGentleCornersDoNotStop) {
   // The corner at (4, 0) turns by 5.7 degrees: no stop there, so this leg stops at its start only.
   EXPECT_FALSE(short_leg.stops_at_end);
   EXPECT_NEAR(short_leg.t_end_s - short_leg.t_start_s, std::sqrt(2 * 4 / 2.5), 1e-4);
+}
+
+// A stop approached slowly: cruise at 5 m/s to x = 100 - d, DO_CHANGE_SPEED 0.2 m/s there, the
+// stop at x = 100 (the way home turns back). Braking at 2.5 m/s² from 5 m/s over d leaves
+// v² = 25 - 5 d (never below 0.04), and the overrun v² / 5 = 5 - d m (at least 8 mm): a cut
+// 0.5 m before the stop still runs 4.5 m past it.
+FlownPath slow_approach(double d) {
+  const DroneFile f = drone(
+      {{22, 0, 0, 20}, {16, 100 - d, 0, 20}, {178, 0, 0, 0, 1, 0.2}, {16, 100, 0, 20}, {20}}, "s");
+  return fly(f.mission, geometry::LocalFrame(kOrigin), FlightModel{});
+}
+
+TEST(FlownPath, ASpeedCutBeforeAStopBrakesAtTheDecelerationFromTheSpeedBefore) {
+  for (const double d : {0.5, 1.0, 2.5, 4.0, 4.9, 5.0, 8.0}) {
+    SCOPED_TRACE(d);
+    const FlownPath p = slow_approach(d);
+    ASSERT_EQ(p.overruns.size(), 2u);  // at x = 100 and at home
+    const double expected_m = std::max(5.0 - d, 0.2 * 0.2 / 5);
+    EXPECT_NEAR(p.overruns[0].to.x - p.overruns[0].from.x, expected_m, 1e-3);
+    // The way home is flown at the slow speed from its start (at rest after the stop).
+    EXPECT_NEAR(p.overruns[1].from.x - p.overruns[1].to.x, 0.2 * 0.2 / 5, 1e-6);
+  }
+}
+
+TEST(Verify, ASlowApproachBegunTooLateReachesAZone) {
+  CheckOptions o;
+  o.clearance_m = 0;
+  o.zones = {{"wall", square(102, -20, 110, 20)}};
+  const Report late = verify(
+      {drone({{22, 0, 0, 20}, {16, 99.5, 0, 20}, {178, 0, 0, 0, 1, 0.2}, {16, 100, 0, 20}, {20}},
+             "late.waypoints")},
+      o);
+  const Violation* v = find(late, "no-fly zone");
+  ASSERT_NE(v, nullptr) << report_text(late);
+  EXPECT_NE(v->place.find("stopping margin"), std::string::npos);
+  // Begun 4 m before, it brakes to 2.24 m/s and runs 1 m on: short of the wall at 102.
+  const Report early = verify(
+      {drone({{22, 0, 0, 20}, {16, 96, 0, 20}, {178, 0, 0, 0, 1, 0.2}, {16, 100, 0, 20}, {20}},
+             "early.waypoints")},
+      o);
+  EXPECT_EQ(find(early, "no-fly zone"), nullptr) << report_text(early);
+}
+
+// Photos every 10 m from the line's start (206's param3: one at once) along a 105 m line written
+// as two legs: 1 + floor(105 / 10) = 11 photos wherever the split, as the camera triggers on the
+// distance flown since the last photo (counted leg by leg anew, the second leg's start would be
+// counted again: 12 photos).
+TEST(Verify, PhotosAreCountedAlongALineSplitIntoLegs) {
+  for (const double split_x : {45.0, 50.0, 55.0, 99.0}) {
+    SCOPED_TRACE(split_x);
+    const Report r = verify({drone({{22, 0, 0, 20},
+                                    {16, 0, 20, 20},
+                                    {206, 0, 0, 0, 10, 0, 1},
+                                    {16, split_x, 20, 20},
+                                    {16, 105, 20, 20},
+                                    {206, 0, 0, 0, 0},
+                                    {20}},
+                                   "p.waypoints")},
+                            {});
+    const auto f = std::find_if(r.figures.begin(), r.figures.end(),
+                                [](const Figure& g) { return g.check == "photos"; });
+    ASSERT_NE(f, r.figures.end());
+    EXPECT_EQ(*f->value, 11.0) << report_text(r);
+  }
 }
 
 TEST(Verify, CleanMissionPassesEveryCheck) {
@@ -282,6 +350,81 @@ TEST(Checks, SegmentDistanceAgreesWithSampling) {
 TEST(VerifyFiles, ASetWithoutAMissionFileIsBadInput) {
   EXPECT_TRUE(verify_files({{"a.waypoints", wpl(survey_rows())}}, {}).ok());
   EXPECT_THROW(verify_files({{"notes.txt", "x"}}, {}), base::InputError);
+}
+
+// ---- Photos: swath verify's count of a written .plan against swath plan's planned photos ----
+
+double verified_photos(const planning::SurveyPlan& plan, const planning::Flight& f) {
+  const DroneFile d{missions::parse_mission(planning::qgc_plan(plan, f), f.file_stem + ".plan"),
+                    0.0, ""};
+  const Report r = verify({d}, {});
+  for (const Figure& g : r.figures)
+    if (g.check == "photos" && g.value) return *g.value;
+  ADD_FAILURE() << "no photo count for " << f.file_stem;
+  return -1;
+}
+
+// A star-shaped field of 6 to 15 vertices around (0, 0) of radius 120-300 m, with a pond near
+// its middle half the time (slow approaches split lines into several legs), home south-west.
+planning::SurveyRequest random_request(std::mt19937& rng) {
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
+  geometry::Ring outer;
+  const int n = 6 + static_cast<int>(rng() % 10);
+  const double r_m = uniform(120, 300);
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    outer.push_back(geometry::Point2{std::cos(a), std::sin(a)} * (r_m * uniform(0.6, 1.0)));
+  }
+  planning::SurveyRequest r = test::meadow_request(uniform(40, 90));
+  r.field = test::local_field({outer, {}});
+  const geometry::LocalFrame& frame = *r.field.frame;
+  if (rng() % 2) {
+    const geometry::Point2 c{uniform(-0.2, 0.2) * r_m, uniform(-0.2, 0.2) * r_m};
+    const double h = uniform(8, 25);
+    r.exclusions.push_back(
+        {frame.to_geo(c + geometry::Point2{-h, -h}), frame.to_geo(c + geometry::Point2{h, -h}),
+         frame.to_geo(c + geometry::Point2{h, h}), frame.to_geo(c + geometry::Point2{-h, h})});
+    r.clearance_m = uniform(3, 10);
+  }
+  r.speed_m_s = uniform(3, 10);
+  r.home = frame.to_geo({-1.3 * r_m, -1.3 * r_m});
+  return r;
+}
+
+// The camera triggers on the distance flown since its last photo: a line split into several
+// legs (slow approaches beside a zone, --waypoint-spacing) is one run of photos. swath verify
+// counted each leg's start again: 277 photos on the vineyard where swath plan plans 275.
+TEST(VerifyPhotos, AgreeWithSwathPlanOnTheBundledFieldsAndRandomOnes) {
+  std::vector<std::pair<std::string, planning::SurveyRequest>> requests;
+  requests.push_back({"vineyard", test::vineyard_request()});
+  planning::SurveyRequest meadow = test::meadow_request(60);
+  meadow.home = geometry::GeoPoint{47.3965, 8.5405, 0};
+  requests.push_back({"meadow", meadow});
+  meadow.waypoint_spacing_m = 37;
+  requests.push_back({"meadow, waypoints every 37 m", meadow});
+  std::mt19937 rng(275);
+  for (int k = 0; k < 30; ++k)
+    requests.push_back({"random " + std::to_string(k), random_request(rng)});
+  int split_lines = 0;
+  for (const auto& [name, request] : requests) {
+    SCOPED_TRACE(name);
+    planning::SurveyPlan plan;
+    try {
+      plan = planning::plan_survey(request);
+    } catch (const base::InputError&) {
+      continue;  // a random layout swath plan refuses
+    }
+    for (const planning::Flight& f : planning::flights_of(plan)) {
+      EXPECT_EQ(verified_photos(plan, f), static_cast<double>(f.photos->size())) << f.file_stem;
+      std::size_t waypoints = 0;
+      for (const planning::MissionItem& it : f.mission->items)
+        waypoints += it.kind == planning::ItemKind::waypoint;
+      split_lines += waypoints > 2 * f.mission->lines.size();
+    }
+  }
+  EXPECT_GT(split_lines, 5);  // the case that differed: lines flown as several legs
 }
 
 }  // namespace

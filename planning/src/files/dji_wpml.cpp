@@ -10,7 +10,9 @@ missions::DjiSettings dji_settings(const SurveyPlan& plan, const Flight& flight)
   s.land = plan.request.land;
   s.enums = plan.request.camera.dji;
   s.speed_m_s = flight.drone->speed_m_s;
-  s.altitude_m = plan.imaging.altitude_m;
+  // The drone's own altitude layer (deconfliction): its return home (globalRTHHeight) and its
+  // global height stay in that layer, apart from the other drones'.
+  s.altitude_m = plan.imaging.altitude_m + flight.drone->layer_m;
   s.gimbal_pitch_deg = plan.request.triggering.gimbal_pitch_deg;
   s.trigger = plan.request.triggering.mode;
   s.trigger_value = files::trigger_value(flight);

@@ -3,12 +3,15 @@
 // drone's speed, point the camera, fly the lines with the camera triggering on each line only,
 // and return to launch (or land).
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <vector>
 
 #include "swath/missions/export_types.hpp"
+#include "swath/missions/stopping.hpp"
 #include "swath/planning/sweep.hpp"
 
 namespace swath::planning {
@@ -76,7 +79,7 @@ bool positional(ItemKind kind);
 /// of vehicle::Drone::accel_m_s2 and swath plan's; climb and descent are the drone's, by default
 /// WPNAV_SPEED_UP and _DN: vehicle::Drone) and a corner it
 /// stops at (ArduCopter slows to a stop before turns this sharp; gentler ones it flies through).
-inline constexpr double kAcceleration_m_s2 = 2.5;
+inline constexpr double kAcceleration_m_s2 = missions::kDefaultDeceleration_m_s2;
 inline constexpr double kStopTurn_deg = 45.0;
 
 /// Turn angle at b between legs a-b and b-c, degrees in [0, 180].
@@ -89,6 +92,17 @@ double turn_deg(geometry::Point2 a, geometry::Point2 b, geometry::Point2 c);
 /// the waypoint covers, the bound `swath verify` checks too.
 inline double stop_overrun_m(double speed_m_s, double accel_m_s2 = kAcceleration_m_s2) {
   return speed_m_s * speed_m_s / (2 * accel_m_s2);
+}
+
+/// The fastest a multirotor can still fly `distance_m` past the point where its commanded speed
+/// dropped from `before_m_s` to `commanded_m_s`, m/s: it brakes at no more than `accel_m_s2`, so
+/// v² = before² − 2 a d until the commanded speed is reached (a speed cut a few decimetres before
+/// a stop leaves it nearly as fast as before: ArduCopter SITL came 2 to 7 cm inside a zone's
+/// clearance at stops whose 0.2 m/s approach began 0.5 m before them).
+inline double reachable_speed_m_s(double before_m_s, double commanded_m_s, double distance_m,
+                                  double accel_m_s2 = kAcceleration_m_s2) {
+  const double braked_sq = before_m_s * before_m_s - 2 * accel_m_s2 * std::max(distance_m, 0.0);
+  return std::max(commanded_m_s, std::sqrt(std::max(braked_sq, 0.0)));
 }
 
 struct MissionSettings {

@@ -17,10 +17,15 @@
 //   there until the pilot or the battery failsafe brings it home: checking the way home is safer
 //   than ignoring it).
 // - Stopping margin: where the vehicle stops (sharp turn, hold, end), it may overrun the waypoint
-//   along its incoming direction by v^2 / (2 a) (missions::stopping_distance_m with the speed it
-//   reached on that leg): ArduCopter plans its braking before the waypoint, but a late braking
-//   point, a pilot's pause, or a lagging position estimate put it up to this far beyond; the checks
-//   treat that segment as part of the flight.
+//   along its incoming direction by v^2 / (2 a) (missions::stopping_distance_m): ArduCopter plans
+//   its braking before the waypoint, but a late braking point, a pilot's pause, or a lagging
+//   position estimate put it up to this far beyond; the checks treat that segment as part of the
+//   flight. v is the fastest it can arrive: a speed cut brakes it at no more than a (v^2 = v0^2 -
+//   2 a d over the d flown since, v0 its speed before the cut), never below the speed commanded;
+//   a cut takes effect at the waypoint it follows (ArduPilot may start it earlier), a speed raised
+//   is reached at once, and after a stop it starts from rest, accelerating at no more than a (at
+//   most sqrt(2 a s) over the s flown since: the overrun is never longer than s). A slow approach
+//   begun a few decimetres before a stop does not make it slow there.
 
 #include <cstddef>
 #include <memory>
@@ -62,6 +67,10 @@ struct Leg {
   std::string place;  ///< the item that flies it ("drone-1.plan: item 7") or "return to launch"
   double trigger_distance_m = 0.0;  ///< DO_SET_CAM_TRIGG_DIST in force (0: off)
   double trigger_interval_s = 0.0;  ///< IMAGE_START_CAPTURE interval in force (0: off)
+  /// A trigger item (206 with a distance, 2000 with an interval) ran before this leg: counting
+  /// starts anew from its start, with one photo at once (206's param3 1; 2000 always).
+  bool trigger_started = false;
+  bool photo_at_start = false;
   bool stops_at_end = false;
 };
 
