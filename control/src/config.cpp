@@ -61,13 +61,15 @@ PidGains read_pid(const YamlMap& m, PidGains g) {
 }
 
 EstimatorSettings read_estimator(const YamlMap& m) {
-  m.allow({"type", "attitude_gain", "mag_gain", "bias_gain", "process_accel_m_s2"});
+  m.allow({"type", "attitude_gain", "mag_gain", "bias_gain",
+           "process_accel_m_s2_per_sqrt_hz"});
   EstimatorSettings s;
   s.type = choice(m, "type", s.type, {"complementary", "truth"});
   s.attitude_gain_1_s = m.number("attitude_gain", s.attitude_gain_1_s, 0, 100);
   s.mag_gain_1_s = m.number("mag_gain", s.mag_gain_1_s, 0, 100);
   s.bias_gain_1_s = m.number("bias_gain", s.bias_gain_1_s, 0, 100);
-  s.process_accel_m_s2 = m.number("process_accel_m_s2", s.process_accel_m_s2, 0, 1e3, true);
+  s.process_accel_m_s2_per_sqrt_hz = m.number("process_accel_m_s2_per_sqrt_hz",
+                                              s.process_accel_m_s2_per_sqrt_hz, 0, 1e3, true);
   return s;
 }
 
