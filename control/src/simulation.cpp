@@ -445,9 +445,9 @@ class Flight {
       row.false_positive = x.false_positive;
       row.false_negative = x.false_negative;
       row.x = x.x;
-      if (x.trigger_sensor >= 0)
-        row.sensors = r->sensors()[static_cast<std::size_t>(x.trigger_sensor)].name;
-      if (x.trigger_sensor == -2) row.sensors = "several";
+      for (std::size_t k = 0; k < r->sensors().size(); ++k)
+        if (x.trigger_sensors >> k & 1)
+          row.sensors += (row.sensors.empty() ? "" : "+") + r->sensors()[k].name;
     }
     return row;
   }
