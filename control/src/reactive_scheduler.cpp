@@ -209,8 +209,8 @@ void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
   for (std::size_t k = 0; k < state_.size(); ++k) record_.x[k] = state_[k].change_at_start;
   const bool paper_rule = settings_.fit_feedback == FeedbackRule::errors;
   // The paper attributes an execution to a trigger only when one sensor alone caused it.
-  const bool attributed =
-      running_ == kTrigger && running_triggers_ != 0 && (!paper_rule || bits(running_triggers_) == 1);
+  const bool attributed = running_ == kTrigger && running_triggers_ != 0 &&
+                          (!paper_rule || bits(running_triggers_) == 1);
   record_.false_positive = attributed && !output_changed;
   record_.false_negative = running_ == kFailsafe && output_changed;
   if (running_ & kBoot) {
@@ -255,7 +255,8 @@ void ReactiveScheduler::feed_back(bool output_changed) {
     case FeedbackRule::all:  // every outcome, for every sensor it tells something about
       if (running_ == kTrigger) {
         for (std::size_t k = 0; k < state_.size(); ++k)
-          if (running_triggers_ >> k & 1) add_point(state_[k], {state_[k].change_at_start, output_changed});
+          if (running_triggers_ >> k & 1)
+            add_point(state_[k], {state_[k].change_at_start, output_changed});
       } else if (running_ == kFailsafe) {
         for (PerSensor& s : state_)
           if (s.new_at_start) add_point(s, {s.change_at_start, output_changed});

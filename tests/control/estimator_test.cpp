@@ -186,7 +186,8 @@ std::pair<double, double> hover_estimate_rms(int rate_hz) {
       EstimatorInput in;
       for (int k = 0; k < per_execution; ++k, ++ms) {
         const Vec3 noise{accel.normal(), accel.normal(), accel.normal()};
-        in.imu.delta_velocity_m_s += (Vec3{0, 0, kStandardGravity} + accel_sigma * noise) * sample_dt;
+        in.imu.delta_velocity_m_s +=
+            (Vec3{0, 0, kStandardGravity} + accel_sigma * noise) * sample_dt;
         if (ms % 100 == 0) {  // the fix sampled in this execution's span
           in.fix.position_m = gps_sigma * Vec3{gps.normal(), gps.normal(), gps.normal()};
           in.fix.velocity_m_s = gps_sigma * Vec3{gps.normal(), gps.normal(), gps.normal()};

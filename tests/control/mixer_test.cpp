@@ -90,8 +90,8 @@ double best_roll_pitch_scale(const RotorLayout& l, const MixerMatrices& m, doubl
       const double t = ts / 4000.0 * f_max * static_cast<double>(l.count) / 0.8;
       bool ok = true;
       for (std::size_t i = 0; i < l.count && ok; ++i) {
-        const double f =
-            m.pseudo_inverse[i][0] * t + k * (m.pseudo_inverse[i][1] * tx + m.pseudo_inverse[i][2] * ty);
+        const double f = m.pseudo_inverse[i][0] * t +
+                         k * (m.pseudo_inverse[i][1] * tx + m.pseudo_inverse[i][2] * ty);
         ok = f >= 0 && f <= f_max;
       }
       if (ok) {
@@ -125,8 +125,8 @@ TEST(Mixer, AtFullThrottleTheCollectiveGivesWayToRollAndPitch) {
     for (std::size_t i = 0; i < l.count; ++i) most = std::max(most, out.force_n[i]);
     EXPECT_NEAR(most, f_max, 1e-9 * f_max);
     // The same at idle: a collective of 2 % is raised so that no rotor would need to push.
-    const MixerOutput idle = mix(l, *m, Wrench{0.02 * f_max * static_cast<double>(l.count),
-                                              {0.4, -0.3, 0.0}});
+    const MixerOutput idle =
+        mix(l, *m, Wrench{0.02 * f_max * static_cast<double>(l.count), {0.4, -0.3, 0.0}});
     EXPECT_EQ(idle.roll_pitch_scale, 1.0);
     EXPECT_NEAR(wrench_of(l, idle).torque_nm.x, 0.4, 1e-9);
   }

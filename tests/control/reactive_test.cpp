@@ -100,7 +100,8 @@ TEST(Reactive, TriggersWaitForTheHyperperiodButNeverBeyondMaxWait) {
   s.value = {2};
   sched.on_sample(s);  // fires at 6 ms: H boundary 10 ms, cap 8.5 ms
   EXPECT_EQ(sched.next_release_ns(), 8'500'000);
-  s.time_ns = 9 * kMillisecond + 1;  // after the release was taken, fires again: boundary 10 ms first
+  s.time_ns =
+      9 * kMillisecond + 1;  // after the release was taken, fires again: boundary 10 ms first
   sched.take_release();
   sched.on_execution_start(8'500'000);
   sched.on_execution_end(8'500'000, true);
@@ -191,10 +192,10 @@ TEST(Reactive, ASlowSensorFiringOnEveryFixDoesNotHoldOffTheFailsafe) {
   // failsafe still runs every 100 ms from the last one of its own.
   ReactiveSettings r = settings_with(-10, 1);
   r.initial_models.push_back({"gps", 10, 1});
-  TwoSensors two{ReactiveScheduler(r, {{"gyro", 0, kMillisecond}, {"gps", 1, 100 * kMillisecond}},
-                                   400),
-                 {},
-                 {}};
+  TwoSensors two{
+      ReactiveScheduler(r, {{"gyro", 0, kMillisecond}, {"gps", 1, 100 * kMillisecond}}, 400),
+      {},
+      {}};
   for (SimTime t = 0; t <= 1000 * kMillisecond; t += kMillisecond) {
     two.release_until(t);
     two.sample(0, t, 0.0);

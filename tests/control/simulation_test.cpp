@@ -295,12 +295,40 @@ TEST(Simulation, ReactiveFeedbackDoesNotRatchetIntoACrash) {
     // flight first (the sparse loop draws more than the 5 Ah give in 700 s to 20 %).
     s.battery.capacity_ah = 10;
     const SimulationSummary r = simulate(s, nullptr);
-    EXPECT_EQ(r.status, FlightStatus::time_limit) << "seed " << seed << ": "
-                                                  << r.lost_control_reason;
+    EXPECT_EQ(r.status, FlightStatus::time_limit)
+        << "seed " << seed << ": " << r.lost_control_reason;
     EXPECT_LT(r.max_tilt_deg, 45) << "seed " << seed;
     // The loop ran at least at the failsafe's 10 Hz throughout (executions per second, p5).
     EXPECT_GE(r.executions.per_second_p5, 10) << "seed " << seed;
   }
+}
+
+TEST(Simulation, TheHeadingSlewsAtWaypointsAndTheDisturbanceMetricLeavesTurnsOut) {
+  // A 20 m square: a quarter turn at each corner. Stepped, the yaw error peaks near 90°; slewed
+  // at 45°/s with the rate as feed-forward it stays within a few degrees. The disturbance-only
+  // figures leave out the turns and stops (and the second after each), so they are smaller still.
+  FlightMission square;
+  square.name = "square";
+  const std::vector<Vec3> corners{{0, 0, 10}, {20, 0, 10}, {20, 20, 10}, {0, 20, 10}, {0, 0, 10}};
+  for (std::size_t k = 0; k + 1 < corners.size(); ++k)
+    square.legs.push_back({corners[k], corners[k + 1]});
+  SimulationSettings slewed = short_flight(square);
+  SimulationSettings stepped = slewed;
+  stepped.control.controller.limits.yaw_slew_dps = 0;
+  const SimulationSummary a = simulate(slewed, nullptr), b = simulate(stepped, nullptr);
+  ASSERT_EQ(a.status, FlightStatus::completed);
+  ASSERT_EQ(b.status, FlightStatus::completed);
+  EXPECT_GT(b.attitude_error_deg[2].max, 60);
+  EXPECT_LT(a.attitude_error_deg[2].max, 10);
+  EXPECT_LT(a.attitude_error_deg[2].rms, 0.2 * b.attitude_error_deg[2].rms);
+  EXPECT_GT(a.disturbance_share, 0.1);
+  EXPECT_LT(a.disturbance_share, 0.9);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_LE(a.attitude_error_disturbance_deg[k].max, a.attitude_error_deg[k].max) << k;
+  // Background work is released at its rates over the flight and reported.
+  EXPECT_NEAR(static_cast<double>(a.background_released), 70 * a.flight_time_s, 3);
+  EXPECT_EQ(a.background_completed + a.background_skipped, a.background_released);
+  EXPECT_GT(a.background_latency_mean_ms, 0);
 }
 
 TEST(Experiment, TheIntervalIsStudentsTAndImprovementsArePaired) {

@@ -25,6 +25,7 @@ struct ControlLimits {
   double max_tilt_deg = 30.0;        ///< tilt of the thrust vector from up, degrees, (0, 80]
   Vec3 max_rate_dps{220, 220, 120};  ///< |rate setpoint| per body axis, °/s, > 0
   double crash_tilt_deg = 80.0;      ///< the simulation declares lost control above it, degrees
+  double yaw_slew_dps = 45.0;        ///< the heading turns to a new leg's at this rate, °/s, ≥ 0
 };
 
 /// Whether Δt is measured since the previous execution or taken as 1 / nominal rate.

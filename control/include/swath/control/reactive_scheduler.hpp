@@ -11,8 +11,9 @@
 // feedback `all` labels every trigger execution for each sensor that triggered it and every
 // failsafe execution for each sensor with a new sample (unbiased: selection on x does not bias a
 // logistic fit of the label given x); a model with β2 ≤ 0 never fires at x = 0 (it would fire
-// on every sample, changed or not); and executions triggered by slow sensors alone (below accumulation.min_rate_hz,
-// e.g. a 10 Hz GPS) do not reset the watchdog, so the failsafe still runs the loop at its rate.
+// on every sample, changed or not); and executions triggered by slow sensors alone (below
+// accumulation.min_rate_hz, e.g. a 10 Hz GPS) do not reset the watchdog, so the failsafe still runs
+// the loop at its rate.
 
 #include <array>
 #include <cstdint>
