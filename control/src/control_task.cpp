@@ -133,7 +133,8 @@ ExecutionOutput ControlTask::execute(TaskState& state, const TaskInput& in) cons
   const Vec3 u{pid_update(g.rate_roll, state.rate_pid[0], rsp.x, rate.x, out.dt_s),
                pid_update(g.rate_pitch, state.rate_pid[1], rsp.y, rate.y, out.dt_s),
                pid_update(g.rate_yaw, state.rate_pid[2], rsp.z, rate.z, out.dt_s)};
-  out.request.torque_nm = hadamard(air.inertia_kg_m2, u);
+  out.controller_torque_nm = hadamard(air.inertia_kg_m2, u);
+  out.request.torque_nm = out.controller_torque_nm + in.torque_injection_nm;
   // 6–7. Mixer and quantised pulses; "changed" is a move of some pulse by a level or more.
   out.mix = mix(air.rotors, matrices_, out.request);
   out.rotor_count = matrices_.count;

@@ -66,6 +66,9 @@ struct TaskInput {
   SimTime time_ns = 0;  ///< when the execution starts
   EstimatorInput sensors;
   Setpoint setpoint;
+  /// Added to the rate loop's torque before mixing, body FLU, N m: the injection point of step,
+  /// sine or chirp tests of the rate loop (loop_response.hpp); 0 in flight.
+  Vec3 torque_injection_nm;
 };
 
 /// The task's memory: a copyable value.
@@ -89,7 +92,8 @@ struct ExecutionOutput {
   Vec3 acceleration_m_s2;      ///< step 3, world ENU, tilt-limited
   Quat attitude_setpoint;      ///< step 3, body FLU → world ENU
   Vec3 rate_setpoint_rad_s;    ///< step 4, body FLU
-  Wrench request;              ///< step 5: collective and torque J ⊙ u
+  Wrench request;              ///< step 5: collective and torque J ⊙ u, injection included
+  Vec3 controller_torque_nm;   ///< step 5's torque J ⊙ u before the injection, body FLU
   MixerOutput mix;             ///< step 6–7
 };
 
