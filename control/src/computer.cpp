@@ -59,6 +59,7 @@ void FlightComputer::release_background() {
   for (std::size_t k = 0; k < background_.size(); ++k) {
     Periodic& p = background_[k];
     while (p.next_release_ns <= now_ns_) {
+      ++stats_.background_released;
       if (p.job)
         ++stats_.background_skipped;
       else
@@ -141,10 +142,14 @@ std::optional<ComputerEvent> FlightComputer::advance(SimTime t_ns) {
         ++stats_.refits;
         return end;
       }
-      case Pick::background:
+      case Pick::background: {
+        const SimTime latency = now_ns_ - background_[bg].job->request_ns;
+        stats_.background_latency_sum_ns += latency;
+        stats_.background_latency_max_ns = std::max(stats_.background_latency_max_ns, latency);
         background_[bg].job.reset();
         ++stats_.background_completed;
         break;
+      }
       case Pick::none:
         break;
     }

@@ -61,19 +61,20 @@ PidGains read_pid(const YamlMap& m, PidGains g) {
 }
 
 EstimatorSettings read_estimator(const YamlMap& m) {
-  m.allow({"type", "attitude_gain", "mag_gain", "bias_gain", "process_accel_m_s2"});
+  m.allow({"type", "attitude_gain", "mag_gain", "bias_gain", "process_accel_m_s2_per_sqrt_hz"});
   EstimatorSettings s;
   s.type = choice(m, "type", s.type, {"complementary", "truth"});
   s.attitude_gain_1_s = m.number("attitude_gain", s.attitude_gain_1_s, 0, 100);
   s.mag_gain_1_s = m.number("mag_gain", s.mag_gain_1_s, 0, 100);
   s.bias_gain_1_s = m.number("bias_gain", s.bias_gain_1_s, 0, 100);
-  s.process_accel_m_s2 = m.number("process_accel_m_s2", s.process_accel_m_s2, 0, 1e3, true);
+  s.process_accel_m_s2_per_sqrt_hz =
+      m.number("process_accel_m_s2_per_sqrt_hz", s.process_accel_m_s2_per_sqrt_hz, 0, 1e3, true);
   return s;
 }
 
 ControlLimits read_limits(const YamlMap& m) {
   m.allow({"max_speed_m_s", "max_climb_m_s", "max_accel_m_s2", "max_tilt_deg", "max_rate_dps",
-           "crash_tilt_deg"});
+           "crash_tilt_deg", "yaw_slew_dps"});
   ControlLimits l;
   l.max_speed_m_s = m.number("max_speed_m_s", l.max_speed_m_s, 0, 100, true);
   l.max_climb_m_s = m.number("max_climb_m_s", l.max_climb_m_s, 0, 50, true);
@@ -81,6 +82,7 @@ ControlLimits read_limits(const YamlMap& m) {
   l.max_tilt_deg = m.number("max_tilt_deg", l.max_tilt_deg, 0, 80, true);
   l.max_rate_dps = triple(m, "max_rate_dps", l.max_rate_dps, 0, 3600, true);
   l.crash_tilt_deg = m.number("crash_tilt_deg", l.crash_tilt_deg, 0, 180, true);
+  l.yaw_slew_dps = m.number("yaw_slew_dps", l.yaw_slew_dps, 0, 3600);
   if (l.crash_tilt_deg <= l.max_tilt_deg)
     throw InputError(m.where("crash_tilt_deg") + " must exceed max_tilt_deg");
   return l;

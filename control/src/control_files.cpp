@@ -139,6 +139,8 @@ std::string summary_json(const SimulationSummary& s, const SummaryInputs& in,
   j["metrics_from_s"] = round_to(s.metrics_from_s, 3);
   j["attitude_error_deg"] = axes(s.attitude_error_deg);
   j["attitude_error_estimated_deg"] = axes(s.attitude_error_estimated_deg);
+  j["attitude_error_disturbance_deg"] = axes(s.attitude_error_disturbance_deg);
+  j["attitude_error_disturbance_deg"]["share_of_samples"] = round_to(s.disturbance_share, 4);
   j["max_tilt_deg"] = round_to(s.max_tilt_deg, 3);
   j["tracking"] = {{"cross_track_rms_m", round_to(s.cross_track_m.rms, 4)},
                    {"cross_track_max_m", round_to(s.cross_track_m.max, 4)},
@@ -197,7 +199,18 @@ std::string summary_json(const SimulationSummary& s, const SummaryInputs& in,
   j["cpu"] = {{"utilisation", round_to(s.cpu_utilisation, 6)},
               {"energy_j", round_to(s.cpu_j, 3)},
               {"energy_per_execution_mj", round_to(s.cpu_energy_per_execution_mj, 6)},
-              {"background_completed", s.background_completed}};
+              {"background_completed", s.background_completed},
+              {"background",
+               {{"released", s.background_released},
+                {"completed", s.background_completed},
+                {"skipped", s.background_skipped},
+                {"completed_share", s.background_released > 0
+                                        ? round_to(static_cast<double>(s.background_completed) /
+                                                       static_cast<double>(s.background_released),
+                                                   6)
+                                        : 0.0},
+                {"latency_mean_ms", round_to(s.background_latency_mean_ms, 4)},
+                {"latency_max_ms", round_to(s.background_latency_max_ms, 4)}}}};
   j["energy"] = {{"total_j", round_to(s.total_j, 2)},
                  {"motors_j", round_to(s.motors_j, 2)},
                  {"cpu_j", round_to(s.cpu_j, 3)},

@@ -70,14 +70,17 @@ void update_attitude(const EstimatorSettings& s, EstimatorState& state, const Es
 
 }  // namespace
 
-void kalman_predict(AxisFilter& a, double accel_m_s2, double dt_s, double sigma_accel_m_s2) {
+void kalman_predict(AxisFilter& a, double accel_m_s2, double dt_s, double accel_density) {
   const double dt2 = dt_s * dt_s;
-  const double q = sigma_accel_m_s2 * sigma_accel_m_s2;
+  // Continuous white-noise acceleration of spectral density q̃ integrated exactly over dt
+  // (Bar-Shalom, Li, Kirubarajan §6.2.2): Q = q̃ [dt³/3, dt²/2; dt²/2, dt]. The noise added per
+  // second does not depend on how often the filter predicts.
+  const double q = accel_density * accel_density;
   a.position_m += a.velocity_m_s * dt_s + 0.5 * accel_m_s2 * dt2;
   a.velocity_m_s += accel_m_s2 * dt_s;
-  a.p_pp += 2 * dt_s * a.p_pv + dt2 * a.p_vv + q * dt2 * dt2 / 4;
-  a.p_pv += dt_s * a.p_vv + q * dt2 * dt_s / 2;
-  a.p_vv += q * dt2;
+  a.p_pp += 2 * dt_s * a.p_pv + dt2 * a.p_vv + q * dt2 * dt_s / 3;
+  a.p_pv += dt_s * a.p_vv + q * dt2 / 2;
+  a.p_vv += q * dt_s;
 }
 
 void kalman_update_position(AxisFilter& axis, double z_m, double sigma_m) {
@@ -119,7 +122,7 @@ void estimator_update(const EstimatorSettings& s, EstimatorState& state, const E
         rotate(state.attitude, in.imu.delta_velocity_m_s / dt) - s.gravity_m_s2 * kUp;
     const double a[3] = {accel.x, accel.y, accel.z};
     for (std::size_t k = 0; k < 3; ++k)
-      kalman_predict(state.axes[k], a[k], dt, s.process_accel_m_s2);
+      kalman_predict(state.axes[k], a[k], dt, s.process_accel_m_s2_per_sqrt_hz);
   }
   if (dt > 0 && std::isfinite(dt)) state.since_fix_s += dt;
   if (in.fix.velocity_fresh) {

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace swath::control {
 namespace {
@@ -82,25 +83,65 @@ double quantise_pwm_us(const MixerRotors& layout, double u) {
   return layout.pwm_min_us + level * layout.resolution_us;
 }
 
+namespace {
+
+// The collectives t for which 0 <= t·u_i + k·rp_i <= hi holds for every rotor (u the force per
+// newton of collective), as [lo, high]; empty when lo > high.
+struct Interval {
+  double lo = 0, high = 0;
+};
+Interval collective_range(const Forces& u, const Forces& rp, double k, std::size_t n, double hi) {
+  Interval r{0.0, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = k * rp[i];
+    if (u[i] > 1e-12) {
+      r.lo = std::max(r.lo, -a / u[i]);
+      r.high = std::min(r.high, (hi - a) / u[i]);
+    } else if (a < -1e-12 || a > hi + 1e-12) {  // a rotor the collective cannot move
+      r.lo = std::numeric_limits<double>::infinity();
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
 MixerOutput mix(const MixerRotors& layout, const MixerMatrices& m, const Wrench& request) {
   MixerOutput out;
   const std::size_t n = m.count;
   const double f_max = layout.max_rotor_force_n();
-
-  // 1. The collective, scaled down into reach if it must be (a thrust below zero is none).
-  const double thrust = std::isfinite(request.thrust_n) ? std::max(request.thrust_n, 0.0) : 0.0;
-  Forces f{};
-  const Forces f_thrust = times_column(m, 0, thrust);
-  const double k_thrust = largest_scale(f, f_thrust, n, f_max);
-  out.thrust_clipped = k_thrust < 1.0;
-  add_scaled(f, f_thrust, k_thrust, n);
-
-  // 2. Roll and pitch together (their direction is kept), 3. yaw with what is left.
   auto finite_or_zero = [](double v) { return std::isfinite(v) ? v : 0.0; };
+  const double thrust = std::isfinite(request.thrust_n) ? std::max(request.thrust_n, 0.0) : 0.0;
+  const Forces per_newton = times_column(m, 0, 1.0);
   Forces f_rp = times_column(m, 1, finite_or_zero(request.torque_nm.x));
   add_scaled(f_rp, times_column(m, 2, finite_or_zero(request.torque_nm.y)), 1.0, n);
-  out.roll_pitch_scale = largest_scale(f, f_rp, n, f_max);
-  add_scaled(f, f_rp, out.roll_pitch_scale, n);
+
+  // 1. Roll and pitch first (their direction kept), as ArduPilot's and PX4's mixers do: the
+  // largest scale k <= 1 for which some collective keeps every rotor in range. Feasibility is
+  // monotone in k (the range of k·rp only widens), so bisection finds it.
+  double k = 1.0;
+  auto feasible = [&](double scale) {
+    const Interval r = collective_range(per_newton, f_rp, scale, n, f_max);
+    return r.lo <= r.high;
+  };
+  if (!feasible(1.0)) {
+    double lo = 0.0, hi = 1.0;
+    for (int iteration = 0; iteration < 60; ++iteration) {
+      const double mid = 0.5 * (lo + hi);
+      (feasible(mid) ? lo : hi) = mid;
+    }
+    k = lo;
+  }
+  out.roll_pitch_scale = k;
+  // 2. The collective nearest the request that leaves room for them: reduced when rotors would
+  // saturate high, raised when they would stop (attitude before altitude, for a moment).
+  const Interval range = collective_range(per_newton, f_rp, k, n, f_max);
+  const double collective = std::clamp(thrust, range.lo, std::max(range.lo, range.high));
+  out.thrust_clipped = collective != thrust;
+  Forces f{};
+  add_scaled(f, per_newton, collective, n);
+  add_scaled(f, f_rp, k, n);
+  // 3. Yaw with what is left: the weakest axis of a multirotor is given up first.
   const Forces f_yaw = times_column(m, 3, finite_or_zero(request.torque_nm.z));
   out.yaw_scale = largest_scale(f, f_yaw, n, f_max);
   add_scaled(f, f_yaw, out.yaw_scale, n);

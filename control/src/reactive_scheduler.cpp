@@ -12,8 +12,15 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr SimTime kFeedbackWindowAfterBoot_ns = 10 * vehicle::kNanosecondsPerSecond;
 constexpr SimTime kSteadyAfterBoot_ns = 60 * vehicle::kNanosecondsPerSecond;
 
-int bits(unsigned v) {
-  return __builtin_popcount(v);
+int bits(std::uint64_t v) {
+  return __builtin_popcountll(v);
+}
+
+// The one sensor of a mask, −1 for none, −2 for several.
+int single_sensor(std::uint64_t mask) {
+  if (mask == 0) return -1;
+  if (bits(mask) > 1) return -2;
+  return __builtin_ctzll(mask);
 }
 
 }  // namespace
@@ -27,6 +34,8 @@ ReactiveScheduler::ReactiveScheduler(const ReactiveSettings& settings,
     const std::size_t index = sensors_[k].index;
     if (index_of_sensor_.size() <= index) index_of_sensor_.resize(index + 1, -1);
     index_of_sensor_[index] = static_cast<int>(k);
+    state_[k].fast = 1e9 / static_cast<double>(sensors_[k].period_ns) + 1e-9 >=
+                     settings_.accumulation_min_rate_hz;
   }
   p_logit_ = std::log(settings_.p_run / (1 - settings_.p_run));
   // The hyperperiod of the fast trigger sensors (§17.8: the literal one, with a 10 Hz GPS, would
@@ -86,11 +95,8 @@ ReleaseCause ReactiveScheduler::take_release() {
     cause |= pending_;
     pending_ = 0;
     request_ns_ = kNever;
-    if (taken_trigger_sensor_ == -1)
-      taken_trigger_sensor_ = pending_trigger_sensor_;
-    else if (pending_trigger_sensor_ != -1 && pending_trigger_sensor_ != taken_trigger_sensor_)
-      taken_trigger_sensor_ = -2;
-    pending_trigger_sensor_ = -1;
+    taken_triggers_ |= pending_triggers_;
+    pending_triggers_ = 0;
   }
   if (failsafe_armed_ && std::max(failsafe_due_ns_, boot_end_ns_) == t) {
     cause |= kFailsafe;
@@ -118,7 +124,10 @@ double ReactiveScheduler::change(const PerSensor& s) const {
 
 bool ReactiveScheduler::fires(const PerSensor& s, double x) const {
   if (s.model.beta2 > 0) return x > s.threshold;
-  return s.model.beta1 + s.model.beta2 * x > p_logit_;  // L(x) > P_run, evaluated directly
+  // A model in which a larger change makes a new output no more likely: L(x) > P_run evaluated
+  // directly, but never for a sample that did not change (x = 0), so that a sensor whose model
+  // has drifted to L(0) > P_run cannot fire on every unchanged sample.
+  return x > 0 && s.model.beta1 + s.model.beta2 * x > p_logit_;
 }
 
 void ReactiveScheduler::request(SimTime at, unsigned cause) {
@@ -144,10 +153,7 @@ void ReactiveScheduler::on_sample(const SensorSample& sample) {
   // Batched at the hyperperiod, never held longer than max_wait_s.
   const SimTime batch = (t + hyperperiod_ns_ - 1) / hyperperiod_ns_ * hyperperiod_ns_;
   request(std::min(batch, t + max_wait_ns_), kTrigger);
-  if (pending_trigger_sensor_ == -1)
-    pending_trigger_sensor_ = static_cast<int>(k);
-  else if (pending_trigger_sensor_ != static_cast<int>(k))
-    pending_trigger_sensor_ = -2;
+  pending_triggers_ |= std::uint64_t{1} << k;
 }
 
 void ReactiveScheduler::on_setpoint_change(SimTime t_ns) {
@@ -156,13 +162,15 @@ void ReactiveScheduler::on_setpoint_change(SimTime t_ns) {
 
 void ReactiveScheduler::on_execution_start(SimTime t_ns) {
   running_ = taken_;
-  running_trigger_sensor_ = taken_trigger_sensor_;
+  running_triggers_ = taken_triggers_;
   taken_ = 0;
-  taken_trigger_sensor_ = -1;
+  taken_triggers_ = 0;
   last_start_ns_ = t_ns;
   if (settings_.failsafe_mode == FailsafeMode::watchdog) {
-    failsafe_due_ns_ = t_ns + failsafe_ns_;
-    failsafe_armed_ = true;
+    if (resets_watchdog()) {
+      failsafe_due_ns_ = t_ns + failsafe_ns_;
+      failsafe_armed_ = true;
+    }
   } else if (!failsafe_armed_) {
     failsafe_due_ns_ = std::max(boot_end_ns_, t_ns + failsafe_ns_);
     failsafe_armed_ = true;
@@ -184,12 +192,26 @@ void ReactiveScheduler::add_point(PerSensor& s, TriggerPoint p) {
     s.ring.pop_front();
 }
 
+bool ReactiveScheduler::resets_watchdog() const {
+  // Every cause but a trigger is the loop running at its rate; a trigger only when a fast sensor
+  // fired (a 10 Hz GPS firing on every fix would otherwise hold off the 0.1 s failsafe forever).
+  if (running_ & ~unsigned{kTrigger}) return true;
+  for (std::size_t k = 0; k < state_.size(); ++k)
+    if ((running_triggers_ >> k & 1) && state_[k].fast) return true;
+  return running_ == 0;
+}
+
 void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
   record_.causes = running_;
-  record_.trigger_sensor = running_trigger_sensor_;
+  record_.trigger_sensors = running_triggers_;
+  record_.trigger_sensor = single_sensor(running_triggers_);
   record_.x.resize(state_.size());
   for (std::size_t k = 0; k < state_.size(); ++k) record_.x[k] = state_[k].change_at_start;
-  record_.false_positive = running_ == kTrigger && running_trigger_sensor_ >= 0 && !output_changed;
+  const bool paper_rule = settings_.fit_feedback == FeedbackRule::errors;
+  // The paper attributes an execution to a trigger only when one sensor alone caused it.
+  const bool attributed = running_ == kTrigger && running_triggers_ != 0 &&
+                          (!paper_rule || bits(running_triggers_) == 1);
+  record_.false_positive = attributed && !output_changed;
   record_.false_negative = running_ == kFailsafe && output_changed;
   if (running_ & kBoot) {
     for (PerSensor& s : state_)
@@ -198,8 +220,7 @@ void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
         s.boot.push_back({s.change_at_start, output_changed});
     return;
   }
-  const bool single_trigger = running_ == kTrigger && running_trigger_sensor_ >= 0;
-  if (single_trigger) {
+  if (attributed) {
     ++feedback_.single_trigger_executions;
     const SimTime since_boot = t_ns - boot_end_ns_;
     if (since_boot < kFeedbackWindowAfterBoot_ns) {
@@ -209,23 +230,38 @@ void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
       ++feedback_.steady;
       if (!output_changed) ++feedback_.steady_fp;
     }
-    PerSensor& s = state_[static_cast<std::size_t>(running_trigger_sensor_)];
-    if (!output_changed) {
-      ++feedback_.false_positives;
-      if (settings_.fit_feedback != FeedbackRule::none) add_point(s, {s.change_at_start, false});
-    } else {
-      ++feedback_.true_positives;
-      if (settings_.fit_feedback == FeedbackRule::all) add_point(s, {s.change_at_start, true});
-    }
+    ++(output_changed ? feedback_.true_positives : feedback_.false_positives);
   } else if (running_ == kFailsafe) {
-    if (output_changed) {
-      ++feedback_.false_negatives;
-      if (settings_.fit_feedback != FeedbackRule::none)
+    if (output_changed) ++feedback_.false_negatives;
+  } else if (bits(running_) > 1 || bits(running_triggers_) > 1) {
+    ++feedback_.multi_cause_excluded;
+  }
+  feed_back(output_changed);
+}
+
+void ReactiveScheduler::feed_back(bool output_changed) {
+  switch (settings_.fit_feedback) {
+    case FeedbackRule::none:
+      return;
+    case FeedbackRule::errors:  // the paper's: false positives above x*, false negatives below
+      if (running_ == kTrigger && bits(running_triggers_) == 1 && !output_changed) {
+        PerSensor& s = state_[static_cast<std::size_t>(single_sensor(running_triggers_))];
+        add_point(s, {s.change_at_start, false});
+      } else if (running_ == kFailsafe && output_changed) {
         for (PerSensor& s : state_)
           if (s.new_at_start) add_point(s, {s.change_at_start, true});
-    }
-  } else if (bits(running_) > 1 || running_trigger_sensor_ == -2) {
-    ++feedback_.multi_cause_excluded;
+      }
+      return;
+    case FeedbackRule::all:  // every outcome, for every sensor it tells something about
+      if (running_ == kTrigger) {
+        for (std::size_t k = 0; k < state_.size(); ++k)
+          if (running_triggers_ >> k & 1)
+            add_point(state_[k], {state_[k].change_at_start, output_changed});
+      } else if (running_ == kFailsafe) {
+        for (PerSensor& s : state_)
+          if (s.new_at_start) add_point(s, {s.change_at_start, output_changed});
+      }
+      return;
   }
 }
 

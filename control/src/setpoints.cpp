@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace swath::control {
 
@@ -62,11 +63,40 @@ CarrotPath::CarrotPath(std::vector<std::vector<Vec3>> legs, const CarrotLimits& 
       leg.arc_m.push_back(leg.arc_m.back() + length);
     }
     if (leg.yaw_rad.empty()) leg.yaw_rad.push_back(yaw);
+    for (std::size_t k = 0; k < leg.yaw_rad.size(); ++k) {
+      leg.from_yaw_rad.push_back(k > 0           ? leg.yaw_rad[k - 1]
+                                 : legs_.empty() ? leg.yaw_rad[0]
+                                                 : legs_.back().yaw_rad.back());
+      leg.enter_s.push_back(k == 0 ? 0.0 : time_at_distance(leg.arc_m[k], leg));
+    }
     // Leg ends are kept in seconds and rounded once, so rounding never accumulates over legs.
     start_s += trapezoid_duration_s(leg.arc_m.back(), leg.speed_m_s, limits_.max_accel_m_s2);
     leg_start_ns_.push_back(vehicle::from_seconds(start_s));
     legs_.push_back(std::move(leg));
   }
+}
+
+double CarrotPath::time_at_distance(double s_m, const Leg& leg) const {
+  // The trapezoid's distance is monotone in time: bisection to a nanosecond.
+  const double a = limits_.max_accel_m_s2, v = leg.speed_m_s, length = leg.arc_m.back();
+  double lo = 0, hi = trapezoid_duration_s(length, v, a);
+  while (hi - lo > 1e-9) {
+    const double mid = 0.5 * (lo + hi);
+    (trapezoid_distance_m(mid, length, v, a) < s_m ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+void CarrotPath::slew(Setpoint& sp, double from_rad, double to_rad, double since_s) const {
+  const double turn = std::remainder(to_rad - from_rad, 2 * std::numbers::pi);  // shorter way
+  const double rate = limits_.yaw_slew_rad_s;
+  if (!(rate > 0) || std::abs(turn) <= rate * std::max(since_s, 0.0)) {
+    sp.yaw_rad = to_rad;
+    return;
+  }
+  const double done = std::copysign(rate * std::max(since_s, 0.0), turn);
+  sp.yaw_rad = std::remainder(from_rad + done, 2 * std::numbers::pi);
+  sp.yaw_rate_rad_s = std::copysign(rate, turn);
 }
 
 double CarrotPath::length_m() const {
@@ -105,7 +135,8 @@ Setpoint CarrotPath::at(SimTime t_ns) const {
     k = std::clamp<std::size_t>(k, 1, leg.points.size() - 1) - 1;
   }
   sp.segment = k;
-  sp.yaw_rad = leg.yaw_rad[std::min(k, leg.yaw_rad.size() - 1)];
+  const std::size_t y = std::min(k, leg.yaw_rad.size() - 1);
+  slew(sp, leg.from_yaw_rad[y], leg.yaw_rad[y], t - leg.enter_s[y]);
   if (leg.points.size() < 2) {
     sp.position_m = leg.points.front();
     return sp;

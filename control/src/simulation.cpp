@@ -313,7 +313,7 @@ class Flight {
   }
   static CarrotLimits carrot_limits(const SimulationSettings& s, const ControlTaskConfig& c) {
     return {s.speed_m_s, c.gains.limits.max_climb_m_s, c.gains.limits.max_accel_m_s2,
-            s.scheduler.run.setpoint_rate_hz};
+            s.scheduler.run.setpoint_rate_hz, c.gains.limits.yaw_slew_dps * std::numbers::pi / 180};
   }
   static vehicle::FlightModelSettings plant_settings(const SimulationSettings& s,
                                                      const CarrotPath& carrot) {
@@ -445,9 +445,9 @@ class Flight {
       row.false_positive = x.false_positive;
       row.false_negative = x.false_negative;
       row.x = x.x;
-      if (x.trigger_sensor >= 0)
-        row.sensors = r->sensors()[static_cast<std::size_t>(x.trigger_sensor)].name;
-      if (x.trigger_sensor == -2) row.sensors = "several";
+      for (std::size_t k = 0; k < r->sensors().size(); ++k)
+        if (x.trigger_sensors >> k & 1)
+          row.sensors += (row.sensors.empty() ? "" : "+") + r->sensors()[k].name;
     }
     return row;
   }
@@ -514,6 +514,12 @@ class Flight {
     }
     const double cross = cross_track(x.position_m, sp);
     const double carrot_error = norm(x.position_m - sp.position_m);
+    // Commanded: the carrot's velocity or the heading changing; quiet again one second after.
+    if (sp.yaw_rate_rad_s != 0 || !(sp.velocity_m_s == last_carrot_velocity_) ||
+        sp.leg != quiet_leg_)
+      commanded_until_ns_ = t + kNanosecondsPerSecond;
+    last_carrot_velocity_ = sp.velocity_m_s;
+    quiet_leg_ = sp.leg;
     measure(t, x, cross, carrot_error);
     if (t % output_period_ns_ == 0) record(t, x, sp, cross);
     if (t % kNanosecondsPerSecond == 0) close_second(t);
@@ -547,6 +553,13 @@ class Flight {
     estimated_[0].add(wrap_deg(wanted.x - estimate.x));
     estimated_[1].add(wrap_deg(wanted.y - estimate.y));
     estimated_[2].add(wrap_deg(wanted.z - estimate.z));
+    ++measured_samples_;
+    if (t >= commanded_until_ns_) {
+      ++disturbance_samples_;
+      disturbance_[0].add(er);
+      disturbance_[1].add(ep);
+      disturbance_[2].add(wrap_deg(wanted.z - truth.z));
+    }
     cross_.add(cross);
     position_.add(carrot_error);
     summary_.max_tilt_deg = std::max(summary_.max_tilt_deg, tilt_deg(x.attitude));
@@ -658,7 +671,11 @@ class Flight {
     for (int k = 0; k < 3; ++k) {
       s.attitude_error_deg[k] = attitude_[k].stat();
       s.attitude_error_estimated_deg[k] = estimated_[k].stat();
+      s.attitude_error_disturbance_deg[k] = disturbance_[k].stat();
     }
+    s.disturbance_share = measured_samples_ > 0 ? static_cast<double>(disturbance_samples_) /
+                                                      static_cast<double>(measured_samples_)
+                                                : 0.0;
     s.cross_track_m = cross_.stat();
     s.position_error_m = position_.stat();
     auto& e = s.executions;
@@ -705,6 +722,12 @@ class Flight {
     const double time = seconds(end_ns_);
     s.cpu_utilisation = time > 0 ? seconds(c.busy_ns) / time : 0;
     s.background_completed = c.background_completed;
+    s.background_released = c.background_released;
+    s.background_skipped = c.background_skipped;
+    if (c.background_completed > 0)
+      s.background_latency_mean_ms =
+          1e3 * seconds(c.background_latency_sum_ns) / static_cast<double>(c.background_completed);
+    s.background_latency_max_ms = 1e3 * seconds(c.background_latency_max_ns);
     s.motors_j = motors_j_;
     s.cpu_j = cpu_j_;
     s.avionics_j = avionics_j_;
@@ -759,7 +782,11 @@ class Flight {
   double motors_j_ = 0, cpu_j_ = 0, avionics_j_ = 0, row_motors_j_ = 0, row_cpu_j_ = 0;
 
   SimulationSummary summary_;
-  std::array<RunningError, 3> attitude_, estimated_;
+  std::array<RunningError, 3> attitude_, estimated_, disturbance_;
+  std::int64_t measured_samples_ = 0, disturbance_samples_ = 0;
+  SimTime commanded_until_ns_ = 0;  // samples before it follow a commanded change
+  Vec3 last_carrot_velocity_;
+  std::size_t quiet_leg_ = 0;
   RunningError cross_, position_, second_attitude_;
   LatencyHistogram latency_;
   std::int64_t unchanged_ = 0;

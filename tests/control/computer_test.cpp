@@ -120,6 +120,10 @@ TEST(Computer, ControlPreemptsBackgroundUnlessToldNotTo) {
     EXPECT_EQ(tl.starts[1].time_ns, 11 * kMs);
     EXPECT_EQ(cpu.stats().busy_ns, 2 * 5 * kMs + 20 * kMs);
     EXPECT_EQ(cpu.stats().background_completed, 2);
+    // Release to completion: 5 ms of work, plus the 1 ms of control that preempted it.
+    EXPECT_EQ(cpu.stats().background_released, 3);  // 0, 100 and 200 ms (not yet run)
+    EXPECT_EQ(cpu.stats().background_latency_max_ns, preempt ? 6 * kMs : 5 * kMs);
+    EXPECT_EQ(cpu.stats().background_latency_sum_ns, preempt ? 12 * kMs : 10 * kMs);
   }
 }
 

@@ -23,7 +23,7 @@ std::string error_of(const std::function<void()>& read) {
 TEST(ControlConfig, EveryKeyLandsInItsField) {
   const VehicleControlConfig c = parse_vehicle_control(R"(
 frame: {mass_kg: 2}
-estimator: {type: truth, attitude_gain: 0.7, mag_gain: 0.3, bias_gain: 0.02, process_accel_m_s2: 0.9}
+estimator: {type: truth, attitude_gain: 0.7, mag_gain: 0.3, bias_gain: 0.02, process_accel_m_s2_per_sqrt_hz: 0.9}
 controller:
   position_p: 1.1
   velocity_xy: {p: 2.1, i: 0.6, d: 0.1, i_limit: 2.2, d_lpf_hz: 6}
@@ -54,7 +54,7 @@ computer:
   EXPECT_EQ(c.estimator.attitude_gain_1_s, 0.7);
   EXPECT_EQ(c.estimator.mag_gain_1_s, 0.3);
   EXPECT_EQ(c.estimator.bias_gain_1_s, 0.02);
-  EXPECT_EQ(c.estimator.process_accel_m_s2, 0.9);
+  EXPECT_EQ(c.estimator.process_accel_m_s2_per_sqrt_hz, 0.9);
   const ControllerGains& g = c.controller;
   EXPECT_EQ(g.position_p_1_s, 1.1);
   EXPECT_EQ(g.velocity_xy.p, 2.1);

@@ -100,7 +100,8 @@ TEST(Reactive, TriggersWaitForTheHyperperiodButNeverBeyondMaxWait) {
   s.value = {2};
   sched.on_sample(s);  // fires at 6 ms: H boundary 10 ms, cap 8.5 ms
   EXPECT_EQ(sched.next_release_ns(), 8'500'000);
-  s.time_ns = 9 * kMillisecond + 1;  // after the release was taken, fires again: boundary 10 ms first
+  s.time_ns =
+      9 * kMillisecond + 1;  // after the release was taken, fires again: boundary 10 ms first
   sched.take_release();
   sched.on_execution_start(8'500'000);
   sched.on_execution_end(8'500'000, true);
@@ -136,6 +137,115 @@ TEST(Reactive, FeedbackRulesAddWhatTheySay) {
   // no sample before it).
   EXPECT_EQ(points_after(FeedbackRule::errors, true, -10), 5);
   EXPECT_EQ(points_after(FeedbackRule::errors, false, -10), 0);
+}
+
+TEST(Reactive, AModelWithoutAPositiveSlopeNeverFiresAtZeroChange) {
+  // β = (10, −1): L(0) > P_run and L falls with x, crossing P_run at x = 9.6. A sensor that does
+  // not change (x = 0) must not fire on every sample; one that changes by 1 fires; by 20, not.
+  Script s{ReactiveScheduler(settings_with(10, -1), {{"gyro", 0, kMillisecond}}, 400), {}};
+  auto value = [](SimTime t) {
+    const auto ms = static_cast<double>(t / kMillisecond);
+    return ms < 300 ? 300.0 : ms < 600 ? ms : 600 + 20 * (ms - 600);
+  };
+  s.run(1000 * kMillisecond, value, [](SimTime) { return true; });
+  int quiet = 0, small = 0, large = 0;
+  for (const auto& [t, cause] : s.releases) {
+    if (cause != ReleaseCause::trigger) {
+      EXPECT_EQ(cause, ReleaseCause::failsafe);
+      continue;
+    }
+    ++(t < 300 * kMillisecond ? quiet : t <= 600 * kMillisecond ? small : large);
+  }
+  EXPECT_EQ(quiet, 0);
+  EXPECT_EQ(small, 300);  // every sample from 301 ms to 600 ms
+  EXPECT_EQ(large, 0);
+}
+
+// Two trigger sensors driven by hand: a 1 kHz gyro and a 10 Hz GPS (sensor 1).
+struct TwoSensors {
+  ReactiveScheduler scheduler;
+  std::vector<std::pair<SimTime, ReleaseCause>> releases;
+  std::vector<std::uint64_t> trigger_sets;
+  // Samples of one instant are all delivered before the releases of that instant run.
+  void sample(std::size_t sensor, SimTime t, double value) {
+    SensorSample s;
+    s.time_ns = t;
+    s.sensor = sensor;
+    s.axes = 1;
+    s.value = {value};
+    scheduler.on_sample(s);
+  }
+  void release_until(SimTime t) {
+    while (scheduler.next_release_ns() <= t) {
+      const SimTime at = scheduler.next_release_ns();
+      releases.push_back({at, scheduler.take_release()});
+      scheduler.on_execution_start(at);
+      scheduler.on_execution_end(at, false);
+      trigger_sets.push_back(scheduler.last_execution().trigger_sensors);
+    }
+  }
+};
+
+TEST(Reactive, ASlowSensorFiringOnEveryFixDoesNotHoldOffTheFailsafe) {
+  // The GPS fires on every fix (L(x) > P_run for all x > 0), 10 Hz = the failsafe's period with a
+  // phase of 50 ms; the gyro never changes. Its executions must not reset the watchdog: the
+  // failsafe still runs every 100 ms from the last one of its own.
+  ReactiveSettings r = settings_with(-10, 1);
+  r.initial_models.push_back({"gps", 10, 1});
+  TwoSensors two{
+      ReactiveScheduler(r, {{"gyro", 0, kMillisecond}, {"gps", 1, 100 * kMillisecond}}, 400),
+      {},
+      {}};
+  for (SimTime t = 0; t <= 1000 * kMillisecond; t += kMillisecond) {
+    two.release_until(t);
+    two.sample(0, t, 0.0);
+    if (t % (100 * kMillisecond) == 50 * kMillisecond) two.sample(1, t, static_cast<double>(t));
+    two.release_until(t);
+  }
+  int failsafes = 0, gps = 0;
+  for (const auto& [t, cause] : two.releases) {
+    if (cause == ReleaseCause::failsafe) {
+      ++failsafes;
+      EXPECT_EQ(t % (100 * kMillisecond), 0) << t;
+    }
+    if (cause == ReleaseCause::trigger) ++gps;
+  }
+  EXPECT_EQ(failsafes, 11);
+  EXPECT_EQ(gps, 9);  // from 150 ms: the first fix has no reference
+}
+
+TEST(Reactive, SimultaneousTriggersAreAttributedToEverySensorThatFired) {
+  // Gyro and accelerometer sample together and both always fire: with `all` each execution gives
+  // each of them a point; the paper's `errors` rule excludes every one of them (several causes).
+  for (const FeedbackRule rule : {FeedbackRule::all, FeedbackRule::errors}) {
+    ReactiveSettings r = settings_with(10, 1);
+    r.initial_models.push_back({"accel", 10, 1});
+    r.fit_feedback = rule;
+    TwoSensors two{
+        ReactiveScheduler(r, {{"gyro", 0, kMillisecond}, {"accel", 1, kMillisecond}}, 400), {}, {}};
+    for (SimTime t = 0; t <= 200 * kMillisecond; t += kMillisecond) {
+      two.release_until(t);
+      two.sample(0, t, static_cast<double>(t / kMillisecond));
+      two.sample(1, t, static_cast<double>(t / kMillisecond));
+      two.release_until(t);
+    }
+    std::int64_t both = 0;
+    for (std::size_t k = 0; k < two.releases.size(); ++k)
+      if (two.releases[k].second == ReleaseCause::trigger) {
+        EXPECT_EQ(two.trigger_sets[k], 3u);
+        ++both;
+      }
+    // Every instant from 100 ms, when the failsafe's execution gave both sensors a reference.
+    EXPECT_EQ(both, 101);
+    const std::int64_t points = two.scheduler.begin_refit(200 * kMillisecond);
+    if (rule == FeedbackRule::all) {
+      EXPECT_EQ(points, 2 * both + 2);  // and the failsafe at 100 ms, both sensors fresh
+      EXPECT_EQ(two.scheduler.feedback().false_positives, both);
+    } else {
+      EXPECT_EQ(points, 0);  // the failsafe did not change the output: no false negative
+      EXPECT_EQ(two.scheduler.feedback().multi_cause_excluded, both);
+    }
+  }
 }
 
 TEST(Reactive, TheBootRunsTimeTriggeredAndFitsWhenItEnds) {

@@ -1,6 +1,6 @@
 // Carrot setpoints (docs/swath-control.md): the trapezoid against a numerical integral of
 // its speed profile min(a t, v, a (T − t)), and the carrot along legs: 50-Hz updates, stops at the
-// waypoints, climb-limited legs, yaw along each leg.
+// waypoints, climb-limited legs, yaw along each leg slewed the shorter way at its rate.
 
 #include <gtest/gtest.h>
 
@@ -70,13 +70,18 @@ TEST(Setpoints, CarrotMovesAt50HzStopsAtWaypointsAndFacesTheLeg) {
       expected = wp[0] + Vec3{trapezoid_distance_m(ts, 20, 3, 1), 0, 0};
     } else if (ts < t1 + t2) {
       expected = wp[1] + Vec3{0, trapezoid_distance_m(ts - t1, 10, 3, 1), 0};
-      yaw = std::numbers::pi / 2;
+      // Slewed from east to north at 45°/s from the leg's start (2 s for the quarter turn).
+      yaw = std::min(std::numbers::pi / 2, limits.yaw_slew_rad_s * (ts - t1));
     } else {
       expected = wp[2] + Vec3{0, 0, trapezoid_distance_m(ts - t1 - t2, 3, 1.5, 1)};
       yaw = std::numbers::pi / 2;  // vertical: the previous leg's heading
     }
     EXPECT_NEAR(norm(sp.position_m - expected), 0, 1e-6) << ts;
-    EXPECT_NEAR(sp.yaw_rad, yaw, 1e-12) << ts;
+    EXPECT_NEAR(sp.yaw_rad, yaw, 1e-8) << ts;
+    // The slew's rate is its feed-forward, only while it turns.
+    EXPECT_EQ(sp.yaw_rate_rad_s,
+              yaw > 0 && yaw < std::numbers::pi / 2 - 1e-8 ? limits.yaw_slew_rad_s : 0.0)
+        << ts;
     max_climb = std::max(max_climb, std::abs(sp.velocity_m_s.z));
     EXPECT_LE(norm(sp.velocity_m_s), 3 + 1e-12);
     previous = sp;
@@ -93,6 +98,37 @@ TEST(Setpoints, CarrotMovesAt50HzStopsAtWaypointsAndFacesTheLeg) {
   }
   EXPECT_EQ(path.at(path.end_ns() + 40'000'000).position_m, wp.back());
   EXPECT_EQ(path.at(path.end_ns() + 40'000'000).leg, 3u);
+}
+
+TEST(Setpoints, TheHeadingSlewsTheShorterWayAtItsRateOrStepsWithoutOne) {
+  // East-north-east (10°) then west-south-west (−170° + …): from 170° to −170° is 20° through
+  // 180°, not 340° the other way.
+  const double d = std::numbers::pi / 180;
+  const std::vector<Vec3> wp{{0, 0, 5},
+                             {-10 * std::cos(10 * d), 10 * std::sin(10 * d), 5},
+                             {-10 * std::cos(10 * d) - 10 * std::cos(10 * d),
+                              10 * std::sin(10 * d) - 10 * std::sin(10 * d) - 5, 5}};
+  for (const double slew_dps : {45.0, 0.0}) {
+    CarrotLimits limits;
+    limits.yaw_slew_rad_s = slew_dps * d;
+    const CarrotPath path(wp, limits);
+    const SimTime leg2 = vehicle::from_seconds(trapezoid_duration_s(10, 3, 1));
+    const double from = path.at(leg2 - 20'000'000).yaw_rad;
+    const double to = path.at(path.end_ns() - 20'000'000).yaw_rad;
+    double turned = 0, previous = from;
+    for (SimTime t = leg2; t < path.end_ns(); t += 20'000'000) {
+      const Setpoint sp = path.at(t);
+      const double step = std::remainder(sp.yaw_rad - previous, 2 * std::numbers::pi);
+      if (slew_dps > 0) {
+        EXPECT_LE(std::abs(step), limits.yaw_slew_rad_s * 0.02 + 1e-9) << t;
+      }
+      turned += step;
+      previous = sp.yaw_rad;
+    }
+    // The turn taken equals the shorter angle between the headings, whatever the rate.
+    EXPECT_NEAR(turned, std::remainder(to - from, 2 * std::numbers::pi), 1e-9);
+    EXPECT_LT(std::abs(turned), std::numbers::pi);
+  }
 }
 
 }  // namespace

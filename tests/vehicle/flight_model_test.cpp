@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 namespace swath::vehicle {
 namespace {
@@ -74,6 +77,43 @@ TEST(FlightModel, AnEscActsAtItsNextFrame) {
   EXPECT_NEAR(m.state().rotor_rad_s[0], before, 1e-9);  // not yet
   m.advance_to(3'000'000);
   EXPECT_GT(m.state().rotor_rad_s[0], before + 1);  // spinning up after 2.04 ms
+}
+
+// The instants in (from, to] at which some sensor measures or the wind updates: the events a
+// plant without ESC frames must run, counted by brute force over every nanosecond multiple.
+long long scheduled_instants(const FlightModelSettings& s, SimTime from, SimTime to) {
+  std::vector<std::pair<SimTime, SimTime>> schedules;  // period, phase
+  schedules.push_back({std::max<SimTime>(1, from_seconds(1.0 / s.environment.update_hz)), 0});
+  for (const SensorSettings& sensor : s.physics.sensors)
+    schedules.push_back({sensor.period_ns, sensor.phase_ns});
+  std::vector<SimTime> instants;
+  for (const auto& [period, phase] : schedules)
+    for (SimTime t = phase; t <= to; t += period)
+      if (t > from) instants.push_back(t);
+  std::sort(instants.begin(), instants.end());
+  return std::unique(instants.begin(), instants.end()) - instants.begin();
+}
+
+TEST(FlightModel, AnEscWithoutFramesActsAtOnceAndAddsNoEvents) {
+  FlightModelSettings s = quiet_hover();
+  s.physics.esc.frame_rate_hz = 0;
+  FlightModel m(s);
+  m.advance_to(1'000'000);
+  const double before = m.state().rotor_rad_s[0];
+  m.command_pwm(0, 2000);
+  m.advance_to(1'100'000);  // 0.1 ms later the rotor is already spinning up
+  EXPECT_GT(m.state().rotor_rad_s[0], before + 0.1);
+  // The work is the sensors' and the wind's events, in proportion to flight time: checked in
+  // 1 ms steps so that a schedule of one frame per nanosecond fails after the first.
+  SimTime t = m.now();
+  long long events = m.events_run();
+  for (int step = 0; step < 1000; ++step) {
+    const SimTime next = t + 1'000'000;
+    m.command_pwm(step % 4, 1500 + step % 7);
+    m.advance_to(next);
+    ASSERT_EQ(m.events_run() - events, scheduled_instants(s, t, next)) << "at " << seconds(next);
+    events = m.events_run(), t = next;
+  }
 }
 
 bool same_bits(const MultirotorState& a, const MultirotorState& b) {

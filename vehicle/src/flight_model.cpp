@@ -10,7 +10,8 @@ FlightModel::FlightModel(const FlightModelSettings& s)
       state_(s.initial),
       gusts_(s.environment.gusts, SplitMix64::stream(s.seed, "gusts")),
       torque_random_(SplitMix64::stream(s.seed, "torque_noise")),
-      wind_period_ns_(std::max<SimTime>(1, from_seconds(1.0 / s.environment.update_hz))) {
+      wind_period_ns_(std::max<SimTime>(1, from_seconds(1.0 / s.environment.update_hz))),
+      esc_frames_(s.physics.esc.frame_rate_hz > 0) {
   const Airframe& a = s.physics.airframe;
   for (std::size_t i = 0; i < a.rotors.size(); ++i) {
     escs_.emplace_back(s.physics.esc, a.propulsion.max_speed_rad_s);
@@ -88,14 +89,15 @@ void FlightModel::update_wind(double t_s) {
 
 SimTime FlightModel::next_event() const {
   SimTime t = next_wind_;
-  if (!escs_.empty()) t = std::min(t, next_esc_frame_);
+  if (esc_frames_ && !escs_.empty()) t = std::min(t, next_esc_frame_);
   for (const Sensor& s : sensors_) t = std::min(t, s.next_measurement());
   return t;
 }
 
 void FlightModel::run_events(SimTime t) {
   // ESC frames: every ESC shares the frame schedule.
-  if (!escs_.empty() && next_esc_frame_ <= t) {
+  ++events_run_;
+  if (esc_frames_ && !escs_.empty() && next_esc_frame_ <= t) {
     for (std::size_t i = 0; i < escs_.size(); ++i)
       rotor_commands_[i] = escs_[i].speed_command_rad_s(t);
     next_esc_frame_ = escs_.front().next_frame(t + 1);
@@ -146,7 +148,11 @@ void FlightModel::advance_to(SimTime until) {
 }
 
 void FlightModel::command_pwm(std::size_t motor, double pwm_us) {
-  if (motor < escs_.size()) escs_[motor].command(pwm_us, now_);
+  if (motor >= escs_.size()) return;
+  escs_[motor].command(pwm_us, now_);
+  // Without frames the command reaches the rotor now; a frame schedule of one event per
+  // nanosecond would cost 10⁹ events per simulated second.
+  if (!esc_frames_) rotor_commands_[motor] = escs_[motor].speed_command_rad_s(now_);
 }
 
 std::vector<DeliveredSample> FlightModel::take_samples() {

@@ -57,14 +57,17 @@ struct ComputerEvent {
 
 /// Running totals.
 struct ComputerStats {
-  SimTime busy_ns = 0;           ///< time the core did work
-  std::int64_t executions = 0;   ///< control executions completed
-  std::int64_t overruns = 0;     ///< time-triggered releases that found a request waiting
-  std::int64_t merged = 0;       ///< other requests merged into a waiting one
-  std::int64_t driver_jobs = 0;  ///< samples processed
-  std::int64_t refits = 0;       ///< refits completed
+  SimTime busy_ns = 0;                   ///< time the core did work
+  std::int64_t executions = 0;           ///< control executions completed
+  std::int64_t overruns = 0;             ///< time-triggered releases that found a request waiting
+  std::int64_t merged = 0;               ///< other requests merged into a waiting one
+  std::int64_t driver_jobs = 0;          ///< samples processed
+  std::int64_t refits = 0;               ///< refits completed
+  std::int64_t background_released = 0;  ///< every release, run or skipped
   std::int64_t background_completed = 0;
   std::int64_t background_skipped = 0;  ///< releases that found their previous instance unfinished
+  /// Release to completion of the completed background jobs: sum and largest, ns.
+  SimTime background_latency_sum_ns = 0, background_latency_max_ns = 0;
 };
 
 class FlightComputer {

@@ -55,7 +55,9 @@ struct ReactiveSettings {
   int fit_bins = 20;                ///< [2, 1000]
   int fit_min_per_bin = 25;         ///< [1, 1e6]
   double fit_refit_period_s = 1.0;  ///< s, (0, 3600]
-  FeedbackRule fit_feedback = FeedbackRule::errors;
+  /// `all` (every outcome, for each sensor that triggered it), `errors` (paper 002's: false
+  /// positives and negatives only, a baseline that ratchets x* upwards), `none` (boot fit only).
+  FeedbackRule fit_feedback = FeedbackRule::all;
   int fit_dataset_capacity = 8192;           ///< points per sensor, [16, 1e7]
   std::vector<InitialModel> initial_models;  ///< required when boot_s is 0
   bool oracle = false;

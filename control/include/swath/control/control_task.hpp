@@ -25,6 +25,7 @@ struct ControlLimits {
   double max_tilt_deg = 30.0;        ///< tilt of the thrust vector from up, degrees, (0, 80]
   Vec3 max_rate_dps{220, 220, 120};  ///< |rate setpoint| per body axis, °/s, > 0
   double crash_tilt_deg = 80.0;      ///< the simulation declares lost control above it, degrees
+  double yaw_slew_dps = 45.0;        ///< the heading turns to a new leg's at this rate, °/s, ≥ 0
 };
 
 /// Whether Δt is measured since the previous execution or taken as 1 / nominal rate.
@@ -65,6 +66,9 @@ struct TaskInput {
   SimTime time_ns = 0;  ///< when the execution starts
   EstimatorInput sensors;
   Setpoint setpoint;
+  /// Added to the rate loop's torque before mixing, body FLU, N m: the injection point of step,
+  /// sine or chirp tests of the rate loop (loop_response.hpp); 0 in flight.
+  Vec3 torque_injection_nm;
 };
 
 /// The task's memory: a copyable value.
@@ -88,7 +92,8 @@ struct ExecutionOutput {
   Vec3 acceleration_m_s2;      ///< step 3, world ENU, tilt-limited
   Quat attitude_setpoint;      ///< step 3, body FLU → world ENU
   Vec3 rate_setpoint_rad_s;    ///< step 4, body FLU
-  Wrench request;              ///< step 5: collective and torque J ⊙ u
+  Wrench request;              ///< step 5: collective and torque J ⊙ u, injection included
+  Vec3 controller_torque_nm;   ///< step 5's torque J ⊙ u before the injection, body FLU
   MixerOutput mix;             ///< step 6–7
 };
 

@@ -78,7 +78,13 @@ struct EstimatorSettings {
   /// Gyro-bias integrator ḃ = −bias_gain · correction, 1/s, ≥ 0; learnt only while the attitude
   /// error is below about 0.05 rad (a start-up error would teach it a bias that is not there).
   double bias_gain_1_s = 0.01;
-  double process_accel_m_s2 = 0.5;  ///< σ of the white acceleration the KF assumes, m/s², > 0
+  /// √q̃, the spectral density of the white acceleration the KF assumes, m/s²/√Hz (its velocity
+  /// random walk, m/s/√s), > 0. It stands for what the predicted Δv gets wrong: the
+  /// accelerometer's own noise (quad-f450: 0.3 m/s² at 1 kHz, 0.0095 m/s²/√Hz), vibration and
+  /// gravity leaking through the attitude error (0.5° of tilt: 0.09 m/s², slowly varying). 0.025
+  /// is the filter the old per-execution model (σ = 0.5 m/s² per execution) gave at 400 Hz,
+  /// 0.5² / 400 = 6.25e-4 m²/s³, now at every rate: 2.6 times the accelerometer's white noise.
+  double process_accel_m_s2_per_sqrt_hz = 0.025;
   double position_noise_m = 0.1;    ///< σ of one position fix, m, > 0
   double velocity_noise_m_s = 0.1;  ///< σ of one velocity fix, m/s, > 0
   double baro_noise_m = 0.1;        ///< σ of one barometric altitude, m, > 0
@@ -96,10 +102,10 @@ struct AxisFilter {
   friend bool operator==(const AxisFilter&, const AxisFilter&) = default;
 };
 
-/// Predicts `axis` over `dt_s` (≥ 0) under acceleration `accel_m_s2`, with the discrete white
-/// noise acceleration model Q = σ² [dt⁴/4, dt³/2; dt³/2, dt²] (Bar-Shalom's piecewise constant
-/// acceleration).
-void kalman_predict(AxisFilter& axis, double accel_m_s2, double dt_s, double sigma_accel_m_s2);
+/// Predicts `axis` over `dt_s` (≥ 0) under acceleration `accel_m_s2`, with the continuous white
+/// noise acceleration model of density `accel_density` (m/s²/√Hz): Q = q̃ [dt³/3, dt²/2; dt²/2,
+/// dt], q̃ = accel_density², so that the filter is the same at every execution rate.
+void kalman_predict(AxisFilter& axis, double accel_m_s2, double dt_s, double accel_density);
 /// Updates with a position measurement `z_m` of standard deviation `sigma_m` (> 0); Joseph form.
 void kalman_update_position(AxisFilter& axis, double z_m, double sigma_m);
 /// Updates with a velocity measurement `z_m_s` of standard deviation `sigma_m_s` (> 0).

@@ -1,8 +1,8 @@
 #pragma once
 // The mixer (docs/swath-control.md): the rotor forces that produce a collective thrust and a
 // body torque, by the pseudo-inverse of the layout's effectiveness matrix; under saturation yaw is
-// given up first, then roll and pitch, and the collective last; then normalised pulses quantised
-// to the ESC's resolution.
+// given up first, then the collective, and roll and pitch last (attitude authority kept, as
+// ArduPilot and PX4 do); then normalised pulses quantised to the ESC's resolution.
 
 #include <array>
 #include <optional>
@@ -38,17 +38,22 @@ struct MixerOutput {
   Wrench achieved;                                   ///< the wrench of the unquantised forces, A f
   double yaw_scale = 1;         ///< share of the requested yaw torque kept, [0, 1]
   double roll_pitch_scale = 1;  ///< share of the requested roll/pitch torque kept, [0, 1]
-  bool thrust_clipped = false;  ///< the collective itself was out of reach and was clipped
+  bool thrust_clipped = false;  ///< the collective was moved from the request (out of reach, or
+                                ///< to make room for roll and pitch)
 };
 
-/// Mixes `request` for `layout` (whose matrices are `m`):
-/// 1. the collective alone, f_T = A⁺[T, 0, 0, 0], is clipped into the rotors' range if it must be;
-/// 2. roll and pitch, f_RP = A⁺[0, τx, τy, 0], are added with the largest scale k ≤ 1 that keeps
-///    every force in [0, f_max];
-/// 3. yaw, f_Y = A⁺[0, 0, 0, τz], likewise with the largest scale ≤ 1 left over;
+/// Mixes `request` for `layout` (whose matrices are `m`), keeping attitude authority first as
+/// ArduPilot's and PX4's mixers do:
+/// 1. roll and pitch, f_RP = A⁺[0, τx, τy, 0], with the largest scale k ≤ 1 (their ratio kept)
+///    for which some collective keeps every force in [0, f_max];
+/// 2. the collective f_T = A⁺[T, 0, 0, 0] nearest the request within the collectives that leave
+///    room for k·f_RP: reduced when a rotor would saturate high, raised when one would stop
+///    (`thrust_clipped`);
+/// 3. yaw, f_Y = A⁺[0, 0, 0, τz], with the largest scale ≤ 1 left over;
 /// 4. the pulse u_i = f_i / f_max (thrust_linear) or √(f_i / f_max) (linear) is quantised to the
 ///    nearest level.
-/// So a request within reach is produced exactly (A f = w), and one beyond it loses yaw first.
+/// So a request within reach is produced exactly (A f = w), and one beyond it loses yaw first,
+/// then collective, and roll and pitch only when no collective makes room for them.
 MixerOutput mix(const MixerRotors& layout, const MixerMatrices& m, const Wrench& request);
 
 /// The nearest quantised pulse for normalised command u (clamped to [0, 1]), µs.

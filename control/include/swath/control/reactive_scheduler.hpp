@@ -3,8 +3,17 @@
 // sensor's change x_s makes a new decision likely (L_s(x) > P_run, tested as x > x*_s), batched at
 // the hyperperiod of the fast sensors (capped by max_wait_s), with a time-triggered boot that
 // gathers the first data, a failsafe watchdog, executions forced by a new setpoint leg, the
-// feedback of false positives and negatives into per-sensor data sets, and periodic refits that
-// run as background work on the flight computer.
+// feedback of executions' outcomes into per-sensor data sets, and periodic refits that run as
+// background work on the flight computer.
+//
+// Three guards keep the feedback loop from ratcheting itself into a crash (paper 002's rule, which
+// feeds back only false positives above x*, raises x* at every refit until β2 < 0): the default
+// feedback `all` labels every trigger execution for each sensor that triggered it and every
+// failsafe execution for each sensor with a new sample (unbiased: selection on x does not bias a
+// logistic fit of the label given x); a model with β2 ≤ 0 never fires at x = 0 (it would fire
+// on every sample, changed or not); and executions triggered by slow sensors alone (below
+// accumulation.min_rate_hz, e.g. a 10 Hz GPS) do not reset the watchdog, so the failsafe still runs
+// the loop at its rate.
 
 #include <array>
 #include <cstdint>
@@ -35,11 +44,13 @@ struct TriggerStats {
 
 /// Feedback totals (summary.json's `feedback`).
 struct FeedbackStats {
-  std::int64_t false_positives = 0;  ///< single-trigger executions that left the output unchanged
+  std::int64_t false_positives = 0;  ///< attributed trigger executions, output unchanged
   std::int64_t false_negatives = 0;  ///< failsafe executions that changed it
   std::int64_t true_positives = 0;
-  std::int64_t single_trigger_executions = 0;  ///< executions caused by one sensor's trigger alone
-  std::int64_t multi_cause_excluded = 0;       ///< several causes: no feedback (§17.8)
+  /// Executions caused by triggers alone whose triggers are attributed: to each triggering sensor
+  /// (`all`), or to one sensor only (`errors`, the paper's rule: several sensors are excluded).
+  std::int64_t single_trigger_executions = 0;
+  std::int64_t multi_cause_excluded = 0;  ///< several causes: no feedback (§17.8)
   /// Single-trigger executions and their false positives in the first 10 s after the boot, and
   /// from 60 s after it (the paper's 7 % → 2 %, §7.3).
   std::int64_t after_boot = 0, after_boot_fp = 0, steady = 0, steady_fp = 0;
@@ -49,6 +60,7 @@ struct FeedbackStats {
 struct ExecutionRecord {
   unsigned causes = 0;      ///< bits 1 tt, 2 boot, 4 trigger, 8 failsafe, 16 setpoint
   int trigger_sensor = -1;  ///< the one sensor whose trigger caused it; −1 none, −2 several
+  std::uint64_t trigger_sensors = 0;  ///< bit k: trigger sensor k's trigger caused it
   bool false_positive = false, false_negative = false;
   std::vector<double> x;  ///< each trigger sensor's change at the start
 };
@@ -93,6 +105,7 @@ class ReactiveScheduler final : public Scheduler {
     std::deque<TriggerPoint> ring;      // feedback, bounded
     std::vector<TriggerPoint> fitting;  // the data of the refit under way
     int counted = 0;
+    bool fast = false;  // at or above accumulation.min_rate_hz: its executions reset the watchdog
   };
   enum CauseBit : unsigned {
     kTimeTriggered = 1,
@@ -107,6 +120,8 @@ class ReactiveScheduler final : public Scheduler {
   bool fires(const PerSensor& s, double x) const;
   void request(SimTime at, unsigned cause);
   void add_point(PerSensor& s, TriggerPoint p);
+  void feed_back(bool output_changed);
+  bool resets_watchdog() const;
 
   ReactiveSettings settings_;
   std::vector<TriggerSensor> sensors_;
@@ -123,9 +138,9 @@ class ReactiveScheduler final : public Scheduler {
   unsigned pending_ = 0;  // causes of the request not yet taken
   unsigned taken_ = 0;    // causes taken since the last execution start
   unsigned running_ = 0;  // causes of the execution under way
-  // The sensor whose triggers caused the pending request / the releases taken / the execution
-  // under way: −1 none, −2 several.
-  int pending_trigger_sensor_ = -1, taken_trigger_sensor_ = -1, running_trigger_sensor_ = -1;
+  // The sensors whose triggers caused the pending request / the releases taken / the execution
+  // under way, bit k for trigger sensor k.
+  std::uint64_t pending_triggers_ = 0, taken_triggers_ = 0, running_triggers_ = 0;
   double p_logit_ = 0;
 };
 

@@ -1,7 +1,9 @@
 #pragma once
 // Setpoints along a mission (docs/swath-control.md): a carrot that moves along each leg with
 // a trapezoid speed profile — accelerate at max_accel_m_s2, cruise at the leg's speed, brake to a
-// stop at the waypoint — sampled at 50 Hz, with the yaw along the leg.
+// stop at the waypoint — sampled at 50 Hz, with the yaw along the leg, slewed to each new
+// heading at a limited rate with its rate as feed-forward (a step would make every waypoint an
+// attitude transient of up to 180°).
 
 #include <cstddef>
 #include <vector>
@@ -16,11 +18,12 @@ using vehicle::Vec3;
 
 /// What the control task is asked to do at one instant.
 struct Setpoint {
-  Vec3 position_m;      ///< world ENU, m
-  Vec3 velocity_m_s;    ///< feed-forward, world ENU, m/s
-  double yaw_rad = 0;   ///< heading of body +x, counter-clockwise from east (ENU), rad, (−π, π]
-  std::size_t leg = 0;  ///< the leg being flown; legs() once the path has ended
-  std::size_t segment = 0;  ///< the segment of that leg (points segment → segment + 1)
+  Vec3 position_m;     ///< world ENU, m
+  Vec3 velocity_m_s;   ///< feed-forward, world ENU, m/s
+  double yaw_rad = 0;  ///< heading of body +x, counter-clockwise from east (ENU), rad, (−π, π]
+  double yaw_rate_rad_s = 0;  ///< the slew's rate: feed-forward, world up, rad/s
+  std::size_t leg = 0;        ///< the leg being flown; legs() once the path has ended
+  std::size_t segment = 0;    ///< the segment of that leg (points segment → segment + 1)
 };
 
 /// Limits of the carrot's motion (§17.A `controller.limits`).
@@ -29,6 +32,9 @@ struct CarrotLimits {
   double max_climb_m_s = 1.5;   ///< vertical component, m/s, > 0
   double max_accel_m_s2 = 1.0;  ///< along the leg, m/s², > 0
   double update_hz = 50.0;      ///< the carrot moves at this rate (`run.setpoint_rate_hz`), > 0
+  /// The heading turns to each new segment's at this rate, rad/s (`limits.yaw_slew_dps`); 0 or
+  /// less: at once (a step).
+  double yaw_slew_rad_s = 45 * 3.14159265358979323846 / 180;
 };
 
 /// The trapezoid of one leg: time to cover `length_m` (≥ 0) starting and ending at rest with
@@ -52,8 +58,9 @@ class CarrotPath {
   CarrotPath(std::vector<std::vector<Vec3>> legs, const CarrotLimits& limits);
 
   /// The setpoint in force at `t_ns` (≥ 0): the carrot as of the latest update at or before t.
-  /// Yaw points along the segment flown; on a vertical segment it keeps the previous one's (0 at
-  /// first).
+  /// Yaw points along the segment flown, slewed from the previous segment's heading (the
+  /// shorter way) at yaw_slew_rad_s from the moment the carrot enters the segment; on a vertical
+  /// segment it keeps the previous one's (0 at first).
   Setpoint at(SimTime t_ns) const;
   /// When the carrot reaches the end of the last leg, ns (rounded once, never accumulated).
   SimTime end_ns() const { return leg_start_ns_.back(); }
@@ -66,10 +73,15 @@ class CarrotPath {
  private:
   struct Leg {
     std::vector<Vec3> points;
-    std::vector<double> arc_m;    // cumulative length at each point (arc_m[0] = 0)
-    std::vector<double> yaw_rad;  // per segment
+    std::vector<double> arc_m;         // cumulative length at each point (arc_m[0] = 0)
+    std::vector<double> yaw_rad;       // per segment
+    std::vector<double> from_yaw_rad;  // per segment: the heading its slew starts from
+    std::vector<double> enter_s;       // per segment: when the carrot enters it, s after the start
     double speed_m_s = 0;
   };
+  double time_at_distance(double s_m, const Leg& leg) const;
+  void slew(Setpoint& sp, double from_rad, double to_rad, double since_s) const;
+
   std::vector<Leg> legs_;
   std::vector<SimTime> leg_start_ns_;  // per leg, plus the end
   CarrotLimits limits_;

@@ -90,6 +90,11 @@ struct SimulationSummary {
   double metrics_from_s = 0;
   std::array<ErrorStat, 3> attitude_error_deg{};            ///< roll, pitch, yaw: setpoint − true
   std::array<ErrorStat, 3> attitude_error_estimated_deg{};  ///< setpoint − estimate (the paper's)
+  /// Setpoint − true, roll, pitch, yaw, over the samples when nothing was commanded: the carrot
+  /// at constant velocity and the heading not slewing for the last second (what the disturbances
+  /// and the sensors' noise cause, without the transients of commanded turns and stops).
+  std::array<ErrorStat, 3> attitude_error_disturbance_deg{};
+  double disturbance_share = 0;  ///< the share of the metrics' samples that counted for it
   double max_tilt_deg = 0;
   ErrorStat cross_track_m, position_error_m;  ///< to the path; to the carrot (3-D)
   struct Executions {
@@ -124,6 +129,9 @@ struct SimulationSummary {
   std::optional<Oracle> oracle;
   double cpu_utilisation = 0, cpu_energy_per_execution_mj = 0;
   std::int64_t background_completed = 0;
+  std::int64_t background_released = 0;  ///< background releases (completed + skipped + pending)
+  std::int64_t background_skipped = 0;   ///< releases that found their previous job unfinished
+  double background_latency_mean_ms = 0, background_latency_max_ms = 0;  ///< release → done
   double total_j = 0, motors_j = 0, cpu_j = 0, avionics_j = 0, mean_power_w = 0, final_soc = 0;
   /// |Σ (V I − R I²) V/V~ dt − E| / E: the battery's integrated current against the energy
   /// drawn (eq. 12 solved for I must give back the power).

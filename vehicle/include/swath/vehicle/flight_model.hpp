@@ -47,8 +47,12 @@ class FlightModel {
   SimTime next_event() const;
   /// Runs every event up to and including `until` (>= now()).
   void advance_to(SimTime until);
-  /// A PWM command for motor `motor` at now(); its ESC applies it at its next frame.
+  /// A PWM command for motor `motor` at now(); its ESC applies it at its next frame (with a frame
+  /// rate of 0, at once: no frame events are scheduled).
   void command_pwm(std::size_t motor, double pwm_us);
+  /// Events run so far (instants at which an ESC frame, wind update or sensor measurement fell):
+  /// the simulation's work grows with this count, not with simulated time alone.
+  long long events_run() const { return events_run_; }
   /// The samples delivered since the last call, in delivery order (ties in sensor order).
   std::vector<DeliveredSample> take_samples();
 
@@ -77,6 +81,8 @@ class FlightModel {
   SimTime wind_period_ns_;
   SimTime next_wind_ = 0;
   SimTime next_esc_frame_ = 0;
+  bool esc_frames_ = true;  ///< false: frame rate 0, commands apply at once
+  long long events_run_ = 0;
   Vec3 wind_, torque_noise_;
   double motor_energy_j_ = 0.0;
   std::vector<DeliveredSample> delivered_;
