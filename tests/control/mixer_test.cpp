@@ -83,7 +83,7 @@ TEST(Mixer, RequestsWithinReachAreProducedExactly) {
 
 // The largest share of (τx, τy) any collective can carry with every rotor force in [0, f_max]:
 // a grid over share and collective, independent of the mixer's bisection.
-double best_roll_pitch_scale(const RotorLayout& l, const MixerMatrices& m, double tx, double ty) {
+double best_roll_pitch_scale(const MixerRotors& l, const MixerMatrices& m, double tx, double ty) {
   const double f_max = l.max_rotor_force_n();
   double best = 0;
   for (int ks = 0; ks <= 2000; ++ks) {
@@ -109,8 +109,9 @@ TEST(Mixer, AtFullThrottleTheCollectiveGivesWayToRollAndPitch) {
   // A climb at 95 % of the rotors' thrust with a roll and pitch request that fits only below it:
   // attitude is kept in full (ArduPilot's and PX4's priority) and the collective reduced just
   // enough: the most loaded rotor sits at f_max.
-  for (const FrameKind kind : {FrameKind::quad_x, FrameKind::hexa_x, FrameKind::y6}) {
-    const RotorLayout l = layout_of(kind);
+  for (const vehicle::RotorLayout kind :
+       {vehicle::RotorLayout::quad_x, vehicle::RotorLayout::hexa_x, vehicle::RotorLayout::y6}) {
+    const MixerRotors l = layout_of(kind);
     const auto m = mixer_matrices(l);
     const double f_max = l.max_rotor_force_n();
     const double thrust = 0.95 * f_max * static_cast<double>(l.count);
