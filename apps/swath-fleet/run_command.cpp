@@ -135,19 +135,19 @@ mavlink::SigningKey read_signing_key(const std::string& path) {
   return mavlink::parse_signing_key(contents, path);
 }
 
-// A run on the wall clock (--pace, or vehicles) says on stderr when each drone first leaves the
-// ground: a person (or a test) sees the fleet airborne before stopping it. Its events' drone_mode
-// lines carry the drone's index and state; the names come from the fleet.
+// A run on the wall clock (--pace, or vehicles) says on stderr when each drone is first seen off
+// the ground (above 0 m in a drone_mode or drone_state event): a person (or a test) sees the fleet
+// airborne before stopping it. The names come from the fleet.
 std::function<void(const std::string&)> airborne_reporter(std::vector<std::string> names) {
-  return [names = std::move(names),
-          seen = std::vector<bool>(names.size())](const std::string& line) mutable {
-    if (line.find("\"drone_mode\"") == std::string::npos) return;
+  std::vector<bool> seen(names.size());  // before the names move into the closure
+  return [names = std::move(names), seen = std::move(seen)](const std::string& line) mutable {
+    if (line.find("\"drone_mode\"") == std::string::npos &&
+        line.find("\"drone_state\"") == std::string::npos)
+      return;
     const nlohmann::json e = nlohmann::json::parse(line);
-    const std::string state = e.value("state", "");
     const int drone = e.value("drone", -1);
     if (drone < 0 || static_cast<std::size_t>(drone) >= names.size() || seen[drone]) return;
-    if (state == "landed" || state == "charging" || state == "lost" || state == "unreachable")
-      return;
+    if (!(e.value("alt_m", 0.0) > 0)) return;  // still on the ground
     seen[drone] = true;
     std::cerr << "swath-fleet run: " << names[drone] << " airborne at "
               << base::fixed_text(e.value("t_s", 0.0), 1) << " s\n";
