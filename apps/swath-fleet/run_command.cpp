@@ -136,8 +136,9 @@ mavlink::SigningKey read_signing_key(const std::string& path) {
 }
 
 // A run on the wall clock (--pace, or vehicles) says on stderr when each drone is first seen off
-// the ground (above 0 m in a drone_mode or drone_state event): a person (or a test) sees the fleet
+// the ground (above 0.5 m in a drone_mode or drone_state event): a person (or a test) sees the fleet
 // airborne before stopping it. The names come from the fleet.
+constexpr double kAirborneAboveM = 0.5;
 std::function<void(const std::string&)> airborne_reporter(std::vector<std::string> names) {
   std::vector<bool> seen(names.size());  // before the names move into the closure
   return [names = std::move(names), seen = std::move(seen)](const std::string& line) mutable {
@@ -147,7 +148,8 @@ std::function<void(const std::string&)> airborne_reporter(std::vector<std::strin
     const nlohmann::json e = nlohmann::json::parse(line);
     const int drone = e.value("drone", -1);
     if (drone < 0 || static_cast<std::size_t>(drone) >= names.size() || seen[drone]) return;
-    if (!(e.value("alt_m", 0.0) > 0)) return;  // still on the ground
+    // A vehicle on its pad reports a few millimetres, or centimetres, either way.
+    if (!(e.value("alt_m", 0.0) > kAirborneAboveM)) return;
     seen[drone] = true;
     std::cerr << "swath-fleet run: " << names[drone] << " airborne at "
               << base::fixed_text(e.value("t_s", 0.0), 1) << " s\n";
