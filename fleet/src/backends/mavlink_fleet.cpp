@@ -378,6 +378,12 @@ void MavlinkFleet::steer(Vehicle& v) {
     if (c == mavlink::CommandState::rejected && arm) {
       if (v.first_arm_refusal_s < 0) v.first_arm_refusal_s = now_s_;
       v.settle_until_s = now_s_ + kArmRetryS;  // asked again in a while, not at every poll
+    } else if (c == mavlink::CommandState::rejected) {
+      // Asked again once the state has been reported since: ArduCopter SITL under load took a
+      // take-off whose acknowledgement never came, failed its resend (already taking off), and
+      // three new take-offs sent within 60 ms of that refusal were failed too before its landed
+      // state said "taking off".
+      v.settle_until_s = now_s_ + kSettleS;
     }
     const bool patience_over = !arm || now_s_ - v.first_arm_refusal_s >= kArmPatienceS;
     if (c == mavlink::CommandState::rejected && ++rejected >= kMaxRejections && patience_over &&
