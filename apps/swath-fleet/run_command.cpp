@@ -136,8 +136,8 @@ mavlink::SigningKey read_signing_key(const std::string& path) {
 }
 
 // A run on the wall clock (--pace, or vehicles) says on stderr when each drone is first seen off
-// the ground (above 0.5 m in a drone_mode or drone_state event): a person (or a test) sees the fleet
-// airborne before stopping it. The names come from the fleet.
+// the ground (above 0.5 m in a drone_mode or drone_state event): a person (or a test) sees the
+// fleet airborne before stopping it. The names come from the fleet.
 constexpr double kAirborneAboveM = 0.5;
 std::function<void(const std::string&)> airborne_reporter(std::vector<std::string> names) {
   std::vector<bool> seen(names.size());  // before the names move into the closure
