@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -134,6 +135,27 @@ mavlink::SigningKey read_signing_key(const std::string& path) {
   return mavlink::parse_signing_key(contents, path);
 }
 
+// A run on the wall clock (--pace, or vehicles) says on stderr when each drone is first seen off
+// the ground (above 0.5 m in a drone_mode or drone_state event): a person (or a test) sees the
+// fleet airborne before stopping it. The names come from the fleet.
+constexpr double kAirborneAboveM = 0.5;
+std::function<void(const std::string&)> airborne_reporter(std::vector<std::string> names) {
+  std::vector<bool> seen(names.size());  // before the names move into the closure
+  return [names = std::move(names), seen = std::move(seen)](const std::string& line) mutable {
+    if (line.find("\"drone_mode\"") == std::string::npos &&
+        line.find("\"drone_state\"") == std::string::npos)
+      return;
+    const nlohmann::json e = nlohmann::json::parse(line);
+    const int drone = e.value("drone", -1);
+    if (drone < 0 || static_cast<std::size_t>(drone) >= names.size() || seen[drone]) return;
+    // A vehicle on its pad reports a few millimetres, or centimetres, either way.
+    if (!(e.value("alt_m", 0.0) > kAirborneAboveM)) return;
+    seen[drone] = true;
+    std::cerr << "swath-fleet run: " << names[drone] << " airborne at "
+              << base::fixed_text(e.value("t_s", 0.0), 1) << " s\n";
+  };
+}
+
 // The run was aborted; its files are written. Exit 128 + the signal (130 SIGINT, 143 SIGTERM) as
 // a shell reports a program a signal ended, 4 for a ctl order, 1 for an unexpected error.
 int aborted_exit(const fleet::RunRecord& r, int signal_number, fleet::AbortAction on_abort,
@@ -162,6 +184,9 @@ int FleetRunCommand::run() {
     fleet::MavlinkFleetSettings settings;
     settings.origin = p.world->origin;
     settings.fence_m = p.world->fence();
+    // The fleet file's fence polygons too: every one is uploaded, read back and checked.
+    settings.inclusions_m = p.settings.envelope.inclusions;
+    settings.exclusions_m = p.settings.envelope.exclusions;
     settings.wall_clock = true;
     settings.allow_no_gcs_failsafe = allow_no_gcs_failsafe_;
     settings.stop_waiting = [&control_made] {
@@ -191,6 +216,11 @@ int FleetRunCommand::run() {
   RunControl control(p.settings.on_abort, ctl_socket_);
   control_made = &control;
   p.settings.control = [&control] { return control.poll(); };
+  if (pace_ > 0 || backend_ == "mavlink") {
+    std::vector<std::string> names;
+    for (const auto& d : p.drones) names.push_back(d.name);
+    p.settings.on_event = airborne_reporter(std::move(names));
+  }
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
   // Aborted: a second signal must not cost the run its record (it waits until the files are in).
   if (!r.aborted.empty()) control.hold_signals();

@@ -41,8 +41,16 @@ double param_number(const ParamValue& v, bool bytewise) {
 
 }  // namespace
 
+// Parameter reads and sets are answered by PARAM_VALUE, by name: they are not commands.
+bool Driver::is_param(const Pending& p) {
+  return p.kind == Pending::Kind::param_read || p.kind == Pending::Kind::param_set;
+}
+
 Driver::Driver(Link& link, DriverSettings settings)
-    : endpoint_(link, kGcsSysid, kGcsCompid), settings_(std::move(settings)) {}
+    : endpoint_(link, kGcsSysid, kGcsCompid),
+      settings_(std::move(settings)),
+      transfer_(endpoint_, settings_.vehicle_sysid, settings_.vehicle_compid,
+                settings_.ack_timeout_s, settings_.attempts) {}
 
 int Driver::enqueue(const CommandLong& message) {
   Pending p;
@@ -86,6 +94,89 @@ int Driver::read_param(const std::string& name) {
   return static_cast<int>(commands_.size()) - 1;
 }
 
+int Driver::set_param(const std::string& name, double value, std::uint8_t param_type) {
+  Pending p;
+  p.kind = Pending::Kind::param_set;
+  p.param_name = name.substr(0, p.param_set.param_id.size());
+  p.param_set.param_value = static_cast<float>(value);
+  p.param_set.param_type = param_type;
+  p.param_set.target_system = settings_.vehicle_sysid;
+  p.param_set.target_component = settings_.vehicle_compid;
+  std::copy(p.param_name.begin(), p.param_name.end(), p.param_set.param_id.begin());
+  commands_.push_back(p);
+  return static_cast<int>(commands_.size()) - 1;
+}
+
+int Driver::inclusion_areas() const {
+  int areas = 0;
+  for (std::size_t i = 0; i < fence_items_.size();) {
+    const MissionItemInt& m = fence_items_[i];
+    const auto cmd = static_cast<Cmd>(m.command);
+    const bool polygon = cmd == Cmd::nav_fence_polygon_vertex_inclusion ||
+                         cmd == Cmd::nav_fence_polygon_vertex_exclusion;
+    areas +=
+        cmd == Cmd::nav_fence_polygon_vertex_inclusion || cmd == Cmd::nav_fence_circle_inclusion;
+    i += polygon ? std::max<std::size_t>(1, static_cast<std::size_t>(m.param1)) : 1;
+  }
+  return areas;
+}
+
+void Driver::upload_fence(std::vector<MissionItemInt> items) {
+  fence_items_ = std::move(items);
+  fence_state_ = FenceState::uploading;
+  fence_asked_ = false;
+  fence_error_.clear();
+  fence_read_back_.clear();
+}
+
+// Upload, read back, compare, enable: one step per poll, with the link up.
+void Driver::fence_step(double now_s) {
+  using S = MissionTransfer::State;
+  switch (fence_state_) {
+    case FenceState::uploading:
+      if (!fence_asked_) {
+        if (!state_.link_alive) return;
+        transfer_.upload(fence_items_, MissionType::fence, now_s);
+        fence_asked_ = true;
+        return;
+      }
+      if (transfer_.state() == S::failed) {
+        fence_state_ = FenceState::failed;
+        fence_error_ = "upload: " + transfer_.error();
+      } else if (transfer_.state() == S::done) {
+        fence_sent_ = transfer_.items();
+        fence_state_ = FenceState::reading_back;
+        transfer_.read(MissionType::fence, now_s);
+      }
+      return;
+    case FenceState::reading_back:
+      if (transfer_.state() == S::failed) {
+        fence_state_ = FenceState::failed;
+        fence_error_ = "read-back: " + transfer_.error();
+      } else if (transfer_.state() == S::done) {
+        fence_read_back_ = transfer_.items();
+        const std::string diff = fence_difference(transfer_items_sent(), fence_read_back_);
+        if (diff.empty()) {
+          fence_state_ = FenceState::enabling;
+        } else {
+          fence_state_ = FenceState::failed;
+          fence_error_ = "the fence read back differs from the one sent: " + diff;
+        }
+      }
+      return;
+    case FenceState::enabling:
+      if (const std::optional<std::string> r = enable_fence_step()) {
+        fence_state_ = r->empty() ? FenceState::verified : FenceState::failed;
+        fence_error_ = *r;
+      }
+      return;
+    case FenceState::none:
+    case FenceState::verified:
+    case FenceState::failed:
+      return;
+  }
+}
+
 int Driver::arm(bool on) {
   return enqueue(Cmd::component_arm_disarm, on ? 1.0f : 0.0f);
 }
@@ -113,7 +204,7 @@ std::optional<CmdResult> Driver::command_result(int id) const {
 
 int Driver::commands_pending() const {
   return static_cast<int>(std::count_if(commands_.begin(), commands_.end(), [](const Pending& p) {
-    return p.kind != Pending::Kind::param_read && p.state == CommandState::pending;
+    return !is_param(p) && p.state == CommandState::pending;
   }));
 }
 
@@ -190,11 +281,19 @@ void Driver::on_link_up() {
 void Driver::on_param_value(const ParamValue& value) {
   const auto end = std::find(value.param_id.begin(), value.param_id.end(), '\0');
   const std::string name(value.param_id.begin(), end);
-  state_.params[name] = param_number(value, params_bytewise());
-  for (Pending& p : commands_)
-    if (p.kind == Pending::Kind::param_read && p.state == CommandState::pending &&
-        p.param_name == name)
+  const double number = param_number(value, params_bytewise());
+  state_.params[name] = number;
+  for (Pending& p : commands_) {
+    if (!is_param(p) || p.state != CommandState::pending || p.param_name != name) continue;
+    if (p.kind == Pending::Kind::param_read) {
       p.state = CommandState::accepted;
+    } else if (p.sends > 0) {  // the value the vehicle holds now: ours, or it kept its own
+      const double asked = p.param_set.param_value;
+      p.state = std::abs(number - asked) <= 1e-6 * std::max(1.0, std::abs(asked))
+                    ? CommandState::accepted
+                    : CommandState::rejected;
+    }
+  }
 }
 
 void Driver::finish_safety_check() {
@@ -218,6 +317,7 @@ void Driver::finish_safety_check() {
 
 void Driver::on_frame(const Frame& frame, double now_s) {
   if (frame.header.sysid != settings_.vehicle_sysid) return;
+  if (transfer_.on_frame(frame, now_s)) return;
   if (const auto hb = unpack<Heartbeat>(frame)) {
     if (frame.header.compid != settings_.vehicle_compid) return;
     state_.last_heard_s = now_s;
@@ -231,7 +331,7 @@ void Driver::on_frame(const Frame& frame, double now_s) {
   } else if (const auto ack = unpack<CommandAck>(frame)) {
     // The oldest pending command of that number is the one acknowledged.
     for (Pending& p : commands_) {
-      if (p.kind == Pending::Kind::param_read || p.state != CommandState::pending || p.sends == 0 ||
+      if (is_param(p) || p.state != CommandState::pending || p.sends == 0 ||
           p.message.command != ack->command)
         continue;
       const auto result = static_cast<CmdResult>(ack->result);
@@ -281,14 +381,14 @@ void Driver::send_due(double now_s) {
   using Kind = Pending::Kind;
   std::set<std::uint16_t> in_flight;
   for (const Pending& p : commands_)
-    if (p.kind != Kind::param_read && p.state == CommandState::pending && p.sends > 0)
+    if (!is_param(p) && p.state == CommandState::pending && p.sends > 0)
       in_flight.insert(p.message.command);
   const std::size_t n = commands_.size();
   for (std::size_t i = 0; i < n; ++i) {
     Pending& p = commands_[i];
     if (p.state != CommandState::pending || now_s - p.last_sent_s < settings_.ack_timeout_s)
       continue;
-    if (p.kind != Kind::param_read && p.sends == 0 && !in_flight.insert(p.message.command).second)
+    if (!is_param(p) && p.sends == 0 && !in_flight.insert(p.message.command).second)
       continue;  // waits its turn
     if (p.sends >= settings_.attempts) {
       p.state = CommandState::timed_out;
@@ -312,12 +412,16 @@ void Driver::send_due(double now_s) {
       case Kind::param_read:
         endpoint_.send(p.param);
         break;
+      case Kind::param_set:
+        endpoint_.send(p.param_set);
+        break;
     }
     ++p.sends;
-    if (p.kind != Kind::param_read) ++commands_sent_;
+    if (!is_param(p)) ++commands_sent_;
     p.last_sent_s = now_s;
   }
   send_target(now_s);
+  transfer_.send_due(now_s);
 }
 
 void Driver::poll(double now_s, const std::vector<Frame>& first) {
@@ -327,6 +431,7 @@ void Driver::poll(double now_s, const std::vector<Frame>& first) {
     state_.link_alive = false;
     ++state_.links_lost;
   }
+  fence_step(now_s);
   send_due(now_s);
   finish_safety_check();
 }

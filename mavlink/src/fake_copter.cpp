@@ -24,7 +24,7 @@ FakeCopter::FakeCopter(Link& link, FakeCopterSettings settings)
   if (px4())
     params_ = {{"COM_DL_LOSS_T", 10}, {"NAV_DLL_ACT", 2}};
   else
-    params_ = {{"FS_GCS_ENABLE", 1}};
+    params_ = {{"FS_GCS_ENABLE", 1}, {"FENCE_ENABLE", 0}, {"FENCE_TYPE", 7}, {"FENCE_OPTIONS", 0}};
   for (const auto& [name, value] : settings_.params) params_[name] = value;
 }
 
@@ -71,15 +71,33 @@ void FakeCopter::acknowledge(std::uint16_t command, CmdResult result) {
                             .target_component = kGcsCompid});
 }
 
+double FakeCopter::param(const std::string& name) const {
+  const auto it = params_.find(name);
+  return it == params_.end() ? std::nan("") : it->second;
+}
+
 void FakeCopter::on_param_request(const ParamRequestRead& r) {
   ++param_requests_received_;
   const auto end = std::find(r.param_id.begin(), r.param_id.end(), '\0');
   const auto it = params_.find(std::string(r.param_id.begin(), end));
   if (it == params_.end()) return;  // as ArduPilot: an unknown name gets no answer
+  send_param(it);
+}
+
+// As ArduPilot: a known parameter is set and its PARAM_VALUE sent back; an unknown one is ignored.
+void FakeCopter::on_param_set(const ParamSet& p) {
+  const auto end = std::find(p.param_id.begin(), p.param_id.end(), '\0');
+  const auto it = params_.find(std::string(p.param_id.begin(), end));
+  if (it == params_.end()) return;
+  it->second = px4() ? std::bit_cast<std::int32_t>(p.param_value) : p.param_value;
+  send_param(it);
+}
+
+void FakeCopter::send_param(std::map<std::string, double>::const_iterator it) {
   ParamValue v;
   std::copy(it->first.begin(), it->first.end(), v.param_id.begin());
   v.param_count = static_cast<std::uint16_t>(params_.size());
-  v.param_index = static_cast<std::uint16_t>(std::distance(params_.begin(), it));
+  v.param_index = static_cast<std::uint16_t>(std::distance(params_.cbegin(), it));
   if (px4()) {  // INT32, its bytes in the float (PX4's bytewise encoding)
     v.param_type = kParamTypeInt32;
     v.param_value = std::bit_cast<float>(static_cast<std::int32_t>(std::lround(it->second)));
@@ -300,6 +318,11 @@ void FakeCopter::on_frame(const Frame& frame, double now_s) {
   } else if (const auto r = unpack<ParamRequestRead>(frame)) {
     if (r->target_system != settings_.sysid || drop_param_requests_) return;
     on_param_request(*r);
+  } else if (const auto ps = unpack<ParamSet>(frame)) {
+    if (ps->target_system != settings_.sysid) return;
+    on_param_set(*ps);
+  } else if (on_mission_frame(frame)) {
+    return;
   } else if (const auto t = unpack<SetPositionTargetGlobalInt>(frame)) {
     if (t->target_system != settings_.sysid || mode_ != CopterMode::guided ||
         landed_ == LandedState::on_ground)
@@ -323,6 +346,109 @@ void FakeCopter::on_frame(const Frame& frame, double now_s) {
     target_alt_m_ = t->alt_m;
     has_target_ = true;
   }
+}
+
+// The fence's mission protocol, as ArduPilot's MissionItemProtocol_Fence answers it.
+bool FakeCopter::on_mission_frame(const Frame& frame) {
+  const auto fence = static_cast<std::uint8_t>(MissionType::fence);
+  const auto ack = [&](MissionResult r) {
+    endpoint_.send(MissionAck{.target_system = kGcsSysid,
+                              .target_component = kGcsCompid,
+                              .type = static_cast<std::uint8_t>(r),
+                              .mission_type = fence});
+  };
+  const auto request = [&](std::uint16_t seq) {
+    endpoint_.send(MissionRequest{.seq = seq,
+                                  .target_system = kGcsSysid,
+                                  .target_component = kGcsCompid,
+                                  .mission_type = fence});
+  };
+  const auto lost = [&] {
+    ++mission_received_;
+    if (mission_to_lose_ == 0) return false;
+    --mission_to_lose_;
+    --mission_received_;
+    return true;
+  };
+  if (const auto c = unpack<MissionCount>(frame)) {
+    if (c->target_system != settings_.sysid || c->mission_type != fence) return true;
+    if (lost()) return true;
+    if (fence_refusal_) {
+      ack(*fence_refusal_);
+      fence_refusal_.reset();
+      return true;
+    }
+    incoming_.clear();
+    incoming_count_ = c->count;
+    receiving_ = c->count > 0;
+    if (receiving_) {
+      request(0);
+    } else {
+      fence_.clear();
+      ack(MissionResult::accepted);
+    }
+    return true;
+  }
+  if (const auto item = unpack<MissionItemInt>(frame)) {
+    if (item->target_system != settings_.sysid || item->mission_type != fence) return true;
+    if (lost()) return true;
+    if (!receiving_) {  // a resend of the last item after its acknowledgement was lost
+      ack(MissionResult::accepted);
+      return true;
+    }
+    if (item->seq != incoming_.size()) {  // out of turn: asks again for the one it expects
+      request(static_cast<std::uint16_t>(incoming_.size()));
+      return true;
+    }
+    const auto cmd = static_cast<Cmd>(item->command);
+    if (cmd != Cmd::nav_fence_polygon_vertex_inclusion &&
+        cmd != Cmd::nav_fence_polygon_vertex_exclusion && cmd != Cmd::nav_fence_circle_inclusion &&
+        cmd != Cmd::nav_fence_circle_exclusion) {
+      receiving_ = false;
+      ack(MissionResult::unsupported);
+      return true;
+    }
+    MissionItemInt stored = *item;
+    stored.frame = 0;  // ArduPilot keeps lat/lon only and reads them back in MAV_FRAME_GLOBAL at 0
+    stored.z = 0;
+    if (static_cast<int>(item->seq) == corrupt_seq_) stored.x += 1000;  // 1e-4 degrees north
+    incoming_.push_back(stored);
+    if (incoming_.size() < incoming_count_) {
+      request(static_cast<std::uint16_t>(incoming_.size()));
+    } else {
+      fence_ = incoming_;
+      receiving_ = false;
+      ack(MissionResult::accepted);
+    }
+    return true;
+  }
+  if (const auto list = unpack<MissionRequestList>(frame)) {
+    if (list->target_system != settings_.sysid || list->mission_type != fence) return true;
+    if (lost()) return true;
+    endpoint_.send(MissionCount{.count = static_cast<std::uint16_t>(fence_.size()),
+                                .target_system = kGcsSysid,
+                                .target_component = kGcsCompid,
+                                .mission_type = fence});
+    return true;
+  }
+  if (const auto r = unpack<MissionRequestInt>(frame)) {
+    if (r->target_system != settings_.sysid || r->mission_type != fence) return true;
+    if (lost()) return true;
+    if (r->seq >= fence_.size()) {
+      ack(MissionResult::invalid_sequence);
+      return true;
+    }
+    MissionItemInt out = fence_[r->seq];
+    out.target_system = kGcsSysid;
+    out.target_component = kGcsCompid;
+    endpoint_.send(out);
+    return true;
+  }
+  if (const auto a = unpack<MissionAck>(frame)) {
+    if (a->target_system == settings_.sysid) ++mission_received_;
+    return true;
+  }
+  return false;
 }
 
 void FakeCopter::move(double dt_s) {

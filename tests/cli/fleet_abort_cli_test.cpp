@@ -79,6 +79,20 @@ bool on_the_ground(const std::string& state) {
   return state == "landed" || state == "charging" || state == "lost";
 }
 
+// Waits until the run says on stderr that a drone is airborne ("swath-fleet run: drone-1 airborne
+// at 2.0 s"), or 120 s: an abort or a pause then finds drones in the air however loaded the
+// machine is. False when the line never came.
+bool wait_until_airborne(const std::string& err_path) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream in(err_path);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    if (text.find(" airborne at ") != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
 // What the log says about the abort: the drones in the air when it came (each drone's last
 // drone_mode before it) and the drones it commanded, with the command.
 struct AbortSeen {
@@ -137,7 +151,7 @@ void expect_complete_abort(const std::string& out, const std::string& reason,
 TEST(FleetAbortCli, SigintMidRunSendsEveryAirborneDroneHomeAndClosesTheLog) {
   const std::string out = fresh_dir("fleet-sigint");
   const pid_t pid = start_fleet(paced_run(out), out);
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // ~50 s into the run
+  ASSERT_TRUE(wait_until_airborne(out + ".err")) << read_text(out + ".err");
   ASSERT_EQ(kill(pid, SIGINT), 0);
   EXPECT_EQ(wait_exit(pid), 130) << read_text(out + ".err");
   expect_complete_abort(out, "SIGINT", "rtl");
@@ -149,7 +163,7 @@ TEST(FleetAbortCli, SigintMidRunSendsEveryAirborneDroneHomeAndClosesTheLog) {
 TEST(FleetAbortCli, RepeatedSigintsStillCommandEveryAirborneDrone) {
   const std::string out = fresh_dir("fleet-sigint-twice");
   const pid_t pid = start_fleet(paced_run(out), out);
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  ASSERT_TRUE(wait_until_airborne(out + ".err")) << read_text(out + ".err");
   for (int k = 0; k < 3; ++k) {
     ASSERT_EQ(kill(pid, SIGINT), 0);
     // The second at once (before the loop has even taken the first), the third during the abort.
@@ -162,7 +176,7 @@ TEST(FleetAbortCli, RepeatedSigintsStillCommandEveryAirborneDrone) {
 TEST(FleetAbortCli, SigtermWithOnAbortLandLandsEveryAirborneDrone) {
   const std::string out = fresh_dir("fleet-sigterm-land");
   const pid_t pid = start_fleet(paced_run(out, {"--on-abort", "land"}), out);
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  ASSERT_TRUE(wait_until_airborne(out + ".err")) << read_text(out + ".err");
   ASSERT_EQ(kill(pid, SIGTERM), 0);
   EXPECT_EQ(wait_exit(pid), 143) << read_text(out + ".err");
   expect_complete_abort(out, "SIGTERM", "land");
@@ -195,7 +209,7 @@ TEST(FleetAbortCli, CtlPauseHoldsAndDispatchesNothingResumeGoesOnRtlAllEnds) {
   struct stat st {};
   ASSERT_EQ(::stat(sock.c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 0777, 0600u);
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_TRUE(wait_until_airborne(dir + "/log.err")) << read_text(dir + "/log.err");
   const CliRun pause = run_swath_fleet("ctl pause --socket " + sock);
   EXPECT_EQ(pause.exit_code, 0) << pause.err;
   EXPECT_EQ(pause.out, "swath-fleet ctl: ok pause\n");
@@ -255,7 +269,7 @@ TEST(FleetAbortCli, CtlLandAllLandsEveryAirborneDroneAndEndsTheRun) {
   const std::string sock = dir + "/ctl.sock", out = dir + "/run";
   const pid_t pid = start_fleet(paced_run(out, {"--ctl-socket", sock}), dir + "/log");
   ASSERT_TRUE(wait_for_socket(sock));
-  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  ASSERT_TRUE(wait_until_airborne(dir + "/log.err")) << read_text(dir + "/log.err");
   EXPECT_EQ(run_swath_fleet("ctl land-all --socket " + sock).exit_code, 0);
   EXPECT_EQ(wait_exit(pid), 4) << read_text(dir + "/log.err");
   expect_complete_abort(out, "ctl land-all", "land");

@@ -322,20 +322,109 @@ TEST(MavlinkFleet, AVehicleRefusedInTheAirIsStillSentHomeAndLands) {
   m.run();
   const auto refused = m.events("vehicle_refused");
   ASSERT_GE(refused.size(), 1u);
+  int refused_in_the_air = 0;
   for (const auto& e : refused) {
     EXPECT_EQ(e["reason"], "target outside the fence");
     const FakeCopter& f = *m.fakes[static_cast<std::size_t>(int(e["drone"]))];
-    EXPECT_GE(f.commands_received(Cmd::nav_takeoff), 1);  // it was flying when refused
-    EXPECT_GE(f.commands_received(Cmd::nav_return_to_launch), 1);
+    // Refused on the ground, it never took off (nothing was sent for that target); refused in
+    // the air (after a photo inside the fence), it was told to return.
+    if (f.commands_received(Cmd::nav_takeoff) >= 1) {
+      ++refused_in_the_air;
+      EXPECT_GE(f.commands_received(Cmd::nav_return_to_launch), 1);
+    }
     EXPECT_FALSE(f.armed());
     EXPECT_EQ(f.landed_state(), LandedState::on_ground);
     EXPECT_LT(std::hypot(f.north_m(), f.east_m()), 0.5);
   }
+  (void)refused_in_the_air;  // which case comes is the scheduler's (both seen in the tests)
   // The west photo was never taken outside the fence.
   for (const auto& e : m.events("action_done"))
     if (e["name"] == "camera") {
       EXPECT_GT(double(e["x_m"]), -50.0);
     }
+}
+
+// The world's fence (a 400 m square about the origin) goes to both vehicles before they arm:
+// stored by each fake as four inclusion vertices at the square's corners (computed here from the
+// world's text), read back equal, and enabled (FENCE_ENABLE 1, FENCE_TYPE keeping its polygon bit).
+TEST(MavlinkFleet, TheWorldsFenceIsUploadedReadBackAndEnabledOnEveryVehicle) {
+  Mission m;
+  m.run();
+  m.expect_every_photo_taken_once_at_its_target();
+  const geometry::LocalFrame frame(m.world->origin);
+  const double corners[4][2] = {{-200, -200}, {200, -200}, {200, 200}, {-200, 200}};
+  for (const auto& f : m.fakes) {
+    const std::vector<MissionItemInt>& items = f->fence_items();
+    ASSERT_EQ(items.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+      const geometry::GeoPoint g = frame.to_geo({corners[i][0], corners[i][1]});
+      EXPECT_EQ(items[i].command,
+                static_cast<std::uint16_t>(Cmd::nav_fence_polygon_vertex_inclusion));
+      EXPECT_EQ(items[i].param1, 4.0f);
+      EXPECT_NEAR(items[i].x / 1e7, g.lat_deg, 1e-7);
+      EXPECT_NEAR(items[i].y / 1e7, g.lon_deg, 1e-7);
+    }
+    EXPECT_EQ(f->param("FENCE_ENABLE"), 1);
+    EXPECT_EQ(int(f->param("FENCE_TYPE")) & 4, 4);
+  }
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(m.backend->driver(i)->fence_state(), FenceState::verified);
+}
+
+// A vehicle that stores one vertex elsewhere (the read-back shows it) is refused with the
+// difference in its sentence and never armed; the other flies every task.
+TEST(MavlinkFleet, AVehicleWhoseFenceReadsBackDifferentIsRefusedAndNeverArms) {
+  Mission m;
+  m.fakes[0]->corrupt_fence_vertex(2);
+  m.run();
+  const auto refused = m.events("vehicle_refused");
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_EQ(refused[0]["drone"], 0);
+  const std::string why = refused[0]["reason"];
+  EXPECT_EQ(why.rfind("its fence was not verified (the fence read back differs from the one sent: "
+                      "item 2 (MAV_CMD 5001) reads back at ",
+                      0),
+            0u)
+      << why;
+  EXPECT_EQ(m.fakes[0]->commands_received(Cmd::component_arm_disarm), 0);
+  EXPECT_EQ(m.fakes[0]->commands_received(Cmd::nav_takeoff), 0);
+  EXPECT_FALSE(m.fakes[0]->armed());
+  EXPECT_EQ(m.backend->report(0).refusal, why);
+  ASSERT_TRUE(m.record.completed) << m.record.failure;  // copter-2 took all three photos
+  for (const auto& e : m.events("action_done"))
+    if (e["name"] == "camera") EXPECT_EQ(e["drone"], 1);
+}
+
+// A target outside the fence is refused when it is given: no mode, arm, take-off or position
+// target is ever sent to the vehicle for it.
+TEST(MavlinkFleet, ATargetOutsideTheFenceIsRefusedBeforeAnyCommandGoesOut) {
+  Mission m;
+  m.backend->go_to(0, 0, {300, 0, 20}, 10, 2, 20);  // the fence's east side is at x = 200 m
+  m.backend->advance_to(15);
+  EXPECT_EQ(m.backend->report(0).refusal, "target outside the fence");
+  const FakeCopter& f = *m.fakes[0];
+  for (Cmd c :
+       {Cmd::do_set_mode, Cmd::component_arm_disarm, Cmd::nav_takeoff, Cmd::do_change_speed})
+    EXPECT_EQ(f.commands_received(c), 0) << static_cast<int>(c);
+  EXPECT_EQ(f.position_targets_received(), 0);
+  EXPECT_FALSE(f.armed());
+  EXPECT_EQ(f.fence_items().size(), 4u);  // the fence itself went up meanwhile
+  // The same call inside the fence flies (the refusal was the place's, not the vehicle's).
+  m.backend->go_to(1, 15, {100, 0, 25}, 10, 2, 20);
+  m.backend->advance_to(60);
+  EXPECT_TRUE(m.backend->report(1).refusal.empty());
+  ASSERT_TRUE(m.backend->report(1).arrived);
+  // In the air, an outside target is refused as well: no new target goes out; sent home (what
+  // the runtime does on a refusal) it returns and lands.
+  const int targets = m.fakes[1]->position_targets_received();
+  m.backend->go_to(1, 60, {100, 250, 25}, 10, 2, 20);
+  m.backend->advance_to(65);
+  EXPECT_EQ(m.backend->report(1).refusal, "target outside the fence");
+  EXPECT_EQ(m.fakes[1]->position_targets_received(), targets);
+  m.backend->return_home(1, 65);
+  m.backend->advance_to(140);
+  EXPECT_GE(m.fakes[1]->commands_received(Cmd::nav_return_to_launch), 1);
+  EXPECT_FALSE(m.fakes[1]->armed());
+  EXPECT_LT(std::hypot(m.fakes[1]->north_m(), m.fakes[1]->east_m()), 0.5);
 }
 
 // The driver is chosen by the autopilot the vehicle's HEARTBEAT names: two fakes in their PX4

@@ -176,6 +176,37 @@ TEST(FleetAbort, LandAllPutsEveryFlyingFakeCopterInLand) {
   m.expect_aborted("ctl land-all", Cmd::nav_land, CopterMode::land);
 }
 
+// An abort that finds a vehicle armed but still on the ground (copter-2 between its arm and its
+// take-off; the order comes the first time the fake itself is armed on the ground) disarms it:
+// no RTL, which would first climb to its return altitude, and it never leaves the ground. The
+// vehicle in the air (copter-1) is told to return as before; the log is complete.
+TEST(FleetAbort, AVehicleArmedOnTheGroundAtTheAbortIsDisarmedNotSentToRtl) {
+  AbortedMission m;
+  bool given = false;
+  m.run([&]() -> fleet::ControlRequest {
+    const FakeCopter& waiting = *m.fakes[1];
+    if (given || !waiting.armed() || waiting.landed_state() != LandedState::on_ground) return {};
+    given = true;
+    return {fleet::ControlOrder::rtl_all, "SIGINT"};
+  });
+  ASSERT_TRUE(given) << "copter-2 was never armed on the ground";
+  const FakeCopter& ground = *m.fakes[1];
+  EXPECT_FALSE(ground.armed());
+  EXPECT_EQ(ground.commands_received(Cmd::nav_return_to_launch), 0);
+  EXPECT_EQ(ground.commands_received(Cmd::nav_takeoff), 0);
+  EXPECT_EQ(ground.commands_received(Cmd::component_arm_disarm), 2);  // arm, then disarm
+  EXPECT_EQ(ground.altitude_m(), 0);
+  const FakeCopter& air = *m.fakes[0];
+  EXPECT_GE(air.commands_received(Cmd::nav_return_to_launch), 1);
+  EXPECT_TRUE(air.mode() == CopterMode::rtl || air.mode() == CopterMode::land);
+  int commanded = 0;
+  for (const auto& e : m.events()) commanded += e["ev"] == "abort_command";
+  EXPECT_EQ(commanded, 2);
+  EXPECT_EQ(m.events().back()["ev"], "run_end");
+  const fleet::EventCheck c = fleet::check_events(m.record.events_jsonl);
+  EXPECT_TRUE(c.ok()) << (c.violations.empty() ? "" : c.violations[0].message);
+}
+
 // An exception escaping the run's loop (here thrown by the control source itself) aborts the run
 // with settings.on_abort: the vehicles are told, the record is complete and says why.
 TEST(FleetAbort, AnExceptionEscapingTheRunStillSendsEveryVehicleHome) {

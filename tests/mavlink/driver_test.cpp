@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -249,6 +250,132 @@ TEST(CopterDriver, NeverSendsATargetOutsideTheFence) {
   EXPECT_TRUE(rig.driver.go_to(lat, lon, 10));
   ASSERT_TRUE(rig.run_until([&] { return rig.driver.arrived(); }, 20));
   EXPECT_GT(rig.copter.position_targets_received(), 0);
+}
+
+// ---- The fence over the mission protocol (MAV_MISSION_TYPE_FENCE). The truth is the fake's own
+// store and parameters, and fence items the test builds itself from positions north/east of home.
+struct FenceRig {
+  explicit FenceRig(FakeCopterSettings copter_settings = {}) : rig({}, copter_settings) {}
+
+  // A 200 m square about home (inclusion, 4 vertices) and a triangle inside it (exclusion).
+  std::vector<MissionItemInt> items() const {
+    const double square[4][2] = {{-100, -100}, {-100, 100}, {100, 100}, {100, -100}};
+    const double triangle[3][2] = {{30, 30}, {30, 60}, {60, 30}};
+    std::vector<MissionItemInt> out;
+    const auto add = [&](const double(*ring)[2], int n, Cmd cmd) {
+      for (int i = 0; i < n; ++i) {
+        double lat = 0, lon = 0;
+        rig.copter.to_geodetic(ring[i][0], ring[i][1], lat, lon);
+        MissionItemInt m;
+        m.command = static_cast<std::uint16_t>(cmd);
+        m.param1 = static_cast<float>(n);
+        m.x = static_cast<std::int32_t>(std::lround(lat * 1e7));
+        m.y = static_cast<std::int32_t>(std::lround(lon * 1e7));
+        out.push_back(m);
+      }
+    };
+    add(square, 4, Cmd::nav_fence_polygon_vertex_inclusion);
+    add(triangle, 3, Cmd::nav_fence_polygon_vertex_exclusion);
+    return out;
+  }
+
+  // Uploads; true once the driver's fence state is verified or failed within `limit_s`.
+  bool upload(double limit_s = 20) {
+    rig.driver.upload_fence(items());
+    return rig.run_until(
+        [&] {
+          const FenceState f = rig.driver.fence_state();
+          return f == FenceState::verified || f == FenceState::failed;
+        },
+        limit_s);
+  }
+
+  Rig rig;
+};
+
+void expect_same_items(const std::vector<MissionItemInt>& got,
+                       const std::vector<MissionItemInt>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(got[i].command, want[i].command) << i;
+    EXPECT_EQ(got[i].x, want[i].x) << i;
+    EXPECT_EQ(got[i].y, want[i].y) << i;
+    EXPECT_EQ(got[i].param1, want[i].param1) << i;
+    EXPECT_EQ(got[i].seq, i);
+    EXPECT_EQ(got[i].mission_type, static_cast<std::uint8_t>(MissionType::fence)) << i;
+  }
+}
+
+TEST(FenceUpload, UploadedReadBackAndEnabledWithThePolygonBitAdded) {
+  FakeCopterSettings s;
+  s.params["FENCE_TYPE"] = 1;  // the owner's altitude limit alone: kept, polygons added (1 | 4)
+  FenceRig f(s);
+  ASSERT_TRUE(f.upload());
+  ASSERT_EQ(f.rig.driver.fence_state(), FenceState::verified) << f.rig.driver.fence_error();
+  expect_same_items(f.rig.copter.fence_items(), f.items());  // the vehicle's store
+  expect_same_items(f.rig.driver.fence_read_back(), f.items());
+  EXPECT_EQ(f.rig.copter.param("FENCE_ENABLE"), 1);
+  EXPECT_EQ(f.rig.copter.param("FENCE_TYPE"), 5);
+  EXPECT_EQ(f.rig.driver.fence_resends(), 0);
+}
+
+// Two inclusion areas: swath's envelope flies in their union, ArduPilot by default in their
+// intersection; the driver sets FENCE_OPTIONS' union bit. With one (above) it is left alone.
+TEST(FenceUpload, TwoInclusionAreasSetTheUnionOption) {
+  FenceRig f;
+  std::vector<MissionItemInt> items = f.items();
+  for (MissionItemInt& m : items)  // the triangle becomes a second inclusion
+    m.command = static_cast<std::uint16_t>(Cmd::nav_fence_polygon_vertex_inclusion);
+  f.rig.driver.upload_fence(items);
+  ASSERT_TRUE(
+      f.rig.run_until([&] { return f.rig.driver.fence_state() == FenceState::verified; }, 20))
+      << f.rig.driver.fence_error();
+  EXPECT_EQ(f.rig.copter.param("FENCE_OPTIONS"), 2);
+  EXPECT_EQ(f.rig.copter.param("FENCE_ENABLE"), 1);
+  FenceRig one;
+  ASSERT_TRUE(one.upload());
+  EXPECT_EQ(one.rig.copter.param("FENCE_OPTIONS"), 0);
+}
+
+TEST(FenceUpload, AVertexStoredElsewhereFailsTheReadBackAndTheFenceIsNotEnabled) {
+  FenceRig f;
+  f.rig.copter.corrupt_fence_vertex(5);
+  ASSERT_TRUE(f.upload());
+  ASSERT_EQ(f.rig.driver.fence_state(), FenceState::failed);
+  const std::string& why = f.rig.driver.fence_error();
+  EXPECT_NE(why.find("read back differs"), std::string::npos) << why;
+  EXPECT_NE(why.find("item 5 (MAV_CMD 5002) reads back at"), std::string::npos) << why;
+  EXPECT_EQ(f.rig.copter.param("FENCE_ENABLE"), 0);
+}
+
+TEST(FenceUpload, ARefusalAtTheCountFailsTheUploadWithTheVehiclesResult) {
+  FenceRig f;
+  f.rig.copter.refuse_fence(MissionResult::no_space);
+  ASSERT_TRUE(f.upload());
+  ASSERT_EQ(f.rig.driver.fence_state(), FenceState::failed);
+  EXPECT_EQ(f.rig.driver.fence_error(), "upload: the vehicle answered MISSION_ACK 4 (no space)");
+  EXPECT_TRUE(f.rig.copter.fence_items().empty());
+  EXPECT_EQ(f.rig.copter.param("FENCE_ENABLE"), 0);
+}
+
+// Two lost messages (the count and one of the first items or requests): each is sent again after
+// the timeout and the fence still arrives whole. Three lost counts: the upload gives up.
+TEST(FenceUpload, LostMessagesAreSentAgainAndThreeLostCountsFailTheUpload) {
+  FenceRig f;
+  f.rig.run_until([&] { return f.rig.driver.state().link_alive; }, 3);
+  f.rig.copter.lose_mission_messages(2);
+  ASSERT_TRUE(f.upload());
+  ASSERT_EQ(f.rig.driver.fence_state(), FenceState::verified) << f.rig.driver.fence_error();
+  EXPECT_EQ(f.rig.driver.fence_resends(), 2);
+  expect_same_items(f.rig.copter.fence_items(), f.items());
+
+  FenceRig g;
+  g.rig.run_until([&] { return g.rig.driver.state().link_alive; }, 3);
+  g.rig.copter.lose_mission_messages(3);
+  ASSERT_TRUE(g.upload());
+  ASSERT_EQ(g.rig.driver.fence_state(), FenceState::failed);
+  EXPECT_EQ(g.rig.driver.fence_error(), "upload: no answer to MISSION_COUNT after 3 sends");
+  EXPECT_TRUE(g.rig.copter.fence_items().empty());
 }
 
 TEST(CopterDriver, PhotosReturnAndLandingEndDisarmedAtHome) {

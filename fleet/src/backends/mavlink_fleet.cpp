@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "swath/fleet/envelope.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/polygon.hpp"
 #include "swath/geometry/predicates.hpp"
@@ -33,13 +34,37 @@ constexpr int kMaxRejections = 3;
 constexpr double kArmPatienceS = 60;
 constexpr double kArmRetryS = 2;  // between asks
 
+// The fence as MAVLink fence items (MAV_MISSION_TYPE_FENCE): a polygon is one item per vertex,
+// each carrying the polygon's vertex count in param1 (MAV_CMD_NAV_FENCE_POLYGON_VERTEX_*),
+// positions in MAV_FRAME_GLOBAL (ArduPilot keeps latitude and longitude only).
+std::vector<mavlink::MissionItemInt> fence_mission_items(const LocalEnvelope& fence,
+                                                         const geometry::LocalFrame& frame) {
+  std::vector<mavlink::MissionItemInt> items;
+  const auto add = [&](const std::vector<std::array<double, 2>>& ring, mavlink::Cmd cmd) {
+    for (const auto& [x, y] : ring) {
+      const geometry::GeoPoint g = frame.to_geo({x, y});
+      mavlink::MissionItemInt m;
+      m.command = static_cast<std::uint16_t>(cmd);
+      m.frame = static_cast<std::uint8_t>(mavlink::MavFrame::global);
+      m.param1 = static_cast<float>(ring.size());
+      m.x = static_cast<std::int32_t>(std::lround(g.lat_deg * mavlink::kDegE7));
+      m.y = static_cast<std::int32_t>(std::lround(g.lon_deg * mavlink::kDegE7));
+      m.autocontinue = 1;
+      items.push_back(m);
+    }
+  };
+  for (const auto& r : fence.inclusions) add(r, mavlink::Cmd::nav_fence_polygon_vertex_inclusion);
+  for (const auto& r : fence.exclusions) add(r, mavlink::Cmd::nav_fence_polygon_vertex_exclusion);
+  return items;
+}
+
 }  // namespace
 
 // What the runtime last asked of a vehicle, and where its steering stands.
 struct MavlinkFleet::Vehicle {
   enum class Want { ground, go, home, land };
-  enum class Step { mode, arm, takeoff, rtl, land };  // the steering's gated steps
-  static constexpr int kSteps = 5;
+  enum class Step { mode, arm, takeoff, rtl, land, disarm };  // the steering's gated steps
+  static constexpr int kSteps = 6;
   static std::string refusal_text(Step step, const mavlink::Driver& d) {
     switch (step) {
       case Step::mode:
@@ -52,6 +77,8 @@ struct MavlinkFleet::Vehicle {
         return "refused to return to launch";
       case Step::land:
         return "refused to land";
+      case Step::disarm:
+        return "refused to disarm";
     }
     return "refused";
   }
@@ -87,6 +114,11 @@ MavlinkFleet::MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
   if (!(settings_.poll_step_s > 0))
     throw std::invalid_argument("MavlinkFleet: poll_step_s must be > 0");
   const geometry::LocalFrame frame(settings_.origin);
+  LocalEnvelope fence;  // its fence rings only
+  fence.inclusions = settings_.inclusions_m;
+  fence.exclusions = settings_.exclusions_m;
+  if (settings_.fence_m.size() >= 3) fence.inclusions.push_back(settings_.fence_m);
+  fence_items_ = fence_mission_items(fence, frame);
   for (std::size_t i = 0; i < links.size(); ++i) {
     auto v = std::make_unique<Vehicle>();
     v->link = std::move(links[i]);
@@ -100,12 +132,10 @@ MavlinkFleet::MavlinkFleet(std::vector<std::unique_ptr<mavlink::Link>> links,
     }
     mavlink::DriverSettings d = settings_.driver;
     d.vehicle_sysid = sysids[i];
-    if (settings_.fence_m.size() >= 3) {
-      geometry::Ring fence;
-      for (const auto& [x, y] : settings_.fence_m) fence.push_back({x, y});
+    if (!fence.inclusions.empty() || !fence.exclusions.empty()) {
       d.inside_fence = [fence, frame](double lat_deg, double lon_deg) {
-        return geometry::locate_point(frame.to_local({lat_deg, lon_deg}), fence) ==
-               geometry::Containment::inside;
+        const geometry::Point2 p = frame.to_local({lat_deg, lon_deg});
+        return fence.refusal_xy(p.x, p.y).empty();
       };
     }
     v->driver_settings = std::move(d);
@@ -193,6 +223,9 @@ void MavlinkFleet::poll(Vehicle& v, int drone) {
     }
     if (!v.driver) return;
   }
+  if (settings_.upload_fence && !fence_items_.empty() &&
+      v.driver->fence_state() == mavlink::FenceState::none)
+    v.driver->upload_fence(fence_items_);
   const std::vector<std::string>& w = v.driver->state().warnings;
   for (; v.warnings_told < w.size(); ++v.warnings_told) warn(drone, w[v.warnings_told]);
 }
@@ -201,6 +234,10 @@ void MavlinkFleet::go_to(int drone, double, const Vec3& to_m, double cruise_m_s,
                          double approach_m_s, double approach_within_m) {
   Vehicle& v = at(drone);
   const geometry::GeoPoint g = geometry::LocalFrame(settings_.origin).to_geo({to_m.x, to_m.y});
+  // Refused here, before any command for it goes out (on the ground: no arm, no take-off).
+  if (v.driver_settings.inside_fence && !v.driver_settings.inside_fence(g.lat_deg, g.lon_deg) &&
+      v.refusal.empty())
+    v.refusal = "target outside the fence";
   v.want = Vehicle::Want::go;
   v.lat_deg = g.lat_deg;
   v.lon_deg = g.lon_deg;
@@ -261,6 +298,10 @@ bool MavlinkFleet::all_told() const {
     if (v->want != Vehicle::Want::home && v->want != Vehicle::Want::land) continue;
     if (!v->driver) continue;  // never heard: nothing to tell it
     const mavlink::VehicleState& s = v->driver->state();
+    // Armed on the ground: told once disarmed, or once it has refused the disarm.
+    const bool refused_disarm =
+        v->rejections[static_cast<std::size_t>(Vehicle::Step::disarm)] >= kMaxRejections;
+    if (s.armed && s.landed == mavlink::LandedState::on_ground && !refused_disarm) return false;
     const bool down = !s.armed || s.landed == mavlink::LandedState::on_ground;
     if (!down && !v->driver->returning()) return false;
   }
@@ -296,6 +337,34 @@ bool MavlinkFleet::all_down() const {
   return true;
 }
 
+// Home or land: armed on the ground (not yet off it), disarmed — an RTL would climb to its return
+// altitude first; off the ground (climbing included: the landed state the vehicle reports is up
+// to a second old, so "still climbing" cannot be told from "just in the air"), RTL or LAND as
+// asked. A vehicle already returning or landing is left to it. Still steered
+// after a refusal of anything else (a target outside the fence mid-air): only a vehicle refusing
+// the step itself is left to its own failsafe.
+void MavlinkFleet::come_down(Vehicle& v) {
+  mavlink::Driver& d = *v.driver;
+  const mavlink::VehicleState& s = d.state();
+  const auto tries_left = [&](Vehicle::Step step) {
+    return v.rejections[static_cast<std::size_t>(step)] < kMaxRejections;
+  };
+  const auto gate = [&](int id, Vehicle::Step step) {
+    v.gate = id;
+    v.gate_step = step;
+  };
+  if (!s.armed || d.returning()) return;
+  if (s.landed == mavlink::LandedState::on_ground) {
+    if (tries_left(Vehicle::Step::disarm)) gate(d.arm(false), Vehicle::Step::disarm);
+    return;
+  }
+  const bool land = v.want == Vehicle::Want::land;
+  if (land && tries_left(Vehicle::Step::land))
+    gate(d.land(), Vehicle::Step::land);
+  else if (!land && tries_left(Vehicle::Step::rtl))
+    gate(d.return_to_launch(), Vehicle::Step::rtl);
+}
+
 // One step of the steering toward what the runtime wants, from the vehicle's reported state.
 void MavlinkFleet::steer(Vehicle& v) {
   if (!v.driver) return;
@@ -309,6 +378,12 @@ void MavlinkFleet::steer(Vehicle& v) {
     if (c == mavlink::CommandState::rejected && arm) {
       if (v.first_arm_refusal_s < 0) v.first_arm_refusal_s = now_s_;
       v.settle_until_s = now_s_ + kArmRetryS;  // asked again in a while, not at every poll
+    } else if (c == mavlink::CommandState::rejected) {
+      // Asked again once the state has been reported since: ArduCopter SITL under load took a
+      // take-off whose acknowledgement never came, failed its resend (already taking off), and
+      // three new take-offs sent within 60 ms of that refusal were failed too before its landed
+      // state said "taking off".
+      v.settle_until_s = now_s_ + kSettleS;
     }
     const bool patience_over = !arm || now_s_ - v.first_arm_refusal_s >= kArmPatienceS;
     if (c == mavlink::CommandState::rejected && ++rejected >= kMaxRejections && patience_over &&
@@ -336,16 +411,8 @@ void MavlinkFleet::steer(Vehicle& v) {
     case Vehicle::Want::ground:
       return;
     case Vehicle::Want::home:
-      // Still steered after a refusal of anything else (a target outside the fence mid-air):
-      // only a vehicle refusing RTL itself is left to its own failsafe.
-      if (!down && !d.returning() &&
-          v.rejections[static_cast<std::size_t>(Vehicle::Step::rtl)] < kMaxRejections)
-        gate(d.return_to_launch(), Vehicle::Step::rtl);
-      return;
-    case Vehicle::Want::land:  // a vehicle already returning or landing is left to it
-      if (!down && !d.returning() &&
-          v.rejections[static_cast<std::size_t>(Vehicle::Step::land)] < kMaxRejections)
-        gate(d.land(), Vehicle::Step::land);
+    case Vehicle::Want::land:
+      come_down(v);
       return;
     case Vehicle::Want::go:
       break;
@@ -359,6 +426,13 @@ void MavlinkFleet::steer(Vehicle& v) {
                   "); --allow-no-gcs-failsafe flies it anyway";
       return;
     }
+  }
+  if (down && settings_.upload_fence && !fence_items_.empty()) {  // no take-off without it
+    if (d.fence_state() == mavlink::FenceState::failed) {
+      v.refusal = "its fence was not verified (" + d.fence_error() + ")";
+      return;
+    }
+    if (d.fence_state() != mavlink::FenceState::verified) return;  // still on its way
   }
   if (!d.in_guided()) {  // from the ground, or after a failsafe RTL
     v.target_sent = false;

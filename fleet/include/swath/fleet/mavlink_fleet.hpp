@@ -16,7 +16,10 @@
 // vehicle (report().refusal, with its last STATUSTEXT): it is sent nowhere but home after that.
 // (PX4: Hold, AUTO.LOITER, for GUIDED, and DO_REPOSITION for the position target.) The drivers'
 // connect-time safety warnings (a lost-link failsafe off or unreadable) go to `warn`; they never
-// hold the mission back.
+// hold the mission back. The fence goes to every vehicle at connect and is read back before it
+// may arm (MavlinkFleetSettings::upload_fence). Told home or to land while armed on the ground (an
+// abort before it took off), a vehicle is disarmed, not sent to RTL (which climbs to its return
+// altitude first).
 //
 // Clock: the runtime's. advance_to(t) polls every poll_step_s up to t; with wall_clock it first
 // waits until t seconds after the first call (a real run), else it does not wait and calls
@@ -48,9 +51,20 @@ namespace swath::fleet {
 
 struct MavlinkFleetSettings {
   geometry::GeoPoint origin;  ///< the world's origin (WGS84 degrees)
-  /// The world's fence, local metres (x, y), counter-clockwise; empty: none. No target outside
-  /// it is ever sent (the vehicle is then refused, "target outside the fence").
+  /// The world's fence, local metres (x, y), counter-clockwise; empty: none. An inclusion fence
+  /// like those of `inclusions_m`.
   std::vector<std::array<double, 2>> fence_m;
+  /// The envelope's fence polygons, local metres (x, y). A target outside every inclusion (when
+  /// there is one) or inside an exclusion is never sent: the vehicle is refused at once ("target
+  /// outside the fence"), before any command for it goes out.
+  std::vector<std::vector<std::array<double, 2>>> inclusions_m, exclusions_m;
+  /// With a fence: each vehicle gets it with MAVLink's fence protocol when it connects (one
+  /// NAV_FENCE_POLYGON_VERTEX_INCLUSION / _EXCLUSION item per vertex, param1 the polygon's vertex
+  /// count), reads it back and compares, and enables it (ArduCopter: FENCE_TYPE with its polygon
+  /// bit, FENCE_ENABLE 1); none takes off before its fence is verified, and a vehicle whose
+  /// upload fails, is refused, or reads back different is refused (report().refusal says why).
+  /// false: the fence is only checked here, never uploaded.
+  bool upload_fence = true;
   mavlink::DriverSettings
       driver;  ///< for every vehicle; vehicle_sysid and inside_fence are set per vehicle
   bool wall_clock = false;
@@ -123,6 +137,7 @@ class MavlinkFleet final : public Backend {
  private:
   struct Vehicle;
   void steer(Vehicle& v);
+  void come_down(Vehicle& v);
   void poll(Vehicle& v, int drone);
   void warn(int drone, const std::string& text) const;
   bool all_down() const;
@@ -131,6 +146,7 @@ class MavlinkFleet final : public Backend {
 
   std::vector<std::unique_ptr<Vehicle>> vehicles_;
   MavlinkFleetSettings settings_;
+  std::vector<mavlink::MissionItemInt> fence_items_;  // uploaded to every vehicle
   double now_s_ = 0;
   std::optional<std::chrono::steady_clock::time_point> start_;
   // The keep-alive thread (settings.keepalive with wall_clock): see keep_alive().

@@ -47,6 +47,22 @@ enum class MavFrame : std::uint8_t {
   global_terrain_alt_int = 11,
 };
 
+/// MAV_MISSION_TYPE values (the mission protocol's `mission_type`).
+enum class MissionType : std::uint8_t { mission = 0, fence = 1, rally = 2 };
+
+/// MAV_MISSION_RESULT values (MISSION_ACK `type`) swath names.
+enum class MissionResult : std::uint8_t {
+  accepted = 0,
+  error = 1,
+  unsupported_frame = 2,
+  unsupported = 3,
+  no_space = 4,
+  invalid = 5,
+  invalid_sequence = 13,
+  denied = 14,
+  operation_cancelled = 15,
+};
+
 /// MAV_RESULT values (COMMAND_ACK `result`).
 enum class CmdResult : std::uint8_t {
   accepted = 0,

@@ -22,6 +22,7 @@
 #include "swath/mavlink/commands.hpp"
 #include "swath/mavlink/endpoint.hpp"
 #include "swath/mavlink/messages.hpp"
+#include "swath/mavlink/mission_transfer.hpp"
 
 namespace swath::mavlink {
 
@@ -68,6 +69,10 @@ struct VehicleState {
 
 enum class CommandState { pending, accepted, rejected, timed_out };
 
+/// Where a fence upload stands (Driver::upload_fence): sent, read back and compared, then enabled
+/// on the vehicle; or failed (fence_error() says why).
+enum class FenceState { none, uploading, reading_back, enabling, verified, failed };
+
 /// The ground station's HEARTBEAT (docs/swath-fleet.md: type GCS 6, autopilot INVALID 8, active).
 constexpr Heartbeat gcs_heartbeat() {
   return Heartbeat{.custom_mode = 0,
@@ -99,6 +104,9 @@ class Driver {
   /// Reads parameter `name` (up to 16 characters); accepted once its PARAM_VALUE came (the value
   /// in state().params), timed_out after `attempts` unanswered requests.
   int read_param(const std::string& name);
+  /// Sets parameter `name` (PARAM_SET, resent like a command); accepted once a PARAM_VALUE of
+  /// that name carries `value`, rejected when it carries another (the vehicle kept its own).
+  int set_param(const std::string& name, double value, std::uint8_t param_type);
   CommandState command_state(int id) const;
   /// The MAV_RESULT of an acknowledged command (accepted or rejected).
   std::optional<CmdResult> command_result(int id) const;
@@ -127,6 +135,19 @@ class Driver {
   /// warning says which parameter), false when on or unreadable; nothing while it still reads.
   std::optional<bool> failsafe_off() const { return failsafe_off_; }
 
+  /// Uploads a fence (mission protocol, MAV_MISSION_TYPE_FENCE: `items` are
+  /// NAV_FENCE_POLYGON_VERTEX_* and NAV_FENCE_CIRCLE_* items; seq and targets are set here), reads
+  /// it back and compares (fence_difference), then enables it the autopilot's way
+  /// (enable_fence_step). Starts at the next poll with the link up.
+  void upload_fence(std::vector<MissionItemInt> items);
+  FenceState fence_state() const { return fence_state_; }
+  /// Why the fence failed, one phrase.
+  const std::string& fence_error() const { return fence_error_; }
+  /// What the vehicle sent back (after reading_back).
+  const std::vector<MissionItemInt>& fence_read_back() const { return fence_read_back_; }
+  /// Mission-protocol frames sent again after a timeout.
+  int fence_resends() const { return transfer_.resends(); }
+
   /// COMMAND_LONGs and COMMAND_INTs sent, resends included (parameter reads not counted).
   std::uint64_t commands_sent() const { return commands_sent_; }
   /// Commands not yet acknowledged, rejected or timed out (queued or in flight; parameter reads
@@ -142,10 +163,11 @@ class Driver {
   };
   /// The command queue's entries: one retry loop for COMMAND_LONG, COMMAND_INT and parameter reads.
   struct Pending {
-    enum class Kind { command_long, command_int, param_read } kind = Kind::command_long;
+    enum class Kind { command_long, command_int, param_read, param_set } kind = Kind::command_long;
     CommandLong message;  ///< COMMAND_LONG; its `command` also names a COMMAND_INT's
     CommandInt int_message;
     ParamRequestRead param;
+    ParamSet param_set;
     std::string param_name;
     int sends = 0;
     double last_sent_s = -std::numeric_limits<double>::infinity();
@@ -167,6 +189,11 @@ class Driver {
   virtual std::vector<std::string> safety_warnings() const = 0;
   /// Sends the position target when due (ArduCopter); nothing by default.
   virtual void send_target(double /*now_s*/) {}
+  /// Inclusion areas in the fence uploaded (a polygon's vertices count once, a circle once).
+  int inclusion_areas() const;
+  /// One step of enabling a verified fence on the vehicle: pending (nullopt), done (""), or
+  /// failed (why). Default: nothing to enable.
+  virtual std::optional<std::string> enable_fence_step() { return std::string(); }
   /// PARAM_VALUE carries integers byte for byte (PX4) rather than converted (ArduPilot).
   virtual bool params_bytewise() const { return false; }
 
@@ -195,6 +222,17 @@ class Driver {
   bool safety_started_ = false;
   std::vector<int> safety_reads_;  ///< read_param ids of the check in progress
   std::optional<bool> failsafe_off_;
+  void fence_step(double now_s);
+  static bool is_param(const Pending& p);
+  /// The items as the transfer sent them (seq and targets filled in).
+  const std::vector<MissionItemInt>& transfer_items_sent() const { return fence_sent_; }
+  std::vector<MissionItemInt> fence_sent_;
+  MissionTransfer transfer_;
+  FenceState fence_state_ = FenceState::none;
+  bool fence_asked_ = false;
+  std::vector<MissionItemInt> fence_items_;
+  std::vector<MissionItemInt> fence_read_back_;
+  std::string fence_error_;
 };
 
 }  // namespace swath::mavlink

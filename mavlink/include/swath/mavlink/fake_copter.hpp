@@ -9,7 +9,13 @@
 // land) and LAND with disarm on the ground, a photo per IMAGE_START_CAPTURE, and the ground-station
 // failsafe: airborne without a GCS HEARTBEAT for 5 s it returns to launch (FS_GCS_ENABLE = 1).
 // Faults for tests: a cut link, lost commands, a refusal to arm or to enter a mode, parameter
-// requests left unanswered. It answers PARAM_REQUEST_READ for the failsafe parameters.
+// requests left unanswered. It answers PARAM_REQUEST_READ for the failsafe parameters and
+// PARAM_SET for those it has (ArduPilot: FENCE_ENABLE 0, FENCE_TYPE 7, FENCE_OPTIONS 0 by default),
+// and the mission protocol for fences (MAV_MISSION_TYPE_FENCE): an upload is asked item by item
+// with MISSION_REQUEST, as ArduPilot asks, stored and acknowledged; a read-back answers
+// MISSION_REQUEST_LIST and MISSION_REQUEST_INT from what is stored (frame 0, altitude 0, as
+// ArduPilot). Fence faults for tests: a refusal (MISSION_ACK with an error), mission messages lost
+// on the way, a vertex stored moved (what a read-back must catch).
 //
 // A PX4 flavour (autopilot = px4) speaks as PX4's documents say PX4 does (HEARTBEAT autopilot 12,
 // custom_mode main/sub modes, DO_SET_MODE param2/param3, NAV_TAKEOFF above sea level climbing in
@@ -25,6 +31,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "swath/mavlink/commands.hpp"
 #include "swath/mavlink/endpoint.hpp"
@@ -94,7 +101,22 @@ class FakeCopter {
     refuse_mode_ = std::move(why);
   }
 
+  /// The next fence upload is answered with MISSION_ACK `result` (a MAV_MISSION_RESULT) at its
+  /// MISSION_COUNT; nothing is stored.
+  void refuse_fence(MissionResult result) { fence_refusal_ = result; }
+  /// The next `n` mission-protocol messages from the ground station are lost on the way.
+  void lose_mission_messages(int n) { mission_to_lose_ += n; }
+  /// Stores fence item `seq` of every upload 0.0001 degrees (about 11 m) north of where it was
+  /// sent: a read-back shows the vertex moved.
+  void corrupt_fence_vertex(int seq) { corrupt_seq_ = seq; }
+
   // Truth, for tests.
+  /// The fence items stored (the last complete upload).
+  const std::vector<MissionItemInt>& fence_items() const { return fence_; }
+  /// Mission-protocol messages received (lost ones not).
+  int mission_messages_received() const { return mission_received_; }
+  /// A parameter's value (NaN when it has none).
+  double param(const std::string& name) const;
   double north_m() const { return north_m_; }
   double east_m() const { return east_m_; }
   double altitude_m() const { return alt_m_; }  ///< above home
@@ -122,6 +144,10 @@ class FakeCopter {
   void on_command(const CommandLong& c, double now_s);
   void on_command_int(const CommandInt& c, double now_s);
   void on_param_request(const ParamRequestRead& r);
+  void on_param_set(const ParamSet& p);
+  void send_param(std::map<std::string, double>::const_iterator it);
+  /// A mission-protocol frame from the ground station (true: it was one).
+  bool on_mission_frame(const Frame& frame);
   void acknowledge(std::uint16_t command, CmdResult result);
   bool px4() const { return settings_.autopilot == FakeAutopilot::px4; }
   /// The lost-link failsafe's mode per the parameters (none: stays), and its delay, s.
@@ -145,6 +171,14 @@ class FakeCopter {
   CopterMode refused_mode_ = CopterMode::stabilize;
   std::string refuse_mode_;  // "": no mode refused
   bool drop_param_requests_ = false;
+  std::optional<MissionResult> fence_refusal_;
+  int mission_to_lose_ = 0;
+  int corrupt_seq_ = -1;
+  int mission_received_ = 0;
+  std::vector<MissionItemInt> fence_;     // stored
+  std::vector<MissionItemInt> incoming_;  // an upload in progress
+  std::uint16_t incoming_count_ = 0;
+  bool receiving_ = false;
   int param_requests_received_ = 0;
   std::map<std::string, double> params_;  // the flavour's defaults with settings.params over them
   double last_gcs_heartbeat_s_ = 0;

@@ -132,6 +132,26 @@ struct ParamValue {
   }
 };
 
+/// PARAM_SET (23): sets one parameter by name; the vehicle answers with its PARAM_VALUE (the value
+/// it now holds, which tells whether the set took).
+struct ParamSet {
+  static constexpr std::uint32_t kId = 23;
+  static constexpr std::string_view kName = "PARAM_SET";
+  float param_value = 0;
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::array<char, 16> param_id{};  ///< NUL-terminated unless 16 characters long
+  std::uint8_t param_type = 0;      ///< MAV_PARAM_TYPE
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(param_value, "param_value");
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.field(param_id, "param_id");
+    v.field(param_type, "param_type");
+  }
+};
+
 /// GPS_RAW_INT (24): the receiver's fix.
 struct GpsRawInt {
   static constexpr std::uint32_t kId = 24;
@@ -238,6 +258,24 @@ struct GlobalPositionInt {
   }
 };
 
+/// MISSION_REQUEST (40): the vehicle asks for item `seq` during an upload (ArduPilot asks with this
+/// one, not MISSION_REQUEST_INT; either is answered with MISSION_ITEM_INT).
+struct MissionRequest {
+  static constexpr std::uint32_t kId = 40;
+  static constexpr std::string_view kName = "MISSION_REQUEST";
+  std::uint16_t seq = 0;
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE (0 mission, 1 fence, 2 rally)
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(seq, "seq");
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.extension(mission_type, "mission_type");
+  }
+};
+
 /// MISSION_CURRENT (42).
 struct MissionCurrent {
   static constexpr std::uint32_t kId = 42;
@@ -261,6 +299,38 @@ struct MissionCurrent {
   }
 };
 
+/// MISSION_REQUEST_LIST (43): the ground station asks for the stored items (a read-back).
+struct MissionRequestList {
+  static constexpr std::uint32_t kId = 43;
+  static constexpr std::string_view kName = "MISSION_REQUEST_LIST";
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.extension(mission_type, "mission_type");
+  }
+};
+
+/// MISSION_COUNT (44): how many items an upload sends, or a read-back will get.
+struct MissionCount {
+  static constexpr std::uint32_t kId = 44;
+  static constexpr std::string_view kName = "MISSION_COUNT";
+  std::uint16_t count = 0;
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(count, "count");
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.extension(mission_type, "mission_type");
+  }
+};
+
 /// MISSION_ITEM_REACHED (46).
 struct MissionItemReached {
   static constexpr std::uint32_t kId = 46;
@@ -269,6 +339,77 @@ struct MissionItemReached {
   template <class V>
   constexpr void fields(V& v) {
     v.field(seq, "seq");
+  }
+};
+
+/// MISSION_ACK (47): ends a transfer; `type` MAV_MISSION_RESULT (0 accepted, else why not).
+struct MissionAck {
+  static constexpr std::uint32_t kId = 47;
+  static constexpr std::string_view kName = "MISSION_ACK";
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t type = 0;          ///< MAV_MISSION_RESULT
+  std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.field(type, "type");
+    v.extension(mission_type, "mission_type");
+  }
+};
+
+/// MISSION_REQUEST_INT (51): asks for item `seq` (the ground station's read-back).
+struct MissionRequestInt {
+  static constexpr std::uint32_t kId = 51;
+  static constexpr std::string_view kName = "MISSION_REQUEST_INT";
+  std::uint16_t seq = 0;
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(seq, "seq");
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.extension(mission_type, "mission_type");
+  }
+};
+
+/// MISSION_ITEM_INT (73): one item (x, y = lat, lon in degE7 for global frames; fence vertices:
+/// param1 the polygon's vertex count, circles: param1 the radius in metres).
+struct MissionItemInt {
+  static constexpr std::uint32_t kId = 73;
+  static constexpr std::string_view kName = "MISSION_ITEM_INT";
+  float param1 = 0, param2 = 0, param3 = 0, param4 = 0;
+  std::int32_t x = 0;
+  std::int32_t y = 0;
+  float z = 0;
+  std::uint16_t seq = 0;
+  std::uint16_t command = 0;  ///< MAV_CMD
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+  std::uint8_t frame = 0;  ///< MAV_FRAME
+  std::uint8_t current = 0;
+  std::uint8_t autocontinue = 0;
+  std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  template <class V>
+  constexpr void fields(V& v) {
+    v.field(param1, "param1");
+    v.field(param2, "param2");
+    v.field(param3, "param3");
+    v.field(param4, "param4");
+    v.field(x, "x");
+    v.field(y, "y");
+    v.field(z, "z");
+    v.field(seq, "seq");
+    v.field(command, "command");
+    v.field(target_system, "target_system");
+    v.field(target_component, "target_component");
+    v.field(frame, "frame");
+    v.field(current, "current");
+    v.field(autocontinue, "autocontinue");
+    v.extension(mission_type, "mission_type");
   }
 };
 
@@ -577,12 +718,19 @@ constexpr void for_each_message(F&& f) {
   f(SystemTime{});
   f(ParamRequestRead{});
   f(ParamValue{});
+  f(ParamSet{});
   f(GpsRawInt{});
   f(Attitude{});
   f(LocalPositionNed{});
   f(GlobalPositionInt{});
+  f(MissionRequest{});
   f(MissionCurrent{});
+  f(MissionRequestList{});
+  f(MissionCount{});
   f(MissionItemReached{});
+  f(MissionAck{});
+  f(MissionRequestInt{});
+  f(MissionItemInt{});
   f(VfrHud{});
   f(CommandInt{});
   f(CommandLong{});
