@@ -215,7 +215,9 @@ class Runtime final : public detail::Core {
     json line;
     line["t_s"] = round6(now_);
     for (auto& [k, v] : e.items()) line[k] = v;
-    record_.events_jsonl += line.dump();
+    const std::string text = line.dump();
+    if (settings_.on_event) settings_.on_event(text);
+    record_.events_jsonl += text;
     record_.events_jsonl += '\n';
   }
   static double round6(double v) { return std::round(v * 1e6) / 1e6; }

@@ -117,6 +117,9 @@ struct RuntimeSettings {
   /// The simulated fleet only: simulated seconds per wall-clock second (1: real time), so that a
   /// person or `swath-fleet ctl` can act during the run; 0: as fast as it computes.
   double pace = 0;
+  /// Called with each line of events.jsonl (no newline) as it is logged, on the run's thread
+  /// (swath-fleet run --live streams them); empty: nothing is called. It cannot change the run.
+  std::function<void(const std::string&)> on_event;
 };
 
 /// What one drone did.
