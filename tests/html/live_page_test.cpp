@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -128,6 +129,23 @@ std::vector<json> events(const fs::path& run_dir) {
   return out;
 }
 
+// Each drone's last logged place at or before `t_s`: its positions are drone_state and
+// drone_mode (docs/swath-fleet.md; a dispatch's place is its target).
+std::map<int, std::array<double, 2>> places_at(const std::vector<json>& log, double t_s) {
+  std::map<int, std::array<double, 2>> last;
+  for (const json& e : log)
+    if (e["t_s"].get<double>() <= t_s && (e["ev"] == "drone_state" || e["ev"] == "drone_mode"))
+      last[e["drone"].get<int>()] = {e["x_m"].get<double>(), e["y_m"].get<double>()};
+  return last;
+}
+
+// A time as the page's address takes it, every digit (the page reads the same double).
+std::string time_text(double t_s) {
+  std::ostringstream s;
+  s << std::setprecision(17) << t_s;
+  return s.str();
+}
+
 TEST(ReplayPage, DrawsEveryDroneWhereTheLogLastPutsIt) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("replay");
@@ -136,26 +154,45 @@ TEST(ReplayPage, DrawsEveryDroneWhereTheLogLastPutsIt) {
                             (dir / "view.html").string() + "'");
   ASSERT_EQ(view.exit_code, 0) << view.out;
   // The log's own account: run_start's drones, each one's last logged place.
-  std::size_t drones = 0;
-  std::map<int, std::array<double, 2>> last;
-  for (const json& e : events(dir / "run")) {
-    if (e["ev"] == "run_start") drones = e["drones"].size();
-    if (e.contains("drone") && e.contains("x_m") && e["drone"].is_number_integer())
-      last[e["drone"].get<int>()] = {e["x_m"].get<double>(), e["y_m"].get<double>()};
-  }
-  const json check = self_check(
-      dom(dir / "profile", "file://" + (dir / "view.html").string(), "--virtual-time-budget=5000"));
-  ASSERT_TRUE(check.is_object()) << "no self-check in the page's DOM";
-  EXPECT_EQ(check["errors"], json::array());
-  EXPECT_EQ(check["foreign_requests"], json::array());
-  EXPECT_EQ(check["ended"], true);
+  const std::vector<json> log = events(dir / "run");
+  ASSERT_FALSE(log.empty());
+  const std::size_t drones = log.front()["drones"].size();
   ASSERT_GT(drones, 0u);
-  EXPECT_EQ(check["drones"], drones);
-  ASSERT_EQ(check["positions"].size(), last.size());
-  for (const json& p : check["positions"]) {
-    const std::array<double, 2> want = last.at(p["drone"].get<int>());
-    EXPECT_NEAR(p["x_m"].get<double>(), want[0], 1e-6) << p.dump();
-    EXPECT_NEAR(p["y_m"].get<double>(), want[1], 1e-6) << p.dump();
+  const double end_s = log.back()["t_s"];
+  // The run's end (the page opens there), and a moment mid-flight (view.html#t=SECONDS): the
+  // first change of mode after a third of the run that moved a drone since its last place
+  double mid_s = -1;
+  for (std::size_t k = 0; k < log.size() && mid_s < 0; ++k) {
+    const json& e = log[k];
+    if (e["ev"] != "drone_mode" || e["t_s"].get<double>() < end_s / 3) continue;
+    // ... and the drone's last word at that time (no drone_state of the same tick after it).
+    if (places_at(log, e["t_s"].get<double>()).at(e["drone"].get<int>()) !=
+        std::array<double, 2>{e["x_m"].get<double>(), e["y_m"].get<double>()})
+      continue;
+    const auto before = places_at(std::vector<json>(log.begin(), log.begin() + k), end_s);
+    const auto was = before.find(e["drone"].get<int>());
+    if (was != before.end() && std::hypot(was->second[0] - e["x_m"].get<double>(),
+                                          was->second[1] - e["y_m"].get<double>()) > 0.1)
+      mid_s = e["t_s"];
+  }
+  ASSERT_GT(mid_s, 0) << "no drone moved between its states";
+  for (const double t_s : {end_s, mid_s}) {
+    const std::string url =
+        "file://" + (dir / "view.html").string() + (t_s == end_s ? "" : "#t=" + time_text(t_s));
+    const json check = self_check(dom(dir / "profile", url, "--virtual-time-budget=5000"));
+    ASSERT_TRUE(check.is_object()) << "no self-check in the page's DOM";
+    EXPECT_EQ(check["errors"], json::array());
+    EXPECT_EQ(check["foreign_requests"], json::array());
+    EXPECT_EQ(check["ended"], t_s == end_s);
+    EXPECT_NEAR(check["t_s"].get<double>(), t_s, 1e-9);
+    EXPECT_EQ(check["drones"], drones);
+    const std::map<int, std::array<double, 2>> last = places_at(log, t_s);
+    ASSERT_EQ(check["positions"].size(), last.size());
+    for (const json& p : check["positions"]) {
+      const std::array<double, 2> want = last.at(p["drone"].get<int>());
+      EXPECT_NEAR(p["x_m"].get<double>(), want[0], 1e-6) << "t " << t_s << ": " << p.dump();
+      EXPECT_NEAR(p["y_m"].get<double>(), want[1], 1e-6) << "t " << t_s << ": " << p.dump();
+    }
   }
 }
 

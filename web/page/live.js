@@ -213,9 +213,12 @@
       draw();
       slider.value = t;
     };
-    // Where the whole run went: the view fitted once, to everything.
+    // Where the whole run went: the view fitted once, to everything; then the run's end, or the
+    // time the address asks for (view.html#t=SECONDS).
     seek(end_s);
     fit(places());
+    const asked = /^#t=([0-9]+(\.[0-9]*)?)$/.exec(location.hash);
+    if (asked) seek(Math.min(end_s, Number(asked[1])));
     let timer = null;
     const play = document.getElementById('play');
     const stop = () => { clearInterval(timer); timer = null; play.textContent = 'Play'; };
