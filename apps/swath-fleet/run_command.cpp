@@ -87,10 +87,13 @@ void FleetRunCommand::setup(CLI::App& app) {
                                 "port 8765; 0: any free port; the URL is printed on stderr): "
                                 "drones, tasks, forecasts and assignments as they happen; put it "
                                 "after APP")
-                     ->expected(0, 1);
+                     ->expected(0, 1)
+                     ->option_text("[PORT]");
   app.add_option("--live-linger", live_linger_s_,
                  "With --live: keep serving this many seconds after the run has ended (default: "
-                 "until Ctrl-C)");
+                 "until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber)
+      ->option_text("S");
   app.add_option("--pace", pace_,
                  "With --backend sim: fly the simulation at FACTOR times the wall clock (1: real "
                  "time), so that ctl orders and signals come mid-run; default 0: as fast as it "
