@@ -11,6 +11,7 @@
 #include "run_command.hpp"
 #include "scale_out_command.hpp"
 #include "tune_command.hpp"
+#include "view_command.hpp"
 
 namespace swath::apps {
 
@@ -28,6 +29,7 @@ int fleet_main(int argc, char** argv) {
   commands.push_back(std::make_unique<FleetSweepCommand>());
   commands.push_back(std::make_unique<FleetCollectCommand>());
   commands.push_back(std::make_unique<FleetCtlCommand>());
+  commands.push_back(std::make_unique<FleetViewCommand>());
   return run_program(
       "swath-fleet", "swath-fleet: swarm applications on a simulated fleet (paper 000)",
       "Exit codes: 0 the application completed; 2 bad input or usage (the message "

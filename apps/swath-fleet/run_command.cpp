@@ -1,6 +1,7 @@
 #include "run_command.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -9,9 +10,11 @@
 #include <optional>
 #include <sstream>
 #include <system_error>
+#include <thread>
 
 #include "fleet_images.hpp"
 #include "intervals.hpp"
+#include "live_server.hpp"
 #include "map_furniture.hpp"
 #include "run_control.hpp"
 #include "seed_option.hpp"
@@ -29,6 +32,7 @@
 #include <fstream>
 
 #include "swath/mavlink/signing.hpp"
+#include "swath/web/live_page.hpp"
 
 namespace swath::apps {
 
@@ -79,6 +83,18 @@ void FleetRunCommand::setup(CLI::App& app) {
                  "With --backend mavlink: sign every frame sent with MAVLink 2 signing and read "
                  "only frames signed with this key; FILE holds the 32-byte secret, raw or as 64 "
                  "hexadecimal digits (e.g. from `openssl rand -hex 32`)");
+  live_option_ = app.add_option("--live", live_,
+                                "Serve a live page of the run on http://127.0.0.1:PORT/ (default "
+                                "port 8765; 0: any free port; the URL is printed on stderr): "
+                                "drones, tasks, forecasts and assignments as they happen; put it "
+                                "after APP")
+                     ->expected(0, 1)
+                     ->option_text("[PORT]");
+  app.add_option("--live-linger", live_linger_s_,
+                 "With --live: keep serving this many seconds after the run has ended (default: "
+                 "until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber)
+      ->option_text("S");
   app.add_option("--pace", pace_,
                  "With --backend sim: fly the simulation at FACTOR times the wall clock (1: real "
                  "time), so that ctl orders and signals come mid-run; default 0: as fast as it "
@@ -171,6 +187,36 @@ int aborted_exit(const fleet::RunRecord& r, int signal_number, fleet::AbortActio
 }
 }  // namespace
 
+// --live: the server, started before the run so that a taken port is refused before anything
+// happens; the run hands it each event line (it changes nothing of the run).
+std::unique_ptr<LiveServer> FleetRunCommand::start_live(fleet::RuntimeSettings& settings) const {
+  if (live_option_->count() == 0) {
+    if (live_linger_s_ >= 0) throw InputError("--live-linger needs --live");
+    return nullptr;
+  }
+  auto server = std::make_unique<LiveServer>(live_port(live_), web::live_page(output_));
+  // After any listener already set (the airborne reporter of a wall-clock run).
+  settings.on_event = [s = server.get(), before = std::move(settings.on_event)](
+                          const std::string& line) {
+    if (before) before(line);
+    s->append(line);
+  };
+  std::cerr << "swath-fleet run: live view at " << server->url() << "\n";
+  return server;
+}
+
+// After the run: the page may still be reading (a simulated run is over in moments).
+void FleetRunCommand::linger(const LiveServer& server, const RunControl& control) const {
+  std::cerr << "swath-fleet run: the run has ended; its live view stays at " << server.url()
+            << (live_linger_s_ < 0 ? " until Ctrl-C"
+                                   : " for " + base::fixed_text(live_linger_s_, 1) + " s")
+            << "\n";
+  const auto end = std::chrono::steady_clock::now() +
+                   std::chrono::duration<double>(live_linger_s_ < 0 ? 1e9 : live_linger_s_);
+  while (control.signal_number() == 0 && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+}
+
 int FleetRunCommand::run() {
   const auto [width_px, height_px] = parse_size(size_);
   PreparedRun p =
@@ -221,6 +267,7 @@ int FleetRunCommand::run() {
     for (const auto& d : p.drones) names.push_back(d.name);
     p.settings.on_event = airborne_reporter(std::move(names));
   }
+  std::unique_ptr<LiveServer> live = start_live(p.settings);
   const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
   // Aborted: a second signal must not cost the run its record (it waits until the files are in).
   if (!r.aborted.empty()) control.hold_signals();
@@ -233,6 +280,7 @@ int FleetRunCommand::run() {
     set.add("gantt.png", render::encode_png(render::draw(gantt.scene, gantt.view)));
   }
   set.commit();
+  if (live && r.aborted.empty()) linger(*live, control);
   if (!r.aborted.empty())
     return aborted_exit(r, control.signal_number(), p.settings.on_abort, output_);
   if (r.completed) {

@@ -1,10 +1,18 @@
 #pragma once
+#include <memory>
 #include <string>
 
 #include "command.hpp"
 #include "fleet_inputs.hpp"
 
+namespace swath::fleet {
+struct RuntimeSettings;
+}
+
 namespace swath::apps {
+
+class LiveServer;
+class RunControl;
 
 /// swath-fleet run APP --world W -o DIR: one application on a simulated fleet
 /// (docs/swath-fleet.md).
@@ -21,6 +29,9 @@ class FleetRunCommand : public Command {
   int run() override;
 
  private:
+  std::unique_ptr<LiveServer> start_live(fleet::RuntimeSettings& settings) const;
+  void linger(const LiveServer& server, const RunControl& control) const;
+
   FleetRequest request_;
   std::string output_, size_ = "1200x900";
   bool render_ = false;
@@ -33,6 +44,10 @@ class FleetRunCommand : public Command {
   double pace_ = 0;
   bool allow_no_gcs_failsafe_ = false;
   std::string signing_key_;  ///< --signing-key FILE
+  // --live [PORT] (a page of the run as it happens, live_server.hpp), --live-linger S.
+  CLI::Option* live_option_ = nullptr;
+  std::string live_;
+  double live_linger_s_ = -1;  ///< < 0: until Ctrl-C
 };
 
 /// swath-fleet apps: the built-in applications.

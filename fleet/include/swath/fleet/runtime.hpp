@@ -119,8 +119,9 @@ struct RuntimeSettings {
   /// The simulated fleet only: simulated seconds per wall-clock second (1: real time), so that a
   /// person or `swath-fleet ctl` can act during the run; 0: as fast as it computes.
   double pace = 0;
-  /// Told each event line as it is logged (events.jsonl's line, no newline); empty: nobody.
-  std::function<void(const std::string& line)> on_event;
+  /// Called with each line of events.jsonl (no newline) as it is logged, on the run's thread
+  /// (swath-fleet run --live streams them; a wall-clock run reports take-offs); empty: nothing is called. It cannot change the run.
+  std::function<void(const std::string&)> on_event;
 };
 
 /// What one drone did.
