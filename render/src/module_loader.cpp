@@ -17,14 +17,19 @@ namespace {
 
 constexpr const char* kModuleFile = "libswath_render_gl.so";
 
-// Where to look, in order: $SWATH_RENDER_MODULE, beside the program, the build tree.
+// Where to look, in order: $SWATH_RENDER_MODULE, beside the program, the
+// installed tree's lib/swath/, the build tree.
 std::vector<std::filesystem::path> candidates() {
   std::vector<std::filesystem::path> out;
   if (const char* env = std::getenv("SWATH_RENDER_MODULE"); env != nullptr && *env != '\0')
     out.emplace_back(env);
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) out.push_back(exe.parent_path() / kModuleFile);
+  if (!ec) {
+    out.push_back(exe.parent_path() / kModuleFile);
+    // An installed program: PREFIX/bin/PROGRAM and PREFIX/lib/swath/ (docs/install.md).
+    out.push_back(exe.parent_path().parent_path() / "lib" / "swath" / kModuleFile);
+  }
   out.emplace_back(SWATH_RENDER_MODULE_BUILD_PATH);
   return out;
 }
