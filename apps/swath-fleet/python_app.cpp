@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <condition_variable>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -92,7 +93,8 @@ struct PyTask {
   bool started = false, finished = false, killed = false;
   Yield yield = Yield::returned;
   Awaited awaited;
-  std::string error;  // the sentence of a Python exception, or an ActionFailed reason
+  std::string error;        // the sentence of a Python exception, or an ActionFailed reason
+  bool propagated = false;  // the error is another task's, already reported
 };
 
 /// A Python exception that escaped a task (the runtime's task_failed reason is its sentence).
@@ -163,15 +165,20 @@ Host* host = nullptr;
 std::string Host::sentence(py::error_already_set& e) const {
   std::string where = path;
   try {
-    const py::list frames = py::module_::import("traceback").attr("extract_tb")(e.trace());
+    const py::list frames =
+        e.trace() ? py::list(py::module_::import("traceback").attr("extract_tb")(e.trace()))
+                  : py::list();
     const std::string file = std::filesystem::absolute(path).lexically_normal().string();
     for (const py::handle f : frames) {
       const std::string name = py::str(f.attr("filename"));
       if (name == path || name == file)
         where = path + " line " + py::str(f.attr("lineno")).cast<std::string>();
     }
-  } catch (const py::error_already_set&) {
+  } catch (const std::exception&) {
+    // no traceback to read: the file alone
   }
+  if (e.matches(PyExc_SyntaxError) && py::hasattr(e.value(), "lineno"))
+    where = path + " line " + py::str(e.value().attr("lineno")).cast<std::string>();
   const std::string type = py::str(e.type().attr("__name__"));
   const std::string message = py::str(e.value());
   return where + ": " + type + (message.empty() ? "" : ": " + message);
@@ -200,6 +207,7 @@ void Host::thread_main(PyTask& t) {
         t.yield = Yield::cancelled;
       } else {
         t.yield = Yield::raised;
+        t.propagated = e.matches(types.task_failed);
         // A task_failed exception carries the sentence of the task it came from.
         t.error =
             e.matches(types.task_failed) ? py::str(e.value()).cast<std::string>() : sentence(e);
@@ -236,7 +244,7 @@ Co<void> run_task(Ctx& ctx, int slot) {
     }
   }
   if (t.yield == Yield::raised) {
-    std::cerr << "swath-fleet: " << t.error << "\n";
+    if (!t.propagated) std::cerr << "swath-fleet: " << t.error << "\n";
     throw PythonError(t.error);
   }
   if (t.yield == Yield::action_failed) throw fleet::ActionFailed(t.error);
@@ -476,6 +484,8 @@ int fleet_main_with_python(int argc, char** argv) {
     std::cerr << "swath-fleet: " << path << ": no such Python app file\n";
     return 2;
   }
+  // Sets and dicts of strings iterate in one order from run to run (same seed, same bytes).
+  setenv("PYTHONHASHSEED", "0", 0);
   py::scoped_interpreter interpreter;
   Host h;
   h.path = path;

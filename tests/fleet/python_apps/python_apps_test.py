@@ -85,6 +85,7 @@ class PythonApps(unittest.TestCase):
         r = run(app, "sites", out, "--drones", "2")
         self.assertEqual(r.returncode, 4, r.stderr)  # the app did not complete
         self.assertIn(app + " line 9: ZeroDivisionError: ", r.stderr)
+        self.assertEqual(r.stderr.count("ZeroDivisionError"), 1, r.stderr)  # said once
         ev = events(out)  # every line whole: the log was closed
         failed = [e for e in ev if e["ev"] == "task_failed"]
         self.assertTrue(any("line 9: ZeroDivisionError" in e.get("reason", "") for e in failed), failed)
@@ -95,6 +96,15 @@ class PythonApps(unittest.TestCase):
         self.assertEqual(r.returncode, 2)
         self.assertIn("no_app.py: defines no function APP(bee)", r.stderr)
         self.assertEqual(r.stderr.count("\n"), 1)
+        self.assertFalse(os.path.exists(out))
+
+    def test_a_syntax_error_is_bad_input_naming_the_line(self):
+        out = self.out("run")
+        app = os.path.join(HERE, "syntax_error_app.py")
+        r = run(app, "sites", out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn(app + " line 4: SyntaxError", r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertFalse(os.path.exists(out))
 
     def parity(self, name, world, seeds, *extra, mutation=None):
