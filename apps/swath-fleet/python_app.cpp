@@ -25,6 +25,7 @@
 #include <variant>
 #include <vector>
 
+#include "../../fleet/apps/src/gaussian_process.hpp"  // the wifi app's, for wifi.py's parity
 #include "fleet_inputs.hpp"
 #include "fleet_main.hpp"
 #include "swath/fleet/apps.hpp"
@@ -417,6 +418,16 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
       .def_readonly("sensor", &Reading::sensor)
       .def_readonly("values", &Reading::values)
       .def_readonly("ref", &Reading::ref);
+
+  // The built-in wifi app's Gaussian process (RBF kernel; prior mean the readings' mean).
+  py::class_<swath::fleet::GaussianProcess>(m, "GaussianProcess")
+      .def(py::init<double, double, double>(), py::arg("length_m"), py::arg("sigma_f"),
+           py::arg("sigma_n"))
+      .def("add", &swath::fleet::GaussianProcess::add)
+      .def("predict", [](const swath::fleet::GaussianProcess& gp, double x, double y) {
+        const auto p = gp.predict(x, y);
+        return py::make_tuple(p[0], p[1]);  // mean, standard deviation
+      });
 
   py::class_<PyFuture>(m, "Future")
       .def_property_readonly("value", &PyFuture::value)

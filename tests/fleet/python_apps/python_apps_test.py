@@ -144,6 +144,10 @@ class PythonApps(unittest.TestCase):
         self.parity("multiplexing", "sites", [1, 2], "--drones", "2",
                     mutation=('"video", same_drone=True', '"video", same_drone=False'))
 
+    def test_parity_wifi(self):
+        self.parity("wifi", "rf_field", [1, 2], "--drones", "2",
+                    mutation=("< below_db", "< below_db + 1.0"))
+
     def test_parity_tracking(self):
         self.parity("tracking", "tracking", [1, 2], "--drones", "3",
                     mutation=("+ 2.0, 10.0", "+ 4.0, 10.0"))
