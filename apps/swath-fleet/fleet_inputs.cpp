@@ -27,7 +27,10 @@ namespace fs = std::filesystem;
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool required) {
   std::string names;
   for (const fleet::App& a : fleet::all_apps()) names += (names.empty() ? "" : ", ") + a.name;
-  app.add_option("APP", r.app, "The application: " + names + " (swath-fleet apps)")
+  app.add_option("APP", r.app,
+                 "The application: " + names +
+                     " (swath-fleet apps), or a Python file APP.py defining APP(bee) "
+                     "(docs/swath-fleet.md; swath-fleet built with Python)")
       ->required(required);
   app.add_option("--world", r.world,
                  "World file, or a bundled world: hotspot, road, rf_field, sites, static, tracking "

@@ -9,6 +9,7 @@
 #include <pybind11/embed.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <condition_variable>
 #include <cstdlib>
@@ -460,11 +461,16 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
 namespace swath::apps {
 namespace {
 
-/// The first argument naming a .py file: the app.
+/// The first argument naming a .py file that is no option's value: the app.
 int python_app_arg(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a.size() > 3 && a.ends_with(".py") && a[0] != '-') return i;
+  // The options of run and compare that take no value.
+  const std::vector<std::string> flags{"--render", "--relief", "--allow-no-gcs-failsafe"};
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i], before = argv[i - 1];
+    const bool value_of_option = i > 2 && before.starts_with("-") &&
+                                 before.find('=') == std::string::npos &&
+                                 std::find(flags.begin(), flags.end(), before) == flags.end();
+    if (a.size() > 3 && a.ends_with(".py") && a[0] != '-' && !value_of_option) return i;
   }
   return -1;
 }
