@@ -503,7 +503,8 @@ int fleet_main_with_python(int argc, char** argv) {
   }
   // Sets and dicts of strings iterate in one order from run to run (same seed, same bytes).
   setenv("PYTHONHASHSEED", "0", 0);
-  py::scoped_interpreter interpreter;
+  // swath-fleet's own SIGINT and SIGTERM handling stays (the run's abort, exit 130 and 143).
+  py::scoped_interpreter interpreter(false);
   Host h;
   h.path = path;
   std::string name;
@@ -514,6 +515,9 @@ int fleet_main_with_python(int argc, char** argv) {
     globals["__file__"] = path;
     globals["__builtins__"] = py::module_::import("builtins");
     py::module_::import("swath_fleet");
+    // The app's folder on the path: an app may import modules of its own from beside it.
+    py::module_::import("sys").attr("path").attr("insert")(
+        0, std::filesystem::absolute(path).parent_path().string());
     py::eval_file(path, globals);
     if (!globals.contains("APP") || !PyCallable_Check(globals["APP"].ptr())) {
       std::cerr << "swath-fleet: " << path << ": defines no function APP(bee)\n";
