@@ -8,9 +8,11 @@ sentence naming the file and line; the case studies in share/apps/ give the C++ 
 """
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 from concurrent.futures import ThreadPoolExecutor
 
@@ -89,6 +91,17 @@ class PythonApps(unittest.TestCase):
         ev = events(out)  # every line whole: the log was closed
         failed = [e for e in ev if e["ev"] == "task_failed"]
         self.assertTrue(any("line 9: ZeroDivisionError" in e.get("reason", "") for e in failed), failed)
+
+    def test_sigint_aborts_a_python_app_run_with_its_files(self):
+        out = self.out("run")
+        p = subprocess.Popen([FLEET, "run", os.path.join(APPS, "tracking.py"), "--world", "tracking",
+                              "--drones", "3", "--backend", "sim", "--pace", "10", "-o", out],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(1.5)
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=60)
+        self.assertEqual(p.returncode, 130, err)
+        self.assertEqual(events(out)[-1]["ev"], "run_end")
 
     def test_a_file_without_app_is_bad_input(self):
         out = self.out("run")
