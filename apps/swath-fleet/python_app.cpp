@@ -366,8 +366,50 @@ py::tuple xyz(const fleet::Vec3& v) {
   return py::make_tuple(v.x, v.y, v.z);
 }
 
+/// A world with the app's own sensors (SENSORS = {name: (time_s, fn(x_m, y_m, t_s) -> values)})
+/// beside the file's: read by the runtime, which holds the baton, so the GIL is free to take.
+class PythonSensorsWorld final : public worlds::BaseWorld {
+ public:
+  PythonSensorsWorld(std::unique_ptr<worlds::BaseWorld> inner, py::dict sensors)
+      : worlds::BaseWorld(*inner), inner_(std::move(inner)), sensors_(std::move(sensors)) {}
+  ~PythonSensorsWorld() override {
+    py::gil_scoped_acquire gil;
+    sensors_.release().dec_ref();  // here, with the GIL held
+  }
+  const worlds::BaseWorld& inner() const { return *inner_; }
+  double sense_time_s(const std::string& sensor) const override {
+    py::gil_scoped_acquire gil;
+    if (!sensors_.contains(sensor)) return inner_->sense_time_s(sensor);
+    return py::tuple(sensors_[py::str(sensor)])[0].cast<double>();
+  }
+  Reading sense(const std::string& sensor, const fleet::Vec3& at, double t_s) const override {
+    {
+      py::gil_scoped_acquire gil;
+      if (sensors_.contains(sensor)) try {
+          const py::object fn = py::tuple(sensors_[py::str(sensor)])[1];
+          Reading r;
+          r.sensor = sensor;
+          r.ref = sensor;
+          r.values = fn(at.x, at.y, t_s).cast<std::vector<double>>();
+          return r;
+        } catch (py::error_already_set& e) {
+          const std::string why = host->sentence(e);
+          std::cerr << "swath-fleet: " << why << "\n";
+          throw std::runtime_error(why);
+        }
+    }
+    return inner_->sense(sensor, at, t_s);
+  }
+
+ private:
+  std::unique_ptr<worlds::BaseWorld> inner_;
+  py::dict sensors_;
+};
+
 /// The world's parameters an app reads (worlds.hpp), as attributes.
-py::object world_view(const fleet::World& w) {
+py::object world_view(const fleet::World& outer) {
+  const auto* wrapped = dynamic_cast<const PythonSensorsWorld*>(&outer);
+  const fleet::World& w = wrapped ? wrapped->inner() : outer;
   py::dict d;
   d["kind"] = w.kind();
   d["start"] = xyz(w.start());
@@ -524,6 +566,14 @@ int fleet_main_with_python(int argc, char** argv) {
       return 2;
     }
     h.app_fn = globals["APP"];
+    if (globals.contains("SENSORS")) {
+      py::dict sensors = globals["SENSORS"];
+      world_wrapper() = [sensors](std::unique_ptr<worlds::BaseWorld> w) {
+        py::gil_scoped_acquire gil;
+        return std::unique_ptr<worlds::BaseWorld>(
+            std::make_unique<PythonSensorsWorld>(std::move(w), sensors));
+      };
+    }
     const std::string kind = world_kind_of(globals, argc, argv);
     // NAME: the name the runs log (a built-in app's, for the same events and histories).
     name = globals.contains("NAME") ? py::str(globals["NAME"]).cast<std::string>() : path;
@@ -549,6 +599,7 @@ int fleet_main_with_python(int argc, char** argv) {
     code = fleet_main(argc, args.data());
     h.kill_all();
   }
+  world_wrapper() = nullptr;  // its dict goes with the GIL held
   h.clear();
   host = nullptr;
   return code;

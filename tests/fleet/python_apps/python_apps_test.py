@@ -103,6 +103,16 @@ class PythonApps(unittest.TestCase):
         self.assertEqual(p.returncode, 130, err)
         self.assertEqual(events(out)[-1]["ev"], "run_end")
 
+    def test_a_sensor_of_the_apps_own(self):
+        out = self.out("run")
+        r = run(os.path.join(HERE, "sensor_app.py"), "sites", out, "--drones", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "summary.json")) as f:
+            metrics = json.load(f)["app_metrics"]
+        self.assertAlmostEqual(metrics["sense_s"], 7.0, places=6)  # the sensor's own time
+        self.assertAlmostEqual(metrics["error"], 0.0, places=6)  # its reading where it was
+        self.assertTrue(any(e["ev"] == "action_done" and e.get("name") == "gas" for e in events(out)))
+
     def test_a_file_without_app_is_bad_input(self):
         out = self.out("run")
         r = run(os.path.join(HERE, "no_app.py"), "sites", out)
