@@ -27,7 +27,10 @@ namespace fs = std::filesystem;
 void add_fleet_options(CLI::App& app, FleetRequest& r, bool with_scheduler, bool required) {
   std::string names;
   for (const fleet::App& a : fleet::all_apps()) names += (names.empty() ? "" : ", ") + a.name;
-  app.add_option("APP", r.app, "The application: " + names + " (swath-fleet apps)")
+  app.add_option("APP", r.app,
+                 "The application: " + names +
+                     " (swath-fleet apps), or a Python file APP.py defining APP(bee) "
+                     "(docs/swath-fleet.md; swath-fleet built with Python)")
       ->required(required);
   app.add_option("--world", r.world,
                  "World file, or a bundled world: hotspot, road, rf_field, sites, static, tracking "
@@ -97,6 +100,12 @@ std::string world_path(const std::string& name) {
                    ": no such file, and no bundled world of that name (hotspot, road, sites)");
 }
 
+std::function<std::unique_ptr<worlds::BaseWorld>(std::unique_ptr<worlds::BaseWorld>)>&
+world_wrapper() {
+  static std::function<std::unique_ptr<worlds::BaseWorld>(std::unique_ptr<worlds::BaseWorld>)> f;
+  return f;
+}
+
 PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed) {
   PreparedRun p;
   bool found = false;
@@ -109,6 +118,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   p.world_source = world_path(r.world);
   p.world_text = base::read_text_file(p.world_source, "world file", base::kMaxConfigFileBytes);
   p.world = worlds::parse_world(p.world_text, p.world_source, world_seed);
+  if (world_wrapper()) p.world = world_wrapper()(std::move(p.world));
   const std::string needs = fleet::app_world_kind(r.app);
   if (p.world->kind() != needs)
     throw InputError(p.world_source + ": a " + p.world->kind() + " world; the " + r.app +

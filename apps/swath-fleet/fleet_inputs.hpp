@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -51,6 +52,11 @@ struct PreparedRun {
   /// empty: the simulated fleet (summary.json's backend: sim).
   std::vector<fleet::VehicleAddress> vehicles;
 };
+/// What a program makes of each world it has read before a run sees it (swath-fleet with a
+/// Python app: sensors of the app's own, python_app.cpp); unset: the world as read.
+std::function<std::unique_ptr<worlds::BaseWorld>(std::unique_ptr<worlds::BaseWorld>)>&
+world_wrapper();
+
 /// Reads and checks everything (base::InputError on bad input). `world_seed`: re-draws the
 /// world's random parts (compare's scenarios) instead of the file's seed.
 PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> world_seed = {});

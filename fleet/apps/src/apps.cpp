@@ -285,13 +285,13 @@ std::vector<Registered>& registered() {
 
 }  // namespace
 
-void register_app(fleet::App app, const std::string& world_kind) {
+void register_app(fleet::App app, const std::string& world_kind, bool replace) {
   const std::vector<std::string>& kinds = worlds::world_kinds();
   if (app.name.empty()) throw std::invalid_argument("register_app: an app needs a name");
   if (std::find(kinds.begin(), kinds.end(), world_kind) == kinds.end())
     throw std::invalid_argument("register_app: " + app.name + ": unknown world kind \"" +
                                 world_kind + "\"");
-  for (const fleet::App& a : all_apps())
+  for (const fleet::App& a : replace ? std::vector<fleet::App>{} : all_apps())
     if (a.name == app.name)
       throw std::invalid_argument("register_app: the name " + app.name + " is taken");
   if (!app.main) throw std::invalid_argument("register_app: " + app.name + " has no main");
@@ -300,7 +300,15 @@ void register_app(fleet::App app, const std::string& world_kind) {
 
 std::vector<fleet::App> all_apps() {
   std::vector<fleet::App> out = builtin_apps();
-  for (const Registered& r : registered()) out.push_back(r.app);
+  for (const Registered& r : registered()) {
+    // One that replaces a built-in app takes its place.
+    const auto same = std::find_if(out.begin(), out.end(),
+                                   [&](const fleet::App& a) { return a.name == r.app.name; });
+    if (same != out.end())
+      *same = r.app;
+    else
+      out.push_back(r.app);
+  }
   return out;
 }
 

@@ -19,8 +19,10 @@ std::vector<App> builtin_apps();
 /// An application of a program's own (out of tree: it links swath::fleet_apps and swath-fleet's
 /// commands and calls apps::fleet_main), beside the built-in ones for the rest of the process: it
 /// runs in worlds of `world_kind` (hotspot, road, rf_field, sites, static, tracking). Throws
-/// std::invalid_argument when the name is empty or taken, or the kind unknown.
-void register_app(App app, const std::string& world_kind);
+/// std::invalid_argument when the name is empty or taken, or the kind unknown. `replace`: the
+/// name may be a built-in app's, and this app runs instead of it (a Python file that implements
+/// a built-in app logs under its name, so their runs and histories are interchangeable).
+void register_app(App app, const std::string& world_kind, bool replace = false);
 /// The built-in applications, then the registered ones.
 std::vector<App> all_apps();
 /// The world kind an app runs in ("multiplexing" → "sites", "wifi" → "rf_field", a registered

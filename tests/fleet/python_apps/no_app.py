@@ -1,0 +1,2 @@
+# Defines no APP (python_apps_test.py: a load error).
+WORLD = "sites"
