@@ -228,7 +228,9 @@ void read_window(Raster& r, int x0, int y0, int w, int h, std::vector<double>& o
       break;
     }
   }
-  for (std::size_t at; !r.local.empty() && (at = reason.find(r.local)) != std::string::npos;)
+  // GDAL names the file by the absolute path it was given: shown as the user gave it.
+  for (std::size_t at = 0; !r.local.empty() && (at = reason.find(r.local, at)) != std::string::npos;
+       at += path.size())
     reason.replace(at, r.local.size(), path);
   throw InputError(path + ": cannot read the DEM's row " + std::to_string(bad + 1) + " of " +
                    std::to_string(r.height) + " (" + reason + ")");

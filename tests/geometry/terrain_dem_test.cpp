@@ -349,7 +349,7 @@ fs::path text_grid(const std::string& name, const std::function<void(int, int, d
   return path;
 }
 
-std::string refusal(const fs::path& grid) {
+std::string dem_refusal(const fs::path& grid) {
   try {
     dem_ground(grid.string())->heights_m({{47.398, 8.542, 0}});
   } catch (const base::InputError& e) {
@@ -362,25 +362,25 @@ std::string refusal(const fs::path& grid) {
 // 3000) is refused naming its row and column; a cliff (every pixel on one side 600 m higher) and a
 // one-pixel bump under the limit (250 m here: ten 15 m pixels is less) are ground.
 TEST(DemGround, AOnePixelNeedleOrPitIsRefusedWithItsRowAndColumnButACliffIsGround) {
-  const std::string pit = refusal(text_grid("pit", [](int i, int j, double& h) {
+  const std::string pit = dem_refusal(text_grid("pit", [](int i, int j, double& h) {
     if (i == 13 && j == 4) h = 0.0;
   }));
   EXPECT_NE(pit.find("the ground at row 5, column 14 is 0 m"), std::string::npos) << pit;
   EXPECT_NE(pit.find("below every pixel around it"), std::string::npos) << pit;
-  const std::string needle = refusal(text_grid("needle", [](int i, int j, double& h) {
+  const std::string needle = dem_refusal(text_grid("needle", [](int i, int j, double& h) {
     if (i == 2 && j == 17) h = 3000.0;
   }));
   EXPECT_NE(needle.find("row 18, column 3 is 3000 m"), std::string::npos) << needle;
   EXPECT_NE(needle.find("above every pixel around it"), std::string::npos) << needle;
-  EXPECT_EQ(refusal(text_grid("cliff",
-                              [](int i, int, double& h) {
-                                if (i >= 10) h += 600.0;
-                              })),
+  EXPECT_EQ(dem_refusal(text_grid("cliff",
+                                  [](int i, int, double& h) {
+                                    if (i >= 10) h += 600.0;
+                                  })),
             "");
-  EXPECT_EQ(refusal(text_grid("bump",
-                              [](int i, int j, double& h) {
-                                if (i == 8 && j == 8) h += 240.0;
-                              })),
+  EXPECT_EQ(dem_refusal(text_grid("bump",
+                                  [](int i, int j, double& h) {
+                                    if (i == 8 && j == 8) h += 240.0;
+                                  })),
             "");
 }
 
