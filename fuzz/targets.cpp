@@ -1,7 +1,10 @@
 #include "targets.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string_view>
 #include <vector>
 
@@ -24,6 +27,7 @@
 #include "swath/fleet/trace_replay.hpp"
 #include "swath/geometry/area_facts.hpp"
 #include "swath/geometry/field.hpp"
+#include "swath/geometry/ground.hpp"
 #include "swath/mavlink/frame.hpp"
 #include "swath/planning/camera.hpp"
 #include "swath/planning/plan_features.hpp"
@@ -149,6 +153,41 @@ void plan_features(const std::string& text) {
     const planning::PlanFeatures f = planning::parse_mission_geojson(text, "mission.geojson");
     apps::coverage_image(f, planning::PlanFigures{}, 640, 480);
   });
+}
+
+// The folder the DEM targets write their input to (made once, private to the process): the DEM
+// reader opens files by path, as `swath plan --terrain` does. It holds hill.asc, which the VRT
+// seed reads (a VRT may read files in its own folder only).
+const std::string& dem_folder() {
+  static const std::string dir = [] {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "swath-fuzz-dem-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) std::abort();
+    std::ofstream(pattern + "/hill.asc")
+        << "ncols 4\nnrows 3\nxllcorner 8.53\nyllcorner 47.39\ncellsize 0.005\n"
+           "400 402 404 406\n401 403 405 407\n402 404 406 408\n";
+    return pattern;
+  }();
+  return dir;
+}
+
+// A DEM (swath plan --terrain): the bytes written to a file named `name`, opened and sampled
+// on a grid over the seeds' area and at a few points elsewhere. Every height it gives is no height
+// (NaN) or one on Earth (-430 to 8,850 m): anything else would be flown.
+void dem(const std::string& bytes, const char* name) {
+  const std::string path = dem_folder() + "/" + name;
+  geometry::forget_dem(path);  // the previous input under this name
+  { std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes; }
+  std::vector<geometry::GeoPoint> points{{0, 0, 0}, {-89.9, 179.9, 0}, {47.39, 8.53, 0}};
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j) points.push_back({47.385 + 0.0025 * i, 8.525 + 0.0035 * j, 0});
+  expect_input_error_only([&] {
+    const auto ground = geometry::dem_ground(path);
+    if (!(ground->resolution_m() > 0)) std::abort();
+    for (const double h : ground->heights_m(points))
+      if (!std::isnan(h) && !(h >= -430.0 && h <= 8'850.0)) std::abort();
+  });
+  geometry::forget_dem(path);
 }
 
 }  // namespace
@@ -285,6 +324,17 @@ std::vector<Target> control_and_link_targets() {
       {"ogr_wkt",
        [](const std::string& t) { field(t, geometry::FieldFormat::wkt, "fuzz.wkt"); },
        {"tests/bad-input/seeds/field.wkt"}},
+      // DEMs for terrain following (docs/swath-plan.md): GeoTIFF, ESRI ASCII grid, VRT.
+      {"dem_geotiff",
+       [](const std::string& t) { dem(t, "fuzz.tif"); },
+       {"tests/bad-input/seeds/dem-hill.tif", "tests/bad-input/dem/truncated.tif"}},
+      {"dem_ascii",
+       [](const std::string& t) { dem(t, "fuzz.asc"); },
+       {"tests/bad-input/dem/hill.asc", "tests/bad-input/dem/truncated.asc",
+        "tests/bad-input/dem/spike.asc"}},
+      {"dem_vrt",
+       [](const std::string& t) { dem(t, "fuzz.vrt"); },
+       {"tests/bad-input/seeds/dem-hill.vrt"}},
   };
 }
 

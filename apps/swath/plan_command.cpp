@@ -311,7 +311,8 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
 void PlanCommand::add_terrain_energy_options(CLI::App& app) {
   app.add_option("--terrain", terrain_,
                  "Follow the ground of this DEM (any GDAL raster: GeoTIFF, .asc, .hgt, VRT; any "
-                 "CRS; heights in metres): every waypoint at the altitude above the ground under "
+                 "CRS; heights in metres unless it or --dem-units says otherwise): every waypoint "
+                 "at the altitude above the ground under "
                  "it, waypoints added where the ground departs from a leg's straight line by more "
                  "than --terrain-tolerance; the DEM must cover the homes and the area");
   app.add_option("--terrain-tolerance", terrain_tolerance_m_,
@@ -330,6 +331,11 @@ void PlanCommand::add_terrain_energy_options(CLI::App& app) {
                  "Copernicus, national DEMs) or ellipsoid (WGS84; EGM96 is subtracted)")
       ->check(CLI::IsMember({"geoid", "ellipsoid"}))
       ->capture_default_str();
+  app.add_option("--dem-units", dem_units_,
+                 "The unit of the DEM's heights: m (default), ft (0.3048 m) or us-ft (US survey "
+                 "foot, 1200/3937 m); a DEM that declares its unit is read in it, and a "
+                 "--dem-units that contradicts it is refused")
+      ->check(CLI::IsMember({"m", "ft", "us-ft"}));
   app.add_flag("--land", land_,
                "End with a landing at home (NAV_LAND) instead of return-to-launch");
   app.add_option("--max-bank", max_bank_deg_,
@@ -511,14 +517,17 @@ std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
     if (altitude_frame_ != "relative")
       throw InputError("--altitude-frame " + altitude_frame_ +
                        " needs --terrain DEM (the ground's heights)");
+    if (!dem_units_.empty())
+      throw InputError("--dem-units needs --terrain DEM (the ground's heights)");
     return std::nullopt;
   }
   base::check_range(terrain_tolerance_m_, planning::limits::kTerrainTolerance_m,
                     "--terrain-tolerance");
   planning::TerrainRequest t;
-  t.ground =
-      geometry::dem_ground(terrain_, dem_heights_ == "ellipsoid" ? geometry::DemHeights::ellipsoid
-                                                                 : geometry::DemHeights::geoid);
+  t.ground = geometry::dem_ground(
+      terrain_,
+      dem_heights_ == "ellipsoid" ? geometry::DemHeights::ellipsoid : geometry::DemHeights::geoid,
+      geometry::dem_unit_m(dem_units_));
   t.tolerance_m = terrain_tolerance_m_;
   t.frame = altitude_frame_ == "amsl"      ? planning::AltitudeFrame::amsl
             : altitude_frame_ == "terrain" ? planning::AltitudeFrame::terrain

@@ -106,6 +106,7 @@ class PlanCommand : public Command {
   double terrain_tolerance_m_ = 2.0;
   std::string altitude_frame_ = "relative";
   std::string dem_heights_ = "geoid";
+  std::string dem_units_;  ///< --dem-units m|ft|us-ft; empty: the DEM's own, else metres
   bool land_ = false;
   double max_bank_deg_ = 30.0;
   std::string sorties_ = "off";

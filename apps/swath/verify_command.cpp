@@ -64,6 +64,11 @@ void VerifyCommand::setup(CLI::App& app) {
   app.add_option("--terrain", terrain_,
                  "DEM of the ground (GeoTIFF, any GDAL raster): the ceiling and the least height "
                  "above the ground along every leg");
+  app.add_option("--dem-units", dem_units_,
+                 "The unit of the DEM's heights: m (default), ft (0.3048 m) or us-ft (US survey "
+                 "foot, 1200/3937 m); a DEM that declares its unit is read in it, and a "
+                 "--dem-units that contradicts it is refused")
+      ->check(CLI::IsMember({"m", "ft", "us-ft"}));
   app.add_option("--drone", drone_,
                  "Drone profile YAML (as swath-energy budget): the battery check");
   app.add_option("--ceiling", ceiling_m_,
@@ -90,7 +95,11 @@ int VerifyCommand::run() {
   options.separation_m = separation_m_;
   options.zones = zones_from_files(exclude_);
   if (!area_.empty()) add_area(area_, options);
-  if (!terrain_.empty()) options.ground = geometry::dem_ground(terrain_);
+  if (!dem_units_.empty() && terrain_.empty())
+    throw InputError("--dem-units needs --terrain DEM (the ground's heights)");
+  if (!terrain_.empty())
+    options.ground = geometry::dem_ground(terrain_, geometry::DemHeights::geoid,
+                                          geometry::dem_unit_m(dem_units_));
   if (!drone_.empty()) options.drone = energy::read_drone_profile(drone_);
   const preflight::Report report = preflight::verify_files(read_inputs(inputs_), options);
   std::cout << (json_ ? preflight::report_json(report) : preflight::report_text(report));

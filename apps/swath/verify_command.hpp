@@ -29,6 +29,7 @@ class VerifyCommand : public Command {
   std::string area_;
   double clearance_m_ = 5.0;
   std::string terrain_;
+  std::string dem_units_;  ///< --dem-units m|ft|us-ft; empty: the DEM's own, else metres
   std::string drone_;
   double ceiling_m_ = 120.0;
   double min_height_m_ = 5.0;

@@ -10,11 +10,12 @@
 #include "raw_field.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/geometry/geotiff.hpp"
+#include "swath/geometry/ground.hpp"
 
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 3;
+inline constexpr int kGisModuleAbi = 4;
 
 struct GisModule {
   int abi;
@@ -24,9 +25,11 @@ struct GisModule {
                std::vector<AreaEntry>& out, std::string& error);
   bool (*wkt)(const std::string& text, const std::string& source, RawField& out,
               std::string& error);
-  /// raster_gdal.hpp's sample_raster and proj_grid.
-  bool (*sample)(const std::string& path, const std::vector<GeoPoint>& points,
+  /// raster_gdal.hpp's sample_raster, raster_reads, forget_raster and proj_grid.
+  bool (*sample)(const std::string& path, double asked_unit_m, const std::vector<GeoPoint>& points,
                  std::vector<double>& values, double& resolution_m, std::string& error);
+  DemReads (*reads)(const std::string& path);
+  void (*forget)(const std::string& path);
   bool (*grid)(const std::string& name, std::string& path, std::string& error);
   /// raster_gdal.hpp's geotiff.
   bool (*geotiff)(const LocalRaster& raster, std::string& bytes, std::string& error);

@@ -10,11 +10,11 @@ namespace swath::geometry {
 namespace {
 
 std::vector<double> sample(const std::string& path, const std::vector<GeoPoint>& points,
-                           double* resolution_m = nullptr) {
+                           double unit_m = 0.0, double* resolution_m = nullptr) {
   std::vector<double> values;
   double resolution = 0.0;
   std::string error;
-  if (!detail::gis_module().sample(path, points, values, resolution, error))
+  if (!detail::gis_module().sample(path, unit_m, points, values, resolution, error))
     throw base::InputError(error);
   if (resolution_m) *resolution_m = resolution;
   return values;
@@ -28,12 +28,13 @@ std::string geoid_grid() {
 
 class DemGround final : public Ground {
  public:
-  DemGround(std::string path, DemHeights heights) : path_(std::move(path)), heights_(heights) {
-    sample(path_, {}, &resolution_m_);  // opens it: a bad file fails here, before planning
+  DemGround(std::string path, DemHeights heights, double unit_m)
+      : path_(std::move(path)), heights_(heights), unit_m_(unit_m) {
+    sample(path_, {}, unit_m_, &resolution_m_);  // opens it: a bad file fails here, before planning
     if (heights_ == DemHeights::ellipsoid) geoid_ = geoid_grid();
   }
   std::vector<double> heights_m(const std::vector<GeoPoint>& points) const override {
-    std::vector<double> h = sample(path_, points);
+    std::vector<double> h = sample(path_, points, unit_m_);
     if (heights_ == DemHeights::ellipsoid) {
       const std::vector<double> n = sample(geoid_, points);
       for (std::size_t k = 0; k < h.size(); ++k) h[k] -= n[k];
@@ -46,14 +47,31 @@ class DemGround final : public Ground {
  private:
   std::string path_;
   DemHeights heights_;
+  double unit_m_ = 0.0;
   double resolution_m_ = 0.0;
   std::string geoid_;
 };
 
 }  // namespace
 
-std::shared_ptr<const Ground> dem_ground(const std::string& path, DemHeights heights) {
-  return std::make_shared<DemGround>(path, heights);
+std::shared_ptr<const Ground> dem_ground(const std::string& path, DemHeights heights,
+                                         double unit_m) {
+  return std::make_shared<DemGround>(path, heights, unit_m);
+}
+
+double dem_unit_m(const std::string& name) {
+  if (name == "m") return 1.0;
+  if (name == "ft") return kFoot_m;
+  if (name == "us-ft") return kUsSurveyFoot_m;
+  return 0.0;
+}
+
+DemReads dem_reads(const std::string& path) {
+  return detail::gis_module().reads(path);
+}
+
+void forget_dem(const std::string& path) {
+  detail::gis_module().forget(path);
 }
 
 std::string geotiff_bytes(const LocalRaster& raster) {

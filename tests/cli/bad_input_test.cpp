@@ -90,7 +90,7 @@ TEST(BadInput, AnAreaOverTheVertexLimitIsRefusedQuickly) {
   }
   const CliRun run = run_swath("classify --local " + file);
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.err.find("the area has 1000001 vertices, more than swath's limit of 1000000"),
+  EXPECT_NE(run.err.find("the area has 250001 vertices, more than swath's limit of 250000"),
             std::string::npos)
       << run.err;
 }

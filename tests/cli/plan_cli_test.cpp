@@ -968,5 +968,61 @@ TEST(BatchCli, EveryAreaPlannedAsAloneTheSameBytesForAnyJobsAndGnuParallel) {
   EXPECT_EQ(tree(dir + "/par").size(), planned_files);
 }
 
+// --dem-units: the bundled hill written again in international feet and in US survey feet (each
+// height divided by the exact factor, printed to 12 digits) plans to the same altitudes as the
+// metres it came from: every .plan item within 1 mm, as written (AMSL frame: the DEM's heights
+// themselves reach the file; written to the millimetre, so one rounding apart at most).
+std::vector<double> plan_altitudes(const std::string& dir) {
+  std::vector<double> out;
+  const json plan = json::parse(read_text(dir + "/drone-1.plan"));
+  out.push_back(plan["mission"]["plannedHomePosition"][2].get<double>());
+  for (const json& item : plan["mission"]["items"])
+    if (item["command"] == 16) out.push_back(item["Altitude"].get<double>());
+  return out;
+}
+
+TEST(PlanCli, TheSameGroundInFeetPlansTheSameAltitudesAsInMetres) {
+  const std::string dir = fresh_dir("dem-units");
+  std::filesystem::create_directories(dir);
+  const std::string metres = read_text(source_path("share/dems/meadow-hill.asc"));
+  auto converted = [&](const std::string& name, double metres_per_unit) {
+    std::istringstream in(metres);
+    std::ofstream f(dir + "/" + name);
+    std::string line;
+    for (int header = 0; header < 6 && std::getline(in, line); ++header) f << line << '\n';
+    while (std::getline(in, line)) {
+      std::istringstream cells(line);
+      const char* sep = "";
+      for (double h; cells >> h; sep = " ") {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.12g", h == -9999 ? h : h / metres_per_unit);
+        f << sep << text;
+      }
+      f << '\n';
+    }
+    return dir + "/" + name;
+  };
+  const std::string ft = converted("hill-ft.asc", 0.3048);
+  const std::string us_ft = converted("hill-us-ft.asc", 1200.0 / 3937.0);
+  const std::string plan =
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+      "--altitude-frame amsl --terrain ";
+  ASSERT_EQ(run_swath(plan + "share/dems/meadow-hill.asc -o " + dir + "/m").exit_code, 0);
+  ASSERT_EQ(run_swath(plan + ft + " --dem-units ft -o " + dir + "/ft").exit_code, 0);
+  ASSERT_EQ(run_swath(plan + us_ft + " --dem-units us-ft -o " + dir + "/us-ft").exit_code, 0);
+  const std::vector<double> m = plan_altitudes(dir + "/m");
+  ASSERT_GT(m.size(), 20u);
+  EXPECT_GT(m[0], 300.0);  // above sea level, the hill's ground in it
+  for (const std::string unit : {"ft", "us-ft"}) {
+    const std::vector<double> other = plan_altitudes(dir + "/" + unit);
+    ASSERT_EQ(other.size(), m.size()) << unit;
+    for (std::size_t k = 0; k < m.size(); ++k)
+      EXPECT_NEAR(other[k], m[k], 0.001 + 1e-9) << unit << k;
+  }
+  // Read as metres, the feet are another ground: the check can tell them apart.
+  ASSERT_EQ(run_swath(plan + ft + " -o " + dir + "/ft-as-m").exit_code, 0);
+  EXPECT_GT(plan_altitudes(dir + "/ft-as-m")[0], m[0] + 100.0);
+}
+
 }  // namespace
 }  // namespace swath::test

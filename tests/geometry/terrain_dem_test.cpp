@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <random>
 #include <sstream>
 
@@ -173,18 +174,22 @@ TEST(DemGround, EllipsoidalHeightsLoseTheEgm96Undulation) {
 // Every flight of the plan over `f`: each waypoint at `agl` above the ground, and every 0.5 m of
 // every leg after take-off within the tolerance of it (plus the DEM's bilinear error, < 0.01 m
 // for these surfaces at 2 m pixels). Returns the waypoints added.
-std::size_t check_plan(const Surface& f, const std::string& name, double tolerance_m) {
+std::size_t check_plan(const Surface& f, const std::string& name, double tolerance_m,
+                       double pixel_m = 2.0, double half_m = 1500.0,
+                       std::vector<GeoPoint>* flown = nullptr) {
   planning::SurveyRequest r = test::meadow_request(60);
-  r.terrain = planning::TerrainRequest{dem_ground(write_dem(name, f).string()), tolerance_m,
-                                       planning::AltitudeFrame::relative};
+  r.terrain = planning::TerrainRequest{dem_ground(write_dem(name, f, pixel_m, half_m).string()),
+                                       tolerance_m, planning::AltitudeFrame::relative};
   const planning::SurveyPlan plan = planning::plan_survey(r);
   const LocalFrame& frame = *plan.request.field.frame;
   EXPECT_TRUE(plan.terrain.has_value());
   for (const planning::DronePlan& d : plan.drones) {
     const double home_ground = at(f, frame.to_geo(d.mission.home));
+    if (flown) flown->push_back(frame.to_geo(d.mission.home));
     std::optional<planning::MissionItem> prev;
     for (const planning::MissionItem& item : d.mission.items) {
       if (item.kind != planning::ItemKind::waypoint) continue;
+      if (flown) flown->push_back(frame.to_geo(item.position));
       const double ground = at(f, frame.to_geo(item.position));
       EXPECT_NEAR(item.altitude_m + home_ground - ground, 60.0, 0.01) << name;
       EXPECT_NEAR(item.altitude_amsl_m, ground + 60.0, 0.01) << name;
@@ -296,6 +301,87 @@ TEST(TerrainPlan, ADemThatMissesTheAreaIsRefusedWithThePlace) {
     EXPECT_NE(std::string(e.what()).find("the DEM has no height at ("), std::string::npos)
         << e.what();
   }
+}
+
+// A DEM much finer and larger than the area (0.5 m pixels over 1.2 km, 5.8 million pixels) is
+// read only where the flights go: the tiles read lie in the UTM box of every waypoint and home,
+// grown by a tile and its rim on each side (the bilinear samples and the neighbour check reach a
+// pixel beyond), and the plan is still exact. Bounded by the reads, not by a time.
+TEST(TerrainPlan, AFineDemIsReadOnlyWhereTheFlightsGo) {
+  constexpr double kPixel_m = 0.5, kHalf_m = 600.0;
+  std::vector<GeoPoint> flown;
+  check_plan(kRidge, "fine", 2.0, kPixel_m, kHalf_m, &flown);
+  const DemReads reads = dem_reads((dem_scratch() / "fine.tif").string());
+  ASSERT_FALSE(flown.empty());
+  double west = 1e300, east = -1e300, south = 1e300, north = -1e300;
+  for (const GeoPoint& g : flown) {
+    const Utm u = utm32(g.lat_deg, g.lon_deg);
+    west = std::min(west, u.east_m), east = std::max(east, u.east_m);
+    south = std::min(south, u.north_m), north = std::max(north, u.north_m);
+  }
+  constexpr double kGrow_m = (64 + 2) * kPixel_m;
+  const double columns = (east - west + 2 * kGrow_m) / kPixel_m;
+  const double rows = (north - south + 2 * kGrow_m) / kPixel_m;
+  const double box_tiles = std::ceil(columns / 64 + 1) * std::ceil(rows / 64 + 1);
+  const double dem_pixels = std::pow(2 * kHalf_m / kPixel_m, 2);
+  EXPECT_GT(reads.tiles, 0u);
+  EXPECT_LE(static_cast<double>(reads.tiles), box_tiles);
+  EXPECT_LE(static_cast<double>(reads.pixels), box_tiles * 66 * 66);
+  EXPECT_LT(static_cast<double>(reads.pixels), 0.5 * dem_pixels);
+  std::cout << "fine DEM: " << reads.tiles << " tiles, " << reads.pixels << " of " << dem_pixels
+            << " pixels read; box " << box_tiles << " tiles\n";
+}
+
+// A grid written as text: `rows` x `cols` at 0.0002 degrees (~15 m), 400 m plus a gentle slope,
+// `set` changing some pixels.
+fs::path text_grid(const std::string& name, const std::function<void(int, int, double&)>& set) {
+  std::string t = "ncols 20\nnrows 20\nxllcorner 8.540\nyllcorner 47.396\ncellsize 0.0002\n";
+  for (int j = 0; j < 20; ++j) {
+    for (int i = 0; i < 20; ++i) {
+      double h = 400.0 + 0.5 * i + 0.25 * j;
+      set(i, j, h);
+      t += (i ? " " : "") + std::to_string(h);
+    }
+    t += "\n";
+  }
+  const fs::path path = dem_scratch() / (name + ".asc");
+  std::ofstream(path) << t;
+  return path;
+}
+
+std::string dem_refusal(const fs::path& grid) {
+  try {
+    dem_ground(grid.string())->heights_m({{47.398, 8.542, 0}});
+  } catch (const base::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A one-pixel needle or pit far beyond its neighbours (a void filled with 0 among hills, a stray
+// 3000) is refused naming its row and column; a cliff (every pixel on one side 600 m higher) and a
+// one-pixel bump under the limit (250 m here: ten 15 m pixels is less) are ground.
+TEST(DemGround, AOnePixelNeedleOrPitIsRefusedWithItsRowAndColumnButACliffIsGround) {
+  const std::string pit = dem_refusal(text_grid("pit", [](int i, int j, double& h) {
+    if (i == 13 && j == 4) h = 0.0;
+  }));
+  EXPECT_NE(pit.find("the ground at row 5, column 14 is 0 m"), std::string::npos) << pit;
+  EXPECT_NE(pit.find("below every pixel around it"), std::string::npos) << pit;
+  const std::string needle = dem_refusal(text_grid("needle", [](int i, int j, double& h) {
+    if (i == 2 && j == 17) h = 3000.0;
+  }));
+  EXPECT_NE(needle.find("row 18, column 3 is 3000 m"), std::string::npos) << needle;
+  EXPECT_NE(needle.find("above every pixel around it"), std::string::npos) << needle;
+  EXPECT_EQ(dem_refusal(text_grid("cliff",
+                                  [](int i, int, double& h) {
+                                    if (i >= 10) h += 600.0;
+                                  })),
+            "");
+  EXPECT_EQ(dem_refusal(text_grid("bump",
+                                  [](int i, int j, double& h) {
+                                    if (i == 8 && j == 8) h += 240.0;
+                                  })),
+            "");
 }
 
 }  // namespace

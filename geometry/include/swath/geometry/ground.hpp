@@ -3,6 +3,7 @@
 // a raster DEM in a program and a closed-form surface in a test alike, and its DEM implementation
 // through the GIS module (GDAL, opened on the first DEM like any GIS file).
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,15 +31,39 @@ enum class DemHeights {
   ellipsoid,  ///< the WGS84 ellipsoid (GNSS heights): the EGM96 undulation is subtracted
 };
 
+/// Metres per foot and per US survey foot (exact), for `--dem-units`.
+inline constexpr double kFoot_m = 0.3048;
+inline constexpr double kUsSurveyFoot_m = 1200.0 / 3937.0;
+
+/// Metres per unit of a `--dem-units` name: m, ft, us-ft; 0 for anything else.
+double dem_unit_m(const std::string& name);
+
 /// A single-band raster DEM any GDAL driver reads (GeoTIFF, ASCII grid, .hgt, VRT, ...), in any
-/// CRS GDAL can transform WGS84 into, heights in metres, or in feet or US survey feet when the
-/// band's unit type says so (converted; another unit is refused). Sampled bilinearly between pixel
-/// centres (within half a pixel of the border: the border pixels); NaN outside it or next to
-/// nodata. Throws base::InputError (one sentence naming the file) when GDAL cannot open it as a
-/// raster or its CRS cannot be reached from WGS84; std::runtime_error when the GIS module is
-/// missing.
+/// CRS GDAL can transform WGS84 into. Heights in the unit the band declares (GDAL unit type: m,
+/// ft, US survey foot; converted to metres; another unit is refused), else in `unit_m` metres per
+/// unit (--dem-units; 0: metres); a declared unit that a given `unit_m` contradicts is refused.
+/// Sampled bilinearly between pixel centres (within half a pixel of the border: the border
+/// pixels); NaN outside it or next to nodata. Pixels are read a 64 x 64 tile at a time, only
+/// where sampled. Throws base::InputError (one sentence naming the file) when GDAL cannot open
+/// or read it (GDAL's reason, the row), its CRS cannot be reached from WGS84, or a height is no
+/// ground (beyond -430..8,850 m, or a one-pixel needle or pit: an undeclared void);
+/// std::runtime_error when the GIS module is missing.
 std::shared_ptr<const Ground> dem_ground(const std::string& path,
-                                         DemHeights heights = DemHeights::geoid);
+                                         DemHeights heights = DemHeights::geoid,
+                                         double unit_m = 0.0);
+
+/// What the DEM reader has read of a DEM: RasterIO calls (tiles) and pixels, so that tests can
+/// bound the work by the area flown instead of by time.
+struct DemReads {
+  std::uint64_t tiles = 0;
+  std::uint64_t pixels = 0;
+};
+
+/// The reads of `path` (as given to dem_ground) so far in this process.
+DemReads dem_reads(const std::string& path);
+
+/// Closes `path` if open, so that its file may change (the fuzz targets reuse one name).
+void forget_dem(const std::string& path);
 
 /// The EGM96 geoid's height above the WGS84 ellipsoid (N), metres, at each point, from PROJ's
 /// 15' grid egm96_15.gtx (Debian proj-data) interpolated bilinearly (accuracy ~1 m against the
