@@ -307,7 +307,7 @@ class WifiSklearn(unittest.TestCase):
         spread = float(np.std(truth))
         print(f"\nwifi map RMSE vs the world's signal (spread {spread:.2f} dB): built-in {rmse_cpp:.2f} dB "
               f"from {len(cpp_xy)} readings, sklearn {rmse_py:.2f} dB from {len(py_xy)}", file=sys.stderr)
-        self.assertLess(rmse_cpp, 0.5 * spread)  # the yardstick itself maps the field
+        self.assertLess(rmse_cpp, 0.3 * spread)  # the yardstick itself maps the field
         self.assertLess(rmse_py, 1.5 * rmse_cpp)  # about as good: within 50 %, from fewer readings
 
 
