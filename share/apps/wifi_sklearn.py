@@ -1,6 +1,6 @@
-# Case 2 of paper 000 (§5.1.2) as BeeCluster's own sample writes it: map a Wi-Fi field with
+# Case 2 of paper 000 (§5.1.2) the way BeeCluster's own sample does it: map a Wi-Fi field with
 # scikit-learn's Gaussian process, sensing next where the map is least sure (its predictive
-# standard deviation), a few cells at a time, until no cell is less sure than the world's
+# standard deviation), a few cells at a time, until every cell's is below the world's
 # cancel_below_db; the map is the GP's mean over the cells. Needs Debian's python3-sklearn.
 # swath-fleet run share/apps/wifi_sklearn.py --world rf_field --drones 2 -o OUT
 import os
