@@ -4,7 +4,8 @@
 python_apps_test.py SWATH_FLEET SOURCE_DIR: tasks, futures and cancellation checked by
 `swath-fleet check` and parsed back from events.jsonl; the same seed gives the same bytes
 whatever the Python threads' timing (random sleeps, runs side by side); a Python exception is one
-sentence naming the file and line; the case studies in share/apps/ give the C++ apps' events.
+sentence naming the file and line; the case studies in share/apps/ give the C++ apps' events;
+wifi_sklearn.py (scikit-learn's GP) maps the field about as well as the built-in wifi app.
 """
 import json
 import os
@@ -14,7 +15,15 @@ import sys
 import tempfile
 import time
 import unittest
+from types import SimpleNamespace
 from concurrent.futures import ThreadPoolExecutor
+
+try:
+    import numpy as np
+    import sklearn  # noqa: F401  (share/apps/wifi_sklearn.py's, Debian's python3-sklearn)
+    HAVE_SKLEARN = True
+except ImportError:
+    HAVE_SKLEARN = False
 
 FLEET, SOURCE = sys.argv[1], sys.argv[2]
 HERE = os.path.join(SOURCE, "tests", "fleet", "python_apps")
@@ -174,6 +183,132 @@ class PythonApps(unittest.TestCase):
     def test_parity_tracking(self):
         self.parity("tracking", "tracking", [1, 2], "--drones", "3",
                     mutation=("+ 2.0, 10.0", "+ 4.0, 10.0"))
+
+
+# The world's reading at each place, from the world itself: an app of the test's own senses there
+# (a reading's noise is a hash of the place, never of time or order, so it reads what an app
+# sensing there read) and reports each value as a metric; a task reads a group of places in turn.
+READER = """WORLD = "rf_field"
+GROUPS = {groups!r}
+
+
+def read(bee, places):
+    values = []
+    for x, y in places:
+        bee.act("fly_to", x, y, 0.0)
+        values.append(bee.act("sense", "rssi").value.values[0])
+    return values
+
+
+def APP(bee):
+    tasks = [bee.newTask(read, g) for g in GROUPS]
+    i = 0
+    for t in tasks:
+        for v in t.value:
+            bee.metric("r%05d" % i, v)
+            i += 1
+"""
+
+RF = {"x0_m": -25.0, "y0_m": -35.0, "width_m": 50.0, "height_m": 70.0, "cell_m": 5.0,
+      "gp_length_m": 12.0, "gp_sigma_f": 6.0, "gp_sigma_n_db": 2.0, "cancel_below_db": 3.0}
+RING_M = [(0.05, 0.0), (-0.05, 0.0), (0.0, 0.05), (0.0, -0.05),
+          (0.05, 0.05), (-0.05, -0.05), (0.05, -0.05), (-0.05, 0.05)]
+
+
+def rf_grid():
+    """The cell centres of share/worlds/rf_field.yaml's fence (50 x 70 m centred on the origin)."""
+    n_x, n_y = int(RF["width_m"] / RF["cell_m"]), int(RF["height_m"] / RF["cell_m"])
+    return [(RF["x0_m"] + (i + 0.5) * RF["cell_m"], RF["y0_m"] + (j + 0.5) * RF["cell_m"])
+            for j in range(n_y) for i in range(n_x)]
+
+
+def sensed_places(out):
+    return [(e["x_m"], e["y_m"]) for e in events(out) if e["ev"] == "action_done" and e["name"] == "rssi"]
+
+
+def rbf_gp_map(xy, values, at):
+    """The built-in wifi app's map (fleet/apps/src/gaussian_process.hpp), in closed form: RBF
+    sigma_f^2 exp(-d^2 / 2 l^2), noise sigma_n^2, prior mean the readings' mean."""
+    xy, at, v = np.asarray(xy), np.asarray(at), np.asarray(values)
+
+    def k(a, b):
+        d2 = ((a[:, None, :] - b[None, :, :]) ** 2).sum(-1)
+        return RF["gp_sigma_f"] ** 2 * np.exp(-d2 / (2 * RF["gp_length_m"] ** 2))
+
+    kk = k(xy, xy) + RF["gp_sigma_n_db"] ** 2 * np.eye(len(xy))
+    return v.mean() + k(at, xy) @ np.linalg.solve(kk, v - v.mean())
+
+
+@unittest.skipUnless(HAVE_SKLEARN, "skipped: scikit-learn is not importable (Debian's python3-sklearn)")
+class WifiSklearn(unittest.TestCase):
+    SEED = "3"
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+        self.app = os.path.join(APPS, "wifi_sklearn.py")
+
+    def out(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def read_world(self, places, group=1):
+        app = self.out("reader%d.py" % len(os.listdir(self.tmp.name)))
+        places = [(float(x), float(y)) for x, y in places]
+        with open(app, "w") as f:
+            f.write(READER.format(groups=[places[i:i + group] for i in range(0, len(places), group)]))
+        out = app[:-3]
+        r = run(app, "rf_field", out, "--drones", "20", "--seed", self.SEED)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "summary.json")) as f:
+            metrics = json.load(f)["app_metrics"]
+        return [metrics["r%05d" % i] for i in range(len(places))]
+
+    def sklearn_app(self):
+        sys.path.insert(0, APPS)
+        self.addCleanup(sys.path.remove, APPS)
+        import wifi_sklearn
+        return wifi_sklearn
+
+    def test_runs_checked_and_same_bytes(self):
+        outs = [self.out("a"), self.out("b")]
+        for o in outs:
+            r = run(self.app, "rf_field", o, "--drones", "2", "--seed", self.SEED)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(r.stderr, "")
+            c = subprocess.run([FLEET, "check", o], capture_output=True, text=True)
+            self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
+        for name in ("events.jsonl", "summary.json", "dtg.json", "tracks.geojson"):
+            self.assertEqual(read_bytes(os.path.join(outs[0], name)), read_bytes(os.path.join(outs[1], name)), name)
+        sensed = sensed_places(outs[0])
+        self.assertGreater(len(sensed), 10)
+        self.assertEqual(len(set(sensed)), len(sensed))  # never the same cell twice
+
+    def test_map_about_as_good_as_the_built_in_apps(self):
+        grid = rf_grid()
+        ring = [(x + dx, y + dy) for x, y in grid for dx, dy in RING_M]
+        truth = np.asarray(self.read_world(ring, group=len(RING_M))).reshape(len(grid), len(RING_M)).mean(axis=1)
+        cpp, py = self.out("cpp"), self.out("py")
+        for app, o in (("wifi", cpp), (self.app, py)):
+            r = run(app, "rf_field", o, "--drones", "2", "--seed", self.SEED)
+            self.assertEqual(r.returncode, 0, r.stderr)
+        cpp_xy = sensed_places(cpp)
+        cpp_map = rbf_gp_map(cpp_xy, self.read_world(cpp_xy), grid)
+        py_xy = sensed_places(py)
+        m = self.sklearn_app()
+        w = SimpleNamespace(**RF)
+        gp, mean_db = m.fit_map(w, py_xy, self.read_world(py_xy))
+        with open(os.path.join(py, "summary.json")) as f:
+            metrics = json.load(f)["app_metrics"]
+        py_map = m.predict_map(gp, mean_db, grid)
+        self.assertEqual(metrics["cells_sensed"], len(py_xy))
+        self.assertAlmostEqual(float(np.mean(py_map)), metrics["map_mean_dbm"], places=5)  # the app's map
+        rmse_cpp = float(np.sqrt(np.mean((cpp_map - truth) ** 2)))
+        rmse_py = float(np.sqrt(np.mean((py_map - truth) ** 2)))
+        spread = float(np.std(truth))
+        print(f"\nwifi map RMSE vs the world's signal (spread {spread:.2f} dB): built-in {rmse_cpp:.2f} dB "
+              f"from {len(cpp_xy)} readings, sklearn {rmse_py:.2f} dB from {len(py_xy)}", file=sys.stderr)
+        self.assertLess(rmse_cpp, 0.3 * spread)  # the yardstick itself maps the field
+        self.assertLess(rmse_py, 1.5 * rmse_cpp)  # about as good: within 50 %, from fewer readings
 
 
 if __name__ == "__main__":
