@@ -1,0 +1,288 @@
+// swath plan on other inputs than GeoJSON in metres: a shapefile in the Swiss grid, ground from
+// a DEM (metres and feet), and swath batch over a district's areas, checked from the files.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "swath/base/number_text.hpp"
+
+
+namespace swath::test {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// Every number of a JSON document by its path.
+void numbers(const nlohmann::json& j, const std::string& path, std::map<std::string, double>& out) {
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) numbers(v, path + "." + k, out);
+  else if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i)
+      numbers(j[i], path + "[" + std::to_string(i) + "]", out);
+  else if (j.is_number())
+    out[path] = j.get<double>();
+}
+
+TEST(PlanCli, AShapefileInTheSwissGridPlansAsItsGeoJson) {
+  const std::string dir = fresh_dir("plan-ogr");
+  fs::create_directories(dir);
+  const std::string shp = dir + "/meadow-2056.shp";
+  ASSERT_EQ(run_program("ogr2ogr", "-f 'ESRI Shapefile' -t_srs EPSG:2056 " + shp +
+                                       " share/fields/meadow.geojson")
+                .exit_code,
+            0);
+  const std::string args = " --camera sony-ilce-qx1 --altitude 60 -o ";
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson" + args + dir + "/geojson").exit_code, 0);
+  const CliRun run = run_swath("plan " + shp + args + dir + "/shp");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::map<std::string, double> a, b;
+  numbers(nlohmann::json::parse(read_text(dir + "/geojson/summary.json")), "", a);
+  numbers(nlohmann::json::parse(read_text(dir + "/shp/summary.json")), "", b);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, value] : a) {
+    // The home is the field's first vertex: back from the Swiss grid within 1e-7 degrees.
+    const double tolerance =
+        key.find("_deg") != std::string::npos ? 1e-7 : 1e-6 * std::max(1.0, std::abs(value));
+    EXPECT_NEAR(b.at(key), value, tolerance) << key;
+  }
+  // Before GDAL, the same file as GeoJSON in EPSG:2056 read "latitude 1248000 is beyond ±90".
+  const std::string swiss = dir + "/meadow-2056.geojson";
+  ASSERT_EQ(run_program("ogr2ogr", "-f GeoJSON -lco RFC7946=NO -t_srs EPSG:2056 " + swiss +
+                                       " share/fields/meadow.geojson")
+                .exit_code,
+            0);
+  const CliRun c = run_swath("classify " + swiss);
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("100694.3"), std::string::npos) << c.out;
+}
+
+// An ESRI ASCII grid in longitude/latitude, read here independently of GDAL, bilinear between
+// cell centres as docs/swath-plan.md defines the DEM's surface.
+struct AsciiGrid {
+  int cols = 0, rows = 0;
+  double x0 = 0, y0 = 0, cell = 0;
+  std::vector<double> z;
+  explicit AsciiGrid(const std::string& path) {
+    std::istringstream in(read_text(path));
+    std::string key;
+    double nodata = 0;
+    in >> key >> cols >> key >> rows >> key >> x0 >> key >> y0 >> key >> cell >> key >> nodata;
+    z.resize(static_cast<std::size_t>(cols * rows));
+    for (double& v : z) in >> v;
+  }
+  double at(double lat, double lon) const {
+    const double u = (lon - x0) / cell - 0.5, v = (y0 + rows * cell - lat) / cell - 0.5;
+    const int i = static_cast<int>(std::floor(u)), j = static_cast<int>(std::floor(v));
+    auto px = [&](int a, int b) {
+      return z[static_cast<std::size_t>(std::clamp(b, 0, rows - 1) * cols +
+                                        std::clamp(a, 0, cols - 1))];
+    };
+    const double fu = u - i, fv = v - j;
+    return (1 - fv) * ((1 - fu) * px(i, j) + fu * px(i + 1, j)) +
+           fv * ((1 - fu) * px(i, j + 1) + fu * px(i + 1, j + 1));
+  }
+};
+
+TEST(PlanCli, OverTheMeadowHillEveryWaypointIsSixtyMetresAboveTheGround) {
+  const std::string out = fresh_dir("plan-terrain");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --terrain "
+      "share/dems/meadow-hill.asc --altitude-frame amsl --litchi -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const AsciiGrid dem(source_path("share/dems/meadow-hill.asc"));
+  const json plan = json::parse(read_text(out + "/drone-1.plan"));
+  EXPECT_EQ(plan["mission"]["globalPlanAltitudeMode"], 2);
+  const json home = plan["mission"]["plannedHomePosition"];
+  const double home_ground = dem.at(home[0], home[1]);
+  EXPECT_NEAR(home[2].get<double>(), home_ground, 0.01);
+  int waypoints = 0;
+  for (const json& item : plan["mission"]["items"]) {
+    if (item["command"] != 16) continue;
+    ++waypoints;
+    EXPECT_EQ(item["frame"], 0);  // MAV_FRAME_GLOBAL
+    EXPECT_EQ(item["AltitudeMode"], 2);
+    const double lat = item["params"][4], lon = item["params"][5];
+    EXPECT_NEAR(item["Altitude"].get<double>() - dem.at(lat, lon), 60.0, 0.01);
+    EXPECT_EQ(item["Altitude"], item["params"][6]);
+  }
+  const json t = json::parse(read_text(out + "/summary.json"))["terrain"];
+  EXPECT_GT(t["waypoints_added"].get<int>(), 5);
+  EXPECT_EQ(waypoints, 11 * 2 + t["waypoints_added"].get<int>());  // the lines' ends, and those
+  EXPECT_GE(t["agl_min_m"].get<double>(), 58.0);
+  EXPECT_LE(t["agl_max_m"].get<double>(), 62.0);
+  EXPECT_LT(t["ground_min_m"].get<double>(), t["ground_max_m"].get<double>() - 30);
+  // Litchi flies above the take-off point: the same points, less the home's ground.
+  std::istringstream litchi(read_text(out + "/drone-1-litchi.csv"));
+  std::string row;
+  std::getline(litchi, row);
+  int rows = 0;
+  while (std::getline(litchi, row)) {
+    std::istringstream cells(row);
+    std::string lat, lon, alt;
+    std::getline(cells, lat, ',');
+    std::getline(cells, lon, ',');
+    std::getline(cells, alt, ',');
+    ++rows;
+    EXPECT_NEAR(std::stod(alt) + home_ground - dem.at(std::stod(lat), std::stod(lon)), 60.0, 0.01);
+  }
+  EXPECT_EQ(rows, waypoints);
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// Every file under `dir` by its relative path, with its bytes.
+std::map<std::string, std::string> tree(const std::string& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file())
+      out[fs::relative(e.path(), dir).string()] = read_text(e.path().string());
+  return out;
+}
+
+// Twelve fields near Zurich, the sixth a bow tie that `swath plan` refuses.
+std::string district_geojson() {
+  std::string out = "{\"type\": \"FeatureCollection\", \"features\": [\n";
+  for (int i = 0; i < 12; ++i) {
+    const double lon = 8.40 + 0.01 * (i % 4), lat = 47.30 + 0.008 * (i / 4);
+    const double w = 0.0015 + 0.0002 * i, h = 0.001 + 0.0001 * (i % 3);
+    std::vector<std::pair<double, double>> ring{
+        {lon, lat}, {lon + w, lat}, {lon + w, lat + h}, {lon, lat + h}};
+    if (i == 5) std::swap(ring[1], ring[2]);  // crosses itself
+    std::string coords;
+    for (const auto& [x, y] : ring)
+      coords += "[" + base::shortest_text(x) + ", " + base::shortest_text(y) + "], ";
+    coords +=
+        "[" + base::shortest_text(ring[0].first) + ", " + base::shortest_text(ring[0].second) + "]";
+    out += std::string(i ? ",\n" : "") +
+           "{\"type\": \"Feature\", \"properties\": {\"name\": \"plot " + std::to_string(i) +
+           "\"}, \"geometry\": {\"type\": \"Polygon\", \"coordinates\": [[" + coords + "]]}}";
+  }
+  return out + "\n]}\n";
+}
+
+TEST(BatchCli, EveryAreaPlannedAsAloneTheSameBytesForAnyJobsAndGnuParallel) {
+  const std::string dir = fresh_dir("batch");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/district.geojson";
+  std::ofstream(areas) << district_geojson();
+  const std::string opts = " --camera sony-ilce-qx1 --altitude 60";
+  const CliRun one = run_swath("batch " + areas + " -o " + dir + "/one --jobs 1" + opts);
+  EXPECT_EQ(one.exit_code, 3) << one.err;  // one area refused
+  EXPECT_NE(one.out.find("11 of 12 areas planned"), std::string::npos) << one.out;
+  ASSERT_EQ(run_swath("batch " + areas + " -o " + dir + "/two --jobs 2" + opts).exit_code, 3);
+  const auto a = tree(dir + "/one"), b = tree(dir + "/two");
+  EXPECT_EQ(a.size(), b.size());
+  for (const auto& [path, bytes] : a) EXPECT_EQ(b.count(path) ? b.at(path) : "", bytes) << path;
+  // batch.csv: each planned row is what `swath plan --feature i` alone gives.
+  std::istringstream csv(a.at("batch.csv"));
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0, refused = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    if (line.find(",refused,") != std::string::npos) {
+      ++refused;
+      EXPECT_NE(line.find("plot 5"), std::string::npos) << line;
+      EXPECT_NE(line.find("crosses itself"), std::string::npos) << line;
+      continue;
+    }
+    if (rows % 4 != 1) continue;  // three of the planned ones, run alone
+    const std::string index = std::to_string(rows - 1);
+    const std::string alone = dir + "/alone-" + index;
+    ASSERT_EQ(run_swath("plan " + areas + " --feature " + index + opts + " -o " + alone).exit_code,
+              0);
+    const std::string sub = "plot_" + index;
+    EXPECT_EQ(read_text(alone + "/summary.json"), a.at(sub + "/summary.json")) << sub;
+    const auto s = nlohmann::json::parse(read_text(alone + "/summary.json"));
+    EXPECT_NE(line.find(base::fixed_text(s["drones"][0]["path_length_m"].get<double>(), 3)),
+              std::string::npos)
+        << line;
+  }
+  EXPECT_EQ(rows, 12);
+  EXPECT_EQ(refused, 1);
+  // --emit-jobs prints the command lines; GNU parallel runs them to the same files.
+  const CliRun jobs = run_swath("batch " + areas + " -o " + dir + "/par --emit-jobs" + opts);
+  ASSERT_EQ(jobs.exit_code, 0);
+  std::ofstream(dir + "/jobs.txt") << jobs.out;
+  const CliRun par = run_program("parallel", "-j2 --will-cite -a " + dir + "/jobs.txt");
+  EXPECT_EQ(par.exit_code, 1) << par.err;  // parallel's exit code: how many jobs failed
+  for (const auto& [path, bytes] : tree(dir + "/par"))
+    EXPECT_EQ(a.count(path) ? a.at(path) : "", bytes) << path;
+  std::size_t planned_files = 0;  // all but batch.csv, batch.geojson and the batch's manifest
+  for (const auto& [path, bytes] : a) planned_files += path.find('/') != std::string::npos;
+  EXPECT_EQ(tree(dir + "/par").size(), planned_files);
+}
+
+// --dem-units: the bundled hill written again in international feet and in US survey feet (each
+// height divided by the exact factor, printed to 12 digits) plans to the same altitudes as the
+// metres it came from: every .plan item within 1 mm, as written (AMSL frame: the DEM's heights
+// themselves reach the file; written to the millimetre, so one rounding apart at most).
+std::vector<double> plan_altitudes(const std::string& dir) {
+  std::vector<double> out;
+  const json plan = json::parse(read_text(dir + "/drone-1.plan"));
+  out.push_back(plan["mission"]["plannedHomePosition"][2].get<double>());
+  for (const json& item : plan["mission"]["items"])
+    if (item["command"] == 16) out.push_back(item["Altitude"].get<double>());
+  return out;
+}
+
+TEST(PlanCli, TheSameGroundInFeetPlansTheSameAltitudesAsInMetres) {
+  const std::string dir = fresh_dir("dem-units");
+  std::filesystem::create_directories(dir);
+  const std::string metres = read_text(source_path("share/dems/meadow-hill.asc"));
+  auto converted = [&](const std::string& name, double metres_per_unit) {
+    std::istringstream in(metres);
+    std::ofstream f(dir + "/" + name);
+    std::string line;
+    for (int header = 0; header < 6 && std::getline(in, line); ++header) f << line << '\n';
+    while (std::getline(in, line)) {
+      std::istringstream cells(line);
+      const char* sep = "";
+      for (double h; cells >> h; sep = " ") {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.12g", h == -9999 ? h : h / metres_per_unit);
+        f << sep << text;
+      }
+      f << '\n';
+    }
+    return dir + "/" + name;
+  };
+  const std::string ft = converted("hill-ft.asc", 0.3048);
+  const std::string us_ft = converted("hill-us-ft.asc", 1200.0 / 3937.0);
+  const std::string plan =
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+      "--altitude-frame amsl --terrain ";
+  ASSERT_EQ(run_swath(plan + "share/dems/meadow-hill.asc -o " + dir + "/m").exit_code, 0);
+  ASSERT_EQ(run_swath(plan + ft + " --dem-units ft -o " + dir + "/ft").exit_code, 0);
+  ASSERT_EQ(run_swath(plan + us_ft + " --dem-units us-ft -o " + dir + "/us-ft").exit_code, 0);
+  const std::vector<double> m = plan_altitudes(dir + "/m");
+  ASSERT_GT(m.size(), 20u);
+  EXPECT_GT(m[0], 300.0);  // above sea level, the hill's ground in it
+  for (const std::string unit : {"ft", "us-ft"}) {
+    const std::vector<double> other = plan_altitudes(dir + "/" + unit);
+    ASSERT_EQ(other.size(), m.size()) << unit;
+    for (std::size_t k = 0; k < m.size(); ++k)
+      EXPECT_NEAR(other[k], m[k], 0.001 + 1e-9) << unit << k;
+  }
+  // Read as metres, the feet are another ground: the check can tell them apart.
+  ASSERT_EQ(run_swath(plan + ft + " -o " + dir + "/ft-as-m").exit_code, 0);
+  EXPECT_GT(plan_altitudes(dir + "/ft-as-m")[0], m[0] + 100.0);
+}
+
+}  // namespace
+}  // namespace swath::test
