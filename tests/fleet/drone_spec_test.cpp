@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "swath/fleet/runtime.hpp"
+
 namespace swath::fleet::drone_spec_check {
 
 std::string text_of(const std::string& path) {
@@ -111,6 +113,31 @@ TEST(DroneSpecCheck, APlantedCopyIsNamed) {
       members_of("vehicle/include/swath/vehicle/drone.hpp", "Drone");
   EXPECT_EQ(copies(data_members(struct_body(planted, "DroneSpec")), drone),
             (std::set<std::string>{"kinematics", "name", "speed_m_s"}));
+}
+
+// A DroneSpec nobody set flies Kinematics' defaults (not the planner's vehicle::Drone ones), and
+// every Kinematics field follows the member it is computed from.
+TEST(DroneSpecCheck, KinematicsComeFromTheDroneAndTheApproachRule) {
+  const Kinematics defaults;
+  const Kinematics k = DroneSpec{}.kinematics();
+  EXPECT_EQ(k.cruise_m_s, defaults.cruise_m_s);
+  EXPECT_EQ(k.approach_m_s, defaults.approach_m_s);
+  EXPECT_EQ(k.approach_within_m, defaults.approach_within_m);
+  EXPECT_EQ(k.accel_m_s2, defaults.accel_m_s2);
+  EXPECT_EQ(k.climb_m_s, defaults.climb_m_s);
+  EXPECT_EQ(k.descent_m_s, defaults.descent_m_s);
+  DroneSpec d;
+  d.drone.speed_m_s = 7, d.drone.climb_speed_m_s = 1.25, d.drone.descent_speed_m_s = 0.75;
+  d.drone.accel_m_s2 = 0.5, d.approach_m_s = 1.5, d.approach_within_m = 4;
+  const Kinematics set = d.kinematics();
+  EXPECT_EQ(set.cruise_m_s, 7);
+  EXPECT_EQ(set.climb_m_s, 1.25);
+  EXPECT_EQ(set.descent_m_s, 0.75);
+  EXPECT_EQ(set.accel_m_s2, 0.5);
+  EXPECT_EQ(set.approach_m_s, 1.5);
+  EXPECT_EQ(set.approach_within_m, 4);
+  d.drone.speed_m_s.reset();  // a drone without a cruise speed flies the default one
+  EXPECT_EQ(d.kinematics().cruise_m_s, defaults.cruise_m_s);
 }
 
 }  // namespace swath::fleet::drone_spec_check
