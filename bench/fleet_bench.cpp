@@ -93,7 +93,7 @@ void CaseStudy(benchmark::State& st) {
   const auto world = worlds::read_world(path.string());
   std::vector<DroneSpec> drones(2);
   for (std::size_t i = 0; i < drones.size(); ++i) {
-    drones[i].name = std::string(1, static_cast<char>('a' + i));
+    drones[i].drone.name = std::string(1, static_cast<char>('a' + i));
     drones[i].home_m = {3.0 * static_cast<double>(i), 0, 0};
   }
   if (app_name == "tracking")
@@ -128,7 +128,7 @@ void IdleTick(benchmark::State& st) {
           }};
   std::vector<DroneSpec> drones(10);
   for (std::size_t i = 0; i < drones.size(); ++i)
-    drones[i].name = std::string(1, static_cast<char>('a' + i));
+    drones[i].drone.name = std::string(1, static_cast<char>('a' + i));
   RuntimeSettings settings;
   settings.state_period_s = 1e9;  // no drone_state lines: the tick alone
   settings.max_time_s = 1e5;

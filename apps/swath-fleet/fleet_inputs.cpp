@@ -145,7 +145,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     p.default_drones = n;
     for (int i = 0; i < n; ++i) {
       fleet::DroneSpec d;
-      d.name = "drone-" + std::to_string(i + 1);
+      d.drone.name = "drone-" + std::to_string(i + 1);
       // A row, the separation and a metre (the separation rule's margin) apart: neighbours can
       // climb at once (docs/swath-fleet.md).
       d.home_m = {(envelope.separation_m + 1) * i, 0, 0};
@@ -164,7 +164,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   for (const fleet::DroneSpec& d : p.drones)
     if (const std::string why = p.settings.envelope.refusal_xy(d.home_m.x, d.home_m.y);
         !why.empty())
-      throw InputError(r.fleet + ": " + d.name + "'s home is " + why);
+      throw InputError(r.fleet + ": " + d.drone.name + "'s home is " + why);
   p.settings.app_name = r.app;
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;
@@ -182,7 +182,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   }
   if (!r.faults.empty()) {
     std::vector<std::string> drone_names;
-    for (const auto& d : p.drones) drone_names.push_back(d.name);
+    for (const auto& d : p.drones) drone_names.push_back(d.drone.name);
     faults_text = base::read_text_file(r.faults, "faults file", base::kMaxConfigFileBytes);
     p.settings.faults = fleet::parse_faults(faults_text, r.faults, drone_names, r.max_time_s);
   }

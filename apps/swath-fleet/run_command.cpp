@@ -61,11 +61,12 @@ void FleetRunCommand::setup(CLI::App& app) {
       "(--out udp:HOST:PORT), tcp:HOST:PORT connects to it (SITL: 5760 + 10 x "
       "instance); /SYSID after the port (1..255, default: its place + 1); overrides the fleet "
       "file's mavlink {url, sysid}");
-  world_seed_option_ = app.add_option(
-      "--world-seed", world_seed_,
-      "Draw the world's random parts from this seed instead of the file's (the scenarios of "
-      "compare and tune, as `worlds gen KIND --seed N` prints them)")
-      ->check(seed_check());
+  world_seed_option_ =
+      app.add_option(
+             "--world-seed", world_seed_,
+             "Draw the world's random parts from this seed instead of the file's (the scenarios of "
+             "compare and tune, as `worlds gen KIND --seed N` prints them)")
+          ->check(seed_check());
   app.add_option("--on-abort", on_abort_,
                  "What SIGINT, SIGTERM or an unexpected error tells every airborne vehicle before "
                  "the run ends and its files are written: rtl (return to launch) or land (where "
@@ -122,7 +123,7 @@ std::vector<fleet::VehicleAddress> vehicle_urls(const std::string& vehicles,
     if (d.vehicle) {
       urls.push_back(*d.vehicle);
     } else {
-      missing += (missing.empty() ? "" : ", ") + d.name;
+      missing += (missing.empty() ? "" : ", ") + d.drone.name;
       ++without;
     }
   }
@@ -196,8 +197,8 @@ std::unique_ptr<LiveServer> FleetRunCommand::start_live(fleet::RuntimeSettings& 
   }
   auto server = std::make_unique<LiveServer>(live_port(live_), web::live_page(output_));
   // After any listener already set (the airborne reporter of a wall-clock run).
-  settings.on_event = [s = server.get(), before = std::move(settings.on_event)](
-                          const std::string& line) {
+  settings.on_event = [s = server.get(),
+                       before = std::move(settings.on_event)](const std::string& line) {
     if (before) before(line);
     s->append(line);
   };
@@ -264,7 +265,7 @@ int FleetRunCommand::run() {
   p.settings.control = [&control] { return control.poll(); };
   if (pace_ > 0 || backend_ == "mavlink") {
     std::vector<std::string> names;
-    for (const auto& d : p.drones) names.push_back(d.name);
+    for (const auto& d : p.drones) names.push_back(d.drone.name);
     p.settings.on_event = airborne_reporter(std::move(names));
   }
   std::unique_ptr<LiveServer> live = start_live(p.settings);

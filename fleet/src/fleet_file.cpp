@@ -54,23 +54,25 @@ void apply_profile(const std::string& profile, const std::string& source, DroneS
   const energy::DroneProfile prof = energy::read_drone_profile(p.string());
   d.power = prof.power;
   d.battery = prof.battery;
-  if (prof.drone.speed_m_s) d.kinematics.cruise_m_s = *prof.drone.speed_m_s;
-  d.kinematics.climb_m_s = prof.drone.climb_speed_m_s;
-  d.kinematics.descent_m_s = prof.drone.descent_speed_m_s;
+  if (prof.drone.speed_m_s) d.drone.speed_m_s = prof.drone.speed_m_s;
+  d.drone.climb_speed_m_s = prof.drone.climb_speed_m_s;
+  d.drone.descent_speed_m_s = prof.drone.descent_speed_m_s;
 }
 
-// The fleet file's values over the profile's, the profile's over the defaults.
+// The fleet file's values over the profile's, the profile's over the defaults: the file's drone
+// is kept whole, with the speeds it does not give taken from the profile or the defaults.
 void apply_flight_keys(const vehicle::FleetFileDrone& f, DroneSpec& d) {
   d.battery.initial_soc = f.drone.battery_level.value_or(d.battery.initial_soc);
   if (d.battery.reserve_soc >= d.battery.initial_soc)
     d.battery.reserve_soc = 0.5 * d.battery.initial_soc;
-  Kinematics& k = d.kinematics;
-  k.cruise_m_s = f.drone.speed_m_s.value_or(k.cruise_m_s);
-  if (f.climb_given || !f.profile) k.climb_m_s = f.drone.climb_speed_m_s;
-  if (f.descent_given || !f.profile) k.descent_m_s = f.drone.descent_speed_m_s;
-  k.approach_m_s = std::min(k.cruise_m_s, f.approach_speed_m_s.value_or(k.approach_m_s));
-  k.approach_within_m = f.approach_within_m.value_or(k.approach_within_m);
-  k.accel_m_s2 = f.drone.accel_m_s2;  // the file's, else Kinematics' (fleet_file_rules)
+  const vehicle::Drone before = d.drone;
+  d.drone = f.drone;  // accel_m_s2: the file's, else Kinematics' (fleet_file_rules)
+  if (!f.drone.speed_m_s) d.drone.speed_m_s = before.speed_m_s;
+  if (!f.climb_given && f.profile) d.drone.climb_speed_m_s = before.climb_speed_m_s;
+  if (!f.descent_given && f.profile) d.drone.descent_speed_m_s = before.descent_speed_m_s;
+  d.approach_m_s =
+      std::min(d.kinematics().cruise_m_s, f.approach_speed_m_s.value_or(d.approach_m_s));
+  d.approach_within_m = f.approach_within_m.value_or(d.approach_within_m);
   d.recharge_s = f.recharge_s.value_or(d.recharge_s);
   if (f.drone.endurance_s) d.max_flight_time_s = *f.drone.endurance_s * d.battery.initial_soc;
   d.max_flight_time_s = f.max_flight_time_s.value_or(d.max_flight_time_s);
@@ -120,7 +122,6 @@ FleetFileContents parse_fleet_file_contents(const std::string& text, const std::
   for (std::size_t i = 0; i < file.drones.size(); ++i) {
     const vehicle::FleetFileDrone& f = file.drones[i];
     DroneSpec d;
-    d.name = f.drone.name;
     if (f.profile) apply_profile(*f.profile, source, d);
     apply_flight_keys(f, d);
     d.home_m = home_of(f, frame, fleet_home, spacing_m, shared_home);
@@ -128,8 +129,8 @@ FleetFileContents parse_fleet_file_contents(const std::string& text, const std::
       d.vehicle = vehicle_of(*f.mavlink, i);
       for (const DroneSpec& before : out)
         if (before.vehicle && same_link(*before.vehicle, *d.vehicle))
-          throw InputError(f.mavlink->where + ": " + d.name + "'s url is also " + before.name +
-                           "'s (one vehicle per link)");
+          throw InputError(f.mavlink->where + ": " + d.drone.name + "'s url is also " +
+                           before.drone.name + "'s (one vehicle per link)");
     }
     out.push_back(std::move(d));
   }

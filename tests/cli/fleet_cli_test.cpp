@@ -421,7 +421,7 @@ TEST(FleetPictures, GanttBarsAndTrackStartsAreWhereTheRecordSays) {
   const auto world = worlds::read_world(source_path("share/worlds/tracking.yaml"));
   std::vector<fleet::DroneSpec> drones(2);
   for (std::size_t i = 0; i < 2; ++i) {
-    drones[i].name = std::string(1, static_cast<char>('a' + i));
+    drones[i].drone.name = std::string(1, static_cast<char>('a' + i));
     drones[i].home_m = {-5.0 + 10.0 * static_cast<double>(i), 0, 0};
     drones[i].max_flight_time_s = 60;
   }

@@ -39,7 +39,7 @@ const App& app_named(const std::string& name) {
 
 DroneSpec drone(const std::string& name, Vec3 home) {
   DroneSpec d;
-  d.name = name;
+  d.drone.name = name;
   d.home_m = home;
   return d;
 }

@@ -52,7 +52,7 @@ std::set<std::string> rules_broken(const std::vector<std::string>& v) {
 std::vector<DroneSpec> drones_in_a_row(int n, double spacing_m) {
   std::vector<DroneSpec> out(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    out[static_cast<std::size_t>(i)].name = "d" + std::to_string(i);
+    out[static_cast<std::size_t>(i)].drone.name = "d" + std::to_string(i);
     out[static_cast<std::size_t>(i)].home_m = {spacing_m * i, 0, 0};
   }
   return out;

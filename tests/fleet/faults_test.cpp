@@ -40,7 +40,7 @@ std::vector<DroneSpec> three_drones(std::uint64_t seed) {
   auto rng = vehicle::SplitMix64::stream(seed, "fleet");
   std::vector<DroneSpec> out(3);
   for (std::size_t i = 0; i < out.size(); ++i) {
-    out[i].name = std::array<const char*, 3>{"d0", "d1", "d2"}[i];
+    out[i].drone.name = std::array<const char*, 3>{"d0", "d1", "d2"}[i];
     out[i].home_m = {rng.uniform(-20, 20), rng.uniform(-20, 20), 0};
     if (rng.uniform() < 0.5) out[i].max_flight_time_s = rng.uniform(60, 200);
     out[i].recharge_s = rng.uniform(5, 30);
@@ -67,7 +67,7 @@ TEST(NoLostTask, AThousandRandomFaultSchedulesOverTheFiveApps) {
     const auto world = worlds::parse_world(small_world(app.name), "w.yaml");
     const std::vector<DroneSpec> drones = three_drones(k);
     std::vector<std::string> names;
-    for (const auto& d : drones) names.push_back(d.name);
+    for (const auto& d : drones) names.push_back(d.drone.name);
     RuntimeSettings s;
     s.app_name = app.name;
     s.seed = k;
@@ -107,8 +107,8 @@ TEST(EventCheck, CatchesEveryRuleBrokenInARealLog) {
   ASSERT_EQ(app.name, "multiplexing");
   const auto world = worlds::parse_world("kind: sites\nseed: 4\n", "w.yaml");
   std::vector<DroneSpec> drones(2);
-  drones[0].name = "a";
-  drones[1].name = "b";
+  drones[0].drone.name = "a";
+  drones[1].drone.name = "b";
   RuntimeSettings s;
   s.faults = {{30, 1, FaultKind::motor_failure, 0, 0}};
   const RunRecord r = run_app(app, *world, drones, s);

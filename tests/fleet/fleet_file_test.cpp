@@ -141,17 +141,17 @@ TEST(FleetFile, SwathPlanAndSwathFleetReadTheSameDrones) {
       const Written& w = written[i];
       const vehicle::Drone& p = plan.drones[i];
       const DroneSpec& f = flown[i];
-      EXPECT_EQ(p.name, f.name);
+      EXPECT_EQ(p.name, f.drone.name);
       EXPECT_EQ(*p.battery_level, w.level);
       EXPECT_EQ(f.battery.initial_soc, w.level);
       EXPECT_EQ(*p.endurance_s, w.endurance);
       EXPECT_EQ(f.max_flight_time_s, w.endurance * w.level);
       EXPECT_EQ(*p.speed_m_s, w.speed);
-      EXPECT_EQ(f.kinematics.cruise_m_s, w.speed);
+      EXPECT_EQ(f.kinematics().cruise_m_s, w.speed);
       EXPECT_EQ(p.climb_speed_m_s, w.climb.value_or(2.5));
-      EXPECT_EQ(f.kinematics.climb_m_s, w.climb.value_or(3.0));
+      EXPECT_EQ(f.kinematics().climb_m_s, w.climb.value_or(3.0));
       EXPECT_EQ(p.descent_speed_m_s, w.descent.value_or(1.5));
-      EXPECT_EQ(f.kinematics.descent_m_s, w.descent.value_or(3.0));
+      EXPECT_EQ(f.kinematics().descent_m_s, w.descent.value_or(3.0));
     }
   }
 }
@@ -165,10 +165,10 @@ TEST(FleetFile, TheFileSpeedsOverTheProfiles) {
       "drones:\n  - {name: a, profile: quad.yaml}\n"
       "  - {name: b, profile: quad.yaml, climb_speed_m_s: 6}\n",
       (dir / "fleet.yaml").string(), kOrigin);
-  EXPECT_EQ(d[0].kinematics.climb_m_s, 4);
-  EXPECT_EQ(d[0].kinematics.descent_m_s, 2);
-  EXPECT_EQ(d[1].kinematics.climb_m_s, 6);
-  EXPECT_EQ(d[1].kinematics.descent_m_s, 2);
+  EXPECT_EQ(d[0].kinematics().climb_m_s, 4);
+  EXPECT_EQ(d[0].kinematics().descent_m_s, 2);
+  EXPECT_EQ(d[1].kinematics().climb_m_s, 6);
+  EXPECT_EQ(d[1].kinematics().descent_m_s, 2);
   std::filesystem::remove_all(dir);
 }
 

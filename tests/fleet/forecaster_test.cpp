@@ -30,7 +30,7 @@ std::string run_dtg(const std::string& app_name, std::uint64_t seed, int drones 
     std::vector<DroneSpec> fleet;
     for (int i = 0; i < drones; ++i) {
       DroneSpec d;
-      d.name = "d" + std::to_string(i);
+      d.drone.name = "d" + std::to_string(i);
       d.home_m = {3.0 * i, 0, 0};
       fleet.push_back(d);
     }

@@ -68,7 +68,7 @@ struct Mission {
     std::vector<std::unique_ptr<Link>> gcs_links;
     for (int i = 0; i < 2; ++i) {
       fleet::DroneSpec d;
-      d.name = "copter-" + std::to_string(i + 1);
+      d.drone.name = "copter-" + std::to_string(i + 1);
       d.home_m = {3.0 * i, 0, 0};
       d.recharge_s = 5;
       drones.push_back(d);

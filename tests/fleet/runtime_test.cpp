@@ -103,7 +103,7 @@ class ProbeWorld final : public World {
 
 DroneSpec drone(const std::string& name, Vec3 home = {}) {
   DroneSpec d;
-  d.name = name;
+  d.drone.name = name;
   d.home_m = home;
   return d;
 }
@@ -165,8 +165,8 @@ TEST(Runtime, EnergyEqualsTheBudgetOfTheSameLegs) {
             co_await h;
           }};
   DroneSpec d = drone("a");
-  d.kinematics.accel_m_s2 = 0;
-  d.kinematics.approach_within_m = 0;
+  d.drone.accel_m_s2 = 0;
+  d.approach_within_m = 0;
   const RunRecord r = run_app(app, world, {d}, RuntimeSettings{});
   ASSERT_TRUE(r.completed) << r.failure;
 
@@ -379,7 +379,7 @@ TEST(Runtime, FlySensingReadsAlongTheLegAtItsPeriod) {
   const RunRecord r = run_app(app, world, {d}, RuntimeSettings{});
   ASSERT_TRUE(r.completed) << r.failure;
   // The leg: climb 20 m at 3 m/s, then 200 m level; a sample every 2 s of it.
-  const Leg leg({0, 0, 0}, {200, 0, 20}, d.kinematics);
+  const Leg leg({0, 0, 0}, {200, 0, 20}, d.kinematics());
   const auto samples = static_cast<std::size_t>(std::floor(leg.duration_s() / 2.0 + 1e-9));
   ASSERT_EQ(got.values.size(), 3 * samples);
   for (std::size_t k = 0; k < samples; ++k) {

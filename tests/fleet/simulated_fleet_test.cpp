@@ -1,5 +1,5 @@
-// The simulated fleet behind the runtime's Backend (docs/swath-fleet.md): its legs are leg.hpp's, its
-// reports say what the legs say, and a run handed an explicit SimulatedFleet is the run that
+// The simulated fleet behind the runtime's Backend (docs/swath-fleet.md): its legs are leg.hpp's,
+// its reports say what the legs say, and a run handed an explicit SimulatedFleet is the run that
 // run_app makes with its own, byte for byte.
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@ namespace {
 
 DroneSpec drone_at(const std::string& name, Vec3 home) {
   DroneSpec d;
-  d.name = name;
+  d.drone.name = name;
   d.home_m = home;
   return d;
 }
@@ -26,7 +26,7 @@ DroneSpec drone_at(const std::string& name, Vec3 home) {
 TEST(SimulatedFleet, ALegArrivesWhenTheClosedFormSaysAndReportsItsTarget) {
   const DroneSpec d = drone_at("a", {5, -3, 0});
   SimulatedFleet fleet({d}, 20, 3);
-  const Kinematics& k = d.kinematics;
+  const Kinematics& k = d.kinematics();
   EXPECT_TRUE(fleet.report(0).link_up);
   EXPECT_FALSE(fleet.reports_every_tick());
   EXPECT_TRUE(std::isinf(fleet.arrival_s(0)));
@@ -46,7 +46,7 @@ TEST(SimulatedFleet, ALegArrivesWhenTheClosedFormSaysAndReportsItsTarget) {
 
 TEST(SimulatedFleet, ARetargetKeepsTheLegRuleAHoldStopsAndAReturnLandsAtHome) {
   const DroneSpec d = drone_at("a", {0, 0, 0});
-  const Kinematics& k = d.kinematics;
+  const Kinematics& k = d.kinematics();
   SimulatedFleet fleet({d}, 20, 3);
   fleet.go_to(0, 0.0, {200, 0, 20}, k.cruise_m_s, k.approach_m_s, k.approach_within_m);
   const Leg first({0, 0, 0}, {200, 0, 20}, k);

@@ -22,7 +22,7 @@ namespace {
 
 DroneSpec drone(const std::string& name, Vec3 home = {}) {
   DroneSpec d;
-  d.name = name;
+  d.drone.name = name;
   d.home_m = home;
   return d;
 }
@@ -169,23 +169,23 @@ TEST(TraceReplay, RecordedCancelsFireWithTheirTrigger) {
   ASSERT_EQ(rec.tasks_by_outcome.at("cancelled"), 1);
   const App trace = make_trace_app(parse_dtg(rec.dtg_json, "dtg.json"));
   DroneSpec slow = drone("slow");
-  slow.kinematics.cruise_m_s = 2;
+  slow.drone.speed_m_s = 2;
   for (const DroneSpec& d : {drone("a"), slow}) {
     const RunRecord rep = run_app(trace, flat, {d}, cs);
     ASSERT_TRUE(rep.completed) << rep.failure;
-    EXPECT_EQ(rep.tasks_by_outcome.at("cancelled"), 1) << d.name;
+    EXPECT_EQ(rep.tasks_by_outcome.at("cancelled"), 1) << d.drone.name;
     double near_done = -1, far_cancelled = -2;
     const auto graph = nlohmann::json::parse(rep.dtg_json);
     for (const auto& n : graph["nodes"]) {
       if (n["type"] != "task") continue;
       if (n["kind"] == "near") near_done = n["ended_s"].get<double>();
       if (n["kind"] == "far") {
-        EXPECT_EQ(n["status"], "cancelled") << d.name;
+        EXPECT_EQ(n["status"], "cancelled") << d.drone.name;
         far_cancelled = n["ended_s"].get<double>();
       }
     }
-    EXPECT_EQ(far_cancelled, near_done) << d.name;  // with its trigger, whenever that comes
-    if (d.name == "slow") {
+    EXPECT_EQ(far_cancelled, near_done) << d.drone.name;  // with its trigger, whenever that comes
+    if (d.drone.name == "slow") {
       EXPECT_GT(near_done,
                 nlohmann::json::parse(rec.dtg_json)["nodes"][2]["ended_s"].get<double>());
     }

@@ -61,7 +61,7 @@ struct AbortedMission {
     std::vector<std::unique_ptr<Link>> gcs_links;
     for (int i = 0; i < 2; ++i) {
       fleet::DroneSpec d;
-      d.name = "copter-" + std::to_string(i + 1);
+      d.drone.name = "copter-" + std::to_string(i + 1);
       d.home_m = {3.0 * i, 0, 0};
       drones.push_back(d);
       vehicle_links.push_back(UdpLink::listen("127.0.0.1", 0));
@@ -358,7 +358,7 @@ TEST(FleetHeartbeat, AComputeHoldingTheRuntimeFourSecondsDoesNotSilenceTheGcsHea
     settings.warn = [](int, const std::string&) {};
     fleet::MavlinkFleet backend(std::move(links), {1}, settings);
     fleet::DroneSpec d;
-    d.name = "copter-1";
+    d.drone.name = "copter-1";
     fleet::RuntimeSettings s;
     s.app_name = "compute";
     s.max_time_s = 60;

@@ -9,7 +9,7 @@ SimulatedFleet::SimulatedFleet(const std::vector<DroneSpec>& drones, double laye
                                double layer_step_m) {
   for (std::size_t i = 0; i < drones.size(); ++i) {
     Vehicle v;
-    v.kinematics = drones[i].kinematics;
+    v.kinematics = drones[i].kinematics();
     v.home_m = drones[i].home_m;
     v.home_m.z = 0;
     v.layer_m = layer_base_m + layer_step_m * static_cast<double>(i);

@@ -89,7 +89,7 @@ void Runtime::model_abort(Drone& d, AbortAction action) {
     if (d.mode == Mode::returning) return;
     const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
     const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
-    d.leg = next_leg(current, now_ - d.leg_start, d.pos, home, d.spec.kinematics);
+    d.leg = next_leg(current, now_ - d.leg_start, d.pos, home, d.spec.kinematics());
     d.leg_start = now_;
     set_mode(d, Mode::returning, now_);  // the backend was told already
     return;

@@ -56,7 +56,7 @@ void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   integrate(d, t);
   const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
   if (d.mode == Mode::landed) d.airborne_since = t;
-  d.leg = next_leg(current, t - d.leg_start, d.pos, to, d.spec.kinematics);
+  d.leg = next_leg(current, t - d.leg_start, d.pos, to, d.spec.kinematics());
   d.leg_start = t;
   set_mode(d, mode, t);
   command_leg(d, to, mode, t);
@@ -68,7 +68,7 @@ void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode, double t) {
     backend_.return_home(d.index, t);
     return;
   }
-  const Kinematics& k = d.spec.kinematics;
+  const Kinematics& k = d.spec.kinematics();
   backend_.go_to(d.index, t, to, k.cruise_m_s, k.approach_m_s, k.approach_within_m);
 }
 
@@ -278,7 +278,7 @@ void Runtime::finish_action(Drone& d, double t) {
 void Runtime::land_home(Drone& d, double t) {
   d.pos = d.leg->to();
   d.leg.reset();
-  const double down = d.pos.z / d.spec.kinematics.descent_m_s;
+  const double down = d.pos.z / d.spec.kinematics().descent_m_s;
   d.energy_j += descent_power_w(d.spec) * down;
   d.soc = vehicle::soc_after_charge(
       d.spec.battery, d.soc,

@@ -48,7 +48,7 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
     d.layer_m = settings_.layer_base_m + settings_.layer_step_m * static_cast<double>(i);
     d.link_up = backend_.report(d.index).link_up;  // a real vehicle: not until first heard
     if (!d.link_up) d.link_back = kInf;
-    d.record.name = specs[i].name;
+    d.record.name = specs[i].drone.name;
     drones_.push_back(std::move(d));
   }
   faults_ = settings.faults;
@@ -72,7 +72,7 @@ void Runtime::check_envelope(const std::vector<DroneSpec>& specs) const {
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const Vec3& h = specs[i].home_m;
     if (const std::string why = e.refusal_xy(h.x, h.y); !why.empty())
-      throw base::InputError(specs[i].name + "'s home " + where(h) + " is " + why);
+      throw base::InputError(specs[i].drone.name + "'s home " + where(h) + " is " + why);
   }
 }
 
@@ -159,7 +159,7 @@ json Runtime::envelope_json() const {
 Task& Runtime::start_main() {
   json drones = json::array();
   for (const Drone& d : drones_)
-    drones.push_back(json{{"drone", d.index}, {"name", d.spec.name}, {"soc", round6(d.soc)}});
+    drones.push_back(json{{"drone", d.index}, {"name", d.spec.drone.name}, {"soc", round6(d.soc)}});
   log(json{{"ev", "run_start"},
            {"app", settings_.app_name},
            {"seed", settings_.seed},
@@ -359,6 +359,27 @@ RunRecord Runtime::run() {
 }  // namespace swath::fleet::rt
 
 namespace swath::fleet {
+
+vehicle::Drone default_flying_drone() {
+  const Kinematics k;
+  vehicle::Drone d;
+  d.speed_m_s = k.cruise_m_s;
+  d.climb_speed_m_s = k.climb_m_s;
+  d.descent_speed_m_s = k.descent_m_s;
+  d.accel_m_s2 = k.accel_m_s2;
+  return d;
+}
+
+Kinematics DroneSpec::kinematics() const {
+  Kinematics k;
+  k.cruise_m_s = drone.speed_m_s.value_or(k.cruise_m_s);
+  k.approach_m_s = approach_m_s;
+  k.approach_within_m = approach_within_m;
+  k.accel_m_s2 = drone.accel_m_s2;
+  k.climb_m_s = drone.climb_speed_m_s;
+  k.descent_m_s = drone.descent_speed_m_s;
+  return k;
+}
 
 RunRecord run_app(const App& app, const World& world, const std::vector<DroneSpec>& drones,
                   const RuntimeSettings& settings) {

@@ -174,7 +174,7 @@ inline double hover_power_w(const DroneSpec& s, const Vec3& wind) {
 // Cruise into a headwind: what the way home may cost at most (the feasibility checks).
 inline double cruise_power_w(const DroneSpec& s, const Vec3& wind) {
   return energy::level_flight_power_w(s.power.mechanical,
-                                      s.kinematics.cruise_m_s + std::hypot(wind.x, wind.y)) +
+                                      s.kinematics().cruise_m_s + std::hypot(wind.x, wind.y)) +
          s.power.payload_w;
 }
 inline double climb_power_w(const DroneSpec& s) {

@@ -29,7 +29,7 @@ double climb_left_s(const Drone& d, double now_s) {
 }
 
 double top_speed_m_s(const Drone& d) {
-  const Kinematics& k = d.spec.kinematics;
+  const Kinematics& k = d.spec.kinematics();
   return std::max({k.cruise_m_s, k.climb_m_s, k.descent_m_s});
 }
 
@@ -43,7 +43,7 @@ Leg Runtime::candidate_leg(const Drone& d, const Vec3& to, double t) const {
   const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
   Vec3 from = position_at(d, t);
   if (d.mode == Mode::landed || d.mode == Mode::charging) from.z = 0;
-  return next_leg(current, t - d.leg_start, from, to, d.spec.kinematics);
+  return next_leg(current, t - d.leg_start, from, to, d.spec.kinematics());
 }
 
 bool Runtime::clear_to_fly(const Drone& d, const std::optional<Leg>& leg, double t0) const {

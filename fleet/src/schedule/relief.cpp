@@ -47,7 +47,7 @@ void Runtime::relieve() {
       const Vec3 to{at.x, at.y, e.layer_m};
       Vec3 from = position_at(e, now_);
       if (e.mode == Mode::landed) from.z = 0;
-      const double eta = Leg(from, to, e.spec.kinematics).duration_s();
+      const double eta = Leg(from, to, e.spec.kinematics()).duration_s();
       // Worth it only when it can stay at least the margin beyond the hand-over.
       const double airborne_s = e.mode == Mode::landed ? now_ : e.airborne_since;
       if (leave_from(e, to, airborne_s, now_, eta) < leave_s + settings_.relief_margin_s) continue;

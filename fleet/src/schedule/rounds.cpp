@@ -11,10 +11,11 @@ namespace swath::fleet::rt {
 Snapshot Runtime::snapshot_base() const {
   Snapshot s;
   const DroneSpec& first = drones_.front().spec;
-  s.eta.cruise_m_s = first.kinematics.cruise_m_s;
-  s.eta.accel_m_s2 = first.kinematics.accel_m_s2 > 0 ? first.kinematics.accel_m_s2 : 1e9;
-  s.eta.approach_m_s = first.kinematics.approach_m_s;
-  s.eta.approach_within_m = first.kinematics.approach_within_m;
+  const Kinematics k = first.kinematics();
+  s.eta.cruise_m_s = k.cruise_m_s;
+  s.eta.accel_m_s2 = k.accel_m_s2 > 0 ? k.accel_m_s2 : 1e9;
+  s.eta.approach_m_s = k.approach_m_s;
+  s.eta.approach_within_m = k.approach_within_m;
   s.weights = settings_.weights;
   s.fence = world_.fence();
   // Charge: there, serve, home above the reserve.
@@ -100,9 +101,9 @@ void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
     if (std::isfinite(d.spec.max_flight_time_s)) {
       // What is left once the descent at home and two ticks of margin are set aside.
       const double used = d.mode == Mode::landed ? 0.0 : now_ - d.airborne_since;
-      const double climb = d.mode == Mode::landed ? d.layer_m / d.spec.kinematics.climb_m_s : 0.0;
+      const double climb = d.mode == Mode::landed ? d.layer_m / d.spec.kinematics().climb_m_s : 0.0;
       ds.remaining_flight_s = d.spec.max_flight_time_s - used - climb -
-                              d.layer_m / d.spec.kinematics.descent_m_s - 2 * settings_.tick_s;
+                              d.layer_m / d.spec.kinematics().descent_m_s - 2 * settings_.tick_s;
     }
     if (d.mode == Mode::held) ds.only_request = -1;
     for (std::size_t r = 0; r < req_task.size(); ++r) {

@@ -33,6 +33,7 @@
 #include "swath/fleet/task.hpp"
 #include "swath/fleet/vehicle_address.hpp"
 #include "swath/fleet/world.hpp"
+#include "swath/vehicle/drone.hpp"
 #include "swath/vehicle/wind.hpp"
 
 namespace swath::fleet {
@@ -44,11 +45,20 @@ struct App {
   std::function<Co<void>(Ctx&)> main;
 };
 
-/// One simulated drone.
+/// swath-fleet's drone when nothing says otherwise: Kinematics' cruise, climb, descent and
+/// acceleration (paper 000 §4.2 and ours; leg.hpp), not the planner's vehicle::Drone defaults.
+vehicle::Drone default_flying_drone();
+
+/// One simulated drone: what flies (vehicle::Drone: name, speeds, acceleration, as the fleet file
+/// gives them) and what only swath-fleet's flights need beside it. A field vehicle::Drone already
+/// has is never copied here (tests/fleet/drone_spec_test.cpp checks).
 struct DroneSpec {
-  std::string name;
+  vehicle::Drone drone = default_flying_drone();
   Vec3 home_m;  ///< take-off point, local metres (z = 0)
-  Kinematics kinematics;
+  /// The paper's approach rule (§4.2): this horizontal speed within approach_within_m of a target,
+  /// m/s (0, cruise]; approach_within_m ≥ 0, 0: no approach phase.
+  double approach_m_s = Kinematics{}.approach_m_s;
+  double approach_within_m = Kinematics{}.approach_within_m;
   energy::Battery battery;  ///< initial_soc is where it starts; reserve_soc where it must land
   energy::PowerProfile power;
   /// Longest flight before it must be home, s (> 0; case 5's 60 s); infinity: the battery decides.
@@ -57,6 +67,10 @@ struct DroneSpec {
   /// The real vehicle flying this drone with `run --backend mavlink` (the fleet file's
   /// `mavlink {url, sysid}`); absent: none given. The simulated fleet ignores it.
   std::optional<VehicleAddress> vehicle;
+
+  /// How it flies, from `drone` and the approach rule (a drone without a cruise speed flies
+  /// Kinematics' default).
+  Kinematics kinematics() const;
 };
 
 enum class FaultKind { link_loss, battery_drop, motor_failure, sensor_failure };
@@ -120,7 +134,8 @@ struct RuntimeSettings {
   /// person or `swath-fleet ctl` can act during the run; 0: as fast as it computes.
   double pace = 0;
   /// Called with each line of events.jsonl (no newline) as it is logged, on the run's thread
-  /// (swath-fleet run --live streams them; a wall-clock run reports take-offs); empty: nothing is called. It cannot change the run.
+  /// (swath-fleet run --live streams them; a wall-clock run reports take-offs); empty: nothing is
+  /// called. It cannot change the run.
   std::function<void(const std::string&)> on_event;
 };
 
