@@ -322,12 +322,14 @@ struct MissionCount {
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
   std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  std::uint32_t opaque_id = 0;    ///< the vehicle's id of the stored plan (0: none given)
   template <class V>
   constexpr void fields(V& v) {
     v.field(count, "count");
     v.field(target_system, "target_system");
     v.field(target_component, "target_component");
     v.extension(mission_type, "mission_type");
+    v.extension(opaque_id, "opaque_id");
   }
 };
 
@@ -350,12 +352,14 @@ struct MissionAck {
   std::uint8_t target_component = 0;
   std::uint8_t type = 0;          ///< MAV_MISSION_RESULT
   std::uint8_t mission_type = 0;  ///< MAV_MISSION_TYPE
+  std::uint32_t opaque_id = 0;    ///< the vehicle's id of the stored plan (0: none given)
   template <class V>
   constexpr void fields(V& v) {
     v.field(target_system, "target_system");
     v.field(target_component, "target_component");
     v.field(type, "type");
     v.extension(mission_type, "mission_type");
+    v.extension(opaque_id, "opaque_id");
   }
 };
 
