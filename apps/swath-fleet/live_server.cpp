@@ -119,11 +119,13 @@ void LiveServer::serve() {
     std::vector<pollfd> fds{{listen_fd_, POLLIN, 0}};
     for (const Client& c : clients_) fds.push_back({c.fd, POLLIN, 0});
     if (::poll(fds.data(), fds.size(), kPollMs) < 0 && errno != EINTR) return;
+    // A client accepted now was not among those polled: it has no events yet.
+    const std::size_t polled = clients_.size();
     if (fds[0].revents & POLLIN) accept_client();
     std::vector<Client> kept;
     for (std::size_t k = 0; k < clients_.size(); ++k) {
       Client& c = clients_[k];
-      const short events = fds[k + 1].revents;
+      const short events = k < polled ? fds[k + 1].revents : short{0};
       bool open = true;
       if (events & (POLLIN | POLLHUP | POLLERR)) open = read_request(c);
       if (open && c.streaming) open = send_lines(c);
