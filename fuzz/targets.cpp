@@ -32,6 +32,7 @@
 #include "swath/planning/camera.hpp"
 #include "swath/planning/plan_features.hpp"
 #include "swath/vehicle/drone.hpp"
+#include "swath/vehicle/fleet_file.hpp"
 #include "swath/vehicle/vehicle_files.hpp"
 #include "swath/worlds/worlds.hpp"
 
@@ -377,6 +378,12 @@ std::vector<Target> fleet_targets() {
        {"tests/bad-input/seeds/dtg.json", "tests/bad-input/seeds/dtg-script.json"}},
       // The checker judges any text and never throws; the replay (render) refuses it in one
       // sentence or reads it.
+      // The fleet file's GeoJSON fence (Polygon/MultiPolygon, Feature, FeatureCollection).
+      {"fence_geojson",
+       [](const std::string& t) {
+         expect_input_error_only([&] { vehicle::parse_fence_geojson(t, "fuzz.geojson"); });
+       },
+       {"tests/bad-input/seeds/fence.geojson"}},
       {"fleet_events",
        [](const std::string& t) {
          fleet::check_events(t);

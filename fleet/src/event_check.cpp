@@ -24,6 +24,15 @@ std::optional<double> number(const json& e, const char* key) {
   if (it == e.end() || !it->is_number()) return std::nullopt;
   return it->get<double>();
 }
+// A field as text, or "" when absent or not a string (a log is checked, never trusted).
+std::string text(const json& e, const char* key) {
+  const auto it = e.find(key);
+  return it != e.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+bool flag(const json& e, const char* key) {
+  const auto it = e.find(key);
+  return it != e.end() && it->is_boolean() && it->get<bool>();
+}
 
 // One pass over the log: a line at a time, each rule where its facts are at hand.
 class Checker {
@@ -150,7 +159,7 @@ class Checker {
       if (task && drone) same_drone(*task, *drone, "dispatched to");
     } else if (ev == "fault") {
       ++out_.faults;
-      if (drone && e.value("fault", "") == "motor_failure") lost_.insert(*drone);
+      if (drone && text(e, "fault") == "motor_failure") lost_.insert(*drone);
     }
   }
 
@@ -162,7 +171,7 @@ class Checker {
     if (created_at_.count(*task)) bad(n_, "R2", "task " + std::to_string(*task) + " created twice");
     created_at_[*task] = n_;
     ++out_.tasks;
-    if (e.value("same_drone", false)) same_drone_tasks_.insert(*task);
+    if (flag(e, "same_drone")) same_drone_tasks_.insert(*task);
     const auto parent = id(e, "parent");
     if (parent && *parent >= 0 && !created_at_.count(*parent))
       bad(n_, "R2", "its parent " + std::to_string(*parent) + " was not created before");
@@ -272,7 +281,7 @@ class Checker {
       const auto t = number(e, "t_s").value_or(-1);
       if (t != batch_t_) close_state_batch();
       batch_t_ = t;
-      if (*z > 0 && e.value("state", "") != "lost") batch_.push_back({*x, *y, *z});
+      if (*z > 0 && text(e, "state") != "lost") batch_.push_back({*x, *y, *z});
     }
   }
 

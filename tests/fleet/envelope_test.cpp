@@ -333,6 +333,23 @@ TEST(Envelope, FleetFileKeysAndGeoJsonFence) {
   std::filesystem::remove_all(dir);
 }
 
+// A fence file of the wrong shapes (found by fuzzing: members of another type made the JSON
+// library throw its own type_error): each is one InputError naming the file.
+TEST(Envelope, MalformedFenceFilesAreInputErrors) {
+  for (const std::string text :
+       {R"({"type":5})", R"({"type":"FeatureCollection","features":[5]})",
+        R"({"type":"FeatureCollection","features":7})", R"({"type":"Feature","geometry":3})",
+        R"({"type":"Polygon","coordinates":"x"})", R"({"type":"MultiPolygon","coordinates":4})",
+        R"([1,2])", R"({"type":"Feature","properties":{"fence":1},"geometry":null})"}) {
+    try {
+      parse_fence_geojson(text, "f.geojson");
+      ADD_FAILURE() << text << " accepted";
+    } catch (const base::InputError& x) {
+      EXPECT_EQ(std::string(x.what()).rfind("f.geojson", 0), 0u) << x.what();
+    }
+  }
+}
+
 // summary's faults: those that happened; a fault scheduled after the run ended did not.
 TEST(Envelope, FaultsCountedAsTheyHappened) {
   RuntimeSettings s;

@@ -230,6 +230,16 @@ void check_one_kind(const std::vector<FleetFileDrone>& drones, const std::string
                      "and speed_m_s, not a mix");
 }
 
+// A member of a JSON object, or null when the value is not an object or lacks it (a fence file
+// is read, never trusted: json's value() throws on a non-object or a member of another type).
+json member(const json& j, const char* key) {
+  return j.is_object() && j.contains(key) ? j.at(key) : json();
+}
+std::string type_of(const json& j) {
+  const json t = member(j, "type");
+  return t.is_string() ? t.get<std::string>() : std::string();
+}
+
 // A GeoJSON linear ring: [[lon, lat], ...], at least 3 distinct vertices, closed or not.
 std::vector<geometry::GeoPoint> ring_of(const json& coords, const std::string& where) {
   if (!coords.is_array()) throw InputError(where + ": a ring is a list of [lon, lat] positions");
@@ -251,7 +261,7 @@ std::vector<geometry::GeoPoint> ring_of(const json& coords, const std::string& w
 // A geometry's polygons (outer rings; holes are refused: give an exclusion instead).
 void add_geometry(const json& g, bool inclusion, const std::string& where,
                   std::vector<FencePolygon>& out) {
-  const std::string type = g.is_object() ? g.value("type", "") : "";
+  const std::string type = type_of(g);
   const auto polygon = [&](const json& rings) {
     if (!rings.is_array() || rings.empty())
       throw InputError(where + ": a Polygon's coordinates are a list of rings");
@@ -260,9 +270,12 @@ void add_geometry(const json& g, bool inclusion, const std::string& where,
     out.push_back({ring_of(rings[0], where), inclusion});
   };
   if (type == "Polygon") {
-    polygon(g.value("coordinates", json()));
+    polygon(member(g, "coordinates"));
   } else if (type == "MultiPolygon") {
-    for (const json& p : g.value("coordinates", json::array())) polygon(p);
+    const json polygons = member(g, "coordinates");
+    if (!polygons.is_array())
+      throw InputError(where + ": a MultiPolygon's coordinates are a list of polygons");
+    for (const json& p : polygons) polygon(p);
   } else {
     throw InputError(where + ": a fence is a Polygon or MultiPolygon, not \"" + type + "\"");
   }
@@ -340,11 +353,13 @@ std::vector<FencePolygon> parse_fence_geojson(const std::string& text, const std
       else if (kind != "inclusion")
         throw InputError(where + ": properties.fence is \"inclusion\" or \"exclusion\"");
     }
-    add_geometry(f.value("geometry", json()), inclusion, where, out);
+    add_geometry(member(f, "geometry"), inclusion, where, out);
   };
-  const std::string type = doc.is_object() ? doc.value("type", "") : "";
+  const std::string type = type_of(doc);
   if (type == "FeatureCollection") {
-    const json features = doc.value("features", json::array());
+    const json features = member(doc, "features");
+    if (!features.is_array())
+      throw InputError(source + ": a FeatureCollection's features are a list");
     for (std::size_t i = 0; i < features.size(); ++i)
       feature(features[i], source + ": features[" + std::to_string(i) + "]");
   } else if (type == "Feature") {
