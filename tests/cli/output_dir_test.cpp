@@ -375,7 +375,7 @@ std::string gpx_circle(const std::string& dir, std::size_t points) {
 
 // An 800 m square traced by `points` track points (the last is the first), evenly spaced along the
 // perimeter, each but the corners' neighbours moved across its edge by up to 0.3 m.
-std::string gpx_jittered_square(const std::string& dir, std::size_t points) {
+[[maybe_unused]] std::string gpx_jittered_square(const std::string& dir, std::size_t points) {
   const std::string file = dir + "/jittered" + std::to_string(points) + ".gpx";
   std::ofstream f(file);
   f << gpx_header();

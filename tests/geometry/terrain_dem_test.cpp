@@ -200,9 +200,9 @@ std::size_t check_plan(const Surface& f, const std::string& name, double toleran
         for (int k = 0; k <= n; ++k) {
           const double t = static_cast<double>(k) / n;
           const Point2 p{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
-          const double flown =
+          const double flown_amsl_m =
               home_ground + prev->altitude_m + t * (item.altitude_m - prev->altitude_m);
-          const double agl = flown - at(f, frame.to_geo(p));
+          const double agl = flown_amsl_m - at(f, frame.to_geo(p));
           EXPECT_LE(std::abs(agl - 60.0), tolerance_m + 0.01)
               << name << " at " << p.x << "," << p.y;
         }
