@@ -33,10 +33,6 @@ double top_speed_m_s(const Drone& d) {
   return std::max({k.cruise_m_s, k.climb_m_s, k.descent_m_s});
 }
 
-bool airborne(const Drone& d) {
-  return d.mode != Mode::landed && d.mode != Mode::charging && d.mode != Mode::lost;
-}
-
 }  // namespace
 
 Leg Runtime::candidate_leg(const Drone& d, const Vec3& to, double t) const {
