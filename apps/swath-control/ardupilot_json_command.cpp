@@ -33,13 +33,13 @@ namespace {
 using base::InputError;
 namespace fs = std::filesystem;
 
-volatile sig_atomic_t g_stop = 0;  // set by the SIGINT/SIGTERM handler only
+volatile sig_atomic_t g_stop = 0;  // set by the SIGINT/SIGTERM/SIGHUP handler only
 extern "C" void note_stop(int) {
   g_stop = 1;
 }
 
-// SIGINT and SIGTERM end the serving loop (poll returns EINTR), not the process: the summary
-// and the CSV are still written.
+// SIGINT, SIGTERM and SIGHUP end the serving loop (poll returns EINTR), not the process: the
+// summary and the CSV are still written.
 class StopSignals {
  public:
   StopSignals() {
@@ -49,17 +49,19 @@ class StopSignals {
     sigemptyset(&action.sa_mask);
     ::sigaction(SIGINT, &action, &previous_int_);
     ::sigaction(SIGTERM, &action, &previous_term_);
+    ::sigaction(SIGHUP, &action, &previous_hup_);
   }
   ~StopSignals() {
     ::sigaction(SIGINT, &previous_int_, nullptr);
     ::sigaction(SIGTERM, &previous_term_, nullptr);
+    ::sigaction(SIGHUP, &previous_hup_, nullptr);
   }
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
 
  private:
   struct sigaction previous_int_ {
-  }, previous_term_{};
+  }, previous_term_{}, previous_hup_{};
 };
 
 // A file given by path, or the bundled share/<folder>/<name>.yaml (as `run` reads them).

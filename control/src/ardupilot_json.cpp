@@ -120,9 +120,8 @@ MotorMap ardupilot_motor_map(const std::vector<vehicle::Rotor>& rotors, const st
     if (auto m = match(f, rotors)) return *m;
   throw base::InputError(
       source + ": its " + std::to_string(rotors.size()) +
-      " rotors are not an ArduCopter frame this server knows (quad X with the front-right rotor "
-      "counter-clockwise or clockwise, hexa X with the front-right rotor counter-clockwise: "
-      "rotors.first_spin cw for hexa_x)");
+      " rotors are not an ArduCopter frame this server knows (quad X or X_REV, hexa X; a hexa_x "
+      "layout needs rotors.first_spin cw)");
 }
 
 std::string json_line(const JsonState& s) {
