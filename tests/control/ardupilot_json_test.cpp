@@ -4,11 +4,19 @@
 // the way SIM_JSON.cpp parse_sensors() (lines 155-250) reads it: strstr for the key, step over
 // `"key":`, sscanf("[%f, %f, %f]"). Physics checked against closed forms: free fall at g, hover
 // at the thrust that carries m g, and the signs of FRD rates for torques of known direction.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "swath/base/input_error.hpp"
@@ -335,6 +343,81 @@ TEST(ArduPilotJson, MotorMapFollowsArduCopterFrames) {
       ardupilot_motor_map(vehicle::rotor_layout(vehicle::RotorLayout::y6, 0.275, +1), "y6"),
       base::InputError);
 }
+
+#ifdef SWATH_CONTROL_BINARY
+// The program as ArduPilot meets it: UDP datagrams in, JSON lines back to the sender, the summary
+// and flight.csv when it stops (--idle-exit here; Ctrl-C by hand).
+TEST(ArduPilotJsonProgram, ServesOverUdpAndWritesTheFlight) {
+  // A free port: bound by us, released, handed to the program.
+  int probe = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(probe, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  socklen_t size = sizeof a;
+  ::getsockname(probe, reinterpret_cast<sockaddr*>(&a), &size);
+  ::close(probe);
+  const int port = ntohs(a.sin_port);
+  const std::string out = ::testing::TempDir() + "ardupilot-json-" + std::to_string(::getpid());
+  std::filesystem::remove_all(out);
+  const std::string command = std::string(SWATH_CONTROL_BINARY) + " ardupilot-json --port " +
+                              std::to_string(port) + " --idle-exit 0.5 -o " + out + " 2>&1";
+  FILE* program = ::popen(command.c_str(), "r");
+  ASSERT_NE(program, nullptr);
+  char line[1024];
+  ASSERT_NE(std::fgets(line, sizeof line, program), nullptr);  // listening
+  EXPECT_NE(std::string(line).find("FRAME_TYPE 18"), std::string::npos) << line;
+
+  int udp = ::socket(AF_INET, SOCK_DGRAM, 0);
+  timeval timeout{2, 0};
+  ::setsockopt(udp, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  const auto exchange = [&](const std::vector<std::uint8_t>& b) {
+    ::sendto(udp, b.data(), b.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    char reply[4096];
+    const ssize_t n = ::recv(udp, reply, sizeof reply, 0);
+    return n > 0 ? std::string(reply, static_cast<std::size_t>(n)) : std::string();
+  };
+  std::string last;
+  for (std::uint32_t f = 1; f <= 600; ++f)
+    last = exchange(packet_bytes(kServoMagic16, 1200, f, {1000, 1000, 1000, 1000}));
+  const ParsedLine j = parse_like_ardupilot(last);
+  ASSERT_TRUE(j.ok) << last;
+  EXPECT_NEAR(j.timestamp, 0.5, 1e-6);
+  EXPECT_EQ(exchange(packet_bytes(kServoMagic16, 1200, 600, {1000, 1000, 1000, 1000})), last);
+  const std::vector<std::uint8_t> junk{1, 2, 3};
+  ::sendto(udp, junk.data(), junk.size(), 0, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  ::close(udp);
+
+  std::string rest;
+  while (std::fgets(line, sizeof line, program)) rest += line;
+  EXPECT_EQ(WEXITSTATUS(::pclose(program)), 0);
+  EXPECT_NE(rest.find("served 600 frames (1 resends answered again, 1 bad packets ignored), "
+                      "0.5 s simulated"),
+            std::string::npos)
+      << rest;
+  // flight.csv read back: 50 rows a simulated second, at rest on the ground.
+  std::ifstream csv(out + "/flight.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("time_s,x_m,y_m,z_m,", 0), 0u) << header;
+  int rows = 0;
+  double previous = -1;
+  while (std::getline(csv, row)) {
+    std::istringstream fields(row);
+    std::string time, x, y, z;
+    std::getline(fields, time, ',');
+    std::getline(fields, x, ',');
+    std::getline(fields, y, ',');
+    std::getline(fields, z, ',');
+    EXPECT_GT(std::stod(time), previous);
+    previous = std::stod(time);
+    EXPECT_EQ(std::stod(z), 0.0) << row;
+    ++rows;
+  }
+  EXPECT_NEAR(rows, 25, 1);
+  std::filesystem::remove_all(out);
+}
+#endif
 
 }  // namespace
 }  // namespace swath::control
