@@ -40,9 +40,9 @@ extern "C" void note_stop(int) {
 
 // SIGINT, SIGTERM and SIGHUP end the serving loop (poll returns EINTR), not the process: the
 // summary and the CSV are still written.
-class StopSignals {
+class ServeStopSignals {
  public:
-  StopSignals() {
+  ServeStopSignals() {
     g_stop = 0;
     struct sigaction action {};
     action.sa_handler = note_stop;
@@ -51,13 +51,13 @@ class StopSignals {
     ::sigaction(SIGTERM, &action, &previous_term_);
     ::sigaction(SIGHUP, &action, &previous_hup_);
   }
-  ~StopSignals() {
+  ~ServeStopSignals() {
     ::sigaction(SIGINT, &previous_int_, nullptr);
     ::sigaction(SIGTERM, &previous_term_, nullptr);
     ::sigaction(SIGHUP, &previous_hup_, nullptr);
   }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
+  ServeStopSignals(const ServeStopSignals&) = delete;
+  ServeStopSignals& operator=(const ServeStopSignals&) = delete;
 
  private:
   struct sigaction previous_int_ {
@@ -65,8 +65,10 @@ class StopSignals {
 };
 
 // A file given by path, or the bundled share/<folder>/<name>.yaml (as `run` reads them).
-std::pair<std::string, std::string> config_text(const std::string& given, const std::string& folder,
-                                                const std::string& what, const std::string& flag) {
+std::pair<std::string, std::string> server_config_text(const std::string& given,
+                                                       const std::string& folder,
+                                                       const std::string& what,
+                                                       const std::string& flag) {
   fs::path path = given;
   std::error_code ec;
   if (!fs::exists(path, ec) && given.find('/') == std::string::npos &&
@@ -78,9 +80,9 @@ std::pair<std::string, std::string> config_text(const std::string& given, const 
   return {path.string(), base::read_text_file(path, what + " file", base::kMaxConfigFileBytes)};
 }
 
-class UdpSocket {
+class JsonUdpSocket {
  public:
-  UdpSocket(const std::string& address, int port) {
+  JsonUdpSocket(const std::string& address, int port) {
     sockaddr_in a{};
     a.sin_family = AF_INET;
     a.sin_port = htons(static_cast<std::uint16_t>(port));
@@ -95,16 +97,16 @@ class UdpSocket {
                        std::to_string(port) + " (" + reason + ")");
     }
   }
-  ~UdpSocket() { ::close(fd_); }
-  UdpSocket(const UdpSocket&) = delete;
-  UdpSocket& operator=(const UdpSocket&) = delete;
+  ~JsonUdpSocket() { ::close(fd_); }
+  JsonUdpSocket(const JsonUdpSocket&) = delete;
+  JsonUdpSocket& operator=(const JsonUdpSocket&) = delete;
   int fd() const { return fd_; }
 
  private:
   int fd_ = -1;
 };
 
-std::string csv_header(std::size_t rotors) {
+std::string flight_csv_header(std::size_t rotors) {
   std::string h =
       "time_s,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,roll_deg,pitch_deg,yaw_deg,on_ground,"
       "motor_power_w";
@@ -112,7 +114,7 @@ std::string csv_header(std::size_t rotors) {
   return h + "\n";
 }
 
-std::string csv_row(const control::JsonFlightRow& r) {
+std::string flight_csv_row(const control::JsonFlightRow& r) {
   using base::fixed_text;
   constexpr double kToDeg = 180.0 / std::numbers::pi;
   std::string s = fixed_text(r.time_s, 3);
@@ -160,10 +162,10 @@ int ControlArduPilotJsonCommand::run() {
   // 1. Everything checked before serving: files, the frame, the output directory, the port.
   control::ArduPilotJsonSettings settings;
   const auto [vehicle_source, vehicle_text] =
-      config_text(vehicle_, "vehicles", "vehicle", "--vehicle");
+      server_config_text(vehicle_, "vehicles", "vehicle", "--vehicle");
   settings.physics = vehicle::parse_vehicle(vehicle_text, vehicle_source);
   const auto [environment_source, environment_text] =
-      config_text(environment_, "environments", "environment", "--environment");
+      server_config_text(environment_, "environments", "environment", "--environment");
   settings.environment = vehicle::parse_environment(environment_text, environment_source);
   for (const auto* warnings : {&settings.physics.warnings, &settings.environment.warnings})
     for (const std::string& w : *warnings) std::cerr << "warning: " << w << '\n';
@@ -171,7 +173,7 @@ int ControlArduPilotJsonCommand::run() {
   settings.source = vehicle_source;
   control::ArduPilotJsonServer server(settings);
   if (!output_.empty()) base::OutputSet probe(output_, "control-ardupilot-json");  // not committed
-  UdpSocket socket(address_, port_);
+  JsonUdpSocket socket(address_, port_);
 
   const control::MotorMap& map = server.motor_map();
   std::cout << "swath-control ardupilot-json: " << settings.physics.airframe.name
@@ -182,10 +184,10 @@ int ControlArduPilotJsonCommand::run() {
   std::cout << "; Ctrl-C stops" << std::endl;
 
   // 2. Serving, until a signal (or --idle-exit).
-  std::string csv = csv_header(settings.physics.airframe.rotors.size());
+  std::string csv = flight_csv_header(settings.physics.airframe.rotors.size());
   long long next_row = 0;  // in 20 ms ticks of simulated time
   {
-    StopSignals signals;
+    ServeStopSignals signals;
     std::array<std::uint8_t, 2048> buffer{};
     auto last_packet = std::chrono::steady_clock::now();
     bool any = false;
@@ -212,7 +214,7 @@ int ControlArduPilotJsonCommand::run() {
       ::sendto(socket.fd(), reply->data(), reply->size(), 0, reinterpret_cast<sockaddr*>(&from),
                from_size);
       if (!output_.empty() && server.sim_time_s() * 50 >= static_cast<double>(next_row)) {
-        csv += csv_row(server.row());
+        csv += flight_csv_row(server.row());
         next_row = static_cast<long long>(std::floor(server.sim_time_s() * 50)) + 1;
       }
     }

@@ -14,7 +14,7 @@ namespace {
 using vehicle::Quat;
 using vehicle::Vec3;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 std::uint16_t read_u16(const std::uint8_t* p) {
   return static_cast<std::uint16_t>(p[0] | (p[1] << 8));
@@ -44,21 +44,21 @@ Vec3 euler_ned_rad(const Quat& attitude) {
 
 // One ArduCopter motor: bearing clockwise from forward (degrees) and spin (+1 CCW from above),
 // as AP_MotorsMatrix.cpp lists them; the array index is the motor number - 1.
-struct MotorDef {
+struct ApMotorDef {
   double bearing_deg;
   int spin;
 };
-struct FrameDef {
+struct ApFrameDef {
   const char* name;
   int frame_class, frame_type;
-  std::vector<MotorDef> motors;
+  std::vector<ApMotorDef> motors;
 };
 
 // AP_MotorsMatrix.cpp (ArduPilot 4.7.0-dev, 90700977c5): setup_quad_matrix MOTOR_FRAME_TYPE_X
 // and MOTOR_FRAME_TYPE_BF_X_REV, setup_hexa_matrix MOTOR_FRAME_TYPE_X. BF_X_REV is the quad X of
 // swath's bundled quad-f450 (front-left rotor counter-clockwise).
-const std::vector<FrameDef>& frames() {
-  static const std::vector<FrameDef> defs{
+const std::vector<ApFrameDef>& ardupilot_frames() {
+  static const std::vector<ApFrameDef> defs{
       {"quad X", 1, 1, {{45, +1}, {-135, +1}, {-45, -1}, {135, -1}}},
       {"quad X_REV (Betaflight order, reversed motors)",
        1,
@@ -76,17 +76,19 @@ double bearing_gap_deg(double a, double b) {
 }
 
 // Matches each motor of `frame` to the rotor at its bearing (within 10°) with its spin.
-std::optional<MotorMap> match(const FrameDef& frame, const std::vector<vehicle::Rotor>& rotors) {
+std::optional<MotorMap> match_frame(const ApFrameDef& frame,
+                                    const std::vector<vehicle::Rotor>& rotors) {
   if (frame.motors.size() != rotors.size()) return std::nullopt;
   MotorMap map{frame.name, frame.frame_class, {}, {}};
   map.frame = std::string(frame.name) + " (FRAME_CLASS " + std::to_string(frame.frame_class) +
               ", FRAME_TYPE " + std::to_string(frame.frame_type) + ")";
   std::vector<bool> used(rotors.size(), false);
-  for (const MotorDef& m : frame.motors) {
+  for (const ApMotorDef& m : frame.motors) {
     bool found = false;
     for (std::size_t i = 0; i < rotors.size() && !found; ++i) {
       // swath's body y points left: the clockwise bearing is -atan2(y, x).
-      const double bearing = -std::atan2(rotors[i].position_m.y, rotors[i].position_m.x) / kDeg;
+      const double bearing =
+          -std::atan2(rotors[i].position_m.y, rotors[i].position_m.x) / kRadPerDeg;
       if (used[i] || rotors[i].spin != m.spin || bearing_gap_deg(bearing, m.bearing_deg) > 10)
         continue;
       used[i] = found = true;
@@ -116,8 +118,8 @@ std::optional<ServoPacket> parse_servo_packet(const std::uint8_t* bytes, std::si
 }
 
 MotorMap ardupilot_motor_map(const std::vector<vehicle::Rotor>& rotors, const std::string& source) {
-  for (const FrameDef& f : frames())
-    if (auto m = match(f, rotors)) return *m;
+  for (const ApFrameDef& f : ardupilot_frames())
+    if (auto m = match_frame(f, rotors)) return *m;
   throw base::InputError(
       source + ": its " + std::to_string(rotors.size()) +
       " rotors are not an ArduCopter frame this server knows (quad X or X_REV, hexa X; a hexa_x "
@@ -143,7 +145,7 @@ std::string json_line(const JsonState& s) {
 }
 
 namespace {
-vehicle::FlightModelSettings model_settings(const ArduPilotJsonSettings& s) {
+vehicle::FlightModelSettings json_model_settings(const ArduPilotJsonSettings& s) {
   vehicle::FlightModelSettings m;
   m.physics = s.physics;
   // ArduPilot simulates its own IMU, compass, barometer and GPS from the state we send.
@@ -161,7 +163,7 @@ vehicle::FlightModelSettings model_settings(const ArduPilotJsonSettings& s) {
 ArduPilotJsonServer::ArduPilotJsonServer(const ArduPilotJsonSettings& settings)
     : settings_(settings),
       map_(ardupilot_motor_map(settings.physics.airframe.rotors, settings.source)),
-      model_(model_settings(settings)),
+      model_(json_model_settings(settings)),
       pwm_us_(settings.physics.airframe.rotors.size(), settings.physics.esc.pwm_min_us),
       on_ground_(settings.start_height_m <= 0) {
   last_reply_ = json_line(json_state());
