@@ -132,9 +132,10 @@ std::string flight_csv_row(const control::JsonFlightRow& r) {
 }  // namespace
 
 void ControlArduPilotJsonCommand::setup(CLI::App& app) {
-  app.add_option("--vehicle", vehicle_,
-                 "Vehicle file, or a bundled one (quad-f450; its rotors must be an ArduCopter "
-                 "quad X or hexa X: the program prints the FRAME_CLASS and FRAME_TYPE to set)")
+  app.add_option(
+         "--vehicle", vehicle_,
+         "Vehicle file, or a bundled one (quad-f450; its rotors must be an ArduCopter "
+         "quad X, quad X_REV or hexa X; the program prints the FRAME_CLASS and FRAME_TYPE to set)")
       ->capture_default_str();
   app.add_option("--environment", environment_,
                  "Wind: calm, lab, rugby, arch (paper 002's places) or an environment file")
