@@ -2,6 +2,7 @@
 #include <memory>
 #include <vector>
 
+#include "ardupilot_json_command.hpp"
 #include "command.hpp"
 #include "compare_command.hpp"
 #include "fit_command.hpp"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<ControlCompareCommand>());
   commands.push_back(std::make_unique<ControlSweepCommand>());
   commands.push_back(std::make_unique<ControlFitCommand>());
+  commands.push_back(std::make_unique<ControlArduPilotJsonCommand>());
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",
                      "Exit codes: 0 the flight ended as asked (completed, the reserve reached with "

@@ -38,6 +38,8 @@ class FlightModel {
 
   SimTime now() const { return now_; }
   const MultirotorState& state() const { return state_; }
+  /// Replaces the body's state at now() (a caller's ground contact: control/ardupilot_json).
+  void set_state(const MultirotorState& state) { state_ = state; }
   const VehiclePhysics& physics() const { return settings_.physics; }
   /// The wind at the body, world ENU (held since the last wind event).
   const Vec3& wind_m_s() const { return wind_; }
