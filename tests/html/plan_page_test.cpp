@@ -25,6 +25,7 @@
 
 #include <regex>
 
+#include "chromium.hpp"
 #include "swath/render/image.hpp"
 
 namespace {
@@ -32,63 +33,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct ShellRun {
-  int exit_code = -1;
-  std::string out;
-};
-
-// `command` through /bin/sh from the source directory, standard output and error together.
-ShellRun run(const std::string& command) {
-  const std::string full = "cd '" SWATH_SOURCE_DIR "' && " + command + " 2>&1";
-  ShellRun r;
-  FILE* pipe = ::popen(full.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
-    r.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path scratch_root() {
-  return fs::temp_directory_path() / ("swath-html-" + std::to_string(::getpid()));
-}
-
-// The plans and Chromium's profiles (some MB each) go when every test passed; kept to look at
-// otherwise.
-class RemoveScratch : public ::testing::Environment {
- public:
-  void TearDown() override {
-    if (!::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(scratch_root());
-  }
-};
-const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = scratch_root() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir.parent_path());
-  return dir;
-}
-
-std::string chromium() {
-  const char* env = std::getenv("SWATH_CHROMIUM");
-  const std::string path = env && *env ? env : "/usr/bin/chromium";
-  return fs::exists(path) ? path : "";
-}
-
-#define REQUIRE_CHROMIUM()                                                                     \
-  if (chromium().empty())                                                                      \
-  GTEST_SKIP() << "no Chromium at /usr/bin/chromium or $SWATH_CHROMIUM: the browser tests of " \
-                  "plan.html need it (scripts/setup installs it)"
+using namespace swath::html_test;
 
 // Chromium headless, offline: every host name fails to resolve, so a request could reach nothing
 // even if one were made (the page's own record of requests is what is checked).
@@ -108,18 +53,7 @@ std::string dom(const fs::path& page, const std::string& fragment = "") {
 
 // The page's self-check, read from the DOM.
 json self_check(const fs::path& page) {
-  ShellRun r;
-  r.out = dom(page);
-  const std::string open = "<pre id=\"swath-check\" hidden=\"\">";
-  const std::size_t at = r.out.find(open);
-  if (at == std::string::npos) return json();
-  const std::size_t end = r.out.find("</pre>", at);
-  std::string text = r.out.substr(at + open.size(), end - at - open.size());
-  for (const auto& [entity, c] : std::map<std::string, std::string>{
-           {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}})
-    for (std::size_t k; (k = text.find(entity)) != std::string::npos;)
-      text.replace(k, entity.size(), c);
-  return json::parse(text, nullptr, false);
+  return swath::html_test::self_check(dom(page));
 }
 
 std::vector<std::vector<std::string>> csv(const fs::path& path) {
@@ -188,7 +122,13 @@ void expect_clean_page(const fs::path& dir, const std::string& what) {
             << check["script_ms"] << " ms (virtual time)\n";
 }
 
-const char* kMeadowFleet =
+// `swath plan ARGS -o DIR`, which must succeed.
+void plan_into(const fs::path& dir, const std::string& args) {
+  const ShellRun plan = run("'" SWATH_BINARY "' plan " + args + " -o '" + dir.string() + "'");
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+}
+
+const std::string kMeadowFleet =
     "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --fleet "
     "share/fleets/three-quads.yaml --division region --balance makespan --exclude "
     "share/zones/meadow-mast.geojson --clearance 10 --html";
@@ -196,9 +136,7 @@ const char* kMeadowFleet =
 TEST(PlanPage, MeadowFleetDrawsEveryLayerWithoutErrorsOrRequests) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("meadow-fleet");
-  const ShellRun plan =
-      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadowFleet));
   expect_clean_page(dir, "meadow, three quads, a mast");
   EXPECT_LT(fs::file_size(dir / "plan.html"), 1'000'000u);
 }
@@ -206,11 +144,9 @@ TEST(PlanPage, MeadowFleetDrawsEveryLayerWithoutErrorsOrRequests) {
 TEST(PlanPage, SortiesShowTheirResumePoints) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("sorties");
-  const ShellRun plan = run("'" SWATH_BINARY
-                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-                            "--altitude 40 --sorties auto --endurance 420 --html -o " +
-                            dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir,
+                                    "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                                    "--altitude 40 --sorties auto --endurance 420 --html"));
   ASSERT_GT(expected_layers(dir)["resume"], 1);
   expect_clean_page(dir, "meadow in sorties");
 }
@@ -222,9 +158,7 @@ double segment_distance(std::array<double, 2> p, std::array<double, 2> a, std::a
 TEST(PlanPage, SelectedWaypointShowsItsItemHeightAndClearance) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("select");
-  const ShellRun plan =
-      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadowFleet));
   const json mission = json::parse(slurp(dir / "mission.geojson"));
   std::vector<json> zones;
   for (const json& f : mission["features"])
@@ -273,11 +207,9 @@ TEST(PlanPage, SelectedWaypointShowsItsItemHeightAndClearance) {
 TEST(PlanPage, TerrainPlanShowsHeightsAlongEachPath) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("terrain");
-  const ShellRun plan = run("'" SWATH_BINARY
-                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-                            "--altitude 60 --terrain share/dems/meadow-hill.asc --html -o " +
-                            dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir,
+                                    "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                                    "--altitude 60 --terrain share/dems/meadow-hill.asc --html"));
   expect_clean_page(dir, "meadow over its hill");
   std::map<std::string, int> expected;
   std::map<std::string, std::pair<double, double>> heights;  // lowest, highest
@@ -317,12 +249,10 @@ TEST(PlanPage, DroneNamesAreText) {
   std::string fleet = slurp(fs::path(SWATH_SOURCE_DIR) / "share/fleets/three-quads.yaml");
   fleet.replace(fleet.find("name: alpha"), 11, "name: \"<img src=planted.png>\"");
   std::ofstream(dir.parent_path() / "fleet/evil.yaml") << fleet;
-  const ShellRun plan =
-      run("'" SWATH_BINARY
-          "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-          "--altitude 60 --html --fleet '" +
-          (dir.parent_path() / "fleet/evil.yaml").string() + "' -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir,
+                                    "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                                    "--altitude 60 --html --fleet '" +
+                                        (dir.parent_path() / "fleet/evil.yaml").string() + "'"));
   expect_clean_page(dir, "a drone named <img src=planted.png>");
   EXPECT_NE(dom(dir / "plan.html").find("Path &lt;img src=planted.png&gt;"), std::string::npos);
 }
@@ -331,12 +261,10 @@ TEST(PlanPage, DroneNamesAreText) {
 TEST(PlanPage, BasemapUrlIsTheOnlyThingFetched) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("basemap");
-  const ShellRun plan =
-      run("'" SWATH_BINARY
-          "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-          "--altitude 60 --html --basemap-url 'http://127.0.0.1:9/{z}/{x}/{y}.png' -o " +
-          dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(
+      plan_into(dir,
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                "--altitude 60 --html --basemap-url 'http://127.0.0.1:9/{z}/{x}/{y}.png'"));
   const json check = self_check(dir / "plan.html");
   ASSERT_TRUE(check.is_object());
   ASSERT_FALSE(check["resources"].empty());
@@ -357,36 +285,24 @@ double segment_distance(std::array<double, 2> p, std::array<double, 2> a, std::a
   return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
 }
 
-TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
-  REQUIRE_CHROMIUM();
-  const fs::path dir = scratch("vineyard");
-  const ShellRun plan = run("'" SWATH_BINARY
-                            "' plan share/fields/vineyard.kml --camera "
-                            "dji-phantom-4-pro --altitude 60 --home 46.2276,7.5917 --html -o " +
-                            dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
-  const fs::path png = dir / "area.png";
-  const ShellRun shot =
-      run(browser(dir / "profile",
-                  "--hide-scrollbars --force-device-scale-factor=1 "
-                  "--window-size=1200,900 --screenshot='" +
-                      png.string() + "'",
-                  "file://" + fs::absolute(dir / "plan.html").string() + "#layers=area"));
-  ASSERT_TRUE(fs::exists(png)) << shot.out;
-  const swath::render::Image image = swath::render::decode_png(slurp(png));
-  ASSERT_EQ(image.width, 1200);
-  ASSERT_EQ(image.height, 900);
+// The page's view, as Leaflet draws it in a 1200 x 900 window: the bounds of every position in
+// mission.geojson in Web Mercator, fitted into the map (x from 300, the side panel's width) 20 px
+// from its edges, centred (fitBounds, zoomSnap 0).
+struct PageView {
+  double scale = 0, cx = 0, cy = 0;
+  std::array<double, 2> pixel(double lon_deg, double lat_deg) const {
+    const auto m = mercator(lon_deg, lat_deg);
+    return {300 + 900 / 2.0 + (m[0] - cx) * scale, 900 / 2.0 - (m[1] - cy) * scale};
+  }
+};
 
-  // The view: the bounds of every position in mission.geojson, fitted into the map (x from 300,
-  // the side panel's width) 20 px from its edges, centred.
+PageView page_view(const fs::path& dir) {
   const json mission = json::parse(slurp(dir / "mission.geojson"));
-  std::vector<std::vector<std::array<double, 2>>> rings;  // the area's, projected
   double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
   const auto grow = [&](const json& position) {
     const auto m = mercator(position[0], position[1]);
     x0 = std::min(x0, m[0]), x1 = std::max(x1, m[0]), y0 = std::min(y0, m[1]),
     y1 = std::max(y1, m[1]);
-    return m;
   };
   for (const json& f : mission["features"]) {
     const json& g = f["geometry"];
@@ -394,19 +310,47 @@ TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
     if (g["type"] == "LineString")
       for (const json& p : g["coordinates"]) grow(p);
     if (g["type"] == "Polygon")
-      for (const json& ring : g["coordinates"]) {
-        std::vector<std::array<double, 2>> r;
-        for (const json& p : ring) r.push_back(grow(p));
-        if (f["properties"]["role"] == "area") rings.push_back(r);
-      }
+      for (const json& ring : g["coordinates"])
+        for (const json& p : ring) grow(p);
   }
+  const double map_w = 900, map_h = 900, pad = 20;
+  return {std::min((map_w - 2 * pad) / (x1 - x0), (map_h - 2 * pad) / (y1 - y0)), (x0 + x1) / 2,
+          (y0 + y1) / 2};
+}
+
+// Chromium's 1200 x 900 screenshot of DIR/plan.html showing the layers `layers` names.
+swath::render::Image screenshot(const fs::path& dir, const std::string& layers) {
+  const fs::path png = dir / ("shot-" + layers + ".png");
+  const ShellRun shot =
+      run(browser(dir / "profile",
+                  "--hide-scrollbars --force-device-scale-factor=1 "
+                  "--window-size=1200,900 --screenshot='" +
+                      png.string() + "'",
+                  "file://" + fs::absolute(dir / "plan.html").string() + "#layers=" + layers));
+  EXPECT_TRUE(fs::exists(png)) << shot.out;
+  return fs::exists(png) ? swath::render::decode_png(slurp(png)) : swath::render::Image{};
+}
+
+TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("vineyard");
+  ASSERT_NO_FATAL_FAILURE(
+      plan_into(dir,
+                "share/fields/vineyard.kml --camera "
+                "dji-phantom-4-pro --altitude 60 --home 46.2276,7.5917 --html"));
+  const swath::render::Image image = screenshot(dir, "area");
+  ASSERT_EQ(image.width, 1200);
+  ASSERT_EQ(image.height, 900);
+  const PageView view = page_view(dir);
+  std::vector<std::vector<std::array<double, 2>>> rings;  // the area's, in pixels
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  for (const json& f : mission["features"])
+    if (f["properties"]["role"] == "area")
+      for (const json& ring : f["geometry"]["coordinates"]) {
+        rings.emplace_back();
+        for (const json& p : ring) rings.back().push_back(view.pixel(p[0], p[1]));
+      }
   ASSERT_FALSE(rings.empty());
-  const double map_x = 300, map_w = 900, map_h = 900, pad = 20;
-  const double scale = std::min((map_w - 2 * pad) / (x1 - x0), (map_h - 2 * pad) / (y1 - y0));
-  const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-  for (auto& ring : rings)
-    for (auto& p : ring)
-      p = {map_x + map_w / 2 + (p[0] - cx) * scale, map_h / 2 - (p[1] - cy) * scale};
 
   // Every 5th pixel at least 3 px from the area's edges and clear of the zoom buttons: inside
   // the area (even-odd over its rings: holes are outside) the fill, #7fbf5f at half opacity over
@@ -447,9 +391,7 @@ TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
 // No browser needed: the same plan gives the same page from `plan --html` and `render --html`.
 TEST(PlanPage, RenderWritesThePageThePlanWrote) {
   const fs::path dir = scratch("render");
-  const ShellRun plan =
-      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadowFleet));
   const std::string written = slurp(dir / "plan.html");
   fs::remove(dir / "plan.html");
   const ShellRun render = run("'" SWATH_BINARY "' render " + dir.string() + " --html");
