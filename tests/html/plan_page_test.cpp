@@ -17,11 +17,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <sstream>
 
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <GeographicLib/LocalCartesian.hpp>
+#include <GeographicLib/UTMUPS.hpp>
 
 #include <regex>
 
@@ -418,6 +422,232 @@ TEST(PlanPage, BadBasemapUrlIsRefusedAndNothingWritten) {
                              dir.string());
   EXPECT_EQ(alone.exit_code, 2) << alone.out;
   EXPECT_FALSE(fs::exists(dir));
+}
+
+// ---- --basemap: the user's raster behind the plan ----------------------------------------------
+
+// Three squares of 12 m (red, green, blue) on dark grey ground, at places inside the meadow.
+struct Mark {
+  double lat_deg, lon_deg;
+  int channel;  // 0 red, 1 green, 2 blue
+};
+const std::array<Mark, 3> kMarks{
+    {{47.3980, 8.5410, 0}, {47.3992, 8.5430, 1}, {47.3978, 8.5440, 2}}};
+
+// An orthophoto of the meadow as GDAL would read one: an RGB GeoTIFF in UTM zone 32N (EPSG:32632),
+// 1 m pixels, the squares placed by GeographicLib's UTM (not by GDAL, which swath uses to read it).
+// `blank`: the same raster all white, no squares.
+void write_ortho(const fs::path& path, bool blank = false) {
+  GDALAllRegister();
+  double e0 = 1e9, n1 = -1e9, e1 = -1e9, n0 = 1e9;
+  for (const auto& [lat, lon] : {std::pair{47.3965, 8.5385}, std::pair{47.4015, 8.5465}}) {
+    int zone;
+    bool north;
+    double e, n;
+    GeographicLib::UTMUPS::Forward(lat, lon, zone, north, e, n, 32);
+    e0 = std::min(e0, e - 100), e1 = std::max(e1, e + 100);
+    n0 = std::min(n0, n - 100), n1 = std::max(n1, n + 100);
+  }
+  e0 = std::floor(e0), n1 = std::ceil(n1);
+  const int w = static_cast<int>(e1 - e0), h = static_cast<int>(n1 - n0);
+  std::vector<std::vector<std::uint8_t>> bands(
+      3, std::vector<std::uint8_t>(w * h, static_cast<std::uint8_t>(blank ? 255 : 40)));
+  for (const Mark& m : kMarks) {
+    if (blank) break;
+    int zone;
+    bool north;
+    double e, n;
+    GeographicLib::UTMUPS::Forward(m.lat_deg, m.lon_deg, zone, north, e, n, 32);
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const double pe = e0 + i + 0.5, pn = n1 - j - 0.5;  // the pixel's centre
+        if (std::abs(pe - e) < 6 && std::abs(pn - n) < 6)
+          for (int b = 0; b < 3; ++b)
+            bands[b][j * w + i] = static_cast<std::uint8_t>(b == m.channel ? 255 : 0);
+      }
+  }
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  ASSERT_NE(gtiff, nullptr);
+  GDALDataset* d = gtiff->Create(path.c_str(), w, h, 3, GDT_Byte, nullptr);
+  ASSERT_NE(d, nullptr);
+  double gt[6] = {e0, 1, 0, n1, 0, -1};
+  d->SetGeoTransform(gt);
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32632);
+  d->SetSpatialRef(&utm);
+  for (int b = 0; b < 3; ++b)
+    ASSERT_EQ(d->GetRasterBand(b + 1)->RasterIO(GF_Write, 0, 0, w, h, bands[b].data(), w, h,
+                                                GDT_Byte, 0, 0),
+              CE_None);
+  GDALClose(d);
+}
+
+// The centre of the square of colour `channel` in the page's screenshot (the basemap alone): the
+// pixels right of the side panel (300 px) where `channel` is strong (>= 200) and the others weak
+// (<= 110); NaN when fewer than `least`.
+std::array<double, 2> square_on_page(const swath::render::Image& image, int channel, int least) {
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 300; x < image.width; ++x) {
+      bool ok = true;
+      for (int c = 0; c < 3; ++c)
+        ok = ok && (c == channel ? image.at(x, y, c) >= 200 : image.at(x, y, c) <= 110);
+      if (ok) sx += x + 0.5, sy += y + 0.5, ++n;
+    }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return n >= least ? std::array<double, 2>{sx / n, sy / n} : std::array<double, 2>{nan, nan};
+}
+
+// The centre of the square of colour `channel` in coverage.png, from what the basemap changed
+// against the same picture over a blank (white) basemap: every layer is blended linearly over the
+// backdrop, so there the difference is (255 - the raster) times what the layers let through in
+// each channel alike: small in `channel` and large in the two others only where the square is.
+// NaN when fewer than `least` pixels say so.
+std::array<double, 2> square_in_picture(const swath::render::Image& image,
+                                        const swath::render::Image& blank, int channel, int least) {
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      bool ok = true;
+      for (int c = 0; c < 3; ++c) {
+        const int diff = blank.at(x, y, c) - image.at(x, y, c);
+        ok = ok && (c == channel ? std::abs(diff) <= 12 : diff >= 60);
+      }
+      if (ok) sx += x + 0.5, sy += y + 0.5, ++n;
+    }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return n >= least ? std::array<double, 2>{sx / n, sy / n} : std::array<double, 2>{nan, nan};
+}
+
+const std::string kMeadow = "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60";
+
+// In the page (Chromium's screenshot, the basemap alone): each square where Web Mercator and
+// Leaflet's fitBounds put its coordinates, within 3 px.
+TEST(Basemap, PageShowsTheRasterWhereItsCoordinatesSay) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("basemap-page");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-page.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadow + " --html --basemap '" + ortho.string() + "'"));
+  expect_clean_page(dir, "meadow over its orthophoto");
+  const swath::render::Image image = screenshot(dir, "none");
+  ASSERT_EQ(image.width, 1200);
+  const PageView view = page_view(dir);
+  for (const Mark& m : kMarks) {
+    const auto expected = view.pixel(m.lon_deg, m.lat_deg);
+    const auto found = square_on_page(image, m.channel, 20);
+    EXPECT_NEAR(found[0], expected[0], 3) << "square " << m.channel;
+    EXPECT_NEAR(found[1], expected[1], 3) << "square " << m.channel;
+  }
+}
+
+// In coverage.png: the squares' centres (square_in_picture) fit one scale and offset from
+// east/north metres (GeographicLib's local frame) to pixels, north up, within 3 px; and that fit
+// puts the area's corners on its outline as drawn without a basemap (the imagery sits under the
+// plan, not merely consistent with itself).
+TEST(Basemap, CoveragePictureShowsTheRasterUnderThePlan) {
+  const fs::path plain_dir = scratch("basemap-plain"), blank_dir = scratch("basemap-blank"),
+                 dir = scratch("basemap-png");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-png.tif", white = scratch_root() / "white.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
+  ASSERT_NO_FATAL_FAILURE(write_ortho(white, true));
+  const std::string args = kMeadow + " --render --size 1200x900";
+  ASSERT_NO_FATAL_FAILURE(plan_into(plain_dir, args));
+  ASSERT_NO_FATAL_FAILURE(plan_into(blank_dir, args + " --basemap '" + white.string() + "'"));
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, args + " --basemap '" + ortho.string() + "'"));
+  const auto plain = swath::render::decode_png(slurp(plain_dir / "coverage.png"));
+  const auto blank = swath::render::decode_png(slurp(blank_dir / "coverage.png"));
+  const auto image = swath::render::decode_png(slurp(dir / "coverage.png"));
+  ASSERT_EQ(image.width, plain.width);
+  ASSERT_EQ(image.width, blank.width);
+  const GeographicLib::LocalCartesian frame(kMarks[0].lat_deg, kMarks[0].lon_deg, 0);
+  const auto local = [&frame](double lat, double lon) {
+    double x, y, z;
+    frame.Forward(lat, lon, 0, x, y, z);
+    return std::array<double, 2>{x, y};
+  };
+  // Least squares for px = ox + s e, py = oy - s n over the three squares.
+  std::array<std::array<double, 2>, 3> en, px;
+  for (std::size_t k = 0; k < 3; ++k) {
+    en[k] = local(kMarks[k].lat_deg, kMarks[k].lon_deg);
+    px[k] = square_in_picture(image, blank, kMarks[k].channel, 20);
+    ASSERT_FALSE(std::isnan(px[k][0])) << "square " << k << " not in coverage.png";
+  }
+  double me = 0, mn = 0, mx = 0, my = 0;
+  for (std::size_t k = 0; k < 3; ++k)
+    me += en[k][0] / 3, mn += en[k][1] / 3, mx += px[k][0] / 3, my += px[k][1] / 3;
+  double num = 0, den = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    num += (en[k][0] - me) * (px[k][0] - mx) - (en[k][1] - mn) * (px[k][1] - my);
+    den += (en[k][0] - me) * (en[k][0] - me) + (en[k][1] - mn) * (en[k][1] - mn);
+  }
+  const double s = num / den, ox = mx - s * me, oy = my + s * mn;
+  ASSERT_GT(s, 0.5);  // px per m: the meadow fills most of the picture
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR(px[k][0], ox + s * en[k][0], 3) << "square " << k;
+    EXPECT_NEAR(px[k][1], oy - s * en[k][1], 3) << "square " << k;
+  }
+  // The area where the fit puts it: over a basemap its fill is see-through, so the pixels that
+  // differ between the plain picture and the one over the white raster are the area's (but where
+  // opaque paths and markers cover it); their bounds against the area's corners through the fit.
+  double lo_x = 1e9, hi_x = -1e9, lo_y = 1e9, hi_y = -1e9;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      int diff = 0;
+      for (int c = 0; c < 3; ++c)
+        diff = std::max(diff, std::abs(plain.at(x, y, c) - blank.at(x, y, c)));
+      if (diff <= 8) continue;
+      lo_x = std::min(lo_x, x + 0.5), hi_x = std::max(hi_x, x + 0.5);
+      lo_y = std::min(lo_y, y + 0.5), hi_y = std::max(hi_y, y + 0.5);
+    }
+  double fit_lo_x = 1e9, fit_hi_x = -1e9, fit_lo_y = 1e9, fit_hi_y = -1e9;
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  for (const json& f : mission["features"])
+    if (f["properties"]["role"] == "area")
+      for (const json& p : f["geometry"]["coordinates"][0]) {
+        const auto e = local(p[1], p[0]);
+        fit_lo_x = std::min(fit_lo_x, ox + s * e[0]), fit_hi_x = std::max(fit_hi_x, ox + s * e[0]);
+        fit_lo_y = std::min(fit_lo_y, oy - s * e[1]), fit_hi_y = std::max(fit_hi_y, oy - s * e[1]);
+      }
+  EXPECT_NEAR(lo_x, fit_lo_x, 3);
+  EXPECT_NEAR(hi_x, fit_hi_x, 3);
+  EXPECT_NEAR(lo_y, fit_lo_y, 3);
+  EXPECT_NEAR(hi_y, fit_hi_y, 3);
+}
+
+// A raster that cannot be read, has no georeference or lies elsewhere: one sentence, exit 2,
+// nothing written.
+TEST(Basemap, BadRastersAreRefusedAndNothingWritten) {
+  fs::create_directories(scratch_root());
+  const fs::path text = scratch_root() / "not-a-raster.tif";
+  std::ofstream(text) << "not a raster\n";
+  const fs::path bare = scratch_root() / "bare.asc";  // an ASCII grid has no CRS without a .prj
+  std::ofstream(bare) << "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n";
+  const fs::path far = scratch_root() / "far.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(far));
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {kMeadow + " --render --basemap '" + text.string() + "'", "not a raster GDAL reads"},
+      {kMeadow + " --html --basemap '" + bare.string() + "'", "has no georeference"},
+      {"share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --html --basemap '" +
+           far.string() + "'",
+       "does not overlap the plan"},
+      {"share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --render --basemap '" +
+           far.string() + "'",
+       "does not overlap the plan"},
+      {kMeadow + " --basemap '" + far.string() + "'", "give --render or --html"}};
+  for (const auto& [args, says] : cases) {
+    const fs::path dir = scratch("basemap-refused");
+    const ShellRun plan =
+        run("'" SWATH_BINARY "' plan " + args + " -o '" + dir.string() + "' 2>&1");
+    EXPECT_EQ(plan.exit_code, 2) << args << "\n" << plan.out;
+    EXPECT_NE(plan.out.find(says), std::string::npos) << plan.out;
+    EXPECT_EQ(std::count(plan.out.begin(), plan.out.end(), '\n'), 1) << plan.out;
+    EXPECT_FALSE(fs::exists(dir)) << args;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
 
 namespace swath::web::detail {
@@ -50,6 +52,22 @@ inline std::string script_json(const nlohmann::ordered_json& data) {
       safe += c;
   }
   return safe;
+}
+
+/// `bytes` in base64 (RFC 4648, with padding), for a data: address.
+inline std::string base64(const std::string& bytes) {
+  static const char* const kDigits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t k = 0; k < bytes.size(); k += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - k);
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      v = (v << 8) | (i < n ? static_cast<unsigned char>(bytes[k + i]) : 0u);
+    for (std::size_t i = 0; i < 4; ++i) out += i <= n ? kDigits[(v >> (18 - 6 * i)) & 63] : '=';
+  }
+  return out;
 }
 
 }  // namespace swath::web::detail

@@ -34,10 +34,17 @@ std::string plan_page(const PlanPage& page) {
   if (!page.basemap_url.empty()) csp += " " + tile_origin(page.basemap_url);
   nlohmann::ordered_json files = nlohmann::ordered_json::object();
   for (const auto& [name, text] : page.files) files[name] = text;
+  nlohmann::ordered_json image;  // null: none
+  if (page.basemap_image) {
+    const MapImage& m = *page.basemap_image;
+    image = {{"url", "data:image/png;base64," + detail::base64(m.png)},
+             {"bounds", {{m.south_deg, m.west_deg}, {m.north_deg, m.east_deg}}}};
+  }
   const nlohmann::ordered_json data = {
       {"title", page.title},
       {"basemap_url", page.basemap_url.empty() ? nlohmann::ordered_json()
                                                : nlohmann::ordered_json(page.basemap_url)},
+      {"basemap_image", image},
       {"files", files}};
   // From the last placeholder to the first: what is put in cannot be taken for a placeholder.
   std::string html = plan_page_template();
