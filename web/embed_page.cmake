@@ -16,6 +16,7 @@ else()
 endif()
 file(READ ${PAGE_DIR}/shell.html page)
 file(READ ${PAGE_DIR}/${page_html} page_body)
+string(REGEX REPLACE "\n$" "" page_body "${page_body}")  # the shell ends its line
 string(REPLACE "/*SWATH_BODY*/" "${page_body}" page "${page}")
 file(READ ${PAGE_DIR}/${page_js_file} page_js)
 file(READ ${PAGE_DIR}/${page_css_file} page_css)
