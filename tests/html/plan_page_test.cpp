@@ -533,6 +533,12 @@ TEST(Basemap, PageShowsTheRasterWhereItsCoordinatesSay) {
   ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
   ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadow + " --html --basemap '" + ortho.string() + "'"));
   expect_clean_page(dir, "meadow over its orthophoto");
+  // swath render writes the same page from the plan's files.
+  const std::string written = slurp(dir / "plan.html");
+  const ShellRun render = run("'" SWATH_BINARY "' render '" + dir.string() +
+                              "' --html --basemap '" + ortho.string() + "'");
+  ASSERT_EQ(render.exit_code, 0) << render.out;
+  EXPECT_TRUE(slurp(dir / "plan.html") == written) << "swath render --html --basemap differs";
   const swath::render::Image image = screenshot(dir, "none");
   ASSERT_EQ(image.width, 1200);
   const PageView view = page_view(dir);
@@ -564,6 +570,13 @@ TEST(Basemap, CoveragePictureShowsTheRasterUnderThePlan) {
   const auto image = swath::render::decode_png(slurp(dir / "coverage.png"));
   ASSERT_EQ(image.width, plain.width);
   ASSERT_EQ(image.width, blank.width);
+  // swath render draws the same picture from the plan's files.
+  const ShellRun render =
+      run("'" SWATH_BINARY "' render '" + dir.string() + "' --size 1200x900 --coverage '" +
+          (dir / "again.png").string() + "' --basemap '" + ortho.string() + "'");
+  ASSERT_EQ(render.exit_code, 0) << render.out;
+  EXPECT_TRUE(slurp(dir / "again.png") == slurp(dir / "coverage.png"))
+      << "swath render --basemap draws another picture";
   const GeographicLib::LocalCartesian frame(kMarks[0].lat_deg, kMarks[0].lon_deg, 0);
   const auto local = [&frame](double lat, double lon) {
     double x, y, z;
