@@ -1,6 +1,8 @@
 # Writes OUTPUT, a C++ source holding a page (PAGE: plan, or live) with Leaflet's and the page's CSS
 # and JavaScript inlined: swath::web::plan_page_template() (plan.html, map.js, map.css) or
-# live_page_template() (live.html, live.js, live.css). Run by web/CMakeLists.txt at build time.
+# live_page_template() (live.html, live.js, live.css). Both pages are shell.html (head, error
+# recorder, scripts) with the page's own side panel (plan.html or live.html) as its body. Run by
+# web/CMakeLists.txt at build time.
 if(NOT DEFINED PAGE OR PAGE STREQUAL "plan")
   set(page_html plan.html)
   set(page_js_file map.js)
@@ -12,7 +14,10 @@ else()
   set(page_css_file ${PAGE}.css)
   set(function ${PAGE}_page_template)
 endif()
-file(READ ${PAGE_DIR}/${page_html} page)
+file(READ ${PAGE_DIR}/shell.html page)
+file(READ ${PAGE_DIR}/${page_html} page_body)
+string(REGEX REPLACE "\n$" "" page_body "${page_body}")  # the shell ends its line
+string(REPLACE "/*SWATH_BODY*/" "${page_body}" page "${page}")
 file(READ ${PAGE_DIR}/${page_js_file} page_js)
 file(READ ${PAGE_DIR}/${page_css_file} page_css)
 file(READ ${LEAFLET_DIR}/leaflet.js leaflet_js)

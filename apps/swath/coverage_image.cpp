@@ -126,6 +126,7 @@ CoverageImage coverage_image(const planning::PlanFeatures& features,
   // A local frame at the first area vertex: drawing in metres, north up.
   const geometry::LocalFrame frame(features.area.front().front());
   CoverageImage out;
+  out.frame_origin = frame.origin();
   // Text and marker sizes grow with the image: 12 px text up to 600 px high.
   const double text_h = std::max(12, height_px / 50);
   const double mark = text_h / 12;

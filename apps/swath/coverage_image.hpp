@@ -13,6 +13,7 @@ namespace swath::apps {
 struct CoverageImage {
   render::Scene scene;
   render::View view;
+  geometry::GeoPoint frame_origin;      ///< the scene's local frame (metres east, north)
   double scale_bar_m = 0;               ///< the length the scale bar claims
   double scale_bar_px = 0;              ///< its length in the image
   geometry::Point2 scale_bar_start_px;  ///< left end, on the bar's centre line

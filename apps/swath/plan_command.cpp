@@ -6,6 +6,7 @@
 #include <iostream>
 #include <map>
 
+#include "basemap.hpp"
 #include "coverage_image.hpp"
 #include "data_dir.hpp"
 #include "energy_plan_files.hpp"
@@ -220,6 +221,9 @@ void PlanCommand::add_output_options(CLI::App& app) {
   app.add_option("--basemap-url", basemap_url_,
                  "plan.html: XYZ tile template drawn behind the plan "
                  "(http(s)://host/{z}/{x}/{y}.png; the page then fetches these tiles)");
+  app.add_option("--basemap", basemap_,
+                 "coverage.png and plan.html: a raster drawn behind the plan (an orthophoto: "
+                 "GeoTIFF or any raster GDAL reads, any CRS; reprojected, read from disk only)");
   app.add_flag("--coverage-tif", coverage_tif_,
                "Also write coverage.tif, a GeoTIFF in the plan's local frame (PROJ ortho about "
                "its origin): band 1 the planned photos over each cell, band 2 1 inside the area");
@@ -539,6 +543,8 @@ std::vector<std::pair<std::string, std::string>> PlanCommand::files(
     const planning::SurveyPlan& plan) const {
   if (!basemap_url_.empty() && !html_)
     throw InputError("--basemap-url draws behind plan.html: give --html too");
+  if (!basemap_.empty() && !html_ && !render_)
+    throw InputError("--basemap draws behind coverage.png or plan.html: give --render or --html");
   const planning::FileOptions options{fence_files_, litchi_, dji_, qgc_survey_};
   auto files = planning::survey_files(plan, options);
   export_warnings_ = planning::export_warnings(plan, options);
@@ -560,8 +566,9 @@ std::vector<std::pair<std::string, std::string>> PlanCommand::files(
   }
   if (render_) {
     const auto [w, h] = parse_size(size_);
-    const CoverageImage image =
+    CoverageImage image =
         coverage_image(planning::plan_features(plan), planning::plan_figures(plan), w, h);
+    if (!basemap_.empty()) put_basemap_under(image, basemap_);
     files.push_back({"coverage.png", render::encode_png(render::draw(image.scene, image.view))});
   }
   if (coverage_tif_) files.push_back({"coverage.tif", coverage_tif(plan, coverage_cell_m_)});
@@ -577,7 +584,7 @@ std::vector<std::pair<std::string, std::string>> PlanCommand::files(
         if (n == name) return text;
       return std::nullopt;
     };
-    files.push_back({"plan.html", plan_html(lookup, output_, basemap_url_)});
+    files.push_back({"plan.html", plan_html(lookup, output_, basemap_url_, basemap_)});
   }
   return files;
 }

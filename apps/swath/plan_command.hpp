@@ -101,6 +101,7 @@ class PlanCommand : public Command {
   bool coverage_tif_ = false;
   bool html_ = false;
   std::string basemap_url_;
+  std::string basemap_;
   double coverage_cell_m_ = 0.5;
   std::string terrain_;  ///< --terrain DEM
   double terrain_tolerance_m_ = 2.0;

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "basemap.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/web/plan_page.hpp"
 
@@ -25,7 +26,7 @@ std::vector<std::string> flight_stems(const std::string& summary) {
 }  // namespace
 
 std::string plan_html(const PlanFileLookup& file, const std::string& title,
-                      const std::string& basemap_url) {
+                      const std::string& basemap_url, const std::string& basemap) {
   web::PlanPage page;
   page.title = title;
   page.basemap_url = basemap_url;
@@ -45,6 +46,7 @@ std::string plan_html(const PlanFileLookup& file, const std::string& title,
         throw base::InputError(title + "/" + stem + ".plan: not JSON (a QGroundControl plan)");
       page.files.emplace_back(stem + ".plan", std::move(*text));
     }
+  if (!basemap.empty()) page.basemap_image = page_basemap(page.files[0].second, basemap);
   return web::plan_page(page);
 }
 

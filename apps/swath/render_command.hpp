@@ -7,8 +7,8 @@
 
 namespace swath::apps {
 
-/// `swath render DIR [--coverage PNG] [--paths PNG] [--size WxH] [--html [--basemap-url T]]`:
-/// redraws a plan's pictures, or its map page.
+/// `swath render DIR [--coverage PNG] [--paths PNG] [--size WxH] [--basemap FILE] [--html
+/// [--basemap-url T]]`: redraws a plan's pictures, or its map page.
 class RenderCommand : public Command {
  public:
   const char* name() const override { return "render"; }
@@ -19,7 +19,8 @@ class RenderCommand : public Command {
   int run() override;
 
  private:
-  void write_html(const std::filesystem::path& dir) const;
+  std::string html_page(const std::filesystem::path& dir) const;
+  void write_html(const std::filesystem::path& dir, const std::string& page) const;
 
   std::string dir_;
   std::string coverage_;
@@ -27,6 +28,7 @@ class RenderCommand : public Command {
   std::string size_ = "1600x1200";
   bool html_ = false;
   std::string basemap_url_;
+  std::string basemap_;
 };
 
 }  // namespace swath::apps

@@ -501,9 +501,27 @@ bool module_geotiff(const LocalRaster& raster, std::string& bytes, std::string& 
   return guarded(error, [&] { bytes = detail::geotiff(raster); });
 }
 
-const detail::GisModule kModule{
-    detail::kGisModuleAbi, module_read,           module_list, module_wkt,    module_sample,
-    detail::raster_reads,  detail::forget_raster, module_grid, module_geotiff};
+bool module_imagery(const std::string& path, const detail::ImageryGrid& grid, std::string& rgba,
+                    double& pixel_m, std::string& error) {
+  return guarded(error, [&] { rgba = detail::imagery_rgba(path, grid, pixel_m); });
+}
+
+bool module_png(int width, int height, const std::string& rgba, std::string& bytes,
+                std::string& error) {
+  return guarded(error, [&] { bytes = detail::rgba_png(width, height, rgba); });
+}
+
+const detail::GisModule kModule{detail::kGisModuleAbi,
+                                module_read,
+                                module_list,
+                                module_wkt,
+                                module_sample,
+                                detail::raster_reads,
+                                detail::forget_raster,
+                                module_grid,
+                                module_geotiff,
+                                module_imagery,
+                                module_png};
 
 }  // namespace
 

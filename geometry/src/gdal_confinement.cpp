@@ -141,6 +141,9 @@ const std::vector<std::string>& kept_drivers() {
       // DEMs (GeoTIFF, ESRI ASCII grid, SRTM .hgt, VRT; Erdas .img, .bil, USGS .dem, XYZ) and
       // coverage.tif, written through GTiff in memory
       "GTiff", "AAIGrid", "SRTMHGT", "VRT", "HFA", "EHdr", "USGSDEM", "XYZ", "MEM",
+      // basemaps (--basemap: orthophotos as GeoTIFF, or PNG and JPEG with a world file; PNG also
+      // writes the map page's basemap image, in memory)
+      "PNG", "JPEG",
       // PROJ's EGM96 geoid grid (--dem-heights ellipsoid)
       "GTX"};
   return kept;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "imagery_gdal.hpp"
 #include "raw_field.hpp"
 #include "swath/geometry/field.hpp"
 #include "swath/geometry/geotiff.hpp"
@@ -15,7 +16,7 @@
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 4;
+inline constexpr int kGisModuleAbi = 5;
 
 struct GisModule {
   int abi;
@@ -33,6 +34,11 @@ struct GisModule {
   bool (*grid)(const std::string& name, std::string& path, std::string& error);
   /// raster_gdal.hpp's geotiff.
   bool (*geotiff)(const LocalRaster& raster, std::string& bytes, std::string& error);
+  /// imagery_gdal.hpp's imagery_rgba and rgba_png (since ABI 5).
+  bool (*imagery)(const std::string& path, const ImageryGrid& grid, std::string& rgba,
+                  double& pixel_m, std::string& error);
+  bool (*png)(int width, int height, const std::string& rgba, std::string& bytes,
+              std::string& error);
 };
 
 /// The module, opened on the first call (gis_loader.cpp). Throws std::runtime_error when it is

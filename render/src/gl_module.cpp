@@ -154,6 +154,21 @@ cv::Scalar scalar(const Color& c) {  // RGB channel order: the Mat holds RGB
   return {std::round(c.r * 255.0), std::round(c.g * 255.0), std::round(c.b * 255.0)};
 }
 
+// The backdrop's pixels, each ss x ss, from the top-left corner down (the raster position is
+// the projection's top-left, y up in window coordinates: a negative zoom draws rows downwards).
+void draw_backdrop(const Backdrop& b, const View& view, int ss) {
+  if (b.width_px != view.width_px || b.height_px != view.height_px ||
+      b.rgb.size() != 3 * static_cast<std::size_t>(b.width_px) * b.height_px)
+    return;
+  glDisable(GL_BLEND);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glPixelZoom(static_cast<float>(ss), -static_cast<float>(ss));
+  glRasterPos2d(0, 0);
+  glDrawPixels(b.width_px, b.height_px, GL_RGB, GL_UNSIGNED_BYTE, b.rgb.data());
+  glPixelZoom(1, 1);
+  glEnable(GL_BLEND);
+}
+
 Image draw_scene(const Scene& scene, const View& view, int supersample) {
   const int ss = std::max(1, supersample);
   const int w = view.width_px * ss, h = view.height_px * ss;
@@ -174,6 +189,7 @@ Image draw_scene(const Scene& scene, const View& view, int supersample) {
   glClearColor(scene.background.r, scene.background.g, scene.background.b, 1);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  draw_backdrop(scene.backdrop, view, ss);
 
   auto px = [&](Point2 world) { return view.to_pixel(world) * ss; };
   auto px_all = [&](const std::vector<Point2>& pts) {

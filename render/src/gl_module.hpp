@@ -12,7 +12,7 @@
 namespace swath::render::detail {
 
 /// Bumped whenever this struct or the types it passes change: a stale module is refused.
-inline constexpr int kGlModuleAbi = 1;
+inline constexpr int kGlModuleAbi = 2;
 
 struct GlModule {
   int abi = kGlModuleAbi;

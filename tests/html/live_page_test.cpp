@@ -29,68 +29,21 @@
 #include <sstream>
 #include <thread>
 
+#include "chromium.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using namespace swath::html_test;
 
-struct ShellRun {
-  int exit_code = -1;
-  std::string out;
-};
-
-// `command` through /bin/sh from the source directory; standard output (and error, when the
-// command does not send it elsewhere).
-ShellRun run(const std::string& command) {
-  const std::string full = "cd '" SWATH_SOURCE_DIR "' && " + command + " 2>&1";
-  ShellRun r;
-  FILE* pipe = ::popen(full.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
-    r.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path scratch_root() {
-  return fs::temp_directory_path() / ("swath-live-html-" + std::to_string(::getpid()));
-}
-
-// Runs and Chromium's profiles go when every test passed; kept to look at otherwise.
-class RemoveScratch : public ::testing::Environment {
- public:
-  void TearDown() override {
-    if (!::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(scratch_root());
-  }
-};
-const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = scratch_root() / name;
-  fs::remove_all(dir);
+// A fresh, empty directory `name` in the scratch directory.
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = scratch(name);
   fs::create_directories(dir);
   return dir;
 }
-
-std::string chromium() {
-  const char* env = std::getenv("SWATH_CHROMIUM");
-  const std::string path = env && *env ? env : "/usr/bin/chromium";
-  return fs::exists(path) ? path : "";
-}
-
-#define REQUIRE_CHROMIUM()                                                                     \
-  if (chromium().empty())                                                                      \
-  GTEST_SKIP() << "no Chromium at /usr/bin/chromium or $SWATH_CHROMIUM: the browser tests of " \
-                  "the live page need it (scripts/setup installs it)"
 
 const std::string kFleet = "'" SWATH_FLEET_BINARY "' ";
 // A short run: two drones over the hotspot world.
@@ -105,20 +58,6 @@ std::string dom(const fs::path& profile, const std::string& url, const std::stri
                               "' --host-resolver-rules='MAP * ~NOTFOUND, EXCLUDE 127.0.0.1' " +
                               wait + " --dump-dom '" + url + "' 2>/dev/null";
   return run(command).out;
-}
-
-// The page's self-check (#swath-check), read from the DOM.
-json self_check(const std::string& dom_text) {
-  const std::string open = "<pre id=\"swath-check\" hidden=\"\">";
-  const std::size_t at = dom_text.find(open);
-  if (at == std::string::npos) return json();
-  const std::size_t end = dom_text.find("</pre>", at);
-  std::string text = dom_text.substr(at + open.size(), end - at - open.size());
-  for (const auto& [entity, c] : std::map<std::string, std::string>{
-           {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}})
-    for (std::size_t k; (k = text.find(entity)) != std::string::npos;)
-      text.replace(k, entity.size(), c);
-  return json::parse(text, nullptr, false);
 }
 
 std::vector<json> events(const fs::path& run_dir) {
@@ -148,7 +87,7 @@ std::string time_text(double t_s) {
 
 TEST(ReplayPage, DrawsEveryDroneWhereTheLogLastPutsIt) {
   REQUIRE_CHROMIUM();
-  const fs::path dir = scratch("replay");
+  const fs::path dir = fresh_dir("replay");
   ASSERT_EQ(run(kFleet + kRun + "-o '" + (dir / "run").string() + "'").exit_code, 0);
   const ShellRun view = run(kFleet + "view '" + (dir / "run").string() + "' -o '" +
                             (dir / "view.html").string() + "'");
@@ -318,7 +257,7 @@ int wait_exit(pid_t pid) {
 
 TEST(LivePage, ReceivesAnUpdateEverySecondOfAPacedRun) {
   REQUIRE_CHROMIUM();
-  const fs::path dir = scratch("live");
+  const fs::path dir = fresh_dir("live");
   // The run flies at PACE times the wall clock; the page is opened as it starts.
   const LiveRun live =
       start_live(kRun + "--pace 20 --live 0 --live-linger 3 -o '" + (dir / "run").string() + "'",
@@ -350,7 +289,7 @@ TEST(LivePage, ReceivesAnUpdateEverySecondOfAPacedRun) {
 }
 
 TEST(LivePage, EventsAreTheSameBytesWithAndWithoutLive) {
-  const fs::path dir = scratch("same");
+  const fs::path dir = fresh_dir("same");
   ASSERT_EQ(run(kFleet + kRun + "-o '" + (dir / "plain").string() + "'").exit_code, 0);
   const ShellRun live =
       run(kFleet + kRun + "--live 0 --live-linger 0 -o '" + (dir / "live").string() + "'");
@@ -362,7 +301,7 @@ TEST(LivePage, EventsAreTheSameBytesWithAndWithoutLive) {
 }
 
 TEST(LivePage, APortInUseIsRefused) {
-  const fs::path dir = scratch("port");
+  const fs::path dir = fresh_dir("port");
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in addr{};
   addr.sin_family = AF_INET;

@@ -17,14 +17,19 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <sstream>
 
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <GeographicLib/LocalCartesian.hpp>
+#include <GeographicLib/UTMUPS.hpp>
 
 #include <regex>
 
+#include "chromium.hpp"
 #include "swath/render/image.hpp"
 
 namespace {
@@ -32,63 +37,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct ShellRun {
-  int exit_code = -1;
-  std::string out;
-};
-
-// `command` through /bin/sh from the source directory, standard output and error together.
-ShellRun run(const std::string& command) {
-  const std::string full = "cd '" SWATH_SOURCE_DIR "' && " + command + " 2>&1";
-  ShellRun r;
-  FILE* pipe = ::popen(full.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buffer{};
-  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
-    r.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path scratch_root() {
-  return fs::temp_directory_path() / ("swath-html-" + std::to_string(::getpid()));
-}
-
-// The plans and Chromium's profiles (some MB each) go when every test passed; kept to look at
-// otherwise.
-class RemoveScratch : public ::testing::Environment {
- public:
-  void TearDown() override {
-    if (!::testing::UnitTest::GetInstance()->Failed()) fs::remove_all(scratch_root());
-  }
-};
-const auto* const kRemoveScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = scratch_root() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir.parent_path());
-  return dir;
-}
-
-std::string chromium() {
-  const char* env = std::getenv("SWATH_CHROMIUM");
-  const std::string path = env && *env ? env : "/usr/bin/chromium";
-  return fs::exists(path) ? path : "";
-}
-
-#define REQUIRE_CHROMIUM()                                                                     \
-  if (chromium().empty())                                                                      \
-  GTEST_SKIP() << "no Chromium at /usr/bin/chromium or $SWATH_CHROMIUM: the browser tests of " \
-                  "plan.html need it (scripts/setup installs it)"
+using namespace swath::html_test;
 
 // Chromium headless, offline: every host name fails to resolve, so a request could reach nothing
 // even if one were made (the page's own record of requests is what is checked).
@@ -108,18 +57,7 @@ std::string dom(const fs::path& page, const std::string& fragment = "") {
 
 // The page's self-check, read from the DOM.
 json self_check(const fs::path& page) {
-  ShellRun r;
-  r.out = dom(page);
-  const std::string open = "<pre id=\"swath-check\" hidden=\"\">";
-  const std::size_t at = r.out.find(open);
-  if (at == std::string::npos) return json();
-  const std::size_t end = r.out.find("</pre>", at);
-  std::string text = r.out.substr(at + open.size(), end - at - open.size());
-  for (const auto& [entity, c] : std::map<std::string, std::string>{
-           {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}})
-    for (std::size_t k; (k = text.find(entity)) != std::string::npos;)
-      text.replace(k, entity.size(), c);
-  return json::parse(text, nullptr, false);
+  return swath::html_test::self_check(dom(page));
 }
 
 std::vector<std::vector<std::string>> csv(const fs::path& path) {
@@ -188,7 +126,13 @@ void expect_clean_page(const fs::path& dir, const std::string& what) {
             << check["script_ms"] << " ms (virtual time)\n";
 }
 
-const char* kMeadowFleet =
+// `swath plan ARGS -o DIR`, which must succeed.
+void plan_into(const fs::path& dir, const std::string& args) {
+  const ShellRun plan = run("'" SWATH_BINARY "' plan " + args + " -o '" + dir.string() + "'");
+  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+}
+
+const std::string kMeadowFleet =
     "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --fleet "
     "share/fleets/three-quads.yaml --division region --balance makespan --exclude "
     "share/zones/meadow-mast.geojson --clearance 10 --html";
@@ -196,9 +140,7 @@ const char* kMeadowFleet =
 TEST(PlanPage, MeadowFleetDrawsEveryLayerWithoutErrorsOrRequests) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("meadow-fleet");
-  const ShellRun plan =
-      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadowFleet));
   expect_clean_page(dir, "meadow, three quads, a mast");
   EXPECT_LT(fs::file_size(dir / "plan.html"), 1'000'000u);
 }
@@ -206,11 +148,9 @@ TEST(PlanPage, MeadowFleetDrawsEveryLayerWithoutErrorsOrRequests) {
 TEST(PlanPage, SortiesShowTheirResumePoints) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("sorties");
-  const ShellRun plan = run("'" SWATH_BINARY
-                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-                            "--altitude 40 --sorties auto --endurance 420 --html -o " +
-                            dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir,
+                                    "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                                    "--altitude 40 --sorties auto --endurance 420 --html"));
   ASSERT_GT(expected_layers(dir)["resume"], 1);
   expect_clean_page(dir, "meadow in sorties");
 }
@@ -222,9 +162,7 @@ double segment_distance(std::array<double, 2> p, std::array<double, 2> a, std::a
 TEST(PlanPage, SelectedWaypointShowsItsItemHeightAndClearance) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("select");
-  const ShellRun plan =
-      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadowFleet));
   const json mission = json::parse(slurp(dir / "mission.geojson"));
   std::vector<json> zones;
   for (const json& f : mission["features"])
@@ -273,11 +211,9 @@ TEST(PlanPage, SelectedWaypointShowsItsItemHeightAndClearance) {
 TEST(PlanPage, TerrainPlanShowsHeightsAlongEachPath) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("terrain");
-  const ShellRun plan = run("'" SWATH_BINARY
-                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-                            "--altitude 60 --terrain share/dems/meadow-hill.asc --html -o " +
-                            dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir,
+                                    "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                                    "--altitude 60 --terrain share/dems/meadow-hill.asc --html"));
   expect_clean_page(dir, "meadow over its hill");
   std::map<std::string, int> expected;
   std::map<std::string, std::pair<double, double>> heights;  // lowest, highest
@@ -317,12 +253,10 @@ TEST(PlanPage, DroneNamesAreText) {
   std::string fleet = slurp(fs::path(SWATH_SOURCE_DIR) / "share/fleets/three-quads.yaml");
   fleet.replace(fleet.find("name: alpha"), 11, "name: \"<img src=planted.png>\"");
   std::ofstream(dir.parent_path() / "fleet/evil.yaml") << fleet;
-  const ShellRun plan =
-      run("'" SWATH_BINARY
-          "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-          "--altitude 60 --html --fleet '" +
-          (dir.parent_path() / "fleet/evil.yaml").string() + "' -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir,
+                                    "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                                    "--altitude 60 --html --fleet '" +
+                                        (dir.parent_path() / "fleet/evil.yaml").string() + "'"));
   expect_clean_page(dir, "a drone named <img src=planted.png>");
   EXPECT_NE(dom(dir / "plan.html").find("Path &lt;img src=planted.png&gt;"), std::string::npos);
 }
@@ -331,12 +265,10 @@ TEST(PlanPage, DroneNamesAreText) {
 TEST(PlanPage, BasemapUrlIsTheOnlyThingFetched) {
   REQUIRE_CHROMIUM();
   const fs::path dir = scratch("basemap");
-  const ShellRun plan =
-      run("'" SWATH_BINARY
-          "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
-          "--altitude 60 --html --basemap-url 'http://127.0.0.1:9/{z}/{x}/{y}.png' -o " +
-          dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(
+      plan_into(dir,
+                "share/fields/meadow.geojson --camera sony-ilce-qx1 "
+                "--altitude 60 --html --basemap-url 'http://127.0.0.1:9/{z}/{x}/{y}.png'"));
   const json check = self_check(dir / "plan.html");
   ASSERT_TRUE(check.is_object());
   ASSERT_FALSE(check["resources"].empty());
@@ -357,36 +289,24 @@ double segment_distance(std::array<double, 2> p, std::array<double, 2> a, std::a
   return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
 }
 
-TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
-  REQUIRE_CHROMIUM();
-  const fs::path dir = scratch("vineyard");
-  const ShellRun plan = run("'" SWATH_BINARY
-                            "' plan share/fields/vineyard.kml --camera "
-                            "dji-phantom-4-pro --altitude 60 --home 46.2276,7.5917 --html -o " +
-                            dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
-  const fs::path png = dir / "area.png";
-  const ShellRun shot =
-      run(browser(dir / "profile",
-                  "--hide-scrollbars --force-device-scale-factor=1 "
-                  "--window-size=1200,900 --screenshot='" +
-                      png.string() + "'",
-                  "file://" + fs::absolute(dir / "plan.html").string() + "#layers=area"));
-  ASSERT_TRUE(fs::exists(png)) << shot.out;
-  const swath::render::Image image = swath::render::decode_png(slurp(png));
-  ASSERT_EQ(image.width, 1200);
-  ASSERT_EQ(image.height, 900);
+// The page's view, as Leaflet draws it in a 1200 x 900 window: the bounds of every position in
+// mission.geojson in Web Mercator, fitted into the map (x from 300, the side panel's width) 20 px
+// from its edges, centred (fitBounds, zoomSnap 0).
+struct PageView {
+  double scale = 0, cx = 0, cy = 0;
+  std::array<double, 2> pixel(double lon_deg, double lat_deg) const {
+    const auto m = mercator(lon_deg, lat_deg);
+    return {300 + 900 / 2.0 + (m[0] - cx) * scale, 900 / 2.0 - (m[1] - cy) * scale};
+  }
+};
 
-  // The view: the bounds of every position in mission.geojson, fitted into the map (x from 300,
-  // the side panel's width) 20 px from its edges, centred.
+PageView page_view(const fs::path& dir) {
   const json mission = json::parse(slurp(dir / "mission.geojson"));
-  std::vector<std::vector<std::array<double, 2>>> rings;  // the area's, projected
   double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
   const auto grow = [&](const json& position) {
     const auto m = mercator(position[0], position[1]);
     x0 = std::min(x0, m[0]), x1 = std::max(x1, m[0]), y0 = std::min(y0, m[1]),
     y1 = std::max(y1, m[1]);
-    return m;
   };
   for (const json& f : mission["features"]) {
     const json& g = f["geometry"];
@@ -394,19 +314,47 @@ TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
     if (g["type"] == "LineString")
       for (const json& p : g["coordinates"]) grow(p);
     if (g["type"] == "Polygon")
-      for (const json& ring : g["coordinates"]) {
-        std::vector<std::array<double, 2>> r;
-        for (const json& p : ring) r.push_back(grow(p));
-        if (f["properties"]["role"] == "area") rings.push_back(r);
-      }
+      for (const json& ring : g["coordinates"])
+        for (const json& p : ring) grow(p);
   }
+  const double map_w = 900, map_h = 900, pad = 20;
+  return {std::min((map_w - 2 * pad) / (x1 - x0), (map_h - 2 * pad) / (y1 - y0)), (x0 + x1) / 2,
+          (y0 + y1) / 2};
+}
+
+// Chromium's 1200 x 900 screenshot of DIR/plan.html showing the layers `layers` names.
+swath::render::Image screenshot(const fs::path& dir, const std::string& layers) {
+  const fs::path png = dir / ("shot-" + layers + ".png");
+  const ShellRun shot =
+      run(browser(dir / "profile",
+                  "--hide-scrollbars --force-device-scale-factor=1 "
+                  "--window-size=1200,900 --screenshot='" +
+                      png.string() + "'",
+                  "file://" + fs::absolute(dir / "plan.html").string() + "#layers=" + layers));
+  EXPECT_TRUE(fs::exists(png)) << shot.out;
+  return fs::exists(png) ? swath::render::decode_png(slurp(png)) : swath::render::Image{};
+}
+
+TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("vineyard");
+  ASSERT_NO_FATAL_FAILURE(
+      plan_into(dir,
+                "share/fields/vineyard.kml --camera "
+                "dji-phantom-4-pro --altitude 60 --home 46.2276,7.5917 --html"));
+  const swath::render::Image image = screenshot(dir, "area");
+  ASSERT_EQ(image.width, 1200);
+  ASSERT_EQ(image.height, 900);
+  const PageView view = page_view(dir);
+  std::vector<std::vector<std::array<double, 2>>> rings;  // the area's, in pixels
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  for (const json& f : mission["features"])
+    if (f["properties"]["role"] == "area")
+      for (const json& ring : f["geometry"]["coordinates"]) {
+        rings.emplace_back();
+        for (const json& p : ring) rings.back().push_back(view.pixel(p[0], p[1]));
+      }
   ASSERT_FALSE(rings.empty());
-  const double map_x = 300, map_w = 900, map_h = 900, pad = 20;
-  const double scale = std::min((map_w - 2 * pad) / (x1 - x0), (map_h - 2 * pad) / (y1 - y0));
-  const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-  for (auto& ring : rings)
-    for (auto& p : ring)
-      p = {map_x + map_w / 2 + (p[0] - cx) * scale, map_h / 2 - (p[1] - cy) * scale};
 
   // Every 5th pixel at least 3 px from the area's edges and clear of the zoom buttons: inside
   // the area (even-odd over its rings: holes are outside) the fill, #7fbf5f at half opacity over
@@ -447,9 +395,7 @@ TEST(PlanPage, ScreenshotShowsTheAreaWhereTheDataPutsIt) {
 // No browser needed: the same plan gives the same page from `plan --html` and `render --html`.
 TEST(PlanPage, RenderWritesThePageThePlanWrote) {
   const fs::path dir = scratch("render");
-  const ShellRun plan =
-      run(std::string("'" SWATH_BINARY "' plan ") + kMeadowFleet + " -o " + dir.string());
-  ASSERT_EQ(plan.exit_code, 0) << plan.out;
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadowFleet));
   const std::string written = slurp(dir / "plan.html");
   fs::remove(dir / "plan.html");
   const ShellRun render = run("'" SWATH_BINARY "' render " + dir.string() + " --html");
@@ -476,6 +422,245 @@ TEST(PlanPage, BadBasemapUrlIsRefusedAndNothingWritten) {
                              dir.string());
   EXPECT_EQ(alone.exit_code, 2) << alone.out;
   EXPECT_FALSE(fs::exists(dir));
+}
+
+// ---- --basemap: the user's raster behind the plan ----------------------------------------------
+
+// Three squares of 12 m (red, green, blue) on dark grey ground, at places inside the meadow.
+struct Mark {
+  double lat_deg, lon_deg;
+  int channel;  // 0 red, 1 green, 2 blue
+};
+const std::array<Mark, 3> kMarks{
+    {{47.3980, 8.5410, 0}, {47.3992, 8.5430, 1}, {47.3978, 8.5440, 2}}};
+
+// An orthophoto of the meadow as GDAL would read one: an RGB GeoTIFF in UTM zone 32N (EPSG:32632),
+// 1 m pixels, the squares placed by GeographicLib's UTM (not by GDAL, which swath uses to read it).
+// `blank`: the same raster all white, no squares.
+void write_ortho(const fs::path& path, bool blank = false) {
+  GDALAllRegister();
+  double e0 = 1e9, n1 = -1e9, e1 = -1e9, n0 = 1e9;
+  for (const auto& [lat, lon] : {std::pair{47.3965, 8.5385}, std::pair{47.4015, 8.5465}}) {
+    int zone;
+    bool north;
+    double e, n;
+    GeographicLib::UTMUPS::Forward(lat, lon, zone, north, e, n, 32);
+    e0 = std::min(e0, e - 100), e1 = std::max(e1, e + 100);
+    n0 = std::min(n0, n - 100), n1 = std::max(n1, n + 100);
+  }
+  e0 = std::floor(e0), n1 = std::ceil(n1);
+  const int w = static_cast<int>(e1 - e0), h = static_cast<int>(n1 - n0);
+  std::vector<std::vector<std::uint8_t>> bands(
+      3, std::vector<std::uint8_t>(w * h, static_cast<std::uint8_t>(blank ? 255 : 40)));
+  for (const Mark& m : kMarks) {
+    if (blank) break;
+    int zone;
+    bool north;
+    double e, n;
+    GeographicLib::UTMUPS::Forward(m.lat_deg, m.lon_deg, zone, north, e, n, 32);
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const double pe = e0 + i + 0.5, pn = n1 - j - 0.5;  // the pixel's centre
+        if (std::abs(pe - e) < 6 && std::abs(pn - n) < 6)
+          for (int b = 0; b < 3; ++b)
+            bands[b][j * w + i] = static_cast<std::uint8_t>(b == m.channel ? 255 : 0);
+      }
+  }
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  ASSERT_NE(gtiff, nullptr);
+  GDALDataset* d = gtiff->Create(path.c_str(), w, h, 3, GDT_Byte, nullptr);
+  ASSERT_NE(d, nullptr);
+  double gt[6] = {e0, 1, 0, n1, 0, -1};
+  d->SetGeoTransform(gt);
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32632);
+  d->SetSpatialRef(&utm);
+  for (int b = 0; b < 3; ++b)
+    ASSERT_EQ(d->GetRasterBand(b + 1)->RasterIO(GF_Write, 0, 0, w, h, bands[b].data(), w, h,
+                                                GDT_Byte, 0, 0),
+              CE_None);
+  GDALClose(d);
+}
+
+// The centre of the square of colour `channel` in the page's screenshot (the basemap alone): the
+// pixels right of the side panel (300 px) where `channel` is strong (>= 200) and the others weak
+// (<= 110); NaN when fewer than `least`.
+std::array<double, 2> square_on_page(const swath::render::Image& image, int channel, int least) {
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 300; x < image.width; ++x) {
+      bool ok = true;
+      for (int c = 0; c < 3; ++c)
+        ok = ok && (c == channel ? image.at(x, y, c) >= 200 : image.at(x, y, c) <= 110);
+      if (ok) sx += x + 0.5, sy += y + 0.5, ++n;
+    }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return n >= least ? std::array<double, 2>{sx / n, sy / n} : std::array<double, 2>{nan, nan};
+}
+
+// The centre of the square of colour `channel` in coverage.png, from what the basemap changed
+// against the same picture over a blank (white) basemap: every layer is blended linearly over the
+// backdrop, so there the difference is (255 - the raster) times what the layers let through in
+// each channel alike: small in `channel` and large in the two others only where the square is.
+// NaN when fewer than `least` pixels say so.
+std::array<double, 2> square_in_picture(const swath::render::Image& image,
+                                        const swath::render::Image& blank, int channel, int least) {
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      bool ok = true;
+      for (int c = 0; c < 3; ++c) {
+        const int diff = blank.at(x, y, c) - image.at(x, y, c);
+        ok = ok && (c == channel ? std::abs(diff) <= 12 : diff >= 60);
+      }
+      if (ok) sx += x + 0.5, sy += y + 0.5, ++n;
+    }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return n >= least ? std::array<double, 2>{sx / n, sy / n} : std::array<double, 2>{nan, nan};
+}
+
+const std::string kMeadow = "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60";
+
+// In the page (Chromium's screenshot, the basemap alone): each square where Web Mercator and
+// Leaflet's fitBounds put its coordinates, within 3 px.
+TEST(Basemap, PageShowsTheRasterWhereItsCoordinatesSay) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("basemap-page");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-page.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadow + " --html --basemap '" + ortho.string() + "'"));
+  expect_clean_page(dir, "meadow over its orthophoto");
+  // swath render writes the same page from the plan's files.
+  const std::string written = slurp(dir / "plan.html");
+  const ShellRun render = run("'" SWATH_BINARY "' render '" + dir.string() +
+                              "' --html --basemap '" + ortho.string() + "'");
+  ASSERT_EQ(render.exit_code, 0) << render.out;
+  EXPECT_TRUE(slurp(dir / "plan.html") == written) << "swath render --html --basemap differs";
+  const swath::render::Image image = screenshot(dir, "none");
+  ASSERT_EQ(image.width, 1200);
+  const PageView view = page_view(dir);
+  for (const Mark& m : kMarks) {
+    const auto expected = view.pixel(m.lon_deg, m.lat_deg);
+    const auto found = square_on_page(image, m.channel, 20);
+    EXPECT_NEAR(found[0], expected[0], 3) << "square " << m.channel;
+    EXPECT_NEAR(found[1], expected[1], 3) << "square " << m.channel;
+  }
+}
+
+// In coverage.png: the squares' centres (square_in_picture) fit one scale and offset from
+// east/north metres (GeographicLib's local frame) to pixels, north up, within 3 px; and that fit
+// puts the area's corners on its outline as drawn without a basemap (the imagery sits under the
+// plan, not merely consistent with itself).
+TEST(Basemap, CoveragePictureShowsTheRasterUnderThePlan) {
+  const fs::path plain_dir = scratch("basemap-plain"), blank_dir = scratch("basemap-blank"),
+                 dir = scratch("basemap-png");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-png.tif", white = scratch_root() / "white.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
+  ASSERT_NO_FATAL_FAILURE(write_ortho(white, true));
+  const std::string args = kMeadow + " --render --size 1200x900";
+  ASSERT_NO_FATAL_FAILURE(plan_into(plain_dir, args));
+  ASSERT_NO_FATAL_FAILURE(plan_into(blank_dir, args + " --basemap '" + white.string() + "'"));
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, args + " --basemap '" + ortho.string() + "'"));
+  const auto plain = swath::render::decode_png(slurp(plain_dir / "coverage.png"));
+  const auto blank = swath::render::decode_png(slurp(blank_dir / "coverage.png"));
+  const auto image = swath::render::decode_png(slurp(dir / "coverage.png"));
+  ASSERT_EQ(image.width, plain.width);
+  ASSERT_EQ(image.width, blank.width);
+  // swath render draws the same picture from the plan's files.
+  const ShellRun render =
+      run("'" SWATH_BINARY "' render '" + dir.string() + "' --size 1200x900 --coverage '" +
+          (dir / "again.png").string() + "' --basemap '" + ortho.string() + "'");
+  ASSERT_EQ(render.exit_code, 0) << render.out;
+  EXPECT_TRUE(slurp(dir / "again.png") == slurp(dir / "coverage.png"))
+      << "swath render --basemap draws another picture";
+  const GeographicLib::LocalCartesian frame(kMarks[0].lat_deg, kMarks[0].lon_deg, 0);
+  const auto local = [&frame](double lat, double lon) {
+    double x, y, z;
+    frame.Forward(lat, lon, 0, x, y, z);
+    return std::array<double, 2>{x, y};
+  };
+  // Least squares for px = ox + s e, py = oy - s n over the three squares.
+  std::array<std::array<double, 2>, 3> en, px;
+  for (std::size_t k = 0; k < 3; ++k) {
+    en[k] = local(kMarks[k].lat_deg, kMarks[k].lon_deg);
+    px[k] = square_in_picture(image, blank, kMarks[k].channel, 20);
+    ASSERT_FALSE(std::isnan(px[k][0])) << "square " << k << " not in coverage.png";
+  }
+  double me = 0, mn = 0, mx = 0, my = 0;
+  for (std::size_t k = 0; k < 3; ++k)
+    me += en[k][0] / 3, mn += en[k][1] / 3, mx += px[k][0] / 3, my += px[k][1] / 3;
+  double num = 0, den = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    num += (en[k][0] - me) * (px[k][0] - mx) - (en[k][1] - mn) * (px[k][1] - my);
+    den += (en[k][0] - me) * (en[k][0] - me) + (en[k][1] - mn) * (en[k][1] - mn);
+  }
+  const double s = num / den, ox = mx - s * me, oy = my + s * mn;
+  ASSERT_GT(s, 0.5);  // px per m: the meadow fills most of the picture
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR(px[k][0], ox + s * en[k][0], 3) << "square " << k;
+    EXPECT_NEAR(px[k][1], oy - s * en[k][1], 3) << "square " << k;
+  }
+  // The area where the fit puts it: over a basemap its fill is see-through, so the pixels that
+  // differ between the plain picture and the one over the white raster are the area's (but where
+  // opaque paths and markers cover it); their bounds against the area's corners through the fit.
+  double lo_x = 1e9, hi_x = -1e9, lo_y = 1e9, hi_y = -1e9;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      int diff = 0;
+      for (int c = 0; c < 3; ++c)
+        diff = std::max(diff, std::abs(plain.at(x, y, c) - blank.at(x, y, c)));
+      if (diff <= 8) continue;
+      lo_x = std::min(lo_x, x + 0.5), hi_x = std::max(hi_x, x + 0.5);
+      lo_y = std::min(lo_y, y + 0.5), hi_y = std::max(hi_y, y + 0.5);
+    }
+  double fit_lo_x = 1e9, fit_hi_x = -1e9, fit_lo_y = 1e9, fit_hi_y = -1e9;
+  const json mission = json::parse(slurp(dir / "mission.geojson"));
+  for (const json& f : mission["features"])
+    if (f["properties"]["role"] == "area")
+      for (const json& p : f["geometry"]["coordinates"][0]) {
+        const auto e = local(p[1], p[0]);
+        fit_lo_x = std::min(fit_lo_x, ox + s * e[0]), fit_hi_x = std::max(fit_hi_x, ox + s * e[0]);
+        fit_lo_y = std::min(fit_lo_y, oy - s * e[1]), fit_hi_y = std::max(fit_hi_y, oy - s * e[1]);
+      }
+  EXPECT_NEAR(lo_x, fit_lo_x, 3);
+  EXPECT_NEAR(hi_x, fit_hi_x, 3);
+  EXPECT_NEAR(lo_y, fit_lo_y, 3);
+  EXPECT_NEAR(hi_y, fit_hi_y, 3);
+}
+
+// A raster that cannot be read, has no georeference or lies elsewhere: one sentence, exit 2,
+// nothing written.
+TEST(Basemap, BadRastersAreRefusedAndNothingWritten) {
+  fs::create_directories(scratch_root());
+  const fs::path text = scratch_root() / "not-a-raster.tif";
+  std::ofstream(text) << "not a raster\n";
+  const fs::path bare = scratch_root() / "bare.asc";  // an ASCII grid has no CRS without a .prj
+  std::ofstream(bare) << "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n3 4\n";
+  const fs::path far = scratch_root() / "far.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(far));
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {kMeadow + " --render --basemap '" + text.string() + "'", "not a raster GDAL reads"},
+      {kMeadow + " --html --basemap '" + bare.string() + "'", "has no georeference"},
+      {"share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --html --basemap '" +
+           far.string() + "'",
+       "does not overlap the plan"},
+      {"share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --render --basemap '" +
+           far.string() + "'",
+       "does not overlap the plan"},
+      {kMeadow + " --basemap '" + far.string() + "'", "give --render or --html"}};
+  for (const auto& [args, says] : cases) {
+    const fs::path dir = scratch("basemap-refused");
+    const ShellRun plan =
+        run("'" SWATH_BINARY "' plan " + args + " -o '" + dir.string() + "' 2>&1");
+    EXPECT_EQ(plan.exit_code, 2) << args << "\n" << plan.out;
+    EXPECT_NE(plan.out.find(says), std::string::npos) << plan.out;
+    EXPECT_EQ(std::count(plan.out.begin(), plan.out.end(), '\n'), 1) << plan.out;
+    EXPECT_FALSE(fs::exists(dir)) << args;
+  }
 }
 
 }  // namespace

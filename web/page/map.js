@@ -122,6 +122,10 @@
   // ---- the map ------------------------------------------------------------------------------
   const map = L.map('map', {preferCanvas: true, zoomSnap: 0, attributionControl: false});
   if (SWATH_DATA.basemap_url) L.tileLayer(SWATH_DATA.basemap_url, {maxZoom: 22}).addTo(map);
+  // The user's own imagery, inlined (a PNG in Web Mercator between its bounds), under every layer.
+  if (SWATH_DATA.basemap_image)
+    L.imageOverlay(SWATH_DATA.basemap_image.url, SWATH_DATA.basemap_image.bounds,
+                   {pane: 'tilePane', interactive: false}).addTo(map);
   const layers = [];  // {key, label, colour, group, count}
   function layer(key, label, colour) {
     const entry = {key, label, colour, group: L.featureGroup(), count: 0};

@@ -4,32 +4,11 @@
 
 #include <regex>
 
+#include "html_text.hpp"
 #include "swath/base/input_error.hpp"
 
 namespace swath::web {
 namespace {
-
-void replace_once(std::string& text, const std::string& placeholder, const std::string& with) {
-  const std::size_t at = text.find(placeholder);
-  if (at != std::string::npos) text.replace(at, placeholder.size(), with);
-}
-
-std::string html_text(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
 
 // The tile server's origin for the Content-Security-Policy ({s} subdomains become a wildcard).
 std::string tile_origin(const std::string& url) {
@@ -51,31 +30,27 @@ std::string tile_origin(const std::string& url) {
 }  // namespace
 
 std::string plan_page(const PlanPage& page) {
-  std::string csp =
-      "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:";
+  std::string csp = detail::kOfflineCsp;
   if (!page.basemap_url.empty()) csp += " " + tile_origin(page.basemap_url);
   nlohmann::ordered_json files = nlohmann::ordered_json::object();
   for (const auto& [name, text] : page.files) files[name] = text;
+  nlohmann::ordered_json image;  // null: none
+  if (page.basemap_image) {
+    const MapImage& m = *page.basemap_image;
+    image = {{"url", "data:image/png;base64," + detail::base64(m.png)},
+             {"bounds", {{m.south_deg, m.west_deg}, {m.north_deg, m.east_deg}}}};
+  }
   const nlohmann::ordered_json data = {
       {"title", page.title},
       {"basemap_url", page.basemap_url.empty() ? nlohmann::ordered_json()
                                                : nlohmann::ordered_json(page.basemap_url)},
+      {"basemap_image", image},
       {"files", files}};
-  // '<' only ever stands inside JSON strings: as \u003c no "</script>" can end the script early.
-  std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  std::string safe;
-  safe.reserve(json.size());
-  for (char c : json) {
-    if (c == '<')
-      safe += "\\u003c";
-    else
-      safe += c;
-  }
   // From the last placeholder to the first: what is put in cannot be taken for a placeholder.
   std::string html = plan_page_template();
-  replace_once(html, "/*SWATH_DATA*/", safe);
-  replace_once(html, "/*SWATH_TITLE*/", html_text(page.title));
-  replace_once(html, "/*SWATH_CSP*/", csp);
+  detail::replace_once(html, "/*SWATH_DATA*/", detail::script_json(data));
+  detail::replace_once(html, "/*SWATH_TITLE*/", detail::html_text(page.title));
+  detail::replace_once(html, "/*SWATH_CSP*/", csp);
   return html;
 }
 

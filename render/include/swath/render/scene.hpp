@@ -1,6 +1,7 @@
 #pragma once
 // What to draw, as plain data in world metres (render knows nothing of missions).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -52,10 +53,19 @@ struct Label {
   Color color{0, 0, 0, 1};
 };
 
-/// Draw order: polygons, strips, polylines, markers (world metres), then the screen layer (pixel
-/// coordinates of the final image: legend swatches, scale bar, north arrow) and labels on top.
+/// A picture under everything else (a basemap), the final image's size: 8-bit RGB, rows top to
+/// bottom. Empty: the background colour.
+struct Backdrop {
+  int width_px = 0, height_px = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+/// Draw order: the backdrop, polygons, strips, polylines, markers (world metres), then the screen
+/// layer (pixel coordinates of the final image: legend swatches, scale bar, north arrow) and labels
+/// on top.
 struct Scene {
   Color background{1, 1, 1, 1};
+  Backdrop backdrop;  ///< drawn when its size is the image's
   std::vector<FilledPolygon> polygons;
   std::vector<Strip> strips;
   std::vector<Polyline> polylines;

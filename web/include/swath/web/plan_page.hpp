@@ -2,11 +2,19 @@
 // plan.html: one self-contained page (Leaflet, the page's script and the plan's files inlined)
 // that shows a plan on a map. The page reads the files exactly as swath wrote them.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace swath::web {
+
+/// A picture laid on the map between two parallels and two meridians, stretched linearly in Web
+/// Mercator (its rows evenly spaced in Mercator's northing, not in latitude).
+struct MapImage {
+  std::string png;  ///< PNG bytes; inlined as a data: address
+  double south_deg = 0, west_deg = 0, north_deg = 0, east_deg = 0;
+};
 
 struct PlanPage {
   std::string title;  ///< the page's title and heading, e.g. the plan directory
@@ -16,6 +24,8 @@ struct PlanPage {
   /// An XYZ tile template ({z}, {x}, {y}, optional {s}) of http(s) tiles behind the plan, or empty:
   /// no basemap, and the page fetches nothing at all (its Content-Security-Policy forbids it).
   std::string basemap_url;
+  /// The user's own imagery behind the plan (--basemap), inlined: the page still fetches nothing.
+  std::optional<MapImage> basemap_image;
 };
 
 /// The page. Throws base::InputError when basemap_url is no http(s) XYZ template.
