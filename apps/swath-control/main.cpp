@@ -5,6 +5,7 @@
 #include "command.hpp"
 #include "compare_command.hpp"
 #include "fit_command.hpp"
+#include "response_command.hpp"
 #include "run_command.hpp"
 #include "sweep_command.hpp"
 
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<ControlCompareCommand>());
   commands.push_back(std::make_unique<ControlSweepCommand>());
   commands.push_back(std::make_unique<ControlFitCommand>());
+  commands.push_back(std::make_unique<ControlResponseCommand>());
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",
                      "Exit codes: 0 the flight ended as asked (completed, the reserve reached with "
