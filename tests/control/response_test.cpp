@@ -3,10 +3,16 @@
 // figures against a second-order system's closed form, and the step's direction on every axis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
 
+#include "swath/control/control_files.hpp"
 #include "swath/control/response.hpp"
 
 namespace swath::control {
@@ -169,6 +175,64 @@ TEST(Response, SameSettingsGiveTheSameBytes) {
   const ResponseResult b = run_response(SimulationSettings{}, r);
   EXPECT_EQ(response_csv(a.samples), response_csv(b.samples));
   EXPECT_EQ(bode_csv(a.bode), bode_csv(b.bode));
+}
+
+// What PlotJuggler's CSV loader (plotjuggler_plugins/DataLoadCSV) needs to plot a file against
+// its first column without a question: a header of distinct names that are not all numbers,
+// every line with the header's number of fields, every field a number (strtod reads it whole),
+// and the time column never decreasing. Returns the first problem, or "".
+std::string plotjuggler_problem(const std::string& csv, const std::string& time_name) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream h(line);
+  for (std::string f; std::getline(h, f, ',');) header.push_back(f);
+  if (header.empty() || header.front() != time_name) return "first column is not " + time_name;
+  if (std::set<std::string>(header.begin(), header.end()).size() != header.size())
+    return "repeated column names";
+  double previous = -1e300;
+  for (int n = 2; std::getline(in, line); ++n) {
+    std::vector<std::string> fields;
+    std::stringstream l(line);
+    for (std::string f; std::getline(l, f, ',');) fields.push_back(f);
+    if (fields.size() != header.size()) return "line " + std::to_string(n) + ": field count";
+    for (const std::string& f : fields) {
+      char* end = nullptr;
+      const double v = std::strtod(f.c_str(), &end);
+      if (f.empty() || *end != '\0' || !std::isfinite(v))
+        return "line " + std::to_string(n) + ": " + f + " is not a number";
+    }
+    const double t = std::strtod(fields.front().c_str(), nullptr);
+    if (t < previous) return "line " + std::to_string(n) + ": time decreases";
+    previous = t;
+  }
+  return "";
+}
+
+struct Rows : SimulationObserver {
+  std::string csv;
+  void on_row(const TimeseriesRow& r) override { csv += timeseries_csv_row(r); }
+};
+
+TEST(Response, PlotJugglerReadsTheTimeSeriesOfRunAndResponse) {
+  SimulationSettings s;
+  s.mission.name = "line";
+  s.mission.legs.push_back({{0, 0, 10}, {20, 0, 10}});
+  s.scheduler.run.max_time_s = 15;
+  Rows rows;
+  rows.csv = timeseries_csv_header(s.physics.airframe.rotors.size());
+  simulate(s, &rows);
+  EXPECT_GT(std::count(rows.csv.begin(), rows.csv.end(), '\n'), 100);  // rows, not a header alone
+  EXPECT_EQ(plotjuggler_problem(rows.csv, "t_s"), "");
+  ResponseSettings r;
+  r.duration_s = 1;
+  EXPECT_EQ(
+      plotjuggler_problem(response_csv(run_response(SimulationSettings{}, r).samples), "time_s"),
+      "");
+  // The checker itself: a repeated time step backwards and a word are found.
+  EXPECT_NE(plotjuggler_problem("t_s,a\n0,1\n1,2\n0.5,3\n", "t_s"), "");
+  EXPECT_NE(plotjuggler_problem("t_s,a\n0,x\n", "t_s"), "");
 }
 
 }  // namespace
