@@ -96,8 +96,9 @@ void check_positive(double v, const std::string& flag, const std::string& unit) 
 
 void ControlResponseCommand::setup(CLI::App& app) {
   app.add_option("-o,--output", output_,
-                 "Directory for response.csv and step.csv with step.png, or bode.csv, margins.csv "
-                 "and bode.png")
+                 "Directory for response.csv (every execution: time_s, setpoint, response, error, "
+                 "estimate, rates, torques, PWM) and step.csv with step.png, or bode.csv, "
+                 "margins.csv and bode.png")
       ->required();
   app.add_option("--vehicle", request_.vehicle,
                  "Vehicle file, or a bundled one: quad-f450, hexa-f550, y6, quad-f450-cc3d")
@@ -132,10 +133,13 @@ void ControlResponseCommand::setup(CLI::App& app) {
   app.add_option("--amplitude-nm", test_.amplitude_nm, "chirp: the torque sweep's amplitude, N m")
       ->check(CLI::Range(1e-6, 10.0))
       ->capture_default_str();
-  app.add_option("--from-hz", test_.from_hz, "chirp: start frequency, Hz")
+  app.add_option("--from-hz", test_.from_hz,
+                 "chirp: the lowest frequency of the Bode plot, Hz (the sweep starts at 0.8 x)")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
-  app.add_option("--to-hz", test_.to_hz, "chirp: end frequency, Hz (below half the rate)")
+  app.add_option("--to-hz", test_.to_hz,
+                 "chirp: the highest frequency of the Bode plot, Hz (the sweep ends at 1.25 x, "
+                 "below half the rate)")
       ->check(CLI::Range(0.01, 1000.0))
       ->capture_default_str();
   app.add_option("--duration-s", duration_s_,
@@ -167,10 +171,11 @@ int ControlResponseCommand::run() {
   if (chirp && !(test_.to_hz > test_.from_hz))
     throw InputError("--to-hz " + base::shortest_text(test_.to_hz) + ": expected above --from-hz " +
                      base::shortest_text(test_.from_hz));
-  if (chirp && !(test_.to_hz < test_.rate_hz / 2))
+  // The sweep runs to 1.25 × --to-hz, which must stay below the rate's Nyquist frequency.
+  if (chirp && !(test_.to_hz * 1.25 < test_.rate_hz / 2))
     throw InputError("--to-hz " + base::shortest_text(test_.to_hz) +
-                     ": expected below half of --rate-hz (" +
-                     base::shortest_text(test_.rate_hz / 2) + " Hz)");
+                     ": expected below 0.4 × --rate-hz (" +
+                     base::shortest_text(test_.rate_hz * 0.4) + " Hz)");
   // The estimate's segments (a sixth of the sweep) must hold two periods of the lowest frequency.
   if (chirp && test_.duration_s * test_.from_hz < 12)
     throw InputError("--duration-s " + base::shortest_text(test_.duration_s) +
@@ -190,12 +195,15 @@ int ControlResponseCommand::run() {
   std::cout << "swath-control response: " << axis_ << ' ' << input_ << " into the " << loop_
             << " loop at " << base::shortest_text(test_.rate_hz) << " Hz: ";
   if (r.step) {
-    set.add("step.csv", control::step_csv(*r.step));
+    set.add("step.csv", control::step_csv(*r.step, *r.step_estimate));
     set.add("step.png", step_png(r, axis_, width_px, height_px));
-    std::cout << "rise time " << fixed_text(r.step->rise_time_s, 3) << " s, overshoot "
-              << fixed_text(r.step->overshoot_percent, 1) << " %, settling time "
-              << fixed_text(r.step->settling_time_s, 3) << " s (5 %)"
-              << (r.step->settled ? "" : ", not settled");
+    auto figures = [](const control::StepMetrics& m) {
+      return "rise time " + fixed_text(m.rise_time_s, 3) + " s, overshoot " +
+             fixed_text(m.overshoot_percent, 1) + " %, settling time " +
+             fixed_text(m.settling_time_s, 3) + " s" + (m.settled ? "" : " (not settled)");
+    };
+    std::cout << "true attitude: " << figures(*r.step)
+              << "; estimate: " << figures(*r.step_estimate);
   } else {
     set.add("bode.csv", control::bode_csv(r.bode));
     set.add("margins.csv", control::margins_csv(r.measured, r.closed_form));

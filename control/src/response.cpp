@@ -22,6 +22,8 @@ constexpr double kBand = 0.05;          // the settling band, a share of the ste
 constexpr double kFinalWindow_s = 0.5;  // the mean that gives the final value and the baseline
 constexpr double kHoverHeight_m = 10;
 
+constexpr double kSweepMargin = 1.25;  // the sweep runs this far beyond the band analysed
+
 std::size_t axis_index(ResponseAxis a) {
   return static_cast<std::size_t>(a);
 }
@@ -125,10 +127,13 @@ class TestLoop {
   TaskInput input_;
 };
 
-// The logarithmic sweep's phase at t (0 ≤ t ≤ T): instantaneous frequency f0·(f1/f0)^(t/T).
+// The logarithmic sweep's phase at t (0 ≤ t ≤ T): instantaneous frequency f0·(f1/f0)^(t/T), from
+// f0 = from_hz / kSweepMargin to f1 = to_hz · kSweepMargin, so that the band asked for is not under
+// the taper of the first and last segments.
 double chirp_phase_rad(const ResponseSettings& r, double t) {
-  const double k = std::log(r.to_hz / r.from_hz) / r.duration_s;
-  return 2 * kPi * r.from_hz * (std::exp(k * t) - 1) / k;
+  const double f0 = r.from_hz / kSweepMargin, f1 = r.to_hz * kSweepMargin;
+  const double k = std::log(f1 / f0) / r.duration_s;
+  return 2 * kPi * f0 * (std::exp(k * t) - 1) / k;
 }
 
 struct Recorded {
@@ -230,14 +235,17 @@ RateLoopModel response_model(const SimulationSettings& s, ResponseAxis axis, Res
 }
 
 StepMetrics step_metrics(const std::vector<ResponseSample>& samples, double step_s,
-                         double amplitude_deg) {
+                         double amplitude_deg, bool of_estimate) {
+  auto value = [&](const ResponseSample& s) {
+    return of_estimate ? s.estimate_deg : s.response_deg;
+  };
   StepMetrics m;
   double before = 0, final_sum = 0;
   int n_before = 0, n_final = 0;
   const double end_s = samples.empty() ? 0 : samples.back().t_s;
   for (const ResponseSample& s : samples) {
-    if (s.t_s < step_s && s.t_s >= step_s - kFinalWindow_s) before += s.response_deg, ++n_before;
-    if (s.t_s > end_s - kFinalWindow_s) final_sum += s.response_deg, ++n_final;
+    if (s.t_s < step_s && s.t_s >= step_s - kFinalWindow_s) before += value(s), ++n_before;
+    if (s.t_s > end_s - kFinalWindow_s) final_sum += value(s), ++n_final;
   }
   const double base = n_before ? before / n_before : 0;
   m.final_deg = (n_final ? final_sum / n_final : 0) - base;
@@ -247,7 +255,7 @@ StepMetrics step_metrics(const std::vector<ResponseSample>& samples, double step
   m.settled = true;
   for (const ResponseSample& s : samples) {
     if (s.t_s < step_s) continue;
-    const double y = (s.response_deg - base) / a;  // the response as a share of the step
+    const double y = (value(s) - base) / a;  // the response as a share of the step
     if (t10 < 0 && y >= 0.1) t10 = s.t_s;
     if (t90 < 0 && y >= 0.9) t90 = s.t_s;
     peak = std::max(peak, y);
@@ -374,7 +382,8 @@ ResponseResult run_response(const SimulationSettings& settings, const ResponseSe
   const LoopMargins closed = loop_margins(out.model, 2 * kPi * r.from_hz, 2 * kPi * r.to_hz);
   out.closed_form = in_hz(closed);
   if (r.input == ResponseInput::step) {
-    out.step = step_metrics(out.samples, r.settle_s, r.amplitude_deg);
+    out.step = step_metrics(out.samples, r.settle_s, r.amplitude_deg, false);
+    out.step_estimate = step_metrics(out.samples, r.settle_s, r.amplitude_deg, true);
     return out;
   }
   out.bode = estimate_bode(rec, r);
@@ -465,11 +474,13 @@ std::string margins_csv(const MarginFigures& measured, const MarginFigures& clos
   return out;
 }
 
-std::string step_csv(const StepMetrics& m) {
-  return "rise_time_s,overshoot_percent,settling_time_s,final_deg,settled\n" +
-         base::fixed_text(m.rise_time_s, 4) + ',' + base::fixed_text(m.overshoot_percent, 2) + ',' +
-         base::fixed_text(m.settling_time_s, 4) + ',' + base::fixed_text(m.final_deg, 3) + ',' +
-         (m.settled ? "true" : "false") + '\n';
+std::string step_csv(const StepMetrics& truth, const StepMetrics& estimate) {
+  std::string out = "attitude,rise_time_s,overshoot_percent,settling_time_s,final_deg,settled\n";
+  for (const auto& [name, m] : {std::pair{"true", truth}, {"estimate", estimate}})
+    out += std::string(name) + ',' + base::fixed_text(m.rise_time_s, 4) + ',' +
+           base::fixed_text(m.overshoot_percent, 2) + ',' + base::fixed_text(m.settling_time_s, 4) +
+           ',' + base::fixed_text(m.final_deg, 3) + ',' + (m.settled ? "true" : "false") + '\n';
+  return out;
 }
 
 }  // namespace swath::control

@@ -236,6 +236,23 @@ TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
   ASSERT_EQ(c["comparisons"].size(), environments * 2);
   EXPECT_EQ(c["comparisons"][0]["mode"], "reactive");
   EXPECT_NEAR(c["comparisons"][0]["attitude"]["mean"].get<double>(), sum / 2, 2e-4);
+  // Roll, pitch and yaw apart (columns 17-28): the roll-and-pitch figure is their quadratic
+  // mean, and the yaw improvement is recomputed from the yaw column's pairs.
+  double yaw_sum = 0;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].size(), 30u);
+    const double roll = std::stod(rows[r][17]), pitch = std::stod(rows[r][19]);
+    EXPECT_NEAR(std::stod(rows[r][6]), std::sqrt((roll * roll + pitch * pitch) / 2), 2e-4);
+    EXPECT_LE(std::stod(rows[r][17]), std::stod(rows[r][18]));  // RMS ≤ max
+    EXPECT_LE(std::stod(rows[r][21]), std::stod(rows[r][22]));
+  }
+  for (std::size_t seed = 0; seed < 2; ++seed) {
+    const double b = std::stod(rows[seed][21]), m = std::stod(rows[2 + seed][21]);
+    yaw_sum += (b - m) / b;
+  }
+  EXPECT_NEAR(c["comparisons"][0]["axes"]["yaw"]["rms"]["mean"].get<double>(), yaw_sum / 2, 2e-4);
+  EXPECT_NE(read_text(one + "/comparison.md").find("| roll RMS / max | pitch RMS / max | yaw"),
+            std::string::npos);
 }
 
 TEST(ControlCli, SweepFliesEachValueAsRunWouldWithThatSet) {

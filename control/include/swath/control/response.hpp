@@ -34,10 +34,10 @@ struct ResponseSettings {
   ResponseAxis axis = ResponseAxis::roll;
   ResponseInput input = ResponseInput::step;
   ResponseLoop loop = ResponseLoop::attitude;  ///< step: attitude only
-  double amplitude_deg = 10;   ///< step: the attitude setpoint's step, degrees, ≠ 0
-  double amplitude_nm = 0.2;   ///< chirp: the torque sweep's amplitude, N m, > 0
-  double from_hz = 0.5;        ///< chirp: start frequency, Hz, > 0
-  double to_hz = 40;           ///< chirp: end frequency, Hz, > from_hz
+  double amplitude_deg = 10;  ///< step: the attitude setpoint's step, degrees, ≠ 0
+  double amplitude_nm = 0.2;  ///< chirp: the torque sweep's amplitude, N m, > 0
+  double from_hz = 0.5;  ///< chirp: the band analysed, Hz, > 0 (the sweep starts at from_hz / 1.25)
+  double to_hz = 40;     ///< chirp: … up to to_hz, > from_hz (the sweep ends at to_hz · 1.25)
   double duration_s = 2;       ///< the test after the settling time, s
   double rate_hz = 400;        ///< the task's execution rate, Hz
   double settle_s = 2;         ///< hover before the input starts, s
@@ -56,8 +56,8 @@ struct ResponseSample {
   std::array<double, vehicle::kMaxRotors> pwm_us{};
 };
 
-/// Step figures of the true attitude y(t) (minus its mean over the last 0.5 s before the step)
-/// against the step A.
+/// Step figures of an attitude y(t) (minus its mean over the last 0.5 s before the step) against
+/// the step A.
 struct StepMetrics {
   double rise_time_s = 0;        ///< from y = 0.1 A to y = 0.9 A (first crossings)
   double overshoot_percent = 0;  ///< (max y / A − 1) · 100, 0 when y never passes A
@@ -81,8 +81,9 @@ struct MarginFigures {
 
 struct ResponseResult {
   std::vector<ResponseSample> samples;
-  std::optional<StepMetrics> step;
-  std::vector<BodePoint> bode;  ///< chirp
+  std::optional<StepMetrics> step;           ///< of the true attitude
+  std::optional<StepMetrics> step_estimate;  ///< of the task's estimate (what the loop controls)
+  std::vector<BodePoint> bode;               ///< chirp
   MarginFigures measured, closed_form;
   RateLoopModel model;  ///< the closed form's loop
 };
@@ -95,9 +96,10 @@ RateLoopModel response_model(const SimulationSettings& settings, ResponseAxis ax
 /// divide a second into whole nanoseconds, a layout that cannot be mixed).
 ResponseResult run_response(const SimulationSettings& settings, const ResponseSettings& test);
 
-/// Step figures of `samples` for a step of `amplitude_deg` at `step_s`.
+/// Step figures of `samples` (the true attitude, or the estimate) for a step of `amplitude_deg` at
+/// `step_s`.
 StepMetrics step_metrics(const std::vector<ResponseSample>& samples, double step_s,
-                         double amplitude_deg);
+                         double amplitude_deg, bool of_estimate = false);
 
 /// Gain and phase margins read off a measured response (ascending frequencies): the phase
 /// unwrapped from the lowest frequency and shifted by whole turns so that it lies in (−360°, 0°]
@@ -109,6 +111,6 @@ MarginFigures margins_of(const std::vector<BodePoint>& bode);
 std::string response_csv(const std::vector<ResponseSample>& samples);
 std::string bode_csv(const std::vector<BodePoint>& bode);
 std::string margins_csv(const MarginFigures& measured, const MarginFigures& closed_form);
-std::string step_csv(const StepMetrics& m);
+std::string step_csv(const StepMetrics& truth, const StepMetrics& estimate);
 
 }  // namespace swath::control
