@@ -253,6 +253,24 @@ TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
   EXPECT_NEAR(c["comparisons"][0]["axes"]["yaw"]["rms"]["mean"].get<double>(), yaw_sum / 2, 2e-4);
   EXPECT_NE(read_text(one + "/comparison.md").find("| roll RMS / max | pitch RMS / max | yaw"),
             std::string::npos);
+  // The first row's axes against `run`'s summary.json for the same flight (seed 1, TT400, what
+  // --quick sets), which writes them straight from the simulation's summary.
+  const std::string single = fresh_dir("control-compare-single");
+  ASSERT_EQ(run_swath_control("run random:8@20x20 --environment lab --max-time 20 --set "
+                              "scheduler.reactive.boot_s=5 --set scheduler.run.metrics_from_s=5 "
+                              "--no-pictures -o " +
+                              single)
+                .exit_code,
+            0);
+  const json summary = json::parse(read_text(single + "/summary.json"));
+  std::size_t column = 17;
+  for (const char* group : {"attitude_error_deg", "attitude_error_disturbance_deg"})
+    for (const char* axis : {"roll", "pitch", "yaw"})
+      for (const char* stat : {"rms", "max"})
+        EXPECT_NEAR(std::stod(rows[0][column++]), summary[group][axis][stat].get<double>(), 1e-4)
+            << group << ' ' << axis << ' ' << stat;
+  EXPECT_NEAR(std::stod(rows[0][29]),
+              summary["attitude_error_disturbance_deg"]["share_of_samples"].get<double>(), 1e-4);
 }
 
 TEST(ControlCli, SweepFliesEachValueAsRunWouldWithThatSet) {
