@@ -57,6 +57,38 @@ double mean_of(const std::vector<control::FlightFigures>& f, double control::Fli
   return f.empty() ? 0 : sum / static_cast<double>(f.size());
 }
 
+// The mean over seeds of one axis' RMS or max error: `axes` picks all-samples or
+// disturbance-only, `max` the statistic.
+double axis_mean(const std::vector<control::FlightFigures>& f,
+                 std::array<control::ErrorStat, 3> control::FlightFigures::*axes, std::size_t axis,
+                 bool max) {
+  double sum = 0;
+  for (const auto& v : f) sum += max ? (v.*axes)[axis].max : (v.*axes)[axis].rms;
+  return f.empty() ? 0 : sum / static_cast<double>(f.size());
+}
+
+// comparison.md's by-axis rows: one mode's means (degrees), all samples and disturbance only.
+std::string axis_row(const std::string& environment, const std::string& vehicle,
+                     const std::string& mode, const std::vector<control::FlightFigures>& f) {
+  using F = control::FlightFigures;
+  std::string row = "| " + environment + " | " + vehicle + " | " + mode + " |";
+  for (std::size_t a = 0; a < 3; ++a)
+    row += " " + fixed_text(axis_mean(f, &F::axis_error_deg, a, false), 2) + "° / " +
+           fixed_text(axis_mean(f, &F::axis_error_deg, a, true), 1) + "° |";
+  for (std::size_t a = 0; a < 3; ++a)
+    row += " " + fixed_text(axis_mean(f, &F::axis_disturbance_error_deg, a, false), 2) + "°" +
+           (a < 2 ? " /" : "");
+  return row + " (" + fixed_text(100 * mean_of(f, &F::disturbance_share), 0) + " %) |\n";
+}
+
+ordered_json axes_json(const control::Improvements& imp) {
+  ordered_json j;
+  const char* names[] = {"roll", "pitch", "yaw"};
+  for (std::size_t a = 0; a < 3; ++a)
+    j[names[a]] = {{"rms", interval(imp.axis_rms[a])}, {"max", interval(imp.axis_max[a])}};
+  return j;
+}
+
 }  // namespace
 
 void ControlCompareCommand::setup(CLI::App& app) {
@@ -102,6 +134,21 @@ struct Comparison {
   std::string md;
 };
 
+const char* kAxesIntro =
+    "\n## Attitude error by axis\n\nThe paper's Figs. 9-10 report roll, pitch and yaw "
+    "separately. Means over seeds of the true attitude against its setpoint; \"disturbance "
+    "only\": the samples when nothing was commanded (the carrot at constant velocity, the heading "
+    "not slewing for the last second), with their share of the samples.\n\n"
+    "| environment | vehicle | mode | roll RMS / max | pitch RMS / max | yaw RMS / max | roll / "
+    "pitch / yaw RMS, disturbance only |\n|---|---|---|---|---|---|---|\n";
+
+const char* kAxesImprovementIntro =
+    "\nImprovements by axis over the baseline, paired by seed (positive = smaller error), with "
+    "95 % intervals; the last column is roll and pitch together over the disturbance-only "
+    "samples.\n\n| environment | vehicle | mode | roll RMS | pitch RMS | yaw RMS | roll max | "
+    "pitch max | yaw max | attitude RMS, disturbance only |\n"
+    "|---|---|---|---|---|---|---|---|---|---|\n";
+
 Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector<Mode>& modes,
                          int seeds) {
   Comparison c;
@@ -116,6 +163,7 @@ Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector
       "| environment | vehicle | mode | attitude RMS | attitude RMS (estimate) | cross-track RMS "
       "| executions/s (baseline → mode) | unchanged outputs (baseline) | flight time |\n"
       "|---|---|---|---|---|---|---|---|---|\n";
+  std::string axes_md = kAxesIntro, axes_improvement_md = kAxesImprovementIntro;
   const std::size_t per_mode = static_cast<std::size_t>(seeds);
   for (std::size_t g = 0; g < runs.size(); g += per_mode * modes.size()) {
     auto figures = [&](std::size_t m) {
@@ -125,6 +173,7 @@ Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector
       return f;
     };
     const auto baseline = figures(0);
+    axes_md += axis_row(runs[g].environment, runs[g].vehicle, modes.front().name, baseline);
     ComparedGroup picture_group;
     picture_group.label = runs[g].environment + " " + runs[g].vehicle;
     picture_group.executions_per_s.push_back(
@@ -133,6 +182,13 @@ Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector
       const auto mode = figures(m);
       const control::Improvements imp = control::paired_improvements(baseline, mode);
       const BatchFlight& first = runs[g];
+      axes_md += axis_row(first.environment, first.vehicle, modes[m].name, mode);
+      axes_improvement_md +=
+          "| " + first.environment + " | " + first.vehicle + " | " + modes[m].name + " |";
+      for (const auto& axis : {imp.axis_rms, imp.axis_max})
+        for (const control::MeanInterval& i : axis)
+          axes_improvement_md.append(" ").append(percent(i)).append(" |");
+      axes_improvement_md.append(" ").append(percent(imp.disturbance)).append(" |\n");
       const double eb = mean_of(baseline, &control::FlightFigures::executions_per_s);
       const double em = mean_of(mode, &control::FlightFigures::executions_per_s);
       const double ub = mean_of(baseline, &control::FlightFigures::unchanged_fraction);
@@ -151,7 +207,9 @@ Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector
            {"executions", interval(imp.executions)},
            {"flight_time", interval(imp.flight_time)},
            {"executions_per_s", {{"baseline", round_to(eb, 3)}, {"mode", round_to(em, 3)}}},
-           {"unchanged_fraction_baseline", round_to(ub, 6)}});
+           {"unchanged_fraction_baseline", round_to(ub, 6)},
+           {"axes", axes_json(imp)},
+           {"attitude_disturbance", interval(imp.disturbance)}});
       c.md += "| " + first.environment + " | " + first.vehicle + " | " + modes[m].name + " | " +
               percent(imp.attitude) + " | " + percent(imp.attitude_estimated) + " | " +
               percent(imp.cross_track) + " | " + fixed_text(eb, 1) + " → " + fixed_text(em, 1) +
@@ -159,6 +217,7 @@ Comparison compare_pairs(const std::vector<BatchFlight>& runs, const std::vector
     }
     c.picture_groups.push_back(std::move(picture_group));
   }
+  c.md += axes_md + axes_improvement_md;
   return c;
 }
 

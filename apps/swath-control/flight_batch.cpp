@@ -30,7 +30,10 @@ std::string runs_csv(const std::vector<BatchFlight>& runs, const std::string& va
       "environment,vehicle,mode," + (value_column.empty() ? "" : value_column + ",") +
       "seed,status,flight_time_s,attitude_rms_deg,"
       "attitude_estimated_rms_deg,cross_track_rms_m,executions_per_s,unchanged_fraction,"
-      "cpu_utilisation,cpu_j,motors_j,total_j,mean_power_w,final_soc\n";
+      "cpu_utilisation,cpu_j,motors_j,total_j,mean_power_w,final_soc,roll_rms_deg,roll_max_deg,"
+      "pitch_rms_deg,pitch_max_deg,yaw_rms_deg,yaw_max_deg,roll_disturbance_rms_deg,"
+      "roll_disturbance_max_deg,pitch_disturbance_rms_deg,pitch_disturbance_max_deg,"
+      "yaw_disturbance_rms_deg,yaw_disturbance_max_deg,disturbance_share\n";
   for (const BatchFlight& r : runs) {
     const control::FlightFigures f = control::figures_of(r.summary);
     const control::SimulationSummary& s = r.summary;
@@ -42,7 +45,11 @@ std::string runs_csv(const std::vector<BatchFlight>& runs, const std::string& va
            ',' + fixed_text(f.unchanged_fraction, 6) + ',' + fixed_text(s.cpu_utilisation, 6) +
            ',' + fixed_text(s.cpu_j, 3) + ',' + fixed_text(s.motors_j, 1) + ',' +
            fixed_text(s.total_j, 1) + ',' + fixed_text(s.mean_power_w, 3) + ',' +
-           fixed_text(s.final_soc, 6) + '\n';
+           fixed_text(s.final_soc, 6);
+    for (const auto& axes : {f.axis_error_deg, f.axis_disturbance_error_deg})
+      for (const control::ErrorStat& e : axes)
+        out += ',' + fixed_text(e.rms, 4) + ',' + fixed_text(e.max, 4);
+    out += ',' + fixed_text(f.disturbance_share, 4) + '\n';
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include "command.hpp"
 #include "compare_command.hpp"
 #include "fit_command.hpp"
+#include "response_command.hpp"
 #include "run_command.hpp"
 #include "sweep_command.hpp"
 
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<ControlCompareCommand>());
   commands.push_back(std::make_unique<ControlSweepCommand>());
   commands.push_back(std::make_unique<ControlFitCommand>());
+  commands.push_back(std::make_unique<ControlResponseCommand>());
   commands.push_back(std::make_unique<ControlArduPilotJsonCommand>());
   return run_program("swath-control",
                      "swath-control: fly missions with a simulated multirotor and its control task",

@@ -124,6 +124,9 @@ ExecutionOutput ControlTask::execute(TaskState& state, const TaskInput& in) cons
   const Vec3 body_up = rotate(state.estimate.attitude, Vec3{0, 0, 1});
   out.request.thrust_n = std::max(dot(thrust_world, body_up), 0.0);
   out.attitude_setpoint = attitude_from_thrust_and_yaw(thrust_world, in.setpoint.yaw_rad);
+  if (norm(in.attitude_injection_rad) > 0)
+    out.attitude_setpoint =
+        out.attitude_setpoint * vehicle::from_rotation_vector(in.attitude_injection_rad);
   // 4. Attitude P → rate setpoint.
   out.rate_setpoint_rad_s =
       rate_setpoint(g, state.estimate.attitude, out.attitude_setpoint, in.setpoint.yaw_rate_rad_s);

@@ -37,12 +37,18 @@ FlightFigures figures_of(const SimulationSummary& s) {
   f.flight_time_s = s.reserve_time_s ? *s.reserve_time_s : s.flight_time_s;
   f.cpu_j = s.cpu_j;
   f.total_j = s.total_j;
+  f.axis_error_deg = a;
+  const auto& d = s.attitude_error_disturbance_deg;
+  f.axis_disturbance_error_deg = d;
+  f.disturbance_rms_deg = std::sqrt((d[0].rms * d[0].rms + d[1].rms * d[1].rms) / 2);
+  f.disturbance_share = s.disturbance_share;
   return f;
 }
 
 Improvements paired_improvements(const std::vector<FlightFigures>& baseline,
                                  const std::vector<FlightFigures>& mode) {
-  std::vector<double> att, est, xt, ex, ft;
+  std::vector<double> att, est, xt, ex, ft, dist;
+  std::array<std::vector<double>, 3> axis_rms, axis_max;
   auto less = [](std::vector<double>& out, double b, double m) {
     if (b != 0) out.push_back((b - m) / b);
   };
@@ -53,9 +59,24 @@ Improvements paired_improvements(const std::vector<FlightFigures>& baseline,
     less(xt, b.cross_track_rms_m, m.cross_track_rms_m);
     less(ex, b.executions_per_s, m.executions_per_s);
     if (b.flight_time_s != 0) ft.push_back((m.flight_time_s - b.flight_time_s) / b.flight_time_s);
+    less(dist, b.disturbance_rms_deg, m.disturbance_rms_deg);
+    for (std::size_t a = 0; a < 3; ++a) {
+      less(axis_rms[a], b.axis_error_deg[a].rms, m.axis_error_deg[a].rms);
+      less(axis_max[a], b.axis_error_deg[a].max, m.axis_error_deg[a].max);
+    }
   }
-  return {mean_interval(att), mean_interval(est), mean_interval(xt), mean_interval(ex),
-          mean_interval(ft)};
+  Improvements out;
+  out.attitude = mean_interval(att);
+  out.attitude_estimated = mean_interval(est);
+  out.cross_track = mean_interval(xt);
+  out.executions = mean_interval(ex);
+  out.flight_time = mean_interval(ft);
+  for (std::size_t a = 0; a < 3; ++a) {
+    out.axis_rms[a] = mean_interval(axis_rms[a]);
+    out.axis_max[a] = mean_interval(axis_max[a]);
+  }
+  out.disturbance = mean_interval(dist);
+  return out;
 }
 
 }  // namespace swath::control

@@ -236,6 +236,41 @@ TEST(ControlCli, CompareIsPairedByteIdenticalForAnyJobsAndAgreesWithItsRuns) {
   ASSERT_EQ(c["comparisons"].size(), environments * 2);
   EXPECT_EQ(c["comparisons"][0]["mode"], "reactive");
   EXPECT_NEAR(c["comparisons"][0]["attitude"]["mean"].get<double>(), sum / 2, 2e-4);
+  // Roll, pitch and yaw apart (columns 17-28): the roll-and-pitch figure is their quadratic
+  // mean, and the yaw improvement is recomputed from the yaw column's pairs.
+  double yaw_sum = 0;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].size(), 30u);
+    const double roll = std::stod(rows[r][17]), pitch = std::stod(rows[r][19]);
+    EXPECT_NEAR(std::stod(rows[r][6]), std::sqrt((roll * roll + pitch * pitch) / 2), 2e-4);
+    EXPECT_LE(std::stod(rows[r][17]), std::stod(rows[r][18]));  // RMS ≤ max
+    EXPECT_LE(std::stod(rows[r][21]), std::stod(rows[r][22]));
+  }
+  for (std::size_t seed = 0; seed < 2; ++seed) {
+    const double b = std::stod(rows[seed][21]), m = std::stod(rows[2 + seed][21]);
+    yaw_sum += (b - m) / b;
+  }
+  EXPECT_NEAR(c["comparisons"][0]["axes"]["yaw"]["rms"]["mean"].get<double>(), yaw_sum / 2, 2e-4);
+  EXPECT_NE(read_text(one + "/comparison.md").find("| roll RMS / max | pitch RMS / max | yaw"),
+            std::string::npos);
+  // The first row's axes against `run`'s summary.json for the same flight (seed 1, TT400, what
+  // --quick sets), which writes them straight from the simulation's summary.
+  const std::string single = fresh_dir("control-compare-single");
+  ASSERT_EQ(run_swath_control("run random:8@20x20 --environment lab --max-time 20 --set "
+                              "scheduler.reactive.boot_s=5 --set scheduler.run.metrics_from_s=5 "
+                              "--no-pictures -o " +
+                              single)
+                .exit_code,
+            0);
+  const json summary = json::parse(read_text(single + "/summary.json"));
+  std::size_t column = 17;
+  for (const char* group : {"attitude_error_deg", "attitude_error_disturbance_deg"})
+    for (const char* axis : {"roll", "pitch", "yaw"})
+      for (const char* stat : {"rms", "max"})
+        EXPECT_NEAR(std::stod(rows[0][column++]), summary[group][axis][stat].get<double>(), 1e-4)
+            << group << ' ' << axis << ' ' << stat;
+  EXPECT_NEAR(std::stod(rows[0][29]),
+              summary["attitude_error_disturbance_deg"]["share_of_samples"].get<double>(), 1e-4);
 }
 
 TEST(ControlCli, SweepFliesEachValueAsRunWouldWithThatSet) {

@@ -69,6 +69,9 @@ struct TaskInput {
   /// Added to the rate loop's torque before mixing, body FLU, N m: the injection point of step,
   /// sine or chirp tests of the rate loop (loop_response.hpp); 0 in flight.
   Vec3 torque_injection_nm;
+  /// A rotation vector in body axes composed onto step 3's attitude setpoint, rad: the injection
+  /// point of step tests of the attitude loop (swath-control response); 0 in flight.
+  Vec3 attitude_injection_rad;
 };
 
 /// The task's memory: a copyable value.

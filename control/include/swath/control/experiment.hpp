@@ -3,6 +3,7 @@
 // random numbers, so the modes see the same wind and sensor noise) and the paired improvement of a
 // mode over the time-triggered baseline with a 95 % Student-t interval.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,13 @@ struct FlightFigures {
   double unchanged_fraction = 0;
   double flight_time_s = 0;  ///< to the reserve when it was reached, else the flight's
   double cpu_j = 0, total_j = 0;
+  /// Roll, pitch, yaw separately (the paper's Figs. 9-10), true vs setpoint, RMS and max.
+  std::array<ErrorStat, 3> axis_error_deg{};
+  /// The same over the samples when nothing was commanded (summary.json's
+  /// attitude_error_disturbance_deg: the carrot at constant velocity, the heading not slewing).
+  std::array<ErrorStat, 3> axis_disturbance_error_deg{};
+  double disturbance_rms_deg = 0;  ///< roll and pitch together over those samples
+  double disturbance_share = 0;    ///< the share of the samples that counted for it
 };
 FlightFigures figures_of(const SimulationSummary& s);
 
@@ -35,6 +43,8 @@ FlightFigures figures_of(const SimulationSummary& s);
 /// longer). Pairs where the baseline is 0 are skipped.
 struct Improvements {
   MeanInterval attitude, attitude_estimated, cross_track, executions, flight_time;
+  std::array<MeanInterval, 3> axis_rms, axis_max;  ///< roll, pitch, yaw
+  MeanInterval disturbance;                        ///< disturbance_rms_deg
 };
 Improvements paired_improvements(const std::vector<FlightFigures>& baseline,
                                  const std::vector<FlightFigures>& mode);
