@@ -508,6 +508,9 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
     }
     answer = visible_with(nodes_[i], nodes_[j], fan) ? 1 : 0;
     known.store(answer, std::memory_order_relaxed);
+    // Also in j's row: a search reads the row of the node it settles (nodes_known(v, u)), one
+    // chunk in the cache, not one row per node it looks at.
+    node_tables_->at(j, i).store(answer, std::memory_order_relaxed);
   }
   return answer != 0;
 }
@@ -562,6 +565,25 @@ struct SearchItem {
   std::size_t from;
   std::size_t node;
   auto operator<=>(const SearchItem&) const = default;
+};
+
+// The nodes of a search not yet settled, in no order: with a corner allowance a settled node
+// looks for onward legs to every one of them (the order it looks in does not matter: each leg is
+// one candidate, and the queue orders candidates by all their fields).
+struct OpenNodes {
+  std::vector<std::uint32_t> list;
+  std::vector<std::uint32_t> at;  ///< per node of list, its place there
+  void reset(const std::vector<std::size_t>& near, std::size_t n) {
+    list.assign(near.begin(), near.end());
+    at.resize(n);
+    for (std::size_t k = 0; k < list.size(); ++k) at[list[k]] = std::uint32_t(k);
+  }
+  void remove(std::size_t v) {
+    const std::uint32_t k = at[v], moved = list.back();
+    list[k] = moved;
+    at[moved] = k;
+    list.pop_back();
+  }
 };
 
 // Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
@@ -641,6 +663,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   thread_local std::vector<char> is_near;      // per node: in `near`
   thread_local std::vector<SearchItem> queue;  // a min-heap (std::push_heap with greater)
   thread_local Settlers settlers;
+  thread_local OpenNodes open;
   h.resize(n);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
   // queued. A search that ends without reaching b under the limit is run again with a higher
@@ -688,6 +711,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(near.begin(), near.end());
+    open.reset(near, n);
     std::make_heap(queue.begin(), queue.end(), std::greater<>());
     const auto push = [&](const SearchItem& item) {
       if (!(item.f <= limit)) {
@@ -714,6 +738,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
                          : !sees(a, from_a, v))
         continue;
       settled[v] = 1;
+      open.remove(v);
       previous[v] = item.from_node ? item.from : n;
       // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
       // on both sides of the leg in, none goes on.
@@ -724,7 +749,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
       const auto onward_to = [&](std::size_t u) {
         if (!is_near[u] || settled[u]) return;
-        const signed char seen = nodes_known(std::min(u, v), std::max(u, v));
+        const signed char seen = nodes_known(v, u);
         if (seen == 0 || !taut(in, in_from, v, nodes_[u])) return;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
         const SearchItem next{through + h[u], 0, through, 1, item.g, v, u};
@@ -733,10 +758,16 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         if (next.f <= limit && seen == 1) settlers.offer(next);
         push(next);
       };
-      if (prune_)
+      if (prune_) {
         onward(v, in, box_lo, box_hi, onward_to);
-      else
-        for (const std::size_t u : near) onward_to(u);
+        continue;
+      }
+      // Every open node, those known hidden skipped here (about half of them) without a call.
+      const NodeTables& tables = *node_tables_;
+      for (const std::uint32_t u : open.list) {
+        const NodeTables::Chunk* known = tables.find(v, u);
+        if (!known || known->load(std::memory_order_relaxed) != 0) onward_to(u);
+      }
     }
     // Done: b reached, or every candidate taken (no inside path).
     found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());
