@@ -756,16 +756,11 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         if (next.f <= limit && seen == 1) settlers.offer(next);
         push(next);
       };
-      if (prune_) {
+      if (prune_)
         onward(v, in, box_lo, box_hi, onward_to);
-        continue;
-      }
-      // Every open node, those known hidden skipped here (about half of them) without a call.
-      const NodeTables& tables = *node_tables_;
-      for (const std::uint32_t u : open.list) {
-        const NodeTables::Chunk* known = tables.find(v, u);
-        if (!known || known->load(std::memory_order_relaxed) != 0) onward_to(u);
-      }
+      else  // every open node; those known hidden (nearly half) skipped without a call
+        for (const std::uint32_t u : open.list)
+          if (nodes_known(v, u) != 0) onward_to(u);
     }
     // Done: b reached, or every candidate taken (no inside path).
     found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());
