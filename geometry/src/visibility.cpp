@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "swath/geometry/capped_heap.hpp"
 #include "swath/geometry/classification.hpp"
 #include "swath/geometry/predicates.hpp"
 
@@ -508,6 +509,9 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
     }
     answer = visible_with(nodes_[i], nodes_[j], fan) ? 1 : 0;
     known.store(answer, std::memory_order_relaxed);
+    // Also in j's row: a search reads the row of the node it settles (nodes_known(v, u)), one
+    // chunk in the cache, not one row per node it looks at.
+    node_tables_->at(j, i).store(answer, std::memory_order_relaxed);
   }
   return answer != 0;
 }
@@ -562,6 +566,25 @@ struct SearchItem {
   std::size_t from;
   std::size_t node;
   auto operator<=>(const SearchItem&) const = default;
+};
+
+// The nodes of a search not yet settled, in no order: with a corner allowance a settled node
+// looks for onward legs to every one of them (the order it looks in does not matter: each leg is
+// one candidate, and the queue orders candidates by all their fields).
+struct OpenNodes {
+  std::vector<std::uint32_t> list;
+  std::vector<std::uint32_t> at;  ///< per node of list, its place there
+  void reset(const std::vector<std::size_t>& near, std::size_t n) {
+    list.assign(near.begin(), near.end());
+    at.resize(n);
+    for (std::size_t k = 0; k < list.size(); ++k) at[list[k]] = std::uint32_t(k);
+  }
+  void remove(std::size_t v) {
+    const std::uint32_t k = at[v], moved = list.back();
+    list[k] = moved;
+    at[moved] = k;
+    list.pop_back();
+  }
 };
 
 // Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
@@ -639,8 +662,9 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   thread_local std::vector<char> settled;
   thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
   thread_local std::vector<char> is_near;      // per node: in `near`
-  thread_local std::vector<SearchItem> queue;  // a min-heap (std::push_heap with greater)
+  thread_local CappedHeap<SearchItem> queue;   // a search takes ~1 candidate in 10 it queues
   thread_local Settlers settlers;
+  thread_local OpenNodes open;
   h.resize(n);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
   // queued. A search that ends without reaching b under the limit is run again with a higher
@@ -659,7 +683,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     settled.assign(n, 0);
     is_near.assign(n, 0);
     settlers.reset(n);
-    queue.clear();
+    queue.clear({-std::numeric_limits<double>::infinity(), 0, 0.0, 0, 0.0, 0, 0});
     near.clear();
     const Point2 middle = (a + b) * 0.5;
     const double reach = limit / (2 * kShrink) * (1 + 1e-9) + tolerance_;
@@ -683,24 +707,22 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       }
       near.push_back(u);
       is_near[u] = 1;
-      if (from_a.seen[u] != 0) queue.push_back({f, 0, d, 0, 0.0, n, u});  // not known hidden
-      if (from_a.seen[u] == 1) settlers.offer(queue.back());  // the only one from a for u
+      const SearchItem straight{f, 0, d, 0, 0.0, n, u};
+      if (from_a.seen[u] != 0) queue.push(straight);      // not known hidden
+      if (from_a.seen[u] == 1) settlers.offer(straight);  // the only one from a for u
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(near.begin(), near.end());
-    std::make_heap(queue.begin(), queue.end(), std::greater<>());
+    open.reset(near, n);
     const auto push = [&](const SearchItem& item) {
       if (!(item.f <= limit)) {
         beyond = std::min(beyond, item.f);
         return;
       }
-      queue.push_back(item);
-      std::push_heap(queue.begin(), queue.end(), std::greater<>());
+      queue.push(item);
     };
     while (!queue.empty()) {
-      std::pop_heap(queue.begin(), queue.end(), std::greater<>());
-      const SearchItem item = queue.back();
-      queue.pop_back();
+      const SearchItem item = queue.pop();
       const std::size_t v = item.node;
       if (item.to_b) {
         if (sees(b, to_b, v)) {
@@ -714,6 +736,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
                          : !sees(a, from_a, v))
         continue;
       settled[v] = 1;
+      open.remove(v);
       previous[v] = item.from_node ? item.from : n;
       // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
       // on both sides of the leg in, none goes on.
@@ -724,8 +747,8 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
       const auto onward_to = [&](std::size_t u) {
         if (!is_near[u] || settled[u]) return;
-        const signed char seen = nodes_known(std::min(u, v), std::max(u, v));
-        if (seen == 0 || !taut(in, in_from, v, nodes_[u])) return;
+        const signed char seen = nodes_known(v, u);
+        if (seen == 0 || (prune_ && !taut(in, in_from, v, nodes_[u]))) return;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
         const SearchItem next{through + h[u], 0, through, 1, item.g, v, u};
         // (One above the limit is counted in `beyond` by push(), as before.)
@@ -735,8 +758,9 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       };
       if (prune_)
         onward(v, in, box_lo, box_hi, onward_to);
-      else
-        for (const std::size_t u : near) onward_to(u);
+      else  // every open node; those known hidden (nearly half) skipped without a call
+        for (const std::uint32_t u : open.list)
+          if (nodes_known(v, u) != 0) onward_to(u);
     }
     // Done: b reached, or every candidate taken (no inside path).
     found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());

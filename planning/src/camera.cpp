@@ -147,6 +147,11 @@ Camera find_camera(const std::string& spec, const std::filesystem::path& databas
       throw InputError(spec + ": cannot open the camera file");
     return parse_camera(read_text(spec), spec);
   }
+  // An id names its file: parse that one, not the whole database (16 files were a fifth of a
+  // small plan's time). A camera name still searches every file.
+  const std::filesystem::path by_id = database_directory / (lower(spec) + ".yaml");
+  if (std::filesystem::is_regular_file(by_id, ec))
+    return parse_camera(read_text(by_id), by_id.string());
   const std::vector<CameraEntry> entries = camera_database(database_directory);
   for (const CameraEntry& e : entries)
     if (e.id == lower(spec) || lower(e.camera.name) == lower(spec)) return e.camera;

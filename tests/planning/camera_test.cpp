@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "swath/base/input_error.hpp"
 #include "swath/planning/imaging.hpp"
 
@@ -104,6 +107,41 @@ TEST(CameraDatabase, FindsByIdNameOrFileAndSuggestsOtherwise) {
   } catch (const base::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("did you mean sony-"), std::string::npos) << e.what();
   }
+}
+
+// find_camera() reads an id's own file only; every bundled id must give the camera the whole
+// database holds for it, field by field.
+TEST(CameraDatabase, AnIdGivesTheDatabasesCamera) {
+  for (const CameraEntry& e : camera_database(kDatabase)) {
+    const Camera c = find_camera(e.id, kDatabase);
+    EXPECT_EQ(c.name, e.camera.name) << e.id;
+    EXPECT_EQ(c.sensor_width_mm, e.camera.sensor_width_mm) << e.id;
+    EXPECT_EQ(c.sensor_height_mm, e.camera.sensor_height_mm) << e.id;
+    EXPECT_EQ(c.focal_length_mm, e.camera.focal_length_mm) << e.id;
+    EXPECT_EQ(c.image_width_px, e.camera.image_width_px) << e.id;
+    EXPECT_EQ(c.image_height_px, e.camera.image_height_px) << e.id;
+    EXPECT_EQ(c.min_trigger_interval_s, e.camera.min_trigger_interval_s) << e.id;
+    EXPECT_EQ(c.dji.has_value(), e.camera.dji.has_value()) << e.id;
+  }
+}
+
+// An id is found by its file alone: another, broken file in the folder does not stop it, while a
+// name (which needs every file) still reports the broken one.
+TEST(CameraDatabase, AnIdIsReadFromItsOwnFileOnly) {
+  const std::filesystem::path dir =
+      std::filesystem::path(testing::TempDir()) / "swath-camera-by-id";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(kDatabase + "/sony-ilce-qx1.yaml", dir / "sony-ilce-qx1.yaml");
+  std::ofstream(dir / "broken.yaml") << "name: Broken\nsensor_width_mm: -1\n";
+  EXPECT_EQ(find_camera("Sony-ILCE-QX1", dir).image_width_px, 5456);
+  try {
+    find_camera("Sony ILCE-QX1", dir);
+    ADD_FAILURE();
+  } catch (const base::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.yaml"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

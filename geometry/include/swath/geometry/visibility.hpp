@@ -143,10 +143,11 @@ class VisibilityRouter {
   bool sees(Point2 p, Row& row, std::size_t node) const;
   mutable std::map<std::pair<double, double>, Row> sees_;
   /// Whether nodes i < j see each other, tested from i (as the eager graph did: the test is not
-  /// symmetric in rounding) and kept; through i's fan once i has been asked kFanAfter times.
+  /// symmetric in rounding) and kept in both rows; through i's fan once i has been asked kFanAfter
+  /// times.
   bool nodes_see(std::size_t i, std::size_t j) const;
-  /// What is known of whether nodes i < j see each other (asked before, by any copy): 1 yes, 0 no,
-  /// kUnknown not asked yet.
+  /// What is known of whether nodes i and j (either order: row i is read) see each other (asked
+  /// before, by any copy): 1 yes, 0 no, kUnknown not asked yet.
   signed char nodes_known(std::size_t i, std::size_t j) const;
   /// Which nodes see each other (in chunks of rows, made as they are first asked) and the nodes'
   /// fans, shared with copies (atomics).

@@ -1,0 +1,64 @@
+#include "swath/geometry/capped_heap.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <queue>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace swath::geometry {
+namespace {
+
+// The items as one std::priority_queue gives them (the brute force), against CappedHeap, on
+// random runs of pushes and pops (fixed seed): keys from a small range, so that many are equal and
+// items land on both sides of the cap after each refill; ids tell equal keys apart.
+TEST(CappedHeap, GivesItemsInTheOrderOfOneHeap) {
+  using Item = std::pair<int, int>;  // key, id
+  std::mt19937 random(52);
+  for (int run = 0; run < 200; ++run) {
+    CappedHeap<Item> capped;
+    capped.clear({-1, 0});
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
+    const int keys = 1 + int(random() % 2000);
+    const int steps = int(random() % 3000);
+    const unsigned pop_per_mille = 50 + random() % 600;
+    int id = 0, low = 0;  // keys pushed are >= the last popped one, as in an A* search
+    for (int step = 0; step < steps; ++step) {
+      if (!heap.empty() && random() % 1000 < pop_per_mille) {
+        ASSERT_FALSE(capped.empty());
+        const Item got = capped.pop();
+        ASSERT_EQ(got, heap.top()) << "run " << run << " step " << step;
+        heap.pop();
+        low = got.first;
+      } else {
+        const Item item{low + int(random() % unsigned(keys)), id++};
+        capped.push(item);
+        heap.push(item);
+      }
+    }
+    while (!heap.empty()) {
+      ASSERT_EQ(capped.pop(), heap.top()) << "run " << run;
+      heap.pop();
+    }
+    EXPECT_TRUE(capped.empty());
+  }
+}
+
+// Keys below the last one popped (a search need not push in order) still come out least first.
+TEST(CappedHeap, TakesItemsBelowTheCap) {
+  CappedHeap<int> capped;
+  capped.clear(-1);
+  for (int k = 1000; k > 0; --k) capped.push(k);
+  EXPECT_EQ(capped.pop(), 1);
+  capped.push(0);
+  capped.push(5000);
+  EXPECT_EQ(capped.pop(), 0);
+  for (int k = 2; k <= 1000; ++k) ASSERT_EQ(capped.pop(), k);
+  EXPECT_EQ(capped.pop(), 5000);
+  EXPECT_TRUE(capped.empty());
+}
+
+}  // namespace
+}  // namespace swath::geometry
