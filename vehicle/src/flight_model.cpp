@@ -42,7 +42,9 @@ FlightModel::FlightModel(const FlightModelSettings& s)
 
 MultirotorInputs FlightModel::inputs() const {
   MultirotorInputs in;
-  for (std::size_t i = 0; i < rotor_commands_.size(); ++i) in.command_rad_s[i] = rotor_commands_[i];
+  // The ESCs drive the motors from the battery: the speed a PWM gives scales with its voltage.
+  for (std::size_t i = 0; i < rotor_commands_.size(); ++i)
+    in.command_rad_s[i] = rotor_commands_[i] * supply_ratio_;
   in.wind_m_s = wind_;
   in.torque_noise_nm = torque_noise_;
   return in;
@@ -52,8 +54,9 @@ double FlightModel::motor_power_w() const {
   const Wrench w = applied_wrench(settings_.physics.airframe, state_, inputs());
   double p = 0;
   for (std::size_t i = 0; i < rotor_commands_.size(); ++i)
-    p += vehicle::motor_power_w(settings_.physics.airframe.propulsion, state_.rotor_rad_s[i],
-                                w.rotor_accel_rad_s2[i]);
+    p += vehicle::motor_power_at_torque_w(settings_.physics.airframe.propulsion,
+                                          state_.rotor_rad_s[i], w.rotor_drag_torque_nm[i],
+                                          w.rotor_accel_rad_s2[i]);
   return p;
 }
 
