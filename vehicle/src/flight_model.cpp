@@ -47,6 +47,7 @@ MultirotorInputs FlightModel::inputs() const {
     in.command_rad_s[i] = rotor_commands_[i] * supply_ratio_;
   in.wind_m_s = wind_;
   in.torque_noise_nm = torque_noise_;
+  in.drag_torque_factor = drag_factors_;
   return in;
 }
 
@@ -108,6 +109,9 @@ void FlightModel::run_events(SimTime t) {
   if (next_wind_ <= t) {
     update_wind(seconds(t));
     next_wind_ = t + wind_period_ns_;
+    // Translational lift from the airflow now, held until the next wind update like the wind
+    // (solving Glauert's equation at every event would cost more than the rest of the plant).
+    drag_factors_ = drag_torque_factors(settings_.physics.airframe, state_, wind_);
   }
   Truth truth;
   bool have_truth = false;

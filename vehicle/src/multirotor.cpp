@@ -118,17 +118,33 @@ double induced_power_share(const Propulsion& p, double efficiency, double rho) {
          (p.torque_coeff_nm_s2 * std::sqrt(2 * rho * area));
 }
 
-double rotor_drag_torque_nm(const Propulsion& p, double efficiency, double rho, double omega,
-                            const Vec3& air) {
-  const double hover_torque = p.torque_coeff_nm_s2 * omega * omega;
-  if (!p.translational_lift || !(omega > 0)) return hover_torque;
+double drag_torque_factor(const Propulsion& p, double efficiency, double rho, double omega,
+                          const Vec3& air) {
+  if (!p.translational_lift || !(omega > 0)) return 1.0;
   const double area = std::numbers::pi * p.diameter_m * p.diameter_m / 4;
   const double thrust = efficiency * p.thrust_coeff_n_s2 * omega * omega;
   const double v_h = std::sqrt(thrust / (2 * rho * area));
   const double axial = std::max(air.z, -v_h);
-  const double v_i = induced_velocity_m_s(v_h, std::hypot(air.x, air.y), axial);
-  return std::max(hover_torque + p.induced_power_factor * thrust * (v_i + axial - v_h) / omega,
-                  0.0);
+  const double v_i = induced_velocity_m_s(v_h, std::sqrt(air.x * air.x + air.y * air.y), axial);
+  // k_Q Ω² + κ T (v_i + u_z − v_h) / Ω = k_Q Ω² (1 + share (v_i + u_z − v_h) / v_h).
+  return std::max(1.0 + induced_power_share(p, efficiency, rho) * (v_i + axial - v_h) / v_h, 0.0);
+}
+
+double rotor_drag_torque_nm(const Propulsion& p, double efficiency, double rho, double omega,
+                            const Vec3& air) {
+  return p.torque_coeff_nm_s2 * omega * omega * drag_torque_factor(p, efficiency, rho, omega, air);
+}
+
+std::array<double, kMaxRotors> drag_torque_factors(const Airframe& a, const MultirotorState& s,
+                                                   const Vec3& wind_m_s) {
+  std::array<double, kMaxRotors> factors;
+  factors.fill(1.0);
+  if (!a.propulsion.translational_lift) return factors;
+  const Vec3 air = rotate_inverse(s.attitude, s.velocity_m_s - wind_m_s);
+  for (std::size_t i = 0; i < a.rotors.size(); ++i)
+    factors[i] = drag_torque_factor(a.propulsion, a.rotors[i].efficiency, a.frame.air_density_kg_m3,
+                                    s.rotor_rad_s[i], air);
+  return factors;
 }
 
 Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const MultirotorInputs& in) {
@@ -151,8 +167,7 @@ Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const Multiro
     thrust_body += t;
     torque += cross(r.position_m, t);
     // The rotor's drag torque and the reaction to spinning it up, opposite to its spin.
-    const double drag_torque =
-        rotor_drag_torque_nm(p, r.efficiency, f.air_density_kg_m3, omega, air);
+    const double drag_torque = p.torque_coeff_nm_s2 * omega * omega * in.drag_torque_factor[i];
     w.rotor_drag_torque_nm[i] = drag_torque;
     torque -= kUp * (r.spin * (drag_torque + p.rotor_inertia_kg_m2 * accel));
     rotor_momentum += kUp * (r.spin * p.rotor_inertia_kg_m2 * omega);

@@ -91,6 +91,7 @@ class FlightModel {
   Vec3 wind_, torque_noise_;
   double motor_energy_j_ = 0.0;
   double supply_ratio_ = 1.0;
+  std::array<double, kMaxRotors> drag_factors_{1, 1, 1, 1, 1, 1, 1, 1};
   std::vector<DeliveredSample> delivered_;
 };
 

@@ -88,7 +88,13 @@ struct MultirotorInputs {
   std::array<double, kMaxRotors> command_rad_s{};  ///< Ω_cmd, clamped to [0, Ω_max]
   Vec3 wind_m_s;                                   ///< air velocity, world ENU
   Vec3 torque_noise_nm;                            ///< M_n, body FLU
+  /// Each rotor's drag torque over k_Q Ω² (drag_torque_factors: translational lift), held like
+  /// the wind (FlightModel refreshes it at every wind update): the airflow changes little in a
+  /// few milliseconds, and solving Glauert's equation in every RK4 stage would cost more than
+  /// the rest of the plant.
+  std::array<double, kMaxRotors> drag_torque_factor{1, 1, 1, 1, 1, 1, 1, 1};
 };
+static_assert(kMaxRotors == 8, "drag_torque_factor's initialiser lists every rotor");
 
 /// The forces and moments on the body in a state, and the rotor accelerations.
 struct Wrench {
@@ -119,6 +125,14 @@ double induced_velocity_m_s(double hover_induced_m_s, double edgewise_m_s, doubl
 /// T = η k_T Ω², v_h = √(T / 2ρA).
 double rotor_drag_torque_nm(const Propulsion& propulsion, double efficiency,
                             double air_density_kg_m3, double speed_rad_s, const Vec3& air_body_m_s);
+
+/// rotor_drag_torque_nm over k_Q Ω²: 1 without translational lift or at rest.
+double drag_torque_factor(const Propulsion& propulsion, double efficiency, double air_density_kg_m3,
+                          double speed_rad_s, const Vec3& air_body_m_s);
+/// drag_torque_factor of every rotor in a state with the wind `wind_m_s` (world ENU).
+std::array<double, kMaxRotors> drag_torque_factors(const Airframe& airframe,
+                                                   const MultirotorState& state,
+                                                   const Vec3& wind_m_s);
 
 /// The share of a rotor's hover shaft power that is induced, κ T v_h / (k_Q Ω³) = κ η^1.5
 /// k_T^1.5 / (k_Q √(2ρA)) (κ times the figure of merit; the same at every Ω).
