@@ -12,6 +12,7 @@
 #include "swath/control/reactive_scheduler.hpp"
 #include "swath/control/rotor_layout.hpp"
 #include "swath/control/scheduler.hpp"
+#include "swath/control/voltage_compensation.hpp"
 
 namespace swath::control {
 namespace {
@@ -110,7 +111,7 @@ std::unique_ptr<Scheduler> make_scheduler(const SchedulerConfig& config,
   return std::make_unique<TimeTriggeredScheduler>(*tt);
 }
 
-// ---- The battery: paper 004 eq. 12 per metrics step. ----
+// ---- The battery: paper 004 eq. 12 per metrics step, or with voltage sag (cells > 0). ----
 
 class BatteryState {
  public:
@@ -119,15 +120,30 @@ class BatteryState {
   bool draw(double energy_j, double dt_s) {
     if (dt_s <= 0) return true;
     const double power = energy_j / dt_s;
-    const double current = energy::battery_current_a(battery_, power);
+    const double current = current_a(power);
     if (!std::isfinite(current)) return false;
+    if (sags()) {
+      // What the terminals deliver, V I with V = OCV − I R, must be the power drawn.
+      voltage_v_ = vehicle::terminal_voltage_v(battery_, soc_, current);
+      delivered_j_ += voltage_v_ * current * dt_s;
+    } else {
+      // What the cell delivers to the load, V I − R I², is V~ P / V by eq. 12.
+      delivered_j_ += (battery_.voltage_v * current - battery_.resistance_ohm * current * current) *
+                      dt_s * battery_.voltage_v / battery_.stabilised_voltage_v;
+    }
     soc_ = vehicle::soc_after_charge(battery_, soc_, current * dt_s);
-    // What the cell delivers to the load, V I − R I², is V~ P / V by eq. 12.
-    delivered_j_ += (battery_.voltage_v * current - battery_.resistance_ohm * current * current) *
-                    dt_s * battery_.voltage_v / battery_.stabilised_voltage_v;
     drawn_j_ += energy_j;
     return soc_ > 0;
   }
+  /// The current `power_w` would draw now, A (NaN beyond what the battery can deliver).
+  double current_a(double power_w) const {
+    return sags() ? vehicle::sag_current_a(battery_, soc_, power_w)
+                  : energy::battery_current_a(battery_, power_w);
+  }
+  bool sags() const { return battery_.cells > 0; }
+  /// The terminal voltage at the last draw (sag only), V.
+  double voltage_v() const { return voltage_v_; }
+  void set_voltage_v(double v) { voltage_v_ = v; }
   double soc() const { return soc_; }
   double balance_residual() const {
     return drawn_j_ > 0 ? std::abs(delivered_j_ - drawn_j_) / drawn_j_ : 0.0;
@@ -136,6 +152,7 @@ class BatteryState {
  private:
   energy::Battery battery_;
   double soc_;
+  double voltage_v_ = 0;
   double delivered_j_ = 0, drawn_j_ = 0;
 };
 
@@ -261,6 +278,7 @@ class Flight {
         computer_(s.control.computer),
         driver_(s.physics.sensors),
         battery_(s.battery),
+        compensation_(s.battery, initial_voltage_v(s, battery_)),
         check_(s.mission),
         triggers_(trigger_sensor_names(s.physics)),
         sample_counts_(s.physics.sensors.size(), 0) {
@@ -280,6 +298,10 @@ class Flight {
     if (reactive_) boot_end_ns_ = vehicle::from_seconds(s.scheduler.reactive.boot_s);
     rate_.triggers.assign(triggers_.size(), 0);
     last_.rotors = task_.config().airframe.rotors.count;
+    if (battery_.sags()) {
+      battery_.set_voltage_v(compensation_.filtered_voltage_v());
+      plant_.set_supply_ratio(battery_.voltage_v() / s.battery.volt_max_v);
+    }
   }
 
   SimulationSummary run() {
@@ -326,6 +348,15 @@ class Flight {
     p.initial.position_m = carrot.at(0).position_m;
     p.initial.rotor_rad_s = vehicle::hover(s.physics.airframe).rotor_rad_s;
     return p;
+  }
+
+  // The terminal voltage at take-off: the hover's motors and the avionics drawing.
+  static double initial_voltage_v(const SimulationSettings& s, const BatteryState& b) {
+    if (!b.sags()) return 0.0;
+    const double power = vehicle::hover(s.physics.airframe).motor_power_w + s.physics.avionics_w;
+    const double current = b.current_a(power);
+    return vehicle::terminal_voltage_v(s.battery, s.battery.initial_soc,
+                                       std::isfinite(current) ? current : 0.0);
   }
 
   Setpoint setpoint_at(SimTime t) const { return carrot_.at(t - lap_start_ns_); }
@@ -467,12 +498,14 @@ class Flight {
     }
     pending_ = task_.execute(state_, input);
     if (s_.scheduler.reactive.oracle) snapshot_pwm_ = pending_.pwm_us;
+    // The outputs compensated for the battery voltage the controller has measured.
+    for (std::size_t i = 0; i < pending_.rotor_count; ++i)
+      commanded_pwm_[i] = compensation_.pwm_us(pending_.pwm_us[i], task_.config().airframe.rotors);
     started_ns_ = t;
   }
 
   void end_execution(const ComputerEvent& e) {
-    for (std::size_t i = 0; i < pending_.rotor_count; ++i)
-      plant_.command_pwm(i, pending_.pwm_us[i]);
+    for (std::size_t i = 0; i < pending_.rotor_count; ++i) plant_.command_pwm(i, commanded_pwm_[i]);
     attitude_setpoint_ = pending_.attitude_setpoint;
     scheduler_->on_execution_end(e.time_ns, pending_.changed);
     if (observer_) observer_->on_execution(execution_row(e));
@@ -483,7 +516,7 @@ class Flight {
     const double latency_ms = seconds(e.time_ns - e.request_ns) * 1e3;
     rate_latency_sum_ms_ += latency_ms;
     recent_ends_.push_back(e.time_ns);
-    last_pwm_ = pending_.pwm_us;
+    last_pwm_ = commanded_pwm_;
     if (e.time_ns >= metrics_from_ns_) {
       ++summary_.executions.total;
       ++summary_.executions.by_cause[cause];
@@ -502,6 +535,10 @@ class Flight {
     cpu_j_ = cpu;
     avionics_j_ = avionics;
     const bool powered = battery_.draw(drawn, dt);
+    if (battery_.sags() && powered) {
+      compensation_.measure(battery_.voltage_v(), dt);
+      plant_.set_supply_ratio(battery_.voltage_v() / s_.battery.volt_max_v);
+    }
     const vehicle::MultirotorState& x = plant_.state();
     if (have_position_) summary_.distance_m += norm(x.position_m - last_position_);
     last_position_ = x.position_m;
@@ -755,6 +792,7 @@ class Flight {
   FlightComputer computer_;
   SensorDriver driver_;
   BatteryState battery_;
+  ThrustCompensation compensation_;
   PlanCheck check_;
   std::vector<std::string> triggers_;
   std::vector<std::size_t> trigger_index_;
@@ -763,7 +801,7 @@ class Flight {
   TaskState state_;
   ExecutionOutput pending_;
   Quat attitude_setpoint_;
-  std::array<double, vehicle::kMaxRotors> last_pwm_{};
+  std::array<double, vehicle::kMaxRotors> last_pwm_{}, commanded_pwm_{};
   SimTime lap_start_ns_ = 0, metrics_from_ns_ = 0, output_period_ns_ = 0, max_time_ns_ = 0;
   SimTime off_track_since_ns_ = kNever, end_ns_ = 0, last_row_ns_ = 0;
   bool ended_ = false, have_position_ = false;

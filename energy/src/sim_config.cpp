@@ -25,9 +25,27 @@ Wind parse_wind(const YamlMap& m) {
   return Wind(speed_m_s, m.number("from_deg", 0.0, -360.0, 360.0));
 }
 
+// swath-control's voltage sag (vehicle/battery.hpp); the other programs read and ignore it.
+void read_sag(const YamlMap& m, Battery& b) {
+  const double cells_read = m.number("cells", b.cells, 0.0, 24.0);
+  if (cells_read != std::floor(cells_read))
+    throw InputError(m.where("cells") + " must be a whole number of cells in series");
+  b.cells = static_cast<int>(cells_read);
+  b.internal_resistance_ohm =
+      m.number("internal_resistance_ohm", b.internal_resistance_ohm, 0.0, 1.0);
+  // The defaults follow the cell count: 4.2 V and 3.3 V a cell (ArduPilot's usual settings).
+  const double cells = std::max(b.cells, 1);
+  b.volt_max_v = m.number("volt_max_v", 4.2 * cells, 0.0, 1000.0, true);
+  b.volt_min_v = m.number("volt_min_v", 3.3 * cells, 0.0, 1000.0, true);
+  if (!(b.volt_min_v < b.volt_max_v))
+    throw InputError(m.where("volt_min_v") + " must be below battery.volt_max_v");
+  b.thrust_compensation = m.flag("thrust_compensation", b.thrust_compensation);
+}
+
 Battery parse_battery(const YamlMap& m) {
   m.allow({"voltage_v", "stabilised_voltage_v", "resistance_ohm", "capacity_ah", "initial_soc",
-           "reserve_soc"});
+           "reserve_soc", "cells", "internal_resistance_ohm", "volt_max_v", "volt_min_v",
+           "thrust_compensation"});
   Battery b;
   b.voltage_v = m.number("voltage_v", b.voltage_v, 0.0, 1000.0, true);
   b.stabilised_voltage_v =
@@ -38,6 +56,7 @@ Battery parse_battery(const YamlMap& m) {
   b.reserve_soc = m.number("reserve_soc", b.reserve_soc, 0.0, 1.0);
   if (b.reserve_soc >= b.initial_soc)
     throw InputError(m.where("reserve_soc") + " must be below battery.initial_soc");
+  read_sag(m, b);
   return b;
 }
 

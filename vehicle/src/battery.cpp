@@ -1,5 +1,6 @@
 #include "swath/vehicle/battery.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -11,6 +12,32 @@ double battery_current_a(const Battery& b, double power_w) {
   if (disc < 0.0) return std::numeric_limits<double>::quiet_NaN();
   // (V - sqrt(disc)) / 2R loses digits when R is small; the conjugate form does not.
   return 2.0 * b.stabilised_voltage_v * power_w / v / (v + std::sqrt(disc));
+}
+
+double lipo_cell_ocv_v(double soc) {
+  const double s = std::clamp(soc, 0.0, 1.0);
+  return -1.031 * std::exp(-35.0 * s) + 3.685 + s * (0.2156 + s * (-0.1178 + s * 0.3201));
+}
+
+double open_circuit_voltage_v(const Battery& b, double soc) {
+  return b.cells * lipo_cell_ocv_v(soc);
+}
+
+double pack_resistance_ohm(const Battery& b) {
+  return b.cells * b.internal_resistance_ohm;
+}
+
+double terminal_voltage_v(const Battery& b, double soc, double current_a) {
+  return open_circuit_voltage_v(b, soc) - current_a * pack_resistance_ohm(b);
+}
+
+double sag_current_a(const Battery& b, double soc, double power_w) {
+  const double e = open_circuit_voltage_v(b, soc);
+  const double r = pack_resistance_ohm(b);
+  const double disc = e * e - 4.0 * r * power_w;
+  if (disc < 0.0) return std::numeric_limits<double>::quiet_NaN();
+  // (E − √disc) / 2R in the conjugate form: exact digits for small R, and R = 0 allowed.
+  return 2.0 * power_w / (e + std::sqrt(disc));
 }
 
 double max_power_w(const Battery& b) {

@@ -42,9 +42,12 @@ FlightModel::FlightModel(const FlightModelSettings& s)
 
 MultirotorInputs FlightModel::inputs() const {
   MultirotorInputs in;
-  for (std::size_t i = 0; i < rotor_commands_.size(); ++i) in.command_rad_s[i] = rotor_commands_[i];
+  // The ESCs drive the motors from the battery: the speed a PWM gives scales with its voltage.
+  for (std::size_t i = 0; i < rotor_commands_.size(); ++i)
+    in.command_rad_s[i] = rotor_commands_[i] * supply_ratio_;
   in.wind_m_s = wind_;
   in.torque_noise_nm = torque_noise_;
+  in.drag_torque_factor = drag_factors_;
   return in;
 }
 
@@ -52,8 +55,9 @@ double FlightModel::motor_power_w() const {
   const Wrench w = applied_wrench(settings_.physics.airframe, state_, inputs());
   double p = 0;
   for (std::size_t i = 0; i < rotor_commands_.size(); ++i)
-    p += vehicle::motor_power_w(settings_.physics.airframe.propulsion, state_.rotor_rad_s[i],
-                                w.rotor_accel_rad_s2[i]);
+    p += vehicle::motor_power_at_torque_w(settings_.physics.airframe.propulsion,
+                                          state_.rotor_rad_s[i], w.rotor_drag_torque_nm[i],
+                                          w.rotor_accel_rad_s2[i]);
   return p;
 }
 
@@ -105,6 +109,9 @@ void FlightModel::run_events(SimTime t) {
   if (next_wind_ <= t) {
     update_wind(seconds(t));
     next_wind_ = t + wind_period_ns_;
+    // Translational lift from the airflow now, held until the next wind update like the wind
+    // (solving Glauert's equation at every event would cost more than the rest of the plant).
+    drag_factors_ = drag_torque_factors(settings_.physics.airframe, state_, wind_);
   }
   Truth truth;
   bool have_truth = false;

@@ -69,16 +69,82 @@ double Propulsion::motor_constant() const {
   return 60.0 / (2 * std::numbers::pi * kv_rpm_per_v);
 }
 
-double motor_current_a(const Propulsion& p, double speed_rad_s, double accel_rad_s2) {
-  return (p.torque_coeff_nm_s2 * speed_rad_s * speed_rad_s + p.rotor_inertia_kg_m2 * accel_rad_s2) /
-             p.motor_constant() +
+double motor_current_at_torque_a(const Propulsion& p, double drag_torque_nm, double accel_rad_s2) {
+  return (drag_torque_nm + p.rotor_inertia_kg_m2 * accel_rad_s2) / p.motor_constant() +
          p.no_load_current_a;
 }
 
-double motor_power_w(const Propulsion& p, double speed_rad_s, double accel_rad_s2) {
-  const double i = motor_current_a(p, speed_rad_s, accel_rad_s2);
+double motor_power_at_torque_w(const Propulsion& p, double speed_rad_s, double drag_torque_nm,
+                               double accel_rad_s2) {
+  const double i = motor_current_at_torque_a(p, drag_torque_nm, accel_rad_s2);
   return std::max((p.resistance_ohm * i + p.motor_constant() * speed_rad_s) * i, 0.0) /
          p.esc_efficiency;
+}
+
+double motor_current_a(const Propulsion& p, double speed_rad_s, double accel_rad_s2) {
+  return motor_current_at_torque_a(p, p.torque_coeff_nm_s2 * speed_rad_s * speed_rad_s,
+                                   accel_rad_s2);
+}
+
+double motor_power_w(const Propulsion& p, double speed_rad_s, double accel_rad_s2) {
+  return motor_power_at_torque_w(p, speed_rad_s, p.torque_coeff_nm_s2 * speed_rad_s * speed_rad_s,
+                                 accel_rad_s2);
+}
+
+double induced_velocity_m_s(double v_h, double edgewise_m_s, double axial_m_s) {
+  if (!(v_h > 0)) return 0.0;
+  const double uz = std::max(axial_m_s, -v_h);
+  const double uxy2 = edgewise_m_s * edgewise_m_s;
+  // g(v) = v √(u_xy² + (v + u_z)²) − v_h²: g(0) < 0 ≤ g(v_h + |u_z|), so a root lies between;
+  // Newton from v_h, kept inside the bracket (bisection when a step leaves it).
+  double lo = 0.0, hi = v_h + std::abs(uz), v = v_h;
+  for (int k = 0; k < 60; ++k) {
+    const double root = std::sqrt(uxy2 + (v + uz) * (v + uz));
+    const double gv = v * root - v_h * v_h;
+    if (std::abs(gv) <= 1e-13 * v_h * v_h) break;
+    (gv < 0 ? lo : hi) = v;
+    const double slope = root > 0 ? root + v * (v + uz) / root : 0.0;
+    double next = slope > 0 ? v - gv / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    v = next;
+  }
+  return v;
+}
+
+double induced_power_share(const Propulsion& p, double efficiency, double rho) {
+  const double area = std::numbers::pi * p.diameter_m * p.diameter_m / 4;
+  const double kt = efficiency * p.thrust_coeff_n_s2;
+  return p.induced_power_factor * kt * std::sqrt(kt) /
+         (p.torque_coeff_nm_s2 * std::sqrt(2 * rho * area));
+}
+
+double drag_torque_factor(const Propulsion& p, double efficiency, double rho, double omega,
+                          const Vec3& air) {
+  if (!p.translational_lift || !(omega > 0)) return 1.0;
+  const double area = std::numbers::pi * p.diameter_m * p.diameter_m / 4;
+  const double thrust = efficiency * p.thrust_coeff_n_s2 * omega * omega;
+  const double v_h = std::sqrt(thrust / (2 * rho * area));
+  const double axial = std::max(air.z, -v_h);
+  const double v_i = induced_velocity_m_s(v_h, std::sqrt(air.x * air.x + air.y * air.y), axial);
+  // k_Q Ω² + κ T (v_i + u_z − v_h) / Ω = k_Q Ω² (1 + share (v_i + u_z − v_h) / v_h).
+  return std::max(1.0 + induced_power_share(p, efficiency, rho) * (v_i + axial - v_h) / v_h, 0.0);
+}
+
+double rotor_drag_torque_nm(const Propulsion& p, double efficiency, double rho, double omega,
+                            const Vec3& air) {
+  return p.torque_coeff_nm_s2 * omega * omega * drag_torque_factor(p, efficiency, rho, omega, air);
+}
+
+std::array<double, kMaxRotors> drag_torque_factors(const Airframe& a, const MultirotorState& s,
+                                                   const Vec3& wind_m_s) {
+  std::array<double, kMaxRotors> factors;
+  factors.fill(1.0);
+  if (!a.propulsion.translational_lift) return factors;
+  const Vec3 air = rotate_inverse(s.attitude, s.velocity_m_s - wind_m_s);
+  for (std::size_t i = 0; i < a.rotors.size(); ++i)
+    factors[i] = drag_torque_factor(a.propulsion, a.rotors[i].efficiency, a.frame.air_density_kg_m3,
+                                    s.rotor_rad_s[i], air);
+  return factors;
 }
 
 Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const MultirotorInputs& in) {
@@ -101,8 +167,9 @@ Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const Multiro
     thrust_body += t;
     torque += cross(r.position_m, t);
     // The rotor's drag torque and the reaction to spinning it up, opposite to its spin.
-    torque -=
-        kUp * (r.spin * (p.torque_coeff_nm_s2 * omega * omega + p.rotor_inertia_kg_m2 * accel));
+    const double drag_torque = p.torque_coeff_nm_s2 * omega * omega * in.drag_torque_factor[i];
+    w.rotor_drag_torque_nm[i] = drag_torque;
+    torque -= kUp * (r.spin * (drag_torque + p.rotor_inertia_kg_m2 * accel));
     rotor_momentum += kUp * (r.spin * p.rotor_inertia_kg_m2 * omega);
   }
   torque -= cross(s.rate_rad_s, rotor_momentum);  // gyroscopic moment of the spinning rotors

@@ -1,5 +1,6 @@
 #include "swath/vehicle/vehicle_files.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "swath/base/input_error.hpp"
@@ -77,10 +78,14 @@ std::vector<Rotor> read_rotors(const YamlMap& root, const std::string& source) {
 
 void read_propulsion(const YamlMap& root, Propulsion& p) {
   const YamlMap prop = root.map("propeller");
-  prop.allow({"thrust_coeff_n_s2", "torque_coeff_nm_s2", "max_speed_rad_s"});
+  prop.allow({"thrust_coeff_n_s2", "torque_coeff_nm_s2", "max_speed_rad_s", "diameter_m",
+              "induced_power_factor", "translational_lift"});
   p.thrust_coeff_n_s2 = prop.number("thrust_coeff_n_s2", p.thrust_coeff_n_s2, 0, 1, true);
   p.torque_coeff_nm_s2 = prop.number("torque_coeff_nm_s2", p.torque_coeff_nm_s2, 0, 1, true);
   p.max_speed_rad_s = prop.number("max_speed_rad_s", p.max_speed_rad_s, 0, 1e5, true);
+  p.diameter_m = prop.number("diameter_m", p.diameter_m, 0, 10, true);
+  p.induced_power_factor = prop.number("induced_power_factor", p.induced_power_factor, 1, 3);
+  p.translational_lift = prop.flag("translational_lift", p.translational_lift);
   const YamlMap motor = root.map("motor");
   motor.allow({"time_constant_s", "rotor_inertia_kg_m2", "kv_rpm_per_v", "resistance_ohm",
                "no_load_current_a", "esc_efficiency"});
@@ -90,6 +95,22 @@ void read_propulsion(const YamlMap& root, Propulsion& p) {
   p.resistance_ohm = motor.number("resistance_ohm", p.resistance_ohm, 0, 100);
   p.no_load_current_a = motor.number("no_load_current_a", p.no_load_current_a, 0, 100);
   p.esc_efficiency = motor.number("esc_efficiency", p.esc_efficiency, 0, 1, true);
+}
+
+// Translational lift splits the hover shaft power into profile and induced parts; an induced
+// part above the whole (a propeller better than momentum theory allows) means the coefficients
+// and the diameter do not belong together.
+void check_induced_share(const YamlMap& root, const Airframe& a) {
+  const Propulsion& p = a.propulsion;
+  if (!p.translational_lift) return;
+  double share = 0;
+  for (const Rotor& r : a.rotors)
+    share = std::max(share, induced_power_share(p, r.efficiency, a.frame.air_density_kg_m3));
+  if (share > 1.0)
+    throw InputError(root.map("propeller").where("diameter_m") +
+                     ": with translational_lift, κ T v_h / (k_Q Ω³) = " + std::to_string(share) +
+                     " exceeds 1 (the induced power would exceed the shaft power k_Q Ω³): the "
+                     "disk, thrust_coeff_n_s2 and torque_coeff_nm_s2 do not fit together");
 }
 
 void read_esc(const YamlMap& m, EscSettings& e) {
@@ -164,6 +185,7 @@ VehiclePhysics vehicle_from_yaml(const std::string& text, const std::string& sou
   read_frame(m.map("frame"), v.airframe.frame);
   if (m.has("rotors")) v.airframe.rotors = read_rotors(m, source);
   read_propulsion(m, v.airframe.propulsion);
+  check_induced_share(m, v.airframe);
   read_esc(m.map("esc"), v.esc);
   v.avionics_w = m.number("avionics_w", v.avionics_w, 0, 1e4);
   if (m.has("sensors")) {

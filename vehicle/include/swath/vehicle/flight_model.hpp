@@ -58,6 +58,11 @@ class FlightModel {
   /// The samples delivered since the last call, in delivery order (ties in sensor order).
   std::vector<DeliveredSample> take_samples();
 
+  /// The battery's terminal voltage over the voltage at which the motors reach max_speed_rad_s
+  /// (1 without voltage sag): the rotor speed a PWM gives is Ω_cmd × this, from now on.
+  void set_supply_ratio(double ratio) { supply_ratio_ = ratio; }
+  double supply_ratio() const { return supply_ratio_; }
+
   /// The motors' electrical energy drawn so far (trapezoid per sub-step), J.
   double motor_energy_j() const { return motor_energy_j_; }
   /// The motors' electrical power now, W.
@@ -87,6 +92,8 @@ class FlightModel {
   long long events_run_ = 0;
   Vec3 wind_, torque_noise_;
   double motor_energy_j_ = 0.0;
+  double supply_ratio_ = 1.0;
+  std::array<double, kMaxRotors> drag_factors_{1, 1, 1, 1, 1, 1, 1, 1};
   std::vector<DeliveredSample> delivered_;
 };
 

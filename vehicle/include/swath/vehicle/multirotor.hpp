@@ -44,6 +44,11 @@ struct Propulsion {
   double resistance_ohm = 0.10;         ///< R_m, winding
   double no_load_current_a = 0.4;       ///< I_0
   double esc_efficiency = 0.95;         ///< η_esc in (0, 1]
+  /// Translational lift (rotor_drag_torque_nm): the rotor's shaft power follows momentum theory
+  /// in the airflow, so cruise costs less than hover. Off: the drag torque is k_Q Ω² always.
+  bool translational_lift = false;
+  double diameter_m = 0.254;           ///< D, the propeller's disk (A = π D² / 4), m, > 0
+  double induced_power_factor = 1.15;  ///< κ: induced power κ T (v_i + u_z), ≥ 1
   /// K_t = K_e, N m/A = V s/rad.
   double motor_constant() const;
 };
@@ -83,13 +88,20 @@ struct MultirotorInputs {
   std::array<double, kMaxRotors> command_rad_s{};  ///< Ω_cmd, clamped to [0, Ω_max]
   Vec3 wind_m_s;                                   ///< air velocity, world ENU
   Vec3 torque_noise_nm;                            ///< M_n, body FLU
+  /// Each rotor's drag torque over k_Q Ω² (drag_torque_factors: translational lift), held like
+  /// the wind (FlightModel refreshes it at every wind update): the airflow changes little in a
+  /// few milliseconds, and solving Glauert's equation in every RK4 stage would cost more than
+  /// the rest of the plant.
+  std::array<double, kMaxRotors> drag_torque_factor{1, 1, 1, 1, 1, 1, 1, 1};
 };
+static_assert(kMaxRotors == 8, "drag_torque_factor's initialiser lists every rotor");
 
 /// The forces and moments on the body in a state, and the rotor accelerations.
 struct Wrench {
   Vec3 force_world_n;   ///< thrust and drag, world ENU (gravity not included)
   Vec3 torque_body_nm;  ///< every moment of §17.2, body FLU
   std::array<double, kMaxRotors> rotor_accel_rad_s2{};
+  std::array<double, kMaxRotors> rotor_drag_torque_nm{};  ///< each rotor's aerodynamic torque
 };
 Wrench applied_wrench(const Airframe& airframe, const MultirotorState& state,
                       const MultirotorInputs& inputs);
@@ -98,6 +110,42 @@ Wrench applied_wrench(const Airframe& airframe, const MultirotorState& state,
 /// (> 0); the attitude is renormalised after each sub-step.
 MultirotorState integrate(const Airframe& airframe, MultirotorState state,
                           const MultirotorInputs& inputs, double duration_s, double max_step_s);
+
+/// Glauert's induced velocity v_i, m/s: the positive root of v = v_h² / √(u_xy² + (v + u_z)²),
+/// v_h the hover induced velocity, u_xy the airspeed in the disk plane, u_z the airspeed into the
+/// disk along the thrust axis (climb or a forward-tilted disk in cruise positive). u_z is held
+/// at −v_h and above (momentum theory has no solution in the vortex-ring state below).
+double induced_velocity_m_s(double hover_induced_m_s, double edgewise_m_s, double axial_m_s);
+
+/// One rotor's aerodynamic drag torque, N m, at speed Ω with the air moving past it at
+/// `air_body_m_s` (the body's velocity relative to the air, body FLU; z along the thrust).
+/// Without translational lift: k_Q Ω². With it, the shaft power k_Q Ω³ measured in hover is
+/// split into profile power k_Q Ω³ − κ T v_h (held) and induced power κ T (v_i + u_z), which
+/// momentum theory scales with the airflow: Q = k_Q Ω² + κ T (v_i + u_z − v_h) / Ω, ≥ 0,
+/// T = η k_T Ω², v_h = √(T / 2ρA).
+double rotor_drag_torque_nm(const Propulsion& propulsion, double efficiency,
+                            double air_density_kg_m3, double speed_rad_s, const Vec3& air_body_m_s);
+
+/// rotor_drag_torque_nm over k_Q Ω²: 1 without translational lift or at rest.
+double drag_torque_factor(const Propulsion& propulsion, double efficiency, double air_density_kg_m3,
+                          double speed_rad_s, const Vec3& air_body_m_s);
+/// drag_torque_factor of every rotor in a state with the wind `wind_m_s` (world ENU).
+std::array<double, kMaxRotors> drag_torque_factors(const Airframe& airframe,
+                                                   const MultirotorState& state,
+                                                   const Vec3& wind_m_s);
+
+/// The share of a rotor's hover shaft power that is induced, κ T v_h / (k_Q Ω³) = κ η^1.5
+/// k_T^1.5 / (k_Q √(2ρA)) (κ times the figure of merit; the same at every Ω).
+double induced_power_share(const Propulsion& propulsion, double efficiency,
+                           double air_density_kg_m3);
+
+/// A motor's current for an aerodynamic torque `drag_torque_nm`, A:
+/// (Q + J_r Ω̇) / K_t + I_0.
+double motor_current_at_torque_a(const Propulsion& propulsion, double drag_torque_nm,
+                                 double accel_rad_s2);
+/// Its electrical input power, W: (R I + K_e Ω) I / η_esc, never negative.
+double motor_power_at_torque_w(const Propulsion& propulsion, double speed_rad_s,
+                               double drag_torque_nm, double accel_rad_s2);
 
 /// One motor's electrical input from the ESC's supply, W: (R I + K_e Ω) I / η_esc with
 /// I = (k_Q Ω² + J_r Ω̇) / K_t + I_0, never negative (ESCs do not regenerate here).
