@@ -12,7 +12,7 @@
 #include "swath/energy/sim_config.hpp"
 #include "swath/energy/simulation.hpp"
 #include "swath/geometry/local_frame.hpp"
-#include "swath/planning/plan_features.hpp"
+#include "swath/missions/mission_geojson.hpp"
 #include "swath/vehicle/random.hpp"
 
 namespace swath::control {
@@ -89,9 +89,9 @@ std::vector<Point2> local_ring(const geometry::LocalFrame& frame,
 // The area and no-fly zones of swath's mission.geojson, in the mission's frame (at its home).
 void add_plan_geometry(FlightMission& out, const std::string& text, const std::string& path,
                        const geometry::GeoPoint& home) {
-  planning::PlanFeatures features;
+  missions::PlanFeatures features;
   try {
-    features = planning::parse_mission_geojson(text, path);
+    features = missions::parse_mission_geojson(text, path);
   } catch (const InputError&) {
     return;  // a waypoint GeoJSON without swath's area: nothing to check against
   }

@@ -334,7 +334,8 @@ class Flight {
     return *task;
   }
   static CarrotLimits carrot_limits(const SimulationSettings& s, const ControlTaskConfig& c) {
-    return {s.speed_m_s, c.gains.limits.max_climb_m_s, c.gains.limits.max_accel_m_s2,
+    const vehicle::Drone drone = s.drone();
+    return {drone.speed_m_s.value_or(0.0), drone.climb_speed_m_s, drone.accel_m_s2,
             s.scheduler.run.setpoint_rate_hz, c.gains.limits.yaw_slew_dps * std::numbers::pi / 180};
   }
   static vehicle::FlightModelSettings plant_settings(const SimulationSettings& s,
@@ -860,6 +861,17 @@ std::vector<std::string> trigger_sensor_names(const vehicle::VehiclePhysics& phy
   for (const auto& s : physics.sensors)
     if (s.trigger) names.push_back(s.name);
   return names;
+}
+
+vehicle::Drone SimulationSettings::drone() const {
+  vehicle::Drone d;
+  d.name = physics.airframe.name;
+  d.speed_m_s = speed_m_s;
+  // The controller's vertical limit holds both ways (control_task.cpp clamps |v_z| to it).
+  d.climb_speed_m_s = control.controller.limits.max_climb_m_s;
+  d.descent_speed_m_s = control.controller.limits.max_climb_m_s;
+  d.accel_m_s2 = control.controller.limits.max_accel_m_s2;
+  return d;
 }
 
 SimulationSummary simulate(const SimulationSettings& settings, SimulationObserver* observer) {

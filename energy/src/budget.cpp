@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include <map>
 #include <optional>
 
 #include "swath/base/input_error.hpp"
@@ -16,6 +15,7 @@
 #include "swath/geometry/local_frame.hpp"
 #include "swath/mavlink/commands.hpp"
 #include "swath/missions/mission.hpp"
+#include "swath/missions/mission_geojson.hpp"
 
 namespace swath::energy {
 namespace {
@@ -25,12 +25,6 @@ using geometry::GeoPoint;
 using geometry::Point2;
 using nlohmann::json;
 
-double finite_number(const json& j, const std::string& where) {
-  if (!j.is_number() || !std::isfinite(j.get<double>()))
-    throw InputError(where + " must be a number");
-  return j.get<double>();
-}
-
 // Checked lookups: a hand-edited file is input like any other (no const operator[], no value()
 // that throws a library type_error for a member of another type).
 std::string text_or(const json& object, const char* key, const std::string& fallback) {
@@ -38,108 +32,38 @@ std::string text_or(const json& object, const char* key, const std::string& fall
   return v != nullptr && v->is_string() ? v->get<std::string>() : fallback;
 }
 
-const json& member_or_null(const json& object, const char* key) {
-  static const json null;
-  const json* v = base::json_find(object, key);
-  return v != nullptr ? *v : null;
-}
-
-std::string role_of(const json& feature) {
-  return text_or(member_or_null(feature, "properties"), "role", "");
-}
-
-GeoPoint lon_lat(const json& c, const std::string& where) {
-  if (!c.is_array() || c.size() < 2)
-    throw InputError(where + ": a position is [lon, lat] or [lon, lat, alt]");
-  const GeoPoint g{finite_number(c[1], where + " (latitude)"),
-                   finite_number(c[0], where + " (longitude)"), 0.0};
-  if (std::abs(g.lat_deg) > 90 || std::abs(g.lon_deg) > 180)
-    throw InputError(where + ": latitude must be within ±90 and longitude within ±180 degrees");
-  return g;
-}
-
-std::vector<WaypointMission> parse_geojson(const json& root, const std::string& source) {
-  const json& features = member_or_null(root, "features");
-  if (!features.is_array())
-    throw InputError(source + ": a mission GeoJSON is a FeatureCollection with 'features'");
-  // The plan's home, and each drone's own where it differs (swath writes those with "drone").
-  std::optional<GeoPoint> home;
-  std::map<long long, GeoPoint> drone_homes;
-  for (std::size_t i = 0; i < features.size(); ++i) {
-    const json& f = features[i];
-    if (role_of(f) != "home") continue;
-    const GeoPoint at = lon_lat(member_or_null(member_or_null(f, "geometry"), "coordinates"),
-                                source + ": feature " + std::to_string(i));
-    const json& drone = member_or_null(member_or_null(f, "properties"), "drone");
-    if (drone.is_number_integer()) {
-      drone_homes[drone.get<long long>()] = at;
-    } else {
-      home = at;
-    }
+// A mission GeoJSON's flight (read by swath::missions) in metres about its home. swath's paths
+// start and end at home: the take-off and landing legs are implied.
+WaypointMission from_geojson_flight(const missions::GeoJsonFlight& flight) {
+  WaypointMission m;
+  m.drone = flight.drone;
+  m.home = flight.home;
+  const geometry::LocalFrame frame(m.home);
+  for (std::size_t k = 0; k < flight.points.size(); ++k) {
+    m.points.push_back(frame.to_local(flight.points[k]));
+    m.altitudes_m.push_back(flight.altitudes_m[k]);
+    m.speeds_m_s.push_back(flight.speed_m_s);
   }
+  const double home_gap = std::hypot(m.points.front().x, m.points.front().y);
+  if (home_gap < 0.5) {
+    m.points.erase(m.points.begin());
+    m.altitudes_m.erase(m.altitudes_m.begin());
+    m.speeds_m_s.erase(m.speeds_m_s.begin());
+  }
+  const Point2 last = m.points.back();
+  m.returns_home = std::hypot(last.x, last.y) < 0.5;
+  if (m.returns_home && m.points.size() > 1) {
+    m.points.pop_back();
+    m.altitudes_m.pop_back();
+    m.speeds_m_s.pop_back();
+  }
+  return m;
+}
+
+std::vector<WaypointMission> parse_geojson(const std::string& text, const std::string& source) {
   std::vector<WaypointMission> out;
-  for (std::size_t i = 0; i < features.size(); ++i) {
-    const json& f = features[i];
-    const std::string where = source + ": feature " + std::to_string(i);
-    if (role_of(f) != "path") continue;
-    const json& geometry = member_or_null(f, "geometry");
-    const json& coords = member_or_null(geometry, "coordinates");
-    if (text_or(geometry, "type", "") != "LineString" || !coords.is_array() || coords.size() < 2)
-      throw InputError(where + ": a path is a LineString of at least two positions");
-    const json& props = member_or_null(f, "properties");
-    WaypointMission m;
-    const json& drone = member_or_null(props, "drone");
-    m.drone = drone.is_number_integer() && drone.get<long long>() >= 0 &&
-                      drone.get<long long>() < 1'000'000
-                  ? "drone-" + std::to_string(drone.get<long long>())
-                  : "drone-" + std::to_string(out.size() + 1);
-    if (const json* name = base::json_find(props, "name");
-        name && name->is_string() && !name->get<std::string>().empty())
-      m.drone = base::valid_utf8(name->get<std::string>());
-    const auto own =
-        drone.is_number_integer() ? drone_homes.find(drone.get<long long>()) : drone_homes.end();
-    m.home = own != drone_homes.end() ? own->second : home ? *home : lon_lat(coords[0], where);
-    const geometry::LocalFrame frame(m.home);
-    const bool has_alt = base::json_find(props, "altitude_m") != nullptr;
-    const double alt =
-        has_alt ? finite_number(member_or_null(props, "altitude_m"), where + ": altitude_m") : 0.0;
-    const double speed =
-        base::json_find(props, "speed_m_s")
-            ? finite_number(member_or_null(props, "speed_m_s"), where + ": speed_m_s")
-            : 0.0;
-    if (speed < 0) throw InputError(where + ": speed_m_s must be >= 0");
-    for (std::size_t k = 0; k < coords.size(); ++k) {
-      const std::string at = where + ", position " + std::to_string(k);
-      const GeoPoint g = lon_lat(coords[k], at);
-      double a = alt;
-      if (!has_alt) {
-        if (coords[k].size() < 3)
-          throw InputError(where +
-                           ": the path has no altitude (give properties.altitude_m or "
-                           "[lon, lat, alt] positions)");
-        a = finite_number(coords[k][2], at + " (altitude)");
-      }
-      m.points.push_back(frame.to_local(g));
-      m.altitudes_m.push_back(a);
-      m.speeds_m_s.push_back(speed);
-    }
-    // swath's paths start and end at home: the take-off and landing legs are implied.
-    const double home_gap = std::hypot(m.points.front().x, m.points.front().y);
-    if (home_gap < 0.5) {
-      m.points.erase(m.points.begin());
-      m.altitudes_m.erase(m.altitudes_m.begin());
-      m.speeds_m_s.erase(m.speeds_m_s.begin());
-    }
-    const Point2 last = m.points.back();
-    m.returns_home = std::hypot(last.x, last.y) < 0.5;
-    if (m.returns_home && m.points.size() > 1) {
-      m.points.pop_back();
-      m.altitudes_m.pop_back();
-      m.speeds_m_s.pop_back();
-    }
-    out.push_back(std::move(m));
-  }
-  if (out.empty()) throw InputError(source + ": no feature with role 'path' (a drone's flight)");
+  for (const missions::GeoJsonFlight& flight : missions::parse_geojson_flights(text, source))
+    out.push_back(from_geojson_flight(flight));
   return out;
 }
 
@@ -204,7 +128,7 @@ std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
   if (text.rfind("QGC WPL", 0) == 0) return mission_file();
   const json root = base::parse_json_document(text, source);
   if (!root.is_object()) throw InputError(source + ": expected a JSON object");
-  if (text_or(root, "type", "") == "FeatureCollection") return parse_geojson(root, source);
+  if (text_or(root, "type", "") == "FeatureCollection") return parse_geojson(text, source);
   if (text_or(root, "fileType", "") == "Plan") return mission_file();
   throw InputError(source +
                    ": neither a GeoJSON FeatureCollection (mission.geojson), a QGC plan nor a QGC "

@@ -6,6 +6,9 @@
 //    aside, which write fleet files) names two or more of its drones' keys as string literals;
 //  - the state of charge is integrated in one place, vehicle/src/battery.cpp: no other source
 //    (tests/ aside) turns a charge into a share of the capacity (3600 x capacity_ah);
+//  - planning is the programs' (apps/, python/, bench/, fuzz/, tests/): no library folder links
+//    swath::planning in its CMakeLists.txt or includes a swath/planning/ header (control reads
+//    mission files through swath::missions, as energy and preflight do);
 //  - no source file over --max-file-lines lines (1,000);
 //  - no function body over --max-function-lines lines (150), found by matching braces at
 //    namespace and class scope.
@@ -241,6 +244,45 @@ void check_soc_integrators(const Source& s) {
     report(s, static_cast<std::size_t>(m->position(0)), "a second state-of-charge integrator");
 }
 
+// The library folders that sit below or beside planning (docs/architecture.md, "Libraries and
+// their floors"): none of them may use it.
+bool below_planning(const std::string& relative) {
+  static const std::vector<std::string> folders{"base/",    "geometry/", "vehicle/", "missions/",
+                                                "render/",  "web/",      "energy/",  "preflight/",
+                                                "control/", "fleet/",    "worlds/",  "mavlink/"};
+  return std::any_of(folders.begin(), folders.end(),
+                     [&](const std::string& f) { return relative.rfind(f, 0) == 0; });
+}
+
+std::string folder_of(const std::string& relative) {
+  return relative.substr(0, relative.find('/'));
+}
+
+// `#include "swath/planning/..."` in a library below planning.
+void check_planning_includes(const Source& s) {
+  static const std::regex include(R"(#\s*include\s*[<"]swath/planning/)");
+  std::smatch m;
+  if (std::regex_search(s.no_notes, m, include))
+    report(s, static_cast<std::size_t>(m.position(0)),
+           folder_of(s.name) + " uses planning (a swath/planning/ header)");
+}
+
+// `swath::planning` or `swath_planning` named in a CMakeLists.txt of a library below planning.
+void check_planning_links(const fs::path& path, const std::string& relative) {
+  Source s;
+  s.name = relative;
+  s.raw = read_file(path);
+  s.no_notes = s.raw;
+  for (std::size_t at = s.no_notes.find('#'); at != std::string::npos;
+       at = s.no_notes.find('#', at + 1))  // CMake comments (a `#` in a string is not one here)
+    blank(s.no_notes, at, s.no_notes.find('\n', at));
+  static const std::regex link(R"(\bswath(?:::|_)planning\b)");
+  std::smatch m;
+  if (std::regex_search(s.no_notes, m, link))
+    report(s, static_cast<std::size_t>(m.position(0)),
+           folder_of(relative) + " links planning (" + m.str() + ")");
+}
+
 // A `{` at namespace or class scope opens a function body when what precedes it (since the last
 // `;`, `{` or `}`) has a parameter list and is not an initializer or a class.
 enum class Scope { transparent, function, other, init };
@@ -402,6 +444,7 @@ int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   const std::set<long> commands = command_values(o.commands);
   std::vector<fs::path> files;
+  std::vector<fs::path> cmake_files;  // checked for links only
   for (const std::string& dir : o.dirs) {
     if (!fs::is_directory(o.root / dir)) {
       std::cerr << (o.root / dir).string() << ": not a folder\n";
@@ -412,6 +455,9 @@ int main(int argc, char** argv) {
       // The planted violations are checked on their own (architecture/planted-* tests).
       if (relative.rfind("tests/architecture/planted", 0) == 0) continue;
       if (e.is_regular_file() && is_source(e.path())) files.push_back(e.path());
+      if (e.is_regular_file() && e.path().filename() == "CMakeLists.txt" &&
+          below_planning(relative))
+        cmake_files.push_back(e.path());
     }
   }
   std::sort(files.begin(), files.end());
@@ -431,7 +477,11 @@ int main(int argc, char** argv) {
     if (check_commands_here) check_commands(s, commands);
     if (!fleet_keys_exempt(s.name)) check_fleet_file_readers(s);
     if (!soc_exempt(s.name)) check_soc_integrators(s);
+    if (below_planning(s.name)) check_planning_includes(s);
   }
+  std::sort(cmake_files.begin(), cmake_files.end());
+  for (const fs::path& path : cmake_files)
+    check_planning_links(path, fs::relative(path, o.root).generic_string());
   for (const Violation& v : violations)
     std::cout << v.file << (v.line ? ":" + std::to_string(v.line) : std::string()) << ": "
               << v.problem << (v.how.empty() ? "" : " (" + v.how + ")") << "\n";
@@ -449,6 +499,11 @@ int main(int argc, char** argv) {
       }))
     std::cout << "Draw charge with swath::vehicle::soc_after_charge "
                  "(vehicle/include/swath/vehicle/battery.hpp).\n";
+  if (std::any_of(violations.begin(), violations.end(), [](const Violation& v) {
+        return v.problem.find(" planning (") != std::string::npos;
+      }))
+    std::cout << "Only the programs use swath::planning; read mission files with swath::missions "
+                 "(missions/include/swath/missions/).\n";
   std::cout << files.size() << " files checked, " << violations.size() << " violation"
             << (violations.size() == 1 ? "" : "s") << "\n";
   return violations.empty() ? 0 : 1;

@@ -228,14 +228,15 @@ TEST(AreaProfile, AgreesWithClippingOnRandomAreas) {
 // -----------------------------------
 
 // A drone's flight time recomputed from its mission as written: the home -> ... -> home path
-// walked leg by leg, legs between stops flown from rest to rest (trapezoid at kAcceleration_m_s2,
-// triangle when too short), a stop where the heading turns by more than kStopTurn_deg (measured
-// with atan2 here, not the planner's dot product), at a held waypoint and at the end, plus the
-// climb to and descent from the survey altitude; a leg commanded slower (an approach to a stop
-// beside a zone) adds its length at its speed less its length at the cruise speed, except where
-// the drone arrives faster (flown through the point before it at a higher speed): braking there at
-// kAcceleration_m_s2 takes (v0 - v1) / a over (v0² - v1²) / (2 a) (speeds raised are taken as
-// reached at once). Written apart from path_time_s() on purpose.
+// walked leg by leg, legs between stops flown from rest to rest (trapezoid at
+// vehicle::kDefaultAccel_m_s2, triangle when too short), a stop where the heading turns by more
+// than kStopTurn_deg (measured with atan2 here, not the planner's dot product), at a held waypoint
+// and at the end, plus the climb to and descent from the survey altitude; a leg commanded slower
+// (an approach to a stop beside a zone) adds its length at its speed less its length at the
+// cruise speed, except where the drone arrives faster (flown through the point before it at a
+// higher speed): braking there at vehicle::kDefaultAccel_m_s2 takes (v0 - v1) / a over
+// (v0² - v1²) / (2 a) (speeds raised are taken as reached at once). Written apart from
+// path_time_s() on purpose.
 double recomputed_flight_s(const DronePlan& d, double altitude_m) {
   const DroneMission& m = d.mission;
   std::vector<double> hold{0};  // per path point: the waypoint items in order, then home
@@ -250,7 +251,7 @@ double recomputed_flight_s(const DronePlan& d, double altitude_m) {
   hold.push_back(0);
   speed_into.push_back(speed);
   EXPECT_EQ(hold.size(), m.path.size()) << d.name;
-  const double v = d.speed_m_s, a = kAcceleration_m_s2;
+  const double v = d.speed_m_s, a = swath::vehicle::kDefaultAccel_m_s2;
   auto stretch_s = [&](double length) {
     if (length <= 0) return 0.0;
     return length >= v * v / a ? length / v + v / a : 2 * std::sqrt(length / a);

@@ -51,7 +51,7 @@ TEST(BuildMission, FlightTimeIsTheTrapezoidOfEachLegPlusClimbAndDescent) {
   const DroneMission m = build_mission(1, {0, -50}, kTwoLines, settings());
   const double legs[] = {50, 100, 20, 100, std::hypot(0.0, 70.0)};
   double expected = 60 / 2.5 + 60 / 1.5;  // ArduCopter's WPNAV_SPEED_UP and _DN
-  for (const double l : legs) expected += l / 4 + 4 / kAcceleration_m_s2;
+  for (const double l : legs) expected += l / 4 + 4 / swath::vehicle::kDefaultAccel_m_s2;
   EXPECT_NEAR(m.flight_time_s, expected, 1e-9);
   // The drone's own vertical speeds (a fleet's climb_speed_m_s, descent_speed_m_s).
   MissionSettings quick = settings();

@@ -20,10 +20,17 @@
 #include "swath/control/mission.hpp"
 #include "swath/control/setpoints.hpp"
 #include "swath/energy/battery.hpp"
+#include "swath/vehicle/drone.hpp"
 #include "swath/vehicle/flight_model.hpp"
 
 namespace swath::control {
 
+/// A flight's settings. The drone it flies is one vehicle::Drone, as planning, energy and fleet see
+/// a drone (drone()): its name is the airframe's, its cruise speed `speed_m_s`, its climb and
+/// descent the controller's max_climb_m_s and its acceleration the carrot's max_accel_m_s2. Each
+/// figure is held once, where the vehicle file and the command line put it; drone() composes
+/// them. Beside it, what only a rigid-body flight needs: the physics (airframe, ESCs, sensors),
+/// the environment, the control task and scheduler, the battery (docs/architecture.md).
 struct SimulationSettings {
   vehicle::VehiclePhysics physics = vehicle::default_vehicle();
   vehicle::Environment environment;
@@ -34,6 +41,9 @@ struct SimulationSettings {
   FlightMission mission;         ///< already closed for loop when `loop`
   double speed_m_s = 3.0;        ///< the carrot's cruise speed along the legs, m/s, > 0
   bool loop = false;             ///< repeat the mission until the reserve (paper 002 §7)
+
+  /// The drone this flight flies: the carrot takes its speed, climb and acceleration from it.
+  vehicle::Drone drone() const;
 };
 
 /// How a flight ended (§17.4 "Status").

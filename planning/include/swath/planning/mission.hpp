@@ -13,6 +13,7 @@
 #include "swath/missions/export_types.hpp"
 #include "swath/missions/stopping.hpp"
 #include "swath/planning/sweep.hpp"
+#include "swath/vehicle/kinematics.hpp"
 
 namespace swath::planning {
 
@@ -75,11 +76,11 @@ struct MissionItem {
 /// Whether an item is a position the drone flies to (takeoff, waypoint, land).
 bool positional(ItemKind kind);
 
-/// ArduCopter's defaults, used for the flight-time estimate (WPNAV_ACCEL 250 cm/s², the default
-/// of vehicle::Drone::accel_m_s2 and swath plan's; climb and descent are the drone's, by default
-/// WPNAV_SPEED_UP and _DN: vehicle::Drone) and a corner it
-/// stops at (ArduCopter slows to a stop before turns this sharp; gentler ones it flies through).
-inline constexpr double kAcceleration_m_s2 = missions::kDefaultDeceleration_m_s2;
+/// The flight-time estimate accelerates at swath::vehicle::kDefaultAccel_m_s2 (ArduCopter's
+/// WPNAV_ACCEL, the default of vehicle::Drone::accel_m_s2 and swath plan's) unless told otherwise;
+/// climb and descent are the drone's, by default WPNAV_SPEED_UP and _DN (vehicle::Drone). A corner
+/// this sharp it stops at (ArduCopter slows to a stop before such turns; gentler ones it flies
+/// through).
 inline constexpr double kStopTurn_deg = 45.0;
 
 /// Turn angle at b between legs a-b and b-c, degrees in [0, 180].
@@ -90,7 +91,8 @@ double turn_deg(geometry::Point2 a, geometry::Point2 b, geometry::Point2 c);
 /// WPNAV_ACCEL, 2.5 m/s² by default), speed² / (2 accel), metres. ArduCopter plans its braking
 /// and stopped 0.42 m past in SITL at 5 m/s; this is what a vehicle that starts braking only at
 /// the waypoint covers, the bound `swath verify` checks too.
-inline double stop_overrun_m(double speed_m_s, double accel_m_s2 = kAcceleration_m_s2) {
+inline double stop_overrun_m(double speed_m_s,
+                             double accel_m_s2 = swath::vehicle::kDefaultAccel_m_s2) {
   return speed_m_s * speed_m_s / (2 * accel_m_s2);
 }
 
@@ -100,7 +102,7 @@ inline double stop_overrun_m(double speed_m_s, double accel_m_s2 = kAcceleration
 /// a stop leaves it nearly as fast as before: ArduCopter SITL came 2 to 7 cm inside a zone's
 /// clearance at stops whose 0.2 m/s approach began 0.5 m before them).
 inline double reachable_speed_m_s(double before_m_s, double commanded_m_s, double distance_m,
-                                  double accel_m_s2 = kAcceleration_m_s2) {
+                                  double accel_m_s2 = swath::vehicle::kDefaultAccel_m_s2) {
   const double braked_sq = before_m_s * before_m_s - 2 * accel_m_s2 * std::max(distance_m, 0.0);
   return std::max(commanded_m_s, std::sqrt(std::max(braked_sq, 0.0)));
 }
@@ -126,7 +128,7 @@ struct MissionSettings {
   std::function<double(geometry::Point2, geometry::Point2)> free_run_m;
   /// The drone's acceleration and braking (vehicle::Drone::accel_m_s2): the flight time's legs
   /// and stop_overrun_m(), > 0.
-  double accel_m_s2 = kAcceleration_m_s2;
+  double accel_m_s2 = swath::vehicle::kDefaultAccel_m_s2;
 };
 
 /// The hold that makes ArduPilot stop at a waypoint: NAV_WAYPOINT's param1 is whole seconds.
@@ -141,8 +143,9 @@ struct DroneMission {
   double work_length_m = 0.0;          ///< along the sweep lines (camera over the area)
   double transit_length_m = 0.0;       ///< home legs and the legs between lines
   double path_length_m = 0.0;          ///< work + transit
-  /// Climb, the path (accelerating at kAcceleration_m_s2, stopping at corners sharper than
-  /// kStopTurn_deg and for hover holds) and the descent at home; fixed-wing: climb and path.
+  /// Climb, the path (accelerating at swath::vehicle::kDefaultAccel_m_s2, stopping at corners
+  /// sharper than kStopTurn_deg and for hover holds) and the descent at home; fixed-wing: climb and
+  /// path.
   double flight_time_s = 0.0;
   std::size_t waypoint_count = 0;  ///< items with a position (takeoff, waypoints, land)
   /// The ground at home above mean sea level, with terrain (SurveyRequest::terrain); else 0.
@@ -200,6 +203,7 @@ std::vector<PhotoPoint> planned_photos(const DroneMission& mission, double trigg
 /// `speed_m_s` with the trapezoid profile between stops (vehicle::rest_to_rest_s at
 /// `accel_m_s2`). `hold_s` per point (hover photos).
 double path_time_s(const std::vector<geometry::Point2>& path, const std::vector<double>& hold_s,
-                   double speed_m_s, Vehicle vehicle, double accel_m_s2 = kAcceleration_m_s2);
+                   double speed_m_s, Vehicle vehicle,
+                   double accel_m_s2 = swath::vehicle::kDefaultAccel_m_s2);
 
 }  // namespace swath::planning

@@ -36,6 +36,7 @@
 #include "swath/geometry/local_frame.hpp"
 #include "swath/missions/mission.hpp"
 #include "swath/missions/stopping.hpp"
+#include "swath/vehicle/kinematics.hpp"
 
 namespace swath::preflight {
 
@@ -51,8 +52,8 @@ struct FlightModel {
   double speed_m_s = 5.0;    ///< when the file gives none (WPNAV_SPEED)
   double climb_m_s = 2.5;    ///< WPNAV_SPEED_UP
   double descent_m_s = 1.5;  ///< WPNAV_SPEED_DN
-  double deceleration_m_s2 = missions::kDefaultDeceleration_m_s2;  ///< WPNAV_ACCEL
-  double rtl_altitude_m = 15.0;                                    ///< RTL_ALT
+  double deceleration_m_s2 = vehicle::kDefaultAccel_m_s2;  ///< WPNAV_ACCEL
+  double rtl_altitude_m = 15.0;                            ///< RTL_ALT
   double sharp_turn_deg = 45.0;  ///< a change of course above which the vehicle stops
 };
 

@@ -9,6 +9,7 @@
 
 #include "swath/base/range_check.hpp"
 #include "swath/geometry/point.hpp"
+#include "swath/vehicle/kinematics.hpp"
 
 namespace swath::vehicle {
 
@@ -35,9 +36,9 @@ struct Drone {
   double descent_speed_m_s = 1.5;
   double max_airspeed_m_s = 25.0;  ///< the airframe's limit through the air, > 0
   /// Horizontal acceleration and braking, m/s² (the legs from rest to rest, kinematics.hpp).
-  /// Default: ArduCopter's WPNAV_ACCEL, 2.5 (swath plan's); swath-fleet's is 2 unless the fleet
-  /// file gives accel_m_s2 (FleetFileRules).
-  double accel_m_s2 = 2.5;
+  /// Default: ArduCopter's WPNAV_ACCEL, kDefaultAccel_m_s2 (swath plan's); swath-fleet's is 2
+  /// unless the fleet file gives accel_m_s2 (FleetFileRules).
+  double accel_m_s2 = kDefaultAccel_m_s2;
 
   /// Maximum distance it can fly: level x endurance x speed; empty when only a capability is given.
   std::optional<double> range_m() const;

@@ -11,6 +11,7 @@
 
 #include "swath/geometry/point.hpp"
 #include "swath/vehicle/drone.hpp"
+#include "swath/vehicle/kinematics.hpp"
 
 namespace swath::vehicle {
 
@@ -20,8 +21,8 @@ struct FleetFileRules {
   double climb_speed_m_s = 2.5;    ///< default climb_speed_m_s, m/s
   double descent_speed_m_s = 1.5;  ///< default descent_speed_m_s, m/s
   /// The drones' accel_m_s2, m/s²; flights take the file's accel_m_s2 over it (swath plan checks
-  /// the key's range and plans with this).
-  double accel_m_s2 = 2.5;
+  /// the key's range and plans with this). Default: ArduCopter's WPNAV_ACCEL.
+  double accel_m_s2 = kDefaultAccel_m_s2;
   /// true (swath-fleet): the drones are flown — a drone needs a speed_m_s, battery_level,
   /// endurance_s, profile or max_flight_time_s (a capability alone is refused), any may be
   /// missing (the flight defaults), `home` is optional and `home_m` allowed.

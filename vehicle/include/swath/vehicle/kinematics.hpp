@@ -5,6 +5,13 @@
 
 namespace swath::vehicle {
 
+/// The default horizontal acceleration and braking of a multirotor, m/s²: ArduCopter's
+/// WPNAV_ACCEL, 250 cm/s² (ArduPilot, libraries/AC_WPNav/AC_WPNav.cpp, parameter ACCEL; the
+/// Copter parameter list, ardupilot.org/copter/docs/parameters.html#wpnav-accel). The one value
+/// behind vehicle::Drone::accel_m_s2, swath plan's FleetFileRules, the stopping margin
+/// (missions/stopping.hpp) and swath verify's flight model.
+inline constexpr double kDefaultAccel_m_s2 = 2.5;
+
 /// Rest to rest over `length_m` at ≤ `cruise_m_s`, ≤ `approach_m_s` within `approach_within_m`
 /// of the end, accelerating and braking at `accel_m_s2` (> 0), s (v² linear in distance in each
 /// phase: a trapezoid, or a triangle when a phase is too short to reach its cap). 0 for

@@ -1,0 +1,102 @@
+// swath's mission.geojson (swath/missions/mission_geojson.hpp): random plans' features (fixed
+// seeds) written and read back by both of the format's readers — the checked one swath render
+// and swath-control use, and the flights swath-energy budget and swath-control fly — give the
+// same areas, paths, homes, altitudes and speeds as the value written.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "swath/base/number_text.hpp"
+#include "swath/missions/mission_geojson.hpp"
+
+namespace swath::missions {
+namespace {
+
+struct Rng {
+  std::mt19937 engine;
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(engine); }
+  int between(int lo, int hi) { return std::uniform_int_distribution<>(lo, hi)(engine); }
+  geometry::GeoPoint point() {
+    return {base::round_to(uniform(-60, 60), 9), base::round_to(uniform(-170, 170), 9), 0.0};
+  }
+  GeoRing ring(int lo, int hi) {
+    GeoRing r;
+    for (int k = between(lo, hi); k > 0; --k) r.push_back(point());
+    return r;
+  }
+};
+
+PlanFeatures random_features(std::uint32_t seed) {
+  Rng rng{std::mt19937(seed)};
+  PlanFeatures f;
+  f.area.push_back(rng.ring(3, 6));
+  f.home = rng.point();
+  const int drones = rng.between(1, 4);
+  for (int d = 1; d <= drones; ++d) {
+    PlanFeatures::Path p;
+    p.drone = d;
+    p.name = rng.between(0, 1) ? "drone " + std::to_string(d * 7) : "";
+    p.altitude_m = base::round_to(rng.uniform(1, 120), 3);
+    p.speed_m_s = base::round_to(rng.uniform(0, 20), 3);
+    p.points = rng.ring(2, 7);
+    f.paths.push_back(p);
+    if (rng.between(0, 1)) f.drone_homes.push_back({d, rng.point()});
+  }
+  return f;
+}
+
+void expect_same_points(const std::vector<geometry::GeoPoint>& a,
+                        const std::vector<geometry::GeoPoint>& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].lat_deg, b[k].lat_deg) << what << " " << k;
+    EXPECT_EQ(a[k].lon_deg, b[k].lon_deg) << what << " " << k;
+  }
+}
+
+TEST(MissionGeoJson, WrittenAndReadBackByTheCheckedReaderGivesTheSameFeatures) {
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    const PlanFeatures f = random_features(seed);
+    const PlanFeatures back = parse_mission_geojson(mission_geojson(f), "mission.geojson");
+    ASSERT_EQ(back.area.size(), 1u);
+    expect_same_points(back.area[0], f.area[0], "area");
+    expect_same_points({back.home}, {f.home}, "home");
+    ASSERT_EQ(back.paths.size(), f.paths.size()) << seed;
+    for (std::size_t i = 0; i < f.paths.size(); ++i) {
+      EXPECT_EQ(back.paths[i].drone, f.paths[i].drone);
+      EXPECT_EQ(back.paths[i].name, f.paths[i].name);
+      EXPECT_EQ(back.paths[i].altitude_m, f.paths[i].altitude_m);
+      EXPECT_EQ(back.paths[i].speed_m_s, f.paths[i].speed_m_s);
+      expect_same_points(back.paths[i].points, f.paths[i].points, "path");
+    }
+    ASSERT_EQ(back.drone_homes.size(), f.drone_homes.size()) << seed;
+  }
+}
+
+// A flight's home is its drone's own where the file gives one, else the plan's; its name the
+// path's, else drone-N; every position at the path's altitude and speed.
+TEST(MissionGeoJson, TheFlightsReaderAgreesWithTheValueWritten) {
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    const PlanFeatures f = random_features(seed);
+    const std::vector<GeoJsonFlight> flights =
+        parse_geojson_flights(mission_geojson(f), "mission.geojson");
+    ASSERT_EQ(flights.size(), f.paths.size()) << seed;
+    for (std::size_t i = 0; i < f.paths.size(); ++i) {
+      const PlanFeatures::Path& p = f.paths[i];
+      const GeoJsonFlight& g = flights[i];
+      EXPECT_EQ(g.drone, p.name.empty() ? "drone-" + std::to_string(p.drone) : p.name);
+      geometry::GeoPoint home = f.home;
+      for (const PlanFeatures::DroneHome& h : f.drone_homes)
+        if (h.drone == p.drone) home = h.at;
+      expect_same_points({g.home}, {home}, "home of drone " + std::to_string(p.drone));
+      expect_same_points(g.points, p.points, "flight");
+      EXPECT_EQ(g.altitudes_m, std::vector<double>(p.points.size(), p.altitude_m));
+      EXPECT_EQ(g.speed_m_s, p.speed_m_s);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace swath::missions
