@@ -20,7 +20,7 @@
 namespace swath::control {
 namespace {
 
-struct Rows : SimulationObserver {
+struct KeptRows : SimulationObserver {
   std::vector<TimeseriesRow> kept;
   void on_row(const TimeseriesRow& r) override { kept.push_back(r); }
 };
@@ -76,7 +76,7 @@ TEST(BatterySag, ThrustCompensationKeepsTheHoverAttitudeErrorAsTheBatteryDrains)
 
 TEST(BatterySag, TheLoadsEnergyIsTheBatterysIntegralOfVoltageTimesCurrent) {
   SimulationSettings s = hover_flight(1.0, 4);
-  Rows rows;
+  KeptRows rows;
   const SimulationSummary r = simulate(s, &rows);
   ASSERT_EQ(r.status, FlightStatus::completed);
   // Σ V I dt with V = OCV − I R, against the loads' Σ P dt.
@@ -119,7 +119,7 @@ TEST(TranslationalLift, ACruiseInTheSimulationCostsLessThanWithoutIt) {
     s.mission.legs = {{{0, 0, 10}, {150, 0, 10}}};
     s.speed_m_s = 5;
     s.physics.airframe.propulsion.translational_lift = lift;
-    Rows rows;
+    KeptRows rows;
     EXPECT_EQ(simulate(s, &rows).status, FlightStatus::completed);
     double sum = 0;
     int n = 0;

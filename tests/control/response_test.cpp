@@ -210,7 +210,7 @@ std::string plotjuggler_problem(const std::string& csv, const std::string& time_
   return "";
 }
 
-struct Rows : SimulationObserver {
+struct CsvRows : SimulationObserver {
   std::string csv;
   void on_row(const TimeseriesRow& r) override { csv += timeseries_csv_row(r); }
 };
@@ -220,7 +220,7 @@ TEST(Response, PlotJugglerReadsTheTimeSeriesOfRunAndResponse) {
   s.mission.name = "line";
   s.mission.legs.push_back({{0, 0, 10}, {20, 0, 10}});
   s.scheduler.run.max_time_s = 15;
-  Rows rows;
+  CsvRows rows;
   rows.csv = timeseries_csv_header(s.physics.airframe.rotors.size());
   simulate(s, &rows);
   EXPECT_GT(std::count(rows.csv.begin(), rows.csv.end(), '\n'), 100);  // rows, not a header alone

@@ -108,11 +108,11 @@ inline double reachable_speed_m_s(double before_m_s, double commanded_m_s, doubl
 }
 
 struct MissionSettings {
-  double altitude_m = 0.0;                   ///< > 0, above home
-  double speed_m_s = 0.0;                    ///< > 0, cruise speed over the whole path
-  double climb_speed_m_s = 2.5;              ///< > 0, vertical, after take-off
-  double descent_speed_m_s = 1.5;            ///< > 0, vertical, landing at home
-  double trigger_distance_m = 0.0;           ///< > 0
+  double altitude_m = 0.0;                              ///< > 0, above home
+  double speed_m_s = 0.0;                               ///< > 0, cruise speed over the whole path
+  double climb_speed_m_s = vehicle::kDefaultClimb_m_s;  ///< > 0, vertical, after take-off
+  double descent_speed_m_s = vehicle::kDefaultDescent_m_s;  ///< > 0, vertical, landing at home
+  double trigger_distance_m = 0.0;                          ///< > 0
   std::optional<double> waypoint_spacing_m;  ///< intermediate waypoints on long lines
   Vehicle vehicle = Vehicle::multirotor;
   Triggering triggering;

@@ -49,9 +49,9 @@ struct Point3 {
 
 /// The autopilot's parameters the model needs (defaults: ArduCopter's).
 struct FlightModel {
-  double speed_m_s = 5.0;    ///< when the file gives none (WPNAV_SPEED)
-  double climb_m_s = 2.5;    ///< WPNAV_SPEED_UP
-  double descent_m_s = 1.5;  ///< WPNAV_SPEED_DN
+  double speed_m_s = 5.0;                             ///< when the file gives none (WPNAV_SPEED)
+  double climb_m_s = vehicle::kDefaultClimb_m_s;      ///< WPNAV_SPEED_UP
+  double descent_m_s = vehicle::kDefaultDescent_m_s;  ///< WPNAV_SPEED_DN
   double deceleration_m_s2 = vehicle::kDefaultAccel_m_s2;  ///< WPNAV_ACCEL
   double rtl_altitude_m = 15.0;                            ///< RTL_ALT
   double sharp_turn_deg = 45.0;  ///< a change of course above which the vehicle stops

@@ -32,8 +32,8 @@ struct Drone {
   std::optional<geometry::GeoPoint> home;  ///< its own take-off point; the fleet's otherwise
   /// Vertical speeds, > 0. Defaults: ArduCopter's WPNAV_SPEED_UP and WPNAV_SPEED_DN, what an
   /// autopilot flies when nothing says otherwise (a mission file carries no climb rate).
-  double climb_speed_m_s = 2.5;
-  double descent_speed_m_s = 1.5;
+  double climb_speed_m_s = kDefaultClimb_m_s;
+  double descent_speed_m_s = kDefaultDescent_m_s;
   double max_airspeed_m_s = 25.0;  ///< the airframe's limit through the air, > 0
   /// Horizontal acceleration and braking, m/s² (the legs from rest to rest, kinematics.hpp).
   /// Default: ArduCopter's WPNAV_ACCEL, kDefaultAccel_m_s2 (swath plan's); swath-fleet's is 2

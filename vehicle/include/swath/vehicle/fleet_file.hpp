@@ -18,8 +18,8 @@ namespace swath::vehicle {
 /// What a program asks of a fleet file. The vertical speeds a drone gets when the file gives
 /// none differ by program and are documented per program in docs/formats.md.
 struct FleetFileRules {
-  double climb_speed_m_s = 2.5;    ///< default climb_speed_m_s, m/s
-  double descent_speed_m_s = 1.5;  ///< default descent_speed_m_s, m/s
+  double climb_speed_m_s = kDefaultClimb_m_s;      ///< default climb_speed_m_s, m/s
+  double descent_speed_m_s = kDefaultDescent_m_s;  ///< default descent_speed_m_s, m/s
   /// The drones' accel_m_s2, m/s²; flights take the file's accel_m_s2 over it (swath plan checks
   /// the key's range and plans with this). Default: ArduCopter's WPNAV_ACCEL.
   double accel_m_s2 = kDefaultAccel_m_s2;

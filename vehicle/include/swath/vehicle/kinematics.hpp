@@ -12,6 +12,13 @@ namespace swath::vehicle {
 /// (missions/stopping.hpp) and swath verify's flight model.
 inline constexpr double kDefaultAccel_m_s2 = 2.5;
 
+/// The default vertical speeds of a multirotor, m/s: ArduCopter's WPNAV_SPEED_UP (250 cm/s) and
+/// WPNAV_SPEED_DN (150 cm/s), what an autopilot flies when nothing says otherwise (a mission file
+/// carries no climb rate). The values behind vehicle::Drone, FleetFileRules, the planner's
+/// mission settings and swath verify's flight model.
+inline constexpr double kDefaultClimb_m_s = 2.5;
+inline constexpr double kDefaultDescent_m_s = 1.5;
+
 /// Rest to rest over `length_m` at ≤ `cruise_m_s`, ≤ `approach_m_s` within `approach_within_m`
 /// of the end, accelerating and braking at `accel_m_s2` (> 0), s (v² linear in distance in each
 /// phase: a trapezoid, or a triangle when a phase is too short to reach its cap). 0 for
