@@ -366,7 +366,7 @@ class AnnealingRun {
     for (int k = 0; k < settings_.moves; ++k, temperature *= cooling) {
       const Move m = propose();
       if (!m.valid) continue;
-      if (m.delta < 0 && rng_.uniform() >= std::exp(m.delta / temperature)) continue;
+      if (m.delta < 0 && metropolis_rejects(rng_.uniform(), m.delta / temperature)) continue;
       apply(m);
       now += m.delta;
       if (now > best_value + 1e-12) {

@@ -121,6 +121,28 @@ void expect_annealing_optimal(
   EXPECT_LE(worst, 0.01) << worst;
 }
 
+// The annealer's shortcut decides as the plain test u >= e^x does, for every u the generator can
+// give (multiples of 2^-53, the smallest ones too) and x across the cooling's range, the edges
+// around the shortcut's -38 and exp's underflow near -745 included.
+TEST(Scheduler, TheMetropolisShortcutDecidesAsExpDoes) {
+  auto rng = vehicle::SplitMix64::stream(46, "metropolis");
+  const double ulp = std::ldexp(1.0, -53);
+  std::vector<double> us{0.0, 0.5, 1.0 - ulp};
+  for (int k = 1; k <= 64; ++k) us.push_back(k * ulp);
+  for (int i = 0; i < 200; ++i) us.push_back(rng.uniform());
+  std::vector<double> xs{-36.0,  -36.7, -36.75, -37.0,  -37.99, -38.0,
+                         -38.01, -40.0, -745.0, -745.2, -746.0, -800.0};
+  for (int i = 0; i < 2000; ++i) xs.push_back(-rng.uniform(0, 60));
+  for (int i = 0; i < 500; ++i) xs.push_back(-rng.uniform(0, 900));
+  int rejects_below_38 = 0;
+  for (const double x : xs)
+    for (const double u : us) {
+      ASSERT_EQ(metropolis_rejects(u, x), u >= std::exp(x)) << "u = " << u << ", x = " << x;
+      if (x < -38 && metropolis_rejects(u, x)) ++rejects_below_38;
+    }
+  EXPECT_GT(rejects_below_38, 0);
+}
+
 TEST(Scheduler, AnnealingFindsTheExhaustiveOptimumOnSmallInstances) {
   int greedy_exact = 0;
   expect_annealing_optimal(

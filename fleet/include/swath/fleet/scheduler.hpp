@@ -10,6 +10,7 @@
 // for pair terms, so also a test oracle).
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -183,6 +184,15 @@ struct AnnealingSettings {
   int moves = 20'000;           ///< geometric cooling from T₀ to T₀·10⁻³ over these
   int probe_moves = 64;         ///< T₀ = median |ΔU| of this many random moves / ln 2
 };
+/// Metropolis' test for a worse move, x = ΔU / T < 0, with u uniform in [0, 1) (a multiple of
+/// 2⁻⁵³, vehicle::SplitMix64::uniform): rejected when u ≥ eˣ. Below x = −38, eˣ < 2⁻⁵³ ≤ any u > 0,
+/// so the answer is known without exp(): the cold part of a search, most of its moves, skips the
+/// call (the same decisions, so the same assignments and draws).
+inline bool metropolis_rejects(double u, double x) {
+  if (x < -38.0 && u > 0) return true;
+  return u >= std::exp(x);
+}
+
 /// Simulated annealing (paper 000 §3.3.1): starts from the better of greedy and the current
 /// targets; moves retarget one drone (the previous holder drops to none), swap two, clear one;
 /// ΔU incremental (pairwise terms over the moved requests' links only).
