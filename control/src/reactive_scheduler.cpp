@@ -39,8 +39,8 @@ ReactiveScheduler::ReactiveScheduler(const ReactiveSettings& settings,
   }
   p_logit_ = std::log(settings_.p_run / (1 - settings_.p_run));
   // The hyperperiod of the fast trigger sensors (docs/swath-control.md, 'Reactive control and paper
-  // 002's experiment': the literal one, with a 10 Hz GPS, would hold every trigger for up to 100
-  // ms).
+  // 002's experiment': the literal one, with a 10 Hz GPS, would hold every trigger for up to
+  // 100 ms).
   hyperperiod_ns_ = 1;
   for (const TriggerSensor& s : sensors_) {
     const double rate = 1e9 / static_cast<double>(s.period_ns);

@@ -2,9 +2,9 @@
 // What a simulated multirotor is asked to fly (docs/swath-control.md): legs in a local frame
 // (world ENU metres, origin at the mission's home), the speed the file asks for, and — for a swath
 // plan — the area and the no-fly zones the flown track is checked against (docs/swath-plan.md,
-// 'Missions that fly as planned': "fly it before you fly it"). Built from swath's mission.geojson
-// or a QGroundControl .plan (one drone of it), a stage plan (the path its guidance field flies), or
-// `random:N@WxH` (the paper's missions).
+// 'Missions that fly as planned'; docs/swath-control.md: "fly it before you fly it"). Built from
+// swath's mission.geojson or a QGroundControl .plan (one drone of it), a stage plan (the path its
+// guidance field flies), or `random:N@WxH` (the paper's missions).
 
 #include <cstdint>
 #include <optional>

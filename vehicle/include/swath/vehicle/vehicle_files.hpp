@@ -52,7 +52,7 @@ struct Environment {
 /// The presets calm, lab, rugby and arch (docs/swath-control.md, 'Vehicle, scheduler and
 /// environment files'); throws InputError for another name.
 Environment environment_preset(const std::string& name);
-/// Parses an environment file (keys as the preset table of docs/swath-control.md, 'Vehicle,
+/// Parses an environment file (keys as the environments of docs/swath-control.md, 'Vehicle,
 /// scheduler and environment files'; `preset:` starts from one).
 Environment parse_environment(const std::string& yaml_text, const std::string& source);
 
