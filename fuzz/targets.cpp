@@ -273,7 +273,7 @@ std::vector<Target> planning_and_energy_targets() {
 // swath-control's inputs, MAVLink from a link, and GIS areas.
 std::vector<Target> control_and_link_targets() {
   return {
-      // swath-control: the control sections of a vehicle file, and a scheduler file (§17.A).
+      // swath-control: the control sections of a vehicle file, and a scheduler file.
       {"vehicle_control",
        [](const std::string& t) {
          expect_input_error_only([&] { control::parse_vehicle_control(t, "fuzz.yaml"); });
@@ -342,7 +342,7 @@ std::vector<Target> control_and_link_targets() {
 // swath-fleet's world, fleet, fault, task-graph and event files.
 std::vector<Target> fleet_targets() {
   return {
-      // swath-fleet: world files (every kind) and the fleet file's simulated drones (§18.10).
+      // swath-fleet: world files (every kind) and the fleet file's simulated drones.
       {"world",
        [](const std::string& t) {
          expect_input_error_only([&] { worlds::parse_world(t, "fuzz.yaml"); });

@@ -25,7 +25,7 @@ struct Mode {
   std::vector<std::string> sets;
 };
 
-// The paper's missions (§7): the lab's 20 m x 20 m room, a rugby pitch, the arch's square.
+// Paper 002 §7's missions: the lab's 20 m x 20 m room, a rugby pitch, the arch's square.
 std::string paper_mission(const std::string& environment) {
   if (environment == "rugby") return "random:8@100x70";
   if (environment == "arch") return "random:8@170x170";

@@ -26,7 +26,7 @@ struct FleetRequest {
   int drones = 0;  ///< > 0: that many default drones at the world's origin instead of --fleet
   std::string forecast = "none";     ///< gmf | constant-velocity | none
   std::vector<std::string> history;  ///< past runs: directories holding dtg.json, or the files
-  bool relief = false;               ///< stand-bys for drones about to leave (§18.5 Example 5)
+  bool relief = false;               ///< stand-bys for drones about to leave (docs/swath-fleet.md)
 };
 /// `required`: APP and --world must be given (false: the command checks them itself, as
 /// `tune`, whose ask and tell subcommands read them from a state file).

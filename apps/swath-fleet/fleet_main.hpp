@@ -9,8 +9,9 @@
 
 namespace swath::apps {
 
-/// Parses argv as swath-fleet does and runs the command; the exit code (0, 1, 2, 4 as §18.10).
-/// Apps registered with fleet::register_app before the call are listed and run by name.
+/// Parses argv as swath-fleet does and runs the command; the exit code (0, 1, 2, 4:
+/// docs/reliability.md, 'Exit codes and errors'). Apps registered with fleet::register_app before
+/// the call are listed and run by name.
 int fleet_main(int argc, char** argv);
 
 }  // namespace swath::apps

@@ -8,7 +8,7 @@ namespace swath::control {
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr double kMinDt_s = 1e-4, kMaxDt_s = 0.5;  // §17.2: the measured Δt is clamped
+constexpr double kMinDt_s = 1e-4, kMaxDt_s = 0.5;  // the measured Δt is clamped
 
 // Shepperd's method: the unit quaternion of the rotation whose columns are x, y, z.
 Quat quat_from_axes(const Vec3& x, const Vec3& y, const Vec3& z) {

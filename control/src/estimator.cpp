@@ -73,8 +73,8 @@ void update_attitude(const EstimatorSettings& s, EstimatorState& state, const Es
 void kalman_predict(AxisFilter& a, double accel_m_s2, double dt_s, double accel_density) {
   const double dt2 = dt_s * dt_s;
   // Continuous white-noise acceleration of spectral density q̃ integrated exactly over dt
-  // (Bar-Shalom, Li, Kirubarajan §6.2.2): Q = q̃ [dt³/3, dt²/2; dt²/2, dt]. The noise added per
-  // second does not depend on how often the filter predicts.
+  // (Bar-Shalom, Li, Kirubarajan, section 6.2.2): Q = q̃ [dt³/3, dt²/2; dt²/2, dt]. The noise added
+  // per second does not depend on how often the filter predicts.
   const double q = accel_density * accel_density;
   a.position_m += a.velocity_m_s * dt_s + 0.5 * accel_m_s2 * dt2;
   a.velocity_m_s += accel_m_s2 * dt_s;

@@ -23,7 +23,7 @@ using geometry::Point2;
 
 constexpr double kMaxRandomSide_m = 100'000;
 constexpr int kMaxRandomWaypoints = 100'000;
-constexpr double kDefaultAltitude_m = 5.0;  // the paper's missions (§7)
+constexpr double kDefaultAltitude_m = 5.0;  // paper 002 §7's missions
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();

@@ -38,8 +38,9 @@ ReactiveScheduler::ReactiveScheduler(const ReactiveSettings& settings,
                      settings_.accumulation_min_rate_hz;
   }
   p_logit_ = std::log(settings_.p_run / (1 - settings_.p_run));
-  // The hyperperiod of the fast trigger sensors (§17.8: the literal one, with a 10 Hz GPS, would
-  // hold every trigger for up to 100 ms).
+  // The hyperperiod of the fast trigger sensors (docs/swath-control.md, 'Reactive control and paper
+  // 002's experiment': the literal one, with a 10 Hz GPS, would hold every trigger for up to
+  // 100 ms).
   hyperperiod_ns_ = 1;
   for (const TriggerSensor& s : sensors_) {
     const double rate = 1e9 / static_cast<double>(s.period_ns);

@@ -23,8 +23,8 @@ using vehicle::kNanosecondsPerSecond;
 using vehicle::seconds;
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
-constexpr SimTime kMetricsPeriod_ns = 1'000'000;  // §17.4: metrics every 1 ms
-constexpr double kLostTrack_m = 50.0;             // §17.5: 50 m off track for 5 s
+constexpr SimTime kMetricsPeriod_ns = 1'000'000;  // metrics every 1 ms
+constexpr double kLostTrack_m = 50.0;             // 50 m off track for 5 s: lost
 constexpr SimTime kLostTrackFor_ns = 5 * kNanosecondsPerSecond;
 constexpr double kSettle_m = 1.0;  // "completed": within 1 m of the last point ...
 constexpr SimTime kSettleMax_ns = 10 * kNanosecondsPerSecond;  // ... or 10 s after the carrot
@@ -156,7 +156,7 @@ class BatteryState {
   double delivered_j_ = 0, drawn_j_ = 0;
 };
 
-// ---- Metrics (§17.4). ----
+// ---- Metrics (docs/formats.md, 'Outputs of swath-control and swath-fleet'). ----
 
 class RunningError {
  public:
@@ -226,7 +226,8 @@ double ring_distance(const std::vector<Point2>& ring, Point2 p) {
   return best;
 }
 
-// The flown track against a swath plan's area and no-fly zones (§14's check).
+// The flown track against a swath plan's area and no-fly zones (docs/swath-plan.md, 'Missions that
+// fly as planned').
 class PlanCheck {
  public:
   explicit PlanCheck(const FlightMission& m) : mission_(m) {}
@@ -771,7 +772,7 @@ class Flight {
     s.avionics_j = avionics_j_;
     s.total_j = motors_j_ + cpu_j_ + avionics_j_;
     // The control task's own share: its cycles (and the reactive dispatch) at the active power
-    // above idle (§17.6 T3).
+    // above idle.
     const ComputerSettings& cs = s_.control.computer;
     const std::int64_t cycles = cs.control_cycles + (reactive_ ? cs.dispatch_cycles : 0);
     s.cpu_energy_per_execution_mj =

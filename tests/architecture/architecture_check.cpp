@@ -381,6 +381,38 @@ void check_functions(const Source& s, std::size_t max_lines, const std::set<long
   }
 }
 
+// A "§" followed by a digit in a comment, on a line that names no paper ("paper 00N"): a section
+// of a document outside the repository. C++ comments are found by `no_notes`; in the other
+// files (CMake, Python, shell) every line is read, as their § marks are in `#` comments.
+void check_section_marks(const Source& s, bool cpp) {
+  static const std::string mark = "\xC2\xA7";  // § in UTF-8
+  static const std::regex paper(R"(\bpaper 0\d\d\b)", std::regex::icase);
+  for (std::size_t at = s.raw.find(mark); at != std::string::npos;
+       at = s.raw.find(mark, at + mark.size())) {
+    const std::size_t after = at + mark.size();
+    if (after >= s.raw.size() || !std::isdigit(static_cast<unsigned char>(s.raw[after]))) continue;
+    if (cpp && s.no_notes[at] != ' ') continue;  // in code or a string, not a comment
+    const std::size_t begin =
+        s.raw.rfind('\n', at) == std::string::npos ? 0 : s.raw.rfind('\n', at) + 1;
+    const std::size_t end = std::min(s.raw.find('\n', at), s.raw.size());
+    if (std::regex_search(s.raw.begin() + static_cast<std::ptrdiff_t>(begin),
+                          s.raw.begin() + static_cast<std::ptrdiff_t>(end), paper))
+      continue;
+    std::size_t stop = after;
+    while (stop < s.raw.size() &&
+           (std::isalnum(static_cast<unsigned char>(s.raw[stop])) || s.raw[stop] == '.'))
+      ++stop;
+    while (s.raw[stop - 1] == '.') --stop;  // a sentence's full stop
+    report(s, at, "section mark " + s.raw.substr(at, stop - at) + " names no paper");
+  }
+}
+
+bool is_script(const fs::path& p, const std::string& relative) {
+  const std::string ext = p.extension().string();
+  return p.filename() == "CMakeLists.txt" || ext == ".cmake" || ext == ".py" || ext == ".sh" ||
+         relative.rfind("scripts/", 0) == 0;
+}
+
 bool is_source(const fs::path& p) {
   const std::string ext = p.extension().string();
   return ext == ".cpp" || ext == ".hpp" || ext == ".h" || ext == ".cc";
@@ -433,7 +465,7 @@ Options parse(int argc, char** argv) {
   if (o.dirs.empty())
     o.dirs = {"base",      "geometry", "vehicle", "mavlink", "missions", "planning",
               "preflight", "energy",   "control", "fleet",   "worlds",   "render",
-              "web",       "apps",     "bench",   "fuzz",    "tests"};
+              "web",       "apps",     "bench",   "fuzz",    "tests",    "scripts"};
   if (o.commands.empty()) o.commands = o.root / "mavlink/include/swath/mavlink/commands.hpp";
   return o;
 }
@@ -445,6 +477,7 @@ int main(int argc, char** argv) {
   const std::set<long> commands = command_values(o.commands);
   std::vector<fs::path> files;
   std::vector<fs::path> cmake_files;  // checked for links only
+  std::vector<fs::path> scripts;      // CMake, Python and shell: checked for section marks only
   for (const std::string& dir : o.dirs) {
     if (!fs::is_directory(o.root / dir)) {
       std::cerr << (o.root / dir).string() << ": not a folder\n";
@@ -455,6 +488,7 @@ int main(int argc, char** argv) {
       // The planted violations are checked on their own (architecture/planted-* tests).
       if (relative.rfind("tests/architecture/planted", 0) == 0) continue;
       if (e.is_regular_file() && is_source(e.path())) files.push_back(e.path());
+      if (e.is_regular_file() && is_script(e.path(), relative)) scripts.push_back(e.path());
       if (e.is_regular_file() && e.path().filename() == "CMakeLists.txt" &&
           below_planning(relative))
         cmake_files.push_back(e.path());
@@ -478,6 +512,15 @@ int main(int argc, char** argv) {
     if (!fleet_keys_exempt(s.name)) check_fleet_file_readers(s);
     if (!soc_exempt(s.name)) check_soc_integrators(s);
     if (below_planning(s.name)) check_planning_includes(s);
+    check_section_marks(s, true);
+  }
+  std::sort(scripts.begin(), scripts.end());
+  for (const fs::path& path : scripts) {
+    Source s;
+    s.name = fs::relative(path, o.root).generic_string();
+    s.raw = read_file(path);
+    s.no_notes = s.raw;
+    check_section_marks(s, false);
   }
   std::sort(cmake_files.begin(), cmake_files.end());
   for (const fs::path& path : cmake_files)
@@ -504,7 +547,11 @@ int main(int argc, char** argv) {
       }))
     std::cout << "Only the programs use swath::planning; read mission files with swath::missions "
                  "(missions/include/swath/missions/).\n";
-  std::cout << files.size() << " files checked, " << violations.size() << " violation"
-            << (violations.size() == 1 ? "" : "s") << "\n";
+  if (std::any_of(violations.begin(), violations.end(),
+                  [](const Violation& v) { return v.problem.rfind("section mark", 0) == 0; }))
+    std::cout << "Name the paper (\"paper 000 \u00A75.1\") or cite the docs page and heading "
+                 "(\"docs/swath-control.md, 'The simulated multirotor'\").\n";
+  std::cout << files.size() + scripts.size() << " files checked, " << violations.size()
+            << " violation" << (violations.size() == 1 ? "" : "s") << "\n";
   return violations.empty() ? 0 : 1;
 }

@@ -29,7 +29,8 @@ struct Timeline {
 };
 
 // Drives the core to `end_ns` with sensor samples every `sample_ns` (0: none) and the TT
-// scheduler's releases; at one instant samples come before the release (§17.2's event order).
+// scheduler's releases; at one instant samples come before the release (docs/swath-control.md,
+// 'The simulated multirotor', its clock).
 Timeline run(FlightComputer& cpu, TimeTriggeredScheduler& tt, SimTime sample_ns, SimTime end_ns) {
   Timeline tl;
   auto drain = [&](SimTime t) {

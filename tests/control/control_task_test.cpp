@@ -27,7 +27,7 @@ struct Body {
   std::array<double, kMaxRotors> omega{};
 };
 
-// The plant: the quad of §17.A (possibly heavier than the controller believes), motors with a
+// The plant: the default quad (possibly heavier than the controller believes), motors with a
 // 30 ms lag, no drag, no wind. Integrated with semi-implicit Euler steps of 0.1 ms.
 class Quad {
  public:
@@ -197,7 +197,7 @@ TEST(ControlTask, PositionStepSettlesWithBoundedOvershoot) {
 }
 
 TEST(ControlTask, EveryFrameReachesAPoseAndHeading) {
-  // §17.A's three airframes: a move of (1, −1, 1) m and a turn to 0.5 rad, all at once.
+  // The three bundled airframes: a move of (1, −1, 1) m and a turn to 0.5 rad, all at once.
   struct Frame {
     vehicle::RotorLayout kind;
     double arm_m, mass_kg;

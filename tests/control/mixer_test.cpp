@@ -51,9 +51,9 @@ TEST(Mixer, HoverOfASymmetricQuadSharesTheWeightEqually) {
   const auto m = mixer_matrices(l);
   const MixerOutput out = mix(l, *m, Wrench{1.5 * 9.80665, {}});
   for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(out.force_n[i], 1.5 * 9.80665 / 4, 1e-12);
-  // §17.6's hover speed: √(m g / (4 k_T)) = 678.0 rad/s before quantisation.
+  // The hover speed: √(m g / (4 k_T)) = 678.0 rad/s before quantisation.
   EXPECT_NEAR(std::sqrt(out.force_n[0] / l.thrust_coeff_n_s2), 678.0, 0.05);
-  // §17.A's hexa-f550: 2.4 kg on six rotors hovers at 700.2 rad/s.
+  // The bundled hexa-f550: 2.4 kg on six rotors hovers at 700.2 rad/s.
   const MixerRotors hexa = layout_of(vehicle::RotorLayout::hexa_x);
   const MixerOutput h = mix(hexa, *mixer_matrices(hexa), Wrench{2.4 * 9.80665, {}});
   for (std::size_t i = 0; i < 6; ++i)

@@ -103,8 +103,9 @@ double road_gain(const App& app, double sense_s, bool noisy) {
   return gain_sum / seeds;
 }
 
-// The ratios of §18.12 item 5; under the sanitizers (CI's second pass, which looks for memory
-// errors, not for figures) two of them: the peak and the far end.
+// The ratios ρ of docs/swath-fleet.md, 'Speculation and avoid-mutual'; under the sanitizers (CI's
+// second pass, which looks for memory errors, not for figures) two of them: the peak and the far
+// end.
 std::vector<double> ratios() {
 #ifdef SWATH_SANITIZED
   return {1.5, 3.0};
@@ -114,11 +115,11 @@ std::vector<double> ratios() {
 }
 
 // With exact sensing (no noise) the forecasts are exact and the formula's timing model is all
-// there is. docs/swath-fleet.md 1 − max(ρ, φ)/(1 + ρ) lets the flying drone fly only while the
-// other senses; but both may fly at once (A, done at step k, flies to k + 2 while B senses k + 1
-// and then waits; B, done, flies on to k + 3 while A is still on its way), so two steps take
-// S + T2, not 2 max(S, T2): the gain is 1 − max(ρ, (ρ + φ)/2)/(1 + ρ). Both agree for ρ ≥ φ
-// (ρ = 2, 3), and both peak at 1/(1 + φ) ≈ 36 % at ρ = φ; below φ the design's form is a slip
+// there is. The form docs/swath-fleet.md quotes, 1 − max(ρ, φ)/(1 + ρ), lets the flying drone fly
+// only while the other senses; but both may fly at once (A, done at step k, flies to k + 2 while B
+// senses k + 1 and then waits; B, done, flies on to k + 3 while A is still on its way), so two
+// steps take S + T2, not 2 max(S, T2): the gain is 1 − max(ρ, (ρ + φ)/2)/(1 + ρ). Both agree for ρ
+// ≥ φ (ρ = 2, 3), and both peak at 1/(1 + φ) ≈ 36 % at ρ = φ; below φ the design's form is a slip
 // (at ρ = 0.5 it predicts −16.7 % where the runtime gains 24 %).
 // Measured (3 seeds, this build, homes 10 m beside the road's start): ρ 0.5: 22.6 % (form
 // 25.0), 1: 27.1 % (31.25), 1.5: 32.6 % (35.0), 2: 30.8 % (33.3), 3: 23.3 % (25.0); with both

@@ -96,8 +96,9 @@ TEST(Scheduler, TheEtaIsTheTrapezoid) {
   EXPECT_EQ(m.eta_s({1, 2, 3}, {1, 2, 3}), 0.0);
 }
 
-// SA against exhaustive search on the 500 small instances `make(seed)` gives (§18.12 item 1):
-// the optimum in ≥ 99 %, never more than 1 % below; `also` sees each instance and SA's answer.
+// SA against exhaustive search on the 500 small instances `make(seed)` gives (docs/swath-fleet.md,
+// 'Checked'): the optimum in ≥ 99 %, never more than 1 % below; `also` sees each instance and SA's
+// answer.
 void expect_annealing_optimal(
     const std::function<Snapshot(std::uint64_t)>& make,
     const std::function<void(const Utility&, const Assignment&, vehicle::SplitMix64&)>& also) {

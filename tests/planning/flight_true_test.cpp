@@ -277,7 +277,8 @@ double summary_flight_time_s(const SurveyPlan& plan, const std::string& stem) {
   return NAN;
 }
 
-// Everything §14 promises of one plan, read back from its files.
+// Everything docs/swath-plan.md, 'Missions that fly as planned' promises of one plan, read back
+// from its files.
 void check_flights(const SurveyPlan& plan, const std::string& what) {
   SCOPED_TRACE(what);
   const geometry::LocalFrame& frame = *plan.request.field.frame;

@@ -13,8 +13,9 @@ namespace {
 
 constexpr double g = kStandardGravity_m_s2;
 
-// The closed form of §17.2 written out again here, independently of hover(): Ω = sqrt(m g / (n
-// k_T)); I = k_Q Ω² / K_t + I_0; P = n (R I + K_e Ω) I / η.
+// The closed form of docs/swath-control.md, 'The simulated multirotor' written out again here,
+// independently of hover(): Ω = sqrt(m g / (n k_T)); I = k_Q Ω² / K_t + I_0; P = n (R I + K_e Ω) I
+// / η.
 struct ClosedHover {
   double omega, power;
 };

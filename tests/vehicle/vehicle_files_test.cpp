@@ -1,5 +1,6 @@
-// The bundled vehicle and environment files read back as §17.A says, the presets agree with
-// their files, and bad files are refused naming the file, the line and the key.
+// The bundled vehicle and environment files read back as docs/swath-control.md, 'Vehicle, scheduler
+// and environment files' says, the presets agree with their files, and bad files are refused naming
+// the file, the line and the key.
 #include "swath/vehicle/vehicle_files.hpp"
 
 #include <gtest/gtest.h>

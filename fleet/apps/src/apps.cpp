@@ -23,7 +23,7 @@ using worlds::TrackingWorld;
 
 namespace {
 
-// ---- case 3: hotspot search (§5.1.3, Fig. 3) ----------------------------------------------
+// ---- case 3: hotspot search (paper 000 §5.1.3, Fig. 3) ------------------------------------------
 
 Co<Reading> sense_at(Ctx& t, Vec3 p, std::string sensor) {
   t.fly_to(p);
@@ -53,7 +53,7 @@ Co<void> hotspot_main(Ctx& c) {
            std::hypot(w.start().x - w.source_m.x, w.start().y - w.source_m.y));
 }
 
-// ---- case 1: road tracing (§5.1.1, Fig. 1) --------------------------------------------------
+// ---- case 1: road tracing (paper 000 §5.1.1, Fig. 1) --------------------------------------------
 
 Co<void> road_main(Ctx& c) {
   const auto& w = dynamic_cast<const RoadWorld&>(c.world());
@@ -75,7 +75,7 @@ Co<void> road_main(Ctx& c) {
   c.metric("steps", w.steps);
 }
 
-// ---- case 4: multiplexing (§5.2.1, Fig. 6) --------------------------------------------------
+// ---- case 4: multiplexing (paper 000 §5.2.1, Fig. 6) --------------------------------------------
 
 Co<void> delivery(Ctx& t, Vec3 from, Vec3 to, double handling_s) {
   t.fly_to(from);
@@ -111,7 +111,7 @@ Co<void> multiplexing_main(Ctx& c) {
   co_await v;
 }
 
-// ---- case 2: wifi map with Gaussian-process cancellation (§5.1.2, Fig. 8) --------------------
+// ---- case 2: wifi map with Gaussian-process cancellation (paper 000 §5.1.2, Fig. 8) -------------
 
 struct WifiMap {
   explicit WifiMap(const RfFieldWorld& w) : gp(w.gp_length_m, w.gp_sigma_f, w.gp_sigma_n_db) {}
@@ -166,7 +166,7 @@ Co<void> wifi_main(Ctx& c) {
   c.metric("map_rmse_db", std::sqrt(se / static_cast<double>(map->cells.size())));
 }
 
-// ---- case 5: tracking with hand-off (§5.2.2, Fig. 6) ----------------------------------------
+// ---- case 5: tracking with hand-off (paper 000 §5.2.2, Fig. 6) ----------------------------------
 
 Co<void> tracking_main(Ctx& c) {
   const auto& w = dynamic_cast<const TrackingWorld&>(c.world());

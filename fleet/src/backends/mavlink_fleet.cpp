@@ -470,7 +470,7 @@ void MavlinkFleet::steer(Vehicle& v) {
     v.slowed = false;
   }
   if (!v.slowed && d.distance_to_target_m() <= v.approach_within_m) {
-    d.set_speed(v.approach_m_s);  // the paper's approach rule (§4.2)
+    d.set_speed(v.approach_m_s);  // paper 000 §4.2's approach rule
     v.slowed = true;
   }
 }

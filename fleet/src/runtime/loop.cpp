@@ -86,10 +86,10 @@ void Runtime::log_states() {
 }
 
 // What the external vehicles did since the last tick, in drone order: positions, a link lost
-// (§18.7: after the backend's silence rule the drone is unavailable, its request requeued and the
-// vehicle's own failsafe takes it home, as for an injected link_loss) or up (first heard, or
-// back: buffered results go out; landed, it rejoins), a target reached, home reached, a vehicle
-// refusing to fly.
+// (docs/swath-fleet.md, 'Faults': after the backend's silence rule the drone is unavailable, its
+// request requeued and the vehicle's own failsafe takes it home, as for an injected link_loss) or
+// up (first heard, or back: buffered results go out; landed, it rejoins), a target reached, home
+// reached, a vehicle refusing to fly.
 void Runtime::poll_backend() {
   backend_.advance_to(now_);
   for (Drone& d : drones_) {
@@ -204,8 +204,8 @@ double Runtime::next_happening() const {
   for (const Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested)
       next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
-  // External vehicles report at any time: every tick (§18.3 step 1, "real runs sleep to the
-  // next tick").
+  // External vehicles report at any time: every tick (real runs sleep to the next tick;
+  // docs/swath-fleet.md, 'The runtime').
   if (backend_.reports_every_tick()) next = std::min(next, now_ + settings_.tick_s);
   return next;
 }

@@ -152,7 +152,7 @@ struct Drone {
   double span_start = 0;
   std::optional<Vec3> spot;  // the forecast place it was sent to (speculation)
   bool spot_hit = false;     // a request appeared there
-  int relieving = -1;        // the drone it stands by for (relief, §18.5 Example 5)
+  int relieving = -1;        // the drone it stands by for (docs/swath-fleet.md, 'Relief')
   // Vehicles read every tick (real ones): the last reported position; the leg above is then the
   // model's estimate (energy), the vehicle's report says where it is and when it arrived.
   std::optional<Vec3> reported;

@@ -6,7 +6,7 @@
 
 namespace swath::fleet::rt {
 
-// Forecasts again when the DTG changed (§18.3 step 4); a `forecast` event when they differ.
+// Forecasts again when the DTG changed; a `forecast` event when they differ.
 void Runtime::update_forecasts() {
   if (!forecaster_ || !dtg_changed_) return;
   dtg_changed_ = false;
@@ -33,7 +33,8 @@ void Runtime::update_forecasts() {
 }
 
 // The forecasts not already shown by a visible request, and q between the visible requests
-// (§18.5's avoid-mutual; pairs below 0.01 left out, as the scheduler's neighbour lists).
+// (avoid-mutual: docs/swath-fleet.md, 'Speculation and avoid-mutual'; pairs below 0.01 left out, as
+// the scheduler's neighbour lists).
 void Runtime::add_forecasts(Snapshot& s, const std::vector<int>& req_task) const {
   if (!forecaster_) return;
   for (const ForecastRequest& f : forecasts_)
@@ -55,8 +56,9 @@ void Runtime::add_forecasts(Snapshot& s, const std::vector<int>& req_task) const
     }
 }
 
-// Speculation positions a drone only (§18.5): it flies to the forecast place at its layer and
-// waits there; it serves what appears only when the scheduler gives it that request.
+// Speculation positions a drone only (docs/swath-fleet.md, 'Speculation and avoid-mutual'): it
+// flies to the forecast place at its layer and waits there; it serves what appears only when the
+// scheduler gives it that request.
 void Runtime::position(Drone& d, const ForecastRequest& f) {
   leave_spot(d);
   d.spot = f.location_m;

@@ -28,8 +28,8 @@ Snapshot Runtime::snapshot_base() const {
 }
 
 // Requests: every running task with work whose head is not being acted on; `req_task` gets their
-// task ids. First come, first served (§18.3): a drone acting, held or bound for a place reserves a
-// 5 m disc around it; other tasks' requests inside wait until it leaves.
+// task ids. First come, first served (paper 000 §4.1): a drone acting, held or bound for a place
+// reserves a 5 m disc around it; other tasks' requests inside wait until it leaves.
 void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
   std::vector<std::pair<Vec3, int>> discs;
   for (const Drone& d : drones_) {
@@ -189,8 +189,8 @@ void Runtime::apply_assignment(const Snapshot& s, const Assignment& a,
       stop(d, now_);
 }
 
-// One scheduling round (§18.5): the snapshot, the scheduler's assignment (timed), its log line,
-// its application.
+// One scheduling round (docs/swath-fleet.md, 'Scheduling'): the snapshot, the scheduler's
+// assignment (timed), its log line, its application.
 void Runtime::schedule() {
   Snapshot s = snapshot_base();
   std::vector<int> req_task, drone_of;

@@ -23,14 +23,15 @@
 
 namespace swath::control {
 
-/// Periodic background work (§17.A `computer.background[]`).
+/// Periodic background work (`computer.background[]`, docs/swath-control.md, 'Vehicle, scheduler
+/// and environment files').
 struct BackgroundTask {
   std::string name;
   double rate_hz = 10;      ///< releases per second, (0, 1e6]; the first at t = 0
   std::int64_t cycles = 0;  ///< per release, ≥ 0
 };
 
-/// §17.A `computer.*`.
+/// `computer.*` (docs/swath-control.md, 'Vehicle, scheduler and environment files').
 struct ComputerSettings {
   double clock_hz = 168e6;                    ///< core clock, Hz, > 0
   std::int64_t control_cycles = 120'000;      ///< one control execution, cycles, ≥ 0

@@ -1,7 +1,7 @@
 #pragma once
 // Readers of the control keys of docs/swath-control.md: the `estimator`, `controller` and
 // `computer` sections of a vehicle file, and the scheduler file (`share/schedulers/*.yaml`). Every
-// key is optional unless said otherwise, units are in the key names or documented in §17.A, and
+// key is optional unless said otherwise, units are in the key names or documented there, and
 // unknown keys, wrong types and out-of-range values are refused with base::InputError naming the
 // file, the line and the key.
 
@@ -20,9 +20,10 @@ struct VehicleControlConfig {
   ComputerSettings computer;    ///< `computer.*`
 };
 
-/// Reads `estimator`, `controller` and `computer` of a vehicle file (§17.A). The vehicle's other
-/// top-level keys (name, frame, rotors, propeller, motor, esc, sensors, avionics_w, battery) are
-/// passed over here and checked by the vehicle reader; any other top-level key is refused.
+/// Reads `estimator`, `controller` and `computer` of a vehicle file (docs/swath-control.md,
+/// 'Vehicle, scheduler and environment files'). The vehicle's other top-level keys (name, frame,
+/// rotors, propeller, motor, esc, sensors, avionics_w, battery) are passed over here and checked by
+/// the vehicle reader; any other top-level key is refused.
 VehicleControlConfig parse_vehicle_control(const std::string& text, const std::string& source);
 VehicleControlConfig read_vehicle_control(const std::string& path);
 
@@ -39,7 +40,8 @@ struct InitialModel {
   double beta1 = 0, beta2 = 0;
 };
 
-/// `reactive.*` (§17.3; used by part 2's reactive scheduler).
+/// `reactive.*` (docs/swath-control.md, 'Reactive control and paper 002's experiment'; used by part
+/// 2's reactive scheduler).
 struct ReactiveSettings {
   double p_run = 0.6;       ///< (0, 1)
   double boot_s = 30;       ///< T_boot, s, ≥ 0, < run.max_time_s

@@ -34,7 +34,8 @@ struct SummaryInputs {
   bool loop = false;
 };
 
-/// summary.json (§17.4's keys; `plan_check` for a swath plan).
+/// summary.json (its keys: docs/formats.md, 'Outputs of swath-control and swath-fleet';
+/// `plan_check` for a swath plan).
 std::string summary_json(const SimulationSummary& summary, const SummaryInputs& inputs,
                          const SimulationSettings& settings);
 

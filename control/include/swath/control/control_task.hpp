@@ -17,7 +17,7 @@
 
 namespace swath::control {
 
-/// §17.A `controller.limits`.
+/// `controller.limits` (docs/swath-control.md, 'Vehicle, scheduler and environment files').
 struct ControlLimits {
   double max_speed_m_s = 3.0;        ///< horizontal velocity setpoint, m/s, > 0
   double max_climb_m_s = 1.5;        ///< vertical velocity setpoint, m/s, > 0
@@ -31,7 +31,7 @@ struct ControlLimits {
 /// Whether Δt is measured since the previous execution or taken as 1 / nominal rate.
 enum class DtMode { measured, nominal };
 
-/// §17.A `controller.*`.
+/// `controller.*` (docs/swath-control.md, 'Vehicle, scheduler and environment files').
 struct ControllerGains {
   double position_p_1_s = 1.0;                    ///< velocity setpoint per metre, 1/s, ≥ 0
   PidGains velocity_xy{2.0, 0.5, 0.0, 2.0, 5.0};  ///< m/s → m/s² (1/s, 1/s², 1, m/s², Hz)
@@ -110,8 +110,8 @@ class ControlTask {
   /// A state at rest at `position_m` with `attitude`, pulses at pwm_min.
   TaskState initial_state(const Vec3& position_m, const Quat& attitude = {}) const;
 
-  /// One execution (§17.2's seven steps). Deterministic: the same state and input give the same
-  /// output and state.
+  /// One execution (the seven steps above).
+  /// Deterministic: the same state and input give the same output and state.
   ExecutionOutput execute(TaskState& state, const TaskInput& input) const;
 
   const ControlTaskConfig& config() const { return config_; }

@@ -21,8 +21,8 @@ using vehicle::Quat;
 using vehicle::SimTime;
 using vehicle::Vec3;
 
-/// What the inertial driver accumulated since the previous execution (§17.2 "Sensors"), so that
-/// skipped executions lose no inertial data.
+/// What the inertial driver accumulated since the previous execution (docs/swath-control.md, 'The
+/// simulated multirotor'), so that skipped executions lose no inertial data.
 struct ImuDelta {
   Vec3 delta_angle_rad;     ///< ∫ω dt, body FLU, rad (coning ignored)
   Vec3 delta_velocity_m_s;  ///< ∫ specific force dt, body FLU, m/s (+g·dt up when at rest)
@@ -69,8 +69,8 @@ struct EstimatorInput {
 
 enum class EstimatorType { complementary, truth };
 
-/// §17.A `estimator.*`, plus the measurement noise the Kalman filter assumes (the caller takes it
-/// from the sensor descriptions).
+/// `estimator.*` (docs/swath-control.md, 'Vehicle, scheduler and environment files'), plus the
+/// measurement noise the Kalman filter assumes (the caller takes it from the sensor descriptions).
 struct EstimatorSettings {
   EstimatorType type = EstimatorType::complementary;
   double attitude_gain_1_s = 0.5;  ///< Mahony k_P on the accelerometer's gravity error, 1/s, ≥ 0
@@ -137,7 +137,7 @@ struct EstimatorState {
 EstimatorState initial_estimate(const Vec3& position_m, const Quat& attitude,
                                 double position_sigma_m = 0.5, double velocity_sigma_m_s = 0.2);
 
-/// One execution's estimator step (§17.2 step 1).
+/// One execution's estimator step (the control task's step 1: control_task.hpp).
 void estimator_update(const EstimatorSettings& settings, EstimatorState& state,
                       const EstimatorInput& input);
 

@@ -29,9 +29,9 @@ struct LogisticModel {
 /// L(x) (eq. 1), in [0, 1].
 double trigger_probability(const LogisticModel& m, double x);
 
-/// The change above which L exceeds p_run (eq. 1 inverted, the form §5 programs into sensors):
-/// x* = (ln(p/(1−p)) − β1) / β2 when β2 > 0; otherwise +∞ when L(x) ≤ p_run everywhere (it then
-/// never triggers) and 0 when L(0) > p_run (it always does). p_run in (0, 1).
+/// The change above which L exceeds p_run (eq. 1 inverted, the form paper 002 §5 programs into
+/// sensors): x* = (ln(p/(1−p)) − β1) / β2 when β2 > 0; otherwise +∞ when L(x) ≤ p_run everywhere
+/// (it then never triggers) and 0 when L(0) > p_run (it always does). p_run in (0, 1).
 double trigger_threshold(const LogisticModel& m, double p_run);
 
 /// The fit of `data` by `method`; `bins` and `min_per_bin` shape the groups of the logit fits

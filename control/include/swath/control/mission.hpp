@@ -1,9 +1,10 @@
 #pragma once
 // What a simulated multirotor is asked to fly (docs/swath-control.md): legs in a local frame
 // (world ENU metres, origin at the mission's home), the speed the file asks for, and — for a swath
-// plan — the area and the no-fly zones the flown track is checked against (§14's "fly it before
-// you fly it"). Built from swath's mission.geojson or a QGroundControl .plan (one drone of it), a
-// stage plan (the path its guidance field flies), or `random:N@WxH` (the paper's missions).
+// plan — the area and the no-fly zones the flown track is checked against (docs/swath-plan.md,
+// 'Missions that fly as planned'; docs/swath-control.md: "fly it before you fly it"). Built from
+// swath's mission.geojson or a QGroundControl .plan (one drone of it), a stage plan (the path its
+// guidance field flies), or `random:N@WxH` (the paper's missions).
 
 #include <cstdint>
 #include <optional>
@@ -39,7 +40,7 @@ struct RandomSpec {
 /// it does but is malformed or out of range.
 std::optional<RandomSpec> parse_random_spec(const std::string& text);
 
-/// N waypoints uniform in [0, W] × [0, H] at `altitude_m` (the paper's missions, §7), drawn from
+/// N waypoints uniform in [0, W] × [0, H] at `altitude_m` (paper 002 §7's missions), drawn from
 /// the stream "mission" of `seed`; each a leg of its own (the carrot stops at every waypoint).
 FlightMission random_mission(const RandomSpec& spec, double altitude_m, std::uint64_t seed);
 

@@ -27,7 +27,7 @@ struct MixerMatrices {
 };
 
 /// A and A⁺ of `layout`, or nullopt when the layout is invalid (count outside [4, 8], a coefficient
-/// not positive) or A has rank < 4 (the frame cannot control all four axes: §17.5 refuses it).
+/// not positive) or A has rank < 4 (the frame cannot control all four axes: refused).
 std::optional<MixerMatrices> mixer_matrices(const MixerRotors& layout);
 
 /// What one mix produced.

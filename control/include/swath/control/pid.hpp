@@ -6,7 +6,8 @@
 
 namespace swath::control {
 
-/// Gains of one loop (§17.A `controller.velocity_xy`, `.velocity_z`, `.rate.*`).
+/// Gains of one loop (`controller.velocity_xy`, `.velocity_z`, `.rate.*`; docs/swath-control.md,
+/// 'Vehicle, scheduler and environment files').
 struct PidGains {
   double p = 0;         ///< output per unit error, ≥ 0
   double i = 0;         ///< output per unit error and second, ≥ 0

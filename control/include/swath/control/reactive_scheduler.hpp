@@ -50,9 +50,9 @@ struct FeedbackStats {
   /// Executions caused by triggers alone whose triggers are attributed: to each triggering sensor
   /// (`all`), or to one sensor only (`errors`, the paper's rule: several sensors are excluded).
   std::int64_t single_trigger_executions = 0;
-  std::int64_t multi_cause_excluded = 0;  ///< several causes: no feedback (§17.8)
+  std::int64_t multi_cause_excluded = 0;  ///< several causes: no feedback, as in paper 002
   /// Single-trigger executions and their false positives in the first 10 s after the boot, and
-  /// from 60 s after it (the paper's 7 % → 2 %, §7.3).
+  /// from 60 s after it (paper 002 §7.3: 7 % → 2 %).
   std::int64_t after_boot = 0, after_boot_fp = 0, steady = 0, steady_fp = 0;
 };
 
@@ -67,8 +67,9 @@ struct ExecutionRecord {
 
 class ReactiveScheduler final : public Scheduler {
  public:
-  /// `settings` valid as §17.A says; `sensors` the vehicle's trigger sensors (at least one);
-  /// `rate_hz` the file's TT rate (the boot's when boot_rate_hz is 0).
+  /// `settings` valid as docs/swath-control.md, 'Vehicle, scheduler and environment files' says;
+  /// `sensors` the vehicle's trigger sensors (at least one); `rate_hz` the file's TT rate (the
+  /// boot's when boot_rate_hz is 0).
   ReactiveScheduler(const ReactiveSettings& settings, std::vector<TriggerSensor> sensors,
                     double rate_hz);
 

@@ -20,15 +20,16 @@ inline constexpr std::size_t kMaxRotors = 8;
 
 /// One rotor. Its thrust is `efficiency · thrust_coeff_n_s2 · Ω²` along body +z (up) and its drag
 /// torque `−spin · torque_coeff_nm_s2 · Ω²` about body +z, spin = +1 for a counter-clockwise rotor
-/// seen from above (§17.2's s_i).
+/// seen from above (s_i).
 struct Rotor {
   Vec3 position_m;          ///< hub in body FLU about the centre of mass, m; |·| < 10
   bool ccw = true;          ///< true: spins counter-clockwise seen from above
   double efficiency = 1.0;  ///< η in (0, 1]: < 1 only for the lower rotor of a coaxial pair
 };
 
-/// ESC pulse mapping (§17.A `esc.mapping`): `thrust_linear` commands Ω = Ω_max √u, so thrust is
-/// proportional to the normalised pulse u; `linear` commands Ω = Ω_max u.
+/// ESC pulse mapping (`esc.mapping`, docs/swath-control.md, 'Vehicle, scheduler and environment
+/// files'): `thrust_linear` commands Ω = Ω_max √u, so thrust is proportional to the normalised
+/// pulse u; `linear` commands Ω = Ω_max u.
 enum class EscMapping { thrust_linear, linear };
 
 /// Everything the mixer needs. Valid when 4 ≤ count ≤ 8, coefficients > 0, pwm_min_us <
@@ -36,7 +37,7 @@ enum class EscMapping { thrust_linear, linear };
 struct MixerRotors {
   std::array<Rotor, kMaxRotors> rotors{};
   std::size_t count = 0;                ///< rotors in use, [4, 8]
-  double thrust_coeff_n_s2 = 8.0e-6;    ///< k_T, N/(rad/s)², > 0 (§17.A propeller)
+  double thrust_coeff_n_s2 = 8.0e-6;    ///< k_T, N/(rad/s)², > 0 (the propeller)
   double torque_coeff_nm_s2 = 1.28e-7;  ///< k_Q, N m/(rad/s)², > 0
   double max_speed_rad_s = 1000.0;      ///< Ω_max, rad/s, > 0
   double pwm_min_us = 1000.0;           ///< pulse for u = 0, µs

@@ -19,7 +19,7 @@ using vehicle::SimTime;
 /// No release pending.
 inline constexpr SimTime kNever = std::numeric_limits<SimTime>::max();
 
-/// Why an execution was requested (§17.4 "executions by cause").
+/// Why an execution was requested ("executions by cause", docs/swath-control.md, opening section).
 enum class ReleaseCause : std::uint8_t { time_triggered, boot, trigger, failsafe, setpoint };
 
 /// One sensor sample as a reactive scheduler sees it: the (filtered) value over the sensor's axes.
@@ -58,13 +58,15 @@ class Scheduler {
   virtual bool is_trigger_sensor(std::size_t /*sensor*/) const { return false; }
 };
 
-/// Time-triggered (§17.3 "TT"): a release at phase_ns + k · period_ns for k = 0, 1, ….
+/// Time-triggered ("TT", docs/swath-control.md, 'Reactive control and paper 002's experiment'): a
+/// release at phase_ns + k · period_ns for k = 0, 1, ….
 class TimeTriggeredScheduler final : public Scheduler {
  public:
   /// `period_ns` > 0; `phase_ns` ≥ 0.
   TimeTriggeredScheduler(SimTime period_ns, SimTime phase_ns = 0)
       : period_ns_(period_ns), next_ns_(phase_ns) {}
-  /// The scheduler for `rate_hz`, or nullopt when 1/rate_hz is not a whole number of ns (§17.5).
+  /// The scheduler for `rate_hz`, or nullopt when 1/rate_hz is not a whole number of ns, which is
+  /// refused.
   static std::optional<TimeTriggeredScheduler> at_rate(double rate_hz, SimTime phase_ns = 0);
 
   SimTime next_release_ns() const override { return next_ns_; }

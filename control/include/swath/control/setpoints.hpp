@@ -26,7 +26,8 @@ struct Setpoint {
   std::size_t segment = 0;    ///< the segment of that leg (points segment → segment + 1)
 };
 
-/// Limits of the carrot's motion (§17.A `controller.limits`).
+/// Limits of the carrot's motion (`controller.limits`, docs/swath-control.md, 'Vehicle, scheduler
+/// and environment files').
 struct CarrotLimits {
   double max_speed_m_s = 3.0;   ///< along the leg, m/s, > 0
   double max_climb_m_s = 1.5;   ///< vertical component, m/s, > 0

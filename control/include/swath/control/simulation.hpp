@@ -46,7 +46,7 @@ struct SimulationSettings {
   vehicle::Drone drone() const;
 };
 
-/// How a flight ended (§17.4 "Status").
+/// How a flight ended (its status; docs/swath-control.md, opening section).
 enum class FlightStatus {
   completed,        ///< the mission was flown to its end (without --loop)
   reserve_reached,  ///< --loop: flown until the state of charge reached the reserve
@@ -89,7 +89,8 @@ struct ErrorStat {
   double rms = 0, max = 0;
 };
 
-/// summary.json's figures (§17.4); metrics over [metrics_from_s, end].
+/// summary.json's figures (docs/formats.md, 'Outputs of swath-control and swath-fleet'); metrics
+/// over [metrics_from_s, end].
 struct SimulationSummary {
   FlightStatus status = FlightStatus::completed;
   std::string lost_control_reason;  ///< what was lost, when status is lost_control
@@ -125,7 +126,8 @@ struct SimulationSummary {
   };
   std::vector<Trigger> triggers;  ///< per trigger sensor
   bool reactive = false;
-  /// Reactive: feedback figures (§17.3); shares are of single-trigger executions.
+  /// Reactive: feedback figures (docs/swath-control.md, 'Reactive control and paper 002's
+  /// experiment'); shares are of single-trigger executions.
   struct Feedback {
     std::int64_t false_positives = 0, false_negatives = 0, multi_cause_excluded = 0;
     double fp_share_after_boot = 0, fp_share_steady = 0;

@@ -1,6 +1,6 @@
 #pragma once
 // The dynamic task graph (paper 000 §3.2.1; docs/swath-fleet.md) as a value: what `dtg.json` holds,
-// read back for the forecaster (§18.4), the held-out evaluation and replay. Task nodes are the
+// read back for the forecaster, the held-out evaluation and replay. Task nodes are the
 // application's tasks; a sync node is one await of a coroutine on one or more tasks (consecutive
 // awaits with nothing between form one node). Edges: spawn (issuer's latest sync node or task
 // node → new task), sync (awaited task → sync node), cancel (issuer → cancelled task).

@@ -1,6 +1,6 @@
 #pragma once
 // An independent judge of a run (docs/swath-fleet.md): reads only events.jsonl — nothing of
-// the runtime — and checks the promises of §18.7. Rules:
+// the runtime — and checks the promises of docs/swath-fleet.md, 'Faults' and 'Checked'. Rules:
 //   R1 the first line is run_start, the last run_end; times finite, ≥ 0, never going back
 //   R2 each task is created once, before anything names it; its parent was created before
 //   R3 each created task has exactly one terminal event (task_done, task_cancelled, task_failed)

@@ -1,9 +1,10 @@
 #pragma once
-// Forecasting an application's next requests and cancellations from its task graph (paper 000
-// §3.2.2; docs/swath-fleet.md). A `Forecaster` looks at the DTG as it stands now — its frontier
-// being the task nodes still running — and says where requests will appear next and how likely; the
-// scheduler may send drones ahead there (speculation, §18.5) and weighs against serving requests
-// that are about to be cancelled (q, avoid-mutual). Three strategies behind one interface:
+// Forecasting an application's next requests and cancellations from its task graph
+// (paper 000 §3.2.2; docs/swath-fleet.md). A `Forecaster` looks at the DTG as it stands now — its
+// frontier being the task nodes still running — and says where requests will appear next and how
+// likely; the scheduler may send drones ahead there (docs/swath-fleet.md, 'Speculation and
+// avoid-mutual') and weighs against serving requests that are about to be cancelled (q,
+// avoid-mutual). Three strategies behind one interface:
 //   gmf               graph matching against past runs (the paper's GMF),
 //   constant-velocity each kind's latest batch of tasks moved on by its last displacement (the
 //                     baseline GMF must beat),
@@ -27,11 +28,12 @@ struct ForecastRequest {
   double expected_s = 0;  ///< when it is expected, s since the run began (≥ the forecast's now)
 };
 
-/// q(i→j) (§18.4 step 5; the paper gives no algorithm): the probability that task j is cancelled
-/// by a cancel issued from task i or from the await on i, given that i ended done while j was
-/// running. Empirical, by kind pair and distance between first locations in 1 m bins; a bin is
-/// smoothed toward its kind pair's rate (Laplace: (c + r) / (n + 1), r = (C + 1) / (N + 2) over
-/// the pair's bins), so an unseen distance is not a coin toss. Kind pairs never seen: 0.
+/// q(i→j) (the paper gives no algorithm; docs/swath-fleet.md, 'Forecasting the next requests'): the
+/// probability that task j is cancelled by a cancel issued from task i or from the await on i,
+/// given that i ended done while j was running. Empirical, by kind pair and distance between first
+/// locations in 1 m bins; a bin is smoothed toward its kind pair's rate (Laplace: (c + r) / (n +
+/// 1), r = (C + 1) / (N + 2) over the pair's bins), so an unseen distance is not a coin toss. Kind
+/// pairs never seen: 0.
 class CancellationModel {
  public:
   /// Adds every (i done, j running then) pair of a finished run.

@@ -7,11 +7,12 @@
 // request. Time jumps from event to event on the tick grid, so an hour's mission takes
 // milliseconds. Same settings and seed: the same bytes in every output.
 //
-// The simulated fleet (§18.6) is exact per leg (see leg.hpp): climb to the drone's altitude
-// layer (20 m + separation × index, the collision rule of §18.3; envelope.hpp), level flight with
-// the approach rule and bounded accelerations, power through energy::Battery (paper 004 eq. 12)
-// from the drone's energy::PowerProfile (hover = airspeed 0). Faults follow §18.7: every task ends
-// exactly once, every result is delivered at most once.
+// The simulated fleet (docs/swath-fleet.md, 'The simulated fleet') is exact per leg (see leg.hpp):
+// climb to the drone's altitude layer (20 m + separation × index, the collision rule;
+// envelope.hpp), level flight with the approach rule and bounded accelerations, power through
+// energy::Battery (paper 004 eq. 12) from the drone's energy::PowerProfile (hover = airspeed 0).
+// Faults (docs/swath-fleet.md, 'Faults'): every task ends exactly once, every result is delivered
+// at most once.
 
 #include <cstdint>
 #include <functional>
@@ -55,7 +56,7 @@ vehicle::Drone default_flying_drone();
 struct DroneSpec {
   vehicle::Drone drone = default_flying_drone();
   Vec3 home_m;  ///< take-off point, local metres (z = 0)
-  /// The paper's approach rule (§4.2): this horizontal speed within approach_within_m of a target,
+  /// Paper 000 §4.2's approach rule: this horizontal speed within approach_within_m of a target,
   /// m/s (0, cruise]; approach_within_m ≥ 0, 0: no approach phase.
   double approach_m_s = Kinematics{}.approach_m_s;
   double approach_within_m = Kinematics{}.approach_within_m;
@@ -89,7 +90,7 @@ struct RuntimeSettings {
   std::string app_name;          ///< for the log
   std::string scheduler = "sa";  ///< sa | reactive | greedy | round-robin | hungarian
   std::uint64_t seed = 1;
-  double tick_s = 0.1;           ///< the heartbeat (paper §4.1), s, > 0
+  double tick_s = 0.1;           ///< the heartbeat (paper 000 §4.1), s, > 0
   double link_latency_s = 0.05;  ///< command and result latency, s, ≥ 0
   double hold_s = 10;            ///< non-interruptible tasks keep their drone this long, s
   double max_time_s = 3600;      ///< a run that has not completed by then ends (exit 4), s
@@ -160,7 +161,7 @@ struct RunRecord {
   double end_s = 0;              ///< when the run stopped
   std::string failure;           ///< why main failed or the run stopped, "" when completed
   std::string events_jsonl;      ///< events.jsonl (docs/swath-fleet.md)
-  std::string dtg_json;          ///< dtg.json (§18.3)
+  std::string dtg_json;          ///< dtg.json (docs/swath-fleet.md, `run`'s outputs)
   std::vector<DroneRecord> drones;
   std::map<std::string, int> tasks_by_outcome;  ///< done, cancelled, failed
   std::map<std::string, double> metrics;        ///< the app's (Ctx::metric)

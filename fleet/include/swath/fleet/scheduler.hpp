@@ -80,11 +80,11 @@ struct Weights {
   double fairness = 0.5;      ///< per second of the request's waiting
   double avoid_zigzag = 0.0;  ///< s per metre from the requests' centre
   double commitment = 5.0;    ///< s when a drone keeps its target
-  /// Per forecast given to a drone: p (H − eta), s per s (paper §3.3.1's speculative term).
+  /// Per forecast given to a drone: p (H − eta), s per s (paper 000 §3.3.1's speculative term).
   double speculative = 1.0;
   /// Per assigned request i: + Σ_j q(i→j) service_j (serving i may make j's service moot);
   /// per pair of assigned requests: − q(i→j)(eta_j + service_j) (j's drone may fly for
-  /// nothing). Paper §3.3.1 and Fig. 13; docs/swath-fleet.md for why both terms.
+  /// nothing). Paper 000 §3.3.1 and Fig. 13; docs/swath-fleet.md for why both terms.
   double avoid_mutual = 1.0;
 };
 

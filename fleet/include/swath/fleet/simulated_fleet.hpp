@@ -4,7 +4,8 @@
 // then level with the approach rule and bounded accelerations; home: the same to above home,
 // then down and landed. It has no clock and no I/O of its own: a command starts a leg at the
 // time it is given, and arrival_s() tells the runtime when each leg ends, so time jumps from
-// event to event. Its links never drop by themselves (injected faults are the runtime's, §18.7).
+// event to event. Its links never drop by themselves (injected faults are the runtime's:
+// docs/swath-fleet.md, 'Faults').
 
 #include <optional>
 #include <string>

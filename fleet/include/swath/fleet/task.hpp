@@ -31,12 +31,13 @@ namespace swath::fleet {
 
 using vehicle::Vec3;
 
-/// The "logic task" a spawn belongs to: the forecaster matches tasks of equal kinds (§18.4).
+/// The "logic task" a spawn belongs to: the forecaster matches tasks of equal kinds
+/// (docs/swath-fleet.md, 'Forecasting the next requests').
 struct Kind {
   std::string name;
 };
 
-/// Binding (paper §3.1.2). `same_drone`: every segment on the drone that took the first.
+/// Binding (paper 000 §3.1.2). `same_drone`: every segment on the drone that took the first.
 /// Not `interruptible`: the drone is reserved between segments (docs/swath-fleet.md).
 struct Flags {
   bool same_drone = false;

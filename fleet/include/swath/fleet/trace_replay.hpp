@@ -1,19 +1,19 @@
 #pragma once
-// Trace replay (the paper's level-1 simulator, §3.3.2; docs/swath-fleet.md): a recorded run's task
-// graph played back as an application. Each task of dtg.json carries its program as the runtime
-// saw it ("script": actions queued, awaits that suspended, spawns, cancels, compute delays, in
-// order), so the replay's tasks appear when their recorded predecessors are done *in this run*
+// Trace replay (the paper's level-1 simulator, paper 000 §3.3.2; docs/swath-fleet.md): a recorded
+// run's task graph played back as an application. Each task of dtg.json carries its program as the
+// runtime saw it ("script": actions queued, awaits that suspended, spawns, cancels, compute delays,
+// in order), so the replay's tasks appear when their recorded predecessors are done *in this run*
 // plus the recorded delay, act where and how the recorded ones did (same places, actions,
 // same_drone / interruptible), and recorded cancels fire when their issuer reaches them.
 //
-// Valid where the graph does not depend on the schedule (cases 1, 3, 4, 5 of §18.9): with
-// another scheduler or fleet the places stay the recorded ones, which the real app would have
-// changed only if its readings depended on when they were taken. Case 2 (wifi) cancels cells by
-// what the readings so far say, so its cancels are the recorded run's, not the ones another
-// schedule would make (world replay is the valid method there). An await of a task already done
-// leaves no step; before each step the replay awaits the tasks this one spawned that had ended
-// before it in the recording (dtg.json "seq", "ended_seq"). Not reproduced: such an await of a
-// task another task spawned; an application's random numbers and metrics.
+// Valid where the graph does not depend on the schedule (cases 1, 3, 4, 5 of docs/swath-fleet.md,
+// 'Case studies'): with another scheduler or fleet the places stay the recorded ones, which the
+// real app would have changed only if its readings depended on when they were taken. Case 2 (wifi)
+// cancels cells by what the readings so far say, so its cancels are the recorded run's, not the
+// ones another schedule would make (world replay is the valid method there). An await of a task
+// already done leaves no step; before each step the replay awaits the tasks this one spawned that
+// had ended before it in the recording (dtg.json "seq", "ended_seq"). Not reproduced: such an await
+// of a task another task spawned; an application's random numbers and metrics.
 
 #include <string>
 

@@ -2,7 +2,7 @@
 // Tuning the scheduler's weights by replay (docs/swath-fleet.md): the search itself — the trials'
 // weights, successive halving over the tuning seeds, the files it writes — apart from how a
 // trial is run (swath-fleet tune runs the app again, or a trace of it; tune ask / tell hands the
-// runs to an engine, §18.11) and from the command line.
+// runs to an engine: docs/swath-fleet.md, 'Trace replay') and from the command line.
 
 #include <array>
 #include <cstddef>

@@ -1,7 +1,7 @@
 #pragma once
 // What the applications act in, as the runtime sees it (docs/swath-fleet.md: fleet sees worlds only
 // through this interface): where apps start, the fence, and the sensors. Sensor noise is a hash
-// of (seed, position), not of time, so a reading does not depend on the schedule (§18.12 item 5).
+// of (seed, position), not of time, so a reading does not depend on the schedule.
 
 #include <array>
 #include <string>

@@ -33,7 +33,7 @@ enum class RotorLayout { quad_x, hexa_x, y6 };
 std::vector<Rotor> rotor_layout(RotorLayout layout, double arm_m, int first_spin = +1,
                                 double coaxial_lower_efficiency = 0.8);
 
-/// Propellers, motors and ESC power (§17.A defaults: a 2212-920 motor with a 10" propeller).
+/// Propellers, motors and ESC power (defaults: a 2212-920 motor with a 10" propeller).
 struct Propulsion {
   double thrust_coeff_n_s2 = 8.0e-6;    ///< k_T: T = η k_T Ω², N/(rad/s)²
   double torque_coeff_nm_s2 = 1.28e-7;  ///< k_Q: drag torque k_Q Ω², N m/(rad/s)²
@@ -53,7 +53,7 @@ struct Propulsion {
   double motor_constant() const;
 };
 
-/// The body: mass, inertia and the drag of §17.2.
+/// The body: mass, inertia and the drag (docs/swath-control.md, 'The simulated multirotor').
 struct Frame {
   double mass_kg = 1.5;
   Vec3 inertia_kg_m2{0.015, 0.015, 0.027};       ///< principal, body FLU
@@ -74,8 +74,9 @@ struct Airframe {
   Propulsion propulsion;
 };
 
-/// The state of §17.2: position and velocity (world ENU), attitude (body to world), body rates
-/// (body FLU) and the rotor speeds (the first rotors.size() are used).
+/// The state (docs/swath-control.md, 'The simulated multirotor'): position and velocity (world
+/// ENU), attitude (body to world), body rates (body FLU) and the rotor speeds (the first
+/// rotors.size() are used).
 struct MultirotorState {
   Vec3 position_m, velocity_m_s;
   Quat attitude;
@@ -99,7 +100,7 @@ static_assert(kMaxRotors == 8, "drag_torque_factor's initialiser lists every rot
 /// The forces and moments on the body in a state, and the rotor accelerations.
 struct Wrench {
   Vec3 force_world_n;   ///< thrust and drag, world ENU (gravity not included)
-  Vec3 torque_body_nm;  ///< every moment of §17.2, body FLU
+  Vec3 torque_body_nm;  ///< every moment of the model (see `Frame`), body FLU
   std::array<double, kMaxRotors> rotor_accel_rad_s2{};
   std::array<double, kMaxRotors> rotor_drag_torque_nm{};  ///< each rotor's aerodynamic torque
 };

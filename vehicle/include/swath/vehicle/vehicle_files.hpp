@@ -23,9 +23,10 @@ struct VehiclePhysics {
   std::vector<std::string> warnings;    ///< old key spellings
 };
 
-/// The §17.A defaults: a quad-f450 with gyro, accel, mag, baro and GPS.
+/// The defaults (docs/swath-control.md, 'Vehicle, scheduler and environment files'): a quad-f450
+/// with gyro, accel, mag, baro and GPS.
 VehiclePhysics default_vehicle();
-/// The default sensors of §17.A (gyro and accel at 1 kHz, mag 100 Hz, baro 50 Hz, GPS 10 Hz).
+/// The default sensors (gyro and accel at 1 kHz, mag 100 Hz, baro 50 Hz, GPS 10 Hz).
 std::vector<SensorSettings> default_sensors();
 
 /// Parses a vehicle file's physical sections: name, frame, rotors (layout or list), propeller,
@@ -48,9 +49,11 @@ struct Environment {
   std::vector<std::string> warnings;
 };
 
-/// The presets calm, lab, rugby and arch (§17.A); throws InputError for another name.
+/// The presets calm, lab, rugby and arch (docs/swath-control.md, 'Vehicle, scheduler and
+/// environment files'); throws InputError for another name.
 Environment environment_preset(const std::string& name);
-/// Parses an environment file (keys as the preset table of §17.A; `preset:` starts from one).
+/// Parses an environment file (keys as the environments of docs/swath-control.md, 'Vehicle,
+/// scheduler and environment files'; `preset:` starts from one).
 Environment parse_environment(const std::string& yaml_text, const std::string& source);
 
 }  // namespace swath::vehicle

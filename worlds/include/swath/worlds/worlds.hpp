@@ -1,9 +1,10 @@
 #pragma once
-// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; docs/swath-fleet.md) and their world
-// files: what the applications act in (the apps themselves are fleet/apps/, swath/fleet/apps.hpp).
-// Every sensor's noise is a hash of (seed, sensor, position to the millimetre), not of time or
-// order, so a reading does not depend on the schedule (docs/swath-fleet.md): two schedulers
-// sensing the same place see the same value, and a case's oracle is exact.
+// The worlds of swath-fleet's case studies (paper 000 §5.1–5.2; docs/swath-fleet.md) and their
+// world files: what the applications act in (the apps themselves are fleet/apps/,
+// swath/fleet/apps.hpp). Every sensor's noise is a hash of (seed, sensor, position to the
+// millimetre), not of time or order, so a reading does not depend on the schedule
+// (docs/swath-fleet.md): two schedulers sensing the same place see the same value, and a case's
+// oracle is exact.
 //
 // World YAML (local metres at `origin`, x east, y north):
 //   kind: hotspot            # hotspot | road | sites
@@ -54,8 +55,8 @@ class BaseWorld : public fleet::World {
   double place_noise(const std::string& sensor, double x_m, double y_m) const;
 };
 
-/// Case 3 (§5.1.3): a signal source; `signal` reads p0 − 10 n log10(max(d, 1 m)) + noise, dBm.
-/// App `hotspot`: sense at the corners of a square of side `side_m` around the current place,
+/// Case 3 (paper 000 §5.1.3): a signal source; `signal` reads p0 − 10 n log10(max(d, 1 m)) + noise,
+/// dBm. App `hotspot`: sense at the corners of a square of side `side_m` around the current place,
 /// move `step_m` toward the strongest corner, `steps` times.
 class HotspotWorld final : public BaseWorld {
  public:
@@ -67,10 +68,10 @@ class HotspotWorld final : public BaseWorld {
   double side_m = 10, step_m = 5;
 };
 
-/// Case 1 (§5.1.1): a road (a polyline, or a smooth random curve from the seed); `road_camera`
-/// reads the nearest road point and the road's heading there (x_m, y_m, heading_deg clockwise
-/// from north), with noise. App `road`: fly to a point, read, step `step_m` along the road,
-/// `steps` times.
+/// Case 1 (paper 000 §5.1.1): a road (a polyline, or a smooth random curve from the seed);
+/// `road_camera` reads the nearest road point and the road's heading there (x_m, y_m, heading_deg
+/// clockwise from north), with noise. App `road`: fly to a point, read, step `step_m` along the
+/// road, `steps` times.
 class RoadWorld final : public BaseWorld {
  public:
   fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
@@ -81,9 +82,9 @@ class RoadWorld final : public BaseWorld {
   std::array<double, 3> nearest(double x_m, double y_m) const;
 };
 
-/// Case 4 (§5.2.1): named sites. App `multiplexing`: a delivery A→F (same drone; interruptible
-/// unless `delivery_interruptible` is false, the paper's baseline), photos at B and E, a video
-/// from C to D (same drone, not interruptible); `camera` takes a photo.
+/// Case 4 (paper 000 §5.2.1): named sites. App `multiplexing`: a delivery A→F (same drone;
+/// interruptible unless `delivery_interruptible` is false, the paper's baseline), photos at B and
+/// E, a video from C to D (same drone, not interruptible); `camera` takes a photo.
 class SitesWorld final : public BaseWorld {
  public:
   fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
@@ -93,12 +94,12 @@ class SitesWorld final : public BaseWorld {
   Vec3 site(const std::string& name) const;
 };
 
-/// Case 2 (§5.1.2): a Wi-Fi field: access points with log-distance path loss and a shadowing
-/// field correlated over `correlation_m` (random Fourier features of an RBF kernel: smooth, from
-/// the seed); `rssi` reads the strongest AP plus noise, dBm. App `wifi`: one sensing task per
-/// cell of a `cell_m` grid over the fence; each reading updates a Gaussian process (RBF length
-/// `gp_length_m`, σ_f `gp_sigma_f`, σ_n `gp_sigma_n_db`) and cancels every cell whose posterior
-/// standard deviation fell below `cancel_below_db` (Fig. 8's cancellation).
+/// Case 2 (paper 000 §5.1.2): a Wi-Fi field: access points with log-distance path loss and a
+/// shadowing field correlated over `correlation_m` (random Fourier features of an RBF kernel:
+/// smooth, from the seed); `rssi` reads the strongest AP plus noise, dBm. App `wifi`: one sensing
+/// task per cell of a `cell_m` grid over the fence; each reading updates a Gaussian process (RBF
+/// length `gp_length_m`, σ_f `gp_sigma_f`, σ_n `gp_sigma_n_db`) and cancels every cell whose
+/// posterior standard deviation fell below `cancel_below_db` (Fig. 8's cancellation).
 class RfFieldWorld final : public BaseWorld {
  public:
   fleet::Reading sense(const std::string& sensor, const Vec3& at, double t_s) const override;
@@ -114,7 +115,7 @@ class RfFieldWorld final : public BaseWorld {
   std::vector<std::array<double, 3>> features;  ///< (wx, wy, phase) of the shadowing field
 };
 
-/// Case 5 (§5.2.2): a walker at `walker_speed_m_s` along a smooth random path within
+/// Case 5 (paper 000 §5.2.2): a walker at `walker_speed_m_s` along a smooth random path within
 /// `area_radius_m` of the start; `camera` sees it
 /// within `camera_range_m` (values: its x_m, y_m; empty when out of sight). App `tracking`: fly
 /// to where it was last seen, look, repeat, for `duration_s`; drones with short flights hand
