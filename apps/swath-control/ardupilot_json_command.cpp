@@ -2,6 +2,8 @@
 // one JSON line back to its sender, lock-step (ArduPilot waits for every answer).
 #include "ardupilot_json_command.hpp"
 
+#include "flight_inputs.hpp"
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -63,22 +65,6 @@ class ServeStopSignals {
   struct sigaction previous_int_ {
   }, previous_term_{}, previous_hup_{};
 };
-
-// A file given by path, or the bundled share/<folder>/<name>.yaml (as `run` reads them).
-std::pair<std::string, std::string> server_config_text(const std::string& given,
-                                                       const std::string& folder,
-                                                       const std::string& what,
-                                                       const std::string& flag) {
-  fs::path path = given;
-  std::error_code ec;
-  if (!fs::exists(path, ec) && given.find('/') == std::string::npos &&
-      fs::path(given).extension().empty())
-    path = share_dir() / folder / (given + ".yaml");
-  if (!fs::exists(path, ec))
-    throw InputError(flag + " " + given + ": no such " + what + " file, and no bundled " + what +
-                     " of that name");
-  return {path.string(), base::read_text_file(path, what + " file", base::kMaxConfigFileBytes)};
-}
 
 class JsonUdpSocket {
  public:
@@ -162,16 +148,15 @@ void ControlArduPilotJsonCommand::setup(CLI::App& app) {
 int ControlArduPilotJsonCommand::run() {
   // 1. Everything checked before serving: files, the frame, the output directory, the port.
   control::ArduPilotJsonSettings settings;
-  const auto [vehicle_source, vehicle_text] =
-      server_config_text(vehicle_, "vehicles", "vehicle", "--vehicle");
-  settings.physics = vehicle::parse_vehicle(vehicle_text, vehicle_source);
-  const auto [environment_source, environment_text] =
-      server_config_text(environment_, "environments", "environment", "--environment");
-  settings.environment = vehicle::parse_environment(environment_text, environment_source);
+  const ConfigFile vehicle_file = config_file(vehicle_, "vehicles", "vehicle", "--vehicle");
+  settings.physics = vehicle::parse_vehicle(vehicle_file.text, vehicle_file.source);
+  const ConfigFile environment_file =
+      config_file(environment_, "environments", "environment", "--environment");
+  settings.environment = vehicle::parse_environment(environment_file.text, environment_file.source);
   for (const auto* warnings : {&settings.physics.warnings, &settings.environment.warnings})
     for (const std::string& w : *warnings) std::cerr << "warning: " << w << '\n';
   settings.seed = seed_;
-  settings.source = vehicle_source;
+  settings.source = vehicle_file.source;
   control::ArduPilotJsonServer server(settings);
   if (!output_.empty()) base::OutputSet probe(output_, "control-ardupilot-json");  // not committed
   JsonUdpSocket socket(address_, port_);

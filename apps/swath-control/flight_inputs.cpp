@@ -1,5 +1,6 @@
 #include "flight_inputs.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "data_dir.hpp"
@@ -16,31 +17,6 @@ namespace {
 
 using base::InputError;
 namespace fs = std::filesystem;
-
-// A configuration given as a file path or as the name of one in share/<folder>/.
-struct ConfigFile {
-  std::string name;  ///< as summary.json names it
-  std::string source, text;
-};
-
-ConfigFile config_file(const std::string& given, const std::string& folder, const std::string& what,
-                       const std::string& flag) {
-  fs::path path = given;
-  std::error_code ec;
-  if (!fs::exists(path, ec) && given.find('/') == std::string::npos &&
-      fs::path(given).extension().empty())
-    path = share_dir() / folder / (given + ".yaml");
-  if (!fs::exists(path, ec)) {
-    std::string names;
-    for (const auto& e : fs::directory_iterator(share_dir() / folder, ec))
-      if (e.path().extension() == ".yaml")
-        names += (names.empty() ? "" : ", ") + e.path().stem().string();
-    throw InputError(flag + " " + given + ": no such " + what + " file, and no bundled " + what +
-                     " of that name (bundled: " + names + ")");
-  }
-  return {path.stem().string(), path.string(),
-          base::read_text_file(path, what + " file", base::kMaxConfigFileBytes)};
-}
 
 // The file's text with its overrides; messages then name "FILE (with --set)", since line numbers
 // refer to the text as rewritten.
@@ -69,6 +45,27 @@ std::vector<control::Override> overrides_for(const std::vector<std::string>& set
 }
 
 }  // namespace
+
+ConfigFile config_file(const std::string& given, const std::string& folder, const std::string& what,
+                       const std::string& flag) {
+  fs::path path = given;
+  std::error_code ec;
+  if (!fs::exists(path, ec) && given.find('/') == std::string::npos &&
+      fs::path(given).extension().empty())
+    path = share_dir() / folder / (given + ".yaml");
+  if (!fs::exists(path, ec)) {
+    std::vector<std::string> bundled;  // sorted: the directory's order is the file system's
+    for (const auto& e : fs::directory_iterator(share_dir() / folder, ec))
+      if (e.path().extension() == ".yaml") bundled.push_back(e.path().stem().string());
+    std::sort(bundled.begin(), bundled.end());
+    std::string names;
+    for (const std::string& n : bundled) names += (names.empty() ? "" : ", ") + n;
+    throw InputError(flag + " " + given + ": no such " + what + " file, and no bundled " + what +
+                     " of that name (bundled: " + names + ")");
+  }
+  return {path.stem().string(), path.string(),
+          base::read_text_file(path, what + " file", base::kMaxConfigFileBytes)};
+}
 
 void add_flight_options(CLI::App& app, FlightRequest& r) {
   app.add_option("--seed", r.seed, "Seed of every noise source (wind, sensors, random missions)")

@@ -33,6 +33,16 @@ struct PreparedFlight {
   std::vector<std::string> warnings;
 };
 
+/// A vehicle, scheduler or environment file: given by path, or the bundled
+/// share/<folder>/<given>.yaml when `given` is a bare name.
+struct ConfigFile {
+  std::string name;  ///< as summary.json names it
+  std::string source, text;
+};
+/// Reads it; throws base::InputError naming `flag` (and the bundled names) when there is none.
+ConfigFile config_file(const std::string& given, const std::string& folder, const std::string& what,
+                       const std::string& flag);
+
 /// Reads and checks everything the request names; throws base::InputError (one sentence naming
 /// the flag or file and the problem).
 PreparedFlight prepare_flight(const FlightRequest& request);
