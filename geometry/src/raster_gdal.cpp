@@ -159,6 +159,8 @@ void close_raster(const std::string& path) {
   open.erase(it);
 }
 
+void index_text_rows(Raster& r, const std::string& path);
+
 // The raster at `path`, opened on first use; again when --dem-units differs.
 Raster& raster(const std::string& path, double asked_unit_m) {
   auto& open = open_rasters();
@@ -167,7 +169,11 @@ Raster& raster(const std::string& path, double asked_unit_m) {
     close_raster(path);
     it = open.end();
   }
-  if (it == open.end()) it = open.emplace(path, open_raster(path, asked_unit_m)).first;
+  if (it == open.end()) {
+    Raster fresh = open_raster(path, asked_unit_m);
+    index_text_rows(fresh, path);  // may refuse the file: then nothing is kept open
+    it = open.emplace(path, std::move(fresh)).first;
+  }
   return it->second;
 }
 
@@ -206,6 +212,16 @@ class FirstGdalError {
   std::string first_;
 };
 
+// A DEM row GDAL cannot read, as one sentence naming the file as the user gave it (GDAL names it
+// by the absolute path it was given) and GDAL's reason.
+InputError row_error(const Raster& r, const std::string& path, int row, std::string reason) {
+  for (std::size_t at = 0; !r.local.empty() && (at = reason.find(r.local, at)) != std::string::npos;
+       at += path.size())
+    reason.replace(at, r.local.size(), path);
+  return InputError(path + ": cannot read the DEM's row " + std::to_string(row + 1) + " of " +
+                    std::to_string(r.height) + " (" + reason + ")");
+}
+
 // Reads rows [y0, y0 + h) of columns [x0, x0 + w) into `out` (w x h, row by row). A failed read
 // names the first row GDAL cannot read and GDAL's reason (a truncated file, a bad block).
 void read_window(Raster& r, int x0, int y0, int w, int h, std::vector<double>& out,
@@ -228,12 +244,25 @@ void read_window(Raster& r, int x0, int y0, int w, int h, std::vector<double>& o
       break;
     }
   }
-  // GDAL names the file by the absolute path it was given: shown as the user gave it.
-  for (std::size_t at = 0; !r.local.empty() && (at = reason.find(r.local, at)) != std::string::npos;
-       at += path.size())
-    reason.replace(at, r.local.size(), path);
-  throw InputError(path + ": cannot read the DEM's row " + std::to_string(bad + 1) + " of " +
-                   std::to_string(r.height) + " (" + reason + ")");
+  throw row_error(r, path, bad, reason);
+}
+
+// An ESRI ASCII grid is read by GDAL a line at a time, and a row's place in the file is found by
+// reading every row before it; where one of those fails to parse, GDAL starts over from the top
+// for each row after it, recursively: a malformed grid of a few hundred rows then takes forever
+// (libFuzzer: a 503-byte file ran for over ten minutes). Reading the rows once in order, at
+// open, leaves GDAL every row's place, and a row that does not parse refuses the file at once.
+// Costs one pass over the file; other formats are read by block and need none.
+void index_text_rows(Raster& r, const std::string& path) {
+  const GDALDriver* driver = r.dataset->GetDriver();
+  if (!driver || std::string(driver->GetDescription()) != "AAIGrid") return;
+  std::vector<double> row(static_cast<std::size_t>(r.width));
+  for (int y = 0; y < r.height; ++y) {
+    const FirstGdalError errors;
+    if (r.band->RasterIO(GF_Read, 0, y, r.width, 1, row.data(), r.width, 1, GDT_Float64, 0, 0) !=
+        CE_None)
+      throw row_error(r, path, y, errors.reason());
+  }
 }
 
 // A pixel that stands above or below every neighbour by more than a needle of ten times its width
