@@ -325,17 +325,21 @@ std::vector<fleet::App> builtin_apps() {
       {"hotspot", "case 3 (paper 000 §5.1.3): find a signal source by sensing square corners",
        hotspot_main},
       {"multiplexing",
-       "case 4 (§5.2.1): a delivery, two photos and a video sharing one drone (world kind sites)",
+       "case 4 (paper 000 §5.2.1): a delivery, two photos and a video sharing one drone (world "
+       "kind sites)",
        multiplexing_main},
-      {"road", "case 1 (§5.1.1): trace a road step by step with a road camera", road_main},
+      {"road", "case 1 (paper 000 §5.1.1): trace a road step by step with a road camera",
+       road_main},
       {"static",
        "tasks from a world file (kind static): fly, sense, hover, custom, in order after their "
        "predecessors",
        static_main},
-      {"tracking", "case 5 (§5.2.2): follow a walker, handing over between short-flight drones",
+      {"tracking",
+       "case 5 (paper 000 §5.2.2): follow a walker, handing over between short-flight drones",
        tracking_main},
       {"wifi",
-       "case 2 (§5.1.2): map a Wi-Fi field cell by cell, cancelling cells a Gaussian process "
+       "case 2 (paper 000 §5.1.2): map a Wi-Fi field cell by cell, cancelling cells a Gaussian "
+       "process "
        "already knows (world kind rf_field)",
        wifi_main},
   };
