@@ -97,12 +97,6 @@ int drone_of(const json& properties, const std::string& where) {
 
 // ---- Reading any mission GeoJSON's flights (lenient: only the paths and homes matter).
 
-double finite_number(const json& j, const std::string& where) {
-  if (!j.is_number() || !std::isfinite(j.get<double>()))
-    throw base::InputError(where + " must be a number");
-  return j.get<double>();
-}
-
 // Checked lookups: a hand-edited file is input like any other (no const operator[], no value()
 // that throws a library type_error for a member of another type).
 std::string text_or(const json& object, const char* key, const std::string& fallback) {
@@ -120,17 +114,6 @@ std::string role_of(const json& feature) {
   return text_or(member_or_null(feature, "properties"), "role", "");
 }
 
-GeoPoint lon_lat(const json& c, const std::string& where) {
-  if (!c.is_array() || c.size() < 2)
-    throw base::InputError(where + ": a position is [lon, lat] or [lon, lat, alt]");
-  const GeoPoint g{finite_number(c[1], where + " (latitude)"),
-                   finite_number(c[0], where + " (longitude)"), 0.0};
-  if (std::abs(g.lat_deg) > 90 || std::abs(g.lon_deg) > 180)
-    throw base::InputError(where +
-                           ": latitude must be within ±90 and longitude within ±180 degrees");
-  return g;
-}
-
 // The plan's home, and each drone's own where it differs (swath writes those with "drone").
 struct Homes {
   std::optional<GeoPoint> plan;
@@ -142,8 +125,8 @@ Homes homes_of(const json& features, const std::string& source) {
   for (std::size_t i = 0; i < features.size(); ++i) {
     const json& f = features[i];
     if (role_of(f) != "home") continue;
-    const GeoPoint at = lon_lat(member_or_null(member_or_null(f, "geometry"), "coordinates"),
-                                source + ": feature " + std::to_string(i));
+    const GeoPoint at = position_of(member_or_null(member_or_null(f, "geometry"), "coordinates"),
+                                    source + ": feature " + std::to_string(i));
     const json& drone = member_or_null(member_or_null(f, "properties"), "drone");
     if (drone.is_number_integer()) {
       out.drones[drone.get<long long>()] = at;
@@ -174,24 +157,25 @@ GeoJsonFlight flight_of(const json& f, const Homes& homes, std::size_t index,
       drone.is_number_integer() ? homes.drones.find(drone.get<long long>()) : homes.drones.end();
   m.home = own != homes.drones.end() ? own->second
            : homes.plan              ? *homes.plan
-                                     : lon_lat(coords[0], where);
+                                     : position_of(coords[0], where);
   const bool has_alt = base::json_find(props, "altitude_m") != nullptr;
   const double alt =
-      has_alt ? finite_number(member_or_null(props, "altitude_m"), where + ": altitude_m") : 0.0;
+      has_alt ? base::json_number(member_or_null(props, "altitude_m"), where + ": altitude_m")
+              : 0.0;
   m.speed_m_s = base::json_find(props, "speed_m_s")
-                    ? finite_number(member_or_null(props, "speed_m_s"), where + ": speed_m_s")
+                    ? base::json_number(member_or_null(props, "speed_m_s"), where + ": speed_m_s")
                     : 0.0;
   if (m.speed_m_s < 0) throw base::InputError(where + ": speed_m_s must be >= 0");
   for (std::size_t k = 0; k < coords.size(); ++k) {
     const std::string at = where + ", position " + std::to_string(k);
-    m.points.push_back(lon_lat(coords[k], at));
+    m.points.push_back(position_of(coords[k], at));
     double a = alt;
     if (!has_alt) {
       if (coords[k].size() < 3)
         throw base::InputError(where +
                                ": the path has no altitude (give properties.altitude_m or "
                                "[lon, lat, alt] positions)");
-      a = finite_number(coords[k][2], at + " (altitude)");
+      a = base::json_number(coords[k][2], at + ": altitude");
     }
     m.altitudes_m.push_back(a);
   }

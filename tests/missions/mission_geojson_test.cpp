@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/missions/mission_geojson.hpp"
 
@@ -96,6 +97,35 @@ TEST(MissionGeoJson, TheFlightsReaderAgreesWithTheValueWritten) {
       EXPECT_EQ(g.speed_m_s, p.speed_m_s);
     }
   }
+}
+
+// A hand-written file's bad positions are refused by the same checks as swath's own file: one
+// sentence naming the feature, the position and what is wrong (never a library exception).
+TEST(MissionGeoJson, TheFlightsReaderRefusesBadPositionsByName) {
+  const auto error_of = [](const std::string& coordinates) {
+    const std::string text =
+        R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"role":"path"},)"
+        R"("geometry":{"type":"LineString","coordinates":)" +
+        coordinates + "}}]}";
+    try {
+      parse_geojson_flights(text, "m.geojson");
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error_of("[[1,2,30],[1]]"),
+            "m.geojson: feature 0, position 1: a position must have at least 2 elements");
+  EXPECT_EQ(error_of("[[1,2,30],[1,\"x\",30]]"),
+            "m.geojson: feature 0, position 1: latitude must be a number");
+  EXPECT_EQ(error_of("[[1,2,30],[1,95,30]]"),
+            "m.geojson: feature 0, position 1: latitude must be within ±90 and longitude within "
+            "±180 degrees");
+  EXPECT_EQ(error_of("[[1,2,30],[1,2,null]]"),
+            "m.geojson: feature 0, position 1: altitude must be a number");
+  EXPECT_EQ(error_of("[[1,2],[1,2]]"),
+            "m.geojson: feature 0: the path has no altitude (give properties.altitude_m or "
+            "[lon, lat, alt] positions)");
 }
 
 }  // namespace
