@@ -304,6 +304,13 @@ TEST(ArduPilotJson, SaggingBatteryEnergyIsTheIntegralOfVoltageTimesCurrent) {
   EXPECT_NEAR(server.energy().soc, soc, 1e-6);
   EXPECT_LT(server.energy().voltage_v, ocv_v(server.energy().soc));  // sagging under load
   EXPECT_LT(-server.json_state().position_m_ned.z, 299.0);           // slower rotors: it sinks
+  // The rotors turn at the speed without sag times the terminal voltage over volt_max_v.
+  ArduPilotJsonSettings steady = s;
+  steady.battery.cells = 0;
+  ArduPilotJsonServer full(steady);
+  for (std::uint32_t f = 1; f <= 1200 * 20; ++f) send(full, f, std::vector<std::uint16_t>(4, 1500));
+  EXPECT_NEAR(server.model().state().rotor_rad_s[0] / full.model().state().rotor_rad_s[0],
+              server.energy().voltage_v / 16.8, 2e-3);
 }
 
 // ArduCopter's quad X_REV (AP_MotorsMatrix.cpp setup_quad_matrix, MOTOR_FRAME_TYPE_BF_X_REV):
