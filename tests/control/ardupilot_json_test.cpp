@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <vector>
 
@@ -482,6 +483,15 @@ TEST(ArduPilotJsonProgram, ServesOverUdpAndWritesTheFlight) {
     ++rows;
   }
   EXPECT_NEAR(rows, 25, 1);
+  // The battery's columns and summary.json: on the ground at idle the motors draw nothing, the
+  // avionics (quad-f450: 3 W) 0.5 s worth.
+  EXPECT_NE(header.find(",energy_wh,soc,battery_v"), std::string::npos) << header;
+  std::ifstream summary_file(out + "/summary.json");
+  const std::string summary((std::istreambuf_iterator<char>(summary_file)),
+                            std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("\"frames_served\": 600"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"avionics_wh\": 0.0004"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"airborne_s\": 0.0"), std::string::npos) << summary;
   std::filesystem::remove_all(out);
 }
 #endif
