@@ -20,13 +20,17 @@
 #include <iostream>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "data_dir.hpp"
 #include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
 #include "swath/control/ardupilot_json.hpp"
+#include "swath/energy/sim_config.hpp"
 #include "swath/vehicle/vehicle_files.hpp"
 
 namespace swath::apps {
@@ -97,7 +101,7 @@ std::string flight_csv_header(std::size_t rotors) {
       "time_s,x_m,y_m,z_m,vx_m_s,vy_m_s,vz_m_s,roll_deg,pitch_deg,yaw_deg,on_ground,"
       "motor_power_w";
   for (std::size_t i = 1; i <= rotors; ++i) h += ",rotor" + std::to_string(i) + "_pwm_us";
-  return h + "\n";
+  return h + ",energy_wh,soc,battery_v\n";
 }
 
 std::string flight_csv_row(const control::JsonFlightRow& r) {
@@ -112,7 +116,38 @@ std::string flight_csv_row(const control::JsonFlightRow& r) {
   s += r.on_ground ? ",1," : ",0,";
   s += fixed_text(r.motor_power_w, 1);
   for (double p : r.pwm_us) s += "," + fixed_text(p, 0);
+  s += "," + fixed_text(r.energy_wh, 4) + "," + fixed_text(r.soc, 5) + "," +
+       fixed_text(r.battery_v, 3);
   return s + "\n";
+}
+
+// summary.json: what was served, the battery, the flight's time off the ground.
+std::string summary_json(const control::ArduPilotJsonServer& server,
+                         const std::string& vehicle_name, const std::string& environment,
+                         std::uint64_t seed) {
+  using nlohmann::ordered_json;
+  const control::JsonEnergy& e = server.energy();
+  const auto round_to = [](double v, int digits) {
+    const double scale = std::pow(10.0, digits);
+    return std::round(v * scale) / scale;
+  };
+  ordered_json j;
+  j["vehicle"] = vehicle_name;
+  j["environment"] = environment;
+  j["seed"] = seed;
+  j["frames_served"] = server.frames_served();
+  j["resends"] = server.resends();
+  j["bad_packets"] = server.bad_packets();
+  j["simulated_s"] = round_to(server.sim_time_s(), 3);
+  j["airborne_s"] = round_to(server.airborne_s(), 3);
+  j["max_tilt_deg"] = round_to(server.max_tilt_deg(), 2);
+  j["energy"] = {{"total_wh", round_to(e.total_j() / 3600.0, 4)},
+                 {"motors_wh", round_to(e.motors_j / 3600.0, 4)},
+                 {"avionics_wh", round_to(e.avionics_j / 3600.0, 4)},
+                 {"final_soc", round_to(e.soc, 6)},
+                 {"final_voltage_v", round_to(e.voltage_v, 3)},
+                 {"battery_empty", e.battery_empty}};
+  return base::json_text(j, 1) + "\n";
 }
 
 }  // namespace
@@ -137,7 +172,8 @@ void ControlArduPilotJsonCommand::setup(CLI::App& app) {
   app.add_option("-o,--output", output_,
                  "Directory for flight.csv: the true state at 50 Hz of simulated time (world ENU "
                  "about the start point, attitude roll/pitch/yaw in degrees NED, PWM per swath "
-                 "rotor), written when serving stops");
+                 "rotor, the battery's energy drawn, SoC and voltage) and summary.json (energy, "
+                 "time airborne, largest tilt), written when serving stops");
   app.add_option("--idle-exit", idle_exit_s_,
                  "Stop after this many wall-clock seconds without a packet once packets have "
                  "come (0: only Ctrl-C stops)")
@@ -155,6 +191,7 @@ int ControlArduPilotJsonCommand::run() {
   settings.environment = vehicle::parse_environment(environment_file.text, environment_file.source);
   for (const auto* warnings : {&settings.physics.warnings, &settings.environment.warnings})
     for (const std::string& w : *warnings) std::cerr << "warning: " << w << '\n';
+  settings.battery = energy::parse_battery_section(vehicle_file.text, vehicle_file.source);
   settings.seed = seed_;
   settings.source = vehicle_file.source;
   control::ArduPilotJsonServer server(settings);
@@ -210,12 +247,17 @@ int ControlArduPilotJsonCommand::run() {
   if (!output_.empty()) {
     base::OutputSet set(output_, "control-ardupilot-json");
     set.add("flight.csv", csv);
+    set.add("summary.json",
+            summary_json(server, settings.physics.airframe.name, environment_, seed_));
     set.commit();
   }
   std::cout << "swath-control ardupilot-json: served " << server.frames_served() << " frames ("
             << server.resends() << " resends answered again, " << server.bad_packets()
             << " bad packets ignored), " << base::fixed_text(server.sim_time_s(), 1)
-            << " s simulated";
+            << " s simulated, " << base::fixed_text(server.airborne_s(), 1) << " s airborne; "
+            << base::fixed_text(server.energy().total_j() / 3600.0, 2) << " Wh drawn (motors "
+            << base::fixed_text(server.energy().motors_j / 3600.0, 2) << "), SoC "
+            << base::fixed_text(server.energy().soc, 3);
   if (!output_.empty()) std::cout << "; wrote " << output_;
   std::cout << '\n';
   return base::kExitSuccess;

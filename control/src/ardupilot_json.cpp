@@ -166,6 +166,11 @@ ArduPilotJsonServer::ArduPilotJsonServer(const ArduPilotJsonSettings& settings)
       model_(json_model_settings(settings)),
       pwm_us_(settings.physics.airframe.rotors.size(), settings.physics.esc.pwm_min_us),
       on_ground_(settings.start_height_m <= 0) {
+  const vehicle::Battery& b = settings.battery;
+  energy_.soc = b.initial_soc;
+  energy_.voltage_v =
+      b.cells > 0 ? vehicle::terminal_voltage_v(b, b.initial_soc, 0.0) : b.voltage_v;
+  if (b.cells > 0) model_.set_supply_ratio(energy_.voltage_v / b.volt_max_v);
   last_reply_ = json_line(json_state());
 }
 
@@ -198,6 +203,12 @@ std::string ArduPilotJsonServer::step(const ServoPacket& packet) {
   const vehicle::SimTime dt = vehicle::from_seconds(1.0 / packet.frame_rate_hz);
   model_.advance_to(model_.now() + dt);
   ground_contact();
+  draw_battery(vehicle::seconds(dt));
+  if (!on_ground_) {
+    airborne_s_ += vehicle::seconds(dt);
+    const double up = vehicle::rotate(model_.state().attitude, {0, 0, 1}).z;
+    max_tilt_deg_ = std::max(max_tilt_deg_, std::acos(std::clamp(up, -1.0, 1.0)) / kRadPerDeg);
+  }
   ++frames_;
   last_reply_ = json_line(json_state());
   return last_reply_;
@@ -219,6 +230,31 @@ void ArduPilotJsonServer::ground_contact() {
   s.velocity_m_s = {};
   s.rate_rad_s = {};
   model_.set_state(s);
+}
+
+// The battery over one step: what the motors drew (the plant's own trapezoid sum) and the
+// avionics, taken off the state of charge as swath-control run's battery does (eq. 12, or the
+// sagging pack's V I = P); with sag the rotors' speed follows the terminal voltage.
+void ArduPilotJsonServer::draw_battery(double dt_s) {
+  const vehicle::Battery& b = settings_.battery;
+  const double motors_j = model_.motor_energy_j();
+  const double avionics_j = settings_.physics.avionics_w * dt_s;
+  const double power_w = (motors_j - motor_energy_seen_j_ + avionics_j) / dt_s;
+  motor_energy_seen_j_ = motors_j;
+  energy_.motors_j = motors_j;
+  energy_.avionics_j += avionics_j;
+  const bool sags = b.cells > 0;
+  const double current_a = sags ? vehicle::sag_current_a(b, energy_.soc, power_w)
+                                : vehicle::battery_current_a(b, power_w);
+  if (!std::isfinite(current_a)) {
+    energy_.battery_empty = true;  // counted, the plant flies on: ArduPilot decides
+    return;
+  }
+  if (sags) {
+    energy_.voltage_v = vehicle::terminal_voltage_v(b, energy_.soc, current_a);
+    model_.set_supply_ratio(energy_.voltage_v / b.volt_max_v);
+  }
+  energy_.soc = vehicle::soc_after_charge(b, energy_.soc, current_a * dt_s);
 }
 
 JsonState ArduPilotJsonServer::json_state() const {
@@ -246,7 +282,10 @@ JsonFlightRow ArduPilotJsonServer::row() const {
           euler_ned_rad(s.attitude),
           pwm_us_,
           model_.motor_power_w(),
-          on_ground_};
+          on_ground_,
+          energy_.total_j() / 3600.0,
+          energy_.soc,
+          energy_.voltage_v};
 }
 
 }  // namespace swath::control

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <vector>
 
@@ -246,6 +247,73 @@ TEST(ArduPilotJson, HoverPwmHoldsAltitude) {
   EXPECT_LT(j.position[2], -10.1);
 }
 
+// The battery behind the server. Eq. 12 (no sag): a hover at the PWM that carries m g draws the
+// hover's motor power plus the avionics, constant, so the energy is (P_hover + P_avionics) t and
+// the charge drawn is I t with I from eq. 12 solved here in the quadratic's textbook form.
+TEST(ArduPilotJson, HoverEnergyAndChargeMatchTheClosedForm) {
+  ArduPilotJsonSettings s = half_throttle_hover();
+  s.physics.avionics_w = 3.0;
+  ArduPilotJsonServer server(s);
+  for (std::uint32_t f = 1; f <= 1200 * 20; ++f)
+    send(server, f, std::vector<std::uint16_t>(4, 1500));
+  // 20 s in steps of 1/1200 s on the plant's nanosecond clock (833,333 ns each).
+  const double t_s = server.sim_time_s();
+  ASSERT_NEAR(t_s, 20.0, 1e-5);
+  const double power_w = vehicle::hover(s.physics.airframe).motor_power_w + 3.0;
+  const vehicle::Battery& b = s.battery;
+  const double v = b.voltage_v, r = b.resistance_ohm;
+  const double current_a =
+      (v - std::sqrt(v * v - 4 * r * b.stabilised_voltage_v * power_w / v)) / (2 * r);
+  EXPECT_NEAR(server.energy().total_j(), power_w * t_s, 1e-4 * power_w * t_s);
+  EXPECT_NEAR(server.energy().avionics_j, 3.0 * t_s, 1e-9);
+  EXPECT_NEAR(server.energy().soc, 1 - current_a * t_s / (3600 * b.capacity_ah), 1e-6);
+  EXPECT_FALSE(server.energy().battery_empty);
+  EXPECT_NEAR(server.airborne_s(), t_s, 1e-9);
+  EXPECT_NEAR(server.row().energy_wh, server.energy().total_j() / 3600, 1e-12);
+}
+
+// With voltage sag (4 cells): the energy the pack gives, summed here step by step as V I dt with
+// the cells' open-circuit voltage (Chen and Rincón-Mora's fit, written out again) and the
+// current of V I = P, P the plant's motor power read after each step (trapezoid) plus the
+// avionics; the charge is the sum of I dt. The sagging voltage slows the rotors, so the hover
+// PWM sinks it: the power read back is what the plant really drew.
+TEST(ArduPilotJson, SaggingBatteryEnergyIsTheIntegralOfVoltageTimesCurrent) {
+  ArduPilotJsonSettings s = half_throttle_hover();
+  s.start_height_m = 300;
+  s.physics.avionics_w = 3.0;
+  s.battery.cells = 4;
+  s.battery.internal_resistance_ohm = 0.006;
+  s.battery.volt_max_v = 16.8;
+  ArduPilotJsonServer server(s);
+  const auto ocv_v = [](double soc) {
+    return 4 * (-1.031 * std::exp(-35 * soc) + 3.685 + 0.2156 * soc - 0.1178 * soc * soc +
+                0.3201 * soc * soc * soc);
+  };
+  const double dt = 1.0 / 1200, r = 4 * 0.006;
+  double soc = 1, energy_j = 0, before_w = server.model().motor_power_w();
+  for (std::uint32_t f = 1; f <= 1200 * 20; ++f) {
+    send(server, f, std::vector<std::uint16_t>(4, 1500));
+    const double after_w = server.model().motor_power_w();
+    const double p = 0.5 * (before_w + after_w) + 3.0;
+    before_w = after_w;
+    const double e = ocv_v(soc);
+    const double i = (e - std::sqrt(e * e - 4 * r * p)) / (2 * r);
+    energy_j += (e - i * r) * i * dt;
+    soc -= i * dt / (3600 * s.battery.capacity_ah);
+  }
+  EXPECT_NEAR(server.energy().total_j(), energy_j, 2e-3 * energy_j);
+  EXPECT_NEAR(server.energy().soc, soc, 1e-6);
+  EXPECT_LT(server.energy().voltage_v, ocv_v(server.energy().soc));  // sagging under load
+  EXPECT_LT(-server.json_state().position_m_ned.z, 299.0);           // slower rotors: it sinks
+  // The rotors turn at the speed without sag times the terminal voltage over volt_max_v.
+  ArduPilotJsonSettings steady = s;
+  steady.battery.cells = 0;
+  ArduPilotJsonServer full(steady);
+  for (std::uint32_t f = 1; f <= 1200 * 20; ++f) send(full, f, std::vector<std::uint16_t>(4, 1500));
+  EXPECT_NEAR(server.model().state().rotor_rad_s[0] / full.model().state().rotor_rad_s[0],
+              server.energy().voltage_v / 16.8, 2e-3);
+}
+
 // ArduCopter's quad X_REV (AP_MotorsMatrix.cpp setup_quad_matrix, MOTOR_FRAME_TYPE_BF_X_REV):
 // output 1 back-right CCW, 2 front-right CW, 3 back-left CW, 4 front-left CCW.
 struct TorqueCase {
@@ -415,6 +483,15 @@ TEST(ArduPilotJsonProgram, ServesOverUdpAndWritesTheFlight) {
     ++rows;
   }
   EXPECT_NEAR(rows, 25, 1);
+  // The battery's columns and summary.json: on the ground at idle the motors draw nothing, the
+  // avionics (quad-f450: 3 W) 0.5 s worth.
+  EXPECT_NE(header.find(",energy_wh,soc,battery_v"), std::string::npos) << header;
+  std::ifstream summary_file(out + "/summary.json");
+  const std::string summary((std::istreambuf_iterator<char>(summary_file)),
+                            std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("\"frames_served\": 600"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"avionics_wh\": 0.0004"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"airborne_s\": 0.0"), std::string::npos) << summary;
   std::filesystem::remove_all(out);
 }
 #endif

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "swath/vehicle/battery.hpp"
 #include "swath/vehicle/flight_model.hpp"
 
 namespace swath::control {
@@ -63,6 +64,11 @@ struct ArduPilotJsonSettings {
   vehicle::Environment environment;
   std::uint64_t seed = 1;
   std::string source = "vehicle";  ///< names the vehicle in messages
+  /// The vehicle file's battery (energy::parse_battery_section): fed by the motors and the
+  /// avionics every step, as swath-control run feeds it (without a flight computer: ArduPilot's
+  /// runs elsewhere). With voltage sag (cells > 0) the motors' speed follows the terminal voltage
+  /// as in run's plant; ArduPilot is sent no voltage, so nothing compensates.
+  vehicle::Battery battery;
   /// Where it starts: on the ground (0) or this high with the rotors at rest, or at the hover
   /// speed of still air (vehicle::hover) with `start_hovering` (tests: free fall, hover).
   double start_height_m = 0;
@@ -76,6 +82,21 @@ struct JsonFlightRow {
   std::vector<double> pwm_us;                                    ///< per swath rotor
   double motor_power_w = 0;
   bool on_ground = true;
+  double energy_wh = 0;  ///< drawn from the battery so far (motors + avionics)
+  double soc = 0;        ///< the battery's state of charge
+  double battery_v = 0;  ///< terminal voltage (with sag), else the pack's nominal voltage
+};
+
+/// What the battery gave over the flight so far. The energy is what the loads drew (the motors'
+/// electrical power, trapezoid per plant sub-step, plus the avionics' constant power), as
+/// swath-control run's summary counts it; the state of charge is the charge the battery's
+/// current (eq. 12, or the sagging pack's V I = P) took off the capacity.
+struct JsonEnergy {
+  double motors_j = 0, avionics_j = 0;
+  double soc = 1;
+  double voltage_v = 0;        ///< terminal voltage at the last step
+  bool battery_empty = false;  ///< the battery could not deliver the power at some step
+  double total_j() const { return motors_j + avionics_j; }
 };
 
 class ArduPilotJsonServer {
@@ -97,6 +118,11 @@ class ArduPilotJsonServer {
   JsonFlightRow row() const;
   bool on_ground() const { return on_ground_; }
 
+  const JsonEnergy& energy() const { return energy_; }
+  /// Seconds of simulated time off the ground; the largest tilt while off it, degrees.
+  double airborne_s() const { return airborne_s_; }
+  double max_tilt_deg() const { return max_tilt_deg_; }
+
   long long frames_served() const { return frames_; }
   long long resends() const { return resends_; }
   long long bad_packets() const { return bad_; }
@@ -104,6 +130,7 @@ class ArduPilotJsonServer {
 
  private:
   void ground_contact();
+  void draw_battery(double dt_s);
 
   ArduPilotJsonSettings settings_;
   MotorMap map_;
@@ -113,6 +140,9 @@ class ArduPilotJsonServer {
   std::vector<double> pwm_us_;  ///< per swath rotor, as last commanded
   vehicle::Vec3 ground_xy_m_;   ///< where it rests while on the ground
   bool on_ground_ = true;
+  JsonEnergy energy_;
+  double motor_energy_seen_j_ = 0;  ///< model_.motor_energy_j() at the last battery step
+  double airborne_s_ = 0, max_tilt_deg_ = 0;
   long long frames_ = 0, resends_ = 0, bad_ = 0;
 };
 
