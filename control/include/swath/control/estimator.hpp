@@ -123,6 +123,9 @@ struct EstimatorState {
   Vec3 fix_acceleration_m_s2;
   Vec3 last_fix_velocity_m_s;  ///< world ENU, m/s
   double since_fix_s = 0;      ///< inertial time since that fix, s
+  /// Inertial time since a magnetometer sample last corrected the heading, s: the next sample's
+  /// correction stands for this long, so that the heading gain is per second at every rate.
+  double since_heading_s = 0;
   bool has_fix_velocity = false;
   friend bool operator==(const EstimatorState&, const EstimatorState&) = default;
 
