@@ -125,6 +125,73 @@ EstimatorState initial_estimate(const Vec3& position_m, const Quat& attitude,
   return s;
 }
 
+namespace {
+
+// History kept beyond the receiver's latency, s: a fix waits for the next execution (≤ 0.1 s at
+// 10 Hz and above) before the filter reads it.
+constexpr double kHistoryMargin_s = 0.1;
+
+// One filter step: the prediction over the step's interval, then its barometric altitude.
+void advance(std::array<AxisFilter, 3>& axes, const FilterStep& step, const EstimatorSettings& s) {
+  for (std::size_t k = 0; k < 3; ++k)
+    kalman_predict(axes[k], step.accel_m_s2[k], step.dt_s, s.process_accel_m_s2_per_sqrt_hz);
+  if (step.baro) kalman_update_position(axes[2], step.baro_m, s.baro_noise_m);
+}
+
+void fuse_fix(std::array<AxisFilter, 3>& axes, const PositionFix& fix, const EstimatorSettings& s) {
+  const double p[3] = {fix.position_m.x, fix.position_m.y, fix.position_m.z};
+  const double v[3] = {fix.velocity_m_s.x, fix.velocity_m_s.y, fix.velocity_m_s.z};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (fix.position_fresh) kalman_update_position(axes[k], p[k], s.position_noise_m);
+    if (fix.velocity_fresh) kalman_update_velocity(axes[k], v[k], s.velocity_noise_m_s);
+  }
+}
+
+// A fix measured `delay_s` before now: the filters go back to the step holding that instant,
+// predict to it, fuse the fix there and re-run every later step (their predictions and barometric
+// altitudes) to now, so that the fix meets the state of its own time. Fused now, a fix measured d
+// ago on a leg at speed v pulls the position back by v·d (0.3 m at 3 m/s and 0.1 s).
+void fuse_delayed_fix(const EstimatorSettings& s, EstimatorState& state, const PositionFix& fix,
+                      double delay_s) {
+  std::deque<FilterStep>& h = state.history;
+  std::size_t j = h.size();
+  double back_s = 0;  // from the end of step j − 1 to now
+  while (j > 0 && back_s + h[j - 1].dt_s < delay_s) back_s += h[--j].dt_s;
+  if (j == 0) {  // older than the history: at its start
+    if (h.empty()) return fuse_fix(state.axes, fix, s);
+    j = 1, back_s = state.history_s;
+  }
+  const std::size_t first = j - 1;
+  const double before_s = std::max(h[first].dt_s - (delay_s - back_s), 0.0);
+  std::array<AxisFilter, 3> axes = h[first].before;
+  for (std::size_t k = first; k < h.size(); ++k) {
+    FilterStep& step = h[k];
+    step.before = axes;
+    if (k != first) {
+      advance(axes, step, s);
+      continue;
+    }
+    FilterStep part = step;  // to the fix's instant, the fix, then the rest of the step
+    part.dt_s = before_s, part.baro = false;
+    advance(axes, part, s);
+    fuse_fix(axes, fix, s);
+    part.dt_s = step.dt_s - before_s, part.baro = step.baro;
+    advance(axes, part, s);
+  }
+  state.axes = axes;
+}
+
+void remember(EstimatorState& state, const FilterStep& step, double keep_s) {
+  state.history.push_back(step);
+  state.history_s += step.dt_s;
+  while (state.history.size() > 1 && state.history_s - state.history.front().dt_s >= keep_s) {
+    state.history_s -= state.history.front().dt_s;
+    state.history.pop_front();
+  }
+}
+
+}  // namespace
+
 void estimator_update(const EstimatorSettings& s, EstimatorState& state, const EstimatorInput& in) {
   if (s.type == EstimatorType::truth) {
     state.attitude = in.truth.attitude;
@@ -137,17 +204,22 @@ void estimator_update(const EstimatorSettings& s, EstimatorState& state, const E
     }
     return;
   }
+  const double fix_delay_s = s.fix_delay_s.value_or(0.0);
   const double dt = in.imu.interval_s;
+  FilterStep step;
+  step.baro = in.baro.fresh, step.baro_m = in.baro.altitude_m;
   if (dt > 0 && std::isfinite(dt)) {
     update_attitude(s, state, in);
     // Δv is a specific force: rotated to world, gravity removed, it is the acceleration.
     const Vec3 accel =
         rotate(state.attitude, in.imu.delta_velocity_m_s / dt) - s.gravity_m_s2 * kUp;
-    const double a[3] = {accel.x, accel.y, accel.z};
-    for (std::size_t k = 0; k < 3; ++k)
-      kalman_predict(state.axes[k], a[k], dt, s.process_accel_m_s2_per_sqrt_hz);
+    step.dt_s = dt, step.accel_m_s2 = {accel.x, accel.y, accel.z};
+    state.since_fix_s += dt;
   }
-  if (dt > 0 && std::isfinite(dt)) state.since_fix_s += dt;
+  if (fix_delay_s > 0) {
+    step.before = state.axes;
+    remember(state, step, fix_delay_s + kHistoryMargin_s);
+  }
   if (in.fix.velocity_fresh) {
     if (state.has_fix_velocity && state.since_fix_s > 0)
       state.fix_acceleration_m_s2 +=
@@ -158,12 +230,16 @@ void estimator_update(const EstimatorSettings& s, EstimatorState& state, const E
     state.since_fix_s = 0;
     state.has_fix_velocity = true;
   }
-  const double p[3] = {in.fix.position_m.x, in.fix.position_m.y, in.fix.position_m.z};
-  const double v[3] = {in.fix.velocity_m_s.x, in.fix.velocity_m_s.y, in.fix.velocity_m_s.z};
-  for (std::size_t k = 0; k < 3; ++k) {
-    if (in.fix.position_fresh) kalman_update_position(state.axes[k], p[k], s.position_noise_m);
-    if (in.fix.velocity_fresh) kalman_update_velocity(state.axes[k], v[k], s.velocity_noise_m_s);
+  const bool fix = in.fix.position_fresh || in.fix.velocity_fresh;
+  if (fix_delay_s > 0) {
+    advance(state.axes, step, s);
+    if (fix) fuse_delayed_fix(s, state, in.fix, fix_delay_s + std::max(in.fix.waited_s, 0.0));
+    return;
   }
+  // Fused as they arrive: the prediction, the fix, then the barometer.
+  step.baro = false;
+  advance(state.axes, step, s);
+  fuse_fix(state.axes, in.fix, s);
   if (in.baro.fresh) kalman_update_position(state.axes[2], in.baro.altitude_m, s.baro_noise_m);
 }
 
