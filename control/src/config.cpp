@@ -61,7 +61,8 @@ PidGains read_pid(const YamlMap& m, PidGains g) {
 }
 
 EstimatorSettings read_estimator(const YamlMap& m) {
-  m.allow({"type", "attitude_gain", "mag_gain", "bias_gain", "process_accel_m_s2_per_sqrt_hz"});
+  m.allow({"type", "attitude_gain", "mag_gain", "bias_gain", "process_accel_m_s2_per_sqrt_hz",
+           "fix_delay_s"});
   EstimatorSettings s;
   s.type = choice(m, "type", s.type, {"complementary", "truth"});
   s.attitude_gain_1_s = m.number("attitude_gain", s.attitude_gain_1_s, 0, 100);
@@ -69,6 +70,7 @@ EstimatorSettings read_estimator(const YamlMap& m) {
   s.bias_gain_1_s = m.number("bias_gain", s.bias_gain_1_s, 0, 100);
   s.process_accel_m_s2_per_sqrt_hz =
       m.number("process_accel_m_s2_per_sqrt_hz", s.process_accel_m_s2_per_sqrt_hz, 0, 1e3, true);
+  if (m.has("fix_delay_s")) s.fix_delay_s = m.number("fix_delay_s", 0, 0, 1);
   return s;
 }
 

@@ -97,7 +97,7 @@ class TestLoop {
   ExecutionOutput execute(SimTime t, const Vec3& attitude_rad, const Vec3& torque_nm) {
     plant_.advance_to(t);
     for (const vehicle::DeliveredSample& d : plant_.take_samples()) driver_.deliver(d);
-    input_.sensors = driver_.take();
+    input_.sensors = driver_.take(t);
     input_.time_ns = t;
     input_.attitude_injection_rad = attitude_rad;
     input_.torque_injection_nm = torque_nm;

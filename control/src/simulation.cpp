@@ -489,7 +489,7 @@ class Flight {
     scheduler_->on_execution_start(t);
     TaskInput input;
     input.time_ns = t;
-    input.sensors = driver_.take();
+    input.sensors = driver_.take(t);
     const vehicle::MultirotorState& x = plant_.state();
     input.sensors.truth = {x.position_m, x.velocity_m_s, x.attitude, x.rate_rad_s};
     input.setpoint = setpoint_at(t);

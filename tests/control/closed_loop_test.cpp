@@ -45,7 +45,7 @@ class Loop {
   ExecutionOutput execute(SimTime t, const Setpoint& setpoint, const Vec3& injection_nm = {}) {
     plant_.advance_to(t);
     for (const vehicle::DeliveredSample& d : plant_.take_samples()) driver_.deliver(d);
-    input_.sensors = driver_.take();
+    input_.sensors = driver_.take(t);
     input_.time_ns = t;
     input_.setpoint = setpoint;
     input_.torque_injection_nm = injection_nm;

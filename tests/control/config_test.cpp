@@ -7,6 +7,7 @@
 
 #include "swath/base/input_error.hpp"
 #include "swath/control/config.hpp"
+#include "swath/control/driver.hpp"
 
 namespace swath::control {
 namespace {
@@ -23,7 +24,7 @@ std::string error_of(const std::function<void()>& read) {
 TEST(ControlConfig, EveryKeyLandsInItsField) {
   const VehicleControlConfig c = parse_vehicle_control(R"(
 frame: {mass_kg: 2}
-estimator: {type: truth, attitude_gain: 0.7, mag_gain: 0.3, bias_gain: 0.02, process_accel_m_s2_per_sqrt_hz: 0.9}
+estimator: {type: truth, attitude_gain: 0.7, mag_gain: 0.3, bias_gain: 0.02, process_accel_m_s2_per_sqrt_hz: 0.9, fix_delay_s: 0.25}
 controller:
   position_p: 1.1
   velocity_xy: {p: 2.1, i: 0.6, d: 0.1, i_limit: 2.2, d_lpf_hz: 6}
@@ -55,6 +56,7 @@ computer:
   EXPECT_EQ(c.estimator.mag_gain_1_s, 0.3);
   EXPECT_EQ(c.estimator.bias_gain_1_s, 0.02);
   EXPECT_EQ(c.estimator.process_accel_m_s2_per_sqrt_hz, 0.9);
+  EXPECT_EQ(c.estimator.fix_delay_s, 0.25);
   const ControllerGains& g = c.controller;
   EXPECT_EQ(g.position_p_1_s, 1.1);
   EXPECT_EQ(g.velocity_xy.p, 2.1);
@@ -108,6 +110,17 @@ TEST(ControlConfig, ShippedFilesReadBackAtTheDefaults) {
   EXPECT_EQ(s.rate_hz, 400);
   EXPECT_EQ(s.run.metrics_from_s, 30);
   EXPECT_EQ(s.run.max_step_s, 0.001);
+}
+
+TEST(ControlConfig, TheFixDelayIsThePositionSensorsLatencyUnlessGiven) {
+  vehicle::SensorSettings gps;
+  gps.type = vehicle::SensorType::position;
+  gps.latency_s = 0.15;
+  EXPECT_EQ(with_sensor_noise(EstimatorSettings{}, {gps}).fix_delay_s, 0.15);
+  EstimatorSettings given;
+  given.fix_delay_s = 0.0;
+  EXPECT_EQ(with_sensor_noise(given, {gps}).fix_delay_s, 0.0);
+  EXPECT_FALSE(parse_vehicle_control("estimator: {}\n", "v.yaml").estimator.fix_delay_s);
 }
 
 TEST(ControlConfig, ReactiveKeysAreRead) {
@@ -189,6 +202,8 @@ TEST(ControlConfig, BadInputIsOneSentenceNamingTheKey) {
        "crash_tilt_deg must exceed max_tilt_deg"},
       {"controller: {rate: {rol: {}}}\n", "unknown key 'controller.rate.rol'"},
       {"estimator: {type: kalman}\n", "estimator.type must be one of complementary, truth"},
+      {"estimator: {fix_delay_s: 1.5}\n", "estimator.fix_delay_s must be in"},
+      {"estimator: {fix_delay_s: -0.1}\n", "estimator.fix_delay_s must be in"},
       {"computer: {control_cycles: 1.5}\n", "computer.control_cycles must be a whole number"},
       {"computer: {idle_w: 1, active_w: 0.5}\n", "active_w must be at least idle_w"},
       {"computer: {background: 3}\n", "computer.background must be a list"},

@@ -11,6 +11,8 @@
 // Frames: world ENU (x east, y north, z up), body FLU; the attitude maps body to world.
 
 #include <array>
+#include <deque>
+#include <optional>
 
 #include "swath/vehicle/clock.hpp"
 #include "swath/vehicle/vec3.hpp"
@@ -48,6 +50,9 @@ struct PositionFix {
   Vec3 velocity_m_s;  ///< world ENU, m/s
   bool position_fresh = false;
   bool velocity_fresh = false;
+  /// From the fix's arrival to this execution, s, ≥ 0 (the driver's timestamps); added to the
+  /// receiver's latency (EstimatorSettings::fix_delay_s) to place the fix in the past.
+  double waited_s = 0;
 };
 
 /// The simulation's true state, used by `EstimatorType::truth` only.
@@ -88,7 +93,11 @@ struct EstimatorSettings {
   double position_noise_m = 0.1;    ///< σ of one position fix, m, > 0
   double velocity_noise_m_s = 0.1;  ///< σ of one velocity fix, m/s, > 0
   double baro_noise_m = 0.1;        ///< σ of one barometric altitude, m, > 0
-  double gravity_m_s2 = 9.80665;    ///< removed from the rotated Δv, m/s²
+  /// `estimator.fix_delay_s`: how long before its arrival a position fix was measured, s, [0, 1];
+  /// the Kalman filter fuses it against its state at that time and re-propagates to now. Unset:
+  /// the position sensor's `latency_s` (with_sensor_noise); 0 fuses a fix as if measured now.
+  std::optional<double> fix_delay_s;
+  double gravity_m_s2 = 9.80665;  ///< removed from the rotated Δv, m/s²
   /// The accelerometer corrects the attitude only while |specific force| / g lies within this
   /// factor of 1 (a hard manoeuvre tells nothing about where "up" is). (0, 1].
   double accel_gate = 0.5;
@@ -111,6 +120,16 @@ void kalman_update_position(AxisFilter& axis, double z_m, double sigma_m);
 /// Updates with a velocity measurement `z_m_s` of standard deviation `sigma_m_s` (> 0).
 void kalman_update_velocity(AxisFilter& axis, double z_m_s, double sigma_m_s);
 
+/// One execution's step of the position/velocity filters, kept for fusing delayed fixes.
+struct FilterStep {
+  double dt_s = 0;                     ///< the prediction's interval, s
+  std::array<double, 3> accel_m_s2{};  ///< world x, y, z, m/s²
+  double baro_m = 0;                   ///< the barometric altitude fused after it, when `baro`
+  bool baro = false;
+  std::array<AxisFilter, 3> before{};  ///< the filters before the step
+  friend bool operator==(const FilterStep&, const FilterStep&) = default;
+};
+
 /// The estimate: a copyable value, part of the task state.
 struct EstimatorState {
   Quat attitude;                     ///< body FLU → world ENU, unit
@@ -123,7 +142,14 @@ struct EstimatorState {
   Vec3 fix_acceleration_m_s2;
   Vec3 last_fix_velocity_m_s;  ///< world ENU, m/s
   double since_fix_s = 0;      ///< inertial time since that fix, s
+  /// Inertial time since a magnetometer sample last corrected the heading, s: the next sample's
+  /// correction stands for this long, so that the heading gain is per second at every rate.
+  double since_heading_s = 0;
   bool has_fix_velocity = false;
+  /// The filters' last steps covering at least fix_delay_s + 0.1 s, oldest first (empty when
+  /// fixes are fused as they arrive), and their total interval, s.
+  std::deque<FilterStep> history;
+  double history_s = 0;
   friend bool operator==(const EstimatorState&, const EstimatorState&) = default;
 
   Vec3 position_m() const { return {axes[0].position_m, axes[1].position_m, axes[2].position_m}; }
