@@ -103,7 +103,9 @@ struct TileRange {
 };
 constexpr double kWorld_m = 2 * std::numbers::pi * kEarth_m;  // Web Mercator's span
 
-double tile_px_m(int z) { return kWorld_m / 256 / std::ldexp(1.0, z); }
+double tile_px_m(int z) {
+  return kWorld_m / 256 / std::ldexp(1.0, z);
+}
 
 TileRange tile_range(int z, double x0, double x1, double y0, double y1) {
   const double tile_m = 256 * tile_px_m(z);

@@ -11,8 +11,8 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <stdexcept>

@@ -586,8 +586,8 @@ int raster_pixels(const swath::render::Image& image) {
       if (x < 360 && y < 90) continue;
       const int r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
       const bool ground = std::max({r, g, b}) <= 60;
-      const bool square = (r >= 200 && g <= 110 && b <= 110) || (g >= 200 && r <= 110 && b <= 110) ||
-                          (b >= 200 && r <= 110 && g <= 110);
+      const bool square = (r >= 200 && g <= 110 && b <= 110) ||
+                          (g >= 200 && r <= 110 && b <= 110) || (b >= 200 && r <= 110 && g <= 110);
       n += ground || square;
     }
   return n;
@@ -649,7 +649,7 @@ TEST(Basemap, TilesAtTwoZoomLevelsWithinTheBudget) {
     for (const Mark& m : kMarks) {
       const auto t = tile_of(m.lon_deg, m.lat_deg, z);
       EXPECT_TRUE(basemap["tiles"].contains(std::to_string(z) + "/" + std::to_string(t[0]) + "/" +
-                                             std::to_string(t[1])))
+                                            std::to_string(t[1])))
           << "zoom " << z << " square " << m.channel;
     }
   EXPECT_GT(static_cast<int>(basemap["tiles"].size()) + 3 * per_level[hi], 128)
@@ -684,10 +684,10 @@ TEST(Basemap, RenderAndHtmlOpenTheRasterOnce) {
   const fs::path ortho = scratch_root() / "ortho-once.tif";
   ASSERT_NO_FATAL_FAILURE(write_ortho(ortho, false, 0.5));
   ASSERT_EQ(swath::geometry::imagery_opens(ortho.string()), 0u);
-  std::vector<std::string> args{"swath",  "plan",     "share/fields/meadow.geojson",
-                                "--camera", "sony-ilce-qx1", "--altitude",
-                                "60",     "--render", "--html",
-                                "--basemap", ortho.string(), "-o",
+  std::vector<std::string> args{"swath",     "plan",          "share/fields/meadow.geojson",
+                                "--camera",  "sony-ilce-qx1", "--altitude",
+                                "60",        "--render",      "--html",
+                                "--basemap", ortho.string(),  "-o",
                                 dir.string()};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
