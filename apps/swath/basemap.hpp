@@ -10,11 +10,11 @@
 
 namespace swath::apps {
 
-/// plan.html's basemap holds at most this many 256 px tiles over all its zoom levels (8 Mpx, a
-/// few MB of PNG per Mpx of photograph): finer levels that would pass it are left out, and the
-/// map scales up the finest level kept (docs/swath-plan.md).
+/// plan.html's basemap holds at most this many 256 px tiles over all its zoom levels (8 Mpx; a
+/// photograph's PNG is some bytes a pixel, base64 a third more): finer levels that would pass it
+/// are left out, and the map scales up the finest level kept (docs/swath-plan.md).
 inline constexpr int kBasemapBudgetTiles = 128;
-/// The finest zoom level made (about 2 cm a pixel at the equator).
+/// The finest zoom level made (about 4 cm a pixel at the equator).
 inline constexpr int kBasemapMaxZoom = 22;
 
 struct BasemapZooms {
