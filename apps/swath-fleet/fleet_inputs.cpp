@@ -153,6 +153,7 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     }
   }
   p.settings.envelope = fleet::local_envelope(envelope, p.world->origin);
+  if (p.world->has_origin) p.settings.origin = p.world->origin;
   // Checked again by the runtime; here too so that nothing (no vehicle link) is opened first.
   const std::string fit =
       fleet::layers_refusal(static_cast<int>(p.drones.size()), p.settings.layer_base_m,

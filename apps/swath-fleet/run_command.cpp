@@ -195,7 +195,9 @@ std::unique_ptr<LiveServer> FleetRunCommand::start_live(fleet::RuntimeSettings& 
     if (live_linger_s_ >= 0) throw InputError("--live-linger needs --live");
     return nullptr;
   }
-  auto server = std::make_unique<LiveServer>(live_port(live_), web::live_page(output_));
+  std::optional<web::MapOrigin> origin;  // the world's: the page draws in lat/lon
+  if (settings.origin) origin = web::MapOrigin{settings.origin->lat_deg, settings.origin->lon_deg};
+  auto server = std::make_unique<LiveServer>(live_port(live_), web::live_page(output_, origin));
   // After any listener already set (the airborne reporter of a wall-clock run).
   settings.on_event = [s = server.get(),
                        before = std::move(settings.on_event)](const std::string& line) {

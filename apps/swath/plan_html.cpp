@@ -46,7 +46,7 @@ std::string plan_html(const PlanFileLookup& file, const std::string& title,
         throw base::InputError(title + "/" + stem + ".plan: not JSON (a QGroundControl plan)");
       page.files.emplace_back(stem + ".plan", std::move(*text));
     }
-  if (!basemap.empty()) page.basemap_image = page_basemap(page.files[0].second, basemap);
+  if (!basemap.empty()) page.basemap_tiles = page_basemap(page.files[0].second, basemap);
   return web::plan_page(page);
 }
 

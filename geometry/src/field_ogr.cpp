@@ -521,7 +521,8 @@ const detail::GisModule kModule{detail::kGisModuleAbi,
                                 module_grid,
                                 module_geotiff,
                                 module_imagery,
-                                module_png};
+                                module_png,
+                                detail::imagery_opens};
 
 }  // namespace
 

@@ -16,7 +16,7 @@
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 5;
+inline constexpr int kGisModuleAbi = 6;
 
 struct GisModule {
   int abi;
@@ -39,6 +39,8 @@ struct GisModule {
                   double& pixel_m, std::string& error);
   bool (*png)(int width, int height, const std::string& rgba, std::string& bytes,
               std::string& error);
+  /// imagery_gdal.hpp's imagery_opens (since ABI 6).
+  std::size_t (*imagery_opens)(const std::string& path);
 };
 
 /// The module, opened on the first call (gis_loader.cpp). Throws std::runtime_error when it is

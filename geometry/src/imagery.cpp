@@ -48,6 +48,10 @@ double imagery_pixel_m(const std::string& path) {
   return pixel_m;
 }
 
+std::size_t imagery_opens(const std::string& path) {
+  return detail::gis_module().imagery_opens(path);
+}
+
 std::string imagery_png(const Imagery& picture) {
   std::string bytes, error;
   const std::string rgba(picture.rgba.begin(), picture.rgba.end());

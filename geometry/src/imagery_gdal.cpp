@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -23,9 +25,10 @@ namespace {
 
 using base::InputError;
 
-// The raster is read once, into at most this many pixels a side (GDAL averages down to it):
-// 4 bands of floats are 64 MB at most, and a finer read than the picture shows nothing more.
-constexpr int kMaxReadSide = 2048;
+// A picture's window of the raster is read into at most this many pixels a side (GDAL averages
+// down to it): a band of floats is 64 MB at most, and the finest basemap tiles the page's budget
+// allows (apps/swath/basemap.hpp) are at most about this wide.
+constexpr int kMaxReadSide = 4096;
 
 std::string gdal_reason() {
   const char* m = CPLGetLastErrorMsg();
@@ -69,6 +72,46 @@ Opened open_imagery(const std::string& path) {
                                             : srs->GetLinearUnits();
   o.pixel_m = std::min(std::hypot(gt[1], gt[4]), std::hypot(gt[2], gt[5])) * unit_m;
   return o;
+}
+
+// Each raster opened once for the process and kept open (with GDAL's block cache, what one
+// picture read the next reads from memory): coverage.png and every zoom level of plan.html's
+// tiles come from one open. Reopened when the file changes (size or time). Never destroyed: GDAL
+// may be gone before static destructors run.
+struct Cached {
+  Opened opened;
+  std::uintmax_t size = 0;
+  std::filesystem::file_time_type time{};
+};
+struct Cache {
+  std::mutex guard;
+  std::map<std::string, Cached> open;
+  std::map<std::string, std::size_t> opens;  // GDAL opens by path, for imagery_opens()
+};
+Cache& cache() {
+  static Cache* const c = new Cache;
+  return *c;
+}
+
+// The file's size and time, or zeros when it is no plain file (a /vsi path, a URL).
+std::pair<std::uintmax_t, std::filesystem::file_time_type> stamp(const std::string& path) {
+  std::error_code e;
+  const auto size = std::filesystem::file_size(path, e);
+  if (e) return {0, {}};
+  return {size, std::filesystem::last_write_time(path, e)};
+}
+
+// With cache().guard held.
+Opened& open_cached(const std::string& path) {
+  Cache& c = cache();
+  const auto [size, time] = stamp(path);
+  auto it = c.open.find(path);
+  if (it != c.open.end() && it->second.size == size && it->second.time == time)
+    return it->second.opened;
+  if (it != c.open.end()) c.open.erase(it);
+  Opened o = open_imagery(path);  // throws: nothing kept
+  ++c.opens[path];
+  return c.open.emplace(path, Cached{std::move(o), size, time}).first->second.opened;
 }
 
 // The raster's pixel (column, line) of each node; NaN where PROJ cannot place it.
@@ -161,8 +204,15 @@ Window read_window(Opened& o, int x0, int y0, int x1, int y1, const std::string&
 
 }  // namespace
 
+std::size_t imagery_opens(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(cache().guard);
+  const auto it = cache().opens.find(path);
+  return it == cache().opens.end() ? 0 : it->second;
+}
+
 std::string imagery_rgba(const std::string& path, const ImageryGrid& g, double& pixel_m) {
-  Opened o = open_imagery(path);
+  const std::lock_guard<std::mutex> lock(cache().guard);
+  Opened& o = open_cached(path);
   pixel_m = o.pixel_m;
   if (g.nodes.empty()) return "";
   const auto px = node_pixels(o, g);

@@ -2,6 +2,7 @@
 // Internal: the basemap's raster reading for the GIS module (GDAL's headers stay in
 // imagery_gdal.cpp); imagery.hpp is the public side.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct ImageryGrid {
 /// The picture as RGBA bytes (imagery.hpp), or only the raster's pixel size when the grid has no
 /// node. Throws base::InputError naming the file.
 std::string imagery_rgba(const std::string& path, const ImageryGrid& grid, double& pixel_m);
+
+/// How many times `path` was opened with GDAL by imagery_rgba in this process (it stays open).
+std::size_t imagery_opens(const std::string& path);
 
 /// PNG bytes of width x height RGBA pixels (GDAL's PNG driver, in memory).
 std::string rgba_png(int width, int height, const std::string& rgba);

@@ -29,6 +29,8 @@
 #include <sstream>
 #include <thread>
 
+#include <GeographicLib/LocalCartesian.hpp>
+
 #include "chromium.hpp"
 
 namespace {
@@ -127,10 +129,18 @@ TEST(ReplayPage, DrawsEveryDroneWhereTheLogLastPutsIt) {
     EXPECT_EQ(check["drones"], drones);
     const std::map<int, std::array<double, 2>> last = places_at(log, t_s);
     ASSERT_EQ(check["positions"].size(), last.size());
+    // The world's origin (share/worlds/hotspot.yaml): the page draws in lat/lon, each drone where
+    // GeographicLib's tangent plane at the origin puts its local metres, within 1 cm.
+    EXPECT_EQ(check["geographic"], true);
+    const GeographicLib::LocalCartesian world(42.3601, -71.0942, 0);
     for (const json& p : check["positions"]) {
       const std::array<double, 2> want = last.at(p["drone"].get<int>());
       EXPECT_NEAR(p["x_m"].get<double>(), want[0], 1e-6) << "t " << t_s << ": " << p.dump();
       EXPECT_NEAR(p["y_m"].get<double>(), want[1], 1e-6) << "t " << t_s << ": " << p.dump();
+      double lat, lon, h;
+      world.Reverse(want[0], want[1], 0, lat, lon, h);
+      EXPECT_NEAR(p["lat_deg"].get<double>(), lat, 1e-7) << "t " << t_s << ": " << p.dump();
+      EXPECT_NEAR(p["lon_deg"].get<double>(), lon, 1.4e-7) << "t " << t_s << ": " << p.dump();
     }
   }
 }
@@ -277,6 +287,7 @@ TEST(LivePage, ReceivesAnUpdateEverySecondOfAPacedRun) {
   EXPECT_EQ(check["errors"], json::array());
   EXPECT_EQ(check["foreign_requests"], json::array());
   EXPECT_EQ(check["ended"], true);
+  EXPECT_EQ(check["geographic"], true);  // the world's origin, from the server's page
   const std::vector<json> logged = events(dir / "run");
   EXPECT_EQ(check["messages"], logged.size());
   // Every whole second from the first message to the last: at least one message.

@@ -30,6 +30,9 @@
 #include <regex>
 
 #include "chromium.hpp"
+#include "command.hpp"
+#include "plan_command.hpp"
+#include "swath/geometry/imagery.hpp"
 #include "swath/render/image.hpp"
 
 namespace {
@@ -116,12 +119,15 @@ std::map<std::string, int> without_empty(std::map<std::string, int> n) {
   return n;
 }
 
-void expect_clean_page(const fs::path& dir, const std::string& what) {
+// `basemap`: the basemap layer's count (0: the page has none).
+void expect_clean_page(const fs::path& dir, const std::string& what, int basemap = 0) {
   const json check = self_check(dir / "plan.html");
   ASSERT_TRUE(check.is_object()) << what << ": no self-check in the page's DOM";
   EXPECT_EQ(check["errors"], json::array()) << what;
   EXPECT_EQ(check["resources"], json::array()) << what << ": the page made requests";
-  EXPECT_EQ(drawn_layers(check), without_empty(expected_layers(dir))) << what;
+  std::map<std::string, int> expected = without_empty(expected_layers(dir));
+  if (basemap > 0) expected["basemap"] = basemap;
+  EXPECT_EQ(drawn_layers(check), expected) << what;
   std::cout << what << ": page " << fs::file_size(dir / "plan.html") << " bytes, script "
             << check["script_ms"] << " ms (virtual time)\n";
 }
@@ -437,7 +443,7 @@ const std::array<Mark, 3> kMarks{
 // An orthophoto of the meadow as GDAL would read one: an RGB GeoTIFF in UTM zone 32N (EPSG:32632),
 // 1 m pixels, the squares placed by GeographicLib's UTM (not by GDAL, which swath uses to read it).
 // `blank`: the same raster all white, no squares.
-void write_ortho(const fs::path& path, bool blank = false) {
+void write_ortho(const fs::path& path, bool blank = false, double pixel_m = 1) {
   GDALAllRegister();
   double e0 = 1e9, n1 = -1e9, e1 = -1e9, n0 = 1e9;
   for (const auto& [lat, lon] : {std::pair{47.3965, 8.5385}, std::pair{47.4015, 8.5465}}) {
@@ -449,7 +455,7 @@ void write_ortho(const fs::path& path, bool blank = false) {
     n0 = std::min(n0, n - 100), n1 = std::max(n1, n + 100);
   }
   e0 = std::floor(e0), n1 = std::ceil(n1);
-  const int w = static_cast<int>(e1 - e0), h = static_cast<int>(n1 - n0);
+  const int w = static_cast<int>((e1 - e0) / pixel_m), h = static_cast<int>((n1 - n0) / pixel_m);
   std::vector<std::vector<std::uint8_t>> bands(
       3, std::vector<std::uint8_t>(w * h, static_cast<std::uint8_t>(blank ? 255 : 40)));
   for (const Mark& m : kMarks) {
@@ -460,7 +466,7 @@ void write_ortho(const fs::path& path, bool blank = false) {
     GeographicLib::UTMUPS::Forward(m.lat_deg, m.lon_deg, zone, north, e, n, 32);
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) {
-        const double pe = e0 + i + 0.5, pn = n1 - j - 0.5;  // the pixel's centre
+        const double pe = e0 + (i + 0.5) * pixel_m, pn = n1 - (j + 0.5) * pixel_m;  // its centre
         if (std::abs(pe - e) < 6 && std::abs(pn - n) < 6)
           for (int b = 0; b < 3; ++b)
             bands[b][j * w + i] = static_cast<std::uint8_t>(b == m.channel ? 255 : 0);
@@ -468,9 +474,10 @@ void write_ortho(const fs::path& path, bool blank = false) {
   }
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
   ASSERT_NE(gtiff, nullptr);
-  GDALDataset* d = gtiff->Create(path.c_str(), w, h, 3, GDT_Byte, nullptr);
+  const char* options[] = {"COMPRESS=DEFLATE", nullptr};
+  GDALDataset* d = gtiff->Create(path.c_str(), w, h, 3, GDT_Byte, const_cast<char**>(options));
   ASSERT_NE(d, nullptr);
-  double gt[6] = {e0, 1, 0, n1, 0, -1};
+  double gt[6] = {e0, pixel_m, 0, n1, 0, -pixel_m};
   d->SetGeoTransform(gt);
   OGRSpatialReference utm;
   utm.importFromEPSG(32632);
@@ -523,6 +530,24 @@ std::array<double, 2> square_in_picture(const swath::render::Image& image,
 
 const std::string kMeadow = "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60";
 
+// The page's data (SWATH_DATA) as swath inlined it.
+json page_data(const fs::path& page) {
+  const std::string html = slurp(page);
+  const std::string open = "<script>const SWATH_DATA = ";
+  const std::size_t at = html.find(open);
+  if (at == std::string::npos) return json();
+  const std::size_t end = html.find(";</script>", at);
+  return json::parse(html.substr(at + open.size(), end - at - open.size()), nullptr, false);
+}
+
+// The XYZ tile (column, row) at zoom z that holds a position.
+std::array<int, 2> tile_of(double lon_deg, double lat_deg, int z) {
+  const auto m = mercator(lon_deg, lat_deg);
+  const double n = std::ldexp(1.0, z);
+  return {static_cast<int>(std::floor((m[0] + std::numbers::pi) / (2 * std::numbers::pi) * n)),
+          static_cast<int>(std::floor((std::numbers::pi - m[1]) / (2 * std::numbers::pi) * n))};
+}
+
 // In the page (Chromium's screenshot, the basemap alone): each square where Web Mercator and
 // Leaflet's fitBounds put its coordinates, within 3 px.
 TEST(Basemap, PageShowsTheRasterWhereItsCoordinatesSay) {
@@ -532,14 +557,16 @@ TEST(Basemap, PageShowsTheRasterWhereItsCoordinatesSay) {
   const fs::path ortho = scratch_root() / "ortho-page.tif";
   ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
   ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadow + " --html --basemap '" + ortho.string() + "'"));
-  expect_clean_page(dir, "meadow over its orthophoto");
+  const json basemap = page_data(dir / "plan.html")["basemap_tiles"];
+  ASSERT_TRUE(basemap.is_object());
+  expect_clean_page(dir, "meadow over its orthophoto", static_cast<int>(basemap["tiles"].size()));
   // swath render writes the same page from the plan's files.
   const std::string written = slurp(dir / "plan.html");
   const ShellRun render = run("'" SWATH_BINARY "' render '" + dir.string() +
                               "' --html --basemap '" + ortho.string() + "'");
   ASSERT_EQ(render.exit_code, 0) << render.out;
   EXPECT_TRUE(slurp(dir / "plan.html") == written) << "swath render --html --basemap differs";
-  const swath::render::Image image = screenshot(dir, "none");
+  const swath::render::Image image = screenshot(dir, "basemap");
   ASSERT_EQ(image.width, 1200);
   const PageView view = page_view(dir);
   for (const Mark& m : kMarks) {
@@ -548,6 +575,135 @@ TEST(Basemap, PageShowsTheRasterWhereItsCoordinatesSay) {
     EXPECT_NEAR(found[0], expected[0], 3) << "square " << m.channel;
     EXPECT_NEAR(found[1], expected[1], 3) << "square " << m.channel;
   }
+}
+
+// The map's pixels (right of the side panel, clear of the zoom buttons) that are the raster's dark
+// ground (40, 40, 40) or one of its squares: a channel of 200 or more with the others at most 110.
+int raster_pixels(const swath::render::Image& image) {
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 300; x < image.width; ++x) {
+      if (x < 360 && y < 90) continue;
+      const int r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
+      const bool ground = std::max({r, g, b}) <= 60;
+      const bool square = (r >= 200 && g <= 110 && b <= 110) ||
+                          (g >= 200 && r <= 110 && b <= 110) || (b >= 200 && r <= 110 && g <= 110);
+      n += ground || square;
+    }
+  return n;
+}
+
+// The basemap is a layer like the others: its box in the panel, turned off (the address flips it
+// as a click does), takes the raster off the map and leaves the plan's layers drawn.
+TEST(Basemap, TheBasemapIsALayerThePilotTurnsOff) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("basemap-toggle");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-toggle.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho));
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadow + " --html --basemap '" + ortho.string() + "'"));
+  const std::string page = dom(dir / "plan.html");
+  EXPECT_NE(page.find("data-layer=\"basemap\" checked"), std::string::npos)
+      << "no basemap box, or not on at first";
+  const swath::render::Image on = screenshot(dir, "basemap,area");
+  const swath::render::Image off = screenshot(dir, "area");
+  ASSERT_EQ(on.width, 1200);
+  ASSERT_EQ(off.width, 1200);
+  EXPECT_GT(raster_pixels(on), 100'000);  // the ground around the area, about half the map
+  EXPECT_EQ(raster_pixels(off), 0);
+  // Off, the area alone: its fill where the data puts it (as without a basemap).
+  const PageView view = page_view(dir);
+  const auto centre = view.pixel(8.5425, 47.3990);  // inside the meadow
+  EXPECT_NEAR(off.at(int(centre[0]), int(centre[1]), 0), 191, 12);
+  EXPECT_NEAR(off.at(int(centre[0]), int(centre[1]), 1), 223, 12);
+}
+
+// A raster of 0.25 m pixels: its tiles at two zoom levels, the finer one the last within the
+// page's budget (128 tiles of 256 px), the one finer still (the raster's own) left out and the
+// panel saying so. At each level (the page's zoom, #zoom=Z, about the fitted view's centre) each
+// square where Web Mercator puts its coordinates, within 3 px.
+TEST(Basemap, TilesAtTwoZoomLevelsWithinTheBudget) {
+  REQUIRE_CHROMIUM();
+  const fs::path dir = scratch("basemap-tiles");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-fine.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho, false, 0.25));
+  ASSERT_NO_FATAL_FAILURE(plan_into(dir, kMeadow + " --html --basemap '" + ortho.string() + "'"));
+  const json basemap = page_data(dir / "plan.html")["basemap_tiles"];
+  ASSERT_TRUE(basemap.is_object());
+  const int lo = basemap["min_zoom"], hi = basemap["max_zoom"];
+  // The raster's own level: the first whose pixel (Web Mercator's, on the ground here) is no
+  // larger than 0.25 m.
+  const double ground_px_z0_m =
+      2 * std::numbers::pi * 6378137.0 * std::cos(47.399 * std::numbers::pi / 180) / 256;
+  const int native = static_cast<int>(std::ceil(std::log2(ground_px_z0_m / 0.25)));
+  EXPECT_EQ(native, 19);
+  EXPECT_LT(hi, native);
+  EXPECT_TRUE(basemap["capped"].get<bool>());
+  ASSERT_GE(hi, lo + 1) << "one level only";
+  EXPECT_LE(basemap["tiles"].size(), 128u);
+  std::map<int, int> per_level;
+  for (const auto& [key, url] : basemap["tiles"].items()) ++per_level[std::stoi(key)];
+  // Every level has the tiles under the three squares; the level left out would not have fit.
+  for (int z = lo; z <= hi; ++z)
+    for (const Mark& m : kMarks) {
+      const auto t = tile_of(m.lon_deg, m.lat_deg, z);
+      EXPECT_TRUE(basemap["tiles"].contains(std::to_string(z) + "/" + std::to_string(t[0]) + "/" +
+                                            std::to_string(t[1])))
+          << "zoom " << z << " square " << m.channel;
+    }
+  EXPECT_GT(static_cast<int>(basemap["tiles"].size()) + 3 * per_level[hi], 128)
+      << "the next level (about 4 times the finest's tiles) would have fitted";
+  const std::string panel = dom(dir / "plan.html");
+  EXPECT_NE(panel.find("finer levels left out: the page's size budget"), std::string::npos);
+  std::cout << "0.25 m raster: zoom " << lo << " to " << hi << ", " << basemap["tiles"].size()
+            << " tiles, page " << fs::file_size(dir / "plan.html") << " bytes\n";
+  EXPECT_LT(fs::file_size(dir / "plan.html"), 12'000'000u);
+  expect_clean_page(dir, "meadow over a 0.25 m raster", static_cast<int>(basemap["tiles"].size()));
+
+  const PageView fitted = page_view(dir);
+  for (const int z : {lo, hi}) {
+    PageView view = fitted;
+    view.scale = 256 * std::ldexp(1.0, z) / (2 * std::numbers::pi);  // px per radian
+    const swath::render::Image image = screenshot(dir, "basemap&zoom=" + std::to_string(z));
+    ASSERT_EQ(image.width, 1200);
+    for (const Mark& m : kMarks) {
+      const auto expected = view.pixel(m.lon_deg, m.lat_deg);
+      const auto found = square_on_page(image, m.channel, 20);
+      EXPECT_NEAR(found[0], expected[0], 3) << "zoom " << z << " square " << m.channel;
+      EXPECT_NEAR(found[1], expected[1], 3) << "zoom " << z << " square " << m.channel;
+    }
+  }
+}
+
+// With --render and --html the raster is opened once for both (and every zoom level of the
+// page's tiles): swath's plan command run in this process, GDAL's opens of the raster counted.
+TEST(Basemap, RenderAndHtmlOpenTheRasterOnce) {
+  const fs::path dir = scratch("basemap-once");
+  fs::create_directories(scratch_root());
+  const fs::path ortho = scratch_root() / "ortho-once.tif";
+  ASSERT_NO_FATAL_FAILURE(write_ortho(ortho, false, 0.5));
+  ASSERT_EQ(swath::geometry::imagery_opens(ortho.string()), 0u);
+  std::vector<std::string> args{"swath",     "plan",          "share/fields/meadow.geojson",
+                                "--camera",  "sony-ilce-qx1", "--altitude",
+                                "60",        "--render",      "--html",
+                                "--basemap", ortho.string(),  "-o",
+                                dir.string()};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  std::vector<std::unique_ptr<swath::apps::Command>> commands;
+  commands.push_back(std::make_unique<swath::apps::PlanCommand>());
+  const fs::path here = fs::current_path();
+  fs::current_path(SWATH_SOURCE_DIR);
+  const int code = swath::apps::run_program("swath", "", "", commands,
+                                            static_cast<int>(argv.size()), argv.data());
+  fs::current_path(here);
+  ASSERT_EQ(code, 0);
+  const json basemap = page_data(dir / "plan.html")["basemap_tiles"];
+  ASSERT_TRUE(basemap.is_object());
+  EXPECT_GE(basemap["max_zoom"].get<int>(), basemap["min_zoom"].get<int>() + 1);
+  EXPECT_TRUE(fs::exists(dir / "coverage.png"));
+  EXPECT_EQ(swath::geometry::imagery_opens(ortho.string()), 1u);
 }
 
 // In coverage.png: the squares' centres (square_in_picture) fit one scale and offset from

@@ -1,6 +1,8 @@
 // swath-fleet's live and replay page: a run's events.jsonl lines (docs/swath-fleet.md) applied one
-// by one to the drones, tasks, forecasts and assignment they describe, drawn with Leaflet in the
-// run's local frame (x east, y north, metres; CRS.Simple: [lat, lng] = [y, x]).
+// by one to the drones, tasks, forecasts and assignment they describe, drawn with Leaflet: on a map
+// in lat/lon (Web Mercator) when the world has a geographic origin (run_start's origin, or
+// SWATH_DATA.origin for a live run), else in the run's local frame (x east, y north, metres;
+// CRS.Simple: [lat, lng] = [y, x]).
 // SWATH_DATA.mode "live": the lines come from the server that sent the page (GET /events, server-
 // sent events) as the run writes them; "replay": they are SWATH_DATA.events, with a time slider.
 'use strict';
@@ -11,11 +13,27 @@
   const kTaskColours = {created: '#999999', visible: '#1f77b4', dispatched: '#f2b600',
                         done: '#2ca02c', cancelled: '#7f7f7f', failed: '#111111'};
   const text = (s) => String(s).replace(/[&<>"]/g, (c) => ({'&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;'}[c]));
-  const ll = (x, y) => [y, x];
+  const replayed = SWATH_DATA.mode === 'live' ? [] :
+      SWATH_DATA.events.split('\n').filter((l) => l.trim() !== '').map((l) => JSON.parse(l));
+  const origin = SWATH_DATA.origin || (replayed.length && replayed[0].origin) || null;
+  // Local metres to [lat, lon] about the origin: the WGS84 ellipsoid's radii of curvature there
+  // (meridian M, prime vertical N), within a millimetre of the tangent plane swath-fleet's frame
+  // uses over a few hundred metres.
+  const kA_m = 6378137, kE2 = 0.00669437999014, kDeg = Math.PI / 180;
+  const frame = origin ? (() => {
+    const s = Math.sin(origin.lat_deg * kDeg), w = 1 - kE2 * s * s;
+    return {north_m: kA_m * (1 - kE2) / Math.pow(w, 1.5) * kDeg,  // per degree of latitude
+            east_m: kA_m / Math.sqrt(w) * Math.cos(origin.lat_deg * kDeg) * kDeg};
+  })() : null;
+  const ll = frame ? (x, y) => [origin.lat_deg + y / frame.north_m, origin.lon_deg + x / frame.east_m]
+                   : (x, y) => [y, x];
+  const xy = frame ? (p) => [(p.lng - origin.lon_deg) * frame.east_m, (p.lat - origin.lat_deg) * frame.north_m]
+                   : (p) => [p.lng, p.lat];
 
   document.getElementById('title').textContent = SWATH_DATA.title;
-  const map = L.map('map', {crs: L.CRS.Simple, zoomSnap: 0, minZoom: -12, attributionControl: false});
-  map.setView([0, 0], 0);
+  const map = L.map('map', frame ? {zoomSnap: 0, maxZoom: 24, attributionControl: false}
+                                 : {crs: L.CRS.Simple, zoomSnap: 0, minZoom: -12, attributionControl: false});
+  map.setView(ll(0, 0), frame ? 18 : 0);
   // Drones above the tasks they stand on (one SVG per pane; paths in a pane stack by age).
   map.createPane('drones').style.zIndex = 650;
   const layers = {
@@ -51,7 +69,8 @@
     d.x = e.x_m;
     d.y = e.y_m;
     const last = d.trail[d.trail.length - 1];
-    if (!last || last[0] !== e.y_m || last[1] !== e.x_m) d.trail.push(ll(e.x_m, e.y_m));
+    const here = ll(e.x_m, e.y_m);
+    if (!last || last[0] !== here[0] || last[1] !== here[1]) d.trail.push(here);
   }
   function apply(e) {
     if (typeof e.t_s === 'number') run.t_s = e.t_s;
@@ -173,13 +192,13 @@
     const foreign = performance.getEntriesByType('resource').map((r) => r.name)
                         .filter((n) => origin === null || !n.startsWith(origin));
     const positions = [...run.drones.values()].filter((d) => d.marker).map((d) => {
-      const p = d.marker.getLatLng();
-      return {drone: d.index, name: d.name, x_m: p.lng, y_m: p.lat};
+      const p = d.marker.getLatLng(), [x_m, y_m] = xy(p);
+      return {drone: d.index, name: d.name, x_m, y_m, lat_deg: p.lat, lon_deg: p.lng};
     });
     document.getElementById('swath-check').textContent = JSON.stringify({
       errors: window.swathErrors, foreign_requests: foreign, mode: SWATH_DATA.mode,
       t_s: run.t_s, ended: run.ended, messages: live.messages, per_second: live.per_second,
-      drones: run.drones.size, positions: positions});
+      drones: run.drones.size, positions: positions, geographic: frame !== null});
   }
 
   fresh();
@@ -199,7 +218,7 @@
     };
     setInterval(() => { draw(); fit(places()); selfCheck(); }, 200);
   } else {
-    const events = SWATH_DATA.events.split('\n').filter((l) => l.trim() !== '').map((l) => JSON.parse(l));
+    const events = replayed;
     const end_s = events.length ? events[events.length - 1].t_s : 0;
     const slider = document.getElementById('slider');
     document.getElementById('replay').hidden = false;

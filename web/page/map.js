@@ -121,17 +121,47 @@
 
   // ---- the map ------------------------------------------------------------------------------
   const map = L.map('map', {preferCanvas: true, zoomSnap: 0, attributionControl: false});
-  if (SWATH_DATA.basemap_url) L.tileLayer(SWATH_DATA.basemap_url, {maxZoom: 22}).addTo(map);
-  // The user's own imagery, inlined (a PNG in Web Mercator between its bounds), under every layer.
-  if (SWATH_DATA.basemap_image)
-    L.imageOverlay(SWATH_DATA.basemap_image.url, SWATH_DATA.basemap_image.bounds,
-                   {pane: 'tilePane', interactive: false}).addTo(map);
   const layers = [];  // {key, label, colour, group, count}
-  function layer(key, label, colour) {
-    const entry = {key, label, colour, group: L.featureGroup(), count: 0};
+  function layer(key, label, colour, group = L.featureGroup(), count = 0) {
+    const entry = {key, label, colour, group, count};
     layers.push(entry);
     return entry;
   }
+  // The basemap, first in the list and under every layer: a layer the pilot turns off like any
+  // other (the tiles of --basemap-url, or the user's own imagery inlined).
+  if (SWATH_DATA.basemap_url)
+    layer('basemap', 'Basemap (' + SWATH_DATA.basemap_url.replace(/^https?:\/\/([^/]*).*$/, '$1') + ')',
+          '#d8d8d8', L.tileLayer(SWATH_DATA.basemap_url, {maxZoom: 22}), 1);
+  // The user's imagery as Web Mercator tiles inlined by zoom level (z/x/y), never fetched: the
+  // level nearest the map's zoom is shown, scaled, and past the finest level its tiles scaled up.
+  // Each tile is an image overlay between its corners (Leaflet's own tile layer draws nothing in
+  // headless Chromium's screenshots, which the tests read).
+  const basemap = SWATH_DATA.basemap_tiles;
+  const basemapLevels = {};  // zoom -> the level's tiles (a layer group)
+  if (basemap) {
+    for (const [key, url] of Object.entries(basemap.tiles)) {
+      const [z, x, y] = key.split('/').map(Number);
+      const n = 2 ** z;
+      const lon = (i) => (i / n) * 360 - 180;
+      const lat = (j) => Math.atan(Math.sinh(Math.PI * (1 - (2 * j) / n))) / kDegree_rad;
+      (basemapLevels[z] ||= L.layerGroup()).addLayer(
+          L.imageOverlay(url, [[lat(y + 1), lon(x)], [lat(y), lon(x + 1)]], {pane: 'tilePane', interactive: false}));
+    }
+    layer('basemap', 'Basemap (your imagery)', '#d8d8d8', L.layerGroup(), Object.keys(basemap.tiles).length);
+  }
+  let basemapLevel = null;
+  function showBasemapLevel() {
+    const entry = layers.find((e) => e.key === 'basemap');
+    if (!basemap || !entry) return;
+    const levels = Object.keys(basemapLevels).map(Number);
+    const want = Math.round(map.getZoom());
+    const z = levels.reduce((best, l) => (Math.abs(l - want) < Math.abs(best - want) ? l : best), levels[0]);
+    if (z === basemapLevel) return;
+    if (basemapLevel !== null) entry.group.removeLayer(basemapLevels[basemapLevel]);
+    entry.group.addLayer(basemapLevels[z]);
+    basemapLevel = z;
+  }
+
   const add = (entry, item) => { item.addTo(entry.group); ++entry.count; return item; };
 
   // Area and no-fly zones, with the clearance kept from the zones.
@@ -279,6 +309,9 @@
   if (cov.covered_fraction !== undefined) rows.push(['coverage', (cov.covered_fraction * 100).toFixed(3) + ' % of the area']);
   if (flight.no_fly_zones)
     rows.push(['clearance', `${flight.min_no_fly_distance_m} m kept from ${flight.no_fly_zones} no-fly zone(s) (asked ${clearance_m} m)`]);
+  if (basemap)
+    rows.push(['basemap', `zoom ${basemap.min_zoom} to ${basemap.max_zoom}, ${basemap.finest_px_m} m a pixel at the finest ` +
+                          `(the raster's: ${basemap.raster_px_m} m${basemap.capped ? '; finer levels left out: the page\'s size budget' : ''})`]);
   if (summary.terrain)
     rows.push(['terrain', `ground ${summary.terrain.ground_min_m} to ${summary.terrain.ground_max_m} m, ${summary.terrain.agl_min_m} to ${summary.terrain.agl_max_m} m above it`]);
   document.getElementById('summary').innerHTML = table(rows);
@@ -309,21 +342,23 @@
     document.getElementById('profiles').innerHTML = html;
   }
 
-  // Layers shown: all but the footprints, or those the address names (#layers=area,photos).
+  // Layers shown: all but the footprints, or those the address names (#layers=basemap,area,photos).
+  // The address flips the boxes as a click would: what it shows is what the pilot's toggle shows.
   const wanted = (/[#&]layers=([^&]*)/.exec(location.hash) || [])[1];
   const shown = wanted === undefined ? null : new Set(wanted.split(',').filter(Boolean));
   const list = document.getElementById('layers');
   for (const entry of layers) {
     if (!entry.count) continue;
-    const on = shown ? shown.has(entry.key) || (entry.key.startsWith('path-') && shown.has('paths'))
-                     : entry.key !== 'footprints';
+    const on = entry.key !== 'footprints';
     if (on) entry.group.addTo(map);
     const label = document.createElement('label');
-    label.innerHTML = `<input type="checkbox" ${on ? 'checked' : ''}> <span class="swatch" style="background:${entry.colour}"></span>${text(entry.label)} (${entry.count})`;
-    label.querySelector('input').addEventListener('change', (e) => {
+    label.innerHTML = `<input type="checkbox" data-layer="${entry.key}" ${on ? 'checked' : ''}> <span class="swatch" style="background:${entry.colour}"></span>${text(entry.label)} (${entry.count})`;
+    const box = label.querySelector('input');
+    box.addEventListener('change', (e) => {
       if (e.target.checked) entry.group.addTo(map); else entry.group.remove();
     });
     list.appendChild(label);
+    if (shown && on !== (shown.has(entry.key) || (entry.key.startsWith('path-') && shown.has('paths')))) box.click();
   }
 
   // A waypoint the address selects, as a click would (#select=drone-1:12): a link to one item.
@@ -331,12 +366,17 @@
   if (selected && selectors[decodeURIComponent(selected)]) selectors[decodeURIComponent(selected)]();
 
   // The view: every feature of mission.geojson, 20 px from the map's edges.
+  // Or a zoom level the address asks for (#zoom=17), about that view's centre.
   const all = L.geoJSON(mission);
+  const zoom = (/[#&]zoom=([0-9.]+)/.exec(location.hash) || [])[1];
   const fit = () => {
     if (all.getBounds().isValid()) map.fitBounds(all.getBounds(), {padding: [20, 20], animate: false});
     else map.setView([0, 0], 2);
+    if (zoom !== undefined) map.setZoom(+zoom, {animate: false});
   };
   fit();
+  showBasemapLevel();
+  map.on('zoomend', showBasemapLevel);
   // A resized window is fitted again until the pilot moves the map.
   let moved = false;
   for (const what of ['mousedown', 'wheel', 'touchstart', 'keydown'])
@@ -346,6 +386,7 @@
   // What the headless-browser tests read back: script errors, requests made, each layer's count.
   const check = {errors: window.swathErrors, resources: performance.getEntriesByType('resource').map((r) => r.name),
                  layers: Object.fromEntries(layers.map((e) => [e.key, e.count])), profiles,
+                 basemap_zoom: basemapLevel,
                  // From the navigation's start: the page read, Leaflet and this script run, then drawn.
                  script_ms: performance.now(), drawn_ms: null};
   const out = document.getElementById('swath-check');

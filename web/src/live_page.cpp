@@ -19,9 +19,10 @@ std::string page(const std::string& title, const nlohmann::ordered_json& data,
 
 }  // namespace
 
-std::string live_page(const std::string& title) {
-  return page(title, {{"title", title}, {"mode", "live"}},
-              std::string(detail::kOfflineCsp) + "; connect-src 'self'");
+std::string live_page(const std::string& title, const std::optional<MapOrigin>& origin) {
+  nlohmann::ordered_json data = {{"title", title}, {"mode", "live"}};
+  if (origin) data["origin"] = {{"lat_deg", origin->lat_deg}, {"lon_deg", origin->lon_deg}};
+  return page(title, data, std::string(detail::kOfflineCsp) + "; connect-src 'self'");
 }
 
 std::string replay_page(const std::string& title, const std::string& events_jsonl) {

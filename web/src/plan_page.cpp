@@ -34,17 +34,26 @@ std::string plan_page(const PlanPage& page) {
   if (!page.basemap_url.empty()) csp += " " + tile_origin(page.basemap_url);
   nlohmann::ordered_json files = nlohmann::ordered_json::object();
   for (const auto& [name, text] : page.files) files[name] = text;
-  nlohmann::ordered_json image;  // null: none
-  if (page.basemap_image) {
-    const MapImage& m = *page.basemap_image;
-    image = {{"url", "data:image/png;base64," + detail::base64(m.png)},
-             {"bounds", {{m.south_deg, m.west_deg}, {m.north_deg, m.east_deg}}}};
+  nlohmann::ordered_json tiles;  // null: none
+  if (page.basemap_tiles) {
+    const MapTiles& m = *page.basemap_tiles;
+    nlohmann::ordered_json by_place = nlohmann::ordered_json::object();
+    for (const MapTile& t : m.tiles)
+      by_place[std::to_string(t.z) + "/" + std::to_string(t.x) + "/" + std::to_string(t.y)] =
+          "data:image/png;base64," + detail::base64(t.png);
+    tiles = {{"min_zoom", m.min_zoom},
+             {"max_zoom", m.max_zoom},
+             {"bounds", {{m.south_deg, m.west_deg}, {m.north_deg, m.east_deg}}},
+             {"finest_px_m", m.finest_px_m},
+             {"raster_px_m", m.raster_px_m},
+             {"capped", m.capped},
+             {"tiles", by_place}};
   }
   const nlohmann::ordered_json data = {
       {"title", page.title},
       {"basemap_url", page.basemap_url.empty() ? nlohmann::ordered_json()
                                                : nlohmann::ordered_json(page.basemap_url)},
-      {"basemap_image", image},
+      {"basemap_tiles", tiles},
       {"files", files}};
   // From the last placeholder to the first: what is put in cannot be taken for a placeholder.
   std::string html = plan_page_template();

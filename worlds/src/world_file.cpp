@@ -392,6 +392,7 @@ void read_common(const YamlMap& root, BaseWorld& w, std::optional<std::uint64_t>
     o.allow({"lat", "lon", "alt"});
     w.origin = {o.number("lat", 0, -90, 90), o.number("lon", 0, -180, 180),
                 o.number("alt", 0, -500, 9000)};
+    w.has_origin = true;
   }
   w.start_ = xy(root, "start", {0, 0, 0});
   if (root.has("fence")) {

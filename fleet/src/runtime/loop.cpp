@@ -160,13 +160,17 @@ Task& Runtime::start_main() {
   json drones = json::array();
   for (const Drone& d : drones_)
     drones.push_back(json{{"drone", d.index}, {"name", d.spec.drone.name}, {"soc", round6(d.soc)}});
-  log(json{{"ev", "run_start"},
-           {"app", settings_.app_name},
-           {"seed", settings_.seed},
-           {"scheduler", settings_.scheduler},
-           {"max_time_s", settings_.max_time_s},
-           {"drones", drones},
-           {"envelope", envelope_json()}});
+  json start{{"ev", "run_start"},
+             {"app", settings_.app_name},
+             {"seed", settings_.seed},
+             {"scheduler", settings_.scheduler},
+             {"max_time_s", settings_.max_time_s},
+             {"drones", drones},
+             {"envelope", envelope_json()}};
+  if (settings_.origin)
+    start["origin"] = {{"lat_deg", settings_.origin->lat_deg},
+                       {"lon_deg", settings_.origin->lon_deg}};
+  log(start);
   for (Drone& d : drones_) set_mode(d, Mode::landed, 0);
   auto main_state = std::make_shared<detail::State<void>>();
   const App& app = app_;

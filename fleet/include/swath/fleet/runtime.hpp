@@ -101,6 +101,9 @@ struct RuntimeSettings {
   /// The safety envelope (envelope.hpp): ceiling, separation, fence. Every fly_to is checked
   /// against it, the layers must fit under the ceiling and the homes inside the fence.
   LocalEnvelope envelope;
+  /// Where the local frame lies on the Earth (the world's origin, WGS84), logged in run_start so
+  /// that the live and replay page draws the run on a map in lat/lon; unset: local metres only.
+  std::optional<geometry::GeoPoint> origin;
   double disc_m = 5;  ///< radius a drone at or bound for a place reserves (first come), m
   /// A steady horizontal wind (vehicle::Wind; swath-fleet's --wind E,N gives its air velocity):
   /// the drones keep their ground tracks and speeds, the rotors work at the airspeed (hover: the

@@ -34,6 +34,11 @@ Imagery imagery(const std::string& path, int width_px, int height_px, const Pixe
 /// The raster's pixel size: its shorter side on the ground, metres. Throws as imagery().
 double imagery_pixel_m(const std::string& path);
 
+/// How many times `path` was opened (with GDAL) in this process: a raster is opened once and kept
+/// open, so that every picture of it (coverage.png, each zoom level of plan.html's tiles) is
+/// drawn from one open. For tests.
+std::size_t imagery_opens(const std::string& path);
+
 /// PNG bytes (RGBA) of the picture, written by GDAL; same picture, same bytes.
 std::string imagery_png(const Imagery& picture);
 

@@ -9,11 +9,22 @@
 
 namespace swath::web {
 
-/// A picture laid on the map between two parallels and two meridians, stretched linearly in Web
-/// Mercator (its rows evenly spaced in Mercator's northing, not in latitude).
-struct MapImage {
+/// One 256 px tile of the XYZ (slippy map) scheme in Web Mercator: zoom z, column x from the
+/// antimeridian eastwards, row y from the north.
+struct MapTile {
+  int z = 0, x = 0, y = 0;
   std::string png;  ///< PNG bytes; inlined as a data: address
+};
+
+/// The user's imagery as tiles at zoom levels min_zoom to max_zoom, between the bounds; tiles
+/// that show nothing of the raster are left out.
+struct MapTiles {
+  int min_zoom = 0, max_zoom = 0;
   double south_deg = 0, west_deg = 0, north_deg = 0, east_deg = 0;
+  double finest_px_m = 0;  ///< a pixel of max_zoom's tiles on the ground at the plan, metres
+  double raster_px_m = 0;  ///< the raster's own pixel on the ground, metres
+  bool capped = false;     ///< finer levels were left out to keep the page's size
+  std::vector<MapTile> tiles;
 };
 
 struct PlanPage {
@@ -25,7 +36,7 @@ struct PlanPage {
   /// no basemap, and the page fetches nothing at all (its Content-Security-Policy forbids it).
   std::string basemap_url;
   /// The user's own imagery behind the plan (--basemap), inlined: the page still fetches nothing.
-  std::optional<MapImage> basemap_image;
+  std::optional<MapTiles> basemap_tiles;
 };
 
 /// The page. Throws base::InputError when basemap_url is no http(s) XYZ template.

@@ -46,6 +46,7 @@ class BaseWorld : public fleet::World {
 
   std::string kind_;
   geometry::GeoPoint origin;
+  bool has_origin = false;  ///< the world file gives its origin (else local metres only)
   std::uint64_t seed = 1;
   Vec3 start_;
   std::vector<std::array<double, 2>> fence_;
