@@ -1,7 +1,5 @@
 // DJI WPML KMZ (DJI Pilot 2): wpmz/waylines.wpml, the file the aircraft executes, read into the
 // same Mission as a MAVLink file (issue 45).
-#include <zip.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +7,7 @@
 #include <pugixml.hpp>
 
 #include "dji_kmz.hpp"
+#include "libzip.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/mavlink/commands.hpp"
@@ -21,21 +20,23 @@ using mavlink::Cmd;
 
 // The bytes of one entry of an in-memory zip archive.
 std::string zip_entry(const std::string& bytes, const char* name, const std::string& source) {
+  const LibZip& z = libzip();
   zip_error_t error;
-  zip_error_init(&error);
-  zip_source_t* memory = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
-  zip_t* archive = memory ? zip_open_from_source(memory, ZIP_RDONLY, &error) : nullptr;
+  z.zip_error_init(&error);
+  zip_source_t* memory = z.zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
+  zip_t* archive = memory ? z.zip_open_from_source(memory, ZIP_RDONLY, &error) : nullptr;
   if (archive == nullptr) {
-    if (memory) zip_source_free(memory);
+    if (memory) z.zip_source_free(memory);
     throw InputError(source + ": not a readable zip archive (a DJI KMZ)");
   }
-  std::unique_ptr<zip_t, decltype(&zip_discard)> guard(archive, &zip_discard);
+  std::unique_ptr<zip_t, decltype(&::zip_discard)> guard(archive, z.zip_discard);
   zip_stat_t stat;
-  zip_file_t* file = zip_stat(archive, name, 0, &stat) == 0 ? zip_fopen(archive, name, 0) : nullptr;
+  zip_file_t* file =
+      z.zip_stat(archive, name, 0, &stat) == 0 ? z.zip_fopen(archive, name, 0) : nullptr;
   if (file == nullptr) throw InputError(source + ": the KMZ has no " + name);
   std::string out(stat.size, '\0');
-  const zip_int64_t read = zip_fread(file, out.data(), stat.size);
-  zip_fclose(file);
+  const zip_int64_t read = z.zip_fread(file, out.data(), stat.size);
+  z.zip_fclose(file);
   if (read < 0 || static_cast<zip_uint64_t>(read) != stat.size)
     throw InputError(source + ": " + name + " cannot be read from the KMZ");
   return out;

@@ -1,10 +1,9 @@
 // Zip archives (the DJI KMZ) through libzip (docs/swath-plan.md: libzip-dev), built in memory.
-#include <zip.h>
-
 #include <ctime>
 #include <memory>
 #include <stdexcept>
 
+#include "libzip.hpp"
 #include "zip_archive.hpp"
 
 namespace swath::missions {
@@ -29,14 +28,15 @@ std::time_t fixed_mtime() {
 
 // The bytes an in-memory source holds.
 std::string source_bytes(zip_source_t* source) {
-  if (zip_source_open(source) < 0)
-    fail("reading back", zip_error_strerror(zip_source_error(source)));
-  zip_source_seek(source, 0, SEEK_END);
-  const zip_int64_t size = zip_source_tell(source);
-  zip_source_seek(source, 0, SEEK_SET);
+  const LibZip& z = libzip();
+  if (z.zip_source_open(source) < 0)
+    fail("reading back", z.zip_error_strerror(z.zip_source_error(source)));
+  z.zip_source_seek(source, 0, SEEK_END);
+  const zip_int64_t size = z.zip_source_tell(source);
+  z.zip_source_seek(source, 0, SEEK_SET);
   std::string bytes(static_cast<std::size_t>(size < 0 ? 0 : size), '\0');
-  const zip_int64_t read = zip_source_read(source, bytes.data(), bytes.size());
-  zip_source_close(source);
+  const zip_int64_t read = z.zip_source_read(source, bytes.data(), bytes.size());
+  z.zip_source_close(source);
   if (size < 0 || read != size) fail("reading back", "short read");
   return bytes;
 }
@@ -44,41 +44,42 @@ std::string source_bytes(zip_source_t* source) {
 }  // namespace
 
 std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& entries) {
+  const LibZip& z = libzip();
   zip_error_t error;
-  zip_error_init(&error);
-  zip_source_t* memory = zip_source_buffer_create(nullptr, 0, 0, &error);
-  if (memory == nullptr) fail("creating the buffer", zip_error_strerror(&error));
+  z.zip_error_init(&error);
+  zip_source_t* memory = z.zip_source_buffer_create(nullptr, 0, 0, &error);
+  if (memory == nullptr) fail("creating the buffer", z.zip_error_strerror(&error));
   // Ours until the end: the archive takes a reference of its own (zip_source_keep) and drops it
   // when closed; the bytes are read from it after that.
-  std::unique_ptr<zip_source_t, decltype(&zip_source_free)> owner(memory, &zip_source_free);
-  zip_t* archive = zip_open_from_source(memory, ZIP_TRUNCATE, &error);
+  std::unique_ptr<zip_source_t, decltype(&::zip_source_free)> owner(memory, z.zip_source_free);
+  zip_t* archive = z.zip_open_from_source(memory, ZIP_TRUNCATE, &error);
   if (archive == nullptr) {
-    const std::string why = zip_error_strerror(&error);
-    zip_error_fini(&error);
+    const std::string why = z.zip_error_strerror(&error);
+    z.zip_error_fini(&error);
     fail("opening", why);
   }
-  zip_error_fini(&error);
-  zip_source_keep(memory);
+  z.zip_error_fini(&error);
+  z.zip_source_keep(memory);
   auto abandon = [&](const std::string& what) {
-    const std::string why = zip_error_strerror(zip_get_error(archive));
-    zip_discard(archive);
+    const std::string why = z.zip_error_strerror(z.zip_get_error(archive));
+    z.zip_discard(archive);
     fail(what, why);
   };
   const std::time_t mtime = fixed_mtime();
   for (const auto& [name, bytes] : entries) {
-    zip_source_t* data = zip_source_buffer(archive, bytes.data(), bytes.size(), 0);
+    zip_source_t* data = z.zip_source_buffer(archive, bytes.data(), bytes.size(), 0);
     if (data == nullptr) abandon("adding " + name);
-    const zip_int64_t index = zip_file_add(archive, name.c_str(), data, ZIP_FL_ENC_UTF_8);
+    const zip_int64_t index = z.zip_file_add(archive, name.c_str(), data, ZIP_FL_ENC_UTF_8);
     if (index < 0) {
-      zip_source_free(data);
+      z.zip_source_free(data);
       abandon("adding " + name);
     }
     const auto i = static_cast<zip_uint64_t>(index);
-    if (zip_set_file_compression(archive, i, ZIP_CM_DEFLATE, 9) < 0 ||
-        zip_file_set_mtime(archive, i, mtime, 0) < 0)
+    if (z.zip_set_file_compression(archive, i, ZIP_CM_DEFLATE, 9) < 0 ||
+        z.zip_file_set_mtime(archive, i, mtime, 0) < 0)
       abandon("setting up " + name);
   }
-  if (zip_close(archive) < 0) abandon("writing");
+  if (z.zip_close(archive) < 0) abandon("writing");
   return source_bytes(memory);
 }
 

@@ -130,6 +130,18 @@ class SeenCount {
   void remove(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { --count_[i]; });
   }
+  /// f(i) for every sample i of `subset` (indices ascending) the lane sees, in increasing i: the
+  /// same as each_seen_by() filtered to `subset`, without walking the samples outside it.
+  template <typename F>
+  void each_of_seen_by(const std::vector<std::size_t>& subset, const RunLane& lane, F f) const {
+    const double y_lo = lane.y - half_, y_hi = lane.y + half_;
+    const double x_lo = lane.x0 - 1e-6, x_hi = lane.x1 + 1e-6;
+    // Indices ascending are ordinates ascending (the samples are sorted by them).
+    auto k = std::lower_bound(subset.begin(), subset.end(), y_lo,
+                              [&](std::size_t i, double y) { return samples_[i].y < y; });
+    for (; k != subset.end() && samples_[*k].y <= y_hi; ++k)
+      if (samples_[*k].x >= x_lo && samples_[*k].x <= x_hi) f(*k);
+  }
   /// Whether every sample the lane sees is seen by another lane too.
   bool redundant(const RunLane& lane) const {
     bool all = true;
@@ -172,8 +184,12 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
       for (const Span& in : scan.at(y)) {
         if (b.x < in.x0 - 1e-6 || b.x > in.x1 + 1e-6) continue;
         const RunLane lane{y, in.x0, in.x1, -1};
+        // Only a sample unseen at the start can be unseen now (lanes are only added here): those
+        // are asked, not every sample under the lane (a lane's footprint holds ~10^3 samples, most
+        // of them seen; this was 7 % of a traced field's plan).
         long n = 0;
-        seen.each_seen_by(lane, [&](std::size_t i) { n += seen.count(i) == 0 && !done[i]; });
+        seen.each_of_seen_by(unseen, lane,
+                             [&](std::size_t i) { n += seen.count(i) == 0 && !done[i]; });
         if (n > best_count) {
           best_count = n;
           best = lane;
