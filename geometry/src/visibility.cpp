@@ -38,13 +38,28 @@ double polyline_length(const std::vector<Point2>& points) {
 bool VisibilityRouter::inside_closed(Point2 p) const {
   // locate_point() over every ring, on the edges the ray right of p may meet only (the others
   // neither hold p nor cross the ray): on an edge is inside, else an odd number of crossings.
+  // Or on the ray to the left, where the index has fewer edges that way: each ring crosses the
+  // whole line through p an even number of times (edge_and_ray's half-open rule), so the two rays
+  // cross it equally often, up to 2 (exact predicates; x -> -x is exact, the ray to the left is
+  // the mirror image's ray to the right). An edge that holds p is found either way.
   bool on_edge = false, odd = false;
-  edges_.near_ray_right(p, [&](std::uint32_t e) {
-    const Segment& s = edges_.segments()[e];
-    const EdgeAndRay where = edge_and_ray(p, s.a, s.b);
+  const auto count = [&](EdgeAndRay where) {
     on_edge |= where == EdgeAndRay::p_on_edge;
     odd ^= where == EdgeAndRay::crosses;
-  });
+  };
+  const auto [right, left] = edges_.ray_items(p);
+  if (left < right) {
+    const auto mirrored = [](Point2 x) { return Point2{-x.x, x.y}; };
+    edges_.near_ray_left(p, [&](std::uint32_t e) {
+      const Segment& s = edges_.segments()[e];
+      count(edge_and_ray(mirrored(p), mirrored(s.a), mirrored(s.b)));
+    });
+  } else {
+    edges_.near_ray_right(p, [&](std::uint32_t e) {
+      const Segment& s = edges_.segments()[e];
+      count(edge_and_ray(p, s.a, s.b));
+    });
+  }
   if (on_edge || odd) return true;
   // Within rounding of the boundary counts as on it: legs between two boundary points run along
   // an edge, a hair to either side of it. The box asked for is twice the tolerance: an edge whose
@@ -92,9 +107,17 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   const long bins = long(fan_bins_);
   std::vector<std::pair<long, long>> range(segments.size(), {1, 0});
   std::vector<std::uint32_t> count(fan_bins_ + 1, 0);
+  // A bin index taken round the turn (lo may be -1, and a range runs up to bins - 1 further):
+  // one division per edge, then a step and a wrap per bin.
+  const auto wrapped = [bins](long k) { return std::size_t(((k % bins) + bins) % bins); };
   for (std::uint32_t e = 0; e < segments.size(); ++e) {
     const Point2 p = segments[e].a, q = segments[e].b;
-    if (distance_to_segment(a, p, q) <= fan.near_m) {
+    // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
+    // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
+    const Box& box = edge_boxes_[e];
+    const bool far = a.x < box.x0 - 2 * fan.near_m || a.x > box.x1 + 2 * fan.near_m ||
+                     a.y < box.y0 - 2 * fan.near_m || a.y > box.y1 + 2 * fan.near_m;
+    if (!far && distance_to_segment(a, p, q) <= fan.near_m) {
       fan.near.push_back(e);
       continue;
     }
@@ -107,15 +130,20 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
     const long hi = fan_bin(std::max(tp, tp + turn) + kMargin);
     range[e] = {lo, std::min(hi, lo + bins - 1)};
-    for (long k = lo; k <= range[e].second; ++k)
-      ++count[std::size_t(((k % bins) + bins) % bins) + 1];
+    for (std::size_t k = wrapped(lo), left = std::size_t(range[e].second - lo) + 1; left > 0;
+         --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
+      ++count[k + 1];
   }
   for (std::size_t k = 0; k < fan_bins_; ++k) count[k + 1] += count[k];
   fan.start = count;
   fan.items.resize(count.back());
-  for (std::uint32_t e = 0; e < segments.size(); ++e)
-    for (long k = range[e].first; k <= range[e].second; ++k)
-      fan.items[count[std::size_t(((k % bins) + bins) % bins)]++] = e;
+  for (std::uint32_t e = 0; e < segments.size(); ++e) {
+    if (range[e].first > range[e].second) continue;  // near: in no bin
+    for (std::size_t k = wrapped(range[e].first),
+                     left = std::size_t(range[e].second - range[e].first) + 1;
+         left > 0; --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
+      fan.items[count[k]++] = e;
+  }
   return fan;
 }
 
@@ -758,8 +786,7 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       }
       if (settled[v]) continue;
       const std::size_t from = item.from;
-      if (item.from_node ? !nodes_see(std::min(from, v), std::max(from, v))
-                         : !sees(a, from_a, v))
+      if (item.from_node ? !nodes_see(std::min(from, v), std::max(from, v)) : !sees(a, from_a, v))
         continue;
       settled[v] = 1;
       open.remove(v);
