@@ -38,13 +38,28 @@ double polyline_length(const std::vector<Point2>& points) {
 bool VisibilityRouter::inside_closed(Point2 p) const {
   // locate_point() over every ring, on the edges the ray right of p may meet only (the others
   // neither hold p nor cross the ray): on an edge is inside, else an odd number of crossings.
+  // Or on the ray to the left, where the index has fewer edges that way: each ring crosses the
+  // whole line through p an even number of times (edge_and_ray's half-open rule), so the two rays
+  // cross it equally often, up to 2 (exact predicates; x -> -x is exact, the ray to the left is
+  // the mirror image's ray to the right). An edge that holds p is found either way.
   bool on_edge = false, odd = false;
-  edges_.near_ray_right(p, [&](std::uint32_t e) {
-    const Segment& s = edges_.segments()[e];
-    const EdgeAndRay where = edge_and_ray(p, s.a, s.b);
+  const auto count = [&](EdgeAndRay where) {
     on_edge |= where == EdgeAndRay::p_on_edge;
     odd ^= where == EdgeAndRay::crosses;
-  });
+  };
+  const auto [right, left] = edges_.ray_items(p);
+  if (left < right) {
+    const auto mirrored = [](Point2 x) { return Point2{-x.x, x.y}; };
+    edges_.near_ray_left(p, [&](std::uint32_t e) {
+      const Segment& s = edges_.segments()[e];
+      count(edge_and_ray(mirrored(p), mirrored(s.a), mirrored(s.b)));
+    });
+  } else {
+    edges_.near_ray_right(p, [&](std::uint32_t e) {
+      const Segment& s = edges_.segments()[e];
+      count(edge_and_ray(p, s.a, s.b));
+    });
+  }
   if (on_edge || odd) return true;
   // Within rounding of the boundary counts as on it: legs between two boundary points run along
   // an edge, a hair to either side of it. The box asked for is twice the tolerance: an edge whose
@@ -92,9 +107,17 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   const long bins = long(fan_bins_);
   std::vector<std::pair<long, long>> range(segments.size(), {1, 0});
   std::vector<std::uint32_t> count(fan_bins_ + 1, 0);
+  // A bin index taken round the turn (lo may be -1, and a range runs up to bins - 1 further):
+  // one division per edge, then a step and a wrap per bin.
+  const auto wrapped = [bins](long k) { return std::size_t(((k % bins) + bins) % bins); };
   for (std::uint32_t e = 0; e < segments.size(); ++e) {
     const Point2 p = segments[e].a, q = segments[e].b;
-    if (distance_to_segment(a, p, q) <= fan.near_m) {
+    // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
+    // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
+    const Box& box = edge_boxes_[e];
+    const bool far = a.x < box.x0 - 2 * fan.near_m || a.x > box.x1 + 2 * fan.near_m ||
+                     a.y < box.y0 - 2 * fan.near_m || a.y > box.y1 + 2 * fan.near_m;
+    if (!far && distance_to_segment(a, p, q) <= fan.near_m) {
       fan.near.push_back(e);
       continue;
     }
@@ -107,15 +130,20 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
     const long hi = fan_bin(std::max(tp, tp + turn) + kMargin);
     range[e] = {lo, std::min(hi, lo + bins - 1)};
-    for (long k = lo; k <= range[e].second; ++k)
-      ++count[std::size_t(((k % bins) + bins) % bins) + 1];
+    for (std::size_t k = wrapped(lo), left = std::size_t(range[e].second - lo) + 1; left > 0;
+         --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
+      ++count[k + 1];
   }
   for (std::size_t k = 0; k < fan_bins_; ++k) count[k + 1] += count[k];
   fan.start = count;
   fan.items.resize(count.back());
-  for (std::uint32_t e = 0; e < segments.size(); ++e)
-    for (long k = range[e].first; k <= range[e].second; ++k)
-      fan.items[count[std::size_t(((k % bins) + bins) % bins)]++] = e;
+  for (std::uint32_t e = 0; e < segments.size(); ++e) {
+    if (range[e].first > range[e].second) continue;  // near: in no bin
+    for (std::size_t k = wrapped(range[e].first),
+                     left = std::size_t(range[e].second - range[e].first) + 1;
+         left > 0; --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
+      fan.items[count[k]++] = e;
+  }
   return fan;
 }
 
@@ -473,6 +501,10 @@ struct VisibilityRouter::NodeTables {
     const Chunk* chunk = chunks[i * per_row + j / kChunk].load(std::memory_order_acquire);
     return chunk ? chunk + j % kChunk : nullptr;
   }
+  /// Chunk c of row i (its pairs c kChunk, ...), null while nothing of it has been asked.
+  const Chunk* chunk_of(std::size_t i, std::size_t c) const {
+    return chunks[i * per_row + c].load(std::memory_order_acquire);
+  }
   Chunk& at(std::size_t i, std::size_t j) {
     std::atomic<Chunk*>& slot = chunks[i * per_row + j / kChunk];
     Chunk* chunk = slot.load(std::memory_order_acquire);
@@ -557,15 +589,36 @@ bool VisibilityRouter::taut(Sides in, Point2 p, std::size_t v, Point2 q) const {
 namespace {
 
 // A candidate of path()'s search, ordered as the search takes them (see there).
+// Ordered by (f, to_b, g, from_node, from_g, from, node); laid out in 40 bytes (the queue moves
+// millions of them a plan) and compared inline, field by field as a defaulted <=> would.
 struct SearchItem {
-  double f;
-  int to_b;  ///< 0: a leg to `node`, 1: the way to b through `node`
-  double g;
-  int from_node;  ///< 0: straight from a, 1: from `from` (settled with distance `from_g`)
-  double from_g;
-  std::size_t from;
-  std::size_t node;
-  auto operator<=>(const SearchItem&) const = default;
+  SearchItem() = default;
+  SearchItem(double f_, int to_b_, double g_, int from_node_, double from_g_, std::size_t from_,
+             std::size_t node_)
+      : f(f_),
+        g(g_),
+        from_g(from_g_),
+        from(std::uint32_t(from_)),
+        node(std::uint32_t(node_)),
+        to_b(std::uint8_t(to_b_)),
+        from_node(std::uint8_t(from_node_)) {}
+  double f = 0;
+  double g = 0;
+  double from_g = 0;
+  std::uint32_t from = 0;
+  std::uint32_t node = 0;
+  std::uint8_t to_b = 0;       ///< 0: a leg to `node`, 1: the way to b through `node`
+  std::uint8_t from_node = 0;  ///< 0: straight from a, 1: from `from` (settled at `from_g`)
+  friend bool operator<(const SearchItem& x, const SearchItem& y) {
+    if (x.f != y.f) return x.f < y.f;
+    if (x.to_b != y.to_b) return x.to_b < y.to_b;
+    if (x.g != y.g) return x.g < y.g;
+    if (x.from_node != y.from_node) return x.from_node < y.from_node;
+    if (x.from_g != y.from_g) return x.from_g < y.from_g;
+    if (x.from != y.from) return x.from < y.from;
+    return x.node < y.node;
+  }
+  friend bool operator>(const SearchItem& x, const SearchItem& y) { return y < x; }
 };
 
 // The nodes of a search not yet settled, in no order: with a corner allowance a settled node
@@ -732,35 +785,52 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         continue;
       }
       if (settled[v]) continue;
-      if (item.from_node ? !nodes_see(std::min(item.from, v), std::max(item.from, v))
-                         : !sees(a, from_a, v))
+      const std::size_t from = item.from;
+      if (item.from_node ? !nodes_see(std::min(from, v), std::max(from, v)) : !sees(a, from_a, v))
         continue;
       settled[v] = 1;
       open.remove(v);
-      previous[v] = item.from_node ? item.from : n;
+      previous[v] = item.from_node ? from : n;
       // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
       // on both sides of the leg in, none goes on.
-      const Point2 in_from = item.from_node ? nodes_[item.from] : a;
+      const Point2 in_from = item.from_node ? nodes_[from] : a;
       const Sides in = corner_sides(in_from, nodes_[v], v);
       if (!in.left && !in.right) continue;
       if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
         push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
-      const auto onward_to = [&](std::size_t u) {
-        if (!is_near[u] || settled[u]) return;
-        const signed char seen = nodes_known(v, u);
-        if (seen == 0 || (prune_ && !taut(in, in_from, v, nodes_[u]))) return;
+      // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet).
+      const auto onward_to = [&](std::size_t u, signed char seen) {
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
-        const SearchItem next{through + h[u], 0, through, 1, item.g, v, u};
-        // (One above the limit is counted in `beyond` by push(), as before.)
-        if (next.f <= limit && settlers.after(next)) return;
-        if (next.f <= limit && seen == 1) settlers.offer(next);
-        push(next);
+        const double f = through + h[u];
+        if (!(f <= limit)) {  // as push() does
+          beyond = std::min(beyond, f);
+          return;
+        }
+        const SearchItem next{f, 0, through, 1, item.g, v, u};
+        if (settlers.after(next)) return;
+        if (seen == 1) settlers.offer(next);
+        queue.push(next);
       };
-      if (prune_)
-        onward(v, in, box_lo, box_hi, onward_to);
-      else  // every open node; those known hidden (nearly half) skipped without a call
-        for (const std::uint32_t u : open.list)
-          if (nodes_known(v, u) != 0) onward_to(u);
+      if (prune_) {
+        onward(v, in, box_lo, box_hi, [&](std::size_t u) {
+          if (!is_near[u] || settled[u]) return;
+          const signed char seen = nodes_known(v, u);
+          if (seen != 0 && taut(in, in_from, v, nodes_[u])) onward_to(u, seen);
+        });
+      } else {
+        // Every open node (near, not settled); those known hidden (nearly half) skipped. Row v's
+        // chunk is looked up once per chunk, not once per node (one chunk below 4096 nodes).
+        const NodeTables& tables = *node_tables_;
+        const NodeTables::Chunk* chunk = nullptr;
+        std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
+        for (const std::uint32_t u : open.list) {
+          const std::size_t c = u / NodeTables::kChunk;
+          if (c != chunk_at) chunk = tables.chunk_of(v, chunk_at = c);
+          const signed char seen =
+              chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
+          if (seen != 0) onward_to(u, seen);
+        }
+      }
     }
     // Done: b reached, or every candidate taken (no inside path).
     found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());

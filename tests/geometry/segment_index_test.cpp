@@ -133,6 +133,18 @@ TEST(SegmentIndex, FindsEverySegmentAQueryMeetsAndEachRayCrossingOnce) {
             ASSERT_EQ(times[e], 1) << "area " << area << " edge " << e;
           }
         }
+        // The ray to the left: the edges that hold p or cross it (as edge_and_ray sees them in
+        // the mirror image), each exactly once.
+        std::fill(times.begin(), times.end(), 0);
+        index.near_ray_left(q.a, [&](std::uint32_t e) { ++times[e]; });
+        const auto mirrored = [](Point2 x) { return Point2{-x.x, x.y}; };
+        for (std::size_t e = 0; e < edges.size(); ++e) {
+          ASSERT_LE(times[e], 1);
+          if (edge_and_ray(mirrored(q.a), mirrored(edges[e].a), mirrored(edges[e].b)) !=
+              EdgeAndRay::apart) {
+            ASSERT_EQ(times[e], 1) << "area " << area << " edge " << e << " (left)";
+          }
+        }
         // The box around a point: every edge with a point in it.
         const double r = 1 + std::abs(q.b.x - q.a.x) / 50;
         std::fill(found.begin(), found.end(), 0);

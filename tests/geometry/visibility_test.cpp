@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+
+#include "brute_area.hpp"
+#include "random_polygons.hpp"
 
 namespace swath::geometry {
 namespace {
@@ -37,6 +41,65 @@ TEST(VisibilityRouter, ContainsIsInsideTheClosedAreaNotAZeroLengthLeg) {
   EXPECT_FALSE(r.contains({-60, -40}));  // outside, where a home is
   // The mistake this guards against: a leg of length 0 is "visible" wherever it is.
   EXPECT_TRUE(r.visible({-60, -40}, {-60, -40}));
+}
+
+// contains() casts its ray to the left or to the right of the point, whichever way the edge index
+// holds fewer edges: the same answer as every edge of every ring asked (the brute-force area), for
+// points anywhere, on vertices (the ray through them), on edges, a rounding error off them, and
+// level with vertices (rays along edges), on random areas with holes and on grid rings (fixed
+// seed).
+TEST(VisibilityRouter, ContainsIsTheBruteForceAreasAnswer) {
+  test::Rng rng(5252);
+  std::size_t inside = 0, outside = 0;
+  for (int area = 0; area < 16; ++area) {
+    std::vector<Ring> rings;
+    if (area % 4 == 3) {
+      rings = {test::random_grid_ring(rng, 30, 10)};
+    } else {
+      rings = {test::random_field_polygon(rng, std::size_t(20) << area % 3, 400)};
+      for (int h = 0; h < 6; ++h) {
+        Ring star = test::transformed(test::random_star_polygon(rng, 6, 5, 20), 0, -150 + 60.0 * h,
+                                      40.0 * (h % 3) - 40);
+        std::reverse(star.begin(), star.end());
+        rings.push_back(star);
+      }
+    }
+    const test::BruteArea brute(rings);
+    const VisibilityRouter router(rings, Routing::measure_only);
+    std::vector<Point2> vertices;
+    for (const Ring& ring : rings) vertices.insert(vertices.end(), ring.begin(), ring.end());
+    double extent = 0;
+    for (const Point2& v : vertices) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    std::uniform_real_distribution<double> unit(0, 1), coordinate(-1.2 * extent, 1.2 * extent);
+    std::uniform_int_distribution<std::size_t> pick(0, vertices.size() - 1);
+    for (int k = 0; k < 3000; ++k) {
+      const Point2 v = vertices[pick(rng)], w = vertices[pick(rng)];
+      Point2 p;
+      switch (k % 6) {
+        case 0:
+          p = v;
+          break;
+        case 1:
+          p = v + (w - v) * unit(rng);  // on a chord between two vertices
+          break;
+        case 2:
+          p = {coordinate(rng), v.y};  // level with a vertex
+          break;
+        case 3:
+          p = {std::nextafter(v.x, INFINITY), std::nextafter(v.y, -INFINITY)};
+          break;
+        default:
+          p = {coordinate(rng), coordinate(rng)};
+      }
+      const bool expected = brute.contains(p);
+      ASSERT_EQ(router.contains(p), expected)
+          << "area " << area << " point (" << p.x << ", " << p.y << ")";
+      (expected ? inside : outside) += 1;
+    }
+  }
+  // Both answers are asked about often.
+  EXPECT_GT(inside, 10000u);
+  EXPECT_GT(outside, 10000u);
 }
 
 TEST(VisibilityRouter, LengthOutsideCountsHolesAndTheOutside) {

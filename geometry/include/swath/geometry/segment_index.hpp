@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "swath/geometry/point.hpp"
@@ -61,6 +62,22 @@ class SegmentIndex {
       f(items_[k] & kIndex);
     for (std::uint32_t k = start_[cell + c0 + 1], end = start_[cell + columns_]; k < end; ++k)
       if (items_[k] & kFirstInRow) f(items_[k] & kIndex);
+  }
+  /// The same for the ray towards -x: each segment taken at the first column of its run in p's
+  /// row, where that is not right of p's column.
+  template <typename F>
+  void near_ray_left(Point2 p, F f) const {
+    if (segments_.empty()) return;
+    const std::size_t row_start = row(p.y) * columns_, c0 = column(p.x);
+    for (std::uint32_t k = start_[row_start], end = start_[row_start + c0 + 1]; k < end; ++k)
+      if (items_[k] & kFirstInRow) f(items_[k] & kIndex);
+  }
+  /// How many items near_ray_right and near_ray_left walk from p (a choice of the shorter).
+  std::pair<std::size_t, std::size_t> ray_items(Point2 p) const {
+    if (segments_.empty()) return {0, 0};
+    const std::size_t row_start = row(p.y) * columns_, c0 = column(p.x);
+    return {start_[row_start + columns_] - start_[row_start + c0],
+            start_[row_start + c0 + 1] - start_[row_start]};
   }
 
  private:
