@@ -52,18 +52,12 @@ MultirotorInputs FlightModel::inputs() const {
 }
 
 double FlightModel::motor_power_w() const {
-  const Wrench w = applied_wrench(settings_.physics.airframe, state_, inputs());
-  double p = 0;
-  for (std::size_t i = 0; i < rotor_commands_.size(); ++i)
-    p += vehicle::motor_power_at_torque_w(settings_.physics.airframe.propulsion,
-                                          state_.rotor_rad_s[i], w.rotor_drag_torque_nm[i],
-                                          w.rotor_accel_rad_s2[i]);
-  return p;
+  return motors_power_w(settings_.physics.airframe, state_, inputs());
 }
 
 Vec3 FlightModel::acceleration_m_s2() const {
-  const Wrench w = applied_wrench(settings_.physics.airframe, state_, inputs());
-  return w.force_world_n / settings_.physics.airframe.frame.mass_kg -
+  return applied_force_world_n(settings_.physics.airframe, state_, inputs()) /
+             settings_.physics.airframe.frame.mass_kg -
          Vec3{0, 0, kStandardGravity_m_s2};
 }
 
@@ -125,7 +119,7 @@ void FlightModel::run_events(SimTime t) {
     sensors_[i].measure(t, truth);
   }
   for (std::size_t i = 0; i < sensors_.size(); ++i)
-    for (SensorSample& s : sensors_[i].deliver(t)) delivered_.push_back({i, s});
+    sensors_[i].deliver_each(t, [&](const SensorSample& s) { delivered_.push_back({i, s}); });
 }
 
 void FlightModel::integrate_to(SimTime t) {
@@ -162,10 +156,11 @@ void FlightModel::command_pwm(std::size_t motor, double pwm_us) {
   if (!esc_frames_) rotor_commands_[motor] = escs_[motor].speed_command_rad_s(now_);
 }
 
-std::vector<DeliveredSample> FlightModel::take_samples() {
-  std::vector<DeliveredSample> out;
-  out.swap(delivered_);
-  return out;
+const std::vector<DeliveredSample>& FlightModel::take_samples() {
+  // Two buffers in turn: no allocation per event once both have grown.
+  taken_.clear();
+  taken_.swap(delivered_);
+  return taken_;
 }
 
 }  // namespace swath::vehicle

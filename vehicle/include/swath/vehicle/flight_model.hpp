@@ -55,8 +55,9 @@ class FlightModel {
   /// Events run so far (instants at which an ESC frame, wind update or sensor measurement fell):
   /// the simulation's work grows with this count, not with simulated time alone.
   long long events_run() const { return events_run_; }
-  /// The samples delivered since the last call, in delivery order (ties in sensor order).
-  std::vector<DeliveredSample> take_samples();
+  /// The samples delivered since the last call, in delivery order (ties in sensor order); valid
+  /// until the next call.
+  const std::vector<DeliveredSample>& take_samples();
 
   /// The battery's terminal voltage over the voltage at which the motors reach max_speed_rad_s
   /// (1 without voltage sag): the rotor speed a PWM gives is Ω_cmd × this, from now on.
@@ -94,7 +95,7 @@ class FlightModel {
   double motor_energy_j_ = 0.0;
   double supply_ratio_ = 1.0;
   std::array<double, kMaxRotors> drag_factors_{1, 1, 1, 1, 1, 1, 1, 1};
-  std::vector<DeliveredSample> delivered_;
+  std::vector<DeliveredSample> delivered_, taken_;
 };
 
 }  // namespace swath::vehicle
