@@ -182,8 +182,15 @@ Vec3 body_drag_n(const Frame& f, const Vec3& air) {
          0.5 * f.air_density_kg_m3 * hadamard(f.drag_cda_m2, hadamard(abs_air, air));
 }
 
-Vec3 rotor_thrust_n(const Propulsion& p, const Rotor& r, double omega) {
-  return kUp * (r.efficiency * p.thrust_coeff_n_s2 * omega * omega);
+// A rotor's thrust, N, along body z.
+double rotor_thrust_n(const Propulsion& p, const Rotor& r, double omega) {
+  return r.efficiency * p.thrust_coeff_n_s2 * omega * omega;
+}
+
+// The rotors' thrust (0, 0, Σ T) and the body's drag, body axes.
+Vec3 body_force_n(const Frame& f, const Vec3& air, double thrust_z) {
+  const Vec3 drag = body_drag_n(f, air);
+  return {0.0 + drag.x, 0.0 + drag.y, thrust_z + drag.z};
 }
 
 double rotor_accel_rad_s2(const Propulsion& p, double command_rad_s, double omega) {
@@ -202,37 +209,42 @@ Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const Multiro
   Wrench w;
   // Air relative to the body, in body axes: drag and flapping depend on it.
   const Vec3 air = air_in_body(s, in);
-  const Vec3 drag = body_drag_n(f, air);
-  Vec3 thrust_body{}, torque = in.torque_noise_nm;
-  Vec3 rotor_momentum{};  // Σ s_i J_r Ω_i e3
+  // Every thrust and spin axis is body z (e3), so the products with e3 are written out: only
+  // their non-zero components are computed (the zeros would only add signed zeros).
+  double thrust_z = 0, momentum_z = 0;  // Σ T_i; Σ s_i J_r Ω_i
+  Vec3 torque = in.torque_noise_nm;
   for (std::size_t i = 0; i < a.rotors.size(); ++i) {
     const Rotor& r = a.rotors[i];
     const double omega = s.rotor_rad_s[i];
     const double accel = rotor_accel_rad_s2(p, in.command_rad_s[i], omega);
     w.rotor_accel_rad_s2[i] = accel;
-    const Vec3 t = rotor_thrust_n(p, r, omega);
-    thrust_body += t;
-    torque += cross(r.position_m, t);
+    const double t = rotor_thrust_n(p, r, omega);
+    thrust_z += t;
+    torque.x += r.position_m.y * t;  // r × (0, 0, T)
+    torque.y -= r.position_m.x * t;
     // The rotor's drag torque and the reaction to spinning it up, opposite to its spin.
     const double drag_torque = held_drag_torque_nm(p, omega, in.drag_torque_factor[i]);
     w.rotor_drag_torque_nm[i] = drag_torque;
-    torque -= kUp * (r.spin * (drag_torque + p.rotor_inertia_kg_m2 * accel));
-    rotor_momentum += kUp * (r.spin * p.rotor_inertia_kg_m2 * omega);
+    torque.z -= r.spin * (drag_torque + p.rotor_inertia_kg_m2 * accel);
+    momentum_z += r.spin * p.rotor_inertia_kg_m2 * omega;
   }
-  torque -= cross(s.rate_rad_s, rotor_momentum);  // gyroscopic moment of the spinning rotors
-  torque -= f.flapping_nm_per_m_s * cross(kUp, air);
-  w.force_world_n = rotate(s.attitude, thrust_body + drag);
+  // The gyroscopic moment of the spinning rotors, −ω × (0, 0, H).
+  torque.x -= s.rate_rad_s.y * momentum_z;
+  torque.y += s.rate_rad_s.x * momentum_z;
+  // Flapping, −k_f (e3 × v_r).
+  torque.x += air.y * f.flapping_nm_per_m_s;
+  torque.y -= air.x * f.flapping_nm_per_m_s;
+  w.force_world_n = rotate(s.attitude, body_force_n(f, air, thrust_z));
   w.torque_body_nm = torque;
   return w;
 }
 
 Vec3 applied_force_world_n(const Airframe& a, const MultirotorState& s,
                            const MultirotorInputs& in) {
-  const Vec3 drag = body_drag_n(a.frame, air_in_body(s, in));
-  Vec3 thrust_body{};
+  double thrust_z = 0;
   for (std::size_t i = 0; i < a.rotors.size(); ++i)
-    thrust_body += rotor_thrust_n(a.propulsion, a.rotors[i], s.rotor_rad_s[i]);
-  return rotate(s.attitude, thrust_body + drag);
+    thrust_z += rotor_thrust_n(a.propulsion, a.rotors[i], s.rotor_rad_s[i]);
+  return rotate(s.attitude, body_force_n(a.frame, air_in_body(s, in), thrust_z));
 }
 
 double motors_power_w(const Airframe& a, const MultirotorState& s, const MultirotorInputs& in) {
