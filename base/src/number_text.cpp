@@ -42,20 +42,19 @@ void append_fixed_text(std::string& out, double value, int decimals) {
     out += fixed_text(value, decimals);
     return;
   }
-  auto units = static_cast<long long>(std::round(scaled));
-  if (units < 0) {
-    out += '-';
-    units = -units;
-  }
-  char digits[24];
+  const double rounded = std::round(scaled);
+  auto units = static_cast<long long>(rounded);
+  // Written from the right: the digits, the point before the last `decimals`, the sign.
+  char text[32];
+  char* first = text + sizeof text;
   int n = 0;
   do {
-    digits[n++] = static_cast<char>('0' + units % 10);
+    if (n++ == decimals && decimals > 0) *--first = '.';
+    *--first = static_cast<char>('0' + std::abs(units % 10));
     units /= 10;
-  } while (units > 0 || n <= decimals);  // at least one digit before the point
-  while (n > decimals) out += digits[--n];
-  if (decimals > 0) out += '.';
-  while (n > 0) out += digits[--n];
+  } while (units != 0 || n <= decimals);  // at least one digit before the point
+  if (rounded < 0) *--first = '-';        // never a minus zero
+  out.append(first, text + sizeof text);
 }
 
 std::string shortest_text(double value) {

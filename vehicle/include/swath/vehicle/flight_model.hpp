@@ -39,7 +39,10 @@ class FlightModel {
   SimTime now() const { return now_; }
   const MultirotorState& state() const { return state_; }
   /// Replaces the body's state at now() (a caller's ground contact: control/ardupilot_json).
-  void set_state(const MultirotorState& state) { state_ = state; }
+  void set_state(const MultirotorState& state) {
+    state_ = state;
+    power_known_ = false;
+  }
   const VehiclePhysics& physics() const { return settings_.physics; }
   /// The wind at the body, world ENU (held since the last wind event).
   const Vec3& wind_m_s() const { return wind_; }
@@ -61,7 +64,10 @@ class FlightModel {
 
   /// The battery's terminal voltage over the voltage at which the motors reach max_speed_rad_s
   /// (1 without voltage sag): the rotor speed a PWM gives is Ω_cmd × this, from now on.
-  void set_supply_ratio(double ratio) { supply_ratio_ = ratio; }
+  void set_supply_ratio(double ratio) {
+    supply_ratio_ = ratio;
+    power_known_ = false;
+  }
   double supply_ratio() const { return supply_ratio_; }
 
   /// The motors' electrical energy drawn so far (trapezoid per sub-step), J.
@@ -94,6 +100,9 @@ class FlightModel {
   Vec3 wind_, torque_noise_;
   double motor_energy_j_ = 0.0;
   double supply_ratio_ = 1.0;
+  // motor_power_w() at the end of the last integration, while no input has changed since.
+  double power_w_ = 0.0;
+  bool power_known_ = false;
   std::array<double, kMaxRotors> drag_factors_{1, 1, 1, 1, 1, 1, 1, 1};
   std::vector<DeliveredSample> delivered_, taken_;
 };
