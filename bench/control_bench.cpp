@@ -58,7 +58,7 @@ void ComputerSecondTt400(benchmark::State& st) {
 }
 BENCHMARK(ComputerSecondTt400)->Unit(benchmark::kMicrosecond);
 
-// docs/performance.md target: 10 minutes of flight at 1 ms steps in ≤ 2 s on one core — the whole
+// docs/performance.md target: 10 minutes of flight at 1 ms steps in ≤ 1 s on one core — the whole
 // simulation (plant, sensors, driver, computer model, TT400 control task, carrot, battery,
 // metrics), the rows computed but not written. Arg: the environment (0 calm, 1 arch).
 void TenMinutesOfFlight(benchmark::State& st) {

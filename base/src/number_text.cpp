@@ -31,6 +31,32 @@ std::string fixed_text(double value, int decimals) {
   return std::string(buffer, result.ptr);
 }
 
+void append_fixed_text(std::string& out, double value, int decimals) {
+  static constexpr double kScale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10};
+  decimals = std::clamp(decimals, 0, 10);
+  const double scaled = value * kScale[decimals];
+  // round_to gives r = round(scaled) / 10^d, which fixed_text prints to d decimals. Below 10^15
+  // the double r lies within 0.11 of a unit of the last decimal from round(scaled) × 10^-d, so
+  // its d-decimal text is the digits of the integer round(scaled) with the point put in.
+  if (!(std::abs(scaled) < 1e15)) {
+    out += fixed_text(value, decimals);
+    return;
+  }
+  const double rounded = std::round(scaled);
+  auto units = static_cast<long long>(rounded);
+  // Written from the right: the digits, the point before the last `decimals`, the sign.
+  char text[32];
+  char* first = text + sizeof text;
+  int n = 0;
+  do {
+    if (n++ == decimals && decimals > 0) *--first = '.';
+    *--first = static_cast<char>('0' + std::abs(units % 10));
+    units /= 10;
+  } while (units != 0 || n <= decimals);  // at least one digit before the point
+  if (rounded < 0) *--first = '-';        // never a minus zero
+  out.append(first, text + sizeof text);
+}
+
 std::string shortest_text(double value) {
   char buffer[64];  // the shortest form of any double is at most 24 characters
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value == 0.0 ? 0.0 : value);

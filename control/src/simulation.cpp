@@ -284,6 +284,8 @@ class Flight {
         triggers_(trigger_sensor_names(s.physics)),
         sample_counts_(s.physics.sensors.size(), 0) {
     state_ = task_.initial_state(carrot_.at(0).position_m);
+    estimate_deg_ = euler_deg(state_.estimate.attitude);
+    setpoint_deg_ = euler_deg(attitude_setpoint_);
     for (const auto& sensor : s.physics.sensors)
       if (sensor.trigger) trigger_index_.push_back(&sensor - s.physics.sensors.data());
     output_period_ns_ = std::max<SimTime>(vehicle::from_seconds(s.scheduler.run.output_interval_s),
@@ -499,6 +501,7 @@ class Flight {
       has_snapshot_ = true;
     }
     pending_ = task_.execute(state_, input);
+    estimate_deg_ = euler_deg(state_.estimate.attitude);
     if (s_.scheduler.reactive.oracle) snapshot_pwm_ = pending_.pwm_us;
     // The outputs compensated for the battery voltage the controller has measured.
     for (std::size_t i = 0; i < pending_.rotor_count; ++i)
@@ -509,6 +512,7 @@ class Flight {
   void end_execution(const ComputerEvent& e) {
     for (std::size_t i = 0; i < pending_.rotor_count; ++i) plant_.command_pwm(i, commanded_pwm_[i]);
     attitude_setpoint_ = pending_.attitude_setpoint;
+    setpoint_deg_ = euler_deg(attitude_setpoint_);
     scheduler_->on_execution_end(e.time_ns, pending_.changed);
     if (observer_) observer_->on_execution(execution_row(e));
     const auto cause = static_cast<std::size_t>(e.cause);
@@ -559,11 +563,14 @@ class Flight {
       commanded_until_ns_ = t + kNanosecondsPerSecond;
     last_carrot_velocity_ = sp.velocity_m_s;
     quiet_leg_ = sp.leg;
-    measure(t, x, cross, carrot_error);
-    if (t % output_period_ns_ == 0) record(t, x, sp, cross);
+    // Once per tick, for the metrics, the row and the end.
+    const double tilt = tilt_deg(x.attitude);
+    const Vec3 attitude_deg = euler_deg(x.attitude);
+    measure(t, attitude_deg, cross, carrot_error, tilt);
+    if (t % output_period_ns_ == 0) record(t, x, attitude_deg, sp, cross);
     if (t % kNanosecondsPerSecond == 0) close_second(t);
     if (check_.active() && t % (20 * kMetricsPeriod_ns) == 0) check_.add(x.position_m);
-    decide_end(t, x, sp, carrot_error, powered);
+    decide_end(t, x, sp, carrot_error, tilt, powered);
   }
 
   double cross_track(const Vec3& p, const Setpoint& sp) const {
@@ -579,16 +586,17 @@ class Flight {
     return best;
   }
 
-  void measure(SimTime t, const vehicle::MultirotorState& x, double cross, double carrot_error) {
-    const Vec3 truth = euler_deg(x.attitude), wanted = euler_deg(attitude_setpoint_),
-               estimate = euler_deg(state_.estimate.attitude);
+  void measure(SimTime t, const Vec3& truth, double cross, double carrot_error, double tilt) {
+    const Vec3& wanted = setpoint_deg_;
+    const Vec3& estimate = estimate_deg_;
     const double er = wrap_deg(wanted.x - truth.x), ep = wrap_deg(wanted.y - truth.y);
     second_attitude_.add(er);
     second_attitude_.add(ep);
     if (t < metrics_from_ns_) return;
     attitude_[0].add(er);
     attitude_[1].add(ep);
-    attitude_[2].add(wrap_deg(wanted.z - truth.z));
+    const double ey = wrap_deg(wanted.z - truth.z);
+    attitude_[2].add(ey);
     estimated_[0].add(wrap_deg(wanted.x - estimate.x));
     estimated_[1].add(wrap_deg(wanted.y - estimate.y));
     estimated_[2].add(wrap_deg(wanted.z - estimate.z));
@@ -597,22 +605,23 @@ class Flight {
       ++disturbance_samples_;
       disturbance_[0].add(er);
       disturbance_[1].add(ep);
-      disturbance_[2].add(wrap_deg(wanted.z - truth.z));
+      disturbance_[2].add(ey);
     }
     cross_.add(cross);
     position_.add(carrot_error);
-    summary_.max_tilt_deg = std::max(summary_.max_tilt_deg, tilt_deg(x.attitude));
+    summary_.max_tilt_deg = std::max(summary_.max_tilt_deg, tilt);
   }
 
-  void record(SimTime t, const vehicle::MultirotorState& x, const Setpoint& sp, double cross) {
+  void record(SimTime t, const vehicle::MultirotorState& x, const Vec3& attitude_deg,
+              const Setpoint& sp, double cross) {
     TimeseriesRow& r = last_;
     const double span = seconds(t - last_row_ns_);
     r.t_s = seconds(t);
     r.position_m = x.position_m;
     r.velocity_m_s = x.velocity_m_s;
-    r.attitude_deg = euler_deg(x.attitude);
-    r.setpoint_deg = euler_deg(attitude_setpoint_);
-    r.estimate_deg = euler_deg(state_.estimate.attitude);
+    r.attitude_deg = attitude_deg;
+    r.setpoint_deg = setpoint_deg_;
+    r.estimate_deg = estimate_deg_;
     r.carrot_m = sp.position_m;
     r.cross_track_m = cross;
     r.wind_m_s = plant_.wind_m_s();
@@ -665,8 +674,7 @@ class Flight {
   }
 
   void decide_end(SimTime t, const vehicle::MultirotorState& x, const Setpoint& sp,
-                  double carrot_error, bool powered) {
-    const double tilt = tilt_deg(x.attitude);
+                  double carrot_error, double tilt, bool powered) {
     off_track_since_ns_ = carrot_error > kLostTrack_m ? std::min(off_track_since_ns_, t) : kNever;
     if (tilt > s_.control.controller.limits.crash_tilt_deg) {
       end(t, FlightStatus::lost_control, "tilt " + base::fixed_text(tilt, 1) + " deg");
@@ -803,6 +811,9 @@ class Flight {
   TaskState state_;
   ExecutionOutput pending_;
   Quat attitude_setpoint_;
+  // euler_deg of attitude_setpoint_ and of the estimate, kept as they change (at executions), not
+  // recomputed at every 1 ms tick.
+  Vec3 setpoint_deg_, estimate_deg_;
   std::array<double, vehicle::kMaxRotors> last_pwm_{}, commanded_pwm_{};
   SimTime lap_start_ns_ = 0, metrics_from_ns_ = 0, output_period_ns_ = 0, max_time_ns_ = 0;
   SimTime off_track_since_ns_ = kNever, end_ns_ = 0, last_row_ns_ = 0;

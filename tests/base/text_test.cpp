@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -43,6 +44,56 @@ TEST(NumberText, FixedTextIsAlwaysANumberThatReadsBack) {
   EXPECT_EQ(fixed_text(-0.0001, 2), "0.00");
   EXPECT_EQ(fixed_text(2.5, 0), "3");
   EXPECT_EQ(shortest_text(0.1), "0.1");
+}
+
+// append_fixed_text (the CSV writers' fast path) writes fixed_text's bytes: random values of every
+// magnitude from 1e-12 to 1e17 (both sides of its 1e15 switch), halves that round away from zero,
+// numbers that round to zero from below, and the specials (fixed seed).
+TEST(NumberText, AppendFixedTextIsFixedTextsBytes) {
+  std::uint64_t state = 777;
+  auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state;
+  };
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                0.5,
+                                -0.5,
+                                2.5,
+                                0.125,
+                                -0.125,
+                                1e15,
+                                -1e15,
+                                999999.5,
+                                1e-11,
+                                -4e-4,
+                                123.45,
+                                0.0049999,
+                                1e300,
+                                -1e-300,
+                                9.9999999,
+                                -0.9995,
+                                1.0005,
+                                std::nan(""),
+                                std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity()};
+  for (int i = 0; i < 200000; ++i) {
+    const double unit = static_cast<double>(next() >> 11) * 0x1.0p-53;  // [0, 1)
+    const double magnitude = std::pow(10.0, -12.0 + 29.0 * unit);
+    values.push_back((next() & 1 ? -1 : 1) * magnitude);
+    // A tie at some decimals: k / 2 / 10^d.
+    values.push_back(static_cast<double>(next() % 100000) / 2.0 /
+                     std::pow(10.0, static_cast<double>(next() % 7)));
+  }
+  int fast = 0;
+  for (const double v : values)
+    for (int d = 0; d <= 10; ++d) {
+      std::string line = "x,";
+      append_fixed_text(line, v, d);
+      ASSERT_EQ(line, "x," + fixed_text(v, d)) << v << " at " << d << " decimals";
+      fast += std::abs(v * std::pow(10.0, d)) < 1e15;
+    }
+  EXPECT_GT(fast, 2000000);  // most went through the fast path
 }
 
 TEST(RangeCheck, NamesWhereTheValueAndTheRange) {

@@ -7,6 +7,9 @@
 
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <cstring>
+
+#include "swath/vehicle/random.hpp"
 
 namespace swath::vehicle {
 namespace {
@@ -158,19 +161,21 @@ std::array<double, 21> as_vector(const MultirotorState& s) {
   return v;
 }
 
-TEST(Multirotor, Rk4ErrorFallsSixteenfoldPerHalvedStepAgainstDopri5) {
-  const Manoeuvre m = manoeuvre();
-  // Reference: Dormand-Prince 5(4) at 1e-13, the same right-hand side through applied_wrench().
-  using V = std::array<double, 21>;
-  auto rhs = [&](const V& x, V& dx, double) {
+// The model's right-hand side written out again (docs/swath-control.md, 'The simulated
+// multirotor'), through applied_wrench(), for odeint's steppers.
+using V = std::array<double, 21>;
+struct ModelRhs {
+  const Airframe& airframe;
+  const MultirotorInputs& inputs;
+  void operator()(const V& x, V& dx, double) const {
     MultirotorState s;
     s.position_m = {x[0], x[1], x[2]};
     s.velocity_m_s = {x[3], x[4], x[5]};
     s.attitude = normalized({x[6], x[7], x[8], x[9]});
     s.rate_rad_s = {x[10], x[11], x[12]};
     for (std::size_t i = 0; i < 8; ++i) s.rotor_rad_s[i] = x[13 + i];
-    const Wrench w = applied_wrench(m.airframe, s, m.inputs);
-    const Frame& f = m.airframe.frame;
+    const Wrench w = applied_wrench(airframe, s, inputs);
+    const Frame& f = airframe.frame;
     const Vec3 acc = w.force_world_n / f.mass_kg - Vec3{0, 0, g};
     const Vec3 jw = hadamard(f.inertia_kg_m2, s.rate_rad_s);
     const Vec3 r = w.torque_body_nm - cross(s.rate_rad_s, jw);
@@ -190,7 +195,13 @@ TEST(Multirotor, Rk4ErrorFallsSixteenfoldPerHalvedStepAgainstDopri5) {
           r.y / f.inertia_kg_m2.y,
           r.z / f.inertia_kg_m2.z};
     for (std::size_t i = 0; i < 8; ++i) dx[13 + i] = w.rotor_accel_rad_s2[i];
-  };
+  }
+};
+
+TEST(Multirotor, Rk4ErrorFallsSixteenfoldPerHalvedStepAgainstDopri5) {
+  const Manoeuvre m = manoeuvre();
+  // Reference: Dormand-Prince 5(4) at 1e-13, the same right-hand side through applied_wrench().
+  const ModelRhs rhs{m.airframe, m.inputs};
   V reference = as_vector(m.start);
   namespace ode = boost::numeric::odeint;
   ode::integrate_adaptive(ode::make_controlled(1e-13, 1e-13, ode::runge_kutta_dopri5<V>()), rhs,
@@ -206,6 +217,75 @@ TEST(Multirotor, Rk4ErrorFallsSixteenfoldPerHalvedStepAgainstDopri5) {
   EXPECT_LT(e1 / e2, 20.0) << e1 << " " << e2;
   EXPECT_GT(e2 / e3, 12.0) << e2 << " " << e3;
   EXPECT_LT(e2 / e3, 20.0) << e2 << " " << e3;
+}
+
+// Random states and inputs of the three layouts, translational lift factors included (fixed seed).
+struct RandomCase {
+  Airframe airframe;
+  MultirotorState state;
+  MultirotorInputs inputs;
+};
+RandomCase random_case(SplitMix64& r, int k) {
+  RandomCase c;
+  const RotorLayout layouts[] = {RotorLayout::quad_x, RotorLayout::hexa_x, RotorLayout::y6};
+  c.airframe.rotors = rotor_layout(layouts[k % 3], 0.25, 1, 0.8);
+  c.state.position_m = {r.uniform(-50, 50), r.uniform(-50, 50), r.uniform(1, 80)};
+  c.state.velocity_m_s = {r.uniform(-8, 8), r.uniform(-8, 8), r.uniform(-3, 3)};
+  const Vec3 axis{r.normal(), r.normal(), r.normal()};
+  const double angle_rad = r.uniform(-0.8, 0.8);
+  c.state.attitude = axis_angle(axis / norm(axis), angle_rad);
+  c.state.rate_rad_s = {r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-1, 1)};
+  const double max = c.airframe.propulsion.max_speed_rad_s;
+  for (std::size_t i = 0; i < c.airframe.rotors.size(); ++i) {
+    c.state.rotor_rad_s[i] = r.uniform(0.3, 0.9) * max;
+    c.inputs.command_rad_s[i] = r.uniform(-0.1, 1.1) * max;  // clamped at both ends
+    c.inputs.drag_torque_factor[i] = r.uniform(0.8, 1.0);
+  }
+  c.inputs.wind_m_s = {r.uniform(-6, 6), r.uniform(-6, 6), r.uniform(-1, 1)};
+  c.inputs.torque_noise_nm = {r.uniform(-0.01, 0.01), r.uniform(-0.01, 0.01), 0.0};
+  return c;
+}
+
+// integrate() steps like odeint's runge_kutta4 on the model's right-hand side (then renormalises
+// the attitude), to the bit: flights keep their outputs whichever stepper carries them.
+TEST(Multirotor, IntegrateIsOdeintsRk4ToTheBit) {
+  SplitMix64 random(7);
+  for (int k = 0; k < 30; ++k) {
+    const RandomCase c = random_case(random, k);
+    const MultirotorState ours = integrate(c.airframe, c.state, c.inputs, 0.01, 0.001);
+    V x = as_vector(c.state);
+    boost::numeric::odeint::runge_kutta4<V> stepper;
+    const ModelRhs rhs{c.airframe, c.inputs};
+    for (int step = 0; step < 10; ++step) {
+      stepper.do_step(rhs, x, 0.0, 0.01 / 10);
+      const Quat q = normalized({x[6], x[7], x[8], x[9]});
+      x[6] = q.w, x[7] = q.x, x[8] = q.y, x[9] = q.z;
+    }
+    // The state comes back through MultirotorState, its attitude normalised once more.
+    const Quat q = normalized({x[6], x[7], x[8], x[9]});
+    x[6] = q.w, x[7] = q.x, x[8] = q.y, x[9] = q.z;
+    const V ours_v = as_vector(ours);
+    EXPECT_EQ(std::memcmp(ours_v.data(), x.data(), sizeof(V)), 0) << "case " << k;
+    EXPECT_GT(norm(ours.velocity_m_s - c.state.velocity_m_s), 1e-3) << "case " << k;
+  }
+}
+
+// The force and the motors' power have their own short paths (the accelerometer's truth, the
+// energy per step); they are applied_wrench's figures to the bit.
+TEST(Multirotor, ForceAndPowerPathsAreTheWrenchsToTheBit) {
+  SplitMix64 random(11);
+  for (int k = 0; k < 300; ++k) {
+    const RandomCase c = random_case(random, k);
+    const Wrench w = applied_wrench(c.airframe, c.state, c.inputs);
+    const Vec3 f = applied_force_world_n(c.airframe, c.state, c.inputs);
+    EXPECT_EQ(std::memcmp(&f, &w.force_world_n, sizeof f), 0) << "case " << k;
+    double power = 0;
+    for (std::size_t i = 0; i < c.airframe.rotors.size(); ++i)
+      power += motor_power_at_torque_w(c.airframe.propulsion, c.state.rotor_rad_s[i],
+                                       w.rotor_drag_torque_nm[i], w.rotor_accel_rad_s2[i]);
+    const double ours = motors_power_w(c.airframe, c.state, c.inputs);
+    EXPECT_EQ(std::memcmp(&ours, &power, sizeof ours), 0) << "case " << k << ": " << ours;
+  }
 }
 
 // The body's mechanical energy changes by the work of the applied forces and moments:

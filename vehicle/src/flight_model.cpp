@@ -52,18 +52,12 @@ MultirotorInputs FlightModel::inputs() const {
 }
 
 double FlightModel::motor_power_w() const {
-  const Wrench w = applied_wrench(settings_.physics.airframe, state_, inputs());
-  double p = 0;
-  for (std::size_t i = 0; i < rotor_commands_.size(); ++i)
-    p += vehicle::motor_power_at_torque_w(settings_.physics.airframe.propulsion,
-                                          state_.rotor_rad_s[i], w.rotor_drag_torque_nm[i],
-                                          w.rotor_accel_rad_s2[i]);
-  return p;
+  return motors_power_w(settings_.physics.airframe, state_, inputs());
 }
 
 Vec3 FlightModel::acceleration_m_s2() const {
-  const Wrench w = applied_wrench(settings_.physics.airframe, state_, inputs());
-  return w.force_world_n / settings_.physics.airframe.frame.mass_kg -
+  return applied_force_world_n(settings_.physics.airframe, state_, inputs()) /
+             settings_.physics.airframe.frame.mass_kg -
          Vec3{0, 0, kStandardGravity_m_s2};
 }
 
@@ -102,11 +96,13 @@ void FlightModel::run_events(SimTime t) {
   // ESC frames: every ESC shares the frame schedule.
   ++events_run_;
   if (esc_frames_ && !escs_.empty() && next_esc_frame_ <= t) {
+    power_known_ = false;
     for (std::size_t i = 0; i < escs_.size(); ++i)
       rotor_commands_[i] = escs_[i].speed_command_rad_s(t);
     next_esc_frame_ = escs_.front().next_frame(t + 1);
   }
   if (next_wind_ <= t) {
+    power_known_ = false;
     update_wind(seconds(t));
     next_wind_ = t + wind_period_ns_;
     // Translational lift from the airflow now, held until the next wind update like the wind
@@ -125,7 +121,7 @@ void FlightModel::run_events(SimTime t) {
     sensors_[i].measure(t, truth);
   }
   for (std::size_t i = 0; i < sensors_.size(); ++i)
-    for (SensorSample& s : sensors_[i].deliver(t)) delivered_.push_back({i, s});
+    sensors_[i].deliver_each(t, [&](const SensorSample& s) { delivered_.push_back({i, s}); });
 }
 
 void FlightModel::integrate_to(SimTime t) {
@@ -134,13 +130,16 @@ void FlightModel::integrate_to(SimTime t) {
   const auto steps = static_cast<long>(std::ceil(duration / settings_.max_step_s - 1e-9));
   const double h = duration / static_cast<double>(std::max(1L, steps));
   const MultirotorInputs in = inputs();
-  double p0 = motor_power_w();
+  // The power at the start is the last sub-step's end unless an input changed since.
+  double p0 = power_known_ ? power_w_ : motor_power_w();
   for (long k = 0; k < std::max(1L, steps); ++k) {
     state_ = integrate(settings_.physics.airframe, state_, in, h, h);
     const double p1 = motor_power_w();
     motor_energy_j_ += 0.5 * (p0 + p1) * h;
     p0 = p1;
   }
+  power_w_ = p0;
+  power_known_ = true;
   now_ = t;
 }
 
@@ -157,15 +156,17 @@ void FlightModel::advance_to(SimTime until) {
 void FlightModel::command_pwm(std::size_t motor, double pwm_us) {
   if (motor >= escs_.size()) return;
   escs_[motor].command(pwm_us, now_);
+  power_known_ = false;
   // Without frames the command reaches the rotor now; a frame schedule of one event per
   // nanosecond would cost 10⁹ events per simulated second.
   if (!esc_frames_) rotor_commands_[motor] = escs_[motor].speed_command_rad_s(now_);
 }
 
-std::vector<DeliveredSample> FlightModel::take_samples() {
-  std::vector<DeliveredSample> out;
-  out.swap(delivered_);
-  return out;
+const std::vector<DeliveredSample>& FlightModel::take_samples() {
+  // Two buffers in turn: no allocation per event once both have grown.
+  taken_.clear();
+  taken_.swap(delivered_);
+  return taken_;
 }
 
 }  // namespace swath::vehicle

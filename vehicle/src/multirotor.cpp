@@ -1,7 +1,6 @@
 #include "swath/vehicle/multirotor.hpp"
 
 #include <algorithm>
-#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -31,6 +30,28 @@ MultirotorState unpack(const StateVector& x) {
   s.rate_rad_s = {x[10], x[11], x[12]};
   for (std::size_t i = 0; i < kMaxRotors; ++i) s.rotor_rad_s[i] = x[13 + i];
   return s;
+}
+
+// One step of classic RK4 with the arithmetic of odeint's runge_kutta4 (its generic explicit RK
+// with the classic tableau, stepping in place), term by term and in its order, so that flights
+// keep their bits; but over the first `used` entries only (13 + the rotors: the others have no
+// derivative) and without odeint's generic algebra, which cost as much as the model itself.
+template <typename System>
+void rk4_step(System& system, StateVector& x, double dt, std::size_t used) {
+  // odeint's coefficients times dt: a = (1/2), (0, 1/2), (0, 0, 1); b = (1/6, 1/3, 1/3, 1/6).
+  const double half = 0.5 * dt, zero = 0.0 * dt, one = 1.0 * dt;
+  const double sixth = (1.0 / 6.0) * dt, third = (1.0 / 3.0) * dt;
+  StateVector k1{}, k2{}, k3{}, k4{}, tmp = x;
+  system(x, k1, 0.0);
+  for (std::size_t i = 0; i < used; ++i) tmp[i] = 1.0 * x[i] + half * k1[i];
+  system(tmp, k2, 0.0);
+  for (std::size_t i = 0; i < used; ++i) tmp[i] = 1.0 * x[i] + zero * k1[i] + half * k2[i];
+  system(tmp, k3, 0.0);
+  for (std::size_t i = 0; i < used; ++i)
+    tmp[i] = 1.0 * x[i] + zero * k1[i] + zero * k2[i] + one * k3[i];
+  system(tmp, k4, 0.0);
+  for (std::size_t i = 0; i < used; ++i)
+    x[i] = 1.0 * x[i] + sixth * k1[i] + third * k2[i] + third * k3[i] + sixth * k4[i];
 }
 
 double clamp_command(const Propulsion& p, double command_rad_s) {
@@ -147,36 +168,95 @@ std::array<double, kMaxRotors> drag_torque_factors(const Airframe& a, const Mult
   return factors;
 }
 
+namespace {
+
+// The pieces of applied_wrench shared with applied_force_world_n and motors_power_w: one
+// expression each, so the three agree to the bit.
+Vec3 air_in_body(const MultirotorState& s, const MultirotorInputs& in) {
+  return rotate_inverse(s.attitude, s.velocity_m_s - in.wind_m_s);
+}
+
+Vec3 body_drag_n(const Frame& f, const Vec3& air) {
+  const Vec3 abs_air{std::abs(air.x), std::abs(air.y), std::abs(air.z)};
+  return -1.0 * hadamard(f.drag_linear_n_per_m_s, air) -
+         0.5 * f.air_density_kg_m3 * hadamard(f.drag_cda_m2, hadamard(abs_air, air));
+}
+
+// A rotor's thrust, N, along body z.
+double rotor_thrust_n(const Propulsion& p, const Rotor& r, double omega) {
+  return r.efficiency * p.thrust_coeff_n_s2 * omega * omega;
+}
+
+// The rotors' thrust (0, 0, Σ T) and the body's drag, body axes.
+Vec3 body_force_n(const Frame& f, const Vec3& air, double thrust_z) {
+  const Vec3 drag = body_drag_n(f, air);
+  return {0.0 + drag.x, 0.0 + drag.y, thrust_z + drag.z};
+}
+
+double rotor_accel_rad_s2(const Propulsion& p, double command_rad_s, double omega) {
+  return (clamp_command(p, command_rad_s) - omega) / p.time_constant_s;
+}
+
+double held_drag_torque_nm(const Propulsion& p, double omega, double factor) {
+  return p.torque_coeff_nm_s2 * omega * omega * factor;
+}
+
+}  // namespace
+
 Wrench applied_wrench(const Airframe& a, const MultirotorState& s, const MultirotorInputs& in) {
   const Propulsion& p = a.propulsion;
   const Frame& f = a.frame;
   Wrench w;
   // Air relative to the body, in body axes: drag and flapping depend on it.
-  const Vec3 air = rotate_inverse(s.attitude, s.velocity_m_s - in.wind_m_s);
-  const Vec3 abs_air{std::abs(air.x), std::abs(air.y), std::abs(air.z)};
-  const Vec3 drag = -1.0 * hadamard(f.drag_linear_n_per_m_s, air) -
-                    0.5 * f.air_density_kg_m3 * hadamard(f.drag_cda_m2, hadamard(abs_air, air));
-  Vec3 thrust_body{}, torque = in.torque_noise_nm;
-  Vec3 rotor_momentum{};  // Σ s_i J_r Ω_i e3
+  const Vec3 air = air_in_body(s, in);
+  // Every thrust and spin axis is body z (e3), so the products with e3 are written out: only
+  // their non-zero components are computed (the zeros would only add signed zeros).
+  double thrust_z = 0, momentum_z = 0;  // Σ T_i; Σ s_i J_r Ω_i
+  Vec3 torque = in.torque_noise_nm;
   for (std::size_t i = 0; i < a.rotors.size(); ++i) {
     const Rotor& r = a.rotors[i];
     const double omega = s.rotor_rad_s[i];
-    const double accel = (clamp_command(p, in.command_rad_s[i]) - omega) / p.time_constant_s;
+    const double accel = rotor_accel_rad_s2(p, in.command_rad_s[i], omega);
     w.rotor_accel_rad_s2[i] = accel;
-    const Vec3 t = kUp * (r.efficiency * p.thrust_coeff_n_s2 * omega * omega);
-    thrust_body += t;
-    torque += cross(r.position_m, t);
+    const double t = rotor_thrust_n(p, r, omega);
+    thrust_z += t;
+    torque.x += r.position_m.y * t;  // r × (0, 0, T)
+    torque.y -= r.position_m.x * t;
     // The rotor's drag torque and the reaction to spinning it up, opposite to its spin.
-    const double drag_torque = p.torque_coeff_nm_s2 * omega * omega * in.drag_torque_factor[i];
+    const double drag_torque = held_drag_torque_nm(p, omega, in.drag_torque_factor[i]);
     w.rotor_drag_torque_nm[i] = drag_torque;
-    torque -= kUp * (r.spin * (drag_torque + p.rotor_inertia_kg_m2 * accel));
-    rotor_momentum += kUp * (r.spin * p.rotor_inertia_kg_m2 * omega);
+    torque.z -= r.spin * (drag_torque + p.rotor_inertia_kg_m2 * accel);
+    momentum_z += r.spin * p.rotor_inertia_kg_m2 * omega;
   }
-  torque -= cross(s.rate_rad_s, rotor_momentum);  // gyroscopic moment of the spinning rotors
-  torque -= f.flapping_nm_per_m_s * cross(kUp, air);
-  w.force_world_n = rotate(s.attitude, thrust_body + drag);
+  // The gyroscopic moment of the spinning rotors, −ω × (0, 0, H).
+  torque.x -= s.rate_rad_s.y * momentum_z;
+  torque.y += s.rate_rad_s.x * momentum_z;
+  // Flapping, −k_f (e3 × v_r).
+  torque.x += air.y * f.flapping_nm_per_m_s;
+  torque.y -= air.x * f.flapping_nm_per_m_s;
+  w.force_world_n = rotate(s.attitude, body_force_n(f, air, thrust_z));
   w.torque_body_nm = torque;
   return w;
+}
+
+Vec3 applied_force_world_n(const Airframe& a, const MultirotorState& s,
+                           const MultirotorInputs& in) {
+  double thrust_z = 0;
+  for (std::size_t i = 0; i < a.rotors.size(); ++i)
+    thrust_z += rotor_thrust_n(a.propulsion, a.rotors[i], s.rotor_rad_s[i]);
+  return rotate(s.attitude, body_force_n(a.frame, air_in_body(s, in), thrust_z));
+}
+
+double motors_power_w(const Airframe& a, const MultirotorState& s, const MultirotorInputs& in) {
+  const Propulsion& p = a.propulsion;
+  double power = 0;
+  for (std::size_t i = 0; i < a.rotors.size(); ++i) {
+    const double omega = s.rotor_rad_s[i];
+    power +=
+        motor_power_at_torque_w(p, omega, held_drag_torque_nm(p, omega, in.drag_torque_factor[i]),
+                                rotor_accel_rad_s2(p, in.command_rad_s[i], omega));
+  }
+  return power;
 }
 
 MultirotorState integrate(const Airframe& a, MultirotorState state, const MultirotorInputs& in,
@@ -204,12 +284,10 @@ MultirotorState integrate(const Airframe& a, MultirotorState state, const Multir
     dx[10] = alpha.x, dx[11] = alpha.y, dx[12] = alpha.z;
     for (std::size_t i = 0; i < kMaxRotors; ++i) dx[13 + i] = w.rotor_accel_rad_s2[i];
   };
-  boost::numeric::odeint::runge_kutta4<StateVector> stepper;
+  const std::size_t used = 13 + std::min(a.rotors.size(), kMaxRotors);
   StateVector x = pack(state);
-  double t = 0;
   for (long k = 0; k < std::max(1L, steps); ++k) {
-    stepper.do_step(system, x, t, h);
-    t += h;
+    rk4_step(system, x, h, used);
     const Quat q = normalized({x[6], x[7], x[8], x[9]});
     x[6] = q.w, x[7] = q.x, x[8] = q.y, x[9] = q.z;
   }

@@ -15,6 +15,12 @@ Vec3 magnetic_field_unit() {
 
 Sensor::Sensor(const SensorSettings& settings, SplitMix64 random)
     : settings_(settings), random_(random), next_(settings.phase_ns) {
+  // The per-sample constants, computed once (measure() runs at up to a few kHz).
+  const double dt = seconds(settings_.period_ns);
+  walk_step_ = settings_.bias_random_walk_per_sqrt_s * std::sqrt(dt);
+  markov_a_ = std::exp(-dt / settings_.markov_time_constant_s);
+  markov_step_ = settings_.markov_sigma_m * std::sqrt(1 - markov_a_ * markov_a_);
+  lpf_alpha_ = 1 - std::exp(-2 * std::numbers::pi * settings_.lpf_hz * dt);
   bias_ = Vec3{1, 1, 1} * settings.bias_constant;
   if (settings_.type == SensorType::position && settings_.markov_sigma_m > 0)
     markov_ = Vec3{random_.normal(), random_.normal(), random_.normal()} *
@@ -44,26 +50,21 @@ double Sensor::convert(double v) const {
 }
 
 void Sensor::measure(SimTime now, const Truth& truth) {
-  const double dt = seconds(settings_.period_ns);
   // The bias walks between samples; the noise is white per sample.
-  if (settings_.bias_random_walk_per_sqrt_s > 0) {
-    const double step = settings_.bias_random_walk_per_sqrt_s * std::sqrt(dt);
-    bias_ += Vec3{random_.normal(), random_.normal(), random_.normal()} * step;
-  }
+  if (settings_.bias_random_walk_per_sqrt_s > 0)
+    bias_ += Vec3{random_.normal(), random_.normal(), random_.normal()} * walk_step_;
   Vec3 raw = ideal(truth) + bias_ +
              Vec3{random_.normal(), random_.normal(), random_.normal()} * settings_.noise;
   if (settings_.type == SensorType::position && settings_.markov_sigma_m > 0) {
     // Gauss–Markov, discretised exactly: e_{k+1} = a e_k + σ √(1 − a²) n.
-    const double a = std::exp(-dt / settings_.markov_time_constant_s);
-    const double s = settings_.markov_sigma_m * std::sqrt(1 - a * a);
-    markov_ = markov_ * a + Vec3{random_.normal(), random_.normal(), random_.normal()} * s;
+    markov_ = markov_ * markov_a_ +
+              Vec3{random_.normal(), random_.normal(), random_.normal()} * markov_step_;
     raw += markov_;
   }
   if (settings_.type == SensorType::baro) raw.x = raw.y = 0;
   const Vec3 converted{convert(raw.x), convert(raw.y), convert(raw.z)};
   if (settings_.lpf_hz > 0 && filter_started_) {
-    const double alpha = 1 - std::exp(-2 * std::numbers::pi * settings_.lpf_hz * dt);
-    filtered_ += (converted - filtered_) * alpha;
+    filtered_ += (converted - filtered_) * lpf_alpha_;
   } else {
     filtered_ = converted;
     filter_started_ = true;
@@ -83,10 +84,7 @@ void Sensor::measure(SimTime now, const Truth& truth) {
 
 std::deque<SensorSample> Sensor::deliver(SimTime now) {
   std::deque<SensorSample> out;
-  while (!queue_.empty() && queue_.front().delivered_at <= now) {
-    out.push_back(queue_.front());
-    queue_.pop_front();
-  }
+  deliver_each(now, [&](const SensorSample& s) { out.push_back(s); });
   return out;
 }
 

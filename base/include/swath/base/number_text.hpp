@@ -12,6 +12,10 @@ double round_to(double value, int decimals);
 /// `value` with exactly `decimals` digits after the point (std::to_chars: no locale).
 std::string fixed_text(double value, int decimals);
 
+/// Appends fixed_text(value, decimals) to `out` (the same bytes), without a temporary string
+/// and, for |value| below 10^15 / 10^decimals, without std::to_chars (the CSV writers' hot path).
+void append_fixed_text(std::string& out, double value, int decimals);
+
 /// The shortest text that reads back as exactly `value` (std::to_chars: no locale); never "-0".
 std::string shortest_text(double value);
 

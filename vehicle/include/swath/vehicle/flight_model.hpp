@@ -39,7 +39,10 @@ class FlightModel {
   SimTime now() const { return now_; }
   const MultirotorState& state() const { return state_; }
   /// Replaces the body's state at now() (a caller's ground contact: control/ardupilot_json).
-  void set_state(const MultirotorState& state) { state_ = state; }
+  void set_state(const MultirotorState& state) {
+    state_ = state;
+    power_known_ = false;
+  }
   const VehiclePhysics& physics() const { return settings_.physics; }
   /// The wind at the body, world ENU (held since the last wind event).
   const Vec3& wind_m_s() const { return wind_; }
@@ -55,12 +58,16 @@ class FlightModel {
   /// Events run so far (instants at which an ESC frame, wind update or sensor measurement fell):
   /// the simulation's work grows with this count, not with simulated time alone.
   long long events_run() const { return events_run_; }
-  /// The samples delivered since the last call, in delivery order (ties in sensor order).
-  std::vector<DeliveredSample> take_samples();
+  /// The samples delivered since the last call, in delivery order (ties in sensor order); valid
+  /// until the next call.
+  const std::vector<DeliveredSample>& take_samples();
 
   /// The battery's terminal voltage over the voltage at which the motors reach max_speed_rad_s
   /// (1 without voltage sag): the rotor speed a PWM gives is Ω_cmd × this, from now on.
-  void set_supply_ratio(double ratio) { supply_ratio_ = ratio; }
+  void set_supply_ratio(double ratio) {
+    supply_ratio_ = ratio;
+    power_known_ = false;
+  }
   double supply_ratio() const { return supply_ratio_; }
 
   /// The motors' electrical energy drawn so far (trapezoid per sub-step), J.
@@ -93,8 +100,11 @@ class FlightModel {
   Vec3 wind_, torque_noise_;
   double motor_energy_j_ = 0.0;
   double supply_ratio_ = 1.0;
+  // motor_power_w() at the end of the last integration, while no input has changed since.
+  double power_w_ = 0.0;
+  bool power_known_ = false;
   std::array<double, kMaxRotors> drag_factors_{1, 1, 1, 1, 1, 1, 1, 1};
-  std::vector<DeliveredSample> delivered_;
+  std::vector<DeliveredSample> delivered_, taken_;
 };
 
 }  // namespace swath::vehicle

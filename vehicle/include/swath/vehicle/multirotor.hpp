@@ -106,6 +106,14 @@ struct Wrench {
 };
 Wrench applied_wrench(const Airframe& airframe, const MultirotorState& state,
                       const MultirotorInputs& inputs);
+/// applied_wrench's force_world_n alone (the same arithmetic, so the same bits): what the
+/// accelerometer's truth needs, without the moments.
+Vec3 applied_force_world_n(const Airframe& airframe, const MultirotorState& state,
+                           const MultirotorInputs& inputs);
+/// The motors' electrical power in a state, W: motor_power_at_torque_w of applied_wrench's rotor
+/// accelerations and drag torques (the same arithmetic), without the body's forces.
+double motors_power_w(const Airframe& airframe, const MultirotorState& state,
+                      const MultirotorInputs& inputs);
 
 /// Advances the state by `duration_s` (>= 0) in equal RK4 sub-steps of at most `max_step_s`
 /// (> 0); the attitude is renormalised after each sub-step.

@@ -66,6 +66,15 @@ class Sensor {
   void measure(SimTime now, const Truth& truth);
   /// The samples delivered by `now`, oldest first (removed from the queue).
   std::deque<SensorSample> deliver(SimTime now);
+  /// The same samples, each handed to `take` (no container built: the plant calls this for every
+  /// sensor at every event, mostly with nothing due).
+  template <typename F>
+  void deliver_each(SimTime now, F&& take) {
+    while (!queue_.empty() && queue_.front().delivered_at <= now) {
+      take(queue_.front());
+      queue_.pop_front();
+    }
+  }
   /// The current bias (for tests and the oracle).
   const Vec3& bias() const { return bias_; }
 
@@ -78,6 +87,7 @@ class Sensor {
   SimTime next_;
   Vec3 bias_, filtered_, markov_;
   bool filter_started_ = false;
+  double walk_step_ = 0, markov_a_ = 0, markov_step_ = 0, lpf_alpha_ = 0;
   std::deque<SensorSample> queue_;
 };
 
