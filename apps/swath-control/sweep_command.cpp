@@ -88,10 +88,13 @@ std::string sweep_statuses(const std::vector<BatchFlight>& flights, std::size_t 
   return out;
 }
 
-// The value's figures over its seeds: attitude, pitch, cross-track, executions/s, flight time.
+// The value's figures over its seeds: attitude, pitch, cross-track, executions/s, flight time, the
+// core's busy share and the background releases completed.
 std::string sweep_value_cells(const std::vector<control::FlightFigures>& f) {
-  std::vector<double> att, pitch, xt, ex, ft;
+  std::vector<double> att, pitch, xt, ex, ft, cpu, bg;
   for (const control::FlightFigures& g : f) {
+    cpu.push_back(100 * g.cpu_utilisation);
+    bg.push_back(100 * g.background_completed);
     att.push_back(g.attitude_rms_deg);
     pitch.push_back(g.axis_error_deg[1].rms);
     xt.push_back(g.cross_track_rms_m);
@@ -101,7 +104,8 @@ std::string sweep_value_cells(const std::vector<control::FlightFigures>& f) {
   using control::mean_interval;
   return cell(mean_interval(att), 3) + " | " + cell(mean_interval(pitch), 3) + " | " +
          cell(mean_interval(xt), 3) + " | " + cell(mean_interval(ex), 1) + " | " +
-         cell(mean_interval(ft), 1);
+         cell(mean_interval(ft), 1) + " | " + cell(mean_interval(cpu), 1) + " | " +
+         cell(mean_interval(bg), 1);
 }
 
 }  // namespace
@@ -196,11 +200,11 @@ int ControlSweepCommand::run() {
                              : "") +
                    ".\n\n| environment | vehicle | " + key +
                    " | status | attitude RMS (deg) | pitch RMS (deg) | cross-track RMS (m) | "
-                   "executions/s | flight time (s) |" +
+                   "executions/s | flight time (s) | CPU busy (%) | background completed (%) |" +
                    (baseline ? " pitch RMS improvement | attitude RMS improvement | fewer "
                                "executions | flight time |"
                              : "") +
-                   "\n|---|---|---|---|---|---|---|---|---|" +
+                   "\n|---|---|---|---|---|---|---|---|---|---|---|" +
                    (baseline ? "---|---|---|---|" : "") + "\n";
   std::vector<SweptCurve> curves;
   bool numeric = true;
