@@ -153,6 +153,8 @@ int ControlSweepCommand::run() {
   const std::vector<std::string> environments =
       environments_.empty() ? std::vector<std::string>{request_.environment} : environments_;
   const bool baseline = !baseline_.empty();
+  // Named as the user gave it (the flights below would name --scheduler).
+  if (baseline) config_file(baseline_, "schedulers", "scheduler", "--baseline");
   // A scheduler key does not reach another scheduler file: its baseline is the same at every
   // value, flown once per seed. A vehicle or environment key is the baseline's too.
   const bool baseline_per_value = key.rfind("scheduler.", 0) != 0;
