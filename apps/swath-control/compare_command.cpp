@@ -25,13 +25,6 @@ struct Mode {
   std::vector<std::string> sets;
 };
 
-// Paper 002 §7's missions: the lab's 20 m x 20 m room, a rugby pitch, the arch's square.
-std::string paper_mission(const std::string& environment) {
-  if (environment == "rugby") return "random:8@100x70";
-  if (environment == "arch") return "random:8@170x170";
-  return "random:8@20x20";
-}
-
 std::string stem(const std::string& name) {
   const auto slash = name.find_last_of('/');
   std::string s = slash == std::string::npos ? name : name.substr(slash + 1);

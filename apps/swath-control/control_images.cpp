@@ -265,6 +265,31 @@ ControlPicture rate_picture(const std::vector<ComparedGroup>& groups,
   return stacked({spec}, width_px, height_px);
 }
 
+ControlPicture sweep_picture(const std::vector<SweptCurve>& curves, const std::string& title,
+                             const std::string& x_label, const std::string& y_label, int width_px,
+                             int height_px) {
+  render::ChartSpec spec{title, x_label, y_label, {}};
+  // Bars of neighbouring curves side by side, a small fraction of the values' spacing apart.
+  double spacing = 1;
+  for (const SweptCurve& c : curves)
+    for (std::size_t k = 1; k < c.x.size(); ++k)
+      if (c.x[k] != c.x[k - 1]) spacing = std::min(spacing, std::abs(c.x[k] - c.x[k - 1]));
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const Color color = kModeColors[c % 6];
+    render::Series means{curves[c].label, {}, {}, color, 2.0};
+    const double offset = 0.04 * spacing * static_cast<double>(c);
+    for (std::size_t k = 0; k < curves[c].x.size() && k < curves[c].y.size(); ++k) {
+      const double x = curves[c].x[k] + offset;
+      const control::MeanInterval& m = curves[c].y[k];
+      means.x.push_back(x);
+      means.y.push_back(m.mean);
+      spec.series.push_back({"", {x, x}, {m.low, m.high}, color, 3.0});
+    }
+    spec.series.push_back(std::move(means));
+  }
+  return stacked({spec}, width_px, height_px);
+}
+
 ControlPicture triggers_picture(const std::vector<control::RateRow>& rates, const Raster& raster,
                                 const std::vector<std::string>& trigger_sensors, int width_px,
                                 int height_px) {

@@ -86,6 +86,19 @@ ControlPicture improvement_picture(const std::vector<ComparedGroup>& groups,
 ControlPicture rate_picture(const std::vector<ComparedGroup>& groups,
                             const std::vector<std::string>& modes, int width_px, int height_px);
 
+/// One curve of a sweep (an environment and vehicle): each value's mean and 95 % interval.
+struct SweptCurve {
+  std::string label;                     ///< "arch hexa-f550"
+  std::vector<double> x;                 ///< the values (or their index when not numbers)
+  std::vector<control::MeanInterval> y;  ///< per value, in the chart's unit
+};
+
+/// sweep.png: one chart of every curve against the swept value, intervals as bars (paper 002's
+/// Fig. 14 when y is the pitch error improvement over time-triggered control).
+ControlPicture sweep_picture(const std::vector<SweptCurve>& curves, const std::string& title,
+                             const std::string& x_label, const std::string& y_label, int width_px,
+                             int height_px);
+
 /// The four pictures into the output set as PNG.
 void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
                         const control::SimulationSummary& summary, const FlightSeries& flight,

@@ -12,6 +12,12 @@ namespace swath::apps {
 
 using base::fixed_text;
 
+std::string paper_mission(const std::string& environment) {
+  if (environment == "rugby") return "random:8@100x70";
+  if (environment == "arch") return "random:8@170x170";
+  return "random:8@20x20";
+}
+
 // Flies every run on `jobs` threads; results land at their own index, so the output does not
 // depend on the number of threads.
 void fly_all(std::vector<BatchFlight>& runs, unsigned jobs, bool progress) {

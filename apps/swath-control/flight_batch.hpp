@@ -17,6 +17,10 @@ struct BatchFlight {
   control::SimulationSummary summary;
 };
 
+/// Paper 002 §7's mission in `environment` (lab, rugby, arch): the lab's 20 m x 20 m room, a
+/// rugby pitch, the arch's square (`paper` as MISSION of compare and sweep).
+std::string paper_mission(const std::string& environment);
+
 /// Flies every flight; rethrows the first failure after all threads have stopped.
 void fly_all(std::vector<BatchFlight>& flights, unsigned jobs, bool progress);
 

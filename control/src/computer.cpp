@@ -51,6 +51,10 @@ void FlightComputer::request_control(ReleaseCause cause, bool dispatch) {
   (control_ ? control_waiting_ : control_) = job;
 }
 
+void FlightComputer::set_running_control_cycles(std::int64_t cycles) {
+  if (control_ && control_->started) control_->remaining_ns = duration_ns(cycles);
+}
+
 void FlightComputer::request_refit(std::int64_t points) {
   refits_.push_back(Job{now_ns_, duration_ns(settings_.refit_cycles_per_point * points)});
 }

@@ -181,7 +181,7 @@ std::vector<InitialModel> read_initial_models(const YamlMap& m) {
 ReactiveSettings read_reactive(const YamlMap& m) {
   m.allow({"p_run", "boot_s", "boot_rate_hz", "failsafe_s", "failsafe_mode", "delta_reference",
            "trigger_signal", "setpoint_forces_execution", "accumulation", "fit", "initial_models",
-           "oracle"});
+           "oracle", "graph_execution"});
   ReactiveSettings r;
   r.p_run = m.number("p_run", r.p_run, 0, 1, true);
   if (r.p_run >= 1) throw InputError(m.where("p_run") + " must lie in (0, 1)");
@@ -208,6 +208,7 @@ ReactiveSettings read_reactive(const YamlMap& m) {
       static_cast<int>(whole(fit, "dataset_capacity", r.fit_dataset_capacity, 16, 1e7));
   r.initial_models = read_initial_models(m.map("initial_models"));
   r.oracle = m.flag("oracle", r.oracle);
+  r.graph_execution = choice(m, "graph_execution", r.graph_execution, {"whole", "partial"});
   return r;
 }
 

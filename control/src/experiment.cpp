@@ -37,6 +37,11 @@ FlightFigures figures_of(const SimulationSummary& s) {
   f.flight_time_s = s.reserve_time_s ? *s.reserve_time_s : s.flight_time_s;
   f.cpu_j = s.cpu_j;
   f.total_j = s.total_j;
+  f.cpu_utilisation = s.cpu_utilisation;
+  f.background_completed =
+      s.background_released > 0
+          ? static_cast<double>(s.background_completed) / static_cast<double>(s.background_released)
+          : 1.0;
   f.axis_error_deg = a;
   const auto& d = s.attitude_error_disturbance_deg;
   f.axis_disturbance_error_deg = d;

@@ -294,6 +294,14 @@ void ReactiveScheduler::end_refit(SimTime t_ns) {
   next_refit_ns_ = settings_.fit_feedback == FeedbackRule::none ? kNever : t_ns + refit_period_ns_;
 }
 
+std::optional<unsigned> ReactiveScheduler::running_graph_inputs() const {
+  if (running_ == 0 || (running_ & ~unsigned{kTrigger | kSetpoint})) return std::nullopt;
+  unsigned inputs = (running_ & kSetpoint) ? 1u << static_cast<unsigned>(GraphInput::setpoint) : 0u;
+  for (std::size_t k = 0; k < sensors_.size(); ++k)
+    if (running_triggers_ >> k & 1) inputs |= 1u << static_cast<unsigned>(sensors_[k].input);
+  return inputs;
+}
+
 std::vector<int> ReactiveScheduler::take_trigger_counts() {
   std::vector<int> out;
   for (PerSensor& s : state_) {

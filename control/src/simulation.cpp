@@ -88,13 +88,31 @@ void check_lift(const SimulationSettings& s) {
                      base::fixed_text(1.2 * weight, 1) + " N): it could not be controlled");
 }
 
+// The control graph's input a sensor feeds (scheduler.hpp).
+GraphInput graph_input(vehicle::SensorType type) {
+  switch (type) {
+    case vehicle::SensorType::gyro:
+      return GraphInput::gyro;
+    case vehicle::SensorType::accel:
+      return GraphInput::accel;
+    case vehicle::SensorType::mag:
+      return GraphInput::mag;
+    case vehicle::SensorType::baro:
+      return GraphInput::baro;
+    case vehicle::SensorType::position:
+      return GraphInput::position;
+  }
+  return GraphInput::gyro;
+}
+
 std::unique_ptr<Scheduler> make_scheduler(const SchedulerConfig& config,
                                           const vehicle::VehiclePhysics& physics) {
   if (config.mode == SchedulerMode::reactive) {
     std::vector<TriggerSensor> sensors;
     for (std::size_t k = 0; k < physics.sensors.size(); ++k)
       if (physics.sensors[k].trigger)
-        sensors.push_back({physics.sensors[k].name, k, physics.sensors[k].period_ns});
+        sensors.push_back({physics.sensors[k].name, k, physics.sensors[k].period_ns,
+                           graph_input(physics.sensors[k].type)});
     if (sensors.empty())
       throw InputError("scheduler: mode reactive needs a sensor with trigger: true in vehicle " +
                        physics.airframe.name);
@@ -475,11 +493,13 @@ class Flight {
                      false,
                      false,
                      {}};
+    row.cycles = charged_cycles_;
     if (const auto* r = dynamic_cast<const ReactiveScheduler*>(scheduler_.get())) {
       const ExecutionRecord& x = r->last_execution();
       row.false_positive = x.false_positive;
       row.false_negative = x.false_negative;
       row.x = x.x;
+      row.causes = x.causes;
       for (std::size_t k = 0; k < r->sensors().size(); ++k)
         if (x.trigger_sensors >> k & 1)
           row.sensors += (row.sensors.empty() ? "" : "+") + r->sensors()[k].name;
@@ -489,6 +509,7 @@ class Flight {
 
   void start_execution(SimTime t) {
     scheduler_->on_execution_start(t);
+    charge_execution();
     TaskInput input;
     input.time_ns = t;
     input.sensors = driver_.take(t);
@@ -507,6 +528,19 @@ class Flight {
     for (std::size_t i = 0; i < pending_.rotor_count; ++i)
       commanded_pwm_[i] = compensation_.pwm_us(pending_.pwm_us[i], task_.config().airframe.rotors);
     started_ns_ = t;
+  }
+
+  // What the execution just started costs the computer: the whole graph as requested, or with
+  // partial graph execution only the nodes downstream of what triggered it (scheduler.hpp).
+  void charge_execution() {
+    const ComputerSettings& cs = s_.control.computer;
+    charged_cycles_ = cs.control_cycles + (reactive_ ? cs.dispatch_cycles : 0);
+    if (!reactive_ || s_.scheduler.reactive.graph_execution != GraphExecution::partial) return;
+    const auto& r = static_cast<const ReactiveScheduler&>(*scheduler_);
+    const std::optional<unsigned> inputs = r.running_graph_inputs();
+    if (!inputs) return;
+    charged_cycles_ = graph_cycles(nodes_to_run(*inputs), cs.control_cycles) + cs.dispatch_cycles;
+    computer_.set_running_control_cycles(charged_cycles_);
   }
 
   void end_execution(const ComputerEvent& e) {
@@ -806,6 +840,7 @@ class Flight {
   PlanCheck check_;
   std::vector<std::string> triggers_;
   std::vector<std::size_t> trigger_index_;
+  std::int64_t charged_cycles_ = 0;  // the execution under way's (charge_execution)
   std::vector<std::int64_t> sample_counts_;
 
   TaskState state_;

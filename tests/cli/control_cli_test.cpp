@@ -3,9 +3,11 @@
 // the same seed, and the picture's pixels where the start and the no-fly zone are.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -305,6 +307,60 @@ TEST(ControlCli, SweepFliesEachValueAsRunWouldWithThatSet) {
   const json s = json::parse(read_text(single + "/summary.json"));
   EXPECT_NEAR(std::stod(rows[2][9]), s["tracking"]["cross_track_rms_m"].get<double>(), 1e-4);
   EXPECT_NEAR(std::stod(rows[2][15]), s["energy"]["total_j"].get<double>(), 0.1);
+}
+
+TEST(ControlCli, SweepPairsEachValueWithItsBaselineOnTheSameSeeds) {
+  const std::string out = fresh_dir("control-sweep-baseline");
+  const CliRun run = run_swath_control(
+      "sweep random:4@20x20 --scheduler reactive --baseline tt-400 --param "
+      "scheduler.reactive.p_run=0.3,0.8 --seeds 2 --max-time 15 --set "
+      "scheduler.reactive.boot_s=5 --set scheduler.run.metrics_from_s=5 --set "
+      "vehicle.controller.change_threshold_us=10 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(out + "/sweep.png"));
+  std::istringstream in(read_text(out + "/runs.csv"));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  {
+    std::istringstream h(line);
+    for (std::string c; std::getline(h, c, ',');) header.push_back(c);
+  }
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  std::map<std::string, std::map<std::string, double>> pitch;  // value → seed → pitch RMS
+  std::map<std::string, std::string> mode;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream c(line);
+    for (std::string cell; std::getline(c, cell, ',');) cells.push_back(cell);
+    pitch[cells[column("value")]][cells[column("seed")]] =
+        std::stod(cells[column("pitch_rms_deg")]);
+    mode[cells[column("value")]] = cells[column("mode")];
+  }
+  // The baseline flown once per seed (a scheduler key does not reach tt-400's file).
+  ASSERT_EQ(pitch.size(), 3u);
+  EXPECT_EQ(mode["-"], "tt-400");
+  EXPECT_EQ(mode["0.8"], "reactive");
+  // sweep.md's pitch improvement of each value is the mean over seeds of (b − m) / b.
+  const std::string md = read_text(out + "/sweep.md");
+  for (const std::string value : {"0.3", "0.8"}) {
+    double sum = 0;
+    for (const std::string seed : {"1", "2"})
+      sum += (pitch["-"][seed] - pitch[value][seed]) / pitch["-"][seed];
+    const std::string row = "| " + value + " | ";
+    const auto at = md.find(row);
+    ASSERT_NE(at, std::string::npos) << value;
+    const std::string rest = md.substr(at, md.find('\n', at) - at);
+    // From the value: status, seven figures, then the improvements, the pitch's first.
+    std::vector<std::string> cells;
+    std::istringstream c(rest);
+    for (std::string cell; std::getline(c, cell, '|');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 11u) << rest;
+    EXPECT_NEAR(std::stod(cells[10]), 100 * sum / 2, 0.051) << rest;
+  }
 }
 
 TEST(ControlCli, FitRecoversTheCoefficientsOfItsData) {

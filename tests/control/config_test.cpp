@@ -140,6 +140,7 @@ reactive:
   fit: {method: mle, bins: 10, min_per_bin: 5, refit_period_s: 2, feedback: all, dataset_capacity: 100}
   initial_models: {gyro: [-3, 2], baro: [-1, 0.5]}
   oracle: true
+  graph_execution: partial
 run: {max_time_s: 600}
 )",
                                                    "s.yaml");
@@ -167,6 +168,7 @@ run: {max_time_s: 600}
   EXPECT_EQ(r.initial_models[0].beta1, -3);
   EXPECT_EQ(r.initial_models[1].beta2, 0.5);
   EXPECT_TRUE(r.oracle);
+  EXPECT_EQ(r.graph_execution, GraphExecution::partial);
   EXPECT_EQ(s.run.max_time_s, 600);
 }
 
@@ -181,6 +183,8 @@ TEST(ControlConfig, BadInputIsOneSentenceNamingTheKey) {
       {"mode: time_triggered\nrate_hz: 300\n", "rate_hz must divide a second into a whole"},
       {"mode: time_triggered\nrate: 400\n", "unknown key 'rate'"},
       {"mode: reactive\nreactive: {p_run: 1}\n", "reactive.p_run must lie in (0, 1)"},
+      {"mode: reactive\nreactive: {graph_execution: half}\n",
+       "reactive.graph_execution must be one of whole, partial"},
       {"mode: reactive\nreactive: {boot_s: 700}\nrun: {max_time_s: 600}\n",
        "boot_s must be below run.max_time_s"},
       {"mode: reactive\nreactive: {boot_s: 0}\n", "boot_s 0 needs initial_models"},

@@ -4,6 +4,9 @@
 // feedback rule adds what it says to the data set.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "swath/control/reactive_scheduler.hpp"
 
 namespace swath::control {
@@ -265,6 +268,113 @@ TEST(Reactive, TheBootRunsTimeTriggeredAndFitsWhenItEnds) {
   s.scheduler.end_refit(510 * kMillisecond);
   EXPECT_EQ(s.scheduler.stats()[0].refits, 1);
   EXPECT_EQ(s.scheduler.next_refit_ns(), 1510 * kMillisecond);
+}
+
+TEST(Reactive, AHigherPRunNeverTriggersMoreOnTheSameSamples) {
+  // The trigger rule L(x) ≥ P_run is monotone in P_run: on the same samples, each sample that
+  // fires at a higher P_run fires at every lower one. With the change measured from the previous
+  // sample (delta_reference last_sample) and the models frozen (feedback none), x does not depend
+  // on when the loop ran, so the samples that fire at P_run q ⊆ those at p < q, and the trigger
+  // executions are at most as many.
+  std::vector<std::vector<SimTime>> fired;
+  std::vector<std::size_t> executions;
+  const std::vector<double> p_runs{0.05, 0.2, 0.35, 0.5, 0.6, 0.65, 0.8, 0.95};
+  for (const double p : p_runs) {
+    ReactiveSettings r = settings_with(-3, 2);  // L = 1/2 at x = 1.5
+    r.p_run = p;
+    r.delta_reference = DeltaReference::last_sample;
+    r.fit_feedback = FeedbackRule::none;
+    Script s{ReactiveScheduler(r, {{"gyro", 0, kMillisecond}}, 400), {}};
+    std::uint64_t state = 2024;  // a fixed seed: x ~ |U(-3, 3)| between samples
+    double value = 0;
+    std::vector<SimTime> mine;
+    std::int64_t seen = 0;
+    for (SimTime t = 0; t <= 2000 * kMillisecond; t += kMillisecond) {
+      s.release_until(t, [](SimTime) { return true; });
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      value += 6.0 * (static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5);
+      SensorSample sample;
+      sample.time_ns = t;
+      sample.axes = 1;
+      sample.value = {value};
+      s.scheduler.on_sample(sample);
+      if (s.scheduler.stats()[0].triggers != seen) mine.push_back(t);
+      seen = s.scheduler.stats()[0].triggers;
+    }
+    std::size_t triggered = 0;
+    for (const auto& [t, cause] : s.releases) triggered += cause == ReleaseCause::trigger;
+    fired.push_back(mine);
+    executions.push_back(triggered);
+  }
+  for (std::size_t k = 1; k < p_runs.size(); ++k) {
+    EXPECT_LE(executions[k], executions[k - 1]) << "P_run " << p_runs[k];
+    EXPECT_TRUE(
+        std::includes(fired[k - 1].begin(), fired[k - 1].end(), fired[k].begin(), fired[k].end()))
+        << "P_run " << p_runs[k];
+  }
+  // P_run acts here: x > x* = (logit P_run + 3) / 2 with |Δ| uniform on [0, 3] fires for
+  // 1 − x*/3 of the samples (0.05: 0.99, 0.95: 0.01) from the first failsafe execution at 100 ms,
+  // which gives the change its first reference: 1,901 samples.
+  EXPECT_NEAR(static_cast<double>(fired.front().size()) / 1901, 1 - (std::log(0.05 / 0.95) + 3) / 6,
+              0.03);
+  EXPECT_NEAR(static_cast<double>(fired.back().size()) / 1901, 1 - (std::log(0.95 / 0.05) + 3) / 6,
+              0.03);
+}
+
+// Which nodes a change reaches, found without the graph's order: grow the set until no node
+// reading a member (or a changed input) is left out.
+std::uint32_t reached(unsigned inputs) {
+  const auto graph = control_graph();
+  std::uint32_t set = 0;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t j = 0; j < graph.size(); ++j) {
+      const bool reads = (graph[j].inputs & inputs) || (graph[j].upstream & set);
+      if (reads && !(set >> j & 1)) {
+        set |= 1u << j;
+        grew = true;
+      }
+    }
+  }
+  return set;
+}
+
+TEST(ControlGraph, AnExecutionRunsTheNodesDownstreamOfWhatChanged) {
+  const auto graph = control_graph();
+  ASSERT_EQ(graph.size(), 7u);  // the seven steps of ControlTask::execute
+  for (unsigned inputs = 0; inputs < 1u << kGraphInputs; ++inputs)
+    EXPECT_EQ(nodes_to_run(inputs), reached(inputs)) << "inputs " << inputs;
+  EXPECT_EQ(nodes_to_run((1u << kGraphInputs) - 1), whole_graph());
+  // Every node is downstream of something, and the mixer of everything.
+  for (unsigned i = 0; i < kGraphInputs; ++i) EXPECT_TRUE(nodes_to_run(1u << i) >> 6 & 1) << i;
+  // The attitude filter feeds every later step, so what reaches it reaches the whole graph; the
+  // baro and the position fix enter at the position filter, a new leg at position control.
+  const auto in = [](GraphInput i) { return 1u << static_cast<unsigned>(i); };
+  for (GraphInput i : {GraphInput::gyro, GraphInput::accel, GraphInput::mag})
+    EXPECT_EQ(nodes_to_run(in(i)), whole_graph());
+  EXPECT_EQ(nodes_to_run(in(GraphInput::baro)), whole_graph() & ~1u);
+  EXPECT_EQ(nodes_to_run(in(GraphInput::setpoint)), whole_graph() & ~3u);
+}
+
+TEST(ControlGraph, TheNodesCyclesAddUpToTheTask) {
+  double shares = 0;
+  for (const GraphNode& n : control_graph()) shares += n.share;
+  EXPECT_NEAR(shares, 1.0, 1e-12);
+  for (const std::int64_t whole : {std::int64_t{120'000}, std::int64_t{7}, std::int64_t{0}}) {
+    EXPECT_EQ(graph_cycles(whole_graph(), whole), whole);
+    EXPECT_EQ(graph_cycles(0, whole), 0);
+    // Additive over disjoint sets of nodes.
+    for (std::uint32_t a = 0; a <= whole_graph(); ++a)
+      for (std::uint32_t b = 0; b <= whole_graph(); b += 5)
+        if ((a & b) == 0) {
+          EXPECT_EQ(graph_cycles(a | b, whole), graph_cycles(a, whole) + graph_cycles(b, whole));
+        }
+  }
+  // Each node costs its share of the task, within a cycle of rounding.
+  const auto graph = control_graph();
+  for (std::size_t j = 0; j < graph.size(); ++j)
+    EXPECT_NEAR(static_cast<double>(graph_cycles(1u << j, 120'000)), graph[j].share * 120'000, 1.0)
+        << graph[j].name;
 }
 
 }  // namespace

@@ -11,10 +11,12 @@
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/control/computer.hpp"
 #include "swath/control/config.hpp"
 #include "swath/control/control_files.hpp"
 #include "swath/control/experiment.hpp"
 #include "swath/control/mission.hpp"
+#include "swath/control/scheduler.hpp"
 #include "swath/control/simulation.hpp"
 #include "swath/energy/battery.hpp"
 #include "swath/energy/guidance.hpp"
@@ -330,6 +332,96 @@ TEST(Simulation, AFasterLoopHoldsHeadingNoWorse) {
   }
   EXPECT_LE(yaw_deg[1], 1.1 * yaw_deg[0]) << "400 Hz against 100 Hz";
   EXPECT_LE(yaw_deg[2], 1.1 * yaw_deg[1]) << "1,000 Hz against 400 Hz";
+}
+
+// Every execution as executions.csv would have it.
+struct ExecutionLog : SimulationObserver {
+  std::vector<ExecutionRow> rows;
+  void on_execution(const ExecutionRow& r) override { rows.push_back(r); }
+};
+
+// The nodes a change of `inputs` reaches, grown to a fixed point (not in the graph's order).
+std::uint32_t downstream(unsigned inputs) {
+  const auto graph = control_graph();
+  std::uint32_t set = 0;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t j = 0; j < graph.size(); ++j)
+      if (((graph[j].inputs & inputs) || (graph[j].upstream & set)) && !(set >> j & 1)) {
+        set |= 1u << j;
+        grew = true;
+      }
+  }
+  return set;
+}
+
+TEST(Simulation, PartialGraphExecutionChargesTheTriggeredInputsDownstreamNodesAndWholeAllOfThem) {
+  // A core with nothing else to do (no drivers, trigger checks, refits or background work), so
+  // each execution runs from start to end uninterrupted for exactly the cycles it is charged.
+  SimulationSettings s = reactive(short_flight(line_mission(40, 10), "arch"));
+  s.seed = 3;
+  s.control.controller.change_threshold_us = 10;  // many sensors fire, alone and together
+  ComputerSettings& cpu = s.control.computer;
+  cpu.driver_cycles = cpu.trigger_check_cycles = cpu.refit_cycles_per_point = 0;
+  cpu.background.clear();
+  const FlightComputer core(cpu);
+  const std::int64_t whole = cpu.control_cycles + cpu.dispatch_cycles;
+  const auto input_of = [](const std::string& sensor) {
+    if (sensor == "gyro") return GraphInput::gyro;
+    if (sensor == "accel") return GraphInput::accel;
+    if (sensor == "mag") return GraphInput::mag;
+    if (sensor == "baro") return GraphInput::baro;
+    EXPECT_EQ(sensor, "gps");
+    return GraphInput::position;
+  };
+  for (const GraphExecution mode : {GraphExecution::partial, GraphExecution::whole}) {
+    s.scheduler.reactive.graph_execution = mode;
+    ExecutionLog log;
+    const SimulationSummary r = simulate(s, &log);
+    ASSERT_EQ(r.status, FlightStatus::completed) << r.lost_control_reason;
+    int cheaper = 0;
+    for (const ExecutionRow& row : log.rows) {
+      std::int64_t expected = whole;
+      // Only executions caused by triggers and new legs alone run part of the graph.
+      if (mode == GraphExecution::partial && row.causes != 0 && (row.causes & ~20u) == 0) {
+        unsigned inputs =
+            (row.causes & 16u) ? 1u << static_cast<unsigned>(GraphInput::setpoint) : 0;
+        std::istringstream names(row.sensors);
+        for (std::string name; std::getline(names, name, '+');)
+          inputs |= 1u << static_cast<unsigned>(input_of(name));
+        expected = graph_cycles(downstream(inputs), cpu.control_cycles) + cpu.dispatch_cycles;
+      }
+      cheaper += expected < whole;
+      ASSERT_EQ(row.cycles, expected) << row.start_s << " " << row.sensors;
+      ASSERT_NEAR(row.end_s - row.start_s, 1e-9 * static_cast<double>(core.duration_ns(expected)),
+                  2e-9)
+          << row.start_s << " " << row.sensors;
+    }
+    // Partial execution had executions to spare (a baro or GPS fix alone, a new leg).
+    if (mode == GraphExecution::partial) {
+      EXPECT_GT(cheaper, 0);
+    }
+  }
+}
+
+TEST(Simulation, PRunActsWhereOutputsOftenStayTheSameAndNotWhereTheyNeverDo) {
+  // With a 10 µs dead band TT400 leaves about half the outputs unchanged, the fitted L(x) spans
+  // P_run, and a higher P_run runs fewer executions. With the 1 µs default almost every
+  // execution changes the output, the fit's L(0) is above 0.99, and P_run from 0.2 to 0.8 fires
+  // on every sample alike: the same flight.
+  std::vector<double> dead_band, fine;
+  for (const double p : {0.2, 0.5, 0.8}) {
+    SimulationSettings s = paper_lab_flight(1);
+    s.scheduler.run.max_time_s = 90;
+    s.scheduler.reactive.p_run = p;
+    fine.push_back(simulate(s, nullptr).executions.per_second_mean);
+    s.control.controller.change_threshold_us = 10;
+    dead_band.push_back(simulate(s, nullptr).executions.per_second_mean);
+  }
+  EXPECT_GT(dead_band[0], 1.5 * dead_band[1]);
+  EXPECT_GT(dead_band[1], 1.5 * dead_band[2]);
+  EXPECT_EQ(fine[0], fine[2]);
+  EXPECT_GT(fine[0], 900);  // every gyro sample (1 kHz)
 }
 
 TEST(Simulation, TheHeadingSlewsAtWaypointsAndTheDisturbanceMetricLeavesTurnsOut) {

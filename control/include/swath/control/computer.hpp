@@ -92,6 +92,9 @@ class FlightComputer {
   /// (or one released but not yet started) joins it, and counts as an overrun when it is a
   /// time-triggered release.
   void request_control(ReleaseCause cause, bool dispatch = false);
+  /// At a control start (advance() returned it, nothing of it has run): the execution costs
+  /// `cycles` instead of what was requested (partial execution of the control graph).
+  void set_running_control_cycles(std::int64_t cycles);
   /// At now_ns(): a refit over `points` data points (refit_cycles_per_point each).
   void request_refit(std::int64_t points);
 

@@ -33,6 +33,10 @@ enum class DeltaReference { last_execution, last_sample };
 enum class TriggerSignal { filtered, raw };
 enum class FitMethod { logit_ols, logit_wls, mle };
 enum class FeedbackRule { errors, all, none };
+/// What a reactive execution costs the flight computer: every node of the control graph (`whole`,
+/// a plain C/C++ task) or only the nodes downstream of the inputs that triggered it (`partial`,
+/// paper 002's RP-Embedded; scheduler.hpp's control_graph()).
+enum class GraphExecution { whole, partial };
 
 /// A trigger model given in the file: L(x) = 1 / (1 + e^−(β1 + β2 x)) for one sensor.
 struct InitialModel {
@@ -63,6 +67,7 @@ struct ReactiveSettings {
   int fit_dataset_capacity = 8192;           ///< points per sensor, [16, 1e7]
   std::vector<InitialModel> initial_models;  ///< required when boot_s is 0
   bool oracle = false;
+  GraphExecution graph_execution = GraphExecution::whole;
 };
 
 /// `run.*`.

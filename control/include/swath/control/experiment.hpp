@@ -28,6 +28,9 @@ struct FlightFigures {
   double unchanged_fraction = 0;
   double flight_time_s = 0;  ///< to the reserve when it was reached, else the flight's
   double cpu_j = 0, total_j = 0;
+  double cpu_utilisation = 0;  ///< the core's busy share
+  double background_completed =
+      0;  ///< the share of background releases completed (1: none released)
   /// Roll, pitch, yaw separately (the paper's Figs. 9-10), true vs setpoint, RMS and max.
   std::array<ErrorStat, 3> axis_error_deg{};
   /// The same over the samples when nothing was commanded (summary.json's

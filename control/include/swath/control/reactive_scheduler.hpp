@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct TriggerSensor {
   std::string name;
   std::size_t index = 0;  ///< in the vehicle's sensor list (SensorSample::sensor)
   SimTime period_ns = 0;
+  GraphInput input = GraphInput::gyro;  ///< the control graph's input it feeds
 };
 
 /// Per-sensor running figures (summary.json's `triggers`).
@@ -85,6 +87,9 @@ class ReactiveScheduler final : public Scheduler {
   bool is_trigger_sensor(std::size_t sensor) const override;
 
   const ExecutionRecord& last_execution() const { return record_; }
+  /// The execution under way (after on_execution_start): the control graph's inputs that caused
+  /// it (bit k: GraphInput k), or nullopt when a cause runs the whole graph (boot, failsafe).
+  std::optional<unsigned> running_graph_inputs() const;
   /// Triggers per sensor since the last call (rate.csv), and reset.
   std::vector<int> take_trigger_counts();
   const std::vector<TriggerStats>& stats() const { return stats_; }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "swath/vehicle/clock.hpp"
 
@@ -80,5 +81,35 @@ class TimeTriggeredScheduler final : public Scheduler {
   SimTime period_ns_;
   SimTime next_ns_;
 };
+
+/// The control task as a data-dependency graph (paper 002 §6, "RP-Embedded"; docs/swath-control.md,
+/// 'Partial and whole execution of the control graph'): its inputs, its nodes in a topological
+/// order and each node's share of an execution's cycles (computer.control_cycles). It is a cost
+/// model: the simulated task computes every step at every execution; what differs between partial
+/// and whole execution is the CPU time the flight computer is charged for.
+enum class GraphInput : std::uint8_t { gyro, accel, mag, baro, position, setpoint };
+inline constexpr std::size_t kGraphInputs = 6;
+
+struct GraphNode {
+  const char* name;
+  double share;            ///< of control_cycles; the shares sum to 1
+  unsigned inputs;         ///< bit k: GraphInput k is read by the node
+  std::uint32_t upstream;  ///< bit j: node j's output is read by the node (j before it)
+};
+
+/// The seven steps of ControlTask::execute as nodes, in order (control_task.hpp).
+std::span<const GraphNode> control_graph();
+
+/// The nodes an execution re-runs when the inputs in `changed_inputs` (bit k: GraphInput k)
+/// changed: every node reading one of them and every node downstream of those (RP's propagation).
+std::uint32_t nodes_to_run(unsigned changed_inputs);
+
+/// The cycles of the nodes in `nodes` (bit j: node j) when the whole graph costs `control_cycles`:
+/// node j costs round(share_j · control_cycles), the last node the rest, so that the whole graph
+/// costs control_cycles exactly.
+std::int64_t graph_cycles(std::uint32_t nodes, std::int64_t control_cycles);
+
+/// All nodes.
+std::uint32_t whole_graph();
 
 }  // namespace swath::control

@@ -166,6 +166,9 @@ struct ExecutionRow {
   bool false_positive = false;  ///< one sensor's trigger, output unchanged (the paper's rule)
   bool false_negative = false;  ///< failsafe alone, output changed
   std::vector<double> x;        ///< reactive: each trigger sensor's change at the start
+  unsigned causes =
+      0;  ///< reactive: every cause, bits 1 tt, 2 boot, 4 trigger, 8 failsafe, 16 setpoint
+  std::int64_t cycles = 0;  ///< what the computer was charged for it (graph_execution)
 };
 
 /// One sensor's model after a refit (fits.csv).
