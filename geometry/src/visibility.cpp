@@ -673,6 +673,25 @@ std::vector<Point2> route_back(Point2 a, Point2 b, std::size_t last,
 
 }  // namespace
 
+// The answer is a shortest path through the graph of corners (its length is the one a full
+// Dijkstra search over the whole graph gives, written out in
+// tests/geometry/visibility_search_test.cpp). A shortest path bends only round its corners
+// (taut()), so the search goes on from a node only along such legs: at the nearly flat corners
+// of a traced outline, a narrow fan of them. Between paths of equal length (up to rounding) it
+// may pick another than the full search. A* finds it while settling only the nodes towards b,
+// and testing only the legs it takes:
+// - Candidates are taken in order of f = g + h, h = (1 - 1e-6) |node b|: a predecessor u of v on
+//   a shortest path is then settled strictly before v (h(u) <= (1 - 1e-6) w(u, v) + h(v): f
+//   grows by at least 1e-6 w(u, v) along an edge, far above rounding), and every candidate for
+//   v of that length is in the queue before v's first is taken.
+// - A candidate is a leg to a node not yet settled: straight from a, or from a settled node u
+//   (g = distance(u) + |u v|); its leg is tested when it is taken, and the first seen settles
+//   the node. Of equal g, the straight leg comes first, then the one from the least (distance,
+//   index): the node Dijkstra's search settled first, whose candidate it kept.
+// - The way to b through node v is a candidate of f = distance(v) + |v b| (the sum the full
+//   search compares), taken after nodes' candidates of equal f: once one b sees is taken, no
+//   node still to settle can end lower (its f is a lower bound of its sum, and strictly above)
+//   nor equal with a lower index (those come first, by index).
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if (!routing_) return {a, b};
   // Through a's fan where a has one (a run end asked about often, home): the same exact tests
@@ -690,25 +709,6 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if ((from_a.known == n && from_a.visible == 0) || (to_b.known == n && to_b.visible == 0))
     return {a, b};
 
-  // The answer is a shortest path through the graph of corners (its length is the one a full
-  // Dijkstra search over the whole graph gives, written out in
-  // tests/geometry/visibility_search_test.cpp). A shortest path bends only round its corners
-  // (taut()), so the search goes on from a node only along such legs: at the nearly flat corners
-  // of a traced outline, a narrow fan of them. Between paths of equal length (up to rounding) it
-  // may pick another than the full search. A* finds it while settling only the nodes towards b,
-  // and testing only the legs it takes:
-  // - Candidates are taken in order of f = g + h, h = (1 - 1e-6) |node b|: a predecessor u of v on
-  //   a shortest path is then settled strictly before v (h(u) <= (1 - 1e-6) w(u, v) + h(v): f
-  //   grows by at least 1e-6 w(u, v) along an edge, far above rounding), and every candidate for
-  //   v of that length is in the queue before v's first is taken.
-  // - A candidate is a leg to a node not yet settled: straight from a, or from a settled node u
-  //   (g = distance(u) + |u v|); its leg is tested when it is taken, and the first seen settles
-  //   the node. Of equal g, the straight leg comes first, then the one from the least (distance,
-  //   index): the node Dijkstra's search settled first, whose candidate it kept.
-  // - The way to b through node v is a candidate of f = distance(v) + |v b| (the sum the full
-  //   search compares), taken after nodes' candidates of equal f: once one b sees is taken, no
-  //   node still to settle can end lower (its f is a lower bound of its sum, and strictly above)
-  //   nor equal with a lower index (those come first, by index).
   constexpr double kShrink = 1 - 1e-6;
   thread_local std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
   thread_local std::vector<std::size_t> previous;  // n: straight from a
