@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "plan_command.hpp"
 #include "shell_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/control/ardupilot_json.hpp"
 #include "swath/control/config.hpp"
 #include "swath/control/logistic.hpp"
 #include "swath/control/mission.hpp"
@@ -92,6 +95,43 @@ void job_words(const std::string& text) {
 
 // MAVLink bytes from a link: the frames must not depend on how the bytes are split, every byte is
 // counted once, and each frame re-encodes to the bytes it came from and describes itself.
+// Every number in a JSON value finite (ArduPilot reads them as doubles; "nan" is not JSON).
+bool all_finite(const nlohmann::json& j) {
+  if (j.is_number()) return std::isfinite(j.get<double>());
+  if (j.is_array() || j.is_object())
+    for (const auto& v : j)
+      if (!all_finite(v)) return false;
+  return true;
+}
+
+// Datagrams as swath-control ardupilot-json gets them over UDP (docs/swath-control.md): each a
+// length byte and that many bytes, handled in turn by one server. Every answer is one JSON line
+// as SIM_JSON.cpp reads it ("\n" first and last, an object of finite numbers); a datagram that
+// is not a servo packet gets none and is counted.
+void ardupilot_packets(const std::string& text) {
+  static const control::ArduPilotJsonSettings settings;
+  control::ArduPilotJsonServer server(settings);
+  long long answered = 0, refused = 0;
+  for (std::size_t at = 0; at < text.size() && answered + refused < 64;) {
+    const std::size_t size =
+        std::min<std::size_t>(static_cast<unsigned char>(text[at]), text.size() - at - 1);
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data() + at + 1);
+    at += size + 1;
+    const std::optional<std::string> reply = server.handle(bytes, size);
+    if (!reply) {
+      ++refused;
+      continue;
+    }
+    ++answered;
+    if (reply->size() < 2 || reply->front() != '\n' || reply->back() != '\n') std::abort();
+    const std::string line = reply->substr(1, reply->size() - 2);
+    if (line.find('\n') != std::string::npos) std::abort();
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !all_finite(j)) std::abort();
+  }
+  if (server.bad_packets() != refused) std::abort();
+}
+
 void mavlink_frames(const std::string& text) {
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data());
   mavlink::FrameParser whole, pieces;
@@ -314,6 +354,10 @@ std::vector<Target> control_and_link_targets() {
        },
        {"tests/bad-input/seeds/trigger-data.csv"}},
       // MAVLink from a link (docs/swath-fleet.md): the frame parser and every message's decoder.
+      // ArduPilot's servo packets to the JSON physics server (docs/swath-control.md).
+      {"ardupilot_packets",
+       [](const std::string& t) { ardupilot_packets(t); },
+       {"tests/bad-input/seeds/ardupilot-servo.bin"}},
       {"mavlink_frames",
        [](const std::string& t) { mavlink_frames(t); },
        {"tests/bad-input/seeds/mavlink-frames.bin"}},

@@ -6,6 +6,7 @@
 // at the thrust that carries m g, and the signs of FRD rates for torques of known direction.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
+
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/time.h>
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <sstream>
 #include <vector>
 
@@ -177,6 +179,35 @@ TEST(ArduPilotJson, BadPacketsAreCountedAndIgnored) {
   send(server, 1, pwm);
   EXPECT_EQ(server.frames_served(), 1);
   EXPECT_EQ(server.bad_packets(), 5);
+}
+
+// Packets with any frame rate (1 Hz: a second a step), any frame counts (resends, jumps back)
+// and any PWM (0 to 65535 µs, clamped to the ESC's range) keep the plant finite: every answer is
+// a line ArduPilot's parser reads, all its numbers finite, the clock never going back. Fixed seed.
+TEST(ArduPilotJson, RandomPacketsGetFiniteAnswers) {
+  std::mt19937_64 rng(50);
+  for (int flight = 0; flight < 20; ++flight) {
+    ArduPilotJsonServer server(quiet_quad());
+    double last_t = 0;
+    for (int k = 0; k < 60; ++k) {
+      std::vector<std::uint16_t> pwm(16);
+      for (auto& v : pwm)
+        v = static_cast<std::uint16_t>(rng() % 3 == 0 ? rng() : 1000 + rng() % 1001);
+      const auto rate = static_cast<std::uint16_t>(rng() % 4 == 0 ? 1 + rng() % 65535 : 400);
+      const auto frame = static_cast<std::uint32_t>(rng() % 5 == 0 ? rng() : k);
+      const std::string line = send(server, frame, pwm, rate);
+      const ParsedLine p = parse_like_ardupilot(line);
+      ASSERT_TRUE(p.ok) << "flight " << flight << ", packet " << k << ": " << line;
+      for (int a = 0; a < 3; ++a)
+        ASSERT_TRUE(std::isfinite(p.position[a]) && std::isfinite(p.velocity[a]) &&
+                    std::isfinite(p.attitude[a]) && std::isfinite(p.gyro[a]) &&
+                    std::isfinite(p.accel[a]))
+            << "flight " << flight << ", packet " << k << ": " << line;
+      ASSERT_GE(p.timestamp, last_t) << line;
+      ASSERT_GE(p.position[2], -1e5) << line;  // NED: not beyond 100 km up
+      last_t = p.timestamp;
+    }
+  }
 }
 
 TEST(ArduPilotJson, ResendIsAnsweredWithoutStepping) {
