@@ -53,6 +53,7 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   steps::fences(plan);
   steps::measures(plan);
   steps::checks(plan);
+  plan.routes.reset();  // their tables are large, and no caller routes again
   return plan;
 }
 

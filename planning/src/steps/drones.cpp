@@ -186,7 +186,7 @@ DivisionResult divide_by_lanes(const SurveyPlan& plan, const Routes& routes,
 void drones(SurveyPlan& plan) {
   name_drones(plan);
   const SurveyRequest& r = plan.request;
-  const Routes routes(plan);
+  const Routes& routes = routes_of(plan);
   // Hover photos are taken point by point: intermediate waypoints would only repeat them.
   const std::optional<double> spacing =
       r.triggering.mode == TriggerMode::hover ? std::nullopt : r.waypoint_spacing_m;

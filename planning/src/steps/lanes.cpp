@@ -1,6 +1,7 @@
 // Step 4 of plan_survey(): the lines (survey_steps.hpp), and the routes the steps share.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -184,7 +185,12 @@ Routes::Routes(const SurveyPlan& plan)
              in_cells(plan) ? geometry::Routing::routed : geometry::Routing::measure_only,
              kCornerAllowance_m),
       open(open_rings(plan), geometry::Routing::routed, kCornerAllowance_m),
-      no_fly_(&plan.no_fly) {}
+      no_fly_(plan.no_fly) {}
+
+const Routes& routes_of(SurveyPlan& plan) {
+  if (!plan.routes) plan.routes = std::make_shared<const Routes>(plan);
+  return *plan.routes;
+}
 
 LegRoute Routes::leg() const {
   return [this](Point2 a, Point2 b) {
@@ -206,8 +212,8 @@ std::vector<Point2> Routes::around(Point2 a, Point2 b) const {
   std::vector<Point2> path = open.path(a, b);
   // No way round (an end within a zone's clearance band, or shut in by zones): a straight leg
   // may not enter a zone itself.
-  if (path.size() == 2 && !open.visible(a, b) && !no_fly_->empty() &&
-      geometry::least_distance({a, b}, *no_fly_) <= 0)
+  if (path.size() == 2 && !open.visible(a, b) && !no_fly_.empty() &&
+      geometry::least_distance({a, b}, no_fly_) <= 0)
     throw InputError("the leg from (" + base::fixed_text(a.x, 1) + ", " + base::fixed_text(a.y, 1) +
                      ") to (" + base::fixed_text(b.x, 1) + ", " + base::fixed_text(b.y, 1) +
                      ") m (east, north of the area's frame) finds no way round the no-fly zones "
@@ -220,7 +226,7 @@ InsideTest Routes::inside_test() const {
 }
 
 void lanes(SurveyPlan& plan) {
-  const Routes routes(plan);
+  const Routes& routes = routes_of(plan);
   std::optional<double> fixed;
   if (plan.request.angle_search == AngleSearch::fixed || !in_cells(plan))
     fixed = plan.direction.angle_deg;

@@ -173,7 +173,7 @@ void check_counts(const SurveyPlan& plan) {
 }
 
 void missions(SurveyPlan& plan) {
-  const Routes routes(plan);
+  const Routes& routes = routes_of(plan);
   const InsideTest inside = routes.inside_test();
   for (DronePlan& d : plan.drones) {
     d.mission = mission_for_path(d.number, d.home, d.work.path, mission_settings(plan, d),

@@ -68,7 +68,7 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d, doub
 
 void sorties(SurveyPlan& plan) {
   if (!plan.request.sorties) return;
-  const Routes routes(plan);
+  const Routes& routes = routes_of(plan);
   const InsideTest inside = [&routes](geometry::Point2 a, geometry::Point2 b) {
     return routes.inside.visible(a, b);
   };

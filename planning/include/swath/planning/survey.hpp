@@ -4,6 +4,7 @@
 // measures. Each step lives in its own file pair (survey_area, imaging, direction, lanes, drones,
 // mission, sorties, photos, clearance, checks); this header holds only the data they share.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -188,6 +189,10 @@ struct ClearanceMeasure {
   double boundary_outside_m = 0.0;  ///< line length outside the outer boundary (--outside-margin)
 };
 
+namespace steps {
+struct Routes;
+}
+
 struct SurveyPlan {
   SurveyRequest request;
   geometry::AreaFacts facts;     ///< of the area as given, no-fly zones included as holes
@@ -242,6 +247,10 @@ struct SurveyPlan {
   ClearanceMeasure clearance;
   std::optional<TerrainFacts> terrain;  ///< with SurveyRequest::terrain
   std::vector<std::string> warnings;    ///< one sentence each
+  /// The routers the steps share (steps::routes_of): built once, by the first step that routes,
+  /// from what the steps before `lanes` settle (planning rings, zones, homes); plan_survey drops
+  /// them when the plan is done.
+  std::shared_ptr<const steps::Routes> routes;
 };
 
 /// What the coverage of a plan is measured over: the area, and the extra pieces (--repair's, or

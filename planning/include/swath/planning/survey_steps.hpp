@@ -84,8 +84,12 @@ struct Routes {
   /// The path around the zones in the open, its inner points; refused (InputError) where there is
   /// none and the straight leg would cross a zone.
   std::vector<geometry::Point2> around(geometry::Point2 a, geometry::Point2 b) const;
-  const std::vector<geometry::Ring>* no_fly_;
+  std::vector<geometry::Ring> no_fly_;  // a copy: the routes may outlive a copy of the plan
 };
+
+/// The plan's shared routes, built on first use. Each router's pre-processing (its visibility
+/// tables, the open's grown zones) is the same for every step, so it is done once a plan.
+const Routes& routes_of(SurveyPlan& plan);
 
 /// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
 MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone);
