@@ -116,6 +116,91 @@ std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains
   return merged;
 }
 
+std::logic_error inconsistent_sweep() {
+  return std::logic_error("boustrophedon_cells: inconsistent sweep (crossing rings?)");
+}
+
+// signed_area() of the ring up the right chain and down the left, without building it: the same
+// terms in the same order, so the same value (a ring copied per closed cell was ~40,000
+// allocations a plan on traced outlines).
+double chains_area(const std::vector<Point2>& left, const std::vector<Point2>& right) {
+  const std::size_t n_right = right.size(), n = n_right + left.size();
+  if (n < 3) return 0.0;
+  const auto at = [&](std::size_t i) { return i < n_right ? right[i] : left[n - 1 - i]; };
+  const Point2 o = at(0);
+  double twice = 0.0;
+  for (std::size_t i = 1; i + 1 < n; ++i) twice += cross(at(i) - o, at(i + 1) - o);
+  return twice / 2.0;
+}
+
+// Pieces between two events at one ordinate (an edge along the lanes) have no area. The chains
+// are moved, not copied: every closed cell is reopened or shut next.
+void close_piece(OpenCell& c, std::vector<Chains>& pieces) {
+  if (chains_area(c.left_chain, c.right_chain) > 0)
+    pieces.push_back({std::move(c.left_chain), std::move(c.right_chain)});
+}
+
+// The cells the sweep line crosses, left to right. A cell stays in one slot while open and each
+// edge knows the cell it bounds, so that a regular vertex (most of a traced outline's) finds its
+// cell at once; a scan of the open cells for each was a third of the decomposition's instructions.
+struct CellSweep {
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  explicit CellSweep(std::size_t edges) : right_of_edge(edges, kNone), left_of_edge(edges, kNone) {}
+
+  std::vector<OpenCell> cell;                            // slots, reused once shut
+  std::vector<std::size_t> order;                        // the open cells' slots, left to right
+  std::vector<std::size_t> right_of_edge, left_of_edge;  // the open cell an edge bounds
+  std::vector<std::size_t> free;
+
+  std::size_t right_cell(std::size_t edge) const { return found(right_of_edge[edge]); }
+  std::size_t left_cell(std::size_t edge) const { return found(left_of_edge[edge]); }
+  std::size_t position(std::size_t c) const {
+    return static_cast<std::size_t>(std::find(order.begin(), order.end(), c) - order.begin());
+  }
+  void open(std::size_t pos, std::size_t left_edge, std::size_t right_edge,
+            std::vector<Point2> left, std::vector<Point2> right) {
+    std::size_t c = cell.size();
+    if (free.empty()) {
+      cell.push_back({});
+    } else {
+      c = free.back();
+      free.pop_back();
+    }
+    cell[c] = OpenCell{left_edge, right_edge, std::move(left), std::move(right)};
+    left_of_edge[left_edge] = right_of_edge[right_edge] = c;
+    order.insert(order.begin() + static_cast<std::ptrdiff_t>(pos), c);
+  }
+  void reopen(std::size_t c, std::size_t left_edge, std::size_t right_edge, Point2 left,
+              Point2 right) {
+    unlink(c);
+    cell[c] = OpenCell{left_edge, right_edge, {left}, {right}};
+    left_of_edge[left_edge] = right_of_edge[right_edge] = c;
+  }
+  void shut(std::size_t c) {
+    unlink(c);
+    order.erase(order.begin() + static_cast<std::ptrdiff_t>(position(c)));
+    free.push_back(c);
+  }
+  void set_right(std::size_t c, std::size_t edge) {
+    right_of_edge[cell[c].right_edge] = kNone;
+    right_of_edge[cell[c].right_edge = edge] = c;
+  }
+  void set_left(std::size_t c, std::size_t edge) {
+    left_of_edge[cell[c].left_edge] = kNone;
+    left_of_edge[cell[c].left_edge = edge] = c;
+  }
+
+ private:
+  static std::size_t found(std::size_t c) {
+    if (c == kNone) throw inconsistent_sweep();
+    return c;
+  }
+  void unlink(std::size_t c) {
+    if (left_of_edge[cell[c].left_edge] == c) left_of_edge[cell[c].left_edge] = kNone;
+    if (right_of_edge[cell[c].right_edge] == c) right_of_edge[cell[c].right_edge] = kNone;
+  }
+};
+
 // A ring from chains (right chain up, left chain down), cleaned and rotated back; empty if no area.
 Ring chains_ring(const std::vector<Point2>& left, const std::vector<Point2>& right,
                  double angle_deg) {
@@ -194,23 +279,8 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   sort_by_runs(
       vertices, [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); }, false);
 
-  std::vector<OpenCell> open;
   std::vector<Chains> pieces;
-  auto close = [&](OpenCell& c) {
-    // Pieces between two events at one ordinate (an edge along the lanes) have no area.
-    Ring ring = c.right_chain;
-    ring.insert(ring.end(), c.left_chain.rbegin(), c.left_chain.rend());
-    // Moved, not copied: every closed cell is overwritten or erased next.
-    if (signed_area(ring) > 0)
-      pieces.push_back({std::move(c.left_chain), std::move(c.right_chain)});
-  };
-  auto find = [&](auto pred) {
-    const auto it = std::find_if(open.begin(), open.end(), pred);
-    if (it == open.end())
-      throw std::logic_error("boustrophedon_cells: inconsistent sweep (crossing rings?)");
-    return it;
-  };
-
+  CellSweep sweep(edges.size());
   for (const Vertex& v : vertices) {
     const Ring& ring = rings[v.ring];
     const std::size_t n = ring.size();
@@ -223,52 +293,60 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
 
     if (!p_below && !q_below) {
       if (convex) {  // start: p -> v runs down (a left side), v -> q up (a right side)
-        auto pos = open.begin();
-        while (pos != open.end() && right_of(edges[pos->right_edge], v.p)) ++pos;
-        open.insert(pos, OpenCell{e_in, e_out, {v.p}, {v.p}});
+        std::size_t pos = 0;
+        while (pos < sweep.order.size() &&
+               right_of(edges[sweep.cell[sweep.order[pos]].right_edge], v.p))
+          ++pos;
+        sweep.open(pos, e_in, e_out, {v.p}, {v.p});
       } else {  // split: v inside a cell; the notch above v separates two new cells
-        auto c = find([&](const OpenCell& o) {
-          return right_of(edges[o.left_edge], v.p) && !right_of(edges[o.right_edge], v.p);
-        });
-        const Point2 l{x_at(edges[c->left_edge], y), y}, r{x_at(edges[c->right_edge], y), y};
-        c->left_chain.push_back(l);
-        c->right_chain.push_back(r);
-        const std::size_t left_edge = c->left_edge, right_edge = c->right_edge;
-        close(*c);
-        *c = OpenCell{left_edge, e_out, {l}, {v.p}};
-        open.insert(c + 1, OpenCell{e_in, right_edge, {v.p}, {r}});
+        std::size_t pos = 0;
+        while (pos < sweep.order.size() &&
+               !(right_of(edges[sweep.cell[sweep.order[pos]].left_edge], v.p) &&
+                 !right_of(edges[sweep.cell[sweep.order[pos]].right_edge], v.p)))
+          ++pos;
+        if (pos == sweep.order.size()) throw inconsistent_sweep();
+        const std::size_t c = sweep.order[pos];
+        const std::size_t left_edge = sweep.cell[c].left_edge,
+                          right_edge = sweep.cell[c].right_edge;
+        const Point2 l{x_at(edges[left_edge], y), y}, r{x_at(edges[right_edge], y), y};
+        sweep.cell[c].left_chain.push_back(l);
+        sweep.cell[c].right_chain.push_back(r);
+        close_piece(sweep.cell[c], pieces);
+        sweep.reopen(c, left_edge, e_out, l, v.p);
+        sweep.open(pos + 1, e_in, right_edge, {v.p}, {r});
       }
     } else if (p_below && q_below) {
+      const std::size_t a = sweep.right_cell(e_in);
       if (convex) {  // end: the cell whose right side is p -> v closes at v
-        auto c = find([&](const OpenCell& o) { return o.right_edge == e_in; });
-        c->left_chain.push_back(v.p);
-        c->right_chain.push_back(v.p);
-        close(*c);
-        open.erase(c);
+        sweep.cell[a].left_chain.push_back(v.p);
+        sweep.cell[a].right_chain.push_back(v.p);
+        close_piece(sweep.cell[a], pieces);
+        sweep.shut(a);
       } else {  // merge: the cells left and right of v close; one cell continues above
-        auto a = find([&](const OpenCell& o) { return o.right_edge == e_in; });
-        auto b = a + 1;
-        if (b == open.end() || b->left_edge != e_out)
+        const std::size_t pos = sweep.position(a);
+        if (pos + 1 == sweep.order.size() || sweep.cell[sweep.order[pos + 1]].left_edge != e_out)
           throw std::logic_error("boustrophedon_cells: bad merge");
-        const Point2 l{x_at(edges[a->left_edge], y), y}, r{x_at(edges[b->right_edge], y), y};
-        a->left_chain.push_back(l);
-        a->right_chain.push_back(v.p);
-        b->left_chain.push_back(v.p);
-        b->right_chain.push_back(r);
-        const std::size_t left_edge = a->left_edge, right_edge = b->right_edge;
-        close(*a);
-        close(*b);
-        *a = OpenCell{left_edge, right_edge, {l}, {r}};
-        open.erase(b);
+        const std::size_t b = sweep.order[pos + 1];
+        const std::size_t left_edge = sweep.cell[a].left_edge,
+                          right_edge = sweep.cell[b].right_edge;
+        const Point2 l{x_at(edges[left_edge], y), y}, r{x_at(edges[right_edge], y), y};
+        sweep.cell[a].left_chain.push_back(l);
+        sweep.cell[a].right_chain.push_back(v.p);
+        sweep.cell[b].left_chain.push_back(v.p);
+        sweep.cell[b].right_chain.push_back(r);
+        close_piece(sweep.cell[a], pieces);
+        close_piece(sweep.cell[b], pieces);
+        sweep.shut(b);
+        sweep.reopen(a, left_edge, right_edge, l, r);
       }
     } else if (p_below) {  // regular on a right side: p -> v -> q both run up
-      auto c = find([&](const OpenCell& o) { return o.right_edge == e_in; });
-      c->right_chain.push_back(v.p);
-      c->right_edge = e_out;
+      const std::size_t c = sweep.right_cell(e_in);
+      sweep.cell[c].right_chain.push_back(v.p);
+      sweep.set_right(c, e_out);
     } else {  // regular on a left side: p -> v -> q both run down
-      auto c = find([&](const OpenCell& o) { return o.left_edge == e_out; });
-      c->left_chain.push_back(v.p);
-      c->left_edge = e_in;
+      const std::size_t c = sweep.left_cell(e_out);
+      sweep.cell[c].left_chain.push_back(v.p);
+      sweep.set_left(c, e_in);
     }
   }
 
