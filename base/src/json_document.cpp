@@ -1,7 +1,7 @@
 #include "swath/base/json_document.hpp"
 
 #include <cmath>
-#include <set>
+#include <utility>
 #include <vector>
 
 #include "swath/base/file_text.hpp"
@@ -13,39 +13,83 @@ using nlohmann::json;
 
 namespace {
 
-// A key repeated in one object, found by a SAX pass: one set of keys per open object. (Not
-// nlohmann's parser callback: its DOM builder then scans the enclosing container at every
-// object's end, quadratic in an array's length — a 93,000-item .plan took 22 s to read.)
-class RepeatedKeyFinder : public nlohmann::json_sax<json> {
+// nlohmann's DOM builder (json_sax_dom_parser) that also notes the first key repeated in one
+// object, found as the member is made: one pass over the text. (A second SAX pass with a set of
+// keys per object cost as much as the parse itself; nlohmann's parser callback was worse: its DOM
+// builder then scans the enclosing container at every object's end, quadratic in an array's
+// length — a 93,000-item .plan took 22 s to read.)
+class StrictDomBuilder {
  public:
+  using number_integer_t = json::number_integer_t;
+  using number_unsigned_t = json::number_unsigned_t;
+  using number_float_t = json::number_float_t;
+  using string_t = json::string_t;
+  using binary_t = json::binary_t;
+
+  explicit StrictDomBuilder(json& root) : root_(root) {}
   const std::string& repeated() const { return repeated_; }
-  bool null() override { return true; }
-  bool boolean(bool) override { return true; }
-  bool number_integer(number_integer_t) override { return true; }
-  bool number_unsigned(number_unsigned_t) override { return true; }
-  bool number_float(number_float_t, const string_t&) override { return true; }
-  bool string(string_t&) override { return true; }
-  bool binary(binary_t&) override { return true; }
-  bool start_object(std::size_t) override {
-    open_objects_.emplace_back();
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool v) { return add(v); }
+  bool number_integer(number_integer_t v) { return add(v); }
+  bool number_unsigned(number_unsigned_t v) { return add(v); }
+  bool number_float(number_float_t v, const string_t&) { return add(v); }
+  // The lexer clears its token before reading the next: its text can be moved.
+  bool string(string_t& v) { return add(std::move(v)); }
+  bool binary(binary_t&) { return true; }  // not in JSON text
+  bool start_object(std::size_t) {
+    open_.push_back(place(json::value_t::object));
     return true;
   }
-  bool key(string_t& key) override {
-    if (!open_objects_.back().insert(key).second && repeated_.empty()) repeated_ = key;
+  bool key(string_t& k) {
+    auto& members = open_.back()->get_ref<json::object_t&>();
+    const auto [it, added] = members.try_emplace(std::move(k));
+    if (!added && repeated_.empty()) repeated_ = it->first;
+    member_ = &it->second;
     return true;
   }
-  bool end_object() override {
-    open_objects_.pop_back();
+  bool end_object() {
+    open_.pop_back();
     return true;
   }
-  bool start_array(std::size_t) override { return true; }
-  bool end_array() override { return true; }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-    return false;  // json::parse has already read the same text without error
+  bool start_array(std::size_t) {
+    open_.push_back(place(json::value_t::array));
+    return true;
+  }
+  bool end_array() {
+    open_.pop_back();
+    return true;
+  }
+  // The exception as json::parse throws it (its own type: a syntax error, or 1e999's range).
+  template <class Exception>
+  bool parse_error(std::size_t, const std::string&, const Exception& e) {
+    throw e;
   }
 
  private:
-  std::vector<std::set<std::string>> open_objects_;
+  template <typename Value>
+  bool add(Value&& v) {
+    place(std::forward<Value>(v));
+    return true;
+  }
+  template <typename Value>
+  json* place(Value&& v) {
+    if (open_.empty()) {
+      root_ = json(std::forward<Value>(v));
+      return &root_;
+    }
+    if (open_.back()->is_array()) {
+      auto& items = open_.back()->get_ref<json::array_t&>();
+      items.emplace_back(std::forward<Value>(v));
+      return &items.back();
+    }
+    *member_ = json(std::forward<Value>(v));
+    return member_;
+  }
+
+  json& root_;
+  std::vector<json*> open_;  // the open arrays and objects, outermost first
+  json* member_ = nullptr;   // the object member whose key was read last
   std::string repeated_;
 };
 
@@ -53,8 +97,9 @@ class RepeatedKeyFinder : public nlohmann::json_sax<json> {
 
 nlohmann::json parse_json_document(const std::string& text, const std::string& source) {
   json root;
+  StrictDomBuilder builder(root);
   try {
-    root = json::parse(text);
+    json::sax_parse(text, &builder);
   } catch (const json::parse_error& e) {
     const auto [line, column] = line_column(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string reason = e.what();
@@ -72,10 +117,9 @@ nlohmann::json parse_json_document(const std::string& text, const std::string& s
     throw InputError(source + ": invalid JSON (" +
                      (bracket == std::string::npos ? reason : reason.substr(bracket + 2)) + ")");
   }
-  RepeatedKeyFinder keys;
-  json::sax_parse(text, &keys);
-  if (!keys.repeated().empty())
-    throw InputError(source + ": the key \"" + keys.repeated() +
+  // Only a document without syntax errors is refused for a repeated key.
+  if (!builder.repeated().empty())
+    throw InputError(source + ": the key \"" + builder.repeated() +
                      "\" appears twice in one object; which one holds is ambiguous");
   return root;
 }
