@@ -105,7 +105,10 @@ bool is_fence_file(const std::string& name) {
 }  // namespace
 
 Report verify_files(const Files& files, const CheckOptions& options) {
-  std::map<std::string, std::string> by_name(files.begin(), files.end());
+  // Each name's text where the set holds it (the first of a name given twice): not a copy of
+  // every file (a plan's photos.geojson is megabytes).
+  std::map<std::string, const std::string*> by_name;
+  for (const auto& [name, text] : files) by_name.try_emplace(name, &text);
   std::vector<std::string> drones;  // file names, in the set's order
   bool any_plan = false;
   for (const auto& [name, text] : files)
@@ -124,7 +127,7 @@ Report verify_files(const Files& files, const CheckOptions& options) {
   std::vector<DroneFile> set;
   std::vector<std::pair<std::size_t, missions::Mission>> twins;
   for (const std::string& name : drones) {
-    DroneFile d{missions::parse_mission(by_name[name], name), 0.0, ""};
+    DroneFile d{missions::parse_mission(*by_name.at(name), name), 0.0, ""};
     for (const auto& [fence_name, text] : files)
       if (is_fence_file(fence_name)) missions::add_wpl_fences(d.mission, text, fence_name);
     const std::string base_name = name.substr(name.find_last_of('/') + 1);
@@ -137,7 +140,7 @@ Report verify_files(const Files& files, const CheckOptions& options) {
       const std::string dir_stem = stem_of(name, ".plan");
       for (const char* tail : {".waypoints", "-litchi.csv", "-survey.plan", ".kmz"})
         if (const auto t = by_name.find(dir_stem + tail); t != by_name.end())
-          twins.push_back({set.size(), missions::parse_mission(t->second, t->first)});
+          twins.push_back({set.size(), missions::parse_mission(*t->second, t->first)});
     }
     set.push_back(std::move(d));
   }
