@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <utility>
 
@@ -58,12 +59,15 @@ struct Chains {
 };
 
 // Kuhn's augmenting paths: can `lower` be matched to an upper cell (possibly re-matching others)?
+// `seen[u] == stamp`: u was looked at in this search (a stamp per search, not a cleared array:
+// that was quadratic in the pieces).
 bool augment(std::size_t lower, const std::vector<std::vector<std::size_t>>& above,
-             std::vector<long>& upper_of, std::vector<char>& seen) {
+             std::vector<long>& upper_of, std::vector<std::size_t>& seen, std::size_t stamp) {
   for (const std::size_t u : above[lower]) {
-    if (seen[u]) continue;
-    seen[u] = 1;
-    if (upper_of[u] < 0 || augment(static_cast<std::size_t>(upper_of[u]), above, upper_of, seen)) {
+    if (seen[u] == stamp) continue;
+    seen[u] = stamp;
+    if (upper_of[u] < 0 ||
+        augment(static_cast<std::size_t>(upper_of[u]), above, upper_of, seen, stamp)) {
       upper_of[u] = static_cast<long>(lower);
       return true;
     }
@@ -97,10 +101,9 @@ std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains
     for (const auto& c : candidates) above[a].push_back(c.second);
   }
   std::vector<long> lower_of(n, -1);  // upper cell -> the cell below it in its chain
-  std::vector<char> seen(n);
+  std::vector<std::size_t> seen(n, 0);
   for (std::size_t a = 0; a < n; ++a) {
-    std::fill(seen.begin(), seen.end(), 0);
-    augment(a, above, lower_of, seen);
+    augment(a, above, lower_of, seen, a + 1);
   }
   std::vector<long> upper_of(n, -1);
   for (std::size_t b = 0; b < n; ++b)
@@ -201,21 +204,23 @@ struct CellSweep {
   }
 };
 
-// A ring from chains (right chain up, left chain down), cleaned and rotated back; empty if no area.
-Ring chains_ring(const std::vector<Point2>& left, const std::vector<Point2>& right,
-                 double angle_deg) {
-  // Up the right chain, down the left, repeats dropped (taken in place: a 10,000-vertex outline
-  // makes ~10^5 chain points a direction).
+// A ring from a chain of pieces (up their right chains, bottom piece first, down their left
+// chains), cleaned and rotated back by `back`; empty if no area. Read in place: a 10,000-vertex
+// outline makes ~10^5 chain points a direction, and a cell's chains joined first were a copy more.
+Ring chains_ring(const std::vector<Chains>& pieces, std::span<const std::size_t> chain, Turn back) {
+  std::size_t points = 0;
+  for (const std::size_t k : chain) points += pieces[k].right.size() + pieces[k].left.size();
   Ring clean;
-  clean.reserve(right.size() + left.size());
+  clean.reserve(points);
   const auto add = [&clean](const Point2& p) {
     if (clean.empty() || !(clean.back() == p)) clean.push_back(p);
   };
-  for (const Point2& p : right) add(p);
-  for (auto p = left.rbegin(); p != left.rend(); ++p) add(*p);
+  for (const std::size_t k : chain)
+    for (const Point2& p : pieces[k].right) add(p);
+  for (auto k = chain.rbegin(); k != chain.rend(); ++k)
+    for (auto p = pieces[*k].left.rbegin(); p != pieces[*k].left.rend(); ++p) add(*p);
   while (clean.size() > 1 && clean.back() == clean.front()) clean.pop_back();
   if (clean.size() < 3 || signed_area(clean) <= 0) return {};
-  const Turn back = turn_by(angle_deg);
   for (Point2& p : clean) p = rotated(p, back);
   return clean;
 }
@@ -351,15 +356,12 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   }
 
   Decomposition d;
-  for (const Chains& piece : pieces)
-    d.pieces.push_back(chains_ring(piece.left, piece.right, angle_deg));
+  const Turn back = turn_by(angle_deg);
+  d.pieces.reserve(pieces.size());
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    d.pieces.push_back(chains_ring(pieces, std::span<const std::size_t>(&k, 1), back));
   for (const std::vector<std::size_t>& chain : merge_across_cuts(pieces)) {
-    Chains joined;
-    for (const std::size_t k : chain) {
-      joined.left.insert(joined.left.end(), pieces[k].left.begin(), pieces[k].left.end());
-      joined.right.insert(joined.right.end(), pieces[k].right.begin(), pieces[k].right.end());
-    }
-    Ring ring = chains_ring(joined.left, joined.right, angle_deg);
+    Ring ring = chains_ring(pieces, chain, back);
     if (ring.empty()) continue;
     d.cells.push_back(chain);
     d.cell_rings.push_back(std::move(ring));
