@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <utility>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -188,7 +189,7 @@ std::string mission_geojson(const PlanFeatures& f) {
   ordered_json features = ordered_json::array();
   ordered_json rings = ordered_json::array();
   for (const GeoRing& ring : f.area) rings.push_back(ring_json(ring));
-  features.push_back(feature({{"role", "area"}}, "Polygon", rings));
+  features.push_back(feature({{"role", "area"}}, "Polygon", std::move(rings)));
   for (std::size_t k = 0; k < f.area_pieces.size(); ++k)  // --repair: the other enclosed areas
     features.push_back(
         feature({{"role", "area"}, {"piece", k + 1}}, "Polygon", one_ring(f.area_pieces[k])));
@@ -207,7 +208,7 @@ std::string mission_geojson(const PlanFeatures& f) {
                                 {"name", p.name},
                                 {"altitude_m", p.altitude_m},
                                 {"speed_m_s", p.speed_m_s}},
-                               "LineString", points));
+                               "LineString", std::move(points)));
     for (const PlanFeatures::Sweep& s : f.sweeps)
       if (s.drone == p.drone)
         features.push_back(feature({{"role", "sweep"},
@@ -220,8 +221,11 @@ std::string mission_geojson(const PlanFeatures& f) {
   for (const PlanFeatures::DroneHome& h : f.drone_homes)
     features.push_back(
         feature({{"role", "home"}, {"drone", h.drone}}, "Point", position_json(h.at)));
-  return base::json_text(ordered_json{{"type", "FeatureCollection"}, {"features", features}}, 1) +
-         "\n";
+  // Moved in, not copied (a braced list copies: the whole collection twice).
+  ordered_json collection = ordered_json::object();
+  collection["type"] = "FeatureCollection";
+  collection["features"] = std::move(features);
+  return base::json_text(collection, 1) + "\n";
 }
 
 PlanFeatures parse_mission_geojson(const std::string& text, const std::string& source) {
