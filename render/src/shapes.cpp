@@ -38,17 +38,49 @@ Ring band(Point2 a, Point2 b, double width_px) {
   return positive({a + n, b + n, b - n, a - n});
 }
 
-std::vector<Ring> stroke(const std::vector<Point2>& points, double width_px) {
-  std::vector<Ring> rings;
-  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-    Ring quad = band(points[i], points[i + 1], width_px);
-    if (!quad.empty()) rings.push_back(std::move(quad));
+namespace {
+
+// What a round join adds to the two segments' quads at p: the wedge on the outer side of the turn
+// from direction u1 to u2 (unit vectors), its arc within 0.05 px of the circle. The inner side is
+// already covered where the quads overlap.
+Ring join_wedge(Point2 p, Point2 u1, Point2 u2, double radius_px) {
+  const double turn = geometry::cross(u1, u2);
+  const double angle = std::acos(std::clamp(geometry::dot(u1, u2), -1.0, 1.0));
+  if (angle < 1e-9) return {};
+  const double side = turn > 0 ? -1 : 1, sweep = turn > 0 ? angle : -angle;
+  const double step = radius_px <= 0.05 ? std::numbers::pi : 2 * std::acos(1 - 0.05 / radius_px);
+  const int pieces = std::max(1, static_cast<int>(std::ceil(angle / step)));
+  const double start = std::atan2(side * u1.x, side * -u1.y);  // the angle of side * n1
+  Ring wedge{p};
+  for (int k = 0; k <= pieces; ++k) {
+    const double t = start + sweep * k / pieces;
+    wedge.push_back({p.x + radius_px * std::cos(t), p.y + radius_px * std::sin(t)});
   }
+  return positive(std::move(wedge));
+}
+
+Point2 unit(Point2 d) {
+  return d * (1 / std::sqrt(geometry::dot(d, d)));
+}
+
+}  // namespace
+
+std::vector<Ring> stroke(const std::vector<Point2>& points, double width_px) {
+  // Consecutive repeats dropped: a zero-length segment has no direction.
+  std::vector<Point2> line;
+  for (const Point2& p : points)
+    if (line.empty() || !(p == line.back())) line.push_back(p);
+  std::vector<Ring> rings;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i)
+    rings.push_back(band(line[i], line[i + 1], width_px));
   // Round joins; flat ends, so that a bar is as long as it claims.
-  if (points.size() < 2) return rings;
-  for (std::size_t i = 1; i + 1 < points.size(); ++i)
-    rings.push_back(disc(points[i], width_px / 2));
-  if (points.front() == points.back()) rings.push_back(disc(points.front(), width_px / 2));
+  const auto join = [&](Point2 before, Point2 at, Point2 after) {
+    Ring wedge = join_wedge(at, unit(at - before), unit(after - at), width_px / 2);
+    if (!wedge.empty()) rings.push_back(std::move(wedge));
+  };
+  for (std::size_t i = 1; i + 1 < line.size(); ++i) join(line[i - 1], line[i], line[i + 1]);
+  if (line.size() > 3 && line.front() == line.back())
+    join(line[line.size() - 2], line.front(), line[1]);
   return rings;
 }
 

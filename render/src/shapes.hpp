@@ -18,8 +18,9 @@ Ring positive(Ring ring);
 /// A circle as a polygon whose edges stray at most 0.01 px inside it.
 Ring disc(geometry::Point2 centre, double radius_px);
 
-/// A line `width_px` wide along `points`: one quad per segment, flat ends, a disc at every interior
-/// vertex (round joins) and where the line closes on itself.
+/// A line `width_px` wide along `points`: one quad per segment, flat ends, round joins at every
+/// interior vertex and where the line closes on itself (the wedge outside the turn, its arc within
+/// 0.05 px of the circle).
 std::vector<Ring> stroke(const std::vector<geometry::Point2>& points, double width_px);
 
 /// Direction arrowheads (triangles `size_px` long and wide) about every `every_px` along the line,

@@ -3,6 +3,8 @@
 // of holes and unions.
 #include "coverage_rasterizer.hpp"
 
+#include "shapes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -234,6 +236,21 @@ TEST(CoverageRasterizer, ShapesPartlyOrWhollyOutsideTheImage) {
   // Wholly outside: nothing.
   const Ring away{{20, 1}, {30, 1}, {30, 5}};
   EXPECT_EQ(rasterize({away}, 8, 8, FillRule::even_odd).sum(), 0.0);
+}
+
+// A stroke is the union of its pieces: for a right-angle turn, the two bands (30 x 4 and 20 x 4
+// px) less the 2 x 2 square they share inside the turn, plus the quarter disc of the round join
+// outside it (its arc within 0.05 px: at most 0.05 px times the arc's length less). Both ways of
+// turning, both fill rules give the same.
+TEST(Stroke, ARightAngleTurnHasTheClosedFormArea) {
+  const double r = 2, quarter = std::numbers::pi * r * r / 4, arc = std::numbers::pi * r / 2;
+  for (const std::vector<Point2>& line : {std::vector<Point2>{{10, 10}, {40, 10}, {40, 30}},
+                                          {{10, 30}, {40, 30}, {40, 10}},
+                                          {{40, 30}, {40, 10}, {10, 10}}}) {
+    const double area = rasterize(stroke(line, 2 * r), 50, 40, FillRule::nonzero).sum();
+    EXPECT_LE(area, 30 * 4 + 20 * 4 - 4 + quarter + 1e-9);
+    EXPECT_GE(area, 30 * 4 + 20 * 4 - 4 + quarter - 0.05 * arc);
+  }
 }
 
 }  // namespace
