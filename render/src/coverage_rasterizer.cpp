@@ -106,58 +106,98 @@ void CoverageRasterizer::rasterize_row(int y, const std::vector<Piece>& unsorted
   if (first >= 0) sink(y, first, std::span<const float>(row_).subspan(first, last - first + 1));
 }
 
-int CoverageRasterizer::accumulate_cluster(std::span<const Piece> cluster, int winding_left,
-                                           FillRule rule, double row_top) const {
+namespace {
+
+// Beyond these a cluster is dense (a long series squeezed into a few pixels: its crossings grow
+// as the square of its pieces) and is sampled on kSampleLines lines instead (see the header).
+constexpr std::size_t kMaxCuts = 128;
+constexpr int kSampleLines = 64;
+
+}  // namespace
+
+std::vector<double> CoverageRasterizer::exact_cuts(std::span<const Piece> cluster,
+                                                   double row_top) const {
   std::vector<double> cuts{row_top, row_top + 1};
   for (const Piece& p : cluster)
     if (p.dir != 0) cuts.insert(cuts.end(), {p.y0, p.y1});
+  if (cuts.size() > kMaxCuts) return {};
   // Crossings: where two pieces swap their left-right order.
+  std::size_t pairs = 0;
+  const std::size_t max_pairs = 32 * cluster.size() + 1024;
   for (std::size_t a = 0; a < cluster.size(); ++a) {
     const Piece& pa = cluster[a];
     if (pa.dir == 0) continue;
     for (std::size_t b = a + 1; b < cluster.size() && cluster[b].x_min() <= pa.x_max(); ++b) {
       const Piece& pb = cluster[b];
       if (pb.dir == 0) continue;
+      if (++pairs > max_pairs) return {};
       const double lo = std::max(pa.y0, pb.y0), hi = std::min(pa.y1, pb.y1);
       if (hi <= lo) continue;
       const double d_lo = pa.x_at(lo) - pb.x_at(lo), d_hi = pa.x_at(hi) - pb.x_at(hi);
       if ((d_lo < 0 && d_hi > 0) || (d_lo > 0 && d_hi < 0)) {
         const double cut = lo + (hi - lo) * (d_lo / (d_lo - d_hi));
         if (cut > lo && cut < hi) cuts.push_back(cut);
+        if (cuts.size() > kMaxCuts) return {};
       }
     }
   }
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  return cuts;
+}
 
+int CoverageRasterizer::accumulate_cluster(std::span<const Piece> cluster, int winding_left,
+                                           FillRule rule, double row_top) const {
   const auto inside = [rule](int winding) {
     return rule == FillRule::even_odd ? (winding & 1) != 0 : winding != 0;
   };
-  struct AtMiddle {
+  struct AtLine {
     double x;
     const Piece* piece;
   };
-  std::vector<AtMiddle> crossing;
-  int winding_right = winding_left;
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double s0 = cuts[k], s1 = cuts[k + 1], middle = (s0 + s1) / 2;
+  std::vector<AtLine> crossing;
+  // The pieces that span [s0, s1], by their x at `at`, walked with the fill rule; each piece where
+  // the inside turns on or off adds the area right of its part from x(s0) to x(s1), height s1 - s0.
+  // Returns the winding right of them (that of `winding_left` when no piece spans the strip).
+  const auto walk = [&](double s0, double s1, double at, bool sampled) {
     crossing.clear();
-    for (const Piece& p : cluster)
-      if (p.dir != 0 && p.y0 <= s0 && p.y1 >= s1) crossing.push_back({p.x_at(middle), &p});
-    if (crossing.empty()) continue;
+    for (const Piece& p : cluster) {
+      if (p.dir == 0) continue;
+      if (sampled ? p.y0 <= at && at < p.y1 : p.y0 <= s0 && p.y1 >= s1)
+        crossing.push_back({p.x_at(at), &p});
+    }
     std::sort(crossing.begin(), crossing.end(),
-              [](const AtMiddle& a, const AtMiddle& b) { return a.x < b.x; });
-    // In this sub-strip no two pieces cross: the shape is the trapezoids between the pieces
-    // where the fill rule turns on and off.
+              [](const AtLine& a, const AtLine& b) { return a.x < b.x; });
     int winding = winding_left;
-    for (const AtMiddle& c : crossing) {
+    for (const AtLine& c : crossing) {
       const bool was_inside = inside(winding);
       winding += c.piece->dir;
       if (inside(winding) == was_inside) continue;
       const double height = was_inside ? -(s1 - s0) : s1 - s0;
-      accumulate_area_right(c.piece->x_at(s0), c.piece->x_at(s1), height);
+      if (sampled)  // the strip's width along its sample line
+        accumulate_area_right(c.x, c.x, height);
+      else
+        accumulate_area_right(c.piece->x_at(s0), c.piece->x_at(s1), height);
     }
-    winding_right = winding;
+    return winding;
+  };
+
+  int winding_right = winding_left;
+  const std::vector<double> cuts = exact_cuts(cluster, row_top);
+  if (cuts.empty()) {
+    for (int k = 0; k < kSampleLines; ++k) {
+      const double s0 = row_top + static_cast<double>(k) / kSampleLines;
+      const double s1 = row_top + static_cast<double>(k + 1) / kSampleLines;
+      const int w = walk(s0, s1, (s0 + s1) / 2, true);
+      if (!crossing.empty()) winding_right = w;
+    }
+    return winding_right;
+  }
+  // Between consecutive cuts no two pieces cross: the shape is the trapezoids between the pieces
+  // where the fill rule turns on and off.
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const int w = walk(cuts[k], cuts[k + 1], (cuts[k] + cuts[k + 1]) / 2, false);
+    if (!crossing.empty()) winding_right = w;
   }
   return winding_right;
 }
