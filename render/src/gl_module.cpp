@@ -23,11 +23,55 @@ using detail::FillRule;
 using detail::Ring;
 using geometry::Point2;
 
-// Fills one shape (rings under `rule`) with `color` onto the canvas.
+// Fills shapes onto the canvas in the order given. Opaque shapes of one colour that follow each
+// other are filled as one union (nonzero rule): the same picture, without the faint seams that
+// blending each one's edge coverage separately leaves where they abut (a row of 1 px ticks).
 class Painter {
  public:
   explicit Painter(Canvas& canvas)
       : canvas_(canvas), rasterizer_(canvas.width_px(), canvas.height_px()) {}
+
+  // Adds a shape (rings under the nonzero rule).
+  void add(std::vector<Ring> rings, const Color& color) {
+    if (!pending_.empty() && !(color.a >= 1 && same(color, pending_color_))) flush();
+    for (Ring& ring : rings) pending_.push_back(std::move(ring));
+    pending_color_ = color;
+    if (color.a < 1) flush();
+  }
+
+  // A filled polygon (even-odd) and its outline.
+  void polygon(const std::vector<Ring>& rings, const FilledPolygon& p) {
+    flush();
+    fill(rings, FillRule::even_odd, p.fill);
+    if (p.outline.a <= 0) return;
+    std::vector<Ring> outline;
+    for (Ring ring : rings) {
+      if (ring.empty()) continue;
+      ring.push_back(ring.front());
+      for (Ring& piece : detail::stroke(ring, p.outline_px)) outline.push_back(std::move(piece));
+    }
+    add(std::move(outline), p.outline);
+  }
+
+  // A line and its arrowheads: one shape, so that a translucent line is not darker where its
+  // pieces overlap.
+  void polyline(const std::vector<Point2>& points, const Polyline& l) {
+    std::vector<Ring> rings = detail::stroke(points, l.width_px);
+    if (l.arrow_every_px > 0)
+      for (Ring& head : detail::arrowheads(points, l.arrow_every_px, l.width_px * 4))
+        rings.push_back(std::move(head));
+    add(std::move(rings), l.color);
+  }
+
+  void flush() {
+    if (!pending_.empty()) fill(pending_, FillRule::nonzero, pending_color_);
+    pending_.clear();
+  }
+
+ private:
+  static bool same(const Color& a, const Color& b) {
+    return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a;
+  }
 
   void fill(const std::vector<Ring>& rings, FillRule rule, const Color& color) {
     if (color.a <= 0) return;
@@ -38,32 +82,10 @@ class Painter {
     });
   }
 
-  // A filled polygon and its outline (each ring closed), as two layers.
-  void polygon(const std::vector<Ring>& rings, const FilledPolygon& p) {
-    fill(rings, FillRule::even_odd, p.fill);
-    if (p.outline.a <= 0) return;
-    std::vector<Ring> outline;
-    for (Ring ring : rings) {
-      if (ring.empty()) continue;
-      ring.push_back(ring.front());
-      for (Ring& piece : detail::stroke(ring, p.outline_px)) outline.push_back(std::move(piece));
-    }
-    fill(outline, FillRule::nonzero, p.outline);
-  }
-
-  // A line and its arrowheads: one shape, so that a translucent line is not darker where its
-  // pieces overlap.
-  void polyline(const std::vector<Point2>& points, const Polyline& l) {
-    std::vector<Ring> rings = detail::stroke(points, l.width_px);
-    if (l.arrow_every_px > 0)
-      for (Ring& head : detail::arrowheads(points, l.arrow_every_px, l.width_px * 4))
-        rings.push_back(std::move(head));
-    fill(rings, FillRule::nonzero, l.color);
-  }
-
- private:
   Canvas& canvas_;
   CoverageRasterizer rasterizer_;
+  std::vector<Ring> pending_;
+  Color pending_color_;
 };
 
 cv::Scalar scalar(const Color& c) {  // RGB channel order: the Mat holds RGB
@@ -97,14 +119,14 @@ Image draw_scene(const Scene& scene, const View& view) {
     painter.polygon(rings, p);
   }
   for (const Strip& s : scene.strips)
-    painter.fill({detail::band(view.to_pixel(s.a), view.to_pixel(s.b), s.width_m * view.px_per_m)},
-                 FillRule::nonzero, s.color);
+    painter.add({detail::band(view.to_pixel(s.a), view.to_pixel(s.b), s.width_m * view.px_per_m)},
+                s.color);
   for (const Polyline& l : scene.polylines) painter.polyline(world(l.points), l);
   for (const Marker& m : scene.markers)
-    painter.fill({detail::marker(view.to_pixel(m.at), m.size_px, m.shape)}, FillRule::nonzero,
-                 m.color);
+    painter.add({detail::marker(view.to_pixel(m.at), m.size_px, m.shape)}, m.color);
   for (const FilledPolygon& p : scene.screen_polygons) painter.polygon(p.rings, p);
   for (const Polyline& l : scene.screen_polylines) painter.polyline(l.points, l);
+  painter.flush();
 
   Image image;
   image.width = view.width_px;

@@ -115,6 +115,19 @@ TEST(Draw, TranslucentFillsBlendByClosedForm) {
          over(c2.b, c2.a, over(c1.b, a, bg.b)), "a quarter, then the second");
 }
 
+// Opaque shapes of one colour side by side cover a pixel they share together: two 1 px lines
+// centred at x 10.25 and 11.25 cover three quarters and a quarter of pixel column 10, which is then
+// wholly theirs (blending each one's coverage in turn would leave 1 - 0.25 x 0.75 of it).
+TEST(Draw, AbuttingOpaqueShapesLeaveNoSeam) {
+  Scene s;
+  const Color ink{0.1f, 0.2f, 0.3f, 1};
+  s.screen_polylines.push_back({{{10.25, 5}, {10.25, 25}}, 1.0, ink});
+  s.screen_polylines.push_back({{{11.25, 5}, {11.25, 25}}, 1.0, ink});
+  const Image im = draw(s, View{1, 0, 0, 30, 30});
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(im.at(10, 15, c), channel((&ink.r)[c])) << c;
+  EXPECT_EQ(im.at(9, 15, 0), std::lround(255 * (0.25 * 0.1 + 0.75 * 1.0)));  // a quarter covered
+}
+
 // PNG: what is encoded decodes to the same pixels, and what is not a PNG is a clear error.
 TEST(Png, RoundTripAndBadBytes) {
   Image im;
