@@ -106,8 +106,8 @@ void ControlRunCommand::setup(CLI::App& app) {
       ->check(CLI::Range(0.0, 86'400.0));
   app.add_option("--size", size_, "Size of the pictures, WxH pixels")->capture_default_str();
   app.add_flag("--no-pictures", no_pictures_,
-               "Write the CSV files and summary.json only (drawing costs ~0.5 s and ~300 MB of "
-               "memory for the OpenGL renderer, whatever the flight's length)");
+               "Write the CSV files and summary.json only (drawing costs ~0.4 s and ~25 MB of "
+               "memory, whatever the flight's length)");
   app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
 }
 

@@ -277,9 +277,12 @@ int FleetRunCommand::run() {
   base::OutputSet set(output_, "fleet-run");
   add_run_files(set, p, r);
   if (render_) {
-    const FleetPicture tracks = tracks_picture(*p.world, r, width_px, height_px);
+    // Drawn from the run as events.jsonl records it (times rounded as written), so that `render`
+    // redraws the same bytes (exact-area anti-aliasing shows any sub-pixel shift of a bar edge).
+    const fleet::RunRecord drawn = fleet::replay_record(r.events_jsonl, "events.jsonl");
+    const FleetPicture tracks = tracks_picture(*p.world, drawn, width_px, height_px);
     set.add("tracks.png", render::encode_png(render::draw(tracks.scene, tracks.view)));
-    const FleetPicture gantt = gantt_picture(r, width_px, std::max(200, height_px / 3));
+    const FleetPicture gantt = gantt_picture(drawn, width_px, std::max(200, height_px / 3));
     set.add("gantt.png", render::encode_png(render::draw(gantt.scene, gantt.view)));
   }
   set.commit();

@@ -1,9 +1,8 @@
 #pragma once
-// Internal: the drawing module's entry points. OpenGL (OSMesa, which loads LLVM) and OpenCV
-// (whose image codecs load GDAL) bring ~140 shared libraries; linked into the programs they cost
-// ~150 ms at every start, drawing or not (issue 17). So they live in a module of their own,
-// libswath_render_gl.so, that swath::render opens on the first picture (module_loader.cpp).
-// Errors cross the boundary as text, not as exceptions.
+// Internal: the drawing module's entry points. The drawing stack (the coverage rasteriser, OpenCV's
+// core and imgproc for the labels, libpng) lives in a module of its own, libswath_render_gl.so,
+// that swath::render opens on the first picture (module_loader.cpp): a program that draws nothing
+// loads none of those libraries at start-up. Errors cross the boundary as text, not as exceptions.
 
 #include <string>
 
@@ -12,12 +11,12 @@
 namespace swath::render::detail {
 
 /// Bumped whenever this struct or the types it passes change: a stale module is refused.
-inline constexpr int kGlModuleAbi = 2;
+inline constexpr int kGlModuleAbi = 3;
 
 struct GlModule {
   int abi = kGlModuleAbi;
   /// Each returns false and sets `error` on failure.
-  bool (*draw)(const Scene& scene, const View& view, int supersample, Image& out,
+  bool (*draw)(const Scene& scene, const View& view, Image& out,
                std::string& error) noexcept = nullptr;
   bool (*encode_png)(const Image& image, std::string& out, std::string& error) noexcept = nullptr;
   bool (*decode_png)(const std::string& png, Image& out, std::string& error) noexcept = nullptr;

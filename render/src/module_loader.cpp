@@ -77,11 +77,9 @@ void call(Call&& f) {
 
 }  // namespace
 
-Image draw(const Scene& scene, const View& view, int supersample) {
+Image draw(const Scene& scene, const View& view) {
   Image out;
-  call([&](const detail::GlModule& m, std::string& e) {
-    return m.draw(scene, view, supersample, out, e);
-  });
+  call([&](const detail::GlModule& m, std::string& e) { return m.draw(scene, view, out, e); });
   return out;
 }
 

@@ -144,9 +144,10 @@ TEST(RenderCli, NotAPlanIsAClearError) {
 namespace swath::test {
 namespace {
 
-// The drawing stack (OpenGL, OpenCV and the GDAL its codecs bring) is a module opened on the first
-// picture: a plan without --render never loads it (start-up in milliseconds), one with --render
-// does. The dynamic loader's own trace (LD_DEBUG=files) says which libraries a process opened.
+// The drawing stack (the rasteriser, OpenCV's core and imgproc, libpng) is a module opened on the
+// first picture: a plan without --render never loads it (start-up in milliseconds), one with
+// --render does, and it brings neither OpenGL nor OpenCV's image codecs (with the GDAL they load).
+// The dynamic loader's own trace (LD_DEBUG=files) says which libraries a process opened.
 TEST(RenderModule, LoadedOnlyWhenAProgramDraws) {
   const std::string plan = std::string("LD_DEBUG=files '") + SWATH_BINARY +
                            "' plan share/fields/meadow.geojson --camera sony-ilce-qx1 "
@@ -160,7 +161,9 @@ TEST(RenderModule, LoadedOnlyWhenAProgramDraws) {
   const CliRun drawn = run_program("env", plan + fresh_dir("module-render") + " --render");
   ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
   EXPECT_NE(drawn.err.find("libswath_render_gl"), std::string::npos);
-  EXPECT_NE(drawn.err.find("libOSMesa"), std::string::npos);
+  EXPECT_NE(drawn.err.find("libpng16"), std::string::npos);
+  EXPECT_EQ(drawn.err.find("libOSMesa"), std::string::npos);
+  EXPECT_EQ(drawn.err.find("libopencv_imgcodecs"), std::string::npos);
 }
 
 }  // namespace

@@ -86,6 +86,64 @@ TEST(Draw, ScreenLayerIsInPixels) {
   EXPECT_NEAR(dark, 100, 2);
 }
 
+// Straight alpha blending in draw order, by closed form: over a background b, a fill of colour c1
+// and alpha a1 then one of c2, a2 give a2 c2 + (1 - a2) (a1 c1 + (1 - a1) b) where both cover a
+// pixel; at a pixel a shape covers only a fraction f of, its alpha is f a.
+TEST(Draw, TranslucentFillsBlendByClosedForm) {
+  const Color bg{0.9f, 0.8f, 0.7f, 1}, c1{0.2f, 0.6f, 1.0f, 0.5f}, c2{1.0f, 0.1f, 0.3f, 0.35f};
+  Scene s;
+  s.background = bg;
+  // Screen pixels: the first square's right edge at x = 60.25 cuts pixel column 60.
+  s.screen_polygons.push_back({{{{10, 10}, {60.25, 10}, {60.25, 60}, {10, 60}}}, c1});
+  s.screen_polygons.push_back({{{{40, 30}, {90, 30}, {90, 80}, {40, 80}}}, c2});
+  const Image im = draw(s, View{1, 0, 0, 100, 100});
+  const auto over = [](double c, double a, double below) { return a * c + (1 - a) * below; };
+  const auto expect = [&](int x, int y, double r, double g, double b, const char* where) {
+    EXPECT_NEAR(im.at(x, y, 0), 255 * r, 0.5 + 1e-3) << where;
+    EXPECT_NEAR(im.at(x, y, 1), 255 * g, 0.5 + 1e-3) << where;
+    EXPECT_NEAR(im.at(x, y, 2), 255 * b, 0.5 + 1e-3) << where;
+  };
+  expect(5, 5, bg.r, bg.g, bg.b, "background");
+  expect(20, 20, over(c1.r, c1.a, bg.r), over(c1.g, c1.a, bg.g), over(c1.b, c1.a, bg.b), "first");
+  expect(80, 70, over(c2.r, c2.a, bg.r), over(c2.g, c2.a, bg.g), over(c2.b, c2.a, bg.b), "second");
+  expect(50, 40, over(c2.r, c2.a, over(c1.r, c1.a, bg.r)), over(c2.g, c2.a, over(c1.g, c1.a, bg.g)),
+         over(c2.b, c2.a, over(c1.b, c1.a, bg.b)), "both");
+  // Column 60 is a quarter covered by the first square; below the second square (y < 30) alone.
+  const double a = 0.25 * c1.a;
+  expect(60, 20, over(c1.r, a, bg.r), over(c1.g, a, bg.g), over(c1.b, a, bg.b), "a quarter");
+  expect(60, 40, over(c2.r, c2.a, over(c1.r, a, bg.r)), over(c2.g, c2.a, over(c1.g, a, bg.g)),
+         over(c2.b, c2.a, over(c1.b, a, bg.b)), "a quarter, then the second");
+}
+
+// Opaque shapes of one colour side by side cover a pixel they share together: two 1 px lines
+// centred at x 10.25 and 11.25 cover three quarters and a quarter of pixel column 10, which is then
+// wholly theirs (blending each one's coverage in turn would leave 1 - 0.25 x 0.75 of it).
+TEST(Draw, AbuttingOpaqueShapesLeaveNoSeam) {
+  Scene s;
+  const Color ink{0.1f, 0.2f, 0.3f, 1};
+  s.screen_polylines.push_back({{{10.25, 5}, {10.25, 25}}, 1.0, ink});
+  s.screen_polylines.push_back({{{11.25, 5}, {11.25, 25}}, 1.0, ink});
+  const Image im = draw(s, View{1, 0, 0, 30, 30});
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(im.at(10, 15, c), channel((&ink.r)[c])) << c;
+  EXPECT_EQ(im.at(9, 15, 0), std::lround(255 * (0.25 * 0.1 + 0.75 * 1.0)));  // a quarter covered
+}
+
+// PNG: what is encoded decodes to the same pixels, and what is not a PNG is a clear error.
+TEST(Png, RoundTripAndBadBytes) {
+  Image im;
+  im.width = 37;
+  im.height = 11;
+  for (int i = 0; i < 3 * 37 * 11; ++i) im.rgb.push_back(static_cast<std::uint8_t>(i * 7 % 256));
+  const Image back = decode_png(encode_png(im));
+  EXPECT_EQ(back.width, 37);
+  EXPECT_EQ(back.height, 11);
+  EXPECT_EQ(back.rgb, im.rgb);
+  EXPECT_THROW(decode_png("not a png at all"), RenderError);
+  std::string cut = encode_png(im);
+  cut.resize(cut.size() / 2);
+  EXPECT_THROW(decode_png(cut), RenderError);
+}
+
 TEST(Draw, ImpossibleSizeIsAClearError) {
   const View v = fit({0, 0}, {10, 10}, 20000, 100, 5);
   try {

@@ -1,8 +1,8 @@
 #pragma once
-// Rendering a scene offscreen (OSMesa, software OpenGL: no display, no GPU) to RGB pixels and PNG.
-// The drawing stack is a module loaded on the first call (programs that draw nothing never load
-// OpenGL or OpenCV); it is found next to the program, at $SWATH_RENDER_MODULE, or in the build
-// tree. A missing module is a RenderError saying where it was looked for.
+// Rendering a scene in software (no display, no GPU) to RGB pixels and PNG. The drawing stack is a
+// module loaded on the first call (programs that draw nothing never load OpenCV or libpng); it is
+// found next to the program, at $SWATH_RENDER_MODULE, or in the build tree. A missing module is a
+// RenderError saying where it was looked for.
 
 #include <cstdint>
 #include <stdexcept>
@@ -29,10 +29,11 @@ class RenderError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Draws the scene: geometry with OpenGL at `supersample` times the size, then an area-average
-/// down to view.width_px x view.height_px (anti-aliasing), then the labels with OpenCV's
-/// anti-aliased text. Deterministic: same scene and view, same pixels. Throws RenderError.
-Image draw(const Scene& scene, const View& view, int supersample = 3);
+/// Draws the scene at view.width_px x view.height_px: each shape in the scene's draw order,
+/// anti-aliased by the exact area of each pixel it covers and blended over what is there with its
+/// straight alpha (a = alpha x coverage: a x colour + (1 - a) x below); then the labels with
+/// OpenCV's anti-aliased text. Deterministic: same scene and view, same pixels. Throws RenderError.
+Image draw(const Scene& scene, const View& view);
 
 /// The box a label's text takes, in pixels: `width_px` from the anchor to the right end,
 /// `height_px` above the baseline and `baseline_px` below it (descenders).
@@ -44,7 +45,8 @@ struct TextExtent {
 /// so legends can be sized to fit inside the image. Throws RenderError.
 TextExtent text_extent(const std::string& text, double height_px);
 
-/// PNG bytes of the image (deterministic encoder settings).
+/// PNG bytes of the image (8-bit RGB; fixed encoder settings and no timestamp: same image, same
+/// bytes).
 std::string encode_png(const Image& image);
 
 /// The image in PNG bytes; throws RenderError if they are not a PNG.
