@@ -732,12 +732,6 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   std::size_t last = n;
   for (bool found = false; !found;) {
     double beyond = std::numeric_limits<double>::infinity();  // least f left out
-    // The least f of a way to b queued (under the limit) whose last leg is known to be seen: the
-    // search takes it, and so ends, before any candidate of a greater f (the queue's order), so
-    // those are not queued; and as this round reaches b, what it leaves out (`beyond`) no longer
-    // matters. Most candidates a settled node offers are beyond it once the tables know what b
-    // sees.
-    double known_end = std::numeric_limits<double>::infinity();
     previous.assign(n, n);
     settled.assign(n, 0);
     is_near.assign(n, 0);
@@ -802,19 +796,12 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       const Point2 in_from = item.from_node ? nodes_[from] : a;
       const Sides in = corner_sides(in_from, nodes_[v], v);
       if (!in.left && !in.right) continue;
-      if (to_b.seen[v] != 0 && taut(in, in_from, v, b)) {
-        const SearchItem to_end{item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v};
-        push(to_end);
-        if (to_b.seen[v] == 1 && to_end.f <= limit) known_end = std::min(known_end, to_end.f);
-      }
+      if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
+        push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
       // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet).
-      // Its f is at least g + h(u) (the sums round monotonically): a node that far needs no
-      // distance.
       const auto onward_to = [&](std::size_t u, signed char seen) {
-        if (item.g + h[u] > known_end) return;
         const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
         const double f = through + h[u];
-        if (f > known_end) return;
         if (!(f <= limit)) {  // as push() does
           beyond = std::min(beyond, f);
           return;
