@@ -20,7 +20,6 @@ using cell_order_detail::bit;
 using cell_order_detail::finished;
 using cell_order_detail::kInf;
 using cell_order_detail::penalised;
-using cell_order_detail::Transit;
 
 }  // namespace
 
@@ -51,11 +50,11 @@ class ExactSearch {
  public:
   explicit ExactSearch(const CellOrderProblem& p)
       : p_(p),
-        t_(p, /*memoise=*/false),  // every transition is asked once, into the tables below
         n_(p.cells.size()),
         states_(n_ * kMaxVariants),
         masks_(std::size_t{1} << n_),
-        m_(thread_tables()) {}
+        m_(thread_tables()),
+        lazy_(p.distance_at_least_straight && p.crossing_weight >= 0) {}
 
   CellOrder run() {
     tabulate_transitions();
@@ -64,6 +63,7 @@ class ExactSearch {
     bound_ = p_.crossing_weight >= 0 ? improved(greedy_tour()) * (1 + 1e-9) + 1e-9 : kInf;
     if (m_.limits.size() < masks_) m_.limits.resize(masks_);
     m_.limit_known.assign(masks_, 0);
+    seed_from_home();
     if (p_.crossed)
       search<true>();
     else
@@ -72,23 +72,82 @@ class ExactSearch {
   }
 
  private:
-  // Every transition's length and crossed cells first (Held-Karp asks for each of them: every
-  // cell is reachable alone), in flat tables: the search below then reads arrays only. Region
-  // division orders a share's runs for every share it weighs; with vectors per subset and the
-  // memo's checks per transition, 12 runs took ~70 % of a four-drone division's minutes.
+  // Every transition's length and crossed cells in flat tables: the search below then reads
+  // arrays only. Region division orders a share's runs for every share it weighs; with vectors
+  // per subset and the memo's checks per transition, 12 runs took ~70 % of a four-drone
+  // division's minutes. A routed transit is far dearer than the search (a shortest path round
+  // the area's corners: ~100 us, ~45 % of a traced outline's plan when every one was asked), so
+  // where the metric is never below the straight distance (`lazy_`) a transition is asked only
+  // when first needed: each step below first compares its straight lower bound (less 1e-12 of
+  // it, for rounding) with what it must beat, and asks only where that cannot already decide.
+  // Every comparison so decided comes out as it would with the transit (the sums are monotone in
+  // it, and the crossing penalty only adds for a weight >= 0), so the search keeps the same
+  // states, costs and parents; the lower bounds only loosen the limits (least_costs()), which
+  // changes which states are visited, never the tour (see there). Unknown entries are NaN.
   void tabulate_transitions() {
+    const double unknown = lazy_ ? std::numeric_limits<double>::quiet_NaN() : 0.0;
     between_.assign(states_ * states_, kInf);
+    low_.assign(states_ * states_, kInf);
     crossed_.assign(p_.crossed ? states_ * states_ : 0, 0);
+    home_in_.assign(states_, unknown);
+    home_out_.assign(states_, unknown);
+    low_in_.assign(states_, kInf);
+    low_out_.assign(states_, kInf);
     for (std::size_t c = 0; c < n_; ++c)
-      for (std::size_t v = 0; v < p_.cells[c].size(); ++v)
+      for (std::size_t v = 0; v < p_.cells[c].size(); ++v) {
+        const std::size_t s = c * kMaxVariants + v;
+        if (lazy_) {
+          low_in_[s] = straight_low(p_.home, p_.cells[c][v].entry);
+          low_out_[s] = straight_low(p_.cells[c][v].exit, p_.home);
+        } else {
+          home_in_[s] = p_.distance(p_.home, p_.cells[c][v].entry);
+          home_out_[s] = p_.distance(p_.cells[c][v].exit, p_.home);
+        }
         for (std::size_t c2 = 0; c2 < n_; ++c2) {
           if (c2 == c) continue;
           for (std::size_t v2 = 0; v2 < p_.cells[c2].size(); ++v2) {
-            const std::size_t at = (c * kMaxVariants + v) * states_ + c2 * kMaxVariants + v2;
-            between_[at] = t_.between(c, v, c2, v2);
-            if (p_.crossed) crossed_[at] = t_.crossed(c, v, c2, v2);
+            const std::size_t at = s * states_ + c2 * kMaxVariants + v2;
+            between_[at] = unknown;
+            if (lazy_)
+              low_[at] = straight_low(p_.cells[c][v].exit, p_.cells[c2][v2].entry);
+            else
+              ask(at);
           }
         }
+      }
+  }
+
+  // At most the metric's distance from a to b (`lazy_`: never below the straight one, up to
+  // rounding; Transit::lower_cost()'s margin).
+  static double straight_low(geometry::Point2 a, geometry::Point2 b) {
+    return geometry::distance(a, b) * (1 - 1e-12);
+  }
+  static bool unknown(double d) { return std::isnan(d); }
+  // Transition `at` (state s = at / states_ to state s2 = at % states_) asked of the problem.
+  void ask(std::size_t at) {
+    const std::size_t s = at / states_, s2 = at % states_;
+    const geometry::Point2 exit = p_.cells[s / kMaxVariants][s % kMaxVariants].exit;
+    const geometry::Point2 entry = p_.cells[s2 / kMaxVariants][s2 % kMaxVariants].entry;
+    between_[at] = p_.distance(exit, entry);
+    if (p_.crossed) crossed_[at] = p_.crossed(exit, entry);
+  }
+  double between(std::size_t at) {
+    if (unknown(between_[at])) ask(at);
+    return between_[at];
+  }
+  double from_home(std::size_t s) {
+    if (unknown(home_in_[s]))
+      home_in_[s] = p_.distance(p_.home, p_.cells[s / kMaxVariants][s % kMaxVariants].entry);
+    return home_in_[s];
+  }
+  double to_home(std::size_t s) {
+    if (unknown(home_out_[s]))
+      home_out_[s] = p_.distance(p_.cells[s / kMaxVariants][s % kMaxVariants].exit, p_.home);
+    return home_out_[s];
+  }
+  // The transit's length where known, else its lower bound.
+  double known_or_low(std::size_t at) const {
+    return unknown(between_[at]) ? low_[at] : between_[at];
   }
 
   // cost[mask * states + cell * 4 + variant]: shortest start from home visiting `mask`, ending in
@@ -113,18 +172,27 @@ class ExactSearch {
       m_.parent.resize(masks_ * states_);
     }
     m_.reached.assign(masks_, 0);
-    for (std::size_t c = 0; c < n_; ++c) {
-      reach(std::size_t{1} << c);
-      for (std::size_t v = 0; v < p_.cells[c].size(); ++v)
-        m_.cost[(std::size_t{1} << c) * states_ + c * kMaxVariants + v] =
-            t_.from_home(c, v) + p_.cells[c][v].internal_m;
-    }
     internal_.assign(states_, 0.0);
     variants_.resize(n_);
     for (std::size_t c = 0; c < n_; ++c) {
       variants_[c] = p_.cells[c].size();
       for (std::size_t v = 0; v < variants_[c]; ++v)
         internal_[c * kMaxVariants + v] = p_.cells[c][v].internal_m;
+    }
+  }
+
+  // The states of one cell: from home. Where the leg is not known yet and its lower bound puts the
+  // state beyond its mask's limit, it is left at kInf: such a state is never expanded (search()),
+  // and with two cells or more never read again.
+  void seed_from_home() {
+    for (std::size_t c = 0; c < n_; ++c) {
+      const std::size_t mask = std::size_t{1} << c;
+      reach(mask);
+      for (std::size_t v = 0; v < p_.cells[c].size(); ++v) {
+        const std::size_t s = c * kMaxVariants + v;
+        if (n_ > 1 && unknown(home_in_[s]) && low_in_[s] + internal_[s] > limit_of(mask)) continue;
+        m_.cost[mask * states_ + s] = from_home(s) + internal_[s];
+      }
     }
   }
 
@@ -136,7 +204,8 @@ class ExactSearch {
   // tour, bit for bit, the search cut to the tours that one does not beat. The rest of a tour
   // enters each cell still to fly once, adding at least its least internal length and its least
   // way in (from home or another cell's exit; a crossing penalty only adds, for a weight >= 0),
-  // and comes home once from one of them (`least_home`).
+  // and comes home once from one of them (`least_home`); where a transit is not asked yet
+  // (`lazy_`), its straight lower bound stands for it.
   void least_costs() {
     least_added_.assign(n_, kInf);
     least_home_.assign(n_, kInf);
@@ -145,10 +214,11 @@ class ExactSearch {
       for (std::size_t v = 0; v < variants_[c]; ++v) {
         const std::size_t s2 = c * kMaxVariants + v;
         least_added_[c] = std::min(least_added_[c], internal_[s2]);
-        least_home_[c] = std::min(least_home_[c], t_.to_home(c, v));
-        way_in = std::min(way_in, t_.from_home(c, v));
+        least_home_[c] =
+            std::min(least_home_[c], unknown(home_out_[s2]) ? low_out_[s2] : home_out_[s2]);
+        way_in = std::min(way_in, unknown(home_in_[s2]) ? low_in_[s2] : home_in_[s2]);
         for (std::size_t s = 0; s < states_; ++s)
-          way_in = std::min(way_in, between_[s * states_ + s2]);
+          way_in = std::min(way_in, known_or_low(s * states_ + s2));
       }
       least_added_[c] += std::max(0.0, way_in);
       all_least_ += least_added_[c];
@@ -169,10 +239,12 @@ class ExactSearch {
           const std::size_t s2 = c2 * kMaxVariants + v2;
           double transit = 0;
           if (at == states_) {
-            transit = t_.from_home(c2, v2);
+            if (unknown(home_in_[s2]) && low_in_[s2] + internal_[s2] >= best) continue;
+            transit = from_home(s2);
           } else {
             const std::size_t i = at * states_ + s2;
-            transit = between_[i];
+            if (unknown(between_[i]) && low_[i] + internal_[s2] >= best) continue;
+            transit = between(i);
             if (p_.crossed)
               transit = penalised(transit, p_.crossing_weight,
                                   crossed_[i] & unflown_before & ~(std::uint64_t{1} << c2));
@@ -204,6 +276,11 @@ class ExactSearch {
   // (the cells after each of them are the same set), and its fill gives up once a layer's least
   // cost plus the least internal lengths of the cells after it reaches the objective to beat
   // (the rest of its tour adds no less: transits and their penalties are never negative here).
+  //
+  // kLow: the same sums with each transit not known yet replaced by its lower bound (and the
+  // crossing penalty left out), asking nothing: every layer, and so the objective, at most the
+  // real fill's, which gives up wherever this one does (or before).
+  template <bool kLow = false>
   double fill(const std::array<std::size_t, 16>& order, std::size_t from, Layers& layer,
               double give_up) {
     double rest = 0;  // the least internal lengths of the cells after position k
@@ -218,12 +295,21 @@ class ExactSearch {
         const std::size_t s2 = c * kMaxVariants + v;
         double best = kInf;
         if (k == 0) {
-          best = t_.from_home(c, v) + internal_[s2];
+          best = (kLow && unknown(home_in_[s2]) ? low_in_[s2] : from_home(s2)) + internal_[s2];
         } else {
           const std::size_t b = order[k - 1];
           for (std::size_t u = 0; u < variants_[b]; ++u) {
             const std::size_t at = (b * kMaxVariants + u) * states_ + s2;
-            double transit = between_[at];
+            double transit = 0;
+            if (unknown(between_[at])) {
+              if (kLow || layer[k - 1][u] + low_[at] + internal_[s2] >= best) {
+                best = std::min(best, layer[k - 1][u] + low_[at] + internal_[s2]);
+                continue;  // kLow: its bound; else std::min below would keep `best`
+              }
+              transit = between(at);
+            } else {
+              transit = between_[at];
+            }
             if (p_.crossed) transit = penalised(transit, p_.crossing_weight, crossed_[at] & ~flown);
             best = std::min(best, layer[k - 1][u] + transit + internal_[s2]);
           }
@@ -237,8 +323,14 @@ class ExactSearch {
       }
     }
     double objective = kInf;
-    for (std::size_t v = 0; v < variants_[order[n_ - 1]]; ++v)
-      objective = std::min(objective, layer[n_ - 1][v] + t_.to_home(order[n_ - 1], v));
+    for (std::size_t v = 0; v < variants_[order[n_ - 1]]; ++v) {
+      const std::size_t s = order[n_ - 1] * kMaxVariants + v;
+      if (unknown(home_out_[s]) && (kLow || layer[n_ - 1][v] + low_out_[s] >= objective)) {
+        objective = std::min(objective, layer[n_ - 1][v] + low_out_[s]);
+        continue;
+      }
+      objective = std::min(objective, layer[n_ - 1][v] + to_home(s));
+    }
     return objective;
   }
 
@@ -258,6 +350,10 @@ class ExactSearch {
     };
     const auto consider = [&](std::size_t from) {
       std::copy_n(current.begin(), from, trial.begin());
+      // A move its transits' lower bounds already rule out asks for none of them.
+      if (lazy_ &&
+          !(fill<true>(candidate, from, trial, objective * (1 - 1e-12)) < objective * (1 - 1e-12)))
+        return false;
       const double o = fill(candidate, from, trial, objective * (1 - 1e-12));
       if (!(o < objective * (1 - 1e-12))) return false;
       objective = o;
@@ -337,7 +433,8 @@ class ExactSearch {
       double* next_row = &m_.cost[next_mask * states_];
       for (std::size_t v2 = 0; v2 < variants_[c2]; ++v2) {
         const std::size_t s2 = c2 * kMaxVariants + v2, at = s * states_ + s2;
-        double transit = between_[at];
+        if (unknown(between_[at]) && here + low_[at] + internal_[s2] > next_limit) continue;
+        double transit = between(at);
         if constexpr (kCrossed)
           transit = penalised(transit, p_.crossing_weight, crossed_[at] & unflown);
         const double total = here + transit + internal_[s2];
@@ -360,8 +457,9 @@ class ExactSearch {
     std::size_t best_state = 0;
     for (std::size_t s = 0; s < states_; ++s) {
       if (m_.cost[full * states_ + s] == kInf) continue;
-      const double total =
-          m_.cost[full * states_ + s] + t_.to_home(s / kMaxVariants, s % kMaxVariants);
+      if (unknown(home_out_[s]) && m_.cost[full * states_ + s] + low_out_[s] >= best.objective_m)
+        continue;
+      const double total = m_.cost[full * states_ + s] + to_home(s);
       if (total < best.objective_m) {
         best.objective_m = total;
         best_state = s;
@@ -378,10 +476,12 @@ class ExactSearch {
   }
 
   const CellOrderProblem& p_;
-  Transit t_;
   const std::size_t n_, states_, masks_;
   MaskTables& m_;
-  std::vector<double> between_;
+  const bool lazy_;  ///< transitions asked when first needed (see tabulate_transitions())
+  std::vector<double> between_, low_;       ///< per transition: length (NaN unknown), bound
+  std::vector<double> home_in_, home_out_;  ///< per state: legs from and to home (NaN unknown)
+  std::vector<double> low_in_, low_out_;    ///< per state: their lower bounds
   std::vector<std::uint64_t> crossed_;
   std::vector<double> internal_;
   std::vector<std::size_t> variants_;
