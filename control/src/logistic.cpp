@@ -27,10 +27,21 @@ LogisticModel pooled(const std::vector<TriggerPoint>& data) {
   return m;
 }
 
-// Equal-count groups over x, never splitting a run of equal x.
-std::vector<Group> groups(std::vector<TriggerPoint> data, int bins, int min_per_bin) {
-  std::sort(data.begin(), data.end(),
-            [](const TriggerPoint& a, const TriggerPoint& b) { return a.x < b.x; });
+// Equal-count groups over x, never splitting a run of equal x. The groups depend only on the
+// multiset of points: a run of equal x is never split and sums the same value, so any order of
+// the ties gives the same bits (the reactive scheduler passes its data already sorted).
+std::vector<Group> groups(const std::vector<TriggerPoint>& given, int bins, int min_per_bin) {
+  const auto by_x = [](const TriggerPoint& a, const TriggerPoint& b) { return a.x < b.x; };
+  // Sorted already (NaN has no order: such data is sorted as it always was).
+  bool sorted = true;
+  for (std::size_t i = 0; i < given.size() && sorted; ++i)
+    sorted = !std::isnan(given[i].x) && (i == 0 || !(given[i].x < given[i - 1].x));
+  std::vector<TriggerPoint> copy;
+  if (!sorted) {
+    copy = given;
+    std::sort(copy.begin(), copy.end(), by_x);
+  }
+  const std::vector<TriggerPoint>& data = copy.empty() ? given : copy;
   const std::size_t n = data.size();
   const std::size_t count =
       std::min<std::size_t>(static_cast<std::size_t>(std::max(bins, 1)),
