@@ -188,6 +188,20 @@ double trigger_threshold(const LogisticModel& m, double p_run) {
   return trigger_probability(m, 0.0) > p_run ? 0.0 : std::numeric_limits<double>::infinity();
 }
 
+double largest_square_within(double x) {
+  if (!(x >= 0)) return std::numeric_limits<double>::quiet_NaN();
+  if (std::isinf(x)) return x;
+  // x² rounded is within an ulp or two of the bound: step to it.
+  double s = x * x;
+  while (std::sqrt(s) > x) s = std::nextafter(s, 0.0);
+  while (!std::isinf(s)) {
+    const double next = std::nextafter(s, std::numeric_limits<double>::infinity());
+    if (std::sqrt(next) > x) break;
+    s = next;
+  }
+  return s;
+}
+
 LogisticModel fit_logistic(const std::vector<TriggerPoint>& data, FitMethod method, int bins,
                            int min_per_bin) {
   // One label only: nothing to separate. Completely separated labels (every unchanged x below

@@ -57,12 +57,12 @@ ReactiveScheduler::ReactiveScheduler(const ReactiveSettings& settings,
   refit_period_ns_ = std::max<SimTime>(vehicle::from_seconds(settings_.fit_refit_period_s), 1);
   for (std::size_t k = 0; k < sensors_.size(); ++k) {
     PerSensor& s = state_[k];
-    s.threshold = kInfinity;  // no trigger before a model exists
-    s.model.beta1 = -1e300;   // L = 0
+    set_threshold(s, kInfinity);  // no trigger before a model exists
+    s.model.beta1 = -1e300;       // L = 0
     for (const InitialModel& m : settings_.initial_models)
       if (m.sensor == sensors_[k].name) {
         s.model = {m.beta1, m.beta2, false, 0};
-        s.threshold = trigger_threshold(s.model, settings_.p_run);
+        set_threshold(s, trigger_threshold(s.model, settings_.p_run));
       }
     stats_[k].model = s.model;
     stats_[k].threshold = s.threshold;
@@ -116,12 +116,21 @@ ReleaseCause ReactiveScheduler::take_release() {
   return ReleaseCause::time_triggered;
 }
 
-double ReactiveScheduler::change(const PerSensor& s) const {
+double ReactiveScheduler::change_square(const PerSensor& s) const {
   const auto& ref =
       settings_.delta_reference == DeltaReference::last_sample ? s.previous : s.reference;
   double sum = 0;
   for (std::size_t a = 0; a < s.axes; ++a) sum += (s.latest[a] - ref[a]) * (s.latest[a] - ref[a]);
-  return std::sqrt(sum);
+  return sum;
+}
+
+double ReactiveScheduler::change(const PerSensor& s) const {
+  return std::sqrt(change_square(s));
+}
+
+void ReactiveScheduler::set_threshold(PerSensor& s, double threshold) {
+  s.threshold = threshold;
+  s.threshold_square = largest_square_within(threshold);
 }
 
 bool ReactiveScheduler::fires(const PerSensor& s, double x) const {
@@ -149,7 +158,10 @@ void ReactiveScheduler::on_sample(const SensorSample& sample) {
   s.has_latest = s.new_sample = true;
   const SimTime t = sample.time_ns;
   if (booting(t) || !s.has_reference) return;
-  if (!fires(s, change(s))) return;
+  // With a positive slope a sample fires when x > x*, that is when its sum of squares exceeds
+  // x*'s bound (the same decision without a square root: most samples do not fire).
+  if (s.model.beta2 > 0 && !(change_square(s) > s.threshold_square)) return;
+  if (!(s.model.beta2 > 0) && !fires(s, change(s))) return;
   ++stats_[k].triggers;
   ++s.counted;
   // Batched at the hyperperiod, never held longer than max_wait_s.
@@ -329,7 +341,7 @@ void ReactiveScheduler::end_refit(SimTime t_ns) {
     if (data.empty()) continue;  // keep what there is
     s.model =
         fit_logistic(data, settings_.fit_method, settings_.fit_bins, settings_.fit_min_per_bin);
-    s.threshold = trigger_threshold(s.model, settings_.p_run);
+    set_threshold(s, trigger_threshold(s.model, settings_.p_run));
     stats_[k].model = s.model;
     stats_[k].threshold = s.threshold;
     stats_[k].dataset = data.size();

@@ -107,6 +107,7 @@ class ReactiveScheduler final : public Scheduler {
     bool new_at_start = false;   // a sample arrived before that execution
     LogisticModel model;
     double threshold = 0;
+    double threshold_square = 0;        // largest_square_within(threshold), for fires' fast path
     std::vector<TriggerPoint> boot;     // the boot's points
     std::deque<TriggerPoint> ring;      // feedback, bounded
     std::vector<TriggerPoint> fitting;  // the data of the refit under way (mle)
@@ -128,6 +129,8 @@ class ReactiveScheduler final : public Scheduler {
 
   bool booting(SimTime t) const { return t < boot_end_ns_; }
   double change(const PerSensor& s) const;
+  double change_square(const PerSensor& s) const;
+  void set_threshold(PerSensor& s, double threshold);
   bool fires(const PerSensor& s, double x) const;
   void request(SimTime at, unsigned cause);
   void add_point(PerSensor& s, TriggerPoint p);
