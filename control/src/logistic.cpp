@@ -27,10 +27,21 @@ LogisticModel pooled(const std::vector<TriggerPoint>& data) {
   return m;
 }
 
-// Equal-count groups over x, never splitting a run of equal x.
-std::vector<Group> groups(std::vector<TriggerPoint> data, int bins, int min_per_bin) {
-  std::sort(data.begin(), data.end(),
-            [](const TriggerPoint& a, const TriggerPoint& b) { return a.x < b.x; });
+// Equal-count groups over x, never splitting a run of equal x. The groups depend only on the
+// multiset of points: a run of equal x is never split and sums the same value, so any order of
+// the ties gives the same bits (the reactive scheduler passes its data already sorted).
+std::vector<Group> groups(const std::vector<TriggerPoint>& given, int bins, int min_per_bin) {
+  const auto by_x = [](const TriggerPoint& a, const TriggerPoint& b) { return a.x < b.x; };
+  // Sorted already (NaN has no order: such data is sorted as it always was).
+  bool sorted = true;
+  for (std::size_t i = 0; i < given.size() && sorted; ++i)
+    sorted = !std::isnan(given[i].x) && (i == 0 || !(given[i].x < given[i - 1].x));
+  std::vector<TriggerPoint> copy;
+  if (!sorted) {
+    copy = given;
+    std::sort(copy.begin(), copy.end(), by_x);
+  }
+  const std::vector<TriggerPoint>& data = copy.empty() ? given : copy;
   const std::size_t n = data.size();
   const std::size_t count =
       std::min<std::size_t>(static_cast<std::size_t>(std::max(bins, 1)),
@@ -175,6 +186,20 @@ double trigger_threshold(const LogisticModel& m, double p_run) {
   if (m.beta2 > 0) return std::max(0.0, (logit - m.beta1) / m.beta2);
   // β2 ≤ 0: L is largest at x = 0.
   return trigger_probability(m, 0.0) > p_run ? 0.0 : std::numeric_limits<double>::infinity();
+}
+
+double largest_square_within(double x) {
+  if (!(x >= 0)) return std::numeric_limits<double>::quiet_NaN();
+  if (std::isinf(x)) return x;
+  // x² rounded is within an ulp or two of the bound: step to it.
+  double s = x * x;
+  while (std::sqrt(s) > x) s = std::nextafter(s, 0.0);
+  while (!std::isinf(s)) {
+    const double next = std::nextafter(s, std::numeric_limits<double>::infinity());
+    if (std::sqrt(next) > x) break;
+    s = next;
+  }
+  return s;
 }
 
 LogisticModel fit_logistic(const std::vector<TriggerPoint>& data, FitMethod method, int bins,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 
@@ -56,12 +57,12 @@ ReactiveScheduler::ReactiveScheduler(const ReactiveSettings& settings,
   refit_period_ns_ = std::max<SimTime>(vehicle::from_seconds(settings_.fit_refit_period_s), 1);
   for (std::size_t k = 0; k < sensors_.size(); ++k) {
     PerSensor& s = state_[k];
-    s.threshold = kInfinity;  // no trigger before a model exists
-    s.model.beta1 = -1e300;   // L = 0
+    set_threshold(s, kInfinity);  // no trigger before a model exists
+    s.model.beta1 = -1e300;       // L = 0
     for (const InitialModel& m : settings_.initial_models)
       if (m.sensor == sensors_[k].name) {
         s.model = {m.beta1, m.beta2, false, 0};
-        s.threshold = trigger_threshold(s.model, settings_.p_run);
+        set_threshold(s, trigger_threshold(s.model, settings_.p_run));
       }
     stats_[k].model = s.model;
     stats_[k].threshold = s.threshold;
@@ -115,12 +116,21 @@ ReleaseCause ReactiveScheduler::take_release() {
   return ReleaseCause::time_triggered;
 }
 
-double ReactiveScheduler::change(const PerSensor& s) const {
+double ReactiveScheduler::change_square(const PerSensor& s) const {
   const auto& ref =
       settings_.delta_reference == DeltaReference::last_sample ? s.previous : s.reference;
   double sum = 0;
   for (std::size_t a = 0; a < s.axes; ++a) sum += (s.latest[a] - ref[a]) * (s.latest[a] - ref[a]);
-  return std::sqrt(sum);
+  return sum;
+}
+
+double ReactiveScheduler::change(const PerSensor& s) const {
+  return std::sqrt(change_square(s));
+}
+
+void ReactiveScheduler::set_threshold(PerSensor& s, double threshold) {
+  s.threshold = threshold;
+  s.threshold_square = largest_square_within(threshold);
 }
 
 bool ReactiveScheduler::fires(const PerSensor& s, double x) const {
@@ -143,12 +153,17 @@ void ReactiveScheduler::on_sample(const SensorSample& sample) {
   ++stats_[k].samples;
   if (settings_.delta_reference == DeltaReference::last_sample)
     s.previous = s.has_latest ? s.latest : sample.value;
-  s.latest = sample.value;
   s.axes = std::min<std::size_t>(sample.axes, 6);
+  // The `axes` entries used, one at a time: the caller has just written them one at a time, and
+  // a wider load across those stores would wait for them to reach the cache (~10 cycles).
+  for (std::size_t a = 0; a < s.axes; ++a) s.latest[a] = sample.value[a];
   s.has_latest = s.new_sample = true;
   const SimTime t = sample.time_ns;
   if (booting(t) || !s.has_reference) return;
-  if (!fires(s, change(s))) return;
+  // With a positive slope a sample fires when x > x*, that is when its sum of squares exceeds
+  // x*'s bound (the same decision without a square root: most samples do not fire).
+  if (s.model.beta2 > 0 && !(change_square(s) > s.threshold_square)) return;
+  if (!(s.model.beta2 > 0) && !fires(s, change(s))) return;
   ++stats_[k].triggers;
   ++s.counted;
   // Batched at the hyperperiod, never held longer than max_wait_s.
@@ -188,9 +203,46 @@ void ReactiveScheduler::on_execution_start(SimTime t_ns) {
 }
 
 void ReactiveScheduler::add_point(PerSensor& s, TriggerPoint p) {
+  const bool sorted = fits_sorted(s);
   s.ring.push_back(p);
-  while (s.ring.size() > static_cast<std::size_t>(settings_.fit_dataset_capacity))
+  if (sorted) s.added.push_back(p);
+  while (s.ring.size() > static_cast<std::size_t>(settings_.fit_dataset_capacity)) {
+    if (sorted) s.dropped.push_back(s.ring.front());
     s.ring.pop_front();
+  }
+}
+
+void ReactiveScheduler::add_boot_point(PerSensor& s, TriggerPoint p) {
+  s.boot.push_back(p);
+  if (fits_sorted(s)) s.added.push_back(p);
+}
+
+bool ReactiveScheduler::fits_sorted(const PerSensor& s) const {
+  return settings_.fit_method != FitMethod::mle && !s.unsortable;
+}
+
+// s.sorted becomes (s.sorted ∪ s.added) − s.dropped, as multisets ordered by (x, changed).
+void ReactiveScheduler::update_sorted(PerSensor& s) {
+  const auto before = [](const TriggerPoint& a, const TriggerPoint& b) {
+    return a.x < b.x || (a.x == b.x && a.changed < b.changed);
+  };
+  for (const TriggerPoint& p : s.added)
+    if (std::isnan(p.x)) s.unsortable = true;  // no order: fall back to the copy (begin_refit)
+  if (s.unsortable) {
+    s.added = {};
+    s.dropped = {};
+    return;
+  }
+  std::sort(s.added.begin(), s.added.end(), before);
+  std::sort(s.dropped.begin(), s.dropped.end(), before);
+  merged_.clear();
+  std::merge(s.sorted.begin(), s.sorted.end(), s.added.begin(), s.added.end(),
+             std::back_inserter(merged_), before);
+  s.sorted.clear();
+  std::set_difference(merged_.begin(), merged_.end(), s.dropped.begin(), s.dropped.end(),
+                      std::back_inserter(s.sorted), before);
+  s.added.clear();
+  s.dropped.clear();
 }
 
 bool ReactiveScheduler::resets_watchdog() const {
@@ -218,7 +270,7 @@ void ReactiveScheduler::on_execution_end(SimTime t_ns, bool output_changed) {
     for (PerSensor& s : state_)
       if (s.new_at_start &&
           s.boot.size() < static_cast<std::size_t>(settings_.fit_dataset_capacity))
-        s.boot.push_back({s.change_at_start, output_changed});
+        add_boot_point(s, {s.change_at_start, output_changed});
     return;
   }
   if (attributed) {
@@ -269,6 +321,11 @@ void ReactiveScheduler::feed_back(bool output_changed) {
 std::int64_t ReactiveScheduler::begin_refit(SimTime /*t_ns*/) {
   std::int64_t points = 0;
   for (PerSensor& s : state_) {
+    if (fits_sorted(s)) update_sorted(s);
+    if (fits_sorted(s)) {
+      points += static_cast<std::int64_t>(s.sorted.size());
+      continue;
+    }
     s.fitting.assign(s.boot.begin(), s.boot.end());
     s.fitting.insert(s.fitting.end(), s.ring.begin(), s.ring.end());
     points += static_cast<std::int64_t>(s.fitting.size());
@@ -280,13 +337,16 @@ std::int64_t ReactiveScheduler::begin_refit(SimTime /*t_ns*/) {
 void ReactiveScheduler::end_refit(SimTime t_ns) {
   for (std::size_t k = 0; k < state_.size(); ++k) {
     PerSensor& s = state_[k];
-    if (s.fitting.empty()) continue;  // keep what there is
-    s.model = fit_logistic(s.fitting, settings_.fit_method, settings_.fit_bins,
-                           settings_.fit_min_per_bin);
-    s.threshold = trigger_threshold(s.model, settings_.p_run);
+    // s.sorted does not change between begin_refit and here (points added meanwhile wait in
+    // s.added), so it is the refit's snapshot as s.fitting is.
+    const std::vector<TriggerPoint>& data = fits_sorted(s) ? s.sorted : s.fitting;
+    if (data.empty()) continue;  // keep what there is
+    s.model =
+        fit_logistic(data, settings_.fit_method, settings_.fit_bins, settings_.fit_min_per_bin);
+    set_threshold(s, trigger_threshold(s.model, settings_.p_run));
     stats_[k].model = s.model;
     stats_[k].threshold = s.threshold;
-    stats_[k].dataset = s.fitting.size();
+    stats_[k].dataset = data.size();
     ++stats_[k].refits;
     s.fitting.clear();
   }

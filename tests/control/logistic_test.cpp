@@ -3,8 +3,12 @@
 // degenerate data falls back to the pooled logit; trigger data reads in every CSV dialect.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "swath/base/input_error.hpp"
 
@@ -84,6 +88,73 @@ TEST(Logistic, OlsOnGroupedLogitsIsItsClosedForm) {
   EXPECT_NEAR(m.beta2, sxz / sxx, 1e-12);
   EXPECT_NEAR(m.beta1, zm - m.beta2 * 2.5, 1e-12);
   EXPECT_FALSE(m.degenerate);
+}
+
+// The grouped-logit fits depend on the multiset of points only: any order, ties of one x with
+// both labels in any order, gives the same bits (the reactive scheduler fits data it keeps sorted).
+TEST(Logistic, GroupedFitsDoNotDependOnTheOrderOfThePoints) {
+  auto random = vehicle::SplitMix64::stream(5, "order");
+  for (int round = 0; round < 20; ++round) {
+    std::vector<TriggerPoint> data;
+    for (int i = 0; i < 2000; ++i) {
+      // Half the points on 9 values (long runs of ties with both labels), half continuous.
+      const double x = i % 2 ? static_cast<double>(random.below(9)) * 0.25 : random.uniform(0, 2);
+      data.push_back({x, random.uniform() < 1 / (1 + std::exp(2 - 2 * x))});
+    }
+    std::vector<std::vector<TriggerPoint>> orders(4, data);
+    for (std::size_t i = orders[1].size() - 1; i > 0; --i)  // a shuffle
+      std::swap(orders[1][i], orders[1][random.below(i + 1)]);
+    std::sort(orders[2].begin(), orders[2].end(), [](const auto& a, const auto& b) {
+      return a.x < b.x || (a.x == b.x && a.changed < b.changed);
+    });
+    std::sort(orders[3].begin(), orders[3].end(), [](const auto& a, const auto& b) {
+      return a.x < b.x || (a.x == b.x && a.changed > b.changed);
+    });
+    for (const FitMethod method : {FitMethod::logit_ols, FitMethod::logit_wls}) {
+      const LogisticModel first = fit_logistic(orders[0], method);
+      ASSERT_FALSE(first.degenerate);
+      for (std::size_t k = 1; k < orders.size(); ++k) {
+        const LogisticModel m = fit_logistic(orders[k], method);
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(m.beta1), std::bit_cast<std::uint64_t>(first.beta1))
+            << round << " " << k;
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(m.beta2), std::bit_cast<std::uint64_t>(first.beta2))
+            << round << " " << k;
+      }
+    }
+  }
+}
+
+// The trigger check compares sums of squares with x*'s bound instead of square roots with x*:
+// the same decision for every sum, checked on the doubles next to x*² and at random.
+TEST(Logistic, TheSquareBoundDecidesAsTheSquareRootDoes) {
+  auto random = vehicle::SplitMix64::stream(9, "bound");
+  std::vector<double> thresholds = {0.0,
+                                    1.0,
+                                    0.1,
+                                    3.0,
+                                    1e-160,
+                                    1e-300,
+                                    1e150,
+                                    1e160,
+                                    std::numeric_limits<double>::denorm_min(),
+                                    std::numeric_limits<double>::max(),
+                                    std::numeric_limits<double>::infinity()};
+  for (int k = 0; k < 20'000; ++k)
+    thresholds.push_back(
+        std::ldexp(random.uniform(0.5, 1), static_cast<int>(random.below(40)) - 30));
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double x : thresholds) {
+    const double bound = largest_square_within(x);
+    std::vector<double> sums = {0.0, bound, inf, x * x, random.uniform(0, 4) * x * x};
+    double up = x * x, down = x * x;
+    for (int step = 0; step < 4; ++step) {
+      sums.push_back(up = std::nextafter(up, inf));
+      sums.push_back(down = std::nextafter(down, 0.0));
+    }
+    for (const double sum : sums)
+      ASSERT_EQ(sum > bound, std::sqrt(sum) > x) << "x " << x << " sum " << sum;
+  }
+  EXPECT_TRUE(std::isnan(largest_square_within(-1.0)));
 }
 
 TEST(Logistic, DegenerateDataGivesThePooledLogit) {

@@ -5,9 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <deque>
+#include <utility>
 
 #include "swath/control/reactive_scheduler.hpp"
+#include "swath/vehicle/random.hpp"
 
 namespace swath::control {
 namespace {
@@ -140,6 +144,65 @@ TEST(Reactive, FeedbackRulesAddWhatTheySay) {
   // no sample before it).
   EXPECT_EQ(points_after(FeedbackRule::errors, true, -10), 5);
   EXPECT_EQ(points_after(FeedbackRule::errors, false, -10), 0);
+}
+
+// Each refit fits the last fit.dataset_capacity points fed back, as fit_logistic fits them in
+// the order they came (the scheduler keeps them sorted between refits and merges in what was
+// added and dropped): the same bits at every refit, for both grouped-logit methods.
+TEST(Reactive, RefitsFitTheLastPointsFedBackToTheBit) {
+  for (const FitMethod method : {FitMethod::logit_ols, FitMethod::logit_wls}) {
+    ReactiveSettings r = settings_with(10, 0);  // fires at every change until the first refit
+    r.failsafe_s = 10;                          // no failsafe executions: trigger points only
+    r.p_run = 0.05;  // random labels fit L ≈ 0.5 everywhere: still firing at every change
+    r.fit_method = method;
+    r.fit_refit_period_s = 0.05;
+    r.fit_dataset_capacity = 300;
+    r.fit_min_per_bin = 10;
+    ReactiveScheduler sched(r, {{"gyro", 0, kMillisecond}}, 400);
+    auto random = vehicle::SplitMix64::stream(3, "refits");
+    std::deque<TriggerPoint> expected;  // the points fed back, the last 300
+    int refits = 0;
+    for (SimTime t = 0; t <= 3000 * kMillisecond; t += kMillisecond) {
+      if (sched.next_refit_ns() <= t) {
+        ASSERT_EQ(sched.begin_refit(t), static_cast<std::int64_t>(expected.size()));
+        sched.end_refit(t);
+        const std::vector<TriggerPoint> data(expected.begin(), expected.end());
+        const LogisticModel m = fit_logistic(data, method, r.fit_bins, r.fit_min_per_bin);
+        const TriggerStats& st = sched.stats()[0];
+        EXPECT_EQ(st.dataset, data.size());
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(st.model.beta1),
+                  std::bit_cast<std::uint64_t>(m.beta1))
+            << t;
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(st.model.beta2),
+                  std::bit_cast<std::uint64_t>(m.beta2))
+            << t;
+        ++refits;
+      }
+      SensorSample s;
+      s.time_ns = t;
+      s.sensor = 0;
+      s.axes = 3;
+      s.value = {static_cast<double>(random.below(8)) * 0.5, 0, 0};  // changes with many ties
+      sched.on_sample(s);
+      bool new_sample = true;
+      while (sched.next_release_ns() <= t) {
+        const SimTime at = sched.next_release_ns();
+        sched.take_release();
+        sched.on_execution_start(at);
+        const bool saw_sample = std::exchange(new_sample, false);
+        const bool changed = random.uniform() < 0.5;
+        sched.on_execution_end(at, changed);
+        const ExecutionRecord& e = sched.last_execution();
+        // A trigger's execution, or the failsafe's after a new sample (the first, at 0): a point.
+        if ((e.causes == 4 && (e.trigger_sensors & 1)) || (e.causes == 8 && saw_sample)) {
+          expected.push_back({e.x[0], changed});
+          if (expected.size() > 300) expected.pop_front();
+        }
+      }
+    }
+    EXPECT_GT(refits, 50);
+    EXPECT_EQ(expected.size(), 300u);
+  }
 }
 
 TEST(Reactive, AModelWithoutAPositiveSlopeNeverFiresAtZeroChange) {

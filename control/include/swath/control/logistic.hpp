@@ -33,6 +33,10 @@ double trigger_probability(const LogisticModel& m, double x);
 /// sensors): x* = (ln(p/(1−p)) − β1) / β2 when β2 > 0; otherwise +∞ when L(x) ≤ p_run everywhere
 /// (it then never triggers) and 0 when L(0) > p_run (it always does). p_run in (0, 1).
 double trigger_threshold(const LogisticModel& m, double p_run);
+/// The largest sum of squares s with √s ≤ `x` (√ correctly rounded, so monotone): √s > x exactly
+/// when s > this, so a change can be checked against x* without its square root (NaN for a
+/// negative or NaN `x`).
+double largest_square_within(double x);
 
 /// The fit of `data` by `method`; `bins` and `min_per_bin` shape the groups of the logit fits
 /// (B = min(bins, ⌊n / min_per_bin⌋) equal-count groups, ties never split). Degenerate data (one

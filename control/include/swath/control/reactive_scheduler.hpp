@@ -107,9 +107,15 @@ class ReactiveScheduler final : public Scheduler {
     bool new_at_start = false;   // a sample arrived before that execution
     LogisticModel model;
     double threshold = 0;
+    double threshold_square = 0;        // largest_square_within(threshold), for fires' fast path
     std::vector<TriggerPoint> boot;     // the boot's points
     std::deque<TriggerPoint> ring;      // feedback, bounded
-    std::vector<TriggerPoint> fitting;  // the data of the refit under way
+    std::vector<TriggerPoint> fitting;  // the data of the refit under way (mle)
+    // The logit fits depend only on the multiset of points, not their order (logistic.cpp's
+    // groups): boot ∪ ring kept sorted by (x, changed) as of the last refit, with the points added
+    // and dropped since, merged in at the next refit (O(n) instead of sorting every refit).
+    std::vector<TriggerPoint> sorted, added, dropped;
+    bool unsortable = false;  // a NaN x was seen: fit the unsorted copy as it comes
     int counted = 0;
     bool fast = false;  // at or above accumulation.min_rate_hz: its executions reset the watchdog
   };
@@ -123,9 +129,14 @@ class ReactiveScheduler final : public Scheduler {
 
   bool booting(SimTime t) const { return t < boot_end_ns_; }
   double change(const PerSensor& s) const;
+  double change_square(const PerSensor& s) const;
+  void set_threshold(PerSensor& s, double threshold);
   bool fires(const PerSensor& s, double x) const;
   void request(SimTime at, unsigned cause);
   void add_point(PerSensor& s, TriggerPoint p);
+  void add_boot_point(PerSensor& s, TriggerPoint p);
+  bool fits_sorted(const PerSensor& s) const;
+  void update_sorted(PerSensor& s);
   void feed_back(bool output_changed);
   bool resets_watchdog() const;
 
@@ -148,6 +159,7 @@ class ReactiveScheduler final : public Scheduler {
   // under way, bit k for trigger sensor k.
   std::uint64_t pending_triggers_ = 0, taken_triggers_ = 0, running_triggers_ = 0;
   double p_logit_ = 0;
+  std::vector<TriggerPoint> merged_;  // update_sorted's scratch
 };
 
 }  // namespace swath::control
