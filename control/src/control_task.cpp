@@ -114,8 +114,11 @@ ExecutionOutput ControlTask::execute(TaskState& state, const TaskInput& in) cons
   // 1. Estimator.
   estimator_update(config_.estimator, state.estimate, in.sensors);
   const Vec3 p = state.estimate.position_m(), v = state.estimate.velocity_m_s();
+  // The setpoint stream is held between updates; the target is advanced to this execution's time
+  // so that it moves every loop, not in 50 Hz steps.
+  const Setpoint target = extrapolated(in.setpoint, in.time_ns);
   // 2. Position P → velocity setpoint.
-  out.velocity_setpoint_m_s = velocity_setpoint(g, p, in.setpoint);
+  out.velocity_setpoint_m_s = velocity_setpoint(g, p, target);
   // 3. Velocity PID → acceleration → thrust vector: collective along the present body z, and the
   // attitude that would point it where it should go.
   out.acceleration_m_s2 =
@@ -123,13 +126,13 @@ ExecutionOutput ControlTask::execute(TaskState& state, const TaskInput& in) cons
   const Vec3 thrust_world = air.mass_kg * (out.acceleration_m_s2 + Vec3{0, 0, air.gravity_m_s2});
   const Vec3 body_up = rotate(state.estimate.attitude, Vec3{0, 0, 1});
   out.request.thrust_n = std::max(dot(thrust_world, body_up), 0.0);
-  out.attitude_setpoint = attitude_from_thrust_and_yaw(thrust_world, in.setpoint.yaw_rad);
+  out.attitude_setpoint = attitude_from_thrust_and_yaw(thrust_world, target.yaw_rad);
   if (norm(in.attitude_injection_rad) > 0)
     out.attitude_setpoint =
         out.attitude_setpoint * vehicle::from_rotation_vector(in.attitude_injection_rad);
   // 4. Attitude P → rate setpoint.
   out.rate_setpoint_rad_s =
-      rate_setpoint(g, state.estimate.attitude, out.attitude_setpoint, in.setpoint.yaw_rate_rad_s);
+      rate_setpoint(g, state.estimate.attitude, out.attitude_setpoint, target.yaw_rate_rad_s);
   // 5. Rate PID → angular acceleration → torque J ⊙ u.
   const Vec3& rate = state.estimate.body_rate_rad_s;
   const Vec3& rsp = out.rate_setpoint_rad_s;

@@ -99,6 +99,16 @@ void CarrotPath::slew(Setpoint& sp, double from_rad, double to_rad, double since
   sp.yaw_rate_rad_s = std::copysign(rate, turn);
 }
 
+Setpoint extrapolated(const Setpoint& sp, SimTime t_ns) {
+  if (t_ns <= sp.sampled_ns) return sp;
+  const double ahead_s = vehicle::seconds(t_ns - sp.sampled_ns);
+  Setpoint out = sp;
+  out.position_m = sp.position_m + ahead_s * sp.velocity_m_s;
+  if (sp.yaw_rate_rad_s != 0)
+    out.yaw_rad = std::remainder(sp.yaw_rad + ahead_s * sp.yaw_rate_rad_s, 2 * std::numbers::pi);
+  return out;
+}
+
 double CarrotPath::length_m() const {
   double sum = 0;
   for (const Leg& leg : legs_) sum += leg.arc_m.back();
@@ -111,6 +121,7 @@ Setpoint CarrotPath::at(SimTime t_ns) const {
   const auto it = std::upper_bound(leg_start_ns_.begin(), leg_start_ns_.end(), sample_ns);
   const std::size_t index = static_cast<std::size_t>(it - leg_start_ns_.begin()) - 1;
   Setpoint sp;
+  sp.sampled_ns = sample_ns;
   sp.leg = std::min(index, legs());
   if (sp.leg >= legs()) {
     const Leg& last = legs_.back();

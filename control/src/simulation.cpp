@@ -381,7 +381,13 @@ class Flight {
                                        std::isfinite(current) ? current : 0.0);
   }
 
-  Setpoint setpoint_at(SimTime t) const { return carrot_.at(t - lap_start_ns_); }
+  // The carrot's latest update at or before t (the 50 Hz stream), its sample time on the
+  // simulation's clock.
+  Setpoint setpoint_at(SimTime t) const {
+    Setpoint sp = carrot_.at(t - lap_start_ns_);
+    sp.sampled_ns += lap_start_ns_;
+    return sp;
+  }
 
   // The computer's events up to t: an execution reads its inputs when it starts; its pulses
   // reach the ESCs when it ends.
@@ -583,7 +589,9 @@ class Flight {
     if (have_position_) summary_.distance_m += norm(x.position_m - last_position_);
     last_position_ = x.position_m;
     have_position_ = true;
-    const Setpoint sp = setpoint_at(t);
+    // The carrot where the controller aims at t (advanced from its last update, as the control
+    // task does): the metrics and rows measure against it, not against the held sample.
+    const Setpoint sp = extrapolated(setpoint_at(t), t);
     // A new leg is a new setpoint (paper 002 §4: setpoints change at waypoints, not mid-leg).
     if (sp.leg != last_leg_) {
       last_leg_ = sp.leg;

@@ -131,5 +131,34 @@ TEST(Setpoints, TheHeadingSlewsTheShorterWayAtItsRateOrStepsWithoutOne) {
   }
 }
 
+TEST(Setpoints, TheHeldCarrotExtrapolatedToAnyTimeIsTheContinuousCarrot) {
+  // The 50-Hz sample advanced along its own velocity and yaw rate against a carrot updated every
+  // nanosecond (the continuous trapezoid): within ½ a T² (0.2 mm at 1 m/s², T = 20 ms) where the
+  // speed changes, exact at cruise; the heading within one period's slew where a turn ends. The
+  // held sample alone lags by up to v T (60 mm at 3 m/s).
+  const std::vector<Vec3> wp{{0, 0, 5}, {20, 0, 5}, {20, 10, 5}, {20, 10, 8}};
+  const CarrotLimits limits;  // 3 m/s, climb 1.5 m/s, 1 m/s², 50 Hz, 45°/s
+  CarrotLimits fine = limits;
+  fine.update_hz = 1e9;
+  const CarrotPath held(wp, limits), continuous(wp, fine);
+  const double period_s = 0.02, bound_m = 0.5 * limits.max_accel_m_s2 * period_s * period_s;
+  double worst_m = 0, worst_held_m = 0;
+  for (SimTime t = 0; t < held.end_ns() + 100'000'000; t += 1'000'000) {
+    const Setpoint sample = held.at(t), truth = continuous.at(t);
+    EXPECT_EQ(sample.sampled_ns, t / 20'000'000 * 20'000'000);
+    const Setpoint now = extrapolated(sample, t);
+    worst_m = std::max(worst_m, norm(now.position_m - truth.position_m));
+    worst_held_m = std::max(worst_held_m, norm(sample.position_m - truth.position_m));
+    EXPECT_LE(std::abs(std::remainder(now.yaw_rad - truth.yaw_rad, 2 * std::numbers::pi)),
+              limits.yaw_slew_rad_s * period_s + 1e-9)
+        << t;
+    if (t % 20'000'000 == 0) {
+      EXPECT_EQ(now.position_m, sample.position_m);  // nothing to advance at the update
+    }
+  }
+  EXPECT_LE(worst_m, bound_m + 1e-9);
+  EXPECT_GT(worst_held_m, 0.9 * limits.max_speed_m_s * period_s);  // the sawtooth it removes
+}
+
 }  // namespace
 }  // namespace swath::control

@@ -3,7 +3,8 @@
 // a trapezoid speed profile — accelerate at max_accel_m_s2, cruise at the leg's speed, brake to a
 // stop at the waypoint — sampled at 50 Hz, with the yaw along the leg, slewed to each new
 // heading at a limited rate with its rate as feed-forward (a step would make every waypoint an
-// attitude transient of up to 180°).
+// attitude transient of up to 180°). The control task advances the held sample to its own time
+// (extrapolated), as a flight stack's position controller advances its target every loop.
 
 #include <cstddef>
 #include <vector>
@@ -24,7 +25,17 @@ struct Setpoint {
   double yaw_rate_rad_s = 0;  ///< the slew's rate: feed-forward, world up, rad/s
   std::size_t leg = 0;        ///< the leg being flown; legs() once the path has ended
   std::size_t segment = 0;    ///< the segment of that leg (points segment → segment + 1)
+  /// When the carrot was sampled (its latest update), ns, on the clock of the execution that
+  /// reads it (TaskInput::time_ns).
+  SimTime sampled_ns = 0;
 };
+
+/// The setpoint advanced from its sample to `t_ns` along its own feed-forward: position +
+/// velocity · (t − sampled), yaw + yaw rate · (t − sampled) (wrapped to (−π, π]); unchanged when
+/// t ≤ sampled. A carrot held between 50 Hz updates would otherwise fall behind by up to one
+/// period's travel (0.1 m at 5 m/s) and jump back at each update: a sawtooth the position and
+/// velocity gains turn into ~1° of pitch at 50 Hz.
+Setpoint extrapolated(const Setpoint& sp, SimTime t_ns);
 
 /// Limits of the carrot's motion (`controller.limits`, docs/swath-control.md, 'Vehicle, scheduler
 /// and environment files').
@@ -58,7 +69,8 @@ class CarrotPath {
   /// jumps otherwise); at least one leg.
   CarrotPath(std::vector<std::vector<Vec3>> legs, const CarrotLimits& limits);
 
-  /// The setpoint in force at `t_ns` (≥ 0): the carrot as of the latest update at or before t.
+  /// The setpoint in force at `t_ns` (≥ 0): the carrot as of the latest update at or before t
+  /// (sampled_ns; extrapolated() advances it to t).
   /// Yaw points along the segment flown, slewed from the previous segment's heading (the
   /// shorter way) at yaw_slew_rad_s from the moment the carrot enters the segment; on a vertical
   /// segment it keeps the previous one's (0 at first).
