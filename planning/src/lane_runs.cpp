@@ -185,16 +185,18 @@ class SeenCount {
 std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const LaneRunSettings& s,
                                     std::size_t& unreachable) {
   const double w = s.footprint_width_m, inset = 1e-3 * s.line_spacing_m;
-  std::vector<std::size_t> unseen;
+  // The samples still unseen and not given up on, ascending: the first is the next to cover, and
+  // a lane's worth is how many of them it sees. Lanes are only added here, so the list only
+  // shrinks: it is pruned after each lane (every sample unseen at the start was asked for every
+  // lane tried, seen since or not: most of this step's time on traced fields).
+  thread_local std::vector<std::size_t> live;
+  live.clear();
   for (std::size_t i = 0; i < seen.size(); ++i)
-    if (seen.count(i) == 0) unseen.push_back(i);
+    if (seen.count(i) == 0) live.push_back(i);
   std::vector<RunLane> added;
-  std::vector<char> done(seen.size(), 0);
   std::vector<Span> spans;  // scan.at(y)'s, one buffer for every ordinate asked
-  for (std::size_t next = 0; next < unseen.size(); ++next) {
-    const std::size_t first = unseen[next];
-    if (done[first] || seen.count(first) > 0) continue;
-    const Point2 b = seen.sample(first);
+  while (!live.empty()) {
+    const Point2 b = seen.sample(live.front());
     RunLane best{0, 0, 0, -1};
     long best_count = -1;
     for (const double dy : {0.0, inset, -inset, w / 4, -w / 4, w / 2 - inset, -(w / 2 - inset)}) {
@@ -206,12 +208,8 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
       for (const Span& in : spans) {
         if (b.x < in.x0 - 1e-6 || b.x > in.x1 + 1e-6) continue;
         const RunLane lane{y, in.x0, in.x1, -1};
-        // Only a sample unseen at the start can be unseen now (lanes are only added here): those
-        // are asked, not every sample under the lane (a lane's footprint holds ~10^3 samples, most
-        // of them seen; this was 7 % of a traced field's plan).
         long n = 0;
-        seen.each_of_seen_by(unseen, lane,
-                             [&](std::size_t i) { n += seen.count(i) == 0 && !done[i]; });
+        seen.each_of_seen_by(live, lane, [&](std::size_t) { ++n; });
         if (n > best_count) {
           best_count = n;
           best = lane;
@@ -219,12 +217,13 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
       }
     }
     if (best_count <= 0) {  // a point no lane inside reaches (a needle's tip)
-      done[first] = 1;
+      live.erase(live.begin());
       ++unreachable;
       continue;
     }
     seen.add(best);
     added.push_back(best);
+    std::erase_if(live, [&](std::size_t i) { return seen.count(i) > 0; });
   }
   return added;
 }
