@@ -115,14 +115,19 @@ class SeenCount {
  public:
   SeenCount(const std::vector<Point2>& samples, double footprint_width_m)
       : samples_(samples),
-        rows_(samples),
+        rows_(samples, footprint_width_m / 4),
         half_(footprint_width_m / 2 + 1e-9),
         count_(samples.size(), 0) {}
 
-  /// f(i) for every sample i the lane sees, in increasing i.
+  /// f(i) for every sample i the lane sees, in no particular order.
   template <typename F>
   void each_seen_by(const RunLane& lane, F f) const {
-    rows_.each_in(lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6, f);
+    rows_.any_order_in(
+        lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
+        [&](std::size_t first, std::size_t last) {
+          for (std::size_t i = first; i < last; ++i) f(i);
+        },
+        f);
   }
   void add(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { ++count_[i]; });
@@ -134,7 +139,7 @@ class SeenCount {
     thread_local std::vector<int> steps;
     steps.assign(count_.size() + 1, 0);
     for (const RunLane& lane : lanes)
-      rows_.runs_in(
+      rows_.any_order_in(
           lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
           [&](std::size_t first, std::size_t last) {
             ++steps[first];
