@@ -115,17 +115,42 @@ class SeenCount {
  public:
   SeenCount(const std::vector<Point2>& samples, double footprint_width_m)
       : samples_(samples),
-        rows_(samples),
+        rows_(samples, footprint_width_m / 4),
         half_(footprint_width_m / 2 + 1e-9),
         count_(samples.size(), 0) {}
 
-  /// f(i) for every sample i the lane sees, in increasing i.
+  /// f(i) for every sample i the lane sees, in no particular order.
   template <typename F>
   void each_seen_by(const RunLane& lane, F f) const {
-    rows_.each_in(lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6, f);
+    rows_.any_order_in(
+        lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
+        [&](std::size_t first, std::size_t last) {
+          for (std::size_t i = first; i < last; ++i) f(i);
+        },
+        f);
   }
   void add(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { ++count_[i]; });
+  }
+  /// add() for every lane of `lanes`: a run of samples on one row counted as +1 at its start and
+  /// -1 past its end, summed once over every sample (the grid's lanes, each marking ~10^3 samples
+  /// one by one, were 5 % of the corpus' plans). The counts are add()'s, whatever the order.
+  void add_all(const std::vector<RunLane>& lanes) {
+    thread_local std::vector<int> steps;
+    steps.assign(count_.size() + 1, 0);
+    for (const RunLane& lane : lanes)
+      rows_.any_order_in(
+          lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
+          [&](std::size_t first, std::size_t last) {
+            ++steps[first];
+            --steps[last];
+          },
+          [&](std::size_t i) { ++count_[i]; });
+    int running = 0;
+    for (std::size_t i = 0; i < count_.size(); ++i) {
+      running += steps[i];
+      count_[i] += running;
+    }
   }
   void remove(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { --count_[i]; });
@@ -165,15 +190,18 @@ class SeenCount {
 std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const LaneRunSettings& s,
                                     std::size_t& unreachable) {
   const double w = s.footprint_width_m, inset = 1e-3 * s.line_spacing_m;
-  std::vector<std::size_t> unseen;
+  // The samples still unseen and not given up on, ascending: the first is the next to cover, and
+  // a lane's worth is how many of them it sees. Lanes are only added here, so the list only
+  // shrinks: it is pruned after each lane (every sample unseen at the start was asked for every
+  // lane tried, seen since or not: most of this step's time on traced fields).
+  thread_local std::vector<std::size_t> live;
+  live.clear();
   for (std::size_t i = 0; i < seen.size(); ++i)
-    if (seen.count(i) == 0) unseen.push_back(i);
+    if (seen.count(i) == 0) live.push_back(i);
   std::vector<RunLane> added;
-  std::vector<char> done(seen.size(), 0);
-  for (std::size_t next = 0; next < unseen.size(); ++next) {
-    const std::size_t first = unseen[next];
-    if (done[first] || seen.count(first) > 0) continue;
-    const Point2 b = seen.sample(first);
+  std::vector<Span> spans;  // scan.at(y)'s, one buffer for every ordinate asked
+  while (!live.empty()) {
+    const Point2 b = seen.sample(live.front());
     RunLane best{0, 0, 0, -1};
     long best_count = -1;
     for (const double dy : {0.0, inset, -inset, w / 4, -w / 4, w / 2 - inset, -(w / 2 - inset)}) {
@@ -181,15 +209,12 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
       const double lo = scan.y_min + inset, hi = scan.y_max - inset;
       const double y = lo <= hi ? std::clamp(b.y + dy, lo, hi) : (scan.y_min + scan.y_max) / 2;
       if (std::abs(y - b.y) > w / 2) continue;
-      for (const Span& in : scan.at(y)) {
+      scan.at(y, spans);
+      for (const Span& in : spans) {
         if (b.x < in.x0 - 1e-6 || b.x > in.x1 + 1e-6) continue;
         const RunLane lane{y, in.x0, in.x1, -1};
-        // Only a sample unseen at the start can be unseen now (lanes are only added here): those
-        // are asked, not every sample under the lane (a lane's footprint holds ~10^3 samples, most
-        // of them seen; this was 7 % of a traced field's plan).
         long n = 0;
-        seen.each_of_seen_by(unseen, lane,
-                             [&](std::size_t i) { n += seen.count(i) == 0 && !done[i]; });
+        seen.each_of_seen_by(live, lane, [&](std::size_t) { ++n; });
         if (n > best_count) {
           best_count = n;
           best = lane;
@@ -197,12 +222,13 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
       }
     }
     if (best_count <= 0) {  // a point no lane inside reaches (a needle's tip)
-      done[first] = 1;
+      live.erase(live.begin());
       ++unreachable;
       continue;
     }
     seen.add(best);
     added.push_back(best);
+    std::erase_if(live, [&](std::size_t i) { return seen.count(i) > 0; });
   }
   return added;
 }
@@ -380,7 +406,7 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
     coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
   }
   SeenCount seen(samples, s.footprint_width_m);
-  for (const RunLane& l : lanes) seen.add(l);
+  seen.add_all(lanes);
   const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);
   out.coverage_lanes = more.size();
   lanes.insert(lanes.end(), more.begin(), more.end());

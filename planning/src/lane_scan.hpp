@@ -75,17 +75,26 @@ class LaneScan {
   }
 
   std::vector<Span> at(double y) const {
+    std::vector<Span> out;
+    at(y, out);
+    return out;
+  }
+  /// at(y) into `out` (cleared; its capacity kept: coverage lanes ask ~100 ordinates a direction,
+  /// and two fresh vectors each were a tenth of the time at(y) took).
+  void at(double y, std::vector<Span>& out) const {
     // Only the edges of y's bucket can span y (coverage lanes ask this for every corner the grid
     // misses: O(n) each made 10,000-vertex outlines slow). The crossings are sorted, so the
     // spans do not depend on the order the edges come in.
     if (buckets_ == 0) fill_buckets();
-    std::vector<double> xs;
+    thread_local std::vector<double> xs;
+    xs.clear();
     const std::size_t k = bucket(y);
     for (std::uint32_t e = start_[k]; e < start_[k + 1]; ++e) {
       const auto& [a, b] = edges_[items_[e]];
       if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
     }
-    return pairs(xs);
+    out.clear();
+    pair_up(xs.data(), xs.data() + xs.size(), [&](Span span) { out.push_back(span); });
   }
 
   /// at() for many increasing ordinates: each edge finds its first by search. The crossings of a
@@ -128,11 +137,6 @@ class LaneScan {
     for (; last - first >= 2; first += 2)
       if (first[1] - first[0] > 1e-6) add(Span{first[0], first[1]});
   }
-  static std::vector<Span> pairs(std::vector<double>& xs) {
-    std::vector<Span> out;
-    pair_up(xs.data(), xs.data() + xs.size(), [&](Span span) { out.push_back(span); });
-    return out;
-  }
   // Buckets of equal height over [y_min, y_max], each listing the edges whose ordinate range
   // meets it. bucket() is monotone (rounding included), so an edge spanning y (min <= y < max)
   // is listed in y's bucket: it is in every bucket from bucket(min) to bucket(max).
@@ -143,7 +147,10 @@ class LaneScan {
     return std::size_t(f);
   }
   void fill_buckets() const {
-    buckets_ = std::clamp<std::size_t>(edges_.size(), 1, 4096);
+    // An edge is listed in every bucket it spans, so a line crossing c edges costs c entries a
+    // bucket: an edge a bucket listed ~10 c entries (a traced field's fill cost more than all its
+    // queries); one bucket per 8 edges keeps a query to ~8 + c edges.
+    buckets_ = std::clamp<std::size_t>(edges_.size() / 8, 1, 4096);
     inv_height_ = y_max > y_min ? double(buckets_) / (y_max - y_min) : 0.0;
     std::vector<std::uint32_t> counts(buckets_ + 1, 0);
     auto each = [&](auto f) {
@@ -174,19 +181,36 @@ class LaneScan {
 // reach. The boundary's samples (rows of one) are walked as before.
 class SampleRows {
  public:
-  /// `sorted` is kept by reference and must stay as it is.
-  explicit SampleRows(const std::vector<Point2>& sorted) : points_(sorted) {
+  /// `sorted` is kept by reference and must stay as it is. block_m > 0: the points outside long
+  /// rows are also kept by bands of that height, by abscissa within one, for any_order_in().
+  explicit SampleRows(const std::vector<Point2>& sorted, double block_m = 0) : points_(sorted) {
     for (std::size_t i = 0; i < points_.size();) {
       std::size_t j = i + 1;
       while (j < points_.size() && points_[j].y == points_[i].y) ++j;
       if (j - i >= kLongRow) long_rows_.push_back({i, j});
       i = j;
     }
+    if (block_m > 0 && !points_.empty()) fill_blocks(block_m);
   }
 
   /// f(i) for every point i with y_lo <= y <= y_hi and x_lo <= x <= x_hi, in increasing i.
   template <typename F>
   void each_in(double y_lo, double y_hi, double x_lo, double x_hi, F f) const {
+    runs_in(
+        y_lo, y_hi, x_lo, x_hi,
+        [&](std::size_t first, std::size_t last) {
+          for (std::size_t i = first; i < last; ++i) f(i);
+        },
+        f);
+  }
+
+  /// each_in()'s points, those of a long row as one run: on_run(first, last) for the points
+  /// [first, last) of a long row inside the box (never empty), on_point(i) for each other point
+  /// inside; every point once, in increasing i. A caller counting points per box adds a run in
+  /// O(1) (lane_runs' grid lanes each see ~10 rows of ~50 samples).
+  template <typename Run, typename Point>
+  void runs_in(double y_lo, double y_hi, double x_lo, double x_hi, Run on_run,
+               Point on_point) const {
     auto i = std::size_t(std::lower_bound(points_.begin(), points_.end(), y_lo,
                                           [](Point2 p, double y) { return p.y < y; }) -
                          points_.begin());
@@ -199,17 +223,51 @@ class SampleRows {
       if (i == stop) {  // a long row: its points from x_lo on, up to x_hi
         const auto first = points_.begin() + std::ptrdiff_t(row->begin);
         const auto last = points_.begin() + std::ptrdiff_t(row->end);
-        for (auto it =
-                 std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
-             it != last && it->x <= x_hi; ++it)
-          f(std::size_t(it - points_.begin()));
+        const auto from =
+            std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
+        const auto to =
+            std::upper_bound(from, last, x_hi, [](double x, Point2 p) { return x < p.x; });
+        if (from < to)
+          on_run(std::size_t(from - points_.begin()), std::size_t(to - points_.begin()));
         i = row->end;
         ++row;
         stop = row == long_rows_.end() ? n : row->begin;
         continue;
       }
-      if (points_[i].x >= x_lo && points_[i].x <= x_hi) f(i);
+      if (points_[i].x >= x_lo && points_[i].x <= x_hi) on_point(i);
       ++i;
+    }
+  }
+
+  /// runs_in()'s runs and points in no particular order: the long rows by search, the other
+  /// points by band and abscissa (a field's boundary samples, one per row, were walked whole
+  /// across the box's ordinates: a traced outline's thousand of them, for every lane). runs_in()
+  /// where no bands were made.
+  template <typename Run, typename Point>
+  void any_order_in(double y_lo, double y_hi, double x_lo, double x_hi, Run on_run,
+                    Point on_point) const {
+    if (block_start_.empty()) return runs_in(y_lo, y_hi, x_lo, x_hi, on_run, on_point);
+    if (!(y_lo <= y_hi)) return;
+    for (auto row = std::lower_bound(long_rows_.begin(), long_rows_.end(), y_lo,
+                                     [&](const Row&r, double y) { return points_[r.begin].y < y; });
+         row != long_rows_.end() && points_[row->begin].y <= y_hi; ++row) {
+      const auto first = points_.begin() + std::ptrdiff_t(row->begin);
+      const auto last = points_.begin() + std::ptrdiff_t(row->end);
+      const auto from =
+          std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
+      const auto to =
+          std::upper_bound(from, last, x_hi, [](double x, Point2 p) { return x < p.x; });
+      if (from < to) on_run(std::size_t(from - points_.begin()), std::size_t(to - points_.begin()));
+    }
+    const std::size_t blocks = block_start_.size() - 1;
+    const std::size_t b_lo = block(y_lo), b_hi = block(y_hi);
+    for (std::size_t b = b_lo; b <= b_hi && b < blocks; ++b) {
+      const auto first = loose_.begin() + std::ptrdiff_t(block_start_[b]);
+      const auto last = loose_.begin() + std::ptrdiff_t(block_start_[b + 1]);
+      for (auto it =
+               std::lower_bound(first, last, x_lo, [](const Loose&p, double x) { return p.x < x; });
+           it != last && it->x <= x_hi; ++it)
+        if (it->y >= y_lo && it->y <= y_hi) on_point(std::size_t(it->index));
     }
   }
 
@@ -218,8 +276,48 @@ class SampleRows {
   struct Row {
     std::size_t begin, end;
   };
+  struct Loose {
+    double x, y;
+    std::size_t index;
+  };
+  // Band of an ordinate: monotone (a point's band is found again for any y_lo <= y <= y_hi: the
+  // bands from block(y_lo) to block(y_hi) hold it), clamped to the bands made.
+  std::size_t block(double y) const {
+    const double f = (y - block_y0_) * inv_block_;
+    if (!(f > 0)) return 0;
+    if (f >= double(block_start_.size() - 2)) return block_start_.size() - 2;
+    return std::size_t(f);
+  }
+  void fill_blocks(double block_m) {
+    const double height = points_.back().y - points_.front().y;
+    // At most ~4 bands a point: a huge area's bands grow rather than outnumber its points.
+    const double count = std::min(std::floor(height / block_m) + 1, 4.0 * double(points_.size()));
+    block_y0_ = points_.front().y;
+    inv_block_ = height > 0 ? (count - 1) / height : 0.0;
+    block_start_.assign(std::size_t(count) + 1, 0);
+    auto row = long_rows_.begin();
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      if (row != long_rows_.end() && i == row->begin) {
+        i = row->end - 1;
+        ++row;
+        continue;
+      }
+      loose_.push_back({points_[i].x, points_[i].y, i});
+    }
+    // Points ascend by ordinate, so bands ascend along loose_: each band's stretch sorted by x.
+    for (const Loose& p : loose_) ++block_start_[block(p.y) + 1];
+    for (std::size_t b = 0; b + 1 < block_start_.size(); ++b)
+      block_start_[b + 1] += block_start_[b];
+    for (std::size_t b = 0; b + 1 < block_start_.size(); ++b)
+      std::sort(loose_.begin() + std::ptrdiff_t(block_start_[b]),
+                loose_.begin() + std::ptrdiff_t(block_start_[b + 1]),
+                [](const Loose& p, const Loose& q) { return p.x < q.x; });
+  }
   const std::vector<Point2>& points_;
   std::vector<Row> long_rows_;  ///< rows of at least kLongRow points of one ordinate, ascending
+  std::vector<Loose> loose_;    ///< the other points, by band, then abscissa
+  std::vector<std::size_t> block_start_;  ///< band b's in loose_ from [b] to [b + 1]; or none
+  double block_y0_ = 0, inv_block_ = 0;
 };
 
 }  // namespace swath::planning::detail

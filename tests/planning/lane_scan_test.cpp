@@ -84,7 +84,8 @@ TEST(LaneScan, BucketsAnswerAsEveryEdge) {
 // SampleRows (lane_runs' samples by row) must find exactly the points a walk over every point
 // finds: random points, most on shared rows (as the inside's samples), some on rows of their own
 // (as the boundary's), abscissae repeated, sorted as lane_runs sorts them; boxes random and with
-// edges exactly on points' coordinates, empty, and beyond every point.
+// edges exactly on points' coordinates, empty, and beyond every point; and runs_in(), long rows as
+// runs, the same points; and any_order_in(), the points off long rows by bands, the same points.
 TEST(SampleRows, BoxesFindWhatAWalkOverEveryPointFinds) {
   test::Rng rng(1818);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -100,6 +101,9 @@ TEST(SampleRows, BoxesFindWhatAWalkOverEveryPointFinds) {
     std::sort(points.begin(), points.end(),
               [](Point2 p, Point2 q) { return p.y < q.y || (p.y == q.y && p.x < q.x); });
     const SampleRows index(points);
+    // Bands for any_order_in(): thinner than the rows, about a box's height, taller than all.
+    const double block_m = k % 3 == 0 ? 0.7 : k % 3 == 1 ? 9.0 : 500.0;
+    const SampleRows banded(points, block_m);
     for (int q = 0; q < 200; ++q) {
       auto pick = [&](bool along_x) {
         if (!points.empty() && unit(rng) < 0.3) {
@@ -119,6 +123,41 @@ TEST(SampleRows, BoxesFindWhatAWalkOverEveryPointFinds) {
           walk.push_back(i);
       index.each_in(y0, y1, x0, x1, [&](std::size_t i) { searched.push_back(i); });
       ASSERT_EQ(searched, walk) << "set " << k << ", box " << q;
+      // runs_in(): the same points, runs (never empty, each on one row) and single points
+      // together in increasing order; counted by +1/-1 at the runs' ends as SeenCount does.
+      std::vector<std::size_t> by_runs;
+      std::vector<int> steps(points.size() + 1, 0), counted(points.size(), 0);
+      index.runs_in(
+          y0, y1, x0, x1,
+          [&](std::size_t first, std::size_t last) {
+            ASSERT_LT(first, last);
+            ASSERT_EQ(points[first].y, points[last - 1].y);
+            for (std::size_t i = first; i < last; ++i) by_runs.push_back(i);
+            ++steps[first];
+            --steps[last];
+          },
+          [&](std::size_t i) {
+            by_runs.push_back(i);
+            ++counted[i];
+          });
+      ASSERT_EQ(by_runs, walk) << "set " << k << ", box " << q << " (runs)";
+      // any_order_in(), by bands: the same points, each once, in some order.
+      std::vector<std::size_t> any;
+      banded.any_order_in(
+          y0, y1, x0, x1,
+          [&](std::size_t first, std::size_t last) {
+            ASSERT_LT(first, last);
+            for (std::size_t i = first; i < last; ++i) any.push_back(i);
+          },
+          [&](std::size_t i) { any.push_back(i); });
+      std::sort(any.begin(), any.end());
+      ASSERT_EQ(any, walk) << "set " << k << ", box " << q << " (bands of " << block_m << " m)";
+      int running = 0;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        running += steps[i];
+        const bool in_walk = std::binary_search(walk.begin(), walk.end(), i);
+        ASSERT_EQ(counted[i] + running, in_walk ? 1 : 0) << "set " << k << ", point " << i;
+      }
       found += walk.size();
     }
   }
