@@ -271,18 +271,29 @@ class MissionBuilder {
   // Where a stop at p, entered from `before` (direction u), has the free run the slowest approach
   // needs and 2 mm more: moved along its line (into it from a start, back from an end; a line's
   // ends stay on it, inside the area) or, off the lines, back along u; at most kMostNudge_m and
-  // half the way to the next point on that side. None where that does not do.
+  // half the way to the next point on that side. Where the line does not do (an approach grazing
+  // the clearance band, so that moving along the line adds almost nothing to the free run ahead:
+  // 0.7 mm for 1 cm on a traced field), back along u, which adds to it all it moves, over the
+  // leg already flown: a line's end then moves up to kMostNudge_m off its line. None where
+  // neither does.
   std::optional<Point2> nudged(Point2 p, Point2 before, Point2 u, double slowest_m) const {
-    Point2 d = u * -1.0;
     double room_m = geometry::distance(before, p) / 2;
     for (const SweepLine& l : m_.lines)
       if (l.start == p || l.end == p) {
         const Point2 other = l.start == p ? l.end : l.start;
-        room_m = geometry::distance(p, other) / 2;
-        if (!(room_m > 0)) return std::nullopt;  // a line of no length: nowhere to go
-        d = (other - p) * (1 / (2 * room_m));
+        const double line_room_m = geometry::distance(p, other) / 2;
+        if (!(line_room_m > 0)) return std::nullopt;  // a line of no length: nowhere to go
+        if (auto q = nudged_along(p, before, (other - p) * (1 / (2 * line_room_m)), line_room_m,
+                                  slowest_m))
+          return q;
         break;
       }
+    return nudged_along(p, before, u * -1.0, room_m, slowest_m);
+  }
+
+  // nudged() in the direction d (a unit vector) with room_m to move in.
+  std::optional<Point2> nudged_along(Point2 p, Point2 before, Point2 d, double room_m,
+                                     double slowest_m) const {
     double t = 0;
     for (int round = 0; round < 4; ++round) {
       const Point2 q = p + d * t;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <random>
 
 namespace swath::planning {
@@ -195,6 +197,45 @@ TEST(SlowApproaches, EveryStopIsReachedSlowEnoughToStopWithinItsFreeRun) {
         << "stop at " << points[i].x << ", " << points[i].y;
   }
   EXPECT_EQ(stops, 8);  // both ends of every line (the first's start turns 53 degrees from home)
+}
+
+// A line whose start lies on a zone's clearance band, the line running along the band's edge and
+// the leg from home grazing it at 12 degrees (a traced field's hole: the preflight check refused
+// its plan 2 mm short). Moving the start into its line adds nothing to the free run ahead, so it
+// moves back along the leg from home: the stop there, approached at the slowest speed, overruns
+// no further than the band. The band is the half-plane below y = tan(12°) x (free_run_m: the ray's
+// distance to its edge, 0 inside).
+TEST(SlowApproaches, AStopOnTheBandWhereTheApproachGrazesItIsMovedBackAlongTheApproach) {
+  const double k = std::tan(12 * std::numbers::pi / 180);
+  const geometry::Point2 start{0, 0}, end{-100 * std::cos(12 * std::numbers::pi / 180),
+                                          -100 * std::sin(12 * std::numbers::pi / 180)};
+  const geometry::Point2 home{-300, 0};  // the approach heads +x: 12 degrees off the edge
+  const auto free_run = [k](geometry::Point2 q, geometry::Point2 u) {
+    const double outside = q.y - k * q.x;  // >= 0 outside the band
+    if (outside < 0) return 0.0;
+    const double closing = k * u.x - u.y;  // how fast the ray nears the edge
+    return closing > 0 ? outside / closing : std::numeric_limits<double>::infinity();
+  };
+  MissionSettings s = settings();
+  s.speed_m_s = 5;
+  s.free_run_m = free_run;
+  const DroneMission m = build_mission(1, home, {{start, end}}, s);
+  // The first waypoint near the line's start is the stop; the one before it, the way in.
+  std::vector<geometry::Point2> waypoints{home};
+  for (const MissionItem& it : m.items)
+    if (it.kind == K::waypoint) waypoints.push_back(it.position);
+  std::size_t stop = 0;
+  for (std::size_t i = 1; i < waypoints.size(); ++i)
+    if (geometry::distance(waypoints[i], start) < 0.05) {
+      stop = i;
+      break;
+    }
+  ASSERT_GT(stop, 0u);
+  const geometry::Point2 p = waypoints[stop], before = waypoints[stop - 1];
+  const geometry::Point2 u = (p - before) * (1 / geometry::distance(before, p));
+  EXPECT_GE(free_run(p, u), stop_overrun_m(0.2, s.accel_m_s2))
+      << "stop at " << p.x << ", " << p.y << " entered along " << u.x << ", " << u.y;
+  EXPECT_LE(geometry::distance(p, start), 0.02);  // moved a centimetre or two at most
 }
 
 }  // namespace
