@@ -115,9 +115,10 @@ std::vector<Ring> arrowheads(const std::vector<Point2>& points, double every_px,
                              Point2 image_px) {
   std::vector<Ring> rings;
   if (!std::isfinite(every_px) || !std::isfinite(size_px) || every_px <= 0) return rings;
-  // No closer than 1 px, and only those that can touch the image: their number is bounded by the
-  // length of line inside the image, whatever the spacing asked or the line's length outside.
-  every_px = std::max(every_px, 1.0);
+  // No closer than 1 px (nor than 1/64 of their size), and only those that can touch the image:
+  // their number is bounded by the length of line inside the image (and their reach round it),
+  // whatever the spacing asked or the line's length outside.
+  every_px = std::max({every_px, 1.0, std::abs(size_px) / 64});
   const double reach = std::abs(size_px);
   const Point2 lo{-reach, -reach}, hi{image_px.x + reach, image_px.y + reach};
   double walked = 0, next = every_px / 2;
