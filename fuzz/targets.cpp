@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
@@ -34,6 +36,7 @@
 #include "swath/mavlink/frame.hpp"
 #include "swath/planning/camera.hpp"
 #include "swath/planning/plan_features.hpp"
+#include "swath/render/image.hpp"
 #include "swath/vehicle/drone.hpp"
 #include "swath/vehicle/fleet_file.hpp"
 #include "swath/vehicle/vehicle_files.hpp"
@@ -196,6 +199,97 @@ void plan_features(const std::string& text) {
   });
 }
 
+// The drawing module on any scene: bytes become a small view (at most 48 x 48 px) and a few
+// shapes, sizes and colours, each number either from the bytes or one of the hostile values
+// (NaN, infinities, 0, 1e300, 1e9, ...). Drawing may only end in RenderError; what it draws is
+// drawn again the same, and survives a PNG round trip.
+class SceneBytes {
+ public:
+  explicit SceneBytes(const std::string& bytes) : bytes_(bytes) {}
+  bool done() const { return at_ >= bytes_.size(); }
+  unsigned byte() { return done() ? 0 : static_cast<unsigned char>(bytes_[at_++]); }
+  int count(int most) { return static_cast<int>(byte() % (most + 1)); }
+  double number() {
+    static constexpr double kHostile[] = {std::numeric_limits<double>::quiet_NaN(),
+                                          std::numeric_limits<double>::infinity(),
+                                          -std::numeric_limits<double>::infinity(),
+                                          0.0,
+                                          1e300,
+                                          -1e300,
+                                          1e9,
+                                          -1e9,
+                                          1e-6,
+                                          1.5e308,
+                                          -1.5e308};
+    const unsigned b = byte();
+    if (b < std::size(kHostile)) return kHostile[b];
+    return (static_cast<double>(b) + byte() / 256.0) / 4 - 10;  // -10 to 54: in or near the view
+  }
+  geometry::Point2 point() { return {number(), number()}; }
+  render::Color color() {
+    const auto channel = [&] {
+      return static_cast<float>(byte() % 8 == 7 ? number() : byte() / 255.0);
+    };
+    return {channel(), channel(), channel(), channel()};
+  }
+  std::vector<geometry::Point2> points(int most) {
+    std::vector<geometry::Point2> out(count(most));
+    for (auto& p : out) p = point();
+    return out;
+  }
+
+ private:
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+void render_scene(const std::string& bytes) {
+  SceneBytes in(bytes);
+  render::View view;
+  view.width_px = in.count(48);
+  view.height_px = in.count(48);
+  view.px_per_m = in.number();
+  view.origin_x_m = in.number();
+  view.origin_y_m = in.number();
+  render::Scene scene;
+  scene.background = in.color();
+  for (int i = in.count(4); i > 0; --i) {
+    render::FilledPolygon p;
+    for (int r = in.count(3); r > 0; --r) p.rings.push_back(in.points(24));
+    p.fill = in.color();
+    p.outline = in.color();
+    p.outline_px = in.number();
+    (in.byte() % 2 ? scene.screen_polygons : scene.polygons).push_back(std::move(p));
+  }
+  for (int i = in.count(4); i > 0; --i)
+    scene.strips.push_back({in.point(), in.point(), in.number(), in.color()});
+  for (int i = in.count(4); i > 0; --i) {
+    render::Polyline l{in.points(32), in.number(), in.color(), in.number()};
+    (in.byte() % 2 ? scene.screen_polylines : scene.polylines).push_back(std::move(l));
+  }
+  for (int i = in.count(4); i > 0; --i)
+    scene.markers.push_back(
+        {in.point(), in.number(), in.color(), static_cast<render::MarkerShape>(in.byte() % 3)});
+  for (int i = in.count(3); i > 0; --i) {
+    render::Label label;
+    label.x_px = static_cast<int>(in.byte()) - 100;
+    label.y_px = static_cast<int>(in.byte()) - 100;
+    label.text = bytes.substr(0, in.count(40));
+    label.height_px = in.number();
+    label.color = in.color();
+    scene.labels.push_back(std::move(label));
+  }
+  try {
+    const render::Image image = render::draw(scene, view);
+    if (image.width != view.width_px || image.height != view.height_px ||
+        image.rgb.size() != 3u * image.width * image.height)
+      std::abort();
+    if (render::draw(scene, view).rgb != image.rgb) std::abort();  // same scene, same pixels
+    if (render::decode_png(render::encode_png(image)).rgb != image.rgb) std::abort();
+  } catch (const render::RenderError&) {
+  }
+}
+
 // The folder the DEM targets write their input to (made once, private to the process): the DEM
 // reader opens files by path, as `swath plan --terrain` does. It holds hill.asc, which the VRT
 // seed reads (a VRT may read files in its own folder only).
@@ -302,6 +396,7 @@ std::vector<Target> planning_and_energy_targets() {
        {"tests/bad-input/seeds/power.csv"}},
       // swath render DIR: mission.geojson read back and drawn into a scene (no pixels).
       {"plan_features", plan_features, {"tests/bad-input/seeds/mission.geojson"}},
+      {"render_scene", render_scene, {"tests/fuzz-regressions/render_scene/hostile-lines"}},
       {"plan_figures",
        [](const std::string& t) {
          expect_input_error_only([&] { planning::parse_plan_figures(t, "summary.json"); });

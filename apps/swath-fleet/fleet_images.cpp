@@ -166,10 +166,11 @@ FleetPicture gantt_picture(const fleet::RunRecord& record, int width_px, int hei
   // About six ticks, fewer when their labels would touch (narrow pictures).
   const double label_px =
       render::text_extent(base::fixed_text(record.end_s, 0) + " s", text_h).width_px + 16;
-  const double ticks = std::clamp(std::floor((width_px - 150.0) / label_px), 1.0, 6.0);
+  // At least 1 px of axis: in a picture narrower than 150 px the step must still grow to an end.
+  const double axis_px = std::max(width_px - 150.0, 1.0);
+  const double ticks = std::clamp(std::floor(axis_px / label_px), 1.0, 6.0);
   double step = nice_length(std::max(1.0, record.end_s / ticks));
-  while (step / std::max(record.end_s, 1e-9) * (width_px - 150.0) < label_px)
-    step = nice_length(step * 2.5);
+  while (step / std::max(record.end_s, 1e-9) * axis_px < label_px) step = nice_length(step * 2.5);
   for (double t = 0; t <= record.end_s + 1e-9; t += step) {
     const double x = gantt_x_px(t, record.end_s, width_px);
     scene.screen_polylines.push_back({{{x, y}, {x, y + 6}}, 1.5, kInk, 0});

@@ -13,8 +13,58 @@ CoverageRasterizer::CoverageRasterizer(int width_px, int height_px)
       accumulator_(static_cast<std::size_t>(width_px_) + 2, 0.0),
       row_(static_cast<std::size_t>(width_px_), 0.0f) {}
 
-void CoverageRasterizer::add_ring(std::span<const Point2> ring) {
+namespace {
+
+// Beyond this many pixels from the image a coordinate is moved onto this bound (see the header):
+// differences of coordinates then stay finite and exact enough, and no row or column index
+// computed from them overflows an int.
+constexpr double kFarPx = 1e7;
+
+// Where `p` meets the line x = bound (axis 0) or y = bound (axis 1) on the way to `q`.
+Point2 meet(Point2 p, Point2 q, int axis, double bound) {
+  const double pa = axis == 0 ? p.x : p.y, qa = axis == 0 ? q.x : q.y;
+  const double t = (bound - pa) / (qa - pa);
+  return axis == 0 ? Point2{bound, p.y + (q.y - p.y) * t} : Point2{p.x + (q.x - p.x) * t, bound};
+}
+
+// The ring clipped to one side of a bound (Sutherland-Hodgman): keeps the part with
+// coordinate >= bound (keep_above) or <= bound. Clipping to a convex box leaves the area inside
+// the box as it was.
+std::vector<Point2> clip_side(const std::vector<Point2>& ring, int axis, double bound,
+                              bool keep_above) {
+  std::vector<Point2> out;
+  const auto in = [&](Point2 p) {
+    const double v = axis == 0 ? p.x : p.y;
+    return keep_above ? v >= bound : v <= bound;
+  };
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
+    if (in(p)) out.push_back(p);
+    if (in(p) != in(q)) out.push_back(meet(p, q, axis, bound));
+  }
+  return out;
+}
+
+}  // namespace
+
+void CoverageRasterizer::add_ring(std::span<const Point2> input) {
+  // Points that are not finite numbers are left out (the ring stays closed through the others).
+  std::vector<Point2> ring;
+  ring.reserve(input.size());
+  bool far = false;
+  for (const Point2& p : input) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+    far = far || std::abs(p.x) > kFarPx || std::abs(p.y) > kFarPx;
+    ring.push_back(p);
+  }
   if (ring.size() < 3) return;
+  if (far) {  // clipped to a box kFarPx round the image: the same coverage inside the image
+    ring = clip_side(ring, 0, -kFarPx, true);
+    ring = clip_side(ring, 0, width_px_ + kFarPx, false);
+    ring = clip_side(ring, 1, -kFarPx, true);
+    ring = clip_side(ring, 1, height_px_ + kFarPx, false);
+    if (ring.size() < 3) return;
+  }
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
     if (!std::isfinite(a.x) || !std::isfinite(a.y) || !std::isfinite(b.x) || !std::isfinite(b.y))
@@ -35,8 +85,11 @@ void CoverageRasterizer::rasterize(FillRule rule, const RowSink& sink) const {
             [&](std::size_t a, std::size_t b) { return edges_[a].y_top < edges_[b].y_top; });
   double y_max = edges_[order.front()].y_bottom;
   for (const Edge& e : edges_) y_max = std::max(y_max, e.y_bottom);
-  const int first_row = static_cast<int>(std::max(0.0, std::floor(edges_[order.front()].y_top)));
-  const int end_row = static_cast<int>(std::min<double>(height_px_, std::ceil(y_max)));
+  // Clamped as doubles before the cast: a shape far below or above the image has no row in it.
+  const double h = height_px_;
+  const int first_row =
+      static_cast<int>(std::clamp(std::floor(edges_[order.front()].y_top), 0.0, h));
+  const int end_row = static_cast<int>(std::clamp(std::ceil(y_max), 0.0, h));
 
   std::vector<std::size_t> active;
   std::vector<Piece> pieces;

@@ -38,6 +38,8 @@ class CoverageRasterizer {
   CoverageRasterizer(int width_px, int height_px);
 
   /// Adds a closed ring (the last point joins the first; fewer than 3 points are ignored).
+  /// Points that are not finite are left out; a ring reaching beyond 1e7 px of the image is
+  /// clipped to that box first (the same coverage inside the image, no overflow in the arithmetic).
   void add_ring(std::span<const geometry::Point2> ring);
   void clear() { edges_.clear(); }
 

@@ -23,6 +23,13 @@ using detail::FillRule;
 using detail::Ring;
 using geometry::Point2;
 
+// The colour with every channel in [0, 1] (one that is not a number counts as 0): out-of-range
+// values would extrapolate the blend, and NaN would poison the pixel.
+Color usable(const Color& c) {
+  const auto unit = [](float v) { return v > 0 ? std::min(v, 1.0f) : 0.0f; };
+  return {unit(c.r), unit(c.g), unit(c.b), unit(c.a)};
+}
+
 // Fills shapes onto the canvas in the order given. Opaque shapes of one colour that follow each
 // other are filled as one union (nonzero rule): the same picture, without the faint seams that
 // blending each one's edge coverage separately leaves where they abut (a row of 1 px ticks).
@@ -58,7 +65,9 @@ class Painter {
   void polyline(const std::vector<Point2>& points, const Polyline& l) {
     std::vector<Ring> rings = detail::stroke(points, l.width_px);
     if (l.arrow_every_px > 0)
-      for (Ring& head : detail::arrowheads(points, l.arrow_every_px, l.width_px * 4))
+      for (Ring& head : detail::arrowheads(
+               points, l.arrow_every_px, l.width_px * 4,
+               {static_cast<double>(canvas_.width_px()), static_cast<double>(canvas_.height_px())}))
         rings.push_back(std::move(head));
     add(std::move(rings), l.color);
   }
@@ -73,7 +82,8 @@ class Painter {
     return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a;
   }
 
-  void fill(const std::vector<Ring>& rings, FillRule rule, const Color& color) {
+  void fill(const std::vector<Ring>& rings, FillRule rule, const Color& given) {
+    const Color color = usable(given);
     if (color.a <= 0) return;
     rasterizer_.clear();
     for (const Ring& ring : rings) rasterizer_.add_ring(ring);
@@ -88,16 +98,26 @@ class Painter {
   Color pending_color_;
 };
 
-cv::Scalar scalar(const Color& c) {  // RGB channel order: the Mat holds RGB
+cv::Scalar scalar(const Color& given) {  // RGB channel order: the Mat holds RGB
+  const Color c = usable(given);
   return {std::round(c.r * 255.0), std::round(c.g * 255.0), std::round(c.b * 255.0)};
 }
 
-int text_thickness(double height_px) {
-  return std::max(1, static_cast<int>(height_px / 12));
+constexpr int kMaxSide = 16384;
+
+// A label's height in whole pixels, 1 to kMaxSide; a height that is not a number is refused.
+int text_height(double height_px) {
+  if (!std::isfinite(height_px))
+    throw RenderError("a label's height (" + std::to_string(height_px) +
+                      " px) is not a finite number");
+  return static_cast<int>(std::clamp(height_px, 1.0, static_cast<double>(kMaxSide)));
+}
+
+int text_thickness(int height_px) {
+  return std::max(1, height_px / 12);
 }
 
 Image draw_scene(const Scene& scene, const View& view) {
-  constexpr int kMaxSide = 16384;
   if (view.width_px <= 0 || view.height_px <= 0 || view.width_px > kMaxSide ||
       view.height_px > kMaxSide)
     throw RenderError("image size " + std::to_string(view.width_px) + " x " +
@@ -134,20 +154,20 @@ Image draw_scene(const Scene& scene, const View& view) {
   image.rgb = canvas.to_rgb8();
   cv::Mat rgb(image.height, image.width, CV_8UC3, image.rgb.data());  // shares image.rgb
   for (const Label& label : scene.labels) {
-    const double scale =
-        cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, static_cast<int>(label.height_px), 1);
+    const int height = text_height(label.height_px);
+    const double scale = cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, height, 1);
     cv::putText(rgb, label.text, {label.x_px, label.y_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
-                scalar(label.color), text_thickness(label.height_px), cv::LINE_AA);
+                scalar(label.color), text_thickness(height), cv::LINE_AA);
   }
   return image;
 }
 
 TextExtent measure_text(const std::string& text, double height_px) {
-  const int height = static_cast<int>(height_px);
+  const int height = text_height(height_px);
   const double scale = cv::getFontScaleFromHeight(cv::FONT_HERSHEY_SIMPLEX, height, 1);
   int baseline = 0;
   const cv::Size size =
-      cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, text_thickness(height_px), &baseline);
+      cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, text_thickness(height), &baseline);
   return {size.width, size.height, baseline};
 }
 

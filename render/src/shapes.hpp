@@ -23,10 +23,12 @@ Ring disc(geometry::Point2 centre, double radius_px);
 /// 0.05 px of the circle).
 std::vector<Ring> stroke(const std::vector<geometry::Point2>& points, double width_px);
 
-/// Direction arrowheads (triangles `size_px` long and wide) about every `every_px` along the line,
-/// the first half a spacing from its start.
+/// Direction arrowheads (triangles `size_px` long and wide) about every `every_px` (at least 1 px
+/// and 1/64 of their size)
+/// along the line, the first half a spacing from its start; only those that can touch an image of
+/// `image_px` (width, height) are made.
 std::vector<Ring> arrowheads(const std::vector<geometry::Point2>& points, double every_px,
-                             double size_px);
+                             double size_px, geometry::Point2 image_px);
 
 /// A marker of `size_px` across centred at `at`.
 Ring marker(geometry::Point2 at, double size_px, MarkerShape shape);

@@ -770,3 +770,25 @@ TEST(FleetCli, TuneAskTellEndsWithTunesWeights) {
 
 }  // namespace
 }  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// The smallest picture --size accepts: the Gantt chart's time axis is then narrower than nothing
+// (150 px of names and margins); its tick step must still be found (it was an endless loop).
+TEST(FleetCli, SmallestPicturesAreDrawn) {
+  const std::string run = fresh_dir("fleet-render-small");
+  const CliRun r =
+      run_swath_fleet("run static --world static --drones 1 --render --size 64x64 -o " + run);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // PNG width and height (bytes 16 to 23): tracks.png 64 x 64, gantt.png 64 wide and at least
+  // 200 px tall (one third of the height, 200 at least).
+  const std::string tracks = read_text(run + "/tracks.png"), gantt = read_text(run + "/gantt.png");
+  ASSERT_GT(tracks.size(), 24u);
+  ASSERT_GT(gantt.size(), 24u);
+  EXPECT_EQ(tracks.substr(16, 8), std::string("\0\0\0\x40\0\0\0\x40", 8));
+  EXPECT_EQ(gantt.substr(16, 8), std::string("\0\0\0\x40\0\0\0\xc8", 8));
+}
+
+}  // namespace
+}  // namespace swath::test
