@@ -464,7 +464,18 @@ VisibilityRouter::Row& VisibilityRouter::seen_row(Point2 p) const {
 bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
   signed char& known = row.seen[node];
   if (known == kUnknown) {
-    if (!row.fan && ++row.asked > kFanAfter) row.fan = std::make_unique<Fan>(fan_of(p));
+    if (!row.fan && row.asked <= kFanAfter && ++row.asked > kFanAfter) {
+      // Kept within a budget: from inside a field of long needles (a star of 200 spikes) each edge
+      // spans a sixth of the turn, 96 kB a fan, and 15,000 run ends asked often enough to get one
+      // held 1.5 GB. Past the budget a point asks along the grid (more tests, the same answers:
+      // a fan only chooses which edges the exact tests look at).
+      Fan fan = fan_of(p);
+      const std::size_t items = fan.items.size() + fan.start.size() + fan.near.size();
+      if (row_fan_items_ + items <= kRowFanItemBudget) {
+        row_fan_items_ += items;
+        row.fan = std::make_unique<Fan>(std::move(fan));
+      }
+    }
     known = visible_with(p, nodes_[node], row.fan.get());
     ++row.known;
     row.visible += known != 0;

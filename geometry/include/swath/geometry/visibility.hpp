@@ -139,6 +139,9 @@ class VisibilityRouter {
     std::unique_ptr<Fan> fan;
   };
   static constexpr int kFanAfter = 12;
+  /// The fans of asked points a router keeps, in items (4 bytes each): 64 MB.
+  static constexpr std::size_t kRowFanItemBudget = std::size_t{16} << 20;
+  mutable std::size_t row_fan_items_ = 0;  ///< kept in sees_'s rows so far
   Row& seen_row(Point2 p) const;
   bool sees(Point2 p, Row& row, std::size_t node) const;
   mutable std::map<std::pair<double, double>, Row> sees_;
