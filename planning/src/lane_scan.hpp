@@ -221,14 +221,7 @@ class SampleRows {
     const std::size_t next_long = row == long_rows_.end() ? n : row->begin;
     for (std::size_t stop = next_long; i < n && points_[i].y <= y_hi;) {
       if (i == stop) {  // a long row: its points from x_lo on, up to x_hi
-        const auto first = points_.begin() + std::ptrdiff_t(row->begin);
-        const auto last = points_.begin() + std::ptrdiff_t(row->end);
-        const auto from =
-            std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
-        const auto to =
-            std::upper_bound(from, last, x_hi, [](double x, Point2 p) { return x < p.x; });
-        if (from < to)
-          on_run(std::size_t(from - points_.begin()), std::size_t(to - points_.begin()));
+        row_run_in(*row, x_lo, x_hi, on_run);
         i = row->end;
         ++row;
         stop = row == long_rows_.end() ? n : row->begin;
@@ -250,15 +243,8 @@ class SampleRows {
     if (!(y_lo <= y_hi)) return;
     for (auto row = std::lower_bound(long_rows_.begin(), long_rows_.end(), y_lo,
                                      [&](const Row&r, double y) { return points_[r.begin].y < y; });
-         row != long_rows_.end() && points_[row->begin].y <= y_hi; ++row) {
-      const auto first = points_.begin() + std::ptrdiff_t(row->begin);
-      const auto last = points_.begin() + std::ptrdiff_t(row->end);
-      const auto from =
-          std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
-      const auto to =
-          std::upper_bound(from, last, x_hi, [](double x, Point2 p) { return x < p.x; });
-      if (from < to) on_run(std::size_t(from - points_.begin()), std::size_t(to - points_.begin()));
-    }
+         row != long_rows_.end() && points_[row->begin].y <= y_hi; ++row)
+      row_run_in(*row, x_lo, x_hi, on_run);
     const std::size_t blocks = block_start_.size() - 1;
     const std::size_t b_lo = block(y_lo), b_hi = block(y_hi);
     for (std::size_t b = b_lo; b <= b_hi && b < blocks; ++b) {
@@ -276,6 +262,16 @@ class SampleRows {
   struct Row {
     std::size_t begin, end;
   };
+  /// The run of a long row's points from x_lo on, up to x_hi (the row sorted by x), if any.
+  template <typename Run>
+  void row_run_in(const Row& row, double x_lo, double x_hi, Run& on_run) const {
+    const auto first = points_.begin() + std::ptrdiff_t(row.begin);
+    const auto last = points_.begin() + std::ptrdiff_t(row.end);
+    const auto from =
+        std::lower_bound(first, last, x_lo, [](Point2 p, double x) { return p.x < x; });
+    const auto to = std::upper_bound(from, last, x_hi, [](double x, Point2 p) { return x < p.x; });
+    if (from < to) on_run(std::size_t(from - points_.begin()), std::size_t(to - points_.begin()));
+  }
   struct Loose {
     double x, y;
     std::size_t index;

@@ -40,7 +40,9 @@ std::vector<Point2> clip_side(const std::vector<Point2>& ring, int axis, double 
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 p = ring[i], q = ring[(i + 1) % ring.size()];
     if (in(p)) out.push_back(p);
-    if (in(p) != in(q)) out.push_back(meet(p, q, axis, bound));
+    // From the point inside: its coordinates are the small ones, so the crossing keeps their
+    // precision (from a point at 1e300 px it could land 1e7 px off the line).
+    if (in(p) != in(q)) out.push_back(in(p) ? meet(p, q, axis, bound) : meet(q, p, axis, bound));
   }
   return out;
 }
@@ -64,6 +66,10 @@ void CoverageRasterizer::add_ring(std::span<const Point2> input) {
     ring = clip_side(ring, 1, -kFarPx, true);
     ring = clip_side(ring, 1, height_px_ + kFarPx, false);
     if (ring.size() < 3) return;
+    // Points beyond ~1e307 px whose differences overflow give no crossing: the ring is left out
+    // whole (dropping its edges one by one would leave it open, filling to the image's edge).
+    for (const Point2& p : ring)
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
   }
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];

@@ -39,7 +39,10 @@ class CoverageRasterizer {
 
   /// Adds a closed ring (the last point joins the first; fewer than 3 points are ignored).
   /// Points that are not finite are left out; a ring reaching beyond 1e7 px of the image is
-  /// clipped to that box first (the same coverage inside the image, no overflow in the arithmetic).
+  /// clipped to that box first: the same coverage inside the image up to rounding of the crossings
+  /// (each computed from the point inside the box, to ~1e-16 of the far point's coordinate: exact
+  /// to a pixel's 1e-6 while the points lie within ~1e10 px). A ring whose clipping overflows
+  /// (coordinates of opposite sign near 1e308) is left out whole.
   void add_ring(std::span<const geometry::Point2> ring);
   void clear() { edges_.clear(); }
 

@@ -123,7 +123,7 @@ Image draw_scene(const Scene& scene, const View& view) {
     throw RenderError("image size " + std::to_string(view.width_px) + " x " +
                       std::to_string(view.height_px) + " is out of range (1 to " +
                       std::to_string(kMaxSide) + " pixels a side)");
-  Canvas canvas(view.width_px, view.height_px, scene.background);
+  Canvas canvas(view.width_px, view.height_px, usable(scene.background));
   canvas.paste(scene.backdrop);
   Painter painter(canvas);
 

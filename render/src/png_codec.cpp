@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <cstring>
+#include <new>
 #include <vector>
 
 namespace swath::render::detail {
@@ -22,9 +23,16 @@ void on_error(png_structp png, png_const_charp message) {
 
 void on_warning(png_structp, png_const_charp) {}
 
+// No C++ exception may cross libpng's C frames: an allocation failure becomes a libpng error.
 void write_to_string(png_structp png, png_bytep data, png_size_t length) {
-  static_cast<std::string*>(png_get_io_ptr(png))
-      ->append(reinterpret_cast<const char*>(data), length);
+  bool appended = true;
+  try {
+    static_cast<std::string*>(png_get_io_ptr(png))
+        ->append(reinterpret_cast<const char*>(data), length);
+  } catch (const std::bad_alloc&) {
+    appended = false;
+  }
+  if (!appended) png_error(png, "out of memory");  // outside the handler: no jump out of it
 }
 
 struct Reader {
@@ -69,7 +77,8 @@ bool decode(Reader* reader, Image* image, std::vector<png_bytep>* rows, ErrorTex
     return false;
   }
   png_set_read_fn(png, reader, read_from_string);
-  png_set_user_limits(png, 1 << 15, 1 << 15);  // pixels a side: no giant buffer from a bad header
+  // Pixels a side, as many as draw() makes: no giant buffer from a bad header.
+  png_set_user_limits(png, 1 << 14, 1 << 14);
   png_read_info(png, info);
   png_set_expand(png);  // palette to RGB, grey to 8 bits, tRNS to alpha
   png_set_strip_16(png);
@@ -81,8 +90,14 @@ bool decode(Reader* reader, Image* image, std::vector<png_bytep>* rows, ErrorTex
   image->height = static_cast<int>(png_get_image_height(png, info));
   if (png_get_rowbytes(png, info) != 3 * static_cast<std::size_t>(image->width))
     png_error(png, "unexpected row size");
-  image->rgb.resize(3 * static_cast<std::size_t>(image->width) * image->height);
-  rows->resize(image->height);
+  bool allocated = true;
+  try {
+    image->rgb.resize(3 * static_cast<std::size_t>(image->width) * image->height);
+    rows->resize(image->height);
+  } catch (const std::bad_alloc&) {
+    allocated = false;
+  }
+  if (!allocated) png_error(png, "out of memory");
   for (int y = 0; y < image->height; ++y)
     (*rows)[y] = image->rgb.data() + 3 * static_cast<std::size_t>(y) * image->width;
   png_read_image(png, rows->data());

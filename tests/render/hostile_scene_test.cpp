@@ -157,5 +157,33 @@ TEST(HostileScene, OnePixelViewAndOutOfRangeSizes) {
   }
 }
 
+// The triangle (-B, -B), (B, B), (B, -B) in pixels is, inside the image, the part above the
+// diagonal y = x (screen rows down): 15,000 px² of the 200 x 100 image (closed form), whatever B
+// within the rasteriser's stated precision (crossings to ~1e-16 of the coordinates: B up to
+// ~1e10 px and beyond). Far beyond (1e300, 1.5e308, where the clipping overflows) it only has to
+// draw something, the same each time.
+TEST(HostileScene, FarTriangleCoversTheClosedFormAreaInsideTheImage) {
+  const auto covered_px2 = [](double b) {
+    Scene s;
+    s.screen_polygons.push_back(filled({{-b, -b}, {b, b}, {b, -b}}));
+    const Image im = draw(s, pixels_view());
+    double sum = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) sum += (255 - red(im, x, y)) / 255.0;
+    return sum;
+  };
+  for (double b : {1e3, 1e9, 1e12}) EXPECT_NEAR(covered_px2(b), 15000, 100) << b;
+  for (double b : {1e300, 1.5e308}) EXPECT_EQ(covered_px2(b), covered_px2(b)) << b;
+}
+
+TEST(HostileScene, ABackgroundThatIsNotANumberIsBlack) {
+  Scene s;
+  s.background = {static_cast<float>(kNan), 0.5f, 2.0f, 1};
+  const Image im = draw(s, pixels_view());
+  EXPECT_EQ(im.at(10, 10, 0), 0);    // NaN counts as 0
+  EXPECT_EQ(im.at(10, 10, 1), 128);  // 0.5
+  EXPECT_EQ(im.at(10, 10, 2), 255);  // clamped to 1
+}
+
 }  // namespace
 }  // namespace swath::render

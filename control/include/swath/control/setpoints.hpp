@@ -31,7 +31,7 @@ struct Setpoint {
 };
 
 /// The setpoint advanced from its sample to `t_ns` along its own feed-forward: position +
-/// velocity · (t − sampled), yaw + yaw rate · (t − sampled) (wrapped to (−π, π]); unchanged when
+/// velocity · (t − sampled), yaw + yaw rate · (t − sampled) (wrapped to [−π, π]); unchanged when
 /// t ≤ sampled. A carrot held between 50 Hz updates would otherwise fall behind by up to one
 /// period's travel (0.1 m at 5 m/s) and jump back at each update: a sawtooth the position and
 /// velocity gains turn into ~1° of pitch at 50 Hz.
