@@ -10,6 +10,9 @@
 
 namespace swath::render::detail {
 
+/// The largest picture side drawn or decoded, pixels: a 16384 x 16384 canvas is ~3.2 GB of floats.
+inline constexpr int kMaxSide_px = 16384;
+
 class Canvas {
  public:
   /// width_px x height_px, filled with `background` (its alpha is ignored: the picture is opaque).

@@ -103,14 +103,14 @@ cv::Scalar scalar(const Color& given) {  // RGB channel order: the Mat holds RGB
   return {std::round(c.r * 255.0), std::round(c.g * 255.0), std::round(c.b * 255.0)};
 }
 
-constexpr int kMaxSide = 16384;
+using detail::kMaxSide_px;
 
-// A label's height in whole pixels, 1 to kMaxSide; a height that is not a number is refused.
+// A label's height in whole pixels, 1 to kMaxSide_px; a height that is not a number is refused.
 int text_height(double height_px) {
   if (!std::isfinite(height_px))
     throw RenderError("a label's height (" + std::to_string(height_px) +
                       " px) is not a finite number");
-  return static_cast<int>(std::clamp(height_px, 1.0, static_cast<double>(kMaxSide)));
+  return static_cast<int>(std::clamp(height_px, 1.0, static_cast<double>(kMaxSide_px)));
 }
 
 int text_thickness(int height_px) {
@@ -118,11 +118,11 @@ int text_thickness(int height_px) {
 }
 
 Image draw_scene(const Scene& scene, const View& view) {
-  if (view.width_px <= 0 || view.height_px <= 0 || view.width_px > kMaxSide ||
-      view.height_px > kMaxSide)
+  if (view.width_px <= 0 || view.height_px <= 0 || view.width_px > kMaxSide_px ||
+      view.height_px > kMaxSide_px)
     throw RenderError("image size " + std::to_string(view.width_px) + " x " +
                       std::to_string(view.height_px) + " is out of range (1 to " +
-                      std::to_string(kMaxSide) + " pixels a side)");
+                      std::to_string(kMaxSide_px) + " pixels a side)");
   Canvas canvas(view.width_px, view.height_px, usable(scene.background));
   canvas.paste(scene.backdrop);
   Painter painter(canvas);

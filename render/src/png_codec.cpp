@@ -1,5 +1,7 @@
 #include "png_codec.hpp"
 
+#include "canvas.hpp"
+
 #include <png.h>
 
 #include <cstring>
@@ -78,7 +80,7 @@ bool decode(Reader* reader, Image* image, std::vector<png_bytep>* rows, ErrorTex
   }
   png_set_read_fn(png, reader, read_from_string);
   // Pixels a side, as many as draw() makes: no giant buffer from a bad header.
-  png_set_user_limits(png, 1 << 14, 1 << 14);
+  png_set_user_limits(png, kMaxSide_px, kMaxSide_px);
   png_read_info(png, info);
   png_set_expand(png);  // palette to RGB, grey to 8 bits, tRNS to alpha
   png_set_strip_16(png);
