@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <tuple>
@@ -593,14 +594,13 @@ struct Refined {
 
 // `c` ordered on `routed` and its coverage of `to_see` measured, unless a plan seeing >= 99.9 %
 // with objective `beaten_m` is already found and this one cannot be shorter: then not ordered when
-// a lower bound on every order's length (straight transits) is at or above it (ordering with
-// routed transits is most of a plan's time; the margin keeps rounding of the two sums from
-// deciding a tie), its coverage not measured when its objective is above it.
-Refined refine(Candidate& c, Point2 home, const SplitSettings& s, const geometry::Polygon& to_see,
-               RoutedMetric& routed, double beaten_m) {
+// `bound_m`, a lower bound on every order's length (straight transits), is at or above it
+// (ordering with routed transits is most of a plan's time; the margin keeps rounding of the two
+// sums from deciding a tie), its coverage not measured when its objective is above it.
+Refined refine(Candidate& c, double bound_m, Point2 home, const SplitSettings& s,
+               const geometry::Polygon& to_see, RoutedMetric& routed, double beaten_m) {
   Refined r;
-  if (beaten_m < std::numeric_limits<double>::infinity() &&
-      order_lower_bound(problem_for(c, home, straight_m)) >= beaten_m * (1 + 1e-9))
+  if (beaten_m < std::numeric_limits<double>::infinity() && bound_m >= beaten_m * (1 + 1e-9))
     return r;
   r.plan = ordered_plan(c, home, routed);
   if (r.plan->objective_m > beaten_m) return r;
@@ -658,53 +658,26 @@ class RouterPerThread {
   std::vector<std::unique_ptr<RoutedMetric>> metrics_;
 };
 
-// The runs to refine, ordered with routed transits (into runs, in the order of `to_refine`), and
-// the cells with their estimates at the directions where they could rank among the refined ones
-// (into cells, per direction; none: no cells there, or left out), in one pool of threads: the runs
-// first (the longest jobs), then the cells in order of their bound (a decomposition per direction,
-// the dearer kind), each left out when its bound is above the refined_candidates-th least estimate
-// found: its estimate, at least its bound, could not rank among the refined ones. Bounds
-// ascend and that estimate only falls, so the ones left out are the last in that order, and the
-// cells that rank are the ones that would with every direction decomposed.
-struct RunsAndCells {
-  std::vector<Refined> runs;
-  std::vector<std::optional<Candidate>> cells;
-};
-
-RunsAndCells refine_runs_and_estimate_cells(const std::vector<geometry::Ring>& rings,
-                                            const std::vector<double>& angles,
-                                            const RunEstimates& found, std::vector<Candidate>& runs,
-                                            const std::vector<std::size_t>& to_refine, Point2 home,
-                                            const SplitSettings& s, const geometry::Polygon& to_see,
-                                            RouterPerThread& routers) {
+// The cells with their estimates at the directions where they could rank among the refined ones
+// (per direction; none: no cells there, or left out), in one pool of threads, in order of their
+// bound (a decomposition per direction), each left out when its bound is above the
+// refined_candidates-th least estimate found: its estimate, at least its bound, could not rank
+// among the refined ones. Bounds ascend and that estimate only falls, so the ones left out are the
+// last in that order, and the cells that rank are the ones that would with every direction
+// decomposed.
+std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry::Ring>& rings,
+                                                     const std::vector<double>& angles,
+                                                     const RunEstimates& found, Point2 home,
+                                                     const SplitSettings& s) {
   const std::vector<double>& cells_bound = found.cells_bound;
-  const std::size_t n = found.cells_directions.size(), r = to_refine.size();
   std::vector<std::size_t> by_bound = found.cells_directions;
   std::stable_sort(by_bound.begin(), by_bound.end(),
                    [&](std::size_t x, std::size_t y) { return cells_bound[x] < cells_bound[y]; });
-  RunsAndCells out;
-  out.runs.resize(r);
-  out.cells.resize(angles.size());
-  std::mutex lock;                                            // guards the two below
-  double beaten_m = std::numeric_limits<double>::infinity();  // least objective seeing >= 99.9 %
+  std::vector<std::optional<Candidate>> cells(angles.size());
+  std::mutex lock;            // guards `least`
   std::vector<double> least;  // the cells' estimates found, ascending, at most refined_candidates
-  base::parallel_for(r + n, s.threads, [&](std::size_t j, unsigned worker) {
-    if (j < r) {
-      // Skips against a plan found beside it, not only before it, are as sound (fold()).
-      double beaten = 0;
-      {
-        const std::lock_guard<std::mutex> guard(lock);
-        beaten = beaten_m;
-      }
-      Refined& run = out.runs[j] =
-          refine(runs[to_refine[j]], home, s, to_see, routers(worker), beaten);
-      if (run.seen_fraction >= 0.999) {
-        const std::lock_guard<std::mutex> guard(lock);
-        beaten_m = std::min(beaten_m, run.plan->objective_m);
-      }
-      return;
-    }
-    const std::size_t a = by_bound[j - r];
+  base::parallel_for(by_bound.size(), s.threads, [&](std::size_t j) {
+    const std::size_t a = by_bound[j];
     {
       const std::lock_guard<std::mutex> guard(lock);
       if (least.size() == s.refined_candidates && s.refined_candidates > 0 &&
@@ -718,27 +691,49 @@ RunsAndCells refine_runs_and_estimate_cells(const std::vector<geometry::Ring>& r
                    c->order.length_m);
       if (least.size() > s.refined_candidates) least.pop_back();
     }
-    out.cells[a] = std::move(c);
+    cells[a] = std::move(c);
   });
-  return out;
+  return cells;
 }
 
-// `best` with the candidates of `to_refine` (in the order of their estimates) folded in, a wave of
-// one per thread at a time, each skipped or not measured against the best before its wave.
-void refine_in_waves(std::vector<Candidate>& candidates, const std::vector<std::size_t>& to_refine,
-                     Point2 home, const SplitSettings& s, const geometry::Polygon& to_see,
-                     RouterPerThread& routers, Best& best) {
-  const std::size_t wave = s.threads ? s.threads : base::machine_threads();
-  for (std::size_t first = 0; first < to_refine.size(); first += wave) {
-    const std::size_t count = std::min(wave, to_refine.size() - first);
-    std::vector<Refined> refined(count);
-    const double beaten = best.beaten_m();
-    base::parallel_for(count, s.threads, [&](std::size_t k, unsigned worker) {
-      refined[k] =
-          refine(candidates[to_refine[first + k]], home, s, to_see, routers(worker), beaten);
-    });
-    for (Refined& r : refined) fold(r, best);
-  }
+// The candidates of `to_refine` refined (in that order), the most promising first: in order of
+// their lower bounds (straight transits), by a pool of threads, each skipped or not measured
+// against the best plan found before it or beside it. Which are skipped depends on the threads'
+// timing, but not what fold() makes of them: one skipped or not measured is longer than a plan
+// seeing >= 99.9 % that is refined and measured (refine()), and so loses to it wherever it is
+// folded. On a field where cells win, their plan (often found first) rules out the runs at once:
+// ordering a direction's runs, one cell per run with every turn routed, is the dearest kind.
+std::vector<Refined> refine_best_first(std::vector<Candidate>& candidates,
+                                       const std::vector<std::size_t>& to_refine, Point2 home,
+                                       const SplitSettings& s, const geometry::Polygon& to_see,
+                                       RouterPerThread& routers) {
+  const std::size_t n = to_refine.size();
+  std::vector<double> bound_m(n);
+  base::parallel_for(n, s.threads, [&](std::size_t k) {
+    bound_m[k] = order_lower_bound(problem_for(candidates[to_refine[k]], home, straight_m));
+  });
+  std::vector<std::size_t> by_bound(n);
+  std::iota(by_bound.begin(), by_bound.end(), std::size_t{0});
+  std::stable_sort(by_bound.begin(), by_bound.end(),
+                   [&](std::size_t x, std::size_t y) { return bound_m[x] < bound_m[y]; });
+  std::vector<Refined> refined(n);
+  std::mutex lock;                                            // guards beaten_m
+  double beaten_m = std::numeric_limits<double>::infinity();  // least objective seeing >= 99.9 %
+  base::parallel_for(n, s.threads, [&](std::size_t j, unsigned worker) {
+    const std::size_t k = by_bound[j];
+    double beaten = 0;
+    {
+      const std::lock_guard<std::mutex> guard(lock);
+      beaten = beaten_m;
+    }
+    Refined& r = refined[k] =
+        refine(candidates[to_refine[k]], bound_m[k], home, s, to_see, routers(worker), beaten);
+    if (r.seen_fraction >= 0.999) {
+      const std::lock_guard<std::mutex> guard(lock);
+      beaten_m = std::min(beaten_m, r.plan->objective_m);
+    }
+  });
+  return refined;
 }
 
 }  // namespace split_detail
@@ -765,7 +760,8 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // Rank every direction by a cheap estimate (straight transits, heuristic order), and refine the
   // best few of each kind with transits routed inside the area, ordered exactly where small: a
   // straight-line estimate ranks runs and cells differently (runs' transits hop around what cells'
-  // turns go along). Runs are refined while cells are estimated; then the cells.
+  // turns go along). The runs are estimated, then the cells; the candidates to refine are refined
+  // in order of their lower bounds, so that the first good plan rules out the rest early.
   RunEstimates found = estimate_runs(rings, angles, home, s, limits);
   std::vector<Candidate> candidates;
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
@@ -775,20 +771,19 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   };
   for (std::vector<std::pair<int, Candidate>>& of_angle : found.per_angle)
     for (auto& [kind, c] : of_angle) add(kind, std::move(c));
-  const std::vector<std::size_t> runs_to_refine =
-      best_of_each_kind(estimates, s.refined_candidates);
-  RunsAndCells refined = refine_runs_and_estimate_cells(rings, angles, found, candidates,
-                                                        runs_to_refine, home, s, to_see, routers);
-  Best best;
-  for (Refined& r : refined.runs) fold(r, best);
-
+  std::vector<std::size_t> to_refine = best_of_each_kind(estimates, s.refined_candidates);
   const std::size_t run_candidates = candidates.size();
   estimates.clear();
-  for (std::optional<Candidate>& c : refined.cells)
+  for (std::optional<Candidate>& c : estimate_cells(rings, angles, found, home, s))
     if (c) add(2, *std::move(c));
   if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
-  refine_in_waves(candidates, best_of_each_kind(estimates, s.refined_candidates), home, s, to_see,
-                  routers, best);
+  // The runs' best of each kind, then the cells': the order they are folded in (the first of
+  // equal plans wins), whatever order they are refined in.
+  for (const std::size_t c : best_of_each_kind(estimates, s.refined_candidates))
+    to_refine.push_back(c);
+  Best best;
+  for (Refined& r : refine_best_first(candidates, to_refine, home, s, to_see, routers))
+    fold(r, best);
   // Every direction whose cells fit the lane limit a cells candidate, decomposed or ruled out by
   // its bound.
   best.plan.candidates = run_candidates + found.cells_directions.size();
