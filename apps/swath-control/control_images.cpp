@@ -44,7 +44,18 @@ ControlPicture stacked(std::vector<render::ChartSpec> specs, int width_px, int h
   out.view = render::View{1.0, 0.0, 0.0, width_px, height_px};
   const int panel = height_px / static_cast<int>(specs.size());
   for (std::size_t k = 0; k < specs.size(); ++k) {
-    if (specs[k].series.empty() || specs[k].series.front().x.empty()) continue;
+    if (specs[k].series.empty() || specs[k].series.front().x.empty()) {
+      // A flight that ended before its first logged row (a --max-time below the log's 20 ms):
+      // the panel says so rather than staying blank.
+      const double text_h = std::max(11.0, panel / 20.0);
+      const int y = static_cast<int>(static_cast<double>(k) * panel);
+      out.scene.labels.push_back({static_cast<int>(text_h), y + static_cast<int>(1.5 * text_h),
+                                  specs[k].title, text_h, kInk});
+      out.scene.labels.push_back({static_cast<int>(text_h), y + static_cast<int>(3.5 * text_h),
+                                  "no samples: the flight ended before its first logged row",
+                                  text_h, kGrey});
+      continue;
+    }
     render::ChartLayout layout{};
     const render::Scene part = render::chart_scene(specs[k], width_px, panel, &layout);
     const double dy = static_cast<double>(k) * panel;

@@ -89,6 +89,27 @@ TEST(ControlCli, SwathsPlanIsFlownInWindAndItsFilesAgree) {
   }
 }
 
+// A flight stopped before its first logged row (20 ms) still draws every panel of its pictures:
+// each says it has no samples, none is blank.
+TEST(ControlCli, AFlightStoppedAtOnceDrawsPanelsThatSayTheyHaveNoSamples) {
+  const std::string out = fresh_dir("control-stopped");
+  const CliRun run =
+      run_swath_control("run random:4@30x30 --max-time 0.001 --size 600x450 -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* png : {"attitude.png", "energy.png"}) {
+    const render::Image image = render::decode_png(read_text(out + "/" + png));
+    ASSERT_EQ(image.height, 450);
+    const int panels = std::string(png) == "attitude.png" ? 3 : 2;
+    for (int k = 0; k < panels; ++k) {
+      int ink = 0;  // dark pixels of the panel's title and note
+      for (int y = k * 450 / panels; y < (k + 1) * 450 / panels; ++y)
+        for (int x = 0; x < 600; ++x)
+          if (image.at(x, y, 0) < 128) ++ink;
+      EXPECT_GT(ink, 100) << png << " panel " << k;
+    }
+  }
+}
+
 TEST(ControlCli, AReactiveFlightWritesItsFitsAndTheRaster) {
   const std::string out = fresh_dir("control-reactive");
   const CliRun run = run_swath_control(
