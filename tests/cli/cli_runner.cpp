@@ -85,10 +85,3 @@ CliRun run_program(const std::string& binary, const std::string& args) {
 }
 
 }  // namespace swath::test
-
-// LeakSanitizer's check at the exit of this test runner crashed its own tracer (signal 11 while
-// suspending threads) in one shard of the sanitized suite after every test had passed; the
-// threads left are Mesa's (EnergyImages renders in-process). The runner's own leaks are not what
-// these tests check: every program they run is a process of its own and keeps its leak check, and
-// the fuzz targets this runner replays are leak-checked by scripts/fuzz. So the runner opts out.
-extern "C" int __lsan_is_turned_off() { return 1; }
