@@ -36,7 +36,7 @@ endforeach()
 set_target_properties(swath_warnings PROPERTIES EXPORT_NAME warnings)
 
 install(TARGETS swath swath-energy swath-control swath-fleet RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS swath_gis swath_render_gl LIBRARY DESTINATION lib/swath)
+install(TARGETS swath_gis swath_draw LIBRARY DESTINATION lib/swath)
 install(TARGETS ${SWATH_EXPORTED_LIBRARIES} swath_warnings EXPORT swathTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 foreach(folder IN LISTS SWATH_HEADER_FOLDERS)

@@ -33,7 +33,7 @@ def _use_installed_tree():
         return
     os.environ.setdefault("SWATH_SHARE_DIR", str(share))
     for variable, name in (("SWATH_GIS_MODULE", "libswath_gis.so"),
-                           ("SWATH_RENDER_MODULE", "libswath_render_gl.so")):
+                           ("SWATH_RENDER_MODULE", "libswath_draw.so")):
         module = prefix / "lib" / "swath" / name
         if module.is_file():
             os.environ.setdefault(variable, str(module))

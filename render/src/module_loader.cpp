@@ -1,5 +1,5 @@
 // Opens the drawing module on first use and forwards the public drawing functions to it
-// (gl_module.hpp says why the module exists).
+// (draw_module.hpp says why the module exists).
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "gl_module.hpp"
+#include "draw_module.hpp"
 #include "swath/render/image.hpp"
 
 namespace swath::render {
 namespace {
 
-constexpr const char* kModuleFile = "libswath_render_gl.so";
+constexpr const char* kModuleFile = "libswath_draw.so";
 
 // Where to look, in order: $SWATH_RENDER_MODULE, beside the program, the
 // installed tree's lib/swath/, the build tree.
@@ -34,8 +34,8 @@ std::vector<std::filesystem::path> candidates() {
   return out;
 }
 
-const detail::GlModule& module() {
-  static const detail::GlModule* loaded = nullptr;
+const detail::DrawModule& module() {
+  static const detail::DrawModule* loaded = nullptr;
   static std::string failure;
   static std::once_flag once;
   std::call_once(once, [] {
@@ -51,10 +51,10 @@ const detail::GlModule& module() {
         failure = "cannot load the drawing module " + path.string() + " (" + ::dlerror() + ")";
         return;
       }
-      using Entry = const detail::GlModule* (*)();
-      const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "swath_render_gl_module"));
-      const detail::GlModule* m = entry == nullptr ? nullptr : entry();
-      if (m == nullptr || m->abi != detail::kGlModuleAbi) {
+      using Entry = const detail::DrawModule* (*)();
+      const auto entry = reinterpret_cast<Entry>(::dlsym(handle, "swath_draw_module"));
+      const detail::DrawModule* m = entry == nullptr ? nullptr : entry();
+      if (m == nullptr || m->abi != detail::kDrawModuleAbi) {
         failure = "the drawing module " + path.string() +
                   " belongs to another build of swath (rebuild it, or unset SWATH_RENDER_MODULE)";
         return;
@@ -79,25 +79,25 @@ void call(Call&& f) {
 
 Image draw(const Scene& scene, const View& view) {
   Image out;
-  call([&](const detail::GlModule& m, std::string& e) { return m.draw(scene, view, out, e); });
+  call([&](const detail::DrawModule& m, std::string& e) { return m.draw(scene, view, out, e); });
   return out;
 }
 
 std::string encode_png(const Image& image) {
   std::string out;
-  call([&](const detail::GlModule& m, std::string& e) { return m.encode_png(image, out, e); });
+  call([&](const detail::DrawModule& m, std::string& e) { return m.encode_png(image, out, e); });
   return out;
 }
 
 Image decode_png(const std::string& png) {
   Image out;
-  call([&](const detail::GlModule& m, std::string& e) { return m.decode_png(png, out, e); });
+  call([&](const detail::DrawModule& m, std::string& e) { return m.decode_png(png, out, e); });
   return out;
 }
 
 TextExtent text_extent(const std::string& text, double height_px) {
   TextExtent out;
-  call([&](const detail::GlModule& m, std::string& e) {
+  call([&](const detail::DrawModule& m, std::string& e) {
     return m.text_extent(text, height_px, out, e);
   });
   return out;

@@ -156,11 +156,11 @@ TEST(RenderModule, LoadedOnlyWhenAProgramDraws) {
   ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
   EXPECT_EQ(quiet.err.find("libOSMesa"), std::string::npos);
   EXPECT_EQ(quiet.err.find("libopencv"), std::string::npos);
-  EXPECT_EQ(quiet.err.find("libswath_render_gl"), std::string::npos);
+  EXPECT_EQ(quiet.err.find("libswath_draw"), std::string::npos);
 
   const CliRun drawn = run_program("env", plan + fresh_dir("module-render") + " --render");
   ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
-  EXPECT_NE(drawn.err.find("libswath_render_gl"), std::string::npos);
+  EXPECT_NE(drawn.err.find("libswath_draw"), std::string::npos);
   EXPECT_NE(drawn.err.find("libpng16"), std::string::npos);
   EXPECT_EQ(drawn.err.find("libOSMesa"), std::string::npos);
   EXPECT_EQ(drawn.err.find("libopencv_imgcodecs"), std::string::npos);

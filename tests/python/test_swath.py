@@ -216,22 +216,22 @@ def test_a_moved_tree_finds_its_own_data(prefix, tmp_path):
 
 
 def test_a_moved_tree_draws_with_its_own_module(prefix, tmp_path):
-    """coverage.png is drawn by the moved tree's libswath_render_gl.so, in the program (the
+    """coverage.png is drawn by the moved tree's libswath_draw.so, in the program (the
     loader's own trace says which file it opened) and in the module (the process's mappings)."""
     root = tmp_path / "moved"
     env = moved_copy(prefix, root)
-    module = str(root / "lib/swath/libswath_render_gl.so")
+    module = str(root / "lib/swath/libswath_draw.so")
     run = subprocess.run([str(root / "bin/swath"), "plan", "share/fields/meadow.geojson",
                           "--camera", "sony-ilce-qx1", "--altitude", "60", "--render", "--size",
                           "200x150", "-o", str(tmp_path / "cli")],
                          capture_output=True, text=True, env={**env, "LD_DEBUG": "files"})
     assert run.returncode == 0, run.stderr
     opened = [line for line in run.stderr.splitlines()
-              if "libswath_render_gl.so" in line and "file=" in line]
+              if "libswath_draw.so" in line and "file=" in line]
     assert opened and all(module in line for line in opened), opened
     script = ("import swath, sys; swath.plan('share/fields/meadow.geojson', camera='sony-ilce-qx1',"
               " altitude_m=60, render=True, size='200x150', out=sys.argv[1]); "
-              "print(''.join(l for l in open('/proc/self/maps') if 'libswath_render_gl' in l))")
+              "print(''.join(l for l in open('/proc/self/maps') if 'libswath_draw' in l))")
     run = subprocess.run([sys.executable, "-c", script, str(tmp_path / "py")],
                          capture_output=True, text=True, env=env)
     assert run.returncode == 0, run.stderr

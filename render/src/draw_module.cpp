@@ -1,5 +1,5 @@
-// The drawing module (libswath_render_gl.so): the only translation unit that sees OpenCV and
-// libpng. Loaded on first use by module_loader.cpp (see gl_module.hpp). The geometry is filled by
+// The drawing module (libswath_draw.so): the only translation unit that sees OpenCV and libpng.
+// Loaded on first use by module_loader.cpp (see draw_module.hpp). The geometry is filled by
 // the coverage rasteriser (exact-area anti-aliasing, no supersampled buffer), the labels by
 // OpenCV's anti-aliased text, PNG by libpng.
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "canvas.hpp"
 #include "coverage_rasterizer.hpp"
-#include "gl_module.hpp"
+#include "draw_module.hpp"
 #include "png_codec.hpp"
 #include "shapes.hpp"
 #include "swath/render/image.hpp"
@@ -188,11 +188,11 @@ bool guarded(std::string& error, F&& f) noexcept {
 }  // namespace
 }  // namespace swath::render
 
-extern "C" __attribute__((visibility("default"))) const swath::render::detail::GlModule*
-swath_render_gl_module() {
+extern "C" __attribute__((visibility("default"))) const swath::render::detail::DrawModule*
+swath_draw_module() {
   using namespace swath::render;
-  static const detail::GlModule module{
-      detail::kGlModuleAbi,
+  static const detail::DrawModule module{
+      detail::kDrawModuleAbi,
       [](const Scene& scene, const View& view, Image& out, std::string& error) noexcept {
         return guarded(error, [&] { out = draw_scene(scene, view); });
       },

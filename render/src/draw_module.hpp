@@ -1,6 +1,6 @@
 #pragma once
 // Internal: the drawing module's entry points. The drawing stack (the coverage rasteriser, OpenCV's
-// core and imgproc for the labels, libpng) lives in a module of its own, libswath_render_gl.so,
+// core and imgproc for the labels, libpng) lives in a module of its own, libswath_draw.so,
 // that swath::render opens on the first picture (module_loader.cpp): a program that draws nothing
 // loads none of those libraries at start-up. Errors cross the boundary as text, not as exceptions.
 
@@ -11,10 +11,10 @@
 namespace swath::render::detail {
 
 /// Bumped whenever this struct or the types it passes change: a stale module is refused.
-inline constexpr int kGlModuleAbi = 3;
+inline constexpr int kDrawModuleAbi = 3;
 
-struct GlModule {
-  int abi = kGlModuleAbi;
+struct DrawModule {
+  int abi = kDrawModuleAbi;
   /// Each returns false and sets `error` on failure.
   bool (*draw)(const Scene& scene, const View& view, Image& out,
                std::string& error) noexcept = nullptr;
@@ -27,4 +27,4 @@ struct GlModule {
 }  // namespace swath::render::detail
 
 /// The module's one exported symbol.
-extern "C" const swath::render::detail::GlModule* swath_render_gl_module();
+extern "C" const swath::render::detail::DrawModule* swath_draw_module();
