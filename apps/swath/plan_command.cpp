@@ -13,6 +13,7 @@
 #include "input_text.hpp"
 #include "mission_config.hpp"
 #include "plan_html.hpp"
+#include "progress_bar.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -215,6 +216,8 @@ void PlanCommand::add_output_options(CLI::App& app) {
   app.add_flag("--render", render_,
                "Also draw coverage.png: the area, camera footprints, paths, home, scale bar");
   app.add_option("--size", size_, "Size of coverage.png, WxH pixels")->capture_default_str();
+  app.add_flag("--progress", progress_,
+               "Show the split's direction search as a progress bar (only on a terminal)");
   app.add_flag("--html", html_,
                "Also write plan.html: the plan on a map, one self-contained page (layers, "
                "waypoint details, summary); it fetches nothing unless --basemap-url is given");
@@ -689,7 +692,13 @@ int PlanCommand::run() {
   if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
   if (output_.empty()) throw InputError("no output directory: give -o DIR");
   check_numbers();
-  const planning::SurveyPlan plan = planning::plan_survey(request());
+  planning::SurveyRequest asked = request();
+  const planning::SurveyPlan plan = [&] {
+    // The bar ends its line before the summary is printed.
+    ProgressBar bar(progress_, "searching directions");
+    asked.progress = [&bar](double fraction) { bar.update(fraction); };
+    return planning::plan_survey(asked);
+  }();
   const auto set = files(plan);
   verify_before_writing(set, check_options(plan));
   base::write_files_atomically(output_, set, "plan");

@@ -72,6 +72,7 @@ class PlanCommand : public Command {
   std::string directions_ = "one";
   std::vector<std::string> exclude_;
   bool repair_ = false;
+  bool progress_ = false;
   std::optional<int> drones_;
   bool far_home_ = false;
   std::string fleet_;

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -468,6 +469,34 @@ SplitPlan RunOrder::operator()(std::vector<geometry::Ring> outlines, std::vector
 
 namespace split_detail {
 
+// SplitSettings::progress, told one call at a time: each part of the search adds its share of 1
+// as its pieces finish (on any thread).
+class SearchProgress {
+ public:
+  explicit SearchProgress(const std::function<void(double)>& tell) : tell_(tell) {}
+  /// `share` of `count` pieces of that share: one piece done, or all of them at once when there
+  /// are none.
+  void piece(double share, std::size_t count) {
+    add(count == 0 ? share : share / static_cast<double>(count));
+  }
+  void finish() { add(1.0); }
+
+ private:
+  void add(double share) {
+    if (!tell_) return;
+    const std::lock_guard<std::mutex> guard(lock_);
+    done_ = std::min(1.0, done_ + share);
+    tell_(done_);
+  }
+  const std::function<void(double)>& tell_;
+  std::mutex lock_;
+  double done_ = 0;
+};
+
+// The shares of the whole search: the lanes at every direction, the cells where they could rank,
+// the candidates refined (the dearest part on concave areas: routed transits).
+constexpr double kRunsShare = 1.0 / 3, kCellsShare = 1.0 / 6, kRefineShare = 1.0 / 2;
+
 // Which kinds of candidate (0 bridged runs, 1 runs, 2 cells) each direction may lay within
 // s.max_lines, counted before any lane is laid (grid_lane_count): on a concave area a lane
 // position holds a lane per arm it crosses, and laying and ordering them at every direction ran a
@@ -543,7 +572,7 @@ struct RunEstimates {
 
 RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
                            const std::vector<double>& angles, Point2 home, const SplitSettings& s,
-                           const LaneLimits& limits) {
+                           const LaneLimits& limits, SearchProgress& progress) {
   // The directions are independent: spread over threads, each into its own slot.
   const std::size_t n = angles.size();
   RunEstimates out;
@@ -566,6 +595,7 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
     }
     if (cells && limits.fits[a][2])
       out.cells_bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
+    progress.piece(kRunsShare, n);
   });
   if (cells)
     for (std::size_t a = 0; a < n; ++a)
@@ -668,7 +698,8 @@ class RouterPerThread {
 std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry::Ring>& rings,
                                                      const std::vector<double>& angles,
                                                      const RunEstimates& found, Point2 home,
-                                                     const SplitSettings& s) {
+                                                     const SplitSettings& s,
+                                                     SearchProgress& progress) {
   const std::vector<double>& cells_bound = found.cells_bound;
   std::vector<std::size_t> by_bound = found.cells_directions;
   std::stable_sort(by_bound.begin(), by_bound.end(),
@@ -676,8 +707,10 @@ std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry:
   std::vector<std::optional<Candidate>> cells(angles.size());
   std::mutex lock;            // guards `least`
   std::vector<double> least;  // the cells' estimates found, ascending, at most refined_candidates
+  if (by_bound.empty()) progress.piece(kCellsShare, 0);
   base::parallel_for(by_bound.size(), s.threads, [&](std::size_t j) {
     const std::size_t a = by_bound[j];
+    progress.piece(kCellsShare, by_bound.size());
     {
       const std::lock_guard<std::mutex> guard(lock);
       if (least.size() == s.refined_candidates && s.refined_candidates > 0 &&
@@ -706,7 +739,7 @@ std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry:
 std::vector<Refined> refine_best_first(std::vector<Candidate>& candidates,
                                        const std::vector<std::size_t>& to_refine, Point2 home,
                                        const SplitSettings& s, const geometry::Polygon& to_see,
-                                       RouterPerThread& routers) {
+                                       RouterPerThread& routers, SearchProgress& progress) {
   const std::size_t n = to_refine.size();
   std::vector<double> bound_m(n);
   base::parallel_for(n, s.threads, [&](std::size_t k) {
@@ -732,6 +765,7 @@ std::vector<Refined> refine_best_first(std::vector<Candidate>& candidates,
       const std::lock_guard<std::mutex> guard(lock);
       beaten_m = std::min(beaten_m, r.plan->objective_m);
     }
+    progress.piece(kRefineShare, n);
   });
   return refined;
 }
@@ -762,7 +796,9 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // straight-line estimate ranks runs and cells differently (runs' transits hop around what cells'
   // turns go along). The runs are estimated, then the cells; the candidates to refine are refined
   // in order of their lower bounds, so that the first good plan rules out the rest early.
-  RunEstimates found = estimate_runs(rings, angles, home, s, limits);
+  SearchProgress progress(s.progress);
+  RunEstimates found = estimate_runs(rings, angles, home, s, limits, progress);
+  if (angles.empty()) progress.piece(kRunsShare, 0);
   std::vector<Candidate> candidates;
   std::vector<std::tuple<int, double, std::size_t>> estimates;  // kind, estimate, candidate
   const auto add = [&](int kind, Candidate c) {
@@ -774,7 +810,7 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   std::vector<std::size_t> to_refine = best_of_each_kind(estimates, s.refined_candidates);
   const std::size_t run_candidates = candidates.size();
   estimates.clear();
-  for (std::optional<Candidate>& c : estimate_cells(rings, angles, found, home, s))
+  for (std::optional<Candidate>& c : estimate_cells(rings, angles, found, home, s, progress))
     if (c) add(2, *std::move(c));
   if (candidates.empty()) throw std::invalid_argument("plan_split: the area holds no line");
   // The runs' best of each kind, then the cells': the order they are folded in (the first of
@@ -782,15 +818,20 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   for (const std::size_t c : best_of_each_kind(estimates, s.refined_candidates))
     to_refine.push_back(c);
   Best best;
-  for (Refined& r : refine_best_first(candidates, to_refine, home, s, to_see, routers))
+  if (to_refine.empty()) progress.piece(kRefineShare, 0);
+  for (Refined& r : refine_best_first(candidates, to_refine, home, s, to_see, routers, progress))
     fold(r, best);
   // Every direction whose cells fit the lane limit a cells candidate, decomposed or ruled out by
   // its bound.
   best.plan.candidates = run_candidates + found.cells_directions.size();
   if (s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty() &&
       best.key.first == 0)
-    if (std::optional<SplitPlan> mixed = per_region_plan(rings, home, s, to_see, best.plan, routed))
+    if (std::optional<SplitPlan> mixed =
+            per_region_plan(rings, home, s, to_see, best.plan, routed)) {
+      progress.finish();
       return *std::move(mixed);
+    }
+  progress.finish();
   return std::move(best.plan);
 }
 

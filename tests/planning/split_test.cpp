@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -662,6 +663,37 @@ TEST(SplitSurvey, RefiningTheMostPromisingFirstKeepsTheBestOfBothKinds) {
   EXPECT_GT(cells_won, 0);
   RecordProperty("compared", std::to_string(compared));
   RecordProperty("cells_won", std::to_string(cells_won));
+}
+
+// SplitSettings::progress: told the fraction done one call at a time, ascending within [0, 1],
+// ending with 1, at least once per direction searched; the plan is the one found without it.
+TEST(SplitSurvey, TheSearchTellsItsProgressAscendingToOne) {
+  test::Rng rng(100);
+  const std::vector<Ring> rings{test::random_field_polygon(rng, 60, 400)};
+  SplitSettings s;
+  s.line_spacing_m = 30;
+  s.footprint_width_m = 45;
+  s.threads = 2;
+  const geometry::VisibilityRouter router(rings);
+  const SplitPlan quiet = plan_split(rings, {-500, -500}, s, router);
+  std::vector<double> told;
+  bool overlapped = false;
+  std::atomic<int> inside{0};
+  s.progress = [&](double fraction) {
+    overlapped |= inside.fetch_add(1) != 0;
+    told.push_back(fraction);
+    inside.fetch_sub(1);
+  };
+  const SplitPlan watched = plan_split(rings, {-500, -500}, s, geometry::VisibilityRouter(rings));
+  EXPECT_FALSE(overlapped);
+  ASSERT_FALSE(told.empty());
+  EXPECT_EQ(told.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(told.begin(), told.end()));
+  EXPECT_GE(told.front(), 0.0);
+  EXPECT_GE(told.size(), 90u);  // 180 degrees in 2-degree steps, and more pieces after them
+  EXPECT_EQ(watched.angle_deg, quiet.angle_deg);
+  EXPECT_EQ(watched.path_length_m, quiet.path_length_m);
+  ASSERT_EQ(watched.lines.size(), quiet.lines.size());
 }
 
 // SplitSettings::max_lines: lanes are counted at their positions before any is laid. A comb of 10

@@ -128,6 +128,7 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
     if (angle_deg) s.fixed_angle_deg = *angle_deg;
     s.max_lines = kMaxSweepLines;
     s.limit_cross_pass = first && plan.request.crosshatch;
+    if (first) s.progress = plan.request.progress;  // the search; the crosshatch pass is fixed
     SplitPlan sp;
     try {
       sp = plan_split(plan.planning_rings, from, s, routes.inside);

@@ -3,6 +3,7 @@
 // swept inside, visited in the order and direction that make the whole path shortest.
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -65,6 +66,11 @@ struct SplitSettings {
   std::size_t max_lines = 0;
   /// The limit holds for the pass at 90 degrees to a direction too (a crosshatch flies both).
   bool limit_cross_pass = false;
+  /// Told the fraction of the search done, in [0, 1], ascending, ending with 1 (null: not told):
+  /// the lanes at every direction are a third, the cells where they could rank a sixth, each
+  /// candidate refined an equal share of the rest. Called one call at a time, from whichever
+  /// thread finished a piece.
+  std::function<void(double fraction)> progress;
 };
 
 /// plan_split's refusal when no direction it would try lays its grid lanes within

@@ -4,6 +4,7 @@
 // measures. Each step lives in its own file pair (survey_area, imaging, direction, lanes, drones,
 // mission, sorties, photos, clearance, checks); this header holds only the data they share.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -114,6 +115,9 @@ struct SurveyRequest {
   double layer_spacing_m = 10.0;
   /// No layer above this height above home, metres: a fleet that needs more layers is refused.
   double ceiling_m = 120.0;
+  /// Told the fraction done of the split's direction search (the long part of a plan on a
+  /// concave area), in [0, 1], as it goes (SplitSettings::progress); null: not told.
+  std::function<void(double fraction)> progress;
 };
 
 /// Flight times on one battery the endurance warning assumes when none is given, seconds.
