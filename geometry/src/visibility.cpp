@@ -8,6 +8,7 @@
 
 #include "swath/geometry/capped_heap.hpp"
 #include "swath/geometry/classification.hpp"
+#include "swath/geometry/open_nodes.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::geometry {
@@ -632,25 +633,6 @@ struct SearchItem {
   friend bool operator>(const SearchItem& x, const SearchItem& y) { return y < x; }
 };
 
-// The nodes of a search not yet settled, in no order: with a corner allowance a settled node
-// looks for onward legs to every one of them (the order it looks in does not matter: each leg is
-// one candidate, and the queue orders candidates by all their fields).
-struct OpenNodes {
-  std::vector<std::uint32_t> list;
-  std::vector<std::uint32_t> at;  ///< per node of list, its place there
-  void reset(const std::vector<std::size_t>& near, std::size_t n) {
-    list.assign(near.begin(), near.end());
-    at.resize(n);
-    for (std::size_t k = 0; k < list.size(); ++k) at[list[k]] = std::uint32_t(k);
-  }
-  void remove(std::size_t v) {
-    const std::uint32_t k = at[v], moved = list.back();
-    list[k] = moved;
-    at[moved] = k;
-    list.pop_back();
-  }
-};
-
 // Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
 // settles the node (if none before it has), so a candidate after it is never used: path() does
 // not queue it (most of a long search's queue, once the tables know the corners near its path).
@@ -743,6 +725,19 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   std::size_t last = n;
   for (bool found = false; !found;) {
     double beyond = std::numeric_limits<double>::infinity();  // least f left out
+    // An upper bound of the answer's f, once a way to b is known: a candidate of greater f is
+    // never taken (the answer, or one before it, ends the search first), so it is not queued.
+    // Set (at most the limit) from a to_b candidate queued whose node is known to see b, and
+    // without pruning from a node's settler: the node settles at or before it (at no greater g)
+    // and then queues its way to b at no greater f (rounding is monotone). With a bound the
+    // search ends with an answer, so `beyond` (then also counting candidates above the bound)
+    // is not used.
+    double bound = std::numeric_limits<double>::infinity();
+    const auto bound_by_settler = [&](const SearchItem& settler) {
+      if (prune_ || to_b.seen[settler.node] != 1) return;
+      const double f = settler.g + distance(nodes_[settler.node], b);
+      if (f <= limit) bound = std::min(bound, f);
+    };
     previous.assign(n, n);
     settled.assign(n, 0);
     is_near.assign(n, 0);
@@ -772,14 +767,17 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       near.push_back(u);
       is_near[u] = 1;
       const SearchItem straight{f, 0, d, 0, 0.0, n, u};
-      if (from_a.seen[u] != 0) queue.push(straight);      // not known hidden
-      if (from_a.seen[u] == 1) settlers.offer(straight);  // the only one from a for u
+      if (from_a.seen[u] != 0) queue.push(straight);  // not known hidden
+      if (from_a.seen[u] == 1) {                      // the only one from a for u
+        settlers.offer(straight);
+        bound_by_settler(straight);
+      }
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(near.begin(), near.end());
-    open.reset(near, n);
+    open.reset(near, n, nodes_, h);
     const auto push = [&](const SearchItem& item) {
-      if (!(item.f <= limit)) {
+      if (!(item.f <= std::min(limit, bound))) {
         beyond = std::min(beyond, item.f);
         return;
       }
@@ -807,39 +805,51 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       const Point2 in_from = item.from_node ? nodes_[from] : a;
       const Sides in = corner_sides(in_from, nodes_[v], v);
       if (!in.left && !in.right) continue;
-      if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
-        push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
-      // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet).
-      const auto onward_to = [&](std::size_t u, signed char seen) {
-        const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
-        const double f = through + h[u];
-        if (!(f <= limit)) {  // as push() does
-          beyond = std::min(beyond, f);
-          return;
-        }
+      if (to_b.seen[v] != 0 && taut(in, in_from, v, b)) {
+        const double f = item.g + distance(nodes_[v], b);
+        push({f, 1, 0.0, 0, 0.0, 0, v});
+        if (to_b.seen[v] == 1 && f <= limit) bound = std::min(bound, f);
+      }
+      // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet), of f
+      // under the cut (the bound may have come down since the cut was taken).
+      const auto queue_leg = [&](std::size_t u, signed char seen, double through, double f) {
+        if (f > bound) return;
         const SearchItem next{f, 0, through, 1, item.g, v, u};
         if (settlers.after(next)) return;
-        if (seen == 1) settlers.offer(next);
+        if (seen == 1) {
+          settlers.offer(next);
+          bound_by_settler(next);
+        }
         queue.push(next);
       };
       if (prune_) {
         onward(v, in, box_lo, box_hi, [&](std::size_t u) {
           if (!is_near[u] || settled[u]) return;
           const signed char seen = nodes_known(v, u);
-          if (seen != 0 && taut(in, in_from, v, nodes_[u])) onward_to(u, seen);
+          if (seen == 0 || !taut(in, in_from, v, nodes_[u])) return;
+          const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
+          const double f = through + h[u];
+          if (!(f <= std::min(limit, bound))) {  // as push() does
+            beyond = std::min(beyond, f);
+            return;
+          }
+          queue_leg(u, seen, through, f);
         });
       } else {
-        // Every open node (near, not settled); those known hidden (nearly half) skipped. Row v's
-        // chunk is looked up once per chunk, not once per node (one chunk below 4096 nodes).
+        // Every open node (near, not settled) whose leg's f is under the cut; those known hidden
+        // (nearly half) skipped. Row v's chunk is looked up once per chunk, not once per node (one
+        // chunk below 4096 nodes).
+        beyond = std::min(beyond, open.legs(nodes_[v], item.g, std::min(limit, bound)));
         const NodeTables& tables = *node_tables_;
         const NodeTables::Chunk* chunk = nullptr;
         std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
-        for (const std::uint32_t u : open.list) {
+        for (const std::uint32_t k : open.under()) {
+          const std::uint32_t u = open.node(k);
           const std::size_t c = u / NodeTables::kChunk;
           if (c != chunk_at) chunk = tables.chunk_of(v, chunk_at = c);
           const signed char seen =
               chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
-          if (seen != 0) onward_to(u, seen);
+          if (seen != 0) queue_leg(u, seen, open.through(k), open.f(k));
         }
       }
     }
