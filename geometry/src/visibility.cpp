@@ -722,8 +722,20 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   // least twice that distance): only the nodes within that of it in x (by search in the nodes
   // sorted by x) and in y are asked.
   double limit = 1.25 * distance(a, b) + tolerance_;
+  // A first bound (see `bound` below) from the nodes earlier searches from a settled: a node v
+  // that b is known to see settles at the same g here, and then queues its way to b at g + |v b|
+  // (computed so), unless the search ends before. Without pruning only (with it, that way is
+  // queued only when it turns round v's corner, which depends on how v was reached).
+  double first_bound = std::numeric_limits<double>::infinity();
+  if (!prune_)
+    for (const std::uint32_t v : from_a.reached)
+      if (to_b.seen[v] == 1)
+        first_bound = std::min(first_bound, from_a.reached_g[v] + distance(nodes_[v], b));
+  thread_local std::vector<double> g_of;                 // per node settled: its g
+  thread_local std::vector<std::uint32_t> settled_list;  // the nodes settled, in order
+  g_of.resize(n);
   std::size_t last = n;
-  for (bool found = false; !found;) {
+  for (bool found = false, first_run = true; !found; first_run = false) {
     double beyond = std::numeric_limits<double>::infinity();  // least f left out
     // An upper bound of the answer's f, once a way to b is known: a candidate of greater f is
     // never taken (the answer, or one before it, ends the search first), so it is not queued.
@@ -732,7 +744,15 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     // and then queues its way to b at no greater f (rounding is monotone). With a bound the
     // search ends with an answer, so `beyond` (then also counting candidates above the bound)
     // is not used.
-    double bound = std::numeric_limits<double>::infinity();
+    // The first bound serves the first run only, and only below the limit by far more than
+    // rounding: the nodes on v's way from a then have their f, and their straight f from a,
+    // under the limit too, so they are in the search. Nodes whose straight f (a lower bound of
+    // their candidates', up to rounding) is above the bound are left out.
+    double bound = first_run && first_bound <= limit * (1 - 1e-9)
+                       ? first_bound
+                       : std::numeric_limits<double>::infinity();
+    const double near_cut = bound * (1 + 1e-9) + tolerance_;
+    settled_list.clear();
     const auto bound_by_settler = [&](const SearchItem& settler) {
       if (prune_ || to_b.seen[settler.node] != 1) return;
       const double f = settler.g + distance(nodes_[settler.node], b);
@@ -762,6 +782,10 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       const double d = distance(a, nodes_[u]), f = d + h[u];
       if (!(f <= limit)) {
         beyond = std::min(beyond, f);
+        continue;
+      }
+      if (f > near_cut) {  // never taken (the search ends with an answer: `beyond` unused)
+        left_out = true;
         continue;
       }
       near.push_back(u);
@@ -798,6 +822,8 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       if (item.from_node ? !nodes_see(std::min(from, v), std::max(from, v)) : !sees(a, from_a, v))
         continue;
       settled[v] = 1;
+      g_of[v] = item.g;
+      settled_list.push_back(std::uint32_t(v));
       open.remove(v);
       previous[v] = item.from_node ? from : n;
       // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
@@ -858,6 +884,16 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     limit = std::max(2 * limit, beyond == std::numeric_limits<double>::infinity() ? 0 : beyond);
   }
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
+  // The last run took its candidates in the order of a search without a limit: its nodes are
+  // settled at Dijkstra's distances from a.
+  if (!prune_) {
+    if (from_a.reached_g.empty()) from_a.reached_g.assign(n, -1.0);
+    for (const std::uint32_t v : settled_list)
+      if (from_a.reached_g[v] < 0) {
+        from_a.reached_g[v] = g_of[v];
+        from_a.reached.push_back(v);
+      }
+  }
   return route_back(a, b, last, previous, nodes_);
 }
 
