@@ -490,7 +490,7 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
 // when first written: a search asks about the pairs near its path only, and a full table of 10^4
 // nodes would be 10^8 bytes.
 struct VisibilityRouter::NodeTables {
-  static constexpr std::size_t kChunk = 4096;  ///< pairs per chunk, of one row
+  static constexpr std::size_t kChunk = 4096;  ///< pairs per chunk of one row (the last: the rest)
   using Chunk = std::atomic<signed char>;
   explicit NodeTables(std::size_t n)
       : nodes(n),
@@ -521,8 +521,11 @@ struct VisibilityRouter::NodeTables {
     std::atomic<Chunk*>& slot = chunks[i * per_row + j / kChunk];
     Chunk* chunk = slot.load(std::memory_order_acquire);
     if (!chunk) {
-      auto made = std::make_unique<Chunk[]>(kChunk);
-      for (std::size_t k = 0; k < kChunk; ++k) made[k].store(kUnknown, std::memory_order_relaxed);
+      // Only as long as the row (below kChunk nodes): rows of 4096 bytes each, of which a search
+      // reads the first few hundred, all fell on the same few sets of the caches.
+      const std::size_t size = std::min(kChunk, nodes - j / kChunk * kChunk);
+      auto made = std::make_unique<Chunk[]>(size);
+      for (std::size_t k = 0; k < size; ++k) made[k].store(kUnknown, std::memory_order_relaxed);
       if (slot.compare_exchange_strong(chunk, made.get(), std::memory_order_acq_rel,
                                        std::memory_order_acquire))
         chunk = made.release();  // kept; otherwise `chunk` is the one another thread published
