@@ -726,14 +726,27 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   // sorted by x) and in y are asked.
   double limit = 1.25 * distance(a, b) + tolerance_;
   // A first bound (see `bound` below) from the nodes earlier searches from a settled: a node v
-  // that b is known to see settles at the same g here, and then queues its way to b at g + |v b|
-  // (computed so), unless the search ends before. Without pruning only (with it, that way is
-  // queued only when it turns round v's corner, which depends on how v was reached).
+  // that b sees settles at the same g here, and then queues its way to b at g + |v b| (computed
+  // so), unless the search ends before. Without pruning only (with it, that way is queued only
+  // when it turns round v's corner, which depends on how v was reached). Whether b sees them is
+  // asked in order of that sum, up to the first seen: the search asks the same of each one whose
+  // sum is below its answer's (their ways to b are taken before the answer), so at most the last
+  // question is one it would not have asked.
   double first_bound = std::numeric_limits<double>::infinity();
-  if (!prune_)
-    for (const std::uint32_t v : from_a.reached)
-      if (to_b.seen[v] == 1)
-        first_bound = std::min(first_bound, from_a.reached_g[v] + distance(nodes_[v], b));
+  if (!prune_ && !from_a.reached.empty()) {
+    thread_local std::vector<std::pair<double, std::uint32_t>> ways;
+    ways.clear();
+    for (const std::uint32_t v : from_a.reached) {
+      const double f = from_a.reached_g[v] + distance(nodes_[v], b);
+      if (to_b.seen[v] != 0 && f <= limit * (1 - 1e-9)) ways.push_back({f, v});
+    }
+    std::sort(ways.begin(), ways.end());
+    for (const auto& [f, v] : ways)
+      if (sees(b, to_b, v)) {
+        first_bound = f;
+        break;
+      }
+  }
   thread_local std::vector<double> g_of;                 // per node settled: its g
   thread_local std::vector<std::uint32_t> settled_list;  // the nodes settled, in order
   g_of.resize(n);
