@@ -8,6 +8,7 @@
 
 #include "swath/geometry/capped_heap.hpp"
 #include "swath/geometry/classification.hpp"
+#include "swath/geometry/open_nodes.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::geometry {
@@ -489,7 +490,7 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
 // when first written: a search asks about the pairs near its path only, and a full table of 10^4
 // nodes would be 10^8 bytes.
 struct VisibilityRouter::NodeTables {
-  static constexpr std::size_t kChunk = 4096;  ///< pairs per chunk, of one row
+  static constexpr std::size_t kChunk = 4096;  ///< pairs per chunk of one row (the last: the rest)
   using Chunk = std::atomic<signed char>;
   explicit NodeTables(std::size_t n)
       : nodes(n),
@@ -520,8 +521,11 @@ struct VisibilityRouter::NodeTables {
     std::atomic<Chunk*>& slot = chunks[i * per_row + j / kChunk];
     Chunk* chunk = slot.load(std::memory_order_acquire);
     if (!chunk) {
-      auto made = std::make_unique<Chunk[]>(kChunk);
-      for (std::size_t k = 0; k < kChunk; ++k) made[k].store(kUnknown, std::memory_order_relaxed);
+      // Only as long as the row (below kChunk nodes): rows of 4096 bytes each, of which a search
+      // reads the first few hundred, all fell on the same few sets of the caches.
+      const std::size_t size = std::min(kChunk, nodes - j / kChunk * kChunk);
+      auto made = std::make_unique<Chunk[]>(size);
+      for (std::size_t k = 0; k < size; ++k) made[k].store(kUnknown, std::memory_order_relaxed);
       if (slot.compare_exchange_strong(chunk, made.get(), std::memory_order_acq_rel,
                                        std::memory_order_acquire))
         chunk = made.release();  // kept; otherwise `chunk` is the one another thread published
@@ -632,25 +636,6 @@ struct SearchItem {
   friend bool operator>(const SearchItem& x, const SearchItem& y) { return y < x; }
 };
 
-// The nodes of a search not yet settled, in no order: with a corner allowance a settled node
-// looks for onward legs to every one of them (the order it looks in does not matter: each leg is
-// one candidate, and the queue orders candidates by all their fields).
-struct OpenNodes {
-  std::vector<std::uint32_t> list;
-  std::vector<std::uint32_t> at;  ///< per node of list, its place there
-  void reset(const std::vector<std::size_t>& near, std::size_t n) {
-    list.assign(near.begin(), near.end());
-    at.resize(n);
-    for (std::size_t k = 0; k < list.size(); ++k) at[list[k]] = std::uint32_t(k);
-  }
-  void remove(std::size_t v) {
-    const std::uint32_t k = at[v], moved = list.back();
-    list[k] = moved;
-    at[moved] = k;
-    list.pop_back();
-  }
-};
-
 // Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
 // settles the node (if none before it has), so a candidate after it is never used: path() does
 // not queue it (most of a long search's queue, once the tables know the corners near its path).
@@ -740,9 +725,55 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   // least twice that distance): only the nodes within that of it in x (by search in the nodes
   // sorted by x) and in y are asked.
   double limit = 1.25 * distance(a, b) + tolerance_;
+  // A first bound (see `bound` below) from the nodes earlier searches from a settled: a node v
+  // that b sees settles at the same g here, and then queues its way to b at g + |v b| (computed
+  // so), unless the search ends before. Without pruning only (with it, that way is queued only
+  // when it turns round v's corner, which depends on how v was reached). Whether b sees them is
+  // asked in order of that sum, up to the first seen: the search asks the same of each one whose
+  // sum is below its answer's (their ways to b are taken before the answer), so at most the last
+  // question is one it would not have asked.
+  double first_bound = std::numeric_limits<double>::infinity();
+  if (!prune_ && !from_a.reached.empty()) {
+    thread_local std::vector<std::pair<double, std::uint32_t>> ways;
+    ways.clear();
+    for (const std::uint32_t v : from_a.reached) {
+      const double f = from_a.reached_g[v] + distance(nodes_[v], b);
+      if (to_b.seen[v] != 0 && f <= limit * (1 - 1e-9)) ways.push_back({f, v});
+    }
+    std::sort(ways.begin(), ways.end());
+    for (const auto& [f, v] : ways)
+      if (sees(b, to_b, v)) {
+        first_bound = f;
+        break;
+      }
+  }
+  thread_local std::vector<double> g_of;                 // per node settled: its g
+  thread_local std::vector<std::uint32_t> settled_list;  // the nodes settled, in order
+  g_of.resize(n);
   std::size_t last = n;
-  for (bool found = false; !found;) {
+  for (bool found = false, first_run = true; !found; first_run = false) {
     double beyond = std::numeric_limits<double>::infinity();  // least f left out
+    // An upper bound of the answer's f, once a way to b is known: a candidate of greater f is
+    // never taken (the answer, or one before it, ends the search first), so it is not queued.
+    // Set (at most the limit) from a to_b candidate queued whose node is known to see b, and
+    // without pruning from a node's settler: the node settles at or before it (at no greater g)
+    // and then queues its way to b at no greater f (rounding is monotone). With a bound the
+    // search ends with an answer, so `beyond` (then also counting candidates above the bound)
+    // is not used.
+    // The first bound serves the first run only, and only below the limit by far more than
+    // rounding: the nodes on v's way from a then have their f, and their straight f from a,
+    // under the limit too, so they are in the search. Nodes whose straight f (a lower bound of
+    // their candidates', up to rounding) is above the bound are left out.
+    double bound = first_run && first_bound <= limit * (1 - 1e-9)
+                       ? first_bound
+                       : std::numeric_limits<double>::infinity();
+    const double near_cut = bound * (1 + 1e-9) + tolerance_;
+    settled_list.clear();
+    const auto bound_by_settler = [&](const SearchItem& settler) {
+      if (prune_ || to_b.seen[settler.node] != 1) return;
+      const double f = settler.g + distance(nodes_[settler.node], b);
+      if (f <= limit) bound = std::min(bound, f);
+    };
     previous.assign(n, n);
     settled.assign(n, 0);
     is_near.assign(n, 0);
@@ -769,17 +800,24 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
         beyond = std::min(beyond, f);
         continue;
       }
+      if (f > near_cut) {  // never taken (the search ends with an answer: `beyond` unused)
+        left_out = true;
+        continue;
+      }
       near.push_back(u);
       is_near[u] = 1;
       const SearchItem straight{f, 0, d, 0, 0.0, n, u};
-      if (from_a.seen[u] != 0) queue.push(straight);      // not known hidden
-      if (from_a.seen[u] == 1) settlers.offer(straight);  // the only one from a for u
+      if (from_a.seen[u] != 0) queue.push(straight);  // not known hidden
+      if (from_a.seen[u] == 1) {                      // the only one from a for u
+        settlers.offer(straight);
+        bound_by_settler(straight);
+      }
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(near.begin(), near.end());
-    open.reset(near, n);
+    open.reset(near, n, nodes_, h);
     const auto push = [&](const SearchItem& item) {
-      if (!(item.f <= limit)) {
+      if (!(item.f <= std::min(limit, bound))) {
         beyond = std::min(beyond, item.f);
         return;
       }
@@ -800,6 +838,8 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       if (item.from_node ? !nodes_see(std::min(from, v), std::max(from, v)) : !sees(a, from_a, v))
         continue;
       settled[v] = 1;
+      g_of[v] = item.g;
+      settled_list.push_back(std::uint32_t(v));
       open.remove(v);
       previous[v] = item.from_node ? from : n;
       // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
@@ -807,39 +847,51 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
       const Point2 in_from = item.from_node ? nodes_[from] : a;
       const Sides in = corner_sides(in_from, nodes_[v], v);
       if (!in.left && !in.right) continue;
-      if (to_b.seen[v] != 0 && taut(in, in_from, v, b))
-        push({item.g + distance(nodes_[v], b), 1, 0.0, 0, 0.0, 0, v});
-      // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet).
-      const auto onward_to = [&](std::size_t u, signed char seen) {
-        const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
-        const double f = through + h[u];
-        if (!(f <= limit)) {  // as push() does
-          beyond = std::min(beyond, f);
-          return;
-        }
+      if (to_b.seen[v] != 0 && taut(in, in_from, v, b)) {
+        const double f = item.g + distance(nodes_[v], b);
+        push({f, 1, 0.0, 0, 0.0, 0, v});
+        if (to_b.seen[v] == 1 && f <= limit) bound = std::min(bound, f);
+      }
+      // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet), of f
+      // under the cut (the bound may have come down since the cut was taken).
+      const auto queue_leg = [&](std::size_t u, signed char seen, double through, double f) {
+        if (f > bound) return;
         const SearchItem next{f, 0, through, 1, item.g, v, u};
         if (settlers.after(next)) return;
-        if (seen == 1) settlers.offer(next);
+        if (seen == 1) {
+          settlers.offer(next);
+          bound_by_settler(next);
+        }
         queue.push(next);
       };
       if (prune_) {
         onward(v, in, box_lo, box_hi, [&](std::size_t u) {
           if (!is_near[u] || settled[u]) return;
           const signed char seen = nodes_known(v, u);
-          if (seen != 0 && taut(in, in_from, v, nodes_[u])) onward_to(u, seen);
+          if (seen == 0 || !taut(in, in_from, v, nodes_[u])) return;
+          const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
+          const double f = through + h[u];
+          if (!(f <= std::min(limit, bound))) {  // as push() does
+            beyond = std::min(beyond, f);
+            return;
+          }
+          queue_leg(u, seen, through, f);
         });
       } else {
-        // Every open node (near, not settled); those known hidden (nearly half) skipped. Row v's
-        // chunk is looked up once per chunk, not once per node (one chunk below 4096 nodes).
+        // Every open node (near, not settled) whose leg's f is under the cut; those known hidden
+        // (nearly half) skipped. Row v's chunk is looked up once per chunk, not once per node (one
+        // chunk below 4096 nodes).
+        beyond = std::min(beyond, open.legs(nodes_[v], item.g, std::min(limit, bound)));
         const NodeTables& tables = *node_tables_;
         const NodeTables::Chunk* chunk = nullptr;
         std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
-        for (const std::uint32_t u : open.list) {
+        for (const std::uint32_t k : open.under()) {
+          const std::uint32_t u = open.node(k);
           const std::size_t c = u / NodeTables::kChunk;
           if (c != chunk_at) chunk = tables.chunk_of(v, chunk_at = c);
           const signed char seen =
               chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
-          if (seen != 0) onward_to(u, seen);
+          if (seen != 0) queue_leg(u, seen, open.through(k), open.f(k));
         }
       }
     }
@@ -848,6 +900,16 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
     limit = std::max(2 * limit, beyond == std::numeric_limits<double>::infinity() ? 0 : beyond);
   }
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
+  // The last run took its candidates in the order of a search without a limit: its nodes are
+  // settled at Dijkstra's distances from a.
+  if (!prune_) {
+    if (from_a.reached_g.empty()) from_a.reached_g.assign(n, -1.0);
+    for (const std::uint32_t v : settled_list)
+      if (from_a.reached_g[v] < 0) {
+        from_a.reached_g[v] = g_of[v];
+        from_a.reached.push_back(v);
+      }
+  }
   return route_back(a, b, last, previous, nodes_);
 }
 

@@ -137,6 +137,12 @@ class VisibilityRouter {
     int asked = 0;
     std::size_t known = 0, visible = 0;  ///< nodes of `seen` tested, and of them seen
     std::unique_ptr<Fan> fan;
+    /// For a point searched from (path()'s a): the nodes its searches settled, and per node its
+    /// distance from the point (-1: not settled yet; empty until the first search). Every search
+    /// from the point settles a node at the same distance (Dijkstra's), so a later search bounds
+    /// its answer by them from the start.
+    std::vector<std::uint32_t> reached;
+    std::vector<double> reached_g;
   };
   static constexpr int kFanAfter = 12;
   /// The fans of asked points a router keeps, in items (4 bytes each): 64 MB.
