@@ -90,8 +90,11 @@ static double diamond(double dx, double dy) {
 
 long VisibilityRouter::fan_bin(double diamond_angle) const {
   // Monotone in the angle (rounding included), so an angle within a range lands in a bin
-  // between the bins of the range's ends.
-  return long(std::floor(diamond_angle * bins_per_unit_));
+  // between the bins of the range's ends. std::floor without its library call (the build's
+  // baseline x86-64 has no rounding instruction): truncation, one less for a negative fraction.
+  const double v = diamond_angle * bins_per_unit_;
+  const long k = long(v);
+  return k - long(double(k) > v);
 }
 
 VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
@@ -102,49 +105,64 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   // of the larger of the area's and a's extent, near_m is 1e-6 of it); each arc is widened by
   // 1e-7. An edge nearer than near_m is asked for every leg.
   constexpr double kMargin = 1e-7;
-  const std::vector<Segment>& segments = edges_.segments();
   Fan fan;
   fan.near_m = 1e-6 * (1 + std::max({extent_m_, std::abs(a.x), std::abs(a.y)}));
   const long bins = long(fan_bins_);
-  std::vector<std::pair<long, long>> range(segments.size(), {1, 0});
+  // Per edge, its first bin (wrapped) and how many bins it spans (0: near, in no bin).
+  struct Span {
+    std::uint32_t first, bins;
+  };
+  thread_local std::vector<Span> spans;
+  thread_local std::vector<double> angles;  // per vertex of a ring, its diamond angle from a
+  spans.resize(edges_.segments().size());
   std::vector<std::uint32_t> count(fan_bins_ + 1, 0);
-  // A bin index taken round the turn (lo may be -1, and a range runs up to bins - 1 further):
-  // one division per edge, then a step and a wrap per bin.
-  const auto wrapped = [bins](long k) { return std::size_t(((k % bins) + bins) % bins); };
-  for (std::uint32_t e = 0; e < segments.size(); ++e) {
-    const Point2 p = segments[e].a, q = segments[e].b;
-    // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
-    // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
-    const Box& box = edge_boxes_[e];
-    const bool far = a.x < box.x0 - 2 * fan.near_m || a.x > box.x1 + 2 * fan.near_m ||
-                     a.y < box.y0 - 2 * fan.near_m || a.y > box.y1 + 2 * fan.near_m;
-    if (!far && distance_to_segment(a, p, q) <= fan.near_m) {
-      fan.near.push_back(e);
-      continue;
+  // A bin index taken round the turn: lo is at least -bins / 2 - 1 and at most bins, so a step
+  // either way wraps it (the general form kept for safety).
+  const auto wrapped = [bins](long k) {
+    if (k < 0) k += bins;
+    if (k >= bins) k -= bins;
+    if (k < 0 || k >= bins) k = ((k % bins) + bins) % bins;
+    return std::uint32_t(k);
+  };
+  std::uint32_t e = 0;  // edges_ holds every ring's edges, ring after ring, in ring order
+  for (const Ring& ring : rings_) {
+    const std::size_t n = ring.size();
+    // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start.
+    // (a's own vertex gets NaN, unused: the edges at it are near.)
+    angles.resize(n);
+    for (std::size_t i = 0; i < n; ++i) angles[i] = diamond(ring[i].x - a.x, ring[i].y - a.y);
+    for (std::size_t i = 0; i < n; ++i, ++e) {
+      // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
+      // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
+      const Box& box = edge_boxes_[e];
+      const bool far = a.x < box.x0 - 2 * fan.near_m || a.x > box.x1 + 2 * fan.near_m ||
+                       a.y < box.y0 - 2 * fan.near_m || a.y > box.y1 + 2 * fan.near_m;
+      if (!far && distance_to_segment(a, ring[i], ring[i + 1 == n ? 0 : i + 1]) <= fan.near_m) {
+        fan.near.push_back(e);
+        spans[e] = {0, 0};
+        continue;
+      }
+      const double tp = angles[i], tq = angles[i + 1 == n ? 0 : i + 1];
+      double turn = tq - tp;
+      if (turn > 2)
+        turn -= 4;
+      else if (turn < -2)
+        turn += 4;
+      const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
+      const long hi = std::min(fan_bin(std::max(tp, tp + turn) + kMargin), lo + bins - 1);
+      spans[e] = {wrapped(lo), std::uint32_t(hi - lo + 1)};
+      for (std::uint32_t k = spans[e].first, left = spans[e].bins; left > 0;
+           --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
+        ++count[k + 1];
     }
-    const double tp = diamond(p.x - a.x, p.y - a.y), tq = diamond(q.x - a.x, q.y - a.y);
-    double turn = tq - tp;
-    if (turn > 2)
-      turn -= 4;
-    else if (turn < -2)
-      turn += 4;
-    const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
-    const long hi = fan_bin(std::max(tp, tp + turn) + kMargin);
-    range[e] = {lo, std::min(hi, lo + bins - 1)};
-    for (std::size_t k = wrapped(lo), left = std::size_t(range[e].second - lo) + 1; left > 0;
-         --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
-      ++count[k + 1];
   }
   for (std::size_t k = 0; k < fan_bins_; ++k) count[k + 1] += count[k];
   fan.start = count;
   fan.items.resize(count.back());
-  for (std::uint32_t e = 0; e < segments.size(); ++e) {
-    if (range[e].first > range[e].second) continue;  // near: in no bin
-    for (std::size_t k = wrapped(range[e].first),
-                     left = std::size_t(range[e].second - range[e].first) + 1;
-         left > 0; --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
-      fan.items[count[k]++] = e;
-  }
+  for (std::uint32_t edge = 0; edge < e; ++edge)
+    for (std::uint32_t k = spans[edge].first, left = spans[edge].bins; left > 0;
+         --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
+      fan.items[count[k]++] = edge;
   return fan;
 }
 
@@ -175,13 +193,20 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
         box.y0 > seg.y1 + tolerance_ || box.y1 < seg.y0 - tolerance_)
       return;
     const Point2 p = edges_.segments()[e].a, q = edges_.segments()[e].b;
-    const bool p_on = std::abs(cross(d, p - a)) <= off_line_limit,
-               q_on = std::abs(cross(d, q - a)) <= off_line_limit;
+    // cross(d, p - a) and cross(d, q - a), as their products, which strictly_one_side() takes too.
+    const double p1 = d.x * (p.y - a.y), p2 = d.y * (p.x - a.x);
+    const double q1 = d.x * (q.y - a.y), q2 = d.y * (q.x - a.x);
+    const double sp = p1 - p2, sq = q1 - q2;
+    const bool p_on = std::abs(sp) <= off_line_limit, q_on = std::abs(sq) <= off_line_limit;
     if (p_on) cuts.push_back(std::clamp(dot(p - a, d) / len2, 0.0, 1.0));
     if (q_on) cuts.push_back(std::clamp(dot(q - a, d) / len2, 0.0, 1.0));
     if (p_on && q_on) return;  // along the line: its ends are its cuts
     if (apart(box)) return;
-    if (strictly_one_side(a, d, p, q) || !segments_intersect(a, b, p, q)) return;
+    const double bp = 1e-15 * (std::abs(p1) + std::abs(p2)),
+                 bq = 1e-15 * (std::abs(q1) + std::abs(q2));
+    if ((sp > bp && sq > bq) || (sp < -bp && sq < -bq)) return;  // strictly_one_side(a, d, p, q)
+    // a and b strictly on one side of the edge's line: segments_intersect() would say no.
+    if (strictly_one_side(p, q - p, a, b) || !segments_intersect(a, b, p, q)) return;
     const double denom = cross(d, q - p);
     if (denom != 0) {
       cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
@@ -195,7 +220,9 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   // within its length of a, all in fan->near).
   if (fan && len2 > 4 * fan->near_m * fan->near_m) {
     const long bins = long(fan_bins_);
-    const auto k = std::size_t(((fan_bin(diamond(d.x, d.y)) % bins) + bins) % bins);
+    long bin = fan_bin(diamond(d.x, d.y));  // in [0, bins] (4 is the end of the turn)
+    if (bin >= bins || bin < 0) bin = ((bin % bins) + bins) % bins;
+    const auto k = std::size_t(bin);
     for (std::uint32_t i = fan->start[k]; i < fan->start[k + 1]; ++i) cut_by(fan->items[i]);
     for (const std::uint32_t e : fan->near) cut_by(e);
   } else {

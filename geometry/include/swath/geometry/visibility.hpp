@@ -76,6 +76,7 @@ class VisibilityRouter {
     double near_m = 0;  ///< 1e-6 of the larger of the area's and the point's extent, metres
   };
   Fan fan_of(Point2 a) const;
+  friend struct VisibilityRouterTestProbe;  ///< tests/geometry/visibility_fan_test.cpp
   long fan_bin(double diamond_angle) const;
   /// The part of [a, b] outside the closed area, as a fraction of its length; once that part
   /// exceeds `stop_m` metres, a partial sum (still above stop_m). `fan`: the fan of a, or null.

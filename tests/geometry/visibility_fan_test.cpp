@@ -1,0 +1,218 @@
+// A point's fan (VisibilityRouter::fan_of: the area's edges by their direction from the point, in
+// bins of angle) only chooses which edges the exact tests look at. Checked on random areas with
+// holes, integer grid rings (collinear edges) and combs (fixed seeds), from vertices, corners,
+// points on edges, a hair off vertices and at random: the fan holds the same edges in the same
+// bins as the straightforward construction (two diamond angles per edge, std::floor, every bin
+// index wrapped by division), and a leg's length outside and visibility through the fan are those
+// of every edge asked (the brute-force area), bit for bit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "brute_area.hpp"
+#include "random_polygons.hpp"
+#include "swath/geometry/predicates.hpp"
+#include "swath/geometry/visibility.hpp"
+
+namespace swath::geometry {
+
+// The router's private fan and the leg test that takes it, for this test only.
+struct VisibilityRouterTestProbe {
+  static auto fan_of(const VisibilityRouter& r, Point2 a) { return r.fan_of(a); }
+  static double outside_m(const VisibilityRouter& r, Point2 a, Point2 b,
+                          const decltype(r.fan_of(a))& fan) {
+    return r.outside_fraction(a, b, std::numeric_limits<double>::infinity(), &fan) *
+           std::sqrt(dot(b - a, b - a));
+  }
+  static bool visible(const VisibilityRouter& r, Point2 a, Point2 b,
+                      const decltype(r.fan_of(a))& fan) {
+    return r.visible_with(a, b, &fan);
+  }
+  static std::size_t bins(const VisibilityRouter& r) { return r.fan_bins_; }
+  static double bins_per_unit(const VisibilityRouter& r) { return r.bins_per_unit_; }
+  static double extent_m(const VisibilityRouter& r) { return r.extent_m_; }
+};
+
+namespace {
+
+using Probe = VisibilityRouterTestProbe;
+
+// The fan as first written: per edge, the diamond angles of both ends and its range of bins
+// through std::floor, every bin index wrapped by division.
+struct ReferenceFan {
+  std::vector<std::uint32_t> start, items, near;
+};
+
+double reference_diamond(double dx, double dy) {
+  if (dy >= 0) return dx >= 0 ? dy / (dx + dy) : 1 - dx / (dy - dx);
+  return dx < 0 ? 2 - dy / (-dx - dy) : 3 + dx / (dx - dy);
+}
+
+ReferenceFan reference_fan(const VisibilityRouter& r, const std::vector<Ring>& rings, Point2 a) {
+  constexpr double kMargin = 1e-7;
+  std::vector<std::pair<Point2, Point2>> edges;
+  for (const Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  const std::size_t fan_bins = Probe::bins(r);
+  const long bins = long(fan_bins);
+  const auto bin = [&](double angle) { return long(std::floor(angle * Probe::bins_per_unit(r))); };
+  const auto wrapped = [bins](long k) { return std::size_t(((k % bins) + bins) % bins); };
+  ReferenceFan fan;
+  const double near_m = 1e-6 * (1 + std::max({Probe::extent_m(r), std::abs(a.x), std::abs(a.y)}));
+  std::vector<std::pair<long, long>> range(edges.size(), {1, 0});
+  std::vector<std::uint32_t> count(fan_bins + 1, 0);
+  for (std::uint32_t e = 0; e < edges.size(); ++e) {
+    const auto [p, q] = edges[e];
+    const double x0 = std::min(p.x, q.x), x1 = std::max(p.x, q.x), y0 = std::min(p.y, q.y),
+                 y1 = std::max(p.y, q.y);
+    const bool far = a.x < x0 - 2 * near_m || a.x > x1 + 2 * near_m || a.y < y0 - 2 * near_m ||
+                     a.y > y1 + 2 * near_m;
+    if (!far && distance_to_segment(a, p, q) <= near_m) {
+      fan.near.push_back(e);
+      continue;
+    }
+    const double tp = reference_diamond(p.x - a.x, p.y - a.y),
+                 tq = reference_diamond(q.x - a.x, q.y - a.y);
+    double turn = tq - tp;
+    if (turn > 2)
+      turn -= 4;
+    else if (turn < -2)
+      turn += 4;
+    const long lo = bin(std::min(tp, tp + turn) - kMargin);
+    const long hi = bin(std::max(tp, tp + turn) + kMargin);
+    range[e] = {lo, std::min(hi, lo + bins - 1)};
+    for (long k = lo; k <= range[e].second; ++k) ++count[wrapped(k) + 1];
+  }
+  for (std::size_t k = 0; k < fan_bins; ++k) count[k + 1] += count[k];
+  fan.start = count;
+  fan.items.resize(count.back());
+  for (std::uint32_t e = 0; e < edges.size(); ++e)
+    for (long k = range[e].first; k <= range[e].second; ++k) fan.items[count[wrapped(k)]++] = e;
+  return fan;
+}
+
+// Areas: a field with rectangle and star holes, integer grid rings, a comb (tips in line).
+std::vector<Ring> area(test::Rng& rng, int k) {
+  switch (k % 4) {
+    case 0:
+    case 1: {
+      std::vector<Ring> rings{test::random_field_polygon(rng, std::size_t(16) << k % 3, 500)};
+      for (int h = 0; h < 4 + 3 * k; ++h) {
+        const double x = -300 + 75.0 * (h % 8), y = -300 + 75.0 * (h / 8);
+        Ring hole = h % 3 == 2
+                        ? test::transformed(test::random_star_polygon(rng, 7, 5, 15), 0, x + 12, y)
+                        : Ring{{x + 25, y}, {x + 25, y + 20}, {x, y + 20}, {x, y}};
+        std::reverse(hole.begin(), hole.end());
+        rings.push_back(hole);
+      }
+      return rings;
+    }
+    case 2:
+      return {test::random_grid_ring(rng, 30, 10)};
+    default:
+      return {test::transformed(test::comb_polygon(7, 10, 40, 10), 17.0 * k, 3.0 * k, -2.0 * k)};
+  }
+}
+
+// Points a fan is asked from or towards: vertices, points on edges, a hair off a vertex, points
+// level with a vertex, random points (some outside, some beyond the area's extent).
+std::vector<Point2> points(test::Rng& rng, const std::vector<Ring>& rings, int count) {
+  std::vector<Point2> vertices;
+  double extent = 0;
+  for (const Ring& ring : rings)
+    for (const Point2& v : ring) {
+      vertices.push_back(v);
+      extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    }
+  std::uniform_real_distribution<double> unit(0, 1), coordinate(-1.1 * extent, 1.1 * extent);
+  std::uniform_int_distribution<std::size_t> pick(0, vertices.size() - 1);
+  std::vector<Point2> out;
+  for (int k = 0; k < count; ++k) {
+    const Point2 v = vertices[pick(rng)], w = vertices[pick(rng)];
+    switch (k % 6) {
+      case 0:
+        out.push_back(v);
+        break;
+      case 1: {  // on an edge
+        const std::size_t i = pick(rng);
+        out.push_back(vertices[i] +
+                      (vertices[(i + 1) % vertices.size()] - vertices[i]) * unit(rng));
+        break;
+      }
+      case 2:
+        out.push_back({std::nextafter(v.x, INFINITY), std::nextafter(v.y, -INFINITY)});
+        break;
+      case 3:
+        out.push_back({coordinate(rng), v.y});
+        break;
+      case 4:
+        out.push_back(v + (w - v) * unit(rng));
+        break;
+      default:
+        out.push_back({coordinate(rng), coordinate(rng)});
+    }
+  }
+  return out;
+}
+
+TEST(VisibilityRouterFan, HoldsTheEdgesOfTheStraightforwardConstruction) {
+  test::Rng rng(5253);
+  std::size_t binned = 0, near = 0;
+  for (int k = 0; k < 12; ++k) {
+    const std::vector<Ring> rings = area(rng, k);
+    const VisibilityRouter router(rings);
+    for (const Point2 a : points(rng, rings, 120)) {
+      const auto fan = Probe::fan_of(router, a);
+      const ReferenceFan truth = reference_fan(router, rings, a);
+      SCOPED_TRACE(::testing::Message() << "area " << k << " from (" << a.x << ", " << a.y << ")");
+      ASSERT_EQ(fan.start, truth.start);
+      ASSERT_EQ(fan.items, truth.items);
+      ASSERT_EQ(fan.near, truth.near);
+      binned += fan.items.size();
+      near += fan.near.size();
+    }
+  }
+  // Both kinds of edge are there (points on edges and at vertices have near edges).
+  EXPECT_GT(binned, 100000u);
+  EXPECT_GT(near, 300u);
+}
+
+TEST(VisibilityRouterFan, LegsThroughAFanAreMeasuredAsOverEveryEdge) {
+  test::Rng rng(5254);
+  std::size_t seen = 0, hidden = 0;
+  for (int k = 0; k < 12; ++k) {
+    const std::vector<Ring> rings = area(rng, k);
+    const test::BruteArea brute(rings);
+    const VisibilityRouter router(rings);
+    double extent = 0;
+    for (const Ring& ring : rings)
+      for (const Point2& v : ring) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    const std::vector<Point2> froms = points(rng, rings, 40), tos = points(rng, rings, 120);
+    for (const Point2 a : froms) {
+      const auto fan = Probe::fan_of(router, a);
+      for (const Point2 b : tos) {
+        // A fan is asked for legs to points within the area's extent only (path()).
+        if (std::max(std::abs(b.x), std::abs(b.y)) > extent) continue;
+        SCOPED_TRACE(::testing::Message() << "area " << k << " (" << a.x << ", " << a.y << ") - ("
+                                          << b.x << ", " << b.y << ")");
+        ASSERT_EQ(Probe::outside_m(router, a, b, fan), brute.length_outside(a, b));
+        const bool visible = Probe::visible(router, a, b, fan);
+        ASSERT_EQ(visible, brute.visible(a, b));
+        (visible ? seen : hidden) += 1;
+      }
+    }
+  }
+  // Both answers are asked about often.
+  EXPECT_GT(seen, 5000u);
+  EXPECT_GT(hidden, 5000u);
+}
+
+}  // namespace
+}  // namespace swath::geometry
