@@ -51,11 +51,30 @@ struct RunLane {
   int row;  ///< the grid ordinate's index; -1 for a lane off the grid
 };
 
-// Points the lanes must see, sorted by ordinate: the boundary every eighth of a spacing (vertices
-// included) and the inside on rows a quarter of a spacing apart, a quarter along them. At
-// most ~200,000: steps grow on very large areas.
-// Into `samples` (cleared; its capacity kept: a direction search samples the area ~100 times,
-// and fresh pages for each were a large part of a 10,000-vertex area's time).
+}  // namespace
+
+namespace detail {
+
+// The boundary every eighth of a spacing, vertices included, in ring order: each edge's count
+// first, then the points written in place (pushed one by one they were a tenth of lane_runs).
+static void boundary_samples(const LaneScan& scan, double step, std::vector<Point2>& boundary) {
+  thread_local std::vector<int> per_edge;
+  per_edge.clear();
+  std::size_t total = 0;
+  for (const auto& [a, b] : scan.edges()) {
+    per_edge.push_back(std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8)))));
+    total += std::size_t(per_edge.back());
+  }
+  boundary.resize(total);
+  Point2* out = boundary.data();
+  const auto& edges = scan.edges();
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto& [a, b] = edges[e];
+    const int n = per_edge[e];
+    for (int i = 0; i < n; ++i) *out++ = a + (b - a) * (double(i) / n);
+  }
+}
+
 void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples) {
   double perimeter = 0;
   for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
@@ -65,11 +84,7 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
          step < 1e6 * spacing_m)
     step *= 1.5;
   thread_local std::vector<Point2> boundary;
-  boundary.clear();
-  for (const auto& [a, b] : scan.edges()) {
-    const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
-    for (int i = 0; i < n; ++i) boundary.push_back(a + (b - a) * (double(i) / n));
-  }
+  boundary_samples(scan, step, boundary);
   const auto by_ordinate = [](Point2 p, Point2 q) {
     return p.y < q.y || (p.y == q.y && p.x < q.x);
   };
@@ -83,32 +98,56 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   geometry::sort_by_runs(boundary, by_ordinate, true);
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
-  const detail::SpanRows inside = scan.at(rows);
+  const SpanRows inside = scan.at(rows);
   const auto count = [&](const Span& in) {
     return std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
   };
   std::size_t total = boundary.size();
   for (std::size_t r = 0; r < inside.size(); ++r)
     for (const Span& in : inside[r]) total += std::size_t(count(in));
-  samples.clear();
-  samples.reserve(total);
+  samples.resize(total);
+  Point2* out = samples.data();
   std::size_t next = 0;  // of boundary
   bool in_order = true;  // the inside's samples ascending (expected: spans are disjoint, ascending)
-  for (std::size_t r = 0; r < rows.size(); ++r)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (inside[r].empty()) continue;
+    const double y = rows[r];
+    // The boundary's samples below the row come before all of its own; one on the row (rare)
+    // is placed sample by sample; else the row's samples go in as they are made.
+    while (next < boundary.size() && boundary[next].y < y) *out++ = boundary[next++];
+    if (next < boundary.size() && boundary[next].y == y) {
+      for (const Span& in : inside[r]) {
+        const int n = count(in);
+        for (int i = 0; i < n; ++i) {
+          const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+          while (next < boundary.size() && !by_ordinate(p, boundary[next]))
+            *out++ = boundary[next++];
+          in_order = in_order && (out == samples.data() || !by_ordinate(p, out[-1]));
+          *out++ = p;
+        }
+      }
+      continue;
+    }
+    // The sample before the row's first is below it: only the row's own can be out of order.
+    double previous_x = -std::numeric_limits<double>::infinity();
     for (const Span& in : inside[r]) {
       const int n = count(in);
       for (int i = 0; i < n; ++i) {
-        const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]};
-        while (next < boundary.size() && !by_ordinate(p, boundary[next]))
-          samples.push_back(boundary[next++]);
-        in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
-        samples.push_back(p);
+        const double x = in.x0 + (in.x1 - in.x0) * (i + 0.5) / n;
+        in_order = in_order && !(x < previous_x);
+        previous_x = x;
+        *out++ = {x, y};
       }
     }
-  samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
+  }
+  std::copy(boundary.begin() + std::ptrdiff_t(next), boundary.end(), out);
   if (!in_order)  // not expected; kept as the plain sort
     std::sort(samples.begin(), samples.end(), by_ordinate);
 }
+
+}  // namespace detail
+
+namespace {
 
 // Which lanes see which samples: within half a footprint across and within the lane's length.
 class SeenCount {
@@ -403,7 +442,7 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
     // Not `see.empty() ? scan : LaneScan(...)`: that copies `scan` (every edge) each direction.
     std::optional<LaneScan> seen_scan;
     if (!area.see.empty()) seen_scan.emplace(area.see, s.angle_deg);
-    coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
+    detail::coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
   }
   SeenCount seen(samples, s.footprint_width_m);
   seen.add_all(lanes);

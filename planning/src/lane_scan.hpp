@@ -174,6 +174,13 @@ class LaneScan {
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
+// Points the lanes must see, sorted by ordinate (then abscissa): the boundary every eighth of a
+// spacing (vertices included) and the inside on rows a quarter of a spacing apart, a quarter along
+// them. At most ~200,000: steps grow on very large areas. Into `samples` (its capacity kept: a
+// direction search samples the area ~100 times, and fresh pages for each were a large part of a
+// 10,000-vertex area's time). Defined in lane_runs.cpp.
+void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples);
+
 // Points sorted by ordinate, then abscissa (lane_runs' coverage samples). A box walks the points
 // in its ordinate range, but a long row of equal ordinate (the inside's rows hold most of the
 // samples) is asked for the box's abscissae by search instead of walked whole: a row crossed by
