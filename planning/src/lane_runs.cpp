@@ -55,26 +55,6 @@ struct RunLane {
 
 namespace detail {
 
-// The boundary every eighth of a spacing, vertices included, in ring order: each edge's count
-// first, then the points written in place (pushed one by one they were a tenth of lane_runs).
-static void boundary_samples(const LaneScan& scan, double step, std::vector<Point2>& boundary) {
-  thread_local std::vector<int> per_edge;
-  per_edge.clear();
-  std::size_t total = 0;
-  for (const auto& [a, b] : scan.edges()) {
-    per_edge.push_back(std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8)))));
-    total += std::size_t(per_edge.back());
-  }
-  boundary.resize(total);
-  Point2* out = boundary.data();
-  const auto& edges = scan.edges();
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const auto& [a, b] = edges[e];
-    const int n = per_edge[e];
-    for (int i = 0; i < n; ++i) *out++ = a + (b - a) * (double(i) / n);
-  }
-}
-
 void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples) {
   double perimeter = 0;
   for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
@@ -84,7 +64,11 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
          step < 1e6 * spacing_m)
     step *= 1.5;
   thread_local std::vector<Point2> boundary;
-  boundary_samples(scan, step, boundary);
+  boundary.clear();
+  for (const auto& [a, b] : scan.edges()) {
+    const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
+    for (int i = 0; i < n; ++i) boundary.push_back(a + (b - a) * (double(i) / n));
+  }
   const auto by_ordinate = [](Point2 p, Point2 q) {
     return p.y < q.y || (p.y == q.y && p.x < q.x);
   };
@@ -105,8 +89,8 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   std::size_t total = boundary.size();
   for (std::size_t r = 0; r < inside.size(); ++r)
     for (const Span& in : inside[r]) total += std::size_t(count(in));
-  samples.resize(total);
-  Point2* out = samples.data();
+  samples.clear();
+  samples.reserve(total);
   std::size_t next = 0;  // of boundary
   bool in_order = true;  // the inside's samples ascending (expected: spans are disjoint, ascending)
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -114,16 +98,16 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
     const double y = rows[r];
     // The boundary's samples below the row come before all of its own; one on the row (rare)
     // is placed sample by sample; else the row's samples go in as they are made.
-    while (next < boundary.size() && boundary[next].y < y) *out++ = boundary[next++];
+    while (next < boundary.size() && boundary[next].y < y) samples.push_back(boundary[next++]);
     if (next < boundary.size() && boundary[next].y == y) {
       for (const Span& in : inside[r]) {
         const int n = count(in);
         for (int i = 0; i < n; ++i) {
           const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
           while (next < boundary.size() && !by_ordinate(p, boundary[next]))
-            *out++ = boundary[next++];
-          in_order = in_order && (out == samples.data() || !by_ordinate(p, out[-1]));
-          *out++ = p;
+            samples.push_back(boundary[next++]);
+          in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
+          samples.push_back(p);
         }
       }
       continue;
@@ -136,11 +120,11 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
         const double x = in.x0 + (in.x1 - in.x0) * (i + 0.5) / n;
         in_order = in_order && !(x < previous_x);
         previous_x = x;
-        *out++ = {x, y};
+        samples.push_back({x, y});
       }
     }
   }
-  std::copy(boundary.begin() + std::ptrdiff_t(next), boundary.end(), out);
+  samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
   if (!in_order)  // not expected; kept as the plain sort
     std::sort(samples.begin(), samples.end(), by_ordinate);
 }
