@@ -158,7 +158,8 @@ class SeenCount {
   /// add() for every lane of `lanes`: a run of samples on one row counted as +1 at its start and
   /// -1 past its end, summed once over every sample (the grid's lanes, each marking ~10^3 samples
   /// one by one, were 5 % of the corpus' plans). The counts are add()'s, whatever the order.
-  void add_all(const std::vector<RunLane>& lanes) {
+  /// `unseen`: the samples no lane sees after it, ascending (found in the same pass).
+  void add_all(const std::vector<RunLane>& lanes, std::vector<std::size_t>& unseen) {
     thread_local std::vector<int> steps;
     steps.assign(count_.size() + 1, 0);
     for (const RunLane& lane : lanes)
@@ -170,9 +171,11 @@ class SeenCount {
           },
           [&](std::size_t i) { ++count_[i]; });
     int running = 0;
+    unseen.clear();
     for (std::size_t i = 0; i < count_.size(); ++i) {
       running += steps[i];
       count_[i] += running;
+      if (count_[i] == 0) unseen.push_back(i);
     }
   }
   void remove(const RunLane& lane) {
@@ -209,18 +212,14 @@ class SeenCount {
 
 // Lanes off the grid for what the grid's lanes do not see: for the first unseen sample (lowest,
 // then leftmost), of the lanes through it or up to half a footprint from it, the one that sees
-// the most unseen samples.
+// the most unseen samples. `live`: the samples no lane sees yet, ascending (emptied).
 std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const LaneRunSettings& s,
-                                    std::size_t& unreachable) {
+                                    std::size_t& unreachable, std::vector<std::size_t>& live) {
   const double w = s.footprint_width_m, inset = 1e-3 * s.line_spacing_m;
   // The samples still unseen and not given up on, ascending: the first is the next to cover, and
   // a lane's worth is how many of them it sees. Lanes are only added here, so the list only
   // shrinks: it is pruned after each lane (every sample unseen at the start was asked for every
   // lane tried, seen since or not: most of this step's time on traced fields).
-  thread_local std::vector<std::size_t> live;
-  live.clear();
-  for (std::size_t i = 0; i < seen.size(); ++i)
-    if (seen.count(i) == 0) live.push_back(i);
   std::vector<RunLane> added;
   std::vector<Span> spans;  // scan.at(y)'s, one buffer for every ordinate asked
   while (!live.empty()) {
@@ -429,8 +428,9 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
     detail::coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
   }
   SeenCount seen(samples, s.footprint_width_m);
-  seen.add_all(lanes);
-  const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);
+  thread_local std::vector<std::size_t> unseen;
+  seen.add_all(lanes, unseen);
+  const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points, unseen);
   out.coverage_lanes = more.size();
   lanes.insert(lanes.end(), more.begin(), more.end());
 
