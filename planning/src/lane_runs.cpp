@@ -63,11 +63,16 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 4) > 2e5 &&
          step < 1e6 * spacing_m)
     step *= 1.5;
+  // An edge's (a span's) samples are written into the room made for them at once: pushed one by
+  // one, their capacity checks were most of this function.
   thread_local std::vector<Point2> boundary;
   boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
-    for (int i = 0; i < n; ++i) boundary.push_back(a + (b - a) * (double(i) / n));
+    const std::size_t at = boundary.size();
+    boundary.resize(at + std::size_t(n));
+    Point2* out = boundary.data() + at;
+    for (int i = 0; i < n; ++i) out[i] = a + (b - a) * (double(i) / n);
   }
   const auto by_ordinate = [](Point2 p, Point2 q) {
     return p.y < q.y || (p.y == q.y && p.x < q.x);
@@ -112,16 +117,18 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
       }
       continue;
     }
-    // The sample before the row's first is below it: only the row's own can be out of order.
+    // The sample before the row's first is below it: only the row's own can be out of order,
+    // and within a span they are not (x0 + w (i + 1/2) / n, rounded, does not decrease with i
+    // for w > 0; a NaN compares false either way): each span's first is checked.
     double previous_x = -std::numeric_limits<double>::infinity();
     for (const Span& in : inside[r]) {
       const int n = count(in);
-      for (int i = 0; i < n; ++i) {
-        const double x = in.x0 + (in.x1 - in.x0) * (i + 0.5) / n;
-        in_order = in_order && !(x < previous_x);
-        previous_x = x;
-        samples.push_back({x, y});
-      }
+      const std::size_t at = samples.size();
+      samples.resize(at + std::size_t(n));
+      Point2* out = samples.data() + at;
+      for (int i = 0; i < n; ++i) out[i] = {in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+      in_order = in_order && !(out[0].x < previous_x);
+      previous_x = out[n - 1].x;
     }
   }
   samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
