@@ -51,11 +51,10 @@ struct RunLane {
   int row;  ///< the grid ordinate's index; -1 for a lane off the grid
 };
 
-// Points the lanes must see, sorted by ordinate: the boundary every eighth of a spacing (vertices
-// included) and the inside on rows a quarter of a spacing apart, a quarter along them. At
-// most ~200,000: steps grow on very large areas.
-// Into `samples` (cleared; its capacity kept: a direction search samples the area ~100 times,
-// and fresh pages for each were a large part of a 10,000-vertex area's time).
+}  // namespace
+
+namespace detail {
+
 void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples) {
   double perimeter = 0;
   for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
@@ -64,11 +63,16 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 4) > 2e5 &&
          step < 1e6 * spacing_m)
     step *= 1.5;
+  // An edge's (a span's) samples are written into the room made for them at once: pushed one by
+  // one, their capacity checks were most of this function.
   thread_local std::vector<Point2> boundary;
   boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
-    for (int i = 0; i < n; ++i) boundary.push_back(a + (b - a) * (double(i) / n));
+    const std::size_t at = boundary.size();
+    boundary.resize(at + std::size_t(n));
+    Point2* out = boundary.data() + at;
+    for (int i = 0; i < n; ++i) out[i] = a + (b - a) * (double(i) / n);
   }
   const auto by_ordinate = [](Point2 p, Point2 q) {
     return p.y < q.y || (p.y == q.y && p.x < q.x);
@@ -83,7 +87,7 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   geometry::sort_by_runs(boundary, by_ordinate, true);
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
-  const detail::SpanRows inside = scan.at(rows);
+  const SpanRows inside = scan.at(rows);
   const auto count = [&](const Span& in) {
     return std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
   };
@@ -94,21 +98,47 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   samples.reserve(total);
   std::size_t next = 0;  // of boundary
   bool in_order = true;  // the inside's samples ascending (expected: spans are disjoint, ascending)
-  for (std::size_t r = 0; r < rows.size(); ++r)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (inside[r].empty()) continue;
+    const double y = rows[r];
+    // The boundary's samples below the row come before all of its own; one on the row (rare)
+    // is placed sample by sample; else the row's samples go in as they are made.
+    while (next < boundary.size() && boundary[next].y < y) samples.push_back(boundary[next++]);
+    if (next < boundary.size() && boundary[next].y == y) {
+      for (const Span& in : inside[r]) {
+        const int n = count(in);
+        for (int i = 0; i < n; ++i) {
+          const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+          while (next < boundary.size() && !by_ordinate(p, boundary[next]))
+            samples.push_back(boundary[next++]);
+          in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
+          samples.push_back(p);
+        }
+      }
+      continue;
+    }
+    // The sample before the row's first is below it: only the row's own can be out of order,
+    // and within a span they are not (x0 + w (i + 1/2) / n, rounded, does not decrease with i
+    // for w > 0; a NaN compares false either way): each span's first is checked.
+    double previous_x = -std::numeric_limits<double>::infinity();
     for (const Span& in : inside[r]) {
       const int n = count(in);
-      for (int i = 0; i < n; ++i) {
-        const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, rows[r]};
-        while (next < boundary.size() && !by_ordinate(p, boundary[next]))
-          samples.push_back(boundary[next++]);
-        in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
-        samples.push_back(p);
-      }
+      const std::size_t at = samples.size();
+      samples.resize(at + std::size_t(n));
+      Point2* out = samples.data() + at;
+      for (int i = 0; i < n; ++i) out[i] = {in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+      in_order = in_order && !(out[0].x < previous_x);
+      previous_x = out[n - 1].x;
     }
+  }
   samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
   if (!in_order)  // not expected; kept as the plain sort
     std::sort(samples.begin(), samples.end(), by_ordinate);
 }
+
+}  // namespace detail
+
+namespace {
 
 // Which lanes see which samples: within half a footprint across and within the lane's length.
 class SeenCount {
@@ -135,7 +165,8 @@ class SeenCount {
   /// add() for every lane of `lanes`: a run of samples on one row counted as +1 at its start and
   /// -1 past its end, summed once over every sample (the grid's lanes, each marking ~10^3 samples
   /// one by one, were 5 % of the corpus' plans). The counts are add()'s, whatever the order.
-  void add_all(const std::vector<RunLane>& lanes) {
+  /// `unseen`: the samples no lane sees after it, ascending (found in the same pass).
+  void add_all(const std::vector<RunLane>& lanes, std::vector<std::size_t>& unseen) {
     thread_local std::vector<int> steps;
     steps.assign(count_.size() + 1, 0);
     for (const RunLane& lane : lanes)
@@ -147,9 +178,11 @@ class SeenCount {
           },
           [&](std::size_t i) { ++count_[i]; });
     int running = 0;
+    unseen.clear();
     for (std::size_t i = 0; i < count_.size(); ++i) {
       running += steps[i];
       count_[i] += running;
+      if (count_[i] == 0) unseen.push_back(i);
     }
   }
   void remove(const RunLane& lane) {
@@ -186,18 +219,14 @@ class SeenCount {
 
 // Lanes off the grid for what the grid's lanes do not see: for the first unseen sample (lowest,
 // then leftmost), of the lanes through it or up to half a footprint from it, the one that sees
-// the most unseen samples.
+// the most unseen samples. `live`: the samples no lane sees yet, ascending (emptied).
 std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const LaneRunSettings& s,
-                                    std::size_t& unreachable) {
+                                    std::size_t& unreachable, std::vector<std::size_t>& live) {
   const double w = s.footprint_width_m, inset = 1e-3 * s.line_spacing_m;
   // The samples still unseen and not given up on, ascending: the first is the next to cover, and
   // a lane's worth is how many of them it sees. Lanes are only added here, so the list only
   // shrinks: it is pruned after each lane (every sample unseen at the start was asked for every
   // lane tried, seen since or not: most of this step's time on traced fields).
-  thread_local std::vector<std::size_t> live;
-  live.clear();
-  for (std::size_t i = 0; i < seen.size(); ++i)
-    if (seen.count(i) == 0) live.push_back(i);
   std::vector<RunLane> added;
   std::vector<Span> spans;  // scan.at(y)'s, one buffer for every ordinate asked
   while (!live.empty()) {
@@ -403,11 +432,12 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
     // Not `see.empty() ? scan : LaneScan(...)`: that copies `scan` (every edge) each direction.
     std::optional<LaneScan> seen_scan;
     if (!area.see.empty()) seen_scan.emplace(area.see, s.angle_deg);
-    coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
+    detail::coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
   }
   SeenCount seen(samples, s.footprint_width_m);
-  seen.add_all(lanes);
-  const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points);
+  thread_local std::vector<std::size_t> unseen;
+  seen.add_all(lanes, unseen);
+  const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points, unseen);
   out.coverage_lanes = more.size();
   lanes.insert(lanes.end(), more.begin(), more.end());
 

@@ -174,6 +174,13 @@ class LaneScan {
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
+// Points the lanes must see, sorted by ordinate (then abscissa): the boundary every eighth of a
+// spacing (vertices included) and the inside on rows a quarter of a spacing apart, a quarter along
+// them. At most ~200,000: steps grow on very large areas. Into `samples` (its capacity kept: a
+// direction search samples the area ~100 times, and fresh pages for each were a large part of a
+// 10,000-vertex area's time). Defined in lane_runs.cpp.
+void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples);
+
 // Points sorted by ordinate, then abscissa (lane_runs' coverage samples). A box walks the points
 // in its ordinate range, but a long row of equal ordinate (the inside's rows hold most of the
 // samples) is asked for the box's abscissae by search instead of walked whole: a row crossed by
@@ -184,10 +191,21 @@ class SampleRows {
   /// `sorted` is kept by reference and must stay as it is. block_m > 0: the points outside long
   /// rows are also kept by bands of that height, by abscissa within one, for any_order_in().
   explicit SampleRows(const std::vector<Point2>& sorted, double block_m = 0) : points_(sorted) {
-    for (std::size_t i = 0; i < points_.size();) {
+    const std::size_t n = points_.size();
+    for (std::size_t i = 0; i < n;) {
+      const double y = points_[i].y;
       std::size_t j = i + 1;
-      while (j < points_.size() && points_[j].y == points_[i].y) ++j;
-      if (j - i >= kLongRow) long_rows_.push_back({i, j});
+      if (i + kLongRow <= n && points_[i + kLongRow - 1].y == y) {
+        // A long row (sorted: every point between is on it too): its end by search, not by
+        // walking its ~50 points (every sample was walked here, once a direction).
+        j = std::size_t(std::upper_bound(points_.begin() + std::ptrdiff_t(i + kLongRow),
+                                         points_.end(), y,
+                                         [](double v, Point2 p) { return v < p.y; }) -
+                        points_.begin());
+        long_rows_.push_back({i, j});
+      } else {
+        while (j < n && points_[j].y == y) ++j;
+      }
       i = j;
     }
     if (block_m > 0 && !points_.empty()) fill_blocks(block_m);

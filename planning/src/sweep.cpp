@@ -119,17 +119,32 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
                           k + 1 == count ? y_max : (offsets[k] + offsets[k + 1]) / 2});
       }
     }
+    // The first strip whose top reaches y: std::lower_bound's, walked to from the last edge's
+    // (neighbouring edges share a vertex: a few steps, not a search per edge) where the tops
+    // ascend, as they do for the grid's ordinates (NaN-free: `<=` fails on NaN).
+    bool tops_ascend = true;
+    for (std::size_t k = 0; k + 1 < strips.size(); ++k)
+      tops_ascend = tops_ascend && strips[k].hi <= strips[k + 1].hi;
+    std::size_t near = 0;
+    const auto first_reaching = [&](double y) {
+      if (!tops_ascend)
+        return std::size_t(std::lower_bound(strips.begin(), strips.end(), y,
+                                            [](const Strip& st, double v) { return st.hi < v; }) -
+                           strips.begin());
+      while (near > 0 && !(strips[near - 1].hi < y)) --near;
+      while (near < strips.size() && strips[near].hi < y) ++near;
+      return near;
+    };
     // Each edge, clipped to every strip it meets, widens that strip's x extent.
     for (std::size_t r = 0; r < ring_count; ++r) {
       const geometry::Ring& ring = rings[r];
       for (std::size_t i = 0; i < ring.size(); ++i) {
-        Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+        Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
         if (a.y > b.y) std::swap(a, b);
         auto x_at = [&](double y) {
           return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
         };
-        auto strip = std::lower_bound(strips.begin(), strips.end(), a.y,
-                                      [](const Strip& st, double y) { return st.hi < y; });
+        auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
         for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
           const double y0 = std::max(a.y, strip->lo);
           const double y1 = std::min(b.y, strip->hi);

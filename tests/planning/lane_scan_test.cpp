@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "lane_scan.hpp"
@@ -162,6 +164,80 @@ TEST(SampleRows, BoxesFindWhatAWalkOverEveryPointFinds) {
     }
   }
   EXPECT_GT(found, 10000u);  // the boxes mostly hold points
+}
+
+// coverage_samples() writes the boundary's and the rows' samples in place, placing whole rows at
+// once where no boundary sample lies on them. It must give, bit for bit, what the plain merge gave
+// (kept here: every inside sample compared with the next boundary one): random fields with holes
+// at random directions, and integer grids at 0 degrees with spacings whose sample rows fall on
+// their vertices and horizontal edges (boundary samples on the rows).
+void merged_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples) {
+  double perimeter = 0;
+  for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
+  double step = spacing_m;
+  const double height = scan.y_max - scan.y_min;
+  while (perimeter / (step / 8) + height / (step / 4) * (perimeter / 2) / (step / 4) > 2e5 &&
+         step < 1e6 * spacing_m)
+    step *= 1.5;
+  std::vector<Point2> boundary;
+  for (const auto& [a, b] : scan.edges()) {
+    const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
+    for (int i = 0; i < n; ++i) boundary.push_back(a + (b - a) * (double(i) / n));
+  }
+  const auto by_ordinate = [](Point2 p, Point2 q) {
+    return p.y < q.y || (p.y == q.y && p.x < q.x);
+  };
+  std::sort(boundary.begin(), boundary.end(), by_ordinate);
+  std::vector<double> rows;
+  for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
+  samples.clear();
+  std::size_t next = 0;
+  bool in_order = true;
+  for (const double y : rows)
+    for (const Span& in : scan.at(y)) {
+      const int n = std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
+      for (int i = 0; i < n; ++i) {
+        const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+        while (next < boundary.size() && !by_ordinate(p, boundary[next]))
+          samples.push_back(boundary[next++]);
+        in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
+        samples.push_back(p);
+      }
+    }
+  samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
+  if (!in_order) std::sort(samples.begin(), samples.end(), by_ordinate);
+}
+
+TEST(CoverageSamples, TheSamplesOfThePlainMergeBitForBit) {
+  test::Rng rng(5252);
+  std::uniform_real_distribution<double> any_angle(0, 180), unit(0, 1);
+  std::size_t on_rows = 0, compared = 0;
+  std::vector<Point2> fast, truth;
+  for (int k = 0; k < 48; ++k) {
+    const bool grid = k % 3 == 2;
+    const std::vector<Ring> rings =
+        grid ? std::vector<Ring>{test::random_grid_ring(rng, 30, 24)} : scan_test_area(rng, k);
+    // Grids: rows at y_min + 1 + 2j (step 8: an eighth is 1, a quarter 2), on odd ordinates.
+    const double angle = grid ? 0.0 : any_angle(rng);
+    const double spacing = grid ? 8.0 : 5 + 40 * unit(rng);
+    const LaneScan scan(rings, angle);
+    fast.assign(3, Point2{1, 2});  // overwritten, whatever it held
+    coverage_samples(scan, spacing, fast);
+    merged_samples(scan, spacing, truth);
+    ASSERT_EQ(fast.size(), truth.size()) << "area " << k;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(fast[i].x), std::bit_cast<std::uint64_t>(truth[i].x))
+          << "area " << k << ", sample " << i;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(fast[i].y), std::bit_cast<std::uint64_t>(truth[i].y))
+          << "area " << k << ", sample " << i;
+    }
+    compared += truth.size();
+    if (grid)  // vertices (boundary samples) on a row
+      for (const auto& [a, b] : scan.edges())
+        on_rows += a.y > scan.y_min && a.y < scan.y_max && std::fmod(a.y - scan.y_min, 2) == 1;
+  }
+  EXPECT_GT(compared, 100000u);
+  EXPECT_GT(on_rows, 100u);  // the grids do put boundary samples on the rows
 }
 
 }  // namespace
