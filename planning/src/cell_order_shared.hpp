@@ -189,6 +189,48 @@ class Transit {
     if (came) *came = first;
     return best;
   }
+  /// least_through() for every variant v2 of c2 at once, into layer[v2] (internal_m: the
+  /// variant's), with the first u giving it in came[v2]: the same sums and comparisons, the
+  /// table's rows and the ends' points found once a layer (VariantTable::cannot_win() fills ~10^5
+  /// layers a plan).
+  void least_layer(const double* before, std::size_t c1, std::size_t count, std::size_t c2,
+                   std::uint64_t unflown, double* layer, std::uint8_t* came) const {
+    const auto& variants = p_.cells[c2];
+    if (!memoise_ || !dense_) {
+      for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
+        std::size_t u = 0;
+        layer[v2] = least_through(before, c1, count, c2, v2, unflown, variants[v2].internal_m, &u);
+        came[v2] = static_cast<std::uint8_t>(u);
+      }
+      return;
+    }
+    const bool crossings = bool(p_.crossed);
+    const CellVariant* from = p_.cells[c1].data();
+    for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
+      const double internal_m = variants[v2].internal_m;
+      const geometry::Point2 entry = variants[v2].entry;
+      double best = kInf;
+      std::size_t first = 0;
+      std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
+      for (std::size_t u = 0; u < count; ++u, at += size_) {
+        const double d = exit_to_entry_[at];
+        double low = 0;
+        if (d < 0)
+          low = geometry::distance(from[u].exit, entry) * (1 - 1e-12);
+        else if (!crossings || crossed_[at] == kUnknown)
+          low = d;
+        else
+          low = penalised(d, p_.crossing_weight, crossed_[at] & unflown);
+        const double c = before[u] + low + internal_m;
+        if (c < best) {
+          best = c;
+          first = u;
+        }
+      }
+      layer[v2] = best;
+      came[v2] = static_cast<std::uint8_t>(first);
+    }
+  }
   /// Transit length plus its penalty with the cells in `unflown` still to be flown.
   double cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
               std::uint64_t unflown) {
@@ -427,36 +469,40 @@ class VariantTable {
   /// the cheapest search, and asking it tells whether a detour there lifts the way above the
   /// others), the layers refilled from the one it changes, until the bounds reject or that way is
   /// known whole (then no way costs less: fill() decides). A rejected move asks only transits on
-  /// ways that looked cheapest, not all that fill()'s layers need.
+  /// ways that looked cheapest, not all that fill()'s layers need. `tail` null: the move changes
+  /// the order to its end (check_at its last position), and the legs home (their bounds) stand
+  /// for the tail's costs: a rejected move's objective is at least `give_up_m`, which the local
+  /// search does not keep either.
   /// Precondition: t.bounded(); from < check_at < order.size().
   bool cannot_win(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
                   std::size_t from, std::size_t check_at, double give_up_m,
-                  const VariantTable& tail) {
+                  const VariantTable* tail) {
     const std::size_t layers = check_at - from + 1;
     low_.assign(layers * kMaxVariants, kInf);
     low_from_.resize(layers * kMaxVariants);
     masks_.resize(layers);
-    std::uint64_t after = tail.after_all_[check_at + 1];  // the cells after position k
+    std::uint64_t after = tail ? tail->after_all_[check_at + 1] : 0;  // the cells after k
     for (std::size_t k = check_at + 1; k-- > from;) {
       masks_[k - from] = after;
       after |= bit(order[k]);
     }
     const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
+    const std::size_t last_cell = order[check_at];
     for (std::size_t start = from;;) {
       low_layers(p, t, order, from, start, check_at);
       double whole = kInf;
       std::size_t last = 0;  // the last layer's variant on the cheapest way
-      for (std::size_t v = 0; v < p.cells[order[check_at]].size(); ++v) {
-        const double w = low_[(check_at - from) * kMaxVariants + v] +
-                         tail.rest_cost_[check_at * kMaxVariants + v];
+      for (std::size_t v = 0; v < p.cells[last_cell].size(); ++v) {
+        const double w =
+            low_[(check_at - from) * kMaxVariants + v] +
+            (tail ? tail->rest_cost_[check_at * kMaxVariants + v] : t.low_to_home(last_cell, v));
         if (w < whole) {
           whole = w;
           last = v;
         }
       }
       if (whole - margin_m >= give_up_m) return true;
-      start = ask_on_way(t, order, from, check_at, last);
-      if (start > check_at) return false;
+      if (!ask_on_way(t, order, from, check_at, last, !tail, start)) return false;
     }
   }
   /// cannot_win()'s layers `start` to `check_at` (those before kept) on the transits' lower
@@ -476,25 +522,30 @@ class VariantTable {
       const std::size_t b = order[k - 1], before_count = p.cells[b].size();
       const double* before = k == from ? &cost_[(k - 1) * kMaxVariants] : layer - kMaxVariants;
       const std::uint64_t unflown = masks_[k - from];
-      std::uint8_t* came = &low_from_[(k - from) * kMaxVariants];
-      for (std::size_t v = 0; v < variants.size(); ++v) {
-        std::size_t u = 0;
-        layer[v] =
-            t.least_through(before, b, before_count, c, v, unflown, variants[v].internal_m, &u);
-        came[v] = static_cast<std::uint8_t>(u);
-      }
+      t.least_layer(before, b, before_count, c, unflown, layer,
+                    &low_from_[(k - from) * kMaxVariants]);
     }
   }
-  /// Asks the transit (or leg from home) with the shortest bound (the latest of equal ones) among
-  /// those not known yet on the way low_layers() leads to variant `last` of layer `check_at`;
-  /// returns its layer, or check_at + 1 where the whole way is known.
-  std::size_t ask_on_way(Transit& t, const std::vector<std::size_t>& order, std::size_t from,
-                         std::size_t check_at, std::size_t last) {
+  /// Asks the transit (or leg from home, or with `home` the leg home after it) with the shortest
+  /// bound (the latest of equal ones) among those not known yet on the way low_layers() leads to
+  /// variant `last` of layer `check_at`, and sets `start` to the first layer that changes
+  /// (check_at + 1: none); false where the whole way is known.
+  bool ask_on_way(Transit& t, const std::vector<std::size_t>& order, std::size_t from,
+                  std::size_t check_at, std::size_t last, bool home, std::size_t& start) {
     double shortest = kInf;
-    std::size_t at_k = check_at + 1, at_u = 0, at_v = 0;
+    bool found = false;
+    std::size_t at_k = 0, at_u = 0, at_v = 0;
+    if (home && !t.to_home_known(order[check_at], last)) {
+      shortest = t.low_to_home(order[check_at], last);
+      found = true;
+      at_k = check_at + 1;
+      at_v = last;
+    }
     for (std::size_t k = check_at + 1, v = last; k-- > from;) {
       if (k == 0) {
-        if (!t.from_home_known(order[0], v) && !(t.low_from_home(order[0], v) >= shortest)) {
+        if (!t.from_home_known(order[0], v) &&
+            (!found || t.low_from_home(order[0], v) < shortest)) {
+          found = true;
           at_k = 0;
           at_v = v;
         }
@@ -503,19 +554,24 @@ class VariantTable {
       const std::size_t u = low_from_[(k - from) * kMaxVariants + v];
       double low = 0;
       if (!t.cost_if_known(order[k - 1], u, order[k], v, masks_[k - from], low) &&
-          (at_k > check_at || low < shortest)) {
+          (!found || low < shortest)) {
         shortest = low;
+        found = true;
         at_k = k;
         at_u = u;
         at_v = v;
       }
       v = u;
     }
+    if (!found) return false;
     if (at_k == 0)
       t.from_home(order[0], at_v);
-    else if (at_k <= check_at)
+    else if (at_k > check_at)
+      t.to_home(order[check_at], at_v);
+    else
       t.cost(order[at_k - 1], at_u, order[at_k], at_v, masks_[at_k - from]);
-    return at_k;
+    start = at_k;
+    return true;
   }
   /// The least of before[u] + t.cost(b, u, cell, v, unflown) + internal over u < count and the
   /// first u giving it (fill()'s scan), asking only the transits whose bounds cannot decide

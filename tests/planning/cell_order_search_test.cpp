@@ -443,8 +443,8 @@ TEST(CellOrderSearch, FirstLeastIsThePlainScan) {
 // The bounds the lazy searches decide by never exceed what they bound: for every transit and leg
 // home of random problems (straight transits, where a bound is within rounding of the transit,
 // and longer ones; with and without crossings), before and after it is asked, and least_through()
-// over a layer never above the least of the exact sums. An unsound bound would skip a transit
-// that wins.
+// over a layer never above the least of the exact sums (least_layer(), a layer at once, the same
+// as least_through() variant by variant). An unsound bound would skip a transit that wins.
 TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
   std::mt19937_64 rng(5220);
   std::uniform_real_distribution<double> before_m(0, 3000);
@@ -472,6 +472,18 @@ TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
       for (std::size_t c2 = 0; c2 < n; ++c2) {
         if (c1 == c2) continue;
         const std::uint64_t unflown = rng();
+        {  // least_layer(): least_through() for every variant at once, with the first u
+          double before[4], layer[4];
+          std::uint8_t came[4];
+          for (double& b : before) b = before_m(rng);
+          t.least_layer(before, c1, p.cells[c1].size(), c2, unflown, layer, came);
+          for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
+            std::size_t u = 9;
+            ASSERT_EQ(layer[v2], t.least_through(before, c1, p.cells[c1].size(), c2, v2, unflown,
+                                                 p.cells[c2][v2].internal_m, &u));
+            ASSERT_EQ(came[v2], u);
+          }
+        }
         for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
           double before[4];
           for (double& b : before) b = before_m(rng);
