@@ -355,9 +355,11 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
             continue;
           --budget;
           trial.keep_layers_of(current, std::min(i, j));
-          if (bounded && changed_end < n &&
-              trial.cannot_win(p, t, candidate, std::min(i, j), changed_end,
-                               best.objective_m - 1e-9, current))
+          // Where the move changes the order to its end, the legs home stand for the tail.
+          const std::size_t check_at = std::min(changed_end, n - 1);
+          if (bounded && std::min(i, j) < check_at &&
+              trial.cannot_win(p, t, candidate, std::min(i, j), check_at, best.objective_m - 1e-9,
+                               changed_end < n ? &current : nullptr))
             continue;
           const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9,
                                           &current, changed_end);

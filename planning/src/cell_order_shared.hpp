@@ -9,7 +9,9 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
+#include <utility>
 
 #include "swath/planning/cell_order.hpp"
 
@@ -46,23 +48,51 @@ class Transit {
       offset += cell.size();
     }
     const std::size_t n = offset;
-    home_to_entry_.resize(n);
-    exit_to_home_.resize(n);
     // Every transition in a table where that is small; beyond, only the ones asked, hashed: a
     // concave area of 18,000 one-lane runs (a star) asked for ~10^10 entries and ran out of
     // memory, while its search asks for a few per run.
     dense_ = n <= kDenseVariants;
     if (memoise_ && dense_) exit_to_entry_.assign(n * n, -1.0);
     if (memoise_ && dense_ && p.crossed) crossed_.assign(n * n, kUnknown);
-    for (std::size_t c = 0; c < p.cells.size(); ++c)
-      for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
-        home_to_entry_[base_[c] + v] = p.distance(p.home, p.cells[c][v].entry);
-        exit_to_home_[base_[c] + v] = p.distance(p.cells[c][v].exit, p.home);
-      }
+    // The legs from and to home are asked when first needed: a routed one is a shortest-path
+    // search (~7 % of a traced outline's plan when all 2n were asked up front), and the searches
+    // need those of the cells that come first or last only.
+    home_to_entry_.assign(n, -1.0);
+    exit_to_home_.assign(n, -1.0);
     size_ = n;
   }
-  double from_home(std::size_t c, std::size_t v) const { return home_to_entry_[base_[c] + v]; }
-  double to_home(std::size_t c, std::size_t v) const { return exit_to_home_[base_[c] + v]; }
+  double from_home(std::size_t c, std::size_t v) {
+    double& d = home_to_entry_[base_[c] + v];
+    if (d < 0) d = p_.distance(p_.home, p_.cells[c][v].entry);
+    return d;
+  }
+  double to_home(std::size_t c, std::size_t v) {
+    double& d = exit_to_home_[base_[c] + v];
+    if (d < 0) d = p_.distance(p_.cells[c][v].exit, p_.home);
+    return d;
+  }
+  /// Whether transits may be left unasked where their lower bounds (lower_cost(), low_from_home(),
+  /// low_to_home()) already decide: memoised, `distance_at_least_straight` and a crossing weight
+  /// >= 0 (lower_cost()'s precondition).
+  bool bounded() const {
+    return memoise_ && p_.distance_at_least_straight && p_.crossing_weight >= 0;
+  }
+  /// At most from_home(c, v), without asking: the leg where known, else the straight length less
+  /// 1e-12 of it (precondition as for lower_cost()).
+  double low_from_home(std::size_t c, std::size_t v) const {
+    const double d = home_to_entry_[base_[c] + v];
+    return d >= 0 ? d : geometry::distance(p_.home, p_.cells[c][v].entry) * (1 - 1e-12);
+  }
+  double low_to_home(std::size_t c, std::size_t v) const {
+    const double d = exit_to_home_[base_[c] + v];
+    return d >= 0 ? d : geometry::distance(p_.cells[c][v].exit, p_.home) * (1 - 1e-12);
+  }
+  bool from_home_known(std::size_t c, std::size_t v) const {
+    return home_to_entry_[base_[c] + v] >= 0;
+  }
+  bool to_home_known(std::size_t c, std::size_t v) const {
+    return exit_to_home_[base_[c] + v] >= 0;
+  }
   double between(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2) {
     if (!memoise_) return p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
@@ -86,6 +116,15 @@ class Transit {
   /// straight one) and `crossing_weight` >= 0.
   double lower_cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
                     std::uint64_t unflown) const {
+    double low = 0;
+    cost_if_known(c1, v1, c2, v2, unflown, low);
+    return low;
+  }
+  /// True with cost(c1, v1, c2, v2, unflown) in `out` where the memo holds its length and (with
+  /// problem.crossed) its crossings, else false with lower_cost() in `out`. Precondition: as for
+  /// lower_cost().
+  bool cost_if_known(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
+                     std::uint64_t unflown, double& out) const {
     if (memoise_) {
       const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
       Known known;
@@ -96,20 +135,38 @@ class Transit {
         known = it->second;
       }
       if (known.length_m >= 0) {
-        if (!p_.crossed || known.crossed == kUnknown) return known.length_m;
-        return penalised(known.length_m, p_.crossing_weight, known.crossed & unflown);
+        if (!p_.crossed) {
+          out = known.length_m;
+          return true;
+        }
+        if (known.crossed == kUnknown) {
+          out = known.length_m;
+          return false;
+        }
+        out = penalised(known.length_m, p_.crossing_weight, known.crossed & unflown);
+        return true;
       }
     }
-    return geometry::distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
+    out = geometry::distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
+    return false;
   }
   /// The least of before[u] + lower_cost(c1, u, c2, v2, unflown) + internal_m over u < count,
   /// summed and compared in that order (a layer of VariantTable::cannot_win()).
+  /// `came` (optional): the first u giving it (0 where none is below infinity).
   double least_through(const double* before, std::size_t c1, std::size_t count, std::size_t c2,
-                       std::size_t v2, std::uint64_t unflown, double internal_m) const {
+                       std::size_t v2, std::uint64_t unflown, double internal_m,
+                       std::size_t* came = nullptr) const {
     double best = kInf;
+    std::size_t first = 0;
     if (!memoise_ || !dense_) {  // lower_cost() asks the memo entry by entry
-      for (std::size_t u = 0; u < count; ++u)
-        best = std::min(best, before[u] + lower_cost(c1, u, c2, v2, unflown) + internal_m);
+      for (std::size_t u = 0; u < count; ++u) {
+        const double c = before[u] + lower_cost(c1, u, c2, v2, unflown) + internal_m;
+        if (c < best) {
+          best = c;
+          first = u;
+        }
+      }
+      if (came) *came = first;
       return best;
     }
     const bool crossings = bool(p_.crossed);
@@ -123,9 +180,56 @@ class Transit {
         low = d;
       else
         low = penalised(d, p_.crossing_weight, crossed_[at] & unflown);
-      best = std::min(best, before[u] + low + internal_m);
+      const double c = before[u] + low + internal_m;
+      if (c < best) {
+        best = c;
+        first = u;
+      }
     }
+    if (came) *came = first;
     return best;
+  }
+  /// least_through() for every variant v2 of c2 at once, into layer[v2] (internal_m: the
+  /// variant's), with the first u giving it in came[v2]: the same sums and comparisons, the
+  /// table's rows and the ends' points found once a layer (VariantTable::cannot_win() fills ~10^5
+  /// layers a plan).
+  void least_layer(const double* before, std::size_t c1, std::size_t count, std::size_t c2,
+                   std::uint64_t unflown, double* layer, std::uint8_t* came) const {
+    const auto& variants = p_.cells[c2];
+    if (!memoise_ || !dense_) {
+      for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
+        std::size_t u = 0;
+        layer[v2] = least_through(before, c1, count, c2, v2, unflown, variants[v2].internal_m, &u);
+        came[v2] = static_cast<std::uint8_t>(u);
+      }
+      return;
+    }
+    const bool crossings = bool(p_.crossed);
+    const CellVariant* from = p_.cells[c1].data();
+    for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
+      const double internal_m = variants[v2].internal_m;
+      const geometry::Point2 entry = variants[v2].entry;
+      double best = kInf;
+      std::size_t first = 0;
+      std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
+      for (std::size_t u = 0; u < count; ++u, at += size_) {
+        const double d = exit_to_entry_[at];
+        double low = 0;
+        if (d < 0)
+          low = geometry::distance(from[u].exit, entry) * (1 - 1e-12);
+        else if (!crossings || crossed_[at] == kUnknown)
+          low = d;
+        else
+          low = penalised(d, p_.crossing_weight, crossed_[at] & unflown);
+        const double c = before[u] + low + internal_m;
+        if (c < best) {
+          best = c;
+          first = u;
+        }
+      }
+      layer[v2] = best;
+      came[v2] = static_cast<std::uint8_t>(first);
+    }
   }
   /// Transit length plus its penalty with the cells in `unflown` still to be flown.
   double cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
@@ -158,6 +262,34 @@ inline std::uint64_t bit(std::size_t cell) {
   return cell < 63 ? std::uint64_t{1} << cell : 0;
 }
 
+// The least of value[u] over u < count and the first u giving it, as a scan in order of u keeping
+// strict improvements finds them (ties to the lower u; u = 0 where none is below infinity), where
+// value[u] is exact for known[u] and otherwise a lower bound that ask(u) replaces by the exact
+// value. The bounds are asked in ascending order (ties: lower u first) until the next one cannot
+// beat the least exact value so far, ties included (above it, or equal from a later u): a value
+// is at least its bound, so one not asked is neither the least nor the first to tie it. The
+// same least and u as asking every value, with a routed transit's search only where its straight
+// bound cannot decide.
+template <class Ask>
+std::pair<double, std::size_t> first_least(std::size_t count, double* value, bool* known, Ask ask) {
+  const auto least_known = [&] {
+    std::pair<double, std::size_t> best{kInf, 0};
+    for (std::size_t u = 0; u < count; ++u)
+      if (known[u] && value[u] < best.first) best = {value[u], u};
+    return best;
+  };
+  for (std::pair<double, std::size_t> best = least_known();; best = least_known()) {
+    std::size_t next = count;  // the least bound not asked yet
+    for (std::size_t u = 0; u < count; ++u)
+      if (!known[u] && (next == count || value[u] < value[next])) next = u;
+    if (next == count || value[next] > best.first ||
+        (value[next] == best.first && (best.first == kInf || next > best.second)))
+      return best;
+    value[next] = ask(next);
+    known[next] = true;
+  }
+}
+
 // Best variants for a fixed order of cells: shortest path through a layered graph, one layer per
 // position. Layer k depends only on the cells at positions up to k and on the set of cells after
 // k (the crossing penalty), so an order that differs from the last one only from position `from`
@@ -185,6 +317,7 @@ class VariantTable {
               std::size_t check_at = std::size_t(-1)) {
     const std::size_t n = order.size();
     if (n == 0) return 0;
+    const bool lazy = t.bounded();
     cost_.resize(n * kMaxVariants);
     from_.resize(n * kMaxVariants);
     // Only the entries after `from` are read below, so only those are recomputed (the rest
@@ -221,11 +354,16 @@ class VariantTable {
           const double internal = variants[v].internal_m;
           double best = kInf;
           std::size_t came = 0;
-          for (std::size_t u = 0; u < before_count; ++u) {
-            const double c = before[u] + t.cost(b, u, cell, v, unflown) + internal;
-            if (c < best) {
-              best = c;
-              came = u;
+          if (lazy) {
+            std::tie(best, came) =
+                least_through_asked(t, before, b, before_count, cell, v, unflown, internal);
+          } else {
+            for (std::size_t u = 0; u < before_count; ++u) {
+              const double c = before[u] + t.cost(b, u, cell, v, unflown) + internal;
+              if (c < best) {
+                best = c;
+                came = u;
+              }
             }
           }
           layer[v] = best;
@@ -246,10 +384,24 @@ class VariantTable {
         if (whole - margin_m >= give_up_m) return kInf;
       }
     }
+    const std::size_t last_cell = order[n - 1], count = p.cells[last_cell].size();
+    const double* layer = &cost_[(n - 1) * kMaxVariants];
+    if (lazy) {
+      double value[kMaxVariants];
+      bool known[kMaxVariants];
+      for (std::size_t v = 0; v < count; ++v) {
+        known[v] = t.to_home_known(last_cell, v);
+        value[v] = layer[v] + t.low_to_home(last_cell, v);
+      }
+      double best_cost = kInf;
+      std::tie(best_cost, last_) = first_least(
+          count, value, known, [&](std::size_t v) { return layer[v] + t.to_home(last_cell, v); });
+      return best_cost;
+    }
     last_ = 0;
     double best_cost = kInf;
-    for (std::size_t v = 0; v < p.cells[order[n - 1]].size(); ++v) {
-      const double c = cost_[(n - 1) * kMaxVariants + v] + t.to_home(order[n - 1], v);
+    for (std::size_t v = 0; v < count; ++v) {
+      const double c = layer[v] + t.to_home(last_cell, v);
       if (c < best_cost) {
         best_cost = c;
         last_ = v;
@@ -278,13 +430,29 @@ class VariantTable {
     for (std::size_t v = 0; v < p.cells[order[n - 1]].size(); ++v)
       rest_cost_[(n - 1) * kMaxVariants + v] = t.to_home(order[n - 1], v);
     std::uint64_t after = 0;  // cells flown after position k + 1
+    const bool lazy = t.bounded();
     for (std::size_t k = n - 1; k-- > 0;) {
       const auto& next = p.cells[order[k + 1]];
+      const double* rest = &rest_cost_[(k + 1) * kMaxVariants];
       for (std::size_t u = 0; u < p.cells[order[k]].size(); ++u) {
         double best = kInf;
-        for (std::size_t v = 0; v < next.size(); ++v)
-          best = std::min(best, t.cost(order[k], u, order[k + 1], v, after) + next[v].internal_m +
-                                    rest_cost_[(k + 1) * kMaxVariants + v]);
+        if (lazy) {  // the least only: first_least()'s value, the same whichever v gives it
+          double value[kMaxVariants];
+          bool known[kMaxVariants];
+          for (std::size_t v = 0; v < next.size(); ++v) {
+            double d = 0;
+            known[v] = t.cost_if_known(order[k], u, order[k + 1], v, after, d);
+            value[v] = d + next[v].internal_m + rest[v];
+          }
+          best =
+              first_least(next.size(), value, known, [&](std::size_t v) {
+                return t.cost(order[k], u, order[k + 1], v, after) + next[v].internal_m + rest[v];
+              }).first;
+        } else {
+          for (std::size_t v = 0; v < next.size(); ++v)
+            best = std::min(
+                best, t.cost(order[k], u, order[k + 1], v, after) + next[v].internal_m + rest[v]);
+        }
         rest_cost_[k * kMaxVariants + u] = best;
       }
       after |= bit(order[k + 1]);
@@ -293,43 +461,136 @@ class VariantTable {
   /// Whether `order`, a candidate of the local search whose layers before `from` this table holds
   /// (keep_layers_of()) and whose cells from `check_at` on are those of the order `tail` last
   /// took the suffix() of, certainly cannot reach below `give_up_m`: its layers `from` to
-  /// `check_at` with the transits' lower bounds (Transit::lower_cost(), no metric asked) plus
-  /// the tail's costs, less fill()'s margin. Each such layer is at most fill()'s (the same sums
-  /// of terms no larger, rounding is monotone), so fill() would give up at `check_at` (or
-  /// before) too: the same candidates are kept, but the rejected ones ask no routed transit.
-  /// Precondition: as for Transit::lower_cost(); from < check_at < order.size().
-  bool cannot_win(const CellOrderProblem& p, const Transit& t,
-                  const std::vector<std::size_t>& order, std::size_t from, std::size_t check_at,
-                  double give_up_m, const VariantTable& tail) {
+  /// `check_at` with the transits' lower bounds (Transit::lower_cost()) plus the tail's costs,
+  /// less fill()'s margin. Each such layer is at most fill()'s (the same sums of terms no larger,
+  /// rounding is monotone), so fill() would give up at `check_at` (or before) too: the same
+  /// candidates are kept. Where the bounds cannot reject, the transits on the bounds' cheapest
+  /// way through those layers are asked one at a time, the shortest bound first (a short one is
+  /// the cheapest search, and asking it tells whether a detour there lifts the way above the
+  /// others), the layers refilled from the one it changes, until the bounds reject or that way is
+  /// known whole (then no way costs less: fill() decides). A rejected move asks only transits on
+  /// ways that looked cheapest, not all that fill()'s layers need. `tail` null: the move changes
+  /// the order to its end (check_at its last position), and the legs home (their bounds) stand
+  /// for the tail's costs: a rejected move's objective is at least `give_up_m`, which the local
+  /// search does not keep either.
+  /// Precondition: t.bounded(); from < check_at < order.size().
+  bool cannot_win(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
+                  std::size_t from, std::size_t check_at, double give_up_m,
+                  const VariantTable* tail) {
     const std::size_t layers = check_at - from + 1;
     low_.assign(layers * kMaxVariants, kInf);
+    low_from_.resize(layers * kMaxVariants);
     masks_.resize(layers);
-    std::uint64_t after = tail.after_all_[check_at + 1];  // the cells after position k
+    std::uint64_t after = tail ? tail->after_all_[check_at + 1] : 0;  // the cells after k
     for (std::size_t k = check_at + 1; k-- > from;) {
       masks_[k - from] = after;
       after |= bit(order[k]);
     }
-    for (std::size_t k = from; k <= check_at; ++k) {
+    const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
+    const std::size_t last_cell = order[check_at];
+    for (std::size_t start = from;;) {
+      low_layers(p, t, order, from, start, check_at);
+      double whole = kInf;
+      std::size_t last = 0;  // the last layer's variant on the cheapest way
+      for (std::size_t v = 0; v < p.cells[last_cell].size(); ++v) {
+        const double w =
+            low_[(check_at - from) * kMaxVariants + v] +
+            (tail ? tail->rest_cost_[check_at * kMaxVariants + v] : t.low_to_home(last_cell, v));
+        if (w < whole) {
+          whole = w;
+          last = v;
+        }
+      }
+      if (whole - margin_m >= give_up_m) return true;
+      if (!ask_on_way(t, order, from, check_at, last, !tail, start)) return false;
+    }
+  }
+  /// cannot_win()'s layers `start` to `check_at` (those before kept) on the transits' lower
+  /// bounds, with the variant each came from (`low_from_`: the first of equal ones).
+  void low_layers(const CellOrderProblem& p, const Transit& t,
+                  const std::vector<std::size_t>& order, std::size_t from, std::size_t start,
+                  std::size_t check_at) {
+    for (std::size_t k = start; k <= check_at; ++k) {
       const std::size_t c = order[k];
       const auto& variants = p.cells[c];
       double* layer = &low_[(k - from) * kMaxVariants];
       if (k == 0) {
         for (std::size_t v = 0; v < variants.size(); ++v)
-          layer[v] = t.from_home(c, v) + variants[v].internal_m;
+          layer[v] = t.low_from_home(c, v) + variants[v].internal_m;
         continue;
       }
       const std::size_t b = order[k - 1], before_count = p.cells[b].size();
       const double* before = k == from ? &cost_[(k - 1) * kMaxVariants] : layer - kMaxVariants;
       const std::uint64_t unflown = masks_[k - from];
-      for (std::size_t v = 0; v < variants.size(); ++v)
-        layer[v] = t.least_through(before, b, before_count, c, v, unflown, variants[v].internal_m);
+      t.least_layer(before, b, before_count, c, unflown, layer,
+                    &low_from_[(k - from) * kMaxVariants]);
     }
-    double whole = kInf;
-    for (std::size_t v = 0; v < p.cells[order[check_at]].size(); ++v)
-      whole = std::min(whole, low_[(check_at - from) * kMaxVariants + v] +
-                                  tail.rest_cost_[check_at * kMaxVariants + v]);
-    const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
-    return whole - margin_m >= give_up_m;
+  }
+  /// Asks the transit (or leg from home, or with `home` the leg home after it) with the shortest
+  /// bound (the latest of equal ones) among those not known yet on the way low_layers() leads to
+  /// variant `last` of layer `check_at`, and sets `start` to the first layer that changes
+  /// (check_at + 1: none); false where the whole way is known.
+  bool ask_on_way(Transit& t, const std::vector<std::size_t>& order, std::size_t from,
+                  std::size_t check_at, std::size_t last, bool home, std::size_t& start) {
+    double shortest = kInf;
+    bool found = false;
+    std::size_t at_k = 0, at_u = 0, at_v = 0;
+    if (home && !t.to_home_known(order[check_at], last)) {
+      shortest = t.low_to_home(order[check_at], last);
+      found = true;
+      at_k = check_at + 1;
+      at_v = last;
+    }
+    for (std::size_t k = check_at + 1, v = last; k-- > from;) {
+      if (k == 0) {
+        if (!t.from_home_known(order[0], v) &&
+            (!found || t.low_from_home(order[0], v) < shortest)) {
+          found = true;
+          at_k = 0;
+          at_v = v;
+        }
+        break;
+      }
+      const std::size_t u = low_from_[(k - from) * kMaxVariants + v];
+      double low = 0;
+      if (!t.cost_if_known(order[k - 1], u, order[k], v, masks_[k - from], low) &&
+          (!found || low < shortest)) {
+        shortest = low;
+        found = true;
+        at_k = k;
+        at_u = u;
+        at_v = v;
+      }
+      v = u;
+    }
+    if (!found) return false;
+    if (at_k == 0)
+      t.from_home(order[0], at_v);
+    else if (at_k > check_at)
+      t.to_home(order[check_at], at_v);
+    else
+      t.cost(order[at_k - 1], at_u, order[at_k], at_v, masks_[at_k - from]);
+    start = at_k;
+    return true;
+  }
+  /// The least of before[u] + t.cost(b, u, cell, v, unflown) + internal over u < count and the
+  /// first u giving it (fill()'s scan), asking only the transits whose bounds cannot decide
+  /// (first_least()). Precondition: t.bounded().
+  static std::pair<double, std::size_t> least_through_asked(Transit& t, const double* before,
+                                                            std::size_t b, std::size_t count,
+                                                            std::size_t cell, std::size_t v,
+                                                            std::uint64_t unflown,
+                                                            double internal) {
+    double value[kMaxVariants];
+    bool known[kMaxVariants];
+    for (std::size_t u = 0; u < count; ++u) {
+      double d = 0;
+      known[u] = t.cost_if_known(b, u, cell, v, unflown, d);
+      value[u] = before[u] + d + internal;
+    }
+    return first_least(count, value, known, [&](std::size_t u) {
+      return before[u] + t.cost(b, u, cell, v, unflown) + internal;
+    });
   }
   /// The visits of the last filled order.
   std::vector<CellVisit> visits(const std::vector<std::size_t>& order) const {
@@ -351,6 +612,7 @@ class VariantTable {
   std::vector<double> rest_cost_;         ///< suffix(): per layer and variant
   std::vector<std::uint64_t> after_all_;  ///< suffix(): the cells from position k on
   std::vector<double> low_;               ///< cannot_win()'s layers
+  std::vector<std::uint8_t> low_from_;    ///< cannot_win(): the variant each came from
   std::vector<std::uint64_t> masks_;      ///< cannot_win(): the cells after each of its layers
   std::size_t last_ = 0;
 };

@@ -7,12 +7,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <set>
 
 #include "swath/planning/cell_order.hpp"
+
+#include "cell_order_shared.hpp"
 
 namespace swath::planning {
 namespace {
@@ -387,6 +391,177 @@ TEST(CellOrderSearch, ManyVariantsKeepOnlyTheTransitionsAsked) {
   for (const CellVisit& v : order.visits) seen.at(v.cell) += 1;
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(many.cells.size()));
   EXPECT_DOUBLE_EQ(order.length_m, evaluate_order(many, order.visits).length_m);
+}
+
+}  // namespace
+}  // namespace swath::planning
+
+namespace swath::planning {
+namespace {
+
+// first_least() (the least of values some of which are only bounded from below until asked, and
+// the first index giving it) against the plain scan over the exact values: random values of one
+// to four entries with ties, infinities, bounds equal to the value or below it, some known from
+// the start. The answer must be the scan's (value and index); every entry not asked must be one
+// that could not change it.
+TEST(CellOrderSearch, FirstLeastIsThePlainScan) {
+  std::mt19937_64 rng(5218);
+  std::uniform_int_distribution<int> count_of(1, 4), level(0, 5), coin(0, 3);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t skipped = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const std::size_t count = std::size_t(count_of(rng));
+    double exact[4], value[4];
+    bool known[4];
+    for (std::size_t u = 0; u < count; ++u) {
+      // Few levels, so that ties are common; some infinite.
+      exact[u] = level(rng) == 5 ? cell_order_detail::kInf : 10.0 * level(rng);
+      known[u] = coin(rng) == 0;
+      const int bound = coin(rng);  // the bound: exact, a little below, far below, zero
+      value[u] = known[u] || bound == 0 ? exact[u]
+                 : bound == 1           ? exact[u] - 5 * unit(rng)
+                 : bound == 2           ? exact[u] / 4
+                                        : 0.0;
+    }
+    std::pair<double, std::size_t> truth{cell_order_detail::kInf, 0};
+    for (std::size_t u = 0; u < count; ++u)
+      if (exact[u] < truth.first) truth = {exact[u], u};
+    bool asked[4] = {false, false, false, false};
+    const auto got = cell_order_detail::first_least(count, value, known, [&](std::size_t u) {
+      EXPECT_FALSE(asked[u]) << "asked twice";
+      asked[u] = true;
+      return exact[u];
+    });
+    ASSERT_EQ(got.first, truth.first) << "trial " << trial;
+    ASSERT_EQ(got.second, truth.second) << "trial " << trial;
+    for (std::size_t u = 0; u < count; ++u)
+      if (!known[u] && !asked[u]) ++skipped;
+  }
+  EXPECT_GT(skipped, 1000u);  // the bounds decided often: the check above saw skips
+}
+
+// The bounds the lazy searches decide by never exceed what they bound: for every transit and leg
+// home of random problems (straight transits, where a bound is within rounding of the transit,
+// and longer ones; with and without crossings), before and after it is asked, and least_through()
+// over a layer never above the least of the exact sums (least_layer(), a layer at once, the same
+// as least_through() variant by variant). An unsound bound would skip a transit that wins.
+TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
+  std::mt19937_64 rng(5220);
+  std::uniform_real_distribution<double> before_m(0, 3000);
+  for (int k = 0; k < 8; ++k) {
+    CellOrderProblem p = random_problem(rng, 6 + std::size_t(k), k % 4 == 1, k % 2 == 0);
+    if (k % 4 >= 2)
+      p.distance = [](geometry::Point2 a, geometry::Point2 b) {
+        return std::abs(a.x - b.x) + std::abs(a.y - b.y);
+      };
+    p.distance_at_least_straight = true;
+    cell_order_detail::Transit t(p);
+    ASSERT_TRUE(t.bounded());
+    const std::size_t n = p.cells.size();
+    for (std::size_t c = 0; c < n; ++c)
+      for (std::size_t v = 0; v < p.cells[c].size(); ++v) {
+        const double low_in = t.low_from_home(c, v), low_out = t.low_to_home(c, v);
+        ASSERT_FALSE(t.from_home_known(c, v));
+        ASSERT_LE(low_in, p.distance(p.home, p.cells[c][v].entry));
+        ASSERT_LE(low_out, p.distance(p.cells[c][v].exit, p.home));
+        ASSERT_EQ(t.from_home(c, v), p.distance(p.home, p.cells[c][v].entry));
+        ASSERT_TRUE(t.from_home_known(c, v));
+        ASSERT_EQ(t.low_from_home(c, v), t.from_home(c, v));
+      }
+    for (std::size_t c1 = 0; c1 < n; ++c1)
+      for (std::size_t c2 = 0; c2 < n; ++c2) {
+        if (c1 == c2) continue;
+        const std::uint64_t unflown = rng();
+        {  // least_layer(): least_through() for every variant at once, with the first u
+          double before[4], layer[4];
+          std::uint8_t came[4];
+          for (double& b : before) b = before_m(rng);
+          t.least_layer(before, c1, p.cells[c1].size(), c2, unflown, layer, came);
+          for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
+            std::size_t u = 9;
+            ASSERT_EQ(layer[v2], t.least_through(before, c1, p.cells[c1].size(), c2, v2, unflown,
+                                                 p.cells[c2][v2].internal_m, &u));
+            ASSERT_EQ(came[v2], u);
+          }
+        }
+        for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
+          double before[4];
+          for (double& b : before) b = before_m(rng);
+          const std::size_t count = p.cells[c1].size();
+          const double internal = p.cells[c2][v2].internal_m;
+          const double low_layer = t.least_through(before, c1, count, c2, v2, unflown, internal);
+          double exact_layer = cell_order_detail::kInf;
+          for (std::size_t v1 = 0; v1 < count; ++v1) {
+            double low = 0;
+            const bool known = t.cost_if_known(c1, v1, c2, v2, unflown, low);
+            const double cost = t.cost(c1, v1, c2, v2, unflown);
+            ASSERT_LE(low, cost) << "problem " << k;
+            if (known) ASSERT_EQ(low, cost);
+            ASSERT_TRUE(t.cost_if_known(c1, v1, c2, v2, unflown, low));
+            ASSERT_EQ(low, cost);
+            exact_layer = std::min(exact_layer, before[v1] + cost + internal);
+          }
+          ASSERT_LE(low_layer, exact_layer) << "problem " << k;
+          ASSERT_EQ(t.least_through(before, c1, count, c2, v2, unflown, internal), exact_layer);
+        }
+      }
+  }
+}
+
+// A metric as a router's: the shortest way round a wall (a segment; the path bends at one of its
+// ends where the straight leg crosses it), so never below the straight length and equal to it
+// wherever the wall is not in the way (the bound then within rounding of the transit). The
+// searches leave transits unasked where the straight bounds already decide (fill()'s layers,
+// cannot_win()'s cheapest ways, the legs home): the same orders as the plain search's, bit for
+// bit, on spread problems, on a grid and with variants repeated (ties), with and without
+// crossings, and fewer transits asked than with the bounds unused.
+TEST(CellOrderSearch, TransitsRoundAWallAskedOnlyWhereTheBoundsCannotDecide) {
+  std::mt19937_64 rng(5219);
+  const auto crosses = [](geometry::Point2 a, geometry::Point2 b, geometry::Point2 c,
+                          geometry::Point2 d) {
+    const auto side = [](geometry::Point2 p, geometry::Point2 q, geometry::Point2 r) {
+      const double s = geometry::cross(q - p, r - p);
+      return (s > 0) - (s < 0);
+    };
+    return side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+  };
+#ifdef SWATH_SANITIZED
+  const int problems = 4;
+#else
+  const int problems = 12;
+#endif
+  for (int k = 0; k < problems; ++k) {
+    CellOrderProblem p = random_problem(rng, 10 + std::size_t(k) * 3, k % 3 != 0, k % 2 == 0);
+    if (k % 3 == 2)  // variants repeated whole: equal costs through them, the first must win
+      for (auto& cell : p.cells)
+        for (std::size_t v = 1; v < cell.size(); ++v)
+          if (rng() % 2) cell[v] = cell[rng() % v];
+    const geometry::Point2 w0{-300.0 + 20 * k, -50}, w1{250, 350.0 - 10 * k};
+    std::set<std::array<double, 4>>* asked = nullptr;
+    p.distance = [&](geometry::Point2 a, geometry::Point2 b) {
+      if (asked) asked->insert({a.x, a.y, b.x, b.y});
+      if (!crosses(a, b, w0, w1)) return geometry::distance(a, b);
+      return std::min(geometry::distance(a, w0) + geometry::distance(w0, b),
+                      geometry::distance(a, w1) + geometry::distance(w1, b));
+    };
+    const CellOrder truth = PlainSearch{p}.heuristic();
+    std::set<std::array<double, 4>> eager, lazy;
+    asked = &eager;
+    const CellOrder plain = heuristic_cell_order(p);
+    p.distance_at_least_straight = true;
+    asked = &lazy;
+    const CellOrder fast = heuristic_cell_order(p);
+    asked = nullptr;
+    for (const CellOrder* o : {&plain, &fast}) {
+      ASSERT_EQ(o->objective_m, truth.objective_m) << "problem " << k;
+      ASSERT_EQ(o->visits.size(), truth.visits.size());
+      for (std::size_t i = 0; i < truth.visits.size(); ++i) {
+        ASSERT_EQ(o->visits[i].cell, truth.visits[i].cell) << "problem " << k << " at " << i;
+        ASSERT_EQ(o->visits[i].variant, truth.visits[i].variant);
+      }
+    }
+    EXPECT_LT(lazy.size(), eager.size()) << "problem " << k;
+  }
 }
 
 }  // namespace
