@@ -108,17 +108,7 @@ ordered_json survey_item(const Mission& m, const QgcSurvey& s, int altitude_mode
   return survey;
 }
 
-// A number as nlohmann's serializer writes it: its Grisu2 shortest text ("1.0" for one), "null" for
-// a non-finite one.
-void append_json_number(std::string& out, double x) {
-  if (!std::isfinite(x)) {
-    out += "null";
-    return;
-  }
-  std::array<char, 64> text{};
-  out.append(text.data(), nlohmann::detail::to_chars(text.data(), text.data() + text.size(), x));
-}
-
+// An integer as nlohmann writes one.
 void append_json_integer(std::string& out, long long x) {
   std::array<char, 24> text{};
   out.append(text.data(), std::to_chars(text.data(), text.data() + text.size(), x).ptr);
@@ -136,7 +126,7 @@ std::string items_text(const Mission& m, int altitude_mode) {
     out += "            {\n";
     if (item.altitude_frame != AltitudeFrame::none) {
       out += "                \"AMSLAltAboveTerrain\": null,\n                \"Altitude\": ";
-      append_json_number(out, item.altitude_m);
+      base::append_json_number(out, item.altitude_m);
       out += ",\n                \"AltitudeMode\": ";
       append_json_integer(out, altitude_mode);
       out += ",\n";
@@ -153,7 +143,7 @@ std::string items_text(const Mission& m, int altitude_mode) {
         item.position.lat_deg, item.position.lon_deg, item.altitude_m};
     for (std::size_t k = 0; k < params.size(); ++k) {
       out += k == 0 ? "                    " : ",\n                    ";
-      append_json_number(out, params[k]);
+      base::append_json_number(out, params[k]);
     }
     out += "\n                ],\n                \"type\": \"SimpleItem\"\n            }";
   }

@@ -65,22 +65,6 @@ std::string waypoints_csv(const SurveyPlan& plan) {
   return out;
 }
 
-namespace {
-
-// A number as nlohmann's serializer writes it (its Grisu2 shortest text, "null" for a non-finite
-// one), without building a JSON tree for it.
-void append_json_number(std::string& out, double x) {
-  if (!std::isfinite(x)) {
-    out += "null";
-    return;
-  }
-  std::array<char, 64> text{};
-  char* end = nlohmann::detail::to_chars(text.data(), text.data() + text.size(), x);
-  out.append(text.data(), end);
-}
-
-}  // namespace
-
 namespace files {
 
 // One pass over the photos for both files: a photo's WGS84 position (LocalFrame::to_geo, most of
@@ -94,7 +78,7 @@ PhotoTexts photo_texts(const SurveyPlan& plan) {
   std::string& json = texts.geojson;
   csv = "drone,flight,line,photo,lat,lon,alt_m,x_m,y_m\n";
   std::string altitude;
-  append_json_number(altitude, base::round_to(plan.imaging.altitude_m, 3));
+  base::append_json_number(altitude, base::round_to(plan.imaging.altitude_m, 3));
   json = "{\n \"type\": \"FeatureCollection\",\n \"features\": [";
   bool first = true;
   for (const Flight& f : flights_of(plan)) {
@@ -125,9 +109,9 @@ PhotoTexts photo_texts(const SurveyPlan& plan) {
       json += altitude;
       json +=
           "\n   },\n   \"geometry\": {\n    \"type\": \"Point\",\n    \"coordinates\": [\n     ";
-      append_json_number(json, g.lon_deg);
+      base::append_json_number(json, g.lon_deg);
       json += ",\n     ";
-      append_json_number(json, g.lat_deg);
+      base::append_json_number(json, g.lat_deg);
       json += "\n    ]\n   }\n  }";
     }
   }
