@@ -136,4 +136,18 @@ std::string separated_text(char separator) {
                              : "comma-separated";
 }
 
+std::vector<std::string_view> whitespace_fields(std::string_view line) {
+  // The C locale's isspace, without a call per character.
+  const auto space = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
+  std::vector<std::string_view> fields;
+  std::size_t k = 0;
+  while (k < line.size()) {
+    while (k < line.size() && space(line[k])) ++k;
+    const std::size_t first = k;
+    while (k < line.size() && !space(line[k])) ++k;
+    if (k > first) fields.push_back(line.substr(first, k - first));
+  }
+  return fields;
+}
+
 }  // namespace swath::base

@@ -1,5 +1,6 @@
 #include "swath/base/json_document.hpp"
 
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -165,6 +166,15 @@ const nlohmann::json& json_array(const nlohmann::json& value, const std::string&
   if (value.size() < min_size)
     throw InputError(where + " must have at least " + std::to_string(min_size) + " elements");
   return value;
+}
+
+void append_json_number(std::string& out, double x) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
+  std::array<char, 64> text{};
+  out.append(text.data(), nlohmann::detail::to_chars(text.data(), text.data() + text.size(), x));
 }
 
 }  // namespace swath::base

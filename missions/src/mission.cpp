@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "swath/base/csv_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -202,18 +203,18 @@ std::vector<WplRow> wpl_rows(const std::string& text, const std::string& source)
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
     const std::string where = source + ": line " + std::to_string(line_no);
-    std::istringstream row(line);
+    // The fields as a stream reads them (white space between), without a stream per row.
+    const std::vector<std::string_view> fields = base::whitespace_fields(line);
     std::array<double, 12> f{};
     for (std::size_t k = 0; k < f.size(); ++k) {
-      std::string field;
-      if (!(row >> field))
+      if (k == fields.size())
         throw InputError(where +
                          ": a WPL row has 12 fields (index, current, frame, command, 4 params, "
                          "latitude, longitude, altitude, autocontinue); found " +
                          std::to_string(k));
-      if (!base::parse_number(field, f[k]) || !std::isfinite(f[k]))
-        throw InputError(where + ": field " + std::to_string(k + 1) + " '" + field.substr(0, 40) +
-                         "' is not a number");
+      if (!base::parse_number(fields[k], f[k]) || !std::isfinite(f[k]))
+        throw InputError(where + ": field " + std::to_string(k + 1) + " '" +
+                         std::string(fields[k].substr(0, 40)) + "' is not a number");
     }
     WplRow r{static_cast<int>(f[2]), static_cast<int>(f[3]), {}, where};
     std::copy(f.begin() + 4, f.begin() + 11, r.params.begin());

@@ -2,10 +2,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <optional>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -20,30 +24,64 @@ using nlohmann::ordered_json;
 
 // ---- Writing.
 
-ordered_json position_json(const GeoPoint& g) {
-  return {g.lon_deg, g.lat_deg};
-}
-
-// A Polygon's coordinates of one ring. Built with push_back: a braced {ring} would be the ring
-// itself under clang and [ring] under GCC (nlohmann's initializer-list ambiguity).
-ordered_json ring_json(const GeoRing& ring);
-ordered_json one_ring(const GeoRing& ring) {
-  ordered_json rings = ordered_json::array();
-  rings.push_back(ring_json(ring));
-  return rings;
-}
-
-ordered_json ring_json(const GeoRing& ring) {
-  ordered_json out = ordered_json::array();
-  for (const GeoPoint& g : ring) out.push_back(position_json(g));
-  out.push_back(out.front());  // RFC 7946 rings are closed
-  return out;
-}
-
 ordered_json feature(ordered_json properties, const char* type, ordered_json coordinates) {
   return {{"type", "Feature"},
           {"properties", std::move(properties)},
           {"geometry", {{"type", type}, {"coordinates", std::move(coordinates)}}}};
+}
+
+// ---- The coordinates' text, as json_text(tree, 1) writes them as the value of a feature's
+// "geometry"."coordinates" (its members at 5 spaces, its closing bracket at 4).
+
+constexpr int kCoordinatesIndent = 4;
+constexpr const char* kCoordinatesMark = "@swath-coordinates@";
+
+// [lon, lat] as an array whose opening bracket stands on a line indented by `indent`.
+void append_position(std::string& out, const GeoPoint& g, int indent) {
+  out += "[\n";
+  out.append(indent + 1, ' ');
+  base::append_json_number(out, g.lon_deg);
+  out += ",\n";
+  out.append(indent + 1, ' ');
+  base::append_json_number(out, g.lat_deg);
+  out += '\n';
+  out.append(indent, ' ');
+  out += ']';
+}
+
+// The positions (and the first again when `closed`: RFC 7946 rings are closed).
+void append_positions(std::string& out, const std::vector<GeoPoint>& points, bool closed,
+                      int indent) {
+  if (points.empty()) {
+    out += "[]";
+    return;
+  }
+  out += "[\n";
+  const std::size_t n = points.size() + (closed ? 1 : 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0) out += ",\n";
+    out.append(indent + 1, ' ');
+    append_position(out, points[k < points.size() ? k : 0], indent + 1);
+  }
+  out += '\n';
+  out.append(indent, ' ');
+  out += ']';
+}
+
+void append_rings(std::string& out, const std::vector<GeoRing>& rings, int indent) {
+  if (rings.empty()) {
+    out += "[]";
+    return;
+  }
+  out += "[\n";
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    if (k > 0) out += ",\n";
+    out.append(indent + 1, ' ');
+    append_positions(out, rings[k], true, indent + 1);
+  }
+  out += '\n';
+  out.append(indent, ' ');
+  out += ']';
 }
 
 // ---- Reading (checked).
@@ -186,46 +224,82 @@ GeoJsonFlight flight_of(const json& f, const Homes& homes, std::size_t index,
 }  // namespace
 
 std::string mission_geojson(const PlanFeatures& f) {
+  // The features as a tree, but each geometry's coordinates a mark (in document order), written
+  // directly afterwards: the outline's and the paths' positions as tree nodes were most of the
+  // writer's time.
+  std::vector<std::string> coordinates;
+  const auto mark = [&coordinates](std::string text) {
+    coordinates.push_back(std::move(text));
+    return ordered_json(kCoordinatesMark);
+  };
+  const auto polygon = [](const std::vector<GeoRing>& rings) {
+    std::string text;
+    append_rings(text, rings, kCoordinatesIndent);
+    return text;
+  };
+  const auto line = [](const std::vector<GeoPoint>& points) {
+    std::string text;
+    append_positions(text, points, false, kCoordinatesIndent);
+    return text;
+  };
+  const auto point = [](const GeoPoint& g) {
+    std::string text;
+    append_position(text, g, kCoordinatesIndent);
+    return text;
+  };
   ordered_json features = ordered_json::array();
-  ordered_json rings = ordered_json::array();
-  for (const GeoRing& ring : f.area) rings.push_back(ring_json(ring));
-  features.push_back(feature({{"role", "area"}}, "Polygon", std::move(rings)));
+  features.push_back(feature({{"role", "area"}}, "Polygon", mark(polygon(f.area))));
   for (std::size_t k = 0; k < f.area_pieces.size(); ++k)  // --repair: the other enclosed areas
-    features.push_back(
-        feature({{"role", "area"}, {"piece", k + 1}}, "Polygon", one_ring(f.area_pieces[k])));
+    features.push_back(feature({{"role", "area"}, {"piece", k + 1}}, "Polygon",
+                               mark(polygon({f.area_pieces[k]}))));
   for (const GeoRing& zone : f.no_fly)
-    features.push_back(feature({{"role", "no_fly"}}, "Polygon", one_ring(zone)));
+    features.push_back(feature({{"role", "no_fly"}}, "Polygon", mark(polygon({zone}))));
   for (std::size_t k = 0; k < f.cells.size(); ++k)
-    features.push_back(feature({{"role", "cell"}, {"cell", k}}, "Polygon", one_ring(f.cells[k])));
+    features.push_back(
+        feature({{"role", "cell"}, {"cell", k}}, "Polygon", mark(polygon({f.cells[k]}))));
   for (const PlanFeatures::Region& r : f.regions)
     features.push_back(
-        feature({{"role", "region"}, {"drone", r.drone}}, "Polygon", one_ring(r.ring)));
+        feature({{"role", "region"}, {"drone", r.drone}}, "Polygon", mark(polygon({r.ring}))));
   for (const PlanFeatures::Path& p : f.paths) {
-    ordered_json points = ordered_json::array();
-    for (const GeoPoint& g : p.points) points.push_back(position_json(g));
     features.push_back(feature({{"role", "path"},
                                 {"drone", p.drone},
                                 {"name", p.name},
                                 {"altitude_m", p.altitude_m},
                                 {"speed_m_s", p.speed_m_s}},
-                               "LineString", std::move(points)));
+                               "LineString", mark(line(p.points))));
     for (const PlanFeatures::Sweep& s : f.sweeps)
       if (s.drone == p.drone)
         features.push_back(feature({{"role", "sweep"},
                                     {"drone", s.drone},
                                     {"line", s.line},
                                     {"footprint_width_m", s.footprint_width_m}},
-                                   "LineString", {position_json(s.start), position_json(s.end)}));
+                                   "LineString", mark(line({s.start, s.end}))));
   }
-  features.push_back(feature({{"role", "home"}}, "Point", position_json(f.home)));
+  features.push_back(feature({{"role", "home"}}, "Point", mark(point(f.home))));
   for (const PlanFeatures::DroneHome& h : f.drone_homes)
-    features.push_back(
-        feature({{"role", "home"}, {"drone", h.drone}}, "Point", position_json(h.at)));
+    features.push_back(feature({{"role", "home"}, {"drone", h.drone}}, "Point", mark(point(h.at))));
   // Moved in, not copied (a braced list copies: the whole collection twice).
   ordered_json collection = ordered_json::object();
   collection["type"] = "FeatureCollection";
   collection["features"] = std::move(features);
-  return base::json_text(collection, 1) + "\n";
+  const std::string tree = base::json_text(collection, 1) + "\n";
+  // The marks in order. A mark as a "coordinates" value cannot be a name's text: there every
+  // quote is escaped.
+  const std::string marked = "\"coordinates\": \"" + std::string(kCoordinatesMark) + '"';
+  std::string out;
+  std::size_t size = tree.size();
+  for (const std::string& c : coordinates) size += c.size();
+  out.reserve(size);
+  std::size_t from = 0;
+  for (const std::string& c : coordinates) {
+    const std::size_t at = tree.find(marked, from);
+    const std::size_t value = at + marked.size() - std::strlen(kCoordinatesMark) - 2;
+    out.append(tree, from, value - from);
+    out += c;
+    from = at + marked.size();
+  }
+  out.append(tree, from, std::string::npos);
+  return out;
 }
 
 PlanFeatures parse_mission_geojson(const std::string& text, const std::string& source) {

@@ -2,7 +2,10 @@
 // fences, rally points, and QGC's Survey complex item; read back by mission.cpp (parse_mission).
 #include <nlohmann/json.hpp>
 
+#include <array>
+#include <charconv>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "swath/base/json_document.hpp"
@@ -105,6 +108,53 @@ ordered_json survey_item(const Mission& m, const QgcSurvey& s, int altitude_mode
   return survey;
 }
 
+// An integer as nlohmann writes one.
+void append_json_integer(std::string& out, long long x) {
+  std::array<char, 24> text{};
+  out.append(text.data(), std::to_chars(text.data(), text.data() + text.size(), x).ptr);
+}
+
+// The mission's items without a Survey item, as json_text(items_json(...), 4) writes them where
+// they stand in the .plan (the array's members at 12 spaces, its closing bracket at 8), written
+// directly instead of through a tree: building and dumping one was most of the writer's time.
+std::string items_text(const Mission& m, int altitude_mode) {
+  if (m.items.empty()) return "[]";
+  std::string out = "[\n";
+  int jump_id = 1;
+  for (const Item& item : m.items) {
+    if (jump_id > 1) out += ",\n";
+    out += "            {\n";
+    if (item.altitude_frame != AltitudeFrame::none) {
+      out += "                \"AMSLAltAboveTerrain\": null,\n                \"Altitude\": ";
+      base::append_json_number(out, item.altitude_m);
+      out += ",\n                \"AltitudeMode\": ";
+      append_json_integer(out, altitude_mode);
+      out += ",\n";
+    }
+    out += "                \"autoContinue\": true,\n                \"command\": ";
+    append_json_integer(out, item.command);
+    out += ",\n                \"doJumpId\": ";
+    append_json_integer(out, jump_id++);
+    out += ",\n                \"frame\": ";
+    append_json_integer(out, item.frame);
+    out += ",\n                \"params\": [\n";
+    const std::array<double, 7> params = {
+        item.params[0],        item.params[1],        item.params[2], item.params[3],
+        item.position.lat_deg, item.position.lon_deg, item.altitude_m};
+    for (std::size_t k = 0; k < params.size(); ++k) {
+      out += k == 0 ? "                    " : ",\n                    ";
+      base::append_json_number(out, params[k]);
+    }
+    out += "\n                ],\n                \"type\": \"SimpleItem\"\n            }";
+  }
+  out += "\n        ]";
+  return out;
+}
+
+// Where items_text goes in the tree's text: a string no other value of the .plan holds (the values
+// before it are numbers and swath's own constants).
+constexpr const char* kItemsMark = "@swath-qgc-items@";
+
 ordered_json items_json(const Mission& m, int altitude_mode, const QgcSurvey* survey) {
   ordered_json items = ordered_json::array();
   int jump_id = 1;
@@ -127,7 +177,9 @@ std::string write_qgc_plan(const Mission& m, const QgcPlanSettings& settings,
   mission["firmwareType"] = settings.firmware_type;
   mission["globalPlanAltitudeMode"] = settings.altitude_mode;
   mission["hoverSpeed"] = m.cruise_speed_m_s;
-  mission["items"] = items_json(m, settings.altitude_mode, survey);
+  // A Survey item goes through the tree; plain items are written directly (items_text).
+  mission["items"] =
+      survey ? items_json(m, settings.altitude_mode, survey) : ordered_json(kItemsMark);
   mission["plannedHomePosition"] = {m.home.lat_deg, m.home.lon_deg, m.home_amsl_m};  // AMSL
   mission["vehicleType"] = m.fixed_wing ? 1 : 2;
   mission["version"] = 2;
@@ -140,7 +192,12 @@ std::string write_qgc_plan(const Mission& m, const QgcPlanSettings& settings,
   root["mission"] = std::move(mission);  // moved: a copy was a tenth of the writer
   root["rallyPoints"] = {{"points", std::move(rally)}, {"version", 2}};
   root["version"] = 1;
-  return base::json_text(root, 4) + "\n";
+  std::string text = base::json_text(root, 4) + "\n";
+  if (!survey) {
+    const std::string mark = '"' + std::string(kItemsMark) + '"';
+    text.replace(text.find(mark), mark.size(), items_text(m, settings.altitude_mode));
+  }
+  return text;
 }
 
 }  // namespace swath::missions

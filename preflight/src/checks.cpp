@@ -43,10 +43,29 @@ SegmentDistance segment_distance(Point2 p, Point2 q, Point2 a, Point2 b) {
   return best;
 }
 
+// The edges are taken in order and the first nearest kept, as by measuring every edge; an edge is
+// measured only if its bounding box comes near enough the segment's to hold a point as near as
+// the nearest so far, or as the nearest vertex (a distance segment_distance itself measures for
+// the vertex's edges, so the result is at most that). The boxes' gap along x or y is a lower bound
+// of the distance of any two points of them; the slack covers the rounding of the measured
+// distance (a few ulps of the coordinates: below 1e-8 m up to 10^7 m from the frame's origin), so
+// that an edge skipped could not have been taken.
 SegmentDistance ring_distance(Point2 p, Point2 q, const geometry::Ring& ring) {
+  constexpr double kBoxSlack_m = 1e-6;
+  const double lo_x = std::min(p.x, q.x), hi_x = std::max(p.x, q.x);
+  const double lo_y = std::min(p.y, q.y), hi_y = std::max(p.y, q.y);
+  double nearest_vertex_m = kInf;
+  for (const Point2 a : ring)
+    nearest_vertex_m =
+        std::min(nearest_vertex_m, geometry::distance(closest_on_segment(a, p, q), a));
   SegmentDistance best{kInf, p};
   for (std::size_t i = 0; i < ring.size(); ++i) {
-    const SegmentDistance d = segment_distance(p, q, ring[i], ring[(i + 1) % ring.size()]);
+    const Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
+    const double gap_x = std::max(std::min(a.x, b.x) - hi_x, lo_x - std::max(a.x, b.x));
+    const double gap_y = std::max(std::min(a.y, b.y) - hi_y, lo_y - std::max(a.y, b.y));
+    if (std::max(gap_x, gap_y) - kBoxSlack_m > std::min(best.distance_m, nearest_vertex_m))
+      continue;
+    const SegmentDistance d = segment_distance(p, q, a, b);
     if (d.distance_m < best.distance_m) best = d;
   }
   return best;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,30 @@ TEST(CsvText, MalformedQuotingNamesTheLineAndColumn) {
   // A quote a comment would have closed is still open: the '#' is inside it.
   EXPECT_EQ(refusal("a,b\r\r\"1 # x\n"),
             "t.csv: line 3: column 1 opens a quote that the line does not close");
+}
+
+// whitespace_fields against reading std::string after std::string from an istringstream (the WPL
+// reader's former way), on random lines of every C-locale white-space character, bytes above 127,
+// runs of separators at both ends, empty lines (fixed seed).
+TEST(WhitespaceFields, AreWhatAStreamReads) {
+  std::mt19937 rng(110);
+  const std::string alphabet =
+      std::string(" \t\n\v\f\r") + "0123456789.-+eE,;x#\"" + "\xc3\xa9\xff";
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::string line;
+    for (int k = static_cast<int>(rng() % 60); k > 0; --k) {
+      // Mostly runs of one kind, so that fields and separators both repeat.
+      const char c = alphabet[rng() % alphabet.size()];
+      line.append(1 + rng() % 3, c);
+    }
+    std::istringstream in(line);
+    std::vector<std::string> streamed;
+    for (std::string field; in >> field;) streamed.push_back(field);
+    const std::vector<std::string_view> fields = whitespace_fields(line);
+    ASSERT_EQ(fields.size(), streamed.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < fields.size(); ++k)
+      ASSERT_EQ(std::string(fields[k]), streamed[k]) << "trial " << trial << " field " << k;
+  }
 }
 
 }  // namespace

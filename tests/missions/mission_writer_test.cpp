@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/missions/mission.hpp"
 #include "swath/missions/writers.hpp"
@@ -138,6 +141,89 @@ TEST(MissionWriters, QgcPlanReadsBackAsWritten) {
     for (std::size_t k = 0; k < m.exclusion_fences.size(); ++k)
       expect_points(m.exclusion_fences[k], read.exclusion_fences[k], 0.0, "exclusion fence");
     expect_points(m.rally_points, read.rally_points, 0.0, "rally points");
+  }
+}
+
+// ---- The .plan's items, written directly, against the nlohmann tree json_text dumps (the
+// writer's former way, kept here): the same bytes for random missions, and for items whose numbers
+// are not finite, negative or large, and for a mission without items.
+
+using nlohmann::ordered_json;
+
+ordered_json reference_polygon(const std::vector<geometry::GeoPoint>& ring) {
+  ordered_json points = ordered_json::array();
+  for (const geometry::GeoPoint& g : ring) points.push_back({g.lat_deg, g.lon_deg});
+  return points;
+}
+
+std::string reference_qgc_plan(const Mission& m, const missions::QgcPlanSettings& settings) {
+  ordered_json items = ordered_json::array();
+  int jump_id = 1;
+  for (const Item& item : m.items) {
+    ordered_json j;
+    if (item.altitude_frame != AltitudeFrame::none) {
+      j["AMSLAltAboveTerrain"] = nullptr;
+      j["Altitude"] = item.altitude_m;
+      j["AltitudeMode"] = settings.altitude_mode;
+    }
+    j["autoContinue"] = true;
+    j["command"] = item.command;
+    j["doJumpId"] = jump_id++;
+    j["frame"] = item.frame;
+    ordered_json p = ordered_json::array();
+    for (double v : {item.params[0], item.params[1], item.params[2], item.params[3],
+                     item.position.lat_deg, item.position.lon_deg, item.altitude_m})
+      p.push_back(std::isnan(v) ? ordered_json() : ordered_json(v));
+    j["params"] = p;
+    j["type"] = "SimpleItem";
+    items.push_back(j);
+  }
+  ordered_json polygons = ordered_json::array();
+  for (const auto& ring : m.inclusion_fences)
+    polygons.push_back({{"inclusion", true}, {"polygon", reference_polygon(ring)}, {"version", 1}});
+  for (const auto& ring : m.exclusion_fences)
+    polygons.push_back(
+        {{"inclusion", false}, {"polygon", reference_polygon(ring)}, {"version", 1}});
+  ordered_json mission;
+  mission["cruiseSpeed"] = m.cruise_speed_m_s;
+  mission["firmwareType"] = settings.firmware_type;
+  mission["globalPlanAltitudeMode"] = settings.altitude_mode;
+  mission["hoverSpeed"] = m.cruise_speed_m_s;
+  mission["items"] = items;
+  mission["plannedHomePosition"] = {m.home.lat_deg, m.home.lon_deg, m.home_amsl_m};
+  mission["vehicleType"] = m.fixed_wing ? 1 : 2;
+  mission["version"] = 2;
+  ordered_json rally = ordered_json::array();
+  for (const geometry::GeoPoint& g : m.rally_points) rally.push_back({g.lat_deg, g.lon_deg, 0});
+  ordered_json root;
+  root["fileType"] = "Plan";
+  root["geoFence"] = {{"circles", ordered_json::array()}, {"polygons", polygons}, {"version", 2}};
+  root["groundStation"] = "swath";
+  root["mission"] = mission;
+  root["rallyPoints"] = {{"points", rally}, {"version", 2}};
+  root["version"] = 1;
+  return base::json_text(root, 4) + "\n";
+}
+
+TEST(MissionWriters, QgcPlanItemsAreTheTreesText) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (std::uint32_t seed = 301; seed <= 700; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Mission m = random_mission(seed);
+    Rng rng{std::mt19937(seed)};
+    // Numbers of every kind where the writer prints them: not finite, whole, tiny, huge, negative.
+    const double odd[] = {std::nan(""), kInf, -kInf, 0.0, -0.0, 5.0, 1e-300, 1e300, -123.5, 0.1};
+    for (Item& item : m.items) {
+      if (rng.below(3) == 0) item.altitude_m = odd[rng.below(10)];
+      if (rng.below(3) == 0) item.params[std::size_t(rng.below(4))] = odd[rng.below(10)];
+      if (rng.below(5) == 0) item.position.lat_deg = odd[rng.below(10)];
+      if (rng.below(9) == 0) item.command = -rng.below(100000);
+      if (rng.below(9) == 0) item.frame = 1000000 + rng.below(1000);
+    }
+    if (seed % 50 == 0) m.items.clear();
+    if (seed % 7 == 0) m.inclusion_fences.clear();
+    const missions::QgcPlanSettings settings{rng.below(20), rng.below(5) - 1};
+    ASSERT_EQ(missions::write_qgc_plan(m, settings), reference_qgc_plan(m, settings));
   }
 }
 

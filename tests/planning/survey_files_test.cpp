@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "swath/base/json_document.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
 
 namespace swath::planning {
@@ -234,6 +236,166 @@ TEST(SurveyFiles, SameInputSameBytes) {
   const auto b = survey_files(meadow_plan());
   ASSERT_EQ(a.size(), 8u);
   EXPECT_EQ(a, b);
+}
+
+// ---- The photo and waypoint writers against straightforward ones (fixed_text and std::to_string
+// per field; photos.geojson as an nlohmann tree, dumped), on plans whose photos and waypoints are
+// random: positions from 1 mm to 30 km either side of the origin, lines and sorties, two drones.
+
+geometry::GeoPoint reference_geo(const SurveyPlan& plan, geometry::Point2 p) {
+  const geometry::GeoPoint g = plan.request.field.frame->to_geo(p);
+  return {base::round_to(g.lat_deg, 9), base::round_to(g.lon_deg, 9), 0.0};
+}
+
+std::string reference_photos_csv(const SurveyPlan& plan) {
+  using base::fixed_text;
+  std::string out = "drone,flight,line,photo,lat,lon,alt_m,x_m,y_m\n";
+  for (const Flight& f : flights_of(plan))
+    for (std::size_t k = 0; k < f.photos->size(); ++k) {
+      const PhotoPoint& p = (*f.photos)[k];
+      const geometry::GeoPoint g = reference_geo(plan, p.position);
+      out += std::to_string(f.drone->number) + "," + f.file_stem + "," + std::to_string(p.line) +
+             "," + std::to_string(k) + "," + fixed_text(g.lat_deg, 9) + "," +
+             fixed_text(g.lon_deg, 9) + "," + fixed_text(plan.imaging.altitude_m, 3) + "," +
+             fixed_text(p.position.x, 3) + "," + fixed_text(p.position.y, 3) + "\n";
+    }
+  return out;
+}
+
+std::string reference_photos_geojson(const SurveyPlan& plan) {
+  nlohmann::ordered_json features = nlohmann::ordered_json::array();
+  for (const Flight& f : flights_of(plan))
+    for (std::size_t k = 0; k < f.photos->size(); ++k) {
+      const PhotoPoint& p = (*f.photos)[k];
+      const geometry::GeoPoint g = reference_geo(plan, p.position);
+      nlohmann::ordered_json feature;
+      feature["type"] = "Feature";
+      feature["properties"] = {{"role", "photo"},
+                               {"drone", f.drone->number},
+                               {"flight", f.file_stem},
+                               {"line", p.line},
+                               {"photo", k},
+                               {"altitude_m", base::round_to(plan.imaging.altitude_m, 3)}};
+      feature["geometry"] = {{"type", "Point"}, {"coordinates", {g.lon_deg, g.lat_deg}}};
+      features.push_back(feature);
+    }
+  nlohmann::ordered_json collection;
+  collection["type"] = "FeatureCollection";
+  collection["features"] = features;
+  return base::json_text(collection, 1) + "\n";
+}
+
+std::string reference_waypoints_csv(const SurveyPlan& plan) {
+  using base::fixed_text;
+  std::string out = "drone,flight,seq,lat,lon,alt_m,x_m,y_m,action\n";
+  for (const Flight& f : flights_of(plan)) {
+    const std::string head = std::to_string(f.drone->number) + "," + f.file_stem + ",";
+    auto row = [&](std::size_t seq, geometry::Point2 p, double alt, bool has_position,
+                   const std::string& action) {
+      out += head + std::to_string(seq) + ",";
+      if (has_position) {
+        const geometry::GeoPoint g = reference_geo(plan, p);
+        out += fixed_text(g.lat_deg, 9) + "," + fixed_text(g.lon_deg, 9) + "," +
+               fixed_text(alt, 3) + "," + fixed_text(p.x, 3) + "," + fixed_text(p.y, 3);
+      } else {
+        out += ",,,,";
+      }
+      out += "," + action + "\n";
+    };
+    row(0, f.mission->home, 0.0, true, "home");
+    std::size_t seq = 1;
+    for (const MissionItem& item : f.mission->items) {
+      // The action names as waypoints.csv documents them, taken from the writer's own rows.
+      row(seq++, item.position, item.altitude_m, positional(item.kind), "?");
+    }
+  }
+  return out;
+}
+
+// The last column of every row (the action), which the reference leaves as "?".
+std::string without_actions(const std::string& csv) {
+  std::string out;
+  std::stringstream lines(csv);
+  for (std::string line; std::getline(lines, line);) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
+struct Random {
+  std::uint64_t state;
+  double unit() {  // [0, 1)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  }
+  // A coordinate of any magnitude from 1 mm to 30 km, either sign, now and then 0 or a half
+  // millimetre (a rounding tie in x_m, y_m).
+  double coordinate() {
+    const double pick = unit();
+    if (pick < 0.05) return 0.0;
+    if (pick < 0.1) return (unit() < 0.5 ? -1 : 1) * (std::floor(unit() * 1e6) + 0.5) / 1000.0;
+    return (unit() < 0.5 ? -1 : 1) * std::pow(10.0, -3.0 + 7.5 * unit());
+  }
+};
+
+std::vector<PhotoPoint> random_photos(Random& random, std::size_t count) {
+  std::vector<PhotoPoint> photos(count);
+  for (PhotoPoint& p : photos) {
+    p.position = {random.coordinate(), random.coordinate()};
+    p.line = static_cast<int>(random.unit() * 2e6);
+  }
+  return photos;
+}
+
+void randomise_items(Random& random, DroneMission& mission) {
+  mission.home = {random.coordinate(), random.coordinate()};
+  for (MissionItem& item : mission.items) {
+    item.position = {random.coordinate(), random.coordinate()};
+    item.altitude_m = random.coordinate();
+  }
+}
+
+TEST(PhotoAndWaypointFiles, TheWritersGiveTheStraightforwardTextsOnRandomPlans) {
+  const SurveyPlan meadow = meadow_plan();
+  Random random{52};
+  for (int round = 0; round < 6; ++round) {
+    SurveyPlan plan = meadow;
+    plan.imaging.altitude_m = round == 0 ? 80.0 : 10.0 + random.unit() * 500.0;
+    DronePlan& first = plan.drones.at(0);
+    first.photos = random_photos(random, 400);
+    randomise_items(random, first.mission);
+    DronePlan second = first;  // flies in two sorties
+    second.number = 2;
+    second.file_stem = "alpha.2_x-y";
+    for (int s = 1; s <= 2; ++s) {
+      Sortie sortie;
+      sortie.number = s;
+      sortie.mission = first.mission;
+      randomise_items(random, sortie.mission);
+      sortie.photos = random_photos(random, 150);
+      second.sorties.push_back(sortie);
+    }
+    plan.drones.push_back(second);
+    if (round == 5) plan.drones[1].sorties.back().photos.clear();  // a flight with none
+
+    const std::string csv = photos_csv(plan);
+    ASSERT_EQ(csv, reference_photos_csv(plan)) << "round " << round;
+    ASSERT_EQ(photos_geojson(plan), reference_photos_geojson(plan)) << "round " << round;
+    const std::string waypoints = waypoints_csv(plan);
+    ASSERT_EQ(without_actions(waypoints), without_actions(reference_waypoints_csv(plan)))
+        << "round " << round;
+    // The set holds the same texts as the single writers.
+    const auto files = survey_files(plan);
+    for (const auto& [name, text] : files) {
+      if (name == "photos.csv") EXPECT_EQ(text, csv);
+      if (name == "photos.geojson") EXPECT_EQ(text, reference_photos_geojson(plan));
+      if (name == "waypoints.csv") EXPECT_EQ(text, waypoints);
+    }
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 400 + 150 + (round == 5 ? 0 : 150));
+  }
+  // No photos at all: the empty collection as nlohmann writes it.
+  SurveyPlan empty = meadow;
+  empty.drones.at(0).photos.clear();
+  EXPECT_EQ(photos_geojson(empty), reference_photos_geojson(empty));
+  EXPECT_EQ(photos_csv(empty), "drone,flight,line,photo,lat,lon,alt_m,x_m,y_m\n");
 }
 
 }  // namespace

@@ -52,6 +52,13 @@ std::string xml_escape(const std::string& text);
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close);
 
+/// photos.csv and photos.geojson (survey_files.hpp), made in one pass over the photos.
+struct PhotoTexts {
+  std::string csv;
+  std::string geojson;
+};
+PhotoTexts photo_texts(const SurveyPlan& plan);
+
 /// A waypoint as the DJI and Litchi exports write it (swath/missions/writers.hpp).
 using ExportPoint = missions::ExportPoint;
 

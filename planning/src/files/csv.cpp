@@ -1,5 +1,6 @@
 // waypoints.csv and the planned photos (photos.csv, photos.geojson).
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -9,7 +10,32 @@
 
 namespace swath::planning {
 
-using base::fixed_text;
+using base::append_fixed_text;
+
+namespace {
+
+// std::to_string's digits, appended without a temporary string.
+template <typename Integer>
+void append_integer(std::string& out, Integer value) {
+  char text[24];
+  out.append(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
+// "lat,lon,alt_m,x_m,y_m" as fixed_text writes them (9, 9, 3, 3, 3 decimals).
+void append_point_columns(std::string& out, const geometry::GeoPoint& g, double altitude_m,
+                          geometry::Point2 p) {
+  append_fixed_text(out, g.lat_deg, 9);
+  out += ',';
+  append_fixed_text(out, g.lon_deg, 9);
+  out += ',';
+  append_fixed_text(out, altitude_m, 3);
+  out += ',';
+  append_fixed_text(out, p.x, 3);
+  out += ',';
+  append_fixed_text(out, p.y, 3);
+}
+
+}  // namespace
 
 std::string waypoints_csv(const SurveyPlan& plan) {
   std::string out = "drone,flight,seq,lat,lon,alt_m,x_m,y_m,action\n";
@@ -17,15 +43,18 @@ std::string waypoints_csv(const SurveyPlan& plan) {
     const std::string head = std::to_string(f.drone->number) + "," + f.file_stem + ",";
     auto row = [&](std::size_t seq, geometry::Point2 p, double alt, bool has_position,
                    const char* action) {
-      out += head + std::to_string(seq) + ",";
+      out += head;
+      append_integer(out, seq);
+      out += ',';
       if (has_position) {
         const geometry::GeoPoint g = files::geo(plan, p);
-        out += fixed_text(g.lat_deg, 9) + "," + fixed_text(g.lon_deg, 9) + "," +
-               fixed_text(alt, 3) + "," + fixed_text(p.x, 3) + "," + fixed_text(p.y, 3);
+        append_point_columns(out, g, alt, p);
       } else {
         out += ",,,,";
       }
-      out += std::string(",") + action + "\n";
+      out += ',';
+      out += action;
+      out += '\n';
     };
     row(0, f.mission->home, 0.0, true, "home");
     std::size_t seq = 1;
@@ -36,47 +65,25 @@ std::string waypoints_csv(const SurveyPlan& plan) {
   return out;
 }
 
-std::string photos_csv(const SurveyPlan& plan) {
-  std::string out = "drone,flight,line,photo,lat,lon,alt_m,x_m,y_m\n";
-  for (const Flight& f : flights_of(plan))
-    for (std::size_t k = 0; k < f.photos->size(); ++k) {
-      const PhotoPoint& p = (*f.photos)[k];
-      const geometry::GeoPoint g = files::geo(plan, p.position);
-      out += std::to_string(f.drone->number) + "," + f.file_stem + "," + std::to_string(p.line) +
-             "," + std::to_string(k) + "," + fixed_text(g.lat_deg, 9) + "," +
-             fixed_text(g.lon_deg, 9) + "," + fixed_text(plan.imaging.altitude_m, 3) + "," +
-             fixed_text(p.position.x, 3) + "," + fixed_text(p.position.y, 3) + "\n";
-    }
-  return out;
-}
+namespace files {
 
-namespace {
-
-// A number as nlohmann's serializer writes it (its Grisu2 shortest text, "null" for a non-finite
-// one), without building a JSON tree for it.
-void append_json_number(std::string& out, double x) {
-  if (!std::isfinite(x)) {
-    out += "null";
-    return;
-  }
-  std::array<char, 64> text{};
-  char* end = nlohmann::detail::to_chars(text.data(), text.data() + text.size(), x);
-  out.append(text.data(), end);
-}
-
-}  // namespace
-
-// Written directly, not through a JSON tree: the same text json_text(tree, 1) gives (every photo
-// a Feature; a flight's name escaped by nlohmann once), in a sixth of the time: the photos of a
-// large field were most of the writers' time.
-std::string photos_geojson(const SurveyPlan& plan) {
+// One pass over the photos for both files: a photo's WGS84 position (LocalFrame::to_geo, most of
+// a photo's cost) is computed once. photos.geojson is written directly, not through a JSON tree:
+// the same text json_text(tree, 1) gives (every photo a Feature; a flight's name escaped by
+// nlohmann once), in a sixth of the time.
+PhotoTexts photo_texts(const SurveyPlan& plan) {
   using nlohmann::ordered_json;
+  PhotoTexts texts;
+  std::string& csv = texts.csv;
+  std::string& json = texts.geojson;
+  csv = "drone,flight,line,photo,lat,lon,alt_m,x_m,y_m\n";
   std::string altitude;
-  append_json_number(altitude, base::round_to(plan.imaging.altitude_m, 3));
-  std::string out = "{\n \"type\": \"FeatureCollection\",\n \"features\": [";
+  base::append_json_number(altitude, base::round_to(plan.imaging.altitude_m, 3));
+  json = "{\n \"type\": \"FeatureCollection\",\n \"features\": [";
   bool first = true;
   for (const Flight& f : flights_of(plan)) {
-    const std::string head =
+    const std::string csv_head = std::to_string(f.drone->number) + "," + f.file_stem + ",";
+    const std::string json_head =
         "\n  {\n   \"type\": \"Feature\",\n   \"properties\": {\n    "
         "\"role\": \"photo\",\n    \"drone\": " +
         std::to_string(f.drone->number) +
@@ -84,23 +91,42 @@ std::string photos_geojson(const SurveyPlan& plan) {
     for (std::size_t k = 0; k < f.photos->size(); ++k) {
       const PhotoPoint& p = (*f.photos)[k];
       const geometry::GeoPoint g = files::geo(plan, p.position);
-      out += first ? "" : ",";
+      csv += csv_head;
+      append_integer(csv, p.line);
+      csv += ',';
+      append_integer(csv, k);
+      csv += ',';
+      append_point_columns(csv, g, plan.imaging.altitude_m, p.position);
+      csv += '\n';
+
+      json += first ? "" : ",";
       first = false;
-      out += head;
-      out += std::to_string(p.line);
-      out += ",\n    \"photo\": ";
-      out += std::to_string(k);
-      out += ",\n    \"altitude_m\": ";
-      out += altitude;
-      out += "\n   },\n   \"geometry\": {\n    \"type\": \"Point\",\n    \"coordinates\": [\n     ";
-      append_json_number(out, g.lon_deg);
-      out += ",\n     ";
-      append_json_number(out, g.lat_deg);
-      out += "\n    ]\n   }\n  }";
+      json += json_head;
+      append_integer(json, p.line);
+      json += ",\n    \"photo\": ";
+      append_integer(json, k);
+      json += ",\n    \"altitude_m\": ";
+      json += altitude;
+      json +=
+          "\n   },\n   \"geometry\": {\n    \"type\": \"Point\",\n    \"coordinates\": [\n     ";
+      base::append_json_number(json, g.lon_deg);
+      json += ",\n     ";
+      base::append_json_number(json, g.lat_deg);
+      json += "\n    ]\n   }\n  }";
     }
   }
-  out += first ? "]\n}\n" : "\n ]\n}\n";
-  return out;
+  json += first ? "]\n}\n" : "\n ]\n}\n";
+  return texts;
+}
+
+}  // namespace files
+
+std::string photos_csv(const SurveyPlan& plan) {
+  return files::photo_texts(plan).csv;
+}
+
+std::string photos_geojson(const SurveyPlan& plan) {
+  return files::photo_texts(plan).geojson;
 }
 
 }  // namespace swath::planning

@@ -96,8 +96,9 @@ std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& 
   }
   files.push_back({"waypoints.csv", waypoints_csv(plan)});
   files.push_back({"mission.kml", mission_kml(plan)});
-  files.push_back({"photos.geojson", photos_geojson(plan)});
-  files.push_back({"photos.csv", photos_csv(plan)});
+  files::PhotoTexts photos = files::photo_texts(plan);
+  files.push_back({"photos.geojson", std::move(photos.geojson)});
+  files.push_back({"photos.csv", std::move(photos.csv)});
   if (options.fence_files) {
     files.push_back({"fence.waypoints", fence_waypoints(plan)});
     files.push_back({"fence.fen", fence_fen(plan)});

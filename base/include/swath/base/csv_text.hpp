@@ -53,4 +53,9 @@ class CsvText {
 /// "comma-separated", "semicolon-separated" or "tab-separated", for messages.
 std::string separated_text(char separator);
 
+/// The fields of `line` between runs of white space (space, \t, \n, \v, \f, \r): what reading
+/// std::string after std::string from a stream in the C locale gives, without a stream (WPL rows).
+/// The views point into `line`.
+std::vector<std::string_view> whitespace_fields(std::string_view line);
+
 }  // namespace swath::base

@@ -14,7 +14,9 @@ namespace swath::base {
 /// process 0.70 against 0.53 s on a virtual machine (bench/split_bench.cpp, --default_allocator).
 /// With glibc: blocks below 32 MiB come from the heap (M_MMAP_THRESHOLD), and the heap's free top
 /// is returned only beyond 256 MiB (M_TRIM_THRESHOLD), so a process holds at most its peak plus
-/// that per malloc arena (one per thread at most). Elsewhere it does nothing.
+/// that per malloc arena (one per thread at most). Heaps grow 16 MiB of address space at a time
+/// (M_TOP_PAD), so that growing one costs a system call per 16 MiB, not one per few pages; the
+/// pages become resident only when used. Elsewhere it does nothing.
 void keep_freed_memory();
 
 }  // namespace swath::base

@@ -37,6 +37,10 @@ const std::string& json_string(const nlohmann::json& value, const std::string& w
 const nlohmann::json& json_array(const nlohmann::json& value, const std::string& where,
                                  std::size_t min_size = 0);
 
+/// Appends `x` as nlohmann's serializer writes a number: its Grisu2 shortest text ("1.0" for one),
+/// "null" for a non-finite one (for writers that write JSON text directly, not through a tree).
+void append_json_number(std::string& out, double x);
+
 /// `j` serialised with `indent`; bytes that are not UTF-8 (a drone name, a file name) become
 /// U+FFFD instead of aborting the write (nlohmann's default throws type_error 316).
 template <typename Json>
