@@ -399,6 +399,112 @@ TEST(Checks, RingDistanceIsEveryEdgesNearest) {
   EXPECT_GT(skipped_some, 5000);
 }
 
+// check_zones (which leaves out a ring zone whose bounding box is too far from a piece to matter)
+// against measuring every piece against every zone (the former loop, kept here): the same least
+// clearance, where, and violations, on random flights among random holes, circles and own fences
+// (fixed seed).
+void reference_check_zones(const FileContext& f, const std::vector<LocalZone>& zones,
+                           double clearance_m, Checked& out) {
+  const auto closest = [](geometry::Point2 p, geometry::Point2 a, geometry::Point2 b) {
+    const geometry::Point2 d = b - a;
+    const double len2 = geometry::dot(d, d);
+    if (len2 <= 0) return a;
+    const double t = std::clamp(geometry::dot(p - a, d) / len2, 0.0, 1.0);
+    return a + d * t;
+  };
+  using base::fixed_text;
+  for (const PathPiece& piece : pieces(*f.path))
+    for (const LocalZone& zone : zones) {
+      const double asked = zone.own_fence ? 0.0 : clearance_m;
+      SegmentDistance d{std::numeric_limits<double>::infinity(), {}};
+      if (zone.radius_m > 0) {
+        const geometry::Point2 c = zone.ring.front();
+        const geometry::Point2 at = closest(c, piece.from.xy(), piece.to.xy());
+        d = {std::max(0.0, geometry::distance(at, c) - zone.radius_m), at};
+      } else {
+        d = zone_distance(piece.from.xy(), piece.to.xy(), zone.ring);
+      }
+      if (d.distance_m < out.least_clearance_m) {
+        out.least_clearance_m = d.distance_m;
+        out.least_clearance_where = zone.name;
+      }
+      if (d.distance_m <= 0 || d.distance_m < asked - 1e-3)
+        out.violations.push_back(
+            {"no-fly zone", piece_name(piece), f.frame->to_geo(d.at), asked - d.distance_m,
+             d.distance_m <= 0
+                 ? piece_name(piece) + " enters " + zone.name + " (" + fixed_text(asked, 2) +
+                       " m clearance asked)"
+                 : piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +
+                       zone.name + " (" + fixed_text(asked, 2) +
+                       " m asked: " + fixed_text(asked - d.distance_m, 2) + " m short)"});
+    }
+}
+
+TEST(Checks, CheckZonesIsEveryPieceAgainstEveryZone) {
+  std::mt19937_64 rng(57);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const geometry::LocalFrame frame(kOrigin);
+  int violations = 0, quiet = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double size_m = std::pow(10.0, 1.0 + 3.0 * unit(rng));
+    auto point = [&] { return geometry::Point2{size_m * unit(rng), size_m * unit(rng)}; };
+    std::vector<LocalZone> zones;
+    for (int z = static_cast<int>(rng() % 12); z > 0; --z) {
+      LocalZone zone;
+      zone.name = "zone " + std::to_string(z);
+      const geometry::Point2 c = point();
+      const double r = size_m * 0.1 * unit(rng);
+      if (rng() % 5 == 0) {  // a circle
+        zone.ring = {c};
+        zone.radius_m = r + 0.1;
+      } else {
+        for (int k = 3 + static_cast<int>(rng() % 20); k > 0; --k) {
+          const double a = 2 * M_PI * unit(rng);
+          zone.ring.push_back(c + geometry::Point2{std::cos(a), std::sin(a)} * (r * unit(rng)));
+        }
+      }
+      zone.own_fence = rng() % 4 == 0;
+      zones.push_back(zone);
+    }
+    auto point3 = [&] {
+      const geometry::Point2 v = point();
+      return Point3{v.x, v.y, 50.0};
+    };
+    FlownPath path;
+    path.source = "t.plan";
+    path.home = point3();
+    Point3 at = path.home;
+    for (int k = static_cast<int>(rng() % 40); k > 0; --k) {
+      Leg leg;
+      leg.from = at;
+      leg.to = rng() % 6 == 0 ? at : point3();  // now and then a hold in place
+      leg.kind = rng() % 8 == 0 ? LegKind::hold : LegKind::cruise;
+      leg.place = "t.plan: item " + std::to_string(k);
+      path.legs.push_back(leg);
+      at = leg.to;
+    }
+    if (rng() % 3 == 0) path.overruns.push_back({at, point3(), "t.plan: item 0"});
+    const FileContext f{"t.plan", &path, &frame, {}, 0.0};
+    const double clearance_m = rng() % 3 == 0 ? 0.0 : size_m * 0.05 * unit(rng);
+    Checked fast, every;
+    if (rng() % 2) fast.least_clearance_m = every.least_clearance_m = size_m * unit(rng);
+    check_zones(f, zones, clearance_m, fast);
+    reference_check_zones(f, zones, clearance_m, every);
+    ASSERT_EQ(fast.least_clearance_m, every.least_clearance_m) << "trial " << trial;
+    ASSERT_EQ(fast.least_clearance_where, every.least_clearance_where) << "trial " << trial;
+    ASSERT_EQ(fast.violations.size(), every.violations.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < fast.violations.size(); ++k) {
+      ASSERT_EQ(fast.violations[k].text, every.violations[k].text) << "trial " << trial;
+      ASSERT_EQ(fast.violations[k].amount, every.violations[k].amount) << "trial " << trial;
+      ASSERT_EQ(fast.violations[k].at->lat_deg, every.violations[k].at->lat_deg);
+      ASSERT_EQ(fast.violations[k].at->lon_deg, every.violations[k].at->lon_deg);
+    }
+    (every.violations.empty() ? quiet : violations)++;
+  }
+  EXPECT_GT(violations, 30);  // both outcomes are common
+  EXPECT_GT(quiet, 30);
+}
+
 TEST(VerifyFiles, ASetWithoutAMissionFileIsBadInput) {
   EXPECT_TRUE(verify_files({{"a.waypoints", wpl(survey_rows())}}, {}).ok());
   EXPECT_THROW(verify_files({{"notes.txt", "x"}}, {}), base::InputError);
