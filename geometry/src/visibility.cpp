@@ -291,7 +291,9 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
       edge_boxes_.push_back(
           {std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)});
     }
-  edges_ = SegmentIndex(std::move(edges));
+  // 8 cells an edge, not the index's default 4: shorter rows for inside_closed()'s rays, for a
+  // few more cells along a leg (traced outlines: 0.4 % fewer instructions a plan; 16: more).
+  edges_ = SegmentIndex(std::move(edges), 8);
   if (routing == Routing::measure_only) {
     routing_ = false;
     return;
