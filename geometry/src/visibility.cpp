@@ -113,9 +113,10 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     std::uint32_t first, bins;
   };
   thread_local std::vector<Span> spans;
-  thread_local std::vector<double> angles;  // per vertex of a ring, its diamond angle from a
+  thread_local std::vector<double> angles;       // per vertex of a ring, its diamond angle from a
+  thread_local std::vector<std::int32_t> steps;  // per bin, edges whose span starts - ends there
   spans.resize(edges_.segments().size());
-  std::vector<std::uint32_t> count(fan_bins_ + 1, 0);
+  steps.assign(fan_bins_ + 1, 0);
   // A bin index taken round the turn: lo is at least -bins / 2 - 1 and at most bins, so a step
   // either way wraps it (the general form kept for safety).
   const auto wrapped = [bins](long k) {
@@ -151,12 +152,25 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
       const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
       const long hi = std::min(fan_bin(std::max(tp, tp + turn) + kMargin), lo + bins - 1);
       spans[e] = {wrapped(lo), std::uint32_t(hi - lo + 1)};
-      for (std::uint32_t k = spans[e].first, left = spans[e].bins; left > 0;
-           --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
-        ++count[k + 1];
+      // Counted per span, not per bin (a fan holds several times as many items as edges): +1
+      // where it starts, -1 past its end, in two pieces where it wraps past the last bin.
+      const std::size_t first = spans[e].first, end = first + spans[e].bins;
+      ++steps[first];
+      if (end <= fan_bins_) {
+        --steps[end];
+      } else {
+        --steps[fan_bins_];
+        ++steps[0];
+        --steps[end - fan_bins_];
+      }
     }
   }
-  for (std::size_t k = 0; k < fan_bins_; ++k) count[k + 1] += count[k];
+  std::vector<std::uint32_t> count(fan_bins_ + 1, 0);  // per bin, its first item; + the end
+  std::int32_t covering = 0;
+  for (std::size_t k = 0; k < fan_bins_; ++k) {
+    covering += steps[k];
+    count[k + 1] = count[k] + std::uint32_t(covering);
+  }
   fan.start = count;
   fan.items.resize(count.back());
   for (std::uint32_t edge = 0; edge < e; ++edge)
@@ -292,7 +306,9 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
       edge_boxes_.push_back(
           {std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)});
     }
-  edges_ = SegmentIndex(std::move(edges));
+  // 8 cells an edge, not the index's default 4: shorter rows for inside_closed()'s rays, for a
+  // few more cells along a leg (traced outlines: 0.4 % fewer instructions a plan; 16: more).
+  edges_ = SegmentIndex(std::move(edges), 8);
   if (routing == Routing::measure_only) {
     routing_ = false;
     return;
