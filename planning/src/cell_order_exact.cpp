@@ -225,37 +225,43 @@ class ExactSearch {
     }
   }
 
-  // Nearest first from home: the cheapest next state (transit with its penalty, and internal).
+  // Nearest first from home: the cheapest next state (transit with its penalty, and internal; ties
+  // to the lower state). Transits not asked yet stand in by their lower bounds, asked cheapest
+  // bound first until none can win (first_least(): the same state as asking all).
   std::vector<std::size_t> greedy_tour() {
     std::vector<std::size_t> tour;
     std::size_t at = states_, flown = 0;  // states: at home
+    std::array<double, 16 * kMaxVariants> value;
+    std::array<bool, 16 * kMaxVariants> known;
     for (std::size_t k = 0; k < n_; ++k) {
-      double best = kInf;
-      std::size_t best_s = states_;
       const std::uint64_t unflown_before = ~std::uint64_t{0} & ~flown;
-      for (std::size_t c2 = 0; c2 < n_; ++c2) {
-        if (flown & (std::size_t{1} << c2)) continue;
-        for (std::size_t v2 = 0; v2 < variants_[c2]; ++v2) {
-          const std::size_t s2 = c2 * kMaxVariants + v2;
-          double transit = 0;
-          if (at == states_) {
-            if (unknown(home_in_[s2]) && low_in_[s2] + internal_[s2] >= best) continue;
-            transit = from_home(s2);
-          } else {
-            const std::size_t i = at * states_ + s2;
-            if (unknown(between_[i]) && low_[i] + internal_[s2] >= best) continue;
-            transit = between(i);
-            if (p_.crossed)
-              transit = penalised(transit, p_.crossing_weight,
-                                  crossed_[i] & unflown_before & ~(std::uint64_t{1} << c2));
-          }
-          if (transit + internal_[s2] < best) {
-            best = transit + internal_[s2];
-            best_s = s2;
-          }
+      const auto cost = [&](std::size_t s2) {
+        const std::size_t c2 = s2 / kMaxVariants;
+        if (at == states_) return from_home(s2) + internal_[s2];
+        const std::size_t i = at * states_ + s2;
+        double transit = between(i);
+        if (p_.crossed)
+          transit = penalised(transit, p_.crossing_weight,
+                              crossed_[i] & unflown_before & ~(std::uint64_t{1} << c2));
+        return transit + internal_[s2];
+      };
+      for (std::size_t s2 = 0; s2 < states_; ++s2) {
+        const std::size_t c2 = s2 / kMaxVariants;
+        known[s2] = true;
+        value[s2] = kInf;  // not a candidate: never the least
+        if ((flown & (std::size_t{1} << c2)) || s2 % kMaxVariants >= variants_[c2]) continue;
+        const bool asked =
+            at == states_ ? !unknown(home_in_[s2]) : !unknown(between_[at * states_ + s2]);
+        if (asked) {
+          value[s2] = cost(s2);
+        } else {
+          known[s2] = false;
+          value[s2] = (at == states_ ? low_in_[s2] : low_[at * states_ + s2]) + internal_[s2];
         }
       }
-      if (best_s == states_) return std::vector<std::size_t>{};  // a cell without variants
+      const auto [best, best_s] =
+          cell_order_detail::first_least(states_, value.data(), known.data(), cost);
+      if (!(best < kInf)) return std::vector<std::size_t>{};  // a cell without variants
       tour.push_back(best_s);
       at = best_s;
       flown |= std::size_t{1} << (best_s / kMaxVariants);
