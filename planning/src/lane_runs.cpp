@@ -269,14 +269,17 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
 class Turns {
  public:
   Turns(const LaneScan& scan, const std::vector<double>& ys) : bands_(ys.size()) {
+    if (ys.empty()) return;
     const auto& edges = scan.edges();
+    std::size_t near = 0;  // the last edge's first band
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const double lo = std::min(edges[e].first.y, edges[e].second.y);
       const double hi = std::max(edges[e].first.y, edges[e].second.y);
       // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
-      // bottom is below hi.
-      auto r = std::lower_bound(ys.begin() + 1, ys.end(), lo);
-      for (std::size_t b = std::size_t(r - ys.begin()) - 1; b + 1 < ys.size() && ys[b] <= hi; ++b)
+      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
+      // this).
+      near = detail::walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
+      for (std::size_t b = near; b + 1 < ys.size() && ys[b] <= hi; ++b)
         bands_[b].push_back(edges[e]);
     }
   }

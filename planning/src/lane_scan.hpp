@@ -18,6 +18,18 @@ namespace swath::planning::detail {
 using geometry::Point2;
 using geometry::Ring;
 
+// std::lower_bound(keys, keys + n, value) for keys ascending and free of NaN, walked to from
+// `hint` (the answer for a nearby value) instead of searched: a ring's edges come in order, each
+// starting where the last ended, so the walk is a step or two (at most the rows the edges span,
+// which their callers walk anyway).
+inline std::size_t walk_lower_bound(const double* keys, std::size_t n, double value,
+                                    std::size_t hint) {
+  std::size_t k = std::min(hint, n);
+  while (k > 0 && !(keys[k - 1] < value)) --k;
+  while (k < n && keys[k] < value) ++k;
+  return k;
+}
+
 struct Span {
   double x0, x1;
 };
@@ -104,9 +116,11 @@ class LaneScan {
     // a row): each edge searched once.
     thread_local std::vector<std::pair<std::uint32_t, double>> hits;
     hits.clear();
+    std::size_t near = 0;  // the last edge's first row
     for (const auto& [a, b] : edges_) {
       const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-      for (auto k = std::lower_bound(ys.begin(), ys.end(), lo); k != ys.end() && *k < hi; ++k)
+      near = walk_lower_bound(ys.data(), ys.size(), lo, near);
+      for (auto k = ys.begin() + std::ptrdiff_t(near); k != ys.end() && *k < hi; ++k)
         hits.push_back(
             {std::uint32_t(k - ys.begin()), a.x + (*k - a.y) * (b.x - a.x) / (b.y - a.y)});
     }
@@ -309,6 +323,10 @@ class SampleRows {
     block_y0_ = points_.front().y;
     inv_block_ = height > 0 ? (count - 1) / height : 0.0;
     block_start_.assign(std::size_t(count) + 1, 0);
+    // Sized once (grown by doubling, the copies were a fifth of this).
+    std::size_t on_rows = 0;
+    for (const Row& r : long_rows_) on_rows += r.end - r.begin;
+    loose_.reserve(points_.size() - on_rows);
     auto row = long_rows_.begin();
     for (std::size_t i = 0; i < points_.size(); ++i) {
       if (row != long_rows_.end() && i == row->begin) {

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 
 #include "lane_scan.hpp"
@@ -238,6 +239,32 @@ TEST(CoverageSamples, TheSamplesOfThePlainMergeBitForBit) {
   }
   EXPECT_GT(compared, 100000u);
   EXPECT_GT(on_rows, 100u);  // the grids do put boundary samples on the rows
+}
+
+// walk_lower_bound() must land where std::lower_bound lands, from any hint: ascending keys with
+// repeats, values on keys, between, beyond both ends and NaN, hints anywhere (past the end too).
+TEST(WalkLowerBound, LandsWhereTheSearchLands) {
+  test::Rng rng(5254);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t far_walks = 0;
+  for (int k = 0; k < 2000; ++k) {
+    std::vector<double> keys(std::size_t(unit(rng) * 40));
+    for (double& key : keys) key = std::floor(unit(rng) * 30) / 2;  // repeats
+    std::sort(keys.begin(), keys.end());
+    for (int q = 0; q < 20; ++q) {
+      const double value = q == 0 ? std::numeric_limits<double>::quiet_NaN()
+                           : q % 3 == 0 && !keys.empty()
+                               ? keys[std::size_t(unit(rng) * double(keys.size()))]
+                               : unit(rng) * 20 - 2.5;
+      const auto hint = std::size_t(unit(rng) * double(keys.size() + 3));
+      const auto truth =
+          std::size_t(std::lower_bound(keys.begin(), keys.end(), value) - keys.begin());
+      ASSERT_EQ(walk_lower_bound(keys.data(), keys.size(), value, hint), truth)
+          << "set " << k << ", value " << value << ", hint " << hint;
+      far_walks += hint > truth + 1 || hint + 1 < truth;
+    }
+  }
+  EXPECT_GT(far_walks, 10000u);  // most walks go further than a step
 }
 
 }  // namespace
