@@ -731,6 +731,253 @@ std::vector<Point2> route_back(Point2 a, Point2 b, std::size_t last,
 //   search compares), taken after nodes' candidates of equal f: once one b sees is taken, no
 //   node still to settle can end lower (its f is a lower bound of its sum, and strictly above)
 //   nor equal with a lower index (those come first, by index).
+// One run of path()'s search from a to b under `limit` (and under `bound`, an upper bound of the
+// answer's f once one is known), on buffers of the thread's, reused from search to search.
+struct VisibilityRouter::Search {
+  static constexpr double kShrink = 1 - 1e-6;
+  struct Buffers {
+    std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
+    std::vector<std::size_t> previous;  // n: straight from a
+    std::vector<char> settled;
+    std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
+    std::vector<char> is_near;      // per node: in `near`
+    CappedHeap<SearchItem> queue;   // a search takes ~1 candidate in 10 it queues
+    Settlers settlers;
+    OpenNodes open;
+    std::vector<double> g_of;                 // per node settled: its g
+    std::vector<std::uint32_t> settled_list;  // the nodes settled, in order
+  };
+  static Buffers& buffers() {
+    thread_local Buffers b;
+    return b;
+  }
+
+  const VisibilityRouter& r;
+  Point2 a, b;
+  std::size_t n;
+  Row& from_a;
+  Row& to_b;
+  Buffers& x = buffers();
+  double limit = 0;
+  double bound = std::numeric_limits<double>::infinity();
+  double beyond = std::numeric_limits<double>::infinity();  // least f left out
+  bool left_out = false;
+  Point2 box_lo{}, box_hi{};
+
+  Search(const VisibilityRouter& router, Point2 from, Point2 to, Row& row_a, Row& row_b)
+      : r(router), a(from), b(to), n(router.nodes_.size()), from_a(row_a), to_b(row_b) {
+    x.h.resize(n);
+    x.g_of.resize(n);
+  }
+
+  // Without pruning, a node's settler (its least candidate known seen) settles it at or before
+  // it (at no greater g), and the node then queues its way to b at no greater f (rounding is
+  // monotone): an upper bound of the answer's f where b is known to see the node.
+  void bound_by_settler(const SearchItem& settler) {
+    if (r.prune_ || to_b.seen[settler.node] != 1) return;
+    const double f = settler.g + distance(r.nodes_[settler.node], b);
+    if (f <= limit) bound = std::min(bound, f);
+  }
+
+  void push(const SearchItem& item) {
+    if (!(item.f <= std::min(limit, bound))) {
+      beyond = std::min(beyond, item.f);
+      return;
+    }
+    x.queue.push(item);
+  }
+
+  // A run's start: the nodes its candidates can reach (`near`), each with its straight leg from a
+  // queued where not known hidden. A node u whose |a u| + h(u) is above the limit has every
+  // candidate above it (its g is at least |a u|): left out of the search. Such a node lies
+  // farther than limit / (2 (1 - 1e-6)) from the middle of a b (|a u| + |u b| is at least twice
+  // that distance): only the nodes within that of it in x (by search in the nodes sorted by x)
+  // and in y are asked. With a first bound, nodes whose straight f (a lower bound of their
+  // candidates', up to rounding) is above it are left out too.
+  void start(double run_limit, double first) {
+    limit = run_limit;
+    bound = first;
+    beyond = std::numeric_limits<double>::infinity();
+    const double near_cut = bound * (1 + 1e-9) + r.tolerance_;
+    x.settled_list.clear();
+    x.previous.assign(n, n);
+    x.settled.assign(n, 0);
+    x.is_near.assign(n, 0);
+    x.settlers.reset(n);
+    x.queue.clear({-std::numeric_limits<double>::infinity(), 0, 0.0, 0, 0.0, 0, 0});
+    x.near.clear();
+    const Point2 middle = (a + b) * 0.5;
+    const double reach = limit / (2 * kShrink) * (1 + 1e-9) + r.tolerance_;
+    box_lo = middle - Point2{reach, reach};
+    box_hi = middle + Point2{reach, reach};
+    const auto by_x = [this](std::uint32_t u, double at) { return r.nodes_[u].x < at; };
+    const auto first_x =
+        std::lower_bound(r.nodes_by_x_.begin(), r.nodes_by_x_.end(), middle.x - reach, by_x);
+    const auto end_x = std::lower_bound(first_x, r.nodes_by_x_.end(), middle.x + reach, by_x);
+    left_out = end_x - first_x < std::ptrdiff_t(n);
+    for (auto it = first_x; it != end_x; ++it) {
+      const std::size_t u = *it;
+      if (std::abs(r.nodes_[u].y - middle.y) > reach) {
+        left_out = true;
+        continue;
+      }
+      x.h[u] = kShrink * distance(r.nodes_[u], b);
+      const double d = distance(a, r.nodes_[u]), f = d + x.h[u];
+      if (!(f <= limit)) {
+        beyond = std::min(beyond, f);
+        continue;
+      }
+      if (f > near_cut) {  // never taken (the search ends with an answer: `beyond` unused)
+        left_out = true;
+        continue;
+      }
+      x.near.push_back(u);
+      x.is_near[u] = 1;
+      const SearchItem straight{f, 0, d, 0, 0.0, n, u};
+      if (from_a.seen[u] != 0) x.queue.push(straight);  // not known hidden
+      if (from_a.seen[u] == 1) {                        // the only one from a for u
+        x.settlers.offer(straight);
+        bound_by_settler(straight);
+      }
+    }
+    // In the order of the nodes' indices, as every node was asked before (the heap's ties).
+    std::sort(x.near.begin(), x.near.end());
+    x.open.reset(x.near, n, r.nodes_, x.h);
+  }
+
+  // The candidates in order up to the first way to b that b sees: its node, or n (none).
+  std::size_t run() {
+    while (!x.queue.empty()) {
+      const SearchItem item = x.queue.pop();
+      const std::size_t v = item.node;
+      if (item.to_b) {
+        if (r.sees(b, to_b, v)) return v;
+        continue;
+      }
+      if (x.settled[v]) continue;
+      const std::size_t from = item.from;
+      if (item.from_node ? !r.nodes_see(std::min(from, v), std::max(from, v))
+                         : !r.sees(a, from_a, v))
+        continue;
+      settle(item);
+    }
+    return n;
+  }
+
+  // Node v settled by `item`, and its ways on: to b, and to the open nodes.
+  void settle(const SearchItem& item) {
+    const std::size_t v = item.node, from = item.from;
+    x.settled[v] = 1;
+    x.g_of[v] = item.g;
+    x.settled_list.push_back(std::uint32_t(v));
+    x.open.remove(v);
+    x.previous[v] = item.from_node ? from : n;
+    // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie on
+    // both sides of the leg in, none goes on.
+    const Point2 in_from = item.from_node ? r.nodes_[from] : a;
+    const Sides in = r.corner_sides(in_from, r.nodes_[v], v);
+    if (!in.left && !in.right) return;
+    if (to_b.seen[v] != 0 && r.taut(in, in_from, v, b)) {
+      const double f = item.g + distance(r.nodes_[v], b);
+      push({f, 1, 0.0, 0, 0.0, 0, v});
+      if (to_b.seen[v] == 1 && f <= limit) bound = std::min(bound, f);
+    }
+    if (r.prune_)
+      go_on_pruned(item, in, in_from);
+    else
+      go_on_to_every_open_node(item);
+  }
+
+  // The leg from v (settled at g) on to open node u, not known hidden (`seen`: 1 seen, kUnknown
+  // not tested yet), of f under the cut (the bound may have come down since the cut was taken).
+  void queue_leg(double g, std::size_t v, std::size_t u, signed char seen, double through,
+                 double f) {
+    if (f > bound) return;
+    const SearchItem next{f, 0, through, 1, g, v, u};
+    if (x.settlers.after(next)) return;
+    if (seen == 1) {
+      x.settlers.offer(next);
+      bound_by_settler(next);
+    }
+    x.queue.push(next);
+  }
+
+  void go_on_pruned(const SearchItem& item, Sides in, Point2 in_from) {
+    const std::size_t v = item.node;
+    r.onward(v, in, box_lo, box_hi, [&](std::size_t u) {
+      if (!x.is_near[u] || x.settled[u]) return;
+      const signed char seen = r.nodes_known(v, u);
+      if (seen == 0 || !r.taut(in, in_from, v, r.nodes_[u])) return;
+      const double through = item.g + distance(r.nodes_[std::min(u, v)], r.nodes_[std::max(u, v)]);
+      const double f = through + x.h[u];
+      if (!(f <= std::min(limit, bound))) {  // as push() does
+        beyond = std::min(beyond, f);
+        return;
+      }
+      queue_leg(item.g, v, u, seen, through, f);
+    });
+  }
+
+  // Every open node (near, not settled) whose leg's f is under the cut; those known hidden
+  // (nearly half) skipped. Row v's chunk is looked up once per chunk, not once per node (one
+  // chunk below 4096 nodes).
+  void go_on_to_every_open_node(const SearchItem& item) {
+    const std::size_t v = item.node;
+    beyond = std::min(beyond, x.open.legs(r.nodes_[v], item.g, std::min(limit, bound)));
+    const NodeTables& tables = *r.node_tables_;
+    const NodeTables::Chunk* chunk = nullptr;
+    std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
+    for (const std::uint32_t k : x.open.under()) {
+      const std::uint32_t u = x.open.node(k);
+      const std::size_t c = u / NodeTables::kChunk;
+      if (c != chunk_at) chunk = tables.chunk_of(v, chunk_at = c);
+      const signed char seen =
+          chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
+      if (seen != 0) queue_leg(item.g, v, u, seen, x.open.through(k), x.open.f(k));
+    }
+  }
+};
+
+// A node v that b sees, settled by an earlier search from a at g, settles at the same g here (up
+// to rounding) and then queues its way to b at g + |v b| (computed so), unless the search ends
+// before. Without pruning only (with it, that way is queued only when it turns round v's corner,
+// which depends on how v was reached). Whether b sees them is asked in order of that sum, up to
+// the first seen: the search asks the same of each one whose sum is below its answer's (their
+// ways to b are taken before the answer), so at most the last question is one it would not have
+// asked. A bound a rounding below the answer's f costs a run, not the answer: the bounded run
+// then finds no way to b (any it took would have been taken before the answer without the
+// bound) and the next, at a higher limit, has none.
+double VisibilityRouter::first_bound(const Row& from_a, Row& to_b, Point2 b, double limit) const {
+  if (prune_ || from_a.reached.empty()) return std::numeric_limits<double>::infinity();
+  thread_local std::vector<std::pair<double, std::uint32_t>> ways;
+  ways.clear();
+  for (const auto& [v, g] : from_a.reached) {
+    const double f = g + distance(nodes_[v], b);
+    if (to_b.seen[v] != 0 && f <= limit * (1 - 1e-9)) ways.push_back({f, v});
+  }
+  std::sort(ways.begin(), ways.end());
+  for (const auto& [f, v] : ways)
+    if (sees(b, to_b, v)) return f;
+  return std::numeric_limits<double>::infinity();
+}
+
+void VisibilityRouter::remember_reached(Row& from_a, const std::vector<std::uint32_t>& settled,
+                                        const std::vector<double>& g_of) {
+  // Each node once: the nodes already kept marked on a scratch of the thread's.
+  thread_local std::vector<char> kept;
+  for (const auto& [v, g] : from_a.reached) {
+    if (kept.size() <= v) kept.resize(std::size_t(v) + 1, 0);
+    kept[v] = 1;
+  }
+  for (const std::uint32_t v : settled) {
+    if (kept.size() <= v) kept.resize(std::size_t(v) + 1, 0);
+    if (kept[v]) continue;
+    kept[v] = 1;
+    from_a.reached.push_back({v, g_of[v]});
+  }
+  for (const auto& [v, g] : from_a.reached) kept[v] = 0;
+}
+
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   if (!routing_) return {a, b};
   // Through a's fan where a has one (a run end asked about often, home): the same exact tests
@@ -747,213 +994,34 @@ std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {
   // An end known to see no node at all (outside the area, home beyond the field): no path.
   if ((from_a.known == n && from_a.visible == 0) || (to_b.known == n && to_b.visible == 0))
     return {a, b};
-
-  constexpr double kShrink = 1 - 1e-6;
-  thread_local std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
-  thread_local std::vector<std::size_t> previous;  // n: straight from a
-  thread_local std::vector<char> settled;
-  thread_local std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
-  thread_local std::vector<char> is_near;      // per node: in `near`
-  thread_local CappedHeap<SearchItem> queue;   // a search takes ~1 candidate in 10 it queues
-  thread_local Settlers settlers;
-  thread_local OpenNodes open;
-  h.resize(n);
   // The search takes candidates in order of f up to the answer's; those above a limit are not
   // queued. A search that ends without reaching b under the limit is run again with a higher
   // one: the candidates taken up to the answer, and so the answer, are those of a search without
   // a limit. The first limit: 1.25 times the straight leg (most transits bend round one
-  // obstacle); each further one at least twice that. A node u whose |a u| + h(u) is above the
-  // limit has every candidate above it (its g is at least |a u|): left out of the search. Such
-  // a node lies farther than limit / (2 (1 - 1e-6)) from the middle of a b (|a u| + |u b| is at
-  // least twice that distance): only the nodes within that of it in x (by search in the nodes
-  // sorted by x) and in y are asked.
+  // obstacle); each further one at least twice that. The first run also starts with the first
+  // bound (first_bound()), when it lies below the limit by far more than rounding: the nodes on
+  // its way from a then have their f, and their straight f from a, under the limit too, so they
+  // are in the search. With a bound the search ends with an answer, or (a bound a rounding too
+  // low) with none and is run again without it.
   double limit = 1.25 * distance(a, b) + tolerance_;
-  // A first bound (see `bound` below) from the nodes earlier searches from a settled: a node v
-  // that b sees settles at the same g here, and then queues its way to b at g + |v b| (computed
-  // so), unless the search ends before. Without pruning only (with it, that way is queued only
-  // when it turns round v's corner, which depends on how v was reached). Whether b sees them is
-  // asked in order of that sum, up to the first seen: the search asks the same of each one whose
-  // sum is below its answer's (their ways to b are taken before the answer), so at most the last
-  // question is one it would not have asked.
-  double first_bound = std::numeric_limits<double>::infinity();
-  if (!prune_ && !from_a.reached.empty()) {
-    thread_local std::vector<std::pair<double, std::uint32_t>> ways;
-    ways.clear();
-    for (const std::uint32_t v : from_a.reached) {
-      const double f = from_a.reached_g[v] + distance(nodes_[v], b);
-      if (to_b.seen[v] != 0 && f <= limit * (1 - 1e-9)) ways.push_back({f, v});
-    }
-    std::sort(ways.begin(), ways.end());
-    for (const auto& [f, v] : ways)
-      if (sees(b, to_b, v)) {
-        first_bound = f;
-        break;
-      }
-  }
-  thread_local std::vector<double> g_of;                 // per node settled: its g
-  thread_local std::vector<std::uint32_t> settled_list;  // the nodes settled, in order
-  g_of.resize(n);
+  const double first = first_bound(from_a, to_b, b, limit);
+  Search search(*this, a, b, from_a, to_b);
   std::size_t last = n;
   for (bool found = false, first_run = true; !found; first_run = false) {
-    double beyond = std::numeric_limits<double>::infinity();  // least f left out
-    // An upper bound of the answer's f, once a way to b is known: a candidate of greater f is
-    // never taken (the answer, or one before it, ends the search first), so it is not queued.
-    // Set (at most the limit) from a to_b candidate queued whose node is known to see b, and
-    // without pruning from a node's settler: the node settles at or before it (at no greater g)
-    // and then queues its way to b at no greater f (rounding is monotone). With a bound the
-    // search ends with an answer, so `beyond` (then also counting candidates above the bound)
-    // is not used.
-    // The first bound serves the first run only, and only below the limit by far more than
-    // rounding: the nodes on v's way from a then have their f, and their straight f from a,
-    // under the limit too, so they are in the search. Nodes whose straight f (a lower bound of
-    // their candidates', up to rounding) is above the bound are left out.
-    double bound = first_run && first_bound <= limit * (1 - 1e-9)
-                       ? first_bound
-                       : std::numeric_limits<double>::infinity();
-    const double near_cut = bound * (1 + 1e-9) + tolerance_;
-    settled_list.clear();
-    const auto bound_by_settler = [&](const SearchItem& settler) {
-      if (prune_ || to_b.seen[settler.node] != 1) return;
-      const double f = settler.g + distance(nodes_[settler.node], b);
-      if (f <= limit) bound = std::min(bound, f);
-    };
-    previous.assign(n, n);
-    settled.assign(n, 0);
-    is_near.assign(n, 0);
-    settlers.reset(n);
-    queue.clear({-std::numeric_limits<double>::infinity(), 0, 0.0, 0, 0.0, 0, 0});
-    near.clear();
-    const Point2 middle = (a + b) * 0.5;
-    const double reach = limit / (2 * kShrink) * (1 + 1e-9) + tolerance_;
-    const Point2 box_lo = middle - Point2{reach, reach}, box_hi = middle + Point2{reach, reach};
-    const auto by_x = [this](std::uint32_t u, double x) { return nodes_[u].x < x; };
-    const auto first =
-        std::lower_bound(nodes_by_x_.begin(), nodes_by_x_.end(), middle.x - reach, by_x);
-    const auto end = std::lower_bound(first, nodes_by_x_.end(), middle.x + reach, by_x);
-    bool left_out = end - first < std::ptrdiff_t(n);
-    for (auto it = first; it != end; ++it) {
-      const std::size_t u = *it;
-      if (std::abs(nodes_[u].y - middle.y) > reach) {
-        left_out = true;
-        continue;
-      }
-      h[u] = kShrink * distance(nodes_[u], b);
-      const double d = distance(a, nodes_[u]), f = d + h[u];
-      if (!(f <= limit)) {
-        beyond = std::min(beyond, f);
-        continue;
-      }
-      if (f > near_cut) {  // never taken (the search ends with an answer: `beyond` unused)
-        left_out = true;
-        continue;
-      }
-      near.push_back(u);
-      is_near[u] = 1;
-      const SearchItem straight{f, 0, d, 0, 0.0, n, u};
-      if (from_a.seen[u] != 0) queue.push(straight);  // not known hidden
-      if (from_a.seen[u] == 1) {                      // the only one from a for u
-        settlers.offer(straight);
-        bound_by_settler(straight);
-      }
-    }
-    // In the order of the nodes' indices, as every node was asked before (the heap's ties).
-    std::sort(near.begin(), near.end());
-    open.reset(near, n, nodes_, h);
-    const auto push = [&](const SearchItem& item) {
-      if (!(item.f <= std::min(limit, bound))) {
-        beyond = std::min(beyond, item.f);
-        return;
-      }
-      queue.push(item);
-    };
-    while (!queue.empty()) {
-      const SearchItem item = queue.pop();
-      const std::size_t v = item.node;
-      if (item.to_b) {
-        if (sees(b, to_b, v)) {
-          last = v;
-          break;
-        }
-        continue;
-      }
-      if (settled[v]) continue;
-      const std::size_t from = item.from;
-      if (item.from_node ? !nodes_see(std::min(from, v), std::max(from, v)) : !sees(a, from_a, v))
-        continue;
-      settled[v] = 1;
-      g_of[v] = item.g;
-      settled_list.push_back(std::uint32_t(v));
-      open.remove(v);
-      previous[v] = item.from_node ? from : n;
-      // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie
-      // on both sides of the leg in, none goes on.
-      const Point2 in_from = item.from_node ? nodes_[from] : a;
-      const Sides in = corner_sides(in_from, nodes_[v], v);
-      if (!in.left && !in.right) continue;
-      if (to_b.seen[v] != 0 && taut(in, in_from, v, b)) {
-        const double f = item.g + distance(nodes_[v], b);
-        push({f, 1, 0.0, 0, 0.0, 0, v});
-        if (to_b.seen[v] == 1 && f <= limit) bound = std::min(bound, f);
-      }
-      // The leg on to open node u, not known hidden (`seen`: 1 seen, kUnknown not tested yet), of f
-      // under the cut (the bound may have come down since the cut was taken).
-      const auto queue_leg = [&](std::size_t u, signed char seen, double through, double f) {
-        if (f > bound) return;
-        const SearchItem next{f, 0, through, 1, item.g, v, u};
-        if (settlers.after(next)) return;
-        if (seen == 1) {
-          settlers.offer(next);
-          bound_by_settler(next);
-        }
-        queue.push(next);
-      };
-      if (prune_) {
-        onward(v, in, box_lo, box_hi, [&](std::size_t u) {
-          if (!is_near[u] || settled[u]) return;
-          const signed char seen = nodes_known(v, u);
-          if (seen == 0 || !taut(in, in_from, v, nodes_[u])) return;
-          const double through = item.g + distance(nodes_[std::min(u, v)], nodes_[std::max(u, v)]);
-          const double f = through + h[u];
-          if (!(f <= std::min(limit, bound))) {  // as push() does
-            beyond = std::min(beyond, f);
-            return;
-          }
-          queue_leg(u, seen, through, f);
-        });
-      } else {
-        // Every open node (near, not settled) whose leg's f is under the cut; those known hidden
-        // (nearly half) skipped. Row v's chunk is looked up once per chunk, not once per node (one
-        // chunk below 4096 nodes).
-        beyond = std::min(beyond, open.legs(nodes_[v], item.g, std::min(limit, bound)));
-        const NodeTables& tables = *node_tables_;
-        const NodeTables::Chunk* chunk = nullptr;
-        std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
-        for (const std::uint32_t k : open.under()) {
-          const std::uint32_t u = open.node(k);
-          const std::size_t c = u / NodeTables::kChunk;
-          if (c != chunk_at) chunk = tables.chunk_of(v, chunk_at = c);
-          const signed char seen =
-              chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
-          if (seen != 0) queue_leg(u, seen, open.through(k), open.f(k));
-        }
-      }
-    }
+    search.start(limit, first_run && first <= limit * (1 - 1e-9)
+                            ? first
+                            : std::numeric_limits<double>::infinity());
+    last = search.run();
     // Done: b reached, or every candidate taken (no inside path).
-    found = last != n || (!left_out && beyond == std::numeric_limits<double>::infinity());
+    const double beyond = search.beyond;
+    found = last != n || (!search.left_out && beyond == std::numeric_limits<double>::infinity());
     limit = std::max(2 * limit, beyond == std::numeric_limits<double>::infinity() ? 0 : beyond);
   }
   if (last == n) return {a, b};  // no inside path (separate pieces): straight
   // The last run took its candidates in the order of a search without a limit: its nodes are
   // settled at Dijkstra's distances from a.
-  if (!prune_) {
-    if (from_a.reached_g.empty()) from_a.reached_g.assign(n, -1.0);
-    for (const std::uint32_t v : settled_list)
-      if (from_a.reached_g[v] < 0) {
-        from_a.reached_g[v] = g_of[v];
-        from_a.reached.push_back(v);
-      }
-  }
-  return route_back(a, b, last, previous, nodes_);
+  if (!prune_) remember_reached(from_a, search.x.settled_list, search.x.g_of);
+  return route_back(a, b, last, search.x.previous, nodes_);
 }
 
 }  // namespace swath::geometry

@@ -140,12 +140,11 @@ class VisibilityRouter {
     int asked = 0;
     std::size_t known = 0, visible = 0;  ///< nodes of `seen` tested, and of them seen
     std::unique_ptr<Fan> fan;
-    /// For a point searched from (path()'s a): the nodes its searches settled, and per node its
-    /// distance from the point (-1: not settled yet; empty until the first search). Every search
-    /// from the point settles a node at the same distance (Dijkstra's), so a later search bounds
-    /// its answer by them from the start.
-    std::vector<std::uint32_t> reached;
-    std::vector<double> reached_g;
+    /// For a point searched from (path()'s a): the nodes its searches settled, each once, with
+    /// its distance from the point. Every search from the point settles a node at Dijkstra's
+    /// distance (up to rounding: see path()), so a later search bounds its answer by them from
+    /// the start. As many entries as nodes settled, not one per node of the graph.
+    std::vector<std::pair<std::uint32_t, double>> reached;
   };
   static constexpr int kFanAfter = 2;
   /// The fans of asked points a router keeps, in items (4 bytes each): 64 MB.
@@ -153,6 +152,14 @@ class VisibilityRouter {
   mutable std::size_t row_fan_items_ = 0;  ///< kept in sees_'s rows so far
   Row& seen_row(Point2 p) const;
   bool sees(Point2 p, Row& row, std::size_t node) const;
+  /// One run of path()'s search, its state and its steps (visibility.cpp).
+  struct Search;
+  /// A first bound on the answer's f of a search from a to b, from the nodes earlier searches
+  /// from a settled (path()); infinity: none.
+  double first_bound(const Row& from_a, Row& to_b, Point2 b, double limit) const;
+  /// The nodes a's searches settled (`settled`, with their g), added to a's row.
+  static void remember_reached(Row& from_a, const std::vector<std::uint32_t>& settled,
+                               const std::vector<double>& g_of);
   mutable std::map<std::pair<double, double>, Row> sees_;
   /// Whether nodes i < j see each other, tested from i (as the eager graph did: the test is not
   /// symmetric in rounding) and kept in both rows; through i's fan once i has been asked kFanAfter
