@@ -188,6 +188,10 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   thread_local std::vector<double> cuts;
   cuts.assign({0.0, 1.0});
   const Box seg{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+  // The same box widened by the tolerance, its sums taken once rather than per edge asked.
+  const Box wide{seg.x0 - tolerance_, seg.y0 - tolerance_, seg.x1 + tolerance_,
+                 seg.y1 + tolerance_};
+  const Segment* const segments = edges_.segments().data();
   auto apart = [&](const Box& e) {
     return e.x0 > seg.x1 || e.x1 < seg.x0 || e.y0 > seg.y1 || e.y1 < seg.y0;
   };
@@ -201,12 +205,12 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   // (any parameter at all), and a leg across the gap's mouth was inside for some of its end
   // points and not for the next ones.
   const double off_line_limit = tolerance_ * std::sqrt(len2);
-  const auto cut_by = [&](std::uint32_t e) {
+  // Inlined where the edges are walked (~20 edges a leg, most turned away by their box): a call
+  // per edge reloaded the leg from memory each time.
+  const auto cut_by = [&](std::uint32_t e) __attribute__((always_inline)) {
     const Box& box = edge_boxes_[e];
-    if (box.x0 > seg.x1 + tolerance_ || box.x1 < seg.x0 - tolerance_ ||
-        box.y0 > seg.y1 + tolerance_ || box.y1 < seg.y0 - tolerance_)
-      return;
-    const Point2 p = edges_.segments()[e].a, q = edges_.segments()[e].b;
+    if (box.x0 > wide.x1 || box.x1 < wide.x0 || box.y0 > wide.y1 || box.y1 < wide.y0) return;
+    const Point2 p = segments[e].a, q = segments[e].b;
     // cross(d, p - a) and cross(d, q - a), as their products, which strictly_one_side() takes too.
     const double p1 = d.x * (p.y - a.y), p2 = d.y * (p.x - a.x);
     const double q1 = d.x * (q.y - a.y), q2 = d.y * (q.x - a.x);
@@ -243,11 +247,28 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
     edges_.near_segment(a, b, cut_by);
   }
   std::sort(cuts.begin(), cuts.end());
-  double outside = 0;
   const double length = std::sqrt(len2);
+  const auto inside_piece = [&](std::size_t k) {
+    return inside_closed(a + d * ((cuts[k] + cuts[k + 1]) / 2));
+  };
+  // A visibility test (a finite stop_m) asks the longest piece first: on a blocked leg it is
+  // mostly outside and alone past stop_m, and then so is the sum below (it adds non-negative
+  // terms, rounding included, so it is at least that piece): the answer without asking the
+  // others. Otherwise its answer is kept for the sum, which is taken in order as before.
+  std::size_t longest = cuts.size();  // the piece asked first; cuts.size(): none
+  bool longest_inside = false;
+  if (stop_m < std::numeric_limits<double>::infinity() && cuts.size() > 2) {
+    longest = 0;
+    for (std::size_t k = 1; k + 1 < cuts.size(); ++k)
+      if (cuts[k + 1] - cuts[k] > cuts[longest + 1] - cuts[longest]) longest = k;
+    const double piece = cuts[longest + 1] - cuts[longest];
+    longest_inside = inside_piece(longest);
+    if (!longest_inside && piece * length > stop_m) return piece;
+  }
+  double outside = 0;
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     if (cuts[k + 1] <= cuts[k]) continue;
-    if (!inside_closed(a + d * ((cuts[k] + cuts[k + 1]) / 2))) {
+    if (!(k == longest ? longest_inside : inside_piece(k))) {
       outside += (cuts[k + 1] - cuts[k]);
       // The sum of non-negative terms only grows (rounding too): past stop_m it stays past.
       if (outside * length > stop_m) return outside;
