@@ -14,18 +14,16 @@
 namespace swath::geometry {
 namespace {
 
-// Whether p and q lie strictly on one side of the line through a along d = b - a, certainly: the
-// double cross products decide where they exceed their rounding bound (each of the four
-// differences, two products and the subtraction round by at most 2^-53 relative: 1e-15 of the
-// products' sum is well above it), else no answer (false). A filter before segments_intersect,
-// which such an edge cannot meet; inline, as visibility asks it ~10^6 times a plan.
-bool strictly_one_side(Point2 a, Point2 d, Point2 p, Point2 q) {
+// The side of p from the line through a along d, where the double cross product decides it
+// beyond its rounding bound (each of the differences, two products and the subtraction round by
+// at most 2^-53 relative: 1e-15 of the products' sum is well above it): +1 left, -1 right, else
+// 0 (no answer). Two points certainly on one side: a filter before segments_intersect, which such
+// an edge cannot meet; certainly on either side of each other's lines: the segments cross. Inline,
+// as visibility asks it ~10^6 times a plan.
+int certain_side(Point2 a, Point2 d, Point2 p) {
   const double p1 = d.x * (p.y - a.y), p2 = d.y * (p.x - a.x);
-  const double q1 = d.x * (q.y - a.y), q2 = d.y * (q.x - a.x);
-  const double sp = p1 - p2, sq = q1 - q2;
-  const double bp = 1e-15 * (std::abs(p1) + std::abs(p2)),
-               bq = 1e-15 * (std::abs(q1) + std::abs(q2));
-  return (sp > bp && sq > bq) || (sp < -bp && sq < -bq);
+  const double s = p1 - p2, bound = 1e-15 * (std::abs(p1) + std::abs(p2));
+  return s > bound ? 1 : s < -bound ? -1 : 0;
 }
 
 }  // namespace
@@ -211,7 +209,7 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
     const Box& box = edge_boxes_[e];
     if (box.x0 > wide.x1 || box.x1 < wide.x0 || box.y0 > wide.y1 || box.y1 < wide.y0) return;
     const Point2 p = segments[e].a, q = segments[e].b;
-    // cross(d, p - a) and cross(d, q - a), as their products, which strictly_one_side() takes too.
+    // cross(d, p - a) and cross(d, q - a), as their products, which certain_side() takes too.
     const double p1 = d.x * (p.y - a.y), p2 = d.y * (p.x - a.x);
     const double q1 = d.x * (q.y - a.y), q2 = d.y * (q.x - a.x);
     const double sp = p1 - p2, sq = q1 - q2;
@@ -222,9 +220,15 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
     if (apart(box)) return;
     const double bp = 1e-15 * (std::abs(p1) + std::abs(p2)),
                  bq = 1e-15 * (std::abs(q1) + std::abs(q2));
-    if ((sp > bp && sq > bq) || (sp < -bp && sq < -bq)) return;  // strictly_one_side(a, d, p, q)
+    if ((sp > bp && sq > bq) || (sp < -bp && sq < -bq))
+      return;  // both on one side (certain_side())
     // a and b strictly on one side of the edge's line: segments_intersect() would say no.
-    if (strictly_one_side(p, q - p, a, b) || !segments_intersect(a, b, p, q)) return;
+    const int a_side = certain_side(p, q - p, a), b_side = certain_side(p, q - p, b);
+    if (a_side != 0 && a_side == b_side) return;
+    // Each segment's ends certainly on either side of the other's line: they cross, as
+    // segments_intersect() would say (most cuts of a blocked leg), without its exact predicates.
+    const bool crossing = a_side * b_side < 0 && ((sp > bp && sq < -bq) || (sp < -bp && sq > bq));
+    if (!crossing && !segments_intersect(a, b, p, q)) return;
     const double denom = cross(d, q - p);
     if (denom != 0) {
       cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
