@@ -14,18 +14,16 @@
 namespace swath::geometry {
 namespace {
 
-// Whether p and q lie strictly on one side of the line through a along d = b - a, certainly: the
-// double cross products decide where they exceed their rounding bound (each of the four
-// differences, two products and the subtraction round by at most 2^-53 relative: 1e-15 of the
-// products' sum is well above it), else no answer (false). A filter before segments_intersect,
-// which such an edge cannot meet; inline, as visibility asks it ~10^6 times a plan.
-bool strictly_one_side(Point2 a, Point2 d, Point2 p, Point2 q) {
+// The side of p from the line through a along d, where the double cross product decides it
+// beyond its rounding bound (each of the differences, two products and the subtraction round by
+// at most 2^-53 relative: 1e-15 of the products' sum is well above it): +1 left, -1 right, else
+// 0 (no answer). Two points certainly on one side: a filter before segments_intersect, which such
+// an edge cannot meet; certainly on either side of each other's lines: the segments cross. Inline,
+// as visibility asks it ~10^6 times a plan.
+int certain_side(Point2 a, Point2 d, Point2 p) {
   const double p1 = d.x * (p.y - a.y), p2 = d.y * (p.x - a.x);
-  const double q1 = d.x * (q.y - a.y), q2 = d.y * (q.x - a.x);
-  const double sp = p1 - p2, sq = q1 - q2;
-  const double bp = 1e-15 * (std::abs(p1) + std::abs(p2)),
-               bq = 1e-15 * (std::abs(q1) + std::abs(q2));
-  return (sp > bp && sq > bq) || (sp < -bp && sq < -bq);
+  const double s = p1 - p2, bound = 1e-15 * (std::abs(p1) + std::abs(p2));
+  return s > bound ? 1 : s < -bound ? -1 : 0;
 }
 
 }  // namespace
@@ -188,6 +186,10 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   thread_local std::vector<double> cuts;
   cuts.assign({0.0, 1.0});
   const Box seg{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+  // The same box widened by the tolerance, its sums taken once rather than per edge asked.
+  const Box wide{seg.x0 - tolerance_, seg.y0 - tolerance_, seg.x1 + tolerance_,
+                 seg.y1 + tolerance_};
+  const Segment* const segments = edges_.segments().data();
   auto apart = [&](const Box& e) {
     return e.x0 > seg.x1 || e.x1 < seg.x0 || e.y0 > seg.y1 || e.y1 < seg.y0;
   };
@@ -201,13 +203,13 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   // (any parameter at all), and a leg across the gap's mouth was inside for some of its end
   // points and not for the next ones.
   const double off_line_limit = tolerance_ * std::sqrt(len2);
-  const auto cut_by = [&](std::uint32_t e) {
+  // Inlined where the edges are walked (~20 edges a leg, most turned away by their box): a call
+  // per edge reloaded the leg from memory each time.
+  const auto cut_by = [&](std::uint32_t e) __attribute__((always_inline)) {
     const Box& box = edge_boxes_[e];
-    if (box.x0 > seg.x1 + tolerance_ || box.x1 < seg.x0 - tolerance_ ||
-        box.y0 > seg.y1 + tolerance_ || box.y1 < seg.y0 - tolerance_)
-      return;
-    const Point2 p = edges_.segments()[e].a, q = edges_.segments()[e].b;
-    // cross(d, p - a) and cross(d, q - a), as their products, which strictly_one_side() takes too.
+    if (box.x0 > wide.x1 || box.x1 < wide.x0 || box.y0 > wide.y1 || box.y1 < wide.y0) return;
+    const Point2 p = segments[e].a, q = segments[e].b;
+    // cross(d, p - a) and cross(d, q - a), as their products, which certain_side() takes too.
     const double p1 = d.x * (p.y - a.y), p2 = d.y * (p.x - a.x);
     const double q1 = d.x * (q.y - a.y), q2 = d.y * (q.x - a.x);
     const double sp = p1 - p2, sq = q1 - q2;
@@ -218,9 +220,15 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
     if (apart(box)) return;
     const double bp = 1e-15 * (std::abs(p1) + std::abs(p2)),
                  bq = 1e-15 * (std::abs(q1) + std::abs(q2));
-    if ((sp > bp && sq > bq) || (sp < -bp && sq < -bq)) return;  // strictly_one_side(a, d, p, q)
+    if ((sp > bp && sq > bq) || (sp < -bp && sq < -bq))
+      return;  // both on one side (certain_side())
     // a and b strictly on one side of the edge's line: segments_intersect() would say no.
-    if (strictly_one_side(p, q - p, a, b) || !segments_intersect(a, b, p, q)) return;
+    const int a_side = certain_side(p, q - p, a), b_side = certain_side(p, q - p, b);
+    if (a_side != 0 && a_side == b_side) return;
+    // Each segment's ends certainly on either side of the other's line: they cross, as
+    // segments_intersect() would say (most cuts of a blocked leg), without its exact predicates.
+    const bool crossing = a_side * b_side < 0 && ((sp > bp && sq < -bq) || (sp < -bp && sq > bq));
+    if (!crossing && !segments_intersect(a, b, p, q)) return;
     const double denom = cross(d, q - p);
     if (denom != 0) {
       cuts.push_back(std::clamp(cross(p - a, q - p) / denom, 0.0, 1.0));
@@ -243,11 +251,28 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
     edges_.near_segment(a, b, cut_by);
   }
   std::sort(cuts.begin(), cuts.end());
-  double outside = 0;
   const double length = std::sqrt(len2);
+  const auto inside_piece = [&](std::size_t k) {
+    return inside_closed(a + d * ((cuts[k] + cuts[k + 1]) / 2));
+  };
+  // A visibility test (a finite stop_m) asks the longest piece first: on a blocked leg it is
+  // mostly outside and alone past stop_m, and then so is the sum below (it adds non-negative
+  // terms, rounding included, so it is at least that piece): the answer without asking the
+  // others. Otherwise its answer is kept for the sum, which is taken in order as before.
+  std::size_t longest = cuts.size();  // the piece asked first; cuts.size(): none
+  bool longest_inside = false;
+  if (stop_m < std::numeric_limits<double>::infinity() && cuts.size() > 2) {
+    longest = 0;
+    for (std::size_t k = 1; k + 1 < cuts.size(); ++k)
+      if (cuts[k + 1] - cuts[k] > cuts[longest + 1] - cuts[longest]) longest = k;
+    const double piece = cuts[longest + 1] - cuts[longest];
+    longest_inside = inside_piece(longest);
+    if (!longest_inside && piece * length > stop_m) return piece;
+  }
+  double outside = 0;
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     if (cuts[k + 1] <= cuts[k]) continue;
-    if (!inside_closed(a + d * ((cuts[k] + cuts[k + 1]) / 2))) {
+    if (!(k == longest ? longest_inside : inside_piece(k))) {
       outside += (cuts[k + 1] - cuts[k]);
       // The sum of non-negative terms only grows (rounding too): past stop_m it stays past.
       if (outside * length > stop_m) return outside;

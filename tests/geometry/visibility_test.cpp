@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "brute_area.hpp"
 #include "random_polygons.hpp"
@@ -100,6 +102,83 @@ TEST(VisibilityRouter, ContainsIsTheBruteForceAreasAnswer) {
   // Both answers are asked about often.
   EXPECT_GT(inside, 10000u);
   EXPECT_GT(outside, 10000u);
+}
+
+// The leg test (visible(), length_outside()) asks the edges near the leg only, inlined, and a
+// visibility test asks the longest piece between cuts first, stopping when it alone is past the
+// tolerance: the answers are those of cutting the leg by every edge and summing its pieces
+// outside in order (the brute-force area), bit for bit. Legs between vertices (the router's
+// nodes: cuts at both ends), along edges, short legs about a boundary point (within rounding of
+// it), from a hair off a vertex and at random.
+TEST(VisibilityRouter, LegsAreMeasuredAsOverEveryEdge) {
+  test::Rng rng(5253);
+  std::size_t clear = 0, blocked = 0;
+  for (int area = 0; area < 12; ++area) {
+    std::vector<Ring> rings;
+    if (area % 4 == 3) {
+      rings = {test::random_grid_ring(rng, 30, 10)};
+    } else if (area % 4 == 2) {
+      rings = {test::transformed(test::comb_polygon(7, 10, 40, 10), 13.0 * area, 2.0, -3.0)};
+    } else {
+      rings = {test::random_field_polygon(rng, std::size_t(20) << area % 3, 400)};
+      for (int h = 0; h < 6; ++h) {
+        Ring star = test::transformed(test::random_star_polygon(rng, 6, 5, 20), 0, -150 + 60.0 * h,
+                                      40.0 * (h % 3) - 40);
+        std::reverse(star.begin(), star.end());
+        rings.push_back(star);
+      }
+    }
+    const test::BruteArea brute(rings);
+    const VisibilityRouter router(rings, Routing::measure_only);
+    std::vector<std::pair<Point2, Point2>> edges;
+    for (const Ring& ring : rings)
+      for (std::size_t i = 0; i < ring.size(); ++i)
+        edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    double extent = 0;
+    for (const auto& [v, w] : edges) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    std::uniform_real_distribution<double> unit(0, 1), coordinate(-1.2 * extent, 1.2 * extent),
+        hair(-3e-10, 3e-10);
+    std::uniform_int_distribution<std::size_t> pick(0, edges.size() - 1);
+    for (int k = 0; k < 4000; ++k) {
+      const auto [v, v_next] = edges[pick(rng)];
+      const Point2 w = edges[pick(rng)].first;
+      Point2 a = v, b = w;  // k % 6 == 0: vertex to vertex
+      switch (k % 6) {
+        case 1:  // along an edge, beyond its ends or short of them
+          a = v + (v_next - v) * (2 * unit(rng) - 0.5);
+          b = v + (v_next - v) * (2 * unit(rng) - 0.5);
+          break;
+        case 2: {  // about a point of an edge or a vertex, by less than the tolerance
+          const Point2 on = v + (v_next - v) * (unit(rng) < 0.5 ? 0.0 : unit(rng));
+          a = on + Point2{hair(rng), hair(rng)};
+          b = on + Point2{hair(rng), hair(rng)};
+          break;
+        }
+        case 3:  // from a hair off a vertex to a point on a chord
+          a = {std::nextafter(v.x, INFINITY), std::nextafter(v.y, -INFINITY)};
+          b = v + (w - v) * unit(rng);
+          break;
+        case 4:
+          a = {coordinate(rng), coordinate(rng)};
+          break;
+        case 5:
+          a = {coordinate(rng), coordinate(rng)};
+          b = {coordinate(rng), coordinate(rng)};
+          break;
+      }
+      const double outside_m = brute.length_outside(a, b);
+      const bool visible = brute.visible(a, b);
+      ASSERT_EQ(router.length_outside(a, b), outside_m)
+          << "area " << area << " leg (" << a.x << ", " << a.y << ") (" << b.x << ", " << b.y
+          << ")";
+      ASSERT_EQ(router.visible(a, b), visible) << "area " << area << " leg (" << a.x << ", " << a.y
+                                               << ") (" << b.x << ", " << b.y << ")";
+      (visible ? clear : blocked) += 1;
+    }
+  }
+  // Both answers are asked about often.
+  EXPECT_GT(clear, 10000u);
+  EXPECT_GT(blocked, 10000u);
 }
 
 TEST(VisibilityRouter, LengthOutsideCountsHolesAndTheOutside) {
