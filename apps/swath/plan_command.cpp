@@ -695,7 +695,7 @@ int PlanCommand::run() {
   planning::SurveyRequest asked = request();
   const planning::SurveyPlan plan = [&] {
     // The bar ends its line before the summary is printed.
-    ProgressBar bar(progress_, "searching directions");
+    ProgressBar bar(progress_, "planning");
     asked.progress = [&bar](double fraction) { bar.update(fraction); };
     return planning::plan_survey(asked);
   }();

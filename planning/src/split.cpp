@@ -473,11 +473,13 @@ namespace split_detail {
 // as its pieces finish (on any thread).
 class SearchProgress {
  public:
-  explicit SearchProgress(const std::function<void(double)>& tell) : tell_(tell) {}
+  /// `scale`: the part of the whole the three shares below make (the rest: a search after them).
+  SearchProgress(const std::function<void(double)>& tell, double scale)
+      : tell_(tell), scale_(scale) {}
   /// `share` of `count` pieces of that share: one piece done, or all of them at once when there
   /// are none.
   void piece(double share, std::size_t count) {
-    add(count == 0 ? share : share / static_cast<double>(count));
+    add(scale_ * (count == 0 ? share : share / static_cast<double>(count)));
   }
   void finish() { add(1.0); }
 
@@ -489,6 +491,7 @@ class SearchProgress {
     tell_(done_);
   }
   const std::function<void(double)>& tell_;
+  double scale_;
   std::mutex lock_;
   double done_ = 0;
 };
@@ -708,9 +711,7 @@ std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry:
   std::mutex lock;            // guards `least`
   std::vector<double> least;  // the cells' estimates found, ascending, at most refined_candidates
   if (by_bound.empty()) progress.piece(kCellsShare, 0);
-  base::parallel_for(by_bound.size(), s.threads, [&](std::size_t j) {
-    const std::size_t a = by_bound[j];
-    progress.piece(kCellsShare, by_bound.size());
+  const auto estimate_at = [&](std::size_t a) {
     {
       const std::lock_guard<std::mutex> guard(lock);
       if (least.size() == s.refined_candidates && s.refined_candidates > 0 &&
@@ -725,6 +726,10 @@ std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry:
       if (least.size() > s.refined_candidates) least.pop_back();
     }
     cells[a] = std::move(c);
+  };
+  base::parallel_for(by_bound.size(), s.threads, [&](std::size_t j) {
+    estimate_at(by_bound[j]);
+    progress.piece(kCellsShare, by_bound.size());
   });
   return cells;
 }
@@ -796,7 +801,10 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // straight-line estimate ranks runs and cells differently (runs' transits hop around what cells'
   // turns go along). The runs are estimated, then the cells; the candidates to refine are refined
   // in order of their lower bounds, so that the first good plan rules out the rest early.
-  SearchProgress progress(s.progress);
+  // A search for a direction per region may follow: the shares below make 85 % of the whole.
+  const bool may_mix =
+      s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty();
+  SearchProgress progress(s.progress, may_mix ? 0.85 : 1.0);
   RunEstimates found = estimate_runs(rings, angles, home, s, limits, progress);
   if (angles.empty()) progress.piece(kRunsShare, 0);
   std::vector<Candidate> candidates;
@@ -824,8 +832,7 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   // Every direction whose cells fit the lane limit a cells candidate, decomposed or ruled out by
   // its bound.
   best.plan.candidates = run_candidates + found.cells_directions.size();
-  if (s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty() &&
-      best.key.first == 0)
+  if (may_mix && best.key.first == 0)
     if (std::optional<SplitPlan> mixed =
             per_region_plan(rings, home, s, to_see, best.plan, routed)) {
       progress.finish();

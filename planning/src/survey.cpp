@@ -54,6 +54,8 @@ SurveyPlan plan_survey(const SurveyRequest& request) {
   steps::measures(plan);
   steps::checks(plan);
   plan.routes.reset();  // their tables are large, and no caller routes again
+  // The observer is the caller's, for this call only (it may refer to what the call outlives).
+  plan.request.progress = nullptr;
   return plan;
 }
 

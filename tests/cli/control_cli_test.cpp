@@ -171,8 +171,7 @@ TEST(ControlCli, TheSameSeedWritesTheSameBytes) {
 }
 
 TEST(ControlCli, ExitCodesSayHowTheFlightEnded) {
-  // 5: lost control; the files are still written. (No pictures: the exit code is the point, and
-  // LeakSanitizer's exit-time tracer has crashed on Mesa's worker threads in the sanitizer pass.)
+  // 5: lost control; the files are still written. (No pictures: the exit code is the point.)
   std::string out = fresh_dir("control-lost");
   CliRun run = run_swath_control(
       "run random:3@20x20 --environment arch --set vehicle.controller.limits.max_tilt_deg=0.5 "

@@ -630,13 +630,15 @@ TEST(SplitSurvey, RefiningTheMostPromisingFirstKeepsTheBestOfBothKinds) {
       SplitSettings s;
       s.line_spacing_m = shape.family == "traced" ? 43.5 : 30;  // the corpus's QX1 at 100 m
       s.footprint_width_m = shape.family == "traced" ? 145 : 45;
-      s.threads = 1;
-      const auto plan_of = [&](SplitCells kind) {
+      const auto plan_of = [&](SplitCells kind, unsigned threads) {
         s.cells = kind;
+        s.threads = threads;
         return plan_split(rings, home, s, router);
       };
-      const SplitPlan runs = plan_of(SplitCells::runs), cells = plan_of(SplitCells::boustrophedon),
-                      both = plan_of(SplitCells::best);
+      // Both kinds on two threads: which candidates are skipped then depends on their timing.
+      const SplitPlan runs = plan_of(SplitCells::runs, 1),
+                      cells = plan_of(SplitCells::boustrophedon, 1),
+                      both = plan_of(SplitCells::best, 2);
       const auto key = [&](const SplitPlan& p) {
         const double seen =
             measure_coverage(shape.area, p.lines, p.angle_deg, s.footprint_width_m, 1024)
@@ -694,6 +696,10 @@ TEST(SplitSurvey, TheSearchTellsItsProgressAscendingToOne) {
   EXPECT_EQ(watched.angle_deg, quiet.angle_deg);
   EXPECT_EQ(watched.path_length_m, quiet.path_length_m);
   ASSERT_EQ(watched.lines.size(), quiet.lines.size());
+  for (std::size_t i = 0; i < quiet.lines.size(); ++i) {
+    EXPECT_EQ(watched.lines[i].start, quiet.lines[i].start) << i;
+    EXPECT_EQ(watched.lines[i].end, quiet.lines[i].end) << i;
+  }
 }
 
 // SplitSettings::max_lines: lanes are counted at their positions before any is laid. A comb of 10

@@ -68,8 +68,9 @@ struct SplitSettings {
   bool limit_cross_pass = false;
   /// Told the fraction of the search done, in [0, 1], ascending, ending with 1 (null: not told):
   /// the lanes at every direction are a third, the cells where they could rank a sixth, each
-  /// candidate refined an equal share of the rest. Called one call at a time, from whichever
-  /// thread finished a piece.
+  /// candidate refined an equal share of the rest (with SplitDirections::per_region, these make
+  /// 85 %, the search for a direction per region the rest). Called one call at a time, from
+  /// whichever thread finished a piece.
   std::function<void(double fraction)> progress;
 };
 

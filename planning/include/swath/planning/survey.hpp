@@ -116,7 +116,8 @@ struct SurveyRequest {
   /// No layer above this height above home, metres: a fleet that needs more layers is refused.
   double ceiling_m = 120.0;
   /// Told the fraction done of the split's direction search (the long part of a plan on a
-  /// concave area), in [0, 1], as it goes (SplitSettings::progress); null: not told.
+  /// concave area), in [0, 1], as it goes (SplitSettings::progress); null: not told. For the
+  /// call of plan_survey() only: the plan's copy of the request has none.
   std::function<void(double fraction)> progress;
 };
 
