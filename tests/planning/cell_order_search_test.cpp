@@ -359,8 +359,9 @@ TEST(CellOrderSearch, NearestNeighbourOnTheEntriesGridIsThePlainOne) {
 
 // The entries found on the grid are asked least straight bound first: with a routed-like metric
 // (some pairs up to 60 % longer than straight: the bounds loose, the order of asking matters)
-// the same order and variants as the plain nearest neighbour, ties included (a coarse grid:
-// equal entries and costs, the lower cell then variant must win), and fewer transits asked.
+// the same order and variants as the plain nearest neighbour, ties included (a coarse grid with
+// Manhattan transits: equal costs from entries at unequal straight distances, asked in the order
+// of their bounds, where the lower cell then variant must still win), and fewer transits asked.
 TEST(CellOrderSearch, NearestNeighbourAsksLeastBoundFirstWithTheSameTies) {
   std::mt19937_64 rng(5253);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -382,8 +383,9 @@ TEST(CellOrderSearch, NearestNeighbourAsksLeastBoundFirstWithTheSameTies) {
       p.cells.push_back(cell);
     }
     auto count = std::make_shared<std::size_t>(0);
-    p.distance = [count](geometry::Point2 a, geometry::Point2 b) {
+    p.distance = [count, grid](geometry::Point2 a, geometry::Point2 b) {
       ++*count;
+      if (grid) return std::abs(a.x - b.x) + std::abs(a.y - b.y);  // equal costs, unequal bounds
       const auto h = std::uint64_t(std::llround(a.x * 3 + a.y * 5 + b.x * 11 + b.y * 23));
       const std::uint64_t mixed = h * 0x9E3779B97F4A7C15ull >> 40;
       return geometry::distance(a, b) * (1 + (mixed % 2 ? 0.0 : 0.6 * double(mixed % 100) / 100));
