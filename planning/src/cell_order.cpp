@@ -6,12 +6,9 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <queue>
 #include <random>
 #include <stdexcept>
-#include <tuple>
 #include <unordered_map>
 
 #include "cell_order_shared.hpp"
@@ -184,64 +181,43 @@ std::vector<std::size_t> nearest_neighbour_grid(const CellOrderProblem& p) {
     const double least = least_internal[by_internal[least_at]];
     double best = kInf;
     std::size_t best_cell = n, best_variant = 0;
-    // Entries near enough to win, by their straight bounds (ties: lower cell, then variant).
-    using Candidate = std::tuple<double, std::size_t, std::size_t, std::size_t>;
-    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> near;
     const auto visit = [&](long rr, long cc) {
       if (rr < 0 || rr >= rows || cc < 0 || cc >= columns) return;
       const std::size_t b = std::size_t(rr * columns + cc);
       for (std::size_t i = start[b]; i < end[b]; ++i) {
         const std::size_t e = items[i];
         const Entry& en = entries[e];
-        if (used[en.cell] || least_internal[en.cell] > best) continue;
-        const double low = geometry::distance(at, en.at) * (1 - 1e-12) + en.internal_m;
-        if (!(low > best)) near.push({low, en.cell, en.variant, e});
-      }
-    };
-    const auto ask = [&](std::size_t e) {
-      const Entry& en = entries[e];
-      const double cost = p.distance(at, en.at) + en.internal_m;
-      if (cost < best ||
-          (cost == best && std::pair{en.cell, en.variant} < std::pair{best_cell, best_variant})) {
-        best = cost;
-        best_cell = en.cell;
-        best_variant = en.variant;
+        if (used[en.cell] || least_internal[en.cell] > best ||
+            geometry::distance(at, en.at) * (1 - 1e-12) + en.internal_m > best)
+          continue;
+        const double cost = p.distance(at, en.at) + en.internal_m;
+        if (cost < best ||
+            (cost == best && std::pair{en.cell, en.variant} < std::pair{best_cell, best_variant})) {
+          best = cost;
+          best_cell = en.cell;
+          best_variant = en.variant;
+        }
       }
     };
     // The drone's bucket, clamped to the grid: a point outside is no nearer to any bucket than
     // its projection onto the grid's box. A bucket r rings out is at least r - 1 buckets away
-    // from it, r - 3 with the rounding of both bucket indices (each off by at most one). Rings
-    // are walked while they may hold an entry whose bound is below the least bound found yet
-    // and the best cost; the entries found are asked least bound first, until none can win: the
-    // same least (cost, cell, variant) as asking every entry within reach.
+    // from it, r - 3 with the rounding of both bucket indices (each off by at most one).
     const long ci = column(at.x), ri = row(at.y);
-    const long last_ring = std::max(columns, rows);
-    for (long r = 0;;) {
-      for (; r <= last_ring; ++r) {
-        const double ring_m = r > 3 ? double(r - 3) * cell_m * (1 - 1e-9) : 0.0;
-        const double below = near.empty() ? best : std::min(best, std::get<0>(near.top()));
-        if (ring_m + least > below) break;
-        if (r == 0) {
-          visit(ri, ci);
-          continue;
-        }
-        for (long cc = ci - r; cc <= ci + r; ++cc) {
-          visit(ri - r, cc);
-          visit(ri + r, cc);
-        }
-        for (long rr = ri - r + 1; rr <= ri + r - 1; ++rr) {
-          visit(rr, ci - r);
-          visit(rr, ci + r);
-        }
-      }
-      if (near.empty()) break;
-      const auto [low, cell, variant, e] = near.top();
-      near.pop();
-      if (low > best) {  // nor can any other found: only rings not walked yet may still hold one
-        near = {};
+    for (long r = 0; r <= std::max(columns, rows); ++r) {
+      const double ring_m = r > 3 ? double(r - 3) * cell_m * (1 - 1e-9) : 0.0;
+      if (ring_m + least > best) break;
+      if (r == 0) {
+        visit(ri, ci);
         continue;
       }
-      ask(e);
+      for (long cc = ci - r; cc <= ci + r; ++cc) {
+        visit(ri - r, cc);
+        visit(ri + r, cc);
+      }
+      for (long rr = ri - r + 1; rr <= ri + r - 1; ++rr) {
+        visit(rr, ci - r);
+        visit(rr, ci + r);
+      }
     }
     if (best_cell == n) return {};  // not expected: every cost is finite
     used[best_cell] = 1;

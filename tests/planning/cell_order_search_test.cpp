@@ -357,12 +357,12 @@ TEST(CellOrderSearch, NearestNeighbourOnTheEntriesGridIsThePlainOne) {
   EXPECT_EQ(checked, 5 * kSizes * 3 * 2);
 }
 
-// The entries found on the grid are asked least straight bound first: with a routed-like metric
-// (some pairs up to 60 % longer than straight: the bounds loose, the order of asking matters)
-// the same order and variants as the plain nearest neighbour, ties included (a coarse grid with
-// Manhattan transits: equal costs from entries at unequal straight distances, asked in the order
-// of their bounds, where the lower cell then variant must still win), and fewer transits asked.
-TEST(CellOrderSearch, NearestNeighbourAsksLeastBoundFirstWithTheSameTies) {
+// The nearest neighbour on the entries' grid asks only the entries near enough to win: with a
+// routed-like metric (some pairs up to 60 % longer than straight: the bounds loose) the same order
+// and variants as the plain nearest neighbour, ties included (a coarse grid with Manhattan
+// transits: equal costs from entries at unequal straight distances, where the lower cell then
+// variant must win), and fewer transits asked than the brute force.
+TEST(CellOrderSearch, NearestNeighbourOnTheGridKeepsTheTiesWithRoutedLikeTransits) {
   std::mt19937_64 rng(5253);
   std::uniform_real_distribution<double> unit(0, 1);
   std::uniform_int_distribution<int> variants(1, 4), step(-5, 5);
