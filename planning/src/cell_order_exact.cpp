@@ -303,22 +303,7 @@ class ExactSearch {
         if (k == 0) {
           best = (kLow && unknown(home_in_[s2]) ? low_in_[s2] : from_home(s2)) + internal_[s2];
         } else {
-          const std::size_t b = order[k - 1];
-          for (std::size_t u = 0; u < variants_[b]; ++u) {
-            const std::size_t at = (b * kMaxVariants + u) * states_ + s2;
-            double transit = 0;
-            if (unknown(between_[at])) {
-              if (kLow || layer[k - 1][u] + low_[at] + internal_[s2] >= best) {
-                best = std::min(best, layer[k - 1][u] + low_[at] + internal_[s2]);
-                continue;  // kLow: its bound; else std::min below would keep `best`
-              }
-              transit = between(at);
-            } else {
-              transit = between_[at];
-            }
-            if (p_.crossed) transit = penalised(transit, p_.crossing_weight, crossed_[at] & ~flown);
-            best = std::min(best, layer[k - 1][u] + transit + internal_[s2]);
-          }
+          best = through<kLow>(order[k - 1], s2, flown, layer[k - 1]);
         }
         layer[k][v] = best;
         least = std::min(least, best);
@@ -328,16 +313,48 @@ class ExactSearch {
         if (least + std::max(0.0, rest) >= give_up) return kInf;
       }
     }
-    double objective = kInf;
-    for (std::size_t v = 0; v < variants_[order[n_ - 1]]; ++v) {
-      const std::size_t s = order[n_ - 1] * kMaxVariants + v;
-      if (unknown(home_out_[s]) && (kLow || layer[n_ - 1][v] + low_out_[s] >= objective)) {
-        objective = std::min(objective, layer[n_ - 1][v] + low_out_[s]);
-        continue;
-      }
-      objective = std::min(objective, layer[n_ - 1][v] + to_home(s));
+    // The leg home: kLow, its bound where not asked yet; else asked cheapest bound first.
+    const std::size_t last = order[n_ - 1];
+    double value[kMaxVariants];
+    bool known[kMaxVariants];
+    for (std::size_t v = 0; v < variants_[last]; ++v) {
+      const std::size_t s = last * kMaxVariants + v;
+      known[v] = kLow || !unknown(home_out_[s]);
+      value[v] = layer[n_ - 1][v] + (unknown(home_out_[s]) ? low_out_[s] : home_out_[s]);
     }
-    return objective;
+    return cell_order_detail::first_least(
+               variants_[last], value, known,
+               [&](std::size_t v) { return layer[n_ - 1][v] + to_home(last * kMaxVariants + v); })
+        .first;
+  }
+
+  // The least of before[u] + transit + internal over the variants u of cell b, the transit from
+  // (b, u) to state s2 with its penalty for the cells not in `flown`; kLow: transits not asked yet
+  // by their lower bounds (asking none), else asked cheapest bound first until none can win
+  // (first_least(): the least a scan asking every one finds).
+  template <bool kLow>
+  double through(std::size_t b, std::size_t s2, std::uint64_t flown,
+                 const std::array<double, kMaxVariants>& before) {
+    double value[kMaxVariants];
+    bool known[kMaxVariants];
+    const auto exact = [&](std::size_t u) {
+      const std::size_t at = (b * kMaxVariants + u) * states_ + s2;
+      double transit = between(at);
+      if (p_.crossed) transit = penalised(transit, p_.crossing_weight, crossed_[at] & ~flown);
+      return before[u] + transit + internal_[s2];
+    };
+    for (std::size_t u = 0; u < variants_[b]; ++u) {
+      const std::size_t at = (b * kMaxVariants + u) * states_ + s2;
+      known[u] = !unknown(between_[at]);
+      value[u] = known[u] ? exact(u) : before[u] + low_[at] + internal_[s2];
+    }
+    if constexpr (kLow) {
+      double best = kInf;
+      for (std::size_t u = 0; u < variants_[b]; ++u) best = std::min(best, value[u]);
+      return best;
+    } else {
+      return cell_order_detail::first_least(variants_[b], value, known, exact).first;
+    }
   }
 
   double improved(const std::vector<std::size_t>& tour) {
@@ -412,25 +429,43 @@ class ExactSearch {
   // costs less than any write beyond it, so the states kept have the same costs and parents.
   template <bool kCrossed>
   void search() {
+    Sources from;
     for (std::size_t mask = 1; mask < masks_; ++mask) {
       if (!m_.reached[mask]) continue;
       const double limit = limit_of(mask);
-      // The cells in the mask, then those out of it, each in ascending order (the plain loops').
+      // The mask's states to expand, cells then variants ascending (the plain loops' order).
+      from.count = 0;
       for (std::size_t in = mask; in != 0; in &= in - 1) {
         const auto c = std::size_t(std::countr_zero(in));
         for (std::size_t v = 0; v < variants_[c]; ++v) {
           const std::size_t s = c * kMaxVariants + v;
           const double here = m_.cost[mask * states_ + s];
           if (here == kInf || here > limit) continue;
-          expand<kCrossed>(mask, s, here);
+          from.state[from.count] = static_cast<std::uint8_t>(s);
+          from.here[from.count++] = here;
         }
       }
+      if (from.count > 0) expand<kCrossed>(mask, from);
     }
   }
 
-  // The states one cell beyond `s` of `mask`, written where they are within their mask's limit.
+  // The states of a mask that are expanded, with their costs.
+  struct Sources {
+    std::array<std::uint8_t, 16 * kMaxVariants> state;
+    std::array<double, 16 * kMaxVariants> here;
+    std::size_t count = 0;
+  };
+
+  // The states one cell beyond `mask`, each written (where within its mask's limit) from the
+  // first source giving its least total: what expanding every source in turn writes (only a
+  // strictly smaller total replaces one, and a state of the next mask is reached from this mask
+  // alone). A total beyond the limit counts as infinite (never written); transits not asked yet
+  // stand in by their lower bounds, asked cheapest first until none can win (first_least(): the
+  // same least and source as asking all), and not at all where the bound is beyond the limit.
   template <bool kCrossed>
-  void expand(std::size_t mask, std::size_t s, double here) {
+  void expand(std::size_t mask, const Sources& from) {
+    std::array<double, 16 * kMaxVariants> value;
+    std::array<bool, 16 * kMaxVariants> known;
     for (std::size_t out = ~mask & (masks_ - 1); out != 0; out &= out - 1) {
       const auto c2 = std::size_t(std::countr_zero(out));
       const std::size_t next_mask = mask | (std::size_t{1} << c2);
@@ -438,17 +473,35 @@ class ExactSearch {
       const double next_limit = limit_of(next_mask);
       double* next_row = &m_.cost[next_mask * states_];
       for (std::size_t v2 = 0; v2 < variants_[c2]; ++v2) {
-        const std::size_t s2 = c2 * kMaxVariants + v2, at = s * states_ + s2;
-        if (unknown(between_[at]) && here + low_[at] + internal_[s2] > next_limit) continue;
-        double transit = between(at);
-        if constexpr (kCrossed)
-          transit = penalised(transit, p_.crossing_weight, crossed_[at] & unflown);
-        const double total = here + transit + internal_[s2];
-        if (total > next_limit) continue;
+        const std::size_t s2 = c2 * kMaxVariants + v2;
+        const auto total = [&](std::size_t i) {
+          const std::size_t at = from.state[i] * states_ + s2;
+          double transit = between(at);
+          if constexpr (kCrossed)
+            transit = penalised(transit, p_.crossing_weight, crossed_[at] & unflown);
+          const double t = from.here[i] + transit + internal_[s2];
+          return t > next_limit ? kInf : t;
+        };
+        for (std::size_t i = 0; i < from.count; ++i) {
+          const std::size_t at = from.state[i] * states_ + s2;
+          known[i] = !unknown(between_[at]);
+          if (known[i]) {
+            value[i] = total(i);
+          } else {
+            value[i] = from.here[i] + low_[at] + internal_[s2];
+            if (value[i] > next_limit) {  // its total too: never written
+              value[i] = kInf;
+              known[i] = true;
+            }
+          }
+        }
+        const auto [least, first] =
+            cell_order_detail::first_least(from.count, value.data(), known.data(), total);
+        if (!(least < kInf)) continue;
         reach(next_mask);
-        if (total < next_row[s2]) {
-          next_row[s2] = total;
-          m_.parent[next_mask * states_ + s2] = static_cast<std::uint8_t>(s);
+        if (least < next_row[s2]) {
+          next_row[s2] = least;
+          m_.parent[next_mask * states_ + s2] = from.state[first];
         }
       }
     }

@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <set>
 
@@ -354,6 +355,58 @@ TEST(CellOrderSearch, NearestNeighbourOnTheEntriesGridIsThePlainOne) {
         }
       }
   EXPECT_EQ(checked, 5 * kSizes * 3 * 2);
+}
+
+// The nearest neighbour on the entries' grid asks only the entries near enough to win: with a
+// routed-like metric (some pairs up to 60 % longer than straight: the bounds loose) the same order
+// and variants as the plain nearest neighbour, ties included (a coarse grid with Manhattan
+// transits: equal costs from entries at unequal straight distances, where the lower cell then
+// variant must win), and fewer transits asked than the brute force.
+TEST(CellOrderSearch, NearestNeighbourOnTheGridKeepsTheTiesWithRoutedLikeTransits) {
+  std::mt19937_64 rng(5253);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::uniform_int_distribution<int> variants(1, 4), step(-5, 5);
+  std::size_t asked_fast = 0, asked_plain = 0;
+  for (int k = 0; k < 60; ++k) {
+    const bool grid = k % 2 == 1;
+    const std::size_t n = 5 + std::size_t(k) * 4;
+    CellOrderProblem p;
+    p.home = {0, 0};
+    const auto point = [&]() -> geometry::Point2 {
+      if (grid) return {40.0 * step(rng), 40.0 * step(rng)};
+      return {1000 * unit(rng), 1000 * unit(rng)};
+    };
+    for (std::size_t c = 0; c < n; ++c) {
+      std::vector<CellVariant> cell;
+      for (int v = variants(rng); v > 0; --v)
+        cell.push_back({point(), point(), grid ? 100.0 : 300 * unit(rng)});
+      p.cells.push_back(cell);
+    }
+    auto count = std::make_shared<std::size_t>(0);
+    p.distance = [count, grid](geometry::Point2 a, geometry::Point2 b) {
+      ++*count;
+      if (grid) return std::abs(a.x - b.x) + std::abs(a.y - b.y);  // equal costs, unequal bounds
+      const auto h = std::uint64_t(std::llround(a.x * 3 + a.y * 5 + b.x * 11 + b.y * 23));
+      const std::uint64_t mixed = h * 0x9E3779B97F4A7C15ull >> 40;
+      return geometry::distance(a, b) * (1 + (mixed % 2 ? 0.0 : 0.6 * double(mixed % 100) / 100));
+    };
+    p.distance_at_least_straight = false;
+    const CellOrder plain = nearest_neighbour_order(p);
+    const std::vector<std::size_t> truth = PlainSearch{p}.nearest();
+    *count = 0;
+    p.distance_at_least_straight = true;
+    const CellOrder fast = nearest_neighbour_order(p);
+    asked_fast += *count;
+    asked_plain += n * (n + 1) / 2;  // the brute force's asks, at least
+    ASSERT_EQ(fast.visits.size(), truth.size()) << k;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      ASSERT_EQ(fast.visits[i].cell, truth[i]) << "problem " << k << " at " << i;
+      ASSERT_EQ(fast.visits[i].cell, plain.visits[i].cell);
+      ASSERT_EQ(fast.visits[i].variant, plain.visits[i].variant) << "problem " << k << " at " << i;
+    }
+    ASSERT_EQ(fast.objective_m, plain.objective_m) << k;
+  }
+  EXPECT_LT(asked_fast, asked_plain);
 }
 
 }  // namespace

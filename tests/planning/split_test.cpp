@@ -86,7 +86,8 @@ TEST(CellOrder, ExactEqualsBruteForceOnSmallInstances) {
 // Held-Karp as first written (a table per subset, every state of every subset, no bound): the
 // pruned search must pick the same visits, ties included (grid coordinates make many), with
 // and without crossings.
-std::vector<CellVisit> plain_held_karp(const CellOrderProblem& p) {
+// `objective` (optional): the best tour's objective, in the search's arithmetic.
+std::vector<CellVisit> plain_held_karp(const CellOrderProblem& p, double* objective = nullptr) {
   const std::size_t n = p.cells.size(), states = 4 * n;
   std::vector<std::vector<double>> cost(std::size_t{1} << n, std::vector<double>(states, kInf));
   std::vector<std::vector<std::size_t>> parent(std::size_t{1} << n,
@@ -128,6 +129,7 @@ std::vector<CellVisit> plain_held_karp(const CellOrderProblem& p) {
       best_s = s;
     }
   }
+  if (objective) *objective = best;
   std::vector<CellVisit> visits;
   for (std::size_t mask = full, s = best_s; mask != 0;) {
     visits.push_back({s / 4, s % 4});
@@ -407,6 +409,43 @@ TEST(CellOrder, HeuristicIsCloseToTheOptimumAboveTheExactLimit) {
   RecordProperty("mean_gap", std::to_string(sum / count));
   RecordProperty("worst_gap", std::to_string(worst));
   RecordProperty("optimal_of_12", optimal);
+}
+
+// The search's tables filled target by target: each state of a mask one cell larger takes the
+// least total from the states of the mask before it, the first of equal ones, asking the routed
+// transits cheapest bound first. The same visits and objective as the plain Held-Karp, bit for
+// bit, where ties abound: variants repeated whole (equal totals from several sources, the first
+// must win), cells on a coarse grid, transits longer than straight on some pairs (the bounds then
+// loose), with and without crossings.
+TEST(CellOrder, ExactSearchTargetByTargetKeepsThePlainSearchsTiesAndObjective) {
+  test::Rng rng(5252);
+  std::uniform_int_distribution<int> variant_count(1, 4);
+  for (int k = 0; k < 160; ++k) {
+    CellOrderProblem p = random_problem(rng, 3 + k % 9);
+    if (k % 4 == 1)
+      for (auto& variants : p.cells) variants.resize(std::size_t(variant_count(rng)));
+    on_grid_and_crossing(p, rng, k);
+    if (k % 3 == 0)  // variants repeated whole
+      for (auto& cell : p.cells)
+        for (std::size_t v = 1; v < cell.size(); ++v)
+          if (rng() % 2) cell[v] = cell[rng() % v];
+    if (p.crossed) p.crossing_weight = 0.5 * double(1 + k % 3);
+    p.distance_at_least_straight = true;
+    p.distance = [](Point2 a, Point2 b) {  // some pairs up to 40 % longer: detours
+      const auto h = std::uint64_t(std::llround(a.x * 3 + a.y * 5 + b.x * 11 + b.y * 23));
+      const std::uint64_t mixed = h * 0x9E3779B97F4A7C15ull >> 40;
+      return geometry::distance(a, b) * (1 + (mixed % 3 ? 0.0 : 0.4 * double(mixed % 100) / 100));
+    };
+    double plain_objective = 0;
+    const std::vector<CellVisit> plain = plain_held_karp(p, &plain_objective);
+    const CellOrder exact = exact_cell_order(p);
+    EXPECT_EQ(exact.objective_m, plain_objective) << k;
+    ASSERT_EQ(exact.visits.size(), plain.size()) << k;
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      EXPECT_EQ(exact.visits[i].cell, plain[i].cell) << k << " at " << i;
+      EXPECT_EQ(exact.visits[i].variant, plain[i].variant) << k << " at " << i;
+    }
+  }
 }
 
 // ---- the survey ----------------------------------------------------------------------------
