@@ -172,14 +172,8 @@ class Transit {
     const bool crossings = bool(p_.crossed);
     std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
     for (std::size_t u = 0; u < count; ++u, at += size_) {
-      const double d = exit_to_entry_[at];
-      double low = 0;
-      if (d < 0)
-        low = geometry::distance(p_.cells[c1][u].exit, p_.cells[c2][v2].entry) * (1 - 1e-12);
-      else if (!crossings || crossed_[at] == kUnknown)
-        low = d;
-      else
-        low = penalised(d, p_.crossing_weight, crossed_[at] & unflown);
+      const double low =
+          dense_low(at, p_.cells[c1][u].exit, p_.cells[c2][v2].entry, unflown, crossings);
       const double c = before[u] + low + internal_m;
       if (c < best) {
         best = c;
@@ -188,6 +182,15 @@ class Transit {
     }
     if (came) *came = first;
     return best;
+  }
+  /// lower_cost() of the dense table's entry `at`, the transit from `exit` to `entry` (the same
+  /// value, without the look-up of the cells' points).
+  double dense_low(std::size_t at, geometry::Point2 exit, geometry::Point2 entry,
+                   std::uint64_t unflown, bool crossings) const {
+    const double d = exit_to_entry_[at];
+    if (d < 0) return geometry::distance(exit, entry) * (1 - 1e-12);
+    if (!crossings || crossed_[at] == kUnknown) return d;
+    return penalised(d, p_.crossing_weight, crossed_[at] & unflown);
   }
   /// least_through() for every variant v2 of c2 at once, into layer[v2] (internal_m: the
   /// variant's), with the first u giving it in came[v2]: the same sums and comparisons, the
@@ -213,14 +216,7 @@ class Transit {
       std::size_t first = 0;
       std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
       for (std::size_t u = 0; u < count; ++u, at += size_) {
-        const double d = exit_to_entry_[at];
-        double low = 0;
-        if (d < 0)
-          low = geometry::distance(from[u].exit, entry) * (1 - 1e-12);
-        else if (!crossings || crossed_[at] == kUnknown)
-          low = d;
-        else
-          low = penalised(d, p_.crossing_weight, crossed_[at] & unflown);
+        const double low = dense_low(at, from[u].exit, entry, unflown, crossings);
         const double c = before[u] + low + internal_m;
         if (c < best) {
           best = c;
