@@ -14,6 +14,22 @@
 namespace swath::geometry {
 namespace {
 
+// A random area for the leg tests: every fourth a grid ring, with `combs` every fourth from the
+// third a comb, else a field with six star holes.
+std::vector<Ring> random_area(test::Rng& rng, int area, bool combs) {
+  if (area % 4 == 3) return {test::random_grid_ring(rng, 30, 10)};
+  if (combs && area % 4 == 2)
+    return {test::transformed(test::comb_polygon(7, 10, 40, 10), 13.0 * area, 2.0, -3.0)};
+  std::vector<Ring> rings{test::random_field_polygon(rng, std::size_t(20) << area % 3, 400)};
+  for (int h = 0; h < 6; ++h) {
+    Ring star = test::transformed(test::random_star_polygon(rng, 6, 5, 20), 0, -150 + 60.0 * h,
+                                  40.0 * (h % 3) - 40);
+    std::reverse(star.begin(), star.end());
+    rings.push_back(star);
+  }
+  return rings;
+}
+
 // 100 x 100 square with a tall hole x in [40, 60], y in [20, 80].
 VisibilityRouter square_with_hole() {
   return VisibilityRouter(
@@ -54,18 +70,7 @@ TEST(VisibilityRouter, ContainsIsTheBruteForceAreasAnswer) {
   test::Rng rng(5252);
   std::size_t inside = 0, outside = 0;
   for (int area = 0; area < 16; ++area) {
-    std::vector<Ring> rings;
-    if (area % 4 == 3) {
-      rings = {test::random_grid_ring(rng, 30, 10)};
-    } else {
-      rings = {test::random_field_polygon(rng, std::size_t(20) << area % 3, 400)};
-      for (int h = 0; h < 6; ++h) {
-        Ring star = test::transformed(test::random_star_polygon(rng, 6, 5, 20), 0, -150 + 60.0 * h,
-                                      40.0 * (h % 3) - 40);
-        std::reverse(star.begin(), star.end());
-        rings.push_back(star);
-      }
-    }
+    const std::vector<Ring> rings = random_area(rng, area, false);
     const test::BruteArea brute(rings);
     const VisibilityRouter router(rings, Routing::measure_only);
     std::vector<Point2> vertices;
@@ -114,20 +119,7 @@ TEST(VisibilityRouter, LegsAreMeasuredAsOverEveryEdge) {
   test::Rng rng(5253);
   std::size_t clear = 0, blocked = 0;
   for (int area = 0; area < 12; ++area) {
-    std::vector<Ring> rings;
-    if (area % 4 == 3) {
-      rings = {test::random_grid_ring(rng, 30, 10)};
-    } else if (area % 4 == 2) {
-      rings = {test::transformed(test::comb_polygon(7, 10, 40, 10), 13.0 * area, 2.0, -3.0)};
-    } else {
-      rings = {test::random_field_polygon(rng, std::size_t(20) << area % 3, 400)};
-      for (int h = 0; h < 6; ++h) {
-        Ring star = test::transformed(test::random_star_polygon(rng, 6, 5, 20), 0, -150 + 60.0 * h,
-                                      40.0 * (h % 3) - 40);
-        std::reverse(star.begin(), star.end());
-        rings.push_back(star);
-      }
-    }
+    const std::vector<Ring> rings = random_area(rng, area, true);
     const test::BruteArea brute(rings);
     const VisibilityRouter router(rings, Routing::measure_only);
     std::vector<std::pair<Point2, Point2>> edges;
