@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "swath/base/json_document.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/missions/writers.hpp"
 
 namespace swath::missions {
@@ -108,12 +109,6 @@ ordered_json survey_item(const Mission& m, const QgcSurvey& s, int altitude_mode
   return survey;
 }
 
-// An integer as nlohmann writes one.
-void append_json_integer(std::string& out, long long x) {
-  std::array<char, 24> text{};
-  out.append(text.data(), std::to_chars(text.data(), text.data() + text.size(), x).ptr);
-}
-
 // The mission's items without a Survey item, as json_text(items_json(...), 4) writes them where
 // they stand in the .plan (the array's members at 12 spaces, its closing bracket at 8), written
 // directly instead of through a tree: building and dumping one was most of the writer's time.
@@ -128,15 +123,15 @@ std::string items_text(const Mission& m, int altitude_mode) {
       out += "                \"AMSLAltAboveTerrain\": null,\n                \"Altitude\": ";
       base::append_json_number(out, item.altitude_m);
       out += ",\n                \"AltitudeMode\": ";
-      append_json_integer(out, altitude_mode);
+      base::append_integer_text(out, altitude_mode);
       out += ",\n";
     }
     out += "                \"autoContinue\": true,\n                \"command\": ";
-    append_json_integer(out, item.command);
+    base::append_integer_text(out, item.command);
     out += ",\n                \"doJumpId\": ";
-    append_json_integer(out, jump_id++);
+    base::append_integer_text(out, jump_id++);
     out += ",\n                \"frame\": ";
-    append_json_integer(out, item.frame);
+    base::append_integer_text(out, item.frame);
     out += ",\n                \"params\": [\n";
     const std::array<double, 7> params = {
         item.params[0],        item.params[1],        item.params[2], item.params[3],

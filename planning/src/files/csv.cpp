@@ -14,13 +14,6 @@ using base::append_fixed_text;
 
 namespace {
 
-// std::to_string's digits, appended without a temporary string.
-template <typename Integer>
-void append_integer(std::string& out, Integer value) {
-  char text[24];
-  out.append(text, std::to_chars(text, text + sizeof text, value).ptr);
-}
-
 // "lat,lon,alt_m,x_m,y_m" as fixed_text writes them (9, 9, 3, 3, 3 decimals).
 void append_point_columns(std::string& out, const geometry::GeoPoint& g, double altitude_m,
                           geometry::Point2 p) {
@@ -44,7 +37,7 @@ std::string waypoints_csv(const SurveyPlan& plan) {
     auto row = [&](std::size_t seq, geometry::Point2 p, double alt, bool has_position,
                    const char* action) {
       out += head;
-      append_integer(out, seq);
+      base::append_integer_text(out, seq);
       out += ',';
       if (has_position) {
         const geometry::GeoPoint g = files::geo(plan, p);
@@ -92,9 +85,9 @@ PhotoTexts photo_texts(const SurveyPlan& plan) {
       const PhotoPoint& p = (*f.photos)[k];
       const geometry::GeoPoint g = files::geo(plan, p.position);
       csv += csv_head;
-      append_integer(csv, p.line);
+      base::append_integer_text(csv, p.line);
       csv += ',';
-      append_integer(csv, k);
+      base::append_integer_text(csv, k);
       csv += ',';
       append_point_columns(csv, g, plan.imaging.altitude_m, p.position);
       csv += '\n';
@@ -102,9 +95,9 @@ PhotoTexts photo_texts(const SurveyPlan& plan) {
       json += first ? "" : ",";
       first = false;
       json += json_head;
-      append_integer(json, p.line);
+      base::append_integer_text(json, p.line);
       json += ",\n    \"photo\": ";
-      append_integer(json, k);
+      base::append_integer_text(json, k);
       json += ",\n    \"altitude_m\": ";
       json += altitude;
       json +=

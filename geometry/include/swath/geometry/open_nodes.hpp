@@ -54,8 +54,10 @@ class OpenNodes {
   /// The legs from point c (reached at g) on to every open node u: through = g + |c u| and f =
   /// through + h(u), bit for bit as g + distance(c, u) and that + h(u) (a difference's square does
   /// not depend on its sign, and IEEE sums, products and square roots round alike in vector
-  /// registers). Afterwards under() lists the places (into node(), through(), f()) of the legs
-  /// of f <= cut, in order. Returns the least f above cut (infinity: none).
+  /// registers). That holds while the compiler fuses no multiply-add in distance() (the build
+  /// targets plain x86-64, which has none; tests/geometry/open_nodes_test.cpp would fail on a
+  /// target that has). Afterwards under() lists the places (into node(), through(), f()) of the
+  /// legs of f <= cut, in order. Returns the least f above cut (infinity: none).
   double legs(Point2 c, double g, double cut) {
     const std::size_t m = list_.size();
     through_.resize(m + 1);  // + 1: the branch-free append below writes one place past the end
