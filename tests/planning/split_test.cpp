@@ -615,6 +615,45 @@ TEST(SplitSurvey, TheCellsBoundIsBelowTheirEstimate) {
   RecordProperty("closest", std::to_string(worst));
 }
 
+// The same on traced outlines (issue 52's corpus: hundreds of nearly collinear vertices, narrow
+// arms, holes), where the cells' lines are the grid's spans and many more (protrusion fills and
+// the lanes of pieces no grid lane crosses), and with a turnaround: lines widened by it, and of two
+// that then overlap on one ordinate (spans either side of an arm or a hole narrower than two
+// turnarounds) the shorter dropped. At 30 directions, home outside and inside.
+TEST(SplitSurvey, TheCellsBoundIsBelowTheirEstimateOnTracedOutlines) {
+  test::Rng rng(5253);
+#ifdef SWATH_SANITIZED
+  constexpr int kShapes = 2;
+#else
+  constexpr int kShapes = 8;
+#endif
+  double worst = 0;
+  int n = 0;
+  for (int shape = 0; shape < kShapes; ++shape) {
+    const Polygon area = test::traced_outline(rng);
+    const std::vector<Ring> rings = geometry::rings_of(area);
+    for (const double turnaround_m : {0.0, 40.0}) {
+      SplitSettings s;
+      s.line_spacing_m = 43.5;  // the corpus's QX1 at 100 m
+      s.footprint_width_m = 145;
+      s.turnaround_m = turnaround_m;
+      for (int k = 0; k < 30; ++k) {
+        const double angle = 6.0 * k + 0.61 * shape;
+        const Point2 home = k % 2 ? Point2{-2000, 900} : area.outer.front();
+        const double bound = split_detail::cells_estimate_bound(rings, angle, s, home);
+        const double estimate = split_detail::cells_estimate(rings, angle, s, home);
+        if (estimate == 0) continue;
+        ASSERT_LE(bound, estimate) << "traced " << shape << " at " << angle << " turnaround "
+                                   << turnaround_m;
+        worst = std::max(worst, bound / estimate);
+        ++n;
+      }
+    }
+  }
+  ASSERT_GT(n, 50 * kShapes);
+  RecordProperty("closest", std::to_string(worst));
+}
+
 // The direction search runs on several threads; the plan must not depend on how many.
 TEST(SplitSurvey, ThePlanIsTheSameOnAnyNumberOfThreads) {
   test::Rng rng(100);  // the split bench's field of 100 vertices, with 12 of its holes
