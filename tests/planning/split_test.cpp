@@ -643,8 +643,8 @@ TEST(SplitSurvey, TheCellsBoundIsBelowTheirEstimateOnTracedOutlines) {
         const double bound = split_detail::cells_estimate_bound(rings, angle, s, home);
         const double estimate = split_detail::cells_estimate(rings, angle, s, home);
         if (estimate == 0) continue;
-        ASSERT_LE(bound, estimate) << "traced " << shape << " at " << angle << " turnaround "
-                                   << turnaround_m;
+        ASSERT_LE(bound, estimate)
+            << "traced " << shape << " at " << angle << " turnaround " << turnaround_m;
         worst = std::max(worst, bound / estimate);
         ++n;
       }
