@@ -127,7 +127,9 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
       const std::size_t at = samples.size();
       samples.resize(at + std::size_t(n));
       Point2* out = samples.data() + at;
-      for (int i = 0; i < n; ++i) out[i] = {in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+      // The span's ends read once: stores through `out` might alias them (the same arithmetic).
+      const double x0 = in.x0, width = in.x1 - in.x0;
+      for (int i = 0; i < n; ++i) out[i] = {x0 + width * (i + 0.5) / n, y};
       in_order = in_order && !(out[0].x < previous_x);
       previous_x = out[n - 1].x;
     }
@@ -183,12 +185,14 @@ class SeenCount {
           });
     int running = 0;
     unseen.clear();
-    for (std::size_t i = 0; i + 1 < count_.size(); ++i) {
-      running += count_[i];
-      count_[i] = running;
+    int* const counts = count_.data();  // the size read once, not at every sample
+    const std::size_t n = count_.size() - 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      running += counts[i];
+      counts[i] = running;
       if (running == 0) unseen.push_back(i);
     }
-    count_.back() = 0;
+    counts[n] = 0;
   }
   void remove(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { --count_[i]; });
