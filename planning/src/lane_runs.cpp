@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <tuple>
 
@@ -126,7 +127,9 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
       const std::size_t at = samples.size();
       samples.resize(at + std::size_t(n));
       Point2* out = samples.data() + at;
-      for (int i = 0; i < n; ++i) out[i] = {in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+      // The span's ends read once: stores through `out` might alias them (the same arithmetic).
+      const double x0 = in.x0, width = in.x1 - in.x0;
+      for (int i = 0; i < n; ++i) out[i] = {x0 + width * (i + 0.5) / n, y};
       in_order = in_order && !(out[0].x < previous_x);
       previous_x = out[n - 1].x;
     }
@@ -147,7 +150,7 @@ class SeenCount {
       : samples_(samples),
         rows_(samples, footprint_width_m / 4),
         half_(footprint_width_m / 2 + 1e-9),
-        count_(samples.size(), 0) {}
+        count_(samples.size() + 1, 0) {}
 
   /// f(i) for every sample i the lane sees, in no particular order.
   template <typename F>
@@ -162,28 +165,34 @@ class SeenCount {
   void add(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { ++count_[i]; });
   }
-  /// add() for every lane of `lanes`: a run of samples on one row counted as +1 at its start and
-  /// -1 past its end, summed once over every sample (the grid's lanes, each marking ~10^3 samples
-  /// one by one, were 5 % of the corpus' plans). The counts are add()'s, whatever the order.
-  /// `unseen`: the samples no lane sees after it, ascending (found in the same pass).
+  /// add() for every lane of `lanes`, on counts all 0 (the first lanes added): a run of samples on
+  /// one row counted as +1 at its start and -1 past its end (a lone sample as a run of one), the
+  /// steps summed once over every sample (the grid's lanes, each marking ~10^3 samples one by one,
+  /// were 5 % of the corpus' plans). The steps are kept in the counts themselves (one slot past
+  /// the last), summed in place: the counts are add()'s, whatever the order. `unseen`: the
+  /// samples no lane sees after it, ascending (found in the same pass).
   void add_all(const std::vector<RunLane>& lanes, std::vector<std::size_t>& unseen) {
-    thread_local std::vector<int> steps;
-    steps.assign(count_.size() + 1, 0);
     for (const RunLane& lane : lanes)
       rows_.any_order_in(
           lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
           [&](std::size_t first, std::size_t last) {
-            ++steps[first];
-            --steps[last];
+            ++count_[first];
+            --count_[last];
           },
-          [&](std::size_t i) { ++count_[i]; });
+          [&](std::size_t i) {
+            ++count_[i];
+            --count_[i + 1];
+          });
     int running = 0;
     unseen.clear();
-    for (std::size_t i = 0; i < count_.size(); ++i) {
-      running += steps[i];
-      count_[i] += running;
-      if (count_[i] == 0) unseen.push_back(i);
+    int* const counts = count_.data();  // the size read once, not at every sample
+    const std::size_t n = count_.size() - 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      running += counts[i];
+      counts[i] = running;
+      if (running == 0) unseen.push_back(i);
     }
+    counts[n] = 0;
   }
   void remove(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { --count_[i]; });
@@ -214,7 +223,7 @@ class SeenCount {
   const std::vector<Point2>& samples_;
   detail::SampleRows rows_;  ///< the samples (sorted by ordinate, then abscissa) by row
   double half_;
-  std::vector<int> count_;
+  std::vector<int> count_;  ///< per sample, and one slot past the last (add_all()'s steps)
 };
 
 // Lanes off the grid for what the grid's lanes do not see: for the first unseen sample (lowest,
@@ -268,25 +277,23 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
 // O(n) as a general visibility test (10,000-vertex outlines ask this ~10^5 times).
 class Turns {
  public:
-  Turns(const LaneScan& scan, const std::vector<double>& ys) : bands_(ys.size()) {
+  Turns(const LaneScan& scan, const std::vector<double>& ys) {
     if (ys.empty()) return;
-    const auto& edges = scan.edges();
-    std::size_t near = 0;  // the last edge's first band
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      const double lo = std::min(edges[e].first.y, edges[e].second.y);
-      const double hi = std::max(edges[e].first.y, edges[e].second.y);
-      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
-      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
-      // this).
-      near = detail::walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
-      for (std::size_t b = near; b + 1 < ys.size() && ys[b] <= hi; ++b)
-        bands_[b].push_back(edges[e]);
-    }
+    // The bands' edges in one array (band b's from start_[b] to start_[b + 1], in edge order):
+    // counted, then placed (a vector per band was most of this step's allocations).
+    start_.assign(ys.size() + 1, 0);
+    each_in_band(scan, ys, [&](std::size_t b, std::size_t) { ++start_[b + 1]; });
+    for (std::size_t b = 0; b < ys.size(); ++b) start_[b + 1] += start_[b];
+    edges_.resize(start_.back());
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    each_in_band(scan, ys,
+                 [&](std::size_t b, std::size_t e) { edges_[next[b]++] = scan.edges()[e]; });
   }
 
   /// a on row `row`, b on the next, both in the rotated frame.
   bool inside(Point2 a, Point2 b, std::size_t row) const {
-    const auto& edges = bands_[row];
+    const std::span<const std::pair<Point2, Point2>> edges(edges_.data() + start_[row],
+                                                           edges_.data() + start_[row + 1]);
     const double tolerance = 1e-9 * (1 + geometry::distance(a, b));
     for (const auto& [p, q] : edges)
       if (geometry::segments_cross_clearly(a, b, p, q, tolerance)) return false;
@@ -302,14 +309,33 @@ class Turns {
   }
 
  private:
-  std::vector<std::vector<std::pair<Point2, Point2>>> bands_;
+  // f(band, edge) for every edge and band it reaches into, edge by edge, bands ascending.
+  template <typename F>
+  static void each_in_band(const LaneScan& scan, const std::vector<double>& ys, F f) {
+    const auto& edges = scan.edges();
+    std::size_t near = 0;  // the last edge's first band
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const double lo = std::min(edges[e].first.y, edges[e].second.y);
+      const double hi = std::max(edges[e].first.y, edges[e].second.y);
+      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
+      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
+      // this).
+      near = detail::walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
+      for (std::size_t b = near; b + 1 < ys.size() && ys[b] <= hi; ++b) f(b, e);
+    }
+  }
+
+  std::vector<std::size_t> start_;
+  std::vector<std::pair<Point2, Point2>> edges_;
 };
 
 // Zigzag chains over the grid's ordinates: each lane linked to at most one lane on the next
 // ordinate up, the pairs that overlap most first, when both turns (left ends, right ends) stay
 // inside. Coverage lanes stay runs of their own; the order places them.
 std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes, const Turns& turns) {
-  std::vector<std::vector<std::size_t>> by_row;
+  // The grid's lanes by row (each row's a stretch of `grid`, from group[r] to group[r + 1]; one
+  // array, not a vector per row).
+  std::vector<std::size_t> grid, group;
   std::vector<int> rows;
   std::vector<std::vector<RunLane>> runs;
   for (std::size_t i = 0; i < lanes.size(); ++i) {
@@ -319,17 +345,22 @@ std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes, const
     }
     if (rows.empty() || lanes[i].row != rows.back()) {
       rows.push_back(lanes[i].row);
-      by_row.emplace_back();
+      group.push_back(grid.size());
     }
-    by_row.back().push_back(i);
+    grid.push_back(i);
   }
+  group.push_back(grid.size());
+  const auto by_row = [&](std::size_t r) {
+    return std::span<const std::size_t>(grid.data() + group[r], grid.data() + group[r + 1]);
+  };
   const std::size_t none = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> up(lanes.size(), none), down(lanes.size(), none);
-  for (std::size_t r = 0; r + 1 < by_row.size(); ++r) {
+  std::vector<std::tuple<double, std::size_t, std::size_t>> links;  // one buffer for every row
+  for (std::size_t r = 0; r + 1 < rows.size(); ++r) {
     if (rows[r + 1] != rows[r] + 1) continue;  // a row left out between: no zigzag across it
-    std::vector<std::tuple<double, std::size_t, std::size_t>> links;
-    for (std::size_t u : by_row[r])
-      for (std::size_t v : by_row[r + 1]) {
+    links.clear();
+    for (std::size_t u : by_row(r))
+      for (std::size_t v : by_row(r + 1)) {
         const RunLane &a = lanes[u], &b = lanes[v];
         const double overlap = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
         if (overlap <= 0) continue;
@@ -346,12 +377,11 @@ std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes, const
         down[v] = u;
       }
   }
-  for (const auto& row : by_row)
-    for (std::size_t start : row) {
-      if (down[start] != none) continue;
-      runs.emplace_back();
-      for (std::size_t i = start; i != none; i = up[i]) runs.back().push_back(lanes[i]);
-    }
+  for (const std::size_t start : grid) {
+    if (down[start] != none) continue;
+    runs.emplace_back();
+    for (std::size_t i = start; i != none; i = up[i]) runs.back().push_back(lanes[i]);
+  }
   return runs;
 }
 

@@ -18,16 +18,23 @@ namespace swath::planning::detail {
 using geometry::Point2;
 using geometry::Ring;
 
-// std::lower_bound(keys, keys + n, value) for keys ascending and free of NaN, walked to from
-// `hint` (the answer for a nearby value) instead of searched: a ring's edges come in order, each
-// starting where the last ended, so the walk is a step or two (at most the rows the edges span,
-// which their callers walk anyway).
+// std::lower_bound for items whose keys key(items[k]) ascend, free of NaN: the first item whose key
+// is not below `value`, walked to from `hint` (the answer for a nearby value) instead of searched:
+// a ring's edges come in order, each starting where the last ended, so the walk is a step or two
+// (at most the rows the edges span, which their callers walk anyway).
+template <typename T, typename Key>
+std::size_t walk_lower_bound_by(const T* items, std::size_t n, double value, std::size_t hint,
+                                Key key) {
+  std::size_t k = std::min(hint, n);
+  while (k > 0 && !(key(items[k - 1]) < value)) --k;
+  while (k < n && key(items[k]) < value) ++k;
+  return k;
+}
+
+// walk_lower_bound_by() on the keys themselves: std::lower_bound(keys, keys + n, value).
 inline std::size_t walk_lower_bound(const double* keys, std::size_t n, double value,
                                     std::size_t hint) {
-  std::size_t k = std::min(hint, n);
-  while (k > 0 && !(keys[k - 1] < value)) --k;
-  while (k < n && keys[k] < value) ++k;
-  return k;
+  return walk_lower_bound_by(keys, n, value, hint, [](double key) { return key; });
 }
 
 struct Span {

@@ -30,6 +30,7 @@
 #include "lane_scan.hpp"
 #include "split_bounds.hpp"
 #include "split_candidate.hpp"
+#include "split_runs.hpp"
 
 namespace swath::planning {
 
@@ -573,15 +574,79 @@ struct RunEstimates {
   std::vector<std::size_t> cells_directions;  ///< where they are, ascending
 };
 
+// Whether an estimate whose lower bound is `bound_m` could rank among the `per_kind` least of its
+// kind, given `least`, the least estimates of that kind found so far (ascending, at most per_kind).
+// Not when per_kind are found and the bound is above the last of them by more than rounding: the
+// estimate is at least the bound, so above that last one, and the ones found only fall as more are.
+// (The runs' bound and estimate are sums of the same straight distances and internal lengths in
+// other orders: their rounding differs by ~1e-13 relative, far below the 1e-9 margin.)
+bool may_rank(double bound_m, const std::vector<double>& least, std::size_t per_kind) {
+  return per_kind == 0 || least.size() < per_kind || !(bound_m > least.back() * (1 + 1e-9));
+}
+
+std::vector<double> estimates_by_bound(const std::vector<int>& kinds,
+                                       const std::vector<double>& bounds_m, std::size_t per_kind,
+                                       unsigned threads,
+                                       const std::function<double(std::size_t)>& tighter_bound,
+                                       const std::function<double(std::size_t)>& estimate) {
+  // Why best_of_each_kind() chooses the same: one left out has a bound above per_kind estimates
+  // of its kind found (may_rank()), and its estimate, at least its bound, is above them too; so
+  // it ranks after them with every estimate known, and with +inf as well. Which are left out
+  // depends on the threads' timing, not that. In order of the bounds, most are left out at once.
+  const std::size_t n = kinds.size();
+  std::vector<std::size_t> by_bound(n);
+  std::iota(by_bound.begin(), by_bound.end(), std::size_t{0});
+  std::stable_sort(by_bound.begin(), by_bound.end(),
+                   [&](std::size_t x, std::size_t y) { return bounds_m[x] < bounds_m[y]; });
+  std::vector<double> out(n, std::numeric_limits<double>::infinity());
+  std::mutex lock;                                     // guards least
+  std::unordered_map<int, std::vector<double>> least;  // per kind, as may_rank() has it
+  const auto ranks = [&](std::size_t i, double bound) {
+    const std::lock_guard<std::mutex> guard(lock);
+    return may_rank(bound, least[kinds[i]], per_kind);
+  };
+  base::parallel_for(n, threads, [&](std::size_t j) {
+    const std::size_t i = by_bound[j];
+    if (!ranks(i, bounds_m[i]) || !ranks(i, tighter_bound(i))) return;
+    const double e = estimate(i);
+    const std::lock_guard<std::mutex> guard(lock);
+    out[i] = e;
+    std::vector<double>& of_kind = least[kinds[i]];
+    of_kind.insert(std::upper_bound(of_kind.begin(), of_kind.end(), e), e);
+    if (of_kind.size() > per_kind) of_kind.pop_back();
+  });
+  return out;
+}
+
+// A lower bound on every order's length of `p` cheaper than order_lower_bound(): every cell is
+// flown by one of its variants, transits add to that; less 1e-9 of it for rounding (the sums of
+// the same lengths in other orders).
+double internal_lower_bound(const CellOrderProblem& p) {
+  double sum = 0;
+  for (const std::vector<CellVariant>& variants : p.cells) {
+    double least = std::numeric_limits<double>::infinity();
+    for (const CellVariant& v : variants) least = std::min(least, v.internal_m);
+    sum += least;
+  }
+  return sum * (1 - 1e-9);
+}
+
 RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
                            const std::vector<double>& angles, Point2 home, const SplitSettings& s,
                            const LaneLimits& limits, SearchProgress& progress) {
-  // The directions are independent: spread over threads, each into its own slot.
+  // The directions are independent: spread over threads, each into its own slot. First the runs
+  // and a bound of their estimate (internal_lower_bound()) at every direction, then the estimates
+  // (nearest neighbour, straight transits) in order of those bounds, each left out (+inf) where
+  // that bound, or order_lower_bound(), shows it cannot rank among the refined_candidates least of
+  // its kind (estimates_by_bound(): best_of_each_kind() chooses the same). Most directions' bounds
+  // are above the third least estimate of their kind.
   const std::size_t n = angles.size();
   RunEstimates out;
   out.per_angle.resize(n);
   const bool cells = s.cells != SplitCells::runs;
   if (cells) out.cells_bound.assign(n, 0.0);
+  std::vector<std::vector<CellOrderProblem>> problems(n);  // per direction, as out.per_angle
+  std::vector<std::vector<double>> bounds(n);
   base::parallel_for(n, s.threads, [&](std::size_t a) {
     // Bridged runs where there is a margin, runs inside: both check coverage on the same samples
     // of the area, taken once (into a buffer of the thread's).
@@ -593,21 +658,43 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
         continue;
       Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
       if (c.cells.empty()) continue;
-      estimate(c, home);
+      CellOrderProblem problem = problem_for(c, home, straight_m);
+      problem.distance_at_least_straight = true;
+      bounds[a].push_back(internal_lower_bound(problem));
+      problems[a].push_back(std::move(problem));
       out.per_angle[a].push_back({kind, std::move(c)});
     }
     if (cells && limits.fits[a][2])
       out.cells_bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
     progress.piece(kRunsShare, n);
   });
+  std::vector<std::pair<std::size_t, std::size_t>> at;  // (direction, its k-th candidate)
+  std::vector<int> kinds;
+  std::vector<double> bounds_m;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t k = 0; k < out.per_angle[a].size(); ++k) {
+      at.push_back({a, k});
+      kinds.push_back(out.per_angle[a][k].first);
+      bounds_m.push_back(bounds[a][k]);
+    }
+  const std::vector<double> estimates = estimates_by_bound(
+      kinds, bounds_m, s.refined_candidates, s.threads,
+      [&](std::size_t i) { return order_lower_bound(problems[at[i].first][at[i].second]); },
+      [&](std::size_t i) {
+        // estimate()'s order, on the problem built for the bounds.
+        const auto [a, k] = at[i];
+        Candidate& c = out.per_angle[a][k].second;
+        c.order = nearest_neighbour_order(problems[a][k]);
+        return c.order.length_m;
+      });
+  for (std::size_t i = 0; i < at.size(); ++i)  // the ones left out: +inf (the others' own)
+    out.per_angle[at[i].first][at[i].second].second.order.length_m = estimates[i];
   if (cells)
     for (std::size_t a = 0; a < n; ++a)
       if (limits.fits[a][2]) out.cells_directions.push_back(a);
   return out;
 }
 
-// The candidates to refine: of each kind the `per_kind` least estimates (then the lowest index),
-// kind by kind. estimates: (kind, estimate, candidate).
 std::vector<std::size_t> best_of_each_kind(
     std::vector<std::tuple<int, double, std::size_t>> estimates, std::size_t per_kind) {
   std::sort(estimates.begin(), estimates.end());

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "lane_scan.hpp"
+
 namespace swath::planning {
 
 using geometry::Point2;
@@ -131,8 +133,8 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
         return std::size_t(std::lower_bound(strips.begin(), strips.end(), y,
                                             [](const Strip& st, double v) { return st.hi < v; }) -
                            strips.begin());
-      while (near > 0 && !(strips[near - 1].hi < y)) --near;
-      while (near < strips.size() && strips[near].hi < y) ++near;
+      near = detail::walk_lower_bound_by(strips.data(), strips.size(), y, near,
+                                         [](const Strip& st) { return st.hi; });
       return near;
     };
     // Each edge, clipped to every strip it meets, widens that strip's x extent.

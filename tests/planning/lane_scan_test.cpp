@@ -241,8 +241,9 @@ TEST(CoverageSamples, TheSamplesOfThePlainMergeBitForBit) {
   EXPECT_GT(on_rows, 100u);  // the grids do put boundary samples on the rows
 }
 
-// walk_lower_bound() must land where std::lower_bound lands, from any hint: ascending keys with
-// repeats, values on keys, between, beyond both ends and NaN, hints anywhere (past the end too).
+// walk_lower_bound() (and walk_lower_bound_by()) must land where std::lower_bound lands, from any
+// hint: ascending keys with repeats, values on keys, between, beyond both ends and NaN, hints
+// anywhere (past the end too).
 TEST(WalkLowerBound, LandsWhereTheSearchLands) {
   test::Rng rng(5254);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -260,6 +261,13 @@ TEST(WalkLowerBound, LandsWhereTheSearchLands) {
       const auto truth =
           std::size_t(std::lower_bound(keys.begin(), keys.end(), value) - keys.begin());
       ASSERT_EQ(walk_lower_bound(keys.data(), keys.size(), value, hint), truth)
+          << "set " << k << ", value " << value << ", hint " << hint;
+      // The same walk over items by a key of theirs (sweep.cpp's strips by their tops).
+      std::vector<std::pair<int, double>> items;
+      for (const double key : keys) items.push_back({int(items.size()), key});
+      ASSERT_EQ(walk_lower_bound_by(items.data(), items.size(), value, hint,
+                                    [](const std::pair<int, double>& item) { return item.second; }),
+                truth)
           << "set " << k << ", value " << value << ", hint " << hint;
       far_walks += hint > truth + 1 || hint + 1 < truth;
     }
