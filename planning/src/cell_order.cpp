@@ -341,7 +341,7 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
   std::vector<std::size_t> candidate;
   current.suffix(p, t, order);
   // Transits bounded from below without asking the metric (routed paths are the dear part).
-  const bool bounded = p.distance_at_least_straight && p.crossing_weight >= 0;
+  const bool bounded = t.bounded();
   for (bool improved = true; improved && budget > 0;) {
     improved = false;
     for (std::size_t i = 0; i < n && budget > 0; ++i)
@@ -378,9 +378,14 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
 }  // namespace
 
 CellOrder heuristic_cell_order(const CellOrderProblem& p) {
+  if (p.cells.empty()) return {};
+  Transit t(p);
+  return cell_order_detail::heuristic_cell_order(p, t);
+}
+
+CellOrder cell_order_detail::heuristic_cell_order(const CellOrderProblem& p, Transit& t) {
   const std::size_t n = p.cells.size();
   if (n == 0) return {};
-  Transit t(p);
   std::vector<std::size_t> order;
   if (p.distance_at_least_straight) order = nearest_neighbour_grid(p);
   if (order.empty()) order = nearest_neighbour(p);
