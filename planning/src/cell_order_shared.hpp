@@ -69,6 +69,7 @@ class Transit {
     const std::size_t i = base_[c] + v;
     double& d = home_to_entry_[i];
     if (d < 0) {
+      ++asked_;
       d = p_.distance(p_.home, p_.cells[c][v].entry);
       if (!twins_.empty()) share_home(twins_[i].entry, d);
     }
@@ -78,6 +79,7 @@ class Transit {
     const std::size_t i = base_[c] + v;
     double& d = exit_to_home_[i];
     if (d < 0) {
+      ++asked_;
       d = p_.distance(p_.cells[c][v].exit, p_.home);
       if (!twins_.empty()) share_home(twins_[i].exit, d);
     }
@@ -99,6 +101,9 @@ class Transit {
     const double d = exit_to_home_[base_[c] + v];
     return d >= 0 ? d : geometry::distance(p_.cells[c][v].exit, p_.home) * (1 - 1e-12);
   }
+  /// How many answers of the metric (lengths, crossings) the memo has taken: unchanged, every
+  /// bound it gives is as it was.
+  std::uint64_t asked() const { return asked_; }
   bool from_home_known(std::size_t c, std::size_t v) const {
     return home_to_entry_[base_[c] + v] >= 0;
   }
@@ -110,6 +115,7 @@ class Transit {
     const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
     double& d = dense_ ? exit_to_entry_[at] : sparse_.try_emplace(at).first->second.length_m;
     if (d < 0) {
+      ++asked_;
       d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
       if (!twins_.empty()) share(exit_to_entry_, base_[c1] + v1, base_[c2] + v2, d);
     }
@@ -122,6 +128,7 @@ class Transit {
     const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
     std::uint64_t& m = dense_ ? crossed_[at] : sparse_.try_emplace(at).first->second.crossed;
     if (m == kUnknown) {
+      ++asked_;
       m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
       if (!twins_.empty()) share(crossed_, base_[c1] + v1, base_[c2] + v2, m);
     }
@@ -257,6 +264,7 @@ class Transit {
   const CellOrderProblem& p_;
   bool memoise_;
   bool use_bounds_;
+  std::uint64_t asked_ = 0;
   std::vector<std::size_t> base_;
   std::vector<double> home_to_entry_, exit_to_home_, exit_to_entry_;
   // Bit 63 marks "not yet asked": cell 63 never counts (the documented limit is cells below 64).
@@ -541,13 +549,19 @@ class VariantTable {
   /// the order to its end (check_at its last position), and the legs home (their bounds) stand
   /// for the tail's costs: a rejected move's objective is at least `give_up_m`, which the local
   /// search does not keep either.
-  /// Precondition: t.bounded(); from < check_at < order.size().
+  ///
+  /// `kept_to` (optional, above `from`): this table's layers `from` to `kept_to` - 1 are those of
+  /// the last call's, which had the same `from`, the same layers before it, the same cells at
+  /// positions up to kept_to - 1 (so the same cells after each: the rest are the same set) and
+  /// the same transits known, none asked since (Transit::asked()): the same sums, not redone.
+  /// Precondition: t.bounded(); from < check_at < order.size(); kept_to <= check_at.
   bool cannot_win(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
                   std::size_t from, std::size_t check_at, double give_up_m,
-                  const VariantTable* tail) {
+                  const VariantTable* tail, std::size_t kept_to = 0) {
     const std::size_t layers = check_at - from + 1;
-    low_.assign(layers * kMaxVariants, kInf);
-    low_from_.resize(layers * kMaxVariants);
+    // Every entry read below is written first (a layer's variants by low_layers()).
+    if (low_.size() < layers * kMaxVariants) low_.resize(layers * kMaxVariants, kInf);
+    low_from_.resize(std::max(low_from_.size(), layers * kMaxVariants));
     masks_.resize(layers);
     std::uint64_t after = tail ? tail->after_all_[check_at + 1] : 0;  // the cells after k
     for (std::size_t k = check_at + 1; k-- > from;) {
@@ -556,7 +570,7 @@ class VariantTable {
     }
     const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
     const std::size_t last_cell = order[check_at];
-    for (std::size_t start = from;;) {
+    for (std::size_t start = std::max(from, kept_to);;) {
       low_layers(p, t, order, from, start, check_at);
       double whole = kInf;
       std::size_t last = 0;  // the last layer's variant on the cheapest way

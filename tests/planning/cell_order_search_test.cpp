@@ -754,5 +754,61 @@ TEST(CellOrderSearch, SymmetricTransitsAskedOnceAPairKeepThePlainSearch) {
   }
 }
 
+// The local search's bounds for a block moved to j + 1 keep the layers of the move to j up to
+// j - 2 (the same cells there, the same cells after each) where the current order is the same and
+// no transit was asked since. Checked against the bounds filled afresh, each on its own memo of
+// the same problem: the same verdict and the same transits asked, move after move (one asked
+// differently shows layers that differ), for blocks of 1-3 cells moved to every j, with and
+// without crossings, transits round a wall, verdicts both ways (objectives to beat below and
+// above the current one).
+TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
+  std::mt19937_64 rng(5254);
+  std::size_t reused = 0, rejected = 0, kept_open = 0;
+  for (int k = 0; k < 16; ++k) {
+    CellOrderProblem p = runs_problem(rng, 12 + std::size_t(k), k % 2 == 0);
+    p.symmetric = k % 3 == 0;
+    const std::size_t n = p.cells.size();
+    std::vector<std::size_t> order(n);
+    for (std::size_t c = 0; c < n; ++c) order[c] = c;
+    std::shuffle(order.begin(), order.end(), rng);
+    cell_order_detail::Transit kept_t(p), fresh_t(p);
+    cell_order_detail::VariantTable kept_current, fresh_current;
+    const double objective = kept_current.fill(p, kept_t, order, 0);
+    ASSERT_EQ(fresh_current.fill(p, fresh_t, order, 0), objective);
+    kept_current.suffix(p, kept_t, order);
+    fresh_current.suffix(p, fresh_t, order);
+    std::uniform_real_distribution<double> beat(0.85, 1.02);
+    for (int round = 0; round < 12; ++round) {
+      const std::size_t len = 1 + rng() % 3, i = rng() % (n - len);
+      const double give_up_m = objective * beat(rng);
+      cell_order_detail::VariantTable kept, fresh;
+      std::size_t last_j = 0;
+      std::uint64_t asked_then = 0;
+      for (std::size_t j = i + len; j + len <= n; ++j) {
+        const std::vector<std::size_t> candidate = PlainSearch::moved(order, 0, i, j, len);
+        ASSERT_FALSE(candidate.empty());
+        const std::size_t changed_end = j + len, check_at = std::min(changed_end, n - 1);
+        if (i >= check_at) continue;
+        const std::size_t kept_to = last_j + 1 == j && asked_then == kept_t.asked() ? j - 1 : 0;
+        reused += kept_to > i;
+        last_j = j;
+        asked_then = kept_t.asked();
+        kept.keep_layers_of(kept_current, i);
+        fresh.keep_layers_of(fresh_current, i);
+        const bool no = kept.cannot_win(p, kept_t, candidate, i, check_at, give_up_m,
+                                        changed_end < n ? &kept_current : nullptr, kept_to);
+        const bool fresh_no = fresh.cannot_win(p, fresh_t, candidate, i, check_at, give_up_m,
+                                               changed_end < n ? &fresh_current : nullptr);
+        ASSERT_EQ(no, fresh_no) << "problem " << k << " i " << i << " j " << j;
+        ASSERT_EQ(kept_t.asked(), fresh_t.asked()) << "problem " << k << " i " << i << " j " << j;
+        (no ? rejected : kept_open) += 1;
+      }
+    }
+  }
+  EXPECT_GT(reused, 100u);
+  EXPECT_GT(rejected, 0u);
+  EXPECT_GT(kept_open, 0u);
+}
+
 }  // namespace
 }  // namespace swath::planning
