@@ -334,14 +334,27 @@ bool moved(const std::vector<std::size_t>& order, int move, std::size_t i, std::
 // candidate's cells after the positions a move changes are the current order's: once the first
 // of them is filled, the current order's suffix costs tell whether the candidate can win, without
 // the layers after it (fill()'s `tail`; the same candidates are kept).
+//
+// A block of `len` cells moved from i to j > i leaves at positions i to j - 1 the cells from
+// i + len to j + len - 1: the move to j + 1 has the cells of the move to j there up to j - 2, and
+// so the same cells after each (the rest). Each block length has its own table, whose bounds'
+// layers (cannot_win()) of the move to j are kept for the move to j + 1 where nothing they sum
+// changed in between: the same current order (its layers before i), no transit asked since
+// before the move to j was bounded. The same layers, from j - 1 on only.
 void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t>& order,
                   CellOrder& best, std::size_t reach, std::size_t& budget, VariantTable& current) {
   const std::size_t n = order.size();
-  VariantTable trial;
+  std::array<VariantTable, 4> tables;  // block moves of 1-3 cells, then the swaps and reversals
+  struct Kept {
+    std::size_t i = std::size_t(-1), j = 0;
+    std::uint64_t asked = 0, version = 0;
+  };
+  std::array<Kept, 3> kept;   // per block length: the last move bounded
+  std::uint64_t version = 0;  // the current order's: one more each time it improves
   std::vector<std::size_t> candidate;
   current.suffix(p, t, order);
   // Transits bounded from below without asking the metric (routed paths are the dear part).
-  const bool bounded = p.distance_at_least_straight && p.crossing_weight >= 0;
+  const bool bounded = t.bounded();
   for (bool improved = true; improved && budget > 0;) {
     improved = false;
     for (std::size_t i = 0; i < n && budget > 0; ++i)
@@ -354,13 +367,22 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
                                changed_end))
             continue;
           --budget;
+          VariantTable& trial = tables[std::size_t(std::min(kind, 3))];
           trial.keep_layers_of(current, std::min(i, j));
           // Where the move changes the order to its end, the legs home stand for the tail.
           const std::size_t check_at = std::min(changed_end, n - 1);
-          if (bounded && std::min(i, j) < check_at &&
-              trial.cannot_win(p, t, candidate, std::min(i, j), check_at, best.objective_m - 1e-9,
-                               changed_end < n ? &current : nullptr))
-            continue;
+          if (bounded && std::min(i, j) < check_at) {
+            std::size_t kept_to = 0;
+            if (kind < 3 && j > i) {
+              Kept& k = kept[std::size_t(kind)];
+              if (k.i == i && k.j + 1 == j && k.asked == t.asked() && k.version == version)
+                kept_to = j - 1;
+              k = {i, j, t.asked(), version};
+            }
+            if (trial.cannot_win(p, t, candidate, std::min(i, j), check_at, best.objective_m - 1e-9,
+                                 changed_end < n ? &current : nullptr, kept_to))
+              continue;
+          }
           const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9,
                                           &current, changed_end);
           if (tried < best.objective_m - 1e-9) {
@@ -369,6 +391,7 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
             order.swap(candidate);
             std::swap(current, trial);
             current.suffix(p, t, order);
+            ++version;
             improved = true;
           }
         }
@@ -378,9 +401,14 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
 }  // namespace
 
 CellOrder heuristic_cell_order(const CellOrderProblem& p) {
+  if (p.cells.empty()) return {};
+  Transit t(p);
+  return cell_order_detail::heuristic_cell_order(p, t);
+}
+
+CellOrder cell_order_detail::heuristic_cell_order(const CellOrderProblem& p, Transit& t) {
   const std::size_t n = p.cells.size();
   if (n == 0) return {};
-  Transit t(p);
   std::vector<std::size_t> order;
   if (p.distance_at_least_straight) order = nearest_neighbour_grid(p);
   if (order.empty()) order = nearest_neighbour(p);

@@ -41,7 +41,10 @@ inline double penalised(double d, double weight, std::uint64_t crossed_unflown) 
 class Transit {
  public:
   /// `memoise`: keep exit-to-entry lengths (an n² table) for searches that ask again and again.
-  explicit Transit(const CellOrderProblem& p, bool memoise = true) : p_(p), memoise_(memoise) {
+  /// `use_bounds` false: bounded() is false whatever the problem (the searches ask every transit
+  /// they look at; a test's reference for how many the bounds leave unasked).
+  explicit Transit(const CellOrderProblem& p, bool memoise = true, bool use_bounds = true)
+      : p_(p), memoise_(memoise), use_bounds_(use_bounds) {
     std::size_t offset = 0;
     for (const auto& cell : p.cells) {
       base_.push_back(offset);
@@ -60,22 +63,33 @@ class Transit {
     home_to_entry_.assign(n, -1.0);
     exit_to_home_.assign(n, -1.0);
     size_ = n;
+    if (memoise_ && dense_ && p.symmetric) find_twins();
   }
   double from_home(std::size_t c, std::size_t v) {
-    double& d = home_to_entry_[base_[c] + v];
-    if (d < 0) d = p_.distance(p_.home, p_.cells[c][v].entry);
+    const std::size_t i = base_[c] + v;
+    double& d = home_to_entry_[i];
+    if (d < 0) {
+      ++asked_;
+      d = p_.distance(p_.home, p_.cells[c][v].entry);
+      if (!twins_.empty()) share_home(twins_[i].entry, d);
+    }
     return d;
   }
   double to_home(std::size_t c, std::size_t v) {
-    double& d = exit_to_home_[base_[c] + v];
-    if (d < 0) d = p_.distance(p_.cells[c][v].exit, p_.home);
+    const std::size_t i = base_[c] + v;
+    double& d = exit_to_home_[i];
+    if (d < 0) {
+      ++asked_;
+      d = p_.distance(p_.cells[c][v].exit, p_.home);
+      if (!twins_.empty()) share_home(twins_[i].exit, d);
+    }
     return d;
   }
   /// Whether transits may be left unasked where their lower bounds (lower_cost(), low_from_home(),
   /// low_to_home()) already decide: memoised, `distance_at_least_straight` and a crossing weight
   /// >= 0 (lower_cost()'s precondition).
   bool bounded() const {
-    return memoise_ && p_.distance_at_least_straight && p_.crossing_weight >= 0;
+    return use_bounds_ && memoise_ && p_.distance_at_least_straight && p_.crossing_weight >= 0;
   }
   /// At most from_home(c, v), without asking: the leg where known, else the straight length less
   /// 1e-12 of it (precondition as for lower_cost()).
@@ -87,6 +101,9 @@ class Transit {
     const double d = exit_to_home_[base_[c] + v];
     return d >= 0 ? d : geometry::distance(p_.cells[c][v].exit, p_.home) * (1 - 1e-12);
   }
+  /// How many answers of the metric (lengths, crossings) the memo has taken: unchanged, every
+  /// bound it gives is as it was.
+  std::uint64_t asked() const { return asked_; }
   bool from_home_known(std::size_t c, std::size_t v) const {
     return home_to_entry_[base_[c] + v] >= 0;
   }
@@ -97,7 +114,11 @@ class Transit {
     if (!memoise_) return p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
     double& d = dense_ ? exit_to_entry_[at] : sparse_.try_emplace(at).first->second.length_m;
-    if (d < 0) d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
+    if (d < 0) {
+      ++asked_;
+      d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
+      if (!twins_.empty()) share(exit_to_entry_, base_[c1] + v1, base_[c2] + v2, d);
+    }
     return d;
   }
   /// The cells whose lanes the transit crosses (0 without problem.crossed).
@@ -106,7 +127,11 @@ class Transit {
     if (!memoise_) return p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
     const std::size_t at = (base_[c1] + v1) * size_ + base_[c2] + v2;
     std::uint64_t& m = dense_ ? crossed_[at] : sparse_.try_emplace(at).first->second.crossed;
-    if (m == kUnknown) m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
+    if (m == kUnknown) {
+      ++asked_;
+      m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
+      if (!twins_.empty()) share(crossed_, base_[c1] + v1, base_[c2] + v2, m);
+    }
     return m;
   }
   /// At most cost(c1, v1, c2, v2, unflown), without asking the metric: the cost where known, the
@@ -238,6 +263,8 @@ class Transit {
  private:
   const CellOrderProblem& p_;
   bool memoise_;
+  bool use_bounds_;
+  std::uint64_t asked_ = 0;
   std::vector<std::size_t> base_;
   std::vector<double> home_to_entry_, exit_to_home_, exit_to_entry_;
   // Bit 63 marks "not yet asked": cell 63 never counts (the documented limit is cells below 64).
@@ -252,6 +279,59 @@ class Transit {
   bool dense_ = true;
   std::unordered_map<std::size_t, Known> sparse_;  ///< beyond kDenseVariants: by index
   std::size_t size_ = 0;
+
+  // Twins (problem.symmetric, dense tables): the entries of the tables that are one pair of points
+  // either way round. A one-lane run's exit is its other variant's entry, so the transit from one
+  // run to another is also a transit from that one back (an n-run candidate has each pair of
+  // points in up to 2 x 2 places), and a leg from home to a point is the leg home from it. The
+  // metric answers a pair the same whichever entry asks it (CellOrderProblem::symmetric): an
+  // answer written into its twins is what asking them would give, so every search reads the same
+  // values and decides the same, with one question a pair where there were up to four (and the
+  // twins' costs known exactly, not bounded, where the searches look at them).
+  struct Ends {
+    std::uint32_t entry, exit;  ///< the variant's points, numbered
+  };
+  std::vector<Ends> twins_;                                        ///< per variant index
+  std::vector<std::vector<std::uint32_t>> exits_at_, entries_at_;  ///< per point: variant indices
+  void find_twins() {
+    std::unordered_map<std::uint64_t, std::vector<std::pair<geometry::Point2, std::uint32_t>>> ids;
+    std::uint32_t count = 0;
+    const auto id = [&](geometry::Point2 q) {
+      // Equal points (as doubles compare: -0 == 0) get one number.
+      const double x = q.x == 0 ? 0.0 : q.x, y = q.y == 0 ? 0.0 : q.y;
+      auto& bucket = ids[std::bit_cast<std::uint64_t>(x) * 0x9e3779b97f4a7c15ull ^
+                         std::bit_cast<std::uint64_t>(y)];
+      for (const auto& [at, k] : bucket)
+        if (at.x == q.x && at.y == q.y) return k;
+      bucket.push_back({q, count});
+      return count++;
+    };
+    twins_.resize(size_);
+    for (std::size_t c = 0; c < p_.cells.size(); ++c)
+      for (std::size_t v = 0; v < p_.cells[c].size(); ++v)
+        twins_[base_[c] + v] = {id(p_.cells[c][v].entry), id(p_.cells[c][v].exit)};
+    exits_at_.assign(count, {});
+    entries_at_.assign(count, {});
+    for (std::size_t i = 0; i < size_; ++i) {
+      exits_at_[twins_[i].exit].push_back(std::uint32_t(i));
+      entries_at_[twins_[i].entry].push_back(std::uint32_t(i));
+    }
+  }
+  /// `value`, the answer for the transit from variant i's exit to variant j's entry, into every
+  /// entry of `table` from a variant leaving at either point to one entered at the other.
+  template <class T>
+  void share(std::vector<T>& table, std::size_t i, std::size_t j, T value) {
+    const std::uint32_t a = twins_[i].exit, b = twins_[j].entry;
+    for (const std::uint32_t from : exits_at_[a])
+      for (const std::uint32_t to : entries_at_[b]) table[from * size_ + to] = value;
+    for (const std::uint32_t from : exits_at_[b])
+      for (const std::uint32_t to : entries_at_[a]) table[from * size_ + to] = value;
+  }
+  /// `d`, the leg between home and point `at`, into both legs' tables wherever `at` is an end.
+  void share_home(std::uint32_t at, double d) {
+    for (const std::uint32_t i : entries_at_[at]) home_to_entry_[i] = d;
+    for (const std::uint32_t i : exits_at_[at]) exit_to_home_[i] = d;
+  }
 };
 
 inline std::uint64_t bit(std::size_t cell) {
@@ -469,13 +549,19 @@ class VariantTable {
   /// the order to its end (check_at its last position), and the legs home (their bounds) stand
   /// for the tail's costs: a rejected move's objective is at least `give_up_m`, which the local
   /// search does not keep either.
-  /// Precondition: t.bounded(); from < check_at < order.size().
+  ///
+  /// `kept_to` (optional, above `from`): this table's layers `from` to `kept_to` - 1 are those of
+  /// the last call's, which had the same `from`, the same layers before it, the same cells at
+  /// positions up to kept_to - 1 (so the same cells after each: the rest are the same set) and
+  /// the same transits known, none asked since (Transit::asked()): the same sums, not redone.
+  /// Precondition: t.bounded(); from < check_at < order.size(); kept_to <= check_at.
   bool cannot_win(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
                   std::size_t from, std::size_t check_at, double give_up_m,
-                  const VariantTable* tail) {
+                  const VariantTable* tail, std::size_t kept_to = 0) {
     const std::size_t layers = check_at - from + 1;
-    low_.assign(layers * kMaxVariants, kInf);
-    low_from_.resize(layers * kMaxVariants);
+    // Every entry read below is written first (a layer's variants by low_layers()).
+    if (low_.size() < layers * kMaxVariants) low_.resize(layers * kMaxVariants, kInf);
+    low_from_.resize(std::max(low_from_.size(), layers * kMaxVariants));
     masks_.resize(layers);
     std::uint64_t after = tail ? tail->after_all_[check_at + 1] : 0;  // the cells after k
     for (std::size_t k = check_at + 1; k-- > from;) {
@@ -484,7 +570,7 @@ class VariantTable {
     }
     const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
     const std::size_t last_cell = order[check_at];
-    for (std::size_t start = from;;) {
+    for (std::size_t start = std::max(from, kept_to);;) {
       low_layers(p, t, order, from, start, check_at);
       double whole = kInf;
       std::size_t last = 0;  // the last layer's variant on the cheapest way
@@ -612,6 +698,10 @@ class VariantTable {
   std::vector<std::uint64_t> masks_;      ///< cannot_win(): the cells after each of its layers
   std::size_t last_ = 0;
 };
+
+/// heuristic_cell_order() with its transits in `t` (Transit(p, true, false): every transit the
+/// search looks at asked, the same order).
+CellOrder heuristic_cell_order(const CellOrderProblem& p, Transit& t);
 
 inline CellOrder best_variants(const CellOrderProblem& p, Transit& t,
                                const std::vector<std::size_t>& order) {

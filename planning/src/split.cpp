@@ -405,6 +405,9 @@ SplitPlan ordered_plan(Candidate& c, Point2 home, RoutedMetric& routed) {
   CellOrderProblem problem =
       problem_for(c, home, [&routed](Point2 a, Point2 b) { return routed(a, b); });
   problem.distance_at_least_straight = true;  // a path inside the area, or the straight leg
+  // RoutedMetric keeps one path per pair of ends (from the lexicographically smaller), so its
+  // length and the lanes it crosses are the same either way and whenever asked.
+  problem.symmetric = true;
   const LaneCrossings crossings(c);
   problem.crossed = [&](Point2 a, Point2 b) { return crossings(routed.path(a, b)); };
   const CellOrder order = order_cells(problem);

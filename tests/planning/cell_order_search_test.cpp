@@ -567,7 +567,8 @@ TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
 // searches leave transits unasked where the straight bounds already decide (fill()'s layers,
 // cannot_win()'s cheapest ways, the legs home): the same orders as the plain search's, bit for
 // bit, on spread problems, on a grid and with variants repeated (ties), with and without
-// crossings, and fewer transits asked than with the bounds unused.
+// crossings, and fewer transits asked than by the same search with the bounds unused (the same
+// start: nearest neighbour on the grid; every transit a fill or a move looks at asked).
 TEST(CellOrderSearch, TransitsRoundAWallAskedOnlyWhereTheBoundsCannotDecide) {
   std::mt19937_64 rng(5219);
   const auto crosses = [](geometry::Point2 a, geometry::Point2 b, geometry::Point2 c,
@@ -598,10 +599,12 @@ TEST(CellOrderSearch, TransitsRoundAWallAskedOnlyWhereTheBoundsCannotDecide) {
                       geometry::distance(a, w1) + geometry::distance(w1, b));
     };
     const CellOrder truth = PlainSearch{p}.heuristic();
+    p.distance_at_least_straight = true;
     std::set<std::array<double, 4>> eager, lazy;
     asked = &eager;
-    const CellOrder plain = heuristic_cell_order(p);
-    p.distance_at_least_straight = true;
+    cell_order_detail::Transit every(p, true, false);
+    ASSERT_FALSE(every.bounded());
+    const CellOrder plain = cell_order_detail::heuristic_cell_order(p, every);
     asked = &lazy;
     const CellOrder fast = heuristic_cell_order(p);
     asked = nullptr;
@@ -615,6 +618,196 @@ TEST(CellOrderSearch, TransitsRoundAWallAskedOnlyWhereTheBoundsCannotDecide) {
     }
     EXPECT_LT(lazy.size(), eager.size()) << "problem " << k;
   }
+}
+
+// Cells as a split's sweeps make them: a run of one lane flown either way (its exit the other
+// variant's entry), a cell of two lanes with four variants whose ends are the lanes' ends, a few
+// ends shared between cells and one at home. A metric symmetric bit for bit (the way round a
+// wall, as a router's: the same sums either way) and crossings of the pair of ends.
+CellOrderProblem runs_problem(std::mt19937_64& rng, std::size_t n, bool crossings) {
+  std::uniform_real_distribution<double> coordinate(-500, 500);
+  CellOrderProblem p;
+  p.home = {-600, -600};
+  std::vector<geometry::Point2> ends;
+  const auto point = [&] {
+    if (!ends.empty() && rng() % 8 == 0) return ends[rng() % ends.size()];
+    if (rng() % 40 == 0) return p.home;
+    ends.push_back({coordinate(rng), coordinate(rng)});
+    return ends.back();
+  };
+  for (std::size_t c = 0; c < n; ++c) {
+    const geometry::Point2 a0 = point(), b0 = point();
+    const double lane0 = geometry::distance(a0, b0);
+    if (rng() % 3 != 0) {
+      p.cells.push_back({{a0, b0, lane0}, {b0, a0, lane0}});
+      continue;
+    }
+    const geometry::Point2 a1 = point(), b1 = point();
+    const double inside = lane0 + geometry::distance(a1, b1) + 50;
+    p.cells.push_back({{a0, a1, inside}, {b0, b1, inside}, {a1, a0, inside}, {b1, b0, inside}});
+  }
+  const geometry::Point2 w0{-300, -50}, w1{250, 350};
+  const auto side = [](geometry::Point2 o, geometry::Point2 q, geometry::Point2 r) {
+    const double x = geometry::cross(q - o, r - o);
+    return (x > 0) - (x < 0);
+  };
+  p.distance = [=](geometry::Point2 a, geometry::Point2 b) {
+    if (side(a, b, w0) * side(a, b, w1) >= 0 || side(w0, w1, a) * side(w0, w1, b) >= 0)
+      return geometry::distance(a, b);
+    return std::min(geometry::distance(a, w0) + geometry::distance(w0, b),
+                    geometry::distance(a, w1) + geometry::distance(w1, b));
+  };
+  if (crossings)
+    p.crossed = [](geometry::Point2 a, geometry::Point2 b) {
+      if (std::pair{b.x, b.y} < std::pair{a.x, a.y}) std::swap(a, b);
+      const auto h = std::hash<double>{}(a.x * 3 + b.y) ^ std::hash<double>{}(a.y - 7 * b.x);
+      return std::uint64_t(h) & (std::uint64_t(h) >> 7) & 0x7fffffffffffffffull;
+    };
+  p.distance_at_least_straight = true;
+  return p;
+}
+
+// With a symmetric metric a transit's answer is written into its twins (the same pair of points
+// either way round, the legs from and to home at one point): every entry the table then holds is
+// the metric's own answer (asked here of the metric afresh for every entry, ends and legs home),
+// after a search and after transits asked at random.
+TEST(CellOrderSearch, SymmetricTransitsSharedWithTheirTwinsAreTheMetricsAnswers) {
+  std::mt19937_64 rng(5252);
+  for (int k = 0; k < 12; ++k) {
+    CellOrderProblem p = runs_problem(rng, 8 + std::size_t(k) * 4, k % 2 == 0);
+    p.symmetric = true;
+    cell_order_detail::Transit t(p);
+    if (k % 3 == 0) {
+      (void)cell_order_detail::heuristic_cell_order(p, t);
+    } else {
+      for (int ask = 0; ask < 60; ++ask) {
+        const std::size_t c1 = rng() % p.cells.size(), c2 = rng() % p.cells.size();
+        const std::size_t v1 = rng() % p.cells[c1].size(), v2 = rng() % p.cells[c2].size();
+        if (rng() % 4 == 0)
+          (void)(rng() % 2 ? t.from_home(c1, v1) : t.to_home(c2, v2));
+        else
+          (void)t.cost(c1, v1, c2, v2, rng());
+      }
+    }
+    std::size_t known = 0, entries = 0;
+    for (std::size_t c1 = 0; c1 < p.cells.size(); ++c1)
+      for (std::size_t v1 = 0; v1 < p.cells[c1].size(); ++v1) {
+        const CellVariant& from = p.cells[c1][v1];
+        if (t.from_home_known(c1, v1))
+          ASSERT_EQ(t.low_from_home(c1, v1), p.distance(p.home, from.entry)) << "problem " << k;
+        if (t.to_home_known(c1, v1))
+          ASSERT_EQ(t.low_to_home(c1, v1), p.distance(from.exit, p.home)) << "problem " << k;
+        for (std::size_t c2 = 0; c2 < p.cells.size(); ++c2)
+          for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
+            const CellVariant& to = p.cells[c2][v2];
+            const std::uint64_t unflown = rng();
+            double cost = 0;
+            ++entries;
+            if (!t.cost_if_known(c1, v1, c2, v2, unflown, cost)) continue;
+            ++known;
+            const double d = p.distance(from.exit, to.entry);
+            const double truth =
+                p.crossed ? cell_order_detail::penalised(d, p.crossing_weight,
+                                                         p.crossed(from.exit, to.entry) & unflown)
+                          : d;
+            ASSERT_EQ(cost, truth) << "problem " << k;
+          }
+      }
+    EXPECT_GT(known, 0u) << "problem " << k;
+    EXPECT_LT(known, entries) << "problem " << k;
+  }
+}
+
+// A symmetric problem's orders are the plain search's bit for bit (and those of the search that
+// asks each entry for itself), asking the metric fewer times: on runs and two-lane cells with
+// shared ends, routed-like transits round a wall, with and without crossings.
+TEST(CellOrderSearch, SymmetricTransitsAskedOnceAPairKeepThePlainSearch) {
+  std::mt19937_64 rng(5253);
+#ifdef SWATH_SANITIZED
+  const int problems = 4;
+#else
+  const int problems = 12;
+#endif
+  for (int k = 0; k < problems; ++k) {
+    CellOrderProblem p = runs_problem(rng, 10 + std::size_t(k) * 3, k % 2 == 0);
+    const CellOrder truth = PlainSearch{p}.heuristic();
+    std::size_t calls = 0;
+    const auto metric = p.distance;
+    p.distance = [&](geometry::Point2 a, geometry::Point2 b) {
+      ++calls;
+      return metric(a, b);
+    };
+    const CellOrder each = heuristic_cell_order(p);
+    const std::size_t calls_each = calls;
+    calls = 0;
+    p.symmetric = true;
+    const CellOrder shared = heuristic_cell_order(p);
+    for (const CellOrder* o : {&each, &shared}) {
+      ASSERT_EQ(o->objective_m, truth.objective_m) << "problem " << k;
+      ASSERT_EQ(o->visits.size(), truth.visits.size());
+      for (std::size_t i = 0; i < truth.visits.size(); ++i) {
+        ASSERT_EQ(o->visits[i].cell, truth.visits[i].cell) << "problem " << k << " at " << i;
+        ASSERT_EQ(o->visits[i].variant, truth.visits[i].variant);
+      }
+    }
+    EXPECT_LT(calls, calls_each) << "problem " << k;
+  }
+}
+
+// The local search's bounds for a block moved to j + 1 keep the layers of the move to j up to
+// j - 2 (the same cells there, the same cells after each) where the current order is the same and
+// no transit was asked since. Checked against the bounds filled afresh, each on its own memo of
+// the same problem: the same verdict and the same transits asked, move after move (one asked
+// differently shows layers that differ), for blocks of 1-3 cells moved to every j, with and
+// without crossings, transits round a wall, verdicts both ways (objectives to beat below and
+// above the current one).
+TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
+  std::mt19937_64 rng(5254);
+  std::size_t reused = 0, rejected = 0, kept_open = 0;
+  for (int k = 0; k < 16; ++k) {
+    CellOrderProblem p = runs_problem(rng, 12 + std::size_t(k), k % 2 == 0);
+    p.symmetric = k % 3 == 0;
+    const std::size_t n = p.cells.size();
+    std::vector<std::size_t> order(n);
+    for (std::size_t c = 0; c < n; ++c) order[c] = c;
+    std::shuffle(order.begin(), order.end(), rng);
+    cell_order_detail::Transit kept_t(p), fresh_t(p);
+    cell_order_detail::VariantTable kept_current, fresh_current;
+    const double objective = kept_current.fill(p, kept_t, order, 0);
+    ASSERT_EQ(fresh_current.fill(p, fresh_t, order, 0), objective);
+    kept_current.suffix(p, kept_t, order);
+    fresh_current.suffix(p, fresh_t, order);
+    std::uniform_real_distribution<double> beat(0.85, 1.02);
+    for (int round = 0; round < 12; ++round) {
+      const std::size_t len = 1 + rng() % 3, i = rng() % (n - len);
+      const double give_up_m = objective * beat(rng);
+      cell_order_detail::VariantTable kept, fresh;
+      std::size_t last_j = 0;
+      std::uint64_t asked_then = 0;
+      for (std::size_t j = i + len; j + len <= n; ++j) {
+        const std::vector<std::size_t> candidate = PlainSearch::moved(order, 0, i, j, len);
+        ASSERT_FALSE(candidate.empty());
+        const std::size_t changed_end = j + len, check_at = std::min(changed_end, n - 1);
+        if (i >= check_at) continue;
+        const std::size_t kept_to = last_j + 1 == j && asked_then == kept_t.asked() ? j - 1 : 0;
+        reused += kept_to > i;
+        last_j = j;
+        asked_then = kept_t.asked();
+        kept.keep_layers_of(kept_current, i);
+        fresh.keep_layers_of(fresh_current, i);
+        const bool no = kept.cannot_win(p, kept_t, candidate, i, check_at, give_up_m,
+                                        changed_end < n ? &kept_current : nullptr, kept_to);
+        const bool fresh_no = fresh.cannot_win(p, fresh_t, candidate, i, check_at, give_up_m,
+                                               changed_end < n ? &fresh_current : nullptr);
+        ASSERT_EQ(no, fresh_no) << "problem " << k << " i " << i << " j " << j;
+        ASSERT_EQ(kept_t.asked(), fresh_t.asked()) << "problem " << k << " i " << i << " j " << j;
+        (no ? rejected : kept_open) += 1;
+      }
+    }
+  }
+  EXPECT_GT(reused, 100u);
+  EXPECT_GT(rejected, 0u);
+  EXPECT_GT(kept_open, 0u);
 }
 
 }  // namespace

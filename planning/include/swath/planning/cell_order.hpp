@@ -35,6 +35,11 @@ struct CellOrderProblem {
   /// routed inside an area; rounding aside): nearest neighbour (nearest_neighbour_order(),
   /// heuristic_cell_order()'s start) then asks only the cells near enough to win, same order.
   bool distance_at_least_straight = false;
+  /// Set when `distance(a, b) == distance(b, a)` and `crossed(a, b) == crossed(b, a)`, bit for
+  /// bit, and both answer a point pair the same whenever asked (a routed metric that keeps one
+  /// path per pair of ends): heuristic_cell_order() then asks a pair of points once, wherever it
+  /// recurs (a run's exit is another variant's entry), and knows its reverse too.
+  bool symmetric = false;
 };
 
 struct CellVisit {
