@@ -131,6 +131,19 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   // within near_m of a has a point within near_m of it, in the cells of the box 4 near_m round a
   // (rounding is ~1e-16 of the extent). Each is asked as every edge was (its box more than twice
   // near_m from a: far, no distance), and kept in index order.
+  // The flags are cleared once the spans are in (below), or on the way out of an exception: flags
+  // left set would leave edges out of the thread's later fans.
+  struct ClearFlags {
+    const std::vector<std::uint32_t>& set;
+    bool done = false;
+    void now() {
+      for (const std::uint32_t k : set) is_near[k] = 0;
+      done = true;
+    }
+    ~ClearFlags() {
+      if (!done) now();
+    }
+  } clear_flags{fan.near};
   const double two_near = 2 * fan.near_m;
   const Point2 reach{4 * fan.near_m, 4 * fan.near_m};
   edges_.near_box(a - reach, a + reach, [&](std::uint32_t e) {
@@ -202,8 +215,8 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
       }
     }
   }
-  for (const std::uint32_t k : fan.near) is_near[k] = 0;  // clean for the next fan
-  fan.start.assign(bin_count + 1, 0);                     // per bin, its first item; + the end
+  clear_flags.now();
+  fan.start.assign(bin_count + 1, 0);  // per bin, its first item; + the end
   std::uint32_t* const start = fan.start.data();
   std::int32_t covering = 0;
   for (std::size_t k = 0; k < bin_count; ++k) {
