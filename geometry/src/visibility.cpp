@@ -45,16 +45,26 @@ bool VisibilityRouter::inside_closed(Point2 p) const {
     on_edge |= where == EdgeAndRay::p_on_edge;
     odd ^= where == EdgeAndRay::crosses;
   };
+  // Most edges of the ray's row are apart: wholly above, below or behind p. edge_and_ray() says
+  // so by its first test, written out here before the call (mirrored for the ray to the left:
+  // -x < -p.x is x > p.x), so that those edges cost no call.
   const auto [right, left] = edges_.ray_items(p);
+  const Segment* const segments = edges_.segments().data();
   if (left < right) {
     const auto mirrored = [](Point2 x) { return Point2{-x.x, x.y}; };
     edges_.near_ray_left(p, [&](std::uint32_t e) {
-      const Segment& s = edges_.segments()[e];
+      const Segment& s = segments[e];
+      if ((s.a.y > p.y && s.b.y > p.y) || (s.a.y < p.y && s.b.y < p.y) ||
+          (s.a.x > p.x && s.b.x > p.x))
+        return;
       count(edge_and_ray(mirrored(p), mirrored(s.a), mirrored(s.b)));
     });
   } else {
     edges_.near_ray_right(p, [&](std::uint32_t e) {
-      const Segment& s = edges_.segments()[e];
+      const Segment& s = segments[e];
+      if ((s.a.y > p.y && s.b.y > p.y) || (s.a.y < p.y && s.b.y < p.y) ||
+          (s.a.x < p.x && s.b.x < p.x))
+        return;
       count(edge_and_ray(p, s.a, s.b));
     });
   }
@@ -105,6 +115,7 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   Fan fan;
   fan.near_m = 1e-6 * (1 + std::max({extent_m_, std::abs(a.x), std::abs(a.y)}));
   const long bins = long(fan_bins_);
+  const std::size_t edge_count = edges_.segments().size();
   // Per edge, its first bin (wrapped) and how many bins it spans (0: near, in no bin).
   struct Span {
     std::uint32_t first, bins;
@@ -112,8 +123,54 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   thread_local std::vector<Span> spans;
   thread_local std::vector<double> angles;       // per vertex of a ring, its diamond angle from a
   thread_local std::vector<std::int32_t> steps;  // per bin, edges whose span starts - ends there
-  spans.resize(edges_.segments().size());
+  thread_local std::vector<char> is_near;        // per edge: in fan.near
+  spans.resize(edge_count);
   steps.assign(fan_bins_ + 1, 0);
+  if (is_near.size() < edge_count) is_near.resize(edge_count, 0);
+  // The near edges first, from the index round a (not a box test per edge of the area): an edge
+  // within near_m of a has a point within near_m of it, in the cells of the box 4 near_m round a
+  // (rounding is ~1e-16 of the extent). Each is asked as every edge was (its box more than twice
+  // near_m from a: far, no distance), and kept in index order.
+  // The flags are cleared once the spans are in (below), or on the way out of an exception: flags
+  // left set would leave edges out of the thread's later fans.
+  struct ClearFlags {
+    const std::vector<std::uint32_t>& set;
+    bool done = false;
+    void now() {
+      for (const std::uint32_t k : set) is_near[k] = 0;
+      done = true;
+    }
+    ~ClearFlags() {
+      if (!done) now();
+    }
+  } clear_flags{fan.near};
+  const double two_near = 2 * fan.near_m;
+  const Point2 reach{4 * fan.near_m, 4 * fan.near_m};
+  edges_.near_box(a - reach, a + reach, [&](std::uint32_t e) {
+    if (is_near[e]) return;  // found again (in another cell)
+    const Box& box = edge_boxes_[e];
+    const bool far = a.x < box.x0 - two_near || a.x > box.x1 + two_near ||
+                     a.y < box.y0 - two_near || a.y > box.y1 + two_near;
+    const Segment& s = edges_.segments()[e];
+    if (!far && distance_to_segment(a, s.a, s.b) <= fan.near_m) {
+      is_near[e] = 1;
+      fan.near.push_back(e);
+    }
+  });
+  std::sort(fan.near.begin(), fan.near.end());
+  // Locals for the loop below, which stores through pointers the compiler cannot tell apart from
+  // these members.
+  Span* const span_of = spans.data();
+  std::int32_t* const step = steps.data();
+  const char* const near_flag = is_near.data();
+  const double per_unit = bins_per_unit_;
+  const std::size_t bin_count = fan_bins_;
+  // fan_bin(), on the locals.
+  const auto bin_of = [per_unit](double diamond_angle) {
+    const double v = diamond_angle * per_unit;
+    const long k = long(v);
+    return k - long(double(k) > v);
+  };
   // A bin index taken round the turn: lo is at least -bins / 2 - 1 and at most bins, so a step
   // either way wraps it (the general form kept for safety).
   const auto wrapped = [bins](long k) {
@@ -128,52 +185,53 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start.
     // (a's own vertex gets NaN, unused: the edges at it are near.)
     angles.resize(n);
-    for (std::size_t i = 0; i < n; ++i) angles[i] = diamond(ring[i].x - a.x, ring[i].y - a.y);
+    double* const angle = angles.data();
+    for (std::size_t i = 0; i < n; ++i) angle[i] = diamond(ring[i].x - a.x, ring[i].y - a.y);
     for (std::size_t i = 0; i < n; ++i, ++e) {
-      // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
-      // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
-      const Box& box = edge_boxes_[e];
-      const bool far = a.x < box.x0 - 2 * fan.near_m || a.x > box.x1 + 2 * fan.near_m ||
-                       a.y < box.y0 - 2 * fan.near_m || a.y > box.y1 + 2 * fan.near_m;
-      if (!far && distance_to_segment(a, ring[i], ring[i + 1 == n ? 0 : i + 1]) <= fan.near_m) {
-        fan.near.push_back(e);
-        spans[e] = {0, 0};
+      if (near_flag[e]) {
+        span_of[e] = {0, 0};
         continue;
       }
-      const double tp = angles[i], tq = angles[i + 1 == n ? 0 : i + 1];
+      const double tp = angle[i], tq = angle[i + 1 == n ? 0 : i + 1];
       double turn = tq - tp;
       if (turn > 2)
         turn -= 4;
       else if (turn < -2)
         turn += 4;
-      const long lo = fan_bin(std::min(tp, tp + turn) - kMargin);
-      const long hi = std::min(fan_bin(std::max(tp, tp + turn) + kMargin), lo + bins - 1);
-      spans[e] = {wrapped(lo), std::uint32_t(hi - lo + 1)};
+      const long lo = bin_of(std::min(tp, tp + turn) - kMargin);
+      const long hi = std::min(bin_of(std::max(tp, tp + turn) + kMargin), lo + bins - 1);
+      const std::uint32_t first = wrapped(lo), spanned = std::uint32_t(hi - lo + 1);
+      span_of[e] = {first, spanned};
       // Counted per span, not per bin (a fan holds several times as many items as edges): +1
       // where it starts, -1 past its end, in two pieces where it wraps past the last bin.
-      const std::size_t first = spans[e].first, end = first + spans[e].bins;
-      ++steps[first];
-      if (end <= fan_bins_) {
-        --steps[end];
+      const std::size_t end = std::size_t(first) + spanned;
+      ++step[first];
+      if (end <= bin_count) {
+        --step[end];
       } else {
-        --steps[fan_bins_];
-        ++steps[0];
-        --steps[end - fan_bins_];
+        --step[bin_count];
+        ++step[0];
+        --step[end - bin_count];
       }
     }
   }
-  std::vector<std::uint32_t> count(fan_bins_ + 1, 0);  // per bin, its first item; + the end
+  clear_flags.now();
+  fan.start.assign(bin_count + 1, 0);  // per bin, its first item; + the end
+  std::uint32_t* const start = fan.start.data();
   std::int32_t covering = 0;
-  for (std::size_t k = 0; k < fan_bins_; ++k) {
-    covering += steps[k];
-    count[k + 1] = count[k] + std::uint32_t(covering);
+  for (std::size_t k = 0; k < bin_count; ++k) {
+    covering += step[k];
+    start[k + 1] = start[k] + std::uint32_t(covering);
   }
-  fan.start = count;
-  fan.items.resize(count.back());
+  fan.items.resize(start[bin_count]);
+  thread_local std::vector<std::uint32_t> cursor;  // per bin, its next free item
+  cursor.assign(fan.start.begin(), fan.start.end() - 1);
+  std::uint32_t* const next = cursor.data();
+  std::uint32_t* const items = fan.items.data();
   for (std::uint32_t edge = 0; edge < e; ++edge)
-    for (std::uint32_t k = spans[edge].first, left = spans[edge].bins; left > 0;
-         --left, k = k + 1 == fan_bins_ ? 0 : k + 1)
-      fan.items[count[k]++] = edge;
+    for (std::uint32_t k = span_of[edge].first, left = span_of[edge].bins; left > 0;
+         --left, k = k + 1 == bin_count ? 0 : k + 1)
+      items[next[k]++] = edge;
   return fan;
 }
 

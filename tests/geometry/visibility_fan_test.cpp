@@ -184,6 +184,52 @@ TEST(VisibilityRouterFan, HoldsTheEdgesOfTheStraightforwardConstruction) {
   EXPECT_GT(near, 300u);
 }
 
+// The near edges (asked for every leg) are found round the point, not by a test of every edge:
+// points at distances from an edge on either side of the near distance (near_m) and of the box
+// rule's (2 near_m; diagonally off a vertex, where an edge's box is nearer than the edge), one
+// after another from one router (nothing of one point's fan left in the next): the fan is the
+// straightforward construction's.
+TEST(VisibilityRouterFan, NearEdgesAreFoundAtTheNearDistance) {
+  test::Rng rng(5255);
+  std::size_t near = 0, beyond = 0;
+  for (int k = 0; k < 8; ++k) {
+    const std::vector<Ring> rings = area(rng, k);
+    const VisibilityRouter router(rings);
+    std::vector<std::pair<Point2, Point2>> edges;
+    for (const Ring& ring : rings)
+      for (std::size_t i = 0; i < ring.size(); ++i)
+        edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    std::uniform_int_distribution<std::size_t> pick(0, edges.size() - 1);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int q = 0; q < 60; ++q) {
+      const auto [p, r] = edges[pick(rng)];
+      const Point2 along = r - p;
+      const double length = std::hypot(along.x, along.y);
+      const Point2 normal{-along.y / length, along.x / length};
+      const Point2 on = q % 2 ? p + along * unit(rng) : p;  // on the edge, or at its vertex
+      const Point2 off = q % 2 ? normal : Point2{std::sqrt(0.5), std::sqrt(0.5)};
+      const double near_m =
+          1e-6 * (1 + std::max({Probe::extent_m(router), std::abs(on.x), std::abs(on.y)}));
+      for (const double times : {0.3, 0.9, 0.999, 1.001, 1.1, 1.9, 1.999, 2.001, 2.1, 3.0}) {
+        for (const double side : {1.0, -1.0}) {
+          const Point2 a = on + off * (side * times * near_m);
+          const auto fan = Probe::fan_of(router, a);
+          const ReferenceFan truth = reference_fan(router, rings, a);
+          SCOPED_TRACE(::testing::Message() << "area " << k << " from (" << a.x << ", " << a.y
+                                            << "), " << times << " near_m off an edge");
+          ASSERT_EQ(fan.near, truth.near);
+          ASSERT_EQ(fan.start, truth.start);
+          ASSERT_EQ(fan.items, truth.items);
+          (times < 1 ? near : beyond) += fan.near.size();
+        }
+      }
+    }
+  }
+  // Edges within the near distance are near; some beyond it too (other edges of the corner).
+  EXPECT_GT(near, 2000u);
+  EXPECT_GT(beyond, 100u);
+}
+
 TEST(VisibilityRouterFan, LegsThroughAFanAreMeasuredAsOverEveryEdge) {
   test::Rng rng(5254);
   std::size_t seen = 0, hidden = 0;
