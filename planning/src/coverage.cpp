@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace swath::planning {
@@ -127,30 +128,72 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
     const int n = std::max(1, static_cast<int>(std::ceil(rows * h / total)));
     for (int i = 0; i < n; ++i) samples.push_back({events[k] + (i + 0.5) * h / n, h / n, nullptr});
   }
+  const auto slab_samples = static_cast<std::ptrdiff_t>(samples.size());
   for (const Band& b : bands) samples.push_back({b.y, 0.0, &b});
-  std::sort(samples.begin(), samples.end(),
-            [](const Sample& a, const Sample& b) { return a.y < b.y; });
+  // The slabs' samples come out increasing, the lines' nearly so. Where both runs increase
+  // strictly and share no ordinate, the order by y is total: merging the runs gives the order
+  // std::sort gives. Otherwise (equal ordinates, whose order std::sort alone decides) std::sort.
+  const auto by_y = [](const Sample& a, const Sample& b) { return a.y < b.y; };
+  const auto strictly_increasing = [](auto first, auto last) {
+    return std::adjacent_find(
+               first, last, [](const Sample& a, const Sample& b) { return !(a.y < b.y); }) == last;
+  };
+  const auto middle = samples.begin() + slab_samples;
+  bool merged = false;
+  if (strictly_increasing(samples.begin(), middle) && strictly_increasing(middle, samples.end())) {
+    std::vector<Sample> runs;
+    runs.reserve(samples.size());
+    std::merge(samples.begin(), middle, middle, samples.end(), std::back_inserter(runs), by_y);
+    if (strictly_increasing(runs.begin(), runs.end())) {
+      samples = std::move(runs);
+      merged = true;
+    }
+  }
+  if (!merged) std::sort(samples.begin(), samples.end(), by_y);
 
   CoverageMeasure m;
+  // The active edges are kept in the order of their abscissae at the last sample: between events
+  // no edge starts or ends and (in a simple ring) none crosses another, so the next sample's
+  // abscissae come out sorted but for the edges that joined. Sorted, they are the same sequence
+  // as std::sort made of them (the one ascending order of the same values; equal values are
+  // equal doubles but for 0 and -0, whose order changes no sum below: x + 0 == x + -0 for x != 0,
+  // and the sums start at +0).
   std::vector<const Edge*> active_edges;
   std::vector<const Band*> active_bands;
   std::size_t next_edge = 0, next_band = 0;
   std::vector<double> xs;
   std::vector<Interval> inside, swath;
+  // The merged swath depends only on the set of active bands: merged again only when it changed.
+  bool bands_changed = true;
   for (const auto& [y, dy, line] : samples) {
     while (next_edge < edges.size() && edges[next_edge].lo.y <= y)
       active_edges.push_back(&edges[next_edge++]);
+    const std::size_t bands_joined = next_band;
     while (next_band < bands.size() && bands[next_band].y0 <= y)
       active_bands.push_back(&bands[next_band++]);
+    const std::size_t bands_before = active_bands.size();
     // A copy: clang 14 cannot capture a structured binding.
     std::erase_if(active_edges, [at = y](const Edge* e) { return e->hi.y <= at; });
     std::erase_if(active_bands, [at = y](const Band* b) { return b->y1 < at; });
+    bands_changed =
+        bands_changed || next_band != bands_joined || active_bands.size() != bands_before;
 
     xs.clear();
-    for (const Edge* e : active_edges)
-      if (e->lo.y <= y && y < e->hi.y)
-        xs.push_back(e->lo.x + (e->hi.x - e->lo.x) * (y - e->lo.y) / (e->hi.y - e->lo.y));
-    std::sort(xs.begin(), xs.end());
+    for (const Edge* e : active_edges)  // every one has lo.y <= y < hi.y
+      xs.push_back(e->lo.x + (e->hi.x - e->lo.x) * (y - e->lo.y) / (e->hi.y - e->lo.y));
+    // Insertion sort, the edges moved with their abscissae: a new edge or a crossing costs only
+    // the places it moves.
+    for (std::size_t i = 1; i < xs.size(); ++i) {
+      const double x = xs[i];
+      const Edge* e = active_edges[i];
+      std::size_t j = i;
+      for (; j > 0 && x < xs[j - 1]; --j) {
+        xs[j] = xs[j - 1];
+        active_edges[j] = active_edges[j - 1];
+      }
+      xs[j] = x;
+      active_edges[j] = e;
+    }
     inside.clear();
     for (std::size_t i = 0; i + 1 < xs.size(); i += 2) inside.push_back({xs[i], xs[i + 1]});
     if (line != nullptr) {
@@ -159,9 +202,12 @@ CoverageMeasure measure_coverage(const geometry::Polygon& area, const std::vecto
       m.line_length_outside_m += length - overlap(inside, {{line->x0, line->x1}});
       continue;
     }
-    swath.clear();
-    for (const Band* b : active_bands) swath.push_back({b->x0, b->x1});
-    merge(swath);
+    if (bands_changed) {
+      swath.clear();
+      for (const Band* b : active_bands) swath.push_back({b->x0, b->x1});
+      merge(swath);
+      bands_changed = false;
+    }
 
     add_strip(m, inside, swath, dy);
   }

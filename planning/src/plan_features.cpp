@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "files/common.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
@@ -24,8 +25,9 @@ GeoPoint rounded(const GeoPoint& g) {
   return {round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), 0.0};
 }
 
+// files::geo() as the writers have it (shared within a files::GeoMemo).
 GeoPoint geo(const SurveyPlan& plan, Point2 p) {
-  return rounded(plan.request.field.frame->to_geo(p));
+  return files::geo(plan, p);
 }
 
 GeoRing geo_ring(const SurveyPlan& plan, const geometry::Ring& ring) {

@@ -224,15 +224,18 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
     const double h = geometry::distance(l.from.xy(), l.to.xy());
     const int n = ground ? std::max(1, static_cast<int>(std::ceil(h / ground->resolution_m()))) : 1;
     std::vector<Point3> at;
-    std::vector<geometry::GeoPoint> geo;
     for (int k = 0; k <= n; ++k) {
       const double s = static_cast<double>(k) / n;
       at.push_back({l.from.x + s * (l.to.x - l.from.x), l.from.y + s * (l.to.y - l.from.y),
                     l.from.z_m + s * (l.to.z_m - l.from.z_m)});
-      geo.push_back(f.frame->to_geo(at.back().xy()));
     }
+    // Each point's position on the Earth: for the DEM, else only for a violation's place (most
+    // legs have none, and the conversion is the costly part of this check without a DEM).
+    auto geo_at = [&](std::size_t k) { return f.frame->to_geo(at[k].xy()); };
     std::vector<double> ground_m(at.size(), 0.0);
     if (ground) {
+      std::vector<geometry::GeoPoint> geo;
+      for (std::size_t k = 0; k < at.size(); ++k) geo.push_back(geo_at(k));
       ground_m = ground->heights_m(geo);
       const double home = f.home_ground_amsl_m;
       for (double& g : ground_m) g = std::isfinite(g) && std::isfinite(home) ? g - home : 0.0;
@@ -246,7 +249,7 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
     }
     if (worst_high > out.max_height_m) out.max_height_m = worst_high;
     if (worst_high > options.ceiling_m + kTolerance_m)
-      out.violations.push_back({"ceiling", l.place, geo[high_k], worst_high - options.ceiling_m,
+      out.violations.push_back({"ceiling", l.place, geo_at(high_k), worst_high - options.ceiling_m,
                                 l.place + " flies at " + fixed_text(worst_high, 1) + " m above " +
                                     (ground ? "the ground" : "home") + ", " +
                                     fixed_text(worst_high - options.ceiling_m, 1) +
@@ -256,7 +259,7 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
       out.min_height_m = std::min(out.min_height_m, worst_low);
       if (worst_low < options.min_height_m - kTolerance_m)
         out.violations.push_back(
-            {"ground", l.place, geo[low_k], options.min_height_m - worst_low,
+            {"ground", l.place, geo_at(low_k), options.min_height_m - worst_low,
              l.place + " passes " + fixed_text(worst_low, 1) + " m above the ground, " +
                  fixed_text(options.min_height_m - worst_low, 1) + " m below the least " +
                  fixed_text(options.min_height_m, 1) + " m"});

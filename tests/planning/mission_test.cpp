@@ -8,6 +8,11 @@
 #include <numbers>
 #include <random>
 
+#include "random_polygons.hpp"
+#include "steps/leg_within.hpp"
+#include "swath/geometry/offset.hpp"
+#include "swath/geometry/predicates.hpp"
+
 namespace swath::planning {
 namespace {
 
@@ -236,6 +241,64 @@ TEST(SlowApproaches, AStopOnTheBandWhereTheApproachGrazesItIsMovedBackAlongTheAp
   EXPECT_GE(free_run(p, u), stop_overrun_m(0.2, s.accel_m_s2))
       << "stop at " << p.x << ", " << p.y << " entered along " << u.x << ", " << u.y;
   EXPECT_LE(geometry::distance(p, start), 0.02);  // moved a centimetre or two at most
+}
+
+// The fence step's leg test answers legs in the clear interior of a ring without measuring: the
+// same answers as the measurement (length inside the rings at least the leg's length less 1e-6 m,
+// or for a point leg, the point in a closed ring) on random legs: across concave notches, between
+// rings, along and just off edges (within the 1 mm the shortcut leaves to the measurement),
+// through vertices, and point legs.
+TEST(LegWithin, AgreesWithTheLengthInside) {
+  test::Rng rng(52);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t inside = 0, outside = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<geometry::Ring> rings{test::random_star_polygon(rng, 5 + trial % 30, 20, 100)};
+    if (trial % 3 == 0)
+      rings.push_back(
+          test::transformed(test::random_star_polygon(rng, 8, 10, 40), 0, 150 * unit(rng), 0));
+    const geometry::Ring& ring = rings.front();
+    auto on_ring = [&](double offset_m) {
+      const std::size_t i = static_cast<std::size_t>(unit(rng) * static_cast<double>(ring.size()));
+      const geometry::Point2 a = ring[i % ring.size()], b = ring[(i + 1) % ring.size()];
+      const geometry::Point2 d = b - a;
+      const double length = geometry::distance(a, b);
+      const geometry::Point2 normal{-d.y / length, d.x / length};  // points in (ring CCW)
+      return a + d * unit(rng) + normal * offset_m;
+    };
+    auto any_point = [&]() -> geometry::Point2 {
+      switch (static_cast<int>(unit(rng) * 6)) {
+        case 0:
+          return ring[static_cast<std::size_t>(unit(rng) * static_cast<double>(ring.size())) %
+                      ring.size()];
+        case 1:
+          return on_ring(0.0);
+        case 2:
+          return on_ring((unit(rng) - 0.5) * 4e-3);  // within the clearance
+        case 3:
+          return on_ring((unit(rng) - 0.5) * 1e-9);
+        default:
+          return {-120 + 270 * unit(rng), -120 + 240 * unit(rng)};
+      }
+    };
+    for (int k = 0; k < 400; ++k) {
+      const geometry::Point2 a = any_point();
+      const geometry::Point2 b = k % 20 == 0 ? a : any_point();
+      const double length_m = geometry::distance(a, b);
+      const bool measured =
+          length_m > 0 ? geometry::length_inside({a, b}, rings) >= length_m - 1e-6
+                       : std::any_of(rings.begin(), rings.end(), [a](const geometry::Ring& r) {
+                           return geometry::locate_point(a, r) != geometry::Containment::outside;
+                         });
+      ASSERT_EQ(steps::detail::leg_within(a, b, rings), measured)
+          << "trial " << trial << " leg " << k << ": (" << a.x << ", " << a.y << ") - (" << b.x
+          << ", " << b.y << ")";
+      (measured ? inside : outside) += 1;
+    }
+  }
+  // Both answers well represented.
+  EXPECT_GT(inside, 3000u);
+  EXPECT_GT(outside, 3000u);
 }
 
 }  // namespace

@@ -6,9 +6,11 @@
 
 #include <unistd.h>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "files/geo_memo.hpp"
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
@@ -396,6 +398,82 @@ TEST(PhotoAndWaypointFiles, TheWritersGiveTheStraightforwardTextsOnRandomPlans) 
   empty.drones.at(0).photos.clear();
   EXPECT_EQ(photos_geojson(empty), reference_photos_geojson(empty));
   EXPECT_EQ(photos_csv(empty), "drone,flight,line,photo,lat,lon,alt_m,x_m,y_m\n");
+}
+
+// ---- The writers of one set share their points' positions (files::GeoMemo).
+
+// Within a memo, geo() answers as without one: for points met again, for points that share one
+// coordinate or differ from another in its last bit, 0 and -0, and for another plan's points.
+TEST(GeoMemo, PositionsAsConvertedAlone) {
+  const SurveyPlan plan = meadow_plan();
+  SurveyPlan other = plan;  // another plan, its frame elsewhere on the Earth
+  other.request.field.frame.emplace(geometry::GeoPoint{-33.9, 151.2, 0});
+  Random random{7};
+  std::vector<geometry::Point2> points;
+  for (int k = 0; k < 300; ++k) {
+    const geometry::Point2 p{random.coordinate(), random.coordinate()};
+    points.push_back(p);
+    points.push_back({p.x, random.coordinate()});       // the same x
+    points.push_back({random.coordinate(), p.y});       // the same y
+    points.push_back({std::nextafter(p.x, 1e9), p.y});  // one bit apart
+    points.push_back({p.y, p.x});                       // swapped
+  }
+  points.push_back({0.0, 0.0});
+  points.push_back({-0.0, 0.0});
+  std::vector<geometry::GeoPoint> alone, other_alone;
+  for (const geometry::Point2& p : points) {
+    alone.push_back(files::geo(plan, p));
+    other_alone.push_back(files::geo(other, p));
+  }
+  const files::GeoMemo memo(plan);
+  for (int pass = 0; pass < 2; ++pass)  // the second pass from the memo
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      ASSERT_EQ(files::geo(plan, points[k]), alone[k]) << k << " pass " << pass;
+      ASSERT_EQ(files::geo(other, points[k]), other_alone[k]) << k << " pass " << pass;
+    }
+}
+
+// The set (every writer under one memo) holds the texts each writer gives alone (no memo), on
+// the meadow's plan and on plans with random items and photos and two drones in sorties.
+TEST(SurveyFiles, TheSetHoldsTheTextsOfTheWritersAlone) {
+  const SurveyPlan meadow = meadow_plan();
+  Random random{53};
+  for (int round = 0; round < 3; ++round) {
+    SurveyPlan plan = meadow;
+    if (round > 0) {
+      DronePlan& first = plan.drones.at(0);
+      first.photos = random_photos(random, 100);
+      randomise_items(random, first.mission);
+      DronePlan second = first;
+      second.number = 2;
+      second.file_stem = "drone-2";
+      for (int s = 1; s <= 2; ++s) {
+        Sortie sortie;
+        sortie.number = s;
+        sortie.mission = first.mission;
+        sortie.photos = random_photos(random, 50);
+        second.sorties.push_back(sortie);
+      }
+      plan.drones.push_back(second);
+    }
+    std::map<std::string, std::string> alone{{"mission.geojson", mission_geojson(plan)},
+                                             {"waypoints.csv", waypoints_csv(plan)},
+                                             {"mission.kml", mission_kml(plan)},
+                                             {"photos.csv", photos_csv(plan)},
+                                             {"photos.geojson", photos_geojson(plan)}};
+    for (const Flight& f : flights_of(plan)) {
+      alone[f.file_stem + ".plan"] = qgc_plan(plan, f);
+      alone[f.file_stem + ".waypoints"] = wpl_110(plan, f);
+    }
+    std::size_t compared = 0;
+    for (const auto& [name, text] : survey_files(plan)) {
+      if (name == "summary.json") continue;  // summary_json() takes the set's names
+      ASSERT_TRUE(alone.count(name)) << name;
+      EXPECT_EQ(text, alone.at(name)) << name << " round " << round;
+      ++compared;
+    }
+    EXPECT_EQ(compared, alone.size()) << "round " << round;
+  }
 }
 
 }  // namespace

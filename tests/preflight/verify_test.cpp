@@ -218,6 +218,12 @@ TEST(Verify, ALegAboveTheCeiling) {
   const Violation* v = find(r, "ceiling");
   ASSERT_NE(v, nullptr);
   EXPECT_NEAR(v->amount, 10.0, 1e-6);
+  // Placed at the leg's highest point: the waypoint flown at 130 m (its file position, to the
+  // WPL file's 8 decimals of a degree).
+  ASSERT_TRUE(v->at.has_value());
+  const geometry::Point2 at = geometry::LocalFrame(kOrigin).to_local(*v->at);
+  EXPECT_NEAR(at.x, rows[3].x, 0.01);
+  EXPECT_NEAR(at.y, rows[3].y, 0.01);
   CheckOptions higher;
   higher.ceiling_m = 130;
   EXPECT_EQ(find(verify({drone(rows, "a.waypoints")}, higher), "ceiling"), nullptr);

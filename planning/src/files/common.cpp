@@ -2,7 +2,10 @@
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
@@ -54,8 +57,48 @@ geometry::GeoPoint rounded(const geometry::GeoPoint& g) {
   return {round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), 0.0};
 }
 
-geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p) {
+namespace {
+
+// The positions geo() found for one plan's points, by their coordinates' bits.
+struct PointBits {
+  std::uint64_t x, y;
+  bool operator==(const PointBits&) const = default;
+};
+struct PointBitsHash {
+  std::size_t operator()(const PointBits& k) const {
+    return std::hash<std::uint64_t>()(k.x * 0x9e3779b97f4a7c15ULL ^ k.y);
+  }
+};
+struct Memo {
+  const SurveyPlan* plan = nullptr;
+  std::unordered_map<PointBits, geometry::GeoPoint, PointBitsHash> positions;
+};
+thread_local Memo* t_memo = nullptr;
+
+geometry::GeoPoint converted(const SurveyPlan& plan, geometry::Point2 p) {
   return rounded(plan.request.field.frame->to_geo(p));
+}
+
+}  // namespace
+
+GeoMemo::GeoMemo(const SurveyPlan& plan) {
+  if (t_memo != nullptr) return;
+  t_memo = new Memo{&plan, {}};
+  owner_ = true;
+}
+
+GeoMemo::~GeoMemo() {
+  if (!owner_) return;
+  delete t_memo;
+  t_memo = nullptr;
+}
+
+geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p) {
+  if (t_memo == nullptr || t_memo->plan != &plan) return converted(plan, p);
+  const PointBits key{std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y)};
+  const auto [it, added] = t_memo->positions.try_emplace(key);
+  if (added) it->second = converted(plan, p);
+  return it->second;
 }
 
 int mav_command(const MissionItem& item, Firmware firmware) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geo_memo.hpp"
 #include "swath/mavlink/commands.hpp"
 #include "swath/missions/writers.hpp"
 #include "swath/planning/survey_files.hpp"
@@ -17,10 +18,6 @@ constexpr int kFrameGlobal = static_cast<int>(mavlink::MavFrame::global);    // 
 constexpr int kFrameMission = static_cast<int>(mavlink::MavFrame::mission);  // no position
 constexpr int kFrameRelativeAlt = static_cast<int>(mavlink::MavFrame::global_relative_alt);
 constexpr int kFrameTerrainAlt = static_cast<int>(mavlink::MavFrame::global_terrain_alt);
-
-/// A local point in WGS84, rounded to 1e-9 degrees as every file writes it.
-geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
-geometry::GeoPoint rounded(const geometry::GeoPoint& g);
 
 /// The MAVLink command of an item (depends on the firmware for the gimbal).
 int mav_command(const MissionItem& item, Firmware firmware);

@@ -76,6 +76,7 @@ std::vector<std::string> export_warnings(const SurveyPlan& plan, const FileOptio
 std::vector<std::pair<std::string, std::string>> survey_files(const SurveyPlan& plan,
                                                               const FileOptions& options) {
   check_exports(plan, options);
+  const files::GeoMemo memo(plan);  // the writers share their points' positions
   std::vector<std::pair<std::string, std::string>> files{{"mission.geojson", mission_geojson(plan)},
                                                          {"summary.json", summary_json(plan)}};
   for (const Flight& f : flights_of(plan)) {
