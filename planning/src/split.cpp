@@ -117,11 +117,13 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
                               const SplitSettings& s) {
   Candidate c;
   c.angle_deg = angle;
-  // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart.
+  // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart. Corners'
+  // ordinates by turned_y (rotate()'s, the same values), here and for the pieces below.
+  const TurnedY turned_y(angle);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
   for (const auto& ring : rings)
     for (const Point2& p : ring) {
-      const double y = rotate(p, -angle).y;
+      const double y = turned_y(p);
       y_min = std::min(y_min, y);
       y_max = std::max(y_max, y);
     }
@@ -180,10 +182,8 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   // slivers by coverage): e.g. the 4 cm wedge that an edge 0.004 degrees off the lanes leaves
   // beside a reflex vertex got two lanes 305 and 458 m long beside the grid lane that sees it.
   const double half = s.footprint_width_m / 2 + 1e-9;
-  // A piece's least and greatest ordinate (its corners' turned y, the same values as rotate()'s: a
-  // rotate() call per corner of every piece was most of this function's own instructions); the
-  // whole corners only for the thin pieces asked below.
-  const TurnedY turned_y(angle);
+  // A piece's least and greatest ordinate (a rotate() call per corner of every piece was most of
+  // this function's own instructions); the whole corners only for the thin pieces asked below.
   std::vector<char> thin(d.pieces.size(), 0), covered(d.pieces.size(), 0);
   std::vector<std::pair<double, double>> span_y(d.pieces.size());  // a piece's least, greatest y
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
