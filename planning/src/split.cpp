@@ -118,11 +118,13 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
                               const SplitSettings& s) {
   Candidate c;
   c.angle_deg = angle;
-  // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart.
+  // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart. Corners'
+  // ordinates by turned_y (rotate()'s, the same values), here and for the pieces below.
+  const TurnedY turned_y(angle);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
   for (const auto& ring : rings)
     for (const Point2& p : ring) {
-      const double y = rotate(p, -angle).y;
+      const double y = turned_y(p);
       y_min = std::min(y_min, y);
       y_max = std::max(y_max, y);
     }
@@ -153,11 +155,18 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
     std::size_t piece;
   };
   std::vector<Lane> lanes;
-  for (std::size_t k = 0; k < piece_lines.size(); ++k)
+  // Piece k's lines' ordinates (their starts', turned) from line_first[k] on, in its lines' order:
+  // the cells' lines are sorted by them below (a removal below keeps a line's start).
+  std::vector<double> line_y;
+  std::vector<std::size_t> line_first{0};
+  for (std::size_t k = 0; k < piece_lines.size(); ++k) {
     for (SweepLine& l : piece_lines[k]) {
       const Point2 p = rotate(l.start, -angle), q = rotate(l.end, -angle);
       lanes.push_back({p.y, std::min(p.x, q.x), std::max(p.x, q.x), &l, k});
+      line_y.push_back(p.y);
     }
+    line_first.push_back(line_y.size());
+  }
   std::sort(lanes.begin(), lanes.end(), [](const Lane& u, const Lane& v) { return u.y < v.y; });
   for (std::size_t i = 0; i < lanes.size(); ++i)
     for (std::size_t j = i + 1;
@@ -174,31 +183,28 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   // slivers by coverage): e.g. the 4 cm wedge that an edge 0.004 degrees off the lanes leaves
   // beside a reflex vertex got two lanes 305 and 458 m long beside the grid lane that sees it.
   const double half = s.footprint_width_m / 2 + 1e-9;
-  // Piece k's corners, turned, from corner_start[k] to corner_start[k + 1] (one array: a vector
-  // each was ~18,000 allocations a plan at 100 vertices and 50 holes).
-  std::vector<Point2> corner;
-  std::vector<std::size_t> corner_start{0};
-  for (const geometry::Ring& ring : d.pieces) {
-    for (const Point2& p : ring) corner.push_back(rotate(p, -angle));
-    corner_start.push_back(corner.size());
-  }
-  const auto corners = [&](std::size_t k) {
-    return std::span<const Point2>(corner.data() + corner_start[k],
-                                   corner.data() + corner_start[k + 1]);
-  };
+  // A piece's least and greatest ordinate (a rotate() call per corner of every piece was most of
+  // this function's own instructions); the whole corners only for the thin pieces asked below.
   std::vector<char> thin(d.pieces.size(), 0), covered(d.pieces.size(), 0);
   std::vector<std::pair<double, double>> span_y(d.pieces.size());  // a piece's least, greatest y
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
-    if (corners(k).empty()) continue;
-    const auto [lo, hi] = std::minmax_element(corners(k).begin(), corners(k).end(),
-                                              [](Point2 a, Point2 b) { return a.y < b.y; });
-    span_y[k] = {lo->y, hi->y};
+    if (d.pieces[k].empty()) continue;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Point2& p : d.pieces[k]) {
+      const double y = turned_y(p);
+      lo = std::min(lo, y);
+      hi = std::max(hi, y);
+    }
+    span_y[k] = {lo, hi};
     const auto grid =
-        std::lower_bound(sweep_settings.ordinates.begin(), sweep_settings.ordinates.end(), lo->y);
-    thin[k] = grid == sweep_settings.ordinates.end() || *grid > hi->y;
+        std::lower_bound(sweep_settings.ordinates.begin(), sweep_settings.ordinates.end(), lo);
+    thin[k] = grid == sweep_settings.ordinates.end() || *grid > hi;
   }
+  std::vector<Point2> corners;  // a thin piece's, turned
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
     if (!thin[k] || piece_lines[k].empty()) continue;
+    corners.clear();
+    for (const Point2& p : d.pieces[k]) corners.push_back(rotate(p, -angle));
     // Only a lane within half a footprint of the piece's lowest and highest corners can see it
     // whole: the lanes (sorted by ordinate) in that window, widened well past rounding, are asked
     // (all lanes were, hundreds of thin pieces by thousands of lanes on 10,000-vertex areas).
@@ -210,7 +216,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
       const Lane& lane = *it;
       if (thin[lane.piece] || lane.line->start == lane.line->end) continue;
       const double x0 = lane.x0 + s.turnaround_m - 1e-6, x1 = lane.x1 - s.turnaround_m + 1e-6;
-      if (std::all_of(corners(k).begin(), corners(k).end(), [&](Point2 q) {
+      if (std::all_of(corners.begin(), corners.end(), [&](Point2 q) {
             return std::abs(q.y - lane.y) <= half && q.x >= x0 && q.x <= x1;
           })) {
         covered[k] = 1;
@@ -220,16 +226,23 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   }
   for (std::size_t k = 0; k < d.pieces.size(); ++k)
     if (covered[k]) piece_lines[k].clear();
-  auto offset = [&](const SweepLine& l) { return rotate(l.start, -angle).y; };
+  // A cell's lines by ordinate: sorted with their ordinates beside them (not turned again for
+  // every comparison), the same comparisons in the same order, so the same order of equal ones.
+  std::vector<std::pair<double, SweepLine>> by_y;
   for (std::size_t cell = 0; cell < d.cells.size(); ++cell) {
+    by_y.clear();
+    for (const std::size_t k : d.cells[cell])
+      for (std::size_t i = 0; i < piece_lines[k].size(); ++i) {
+        const SweepLine& l = piece_lines[k][i];
+        if (!(l.start == l.end)) by_y.push_back({line_y[line_first[k] + i], l});
+      }
+    std::sort(by_y.begin(), by_y.end(),
+              [](const auto& u, const auto& v) { return u.first < v.first; });
+    if (by_y.empty()) continue;
     Sweep sweep;
     sweep.angle_deg = angle;
-    for (const std::size_t k : d.cells[cell])
-      for (const SweepLine& l : piece_lines[k])
-        if (!(l.start == l.end)) sweep.lines.push_back(l);
-    std::sort(sweep.lines.begin(), sweep.lines.end(),
-              [&](const SweepLine& x, const SweepLine& y) { return offset(x) < offset(y); });
-    if (sweep.lines.empty()) continue;
+    sweep.lines.reserve(by_y.size());
+    for (const auto& [y, l] : by_y) sweep.lines.push_back(l);
     c.cells.push_back(d.cell_rings[cell]);
     c.sweeps.push_back(std::move(sweep));
   }
