@@ -389,8 +389,8 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
             best.objective_m = tried;
             best.visits = trial.visits(candidate);
             order.swap(candidate);
-            std::swap(current, trial);
-            current.suffix(p, t, order);
+            std::swap(current, trial);  // `trial` now the order before: the same from changed_end
+            current.suffix(p, t, order, &trial, changed_end);
             ++version;
             improved = true;
           }

@@ -497,17 +497,32 @@ class VariantTable {
   /// The cost of the rest of `order` (this table's last filled order, filled whole) after each
   /// layer's variant: transits on (with the penalties of the cells still after them), the later
   /// cells' internal lengths and the leg home. What fill()'s `tail` reads.
-  void suffix(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order) {
+  ///
+  /// `kept` (optional): a table whose suffix() was of an order with the same cells as `order`
+  /// from position `same_from` on (the local search's order before the move it keeps). Its costs
+  /// at those positions are this order's, copied: each is a sum over the same cells, with the
+  /// same cells after each, and the least of exact costs (first_least()'s value is the exact
+  /// least whatever transits are known), so the same value bit for bit.
+  void suffix(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
+              const VariantTable* kept = nullptr, std::size_t same_from = std::size_t(-1)) {
     const std::size_t n = order.size();
     rest_cost_.assign(n * kMaxVariants, kInf);
     after_all_.assign(n + 1, 0);
     for (std::size_t k = n; k-- > 0;) after_all_[k] = after_all_[k + 1] | bit(order[k]);
     if (n == 0) return;
-    for (std::size_t v = 0; v < p.cells[order[n - 1]].size(); ++v)
-      rest_cost_[(n - 1) * kMaxVariants + v] = t.to_home(order[n - 1], v);
-    std::uint64_t after = 0;  // cells flown after position k + 1
+    std::size_t first_kept = n;  // the positions from here on copied from `kept`
+    if (kept && same_from < n) {
+      first_kept = same_from;
+      std::copy(kept->rest_cost_.begin() + std::ptrdiff_t(first_kept * kMaxVariants),
+                kept->rest_cost_.begin() + std::ptrdiff_t(n * kMaxVariants),
+                rest_cost_.begin() + std::ptrdiff_t(first_kept * kMaxVariants));
+    } else {
+      for (std::size_t v = 0; v < p.cells[order[n - 1]].size(); ++v)
+        rest_cost_[(n - 1) * kMaxVariants + v] = t.to_home(order[n - 1], v);
+    }
     const bool lazy = t.bounded();
-    for (std::size_t k = n - 1; k-- > 0;) {
+    for (std::size_t k = std::min(first_kept, n - 1); k-- > 0;) {
+      const std::uint64_t after = after_all_[k + 2];  // cells flown after position k + 1
       const auto& next = p.cells[order[k + 1]];
       const double* rest = &rest_cost_[(k + 1) * kMaxVariants];
       for (std::size_t u = 0; u < p.cells[order[k]].size(); ++u) {
@@ -531,9 +546,10 @@ class VariantTable {
         }
         rest_cost_[k * kMaxVariants + u] = best;
       }
-      after |= bit(order[k + 1]);
     }
   }
+  /// suffix()'s cost of the rest of its order after variant v at position k.
+  double rest_cost(std::size_t k, std::size_t v) const { return rest_cost_[k * kMaxVariants + v]; }
   /// Whether `order`, a candidate of the local search whose layers before `from` this table holds
   /// (keep_layers_of()) and whose cells from `check_at` on are those of the order `tail` last
   /// took the suffix() of, certainly cannot reach below `give_up_m`: its layers `from` to

@@ -810,5 +810,46 @@ TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
   EXPECT_GT(kept_open, 0u);
 }
 
+// After a kept move, the local search's suffix costs at the positions the move left as they were
+// (the same cells from there on) are copied from the order before, the rest computed: the same
+// values, bit for bit, as the new order's suffix computed whole (each on its own memo), for every
+// kind of move, with and without crossings, transits round a wall, and with transits asked in
+// between (exact leasts whatever the memo holds).
+TEST(CellOrderSearch, SuffixKeptFromTheOrderBeforeIsTheWholeOne) {
+  std::mt19937_64 rng(5255);
+  std::size_t copied = 0;
+  for (int k = 0; k < 24; ++k) {
+    CellOrderProblem p = runs_problem(rng, 9 + std::size_t(k), k % 2 == 0);
+    p.symmetric = k % 3 == 0;
+    const std::size_t n = p.cells.size();
+    std::vector<std::size_t> order(n);
+    for (std::size_t c = 0; c < n; ++c) order[c] = c;
+    std::shuffle(order.begin(), order.end(), rng);
+    cell_order_detail::Transit kept_t(p), whole_t(p);
+    cell_order_detail::VariantTable before, after, whole;
+    before.suffix(p, kept_t, order);
+    for (int ask = 0; ask < 20 && k % 4 == 1; ++ask)  // more known since
+      (void)kept_t.cost(rng() % n, 0, rng() % n, 0, rng());
+    std::vector<std::size_t> moved;
+    const int move = int(rng() % 3);
+    std::size_t i = 0, j = 0, len = 1 + (move == 0 ? rng() % 3 : 0);
+    while (moved.empty() || i == j) {
+      i = rng() % n;
+      j = rng() % n;
+      moved = PlainSearch::moved(order, move, i, j, len);
+    }
+    const std::size_t same_from = move == 0 ? std::max(i, j) + len : j + 1;
+    for (std::size_t x = same_from; x < n; ++x) ASSERT_EQ(moved[x], order[x]);
+    after.suffix(p, kept_t, moved, &before, same_from);
+    whole.suffix(p, whole_t, moved);
+    copied += n - std::min(n, same_from);
+    for (std::size_t x = 0; x < n; ++x)
+      for (std::size_t v = 0; v < p.cells[moved[x]].size(); ++v)
+        ASSERT_EQ(after.rest_cost(x, v), whole.rest_cost(x, v))
+            << "problem " << k << " at " << x << " (same from " << same_from << ")";
+  }
+  EXPECT_GT(copied, 50u);
+}
+
 }  // namespace
 }  // namespace swath::planning
