@@ -280,14 +280,29 @@ class Turns {
   Turns(const LaneScan& scan, const std::vector<double>& ys) {
     if (ys.empty()) return;
     // The bands' edges in one array (band b's from start_[b] to start_[b + 1], in edge order):
-    // counted, then placed (a vector per band was most of this step's allocations).
+    // counted, then placed (a vector per band was most of this step's allocations). Each edge's
+    // bands [first, end) are found once, kept for the placing.
+    const auto& edges = scan.edges();
+    thread_local std::vector<std::pair<std::size_t, std::size_t>> reach;
+    reach.resize(edges.size());
     start_.assign(ys.size() + 1, 0);
-    each_in_band(scan, ys, [&](std::size_t b, std::size_t) { ++start_[b + 1]; });
+    std::size_t near = 0;  // the last edge's first band
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const double lo = std::min(edges[e].first.y, edges[e].second.y);
+      const double hi = std::max(edges[e].first.y, edges[e].second.y);
+      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
+      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
+      // this).
+      near = detail::walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
+      std::size_t end = near;
+      for (; end + 1 < ys.size() && ys[end] <= hi; ++end) ++start_[end + 1];
+      reach[e] = {near, end};
+    }
     for (std::size_t b = 0; b < ys.size(); ++b) start_[b + 1] += start_[b];
     edges_.resize(start_.back());
     std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-    each_in_band(scan, ys,
-                 [&](std::size_t b, std::size_t e) { edges_[next[b]++] = scan.edges()[e]; });
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      for (std::size_t b = reach[e].first; b < reach[e].second; ++b) edges_[next[b]++] = edges[e];
   }
 
   /// a on row `row`, b on the next, both in the rotated frame.
@@ -309,22 +324,6 @@ class Turns {
   }
 
  private:
-  // f(band, edge) for every edge and band it reaches into, edge by edge, bands ascending.
-  template <typename F>
-  static void each_in_band(const LaneScan& scan, const std::vector<double>& ys, F f) {
-    const auto& edges = scan.edges();
-    std::size_t near = 0;  // the last edge's first band
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      const double lo = std::min(edges[e].first.y, edges[e].second.y);
-      const double hi = std::max(edges[e].first.y, edges[e].second.y);
-      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
-      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
-      // this).
-      near = detail::walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
-      for (std::size_t b = near; b + 1 < ys.size() && ys[b] <= hi; ++b) f(b, e);
-    }
-  }
-
   std::vector<std::size_t> start_;
   std::vector<std::pair<Point2, Point2>> edges_;
 };

@@ -174,19 +174,22 @@ class LaneScan {
     buckets_ = std::clamp<std::size_t>(edges_.size() / 8, 1, 4096);
     inv_height_ = y_max > y_min ? double(buckets_) / (y_max - y_min) : 0.0;
     std::vector<std::uint32_t> counts(buckets_ + 1, 0);
-    auto each = [&](auto f) {
-      for (std::size_t e = 0; e < edges_.size(); ++e) {
-        const auto& [a, b] = edges_[e];
-        for (std::size_t k = bucket(std::min(a.y, b.y)), last = bucket(std::max(a.y, b.y));
-             k <= last; ++k)
-          f(k, std::uint32_t(e));
-      }
-    };
-    each([&](std::size_t k, std::uint32_t) { ++counts[k + 1]; });
+    // Each edge's buckets [first, last] found once, counted, then kept for placing the edge (two
+    // bucket() calls an edge, not four: they were most of this).
+    thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;
+    spans.resize(edges_.size());
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+      const auto& [a, b] = edges_[e];
+      const std::size_t first = bucket(std::min(a.y, b.y)), last = bucket(std::max(a.y, b.y));
+      for (std::size_t k = first; k <= last; ++k) ++counts[k + 1];
+      spans[e] = {std::uint32_t(first), std::uint32_t(last)};
+    }
     for (std::size_t k = 0; k < buckets_; ++k) counts[k + 1] += counts[k];
     start_ = counts;
     items_.resize(counts.back());
-    each([&](std::size_t k, std::uint32_t e) { items_[counts[k]++] = e; });
+    for (std::size_t e = 0; e < edges_.size(); ++e)
+      for (std::uint32_t k = spans[e].first; k <= spans[e].second; ++k)
+        items_[counts[k]++] = std::uint32_t(e);
   }
 
   std::vector<std::pair<Point2, Point2>> edges_;
