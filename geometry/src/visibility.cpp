@@ -148,6 +148,8 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   const Point2 reach{4 * fan.near_m, 4 * fan.near_m};
   edges_.near_box(a - reach, a + reach, [&](std::uint32_t e) {
     if (is_near[e]) return;  // found again (in another cell)
+    // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
+    // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
     const Box& box = edge_boxes_[e];
     const bool far = a.x < box.x0 - two_near || a.x > box.x1 + two_near ||
                      a.y < box.y0 - two_near || a.y > box.y1 + two_near;
