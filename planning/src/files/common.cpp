@@ -93,6 +93,10 @@ GeoMemo::~GeoMemo() {
   t_memo = nullptr;
 }
 
+geometry::GeoPoint geo_unshared(const SurveyPlan& plan, geometry::Point2 p) {
+  return converted(plan, p);
+}
+
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p) {
   if (t_memo == nullptr || t_memo->plan != &plan) return converted(plan, p);
   const PointBits key{std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y)};

@@ -83,7 +83,7 @@ PhotoTexts photo_texts(const SurveyPlan& plan) {
         ",\n    \"flight\": " + base::json_text(ordered_json(f.file_stem), 1) + ",\n    \"line\": ";
     for (std::size_t k = 0; k < f.photos->size(); ++k) {
       const PhotoPoint& p = (*f.photos)[k];
-      const geometry::GeoPoint g = files::geo(plan, p.position);
+      const geometry::GeoPoint g = files::geo_unshared(plan, p.position);
       csv += csv_head;
       base::append_integer_text(csv, p.line);
       csv += ',';

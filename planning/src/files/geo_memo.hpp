@@ -11,6 +11,9 @@ namespace swath::planning::files {
 /// the plan, each point (by its exact coordinates) is converted once.
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
 geometry::GeoPoint rounded(const geometry::GeoPoint& g);
+/// geo() for a point no other writer converts (a photo's position): never remembered, which would
+/// only cost the memo's lookup.
+geometry::GeoPoint geo_unshared(const SurveyPlan& plan, geometry::Point2 p);
 
 /// While alive, geo() remembers the positions of `plan`'s points on this thread: the writers of
 /// one file set convert the same waypoints, cell corners and fence vertices many times over
