@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -65,6 +66,8 @@ class Transit {
     size_ = n;
     if (memoise_ && dense_ && p.symmetric) find_twins();
   }
+  /// How many variants cell c has.
+  std::size_t variants(std::size_t c) const { return p_.cells[c].size(); }
   double from_home(std::size_t c, std::size_t v) {
     const std::size_t i = base_[c] + v;
     double& d = home_to_entry_[i];
@@ -650,6 +653,9 @@ class VariantTable {
         break;
       }
       const std::size_t u = low_from_[(k - from) * kMaxVariants + v];
+      // The layers low_layers() filled for this order (local_search keeps a move's layers only
+      // while they are those): a variant of the cell before, not one left from another order.
+      assert(u < t.variants(order[k - 1]));
       double low = 0;
       if (!t.cost_if_known(order[k - 1], u, order[k], v, masks_[k - from], low) &&
           (!found || low < shortest)) {

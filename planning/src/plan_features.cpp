@@ -15,15 +15,12 @@ namespace swath::planning {
 namespace {
 
 using base::round_to;
+using files::rounded;
 using geometry::GeoPoint;
 using geometry::Point2;
 using nlohmann::json;
 
 // ---- From the plan.
-
-GeoPoint rounded(const GeoPoint& g) {
-  return {round_to(g.lat_deg, 9), round_to(g.lon_deg, 9), 0.0};
-}
 
 // files::geo() as the writers have it (shared within a files::GeoMemo).
 GeoPoint geo(const SurveyPlan& plan, Point2 p) {

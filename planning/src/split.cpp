@@ -286,11 +286,16 @@ double straight_m(Point2 a, Point2 b) {
   return geometry::distance(a, b);
 }
 
-// The candidate's straight-transit estimate (nearest neighbour from home) into c.order.
-void estimate(Candidate& c, Point2 home) {
+// The candidate's ordering problem with straight transits, its estimate's and bounds'.
+CellOrderProblem straight_problem(Candidate& c, Point2 home) {
   CellOrderProblem problem = problem_for(c, home, straight_m);
   problem.distance_at_least_straight = true;
-  c.order = nearest_neighbour_order(problem);
+  return problem;
+}
+
+// The candidate's straight-transit estimate (nearest neighbour from home) into c.order.
+void estimate(Candidate& c, Point2 home) {
+  c.order = nearest_neighbour_order(straight_problem(c, home));
 }
 
 // The cells at one direction as a candidate, with its estimate; no cells: none.
@@ -582,7 +587,8 @@ LaneLimits lane_limits(const std::vector<geometry::Ring>& rings, const std::vect
 }
 
 // The runs at every direction within the lane limit (kinds 0 bridged runs, 1 runs; per direction
-// in that order) with their straight-transit estimates, and the cells' lower bound
+// in that order) with their straight-transit estimates where they may rank among the refined ones
+// (elsewhere: order.length_m +inf, no order), and the cells' lower bound
 // (split_detail::cells_estimate_bound()) at each direction whose cells fit the limit.
 struct RunEstimates {
   std::vector<std::vector<std::pair<int, Candidate>>> per_angle;
@@ -623,7 +629,7 @@ std::vector<double> estimates_by_bound(const std::vector<int>& kinds,
   };
   base::parallel_for(n, threads, [&](std::size_t j) {
     const std::size_t i = by_bound[j];
-    if (!ranks(i, bounds_m[i]) || !ranks(i, tighter_bound(i))) return;
+    if (!ranks(i, bounds_m[i]) || (tighter_bound && !ranks(i, tighter_bound(i)))) return;
     const double e = estimate(i);
     const std::lock_guard<std::mutex> guard(lock);
     out[i] = e;
@@ -655,7 +661,7 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
   // (nearest neighbour, straight transits) in order of those bounds, each left out (+inf) where
   // that bound, or order_lower_bound(), shows it cannot rank among the refined_candidates least of
   // its kind (estimates_by_bound(): best_of_each_kind() chooses the same). Most directions' bounds
-  // are above the third least estimate of their kind.
+  // are above the refined_candidates-th least estimate of their kind.
   const std::size_t n = angles.size();
   RunEstimates out;
   out.per_angle.resize(n);
@@ -674,10 +680,8 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
         continue;
       Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
       if (c.cells.empty()) continue;
-      CellOrderProblem problem = problem_for(c, home, straight_m);
-      problem.distance_at_least_straight = true;
-      bounds[a].push_back(internal_lower_bound(problem));
-      problems[a].push_back(std::move(problem));
+      problems[a].push_back(straight_problem(c, home));
+      bounds[a].push_back(internal_lower_bound(problems[a].back()));
       out.per_angle[a].push_back({kind, std::move(c)});
     }
     if (cells && limits.fits[a][2])
@@ -796,44 +800,31 @@ class RouterPerThread {
 
 // The cells with their estimates at the directions where they could rank among the refined ones
 // (per direction; none: no cells there, or left out), in one pool of threads, in order of their
-// bound (a decomposition per direction), each left out when its bound is above the
-// refined_candidates-th least estimate found: its estimate, at least its bound, could not rank
-// among the refined ones. Bounds ascend and that estimate only falls, so the ones left out are the
-// last in that order, and the cells that rank are the ones that would with every direction
-// decomposed.
+// bound (a decomposition per direction), each left out when its bound shows it cannot rank among
+// the refined_candidates least estimates (estimates_by_bound(): the cells that rank are the ones
+// that would with every direction decomposed). A direction without cells counts as +inf, which
+// rules nothing out: the least found are the same finite estimates as without it.
 std::vector<std::optional<Candidate>> estimate_cells(const std::vector<geometry::Ring>& rings,
                                                      const std::vector<double>& angles,
                                                      const RunEstimates& found, Point2 home,
                                                      const SplitSettings& s,
                                                      SearchProgress& progress) {
-  const std::vector<double>& cells_bound = found.cells_bound;
-  std::vector<std::size_t> by_bound = found.cells_directions;
-  std::stable_sort(by_bound.begin(), by_bound.end(),
-                   [&](std::size_t x, std::size_t y) { return cells_bound[x] < cells_bound[y]; });
+  const std::vector<std::size_t>& at = found.cells_directions;
+  std::vector<double> bounds_m;
+  for (const std::size_t a : at) bounds_m.push_back(found.cells_bound[a]);
   std::vector<std::optional<Candidate>> cells(angles.size());
-  std::mutex lock;            // guards `least`
-  std::vector<double> least;  // the cells' estimates found, ascending, at most refined_candidates
-  if (by_bound.empty()) progress.piece(kCellsShare, 0);
-  const auto estimate_at = [&](std::size_t a) {
-    {
-      const std::lock_guard<std::mutex> guard(lock);
-      if (least.size() == s.refined_candidates && s.refined_candidates > 0 &&
-          cells_bound[a] > least.back())
-        return;
-    }
-    std::optional<Candidate> c = estimated_cells(rings, angles[a], s, home);
-    if (c) {
-      const std::lock_guard<std::mutex> guard(lock);
-      least.insert(std::upper_bound(least.begin(), least.end(), c->order.length_m),
-                   c->order.length_m);
-      if (least.size() > s.refined_candidates) least.pop_back();
-    }
-    cells[a] = std::move(c);
-  };
-  base::parallel_for(by_bound.size(), s.threads, [&](std::size_t j) {
-    estimate_at(by_bound[j]);
-    progress.piece(kCellsShare, by_bound.size());
-  });
+  std::vector<char> asked(at.size(), 0);
+  if (at.empty()) progress.piece(kCellsShare, 0);
+  estimates_by_bound(std::vector<int>(at.size(), 2), bounds_m, s.refined_candidates, s.threads, {},
+                     [&](std::size_t i) {
+                       std::optional<Candidate>& c = cells[at[i]] =
+                           estimated_cells(rings, angles[at[i]], s, home);
+                       asked[i] = 1;
+                       progress.piece(kCellsShare, at.size());
+                       return c ? c->order.length_m : std::numeric_limits<double>::infinity();
+                     });
+  for (std::size_t i = 0; i < at.size(); ++i)  // the ones left out, told at once
+    if (!asked[i]) progress.piece(kCellsShare, at.size());
   return cells;
 }
 
@@ -899,12 +890,13 @@ SplitPlan plan_split(const std::vector<geometry::Ring>& rings, Point2 home, cons
   const LaneLimits limits = lane_limits(rings, angles, s);
   if (s.max_lines > 0 && limits.least > s.max_lines)
     throw LaneLimitExceeded(limits.least, limits.least_angle_deg);
-  // Rank every direction by a cheap estimate (straight transits, heuristic order), and refine the
-  // best few of each kind with transits routed inside the area, ordered exactly where small: a
-  // straight-line estimate ranks runs and cells differently (runs' transits hop around what cells'
-  // turns go along). The runs are estimated, then the cells; the candidates to refine are refined
-  // in order of their lower bounds, so that the first good plan rules out the rest early.
-  // A search for a direction per region may follow: the shares below make 85 % of the whole.
+  // Rank the directions by a cheap estimate (straight transits, heuristic order; asked only where
+  // a lower bound shows it may rank), and refine the best few of each kind with transits routed
+  // inside the area, ordered exactly where small: a straight-line estimate ranks runs and cells
+  // differently (runs' transits hop around what cells' turns go along). The runs are estimated,
+  // then the cells; the candidates to refine are refined in order of their lower bounds, so that
+  // the first good plan rules out the rest early. A search for a direction per region may follow:
+  // the shares below make 85 % of the whole.
   const bool may_mix =
       s.directions == SplitDirections::per_region && !s.fixed_angle_deg && s.bridge_rings.empty();
   SearchProgress progress(s.progress, may_mix ? 0.85 : 1.0);

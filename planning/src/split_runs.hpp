@@ -14,17 +14,17 @@ namespace swath::planning::split_detail {
 std::vector<std::size_t> best_of_each_kind(
     std::vector<std::tuple<int, double, std::size_t>> estimates, std::size_t per_kind);
 
-/// The estimates of candidates i (kinds[i]) where they may rank among the `per_kind` least of
-/// their kind, +inf where they cannot. Two lower bounds of each estimate(i): bounds_m[i], known,
-/// and tighter_bound(i), asked only where bounds_m[i] does not rule i out. The estimates are asked
-/// in order of bounds_m (on `threads` threads), and not asked where per_kind estimates of the kind
-/// found are below either bound by more than rounding. best_of_each_kind() chooses from these the
-/// candidates it chooses from every estimate, in the same order. tighter_bound() and estimate()
-/// may run on several threads at once, for different i.
 /// A lower bound on every order's length of `problem` (its cells' least internal lengths, less
 /// 1e-9 for rounding), cheaper than order_lower_bound(): the first bound of the runs' estimates.
 double internal_lower_bound(const CellOrderProblem& problem);
 
+/// The estimates of candidates i (kinds[i]) where they may rank among the `per_kind` least of
+/// their kind, +inf where they cannot. Two lower bounds of each estimate(i): bounds_m[i], known,
+/// and tighter_bound(i) (if given), asked only where bounds_m[i] does not rule i out. The estimates
+/// are asked in order of bounds_m (on `threads` threads), and not asked where per_kind estimates of
+/// the kind found are below either bound by more than rounding. best_of_each_kind() chooses from
+/// these the candidates it chooses from every estimate, in the same order. tighter_bound() and
+/// estimate() may run on several threads at once, for different i.
 std::vector<double> estimates_by_bound(const std::vector<int>& kinds,
                                        const std::vector<double>& bounds_m, std::size_t per_kind,
                                        unsigned threads,

@@ -257,13 +257,15 @@ TEST(LegWithin, AgreesWithTheLengthInside) {
     if (trial % 3 == 0)
       rings.push_back(
           test::transformed(test::random_star_polygon(rng, 8, 10, 40), 0, 150 * unit(rng), 0));
+    // Fences come either way round: some rings clockwise.
+    if (trial % 4 == 1) std::reverse(rings.front().begin(), rings.front().end());
     const geometry::Ring& ring = rings.front();
     auto on_ring = [&](double offset_m) {
       const std::size_t i = static_cast<std::size_t>(unit(rng) * static_cast<double>(ring.size()));
       const geometry::Point2 a = ring[i % ring.size()], b = ring[(i + 1) % ring.size()];
       const geometry::Point2 d = b - a;
       const double length = geometry::distance(a, b);
-      const geometry::Point2 normal{-d.y / length, d.x / length};  // points in (ring CCW)
+      const geometry::Point2 normal{-d.y / length, d.x / length};  // in for a CCW ring
       return a + d * unit(rng) + normal * offset_m;
     };
     auto any_point = [&]() -> geometry::Point2 {

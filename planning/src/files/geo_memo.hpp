@@ -10,6 +10,7 @@ namespace swath::planning::files {
 /// A local point in WGS84, rounded to 1e-9 degrees as every file writes it. Within a GeoMemo of
 /// the plan, each point (by its exact coordinates) is converted once.
 geometry::GeoPoint geo(const SurveyPlan& plan, geometry::Point2 p);
+/// A WGS84 position rounded to 1e-9 degrees, as every file writes it.
 geometry::GeoPoint rounded(const geometry::GeoPoint& g);
 /// geo() for a point no other writer converts (a photo's position): never remembered, which would
 /// only cost the memo's lookup.

@@ -37,8 +37,8 @@ struct CellOrderProblem {
   bool distance_at_least_straight = false;
   /// Set when `distance(a, b) == distance(b, a)` and `crossed(a, b) == crossed(b, a)`, bit for
   /// bit, and both answer a point pair the same whenever asked (a routed metric that keeps one
-  /// path per pair of ends): heuristic_cell_order() then asks a pair of points once, wherever it
-  /// recurs (a run's exit is another variant's entry), and knows its reverse too.
+  /// path per pair of ends): the orderings (heuristic and exact) then ask a pair of points once,
+  /// wherever it recurs (a run's exit is another variant's entry), and know its reverse too.
   bool symmetric = false;
 };
 
