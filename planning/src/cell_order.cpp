@@ -20,6 +20,7 @@ using cell_order_detail::best_variants;
 using cell_order_detail::bit;
 using cell_order_detail::finished;
 using cell_order_detail::kInf;
+using cell_order_detail::KeptLayers;
 using cell_order_detail::penalised;
 using cell_order_detail::Transit;
 using cell_order_detail::VariantTable;
@@ -345,12 +346,8 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
                   CellOrder& best, std::size_t reach, std::size_t& budget, VariantTable& current) {
   const std::size_t n = order.size();
   std::array<VariantTable, 4> tables;  // block moves of 1-3 cells, then the swaps and reversals
-  struct Kept {
-    std::size_t i = std::size_t(-1), j = 0;
-    std::uint64_t asked = 0, version = 0;
-  };
-  std::array<Kept, 3> kept;   // per block length: the last move bounded
-  std::uint64_t version = 0;  // the current order's: one more each time it improves
+  std::array<KeptLayers, 3> kept;      // per block length
+  std::uint64_t version = 0;           // the current order's: one more each time it improves
   std::vector<std::size_t> candidate;
   current.suffix(p, t, order);
   // Transits bounded from below without asking the metric (routed paths are the dear part).
@@ -372,13 +369,8 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
           // Where the move changes the order to its end, the legs home stand for the tail.
           const std::size_t check_at = std::min(changed_end, n - 1);
           if (bounded && std::min(i, j) < check_at) {
-            std::size_t kept_to = 0;
-            if (kind < 3 && j > i) {
-              Kept& k = kept[std::size_t(kind)];
-              if (k.i == i && k.j + 1 == j && k.asked == t.asked() && k.version == version)
-                kept_to = j - 1;
-              k = {i, j, t.asked(), version};
-            }
+            const std::size_t kept_to =
+                kind < 3 && j > i ? kept[std::size_t(kind)].next(i, j, t.asked(), version) : 0;
             if (trial.cannot_win(p, t, candidate, std::min(i, j), check_at, best.objective_m - 1e-9,
                                  changed_end < n ? &current : nullptr, kept_to))
               continue;

@@ -369,6 +369,28 @@ std::pair<double, std::size_t> first_least(std::size_t count, double* value, boo
   }
 }
 
+// Which bounds' layers a block move may keep from the move before it (VariantTable::cannot_win()'s
+// `kept_to`): a block moved from i to j > i after the same block moved from i to j - 1, with the
+// same current order (`version`) and no transit asked since (`asked`), has the same layers up to
+// j - 2 (the same cells there and after each); otherwise none are kept. One per block length.
+class KeptLayers {
+ public:
+  /// The move from i to j, bounded now: the position up to which its layers are the last move's
+  /// (0: none), and that move remembered as the last.
+  std::size_t next(std::size_t i, std::size_t j, std::uint64_t asked, std::uint64_t version) {
+    const bool follows = i_ == i && j_ + 1 == j && asked_ == asked && version_ == version;
+    i_ = i;
+    j_ = j;
+    asked_ = asked;
+    version_ = version;
+    return follows ? j - 1 : 0;
+  }
+
+ private:
+  std::size_t i_ = std::size_t(-1), j_ = 0;
+  std::uint64_t asked_ = 0, version_ = 0;
+};
+
 // Best variants for a fixed order of cells: shortest path through a layered graph, one layer per
 // position. Layer k depends only on the cells at positions up to k and on the set of cells after
 // k (the crossing penalty), so an order that differs from the last one only from position `from`

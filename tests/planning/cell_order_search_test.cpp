@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -754,6 +755,14 @@ TEST(CellOrderSearch, SymmetricTransitsAskedOnceAPairKeepThePlainSearch) {
   }
 }
 
+// The cells 0..n-1 in a random order.
+std::vector<std::size_t> shuffled_cells(std::size_t n, std::mt19937_64& rng) {
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::shuffle(order.begin(), order.end(), rng);
+  return order;
+}
+
 // The local search's bounds for a block moved to j + 1 keep the layers of the move to j up to
 // j - 2 (the same cells there, the same cells after each) where the current order is the same and
 // no transit was asked since. Checked against the bounds filled afresh, each on its own memo of
@@ -768,9 +777,7 @@ TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
     CellOrderProblem p = runs_problem(rng, 12 + std::size_t(k), k % 2 == 0);
     p.symmetric = k % 3 == 0;
     const std::size_t n = p.cells.size();
-    std::vector<std::size_t> order(n);
-    for (std::size_t c = 0; c < n; ++c) order[c] = c;
-    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<std::size_t> order = shuffled_cells(n, rng);
     cell_order_detail::Transit kept_t(p), fresh_t(p);
     cell_order_detail::VariantTable kept_current, fresh_current;
     const double objective = kept_current.fill(p, kept_t, order, 0);
@@ -782,17 +789,14 @@ TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
       const std::size_t len = 1 + rng() % 3, i = rng() % (n - len);
       const double give_up_m = objective * beat(rng);
       cell_order_detail::VariantTable kept, fresh;
-      std::size_t last_j = 0;
-      std::uint64_t asked_then = 0;
+      cell_order_detail::KeptLayers layers;  // the rule local_search() keeps layers by
       for (std::size_t j = i + len; j + len <= n; ++j) {
         const std::vector<std::size_t> candidate = PlainSearch::moved(order, 0, i, j, len);
         ASSERT_FALSE(candidate.empty());
         const std::size_t changed_end = j + len, check_at = std::min(changed_end, n - 1);
         if (i >= check_at) continue;
-        const std::size_t kept_to = last_j + 1 == j && asked_then == kept_t.asked() ? j - 1 : 0;
+        const std::size_t kept_to = layers.next(i, j, kept_t.asked(), 0);
         reused += kept_to > i;
-        last_j = j;
-        asked_then = kept_t.asked();
         kept.keep_layers_of(kept_current, i);
         fresh.keep_layers_of(fresh_current, i);
         const bool no = kept.cannot_win(p, kept_t, candidate, i, check_at, give_up_m,
@@ -822,9 +826,7 @@ TEST(CellOrderSearch, SuffixKeptFromTheOrderBeforeIsTheWholeOne) {
     CellOrderProblem p = runs_problem(rng, 9 + std::size_t(k), k % 2 == 0);
     p.symmetric = k % 3 == 0;
     const std::size_t n = p.cells.size();
-    std::vector<std::size_t> order(n);
-    for (std::size_t c = 0; c < n; ++c) order[c] = c;
-    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<std::size_t> order = shuffled_cells(n, rng);
     cell_order_detail::Transit kept_t(p), whole_t(p);
     cell_order_detail::VariantTable before, after, whole;
     before.suffix(p, kept_t, order);
