@@ -21,14 +21,6 @@ namespace {
 // leg touch the ring.
 constexpr double kLegClearance_m = 1e-3;
 
-double point_segment_distance_sq(geometry::Point2 p, geometry::Point2 a, geometry::Point2 b) {
-  const geometry::Point2 d = b - a;
-  const double length_sq = geometry::dot(d, d);
-  const double t = length_sq > 0 ? std::clamp(geometry::dot(p - a, d) / length_sq, 0.0, 1.0) : 0.0;
-  const geometry::Point2 q = a + d * t - p;
-  return geometry::dot(q, q);
-}
-
 // Whether the closed segment a-b lies in the open interior of `ring` (even-odd rule) at least
 // kLegClearance_m from every edge: both ends strictly inside (exact predicate) and no edge sharing
 // a point with the segment (exact) or nearer than the clearance. The inside/outside parity cannot
@@ -48,10 +40,10 @@ bool clearly_inside(geometry::Point2 a, geometry::Point2 b, const geometry::Ring
       continue;
     if (geometry::segments_intersect(a, b, c, d)) return false;
     // Two segments that do not meet are nearest at an end of one of them.
-    const double nearest_sq =
-        std::min({point_segment_distance_sq(a, c, d), point_segment_distance_sq(b, c, d),
-                  point_segment_distance_sq(c, a, b), point_segment_distance_sq(d, a, b)});
-    if (nearest_sq < c_m * c_m) return false;
+    const double nearest_m =
+        std::min({geometry::distance_to_segment(a, c, d), geometry::distance_to_segment(b, c, d),
+                  geometry::distance_to_segment(c, a, b), geometry::distance_to_segment(d, a, b)});
+    if (nearest_m < c_m) return false;
   }
   return true;
 }
