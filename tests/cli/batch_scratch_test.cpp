@@ -2,13 +2,17 @@
 // directory: nothing there can be guessed, planted or left behind. Checked with TMPDIR pointed at
 // a fresh folder: a batch that finishes and one ended by SIGTERM mid-way both leave it empty,
 // and a refused area's sentence still reaches batch.csv from its job's log. And whatever a
-// directory holds, the batch writes its batch.csv and batch.geojson, a row per entry.
+// directory holds, the batch writes its batch.csv and batch.geojson, a row per entry, and its
+// jobs are those GDAL's listing of each file alone gives.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "swath/base/utf8.hpp"
@@ -75,6 +79,81 @@ TEST(BatchScratch, EveryEntryIsARowWhateverItIs) {
     EXPECT_NE(f["properties"]["directory"], "batch.csv");  // never the batch's own file
   }
   EXPECT_EQ(planned, 2);
+}
+
+// A square ring of side 0.001 degrees at (lon, lat), as GeoJSON coordinates.
+std::string square(double lon, double lat) {
+  std::ostringstream out;
+  out.precision(12);
+  out << "[[" << lon << ", " << lat << "], [" << lon + 0.001 << ", " << lat << "], [" << lon + 0.001
+      << ", " << lat + 0.001 << "], [" << lon << ", " << lat + 0.001 << "], [" << lon << ", " << lat
+      << "]]";
+  return out.str();
+}
+
+std::string feature(const std::string& name, const std::string& geometry) {
+  return R"({"type": "Feature", "properties": {"name": ")" + name + R"("}, "geometry": )" +
+         geometry + "}";
+}
+
+std::string collection(const std::vector<std::string>& features) {
+  std::string out = R"({"type": "FeatureCollection", "features": [)";
+  for (std::size_t i = 0; i < features.size(); ++i) out += (i ? ", " : "") + features[i];
+  return out + "]}";
+}
+
+// A directory's GeoJSON files of every shape that decides how many areas a file holds: the
+// batch's jobs for the directory are, file by file, the ones `swath batch FILE` lists alone (by
+// GDAL; a file GDAL cannot list is one job without --feature, as in a directory it is), whether
+// the batch reads a file of one polygon itself or asks GDAL.
+TEST(BatchScratch, ADirectorysJobsAreThoseGdalListsForEachFileAlone) {
+  const std::string dir = fresh_dir("batch-listing");
+  fs::create_directories(dir + "/areas");
+  const std::string polygon = R"({"type": "Polygon", "coordinates": [)" + square(8.5, 47.3) + "]}";
+  const auto at = [](double lon, double lat) {
+    return R"({"type": "Polygon", "coordinates": [)" + square(lon, lat) + "]}";
+  };
+  const std::string two_parts = R"({"type": "MultiPolygon", "coordinates": [[)" +
+                                square(8.5, 47.3) + "], [" + square(8.51, 47.3) + "]]}";
+  const std::string one_part =
+      R"({"type": "MultiPolygon", "coordinates": [[)" + square(8.5, 47.3) + "]]}";
+  const std::string track = R"({"type": "LineString", "coordinates": )" + square(8.52, 47.3) + "}";
+  const std::map<std::string, std::string> files{
+      {"a-polygon.geojson", polygon},
+      {"b-feature.geojson", feature("b one", polygon)},
+      {"c-collection.json", collection({feature("c one", polygon)})},
+      {"d-two.geojson",
+       collection({feature("d first", polygon), feature("d second", at(8.51, 47.3))})},
+      {"e-multi.geojson", collection({feature("e multi", two_parts)})},
+      {"f-track.geojson", collection({feature("f field", polygon), feature("f track", track)})},
+      {"g-null.geojson", collection({feature("g empty", "null"), feature("g field", polygon)})},
+      {"h-twice.geojson", R"({"type": "Feature", "properties": {"name": "h"}, "geometry": )" +
+                              polygon + R"(, "geometry": )" + two_parts + "}"},
+      {"i-cut.geojson", polygon.substr(0, 40)},
+      {"j-case.geojson",
+       feature("j", R"({"type": "polygon", "coordinates": [)" + square(8.5, 47.3) + "]}")},
+      {"k-one-part.geojson", collection({feature("k one", one_part)})},
+      {"l-bare-multi.geojson", two_parts},
+      {"m-polygon.kml", "<kml/>"},
+  };
+  for (const auto& [name, text] : files) std::ofstream(dir + "/areas/" + name) << text;
+  const std::string opts = " --camera sony-ilce-qx1 --altitude 60";
+  std::string expected;
+  for (const auto& [name, text] : files) {
+    const std::string file = dir + "/areas/" + name;
+    const CliRun alone = run_swath("batch " + file + " -o " + dir + "/out --emit-jobs" + opts);
+    if (alone.exit_code == 0) {
+      expected += alone.out;
+    } else {
+      EXPECT_EQ(alone.exit_code, 2) << name << ": " << alone.err;
+      expected += std::string(SWATH_BINARY) + " plan " + file + opts + " -o " + dir + "/out/" +
+                  fs::path(name).stem().string() + "\n";
+    }
+  }
+  const CliRun all = run_swath("batch " + dir + "/areas -o " + dir + "/out --emit-jobs" + opts);
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_EQ(all.out, expected);
+  EXPECT_NE(all.out.find("--feature 1"), std::string::npos);  // some file holds several
 }
 
 }  // namespace
