@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -234,7 +235,13 @@ int child_log() {
 
 // The first MiB a child wrote to its log.
 std::string read_child_log(int fd) {
-  std::string text(std::size_t{1} << 20, '\0');
+  // As long as the log is (a plan writes a line or none): a MiB zeroed for every area was a
+  // fifth of the batch's own CPU.
+  struct stat st {};
+  const std::size_t size = ::fstat(fd, &st) == 0 && st.st_size >= 0
+                               ? static_cast<std::size_t>(st.st_size)
+                               : std::size_t{1} << 20;
+  std::string text(std::min(size, std::size_t{1} << 20), '\0');
   const ssize_t n = ::pread(fd, text.data(), text.size(), 0);
   text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
   return text;
