@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "swath/geometry/polygon.hpp"
+#include "swath/planning/lane_runs.hpp"
 
 namespace swath::planning::detail {
 
@@ -198,12 +199,86 @@ class LaneScan {
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
+// Half the width across a lane within which it sees a sample (lane_runs' coverage check); along
+// it, its ends widened by kSeenAlongM. One expression for the check and for what it may skip.
+inline double seen_half_width_m(double footprint_width_m) {
+  return footprint_width_m / 2 + 1e-9;
+}
+inline constexpr double kSeenAlongM = 1e-6;
+
+// Where the long lanes see: the points that a lane longer than the slivers' length sees, by the
+// coverage check's own test (lane.y - half <= p.y <= lane.y + half, lane.x0 - kSeenAlongM <= p.x
+// <= lane.x1 + kSeenAlongM, in those roundings). Per ordinate, the union of the long lanes'
+// abscissa ranges (closed intervals, merged: no arithmetic, so exactly the union) over the rows
+// within reach. Asked at ascending ordinates, the rows within reach are walked to and their union
+// kept while they stay the same (any order is answered, a descending ordinate by starting over).
+class LongLaneReach {
+ public:
+  /// Rows `ys` ascending; `lanes[k]` the lanes on ys[k]; a lane counts when x1 - x0 > min_length_m.
+  LongLaneReach(const std::vector<double>& ys, const SpanRows& lanes, double half_m,
+                double min_length_m)
+      : ys_(ys), lanes_(lanes), half_(half_m), min_length_(min_length_m) {}
+
+  /// The merged ranges [x0, x1] that the long lanes within reach of ordinate y see, ascending.
+  const std::vector<Span>& at(double y) {
+    if (y < last_y_) lo_ = hi_ = 0, cached_ = false;  // not ascending: walk again from the start
+    last_y_ = y;
+    const std::size_t n = ys_.size();
+    std::size_t lo = lo_, hi = std::max(hi_, lo_);
+    // Rows within reach: ys[k] - half <= y <= ys[k] + half. Both ends ascend with k (rounding
+    // is monotone), so the rows within reach are [lo, hi) and both walk up with y.
+    while (lo < n && ys_[lo] + half_ < y) ++lo;
+    hi = std::max(hi, lo);
+    while (hi < n && ys_[hi] - half_ <= y) ++hi;
+    if (cached_ && lo == lo_ && hi == hi_) return merged_;
+    lo_ = lo, hi_ = hi, cached_ = true;
+    merged_.clear();
+    for (std::size_t k = lo; k < hi; ++k)
+      for (const Span& s : lanes_[k])
+        if (s.x1 - s.x0 > min_length_) merged_.push_back({s.x0 - kSeenAlongM, s.x1 + kSeenAlongM});
+    std::sort(merged_.begin(), merged_.end(),
+              [](const Span& a, const Span& b) { return a.x0 < b.x0; });
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < merged_.size(); ++i) {
+      if (out > 0 && merged_[i].x0 <= merged_[out - 1].x1)
+        merged_[out - 1].x1 = std::max(merged_[out - 1].x1, merged_[i].x1);
+      else
+        merged_[out++] = merged_[i];
+    }
+    merged_.resize(out);
+    return merged_;
+  }
+  /// Whether a long lane sees p.
+  bool sees(Point2 p) {
+    const std::vector<Span>& in = at(p.y);
+    // The last range starting at or before p.x (ranges are disjoint and ascending).
+    const auto after = std::upper_bound(in.begin(), in.end(), p.x,
+                                        [](double x, const Span& s) { return x < s.x0; });
+    return after != in.begin() && p.x <= std::prev(after)->x1;
+  }
+
+ private:
+  const std::vector<double>& ys_;
+  const SpanRows& lanes_;
+  double half_, min_length_;
+  std::size_t lo_ = 0, hi_ = 0;
+  bool cached_ = false;
+  double last_y_ = -std::numeric_limits<double>::infinity();
+  std::vector<Span> merged_;
+};
+
 // Points the lanes must see, sorted by ordinate (then abscissa): the boundary every eighth of a
 // spacing (vertices included) and the inside on rows a quarter of a spacing apart, a quarter along
 // them. At most ~200,000: steps grow on very large areas. Into `samples` (its capacity kept: a
 // direction search samples the area ~100 times, and fresh pages for each were a large part of a
-// 10,000-vertex area's time). Defined in lane_runs.cpp.
-void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples);
+// 10,000-vertex area's time). With `skip`, those a long lane sees are left out (the others in the
+// same order): lane_runs' decisions never turn on them (see lane_runs). Defined in lane_runs.cpp.
+void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples,
+                      LongLaneReach* skip = nullptr);
+
+// lane_runs() with its coverage check on every sample, those a long lane sees too: the reference
+// that lane_runs' tests compare it with. Defined in lane_runs.cpp.
+LaneRuns lane_runs_on_every_sample(const LaneRunArea& area, const LaneRunSettings& settings);
 
 // Points sorted by ordinate, then abscissa (lane_runs' coverage samples). A box walks the points
 // in its ordinate range, but a long row of equal ordinate (the inside's rows hold most of the
