@@ -132,11 +132,9 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
     // Samples [first, last) of a span: written at once, the first checked against the last before.
     const auto write = [&](double x0, double width, int n, int first, int last) {
       const std::size_t at = samples.size();
-      samples.resize(at + std::size_t(last - first));
-      Point2* out = samples.data() + at;
-      for (int i = first; i < last; ++i) out[i - first] = {x0 + width * (i + 0.5) / n, y};
-      in_order = in_order && !(out[0].x < previous_x);
-      previous_x = out[last - first - 1].x;
+      for (int i = first; i < last; ++i) samples.push_back({x0 + width * (i + 0.5) / n, y});
+      in_order = in_order && !(samples[at].x < previous_x);
+      previous_x = samples.back().x;
     };
     const std::vector<Span>* seen = skip ? &skip->at(y) : nullptr;
     for (const Span& in : inside[r]) {
@@ -149,26 +147,24 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
       }
       // Left out: the samples within a long lane's reach. A span's abscissae do not decrease with
       // i (above), so those within one range [a, b] are the indices from the first whose
-      // abscissa is >= a up to the first whose is > b: found by search, in the same arithmetic.
+      // abscissa is >= a up to the first whose is > b: found from the index the abscissa t
+      // suggests, (t - x0) n / width - 1/2, walked to in the same arithmetic (a step or two).
       const auto x_at = [&](int i) { return x0 + width * (i + 0.5) / n; };
-      const auto first_index = [&](int from, auto below) {
-        int lo = from, hi = n;  // the first i in [from, n) where !below(x_at(i)), else n
-        while (lo < hi) {
-          const int mid = lo + (hi - lo) / 2;
-          if (below(x_at(mid)))
-            lo = mid + 1;
-          else
-            hi = mid;
-        }
-        return lo;
+      // The first i in [from, n] where i == n or !below(x_at(i)), below() true then false.
+      const auto first_index = [&](int from, double t, auto below) {
+        const double guess = (t - x0) / width * n - 0.5;
+        int i = !(guess > from) ? from : !(guess < n) ? n : int(guess);
+        while (i > from && !below(x_at(i - 1))) --i;
+        while (i < n && below(x_at(i))) ++i;
+        return i;
       };
       int i = 0;
       for (auto range = std::lower_bound(seen->begin(), seen->end(), x_at(0),
                                          [](const Span&s, double x) { return s.x1 < x; });
            range != seen->end() && i < n; ++range) {
-        const int from = first_index(i, [&](double x) { return x < range->x0; });
+        const int from = first_index(i, range->x0, [&](double x) { return x < range->x0; });
         if (from == n) break;
-        const int to = first_index(from, [&](double x) { return x <= range->x1; });
+        const int to = first_index(from, range->x1, [&](double x) { return x <= range->x1; });
         if (from > i) write(x0, width, n, i, from);
         i = to;
       }

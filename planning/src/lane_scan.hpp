@@ -210,8 +210,7 @@ inline constexpr double kSeenAlongM = 1e-6;
 // coverage check's own test (lane.y - half <= p.y <= lane.y + half, lane.x0 - kSeenAlongM <= p.x
 // <= lane.x1 + kSeenAlongM, in those roundings). Per ordinate, the union of the long lanes'
 // abscissa ranges (closed intervals, merged: no arithmetic, so exactly the union) over the rows
-// within reach. Asked at ascending ordinates, the rows within reach are walked to and their union
-// kept while they stay the same (any order is answered, a descending ordinate by starting over).
+// within reach, kept while an ordinate asked next has the same rows within reach.
 class LongLaneReach {
  public:
   /// Rows `ys` ascending; `lanes[k]` the lanes on ys[k]; a lane counts when x1 - x0 > min_length_m.
@@ -221,17 +220,37 @@ class LongLaneReach {
 
   /// The merged ranges [x0, x1] that the long lanes within reach of ordinate y see, ascending.
   const std::vector<Span>& at(double y) {
-    if (y < last_y_) lo_ = hi_ = 0, cached_ = false;  // not ascending: walk again from the start
-    last_y_ = y;
-    const std::size_t n = ys_.size();
-    std::size_t lo = lo_, hi = std::max(hi_, lo_);
+    // The rows within reach stay [lo, hi) for y in (below_lo_, up_to_lo_] and [from_hi_,
+    // below_hi_): a boundary's samples, one ordinate each, mostly ask the same rows again.
+    if (y > below_lo_ && y <= up_to_lo_ && y >= from_hi_ && y < below_hi_) return merged_;
+    return refill(y);
+  }
+  /// Whether a long lane sees p.
+  bool sees(Point2 p) {
+    const std::vector<Span>& in = at(p.y);
+    // The last range starting at or before p.x (ranges are disjoint and ascending).
+    const auto after = std::upper_bound(in.begin(), in.end(), p.x,
+                                        [](double x, const Span& s) { return x < s.x0; });
+    return after != in.begin() && p.x <= std::prev(after)->x1;
+  }
+
+ private:
+  const std::vector<Span>& refill(double y) {
     // Rows within reach: ys[k] - half <= y <= ys[k] + half. Both ends ascend with k (rounding
-    // is monotone), so the rows within reach are [lo, hi) and both walk up with y.
-    while (lo < n && ys_[lo] + half_ < y) ++lo;
-    hi = std::max(hi, lo);
-    while (hi < n && ys_[hi] - half_ <= y) ++hi;
-    if (cached_ && lo == lo_ && hi == hi_) return merged_;
-    lo_ = lo, hi_ = hi, cached_ = true;
+    // is monotone), so they are [lo, hi): lo the first row with y <= ys[lo] + half, hi the first
+    // with y < ys[hi] - half.
+    const auto lo = std::size_t(
+        std::partition_point(ys_.begin(), ys_.end(), [&](double k) { return k + half_ < y; }) -
+        ys_.begin());
+    const auto hi = std::size_t(
+        std::partition_point(ys_.begin(), ys_.end(), [&](double k) { return k - half_ <= y; }) -
+        ys_.begin());
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::size_t n = ys_.size();
+    below_lo_ = lo > 0 ? ys_[lo - 1] + half_ : -inf;
+    up_to_lo_ = lo < n ? ys_[lo] + half_ : inf;
+    from_hi_ = hi > 0 ? ys_[hi - 1] - half_ : -inf;
+    below_hi_ = hi < n ? ys_[hi] - half_ : inf;
     merged_.clear();
     for (std::size_t k = lo; k < hi; ++k)
       for (const Span& s : lanes_[k])
@@ -248,22 +267,13 @@ class LongLaneReach {
     merged_.resize(out);
     return merged_;
   }
-  /// Whether a long lane sees p.
-  bool sees(Point2 p) {
-    const std::vector<Span>& in = at(p.y);
-    // The last range starting at or before p.x (ranges are disjoint and ascending).
-    const auto after = std::upper_bound(in.begin(), in.end(), p.x,
-                                        [](double x, const Span& s) { return x < s.x0; });
-    return after != in.begin() && p.x <= std::prev(after)->x1;
-  }
 
- private:
   const std::vector<double>& ys_;
   const SpanRows& lanes_;
   double half_, min_length_;
-  std::size_t lo_ = 0, hi_ = 0;
-  bool cached_ = false;
-  double last_y_ = -std::numeric_limits<double>::infinity();
+  // The ordinates for which merged_ holds: none until it is first filled (NaN compares false).
+  double below_lo_ = std::numeric_limits<double>::quiet_NaN(), up_to_lo_ = below_lo_,
+         from_hi_ = below_lo_, below_hi_ = below_lo_;
   std::vector<Span> merged_;
 };
 
