@@ -71,6 +71,15 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
+    if (skip) {
+      // Those a long lane sees left out as they are made, before the sort (an edge's samples
+      // mostly ask the rows within reach the one before asked: LongLaneReach keeps them).
+      for (int i = 0; i < n; ++i) {
+        const Point2 p = a + (b - a) * (double(i) / n);
+        if (!skip->sees(p)) boundary.push_back(p);
+      }
+      continue;
+    }
     const std::size_t at = boundary.size();
     boundary.resize(at + std::size_t(n));
     Point2* out = boundary.data() + at;
@@ -86,10 +95,9 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   // sorted one way or the other (along an edge and on while the boundary keeps rising or
   // falling): where those are long, they are merged (a field's few hundred samples of a few
   // dozen edges were sorted anew for every direction).
+  // Sorted after those a long lane sees are left out: the others' order is the one sorting all
+  // gave (equivalent samples are equal points).
   geometry::sort_by_runs(boundary, by_ordinate, true);
-  // The boundary's that a long lane sees left out, the others in their order (the ordinates
-  // ascend: the reach's rows are walked to once).
-  if (skip) std::erase_if(boundary, [&](Point2 p) { return skip->sees(p); });
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
   const SpanRows inside = scan.at(rows);
