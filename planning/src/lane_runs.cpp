@@ -144,12 +144,12 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
       in_order = in_order && !(samples[at].x < previous_x);
       previous_x = samples.back().x;
     };
-    const std::vector<Span>* seen = skip ? &skip->at(y) : nullptr;
+    const std::span<const Span> seen = skip ? skip->at(y) : std::span<const Span>();
     for (const Span& in : inside[r]) {
       const int n = count(in);
       // The span's ends read once: stores through `out` might alias them (the same arithmetic).
       const double x0 = in.x0, width = in.x1 - in.x0;
-      if (!seen || seen->empty()) {
+      if (seen.empty()) {
         write(x0, width, n, 0, n);
         continue;
       }
@@ -167,9 +167,9 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
         return i;
       };
       int i = 0;
-      for (auto range = std::lower_bound(seen->begin(), seen->end(), x_at(0),
+      for (auto range = std::lower_bound(seen.begin(), seen.end(), x_at(0),
                                          [](const Span&s, double x) { return s.x1 < x; });
-           range != seen->end() && i < n; ++range) {
+           range != seen.end() && i < n; ++range) {
         const int from = first_index(i, range->x0, [&](double x) { return x < range->x0; });
         if (from == n) break;
         const int to = first_index(from, range->x1, [&](double x) { return x <= range->x1; });

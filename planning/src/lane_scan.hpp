@@ -218,16 +218,17 @@ class LongLaneReach {
                 double min_length_m)
       : ys_(ys), lanes_(lanes), half_(half_m), min_length_(min_length_m) {}
 
-  /// The merged ranges [x0, x1] that the long lanes within reach of ordinate y see, ascending.
-  const std::vector<Span>& at(double y) {
+  /// The merged ranges [x0, x1] that the long lanes within reach of ordinate y see, ascending;
+  /// valid until the next call.
+  std::span<const Span> at(double y) {
     // The rows within reach stay [lo, hi) for y in (below_lo_, up_to_lo_] and [from_hi_,
     // below_hi_): a boundary's samples, one ordinate each, mostly ask the same rows again.
-    if (y > below_lo_ && y <= up_to_lo_ && y >= from_hi_ && y < below_hi_) return merged_;
-    return refill(y);
+    if (!(y > below_lo_ && y <= up_to_lo_ && y >= from_hi_ && y < below_hi_)) refill(y);
+    return {ranges_.data() + current_.first, ranges_.data() + current_.second};
   }
   /// Whether a long lane sees p.
   bool sees(Point2 p) {
-    const std::vector<Span>& in = at(p.y);
+    const std::span<const Span> in = at(p.y);
     // The last range starting at or before p.x (ranges are disjoint and ascending).
     const auto after = std::upper_bound(in.begin(), in.end(), p.x,
                                         [](double x, const Span& s) { return x < s.x0; });
@@ -235,7 +236,7 @@ class LongLaneReach {
   }
 
  private:
-  const std::vector<Span>& refill(double y) {
+  void refill(double y) {
     // Rows within reach: ys[k] - half <= y <= ys[k] + half. Both ends ascend with k (rounding
     // is monotone), so they are [lo, hi): lo the first row with y <= ys[lo] + half, hi the first
     // with y < ys[hi] - half.
@@ -251,30 +252,43 @@ class LongLaneReach {
     up_to_lo_ = lo < n ? ys_[lo] + half_ : inf;
     from_hi_ = hi > 0 ? ys_[hi - 1] - half_ : -inf;
     below_hi_ = hi < n ? ys_[hi] - half_ : inf;
-    merged_.clear();
+    // Each [lo, hi) merged once: as y rises, lo and hi only rise, each step one of them, so the
+    // rows within reach are told apart by lo + hi (the boundary's samples, in edge order, ask
+    // the same rows again and again).
+    if (memo_.empty()) memo_.assign(2 * n + 1, {1, 0});
+    std::pair<std::uint32_t, std::uint32_t>& kept = memo_[lo + hi];
+    if (kept.first > kept.second) kept = merge(lo, hi);
+    current_ = kept;
+  }
+  // The long lanes' ranges of rows [lo, hi), merged, appended to ranges_: where they are.
+  std::pair<std::uint32_t, std::uint32_t> merge(std::size_t lo, std::size_t hi) {
+    const auto first = std::uint32_t(ranges_.size());
     for (std::size_t k = lo; k < hi; ++k)
       for (const Span& s : lanes_[k])
-        if (s.x1 - s.x0 > min_length_) merged_.push_back({s.x0 - kSeenAlongM, s.x1 + kSeenAlongM});
-    std::sort(merged_.begin(), merged_.end(),
-              [](const Span& a, const Span& b) { return a.x0 < b.x0; });
-    std::size_t out = 0;
-    for (std::size_t i = 0; i < merged_.size(); ++i) {
-      if (out > 0 && merged_[i].x0 <= merged_[out - 1].x1)
-        merged_[out - 1].x1 = std::max(merged_[out - 1].x1, merged_[i].x1);
+        if (s.x1 - s.x0 > min_length_) ranges_.push_back({s.x0 - kSeenAlongM, s.x1 + kSeenAlongM});
+    const auto begin = ranges_.begin() + first;
+    std::sort(begin, ranges_.end(), [](const Span& a, const Span& b) { return a.x0 < b.x0; });
+    auto out = begin;
+    for (auto i = begin; i != ranges_.end(); ++i) {
+      if (out != begin && i->x0 <= std::prev(out)->x1)
+        std::prev(out)->x1 = std::max(std::prev(out)->x1, i->x1);
       else
-        merged_[out++] = merged_[i];
+        *out++ = *i;
     }
-    merged_.resize(out);
-    return merged_;
+    ranges_.erase(out, ranges_.end());
+    return {first, std::uint32_t(ranges_.size())};
   }
 
   const std::vector<double>& ys_;
   const SpanRows& lanes_;
   double half_, min_length_;
-  // The ordinates for which merged_ holds: none until it is first filled (NaN compares false).
+  // The ordinates for which current_ holds: none until it is first filled (NaN compares false).
   double below_lo_ = std::numeric_limits<double>::quiet_NaN(), up_to_lo_ = below_lo_,
          from_hi_ = below_lo_, below_hi_ = below_lo_;
-  std::vector<Span> merged_;
+  std::vector<Span> ranges_;  ///< every merged union made, one after another
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>
+      memo_;  ///< per lo + hi: in ranges_, or {1, 0}
+  std::pair<std::uint32_t, std::uint32_t> current_{0, 0};
 };
 
 // Points the lanes must see, sorted by ordinate (then abscissa): the boundary every eighth of a
