@@ -56,7 +56,8 @@ struct RunLane {
 
 namespace detail {
 
-void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples) {
+void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples,
+                      LongLaneReach* skip) {
   double perimeter = 0;
   for (const auto& [a, b] : scan.edges()) perimeter += geometry::distance(a, b);
   double step = spacing_m;
@@ -70,6 +71,15 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
+    if (skip) {
+      // Those a long lane sees left out as they are made, before the sort (an edge's samples
+      // mostly ask the rows within reach the one before asked: LongLaneReach keeps them).
+      for (int i = 0; i < n; ++i) {
+        const Point2 p = a + (b - a) * (double(i) / n);
+        if (!skip->sees(p)) boundary.push_back(p);
+      }
+      continue;
+    }
     const std::size_t at = boundary.size();
     boundary.resize(at + std::size_t(n));
     Point2* out = boundary.data() + at;
@@ -85,6 +95,8 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   // sorted one way or the other (along an edge and on while the boundary keeps rising or
   // falling): where those are long, they are merged (a field's few hundred samples of a few
   // dozen edges were sorted anew for every direction).
+  // Sorted after those a long lane sees are left out: the others' order is the one sorting all
+  // gave (equivalent samples are equal points).
   geometry::sort_by_runs(boundary, by_ordinate, true);
   std::vector<double> rows;
   for (double y = scan.y_min + step / 8; y < scan.y_max; y += step / 4) rows.push_back(y);
@@ -92,11 +104,13 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   const auto count = [&](const Span& in) {
     return std::max(1, int(std::ceil((in.x1 - in.x0) / (step / 4))));
   };
-  std::size_t total = boundary.size();
-  for (std::size_t r = 0; r < inside.size(); ++r)
-    for (const Span& in : inside[r]) total += std::size_t(count(in));
   samples.clear();
-  samples.reserve(total);
+  if (!skip) {
+    std::size_t total = boundary.size();
+    for (std::size_t r = 0; r < inside.size(); ++r)
+      for (const Span& in : inside[r]) total += std::size_t(count(in));
+    samples.reserve(total);
+  }
   std::size_t next = 0;  // of boundary
   bool in_order = true;  // the inside's samples ascending (expected: spans are disjoint, ascending)
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -110,6 +124,7 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
         const int n = count(in);
         for (int i = 0; i < n; ++i) {
           const Point2 p{in.x0 + (in.x1 - in.x0) * (i + 0.5) / n, y};
+          if (skip && skip->sees(p)) continue;
           while (next < boundary.size() && !by_ordinate(p, boundary[next]))
             samples.push_back(boundary[next++]);
           in_order = in_order && (samples.empty() || !by_ordinate(p, samples.back()));
@@ -122,16 +137,46 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
     // and within a span they are not (x0 + w (i + 1/2) / n, rounded, does not decrease with i
     // for w > 0; a NaN compares false either way): each span's first is checked.
     double previous_x = -std::numeric_limits<double>::infinity();
+    // Samples [first, last) of a span: written at once, the first checked against the last before.
+    const auto write = [&](double x0, double width, int n, int first, int last) {
+      const std::size_t at = samples.size();
+      for (int i = first; i < last; ++i) samples.push_back({x0 + width * (i + 0.5) / n, y});
+      in_order = in_order && !(samples[at].x < previous_x);
+      previous_x = samples.back().x;
+    };
+    const std::span<const Span> seen = skip ? skip->at(y) : std::span<const Span>();
     for (const Span& in : inside[r]) {
       const int n = count(in);
-      const std::size_t at = samples.size();
-      samples.resize(at + std::size_t(n));
-      Point2* out = samples.data() + at;
       // The span's ends read once: stores through `out` might alias them (the same arithmetic).
       const double x0 = in.x0, width = in.x1 - in.x0;
-      for (int i = 0; i < n; ++i) out[i] = {x0 + width * (i + 0.5) / n, y};
-      in_order = in_order && !(out[0].x < previous_x);
-      previous_x = out[n - 1].x;
+      if (seen.empty()) {
+        write(x0, width, n, 0, n);
+        continue;
+      }
+      // Left out: the samples within a long lane's reach. A span's abscissae do not decrease with
+      // i (above), so those within one range [a, b] are the indices from the first whose
+      // abscissa is >= a up to the first whose is > b: found from the index the abscissa t
+      // suggests, (t - x0) n / width - 1/2, walked to in the same arithmetic (a step or two).
+      const auto x_at = [&](int i) { return x0 + width * (i + 0.5) / n; };
+      // The first i in [from, n] where i == n or !below(x_at(i)), below() true then false.
+      const auto first_index = [&](int from, double t, auto below) {
+        const double guess = (t - x0) / width * n - 0.5;
+        int i = !(guess > from) ? from : !(guess < n) ? n : int(guess);
+        while (i > from && !below(x_at(i - 1))) --i;
+        while (i < n && below(x_at(i))) ++i;
+        return i;
+      };
+      int i = 0;
+      for (auto range = std::lower_bound(seen.begin(), seen.end(), x_at(0),
+                                         [](const Span&s, double x) { return s.x1 < x; });
+           range != seen.end() && i < n; ++range) {
+        const int from = first_index(i, range->x0, [&](double x) { return x < range->x0; });
+        if (from == n) break;
+        const int to = first_index(from, range->x1, [&](double x) { return x <= range->x1; });
+        if (from > i) write(x0, width, n, i, from);
+        i = to;
+      }
+      if (i < n) write(x0, width, n, i, n);
     }
   }
   samples.insert(samples.end(), boundary.begin() + std::ptrdiff_t(next), boundary.end());
@@ -149,14 +194,15 @@ class SeenCount {
   SeenCount(const std::vector<Point2>& samples, double footprint_width_m)
       : samples_(samples),
         rows_(samples, footprint_width_m / 4),
-        half_(footprint_width_m / 2 + 1e-9),
+        half_(detail::seen_half_width_m(footprint_width_m)),
         count_(samples.size() + 1, 0) {}
 
   /// f(i) for every sample i the lane sees, in no particular order.
   template <typename F>
   void each_seen_by(const RunLane& lane, F f) const {
     rows_.any_order_in(
-        lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
+        lane.y - half_, lane.y + half_, lane.x0 - detail::kSeenAlongM,
+        lane.x1 + detail::kSeenAlongM,
         [&](std::size_t first, std::size_t last) {
           for (std::size_t i = first; i < last; ++i) f(i);
         },
@@ -174,7 +220,8 @@ class SeenCount {
   void add_all(const std::vector<RunLane>& lanes, std::vector<std::size_t>& unseen) {
     for (const RunLane& lane : lanes)
       rows_.any_order_in(
-          lane.y - half_, lane.y + half_, lane.x0 - 1e-6, lane.x1 + 1e-6,
+          lane.y - half_, lane.y + half_, lane.x0 - detail::kSeenAlongM,
+          lane.x1 + detail::kSeenAlongM,
           [&](std::size_t first, std::size_t last) {
             ++count_[first];
             --count_[last];
@@ -202,7 +249,7 @@ class SeenCount {
   template <typename F>
   void each_of_seen_by(const std::vector<std::size_t>& subset, const RunLane& lane, F f) const {
     const double y_lo = lane.y - half_, y_hi = lane.y + half_;
-    const double x_lo = lane.x0 - 1e-6, x_hi = lane.x1 + 1e-6;
+    const double x_lo = lane.x0 - detail::kSeenAlongM, x_hi = lane.x1 + detail::kSeenAlongM;
     // Indices ascending are ordinates ascending (the samples are sorted by them).
     auto k = std::lower_bound(subset.begin(), subset.end(), y_lo,
                               [&](std::size_t i, double y) { return samples_[i].y < y; });
@@ -443,8 +490,12 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
   return lane_runs(area, s, samples);
 }
 
-LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
-                   std::vector<Point2>& samples) {
+namespace {
+
+// lane_runs(); every_sample: the coverage check on every sample (the reference its tests compare
+// with), not only on those no long lane sees.
+LaneRuns runs_of(const LaneRunArea& area, const LaneRunSettings& s, std::vector<Point2>& samples,
+                 bool every_sample) {
   if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m))
     throw std::invalid_argument("lane_runs: need 0 < spacing <= footprint width");
   const LaneScan scan(area.fly, s.angle_deg);
@@ -459,12 +510,24 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   for (std::size_t k = 0; k < ys.size(); ++k)
     for (const Span& in : cut[k]) lanes.push_back({ys[k], in.x0, in.x1, int(k)});
 
-  // 2. Lanes for the corners the grid misses.
-  if (samples.empty()) {
+  // 2. Lanes for the corners the grid misses. The samples a long grid lane sees (longer than the
+  // slivers' length, as step 3 tells them) are left out: no decision below turns on them. Such a
+  // sample is seen from the start and lanes are only added until step 3, so it is never unseen
+  // (coverage lanes and unreachable points only ask the unseen). Step 3 asks a lane L only if it
+  // is at most the slivers' length, and asks whether every sample L sees has a count >= 2: a
+  // sample the long lane sees does, L and the long one (not L: longer; never dropped: step 3
+  // stops at the first lane longer than that length) both counted. A sample's count is the
+  // lanes seeing it, whatever the other samples: the samples kept answer as before, the left-out
+  // ones would have answered "yes". So the same lanes, the same order, the same runs.
+  const double sliver_m = s.sliver_length_footprints * s.footprint_width_m;
+  {
     // Not `see.empty() ? scan : LaneScan(...)`: that copies `scan` (every edge) each direction.
     std::optional<LaneScan> seen_scan;
     if (!area.see.empty()) seen_scan.emplace(area.see, s.angle_deg);
-    detail::coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples);
+    detail::LongLaneReach long_lanes(ys, cut, detail::seen_half_width_m(s.footprint_width_m),
+                                     sliver_m);
+    detail::coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples,
+                             every_sample ? nullptr : &long_lanes);
   }
   SeenCount seen(samples, s.footprint_width_m);
   thread_local std::vector<std::size_t> unseen;
@@ -500,7 +563,7 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
     return lanes[a].x1 - lanes[a].x0 < lanes[b].x1 - lanes[b].x0;
   });
   for (std::size_t i : by_length) {
-    if (lanes[i].x1 - lanes[i].x0 > s.sliver_length_footprints * s.footprint_width_m) break;
+    if (lanes[i].x1 - lanes[i].x0 > sliver_m) break;
     if (!edge_across(lanes[i]) || !seen.redundant(lanes[i])) continue;
     seen.remove(lanes[i]);
     keep[i] = 0;
@@ -524,5 +587,21 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
   }
   return out;
 }
+
+}  // namespace
+
+LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s,
+                   std::vector<Point2>& samples) {
+  return runs_of(area, s, samples, false);
+}
+
+namespace detail {
+
+LaneRuns lane_runs_on_every_sample(const LaneRunArea& area, const LaneRunSettings& s) {
+  std::vector<Point2> samples;
+  return runs_of(area, s, samples, true);
+}
+
+}  // namespace detail
 
 }  // namespace swath::planning

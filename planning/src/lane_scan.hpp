@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "swath/geometry/polygon.hpp"
+#include "swath/planning/lane_runs.hpp"
 
 namespace swath::planning::detail {
 
@@ -198,12 +199,110 @@ class LaneScan {
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
+// Half the width across a lane within which it sees a sample (lane_runs' coverage check); along
+// it, its ends widened by kSeenAlongM. One expression for the check and for what it may skip.
+inline double seen_half_width_m(double footprint_width_m) {
+  return footprint_width_m / 2 + 1e-9;
+}
+inline constexpr double kSeenAlongM = 1e-6;
+
+// Where the long lanes see: the points that a lane longer than the slivers' length sees, by the
+// coverage check's own test (lane.y - half <= p.y <= lane.y + half, lane.x0 - kSeenAlongM <= p.x
+// <= lane.x1 + kSeenAlongM, in those roundings). Per ordinate, the union of the long lanes'
+// abscissa ranges (closed intervals, merged: no arithmetic, so exactly the union) over the rows
+// within reach, kept while an ordinate asked next has the same rows within reach.
+class LongLaneReach {
+ public:
+  /// Rows `ys` ascending; `lanes[k]` the lanes on ys[k]; a lane counts when x1 - x0 > min_length_m.
+  LongLaneReach(const std::vector<double>& ys, const SpanRows& lanes, double half_m,
+                double min_length_m)
+      : ys_(ys), lanes_(lanes), half_(half_m), min_length_(min_length_m) {}
+
+  /// The merged ranges [x0, x1] that the long lanes within reach of ordinate y see, ascending;
+  /// valid until the next call.
+  std::span<const Span> at(double y) {
+    // The rows within reach stay [lo, hi) for y in (below_lo_, up_to_lo_] and [from_hi_,
+    // below_hi_): a boundary's samples, one ordinate each, mostly ask the same rows again.
+    if (!(y > below_lo_ && y <= up_to_lo_ && y >= from_hi_ && y < below_hi_)) refill(y);
+    return {ranges_.data() + current_.first, ranges_.data() + current_.second};
+  }
+  /// Whether a long lane sees p.
+  bool sees(Point2 p) {
+    const std::span<const Span> in = at(p.y);
+    // The last range starting at or before p.x (ranges are disjoint and ascending).
+    const auto after = std::upper_bound(in.begin(), in.end(), p.x,
+                                        [](double x, const Span& s) { return x < s.x0; });
+    return after != in.begin() && p.x <= std::prev(after)->x1;
+  }
+
+ private:
+  void refill(double y) {
+    // Rows within reach: ys[k] - half <= y <= ys[k] + half. Both ends ascend with k (rounding
+    // is monotone), so they are [lo, hi): lo the first row with y <= ys[lo] + half, hi the first
+    // with y < ys[hi] - half.
+    const auto lo = std::size_t(
+        std::partition_point(ys_.begin(), ys_.end(), [&](double k) { return k + half_ < y; }) -
+        ys_.begin());
+    const auto hi = std::size_t(
+        std::partition_point(ys_.begin(), ys_.end(), [&](double k) { return k - half_ <= y; }) -
+        ys_.begin());
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::size_t n = ys_.size();
+    below_lo_ = lo > 0 ? ys_[lo - 1] + half_ : -inf;
+    up_to_lo_ = lo < n ? ys_[lo] + half_ : inf;
+    from_hi_ = hi > 0 ? ys_[hi - 1] - half_ : -inf;
+    below_hi_ = hi < n ? ys_[hi] - half_ : inf;
+    // Each [lo, hi) merged once: as y rises, lo and hi only rise, each step one of them, so the
+    // rows within reach are told apart by lo + hi (the boundary's samples, in edge order, ask
+    // the same rows again and again).
+    if (memo_.empty()) memo_.assign(2 * n + 1, {1, 0});
+    std::pair<std::uint32_t, std::uint32_t>& kept = memo_[lo + hi];
+    if (kept.first > kept.second) kept = merge(lo, hi);
+    current_ = kept;
+  }
+  // The long lanes' ranges of rows [lo, hi), merged, appended to ranges_: where they are.
+  std::pair<std::uint32_t, std::uint32_t> merge(std::size_t lo, std::size_t hi) {
+    const auto first = std::uint32_t(ranges_.size());
+    for (std::size_t k = lo; k < hi; ++k)
+      for (const Span& s : lanes_[k])
+        if (s.x1 - s.x0 > min_length_) ranges_.push_back({s.x0 - kSeenAlongM, s.x1 + kSeenAlongM});
+    const auto begin = ranges_.begin() + first;
+    std::sort(begin, ranges_.end(), [](const Span& a, const Span& b) { return a.x0 < b.x0; });
+    auto out = begin;
+    for (auto i = begin; i != ranges_.end(); ++i) {
+      if (out != begin && i->x0 <= std::prev(out)->x1)
+        std::prev(out)->x1 = std::max(std::prev(out)->x1, i->x1);
+      else
+        *out++ = *i;
+    }
+    ranges_.erase(out, ranges_.end());
+    return {first, std::uint32_t(ranges_.size())};
+  }
+
+  const std::vector<double>& ys_;
+  const SpanRows& lanes_;
+  double half_, min_length_;
+  // The ordinates for which current_ holds: none until it is first filled (NaN compares false).
+  double below_lo_ = std::numeric_limits<double>::quiet_NaN(), up_to_lo_ = below_lo_,
+         from_hi_ = below_lo_, below_hi_ = below_lo_;
+  std::vector<Span> ranges_;  ///< every merged union made, one after another
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>
+      memo_;  ///< per lo + hi: in ranges_, or {1, 0}
+  std::pair<std::uint32_t, std::uint32_t> current_{0, 0};
+};
+
 // Points the lanes must see, sorted by ordinate (then abscissa): the boundary every eighth of a
 // spacing (vertices included) and the inside on rows a quarter of a spacing apart, a quarter along
 // them. At most ~200,000: steps grow on very large areas. Into `samples` (its capacity kept: a
 // direction search samples the area ~100 times, and fresh pages for each were a large part of a
-// 10,000-vertex area's time). Defined in lane_runs.cpp.
-void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples);
+// 10,000-vertex area's time). With `skip`, those a long lane sees are left out (the others in the
+// same order): lane_runs' decisions never turn on them (see lane_runs). Defined in lane_runs.cpp.
+void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples,
+                      LongLaneReach* skip = nullptr);
+
+// lane_runs() with its coverage check on every sample, those a long lane sees too: the reference
+// that lane_runs' tests compare it with. Defined in lane_runs.cpp.
+LaneRuns lane_runs_on_every_sample(const LaneRunArea& area, const LaneRunSettings& settings);
 
 // Points sorted by ordinate, then abscissa (lane_runs' coverage samples). A box walks the points
 // in its ordinate range, but a long row of equal ordinate (the inside's rows hold most of the

@@ -670,10 +670,9 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
   std::vector<std::vector<CellOrderProblem>> problems(n);  // per direction, as out.per_angle
   std::vector<std::vector<double>> bounds(n);
   base::parallel_for(n, s.threads, [&](std::size_t a) {
-    // Bridged runs where there is a margin, runs inside: both check coverage on the same samples
-    // of the area, taken once (into a buffer of the thread's).
+    // Bridged runs where there is a margin, runs inside: each takes the coverage samples its own
+    // lanes leave to check (into a buffer of the thread's).
     thread_local std::vector<Point2> samples;
-    samples.clear();
     for (const int kind : {0, 1}) {
       if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty()) ||
           !limits.fits[a][std::size_t(kind)])

@@ -35,7 +35,8 @@ double line_angle(Point2 a, Point2 b);
 /// Sweeps every cell and builds the ordering problem under `metric`.
 CellOrderProblem problem_for(Candidate& c, Point2 home, const Metric& metric);
 
-/// The lane runs of `rings` at `angle` as a candidate (bridged: joined across s.bridge_rings).
+/// The lane runs of `rings` at `angle` as a candidate (bridged: joined across s.bridge_rings);
+/// `samples`: lane_runs' buffer for its coverage samples.
 Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, const SplitSettings& s,
                      bool bridged, std::vector<Point2>& samples, bool drop_slivers = true,
                      std::optional<double> grid_ordinate_m = std::nullopt);

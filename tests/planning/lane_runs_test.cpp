@@ -9,6 +9,7 @@
 
 #include "coverage_oracle.hpp"
 #include "field_shapes.hpp"
+#include "lane_scan.hpp"
 #include "meadow_survey.hpp"
 #include "split_measure.hpp"
 #include "swath/geometry/decomposition.hpp"
@@ -80,36 +81,65 @@ TEST(LaneRuns, AStripThinnerThanTheInsetsStillGetsItsLane) {
   EXPECT_GE(test::sample_coverage(strip, all_lines(r), 1000, 300).fraction(), 0.999);
 }
 
-// A direction's bridged and unbridged runs share their coverage samples (split takes them once):
-// runs across an outside margin made with the samples of the runs inside are those made alone,
-// on a U with a pond whose notch a margin bridges, at several directions.
-TEST(LaneRuns, BridgedRunsOnSharedSamplesAreThoseOnTheirOwn) {
-  const Ring u{{0, 0},     {400, 0},   {400, 300}, {260, 300},
-               {260, 120}, {140, 120}, {140, 300}, {0, 300}};
-  const Ring pond{{40, 40}, {40, 90}, {100, 90}, {100, 40}};
-  const Ring margin{{-20, -20}, {420, -20}, {420, 320}, {-20, 320}};
-  for (const double angle : {0.0, 17.0, 90.0, 133.0}) {
-    const LaneRunSettings s = settings(angle);
-    std::vector<Point2> samples;
-    const LaneRuns inside = lane_runs({{u, pond}, {}, {}}, s, samples);
-    ASSERT_FALSE(samples.empty());
-    const std::vector<Point2> taken = samples;
-    const LaneRuns shared = lane_runs({{u, pond}, {}, {margin}}, s, samples);
-    const LaneRuns alone = lane_runs({{u, pond}, {}, {margin}}, s);
-    EXPECT_EQ(samples, taken);  // used, not recomputed
-    const std::vector<SweepLine> a = all_lines(shared), b = all_lines(alone);
-    ASSERT_EQ(a.size(), b.size()) << angle;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      EXPECT_EQ(a[i].start, b[i].start);
-      EXPECT_EQ(a[i].end, b[i].end);
-    }
-    EXPECT_EQ(shared.outlines, alone.outlines);
-    EXPECT_EQ(shared.coverage_lanes, alone.coverage_lanes);
-    EXPECT_EQ(shared.unreachable_points, alone.unreachable_points);
-    if (angle == 0.0) {
-      EXPECT_LT(a.size(), all_lines(inside).size());  // the margin joins lanes
+bool same_runs(const LaneRuns& a, const LaneRuns& b) {
+  const std::vector<SweepLine> p = all_lines(a), q = all_lines(b);
+  if (p.size() != q.size() || a.runs.size() != b.runs.size()) return false;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!(p[i].start == q[i].start) || !(p[i].end == q[i].end)) return false;
+  for (std::size_t r = 0; r < a.runs.size(); ++r)
+    if (a.runs[r].lines.size() != b.runs[r].lines.size() ||
+        a.runs[r].height_m != b.runs[r].height_m)
+      return false;
+  return a.outlines == b.outlines && a.coverage_lanes == b.coverage_lanes &&
+         a.unreachable_points == b.unreachable_points;
+}
+
+// The coverage check leaves out the samples a long lane sees (lane_runs' proof): the runs must be
+// those of the check on every sample (kept as the reference), bit for bit, on the split corpus's
+// shapes (narrow arms, combs, slivers, holes) and traced outlines at many directions, footprints
+// of 1-3 spacings, slivers' lengths 0-4 footprints, with and without a margin to bridge, a
+// separate area to see and a shared grid; its buffer holding anything before.
+TEST(LaneRuns, TheRunsOfTheCheckOnEverySample) {
+  test::Rng rng(5256);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<geometry::Polygon> areas;
+  for (const test::CorpusShape& shape : test::split_corpus(5256, 4)) areas.push_back(shape.area);
+  for (int i = 0; i < 4; ++i) areas.push_back(test::traced_outline(rng));
+  std::size_t compared = 0, slivers = 0, coverage = 0, unreachable = 0;
+  std::vector<Point2> buffer(5, Point2{3, 4});
+  for (std::size_t k = 0; k < areas.size(); ++k) {
+    const std::vector<Ring> rings = geometry::rings_of(areas[k]);
+    for (int d = 0; d < 6; ++d) {
+      const double spacing = 10 + 30 * unit(rng);
+      LaneRunSettings s = settings(180 * unit(rng), spacing, spacing * (1 + 2 * unit(rng)));
+      s.sliver_length_footprints = d % 3 == 0 ? 0.0 : 4 * unit(rng);
+      s.placement = d % 2 ? LinePlacement::paper : LinePlacement::centered;
+      if (d == 5) s.grid_ordinate_m = 1000 * unit(rng);
+      LaneRunArea area{rings, {}, {}};
+      if (d == 4) {  // a margin: the outline's box, grown
+        double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+        for (const Point2& p : areas[k].outer) {
+          x0 = std::min(x0, p.x - 30), y0 = std::min(y0, p.y - 30);
+          x1 = std::max(x1, p.x + 30), y1 = std::max(y1, p.y + 30);
+        }
+        area.bridge = {Ring{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
+      }
+      if (d == 3) area.see = {rings.front()};  // see the holes too
+      const LaneRuns fast = lane_runs(area, s, buffer);
+      const LaneRuns every = detail::lane_runs_on_every_sample(area, s);
+      ASSERT_TRUE(same_runs(fast, every)) << "area " << k << " setting " << d;
+      LaneRunSettings all = s;
+      all.sliver_length_footprints = 0;
+      slivers += all_lines(lane_runs(area, all)).size() - all_lines(fast).size();
+      coverage += fast.coverage_lanes;
+      unreachable += fast.unreachable_points;
+      ++compared;
     }
   }
+  EXPECT_GT(compared, 100u);
+  EXPECT_GT(slivers, 50u);  // the test sees slivers dropped, coverage lanes and unreachable points
+  EXPECT_GT(coverage, 50u);
+  EXPECT_GT(unreachable, 0u);
 }
 
 // An L whose 90 m arm the lanes cross (every lane there 90 m long, under two footprints): its

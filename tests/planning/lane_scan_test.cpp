@@ -241,6 +241,110 @@ TEST(CoverageSamples, TheSamplesOfThePlainMergeBitForBit) {
   EXPECT_GT(on_rows, 100u);  // the grids do put boundary samples on the rows
 }
 
+// coverage_samples() with a LongLaneReach leaves out the samples a long lane sees: it must give,
+// bit for bit and in the same order, every sample minus exactly those that some lane longer than
+// the length sees by the coverage check's test, each lane asked (kept here: the brute force).
+// Random fields with holes at random directions, lanes on random grids (footprints 1-3 spacings,
+// slivers' lengths from none to most lanes), and integer grids at 0 degrees with lanes on integer
+// ordinates, through vertices (boundary samples on the lanes' ends).
+TEST(CoverageSamples, LeftOutAreExactlyThoseALongLaneSees) {
+  test::Rng rng(5253);
+  std::uniform_real_distribution<double> any_angle(0, 180), unit(0, 1);
+  std::size_t kept = 0, left_out = 0;
+  std::vector<Point2> fast, every, truth;
+  for (int k = 0; k < 60; ++k) {
+    const bool grid = k % 3 == 2;
+    const std::vector<Ring> rings =
+        grid ? std::vector<Ring>{test::random_grid_ring(rng, 30, 24)} : scan_test_area(rng, k);
+    const double angle = grid ? 0.0 : any_angle(rng);
+    const double spacing = grid ? 8.0 : 5 + 40 * unit(rng);
+    const double footprint = grid ? 8.0 * (1 + k % 3) : spacing * (1 + 2 * unit(rng));
+    const double min_length = k % 4 == 0 ? 0.0 : footprint * 4 * unit(rng);
+    const LaneScan scan(rings, angle);
+    std::vector<double> ys;
+    for (double y = grid ? std::ceil(scan.y_min) : scan.y_min + spacing * unit(rng); y < scan.y_max;
+         y += spacing)
+      ys.push_back(y);
+    const SpanRows lanes = scan.at(ys);
+    const double half = seen_half_width_m(footprint);
+    LongLaneReach reach(ys, lanes, half, min_length);
+    fast.assign(3, Point2{1, 2});  // overwritten, whatever it held
+    coverage_samples(scan, spacing, fast, &reach);
+    coverage_samples(scan, spacing, every);
+    truth.clear();
+    for (const Point2& p : every) {
+      bool seen = false;
+      for (std::size_t r = 0; r < ys.size(); ++r)
+        for (const Span& l : lanes[r]) {
+          seen |= l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
+                  l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM;
+        }
+      if (!seen) truth.push_back(p);
+    }
+    ASSERT_EQ(fast.size(), truth.size()) << "area " << k;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(fast[i].x), std::bit_cast<std::uint64_t>(truth[i].x))
+          << "area " << k << ", sample " << i;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(fast[i].y), std::bit_cast<std::uint64_t>(truth[i].y))
+          << "area " << k << ", sample " << i;
+    }
+    kept += truth.size();
+    left_out += every.size() - truth.size();
+  }
+  EXPECT_GT(kept, 10000u);       // the test sees samples kept...
+  EXPECT_GT(left_out, 100000u);  // ...and left out
+}
+
+// LongLaneReach::at() must hold, at any ordinate asked in any order, the union of the long lanes'
+// ranges over the rows within reach: checked point by point against every lane at random
+// abscissae and ordinates, ascending and shuffled, and at the reach's edges: a lane's ends and
+// half a footprint across, a rounding or less either side, and a micrometre past its ends (the
+// ends' widening).
+TEST(LongLaneReach, SeesWhatSomeLongLaneSees) {
+  test::Rng rng(5255);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t seen_count = 0, asked = 0, widened = 0;
+  for (int k = 0; k < 40; ++k) {
+    const std::vector<Ring> rings = scan_test_area(rng, k);
+    const LaneScan scan(rings, 180 * unit(rng));
+    const double spacing = 5 + 40 * unit(rng), footprint = spacing * (1 + 2 * unit(rng));
+    std::vector<double> ys;
+    for (double y = scan.y_min + spacing * unit(rng); y < scan.y_max; y += spacing) ys.push_back(y);
+    const SpanRows lanes = scan.at(ys);
+    const double half = seen_half_width_m(footprint), min_length = footprint * 3 * unit(rng);
+    LongLaneReach reach(ys, lanes, half, min_length);
+    std::vector<Point2> points;
+    for (int i = 0; i < 3000; ++i) {
+      const double y = scan.y_min - 10 + (scan.y_max - scan.y_min + 20) * unit(rng);
+      points.push_back({-600 + 1200 * unit(rng), y});
+    }
+    for (std::size_t r = 0; r < ys.size(); r += 3)
+      for (const Span& l : lanes[r])
+        for (const double x : {l.x0, l.x1, l.x0 - 0.9e-6, l.x1 + 0.9e-6, l.x1 + 1.1e-6})
+          for (const double y : {ys[r], ys[r] - half, ys[r] + half})
+            for (const double dir : {-1.0, 0.0, 1.0})
+              points.push_back({x, dir == 0 ? y : std::nextafter(y, dir * 1e300)});
+    if (k % 2 == 0)
+      std::sort(points.begin(), points.end(), [](Point2 a, Point2 b) { return a.y < b.y; });
+    for (const Point2& p : points) {
+      bool truth = false;
+      for (std::size_t r = 0; r < ys.size(); ++r)
+        for (const Span& l : lanes[r]) {
+          const bool in = l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
+                          l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM;
+          truth |= in;
+          widened += in && (p.x < l.x0 || p.x > l.x1);
+        }
+      ASSERT_EQ(reach.sees(p), truth) << "area " << k << " at " << p.x << ", " << p.y;
+      seen_count += truth;
+      ++asked;
+    }
+  }
+  EXPECT_GT(seen_count, asked / 10);
+  EXPECT_LT(seen_count, asked * 9 / 10);
+  EXPECT_GT(widened, 1000u);  // points only the ends' widening lets a lane see
+}
+
 // walk_lower_bound() (and walk_lower_bound_by()) must land where std::lower_bound lands, from any
 // hint: ascending keys with repeats, values on keys, between, beyond both ends and NaN, hints
 // anywhere (past the end too).

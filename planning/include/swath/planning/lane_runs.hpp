@@ -60,10 +60,9 @@ struct LaneRunArea {
 /// and within its length, unless counted in unreachable_points. O((n + lanes) log + samples x
 /// nearby lanes).
 LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& settings);
-/// The same, with the coverage samples kept in `samples` (in the frame turned by -angle): empty,
-/// they are computed and stored there; else used as they are. They depend only on `see` (or `fly`
-/// when `see` is empty), the angle and the spacing, so a direction's runs with and without
-/// `bridge` share them (sampling is a large part of lane_runs).
+/// The same, with the coverage samples in `samples` (in the frame turned by -angle; whatever it
+/// held is replaced, its capacity kept for the next call): those no lane longer than the slivers'
+/// length sees, the only ones the coverage check asks.
 LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& settings,
                    std::vector<geometry::Point2>& samples);
 
