@@ -1,6 +1,7 @@
 #include "swath/planning/sweep.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -174,13 +175,6 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     // The extreme may lie on an edge along the lanes, where the extent jumps: the lane goes just
     // off it, on the side that reaches out (never on the edge: it would run along the boundary).
     const double inset = std::min(1e-3 * s.line_spacing_m, (y_max - y_min) / 4);
-    auto best_side = [&](double y, bool high) {
-      const double sides[2] = {std::max(y - inset, y_min + inset),
-                               std::min(y + inset, y_max - inset)};
-      strips_for(sides, 2, false, at);
-      return high ? (at[1].x_hi >= at[0].x_hi ? sides[1] : sides[0])
-                  : (at[1].x_lo <= at[0].x_lo ? sides[1] : sides[0]);
-    };
     // Only protrusions that no lane's footprint reaches already.
     auto seen = [&](double x, double y) {
       for (std::size_t j = 0; j < ys.size(); ++j)
@@ -189,20 +183,99 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
           return true;
       return false;
     };
-    std::vector<double> extra;
+    // A protrusion's extreme (its ordinate) and the side of the lanes it reaches out to.
+    struct Reach {
+      double y;
+      bool high;
+    };
+    thread_local std::vector<Reach> reaches;
+    reaches.clear();
     for (std::size_t k = 0; k < ys.size(); ++k) {
       if (whole[k].x_hi > strips[k].x_hi + slack && !seen(whole[k].x_hi, whole[k].y_at_x_hi))
-        extra.push_back(best_side(whole[k].y_at_x_hi, true));
+        reaches.push_back({whole[k].y_at_x_hi, true});
       if (whole[k].x_lo < strips[k].x_lo - slack && !seen(whole[k].x_lo, whole[k].y_at_x_lo))
-        extra.push_back(best_side(whole[k].y_at_x_lo, false));
+        reaches.push_back({whole[k].y_at_x_lo, false});
     }
-    if (!extra.empty()) {
-      std::vector<double> more = ys;
-      more.insert(more.end(), extra.begin(), extra.end());
-      std::sort(more.begin(), more.end());
-      more.erase(std::unique(more.begin(), more.end()), more.end());
-      ys = std::move(more);
-      strips_for(ys.data(), ys.size(), false, strips);
+    if (!reaches.empty()) {
+      // Where the lane goes: just below or just above the extreme, on the side that reaches
+      // further out; `at` holds the point strips of the two (below first).
+      const auto side = [&](const Reach& r, const Strip& below, const Strip& above) {
+        const bool up = r.high ? above.x_hi >= below.x_hi : above.x_lo <= below.x_lo;
+        return up ? 1 : 0;
+      };
+      const auto sides_of = [&](double y) {
+        return std::array<double, 2>{std::max(y - inset, y_min + inset),
+                                     std::min(y + inset, y_max - inset)};
+      };
+      thread_local std::vector<double> extra;
+      extra.clear();
+      // A point strip's extent is the fold, in ring order, of the edges that meet its ordinate:
+      // the walk skips only strips an edge cannot meet, so each strip's extent is the same
+      // whatever strips are asked beside it, provided the walk finds them all (ordinates
+      // ascending; NaN-free). So the sides of all reaches are asked in one walk, sorted, and the
+      // lanes at the grid's ordinates keep the extents found for them (a walk each before).
+      // Zeros are left to the walks: 0 and -0 are one ordinate to the sort and unique below.
+      const auto plain = [](double y) { return std::isfinite(y) && y != 0; };
+      bool shared = true;
+      for (std::size_t k = 0; k < ys.size(); ++k)
+        shared = shared && plain(ys[k]) && (k == 0 || ys[k - 1] <= ys[k]);
+      for (const Reach& r : reaches) shared = shared && std::isfinite(r.y);
+      if (!shared) {
+        for (const Reach& r : reaches) {
+          const std::array<double, 2> sides = sides_of(r.y);
+          strips_for(sides.data(), 2, false, at);
+          extra.push_back(sides[std::size_t(side(r, at[0], at[1]))]);
+        }
+        std::vector<double> more = ys;
+        more.insert(more.end(), extra.begin(), extra.end());
+        std::sort(more.begin(), more.end());
+        more.erase(std::unique(more.begin(), more.end()), more.end());
+        ys = std::move(more);
+        strips_for(ys.data(), ys.size(), false, strips);
+      } else {
+        thread_local std::vector<std::pair<double, std::size_t>> asked;  // ordinate, 2 reach + up
+        thread_local std::vector<double> asked_y;
+        thread_local std::vector<std::size_t> rank;  // asked side -> its strip in `at`
+        asked.clear();
+        for (std::size_t i = 0; i < reaches.size(); ++i) {
+          const std::array<double, 2> sides = sides_of(reaches[i].y);
+          asked.push_back({sides[0], 2 * i});
+          asked.push_back({sides[1], 2 * i + 1});
+        }
+        std::sort(asked.begin(), asked.end());
+        asked_y.clear();
+        rank.resize(asked.size());
+        for (std::size_t j = 0; j < asked.size(); ++j) {
+          asked_y.push_back(asked[j].first);
+          rank[asked[j].second] = j;
+        }
+        strips_for(asked_y.data(), asked_y.size(), false, at);
+        // The grid's lanes and the chosen sides', by ordinate, equal ones once (equal ordinates
+        // have equal bits here, so equal extents: which one is kept does not matter).
+        thread_local std::vector<std::pair<double, Strip>> lanes;
+        lanes.clear();
+        for (std::size_t k = 0; k < ys.size(); ++k) lanes.push_back({ys[k], strips[k]});
+        bool zero = false;
+        for (std::size_t i = 0; i < reaches.size(); ++i) {
+          const std::size_t up =
+              std::size_t(side(reaches[i], at[rank[2 * i]], at[rank[2 * i + 1]]));
+          const std::size_t j = rank[2 * i + up];
+          lanes.push_back({asked_y[j], at[j]});
+          zero = zero || asked_y[j] == 0;
+        }
+        std::sort(lanes.begin(), lanes.end(),
+                  [](const auto& u, const auto& v) { return u.first < v.first; });
+        lanes.erase(std::unique(lanes.begin(), lanes.end(),
+                                [](const auto& u, const auto& v) { return u.first == v.first; }),
+                    lanes.end());
+        ys.clear();
+        strips.clear();
+        for (const auto& [y, strip] : lanes) {
+          ys.push_back(y);
+          strips.push_back(strip);
+        }
+        if (zero) strips_for(ys.data(), ys.size(), false, strips);  // walked, as said above
+      }
     }
   }
   sweep.lines.reserve(strips.size());
