@@ -38,6 +38,23 @@ Point2 rotate(Point2 p, double angle_deg) {
   return {c * p.x - s * p.y, s * p.x + c * p.y};
 }
 
+namespace {
+
+// rotate(p, angle_deg) for the many points of one call: its cosine and sine taken once, not looked
+// up per point; the same values and arithmetic (without fused multiply-adds, as the project
+// builds), so the same points.
+struct Turn {
+  explicit Turn(double angle_deg) {
+    const double t = angle_deg * std::numbers::pi / 180.0;
+    c = std::cos(t);
+    s = std::sin(t);
+  }
+  Point2 operator()(Point2 p) const { return {c * p.x - s * p.y, s * p.x + c * p.y}; }
+  double c, s;
+};
+
+}  // namespace
+
 std::vector<double> line_offsets(double y_min, double y_max, double spacing, double footprint,
                                  LinePlacement placement) {
   const double height = y_max - y_min;
@@ -77,6 +94,7 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
   // kept: split plans sweep every piece of a decomposition at every direction (~18,000 sweeps of a
   // few vertices each at 100 vertices and 50 holes), and their allocations were a third of it.
   thread_local std::vector<geometry::Ring> rings;
+  const Turn to_lanes(-sweep.angle_deg);
   const std::size_t ring_count = geometry::ring_count(area);
   if (rings.size() < ring_count) rings.resize(ring_count);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
@@ -84,7 +102,7 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     geometry::Ring& ring = rings[r];
     ring.clear();
     for (const Point2& p : geometry::ring_at(area, r)) {
-      ring.push_back(rotate(p, -sweep.angle_deg));
+      ring.push_back(to_lanes(p));
       y_min = std::min(y_min, ring.back().y);
       y_max = std::max(y_max, ring.back().y);
     }
@@ -176,11 +194,25 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     // off it, on the side that reaches out (never on the edge: it would run along the boundary).
     const double inset = std::min(1e-3 * s.line_spacing_m, (y_max - y_min) / 4);
     // Only protrusions that no lane's footprint reaches already.
+    // On ascending ordinates y - ys[j] does not increase with j (rounding is monotone), so the
+    // lanes within half a footprint are one run of them, found by search: the same lanes asked as
+    // by a scan of all (one per protrusion was a sixth of a split plan's sweeps).
+    bool ascending = true;
+    for (std::size_t k = 0; k + 1 < ys.size(); ++k) ascending = ascending && ys[k] <= ys[k + 1];
+    const double half = s.footprint_width_m / 2;
     auto seen = [&](double x, double y) {
-      for (std::size_t j = 0; j < ys.size(); ++j)
-        if (std::abs(y - ys[j]) <= s.footprint_width_m / 2 && x >= strips[j].x_lo - slack &&
-            x <= strips[j].x_hi + slack)
-          return true;
+      const auto sees = [&](std::size_t j) {
+        return x >= strips[j].x_lo - slack && x <= strips[j].x_hi + slack;
+      };
+      if (!ascending) {
+        for (std::size_t j = 0; j < ys.size(); ++j)
+          if (std::abs(y - ys[j]) <= half && sees(j)) return true;
+        return false;
+      }
+      const auto first =
+          std::partition_point(ys.begin(), ys.end(), [&](double yj) { return y - yj > half; });
+      for (auto j = first; j != ys.end() && y - *j >= -half; ++j)
+        if (sees(std::size_t(j - ys.begin()))) return true;
       return false;
     };
     // A protrusion's extreme (its ordinate) and the side of the lanes it reaches out to.
@@ -216,9 +248,8 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
       // lanes at the grid's ordinates keep the extents found for them (a walk each before).
       // Zeros are left to the walks: 0 and -0 are one ordinate to the sort and unique below.
       const auto plain = [](double y) { return std::isfinite(y) && y != 0; };
-      bool shared = true;
-      for (std::size_t k = 0; k < ys.size(); ++k)
-        shared = shared && plain(ys[k]) && (k == 0 || ys[k - 1] <= ys[k]);
+      bool shared = ascending;
+      for (const double y : ys) shared = shared && plain(y);
       for (const Reach& r : reaches) shared = shared && std::isfinite(r.y);
       if (!shared) {
         for (const Reach& r : reaches) {
