@@ -129,9 +129,34 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     double y_at_x_lo = 0.0, y_at_x_hi = 0.0;  // where the extremes are reached
   };
   // Into `strips` (its capacity kept), for offsets[0, count).
+  // An edge clipped to [y0, y1] of a strip widens its x extent.
+  const auto widen = [](Strip& strip, Point2 a, Point2 b, double y0, double y1) {
+    auto x_at = [&](double y) {
+      return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
+    };
+    for (const auto& [x, y] :
+         {std::pair{b.y == a.y ? a.x : x_at(y0), y0}, std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
+      if (x < strip.x_lo) {
+        strip.x_lo = x;
+        strip.y_at_x_lo = y;
+      }
+      if (x > strip.x_hi) {
+        strip.x_hi = x;
+        strip.y_at_x_hi = y;
+      }
+    }
+  };
+  // Into `strips` (its capacity kept), for offsets[0, count); with `points` (whole strips only,
+  // each holding its own offset), the point strips at the offsets into it in the same walk: an
+  // edge that meets an offset meets the whole strip around it, and each strip's edges come in ring
+  // order either way, so the same extents as walked on their own.
   auto strips_for = [&](const double* offsets, std::size_t count, bool whole_strip,
-                        std::vector<Strip>& strips) {
+                        std::vector<Strip>& strips, std::vector<Strip>* points = nullptr) {
     strips.clear();
+    if (points) {
+      points->clear();
+      for (std::size_t k = 0; k < count; ++k) points->push_back({offsets[k], offsets[k]});
+    }
     for (std::size_t k = 0; k < count; ++k) {
       if (!whole_strip) {
         strips.push_back({offsets[k], offsets[k]});
@@ -162,33 +187,43 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
       for (std::size_t i = 0; i < ring.size(); ++i) {
         Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
         if (a.y > b.y) std::swap(a, b);
-        auto x_at = [&](double y) {
-          return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
-        };
         auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
         for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
+          if (points) {
+            Strip& point = (*points)[std::size_t(strip - strips.begin())];
+            const double y0 = std::max(a.y, point.lo);
+            const double y1 = std::min(b.y, point.hi);
+            if (!(y0 > y1)) widen(point, a, b, y0, y1);
+          }
           const double y0 = std::max(a.y, strip->lo);
           const double y1 = std::min(b.y, strip->hi);
           if (y0 > y1) continue;
-          for (const auto& [x, y] : {std::pair{b.y == a.y ? a.x : x_at(y0), y0},
-                                     std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
-            if (x < strip->x_lo) {
-              strip->x_lo = x;
-              strip->y_at_x_lo = y;
-            }
-            if (x > strip->x_hi) {
-              strip->x_hi = x;
-              strip->y_at_x_hi = y;
-            }
-          }
+          widen(*strip, a, b, y0, y1);
         }
       }
     }
   };
   thread_local std::vector<Strip> strips, whole, at;
-  strips_for(ys.data(), ys.size(), s.segments == SegmentRule::strip, strips);
-  if (s.segments == SegmentRule::inside && s.fill_protrusions && !ys.empty()) {
-    strips_for(ys.data(), ys.size(), true, whole);
+  bool ascending = true;
+  for (std::size_t k = 0; k + 1 < ys.size(); ++k) ascending = ascending && ys[k] <= ys[k + 1];
+  const bool fill = s.segments == SegmentRule::inside && s.fill_protrusions && !ys.empty();
+  // The lanes' strips and the whole strips in one walk where it finds every strip an edge meets
+  // (ascending tops) and each whole strip holds its lane's ordinate (so on the area's own or given
+  // ascending ordinates inside it); else a walk each.
+  bool one_walk = fill && ascending;
+  for (std::size_t k = 0; one_walk && k < ys.size(); ++k) {
+    const double lo = k == 0 ? y_min : (ys[k - 1] + ys[k]) / 2;
+    const double hi = k + 1 == ys.size() ? y_max : (ys[k] + ys[k + 1]) / 2;
+    const double next_hi = k + 2 < ys.size() ? (ys[k + 1] + ys[k + 2]) / 2 : y_max;
+    one_walk = lo <= ys[k] && ys[k] <= hi && (k + 1 == ys.size() || hi <= next_hi);
+  }
+  if (one_walk) {
+    strips_for(ys.data(), ys.size(), true, whole, &strips);
+  } else {
+    strips_for(ys.data(), ys.size(), s.segments == SegmentRule::strip, strips);
+    if (fill) strips_for(ys.data(), ys.size(), true, whole);
+  }
+  if (fill) {
     const double slack = 0.02 * s.line_spacing_m;
     // The extreme may lie on an edge along the lanes, where the extent jumps: the lane goes just
     // off it, on the side that reaches out (never on the edge: it would run along the boundary).
@@ -197,8 +232,6 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     // On ascending ordinates y - ys[j] does not increase with j (rounding is monotone), so the
     // lanes within half a footprint are one run of them, found by search: the same lanes asked as
     // by a scan of all (one per protrusion was a sixth of a split plan's sweeps).
-    bool ascending = true;
-    for (std::size_t k = 0; k + 1 < ys.size(); ++k) ascending = ascending && ys[k] <= ys[k + 1];
     const double half = s.footprint_width_m / 2;
     auto seen = [&](double x, double y) {
       const auto sees = [&](std::size_t j) {
