@@ -49,6 +49,36 @@ bool right_of(const Edge& e, Point2 p) {
   return orientation(e.lower, e.upper, p) == Orientation::clockwise;
 }
 
+// Chains' buffers kept by the thread between decompositions, their capacity with them: a chain
+// grown point by point from nothing was most of a direction's allocations and copies (a split
+// plan decomposes its area at ~100 directions). What a buffer held before is cleared first, so the
+// chains are the same.
+class ChainPool {
+ public:
+  std::vector<Point2> take(Point2 first) {
+    std::vector<Point2> chain;
+    if (!spare_.empty()) {
+      chain = std::move(spare_.back());
+      spare_.pop_back();
+      chain.clear();
+    }
+    chain.push_back(first);
+    return chain;
+  }
+  void give(std::vector<Point2>& chain) {
+    if (chain.capacity() > 0) spare_.push_back(std::move(chain));
+    chain = {};
+  }
+
+ private:
+  std::vector<std::vector<Point2>> spare_;
+};
+
+ChainPool& chain_pool() {
+  thread_local ChainPool pool;
+  return pool;
+}
+
 struct OpenCell {
   std::size_t left_edge, right_edge;
   std::vector<Point2> left_chain, right_chain;  // bottom to top
@@ -148,7 +178,15 @@ void close_piece(OpenCell& c, std::vector<Chains>& pieces) {
 // cell at once; a scan of the open cells for each was a third of the decomposition's instructions.
 struct CellSweep {
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  explicit CellSweep(std::size_t edges) : right_of_edge(edges, kNone), left_of_edge(edges, kNone) {}
+  // Empty, for a sweep of `edges` edges; the chains its slots still hold go back to the pool.
+  void reset(std::size_t edges) {
+    for (std::size_t c = 0; c < cell.size(); ++c) recycle(c);
+    cell.clear();
+    order.clear();
+    free.clear();
+    right_of_edge.assign(edges, kNone);
+    left_of_edge.assign(edges, kNone);
+  }
 
   std::vector<OpenCell> cell;                            // slots, reused once shut
   std::vector<std::size_t> order;                        // the open cells' slots, left to right
@@ -169,6 +207,7 @@ struct CellSweep {
       c = free.back();
       free.pop_back();
     }
+    recycle(c);
     cell[c] = OpenCell{left_edge, right_edge, std::move(left), std::move(right)};
     left_of_edge[left_edge] = right_of_edge[right_edge] = c;
     order.insert(order.begin() + static_cast<std::ptrdiff_t>(pos), c);
@@ -176,8 +215,14 @@ struct CellSweep {
   void reopen(std::size_t c, std::size_t left_edge, std::size_t right_edge, Point2 left,
               Point2 right) {
     unlink(c);
-    cell[c] = OpenCell{left_edge, right_edge, {left}, {right}};
+    recycle(c);
+    cell[c] = OpenCell{left_edge, right_edge, chain_pool().take(left), chain_pool().take(right)};
     left_of_edge[left_edge] = right_of_edge[right_edge] = c;
+  }
+  // The chains a slot still holds (a piece without area is not moved out) back to the pool.
+  void recycle(std::size_t c) {
+    chain_pool().give(cell[c].left_chain);
+    chain_pool().give(cell[c].right_chain);
   }
   void shut(std::size_t c) {
     unlink(c);
@@ -238,15 +283,20 @@ std::vector<Ring> boustrophedon_cells(const std::vector<Ring>& rings, double ang
 }
 
 Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, double angle_deg) {
-  // Work in a frame where the cut lines are horizontal.
-  std::vector<Ring> rings;
-  std::vector<Edge> edges;
-  std::vector<std::size_t> first_edge;
+  // Work in a frame where the cut lines are horizontal. The buffers are the thread's, their
+  // capacity kept: a split plan decomposes its area at every candidate direction.
+  thread_local std::vector<Ring> rings;
+  thread_local std::vector<Edge> edges;
+  thread_local std::vector<std::size_t> first_edge;
   struct Vertex {
     Point2 p;
     std::size_t ring, index;
   };
-  std::vector<Vertex> vertices;
+  thread_local std::vector<Vertex> vertices;
+  rings.resize(rings_in.size());
+  edges.clear();
+  first_edge.clear();
+  vertices.clear();
   double extent = 0;
   std::size_t total = 0;
   for (const Ring& ring : rings_in) {
@@ -255,7 +305,6 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   }
   // Sized once: grown by doubling, a 10,000-vertex area's buffers were most of the fresh pages
   // (page faults) of a direction search that decomposes it ~100 times.
-  rings.reserve(rings_in.size());
   edges.reserve(total);
   vertices.reserve(total);
   // Rotation rounds: an edge along the lanes comes out tilted by ~1e-16 of the coordinates, which
@@ -264,7 +313,8 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   const double snap = 1e-9 * extent;
   const Turn to_sweep = turn_by(-angle_deg);
   for (std::size_t r = 0; r < rings_in.size(); ++r) {
-    Ring ring;
+    Ring& ring = rings[r];
+    ring.clear();
     ring.reserve(rings_in[r].size());
     for (const Point2& p : rings_in[r]) ring.push_back(rotated(p, to_sweep));
     for (std::size_t i = 0; i + 1 < ring.size(); ++i)
@@ -273,25 +323,27 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
       ring.back().y = ring.front().y;
     first_edge.push_back(edges.size());
     for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      const Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
       edges.push_back(below(a, b) ? Edge{a, b} : Edge{b, a});
       vertices.push_back({a, r, i});
     }
-    rings.push_back(std::move(ring));
   }
   // In ring order the vertices rise and fall in long stretches: merged, not sorted anew for
   // every direction (the same order, ties between equal points included).
   sort_by_runs(
       vertices, [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); }, false);
 
-  std::vector<Chains> pieces;
-  CellSweep sweep(edges.size());
+  thread_local std::vector<Chains> pieces;
+  pieces.clear();
+  thread_local CellSweep sweep;
+  sweep.reset(edges.size());
   for (const Vertex& v : vertices) {
     const Ring& ring = rings[v.ring];
     const std::size_t n = ring.size();
-    const Point2 p = ring[(v.index + n - 1) % n], q = ring[(v.index + 1) % n];
-    const std::size_t e_in = first_edge[v.ring] + (v.index + n - 1) % n;  // p -> v
-    const std::size_t e_out = first_edge[v.ring] + v.index;               // v -> q
+    const std::size_t before = v.index == 0 ? n - 1 : v.index - 1;
+    const Point2 p = ring[before], q = ring[v.index + 1 == n ? 0 : v.index + 1];
+    const std::size_t e_in = first_edge[v.ring] + before;    // p -> v
+    const std::size_t e_out = first_edge[v.ring] + v.index;  // v -> q
     const bool p_below = below(p, v.p), q_below = below(q, v.p);
     const bool convex = orientation(p, v.p, q) == Orientation::counter_clockwise;
     const double y = v.p.y;
@@ -302,7 +354,7 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
         while (pos < sweep.order.size() &&
                right_of(edges[sweep.cell[sweep.order[pos]].right_edge], v.p))
           ++pos;
-        sweep.open(pos, e_in, e_out, {v.p}, {v.p});
+        sweep.open(pos, e_in, e_out, chain_pool().take(v.p), chain_pool().take(v.p));
       } else {  // split: v inside a cell; the notch above v separates two new cells
         std::size_t pos = 0;
         while (pos < sweep.order.size() &&
@@ -318,7 +370,7 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
         sweep.cell[c].right_chain.push_back(r);
         close_piece(sweep.cell[c], pieces);
         sweep.reopen(c, left_edge, e_out, l, v.p);
-        sweep.open(pos + 1, e_in, right_edge, {v.p}, {r});
+        sweep.open(pos + 1, e_in, right_edge, chain_pool().take(v.p), chain_pool().take(r));
       }
     } else if (p_below && q_below) {
       const std::size_t a = sweep.right_cell(e_in);
@@ -365,6 +417,10 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
     if (ring.empty()) continue;
     d.cells.push_back(chain);
     d.cell_rings.push_back(std::move(ring));
+  }
+  for (Chains& piece : pieces) {
+    chain_pool().give(piece.left);
+    chain_pool().give(piece.right);
   }
   return d;
 }

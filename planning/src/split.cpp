@@ -112,10 +112,10 @@ CellOrderProblem problem_for(Candidate& c, Point2 home, const Metric& metric) {
   return p;
 }
 
-// Lanes for the pieces of a decomposition, grouped by its cells.
-Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
-                              const geometry::Decomposition& d, double angle,
-                              const SplitSettings& s) {
+// Lanes for the pieces of a decomposition, grouped by its cells. `d` is taken (its cells' rings
+// moved into the candidate, its pieces lent to the sweeps), not copied.
+Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings, geometry::Decomposition d,
+                              double angle, const SplitSettings& s) {
   Candidate c;
   c.angle_deg = angle;
   // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart. Corners'
@@ -141,12 +141,20 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   // Lanes are placed per piece, so a piece thinner than the grid still gets one; cells (chains of
   // pieces) only group them for ordering.
   std::vector<std::vector<SweepLine>> piece_lines(d.pieces.size());
-  geometry::Polygon piece;  // one, its capacity kept: copied into for each piece
+  geometry::Polygon piece;  // each piece's ring lent to it (swapped in and back), not copied
   for (std::size_t k = 0; k < d.pieces.size(); ++k)
     if (!d.pieces[k].empty()) {
-      piece.outer = d.pieces[k];
+      piece.outer.swap(d.pieces[k]);
       piece_lines[k] = plan_sweep(piece, sweep_settings).lines;
+      piece.outer.swap(d.pieces[k]);
     }
+  // rotate(p, -angle) for the lanes' ends and thin pieces' corners: its cosine and sine taken
+  // once, the same values and arithmetic.
+  const double turn = -angle * std::numbers::pi / 180.0;
+  const double turn_cos = std::cos(turn), turn_sin = std::sin(turn);
+  const auto turned = [&](Point2 p) {
+    return Point2{turn_cos * p.x - turn_sin * p.y, turn_sin * p.x + turn_cos * p.y};
+  };
   // A lane on a cut between two pieces belongs to both: keep the longer one. Lanes sorted by
   // ordinate, so only neighbours in that order can coincide.
   struct Lane {
@@ -161,7 +169,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   std::vector<std::size_t> line_first{0};
   for (std::size_t k = 0; k < piece_lines.size(); ++k) {
     for (SweepLine& l : piece_lines[k]) {
-      const Point2 p = rotate(l.start, -angle), q = rotate(l.end, -angle);
+      const Point2 p = turned(l.start), q = turned(l.end);
       lanes.push_back({p.y, std::min(p.x, q.x), std::max(p.x, q.x), &l, k});
       line_y.push_back(p.y);
     }
@@ -204,7 +212,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
   for (std::size_t k = 0; k < d.pieces.size(); ++k) {
     if (!thin[k] || piece_lines[k].empty()) continue;
     corners.clear();
-    for (const Point2& p : d.pieces[k]) corners.push_back(rotate(p, -angle));
+    for (const Point2& p : d.pieces[k]) corners.push_back(turned(p));
     // Only a lane within half a footprint of the piece's lowest and highest corners can see it
     // whole: the lanes (sorted by ordinate) in that window, widened well past rounding, are asked
     // (all lanes were, hundreds of thin pieces by thousands of lanes on 10,000-vertex areas).
@@ -243,7 +251,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings,
     sweep.angle_deg = angle;
     sweep.lines.reserve(by_y.size());
     for (const auto& [y, l] : by_y) sweep.lines.push_back(l);
-    c.cells.push_back(d.cell_rings[cell]);
+    c.cells.push_back(std::move(d.cell_rings[cell]));
     c.sweeps.push_back(std::move(sweep));
   }
   return c;

@@ -1,6 +1,7 @@
 #include "swath/planning/sweep.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -36,6 +37,23 @@ Point2 rotate(Point2 p, double angle_deg) {
   turns[newest] = {bits, c, s};
   return {c * p.x - s * p.y, s * p.x + c * p.y};
 }
+
+namespace {
+
+// rotate(p, angle_deg) for the many points of one call: its cosine and sine taken once, not looked
+// up per point; the same values and arithmetic (without fused multiply-adds, as the project
+// builds), so the same points.
+struct Turn {
+  explicit Turn(double angle_deg) {
+    const double t = angle_deg * std::numbers::pi / 180.0;
+    c = std::cos(t);
+    s = std::sin(t);
+  }
+  Point2 operator()(Point2 p) const { return {c * p.x - s * p.y, s * p.x + c * p.y}; }
+  double c, s;
+};
+
+}  // namespace
 
 std::vector<double> line_offsets(double y_min, double y_max, double spacing, double footprint,
                                  LinePlacement placement) {
@@ -76,6 +94,7 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
   // kept: split plans sweep every piece of a decomposition at every direction (~18,000 sweeps of a
   // few vertices each at 100 vertices and 50 holes), and their allocations were a third of it.
   thread_local std::vector<geometry::Ring> rings;
+  const Turn to_lanes(-sweep.angle_deg);
   const std::size_t ring_count = geometry::ring_count(area);
   if (rings.size() < ring_count) rings.resize(ring_count);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
@@ -83,7 +102,7 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     geometry::Ring& ring = rings[r];
     ring.clear();
     for (const Point2& p : geometry::ring_at(area, r)) {
-      ring.push_back(rotate(p, -sweep.angle_deg));
+      ring.push_back(to_lanes(p));
       y_min = std::min(y_min, ring.back().y);
       y_max = std::max(y_max, ring.back().y);
     }
@@ -110,9 +129,34 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     double y_at_x_lo = 0.0, y_at_x_hi = 0.0;  // where the extremes are reached
   };
   // Into `strips` (its capacity kept), for offsets[0, count).
+  // An edge clipped to [y0, y1] of a strip widens its x extent.
+  const auto widen = [](Strip& strip, Point2 a, Point2 b, double y0, double y1) {
+    auto x_at = [&](double y) {
+      return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
+    };
+    for (const auto& [x, y] :
+         {std::pair{b.y == a.y ? a.x : x_at(y0), y0}, std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
+      if (x < strip.x_lo) {
+        strip.x_lo = x;
+        strip.y_at_x_lo = y;
+      }
+      if (x > strip.x_hi) {
+        strip.x_hi = x;
+        strip.y_at_x_hi = y;
+      }
+    }
+  };
+  // Into `strips` (its capacity kept), for offsets[0, count); with `points` (whole strips only,
+  // each holding its own offset), the point strips at the offsets into it in the same walk: an
+  // edge that meets an offset meets the whole strip around it, and each strip's edges come in ring
+  // order either way, so the same extents as walked on their own.
   auto strips_for = [&](const double* offsets, std::size_t count, bool whole_strip,
-                        std::vector<Strip>& strips) {
+                        std::vector<Strip>& strips, std::vector<Strip>* points = nullptr) {
     strips.clear();
+    if (points) {
+      points->clear();
+      for (std::size_t k = 0; k < count; ++k) points->push_back({offsets[k], offsets[k]});
+    }
     for (std::size_t k = 0; k < count; ++k) {
       if (!whole_strip) {
         strips.push_back({offsets[k], offsets[k]});
@@ -143,66 +187,159 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
       for (std::size_t i = 0; i < ring.size(); ++i) {
         Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
         if (a.y > b.y) std::swap(a, b);
-        auto x_at = [&](double y) {
-          return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
-        };
         auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
         for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
+          if (points) {
+            Strip& point = (*points)[std::size_t(strip - strips.begin())];
+            const double y0 = std::max(a.y, point.lo);
+            const double y1 = std::min(b.y, point.hi);
+            if (!(y0 > y1)) widen(point, a, b, y0, y1);
+          }
           const double y0 = std::max(a.y, strip->lo);
           const double y1 = std::min(b.y, strip->hi);
           if (y0 > y1) continue;
-          for (const auto& [x, y] : {std::pair{b.y == a.y ? a.x : x_at(y0), y0},
-                                     std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
-            if (x < strip->x_lo) {
-              strip->x_lo = x;
-              strip->y_at_x_lo = y;
-            }
-            if (x > strip->x_hi) {
-              strip->x_hi = x;
-              strip->y_at_x_hi = y;
-            }
-          }
+          widen(*strip, a, b, y0, y1);
         }
       }
     }
   };
   thread_local std::vector<Strip> strips, whole, at;
-  strips_for(ys.data(), ys.size(), s.segments == SegmentRule::strip, strips);
-  if (s.segments == SegmentRule::inside && s.fill_protrusions && !ys.empty()) {
-    strips_for(ys.data(), ys.size(), true, whole);
+  bool ascending = true;
+  for (std::size_t k = 0; k + 1 < ys.size(); ++k) ascending = ascending && ys[k] <= ys[k + 1];
+  const bool fill = s.segments == SegmentRule::inside && s.fill_protrusions && !ys.empty();
+  // The lanes' strips and the whole strips in one walk where it finds every strip an edge meets
+  // (ascending tops) and each whole strip holds its lane's ordinate (so on the area's own or given
+  // ascending ordinates inside it); else a walk each.
+  bool one_walk = fill && ascending;
+  for (std::size_t k = 0; one_walk && k < ys.size(); ++k) {
+    const double lo = k == 0 ? y_min : (ys[k - 1] + ys[k]) / 2;
+    const double hi = k + 1 == ys.size() ? y_max : (ys[k] + ys[k + 1]) / 2;
+    const double next_hi = k + 2 < ys.size() ? (ys[k + 1] + ys[k + 2]) / 2 : y_max;
+    one_walk = lo <= ys[k] && ys[k] <= hi && (k + 1 == ys.size() || hi <= next_hi);
+  }
+  if (one_walk) {
+    strips_for(ys.data(), ys.size(), true, whole, &strips);
+  } else {
+    strips_for(ys.data(), ys.size(), s.segments == SegmentRule::strip, strips);
+    if (fill) strips_for(ys.data(), ys.size(), true, whole);
+  }
+  if (fill) {
     const double slack = 0.02 * s.line_spacing_m;
     // The extreme may lie on an edge along the lanes, where the extent jumps: the lane goes just
     // off it, on the side that reaches out (never on the edge: it would run along the boundary).
     const double inset = std::min(1e-3 * s.line_spacing_m, (y_max - y_min) / 4);
-    auto best_side = [&](double y, bool high) {
-      const double sides[2] = {std::max(y - inset, y_min + inset),
-                               std::min(y + inset, y_max - inset)};
-      strips_for(sides, 2, false, at);
-      return high ? (at[1].x_hi >= at[0].x_hi ? sides[1] : sides[0])
-                  : (at[1].x_lo <= at[0].x_lo ? sides[1] : sides[0]);
-    };
     // Only protrusions that no lane's footprint reaches already.
+    // On ascending ordinates y - ys[j] does not increase with j (rounding is monotone), so the
+    // lanes within half a footprint are one run of them, found by search: the same lanes asked as
+    // by a scan of all (one per protrusion was a sixth of a split plan's sweeps).
+    const double half = s.footprint_width_m / 2;
     auto seen = [&](double x, double y) {
-      for (std::size_t j = 0; j < ys.size(); ++j)
-        if (std::abs(y - ys[j]) <= s.footprint_width_m / 2 && x >= strips[j].x_lo - slack &&
-            x <= strips[j].x_hi + slack)
-          return true;
+      const auto sees = [&](std::size_t j) {
+        return x >= strips[j].x_lo - slack && x <= strips[j].x_hi + slack;
+      };
+      if (!ascending) {
+        for (std::size_t j = 0; j < ys.size(); ++j)
+          if (std::abs(y - ys[j]) <= half && sees(j)) return true;
+        return false;
+      }
+      const auto first =
+          std::partition_point(ys.begin(), ys.end(), [&](double yj) { return y - yj > half; });
+      for (auto j = first; j != ys.end() && y - *j >= -half; ++j)
+        if (sees(std::size_t(j - ys.begin()))) return true;
       return false;
     };
-    std::vector<double> extra;
+    // A protrusion's extreme (its ordinate) and the side of the lanes it reaches out to.
+    struct Reach {
+      double y;
+      bool high;
+    };
+    thread_local std::vector<Reach> reaches;
+    reaches.clear();
     for (std::size_t k = 0; k < ys.size(); ++k) {
       if (whole[k].x_hi > strips[k].x_hi + slack && !seen(whole[k].x_hi, whole[k].y_at_x_hi))
-        extra.push_back(best_side(whole[k].y_at_x_hi, true));
+        reaches.push_back({whole[k].y_at_x_hi, true});
       if (whole[k].x_lo < strips[k].x_lo - slack && !seen(whole[k].x_lo, whole[k].y_at_x_lo))
-        extra.push_back(best_side(whole[k].y_at_x_lo, false));
+        reaches.push_back({whole[k].y_at_x_lo, false});
     }
-    if (!extra.empty()) {
-      std::vector<double> more = ys;
-      more.insert(more.end(), extra.begin(), extra.end());
-      std::sort(more.begin(), more.end());
-      more.erase(std::unique(more.begin(), more.end()), more.end());
-      ys = std::move(more);
-      strips_for(ys.data(), ys.size(), false, strips);
+    if (!reaches.empty()) {
+      // Where the lane goes: just below or just above the extreme, on the side that reaches
+      // further out; `at` holds the point strips of the two (below first).
+      const auto side = [&](const Reach& r, const Strip& below, const Strip& above) {
+        const bool up = r.high ? above.x_hi >= below.x_hi : above.x_lo <= below.x_lo;
+        return up ? 1 : 0;
+      };
+      const auto sides_of = [&](double y) {
+        return std::array<double, 2>{std::max(y - inset, y_min + inset),
+                                     std::min(y + inset, y_max - inset)};
+      };
+      thread_local std::vector<double> extra;
+      extra.clear();
+      // A point strip's extent is the fold, in ring order, of the edges that meet its ordinate:
+      // the walk skips only strips an edge cannot meet, so each strip's extent is the same
+      // whatever strips are asked beside it, provided the walk finds them all (ordinates
+      // ascending; NaN-free). So the sides of all reaches are asked in one walk, sorted, and the
+      // lanes at the grid's ordinates keep the extents found for them (a walk each before).
+      // Zeros are left to the walks: 0 and -0 are one ordinate to the sort and unique below.
+      const auto plain = [](double y) { return std::isfinite(y) && y != 0; };
+      bool shared = ascending;
+      for (const double y : ys) shared = shared && plain(y);
+      for (const Reach& r : reaches) shared = shared && std::isfinite(r.y);
+      if (!shared) {
+        for (const Reach& r : reaches) {
+          const std::array<double, 2> sides = sides_of(r.y);
+          strips_for(sides.data(), 2, false, at);
+          extra.push_back(sides[std::size_t(side(r, at[0], at[1]))]);
+        }
+        std::vector<double> more = ys;
+        more.insert(more.end(), extra.begin(), extra.end());
+        std::sort(more.begin(), more.end());
+        more.erase(std::unique(more.begin(), more.end()), more.end());
+        ys = std::move(more);
+        strips_for(ys.data(), ys.size(), false, strips);
+      } else {
+        thread_local std::vector<std::pair<double, std::size_t>> asked;  // ordinate, 2 reach + up
+        thread_local std::vector<double> asked_y;
+        thread_local std::vector<std::size_t> rank;  // asked side -> its strip in `at`
+        asked.clear();
+        for (std::size_t i = 0; i < reaches.size(); ++i) {
+          const std::array<double, 2> sides = sides_of(reaches[i].y);
+          asked.push_back({sides[0], 2 * i});
+          asked.push_back({sides[1], 2 * i + 1});
+        }
+        std::sort(asked.begin(), asked.end());
+        asked_y.clear();
+        rank.resize(asked.size());
+        for (std::size_t j = 0; j < asked.size(); ++j) {
+          asked_y.push_back(asked[j].first);
+          rank[asked[j].second] = j;
+        }
+        strips_for(asked_y.data(), asked_y.size(), false, at);
+        // The grid's lanes and the chosen sides', by ordinate, equal ones once (equal ordinates
+        // have equal bits here, so equal extents: which one is kept does not matter).
+        thread_local std::vector<std::pair<double, Strip>> lanes;
+        lanes.clear();
+        for (std::size_t k = 0; k < ys.size(); ++k) lanes.push_back({ys[k], strips[k]});
+        bool zero = false;
+        for (std::size_t i = 0; i < reaches.size(); ++i) {
+          const std::size_t up =
+              std::size_t(side(reaches[i], at[rank[2 * i]], at[rank[2 * i + 1]]));
+          const std::size_t j = rank[2 * i + up];
+          lanes.push_back({asked_y[j], at[j]});
+          zero = zero || asked_y[j] == 0;
+        }
+        std::sort(lanes.begin(), lanes.end(),
+                  [](const auto& u, const auto& v) { return u.first < v.first; });
+        lanes.erase(std::unique(lanes.begin(), lanes.end(),
+                                [](const auto& u, const auto& v) { return u.first == v.first; }),
+                    lanes.end());
+        ys.clear();
+        strips.clear();
+        for (const auto& [y, strip] : lanes) {
+          ys.push_back(y);
+          strips.push_back(strip);
+        }
+        if (zero) strips_for(ys.data(), ys.size(), false, strips);  // walked, as said above
+      }
     }
   }
   sweep.lines.reserve(strips.size());

@@ -3,10 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
+#include "decomposition_reference.hpp"
+#include "field_shapes.hpp"
 #include "random_polygons.hpp"
 #include "swath/geometry/classification.hpp"
 #include "swath/geometry/predicates.hpp"
@@ -155,6 +160,72 @@ TEST(BoustrophedonProperty, CombsAndHoles) {
 // boundary's vertices and samples come), with equal ordinates, repeated points and runs of one;
 // few runs (merged) and many (sorted whole). Points alike when equal, and points tagged with
 // their place (equal points then differ: std::sort's own order between them must stay).
+// The decomposition keeps its buffers and its chains' buffers between calls (the thread's): it must
+// give, bit for bit, what it gave when it made them anew (the function as it was, kept in
+// decomposition_reference.hpp): traced outlines (narrow arms, holes, nearly collinear vertices),
+// combs (with edges along the cuts at 0 and 90 degrees), random fields with holes, at many
+// directions one after another (so each call finds the buffers another area left).
+TEST(BoustrophedonProperty, AsTheReferenceBitForBit) {
+  test::Rng rng(5254);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto same = [](const Ring& a, const Ring& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (std::bit_cast<std::uint64_t>(a[i].x) != std::bit_cast<std::uint64_t>(b[i].x) ||
+          std::bit_cast<std::uint64_t>(a[i].y) != std::bit_cast<std::uint64_t>(b[i].y))
+        return false;
+    return true;
+  };
+  std::size_t pieces = 0, cells = 0, refused = 0;
+  for (int k = 0; k < 40; ++k) {
+    Polygon area;
+    if (k % 4 == 0) {
+      area = test::traced_outline(rng);
+    } else if (k % 4 == 1) {
+      area.outer = test::transformed(
+          test::comb_polygon(2 + k % 5, 20 + 30 * u(rng), 100 + 200 * u(rng), 30), 0, -100, -100);
+    } else if (k % 4 == 2) {
+      // Integer coordinates: at 0 and 90 degrees its edges lie along the cuts (equal ordinates).
+      area.outer = test::comb_polygon(2 + k % 5, 20, 100 + 10 * (k % 7), 30);
+    } else {
+      area.outer = test::random_field_polygon(rng, 10 + std::size_t(u(rng) * 150), 300);
+      for (int h = 0; h < 1 + k % 3; ++h) {
+        const double x = -150 + 110.0 * h, y = -40 + 50 * u(rng);
+        area.holes.push_back({{x, y}, {x + 30, y}, {x + 30, y + 30}, {x, y + 30}});
+      }
+    }
+    const std::vector<Ring> rings = rings_of(area);
+    for (int d = 0; d < 12; ++d) {
+      const double angle = d < 3 ? 45.0 * d : d == 3 ? 90.0 : 180 * u(rng);
+      Decomposition truth;
+      try {
+        truth = reference::boustrophedon_decomposition(rings, angle);
+      } catch (const std::logic_error&) {  // e.g. a hole across the outline: the same answer
+        EXPECT_THROW(boustrophedon_decomposition(rings, angle), std::logic_error) << k << " " << d;
+        ++refused;
+        continue;
+      }
+      const Decomposition fast = boustrophedon_decomposition(rings, angle);
+      ASSERT_EQ(fast.pieces.size(), truth.pieces.size()) << k << " " << d;
+      for (std::size_t i = 0; i < truth.pieces.size(); ++i)
+        ASSERT_TRUE(same(fast.pieces[i], truth.pieces[i])) << k << " " << d << " piece " << i;
+      ASSERT_EQ(fast.cells, truth.cells) << k << " " << d;
+      ASSERT_EQ(fast.cell_rings.size(), truth.cell_rings.size()) << k << " " << d;
+      for (std::size_t i = 0; i < truth.cell_rings.size(); ++i)
+        ASSERT_TRUE(same(fast.cell_rings[i], truth.cell_rings[i]))
+            << k << " " << d << " cell " << i;
+      pieces += truth.pieces.size();
+      cells += truth.cells.size();
+    }
+  }
+  EXPECT_GT(pieces, 2000u);
+  EXPECT_GT(cells, 1000u);
+  EXPECT_LT(refused, 12u);
+  RecordProperty("refused", std::to_string(refused));
+  RecordProperty("pieces", std::to_string(pieces));
+  RecordProperty("cells", std::to_string(cells));
+}
+
 TEST(SortByRuns, GivesTheOrderOfASortOfAll) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> unit(0, 1);

@@ -10,7 +10,9 @@
 #include <random>
 
 #include "coverage_oracle.hpp"
+#include "field_shapes.hpp"
 #include "random_polygons.hpp"
+#include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/min_height.hpp"
 #include "swath/planning/coverage.hpp"
 
@@ -119,7 +121,10 @@ TEST(PlanSweep, CoverageOracleCatchesTheNaiveRule) {
 // tops ascend. It must give, bit for bit, what a search per edge gave (the function as it was,
 // kept here): random fields with holes and grid rings full of horizontal edges, both segment
 // rules, with and without protrusions filled, on the area's own grid and on given ordinates
-// (ascending, repeated, or in any order: where a search is still made).
+// (ascending, repeated, or in any order: where a search is still made). It is also the reference
+// for the protrusions' lanes: here each one's two sides are walked to on their own and all lanes
+// walked to again once they are known (plan_sweep asks all sides in one walk and keeps the grid
+// lanes' extents).
 Sweep reference_plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
   Sweep sweep;
   sweep.angle_deg = std::fmod(std::fmod(s.angle_deg, 180.0) + 180.0, 180.0);
@@ -296,6 +301,61 @@ TEST(SweepProperty, StripsWalkedToAsSearchedBitForBit) {
     lines += truth.lines.size();
   }
   EXPECT_GT(lines, 3000u);
+}
+
+// The split's own use: every piece of the boustrophedon decomposition of traced outlines (narrow
+// arms, holes, nearly collinear vertices a few metres apart) at many directions, swept on the
+// area's grid with protrusions filled. Many pieces get protrusion lanes (off the grid): their sides
+// asked in one walk must choose and extend the lanes as the reference's walks two by two do.
+TEST(SweepProperty, TracedPiecesAsTheReferenceBitForBit) {
+  test::Rng rng(5252);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  std::size_t pieces = 0, off_grid = 0;
+  for (int k = 0; k < 12; ++k) {
+    const Polygon area = test::traced_outline(rng);
+    const std::vector<geometry::Ring> rings = geometry::rings_of(area);
+    for (int d = 0; d < 9; ++d) {
+      SweepSettings s;
+      s.angle_deg = d == 0 ? 0.0 : 180 * u(rng);
+      s.line_spacing_m = 15 + 40 * u(rng);
+      s.footprint_width_m = s.line_spacing_m * (1 + 0.5 * u(rng));
+      s.turnaround_m = d % 2 ? 0.0 : 5 * u(rng);
+      s.placement = d % 3 ? LinePlacement::centered : LinePlacement::paper;
+      s.segments = SegmentRule::inside;
+      s.fill_protrusions = true;
+      double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
+      for (const geometry::Ring& ring : rings)
+        for (const Point2& p : ring) {
+          y_min = std::min(y_min, rotate(p, -s.angle_deg).y);
+          y_max = std::max(y_max, rotate(p, -s.angle_deg).y);
+        }
+      s.ordinates = line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+      for (const geometry::Ring& piece :
+           geometry::boustrophedon_decomposition(rings, s.angle_deg).pieces) {
+        if (piece.empty()) continue;
+        const Polygon one{piece, {}};
+        const Sweep fast = plan_sweep(one, s), truth = reference_plan_sweep(one, s);
+        ASSERT_EQ(bits(fast.height_m), bits(truth.height_m)) << k << " " << d;
+        ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k << " " << d << " " << pieces;
+        for (std::size_t i = 0; i < truth.lines.size(); ++i) {
+          for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
+                                     std::pair{fast.lines[i].end, truth.lines[i].end}}) {
+            ASSERT_EQ(bits(p.x), bits(q.x)) << k << " " << d << ", line " << i;
+            ASSERT_EQ(bits(p.y), bits(q.y)) << k << " " << d << ", line " << i;
+          }
+          const double y = rotate(truth.lines[i].start, -s.angle_deg).y;
+          off_grid += std::none_of(s.ordinates.begin(), s.ordinates.end(),
+                                   [&](double g) { return std::abs(g - y) < 1e-6; });
+        }
+        ++pieces;
+      }
+    }
+  }
+  EXPECT_GT(pieces, 500u);
+  EXPECT_GT(off_grid, 300u);  // protrusion lanes: the batched sides are exercised
+  RecordProperty("pieces", std::to_string(pieces));
+  RecordProperty("off_grid_lanes", std::to_string(off_grid));
 }
 
 TEST(SweepProperty, FootprintsCoverRandomConvexPolygonsAtRandomAnglesSpacingsAndPlacements) {

@@ -1,0 +1,365 @@
+#pragma once
+// boustrophedon_decomposition() as it was before its buffers and chains were kept by the thread
+// between calls (the reference its answers must equal bit for bit: decomposition_test.cpp).
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <span>
+#include <stdexcept>
+#include <utility>
+
+#include "swath/geometry/decomposition.hpp"
+#include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_runs.hpp"
+
+namespace swath::geometry::reference {
+namespace {
+
+// A turn by angle_deg: its cosine and sine, taken once for all the points it turns (libm's sincos
+// per point was a sixth of a 10,000-vertex plan's instructions). The same values as per point.
+struct Turn {
+  double c, s;
+};
+
+Turn turn_by(double angle_deg) {
+  const double t = angle_deg * std::numbers::pi / 180.0;
+  return {std::cos(t), std::sin(t)};
+}
+
+Point2 rotated(Point2 p, Turn t) {
+  return {t.c * p.x - t.s * p.y, t.s * p.x + t.c * p.y};
+}
+
+// "Below" with ties broken by x: the sweep behaves as if tilted infinitesimally, so edges along
+// the sweep direction need no special case.
+bool below(Point2 a, Point2 b) {
+  return a.y < b.y || (a.y == b.y && a.x < b.x);
+}
+
+struct Edge {
+  Point2 lower, upper;
+};
+
+double x_at(const Edge& e, double y) {
+  if (e.upper.y == e.lower.y) return e.lower.x;
+  return e.lower.x + (e.upper.x - e.lower.x) * (y - e.lower.y) / (e.upper.y - e.lower.y);
+}
+
+// Strictly right of the edge directed lower -> upper.
+bool right_of(const Edge& e, Point2 p) {
+  return orientation(e.lower, e.upper, p) == Orientation::clockwise;
+}
+
+struct OpenCell {
+  std::size_t left_edge, right_edge;
+  std::vector<Point2> left_chain, right_chain;  // bottom to top
+};
+
+struct Chains {
+  std::vector<Point2> left, right;  // bottom to top, in the sweep frame
+};
+
+// Kuhn's augmenting paths: can `lower` be matched to an upper cell (possibly re-matching others)?
+// `seen[u] == stamp`: u was looked at in this search (a stamp per search, not a cleared array:
+// that was quadratic in the pieces).
+bool augment(std::size_t lower, const std::vector<std::vector<std::size_t>>& above,
+             std::vector<long>& upper_of, std::vector<std::size_t>& seen, std::size_t stamp) {
+  for (const std::size_t u : above[lower]) {
+    if (seen[u] == stamp) continue;
+    seen[u] = stamp;
+    if (upper_of[u] < 0 ||
+        augment(static_cast<std::size_t>(upper_of[u]), above, upper_of, seen, stamp)) {
+      upper_of[u] = static_cast<long>(lower);
+      return true;
+    }
+  }
+  return false;
+}
+
+// Joins cells across cuts into the fewest monotone cells: a cell continued through a cut by one
+// cell above it is still met by every lane in one interval, so a set of such chains is a
+// minimum path cover of the "directly above" graph: cells minus a maximum matching.
+std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains>& cells) {
+  const std::size_t n = cells.size();
+  std::map<double, std::vector<std::size_t>> by_bottom;  // cells starting on a cut at that ordinate
+  for (std::size_t b = 0; b < n; ++b)
+    if (cells[b].left.front().y == cells[b].right.front().y)
+      by_bottom[cells[b].left.front().y].push_back(b);
+  std::vector<std::vector<std::size_t>> above(n);
+  std::vector<std::pair<double, std::size_t>> candidates;
+  for (std::size_t a = 0; a < n; ++a) {
+    const Point2 tl = cells[a].left.back(), tr = cells[a].right.back();
+    const auto starting = by_bottom.find(tl.y);
+    if (starting == by_bottom.end() || tr.y != tl.y) continue;
+    candidates.clear();
+    for (const std::size_t b : starting->second) {
+      const Point2 bl = cells[b].left.front(), br = cells[b].right.front();
+      if (b == a) continue;
+      const double overlap = std::min(tr.x, br.x) - std::max(tl.x, bl.x);
+      if (overlap > 0) candidates.push_back({-overlap, b});  // widest shared cut first
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto& c : candidates) above[a].push_back(c.second);
+  }
+  std::vector<long> lower_of(n, -1);  // upper cell -> the cell below it in its chain
+  std::vector<std::size_t> seen(n, 0);
+  for (std::size_t a = 0; a < n; ++a) {
+    augment(a, above, lower_of, seen, a + 1);
+  }
+  std::vector<long> upper_of(n, -1);
+  for (std::size_t b = 0; b < n; ++b)
+    if (lower_of[b] >= 0) upper_of[static_cast<std::size_t>(lower_of[b])] = static_cast<long>(b);
+  std::vector<std::vector<std::size_t>> merged;
+  for (std::size_t start = 0; start < n; ++start) {
+    if (lower_of[start] >= 0) continue;  // not the bottom of a chain
+    std::vector<std::size_t> chain;
+    for (long c = static_cast<long>(start); c >= 0; c = upper_of[static_cast<std::size_t>(c)])
+      chain.push_back(static_cast<std::size_t>(c));
+    merged.push_back(std::move(chain));
+  }
+  return merged;
+}
+
+std::logic_error inconsistent_sweep() {
+  return std::logic_error("boustrophedon_cells: inconsistent sweep (crossing rings?)");
+}
+
+// signed_area() of the ring up the right chain and down the left, without building it: the same
+// terms in the same order, so the same value (a ring copied per closed cell was ~40,000
+// allocations a plan on traced outlines).
+double chains_area(const std::vector<Point2>& left, const std::vector<Point2>& right) {
+  const std::size_t n_right = right.size(), n = n_right + left.size();
+  if (n < 3) return 0.0;
+  const auto at = [&](std::size_t i) { return i < n_right ? right[i] : left[n - 1 - i]; };
+  const Point2 o = at(0);
+  double twice = 0.0;
+  for (std::size_t i = 1; i + 1 < n; ++i) twice += cross(at(i) - o, at(i + 1) - o);
+  return twice / 2.0;
+}
+
+// Pieces between two events at one ordinate (an edge along the lanes) have no area. The chains
+// are moved, not copied: every closed cell is reopened or shut next.
+void close_piece(OpenCell& c, std::vector<Chains>& pieces) {
+  if (chains_area(c.left_chain, c.right_chain) > 0)
+    pieces.push_back({std::move(c.left_chain), std::move(c.right_chain)});
+}
+
+// The cells the sweep line crosses, left to right. A cell stays in one slot while open and each
+// edge knows the cell it bounds, so that a regular vertex (most of a traced outline's) finds its
+// cell at once; a scan of the open cells for each was a third of the decomposition's instructions.
+struct CellSweep {
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  explicit CellSweep(std::size_t edges) : right_of_edge(edges, kNone), left_of_edge(edges, kNone) {}
+
+  std::vector<OpenCell> cell;                            // slots, reused once shut
+  std::vector<std::size_t> order;                        // the open cells' slots, left to right
+  std::vector<std::size_t> right_of_edge, left_of_edge;  // the open cell an edge bounds
+  std::vector<std::size_t> free;
+
+  std::size_t right_cell(std::size_t edge) const { return found(right_of_edge[edge]); }
+  std::size_t left_cell(std::size_t edge) const { return found(left_of_edge[edge]); }
+  std::size_t position(std::size_t c) const {
+    return static_cast<std::size_t>(std::find(order.begin(), order.end(), c) - order.begin());
+  }
+  void open(std::size_t pos, std::size_t left_edge, std::size_t right_edge,
+            std::vector<Point2> left, std::vector<Point2> right) {
+    std::size_t c = cell.size();
+    if (free.empty()) {
+      cell.push_back({});
+    } else {
+      c = free.back();
+      free.pop_back();
+    }
+    cell[c] = OpenCell{left_edge, right_edge, std::move(left), std::move(right)};
+    left_of_edge[left_edge] = right_of_edge[right_edge] = c;
+    order.insert(order.begin() + static_cast<std::ptrdiff_t>(pos), c);
+  }
+  void reopen(std::size_t c, std::size_t left_edge, std::size_t right_edge, Point2 left,
+              Point2 right) {
+    unlink(c);
+    cell[c] = OpenCell{left_edge, right_edge, {left}, {right}};
+    left_of_edge[left_edge] = right_of_edge[right_edge] = c;
+  }
+  void shut(std::size_t c) {
+    unlink(c);
+    order.erase(order.begin() + static_cast<std::ptrdiff_t>(position(c)));
+    free.push_back(c);
+  }
+  void set_right(std::size_t c, std::size_t edge) {
+    right_of_edge[cell[c].right_edge] = kNone;
+    right_of_edge[cell[c].right_edge = edge] = c;
+  }
+  void set_left(std::size_t c, std::size_t edge) {
+    left_of_edge[cell[c].left_edge] = kNone;
+    left_of_edge[cell[c].left_edge = edge] = c;
+  }
+
+ private:
+  static std::size_t found(std::size_t c) {
+    if (c == kNone) throw inconsistent_sweep();
+    return c;
+  }
+  void unlink(std::size_t c) {
+    if (left_of_edge[cell[c].left_edge] == c) left_of_edge[cell[c].left_edge] = kNone;
+    if (right_of_edge[cell[c].right_edge] == c) right_of_edge[cell[c].right_edge] = kNone;
+  }
+};
+
+// A ring from a chain of pieces (up their right chains, bottom piece first, down their left
+// chains), cleaned and rotated back by `back`; empty if no area. Read in place: a 10,000-vertex
+// outline makes ~10^5 chain points a direction, and a cell's chains joined first were a copy more.
+Ring chains_ring(const std::vector<Chains>& pieces, std::span<const std::size_t> chain, Turn back) {
+  std::size_t points = 0;
+  for (const std::size_t k : chain) points += pieces[k].right.size() + pieces[k].left.size();
+  Ring clean;
+  clean.reserve(points);
+  const auto add = [&clean](const Point2& p) {
+    if (clean.empty() || !(clean.back() == p)) clean.push_back(p);
+  };
+  for (const std::size_t k : chain)
+    for (const Point2& p : pieces[k].right) add(p);
+  for (auto k = chain.rbegin(); k != chain.rend(); ++k)
+    for (auto p = pieces[*k].left.rbegin(); p != pieces[*k].left.rend(); ++p) add(*p);
+  while (clean.size() > 1 && clean.back() == clean.front()) clean.pop_back();
+  if (clean.size() < 3 || signed_area(clean) <= 0) return {};
+  for (Point2& p : clean) p = rotated(p, back);
+  return clean;
+}
+
+}  // namespace
+
+inline Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in,
+                                                 double angle_deg) {
+  // Work in a frame where the cut lines are horizontal.
+  std::vector<Ring> rings;
+  std::vector<Edge> edges;
+  std::vector<std::size_t> first_edge;
+  struct Vertex {
+    Point2 p;
+    std::size_t ring, index;
+  };
+  std::vector<Vertex> vertices;
+  double extent = 0;
+  std::size_t total = 0;
+  for (const Ring& ring : rings_in) {
+    total += ring.size();
+    for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+  }
+  // Sized once: grown by doubling, a 10,000-vertex area's buffers were most of the fresh pages
+  // (page faults) of a direction search that decomposes it ~100 times.
+  rings.reserve(rings_in.size());
+  edges.reserve(total);
+  vertices.reserve(total);
+  // Rotation rounds: an edge along the lanes comes out tilted by ~1e-16 of the coordinates, which
+  // would make cuts that meet at one ordinate miss each other. Such edges are made exactly
+  // parallel (moves of < 1e-9 of the area's size).
+  const double snap = 1e-9 * extent;
+  const Turn to_sweep = turn_by(-angle_deg);
+  for (std::size_t r = 0; r < rings_in.size(); ++r) {
+    Ring ring;
+    ring.reserve(rings_in[r].size());
+    for (const Point2& p : rings_in[r]) ring.push_back(rotated(p, to_sweep));
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+      if (std::abs(ring[i + 1].y - ring[i].y) <= snap) ring[i + 1].y = ring[i].y;
+    if (ring.size() > 2 && std::abs(ring.back().y - ring.front().y) <= snap)
+      ring.back().y = ring.front().y;
+    first_edge.push_back(edges.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      edges.push_back(below(a, b) ? Edge{a, b} : Edge{b, a});
+      vertices.push_back({a, r, i});
+    }
+    rings.push_back(std::move(ring));
+  }
+  // In ring order the vertices rise and fall in long stretches: merged, not sorted anew for
+  // every direction (the same order, ties between equal points included).
+  sort_by_runs(
+      vertices, [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); }, false);
+
+  std::vector<Chains> pieces;
+  CellSweep sweep(edges.size());
+  for (const Vertex& v : vertices) {
+    const Ring& ring = rings[v.ring];
+    const std::size_t n = ring.size();
+    const Point2 p = ring[(v.index + n - 1) % n], q = ring[(v.index + 1) % n];
+    const std::size_t e_in = first_edge[v.ring] + (v.index + n - 1) % n;  // p -> v
+    const std::size_t e_out = first_edge[v.ring] + v.index;               // v -> q
+    const bool p_below = below(p, v.p), q_below = below(q, v.p);
+    const bool convex = orientation(p, v.p, q) == Orientation::counter_clockwise;
+    const double y = v.p.y;
+
+    if (!p_below && !q_below) {
+      if (convex) {  // start: p -> v runs down (a left side), v -> q up (a right side)
+        std::size_t pos = 0;
+        while (pos < sweep.order.size() &&
+               right_of(edges[sweep.cell[sweep.order[pos]].right_edge], v.p))
+          ++pos;
+        sweep.open(pos, e_in, e_out, {v.p}, {v.p});
+      } else {  // split: v inside a cell; the notch above v separates two new cells
+        std::size_t pos = 0;
+        while (pos < sweep.order.size() &&
+               !(right_of(edges[sweep.cell[sweep.order[pos]].left_edge], v.p) &&
+                 !right_of(edges[sweep.cell[sweep.order[pos]].right_edge], v.p)))
+          ++pos;
+        if (pos == sweep.order.size()) throw inconsistent_sweep();
+        const std::size_t c = sweep.order[pos];
+        const std::size_t left_edge = sweep.cell[c].left_edge,
+                          right_edge = sweep.cell[c].right_edge;
+        const Point2 l{x_at(edges[left_edge], y), y}, r{x_at(edges[right_edge], y), y};
+        sweep.cell[c].left_chain.push_back(l);
+        sweep.cell[c].right_chain.push_back(r);
+        close_piece(sweep.cell[c], pieces);
+        sweep.reopen(c, left_edge, e_out, l, v.p);
+        sweep.open(pos + 1, e_in, right_edge, {v.p}, {r});
+      }
+    } else if (p_below && q_below) {
+      const std::size_t a = sweep.right_cell(e_in);
+      if (convex) {  // end: the cell whose right side is p -> v closes at v
+        sweep.cell[a].left_chain.push_back(v.p);
+        sweep.cell[a].right_chain.push_back(v.p);
+        close_piece(sweep.cell[a], pieces);
+        sweep.shut(a);
+      } else {  // merge: the cells left and right of v close; one cell continues above
+        const std::size_t pos = sweep.position(a);
+        if (pos + 1 == sweep.order.size() || sweep.cell[sweep.order[pos + 1]].left_edge != e_out)
+          throw std::logic_error("boustrophedon_cells: bad merge");
+        const std::size_t b = sweep.order[pos + 1];
+        const std::size_t left_edge = sweep.cell[a].left_edge,
+                          right_edge = sweep.cell[b].right_edge;
+        const Point2 l{x_at(edges[left_edge], y), y}, r{x_at(edges[right_edge], y), y};
+        sweep.cell[a].left_chain.push_back(l);
+        sweep.cell[a].right_chain.push_back(v.p);
+        sweep.cell[b].left_chain.push_back(v.p);
+        sweep.cell[b].right_chain.push_back(r);
+        close_piece(sweep.cell[a], pieces);
+        close_piece(sweep.cell[b], pieces);
+        sweep.shut(b);
+        sweep.reopen(a, left_edge, right_edge, l, r);
+      }
+    } else if (p_below) {  // regular on a right side: p -> v -> q both run up
+      const std::size_t c = sweep.right_cell(e_in);
+      sweep.cell[c].right_chain.push_back(v.p);
+      sweep.set_right(c, e_out);
+    } else {  // regular on a left side: p -> v -> q both run down
+      const std::size_t c = sweep.left_cell(e_out);
+      sweep.cell[c].left_chain.push_back(v.p);
+      sweep.set_left(c, e_in);
+    }
+  }
+
+  Decomposition d;
+  const Turn back = turn_by(angle_deg);
+  d.pieces.reserve(pieces.size());
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    d.pieces.push_back(chains_ring(pieces, std::span<const std::size_t>(&k, 1), back));
+  for (const std::vector<std::size_t>& chain : merge_across_cuts(pieces)) {
+    Ring ring = chains_ring(pieces, chain, back);
+    if (ring.empty()) continue;
+    d.cells.push_back(chain);
+    d.cell_rings.push_back(std::move(ring));
+  }
+  return d;
+}
+
+}  // namespace swath::geometry::reference
