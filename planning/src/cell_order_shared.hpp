@@ -65,6 +65,17 @@ class Transit {
     exit_to_home_.assign(n, -1.0);
     size_ = n;
     if (memoise_ && dense_ && p.symmetric) find_twins();
+    if (bounded()) find_least_ins();
+  }
+  /// At most the cost of any transit into cell c from another cell's exit, whatever the memo
+  /// holds (bounded() only; 0 otherwise): the least straight length into it, less 1e-12 of it
+  /// (lower_cost()'s bound of a transit not asked, and at most a known one's length, which its
+  /// penalty only adds to), over every variant of every other cell; 0 beyond kLeastInVariants
+  /// variants in all (the scan is quadratic) and for a cell without variants.
+  double least_into(std::size_t c) const { return least_into_.empty() ? 0.0 : least_into_[c]; }
+  /// The least internal length of cell c's variants (infinity: none).
+  double least_internal(std::size_t c) const {
+    return least_internal_.empty() ? 0.0 : least_internal_[c];
   }
   /// How many variants cell c has.
   std::size_t variants(std::size_t c) const { return p_.cells[c].size(); }
@@ -282,6 +293,29 @@ class Transit {
   bool dense_ = true;
   std::unordered_map<std::size_t, Known> sparse_;  ///< beyond kDenseVariants: by index
   std::size_t size_ = 0;
+
+  /// Up to this many variants in all, least_into() scans every pair (~10^5 distances).
+  static constexpr std::size_t kLeastInVariants = 320;
+  std::vector<double> least_into_, least_internal_;  ///< per cell; empty: not bounded()
+  void find_least_ins() {
+    const std::size_t n = p_.cells.size();
+    least_internal_.assign(n, kInf);
+    for (std::size_t c = 0; c < n; ++c)
+      for (const CellVariant& v : p_.cells[c])
+        least_internal_[c] = std::min(least_internal_[c], v.internal_m);
+    if (size_ > kLeastInVariants) return;
+    least_into_.assign(n, kInf);
+    for (std::size_t a = 0; a < n; ++a)
+      for (const CellVariant& from : p_.cells[a])
+        for (std::size_t c = 0; c < n; ++c) {
+          if (c == a) continue;
+          for (const CellVariant& to : p_.cells[c])
+            least_into_[c] =
+                std::min(least_into_[c], geometry::distance(from.exit, to.entry) * (1 - 1e-12));
+        }
+    for (double& d : least_into_)
+      if (d == kInf) d = 0;  // a cell no other cell leads into: nothing to bound
+  }
 
   // Twins (problem.symmetric, dense tables): the entries of the tables that are one pair of points
   // either way round. A one-lane run's exit is its other variant's entry, so the transit from one
@@ -591,11 +625,15 @@ class VariantTable {
   /// for the tail's costs: a rejected move's objective is at least `give_up_m`, which the local
   /// search does not keep either.
   ///
+  /// Layers are filled only until one shows the move cannot win (low_layers()), a bound on the
+  /// rest ahead of it (`ahead_`) added: most moves are rejected a few layers in.
+  ///
   /// `kept_to` (optional, above `from`): this table's layers `from` to `kept_to` - 1 are those of
-  /// the last call's, which had the same `from`, the same layers before it, the same cells at
-  /// positions up to kept_to - 1 (so the same cells after each: the rest are the same set) and
-  /// the same transits known, none asked since (Transit::asked()): the same sums, not redone.
-  /// Precondition: t.bounded(); from < check_at < order.size(); kept_to <= check_at.
+  /// the last call's (as far as it filled them: `low_end_`), which had the same `from`, the same
+  /// layers before it, the same cells at positions up to kept_to - 1 (so the same cells after each:
+  /// the rest are the same set) and the same transits known, none asked since (Transit::asked()):
+  /// the same sums, not redone. Precondition: t.bounded(); from < check_at < order.size(); kept_to
+  /// <= check_at.
   bool cannot_win(const CellOrderProblem& p, Transit& t, const std::vector<std::size_t>& order,
                   std::size_t from, std::size_t check_at, double give_up_m,
                   const VariantTable* tail, std::size_t kept_to = 0) {
@@ -611,8 +649,29 @@ class VariantTable {
     }
     const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
     const std::size_t last_cell = order[check_at];
-    for (std::size_t start = std::max(from, kept_to);;) {
-      low_layers(p, t, order, from, start, check_at);
+    // ahead_[k - from]: at most what any way costs after layer k: the cheapest rest after layer
+    // check_at (the tail's costs, or the legs home), and for each later layer's cell the least
+    // transit into it and its least internal length (Transit::least_into(), least_internal()).
+    ahead_.resize(std::max(ahead_.size(), layers));
+    double ahead = kInf;
+    for (std::size_t v = 0; v < p.cells[last_cell].size(); ++v)
+      ahead = std::min(ahead, tail ? tail->rest_cost_[check_at * kMaxVariants + v]
+                                   : t.low_to_home(last_cell, v));
+    for (std::size_t k = check_at + 1; k-- > from;) {
+      ahead_[k - from] = ahead;
+      ahead += t.least_into(order[k]) + t.least_internal(order[k]);
+    }
+    // The layers the last call filled are kept only as far as it filled them; each kept one
+    // may already show that the move cannot win (then none is filled, and the layers kept are
+    // those up to it, as where they are filled afresh).
+    std::size_t start = std::max(from, std::min(kept_to, low_end_));
+    for (std::size_t k = from; k < start; ++k)
+      if (rejects_at(p, order, from, k, give_up_m + margin_m)) {
+        low_end_ = k + 1;
+        return true;
+      }
+    for (;;) {
+      if (low_layers(p, t, order, from, start, check_at, give_up_m + margin_m)) return true;
       double whole = kInf;
       std::size_t last = 0;  // the last layer's variant on the cheapest way
       for (std::size_t v = 0; v < p.cells[last_cell].size(); ++v) {
@@ -628,11 +687,24 @@ class VariantTable {
       if (!ask_on_way(t, order, from, check_at, last, !tail, start)) return false;
     }
   }
+  /// One past the last layer the last cannot_win() filled (its check_at + 1 unless a layer
+  /// before showed that the move cannot win).
+  std::size_t low_end() const { return low_end_; }
   /// cannot_win()'s layers `start` to `check_at` (those before kept) on the transits' lower
-  /// bounds, with the variant each came from (`low_from_`: the first of equal ones).
-  void low_layers(const CellOrderProblem& p, const Transit& t,
+  /// bounds, with the variant each came from (`low_from_`: the first of equal ones). True, the
+  /// layers after it left unfilled, once a layer k before `check_at` shows the move cannot win:
+  /// its least plus ahead_[k - from] at least `reject_m` (cannot_win()'s give_up_m plus its
+  /// margin). Sound: any way through the candidate costs its layer-k cost (at least that layer's
+  /// least), then for each later cell a transit into it (at least least_into(), from another
+  /// cell's exit) and its internal length (at least least_internal()), then the rest after
+  /// check_at (at least the least of the tail's costs, or of the legs home); every term at least
+  /// its bound, so the whole at least their sum, which the margin covers for rounding as for
+  /// the whole check (sums of ~10^3 terms, another order of addition). So the move would be
+  /// rejected at check_at too, or by fill(): the same moves kept, with the layers after k (the
+  /// dear part of a move rejected out of hand) not computed.
+  bool low_layers(const CellOrderProblem& p, const Transit& t,
                   const std::vector<std::size_t>& order, std::size_t from, std::size_t start,
-                  std::size_t check_at) {
+                  std::size_t check_at, double reject_m) {
     for (std::size_t k = start; k <= check_at; ++k) {
       const std::size_t c = order[k];
       const auto& variants = p.cells[c];
@@ -640,14 +712,26 @@ class VariantTable {
       if (k == 0) {
         for (std::size_t v = 0; v < variants.size(); ++v)
           layer[v] = t.low_from_home(c, v) + variants[v].internal_m;
-        continue;
+      } else {
+        const std::size_t b = order[k - 1], before_count = p.cells[b].size();
+        const double* before = k == from ? &cost_[(k - 1) * kMaxVariants] : layer - kMaxVariants;
+        const std::uint64_t unflown = masks_[k - from];
+        t.least_layer(before, b, before_count, c, unflown, layer,
+                      &low_from_[(k - from) * kMaxVariants]);
       }
-      const std::size_t b = order[k - 1], before_count = p.cells[b].size();
-      const double* before = k == from ? &cost_[(k - 1) * kMaxVariants] : layer - kMaxVariants;
-      const std::uint64_t unflown = masks_[k - from];
-      t.least_layer(before, b, before_count, c, unflown, layer,
-                    &low_from_[(k - from) * kMaxVariants]);
+      low_end_ = k + 1;
+      if (k < check_at && rejects_at(p, order, from, k, reject_m)) return true;
     }
+    return false;
+  }
+  /// Whether layer k (before cannot_win()'s check_at) shows the move cannot win: its least plus
+  /// ahead_[k - from] at least `reject_m` (low_layers()).
+  bool rejects_at(const CellOrderProblem& p, const std::vector<std::size_t>& order,
+                  std::size_t from, std::size_t k, double reject_m) const {
+    const double* layer = &low_[(k - from) * kMaxVariants];
+    double least = kInf;
+    for (std::size_t v = 0; v < p.cells[order[k]].size(); ++v) least = std::min(least, layer[v]);
+    return least + ahead_[k - from] >= reject_m;
   }
   /// Asks the transit (or leg from home, or with `home` the leg home after it) with the shortest
   /// bound (the latest of equal ones) among those not known yet on the way low_layers() leads to
@@ -740,6 +824,8 @@ class VariantTable {
   std::vector<double> low_;               ///< cannot_win()'s layers
   std::vector<std::uint8_t> low_from_;    ///< cannot_win(): the variant each came from
   std::vector<std::uint64_t> masks_;      ///< cannot_win(): the cells after each of its layers
+  std::vector<double> ahead_;             ///< cannot_win(): at most the cost after each layer
+  std::size_t low_end_ = 0;               ///< one past the last layer low_layers() filled
   std::size_t last_ = 0;
 };
 

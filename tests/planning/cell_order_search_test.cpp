@@ -766,8 +766,9 @@ std::vector<std::size_t> shuffled_cells(std::size_t n, std::mt19937_64& rng) {
 // The local search's bounds for a block moved to j + 1 keep the layers of the move to j up to
 // j - 2 (the same cells there, the same cells after each) where the current order is the same and
 // no transit was asked since. Checked against the bounds filled afresh, each on its own memo of
-// the same problem: the same verdict and the same transits asked, move after move (one asked
-// differently shows layers that differ), for blocks of 1-3 cells moved to every j, with and
+// the same problem: the same verdict, the same transits asked and the same layer rejecting the
+// move, move after move (one asked differently or a move rejected at another layer shows layers
+// that differ; a move's layers stop where one shows it cannot win), for blocks of 1-3 cells moved to every j, with and
 // without crossings, transits round a wall, verdicts both ways (objectives to beat below and
 // above the current one).
 TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
@@ -805,6 +806,9 @@ TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
                                                changed_end < n ? &fresh_current : nullptr);
         ASSERT_EQ(no, fresh_no) << "problem " << k << " i " << i << " j " << j;
         ASSERT_EQ(kept_t.asked(), fresh_t.asked()) << "problem " << k << " i " << i << " j " << j;
+        // Rejected at the same layer: a move's layers stop where one shows it cannot win, and
+        // the next move keeps only those filled.
+        ASSERT_EQ(kept.low_end(), fresh.low_end()) << "problem " << k << " i " << i << " j " << j;
         (no ? rejected : kept_open) += 1;
       }
     }
@@ -812,6 +816,63 @@ TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
   EXPECT_GT(reused, 100u);
   EXPECT_GT(rejected, 0u);
   EXPECT_GT(kept_open, 0u);
+}
+
+// The local search rejects most moves a few layers in: once a layer's least cost plus a bound on
+// what any way pays after it (for each later cell the least transit into it, from any other
+// cell's exit, and its least internal length; then the least of the tail's costs) reaches the
+// objective to beat. Those bounds never exceed what they bound (every transit, as the metric
+// answers it, and every internal length), and a move cannot_win() rejects, early or not, is never
+// one whose objective (the plain search's, every transit asked) is below the objective to beat:
+// checked with that objective a hair above the candidate's own (it must not be rejected), at it
+// and below it (it may), for every kind of move, with and without crossings, transits round a
+// wall, symmetric twins or not.
+TEST(CellOrderSearch, MovesRejectedBeforeTheirLastLayerCannotWin) {
+  std::mt19937_64 rng(5256);
+  std::size_t early = 0, rejected = 0, kept_open = 0;
+  for (int k = 0; k < 16; ++k) {
+    CellOrderProblem p = runs_problem(rng, 10 + std::size_t(k), k % 2 == 0);
+    p.symmetric = k % 3 == 0;
+    const std::size_t n = p.cells.size();
+    cell_order_detail::Transit t(p);
+    ASSERT_TRUE(t.bounded());
+    for (std::size_t c2 = 0; c2 < n; ++c2)
+      for (const CellVariant& to : p.cells[c2]) {
+        ASSERT_LE(t.least_internal(c2), to.internal_m);
+        for (std::size_t c1 = 0; c1 < n; ++c1)
+          for (const CellVariant& from : p.cells[c1])
+            if (c1 != c2) ASSERT_LE(t.least_into(c2), p.distance(from.exit, to.entry));
+      }
+    const std::vector<std::size_t> order = shuffled_cells(n, rng);
+    cell_order_detail::VariantTable current;
+    current.fill(p, t, order, 0);
+    current.suffix(p, t, order);
+    const PlainSearch plain{p};
+    for (int round = 0; round < 60; ++round) {
+      const int move = int(rng() % 3);
+      const std::size_t len = move == 0 ? 1 + rng() % 3 : 1, i = rng() % n, j = rng() % n;
+      const std::vector<std::size_t> candidate = PlainSearch::moved(order, move, i, j, len);
+      if (candidate.empty() || i == j) continue;
+      const std::size_t changed_end = move == 0 ? std::max(i, j) + len : j + 1;
+      const std::size_t from = std::min(i, j), check_at = std::min(changed_end, n - 1);
+      if (from >= check_at) continue;
+      const double truth = plain.variants(candidate).objective_m;
+      const double beat[] = {truth * (1 + 1e-7), truth, truth * 0.999, truth * 0.97};
+      const double give_up_m = beat[rng() % 4];
+      cell_order_detail::VariantTable trial;
+      trial.keep_layers_of(current, from);
+      const bool no = trial.cannot_win(p, t, candidate, from, check_at, give_up_m,
+                                       changed_end < n ? &current : nullptr);
+      if (no)
+        ASSERT_GE(truth, give_up_m) << "problem " << k << " move " << move << " " << i << " to "
+                                    << j << " rejected at " << trial.low_end();
+      (no ? rejected : kept_open) += 1;
+      early += no && trial.low_end() <= check_at;
+    }
+  }
+  EXPECT_GT(early, 50u);
+  EXPECT_GT(rejected, early);
+  EXPECT_GT(kept_open, 50u);
 }
 
 // After a kept move, the local search's suffix costs at the positions the move left as they were
