@@ -546,6 +546,12 @@ signed char VisibilityRouter::nodes_known(std::size_t i, std::size_t j) const {
   return known ? known->load(std::memory_order_relaxed) : kUnknown;
 }
 
+bool VisibilityRouter::hidden_bit(std::size_t i, std::size_t j) const {
+  const NodeTables::Bits* bits = node_tables_->hidden_of(i, j / NodeTables::kChunk);
+  return bits &&
+         (bits[j % NodeTables::kChunk / 64].load(std::memory_order_relaxed) >> (j % 64) & 1);
+}
+
 bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
   std::atomic<signed char>& known = node_tables_->at(i, j);
   signed char answer = known.load(std::memory_order_relaxed);
@@ -563,6 +569,10 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
     // Also in j's row: a search reads the row of the node it settles (nodes_known(v, u)), one
     // chunk in the cache, not one row per node it looks at.
     node_tables_->at(j, i).store(answer, std::memory_order_relaxed);
+    if (answer == 0) {  // after the table's entries: a bit set is an answer stored
+      node_tables_->mark_hidden(i, j);
+      node_tables_->mark_hidden(j, i);
+    }
   }
   return answer != 0;
 }

@@ -2,12 +2,12 @@
 // tested as the search takes them (visibility.cpp holds the tests, the fans and the tables).
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 
 #include "swath/geometry/capped_heap.hpp"
-#include "swath/geometry/open_nodes.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/geometry/visibility.hpp"
 #include "visibility_tables.hpp"
@@ -221,9 +221,10 @@ struct VisibilityRouter::Search {
     std::vector<char> is_near;      // per node: in `near`
     CappedHeap<SearchItem> queue;   // a search takes ~1 candidate in 10 it queues
     Settlers settlers;
-    OpenNodes open;
-    std::vector<double> g_of;                 // per node settled: its g
-    std::vector<std::uint32_t> settled_list;  // the nodes settled, in order
+    std::vector<std::uint64_t> open;           // per node (a bit): in `near` and not settled
+    std::size_t first_word = 0, end_word = 0;  // the words of `open` that hold near nodes
+    std::vector<double> g_of;                  // per node settled: its g
+    std::vector<std::uint32_t> settled_list;   // the nodes settled, in order
   };
   static Buffers& buffers() {
     thread_local Buffers b;
@@ -320,7 +321,10 @@ struct VisibilityRouter::Search {
     }
     // In the order of the nodes' indices, as every node was asked before (the heap's ties).
     std::sort(x.near.begin(), x.near.end());
-    x.open.reset(x.near, n, r.nodes_, x.h);
+    x.open.assign((n + 63) / 64, 0);
+    for (const std::size_t u : x.near) x.open[u / 64] |= std::uint64_t{1} << (u % 64);
+    x.first_word = x.near.empty() ? 0 : x.near.front() / 64;
+    x.end_word = x.near.empty() ? 0 : x.near.back() / 64 + 1;
   }
 
   // The candidates in order up to the first way to b that b sees: its node, or n (none).
@@ -348,7 +352,7 @@ struct VisibilityRouter::Search {
     x.settled[v] = 1;
     x.g_of[v] = item.g;
     x.settled_list.push_back(std::uint32_t(v));
-    x.open.remove(v);
+    x.open[v / 64] &= ~(std::uint64_t{1} << (v % 64));
     x.previous[v] = item.from_node ? from : n;
     // Paths on from v bend there, round its corner only (taut()): where the corner's edges lie on
     // both sides of the leg in, none goes on.
@@ -396,22 +400,41 @@ struct VisibilityRouter::Search {
     });
   }
 
-  // Every open node (near, not settled) whose leg's f is under the cut; those known hidden
-  // (nearly half) skipped. Row v's chunk is looked up once per chunk, not once per node (one
-  // chunk below 4096 nodes).
+  // Every open node (near, not settled) not known hidden from v, whose leg's f is under the cut
+  // (taken once: the bound may come down as legs are queued, as queue_leg() checks). The nodes
+  // known hidden (about half of the open ones) are skipped by their bits, 64 at a time: their
+  // legs would not be queued, so the search takes the same candidates. `beyond` then holds the
+  // least f of the other legs above the cut: a hidden leg is never a candidate, at any limit, so
+  // the least f left out is still a lower bound of every candidate left out (path() only needs
+  // that: a higher next limit, and no candidate left when it is infinite). Each leg's through and
+  // f are g + distance() and that + h, as the full search sums them.
   void go_on_to_every_open_node(const SearchItem& item) {
     const std::size_t v = item.node;
-    beyond = std::min(beyond, x.open.legs(r.nodes_[v], item.g, std::min(limit, bound)));
+    const Point2 c = r.nodes_[v];
+    const double cut = std::min(limit, bound);
     const NodeTables& tables = *r.node_tables_;
     const NodeTables::Chunk* chunk = nullptr;
+    const NodeTables::Bits* hidden = nullptr;
     std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
-    for (const std::uint32_t k : x.open.under()) {
-      const std::uint32_t u = x.open.node(k);
-      const std::size_t c = u / NodeTables::kChunk;
-      if (c != chunk_at) chunk = tables.chunk_of(v, chunk_at = c);
-      const signed char seen =
-          chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
-      if (seen != 0) queue_leg(item.g, v, u, seen, x.open.through(k), x.open.f(k));
+    for (std::size_t w = x.first_word; w < x.end_word; ++w) {
+      const std::size_t at = w / NodeTables::kWords;
+      if (at != chunk_at) {
+        chunk = tables.chunk_of(v, chunk_at = at);
+        hidden = tables.hidden_of(v, at);
+      }
+      std::uint64_t open = x.open[w];
+      if (hidden && open) open &= ~hidden[w % NodeTables::kWords].load(std::memory_order_relaxed);
+      for (; open; open &= open - 1) {
+        const std::size_t u = w * 64 + std::size_t(std::countr_zero(open));
+        const double through = item.g + distance(c, r.nodes_[u]), f = through + x.h[u];
+        if (!(f <= cut)) {
+          beyond = std::min(beyond, f);
+          continue;
+        }
+        const signed char seen =
+            chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
+        if (seen != 0) queue_leg(item.g, v, u, seen, through, f);
+      }
     }
   }
 };

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 #include "swath/geometry/visibility.hpp"
@@ -22,14 +23,19 @@ struct VisibilityRouter::NodeTables {
       : nodes(n),
         per_row((n + kChunk - 1) / kChunk),
         chunks(new std::atomic<Chunk*>[n * per_row]),
-        fans(new std::atomic<Fan*>[n]) {
-    for (std::size_t k = 0; k < n * per_row; ++k)
+        fans(new std::atomic<Fan*>[n]),
+        hidden(new std::atomic<Bits*>[n * per_row]) {
+    for (std::size_t k = 0; k < n * per_row; ++k) {
       chunks[k].store(nullptr, std::memory_order_relaxed);
+      hidden[k].store(nullptr, std::memory_order_relaxed);
+    }
     for (std::size_t k = 0; k < n; ++k) fans[k].store(nullptr, std::memory_order_relaxed);
   }
   ~NodeTables() {
-    for (std::size_t k = 0; k < nodes * per_row; ++k)
+    for (std::size_t k = 0; k < nodes * per_row; ++k) {
       delete[] chunks[k].load(std::memory_order_acquire);
+      delete[] hidden[k].load(std::memory_order_acquire);
+    }
     for (std::size_t k = 0; k < nodes; ++k) delete fans[k].load(std::memory_order_acquire);
   }
   NodeTables(const NodeTables&) = delete;
@@ -58,9 +64,33 @@ struct VisibilityRouter::NodeTables {
     }
     return chunk[j % kChunk];
   }
+  /// The pairs of row i known not to see each other, as bits: a search going on from a node skips
+  /// them a word (64 nodes) at a time rather than measuring a leg to each open node first.
+  using Bits = std::atomic<std::uint64_t>;
+  static constexpr std::size_t kWords = kChunk / 64;  ///< words per chunk of a row
+  /// Chunk c of row i's bits (bit u % kChunk of word (u % kChunk) / 64: node u hidden from i),
+  /// null while no pair of it is known hidden.
+  const Bits* hidden_of(std::size_t i, std::size_t c) const {
+    return hidden[i * per_row + c].load(std::memory_order_acquire);
+  }
+  /// Node j known not to see node i (its answer already stored in the table): its bit in row i.
+  void mark_hidden(std::size_t i, std::size_t j) {
+    std::atomic<Bits*>& slot = hidden[i * per_row + j / kChunk];
+    Bits* bits = slot.load(std::memory_order_acquire);
+    if (!bits) {
+      const std::size_t words = (std::min(kChunk, nodes - j / kChunk * kChunk) + 63) / 64;
+      auto made = std::make_unique<Bits[]>(words);
+      for (std::size_t k = 0; k < words; ++k) made[k].store(0, std::memory_order_relaxed);
+      if (slot.compare_exchange_strong(bits, made.get(), std::memory_order_acq_rel,
+                                       std::memory_order_acquire))
+        bits = made.release();  // kept; otherwise `bits` is the one another thread published
+    }
+    bits[j % kChunk / 64].fetch_or(std::uint64_t{1} << (j % 64), std::memory_order_relaxed);
+  }
   std::size_t nodes, per_row;
   std::unique_ptr<std::atomic<Chunk*>[]> chunks;  ///< per row, per chunk of it
   std::unique_ptr<std::atomic<Fan*>[]> fans;      ///< per node, null until made
+  std::unique_ptr<std::atomic<Bits*>[]> hidden;   ///< per row, per chunk of it
 };
 
 }  // namespace swath::geometry

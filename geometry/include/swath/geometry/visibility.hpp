@@ -168,6 +168,9 @@ class VisibilityRouter {
   /// What is known of whether nodes i and j (either order: row i is read) see each other (asked
   /// before, by any copy): 1 yes, 0 no, kUnknown not asked yet.
   signed char nodes_known(std::size_t i, std::size_t j) const;
+  /// Whether node j's bit in row i of the known-hidden bits is set (tests: it must be set exactly
+  /// where nodes_known(i, j) is 0).
+  bool hidden_bit(std::size_t i, std::size_t j) const;
   /// Which nodes see each other (in chunks of rows, made as they are first asked) and the nodes'
   /// fans, shared with copies (atomics).
   struct NodeTables;
