@@ -147,7 +147,7 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
     const std::span<const Span> seen = skip ? skip->at(y) : std::span<const Span>();
     for (const Span& in : inside[r]) {
       const int n = count(in);
-      // The span's ends read once: stores through `out` might alias them (the same arithmetic).
+      // The span's ends read once: stores into `samples` might alias them (the same arithmetic).
       const double x0 = in.x0, width = in.x1 - in.x0;
       if (seen.empty()) {
         write(x0, width, n, 0, n);
