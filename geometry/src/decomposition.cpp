@@ -413,7 +413,8 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   for (std::size_t k = 0; k < pieces.size(); ++k)
     d.pieces.push_back(chains_ring(pieces, std::span<const std::size_t>(&k, 1), back));
   for (const std::vector<std::size_t>& chain : merge_across_cuts(pieces)) {
-    Ring ring = chains_ring(pieces, chain, back);
+    // A cell of one piece is that piece's ring: chains_ring() of the same chains (a copy).
+    Ring ring = chain.size() == 1 ? d.pieces[chain.front()] : chains_ring(pieces, chain, back);
     if (ring.empty()) continue;
     d.cells.push_back(chain);
     d.cell_rings.push_back(std::move(ring));
