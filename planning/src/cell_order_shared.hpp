@@ -132,6 +132,7 @@ class Transit {
       ++asked_;
       d = p_.distance(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry);
       if (!twins_.empty()) share(exit_to_entry_, base_[c1] + v1, base_[c2] + v2, d);
+      if (dense_) known_now(at);
     }
     return d;
   }
@@ -145,6 +146,7 @@ class Transit {
       ++asked_;
       m = p_.crossed(p_.cells[c1][v1].exit, p_.cells[c2][v2].entry) & ~kUnknown;
       if (!twins_.empty()) share(crossed_, base_[c1] + v1, base_[c2] + v2, m);
+      if (dense_) known_now(at);
     }
     return m;
   }
@@ -247,6 +249,28 @@ class Transit {
       return;
     }
     const bool crossings = bool(p_.crossed);
+    if (!low_length_.empty()) {  // dense_low()'s values from the bounds' tables: the same sums
+      const double weight = p_.crossing_weight;
+      for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
+        const double internal_m = variants[v2].internal_m;
+        double best = kInf;
+        std::size_t first = 0;
+        std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
+        for (std::size_t u = 0; u < count; ++u, at += size_) {
+          const double low = crossings
+                                 ? penalised(low_length_[at], weight, low_crossed_[at] & unflown)
+                                 : low_length_[at];
+          const double c = before[u] + low + internal_m;
+          if (c < best) {
+            best = c;
+            first = u;
+          }
+        }
+        layer[v2] = best;
+        came[v2] = static_cast<std::uint8_t>(first);
+      }
+      return;
+    }
     const CellVariant* from = p_.cells[c1].data();
     for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
       const double internal_m = variants[v2].internal_m;
@@ -294,27 +318,49 @@ class Transit {
   std::unordered_map<std::size_t, Known> sparse_;  ///< beyond kDenseVariants: by index
   std::size_t size_ = 0;
 
-  /// Up to this many variants in all, least_into() scans every pair (~10^5 distances).
+  /// Up to this many variants in all, least_into() scans every pair (~10^5 distances) and the
+  /// bounds' tables are kept.
   static constexpr std::size_t kLeastInVariants = 320;
   std::vector<double> least_into_, least_internal_;  ///< per cell; empty: not bounded()
+  // The dense table's lower_cost() before its penalty, kept up to date (known_now()): the
+  // length where asked, else the straight length less 1e-12 of it (computed once, not per
+  // layer: least_layer() reads every entry of a move's layers, ~10^5 layers a plan); and the
+  // crossings where both they and the length are known, else none. penalised() of the two is
+  // dense_low()'s value bit for bit: with no crossing it is the length times 1 + weight x 0,
+  // exactly 1 for a finite weight (else the tables are not kept). Up to kLeastInVariants.
+  std::vector<double> low_length_;
+  std::vector<std::uint64_t> low_crossed_;
   void find_least_ins() {
     const std::size_t n = p_.cells.size();
     least_internal_.assign(n, kInf);
     for (std::size_t c = 0; c < n; ++c)
       for (const CellVariant& v : p_.cells[c])
         least_internal_[c] = std::min(least_internal_[c], v.internal_m);
-    if (size_ > kLeastInVariants) return;
+    if (size_ > kLeastInVariants || !dense_) return;
+    low_length_.assign(size_ * size_, 0);
     least_into_.assign(n, kInf);
     for (std::size_t a = 0; a < n; ++a)
-      for (const CellVariant& from : p_.cells[a])
-        for (std::size_t c = 0; c < n; ++c) {
-          if (c == a) continue;
-          for (const CellVariant& to : p_.cells[c])
-            least_into_[c] =
-                std::min(least_into_[c], geometry::distance(from.exit, to.entry) * (1 - 1e-12));
-        }
+      for (std::size_t u = 0; u < p_.cells[a].size(); ++u)
+        for (std::size_t c = 0; c < n; ++c)
+          for (std::size_t v = 0; v < p_.cells[c].size(); ++v) {
+            const std::size_t at = (base_[a] + u) * size_ + base_[c] + v;
+            low_length_[at] =
+                geometry::distance(p_.cells[a][u].exit, p_.cells[c][v].entry) * (1 - 1e-12);
+            if (c != a) least_into_[c] = std::min(least_into_[c], low_length_[at]);
+          }
     for (double& d : least_into_)
       if (d == kInf) d = 0;  // a cell no other cell leads into: nothing to bound
+    if (!std::isfinite(p_.crossing_weight)) {
+      low_length_.clear();
+      return;
+    }
+    if (p_.crossed) low_crossed_.assign(size_ * size_, 0);
+  }
+  /// The bounds' tables at dense entry `at` after its length or crossings were asked.
+  void known_now(std::size_t at) {
+    if (low_length_.empty() || exit_to_entry_[at] < 0) return;
+    low_length_[at] = exit_to_entry_[at];
+    if (p_.crossed && crossed_[at] != kUnknown) low_crossed_[at] = crossed_[at];
   }
 
   // Twins (problem.symmetric, dense tables): the entries of the tables that are one pair of points
@@ -360,9 +406,15 @@ class Transit {
   void share(std::vector<T>& table, std::size_t i, std::size_t j, T value) {
     const std::uint32_t a = twins_[i].exit, b = twins_[j].entry;
     for (const std::uint32_t from : exits_at_[a])
-      for (const std::uint32_t to : entries_at_[b]) table[from * size_ + to] = value;
+      for (const std::uint32_t to : entries_at_[b]) {
+        table[from * size_ + to] = value;
+        known_now(from * size_ + to);
+      }
     for (const std::uint32_t from : exits_at_[b])
-      for (const std::uint32_t to : entries_at_[a]) table[from * size_ + to] = value;
+      for (const std::uint32_t to : entries_at_[a]) {
+        table[from * size_ + to] = value;
+        known_now(from * size_ + to);
+      }
   }
   /// `d`, the leg between home and point `at`, into both legs' tables wherever `at` is an end.
   void share_home(std::uint32_t at, double d) {

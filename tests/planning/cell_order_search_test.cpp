@@ -498,7 +498,8 @@ TEST(CellOrderSearch, FirstLeastIsThePlainScan) {
 // home of random problems (straight transits, where a bound is within rounding of the transit,
 // and longer ones; with and without crossings), before and after it is asked, and least_through()
 // over a layer never above the least of the exact sums (least_layer(), a layer at once, the same
-// as least_through() variant by variant). An unsound bound would skip a transit that wins.
+// as least_through() variant by variant, before and after the transits are asked). An unsound
+// bound would skip a transit that wins.
 TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
   std::mt19937_64 rng(5220);
   std::uniform_real_distribution<double> before_m(0, 3000);
@@ -526,7 +527,9 @@ TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
       for (std::size_t c2 = 0; c2 < n; ++c2) {
         if (c1 == c2) continue;
         const std::uint64_t unflown = rng();
-        {  // least_layer(): least_through() for every variant at once, with the first u
+        // least_layer(): least_through() for every variant at once, with the first u (from the
+        // bounds' tables, kept up to date as transits are asked: checked before and after).
+        const auto same_layer = [&] {
           double before[4], layer[4];
           std::uint8_t came[4];
           for (double& b : before) b = before_m(rng);
@@ -537,7 +540,8 @@ TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
                                                  p.cells[c2][v2].internal_m, &u));
             ASSERT_EQ(came[v2], u);
           }
-        }
+        };
+        same_layer();
         for (std::size_t v2 = 0; v2 < p.cells[c2].size(); ++v2) {
           double before[4];
           for (double& b : before) b = before_m(rng);
@@ -558,6 +562,7 @@ TEST(CellOrderSearch, TransitBoundsNeverExceedTheTransits) {
           ASSERT_LE(low_layer, exact_layer) << "problem " << k;
           ASSERT_EQ(t.least_through(before, c1, count, c2, v2, unflown, internal), exact_layer);
         }
+        same_layer();
       }
   }
 }
@@ -768,9 +773,9 @@ std::vector<std::size_t> shuffled_cells(std::size_t n, std::mt19937_64& rng) {
 // no transit was asked since. Checked against the bounds filled afresh, each on its own memo of
 // the same problem: the same verdict, the same transits asked and the same layer rejecting the
 // move, move after move (one asked differently or a move rejected at another layer shows layers
-// that differ; a move's layers stop where one shows it cannot win), for blocks of 1-3 cells moved to every j, with and
-// without crossings, transits round a wall, verdicts both ways (objectives to beat below and
-// above the current one).
+// that differ; a move's layers stop where one shows it cannot win), for blocks of 1-3 cells moved
+// to every j, with and without crossings, transits round a wall, verdicts both ways (objectives to
+// beat below and above the current one).
 TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
   std::mt19937_64 rng(5254);
   std::size_t reused = 0, rejected = 0, kept_open = 0;
