@@ -82,6 +82,284 @@ std::vector<double> line_offsets(double y_min, double y_max, double spacing, dou
   }
 }
 
+namespace {
+
+// Strip k spans [lo, hi]: between the midpoints to its neighbours (strip rule) or the line's own
+// ordinate (inside rule), with the x extent of the area within it and where it is reached.
+struct Strip {
+  double lo, hi;
+  double x_lo = std::numeric_limits<double>::infinity();
+  double x_hi = -std::numeric_limits<double>::infinity();
+  double y_at_x_lo = 0.0, y_at_x_hi = 0.0;  // where the extremes are reached
+};
+
+// An edge clipped to [y0, y1] of a strip widens its x extent.
+void widen(Strip& strip, Point2 a, Point2 b, double y0, double y1) {
+  auto x_at = [&](double y) {
+    return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
+  };
+  for (const auto& [x, y] :
+       {std::pair{b.y == a.y ? a.x : x_at(y0), y0}, std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
+    if (x < strip.x_lo) {
+      strip.x_lo = x;
+      strip.y_at_x_lo = y;
+    }
+    if (x > strip.x_hi) {
+      strip.x_hi = x;
+      strip.y_at_x_hi = y;
+    }
+  }
+}
+
+// The walk of the turned rings' edges that finds the strips' extents.
+class StripWalk {
+ public:
+  StripWalk(const std::vector<geometry::Ring>& rings, std::size_t ring_count, double y_min,
+            double y_max)
+      : rings_(rings), ring_count_(ring_count), y_min_(y_min), y_max_(y_max) {}
+
+  // Into `strips` (its capacity kept), for offsets[0, count); with `points` (whole strips only,
+  // each holding its own offset), the point strips at the offsets into it in the same walk: an
+  // edge that meets an offset meets the whole strip around it, and each strip's edges come in ring
+  // order either way, so the same extents as walked on their own.
+  void operator()(const double* offsets, std::size_t count, bool whole_strip,
+                  std::vector<Strip>& strips, std::vector<Strip>* points = nullptr) const {
+    strips.clear();
+    if (points) {
+      points->clear();
+      for (std::size_t k = 0; k < count; ++k) points->push_back({offsets[k], offsets[k]});
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!whole_strip) {
+        strips.push_back({offsets[k], offsets[k]});
+      } else {
+        strips.push_back({k == 0 ? y_min_ : (offsets[k - 1] + offsets[k]) / 2,
+                          k + 1 == count ? y_max_ : (offsets[k] + offsets[k + 1]) / 2});
+      }
+    }
+    // The first strip whose top reaches y: std::lower_bound's, walked to from the last edge's
+    // (neighbouring edges share a vertex: a few steps, not a search per edge) where the tops
+    // ascend, as they do for the grid's ordinates (NaN-free: `<=` fails on NaN).
+    bool tops_ascend = true;
+    for (std::size_t k = 0; k + 1 < strips.size(); ++k)
+      tops_ascend = tops_ascend && strips[k].hi <= strips[k + 1].hi;
+    std::size_t near = 0;
+    const auto first_reaching = [&](double y) {
+      if (!tops_ascend)
+        return std::size_t(std::lower_bound(strips.begin(), strips.end(), y,
+                                            [](const Strip& st, double v) { return st.hi < v; }) -
+                           strips.begin());
+      near = detail::walk_lower_bound_by(strips.data(), strips.size(), y, near,
+                                         [](const Strip& st) { return st.hi; });
+      return near;
+    };
+    // Each edge, clipped to every strip it meets, widens that strip's x extent.
+    for (std::size_t r = 0; r < ring_count_; ++r) {
+      const geometry::Ring& ring = rings_[r];
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
+        if (a.y > b.y) std::swap(a, b);
+        auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
+        for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
+          if (points) {
+            Strip& point = (*points)[std::size_t(strip - strips.begin())];
+            const double y0 = std::max(a.y, point.lo);
+            const double y1 = std::min(b.y, point.hi);
+            if (!(y0 > y1)) widen(point, a, b, y0, y1);
+          }
+          const double y0 = std::max(a.y, strip->lo);
+          const double y1 = std::min(b.y, strip->hi);
+          if (y0 > y1) continue;
+          widen(*strip, a, b, y0, y1);
+        }
+      }
+    }
+  }
+
+  double y_min() const { return y_min_; }
+  double y_max() const { return y_max_; }
+
+ private:
+  const std::vector<geometry::Ring>& rings_;
+  std::size_t ring_count_;
+  double y_min_, y_max_;
+};
+
+// A protrusion's extreme (its ordinate) and the side of the lanes it reaches out to.
+struct Reach {
+  double y;
+  bool high;
+};
+
+// The protrusions that no lane's footprint reaches already: where a whole strip reaches further
+// out than its lane by more than `slack`, and no lane within half a footprint sees that extreme.
+void unseen_reaches(const std::vector<double>& ys, const std::vector<Strip>& strips,
+                    const std::vector<Strip>& whole, bool ascending, double slack, double half,
+                    std::vector<Reach>& reaches) {
+  // On ascending ordinates y - ys[j] does not increase with j (rounding is monotone), so the
+  // lanes within half a footprint are one run of them, found by search: the same lanes asked as
+  // by a scan of all (one per protrusion was a sixth of a split plan's sweeps).
+  auto seen = [&](double x, double y) {
+    const auto sees = [&](std::size_t j) {
+      return x >= strips[j].x_lo - slack && x <= strips[j].x_hi + slack;
+    };
+    if (!ascending) {
+      for (std::size_t j = 0; j < ys.size(); ++j)
+        if (std::abs(y - ys[j]) <= half && sees(j)) return true;
+      return false;
+    }
+    const auto first =
+        std::partition_point(ys.begin(), ys.end(), [&](double yj) { return y - yj > half; });
+    for (auto j = first; j != ys.end() && y - *j >= -half; ++j)
+      if (sees(std::size_t(j - ys.begin()))) return true;
+    return false;
+  };
+  reaches.clear();
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    if (whole[k].x_hi > strips[k].x_hi + slack && !seen(whole[k].x_hi, whole[k].y_at_x_hi))
+      reaches.push_back({whole[k].y_at_x_hi, true});
+    if (whole[k].x_lo < strips[k].x_lo - slack && !seen(whole[k].x_lo, whole[k].y_at_x_lo))
+      reaches.push_back({whole[k].y_at_x_lo, false});
+  }
+}
+
+// Where a reach's lane goes: just below or just above its extreme (`sides`, below first), on the
+// side that reaches further out; `below` and `above` are the point strips of the two. 1: above.
+std::size_t side_of(const Reach& r, const Strip& below, const Strip& above) {
+  const bool up = r.high ? above.x_hi >= below.x_hi : above.x_lo <= below.x_lo;
+  return up ? 1 : 0;
+}
+
+// The two ordinates a reach's lane may take: `inset` below and above its extreme, inside the area.
+std::array<double, 2> sides_of(double y, double inset, const StripWalk& walk) {
+  return {std::max(y - inset, walk.y_min() + inset), std::min(y + inset, walk.y_max() - inset)};
+}
+
+// The reaches' lanes added to the grid's (`ys`, `strips`), a walk per reach, then all walked
+// again: for ordinates the shared walk below does not take (unsorted, zero, non-finite).
+void add_reach_lanes_walked(const StripWalk& walk, const std::vector<Reach>& reaches, double inset,
+                            std::vector<double>& ys, std::vector<Strip>& strips) {
+  thread_local std::vector<Strip> at;
+  thread_local std::vector<double> extra;
+  extra.clear();
+  for (const Reach& r : reaches) {
+    const std::array<double, 2> sides = sides_of(r.y, inset, walk);
+    walk(sides.data(), 2, false, at);
+    extra.push_back(sides[side_of(r, at[0], at[1])]);
+  }
+  std::vector<double> more = ys;
+  more.insert(more.end(), extra.begin(), extra.end());
+  std::sort(more.begin(), more.end());
+  more.erase(std::unique(more.begin(), more.end()), more.end());
+  ys = std::move(more);
+  walk(ys.data(), ys.size(), false, strips);
+}
+
+// The same, every reach's two sides asked in one walk. A point strip's extent is the fold, in
+// ring order, of the edges that meet its ordinate: the walk skips only strips an edge cannot
+// meet, so each strip's extent is the same whatever strips are asked beside it, provided the walk
+// finds them all (ordinates ascending; NaN-free). So the sides of all reaches are asked in one
+// walk, sorted, and the lanes at the grid's ordinates keep the extents found for them.
+void add_reach_lanes_shared(const StripWalk& walk, const std::vector<Reach>& reaches, double inset,
+                            std::vector<double>& ys, std::vector<Strip>& strips) {
+  thread_local std::vector<std::pair<double, std::size_t>> asked;  // ordinate, 2 reach + up
+  thread_local std::vector<double> asked_y;
+  thread_local std::vector<std::size_t> rank;  // asked side -> its strip in `at`
+  thread_local std::vector<Strip> at;
+  asked.clear();
+  for (std::size_t i = 0; i < reaches.size(); ++i) {
+    const std::array<double, 2> sides = sides_of(reaches[i].y, inset, walk);
+    asked.push_back({sides[0], 2 * i});
+    asked.push_back({sides[1], 2 * i + 1});
+  }
+  std::sort(asked.begin(), asked.end());
+  asked_y.clear();
+  rank.resize(asked.size());
+  for (std::size_t j = 0; j < asked.size(); ++j) {
+    asked_y.push_back(asked[j].first);
+    rank[asked[j].second] = j;
+  }
+  walk(asked_y.data(), asked_y.size(), false, at);
+  // The grid's lanes and the chosen sides', by ordinate, equal ones once (equal ordinates have
+  // equal bits here, so equal extents: which one is kept does not matter).
+  thread_local std::vector<std::pair<double, Strip>> lanes;
+  lanes.clear();
+  for (std::size_t k = 0; k < ys.size(); ++k) lanes.push_back({ys[k], strips[k]});
+  bool zero = false;
+  for (std::size_t i = 0; i < reaches.size(); ++i) {
+    const std::size_t up = side_of(reaches[i], at[rank[2 * i]], at[rank[2 * i + 1]]);
+    const std::size_t j = rank[2 * i + up];
+    lanes.push_back({asked_y[j], at[j]});
+    zero = zero || asked_y[j] == 0;
+  }
+  std::sort(lanes.begin(), lanes.end(),
+            [](const auto& u, const auto& v) { return u.first < v.first; });
+  lanes.erase(std::unique(lanes.begin(), lanes.end(),
+                          [](const auto& u, const auto& v) { return u.first == v.first; }),
+              lanes.end());
+  ys.clear();
+  strips.clear();
+  for (const auto& [y, strip] : lanes) {
+    ys.push_back(y);
+    strips.push_back(strip);
+  }
+  // 0 and -0 are one ordinate to the sort and unique: such lanes are walked, as the walk above
+  // would not find them in order.
+  if (zero) walk(ys.data(), ys.size(), false, strips);
+}
+
+// Lanes for the protrusions no lane's footprint reaches (SweepSettings::fill_protrusions), added
+// to `ys` and `strips`; `whole` holds the whole strips around the lanes.
+void fill_protrusions(const StripWalk& walk, const SweepSettings& s, bool ascending,
+                      std::vector<double>& ys, std::vector<Strip>& strips,
+                      const std::vector<Strip>& whole) {
+  const double slack = 0.02 * s.line_spacing_m;
+  // The extreme may lie on an edge along the lanes, where the extent jumps: the lane goes just
+  // off it, on the side that reaches out (never on the edge: it would run along the boundary).
+  const double inset = std::min(1e-3 * s.line_spacing_m, (walk.y_max() - walk.y_min()) / 4);
+  thread_local std::vector<Reach> reaches;
+  unseen_reaches(ys, strips, whole, ascending, slack, s.footprint_width_m / 2, reaches);
+  if (reaches.empty()) return;
+  // Zeros are left to the walks: 0 and -0 are one ordinate to the sort and unique below.
+  const auto plain = [](double y) { return std::isfinite(y) && y != 0; };
+  bool shared = ascending;
+  for (const double y : ys) shared = shared && plain(y);
+  for (const Reach& r : reaches) shared = shared && std::isfinite(r.y);
+  if (shared)
+    add_reach_lanes_shared(walk, reaches, inset, ys, strips);
+  else
+    add_reach_lanes_walked(walk, reaches, inset, ys, strips);
+}
+
+// The lanes' ordinates: the area's own grid, or the given ordinates within [y_min, y_max] (the
+// middle one where none is).
+std::vector<double> lane_ordinates(const SweepSettings& s, double y_min, double y_max) {
+  if (s.ordinates.empty())
+    return line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
+  std::vector<double> ys;
+  const auto inside = [&](double y) { return y >= y_min && y <= y_max; };
+  ys.reserve(std::size_t(std::count_if(s.ordinates.begin(), s.ordinates.end(), inside)));
+  for (double y : s.ordinates)
+    if (inside(y)) ys.push_back(y);
+  if (ys.empty()) ys.push_back((y_min + y_max) / 2);
+  return ys;
+}
+
+// Whether the lanes' strips and the whole strips can be found in one walk: it finds every strip an
+// edge meets (ascending tops) and each whole strip holds its lane's ordinate (so on the area's own
+// or given ascending ordinates inside it).
+bool one_walk_finds_both(const std::vector<double>& ys, double y_min, double y_max) {
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    const double lo = k == 0 ? y_min : (ys[k - 1] + ys[k]) / 2;
+    const double hi = k + 1 == ys.size() ? y_max : (ys[k] + ys[k + 1]) / 2;
+    const double next_hi = k + 2 < ys.size() ? (ys[k + 1] + ys[k + 2]) / 2 : y_max;
+    if (!(lo <= ys[k] && ys[k] <= hi && (k + 1 == ys.size() || hi <= next_hi))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
   if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m) ||
       !(s.turnaround_m >= 0))
@@ -108,240 +386,20 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
     }
   }
   sweep.height_m = y_max - y_min;
-  std::vector<double> ys;
-  if (s.ordinates.empty()) {
-    ys = line_offsets(y_min, y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
-  } else {
-    const auto inside = [&](double y) { return y >= y_min && y <= y_max; };
-    ys.reserve(std::size_t(std::count_if(s.ordinates.begin(), s.ordinates.end(), inside)));
-    for (double y : s.ordinates)
-      if (inside(y)) ys.push_back(y);
-    if (ys.empty()) ys.push_back((y_min + y_max) / 2);
-  }
+  std::vector<double> ys = lane_ordinates(s, y_min, y_max);
+  const StripWalk walk(rings, ring_count, y_min, y_max);
 
-  // Strip k spans [lo, hi]: between the midpoints to its neighbours (strip rule) or the line's own
-  // ordinate (inside rule). Both bounds increase with k, so an edge finds its first strip by
-  // search.
-  struct Strip {
-    double lo, hi;
-    double x_lo = std::numeric_limits<double>::infinity();
-    double x_hi = -std::numeric_limits<double>::infinity();
-    double y_at_x_lo = 0.0, y_at_x_hi = 0.0;  // where the extremes are reached
-  };
-  // Into `strips` (its capacity kept), for offsets[0, count).
-  // An edge clipped to [y0, y1] of a strip widens its x extent.
-  const auto widen = [](Strip& strip, Point2 a, Point2 b, double y0, double y1) {
-    auto x_at = [&](double y) {
-      return b.y == a.y ? a.x : a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y);
-    };
-    for (const auto& [x, y] :
-         {std::pair{b.y == a.y ? a.x : x_at(y0), y0}, std::pair{b.y == a.y ? b.x : x_at(y1), y1}}) {
-      if (x < strip.x_lo) {
-        strip.x_lo = x;
-        strip.y_at_x_lo = y;
-      }
-      if (x > strip.x_hi) {
-        strip.x_hi = x;
-        strip.y_at_x_hi = y;
-      }
-    }
-  };
-  // Into `strips` (its capacity kept), for offsets[0, count); with `points` (whole strips only,
-  // each holding its own offset), the point strips at the offsets into it in the same walk: an
-  // edge that meets an offset meets the whole strip around it, and each strip's edges come in ring
-  // order either way, so the same extents as walked on their own.
-  auto strips_for = [&](const double* offsets, std::size_t count, bool whole_strip,
-                        std::vector<Strip>& strips, std::vector<Strip>* points = nullptr) {
-    strips.clear();
-    if (points) {
-      points->clear();
-      for (std::size_t k = 0; k < count; ++k) points->push_back({offsets[k], offsets[k]});
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!whole_strip) {
-        strips.push_back({offsets[k], offsets[k]});
-      } else {
-        strips.push_back({k == 0 ? y_min : (offsets[k - 1] + offsets[k]) / 2,
-                          k + 1 == count ? y_max : (offsets[k] + offsets[k + 1]) / 2});
-      }
-    }
-    // The first strip whose top reaches y: std::lower_bound's, walked to from the last edge's
-    // (neighbouring edges share a vertex: a few steps, not a search per edge) where the tops
-    // ascend, as they do for the grid's ordinates (NaN-free: `<=` fails on NaN).
-    bool tops_ascend = true;
-    for (std::size_t k = 0; k + 1 < strips.size(); ++k)
-      tops_ascend = tops_ascend && strips[k].hi <= strips[k + 1].hi;
-    std::size_t near = 0;
-    const auto first_reaching = [&](double y) {
-      if (!tops_ascend)
-        return std::size_t(std::lower_bound(strips.begin(), strips.end(), y,
-                                            [](const Strip& st, double v) { return st.hi < v; }) -
-                           strips.begin());
-      near = detail::walk_lower_bound_by(strips.data(), strips.size(), y, near,
-                                         [](const Strip& st) { return st.hi; });
-      return near;
-    };
-    // Each edge, clipped to every strip it meets, widens that strip's x extent.
-    for (std::size_t r = 0; r < ring_count; ++r) {
-      const geometry::Ring& ring = rings[r];
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
-        if (a.y > b.y) std::swap(a, b);
-        auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
-        for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
-          if (points) {
-            Strip& point = (*points)[std::size_t(strip - strips.begin())];
-            const double y0 = std::max(a.y, point.lo);
-            const double y1 = std::min(b.y, point.hi);
-            if (!(y0 > y1)) widen(point, a, b, y0, y1);
-          }
-          const double y0 = std::max(a.y, strip->lo);
-          const double y1 = std::min(b.y, strip->hi);
-          if (y0 > y1) continue;
-          widen(*strip, a, b, y0, y1);
-        }
-      }
-    }
-  };
-  thread_local std::vector<Strip> strips, whole, at;
+  thread_local std::vector<Strip> strips, whole;
   bool ascending = true;
   for (std::size_t k = 0; k + 1 < ys.size(); ++k) ascending = ascending && ys[k] <= ys[k + 1];
   const bool fill = s.segments == SegmentRule::inside && s.fill_protrusions && !ys.empty();
-  // The lanes' strips and the whole strips in one walk where it finds every strip an edge meets
-  // (ascending tops) and each whole strip holds its lane's ordinate (so on the area's own or given
-  // ascending ordinates inside it); else a walk each.
-  bool one_walk = fill && ascending;
-  for (std::size_t k = 0; one_walk && k < ys.size(); ++k) {
-    const double lo = k == 0 ? y_min : (ys[k - 1] + ys[k]) / 2;
-    const double hi = k + 1 == ys.size() ? y_max : (ys[k] + ys[k + 1]) / 2;
-    const double next_hi = k + 2 < ys.size() ? (ys[k + 1] + ys[k + 2]) / 2 : y_max;
-    one_walk = lo <= ys[k] && ys[k] <= hi && (k + 1 == ys.size() || hi <= next_hi);
-  }
-  if (one_walk) {
-    strips_for(ys.data(), ys.size(), true, whole, &strips);
+  if (fill && ascending && one_walk_finds_both(ys, y_min, y_max)) {
+    walk(ys.data(), ys.size(), true, whole, &strips);
   } else {
-    strips_for(ys.data(), ys.size(), s.segments == SegmentRule::strip, strips);
-    if (fill) strips_for(ys.data(), ys.size(), true, whole);
+    walk(ys.data(), ys.size(), s.segments == SegmentRule::strip, strips);
+    if (fill) walk(ys.data(), ys.size(), true, whole);
   }
-  if (fill) {
-    const double slack = 0.02 * s.line_spacing_m;
-    // The extreme may lie on an edge along the lanes, where the extent jumps: the lane goes just
-    // off it, on the side that reaches out (never on the edge: it would run along the boundary).
-    const double inset = std::min(1e-3 * s.line_spacing_m, (y_max - y_min) / 4);
-    // Only protrusions that no lane's footprint reaches already.
-    // On ascending ordinates y - ys[j] does not increase with j (rounding is monotone), so the
-    // lanes within half a footprint are one run of them, found by search: the same lanes asked as
-    // by a scan of all (one per protrusion was a sixth of a split plan's sweeps).
-    const double half = s.footprint_width_m / 2;
-    auto seen = [&](double x, double y) {
-      const auto sees = [&](std::size_t j) {
-        return x >= strips[j].x_lo - slack && x <= strips[j].x_hi + slack;
-      };
-      if (!ascending) {
-        for (std::size_t j = 0; j < ys.size(); ++j)
-          if (std::abs(y - ys[j]) <= half && sees(j)) return true;
-        return false;
-      }
-      const auto first =
-          std::partition_point(ys.begin(), ys.end(), [&](double yj) { return y - yj > half; });
-      for (auto j = first; j != ys.end() && y - *j >= -half; ++j)
-        if (sees(std::size_t(j - ys.begin()))) return true;
-      return false;
-    };
-    // A protrusion's extreme (its ordinate) and the side of the lanes it reaches out to.
-    struct Reach {
-      double y;
-      bool high;
-    };
-    thread_local std::vector<Reach> reaches;
-    reaches.clear();
-    for (std::size_t k = 0; k < ys.size(); ++k) {
-      if (whole[k].x_hi > strips[k].x_hi + slack && !seen(whole[k].x_hi, whole[k].y_at_x_hi))
-        reaches.push_back({whole[k].y_at_x_hi, true});
-      if (whole[k].x_lo < strips[k].x_lo - slack && !seen(whole[k].x_lo, whole[k].y_at_x_lo))
-        reaches.push_back({whole[k].y_at_x_lo, false});
-    }
-    if (!reaches.empty()) {
-      // Where the lane goes: just below or just above the extreme, on the side that reaches
-      // further out; `at` holds the point strips of the two (below first).
-      const auto side = [&](const Reach& r, const Strip& below, const Strip& above) {
-        const bool up = r.high ? above.x_hi >= below.x_hi : above.x_lo <= below.x_lo;
-        return up ? 1 : 0;
-      };
-      const auto sides_of = [&](double y) {
-        return std::array<double, 2>{std::max(y - inset, y_min + inset),
-                                     std::min(y + inset, y_max - inset)};
-      };
-      thread_local std::vector<double> extra;
-      extra.clear();
-      // A point strip's extent is the fold, in ring order, of the edges that meet its ordinate:
-      // the walk skips only strips an edge cannot meet, so each strip's extent is the same
-      // whatever strips are asked beside it, provided the walk finds them all (ordinates
-      // ascending; NaN-free). So the sides of all reaches are asked in one walk, sorted, and the
-      // lanes at the grid's ordinates keep the extents found for them (a walk each before).
-      // Zeros are left to the walks: 0 and -0 are one ordinate to the sort and unique below.
-      const auto plain = [](double y) { return std::isfinite(y) && y != 0; };
-      bool shared = ascending;
-      for (const double y : ys) shared = shared && plain(y);
-      for (const Reach& r : reaches) shared = shared && std::isfinite(r.y);
-      if (!shared) {
-        for (const Reach& r : reaches) {
-          const std::array<double, 2> sides = sides_of(r.y);
-          strips_for(sides.data(), 2, false, at);
-          extra.push_back(sides[std::size_t(side(r, at[0], at[1]))]);
-        }
-        std::vector<double> more = ys;
-        more.insert(more.end(), extra.begin(), extra.end());
-        std::sort(more.begin(), more.end());
-        more.erase(std::unique(more.begin(), more.end()), more.end());
-        ys = std::move(more);
-        strips_for(ys.data(), ys.size(), false, strips);
-      } else {
-        thread_local std::vector<std::pair<double, std::size_t>> asked;  // ordinate, 2 reach + up
-        thread_local std::vector<double> asked_y;
-        thread_local std::vector<std::size_t> rank;  // asked side -> its strip in `at`
-        asked.clear();
-        for (std::size_t i = 0; i < reaches.size(); ++i) {
-          const std::array<double, 2> sides = sides_of(reaches[i].y);
-          asked.push_back({sides[0], 2 * i});
-          asked.push_back({sides[1], 2 * i + 1});
-        }
-        std::sort(asked.begin(), asked.end());
-        asked_y.clear();
-        rank.resize(asked.size());
-        for (std::size_t j = 0; j < asked.size(); ++j) {
-          asked_y.push_back(asked[j].first);
-          rank[asked[j].second] = j;
-        }
-        strips_for(asked_y.data(), asked_y.size(), false, at);
-        // The grid's lanes and the chosen sides', by ordinate, equal ones once (equal ordinates
-        // have equal bits here, so equal extents: which one is kept does not matter).
-        thread_local std::vector<std::pair<double, Strip>> lanes;
-        lanes.clear();
-        for (std::size_t k = 0; k < ys.size(); ++k) lanes.push_back({ys[k], strips[k]});
-        bool zero = false;
-        for (std::size_t i = 0; i < reaches.size(); ++i) {
-          const std::size_t up =
-              std::size_t(side(reaches[i], at[rank[2 * i]], at[rank[2 * i + 1]]));
-          const std::size_t j = rank[2 * i + up];
-          lanes.push_back({asked_y[j], at[j]});
-          zero = zero || asked_y[j] == 0;
-        }
-        std::sort(lanes.begin(), lanes.end(),
-                  [](const auto& u, const auto& v) { return u.first < v.first; });
-        lanes.erase(std::unique(lanes.begin(), lanes.end(),
-                                [](const auto& u, const auto& v) { return u.first == v.first; }),
-                    lanes.end());
-        ys.clear();
-        strips.clear();
-        for (const auto& [y, strip] : lanes) {
-          ys.push_back(y);
-          strips.push_back(strip);
-        }
-        if (zero) strips_for(ys.data(), ys.size(), false, strips);  // walked, as said above
-      }
-    }
-  }
+  if (fill) fill_protrusions(walk, s, ascending, ys, strips, whole);
   sweep.lines.reserve(strips.size());
   for (std::size_t k = 0; k < strips.size(); ++k) {
     if (strips[k].x_lo > strips[k].x_hi) continue;
