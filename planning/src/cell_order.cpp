@@ -19,8 +19,8 @@ namespace {
 using cell_order_detail::best_variants;
 using cell_order_detail::bit;
 using cell_order_detail::finished;
-using cell_order_detail::kInf;
 using cell_order_detail::KeptLayers;
+using cell_order_detail::kInf;
 using cell_order_detail::penalised;
 using cell_order_detail::Transit;
 using cell_order_detail::VariantTable;
@@ -365,16 +365,17 @@ void local_search(const CellOrderProblem& p, Transit& t, std::vector<std::size_t
             continue;
           --budget;
           VariantTable& trial = tables[std::size_t(std::min(kind, 3))];
-          trial.keep_layers_of(current, std::min(i, j));
           // Where the move changes the order to its end, the legs home stand for the tail.
           const std::size_t check_at = std::min(changed_end, n - 1);
           if (bounded && std::min(i, j) < check_at) {
             const std::size_t kept_to =
                 kind < 3 && j > i ? kept[std::size_t(kind)].next(i, j, t.asked(), version) : 0;
+            trial.keep_layer_before(current, std::min(i, j));  // all the bounds read of them
             if (trial.cannot_win(p, t, candidate, std::min(i, j), check_at, best.objective_m - 1e-9,
                                  changed_end < n ? &current : nullptr, kept_to))
               continue;
           }
+          trial.keep_layers_of(current, std::min(i, j));
           const double tried = trial.fill(p, t, candidate, std::min(i, j), best.objective_m - 1e-9,
                                           &current, changed_end);
           if (tried < best.objective_m - 1e-9) {

@@ -605,6 +605,15 @@ class VariantTable {
     std::copy(other.cost_.begin(), other.cost_.begin() + count, cost_.begin());
     std::copy(other.from_.begin(), other.from_.begin() + count, from_.begin());
   }
+  /// Of `other`'s layers before `from`, the one cannot_win() reads (layer from - 1): all a move
+  /// needs until it is filled (keep_layers_of() then), where most are rejected by their bounds.
+  void keep_layer_before(const VariantTable& other, std::size_t from) {
+    cost_.resize(other.cost_.size());
+    if (from == 0) return;
+    const auto at = std::ptrdiff_t((from - 1) * kMaxVariants);
+    std::copy(other.cost_.begin() + at, other.cost_.begin() + at + std::ptrdiff_t(kMaxVariants),
+              cost_.begin() + at);
+  }
   /// The cost of the rest of `order` (this table's last filled order, filled whole) after each
   /// layer's variant: transits on (with the penalties of the cells still after them), the later
   /// cells' internal lengths and the leg home. What fill()'s `tail` reads.
@@ -662,7 +671,8 @@ class VariantTable {
   /// suffix()'s cost of the rest of its order after variant v at position k.
   double rest_cost(std::size_t k, std::size_t v) const { return rest_cost_[k * kMaxVariants + v]; }
   /// Whether `order`, a candidate of the local search whose layers before `from` this table holds
-  /// (keep_layers_of()) and whose cells from `check_at` on are those of the order `tail` last
+  /// (keep_layers_of(), or keep_layer_before(): only layer from - 1 is read) and whose cells from
+  /// `check_at` on are those of the order `tail` last
   /// took the suffix() of, certainly cannot reach below `give_up_m`: its layers `from` to
   /// `check_at` with the transits' lower bounds (Transit::lower_cost()) plus the tail's costs,
   /// less fill()'s margin. Each such layer is at most fill()'s (the same sums of terms no larger,
