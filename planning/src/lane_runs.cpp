@@ -318,67 +318,11 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
   return added;
 }
 
-// Whether a turn between lane ends on neighbouring grid rows stays inside: no boundary edge
-// crosses it and its middle is inside or on the boundary. Only the edges that reach into the band
-// between the two rows can tell, so they are bucketed by band: O(edges in the band) a turn, not
-// O(n) as a general visibility test (10,000-vertex outlines ask this ~10^5 times).
-class Turns {
- public:
-  Turns(const LaneScan& scan, const std::vector<double>& ys) {
-    if (ys.empty()) return;
-    // The bands' edges in one array (band b's from start_[b] to start_[b + 1], in edge order):
-    // counted, then placed (a vector per band was most of this step's allocations). Each edge's
-    // bands [first, end) are found once, kept for the placing.
-    const auto& edges = scan.edges();
-    thread_local std::vector<std::pair<std::size_t, std::size_t>> reach;
-    reach.resize(edges.size());
-    start_.assign(ys.size() + 1, 0);
-    std::size_t near = 0;  // the last edge's first band
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      const double lo = std::min(edges[e].first.y, edges[e].second.y);
-      const double hi = std::max(edges[e].first.y, edges[e].second.y);
-      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
-      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
-      // this).
-      near = detail::walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
-      std::size_t end = near;
-      for (; end + 1 < ys.size() && ys[end] <= hi; ++end) ++start_[end + 1];
-      reach[e] = {near, end};
-    }
-    for (std::size_t b = 0; b < ys.size(); ++b) start_[b + 1] += start_[b];
-    edges_.resize(start_.back());
-    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-    for (std::size_t e = 0; e < edges.size(); ++e)
-      for (std::size_t b = reach[e].first; b < reach[e].second; ++b) edges_[next[b]++] = edges[e];
-  }
-
-  /// a on row `row`, b on the next, both in the rotated frame.
-  bool inside(Point2 a, Point2 b, std::size_t row) const {
-    const std::span<const std::pair<Point2, Point2>> edges(edges_.data() + start_[row],
-                                                           edges_.data() + start_[row + 1]);
-    const double tolerance = 1e-9 * (1 + geometry::distance(a, b));
-    for (const auto& [p, q] : edges)
-      if (geometry::segments_cross_clearly(a, b, p, q, tolerance)) return false;
-    // The middle: on an edge counts as inside (closed area), else by crossings to the right.
-    const Point2 m = (a + b) * 0.5;
-    bool in = false;
-    for (const auto& [p, q] : edges) {
-      if (geometry::distance_to_segment(m, p, q) <= tolerance) return true;
-      if ((p.y <= m.y) != (q.y <= m.y) && p.x + (m.y - p.y) * (q.x - p.x) / (q.y - p.y) > m.x)
-        in = !in;
-    }
-    return in;
-  }
-
- private:
-  std::vector<std::size_t> start_;
-  std::vector<std::pair<Point2, Point2>> edges_;
-};
-
 // Zigzag chains over the grid's ordinates: each lane linked to at most one lane on the next
 // ordinate up, the pairs that overlap most first, when both turns (left ends, right ends) stay
 // inside. Coverage lanes stay runs of their own; the order places them.
-std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes, const Turns& turns) {
+std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes,
+                                        const detail::Turns& turns) {
   // The grid's lanes by row (each row's a stretch of `grid`, from group[r] to group[r + 1]; one
   // array, not a vector per row).
   std::vector<std::size_t> grid, group;
@@ -576,7 +520,7 @@ LaneRuns runs_of(const LaneRunArea& area, const LaneRunSettings& s, std::vector<
   });
 
   // 4. Zigzag runs.
-  for (const std::vector<RunLane>& run : chain(kept, Turns(scan, ys))) {
+  for (const std::vector<RunLane>& run : chain(kept, detail::Turns(scan, ys))) {
     Sweep sweep;
     sweep.angle_deg = s.angle_deg;
     sweep.height_m = run.back().y - run.front().y;

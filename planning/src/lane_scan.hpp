@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "swath/geometry/polygon.hpp"
+#include "swath/geometry/predicates.hpp"
 #include "swath/planning/lane_runs.hpp"
 
 namespace swath::planning::detail {
@@ -303,6 +304,85 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
 // lane_runs() with its coverage check on every sample, those a long lane sees too: the reference
 // that lane_runs' tests compare it with. Defined in lane_runs.cpp.
 LaneRuns lane_runs_on_every_sample(const LaneRunArea& area, const LaneRunSettings& settings);
+
+// Whether a turn between lane ends on neighbouring grid rows stays inside: no boundary edge
+// crosses it and its middle is inside or on the boundary. Only the edges that reach into the band
+// between the two rows can tell, so they are bucketed by band: O(edges in the band) a turn, not
+// O(n) as a general visibility test (10,000-vertex outlines ask this ~10^5 times).
+class Turns {
+ public:
+  Turns(const LaneScan& scan, const std::vector<double>& ys) {
+    if (ys.empty()) return;
+    // The bands' edges in one array (band b's from start_[b] to start_[b + 1], in edge order):
+    // counted, then placed (a vector per band was most of this step's allocations). Each edge's
+    // bands [first, end) are found once, kept for the placing.
+    const auto& edges = scan.edges();
+    thread_local std::vector<std::pair<std::size_t, std::size_t>> reach;
+    reach.resize(edges.size());
+    start_.assign(ys.size() + 1, 0);
+    std::size_t near = 0;  // the last edge's first band
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const double lo = std::min(edges[e].first.y, edges[e].second.y);
+      const double hi = std::max(edges[e].first.y, edges[e].second.y);
+      // Band r spans [ys[r], ys[r + 1]]: the first band whose top reaches lo, up to the last whose
+      // bottom is below hi (the tops ys[1...] by walk_lower_bound: a search per edge was most of
+      // this).
+      near = walk_lower_bound(ys.data() + 1, ys.size() - 1, lo, near);
+      std::size_t end = near;
+      for (; end + 1 < ys.size() && ys[end] <= hi; ++end) ++start_[end + 1];
+      reach[e] = {near, end};
+    }
+    for (std::size_t b = 0; b < ys.size(); ++b) start_[b + 1] += start_[b];
+    edges_.resize(start_.back());
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      for (std::size_t b = reach[e].first; b < reach[e].second; ++b) edges_[next[b]++] = edges[e];
+    double scale = 0;
+    for (const auto& [p, q] : edges)
+      scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(q.x), std::abs(q.y)});
+    skip_far_ = 64 * std::numeric_limits<double>::epsilon() * scale < 1e-9;
+  }
+
+  /// a on row `row`, b on the next, both in the rotated frame.
+  bool inside(Point2 a, Point2 b, std::size_t row) const {
+    const std::span<const std::pair<Point2, Point2>> edges(edges_.data() + start_[row],
+                                                           edges_.data() + start_[row + 1]);
+    const double tolerance = 1e-9 * (1 + geometry::distance(a, b));
+    // Edges away from the turn are passed over without the tests below: they cannot pass them
+    // (skip_far_: the coordinates are small enough, below ~7e4 m, for the proofs' rounding bound).
+    // The rounding of a side value (segments_cross_clearly: cross(d - o, x - o) / |d - o|) and of
+    // a computed distance (distance_to_segment) is at most ~30 eps S, S the edges' largest
+    // coordinate (a turn joins lane ends, inside the area's box): below 64 eps S < 1e-9 <=
+    // tolerance. A crossing "clearly" needs |side| > tolerance, so each computed sign is the exact
+    // one: the exact segments then cross, and their abscissa ranges meet; an edge whose range
+    // misses the turn's is never one. An edge whose box lies farther than 2 tolerance from the
+    // middle is farther than that from it exactly, so its computed distance is above the
+    // tolerance: only the crossing count is asked of it.
+    const bool skip = skip_far_;
+    const double x_lo = std::min(a.x, b.x), x_hi = std::max(a.x, b.x);
+    for (const auto& [p, q] : edges) {
+      if (skip && (std::max(p.x, q.x) < x_lo || std::min(p.x, q.x) > x_hi)) continue;
+      if (geometry::segments_cross_clearly(a, b, p, q, tolerance)) return false;
+    }
+    // The middle: on an edge counts as inside (closed area), else by crossings to the right.
+    const Point2 m = (a + b) * 0.5;
+    const double far = 2 * tolerance;
+    bool in = false;
+    for (const auto& [p, q] : edges) {
+      const bool away = skip && (std::max(p.x, q.x) < m.x - far || std::min(p.x, q.x) > m.x + far ||
+                                 std::max(p.y, q.y) < m.y - far || std::min(p.y, q.y) > m.y + far);
+      if (!away && geometry::distance_to_segment(m, p, q) <= tolerance) return true;
+      if ((p.y <= m.y) != (q.y <= m.y) && p.x + (m.y - p.y) * (q.x - p.x) / (q.y - p.y) > m.x)
+        in = !in;
+    }
+    return in;
+  }
+
+ private:
+  std::vector<std::size_t> start_;
+  std::vector<std::pair<Point2, Point2>> edges_;
+  bool skip_far_ = false;  ///< whether inside() may pass over the edges away from a turn
+};
 
 // Points sorted by ordinate, then abscissa (lane_runs' coverage samples). A box walks the points
 // in its ordinate range, but a long row of equal ordinate (the inside's rows hold most of the

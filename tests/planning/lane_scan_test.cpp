@@ -14,6 +14,7 @@
 
 #include "lane_scan.hpp"
 #include "random_polygons.hpp"
+#include "swath/geometry/predicates.hpp"
 
 namespace swath::planning::detail {
 namespace {
@@ -343,6 +344,73 @@ TEST(LongLaneReach, SeesWhatSomeLongLaneSees) {
   EXPECT_GT(seen_count, asked / 10);
   EXPECT_LT(seen_count, asked * 9 / 10);
   EXPECT_GT(widened, 1000u);  // points only the ends' widening lets a lane see
+}
+
+// Turns::inside() passes over the edges away from a turn. It must answer what the full test
+// answers over every edge of the area (kept here: the crossing test on each edge, then the middle
+// on an edge or by crossings to the right): on random fields with holes at random directions and
+// integer grids at 0 degrees (lane ends on vertices and along edges), for the turns lane_runs asks
+// (the ends of lanes on neighbouring rows), turns a rounding or a tolerance off those ends, and
+// random segments across the band.
+TEST(Turns, AnswerWhatEveryEdgeAnswers) {
+  test::Rng rng(5257);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto every_edge = [](const LaneScan& scan, Point2 a, Point2 b) {
+    const double tolerance = 1e-9 * (1 + geometry::distance(a, b));
+    for (const auto& [p, q] : scan.edges())
+      if (geometry::segments_cross_clearly(a, b, p, q, tolerance)) return false;
+    const Point2 m = (a + b) * 0.5;
+    bool in = false;
+    for (const auto& [p, q] : scan.edges()) {
+      if (geometry::distance_to_segment(m, p, q) <= tolerance) return true;
+      if ((p.y <= m.y) != (q.y <= m.y) && p.x + (m.y - p.y) * (q.x - p.x) / (q.y - p.y) > m.x)
+        in = !in;
+    }
+    return in;
+  };
+  std::size_t asked = 0, inside = 0, on_edge = 0;
+  for (int k = 0; k < 48; ++k) {
+    const bool grid = k % 3 == 2;
+    const std::vector<Ring> rings =
+        grid ? std::vector<Ring>{test::random_grid_ring(rng, 30, 24)} : scan_test_area(rng, k);
+    const LaneScan scan(rings, grid ? 0.0 : 180 * unit(rng));
+    const double spacing = grid ? 4.0 : 5 + 40 * unit(rng);
+    std::vector<double> ys;
+    for (double y = grid ? std::ceil(scan.y_min) : scan.y_min + spacing * unit(rng); y < scan.y_max;
+         y += spacing)
+      ys.push_back(y);
+    if (ys.size() < 2) continue;
+    const SpanRows lanes = scan.at(ys);
+    const Turns turns(scan, ys);
+    const auto check = [&](Point2 a, Point2 b, std::size_t r) {
+      const bool truth = every_edge(scan, a, b);
+      ASSERT_EQ(turns.inside(a, b, r), truth) << "area " << k << " row " << r << ": " << a.x << ", "
+                                              << a.y << " to " << b.x << ", " << b.y;
+      ++asked;
+      inside += truth;
+      const Point2 m = (a + b) * 0.5;
+      for (const auto& [p, q] : scan.edges())
+        if (geometry::distance_to_segment(m, p, q) <= 1e-9 * (1 + geometry::distance(a, b))) {
+          ++on_edge;
+          break;
+        }
+    };
+    for (std::size_t r = 0; r + 1 < ys.size(); ++r) {
+      for (const Span& u : lanes[r])
+        for (const Span& v : lanes[r + 1])
+          for (const double d : {0.0, 1e-9, -1e-9, 1e-12}) {
+            check({u.x0 + d, ys[r]}, {v.x0, ys[r + 1]}, r);
+            check({u.x1, ys[r]}, {v.x1 - d, ys[r + 1]}, r);
+            check({u.x0, ys[r]}, {std::nextafter(v.x1, 1e300), ys[r + 1]}, r);
+          }
+      for (int i = 0; i < 20; ++i)
+        check({-600 + 1200 * unit(rng), ys[r]}, {-600 + 1200 * unit(rng), ys[r + 1]}, r);
+    }
+  }
+  EXPECT_GT(asked, 20000u);
+  EXPECT_GT(inside, asked / 10);  // the test sees turns inside, outside...
+  EXPECT_LT(inside, asked * 9 / 10);
+  EXPECT_GT(on_edge, 100u);  // ...and with their middle on an edge
 }
 
 // walk_lower_bound() (and walk_lower_bound_by()) must land where std::lower_bound lands, from any
