@@ -249,18 +249,16 @@ class Transit {
       return;
     }
     const bool crossings = bool(p_.crossed);
-    if (!low_length_.empty()) {  // dense_low()'s values from the bounds' tables: the same sums
-      const double weight = p_.crossing_weight;
+    // Each variant's least over u of before[u] + low(at, u, v2) + its internal length, with the
+    // table's entry `at` of (c1, u) -> (c2, v2).
+    const auto fill = [&](const auto& low) {
       for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
         const double internal_m = variants[v2].internal_m;
         double best = kInf;
         std::size_t first = 0;
         std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
         for (std::size_t u = 0; u < count; ++u, at += size_) {
-          const double low = crossings
-                                 ? penalised(low_length_[at], weight, low_crossed_[at] & unflown)
-                                 : low_length_[at];
-          const double c = before[u] + low + internal_m;
+          const double c = before[u] + low(at, u, v2) + internal_m;
           if (c < best) {
             best = c;
             first = u;
@@ -269,26 +267,19 @@ class Transit {
         layer[v2] = best;
         came[v2] = static_cast<std::uint8_t>(first);
       }
+    };
+    if (!low_length_.empty()) {  // dense_low()'s values from the bounds' tables: the same sums
+      const double weight = p_.crossing_weight;
+      fill([&](std::size_t at, std::size_t, std::size_t) {
+        return crossings ? penalised(low_length_[at], weight, low_crossed_[at] & unflown)
+                         : low_length_[at];
+      });
       return;
     }
     const CellVariant* from = p_.cells[c1].data();
-    for (std::size_t v2 = 0; v2 < variants.size(); ++v2) {
-      const double internal_m = variants[v2].internal_m;
-      const geometry::Point2 entry = variants[v2].entry;
-      double best = kInf;
-      std::size_t first = 0;
-      std::size_t at = base_[c1] * size_ + base_[c2] + v2;  // (base_[c1] + u) * size_ + ...
-      for (std::size_t u = 0; u < count; ++u, at += size_) {
-        const double low = dense_low(at, from[u].exit, entry, unflown, crossings);
-        const double c = before[u] + low + internal_m;
-        if (c < best) {
-          best = c;
-          first = u;
-        }
-      }
-      layer[v2] = best;
-      came[v2] = static_cast<std::uint8_t>(first);
-    }
+    fill([&](std::size_t at, std::size_t u, std::size_t v2) {
+      return dense_low(at, from[u].exit, variants[v2].entry, unflown, crossings);
+    });
   }
   /// Transit length plus its penalty with the cells in `unflown` still to be flown.
   double cost(std::size_t c1, std::size_t v1, std::size_t c2, std::size_t v2,
