@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -209,14 +210,14 @@ GeoPoint wpl_position(const WplRow& r, const std::string& source) {
 }
 
 std::vector<WplRow> wpl_rows(const std::string& text, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
+  std::size_t at = 0;
+  std::string_view line;
+  base::next_line(text, at, line);
   if (line.rfind("QGC WPL 110", 0) != 0)
     throw InputError(source + ": line 1: a WPL file starts with 'QGC WPL 110'");
   std::vector<WplRow> rows;
-  for (int line_no = 2; std::getline(in, line); ++line_no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  for (int line_no = 2; base::next_line(text, at, line); ++line_no) {
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
     const auto where = [&] { return source + ": line " + std::to_string(line_no); };
     // The fields as a stream reads them (white space between), without a stream per row.
