@@ -58,6 +58,9 @@ class StrictDomBuilder {
   }
   bool start_array(std::size_t) {
     open_.push_back(place(json::value_t::array));
+    // Room for a position's two numbers at once (growing one element at a time took two
+    // allocations). The values are the same; only an empty or one-element array has room for two.
+    open_.back()->get_ref<json::array_t&>().reserve(2);
     return true;
   }
   bool end_array() {
