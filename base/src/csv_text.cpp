@@ -136,6 +136,14 @@ std::string separated_text(char separator) {
                              : "comma-separated";
 }
 
+bool next_line(std::string_view text, std::size_t& at, std::string_view& line) {
+  if (at >= text.size()) return false;
+  const std::size_t end = std::min(text.find('\n', at), text.size());
+  line = text.substr(at, end - at);
+  at = end + 1;
+  return true;
+}
+
 std::vector<std::string_view> whitespace_fields(std::string_view line) {
   // The C locale's isspace, without a call per character.
   const auto space = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };

@@ -1,7 +1,10 @@
 #include "swath/base/json_document.hpp"
 
 #include <array>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -55,6 +58,9 @@ class StrictDomBuilder {
   }
   bool start_array(std::size_t) {
     open_.push_back(place(json::value_t::array));
+    // Room for a position's two numbers at once (growing one element at a time took two
+    // allocations). The values are the same; only an empty or one-element array has room for two.
+    open_.back()->get_ref<json::array_t&>().reserve(2);
     return true;
   }
   bool end_array() {
@@ -94,9 +100,190 @@ class StrictDomBuilder {
   std::string repeated_;
 };
 
+// A parser for the plain documents swath writes (pretty-printed, ASCII, no escapes): the same
+// events, in the same order, as nlohmann's parser gives StrictDomBuilder for them, without its
+// lexer's per-character reads and strtod. It takes only what it is sure of and gives up (false)
+// on anything else: an escape or a byte outside printable ASCII in a string, an integer of more
+// than 18 digits (nlohmann's then chooses between int64, uint64 and double), a number from_chars
+// does not read exactly, a nesting deeper than 256, or any syntax error; the caller then parses
+// the text with nlohmann's parser, whose DOM and errors are the document's. A document given up
+// on costs the part read twice; swath's own files are never given up on.
+class PlainParser {
+ public:
+  PlainParser(const std::string& text, StrictDomBuilder& out)
+      : p_(text.data()), end_(text.data() + text.size()), out_(out) {}
+
+  // The whole text one value, white space around it.
+  bool document() {
+    skip_space();
+    if (!value(0)) return false;
+    skip_space();
+    return p_ == end_;
+  }
+
+ private:
+  void skip_space() {
+    while (p_ != end_ && (*p_ == ' ' || *p_ == '\n' || *p_ == '\r' || *p_ == '\t')) ++p_;
+  }
+  bool literal(std::string_view word) {
+    if (static_cast<std::size_t>(end_ - p_) < word.size() ||
+        std::string_view(p_, word.size()) != word)
+      return false;
+    p_ += word.size();
+    return true;
+  }
+  bool value(int depth) {
+    if (p_ == end_ || depth > 256) return false;
+    switch (*p_) {
+      case '{':
+        return object(depth);
+      case '[':
+        return array(depth);
+      case '"': {
+        std::string s;
+        return string(s) && out_.string(s);
+      }
+      case 't':
+        return literal("true") && out_.boolean(true);
+      case 'f':
+        return literal("false") && out_.boolean(false);
+      case 'n':
+        return literal("null") && out_.null();
+      default:
+        return number();
+    }
+  }
+  // Printable ASCII but '"' and '\\' between quotes: the string is its bytes.
+  bool string(std::string& s) {
+    const char* first = ++p_;
+    while (p_ != end_ && *p_ != '"') {
+      const auto c = static_cast<unsigned char>(*p_);
+      if (c < 0x20 || c > 0x7e || c == '\\') return false;
+      ++p_;
+    }
+    if (p_ == end_) return false;
+    s.assign(first, p_);
+    ++p_;
+    return true;
+  }
+  // JSON's grammar: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?; an integer without fraction
+  // or exponent is nlohmann's number_unsigned (number_integer when negative).
+  bool number() {
+    const char* first = p_;
+    const bool negative = p_ != end_ && *p_ == '-';
+    if (negative) ++p_;
+    const char* digits = p_;
+    if (p_ == end_ || !is_digit(*p_)) return false;
+    if (*p_ == '0')
+      ++p_;
+    else
+      skip_digits();
+    const std::size_t integer_digits = static_cast<std::size_t>(p_ - digits);
+    bool whole = true;
+    if (p_ != end_ && *p_ == '.') {
+      ++p_;
+      if (p_ == end_ || !is_digit(*p_)) return false;
+      skip_digits();
+      whole = false;
+    }
+    if (p_ != end_ && (*p_ == 'e' || *p_ == 'E')) {
+      ++p_;
+      if (p_ != end_ && (*p_ == '+' || *p_ == '-')) ++p_;
+      if (p_ == end_ || !is_digit(*p_)) return false;
+      skip_digits();
+      whole = false;
+    }
+    if (whole) {
+      if (integer_digits > 18) return false;
+      std::uint64_t magnitude = 0;
+      for (const char* d = digits; d != p_; ++d)
+        magnitude = magnitude * 10 + static_cast<std::uint64_t>(*d - '0');
+      return negative ? out_.number_integer(-static_cast<std::int64_t>(magnitude))
+                      : out_.number_unsigned(magnitude);
+    }
+    double v = 0.0;
+    const auto [at, error] = std::from_chars(first, p_, v);
+    if (error != std::errc() || at != p_ || !std::isfinite(v)) return false;
+    static const std::string unused;  // StrictDomBuilder does not read the number's text
+    return out_.number_float(v, unused);
+  }
+  bool object(int depth) {
+    ++p_;
+    out_.start_object(std::size_t(-1));
+    skip_space();
+    if (p_ != end_ && *p_ == '}') {
+      ++p_;
+      return out_.end_object();
+    }
+    std::string key;
+    for (;;) {
+      if (p_ == end_ || *p_ != '"' || !string(key)) return false;
+      out_.key(key);
+      skip_space();
+      if (p_ == end_ || *p_ != ':') return false;
+      ++p_;
+      skip_space();
+      if (!value(depth + 1)) return false;
+      skip_space();
+      if (p_ == end_) return false;
+      if (*p_ == '}') {
+        ++p_;
+        return out_.end_object();
+      }
+      if (*p_ != ',') return false;
+      ++p_;
+      skip_space();
+    }
+  }
+  bool array(int depth) {
+    ++p_;
+    out_.start_array(std::size_t(-1));
+    skip_space();
+    if (p_ != end_ && *p_ == ']') {
+      ++p_;
+      return out_.end_array();
+    }
+    for (;;) {
+      if (!value(depth + 1)) return false;
+      skip_space();
+      if (p_ == end_) return false;
+      if (*p_ == ']') {
+        ++p_;
+        return out_.end_array();
+      }
+      if (*p_ != ',') return false;
+      ++p_;
+      skip_space();
+    }
+  }
+  static bool is_digit(char c) { return c >= '0' && c <= '9'; }
+  void skip_digits() {
+    while (p_ != end_ && is_digit(*p_)) ++p_;
+  }
+
+  const char* p_;
+  const char* end_;
+  StrictDomBuilder& out_;
+};
+
 }  // namespace
 
 nlohmann::json parse_json_document(const std::string& text, const std::string& source) {
+  {
+    json root;
+    StrictDomBuilder builder(root);
+    if (PlainParser(text, builder).document()) {
+      if (!builder.repeated().empty())
+        throw InputError(source + ": the key \"" + builder.repeated() +
+                         "\" appears twice in one object; which one holds is ambiguous");
+      return root;
+    }
+  }
+  return detail::parse_json_document_nlohmann(text, source);
+}
+
+nlohmann::json detail::parse_json_document_nlohmann(const std::string& text,
+                                                    const std::string& source) {
   json root;
   StrictDomBuilder builder(root);
   try {

@@ -5,10 +5,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "swath/base/csv_text.hpp"
 #include "swath/base/file_text.hpp"
@@ -35,9 +37,11 @@ const json& member(const json& object, const char* key) {
   return v != nullptr ? *v : null;
 }
 
-double number(const json& j, const std::string& where) {
+// The place is `where` and `what` together, joined only for the message (a .plan has thousands of
+// numbers, and a string made for each cost more than reading it).
+double number(const json& j, const std::string& where, std::string_view what = {}) {
   if (!j.is_number() || !std::isfinite(j.get<double>()))
-    throw InputError(where + " must be a number");
+    throw InputError(where + std::string(what) + " must be a number");
   return j.get<double>();
 }
 
@@ -51,8 +55,8 @@ GeoPoint checked_position(double lat_deg, double lon_deg, const std::string& whe
 GeoPoint lat_lon(const json& pair, const std::string& where) {
   if (!pair.is_array() || pair.size() < 2)
     throw InputError(where + ": a position is [latitude, longitude]");
-  return checked_position(number(pair[0], where + " latitude"),
-                          number(pair[1], where + " longitude"), where);
+  return checked_position(number(pair[0], where, " latitude"), number(pair[1], where, " longitude"),
+                          where);
 }
 
 AltitudeFrame altitude_frame_of(int frame, int command, const std::string& where) {
@@ -105,10 +109,12 @@ Item qgc_simple_item(const json& item, const std::string& where) {
   const json& params = member(item, "params");
   if (!params.is_array() || params.size() != 7)
     throw InputError(where + ": 'params' must hold 7 values");
+  static constexpr std::array<std::string_view, 7> param_names = {
+      ": params[0]", ": params[1]", ": params[2]", ": params[3]",
+      ": params[4]", ": params[5]", ": params[6]"};
   std::array<double, 7> p{};
   for (std::size_t k = 0; k < 7; ++k)  // QGC writes unused params as null
-    p[k] = params[k].is_null() ? std::nan("")
-                               : number(params[k], where + ": params[" + std::to_string(k) + "]");
+    p[k] = params[k].is_null() ? std::nan("") : number(params[k], where, param_names[k]);
   return make_item(command, frame.get<int>(), p, where);
 }
 
@@ -189,34 +195,45 @@ Mission parse_qgc(const json& root, const std::string& source) {
 struct WplRow {
   int frame = 0, command = 0;
   std::array<double, 7> params{};
-  std::string where;
+  int line_no = 0;
+  // "<source>: line N", made only for a message or an item's place (not for every row read).
+  std::string where(const std::string& source) const {
+    return source + ": line " + std::to_string(line_no);
+  }
 };
 
+// A row's position, checked; its place named only when refused.
+GeoPoint wpl_position(const WplRow& r, const std::string& source) {
+  const double lat_deg = r.params[4], lon_deg = r.params[5];
+  if (std::abs(lat_deg) <= 90 && std::abs(lon_deg) <= 180) return {lat_deg, lon_deg, 0.0};
+  return checked_position(lat_deg, lon_deg, r.where(source));
+}
+
 std::vector<WplRow> wpl_rows(const std::string& text, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
+  std::size_t at = 0;
+  std::string_view line;
+  base::next_line(text, at, line);
   if (line.rfind("QGC WPL 110", 0) != 0)
     throw InputError(source + ": line 1: a WPL file starts with 'QGC WPL 110'");
   std::vector<WplRow> rows;
-  for (int line_no = 2; std::getline(in, line); ++line_no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  for (int line_no = 2; base::next_line(text, at, line); ++line_no) {
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    const std::string where = source + ": line " + std::to_string(line_no);
+    const auto where = [&] { return source + ": line " + std::to_string(line_no); };
     // The fields as a stream reads them (white space between), without a stream per row.
     const std::vector<std::string_view> fields = base::whitespace_fields(line);
     std::array<double, 12> f{};
     for (std::size_t k = 0; k < f.size(); ++k) {
       if (k == fields.size())
-        throw InputError(where +
+        throw InputError(where() +
                          ": a WPL row has 12 fields (index, current, frame, command, 4 params, "
                          "latitude, longitude, altitude, autocontinue); found " +
                          std::to_string(k));
       if (!base::parse_number(fields[k], f[k]) || !std::isfinite(f[k]))
-        throw InputError(where + ": field " + std::to_string(k + 1) + " '" +
+        throw InputError(where() + ": field " + std::to_string(k + 1) + " '" +
                          std::string(fields[k].substr(0, 40)) + "' is not a number");
     }
-    WplRow r{static_cast<int>(f[2]), static_cast<int>(f[3]), {}, where};
+    WplRow r{static_cast<int>(f[2]), static_cast<int>(f[3]), {}, line_no};
     std::copy(f.begin() + 4, f.begin() + 11, r.params.begin());
     rows.push_back(std::move(r));
   }
@@ -230,13 +247,13 @@ Mission parse_wpl(const std::string& text, const std::string& source) {
   m.source = source;
   m.format = "WPL 110";
   // Row 0 is home, its altitude above mean sea level (0: unknown to the writer).
-  m.home = checked_position(rows[0].params[4], rows[0].params[5], rows[0].where);
+  m.home = wpl_position(rows[0], source);
   m.home_amsl_m = rows[0].params[6];
   m.home_amsl_known = m.home_amsl_m != 0.0;
   for (std::size_t i = 1; i < rows.size(); ++i)
     m.items.push_back(make_item(rows[i].command, rows[i].frame, rows[i].params,
-                                source + ": item " + std::to_string(i) + " (" +
-                                    rows[i].where.substr(source.size() + 2) + ")"));
+                                source + ": item " + std::to_string(i) + " (line " +
+                                    std::to_string(rows[i].line_no) + ")"));
   return m;
 }
 
@@ -396,13 +413,14 @@ void add_wpl_fences(Mission& mission, const std::string& text, const std::string
   int ring_command = 0;
   std::size_t ring_size = 0;
   for (const WplRow& r : wpl_rows(text, source)) {
-    const GeoPoint g = checked_position(r.params[4], r.params[5], r.where);
+    const GeoPoint g = wpl_position(r, source);
     if (r.command == cmd(Cmd::nav_fence_polygon_vertex_inclusion) ||
         r.command == cmd(Cmd::nav_fence_polygon_vertex_exclusion)) {
       if (ring.empty()) {
         ring_command = r.command;
         ring_size = static_cast<std::size_t>(r.params[0]);
-        if (ring_size < 3) throw InputError(r.where + ": a fence polygon has at least 3 vertices");
+        if (ring_size < 3)
+          throw InputError(r.where(source) + ": a fence polygon has at least 3 vertices");
       }
       ring.push_back(g);
       if (ring.size() == ring_size) {
@@ -418,7 +436,7 @@ void add_wpl_fences(Mission& mission, const std::string& text, const std::string
     } else if (r.command == cmd(Cmd::nav_rally_point)) {
       mission.rally_points.push_back(g);
     } else {
-      throw InputError(r.where + ": command " + std::to_string(r.command) +
+      throw InputError(r.where(source) + ": command " + std::to_string(r.command) +
                        " is no fence vertex, fence circle or rally point");
     }
   }

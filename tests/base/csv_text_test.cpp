@@ -109,5 +109,22 @@ TEST(WhitespaceFields, AreWhatAStreamReads) {
   }
 }
 
+// next_line against std::getline on random texts of '\n', '\r', spaces and letters (empty lines, a
+// last line with and without its '\n', an empty text): the same lines, the same count.
+TEST(NextLine, GivesTheLinesGetlineGives) {
+  std::mt19937_64 rng(55);
+  for (int i = 0; i < 3000; ++i) {
+    std::string text;
+    for (int k = std::uniform_int_distribution<int>(0, 12)(rng); k > 0; --k)
+      text += "\n\n\r ab"[std::uniform_int_distribution<int>(0, 5)(rng)];
+    std::istringstream in(text);
+    std::vector<std::string> expected, got;
+    for (std::string line; std::getline(in, line);) expected.push_back(line);
+    std::size_t at = 0;
+    for (std::string_view line; next_line(text, at, line);) got.emplace_back(line);
+    ASSERT_EQ(got, expected) << "text of " << text.size() << " bytes, case " << i;
+  }
+}
+
 }  // namespace
 }  // namespace swath::base

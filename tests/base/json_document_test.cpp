@@ -3,6 +3,9 @@
 // the text), and a syntax error reported as one even when a repeated key comes before it.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <functional>
+#include <iterator>
 #include <random>
 #include <set>
 #include <string>
@@ -174,6 +177,138 @@ TEST(JsonDocument, ANumberBeyondADoubleIsRefused) {
             "doc.json: invalid JSON (number overflow parsing '1e999')");
   EXPECT_EQ(error_of("{\"a\": 1, \"a\": 1e999}"),
             "doc.json: invalid JSON (number overflow parsing '1e999')");
+}
+
+// The same value, of the same type, bit for bit (-0.0 is not 0.0, 1 is not 1.0, 1u is not 1).
+bool same_value(const nlohmann::json& a, const nlohmann::json& b) {
+  if (a.type() != b.type()) return false;
+  switch (a.type()) {
+    case nlohmann::json::value_t::number_float: {
+      const double x = a.get<double>(), y = b.get<double>();
+      return std::memcmp(&x, &y, sizeof x) == 0;
+    }
+    case nlohmann::json::value_t::array:
+    case nlohmann::json::value_t::object: {
+      if (a.size() != b.size()) return false;
+      for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j)
+        if ((a.is_object() && i.key() != j.key()) || !same_value(*i, *j)) return false;
+      return true;
+    }
+    default:
+      return a == b;
+  }
+}
+
+// Documents near the plain ones swath writes (printable ASCII strings, indented, numbers in every
+// form JSON allows and some it does not), whole or with a byte cut, doubled or changed: the
+// document read is nlohmann's (the same values of the same types, bit for bit) and an error is
+// its error, word for word, whether the plain documents' parser reads the text or gives up on it.
+TEST(JsonDocument, PlainDocumentsReadAsByNlohmannAlone) {
+  static const char* const numbers[] = {"0",
+                                        "-0",
+                                        "7",
+                                        "-12",
+                                        "0.5",
+                                        "-0.0",
+                                        "1e5",
+                                        "1E+5",
+                                        "2.5e-3",
+                                        "-1.25E-03",
+                                        "123456789012345678",
+                                        "-123456789012345678",
+                                        "1234567890123456789",
+                                        "-9223372036854775808",
+                                        "9223372036854775807",
+                                        "18446744073709551615",
+                                        "18446744073709551616",
+                                        "1e400",
+                                        "1e-400",
+                                        "4.9e-324",
+                                        "2.2250738585072011e-308",
+                                        "0.1000000000000000055511151231257827",
+                                        "150.794131834",
+                                        "-34.000106632",
+                                        "007",
+                                        "1.",
+                                        ".5",
+                                        "1e",
+                                        "+1",
+                                        "-",
+                                        "1.5e+",
+                                        "0x10",
+                                        "Infinity",
+                                        "NaN"};
+  static const char* const strings[] = {"a",       "fileType",  "Plan", "x y",
+                                        "",        "tab\there", "\\n",  "\\\"",
+                                        "\\u0041", "\xc3\xa9",  "\x7f", "ab\"c"};
+  static const char* const spaces[] = {"", " ", "\n    ", "\r\n", "\t", "\n\n  "};
+  std::mt19937_64 rng(54);
+  auto below = [&](std::size_t n) {
+    return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+  };
+  auto space = [&] { return std::string(spaces[below(6)]); };
+  std::function<void(std::string&, int)> value = [&](std::string& out, int depth) {
+    const std::size_t kind = below(depth < 5 ? 7 : 4);
+    if (kind == 0)
+      out += below(3) == 0 ? "true" : below(2) ? "null" : "false";
+    else if (kind == 1 || kind == 2)
+      out += below(4) ? numbers[below(24)] : numbers[below(std::size(numbers))];
+    else if (kind == 3)
+      out += '"' + std::string(below(4) ? strings[below(5)] : strings[below(std::size(strings))]) +
+             '"';
+    else {
+      const bool object = kind != 6;
+      out += object ? "{" : "[";
+      for (std::size_t k = below(4), first = 1; k > 0; --k, first = 0) {
+        out += (first ? "" : ",") + space();
+        if (object) out += '"' + std::string(strings[below(below(3) ? 5 : 8)]) + "\":" + space();
+        value(out, depth + 1);
+      }
+      out += space() + (object ? "}" : "]");
+    }
+  };
+  int read = 0, refused = 0, plain = 0;
+  for (int i = 0; i < 6000; ++i) {
+    std::string text = space();
+    value(text, below(3) == 0 ? 4 : 0);
+    text += space();
+    if (i % 3 == 1 && !text.empty()) {
+      const std::size_t at = below(text.size());
+      switch (below(3)) {
+        case 0:
+          text.erase(at, 1);
+          break;
+        case 1:
+          text.insert(at, 1, text[at]);
+          break;
+        default:
+          text[at] = "{}[],:\"0-e. \x01"[below(13)];
+      }
+    }
+    nlohmann::json expected, got;
+    std::string expected_error, got_error;
+    try {
+      expected = detail::parse_json_document_nlohmann(text, "doc.json");
+    } catch (const InputError& e) {
+      expected_error = e.what();
+    }
+    try {
+      got = parse_json_document(text, "doc.json");
+    } catch (const InputError& e) {
+      got_error = e.what();
+    }
+    ASSERT_EQ(got_error, expected_error) << text;
+    if (!expected_error.empty()) {
+      ++refused;
+      continue;
+    }
+    ASSERT_TRUE(same_value(got, expected)) << text << "\n" << got.dump() << "\n" << expected.dump();
+    ++read;
+    plain += text.find('\\') == std::string::npos;
+  }
+  EXPECT_GT(read, 2000);
+  EXPECT_GT(refused, 1000);
+  EXPECT_GT(plain, 1000);
 }
 
 }  // namespace

@@ -158,5 +158,49 @@ TEST(MissionReaders, BadFilesNameTheFileAndThePlace) {
             "e.csv: line 2: altitude(m) 'x' is not a number");
 }
 
+// The places a WPL file's, a fence file's and a .plan's refused numbers and positions are named by
+// (composed only when refused): the line of the row, the item, the param.
+TEST(MissionReaders, RefusedPositionsAndNumbersNameTheirPlace) {
+  auto message = [](const std::string& text, const std::string& name) {
+    try {
+      missions::parse_mission(text, name);
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto fence_message = [](const std::string& text) {
+    missions::Mission m;
+    try {
+      missions::add_wpl_fences(m, text, "fence.waypoints");
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string home = "QGC WPL 110\n\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t0\t1\n";
+  EXPECT_EQ(message("QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t91\t8\t0\t1\n", "a.waypoints"),
+            "a.waypoints: line 2: latitude/longitude out of range (91, 8)");
+  EXPECT_EQ(message(home + "1\t0\t3\t16\t0\t0\t0\t0\t47\t-181\t30\t1\n", "b.waypoints"),
+            "b.waypoints: item 1 (line 4): latitude/longitude out of range (47, -181)");
+  EXPECT_EQ(fence_message("QGC WPL 110\n5001\t0\t3\t5001\t3\t0\t0\t0\t47\t8\t0\t1\n"
+                          "\n5001\t0\t3\t5001\t3\t0\t0\t0\t95\t8\t0\t1\n"),
+            "fence.waypoints: line 4: latitude/longitude out of range (95, 8)");
+  EXPECT_EQ(fence_message("QGC WPL 110\n\n\n5001\t0\t3\t5001\t2\t0\t0\t0\t47\t8\t0\t1\n"),
+            "fence.waypoints: line 4: a fence polygon has at least 3 vertices");
+  EXPECT_EQ(fence_message("QGC WPL 110\n5100\t0\t3\t5100\t0\t0\t0\t0\t47\t8\t0\t1\n"
+                          "16\t0\t3\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"),
+            "fence.waypoints: line 3: command 16 is no fence vertex, fence circle or rally point");
+  const std::string plan_head =
+      R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0], "items": [)"
+      R"({"type": "SimpleItem", "command": 16, "frame": 3, "params": [0, 0, 0, null, 47, )";
+  EXPECT_EQ(message(plan_head + R"("8", 30]}]}})", "c.plan"),
+            "c.plan: item 1: params[5] must be a number");
+  EXPECT_EQ(message(plan_head + R"(8, 30]}]}, "geoFence": {"polygons": [{"inclusion": true, )"
+                                R"("polygon": [[47, 8], [47, 9], [47, true]]}]}})",
+                    "d.plan"),
+            "d.plan: geoFence polygon 1 longitude must be a number");
+}
+
 }  // namespace
 }  // namespace swath

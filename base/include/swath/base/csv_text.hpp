@@ -58,4 +58,9 @@ std::string separated_text(char separator);
 /// The views point into `line`.
 std::vector<std::string_view> whitespace_fields(std::string_view line);
 
+/// The next line of `text` from `at` on, as std::getline gives it from a stream of `text` (without
+/// its '\n'; none after a last '\n'), but a view into `text` rather than a copy; `at` moves past
+/// it. False when no line is left.
+bool next_line(std::string_view text, std::size_t& at, std::string_view& line);
+
 }  // namespace swath::base

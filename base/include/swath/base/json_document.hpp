@@ -13,6 +13,12 @@ namespace swath::base {
 /// disagree on which one wins, so swath refuses to guess).
 nlohmann::json parse_json_document(const std::string& text, const std::string& source);
 
+namespace detail {
+/// parse_json_document() by nlohmann's parser alone: what it falls back on for a document its
+/// own parser of plain documents gives up on, and the reference its tests compare it with.
+nlohmann::json parse_json_document_nlohmann(const std::string& text, const std::string& source);
+}  // namespace detail
+
 }  // namespace swath::base
 
 namespace swath::base {
