@@ -1,7 +1,9 @@
 #include "targets.hpp"
 
 #include <CLI/CLI.hpp>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include "plan_command.hpp"
 #include "shell_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/json_document.hpp"
 #include "swath/control/ardupilot_json.hpp"
 #include "swath/control/config.hpp"
 #include "swath/control/logistic.hpp"
@@ -190,6 +193,41 @@ void mission_config(const std::string& text) {
   apps::PlanCommand command;
   command.setup(app);
   expect_input_error_only([&] { apps::apply_mission_config(app, text, "fuzz.yaml"); });
+}
+
+// The same tree bit for bit: types, integers, the bits of every double (-0 is not 0), strings,
+// and members in order.
+bool same_bits(const nlohmann::json& a, const nlohmann::json& b) {
+  if (a.type() != b.type()) return false;
+  if (a.is_number_float())
+    return std::bit_cast<std::uint64_t>(a.get<double>()) ==
+           std::bit_cast<std::uint64_t>(b.get<double>());
+  if (a.is_array() || a.is_object()) {
+    if (a.size() != b.size()) return false;
+    for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j)
+      if ((a.is_object() && i.key() != j.key()) || !same_bits(*i, *j)) return false;
+    return true;
+  }
+  return a == b;
+}
+
+// A JSON document (every area, mission and summary file swath reads): the plain documents'
+// own reader gives what nlohmann's alone gives, the same tree or the same refusal, word for word.
+void json_document(const std::string& text) {
+  std::optional<nlohmann::json> own, theirs;
+  std::string own_error, their_error;
+  try {
+    own = base::parse_json_document(text, "fuzz.json");
+  } catch (const base::InputError& e) {
+    own_error = e.what();
+  }
+  try {
+    theirs = base::detail::parse_json_document_nlohmann(text, "fuzz.json");
+  } catch (const base::InputError& e) {
+    their_error = e.what();
+  }
+  if (own_error != their_error || own.has_value() != theirs.has_value()) std::abort();
+  if (own && !same_bits(*own, *theirs)) std::abort();
 }
 
 void plan_features(const std::string& text) {
@@ -397,6 +435,10 @@ std::vector<Target> planning_and_energy_targets() {
       // swath render DIR: mission.geojson read back and drawn into a scene (no pixels).
       {"plan_features", plan_features, {"tests/bad-input/seeds/mission.geojson"}},
       {"render_scene", render_scene, {"tests/fuzz-regressions/render_scene/hostile-lines"}},
+      {"json_document",
+       json_document,
+       {"tests/bad-input/seeds/summary.json", "tests/bad-input/seeds/drone-1.plan",
+        "tests/bad-input/seeds/mission.geojson", "share/fields/meadow.geojson"}},
       {"plan_figures",
        [](const std::string& t) {
          expect_input_error_only([&] { planning::parse_plan_figures(t, "summary.json"); });
