@@ -52,10 +52,15 @@ std::string directory_name(const std::string& name) {
   return out.substr(0, 80);
 }
 
+// `text` in lower case (ASCII).
+std::string lowered(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
 bool area_file(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowered(p.extension().string());
   for (const char* e : {".geojson", ".json", ".kml", ".csv", ".shp", ".zip", ".gpkg", ".kmz",
                         ".gpx", ".fgb", ".gml", ".wkt"})
     if (ext == e) return true;
@@ -120,17 +125,33 @@ void check_plan_options(const std::vector<std::string>& plan_args, const std::st
   }
 }
 
+// Whether `object`'s members GeoJSON reads are spelled as GeoJSON spells them: GDAL's reader takes
+// "Type" or "FEATURES" as its own (its member names ignore case), swath's does not.
+bool exact_names(const nlohmann::json& object) {
+  if (!object.is_object()) return true;
+  for (const auto& [key, value] : object.items()) {
+    const std::string lower = lowered(key);
+    if (lower != key &&
+        (lower == "type" || lower == "features" || lower == "geometry" || lower == "coordinates"))
+      return false;
+  }
+  return true;
+}
+
 // Whether `file`, one of a directory's area files, is a GeoJSON of one polygon: a Polygon, a
 // Feature of one, or a FeatureCollection of exactly one such Feature, read strictly (a key given
-// twice is refused). GDAL lists at most one area for it (a feature gives more only as a
-// MultiPolygon of several parts), and list_jobs() makes the same job of a directory's file that
-// lists one area and of one GDAL cannot list: so its job is known without GDAL (whose listing was
-// most of a batch's start: 0.3 s of CPU for 200 traced fields, before the first plan began).
+// twice, or one GDAL would take for another in other case, refused) and of at most 8 MiB (one
+// polygon of swath's most vertices is far less; a larger file goes to GDAL, not into a second
+// tree). GDAL lists at most one area for it (a feature gives more only as a MultiPolygon of
+// several parts), and list_jobs() makes the same job of a directory's file that lists one area and
+// of one GDAL cannot list: so its job is known without GDAL's listing (which was most of a batch's
+// start: 0.3 s of CPU for 200 traced fields, before the first plan began).
 bool one_polygon_geojson(const fs::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lowered(file.extension().string());
   if (ext != ".geojson" && ext != ".json") return false;
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec || size > (std::uintmax_t{8} << 20)) return false;
   const auto type_of = [](const nlohmann::json* j) {
     const nlohmann::json* type = j ? base::json_find(*j, "type") : nullptr;
     return type && type->is_string() ? type->get<std::string>() : std::string();
@@ -139,15 +160,16 @@ bool one_polygon_geojson(const fs::path& file) {
     const nlohmann::json root =
         base::parse_json_document(base::read_text_file(file, "area file"), file.string());
     const nlohmann::json* feature = &root;
+    if (!exact_names(root)) return false;
     if (type_of(&root) == "FeatureCollection") {
       const nlohmann::json* features = base::json_find(root, "features");
       if (!features || !features->is_array() || features->size() != 1) return false;
       feature = &features->front();
-      if (type_of(feature) != "Feature") return false;
+      if (type_of(feature) != "Feature" || !exact_names(*feature)) return false;
     }
     const nlohmann::json* geometry =
         type_of(feature) == "Feature" ? base::json_find(*feature, "geometry") : feature;
-    return type_of(geometry) == "Polygon";
+    return geometry && exact_names(*geometry) && type_of(geometry) == "Polygon";
   } catch (const std::exception&) {
     return false;  // GDAL's listing says what it makes of it
   }
@@ -158,12 +180,18 @@ bool one_polygon_geojson(const fs::path& file) {
 std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOptions& options) {
   std::vector<Job> jobs;
   const bool directory = fs::is_directory(areas);
+  // The first GIS file is listed by GDAL whatever it holds: GDAL is then loaded, and the jobs
+  // that need it (a GeoJSON naming a CRS, --layer, --coverage-tif, ...) find it loaded in the
+  // process they are forked from, not loaded again by each.
+  bool gdal_loaded = false;
   auto add_file = [&](const fs::path& file) {
-    if (directory && one_polygon_geojson(file)) {
+    if (directory && gdal_loaded && one_polygon_geojson(file)) {
       jobs.push_back({file.string(), file.stem().string(), "", 0, true});
       return;
     }
     std::vector<geometry::AreaEntry> found;
+    const std::string ext = lowered(file.extension().string());
+    gdal_loaded = gdal_loaded || (ext != ".csv" && ext != ".txt" && ext != ".wkt");
     try {
       found = geometry::list_areas(file, options);
     } catch (const std::exception&) {

@@ -556,15 +556,20 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
   std::atomic<signed char>& known = node_tables_->at(i, j);
   signed char answer = known.load(std::memory_order_relaxed);
   if (answer == kUnknown) {
-    std::atomic<Fan*>& shared_fan = node_tables_->fans[i];
+    // Measured from the lower-numbered corner whichever asks: visible_with() works from its first
+    // point, and its answer near the tolerance may differ the other way round; the pair then has
+    // one answer whichever thread or search asks it first (and the hidden bits below agree with
+    // the table).
+    const std::size_t from = std::min(i, j), to = std::max(i, j);
+    std::atomic<Fan*>& shared_fan = node_tables_->fans[from];
     Fan* fan = shared_fan.load(std::memory_order_acquire);
-    if (!fan && ++node_asked_[i] > kFanAfter) {
-      auto made = std::make_unique<Fan>(fan_of(nodes_[i]));
+    if (!fan && ++node_asked_[from] > kFanAfter) {
+      auto made = std::make_unique<Fan>(fan_of(nodes_[from]));
       if (shared_fan.compare_exchange_strong(fan, made.get(), std::memory_order_acq_rel,
                                              std::memory_order_acquire))
         fan = made.release();  // kept; otherwise `fan` is the one another thread published
     }
-    answer = visible_with(nodes_[i], nodes_[j], fan) ? 1 : 0;
+    answer = visible_with(nodes_[from], nodes_[to], fan) ? 1 : 0;
     known.store(answer, std::memory_order_relaxed);
     // Also in j's row: a search reads the row of the node it settles (nodes_known(v, u)), one
     // chunk in the cache, not one row per node it looks at.

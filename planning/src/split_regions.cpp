@@ -80,9 +80,9 @@ RegionSweep sweep_region(geometry::Ring ring, const geometry::Ring& area, const 
   rs.bridge_rings.clear();
   const Point2 centre = geometry::centroid(geometry::Polygon{ring, {}});
   RegionSweep best;
-  std::vector<Point2> samples;  // one buffer for every direction's
+  std::vector<Point2>
+      samples;  // lane_runs' buffer, its capacity kept from one direction to the next
   for (const double angle : region_angles(ring, also)) {
-    samples.clear();
     // Every lane of the grid kept: across a region narrower than two footprints every lane is
     // "short", and dropping those the others' footprints already see would keep one lane per
     // footprint width, the side overlap lost (the one-direction plan's slivers are the area's).

@@ -135,6 +135,15 @@ TEST(BatchScratch, ADirectorysJobsAreThoseGdalListsForEachFileAlone) {
       {"k-one-part.geojson", collection({feature("k one", one_part)})},
       {"l-bare-multi.geojson", two_parts},
       {"m-polygon.kml", "<kml/>"},
+      // Member names in another case: GDAL's reader takes them for GeoJSON's own.
+      {"n-Type.geojson", R"({"Type": "FeatureCollection", "type": "Polygon", "coordinates": [)" +
+                             square(8.5, 47.3) + R"(], "features": [)" + feature("n one", polygon) +
+                             ", " + feature("n two", at(8.51, 47.3)) + "]}"},
+      {"o-Geometry.geojson", collection({R"({"type": "Feature", "properties": {"name": "o"}, )"
+                                         R"("geometry": )" +
+                                         polygon + R"(, "Geometry": )" + two_parts + "}"})},
+      {"p-Type-first.geojson", R"({"Type": "MultiPolygon", "type": "Polygon", "coordinates": [)" +
+                                   square(8.5, 47.3) + "]}"},
   };
   for (const auto& [name, text] : files) std::ofstream(dir + "/areas/" + name) << text;
   const std::string opts = " --camera sony-ilce-qx1 --altitude 60";

@@ -156,10 +156,6 @@ TEST(BoustrophedonProperty, CombsAndHoles) {
   }
 }
 
-// sort_by_runs must give std::sort's order: random points in runs rising and falling (as a
-// boundary's vertices and samples come), with equal ordinates, repeated points and runs of one;
-// few runs (merged) and many (sorted whole). Points alike when equal, and points tagged with
-// their place (equal points then differ: std::sort's own order between them must stay).
 // The decomposition keeps its buffers and its chains' buffers between calls (the thread's): it must
 // give, bit for bit, what it gave when it made them anew (the function as it was, kept in
 // decomposition_reference.hpp): traced outlines (narrow arms, holes, nearly collinear vertices),
@@ -226,6 +222,10 @@ TEST(BoustrophedonProperty, AsTheReferenceBitForBit) {
   RecordProperty("cells", std::to_string(cells));
 }
 
+// sort_by_runs must give std::sort's order: random points in runs rising and falling (as a
+// boundary's vertices and samples come), with equal ordinates, repeated points and runs of one;
+// few runs (merged) and many (sorted whole). Points alike when equal, and points tagged with
+// their place (equal points then differ: std::sort's own order between them must stay).
 TEST(SortByRuns, GivesTheOrderOfASortOfAll) {
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> unit(0, 1);
