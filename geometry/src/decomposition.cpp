@@ -10,24 +10,10 @@
 
 #include "swath/geometry/predicates.hpp"
 #include "swath/geometry/sort_runs.hpp"
+#include "swath/geometry/turn.hpp"
 
 namespace swath::geometry {
 namespace {
-
-// A turn by angle_deg: its cosine and sine, taken once for all the points it turns (libm's sincos
-// per point was a sixth of a 10,000-vertex plan's instructions). The same values as per point.
-struct Turn {
-  double c, s;
-};
-
-Turn turn_by(double angle_deg) {
-  const double t = angle_deg * std::numbers::pi / 180.0;
-  return {std::cos(t), std::sin(t)};
-}
-
-Point2 rotated(Point2 p, Turn t) {
-  return {t.c * p.x - t.s * p.y, t.s * p.x + t.c * p.y};
-}
 
 // "Below" with ties broken by x: the sweep behaves as if tilted infinitesimally, so edges along
 // the sweep direction need no special case.
@@ -266,7 +252,7 @@ Ring chains_ring(const std::vector<Chains>& pieces, std::span<const std::size_t>
     for (auto p = pieces[*k].left.rbegin(); p != pieces[*k].left.rend(); ++p) add(*p);
   while (clean.size() > 1 && clean.back() == clean.front()) clean.pop_back();
   if (clean.size() < 3 || signed_area(clean) <= 0) return {};
-  for (Point2& p : clean) p = rotated(p, back);
+  for (Point2& p : clean) p = back(p);
   return clean;
 }
 
@@ -311,12 +297,12 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   // would make cuts that meet at one ordinate miss each other. Such edges are made exactly
   // parallel (moves of < 1e-9 of the area's size).
   const double snap = 1e-9 * extent;
-  const Turn to_sweep = turn_by(-angle_deg);
+  const Turn to_sweep(-angle_deg);
   for (std::size_t r = 0; r < rings_in.size(); ++r) {
     Ring& ring = rings[r];
     ring.clear();
     ring.reserve(rings_in[r].size());
-    for (const Point2& p : rings_in[r]) ring.push_back(rotated(p, to_sweep));
+    for (const Point2& p : rings_in[r]) ring.push_back(to_sweep(p));
     for (std::size_t i = 0; i + 1 < ring.size(); ++i)
       if (std::abs(ring[i + 1].y - ring[i].y) <= snap) ring[i + 1].y = ring[i].y;
     if (ring.size() > 2 && std::abs(ring.back().y - ring.front().y) <= snap)
@@ -408,7 +394,7 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   }
 
   Decomposition d;
-  const Turn back = turn_by(angle_deg);
+  const Turn back(angle_deg);
   d.pieces.reserve(pieces.size());
   for (std::size_t k = 0; k < pieces.size(); ++k)
     d.pieces.push_back(chains_ring(pieces, std::span<const std::size_t>(&k, 1), back));

@@ -31,6 +31,7 @@
 #include "split_bounds.hpp"
 #include "split_candidate.hpp"
 #include "split_runs.hpp"
+#include "swath/geometry/turn.hpp"
 
 namespace swath::planning {
 
@@ -119,12 +120,12 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings, geometry
   Candidate c;
   c.angle_deg = angle;
   // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart. Corners'
-  // ordinates by turned_y (rotate()'s, the same values), here and for the pieces below.
-  const TurnedY turned_y(angle);
+  // ordinates by turned.y (rotate()'s, the same values), here and for the pieces below.
+  const geometry::Turn turned(-angle);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
   for (const auto& ring : rings)
     for (const Point2& p : ring) {
-      const double y = turned_y(p);
+      const double y = turned.y(p);
       y_min = std::min(y_min, y);
       y_max = std::max(y_max, y);
     }
@@ -148,13 +149,6 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings, geometry
       piece_lines[k] = plan_sweep(piece, sweep_settings).lines;
       piece.outer.swap(d.pieces[k]);
     }
-  // rotate(p, -angle) for the lanes' ends and thin pieces' corners: its cosine and sine taken
-  // once, the same values and arithmetic.
-  const double turn = -angle * std::numbers::pi / 180.0;
-  const double turn_cos = std::cos(turn), turn_sin = std::sin(turn);
-  const auto turned = [&](Point2 p) {
-    return Point2{turn_cos * p.x - turn_sin * p.y, turn_sin * p.x + turn_cos * p.y};
-  };
   // A lane on a cut between two pieces belongs to both: keep the longer one. Lanes sorted by
   // ordinate, so only neighbours in that order can coincide.
   struct Lane {
@@ -199,7 +193,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings, geometry
     if (d.pieces[k].empty()) continue;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const Point2& p : d.pieces[k]) {
-      const double y = turned_y(p);
+      const double y = turned.y(p);
       lo = std::min(lo, y);
       hi = std::max(hi, y);
     }

@@ -41,21 +41,6 @@ Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, con
                      bool bridged, std::vector<Point2>& samples, bool drop_slivers = true,
                      std::optional<double> grid_ordinate_m = std::nullopt);
 
-/// rotate(p, -angle_deg).y for many points: its cosine and sine taken once, the same arithmetic,
-/// so the same values (without fused multiply-adds, as the project builds).
-class TurnedY {
- public:
-  explicit TurnedY(double angle_deg) {
-    const double t = -angle_deg * std::numbers::pi / 180.0;
-    cos_ = std::cos(t);
-    sin_ = std::sin(t);
-  }
-  double operator()(Point2 p) const { return sin_ * p.x + cos_ * p.y; }
-
- private:
-  double cos_, sin_;
-};
-
 /// The boustrophedon cells of `rings` at `angle` (degrees) as a candidate, each cell's lines
 /// sorted by ordinate (in the frame turned by -angle).
 Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,

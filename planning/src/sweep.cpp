@@ -10,50 +10,29 @@
 #include <stdexcept>
 
 #include "lane_scan.hpp"
+#include "swath/geometry/turn.hpp"
 
 namespace swath::planning {
 
 using geometry::Point2;
 
 Point2 rotate(Point2 p, double angle_deg) {
-  // The cosine and sine of the last two angles asked (by their bits: -0 and 0 differ in the
-  // sine's sign) are kept: callers turn thousands of points by one angle and back, and libm's
-  // sincos per point was a sixth of a 10,000-vertex plan. The same values as taken anew.
-  struct Turn {
-    std::uint64_t angle_bits;
-    double c, s;
+  // The turns by the last two angles asked (by their bits: -0 and 0 differ in the sine's sign)
+  // are kept: callers turn thousands of points by one angle and back. The same values as taken
+  // anew (geometry::Turn).
+  struct Known {
+    std::uint64_t angle_bits = 0;
+    geometry::Turn turn{0.0};
   };
-  thread_local Turn turns[2];
+  thread_local Known turns[2];
   thread_local int known = 0, newest = 0;
   const auto bits = std::bit_cast<std::uint64_t>(angle_deg);
   for (int k = 0; k < known; ++k)
-    if (turns[k].angle_bits == bits) {
-      const Turn& t = turns[k];
-      return {t.c * p.x - t.s * p.y, t.s * p.x + t.c * p.y};
-    }
-  const double t = angle_deg * std::numbers::pi / 180.0;
-  const double c = std::cos(t), s = std::sin(t);
+    if (turns[k].angle_bits == bits) return turns[k].turn(p);
   newest = known < 2 ? known++ : 1 - newest;
-  turns[newest] = {bits, c, s};
-  return {c * p.x - s * p.y, s * p.x + c * p.y};
+  turns[newest] = {bits, geometry::Turn(angle_deg)};
+  return turns[newest].turn(p);
 }
-
-namespace {
-
-// rotate(p, angle_deg) for the many points of one call: its cosine and sine taken once, not looked
-// up per point; the same values and arithmetic (without fused multiply-adds, as the project
-// builds), so the same points.
-struct Turn {
-  explicit Turn(double angle_deg) {
-    const double t = angle_deg * std::numbers::pi / 180.0;
-    c = std::cos(t);
-    s = std::sin(t);
-  }
-  Point2 operator()(Point2 p) const { return {c * p.x - s * p.y, s * p.x + c * p.y}; }
-  double c, s;
-};
-
-}  // namespace
 
 std::vector<double> line_offsets(double y_min, double y_max, double spacing, double footprint,
                                  LinePlacement placement) {
@@ -372,7 +351,7 @@ Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
   // kept: split plans sweep every piece of a decomposition at every direction (~18,000 sweeps of a
   // few vertices each at 100 vertices and 50 holes), and their allocations were a third of it.
   thread_local std::vector<geometry::Ring> rings;
-  const Turn to_lanes(-sweep.angle_deg);
+  const geometry::Turn to_lanes(-sweep.angle_deg);
   const std::size_t ring_count = geometry::ring_count(area);
   if (rings.size() < ring_count) rings.resize(ring_count);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;

@@ -16,6 +16,7 @@
 #include "split_candidate.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/field.hpp"
+#include "swath/geometry/turn.hpp"
 #include "swath/planning/split.hpp"
 #include "swath/planning/sweep.hpp"
 
@@ -35,11 +36,11 @@ split_detail::Candidate reference_sweep_decomposition(const std::vector<geometry
   c.angle_deg = angle;
   // One lane grid for the whole area: lanes of neighbouring cells stay one spacing apart. Corners'
   // ordinates by turned_y (rotate()'s, the same values), here and for the pieces below.
-  const split_detail::TurnedY turned_y(angle);
+  const geometry::Turn turned_y(-angle);
   double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
   for (const auto& ring : rings)
     for (const Point2& p : ring) {
-      const double y = turned_y(p);
+      const double y = turned_y.y(p);
       y_min = std::min(y_min, y);
       y_max = std::max(y_max, y);
     }
@@ -106,7 +107,7 @@ split_detail::Candidate reference_sweep_decomposition(const std::vector<geometry
     if (d.pieces[k].empty()) continue;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const Point2& p : d.pieces[k]) {
-      const double y = turned_y(p);
+      const double y = turned_y.y(p);
       lo = std::min(lo, y);
       hi = std::max(hi, y);
     }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <numeric>
 #include <random>
 #include <tuple>
@@ -24,6 +25,7 @@
 #include "swath/geometry/classification.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/field.hpp"
+#include "swath/geometry/turn.hpp"
 #include "swath/planning/cell_order.hpp"
 #include "swath/planning/survey.hpp"
 
@@ -657,20 +659,29 @@ TEST(SplitSurvey, TheCellsBoundIsBelowTheirEstimateOnTracedOutlines) {
   RecordProperty("closest", std::to_string(worst));
 }
 
-// TurnedY: rotate(p, -angle).y bit for bit (the cells' thin pieces are found by it, their lines by
-// rotate()), at random points up to 10 km out and random angles, both signs, and the candidates'
-// angles.
-TEST(SplitSurvey, TurnedYIsRotatesOrdinate) {
+// geometry::Turn (the cells' thin pieces are found by its ordinates, the lanes' ends turned by it)
+// and rotate() (its last two turns kept) give, bit for bit, the cosine and sine taken anew for each
+// point: at random points up to 10 km out and random angles, both signs, the candidates' angles,
+// and rotate() asked by three angles in turn (one always evicted from its two kept).
+TEST(SplitSurvey, TurnsAreTheRotationTakenAnewPerPoint) {
   test::Rng rng(4711);
   std::uniform_real_distribution<double> coordinate(-10000, 10000), degrees(-360, 360);
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
   for (int k = 0; k < 2000; ++k) {
     const double angle = k % 4 == 0 ? 2.0 * (k / 4 % 90) : degrees(rng);
-    const split_detail::TurnedY turned_y(angle);
+    const double t = -angle * std::numbers::pi / 180.0;
+    const double c = std::cos(t), s = std::sin(t);
+    const geometry::Turn turned(-angle);
     for (int i = 0; i < 20; ++i) {
       const Point2 p{coordinate(rng), coordinate(rng)};
-      ASSERT_EQ(std::bit_cast<std::uint64_t>(turned_y(p)),
-                std::bit_cast<std::uint64_t>(rotate(p, -angle).y))
-          << p.x << " " << p.y << " at " << angle;
+      const Point2 truth{c * p.x - s * p.y, s * p.x + c * p.y};
+      ASSERT_EQ(bits(turned.y(p)), bits(truth.y)) << p.x << " " << p.y << " at " << angle;
+      ASSERT_EQ(bits(turned(p).x), bits(truth.x)) << p.x << " " << p.y << " at " << angle;
+      ASSERT_EQ(bits(turned(p).y), bits(truth.y)) << p.x << " " << p.y << " at " << angle;
+      const Point2 r = rotate(p, -angle);
+      ASSERT_EQ(bits(r.x), bits(truth.x)) << p.x << " " << p.y << " at " << angle;
+      ASSERT_EQ(bits(r.y), bits(truth.y)) << p.x << " " << p.y << " at " << angle;
+      (void)rotate(p, angle + 1 + i % 2);  // the cache's other slots, in turn
     }
   }
 }
