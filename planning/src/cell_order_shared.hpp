@@ -85,7 +85,7 @@ class Transit {
   /// cell actually before it, not from the nearest of all (cannot_win()'s bound on the rest).
   double least_step(std::size_t c1, std::size_t c2) const {
     return least_step_.empty() ? least_into(c2) + least_internal(c2)
-                               : least_step_[c1 * p_.cells.size() + c2];
+                               : least_step_[c1 * least_into_.size() + c2];
   }
   /// How many variants cell c has.
   std::size_t variants(std::size_t c) const { return p_.cells[c].size(); }
@@ -280,9 +280,11 @@ class Transit {
     };
     if (!low_length_.empty()) {  // dense_low()'s values from the bounds' tables: the same sums
       const double weight = p_.crossing_weight;
+      // Without a crossing still to be flown the penalty is the length times exactly 1 (a finite
+      // weight: the tables are kept only then), so the length as it is.
       fill([&](std::size_t at, std::size_t, std::size_t) {
-        return crossings ? penalised(low_length_[at], weight, low_crossed_[at] & unflown)
-                         : low_length_[at];
+        const std::uint64_t m = crossings ? low_crossed_[at] & unflown : 0;
+        return m != 0 ? penalised(low_length_[at], weight, m) : low_length_[at];
       });
       return;
     }
@@ -720,15 +722,6 @@ class VariantTable {
                   std::size_t from, std::size_t check_at, double give_up_m,
                   const VariantTable* tail, std::size_t kept_to = 0) {
     const std::size_t layers = check_at - from + 1;
-    // Every entry read below is written first (a layer's variants by low_layers()).
-    if (low_.size() < layers * kMaxVariants) low_.resize(layers * kMaxVariants, kInf);
-    low_from_.resize(std::max(low_from_.size(), layers * kMaxVariants));
-    masks_.resize(layers);
-    std::uint64_t after = tail ? tail->after_all_[check_at + 1] : 0;  // the cells after k
-    for (std::size_t k = check_at + 1; k-- > from;) {
-      masks_[k - from] = after;
-      after |= bit(order[k]);
-    }
     const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
     const std::size_t last_cell = order[check_at];
     // ahead_[k - from]: at most what any way costs after layer k: the cheapest rest after layer
@@ -759,6 +752,15 @@ class VariantTable {
         low_end_ = from;
         return true;
       }
+    }
+    // Every entry read below is written first (a layer's variants by low_layers()).
+    if (low_.size() < layers * kMaxVariants) low_.resize(layers * kMaxVariants, kInf);
+    low_from_.resize(std::max(low_from_.size(), layers * kMaxVariants));
+    masks_.resize(layers);
+    std::uint64_t after = tail ? tail->after_all_[check_at + 1] : 0;  // the cells after k
+    for (std::size_t k = check_at + 1; k-- > from;) {
+      masks_[k - from] = after;
+      after |= bit(order[k]);
     }
     for (std::size_t k = from; k < start; ++k)
       if (rejects_at(p, order, from, k, give_up_m + margin_m)) {
