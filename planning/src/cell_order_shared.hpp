@@ -77,6 +77,16 @@ class Transit {
   double least_internal(std::size_t c) const {
     return least_internal_.empty() ? 0.0 : least_internal_[c];
   }
+  /// At most the cost of any transit from cell c1's exit into cell c2 plus the internal length of
+  /// the variant it enters, whatever the memo holds (bounded() only): the least over their
+  /// variants of least_into()'s straight bound plus that internal length, where every pair's
+  /// bound is kept (up to kLeastInVariants variants in all, c1 != c2, both with variants); else
+  /// least_into(c2) + least_internal(c2). Never below the latter: the way into c2 from the
+  /// cell actually before it, not from the nearest of all (cannot_win()'s bound on the rest).
+  double least_step(std::size_t c1, std::size_t c2) const {
+    return least_step_.empty() ? least_into(c2) + least_internal(c2)
+                               : least_step_[c1 * least_into_.size() + c2];
+  }
   /// How many variants cell c has.
   std::size_t variants(std::size_t c) const { return p_.cells[c].size(); }
   double from_home(std::size_t c, std::size_t v) {
@@ -270,9 +280,11 @@ class Transit {
     };
     if (!low_length_.empty()) {  // dense_low()'s values from the bounds' tables: the same sums
       const double weight = p_.crossing_weight;
+      // Without a crossing still to be flown the penalty is the length times exactly 1 (a finite
+      // weight: the tables are kept only then), so the length as it is.
       fill([&](std::size_t at, std::size_t, std::size_t) {
-        return crossings ? penalised(low_length_[at], weight, low_crossed_[at] & unflown)
-                         : low_length_[at];
+        const std::uint64_t m = crossings ? low_crossed_[at] & unflown : 0;
+        return m != 0 ? penalised(low_length_[at], weight, m) : low_length_[at];
       });
       return;
     }
@@ -313,6 +325,7 @@ class Transit {
   /// bounds' tables are kept.
   static constexpr std::size_t kLeastInVariants = 320;
   std::vector<double> least_into_, least_internal_;  ///< per cell; empty: not bounded()
+  std::vector<double> least_step_;                   ///< least_step() per pair of cells
   // The dense table's lower_cost() before its penalty, kept up to date (known_now()): the
   // length where asked, else the straight length less 1e-12 of it (computed once, not per
   // layer: least_layer() reads every entry of a move's layers, ~10^5 layers a plan); and the
@@ -341,11 +354,29 @@ class Transit {
           }
     for (double& d : least_into_)
       if (d == kInf) d = 0;  // a cell no other cell leads into: nothing to bound
+    find_least_steps();
     if (!std::isfinite(p_.crossing_weight)) {
       low_length_.clear();
       return;
     }
     if (p_.crossed) low_crossed_.assign(size_ * size_, 0);
+  }
+  /// least_step()'s table from low_length_'s straight bounds (before any transit is asked: a
+  /// transit's cost is never below them, its penalty only adds for a weight >= 0).
+  void find_least_steps() {
+    const std::size_t n = p_.cells.size();
+    least_step_.assign(n * n, kInf);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t c = 0; c < n; ++c) {
+        double& least = least_step_[a * n + c];
+        for (std::size_t u = 0; u < p_.cells[a].size(); ++u) {
+          const double* low = &low_length_[(base_[a] + u) * size_ + base_[c]];
+          for (std::size_t v = 0; v < p_.cells[c].size(); ++v)
+            least = std::min(least, low[v] + p_.cells[c][v].internal_m);
+        }
+        // The same cell twice is no step of an order; a cell without variants has no way.
+        if (a == c || least == kInf) least = least_into_[c] + least_internal_[c];
+      }
   }
   /// The bounds' tables at dense entry `at` after its length or crossings were asked.
   void known_now(std::size_t at) {
@@ -691,6 +722,37 @@ class VariantTable {
                   std::size_t from, std::size_t check_at, double give_up_m,
                   const VariantTable* tail, std::size_t kept_to = 0) {
     const std::size_t layers = check_at - from + 1;
+    const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
+    const std::size_t last_cell = order[check_at];
+    // ahead_[k - from]: at most what any way costs after layer k: the cheapest rest after layer
+    // check_at (the tail's costs, or the legs home), and for each later layer's cell the least
+    // transit into it from the cell before it with its internal length (Transit::least_step()).
+    ahead_.resize(std::max(ahead_.size(), layers));
+    double ahead = kInf;
+    for (std::size_t v = 0; v < p.cells[last_cell].size(); ++v)
+      ahead = std::min(ahead, tail ? tail->rest_cost_[check_at * kMaxVariants + v]
+                                   : t.low_to_home(last_cell, v));
+    for (std::size_t k = check_at + 1; k-- > from;) {
+      ahead_[k - from] = ahead;
+      if (k > from) ahead += t.least_step(order[k - 1], order[k]);
+    }
+    // The layers the last call filled are kept only as far as it filled them; each kept one
+    // may already show that the move cannot win (then none is filled, and the layers kept are
+    // those up to it, as where they are filled afresh).
+    std::size_t start = std::max(from, std::min(kept_to, low_end_));
+    // Before any layer: the least of the layer before `from` (the current order's, exact), the
+    // step into the cell at `from` and the rest after it bound every way too (as low_layers()
+    // does a layer further on). None counts as filled then (the next move keeps none), as where
+    // no layer was kept.
+    if (from > 0) {
+      double before = kInf;
+      for (std::size_t u = 0; u < p.cells[order[from - 1]].size(); ++u)
+        before = std::min(before, cost_[(from - 1) * kMaxVariants + u]);
+      if (before + t.least_step(order[from - 1], order[from]) + ahead_[0] >= give_up_m + margin_m) {
+        low_end_ = from;
+        return true;
+      }
+    }
     // Every entry read below is written first (a layer's variants by low_layers()).
     if (low_.size() < layers * kMaxVariants) low_.resize(layers * kMaxVariants, kInf);
     low_from_.resize(std::max(low_from_.size(), layers * kMaxVariants));
@@ -700,24 +762,6 @@ class VariantTable {
       masks_[k - from] = after;
       after |= bit(order[k]);
     }
-    const double margin_m = 1e-9 * (1 + std::abs(give_up_m));
-    const std::size_t last_cell = order[check_at];
-    // ahead_[k - from]: at most what any way costs after layer k: the cheapest rest after layer
-    // check_at (the tail's costs, or the legs home), and for each later layer's cell the least
-    // transit into it and its least internal length (Transit::least_into(), least_internal()).
-    ahead_.resize(std::max(ahead_.size(), layers));
-    double ahead = kInf;
-    for (std::size_t v = 0; v < p.cells[last_cell].size(); ++v)
-      ahead = std::min(ahead, tail ? tail->rest_cost_[check_at * kMaxVariants + v]
-                                   : t.low_to_home(last_cell, v));
-    for (std::size_t k = check_at + 1; k-- > from;) {
-      ahead_[k - from] = ahead;
-      ahead += t.least_into(order[k]) + t.least_internal(order[k]);
-    }
-    // The layers the last call filled are kept only as far as it filled them; each kept one
-    // may already show that the move cannot win (then none is filled, and the layers kept are
-    // those up to it, as where they are filled afresh).
-    std::size_t start = std::max(from, std::min(kept_to, low_end_));
     for (std::size_t k = from; k < start; ++k)
       if (rejects_at(p, order, from, k, give_up_m + margin_m)) {
         low_end_ = k + 1;
@@ -748,8 +792,8 @@ class VariantTable {
   /// layers after it left unfilled, once a layer k before `check_at` shows the move cannot win:
   /// its least plus ahead_[k - from] at least `reject_m` (cannot_win()'s give_up_m plus its
   /// margin). Sound: any way through the candidate costs its layer-k cost (at least that layer's
-  /// least), then for each later cell a transit into it (at least least_into(), from another
-  /// cell's exit) and its internal length (at least least_internal()), then the rest after
+  /// least), then for each later cell the transit into it from the cell before it and its
+  /// internal length (together at least least_step()), then the rest after
   /// check_at (at least the least of the tail's costs, or of the legs home); every term at least
   /// its bound, so the whole at least their sum, which the margin covers for rounding as for
   /// the whole check (sums of ~10^3 terms, another order of addition). So the move would be

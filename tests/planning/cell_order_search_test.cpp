@@ -823,18 +823,58 @@ TEST(CellOrderSearch, KeptBoundLayersAreTheFreshOnes) {
   EXPECT_GT(kept_open, 0u);
 }
 
+// The bound on a step of an order from cell c1 into cell c2 (Transit::least_step(): the transit
+// from c1's exit and the internal length of the variant it enters) against every such step as the
+// metric answers it, with its penalty for random cells still to be flown, before and after the
+// transits are asked (the memo's values never lower it); and never below the bound it sharpens
+// (the least transit into c2 from any cell, plus c2's least internal length). Transits round a
+// wall (straight where it is not in the way: the bound within rounding of the step), with and
+// without crossings, symmetric twins or not, and cells whose variants repeat (ties).
+TEST(CellOrderSearch, LeastStepBoundsEveryStepBetweenTwoCells) {
+  std::mt19937_64 rng(5257);
+  std::size_t sharper = 0;
+  for (int k = 0; k < 12; ++k) {
+    CellOrderProblem p = runs_problem(rng, 6 + std::size_t(k), k % 2 == 0);
+    p.symmetric = k % 3 == 0;
+    if (k % 4 == 3)
+      for (auto& cell : p.cells)
+        for (std::size_t v = 1; v < cell.size(); ++v)
+          if (rng() % 2) cell[v] = cell[rng() % v];
+    const std::size_t n = p.cells.size();
+    cell_order_detail::Transit t(p);
+    ASSERT_TRUE(t.bounded());
+    for (int asked = 0; asked < 2; ++asked)
+      for (std::size_t c1 = 0; c1 < n; ++c1)
+        for (std::size_t c2 = 0; c2 < n; ++c2) {
+          if (c1 == c2) continue;
+          const double step = t.least_step(c1, c2);
+          ASSERT_GE(step, t.least_into(c2) + t.least_internal(c2));
+          sharper += asked == 0 && step > t.least_into(c2) + t.least_internal(c2);
+          for (std::size_t u = 0; u < p.cells[c1].size(); ++u)
+            for (std::size_t v = 0; v < p.cells[c2].size(); ++v) {
+              const CellVariant &from = p.cells[c1][u], &to = p.cells[c2][v];
+              ASSERT_LE(step, p.distance(from.exit, to.entry) + to.internal_m)
+                  << "problem " << k << " cells " << c1 << " " << c2;
+              ASSERT_LE(step, t.cost(c1, u, c2, v, rng()) + to.internal_m);  // asked now
+            }
+        }
+  }
+  EXPECT_GT(sharper, 100u);
+}
+
 // The local search rejects most moves a few layers in: once a layer's least cost plus a bound on
-// what any way pays after it (for each later cell the least transit into it, from any other
-// cell's exit, and its least internal length; then the least of the tail's costs) reaches the
-// objective to beat. Those bounds never exceed what they bound (every transit, as the metric
-// answers it, and every internal length), and a move cannot_win() rejects, early or not, is never
-// one whose objective (the plain search's, every transit asked) is below the objective to beat:
-// checked with that objective a hair above the candidate's own (it must not be rejected), at it
-// and below it (it may), for every kind of move, with and without crossings, transits round a
-// wall, symmetric twins or not.
+// what any way pays after it (for each later cell the least step into it from the cell before it,
+// Transit::least_step(); then the least of the tail's costs) reaches the objective to beat, and
+// some before any layer (the least of the current order's layer before the move, the step into
+// its first changed cell and the rest). Those bounds never exceed what they bound (every transit,
+// as the metric answers it, and every internal length), and a move cannot_win() rejects, early or
+// not, is never one whose objective (the plain search's, every transit asked) is below the
+// objective to beat: checked with that objective a hair above the candidate's own (it must not be
+// rejected), at it and below it (it may), for every kind of move, with and without crossings,
+// transits round a wall, symmetric twins or not.
 TEST(CellOrderSearch, MovesRejectedBeforeTheirLastLayerCannotWin) {
   std::mt19937_64 rng(5256);
-  std::size_t early = 0, rejected = 0, kept_open = 0;
+  std::size_t early = 0, before_any = 0, rejected = 0, kept_open = 0;
   for (int k = 0; k < 16; ++k) {
     CellOrderProblem p = runs_problem(rng, 10 + std::size_t(k), k % 2 == 0);
     p.symmetric = k % 3 == 0;
@@ -873,9 +913,11 @@ TEST(CellOrderSearch, MovesRejectedBeforeTheirLastLayerCannotWin) {
                                     << j << " rejected at " << trial.low_end();
       (no ? rejected : kept_open) += 1;
       early += no && trial.low_end() <= check_at;
+      before_any += no && trial.low_end() == from;
     }
   }
   EXPECT_GT(early, 50u);
+  EXPECT_GT(before_any, 10u);
   EXPECT_GT(rejected, early);
   EXPECT_GT(kept_open, 50u);
 }
