@@ -424,7 +424,6 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
   std::stable_sort(nodes_by_x_.begin(), nodes_by_x_.end(),
                    [this](std::uint32_t u, std::uint32_t v) { return nodes_[u].x < nodes_[v].x; });
   build_node_grid();
-  node_asked_.assign(nodes_.size(), 0);
   fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
   bins_per_unit_ = double(fan_bins_) / 4;
   node_tables_ = std::make_shared<NodeTables>(nodes_.size());
@@ -508,7 +507,6 @@ std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   copy->fan_bins_ = fan_bins_;
   copy->bins_per_unit_ = bins_per_unit_;
   copy->extent_m_ = extent_m_;
-  copy->node_asked_.assign(nodes_.size(), 0);
   copy->node_tables_ = node_tables_;
   return copy;
 }
@@ -563,7 +561,7 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
     const std::size_t from = std::min(i, j), to = std::max(i, j);
     std::atomic<Fan*>& shared_fan = node_tables_->fans[from];
     Fan* fan = shared_fan.load(std::memory_order_acquire);
-    if (!fan && ++node_asked_[from] > kFanAfter) {
+    if (!fan) {
       auto made = std::make_unique<Fan>(fan_of(nodes_[from]));
       if (shared_fan.compare_exchange_strong(fan, made.get(), std::memory_order_acq_rel,
                                              std::memory_order_acquire))
