@@ -173,28 +173,26 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     const long k = long(v);
     return k - long(double(k) > v);
   };
-  // A bin index taken round the turn: lo is at least -bins / 2 - 1 and at most bins, so a step
-  // either way wraps it (the general form kept for safety).
-  const auto wrapped = [bins](long k) {
-    if (k < 0) k += bins;
-    if (k >= bins) k -= bins;
-    if (k < 0 || k >= bins) k = ((k % bins) + bins) % bins;
-    return std::uint32_t(k);
-  };
+  // A bin index taken round the turn. diamond() lies in [0, 4] and the turn in [-2, 2], so lo,
+  // the bin of (the lesser end - kMargin), lies in [-bins / 2 - 1, bins - 1] (4 - kMargin is a
+  // bin below the end of the turn): only a negative one wraps, by one turn.
+  const auto wrapped = [bins](long k) { return std::uint32_t(k < 0 ? k + bins : k); };
   std::uint32_t e = 0;  // edges_ holds every ring's edges, ring after ring, in ring order
   for (const Ring& ring : rings_) {
     const std::size_t n = ring.size();
-    // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start.
-    // (a's own vertex gets NaN, unused: the edges at it are near.)
-    angles.resize(n);
+    // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start
+    // (the first vertex's again after the last). a's own vertex gets NaN, unused: the edges at
+    // it are near.
+    angles.resize(n + 1);
     double* const angle = angles.data();
     for (std::size_t i = 0; i < n; ++i) angle[i] = diamond(ring[i].x - a.x, ring[i].y - a.y);
+    angle[n] = angle[0];
     for (std::size_t i = 0; i < n; ++i, ++e) {
       if (near_flag[e]) {
         span_of[e] = {0, 0};
         continue;
       }
-      const double tp = angle[i], tq = angle[i + 1 == n ? 0 : i + 1];
+      const double tp = angle[i], tq = angle[i + 1];
       double turn = tq - tp;
       if (turn > 2)
         turn -= 4;
