@@ -173,28 +173,26 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     const long k = long(v);
     return k - long(double(k) > v);
   };
-  // A bin index taken round the turn: lo is at least -bins / 2 - 1 and at most bins, so a step
-  // either way wraps it (the general form kept for safety).
-  const auto wrapped = [bins](long k) {
-    if (k < 0) k += bins;
-    if (k >= bins) k -= bins;
-    if (k < 0 || k >= bins) k = ((k % bins) + bins) % bins;
-    return std::uint32_t(k);
-  };
+  // A bin index taken round the turn. diamond() lies in [0, 4] and the turn in [-2, 2], so lo,
+  // the bin of (the lesser end - kMargin), lies in [-bins / 2 - 1, bins - 1] (4 - kMargin is a
+  // bin below the end of the turn): only a negative one wraps, by one turn.
+  const auto wrapped = [bins](long k) { return std::uint32_t(k < 0 ? k + bins : k); };
   std::uint32_t e = 0;  // edges_ holds every ring's edges, ring after ring, in ring order
   for (const Ring& ring : rings_) {
     const std::size_t n = ring.size();
-    // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start.
-    // (a's own vertex gets NaN, unused: the edges at it are near.)
-    angles.resize(n);
+    // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start
+    // (the first vertex's again after the last). a's own vertex gets NaN, unused: the edges at
+    // it are near.
+    angles.resize(n + 1);
     double* const angle = angles.data();
     for (std::size_t i = 0; i < n; ++i) angle[i] = diamond(ring[i].x - a.x, ring[i].y - a.y);
+    angle[n] = angle[0];
     for (std::size_t i = 0; i < n; ++i, ++e) {
       if (near_flag[e]) {
         span_of[e] = {0, 0};
         continue;
       }
-      const double tp = angle[i], tq = angle[i + 1 == n ? 0 : i + 1];
+      const double tp = angle[i], tq = angle[i + 1];
       double turn = tq - tp;
       if (turn > 2)
         turn -= 4;
@@ -424,7 +422,6 @@ VisibilityRouter::VisibilityRouter(std::vector<Ring> rings, Routing routing,
   std::stable_sort(nodes_by_x_.begin(), nodes_by_x_.end(),
                    [this](std::uint32_t u, std::uint32_t v) { return nodes_[u].x < nodes_[v].x; });
   build_node_grid();
-  node_asked_.assign(nodes_.size(), 0);
   fan_bins_ = std::clamp<std::size_t>(edges_.segments().size(), 64, 1024);
   bins_per_unit_ = double(fan_bins_) / 4;
   node_tables_ = std::make_shared<NodeTables>(nodes_.size());
@@ -508,7 +505,6 @@ std::unique_ptr<VisibilityRouter> VisibilityRouter::fresh_copy() const {
   copy->fan_bins_ = fan_bins_;
   copy->bins_per_unit_ = bins_per_unit_;
   copy->extent_m_ = extent_m_;
-  copy->node_asked_.assign(nodes_.size(), 0);
   copy->node_tables_ = node_tables_;
   return copy;
 }
@@ -563,7 +559,7 @@ bool VisibilityRouter::nodes_see(std::size_t i, std::size_t j) const {
     const std::size_t from = std::min(i, j), to = std::max(i, j);
     std::atomic<Fan*>& shared_fan = node_tables_->fans[from];
     Fan* fan = shared_fan.load(std::memory_order_acquire);
-    if (!fan && ++node_asked_[from] > kFanAfter) {
+    if (!fan) {
       auto made = std::make_unique<Fan>(fan_of(nodes_[from]));
       if (shared_fan.compare_exchange_strong(fan, made.get(), std::memory_order_acq_rel,
                                              std::memory_order_acquire))

@@ -191,6 +191,34 @@ TEST(VisibilityRouterFan, HoldsTheEdgesOfTheStraightforwardConstruction) {
   EXPECT_GT(near, 300u);
 }
 
+// Vertices whose diamond angle from the point is 4 exactly (the end of the turn: a hair below
+// the point's level, far to its right), the greatest an edge's lesser end can have: its range of
+// bins starts at the last bin, not past it (fan_of() wraps only negative bins).
+TEST(VisibilityRouterFan, HoldsTheEdgesOfTheStraightforwardConstructionAtTheEndOfTheTurn) {
+  test::Rng rng(5256);
+  std::size_t at_end = 0;
+  for (int k = 0; k < 8; ++k) {
+    const std::vector<Ring> rings = area(rng, k);
+    const VisibilityRouter router(rings);
+    for (const Ring& ring : rings)
+      for (std::size_t i = 0; i < ring.size(); i += 3) {
+        const Point2 v = ring[i];
+        for (const double left_m : {1e3, 1e5}) {
+          const Point2 a{v.x - left_m, std::nextafter(v.y, INFINITY)};
+          at_end += reference_diamond(v.x - a.x, v.y - a.y) == 4.0;
+          const auto fan = Probe::fan_of(router, a);
+          const ReferenceFan truth = reference_fan(router, rings, a);
+          SCOPED_TRACE(::testing::Message()
+                       << "area " << k << " from (" << a.x << ", " << a.y << ")");
+          ASSERT_EQ(fan.start, truth.start);
+          ASSERT_EQ(fan.items, truth.items);
+          ASSERT_EQ(fan.near, truth.near);
+        }
+      }
+  }
+  EXPECT_GT(at_end, 100u);
+}
+
 // The near edges (asked for every leg) are found round the point, not by a test of every edge:
 // points at distances from an edge on either side of the near distance (near_m) and of the box
 // rule's (2 near_m; diagonally off a vertex, where an edge's box is nearer than the edge), one

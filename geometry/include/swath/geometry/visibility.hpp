@@ -162,8 +162,10 @@ class VisibilityRouter {
                                const std::vector<double>& g_of);
   mutable std::map<std::pair<double, double>, Row> sees_;
   /// Whether nodes i < j see each other, tested from i (as the eager graph did: the test is not
-  /// symmetric in rounding) and kept in both rows; through i's fan once i has been asked kFanAfter
-  /// times.
+  /// symmetric in rounding) and kept in both rows; through i's fan, made when a pair is first
+  /// tested from i (a corner's fan serves every copy, and most corners a search reaches are tested
+  /// against tens of others: on traced outlines making it at once took fewer instructions than
+  /// after 1, 2 or more pairs; traced-157 1,503.7 -> 1,499.1 M, traced-067 354.6 -> 352.6 M).
   bool nodes_see(std::size_t i, std::size_t j) const;
   /// What is known of whether nodes i and j (either order: row i is read) see each other (asked
   /// before, by any copy): 1 yes, 0 no, kUnknown not asked yet.
@@ -175,7 +177,6 @@ class VisibilityRouter {
   /// fans, shared with copies (atomics).
   struct NodeTables;
   std::shared_ptr<NodeTables> node_tables_;
-  mutable std::vector<int> node_asked_;  ///< per node: pairs tested from it without a fan
   std::size_t fan_bins_ = 0;
   double bins_per_unit_ = 0;  ///< fan bins per unit of diamond angle (4 a turn)
   double extent_m_ = 0;       ///< the largest absolute coordinate of the area, metres
