@@ -166,8 +166,10 @@ class LaneScan {
   std::size_t bucket(double y) const {
     const double f = (y - y_min) * inv_height_;
     if (!(f > 0)) return 0;
-    if (f >= double(buckets_ - 1)) return buckets_ - 1;
-    return std::size_t(f);
+    if (f >= last_bucket_) return buckets_ - 1;
+    // 0 < f < 4095: truncated through 32 bits, the same as to 64 (one instruction, not a dozen:
+    // two of these an edge were most of fill_buckets()).
+    return std::uint32_t(f);
   }
   void fill_buckets() const {
     // An edge is listed in every bucket it spans, so a line crossing c edges costs c entries a
@@ -175,6 +177,7 @@ class LaneScan {
     // queries); one bucket per 8 edges keeps a query to ~8 + c edges.
     buckets_ = std::clamp<std::size_t>(edges_.size() / 8, 1, 4096);
     inv_height_ = y_max > y_min ? double(buckets_) / (y_max - y_min) : 0.0;
+    last_bucket_ = double(buckets_ - 1);
     std::vector<std::uint32_t> counts(buckets_ + 1, 0);
     // Each edge's buckets [first, last] found once, counted, then kept for placing the edge (two
     // bucket() calls an edge, not four: they were most of this).
@@ -197,6 +200,7 @@ class LaneScan {
   std::vector<std::pair<Point2, Point2>> edges_;
   mutable std::size_t buckets_ = 0;  ///< 0 until at(y) is first asked
   mutable double inv_height_ = 0;
+  mutable double last_bucket_ = 0;  ///< buckets_ - 1
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
@@ -301,8 +305,9 @@ class LongLaneReach {
 void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples,
                       LongLaneReach* skip = nullptr);
 
-// lane_runs() with its coverage check on every sample, those a long lane sees too: the reference
-// that lane_runs' tests compare it with. Defined in lane_runs.cpp.
+// lane_runs() with its coverage check on every sample, those a long lane sees too, `see` scanned
+// even where it is `fly` bit for bit, and the coverage lanes' unseen samples pruned whole after
+// each lane: the reference that lane_runs' tests compare it with. Defined in lane_runs.cpp.
 LaneRuns lane_runs_on_every_sample(const LaneRunArea& area, const LaneRunSettings& settings);
 
 // Whether a turn between lane ends on neighbouring grid rows stays inside: no boundary edge
