@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "lane_scan.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/geometry/sort_runs.hpp"
+#include "swath/geometry/turn.hpp"
 
 namespace swath::planning {
 namespace {
@@ -45,6 +47,16 @@ detail::SpanRows bridged(const detail::SpanRows& inside, const detail::SpanRows&
     for (const Span& s : row) out.add(s);
   }
   return out;
+}
+
+// Whether two areas' rings hold the same points bit for bit (their scans are then the same).
+bool same_bits(const std::vector<Ring>& a, const std::vector<Ring>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t r = 0; r < a.size(); ++r)
+    if (a[r].size() != b[r].size() ||
+        (!a[r].empty() && std::memcmp(a[r].data(), b[r].data(), a[r].size() * sizeof(Point2)) != 0))
+      return false;
+  return true;
 }
 
 struct RunLane {
@@ -244,17 +256,30 @@ class SeenCount {
   void remove(const RunLane& lane) {
     each_seen_by(lane, [&](std::size_t i) { --count_[i]; });
   }
-  /// f(i) for every sample i of `subset` (indices ascending) the lane sees, in increasing i: the
-  /// same as each_seen_by() filtered to `subset`, without walking the samples outside it.
+  /// f(i) for every sample i of `subset` from `from` on (indices ascending) the lane sees, in
+  /// increasing i: the same as each_seen_by() filtered to those, without walking the others.
   template <typename F>
-  void each_of_seen_by(const std::vector<std::size_t>& subset, const RunLane& lane, F f) const {
+  void each_of_seen_by(const std::vector<std::size_t>& subset, std::size_t from,
+                       const RunLane& lane, F f) const {
     const double y_lo = lane.y - half_, y_hi = lane.y + half_;
     const double x_lo = lane.x0 - detail::kSeenAlongM, x_hi = lane.x1 + detail::kSeenAlongM;
     // Indices ascending are ordinates ascending (the samples are sorted by them).
-    auto k = std::lower_bound(subset.begin(), subset.end(), y_lo,
+    auto k = std::lower_bound(subset.begin() + std::ptrdiff_t(from), subset.end(), y_lo,
                               [&](std::size_t i, double y) { return samples_[i].y < y; });
     for (; k != subset.end() && samples_[*k].y <= y_hi; ++k)
       if (samples_[*k].x >= x_lo && samples_[*k].x <= x_hi) f(*k);
+  }
+  /// The stretch of `subset` (indices ascending) from `from` on whose samples lie within the lane's
+  /// reach across (each_seen_by()'s ordinates, lane.y - half to lane.y + half): every sample of
+  /// it the lane sees is there.
+  std::pair<std::vector<std::size_t>::iterator, std::vector<std::size_t>::iterator> across_reach(
+      std::vector<std::size_t>& subset, std::size_t from, const RunLane& lane) const {
+    const double y_lo = lane.y - half_, y_hi = lane.y + half_;
+    const auto first = std::lower_bound(subset.begin() + std::ptrdiff_t(from), subset.end(), y_lo,
+                                        [&](std::size_t i, double y) { return samples_[i].y < y; });
+    const auto last = std::upper_bound(first, subset.end(), y_hi,
+                                       [&](double y, std::size_t i) { return y < samples_[i].y; });
+    return {first, last};
   }
   /// Whether every sample the lane sees is seen by another lane too.
   bool redundant(const RunLane& lane) const {
@@ -275,18 +300,21 @@ class SeenCount {
 
 // Lanes off the grid for what the grid's lanes do not see: for the first unseen sample (lowest,
 // then leftmost), of the lanes through it or up to half a footprint from it, the one that sees
-// the most unseen samples. `live`: the samples no lane sees yet, ascending (emptied).
+// the most unseen samples. `live`: the samples no lane sees yet, ascending (emptied). `reference`:
+// the list pruned whole after each lane (lane_runs' tests compare the two).
 std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const LaneRunSettings& s,
-                                    std::size_t& unreachable, std::vector<std::size_t>& live) {
+                                    std::size_t& unreachable, std::vector<std::size_t>& live,
+                                    bool reference) {
   const double w = s.footprint_width_m, inset = 1e-3 * s.line_spacing_m;
   // The samples still unseen and not given up on, ascending: the first is the next to cover, and
   // a lane's worth is how many of them it sees. Lanes are only added here, so the list only
   // shrinks: it is pruned after each lane (every sample unseen at the start was asked for every
   // lane tried, seen since or not: most of this step's time on traced fields).
+  // Given-up samples are passed (`head`), not erased from the front one by one.
   std::vector<RunLane> added;
   std::vector<Span> spans;  // scan.at(y)'s, one buffer for every ordinate asked
-  while (!live.empty()) {
-    const Point2 b = seen.sample(live.front());
+  for (std::size_t head = 0; head < live.size();) {
+    const Point2 b = seen.sample(live[head]);
     RunLane best{0, 0, 0, -1};
     long best_count = -1;
     for (const double dy : {0.0, inset, -inset, w / 4, -w / 4, w / 2 - inset, -(w / 2 - inset)}) {
@@ -299,7 +327,7 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
         if (b.x < in.x0 - 1e-6 || b.x > in.x1 + 1e-6) continue;
         const RunLane lane{y, in.x0, in.x1, -1};
         long n = 0;
-        seen.each_of_seen_by(live, lane, [&](std::size_t) { ++n; });
+        seen.each_of_seen_by(live, head, lane, [&](std::size_t) { ++n; });
         if (n > best_count) {
           best_count = n;
           best = lane;
@@ -307,30 +335,61 @@ std::vector<RunLane> coverage_lanes(const LaneScan& scan, SeenCount& seen, const
       }
     }
     if (best_count <= 0) {  // a point no lane inside reaches (a needle's tip)
-      live.erase(live.begin());
+      if (reference)
+        live.erase(live.begin());
+      else
+        ++head;
       ++unreachable;
       continue;
     }
     seen.add(best);
     added.push_back(best);
-    std::erase_if(live, [&](std::size_t i) { return seen.count(i) > 0; });
+    if (reference) {
+      std::erase_if(live, [&](std::size_t i) { return seen.count(i) > 0; });
+      continue;
+    }
+    // Only the samples within the new lane's reach across can be seen now (the others' counts are
+    // still 0): the list is pruned there, not walked whole after every lane.
+    const auto [first, last] = seen.across_reach(live, head, best);
+    live.erase(std::remove_if(first, last, [&](std::size_t i) { return seen.count(i) > 0; }), last);
   }
+  live.clear();
   return added;
 }
 
+// Runs in one array (run k's lanes from start[k] to start[k + 1]): a vector per run, grown lane
+// by lane, was most of a direction's allocations.
+struct Chains {
+  std::vector<RunLane> lanes;
+  std::vector<std::size_t> start{0};
+  std::size_t size() const { return start.size() - 1; }
+  std::span<const RunLane> operator[](std::size_t k) const {
+    return {lanes.data() + start[k], lanes.data() + start[k + 1]};
+  }
+  void clear() {
+    lanes.clear();
+    start.assign(1, 0);
+  }
+  void end_run() { start.push_back(lanes.size()); }
+};
+
 // Zigzag chains over the grid's ordinates: each lane linked to at most one lane on the next
 // ordinate up, the pairs that overlap most first, when both turns (left ends, right ends) stay
-// inside. Coverage lanes stay runs of their own; the order places them.
-std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes,
-                                        const detail::Turns& turns) {
+// inside. Coverage lanes stay runs of their own; the order places them. Into `runs` (cleared; the
+// thread's buffers kept from one direction to the next).
+void chain(const std::vector<RunLane>& lanes, const detail::Turns& turns, Chains& runs) {
   // The grid's lanes by row (each row's a stretch of `grid`, from group[r] to group[r + 1]; one
   // array, not a vector per row).
-  std::vector<std::size_t> grid, group;
-  std::vector<int> rows;
-  std::vector<std::vector<RunLane>> runs;
+  thread_local std::vector<std::size_t> grid, group, up, down;
+  thread_local std::vector<int> rows;
+  grid.clear();
+  group.clear();
+  rows.clear();
+  runs.clear();
   for (std::size_t i = 0; i < lanes.size(); ++i) {
     if (lanes[i].row < 0) {
-      runs.push_back({lanes[i]});
+      runs.lanes.push_back(lanes[i]);
+      runs.end_run();
       continue;
     }
     if (rows.empty() || lanes[i].row != rows.back()) {
@@ -344,8 +403,9 @@ std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes,
     return std::span<const std::size_t>(grid.data() + group[r], grid.data() + group[r + 1]);
   };
   const std::size_t none = std::numeric_limits<std::size_t>::max();
-  std::vector<std::size_t> up(lanes.size(), none), down(lanes.size(), none);
-  std::vector<std::tuple<double, std::size_t, std::size_t>> links;  // one buffer for every row
+  up.assign(lanes.size(), none);
+  down.assign(lanes.size(), none);
+  thread_local std::vector<std::tuple<double, std::size_t, std::size_t>> links;  // every row's
   for (std::size_t r = 0; r + 1 < rows.size(); ++r) {
     if (rows[r + 1] != rows[r] + 1) continue;  // a row left out between: no zigzag across it
     links.clear();
@@ -369,21 +429,22 @@ std::vector<std::vector<RunLane>> chain(const std::vector<RunLane>& lanes,
   }
   for (const std::size_t start : grid) {
     if (down[start] != none) continue;
-    runs.emplace_back();
-    for (std::size_t i = start; i != none; i = up[i]) runs.back().push_back(lanes[i]);
+    for (std::size_t i = start; i != none; i = up[i]) runs.lanes.push_back(lanes[i]);
+    runs.end_run();
   }
-  return runs;
 }
 
-Ring outline(const std::vector<RunLane>& run, double half_spacing, double angle_deg) {
+// `turn` is rotate()'s by the direction (geometry::Turn: the same bits).
+Ring outline(std::span<const RunLane> run, double half_spacing, const geometry::Turn& turn) {
   Ring ring;  // counter-clockwise: up the right ends, down the left ends
+  ring.reserve(4 * run.size());
   for (const RunLane& l : run) {
-    ring.push_back(rotate({l.x1, l.y - half_spacing}, angle_deg));
-    ring.push_back(rotate({l.x1, l.y + half_spacing}, angle_deg));
+    ring.push_back(turn({l.x1, l.y - half_spacing}));
+    ring.push_back(turn({l.x1, l.y + half_spacing}));
   }
   for (auto l = run.rbegin(); l != run.rend(); ++l) {
-    ring.push_back(rotate({l->x0, l->y + half_spacing}, angle_deg));
-    ring.push_back(rotate({l->x0, l->y - half_spacing}, angle_deg));
+    ring.push_back(turn({l->x0, l->y + half_spacing}));
+    ring.push_back(turn({l->x0, l->y - half_spacing}));
   }
   return ring;
 }
@@ -436,10 +497,11 @@ LaneRuns lane_runs(const LaneRunArea& area, const LaneRunSettings& s) {
 
 namespace {
 
-// lane_runs(); every_sample: the coverage check on every sample (the reference its tests compare
-// with), not only on those no long lane sees.
+// lane_runs(); reference: the straightforward computation its tests compare with (the coverage
+// check on every sample, not only on those no long lane sees; `see` scanned even where it is
+// `fly`; the unseen samples' list pruned whole after each coverage lane).
 LaneRuns runs_of(const LaneRunArea& area, const LaneRunSettings& s, std::vector<Point2>& samples,
-                 bool every_sample) {
+                 bool reference) {
   if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m))
     throw std::invalid_argument("lane_runs: need 0 < spacing <= footprint width");
   const LaneScan scan(area.fly, s.angle_deg);
@@ -466,17 +528,20 @@ LaneRuns runs_of(const LaneRunArea& area, const LaneRunSettings& s, std::vector<
   const double sliver_m = s.sliver_length_footprints * s.footprint_width_m;
   {
     // Not `see.empty() ? scan : LaneScan(...)`: that copies `scan` (every edge) each direction.
+    // Nor when `see` is `fly` bit for bit (a plan without no-fly zones): the same scan.
     std::optional<LaneScan> seen_scan;
-    if (!area.see.empty()) seen_scan.emplace(area.see, s.angle_deg);
+    if (!area.see.empty() && (reference || !same_bits(area.see, area.fly)))
+      seen_scan.emplace(area.see, s.angle_deg);
     detail::LongLaneReach long_lanes(ys, cut, detail::seen_half_width_m(s.footprint_width_m),
                                      sliver_m);
     detail::coverage_samples(seen_scan ? *seen_scan : scan, s.line_spacing_m, samples,
-                             every_sample ? nullptr : &long_lanes);
+                             reference ? nullptr : &long_lanes);
   }
   SeenCount seen(samples, s.footprint_width_m);
   thread_local std::vector<std::size_t> unseen;
   seen.add_all(lanes, unseen);
-  const std::vector<RunLane> more = coverage_lanes(scan, seen, s, out.unreachable_points, unseen);
+  const std::vector<RunLane> more =
+      coverage_lanes(scan, seen, s, out.unreachable_points, unseen, reference);
   out.coverage_lanes = more.size();
   lanes.insert(lanes.end(), more.begin(), more.end());
 
@@ -520,14 +585,20 @@ LaneRuns runs_of(const LaneRunArea& area, const LaneRunSettings& s, std::vector<
   });
 
   // 4. Zigzag runs.
-  for (const std::vector<RunLane>& run : chain(kept, detail::Turns(scan, ys))) {
+  thread_local Chains runs;
+  chain(kept, detail::Turns(scan, ys), runs);
+  const geometry::Turn turn(s.angle_deg);
+  out.runs.reserve(runs.size());
+  out.outlines.reserve(runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const std::span<const RunLane> run = runs[k];
     Sweep sweep;
     sweep.angle_deg = s.angle_deg;
     sweep.height_m = run.back().y - run.front().y;
-    for (const RunLane& l : run)
-      sweep.lines.push_back({rotate({l.x0, l.y}, s.angle_deg), rotate({l.x1, l.y}, s.angle_deg)});
+    sweep.lines.reserve(run.size());
+    for (const RunLane& l : run) sweep.lines.push_back({turn({l.x0, l.y}), turn({l.x1, l.y})});
     out.runs.push_back(std::move(sweep));
-    out.outlines.push_back(outline(run, s.line_spacing_m / 2, s.angle_deg));
+    out.outlines.push_back(outline(run, s.line_spacing_m / 2, turn));
   }
   return out;
 }

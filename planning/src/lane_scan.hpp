@@ -43,6 +43,19 @@ struct Span {
   double x0, x1;
 };
 
+// std::sort(first, last) for the crossings of one line, mostly 2 to 6: libstdc++ sorts up to 16
+// values by insertion alone, which this is (the same order, equal values' -0 and 0 included),
+// without its calls (they were most of sorting a row's crossings). More: std::sort itself.
+inline void sort_crossings(double* first, double* last) {
+  if (last - first > 16) return std::sort(first, last);
+  for (double* i = first + 1; i < last; ++i) {
+    const double v = *i;
+    double* j = i;
+    for (; j > first && v < j[-1]; --j) *j = j[-1];
+    *j = v;
+  }
+}
+
 // Spans per row in one array (row k's from start[k] to start[k + 1]): rows are asked by the
 // hundred per direction, and a vector each was a tenth of a split plan's allocations.
 class SpanRows {
@@ -133,11 +146,14 @@ class LaneScan {
         hits.push_back(
             {std::uint32_t(k - ys.begin()), a.x + (*k - a.y) * (b.x - a.x) / (b.y - a.y)});
     }
-    std::vector<std::uint32_t> first(ys.size() + 1, 0);  // row k's crossings from first[k]
+    // The thread's buffers (three fresh vectors a call; three calls a direction).
+    thread_local std::vector<std::uint32_t> first, next;
+    thread_local std::vector<double> xs;
+    first.assign(ys.size() + 1, 0);  // row k's crossings from first[k]
     for (const auto& hit : hits) ++first[hit.first + 1];
     for (std::size_t k = 0; k < ys.size(); ++k) first[k + 1] += first[k];
-    std::vector<double> xs(hits.size());
-    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    xs.resize(hits.size());
+    next.assign(first.begin(), first.end() - 1);
     for (const auto& [k, x] : hits) xs[next[k]++] = x;
     SpanRows out;
     out.reserve(ys.size(), xs.size() / 2);
@@ -156,7 +172,7 @@ class LaneScan {
   // micrometre to add().
   template <typename Add>
   static void pair_up(double* first, double* last, Add add) {
-    std::sort(first, last);
+    sort_crossings(first, last);
     for (; last - first >= 2; first += 2)
       if (first[1] - first[0] > 1e-6) add(Span{first[0], first[1]});
   }
@@ -166,8 +182,10 @@ class LaneScan {
   std::size_t bucket(double y) const {
     const double f = (y - y_min) * inv_height_;
     if (!(f > 0)) return 0;
-    if (f >= double(buckets_ - 1)) return buckets_ - 1;
-    return std::size_t(f);
+    if (f >= last_bucket_) return buckets_ - 1;
+    // 0 < f < 4095: truncated through 32 bits, the same as to 64 (one instruction, not a dozen:
+    // two of these an edge were most of fill_buckets()).
+    return std::uint32_t(f);
   }
   void fill_buckets() const {
     // An edge is listed in every bucket it spans, so a line crossing c edges costs c entries a
@@ -175,6 +193,7 @@ class LaneScan {
     // queries); one bucket per 8 edges keeps a query to ~8 + c edges.
     buckets_ = std::clamp<std::size_t>(edges_.size() / 8, 1, 4096);
     inv_height_ = y_max > y_min ? double(buckets_) / (y_max - y_min) : 0.0;
+    last_bucket_ = double(buckets_ - 1);
     std::vector<std::uint32_t> counts(buckets_ + 1, 0);
     // Each edge's buckets [first, last] found once, counted, then kept for placing the edge (two
     // bucket() calls an edge, not four: they were most of this).
@@ -197,6 +216,7 @@ class LaneScan {
   std::vector<std::pair<Point2, Point2>> edges_;
   mutable std::size_t buckets_ = 0;  ///< 0 until at(y) is first asked
   mutable double inv_height_ = 0;
+  mutable double last_bucket_ = 0;  ///< buckets_ - 1
   mutable std::vector<std::uint32_t> start_, items_;
 };
 
@@ -301,8 +321,9 @@ class LongLaneReach {
 void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2>& samples,
                       LongLaneReach* skip = nullptr);
 
-// lane_runs() with its coverage check on every sample, those a long lane sees too: the reference
-// that lane_runs' tests compare it with. Defined in lane_runs.cpp.
+// lane_runs() with its coverage check on every sample, those a long lane sees too, `see` scanned
+// even where it is `fly` bit for bit, and the coverage lanes' unseen samples pruned whole after
+// each lane: the reference that lane_runs' tests compare it with. Defined in lane_runs.cpp.
 LaneRuns lane_runs_on_every_sample(const LaneRunArea& area, const LaneRunSettings& settings);
 
 // Whether a turn between lane ends on neighbouring grid rows stays inside: no boundary edge

@@ -94,11 +94,14 @@ bool same_runs(const LaneRuns& a, const LaneRuns& b) {
          a.unreachable_points == b.unreachable_points;
 }
 
-// The coverage check leaves out the samples a long lane sees (lane_runs' proof): the runs must be
-// those of the check on every sample (kept as the reference), bit for bit, on the split corpus's
-// shapes (narrow arms, combs, slivers, holes) and traced outlines at many directions, footprints
-// of 1-3 spacings, slivers' lengths 0-4 footprints, with and without a margin to bridge, a
-// separate area to see and a shared grid; its buffer holding anything before.
+// The coverage check leaves out the samples a long lane sees (lane_runs' proof), scans the area to
+// see only where it differs from the area to fly, and prunes the coverage lanes' unseen samples
+// only within the new lane's reach: the runs must be those of the check on every sample, the area
+// to see scanned and the list pruned whole (kept as the reference), bit for bit, on the split
+// corpus's shapes (narrow arms, combs, slivers, holes) and traced outlines at many directions,
+// footprints of 1-3 spacings, slivers' lengths 0-4 footprints, with and without a margin to
+// bridge, a separate area to see, one equal to the area flown, and a shared grid; its buffer
+// holding anything before.
 TEST(LaneRuns, TheRunsOfTheCheckOnEverySample) {
   test::Rng rng(5256);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -125,6 +128,7 @@ TEST(LaneRuns, TheRunsOfTheCheckOnEverySample) {
         area.bridge = {Ring{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
       }
       if (d == 3) area.see = {rings.front()};  // see the holes too
+      if (d == 2) area.see = rings;            // the same area, bit for bit
       const LaneRuns fast = lane_runs(area, s, buffer);
       const LaneRuns every = detail::lane_runs_on_every_sample(area, s);
       ASSERT_TRUE(same_runs(fast, every)) << "area " << k << " setting " << d;
