@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <span>
 #include <stdexcept>
@@ -96,18 +95,24 @@ bool augment(std::size_t lower, const std::vector<std::vector<std::size_t>>& abo
 // minimum path cover of the "directly above" graph: cells minus a maximum matching.
 std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains>& cells) {
   const std::size_t n = cells.size();
-  std::map<double, std::vector<std::size_t>> by_bottom;  // cells starting on a cut at that ordinate
+  // The cells starting on a cut, by its ordinate and then by index: a sorted list rather than a
+  // map of lists (a node and a list per cut at every direction), each cut's cells in the order
+  // the map's list held them.
+  std::vector<std::pair<double, std::size_t>> by_bottom;
   for (std::size_t b = 0; b < n; ++b)
     if (cells[b].left.front().y == cells[b].right.front().y)
-      by_bottom[cells[b].left.front().y].push_back(b);
+      by_bottom.push_back({cells[b].left.front().y, b});
+  std::sort(by_bottom.begin(), by_bottom.end());
   std::vector<std::vector<std::size_t>> above(n);
   std::vector<std::pair<double, std::size_t>> candidates;
   for (std::size_t a = 0; a < n; ++a) {
     const Point2 tl = cells[a].left.back(), tr = cells[a].right.back();
-    const auto starting = by_bottom.find(tl.y);
-    if (starting == by_bottom.end() || tr.y != tl.y) continue;
+    if (tr.y != tl.y) continue;
+    auto starting = std::lower_bound(by_bottom.begin(), by_bottom.end(), tl.y,
+                                     [](const auto& c, double y) { return c.first < y; });
     candidates.clear();
-    for (const std::size_t b : starting->second) {
+    for (; starting != by_bottom.end() && !(tl.y < starting->first); ++starting) {
+      const std::size_t b = starting->second;
       const Point2 bl = cells[b].left.front(), br = cells[b].right.front();
       if (b == a) continue;
       const double overlap = std::min(tr.x, br.x) - std::max(tl.x, bl.x);
