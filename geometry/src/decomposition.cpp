@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "swath/geometry/predicates.hpp"
-#include "swath/geometry/sort_runs.hpp"
 #include "swath/geometry/turn.hpp"
 
 namespace swath::geometry {
@@ -272,6 +271,57 @@ Ring chains_ring(const std::vector<Chains>& pieces, std::span<const std::size_t>
   return clean;
 }
 
+// sort_by_runs(v, less, true) with the merges' buffer kept by the thread (`spare`, swapped with
+// v level by level): inplace_merge took a buffer of its own for every merge. Merged stably, so
+// the order sort_by_runs() gives (a sort's whole, where there are too many runs).
+template <typename T, typename Less>
+void merge_by_runs(std::vector<T>& v, std::vector<T>& spare, Less less) {
+  struct Run {
+    std::size_t begin, end;
+    bool decreasing;
+  };
+  thread_local std::vector<Run> runs;
+  thread_local std::vector<std::size_t> bounds, merged;
+  runs.clear();
+  const std::size_t most = v.size() / 8;
+  for (std::size_t i = 0; i < v.size();) {
+    std::size_t j = i + 1;
+    const bool decreasing = j < v.size() && less(v[j], v[i]);
+    if (decreasing)
+      while (j < v.size() && less(v[j], v[j - 1])) ++j;
+    else
+      while (j < v.size() && !less(v[j], v[j - 1])) ++j;
+    runs.push_back({i, j, decreasing});
+    if (runs.size() > most) {  // too many: sorted whole
+      std::sort(v.begin(), v.end(), less);
+      return;
+    }
+    i = j;
+  }
+  bounds.assign(1, 0);
+  for (const Run& r : runs) {
+    if (r.decreasing)
+      std::reverse(v.begin() + std::ptrdiff_t(r.begin), v.begin() + std::ptrdiff_t(r.end));
+    bounds.push_back(r.end);
+  }
+  const auto at = [](std::vector<T>& w, std::size_t k) { return w.begin() + std::ptrdiff_t(k); };
+  while (bounds.size() > 2) {
+    spare.resize(v.size());
+    merged.assign(1, 0);
+    for (std::size_t k = 0; k + 1 < bounds.size(); k += 2)
+      if (k + 2 < bounds.size()) {
+        std::merge(at(v, bounds[k]), at(v, bounds[k + 1]), at(v, bounds[k + 1]),
+                   at(v, bounds[k + 2]), at(spare, bounds[k]), less);
+        merged.push_back(bounds[k + 2]);
+      } else {
+        std::copy(at(v, bounds[k]), at(v, bounds[k + 1]), at(spare, bounds[k]));
+        merged.push_back(bounds[k + 1]);
+      }
+    v.swap(spare);
+    bounds.swap(merged);
+  }
+}
+
 }  // namespace
 
 std::vector<Ring> rings_of(const Polygon& polygon) {
@@ -341,7 +391,8 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   // sort_by_runs(..., false) does, the ring order remade from the rings rather than copied first
   // at every direction (equal points are rare; the copy was 2 M instructions on traced-067).
   const auto by_ordinate = [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); };
-  sort_by_runs(vertices, by_ordinate, true);
+  thread_local std::vector<Vertex> spare;
+  merge_by_runs(vertices, spare, by_ordinate);
   for (std::size_t i = 0; i + 1 < vertices.size(); ++i)
     if (!by_ordinate(vertices[i], vertices[i + 1])) {  // sorted, so equal points
       vertices.clear();
