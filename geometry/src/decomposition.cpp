@@ -322,29 +322,16 @@ void merge_by_runs(std::vector<T>& v, std::vector<T>& spare, Less less) {
   }
 }
 
-}  // namespace
+struct Vertex {
+  Point2 p;
+  std::size_t ring, index;
+};
 
-std::vector<Ring> rings_of(const Polygon& polygon) {
-  std::vector<Ring> rings{polygon.outer};
-  rings.insert(rings.end(), polygon.holes.begin(), polygon.holes.end());
-  return rings;
-}
-
-std::vector<Ring> boustrophedon_cells(const std::vector<Ring>& rings, double angle_deg) {
-  return boustrophedon_decomposition(rings, angle_deg).cell_rings;
-}
-
-Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, double angle_deg) {
-  // Work in a frame where the cut lines are horizontal. The buffers are the thread's, their
-  // capacity kept: a split plan decomposes its area at every candidate direction.
-  thread_local std::vector<Ring> rings;
-  thread_local std::vector<Edge> edges;
-  thread_local std::vector<std::size_t> first_edge;
-  struct Vertex {
-    Point2 p;
-    std::size_t ring, index;
-  };
-  thread_local std::vector<Vertex> vertices;
+// The rings turned to the sweep's frame (`rings`), their edges lower end first (ring r's from
+// first_edge[r] on) and their vertices in the sweep's order, into the caller's buffers.
+void to_sweep_frame(const std::vector<Ring>& rings_in, double angle_deg, std::vector<Ring>& rings,
+                    std::vector<Edge>& edges, std::vector<std::size_t>& first_edge,
+                    std::vector<Vertex>& vertices) {
   rings.resize(rings_in.size());
   first_edge.clear();
   // Turned as the extent is taken, one pass over the input. The buffers are written in place,
@@ -401,6 +388,28 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
       std::sort(vertices.begin(), vertices.end(), by_ordinate);
       break;
     }
+}
+
+}  // namespace
+
+std::vector<Ring> rings_of(const Polygon& polygon) {
+  std::vector<Ring> rings{polygon.outer};
+  rings.insert(rings.end(), polygon.holes.begin(), polygon.holes.end());
+  return rings;
+}
+
+std::vector<Ring> boustrophedon_cells(const std::vector<Ring>& rings, double angle_deg) {
+  return boustrophedon_decomposition(rings, angle_deg).cell_rings;
+}
+
+Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, double angle_deg) {
+  // Work in a frame where the cut lines are horizontal. The buffers are the thread's, their
+  // capacity kept: a split plan decomposes its area at every candidate direction.
+  thread_local std::vector<Ring> rings;
+  thread_local std::vector<Edge> edges;
+  thread_local std::vector<std::size_t> first_edge;
+  thread_local std::vector<Vertex> vertices;
+  to_sweep_frame(rings_in, angle_deg, rings, edges, first_edge, vertices);
 
   thread_local std::vector<Chains> pieces;
   pieces.clear();
