@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <span>
 #include <stdexcept>
 #include <utility>
 
 #include "swath/geometry/predicates.hpp"
-#include "swath/geometry/sort_runs.hpp"
 #include "swath/geometry/turn.hpp"
 
 namespace swath::geometry {
@@ -96,18 +94,24 @@ bool augment(std::size_t lower, const std::vector<std::vector<std::size_t>>& abo
 // minimum path cover of the "directly above" graph: cells minus a maximum matching.
 std::vector<std::vector<std::size_t>> merge_across_cuts(const std::vector<Chains>& cells) {
   const std::size_t n = cells.size();
-  std::map<double, std::vector<std::size_t>> by_bottom;  // cells starting on a cut at that ordinate
+  // The cells starting on a cut, by its ordinate and then by index: a sorted list rather than a
+  // map of lists (a node and a list per cut at every direction), each cut's cells in the order
+  // the map's list held them.
+  std::vector<std::pair<double, std::size_t>> by_bottom;
   for (std::size_t b = 0; b < n; ++b)
     if (cells[b].left.front().y == cells[b].right.front().y)
-      by_bottom[cells[b].left.front().y].push_back(b);
+      by_bottom.push_back({cells[b].left.front().y, b});
+  std::sort(by_bottom.begin(), by_bottom.end());
   std::vector<std::vector<std::size_t>> above(n);
   std::vector<std::pair<double, std::size_t>> candidates;
   for (std::size_t a = 0; a < n; ++a) {
     const Point2 tl = cells[a].left.back(), tr = cells[a].right.back();
-    const auto starting = by_bottom.find(tl.y);
-    if (starting == by_bottom.end() || tr.y != tl.y) continue;
+    if (tr.y != tl.y) continue;
+    auto starting = std::lower_bound(by_bottom.begin(), by_bottom.end(), tl.y,
+                                     [](const auto& c, double y) { return c.first < y; });
     candidates.clear();
-    for (const std::size_t b : starting->second) {
+    for (; starting != by_bottom.end() && !(tl.y < starting->first); ++starting) {
+      const std::size_t b = starting->second;
       const Point2 bl = cells[b].left.front(), br = cells[b].right.front();
       if (b == a) continue;
       const double overlap = std::min(tr.x, br.x) - std::max(tl.x, bl.x);
@@ -148,7 +152,18 @@ double chains_area(const std::vector<Point2>& left, const std::vector<Point2>& r
   const auto at = [&](std::size_t i) { return i < n_right ? right[i] : left[n - 1 - i]; };
   const Point2 o = at(0);
   double twice = 0.0;
-  for (std::size_t i = 1; i + 1 < n; ++i) twice += cross(at(i) - o, at(i + 1) - o);
+  // Term i is cross(at(i) - o, at(i + 1) - o): over the rest of the right chain, then down the
+  // left one (a chain test per point was most of this function's work).
+  Point2 before = at(1);
+  for (std::size_t i = 2; i < n_right; ++i) {
+    twice += cross(before - o, right[i] - o);
+    before = right[i];
+  }
+  for (std::size_t i = std::max<std::size_t>(2, n_right); i < n; ++i) {
+    const Point2 p = left[n - 1 - i];
+    twice += cross(before - o, p - o);
+    before = p;
+  }
   return twice / 2.0;
 }
 
@@ -256,6 +271,125 @@ Ring chains_ring(const std::vector<Chains>& pieces, std::span<const std::size_t>
   return clean;
 }
 
+// sort_by_runs(v, less, true) with the merges' buffer kept by the thread (`spare`, swapped with
+// v level by level): inplace_merge took a buffer of its own for every merge. Merged stably, so
+// the order sort_by_runs() gives (a sort's whole, where there are too many runs).
+template <typename T, typename Less>
+void merge_by_runs(std::vector<T>& v, std::vector<T>& spare, Less less) {
+  struct Run {
+    std::size_t begin, end;
+    bool decreasing;
+  };
+  thread_local std::vector<Run> runs;
+  thread_local std::vector<std::size_t> bounds, merged;
+  runs.clear();
+  const std::size_t most = v.size() / 8;
+  for (std::size_t i = 0; i < v.size();) {
+    std::size_t j = i + 1;
+    const bool decreasing = j < v.size() && less(v[j], v[i]);
+    if (decreasing)
+      while (j < v.size() && less(v[j], v[j - 1])) ++j;
+    else
+      while (j < v.size() && !less(v[j], v[j - 1])) ++j;
+    runs.push_back({i, j, decreasing});
+    if (runs.size() > most) {  // too many: sorted whole
+      std::sort(v.begin(), v.end(), less);
+      return;
+    }
+    i = j;
+  }
+  bounds.assign(1, 0);
+  for (const Run& r : runs) {
+    if (r.decreasing)
+      std::reverse(v.begin() + std::ptrdiff_t(r.begin), v.begin() + std::ptrdiff_t(r.end));
+    bounds.push_back(r.end);
+  }
+  const auto at = [](std::vector<T>& w, std::size_t k) { return w.begin() + std::ptrdiff_t(k); };
+  while (bounds.size() > 2) {
+    spare.resize(v.size());
+    merged.assign(1, 0);
+    for (std::size_t k = 0; k + 1 < bounds.size(); k += 2)
+      if (k + 2 < bounds.size()) {
+        std::merge(at(v, bounds[k]), at(v, bounds[k + 1]), at(v, bounds[k + 1]),
+                   at(v, bounds[k + 2]), at(spare, bounds[k]), less);
+        merged.push_back(bounds[k + 2]);
+      } else {
+        std::copy(at(v, bounds[k]), at(v, bounds[k + 1]), at(spare, bounds[k]));
+        merged.push_back(bounds[k + 1]);
+      }
+    v.swap(spare);
+    bounds.swap(merged);
+  }
+}
+
+struct Vertex {
+  Point2 p;
+  std::size_t ring, index;
+};
+
+// The rings turned to the sweep's frame (`rings`), their edges lower end first (ring r's from
+// first_edge[r] on) and their vertices in the sweep's order, into the caller's buffers.
+void to_sweep_frame(const std::vector<Ring>& rings_in, double angle_deg, std::vector<Ring>& rings,
+                    std::vector<Edge>& edges, std::vector<std::size_t>& first_edge,
+                    std::vector<Vertex>& vertices) {
+  rings.resize(rings_in.size());
+  first_edge.clear();
+  // Turned as the extent is taken, one pass over the input. The buffers are written in place,
+  // sized once (grown by doubling, a 10,000-vertex area's buffers were most of the fresh pages of a
+  // direction search that decomposes it ~100 times; pushed point by point, a tenth of its work).
+  double extent = 0;
+  std::size_t total = 0;
+  const Turn to_sweep(-angle_deg);
+  for (std::size_t r = 0; r < rings_in.size(); ++r) {
+    const Ring& in = rings_in[r];
+    Ring& ring = rings[r];
+    ring.resize(in.size());
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const Point2 p = in[i];
+      extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+      ring[i] = to_sweep(p);
+    }
+    total += in.size();
+  }
+  edges.resize(total);
+  vertices.resize(total);
+  // Rotation rounds: an edge along the lanes comes out tilted by ~1e-16 of the coordinates, which
+  // would make cuts that meet at one ordinate miss each other. Such edges are made exactly
+  // parallel (moves of < 1e-9 of the area's size).
+  const double snap = 1e-9 * extent;
+  std::size_t at = 0;  // the next edge's and vertex's slot
+  for (std::size_t r = 0; r < rings.size(); ++r) {
+    Ring& ring = rings[r];
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+      if (std::abs(ring[i + 1].y - ring[i].y) <= snap) ring[i + 1].y = ring[i].y;
+    if (ring.size() > 2 && std::abs(ring.back().y - ring.front().y) <= snap)
+      ring.back().y = ring.front().y;
+    first_edge.push_back(at);
+    const std::size_t n = ring.size();
+    for (std::size_t i = 0; i < n; ++i, ++at) {
+      const Point2 a = ring[i], b = ring[i + 1 < n ? i + 1 : 0];
+      edges[at] = below(a, b) ? Edge{a, b} : Edge{b, a};
+      vertices[at] = {a, r, i};
+    }
+  }
+  // In ring order the vertices rise and fall in long stretches: merged, not sorted anew for
+  // every direction (the same order, ties between equal points included). Where two are equal
+  // points std::sort's own order between them is kept: sorted whole from ring order, as
+  // sort_by_runs(..., false) does, the ring order remade from the rings rather than copied first
+  // at every direction (equal points are rare; the copy was 2 M instructions on traced-067).
+  const auto by_ordinate = [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); };
+  thread_local std::vector<Vertex> spare;
+  merge_by_runs(vertices, spare, by_ordinate);
+  for (std::size_t i = 0; i + 1 < vertices.size(); ++i)
+    if (!by_ordinate(vertices[i], vertices[i + 1])) {  // sorted, so equal points
+      vertices.clear();
+      for (std::size_t r = 0; r < rings.size(); ++r)
+        for (std::size_t k = 0; k < rings[r].size(); ++k) vertices.push_back({rings[r][k], r, k});
+      std::sort(vertices.begin(), vertices.end(), by_ordinate);
+      break;
+    }
+}
+
 }  // namespace
 
 std::vector<Ring> rings_of(const Polygon& polygon) {
@@ -274,50 +408,8 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
   thread_local std::vector<Ring> rings;
   thread_local std::vector<Edge> edges;
   thread_local std::vector<std::size_t> first_edge;
-  struct Vertex {
-    Point2 p;
-    std::size_t ring, index;
-  };
   thread_local std::vector<Vertex> vertices;
-  rings.resize(rings_in.size());
-  edges.clear();
-  first_edge.clear();
-  vertices.clear();
-  double extent = 0;
-  std::size_t total = 0;
-  for (const Ring& ring : rings_in) {
-    total += ring.size();
-    for (const Point2& p : ring) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
-  }
-  // Sized once: grown by doubling, a 10,000-vertex area's buffers were most of the fresh pages
-  // (page faults) of a direction search that decomposes it ~100 times.
-  edges.reserve(total);
-  vertices.reserve(total);
-  // Rotation rounds: an edge along the lanes comes out tilted by ~1e-16 of the coordinates, which
-  // would make cuts that meet at one ordinate miss each other. Such edges are made exactly
-  // parallel (moves of < 1e-9 of the area's size).
-  const double snap = 1e-9 * extent;
-  const Turn to_sweep(-angle_deg);
-  for (std::size_t r = 0; r < rings_in.size(); ++r) {
-    Ring& ring = rings[r];
-    ring.clear();
-    ring.reserve(rings_in[r].size());
-    for (const Point2& p : rings_in[r]) ring.push_back(to_sweep(p));
-    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
-      if (std::abs(ring[i + 1].y - ring[i].y) <= snap) ring[i + 1].y = ring[i].y;
-    if (ring.size() > 2 && std::abs(ring.back().y - ring.front().y) <= snap)
-      ring.back().y = ring.front().y;
-    first_edge.push_back(edges.size());
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
-      edges.push_back(below(a, b) ? Edge{a, b} : Edge{b, a});
-      vertices.push_back({a, r, i});
-    }
-  }
-  // In ring order the vertices rise and fall in long stretches: merged, not sorted anew for
-  // every direction (the same order, ties between equal points included).
-  sort_by_runs(
-      vertices, [](const Vertex& a, const Vertex& b) { return below(a.p, b.p); }, false);
+  to_sweep_frame(rings_in, angle_deg, rings, edges, first_edge, vertices);
 
   thread_local std::vector<Chains> pieces;
   pieces.clear();
@@ -331,11 +423,14 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
     const std::size_t e_in = first_edge[v.ring] + before;    // p -> v
     const std::size_t e_out = first_edge[v.ring] + v.index;  // v -> q
     const bool p_below = below(p, v.p), q_below = below(q, v.p);
-    const bool convex = orientation(p, v.p, q) == Orientation::counter_clockwise;
+    // Asked only where both neighbours lie on one side: a regular vertex (most of a traced
+    // outline's) needs no turn (the exact predicate at every vertex was 2.2 M instructions of
+    // traced-067's 29 M of decompositions).
+    const auto convex = [&] { return orientation(p, v.p, q) == Orientation::counter_clockwise; };
     const double y = v.p.y;
 
     if (!p_below && !q_below) {
-      if (convex) {  // start: p -> v runs down (a left side), v -> q up (a right side)
+      if (convex()) {  // start: p -> v runs down (a left side), v -> q up (a right side)
         std::size_t pos = 0;
         while (pos < sweep.order.size() &&
                right_of(edges[sweep.cell[sweep.order[pos]].right_edge], v.p))
@@ -360,7 +455,7 @@ Decomposition boustrophedon_decomposition(const std::vector<Ring>& rings_in, dou
       }
     } else if (p_below && q_below) {
       const std::size_t a = sweep.right_cell(e_in);
-      if (convex) {  // end: the cell whose right side is p -> v closes at v
+      if (convex()) {  // end: the cell whose right side is p -> v closes at v
         sweep.cell[a].left_chain.push_back(v.p);
         sweep.cell[a].right_chain.push_back(v.p);
         close_piece(sweep.cell[a], pieces);

@@ -222,6 +222,79 @@ TEST(BoustrophedonProperty, AsTheReferenceBitForBit) {
   RecordProperty("cells", std::to_string(cells));
 }
 
+// Equal points (a vertex repeated, one outline's vertex on another ring's) are where the
+// decomposition's own sort of the vertices must fall back to std::sort's order from ring order:
+// the same answers as the reference, bit for bit, on traced outlines, combs and fields whose
+// vertices are repeated here and there, at many directions.
+TEST(BoustrophedonProperty, AsTheReferenceWithRepeatedPoints) {
+  test::Rng rng(5255);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  const auto same = [&](const Ring& a, const Ring& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (bits(a[i].x) != bits(b[i].x) || bits(a[i].y) != bits(b[i].y)) return false;
+    return true;
+  };
+  std::size_t answered = 0, refused = 0;
+  for (int k = 0; k < 24; ++k) {
+    Polygon area;
+    if (k % 4 == 0) {
+      area = test::traced_outline(rng);
+    } else if (k % 4 == 1) {
+      area.outer = test::comb_polygon(2 + k % 5, 20, 100 + 10 * (k % 7), 30);
+    } else if (k % 4 == 2) {
+      area.outer = test::random_field_polygon(rng, 10 + std::size_t(u(rng) * 150), 300);
+    } else {
+      // Holes in a row, each touching the next at a corner (clockwise squares, their sizes
+      // random): two rings' vertices at one point, among enough others that std::sort's order
+      // between them is not the rings' (no insertion sort).
+      area.outer = test::random_field_polygon(rng, 60 + std::size_t(u(rng) * 100), 300);
+      Point2 corner{-60 + 20 * u(rng), -60 + 20 * u(rng)};
+      for (int h = 0; h < 2 + k % 3; ++h) {
+        const double side = 10 + 20 * u(rng);
+        area.holes.push_back({corner,
+                              {corner.x, corner.y + side},
+                              {corner.x + side, corner.y + side},
+                              {corner.x + side, corner.y}});
+        corner = {corner.x + side, corner.y + side};
+      }
+    }
+    // Every few vertices one repeated (next to itself), some twice.
+    Ring repeated;
+    for (std::size_t i = 0; i < area.outer.size(); ++i) {
+      repeated.push_back(area.outer[i]);
+      if (u(rng) < 0.04) repeated.push_back(area.outer[i]);
+      if (u(rng) < 0.01) repeated.push_back(area.outer[i]);
+    }
+    area.outer = repeated;
+    const std::vector<Ring> rings = rings_of(area);
+    for (int d = 0; d < 10; ++d) {
+      const double angle = d < 3 ? 45.0 * d : d == 3 ? 90.0 : 180 * u(rng);
+      Decomposition truth;
+      try {
+        truth = reference::boustrophedon_decomposition(rings, angle);
+      } catch (const std::logic_error&) {
+        EXPECT_THROW(boustrophedon_decomposition(rings, angle), std::logic_error) << k << " " << d;
+        ++refused;
+        continue;
+      }
+      const Decomposition fast = boustrophedon_decomposition(rings, angle);
+      ASSERT_EQ(fast.pieces.size(), truth.pieces.size()) << k << " " << d;
+      for (std::size_t i = 0; i < truth.pieces.size(); ++i)
+        ASSERT_TRUE(same(fast.pieces[i], truth.pieces[i])) << k << " " << d << " piece " << i;
+      ASSERT_EQ(fast.cells, truth.cells) << k << " " << d;
+      ASSERT_EQ(fast.cell_rings.size(), truth.cell_rings.size()) << k << " " << d;
+      for (std::size_t i = 0; i < truth.cell_rings.size(); ++i)
+        ASSERT_TRUE(same(fast.cell_rings[i], truth.cell_rings[i]))
+            << k << " " << d << " cell " << i;
+      ++answered;
+    }
+  }
+  EXPECT_GT(answered, 50u);
+  RecordProperty("refused", std::to_string(refused));
+}
+
 // sort_by_runs must give std::sort's order: random points in runs rising and falling (as a
 // boundary's vertices and samples come), with equal ordinates, repeated points and runs of one;
 // few runs (merged) and many (sorted whole). Points alike when equal, and points tagged with

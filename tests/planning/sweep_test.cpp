@@ -358,6 +358,58 @@ TEST(SweepProperty, TracedPiecesAsTheReferenceBitForBit) {
   RecordProperty("off_grid_lanes", std::to_string(off_grid));
 }
 
+// Point strips (the inside rule's lanes, a reach's sides) are walked in blocks of edges, a block
+// whose ordinates hold no lane's passed over: the same lanes bit for bit as the reference on small
+// rings (fewer edges than a block, not a multiple of it), with lanes through vertices exactly (the
+// ends of a block's range), integer grids with edges along the lanes, and holes.
+TEST(SweepProperty, PointStripsWalkedInBlocksBitForBit) {
+  test::Rng rng(5256);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  std::size_t lines = 0, through_vertices = 0;
+  for (int k = 0; k < 240; ++k) {
+    Polygon area;
+    const bool grid = k % 3 == 0;
+    if (grid) {
+      area.outer = test::random_grid_ring(rng, 3 + std::size_t(k % 20), 10);
+    } else {
+      area.outer =
+          test::random_field_polygon(rng, 3 + std::size_t(u(rng) * (k % 2 ? 12 : 60)), 300);
+      if (k % 3 == 2) area.holes.push_back({{-20, -20}, {-20, 20}, {20, 20}, {20, -20}});
+    }
+    SweepSettings s;
+    // Whole degrees: the lanes' frame is rotate()'s at -angle_deg, so a vertex's ordinate there is
+    // known exactly.
+    s.angle_deg = grid ? 0.0 : double((k * 37) % 180);
+    s.line_spacing_m = grid ? 1.0 : 5 + 40 * u(rng);
+    s.footprint_width_m = s.line_spacing_m * (1 + u(rng));
+    s.segments = SegmentRule::inside;
+    s.fill_protrusions = k % 4 >= 2;
+    if (k % 2 == 0) {  // lanes through every vertex, and a grid beside them
+      for (const geometry::Ring* ring :
+           {&area.outer, area.holes.empty() ? nullptr : &area.holes[0]})
+        if (ring)
+          for (const Point2& p : *ring) s.ordinates.push_back(rotate(p, -s.angle_deg).y);
+      for (double y = -400; y < 400; y += s.line_spacing_m) s.ordinates.push_back(y);
+      std::sort(s.ordinates.begin(), s.ordinates.end());
+    }
+    const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
+    ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k;
+    for (std::size_t i = 0; i < truth.lines.size(); ++i)
+      for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
+                                 std::pair{fast.lines[i].end, truth.lines[i].end}}) {
+        ASSERT_EQ(bits(p.x), bits(q.x)) << "area " << k << ", line " << i;
+        ASSERT_EQ(bits(p.y), bits(q.y)) << "area " << k << ", line " << i;
+      }
+    lines += truth.lines.size();
+    for (const SweepLine& l : truth.lines)
+      for (const Point2& v : area.outer)
+        through_vertices += rotate(l.start, -s.angle_deg).y == rotate(v, -s.angle_deg).y;
+  }
+  EXPECT_GT(lines, 3000u);
+  EXPECT_GT(through_vertices, 500u);
+}
+
 TEST(SweepProperty, FootprintsCoverRandomConvexPolygonsAtRandomAnglesSpacingsAndPlacements) {
   test::Rng rng(2718);
   std::uniform_real_distribution<double> u(0.0, 1.0);
