@@ -513,8 +513,16 @@ LaneRuns runs_of(const LaneRunArea& area, const LaneRunSettings& s, std::vector<
   if (ys.empty()) return out;
   const detail::SpanRows cut = grid_spans(area, scan, ys, s.angle_deg);
   std::vector<RunLane> lanes;
-  for (std::size_t k = 0; k < ys.size(); ++k)
-    for (const Span& in : cut[k]) lanes.push_back({ys[k], in.x0, in.x1, int(k)});
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    for (const Span& in : cut[k]) {
+      lanes.push_back({ys[k], in.x0, in.x1, int(k)});
+      out.grid.lanes_m += in.x1 - in.x0;
+    }
+    if (!cut[k].empty()) {
+      out.grid.y_lo_m = std::min(out.grid.y_lo_m, ys[k]);
+      out.grid.y_hi_m = std::max(out.grid.y_hi_m, ys[k]);
+    }
+  }
 
   // 2. Lanes for the corners the grid misses. The samples a long grid lane sees (longer than the
   // slivers' length, as step 3 tells them) are left out: no decision below turns on them. Such a

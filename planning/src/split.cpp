@@ -258,7 +258,7 @@ Candidate sweep_cells(const std::vector<geometry::Ring>& rings, double angle,
 
 Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, const SplitSettings& s,
                      bool bridged, std::vector<Point2>& samples, bool drop_slivers,
-                     std::optional<double> grid_ordinate_m) {
+                     std::optional<double> grid_ordinate_m, LaneGridExtent* grid) {
   LaneRunSettings settings;
   if (!drop_slivers) settings.sliver_length_footprints = 0;
   settings.grid_ordinate_m = grid_ordinate_m;
@@ -269,6 +269,7 @@ Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, con
   LaneRuns runs =
       lane_runs({rings, s.seen_rings, bridged ? s.bridge_rings : std::vector<geometry::Ring>{}},
                 settings, samples);
+  if (grid != nullptr) *grid = runs.grid;
   Candidate c;
   c.angle_deg = angle;
   c.method = SplitCells::runs;
@@ -319,15 +320,21 @@ double cells_estimate_bound(const std::vector<geometry::Ring>& rings, double ang
   const std::vector<double> ys =
       line_offsets(scan.y_min, scan.y_max, s.line_spacing_m, s.footprint_width_m, s.placement);
   const detail::SpanRows spans = scan.at(ys);
-  double total = 0, lo = rotate(home, -angle_deg).y, hi = lo;
+  LaneGridExtent grid;
   for (std::size_t k = 0; k < ys.size(); ++k) {
-    for (const detail::Span& span : spans[k]) total += span.x1 - span.x0;
+    for (const detail::Span& span : spans[k]) grid.lanes_m += span.x1 - span.x0;
     if (!spans[k].empty()) {
-      lo = std::min(lo, ys[k]);
-      hi = std::max(hi, ys[k]);
+      grid.y_lo_m = std::min(grid.y_lo_m, ys[k]);
+      grid.y_hi_m = std::max(grid.y_hi_m, ys[k]);
     }
   }
-  return (total + 2 * (hi - lo)) * (1 - 1e-6);
+  return cells_estimate_bound(grid, angle_deg, home);
+}
+
+double cells_estimate_bound(const LaneGridExtent& grid, double angle_deg, Point2 home) {
+  const double y = rotate(home, -angle_deg).y;
+  const double lo = std::min(y, grid.y_lo_m), hi = std::max(y, grid.y_hi_m);
+  return (grid.lanes_m + 2 * (hi - lo)) * (1 - 1e-6);
 }
 
 double cells_estimate(const std::vector<geometry::Ring>& rings, double angle_deg,
@@ -675,18 +682,21 @@ RunEstimates estimate_runs(const std::vector<geometry::Ring>& rings,
     // Bridged runs where there is a margin, runs inside: each takes the coverage samples its own
     // lanes leave to check (into a buffer of the thread's).
     thread_local std::vector<Point2> samples;
+    std::optional<LaneGridExtent> grid;  // the runs inside's: the cells' bound is made of it
     for (const int kind : {0, 1}) {
       if (s.cells == SplitCells::boustrophedon || (kind == 0 && s.bridge_rings.empty()) ||
           !limits.fits[a][std::size_t(kind)])
         continue;
-      Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples);
+      Candidate c = sweep_runs(rings, angles[a], s, kind == 0, samples, true, std::nullopt,
+                               kind == 1 ? &grid.emplace() : nullptr);
       if (c.cells.empty()) continue;
       problems[a].push_back(straight_problem(c, home));
       bounds[a].push_back(internal_lower_bound(problems[a].back()));
       out.per_angle[a].push_back({kind, std::move(c)});
     }
     if (cells && limits.fits[a][2])
-      out.cells_bound[a] = split_detail::cells_estimate_bound(rings, angles[a], s, home);
+      out.cells_bound[a] = grid ? split_detail::cells_estimate_bound(*grid, angles[a], home)
+                                : split_detail::cells_estimate_bound(rings, angles[a], s, home);
     progress.piece(kRunsShare, n);
   });
   std::vector<std::pair<std::size_t, std::size_t>> at;  // (direction, its k-th candidate)

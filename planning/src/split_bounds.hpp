@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "swath/geometry/polygon.hpp"
+#include "swath/planning/lane_runs.hpp"
 #include "swath/planning/split.hpp"
 
 namespace swath::planning::split_detail {
@@ -15,6 +16,9 @@ namespace swath::planning::split_detail {
 /// plus twice that range, less 1e-6 of it for rounding. O(n log n + lanes) for n vertices.
 double cells_estimate_bound(const std::vector<geometry::Ring>& rings, double angle_deg,
                             const SplitSettings& s, geometry::Point2 home);
+/// The same from the grid's extent at `angle_deg` (the runs' without bridges and on the default
+/// grid: LaneRuns::grid), bit for bit: no second scan of the rings.
+double cells_estimate_bound(const LaneGridExtent& grid, double angle_deg, geometry::Point2 home);
 
 /// The estimate itself (nearest neighbour over the cells' lines, straight transits), metres; 0
 /// when the cells hold no line.

@@ -36,10 +36,12 @@ double line_angle(Point2 a, Point2 b);
 CellOrderProblem problem_for(Candidate& c, Point2 home, const Metric& metric);
 
 /// The lane runs of `rings` at `angle` as a candidate (bridged: joined across s.bridge_rings);
-/// `samples`: lane_runs' buffer for its coverage samples.
+/// `samples`: lane_runs' buffer for its coverage samples; `grid` (if given): the grid's extent
+/// (LaneRuns::grid).
 Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, const SplitSettings& s,
                      bool bridged, std::vector<Point2>& samples, bool drop_slivers = true,
-                     std::optional<double> grid_ordinate_m = std::nullopt);
+                     std::optional<double> grid_ordinate_m = std::nullopt,
+                     LaneGridExtent* grid = nullptr);
 
 /// The boustrophedon cells of `rings` at `angle` (degrees) as a candidate, each cell's lines
 /// sorted by ordinate (in the frame turned by -angle).

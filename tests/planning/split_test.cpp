@@ -659,6 +659,39 @@ TEST(SplitSurvey, TheCellsBoundIsBelowTheirEstimateOnTracedOutlines) {
   RecordProperty("closest", std::to_string(worst));
 }
 
+// The direction search takes the cells' bound from the runs' grid where it laid the runs inside
+// (sweep_runs' LaneGridExtent): the same bound as the rings' own scan, bit for bit, on traced
+// outlines with holes and the corpus's shapes, both placements, home inside and outside.
+TEST(SplitSurvey, TheCellsBoundFromTheRunsGridIsTheBoundOfTheRings) {
+  test::Rng rng(5254);
+  std::vector<std::vector<Ring>> areas;
+  for (int shape = 0; shape < 4; ++shape)
+    areas.push_back(geometry::rings_of(test::traced_outline(rng)));
+  for (const test::CorpusShape& shape : test::split_corpus(4243, 1))
+    areas.push_back(geometry::rings_of(shape.area));
+  int n = 0;
+  std::vector<Point2> samples;
+  for (const std::vector<Ring>& rings : areas)
+    for (const LinePlacement placement : {LinePlacement::centered, LinePlacement::paper}) {
+      SplitSettings s;
+      s.line_spacing_m = 43.5;
+      s.footprint_width_m = 145;
+      s.placement = placement;
+      for (int k = 0; k < 24; ++k) {
+        const double angle = 7.5 * k + 0.29;
+        const Point2 home = k % 2 ? Point2{-2000, 900} : rings.front().front();
+        LaneGridExtent grid;
+        split_detail::sweep_runs(rings, angle, s, false, samples, true, std::nullopt, &grid);
+        const double from_grid = split_detail::cells_estimate_bound(grid, angle, home);
+        const double from_rings = split_detail::cells_estimate_bound(rings, angle, s, home);
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(from_grid), std::bit_cast<std::uint64_t>(from_rings))
+            << "area " << n / 48 << " at " << angle << ": " << from_grid << " vs " << from_rings;
+        ++n;
+      }
+    }
+  ASSERT_GT(n, 300);
+}
+
 // geometry::Turn (the cells' thin pieces are found by its ordinates, the lanes' ends turned by it)
 // and rotate() (its last two turns kept) give, bit for bit, the cosine and sine taken anew for each
 // point: at random points up to 10 km out and random angles, both signs, the candidates' angles,

@@ -5,6 +5,7 @@
 // neighbouring lanes' footprints already cover gets no lane; a corner they miss gets the lane
 // that covers the most of what is still unseen.
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -32,11 +33,23 @@ struct LaneRunSettings {
 /// Zigzag runs: each a Sweep whose lines lie on consecutive lane ordinates, bottom to top, all
 /// flown towards +x of the rotated frame (zigzag() alternates them), and its outline (the lanes'
 /// strips, half a spacing either side, as one ring in the input frame).
+/// The grid's lanes as laid before any corner or sliver is looked at (in the frame turned by
+/// -angle): their lengths summed row by row, lane by lane from 0, and the least and greatest
+/// ordinate of a row holding one (+inf and -inf: none). The cells' bound at the same direction is
+/// made of these (split_detail::cells_estimate_bound): the runs hand them over instead of the bound
+/// scanning the rings again.
+struct LaneGridExtent {
+  double lanes_m = 0;  ///< metres
+  double y_lo_m = std::numeric_limits<double>::infinity();
+  double y_hi_m = -std::numeric_limits<double>::infinity();
+};
+
 struct LaneRuns {
   std::vector<Sweep> runs;
   std::vector<geometry::Ring> outlines;
   std::size_t coverage_lanes = 0;      ///< lanes added off the grid to cover corners
   std::size_t unreachable_points = 0;  ///< samples of the area to see that no lane inside reaches
+  LaneGridExtent grid;                 ///< the grid's lanes (joined across `bridge`), step 1
 };
 
 /// The areas lane_runs works with, each as rings (outer counter-clockwise, holes clockwise, no
