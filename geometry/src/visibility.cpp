@@ -518,7 +518,10 @@ VisibilityRouter::Row& VisibilityRouter::seen_row(Point2 p) const {
 bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
   signed char& known = row.seen[node];
   if (known == kUnknown) {
-    if (!row.fan && row.asked <= kFanAfter && ++row.asked > kFanAfter) {
+    // A point that is not finite gets no fan: it has no direction to bin edges by (fan_of()
+    // would take a bin of NaN); its legs are measured along the grid.
+    if (!row.fan && row.asked <= kFanAfter && ++row.asked > kFanAfter &&
+        std::isfinite(p.x) && std::isfinite(p.y)) {
       // Kept within a budget: from inside a field of long needles (a star of 200 spikes) each edge
       // spans a sixth of the turn, 96 kB a fan, and 15,000 run ends asked often enough to get one
       // held 1.5 GB. Past the budget a point asks along the grid (more tests, the same answers:
