@@ -100,7 +100,8 @@ bool same_runs(const LaneRuns& a, const LaneRuns& b) {
 // to see scanned and the list pruned whole (kept as the reference), bit for bit, on the split
 // corpus's shapes (narrow arms, combs, slivers, holes) and traced outlines at many directions,
 // footprints of 1-3 spacings, slivers' lengths 0-4 footprints, with and without a margin to
-// bridge, a separate area to see, one equal to the area flown, and a shared grid; its buffer
+// bridge, a separate area to see, one equal to the area flown, one with the same ring sizes but a
+// vertex moved, and a shared grid; its buffer
 // holding anything before.
 TEST(LaneRuns, TheRunsOfTheCheckOnEverySample) {
   test::Rng rng(5256);
@@ -112,7 +113,7 @@ TEST(LaneRuns, TheRunsOfTheCheckOnEverySample) {
   std::vector<Point2> buffer(5, Point2{3, 4});
   for (std::size_t k = 0; k < areas.size(); ++k) {
     const std::vector<Ring> rings = geometry::rings_of(areas[k]);
-    for (int d = 0; d < 6; ++d) {
+    for (int d = 0; d < 7; ++d) {
       const double spacing = 10 + 30 * unit(rng);
       LaneRunSettings s = settings(180 * unit(rng), spacing, spacing * (1 + 2 * unit(rng)));
       s.sliver_length_footprints = d % 3 == 0 ? 0.0 : 4 * unit(rng);
@@ -129,6 +130,13 @@ TEST(LaneRuns, TheRunsOfTheCheckOnEverySample) {
       }
       if (d == 3) area.see = {rings.front()};  // see the holes too
       if (d == 2) area.see = rings;            // the same area, bit for bit
+      if (d == 6) {  // the same ring sizes, one vertex 20 m further out: not the area flown
+        area.see = rings;
+        Point2& v = area.see.front().front();
+        const Point2 c = areas[k].outer[areas[k].outer.size() / 2];
+        const double away = std::hypot(v.x - c.x, v.y - c.y);
+        if (away > 0) v = v + (v - c) * (20 / away);
+      }
       const LaneRuns fast = lane_runs(area, s, buffer);
       const LaneRuns every = detail::lane_runs_on_every_sample(area, s);
       ASSERT_TRUE(same_runs(fast, every)) << "area " << k << " setting " << d;
