@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_runs.hpp"
 #include "swath/geometry/turn.hpp"
 
 namespace swath::geometry {
@@ -276,30 +277,14 @@ Ring chains_ring(const std::vector<Chains>& pieces, std::span<const std::size_t>
 // the order sort_by_runs() gives (a sort's whole, where there are too many runs).
 template <typename T, typename Less>
 void merge_by_runs(std::vector<T>& v, std::vector<T>& spare, Less less) {
-  struct Run {
-    std::size_t begin, end;
-    bool decreasing;
-  };
-  thread_local std::vector<Run> runs;
+  thread_local std::vector<SortedRun> runs;
   thread_local std::vector<std::size_t> bounds, merged;
-  runs.clear();
-  const std::size_t most = v.size() / 8;
-  for (std::size_t i = 0; i < v.size();) {
-    std::size_t j = i + 1;
-    const bool decreasing = j < v.size() && less(v[j], v[i]);
-    if (decreasing)
-      while (j < v.size() && less(v[j], v[j - 1])) ++j;
-    else
-      while (j < v.size() && !less(v[j], v[j - 1])) ++j;
-    runs.push_back({i, j, decreasing});
-    if (runs.size() > most) {  // too many: sorted whole
-      std::sort(v.begin(), v.end(), less);
-      return;
-    }
-    i = j;
+  if (!sorted_runs(v, less, runs)) {  // too many: sorted whole
+    std::sort(v.begin(), v.end(), less);
+    return;
   }
   bounds.assign(1, 0);
-  for (const Run& r : runs) {
+  for (const SortedRun& r : runs) {
     if (r.decreasing)
       std::reverse(v.begin() + std::ptrdiff_t(r.begin), v.begin() + std::ptrdiff_t(r.end));
     bounds.push_back(r.end);

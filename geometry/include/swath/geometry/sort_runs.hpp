@@ -10,19 +10,18 @@
 
 namespace swath::geometry {
 
-/// Sorts `v` by `less` (a strict weak order) with the result std::sort(v.begin(), v.end(), less)
-/// gives: the runs already in order (non-decreasing, or strictly decreasing and reversed) are
-/// merged pairwise when there are few (at most one per 8 elements), else v is sorted whole. Where
-/// two elements are equivalent (neither less) std::sort's order between them is its own, so
-/// unless `equivalents_alike` (equivalent elements are the same value, e.g. equal points) the
-/// merged result is checked and v sorted whole from its first order when two are equivalent.
+/// A stretch [begin, end) of a sequence already in order by a `less`: non-decreasing, or strictly
+/// decreasing (to be reversed).
+struct SortedRun {
+  std::size_t begin, end;
+  bool decreasing;
+};
+
+/// The runs of `v` already in order by `less`, front to back, into `runs`; false (and `runs`
+/// incomplete) when there are more than one per 8 elements: then sorting whole is cheaper.
 template <typename T, typename Less>
-void sort_by_runs(std::vector<T>& v, Less less, bool equivalents_alike) {
-  struct Run {
-    std::size_t begin, end;
-    bool decreasing;
-  };
-  std::vector<Run> runs;
+bool sorted_runs(const std::vector<T>& v, Less less, std::vector<SortedRun>& runs) {
+  runs.clear();
   const std::size_t most = v.size() / 8;
   for (std::size_t i = 0; i < v.size();) {
     std::size_t j = i + 1;
@@ -32,10 +31,22 @@ void sort_by_runs(std::vector<T>& v, Less less, bool equivalents_alike) {
     else
       while (j < v.size() && !less(v[j], v[j - 1])) ++j;
     runs.push_back({i, j, decreasing});
-    if (runs.size() > most) break;  // too many: no need to count on
+    if (runs.size() > most) return false;  // too many: no need to count on
     i = j;
   }
-  if (runs.size() > most) {
+  return true;
+}
+
+/// Sorts `v` by `less` (a strict weak order) with the result std::sort(v.begin(), v.end(), less)
+/// gives: the runs already in order (non-decreasing, or strictly decreasing and reversed) are
+/// merged pairwise when there are few (at most one per 8 elements), else v is sorted whole. Where
+/// two elements are equivalent (neither less) std::sort's order between them is its own, so
+/// unless `equivalents_alike` (equivalent elements are the same value, e.g. equal points) the
+/// merged result is checked and v sorted whole from its first order when two are equivalent.
+template <typename T, typename Less>
+void sort_by_runs(std::vector<T>& v, Less less, bool equivalents_alike) {
+  std::vector<SortedRun> runs;
+  if (!sorted_runs(v, less, runs)) {
     std::sort(v.begin(), v.end(), less);
     return;
   }
@@ -43,7 +54,7 @@ void sort_by_runs(std::vector<T>& v, Less less, bool equivalents_alike) {
   if (!equivalents_alike) first_order = v;
   const auto at = [&](std::size_t k) { return v.begin() + std::ptrdiff_t(k); };
   std::vector<std::size_t> bounds{0};
-  for (const Run& r : runs) {
+  for (const SortedRun& r : runs) {
     if (r.decreasing) std::reverse(at(r.begin), at(r.end));
     bounds.push_back(r.end);
   }
