@@ -48,6 +48,7 @@ struct Span {
 // without its calls (they were most of sorting a row's crossings). More: std::sort itself.
 inline void sort_crossings(double* first, double* last) {
   if (last - first > 16) return std::sort(first, last);
+  if (last - first < 2) return;  // nothing to sort; nor first + 1 of a null first (no crossings)
   for (double* i = first + 1; i < last; ++i) {
     const double v = *i;
     double* j = i;
