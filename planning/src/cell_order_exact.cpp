@@ -349,9 +349,7 @@ class ExactSearch {
       value[u] = known[u] ? exact(u) : before[u] + low_[at] + internal_[s2];
     }
     if constexpr (kLow) {
-      double best = kInf;
-      for (std::size_t u = 0; u < variants_[b]; ++u) best = std::min(best, value[u]);
-      return best;
+      return cell_order_detail::least_of(value, variants_[b]);
     } else {
       return cell_order_detail::first_least(variants_[b], value, known, exact).first;
     }

@@ -445,6 +445,14 @@ class Transit {
   }
 };
 
+// The least of values[0] to values[count - 1] (infinity for none), kept as a scan in order
+// keeping strict improvements finds it (a layer's least variant).
+inline double least_of(const double* values, std::size_t count) {
+  double least = kInf;
+  for (std::size_t i = 0; i < count; ++i) least = std::min(least, values[i]);
+  return least;
+}
+
 inline std::uint64_t bit(std::size_t cell) {
   return cell < 63 ? std::uint64_t{1} << cell : 0;
 }
@@ -745,9 +753,8 @@ class VariantTable {
     // does a layer further on). None counts as filled then (the next move keeps none), as where
     // no layer was kept.
     if (from > 0) {
-      double before = kInf;
-      for (std::size_t u = 0; u < p.cells[order[from - 1]].size(); ++u)
-        before = std::min(before, cost_[(from - 1) * kMaxVariants + u]);
+      const double before =
+          least_of(&cost_[(from - 1) * kMaxVariants], p.cells[order[from - 1]].size());
       if (before + t.least_step(order[from - 1], order[from]) + ahead_[0] >= give_up_m + margin_m) {
         low_end_ = from;
         return true;
@@ -825,10 +832,9 @@ class VariantTable {
   /// ahead_[k - from] at least `reject_m` (low_layers()).
   bool rejects_at(const CellOrderProblem& p, const std::vector<std::size_t>& order,
                   std::size_t from, std::size_t k, double reject_m) const {
-    const double* layer = &low_[(k - from) * kMaxVariants];
-    double least = kInf;
-    for (std::size_t v = 0; v < p.cells[order[k]].size(); ++v) least = std::min(least, layer[v]);
-    return least + ahead_[k - from] >= reject_m;
+    return least_of(&low_[(k - from) * kMaxVariants], p.cells[order[k]].size()) +
+               ahead_[k - from] >=
+           reject_m;
   }
   /// Asks the transit (or leg from home, or with `home` the leg home after it) with the shortest
   /// bound (the latest of equal ones) among those not known yet on the way low_layers() leads to
