@@ -849,6 +849,14 @@ TEST(CellOrderSearch, LeastStepBoundsEveryStepBetweenTwoCells) {
           if (c1 == c2) continue;
           const double step = t.least_step(c1, c2);
           ASSERT_GE(step, t.least_into(c2) + t.least_internal(c2));
+          // Exactly the least straight bound (less 1e-12 of it) plus the internal length
+          // entered, over every pair of their variants, whatever has been asked since.
+          double least = std::numeric_limits<double>::infinity();
+          for (const CellVariant& from : p.cells[c1])
+            for (const CellVariant& to : p.cells[c2])
+              least = std::min(
+                  least, geometry::distance(from.exit, to.entry) * (1 - 1e-12) + to.internal_m);
+          ASSERT_EQ(step, least) << "problem " << k << " cells " << c1 << " " << c2;
           sharper += asked == 0 && step > t.least_into(c2) + t.least_internal(c2);
           for (std::size_t u = 0; u < p.cells[c1].size(); ++u)
             for (std::size_t v = 0; v < p.cells[c2].size(); ++v) {
@@ -860,6 +868,31 @@ TEST(CellOrderSearch, LeastStepBoundsEveryStepBetweenTwoCells) {
         }
   }
   EXPECT_GT(sharper, 100u);
+}
+
+// Where the pairs' bounds are not kept, least_step() falls back to the bound it sharpens: more
+// than 320 variants in all (the scan of every pair is quadratic), and into or out of a cell
+// without variants (no way through it to bound).
+TEST(CellOrderSearch, LeastStepFallsBackWhereNoPairIsKept) {
+  std::mt19937_64 rng(5258);
+  CellOrderProblem many = runs_problem(rng, 170, false);  // 2-4 variants a cell: > 320 in all
+  std::size_t variants = 0;
+  for (const auto& cell : many.cells) variants += cell.size();
+  ASSERT_GT(variants, 320u);
+  cell_order_detail::Transit t(many);
+  ASSERT_TRUE(t.bounded());
+  for (std::size_t c1 = 0; c1 < many.cells.size(); c1 += 7)
+    for (std::size_t c2 = 0; c2 < many.cells.size(); c2 += 5)
+      if (c1 != c2) ASSERT_EQ(t.least_step(c1, c2), t.least_into(c2) + t.least_internal(c2));
+  CellOrderProblem empty = runs_problem(rng, 8, true);
+  empty.cells[3].clear();
+  cell_order_detail::Transit e(empty);
+  ASSERT_TRUE(e.bounded());
+  for (std::size_t c = 0; c < empty.cells.size(); ++c) {
+    if (c == 3) continue;
+    EXPECT_EQ(e.least_step(3, c), e.least_into(c) + e.least_internal(c));
+    EXPECT_EQ(e.least_step(c, 3), e.least_into(3) + e.least_internal(3));
+  }
 }
 
 // The local search rejects most moves a few layers in: once a layer's least cost plus a bound on
