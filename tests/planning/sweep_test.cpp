@@ -256,6 +256,19 @@ Sweep reference_plan_sweep(const geometry::Polygon& area, const SweepSettings& s
   return sweep;
 }
 
+// The fast sweep's lines are the reference's bit for bit: as many, each end the same bits (call it
+// with ASSERT_NO_FATAL_FAILURE: it stops at the first difference).
+void expect_same_lines(const Sweep& fast, const Sweep& truth) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  ASSERT_EQ(fast.lines.size(), truth.lines.size());
+  for (std::size_t i = 0; i < truth.lines.size(); ++i)
+    for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
+                               std::pair{fast.lines[i].end, truth.lines[i].end}}) {
+      ASSERT_EQ(bits(p.x), bits(q.x)) << "line " << i;
+      ASSERT_EQ(bits(p.y), bits(q.y)) << "line " << i;
+    }
+}
+
 TEST(SweepProperty, StripsWalkedToAsSearchedBitForBit) {
   test::Rng rng(5253);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -291,13 +304,7 @@ TEST(SweepProperty, StripsWalkedToAsSearchedBitForBit) {
     const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
     ASSERT_EQ(bits(fast.angle_deg), bits(truth.angle_deg)) << k;
     ASSERT_EQ(bits(fast.height_m), bits(truth.height_m)) << k;
-    ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k;
-    for (std::size_t i = 0; i < truth.lines.size(); ++i)
-      for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
-                                 std::pair{fast.lines[i].end, truth.lines[i].end}}) {
-        ASSERT_EQ(bits(p.x), bits(q.x)) << "area " << k << ", line " << i;
-        ASSERT_EQ(bits(p.y), bits(q.y)) << "area " << k << ", line " << i;
-      }
+    ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << "area " << k;
     lines += truth.lines.size();
   }
   EXPECT_GT(lines, 3000u);
@@ -337,13 +344,8 @@ TEST(SweepProperty, TracedPiecesAsTheReferenceBitForBit) {
         const Polygon one{piece, {}};
         const Sweep fast = plan_sweep(one, s), truth = reference_plan_sweep(one, s);
         ASSERT_EQ(bits(fast.height_m), bits(truth.height_m)) << k << " " << d;
-        ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k << " " << d << " " << pieces;
+        ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << k << " " << d << " " << pieces;
         for (std::size_t i = 0; i < truth.lines.size(); ++i) {
-          for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
-                                     std::pair{fast.lines[i].end, truth.lines[i].end}}) {
-            ASSERT_EQ(bits(p.x), bits(q.x)) << k << " " << d << ", line " << i;
-            ASSERT_EQ(bits(p.y), bits(q.y)) << k << " " << d << ", line " << i;
-          }
           const double y = rotate(truth.lines[i].start, -s.angle_deg).y;
           off_grid += std::none_of(s.ordinates.begin(), s.ordinates.end(),
                                    [&](double g) { return std::abs(g - y) < 1e-6; });
@@ -365,7 +367,6 @@ TEST(SweepProperty, TracedPiecesAsTheReferenceBitForBit) {
 TEST(SweepProperty, PointStripsWalkedInBlocksBitForBit) {
   test::Rng rng(5256);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
   std::size_t lines = 0, through_vertices = 0;
   for (int k = 0; k < 240; ++k) {
     Polygon area;
@@ -394,13 +395,7 @@ TEST(SweepProperty, PointStripsWalkedInBlocksBitForBit) {
       std::sort(s.ordinates.begin(), s.ordinates.end());
     }
     const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
-    ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k;
-    for (std::size_t i = 0; i < truth.lines.size(); ++i)
-      for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
-                                 std::pair{fast.lines[i].end, truth.lines[i].end}}) {
-        ASSERT_EQ(bits(p.x), bits(q.x)) << "area " << k << ", line " << i;
-        ASSERT_EQ(bits(p.y), bits(q.y)) << "area " << k << ", line " << i;
-      }
+    ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << "area " << k;
     lines += truth.lines.size();
     for (const SweepLine& l : truth.lines)
       for (const Point2& v : area.outer)
