@@ -90,6 +90,26 @@ void widen(Strip& strip, Point2 a, Point2 b, double y0, double y1) {
   }
 }
 
+// Edge i of `ring`, lower end first, clipped to each strip it meets, widens that strip's x extent
+// (and, with `points`, the point strip of the same index clipped to its own ordinate): from the
+// first strip whose top reaches the edge (`first_reaching`) up to the first above it (the strips'
+// bottoms ascend).
+template <typename FirstReaching>
+void widen_met(const geometry::Ring& ring, std::size_t i, std::vector<Strip>& strips,
+               FirstReaching& first_reaching, std::vector<Strip>* points) {
+  Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
+  if (a.y > b.y) std::swap(a, b);
+  const auto clipped = [&](Strip& strip) {
+    const double y0 = std::max(a.y, strip.lo);
+    const double y1 = std::min(b.y, strip.hi);
+    if (!(y0 > y1)) widen(strip, a, b, y0, y1);
+  };
+  for (std::size_t k = first_reaching(a.y); k < strips.size() && strips[k].lo <= b.y; ++k) {
+    if (points) clipped((*points)[k]);
+    clipped(strips[k]);
+  }
+}
+
 // The walk of the turned rings' edges that finds the strips' extents.
 class StripWalk {
  public:
@@ -139,23 +159,8 @@ class StripWalk {
     // Each edge, clipped to every strip it meets, widens that strip's x extent.
     for (std::size_t r = 0; r < ring_count_; ++r) {
       const geometry::Ring& ring = rings_[r];
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
-        if (a.y > b.y) std::swap(a, b);
-        auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
-        for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
-          if (points) {
-            Strip& point = (*points)[std::size_t(strip - strips.begin())];
-            const double y0 = std::max(a.y, point.lo);
-            const double y1 = std::min(b.y, point.hi);
-            if (!(y0 > y1)) widen(point, a, b, y0, y1);
-          }
-          const double y0 = std::max(a.y, strip->lo);
-          const double y1 = std::min(b.y, strip->hi);
-          if (y0 > y1) continue;
-          widen(*strip, a, b, y0, y1);
-        }
-      }
+      for (std::size_t i = 0; i < ring.size(); ++i)
+        widen_met(ring, i, strips, first_reaching, points);
     }
   }
 
@@ -181,17 +186,7 @@ class StripWalk {
         }
         const std::size_t k = first_reaching(lo);
         if (k == strips.size() || strips[k].lo > hi) continue;
-        for (std::size_t i = i0; i < i1; ++i) {
-          Point2 a = ring[i], b = ring[i + 1 < n ? i + 1 : 0];
-          if (a.y > b.y) std::swap(a, b);
-          auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
-          for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
-            const double y0 = std::max(a.y, strip->lo);
-            const double y1 = std::min(b.y, strip->hi);
-            if (y0 > y1) continue;
-            widen(*strip, a, b, y0, y1);
-          }
-        }
+        for (std::size_t i = i0; i < i1; ++i) widen_met(ring, i, strips, first_reaching, nullptr);
       }
     }
   }
