@@ -90,24 +90,39 @@ void widen(Strip& strip, Point2 a, Point2 b, double y0, double y1) {
   }
 }
 
-// Edge i of `ring`, lower end first, clipped to each strip it meets, widens that strip's x extent
-// (and, with `points`, the point strip of the same index clipped to its own ordinate): from the
-// first strip whose top reaches the edge (`first_reaching`) up to the first above it (the strips'
-// bottoms ascend).
-template <typename FirstReaching>
-void widen_met(const geometry::Ring& ring, std::size_t i, std::vector<Strip>& strips,
-               FirstReaching& first_reaching, std::vector<Strip>* points) {
+// Edge i of `ring`, lower end first.
+std::pair<Point2, Point2> lower_first(const geometry::Ring& ring, std::size_t i) {
   Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
   if (a.y > b.y) std::swap(a, b);
+  return {a, b};
+}
+
+// The edge a -> b (a below b), clipped to each strip it meets, widens that strip's x extent (and,
+// with `points`, the point strip of the same index clipped to its own ordinate): from `first`, the
+// first strip whose top reaches the edge, up to the first above it (the strips' bottoms ascend).
+void widen_met(Point2 a, Point2 b, std::vector<Strip>& strips, std::size_t first,
+               std::vector<Strip>* points) {
   const auto clipped = [&](Strip& strip) {
     const double y0 = std::max(a.y, strip.lo);
     const double y1 = std::min(b.y, strip.hi);
     if (!(y0 > y1)) widen(strip, a, b, y0, y1);
   };
-  for (std::size_t k = first_reaching(a.y); k < strips.size() && strips[k].lo <= b.y; ++k) {
+  for (std::size_t k = first; k < strips.size() && strips[k].lo <= b.y; ++k) {
     if (points) clipped((*points)[k]);
     clipped(strips[k]);
   }
+}
+
+// Whether widen_met(a, b, strips, first, points), with `first` the first strip whose top reaches
+// a.y (tops ascending), widens strip k alone, clipped to the edge itself (no point strip): the
+// edge lies within strip k, the strip before it tops out below the edge and the one after it
+// starts above. A NaN ordinate fails every test.
+bool within_one(Point2 a, Point2 b, const std::vector<Strip>& strips, std::size_t k,
+                const std::vector<Strip>* points) {
+  if (k >= strips.size() || !(strips[k].lo <= a.y && b.y <= strips[k].hi)) return false;
+  if (k > 0 && !(strips[k - 1].hi < a.y)) return false;
+  if (k + 1 < strips.size() && !(strips[k + 1].lo > b.y)) return false;
+  return !points || (*points)[k].hi < a.y || (*points)[k].lo > b.y;
 }
 
 // The walk of the turned rings' edges that finds the strips' extents.
@@ -156,11 +171,19 @@ class StripWalk {
       walk_points(strips, first_reaching);
       return;
     }
-    // Each edge, clipped to every strip it meets, widens that strip's x extent.
+    // Each edge, clipped to every strip it meets, widens that strip's x extent. Most edges (metres
+    // long; the strips a lane spacing high) lie within the last edge's strip and meet no point
+    // strip: that one is widened without the walk to it (within_one(): the same strip, clipped
+    // the same; the walk and its loop were a third of a piece's sweep).
     for (std::size_t r = 0; r < ring_count_; ++r) {
       const geometry::Ring& ring = rings_[r];
-      for (std::size_t i = 0; i < ring.size(); ++i)
-        widen_met(ring, i, strips, first_reaching, points);
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const auto [a, b] = lower_first(ring, i);
+        if (tops_ascend && within_one(a, b, strips, near, points))
+          widen(strips[near], a, b, a.y, b.y);
+        else
+          widen_met(a, b, strips, first_reaching(a.y), points);
+      }
     }
   }
 
@@ -186,7 +209,10 @@ class StripWalk {
         }
         const std::size_t k = first_reaching(lo);
         if (k == strips.size() || strips[k].lo > hi) continue;
-        for (std::size_t i = i0; i < i1; ++i) widen_met(ring, i, strips, first_reaching, nullptr);
+        for (std::size_t i = i0; i < i1; ++i) {
+          const auto [a, b] = lower_first(ring, i);
+          widen_met(a, b, strips, first_reaching(a.y), nullptr);
+        }
       }
     }
   }
