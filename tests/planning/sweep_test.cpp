@@ -313,28 +313,36 @@ TEST(SweepProperty, StripsWalkedToAsSearchedBitForBit) {
 // An edge within the last edge's strip, meeting no point strip, widens that strip without the
 // walk to it: the same extents, bit for bit, as the reference where edges end exactly on the
 // strips' bounds and on the lanes (integer rings, lanes 2 m apart on even or odd ordinates, so
-// the whole strips' bounds fall on vertices too), whole strips alone (strip rule), with their
-// lanes' point strips in the same walk (protrusions filled) and point strips alone.
+// the whole strips' bounds fall on vertices too; holes, so that a ring's first edge lies anywhere),
+// whole strips alone (strip rule), with their lanes' point strips in the same walk (protrusions
+// filled) and point strips alone.
 TEST(SweepProperty, EdgesEndingOnStripBoundsBitForBit) {
   test::Rng rng(5257);
   std::size_t lines = 0, on_bounds = 0;
-  for (int k = 0; k < 600; ++k) {
+  for (int k = 0; k < 900; ++k) {
     Polygon area;
     area.outer = test::random_grid_ring(rng, 4 + std::size_t(k % 40), 12);
+    // Holes: a ring's first edge lies wherever it may, not where the last ring's ended.
+    for (int h = 0; h < (k / 3) % 3; ++h)
+      area.holes.push_back(test::random_grid_ring(rng, 3 + std::size_t(k % 7), 12));
     SweepSettings s;
     s.angle_deg = 0.0;
-    s.line_spacing_m = 2.0;
-    s.footprint_width_m = k % 2 ? 2.0 : 3.0;
+    s.line_spacing_m = k % 4 < 2 ? 2.0 : 4.0;
+    s.footprint_width_m = s.line_spacing_m * (k % 2 ? 1.0 : 1.5);
     s.segments = k % 3 == 0 ? SegmentRule::strip : SegmentRule::inside;
     s.fill_protrusions = k % 3 == 1;
-    for (double y = -2 + k % 2; y < 14; y += 2) s.ordinates.push_back(y);
+    for (double y = -4 + (k / 2) % 4; y < 16; y += s.line_spacing_m) s.ordinates.push_back(y);
     const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
     ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << "area " << k;
     lines += truth.lines.size();
-    for (const Point2& v : area.outer) on_bounds += int(v.y) % 2 != k % 2;
+    for (std::size_t i = 0; i + 1 < s.ordinates.size(); ++i)
+      for (const geometry::Ring& ring : geometry::rings_of(area))
+        for (const Point2& v : ring) on_bounds += v.y == (s.ordinates[i] + s.ordinates[i + 1]) / 2;
   }
-  EXPECT_GT(lines, 2000u);
-  EXPECT_GT(on_bounds, 2000u);
+  EXPECT_GT(lines, 3000u);
+  EXPECT_GT(on_bounds, 3000u);
+  RecordProperty("lines", std::to_string(lines));
+  RecordProperty("vertices_on_bounds", std::to_string(on_bounds));
 }
 
 // The split's own use: every piece of the boustrophedon decomposition of traced outlines (narrow
