@@ -90,6 +90,67 @@ void widen(Strip& strip, Point2 a, Point2 b, double y0, double y1) {
   }
 }
 
+// Edge i of `ring`, lower end first.
+std::pair<Point2, Point2> lower_first(const geometry::Ring& ring, std::size_t i) {
+  Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
+  if (a.y > b.y) std::swap(a, b);
+  return {a, b};
+}
+
+// The edge a -> b (a below b), clipped to each strip it meets, widens that strip's x extent (and,
+// with `points`, the point strip of the same index clipped to its own ordinate): from `first`, the
+// first strip whose top reaches the edge, up to the first above it (the strips' bottoms ascend).
+void widen_met(Point2 a, Point2 b, std::vector<Strip>& strips, std::size_t first,
+               std::vector<Strip>* points) {
+  const auto clipped = [&](Strip& strip) {
+    const double y0 = std::max(a.y, strip.lo);
+    const double y1 = std::min(b.y, strip.hi);
+    if (!(y0 > y1)) widen(strip, a, b, y0, y1);
+  };
+  for (std::size_t k = first; k < strips.size() && strips[k].lo <= b.y; ++k) {
+    if (points) clipped((*points)[k]);
+    clipped(strips[k]);
+  }
+}
+
+// Whether widen_met(a, b, strips, first, points), with `first` the first strip whose top reaches
+// a.y (tops ascending), widens strip k alone, clipped to the edge itself (no point strip): the
+// edge lies within strip k, the strip before it tops out below the edge and the one after it
+// starts above. Strip k's bounds are kept while it is asked again (the last edge's strip is most
+// edges'), infinities where there is no strip before or after it or no point strip: they refuse
+// only infinite ordinates, which the walk then takes. A NaN ordinate fails every test.
+class WithinOne {
+ public:
+  WithinOne(const std::vector<Strip>& strips, const std::vector<Strip>* points)
+      : strips_(strips), points_(points) {}
+  bool operator()(Point2 a, Point2 b, std::size_t k) {
+    if (k != k_) take(k);
+    return lo_ <= a.y && b.y <= hi_ && below_ < a.y && above_ > b.y &&
+           (point_hi_ < a.y || point_lo_ > b.y);
+  }
+
+ private:
+  void take(std::size_t k) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    k_ = k;
+    if (k >= strips_.size()) {
+      lo_ = std::numeric_limits<double>::quiet_NaN();  // no strip: refuses every edge
+      return;
+    }
+    lo_ = strips_[k].lo;
+    hi_ = strips_[k].hi;
+    below_ = k > 0 ? strips_[k - 1].hi : -inf;
+    above_ = k + 1 < strips_.size() ? strips_[k + 1].lo : inf;
+    point_lo_ = points_ ? (*points_)[k].lo : inf;
+    point_hi_ = points_ ? (*points_)[k].hi : -inf;
+  }
+
+  const std::vector<Strip>& strips_;
+  const std::vector<Strip>* points_;
+  std::size_t k_ = static_cast<std::size_t>(-1);
+  double lo_ = 0, hi_ = 0, below_ = 0, above_ = 0, point_lo_ = 0, point_hi_ = 0;
+};
+
 // The walk of the turned rings' edges that finds the strips' extents.
 class StripWalk {
  public:
@@ -136,25 +197,20 @@ class StripWalk {
       walk_points(strips, first_reaching);
       return;
     }
-    // Each edge, clipped to every strip it meets, widens that strip's x extent.
+    // Each edge, clipped to every strip it meets, widens that strip's x extent. Most edges (metres
+    // long; the strips a lane spacing high) lie within the last edge's strip and meet no point
+    // strip: that one is widened without the walk to it and the loop over the strips (WithinOne:
+    // the same strip, clipped the same; a third of the edges of the split's pieces still cross a
+    // strip's bound or its lane).
+    WithinOne within_one(strips, points);
     for (std::size_t r = 0; r < ring_count_; ++r) {
       const geometry::Ring& ring = rings_[r];
       for (std::size_t i = 0; i < ring.size(); ++i) {
-        Point2 a = ring[i], b = ring[i + 1 < ring.size() ? i + 1 : 0];
-        if (a.y > b.y) std::swap(a, b);
-        auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
-        for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
-          if (points) {
-            Strip& point = (*points)[std::size_t(strip - strips.begin())];
-            const double y0 = std::max(a.y, point.lo);
-            const double y1 = std::min(b.y, point.hi);
-            if (!(y0 > y1)) widen(point, a, b, y0, y1);
-          }
-          const double y0 = std::max(a.y, strip->lo);
-          const double y1 = std::min(b.y, strip->hi);
-          if (y0 > y1) continue;
-          widen(*strip, a, b, y0, y1);
-        }
+        const auto [a, b] = lower_first(ring, i);
+        if (tops_ascend && within_one(a, b, near))
+          widen(strips[near], a, b, a.y, b.y);
+        else
+          widen_met(a, b, strips, first_reaching(a.y), points);
       }
     }
   }
@@ -182,15 +238,8 @@ class StripWalk {
         const std::size_t k = first_reaching(lo);
         if (k == strips.size() || strips[k].lo > hi) continue;
         for (std::size_t i = i0; i < i1; ++i) {
-          Point2 a = ring[i], b = ring[i + 1 < n ? i + 1 : 0];
-          if (a.y > b.y) std::swap(a, b);
-          auto strip = strips.begin() + std::ptrdiff_t(first_reaching(a.y));
-          for (; strip != strips.end() && strip->lo <= b.y; ++strip) {
-            const double y0 = std::max(a.y, strip->lo);
-            const double y1 = std::min(b.y, strip->hi);
-            if (y0 > y1) continue;
-            widen(*strip, a, b, y0, y1);
-          }
+          const auto [a, b] = lower_first(ring, i);
+          widen_met(a, b, strips, first_reaching(a.y), nullptr);
         }
       }
     }

@@ -156,6 +156,26 @@ TEST(BoustrophedonProperty, CombsAndHoles) {
   }
 }
 
+// The fast decomposition is the reference's bit for bit: the same pieces, the same cells of them
+// and the same cells' rings (call it with ASSERT_NO_FATAL_FAILURE: it stops at the first
+// difference).
+void expect_same_decomposition(const Decomposition& fast, const Decomposition& truth) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  const auto same = [&](const Ring& a, const Ring& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (bits(a[i].x) != bits(b[i].x) || bits(a[i].y) != bits(b[i].y)) return false;
+    return true;
+  };
+  ASSERT_EQ(fast.pieces.size(), truth.pieces.size());
+  for (std::size_t i = 0; i < truth.pieces.size(); ++i)
+    ASSERT_TRUE(same(fast.pieces[i], truth.pieces[i])) << "piece " << i;
+  ASSERT_EQ(fast.cells, truth.cells);
+  ASSERT_EQ(fast.cell_rings.size(), truth.cell_rings.size());
+  for (std::size_t i = 0; i < truth.cell_rings.size(); ++i)
+    ASSERT_TRUE(same(fast.cell_rings[i], truth.cell_rings[i])) << "cell " << i;
+}
+
 // The decomposition keeps its buffers and its chains' buffers between calls (the thread's): it must
 // give, bit for bit, what it gave when it made them anew (the function as it was, kept in
 // decomposition_reference.hpp): traced outlines (narrow arms, holes, nearly collinear vertices),
@@ -164,14 +184,6 @@ TEST(BoustrophedonProperty, CombsAndHoles) {
 TEST(BoustrophedonProperty, AsTheReferenceBitForBit) {
   test::Rng rng(5254);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto same = [](const Ring& a, const Ring& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (std::bit_cast<std::uint64_t>(a[i].x) != std::bit_cast<std::uint64_t>(b[i].x) ||
-          std::bit_cast<std::uint64_t>(a[i].y) != std::bit_cast<std::uint64_t>(b[i].y))
-        return false;
-    return true;
-  };
   std::size_t pieces = 0, cells = 0, refused = 0;
   for (int k = 0; k < 40; ++k) {
     Polygon area;
@@ -201,15 +213,9 @@ TEST(BoustrophedonProperty, AsTheReferenceBitForBit) {
         ++refused;
         continue;
       }
-      const Decomposition fast = boustrophedon_decomposition(rings, angle);
-      ASSERT_EQ(fast.pieces.size(), truth.pieces.size()) << k << " " << d;
-      for (std::size_t i = 0; i < truth.pieces.size(); ++i)
-        ASSERT_TRUE(same(fast.pieces[i], truth.pieces[i])) << k << " " << d << " piece " << i;
-      ASSERT_EQ(fast.cells, truth.cells) << k << " " << d;
-      ASSERT_EQ(fast.cell_rings.size(), truth.cell_rings.size()) << k << " " << d;
-      for (std::size_t i = 0; i < truth.cell_rings.size(); ++i)
-        ASSERT_TRUE(same(fast.cell_rings[i], truth.cell_rings[i]))
-            << k << " " << d << " cell " << i;
+      SCOPED_TRACE(std::to_string(k) + " " + std::to_string(d));
+      ASSERT_NO_FATAL_FAILURE(
+          expect_same_decomposition(boustrophedon_decomposition(rings, angle), truth));
       pieces += truth.pieces.size();
       cells += truth.cells.size();
     }
@@ -229,13 +235,6 @@ TEST(BoustrophedonProperty, AsTheReferenceBitForBit) {
 TEST(BoustrophedonProperty, AsTheReferenceWithRepeatedPoints) {
   test::Rng rng(5255);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
-  const auto same = [&](const Ring& a, const Ring& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (bits(a[i].x) != bits(b[i].x) || bits(a[i].y) != bits(b[i].y)) return false;
-    return true;
-  };
   std::size_t answered = 0, refused = 0;
   for (int k = 0; k < 24; ++k) {
     Polygon area;
@@ -279,15 +278,9 @@ TEST(BoustrophedonProperty, AsTheReferenceWithRepeatedPoints) {
         ++refused;
         continue;
       }
-      const Decomposition fast = boustrophedon_decomposition(rings, angle);
-      ASSERT_EQ(fast.pieces.size(), truth.pieces.size()) << k << " " << d;
-      for (std::size_t i = 0; i < truth.pieces.size(); ++i)
-        ASSERT_TRUE(same(fast.pieces[i], truth.pieces[i])) << k << " " << d << " piece " << i;
-      ASSERT_EQ(fast.cells, truth.cells) << k << " " << d;
-      ASSERT_EQ(fast.cell_rings.size(), truth.cell_rings.size()) << k << " " << d;
-      for (std::size_t i = 0; i < truth.cell_rings.size(); ++i)
-        ASSERT_TRUE(same(fast.cell_rings[i], truth.cell_rings[i]))
-            << k << " " << d << " cell " << i;
+      SCOPED_TRACE(std::to_string(k) + " " + std::to_string(d));
+      ASSERT_NO_FATAL_FAILURE(
+          expect_same_decomposition(boustrophedon_decomposition(rings, angle), truth));
       ++answered;
     }
   }

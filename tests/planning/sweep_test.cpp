@@ -256,6 +256,19 @@ Sweep reference_plan_sweep(const geometry::Polygon& area, const SweepSettings& s
   return sweep;
 }
 
+// The fast sweep's lines are the reference's bit for bit: as many, each end the same bits (call it
+// with ASSERT_NO_FATAL_FAILURE: it stops at the first difference).
+void expect_same_lines(const Sweep& fast, const Sweep& truth) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  ASSERT_EQ(fast.lines.size(), truth.lines.size());
+  for (std::size_t i = 0; i < truth.lines.size(); ++i)
+    for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
+                               std::pair{fast.lines[i].end, truth.lines[i].end}}) {
+      ASSERT_EQ(bits(p.x), bits(q.x)) << "line " << i;
+      ASSERT_EQ(bits(p.y), bits(q.y)) << "line " << i;
+    }
+}
+
 TEST(SweepProperty, StripsWalkedToAsSearchedBitForBit) {
   test::Rng rng(5253);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -291,16 +304,45 @@ TEST(SweepProperty, StripsWalkedToAsSearchedBitForBit) {
     const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
     ASSERT_EQ(bits(fast.angle_deg), bits(truth.angle_deg)) << k;
     ASSERT_EQ(bits(fast.height_m), bits(truth.height_m)) << k;
-    ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k;
-    for (std::size_t i = 0; i < truth.lines.size(); ++i)
-      for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
-                                 std::pair{fast.lines[i].end, truth.lines[i].end}}) {
-        ASSERT_EQ(bits(p.x), bits(q.x)) << "area " << k << ", line " << i;
-        ASSERT_EQ(bits(p.y), bits(q.y)) << "area " << k << ", line " << i;
-      }
+    ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << "area " << k;
     lines += truth.lines.size();
   }
   EXPECT_GT(lines, 3000u);
+}
+
+// An edge within the last edge's strip, meeting no point strip, widens that strip without the
+// walk to it: the same extents, bit for bit, as the reference where edges end exactly on the
+// strips' bounds and on the lanes (integer rings, lanes 2 m apart on even or odd ordinates, so
+// the whole strips' bounds fall on vertices too; holes, so that a ring's first edge lies anywhere),
+// whole strips alone (strip rule), with their lanes' point strips in the same walk (protrusions
+// filled) and point strips alone.
+TEST(SweepProperty, EdgesEndingOnStripBoundsBitForBit) {
+  test::Rng rng(5257);
+  std::size_t lines = 0, on_bounds = 0;
+  for (int k = 0; k < 900; ++k) {
+    Polygon area;
+    area.outer = test::random_grid_ring(rng, 4 + std::size_t(k % 40), 12);
+    // Holes: a ring's first edge lies wherever it may, not where the last ring's ended.
+    for (int h = 0; h < (k / 3) % 3; ++h)
+      area.holes.push_back(test::random_grid_ring(rng, 3 + std::size_t(k % 7), 12));
+    SweepSettings s;
+    s.angle_deg = 0.0;
+    s.line_spacing_m = k % 4 < 2 ? 2.0 : 4.0;
+    s.footprint_width_m = s.line_spacing_m * (k % 2 ? 1.0 : 1.5);
+    s.segments = k % 3 == 0 ? SegmentRule::strip : SegmentRule::inside;
+    s.fill_protrusions = k % 3 == 1;
+    for (double y = -4 + (k / 2) % 4; y < 16; y += s.line_spacing_m) s.ordinates.push_back(y);
+    const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
+    ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << "area " << k;
+    lines += truth.lines.size();
+    for (std::size_t i = 0; i + 1 < s.ordinates.size(); ++i)
+      for (const geometry::Ring& ring : geometry::rings_of(area))
+        for (const Point2& v : ring) on_bounds += v.y == (s.ordinates[i] + s.ordinates[i + 1]) / 2;
+  }
+  EXPECT_GT(lines, 3000u);
+  EXPECT_GT(on_bounds, 3000u);
+  RecordProperty("lines", std::to_string(lines));
+  RecordProperty("vertices_on_bounds", std::to_string(on_bounds));
 }
 
 // The split's own use: every piece of the boustrophedon decomposition of traced outlines (narrow
@@ -337,13 +379,8 @@ TEST(SweepProperty, TracedPiecesAsTheReferenceBitForBit) {
         const Polygon one{piece, {}};
         const Sweep fast = plan_sweep(one, s), truth = reference_plan_sweep(one, s);
         ASSERT_EQ(bits(fast.height_m), bits(truth.height_m)) << k << " " << d;
-        ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k << " " << d << " " << pieces;
+        ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << k << " " << d << " " << pieces;
         for (std::size_t i = 0; i < truth.lines.size(); ++i) {
-          for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
-                                     std::pair{fast.lines[i].end, truth.lines[i].end}}) {
-            ASSERT_EQ(bits(p.x), bits(q.x)) << k << " " << d << ", line " << i;
-            ASSERT_EQ(bits(p.y), bits(q.y)) << k << " " << d << ", line " << i;
-          }
           const double y = rotate(truth.lines[i].start, -s.angle_deg).y;
           off_grid += std::none_of(s.ordinates.begin(), s.ordinates.end(),
                                    [&](double g) { return std::abs(g - y) < 1e-6; });
@@ -365,7 +402,6 @@ TEST(SweepProperty, TracedPiecesAsTheReferenceBitForBit) {
 TEST(SweepProperty, PointStripsWalkedInBlocksBitForBit) {
   test::Rng rng(5256);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
   std::size_t lines = 0, through_vertices = 0;
   for (int k = 0; k < 240; ++k) {
     Polygon area;
@@ -394,13 +430,7 @@ TEST(SweepProperty, PointStripsWalkedInBlocksBitForBit) {
       std::sort(s.ordinates.begin(), s.ordinates.end());
     }
     const Sweep fast = plan_sweep(area, s), truth = reference_plan_sweep(area, s);
-    ASSERT_EQ(fast.lines.size(), truth.lines.size()) << k;
-    for (std::size_t i = 0; i < truth.lines.size(); ++i)
-      for (const auto& [p, q] : {std::pair{fast.lines[i].start, truth.lines[i].start},
-                                 std::pair{fast.lines[i].end, truth.lines[i].end}}) {
-        ASSERT_EQ(bits(p.x), bits(q.x)) << "area " << k << ", line " << i;
-        ASSERT_EQ(bits(p.y), bits(q.y)) << "area " << k << ", line " << i;
-      }
+    ASSERT_NO_FATAL_FAILURE(expect_same_lines(fast, truth)) << "area " << k;
     lines += truth.lines.size();
     for (const SweepLine& l : truth.lines)
       for (const Point2& v : area.outer)
