@@ -55,6 +55,31 @@ SegmentIndex::SegmentIndex(std::vector<Segment> segments, double cells_per_segme
       for (std::size_t c = c0; c <= c1; ++c)
         items_[fill[r * columns_ + c]++] = std::uint32_t(i) | (c == c0 ? kFirstInRow : 0);
     });
+  // The rays' rows: each segment once (at the first column of its run in the row), sorted by the
+  // abscissa a ray stops at (ties by index: the same order on every build).
+  ray_start_.assign(rows_ + 1, 0);
+  ray_split_.assign(rows_, 0);
+  by_right_.clear();
+  by_left_.clear();
+  for (std::size_t r = 0; r < rows_; ++r) {
+    for (std::uint32_t k = start_[r * columns_], end = start_[(r + 1) * columns_]; k < end; ++k) {
+      if (!(items_[k] & kFirstInRow)) continue;
+      const std::uint32_t i = items_[k] & kIndex;
+      const Segment& s = segments_[i];
+      by_right_.push_back({std::max(s.a.x, s.b.x), i});
+      by_left_.push_back({std::min(s.a.x, s.b.x), i});
+    }
+    ray_start_[r + 1] = std::uint32_t(by_right_.size());
+    const auto first = std::ptrdiff_t(ray_start_[r]);
+    std::sort(by_right_.begin() + first, by_right_.end(), [](RayEntry u, RayEntry v) {
+      return u.x > v.x || (u.x == v.x && u.index < v.index);
+    });
+    std::sort(by_left_.begin() + first, by_left_.end(), [](RayEntry u, RayEntry v) {
+      return u.x < v.x || (u.x == v.x && u.index < v.index);
+    });
+    const std::size_t middle = std::size_t(first) + (by_left_.size() - std::size_t(first)) / 2;
+    ray_split_[r] = middle < by_left_.size() ? by_left_[middle].x / 2 + by_right_[middle].x / 2 : 0;
+  }
 }
 
 }  // namespace swath::geometry

@@ -8,7 +8,12 @@
 
 #include "swath/geometry/classification.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_few.hpp"
 #include "visibility_tables.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace swath::geometry {
 namespace {
@@ -34,41 +39,8 @@ double polyline_length(const std::vector<Point2>& points) {
 }
 
 bool VisibilityRouter::inside_closed(Point2 p) const {
-  // locate_point() over every ring, on the edges the ray right of p may meet only (the others
-  // neither hold p nor cross the ray): on an edge is inside, else an odd number of crossings.
-  // Or on the ray to the left, where the index has fewer edges that way: each ring crosses the
-  // whole line through p an even number of times (edge_and_ray's half-open rule), so the two rays
-  // cross it equally often, up to 2 (exact predicates; x -> -x is exact, the ray to the left is
-  // the mirror image's ray to the right). An edge that holds p is found either way.
-  bool on_edge = false, odd = false;
-  const auto count = [&](EdgeAndRay where) {
-    on_edge |= where == EdgeAndRay::p_on_edge;
-    odd ^= where == EdgeAndRay::crosses;
-  };
-  // Most edges of the ray's row are apart: wholly above, below or behind p. edge_and_ray() says
-  // so by its first test, written out here before the call (mirrored for the ray to the left:
-  // -x < -p.x is x > p.x), so that those edges cost no call.
-  const auto [right, left] = edges_.ray_items(p);
-  const Segment* const segments = edges_.segments().data();
-  if (left < right) {
-    const auto mirrored = [](Point2 x) { return Point2{-x.x, x.y}; };
-    edges_.near_ray_left(p, [&](std::uint32_t e) {
-      const Segment& s = segments[e];
-      if ((s.a.y > p.y && s.b.y > p.y) || (s.a.y < p.y && s.b.y < p.y) ||
-          (s.a.x > p.x && s.b.x > p.x))
-        return;
-      count(edge_and_ray(mirrored(p), mirrored(s.a), mirrored(s.b)));
-    });
-  } else {
-    edges_.near_ray_right(p, [&](std::uint32_t e) {
-      const Segment& s = segments[e];
-      if ((s.a.y > p.y && s.b.y > p.y) || (s.a.y < p.y && s.b.y < p.y) ||
-          (s.a.x < p.x && s.b.x < p.x))
-        return;
-      count(edge_and_ray(p, s.a, s.b));
-    });
-  }
-  if (on_edge || odd) return true;
+  const RayCount cast = ray_count(p);
+  if (cast.on_edge || cast.odd) return true;
   // Within rounding of the boundary counts as on it: legs between two boundary points run along
   // an edge, a hair to either side of it. The box asked for is twice the tolerance: an edge whose
   // computed distance is within it has a point in the box despite rounding.
@@ -86,6 +58,38 @@ bool VisibilityRouter::inside_closed(Point2 p) const {
   return near;
 }
 
+VisibilityRouter::RayCount VisibilityRouter::ray_count(Point2 p) const {
+  // locate_point() over every ring, on the edges the ray right of p may meet only (the others
+  // neither hold p nor cross the ray): on an edge is inside, else an odd number of crossings.
+  // Or on the ray to the left, where fewer of the row's edges reach (near_ray()): each ring crosses
+  // the whole line through p an even number of times (edge_and_ray's half-open rule), so the two
+  // rays cross it equally often, up to 2 (exact predicates; x -> -x is exact, the ray to the left
+  // is the mirror image's ray to the right). An edge that holds p is found either way.
+  bool on_edge = false, odd = false;
+  const auto count = [&](EdgeAndRay where) {
+    on_edge |= where == EdgeAndRay::p_on_edge;
+    odd ^= where == EdgeAndRay::crosses;
+  };
+  // Most edges of the ray's row are apart: wholly above or below p. edge_and_ray() says so by its
+  // first test, written out here before the call, so that those edges cost no call; none asked
+  // lies wholly behind p (near_ray() stops at the first that does).
+  const Segment* const segments = edges_.segments().data();
+  const auto mirrored = [](Point2 x) { return Point2{-x.x, x.y}; };
+  edges_.near_ray(
+      p,
+      [&](std::uint32_t e) {
+        const Segment& s = segments[e];
+        if ((s.a.y > p.y && s.b.y > p.y) || (s.a.y < p.y && s.b.y < p.y)) return;
+        count(edge_and_ray(p, s.a, s.b));
+      },
+      [&](std::uint32_t e) {
+        const Segment& s = segments[e];
+        if ((s.a.y > p.y && s.b.y > p.y) || (s.a.y < p.y && s.b.y < p.y)) return;
+        count(edge_and_ray(mirrored(p), mirrored(s.a), mirrored(s.b)));
+      });
+  return {on_edge, odd};
+}
+
 // The direction of (dx, dy) != 0 as a "diamond angle" in [0, 4): 0 along +x, 1 along +y, 2
 // along -x, 3 along -y, increasing counter-clockwise, and the opposite direction 2 further round.
 // A monotone stand-in for atan2 at a few instructions (fans take two per edge): arcs below pi
@@ -94,6 +98,77 @@ static double diamond(double dx, double dy) {
   if (dy >= 0) return dx >= 0 ? dy / (dx + dy) : 1 - dx / (dy - dx);
   return dx < 0 ? 2 - dy / (-dx - dy) : 3 + dx / (dx - dy);
 }
+
+namespace {
+
+// A fan's edge: its first bin (wrapped) and how many bins it spans (0: near, in no bin).
+struct FanSpan {
+  std::uint32_t first, bins;
+};
+
+// The spans of a fan's edges, counted into its bins (+1 where a span starts, -1 past its end).
+struct FanBins {
+  double per_unit;     // bins per unit of diamond angle
+  std::size_t count;   // bins
+  FanSpan* span_of;    // per edge
+  std::int32_t* step;  // per bin, + the end
+  // floor(x * per_unit) of both, as fan_bin() takes it: truncation, one less for a negative
+  // fraction. With SSE2 both in the two lanes of a register: the same IEEE operations lane by
+  // lane, the truncation to 32 bits exact for the bins of angles in [-2 - kMargin, 6 + kMargin]
+  // (at most 1,024 bins a turn: a few thousand, far inside 32 bits).
+  std::pair<long, long> floors(double lo, double hi) const {
+#if defined(__SSE2__)
+    const __m128d v = _mm_mul_pd(_mm_set_pd(hi, lo), _mm_set1_pd(per_unit));
+    const __m128i k = _mm_cvttpd_epi32(v);
+    const __m128i up = _mm_castpd_si128(_mm_cmpgt_pd(_mm_cvtepi32_pd(k), v));
+    const __m128i floor = _mm_add_epi32(k, _mm_shuffle_epi32(up, _MM_SHUFFLE(3, 3, 2, 0)));
+    return {_mm_cvtsi128_si32(floor), _mm_cvtsi128_si32(_mm_srli_si128(floor, 4))};
+#else
+    const auto bin_of = [this](double x) {
+      const double v = x * per_unit;
+      const long k = long(v);
+      return k - long(double(k) > v);
+    };
+    return {bin_of(lo), bin_of(hi)};
+#endif
+  }
+  // The edges first, ..., first + edges - 1, from the angles of their ends (angle[0] to
+  // angle[edges]): arcs widened by kMargin, in bins as fan_bin() takes them.
+  void add(const double* angle, std::uint32_t first, std::size_t edges) const {
+    constexpr double kMargin = 1e-7;
+    const long bins = long(count);
+    for (std::size_t i = 0; i < edges; ++i) {
+      const double tp = angle[i], tq = angle[i + 1];
+      double turn = tq - tp;
+      if (turn > 2)
+        turn -= 4;
+      else if (turn < -2)
+        turn += 4;
+      const double end = tp + turn;
+      const auto [lo, hi_bin] = floors(std::min(tp, end) - kMargin, std::max(tp, end) + kMargin);
+      const long hi = std::min(hi_bin, lo + bins - 1);
+      // diamond() lies in [0, 4] and the turn in [-2, 2], so lo, the bin of (the lesser end -
+      // kMargin), lies in [-bins / 2 - 1, bins - 1] (4 - kMargin is a bin below the end of the
+      // turn): only a negative one wraps, by one turn.
+      const std::uint32_t wrapped = std::uint32_t(lo < 0 ? lo + bins : lo);
+      const std::uint32_t spanned = std::uint32_t(hi - lo + 1);
+      span_of[first + i] = {wrapped, spanned};
+      // Counted per span, not per bin (a fan holds several times as many items as edges), in two
+      // pieces where it wraps past the last bin.
+      const std::size_t past = std::size_t(wrapped) + spanned;
+      ++step[wrapped];
+      if (past <= count) {
+        --step[past];
+      } else {
+        --step[count];
+        ++step[0];
+        --step[past - count];
+      }
+    }
+  }
+};
+
+}  // namespace
 
 long VisibilityRouter::fan_bin(double diamond_angle) const {
   // Monotone in the angle (rounding included), so an angle within a range lands in a bin
@@ -111,73 +186,39 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   // less than ~1e-9 for points at least near_m from a (differences of coordinates round by ~1e-16
   // of the larger of the area's and a's extent, near_m is 1e-6 of it); each arc is widened by
   // 1e-7. An edge nearer than near_m is asked for every leg.
-  constexpr double kMargin = 1e-7;
   Fan fan;
   fan.near_m = 1e-6 * (1 + std::max({extent_m_, std::abs(a.x), std::abs(a.y)}));
-  const long bins = long(fan_bins_);
   const std::size_t edge_count = edges_.segments().size();
-  // Per edge, its first bin (wrapped) and how many bins it spans (0: near, in no bin).
-  struct Span {
-    std::uint32_t first, bins;
-  };
-  thread_local std::vector<Span> spans;
+  thread_local std::vector<FanSpan> spans;       // per edge, its first bin and how many (0: near)
   thread_local std::vector<double> angles;       // per vertex of a ring, its diamond angle from a
   thread_local std::vector<std::int32_t> steps;  // per bin, edges whose span starts - ends there
-  thread_local std::vector<char> is_near;        // per edge: in fan.near
   spans.resize(edge_count);
   steps.assign(fan_bins_ + 1, 0);
-  if (is_near.size() < edge_count) is_near.resize(edge_count, 0);
   // The near edges first, from the index round a (not a box test per edge of the area): an edge
   // within near_m of a has a point within near_m of it, in the cells of the box 4 near_m round a
   // (rounding is ~1e-16 of the extent). Each is asked as every edge was (its box more than twice
-  // near_m from a: far, no distance), and kept in index order.
-  // The flags are cleared once the spans are in (below), or on the way out of an exception: flags
-  // left set would leave edges out of the thread's later fans.
-  struct ClearFlags {
-    const std::vector<std::uint32_t>& set;
-    bool done = false;
-    void now() {
-      for (const std::uint32_t k : set) is_near[k] = 0;
-      done = true;
-    }
-    ~ClearFlags() {
-      if (!done) now();
-    }
-  } clear_flags{fan.near};
+  // near_m from a: far, no distance), and kept in index order. They are few (the edges through a
+  // point's neighbourhood of 1e-6 of the extent): one found again (in another cell) is looked
+  // for among them.
   const double two_near = 2 * fan.near_m;
   const Point2 reach{4 * fan.near_m, 4 * fan.near_m};
   edges_.near_box(a - reach, a + reach, [&](std::uint32_t e) {
-    if (is_near[e]) return;  // found again (in another cell)
+    if (std::find(fan.near.begin(), fan.near.end(), e) != fan.near.end()) return;
     // An edge whose box lies more than twice near_m from a is farther than near_m from it, its
     // computed distance too (rounding is ~1e-16 of the extent, near_m 1e-6 of it): no distance.
     const Box& box = edge_boxes_[e];
     const bool far = a.x < box.x0 - two_near || a.x > box.x1 + two_near ||
                      a.y < box.y0 - two_near || a.y > box.y1 + two_near;
     const Segment& s = edges_.segments()[e];
-    if (!far && distance_to_segment(a, s.a, s.b) <= fan.near_m) {
-      is_near[e] = 1;
-      fan.near.push_back(e);
-    }
+    if (!far && distance_to_segment(a, s.a, s.b) <= fan.near_m) fan.near.push_back(e);
   });
   std::sort(fan.near.begin(), fan.near.end());
-  // Locals for the loop below, which stores through pointers the compiler cannot tell apart from
-  // these members.
-  Span* const span_of = spans.data();
-  std::int32_t* const step = steps.data();
-  const char* const near_flag = is_near.data();
-  const double per_unit = bins_per_unit_;
-  const std::size_t bin_count = fan_bins_;
-  // fan_bin(), on the locals.
-  const auto bin_of = [per_unit](double diamond_angle) {
-    const double v = diamond_angle * per_unit;
-    const long k = long(v);
-    return k - long(double(k) > v);
-  };
-  // A bin index taken round the turn. diamond() lies in [0, 4] and the turn in [-2, 2], so lo,
-  // the bin of (the lesser end - kMargin), lies in [-bins / 2 - 1, bins - 1] (4 - kMargin is a
-  // bin below the end of the turn): only a negative one wraps, by one turn.
-  const auto wrapped = [bins](long k) { return std::uint32_t(k < 0 ? k + bins : k); };
+  const RayCount cast = ray_count(a);
+  fan.inside = cast.odd && !cast.on_edge;
+  const FanBins bins{bins_per_unit_, fan_bins_, spans.data(), steps.data()};
   std::uint32_t e = 0;  // edges_ holds every ring's edges, ring after ring, in ring order
+  const std::uint32_t* near = fan.near.data();
+  const std::uint32_t* const near_end = near + fan.near.size();
   for (const Ring& ring : rings_) {
     const std::size_t n = ring.size();
     // One diamond angle per vertex, not two per edge: an edge's end is the next edge's start
@@ -187,40 +228,23 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     double* const angle = angles.data();
     for (std::size_t i = 0; i < n; ++i) angle[i] = diamond(ring[i].x - a.x, ring[i].y - a.y);
     angle[n] = angle[0];
-    for (std::size_t i = 0; i < n; ++i, ++e) {
-      if (near_flag[e]) {
-        span_of[e] = {0, 0};
-        continue;
-      }
-      const double tp = angle[i], tq = angle[i + 1];
-      double turn = tq - tp;
-      if (turn > 2)
-        turn -= 4;
-      else if (turn < -2)
-        turn += 4;
-      const long lo = bin_of(std::min(tp, tp + turn) - kMargin);
-      const long hi = std::min(bin_of(std::max(tp, tp + turn) + kMargin), lo + bins - 1);
-      const std::uint32_t first = wrapped(lo), spanned = std::uint32_t(hi - lo + 1);
-      span_of[e] = {first, spanned};
-      // Counted per span, not per bin (a fan holds several times as many items as edges): +1
-      // where it starts, -1 past its end, in two pieces where it wraps past the last bin.
-      const std::size_t end = std::size_t(first) + spanned;
-      ++step[first];
-      if (end <= bin_count) {
-        --step[end];
-      } else {
-        --step[bin_count];
-        ++step[0];
-        --step[end - bin_count];
-      }
+    // The ring's edges in stretches between its near edges (no test per edge).
+    for (std::size_t i = 0; i < n;) {
+      const std::size_t stop = near != near_end && *near < e + n ? *near - e : n;
+      bins.add(angle + i, e + std::uint32_t(i), stop - i);
+      if (stop == n) break;
+      spans[e + stop] = {0, 0};
+      ++near;
+      i = stop + 1;
     }
+    e += std::uint32_t(n);
   }
-  clear_flags.now();
+  const std::size_t bin_count = fan_bins_;
   fan.start.assign(bin_count + 1, 0);  // per bin, its first item; + the end
   std::uint32_t* const start = fan.start.data();
   std::int32_t covering = 0;
   for (std::size_t k = 0; k < bin_count; ++k) {
-    covering += step[k];
+    covering += steps[k];
     start[k + 1] = start[k] + std::uint32_t(covering);
   }
   fan.items.resize(start[bin_count]);
@@ -228,10 +252,14 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
   cursor.assign(fan.start.begin(), fan.start.end() - 1);
   std::uint32_t* const next = cursor.data();
   std::uint32_t* const items = fan.items.data();
-  for (std::uint32_t edge = 0; edge < e; ++edge)
-    for (std::uint32_t k = span_of[edge].first, left = span_of[edge].bins; left > 0;
-         --left, k = k + 1 == bin_count ? 0 : k + 1)
-      items[next[k]++] = edge;
+  const FanSpan* const span_of = spans.data();
+  for (std::uint32_t edge = 0; edge < e; ++edge) {
+    // A span past the last bin goes on at the first.
+    const std::uint32_t first = span_of[edge].first, end = first + span_of[edge].bins;
+    const std::uint32_t split = std::min<std::uint32_t>(end, std::uint32_t(bin_count));
+    for (std::uint32_t k = first; k < split; ++k) items[next[k]++] = edge;
+    for (std::uint32_t k = 0; k + bin_count < end; ++k) items[next[k]++] = edge;
+  }
   return fan;
 }
 
@@ -307,7 +335,14 @@ double VisibilityRouter::outside_fraction(Point2 a, Point2 b, double stop_m, con
   } else {
     edges_.near_segment(a, b, cut_by);
   }
-  std::sort(cuts.begin(), cuts.end());
+  // No edge met [a, b] (every edge that may was asked: the fan's or the index's), so its points
+  // all have a's count of crossings, odd for a fan's point inside: the leg is inside, as the
+  // count at its midpoint says. The computed midpoint may lie a rounding off the leg, with an
+  // edge between; then that edge lies within the rounding of it (~1e-16 of the extent, the fan's
+  // point being inside and legs through a fan ending within the extent), and inside_closed()
+  // takes it as on the boundary (1e-9 of the extent): inside all the same.
+  if (fan && fan->inside && cuts.size() == 2) return 0.0;
+  sort_few(cuts.data(), cuts.data() + cuts.size());
   const double length = std::sqrt(len2);
   const auto inside_piece = [&](std::size_t k) {
     return inside_closed(a + d * ((cuts[k] + cuts[k + 1]) / 2));
@@ -520,8 +555,8 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
   if (known == kUnknown) {
     // A point that is not finite gets no fan: it has no direction to bin edges by (fan_of()
     // would take a bin of NaN); its legs are measured along the grid.
-    if (!row.fan && row.asked <= kFanAfter && ++row.asked > kFanAfter &&
-        std::isfinite(p.x) && std::isfinite(p.y)) {
+    if (!row.fan && row.asked <= kFanAfter && ++row.asked > kFanAfter && std::isfinite(p.x) &&
+        std::isfinite(p.y)) {
       // Kept within a budget: from inside a field of long needles (a star of 200 spikes) each edge
       // spans a sixth of the turn, 96 kB a fan, and 15,000 run ends asked often enough to get one
       // held 1.5 GB. Past the budget a point asks along the grid (more tests, the same answers:

@@ -108,6 +108,7 @@ std::vector<Point2> points(test::Rng& rng, const std::vector<Ring>& rings, int c
 
 TEST(SegmentIndex, FindsEverySegmentAQueryMeetsAndEachRayCrossingOnce) {
   test::Rng rng(18);
+  std::size_t rays_left = 0, rays_right = 0;  // near_ray()'s choices
   for (int area = 0; area < 12; ++area) {
     const std::vector<Ring> rings = area % 4 == 3
                                         ? std::vector<Ring>{test::random_grid_ring(rng, 40, 12),
@@ -145,6 +146,24 @@ TEST(SegmentIndex, FindsEverySegmentAQueryMeetsAndEachRayCrossingOnce) {
             ASSERT_EQ(times[e], 1) << "area " << area << " edge " << e << " (left)";
           }
         }
+        // near_ray(): one of the two rays, each of its edges exactly once (the rays walk each
+        // row's edges sorted by how far they reach, from the farthest: every one reaching p).
+        std::fill(times.begin(), times.end(), 0);
+        std::vector<int> left_times(edges.size(), 0);
+        const bool to_left = index.near_ray(
+            q.a, [&](std::uint32_t e) { ++times[e]; }, [&](std::uint32_t e) { ++left_times[e]; });
+        for (std::size_t e = 0; e < edges.size(); ++e) {
+          ASSERT_EQ(to_left ? times[e] : left_times[e], 0);
+          const int walked = to_left ? left_times[e] : times[e];
+          ASSERT_LE(walked, 1);
+          const EdgeAndRay where =
+              to_left ? edge_and_ray(mirrored(q.a), mirrored(edges[e].a), mirrored(edges[e].b))
+                      : edge_and_ray(q.a, edges[e].a, edges[e].b);
+          if (where != EdgeAndRay::apart) {
+            ASSERT_EQ(walked, 1) << "area " << area << " edge " << e << (to_left ? " (left)" : "");
+          }
+        }
+        (to_left ? rays_left : rays_right) += 1;
         // The box around a point: every edge with a point in it.
         const double r = 1 + std::abs(q.b.x - q.a.x) / 50;
         std::fill(found.begin(), found.end(), 0);
@@ -158,6 +177,9 @@ TEST(SegmentIndex, FindsEverySegmentAQueryMeetsAndEachRayCrossingOnce) {
       }
     }
   }
+  // near_ray() takes both ways often.
+  EXPECT_GT(rays_left, 5000u);
+  EXPECT_GT(rays_right, 5000u);
 }
 
 TEST(SegmentIndex, RouterAnswersBitForBitAsOverAllEdges) {

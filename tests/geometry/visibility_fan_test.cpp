@@ -295,6 +295,51 @@ TEST(VisibilityRouterFan, LegsThroughAFanAreMeasuredAsOverEveryEdge) {
   EXPECT_GT(hidden, 5000u);
 }
 
+// A fan's point is inside (an odd number of crossings, on no edge: a leg from it that meets no
+// edge is inside without a ray cast at its middle) exactly where locate_point() over the rings
+// says so; legs from such points, most meeting no edge, measure as over every edge (the
+// brute-force area), bit for bit.
+TEST(VisibilityRouterFan, APointInsideIsInsideByItsRingsAndItsClearLegsAreInside) {
+  test::Rng rng(5257);
+  std::size_t inside = 0, not_inside = 0, clear = 0;
+  for (int k = 0; k < 8; ++k) {
+    const std::vector<Ring> rings = area(rng, k);
+    const test::BruteArea brute(rings);
+    const VisibilityRouter router(rings);
+    double extent = 0;
+    for (const Ring& ring : rings)
+      for (const Point2& v : ring) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    const std::vector<Point2> tos = points(rng, rings, 60);
+    for (const Point2 a : points(rng, rings, 240)) {
+      const auto fan = Probe::fan_of(router, a);
+      bool on_boundary = false;
+      int containing = 0;
+      for (const Ring& ring : rings) {
+        const Containment where = locate_point(a, ring);
+        on_boundary |= where == Containment::on_boundary;
+        containing += where == Containment::inside;
+      }
+      SCOPED_TRACE(::testing::Message() << "area " << k << " from (" << a.x << ", " << a.y << ")");
+      ASSERT_EQ(fan.inside, !on_boundary && containing % 2 == 1);
+      if (!fan.inside) {
+        ++not_inside;
+        continue;
+      }
+      ++inside;
+      for (const Point2 b : tos) {
+        if (std::max(std::abs(b.x), std::abs(b.y)) > extent) continue;
+        const double outside_m = brute.length_outside(a, b);
+        ASSERT_EQ(Probe::outside_m(router, a, b, fan), outside_m) << "to " << b.x << ", " << b.y;
+        ASSERT_EQ(Probe::visible(router, a, b, fan), brute.visible(a, b));
+        clear += outside_m == 0;
+      }
+    }
+  }
+  EXPECT_GT(inside, 300u);
+  EXPECT_GT(not_inside, 300u);
+  EXPECT_GT(clear, 5000u);
+}
+
 }  // namespace
 }  // namespace swath::geometry
 

@@ -3,13 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
 
 #include "brute_area.hpp"
 #include "random_polygons.hpp"
+#include "swath/geometry/sort_few.hpp"
 
 namespace swath::geometry {
 namespace {
@@ -235,6 +239,40 @@ TEST(VisibilityRouter, AMeasuringRouterDoesNotRoute) {
   EXPECT_FALSE(r.routes());
   EXPECT_EQ(r.path({5, 25}, {25, 25}).size(), 2u);
   EXPECT_NEAR(r.length_outside({5, 25}, {25, 25}), 10, 1e-9);
+}
+
+}  // namespace
+}  // namespace swath::geometry
+
+namespace swath::geometry {
+namespace {
+
+// sort_few() must leave a leg's cuts as std::sort leaves them, bit for bit: random lengths 0-24
+// (past 16: std::sort itself), values from a few (many equal) with -0 and 0 mixed, and NaN now
+// and then (libstdc++'s insertion moves a value below the first to the front past a NaN).
+TEST(SortFew, TheOrderOfStdSortBitForBit) {
+  test::Rng rng(5259);
+  std::uniform_int_distribution<int> length(0, 24), value(-3, 3), sign(0, 1), nan(0, 40);
+  std::size_t signed_zeros = 0, nans = 0;
+  for (int k = 0; k < 20000; ++k) {
+    std::vector<double> xs(std::size_t(length(rng)));
+    for (double& x : xs) {
+      const int v = value(rng);
+      x = v == 0 ? (sign(rng) ? -0.0 : 0.0) : v + (k % 2 ? 0.0 : 0.25 * value(rng));
+      if (k % 4 == 3 && nan(rng) == 0) x = std::numeric_limits<double>::quiet_NaN();
+    }
+    std::vector<double> truth = xs;
+    std::sort(truth.begin(), truth.end());
+    sort_few(xs.data(), xs.data() + xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(xs[i]), std::bit_cast<std::uint64_t>(truth[i]))
+          << "case " << k << " at " << i;
+      signed_zeros += xs[i] == 0 && std::signbit(xs[i]);
+      nans += std::isnan(xs[i]);
+    }
+  }
+  EXPECT_GT(signed_zeros, 1000u);  // the test sees -0 among equal values
+  EXPECT_GT(nans, 500u);
 }
 
 }  // namespace

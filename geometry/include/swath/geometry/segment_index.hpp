@@ -55,29 +55,43 @@ class SegmentIndex {
   template <typename F>
   void near_ray_right(Point2 p, F f) const {
     if (segments_.empty()) return;
-    // A segment holds a run of columns in each of its rows: it is taken at the first column of
-    // its run (flagged), or at the ray's first cell when its run starts left of the ray.
-    const std::size_t cell = row(p.y) * columns_, c0 = column(p.x);
-    for (std::uint32_t k = start_[cell + c0], end = start_[cell + c0 + 1]; k < end; ++k)
-      f(items_[k] & kIndex);
-    for (std::uint32_t k = start_[cell + c0 + 1], end = start_[cell + columns_]; k < end; ++k)
-      if (items_[k] & kFirstInRow) f(items_[k] & kIndex);
+    // p's row's segments, each once, by descending greatest abscissa, up to the first wholly left
+    // of p (it and those after it neither hold p nor cross the ray).
+    const std::size_t r = row(p.y);
+    for (const RayEntry *k = by_right_.data() + ray_start_[r],
+                        *end = by_right_.data() + ray_start_[r + 1];
+         k != end && !(k->x < p.x); ++k)
+      f(k->index);
   }
-  /// The same for the ray towards -x: each segment taken at the first column of its run in p's
-  /// row, where that is not right of p's column.
+  /// The same for the ray towards -x: the row's segments by ascending least abscissa, up to the
+  /// first wholly right of p.
   template <typename F>
   void near_ray_left(Point2 p, F f) const {
     if (segments_.empty()) return;
-    const std::size_t row_start = row(p.y) * columns_, c0 = column(p.x);
-    for (std::uint32_t k = start_[row_start], end = start_[row_start + c0 + 1]; k < end; ++k)
-      if (items_[k] & kFirstInRow) f(items_[k] & kIndex);
+    const std::size_t r = row(p.y);
+    for (const RayEntry *k = by_left_.data() + ray_start_[r],
+                        *end = by_left_.data() + ray_start_[r + 1];
+         k != end && !(k->x > p.x); ++k)
+      f(k->index);
   }
-  /// How many items near_ray_right and near_ray_left walk from p (a choice of the shorter).
-  std::pair<std::size_t, std::size_t> ray_items(Point2 p) const {
-    if (segments_.empty()) return {0, 0};
-    const std::size_t row_start = row(p.y) * columns_, c0 = column(p.x);
-    return {start_[row_start + columns_] - start_[row_start + c0],
-            start_[row_start + c0 + 1] - start_[row_start]};
+  /// Either near_ray_right(p, right) or near_ray_left(p, left), whichever walks fewer segments
+  /// about (p left of its row's split abscissa: the ray to the left); true when to the left.
+  template <typename Right, typename Left>
+  bool near_ray(Point2 p, Right right, Left left) const {
+    if (segments_.empty()) return false;
+    const std::size_t r = row(p.y);
+    if (p.x < ray_split_[r]) {
+      for (const RayEntry *k = by_left_.data() + ray_start_[r],
+                          *end = by_left_.data() + ray_start_[r + 1];
+           k != end && !(k->x > p.x); ++k)
+        left(k->index);
+      return true;
+    }
+    for (const RayEntry *k = by_right_.data() + ray_start_[r],
+                        *end = by_right_.data() + ray_start_[r + 1];
+         k != end && !(k->x < p.x); ++k)
+      right(k->index);
+    return false;
   }
 
  private:
@@ -144,6 +158,19 @@ class SegmentIndex {
   std::vector<std::uint32_t> start_{0, 0};  ///< per cell (row major), its first item; + the end
   /// Segment indices, ascending within a cell; kFirstInRow marks a segment's first column in a row.
   std::vector<std::uint32_t> items_;
+  /// A row's segment for the rays: its greatest abscissa (by_right_) or least (by_left_).
+  struct RayEntry {
+    double x;
+    std::uint32_t index;
+  };
+  /// Per row, its segments once each: row r's from ray_start_[r] to ray_start_[r + 1] of by_right_
+  /// (by descending greatest abscissa) and by_left_ (by ascending least). A ray walks the segments
+  /// that reach past p only, not every cell of the row on its side with the segments in it.
+  std::vector<std::uint32_t> ray_start_{0, 0};
+  std::vector<RayEntry> by_right_, by_left_;
+  /// Per row, the abscissa left of which near_ray() walks to the left: about as many segments
+  /// reach past it either way (the middle of the middle entries' least and greatest abscissae).
+  std::vector<double> ray_split_{0};
 };
 
 }  // namespace swath::geometry

@@ -65,6 +65,12 @@ class VisibilityRouter {
  private:
   VisibilityRouter() = default;
   bool inside_closed(Point2 p) const;
+  /// inside_closed()'s ray cast: whether p lies on an edge, and whether the edges cross its ray an
+  /// odd number of times (without the boundary's rounding tolerance).
+  struct RayCount {
+    bool on_edge, odd;
+  };
+  RayCount ray_count(Point2 p) const;
   /// The area's edges by their direction from one point, in bins of angle: a visibility test from
   /// a point asked about often looks only at the edges in the leg's direction (about a bin's
   /// worth), not at every grid cell along the leg. Every edge that may share a point with a leg
@@ -74,6 +80,9 @@ class VisibilityRouter {
     std::vector<std::uint32_t> items;  ///< edge indices
     std::vector<std::uint32_t> near;   ///< edges within near_m of the point: asked every time
     double near_m = 0;  ///< 1e-6 of the larger of the area's and the point's extent, metres
+    /// The point's ray crosses the edges an odd number of times and it lies on none: a leg from it
+    /// that no edge meets lies inside (outside_fraction()).
+    bool inside = false;
   };
   Fan fan_of(Point2 a) const;
   friend struct VisibilityRouterTestProbe;  ///< tests/geometry/visibility_fan_test.cpp
