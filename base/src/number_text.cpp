@@ -43,17 +43,38 @@ void append_fixed_text(std::string& out, double value, int decimals) {
     return;
   }
   const double rounded = std::round(scaled);
-  auto units = static_cast<long long>(rounded);
-  // Written from the right: the digits, the point before the last `decimals`, the sign.
+  // |rounded| < 10^15: exact as an integer. Unsigned, two digits a division where it can.
+  auto units = static_cast<unsigned long long>(std::abs(static_cast<long long>(rounded)));
+  static constexpr char kPairs[] =
+      "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+      "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+      "8081828384858687888990919293949596979899";
+  // Written from the right: the decimals, the point, at least one digit before it, the sign.
   char text[32];
   char* first = text + sizeof text;
-  int n = 0;
-  do {
-    if (n++ == decimals && decimals > 0) *--first = '.';
-    *--first = static_cast<char>('0' + std::abs(units % 10));
+  int left = decimals;
+  for (; left >= 2; left -= 2, units /= 100) {
+    const char* pair = kPairs + 2 * (units % 100);
+    *--first = pair[1];
+    *--first = pair[0];
+  }
+  if (left == 1) {
+    *--first = static_cast<char>('0' + units % 10);
     units /= 10;
-  } while (units != 0 || n <= decimals);  // at least one digit before the point
-  if (rounded < 0) *--first = '-';        // never a minus zero
+  }
+  if (decimals > 0) *--first = '.';
+  for (; units >= 100; units /= 100) {
+    const char* pair = kPairs + 2 * (units % 100);
+    *--first = pair[1];
+    *--first = pair[0];
+  }
+  if (units >= 10) {
+    *--first = kPairs[2 * units + 1];
+    *--first = kPairs[2 * units];
+  } else {
+    *--first = static_cast<char>('0' + units);
+  }
+  if (rounded < 0) *--first = '-';  // never a minus zero
   out.append(first, text + sizeof text);
 }
 

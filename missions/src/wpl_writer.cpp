@@ -21,16 +21,21 @@ constexpr int number(MavFrame f) {
 }
 
 // A row: index, current, frame, command, seven params (NaN as 0; latitude and longitude to 1e-9
-// degrees, the others to 1e-6), autocontinue 1.
-std::string wpl_row(std::size_t index, int current, int frame, int command,
+// degrees, the others to 1e-6), autocontinue 1. Appended to `out` (no string per row or number).
+void append_wpl_row(std::string& out, std::size_t index, int current, int frame, int command,
                     const std::array<double, 7>& p) {
-  std::string out = std::to_string(index) + "\t" + std::to_string(current) + "\t" +
-                    std::to_string(frame) + "\t" + std::to_string(command);
+  base::append_integer_text(out, index);
+  out += '\t';
+  base::append_integer_text(out, current);
+  out += '\t';
+  base::append_integer_text(out, frame);
+  out += '\t';
+  base::append_integer_text(out, command);
   for (std::size_t k = 0; k < 7; ++k) {
     out += '\t';
-    out += base::fixed_text(std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
+    base::append_fixed_text(out, std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
   }
-  return out + "\t1\n";
+  out += "\t1\n";
 }
 
 std::array<double, 7> params_of(const Item& item) {
@@ -44,11 +49,11 @@ std::string write_wpl(const Mission& mission) {
   const geometry::GeoPoint& home = mission.home;
   std::string out = "QGC WPL 110\n";
   // Row 0 is the home, above mean sea level (0 when swath does not know the ground there).
-  out += wpl_row(0, 1, number(MavFrame::global), number(Cmd::nav_waypoint),
+  append_wpl_row(out, 0, 1, number(MavFrame::global), number(Cmd::nav_waypoint),
                  {0, 0, 0, 0, home.lat_deg, home.lon_deg, mission.home_amsl_m});
   std::size_t index = 1;
   for (const Item& item : mission.items)
-    out += wpl_row(index++, 0, item.frame, item.command, params_of(item));
+    append_wpl_row(out, index++, 0, item.frame, item.command, params_of(item));
   return out;
 }
 
@@ -58,7 +63,7 @@ std::string write_wpl_fences(const Mission& mission) {
   std::size_t index = 0;
   auto polygon = [&](const std::vector<geometry::GeoPoint>& ring, Cmd command) {
     for (const geometry::GeoPoint& g : ring)
-      out += wpl_row(index++, 0, number(MavFrame::global), number(command),
+      append_wpl_row(out, index++, 0, number(MavFrame::global), number(command),
                      {static_cast<double>(ring.size()), 0, 0, 0, g.lat_deg, g.lon_deg, 0});
   };
   for (const auto& ring : mission.inclusion_fences)
@@ -72,15 +77,18 @@ std::string write_wpl_rally(const Mission& mission) {
   std::string out = "QGC WPL 110\n";
   std::size_t index = 0;
   for (const geometry::GeoPoint& g : mission.rally_points)
-    out += wpl_row(index++, 0, number(MavFrame::global_relative_alt), number(Cmd::nav_rally_point),
-                   {0, 0, 0, 0, g.lat_deg, g.lon_deg, 0});
+    append_wpl_row(out, index++, 0, number(MavFrame::global_relative_alt),
+                   number(Cmd::nav_rally_point), {0, 0, 0, 0, g.lat_deg, g.lon_deg, 0});
   return out;
 }
 
 std::string write_fen(const Mission& mission) {
   std::string out = "# swath: return point, then the inclusion fence (lat lon)\n";
   auto line = [&](const geometry::GeoPoint& g) {
-    out += base::fixed_text(g.lat_deg, 9) + " " + base::fixed_text(g.lon_deg, 9) + "\n";
+    base::append_fixed_text(out, g.lat_deg, 9);
+    out += ' ';
+    base::append_fixed_text(out, g.lon_deg, 9);
+    out += '\n';
   };
   line(mission.home);
   if (mission.inclusion_fences.empty()) return out;

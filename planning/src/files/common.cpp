@@ -312,12 +312,13 @@ std::string xml_escape(const std::string& text) {
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close) {
   std::string s;
+  const std::string altitude = fixed_text(altitude_m, 3);
   auto add = [&](const geometry::GeoPoint& g) {
-    s += fixed_text(g.lon_deg, 9);
+    base::append_fixed_text(s, g.lon_deg, 9);
     s += ',';
-    s += fixed_text(g.lat_deg, 9);
+    base::append_fixed_text(s, g.lat_deg, 9);
     s += ',';
-    s += fixed_text(altitude_m, 3);
+    s += altitude;
     s += ' ';
   };
   for (const geometry::GeoPoint& g : points) add(g);
