@@ -416,26 +416,35 @@ struct VisibilityRouter::Search {
     const NodeTables::Chunk* chunk = nullptr;
     const NodeTables::Bits* hidden = nullptr;
     std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
+    // The arrays the loop reads, and the least f left out, held here: through members, each would
+    // be loaded again after every leg queued (queue_leg() writes the search's state), and `beyond`
+    // stored for every leg above the cut (about half the legs). queue_leg() reads none of them.
+    const Point2* nodes = r.nodes_.data();
+    const double* h = x.h.data();
+    const std::uint64_t* open_words = x.open.data();
+    const double g = item.g;
+    double least_out = beyond;
     for (std::size_t w = x.first_word; w < x.end_word; ++w) {
       const std::size_t at = w / NodeTables::kWords;
       if (at != chunk_at) {
         chunk = tables.chunk_of(v, chunk_at = at);
         hidden = tables.hidden_of(v, at);
       }
-      std::uint64_t open = x.open[w];
+      std::uint64_t open = open_words[w];
       if (hidden && open) open &= ~hidden[w % NodeTables::kWords].load(std::memory_order_relaxed);
       for (; open; open &= open - 1) {
         const std::size_t u = w * 64 + std::size_t(std::countr_zero(open));
-        const double through = item.g + distance(c, r.nodes_[u]), f = through + x.h[u];
+        const double through = g + distance(c, nodes[u]), f = through + h[u];
         if (!(f <= cut)) {
-          beyond = std::min(beyond, f);
+          least_out = std::min(least_out, f);
           continue;
         }
         const signed char seen =
             chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
-        if (seen != 0) queue_leg(item.g, v, u, seen, through, f);
+        if (seen != 0) queue_leg(g, v, u, seen, through, f);
       }
     }
+    beyond = least_out;
   }
 };
 
