@@ -157,6 +157,12 @@ struct SearchItem {
   friend bool operator>(const SearchItem& x, const SearchItem& y) { return y < x; }
 };
 
+// The queue's lead key: candidates of different f are ordered by f alone (never NaN: a candidate
+// is queued only when its f is at most the limit).
+struct ByF {
+  double operator()(const SearchItem& item) const { return item.f; }
+};
+
 // Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
 // settles the node (if none before it has), so a candidate after it is never used: path() does
 // not queue it (most of a long search's queue, once the tables know the corners near its path).
@@ -217,9 +223,9 @@ struct VisibilityRouter::Search {
     std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
     std::vector<std::size_t> previous;  // n: straight from a
     std::vector<char> settled;
-    std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
-    std::vector<char> is_near;      // per node: in `near`
-    CappedHeap<SearchItem> queue;   // a search takes ~1 candidate in 10 it queues
+    std::vector<std::size_t> near;      // the nodes a candidate under the limit can reach
+    std::vector<char> is_near;          // per node: in `near`
+    CappedHeap<SearchItem, ByF> queue;  // a search takes ~1 candidate in 10 it queues
     Settlers settlers;
     std::vector<std::uint64_t> open;           // per node (a bit): in `near` and not settled
     std::size_t first_word = 0, end_word = 0;  // the words of `open` that hold near nodes
