@@ -245,8 +245,7 @@ struct VisibilityRouter::Search {
     std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
     std::vector<std::size_t> previous;  // n: straight from a
     std::vector<char> settled;
-    std::vector<std::size_t> near;      // the nodes a candidate under the limit can reach
-    std::vector<char> is_near;          // per node: in `near`
+    std::vector<char> is_near;          // per node: near (a candidate under the limit can reach it)
     CappedHeap<SearchItem, ByF> queue;  // a search takes ~1 candidate in 10 it queues
     Settlers settlers;
     std::vector<std::uint64_t> open;           // per node (a bit): in `near` and not settled
@@ -315,7 +314,10 @@ struct VisibilityRouter::Search {
     x.is_near.assign(n, 0);
     x.settlers.reset(n);
     x.queue.clear({-std::numeric_limits<double>::infinity(), 0, 0.0, 0, 0.0, 0, 0});
-    x.near.clear();
+    // The near nodes as bits of `open` (in the order of their indices, without a sort), and the
+    // least and greatest of them.
+    x.open.assign((n + 63) / 64, 0);
+    std::size_t least_near = n, most_near = 0;
     const Point2 middle = (a + b) * 0.5;
     const double reach = limit / (2 * kShrink) * (1 + 1e-9) + r.tolerance_;
     box_lo = middle - Point2{reach, reach};
@@ -341,7 +343,9 @@ struct VisibilityRouter::Search {
         left_out = true;
         continue;
       }
-      x.near.push_back(u);
+      x.open[u / 64] |= std::uint64_t{1} << (u % 64);
+      least_near = std::min(least_near, u);
+      most_near = std::max(most_near, u);
       x.is_near[u] = 1;
       const SearchItem straight{f, 0, d, 0, 0.0, n, u};
       if (from_a.seen[u] != 0) x.queue.push(straight);  // not known hidden
@@ -350,12 +354,8 @@ struct VisibilityRouter::Search {
         bound_by_settler(straight);
       }
     }
-    // In the order of the nodes' indices, as every node was asked before (the heap's ties).
-    std::sort(x.near.begin(), x.near.end());
-    x.open.assign((n + 63) / 64, 0);
-    for (const std::size_t u : x.near) x.open[u / 64] |= std::uint64_t{1} << (u % 64);
-    x.first_word = x.near.empty() ? 0 : x.near.front() / 64;
-    x.end_word = x.near.empty() ? 0 : x.near.back() / 64 + 1;
+    x.first_word = least_near < n ? least_near / 64 : 0;
+    x.end_word = least_near < n ? most_near / 64 + 1 : 0;
     x.skipped.clear();
     if (r.prune_) return;  // go_on_pruned() asks no group
     x.groups.resize((n + kGroup - 1) / kGroup);
@@ -364,16 +364,19 @@ struct VisibilityRouter::Search {
       std::fill(x.groups.begin(), x.groups.end(), Group{{-inf, -inf}, {inf, inf}, 0.0});
       return;
     }
-    for (std::size_t k = 0; k < x.near.size();) {
-      const std::size_t group = x.near[k] / kGroup;
-      Point2 lo = r.nodes_[x.near[k]], hi = lo;
-      for (++k; k < x.near.size() && x.near[k] / kGroup == group; ++k) {
-        const Point2 p = r.nodes_[x.near[k]];
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    for (std::size_t w = x.first_word; w < x.end_word; ++w)
+      for (std::uint64_t open = x.open[w]; open;) {
+        const std::size_t q = std::size_t(std::countr_zero(open)) / kGroup;
+        std::uint64_t bits = open & (kGroupBits << (q * kGroup));
+        open &= ~bits;
+        Point2 lo = r.nodes_[w * 64 + std::size_t(std::countr_zero(bits))], hi = lo;
+        for (bits &= bits - 1; bits; bits &= bits - 1) {
+          const Point2 p = r.nodes_[w * 64 + std::size_t(std::countr_zero(bits))];
+          lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+          hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+        }
+        x.groups[w * (64 / kGroup) + q] = {lo, hi, kShrink * box_distance(b, lo, hi)};
       }
-      x.groups[group] = {lo, hi, kShrink * box_distance(b, lo, hi)};
-    }
   }
 
   // The candidates in order up to the first way to b that b sees: its node, or n (none).
