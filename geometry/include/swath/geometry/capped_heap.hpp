@@ -48,8 +48,17 @@ class CappedHeap {
       rest_.push_back(entry);
       return;
     }
+    // Up from a new leaf while less than its parent, as std::push_heap does (here inline: a
+    // search's entries mostly stay at the leaf, and the call cost more than the steps).
+    std::size_t hole = heap_.size();
     heap_.push_back(entry);
-    std::push_heap(heap_.begin(), heap_.end(), Greater{this});
+    while (hole > 0) {
+      const std::size_t parent = (hole - 1) / 2;
+      if (!Greater{this}(heap_[parent], entry)) break;
+      heap_[hole] = heap_[parent];
+      hole = parent;
+    }
+    heap_[hole] = entry;
   }
   /// The least item, removed. Not on an empty heap.
   T pop() {
