@@ -157,6 +157,12 @@ struct SearchItem {
   friend bool operator>(const SearchItem& x, const SearchItem& y) { return y < x; }
 };
 
+// The queue's lead key: candidates of different f are ordered by f alone (never NaN: a candidate
+// is queued only when its f is at most the limit).
+struct ByF {
+  double operator()(const SearchItem& item) const { return item.f; }
+};
+
 // Per node of a search: the least candidate queued whose leg is known to be seen. Taken, it
 // settles the node (if none before it has), so a candidate after it is never used: path() does
 // not queue it (most of a long search's queue, once the tables know the corners near its path).
@@ -213,18 +219,41 @@ std::vector<Point2> route_back(Point2 a, Point2 b, std::size_t last,
 // answer's f once one is known), on buffers of the thread's, reused from search to search.
 struct VisibilityRouter::Search {
   static constexpr double kShrink = 1 - 1e-6;
+  // Nodes by kGroup consecutive indices (a ring's corners in order: near each other): the box of
+  // a group's near nodes bounds the f of every leg into them from below, so a settled node skips
+  // a group whose legs all lie above the cut (most legs above it, on traced outlines) without
+  // measuring each.
+  static constexpr std::size_t kGroup = 8;
+  struct Group {
+    Point2 lo, hi;   // the box of the group's near nodes
+    double h_least;  // (1 - 1e-6) times the box's distance from b: at most any of their h
+  };
+  static constexpr std::uint64_t kGroupBits = (std::uint64_t{1} << kGroup) - 1;
+  // The open legs from settled node v into one group that its bound left out: `bits` of word
+  // `word` of `open`.
+  struct Skipped {
+    std::uint32_t v, word;
+    std::uint64_t bits;
+  };
+  /// The distance from p to the box [lo, hi] (0 inside).
+  static double box_distance(Point2 p, Point2 lo, Point2 hi) {
+    const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x}),
+                 dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+    return std::sqrt(dx * dx + dy * dy);
+  }
   struct Buffers {
     std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
     std::vector<std::size_t> previous;  // n: straight from a
     std::vector<char> settled;
-    std::vector<std::size_t> near;  // the nodes a candidate under the limit can reach
-    std::vector<char> is_near;      // per node: in `near`
-    CappedHeap<SearchItem> queue;   // a search takes ~1 candidate in 10 it queues
+    std::vector<char> is_near;          // per node: near (a candidate under the limit can reach it)
+    CappedHeap<SearchItem, ByF> queue;  // a search takes ~1 candidate in 10 it queues
     Settlers settlers;
     std::vector<std::uint64_t> open;           // per node (a bit): in `near` and not settled
     std::size_t first_word = 0, end_word = 0;  // the words of `open` that hold near nodes
     std::vector<double> g_of;                  // per node settled: its g
     std::vector<std::uint32_t> settled_list;   // the nodes settled, in order
+    std::vector<Group> groups;                 // per kGroup nodes holding a near node
+    std::vector<Skipped> skipped;              // the legs left out by their group's bound
   };
   static Buffers& buffers() {
     thread_local Buffers b;
@@ -241,6 +270,7 @@ struct VisibilityRouter::Search {
   double bound = std::numeric_limits<double>::infinity();
   double beyond = std::numeric_limits<double>::infinity();  // least f left out
   bool left_out = false;
+  bool use_groups = true;  // false: every leg measured (tests: search_run())
   Point2 box_lo{}, box_hi{};
 
   Search(const VisibilityRouter& router, Point2 from, Point2 to, Row& row_a, Row& row_b)
@@ -284,7 +314,10 @@ struct VisibilityRouter::Search {
     x.is_near.assign(n, 0);
     x.settlers.reset(n);
     x.queue.clear({-std::numeric_limits<double>::infinity(), 0, 0.0, 0, 0.0, 0, 0});
-    x.near.clear();
+    // The near nodes as bits of `open` (in the order of their indices, without a sort), and the
+    // least and greatest of them.
+    x.open.assign((n + 63) / 64, 0);
+    std::size_t least_near = n, most_near = 0;
     const Point2 middle = (a + b) * 0.5;
     const double reach = limit / (2 * kShrink) * (1 + 1e-9) + r.tolerance_;
     box_lo = middle - Point2{reach, reach};
@@ -310,7 +343,9 @@ struct VisibilityRouter::Search {
         left_out = true;
         continue;
       }
-      x.near.push_back(u);
+      x.open[u / 64] |= std::uint64_t{1} << (u % 64);
+      least_near = std::min(least_near, u);
+      most_near = std::max(most_near, u);
       x.is_near[u] = 1;
       const SearchItem straight{f, 0, d, 0, 0.0, n, u};
       if (from_a.seen[u] != 0) x.queue.push(straight);  // not known hidden
@@ -319,12 +354,29 @@ struct VisibilityRouter::Search {
         bound_by_settler(straight);
       }
     }
-    // In the order of the nodes' indices, as every node was asked before (the heap's ties).
-    std::sort(x.near.begin(), x.near.end());
-    x.open.assign((n + 63) / 64, 0);
-    for (const std::size_t u : x.near) x.open[u / 64] |= std::uint64_t{1} << (u % 64);
-    x.first_word = x.near.empty() ? 0 : x.near.front() / 64;
-    x.end_word = x.near.empty() ? 0 : x.near.back() / 64 + 1;
+    x.first_word = least_near < n ? least_near / 64 : 0;
+    x.end_word = least_near < n ? most_near / 64 + 1 : 0;
+    x.skipped.clear();
+    if (r.prune_) return;  // go_on_pruned() asks no group
+    x.groups.resize((n + kGroup - 1) / kGroup);
+    if (!use_groups) {  // boxes of the whole plane: a bound of g, never above the cut
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      std::fill(x.groups.begin(), x.groups.end(), Group{{-inf, -inf}, {inf, inf}, 0.0});
+      return;
+    }
+    for (std::size_t w = x.first_word; w < x.end_word; ++w)
+      for (std::uint64_t open = x.open[w]; open;) {
+        const std::size_t q = std::size_t(std::countr_zero(open)) / kGroup;
+        std::uint64_t bits = open & (kGroupBits << (q * kGroup));
+        open &= ~bits;
+        Point2 lo = r.nodes_[w * 64 + std::size_t(std::countr_zero(bits))], hi = lo;
+        for (bits &= bits - 1; bits; bits &= bits - 1) {
+          const Point2 p = r.nodes_[w * 64 + std::size_t(std::countr_zero(bits))];
+          lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+          hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+        }
+        x.groups[w * (64 / kGroup) + q] = {lo, hi, kShrink * box_distance(b, lo, hi)};
+      }
   }
 
   // The candidates in order up to the first way to b that b sees: its node, or n (none).
@@ -343,7 +395,23 @@ struct VisibilityRouter::Search {
         continue;
       settle(item);
     }
+    fold_skipped();
     return n;
+  }
+
+  // A run without an answer: its `beyond` as though every leg its groups' bounds left out had
+  // been measured (path() reads it only then), each f summed as go_on_to_every_open_node() sums
+  // it (the least of the same values, in any order: none is NaN or 0).
+  void fold_skipped() {
+    for (const Skipped& skip : x.skipped) {
+      const Point2 c = r.nodes_[skip.v];
+      const double g = x.g_of[skip.v];
+      for (std::uint64_t bits = skip.bits; bits; bits &= bits - 1) {
+        const std::size_t u = skip.word * std::size_t{64} + std::size_t(std::countr_zero(bits));
+        const double through = g + distance(c, r.nodes_[u]), f = through + x.h[u];
+        beyond = std::min(beyond, f);
+      }
+    }
   }
 
   // Node v settled by `item`, and its ways on: to b, and to the open nodes.
@@ -407,7 +475,10 @@ struct VisibilityRouter::Search {
   // least f of the other legs above the cut: a hidden leg is never a candidate, at any limit, so
   // the least f left out is still a lower bound of every candidate left out (path() only needs
   // that: a higher next limit, and no candidate left when it is infinite). Each leg's through and
-  // f are g + distance() and that + h, as the full search sums them.
+  // f are g + distance() and that + h, as the full search sums them. The legs into a group whose
+  // bound is above the cut are left out together (about 8 in 10 legs above the cut on traced
+  // outlines, few nodes a group), their f folded into `beyond` only after a run without an answer,
+  // the one run path() reads it after (fold_skipped()).
   void go_on_to_every_open_node(const SearchItem& item) {
     const std::size_t v = item.node;
     const Point2 c = r.nodes_[v];
@@ -416,26 +487,51 @@ struct VisibilityRouter::Search {
     const NodeTables::Chunk* chunk = nullptr;
     const NodeTables::Bits* hidden = nullptr;
     std::size_t chunk_at = std::numeric_limits<std::size_t>::max();
+    // The arrays the loop reads, and the least f left out, held here: through members, each would
+    // be loaded again after every leg queued (queue_leg() writes the search's state), and `beyond`
+    // stored for every leg above the cut (about half the legs). queue_leg() reads none of them.
+    const Point2* nodes = r.nodes_.data();
+    const double* h = x.h.data();
+    const std::uint64_t* open_words = x.open.data();
+    const double g = item.g;
+    double least_out = beyond;
     for (std::size_t w = x.first_word; w < x.end_word; ++w) {
       const std::size_t at = w / NodeTables::kWords;
       if (at != chunk_at) {
         chunk = tables.chunk_of(v, chunk_at = at);
         hidden = tables.hidden_of(v, at);
       }
-      std::uint64_t open = x.open[w];
+      std::uint64_t open = open_words[w];
       if (hidden && open) open &= ~hidden[w % NodeTables::kWords].load(std::memory_order_relaxed);
-      for (; open; open &= open - 1) {
-        const std::size_t u = w * 64 + std::size_t(std::countr_zero(open));
-        const double through = item.g + distance(c, r.nodes_[u]), f = through + x.h[u];
-        if (!(f <= cut)) {
-          beyond = std::min(beyond, f);
-          continue;
+      while (open) {
+        // The open nodes group by group, each in index order: the legs in the same order.
+        const std::size_t q = std::size_t(std::countr_zero(open)) / kGroup;
+        const std::uint64_t in_group = open & (kGroupBits << (q * kGroup));
+        open &= ~in_group;
+        if (in_group & (in_group - 1)) {  // two or more: the bound first
+          const Group& group = x.groups[w * (64 / kGroup) + q];
+          const double least = g + box_distance(c, group.lo, group.hi) + group.h_least;
+          // The legs' f are the same sums of the same or greater terms, each rounded (relative
+          // errors of a few 1e-16): above the cut when the bound is by far more.
+          if (least * (1 - 1e-12) > cut) {
+            x.skipped.push_back({std::uint32_t(v), std::uint32_t(w), in_group});
+            continue;
+          }
         }
-        const signed char seen =
-            chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
-        if (seen != 0) queue_leg(item.g, v, u, seen, through, f);
+        for (std::uint64_t bits = in_group; bits; bits &= bits - 1) {
+          const std::size_t u = w * 64 + std::size_t(std::countr_zero(bits));
+          const double through = g + distance(c, nodes[u]), f = through + h[u];
+          if (!(f <= cut)) {
+            least_out = std::min(least_out, f);
+            continue;
+          }
+          const signed char seen =
+              chunk ? chunk[u % NodeTables::kChunk].load(std::memory_order_relaxed) : kUnknown;
+          if (seen != 0) queue_leg(g, v, u, seen, through, f);
+        }
       }
     }
+    beyond = least_out;
   }
 };
 
@@ -477,6 +573,17 @@ void VisibilityRouter::remember_reached(Row& from_a, const std::vector<std::uint
     from_a.reached.push_back({v, g_of[v]});
   }
   for (const auto& [v, g] : from_a.reached) kept[v] = 0;
+}
+
+VisibilityRouter::SearchRun VisibilityRouter::search_run(Point2 a, Point2 b, double limit,
+                                                         bool groups) const {
+  Row& from_a = seen_row(a);
+  Row& to_b = seen_row(b);
+  Search search(*this, a, b, from_a, to_b);
+  search.use_groups = groups;
+  search.start(limit, std::numeric_limits<double>::infinity());
+  const std::size_t last = search.run();
+  return {last != nodes_.size(), last, search.beyond, search.left_out};
 }
 
 std::vector<Point2> VisibilityRouter::path(Point2 a, Point2 b) const {

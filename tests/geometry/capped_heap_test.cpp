@@ -11,20 +11,32 @@
 namespace swath::geometry {
 namespace {
 
+using Item = std::pair<int, int>;  // key, id
+
+struct ByKeyOfInt {
+  double operator()(int item) const { return item; }
+};
+
+// A lead key as a search's is (its first field): items of equal keys compared whole.
+struct ByKey {
+  double operator()(const Item& item) const { return item.first; }
+};
+
 // The items as one std::priority_queue gives them (the brute force), against CappedHeap, on
 // random runs of pushes and pops (fixed seed): keys from a small range, so that many are equal and
-// items land on both sides of the cap after each refill; ids tell equal keys apart.
-TEST(CappedHeap, GivesItemsInTheOrderOfOneHeap) {
-  using Item = std::pair<int, int>;  // key, id
-  std::mt19937 random(52);
+// items land on both sides of the cap after each refill; ids tell equal keys apart (mostly).
+// Without a lead key and with one.
+template <class Lead>
+void expect_the_order_of_one_heap(unsigned seed) {
+  std::mt19937 random(seed);
   for (int run = 0; run < 200; ++run) {
-    CappedHeap<Item> capped;
+    CappedHeap<Item, Lead> capped;
     capped.clear({-1, 0});
     std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
     const int keys = 1 + int(random() % 2000);
     const int steps = int(random() % 3000);
     const unsigned pop_per_mille = 50 + random() % 600;
-    int id = 0, low = 0;  // keys pushed are >= the last popped one, as in an A* search
+    int low = 0;  // keys pushed are >= the last popped one, as in an A* search
     for (int step = 0; step < steps; ++step) {
       if (!heap.empty() && random() % 1000 < pop_per_mille) {
         ASSERT_FALSE(capped.empty());
@@ -33,7 +45,8 @@ TEST(CappedHeap, GivesItemsInTheOrderOfOneHeap) {
         heap.pop();
         low = got.first;
       } else {
-        const Item item{low + int(random() % unsigned(keys)), id++};
+        // Ids in no order: an item of the cap's key may come before or after it.
+        const Item item{low + int(random() % unsigned(keys)), int(random() % 100000)};
         capped.push(item);
         heap.push(item);
       }
@@ -46,9 +59,17 @@ TEST(CappedHeap, GivesItemsInTheOrderOfOneHeap) {
   }
 }
 
+TEST(CappedHeap, GivesItemsInTheOrderOfOneHeap) {
+  expect_the_order_of_one_heap<NoLead>(52);
+}
+
+TEST(CappedHeap, GivesItemsInTheOrderOfOneHeapByTheirLeadKeys) {
+  expect_the_order_of_one_heap<ByKey>(53);
+}
+
 // Keys below the last one popped (a search need not push in order) still come out least first.
 TEST(CappedHeap, TakesItemsBelowTheCap) {
-  CappedHeap<int> capped;
+  CappedHeap<int, ByKeyOfInt> capped;
   capped.clear(-1);
   for (int k = 1000; k > 0; --k) capped.push(k);
   EXPECT_EQ(capped.pop(), 1);
