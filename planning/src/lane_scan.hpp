@@ -277,6 +277,7 @@ class LongLaneReach {
   /// each of its points; else false.
   bool sees_all(Point2 lo, Point2 hi, double y) {
     const std::span<const Span> in = at(y);
+    if (in.empty()) return false;  // no long lane within reach (most of some fields' boundary)
     // The rows within reach of y' are [first, last): first the first row with y' <= ys[k] + half,
     // last the first with y' < ys[k] - half; both rise with y'. So they include y's rows from
     // y' = ys[last - 1] - half (from_hi_) up to y' = ys[first] + half (up_to_lo_): there, each of
