@@ -82,6 +82,12 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   thread_local std::vector<Point2> boundary;
   boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
+    if (skip) {
+      // An edge whose samples' box a long lane sees whole has none left (most edges: the long
+      // lanes reach the boundary), passed over without making them. Its first sample is a.
+      const auto [lo, hi] = edge_samples_box(a, b);
+      if (skip->sees_all(lo, hi, a.y)) continue;
+    }
     const int n = std::max(1, int(std::ceil(geometry::distance(a, b) / (step / 8))));
     if (skip) {
       // Those a long lane sees left out as they are made, before the sort (an edge's samples

@@ -228,6 +228,20 @@ inline double seen_half_width_m(double footprint_width_m) {
 }
 inline constexpr double kSeenAlongM = 1e-6;
 
+// A box holding every point a + (b - a) * t for 0 <= t <= 1 as rounded (coverage_samples()' samples
+// of an edge): the edge's own box widened by 8 units of rounding u of its largest coordinate M per
+// axis. The rounded b - a is within 2uM of the exact, its product with t within 2uM more, the sum's
+// rounding within uM: 5uM in all (M + 5uM bounds every value); the least normal double covers
+// underflow. The widening's own rounding (at most uM) leaves more than 5uM.
+inline std::pair<Point2, Point2> edge_samples_box(Point2 a, Point2 b) {
+  constexpr double eight_u = 4 * std::numeric_limits<double>::epsilon();
+  const double tiny = std::numeric_limits<double>::min();
+  const double wx = eight_u * std::max(std::abs(a.x), std::abs(b.x)) + tiny;
+  const double wy = eight_u * std::max(std::abs(a.y), std::abs(b.y)) + tiny;
+  return {{std::min(a.x, b.x) - wx, std::min(a.y, b.y) - wy},
+          {std::max(a.x, b.x) + wx, std::max(a.y, b.y) + wy}};
+}
+
 // Where the long lanes see: the points that a lane longer than the slivers' length sees, by the
 // coverage check's own test (lane.y - half <= p.y <= lane.y + half, lane.x0 - kSeenAlongM <= p.x
 // <= lane.x1 + kSeenAlongM, in those roundings). Per ordinate, the union of the long lanes'
@@ -255,6 +269,23 @@ class LongLaneReach {
     const auto after = std::upper_bound(in.begin(), in.end(), p.x,
                                         [](double x, const Span& s) { return x < s.x0; });
     return after != in.begin() && p.x <= std::prev(after)->x1;
+  }
+  /// Whether a long lane sees every point of the box [lo, hi] (lo.x <= hi.x, lo.y <= hi.y), told
+  /// by the rows within reach of ordinate y (at(y)'s: a caller asks them next anyway, so no rows
+  /// are merged or found that sees() would not have): true where those rows are within reach of
+  /// every ordinate of the box and one of their ranges holds its abscissae, so sees() is true at
+  /// each of its points; else false.
+  bool sees_all(Point2 lo, Point2 hi, double y) {
+    const std::span<const Span> in = at(y);
+    if (in.empty()) return false;  // no long lane within reach (most of some fields' boundary)
+    // The rows within reach of y' are [first, last): first the first row with y' <= ys[k] + half,
+    // last the first with y' < ys[k] - half; both rise with y'. So they include y's rows from
+    // y' = ys[last - 1] - half (from_hi_) up to y' = ys[first] + half (up_to_lo_): there, each of
+    // y's ranges lies within one of y''s.
+    if (!(lo.y >= from_hi_ && hi.y <= up_to_lo_)) return false;
+    const auto after = std::upper_bound(in.begin(), in.end(), lo.x,
+                                        [](double x, const Span& s) { return x < s.x0; });
+    return after != in.begin() && hi.x <= std::prev(after)->x1;
   }
 
  private:

@@ -346,6 +346,119 @@ TEST(LongLaneReach, SeesWhatSomeLongLaneSees) {
   EXPECT_GT(widened, 1000u);  // points only the ends' widening lets a lane see
 }
 
+// LongLaneReach::sees_all() lets coverage_samples() pass over an edge's samples: where it says a
+// box is seen whole, some long lane must see every point of it (the brute force over every lane,
+// as above): checked at the box's corners, its middle, a rounding inside its corners and random
+// points within, for small and long boxes at random places and boxes whose sides lie on a reach's
+// edges (a lane's widened ends, half a footprint across, a rounding either side), points
+// (degenerate boxes) among them, each told by the rows of its bottom, top or middle.
+TEST(LongLaneReach, SeesAllOnlyWhatSomeLaneSeesAtEveryPoint) {
+  test::Rng rng(5258);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t all_seen = 0, asked = 0, on_edges = 0;
+  for (int k = 0; k < 40; ++k) {
+    const std::vector<Ring> rings = scan_test_area(rng, k);
+    const LaneScan scan(rings, 180 * unit(rng));
+    const double spacing = 5 + 40 * unit(rng), footprint = spacing * (1 + 2 * unit(rng));
+    std::vector<double> ys;
+    for (double y = scan.y_min + spacing * unit(rng); y < scan.y_max; y += spacing) ys.push_back(y);
+    const SpanRows lanes = scan.at(ys);
+    const double half = seen_half_width_m(footprint), min_length = footprint * 3 * unit(rng);
+    LongLaneReach reach(ys, lanes, half, min_length);
+    const auto truth = [&](Point2 p) {
+      for (std::size_t r = 0; r < ys.size(); ++r)
+        for (const Span& l : lanes[r])
+          if (l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
+              l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM)
+            return true;
+      return false;
+    };
+    std::vector<std::pair<Point2, Point2>> boxes;
+    for (int i = 0; i < 1500; ++i) {
+      const Point2 p{-600 + 1200 * unit(rng),
+                     scan.y_min - 10 + (scan.y_max - scan.y_min + 20) * unit(rng)};
+      const double w = i % 3 == 0 ? 0.0 : spacing * (i % 3 == 1 ? 0.3 : 3.0) * unit(rng);
+      const double h = i % 3 == 0 ? 0.0 : spacing * (i % 3 == 1 ? 0.3 : 3.0) * unit(rng);
+      boxes.push_back({p, {p.x + w, p.y + h}});
+    }
+    const auto down = [](double v) { return std::nextafter(v, -1e300); };
+    const auto up = [](double v) { return std::nextafter(v, 1e300); };
+    for (std::size_t r = 0; r < ys.size(); r += 2)
+      for (const Span& l : lanes[r]) {
+        const double x0 = l.x0 - kSeenAlongM, x1 = l.x1 + kSeenAlongM;
+        const double y0 = ys[r] - half, y1 = ys[r] + half, h = 0.4 * spacing * unit(rng);
+        for (const double lo_x : {x0, down(x0), up(x0), (x0 + x1) / 2})
+          for (const double hi_x : {x1, down(x1), up(x1), lo_x})
+            for (const auto& [lo_y, hi_y] :
+                 std::vector<std::pair<double, double>>{{y0, y0 + h},
+                                                        {down(y0), y0 + h},
+                                                        {up(y0), y0 + h},
+                                                        {y1 - h, y1},
+                                                        {y1 - h, up(y1)},
+                                                        {y1 - h, down(y1)},
+                                                        {y0, y1},
+                                                        {y0, y0},
+                                                        {y1, y1}})
+              if (lo_x <= hi_x) boxes.push_back({{lo_x, lo_y}, {hi_x, hi_y}});
+      }
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      const auto& [lo, hi] = boxes[i];
+      const double y = i % 3 == 0 ? lo.y : i % 3 == 1 ? hi.y : (lo.y + hi.y) / 2;
+      ++asked;
+      if (!reach.sees_all(lo, hi, y)) continue;
+      ++all_seen;
+      on_edges += i >= 1500;
+      std::vector<Point2> points{lo,
+                                 hi,
+                                 {lo.x, hi.y},
+                                 {hi.x, lo.y},
+                                 (lo + hi) * 0.5,
+                                 {up(lo.x), up(lo.y)},
+                                 {down(hi.x), down(hi.y)}};
+      for (int j = 0; j < 20; ++j)
+        points.push_back({lo.x + (hi.x - lo.x) * unit(rng), lo.y + (hi.y - lo.y) * unit(rng)});
+      for (Point2 p : points) {
+        p = {std::clamp(p.x, lo.x, hi.x), std::clamp(p.y, lo.y, hi.y)};
+        ASSERT_TRUE(truth(p)) << "area " << k << ", box " << i << " at " << p.x << ", " << p.y;
+        ASSERT_TRUE(reach.sees(p)) << "area " << k << ", box " << i;
+      }
+    }
+  }
+  EXPECT_GT(all_seen, asked / 10);      // the test sees boxes seen whole...
+  EXPECT_LT(all_seen, asked * 9 / 10);  // ...and not
+  EXPECT_GT(on_edges, 1000u);           // among them boxes on a reach's edges
+}
+
+// edge_samples_box() must hold every sample a + (b - a) * (i / n) of an edge as coverage_samples()
+// rounds it: edges of short and long lengths at coordinates from 0 and 1e-300 to 1e15, either
+// sign, along the axes and not, with n from 1 to 64; and a box too narrow by a rounding misses
+// some (the widening is needed).
+TEST(EdgeSamplesBox, HoldsEveryRoundedSample) {
+  test::Rng rng(5259);
+  std::uniform_real_distribution<double> unit(0, 1), exponent(-300, 15);
+  std::size_t checked = 0, outside_edge_box = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double scale = k % 5 == 0 ? 0.0 : std::pow(10.0, k % 5 == 1 ? exponent(rng) : 3.0);
+    const auto coordinate = [&] { return (2 * unit(rng) - 1) * scale * (k % 7 == 0 ? 1 : 1e3); };
+    Point2 a{coordinate(), coordinate()};
+    Point2 b = k % 3 == 0 ? Point2{a.x + (2 * unit(rng) - 1) * 10, a.y + (2 * unit(rng) - 1) * 10}
+                          : Point2{coordinate(), coordinate()};
+    if (k % 11 == 0) b.y = a.y;  // along an axis
+    const auto [lo, hi] = edge_samples_box(a, b);
+    const int n = 1 + k % 64;
+    for (int i = 0; i <= n; ++i) {
+      const Point2 p = a + (b - a) * (double(i) / n);
+      ASSERT_TRUE(p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y)
+          << "edge " << k << ", sample " << i;
+      outside_edge_box += p.x < std::min(a.x, b.x) || p.x > std::max(a.x, b.x) ||
+                          p.y < std::min(a.y, b.y) || p.y > std::max(a.y, b.y);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 500000u);
+  EXPECT_GT(outside_edge_box, 0u);  // rounding does put samples outside the edge's own box
+}
+
 // Turns::inside() passes over the edges away from a turn. It must answer what the full test
 // answers over every edge of the area (kept here: the crossing test on each edge, then the middle
 // on an edge or by crossings to the right): on random fields with holes at random directions and
