@@ -1,49 +1,42 @@
 // swath's operator new and delete: small blocks through a cache of the thread's
-// (base::BlockCache, which says why); everything else as the library's.
+// (apps::BlockCache, which says why); everything else as the library's. Only the swath program
+// links this file (a global operator new is the whole program's choice: not the libraries, the
+// other programs or the Python module). Every block is malloc's, so a library that frees with
+// free() what new gave, or deletes what malloc gave, does no harm.
 #include <new>
 
-#include "swath/base/block_cache.hpp"
+#include "block_cache.hpp"
 
-// Sanitizers keep their own operator new and delete (a block kept here would hide a use after
-// its delete from them).
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
-    __has_feature(memory_sanitizer)
-#define SWATH_SANITIZED 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define SWATH_SANITIZED 1
-#endif
-
-#if defined(__GLIBC__) && !defined(SWATH_SANITIZED)
+#if SWATH_BLOCK_CACHE
 #include <pthread.h>
 
 namespace {
 
+using swath::apps::BlockCache;
+
 // Zero-initialised and trivially destructible: no guard on each use. The executable's own
 // thread_local, so each use is one load relative to the thread pointer.
-thread_local swath::base::BlockCache cache;
-thread_local bool cache_registered = false;
+thread_local BlockCache cache;
 
 void release_cache(void*) {
   cache.release(true);
 }
 
-// A thread's cache is handed back to malloc at its end, after its thread_local destructors (which
-// may delete): pthread's key destructors run after those.
-void register_cache() {
-  static const pthread_key_t key = [] {
-    pthread_key_t k{};
-    pthread_key_create(&k, release_cache);
-    return k;
+// Only give() puts blocks in the cache, so a thread's first delete opens it (whether or not the
+// thread ever allocated: a thread may only delete what others made). Its cache is handed back to
+// malloc at its end, after its thread_local destructors (which may delete): pthread's key
+// destructors run after those. Where no key can be had the cache stays closed and keeps nothing.
+[[gnu::noinline]] void open_cache() {
+  if (cache.state != BlockCache::kUnopened) return;  // closed: stays so
+  static const pthread_key_t* const key = [] {
+    static pthread_key_t k{};
+    return pthread_key_create(&k, release_cache) == 0 ? &k : nullptr;
   }();
-  cache_registered = true;
-  pthread_setspecific(key, &cache);
+  const bool registered = key != nullptr && pthread_setspecific(*key, &cache) == 0;
+  cache.state = registered ? BlockCache::kOpen : BlockCache::kClosed;
 }
 
 void* allocate(std::size_t bytes) {
-  if (!cache_registered) register_cache();
   for (;;) {
     if (void* block = cache.take(bytes)) return block;
     // As the library's: the new handler may free memory, else std::bad_alloc.
@@ -51,6 +44,12 @@ void* allocate(std::size_t bytes) {
     if (handler == nullptr) throw std::bad_alloc();
     handler();
   }
+}
+
+void give(void* block) {
+  if (cache.state != BlockCache::kOpen) [[unlikely]]
+    open_cache();
+  cache.give(block);
 }
 
 }  // namespace
@@ -62,16 +61,16 @@ void* operator new[](std::size_t bytes) {
   return allocate(bytes);
 }
 void operator delete(void* block) noexcept {
-  cache.give(block);
+  give(block);
 }
 void operator delete[](void* block) noexcept {
-  cache.give(block);
+  give(block);
 }
 void operator delete(void* block, std::size_t) noexcept {
-  cache.give(block);
+  give(block);
 }
 void operator delete[](void* block, std::size_t) noexcept {
-  cache.give(block);
+  give(block);
 }
 
 #endif

@@ -1,7 +1,8 @@
-// base::BlockCache against malloc and free themselves (the reference): every block it gives holds
-// what was asked, aligned as malloc's, and never overlaps another live block, whichever cache takes
-// it back; it keeps at most a class's bytes and hands everything back when released.
-#include "swath/base/block_cache.hpp"
+// apps::BlockCache (apps/swath/block_cache.hpp) against malloc and free themselves (the reference):
+// every block it gives holds what was asked, aligned as malloc's, and never overlaps another live
+// block, whichever cache takes it back; it keeps at most a class's bytes and hands everything back
+// when released.
+#include "block_cache.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@
 
 #if defined(__GLIBC__)
 
-namespace swath::base {
+namespace swath::apps {
 namespace {
 
 struct Live {
@@ -32,6 +33,7 @@ void expect_as_malloc(const void* block, std::size_t bytes) {
 
 std::unique_ptr<BlockCache> empty_cache() {
   auto cache = std::make_unique<BlockCache>();  // value-initialised: all zero, as a thread_local
+  cache->state = BlockCache::kOpen;             // as swath's operator delete opens it
   return cache;
 }
 
@@ -112,7 +114,8 @@ TEST(BlockCache, BlocksFromMallocOfAnySizeServeTheirClass) {
     void* block = std::malloc(bytes);
     const std::size_t usable = malloc_usable_size(block);
     cache->give(block);
-    if (usable > BlockCache::kMaxBytes) {  // a larger chunk than asked: freed, nothing kept
+    // A larger chunk than asked, or (ASan, valgrind) fewer bytes than class 1's: freed, none kept.
+    if (usable < BlockCache::kMinBytes || usable > BlockCache::kMaxBytes) {
       for (std::size_t k = 0; k < BlockCache::kClasses; ++k) ASSERT_EQ(cache->count[k], 0u);
       continue;
     }
@@ -150,7 +153,31 @@ TEST(BlockCache, KeepsAtMostAClassesBytesAndNothingOnceClosed) {
   EXPECT_EQ(cache->count[c], 0u);
 }
 
+TEST(BlockCache, KeepsNoBlockBelowTheFirstClassOrAboveTheLast) {
+  // glibc's usable sizes are at least 24, but ASan, valgrind and libc_malloc_debug report the bytes
+  // asked: below 8 the class would wrap around, 8 to 23 would fall in the unused class 0.
+  auto cache = empty_cache();
+  for (const std::size_t usable : {0u, 1u, 7u, 8u, 9u, 16u, 23u, 1033u, 1040u, 4096u}) {
+    cache->give(std::malloc(1040), usable);  // room for any of them
+    for (std::size_t c = 0; c < BlockCache::kClasses; ++c) ASSERT_EQ(cache->count[c], 0u) << usable;
+  }
+  // The edges themselves are kept, in the first and the last class.
+  cache->give(std::malloc(1040), BlockCache::kMinBytes);
+  EXPECT_EQ(cache->count[1], 1u);
+  cache->give(std::malloc(1040), BlockCache::kMaxBytes);
+  EXPECT_EQ(cache->count[BlockCache::kClasses - 1], 1u);
+  cache->release(true);
+}
+
+TEST(BlockCache, KeepsNothingUntilOpened) {
+  BlockCache cache{};  // all zero, as a thread's before its first delete
+  void* block = cache.take(100);
+  expect_as_malloc(block, 100);
+  cache.give(block);
+  for (std::size_t c = 0; c < BlockCache::kClasses; ++c) EXPECT_EQ(cache.count[c], 0u);
+}
+
 }  // namespace
-}  // namespace swath::base
+}  // namespace swath::apps
 
 #endif
