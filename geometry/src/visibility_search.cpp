@@ -235,7 +235,9 @@ struct VisibilityRouter::Search {
     std::uint32_t v, word;
     std::uint64_t bits;
   };
-  /// The distance from p to the box [lo, hi] (0 inside).
+  /// The distance from p to the box [lo, hi] (0 inside): distance()'s formula (point.hpp) on the
+  /// differences to the box's nearest point, so never above distance(p, u) for u in the box, bit
+  /// for bit (the groups' bound in go_on_to_every_open_node() relies on it).
   static double box_distance(Point2 p, Point2 lo, Point2 hi) {
     const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x}),
                  dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
@@ -511,9 +513,11 @@ struct VisibilityRouter::Search {
         if (in_group & (in_group - 1)) {  // two or more: the bound first
           const Group& group = x.groups[w * (64 / kGroup) + q];
           const double least = g + box_distance(c, group.lo, group.hi) + group.h_least;
-          // The legs' f are the same sums of the same or greater terms, each rounded (relative
-          // errors of a few 1e-16): above the cut when the bound is by far more.
-          if (least * (1 - 1e-12) > cut) {
+          // Never above a leg's f, bit for bit: box_distance() is distance()'s formula on
+          // differences no greater (rounding is monotone: subtraction, squares, the sum, sqrt;
+          // -ffp-contract=off), h_least the same of b's, and both sums are added in the same
+          // order. The margin only guards against a later change to either formula.
+          if (use_groups && least * (1 - 1e-12) > cut) {
             x.skipped.push_back({std::uint32_t(v), std::uint32_t(w), in_group});
             continue;
           }

@@ -13,6 +13,7 @@
 
 #include "swath/geometry/polygon.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/geometry/sort_few.hpp"
 #include "swath/planning/lane_runs.hpp"
 
 namespace swath::planning::detail {
@@ -42,20 +43,6 @@ inline std::size_t walk_lower_bound(const double* keys, std::size_t n, double va
 struct Span {
   double x0, x1;
 };
-
-// std::sort(first, last) for the crossings of one line, mostly 2 to 6: libstdc++ sorts up to 16
-// values by insertion alone, which this is (the same order, equal values' -0 and 0 included),
-// without its calls (they were most of sorting a row's crossings). More: std::sort itself.
-inline void sort_crossings(double* first, double* last) {
-  if (last - first > 16) return std::sort(first, last);
-  if (last - first < 2) return;  // nothing to sort; nor first + 1 of a null first (no crossings)
-  for (double* i = first + 1; i < last; ++i) {
-    const double v = *i;
-    double* j = i;
-    for (; j > first && v < j[-1]; --j) *j = j[-1];
-    *j = v;
-  }
-}
 
 // Spans per row in one array (row k's from start[k] to start[k + 1]): rows are asked by the
 // hundred per direction, and a vector each was a tenth of a split plan's allocations.
@@ -173,7 +160,7 @@ class LaneScan {
   // micrometre to add().
   template <typename Add>
   static void pair_up(double* first, double* last, Add add) {
-    sort_crossings(first, last);
+    geometry::sort_few(first, last);  // a line's few crossings, as std::sort orders them
     for (; last - first >= 2; first += 2)
       if (first[1] - first[0] > 1e-6) add(Span{first[0], first[1]});
   }

@@ -284,6 +284,18 @@ TEST(VisibilityRouterSearch, OutlinesOfHundredsOfCornersAreRoutedAsByTheFullSear
   EXPECT_GT(bent, std::size_t(kQueries / 10));
 }
 
+}  // namespace
+
+// One run of path()'s search (private: the groups' bounds on or off), for the test below.
+struct VisibilityRouterSearchProbe {
+  static VisibilityRouter::SearchRun run(const VisibilityRouter& r, Point2 a, Point2 b,
+                                         double limit, bool groups) {
+    return r.search_run(a, b, limit, groups);
+  }
+};
+
+namespace {
+
 // The groups' bounds leave legs above the cut unmeasured, folded into the least f left out only
 // after a run without an answer. Runs under limits from the straight leg's length to twice it,
 // with the bounds and without (every leg measured), on two routers of the same area (their tables
@@ -301,7 +313,8 @@ TEST(VisibilityRouterSearch, GroupsLeaveOutWhatMeasuringEveryLegLeavesOut) {
     for (int q = 0; q < kQueries / 4; ++q) {
       const Point2 a = points[pick(rng)], b = points[pick(rng)];
       const double limit = distance(a, b) * (1 + 0.1 * double(q % 11));
-      const auto x = fast.search_run(a, b, limit, true), y = full.search_run(a, b, limit, false);
+      const auto x = VisibilityRouterSearchProbe::run(fast, a, b, limit, true),
+                 y = VisibilityRouterSearchProbe::run(full, a, b, limit, false);
       SCOPED_TRACE(::testing::Message() << "area " << area << " (" << a.x << ", " << a.y << ") - ("
                                         << b.x << ", " << b.y << ") limit " << limit);
       ASSERT_EQ(x.answered, y.answered);

@@ -526,30 +526,6 @@ TEST(Turns, AnswerWhatEveryEdgeAnswers) {
   EXPECT_GT(on_edge, 100u);  // ...and with their middle on an edge
 }
 
-// sort_crossings() must leave a line's crossings as std::sort leaves them, bit for bit: random
-// lengths 0-24 (past 16: std::sort itself), values from a few (many equal) with -0 and 0 mixed.
-TEST(SortCrossings, TheOrderOfStdSortBitForBit) {
-  test::Rng rng(5258);
-  std::uniform_int_distribution<int> length(0, 24), value(-3, 3), sign(0, 1);
-  std::size_t signed_zeros = 0;
-  for (int k = 0; k < 20000; ++k) {
-    std::vector<double> xs(std::size_t(length(rng)));
-    for (double& x : xs) {
-      const int v = value(rng);
-      x = v == 0 ? (sign(rng) ? -0.0 : 0.0) : v + (k % 2 ? 0.0 : 0.25 * value(rng));
-    }
-    std::vector<double> truth = xs;
-    std::sort(truth.begin(), truth.end());
-    sort_crossings(xs.data(), xs.data() + xs.size());
-    for (std::size_t i = 0; i < xs.size(); ++i) {
-      ASSERT_EQ(std::bit_cast<std::uint64_t>(xs[i]), std::bit_cast<std::uint64_t>(truth[i]))
-          << "case " << k << " at " << i;
-      signed_zeros += xs[i] == 0 && std::signbit(xs[i]);
-    }
-  }
-  EXPECT_GT(signed_zeros, 1000u);  // the test sees -0 among equal values
-}
-
 // walk_lower_bound() (and walk_lower_bound_by()) must land where std::lower_bound lands, from any
 // hint: ascending keys with repeats, values on keys, between, beyond both ends and NaN, hints
 // anywhere (past the end too).

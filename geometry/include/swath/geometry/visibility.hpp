@@ -163,8 +163,7 @@ class VisibilityRouter {
   bool sees(Point2 p, Row& row, std::size_t node) const;
   /// One run of path()'s search, its state and its steps (visibility.cpp).
   struct Search;
-
- public:
+  friend struct VisibilityRouterSearchProbe;  ///< tests/geometry/visibility_search_test.cpp
   /// For tests: one run of path()'s search from a to b under `limit` (no first bound), with its
   /// groups' bounds or without (visibility_search_test.cpp: the same run either way).
   struct SearchRun {
@@ -174,8 +173,6 @@ class VisibilityRouter {
     bool left_out;
   };
   SearchRun search_run(Point2 a, Point2 b, double limit, bool groups) const;
-
- private:
   /// A first bound on the answer's f of a search from a to b, from the nodes earlier searches
   /// from a settled (path()); infinity: none.
   double first_bound(const Row& from_a, Row& to_b, Point2 b, double limit) const;
