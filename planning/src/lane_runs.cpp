@@ -83,8 +83,9 @@ void coverage_samples(const LaneScan& scan, double spacing_m, std::vector<Point2
   boundary.clear();
   for (const auto& [a, b] : scan.edges()) {
     if (skip) {
-      // An edge whose samples' box a long lane sees whole has none left (most edges: the long
-      // lanes reach the boundary), passed over without making them. Its first sample is a.
+      // An edge whose samples' box the long lanes see whole (each point some long lane) has none
+      // left (most edges: the long lanes reach the boundary), passed over without making them. Its
+      // first sample is a.
       const auto [lo, hi] = edge_samples_box(a, b);
       if (skip->sees_all(lo, hi, a.y)) continue;
     }

@@ -215,11 +215,13 @@ inline double seen_half_width_m(double footprint_width_m) {
 }
 inline constexpr double kSeenAlongM = 1e-6;
 
-// A box holding every point a + (b - a) * t for 0 <= t <= 1 as rounded (coverage_samples()' samples
+// A box holding every point a + (b - a) * t, t = i / n as rounded (coverage_samples()' samples
 // of an edge): the edge's own box widened by 8 units of rounding u of its largest coordinate M per
-// axis. The rounded b - a is within 2uM of the exact, its product with t within 2uM more, the sum's
-// rounding within uM: 5uM in all (M + 5uM bounds every value); the least normal double covers
-// underflow. The widening's own rounding (at most uM) leaves more than 5uM.
+// axis (the least normal double for underflow). Counted fully (b - a, t = i / n, their product,
+// the sum, each rounded) a sample is within about 7uM of the exact point, so the widening covers
+// even t = 1 with little to spare; the samples made (i < n) need none, for they lie at least
+// |b - a| / n inside both ends, far more than their rounding (~3u |b - a|), and rounding is
+// monotone: the widening is a guard, not a need.
 inline std::pair<Point2, Point2> edge_samples_box(Point2 a, Point2 b) {
   constexpr double eight_u = 4 * std::numeric_limits<double>::epsilon();
   const double tiny = std::numeric_limits<double>::min();
@@ -257,11 +259,11 @@ class LongLaneReach {
                                         [](double x, const Span& s) { return x < s.x0; });
     return after != in.begin() && p.x <= std::prev(after)->x1;
   }
-  /// Whether a long lane sees every point of the box [lo, hi] (lo.x <= hi.x, lo.y <= hi.y), told
-  /// by the rows within reach of ordinate y (at(y)'s: a caller asks them next anyway, so no rows
-  /// are merged or found that sees() would not have): true where those rows are within reach of
-  /// every ordinate of the box and one of their ranges holds its abscissae, so sees() is true at
-  /// each of its points; else false.
+  /// Whether the long lanes see every point of the box [lo, hi] (each point some long lane) (lo.x
+  /// <= hi.x, lo.y <= hi.y), told by the rows within reach of ordinate y (at(y)'s: a caller asks
+  /// them next anyway, so no rows are merged or found that sees() would not have): true where those
+  /// rows are within reach of every ordinate of the box and one of their ranges holds its
+  /// abscissae, so sees() is true at each of its points; else false.
   bool sees_all(Point2 lo, Point2 hi, double y) {
     const std::span<const Span> in = at(y);
     if (in.empty()) return false;  // no long lane within reach (most of some fields' boundary)

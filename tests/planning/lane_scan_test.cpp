@@ -296,6 +296,26 @@ TEST(CoverageSamples, LeftOutAreExactlyThoseALongLaneSees) {
   EXPECT_GT(left_out, 100000u);  // ...and left out
 }
 
+// Lane rows for LongLaneReach's tests: a random spacing and footprint, the grid's rows over the
+// scan and the lanes on them, and a random least length of a long lane.
+struct LongLaneRows {
+  std::vector<double> ys;
+  SpanRows lanes;
+  double spacing_m = 0, half_m = 0, min_length_m = 0;
+};
+LongLaneRows long_lane_rows(test::Rng& rng, const LaneScan& scan) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  LongLaneRows rows;
+  const double spacing = 5 + 40 * unit(rng), footprint = spacing * (1 + 2 * unit(rng));
+  rows.spacing_m = spacing;
+  for (double y = scan.y_min + spacing * unit(rng); y < scan.y_max; y += spacing)
+    rows.ys.push_back(y);
+  rows.lanes = scan.at(rows.ys);
+  rows.half_m = seen_half_width_m(footprint);
+  rows.min_length_m = footprint * 3 * unit(rng);
+  return rows;
+}
+
 // LongLaneReach::at() must hold, at any ordinate asked in any order, the union of the long lanes'
 // ranges over the rows within reach: checked point by point against every lane at random
 // abscissae and ordinates, ascending and shuffled, and at the reach's edges: a lane's ends and
@@ -308,11 +328,10 @@ TEST(LongLaneReach, SeesWhatSomeLongLaneSees) {
   for (int k = 0; k < 40; ++k) {
     const std::vector<Ring> rings = scan_test_area(rng, k);
     const LaneScan scan(rings, 180 * unit(rng));
-    const double spacing = 5 + 40 * unit(rng), footprint = spacing * (1 + 2 * unit(rng));
-    std::vector<double> ys;
-    for (double y = scan.y_min + spacing * unit(rng); y < scan.y_max; y += spacing) ys.push_back(y);
-    const SpanRows lanes = scan.at(ys);
-    const double half = seen_half_width_m(footprint), min_length = footprint * 3 * unit(rng);
+    const LongLaneRows rows = long_lane_rows(rng, scan);
+    const std::vector<double>& ys = rows.ys;
+    const SpanRows& lanes = rows.lanes;
+    const double half = rows.half_m, min_length = rows.min_length_m;
     LongLaneReach reach(ys, lanes, half, min_length);
     std::vector<Point2> points;
     for (int i = 0; i < 3000; ++i) {
@@ -359,11 +378,10 @@ TEST(LongLaneReach, SeesAllOnlyWhatSomeLaneSeesAtEveryPoint) {
   for (int k = 0; k < 40; ++k) {
     const std::vector<Ring> rings = scan_test_area(rng, k);
     const LaneScan scan(rings, 180 * unit(rng));
-    const double spacing = 5 + 40 * unit(rng), footprint = spacing * (1 + 2 * unit(rng));
-    std::vector<double> ys;
-    for (double y = scan.y_min + spacing * unit(rng); y < scan.y_max; y += spacing) ys.push_back(y);
-    const SpanRows lanes = scan.at(ys);
-    const double half = seen_half_width_m(footprint), min_length = footprint * 3 * unit(rng);
+    const LongLaneRows rows = long_lane_rows(rng, scan);
+    const std::vector<double>& ys = rows.ys;
+    const SpanRows& lanes = rows.lanes;
+    const double half = rows.half_m, min_length = rows.min_length_m, spacing = rows.spacing_m;
     LongLaneReach reach(ys, lanes, half, min_length);
     const auto truth = [&](Point2 p) {
       for (std::size_t r = 0; r < ys.size(); ++r)
