@@ -265,6 +265,15 @@ TEST(VisibilityRouterFan, NearEdgesAreFoundAtTheNearDistance) {
   EXPECT_GT(beyond, 100u);
 }
 
+// The largest absolute coordinate of the rings' vertices (the router's extent: a fan is asked for
+// legs to points within it only).
+double largest_coordinate(const std::vector<Ring>& rings) {
+  double extent = 0;
+  for (const Ring& ring : rings)
+    for (const Point2& v : ring) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+  return extent;
+}
+
 TEST(VisibilityRouterFan, LegsThroughAFanAreMeasuredAsOverEveryEdge) {
   test::Rng rng(5254);
   std::size_t seen = 0, hidden = 0;
@@ -272,9 +281,7 @@ TEST(VisibilityRouterFan, LegsThroughAFanAreMeasuredAsOverEveryEdge) {
     const std::vector<Ring> rings = area(rng, k);
     const test::BruteArea brute(rings);
     const VisibilityRouter router(rings);
-    double extent = 0;
-    for (const Ring& ring : rings)
-      for (const Point2& v : ring) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    const double extent = largest_coordinate(rings);
     const std::vector<Point2> froms = points(rng, rings, 40), tos = points(rng, rings, 120);
     for (const Point2 a : froms) {
       const auto fan = Probe::fan_of(router, a);
@@ -306,9 +313,7 @@ TEST(VisibilityRouterFan, APointInsideIsInsideByItsRingsAndItsClearLegsAreInside
     const std::vector<Ring> rings = area(rng, k);
     const test::BruteArea brute(rings);
     const VisibilityRouter router(rings);
-    double extent = 0;
-    for (const Ring& ring : rings)
-      for (const Point2& v : ring) extent = std::max({extent, std::abs(v.x), std::abs(v.y)});
+    const double extent = largest_coordinate(rings);
     const std::vector<Point2> tos = points(rng, rings, 60);
     for (const Point2 a : points(rng, rings, 240)) {
       const auto fan = Probe::fan_of(router, a);
