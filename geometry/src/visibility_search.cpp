@@ -235,14 +235,6 @@ struct VisibilityRouter::Search {
     std::uint32_t v, word;
     std::uint64_t bits;
   };
-  /// The distance from p to the box [lo, hi] (0 inside): distance()'s formula (point.hpp) on the
-  /// differences to the box's nearest point, so never above distance(p, u) for u in the box, bit
-  /// for bit (the groups' bound in go_on_to_every_open_node() relies on it).
-  static double box_distance(Point2 p, Point2 lo, Point2 hi) {
-    const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x}),
-                 dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
-    return std::sqrt(dx * dx + dy * dy);
-  }
   struct Buffers {
     std::vector<double> h;              // per node of `near`: (1 - 1e-6) |node b|
     std::vector<std::size_t> previous;  // n: straight from a
@@ -377,7 +369,7 @@ struct VisibilityRouter::Search {
           lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
           hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
         }
-        x.groups[w * (64 / kGroup) + q] = {lo, hi, kShrink * box_distance(b, lo, hi)};
+        x.groups[w * (64 / kGroup) + q] = {lo, hi, kShrink * distance_to_box(b, lo, hi)};
       }
   }
 
@@ -512,8 +504,8 @@ struct VisibilityRouter::Search {
         open &= ~in_group;
         if (in_group & (in_group - 1)) {  // two or more: the bound first
           const Group& group = x.groups[w * (64 / kGroup) + q];
-          const double least = g + box_distance(c, group.lo, group.hi) + group.h_least;
-          // Never above a leg's f, bit for bit: box_distance() is distance()'s formula on
+          const double least = g + distance_to_box(c, group.lo, group.hi) + group.h_least;
+          // Never above a leg's f, bit for bit: distance_to_box() is distance()'s formula on
           // differences no greater (rounding is monotone: subtraction, squares, the sum, sqrt;
           // -ffp-contract=off), h_least the same of b's, and both sums are added in the same
           // order. The margin only guards against a later change to either formula.

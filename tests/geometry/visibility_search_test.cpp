@@ -489,5 +489,38 @@ TEST(VisibilityRouterSearch, ABigFieldOutlineIsRoutedInside) {
   EXPECT_GT(bent, 10u);
 }
 
+// The search's groups of corners are passed over by distance_to_box() (point.hpp): it must never
+// exceed distance() to a point of the box, nor its sum as the search adds it (g, the leg, h =
+// (1 - 1e-6) |u b|) the sum to any corner of the group, bit for bit, at every scale of coordinates;
+// and it is distance() itself for a box of one point (so no margin hides a scaled bound).
+TEST(VisibilityRouterSearch, DistanceToABoxIsNeverAboveTheDistanceToAPointInIt) {
+  test::Rng rng(1827);
+  std::uniform_real_distribution<double> unit(0, 1);
+  constexpr double kShrink = 1 - 1e-6;
+  std::size_t outside = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const double scale = std::pow(10.0, -3 + 10 * unit(rng));  // 1e-3 to 1e7 metres
+    const auto coordinate = [&] { return scale * (2 * unit(rng) - 1); };
+    Point2 lo{coordinate(), coordinate()}, hi{coordinate(), coordinate()};
+    if (lo.x > hi.x) std::swap(lo.x, hi.x);
+    if (lo.y > hi.y) std::swap(lo.y, hi.y);
+    const Point2 p{coordinate(), coordinate()}, b{coordinate(), coordinate()};
+    const int where = int(rng() % 4);  // a corner, a side, anywhere inside, the box of u alone
+    Point2 u{lo.x + (hi.x - lo.x) * unit(rng), lo.y + (hi.y - lo.y) * unit(rng)};
+    if (where == 0) u = {rng() % 2 ? lo.x : hi.x, rng() % 2 ? lo.y : hi.y};
+    if (where == 1) u.x = rng() % 2 ? lo.x : hi.x;
+    u = {std::clamp(u.x, lo.x, hi.x), std::clamp(u.y, lo.y, hi.y)};
+    const Point2 box_lo = where == 3 ? u : lo, box_hi = where == 3 ? u : hi;
+    const double to_box = distance_to_box(p, box_lo, box_hi), to_u = distance(p, u);
+    if (where == 3) ASSERT_EQ(to_box, to_u) << "k " << k;
+    ASSERT_LE(to_box, to_u) << "k " << k;
+    const double g = scale * unit(rng);
+    ASSERT_LE(g + to_box + kShrink * distance_to_box(b, box_lo, box_hi),
+              g + to_u + kShrink * distance(u, b))
+        << "k " << k;
+    outside += to_box > 0;
+  }
+  EXPECT_GT(outside, 100000u);  // most points lie outside their box
+}
 }  // namespace
 }  // namespace swath::geometry

@@ -29,6 +29,15 @@ inline double distance(Point2 a, Point2 b) {
   const double dx = a.x - b.x, dy = a.y - b.y;
   return std::sqrt(dx * dx + dy * dy);
 }
+/// Distance from p to the box [lo, hi] (0 inside): distance()'s formula on the differences to the
+/// box's nearest point, so never above distance(p, u) for any u in the box, bit for bit (rounding
+/// is monotone in the differences, their squares, the sum and sqrt): a lower bound that the
+/// router's search adds up as it adds distance() (visibility_search.cpp's groups of corners).
+inline double distance_to_box(Point2 p, Point2 lo, Point2 hi) {
+  const double dx = std::fmax(std::fmax(lo.x - p.x, 0.0), p.x - hi.x),
+               dy = std::fmax(std::fmax(lo.y - p.y, 0.0), p.y - hi.y);
+  return std::sqrt(dx * dx + dy * dy);
+}
 
 /// A WGS84 geodetic point. Latitude in [-90, 90] degrees, longitude in [-180, 180] degrees,
 /// altitude in metres above the ellipsoid (0 where a file gives none).
