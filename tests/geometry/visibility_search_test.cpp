@@ -256,6 +256,14 @@ TEST(VisibilityRouterSearch, PathsAreAsShortAsTheFullSearchs) {
   EXPECT_GT(bent, std::size_t(3000) * kQueries / 1200);
 }
 
+// Areas of hundreds of corners for the groups' tests (area 0 to 2): 300- and 450-vertex outlines
+// with 8 and 16 holes (several 64-node words, groups near and far), then a 40-tooth comb (paths
+// far longer than a first run's limit).
+std::vector<Ring> hundreds_of_corners(test::Rng& rng, int area) {
+  if (area == 2) return {test::comb_polygon(40, 10, 60, 10)};
+  return search_holey_area(rng, std::size_t(300 + 150 * area), 8 + 8 * area);
+}
+
 // With a corner allowance, a node settled skips the open nodes in groups whose box puts every leg
 // into them above the search's cut, and folds them into the next limit only after a run without an
 // answer. Outlines of hundreds of corners (several 64-node words, groups near and far) and a comb
@@ -265,9 +273,7 @@ TEST(VisibilityRouterSearch, OutlinesOfHundredsOfCornersAreRoutedAsByTheFullSear
   test::Rng rng(1825);
   std::size_t bent = 0;
   for (int area = 0; area < 3; ++area) {
-    const std::vector<Ring> rings =
-        area == 2 ? std::vector<Ring>{test::comb_polygon(40, 10, 60, 10)}
-                  : search_holey_area(rng, std::size_t(300 + 150 * area), 8 + 8 * area);
+    const std::vector<Ring> rings = hundreds_of_corners(rng, area);
     const VisibilityRouter router(rings, Routing::routed, 2.0);
     EagerRouter eager(rings, 2.0);
     EXPECT_GT(eager.nodes(), 64u) << area;
@@ -304,9 +310,7 @@ TEST(VisibilityRouterSearch, GroupsLeaveOutWhatMeasuringEveryLegLeavesOut) {
   test::Rng rng(1826);
   std::size_t unanswered = 0;
   for (int area = 0; area < 3; ++area) {
-    const std::vector<Ring> rings =
-        area == 2 ? std::vector<Ring>{test::comb_polygon(40, 10, 60, 10)}
-                  : search_holey_area(rng, std::size_t(300 + 150 * area), 8 + 8 * area);
+    const std::vector<Ring> rings = hundreds_of_corners(rng, area);
     const VisibilityRouter fast(rings, Routing::routed, 2.0), full(rings, Routing::routed, 2.0);
     const std::vector<Point2> points = path_ends(rng, rings, 50);
     std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
