@@ -1,23 +1,14 @@
 #include "batch_command.hpp"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/mman.h>
-#include <sys/prctl.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "batch_workers.hpp"
 #include "plan_command.hpp"
-#include "progress_bar.hpp"
 #include "shell_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -82,7 +73,7 @@ void BatchCommand::setup(CLI::App& app) {
                  "The attribute that names areas and their sub-directories (default: name, "
                  "Name, NAME or id; else their position)");
   app.add_option("--jobs", jobs_,
-                 "Areas planned at once (processes); the files do not depend on it")
+                 "Areas planned at once (worker processes); the files do not depend on it")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   app.add_flag("--emit-jobs", emit_jobs_,
@@ -97,12 +88,6 @@ void BatchCommand::setup(CLI::App& app) {
 }
 
 namespace {
-
-// The result of one area's `swath plan`.
-struct Result {
-  int exit_code = -1;
-  std::string message;  ///< the first line it wrote to stderr
-};
 
 // The plan options are parsed once, as `swath plan` would: a typo is refused before any area is
 // planned (and before anything is written).
@@ -182,7 +167,7 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
   const bool directory = fs::is_directory(areas);
   // The first GIS file is listed by GDAL whatever it holds: GDAL is then loaded, and the jobs
   // that need it (a GeoJSON naming a CRS, --layer, --coverage-tif, ...) find it loaded in the
-  // process they are forked from, not loaded again by each.
+  // workers forked from this process, not loaded again by each.
   bool gdal_loaded = false;
   auto add_file = [&](const fs::path& file) {
     if (directory && gdal_loaded && one_polygon_geojson(file)) {
@@ -232,88 +217,6 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
   return jobs;
 }
 
-// Runs `swath plan` with `argv` in this forked process (GDAL and the area file's layer are already
-// loaded: no exec, no second start-up), stderr to `err_fd`; never returns.
-[[noreturn]] void plan_in_child(const std::vector<std::string>& argv, int err_fd, pid_t parent) {
-  // A batch ended by a signal ends its jobs too (each removes its temporaries as it goes).
-  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-  if (::getppid() != parent) ::_exit(128 + SIGTERM);  // the parent went before prctl took hold
-  const int out_fd = ::open("/dev/null", O_WRONLY);
-  ::dup2(out_fd, 1);
-  ::dup2(err_fd, 2);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  std::vector<std::unique_ptr<Command>> plan;
-  plan.push_back(std::make_unique<PlanCommand>());
-  const int code =
-      run_program("swath", "swath plan", "", plan, static_cast<int>(argv.size()), args.data());
-  std::cout.flush();
-  std::cerr.flush();
-  ::_exit(code);
-}
-
-// A child's stderr: an anonymous file in memory (memfd), so that no name in a shared folder can
-// be guessed, planted as a symlink or left behind by a signal.
-int child_log() {
-  const int fd = ::memfd_create("swath-batch-log", MFD_CLOEXEC);
-  if (fd < 0) throw std::runtime_error("batch: cannot create a log for a job");
-  return fd;
-}
-
-// The first MiB a child wrote to its log.
-std::string read_child_log(int fd) {
-  // As long as the log is (a plan writes a line or none): a MiB zeroed for every area was a
-  // fifth of the batch's own CPU.
-  struct stat st {};
-  const std::size_t size = ::fstat(fd, &st) == 0 && st.st_size >= 0
-                               ? static_cast<std::size_t>(st.st_size)
-                               : std::size_t{1} << 20;
-  std::string text(std::min(size, std::size_t{1} << 20), '\0');
-  const ssize_t n = ::pread(fd, text.data(), text.size(), 0);
-  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
-  return text;
-}
-
-// Plans every job, `parallel` processes at once; each writes its own sub-directory atomically.
-std::vector<Result> plan_all(const std::vector<std::vector<std::string>>& commands, int parallel,
-                             bool progress) {
-  std::vector<Result> results(commands.size());
-  std::map<pid_t, std::size_t> running;
-  std::map<pid_t, int> err_files;
-  ProgressBar bar(progress, "planning");
-  std::size_t next = 0, done = 0;
-  auto reap_one = [&] {
-    int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, 0);
-    if (pid <= 0) return;
-    const std::size_t i = running.at(pid);
-    running.erase(pid);
-    results[i].exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    const std::string err = read_child_log(err_files[pid]);
-    ::close(err_files[pid]);
-    err_files.erase(pid);
-    results[i].message = err.substr(0, err.find('\n'));
-    bar.update(static_cast<double>(++done) / static_cast<double>(commands.size()));
-  };
-  while (next < commands.size() || !running.empty()) {
-    while (next < commands.size() && static_cast<int>(running.size()) < parallel) {
-      const int err = child_log();
-      std::cout.flush();
-      std::cerr.flush();
-      const pid_t parent = ::getpid();
-      const pid_t pid = ::fork();
-      if (pid == 0) plan_in_child(commands[next], err, parent);
-      if (pid < 0) throw std::runtime_error("batch: cannot start a process");
-      running[pid] = next;
-      err_files[pid] = err;
-      ++next;
-    }
-    reap_one();
-  }
-  return results;
-}
-
 // The area's outline as the plan read it, as a GeoJSON polygon (null for one it could not read).
 json outline_geojson(const Job& j, geometry::FieldReadOptions options) {
   try {
@@ -337,7 +240,7 @@ struct BatchTables {
   std::string csv, geojson;
   int failed = 0;
 };
-BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<Result>& results,
+BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<PlanResult>& results,
                          const std::string& output, const geometry::FieldReadOptions& options) {
   BatchTables t;
   t.csv =
@@ -346,7 +249,7 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<Result>
   json features = json::array();
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const Job& j = jobs[i];
-    const Result& r = results[i];
+    const PlanResult& r = results[i];
     const bool ok = r.exit_code == 0;
     t.failed += !ok;
     // Names and messages are bytes from the user's files: valid UTF-8 before JSON and CSV.
@@ -420,7 +323,7 @@ int BatchCommand::run() {
     return base::kExitSuccess;
   }
   fs::create_directories(output_);
-  const std::vector<Result> results = plan_all(commands, jobs_, progress_);
+  const std::vector<PlanResult> results = plan_in_workers(commands, jobs_, progress_);
   const BatchTables tables = batch_tables(jobs, results, output_, options);
   base::OutputSet set(output_, "batch", {base::OutputSet::Mode::amend, 10.0});
   set.add("batch.csv", tables.csv);

@@ -1,0 +1,26 @@
+#pragma once
+// The processes that plan a batch's areas (swath batch): a few workers forked from the batch,
+// each planning the areas it is sent one after another as `swath plan` would.
+
+#include <string>
+#include <vector>
+
+namespace swath::apps {
+
+/// The result of one area's `swath plan`.
+struct PlanResult {
+  int exit_code = -1;   ///< as `swath plan` exits; 128 + the signal that ended its process
+  std::string message;  ///< the first line it wrote to stderr
+};
+
+/// Plans every `swath plan` command line of `commands` (argv, program name first), at most
+/// `parallel` at once, in worker processes forked from this one (so whatever this process has
+/// loaded, GDAL and the area files' layers, they find loaded). A worker plans in process, with
+/// stdout to /dev/null and stderr to a log in memory, read back after each area. A worker that
+/// dies (a crash, a signal) fails only the area it was planning; a fresh worker takes the rest.
+/// Results in the order of `commands`; each area writes its own directory, so they do not
+/// depend on `parallel` or on which worker planned which area. `progress`: a bar on a terminal.
+std::vector<PlanResult> plan_in_workers(const std::vector<std::vector<std::string>>& commands,
+                                        int parallel, bool progress);
+
+}  // namespace swath::apps

@@ -1,0 +1,157 @@
+// `swath batch` plans its areas in a few worker processes, each planning area after area
+// (apps/swath/batch_workers.hpp). What a user must not see from that: an area's row carrying
+// another area's words, an area planned differently after others than alone, an area lost when a
+// worker is replaced or dies.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "swath/base/number_text.hpp"
+
+namespace swath::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kOptions = " --camera sony-ilce-qx1 --altitude 60";
+
+// An axis-aligned rectangle of `w` x `h` degrees at (lon, lat) as a GeoJSON Feature named `name`;
+// `crossed`: its second and third corners swapped, a bow tie that `swath plan` refuses.
+std::string rectangle(double lon, double lat, double w, double h, const std::string& name,
+                      bool crossed = false) {
+  std::vector<std::pair<double, double>> ring{
+      {lon, lat}, {lon + w, lat}, {lon + w, lat + h}, {lon, lat + h}};
+  if (crossed) std::swap(ring[1], ring[2]);
+  ring.push_back(ring.front());
+  std::string coords;
+  for (const auto& [x, y] : ring)
+    coords += std::string(coords.empty() ? "" : ", ") + "[" + base::shortest_text(x) + ", " +
+              base::shortest_text(y) + "]";
+  return R"({"type": "Feature", "properties": {"name": ")" + name +
+         R"("}, "geometry": {"type": "Polygon", "coordinates": [[)" + coords + "]]}}";
+}
+
+// The plot of 0.5 km² whose plan takes more than a battery (a warning on stderr, still planned:
+// exit 0) and writes a photos.geojson of about 300 kB; the small plots write at most 8 kB a file.
+std::string large_plot(int i) {
+  return rectangle(8.42, 47.3 + 0.01 * i, 0.01, 0.006, "large");
+}
+std::string small_plot(int i) {
+  return rectangle(8.40 + 0.002 * (i % 8), 47.29 - 0.0012 * (i / 8), 0.0015, 0.001,
+                   "small " + std::to_string(i));
+}
+
+std::string areas_of(const std::vector<std::string>& features) {
+  std::string out = R"({"type": "FeatureCollection", "features": [)";
+  for (std::size_t i = 0; i < features.size(); ++i) out += (i ? ",\n" : "\n") + features[i];
+  return out + "\n]}\n";
+}
+
+// batch.csv's rows without the header, split at commas (the messages hold commas too: they are
+// read from the whole line).
+std::vector<std::vector<std::string>> batch_rows(const std::string& dir) {
+  auto rows = csv_rows(read_text(dir + "/batch.csv"));
+  if (!rows.empty()) rows.erase(rows.begin());
+  return rows;
+}
+std::vector<std::string> batch_lines(const std::string& dir) {
+  std::vector<std::string> lines;
+  std::istringstream text(read_text(dir + "/batch.csv"));
+  std::string line;
+  std::getline(text, line);  // the header
+  while (std::getline(text, line)) lines.push_back(line);
+  return lines;
+}
+
+// Whether area `index` of `areas` planned alone writes the same summary.json as in `batch_dir`.
+bool planned_as_alone(const std::string& areas, std::size_t index, const std::string& batch_dir,
+                      const std::string& sub, const std::string& scratch) {
+  const std::string alone = scratch + "/alone-" + std::to_string(index);
+  const CliRun run = run_swath("plan " + areas + " --feature " + std::to_string(index) + kOptions +
+                               " -o " + alone);
+  return run.exit_code == 0 &&
+         read_text(alone + "/summary.json") == read_text(batch_dir + "/" + sub + "/summary.json");
+}
+
+// One worker plans them all (--jobs 1): a refused area after one that warned says its own
+// refusal, not the warning the worker's log held from the area before.
+TEST(BatchWorkers, EachAreasMessageIsItsOwnInAWorkerThatPlansSeveral) {
+  const std::string dir = fresh_dir("batch-workers-log");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  std::ofstream(areas) << areas_of({large_plot(0),
+                                      rectangle(8.41, 47.31, 0.0015, 0.001, "bow", true),
+                                      small_plot(0), large_plot(1)});
+  const CliRun run = run_swath("batch " + areas + " -o " + dir + "/out --jobs 1" + kOptions);
+  ASSERT_EQ(run.exit_code, 3) << run.err;
+  const auto rows = batch_rows(dir + "/out");
+  const auto lines = batch_lines(dir + "/out");
+  ASSERT_EQ(rows.size(), 4u);
+  ASSERT_EQ(lines.size(), 4u);
+  for (const std::size_t planned : {0u, 2u, 3u}) {
+    EXPECT_EQ(rows[planned][4], "planned") << planned;
+    EXPECT_EQ(lines[planned].back(), ',') << lines[planned];  // no message: not the warning
+  }
+  EXPECT_EQ(rows[1][4], "refused");
+  EXPECT_NE(lines[1].find(",\"swath plan: "), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("crosses itself"), std::string::npos) << lines[1];
+  EXPECT_EQ(lines[1].find("warning"), std::string::npos) << lines[1];
+  // The plan after the refusal, by the same worker, is the plan alone.
+  EXPECT_TRUE(planned_as_alone(areas, 2, dir + "/out", rows[2][3], dir));
+  EXPECT_TRUE(planned_as_alone(areas, 3, dir + "/out", rows[3][3], dir));
+}
+
+// More areas than a worker plans before a fresh one takes over (64), on two workers: every area
+// is planned, each as alone, around the hand-overs too.
+TEST(BatchWorkers, EveryAreaIsPlannedAcrossTheWorkersHandOvers) {
+  const std::string dir = fresh_dir("batch-workers-many");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  std::vector<std::string> plots;
+  for (int i = 0; i < 140; ++i) plots.push_back(small_plot(i));
+  std::ofstream(areas) << areas_of(plots);
+  const CliRun run = run_swath("batch " + areas + " -o " + dir + "/out --jobs 2" + kOptions);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto rows = batch_rows(dir + "/out");
+  ASSERT_EQ(rows.size(), plots.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i][0], "small " + std::to_string(i));
+    EXPECT_EQ(rows[i][4], "planned") << i;
+    EXPECT_TRUE(fs::is_regular_file(dir + "/out/" + rows[i][3] + "/drone-1.plan")) << i;
+  }
+  for (const std::size_t i : {0u, 63u, 64u, 65u, 128u, 139u})
+    EXPECT_TRUE(planned_as_alone(areas, i, dir + "/out", rows[i][3], dir)) << i;
+}
+
+// A worker killed while planning (here by the file size limit, SIGXFSZ, on the large plot's
+// photos) fails that area alone, with the signal in its row and no directory of it left; the
+// areas after it are planned by a fresh worker, as alone.
+TEST(BatchWorkers, AWorkerThatDiesFailsOnlyItsArea) {
+  const std::string dir = fresh_dir("batch-workers-death");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  std::ofstream(areas) << areas_of({small_plot(0), large_plot(0), small_plot(1), small_plot(2)});
+  // 100 blocks: 50 kB in dash's units, 100 kB in bash's; both between the two plots' files.
+  const CliRun run =
+      run_program("sh", "-c 'ulimit -f 100; exec " + std::string(SWATH_BINARY) + " batch " + areas +
+                            " -o " + dir + "/out --jobs 1" + kOptions + "'");
+  ASSERT_EQ(run.exit_code, 3) << run.err;
+  const auto rows = batch_rows(dir + "/out");
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[1][4], "refused");
+  EXPECT_EQ(rows[1][5], "153");  // 128 + SIGXFSZ
+  EXPECT_NE(batch_lines(dir + "/out")[1].find("ended by signal 25"), std::string::npos) << run.out;
+  EXPECT_FALSE(fs::exists(dir + "/out/" + rows[1][3]));
+  for (const std::size_t i : {0u, 2u, 3u}) {
+    EXPECT_EQ(rows[i][4], "planned") << i;
+    EXPECT_TRUE(planned_as_alone(areas, i, dir + "/out", rows[i][3], dir)) << i;
+  }
+}
+
+}  // namespace
+}  // namespace swath::test
