@@ -256,6 +256,10 @@ std::vector<AreaEntry> list_areas(const std::filesystem::path& path,
   return detail::list_ogr_areas(path.string(), options);
 }
 
+std::size_t area_file_reads(const std::filesystem::path& path) {
+  return detail::area_reads(path.string());
+}
+
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {
   const std::string source = path.string();
   // A missing file or a directory is said so before its extension is looked at.

@@ -8,13 +8,17 @@
 #include <ogr_geometry.h>
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "field_ogr.hpp"
 #include "gdal_confinement.hpp"
@@ -157,8 +161,8 @@ void check_area_of_use(const OGRGeometry& g, const OGRSpatialReference& crs,
 
 // A Shapefile whose .prj GDAL could not read has no CRS, and would be taken as
 // longitude/latitude: refused instead (a misspelt or garbage .prj is not WGS84).
-void refuse_unread_prj(OGRLayer& layer, const std::string& path) {
-  if (layer.GetSpatialRef() || !lower(path).ends_with(".shp")) return;
+void refuse_unread_prj(bool layer_has_crs, const std::string& path) {
+  if (layer_has_crs || !lower(path).ends_with(".shp")) return;
   std::error_code ec;
   for (const char* ext : {".prj", ".PRJ"})
     if (std::filesystem::exists(std::filesystem::path(path).replace_extension(ext), ec))
@@ -415,12 +419,12 @@ std::vector<LayerArea> layer_areas(OGRLayer& layer, int name_index, const std::s
 
 // The area asked for by name or position, or the layer's only one.
 std::size_t choose_area(const std::vector<LayerArea>& areas, const FieldReadOptions& options,
-                        OGRLayer& layer, const std::string& source) {
+                        const std::string& layer_name, const std::string& source) {
   std::vector<std::string> names;
   for (const LayerArea& c : areas) names.push_back(c.name);
   if (!options.feature) {
     if (areas.size() == 1) return 0;
-    throw InputError(source + ": layer \"" + layer.GetName() + "\" holds " +
+    throw InputError(source + ": layer \"" + layer_name + "\" holds " +
                      std::to_string(areas.size()) + " areas (" + names_list(names) +
                      "); choose one with --feature NAME or INDEX");
   }
@@ -433,29 +437,124 @@ std::size_t choose_area(const std::vector<LayerArea>& areas, const FieldReadOpti
       want.size() < 9 && std::stoul(want) < areas.size())
     chosen = std::stoul(want), found = true;
   if (!found)
-    throw InputError(source + ": no area \"" + want + "\" in layer \"" + layer.GetName() +
+    throw InputError(source + ": no area \"" + want + "\" in layer \"" + layer_name +
                      "\"; its areas are " + names_list(names) + " (or 0 to " +
                      std::to_string(areas.size() - 1) + " by position)");
   return chosen;
 }
 
+// A layer's areas as read, for the area asked of them (area_of()).
+struct LayerRead {
+  std::vector<LayerArea> areas;
+  std::string layer_name;
+  std::unique_ptr<OGRSpatialReference> crs;  ///< the layer's (a copy), or none
+};
+
+// The one area `options` choose of `read`, refused as read_ogr() says, in WGS84.
+RawField area_of(const LayerRead& read, const FieldReadOptions& options, const std::string& path) {
+  const std::size_t chosen = choose_area(read.areas, options, read.layer_name, path);
+  refuse_unread_prj(read.crs != nullptr, path);
+  CPLErrorReset();  // a transformation's failure names its own error, not an earlier one
+  const std::unique_ptr<OGRPolygon> poly(read.areas[chosen].polygon->clone());
+  to_wgs84(*poly, read.crs.get(), path);
+  return to_raw(*poly, "area " + read.areas[chosen].name);
+}
+
+// The layers last read, kept for the next read of the same file: `swath batch` plans area after
+// area of one file in each worker, and each read parsed the whole file again (a GeoJSON of 400
+// plots: 90 M instructions a read, most of each plan; its table of outlines, 400 reads more). A
+// layer is kept while its file is the same (path, device, inode, size, modification time; a
+// Shapefile's other files are taken to change with it), for the same layer and name field, and
+// only in the process that read it (OGR's and PROJ's objects are not carried over a fork). The
+// last kKept files' (a plan may also read its zones' files, --exclude, each time).
+class LastLayers {
+ public:
+  // The kept read of `path` if it is still the file's; null if not.
+  std::shared_ptr<const LayerRead> find(const std::string& path, const FieldReadOptions& options) {
+    const std::optional<Key> key = key_of(path, options);
+    if (!key) return nullptr;
+    const std::lock_guard<std::mutex> guard(lock_);
+    const auto it =
+        std::find_if(kept_.begin(), kept_.end(), [&](const auto& k) { return k.first == *key; });
+    if (it == kept_.end()) return nullptr;
+    std::rotate(kept_.begin(), it, it + 1);  // the most recent first
+    return kept_.front().second;
+  }
+  void keep(const std::string& path, const FieldReadOptions& options,
+            std::shared_ptr<const LayerRead> read) {
+    const std::optional<Key> key = key_of(path, options);
+    const std::lock_guard<std::mutex> guard(lock_);
+    ++reads_[path];
+    if (!key) return;
+    std::erase_if(kept_, [&](const auto& k) { return k.first.path == path; });
+    kept_.insert(kept_.begin(), {*key, std::move(read)});
+    if (kept_.size() > kKept) kept_.pop_back();
+  }
+  std::size_t reads(const std::string& path) {
+    const std::lock_guard<std::mutex> guard(lock_);
+    const auto it = reads_.find(path);
+    return it == reads_.end() ? 0 : it->second;
+  }
+
+ private:
+  static constexpr std::size_t kKept = 4;
+  struct Key {
+    std::string path;
+    std::optional<std::string> layer, name_field;
+    dev_t device = 0;
+    ino_t inode = 0;
+    off_t size = 0;
+    std::int64_t modified_ns = 0;
+    pid_t process = 0;
+    bool operator==(const Key&) const = default;
+  };
+  static std::optional<Key> key_of(const std::string& path, const FieldReadOptions& options) {
+    struct stat st {};
+    if (::stat(local_gdal_path(path, "area file").c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+      return std::nullopt;
+    return Key{path,
+               options.layer,
+               options.name_field,
+               st.st_dev,
+               st.st_ino,
+               st.st_size,
+               std::int64_t{st.st_mtim.tv_sec} * 1'000'000'000 + st.st_mtim.tv_nsec,
+               ::getpid()};
+  }
+  std::mutex lock_;
+  std::vector<std::pair<Key, std::shared_ptr<const LayerRead>>> kept_;  // the most recent first
+  std::map<std::string, std::size_t> reads_;  // layers read by path, for area_file_reads()
+};
+
+LastLayers& last_layers() {
+  static LastLayers kept;
+  return kept;
+}
+
 RawField read_or_list(const std::string& path, const FieldReadOptions& options,
                       std::vector<AreaEntry>* list) {
+  if (!list)
+    if (const std::shared_ptr<const LayerRead> kept = last_layers().find(path, options))
+      return area_of(*kept, options, path);
   const auto ds = open_vector(path);
   OGRLayer* layer = choose_layer(*ds, options, path);
-  std::vector<LayerArea> areas = layer_areas(*layer, name_field_index(*layer, options, path), path);
+  auto read = std::make_shared<LayerRead>();
+  read->areas = layer_areas(*layer, name_field_index(*layer, options, path), path);
   if (list) {  // swath batch: every area of the layer, nothing read
-    for (const LayerArea& c : areas) list->push_back({c.name, c.index});
+    for (const LayerArea& c : read->areas) list->push_back({c.name, c.index});
     return {};
   }
-  const std::size_t chosen = choose_area(areas, options, *layer, path);
-  OGRPolygon& poly = *areas[chosen].polygon;
-  refuse_unread_prj(*layer, path);
-  to_wgs84(poly, layer->GetSpatialRef(), path);
-  return to_raw(poly, "area " + areas[chosen].name);
+  read->layer_name = layer->GetName();
+  if (const OGRSpatialReference* crs = layer->GetSpatialRef()) read->crs.reset(crs->Clone());
+  last_layers().keep(path, options, read);
+  return area_of(*read, options, path);
 }
 
 }  // namespace
+
+std::size_t area_reads(const std::string& path) {
+  return last_layers().reads(path);
+}
 
 }  // namespace swath::geometry::detail
 
@@ -522,7 +621,8 @@ const detail::GisModule kModule{detail::kGisModuleAbi,
                                 module_geotiff,
                                 module_imagery,
                                 module_png,
-                                detail::imagery_opens};
+                                detail::imagery_opens,
+                                detail::area_reads};
 
 }  // namespace
 

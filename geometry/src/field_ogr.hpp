@@ -17,6 +17,10 @@ RawField read_ogr(const std::string& path, const FieldReadOptions& options);
 /// The areas of the layer `options` choose (names and positions), for swath batch.
 std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOptions& options);
 
+/// How many layers of `path` read_ogr() read with GDAL in this process (field.hpp's
+/// area_file_reads()).
+std::size_t area_reads(const std::string& path);
+
 /// One WKT geometry (POLYGON, MULTIPOLYGON of one part, a closed LINESTRING) in longitude/latitude.
 RawField parse_wkt(const std::string& text, const std::string& source);
 

@@ -82,6 +82,10 @@ std::vector<AreaEntry> list_ogr_areas(const std::string& path, const FieldReadOp
   return out;
 }
 
+std::size_t area_reads(const std::string& path) {
+  return gis_module().area_reads(path);
+}
+
 RawField parse_wkt(const std::string& text, const std::string& source) {
   RawField out;
   std::string error;

@@ -16,7 +16,7 @@
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 6;
+inline constexpr int kGisModuleAbi = 7;
 
 struct GisModule {
   int abi;
@@ -41,6 +41,8 @@ struct GisModule {
               std::string& error);
   /// imagery_gdal.hpp's imagery_opens (since ABI 6).
   std::size_t (*imagery_opens)(const std::string& path);
+  /// field_ogr.hpp's area_reads (since ABI 7).
+  std::size_t (*area_reads)(const std::string& path);
 };
 
 /// The module, opened on the first call (gis_loader.cpp). Throws std::runtime_error when it is

@@ -72,6 +72,12 @@ struct AreaEntry {
 std::vector<AreaEntry> list_areas(const std::filesystem::path& path,
                                   const FieldReadOptions& options = {});
 
+/// How many times a layer of `path` was read through GDAL in this process by read_field(): a read
+/// of an area of the file last read, unchanged since (same device, inode, size and modification
+/// time), with the same layer and name field, takes its areas from that read (`swath batch` reads
+/// area after area of one file). For tests; 0 for a file never read through GDAL.
+std::size_t area_file_reads(const std::filesystem::path& path);
+
 /// Places a local-metres field on the map: its (0, 0) at `origin`; fills frame and geo_rings.
 void place_local_field(Field& field, const GeoPoint& origin);
 
