@@ -15,6 +15,7 @@
 #include "swath/base/json_document.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
+#include "swath/base/parallel.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/geometry/field.hpp"
 
@@ -322,6 +323,16 @@ int BatchCommand::run() {
     std::cout << lines;
     return base::kExitSuccess;
   }
+  // Each worker's plans take their share of the machine's threads: two plans of two threads each
+  // on two cores ran the 200 traced outlines in 9.8-11.1 s, of one thread each in 8.5-9.0 s.
+  const bool threads_given = std::any_of(
+      plan_args_.begin(), plan_args_.end(),
+      [](const std::string& a) { return a == "--threads" || a.starts_with("--threads="); });
+  if (!threads_given)
+    for (std::vector<std::string>& argv : commands)
+      argv.insert(
+          argv.end(),
+          {"--threads", std::to_string(std::max(1u, base::machine_threads() / unsigned(jobs_)))});
   fs::create_directories(output_);
   const std::vector<PlanResult> results = plan_in_workers(commands, jobs_, progress_);
   const BatchTables tables = batch_tables(jobs, results, output_, options);

@@ -188,6 +188,11 @@ void PlanCommand::add_sweep_options(CLI::App& app) {
                  "shorter and coverage holds; one drone or path division, no --crosshatch)")
       ->check(CLI::IsMember({"one", "per-region"}))
       ->capture_default_str();
+  app.add_option("--threads", threads_,
+                 "Threads for the split's direction search (0: every hardware thread); the files "
+                 "do not depend on it")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
 }
 
 // Several drones: division and balance.
@@ -488,6 +493,7 @@ planning::SurveyRequest PlanCommand::request() const {
                                                           : planning::SplitCells::best;
   request.split_directions = directions_ == "per-region" ? planning::SplitDirections::per_region
                                                          : planning::SplitDirections::one;
+  request.threads = threads_;
   // Every area of an --exclude file is a zone, read as swath verify reads them.
   for (const preflight::Zone& zone : zones_from_files(exclude_))
     request.exclusions.push_back(zone.ring);

@@ -70,6 +70,7 @@ class PlanCommand : public Command {
   std::string concave_ = "split";
   std::string split_cells_ = "best";
   std::string directions_ = "one";
+  unsigned threads_ = 0;
   std::vector<std::string> exclude_;
   bool repair_ = false;
   bool progress_ = false;

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -85,8 +86,8 @@ TEST(BatchWorkers, EachAreasMessageIsItsOwnInAWorkerThatPlansSeveral) {
   fs::create_directories(dir);
   const std::string areas = dir + "/areas.geojson";
   std::ofstream(areas) << areas_of({large_plot(0),
-                                      rectangle(8.41, 47.31, 0.0015, 0.001, "bow", true),
-                                      small_plot(0), large_plot(1)});
+                                    rectangle(8.41, 47.31, 0.0015, 0.001, "bow", true),
+                                    small_plot(0), large_plot(1)});
   const CliRun run = run_swath("batch " + areas + " -o " + dir + "/out --jobs 1" + kOptions);
   ASSERT_EQ(run.exit_code, 3) << run.err;
   const auto rows = batch_rows(dir + "/out");
@@ -150,6 +151,58 @@ TEST(BatchWorkers, AWorkerThatDiesFailsOnlyItsArea) {
   for (const std::size_t i : {0u, 2u, 3u}) {
     EXPECT_EQ(rows[i][4], "planned") << i;
     EXPECT_TRUE(planned_as_alone(areas, i, dir + "/out", rows[i][3], dir)) << i;
+  }
+}
+
+// Every file of `dir` by its path inside it, and its bytes.
+std::map<std::string, std::string> files_of(const std::string& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file())
+      out[fs::relative(e.path(), dir).string()] = read_text(e.path().string());
+  return out;
+}
+
+// A comb of four teeth (concave): split, its direction search on threads. Its plan is the same
+// bytes on one thread or three; a batch gives its workers' plans a share of the machine's threads
+// (--threads), unless the plan options name it themselves (given twice, `swath plan` refuses).
+TEST(BatchWorkers, TheThreadsChangeNoFile) {
+  const std::string dir = fresh_dir("batch-workers-threads");
+  fs::create_directories(dir + "/areas");
+  // The base from 47.300 to 47.302, teeth 0.002 deg wide and 0.001 apart up to 47.308.
+  std::string ring = "[8.4, 47.3], [8.411, 47.3]";
+  for (int t = 3; t >= 0; --t) {
+    const std::string right = base::shortest_text(8.4 + 0.003 * t + 0.002),
+                      left = base::shortest_text(8.4 + 0.003 * t);
+    ring += ", [" + right + ", 47.308], [" + left + ", 47.308]";
+    if (t > 0)
+      ring += ", [" + left + ", 47.302], [" + base::shortest_text(8.4 + 0.003 * t - 0.001) +
+              ", 47.302]";
+  }
+  ring += ", [8.4, 47.3]";
+  std::ofstream(dir + "/areas/comb.geojson")
+      << R"({"type": "Polygon", "coordinates": [[)" << ring << "]]}\n";
+  std::ofstream(dir + "/areas/plots.geojson") << areas_of({small_plot(0), small_plot(1)});
+  const std::string comb = dir + "/areas/comb.geojson";
+  ASSERT_EQ(run_swath("plan " + comb + kOptions + " -o " + dir + "/all").exit_code, 0);
+  const auto all = files_of(dir + "/all");
+  EXPECT_NE(all.at("summary.json").find("\"split\""), std::string::npos);
+  for (const char* threads : {"1", "3"}) {
+    const std::string out = dir + "/threads-" + threads;
+    ASSERT_EQ(
+        run_swath("plan " + comb + kOptions + " --threads " + threads + " -o " + out).exit_code, 0);
+    EXPECT_EQ(files_of(out), all) << threads;
+  }
+  EXPECT_EQ(run_swath("plan " + comb + kOptions + " --threads -1 -o " + dir + "/no").exit_code, 2);
+  const CliRun shared =
+      run_swath("batch " + dir + "/areas -o " + dir + "/shared --jobs 2" + kOptions);
+  ASSERT_EQ(shared.exit_code, 0) << shared.err;
+  EXPECT_EQ(files_of(dir + "/shared/comb"), all);
+  for (const std::string given : {" --jobs 2 --threads=1", " --jobs 1 --threads 2"}) {
+    const std::string out = dir + "/given-" + std::to_string(given.size());
+    const CliRun run = run_swath("batch " + dir + "/areas -o " + out + given + kOptions);
+    ASSERT_EQ(run.exit_code, 0) << given << ": " << read_text(out + "/batch.csv");
+    EXPECT_EQ(files_of(out), files_of(dir + "/shared")) << given;
   }
 }
 

@@ -86,6 +86,7 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   s.turnaround_m = plan.turnaround_m;
   s.scan_step_deg = plan.request.split_scan_step_deg;
   s.cells = plan.request.split_cells;
+  s.threads = plan.request.threads;
   // A direction per region only where the rest of the plan takes lines at several angles: the
   // crosshatch pass (at 90 degrees to the one direction) and region division (lanes cut along one
   // direction) keep one.

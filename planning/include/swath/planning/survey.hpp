@@ -73,6 +73,9 @@ struct SurveyRequest {
   /// one drone or path division without --crosshatch (the crosshatch pass and region division cut
   /// the lanes of one direction); otherwise the one-direction plan is kept.
   SplitDirections split_directions = SplitDirections::one;
+  /// Split: threads for the direction search (0: the machine's); the plan is the same for any
+  /// number (SplitSettings::threads).
+  unsigned threads = 0;
   /// Divide the survey among this fleet (absent: one drone).
   std::optional<vehicle::Fleet> fleet;
   DivisionMode division = DivisionMode::path;
