@@ -5,6 +5,7 @@
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -31,6 +32,18 @@ namespace {
 // kAreasPerWorker areas, so that whatever a plan may leave behind (memory, descriptors) stays
 // bounded, and after a death, which fails only the area it was planning.
 constexpr std::size_t kAreasPerWorker = 64;
+
+// Areas a worker plans before it is replaced: kAreasPerWorker, or 1 under a limit that a process
+// counts over its whole life (ulimit -t, -v, -d). `swath plan` alone has the whole of such a limit
+// for its area; a worker's second area only what the first left of it (CPU seconds, address space
+// kept for the next plan), and an area that plans alone was killed or ran out of memory.
+std::size_t areas_per_worker() {
+  for (const int resource : {RLIMIT_CPU, RLIMIT_AS, RLIMIT_DATA}) {
+    struct rlimit limit {};
+    if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) return 1;
+  }
+  return kAreasPerWorker;
+}
 
 struct Worker {
   pid_t pid = -1;
@@ -116,7 +129,9 @@ std::string read_log(int fd) {
 class Pool {
  public:
   Pool(const std::vector<std::vector<std::string>>& commands, int parallel)
-      : commands_(commands), workers_(static_cast<std::size_t>(parallel)) {}
+      : commands_(commands),
+        workers_(static_cast<std::size_t>(parallel)),
+        areas_per_worker_(areas_per_worker()) {}
   ~Pool() {
     for (Worker& w : workers_) {
       if (w.job && w.pid > 0) ::kill(w.pid, SIGTERM);  // the batch is failing: not its end
@@ -130,7 +145,7 @@ class Pool {
   // has planned its share. False: the process died before it could take it (`job` is then failed
   // with its exit status, in `r`).
   bool give(Worker& w, std::size_t job, PlanResult& r) {
-    if (w.pid > 0 && w.planned >= kAreasPerWorker) retire(w);
+    if (w.pid > 0 && w.planned >= areas_per_worker_) retire(w);
     if (w.pid <= 0) start(w);
     const std::uint32_t index = static_cast<std::uint32_t>(job);
     w.job = job;
@@ -227,6 +242,7 @@ class Pool {
 
   const std::vector<std::vector<std::string>>& commands_;
   std::vector<Worker> workers_;
+  std::size_t areas_per_worker_;
 };
 
 }  // namespace

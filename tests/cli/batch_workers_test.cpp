@@ -4,9 +4,11 @@
 // worker is replaced or dies.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -45,6 +47,21 @@ std::string large_plot(int i) {
 std::string small_plot(int i) {
   return rectangle(8.40 + 0.002 * (i % 8), 47.29 - 0.0012 * (i / 8), 0.0015, 0.001,
                    "small " + std::to_string(i));
+}
+
+// A star of 12 points, 220 m across, at row `i` (a concave area split into cells: a few tens of
+// ms of CPU to plan, several times a small plot's).
+std::string star_plot(int i) {
+  std::string coords;
+  for (int k = 0; k <= 24; ++k) {
+    const double a = std::numbers::pi * (k % 24) / 12, r = k % 2 ? 0.0005 : 0.001;
+    coords +=
+        std::string(k ? ", " : "") + "[" +
+        base::shortest_text(8.41 + r * std::cos(a) / std::cos(47.29 * std::numbers::pi / 180)) +
+        ", " + base::shortest_text(47.29 - 0.004 * i + r * std::sin(a)) + "]";
+  }
+  return R"({"type": "Feature", "properties": {"name": "star )" + std::to_string(i) +
+         R"("}, "geometry": {"type": "Polygon", "coordinates": [[)" + coords + "]]}}";
 }
 
 std::string areas_of(const std::vector<std::string>& features) {
@@ -204,6 +221,26 @@ TEST(BatchWorkers, TheThreadsChangeNoFile) {
     ASSERT_EQ(run.exit_code, 0) << given << ": " << read_text(out + "/batch.csv");
     EXPECT_EQ(files_of(out), files_of(dir + "/shared")) << given;
   }
+}
+
+// A CPU time limit (ulimit -t) is a process's: `swath plan` alone has the whole of it for its area,
+// and so does each area of a batch under it, not what the worker's earlier areas left of it (60
+// stars of a few tens of ms each: over a second for all of them in one worker).
+TEST(BatchWorkers, ACpuTimeLimitIsEachAreasAsAlone) {
+  const std::string dir = fresh_dir("batch-workers-cpu");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  std::vector<std::string> plots;
+  for (int i = 0; i < 60; ++i) plots.push_back(star_plot(i));
+  std::ofstream(areas) << areas_of(plots);
+  const CliRun run =
+      run_program("sh", "-c 'ulimit -t 1; exec " + std::string(SWATH_BINARY) + " batch " + areas +
+                            " -o " + dir + "/out --jobs 1" + kOptions + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const auto rows = batch_rows(dir + "/out");
+  ASSERT_EQ(rows.size(), plots.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i][4], "planned") << i;
+  EXPECT_TRUE(planned_as_alone(areas, 59, dir + "/out", rows[59][3], dir));
 }
 
 }  // namespace
