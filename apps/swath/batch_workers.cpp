@@ -142,14 +142,20 @@ class Pool {
   Pool& operator=(const Pool&) = delete;
 
   // `w` (idle or without a process) given area `job`, a fresh process first where it has none or
-  // has planned its share. False: the process died before it could take it (`job` is then failed
-  // with its exit status, in `r`).
+  // has planned its share. A process that has planned areas and ended since (a signal, the OOM
+  // killer: between two areas) was planning none: a fresh one takes `job`. False: a fresh process
+  // died before it could take it (`job` is then failed with its exit status, in `r`).
   bool give(Worker& w, std::size_t job, PlanResult& r) {
     if (w.pid > 0 && w.planned >= areas_per_worker_) retire(w);
-    if (w.pid <= 0) start(w);
     const std::uint32_t index = static_cast<std::uint32_t>(job);
-    w.job = job;
-    if (send_all(w.socket, &index, sizeof index)) return true;
+    for (;;) {
+      if (w.pid <= 0) start(w);
+      w.job = job;
+      if (send_all(w.socket, &index, sizeof index)) return true;
+      if (w.planned == 0) break;
+      w.job.reset();
+      retire(w);  // reaped; its status is no area's
+    }
     r = ended(w);
     return false;
   }

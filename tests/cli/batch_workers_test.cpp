@@ -243,5 +243,41 @@ TEST(BatchWorkers, ACpuTimeLimitIsEachAreasAsAlone) {
   EXPECT_TRUE(planned_as_alone(areas, 59, dir + "/out", rows[59][3], dir));
 }
 
+// A worker that ends between two areas (here killed while the batch is stopped, after it has
+// planned one) was planning none: the next area goes to a fresh worker, not into a row of a
+// signal it never met (nor the message the dead worker's log held from the area before).
+TEST(BatchWorkers, AWorkerThatDiesBetweenAreasFailsNone) {
+  const std::string dir = fresh_dir("batch-workers-idle");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  // Large plots after the first area: the batch is still at work when the script stops it.
+  std::vector<std::string> plots{small_plot(0)};
+  for (int i = 0; i < 12; ++i) plots.push_back(large_plot(i));
+  std::ofstream(areas) << areas_of(plots);
+  // The batch stopped once the first area is written; its worker then finishes what it has and
+  // waits for the next area, and is killed there; the batch goes on once it is dead (a zombie).
+  // Exit 90 or 91: the script did not get there (no worker, or it did not die).
+  const std::string script = std::string(SWATH_BINARY) + " batch " + areas + " -o " + dir +
+                             "/out --jobs 1" + kOptions + R"( & b=$!
+    until [ -e )" + dir + R"(/out/small_0/summary.json ]; do sleep 0.01; done
+    kill -STOP $b; sleep 1; w=
+    for s in /proc/[0-9]*/status; do
+      grep -q "^PPid:[[:space:]]*$b\$" $s 2>/dev/null && w=${s#/proc/} && w=${w%/status}
+    done
+    [ -n "$w" ] || { kill -KILL $b; exit 90; }
+    kill -KILL $w; n=0
+    until grep -q "^State:[[:space:]]*Z" /proc/$w/status; do
+      n=$((n + 1)); [ $n -lt 500 ] || { kill -KILL $b; exit 91; }; sleep 0.01
+    done
+    kill -CONT $b; wait $b)";
+  const CliRun run = run_program("sh", "-c '" + script + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const auto rows = batch_rows(dir + "/out");
+  ASSERT_EQ(rows.size(), plots.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i][4], "planned") << i;
+  for (const std::size_t i : {0u, 1u, 2u, 3u})
+    EXPECT_TRUE(planned_as_alone(areas, i, dir + "/out", rows[i][3], dir)) << i;
+}
+
 }  // namespace
 }  // namespace swath::test
