@@ -103,9 +103,7 @@ int plan_here(const std::vector<std::string>& argv) {
   ::dup2(out, 1);
   ::dup2(log, 2);
   for (std::uint32_t job = 0; receive_all(socket, &job, sizeof job);) {
-    // The batch has read the last area's log before sending this one. Its offset is shared with
-    // the batch's descriptor, which reads with pread().
-    if (::ftruncate(2, 0) != 0 || ::lseek(2, 0, SEEK_SET) != 0) ::_exit(base::kExitFailure);
+    // Its log was emptied by the batch before it sent this area (give()).
     const std::int32_t code = job < commands.size() ? plan_here(commands[job]) : 2;
     if (!send_all(socket, &code, sizeof code)) break;
   }
@@ -151,6 +149,11 @@ class Pool {
     for (;;) {
       if (w.pid <= 0) start(w);
       w.job = job;
+      // The log emptied here, not by the worker: a worker killed before it could would leave the
+      // last area's words in this one's row. Idle, it writes nothing; the file offset is shared
+      // with its stderr (the same open file), and the batch reads with pread().
+      if (::ftruncate(w.log, 0) != 0 || ::lseek(w.log, 0, SEEK_SET) != 0)
+        throw std::runtime_error("batch: cannot empty a planning process's log");
       if (send_all(w.socket, &index, sizeof index)) return true;
       if (w.planned == 0) break;
       w.job.reset();
