@@ -14,8 +14,8 @@ struct PlanResult {
 };
 
 /// Plans every `swath plan` command line of `commands` (argv, program name first), at most
-/// `parallel` at once, in worker processes forked from this one (so whatever this process has
-/// loaded, GDAL and the area files' layers, they find loaded). A worker plans in process, with
+/// `parallel` at once, in worker processes forked from this one (GDAL's libraries, loaded to list
+/// the areas, they find loaded). A worker plans in process, with
 /// stdout to /dev/null and stderr to a log in memory, read back after each area. A worker that
 /// dies (a crash, a signal) fails only the area it was planning; a fresh worker takes the rest.
 /// Results in the order of `commands`; each area writes its own directory, so they do not

@@ -3,6 +3,9 @@
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
+#include <unistd.h>
+
+#include <cstdio>
 
 namespace swath::base {
 
@@ -16,6 +19,27 @@ void keep_freed_memory() {
   // all a thread's heap, which without a pad glibc grows one mprotect per few pages (~340 calls,
   // 1 % of a plan's CPU). Address space only: pages are resident once touched, as before.
   mallopt(M_TOP_PAD, 16 << 20);
+#endif
+}
+
+std::size_t resident_bytes() {
+  std::FILE* statm = std::fopen("/proc/self/statm", "r");
+  if (!statm) return 0;
+  unsigned long size_pages = 0, resident_pages = 0;
+  const bool read = std::fscanf(statm, "%lu %lu", &size_pages, &resident_pages) == 2;
+  std::fclose(statm);
+  const long page = ::sysconf(_SC_PAGESIZE);
+  return read && page > 0 ? resident_pages * static_cast<std::size_t>(page) : 0;
+}
+
+bool give_back_freed_memory(std::size_t limit_bytes) {
+#if defined(__GLIBC__)
+  if (resident_bytes() <= limit_bytes) return false;
+  malloc_trim(0);
+  return true;
+#else
+  (void)limit_bytes;
+  return false;
 #endif
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // How a swath program's allocator keeps the memory it frees.
 
+#include <cstddef>
+
 namespace swath::base {
 
 /// Keeps memory the program frees for its next allocations instead of handing it back to the
@@ -18,5 +20,15 @@ namespace swath::base {
 /// (M_TOP_PAD), so that growing one costs a system call per 16 MiB, not one per few pages; the
 /// pages become resident only when used. Elsewhere it does nothing.
 void keep_freed_memory();
+
+/// The process's resident memory (bytes, from /proc/self/statm); 0 where it cannot be read.
+std::size_t resident_bytes();
+
+/// Hands the memory the program has freed back to the operating system (glibc's malloc_trim: the
+/// free pages of every arena, not only a heap's top) when the process's resident memory is above
+/// `limit_bytes`; true when it did. For a process that plans area after area (swath batch's
+/// workers): keep_freed_memory() would keep its largest area's memory, up to 256 MiB of free heap
+/// and its fragments, until it ends. Elsewhere it does nothing (false).
+bool give_back_freed_memory(std::size_t limit_bytes);
 
 }  // namespace swath::base
