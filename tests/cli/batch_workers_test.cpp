@@ -171,15 +171,6 @@ TEST(BatchWorkers, AWorkerThatDiesFailsOnlyItsArea) {
   }
 }
 
-// Every file of `dir` by its path inside it, and its bytes.
-std::map<std::string, std::string> files_of(const std::string& dir) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file())
-      out[fs::relative(e.path(), dir).string()] = read_text(e.path().string());
-  return out;
-}
-
 // A comb of four teeth (concave): split, its direction search on threads. Its plan is the same
 // bytes on one thread or three; a batch gives its workers' plans a share of the machine's threads
 // (--threads), unless the plan options name it themselves (given twice, `swath plan` refuses).
@@ -202,24 +193,24 @@ TEST(BatchWorkers, TheThreadsChangeNoFile) {
   std::ofstream(dir + "/areas/plots.geojson") << areas_of({small_plot(0), small_plot(1)});
   const std::string comb = dir + "/areas/comb.geojson";
   ASSERT_EQ(run_swath("plan " + comb + kOptions + " -o " + dir + "/all").exit_code, 0);
-  const auto all = files_of(dir + "/all");
+  const auto all = directory_files(dir + "/all");
   EXPECT_NE(all.at("summary.json").find("\"split\""), std::string::npos);
   for (const char* threads : {"1", "3"}) {
     const std::string out = dir + "/threads-" + threads;
     ASSERT_EQ(
         run_swath("plan " + comb + kOptions + " --threads " + threads + " -o " + out).exit_code, 0);
-    EXPECT_EQ(files_of(out), all) << threads;
+    EXPECT_EQ(directory_files(out), all) << threads;
   }
   EXPECT_EQ(run_swath("plan " + comb + kOptions + " --threads -1 -o " + dir + "/no").exit_code, 2);
   const CliRun shared =
       run_swath("batch " + dir + "/areas -o " + dir + "/shared --jobs 2" + kOptions);
   ASSERT_EQ(shared.exit_code, 0) << shared.err;
-  EXPECT_EQ(files_of(dir + "/shared/comb"), all);
+  EXPECT_EQ(directory_files(dir + "/shared/comb"), all);
   for (const std::string given : {" --jobs 2 --threads=1", " --jobs 1 --threads 2"}) {
     const std::string out = dir + "/given-" + std::to_string(given.size());
     const CliRun run = run_swath("batch " + dir + "/areas -o " + out + given + kOptions);
     ASSERT_EQ(run.exit_code, 0) << given << ": " << read_text(out + "/batch.csv");
-    EXPECT_EQ(files_of(out), files_of(dir + "/shared")) << given;
+    EXPECT_EQ(directory_files(out), directory_files(dir + "/shared")) << given;
   }
 }
 

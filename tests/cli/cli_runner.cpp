@@ -37,6 +37,14 @@ std::string source_path(const std::string& relative) {
   return std::string(SWATH_SOURCE_DIR) + "/" + relative;
 }
 
+std::map<std::string, std::string> directory_files(const std::string& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file())
+      out[std::filesystem::relative(e.path(), dir).string()] = read_text(e.path().string());
+  return out;
+}
+
 std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
   std::vector<std::vector<std::string>> rows;
   std::istringstream in(text);

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the built command-line programs the way a user does and captures what they say.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ std::string read_text(const std::string& path);
 
 /// Path of a file in the source tree.
 std::string source_path(const std::string& relative);
+
+/// Every file under `dir` (recursively) by its path relative to `dir`, with its bytes.
+std::map<std::string, std::string> directory_files(const std::string& dir);
 
 /// CSV text read back: a row per line (the header first), cells split at commas.
 std::vector<std::vector<std::string>> csv_rows(const std::string& text);

@@ -15,7 +15,6 @@
 #include "cli_runner.hpp"
 #include "swath/base/number_text.hpp"
 
-
 namespace swath::test {
 namespace {
 
@@ -145,15 +144,6 @@ TEST(PlanCli, OverTheMeadowHillEveryWaypointIsSixtyMetresAboveTheGround) {
 namespace swath::test {
 namespace {
 
-// Every file under `dir` by its relative path, with its bytes.
-std::map<std::string, std::string> tree(const std::string& dir) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file())
-      out[fs::relative(e.path(), dir).string()] = read_text(e.path().string());
-  return out;
-}
-
 // Twelve fields near Zurich, the sixth a bow tie that `swath plan` refuses.
 std::string district_geojson() {
   std::string out = "{\"type\": \"FeatureCollection\", \"features\": [\n";
@@ -185,7 +175,7 @@ TEST(BatchCli, EveryAreaPlannedAsAloneTheSameBytesForAnyJobsAndGnuParallel) {
   EXPECT_EQ(one.exit_code, 3) << one.err;  // one area refused
   EXPECT_NE(one.out.find("11 of 12 areas planned"), std::string::npos) << one.out;
   ASSERT_EQ(run_swath("batch " + areas + " -o " + dir + "/two --jobs 2" + opts).exit_code, 3);
-  const auto a = tree(dir + "/one"), b = tree(dir + "/two");
+  const auto a = directory_files(dir + "/one"), b = directory_files(dir + "/two");
   EXPECT_EQ(a.size(), b.size());
   for (const auto& [path, bytes] : a) EXPECT_EQ(b.count(path) ? b.at(path) : "", bytes) << path;
   // batch.csv: each planned row is what `swath plan --feature i` alone gives.
@@ -221,11 +211,11 @@ TEST(BatchCli, EveryAreaPlannedAsAloneTheSameBytesForAnyJobsAndGnuParallel) {
   std::ofstream(dir + "/jobs.txt") << jobs.out;
   const CliRun par = run_program("parallel", "-j2 --will-cite -a " + dir + "/jobs.txt");
   EXPECT_EQ(par.exit_code, 1) << par.err;  // parallel's exit code: how many jobs failed
-  for (const auto& [path, bytes] : tree(dir + "/par"))
+  for (const auto& [path, bytes] : directory_files(dir + "/par"))
     EXPECT_EQ(a.count(path) ? a.at(path) : "", bytes) << path;
   std::size_t planned_files = 0;  // all but batch.csv, batch.geojson and the batch's manifest
   for (const auto& [path, bytes] : a) planned_files += path.find('/') != std::string::npos;
-  EXPECT_EQ(tree(dir + "/par").size(), planned_files);
+  EXPECT_EQ(directory_files(dir + "/par").size(), planned_files);
 }
 
 // --dem-units: the bundled hill written again in international feet and in US survey feet (each
