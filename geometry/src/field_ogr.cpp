@@ -469,20 +469,22 @@ RawField area_of(const LayerRead& read, const FieldReadOptions& options, const s
 // last kKept files' (a plan may also read its zones' files, --exclude, each time).
 class LastLayers {
  public:
-  // The kept read of `path` if it is still the file's; null if not.
-  std::shared_ptr<const LayerRead> find(const std::string& path, const FieldReadOptions& options) {
-    const std::optional<Key> key = key_of(path, options);
-    if (!key) return nullptr;
+  struct Key;
+  // What identifies a read of `path` with `options` (none where the file cannot be looked at).
+  static std::optional<Key> key_of(const std::string& path, const FieldReadOptions& options);
+  // The read kept under `key`, if any.
+  std::shared_ptr<const LayerRead> find(const Key& key) {
     const std::lock_guard<std::mutex> guard(lock_);
     const auto it =
-        std::find_if(kept_.begin(), kept_.end(), [&](const auto& k) { return k.first == *key; });
+        std::find_if(kept_.begin(), kept_.end(), [&](const auto& k) { return k.first == key; });
     if (it == kept_.end()) return nullptr;
     std::rotate(kept_.begin(), it, it + 1);  // the most recent first
     return kept_.front().second;
   }
-  void keep(const std::string& path, const FieldReadOptions& options,
+  // `read` of `path`, kept under `key` (taken before the file was opened: a file changed while it
+  // was read is read again next time).
+  void keep(const std::string& path, const std::optional<Key>& key,
             std::shared_ptr<const LayerRead> read) {
-    const std::optional<Key> key = key_of(path, options);
     const std::lock_guard<std::mutex> guard(lock_);
     ++reads_[path];
     if (!key) return;
@@ -496,8 +498,6 @@ class LastLayers {
     return it == reads_.end() ? 0 : it->second;
   }
 
- private:
-  static constexpr std::size_t kKept = 4;
   struct Key {
     std::string path;
     std::optional<std::string> layer, name_field;
@@ -508,23 +508,28 @@ class LastLayers {
     pid_t process = 0;
     bool operator==(const Key&) const = default;
   };
-  static std::optional<Key> key_of(const std::string& path, const FieldReadOptions& options) {
-    struct stat st {};
-    if (::stat(local_gdal_path(path, "area file").c_str(), &st) != 0 || !S_ISREG(st.st_mode))
-      return std::nullopt;
-    return Key{path,
-               options.layer,
-               options.name_field,
-               st.st_dev,
-               st.st_ino,
-               st.st_size,
-               std::int64_t{st.st_mtim.tv_sec} * 1'000'000'000 + st.st_mtim.tv_nsec,
-               ::getpid()};
-  }
+
+ private:
+  static constexpr std::size_t kKept = 4;
   std::mutex lock_;
   std::vector<std::pair<Key, std::shared_ptr<const LayerRead>>> kept_;  // the most recent first
   std::map<std::string, std::size_t> reads_;  // layers read by path, for area_file_reads()
 };
+
+std::optional<LastLayers::Key> LastLayers::key_of(const std::string& path,
+                                                  const FieldReadOptions& options) {
+  struct stat st {};
+  if (::stat(local_gdal_path(path, "area file").c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    return std::nullopt;
+  return Key{path,
+             options.layer,
+             options.name_field,
+             st.st_dev,
+             st.st_ino,
+             st.st_size,
+             std::int64_t{st.st_mtim.tv_sec} * 1'000'000'000 + st.st_mtim.tv_nsec,
+             ::getpid()};
+}
 
 LastLayers& last_layers() {
   static LastLayers kept;
@@ -533,8 +538,9 @@ LastLayers& last_layers() {
 
 RawField read_or_list(const std::string& path, const FieldReadOptions& options,
                       std::vector<AreaEntry>* list) {
-  if (!list)
-    if (const std::shared_ptr<const LayerRead> kept = last_layers().find(path, options))
+  std::optional<LastLayers::Key> key;
+  if (!list && (key = LastLayers::key_of(path, options)))
+    if (const std::shared_ptr<const LayerRead> kept = last_layers().find(*key))
       return area_of(*kept, options, path);
   const auto ds = open_vector(path);
   OGRLayer* layer = choose_layer(*ds, options, path);
@@ -546,7 +552,7 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
   }
   read->layer_name = layer->GetName();
   if (const OGRSpatialReference* crs = layer->GetSpatialRef()) read->crs.reset(crs->Clone());
-  last_layers().keep(path, options, read);
+  last_layers().keep(path, key, read);
   return area_of(*read, options, path);
 }
 

@@ -242,6 +242,22 @@ TEST(CoverageSamples, TheSamplesOfThePlainMergeBitForBit) {
   EXPECT_GT(on_rows, 100u);  // the grids do put boundary samples on the rows
 }
 
+// How many lanes longer than `min_length` of the rows at `ys` see `p` by the coverage check's test
+// (the brute force: every lane asked); `by_widening` counts those among them that see it only
+// through the ends' widening.
+std::size_t long_lanes_seeing(const std::vector<double>& ys, const SpanRows& lanes, double half,
+                              double min_length, Point2 p, std::size_t* by_widening = nullptr) {
+  std::size_t seeing = 0;
+  for (std::size_t r = 0; r < ys.size(); ++r)
+    for (const Span& l : lanes[r])
+      if (l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
+          l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM) {
+        ++seeing;
+        if (by_widening && (p.x < l.x0 || p.x > l.x1)) ++*by_widening;
+      }
+  return seeing;
+}
+
 // coverage_samples() with a LongLaneReach leaves out the samples a long lane sees: it must give,
 // bit for bit and in the same order, every sample minus exactly those that some lane longer than
 // the length sees by the coverage check's test, each lane asked (kept here: the brute force).
@@ -273,15 +289,8 @@ TEST(CoverageSamples, LeftOutAreExactlyThoseALongLaneSees) {
     coverage_samples(scan, spacing, fast, &reach);
     coverage_samples(scan, spacing, every);
     truth.clear();
-    for (const Point2& p : every) {
-      bool seen = false;
-      for (std::size_t r = 0; r < ys.size(); ++r)
-        for (const Span& l : lanes[r]) {
-          seen |= l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
-                  l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM;
-        }
-      if (!seen) truth.push_back(p);
-    }
+    for (const Point2& p : every)
+      if (long_lanes_seeing(ys, lanes, half, min_length, p) == 0) truth.push_back(p);
     ASSERT_EQ(fast.size(), truth.size()) << "area " << k;
     for (std::size_t i = 0; i < truth.size(); ++i) {
       ASSERT_EQ(std::bit_cast<std::uint64_t>(fast[i].x), std::bit_cast<std::uint64_t>(truth[i].x))
@@ -328,10 +337,7 @@ TEST(LongLaneReach, SeesWhatSomeLongLaneSees) {
   for (int k = 0; k < 40; ++k) {
     const std::vector<Ring> rings = scan_test_area(rng, k);
     const LaneScan scan(rings, 180 * unit(rng));
-    const LongLaneRows rows = long_lane_rows(rng, scan);
-    const std::vector<double>& ys = rows.ys;
-    const SpanRows& lanes = rows.lanes;
-    const double half = rows.half_m, min_length = rows.min_length_m;
+    const auto [ys, lanes, spacing, half, min_length] = long_lane_rows(rng, scan);
     LongLaneReach reach(ys, lanes, half, min_length);
     std::vector<Point2> points;
     for (int i = 0; i < 3000; ++i) {
@@ -347,14 +353,7 @@ TEST(LongLaneReach, SeesWhatSomeLongLaneSees) {
     if (k % 2 == 0)
       std::sort(points.begin(), points.end(), [](Point2 a, Point2 b) { return a.y < b.y; });
     for (const Point2& p : points) {
-      bool truth = false;
-      for (std::size_t r = 0; r < ys.size(); ++r)
-        for (const Span& l : lanes[r]) {
-          const bool in = l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
-                          l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM;
-          truth |= in;
-          widened += in && (p.x < l.x0 || p.x > l.x1);
-        }
+      const bool truth = long_lanes_seeing(ys, lanes, half, min_length, p, &widened) > 0;
       ASSERT_EQ(reach.sees(p), truth) << "area " << k << " at " << p.x << ", " << p.y;
       seen_count += truth;
       ++asked;
@@ -379,17 +378,10 @@ TEST(LongLaneReach, SeesAllOnlyWhatSomeLaneSeesAtEveryPoint) {
     const std::vector<Ring> rings = scan_test_area(rng, k);
     const LaneScan scan(rings, 180 * unit(rng));
     const LongLaneRows rows = long_lane_rows(rng, scan);
-    const std::vector<double>& ys = rows.ys;
-    const SpanRows& lanes = rows.lanes;
-    const double half = rows.half_m, min_length = rows.min_length_m, spacing = rows.spacing_m;
+    const auto& [ys, lanes, spacing, half, min_length] = rows;
     LongLaneReach reach(ys, lanes, half, min_length);
-    const auto truth = [&](Point2 p) {
-      for (std::size_t r = 0; r < ys.size(); ++r)
-        for (const Span& l : lanes[r])
-          if (l.x1 - l.x0 > min_length && ys[r] - half <= p.y && p.y <= ys[r] + half &&
-              l.x0 - kSeenAlongM <= p.x && p.x <= l.x1 + kSeenAlongM)
-            return true;
-      return false;
+    const auto truth = [&rows](Point2 p) {
+      return long_lanes_seeing(rows.ys, rows.lanes, rows.half_m, rows.min_length_m, p) > 0;
     };
     std::vector<std::pair<Point2, Point2>> boxes;
     for (int i = 0; i < 1500; ++i) {
