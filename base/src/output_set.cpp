@@ -373,6 +373,58 @@ void OutputSet::Stream::flush() {
   buffer_.clear();
 }
 
+// The renames, all or none. Each file the set replaces is kept first under a second name (a hard
+// link beside it: the file itself never goes missing), so that a rename failing part way (a
+// directory in the way of the fourth file) is undone: the files renamed so far get their old
+// selves back, or are removed where there was none, and the set is refused with the old set as it
+// was. A file system without hard links (FAT on a memory card) keeps nothing: there a rename
+// failing part way still leaves the files renamed before it.
+void OutputSet::switch_in() {
+  struct Switch {
+    fs::path target;
+    std::string kept;  ///< the old file's second name; empty: none kept
+    bool had_old = false;
+  };
+  std::vector<Switch> switches;
+  const auto undo = [&](std::size_t renamed) {
+    for (std::size_t i = 0; i < switches.size(); ++i) {
+      const Switch& w = switches[i];
+      if (i < renamed && !w.kept.empty())
+        std::rename(w.kept.c_str(), w.target.c_str());
+      else if (i < renamed && !w.had_old)
+        ::unlink(w.target.c_str());
+      else if (!w.kept.empty())
+        ::unlink(w.kept.c_str());
+    }
+  };
+  for (const auto& e : entries_) {
+    Switch w{directory_ / e->name, {}, false};
+    struct stat st {};
+    if (::lstat(w.target.c_str(), &st) == 0) {
+      w.had_old = true;
+      // A directory gets no second name (its rename below fails, and undoes the others).
+      if (!S_ISDIR(st.st_mode))
+        for (int attempt = 0; attempt < 100 && w.kept.empty(); ++attempt) {
+          const std::string kept =
+              (directory_ / ("." + e->name + ".old-" + random_suffix())).string();
+          if (::link(w.target.c_str(), kept.c_str()) == 0)
+            w.kept = kept;
+          else if (errno != EEXIST)
+            break;  // no hard links here: nothing kept
+        }
+    }
+    switches.push_back(std::move(w));
+  }
+  for (std::size_t k = 0; k < entries_.size(); ++k)
+    if (std::rename(entries_[k]->temporary.c_str(), switches[k].target.c_str()) != 0) {
+      const int saved = errno;
+      undo(k);
+      errno = saved;
+      fail(switches[k].target, "cannot replace it with the new file");
+    }
+  undo(0);  // the old files' second names only
+}
+
 void OutputSet::commit() {
   if (committed_) throw std::logic_error("OutputSet: commit() twice");
   const fs::path manifest = directory_ / manifest_name(kind_);
@@ -405,10 +457,7 @@ void OutputSet::commit() {
 
   {
     SignalBlock block;  // a signal now would leave a mixed set
-    for (const auto& e : entries_) {
-      const fs::path target = directory_ / e->name;
-      if (std::rename(e->temporary.c_str(), target.c_str()) != 0) fail(target, "cannot rename");
-    }
+    switch_in();
     committed_ = true;
     if (options_.mode == Mode::replace)
       for (const std::string& n : old)

@@ -51,6 +51,38 @@ TEST(OutputSet, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
   EXPECT_EQ(slurp(dir / "a.txt"), "new a");
 }
 
+TEST(OutputSet, ARenameFailingPartWayIsUndoneTheOldSetAsItWas) {
+  const fs::path dir = fresh("undone");
+  write_files_atomically(dir, {{"a.txt", "old a"}, {"c.txt", "old c"}}, "plan");
+  fs::create_directories(dir / "b.txt" / "inside");  // the user's directory, in the way
+  // a.txt is renamed first (it had an old file), then b.txt fails: a.txt gets its old self back,
+  // the new c.txt never comes, and nothing of the set stays (no temporary, no kept second name).
+  try {
+    write_files_atomically(dir, {{"a.txt", "new a"}, {"b.txt", "new b"}, {"c.txt", "new c"}},
+                           "plan");
+    FAIL() << "a file renamed onto a directory";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("b.txt: cannot replace it with the new file"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "a.txt"), "old a");
+  EXPECT_EQ(slurp(dir / "c.txt"), "old c");
+  EXPECT_TRUE(fs::is_directory(dir / "b.txt" / "inside"));
+  EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "a.txt", "b.txt", "c.txt"}));
+  EXPECT_EQ(slurp(dir / ".swath-plan.files"),
+            "# the files swath's last plan wrote here\na.txt\nc.txt\n");
+  // A file the old set did not have is removed again: d.txt renamed, then b.txt fails.
+  EXPECT_THROW(write_files_atomically(dir, {{"d.txt", "new d"}, {"b.txt", "new b"}}, "plan"),
+               std::runtime_error);
+  EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "a.txt", "b.txt", "c.txt"}));
+  // And the set switches in whole once the way is clear, the kept second names gone.
+  fs::remove_all(dir / "b.txt");
+  write_files_atomically(dir, {{"a.txt", "new a"}, {"b.txt", "new b"}}, "plan");
+  EXPECT_EQ(slurp(dir / "a.txt"), "new a");
+  EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "a.txt", "b.txt"}));
+}
+
 TEST(OutputSet, StaleFilesOfTheSameKindGoFilesOfOthersStay) {
   const fs::path dir = fresh("stale");
   fs::create_directories(dir);

@@ -13,7 +13,8 @@
 //   A file another kind's manifest lists is never replaced (swath-energy run -o into a plan
 //   directory is refused instead of overwriting the plan's summary.json).
 // - SIGINT, SIGTERM and SIGHUP are blocked while the files are renamed into place, so a signal
-//   leaves the whole old set or the whole new one; a SIGINT or SIGTERM before that removes the
+//   leaves the whole old set or the whole new one; a rename that fails part way (a directory in the
+//   way) is undone, the old files back under their names (kept as hard links meanwhile); a SIGINT or SIGTERM before that removes the
 //   temporaries (and a directory the set created) and ends the process as the signal would.
 // - A set that is destroyed without commit() leaves the directory as it was (a refusal after the
 //   set was opened writes nothing, and an output directory it had to create is removed again).
@@ -91,6 +92,8 @@ class OutputSet {
   void check_name(const std::string& name) const;
   Entry& open_entry(const std::string& name);    ///< checked name
   Entry& create_entry(const std::string& name);  ///< the temporary for any name
+  /// Renames every temporary onto its name, all or none (signals blocked by the caller).
+  void switch_in();
 
   std::filesystem::path directory_;
   std::string kind_;
