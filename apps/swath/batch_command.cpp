@@ -80,6 +80,11 @@ void BatchCommand::setup(CLI::App& app) {
   app.add_flag("--emit-jobs", emit_jobs_,
                "Print one `swath plan` command line per area instead (for GNU parallel or a "
                "Slurm array) and plan nothing");
+  app.add_option("--timeout-s", timeout_s_,
+                 "Seconds (wall clock) an area may plan before its worker is ended and the area "
+                 "failed, its row saying so (0: no limit)")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
   app.add_flag("--progress", progress_, "Show a progress bar (only on a terminal)");
   app.allow_extras();
   app.footer(
@@ -334,7 +339,7 @@ int BatchCommand::run() {
           argv.end(),
           {"--threads", std::to_string(std::max(1u, base::machine_threads() / unsigned(jobs_)))});
   fs::create_directories(output_);
-  const std::vector<PlanResult> results = plan_in_workers(commands, jobs_, progress_);
+  const std::vector<PlanResult> results = plan_in_workers(commands, jobs_, progress_, timeout_s_);
   const BatchTables tables = batch_tables(jobs, results, output_, options);
   base::OutputSet set(output_, "batch", {base::OutputSet::Mode::amend, 10.0});
   set.add("batch.csv", tables.csv);

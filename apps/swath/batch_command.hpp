@@ -26,6 +26,7 @@ class BatchCommand : public Command {
   std::string areas_, output_, layer_;
   std::string name_field_;
   int jobs_ = 1;
+  double timeout_s_ = 0;  ///< --timeout-s: wall-clock seconds an area may plan; 0 none
   bool emit_jobs_ = false, progress_ = false;
   std::vector<std::string> plan_args_;
 };

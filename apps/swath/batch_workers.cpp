@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iostream>
@@ -57,8 +59,11 @@ struct Worker {
   int socket = -1;                 ///< ours of a socket pair: area indices out, exit codes in
   int log = -1;                    ///< its stderr: an anonymous file in memory (memfd)
   std::optional<std::size_t> job;  ///< the area it is planning
+  std::chrono::steady_clock::time_point deadline;  ///< when that area's time is up
   std::size_t planned = 0;
 };
+
+using Clock = std::chrono::steady_clock;
 
 bool send_all(int fd, const void* data, std::size_t size) {
   const char* at = static_cast<const char*>(data);
@@ -133,10 +138,11 @@ std::string read_log(int fd) {
 
 class Pool {
  public:
-  Pool(const std::vector<std::vector<std::string>>& commands, int parallel)
+  Pool(const std::vector<std::vector<std::string>>& commands, int parallel, double timeout_s)
       : commands_(commands),
         workers_(static_cast<std::size_t>(parallel)),
-        areas_per_worker_(areas_per_worker()) {}
+        areas_per_worker_(areas_per_worker()),
+        timeout_s_(timeout_s) {}
   ~Pool() {
     for (Worker& w : workers_) {
       if (w.job && w.pid > 0) ::kill(w.pid, SIGTERM);  // the batch is failing: not its end
@@ -161,7 +167,12 @@ class Pool {
       // with its stderr (the same open file), and the batch reads with pread().
       if (::ftruncate(w.log, 0) != 0 || ::lseek(w.log, 0, SEEK_SET) != 0)
         throw std::runtime_error("batch: cannot empty a planning process's log");
-      if (send_all(w.socket, &index, sizeof index)) return true;
+      if (send_all(w.socket, &index, sizeof index)) {
+        if (timeout_s_ > 0)
+          w.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(timeout_s_));
+        return true;
+      }
       if (w.planned == 0) break;
       w.job.reset();
       retire(w);  // reaped; its status is no area's
@@ -170,7 +181,8 @@ class Pool {
     return false;
   }
 
-  // Waits until some busy worker answers or dies: the area it planned, and its result.
+  // Waits until some busy worker answers, dies or runs out of time: the area it planned, and its
+  // result.
   std::pair<std::size_t, PlanResult> next_result() {
     std::vector<pollfd> polled;
     std::vector<Worker*> busy;
@@ -180,8 +192,16 @@ class Pool {
         busy.push_back(&w);
       }
     if (busy.empty()) throw std::logic_error("batch: no area is being planned");
-    while (::poll(polled.data(), polled.size(), -1) < 0)
-      if (errno != EINTR) throw std::runtime_error("batch: cannot wait for the planning processes");
+    for (;;) {
+      if (Worker* late = out_of_time(busy)) {
+        const std::size_t job = *late->job;
+        return {job, timed_out(*late)};
+      }
+      const int ready = ::poll(polled.data(), polled.size(), wait_ms(busy));
+      if (ready > 0) break;
+      if (ready < 0 && errno != EINTR)
+        throw std::runtime_error("batch: cannot wait for the planning processes");
+    }
     for (std::size_t i = 0; i < busy.size(); ++i) {
       if (polled[i].revents == 0) continue;
       Worker& w = *busy[i];
@@ -199,6 +219,52 @@ class Pool {
 
  private:
   static std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+  // The first busy worker whose area's time is up (none without a timeout).
+  Worker* out_of_time(const std::vector<Worker*>& busy) const {
+    if (!(timeout_s_ > 0)) return nullptr;
+    const Clock::time_point now = Clock::now();
+    for (Worker* w : busy)
+      if (w->deadline <= now) return w;
+    return nullptr;
+  }
+
+  // Milliseconds until the earliest deadline of the busy workers (rounded up); -1: no timeout.
+  int wait_ms(const std::vector<Worker*>& busy) const {
+    if (!(timeout_s_ > 0)) return -1;
+    Clock::time_point first = Clock::time_point::max();
+    for (const Worker* w : busy) first = std::min(first, w->deadline);
+    const double ms = std::chrono::duration<double, std::milli>(first - Clock::now()).count();
+    return static_cast<int>(std::clamp(std::ceil(ms), 0.0, 60'000.0));
+  }
+
+  // `w`'s area failed for taking longer than the timeout: its process ended (SIGTERM, which
+  // removes a plan's temporaries; SIGKILL after a grace of 2 s) and reaped. The area's directory
+  // keeps whatever its plan had switched in before (a plan writes its set whole, at its end).
+  PlanResult timed_out(Worker& w) {
+    ::kill(w.pid, SIGTERM);
+    ::kill(w.pid, SIGCONT);  // a stopped process takes its SIGTERM only once continued
+    const Clock::time_point grace = Clock::now() + std::chrono::seconds(2);
+    for (;;) {
+      const pid_t reaped = ::waitpid(w.pid, nullptr, WNOHANG);
+      if (reaped == w.pid || (reaped < 0 && errno != EINTR)) break;
+      if (Clock::now() >= grace) {
+        ::kill(w.pid, SIGKILL);
+        while (::waitpid(w.pid, nullptr, 0) < 0 && errno == EINTR) {
+        }
+        break;
+      }
+      ::usleep(10'000);
+    }
+    w.pid = -1;  // reaped
+    w.job.reset();
+    retire(w);
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%g", timeout_s_);
+    return PlanResult{base::kExitFailure, std::string("swath batch: planning took longer than "
+                                                      "--timeout-s ") +
+                                              limit + " s; its process was ended"};
+  }
 
   void start(Worker& w) {
     int pair[2];
@@ -259,15 +325,17 @@ class Pool {
   const std::vector<std::vector<std::string>>& commands_;
   std::vector<Worker> workers_;
   std::size_t areas_per_worker_;
+  double timeout_s_;  ///< wall-clock seconds an area may take; 0: no limit
 };
 
 }  // namespace
 
 std::vector<PlanResult> plan_in_workers(const std::vector<std::vector<std::string>>& commands,
-                                        int parallel, bool progress) {
+                                        int parallel, bool progress, double timeout_s) {
   std::vector<PlanResult> results(commands.size());
   ProgressBar bar(progress, "planning");
-  Pool pool(commands, std::max(1, std::min(parallel, static_cast<int>(commands.size()))));
+  Pool pool(commands, std::max(1, std::min(parallel, static_cast<int>(commands.size()))),
+            timeout_s);
   std::size_t next = 0, done = 0;
   const auto finish = [&](std::size_t job, PlanResult r) {
     results[job] = std::move(r);

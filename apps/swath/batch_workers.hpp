@@ -20,7 +20,9 @@ struct PlanResult {
 /// dies (a crash, a signal) fails only the area it was planning; a fresh worker takes the rest.
 /// Results in the order of `commands`; each area writes its own directory, so they do not
 /// depend on `parallel` or on which worker planned which area. `progress`: a bar on a terminal.
+/// `timeout_s` (> 0): an area still planning after that many seconds of wall-clock time is failed
+/// and its worker ended (a plan reading from a pipe nobody writes, a hung network mount); 0: none.
 std::vector<PlanResult> plan_in_workers(const std::vector<std::vector<std::string>>& commands,
-                                        int parallel, bool progress);
+                                        int parallel, bool progress, double timeout_s = 0);
 
 }  // namespace swath::apps

@@ -171,6 +171,48 @@ TEST(BatchWorkers, AWorkerThatDiesFailsOnlyItsArea) {
   }
 }
 
+// A worker that stops answering (here stopped with SIGSTOP as soon as it starts; in the field a
+// hung network mount) fails the area it holds once --timeout-s has passed, that area alone: a
+// fresh worker plans the others, each as alone, and nothing of the stopped one is left behind.
+TEST(BatchWorkers, AnAreaPastTheTimeoutFailsAloneTheBatchGoesOn) {
+  const std::string dir = fresh_dir("batch-workers-timeout");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  std::vector<std::string> plots;
+  for (int i = 0; i < 60; ++i) plots.push_back(small_plot(i));
+  std::ofstream(areas) << areas_of(plots);
+  // The batch in the background; its first child (the worker, found by its parent in
+  // /proc/PID/stat) stopped; then the batch waited for.
+  const std::string script =
+      std::string(SWATH_BINARY) + " batch " + areas + " -o " + dir + "/out --jobs 1 --timeout-s 1" +
+      kOptions +
+      " & b=$!; w=; while [ -z \"$w\" ]; do for s in /proc/[0-9]*/stat; do "
+      "set -- $(cat $s 2>/dev/null) x x x x; [ \"$4\" = \"$b\" ] && w=$1; done; done; "
+      "kill -STOP $w; wait $b";
+  const CliRun run = run_program("sh", "-c '" + script + "'");
+  ASSERT_EQ(run.exit_code, 3) << run.err << run.out;
+  const auto rows = batch_rows(dir + "/out");
+  const auto lines = batch_lines(dir + "/out");
+  ASSERT_EQ(rows.size(), plots.size());
+  std::size_t timed_out = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i][4] == "planned") {
+      if (i % 10 == 0) EXPECT_TRUE(planned_as_alone(areas, i, dir + "/out", rows[i][3], dir)) << i;
+      continue;
+    }
+    ++timed_out;
+    EXPECT_EQ(rows[i][5], "1") << lines[i];
+    EXPECT_NE(lines[i].find("planning took longer than --timeout-s 1 s; its process was ended"),
+              std::string::npos)
+        << lines[i];
+  }
+  EXPECT_EQ(timed_out, 1u);
+  for (const auto& e : fs::recursive_directory_iterator(dir + "/out"))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  EXPECT_EQ(run_swath("batch " + areas + " -o " + dir + "/no --timeout-s -1" + kOptions).exit_code,
+            2);
+}
+
 // A comb of four teeth (concave): split, its direction search on threads. Its plan is the same
 // bytes on one thread or three; a batch gives its workers' plans a share of the machine's threads
 // (--threads), unless the plan options name it themselves (given twice, `swath plan` refuses).
