@@ -25,6 +25,7 @@
 #include "plan_command.hpp"
 #include "progress_bar.hpp"
 #include "swath/base/freed_memory.hpp"
+#include "swath/base/number_text.hpp"
 
 namespace swath::apps {
 namespace {
@@ -145,7 +146,10 @@ class Pool {
         timeout_s_(timeout_s) {}
   ~Pool() {
     for (Worker& w : workers_) {
-      if (w.job && w.pid > 0) ::kill(w.pid, SIGTERM);  // the batch is failing: not its end
+      if (w.job && w.pid > 0) {  // the batch is failing: not its end
+        ::kill(w.pid, SIGTERM);
+        ::kill(w.pid, SIGCONT);
+      }
       retire(w);
     }
   }
@@ -192,15 +196,20 @@ class Pool {
         busy.push_back(&w);
       }
     if (busy.empty()) throw std::logic_error("batch: no area is being planned");
+    // The answers first, then the deadlines: an answer that came while the batch was not
+    // waiting (ending another worker, stopped) is the area's, however late.
     for (;;) {
+      const int wait = wait_ms(busy);
+      const Clock::time_point asked = Clock::now();
+      const int ready = ::poll(polled.data(), polled.size(), wait);
+      if (ready > 0) break;
+      if (ready < 0 && errno != EINTR)
+        throw std::runtime_error("batch: cannot wait for the planning processes");
+      discount_stop(busy, asked, wait);
       if (Worker* late = out_of_time(busy)) {
         const std::size_t job = *late->job;
         return {job, timed_out(*late)};
       }
-      const int ready = ::poll(polled.data(), polled.size(), wait_ms(busy));
-      if (ready > 0) break;
-      if (ready < 0 && errno != EINTR)
-        throw std::runtime_error("batch: cannot wait for the planning processes");
     }
     for (std::size_t i = 0; i < busy.size(); ++i) {
       if (polled[i].revents == 0) continue;
@@ -238,32 +247,58 @@ class Pool {
     return static_cast<int>(std::clamp(std::ceil(ms), 0.0, 60'000.0));
   }
 
-  // `w`'s area failed for taking longer than the timeout: its process ended (SIGTERM, which
-  // removes a plan's temporaries; SIGKILL after a grace of 2 s) and reaped. The area's directory
-  // keeps whatever its plan had switched in before (a plan writes its set whole, at its end).
+  // A wait for the deadlines that ended more than a second later than asked: the batch was
+  // stopped (Ctrl-Z stops the whole job, its workers too) or the machine paused. The whole wait is
+  // then not counted against the areas being planned (when the stop began within it is unknown:
+  // an area may get up to the wait's length more).
+  static void discount_stop(const std::vector<Worker*>& busy, Clock::time_point asked, int wait) {
+    if (wait < 0) return;
+    const Clock::duration waited = Clock::now() - asked;
+    if (waited > std::chrono::milliseconds(wait) + std::chrono::seconds(1))
+      for (Worker* w : busy) w->deadline += waited;
+  }
+
+  // `w`'s area failed for taking longer than the timeout, and its process ended (end_process()).
+  // Unless the area's answer came before its process ended: then that is the area's result (its
+  // plan finished, its files switched in; a SIGTERM while a plan renames its files into place
+  // waits until they are all in).
   PlanResult timed_out(Worker& w) {
-    ::kill(w.pid, SIGTERM);
-    ::kill(w.pid, SIGCONT);  // a stopped process takes its SIGTERM only once continued
-    const Clock::time_point grace = Clock::now() + std::chrono::seconds(2);
-    for (;;) {
-      const pid_t reaped = ::waitpid(w.pid, nullptr, WNOHANG);
-      if (reaped == w.pid || (reaped < 0 && errno != EINTR)) break;
-      if (Clock::now() >= grace) {
-        ::kill(w.pid, SIGKILL);
-        while (::waitpid(w.pid, nullptr, 0) < 0 && errno == EINTR) {
-        }
-        break;
-      }
-      ::usleep(10'000);
+    end_process(w.pid, std::chrono::seconds(0));
+    w.pid = -1;  // ended
+    std::int32_t code = 0;
+    const bool answered = ::recv(w.socket, &code, sizeof code, MSG_DONTWAIT) == sizeof code;
+    PlanResult r{base::kExitFailure, ""};
+    if (answered) {
+      r = PlanResult{code, first_line(read_log(w.log))};
+    } else {
+      r.message = "swath batch: planning took longer than --timeout-s " +
+                  base::shortest_text(timeout_s_) + " s; its process was ended";
     }
-    w.pid = -1;  // reaped
     w.job.reset();
     retire(w);
-    char limit[32];
-    std::snprintf(limit, sizeof limit, "%g", timeout_s_);
-    return PlanResult{base::kExitFailure, std::string("swath batch: planning took longer than "
-                                                      "--timeout-s ") +
-                                              limit + " s; its process was ended"};
+    return r;
+  }
+
+  // Ends process `pid`: it is given `grace` to end on its own (a worker whose socket was closed
+  // exits), then SIGTERM (which removes a plan's temporaries) with SIGCONT (a stopped process
+  // takes its SIGTERM only once continued), 2 s later SIGKILL; reaped as soon as it ends. A
+  // process that SIGKILL does not end within 2 s more (stuck in the kernel: a hung network mount)
+  // is left to end on its own; init reaps it once the batch has exited.
+  static void end_process(pid_t pid, Clock::duration grace) {
+    const auto reaped_by = [pid](Clock::time_point until) {
+      for (;;) {
+        const pid_t r = ::waitpid(pid, nullptr, WNOHANG);
+        if (r == pid || (r < 0 && errno != EINTR)) return true;
+        if (Clock::now() >= until) return false;
+        ::usleep(2'000);
+      }
+    };
+    if (reaped_by(Clock::now() + grace)) return;
+    ::kill(pid, SIGTERM);
+    ::kill(pid, SIGCONT);
+    if (reaped_by(Clock::now() + std::chrono::seconds(2))) return;
+    ::kill(pid, SIGKILL);
+    reaped_by(Clock::now() + std::chrono::seconds(2));
   }
 
   void start(Worker& w) {
@@ -312,12 +347,11 @@ class Pool {
     return r;
   }
 
-  // `w`'s process told to end (its socket closed) and reaped; its descriptors closed.
+  // `w`'s process told to end (its socket closed) and reaped (ended, after 5 s: one stopped
+  // between two areas never reads its socket's end); its descriptors closed.
   void retire(Worker& w) {
     if (w.socket >= 0) ::close(w.socket);
-    if (w.pid > 0)
-      while (::waitpid(w.pid, nullptr, 0) < 0 && errno == EINTR) {
-      }
+    if (w.pid > 0) end_process(w.pid, std::chrono::seconds(5));
     if (w.log >= 0) ::close(w.log);
     w = Worker{};
   }

@@ -142,6 +142,16 @@ std::function<std::string()>& suffix_source() {
   return source;
 }
 
+std::function<int(const char*, const char*)>& rename_function() {
+  static std::function<int(const char*, const char*)> function;
+  return function;
+}
+
+// std::rename, or the tests' stand-in (testing::set_rename_function()).
+int rename_file(const char* from, const char* to) {
+  return rename_function() ? rename_function()(from, to) : std::rename(from, to);
+}
+
 std::string random_suffix() {
   if (suffix_source()) return suffix_source()();
   std::uint64_t bits = 0;
@@ -374,11 +384,12 @@ void OutputSet::Stream::flush() {
 }
 
 // The renames, all or none. Each file the set replaces is kept first under a second name (a hard
-// link beside it: the file itself never goes missing), so that a rename failing part way (a
-// directory in the way of the fourth file) is undone: the files renamed so far get their old
-// selves back, or are removed where there was none, and the set is refused with the old set as it
-// was. A file system without hard links (FAT on a memory card) keeps nothing: there a rename
-// failing part way still leaves the files renamed before it.
+// link beside it: the file itself never goes missing), so that a rename failing part way is
+// undone: the files renamed so far get their old selves back, or are removed where there was
+// none, and the set is refused with the old set as it was. A directory in the way of a file is
+// found before anything changes (then no hard link is needed either). Where an old file could
+// not be kept (a file system without hard links, FAT on a memory card; a file at its link limit)
+// or put back, the refusal names it: it stays replaced.
 void OutputSet::switch_in() {
   struct Switch {
     fs::path target;
@@ -386,41 +397,58 @@ void OutputSet::switch_in() {
     bool had_old = false;
   };
   std::vector<Switch> switches;
+  // Undoes the first `renamed` renames and removes the second names; the names it could not put
+  // back.
   const auto undo = [&](std::size_t renamed) {
+    std::string left;
     for (std::size_t i = 0; i < switches.size(); ++i) {
       const Switch& w = switches[i];
-      if (i < renamed && !w.kept.empty())
-        std::rename(w.kept.c_str(), w.target.c_str());
-      else if (i < renamed && !w.had_old)
-        ::unlink(w.target.c_str());
-      else if (!w.kept.empty())
-        ::unlink(w.kept.c_str());
+      std::string lost;  // why this one stays replaced
+      if (i >= renamed) {
+        if (!w.kept.empty()) ::unlink(w.kept.c_str());
+      } else if (!w.kept.empty()) {
+        if (std::rename(w.kept.c_str(), w.target.c_str()) != 0)
+          lost = " (its old content kept as " + fs::path(w.kept).filename().string() + ")";
+      } else if (w.had_old) {
+        lost = " (its old content not kept: no hard links here)";
+      } else if (::unlink(w.target.c_str()) != 0) {
+        lost = " (it had none before)";
+      }
+      if (!lost.empty()) left += (left.empty() ? "" : ", ") + w.target.filename().string() + lost;
     }
+    return left;
   };
   for (const auto& e : entries_) {
     Switch w{directory_ / e->name, {}, false};
     struct stat st {};
     if (::lstat(w.target.c_str(), &st) == 0) {
       w.had_old = true;
-      // A directory gets no second name (its rename below fails, and undoes the others).
-      if (!S_ISDIR(st.st_mode))
-        for (int attempt = 0; attempt < 100 && w.kept.empty(); ++attempt) {
-          const std::string kept =
-              (directory_ / ("." + e->name + ".old-" + random_suffix())).string();
-          if (::link(w.target.c_str(), kept.c_str()) == 0)
-            w.kept = kept;
-          else if (errno != EEXIST)
-            break;  // no hard links here: nothing kept
-        }
+      if (S_ISDIR(st.st_mode)) {
+        undo(0);
+        throw InputError(w.target.string() +
+                         ": a directory of that name is in the way of the file swath writes "
+                         "there; nothing was changed (move it, or give another output directory)");
+      }
+      for (int attempt = 0; attempt < 100 && w.kept.empty(); ++attempt) {
+        const std::string kept =
+            (directory_ / ("." + e->name + ".old-" + random_suffix())).string();
+        if (::link(w.target.c_str(), kept.c_str()) == 0)
+          w.kept = kept;
+        else if (errno != EEXIST)
+          break;  // not kept: see above
+      }
     }
     switches.push_back(std::move(w));
   }
   for (std::size_t k = 0; k < entries_.size(); ++k)
-    if (std::rename(entries_[k]->temporary.c_str(), switches[k].target.c_str()) != 0) {
+    if (rename_file(entries_[k]->temporary.c_str(), switches[k].target.c_str()) != 0) {
       const int saved = errno;
-      undo(k);
-      errno = saved;
-      fail(switches[k].target, "cannot replace it with the new file");
+      const std::string left = undo(k);
+      throw std::runtime_error(
+          switches[k].target.string() + ": cannot replace it with the new file (" +
+          std::strerror(saved) + "); " +
+          (left.empty() ? "the old files are as they were"
+                        : "the files renamed before it are back as they were, except " + left));
     }
   undo(0);  // the old files' second names only
 }
@@ -472,6 +500,9 @@ void OutputSet::commit() {
 namespace testing {
 void set_temporary_suffix_source(std::function<std::string()> source) {
   suffix_source() = std::move(source);
+}
+void set_rename_function(std::function<int(const char*, const char*)> rename) {
+  rename_function() = std::move(rename);
 }
 }  // namespace testing
 

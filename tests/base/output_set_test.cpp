@@ -7,6 +7,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -51,18 +53,17 @@ TEST(OutputSet, AFailedWriteLeavesTheOldFilesAndNoTemporaries) {
   EXPECT_EQ(slurp(dir / "a.txt"), "new a");
 }
 
-TEST(OutputSet, ARenameFailingPartWayIsUndoneTheOldSetAsItWas) {
-  const fs::path dir = fresh("undone");
+// A user's directory named like a file of the set: refused before anything changes, as bad input.
+TEST(OutputSet, ADirectoryInTheWayIsRefusedBeforeAnythingChanges) {
+  const fs::path dir = fresh("in-the-way");
   write_files_atomically(dir, {{"a.txt", "old a"}, {"c.txt", "old c"}}, "plan");
-  fs::create_directories(dir / "b.txt" / "inside");  // the user's directory, in the way
-  // a.txt is renamed first (it had an old file), then b.txt fails: a.txt gets its old self back,
-  // the new c.txt never comes, and nothing of the set stays (no temporary, no kept second name).
+  fs::create_directories(dir / "b.txt" / "inside");
   try {
     write_files_atomically(dir, {{"a.txt", "new a"}, {"b.txt", "new b"}, {"c.txt", "new c"}},
                            "plan");
     FAIL() << "a file renamed onto a directory";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("b.txt: cannot replace it with the new file"),
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("b.txt: a directory of that name is in the way"),
               std::string::npos)
         << e.what();
   }
@@ -70,14 +71,42 @@ TEST(OutputSet, ARenameFailingPartWayIsUndoneTheOldSetAsItWas) {
   EXPECT_EQ(slurp(dir / "c.txt"), "old c");
   EXPECT_TRUE(fs::is_directory(dir / "b.txt" / "inside"));
   EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "a.txt", "b.txt", "c.txt"}));
-  EXPECT_EQ(slurp(dir / ".swath-plan.files"),
-            "# the files swath's last plan wrote here\na.txt\nc.txt\n");
-  // A file the old set did not have is removed again: d.txt renamed, then b.txt fails.
-  EXPECT_THROW(write_files_atomically(dir, {{"d.txt", "new d"}, {"b.txt", "new b"}}, "plan"),
-               std::runtime_error);
-  EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "a.txt", "b.txt", "c.txt"}));
-  // And the set switches in whole once the way is clear, the kept second names gone.
-  fs::remove_all(dir / "b.txt");
+}
+
+// The k-th rename of a set fails (as a file system may: EIO): the renames before it are undone,
+// each file its old self again or gone where it had none, nothing of the set left behind (no
+// temporary, no kept second name), the manifest the old one.
+TEST(OutputSet, ARenameFailingPartWayIsUndoneTheOldSetAsItWas) {
+  const fs::path dir = fresh("undone");
+  write_files_atomically(dir, {{"a.txt", "old a"}, {"c.txt", "old c"}}, "plan");
+  const std::string manifest = slurp(dir / ".swath-plan.files");
+  const std::set<std::string> before = listing(dir);
+  // The set renames a.txt, b.txt (new), c.txt, d.txt (new), its manifest: each k fails in turn.
+  for (int failing = 1; failing <= 5; ++failing) {
+    int renames = 0;
+    testing::set_rename_function([&](const char* from, const char* to) {
+      if (++renames == failing) {
+        errno = EIO;
+        return -1;
+      }
+      return std::rename(from, to);
+    });
+    try {
+      write_files_atomically(
+          dir, {{"a.txt", "new a"}, {"b.txt", "new b"}, {"c.txt", "new c"}, {"d.txt", "new d"}},
+          "plan");
+      ADD_FAILURE() << "rename " << failing << " failed, yet the set was committed";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("the old files are as they were"), std::string::npos)
+          << e.what();
+    }
+    testing::set_rename_function({});
+    EXPECT_EQ(listing(dir), before) << "rename " << failing;
+    EXPECT_EQ(slurp(dir / "a.txt"), "old a") << failing;
+    EXPECT_EQ(slurp(dir / "c.txt"), "old c") << failing;
+    EXPECT_EQ(slurp(dir / ".swath-plan.files"), manifest) << failing;
+  }
+  // And the set switches in whole once renames work, the kept second names gone.
   write_files_atomically(dir, {{"a.txt", "new a"}, {"b.txt", "new b"}}, "plan");
   EXPECT_EQ(slurp(dir / "a.txt"), "new a");
   EXPECT_EQ(listing(dir), (std::set<std::string>{".swath-plan.files", "a.txt", "b.txt"}));

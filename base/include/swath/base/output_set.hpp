@@ -109,6 +109,9 @@ namespace testing {
 /// Replaces the random suffix of temporary names (tests plant files at the names it will draw);
 /// an empty function restores the random one.
 void set_temporary_suffix_source(std::function<std::string()> source);
+/// Replaces std::rename for the renames that switch a set's files in (tests make one fail part
+/// way, as a file system can); an empty function restores std::rename.
+void set_rename_function(std::function<int(const char*, const char*)> rename);
 }  // namespace testing
 
 /// Writes `files` (name, content) as one set of `kind` (OutputSet, Mode::replace) and commits it.
