@@ -247,11 +247,11 @@ VisibilityRouter::Fan VisibilityRouter::fan_of(Point2 a) const {
     covering += steps[k];
     start[k + 1] = start[k] + std::uint32_t(covering);
   }
-  fan.items.resize(start[bin_count]);
+  fan.items = std::make_unique_for_overwrite<std::uint32_t[]>(start[bin_count]);
   thread_local std::vector<std::uint32_t> cursor;  // per bin, its next free item
   cursor.assign(fan.start.begin(), fan.start.end() - 1);
   std::uint32_t* const next = cursor.data();
-  std::uint32_t* const items = fan.items.data();
+  std::uint32_t* const items = fan.items.get();
   const FanSpan* const span_of = spans.data();
   for (std::uint32_t edge = 0; edge < e; ++edge) {
     // A span past the last bin goes on at the first.
@@ -562,7 +562,7 @@ bool VisibilityRouter::sees(Point2 p, Row& row, std::size_t node) const {
       // held 1.5 GB. Past the budget a point asks along the grid (more tests, the same answers:
       // a fan only chooses which edges the exact tests look at).
       Fan fan = fan_of(p);
-      const std::size_t items = fan.items.size() + fan.start.size() + fan.near.size();
+      const std::size_t items = fan.start.back() + fan.start.size() + fan.near.size();
       if (row_fan_items_ + items <= kRowFanItemBudget) {
         row_fan_items_ += items;
         row.fan = std::make_unique<Fan>(std::move(fan));
