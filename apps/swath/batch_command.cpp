@@ -326,6 +326,9 @@ int BatchCommand::run() {
       lines += line + "\n";
     }
     std::cout << lines;
+    if (timeout_s_ > 0)
+      std::cerr << "swath batch: warning: --timeout-s does not reach the command lines printed; "
+                   "give the engine's own limit (e.g. GNU parallel's --timeout)\n";
     return base::kExitSuccess;
   }
   // Each worker's plans take their share of the machine's threads: two plans of two threads each

@@ -208,6 +208,15 @@ TEST(BatchCli, EveryAreaPlannedAsAloneTheSameBytesForAnyJobsAndGnuParallel) {
   // --emit-jobs prints the command lines; GNU parallel runs them to the same files.
   const CliRun jobs = run_swath("batch " + areas + " -o " + dir + "/par --emit-jobs" + opts);
   ASSERT_EQ(jobs.exit_code, 0);
+  EXPECT_EQ(jobs.err, "");
+  // The batch's own --timeout-s does not reach them: the same lines, and a warning saying so.
+  const CliRun timed =
+      run_swath("batch " + areas + " -o " + dir + "/par --emit-jobs --timeout-s 5" + opts);
+  EXPECT_EQ(timed.exit_code, 0);
+  EXPECT_EQ(timed.out, jobs.out);
+  EXPECT_NE(timed.err.find("warning: --timeout-s does not reach the command lines"),
+            std::string::npos)
+      << timed.err;
   std::ofstream(dir + "/jobs.txt") << jobs.out;
   const CliRun par = run_program("parallel", "-j2 --will-cite -a " + dir + "/jobs.txt");
   EXPECT_EQ(par.exit_code, 1) << par.err;  // parallel's exit code: how many jobs failed
