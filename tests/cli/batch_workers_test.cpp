@@ -288,7 +288,8 @@ TEST(BatchWorkers, TheThreadsChangeNoFile) {
 
 // A CPU time limit (ulimit -t) is a process's: `swath plan` alone has the whole of it for its area,
 // and so does each area of a batch under it, not what the worker's earlier areas left of it (60
-// stars of a few tens of ms each: over a second for all of them in one worker).
+// stars of about 60 ms each on one thread: 3.6 s for all of them in one worker; 2 s leaves a
+// sanitized build's 0.6-0.7 s a star three times over, where 1 s at times did not).
 TEST(BatchWorkers, ACpuTimeLimitIsEachAreasAsAlone) {
   const std::string dir = fresh_dir("batch-workers-cpu");
   fs::create_directories(dir);
@@ -297,8 +298,8 @@ TEST(BatchWorkers, ACpuTimeLimitIsEachAreasAsAlone) {
   for (int i = 0; i < 60; ++i) plots.push_back(star_plot(i));
   std::ofstream(areas) << areas_of(plots);
   const CliRun run =
-      run_program("sh", "-c 'ulimit -t 1; exec " + std::string(SWATH_BINARY) + " batch " + areas +
-                            " -o " + dir + "/out --jobs 1" + kOptions + "'");
+      run_program("sh", "-c 'ulimit -t 2; exec " + std::string(SWATH_BINARY) + " batch " + areas +
+                            " -o " + dir + "/out --jobs 1 --threads 1" + kOptions + "'");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const auto rows = batch_rows(dir + "/out");
   ASSERT_EQ(rows.size(), plots.size());
