@@ -172,14 +172,15 @@ TEST(BatchWorkers, AWorkerThatDiesFailsOnlyItsArea) {
 }
 
 // Shell lines that set w to the first child of the process $b (the batch's worker), from
-// /proc/$b/task/$b/children, else from every process's parent in /proc/PID/stat (builtins only:
-// the batch may be done in a few hundred ms); exit 97 when none is found in 20,000 looks.
+// /proc/$b/task/$b/children, else from every process's parent in /proc/PID/stat (builtins only),
+// looking every 5 ms (a sanitized batch forks its first worker only after some hundreds of ms);
+// exit 97 when none is found in 12,000 looks (a minute or more).
 const char* const kFindWorker =
-    "w=; n=0; while [ -z \"$w\" ] && [ $n -lt 20000 ]; do n=$((n+1)); "
+    "w=; n=0; while [ -z \"$w\" ] && [ $n -lt 12000 ]; do n=$((n+1)); "
     "if [ -e /proc/$b/task/$b/children ]; then read -r w rest 2>/dev/null "
     "< /proc/$b/task/$b/children; else for s in /proc/[0-9]*/stat; do "
     "read -r line 2>/dev/null < $s && set -- $line x x x x && [ \"$4\" = \"$b\" ] && w=$1; "
-    "done; fi; done; [ -n \"$w\" ] || { kill $b; exit 97; }; ";
+    "done; fi; [ -n \"$w\" ] || sleep 0.005; done; [ -n \"$w\" ] || { kill $b; exit 97; }; ";
 
 // A worker that stops answering (here stopped with SIGSTOP as soon as it starts; in the field a
 // hung network mount) fails the area it holds once --timeout-s has passed, that area alone: a
