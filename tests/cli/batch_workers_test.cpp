@@ -221,9 +221,8 @@ TEST(BatchWorkers, AnAreaPastTheTimeoutFailsAloneTheBatchGoesOn) {
 }
 
 // The batch itself stopped for 4 s under --timeout-s 2 (its worker plans on and answers): no area
-// is failed, the answer that came meanwhile is its area's result. Nor with the worker stopped in
-// an area, then the batch (as Ctrl-Z stops the whole job): the time stopped is not counted
-// against the area.
+// is failed. Nor with the worker stopped in an area, then the batch (as Ctrl-Z stops the whole
+// job): the time stopped is not counted against the area (this second case fails without that).
 TEST(BatchWorkers, ABatchStoppedAWhileFailsNoAreaForTheTimeout) {
   const std::string dir = fresh_dir("batch-workers-stopped");
   fs::create_directories(dir);
