@@ -261,8 +261,8 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<PlanRes
     // Names and messages are bytes from the user's files: valid UTF-8 before JSON and CSV.
     const std::string name = base::valid_utf8(j.name), message = base::valid_utf8(r.message);
     json props{
-        {"area", name},       {"file", base::valid_utf8(j.file)},     {"index", j.index},
-        {"directory", j.dir}, {"status", ok ? "planned" : "refused"}, {"exit_code", r.exit_code}};
+        {"area", name},       {"file", base::valid_utf8(j.file)}, {"index", j.index},
+        {"directory", j.dir}, {"status", batch_status(r)},        {"exit_code", r.exit_code}};
     std::string numbers = ",,,,,";
     if (ok) {
       const json s =
@@ -286,9 +286,9 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<PlanRes
       props["message"] = message;
     }
     t.csv += csv_field(name) + "," + csv_field(base::valid_utf8(j.file)) + "," +
-             std::to_string(j.index) + "," + csv_field(j.dir) + "," + (ok ? "planned" : "refused") +
-             "," + std::to_string(r.exit_code) + "," + numbers + "," +
-             csv_field(ok ? "" : message) + "\n";
+             std::to_string(j.index) + "," + csv_field(j.dir) + "," + batch_status(r) + "," +
+             std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : message) +
+             "\n";
     features.push_back(json{
         {"type", "Feature"}, {"properties", props}, {"geometry", outline_geojson(j, options)}});
   }

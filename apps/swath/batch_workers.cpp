@@ -271,6 +271,7 @@ class Pool {
     if (answered) {
       r = PlanResult{code, first_line(read_log(w.log))};
     } else {
+      r.timed_out = true;
       r.message = "swath batch: planning took longer than --timeout-s " +
                   base::shortest_text(timeout_s_) + " s; its process was ended";
     }
@@ -365,6 +366,12 @@ class Pool {
 };
 
 }  // namespace
+
+const char* batch_status(const PlanResult& r) {
+  if (r.timed_out) return "timed-out";
+  if (r.exit_code == base::kExitSuccess) return "planned";
+  return r.exit_code == base::kExitBadInput ? "refused" : "failed";
+}
 
 std::vector<PlanResult> plan_in_workers(const std::vector<std::vector<std::string>>& commands,
                                         int parallel, bool progress, double timeout_s) {

@@ -9,9 +9,15 @@ namespace swath::apps {
 
 /// The result of one area's `swath plan`.
 struct PlanResult {
-  int exit_code = -1;   ///< as `swath plan` exits; 128 + the signal that ended its process
-  std::string message;  ///< the first line it wrote to stderr
+  int exit_code = -1;      ///< as `swath plan` exits; 128 + the signal that ended its process
+  std::string message;     ///< the first line it wrote to stderr
+  bool timed_out = false;  ///< ended for taking longer than the batch's timeout
 };
+
+/// A result's word in batch.csv's `status` column: `planned` (exit 0), `refused` (exit 2: the
+/// area or its options cannot be planned, swath plan's sentence says why), `timed-out` (ended
+/// by --timeout-s), `failed` (anything else: an unexpected failure, a signal).
+const char* batch_status(const PlanResult& r);
 
 /// Plans every `swath plan` command line of `commands` (argv, program name first), at most
 /// `parallel` at once, in worker processes forked from this one (GDAL's libraries, loaded to list

@@ -453,6 +453,35 @@ void OutputSet::switch_in() {
   undo(0);  // the old files' second names only
 }
 
+// A run ended by SIGKILL or a power cut (no handler runs) can leave its hidden temporaries
+// (`.NAME.tmp-SUFFIX`) and, if it was switching its set in, the old files' second names
+// (`.NAME.old-SUFFIX`). Under the directory's lock no other swath is writing here, so any such
+// name of a file of this set or of the set before it is a leftover of a run that did not finish:
+// removed once the new set is in. A name of any other form, or of a file swath did not write, is
+// the user's and stays.
+void OutputSet::remove_leftovers(const std::vector<std::string>& listed,
+                                 const std::vector<std::string>& old) const {
+  constexpr std::size_t kTail = 5 + 16;  // ".tmp-" or ".old-", then random_suffix()'s 16 digits
+  const auto ours = [&](const std::string& file) {
+    if (file.size() <= 1 + kTail || file[0] != '.') return false;
+    const std::string tail = file.substr(file.size() - kTail);
+    if (tail.compare(0, 5, ".tmp-") != 0 && tail.compare(0, 5, ".old-") != 0) return false;
+    if (!std::all_of(tail.begin() + 5, tail.end(),
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); }))
+      return false;
+    const std::string name = file.substr(1, file.size() - 1 - kTail);
+    return std::find(listed.begin(), listed.end(), name) != listed.end() ||
+           std::find(old.begin(), old.end(), name) != old.end() || name == manifest_name(kind_);
+  };
+  std::error_code ec;
+  for (const auto& item : fs::directory_iterator(directory_, ec)) {
+    const std::string file = item.path().filename().string();
+    struct stat st {};
+    if (ours(file) && ::lstat(item.path().c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+      ::unlink(item.path().c_str());
+  }
+}
+
 void OutputSet::commit() {
   if (committed_) throw std::logic_error("OutputSet: commit() twice");
   const fs::path manifest = directory_ / manifest_name(kind_);
@@ -491,6 +520,7 @@ void OutputSet::commit() {
       for (const std::string& n : old)
         if (std::find(listed.begin(), listed.end(), n) == listed.end() && plain_name(n))
           ::unlink((directory_ / n).c_str());
+    remove_leftovers(listed, old);
     // The renames made durable through the directory's own descriptor, the one that holds the
     // lock (opened read-only with O_DIRECTORY, which fsync takes): no second open.
     ::fsync(lock_fd_);

@@ -134,6 +134,31 @@ TEST(OutputSet, StaleFilesOfTheSameKindGoFilesOfOthersStay) {
   EXPECT_FALSE(fs::exists(dir / "drone-1.plan"));
 }
 
+// What a run killed by SIGKILL (no handler runs) leaves: its temporaries and the old files' second
+// names, of the set's own files and of the set before. The next run removes them once its set
+// is in; hidden names of other forms, or of files swath did not write, are the user's.
+TEST(OutputSet, LeftoversOfAKilledRunGoTheUsersHiddenFilesStay) {
+  const fs::path dir = fresh("leftovers");
+  write_files_atomically(dir, {{"summary.json", "1"}, {"drone-2.plan", "1"}}, "plan");
+  const std::set<std::string> leftovers{
+      ".summary.json.tmp-0123456789abcdef", ".summary.json.old-fedcba9876543210",
+      ".drone-2.plan.tmp-00000000deadbeef",        // of the set before (one drone now)
+      "..swath-plan.files.tmp-0a0b0c0d0e0f0102"};  // the manifest's (its name begins with a dot)
+  const std::set<std::string> users{".summary.json.old-backup",  // not a suffix swath draws
+                                    ".summary.json.tmp-0123456789ABCDEF",  // upper case: not either
+                                    ".notes.txt.tmp-0123456789abcdef",  // a file swath never wrote
+                                    "summary.json.tmp-0123456789abcdef",     // not hidden
+                                    ".summary.json.tmp-0123456789abcdef0"};  // one digit too many
+  for (const std::string& name : leftovers) std::ofstream(dir / name) << "left";
+  for (const std::string& name : users) std::ofstream(dir / name) << "mine";
+  write_files_atomically(dir, {{"summary.json", "2"}}, "plan");
+  std::set<std::string> expected{".swath-plan.files", "summary.json"};
+  expected.insert(users.begin(), users.end());
+  EXPECT_EQ(listing(dir), expected);
+  for (const std::string& name : users) EXPECT_EQ(slurp(dir / name), "mine") << name;
+  EXPECT_EQ(slurp(dir / "summary.json"), "2");
+}
+
 TEST(OutputSet, ANameAnotherKindWroteIsRefusedBeforeAnythingIsWritten) {
   const fs::path dir = fresh("foreign");
   write_files_atomically(dir, {{"summary.json", "plan"}}, "plan");

@@ -161,8 +161,8 @@ TEST(BatchWorkers, AWorkerThatDiesFailsOnlyItsArea) {
   ASSERT_EQ(run.exit_code, 3) << run.err;
   const auto rows = batch_rows(dir + "/out");
   ASSERT_EQ(rows.size(), 4u);
-  EXPECT_EQ(rows[1][4], "refused");
-  EXPECT_EQ(rows[1][5], "153");  // 128 + SIGXFSZ
+  EXPECT_EQ(rows[1][4], "failed");  // not refused: nothing was wrong with the area
+  EXPECT_EQ(rows[1][5], "153");     // 128 + SIGXFSZ
   EXPECT_NE(batch_lines(dir + "/out")[1].find("ended by signal 25"), std::string::npos) << run.out;
   EXPECT_FALSE(fs::exists(dir + "/out/" + rows[1][3]));
   for (const std::size_t i : {0u, 2u, 3u}) {
@@ -208,6 +208,7 @@ TEST(BatchWorkers, AnAreaPastTheTimeoutFailsAloneTheBatchGoesOn) {
       continue;
     }
     ++timed_out;
+    EXPECT_EQ(rows[i][4], "timed-out") << lines[i];
     EXPECT_EQ(rows[i][5], "1") << lines[i];
     EXPECT_NE(lines[i].find("planning took longer than --timeout-s 3 s; its process was ended"),
               std::string::npos)

@@ -14,8 +14,9 @@
 //   directory is refused instead of overwriting the plan's summary.json).
 // - SIGINT, SIGTERM and SIGHUP are blocked while the files are renamed into place, so a signal
 //   leaves the whole old set or the whole new one; a rename that fails part way (a directory in the
-//   way) is undone, the old files back under their names (kept as hard links meanwhile); a SIGINT or SIGTERM before that removes the
-//   temporaries (and a directory the set created) and ends the process as the signal would.
+//   way) is undone, the old files back under their names (kept as hard links meanwhile); a SIGINT
+//   or SIGTERM before that removes the temporaries (and a directory the set created) and ends the
+//   process as the signal would.
 // - A set that is destroyed without commit() leaves the directory as it was (a refusal after the
 //   set was opened writes nothing, and an output directory it had to create is removed again).
 
@@ -94,6 +95,9 @@ class OutputSet {
   Entry& create_entry(const std::string& name);  ///< the temporary for any name
   /// Renames every temporary onto its name, all or none (signals blocked by the caller).
   void switch_in();
+  /// Removes the hidden temporaries and kept old files a killed run left of these names.
+  void remove_leftovers(const std::vector<std::string>& listed,
+                        const std::vector<std::string>& old) const;
 
   std::filesystem::path directory_;
   std::string kind_;
