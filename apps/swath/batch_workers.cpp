@@ -55,6 +55,56 @@ std::size_t areas_per_worker() {
   return kAreasPerWorker;
 }
 
+// The workers' processes, for a signal that ends the batch. A worker is told of its batch's end by
+// PR_SET_PDEATHSIG (SIGTERM), but a stopped worker (SIGSTOP, a debugger, Ctrl-Z of the worker
+// alone) takes no signal until it is continued, and nothing continues it once the batch is gone:
+// it stayed stopped for good, an orphan holding its area's temporaries. So a SIGINT, SIGTERM or
+// SIGHUP that ends the batch first sends each worker SIGTERM and SIGCONT (async-signal-safe:
+// fixed storage, kill(), raise()). A worker, forked with these handlers, finds another pid in
+// g_batch_pid and only ends as the signal would.
+constexpr std::size_t kMaxWorkers = 256;  // --jobs' upper limit
+volatile sig_atomic_t g_worker_pids[kMaxWorkers] = {};
+volatile sig_atomic_t g_batch_pid = 0;
+constexpr int kEndingSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
+extern "C" void end_workers_and_die(int signal_number) {
+  if (::getpid() == g_batch_pid)
+    for (const volatile sig_atomic_t& pid : g_worker_pids)
+      if (pid > 0) {
+        ::kill(pid, SIGTERM);
+        ::kill(pid, SIGCONT);
+      }
+  ::signal(signal_number, SIG_DFL);
+  ::raise(signal_number);
+}
+
+// The handlers above for the life of a pool, where the batch does not ignore the signal (nohup,
+// a background job of a script: then its workers ignore it too).
+class WorkerSignals {
+ public:
+  WorkerSignals() {
+    g_batch_pid = ::getpid();
+    for (std::size_t i = 0; i < std::size(kEndingSignals); ++i) {
+      struct sigaction action {};
+      action.sa_handler = end_workers_and_die;
+      sigemptyset(&action.sa_mask);
+      for (const int s : kEndingSignals) sigaddset(&action.sa_mask, s);
+      ::sigaction(kEndingSignals[i], nullptr, &previous_[i]);
+      if (previous_[i].sa_handler != SIG_IGN) ::sigaction(kEndingSignals[i], &action, nullptr);
+    }
+  }
+  ~WorkerSignals() {
+    for (std::size_t i = 0; i < std::size(kEndingSignals); ++i)
+      ::sigaction(kEndingSignals[i], &previous_[i], nullptr);
+    for (volatile sig_atomic_t& pid : g_worker_pids) pid = 0;
+  }
+  WorkerSignals(const WorkerSignals&) = delete;
+  WorkerSignals& operator=(const WorkerSignals&) = delete;
+
+ private:
+  struct sigaction previous_[std::size(kEndingSignals)]{};
+};
+
 struct Worker {
   pid_t pid = -1;
   int socket = -1;                 ///< ours of a socket pair: area indices out, exit codes in
@@ -265,6 +315,7 @@ class Pool {
   PlanResult timed_out(Worker& w) {
     end_process(w.pid, std::chrono::seconds(0));
     w.pid = -1;  // ended
+    note_pid(w);
     std::int32_t code = 0;
     const bool answered = ::recv(w.socket, &code, sizeof code, MSG_DONTWAIT) == sizeof code;
     PlanResult r{base::kExitFailure, ""};
@@ -329,6 +380,7 @@ class Pool {
     }
     ::close(pair[1]);
     w.pid = pid;
+    note_pid(w);
     w.planned = 0;
   }
 
@@ -345,6 +397,7 @@ class Pool {
       r.message = "swath plan: its process ended by signal " + std::to_string(WTERMSIG(status)) +
                   " (" + ::strsignal(WTERMSIG(status)) + ")";
     w.pid = -1;  // already reaped
+    note_pid(w);
     w.job.reset();
     retire(w);
     return r;
@@ -357,8 +410,16 @@ class Pool {
     if (w.pid > 0) end_process(w.pid, std::chrono::seconds(5));
     if (w.log >= 0) ::close(w.log);
     w = Worker{};
+    note_pid(w);
   }
 
+  // `w`'s process as the signal handler sees it (none once reaped).
+  void note_pid(const Worker& w) {
+    const auto slot = static_cast<std::size_t>(&w - workers_.data());
+    if (slot < kMaxWorkers) g_worker_pids[slot] = w.pid > 0 ? w.pid : 0;
+  }
+
+  WorkerSignals signals_;  // before the workers: restored after they are ended
   const std::vector<std::vector<std::string>>& commands_;
   std::vector<Worker> workers_;
   std::size_t areas_per_worker_;

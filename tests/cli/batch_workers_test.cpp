@@ -244,6 +244,32 @@ TEST(BatchWorkers, ABatchStoppedAWhileFailsNoAreaForTheTimeout) {
   }
 }
 
+// A batch ended by SIGTERM while its worker is stopped ends that worker too (without the batch's
+// SIGCONT the worker's SIGTERM from PR_SET_PDEATHSIG stays pending, and it stays stopped for
+// good, an orphan); and it leaves no temporary of the area it held.
+TEST(BatchWorkers, ABatchEndedBySignalEndsItsStoppedWorker) {
+  const std::string dir = fresh_dir("batch-workers-ended");
+  fs::create_directories(dir);
+  const std::string areas = dir + "/areas.geojson";
+  std::vector<std::string> plots;
+  for (int i = 0; i < 40; ++i) plots.push_back(small_plot(i));
+  std::ofstream(areas) << areas_of(plots);
+  // The worker's state once the batch is gone: "ended" (no process, or a zombie init reaps) or
+  // its state letter (then killed, so that no test leaves it behind).
+  const std::string script =
+      std::string(SWATH_BINARY) + " batch " + areas + " -o " + dir + "/out --jobs 1" + kOptions +
+      " & b=$!; " + kFindWorker +
+      "kill -STOP $w; sleep 0.2; kill -TERM $b; wait $b; n=0; s=ended; "
+      "while [ $n -lt 500 ]; do s=ended; read -r l 2>/dev/null < /proc/$w/stat || break; "
+      "set -- $l; [ \"$3\" = Z ] && break; s=$3; n=$((n+1)); sleep 0.01; done; "
+      "echo worker: $s; [ $s = ended ] || kill -KILL $w";
+  const CliRun run = run_program("sh", "-c '" + script + "'");
+  EXPECT_NE(run.out.find("worker: ended"), std::string::npos) << run.out << run.err;
+  if (fs::exists(dir + "/out"))
+    for (const auto& e : fs::recursive_directory_iterator(dir + "/out"))
+      EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
 // A comb of four teeth (concave): split, its direction search on threads. Its plan is the same
 // bytes on one thread or three; a batch gives its workers' plans a share of the machine's threads
 // (--threads), unless the plan options name it themselves (given twice, `swath plan` refuses).
