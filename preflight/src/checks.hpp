@@ -40,6 +40,9 @@ struct PathPiece {
 };
 std::vector<PathPiece> pieces(const FlownPath& path);
 std::string piece_name(const PathPiece& piece);
+/// What a violation's sentence adds when it was found on ArduPilot's track (autopilot_track.hpp),
+/// which strays up to `bow_m` from the straight leg ("" for 0: on the straight leg).
+std::string on_track(double bow_m);
 
 /// One drone file being checked.
 struct FileContext {

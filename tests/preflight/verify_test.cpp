@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../preflight/src/autopilot_track.hpp"
 #include "../../preflight/src/checks.hpp"
 #include "local_field.hpp"
 #include "meadow_survey.hpp"
@@ -405,10 +406,10 @@ TEST(Checks, RingDistanceIsEveryEdgesNearest) {
   EXPECT_GT(skipped_some, 5000);
 }
 
-// check_zones (which leaves out a ring zone whose bounding box is too far from a piece to matter)
-// against measuring every piece against every zone (the former loop, kept here): the same least
-// clearance, where, and violations, on random flights among random holes, circles and own fences
-// (fixed seed).
+// check_zones (which leaves out a ring zone whose bounding box is too far from a piece to matter,
+// and measures ArduPilot's track only where it could matter) against measuring every piece, and
+// both its tracks, against every zone: the same least clearance, where, and violations, on random
+// flights among random holes, circles and own fences (fixed seed).
 void reference_check_zones(const FileContext& f, const std::vector<LocalZone>& zones,
                            double clearance_m, Checked& out) {
   const auto closest = [](geometry::Point2 p, geometry::Point2 a, geometry::Point2 b) {
@@ -419,17 +420,27 @@ void reference_check_zones(const FileContext& f, const std::vector<LocalZone>& z
     return a + d * t;
   };
   using base::fixed_text;
+  const AutopilotTrack track(*f.frame, f.path->home.xy());
   for (const PathPiece& piece : pieces(*f.path))
     for (const LocalZone& zone : zones) {
       const double asked = zone.own_fence ? 0.0 : clearance_m;
-      SegmentDistance d{std::numeric_limits<double>::infinity(), {}};
-      if (zone.radius_m > 0) {
+      const auto measure = [&](geometry::Point2 p, geometry::Point2 q) -> SegmentDistance {
+        if (zone.radius_m <= 0) return zone_distance(p, q, zone.ring);
         const geometry::Point2 c = zone.ring.front();
-        const geometry::Point2 at = closest(c, piece.from.xy(), piece.to.xy());
-        d = {std::max(0.0, geometry::distance(at, c) - zone.radius_m), at};
-      } else {
-        d = zone_distance(piece.from.xy(), piece.to.xy(), zone.ring);
-      }
+        const geometry::Point2 at = closest(c, p, q);
+        return {std::max(0.0, geometry::distance(at, c) - zone.radius_m), at};
+      };
+      // The straight leg, then both of ArduPilot's tracks, every time.
+      SegmentDistance d = measure(piece.from.xy(), piece.to.xy());
+      double bow_seen = 0;
+      const double bow = track.bow_m(piece.from.xy(), piece.to.xy());
+      if (bow >= AutopilotTrack::kNegligibleBow_m)
+        for (const auto& points :
+             track.tracks(piece.from.xy(), piece.to.xy(), AutopilotTrack::pieces_for(bow)))
+          for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+            const SegmentDistance on = measure(points[k], points[k + 1]);
+            if (on.distance_m < d.distance_m) d = on, bow_seen = bow;
+          }
       if (d.distance_m < out.least_clearance_m) {
         out.least_clearance_m = d.distance_m;
         out.least_clearance_where = zone.name;
@@ -439,10 +450,10 @@ void reference_check_zones(const FileContext& f, const std::vector<LocalZone>& z
             {"no-fly zone", piece_name(piece), f.frame->to_geo(d.at), asked - d.distance_m,
              d.distance_m <= 0
                  ? piece_name(piece) + " enters " + zone.name + " (" + fixed_text(asked, 2) +
-                       " m clearance asked)"
+                       " m clearance asked)" + on_track(bow_seen)
                  : piece_name(piece) + " comes within " + fixed_text(d.distance_m, 2) + " m of " +
-                       zone.name + " (" + fixed_text(asked, 2) +
-                       " m asked: " + fixed_text(asked - d.distance_m, 2) + " m short)"});
+                       zone.name + " (" + fixed_text(asked, 2) + " m asked: " +
+                       fixed_text(asked - d.distance_m, 2) + " m short)" + on_track(bow_seen)});
     }
 }
 
