@@ -70,9 +70,27 @@ class MissionBuilder {
       holds_.back() = std::max(holds_.back(), hold_s);
       return;
     }
+    through_to(p);
     m_.items.push_back({ItemKind::waypoint, p, s_.altitude_m, hold_s});
     m_.path.push_back(p);
     holds_.push_back(hold_s);
+  }
+
+  // Waypoints flown through on the way from here to `p` where the straight leg would stray
+  // (MissionSettings::bow_m): it bows as the square of its length, so n equal legs stray 1/n^2
+  // of it.
+  void through_to(Point2 p) {
+    if (!s_.bow_m || m_.path.empty()) return;
+    const Point2 from = at();
+    const double bow = s_.bow_m(from, p);
+    if (!(bow > kMaxBow_m)) return;
+    const int n = static_cast<int>(std::min(1000.0, std::ceil(std::sqrt(bow / kSplitBow_m))));
+    for (int k = 1; k < n; ++k) {
+      const Point2 q = from + (p - from) * (static_cast<double>(k) / n);
+      m_.items.push_back({ItemKind::waypoint, q, s_.altitude_m, 0.0});
+      m_.path.push_back(q);
+      holds_.push_back(0);
+    }
   }
 
   void route_to(Point2 target, const LegRoute& route) {
@@ -113,6 +131,7 @@ class MissionBuilder {
   DroneMission finish(const LegRoute& route) {
     camera(false);
     route_to(m_.home, route);
+    through_to(m_.home);  // the way home, to the landing or the return to launch
     if (s_.land) {
       if (s_.vehicle == Vehicle::fixedwing)
         m_.items.push_back({ItemKind::land_start, m_.home, 0.0});

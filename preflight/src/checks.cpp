@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "autopilot_track.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/geometry/autopilot_track.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::preflight {
@@ -122,8 +122,8 @@ double box_gap(Point2 p, Point2 q, const Box& b) {
 }
 
 // The least of `measure` (a SegmentDistance of a straight piece [p, q]) over the tracks the
-// vehicle flies for `piece` (AutopilotTrack): each track in as many pieces as keep its chords
-// within 0.1 mm of it. `chord`: the measure of the straight piece, returned where the tracks
+// vehicle flies for `piece` (geometry::AutopilotTrack): each track in as many pieces as keep its
+// chords within 0.1 mm of it. `chord`: the measure of the straight piece, returned where the tracks
 // cannot stray far enough to matter: by at most the cheap bound, then the bow measured, short of
 // `worth_m` less the measure.
 struct TrackDistance {
@@ -131,14 +131,16 @@ struct TrackDistance {
   double bow_m = 0;  ///< > 0: `least` is the track's, which strays this far from the leg
 };
 template <class Measure>
-TrackDistance least_along_track(const AutopilotTrack& track, const PathPiece& piece,
+TrackDistance least_along_track(const geometry::AutopilotTrack& track, const PathPiece& piece,
                                 SegmentDistance chord, double worth_m, Measure measure) {
   const Point2 a = piece.from.xy(), b = piece.to.xy();
   if (chord.distance_m - track.bow_bound_m(a, b) > worth_m) return {chord};
   const double bow = track.bow_m(a, b);
-  if (chord.distance_m - bow > worth_m || bow < AutopilotTrack::kNegligibleBow_m) return {chord};
+  if (chord.distance_m - bow > worth_m || bow < geometry::AutopilotTrack::kNegligibleBow_m)
+    return {chord};
   TrackDistance out{chord};
-  for (const std::vector<Point2>& points : track.tracks(a, b, AutopilotTrack::pieces_for(bow)))
+  for (const std::vector<Point2>& points :
+       track.tracks(a, b, geometry::AutopilotTrack::pieces_for(bow)))
     for (std::size_t k = 0; k + 1 < points.size(); ++k) {
       const SegmentDistance d = measure(points[k], points[k + 1]);
       if (d.distance_m < out.least.distance_m) out = {d, bow};
@@ -156,7 +158,7 @@ void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, doub
   constexpr double kBoxSlack_m = 1e-6;
   std::vector<Box> boxes;
   for (const LocalZone& zone : zones) boxes.push_back(box_of(zone.ring));
-  const AutopilotTrack track(*f.frame, f.path->home.xy());
+  const geometry::AutopilotTrack track(*f.frame, f.path->home.xy());
   for (const PathPiece& piece : pieces(*f.path))
     for (std::size_t z = 0; z < zones.size(); ++z) {
       const LocalZone& zone = zones[z];
@@ -245,7 +247,7 @@ void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, Ch
   for (Point2 r : f.rally_points)
     all.push_back({{r.x, r.y, 0}, {r.x, r.y, 0}, f.source + ": rally point", false});
   all.push_back({f.path->home, f.path->home, f.source + ": home", false});
-  const AutopilotTrack track(*f.frame, f.path->home.xy());
+  const geometry::AutopilotTrack track(*f.frame, f.path->home.xy());
   for (const PathPiece& piece : all) {
     // Measured along the vehicle's track where it may stray outside.
     const TrackDistance t =

@@ -1,4 +1,4 @@
-// ArduPilot's track between two waypoints (preflight/src/autopilot_track.hpp): its bow on an
+// ArduPilot's track between two waypoints (swath/geometry/autopilot_track.hpp): its bow on an
 // east-west leg against the closed form on the ellipsoid, the cheap bound above the bow on random
 // legs anywhere on Earth, the tracks straight in the autopilot's frame, and the check flying a
 // long leg into a zone beside its chord that the straight leg clears.
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "../../preflight/src/autopilot_track.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/geometry/autopilot_track.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/missions/mission.hpp"
 #include "swath/preflight/verify.hpp"
@@ -19,6 +19,7 @@
 namespace swath::preflight {
 namespace {
 
+using geometry::AutopilotTrack;
 using geometry::GeoPoint;
 using geometry::LocalFrame;
 using geometry::Point2;

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "../../preflight/src/autopilot_track.hpp"
 #include "../../preflight/src/checks.hpp"
 #include "local_field.hpp"
 #include "meadow_survey.hpp"
@@ -18,6 +17,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/energy/sim_config.hpp"
+#include "swath/geometry/autopilot_track.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/missions/mission.hpp"
@@ -420,7 +420,7 @@ void reference_check_zones(const FileContext& f, const std::vector<LocalZone>& z
     return a + d * t;
   };
   using base::fixed_text;
-  const AutopilotTrack track(*f.frame, f.path->home.xy());
+  const geometry::AutopilotTrack track(*f.frame, f.path->home.xy());
   for (const PathPiece& piece : pieces(*f.path))
     for (const LocalZone& zone : zones) {
       const double asked = zone.own_fence ? 0.0 : clearance_m;
@@ -434,9 +434,9 @@ void reference_check_zones(const FileContext& f, const std::vector<LocalZone>& z
       SegmentDistance d = measure(piece.from.xy(), piece.to.xy());
       double bow_seen = 0;
       const double bow = track.bow_m(piece.from.xy(), piece.to.xy());
-      if (bow >= AutopilotTrack::kNegligibleBow_m)
-        for (const auto& points :
-             track.tracks(piece.from.xy(), piece.to.xy(), AutopilotTrack::pieces_for(bow)))
+      if (bow >= geometry::AutopilotTrack::kNegligibleBow_m)
+        for (const auto& points : track.tracks(piece.from.xy(), piece.to.xy(),
+                                               geometry::AutopilotTrack::pieces_for(bow)))
           for (std::size_t k = 0; k + 1 < points.size(); ++k) {
             const SegmentDistance on = measure(points[k], points[k + 1]);
             if (on.distance_m < d.distance_m) d = on, bow_seen = bow;

@@ -1,11 +1,13 @@
 // Step 6 of plan_survey(): each drone's mission and photos, and the fence (survey_steps.hpp).
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include "leg_within.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/geometry/autopilot_track.hpp"
 #include "swath/geometry/offset.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/planning/survey_files.hpp"
@@ -108,6 +110,14 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
   s.climb_speed_m_s = drone.climb_speed_m_s;
   s.descent_speed_m_s = drone.descent_speed_m_s;
   s.accel_m_s2 = drone.accel_m_s2;
+  // A leg long enough to bow (at high latitudes, far homes) is written as several; most legs are
+  // ruled out by the cheap bound, without converting their ends.
+  if (const auto& frame = plan.request.field.frame) {
+    const auto track = std::make_shared<const geometry::AutopilotTrack>(*frame, drone.home);
+    s.bow_m = [track](geometry::Point2 a, geometry::Point2 b) {
+      return track->bow_bound_m(a, b) > kMaxBow_m ? track->bow_m(a, b) : 0.0;
+    };
+  }
   // Stop at line ends beside a no-fly zone (within the clearance and the corner allowance): a
   // turn flown through there would swing towards the zone.
   if (!plan.no_fly.empty() && plan.request.vehicle == Vehicle::multirotor) {

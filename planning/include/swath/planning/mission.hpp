@@ -129,7 +129,18 @@ struct MissionSettings {
   /// The drone's acceleration and braking (vehicle::Drone::accel_m_s2): the flight time's legs
   /// and stop_overrun_m(), > 0.
   double accel_m_s2 = swath::vehicle::kDefaultAccel_m_s2;
+  /// How far an autopilot steering in latitude and longitude strays from the straight leg a -> b,
+  /// metres (geometry::AutopilotTrack::bow_m about the drone's home). A leg that strays more than
+  /// kMaxBow_m is written as the fewest equal legs that each stray at most kSplitBow_m
+  /// (intermediate waypoints, flown through): the track stays with the plan. Empty: never.
+  std::function<double(geometry::Point2, geometry::Point2)> bow_m;
 };
+
+/// Legs straying less than this are written whole: 25 cm, an east-west leg of 3.4 km at 47
+/// degrees, 2.1 km at 70; what is left is within swath verify's check (it measures the track).
+inline constexpr double kMaxBow_m = 0.25;
+/// What each leg of a split one strays at most.
+inline constexpr double kSplitBow_m = 0.05;
 
 /// The hold that makes ArduPilot stop at a waypoint: NAV_WAYPOINT's param1 is whole seconds.
 inline constexpr double kStopHold_s = 1.0;

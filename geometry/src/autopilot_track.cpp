@@ -1,14 +1,11 @@
-#include "autopilot_track.hpp"
+#include "swath/geometry/autopilot_track.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-namespace swath::preflight {
+namespace swath::geometry {
 namespace {
-
-using geometry::GeoPoint;
-using geometry::Point2;
 
 constexpr double kRadiansPerDegree = std::numbers::pi / 180;
 
@@ -24,7 +21,7 @@ double wrapped(double dlon_deg) {
 
 }  // namespace
 
-AutopilotTrack::AutopilotTrack(const geometry::LocalFrame& frame, Point2 home)
+AutopilotTrack::AutopilotTrack(const LocalFrame& frame, Point2 home)
     : frame_(frame), home_(home), origin_(frame.to_geo(home)) {}
 
 Point2 AutopilotTrack::to_autopilot(Point2 local, int model) const {
@@ -48,8 +45,8 @@ double AutopilotTrack::bow_bound_m(Point2 a, Point2 b) const {
   // that over R more; with 2 for the ellipsoid's flattening and the second conversion, and 4 on
   // the whole.
   constexpr double kEarthRadius_m = 6.35e6;  // the least radius of curvature, rounded down
-  const double length_m = geometry::distance(a, b);
-  const double far_m = std::max(geometry::distance(a, home_), geometry::distance(b, home_));
+  const double length_m = distance(a, b);
+  const double far_m = std::max(distance(a, home_), distance(b, home_));
   const double reach_deg =
       std::min(89.5, std::abs(origin_.lat_deg) + far_m / kEarthRadius_m / kRadiansPerDegree);
   const double curvature =
@@ -63,7 +60,7 @@ double AutopilotTrack::bow_m(Point2 a, Point2 b) const {
   double bow = 0.0;
   for (const int model : {0, 1}) {
     const Point2 middle = (to_autopilot(a, model) + to_autopilot(b, model)) * 0.5;
-    bow = std::max(bow, geometry::distance(from_autopilot(middle, model), chord_middle));
+    bow = std::max(bow, distance(from_autopilot(middle, model), chord_middle));
   }
   return bow;
 }
@@ -86,4 +83,4 @@ std::array<std::vector<Point2>, 2> AutopilotTrack::tracks(Point2 a, Point2 b, in
   return out;
 }
 
-}  // namespace swath::preflight
+}  // namespace swath::geometry
