@@ -117,6 +117,38 @@ BMulti multi_of(const std::vector<Ring>& rings) {
   return united(std::move(parts));
 }
 
+// The areas of rings given as grow_keeping_holes() makes them (a counter-clockwise outer ring, then
+// its clockwise holes), united; rings all counter-clockwise are multi_of()'s, the same union.
+BMulti multi_with_holes(const std::vector<Ring>& rings) {
+  std::vector<BMulti> parts;
+  for (const Ring& r : rings) {
+    if (r.size() < 3) continue;
+    if (signed_area(r) < 0 && !parts.empty()) {
+      BPolygon& p = parts.back().front();
+      p.inners().emplace_back();
+      for (const Point2& q : r) p.inners().back().push_back({q.x, q.y});
+      p.inners().back().push_back({r.front().x, r.front().y});
+      bg::correct(p);
+    } else {
+      parts.push_back({polygon_of(r)});
+    }
+  }
+  return united(std::move(parts));
+}
+
+// Each polygon's outer ring counter-clockwise, followed by its holes clockwise.
+std::vector<Ring> rings_with_holes(const BMulti& m) {
+  std::vector<Ring> out;
+  for (const BPolygon& p : m) {
+    out.push_back(ring_of(p.outer(), true));
+    for (const auto& inner : p.inners()) {
+      Ring h = ring_of(inner, false);
+      if (h.size() >= 3) out.push_back(std::move(h));
+    }
+  }
+  return out;
+}
+
 // Squared distance from p to segment [a, b].
 double segment_distance_sq(Point2 p, Point2 a, Point2 b) {
   const Point2 d = b - a;
@@ -134,6 +166,11 @@ std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m) {
   const BMulti grown = distance_m > 0 ? buffered(input, distance_m) : input;
   for (const BPolygon& p : grown) out.push_back(ring_of(p.outer(), true));
   return out;
+}
+
+std::vector<Ring> grow_keeping_holes(const std::vector<Ring>& rings, double distance_m) {
+  const BMulti input = multi_of(rings);
+  return rings_with_holes(distance_m > 0 ? buffered(input, distance_m) : input);
 }
 
 std::vector<Ring> grow_simplified(const std::vector<Ring>& rings, double distance_m,
@@ -162,7 +199,7 @@ std::vector<Ring> subtract(const Ring& outer, double inset_m, const std::vector<
   if (obstacles.empty()) {
     result = area;
   } else {
-    bg::difference(area, multi_of(obstacles), result);
+    bg::difference(area, multi_with_holes(obstacles), result);
   }
   std::vector<Ring> out;
   for (const BPolygon& p : result) {

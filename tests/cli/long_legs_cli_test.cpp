@@ -1,8 +1,9 @@
-// Long legs at a high latitude (geometry/autopilot_track.hpp, planning's kMaxBow_m): ArduPilot
-// steers a leg straight in latitude and longitude, and a 20 km east-west line at 80 N flown so
-// bows 44 m from the line swath planned. swath plan writes such legs as several: measured here
-// from the written .waypoints alone, with the test's own formula for ArduPilot's track and
-// GeographicLib's geodesic for the line, every leg's track stays within kMaxBow_m of it.
+// A field ringed by no-fly zones (its pocket free); long legs at a high latitude
+// (geometry/autopilot_track.hpp, planning's kMaxBow_m): ArduPilot steers a leg straight in latitude
+// and longitude, and a 20 km east-west line at 80 N flown so bows 44 m from the line swath planned.
+// swath plan writes such legs as several: measured here from the written .waypoints alone, with the
+// test's own formula for ArduPilot's track and GeographicLib's geodesic for the line, every leg's
+// track stays within kMaxBow_m of it.
 #include <gtest/gtest.h>
 #include <GeographicLib/Geodesic.hpp>
 
@@ -88,6 +89,39 @@ TEST(LongLegs, AStripAtEightyNorthIsWrittenInLegsArduPilotFliesAsPlanned) {
   }
   EXPECT_LE(worst, planning::kMaxBow_m) << "the longest leg " << longest << " m";
   EXPECT_LT(longest, 5000.0);  // the 20 km lines were split
+}
+
+}  // namespace
+}  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// A square field ringed by four no-fly bars 250 m off (their union a frame round a pocket): the
+// field and its home lie in the pocket, free to fly. Growing the zones once filled the pocket,
+// and the plan was refused: "the no-fly zones cover the whole area".
+TEST(ZoneRing, AFieldRingedByZonesIsPlannedInsideTheRing) {
+  const std::string dir = fresh_dir("zone-ring");
+  std::filesystem::create_directories(dir);
+  const double m_lat = 1 / 111320.0, m_lon = 1 / (111320.0 * std::cos(47.0 * kDeg));
+  const auto box = [&](double x0, double y0, double x1, double y1) {
+    const auto at = [&](double x, double y) {
+      return "[" + std::to_string(8.0 + x * m_lon) + "," + std::to_string(47.0 + y * m_lat) + "]";
+    };
+    return "[[" + at(x0, y0) + "," + at(x1, y0) + "," + at(x1, y1) + "," + at(x0, y1) + "," +
+           at(x0, y0) + "]]";
+  };
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type":"Polygon","coordinates":)" << box(0, 0, 200, 200) << "}";
+  std::ofstream(dir + "/ring.geojson")
+      << R"({"type":"MultiPolygon","coordinates":[)" << box(-300, -300, 500, -250) << ","
+      << box(450, -300, 500, 500) << "," << box(-300, 450, 500, 500) << ","
+      << box(-300, -300, -250, 500) << "]}";
+  const CliRun run =
+      run_swath("plan " + dir + "/field.geojson --camera sony-ilce-qx1 " +
+                "--altitude 60 --exclude " + dir + "/ring.geojson -o " + dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run_swath("verify " + dir + "/out --exclude " + dir + "/ring.geojson").exit_code, 0);
 }
 
 }  // namespace

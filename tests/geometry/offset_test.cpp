@@ -147,5 +147,50 @@ TEST(GrowSimplified, IsGrowWhereNoVertexCanGo) {
   EXPECT_EQ(grow_simplified({square}, 30, 1.5), grow({square}, 30));
 }
 
+// Four bars that ring a field 250 m off (their union a frame with a pocket): grown keeping holes,
+// the pocket stays free, and the field less the grown bars is the field whole; grow() fills the
+// pocket (for fences), and the field less that is nothing, as the zones once "covered" it.
+TEST(GrowKeepingHoles, ZonesThatRingAFieldLeaveItFree) {
+  const Ring field{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  const std::vector<Ring> bars{{{-300, -300}, {400, -300}, {400, -250}, {-300, -250}},
+                               {{350, -300}, {400, -300}, {400, 400}, {350, 400}},
+                               {{-300, 350}, {400, 350}, {400, 400}, {-300, 400}},
+                               {{-300, -300}, {-250, -300}, {-250, 400}, {-300, 400}}};
+  const std::vector<Ring> kept = grow_keeping_holes(bars, 5.0);
+  ASSERT_EQ(kept.size(), 2u);  // the frame's outer ring, then its pocket
+  EXPECT_GT(signed_area(kept[0]), 0);
+  EXPECT_LT(signed_area(kept[1]), 0);
+  EXPECT_NEAR(-signed_area(kept[1]), 590.0 * 590.0, 1.0);  // the pocket shrunk by 5 m each side
+  const std::vector<Ring> left = subtract(field, 0, kept);
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_NEAR(signed_area(left[0]), 100.0 * 100.0, 1e-6);
+  EXPECT_TRUE(subtract(field, 0, grow(bars, 5.0)).empty());
+  // A point in the pocket is free; one on a bar or within 5 m of it is not.
+  EXPECT_FALSE(inside_any({kept[0]}, {50, 50}) != inside_any({kept[1]}, {50, 50}));
+  EXPECT_TRUE(inside_any({kept[0]}, {-252, 50}) != inside_any({kept[1]}, {-252, 50}));
+}
+
+// Without a pocket the rings are grow()'s, and subtract() of them the same: plans without one keep
+// their bytes.
+TEST(GrowKeepingHoles, IsGrowWithoutAPocket) {
+  std::mt19937 rng(2611);
+  std::uniform_real_distribution<double> at(0, 500), size(5, 60);
+  const Ring field{{0, 0}, {500, 0}, {500, 500}, {0, 500}};
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<Ring> zones;
+    for (int k = 0; k < 6; ++k) {
+      const Point2 c{at(rng), at(rng)};
+      const double h = size(rng);
+      zones.push_back({c + Point2{-h, -h}, c + Point2{h, -h}, c + Point2{h, h}, c + Point2{-h, h}});
+    }
+    const std::vector<Ring> grown = grow(zones, 5.0);
+    bool pocket = false;
+    for (const Ring& r : grow_keeping_holes(zones, 5.0)) pocket = pocket || signed_area(r) < 0;
+    if (pocket) continue;
+    EXPECT_EQ(grow_keeping_holes(zones, 5.0), grown) << trial;
+    EXPECT_EQ(subtract(field, 1.0, grown), subtract(field, 1.0, grow_keeping_holes(zones, 5.0)));
+  }
+}
+
 }  // namespace
 }  // namespace swath::geometry

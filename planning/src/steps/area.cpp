@@ -226,8 +226,8 @@ void cut_out_zones(SurveyPlan& plan) {
   // The zones grown by a millimetre: a zone's edge along the boundary (on a meridian or parallel,
   // which the local plane bends by micrometres) left Boost's difference a sliver short (a 100 m
   // square zone on the edge of a field took 153 m² of its 10,000 out of the area).
-  for (geometry::Ring& ring :
-       geometry::subtract(field.polygon.outer, 0, geometry::grow(plan.no_fly, kCutMargin_m))) {
+  for (geometry::Ring& ring : geometry::subtract(
+           field.polygon.outer, 0, geometry::grow_keeping_holes(plan.no_fly, kCutMargin_m))) {
     if (geometry::signed_area(ring) > 0)
       parts.push_back({std::move(ring), {}});
     else if (!parts.empty())
@@ -361,7 +361,7 @@ void planning_rings(SurveyPlan& plan) {
                                  plan.extra_pieces.end());
     return;
   }
-  plan.no_fly_grown = geometry::grow(plan.no_fly, r.clearance_m);
+  plan.no_fly_grown = geometry::grow_keeping_holes(plan.no_fly, r.clearance_m);
   plan.planning_rings = geometry::subtract(plan.flown_area.outer, boundary_m, plan.no_fly_grown);
   if (plan.handling != Handling::hull)
     for (const geometry::Ring& piece : plan.extra_pieces)

@@ -49,13 +49,14 @@ geometry::Ring bounding_box(const SurveyPlan& plan) {
 constexpr double kOpenSlack_m = 0.005;
 
 // The open: a box around everything with the zones grown by the clearance (less kOpenSlack_m) as
-// holes (clockwise).
+// holes (clockwise), and the pockets zones enclose as islands in them (counter-clockwise: inside
+// by the router's odd count).
 std::vector<geometry::Ring> open_rings(const SurveyPlan& plan) {
   if (plan.no_fly_grown.empty()) return {};
   std::vector<geometry::Ring> rings{bounding_box(plan)};
   const double grown_m = plan.request.clearance_m - kOpenSlack_m;
   const std::vector<geometry::Ring> zones =
-      grown_m > 0 ? geometry::grow(plan.no_fly, grown_m) : plan.no_fly_grown;
+      grown_m > 0 ? geometry::grow_keeping_holes(plan.no_fly, grown_m) : plan.no_fly_grown;
   for (geometry::Ring zone : zones) {
     std::reverse(zone.begin(), zone.end());
     rings.push_back(std::move(zone));

@@ -15,9 +15,14 @@ namespace swath::geometry {
 /// circle is added. The result contains every point within `distance_m` of the input (the full
 /// round buffer) and reaches at most 2 `distance_m` beyond it at a corner.
 /// Each result is a counter-clockwise outer ring (holes that appear inside a union are dropped:
-/// a pocket enclosed by zones is not reachable anyway). `distance_m` = 0 returns the rings
+/// for fences, whose parts must each be whole). `distance_m` = 0 returns the rings
 /// counter-clockwise.
 std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m);
+
+/// grow(), with the holes a union encloses kept: each part's outer ring counter-clockwise followed
+/// by its holes clockwise (subtract()'s obstacles take them so). For no-fly zones: zones that
+/// ring a field leave it, and a home inside, free; filled, they covered the whole area.
+std::vector<Ring> grow_keeping_holes(const std::vector<Ring>& rings, double distance_m);
 
 /// grow() of the rings first simplified (Douglas-Peucker) within `tolerance_m` (>= 0, metres), by
 /// `distance_m` (>= 0, metres) + `tolerance_m`: every input point lies within the tolerance of the
@@ -29,7 +34,8 @@ std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m);
 std::vector<Ring> grow_simplified(const std::vector<Ring>& rings, double distance_m,
                                   double tolerance_m);
 
-/// The area `outer` shrunk by `inset_m` (>= 0) minus `obstacles` (counter-clockwise rings), as
+/// The area `outer` shrunk by `inset_m` (>= 0) minus `obstacles` (counter-clockwise rings, each
+/// followed by its holes clockwise, as grow_keeping_holes() gives them), as
 /// rings ready for sweeping and routing: each part's outer ring counter-clockwise followed by its
 /// holes clockwise, parts one after another (several when obstacles cut the area in pieces;
 /// none when nothing is left).

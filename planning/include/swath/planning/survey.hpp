@@ -213,7 +213,9 @@ struct SurveyPlan {
   /// The no-fly zones (holes of the field, then --exclude zones), local frame and as given.
   std::vector<geometry::Ring> no_fly;
   std::vector<std::vector<geometry::GeoPoint>> no_fly_geo;
-  std::vector<geometry::Ring> no_fly_grown;  ///< the zones grown by the clearance, united
+  /// The zones grown by the clearance, united: each part's outer ring counter-clockwise, then the
+  /// holes it encloses clockwise (geometry::grow_keeping_holes()).
+  std::vector<geometry::Ring> no_fly_grown;
   /// Inclusion fences: the area (each piece) grown by the fence margin; one ring usually.
   std::vector<geometry::Ring> fence;
   /// Exclusion fences as written, one per no-fly zone (order of no_fly_geo): the zone as given,
