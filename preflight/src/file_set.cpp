@@ -62,29 +62,43 @@ std::map<std::string, Launch> launches(const Files& files) {
 struct Waypoint {
   geometry::GeoPoint at;
   double above_home_m;
+  bool terrain;  ///< in the terrain frame: without a DEM its height above home is unknown
 };
 
-std::vector<Waypoint> waypoints(const missions::Mission& m) {
+// Through the flight model's own conversion: a terrain-frame .plan item is its height above the
+// DEM's ground there, plus that ground above home's, as its Litchi and DJI twins give it.
+std::vector<Waypoint> waypoints(const missions::Mission& m, const geometry::Ground* ground) {
+  const HeightConverter heights(m, ground);
   std::vector<Waypoint> out;
   for (const missions::Item& item : m.items)
     if (item.command == static_cast<int>(mavlink::Cmd::nav_waypoint))
-      out.push_back({item.position, missions::above_home_m(item, missions::home_amsl_m(m))});
+      out.push_back({item.position, heights.above_home_m(item),
+                     item.altitude_frame == missions::AltitudeFrame::terrain});
   return out;
 }
 
+// Heights in the terrain frame and above home compare only over the ground's heights.
+bool heights_comparable(const Waypoint& a, const Waypoint& b, const geometry::Ground* ground) {
+  return ground != nullptr || a.terrain == b.terrain;
+}
+
 // A twin agrees when it flies the .plan's waypoints, in order, at the same heights (to the
-// writers' rounding); a Litchi or DJI file may add its last row at home (the landing).
-void check_twin(const missions::Mission& plan, const missions::Mission& twin, Report& report) {
-  const std::vector<Waypoint> a = waypoints(plan), b = waypoints(twin);
+// writers' rounding); a Litchi or DJI file may add its last row at home (the landing). Returns
+// how many heights could not be compared (terrain frame against above home, without a DEM).
+std::size_t check_twin(const missions::Mission& plan, const missions::Mission& twin,
+                       const geometry::Ground* ground, Report& report) {
+  const std::vector<Waypoint> a = waypoints(plan, ground), b = waypoints(twin, ground);
   // Litchi and DJI files add their landing point at home as a last waypoint.
   const bool litchi = twin.format == "Litchi CSV" || twin.format == "DJI WPML";
   std::string problem;
-  std::size_t k = 0;
+  std::size_t k = 0, unknown_heights = 0;
   for (; k < std::min(a.size(), b.size()) && problem.empty(); ++k) {
     const double apart_m = geometry::geodesic_distance_m(a[k].at, b[k].at);
     if (apart_m > 0.01)
       problem = "waypoint " + std::to_string(k + 1) + " lies " + fixed_text(apart_m, 2) +
                 " m from the .plan's";
+    else if (!heights_comparable(a[k], b[k], ground))
+      ++unknown_heights;
     else if (std::abs(a[k].above_home_m - b[k].above_home_m) > 0.01)
       problem = "waypoint " + std::to_string(k + 1) + " flies at " +
                 fixed_text(b[k].above_home_m, 2) + " m above home, the .plan's at " +
@@ -92,9 +106,17 @@ void check_twin(const missions::Mission& plan, const missions::Mission& twin, Re
   }
   if (problem.empty() && a.size() != b.size() && !(litchi && b.size() == a.size() + 1))
     problem = std::to_string(b.size()) + " waypoints, the .plan " + std::to_string(a.size());
-  if (problem.empty()) return;
+  if (problem.empty()) return unknown_heights;
   report.violations.push_back({"agreement", twin.source, std::nullopt, 0.0,
                                twin.source + " differs from " + plan.source + ": " + problem});
+  return unknown_heights;
+}
+
+// The terrain frame's heights above home are the DEM's: without one they are not compared.
+std::string unknown_heights_text(std::size_t unknown_heights) {
+  if (unknown_heights == 0) return "";
+  return " (" + std::to_string(unknown_heights) +
+         " heights in the terrain frame not compared: no DEM, --terrain)";
 }
 
 bool is_fence_file(const std::string& name) {
@@ -145,9 +167,10 @@ Report verify_files(const Files& files, const CheckOptions& options) {
     set.push_back(std::move(d));
   }
   Report report = verify(set, options);
+  std::size_t unknown_heights = 0;
   for (const auto& [index, twin] : twins) {
     report.files.push_back(twin.source);
-    check_twin(set[index].mission, twin, report);
+    unknown_heights += check_twin(set[index].mission, twin, options.ground.get(), report);
   }
   std::size_t disagree = 0;
   for (const Violation& v : report.violations) disagree += v.check == "agreement";
@@ -156,7 +179,8 @@ Report verify_files(const Files& files, const CheckOptions& options) {
                               std::to_string(twins.size() - disagree) + " of " +
                                   std::to_string(twins.size()) +
                                   " twin files (.waypoints, -litchi.csv, -survey.plan, .kmz) fly "
-                                  "their .plan's waypoints"});
+                                  "their .plan's waypoints" +
+                                  unknown_heights_text(unknown_heights)});
   return report;
 }
 

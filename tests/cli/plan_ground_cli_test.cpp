@@ -138,6 +138,52 @@ TEST(PlanCli, OverTheMeadowHillEveryWaypointIsSixtyMetresAboveTheGround) {
   EXPECT_EQ(rows, waypoints);
 }
 
+// In the terrain frame the .plan's heights are above the ground under each waypoint, the Litchi
+// and DJI files' above the take-off point: swath's own check compared the two without the
+// ground and refused its own files ("flies at 59.69 m above home, the .plan's at 60.00 m").
+TEST(PlanCli, TheTerrainFrameAgreesWithItsLitchiAndDjiTwinsOverTheGround) {
+  const std::string out = fresh_dir("plan-terrain-frame");
+  const std::string dem = "share/dems/meadow-hill.asc";
+  const CliRun run =
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --terrain " +
+                dem + " --altitude-frame terrain --litchi --dji -o " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const AsciiGrid grid(source_path(dem));
+  const json home = json::parse(read_text(out + "/drone-1.plan"))["mission"]["plannedHomePosition"];
+  const double home_ground = grid.at(home[0], home[1]);
+  const auto rows = csv_rows(read_text(out + "/drone-1-litchi.csv"));
+  ASSERT_GT(rows.size(), 20u);
+  double least_m = 1e9, most_m = -1e9;  // the ground above home under the rows
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    const double ground_m = grid.at(std::stod(rows[r][0]), std::stod(rows[r][1])) - home_ground;
+    EXPECT_NEAR(std::stod(rows[r][2]) - ground_m, 60.0, 0.01) << "row " << r;
+    least_m = std::min(least_m, ground_m);
+    most_m = std::max(most_m, ground_m);
+  }
+  EXPECT_GT(most_m - least_m, 20.0);  // a hill: heights above home and above ground differ
+  const CliRun verify = run_swath("verify " + out + " --terrain " + dem);
+  EXPECT_EQ(verify.exit_code, 0) << verify.out;
+  EXPECT_NE(verify.out.find("3 of 3 twin files"), std::string::npos) << verify.out;
+  // Without the DEM the heights cannot be compared, and the report says so.
+  const CliRun flat = run_swath("verify " + out);
+  EXPECT_EQ(flat.exit_code, 0) << flat.out;
+  EXPECT_NE(flat.out.find("heights in the terrain frame not compared: no DEM"), std::string::npos)
+      << flat.out;
+  // A Litchi row 5 cm off the ground-following height is a disagreement over the DEM.
+  std::string csv = read_text(out + "/drone-1-litchi.csv");
+  const std::size_t row_2 = csv.find('\n', csv.find('\n') + 1) + 1;
+  const std::size_t alt = csv.find(',', csv.find(',', row_2) + 1) + 1;
+  const double moved_m = std::stod(csv.substr(alt)) + 0.05;
+  csv.replace(alt, csv.find(',', alt) - alt, base::fixed_text(moved_m, 3));
+  std::ofstream(out + "/drone-1-litchi.csv") << csv;
+  const CliRun moved = run_swath("verify " + out + " --terrain " + dem);
+  EXPECT_EQ(moved.exit_code, 4) << moved.out;
+  EXPECT_NE(moved.out.find("VIOLATION agreement: " + out + "/drone-1-litchi.csv differs from " +
+                           out + "/drone-1.plan: waypoint 2 flies at"),
+            std::string::npos)
+      << moved.out;
+}
+
 }  // namespace
 }  // namespace swath::test
 
