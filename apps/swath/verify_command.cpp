@@ -52,8 +52,9 @@ std::vector<std::pair<std::string, std::string>> read_inputs(const std::vector<s
 
 void VerifyCommand::setup(CLI::App& app) {
   app.add_option("INPUT", inputs_,
-                 "Mission files (.plan, .waypoints, -litchi.csv, .kmz) or plan directories (every "
-                 "mission file in it; twins must agree with their .plan)")
+                 "Mission files (.plan, .waypoints, -litchi.csv or its parts -litchi-N.csv, .kmz) "
+                 "or plan directories (every mission file in it; twins must agree with their "
+                 ".plan)")
       ->required();
   app.add_option("--exclude", exclude_,
                  "A no-fly zone file (every polygon in it is a zone); repeat for more");

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <set>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -63,6 +65,8 @@ struct Waypoint {
   geometry::GeoPoint at;
   double above_home_m;
   bool terrain;  ///< in the terrain frame: without a DEM its height above home is unknown
+  const missions::Mission* file;
+  std::size_t number;  ///< in its file, from 1
 };
 
 // Through the flight model's own conversion: a terrain-frame .plan item is its height above the
@@ -73,8 +77,45 @@ std::vector<Waypoint> waypoints(const missions::Mission& m, const geometry::Grou
   for (const missions::Item& item : m.items)
     if (item.command == static_cast<int>(mavlink::Cmd::nav_waypoint))
       out.push_back({item.position, heights.above_home_m(item),
-                     item.altitude_frame == missions::AltitudeFrame::terrain});
+                     item.altitude_frame == missions::AltitudeFrame::terrain, &m, out.size() + 1});
   return out;
+}
+
+bool same_point(const Waypoint& a, const Waypoint& b) {
+  return geometry::geodesic_distance_m(a.at, b.at) <= 0.01 &&
+         std::abs(a.above_home_m - b.above_home_m) <= 0.01;
+}
+
+// A twin's waypoints: the parts of a split Litchi flight joined, each part after the first
+// starting where the one before ended (that waypoint once).
+std::vector<Waypoint> joined_waypoints(const std::vector<missions::Mission>& parts,
+                                       const geometry::Ground* ground) {
+  std::vector<Waypoint> out;
+  for (const missions::Mission& part : parts) {
+    const std::vector<Waypoint> w = waypoints(part, ground);
+    const bool resumes = !out.empty() && !w.empty() && same_point(out.back(), w.front());
+    out.insert(out.end(), w.begin() + (resumes ? 1 : 0), w.end());
+  }
+  return out;
+}
+
+// A .plan's twin: one file, or the parts of a split Litchi flight.
+struct Twin {
+  std::size_t drone;  ///< the .plan's index among the drones
+  std::vector<missions::Mission> parts;
+  bool flown = false;  ///< its parts are flown too, as drones of the set (listed there)
+};
+
+std::string twin_name(const Twin& twin) {
+  const auto& parts = twin.parts;
+  return parts.size() == 1 ? parts[0].source + " differs"
+                           : parts.front().source + " to " + parts.back().source + " differ";
+}
+
+// Where a waypoint of the twin is: the .plan's number too when it lies in a later part.
+std::string waypoint_name(const Waypoint& w, std::size_t plan_number) {
+  const std::string own = "waypoint " + std::to_string(w.number);
+  return w.number == plan_number ? own : own + " (the .plan's " + std::to_string(plan_number) + ")";
 }
 
 // Heights in the terrain frame and above home compare only over the ground's heights.
@@ -85,31 +126,69 @@ bool heights_comparable(const Waypoint& a, const Waypoint& b, const geometry::Gr
 // A twin agrees when it flies the .plan's waypoints, in order, at the same heights (to the
 // writers' rounding); a Litchi or DJI file may add its last row at home (the landing). Returns
 // how many heights could not be compared (terrain frame against above home, without a DEM).
-std::size_t check_twin(const missions::Mission& plan, const missions::Mission& twin,
+std::size_t check_twin(const missions::Mission& plan, const Twin& twin,
                        const geometry::Ground* ground, Report& report) {
-  const std::vector<Waypoint> a = waypoints(plan, ground), b = waypoints(twin, ground);
+  const std::vector<Waypoint> a = waypoints(plan, ground), b = joined_waypoints(twin.parts, ground);
   // Litchi and DJI files add their landing point at home as a last waypoint.
-  const bool litchi = twin.format == "Litchi CSV" || twin.format == "DJI WPML";
+  const std::string& format = twin.parts.front().format;
+  const bool litchi = format == "Litchi CSV" || format == "DJI WPML";
   std::string problem;
+  const missions::Mission* in = &twin.parts.front();
   std::size_t k = 0, unknown_heights = 0;
   for (; k < std::min(a.size(), b.size()) && problem.empty(); ++k) {
     const double apart_m = geometry::geodesic_distance_m(a[k].at, b[k].at);
+    in = b[k].file;
     if (apart_m > 0.01)
-      problem = "waypoint " + std::to_string(k + 1) + " lies " + fixed_text(apart_m, 2) +
-                " m from the .plan's";
+      problem =
+          waypoint_name(b[k], k + 1) + " lies " + fixed_text(apart_m, 2) + " m from the .plan's";
     else if (!heights_comparable(a[k], b[k], ground))
       ++unknown_heights;
     else if (std::abs(a[k].above_home_m - b[k].above_home_m) > 0.01)
-      problem = "waypoint " + std::to_string(k + 1) + " flies at " +
-                fixed_text(b[k].above_home_m, 2) + " m above home, the .plan's at " +
-                fixed_text(a[k].above_home_m, 2) + " m";
+      problem = waypoint_name(b[k], k + 1) + " flies at " + fixed_text(b[k].above_home_m, 2) +
+                " m above home, the .plan's at " + fixed_text(a[k].above_home_m, 2) + " m";
   }
-  if (problem.empty() && a.size() != b.size() && !(litchi && b.size() == a.size() + 1))
-    problem = std::to_string(b.size()) + " waypoints, the .plan " + std::to_string(a.size());
-  if (problem.empty()) return unknown_heights;
-  report.violations.push_back({"agreement", twin.source, std::nullopt, 0.0,
-                               twin.source + " differs from " + plan.source + ": " + problem});
+  if (!problem.empty()) {
+    report.violations.push_back({"agreement", in->source, std::nullopt, 0.0,
+                                 in->source + " differs from " + plan.source + ": " + problem});
+  } else if (a.size() != b.size() && !(litchi && b.size() == a.size() + 1)) {
+    report.violations.push_back({"agreement", twin.parts.front().source, std::nullopt, 0.0,
+                                 twin_name(twin) + " from " + plan.source + ": " +
+                                     std::to_string(b.size()) + " waypoints, the .plan " +
+                                     std::to_string(a.size())});
+  }
   return unknown_heights;
+}
+
+// A part of a split Litchi flight, NAME-litchi-N.csv (a Litchi mission holds at most 99
+// waypoints): `flight` is its path less "-litchi-N.csv".
+struct LitchiPart {
+  std::string flight;
+  int number = 0;
+};
+
+std::optional<LitchiPart> litchi_part(const std::string& name) {
+  if (!ends_with(name, ".csv")) return std::nullopt;
+  const std::string stem = stem_of(name, ".csv");
+  const std::size_t dash = stem.find_last_of('-');
+  const std::string digits = dash == std::string::npos ? "" : stem.substr(dash + 1);
+  const bool number =
+      !digits.empty() && digits.size() < 6 &&
+      std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!number || !ends_with(stem.substr(0, dash), "-litchi")) return std::nullopt;
+  return LitchiPart{stem_of(stem.substr(0, dash), "-litchi"), std::stoi(digits)};
+}
+
+// The names of a split Litchi flight's parts in the set, in part order (-10 after -9).
+std::vector<std::string> litchi_parts(const Files& files, const std::string& flight) {
+  std::vector<std::pair<int, std::string>> parts;
+  for (const auto& [name, text] : files)
+    if (const auto p = litchi_part(name); p && p->flight == flight)
+      parts.push_back({p->number, name});
+  std::sort(parts.begin(), parts.end());
+  parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
+  std::vector<std::string> out;
+  for (auto& [number, name] : parts) out.push_back(std::move(name));
+  return out;
 }
 
 // The terrain frame's heights above home are the DEM's: without one they are not compared.
@@ -119,9 +198,66 @@ std::string unknown_heights_text(std::size_t unknown_heights) {
          " heights in the terrain frame not compared: no DEM, --terrain)";
 }
 
+bool is_plan(const std::string& name) {
+  return ends_with(name, ".plan") && !ends_with(name, "-survey.plan");
+}
+
 bool is_fence_file(const std::string& name) {
   return name == "fence.waypoints" || name == "rally.waypoints" ||
          ends_with(name, "/fence.waypoints") || ends_with(name, "/rally.waypoints");
+}
+
+// The drones' files in the set's order: each .plan, or without one the other mission files, the
+// parts of a split Litchi flight together in part order.
+std::vector<std::string> drone_names(const Files& files) {
+  bool any_plan = false;
+  for (const auto& [name, text] : files) any_plan = any_plan || is_plan(name);
+  std::vector<std::string> out;
+  std::set<std::string> split_flights;
+  for (const auto& [name, text] : files) {
+    if (any_plan) {
+      if (is_plan(name)) out.push_back(name);
+    } else if (const auto part = litchi_part(name)) {
+      if (split_flights.insert(part->flight).second)
+        for (std::string& p : litchi_parts(files, part->flight)) out.push_back(std::move(p));
+    } else if (ends_with(name, ".waypoints")
+                   ? !is_fence_file(name)
+                   : ends_with(name, "-litchi.csv") || ends_with(name, ".kmz")) {
+      out.push_back(name);
+    }
+  }
+  return out;
+}
+
+// When the file flies, by its stem in summary.json; the parts of a split Litchi flight by the
+// flight's stem, in turn as sorties of it.
+void set_launch(DroneFile& d, const std::string& name,
+                const std::map<std::string, Launch>& by_file) {
+  const auto part = litchi_part(name);
+  const std::string path = part ? part->flight + ".csv" : name;
+  const std::string base_name = path.substr(path.find_last_of('/') + 1);
+  const std::string stem = stem_of(base_name, base_name.substr(base_name.find_last_of('.')));
+  if (const auto it = by_file.find(stem); it != by_file.end()) {
+    d.launch_offset_s = it->second.offset_s;
+    d.sorties_of = it->second.sorties_of;
+  }
+  if (part && d.sorties_of.empty()) d.sorties_of = stem + "-litchi";
+}
+
+// A part of the .plan's split Litchi twin as its drone flies it: a Litchi file holds no home, so
+// it takes off where the .plan does, climbs, flies to its first row (the last part's end) and
+// returns home (the RTH finish action); it keeps to the .plan's fences, which DJI's aircraft
+// does not know (the check is the only one that does).
+DroneFile litchi_part_flown(const DroneFile& plan, const std::string& plan_name,
+                            missions::Mission part) {
+  const missions::Mission& m = plan.mission;
+  part.home = m.home;
+  part.inclusion_fences = m.inclusion_fences;
+  part.exclusion_fences = m.exclusion_fences;
+  part.inclusion_circles = m.inclusion_circles;
+  part.exclusion_circles = m.exclusion_circles;
+  part.rally_points = m.rally_points;
+  return {std::move(part), plan.launch_offset_s, plan_name + " in Litchi parts", true};
 }
 
 }  // namespace
@@ -131,46 +267,42 @@ Report verify_files(const Files& files, const CheckOptions& options) {
   // every file (a plan's photos.geojson is megabytes).
   std::map<std::string, const std::string*> by_name;
   for (const auto& [name, text] : files) by_name.try_emplace(name, &text);
-  std::vector<std::string> drones;  // file names, in the set's order
-  bool any_plan = false;
-  for (const auto& [name, text] : files)
-    any_plan = any_plan || (ends_with(name, ".plan") && !ends_with(name, "-survey.plan"));
-  for (const auto& [name, text] : files) {
-    const bool plan = ends_with(name, ".plan") && !ends_with(name, "-survey.plan");
-    const bool other = ends_with(name, ".waypoints")
-                           ? !is_fence_file(name)
-                           : ends_with(name, "-litchi.csv") || ends_with(name, ".kmz");
-    if (any_plan ? plan : other) drones.push_back(name);
-  }
+  const std::vector<std::string> drones = drone_names(files);
   if (drones.empty())
     throw base::InputError(
-        "no mission file among the files given (.plan, .waypoints, -litchi.csv or .kmz)");
+        "no mission file among the files given (.plan, .waypoints, -litchi.csv, -litchi-N.csv or "
+        ".kmz)");
   const auto by_file = launches(files);
-  std::vector<DroneFile> set;
-  std::vector<std::pair<std::size_t, missions::Mission>> twins;
+  std::vector<DroneFile> set, instead;
+  std::vector<Twin> twins;
+  std::map<std::string, geometry::GeoPoint> split_homes;  // a split flight's: its first part's
   for (const std::string& name : drones) {
     DroneFile d{missions::parse_mission(*by_name.at(name), name), 0.0, ""};
     for (const auto& [fence_name, text] : files)
       if (is_fence_file(fence_name)) missions::add_wpl_fences(d.mission, text, fence_name);
-    const std::string base_name = name.substr(name.find_last_of('/') + 1);
-    const std::string stem = stem_of(base_name, base_name.substr(base_name.find_last_of('.')));
-    if (const auto it = by_file.find(stem); it != by_file.end()) {
-      d.launch_offset_s = it->second.offset_s;
-      d.sorties_of = it->second.sorties_of;
-    }
-    if (ends_with(name, ".plan")) {
+    set_launch(d, name, by_file);
+    if (const auto part = litchi_part(name))
+      d.mission.home = split_homes.try_emplace(part->flight, d.mission.home).first->second;
+    if (is_plan(name)) {
       const std::string dir_stem = stem_of(name, ".plan");
       for (const char* tail : {".waypoints", "-litchi.csv", "-survey.plan", ".kmz"})
         if (const auto t = by_name.find(dir_stem + tail); t != by_name.end())
-          twins.push_back({set.size(), missions::parse_mission(*t->second, t->first)});
+          twins.push_back({set.size(), {missions::parse_mission(*t->second, t->first)}, false});
+      Twin split{set.size(), {}, true};
+      for (const std::string& p : litchi_parts(files, dir_stem)) {
+        split.parts.push_back(missions::parse_mission(*by_name.at(p), p));
+        instead.push_back(litchi_part_flown(d, name, split.parts.back()));
+      }
+      if (!split.parts.empty()) twins.push_back(std::move(split));
     }
     set.push_back(std::move(d));
   }
+  for (DroneFile& d : instead) set.push_back(std::move(d));
   Report report = verify(set, options);
   std::size_t unknown_heights = 0;
-  for (const auto& [index, twin] : twins) {
-    report.files.push_back(twin.source);
-    unknown_heights += check_twin(set[index].mission, twin, options.ground.get(), report);
+  for (const Twin& twin : twins) {
+    if (!twin.flown) report.files.push_back(twin.parts[0].source);
+    unknown_heights += check_twin(set[twin.drone].mission, twin, options.ground.get(), report);
   }
   std::size_t disagree = 0;
   for (const Violation& v : report.violations) disagree += v.check == "agreement";

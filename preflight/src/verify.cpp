@@ -102,7 +102,9 @@ Approach least_separation(const FlownPath& a, double a_launch_s, const FlownPath
 void check_separation(const std::vector<DroneFile>& drones, const std::vector<FlownPath>& paths,
                       const geometry::LocalFrame& frame, const CheckOptions& options,
                       Report& report) {
-  if (drones.size() < 2) {
+  const auto flying =
+      std::count_if(drones.begin(), drones.end(), [](const DroneFile& d) { return !d.instead; });
+  if (flying < 2) {
     report.figures.push_back({"separation", false, {}, "one drone: nothing to keep apart"});
     return;
   }
@@ -110,6 +112,7 @@ void check_separation(const std::vector<DroneFile>& drones, const std::vector<Fl
   for (std::size_t i = 0; i < paths.size(); ++i)
     for (std::size_t j = i + 1; j < paths.size(); ++j) {
       if (!drones[i].sorties_of.empty() && drones[i].sorties_of == drones[j].sorties_of) continue;
+      if (drones[i].instead || drones[j].instead) continue;  // one drone flies either file
       const Approach a = least_separation(paths[i], drones[i].launch_offset_s, paths[j],
                                           drones[j].launch_offset_s);
       least.distance_m = std::min(least.distance_m, a.distance_m);
@@ -185,6 +188,15 @@ void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report&
                                 " legs, " + fixed_text(c.transit_photos, 0) + " in transits"});
 }
 
+// A flight in place of another's takes the same photos: its transits are checked, its photos
+// not counted twice.
+void check_photos_instead(const FileContext& f, const std::vector<geometry::Ring>& area,
+                          Checked& checked) {
+  Checked own;
+  check_photos(f, area, own);
+  for (Violation& v : own.violations) checked.violations.push_back(std::move(v));
+}
+
 // One violation per check and place (a leg's pieces, a waypoint's two legs): the worst.
 std::vector<Violation> worst_per_place(std::vector<Violation> all) {
   std::vector<Violation> out;
@@ -238,7 +250,10 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
     check_zones(f, all, options.clearance_m, checked);
     check_fences(f, inclusions(d.mission, frame), checked);
     check_heights(f, options, checked);
-    check_photos(f, area, checked);
+    if (d.instead)
+      check_photos_instead(f, area, checked);
+    else
+      check_photos(f, area, checked);
   }
   add_figures(checked, options, any_zone, report);
   report.violations = worst_per_place(std::move(checked.violations));

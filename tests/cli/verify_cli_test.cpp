@@ -2,10 +2,12 @@
 // check of the files it is about to write (issue 45).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_runner.hpp"
 
@@ -65,6 +67,98 @@ TEST(VerifyCli, CatchesAWaypointMovedIntoAZoneOfTheQgcStyleFixture) {
                          "enters tests/fixtures/verify/zone.geojson"),
             std::string::npos)
       << run.out;
+}
+
+const std::string kVineyardLitchi =
+    "plan share/fields/vineyard.kml --camera dji-phantom-4-pro --altitude 60 --home "
+    "46.2276,7.5917 --waypoint-spacing 20 --litchi";
+
+// A square zone of 6.7 m around the point 15 % of the way from home to the first row of `part`
+// (a Litchi CSV): on the straight flight from home to that part's start.
+std::string zone_towards(const std::string& part) {
+  const auto rows = csv_rows(read_text(part));
+  const double home_lat = 46.2276, home_lon = 7.5917, d = 0.00003;
+  const double lat = home_lat + 0.15 * (std::stod(rows.at(1).at(0)) - home_lat);
+  const double lon = home_lon + 0.15 * (std::stod(rows.at(1).at(1)) - home_lon);
+  auto corner = [](double x, double y) {
+    return "[" + std::to_string(x) + ", " + std::to_string(y) + "]";
+  };
+  return "{\"type\": \"Polygon\", \"coordinates\": [[" + corner(lon - d, lat - d) + ", " +
+         corner(lon + d, lat - d) + ", " + corner(lon + d, lat + d) + ", " +
+         corner(lon - d, lat + d) + ", " + corner(lon - d, lat - d) + "]]}";
+}
+
+// Above 99 waypoints a flight's Litchi file is cut into NAME-litchi-1.csv, -2, ...: each part is
+// a Litchi mission of its own, flown from home to its first row and back home (RTH) in turn.
+// swath verify skipped them in a directory and refused one given alone.
+TEST(VerifyCli, SplitLitchiPartsAreFlownFromTheirPlansHomeAndJoinedAgainstIt) {
+  const std::string dir = fresh_dir("swath-verify-litchi-parts");
+  const CliRun plan = run_swath(kVineyardLitchi + " -o " + dir);
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  ASSERT_TRUE(std::filesystem::exists(dir + "/drone-1-litchi-3.csv"));
+  const CliRun run = run_swath("verify " + dir + " --json");
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  const json j = json::parse(run.out);
+  for (int k = 1; k <= 3; ++k) {
+    const std::string part = dir + "/drone-1-litchi-" + std::to_string(k) + ".csv";
+    EXPECT_EQ(std::count(j["files"].begin(), j["files"].end(), part), 1) << part;
+  }
+  const json plan_only = json::parse(run_swath("verify " + dir + "/drone-1.plan --json").out);
+  for (const json& c : j["checks"]) {
+    if (c["check"] == "agreement") EXPECT_EQ(c["text"].get<std::string>().rfind("2 of 2", 0), 0);
+    if (c["check"] == "photos")
+      EXPECT_EQ(c["value"], plan_only["checks"][4]["value"]);            // not again
+    if (c["check"] == "separation") EXPECT_FALSE(c["ran"].get<bool>());  // one drone
+    if (c["check"] == "flight")  // the later parts fly after the earlier ones landed
+      EXPECT_NE(c["text"].get<std::string>().find("drone-1-litchi-3.csv"), std::string::npos);
+  }
+  // The straight flight home to part 3's start crosses a zone the .plan keeps clear of.
+  write(dir + "/zone.geojson", zone_towards(dir + "/drone-1-litchi-3.csv"));
+  const std::string zone = " --exclude " + dir + "/zone.geojson";
+  EXPECT_EQ(run_swath("verify " + dir + "/drone-1.plan" + zone).exit_code, 0);
+  const CliRun crossed = run_swath("verify " + dir + zone);
+  EXPECT_EQ(crossed.exit_code, 4);
+  EXPECT_NE(crossed.out.find("VIOLATION no-fly zone: " + dir +
+                             "/drone-1-litchi-3.csv: line 2 enters " + dir + "/zone.geojson"),
+            std::string::npos)
+      << crossed.out;
+  // A part alone is a mission too.
+  const CliRun alone = run_swath("verify " + dir + "/drone-1-litchi-2.csv");
+  EXPECT_EQ(alone.exit_code, 0) << alone.err;
+  EXPECT_EQ(alone.out.rfind("swath verify: 1 file(s): " + dir + "/drone-1-litchi-2.csv\n", 0), 0)
+      << alone.out;
+  // The parts joined fly the .plan's waypoints: part 2 without its 50th row does not.
+  std::istringstream in(read_text(dir + "/drone-1-litchi-2.csv"));
+  std::string line, cut;
+  for (int n = 0; std::getline(in, line); ++n)
+    if (n != 50) cut += line + "\n";
+  write(dir + "/drone-1-litchi-2.csv", cut);
+  const CliRun differs = run_swath("verify " + dir);
+  EXPECT_EQ(differs.exit_code, 4);
+  EXPECT_NE(differs.out.find("VIOLATION agreement: " + dir + "/drone-1-litchi-2.csv differs from " +
+                             dir + "/drone-1.plan: waypoint 50 (the .plan's 148) lies "),
+            std::string::npos)
+      << differs.out;
+}
+
+TEST(VerifyCli, PlanChecksItsSplitLitchiPartsAsFlown) {
+  if (const char* env = std::getenv("SWATH_PLAN_VERIFY"); env && std::string(env) == "0")
+    GTEST_SKIP() << "SWATH_PLAN_VERIFY=0 turns swath plan's check off";
+  const std::string dir = fresh_dir("swath-verify-litchi-plan");
+  ASSERT_EQ(run_swath(kVineyardLitchi + " -o " + dir + "/clean").exit_code, 0);
+  write(dir + "/zone.geojson", zone_towards(dir + "/clean/drone-1-litchi-3.csv"));
+  const std::string zone = " --exclude " + dir + "/zone.geojson";
+  // The .plan's own path keeps clear of the zone; part 3's way to its start does not.
+  EXPECT_EQ(run_swath(kVineyardLitchi.substr(0, kVineyardLitchi.size() - 9) + zone + " -o " + dir +
+                      "/without")
+                .exit_code,
+            0);
+  const CliRun refused = run_swath(kVineyardLitchi + zone + " -o " + dir + "/out");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("fail the preflight check (no-fly zone): "), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("drone-1-litchi-"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
 }
 
 TEST(VerifyCli, BadInputIsOneSentenceAndExitTwo) {

@@ -44,6 +44,10 @@ struct DroneFile {
   /// Sorties of one drone share a name here: they fly one after another (each launched when the
   /// one before lands, its own offset ignored), never against each other. Empty: a drone alone.
   std::string sorties_of;
+  /// Flies in place of another drone's file (a part of its split Litchi twin): checked as a
+  /// flight of its own, never for separation (it is not in the air beside the file it stands
+  /// for), and its photos are not counted again.
+  bool instead = false;
 };
 
 /// A check that failed somewhere.
@@ -77,11 +81,14 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
 
 /// Checks a set of written files by name and content (a plan directory, or `swath plan`'s output
 /// before it is written): each NAME.plan is a drone (NAME.waypoints, NAME-litchi.csv,
-/// NAME-survey.plan and NAME.kmz are its twins, which must agree with it); without .plan files,
-/// the .waypoints, -litchi.csv or .kmz files are the drones. fence.waypoints and rally.waypoints add to every drone's
-/// fences, summary.json's drones[].launch_offset_s sets launch times and drones[].sorties[].file
-/// names the files one drone flies in turn. Other files are
-/// ignored. Throws base::InputError naming the file for one that cannot be read.
+/// NAME-survey.plan and NAME.kmz are its twins, which must agree with it; the parts
+/// NAME-litchi-1.csv, -2, ... of a split Litchi flight must agree joined, and each is also flown
+/// from the .plan's home, within its fences, as a sortie); without .plan files, the .waypoints,
+/// -litchi.csv, -litchi-N.csv (in turn, from part 1's first row) or .kmz files are the drones.
+/// fence.waypoints and rally.waypoints add to every drone's fences, summary.json's
+/// drones[].launch_offset_s sets launch times and drones[].sorties[].file names the files one drone
+/// flies in turn. Other files are ignored. Throws base::InputError naming the file for one that
+/// cannot be read.
 Report verify_files(const std::vector<std::pair<std::string, std::string>>& files,
                     const CheckOptions& options);
 
