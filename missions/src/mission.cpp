@@ -362,6 +362,7 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
 bool is_navigation(int command) {
   switch (static_cast<Cmd>(command)) {
     case Cmd::nav_waypoint:
+    case Cmd::nav_loiter_turns:
     case Cmd::nav_loiter_time:
     case Cmd::nav_land:
     case Cmd::nav_takeoff:

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -336,6 +337,109 @@ TEST(Verify, ATriggerLeftOnInTheWayHome) {
   ASSERT_NE(v, nullptr) << report_text(r);
   EXPECT_NE(v->text.find("the return to launch"), std::string::npos);
   EXPECT_TRUE(verify({drone(survey_rows(), "a.waypoints")}, {}).ok());
+}
+
+// The InputError fly() throws for `rows`, or "flown".
+std::string refusal(const std::vector<Row>& rows) {
+  try {
+    fly(drone(rows, "m.waypoints").mission, geometry::LocalFrame(kOrigin), {});
+  } catch (const base::InputError& e) {
+    return e.what();
+  }
+  return "flown";
+}
+
+// Take off at home, A (0, 100), B (100, 100), C (100, 0), DO_JUMP to A (item 2) `repeats` times,
+// RTL: each repeat flies C -> A across the square's diagonal, never flown without the jump.
+std::vector<Row> jump_rows(double repeats) {
+  return {{22, 0, 0, 20},   {16, 0, 100, 20},           {16, 100, 100, 20},
+          {16, 100, 0, 20}, {177, 0, 0, 0, 2, repeats}, {20}};
+}
+
+TEST(FlownPath, ADoJumpIsUnrolledItsRepeatCountTimes) {
+  const geometry::LocalFrame frame(kOrigin);
+  for (const int repeats : {0, 1, 3}) {
+    SCOPED_TRACE(repeats);
+    const FlownPath p = fly(drone(jump_rows(repeats), "j").mission, frame, {});
+    int at_a = 0;
+    for (const Leg& l : p.legs) at_a += std::hypot(l.to.x, l.to.y - 100) < 0.01;
+    EXPECT_EQ(at_a, 1 + repeats);  // the first pass and one per jump
+  }
+  CheckOptions o;
+  o.zones = {{"diagonal", square(45, 45, 55, 55)}};  // 35 m from every side of the square
+  EXPECT_EQ(find(verify({drone(jump_rows(0), "j.waypoints")}, o), "no-fly zone"), nullptr);
+  const Report r = verify({drone(jump_rows(1), "j.waypoints")}, o);
+  const Violation* v = find(r, "no-fly zone");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_EQ(v->place, "j.waypoints: item 2 (line 4)");  // the leg to A, after the jump
+  EXPECT_EQ(refusal(jump_rows(-1)),
+            "m.waypoints: item 5 (line 7): DO_JUMP (177) repeats -1 times (-1: forever); a "
+            "flight that never ends cannot be checked");
+  std::vector<Row> astray = jump_rows(1);
+  astray[4].p1 = 9;
+  EXPECT_EQ(refusal(astray),
+            "m.waypoints: item 5 (line 7): DO_JUMP (177) goes to item 9, which the file does not "
+            "have (1 to 6)");
+}
+
+TEST(FlownPath, CommandsItDoesNotModelAreRefusedByNumberAndName) {
+  const std::vector<std::pair<int, std::string>> commands = {
+      {17, "NAV_LOITER_UNLIM"},  {31, "NAV_LOITER_TO_ALT"}, {82, "NAV_SPLINE_WAYPOINT"},
+      {94, "NAV_PAYLOAD_PLACE"}, {179, "DO_SET_HOME"},      {999, "unknown"},
+      {31000, "unknown"}};
+  for (const auto& [command, name] : commands) {
+    EXPECT_EQ(refusal({{22, 0, 0, 20}, {command, 50, 50, 20}, {16, 100, 0, 20}, {20}}),
+              "m.waypoints: item 2 (line 4): command " + std::to_string(command) + " (" + name +
+                  ") is not modelled by swath verify; its flight cannot be checked");
+    EXPECT_FALSE(modelled_command(command));
+  }
+  // Camera, gimbal and region-of-interest items move nothing: flown past.
+  EXPECT_EQ(refusal({{22, 0, 0, 20}, {201, 50, 50, 20}, {205}, {16, 100, 0, 20}, {20}}), "flown");
+}
+
+// LOITER_TURNS 2 turns of 30 m (param3 30: clockwise) round (0, 100): the way there passes 25 m
+// from a zone the circle crosses; a zone 6 m outside the circle is 6 m away (to 0.1 % of 30 m).
+TEST(Verify, LoiterTurnsFliesItsCircle) {
+  const std::vector<Row> rows = {{22, 0, 0, 20}, {18, 0, 100, 20, 2, 0, 30}, {20}};
+  CheckOptions o;
+  o.zones = {{"crossed", square(25, 95, 35, 105)}};
+  const Report r = verify({drone(rows, "c.waypoints")}, o);
+  const Violation* v = find(r, "no-fly zone");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_EQ(v->place, "c.waypoints: item 2 (line 4)");
+  o.zones = {{"beside", square(36, 95, 40, 105)}};
+  const Report beside = verify({drone(rows, "c.waypoints")}, o);
+  EXPECT_TRUE(beside.ok()) << report_text(beside);
+  for (const Figure& f : beside.figures)
+    if (f.check == "zones") EXPECT_NEAR(*f.value, 6.0, 0.03);
+  // Two turns at 5 m/s, 4 pi 30 / 5 = 75.4 s, on top of the flight to the edge and back; the
+  // stops at the circle's ends add up to 1 s each (less: its first sides are short, and the model
+  // times a leg after one that could not reach speed at full speed).
+  const geometry::LocalFrame frame(kOrigin);
+  const FlownPath p = fly(drone(rows, "c").mission, frame, {});
+  const FlownPath straight =
+      fly(drone({{22, 0, 0, 20}, {16, 0, 70, 20}, {20}}, "s").mission, frame, {});
+  const double circling_s = 4 * std::numbers::pi * 30 / 5;
+  EXPECT_GT(p.duration_s - straight.duration_s, circling_s);
+  EXPECT_LT(p.duration_s - straight.duration_s, circling_s + 2.1);
+  EXPECT_EQ(refusal({{22, 0, 0, 20}, {18, 0, 100, 20, 2, 0, 0}, {20}}),
+            "m.waypoints: item 2 (line 4): LOITER_TURNS (18) with radius 0 flies the autopilot's "
+            "CIRCLE_RADIUS, which swath verify does not know; give param3");
+}
+
+// DO_CHANGE_SPEED's param1 2 and 3 set the climb and descent speeds (ArduCopter's
+// ModeAuto::do_change_speed), leaving the horizontal speed as it was.
+TEST(FlownPath, ClimbAndDescentSpeedChangesAreVertical) {
+  const FlownPath p = fly(
+      drone({{178, 0, 0, 0, 2, 1}, {22, 0, 0, 20}, {16, 100, 0, 20}, {178, 0, 0, 0, 3, 0.5}, {20}},
+            "v")
+          .mission,
+      geometry::LocalFrame(kOrigin), {});
+  ASSERT_EQ(p.legs.size(), 4u);  // climb, east, home (20 m is above RTL_ALT), descent
+  EXPECT_NEAR(p.legs[0].t_end_s - p.legs[0].t_start_s, 20.0, 1e-6);  // 20 m at 1 m/s
+  EXPECT_EQ(p.legs[1].speed_m_s, 5.0);
+  EXPECT_NEAR(p.legs[1].t_end_s - p.legs[1].t_start_s, 100.0 / 5 + 2 * 5 / 5.0, 1e-4);
+  EXPECT_NEAR(p.legs[3].t_end_s - p.legs[3].t_start_s, 40.0, 1e-6);  // 20 m at 0.5 m/s
 }
 
 // segment_distance against sampling both segments, on random segments (fixed seed).

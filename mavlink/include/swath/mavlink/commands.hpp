@@ -7,26 +7,33 @@ namespace swath::mavlink {
 
 /// MAV_CMD values (COMMAND_LONG / COMMAND_INT `command`).
 enum class Cmd : std::uint16_t {
-  nav_waypoint = 16,     ///< param1: hold, s; param5-7: position
-  nav_loiter_time = 19,  ///< param1: hold, s
+  nav_waypoint = 16,      ///< param1: hold, s; param5-7: position
+  nav_loiter_turns = 18,  ///< param1: turns; param3: radius, m (negative: counter-clockwise)
+  nav_loiter_time = 19,   ///< param1: hold, s
   nav_return_to_launch = 20,
   nav_land = 21,
   nav_takeoff = 22,       ///< param7: altitude above home, m
   nav_delay = 93,         ///< param1: seconds
   condition_delay = 112,  ///< param1: seconds
+  condition_yaw = 115,
   do_set_mode = 176,      ///< param1: 1 (custom mode enabled), param2: custom mode
-  do_change_speed = 178,  ///< param1: 1 (ground speed), param2: m/s
+  do_jump = 177,          ///< param1: the item (sequence number) to go to; param2: repeats
+  do_change_speed = 178,  ///< param1: 0/1 horizontal, 2 climb, 3 descent speed; param2: m/s
   do_land_start = 189,
   do_reposition = 192,
   do_set_roi_location = 195,
+  do_set_roi_none = 197,
   do_set_roi = 201,
+  do_digicam_configure = 202,
   do_digicam_control = 203,
+  do_mount_configure = 204,
   do_mount_control = 205,
   do_set_cam_trigg_dist = 206,  ///< param1: distance, m (0: stop)
   component_arm_disarm = 400,   ///< param1: 1 arm, 0 disarm
   set_message_interval = 511,   ///< param1: message id, param2: interval in microseconds
   request_message = 512,        ///< param1: message id
   do_gimbal_manager_pitchyaw = 1000,
+  do_gimbal_manager_configure = 1001,
   image_start_capture = 2000,  ///< param2: interval, s; param3: number of images (1)
   image_stop_capture = 2001,
   nav_fence_polygon_vertex_inclusion = 5001,

@@ -6,12 +6,19 @@
 // - Legs are straight lines in 3-D between item positions (ArduCopter's WPNAV without splines);
 //   altitudes are converted to metres above home from each item's own frame (relative, AMSL
 //   through the file's home altitude, terrain through the DEM, or as relative without one).
-// - Each leg is timed at the speed in force (DO_CHANGE_SPEED 178, else the file's cruise speed,
-//   else the drone's) with a trapezoidal speed profile: the vehicle stops, accelerating and
-//   decelerating at `deceleration_m_s2`, where the path turns sharply (more than
-//   `sharp_turn_deg`) or holds, and flies through gentler corners at speed. Climbs and descents
-//   take |dz| / vertical speed; a leg takes the longer of its horizontal and vertical times. Two
-//   drones' files are thus comparable in time to within the corner rounding, which is not modelled.
+// - Each leg is timed at the speed in force (DO_CHANGE_SPEED 178 with param1 0 or 1, else the
+//   file's cruise speed, else the drone's; param1 2 and 3 set the climb and descent speeds, as
+//   ArduCopter's ModeAuto::do_change_speed does) with a trapezoidal speed profile: the vehicle
+//   stops, accelerating and decelerating at `deceleration_m_s2`, where the path turns sharply (more
+//   than `sharp_turn_deg`) or holds, and flies through gentler corners at speed. Climbs and
+//   descents take |dz| / vertical speed; a leg takes the longer of its horizontal and vertical
+//   times. Two drones' files are thus comparable in time to within the corner rounding, which is
+//   not modelled.
+// - DO_JUMP is unrolled (ArduPilot counts each jump's repeats over the whole flight, up to
+//   kMaxFlownItems items flown; repeating forever is refused); LOITER_TURNS flies to the circle's
+//   edge and round it (a polygon whose sides touch the circle, so it contains it) its whole turns.
+//   Commands that move nothing (camera, gimbal, ROI, yaw) are passed over; any other command is
+//   refused: its flight is not known, so nothing about it can be said to hold.
 // - RETURN_TO_LAUNCH climbs to max(current, RTL altitude) (ArduCopter RTL_ALT, 15 m), flies home
 //   and descends; a mission that ends without RTL or LAND is given one (the vehicle would loiter
 //   there until the pilot or the battery failsafe brings it home: checking the way home is safer
@@ -62,8 +69,9 @@ enum class LegKind { climb, cruise, hold, rtl, descent };
 /// One piece of the flight, flown in a straight line at constant speed from t_start_s to t_end_s.
 struct Leg {
   Point3 from, to;
-  double t_start_s = 0.0, t_end_s = 0.0;  ///< from the drone's launch
-  double speed_m_s = 0.0;                 ///< horizontal cruise speed in force
+  double t_start_s = 0.0, t_end_s = 0.0;      ///< from the drone's launch
+  double speed_m_s = 0.0;                     ///< horizontal cruise speed in force
+  double climb_m_s = 0.0, descent_m_s = 0.0;  ///< vertical speeds in force (DO_CHANGE_SPEED 2, 3)
   LegKind kind = LegKind::cruise;
   std::string place;  ///< the item that flies it ("drone-1.plan: item 7") or "return to launch"
   double trigger_distance_m = 0.0;  ///< DO_SET_CAM_TRIGG_DIST in force (0: off)
@@ -107,9 +115,13 @@ class HeightConverter {
 };
 
 /// The flight of `mission` in `frame` (the check's common local frame). Throws base::InputError
-/// for an AMSL item when the home's altitude is unknown.
+/// for an AMSL item when the home's altitude is unknown, and for an item whose flight the model
+/// does not know (modelled_command()), a DO_JUMP to no item, or one repeating forever.
 FlownPath fly(const missions::Mission& mission, const geometry::LocalFrame& frame,
               const FlightModel& model, const geometry::Ground* ground = nullptr);
+
+/// Does fly() model MAV_CMD `command` (docs/swath-verify.md lists them)?
+bool modelled_command(int command);
 
 /// The position at time t_s (before the first leg: home on the ground; after the last: home).
 Point3 position_at(const FlownPath& path, double t_s);

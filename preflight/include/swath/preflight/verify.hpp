@@ -76,7 +76,8 @@ struct Report {
 };
 
 /// Checks the drones' files together (separation across them; every other check per file).
-/// Throws base::InputError for a file the model cannot fly (an AMSL item without a home altitude).
+/// Throws base::InputError for a file the model cannot fly (an AMSL item without a home altitude,
+/// a command it does not model: fly()).
 Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options);
 
 /// Checks a set of written files by name and content (a plan directory, or `swath plan`'s output
