@@ -303,6 +303,12 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
                                     fixed_text(worst_high - options.ceiling_m, 1) +
                                     " m above the " + fixed_text(options.ceiling_m, 1) +
                                     " m ceiling"});
+    // Without a DEM the ground is taken as flat at home's height: below home is below it.
+    if (!ground && worst_low < -kTolerance_m)
+      out.violations.push_back({"ground", l.place, geo_at(low_k), -worst_low,
+                                l.place + " flies " + fixed_text(-worst_low, 1) +
+                                    " m below home, under the ground (without a DEM, --terrain, "
+                                    "taken as flat at home's height)"});
     if (ground && (l.kind == LegKind::cruise || l.kind == LegKind::rtl)) {
       out.min_height_m = std::min(out.min_height_m, worst_low);
       if (worst_low < options.min_height_m - kTolerance_m)

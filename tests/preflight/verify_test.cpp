@@ -442,6 +442,15 @@ TEST(FlownPath, ClimbAndDescentSpeedChangesAreVertical) {
   EXPECT_NEAR(p.legs[3].t_end_s - p.legs[3].t_start_s, 40.0, 1e-6);  // 20 m at 0.5 m/s
 }
 
+TEST(Verify, BelowHomeWithoutADemIsUnderTheGround) {
+  const Report r = verify({drone({{22, 0, 0, 20}, {16, 100, 0, -10}, {20}}, "n.waypoints")}, {});
+  const Violation* v = find(r, "ground");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, 10.0, 1e-3);
+  EXPECT_EQ(v->place, "n.waypoints: item 2 (line 4)");
+  EXPECT_TRUE(verify({drone({{22, 0, 0, 20}, {16, 100, 0, 0}, {20}}, "z.waypoints")}, {}).ok());
+}
+
 // segment_distance against sampling both segments, on random segments (fixed seed).
 TEST(Checks, SegmentDistanceAgreesWithSampling) {
   std::mt19937 rng(45);
