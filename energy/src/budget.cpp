@@ -72,7 +72,8 @@ std::vector<WaypointMission> parse_geojson(const std::string& text, const std::s
 // A mission file's items as the budget flies them: take-off (22), waypoint (16), loiter (19), land
 // (21) and return to launch (20) move the drone, change speed (178) sets its speed; altitudes above
 // home from each item's frame (AMSL less the home's altitude; terrain-relative read as above home,
-// the budget having no ground). Camera, gimbal and other actions take no flight time here.
+// the budget having no ground); holds (param1 of 16, 19, 93, 112) hovered at the point reached
+// (a delay before any: at the first). Camera, gimbal and other actions take no flight time here.
 WaypointMission waypoint_mission(const missions::Mission& file) {
   WaypointMission m;
   m.drone = std::filesystem::path(file.source).stem().string();
@@ -80,6 +81,11 @@ WaypointMission waypoint_mission(const missions::Mission& file) {
   m.returns_home = false;
   const geometry::LocalFrame frame(m.home);
   double speed = file.cruise_speed_m_s;
+  double early_hold_s = 0.0;  // delays before the first point
+  auto hold = [&](double seconds) {
+    if (!(seconds > 0)) return;
+    (m.holds_s.empty() ? early_hold_s : m.holds_s.back()) += seconds;
+  };
   for (const missions::Item& item : file.items) {
     const bool here = item.position.lat_deg == 0 && item.position.lon_deg == 0;
     const Point2 last = m.points.empty() ? Point2{0.0, 0.0} : m.points.back();
@@ -93,9 +99,15 @@ WaypointMission waypoint_mission(const missions::Mission& file) {
         m.altitudes_m.push_back(land ? 0.0
                                      : missions::above_home_m(item, missions::home_amsl_m(file)));
         m.speeds_m_s.push_back(speed);
+        m.holds_s.push_back(m.holds_s.empty() ? early_hold_s : 0.0);
         if (land) return m;  // landing ends the mission
+        if (item.command != static_cast<int>(mavlink::Cmd::nav_takeoff)) hold(item.params[0]);
         break;
       }
+      case mavlink::Cmd::nav_delay:
+      case mavlink::Cmd::condition_delay:
+        hold(item.params[0]);
+        break;
       case mavlink::Cmd::nav_return_to_launch:
         m.returns_home = true;
         return m;
@@ -149,6 +161,8 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& profile) 
   const double climb_w = climbing_power_w(power);
   const double descent_w = descending_power_w(power);
   const Point2 wind = profile.wind.velocity_m_s();
+  const double hover_w =
+      level_flight_power_w(power.mechanical, std::hypot(wind.x, wind.y)) + always_w;
 
   DroneBudget out;
   out.drone = mission.drone;
@@ -211,6 +225,8 @@ DroneBudget budget(const WaypointMission& mission, const DroneProfile& profile) 
     if (first) vertical(target_alt);  // take off, then fly over
     leg(mission.points[i], mission.speeds_m_s[i]);
     if (!first) vertical(target_alt);
+    if (i < mission.holds_s.size() && mission.holds_s[i] > 0)
+      segment(at, alt, mission.holds_s[i], hover_w, "hovering");
     out.timeline.push_back(point_at(frame, t, at, alt, soc, energy));
   }
   if (mission.returns_home) {

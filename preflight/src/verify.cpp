@@ -1,6 +1,7 @@
 // verify(): every file flown and checked, then the drones against each other (issue 45).
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "checks.hpp"
 #include "swath/base/number_text.hpp"
@@ -133,11 +134,33 @@ void check_separation(const std::vector<DroneFile>& drones, const std::vector<Fl
                                 : "the drones are never airborne at the same time"});
 }
 
-void check_energy(const DroneFile& d, const CheckOptions& options, Report& report) {
-  energy::WaypointMission m = energy::waypoint_mission(d.mission);
-  for (double& speed : m.speeds_m_s)  // a file without a speed flies the autopilot's default
-    if (!(speed > 0)) speed = options.model.speed_m_s;
-  const energy::DroneBudget b = energy::budget(m, *options.drone);
+// The budget's flight is the flown path's (jumps unrolled, circles, holds, the return as RTL flies
+// it): each leg's end a point in the drone's own frame, each hold hovered where it is held (one
+// before any leg: at the first point).
+energy::WaypointMission energy_mission(const DroneFile& d, const FlownPath& path,
+                                       const geometry::LocalFrame& frame) {
+  energy::WaypointMission m;
+  m.drone = std::filesystem::path(d.mission.source).stem().string();
+  m.home = d.mission.home;
+  m.returns_home = false;
+  const geometry::LocalFrame own(m.home);
+  double early_hold_s = 0.0;
+  for (const Leg& l : path.legs) {
+    if (l.kind == LegKind::hold) {
+      (m.holds_s.empty() ? early_hold_s : m.holds_s.back()) += l.t_end_s - l.t_start_s;
+      continue;
+    }
+    m.points.push_back(own.to_local(frame.to_geo(l.to.xy())));
+    m.altitudes_m.push_back(l.to.z_m);
+    m.speeds_m_s.push_back(l.speed_m_s);
+    m.holds_s.push_back(m.holds_s.empty() ? early_hold_s : 0.0);
+  }
+  return m;
+}
+
+void check_energy(const DroneFile& d, const FlownPath& path, const geometry::LocalFrame& frame,
+                  const CheckOptions& options, Report& report) {
+  const energy::DroneBudget b = energy::budget(energy_mission(d, path, frame), *options.drone);
   const std::string figure = d.mission.source + ": " + fixed_text(b.flight_time_s / 60, 1) +
                              " min, lands at " + fixed_text(b.landing_soc * 100, 1) +
                              " % charge (reserve " +
@@ -258,7 +281,8 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
   add_figures(checked, options, any_zone, report);
   report.violations = worst_per_place(std::move(checked.violations));
   if (options.drone)
-    for (const DroneFile& d : drones) check_energy(d, options, report);
+    for (std::size_t i = 0; i < drones.size(); ++i)
+      check_energy(drones[i], paths[i], frame, options, report);
   else
     report.figures.push_back({"energy", false, {}, "no drone profile (--drone)"});
   const std::vector<DroneFile> launched = sorties_in_turn(drones, paths);

@@ -15,21 +15,25 @@ using geometry::LocalFrame;
 
 const GeoPoint kHome{47.0, 8.0, 0.0};
 
-// A QGC plan: take off to 50 m, a 100 m square whose first corner is home, return to launch.
-std::string square_plan(double speed) {
+// A QGC plan: take off to 50 m, a 100 m square whose first corner is home, return to launch;
+// `hold_s` at the second corner (the waypoint's param1), `delay_s` after it (NAV_DELAY).
+std::string square_plan(double speed, double hold_s = 0, double delay_s = 0) {
   const LocalFrame frame(kHome);
   std::string items;
-  auto item = [&](int command, double x, double y, double alt) {
+  auto item = [&](int command, double x, double y, double alt, double p1 = 0) {
     const GeoPoint g = frame.to_geo({x, y});
     char buf[400];
     std::snprintf(
         buf, sizeof buf,
-        R"({"type": "SimpleItem", "command": %d, "frame": 3, "params": [0, 0, 0, null, %.10f, %.10f, %.3f]},)",
-        command, g.lat_deg, g.lon_deg, alt);
+        R"({"type": "SimpleItem", "command": %d, "frame": 3, "params": [%.3f, 0, 0, null, %.10f, %.10f, %.3f]},)",
+        command, p1, g.lat_deg, g.lon_deg, alt);
     items += buf;
   };
   item(22, 0, 0, 50);
-  item(16, 100, 0, 50);
+  item(16, 100, 0, 50, hold_s);
+  if (delay_s > 0)
+    items += R"({"type": "SimpleItem", "command": 93, "frame": 2, "params": [)" +
+             std::to_string(delay_s) + R"(, 0, 0, 0, 0, 0, 0]},)";
   item(16, 100, 100, 50);
   item(16, 0, 100, 50);
   items += R"({"type": "SimpleItem", "command": 20, "frame": 2, "params": [0, 0, 0, 0, 0, 0, 0]})";
@@ -98,6 +102,20 @@ TEST(Budget, SquareMissionAgainstTheHandSum) {
   EXPECT_NEAR(b.timeline[2].t_s, 20.0 + 20.0, 1e-3);  // first corner after 100 m
   EXPECT_NEAR(b.timeline[2].position.x, 100.0, 1e-3);
   EXPECT_NEAR(b.timeline[2].geo.lat_deg, kHome.lat_deg, 1e-6);
+}
+
+// A hold costs the hover power for its time: 60 s at the corner and a 30 s NAV_DELAY after it,
+// 90 s at 150 W (level flight at no airspeed: no wind) + 10 W payload = 14400 J on the hand sum.
+TEST(Budget, HoldsAreHoveredForTheirTime) {
+  const auto missions = parse_waypoint_missions(square_plan(5.0, 60, 30), "held.plan");
+  ASSERT_EQ(missions.size(), 1u);
+  ASSERT_EQ(missions[0].holds_s.size(), missions[0].points.size());
+  EXPECT_DOUBLE_EQ(missions[0].holds_s[1], 90.0);
+  const DroneBudget b = budget(missions[0], quad());
+  EXPECT_NEAR(b.flight_time_s, 125.0 + 90.0, 1e-3);
+  EXPECT_NEAR(b.energy_j, 20250.0 + 90.0 * 160.0, 0.5);
+  // The corner is reached after the climb and 100 m (40 s); the timeline's point leaves it.
+  EXPECT_NEAR(b.timeline[2].t_s, 40.0 + 90.0, 1e-3);
 }
 
 // A WPL file of the same square gives the same mission and budget as the .plan (the speed from

@@ -451,6 +451,29 @@ TEST(Verify, BelowHomeWithoutADemIsUnderTheGround) {
   EXPECT_TRUE(verify({drone({{22, 0, 0, 20}, {16, 100, 0, 0}, {20}}, "z.waypoints")}, {}).ok());
 }
 
+// The energy check flies the flown path: a 20-minute hold costs 20 minutes of hovering.
+TEST(Verify, EnergyHoversThroughAHold) {
+  CheckOptions o;
+  o.drone = energy::parse_drone_profile(
+      base::read_text_file(std::string(SWATH_SOURCE_DIR) + "/share/drones/quad-5ah.yaml", "p"),
+      "quad-5ah.yaml");
+  auto minutes = [&](const std::vector<Row>& rows) {
+    const Report r = verify({drone(rows, "h.waypoints")}, o);
+    for (const Figure& f : r.figures)
+      if (f.check == "energy") return *f.value / 60;
+    return -1.0;
+  };
+  std::vector<Row> held = survey_rows();
+  held[3].p1 = 1200;
+  EXPECT_NEAR(minutes(held) - minutes(survey_rows()), 20.0, 1e-6);
+  held[3].p1 = 0;
+  held.insert(held.begin() + 4, Row{93, 0, 0, 0, 1200});  // NAV_DELAY
+  EXPECT_NEAR(minutes(held) - minutes(survey_rows()), 20.0, 1e-6);
+  // Each DO_JUMP repeat flies C -> A, A -> B and B -> C once more: 341.4 m at 5 m/s.
+  const double loop_min = (200 + 100 * std::sqrt(2.0)) / 5 / 60;
+  EXPECT_NEAR(minutes(jump_rows(3)) - minutes(jump_rows(0)), 3 * loop_min, 1e-4);
+}
+
 // segment_distance against sampling both segments, on random segments (fixed seed).
 TEST(Checks, SegmentDistanceAgreesWithSampling) {
   std::mt19937 rng(45);

@@ -14,13 +14,14 @@ namespace swath::energy {
 
 /// One drone's flight as the mission file gives it, in a local frame at `home` (metres, x east,
 /// y north). The drone takes off at home, climbs to the first point's altitude, flies the points
-/// in order and, when `returns_home`, flies back and lands at home.
+/// in order, hovering at each for its hold, and, when `returns_home`, flies back and lands at home.
 struct WaypointMission {
   std::string drone;  ///< "drone-1", or the file name for a .plan
   geometry::GeoPoint home;
   std::vector<geometry::Point2> points;  ///< local metres, in flight order
   std::vector<double> altitudes_m;       ///< above home, one per point
   std::vector<double> speeds_m_s;        ///< ground speed of the leg into each point; 0: unknown
+  std::vector<double> holds_s;           ///< hover at each point on reaching it, s (absent: none)
   bool returns_home = true;
 };
 
@@ -35,7 +36,9 @@ std::vector<WaypointMission> parse_waypoint_missions(const std::string& text,
 
 /// One mission file's flight as the budget flies it: take-off, waypoints, loiters, landing and
 /// return to launch, speeds from DO_CHANGE_SPEED, altitudes above home from each item's frame
-/// (AMSL less the file's home altitude; terrain-relative read as above home).
+/// (AMSL less the file's home altitude; terrain-relative read as above home); the holds of
+/// waypoints and LOITER_TIME (param1), NAV_DELAY and CONDITION_DELAY (param1, held at the point
+/// before them, or at the first point when none is) hovered.
 WaypointMission waypoint_mission(const missions::Mission& mission);
 
 /// A moment of the flight.
@@ -49,7 +52,8 @@ struct BudgetPoint {
 };
 
 /// A drone's budget. Legs are flown at constant speed (accelerations and corner turns are not
-/// modelled), climbs and descents vertically at the profile's rates.
+/// modelled), climbs and descents vertically at the profile's rates, holds at the power of level
+/// flight at the wind's speed (hovering in place is flying against the wind).
 struct DroneBudget {
   std::string drone;
   double distance_m = 0.0;  ///< horizontal
