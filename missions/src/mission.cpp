@@ -409,12 +409,38 @@ Mission read_mission(const std::string& path) {
   return parse_mission(base::read_text_file(path, "mission file"), path);
 }
 
+namespace {
+
+// Commands of Mission Planner's fence and rally files: 5000 its fence return point, 5001-5004
+// fence vertices and circles, 5100 rally points.
+bool is_fence_or_rally(int command) {
+  return (command >= 5000 && command <= cmd(Cmd::nav_fence_circle_exclusion)) ||
+         command == cmd(Cmd::nav_rally_point);
+}
+
+}  // namespace
+
+bool is_wpl_fence_file(const std::string& text) {
+  if (text.rfind("QGC WPL 110", 0) != 0) return false;
+  std::vector<WplRow> rows;
+  try {
+    rows = wpl_rows(text, "");
+  } catch (const InputError&) {
+    return false;  // read as a mission, whose reader names the problem
+  }
+  return !rows.empty() && std::all_of(rows.begin(), rows.end(),
+                                      [](const WplRow& r) { return is_fence_or_rally(r.command); });
+}
+
 void add_wpl_fences(Mission& mission, const std::string& text, const std::string& source) {
   std::vector<GeoPoint> ring;
   int ring_command = 0;
   std::size_t ring_size = 0;
   for (const WplRow& r : wpl_rows(text, source)) {
     const GeoPoint g = wpl_position(r, source);
+    // Mission Planner's fence return point: where a plane breaching the fence flies to. A copter
+    // returns home (FENCE_ACTION), so the point is not flown and has nothing to check.
+    if (r.command == 5000) continue;
     if (r.command == cmd(Cmd::nav_fence_polygon_vertex_inclusion) ||
         r.command == cmd(Cmd::nav_fence_polygon_vertex_exclusion)) {
       if (ring.empty()) {

@@ -202,9 +202,9 @@ bool is_plan(const std::string& name) {
   return ends_with(name, ".plan") && !ends_with(name, "-survey.plan");
 }
 
-bool is_fence_file(const std::string& name) {
-  return name == "fence.waypoints" || name == "rally.waypoints" ||
-         ends_with(name, "/fence.waypoints") || ends_with(name, "/rally.waypoints");
+// A fence or rally file by its content (Mission Planner saves them under any name).
+bool is_fence_file(const std::string& name, const std::string& text) {
+  return ends_with(name, ".waypoints") && missions::is_wpl_fence_file(text);
 }
 
 // The drones' files in the set's order: each .plan, or without one the other mission files, the
@@ -221,7 +221,7 @@ std::vector<std::string> drone_names(const Files& files) {
       if (split_flights.insert(part->flight).second)
         for (std::string& p : litchi_parts(files, part->flight)) out.push_back(std::move(p));
     } else if (ends_with(name, ".waypoints")
-                   ? !is_fence_file(name)
+                   ? !is_fence_file(name, text)
                    : ends_with(name, "-litchi.csv") || ends_with(name, ".kmz")) {
       out.push_back(name);
     }
@@ -279,7 +279,7 @@ Report verify_files(const Files& files, const CheckOptions& options) {
   for (const std::string& name : drones) {
     DroneFile d{missions::parse_mission(*by_name.at(name), name), 0.0, ""};
     for (const auto& [fence_name, text] : files)
-      if (is_fence_file(fence_name)) missions::add_wpl_fences(d.mission, text, fence_name);
+      if (is_fence_file(fence_name, text)) missions::add_wpl_fences(d.mission, text, fence_name);
     set_launch(d, name, by_file);
     if (const auto part = litchi_part(name))
       d.mission.home = split_homes.try_emplace(part->flight, d.mission.home).first->second;

@@ -474,6 +474,26 @@ TEST(Verify, EnergyHoversThroughAHold) {
   EXPECT_NEAR(minutes(jump_rows(3)) - minutes(jump_rows(0)), 3 * loop_min, 1e-4);
 }
 
+// A Mission Planner fence file is one by its rows (fence and rally items only), whatever its
+// name; its fence return point (5000) is not flown and passed over.
+TEST(VerifyFiles, AFenceFileIsKnownByItsContent) {
+  const geometry::LocalFrame frame(kOrigin);
+  std::string fence = "QGC WPL 110\n";
+  const geometry::GeoPoint ret = frame.to_geo({0, 0});
+  fence += "0\t0\t0\t5000\t0\t0\t0\t0\t" + base::fixed_text(ret.lat_deg, 9) + "\t" +
+           base::fixed_text(ret.lon_deg, 9) + "\t0\t1\n";
+  int row = 1;
+  for (const geometry::GeoPoint& g : square(-20, -20, 60, 40))  // the line ends 40 m outside it
+    fence += std::to_string(row++) + "\t0\t0\t5001\t4\t0\t0\t0\t" + base::fixed_text(g.lat_deg, 9) +
+             "\t" + base::fixed_text(g.lon_deg, 9) + "\t0\t1\n";
+  const Report r =
+      verify_files({{"d/a.waypoints", wpl(survey_rows())}, {"d/field-fence.waypoints", fence}}, {});
+  EXPECT_EQ(r.files, std::vector<std::string>{"d/a.waypoints"});
+  const Violation* v = find(r, "fence");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, 40.0, 1e-2);
+}
+
 // segment_distance against sampling both segments, on random segments (fixed seed).
 TEST(Checks, SegmentDistanceAgreesWithSampling) {
   std::mt19937 rng(45);

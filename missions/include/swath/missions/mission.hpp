@@ -75,8 +75,13 @@ std::optional<double> home_amsl_m(const Mission& mission);
 Mission parse_mission(const std::string& text, const std::string& source);
 Mission read_mission(const std::string& path);
 
+/// Is `text` a WPL 110 fence or rally file (Mission Planner's): rows of fence return point
+/// (5000), fence vertices and circles (5001-5004) and rally points (5100) only, whatever its name?
+bool is_wpl_fence_file(const std::string& text);
+
 /// A WPL 110 fence (5001-5004) or rally (5100) file's polygons, circles and points, added to
-/// `mission` (fence.waypoints, rally.waypoints beside the drones' files).
+/// `mission` (a fence or rally file beside the drones' files); its fence return point (5000) is
+/// not flown by a copter and is passed over.
 void add_wpl_fences(Mission& mission, const std::string& text, const std::string& source);
 
 }  // namespace swath::missions

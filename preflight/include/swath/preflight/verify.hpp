@@ -85,11 +85,11 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
 /// NAME-survey.plan and NAME.kmz are its twins, which must agree with it; the parts
 /// NAME-litchi-1.csv, -2, ... of a split Litchi flight must agree joined, and each is also flown
 /// from the .plan's home, within its fences, as a sortie); without .plan files, the .waypoints,
-/// -litchi.csv, -litchi-N.csv (in turn, from part 1's first row) or .kmz files are the drones.
-/// fence.waypoints and rally.waypoints add to every drone's fences, summary.json's
-/// drones[].launch_offset_s sets launch times and drones[].sorties[].file names the files one drone
-/// flies in turn. Other files are ignored. Throws base::InputError naming the file for one that
-/// cannot be read.
+/// -litchi.csv, -litchi-N.csv (in turn, from part 1's first row) or .kmz files are the drones. A
+/// .waypoints file of fence and rally items only (missions::is_wpl_fence_file, whatever its name)
+/// adds to every drone's fences, summary.json's drones[].launch_offset_s sets launch times and
+/// drones[].sorties[].file names the files one drone flies in turn. Other files are ignored.
+/// Throws base::InputError naming the file for one that cannot be read.
 Report verify_files(const std::vector<std::pair<std::string, std::string>>& files,
                     const CheckOptions& options);
 
