@@ -31,6 +31,20 @@ constexpr int cmd(Cmd c) {
   return static_cast<int>(c);
 }
 
+// A UTF-8 byte order mark, which Windows editors put before a text file's first line.
+constexpr std::string_view kBom = "\xEF\xBB\xBF";
+
+std::size_t bom_size(std::string_view text) {
+  return text.substr(0, kBom.size()) == kBom ? kBom.size() : 0;
+}
+
+// "QGC WPL 110" (Mission Planner, QGroundControl) or "QGC WPL 120" (older QGroundControl): one
+// format, the same twelve fields a row.
+bool is_wpl(std::string_view text) {
+  text.remove_prefix(bom_size(text));
+  return text.rfind("QGC WPL 110", 0) == 0 || text.rfind("QGC WPL 120", 0) == 0;
+}
+
 const json& member(const json& object, const char* key) {
   static const json null;
   const json* v = object.is_object() ? base::json_find(object, key) : nullptr;
@@ -210,11 +224,10 @@ GeoPoint wpl_position(const WplRow& r, const std::string& source) {
 }
 
 std::vector<WplRow> wpl_rows(const std::string& text, const std::string& source) {
-  std::size_t at = 0;
+  std::size_t at = bom_size(text);
   std::string_view line;
   base::next_line(text, at, line);
-  if (line.rfind("QGC WPL 110", 0) != 0)
-    throw InputError(source + ": line 1: a WPL file starts with 'QGC WPL 110'");
+  if (!is_wpl(line)) throw InputError(source + ": line 1: a WPL file starts with 'QGC WPL 110'");
   std::vector<WplRow> rows;
   for (int line_no = 2; base::next_line(text, at, line); ++line_no) {
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -257,7 +270,7 @@ Mission parse_wpl(const std::string& text, const std::string& source) {
   return m;
 }
 
-// Litchi's columns by name (its Mission Hub's CSV).
+// Litchi's columns by name (its Mission Hub's CSV), in any order.
 struct LitchiColumns {
   std::map<std::string, std::size_t> index;
   std::size_t at(const std::string& name, const std::string& source) const {
@@ -266,7 +279,35 @@ struct LitchiColumns {
       throw InputError(source + ": line 1: the Litchi header has no column '" + name + "'");
     return it->second;
   }
+  // A measure written in one of several units (Litchi's imperial export writes altitude(ft) and
+  // speed(mph)): its column and the factor to metres or metres per second.
+  std::pair<std::size_t, double> measure(
+      const std::string& name, std::initializer_list<std::pair<const char*, double>> units,
+      const std::string& source) const {
+    for (const auto& [unit, factor] : units)
+      if (const auto it = index.find(name + "(" + unit + ")"); it != index.end())
+        return {it->second, factor};
+    std::string names;
+    for (const auto& [unit, factor] : units)
+      names += std::string(names.empty() ? "" : " or ") + "'" + name + "(" + unit + ")'";
+    throw InputError(source + ": line 1: the Litchi header has no column " + names);
+  }
 };
+
+std::vector<std::string> split_commas(const std::string& line);
+
+// Is the first line a CSV header naming latitude and longitude columns (a Litchi CSV's, in any
+// order)?
+bool is_litchi_header(std::string_view text) {
+  if (text.empty() || text[0] == '{') return false;  // a JSON document: no line copied
+  std::string line(text.substr(0, std::min<std::size_t>(text.find('\n'), 4096)));
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const auto header = split_commas(line);
+  const auto has = [&](const char* name) {
+    return std::find(header.begin(), header.end(), name) != header.end();
+  };
+  return has("latitude") && has("longitude");
+}
 
 std::vector<std::string> split_commas(const std::string& line) {
   std::vector<std::string> out(1);
@@ -295,11 +336,12 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
   const auto header = split_commas(line);
   for (std::size_t k = 0; k < header.size(); ++k) columns.index[header[k]] = k;
   const std::size_t lat = columns.at("latitude", source), lon = columns.at("longitude", source),
-                    alt = columns.at("altitude(m)", source),
                     mode = columns.at("altitudemode", source),
-                    speed = columns.at("speed(m/s)", source),
                     dist = columns.at("photo_distinterval", source),
                     time = columns.at("photo_timeinterval", source);
+  const auto [alt, alt_to_m] = columns.measure("altitude", {{"m", 1.0}, {"ft", 0.3048}}, source);
+  const auto [speed, speed_to_m_s] =
+      columns.measure("speed", {{"m/s", 1.0}, {"km/h", 1 / 3.6}, {"mph", 0.44704}}, source);
   Mission m;
   m.source = source;
   m.format = "Litchi CSV";
@@ -323,8 +365,8 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
     const GeoPoint g = checked_position(value(lat), value(lon), where);
     if (m.items.empty()) m.home = g;  // Litchi flies from where the drone stands
     const int frame = value(mode) == 1 ? 10 : 3;
-    if (value(speed) > 0 && value(speed) != speed_m_s) {
-      speed_m_s = value(speed);
+    if (value(speed) > 0 && value(speed) * speed_to_m_s != speed_m_s) {
+      speed_m_s = value(speed) * speed_to_m_s;
       m.items.push_back(
           make_item(cmd(Cmd::do_change_speed), 2, {1, speed_m_s, -1, 0, 0, 0, 0}, where));
     }
@@ -337,8 +379,8 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
       if (value(type->second) == 0) hold_s += value(param->second) / 1000.0;
       if (value(type->second) == 1) photo = true;
     }
-    m.items.push_back(
-        make_item(cmd(Cmd::nav_waypoint), frame, item_params(hold_s, 0, 0, g, value(alt)), where));
+    m.items.push_back(make_item(cmd(Cmd::nav_waypoint), frame,
+                                item_params(hold_s, 0, 0, g, value(alt) * alt_to_m), where));
     if (photo)
       m.items.push_back(make_item(cmd(Cmd::image_start_capture), 2, {0, 0, 1, 0, 0, 0, 0}, where));
     const double d = value(dist), t = value(time);
@@ -394,10 +436,21 @@ std::optional<double> home_amsl_m(const Mission& mission) {
 }
 
 Mission parse_mission(const std::string& text, const std::string& source) {
-  if (text.rfind("QGC WPL 110", 0) == 0) return parse_wpl(text, source);
+  if (is_wpl(text)) return parse_wpl(text, source);
   if (text.rfind("PK\x03\x04", 0) == 0) return parse_dji_kmz(text, source);
-  if (text.rfind("latitude,longitude,altitude(m)", 0) == 0) return parse_litchi(text, source);
-  const json root = base::parse_json_document(text, source);
+  const std::size_t bom = bom_size(text);
+  if (is_litchi_header(std::string_view(text).substr(bom)))
+    return bom ? parse_litchi(text.substr(bom), source) : parse_litchi(text, source);
+  if (source.size() >= 4 && source.compare(source.size() - 4, 4, ".kmz") == 0)
+    throw InputError(source + ": not a zip archive, which a DJI KMZ is (wpmz/waylines.wpml in it)");
+  const std::size_t first = text.find_first_not_of(" \t\r\n", bom);
+  if (first == std::string::npos || text[first] != '{')
+    throw InputError(source +
+                     ": neither a QGC plan (a JSON object), a QGC WPL 110 file ('QGC WPL 110' on "
+                     "line 1), a Litchi CSV (a header naming latitude, longitude, altitude(m) "
+                     "columns) nor a DJI KMZ (a zip archive)");
+  const json root = bom ? base::parse_json_document(text.substr(bom), source)
+                        : base::parse_json_document(text, source);
   if (member(root, "fileType") != "Plan")
     throw InputError(source +
                      ": neither a QGC plan (fileType \"Plan\"), a QGC WPL 110 file, a Litchi CSV "
@@ -421,7 +474,7 @@ bool is_fence_or_rally(int command) {
 }  // namespace
 
 bool is_wpl_fence_file(const std::string& text) {
-  if (text.rfind("QGC WPL 110", 0) != 0) return false;
+  if (!is_wpl(text)) return false;
   std::vector<WplRow> rows;
   try {
     rows = wpl_rows(text, "");

@@ -158,6 +158,59 @@ TEST(MissionReaders, BadFilesNameTheFileAndThePlace) {
             "e.csv: line 2: altitude(m) 'x' is not a number");
 }
 
+// What Windows editors and other apps write is read as the file it is: a byte order mark before
+// a WPL file or a Litchi CSV, "QGC WPL 120", Litchi's columns in another order or in feet and
+// miles per hour; a file of none of the formats is refused naming the ones expected.
+TEST(MissionReaders, ByteOrderMarksReorderedColumnsAndImperialUnitsAreRead) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string wpl =
+      "QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t47\t8\t500\t1\n"
+      "1\t0\t3\t16\t0\t0\t0\t0\t47.001\t8.002\t40\t1\n";
+  for (const std::string& text : {bom + wpl, "QGC WPL 120" + wpl.substr(11)}) {
+    const missions::Mission m = missions::parse_mission(text, "w.waypoints");
+    ASSERT_EQ(m.items.size(), 1u);
+    EXPECT_DOUBLE_EQ(m.items[0].position.lon_deg, 8.002);
+    EXPECT_DOUBLE_EQ(m.items[0].altitude_m, 40.0);
+  }
+  const std::vector<std::string> litchi = {
+      "latitude,longitude,altitude(m),altitudemode,speed(m/s),photo_distinterval,"
+      "photo_timeinterval\n47,8,40,0,5,-1,-1\n47.001,8.002,40,0,5,-1,-1\n",
+      bom +
+          "latitude,longitude,altitude(m),altitudemode,speed(m/s),photo_distinterval,"
+          "photo_timeinterval\n47,8,40,0,5,-1,-1\n47.001,8.002,40,0,5,-1,-1\n",
+      "photo_timeinterval,photo_distinterval,speed(m/s),altitudemode,altitude(m),longitude,"
+      "latitude\n-1,-1,5,0,40,8,47\n-1,-1,5,0,40,8.002,47.001\n",
+      "latitude,longitude,altitude(ft),altitudemode,speed(mph),photo_distinterval,"
+      "photo_timeinterval\n47,8,131.2335958,0,11.1846814,-1,-1\n"
+      "47.001,8.002,131.2335958,0,11.1846814,-1,-1\n"};
+  for (const std::string& text : litchi) {
+    SCOPED_TRACE(text.substr(0, 40));
+    const missions::Mission m = missions::parse_mission(text, "l-litchi.csv");
+    ASSERT_EQ(m.items.size(), 3u);  // the speed, two waypoints
+    EXPECT_NEAR(m.items[0].params[1], 5.0, 1e-6);
+    EXPECT_DOUBLE_EQ(m.items[2].position.lon_deg, 8.002);
+    EXPECT_NEAR(m.items[2].altitude_m, 40.0, 1e-6);
+  }
+  auto message = [](const std::string& text, const std::string& name) {
+    try {
+      missions::parse_mission(text, name);
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("hello", "k.kmz"),
+            "k.kmz: not a zip archive, which a DJI KMZ is (wpmz/waylines.wpml in it)");
+  EXPECT_EQ(message(bom + "lat,lon\n47,8\n", "a.csv"),
+            "a.csv: neither a QGC plan (a JSON object), a QGC WPL 110 file ('QGC WPL 110' on line "
+            "1), a Litchi CSV (a header naming latitude, longitude, altitude(m) columns) nor a DJI "
+            "KMZ (a zip archive)");
+  EXPECT_EQ(message("latitude,longitude,altitude(yd),altitudemode,speed(m/s),photo_distinterval,"
+                    "photo_timeinterval\n47,8,40,0,5,-1,-1\n",
+                    "y.csv"),
+            "y.csv: line 1: the Litchi header has no column 'altitude(m)' or 'altitude(ft)'");
+}
+
 // The places a WPL file's, a fence file's and a .plan's refused numbers and positions are named by
 // (composed only when refused): the line of the row, the item, the param.
 TEST(MissionReaders, RefusedPositionsAndNumbersNameTheirPlace) {
