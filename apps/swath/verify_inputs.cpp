@@ -2,24 +2,47 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <sstream>
 
 #include "swath/base/input_error.hpp"
+#include "swath/geometry/classification.hpp"
 #include "swath/geometry/field.hpp"
 
 namespace swath::apps {
 
+namespace {
+
+// A zone whose ring crosses or touches itself (a bow-tie, a spike back along an edge) has no
+// inside the planner and the check agree on: refused with the place, as an area's crossing is.
+void refuse_crossing_zone(const geometry::Field& zone, const std::string& name) {
+  const auto crossing = geometry::find_crossing(geometry::Polygon{zone.polygon.outer, {}});
+  if (!crossing) return;
+  const geometry::GeoPoint p = zone.frame->to_geo(crossing->point);
+  std::ostringstream s;
+  s.precision(8);
+  s << name << ": the no-fly zone crosses itself at " << p.lat_deg << ", " << p.lon_deg
+    << " (lat, lon); a zone must be a simple polygon: fix the vertex order";
+  throw base::InputError(s.str());
+}
+
+}  // namespace
+
 // Every area of each file is a zone (each feature of a FeatureCollection, each part of a
-// MultiPolygon): `swath plan --exclude` and `swath verify --exclude` read them alike.
+// MultiPolygon): `swath plan --exclude` and `swath verify --exclude` read them alike. A feature
+// that is no polygon (a power line, a mast's point) is refused, not skipped.
 std::vector<preflight::Zone> zones_from_files(const std::vector<std::string>& paths) {
   std::vector<preflight::Zone> zones;
   for (const std::string& path : paths) {
-    const auto areas = geometry::list_areas(path);
+    geometry::FieldReadOptions listing;
+    listing.only_areas_as = "a no-fly zone";
+    const auto areas = geometry::list_areas(path, listing);
     for (const geometry::AreaEntry& entry : areas) {
       geometry::FieldReadOptions options;
       if (areas.size() > 1) options.feature = std::to_string(entry.index);
       const geometry::Field field = geometry::read_field(path, options);
       const std::string name =
           areas.size() > 1 ? path + " feature " + std::to_string(entry.index) : path;
+      refuse_crossing_zone(field, name);
       zones.push_back({name, field.geo_rings.at(0)});
     }
   }

@@ -19,6 +19,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 
 #include "field_ogr.hpp"
 #include "gdal_confinement.hpp"
@@ -536,6 +537,92 @@ LastLayers& last_layers() {
   return kept;
 }
 
+// A geometry's type as GeoJSON spells it (OGR's own names are "Line String", "Point").
+std::string type_name(const OGRGeometry& g) {
+  switch (wkbFlatten(g.getGeometryType())) {
+    case wkbPoint:
+      return "Point";
+    case wkbLineString:
+      return "LineString";
+    case wkbMultiPoint:
+      return "MultiPoint";
+    case wkbMultiLineString:
+      return "MultiLineString";
+    case wkbGeometryCollection:
+      return "GeometryCollection";
+    default:
+      return OGRGeometryTypeToName(g.getGeometryType());
+  }
+}
+
+// The first position of `g` in WGS84 as "lat, lon (lat, lon)", or empty (an empty geometry).
+std::string first_position_text(const OGRGeometry& g, const OGRSpatialReference* crs,
+                                const std::string& source) {
+  std::unique_ptr<OGRGeometry> linear(g.getLinearGeometry());
+  if (!linear || linear->IsEmpty()) return {};
+  to_wgs84(*linear, crs, source);
+  const OGRGeometry* first = linear.get();
+  while (OGR_GT_IsSubClassOf(wkbFlatten(first->getGeometryType()), wkbGeometryCollection) &&
+         !first->toGeometryCollection()->IsEmpty())
+    first = first->toGeometryCollection()->getGeometryRef(0);
+  OGRPoint p;
+  const OGRwkbGeometryType t = wkbFlatten(first->getGeometryType());
+  if (t == wkbPoint)
+    p = *first->toPoint();
+  else if (t == wkbLineString && first->toLineString()->getNumPoints() > 0)
+    first->toLineString()->getPoint(0, &p);
+  else if (t == wkbPolygon && first->toPolygon()->getExteriorRing())
+    first->toPolygon()->getExteriorRing()->getPoint(0, &p);
+  else
+    return {};
+  std::ostringstream s;
+  s.precision(8);
+  s << p.getY() << ", " << p.getX() << " (lat, lon)";
+  return s.str();
+}
+
+// A layer GDAL derives from others' features: a GPX file's track and route points repeat its
+// tracks' and routes' vertices (a closed track is an area; its points are not features of
+// their own).
+bool derived_layer(GDALDataset& ds, OGRLayer& layer) {
+  const std::string name = layer.GetName();
+  return ds.GetDriver() && std::string(ds.GetDriver()->GetDescription()) == "GPX" &&
+         (name == "track_points" || name == "route_points");
+}
+
+// FieldReadOptions::only_areas_as: the first feature of any layer that is no area, refused
+// naming it (position in its layer, its name, the layer where there are several), its type and
+// where it starts.
+void refuse_non_areas(GDALDataset& ds, const FieldReadOptions& options, const std::string& source) {
+  const int layers = ds.GetLayerCount();
+  for (int i = 0; i < layers; ++i) {
+    OGRLayer& layer = *ds.GetLayer(i);
+    if (derived_layer(ds, layer)) continue;
+    const int name_index = name_field_index(layer, options, source);
+    std::size_t position = 0;
+    layer.ResetReading();
+    for (auto& f : layer) {
+      const std::size_t here = position++;
+      std::string why;
+      const OGRGeometry* g = f->GetGeometryRef();
+      if (!feature_areas(g, why).empty()) continue;
+      std::string place = "feature " + std::to_string(here);
+      if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index))
+        place += " (\"" + shown(f->GetFieldAsString(name_index)) + "\")";
+      if (layers > 1) place += " of layer \"" + shown(layer.GetName()) + "\"";
+      std::string what = "has no geometry";
+      if (g) {
+        const std::string at = first_position_text(*g, layer.GetSpatialRef(), source);
+        what = "is a " + type_name(*g) +
+               (at.empty() ? std::string(" with no positions")
+                           : (g->getDimension() == 0 ? " at " : " starting at ") + at);
+      }
+      throw InputError(source + ": " + place + " " + what + "; " + *options.only_areas_as +
+                       " must be a polygon (buffer lines and points into polygons first)");
+    }
+  }
+}
+
 RawField read_or_list(const std::string& path, const FieldReadOptions& options,
                       std::vector<AreaEntry>* list) {
   std::optional<LastLayers::Key> key;
@@ -543,6 +630,7 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
     if (const std::shared_ptr<const LayerRead> kept = last_layers().find(*key))
       return area_of(*kept, options, path);
   const auto ds = open_vector(path);
+  if (list && options.only_areas_as) refuse_non_areas(*ds, options, path);
   OGRLayer* layer = choose_layer(*ds, options, path);
   auto read = std::make_shared<LayerRead>();
   read->areas = layer_areas(*layer, name_field_index(*layer, options, path), path);

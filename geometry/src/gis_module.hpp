@@ -16,7 +16,7 @@
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 7;
+inline constexpr int kGisModuleAbi = 8;
 
 struct GisModule {
   int abi;

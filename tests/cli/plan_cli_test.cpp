@@ -346,6 +346,146 @@ TEST(PlanCli, EveryZoneOfAnExcludeFileIsAvoided) {
   }
 }
 
+// A square of about 200 x 200 m (8.5400 to 8.5427 E, 47.3980 to 47.3998 N) and zone files
+// beside it, written into `dir`.
+struct ZoneFiles {
+  std::string dir;
+  std::string area;
+  explicit ZoneFiles(const std::string& name) : dir(fresh_dir(name)), area(dir + "/area.geojson") {
+    fs::create_directories(dir);
+    std::ofstream(area) << R"({"type":"Polygon","coordinates":[[[8.54,47.398],[8.5427,47.398],)"
+                           R"([8.5427,47.3998],[8.54,47.3998],[8.54,47.398]]]})";
+  }
+  std::string write(const std::string& file, const std::string& text) const {
+    std::ofstream(dir + "/" + file) << text;
+    return dir + "/" + file;
+  }
+  CliRun plan(const std::string& zones, const std::string& more = "") const {
+    return run_swath("plan " + area + " --camera sony-ilce-qx1 --altitude 50 --exclude " + zones +
+                     " " + more + " -o " + dir + "/out");
+  }
+};
+
+std::string geojson_feature(const std::string& name, const std::string& geometry) {
+  return R"({"type":"Feature","properties":{"name":")" + name + R"("},"geometry":)" + geometry +
+         "}";
+}
+
+const std::string kPond =
+    R"({"type":"Polygon","coordinates":[[[8.5415,47.3985],[8.5419,47.3985],[8.5419,47.3988],)"
+    R"([8.5415,47.3988],[8.5415,47.3985]]]})";
+
+// The latitude and longitude a message gives after `marker` ("LAT, LON (lat, lon)").
+std::pair<double, double> lat_lon_after(const std::string& text, const std::string& marker) {
+  const std::size_t at = text.find(marker);
+  double lat = NAN, lon = NAN;
+  if (at != std::string::npos)
+    std::sscanf(text.c_str() + at + marker.size(), "%lf, %lf", &lat, &lon);
+  return {lat, lon};
+}
+
+// A power line or a mast in an --exclude file beside a polygon was skipped unseen (the plan flew
+// over the line): such a file is refused, naming the feature, its type and where it lies, in each
+// reader a zone file can take (GeoJSON, KML, a GIS file through GDAL), nothing written.
+TEST(PlanCli, ZoneFilesWithLinesOrPointsAreRefused) {
+  const ZoneFiles files("zones-not-polygons");
+  const std::string line = geojson_feature(
+      "power line", R"({"type":"LineString","coordinates":[[8.541,47.3975],[8.541,47.4003]]})");
+  const std::string mast =
+      geojson_feature("mast", R"({"type":"Point","coordinates":[8.542,47.399]})");
+  const std::string pond = geojson_feature("pond", kPond);
+  auto collection = [](const std::string& a, const std::string& b, const std::string& c) {
+    return R"({"type":"FeatureCollection","features":[)" + a + "," + b + "," + c + "]}";
+  };
+  const std::string kml_pond =
+      "<Placemark><name>pond</name><Polygon><outerBoundaryIs><LinearRing><coordinates>8.5415,"
+      "47.3985 8.5419,47.3985 8.5419,47.3988 8.5415,47.3988 8.5415,47.3985</coordinates>"
+      "</LinearRing></outerBoundaryIs></Polygon></Placemark>";
+  const std::string track =
+      "<trk><name>pond</name><trkseg><trkpt lat=\"47.3985\" lon=\"8.5415\"/><trkpt "
+      "lat=\"47.3985\" lon=\"8.5419\"/><trkpt lat=\"47.3988\" lon=\"8.5419\"/><trkpt "
+      "lat=\"47.3988\" lon=\"8.5415\"/><trkpt lat=\"47.3985\" lon=\"8.5415\"/></trkseg></trk>";
+  const std::string gpx_head =
+      "<?xml version=\"1.0\"?><gpx version=\"1.1\" creator=\"test\" "
+      "xmlns=\"http://www.topografix.com/GPX/1/1\">";
+  struct Case {
+    std::string file, text, feature, type;
+    double lat, lon;
+  };
+  const std::vector<Case> cases{
+      {"line.geojson", collection(pond, line, mast), "feature 1 (\"power line\")", "LineString",
+       47.3975, 8.541},
+      {"point.geojson", collection(mast, pond, line), "feature 0 (\"mast\")", "Point", 47.399,
+       8.542},
+      {"line.kml",
+       "<?xml version=\"1.0\"?><kml xmlns=\"http://www.opengis.net/kml/2.2\"><Document>" +
+           kml_pond +
+           "<Placemark><name>power line</name><LineString><coordinates>8.541,47.3975 "
+           "8.541,47.4003</coordinates></LineString></Placemark></Document></kml>",
+       "feature 1 (\"power line\")", "LineString", 47.3975, 8.541},
+      {"mast.gpx",
+       gpx_head + "<wpt lat=\"47.399\" lon=\"8.542\"><name>mast</name></wpt>" + track + "</gpx>",
+       "feature 0 (\"mast\") of layer \"waypoints\"", "Point", 47.399, 8.542}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    const std::string zones = files.write(c.file, c.text);
+    const CliRun run = files.plan(zones);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    const std::string said = zones + ": " + c.feature + " is a " + c.type;
+    EXPECT_NE(run.err.find(said), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("; a no-fly zone must be a polygon (buffer lines and points into "
+                           "polygons first)"),
+              std::string::npos)
+        << run.err;
+    const auto [lat, lon] =
+        lat_lon_after(run.err, said + (c.type == "Point" ? " at " : " starting at "));
+    EXPECT_NEAR(lat, c.lat, 1e-6) << run.err;
+    EXPECT_NEAR(lon, c.lon, 1e-6) << run.err;
+    EXPECT_FALSE(fs::exists(files.dir + "/out"));
+  }
+  // The GPX track alone is a zone: its track points (a layer GDAL derives) are no features.
+  const CliRun run = files.plan(files.write("pond.gpx", gpx_head + track + "</gpx>"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(json::parse(read_text(files.dir + "/out/summary.json"))["area"]["no_fly_zones"], 1);
+}
+
+// A bow-tie zone, or one with a spike out and back along one line, was planned and then blamed
+// on swath's own files by the preflight check: refused up front with the crossing's place, as an
+// area's crossing is; in a file of several zones, the feature is named.
+TEST(PlanCli, SelfCrossingZonesAreRefusedWithTheCrossing) {
+  const ZoneFiles files("zones-crossing");
+  const std::string bowtie =
+      R"({"type":"Polygon","coordinates":[[[8.541,47.3985],[8.542,47.399],[8.542,47.3985],)"
+      R"([8.541,47.399],[8.541,47.3985]]]})";
+  const std::string spike =
+      R"({"type":"Polygon","coordinates":[[[8.541,47.3985],[8.542,47.3985],[8.542,47.399],)"
+      R"([8.5415,47.399],[8.5415,47.3995],[8.5415,47.399],[8.541,47.399],[8.541,47.3985]]]})";
+  const std::string both = R"({"type":"FeatureCollection","features":[)" +
+                           geojson_feature("pond", kPond) + "," +
+                           geojson_feature("bowtie", bowtie) + "]}";
+  struct Case {
+    std::string file, text, named;
+    double lat_lo, lat_hi, lon;
+  };
+  const std::vector<Case> cases{
+      {"bowtie.geojson", bowtie, "bowtie.geojson", 47.39875, 47.39875, 8.5415},
+      {"spike.geojson", spike, "spike.geojson", 47.399, 47.3995, 8.5415},
+      {"two.geojson", both, "two.geojson feature 1", 47.39875, 47.39875, 8.5415}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    const CliRun run = files.plan(files.write(c.file, c.text));
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    const std::string said = files.dir + "/" + c.named + ": the no-fly zone crosses itself at ";
+    ASSERT_NE(run.err.find(said), std::string::npos) << run.err;
+    EXPECT_EQ(run.err.find("preflight"), std::string::npos) << run.err;
+    const auto [lat, lon] = lat_lon_after(run.err, said);
+    EXPECT_GE(lat, c.lat_lo - 1e-6) << run.err;
+    EXPECT_LE(lat, c.lat_hi + 1e-6) << run.err;
+    EXPECT_NEAR(lon, c.lon, 1e-6) << run.err;
+    EXPECT_FALSE(fs::exists(files.dir + "/out"));
+  }
+}
+
 TEST(PlanCli, RepairPlansTheAreasACrossingRingEncloses) {
   const std::string out = fresh_dir("repair");
   const CliRun run = run_swath(

@@ -28,6 +28,11 @@ struct FieldReadOptions {
   std::optional<std::string> feature;
   /// The attribute that names features (default: the first of name, Name, NAME, id).
   std::optional<std::string> name_field;
+  /// list_areas() of a file whose every feature must be an area (e.g. "a no-fly zone": a zone
+  /// file's power line or mast would otherwise be skipped unseen): a feature of any layer that is
+  /// no area (a line, a point, no geometry) is refused, naming it, its geometry type and the
+  /// polygon this says it must be.
+  std::optional<std::string> only_areas_as;
 };
 
 /// The most vertices an area file may hold (all rings): beyond it swath refuses the file instead
