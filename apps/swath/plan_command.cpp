@@ -495,8 +495,10 @@ planning::SurveyRequest PlanCommand::request() const {
                                                          : planning::SplitDirections::one;
   request.threads = threads_;
   // Every area of an --exclude file is a zone, read as swath verify reads them.
-  for (const preflight::Zone& zone : zones_from_files(exclude_))
+  for (const preflight::Zone& zone : zones_from_files(exclude_)) {
     request.exclusions.push_back(zone.ring);
+    request.exclusion_names.push_back(zone.name);
+  }
   request.firmware = firmware_ == "px4" ? planning::Firmware::px4 : planning::Firmware::ardupilot;
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
@@ -676,14 +678,16 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
 
 preflight::CheckOptions PlanCommand::check_options(const planning::SurveyPlan& plan) const {
   preflight::CheckOptions options;
-  // The zones as the user gave them (not as grown or simplified for the fences), the area's holes.
+  // The area's holes and the zones as the user gave them (not as grown or simplified for the
+  // fences), named as the planner's messages name them; not the area's outline for the photo
+  // check: a repaired or split area's lines are planned over pieces the file's ring does not
+  // describe.
+  const std::size_t holes = plan.request.field.polygon.holes.size();
   for (std::size_t k = 0; k < plan.no_fly_geo.size(); ++k)
-    options.zones.push_back({"no-fly zone " + std::to_string(k + 1), plan.no_fly_geo[k]});
-  // The area's holes; not its outline for the photo check: a repaired or split area's lines are
-  // planned over pieces the file's ring does not describe.
-  const auto& rings = plan.request.field.geo_rings;
-  for (std::size_t k = 1; k < rings.size(); ++k)
-    options.zones.push_back({"hole " + std::to_string(k) + " of " + field_, rings[k]});
+    options.zones.push_back(
+        {k < holes ? "hole " + std::to_string(k + 1) + " of " + field_  // as swath verify's
+                   : planning::no_fly_name(plan, k),
+         plan.no_fly_geo[k]});
   options.clearance_m = plan.request.clearance_m;
   options.ceiling_m = ceiling_m_;
   if (plan.request.terrain) options.ground = plan.request.terrain->ground;

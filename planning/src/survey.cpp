@@ -38,6 +38,14 @@ geometry::Polygon measured_area(const SurveyPlan& plan) {
   return measured;
 }
 
+std::string no_fly_name(const SurveyPlan& plan, std::size_t k) {
+  const std::size_t holes = plan.request.field.polygon.holes.size();
+  if (k < holes) return "hole " + std::to_string(k);
+  const std::size_t zone = k - holes;
+  const std::vector<std::string>& names = plan.request.exclusion_names;
+  return "no-fly zone " + (zone < names.size() ? names[zone] : std::to_string(zone + 1));
+}
+
 SurveyPlan plan_survey(const SurveyRequest& request) {
   SurveyPlan plan;
   plan.request = request;

@@ -211,8 +211,10 @@ TEST(PlanCli, ZonesAcrossTheBoundaryAndOverlappingAreCutOut) {
       "--exclude tests/fixtures/zone-overlapping-pond.geojson -o " +
       out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("warning: no-fly zone 0 crosses the area's boundary; no-fly zones 1 "
-                         "and 2 overlap; planned the area less the zones, 1 part(s)"),
+  EXPECT_NE(run.err.find("warning: no-fly zone tests/fixtures/zone-across-boundary.geojson "
+                         "crosses the area's boundary; no-fly zone share/zones/meadow-pond.geojson "
+                         "and no-fly zone tests/fixtures/zone-overlapping-pond.geojson overlap; "
+                         "planned the area less the zones, 1 part(s)"),
             std::string::npos)
       << run.err;
   const json s = json::parse(read_text(out + "/summary.json"));
@@ -275,7 +277,8 @@ TEST(PlanCli, AZoneOutsideTheAreaIsSaidToLieOutside) {
       "tests/fixtures/zone-outside-area.geojson ";
   const CliRun run = run_swath(plan + "-o " + out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("warning: no-fly zone 0 lies outside the area; the area is planned "
+  EXPECT_NE(run.err.find("warning: no-fly zone tests/fixtures/zone-outside-area.geojson lies "
+                         "outside the area; the area is planned "
                          "whole, 100694.4 m², and transits keep out of the zones"),
             std::string::npos)
       << run.err;
@@ -287,9 +290,11 @@ TEST(PlanCli, AZoneOutsideTheAreaIsSaidToLieOutside) {
   const CliRun run2 =
       run_swath(plan + "--exclude tests/fixtures/zone-across-boundary.geojson -o " + both);
   ASSERT_EQ(run2.exit_code, 0) << run2.err;
-  EXPECT_NE(run2.err.find("warning: no-fly zone 0 lies outside the area; no-fly zone 1 crosses "
-                          "the area's boundary; planned the area less the zones, 1 part(s)"),
-            std::string::npos)
+  EXPECT_NE(
+      run2.err.find("warning: no-fly zone tests/fixtures/zone-outside-area.geojson lies "
+                    "outside the area; no-fly zone tests/fixtures/zone-across-boundary.geojson "
+                    "crosses the area's boundary; planned the area less the zones, 1 part(s)"),
+      std::string::npos)
       << run2.err;
 }
 
@@ -484,6 +489,60 @@ TEST(PlanCli, SelfCrossingZonesAreRefusedWithTheCrossing) {
     EXPECT_NEAR(lon, c.lon, 1e-6) << run.err;
     EXPECT_FALSE(fs::exists(files.dir + "/out"));
   }
+}
+
+// A home inside a zone or on its edge was refused as a leg that "finds no way round": it is
+// named as the problem, up front.
+TEST(PlanCli, AHomeInOrOnAZoneIsRefused) {
+  const ZoneFiles files("zones-home");
+  const std::string zone = files.write(
+      "zone.geojson",
+      R"({"type":"Polygon","coordinates":[[[8.5405,47.3985],[8.541,47.3985],[8.541,47.399],)"
+      R"([8.5405,47.399],[8.5405,47.3985]]]})");
+  for (const std::string home : {"47.39875,8.54075", "47.3985,8.5405", "47.39875,8.541"}) {
+    SCOPED_TRACE(home);
+    const CliRun run = files.plan(zone, "--home " + home);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_EQ(run.err, "swath plan: --home " + home +
+                           " lies inside (or on the edge of) no-fly zone " + zone +
+                           "; give a home outside the zones\n");
+    EXPECT_FALSE(fs::exists(files.dir + "/out"));
+  }
+}
+
+// Without --home, the home was the area's south-west-most vertex even where a zone cut the area
+// there (the take-off on the zone's edge, refused by the preflight check): it is the
+// south-west-most vertex that keeps the clearance, or the area is refused saying why.
+TEST(PlanCli, TheDefaultHomeKeepsTheClearanceFromTheZones) {
+  const ZoneFiles files("zones-default-home");
+  const std::string west = files.write(
+      "west.geojson",
+      R"({"type":"Polygon","coordinates":[[[8.5395,47.3975],[8.542,47.3975],[8.542,47.4003],)"
+      R"([8.5395,47.4003],[8.5395,47.3975]]]})");
+  const CliRun run = files.plan(west);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(files.dir + "/out/summary.json"));
+  EXPECT_NEAR(s["home"]["lat_deg"].get<double>(), 47.398, 1e-9);  // the south-east corner
+  EXPECT_NEAR(s["home"]["lon_deg"].get<double>(), 8.5427, 1e-9);
+  EXPECT_GE(s["flight"]["min_no_fly_distance_m"].get<double>(), 5.0 - 1e-6);
+  // Four small zones about 3 m in from the four corners: no vertex keeps 5 m.
+  std::string corners = R"({"type":"MultiPolygon","coordinates":[)";
+  const double lons[] = {8.54003, 8.54254}, lats[] = {47.39802, 47.39969};
+  for (int k = 0; k < 4; ++k) {
+    const double x = lons[k % 2], y = lats[k / 2];
+    std::ostringstream r;
+    r.precision(10);
+    r << (k ? "," : "") << "[[[" << x << "," << y << "],[" << x + 0.00013 << "," << y << "],["
+      << x + 0.00013 << "," << y + 0.00009 << "],[" << x << "," << y + 0.00009 << "],[" << x << ","
+      << y << "]]]";
+    corners += r.str();
+  }
+  const CliRun refused = files.plan(files.write("corners.geojson", corners + "]}"));
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_EQ(refused.err, "swath plan: " + files.area +
+                             ": every vertex of the area lies within 5.0 m (--clearance) of a "
+                             "no-fly zone, so none can be the default home; give --home LAT,LON "
+                             "clear of the zones, or lower --clearance\n");
 }
 
 TEST(PlanCli, RepairPlansTheAreasACrossingRingEncloses) {

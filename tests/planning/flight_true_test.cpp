@@ -465,7 +465,7 @@ TEST(FlightTrue, AZoneOfManyVerticesIsFencedWithinWhatAnAutopilotStores) {
   ASSERT_EQ(tight.exclusion_fences_geo.size(), 1u);
   EXPECT_EQ(tight.exclusion_fences_geo[0].size(), 200u);
   EXPECT_TRUE(std::any_of(tight.warnings.begin(), tight.warnings.end(), [](const std::string& w) {
-    return w.find("no-fly zone 0") != std::string::npos &&
+    return w.find("no-fly zone 1 has 200 vertices") != std::string::npos &&
            w.find("more than the 64 PX4 stores") != std::string::npos;
   }));
 }

@@ -121,11 +121,36 @@ void collect_no_fly(SurveyPlan& plan) {
     for (const GeoPoint& g : plan.request.exclusions[k]) local.push_back(field.frame->to_local(g));
     geometry::NormalisedRing hole = geometry::normalise_ring(local, false);
     if (hole.ring.size() < 3)
-      throw InputError("no-fly zone " + std::to_string(k) + " has fewer than 3 distinct vertices");
+      throw InputError(no_fly_name(plan, plan.no_fly.size()) +
+                       " has fewer than 3 distinct vertices");
     plan.area.holes.push_back(hole.ring);
     plan.no_fly.push_back(std::move(hole.ring));
     plan.no_fly_geo.push_back(plan.request.exclusions[k]);
   }
+}
+
+// A home inside a hole or no-fly zone, or on its edge: every take-off and landing enters it (the
+// router then found "no way round" for a leg, naming neither the home nor the zone).
+void check_home_outside_zones(const SurveyPlan& plan, const GeoPoint& home,
+                              const std::string& what) {
+  const geometry::Point2 p = plan.request.field.frame->to_local(home);
+  for (std::size_t k = 0; k < plan.no_fly.size(); ++k)
+    if (geometry::locate_point(p, plan.no_fly[k]) != geometry::Containment::outside)
+      throw InputError(what + " " + base::shortest_text(home.lat_deg) + "," +
+                       base::shortest_text(home.lon_deg) + " lies inside (or on the edge of) " +
+                       no_fly_name(plan, k) + "; give a home outside the zones");
+}
+
+// Every home the plan will use against the zones, named as the user gave it.
+void check_homes_outside_zones(const SurveyPlan& plan) {
+  const SurveyRequest& r = plan.request;
+  if (r.home) check_home_outside_zones(plan, *r.home, "--home");
+  if (!r.fleet) return;
+  if (std::isfinite(r.fleet->home.lat_deg) &&
+      r.fleet->home != r.home.value_or(GeoPoint{NAN, NAN, 0}))
+    check_home_outside_zones(plan, r.fleet->home, "the fleet's home");
+  for (const vehicle::Drone& d : r.fleet->drones)
+    if (d.home) check_home_outside_zones(plan, *d.home, "drone " + d.name + "'s home");
 }
 
 // Whether no-fly zones cross the area's boundary or each other, or lie outside the area: then the
@@ -179,9 +204,7 @@ ZonesCut zones_cut_text(const SurveyPlan& plan) {
   const std::vector<geometry::Ring>& zones = plan.no_fly;
   if (zones.size() > 50)
     return {"no-fly zones cross the area's boundary, lie outside it or overlap"};
-  auto name = [&](std::size_t k) {
-    return k < holes ? "hole " + std::to_string(k) : "no-fly zone " + std::to_string(k - holes);
-  };
+  auto name = [&](std::size_t k) { return no_fly_name(plan, k); };
   const geometry::Ring& outer = plan.request.field.polygon.outer;
   std::vector<std::string> said;
   bool outside_only = true;
@@ -201,10 +224,7 @@ ZonesCut zones_cut_text(const SurveyPlan& plan) {
       if (!boxes_meet(zones[i], zones[j])) continue;
       const double whole = std::abs(geometry::signed_area(zones[i]));
       if (area_outside(zones[i], {zones[j]}) < whole * (1 - 1e-6) - 1e-6)
-        outside_only = false,
-        said.push_back(i < holes ? name(i) + " and " + name(j) + " overlap"
-                                 : "no-fly zones " + std::to_string(i - holes) + " and " +
-                                       std::to_string(j - holes) + " overlap");
+        outside_only = false, said.push_back(name(i) + " and " + name(j) + " overlap");
     }
   // Zones that only touch (the boundary or each other) are cut out too.
   if (said.empty()) return {"no-fly zones touch the area's boundary or each other"};
@@ -264,7 +284,7 @@ void check_classification(const SurveyPlan& plan) {
     const GeoPoint p = field.frame->to_geo(c.crossing->point);
     std::ostringstream s;
     s.precision(8);
-    s << "no-fly zone " << (c.crossing->edge_b.ring - 1 - field.polygon.holes.size())
+    s << no_fly_name(plan, c.crossing->edge_b.ring - 1)
       << " crosses the area's boundary or another zone at " << p.lat_deg << ", " << p.lon_deg
       << " (lat, lon); give zones inside the area that do not overlap";
     throw InputError(s.str());
@@ -386,6 +406,7 @@ void area(SurveyPlan& plan) {
   if (plan.request.repair) repair_outer_ring(plan);
   plan.area = field.polygon;
   collect_no_fly(plan);
+  check_homes_outside_zones(plan);
   plan.facts = geometry::describe_area(plan.area);
   if (zones_need_cutting(plan)) {
     cut_out_zones(plan);

@@ -1,8 +1,10 @@
 // Steps 2 and 3 of plan_survey(): imaging and direction (survey_steps.hpp).
 #include <cmath>
+#include <optional>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/geometry/offset.hpp"
 #include "swath/planning/survey_steps.hpp"
 
 namespace swath::planning::steps {
@@ -13,6 +15,24 @@ using base::InputError;
 
 constexpr double kGravity_m_s2 = 9.80665;
 constexpr double kPi = 3.14159265358979323846;
+
+// The area's south-west-most vertex that keeps the clearance from every hole and no-fly zone: the
+// vertices where zones cut the area lie on a zone's edge, and a take-off there entered the zone.
+geometry::Point2 default_home(const SurveyPlan& plan) {
+  const double clearance_m = plan.request.clearance_m;
+  std::optional<geometry::Point2> home;
+  for (const geometry::Point2& p : plan.area.outer) {
+    if (home && p.x + p.y >= home->x + home->y) continue;
+    if (!plan.no_fly.empty() && geometry::least_distance({p}, plan.no_fly) < clearance_m) continue;
+    home = p;
+  }
+  if (!home)
+    throw InputError(plan.request.field.source + ": every vertex of the area lies within " +
+                     fixed_text(clearance_m, 1) +
+                     " m (--clearance) of a no-fly zone, so none can be the default home; "
+                     "give --home LAT,LON clear of the zones, or lower --clearance");
+  return *home;
+}
 
 geometry::SweepDirection search_direction(const SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
@@ -100,15 +120,13 @@ void direction(SurveyPlan& plan) {
   plan.direction = search_direction(plan);
   check_work(plan);
   flight_figures(plan);
-  // Home: given, or the area's south-west-most vertex.
+  // Home: given, or the area's south-west-most vertex clear of the zones.
   const geometry::Field& field = plan.request.field;
   if (plan.request.home) {
     plan.home = *plan.request.home;
     plan.home_local = field.frame->to_local(plan.home);
   } else {
-    plan.home_local = plan.area.outer.front();
-    for (const geometry::Point2& p : plan.area.outer)
-      if (p.x + p.y < plan.home_local.x + plan.home_local.y) plan.home_local = p;
+    plan.home_local = default_home(plan);
     plan.home = field.frame->to_geo(plan.home_local);
   }
 }

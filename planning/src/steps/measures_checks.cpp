@@ -142,8 +142,7 @@ void warn_about_fences(const SurveyPlan& plan, std::vector<std::string>& warning
   // the clearance leaves room; these are the ones where it did not.
   for (std::size_t z = 0; z < plan.exclusion_fences_geo.size(); ++z)
     if (plan.exclusion_fences_geo[z].size() > kFenceVertexLimit) {
-      warnings.push_back("no-fly zone " + std::to_string(z) +
-                         " (the field's holes first, then --exclude zones, from 0) has " +
+      warnings.push_back(no_fly_name(plan, z) + " has " +
                          std::to_string(plan.exclusion_fences_geo[z].size()) +
                          " vertices, more than the " + std::to_string(kFenceVertexLimit) +
                          " PX4 stores in one exclusion fence, and swath could not simplify it "

@@ -67,6 +67,9 @@ struct SurveyRequest {
   ConcaveMode concave = ConcaveMode::split;
   /// Extra no-fly zones, WGS84 (any orientation); they become holes of the area.
   std::vector<std::vector<geometry::GeoPoint>> exclusions;
+  /// How messages name each of `exclusions` (swath plan: its file, and its feature where the file
+  /// holds several), after "no-fly zone "; one missing: its number, from 1.
+  std::vector<std::string> exclusion_names;
   double split_scan_step_deg = 2.0;           ///< split: the scan part of the direction search
   SplitCells split_cells = SplitCells::best;  ///< split: runs from lanes, boustrophedon or both
   /// Split: one direction, or a direction per region where that is shorter. Per region applies to
@@ -267,6 +270,11 @@ struct SurveyPlan {
 /// the parts zones cut off) and their holes as further rings (the scanline measure counts by the
 /// even-odd rule).
 geometry::Polygon measured_area(const SurveyPlan& plan);
+
+/// How messages name plan.no_fly[k] (the field's holes first, then the request's exclusions):
+/// "hole K" (K from 0, as the area readers count holes), else "no-fly zone NAME" (the exclusion's
+/// name, or K from 1).
+std::string no_fly_name(const SurveyPlan& plan, std::size_t k);
 
 /// Plans a survey, divided among a fleet when one is given. Throws base::InputError for an area
 /// it refuses (self-intersecting, or non-convex with ConcaveMode::reject), a local-metres area
