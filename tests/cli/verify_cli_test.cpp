@@ -159,6 +159,38 @@ TEST(VerifyCli, PlanChecksItsSplitLitchiPartsAsFlown) {
       << refused.err;
   EXPECT_NE(refused.err.find("drone-1-litchi-"), std::string::npos) << refused.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+
+// swath verify reads zone files as swath plan does: a zone file with a line beside its polygon,
+// or a zone that crosses itself, is bad input (exit 2) naming the feature or the crossing; the
+// zone was checked without the line, the bow-tie by an inside no one agreed on.
+TEST(VerifyCli, ZoneFilesWithALineOrACrossingAreRefused) {
+  const std::string dir = fresh_dir("swath-verify-zones");
+  std::filesystem::create_directories(dir);
+  const std::string zone =
+      R"({"type":"Feature","properties":{"name":"pond"},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[8.5444,47.3972],[8.5446,47.3972],[8.5446,47.3974],[8.5444,47.3974],)"
+      R"([8.5444,47.3972]]]}})";
+  write(dir + "/line.geojson",
+        R"({"type":"FeatureCollection","features":[)" + zone +
+            R"(,{"type":"Feature","properties":{"name":"wire"},"geometry":{"type":"LineString",)"
+            R"("coordinates":[[8.544,47.397],[8.545,47.398]]}}]})");
+  write(dir + "/bowtie.geojson",
+        R"({"type":"Polygon","coordinates":[[[8.5444,47.3972],[8.5446,47.3974],[8.5446,47.3972],)"
+        R"([8.5444,47.3974],[8.5444,47.3972]]]})");
+  const std::string plan = "verify tests/fixtures/verify/qgc-style.plan --exclude ";
+  const CliRun line = run_swath(plan + dir + "/line.geojson");
+  EXPECT_EQ(line.exit_code, 2) << line.out;
+  EXPECT_NE(line.err.find(dir + "/line.geojson: feature 1 (\"wire\") is a LineString starting at "
+                                "47.397, 8.544 (lat, lon); a no-fly zone must be a polygon"),
+            std::string::npos)
+      << line.err;
+  const CliRun bowtie = run_swath(plan + dir + "/bowtie.geojson");
+  EXPECT_EQ(bowtie.exit_code, 2) << bowtie.out;
+  EXPECT_NE(bowtie.err.find(dir + "/bowtie.geojson: the no-fly zone crosses itself at 47.3973, "
+                                  "8.5445 (lat, lon)"),
+            std::string::npos)
+      << bowtie.err;
+  EXPECT_EQ(line.out + bowtie.out, "");
 }
 
 TEST(VerifyCli, BadInputIsOneSentenceAndExitTwo) {
