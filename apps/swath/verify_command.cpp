@@ -79,6 +79,10 @@ void VerifyCommand::setup(CLI::App& app) {
                  "With --terrain: least height above the ground on cruise legs (default 5 m)");
   app.add_option("--separation", separation_m_,
                  "Least 3-D distance between two drones at the same time (default 10 m)");
+  app.add_flag("--fence-union", fence_union_,
+               "ArduPilot files: inside one inclusion fence is inside (FENCE_OPTIONS bit 2 set); "
+               "without it the vehicle must stay inside every one, as ArduPilot by default and "
+               "PX4 require");
   app.add_flag("--json", json_, "Print the report as one JSON object");
 }
 
@@ -94,6 +98,7 @@ int VerifyCommand::run() {
   options.ceiling_m = ceiling_m_;
   options.min_height_m = min_height_m_;
   options.separation_m = separation_m_;
+  options.fence_union = fence_union_;
   options.zones = zones_from_files(exclude_);
   if (!area_.empty()) add_area(area_, options);
   if (!dem_units_.empty() && terrain_.empty())

@@ -35,6 +35,7 @@ class VerifyCommand : public Command {
   double min_height_m_ = 5.0;
   double separation_m_ = 10.0;
   bool json_ = false;
+  bool fence_union_ = false;
 };
 
 }  // namespace swath::apps

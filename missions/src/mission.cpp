@@ -185,6 +185,9 @@ Mission parse_qgc(const json& root, const std::string& source) {
   m.home = lat_lon(home, source + ": plannedHomePosition");
   m.home_amsl_m = number(home[2], source + ": plannedHomePosition altitude");
   m.home_amsl_known = true;
+  const json& firmware = member(mission, "firmwareType");  // MAV_AUTOPILOT
+  if (firmware == 3) m.autopilot = Autopilot::ardupilot;
+  if (firmware == 12) m.autopilot = Autopilot::px4;
   const bool multirotor = member(mission, "vehicleType") != 1;  // MAV_TYPE_FIXED_WING
   m.fixed_wing = !multirotor;
   const json& speed = member(mission, multirotor ? "hoverSpeed" : "cruiseSpeed");
@@ -259,6 +262,7 @@ Mission parse_wpl(const std::string& text, const std::string& source) {
   Mission m;
   m.source = source;
   m.format = "WPL 110";
+  m.autopilot = Autopilot::ardupilot;  // Mission Planner's format: written for ArduPilot
   // Row 0 is home, its altitude above mean sea level (0: unknown to the writer).
   m.home = wpl_position(rows[0], source);
   m.home_amsl_m = rows[0].params[6];

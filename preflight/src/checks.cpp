@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/autopilot_track.hpp"
@@ -212,37 +213,50 @@ SegmentDistance notch_depth(const PathPiece& piece, const geometry::Ring& ring) 
   return worst;
 }
 
-// How far inside the inclusion fences a piece stays (negative: outside by that much), and where.
-SegmentDistance fence_margin(const PathPiece& piece, const std::vector<LocalZone>& fences) {
-  SegmentDistance best{-kInf, piece.from.xy()};
-  for (const LocalZone& fence : fences) {
-    SegmentDistance margin{kInf, piece.from.xy()};
-    if (fence.radius_m > 0) {
-      for (Point2 p : {piece.from.xy(), piece.to.xy()}) {
-        const double m = fence.radius_m - geometry::distance(p, fence.ring.front());
-        if (m < margin.distance_m) margin = {m, p};
-      }
-    } else {
-      const SegmentDistance edge = ring_distance(piece.from.xy(), piece.to.xy(), fence.ring);
-      bool inside = true;
-      for (Point2 p : {piece.from.xy(), piece.to.xy()})
-        if (geometry::locate_point(p, fence.ring) == geometry::Containment::outside) {
-          inside = false;
-          const double out_m = ring_distance(p, p, fence.ring).distance_m;
-          if (-out_m < margin.distance_m) margin = {-out_m, p};
-        }
-      if (inside) margin = edge.distance_m > 0 ? edge : notch_depth(piece, fence.ring);
+// How far inside one inclusion fence a piece stays (negative: outside by that much), and where.
+SegmentDistance fence_margin(const PathPiece& piece, const LocalZone& fence) {
+  SegmentDistance margin{kInf, piece.from.xy()};
+  if (fence.radius_m > 0) {  // a circle: a segment is farthest from its centre at an end
+    for (Point2 p : {piece.from.xy(), piece.to.xy()}) {
+      const double m = fence.radius_m - geometry::distance(p, fence.ring.front());
+      if (m < margin.distance_m) margin = {m, p};
     }
-    if (margin.distance_m > best.distance_m) best = margin;
+    return margin;
   }
-  return best;
+  const SegmentDistance edge = ring_distance(piece.from.xy(), piece.to.xy(), fence.ring);
+  bool inside = true;
+  for (Point2 p : {piece.from.xy(), piece.to.xy()})
+    if (geometry::locate_point(p, fence.ring) == geometry::Containment::outside) {
+      inside = false;
+      const double out_m = ring_distance(p, p, fence.ring).distance_m;
+      if (-out_m < margin.distance_m) margin = {-out_m, p};
+    }
+  if (inside) margin = edge.distance_m > 0 ? edge : notch_depth(piece, fence.ring);
+  return margin;
+}
+
+// The piece's margin against the fences together, and the fence that decides it: the least over
+// all of them (the vehicle must stay inside every one), or with `any_one` the greatest (inside
+// one is enough).
+std::pair<SegmentDistance, std::size_t> fences_margin(const PathPiece& piece,
+                                                      const std::vector<LocalZone>& fences,
+                                                      bool any_one) {
+  std::pair<SegmentDistance, std::size_t> decided{{any_one ? -kInf : kInf, piece.from.xy()}, 0};
+  for (std::size_t i = 0; i < fences.size(); ++i) {
+    const SegmentDistance m = fence_margin(piece, fences[i]);
+    if (any_one ? m.distance_m > decided.first.distance_m : m.distance_m < decided.first.distance_m)
+      decided = {m, i};
+  }
+  return decided;
 }
 
 }  // namespace
 
-void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, Checked& out) {
+void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, bool any_one,
+                  Checked& out) {
   if (fences.empty()) return;
   out.fence_checked = true;
+  out.most_inclusion_fences = std::max(out.most_inclusion_fences, fences.size());
   std::vector<PathPiece> all = pieces(*f.path);
   for (Point2 r : f.rally_points)
     all.push_back({{r.x, r.y, 0}, {r.x, r.y, 0}, f.source + ": rally point", false});
@@ -250,16 +264,23 @@ void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, Ch
   const geometry::AutopilotTrack track(*f.frame, f.path->home.xy());
   for (const PathPiece& piece : all) {
     // Measured along the vehicle's track where it may stray outside.
-    const TrackDistance t =
-        least_along_track(track, piece, fence_margin(piece, fences), 0.0, [&](Point2 p, Point2 q) {
-          return fence_margin({{p.x, p.y, 0}, {q.x, q.y, 0}, piece.place, piece.overrun}, fences);
-        });
+    const auto [chord, chord_fence] = fences_margin(piece, fences, any_one);
+    const auto margin = [&](Point2 p, Point2 q) {
+      return fences_margin({{p.x, p.y, 0}, {q.x, q.y, 0}, piece.place, piece.overrun}, fences,
+                           any_one);
+    };
+    const TrackDistance t = least_along_track(track, piece, chord, 0.0,
+                                              [&](Point2 p, Point2 q) { return margin(p, q).first; });
     const SegmentDistance& m = t.least;
+    // The fence left: the straight leg's, or the one the track is farthest out of where it is.
+    const std::size_t fence = t.bow_m > 0 ? margin(m.at, m.at).second : chord_fence;
     out.least_fence_margin_m = std::min(out.least_fence_margin_m, m.distance_m);
     if (m.distance_m < -kTolerance_m)
-      out.violations.push_back({"fence", piece_name(piece), f.frame->to_geo(m.at), -m.distance_m,
-                                piece_name(piece) + " is " + fixed_text(-m.distance_m, 2) +
-                                    " m outside the inclusion fence" + on_track(t.bow_m)});
+      out.violations.push_back(
+          {"fence", piece_name(piece), f.frame->to_geo(m.at), -m.distance_m,
+           piece_name(piece) + " is " + fixed_text(-m.distance_m, 2) + " m outside " +
+               (any_one && fences.size() > 1 ? "every inclusion fence" : fences[fence].name) +
+               on_track(t.bow_m)});
   }
 }
 

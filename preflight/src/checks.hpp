@@ -60,6 +60,7 @@ struct Checked {
   std::string least_clearance_where;
   bool fence_checked = false;
   double least_fence_margin_m = std::numeric_limits<double>::infinity();
+  std::size_t most_inclusion_fences = 0;  ///< in one file
   double max_height_m = -std::numeric_limits<double>::infinity();
   double min_height_m = std::numeric_limits<double>::infinity();
   double photos = 0, transit_photos = 0;
@@ -68,7 +69,10 @@ struct Checked {
 
 void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, double clearance_m,
                  Checked& out);
-void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, Checked& out);
+/// Every piece, the home and the rally points inside every one of `fences` (ArduPilot's default,
+/// PX4's rule), or with `any_one` inside at least one (ArduPilot's FENCE_OPTIONS bit 2).
+void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, bool any_one,
+                  Checked& out);
 void check_heights(const FileContext& f, const CheckOptions& options, Checked& out);
 void check_photos(const FileContext& f, const std::vector<geometry::Ring>& area, Checked& out);
 

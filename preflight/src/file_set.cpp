@@ -332,6 +332,7 @@ std::string report_text(const Report& report) {
              " (lat, lon)";
     out += "\n";
   }
+  for (const std::string& w : report.warnings) out += "  warning    " + w + "\n";
   out += report.ok()
              ? "  result     every check holds\n"
              : "  result     " + std::to_string(report.violations.size()) + " violation(s)\n";
@@ -364,6 +365,7 @@ std::string report_json(const Report& report) {
     violations.push_back(o);
   }
   j["violations"] = violations;
+  j["warnings"] = report.warnings;
   return base::json_text(j, 2) + "\n";
 }
 

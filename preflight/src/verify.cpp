@@ -6,6 +6,7 @@
 #include "checks.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/energy/budget.hpp"
+#include "swath/missions/fence_storage.hpp"
 #include "swath/preflight/verify.hpp"
 
 namespace swath::preflight {
@@ -42,13 +43,33 @@ std::vector<LocalZone> own_exclusions(const missions::Mission& m,
   return out;
 }
 
+// Named as the violations say them: "the inclusion fence" when there is one, else which one
+// (numbered in the file's order, polygons and circles each from 1).
 std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::LocalFrame& frame) {
   std::vector<LocalZone> out;
-  for (const auto& ring : m.inclusion_fences)
-    out.push_back({"inclusion fence", local_ring(frame, ring), 0, false});
-  for (const auto& c : m.inclusion_circles)
-    out.push_back({"inclusion circle", {frame.to_local(c.centre)}, c.radius_m, false});
+  const auto rings = missions::distinct_rings(m.inclusion_fences);
+  const bool one = rings.size() + m.inclusion_circles.size() == 1;
+  auto name = [&](const char* kind, std::size_t i) {
+    return one ? std::string("the inclusion fence")
+               : m.source + "'s inclusion " + kind + " " + std::to_string(i + 1);
+  };
+  for (std::size_t i = 0; i < rings.size(); ++i)
+    out.push_back({name("fence", i), local_ring(frame, rings[i]), 0, false});
+  for (std::size_t i = 0; i < m.inclusion_circles.size(); ++i)
+    out.push_back({name("circle", i),
+                   {frame.to_local(m.inclusion_circles[i].centre)},
+                   m.inclusion_circles[i].radius_m,
+                   false});
   return out;
+}
+
+// ArduPilot refuses a fence larger than its storage: said, not failed (the mission itself may
+// be flown, with a fence that fits or none, as the pilot decides).
+void warn_about_fence_storage(const missions::Mission& m, Report& report) {
+  if (m.autopilot != missions::Autopilot::ardupilot) return;
+  const std::string warning =
+      missions::fence_storage_warning(missions::ardupilot_fence_storage(m), m.fixed_wing);
+  if (!warning.empty()) report.warnings.push_back(m.source + ": " + warning);
 }
 
 // The least distance between two points moving linearly over [0, span]: relative position
@@ -177,6 +198,17 @@ void check_energy(const DroneFile& d, const FlownPath& path, const geometry::Loc
            fixed_text(-b.reserve_margin * 100, 1) + " % into the reserve)"});
 }
 
+// Which fences the fence figure is about: the one, or, of several, those the vehicle must stay
+// inside (every one; one with --fence-union) or the ones it leaves.
+std::string fences_held(const Checked& c, const CheckOptions& o) {
+  if (c.most_inclusion_fences <= 1) return " the inclusion fence";
+  const std::string n = std::to_string(c.most_inclusion_fences) + " inclusion fences";
+  const bool inside = c.least_fence_margin_m >= 0;
+  if (o.fence_union)
+    return (inside ? " one of the " : " all ") + n + " (ArduPilot files: --fence-union)";
+  return (inside ? " every one of the " : " one of the ") + n;
+}
+
 void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report& report) {
   if (any_zone)
     report.figures.push_back({"zones", true, c.least_clearance_m,
@@ -191,7 +223,7 @@ void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report&
          (c.least_fence_margin_m >= 0
               ? "least margin " + fixed_text(c.least_fence_margin_m, 2) + " m inside"
               : "reaches " + fixed_text(-c.least_fence_margin_m, 2) + " m outside") +
-             " the inclusion fence (home, rally points, every leg and stopping margin)"});
+             fences_held(c, o) + " (home, rally points, every leg and stopping margin)"});
   else
     report.figures.push_back({"fence", false, {}, "no inclusion fence in the files"});
   report.figures.push_back({"ceiling", true, c.max_height_m,
@@ -271,7 +303,11 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
     for (LocalZone& z : own_exclusions(d.mission, frame)) all.push_back(std::move(z));
     any_zone = any_zone || all.size() > zones.size();
     check_zones(f, all, options.clearance_m, checked);
-    check_fences(f, inclusions(d.mission, frame), checked);
+    // FENCE_OPTIONS' union is ArduPilot's; PX4 always requires every inclusion fence.
+    const bool any_one =
+        options.fence_union && d.mission.autopilot == missions::Autopilot::ardupilot;
+    check_fences(f, inclusions(d.mission, frame), any_one, checked);
+    warn_about_fence_storage(d.mission, report);
     check_heights(f, options, checked);
     if (d.instead)
       check_photos_instead(f, area, checked);

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <regex>
 
 #include "cli_runner.hpp"
 
@@ -191,6 +193,110 @@ TEST(VerifyCli, ZoneFilesWithALineOrACrossingAreRefused) {
             std::string::npos)
       << bowtie.err;
   EXPECT_EQ(line.out + bowtie.out, "");
+// A square `half_m` metres either side of (lat, lon), as a QGC geoFence polygon's points.
+json square_about(double lat_deg, double lon_deg, double half_m) {
+  const double dlat = half_m / 111'195.0, dlon = dlat / std::cos(lat_deg * M_PI / 180);
+  return json::array({json::array({lat_deg - dlat, lon_deg - dlon}),
+                      json::array({lat_deg - dlat, lon_deg + dlon}),
+                      json::array({lat_deg + dlat, lon_deg + dlon}),
+                      json::array({lat_deg + dlat, lon_deg - dlon})});
+}
+
+TEST(VerifyCli, ASecondInclusionFenceOverPartOfTheFlightIsBreachedUnlessAUnion) {
+  const std::string dir = fresh_dir("swath-verify-two-fences");
+  ASSERT_EQ(run_swath("plan " + kMeadow + " -o " + dir).exit_code, 0);
+  // The plan's own fence holds the flight; a second inclusion fence, 30 m either side of home,
+  // holds only the start: ArduPilot (by default) and PX4 breach outside either.
+  json plan = json::parse(read_text(dir + "/drone-1.plan"));
+  const double lat = plan["mission"]["plannedHomePosition"][0];
+  const double lon = plan["mission"]["plannedHomePosition"][1];
+  plan["geoFence"]["polygons"].push_back(
+      {{"inclusion", true}, {"polygon", square_about(lat, lon, 30)}, {"version", 1}});
+  write(dir + "/two.plan", plan.dump());
+  const CliRun run = run_swath("verify " + dir + "/two.plan --json");
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  int outside = 0;
+  const json report = json::parse(run.out);
+  for (const json& v : report["violations"]) {
+    ASSERT_EQ(v["check"], "fence") << v["text"];
+    EXPECT_NE(
+        v["text"].get<std::string>().find("m outside " + dir + "/two.plan's inclusion fence 2"),
+        std::string::npos)
+        << v["text"];
+    // Where it is outside: beyond the square, by the amount said (to the metres of a degree).
+    const double north_m = (v["lat_deg"].get<double>() - lat) * 111'195.0;
+    const double east_m =
+        (v["lon_deg"].get<double>() - lon) * 111'195.0 * std::cos(lat * M_PI / 180);
+    const double beyond_m = std::max(std::abs(north_m), std::abs(east_m)) - 30;
+    EXPECT_GT(beyond_m, 0) << v["text"];
+    if (std::abs(north_m) < 30 || std::abs(east_m) < 30)  // off a side, not a corner
+      EXPECT_NEAR(beyond_m, v["amount"].get<double>(), 0.05) << v["text"];
+    ++outside;
+  }
+  EXPECT_GT(outside, 0);
+  // FENCE_OPTIONS' union (--fence-union): inside the plan's own fence is enough for ArduPilot.
+  const CliRun any_one = run_swath("verify " + dir + "/two.plan --fence-union");
+  EXPECT_EQ(any_one.exit_code, 0) << any_one.out;
+  // PX4 has no union.
+  plan["mission"]["firmwareType"] = 12;
+  write(dir + "/px4.plan", plan.dump());
+  EXPECT_EQ(run_swath("verify " + dir + "/px4.plan --fence-union").exit_code, 4);
+}
+
+// Four 16-gons of 8 m radius inside the meadow: with the area's fence, more than ArduPilot stores.
+std::string sixteen_gon_zones() {
+  json features = json::array();
+  for (const auto& [lon, lat] : {std::pair{8.5415, 47.3980}, std::pair{8.5430, 47.3980},
+                                 std::pair{8.5415, 47.3990}, std::pair{8.5430, 47.3990}}) {
+    json ring = json::array();
+    for (int k = 0; k <= 16; ++k) {
+      const double a = 2 * M_PI * (k % 16) / 16;
+      ring.push_back({lon + 8 * std::cos(a) / (111'195.0 * std::cos(lat * M_PI / 180)),
+                      lat + 8 * std::sin(a) / 111'195.0});
+    }
+    features.push_back({{"type", "Feature"},
+                        {"properties", json::object()},
+                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+  }
+  return json{{"type", "FeatureCollection"}, {"features", features}}.dump();
+}
+
+TEST(VerifyCli, AFenceArduPilotCannotStoreIsAWarningOfPlanAndVerify) {
+  const std::string dir = fresh_dir("swath-verify-fence-storage");
+  std::filesystem::create_directories(dir);
+  write(dir + "/zones.geojson", sixteen_gon_zones());
+  const CliRun plan =
+      run_swath("plan " + kMeadow + " --exclude " + dir + "/zones.geojson -o " + dir + "/out");
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  // The counts said are the .plan's fence as written, in ArduPilot's bytes.
+  const std::regex said(
+      "swath plan: warning: the fence has (\\d+) points in (\\d+) polygons: (\\d+) bytes of "
+      "ArduPilot's fence storage, more than the 560 bytes ArduCopter keeps");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(plan.err, m, said)) << plan.err;
+  std::size_t points = 0, polygons = 0;
+  const json written = json::parse(read_text(dir + "/out/drone-1.plan"));
+  for (const json& p : written["geoFence"]["polygons"]) points += p["polygon"].size(), ++polygons;
+  EXPECT_EQ(std::stoul(m[1]), points);
+  EXPECT_EQ(std::stoul(m[2]), polygons);
+  EXPECT_EQ(std::stoul(m[3]), 4 + 2 * polygons + 8 * points);
+  EXPECT_GT(std::stoul(m[3]), 560u);
+  // swath verify says the same as a warning: the checks hold, exit 0.
+  const CliRun run = run_swath("verify " + dir + "/out --json");
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  const json j = json::parse(run.out);
+  EXPECT_TRUE(j["ok"].get<bool>());
+  ASSERT_EQ(j["warnings"].size(), 1u) << run.out;
+  const std::string prefix = "swath plan: warning: ";
+  const std::size_t from = plan.err.find(prefix + "the fence has");
+  const std::string sentence =
+      plan.err.substr(from + prefix.size(), plan.err.find('\n', from) - from - prefix.size());
+  EXPECT_EQ(j["warnings"][0], dir + "/out/drone-1.plan: " + sentence);
+  // A PX4 plan's fence is not ArduPilot's to store.
+  const CliRun px4 = run_swath("plan " + kMeadow + " --firmware px4 --exclude " + dir +
+                               "/zones.geojson -o " + dir + "/px4");
+  EXPECT_EQ(px4.exit_code, 0) << px4.err;
+  EXPECT_EQ(px4.err.find("fence storage"), std::string::npos) << px4.err;
 }
 
 TEST(VerifyCli, BadInputIsOneSentenceAndExitTwo) {

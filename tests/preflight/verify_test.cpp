@@ -21,6 +21,7 @@
 #include "swath/geometry/autopilot_track.hpp"
 #include "swath/geometry/local_frame.hpp"
 #include "swath/geometry/predicates.hpp"
+#include "swath/missions/fence_storage.hpp"
 #include "swath/missions/mission.hpp"
 #include "swath/planning/survey_files.hpp"
 #include "swath/preflight/verify.hpp"
@@ -211,6 +212,89 @@ TEST(Verify, AFenceShrunkOffTheHome) {
       EXPECT_NEAR(v.amount, 10.0, 1e-3);
     }
   EXPECT_TRUE(home) << report_text(r);
+}
+
+// The fence violation of the largest amount (the place farthest outside), or none.
+const Violation* farthest_outside(const Report& r) {
+  const Violation* worst = nullptr;
+  for (const Violation& v : r.violations)
+    if (v.check == "fence" && (!worst || v.amount > worst->amount)) worst = &v;
+  return worst;
+}
+
+TEST(Verify, EveryInclusionFenceMustHoldNotJustOne) {
+  // The flight (home (0, 0), the line (0, 20)-(100, 20), its 5 m stopping margin to (105, 20))
+  // lies inside fence 1; fence 2 ends at x = 60. ArduPilot (by default) and PX4 breach outside
+  // any one inclusion fence: the margin's end is 45 m outside fence 2.
+  missions::Mission m = missions::parse_mission(wpl(survey_rows()), "a.waypoints");
+  m.inclusion_fences = {square(-20, -20, 120, 40), square(-20, -20, 60, 40)};
+  const Report r = verify({{m, 0, ""}}, {});
+  const Violation* v = farthest_outside(r);
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, 45.0, 1e-3);
+  EXPECT_NE(v->text.find("m outside a.waypoints's inclusion fence 2"), std::string::npos)
+      << v->text;
+  ASSERT_TRUE(v->at.has_value());
+  EXPECT_NEAR(geometry::LocalFrame(kOrigin).to_local(*v->at).x, 105.0, 0.01);
+  // ArduPilot's FENCE_OPTIONS union: inside fence 1 is enough.
+  CheckOptions any_one;
+  any_one.fence_union = true;
+  EXPECT_TRUE(verify({{m, 0, ""}}, any_one).ok()) << report_text(verify({{m, 0, ""}}, any_one));
+  // PX4 has no union: its file fails even so.
+  m.autopilot = missions::Autopilot::px4;
+  EXPECT_NEAR(farthest_outside(verify({{m, 0, ""}}, any_one))->amount, 45.0, 1e-3);
+}
+
+TEST(Verify, AnInclusionCircleBesideAPolygonMustHoldToo) {
+  // A 60 m circle about home: the stopping margin's end (105, 20) is hypot(105, 20) - 60 outside.
+  missions::Mission m = missions::parse_mission(wpl(survey_rows()), "a.waypoints");
+  m.inclusion_fences = {square(-20, -20, 120, 40)};
+  m.inclusion_circles = {{kOrigin, 60.0}};
+  const Report r = verify({{m, 0, ""}}, {});
+  const Violation* v = farthest_outside(r);
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NEAR(v->amount, std::hypot(105.0, 20.0) - 60.0, 1e-3);
+  EXPECT_NE(v->text.find("m outside a.waypoints's inclusion circle 1"), std::string::npos)
+      << v->text;
+}
+
+// A ring of `n` points on a 200 m circle about (50, 10): it holds the whole survey flight.
+std::vector<geometry::GeoPoint> round_fence(int n) {
+  const geometry::LocalFrame frame(kOrigin);
+  std::vector<geometry::GeoPoint> ring;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    ring.push_back(frame.to_geo({50 + 200 * std::cos(a), 10 + 200 * std::sin(a)}));
+  }
+  return ring;
+}
+
+TEST(FenceStorage, CountsAsArduPilotStoresItAndWarnsPastTheCopterLimit) {
+  // A 4-byte header, 2 bytes and 8 per point for each polygon, 13 bytes for each circle.
+  EXPECT_EQ(missions::ardupilot_fence_storage({4, 5}, 1).bytes, 4u + 2 * 2 + 9 * 8 + 13);
+  missions::Mission m = missions::parse_mission(wpl(survey_rows()), "a.waypoints");
+  m.inclusion_fences = {round_fence(69)};  // 4 + 2 + 69 * 8 = 558 bytes: fits 560
+  Report r = verify({{m, 0, ""}}, {});
+  EXPECT_TRUE(r.ok()) << report_text(r);
+  EXPECT_TRUE(r.warnings.empty()) << report_text(r);
+  m.inclusion_fences = {round_fence(70)};  // 566 bytes
+  r = verify({{m, 0, ""}}, {});
+  EXPECT_TRUE(r.ok()) << report_text(r);  // a warning, not a failure
+  ASSERT_EQ(r.warnings.size(), 1u) << report_text(r);
+  EXPECT_EQ(r.warnings[0].rfind("a.waypoints: the fence has 70 points in 1 polygon: 566 bytes of "
+                                "ArduPilot's fence storage, more than the 560 bytes ArduCopter "
+                                "keeps",
+                                0),
+            0u)
+      << r.warnings[0];
+  EXPECT_NE(report_text(r).find("\n  warning    a.waypoints: the fence has 70 points"),
+            std::string::npos);
+  // The same polygon again (a fence.waypoints repeating the .plan's) is one upload.
+  m.inclusion_fences.push_back(m.inclusion_fences.front());
+  EXPECT_EQ(missions::ardupilot_fence_storage(m).bytes, 566u);
+  // ArduPilot's storage is not PX4's: no such warning for a PX4 file.
+  m.autopilot = missions::Autopilot::px4;
+  EXPECT_TRUE(verify({{m, 0, ""}}, {}).warnings.empty());
 }
 
 TEST(Verify, ALegAboveTheCeiling) {

@@ -7,6 +7,7 @@
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/decomposition.hpp"
 #include "swath/geometry/offset.hpp"
+#include "swath/missions/fence_storage.hpp"
 #include "swath/planning/survey_steps.hpp"
 
 namespace swath::planning::steps {
@@ -151,6 +152,16 @@ void warn_about_fences(const SurveyPlan& plan, std::vector<std::string>& warning
                          " m); simplify it (outward) or give a larger --clearance");
       break;
     }
+  // ArduPilot keeps every fence polygon and circle in one storage area of a few hundred bytes,
+  // and refuses an upload that does not fit (AC_PolyFence_loader::write_fence).
+  if (plan.request.firmware == Firmware::ardupilot) {
+    std::vector<std::size_t> points;
+    for (const geometry::Ring& ring : plan.fence) points.push_back(ring.size());
+    for (const auto& zone : plan.exclusion_fences_geo) points.push_back(zone.size());
+    const std::string storage = missions::fence_storage_warning(
+        missions::ardupilot_fence_storage(points, 0), plan.request.vehicle != Vehicle::multirotor);
+    if (!storage.empty()) warnings.push_back(storage);
+  }
 }
 
 }  // namespace

@@ -32,6 +32,13 @@ struct Item {
   std::string place;               ///< "drone-1.plan: item 7", for messages
 };
 
+/// The autopilot a file is written for: its fences' storage and breach rules differ.
+enum class Autopilot {
+  unknown,    ///< Litchi, DJI, a QGC plan of another firmwareType
+  ardupilot,  ///< a QGC plan's firmwareType 3 (MAV_AUTOPILOT_ARDUPILOTMEGA), a WPL 110 file
+  px4,        ///< a QGC plan's firmwareType 12
+};
+
 /// A fence circle: its centre and radius.
 struct FenceCircle {
   geometry::GeoPoint centre;
@@ -42,6 +49,7 @@ struct FenceCircle {
 struct Mission {
   std::string source;  ///< the file name, for messages
   std::string format;  ///< "QGC plan", "WPL 110", "Litchi CSV", "DJI WPML"
+  Autopilot autopilot = Autopilot::unknown;
   geometry::GeoPoint home;
   double home_amsl_m = 0.0;  ///< home's height above mean sea level as the file gives it
   bool home_amsl_known = false;

@@ -34,6 +34,10 @@ struct CheckOptions {
   double separation_m = 10.0;  ///< least 3-D distance between two drones at the same time
   std::shared_ptr<const geometry::Ground> ground;
   std::optional<energy::DroneProfile> drone;
+  /// ArduPilot files' inclusion fences as a union (FENCE_OPTIONS bit 2 set): inside one of them
+  /// is inside. Otherwise (ArduPilot's default, and PX4 always) the vehicle must stay inside every
+  /// one.
+  bool fence_union = false;
   FlightModel model;
 };
 
@@ -72,6 +76,8 @@ struct Report {
   std::vector<std::string> files;
   std::vector<Figure> figures;
   std::vector<Violation> violations;
+  /// What does not fail a check but the pilot must know (a fence ArduPilot cannot store).
+  std::vector<std::string> warnings;
   bool ok() const { return violations.empty(); }
 };
 
