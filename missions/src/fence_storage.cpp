@@ -70,6 +70,18 @@ FenceStorage ardupilot_fence_storage(const Mission& mission) {
   return ardupilot_fence_storage(points, n_circles);
 }
 
+std::string px4_fence_warning(const FenceStorage& storage) {
+  const std::size_t items = storage.points + storage.circles;
+  if (items <= kPx4FenceItems) return {};
+  std::string what =
+      counted(storage.points, "point") + " in " + counted(storage.polygons, "polygon");
+  if (storage.circles > 0) what += " and " + counted(storage.circles, "circle");
+  return "the fence has " + what + ": " + std::to_string(items) + " fence items, more than the " +
+         std::to_string(kPx4FenceItems) +
+         " PX4 takes in all (every polygon's vertices and circles together); PX4 refuses the "
+         "upload and keeps its old fence; give fewer or simpler no-fly zones";
+}
+
 std::string fence_storage_warning(const FenceStorage& storage, bool fixed_wing) {
   const std::size_t limit = fixed_wing ? kArduPlaneFenceBytes : kArduCopterFenceBytes;
   if (storage.bytes <= limit) return {};

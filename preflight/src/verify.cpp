@@ -63,12 +63,14 @@ std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::Lo
   return out;
 }
 
-// ArduPilot refuses a fence larger than its storage: said, not failed (the mission itself may
-// be flown, with a fence that fits or none, as the pilot decides).
+// ArduPilot refuses a fence larger than its storage, PX4 one of more than 64 items: said, not
+// failed (the mission itself may be flown, with a fence that fits or none, as the pilot decides).
 void warn_about_fence_storage(const missions::Mission& m, Report& report) {
-  if (m.autopilot != missions::Autopilot::ardupilot) return;
-  const std::string warning =
-      missions::fence_storage_warning(missions::ardupilot_fence_storage(m), m.fixed_wing);
+  const missions::FenceStorage storage = missions::ardupilot_fence_storage(m);
+  std::string warning;
+  if (m.autopilot == missions::Autopilot::ardupilot)
+    warning = missions::fence_storage_warning(storage, m.fixed_wing);
+  if (m.autopilot == missions::Autopilot::px4) warning = missions::px4_fence_warning(storage);
   if (!warning.empty()) report.warnings.push_back(m.source + ": " + warning);
 }
 

@@ -261,7 +261,7 @@ std::string sixteen_gon_zones() {
   return json{{"type", "FeatureCollection"}, {"features", features}}.dump();
 }
 
-TEST(VerifyCli, AFenceArduPilotCannotStoreIsAWarningOfPlanAndVerify) {
+TEST(VerifyCli, AFenceTheAutopilotCannotStoreIsAWarningOfPlanAndVerify) {
   const std::string dir = fresh_dir("swath-verify-fence-storage");
   std::filesystem::create_directories(dir);
   write(dir + "/zones.geojson", sixteen_gon_zones());
@@ -292,11 +292,20 @@ TEST(VerifyCli, AFenceArduPilotCannotStoreIsAWarningOfPlanAndVerify) {
   const std::string sentence =
       plan.err.substr(from + prefix.size(), plan.err.find('\n', from) - from - prefix.size());
   EXPECT_EQ(j["warnings"][0], dir + "/out/drone-1.plan: " + sentence);
-  // A PX4 plan's fence is not ArduPilot's to store.
+  // PX4 takes 64 fence items in all: the same fence is too many for it.
   const CliRun px4 = run_swath("plan " + kMeadow + " --firmware px4 --exclude " + dir +
                                "/zones.geojson -o " + dir + "/px4");
   EXPECT_EQ(px4.exit_code, 0) << px4.err;
   EXPECT_EQ(px4.err.find("fence storage"), std::string::npos) << px4.err;
+  EXPECT_NE(px4.err.find("swath plan: warning: the fence has " + std::to_string(points) +
+                         " points in " + std::to_string(polygons) + " polygons: " +
+                         std::to_string(points) + " fence items, more than the 64 PX4 takes"),
+            std::string::npos)
+      << px4.err;
+  const json px4_report = json::parse(run_swath("verify " + dir + "/px4 --json").out);
+  ASSERT_EQ(px4_report["warnings"].size(), 1u);
+  EXPECT_NE(px4_report["warnings"][0].get<std::string>().find(" fence items, more than the 64"),
+            std::string::npos);
 }
 
 TEST(VerifyCli, BadInputIsOneSentenceAndExitTwo) {

@@ -292,9 +292,24 @@ TEST(FenceStorage, CountsAsArduPilotStoresItAndWarnsPastTheCopterLimit) {
   // The same polygon again (a fence.waypoints repeating the .plan's) is one upload.
   m.inclusion_fences.push_back(m.inclusion_fences.front());
   EXPECT_EQ(missions::ardupilot_fence_storage(m).bytes, 566u);
-  // ArduPilot's storage is not PX4's: no such warning for a PX4 file.
+}
+
+TEST(FenceStorage, PX4TakesSixtyFourFenceItemsInAll) {
+  // Two polygons of 32 points: 64 items, what PX4 takes; one more point is refused.
+  const std::vector<geometry::GeoPoint> ring = round_fence(32);
+  missions::Mission m = missions::parse_mission(wpl(survey_rows()), "a.waypoints");
   m.autopilot = missions::Autopilot::px4;
+  m.inclusion_fences = {ring, round_fence(32)};
+  m.inclusion_fences[1].front().lat_deg += 1e-6;  // another polygon, not the first repeated
   EXPECT_TRUE(verify({{m, 0, ""}}, {}).warnings.empty());
+  m.inclusion_fences[1].push_back(ring.front());
+  const Report r = verify({{m, 0, ""}}, {});
+  ASSERT_EQ(r.warnings.size(), 1u) << report_text(r);
+  EXPECT_EQ(r.warnings[0].rfind("a.waypoints: the fence has 65 points in 2 polygons: 65 fence "
+                                "items, more than the 64 PX4 takes in all",
+                                0),
+            0u)
+      << r.warnings[0];
 }
 
 TEST(Verify, ALegAboveTheCeiling) {

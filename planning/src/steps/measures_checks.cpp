@@ -153,15 +153,17 @@ void warn_about_fences(const SurveyPlan& plan, std::vector<std::string>& warning
       break;
     }
   // ArduPilot keeps every fence polygon and circle in one storage area of a few hundred bytes,
-  // and refuses an upload that does not fit (AC_PolyFence_loader::write_fence).
-  if (plan.request.firmware == Firmware::ardupilot) {
-    std::vector<std::size_t> points;
-    for (const geometry::Ring& ring : plan.fence) points.push_back(ring.size());
-    for (const auto& zone : plan.exclusion_fences_geo) points.push_back(zone.size());
-    const std::string storage = missions::fence_storage_warning(
-        missions::ardupilot_fence_storage(points, 0), plan.request.vehicle != Vehicle::multirotor);
-    if (!storage.empty()) warnings.push_back(storage);
-  }
+  // and refuses an upload that does not fit (AC_PolyFence_loader::write_fence); PX4 takes 64
+  // fence items in all, however they are split into polygons.
+  std::vector<std::size_t> points;
+  for (const geometry::Ring& ring : plan.fence) points.push_back(ring.size());
+  for (const auto& zone : plan.exclusion_fences_geo) points.push_back(zone.size());
+  const missions::FenceStorage storage = missions::ardupilot_fence_storage(points, 0);
+  const std::string warning =
+      plan.request.firmware == Firmware::ardupilot
+          ? missions::fence_storage_warning(storage, plan.request.vehicle != Vehicle::multirotor)
+          : missions::px4_fence_warning(storage);
+  if (!warning.empty()) warnings.push_back(warning);
 }
 
 }  // namespace

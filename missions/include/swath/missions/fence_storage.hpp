@@ -1,7 +1,8 @@
 #pragma once
 // What a mission's fences take in ArduPilot's fence storage, and whether they fit: ArduPilot
 // refuses a fence upload larger than its storage ("Fence exceeds storage size",
-// AC_PolyFence_loader::write_fence), and the vehicle then flies with the fence it had before.
+// AC_PolyFence_loader::write_fence), and the vehicle then flies with the fence it had before;
+// PX4 refuses one of more items than its dataman keeps.
 
 #include <cstddef>
 #include <string>
@@ -35,6 +36,13 @@ std::vector<std::vector<geometry::GeoPoint>> distinct_rings(
 /// for the fence); BRD_SD_FENCE adds space on the SD card.
 inline constexpr std::size_t kArduCopterFenceBytes = 560;
 inline constexpr std::size_t kArduPlaneFenceBytes = 672;
+
+/// The fence items PX4 takes in one upload, every polygon's vertices and circles together
+/// (dataman's DM_KEY_FENCE_POINTS_MAX): a larger fence is refused (MAV_MISSION_NO_SPACE).
+inline constexpr std::size_t kPx4FenceItems = 64;
+
+/// One sentence when the fence is more items than PX4 takes (empty when it is not).
+std::string px4_fence_warning(const FenceStorage& storage);
 
 /// One sentence when the fence does not fit (empty when it does), naming the count, the limit and
 /// what to do; `fixed_wing` picks ArduPlane's limit.
