@@ -161,6 +161,7 @@ TEST(VerifyCli, PlanChecksItsSplitLitchiPartsAsFlown) {
       << refused.err;
   EXPECT_NE(refused.err.find("drone-1-litchi-"), std::string::npos) << refused.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}
 
 // swath verify reads zone files as swath plan does: a zone file with a line beside its polygon,
 // or a zone that crosses itself, is bad input (exit 2) naming the feature or the crossing; the
@@ -193,6 +194,8 @@ TEST(VerifyCli, ZoneFilesWithALineOrACrossingAreRefused) {
             std::string::npos)
       << bowtie.err;
   EXPECT_EQ(line.out + bowtie.out, "");
+}
+
 // A square `half_m` metres either side of (lat, lon), as a QGC geoFence polygon's points.
 json square_about(double lat_deg, double lon_deg, double half_m) {
   const double dlat = half_m / 111'195.0, dlon = dlat / std::cos(lat_deg * M_PI / 180);
