@@ -59,6 +59,16 @@ double number(const json& j, const std::string& where, std::string_view what = {
   return j.get<double>();
 }
 
+// A fence circle's radius: a circle of none (or a negative one) fences nothing, and the check
+// would pass a flight through the zone it was meant to be.
+double checked_radius_m(double radius_m, const GeoPoint& centre, const std::string& where) {
+  if (!(radius_m > 0) || !std::isfinite(radius_m))
+    throw InputError(where + " at " + base::shortest_text(centre.lat_deg) + ", " +
+                     base::shortest_text(centre.lon_deg) + ": radius " +
+                     base::shortest_text(radius_m) + " m must be above 0");
+  return radius_m;
+}
+
 GeoPoint checked_position(double lat_deg, double lon_deg, const std::string& where) {
   if (!(std::abs(lat_deg) <= 90 && std::abs(lon_deg) <= 180))
     throw InputError(where + ": latitude/longitude out of range (" + base::shortest_text(lat_deg) +
@@ -164,7 +174,9 @@ void read_qgc_fences(const json& root, const std::string& source, Mission& m) {
   for (std::size_t i = 0; circles.is_array() && i < circles.size(); ++i) {
     const std::string where = source + ": geoFence circle " + std::to_string(i + 1);
     const json& c = member(circles[i], "circle");
-    FenceCircle circle{lat_lon(member(c, "center"), where), number(member(c, "radius"), where)};
+    const GeoPoint centre = lat_lon(member(c, "center"), where);
+    const FenceCircle circle{
+        centre, checked_radius_m(number(member(c, "radius"), where, ": radius"), centre, where)};
     (member(circles[i], "inclusion") == false ? m.exclusion_circles : m.inclusion_circles)
         .push_back(circle);
   }
@@ -514,9 +526,11 @@ void add_wpl_fences(Mission& mission, const std::string& text, const std::string
         ring.clear();
       }
     } else if (r.command == cmd(Cmd::nav_fence_circle_inclusion)) {
-      mission.inclusion_circles.push_back({g, r.params[0]});
+      mission.inclusion_circles.push_back(
+          {g, checked_radius_m(r.params[0], g, r.where(source) + ": fence circle")});
     } else if (r.command == cmd(Cmd::nav_fence_circle_exclusion)) {
-      mission.exclusion_circles.push_back({g, r.params[0]});
+      mission.exclusion_circles.push_back(
+          {g, checked_radius_m(r.params[0], g, r.where(source) + ": fence circle")});
     } else if (r.command == cmd(Cmd::nav_rally_point)) {
       mission.rally_points.push_back(g);
     } else {

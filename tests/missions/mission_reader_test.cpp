@@ -244,6 +244,18 @@ TEST(MissionReaders, RefusedPositionsAndNumbersNameTheirPlace) {
   EXPECT_EQ(fence_message("QGC WPL 110\n5100\t0\t3\t5100\t0\t0\t0\t0\t47\t8\t0\t1\n"
                           "16\t0\t3\t16\t0\t0\t0\t0\t47\t8\t0\t1\n"),
             "fence.waypoints: line 3: command 16 is no fence vertex, fence circle or rally point");
+  // A fence circle of no radius, or a negative or missing one, is refused naming it and the key.
+  const std::string fence_head =
+      R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0], "items": []}, )"
+      R"("geoFence": {"circles": [{"inclusion": false, "circle": {"center": [47.5, 8.25])";
+  EXPECT_EQ(message(fence_head + R"(, "radius": -5}}]}})", "n.plan"),
+            "n.plan: geoFence circle 1 at 47.5, 8.25: radius -5 m must be above 0");
+  EXPECT_EQ(message(fence_head + R"(, "radius": 0}}]}})", "z.plan"),
+            "z.plan: geoFence circle 1 at 47.5, 8.25: radius 0 m must be above 0");
+  EXPECT_EQ(message(fence_head + R"(}}]}})", "m.plan"),
+            "m.plan: geoFence circle 1: radius must be a number");
+  EXPECT_EQ(fence_message("QGC WPL 110\n5004\t0\t3\t5004\t-3\t0\t0\t0\t47\t8\t0\t1\n"),
+            "fence.waypoints: line 2: fence circle at 47, 8: radius -3 m must be above 0");
   const std::string plan_head =
       R"({"fileType": "Plan", "mission": {"plannedHomePosition": [47, 8, 0], "items": [)"
       R"({"type": "SimpleItem", "command": 16, "frame": 3, "params": [0, 0, 0, null, 47, )";
