@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <memory>
+#include <optional>
 #include <pugixml.hpp>
 
 #include "dji_kmz.hpp"
@@ -68,45 +70,10 @@ Item command(Cmd c, double p1, double p2, const std::string& where) {
   return item;
 }
 
-}  // namespace
-
-Mission parse_dji_kmz(const std::string& bytes, const std::string& source) {
-  const std::string wpml = zip_entry(bytes, "wpmz/waylines.wpml", source);
-  pugi::xml_document doc;
-  if (!doc.load_string(wpml.c_str())) throw InputError(source + ": wpmz/waylines.wpml is not XML");
-  const pugi::xml_node document = doc.child("kml").child("Document");
-  const pugi::xml_node folder = document.child("Folder");
-  const std::string in = source + ": waylines.wpml";
-  const int frame = frame_of(folder.child("wpml:executeHeightMode").text().get(), in);
-  Mission m;
-  m.source = source;
-  m.format = "DJI WPML";
-  std::vector<std::pair<std::size_t, std::size_t>> index;  // placemark -> items position
-  double speed = -1;
-  for (const pugi::xml_node& p : folder.children("Placemark")) {
-    const std::string where = in + ": waypoint " + std::to_string(index.size());
-    double lon = 0, lat = 0;
-    if (std::sscanf(p.child("Point").child("coordinates").text().get(), " %lf , %lf", &lon, &lat) !=
-            2 ||
-        !(std::abs(lat) <= 90 && std::abs(lon) <= 180))
-      throw InputError(where + ": coordinates must be 'longitude,latitude'");
-    if (index.empty()) m.home = {lat, lon, 0.0};  // DJI flies from where the aircraft stands
-    const double v = number(p, "wpml:waypointSpeed", where);
-    if (v > 0 && v != speed) m.items.push_back(command(Cmd::do_change_speed, 1, speed = v, where));
-    Item w;
-    w.command = static_cast<int>(Cmd::nav_waypoint);
-    w.frame = frame;
-    w.altitude_frame = frame == 3   ? AltitudeFrame::relative
-                       : frame == 0 ? AltitudeFrame::amsl
-                                    : AltitudeFrame::terrain;
-    w.position = {lat, lon, 0.0};
-    w.altitude_m = number(p, "wpml:executeHeight", where);
-    w.place = where;
-    m.items.push_back(w);
-    index.push_back({index.size(), m.items.size()});
-  }
-  if (index.empty()) throw InputError(in + ": no Placemark (waypoint)");
-  // Photos every distance or interval from a group's first waypoint to its last.
+// Photos every distance or interval from a group's first waypoint to its last; `index` holds,
+// for each of the wayline's waypoints, the position in m.items just after it.
+void add_triggers(const pugi::xml_node& folder, const std::string& in,
+                  const std::vector<std::size_t>& index, Mission& m) {
   std::vector<std::pair<std::size_t, Item>> inserts;
   for (const pugi::xml_node& p : folder.children("Placemark"))
     for (const pugi::xml_node& g : p.children("wpml:actionGroup")) {
@@ -120,10 +87,10 @@ Mission parse_dji_kmz(const std::string& bytes, const std::string& source) {
       if (!(start >= 0 && end >= start && end < static_cast<double>(index.size())))
         throw InputError(where + ": its waypoint indices are out of range");
       const bool distance = type == "multipleDistance";
-      inserts.push_back({index[static_cast<std::size_t>(start)].second,
+      inserts.push_back({index[static_cast<std::size_t>(start)],
                          distance ? command(Cmd::do_set_cam_trigg_dist, value, 0, where)
                                   : command(Cmd::image_start_capture, 0, value, where)});
-      inserts.push_back({index[static_cast<std::size_t>(end)].second,
+      inserts.push_back({index[static_cast<std::size_t>(end)],
                          distance ? command(Cmd::do_set_cam_trigg_dist, 0, 0, where)
                                   : command(Cmd::image_stop_capture, 0, 0, where)});
     }
@@ -131,10 +98,98 @@ Mission parse_dji_kmz(const std::string& bytes, const std::string& source) {
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto it = inserts.rbegin(); it != inserts.rend(); ++it)
     m.items.insert(m.items.begin() + static_cast<std::ptrdiff_t>(it->first), it->second);
-  const std::string finish =
-      document.child("wpml:missionConfig").child("wpml:finishAction").text().get();
+}
+
+// A missionConfig height (metres above the take-off point) when the file gives one.
+std::optional<double> config_height_m(const pugi::xml_node& config, const char* name,
+                                      const std::string& in) {
+  if (config.child(name).empty()) return std::nullopt;
+  const double h = number(config, name, in + ": missionConfig");
+  if (h < 0)
+    throw InputError(in + ": missionConfig: wpml:" + std::string(name).substr(5) + " " +
+                     base::shortest_text(h) + " m is below the take-off point");
+  return h;
+}
+
+// One wayline (a Folder) appended to `m`: its waypoints, speeds and photo triggers. `speed` is
+// the speed in force, carried from one wayline to the next as the aircraft flies them in turn.
+void add_wayline(const pugi::xml_node& folder, const std::string& in, Mission& m, double& speed) {
+  const int frame = frame_of(folder.child("wpml:executeHeightMode").text().get(), in);
+  std::vector<std::size_t> index;  // placemark -> items position
+  for (const pugi::xml_node& p : folder.children("Placemark")) {
+    const std::string where = in + ": waypoint " + std::to_string(index.size());
+    double lon = 0, lat = 0;
+    if (std::sscanf(p.child("Point").child("coordinates").text().get(), " %lf , %lf", &lon, &lat) !=
+            2 ||
+        !(std::abs(lat) <= 90 && std::abs(lon) <= 180))
+      throw InputError(where + ": coordinates must be 'longitude,latitude'");
+    const double v = number(p, "wpml:waypointSpeed", where);
+    if (v > 0 && v != speed) m.items.push_back(command(Cmd::do_change_speed, 1, speed = v, where));
+    Item w;
+    w.command = static_cast<int>(Cmd::nav_waypoint);
+    w.frame = frame;
+    w.altitude_frame = frame == 3   ? AltitudeFrame::relative
+                       : frame == 0 ? AltitudeFrame::amsl
+                                    : AltitudeFrame::terrain;
+    w.position = {lat, lon, 0.0};
+    w.altitude_m = number(p, "wpml:executeHeight", where);
+    w.place = where;
+    m.items.push_back(w);
+    index.push_back(m.items.size());
+  }
+  if (index.empty()) throw InputError(in + ": no Placemark (waypoint)");
+  add_triggers(folder, in, index, m);
+}
+
+// The aircraft climbs to the take-off security height over its take-off point before it flies to
+// the first waypoint, however low that is: a NAV_TAKEOFF there, in place (0, 0: where it is).
+void add_take_off(const pugi::xml_node& config, const std::string& in, Mission& m) {
+  const auto climb_m = config_height_m(config, "wpml:takeOffSecurityHeight", in);
+  if (!climb_m) return;
+  Item take_off = command(Cmd::nav_takeoff, 0, 0, in + ": takeOffSecurityHeight");
+  take_off.frame = 3;
+  take_off.altitude_frame = AltitudeFrame::relative;
+  take_off.altitude_m = *climb_m;
+  const auto first = std::find_if(m.items.begin(), m.items.end(), [](const Item& item) {
+    return item.command == static_cast<int>(Cmd::nav_waypoint);
+  });
+  m.items.insert(first, take_off);
+}
+
+}  // namespace
+
+Mission parse_dji_kmz(const std::string& bytes, const std::string& source) {
+  const std::string wpml = zip_entry(bytes, "wpmz/waylines.wpml", source);
+  pugi::xml_document doc;
+  if (!doc.load_string(wpml.c_str())) throw InputError(source + ": wpmz/waylines.wpml is not XML");
+  const pugi::xml_node document = doc.child("kml").child("Document");
+  const pugi::xml_node config = document.child("wpml:missionConfig");
+  const std::string in = source + ": waylines.wpml";
+  Mission m;
+  m.source = source;
+  m.format = "DJI WPML";
+  const std::size_t waylines = static_cast<std::size_t>(
+      std::distance(document.children("Folder").begin(), document.children("Folder").end()));
+  // Each Folder is a wayline; the aircraft flies them one after another, in the file's order.
+  double speed = -1;
+  std::size_t k = 0;
+  for (const pugi::xml_node& folder : document.children("Folder")) {
+    add_wayline(folder, waylines > 1 ? in + ": wayline " + std::to_string(k) : in, m, speed);
+    ++k;
+  }
+  if (waylines == 0) throw InputError(in + ": no Folder (wayline)");
+  // DJI flies from where the aircraft stands: taken as the first waypoint.
+  for (const Item& item : m.items)
+    if (item.command == static_cast<int>(Cmd::nav_waypoint)) {
+      m.home = item.position;
+      break;
+    }
+  add_take_off(config, in, m);
+  const std::string finish = config.child("wpml:finishAction").text().get();
   m.items.push_back(command(finish == "autoLand" ? Cmd::nav_land : Cmd::nav_return_to_launch, 0, 0,
                             in + ": finishAction " + finish));
+  // goHome climbs to the RTH height when below it (DJI's return to home).
+  m.return_altitude_m = config_height_m(config, "wpml:globalRTHHeight", in);
   return m;
 }
 

@@ -7,11 +7,14 @@
 
 namespace swath::missions {
 
-/// wpmz/waylines.wpml of a KMZ: each Placemark a waypoint at wpml:executeHeight in the Folder's
+/// wpmz/waylines.wpml of a KMZ: every Folder a wayline, flown one after another in the file's
+/// order; each Placemark a waypoint at wpml:executeHeight in its Folder's
 /// executeHeightMode (relativeToStartPoint: above home; WGS84: read as above mean sea level;
 /// realTimeFollowSurface: above the ground), its wpml:waypointSpeed, multipleDistance and
 /// multipleTiming action groups as triggering from their first waypoint to their last, and
-/// finishAction (goHome: return to launch; autoLand: land). Home is the first waypoint.
+/// finishAction (goHome: return to launch at globalRTHHeight, Mission::return_altitude_m;
+/// autoLand: land). Home is the first waypoint; takeOffSecurityHeight is a NAV_TAKEOFF in place
+/// before it.
 Mission parse_dji_kmz(const std::string& bytes, const std::string& source);
 
 }  // namespace swath::missions

@@ -322,7 +322,7 @@ class PathBuilder {
   }
 
   void return_to_launch(const std::string& place) {
-    const double z = std::max(at_.z_m, model_.rtl_altitude_m);
+    const double z = std::max(at_.z_m, mission_.return_altitude_m.value_or(model_.rtl_altitude_m));
     leg({at_.x, at_.y, z}, LegKind::rtl, place);
     leg({path_.home.x, path_.home.y, z}, LegKind::rtl, place);
     leg(path_.home, LegKind::descent, place);

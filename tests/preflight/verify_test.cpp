@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../../missions/src/zip_archive.hpp"
 #include "../../preflight/src/checks.hpp"
 #include "local_field.hpp"
 #include "meadow_survey.hpp"
@@ -256,6 +257,65 @@ TEST(Verify, AnInclusionCircleBesideAPolygonMustHoldToo) {
   EXPECT_NEAR(v->amount, std::hypot(105.0, 20.0) - 60.0, 1e-3);
   EXPECT_NE(v->text.find("m outside a.waypoints's inclusion circle 1"), std::string::npos)
       << v->text;
+}
+
+// A DJI KMZ of waylines (Folders) of points in local metres around kOrigin, each point 40 m above
+// the take-off point, its missionConfig climbing to `take_off_m` first and returning home at
+// `rth_m` (finishAction goHome).
+std::string kmz(const std::vector<std::vector<geometry::Point2>>& waylines, double take_off_m,
+                double rth_m) {
+  const geometry::LocalFrame frame(kOrigin);
+  std::string xml =
+      R"(<?xml version="1.0" encoding="UTF-8"?><kml xmlns="http://www.opengis.net/kml/2.2" )"
+      R"(xmlns:wpml="http://www.dji.com/wpmz/1.0.2"><Document><wpml:missionConfig>)"
+      "<wpml:finishAction>goHome</wpml:finishAction><wpml:takeOffSecurityHeight>" +
+      base::shortest_text(take_off_m) + "</wpml:takeOffSecurityHeight><wpml:globalRTHHeight>" +
+      base::shortest_text(rth_m) + "</wpml:globalRTHHeight></wpml:missionConfig>";
+  for (const auto& wayline : waylines) {
+    xml += "<Folder><wpml:executeHeightMode>relativeToStartPoint</wpml:executeHeightMode>";
+    for (const geometry::Point2& p : wayline) {
+      const geometry::GeoPoint g = frame.to_geo(p);
+      xml += "<Placemark><Point><coordinates>" + base::fixed_text(g.lon_deg, 9) + "," +
+             base::fixed_text(g.lat_deg, 9) +
+             "</coordinates></Point><wpml:executeHeight>40</wpml:executeHeight>"
+             "<wpml:waypointSpeed>5</wpml:waypointSpeed></Placemark>";
+    }
+    xml += "</Folder>";
+  }
+  return missions::zip_archive({{"wpmz/waylines.wpml", xml + "</Document></kml>"}});
+}
+
+DroneFile kmz_drone(const std::string& bytes) {
+  return {missions::parse_mission(bytes, "k.kmz"), 0, ""};
+}
+
+TEST(Verify, EveryWaylineOfAKmzIsFlownInTurn) {
+  // The second wayline (Folder) goes north through a pond the first never comes near.
+  CheckOptions o;
+  o.zones = {{"pond", square(90, 40, 110, 60)}};
+  const std::string two = kmz({{{0, 0}, {100, 0}}, {{100, 0}, {100, 100}}}, 20, 40);
+  const Report r = verify({kmz_drone(two)}, o);
+  const Violation* v = find(r, "no-fly zone");
+  ASSERT_NE(v, nullptr) << report_text(r);
+  EXPECT_NE(v->place.find("k.kmz: waylines.wpml: wayline 1: waypoint 1"), std::string::npos)
+      << v->place;
+  EXPECT_EQ(find(verify({kmz_drone(kmz({{{0, 0}, {100, 0}}}, 20, 40))}, o), "no-fly zone"),
+            nullptr);
+}
+
+TEST(Verify, AKmzClimbsToItsTakeOffSecurityHeightAndReturnsAtItsRthHeight) {
+  const std::vector<std::vector<geometry::Point2>> line = {{{0, 0}, {100, 0}}};
+  EXPECT_EQ(find(verify({kmz_drone(kmz(line, 20, 60))}, {}), "ceiling"), nullptr);
+  const Report climb = verify({kmz_drone(kmz(line, 200, 60))}, {});
+  const Violation* v = find(climb, "ceiling");
+  ASSERT_NE(v, nullptr) << report_text(climb);
+  EXPECT_NEAR(v->amount, 80.0, 1e-6);  // 200 m against the 120 m ceiling
+  EXPECT_NE(v->place.find("takeOffSecurityHeight"), std::string::npos) << v->place;
+  const Report rth = verify({kmz_drone(kmz(line, 20, 200))}, {});
+  v = find(rth, "ceiling");
+  ASSERT_NE(v, nullptr) << report_text(rth);
+  EXPECT_NEAR(v->amount, 80.0, 1e-6);
+  EXPECT_NE(v->place.find("finishAction goHome"), std::string::npos) << v->place;
 }
 
 // A ring of `n` points on a 200 m circle about (50, 10): it holds the whole survey flight.

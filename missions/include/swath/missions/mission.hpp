@@ -61,6 +61,9 @@ struct Mission {
   /// A fixed wing (a QGC plan's vehicleType 1): it flies through its waypoints on turns of its
   /// radius and never stops at them, so no stopping margin is drawn past them.
   bool fixed_wing = false;
+  /// The file's own return-to-launch height above home (a DJI KMZ's globalRTHHeight): a return
+  /// climbs to it when lower, as with FlightModel::rtl_altitude_m, which it replaces.
+  std::optional<double> return_altitude_m;
 };
 
 /// Is this MAV_CMD a position the vehicle flies to (waypoint, take-off, land, loiter)?

@@ -19,7 +19,8 @@
 //   edge and round it (a polygon whose sides touch the circle, so it contains it) its whole turns.
 //   Commands that move nothing (camera, gimbal, ROI, yaw) are passed over; any other command is
 //   refused: its flight is not known, so nothing about it can be said to hold.
-// - RETURN_TO_LAUNCH climbs to max(current, RTL altitude) (ArduCopter RTL_ALT, 15 m), flies home
+// - RETURN_TO_LAUNCH climbs to max(current, RTL altitude) (ArduCopter RTL_ALT, 15 m; the file's
+//   own, Mission::return_altitude_m, when it gives one: a DJI KMZ's globalRTHHeight), flies home
 //   and descends; a mission that ends without RTL or LAND is given one (the vehicle would loiter
 //   there until the pilot or the battery failsafe brings it home: checking the way home is safer
 //   than ignoring it).
