@@ -430,10 +430,21 @@ std::size_t choose_area(const std::vector<LayerArea>& areas, const FieldReadOpti
                      "); choose one with --feature NAME or INDEX");
   }
   const std::string& want = *options.feature;
-  std::size_t chosen = 0;
-  bool found = false;
+  std::vector<std::size_t> named;
   for (const LayerArea& c : areas)
-    if (c.name == want) chosen = c.index, found = true;
+    if (c.name == want) named.push_back(c.index);
+  // Google Earth names every new polygon "Untitled Polygon": a name that several areas share
+  // does not say which one is meant, and planning the last of them plans the wrong field.
+  if (named.size() > 1) {
+    std::vector<std::string> positions;
+    for (std::size_t i : named) positions.push_back(std::to_string(i));
+    throw InputError(source + ": " + std::to_string(named.size()) + " areas of layer \"" +
+                     layer_name + "\" are named \"" + want + "\" (positions " +
+                     names_list(positions) +
+                     "); give the position (0-based) instead, e.g. --feature " + positions[0]);
+  }
+  std::size_t chosen = named.empty() ? 0 : named[0];
+  bool found = !named.empty();
   if (!found && !want.empty() && std::all_of(want.begin(), want.end(), ::isdigit) &&
       want.size() < 9 && std::stoul(want) < areas.size())
     chosen = std::stoul(want), found = true;

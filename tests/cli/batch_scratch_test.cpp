@@ -165,5 +165,31 @@ TEST(BatchScratch, ADirectorysJobsAreThoseGdalListsForEachFileAlone) {
   EXPECT_NE(all.out.find("--feature 1"), std::string::npos);  // some file holds several
 }
 
+// Two areas of one name (Google Earth names every new polygon "Untitled Polygon") are planned
+// into distinct sub-directories, each with --feature its position.
+TEST(BatchScratch, AreasOfOneNameGetDistinctDirectories) {
+  const std::string dir = fresh_dir("batch-dupnames");
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/dupnames.geojson";
+  const auto at = [](double lon) {
+    return R"({"type": "Polygon", "coordinates": [)" + square(lon, 47.3) + "]}";
+  };
+  std::ofstream(file) << collection(
+      {feature("Untitled Polygon", at(8.5)), feature("Untitled Polygon", at(8.51))});
+  const CliRun run = run_swath("batch " + file + " -o " + dir + "/out --emit-jobs" +
+                               " --camera sony-ilce-qx1 --altitude 60");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream lines(run.out);
+  std::vector<std::string> jobs;
+  for (std::string line; std::getline(lines, line);) jobs.push_back(line);
+  ASSERT_EQ(jobs.size(), 2u) << run.out;
+  const std::vector<std::string> dirs{"Untitled_Polygon", "Untitled_Polygon-2"};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string tail = " -o " + dir + "/out/" + dirs[i];
+    EXPECT_NE(jobs[i].find("--feature " + std::to_string(i) + " "), std::string::npos) << jobs[i];
+    EXPECT_EQ(jobs[i].substr(jobs[i].size() - std::min(tail.size(), jobs[i].size())), tail);
+  }
+}
+
 }  // namespace
 }  // namespace swath::test

@@ -1,6 +1,9 @@
 // `swath classify`: this input gives this output, and these bad inputs give these messages.
 #include <gtest/gtest.h>
+
 #include <GeographicLib/PolygonArea.hpp>
+#include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -108,6 +111,43 @@ TEST(ClassifyCli, TextReportGivesTheSameFigures) {
           "the outer ring's edge 0-1 meets the outer ring's edge 2-3 at 48.1382500, 11.5770000"),
       std::string::npos)
       << bowtie.out;
+}
+
+// Google Earth names every new polygon "Untitled Polygon": a name that several areas share is
+// refused naming their positions (it planned the last of them), and a position chooses one.
+TEST(ClassifyCli, ANameSharedByAreasIsRefusedNamingTheirPositions) {
+  const std::string dir = fresh_dir("classify-dupnames");
+  std::filesystem::create_directories(dir);
+  const std::string triangle = "8.5401,47.39702 8.54452,47.39741 8.54498,47.39935 8.5401,47.39702";
+  const std::string second = "8.5501,47.39702 8.55452,47.39741 8.55498,47.39935 8.5501,47.39702";
+  const auto placemark = [](const std::string& ring) {
+    return "<Placemark><name>Untitled Polygon</name><Polygon><outerBoundaryIs><LinearRing>"
+           "<coordinates>" +
+           ring + "</coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark>";
+  };
+  std::ofstream(dir + "/untitled.kml")
+      << R"(<?xml version="1.0"?><kml xmlns="http://www.opengis.net/kml/2.2"><Document>)" +
+             placemark(triangle) + placemark(second) + placemark(triangle) + "</Document></kml>";
+  const std::string file = dir + "/untitled.kml";
+  {
+    const CliRun run = run_swath("classify " + file + " --feature 'Untitled Polygon'");
+    EXPECT_EQ(run.exit_code, 2) << run.out;
+    EXPECT_NE(run.err.find(file + ": 3 areas of layer \"untitled\" are named \"Untitled "
+                                  "Polygon\" (positions 0, 1, 2); give the position (0-based) "
+                                  "instead, e.g. --feature 0"),
+              std::string::npos)
+        << run.err;
+    const json chosen = classify_json(file + " --feature 1");
+    EXPECT_NEAR(chosen["centroid"]["lon_deg"].get<double>(), 8.5532, 1e-3);
+  }
+  const std::string out = dir + "/plan";
+  const CliRun plan = run_swath("plan " + dir + "/untitled.kml --feature 'Untitled Polygon' " +
+                                "--camera sony-ilce-qx1 --altitude 60 -o " + out);
+  EXPECT_EQ(plan.exit_code, 2) << plan.err;
+  EXPECT_NE(plan.err.find("(positions 0, 1, 2); give the position (0-based) instead"),
+            std::string::npos)
+      << plan.err;
+  EXPECT_FALSE(std::filesystem::exists(out) && !std::filesystem::is_empty(out));
 }
 
 TEST(ClassifyCli, SameInputSameBytes) {
