@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -321,11 +322,35 @@ class PathBuilder {
     leg({p.x, p.y, heights_.above_home_m(item)}, LegKind::cruise, item.place);
   }
 
+  // Where RTL flies from here: ArduPilot's AP_Rally::calc_best_rally_or_home_location with its
+  // defaults, the nearest rally point if it lies within RALLY_LIMIT_KM (ArduCopter 0.3 km,
+  // ArduPlane 5 km), home instead where home is nearer and RALLY_INCL_HOME is set (ArduCopter 1,
+  // ArduPlane 0). Other autopilots' files are flown home.
+  geometry::Point2 return_point_xy() const {
+    const geometry::Point2 home = path_.home.xy();
+    if (mission_.autopilot != missions::Autopilot::ardupilot || mission_.rally_points.empty())
+      return home;
+    const double limit_m = mission_.fixed_wing ? 5000.0 : 300.0;
+    const bool include_home = !mission_.fixed_wing;
+    const auto distance_m = [&](geometry::Point2 p) {
+      return std::hypot(p.x - at_.x, p.y - at_.y);
+    };
+    std::optional<geometry::Point2> nearest;
+    for (const geometry::GeoPoint& r : mission_.rally_points) {
+      const geometry::Point2 p = frame_.to_local(r);
+      if (!nearest || distance_m(p) < distance_m(*nearest)) nearest = p;
+    }
+    if (distance_m(*nearest) > limit_m) return home;
+    if (include_home && distance_m(home) < distance_m(*nearest)) return home;
+    return *nearest;
+  }
+
   void return_to_launch(const std::string& place) {
     const double z = std::max(at_.z_m, mission_.return_altitude_m.value_or(model_.rtl_altitude_m));
+    const geometry::Point2 to = return_point_xy();
     leg({at_.x, at_.y, z}, LegKind::rtl, place);
-    leg({path_.home.x, path_.home.y, z}, LegKind::rtl, place);
-    leg(path_.home, LegKind::descent, place);
+    leg({to.x, to.y, z}, LegKind::rtl, place);
+    leg({to.x, to.y, 0.0}, LegKind::descent, place);
     ended_ = true;
   }
 

@@ -246,6 +246,70 @@ TEST(VerifyCli, ASecondInclusionFenceOverPartOfTheFlightIsBreachedUnlessAUnion) 
   EXPECT_EQ(run_swath("verify " + dir + "/px4.plan --fence-union").exit_code, 4);
 }
 
+// An ArduPilot plan of two waypoints ending in RTL, its rally point 89 m south of the last one
+// (home 130 m west-south-west of it), with `firmware` its firmwareType.
+std::string rally_plan(int firmware, double rally_lat_deg) {
+  const auto item = [](int command, int id, double lat, double lon) {
+    return json{{"autoContinue", true},
+                {"command", command},
+                {"doJumpId", id},
+                {"frame", 3},
+                {"params", {0, 0, 0, nullptr, lat, lon, 40}},
+                {"type", "SimpleItem"}};
+  };
+  const json plan = {
+      {"fileType", "Plan"},
+      {"groundStation", "QGroundControl"},
+      {"version", 1},
+      {"geoFence", {{"circles", json::array()}, {"polygons", json::array()}, {"version", 2}}},
+      {"rallyPoints", {{"points", {{rally_lat_deg, 8.5445, 20}}}, {"version", 2}}},
+      {"mission",
+       {{"cruiseSpeed", 15},
+        {"firmwareType", firmware},
+        {"globalPlanAltitudeMode", 1},
+        {"hoverSpeed", 5},
+        {"plannedHomePosition", {47.39685, 8.5428, 488.0}},
+        {"vehicleType", 2},
+        {"version", 2},
+        {"items",
+         {item(22, 1, 47.39685, 8.5428), item(16, 2, 47.3975, 8.543), item(16, 3, 47.3975, 8.5445),
+          item(20, 4, 0, 0)}}}}};
+  return plan.dump();
+}
+
+TEST(VerifyCli, ArduPilotsRtlFliesToTheNearestRallyPointWithinItsLimit) {
+  const std::string dir = fresh_dir("swath-verify-rally");
+  std::filesystem::create_directories(dir);
+  // A 7.5 m zone on the way from the last waypoint to the rally point, 30 m north of it.
+  write(dir + "/zone.geojson",
+        R"({"type": "Polygon", "coordinates": [[[8.54445, 47.39705], [8.54455, 47.39705], )"
+        R"([8.54455, 47.39715], [8.54445, 47.39715], [8.54445, 47.39705]]]})");
+  write(dir + "/rally.plan", rally_plan(3, 47.3967));
+  const CliRun run =
+      run_swath("verify " + dir + "/rally.plan --exclude " + dir + "/zone.geojson --json");
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  const json report = json::parse(run.out);
+  ASSERT_FALSE(report["violations"].empty()) << run.out;
+  for (const json& v : report["violations"]) {
+    EXPECT_EQ(v["check"], "no-fly zone") << v["text"];
+    // The RTL item's leg to the rally point, entering the zone's south side.
+    EXPECT_NE(
+        v["text"].get<std::string>().find("rally.plan: item 4 enters " + dir + "/zone.geojson"),
+        std::string::npos)
+        << v["text"];
+    EXPECT_NEAR(v["lon_deg"].get<double>(), 8.5445, 1e-6) << v["text"];
+    EXPECT_LT(v["lat_deg"].get<double>(), 47.39715) << v["text"];
+  }
+  // A rally point beyond RALLY_LIMIT_KM (0.3 km from the vehicle): home.
+  write(dir + "/far.plan", rally_plan(3, 47.3945));
+  EXPECT_EQ(run_swath("verify " + dir + "/far.plan --exclude " + dir + "/zone.geojson").exit_code,
+            0);
+  // Home nearer than the rally point (RALLY_INCL_HOME): home.
+  write(dir + "/nearer.plan", rally_plan(3, 47.3960));
+  EXPECT_EQ(
+      run_swath("verify " + dir + "/nearer.plan --exclude " + dir + "/zone.geojson").exit_code, 0);
+}
+
 // Four 16-gons of 8 m radius inside the meadow: with the area's fence, more than ArduPilot stores.
 std::string sixteen_gon_zones() {
   json features = json::array();
