@@ -345,8 +345,15 @@ class PathBuilder {
     return *nearest;
   }
 
+  // The height RTL climbs to: PX4's RTL_RETURN_ALT default, 60 m (navigator/rtl_params.c; its
+  // cone, RTL_CONE_ANG, lowers it near home: the highest it climbs), else the model's RTL_ALT.
+  double rtl_altitude_m() const {
+    constexpr double kPx4ReturnAlt_m = 60.0;
+    return mission_.autopilot == missions::Autopilot::px4 ? kPx4ReturnAlt_m : model_.rtl_altitude_m;
+  }
+
   void return_to_launch(const std::string& place) {
-    const double z = std::max(at_.z_m, mission_.return_altitude_m.value_or(model_.rtl_altitude_m));
+    const double z = std::max(at_.z_m, mission_.return_altitude_m.value_or(rtl_altitude_m()));
     const geometry::Point2 to = return_point_xy();
     leg({at_.x, at_.y, z}, LegKind::rtl, place);
     leg({to.x, to.y, z}, LegKind::rtl, place);

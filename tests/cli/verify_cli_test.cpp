@@ -310,6 +310,23 @@ TEST(VerifyCli, ArduPilotsRtlFliesToTheNearestRallyPointWithinItsLimit) {
       run_swath("verify " + dir + "/nearer.plan --exclude " + dir + "/zone.geojson").exit_code, 0);
 }
 
+// PX4's RTL climbs to RTL_RETURN_ALT, 60 m by default; ArduCopter's to RTL_ALT, 15 m.
+TEST(VerifyCli, APx4FilesReturnClimbsToPx4sReturnAltitude) {
+  const std::string dir = fresh_dir("swath-verify-px4-rtl");
+  std::filesystem::create_directories(dir);
+  write(dir + "/px4.plan", rally_plan(12, 47.3967));
+  const CliRun px4 = run_swath("verify " + dir + "/px4.plan --ceiling 50 --json");
+  EXPECT_EQ(px4.exit_code, 4) << px4.out;
+  const json report = json::parse(px4.out);
+  ASSERT_EQ(report["violations"].size(), 1u) << px4.out;
+  const json& v = report["violations"][0];
+  EXPECT_EQ(v["check"], "ceiling") << v["text"];
+  EXPECT_NEAR(v["amount"].get<double>(), 10.0, 1e-6) << v["text"];  // 60 m against 50 m
+  EXPECT_NE(v["text"].get<std::string>().find("px4.plan: item 4"), std::string::npos) << v["text"];
+  write(dir + "/ardupilot.plan", rally_plan(3, 47.3967));
+  EXPECT_EQ(run_swath("verify " + dir + "/ardupilot.plan --ceiling 50").exit_code, 0);
+}
+
 // Four 16-gons of 8 m radius inside the meadow: with the area's fence, more than ArduPilot stores.
 std::string sixteen_gon_zones() {
   json features = json::array();
