@@ -269,8 +269,8 @@ void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, bo
       return fences_margin({{p.x, p.y, 0}, {q.x, q.y, 0}, piece.place, piece.overrun}, fences,
                            any_one);
     };
-    const TrackDistance t = least_along_track(track, piece, chord, 0.0,
-                                              [&](Point2 p, Point2 q) { return margin(p, q).first; });
+    const TrackDistance t = least_along_track(
+        track, piece, chord, 0.0, [&](Point2 p, Point2 q) { return margin(p, q).first; });
     const SegmentDistance& m = t.least;
     // The fence left: the straight leg's, or the one the track is farthest out of where it is.
     const std::size_t fence = t.bow_m > 0 ? margin(m.at, m.at).second : chord_fence;
