@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace swath::geometry {
@@ -47,8 +48,9 @@ double AutopilotTrack::bow_bound_m(Point2 a, Point2 b) const {
   constexpr double kEarthRadius_m = 6.35e6;  // the least radius of curvature, rounded down
   const double length_m = distance(a, b);
   const double far_m = std::max(distance(a, home_), distance(b, home_));
-  const double reach_deg =
-      std::min(89.5, std::abs(origin_.lat_deg) + far_m / kEarthRadius_m / kRadiansPerDegree);
+  const double reach_deg = std::abs(origin_.lat_deg) + far_m / kEarthRadius_m / kRadiansPerDegree;
+  // Near a pole the track may bend most away from its middle, and no bound is kept: measured.
+  if (reach_deg > kNearPole_deg) return std::numeric_limits<double>::infinity();
   const double curvature =
       2 * (std::tan(reach_deg * kRadiansPerDegree) + 1 + far_m / kEarthRadius_m) / kEarthRadius_m;
   return 4 * curvature * length_m * length_m / 8;
@@ -57,10 +59,24 @@ double AutopilotTrack::bow_bound_m(Point2 a, Point2 b) const {
 double AutopilotTrack::bow_m(Point2 a, Point2 b) const {
   if (a == b) return 0.0;
   const Point2 chord_middle = (a + b) * 0.5;
+  const double far_m = std::max(distance(a, home_), distance(b, home_));
+  const bool near_pole =
+      std::abs(origin_.lat_deg) + far_m / 6.35e6 / kRadiansPerDegree > kNearPole_deg;
   double bow = 0.0;
   for (const int model : {0, 1}) {
-    const Point2 middle = (to_autopilot(a, model) + to_autopilot(b, model)) * 0.5;
-    bow = std::max(bow, distance(from_autopilot(middle, model), chord_middle));
+    const Point2 from = to_autopilot(a, model), to = to_autopilot(b, model);
+    if (!near_pole) {  // a bow like a parabola's: farthest at the middle
+      bow = std::max(bow, distance(from_autopilot((from + to) * 0.5, model), chord_middle));
+      continue;
+    }
+    // Near a pole the track can bend most elsewhere (a meridian's turn): the farthest of 63
+    // points along it from the chord.
+    for (int k = 1; k < 64; ++k) {
+      const Point2 p = from_autopilot(from + (to - from) * (k / 64.0), model);
+      const Point2 d = b - a;
+      const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+      bow = std::max(bow, distance(p, a + d * t));
+    }
   }
   return bow;
 }

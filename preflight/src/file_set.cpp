@@ -147,10 +147,19 @@ std::size_t check_twin(const missions::Mission& plan, const Twin& twin,
       problem = waypoint_name(b[k], k + 1) + " flies at " + fixed_text(b[k].above_home_m, 2) +
                 " m above home, the .plan's at " + fixed_text(a[k].above_home_m, 2) + " m";
   }
+  // The one row a Litchi or DJI file may add is its landing at home, nowhere else.
+  const bool lands_at_home = litchi && b.size() == a.size() + 1 &&
+                             geometry::geodesic_distance_m(b.back().at, plan.home) <= 0.01;
+  if (problem.empty() && litchi && b.size() == a.size() + 1 && !lands_at_home) {
+    in = b.back().file;
+    problem = waypoint_name(b.back(), b.size()) + ", past the .plan's last, lies " +
+              fixed_text(geometry::geodesic_distance_m(b.back().at, plan.home), 2) +
+              " m from its home (only a landing at home may be added)";
+  }
   if (!problem.empty()) {
     report.violations.push_back({"agreement", in->source, std::nullopt, 0.0,
                                  in->source + " differs from " + plan.source + ": " + problem});
-  } else if (a.size() != b.size() && !(litchi && b.size() == a.size() + 1)) {
+  } else if (a.size() != b.size() && !lands_at_home) {
     report.violations.push_back({"agreement", twin.parts.front().source, std::nullopt, 0.0,
                                  twin_name(twin) + " from " + plan.source + ": " +
                                      std::to_string(b.size()) + " waypoints, the .plan " +

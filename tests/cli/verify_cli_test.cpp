@@ -58,6 +58,33 @@ TEST(VerifyCli, CatchesATwinThatDiffersFromItsPlan) {
       << run.out;
 }
 
+// A Litchi twin may add one last row: its landing at home. A row added anywhere else (here 5 km
+// off at 400 m) is a disagreement; a Litchi twin is compared with its .plan, not flown.
+TEST(VerifyCli, ALitchiTwinsExtraRowMustBeItsLandingAtHome) {
+  const std::string dir = fresh_dir("swath-verify-litchi-row");
+  ASSERT_EQ(run_swath("plan " + kMeadow + " --litchi -o " + dir).exit_code, 0);
+  ASSERT_EQ(run_swath("verify " + dir).exit_code, 0);
+  std::string csv = read_text(dir + "/drone-1-litchi.csv");
+  const std::string last = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+  std::vector<std::string> cells;
+  std::stringstream cut(last.substr(0, last.size() - 1));
+  for (std::string cell; std::getline(cut, cell, ',');) cells.push_back(cell);
+  ASSERT_GT(cells.size(), 3u);
+  cells[0] = std::to_string(std::stod(cells[0]) + 0.045);  // 5 km north
+  cells[2] = "400";
+  std::string row;
+  for (const std::string& cell : cells) row += (row.empty() ? "" : ",") + cell;
+  write(dir + "/drone-1-litchi.csv", csv + row + "\n");
+  const CliRun run = run_swath("verify " + dir);
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  EXPECT_NE(run.out.find("VIOLATION agreement: " + dir + "/drone-1-litchi.csv differs from "),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("m from its home (only a landing at home may be added)"),
+            std::string::npos)
+      << run.out;
+}
+
 TEST(VerifyCli, CatchesAWaypointMovedIntoAZoneOfTheQgcStyleFixture) {
   // zone.geojson lies around the fixture's third waypoint (47.3973, 8.5445), item 7.
   const CliRun clean = run_swath("verify tests/fixtures/verify/qgc-style.plan");

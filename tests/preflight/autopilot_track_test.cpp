@@ -4,6 +4,7 @@
 // long leg into a zone beside its chord that the straight leg clears.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -94,6 +95,31 @@ TEST(AutopilotTrack, TheBoundHoldsAndTheTracksAreStraightInTheAutopilotsFrame) {
         EXPECT_NEAR(at.x, expected.x, 1e-9) << trial << " " << k;
         EXPECT_NEAR(at.y, expected.y, 1e-9) << trial << " " << k;
       }
+    }
+  }
+}
+
+// Near a pole a track bends most away from its middle (a leg past the pole turns with the
+// meridians): bow_m still finds its farthest point from the chord (against 512 points along each
+// track), and the cheap bound keeps none there.
+TEST(AutopilotTrack, NearAPoleTheBowIsTheFarthestPointOfTheTrack) {
+  std::mt19937 rng(8946);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (const double lat : {89.95, 89.46, -89.42, 88.0, -86.5}) {
+    const LocalFrame frame({lat, 20.0, 0.0});
+    const AutopilotTrack track(frame, {0, 0});
+    for (int trial = 0; trial < 20; ++trial) {
+      const Point2 a{3000 * unit(rng), 3000 * unit(rng)}, b{3000 * unit(rng), 3000 * unit(rng)};
+      double farthest = 0;
+      for (const auto& points : track.tracks(a, b, 512))
+        for (const Point2 p : points) {
+          const Point2 d = b - a;
+          const double t = std::clamp(geometry::dot(p - a, d) / geometry::dot(d, d), 0.0, 1.0);
+          farthest = std::max(farthest, geometry::distance(p, a + d * t));
+        }
+      const double bow = track.bow_m(a, b);
+      EXPECT_GE(bow, 0.99 * farthest - 1e-6) << lat << " " << trial;
+      EXPECT_GE(track.bow_bound_m(a, b), bow) << lat << " " << trial;
     }
   }
 }

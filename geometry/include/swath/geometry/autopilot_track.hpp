@@ -27,18 +27,23 @@ class AutopilotTrack {
 
   /// How far the track of leg [a, b] (local metres) strays from the straight leg, metres: the
   /// larger of the two conversions' distances at the leg's middle, where a track bowed by the
-  /// frames' curvature is farthest from its chord. 0 for a leg of length 0.
+  /// frames' curvature is farthest from its chord; near a pole (kNearPole_deg) the farthest of 63
+  /// points along it. 0 for a leg of length 0.
   double bow_m(Point2 a, Point2 b) const;
 
   /// A cheap upper bound of bow_m(a, b), from the leg's length and how far it lies from the origin
   /// (no conversion): four times the bow of a track whose curvature is the greatest a parallel's
-  /// has at the latitudes the leg may reach, plus the frames' own distortion that far out.
+  /// has at the latitudes the leg may reach, plus the frames' own distortion that far out;
+  /// +infinity near a pole (kNearPole_deg).
   double bow_bound_m(Point2 a, Point2 b) const;
 
   /// A bow below which a track is taken as its straight leg (a tenth of a millimetre: positions
   /// are written to 1e-9 degrees), and the pieces a track is drawn in: as many as keep its chords
   /// within that of it (at most 1024).
   static constexpr double kNegligibleBow_m = 1e-4;
+  /// Beyond this latitude (the origin's, plus how far the leg lies from it) the track can bend
+  /// most away from its middle (bow_m samples it all along) and bow_bound_m keeps no bound.
+  static constexpr double kNearPole_deg = 85.0;
   static int pieces_for(double bow_m);
 
   /// The tracks of leg [a, b] under both conversions, each as `pieces` + 1 points from a to b
