@@ -9,6 +9,7 @@ namespace swath::geometry {
 namespace {
 
 constexpr double kRadiansPerDegree = std::numbers::pi / 180;
+constexpr double kEarthRadius_m = 6.35e6;  // the least radius of curvature, rounded down
 
 // ArduPilot's longitude_scale(): the cosine of a latitude, kept at 0.01 or more near the poles.
 double longitude_scale(double lat_deg) {
@@ -39,16 +40,23 @@ Point2 AutopilotTrack::from_autopilot(Point2 offset, int model) const {
   return frame_.to_local({lat_deg, wrapped(origin_.lon_deg + offset.x / scale), 0.0});
 }
 
+double AutopilotTrack::farthest_m(Point2 a, Point2 b) const {
+  return std::max(distance(a, home_), distance(b, home_));
+}
+
+double AutopilotTrack::reach_deg_of(double far_m) const {
+  return std::abs(origin_.lat_deg) + far_m / kEarthRadius_m / kRadiansPerDegree;
+}
+
 double AutopilotTrack::bow_bound_m(Point2 a, Point2 b) const {
   // A track's bow is about its curvature x L^2 / 8. A parallel at latitude phi curves by
   // tan(phi) / R in the tangent plane (ArduPilot's lines of constant north are parallels), and
   // the frames' scales part by about D / R at D from the origin, bending other lines by up to
   // that over R more; with 2 for the ellipsoid's flattening and the second conversion, and 4 on
   // the whole.
-  constexpr double kEarthRadius_m = 6.35e6;  // the least radius of curvature, rounded down
   const double length_m = distance(a, b);
-  const double far_m = std::max(distance(a, home_), distance(b, home_));
-  const double reach_deg = std::abs(origin_.lat_deg) + far_m / kEarthRadius_m / kRadiansPerDegree;
+  const double far_m = farthest_m(a, b);
+  const double reach_deg = reach_deg_of(far_m);
   // Near a pole the track may bend most away from its middle, and no bound is kept: measured.
   if (reach_deg > kNearPole_deg) return std::numeric_limits<double>::infinity();
   const double curvature =
@@ -59,9 +67,7 @@ double AutopilotTrack::bow_bound_m(Point2 a, Point2 b) const {
 double AutopilotTrack::bow_m(Point2 a, Point2 b) const {
   if (a == b) return 0.0;
   const Point2 chord_middle = (a + b) * 0.5;
-  const double far_m = std::max(distance(a, home_), distance(b, home_));
-  const bool near_pole =
-      std::abs(origin_.lat_deg) + far_m / 6.35e6 / kRadiansPerDegree > kNearPole_deg;
+  const bool near_pole = reach_deg_of(farthest_m(a, b)) > kNearPole_deg;
   double bow = 0.0;
   for (const int model : {0, 1}) {
     const Point2 from = to_autopilot(a, model), to = to_autopilot(b, model);

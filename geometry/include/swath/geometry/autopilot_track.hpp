@@ -55,6 +55,10 @@ class AutopilotTrack {
   /// 1: the origin's), from the origin; and back to local metres.
   Point2 to_autopilot(Point2 local, int model) const;
   Point2 from_autopilot(Point2 offset, int model) const;
+  /// How far the farther end of [a, b] lies from home, metres; the latitude a leg that far out
+  /// may reach, degrees from the equator.
+  double farthest_m(Point2 a, Point2 b) const;
+  double reach_deg_of(double far_m) const;
 
   const LocalFrame& frame_;
   Point2 home_;
