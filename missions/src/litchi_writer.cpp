@@ -63,7 +63,7 @@ std::string row_text(const Row& row, const LitchiSettings& s) {
   }
   // altitudemode 0: above the take-off point, as every swath altitude is (frame 3); 1 would make
   // Litchi shift each waypoint by its own elevation model's ground height under it.
-  out += ",0," + fixed_text(s.speed_m_s, 3) + ",0,0,0,0,";
+  out += ",0," + fixed_text(p.speed_m_s > 0 ? p.speed_m_s : s.speed_m_s, 3) + ",0,0,0,0,";
   // Photos on the legs the mission triggers on: the interval starts at the leg's first waypoint
   // (as DJI's waypoint missions read it, for the flight to the next waypoint); -1: none.
   const bool photos = p.photo_leg && row.next != nullptr;
@@ -79,10 +79,17 @@ std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points
                                           const LitchiSettings& settings) {
   std::vector<std::string> parts;
   // Parts of at most max_rows rows; each after the first starts at the point the one before
-  // ended at, so that the pilot resumes where the last mission stopped.
+  // ended at, so that the pilot resumes where the last mission stopped. A part ends at the last
+  // point it may end at (Litchi flies home from there and back out to it), else at its last row.
   std::size_t first = 0;
   while (true) {
-    const std::size_t end = std::min(points.size(), first + settings.max_rows);
+    std::size_t end = std::min(points.size(), first + std::max<std::size_t>(settings.max_rows, 2));
+    if (end < points.size() && settings.may_end_at)
+      for (std::size_t last = end - 1; last > first; --last)
+        if (settings.may_end_at(last)) {
+          end = last + 1;
+          break;
+        }
     std::string text = header();
     for (std::size_t i = first; i < end; ++i)
       text += row_text({&points[i], i + 1 < end ? &points[i + 1] : nullptr, i == first && i > 0},

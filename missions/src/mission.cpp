@@ -340,9 +340,10 @@ std::array<double, 7> item_params(double p1, double p2, double p3, GeoPoint g, d
   return {p1, p2, p3, 0.0, g.lat_deg, g.lon_deg, alt};
 }
 
-// Litchi rows become MAVLink items: a speed change where the row's speed differs, the waypoint
-// (a stay action as its hold), a photo action, and distance or time triggering on the leg the
-// row starts (Litchi's photo_distinterval/photo_timeinterval hold to the next waypoint).
+// Litchi rows become MAVLink items: the waypoint (a stay action as its hold), a photo action,
+// distance or time triggering on the leg the row starts (Litchi's photo_distinterval and
+// photo_timeinterval hold to the next waypoint), and a speed change where the row's speed, the
+// leg's to the next row, differs.
 Mission parse_litchi(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   std::string line;
@@ -381,11 +382,16 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
     const GeoPoint g = checked_position(value(lat), value(lon), where);
     if (m.items.empty()) m.home = g;  // Litchi flies from where the drone stands
     const int frame = value(mode) == 1 ? 10 : 3;
-    if (value(speed) > 0 && value(speed) * speed_to_m_s != speed_m_s) {
-      speed_m_s = value(speed) * speed_to_m_s;
+    // A row's speed is its leg's to the next row (DJI's waypoint speed): a change after its
+    // waypoint. The first row's also before it: the flight out to it is at that speed too.
+    const double row_speed_m_s = value(speed) > 0 ? value(speed) * speed_to_m_s : -1.0;
+    const auto set_speed = [&] {
+      if (row_speed_m_s < 0 || row_speed_m_s == speed_m_s) return;
+      speed_m_s = row_speed_m_s;
       m.items.push_back(
           make_item(cmd(Cmd::do_change_speed), 2, {1, speed_m_s, -1, 0, 0, 0, 0}, where));
-    }
+    };
+    if (m.items.empty()) set_speed();
     double hold_s = 0.0;
     bool photo = false;
     for (int a = 1; a <= 15; ++a) {
@@ -410,6 +416,7 @@ Mission parse_litchi(const std::string& text, const std::string& source) {
       m.items.push_back(make_item(c, 2, {0, t > 0 ? t : 0, 0, 0, 0, 0, 0}, where));
       time_on = t > 0;
     }
+    set_speed();
   }
   if (m.items.empty()) throw InputError(source + ": the Litchi CSV has no waypoint row");
   return m;

@@ -747,6 +747,86 @@ TEST(PlanCli, ExportsPerSortieAndAWarningForACameraWithoutDjiEnums) {
   }
 }
 
+// A flight above Litchi's 99 waypoints is cut where each part's way home from its last row, and
+// back out to it, keeps the clearance from a no-fly zone (Litchi flies both straight), and a
+// stop's slower approach is carried into the rows: rectangles with a square hole whose cuts at
+// the 99th row flew home through the hole, or overran a stop beside it, are planned, and each
+// part's way home is measured here from the written rows.
+TEST(PlanCli, LitchiPartsEndWhereTheWayHomeIsClear) {
+  struct Field {
+    double width_m, height_m, hole_x, altitude_m;
+  };
+  const double lat0 = 47.0, lon0 = 8.0, half_m = 40.0, clearance_m = 5.0;
+  const double m_per_deg_lat = 111132.0, m_per_deg_lon = 111320.0 * std::cos(lat0 * M_PI / 180);
+  for (const Field& f :
+       {Field{600, 300, 0.7, 30}, Field{800, 400, 0.5, 30}, Field{800, 300, 0.3, 40}}) {
+    SCOPED_TRACE(std::to_string(f.width_m) + " x " + std::to_string(f.height_m));
+    const double cx = f.width_m * f.hole_x, cy = f.height_m / 2;
+    const auto lon_lat = [&](double x, double y) {
+      std::ostringstream o;
+      o.precision(12);
+      o << "[" << lon0 + x / m_per_deg_lon << "," << lat0 + y / m_per_deg_lat << "]";
+      return o.str();
+    };
+    const std::string field = fresh_dir("litchi-cut") + ".geojson";
+    std::ofstream(field) << R"({"type":"Polygon","coordinates":[[)" << lon_lat(0, 0) << ","
+                         << lon_lat(f.width_m, 0) << "," << lon_lat(f.width_m, f.height_m) << ","
+                         << lon_lat(0, f.height_m) << "," << lon_lat(0, 0) << "],["
+                         << lon_lat(cx - half_m, cy - half_m) << ","
+                         << lon_lat(cx - half_m, cy + half_m) << ","
+                         << lon_lat(cx + half_m, cy + half_m) << ","
+                         << lon_lat(cx + half_m, cy - half_m) << ","
+                         << lon_lat(cx - half_m, cy - half_m) << "]]}";
+    const std::string out = fresh_dir("litchi-cut-out");
+    const CliRun run = run_swath("plan " + field + " --camera dji-mavic-3e --altitude " +
+                                 std::to_string(f.altitude_m) + " --litchi -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const json plan = json::parse(read_text(out + "/drone-1.plan"));
+    const json& home_ll = plan["mission"]["plannedHomePosition"];
+    const auto local = [&](double lat, double lon) {
+      return std::pair{(lon - lon0) * m_per_deg_lon, (lat - lat0) * m_per_deg_lat};
+    };
+    const auto home = local(home_ll[0].get<double>(), home_ll[1].get<double>());
+    // Least distance from the segment a-b to the hole (a square: outside it, the distance to
+    // the box; 0 where the segment enters it), sampled every 5 cm.
+    const auto to_hole_m = [&](std::pair<double, double> a, std::pair<double, double> b) {
+      double least = 1e9;
+      const double length = std::hypot(b.first - a.first, b.second - a.second);
+      const int n = std::max(1, int(length / 0.05));
+      for (int k = 0; k <= n; ++k) {
+        const double x = a.first + (b.first - a.first) * k / n;
+        const double y = a.second + (b.second - a.second) * k / n;
+        const double dx = std::max(std::abs(x - cx) - half_m, 0.0);
+        const double dy = std::max(std::abs(y - cy) - half_m, 0.0);
+        least = std::min(least, std::hypot(dx, dy));
+      }
+      return least;
+    };
+    int parts = 0;
+    std::pair<double, double> last_end{};
+    for (int k = 1; fs::exists(out + "/drone-1-litchi-" + std::to_string(k) + ".csv"); ++k) {
+      std::istringstream csv(read_text(out + "/drone-1-litchi-" + std::to_string(k) + ".csv"));
+      std::string line;
+      std::getline(csv, line);  // the header
+      std::vector<std::pair<double, double>> rows;
+      while (std::getline(csv, line)) {
+        double lat = 0, lon = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf", &lat, &lon), 2) << line;
+        rows.push_back(local(lat, lon));
+      }
+      ASSERT_LE(rows.size(), 99u) << k;
+      if (k > 1) {  // each part starts where the one before ended
+        EXPECT_NEAR(rows.front().first, last_end.first, 1e-3) << k;
+        EXPECT_NEAR(rows.front().second, last_end.second, 1e-3) << k;
+      }
+      EXPECT_GE(to_hole_m(rows.back(), home), clearance_m - 0.01) << "part " << k;
+      last_end = rows.back();
+      ++parts;
+    }
+    EXPECT_GE(parts, 2) << "a flight of more than 99 waypoints";
+  }
+}
+
 struct BadPlan {
   std::string name, args, fragment;
   friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }

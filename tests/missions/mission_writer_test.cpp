@@ -324,6 +324,64 @@ TEST(MissionWriters, LitchiPartsReadBackAsTheFlightsPoints) {
   }
 }
 
+// The speed in force on each leg of a read mission, as ArduPilot flies its items: the last
+// DO_CHANGE_SPEED (178, param2 m/s) before a waypoint (16) sets the leg into it.
+std::vector<double> leg_speeds_m_s(const Mission& read) {
+  std::vector<double> legs;  // legs[k]: from waypoint k to k + 1
+  double speed = -1;
+  bool first = true;
+  for (const Item& item : read.items) {
+    if (item.command == 178) speed = item.params[1];
+    if (item.command != 16) continue;
+    if (!first) legs.push_back(speed);
+    first = false;
+  }
+  return legs;
+}
+
+// A part ends at the last point within Litchi's 99 rows that may_end_at allows (the next starting
+// there), at the 99th row where none does; each row carries its leg's own speed, read back as the
+// speed of the leg from that row (DJI's and Litchi's reading).
+TEST(MissionWriters, LitchiPartsEndWhereAllowedAndCarryEachLegsSpeed) {
+  for (std::uint32_t seed = 301; seed <= 330; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Rng rng{std::mt19937(seed)};
+    auto points = random_points(rng, 100 + rng.below(300));
+    for (missions::ExportPoint& p : points)
+      p.speed_m_s = rng.below(4) == 0 ? rng.rounded(1, 4.9, 3) : 0.0;
+    std::vector<char> allowed(points.size());
+    const int one_in = 1 + rng.below(60);  // sometimes none in a part's window
+    for (char& a : allowed) a = rng.below(one_in) == 0;
+    missions::LitchiSettings settings;
+    settings.max_rows = 99;
+    settings.speed_m_s = 5;
+    settings.may_end_at = [&](std::size_t i) { return allowed[i] != 0; };
+    const auto parts = missions::write_litchi_csv(points, settings);
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      std::size_t end = std::min(points.size(), first + 99);
+      if (end < points.size()) {  // the last allowed point after the first, if any
+        for (std::size_t last = end - 1; last > first; --last)
+          if (allowed[last]) {
+            end = last + 1;
+            break;
+          }
+      }
+      const std::vector<missions::ExportPoint> expected(points.begin() + std::ptrdiff_t(first),
+                                                        points.begin() + std::ptrdiff_t(end));
+      const Mission read = missions::parse_mission(parts[k], "part.csv");
+      expect_waypoints(expected, read, "part " + std::to_string(k + 1));
+      const std::vector<double> legs = leg_speeds_m_s(read);
+      ASSERT_EQ(legs.size() + 1, expected.size());
+      for (std::size_t i = 0; i < legs.size(); ++i)
+        EXPECT_EQ(legs[i], expected[i].speed_m_s > 0 ? expected[i].speed_m_s : 5.0)
+            << "part " << k + 1 << " leg " << i;
+      first = end - 1;
+    }
+    EXPECT_EQ(first + 1, points.size()) << "the parts end at the flight's last point";
+  }
+}
+
 TEST(MissionWriters, DjiKmzReadsBackAsItsPoints) {
   for (std::uint32_t seed = 231; seed <= 250; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));

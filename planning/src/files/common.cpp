@@ -355,22 +355,28 @@ void set_headings(std::vector<ExportPoint>& points) {
 
 }  // namespace
 
-std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight) {
+std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight,
+                                       std::vector<geometry::Point2>* local) {
   std::vector<ExportPoint> points;
   bool camera_on = false;
+  double speed_m_s = 0.0;  // in force: a change after a waypoint sets the leg that follows it
+  const auto add = [&](const MissionItem& item, double altitude_m, double hold_s) {
+    if (!points.empty()) points.back().photo_leg = camera_on;
+    points.push_back({geo(plan, item.position), altitude_m, 0.0, false, hold_s, false, speed_m_s});
+    if (local) local->push_back(item.position);
+  };
+  if (local) local->clear();
   for (const MissionItem& item : flight.mission->items) {
     switch (item.kind) {
       case ItemKind::waypoint:
-        if (!points.empty()) points.back().photo_leg = camera_on;
-        points.push_back(
-            {geo(plan, item.position), item.altitude_m, 0.0, false, item.value, false});
+        add(item, item.altitude_m, item.value);
         break;
       case ItemKind::land:  // the home at the altitude flown, where the app's landing lands
-        if (!points.empty()) {
-          points.back().photo_leg = camera_on;
-          points.push_back(
-              {geo(plan, item.position), points.back().altitude_m, 0.0, false, 0.0, false});
-        }
+        if (!points.empty()) add(item, points.back().altitude_m, 0.0);
+        break;
+      case ItemKind::change_speed:
+        speed_m_s = item.value;
+        if (!points.empty()) points.back().speed_m_s = speed_m_s;
         break;
       case ItemKind::trigger_start:
         camera_on = true;

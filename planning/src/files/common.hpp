@@ -60,7 +60,9 @@ PhotoTexts photo_texts(const SurveyPlan& plan);
 using ExportPoint = missions::ExportPoint;
 
 /// The export points of a flight (see ExportPoint).
-std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight);
+/// `local`, if given, gets each point's position in the plan's frame (metres), in their order.
+std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight,
+                                       std::vector<geometry::Point2>* local = nullptr);
 
 /// The flight's camera trigger value on photo legs: metres between photos (distance mode) or
 /// seconds (time mode); 0 in hover mode.

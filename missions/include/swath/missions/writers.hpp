@@ -8,6 +8,7 @@
 // an item with an altitude_frame other than none is a position QGC gives an altitude mode.
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,20 +33,28 @@ struct ExportPoint {
   bool photo_leg = false;
   double hold_s = 0.0;  ///< hover: the hold here, seconds
   bool shot = false;    ///< hover: one photo here
+  /// The speed of the leg that follows, m/s, where the mission sets one of its own (a slower
+  /// approach to a stop beside a no-fly zone); 0: the flight's speed.
+  double speed_m_s = 0.0;
 };
 
 /// What a Litchi mission says beside its points.
 struct LitchiSettings {
   std::size_t max_rows = 99;      ///< Litchi's largest mission, waypoints
   double gimbal_pitch_deg = 0.0;  ///< at every point (gimbalmode 2)
-  double speed_m_s = 0.0;         ///< at every point
+  double speed_m_s = 0.0;         ///< at every point without a speed of its own
   TriggerMode trigger = TriggerMode::distance;
   double trigger_value = 0.0;  ///< metres between photos (distance) or seconds (time)
+  /// Whether a part may end at point i (and the next start there): Litchi flies each part from
+  /// home straight to its first row and back home from its last, stopping there. None: anywhere.
+  std::function<bool(std::size_t)> may_end_at;
 };
 
 /// Litchi mission CSV (--litchi): Litchi's column set, one row per point (see
-/// planning::litchi_csv for the columns); one text per part of at most max_rows rows, part k + 1
-/// starting at the point part k ends at.
+/// planning::litchi_csv for the columns; a row's speed is its leg's to the next row, as Litchi's
+/// and DJI's waypoint missions read it); one text per part of at most max_rows rows, part k + 1
+/// starting at the point part k ends at: the last point within max_rows that may_end_at allows,
+/// or the max_rows-th where none does.
 std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points,
                                           const LitchiSettings& settings);
 
