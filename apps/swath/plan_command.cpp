@@ -650,11 +650,17 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
       std::printf("    at %s m above home, launched %s after the first\n",
                   fixed_text(plan.imaging.altitude_m + d.layer_m, 1).c_str(),
                   planning::duration_text(d.launch_offset_s).c_str());
-    for (const planning::Sortie& s : d.sorties)
-      std::printf("    sortie %d  %s, %s work, %zu photos, resumes at %s m, %s m\n", s.number,
+    for (const planning::Sortie& s : d.sorties) {
+      std::printf("    sortie %d  %s, %s work, %zu photos, resumes at %s m, %s m", s.number,
                   planning::duration_text(s.mission.flight_time_s).c_str(),
                   kilometres(s.mission.work_length_m).c_str(), s.photos.size(),
                   fixed_text(s.resume.x, 1).c_str(), fixed_text(s.resume.y, 1).c_str());
+      // Several drones' sorties are staggered at home (deconflict): each has its launch time.
+      if (plan.drones.size() > 1)
+        std::printf(", launched %s after the first",
+                    planning::duration_text(s.launch_offset_s).c_str());
+      std::printf("\n");
+    }
   }
   std::printf(
       "  coverage   %s %% of the area; outside it: %s %% of the swath, %s m of lines, %s m of "

@@ -29,8 +29,8 @@ std::string stem_of(const std::string& name, const std::string& tail) {
   return name.substr(0, name.size() - tail.size());
 }
 
-// What summary.json says of each file: its launch offset (absent: 0) and, for a sortie, the drone
-// that flies it.
+// What summary.json says of each file: its launch offset (absent: 0; a sortie's own, else its
+// drone's) and, for a sortie, the drone that flies it.
 struct Launch {
   double offset_s = 0.0;
   std::string sorties_of;
@@ -52,8 +52,11 @@ std::map<std::string, Launch> launches(const Files& files) {
       const nlohmann::json* sorties = base::json_find(d, "sorties");
       for (std::size_t k = 0; sorties && sorties->is_array() && k < sorties->size(); ++k) {
         const nlohmann::json* sortie_file = base::json_find((*sorties)[k], "file");
+        const nlohmann::json* own = base::json_find((*sorties)[k], "launch_offset_s");
         if (sortie_file && sortie_file->is_string())
-          out[sortie_file->get<std::string>()] = {launch.offset_s, file->get<std::string>()};
+          out[sortie_file->get<std::string>()] = {
+              own && own->is_number() ? own->get<double>() : launch.offset_s,
+              file->get<std::string>()};
       }
     }
   }

@@ -269,14 +269,16 @@ std::vector<Violation> worst_per_place(std::vector<Violation> all) {
   return out;
 }
 
-// Each sortie after the first of its drone launches when the one before it has landed.
+// Each sortie after the first of its drone launches at its own launch offset or when the one
+// before it has landed, whichever is later (one drone flies one sortie at a time).
 std::vector<DroneFile> sorties_in_turn(std::vector<DroneFile> drones,
                                        const std::vector<FlownPath>& paths) {
   for (std::size_t i = 0; i < drones.size(); ++i) {
     if (drones[i].sorties_of.empty()) continue;
     for (std::size_t k = i; k-- > 0;)
       if (drones[k].sorties_of == drones[i].sorties_of) {
-        drones[i].launch_offset_s = drones[k].launch_offset_s + paths[k].duration_s;
+        drones[i].launch_offset_s =
+            std::max(drones[i].launch_offset_s, drones[k].launch_offset_s + paths[k].duration_s);
         break;
       }
   }

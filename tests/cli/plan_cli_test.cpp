@@ -827,6 +827,46 @@ TEST(PlanCli, LitchiPartsEndWhereTheWayHomeIsClear) {
   }
 }
 
+// The least separation `swath verify DIR` finds between two drones in the air at once (-1 when
+// the check did not run).
+double verified_separation_m(const std::string& dir) {
+  const CliRun run = run_swath("verify " + dir + " --json");
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  const json report = json::parse(run.out);
+  for (const json& c : report["checks"])
+    if (c["check"] == "separation" && c["ran"].get<bool>()) return c["value"].get<double>();
+  return -1;
+}
+
+TEST(PlanCli, SortiesOfDronesSharingAHomeAreStaggered) {
+  // docs/safety-notes.md: each sortie launched at its own time, after the one before it landed,
+  // its climb and descent at home missing the lower layer's drone there.
+  const std::string out = fresh_dir("sorties-shared-home");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --sorties auto "
+      "--endurance 420 --drones 2 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  ASSERT_EQ(s["drones"].size(), 2u);
+  for (const json& d : s["drones"]) {
+    const json& sorties = d["sorties"];
+    ASSERT_GE(sorties.size(), 2u);
+    EXPECT_EQ(d["launch_offset_s"], sorties[0]["launch_offset_s"]);
+    for (std::size_t k = 1; k < sorties.size(); ++k)
+      EXPECT_GE(sorties[k]["launch_offset_s"].get<double>(),
+                sorties[k - 1]["launch_offset_s"].get<double>() +
+                    sorties[k - 1]["flight_time_s"].get<double>())
+          << d["name"] << " sortie " << k + 1;
+  }
+  // The upper drone flies beside the lower one, not after all its sorties.
+  const double upper_s = s["drones"][1]["sorties"][0]["launch_offset_s"].get<double>();
+  EXPECT_GT(upper_s, 0.0);
+  EXPECT_LT(upper_s, s["drones"][0]["sorties"].back()["launch_offset_s"].get<double>());
+  EXPECT_NE(run.out.find("sortie 2"), std::string::npos);
+  EXPECT_GE(verified_separation_m(out), 10.0);
+}
+
 struct BadPlan {
   std::string name, args, fragment;
   friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }

@@ -338,6 +338,37 @@ TEST(VerifyCli, ArduPilotsRtlFliesToTheNearestRallyPointWithinItsLimit) {
       run_swath("verify " + dir + "/nearer.plan --exclude " + dir + "/zone.geojson").exit_code, 0);
 }
 
+// summary.json's drones[].sorties[].launch_offset_s launches a sortie then (after the one before
+// it has landed): the upper drone's second sortie moved to when the lower drone launches one at
+// their shared home climbs with it.
+TEST(VerifyCli, ASortieLaunchesAtItsOwnLaunchOffset) {
+  const std::string dir = fresh_dir("swath-verify-sortie-launch");
+  const CliRun plan = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --sorties auto "
+      "--endurance 420 --drones 2 -o " +
+      dir);
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  ASSERT_EQ(run_swath("verify " + dir).exit_code, 0);
+  json summary = json::parse(read_text(dir + "/summary.json"));
+  json& upper = summary["drones"][1]["sorties"];
+  const double landed_s =
+      upper[0]["launch_offset_s"].get<double>() + 1.1 * upper[0]["flight_time_s"].get<double>();
+  double together_s = -1;  // a later launch of the lower drone's, after the upper's first landed
+  for (const json& lower : summary["drones"][0]["sorties"])
+    if (together_s < 0 && lower["launch_offset_s"].get<double>() >= landed_s)
+      together_s = lower["launch_offset_s"].get<double>();
+  ASSERT_GE(together_s, 0) << summary.dump();
+  upper[1]["launch_offset_s"] = together_s;
+  write(dir + "/summary.json", summary.dump(1));
+  const CliRun run = run_swath("verify " + dir + " --json");
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  const json report = json::parse(run.out);
+  ASSERT_FALSE(report["violations"].empty()) << run.out;
+  const json& v = report["violations"][0];
+  EXPECT_EQ(v["check"], "separation");
+  EXPECT_NE(v["text"].get<std::string>().find("drone-2-2.plan"), std::string::npos) << v["text"];
+}
+
 // PX4's RTL climbs to RTL_RETURN_ALT, 60 m by default; ArduCopter's to RTL_ALT, 15 m.
 TEST(VerifyCli, APx4FilesReturnClimbsToPx4sReturnAltitude) {
   const std::string dir = fresh_dir("swath-verify-px4-rtl");

@@ -36,14 +36,17 @@ ordered_json lat_lon(const geometry::GeoPoint& g) {
 }
 
 ordered_json sortie_json(const SurveyPlan& plan, const DronePlan& d, const Sortie& s) {
-  return {{"sortie", s.number},
-          {"file", d.file_stem + "-" + std::to_string(s.number)},
-          {"resume", lat_lon(plan.request.field.frame->to_geo(s.resume))},
-          {"path_length_m", round_to(s.mission.path_length_m, 3)},
-          {"work_length_m", round_to(s.mission.work_length_m, 3)},
-          {"flight_time_s", round_to(s.mission.flight_time_s, 2)},
-          {"photos", s.photos.size()},
-          {"items", s.mission.items.size()}};
+  ordered_json j = {{"sortie", s.number},
+                    {"file", d.file_stem + "-" + std::to_string(s.number)},
+                    {"resume", lat_lon(plan.request.field.frame->to_geo(s.resume))},
+                    {"path_length_m", round_to(s.mission.path_length_m, 3)},
+                    {"work_length_m", round_to(s.mission.work_length_m, 3)},
+                    {"flight_time_s", round_to(s.mission.flight_time_s, 2)},
+                    {"photos", s.photos.size()},
+                    {"items", s.mission.items.size()}};
+  // Several drones' sorties are staggered (deconflict); one drone's fly one after another.
+  if (plan.drones.size() > 1) j["launch_offset_s"] = round_to(s.launch_offset_s, 1);
+  return j;
 }
 
 ordered_json drone_json(const SurveyPlan& plan, const DronePlan& dp) {

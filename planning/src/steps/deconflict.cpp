@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "swath/base/input_error.hpp"
@@ -81,16 +82,15 @@ std::vector<int> layers(const SurveyPlan& plan) {
   return layer;
 }
 
-// One drone's flight as time windows: [from_s, to_s] of its own clock (0 = its launch) over each
+// One flight's legs as time windows: [from_s, to_s] of its own clock (0 = its launch) over each
 // leg, the climb at home first and the descent last; the legs' times scaled so that the whole
 // takes the mission's estimate (which counts the stops and accelerations).
 struct Leg {
   double from_s, to_s;
   Point2 a, b;
 };
-std::vector<Leg> timeline(const DronePlan& d) {
-  const DroneMission& m = d.mission;
-  const double altitude_m = d.mission.items.empty() ? 0.0 : d.mission.items.front().altitude_m;
+std::vector<Leg> timeline(const DronePlan& d, const DroneMission& m) {
+  const double altitude_m = m.items.empty() ? 0.0 : m.items.front().altitude_m;
   const double climb_s = altitude_m / d.climb_speed_m_s,
                descent_s = altitude_m / d.descent_speed_m_s;
   const double cruise_s =
@@ -131,49 +131,81 @@ bool overlap(const std::vector<Window>& a, double shift_a, const std::vector<Win
 
 // How much the flight's estimate (stops, accelerations) exceeds flying it at constant speed,
 // seconds: how far its time near any point may be off either way.
-double unsure_s(const DronePlan& d) {
-  const DroneMission& m = d.mission;
+double unsure_s(const DronePlan& d, const DroneMission& m) {
   const double altitude_m = m.items.empty() ? 0.0 : m.items.front().altitude_m;
   const double constant_s = altitude_m / d.climb_speed_m_s + m.path_length_m / d.speed_m_s +
                             altitude_m / d.descent_speed_m_s;
   return std::max(0.0, m.flight_time_s - constant_s);
 }
 
-// Launch offsets: a drone climbs and descends at its home through every lower layer, so no drone
-// of a lower layer may be near that home then. Drones are launched lowest layer first, each at
-// the first 10 s step where its climb and descent miss every placed lower drone's time near its
-// home and every placed higher drone's climb and descent miss its own time near theirs; the
-// windows are widened by 15 s, 5 % of the longer flight and the larger unsure_s() for the timing
-// the estimate may get wrong.
-std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<int>& layer) {
-  const std::size_t n = plan.drones.size();
+// One flight of a drone (the whole flight, or one sortie) on the drone's layer.
+struct TimedFlight {
+  std::size_t drone;
+  std::size_t sortie;  ///< 0 for the first (or only) flight of its drone
+  int layer;
+  std::vector<Leg> legs;
+  double unsure_s;
+  double end_s() const { return legs.back().to_s; }
+};
+
+std::vector<TimedFlight> timed_flights(const SurveyPlan& plan, const std::vector<int>& layer) {
+  std::vector<TimedFlight> out;
+  for (std::size_t i = 0; i < plan.drones.size(); ++i)
+    for (const DroneMission* m : flights(plan.drones[i]))
+      out.push_back({i, out.empty() || out.back().drone != i ? 0 : out.back().sortie + 1, layer[i],
+                     timeline(plan.drones[i], *m), unsure_s(plan.drones[i], *m)});
+  return out;
+}
+
+// Whether the higher of two flights of different layers, launched at their offsets, climbs or
+// descends at its home while the lower is near that home; windows widened by 15 s, 5 % of the
+// longer flight and the larger unsure_s() for the timing the estimate may get wrong.
+bool clash(const SurveyPlan& plan, const TimedFlight& f, double f_s, const TimedFlight& g,
+           double g_s) {
+  const bool f_high = f.layer > g.layer;
+  const TimedFlight& hi = f_high ? f : g;
+  const TimedFlight& lo = f_high ? g : f;
+  const double near_m = kSeparation_m + kCornerAllowance_m;
+  const double slack_s =
+      15 + 0.05 * std::max(f.end_s(), g.end_s()) + std::max(f.unsure_s, g.unsure_s);
+  const std::vector<Window> column{{hi.legs.front().from_s, hi.legs.front().to_s},
+                                   {hi.legs.back().from_s, hi.legs.back().to_s}};
+  return overlap(column, f_high ? f_s : g_s,
+                 near_point(lo.legs, plan.drones[hi.drone].home, near_m), f_high ? g_s : f_s,
+                 slack_s);
+}
+
+// Launch offsets of every flight: a drone climbs and descends at its home through every lower
+// layer, so no drone of a lower layer may be near that home then. Flights are placed round by
+// round (every drone's first sortie, then every second one, ...: sorties interleave instead of
+// one drone's all waiting for another's), lowest layer first within a round, each at the first
+// 10 s step where its climb and descent miss every placed lower flight's time near its home and
+// every placed higher flight's climb and descent miss its own time near theirs. A sortie launches
+// no earlier than the one before it lands by the estimate plus what that estimate may be short
+// (5 % and its unsure_s()): a late landing would otherwise shift it out of its slot.
+std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<TimedFlight>& all) {
+  const std::size_t n = all.size();
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return layer[a] < layer[b]; });
-  std::vector<std::vector<Leg>> legs;
-  for (const DronePlan& d : plan.drones) legs.push_back(timeline(d));
-  auto column = [&](std::size_t i) {  // its climb and descent at home
-    return std::vector<Window>{{legs[i].front().from_s, legs[i].front().to_s},
-                               {legs[i].back().from_s, legs[i].back().to_s}};
-  };
-  const double near_m = kSeparation_m + kCornerAllowance_m;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::tie(all[a].sortie, all[a].layer) < std::tie(all[b].sortie, all[b].layer);
+  });
   std::vector<double> offset(n, 0.0);
   std::vector<std::size_t> placed;
   for (const std::size_t i : order) {
-    for (int step = 0; step < 10'000; ++step) {
+    int first_step = 0;
+    if (i > 0 && all[i - 1].drone == all[i].drone) {  // a later sortie: placed after its previous
+      const TimedFlight& before = all[i - 1];
+      const double landed_s = offset[i - 1] + 1.05 * before.end_s() + before.unsure_s;
+      first_step = static_cast<int>(std::ceil(landed_s / 10.0 - 1e-9));
+    }
+    for (int step = first_step; step < first_step + 10'000; ++step) {
       offset[i] = 10.0 * step;
-      bool clash = false;
-      for (const std::size_t j : placed) {
-        if (layer[i] == layer[j]) continue;  // apart everywhere, whenever (layers())
-        const std::size_t hi = layer[i] > layer[j] ? i : j, lo = hi == i ? j : i;
-        const double slack_s = 15 + 0.05 * std::max(legs[i].back().to_s, legs[j].back().to_s) +
-                               std::max(unsure_s(plan.drones[i]), unsure_s(plan.drones[j]));
-        clash = overlap(column(hi), offset[hi], near_point(legs[lo], plan.drones[hi].home, near_m),
-                        offset[lo], slack_s);
-        if (clash) break;
-      }
-      if (!clash) break;
+      const bool any = std::any_of(placed.begin(), placed.end(), [&](std::size_t j) {
+        // same layer: apart everywhere, whenever (layers())
+        return all[i].layer != all[j].layer && clash(plan, all[i], offset[i], all[j], offset[j]);
+      });
+      if (!any) break;
     }
     placed.push_back(i);
   }
@@ -210,18 +242,13 @@ void deconflict(SurveyPlan& plan) {
     raise(d.mission, d.layer_m, d);
     for (Sortie& s : d.sorties) raise(s.mission, d.layer_m, d);
   }
-  const bool sorties = std::any_of(plan.drones.begin(), plan.drones.end(),
-                                   [](const DronePlan& d) { return !d.sorties.empty(); });
-  if (sorties) {
-    if (top > 0)
-      plan.warnings.push_back(
-          "with sorties the drones' launches are not staggered: launch a drone only when no drone "
-          "of a lower layer is within " +
-          base::fixed_text(kSeparation_m, 0) + " m of its home");
-    return;
+  const std::vector<TimedFlight> all = timed_flights(plan, layer);
+  const std::vector<double> offset = launch_offsets(plan, all);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    DronePlan& d = plan.drones[all[k].drone];
+    if (all[k].sortie == 0) d.launch_offset_s = offset[k];
+    if (!d.sorties.empty()) d.sorties[all[k].sortie].launch_offset_s = offset[k];
   }
-  const std::vector<double> offset = launch_offsets(plan, layer);
-  for (std::size_t i = 0; i < plan.drones.size(); ++i) plan.drones[i].launch_offset_s = offset[i];
 }
 
 }  // namespace swath::planning::steps

@@ -168,6 +168,9 @@ struct Sortie {
   DroneMission mission;            ///< home -> resume point -> ... -> home
   geometry::Point2 resume;         ///< where its survey work starts
   std::vector<PhotoPoint> photos;  ///< planned photo positions
+  /// Launched this long after the plan's first drone, seconds: after the sortie before it has
+  /// landed, and (several drones) when its climb and descent at home miss the lower layers.
+  double launch_offset_s = 0.0;
 };
 
 /// One drone of the plan: who it is, where it starts, what it flies.

@@ -45,8 +45,9 @@ struct CheckOptions {
 struct DroneFile {
   missions::Mission mission;
   double launch_offset_s = 0.0;
-  /// Sorties of one drone share a name here: they fly one after another (each launched when the
-  /// one before lands, its own offset ignored), never against each other. Empty: a drone alone.
+  /// Sorties of one drone share a name here: they fly one after another (each launched at its
+  /// own offset or when the one before lands, whichever is later), never against each other.
+  /// Empty: a drone alone.
   std::string sorties_of;
   /// Flies in place of another drone's file (a part of its split Litchi twin): checked as a
   /// flight of its own, never for separation (it is not in the air beside the file it stands
