@@ -867,6 +867,37 @@ TEST(PlanCli, SortiesOfDronesSharingAHomeAreStaggered) {
   EXPECT_GE(verified_separation_m(out), 10.0);
 }
 
+TEST(PlanCli, Px4FleetsLandAtHomeInsteadOfClimbingToTheReturnAltitude) {
+  // A notched strip at 75 N: the three drones' layers reach 60 m, PX4's RTL_RETURN_ALT, over a
+  // home another drone returns to.
+  const std::string dir = fresh_dir("px4-fleet");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/w75.geojson")
+      << R"({"type":"Polygon","coordinates":[[[30.0,75.0],[30.086499187,75.0],)"
+         R"([30.086499187,75.003583639],[30.044979577,75.003583639],[30.043249593,75.001343865],)"
+         R"([30.04151961,75.003583639],[30.0,75.003583639],[30.0,75.0]]]})";
+  const std::string args = "plan " + dir +
+                           "/w75.geojson --camera dji-phantom-4-pro --altitude 40 --drones 3 "
+                           "--division region -o ";
+  const CliRun run = run_swath(args + dir + "/px4 --firmware px4");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(dir + "/px4/summary.json"));
+  EXPECT_EQ(s["flight"]["end"], "land");
+  for (int i = 1; i <= 3; ++i) {
+    const json plan =
+        json::parse(read_text(dir + "/px4/drone-" + std::to_string(i) + ".plan"))["mission"];
+    const json& items = plan["items"];
+    EXPECT_EQ(items.back()["command"], 21) << i;  // NAV_LAND at home, no RTL
+    EXPECT_NEAR(items.back()["params"][4].get<double>(), plan["plannedHomePosition"][0], 1e-9);
+    EXPECT_NEAR(items.back()["params"][5].get<double>(), plan["plannedHomePosition"][1], 1e-9);
+  }
+  EXPECT_GE(verified_separation_m(dir + "/px4"), 10.0);
+  // ArduPilot's RTL keeps the layer's altitude: its files still return to launch.
+  ASSERT_EQ(run_swath(args + dir + "/ap").exit_code, 0);
+  const json ap = json::parse(read_text(dir + "/ap/drone-1.plan"));
+  EXPECT_EQ(ap["mission"]["items"].back()["command"], 20);
+}
+
 struct BadPlan {
   std::string name, args, fragment;
   friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }
