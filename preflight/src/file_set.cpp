@@ -106,7 +106,6 @@ std::vector<Waypoint> joined_waypoints(const std::vector<missions::Mission>& par
 struct Twin {
   std::size_t drone;  ///< the .plan's index among the drones
   std::vector<missions::Mission> parts;
-  bool flown = false;  ///< its parts are flown too, as drones of the set (listed there)
 };
 
 std::string twin_name(const Twin& twin) {
@@ -256,20 +255,28 @@ void set_launch(DroneFile& d, const std::string& name,
   if (part && d.sorties_of.empty()) d.sorties_of = stem + "-litchi";
 }
 
-// A part of the .plan's split Litchi twin as its drone flies it: a Litchi file holds no home, so
-// it takes off where the .plan does, climbs, flies to its first row (the last part's end) and
-// returns home (the RTH finish action); it keeps to the .plan's fences, which DJI's aircraft
-// does not know (the check is the only one that does).
-DroneFile litchi_part_flown(const DroneFile& plan, const std::string& plan_name,
-                            missions::Mission part) {
+// A twin of the .plan (a .waypoints, Litchi or DJI file, a part of a split Litchi flight) as its
+// drone flies it in the .plan's place: the pilot may load either, so each is checked as a flight
+// of its own. It keeps to the .plan's fences and rally points (a DJI aircraft knows none of them:
+// the check is the only one that does). A Litchi or DJI file holds no home (a KMZ's first
+// waypoint is no take-off point), so it takes off where the .plan does, climbs, flies to its first
+// row and returns home. A .waypoints or -survey.plan file flies from its own home on the .plan's
+// vehicle: a WPL file cannot say its autopilot or that it is a fixed wing (which never stops at
+// a waypoint: no stopping margin).
+DroneFile flown_in_place(const DroneFile& plan, missions::Mission twin, std::string sorties_of) {
   const missions::Mission& m = plan.mission;
-  part.home = m.home;
-  part.inclusion_fences = m.inclusion_fences;
-  part.exclusion_fences = m.exclusion_fences;
-  part.inclusion_circles = m.inclusion_circles;
-  part.exclusion_circles = m.exclusion_circles;
-  part.rally_points = m.rally_points;
-  return {std::move(part), plan.launch_offset_s, plan_name + " in Litchi parts", true};
+  if (twin.format == "Litchi CSV" || twin.format == "DJI WPML") {
+    twin.home = m.home;
+  } else {
+    twin.autopilot = m.autopilot;
+    twin.fixed_wing = m.fixed_wing;
+  }
+  twin.inclusion_fences = m.inclusion_fences;
+  twin.exclusion_fences = m.exclusion_fences;
+  twin.inclusion_circles = m.inclusion_circles;
+  twin.exclusion_circles = m.exclusion_circles;
+  twin.rally_points = m.rally_points;
+  return {std::move(twin), plan.launch_offset_s, std::move(sorties_of), true};
 }
 
 }  // namespace
@@ -298,12 +305,15 @@ Report verify_files(const Files& files, const CheckOptions& options) {
     if (is_plan(name)) {
       const std::string dir_stem = stem_of(name, ".plan");
       for (const char* tail : {".waypoints", "-litchi.csv", "-survey.plan", ".kmz"})
-        if (const auto t = by_name.find(dir_stem + tail); t != by_name.end())
-          twins.push_back({set.size(), {missions::parse_mission(*t->second, t->first)}, false});
-      Twin split{set.size(), {}, true};
+        if (const auto t = by_name.find(dir_stem + tail); t != by_name.end()) {
+          twins.push_back({set.size(), {missions::parse_mission(*t->second, t->first)}});
+          instead.push_back(flown_in_place(d, twins.back().parts[0], ""));
+        }
+      // Litchi flies each part as a mission of its own, one after the other.
+      Twin split{set.size(), {}};
       for (const std::string& p : litchi_parts(files, dir_stem)) {
         split.parts.push_back(missions::parse_mission(*by_name.at(p), p));
-        instead.push_back(litchi_part_flown(d, name, split.parts.back()));
+        instead.push_back(flown_in_place(d, split.parts.back(), name + " in Litchi parts"));
       }
       if (!split.parts.empty()) twins.push_back(std::move(split));
     }
@@ -313,7 +323,6 @@ Report verify_files(const Files& files, const CheckOptions& options) {
   Report report = verify(set, options);
   std::size_t unknown_heights = 0;
   for (const Twin& twin : twins) {
-    if (!twin.flown) report.files.push_back(twin.parts[0].source);
     unknown_heights += check_twin(set[twin.drone].mission, twin, options.ground.get(), report);
   }
   std::size_t disagree = 0;

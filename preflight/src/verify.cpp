@@ -311,7 +311,8 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
     const bool any_one =
         options.fence_union && d.mission.autopilot == missions::Autopilot::ardupilot;
     check_fences(f, inclusions(d.mission, frame), any_one, checked);
-    warn_about_fence_storage(d.mission, report);
+    // A flight in another's place carries that file's fences: said once, of that file.
+    if (!d.instead) warn_about_fence_storage(d.mission, report);
     check_heights(f, options, checked);
     if (d.instead)
       check_photos_instead(f, area, checked);

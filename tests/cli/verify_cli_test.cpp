@@ -59,7 +59,7 @@ TEST(VerifyCli, CatchesATwinThatDiffersFromItsPlan) {
 }
 
 // A Litchi twin may add one last row: its landing at home. A row added anywhere else (here 5 km
-// off at 400 m) is a disagreement; a Litchi twin is compared with its .plan, not flown.
+// off at 400 m) is a disagreement, besides what flying it breaks.
 TEST(VerifyCli, ALitchiTwinsExtraRowMustBeItsLandingAtHome) {
   const std::string dir = fresh_dir("swath-verify-litchi-row");
   ASSERT_EQ(run_swath("plan " + kMeadow + " --litchi -o " + dir).exit_code, 0);
@@ -83,6 +83,75 @@ TEST(VerifyCli, ALitchiTwinsExtraRowMustBeItsLandingAtHome) {
   EXPECT_NE(run.out.find("m from its home (only a landing at home may be added)"),
             std::string::npos)
       << run.out;
+}
+
+// A square zone of 2 * half_deg a side around (lat, lon), as GeoJSON.
+std::string square_zone(double lat, double lon, double half_deg) {
+  auto corner = [](double x, double y) {
+    return "[" + std::to_string(x) + ", " + std::to_string(y) + "]";
+  };
+  return "{\"type\": \"Polygon\", \"coordinates\": [[" + corner(lon - half_deg, lat - half_deg) +
+         ", " + corner(lon + half_deg, lat - half_deg) + ", " +
+         corner(lon + half_deg, lat + half_deg) + ", " + corner(lon - half_deg, lat + half_deg) +
+         ", " + corner(lon - half_deg, lat - half_deg) + "]]}";
+}
+
+std::string csv_text(const std::vector<std::vector<std::string>>& rows) {
+  std::string out;
+  for (const auto& row : rows) {
+    std::string line;
+    for (const std::string& cell : row) line += (line.empty() ? "" : ",") + cell;
+    out += line + "\n";
+  }
+  return out;
+}
+
+// The (check, place) pairs of a --json report's violations whose place names `file`.
+std::vector<std::string> checks_failed_by(const json& report, const std::string& file) {
+  std::vector<std::string> out;
+  for (const json& v : report["violations"])
+    if (v["place"].get<std::string>().rfind(file, 0) == 0) out.push_back(v["check"]);
+  return out;
+}
+
+bool has(const std::vector<std::string>& checks, const std::string& check) {
+  return std::find(checks.begin(), checks.end(), check) != checks.end();
+}
+
+// The pilot may load a .plan's Litchi or Mission Planner twin instead of it: each twin is flown
+// and checked on its own (zones, fence, ceiling), not only compared with its .plan. A Litchi row
+// moved 1 km north into a zone at 150 m and a .waypoints item raised to 150 m passed as mere
+// disagreements, the figures those of the .plan alone.
+TEST(VerifyCli, EveryTwinIsFlownAndCheckedOnItsOwn) {
+  const std::string dir = fresh_dir("swath-verify-twins-flown");
+  ASSERT_EQ(run_swath("plan " + kMeadow + " --litchi -o " + dir + "/out").exit_code, 0);
+  const std::string out = dir + "/out";
+  auto rows = csv_rows(read_text(out + "/drone-1-litchi.csv"));
+  ASSERT_GT(rows.size(), 4u);
+  ASSERT_EQ(rows[0][2], "altitude(m)");
+  const double lat = std::stod(rows[3][0]) + 0.01, lon = std::stod(rows[3][1]);
+  rows[3][0] = std::to_string(lat);
+  rows[3][2] = "150";
+  write(out + "/drone-1-litchi.csv", csv_text(rows));
+  write(dir + "/zone.geojson", square_zone(lat, lon, 0.0005));
+  std::string wpl = read_text(out + "/drone-1.waypoints");
+  const std::size_t at = wpl.rfind("\t60.000000\t1\n");  // the last waypoint's altitude
+  ASSERT_NE(at, std::string::npos);
+  wpl.replace(at, 12, "\t150.000000\t1");
+  write(out + "/drone-1.waypoints", wpl);
+
+  const CliRun run = run_swath("verify " + out + " --exclude " + dir + "/zone.geojson --json");
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  const json j = json::parse(run.out);
+  const auto litchi = checks_failed_by(j, out + "/drone-1-litchi.csv");
+  EXPECT_TRUE(has(litchi, "no-fly zone")) << run.out;
+  EXPECT_TRUE(has(litchi, "ceiling")) << run.out;
+  EXPECT_TRUE(has(checks_failed_by(j, out + "/drone-1.waypoints"), "ceiling")) << run.out;
+  EXPECT_TRUE(checks_failed_by(j, out + "/drone-1.plan").empty()) << run.out;
+  for (const json& c : j["checks"]) {  // the figures count the twins' flights
+    if (c["check"] == "ceiling") EXPECT_DOUBLE_EQ(c["value"].get<double>(), 150.0);
+    if (c["check"] == "zones") EXPECT_DOUBLE_EQ(c["value"].get<double>(), 0.0);
+  }
 }
 
 TEST(VerifyCli, CatchesAWaypointMovedIntoAZoneOfTheQgcStyleFixture) {

@@ -49,9 +49,9 @@ struct DroneFile {
   /// own offset or when the one before lands, whichever is later), never against each other.
   /// Empty: a drone alone.
   std::string sorties_of;
-  /// Flies in place of another drone's file (a part of its split Litchi twin): checked as a
-  /// flight of its own, never for separation (it is not in the air beside the file it stands
-  /// for), and its photos are not counted again.
+  /// Flies in place of another drone's file (a twin of its .plan, or a part of its split Litchi
+  /// twin): checked as a flight of its own, never for separation (it is not in the air beside the
+  /// file it stands for), and its photos are not counted again.
   bool instead = false;
 };
 
@@ -90,8 +90,9 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
 /// Checks a set of written files by name and content (a plan directory, or `swath plan`'s output
 /// before it is written): each NAME.plan is a drone (NAME.waypoints, NAME-litchi.csv,
 /// NAME-survey.plan and NAME.kmz are its twins, which must agree with it; the parts
-/// NAME-litchi-1.csv, -2, ... of a split Litchi flight must agree joined, and each is also flown
-/// from the .plan's home, within its fences, as a sortie); without .plan files, the .waypoints,
+/// NAME-litchi-1.csv, -2, ... of a split Litchi flight must agree joined; every twin and part is
+/// also flown and checked in the .plan's place, within its fences, a Litchi or DJI file from its
+/// home, the parts in turn as sorties); without .plan files, the .waypoints,
 /// -litchi.csv, -litchi-N.csv (in turn, from part 1's first row) or .kmz files are the drones. A
 /// .waypoints file of fence and rally items only (missions::is_wpl_fence_file, whatever its name)
 /// adds to every drone's fences, summary.json's drones[].launch_offset_s sets launch times and
