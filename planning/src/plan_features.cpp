@@ -73,9 +73,9 @@ PlanFeatures plan_features(const SurveyPlan& plan) {
     PlanFeatures::Path path;
     path.drone = d.number;
     path.name = d.name;
-    path.altitude_m = round_to(plan.imaging.altitude_m, 3);
+    path.altitude_m = round_to(files::map_altitude_m(plan, d), 3);
     path.speed_m_s = round_to(d.speed_m_s, 3);
-    for (const Point2& p : m.path) path.points.push_back(geo(plan, p));
+    for (const Point2& p : files::map_path(d)) path.points.push_back(geo(plan, p));
     f.paths.push_back(std::move(path));
     for (std::size_t i = 0; i < m.lines.size(); ++i)
       f.sweeps.push_back({d.number, static_cast<int>(i),

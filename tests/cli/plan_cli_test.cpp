@@ -898,6 +898,75 @@ TEST(PlanCli, Px4FleetsLandAtHomeInsteadOfClimbingToTheReturnAltitude) {
   EXPECT_EQ(ap["mission"]["items"].back()["command"], 20);
 }
 
+// The heights (third numbers) of a drone's path in mission.kml, its Placemark named `name`.
+std::vector<double> kml_path_heights(const std::string& kml, const std::string& name) {
+  const std::size_t at = kml.find("<name>" + name + "</name>");
+  const std::size_t from = kml.find("<coordinates>", at) + 13;
+  std::istringstream in(kml.substr(from, kml.find("</coordinates>", from) - from));
+  std::vector<double> out;
+  for (std::string point; in >> point;)
+    out.push_back(std::stod(point.substr(point.rfind(',') + 1)));
+  return out;
+}
+
+// The maps draw each drone's path at the height its mission flies: bravo and charlie fly their
+// altitude layers (70 and 80 m), which mission.kml and mission.geojson gave as 60 m.
+TEST(PlanCli, MapsDrawEachDronesPathAtItsOwnAltitude) {
+  const std::string out = fresh_dir("maps-layers");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 --fleet "
+      "share/fleets/three-quads.yaml --division region -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json g = json::parse(read_text(out + "/mission.geojson"));
+  const std::string kml = read_text(out + "/mission.kml");
+  std::set<double> flown_m;
+  for (const json& f : g["features"]) {
+    if (f["properties"]["role"] != "path") continue;
+    const std::string name = f["properties"]["name"];
+    const json plan = json::parse(read_text(out + "/" + name + ".plan"));
+    double waypoint_m = -1;  // the altitude of the .plan's waypoints (NAV_WAYPOINT, 16)
+    for (const json& item : plan["mission"]["items"])
+      if (item["command"] == 16) waypoint_m = item["params"][6].get<double>();
+    flown_m.insert(waypoint_m);
+    EXPECT_DOUBLE_EQ(f["properties"]["altitude_m"].get<double>(), waypoint_m) << name;
+    const int drone = f["properties"]["drone"];
+    for (double h : kml_path_heights(kml, "Drone " + std::to_string(drone) + " " + name + " path"))
+      EXPECT_DOUBLE_EQ(h, waypoint_m) << name;
+  }
+  EXPECT_EQ(flown_m, (std::set<double>{60.0, 70.0, 80.0}));
+}
+
+// With sorties the map path is what the drone flies: each sortie from home to its resume point
+// and back home from its cut point (the uncut flight left those legs out: home at its two ends
+// only).
+TEST(PlanCli, MapsDrawEverySortiesLegsHomeAndBack) {
+  const std::string out = fresh_dir("maps-sorties");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --sorties auto "
+      "--endurance 420 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  const std::size_t sorties = s["drones"][0]["sorties"].size();
+  ASSERT_GT(sorties, 2u);
+  const double home_lat = s["home"]["lat_deg"], home_lon = s["home"]["lon_deg"];
+  const json g = json::parse(read_text(out + "/mission.geojson"));
+  std::size_t at_home = 0, paths = 0, points = 0;
+  for (const json& f : g["features"]) {
+    if (f["properties"]["role"] != "path") continue;
+    ++paths;
+    points = f["geometry"]["coordinates"].size();
+    for (const json& p : f["geometry"]["coordinates"])
+      at_home += std::abs(p[1].get<double>() - home_lat) < 1e-7 &&
+                 std::abs(p[0].get<double>() - home_lon) < 1e-7;
+  }
+  EXPECT_EQ(paths, 1u);
+  EXPECT_EQ(at_home, sorties + 1);  // out and back, the landings and take-offs between counted once
+  const std::string kml = read_text(out + "/mission.kml");
+  EXPECT_EQ(kml_path_heights(kml, "Drone 1 path").size(), points);  // the same path
+}
+
 struct BadPlan {
   std::string name, args, fragment;
   friend void PrintTo(const BadPlan& b, std::ostream* os) { *os << "swath plan " << b.args; }

@@ -309,6 +309,27 @@ std::string xml_escape(const std::string& text) {
   return out;
 }
 
+std::vector<const DroneMission*> drone_flights(const DronePlan& drone) {
+  std::vector<const DroneMission*> out;
+  for (const Sortie& s : drone.sorties) out.push_back(&s.mission);
+  if (out.empty()) out.push_back(&drone.mission);
+  return out;
+}
+
+std::vector<geometry::Point2> map_path(const DronePlan& drone) {
+  std::vector<geometry::Point2> out;
+  for (const DroneMission* m : drone_flights(drone)) {
+    // Home once between two sorties: the one lands where the next takes off.
+    const bool lands_there = !out.empty() && !m->path.empty() && out.back() == m->path.front();
+    out.insert(out.end(), m->path.begin() + (lands_there ? 1 : 0), m->path.end());
+  }
+  return out;
+}
+
+double map_altitude_m(const SurveyPlan& plan, const DronePlan& drone) {
+  return plan.imaging.altitude_m + drone.layer_m;
+}
+
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close) {
   std::string s;

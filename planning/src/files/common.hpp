@@ -45,6 +45,15 @@ const char* action_name(ItemKind kind);
 /// Markup escaped, and bytes that are not UTF-8 replaced (XML allows no others).
 std::string xml_escape(const std::string& text);
 
+/// What a drone flies, as the maps draw it: its sorties one after another (each from home to its
+/// resume point, its work, and back home from its cut point), else its one flight.
+std::vector<const DroneMission*> drone_flights(const DronePlan& drone);
+/// The points of drone_flights(drone) joined, local metres: home to home.
+std::vector<geometry::Point2> map_path(const DronePlan& drone);
+/// Above home, metres, where the maps draw a drone's path without terrain: the imaging altitude
+/// plus its altitude layer (SurveyRequest::layer_spacing_m).
+double map_altitude_m(const SurveyPlan& plan, const DronePlan& drone);
+
 /// "lon,lat,alt lon,lat,alt ..." (closed: the first point again at the end).
 std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, double altitude_m,
                             bool close);

@@ -15,19 +15,21 @@ std::string path_geometry(const SurveyPlan& plan, const DronePlan& d) {
       "--terrain DEM for heights above sea level";
   if (!plan.terrain) {
     std::vector<geometry::GeoPoint> path;
-    for (const geometry::Point2& p : d.mission.path) path.push_back(files::geo(plan, p));
-    coordinates = files::kml_coordinates(path, plan.imaging.altitude_m, false);
+    for (const geometry::Point2& p : files::map_path(d)) path.push_back(files::geo(plan, p));
+    coordinates = files::kml_coordinates(path, files::map_altitude_m(plan, d), false);
   } else {
     const bool agl = plan.terrain->frame == AltitudeFrame::terrain;
     mode = agl ? "relativeToGround" : "absolute";
     about = agl ? "heights above the ground (terrain frame)" : "heights above mean sea level";
-    for (const MissionItem& item : d.mission.items) {
-      if (!positional(item.kind)) continue;
-      const geometry::GeoPoint g = files::geo(plan, item.position);
-      const double h = agl ? plan.terrain->height_above_ground_m : item.altitude_amsl_m;
-      if (!coordinates.empty()) coordinates += ' ';
-      coordinates += files::kml_coordinates({g}, h, false);
-    }
+    for (const DroneMission* flight : files::drone_flights(d))
+      for (const MissionItem& item : flight->items) {
+        if (!positional(item.kind)) continue;
+        const geometry::GeoPoint g = files::geo(plan, item.position);
+        const double h =
+            agl ? plan.terrain->height_above_ground_m + d.layer_m : item.altitude_amsl_m;
+        if (!coordinates.empty()) coordinates += ' ';
+        coordinates += files::kml_coordinates({g}, h, false);
+      }
   }
   std::string out = "    <description>";
   out += about;
