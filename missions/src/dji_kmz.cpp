@@ -123,8 +123,14 @@ void add_wayline(const pugi::xml_node& folder, const std::string& in, Mission& m
             2 ||
         !(std::abs(lat) <= 90 && std::abs(lon) <= 180))
       throw InputError(where + ": coordinates must be 'longitude,latitude'");
+    // A waypoint's speed is its leg's to the next (DJI's waypointSpeed): a change after it; the
+    // first one's also before it, the flight out to it being at that speed too.
     const double v = number(p, "wpml:waypointSpeed", where);
-    if (v > 0 && v != speed) m.items.push_back(command(Cmd::do_change_speed, 1, speed = v, where));
+    const auto set_speed = [&] {
+      if (v > 0 && v != speed)
+        m.items.push_back(command(Cmd::do_change_speed, 1, speed = v, where));
+    };
+    if (index.empty()) set_speed();
     Item w;
     w.command = static_cast<int>(Cmd::nav_waypoint);
     w.frame = frame;
@@ -136,6 +142,7 @@ void add_wayline(const pugi::xml_node& folder, const std::string& in, Mission& m
     w.place = where;
     m.items.push_back(w);
     index.push_back(m.items.size());
+    set_speed();
   }
   if (index.empty()) throw InputError(in + ": no Placemark (waypoint)");
   add_triggers(folder, in, index, m);

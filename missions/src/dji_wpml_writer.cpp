@@ -181,6 +181,12 @@ std::string document_start(const std::string& author_lines) {
          author_lines;
 }
 
+// A waypoint's speed: its leg's to the next waypoint (DJI's waypointSpeed), the point's own where
+// the mission slows to a stop beside a no-fly zone, else the flight's.
+double leg_speed_m_s(const ExportPoint& p, const DjiSettings& s) {
+  return p.speed_m_s > 0 ? p.speed_m_s : s.speed_m_s;
+}
+
 }  // namespace
 
 std::string write_dji_waylines_wpml(const std::vector<ExportPoint>& points,
@@ -194,7 +200,7 @@ std::string write_dji_waylines_wpml(const std::vector<ExportPoint>& points,
   s += element("      ", "autoFlightSpeed", number(w.settings.speed_m_s));
   s += placemarks(w, [&](const ExportPoint& p, const std::string& in) {
     std::string b = element(in, "executeHeight", number(p.altitude_m));
-    b += element(in, "waypointSpeed", number(w.settings.speed_m_s));
+    b += element(in, "waypointSpeed", number(leg_speed_m_s(p, w.settings)));
     b += heading_param(in, p.heading_deg, "waypointHeadingParam");
     // Straight legs, a stop at every point: the lines are flown as planned and photographed by
     // distance along them; no corner is cut into a no-fly zone's clearance.
@@ -229,7 +235,7 @@ std::string write_dji_template_kml(const std::vector<ExportPoint>& points,
       b += element(in, "ellipsoidHeight", number(p.altitude_m)) +
            element(in, "height", number(p.altitude_m));
     b += element(in, "useGlobalSpeed", "0");
-    b += element(in, "waypointSpeed", number(w.settings.speed_m_s));
+    b += element(in, "waypointSpeed", number(leg_speed_m_s(p, w.settings)));
     b += element(in, "useGlobalHeadingParam", "0");
     b += heading_param(in, p.heading_deg, "waypointHeadingParam");
     b += element(in, "useGlobalTurnParam", "1");

@@ -386,7 +386,9 @@ TEST(MissionWriters, DjiKmzReadsBackAsItsPoints) {
   for (std::uint32_t seed = 231; seed <= 250; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Rng rng{std::mt19937(seed)};
-    const auto points = random_points(rng, 2 + rng.below(60));
+    auto points = random_points(rng, 2 + rng.below(60));
+    for (missions::ExportPoint& p : points)  // a slower approach here and there
+      p.speed_m_s = rng.below(4) == 0 ? rng.rounded(0.5, 0.9, 3) : 0.0;
     missions::DjiSettings settings;
     settings.speed_m_s = rng.rounded(1, 15, 3);
     settings.altitude_m = 60;
@@ -398,7 +400,14 @@ TEST(MissionWriters, DjiKmzReadsBackAsItsPoints) {
     // The speed: a DO_CHANGE_SPEED (178) before the first waypoint, param2 m/s.
     ASSERT_FALSE(read.items.empty());
     EXPECT_EQ(read.items.front().command, 178);
-    EXPECT_EQ(read.items.front().params[1], settings.speed_m_s);
+    const double first_m_s = points[0].speed_m_s > 0 ? points[0].speed_m_s : settings.speed_m_s;
+    EXPECT_EQ(read.items.front().params[1], first_m_s);
+    // Each waypoint's speed is its leg's to the next, read back so.
+    const std::vector<double> legs = leg_speeds_m_s(read);
+    ASSERT_EQ(legs.size() + 1, points.size());
+    for (std::size_t i = 0; i < legs.size(); ++i)
+      EXPECT_EQ(legs[i], points[i].speed_m_s > 0 ? points[i].speed_m_s : settings.speed_m_s)
+          << "leg " << i;
   }
 }
 
