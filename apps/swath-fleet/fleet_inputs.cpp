@@ -11,6 +11,7 @@
 #include "seed_option.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/fleet/apps.hpp"
 #include "swath/fleet/envelope.hpp"
 #include "swath/fleet/faults.hpp"
@@ -153,6 +154,8 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     }
   }
   p.settings.envelope = fleet::local_envelope(envelope, p.world->origin);
+  if (const std::string fence = fleet::fence_size_refusal(p.settings.envelope); !fence.empty())
+    throw InputError(r.fleet + ": " + fence);
   if (p.world->has_origin) p.settings.origin = p.world->origin;
   // Checked again by the runtime; here too so that nothing (no vehicle link) is opened first.
   const std::string fit =
@@ -165,7 +168,9 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
   for (const fleet::DroneSpec& d : p.drones)
     if (const std::string why = p.settings.envelope.refusal_xy(d.home_m.x, d.home_m.y);
         !why.empty())
-      throw InputError(r.fleet + ": " + d.drone.name + "'s home is " + why);
+      throw InputError(r.fleet + ": " + d.drone.name + "'s home (" +
+                       base::fixed_text(d.home_m.x, 1) + ", " + base::fixed_text(d.home_m.y, 1) +
+                       ") m is " + why);
   p.settings.app_name = r.app;
   p.settings.scheduler = r.scheduler;
   p.settings.seed = r.seed;

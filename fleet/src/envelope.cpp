@@ -72,11 +72,24 @@ std::string layers_refusal(int drones, double base_m, double step_m, double ceil
   const double top_m = base_m + step_m * static_cast<double>(std::max(0, drones - 1));
   if (top_m <= ceiling_m + 1e-9) return "";
   const int fit = base_m > ceiling_m ? 0 : static_cast<int>((ceiling_m - base_m) / step_m) + 1;
-  return "a fleet of " + std::to_string(drones) + " drones needs altitude layers up to " +
-         base::shortest_text(top_m) + " m (" + base::shortest_text(base_m) + " m + " +
-         base::shortest_text(step_m) + " m apart), above the ceiling of " +
-         base::shortest_text(ceiling_m) + " m: at most " + std::to_string(fit) +
+  return "a fleet of " + std::to_string(drones) + (drones == 1 ? " drone" : " drones") +
+         " needs altitude layers up to " + base::shortest_text(top_m) + " m (" +
+         base::shortest_text(base_m) + " m + " + base::shortest_text(step_m) +
+         " m apart), above the ceiling of " + base::shortest_text(ceiling_m) + " m: at most " +
+         std::to_string(fit) +
          " drones fit (raise ceiling_m or lower separation_m in the fleet file)";
+}
+
+// A vertex is at most 36 bytes of run_start ("[-20015086.796021,-20015086.796021],"): 20,000 of
+// them fit a 1 MiB line with room for the drones.
+std::string fence_size_refusal(const LocalEnvelope& e) {
+  std::size_t vertices = 0;
+  for (const auto* rings : {&e.inclusions, &e.exclusions})
+    for (const auto& ring : *rings) vertices += ring.size();
+  if (vertices <= kMaxFenceVertices) return "";
+  return "fence: " + std::to_string(vertices) + " vertices; swath-fleet flies a fence of at most " +
+         std::to_string(kMaxFenceVertices) +
+         " (its polygons and exclusions together; the run's log carries them)";
 }
 
 }  // namespace swath::fleet

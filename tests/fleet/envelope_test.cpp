@@ -3,6 +3,7 @@
 // planted breach of a real log; separation and ceiling measured on whole runs of every app.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -240,6 +241,40 @@ TEST(Envelope, AFleetThatCannotFitIsRefused) {
   fenced.envelope.inclusions = {{{-10, -10}, {8, -10}, {8, 10}, {-10, 10}}};
   EXPECT_NE(refusal(3, fenced).find("d2's home (10.0, 0.0) m is outside the inclusion fence"),
             std::string::npos);
+}
+
+// run_start carries the fence, and check and render read lines of at most 1 MiB: the largest
+// fence a run flies (20,000 vertices, 20,000 km out: the longest numbers) logs a shorter line, one
+// vertex more is refused before anything runs.
+TEST(Envelope, AFenceTooLargeForTheLogIsRefused) {
+  const auto world = worlds::parse_world("kind: rf_field\nseed: 2\n", "w.yaml");
+  RuntimeSettings s;
+  s.app_name = "wifi";
+  s.max_time_s = 1;
+  std::size_t longest_line = 0;
+  s.on_event = [&](const std::string& line) { longest_line = std::max(longest_line, line.size()); };
+  const double radius_m = 20015086.796021;
+  std::vector<std::array<double, 2>> ring;
+  for (std::size_t i = 0; i < kMaxFenceVertices; ++i) {
+    const double a = 2 * std::acos(-1.0) * static_cast<double>(i) / kMaxFenceVertices;
+    ring.push_back({-radius_m * std::cos(a) + 1e-6, -radius_m * std::sin(a) - 1e-6});
+  }
+  s.envelope.inclusions = {ring};
+  const auto refusal = [&]() {
+    try {
+      run_app(app_named("wifi"), *world, drones_in_a_row(2, 6), s);
+    } catch (const base::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(refusal(), "");
+  EXPECT_GT(longest_line, std::size_t{500000});  // run_start, with the fence
+  EXPECT_LT(longest_line, std::size_t{1} << 20);
+  s.envelope.exclusions = {{{1000, 1000}, {1010, 1000}, {1010, 1010}}};
+  EXPECT_NE(refusal().find("fence: 20003 vertices; swath-fleet flies a fence of at most 20000"),
+            std::string::npos)
+      << refusal();
 }
 
 // Whole runs of every app with 8 drones: the checker finds no violation (R11 included), the least

@@ -292,7 +292,8 @@ FleetFileFence read_fence(const YamlMap& top, const std::string& source) {
   std::filesystem::path p = f.text("geojson", "");
   if (p.is_relative()) p = std::filesystem::path(source).parent_path() / p;
   FleetFileFence fence;
-  fence.polygons = parse_fence_geojson(base::read_text_file(p.string(), "fence file"), p.string());
+  fence.polygons = parse_fence_geojson(
+      base::read_text_file(p.string(), "fence file", base::kMaxConfigFileBytes), p.string());
   if (f.has("max_altitude_m")) fence.max_altitude_m = f.number("max_altitude_m", 0, 0, 10000, true);
   return fence;
 }

@@ -66,6 +66,8 @@ void Runtime::check_envelope(const std::vector<DroneSpec>& specs) const {
   const std::string layers = layers_refusal(static_cast<int>(specs.size()), settings_.layer_base_m,
                                             settings_.layer_step_m, top_m);
   if (!layers.empty()) throw base::InputError(layers);
+  if (const std::string fence = fence_size_refusal(e); !fence.empty())
+    throw base::InputError(fence);
   const auto where = [](const Vec3& p) {
     return "(" + base::fixed_text(p.x, 1) + ", " + base::fixed_text(p.y, 1) + ") m";
   };

@@ -13,6 +13,7 @@
 //     max_altitude_m: 100      # m above home; optional, else the ceiling
 
 #include <array>
+#include <cstddef>
 #include <limits>
 #include <string>
 #include <vector>
@@ -66,5 +67,12 @@ Envelope envelope_of(const vehicle::FleetFile& file);
 /// The altitude layers (drone i at base_m + step_m × i) of `drones` drones under `ceiling_m`:
 /// "" when they fit, else one sentence saying why not.
 std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m);
+
+/// The most vertices a run's fence may have, its inclusions and exclusions together: the log's
+/// run_start carries them, and a line of events.jsonl is at most 1 MiB (`check`, `render`).
+inline constexpr std::size_t kMaxFenceVertices = 20000;
+
+/// "" when `e`'s rings have at most kMaxFenceVertices vertices, else one sentence saying so.
+std::string fence_size_refusal(const LocalEnvelope& e);
 
 }  // namespace swath::fleet
