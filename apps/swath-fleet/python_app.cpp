@@ -10,8 +10,11 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <csignal>
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
@@ -22,6 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <variant>
 #include <vector>
@@ -29,10 +33,20 @@
 #include "../../fleet/apps/src/gaussian_process.hpp"  // the wifi app's, for wifi.py's parity
 #include "fleet_inputs.hpp"
 #include "fleet_main.hpp"
+#include "run_control.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/fleet/apps.hpp"
 #include "swath/worlds/worlds.hpp"
 
 namespace py = pybind11;
+
+namespace {
+/// The longest a reading, a hover or a custom action may take: an hour, beyond any drone's flight.
+constexpr double kMaxActionS = 3600;
+constexpr std::size_t kMaxNameBytes = 256;
+constexpr std::size_t kMaxMessageBytes = 1000;
+constexpr int kMaxLiveTasks = 2000;
+}  // namespace
 
 namespace swath::apps {
 namespace {
@@ -41,38 +55,46 @@ using fleet::Co;
 using fleet::Ctx;
 using fleet::Reading;
 
-/// Who may run: the runtime (kRuntime) or one Python task (its slot).
+/// Who may run: the runtime (kRuntime) or one Python task (its slot). Each side waits on a
+/// condition of its own, so a hand-over wakes one thread, not every task's (thousands live).
 class Baton {
  public:
   static constexpr int kRuntime = -1;
-  /// Runtime side: lets task `slot` run and waits until it hands the baton back.
-  void run(int slot) {
+  /// Runtime side: lets task `slot` run and waits until it hands the baton back, calling
+  /// `on_stall` every 100 ms of wall time meanwhile (a task that keeps its turn).
+  template <class OnStall>
+  void run(int slot, std::condition_variable& task_cv, OnStall on_stall) {
     std::unique_lock lock(m_);
     turn_ = slot;
-    cv_.notify_all();
-    cv_.wait(lock, [&] { return turn_ == kRuntime; });
+    task_cv.notify_one();
+    while (!runtime_cv_.wait_for(lock, std::chrono::milliseconds(100),
+                                 [&] { return turn_ == kRuntime; })) {
+      lock.unlock();
+      on_stall();
+      lock.lock();
+    }
   }
   /// Python side: hands the baton back and waits for this task's next turn.
-  void yield(int slot) {
+  void yield(int slot, std::condition_variable& task_cv) {
     std::unique_lock lock(m_);
     turn_ = kRuntime;
-    cv_.notify_all();
-    cv_.wait(lock, [&] { return turn_ == slot; });
+    runtime_cv_.notify_one();
+    task_cv.wait(lock, [&] { return turn_ == slot; });
   }
-  void wait_turn(int slot) {
+  void wait_turn(int slot, std::condition_variable& task_cv) {
     std::unique_lock lock(m_);
-    cv_.wait(lock, [&] { return turn_ == slot; });
+    task_cv.wait(lock, [&] { return turn_ == slot; });
   }
   /// Python side, when the task's function has returned.
   void finish() {
     std::lock_guard lock(m_);
     turn_ = kRuntime;
-    cv_.notify_all();
+    runtime_cv_.notify_one();
   }
 
  private:
   std::mutex m_;
-  std::condition_variable cv_;
+  std::condition_variable runtime_cv_;
   int turn_ = kRuntime;
 };
 
@@ -92,7 +114,14 @@ struct PyTask {
   Ctx* ctx = nullptr;
   py::object fn, args, result;  // touched only with the GIL held
   std::thread thread;
+  std::condition_variable turn_cv;  // the Baton wakes this task's thread through it
+  unsigned long python_thread = 0;  // PyThread_get_thread_ident() of the thread
   bool started = false, finished = false, killed = false;
+  /// Why the runtime stopped the task while it kept its turn (a signal, the wall-clock bound);
+  /// set before the exception is raised in its thread, read there (its task_failed reason).
+  std::string stopped_why;
+  std::string spawned_at;  // "app.py line N" of its newTask call
+  std::chrono::steady_clock::time_point stopped_at;
   Yield yield = Yield::returned;
   Awaited awaited;
   std::string error;        // the sentence of a Python exception, or an ActionFailed reason
@@ -119,6 +148,7 @@ class Host {
   std::string path;  // the app file as given on the command line
   py::object app_fn;
   Baton baton;
+  double max_wall_s = 3600;  // --max-time: also the wall time a task may keep its turn
 
   PyTask& new_task() {
     tasks_.push_back(std::make_unique<PyTask>());
@@ -130,17 +160,31 @@ class Host {
   /// Runtime side: runs the task until it blocks or ends (its thread starts on the first turn).
   void step(PyTask& t) {
     if (!t.started) {
+      // A thread per task: past kMaxLiveTasks the task fails instead of starting (an app that
+      // spawns without end would otherwise take the machine's threads).
+      const std::string too_many = t.spawned_at + ": bee.newTask: more than " +
+                                   std::to_string(kMaxLiveTasks) +
+                                   " tasks alive at once, swath-fleet's limit for a Python app "
+                                   "(each runs on a thread of its own)";
+      if (threads_alive_ >= kMaxLiveTasks) return refuse_start(t, too_many);
+      try {
+        t.thread = std::thread([this, &t] { thread_main(t); });
+      } catch (const std::system_error&) {  // the system's own limit came first
+        return refuse_start(t, too_many);
+      }
       t.started = true;
-      t.thread = std::thread([this, &t] { thread_main(t); });
+      ++threads_alive_;
     }
-    baton.run(t.slot);
+    run_turn(t);
+    join_if_finished(t);
   }
   /// Runtime side: a task whose frame is gone (cancelled, or the run over) unwinds its Python
   /// code: every wait and action raises TaskKilled until the function returns.
   void kill(PyTask& t) {
     if (!t.started || t.finished) return;
     t.killed = true;
-    baton.run(t.slot);
+    run_turn(t);
+    join_if_finished(t);
   }
   /// After the runs, GIL released: ends every thread still waiting.
   void kill_all() {
@@ -156,15 +200,70 @@ class Host {
 
   /// The sentence for a Python exception: the app file, the line in it, the type and message.
   std::string sentence(py::error_already_set& e) const;
+  /// Where in the app file a Python exception was raised: "app.py line 9" (or the file alone).
+  std::string where(py::error_already_set& e) const;
 
  private:
   void thread_main(PyTask& t);
+  void run_turn(PyTask& t);
+  /// A task that cannot start fails at once with `why`.
+  static void refuse_start(PyTask& t, const std::string& why) {
+    t.yield = Yield::raised;
+    t.error = why;
+  }
+  /// A thread whose function has returned is joined at once: an ended thread's stack stays
+  /// mapped until it is joined, and an app of many short tasks would run out of them.
+  static void join_if_finished(PyTask& t) {
+    if (t.finished && t.thread.joinable()) t.thread.join();
+  }
+  std::atomic<int> threads_alive_{0};
+  void stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_began);
   std::deque<std::unique_ptr<PyTask>> tasks_;
 };
 
 Host* host = nullptr;
 
+// The runtime waits for a task's turn to end; a task that keeps it (a loop that never blocks)
+// is stopped when a signal asks for the abort or after max_wall_s, so neither hangs the run.
+void Host::run_turn(PyTask& t) {
+  const auto began = std::chrono::steady_clock::now();
+  baton.run(t.slot, t.turn_cv, [&] { stop_if_due(t, began); });
+}
+
+// Raises TaskKilled in the task's thread (at its next Python line); again each second, as an app
+// may catch the first in a bare except. Its task then fails with `stopped_why`.
+void Host::stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_began) {
+  const auto now = std::chrono::steady_clock::now();
+  std::string why;
+  if (const int s = noted_signal(); s != 0)
+    why = std::string("stopped by ") + (s == SIGINT ? "SIGINT" : "SIGTERM") +
+          " while it kept its turn";
+  else if (std::chrono::duration<double>(now - turn_began).count() > max_wall_s)
+    why = "kept its turn (never waited on a future) for more than --max-time, " +
+          base::shortest_text(max_wall_s) + " s of wall-clock time";
+  if (why.empty() || t.python_thread == 0) return;
+  if (!t.stopped_why.empty() && now - t.stopped_at < std::chrono::seconds(1)) return;
+  py::gil_scoped_acquire gil;  // the task's thread lets it go at its switch interval
+  if (t.finished) return;
+  t.stopped_why = why;
+  t.stopped_at = now;
+  PyThreadState_SetAsyncExc(t.python_thread, error_types().task_killed.ptr());
+}
+
+// The message is cut to kMaxMessageBytes (at a character's start): it is a task_failed reason,
+// and a line of events.jsonl holds at most 1 MiB.
 std::string Host::sentence(py::error_already_set& e) const {
+  const std::string type = py::str(e.type().attr("__name__"));
+  std::string message = py::str(e.value());
+  if (message.size() > kMaxMessageBytes) {
+    std::size_t cut = kMaxMessageBytes;
+    while (cut > 0 && (static_cast<unsigned char>(message[cut]) & 0xC0) == 0x80) --cut;
+    message = message.substr(0, cut) + "... (" + std::to_string(message.size()) + " bytes)";
+  }
+  return where(e) + ": " + type + (message.empty() ? "" : ": " + message);
+}
+
+std::string Host::where(py::error_already_set& e) const {
   std::string where = path;
   try {
     const py::list frames =
@@ -179,18 +278,19 @@ std::string Host::sentence(py::error_already_set& e) const {
   } catch (const std::exception&) {
     // no traceback to read: the file alone
   }
-  if (e.matches(PyExc_SyntaxError) && py::hasattr(e.value(), "lineno"))
+  // A file Python cannot decode has no line (lineno None): the file alone.
+  if (e.matches(PyExc_SyntaxError) && py::hasattr(e.value(), "lineno") &&
+      !e.value().attr("lineno").is_none())
     where = path + " line " + py::str(e.value().attr("lineno")).cast<std::string>();
-  const std::string type = py::str(e.type().attr("__name__"));
-  const std::string message = py::str(e.value());
-  return where + ": " + type + (message.empty() ? "" : ": " + message);
+  return where;
 }
 
 void Host::thread_main(PyTask& t) {
-  baton.wait_turn(t.slot);
+  baton.wait_turn(t.slot, t.turn_cv);
   {
     py::gil_scoped_acquire gil;
     current_task = &t;
+    t.python_thread = PyThread_get_thread_ident();
     try {
       if (!t.killed) {
         py::object bee =
@@ -202,6 +302,9 @@ void Host::thread_main(PyTask& t) {
       const ErrorTypes& types = error_types();
       if (t.killed) {
         t.yield = Yield::returned;
+      } else if (!t.stopped_why.empty()) {
+        t.yield = Yield::raised;
+        t.error = where(e) + ": " + t.stopped_why;
       } else if (e.matches(types.action_failed)) {
         t.yield = Yield::action_failed;
         t.error = py::str(e.value());
@@ -218,6 +321,7 @@ void Host::thread_main(PyTask& t) {
     current_task = nullptr;
   }
   t.finished = true;
+  --threads_alive_;
   baton.finish();
 }
 
@@ -292,7 +396,7 @@ struct PyFuture {
       me->yield = Yield::awaiting;
       {
         py::gil_scoped_release nogil;
-        host->baton.yield(me->slot);
+        host->baton.yield(me->slot, me->turn_cv);
       }
       if (me->killed) raise(error_types().task_killed, "the task's run is over");
     }
@@ -313,27 +417,68 @@ struct PyFuture {
   }
 };
 
+// The arguments of the app's calls, each checked with a sentence naming the call and the
+// argument (the task then fails on the app's line), not pybind11's "Unable to cast".
+
+std::string type_name(const py::handle h) {
+  return py::str(h.get_type().attr("__name__"));
+}
+
+double number_arg(const py::handle h, const std::string& call, const std::string& name) {
+  if ((!py::isinstance<py::float_>(h) && !py::isinstance<py::int_>(h)) ||
+      py::isinstance<py::bool_>(h))
+    throw py::type_error(call + ": " + name + " must be a number, not a " + type_name(h));
+  const double v = h.cast<double>();
+  if (!std::isfinite(v))
+    throw py::value_error(call + ": " + name + " must be finite, not " + base::shortest_text(v));
+  return v;
+}
+
+/// A duration: a number of seconds from 0 to kMaxActionS.
+double seconds_arg(const py::handle h, const std::string& call, const std::string& name) {
+  const double s = number_arg(h, call, name);
+  if (s < 0 || s > kMaxActionS)
+    throw py::value_error(call + ": " + name + " must be from 0 to " +
+                          base::shortest_text(kMaxActionS) + " s, not " + base::shortest_text(s));
+  return s;
+}
+
+/// A name the log carries (a sensor, a custom action, a task's kind): a string of at most
+/// kMaxNameBytes, so that every event stays far below the 1 MiB a line of events.jsonl may hold.
+std::string name_arg(const py::handle h, const std::string& call, const std::string& name) {
+  if (!py::isinstance<py::str>(h))
+    throw py::type_error(call + ": " + name + " must be a string, not a " + type_name(h));
+  std::string s = h.cast<std::string>();
+  if (s.size() > kMaxNameBytes)
+    throw py::value_error(call + ": " + name + " must be at most " + std::to_string(kMaxNameBytes) +
+                          " bytes long, not " + std::to_string(s.size()));
+  return s;
+}
+
 fleet::Vec3 point(const py::args& a, std::size_t from) {
-  if (a.size() < from + 2 || a.size() > from + 3)
-    throw py::value_error("bee.act(\"fly_to\", x_m, y_m[, z_m])");
-  return {a[from].cast<double>(), a[from + 1].cast<double>(),
-          a.size() == from + 3 ? a[from + 2].cast<double>() : 0.0};
+  const std::string call = "bee.act(\"fly_to\", x_m, y_m[, z_m])";
+  if (a.size() < from + 2 || a.size() > from + 3) throw py::value_error(call);
+  return {number_arg(a[from], call, "x_m"), number_arg(a[from + 1], call, "y_m"),
+          a.size() == from + 3 ? number_arg(a[from + 2], call, "z_m") : 0.0};
 }
 
 PyFuture act(PyTask* t, const std::string& name, const py::args& a) {
   Ctx& ctx = *acting(t).ctx;
   if (name == "fly_to") return {ctx.fly_to(point(a, 0))};
   if (name == "sense") {
-    if (a.size() != 1) throw py::value_error("bee.act(\"sense\", sensor)");
-    return {ctx.sense(a[0].cast<std::string>())};
+    const std::string call = "bee.act(\"sense\", sensor)";
+    if (a.size() != 1) throw py::value_error(call);
+    return {ctx.sense(name_arg(a[0], call, "sensor"))};
   }
   if (name == "hover") {
-    if (a.size() != 1) throw py::value_error("bee.act(\"hover\", seconds)");
-    return {ctx.hover(a[0].cast<double>())};
+    const std::string call = "bee.act(\"hover\", seconds)";
+    if (a.size() != 1) throw py::value_error(call);
+    return {ctx.hover(seconds_arg(a[0], call, "seconds"))};
   }
   if (name == "custom") {
-    if (a.size() != 2) throw py::value_error("bee.act(\"custom\", name, seconds)");
-    return {ctx.custom(a[0].cast<std::string>(), a[1].cast<double>())};
+    const std::string call = "bee.act(\"custom\", name, seconds)";
+    if (a.size() != 2) throw py::value_error(call);
+    return {ctx.custom(name_arg(a[0], call, "name"), seconds_arg(a[1], call, "seconds"))};
   }
   throw py::value_error("bee.act: unknown action \"" + name + "\" (fly_to, sense, hover, custom)");
 }
@@ -342,10 +487,13 @@ PyFuture new_task(PyTask* t, const py::object& fn, const py::args& a, bool same_
                   bool interruptible, const py::object& kind) {
   Ctx& ctx = *acting(t).ctx;
   PyTask& child = host->new_task();
+  PyFrameObject* frame = PyEval_GetFrame();  // the app's line calling newTask
+  child.spawned_at =
+      host->path + (frame ? " line " + std::to_string(PyFrame_GetLineNumber(frame)) : "");
   child.fn = fn;
   child.args = py::tuple(a);
   const std::string kind_name =
-      kind.is_none() ? py::str(fn.attr("__name__")).cast<std::string>() : kind.cast<std::string>();
+      name_arg(kind.is_none() ? py::str(fn.attr("__name__")) : kind, "bee.newTask", "kind");
   auto h = ctx.spawn(fleet::Kind{kind_name},
                      fleet::Flags{.same_drone = same_drone, .interruptible = interruptible},
                      run_task, child.slot);
@@ -355,6 +503,9 @@ PyFuture new_task(PyTask* t, const py::object& fn, const py::args& a, bool same_
 void cancel_tasks(PyTask* t, const py::iterable& futures) {
   Ctx& ctx = *acting(t).ctx;
   for (const py::handle f : futures) {
+    if (!py::isinstance<PyFuture>(f))
+      throw py::type_error("bee.cancelTasks: each item must be a task's Future, not a " +
+                           type_name(f));
     const PyFuture& fut = f.cast<const PyFuture&>();
     const auto* h = std::get_if<fleet::TaskHandle<void>>(&fut.awaited);
     if (h == nullptr) throw py::value_error("bee.cancelTasks: the future of an action, not a task");
@@ -368,6 +519,39 @@ py::tuple xyz(const fleet::Vec3& v) {
 
 /// A world with the app's own sensors (SENSORS = {name: (time_s, fn(x_m, y_m, t_s) -> values)})
 /// beside the file's: read by the runtime, which holds the baton, so the GIL is free to take.
+/// "app.py line N" of a Python function's definition (the file alone for a builtin).
+std::string definition_of(const py::object& fn) {
+  if (!py::hasattr(fn, "__code__")) return host->path;
+  return host->path + " line " +
+         py::str(fn.attr("__code__").attr("co_firstlineno")).cast<std::string>();
+}
+
+/// The app's sensor `fn` called at `at`: its values, or a SensorError naming the file and line.
+std::vector<double> read_values(const std::string& sensor, const py::object& fn,
+                                const fleet::Vec3& at, double t_s) {
+  std::string why;
+  try {
+    const py::object got = fn(at.x, at.y, t_s);
+    const auto type_of = [](const py::handle h) {
+      return py::str(h.get_type().attr("__name__")).cast<std::string>();
+    };
+    if (py::isinstance<py::str>(got) || py::isinstance<py::bytes>(got) ||
+        !py::isinstance<py::sequence>(got))
+      why = definition_of(fn) + ": sensor \"" + sensor +
+            "\" must return a list of numbers, not a " + type_of(got);
+    else
+      for (const py::handle v : got)
+        if (why.empty() && (!py::isinstance<py::float_>(v) && !py::isinstance<py::int_>(v)))
+          why = definition_of(fn) + ": sensor \"" + sensor +
+                "\" must return a list of numbers; it holds a " + type_of(v);
+    if (why.empty()) return got.cast<std::vector<double>>();
+  } catch (py::error_already_set& e) {
+    why = host->sentence(e);
+  }
+  std::cerr << "swath-fleet: " << why << "\n";
+  throw fleet::SensorError(why);
+}
+
 class PythonSensorsWorld final : public worlds::BaseWorld {
  public:
   PythonSensorsWorld(std::unique_ptr<worlds::BaseWorld> inner, py::dict sensors)
@@ -382,21 +566,19 @@ class PythonSensorsWorld final : public worlds::BaseWorld {
     if (!sensors_.contains(sensor)) return inner_->sense_time_s(sensor);
     return py::tuple(sensors_[py::str(sensor)])[0].cast<double>();
   }
+  /// An app's sensor that raises, or returns anything but a list of numbers, fails the task
+  /// sensing (fleet::SensorError) with the file and line.
   Reading sense(const std::string& sensor, const fleet::Vec3& at, double t_s) const override {
     {
       py::gil_scoped_acquire gil;
-      if (sensors_.contains(sensor)) try {
-          const py::object fn = py::tuple(sensors_[py::str(sensor)])[1];
-          Reading r;
-          r.sensor = sensor;
-          r.ref = sensor;
-          r.values = fn(at.x, at.y, t_s).cast<std::vector<double>>();
-          return r;
-        } catch (py::error_already_set& e) {
-          const std::string why = host->sentence(e);
-          std::cerr << "swath-fleet: " << why << "\n";
-          throw std::runtime_error(why);
-        }
+      if (sensors_.contains(sensor)) {
+        const py::object fn = py::tuple(sensors_[py::str(sensor)])[1];
+        Reading r;
+        r.sensor = sensor;
+        r.ref = sensor;
+        r.values = read_values(sensor, fn, at, t_s);
+        return r;
+      }
     }
     return inner_->sense(sensor, at, t_s);
   }
@@ -451,6 +633,15 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
   types.task_failed = py::exception<void>(m, "TaskFailed");
   types.task_killed = py::exception<void>(m, "TaskKilled", PyExc_BaseException);
 
+  // os._exit would end swath-fleet itself, exit 0 with no file written: an app's os._exit(n)
+  // raises SystemExit instead, as sys.exit does (its task fails; the run's files are written).
+  m.def("_exit", [](int status) {
+    PyErr_SetString(PyExc_SystemExit, ("os._exit(" + std::to_string(status) +
+                                       "): an app ends by returning from APP, not the process")
+                                          .c_str());
+    throw py::error_already_set();
+  });
+
   // C's hypot, as the C++ apps use it (math.hypot rounds its own way): for parity of results.
   m.def("hypot", [](double x, double y) { return std::hypot(x, y); });
 
@@ -491,7 +682,10 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
           py::arg("interruptible") = true, py::arg("kind") = py::none())
       .def("cancelTasks", &cancel_tasks)
       .def("metric",
-           [](PyTask* t, const std::string& name, double v) { acting(t).ctx->metric(name, v); })
+           [](PyTask* t, const py::object& name, const py::object& v) {
+             const std::string call = "bee.metric(name, value)";
+             acting(t).ctx->metric(name_arg(name, call, "name"), number_arg(v, call, "value"));
+           })
       .def_property_readonly("now_s", [](PyTask* t) { return acting(t).ctx->now_s(); })
       .def_property_readonly("world", [](PyTask* t) { return world_view(acting(t).ctx->world()); })
       .def_property_readonly("task", [](PyTask* t) { return acting(t).ctx->task(); });
@@ -515,6 +709,47 @@ int python_app_arg(int argc, char** argv) {
     if (a.size() > 3 && a.ends_with(".py") && a[0] != '-' && !value_of_option) return i;
   }
   return -1;
+}
+
+/// SENSORS = {name: (time_s, fn)}: each entry checked at load (std::invalid_argument names the
+/// entry), so that a run never meets a bad one mid-flight.
+void check_sensors(const py::object& sensors) {
+  const std::string form = " must be (time_s, fn(x_m, y_m, t_s))";
+  if (!py::isinstance<py::dict>(sensors))
+    throw std::invalid_argument("SENSORS must be a dict {name: (time_s, fn(x_m, y_m, t_s))}");
+  for (const auto& [key, entry] : py::reinterpret_borrow<py::dict>(sensors)) {
+    if (!py::isinstance<py::str>(key))
+      throw std::invalid_argument("SENSORS: a sensor's name must be a string, not " +
+                                  py::repr(key).cast<std::string>());
+    const std::string at = "SENSORS[\"" + key.cast<std::string>() + "\"]";
+    if (!py::isinstance<py::tuple>(entry) && !py::isinstance<py::list>(entry))
+      throw std::invalid_argument(at + form);
+    const auto pair = py::reinterpret_borrow<py::sequence>(entry);
+    if (pair.size() != 2) throw std::invalid_argument(at + form);
+    const py::object time = pair[0];
+    const bool number = (py::isinstance<py::float_>(time) || py::isinstance<py::int_>(time)) &&
+                        !py::isinstance<py::bool_>(time);
+    const double time_s = number ? time.cast<double>() : 0;
+    if (!number || !std::isfinite(time_s) || time_s < 0 || time_s > kMaxActionS)
+      throw std::invalid_argument(at + ": time_s must be a number of seconds from 0 to " +
+                                  base::shortest_text(kMaxActionS) + ", not " +
+                                  py::repr(time).cast<std::string>());
+    if (!PyCallable_Check(pair[1].ptr()))
+      throw std::invalid_argument(at + ": its reading must be a function fn(x_m, y_m, t_s), not " +
+                                  py::repr(pair[1]).cast<std::string>());
+  }
+}
+
+/// --max-time's seconds, if given and a number (run refuses a bad one itself): also the wall
+/// time a Python task may keep its turn.
+double max_time_arg(int argc, char** argv, double fallback) {
+  for (int i = 1; i + 1 < argc; ++i)
+    if (std::string(argv[i]) == "--max-time") {
+      char* end = nullptr;
+      const double v = std::strtod(argv[i + 1], &end);
+      if (end != argv[i + 1] && *end == '\0' && std::isfinite(v) && v > 0) return v;
+    }
+  return fallback;
 }
 
 /// The world kind the app runs in: its WORLD, else the kind of the --world file.
@@ -549,6 +784,7 @@ int fleet_main_with_python(int argc, char** argv) {
   py::scoped_interpreter interpreter(false);
   Host h;
   h.path = path;
+  h.max_wall_s = max_time_arg(argc, argv, h.max_wall_s);
   std::string name;
   host = &h;
   try {
@@ -556,7 +792,9 @@ int fleet_main_with_python(int argc, char** argv) {
     globals["__name__"] = "__swath_app__";
     globals["__file__"] = path;
     globals["__builtins__"] = py::module_::import("builtins");
-    py::module_::import("swath_fleet");
+    const py::module_ fleet_module = py::module_::import("swath_fleet");
+    for (const char* module : {"os", "posix"})
+      py::module_::import(module).attr("_exit") = fleet_module.attr("_exit");
     // The app's folder on the path: an app may import modules of its own from beside it.
     py::module_::import("sys").attr("path").attr("insert")(
         0, std::filesystem::absolute(path).parent_path().string());
@@ -567,6 +805,7 @@ int fleet_main_with_python(int argc, char** argv) {
     }
     h.app_fn = globals["APP"];
     if (globals.contains("SENSORS")) {
+      check_sensors(globals["SENSORS"]);
       py::dict sensors = globals["SENSORS"];
       world_wrapper() = [sensors](std::unique_ptr<worlds::BaseWorld> w) {
         py::gil_scoped_acquire gil;

@@ -265,6 +265,7 @@ int FleetRunCommand::run() {
   RunControl control(p.settings.on_abort, ctl_socket_);
   control_made = &control;
   p.settings.control = [&control] { return control.poll(); };
+  p.settings.abort_pending = [&control] { return control.signal_number() != 0; };
   if (pace_ > 0 || backend_ == "mavlink") {
     std::vector<std::string> names;
     for (const auto& d : p.drones) names.push_back(d.drone.name);

@@ -150,6 +150,10 @@ RunControl::~RunControl() {
   }
 }
 
+int noted_signal() {
+  return g_signal;
+}
+
 int RunControl::signal_number() const {
   return g_signal;
 }

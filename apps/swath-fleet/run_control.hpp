@@ -17,6 +17,10 @@ namespace swath::apps {
 /// The control socket's verbs and their orders; nullopt for any other word.
 std::optional<fleet::ControlOrder> ctl_order(const std::string& verb);
 
+/// The first SIGINT or SIGTERM a run's RunControl noted; 0: none (or no run under way). For the
+/// threads that wait on an app (python_app.cpp): a signal must stop an app that keeps its turn.
+int noted_signal();
+
 class RunControl {
  public:
   /// Installs the SIGINT/SIGTERM handlers and, when `socket_path` is not empty, listens there:

@@ -239,7 +239,12 @@ void Runtime::arrive(Drone& d, double t) {
     r.drone = d.index;
     r.at = d.pos;
     r.sensor = "fly_to";
-    if (tk.actions[h].sample_period_s > 0) sample_along(tk.actions[h], flown, flown_from, r);
+    if (tk.actions[h].sample_period_s > 0) try {
+        sample_along(tk.actions[h], flown, flown_from, r);
+      } catch (const SensorError& e) {
+        fail_for_sensor(tk, e);
+        return;
+      }
     emit(d, tk, h, r, t);
   }
   if (!d.link_up) {  // the vehicle's own failsafe takes it home
@@ -250,13 +255,25 @@ void Runtime::arrive(Drone& d, double t) {
   start_action_or_release(d, t);
 }
 
+// A sensor that could not read fails its task as any failed action would, with the sensor's
+// sentence (an app's own sensor: its file and line); the drone serving it is freed.
+void Runtime::fail_for_sensor(Task& tk, const SensorError& e) {
+  fail_action_futures(tk, std::make_exception_ptr(ActionFailed(e.what())));
+  finish_task(tk, TaskStatus::failed, e.what());
+}
+
 // The end of an action: its reading, then the next action, or home (link down, battery).
 void Runtime::finish_action(Drone& d, double t) {
   Task& tk = tasks_[static_cast<std::size_t>(d.task)];
   Action& a = tk.actions[d.action];
   a.state = ActionState::completed;
   Reading r;
-  if (a.type == ActionType::sense) r = world_.sense(a.name, d.pos, t);
+  if (a.type == ActionType::sense) try {
+      r = world_.sense(a.name, d.pos, t);
+    } catch (const SensorError& e) {
+      fail_for_sensor(tk, e);
+      return;
+    }
   r.t_s = t;
   r.drone = d.index;
   r.at = d.pos;

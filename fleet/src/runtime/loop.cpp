@@ -314,7 +314,15 @@ bool Runtime::loop(Task& main) {
     if (take_orders()) return false;
     resume_ready();
     destroy_frames();
-    if (main.status != TaskStatus::running) return true;
+    if (wall_stalled_) {
+      record_.failure = "the app's tasks kept waking each other for more than max_time_s (" +
+                        base::shortest_text(settings_.max_time_s) +
+                        " s) of wall-clock time without letting the clock move";
+      return true;
+    }
+    // A signal that came while the app ran (a Python task stopped for it fails the main)
+    // is still the run's abort.
+    if (main.status != TaskStatus::running) return !(abort_waiting() && take_orders());
     if (!paused_) fail_unserved();
     if (!ready_.empty()) continue;
     if (settings_.relief && !paused_) relieve();

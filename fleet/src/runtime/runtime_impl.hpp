@@ -288,6 +288,7 @@ class Runtime final : public detail::Core {
 
   // Tasks and coroutines.
   void resume_ready();
+  void fail_for_sensor(Task& tk, const SensorError& e);
   void finish_task(Task& t, TaskStatus status, const std::string& reason);
   void wake(detail::StateBase& s);
   void resolve_action(Task& t, std::size_t a, const Reading& r, int drone);
@@ -329,6 +330,8 @@ class Runtime final : public detail::Core {
   // Orders from outside (runtime/control.cpp).
   ControlRequest next_order();
   bool take_orders();  ///< true: an abort was carried out, the run ends
+  /// An abort (a signal) noted but not yet taken (RuntimeSettings::abort_pending).
+  bool abort_waiting() const { return settings_.abort_pending && settings_.abort_pending(); }
   static bool airborne(const Drone& d);
   void abort_run(const std::string& reason, AbortAction action, bool by_error);
   void model_abort(Drone& d, AbortAction action);
@@ -352,6 +355,7 @@ class Runtime final : public detail::Core {
   double now_ = 0;
   int current_ = -1;
   bool changed_ = true;
+  bool wall_stalled_ = false;  // resume_ready ran max_time_s of wall time without the clock moving
   std::uint64_t seq_ = 0;
   double next_state_log_ = 0;
   RunRecord record_;

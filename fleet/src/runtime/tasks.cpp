@@ -1,6 +1,7 @@
 // Tasks and coroutines: spawn, actions and their futures, awaits (each a step of the task's
 // script), wake-ups, ends.
 
+#include <chrono>
 #include <exception>
 
 #include "runtime/runtime_impl.hpp"
@@ -150,7 +151,17 @@ void Runtime::wake(detail::StateBase& s) {
 }
 
 void Runtime::resume_ready() {
+  const auto began = std::chrono::steady_clock::now();
   while (!ready_.empty()) {
+    // An app whose tasks wake each other without end never empties ready_ nor lets the clock
+    // move: a waiting abort goes first (loop() takes it next), and max_time_s bounds the wall
+    // time spent here too (loop() then ends the run as not completed).
+    if (abort_waiting()) return;
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() >
+        settings_.max_time_s) {
+      wall_stalled_ = true;
+      return;
+    }
     const detail::Waiter w = ready_.front();
     ready_.pop_front();
     Task& t = tasks_.at(static_cast<std::size_t>(w.task));

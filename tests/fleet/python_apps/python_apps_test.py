@@ -9,6 +9,7 @@ wifi_sklearn.py (scikit-learn's GP) maps the field about as well as the built-in
 """
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -28,6 +29,9 @@ except ImportError:
 FLEET, SOURCE = sys.argv[1], sys.argv[2]
 HERE = os.path.join(SOURCE, "tests", "fleet", "python_apps")
 APPS = os.path.join(SOURCE, "share", "apps")
+# 1,000 live tasks spawn and end within this (wall seconds; 25 s when every hand-over woke every
+# task's thread).
+MANY_TASKS_S = 15
 
 
 def run(app, world, out, *extra):
@@ -138,6 +142,159 @@ class PythonApps(unittest.TestCase):
         self.assertIn(app + " line 4: SyntaxError", r.stderr)
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertFalse(os.path.exists(out))
+
+    # ---- apps that keep their turn, spawn without end, or break their sensors ----------------
+
+    def app(self, name, text):
+        path = self.out(name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def check_passes(self, out):
+        c = subprocess.run([FLEET, "check", out], capture_output=True, text=True)
+        self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
+
+    def failed_reasons(self, out):
+        return [e.get("reason", "") for e in events(out) if e["ev"] == "task_failed"]
+
+    def test_a_signal_stops_a_task_that_keeps_its_turn(self):
+        # The task flies out, then loops in pure Python: the runtime waits for its turn, yet
+        # SIGINT and SIGTERM still abort the run (exit 130, 143), the drone told to return.
+        app = self.app("spin.py", "import sys\n"
+                       "def t(bee):\n"
+                       "    bee.act('fly_to', 20.0, 0.0).value\n"
+                       "    print('spinning', file=sys.stderr, flush=True)\n"
+                       "    while True:\n"
+                       "        pass\n"
+                       "def APP(bee):\n"
+                       "    bee.newTask(t).value\n")
+        for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+            out = self.out("spin-%d" % code)
+            p = subprocess.Popen([FLEET, "run", app, "--world", "hotspot", "--drones", "1",
+                                  "--pace", "20", "-o", out],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            try:
+                while "spinning" not in p.stderr.readline():
+                    pass
+                p.send_signal(sig)
+                _, err = p.communicate(timeout=30)
+            finally:
+                if p.poll() is None:
+                    p.kill()
+                    p.communicate()
+            self.assertEqual(p.returncode, code, err)
+            ev = events(out)
+            self.assertEqual(ev[-1]["ev"], "run_end")
+            self.assertEqual([e["command"] for e in ev if e["ev"] == "abort_command"], ["rtl"])
+            # The loop's line, `while` or `pass`, wherever the exception found it.
+            self.assertRegex("\n".join(self.failed_reasons(out)),
+                             re.escape(app) + " line [56]: stopped by %s while it kept its turn" %
+                             signal.Signals(sig).name)
+            self.check_passes(out)
+
+    def test_max_time_bounds_the_wall_time_of_an_app_that_never_waits(self):
+        spin = self.app("spin_main.py", "def APP(bee):\n    while True:\n        pass\n")
+        out = self.out("spin")
+        start = time.monotonic()
+        r = subprocess.run([FLEET, "run", spin, "--world", "hotspot", "--drones", "1",
+                            "--max-time", "2", "-o", out], capture_output=True, text=True, timeout=60)
+        self.assertLess(time.monotonic() - start, 30)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertRegex(r.stderr, re.escape(spin) + " line [23]: kept its turn \\(never waited on a "
+                         "future\\) for more than --max-time, 2 s of wall-clock time")
+        self.check_passes(out)
+        # Tasks that only spawn and return keep the runtime busy without the clock moving: the
+        # hover the main waits for never comes.
+        chain = self.app("chain_nowait.py", "def t(bee):\n    bee.newTask(t)\n    return 1\n"
+                         "def slow(bee):\n    return bee.act('hover', 1.0).value\n"
+                         "def APP(bee):\n    bee.newTask(t)\n    bee.newTask(slow).value\n")
+        out = self.out("chain")
+        r = subprocess.run([FLEET, "run", chain, "--world", "hotspot", "--drones", "1",
+                            "--max-time", "2", "-o", out], capture_output=True, text=True, timeout=60)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("the app's tasks kept waking each other for more than max_time_s (2 s) of "
+                      "wall-clock time without letting the clock move", r.stderr)
+        self.assertEqual(events(out)[-1]["ev"], "run_end")
+
+    def test_live_tasks_are_bounded_and_spawn_in_linear_time(self):
+        # 1,000 tasks alive at once, each on its own thread, waiting for a drone: a hand-over wakes
+        # one thread only. 2,001 tasks that each wait on the next: the last cannot start.
+        many = self.app("many.py", "def t(bee, i):\n    return bee.act('hover', 0.0).value\n"
+                        "def APP(bee):\n    fs = [bee.newTask(t, i) for i in range(1000)]\n"
+                        "    for f in fs:\n        f.value\n")
+        out = self.out("many")
+        start = time.monotonic()
+        r = subprocess.run([FLEET, "run", many, "--world", "hotspot", "--drones", "4", "-o", out],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertLess(time.monotonic() - start, MANY_TASKS_S)
+        chain = self.app("chain.py", "def t(bee):\n    return bee.newTask(t).value\n"
+                         "def APP(bee):\n    bee.newTask(t).value\n")
+        out = self.out("chain")
+        r = subprocess.run([FLEET, "run", chain, "--world", "hotspot", "--drones", "1", "-o", out],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn(chain + " line 2: bee.newTask: more than 2000 tasks alive at once", r.stderr)
+        self.check_passes(out)
+
+    def test_a_sensor_that_fails_fails_its_task(self):
+        for name, body, why in (
+                ("str", "return 'not a list'", 'line 1: sensor "s" must return a list of numbers, not a str'),
+                ("boom", "raise ValueError('sensor broke')", "line 2: ValueError: sensor broke")):
+            app = self.app(name + ".py", "def s(x, y, t):\n    %s\nSENSORS = {'s': (1.0, s)}\n"
+                           "def t(bee):\n    bee.act('fly_to', 5.0, 5.0)\n"
+                           "    return bee.act('sense', 's').value\n"
+                           "def APP(bee):\n    bee.newTask(t).value\n" % body)
+            out = self.out(name)
+            r = run(app, "hotspot", out, "--drones", "1")
+            self.assertEqual(r.returncode, 4, r.stderr)  # an exception in a task, not exit 1
+            self.assertIn(app + " " + why, r.stderr)
+            self.assertTrue(any(app + " " + why in x for x in self.failed_reasons(out)))
+            self.check_passes(out)
+
+    def test_bad_sensors_tables_are_bad_input(self):
+        for entry, why in (("(1.0, 3)", "its reading must be a function fn(x_m, y_m, t_s), not 3"),
+                           ("(-5.0, ok)", "time_s must be a number of seconds from 0 to 3600, not -5.0"),
+                           ("(float('nan'), ok)", "not nan"), ("(1e300, ok)", "not 1e+300"),
+                           ("('5', ok)", "not '5'"), ("ok", "must be (time_s, fn(x_m, y_m, t_s))")):
+            app = self.app("st.py", "def ok(x, y, t): return [1.0]\nSENSORS = {'s': %s}\n"
+                           "def APP(bee): pass\n" % entry)
+            out = self.out("st")
+            r = run(app, "hotspot", out, "--drones", "1")
+            self.assertEqual(r.returncode, 2, entry + ": " + r.stderr)
+            self.assertIn(app + ': SENSORS["s"]', r.stderr)
+            self.assertIn(why, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertFalse(os.path.exists(out))
+
+    def test_bad_action_arguments_fail_the_task_on_its_line(self):
+        for call, why in (("bee.act('hover', -10.0)", "seconds must be from 0 to 3600 s, not -10"),
+                          ("bee.act('hover', float('nan'))", "seconds must be finite, not nan"),
+                          ("bee.act('fly_to', 10.0, 10.0, float('nan'))", "z_m must be finite, not nan"),
+                          ("bee.act('fly_to', 'a', 'b')", "x_m must be a number, not a str"),
+                          ("bee.act('sense', 5)", "sensor must be a string, not a int"),
+                          ("bee.cancelTasks([1])", "each item must be a task's Future, not a int"),
+                          ("bee.newTask(t, kind='x' * 2000000)", "kind must be at most 256 bytes long"),
+                          ("bee.metric('m', 'high') or bee.newTask(t)", "value must be a number, not a str")):
+            app = self.app("act.py", "def t(bee):\n    return 1\ndef u(bee):\n    %s.value\n"
+                           "def APP(bee):\n    bee.newTask(u).value\n" % call)
+            out = self.out("act")
+            r = run(app, "hotspot", out, "--drones", "1")
+            self.assertEqual(r.returncode, 4, call + ": " + r.stderr)
+            self.assertIn(app + " line 4: ", r.stderr)
+            self.assertIn(why, r.stderr)
+            self.check_passes(out)
+
+    def test_os_exit_in_a_task_does_not_end_the_run(self):
+        app = self.app("osexit.py", "import os\ndef t(bee):\n    os._exit(0)\n"
+                       "def APP(bee):\n    bee.newTask(t).value\n")
+        out = self.out("osexit")
+        r = run(app, "hotspot", out, "--drones", "1")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn(app + " line 3: SystemExit: os._exit(0): an app ends by returning from APP",
+                      r.stderr)
+        self.assertEqual(events(out)[-1]["ev"], "run_end")
 
     def parity(self, name, world, seeds, *extra, mutation=None):
         # The Python file is what runs (it logs under the built-in's name): a changed copy of it

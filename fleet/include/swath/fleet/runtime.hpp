@@ -131,6 +131,9 @@ struct RuntimeSettings {
   Backend* backend = nullptr;
   /// Orders from outside (control.hpp), polled between steps; empty: none ever come.
   ControlSource control;
+  /// True once an abort is waiting in `control` (a signal noted), without taking it: the runtime
+  /// then stops resuming tasks, so an app that spawns without end cannot hold off the abort.
+  std::function<bool()> abort_pending;
   /// What a signal's abort (ControlOrder::rtl_all from `control`) or an exception escaping the
   /// run tells the vehicles.
   AbortAction on_abort = AbortAction::rtl;

@@ -4,12 +4,19 @@
 // of (seed, position), not of time, so a reading does not depend on the schedule.
 
 #include <array>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "swath/fleet/task.hpp"
 
 namespace swath::fleet {
+
+/// A sensor that could not read (an app's own sensor raised, or returned no list of numbers):
+/// the task sensing fails with its sentence, the rest of the run goes on.
+struct SensorError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 class World {
  public:
@@ -23,7 +30,7 @@ class World {
   /// Seconds a reading with `sensor` takes. Throws ActionFailed("unknown_sensor: NAME") for a
   /// sensor this world does not have.
   virtual double sense_time_s(const std::string& sensor) const = 0;
-  /// The reading at `at` (t_s and drone are filled in by the runtime).
+  /// The reading at `at` (t_s and drone are filled in by the runtime). May throw SensorError.
   virtual Reading sense(const std::string& sensor, const Vec3& at, double t_s) const = 0;
 };
 
