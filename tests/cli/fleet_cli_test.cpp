@@ -350,6 +350,34 @@ TEST(FleetCli, CompareIntervalsAreThoseOfItsOwnRows) {
   }
 }
 
+// A fleet file's drone whose home is outside its fence, and one drone under a 10 m ceiling: exit
+// 2, one sentence naming the drone and its home's place, nothing written.
+TEST(FleetCli, AHomeOutsideTheFenceIsRefusedNamingItsPlace) {
+  const std::string dir = fresh_dir("fleet-home-outside");
+  fs::create_directories(dir);
+  // 18 m east-west by 110 m north-south from hotspot's origin (42.3601 N, 71.0942 W) northwards.
+  std::ofstream(dir + "/narrow.geojson")
+      << R"({"type": "Polygon", "coordinates": [[[-71.0943214, 42.36001], [-71.0941029, 42.36001],
+             [-71.0941029, 42.3610002], [-71.0943214, 42.3610002], [-71.0943214, 42.36001]]]})";
+  std::ofstream(dir + "/fleet.yaml")
+      << "fence: {geojson: narrow.geojson}\ndrones:\n  - {name: a, home_m: {x_m: 0, y_m: 5}}\n"
+         "  - {name: c, home_m: {x_m: 12, y_m: 5}}\n";
+  const CliRun r = run_swath_fleet("run hotspot --world hotspot --fleet " + dir +
+                                   "/fleet.yaml -o " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("fleet.yaml: c's home (12.0, 5.0) m is outside the inclusion fence"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out"));
+  std::ofstream(dir + "/low.yaml") << "ceiling_m: 10\ndrones:\n  - {name: a}\n";
+  const CliRun low = run_swath_fleet("run hotspot --world hotspot --fleet " + dir +
+                                     "/low.yaml -o " + dir + "/out");
+  EXPECT_EQ(low.exit_code, 2);
+  EXPECT_NE(low.err.find("a fleet of 1 drone needs altitude layers up to 20 m"), std::string::npos)
+      << low.err;
+}
+
 // The safety envelope at the command line: 100 default drones do not fit under the 120 m ceiling
 // (layers 5 m apart from 20 m): exit 2, one sentence, nothing written; 21 fly, none above 120 m.
 TEST(FleetCli, AHundredDronesAreRefusedUnderTheCeilingAndTwentyOneFly) {

@@ -296,6 +296,16 @@ class PythonApps(unittest.TestCase):
                       r.stderr)
         self.assertEqual(events(out)[-1]["ev"], "run_end")
 
+    def test_a_file_python_cannot_decode_is_bad_input_naming_the_file(self):
+        app = self.out("binary.py")
+        with open(app, "wb") as f:
+            f.write(b"\xff\xfe bad\n")
+        r = run(app, "hotspot", self.out("binary"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn(app + ": SyntaxError: ", r.stderr)  # no line: Python gives none
+        self.assertNotIn("line None", r.stderr)
+        self.assertFalse(os.path.exists(self.out("binary")))
+
     def parity(self, name, world, seeds, *extra, mutation=None):
         # The Python file is what runs (it logs under the built-in's name): a changed copy of it
         # gives other events.
