@@ -41,8 +41,10 @@
 namespace py = pybind11;
 
 namespace {
-/// The longest a reading, a hover or a custom action may take: an hour, beyond any drone's flight.
-constexpr double kMaxActionS = 3600;
+/// The longest a hover or a custom action, and a reading of the app's own sensors, may take: as a
+/// static world's tables allow (worlds.cpp: hover and custom up to a day, a sensor an hour).
+constexpr double kMaxActionS = 86400;
+constexpr double kMaxSenseS = 3600;
 constexpr std::size_t kMaxNameBytes = 256;
 constexpr std::size_t kMaxMessageBytes = 1000;
 constexpr int kMaxLiveTasks = 2000;
@@ -730,9 +732,9 @@ void check_sensors(const py::object& sensors) {
     const bool number = (py::isinstance<py::float_>(time) || py::isinstance<py::int_>(time)) &&
                         !py::isinstance<py::bool_>(time);
     const double time_s = number ? time.cast<double>() : 0;
-    if (!number || !std::isfinite(time_s) || time_s < 0 || time_s > kMaxActionS)
+    if (!number || !std::isfinite(time_s) || time_s < 0 || time_s > kMaxSenseS)
       throw std::invalid_argument(at + ": time_s must be a number of seconds from 0 to " +
-                                  base::shortest_text(kMaxActionS) + ", not " +
+                                  base::shortest_text(kMaxSenseS) + ", not " +
                                   py::repr(time).cast<std::string>());
     if (!PyCallable_Check(pair[1].ptr()))
       throw std::invalid_argument(at + ": its reading must be a function fn(x_m, y_m, t_s), not " +

@@ -269,7 +269,7 @@ class PythonApps(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
     def test_bad_action_arguments_fail_the_task_on_its_line(self):
-        for call, why in (("bee.act('hover', -10.0)", "seconds must be from 0 to 3600 s, not -10"),
+        for call, why in (("bee.act('hover', -10.0)", "seconds must be from 0 to 86400 s, not -10"),
                           ("bee.act('hover', float('nan'))", "seconds must be finite, not nan"),
                           ("bee.act('fly_to', 10.0, 10.0, float('nan'))", "z_m must be finite, not nan"),
                           ("bee.act('fly_to', 'a', 'b')", "x_m must be a number, not a str"),
