@@ -23,9 +23,6 @@ std::string with_remedies(const std::string& what, const std::vector<Remedy>& re
       case Remedy::add_drones_or_battery:
         phrases.push_back("add drones or battery");
         break;
-      case Remedy::balance_by_time:
-        phrases.push_back("use --balance makespan");
-        break;
       case Remedy::allow_partial:
         phrases.push_back("give --allow-partial");
         break;
@@ -45,6 +42,9 @@ std::string with_remedies(const std::string& what, const std::vector<Remedy>& re
         break;
       case Remedy::origin:
         phrases.push_back("give --origin LAT,LON to place it on the map");
+        break;
+      case Remedy::sorties:
+        phrases.push_back("cut the flights into sorties with --sorties auto");
         break;
       case Remedy::endurance:
         phrases.push_back("give --endurance S, or endurance_s for the drone in the fleet file");

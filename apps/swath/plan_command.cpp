@@ -478,6 +478,7 @@ planning::SurveyRequest PlanCommand::request() const {
   if (!fleet_.empty()) {
     request.fleet = vehicle::parse_fleet(
         base::read_text_file(fleet_, "fleet file", base::kMaxConfigFileBytes), fleet_);
+    request.fleet_name = fleet_;
     if (!request.home) request.home = request.fleet->home;
   }
   request.division =

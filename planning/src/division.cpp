@@ -48,18 +48,26 @@ struct PathIndex {
   }
 };
 
+// The measured flight of drone i over [s, e] of the path.
+FlightCost measured(const PathIndex& index, std::size_t i, const FlightMeasure& measure, double s,
+                    double e) {
+  std::vector<double> at;
+  if (s > 0) at.push_back(s);
+  if (e < index.length()) at.push_back(e);
+  return measure(i, cut_path(index.path, at)[s > 0 ? 1 : 0]);
+}
+
 // Flight time of drone i over [s, e] of the path: measured where a measure is given, else straight
-// home legs at cruise speed; +inf beyond its range.
+// home legs at cruise speed; +inf beyond its range or flight time limit. Without a measure the
+// flight time limit is checked on `limit`'s measured flight where given (the straight legs count
+// no climb, stop or descent).
 double piece_time(const PathIndex& index, const std::vector<DroneResource>& drones, std::size_t i,
-                  const FlightMeasure& measure, double s, double e) {
+                  const FlightMeasure& measure, const FlightMeasure& limit, double s, double e) {
   const DroneResource& d = drones[i];
   double distance = 0, time_s = 0;
   if (measure) {
     if (!(e > s)) return 0.0;
-    std::vector<double> at;
-    if (s > 0) at.push_back(s);
-    if (e < index.length()) at.push_back(e);
-    const FlightCost cost = measure(i, cut_path(index.path, at)[s > 0 ? 1 : 0]);
+    const FlightCost cost = measured(index, i, measure, s, e);
     distance = cost.length_m;
     time_s = cost.time_s;
   } else {
@@ -67,16 +75,20 @@ double piece_time(const PathIndex& index, const std::vector<DroneResource>& dron
                geometry::distance(index.point(e), d.home);
     time_s = distance / d.speed_m_s;
   }
-  if (d.range_m && distance > *d.range_m * (1 + 1e-12))
+  const double limited_s = !measure && limit && d.flight_limit_s && e > s
+                               ? measured(index, i, limit, s, e).time_s
+                               : time_s;
+  if (division_detail::beyond_limits(d, distance, limited_s))
     return std::numeric_limits<double>::infinity();
   return time_s;
 }
 
 // Greedy cuts that keep every drone within `makespan`: each takes the longest piece it can.
 std::vector<double> cuts_within(const PathIndex& index, const std::vector<DroneResource>& drones,
-                                const FlightMeasure& measure, double makespan) {
+                                const FlightMeasure& measure, const FlightMeasure& limit,
+                                double makespan) {
   auto time_of = [&](std::size_t i, double s, double e) {
-    return piece_time(index, drones, i, measure, s, e);
+    return piece_time(index, drones, i, measure, limit, s, e);
   };
   std::vector<double> cuts;
   double s = 0;
@@ -94,7 +106,7 @@ std::vector<double> cuts_within(const PathIndex& index, const std::vector<DroneR
 DivisionResult finish_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
                            std::vector<double> cuts, const std::vector<double>& home_cost,
                            const std::vector<std::optional<double>>& budgets,
-                           const FlightMeasure& measure) {
+                           const FlightMeasure& measure, const FlightMeasure& limit) {
   const PathIndex index(path);
   DivisionResult r;
   const double reach = cuts.back();
@@ -120,7 +132,7 @@ DivisionResult finish_path(const SurveyPath& path, const std::vector<DroneResour
     w.share = index.length() > 0 ? (e - s) / index.length() : 0;
     w.home_cost_m = home_cost[i];
     w.budget_m = budgets[i];
-    w.estimated_time_s = e > s ? piece_time(index, drones, i, measure, s, e) : 0;
+    w.estimated_time_s = e > s ? piece_time(index, drones, i, measure, limit, s, e) : 0;
     r.makespan_s = std::max(r.makespan_s, w.estimated_time_s);
     r.drones.push_back(std::move(w));
   }
@@ -130,7 +142,8 @@ DivisionResult finish_path(const SurveyPath& path, const std::vector<DroneResour
 }  // namespace
 
 DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
-                           Balance balance, const FlightMeasure& measure) {
+                           Balance balance, const FlightMeasure& measure,
+                           const FlightMeasure& limit) {
   const PathIndex index(path);
   const std::vector<double> home_cost = home_costs(path.points, drones);
   std::vector<std::optional<double>> budgets;
@@ -149,29 +162,43 @@ DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResour
     proportional.push_back(std::min(s, length));
   }
   if (!short_of_path) proportional.back() = length;  // the shares' sum rounds short of 1
-  DivisionResult result = finish_path(path, drones, proportional, home_cost, budgets, measure);
+  DivisionResult result =
+      finish_path(path, drones, proportional, home_cost, budgets, measure, limit);
   const double proportional_makespan = result.makespan_s;
-  if (balance == Balance::makespan && !short_of_path) {
+  if (short_of_path && !std::isfinite(proportional_makespan)) {
+    // A budget in metres flown beyond the drone's flight time limit: each drone the longest
+    // piece it flies within its limits instead (what the fleet then leaves is unflown).
+    std::vector<double> cuts =
+        cuts_within(index, drones, measure, limit, std::numeric_limits<double>::max());
+    result = finish_path(path, drones, cuts, home_cost, budgets, measure, limit);
+  }
+  // A proportional piece beyond a drone's limits is re-cut as the balance cuts (within them).
+  const bool over_limits = !std::isfinite(proportional_makespan);
+  if ((balance == Balance::makespan || over_limits) && !short_of_path) {
     // The smallest makespan whose greedy cuts reach the end of the path.
-    double lo = 0, hi = proportional_makespan > 0 ? proportional_makespan : 1;
+    double lo = 0, hi = proportional_makespan > 0 && std::isfinite(proportional_makespan)
+                            ? proportional_makespan
+                            : 1;
     // Measured times are costlier: 1e-6 of the makespan is far below what the balance can show.
     const double tolerance = measure ? 1e-6 : 1e-9;
     for (int guard = 0;
-         guard < 64 && cuts_within(index, drones, measure, hi).back() < length * (1 - 1e-12);
+         guard < 64 && cuts_within(index, drones, measure, limit, hi).back() < length * (1 - 1e-12);
          ++guard)
       hi *= 2;
     for (int k = 0; k < 60 && hi - lo > tolerance * hi; ++k) {
       const double mid = (lo + hi) / 2;
-      (cuts_within(index, drones, measure, mid).back() >= length * (1 - 1e-12) ? hi : lo) = mid;
+      (cuts_within(index, drones, measure, limit, mid).back() >= length * (1 - 1e-12) ? hi : lo) =
+          mid;
     }
-    std::vector<double> cuts = cuts_within(index, drones, measure, hi);
+    std::vector<double> cuts = cuts_within(index, drones, measure, limit, hi);
     cuts.back() = length;
-    DivisionResult balanced = finish_path(path, drones, cuts, home_cost, budgets, measure);
+    DivisionResult balanced = finish_path(path, drones, cuts, home_cost, budgets, measure, limit);
     // Measured times need not be monotone in a cut (a corner becomes a stop): never worse than
     // the proportional cuts.
     if (!measure || balanced.makespan_s <= result.makespan_s) result = std::move(balanced);
   }
   result.proportional_makespan_s = proportional_makespan;
+  result.recut_within_limits = balance == Balance::capability && over_limits && !short_of_path;
   return result;
 }
 

@@ -460,7 +460,7 @@ class LaneDivision {
   static constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
   bool over_range(std::size_t d, const FlightCost& cost) const {
-    return drones_[d].range_m && cost.length_m > *drones_[d].range_m * (1 + 1e-12);
+    return division_detail::beyond_limits(drones_[d], cost.length_m, cost.time_s);
   }
 
   // The bands' regions for `bounds` (n + 1 of them), a partition of the area: each row of lanes
@@ -585,7 +585,8 @@ std::vector<Balanced> balance_orders(LaneDivision& ld, double proportional_makes
   const auto same = [&](std::size_t i, std::size_t j) {
     const DroneResource &a = ld.drone(i), &b = ld.drone(j);
     return a.home == b.home && a.speed_m_s == b.speed_m_s && a.range_m == b.range_m &&
-           a.capability == b.capability && whole[i] == whole[j];
+           a.flight_limit_s == b.flight_limit_s && a.capability == b.capability &&
+           whole[i] == whole[j];
   };
   double best = std::numeric_limits<double>::infinity();
   std::vector<Balanced> found;
@@ -749,7 +750,10 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
   auto [result, result_score] = ld.result_for(fleet, proportional);
   const double proportional_makespan = result.makespan_s;
   result.proportional_makespan_s = proportional_makespan;
-  if (balance == Balance::capability) return result;
+  // Capability shares beyond a drone's range or charge (a score of +inf) are re-cut as the
+  // balance cuts, within every drone's limits where it can.
+  if (balance == Balance::capability && std::isfinite(result_score)) return result;
+  const bool recut = balance == Balance::capability;
 
   // The balance on the line in the given order; for a split area whose flight order leaves the
   // drones more than kGoodSpread apart, on the lanes by row too (the flight order puts a cell's
@@ -862,6 +866,7 @@ DivisionResult divide_lanes(const std::vector<Ring>& rings, double angle_deg,
     }
   }
   result.proportional_makespan_s = proportional_makespan;
+  result.recut_within_limits = recut;
   return result;
 }
 

@@ -56,6 +56,13 @@ inline std::vector<double> home_costs(const std::vector<Point2>& points,
   return cost;
 }
 
+// Whether a flight of `length_m` taking `time_s` is more than drone `d` can fly: its range, or
+// its flight time limit (its charge: the climbs, stops and descents count, not just the metres).
+inline bool beyond_limits(const DroneResource& d, double length_m, double time_s) {
+  return (d.range_m && length_m > *d.range_m * (1 + 1e-12)) ||
+         (d.flight_limit_s && time_s > *d.flight_limit_s * (1 + 1e-12));
+}
+
 // Shares from the corrected capabilities; budgets where ranges are known.
 inline std::vector<double> weights(const std::vector<DroneResource>& drones,
                                    const std::vector<double>& home_cost,

@@ -71,8 +71,18 @@ void name_drones(SurveyPlan& plan) {
     d.descent_speed_m_s = f.descent_speed_m_s;
     d.accel_m_s2 = f.accel_m_s2;
     d.endurance_s = f.endurance_s ? f.endurance_s : r.endurance_s;
+    d.battery_level = f.battery_level.value_or(1.0);
+    d.charge_from_fleet = f.battery_level && f.endurance_s;
     plan.drones.push_back(std::move(d));
   }
+}
+
+// The longest flight the division may give a drone: its charge, less room for the climb to and
+// descent from the highest layer deconflict() may give it afterwards (the metres of its range
+// count neither the climbs nor the stops: 435 s on a 360 s charge passed within 1800 m).
+std::optional<double> flight_limit_s(const SurveyPlan& plan, const DronePlan& d) {
+  if (!d.charge_from_fleet) return std::nullopt;
+  return *d.endurance_s * d.battery_level - layer_room_s(plan, d);
 }
 
 std::vector<DroneResource> resources_of(const SurveyPlan& plan) {
@@ -85,11 +95,11 @@ std::vector<DroneResource> resources_of(const SurveyPlan& plan) {
     const std::optional<double> range_m = f.range_m();
     if (plan.request.sorties && range_m) {
       out.push_back({plan.drones[i].name, plan.drones[i].home, plan.drones[i].speed_m_s,
-                     std::nullopt, *range_m});
+                     std::nullopt, *range_m, std::nullopt});
       continue;
     }
     out.push_back({plan.drones[i].name, plan.drones[i].home, plan.drones[i].speed_m_s, range_m,
-                   f.capability.value_or(1.0)});
+                   f.capability.value_or(1.0), flight_limit_s(plan, plan.drones[i])});
   }
   return out;
 }
@@ -205,8 +215,9 @@ void drones(SurveyPlan& plan) {
   std::vector<MissionSettings> settings;
   const FlightMeasure measure = flight_measure(plan, routes, settings);
   if (r.division == DivisionMode::path)
-    plan.division = divide_path(whole, resources, r.balance,
-                                r.balance == Balance::makespan ? measure : FlightMeasure{});
+    plan.division =
+        divide_path(whole, resources, r.balance,
+                    r.balance == Balance::makespan ? measure : FlightMeasure{}, measure);
   else
     plan.division = divide_by_lanes(plan, routes, resources, spacing, measure);
   for (std::size_t i = 0; i < plan.drones.size(); ++i)

@@ -68,16 +68,57 @@ double transit_outside_m(const SurveyPlan& plan) {
   return std::max(0.0, outside - plan.coverage.line_length_outside_m);
 }
 
+// " in FILE" after what the fleet file gives, where the fleet came from one.
+std::string in_fleet_file(const SurveyRequest& r) {
+  return r.fleet_name.empty() ? "" : " in " + r.fleet_name;
+}
+
+// What gets a drone past a flight longer than its battery, among the options not given already.
+// Not the balance on flight time: the division has cut on it wherever shares were too long.
+std::vector<base::Remedy> battery_remedies(const SurveyRequest& r) {
+  std::vector<base::Remedy> out{base::Remedy::add_drones_or_battery};
+  if (!r.sorties) out.push_back(base::Remedy::sorties);
+  return out;
+}
+
+// No flight is written longer than the battery it takes off with (docs/swath-plan.md): the
+// charge the fleet file gives (battery_level x endurance_s; a sortie after the first, a full
+// battery), in flight time as the mission flies it (climbs, stops and descents, the layer, the
+// terrain), whatever the division or --allow-partial made of it.
+void check_charge(const SurveyPlan& plan, const DronePlan& d) {
+  if (!d.charge_from_fleet) return;
+  const std::vector<const DroneMission*> flights = flights_of(d);
+  for (std::size_t k = 0; k < flights.size(); ++k) {
+    const double battery_s = *d.endurance_s * (k == 0 ? d.battery_level : 1.0);
+    const double flight_s = flights[k]->flight_time_s;
+    if (flight_s <= battery_s * (1 + 1e-9)) continue;
+    const std::string flight =
+        d.sorties.empty() ? "'s flight" : "'s sortie " + std::to_string(k + 1);
+    const std::string battery =
+        k == 0 ? "battery_level " + base::shortest_text(d.battery_level) + " x endurance_s " +
+                     base::shortest_text(*d.endurance_s)
+               : "a full battery, endurance_s " + base::shortest_text(*d.endurance_s);
+    throw InputError("drone " + d.name + flight + " takes " + duration_text(flight_s) +
+                         ", longer than the " + duration_text(battery_s) + " its battery holds (" +
+                         battery + in_fleet_file(plan.request) + ")",
+                     battery_remedies(plan.request));
+  }
+}
+
 void check_range(const SurveyPlan& plan, const DronePlan& d, std::vector<std::string>& warnings) {
-  if (!plan.request.fleet) return;
+  // With sorties a drone flies as many batteries as its share needs (check_charge: each fits).
+  if (!plan.request.fleet || plan.request.sorties) return;
   const auto range = plan.request.fleet->drones[static_cast<std::size_t>(d.number - 1)].range_m();
   if (!range || !d.sorties.empty() || d.mission.path_length_m <= *range) return;
-  const std::string what =
-      "drone " + d.name + "'s flight (" + std::to_string(std::lround(d.mission.path_length_m)) +
-      " m) is longer than its range (" + std::to_string(std::lround(*range)) + " m)";
-  if (!plan.request.allow_partial)
-    throw InputError(what, {base::Remedy::add_drones_or_battery, base::Remedy::balance_by_time,
-                            base::Remedy::allow_partial});
+  const std::string what = "drone " + d.name + "'s flight (" +
+                           std::to_string(std::lround(d.mission.path_length_m)) +
+                           " m) is longer than its range (" + std::to_string(std::lround(*range)) +
+                           " m" + in_fleet_file(plan.request) + ")";
+  if (!plan.request.allow_partial) {
+    std::vector<base::Remedy> remedies = battery_remedies(plan.request);
+    remedies.push_back(base::Remedy::allow_partial);
+    throw InputError(what, remedies);
+  }
   warnings.push_back(what);
 }
 
@@ -94,14 +135,18 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
                          "hold fewer): divide it among drones or drop --waypoint-spacing");
       break;
     }
-  // docs/swath-plan.md: a flight longer than the drone's endurance.
+  // docs/swath-plan.md: a flight longer than the charge it takes off with less the reserve.
   if (d.endurance_s && d.sorties.empty()) {
-    const double usable = *d.endurance_s * (1 - plan.request.reserve);
-    if (d.mission.flight_time_s > usable)
+    const double charge_s = *d.endurance_s * d.battery_level;
+    const std::string battery = d.battery_level < 1
+                                    ? "the " + duration_text(charge_s) + " its battery holds (" +
+                                          base::shortest_text(100 * d.battery_level) + " % of " +
+                                          duration_text(*d.endurance_s) + ")"
+                                    : "its " + duration_text(*d.endurance_s) + " endurance";
+    if (d.mission.flight_time_s > charge_s * (1 - plan.request.reserve))
       warnings.push_back("drone " + d.name + "'s flight takes " +
-                         duration_text(d.mission.flight_time_s) + ", longer than its " +
-                         duration_text(*d.endurance_s) + " endurance less the " +
-                         fixed_text(100 * plan.request.reserve, 0) +
+                         duration_text(d.mission.flight_time_s) + ", longer than " + battery +
+                         " less the " + fixed_text(100 * plan.request.reserve, 0) +
                          " % reserve; cut it into sorties with --sorties auto, or add drones");
   } else if (!d.endurance_s && d.sorties.empty()) {
     // No endurance given: against a typical one (an 18-hour single-drone plan went unwarned).
@@ -216,6 +261,11 @@ void checks(SurveyPlan& plan) {
                        fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
                        " m² unseen), less than 99.9 %: parts of it are too narrow or too "
                        "pointed for the lines to reach (coverage.png with --render shows where)");
+  for (const DronePlan& d : plan.drones) check_charge(plan, d);
+  if (plan.division.recut_within_limits)
+    warnings.push_back(
+        "shares in proportion to the capabilities would fly a drone beyond its range or charge; "
+        "the work was divided as --balance makespan divides it");
   for (const DronePlan& d : plan.drones) check_range(plan, d, warnings);
   if (const auto& interval = r.camera.min_trigger_interval_s) {
     const double seconds = plan.imaging.trigger_distance_m / plan.speed_m_s;

@@ -20,11 +20,25 @@ SurveyPath piece_of(const SurveyPath& path, double from_m, double to_m) {
   return pieces[from_m > 0 ? 1 : 0];
 }
 
-// Cuts one drone's survey path into sorties that each fit `usable_s`, exactly at the length where
-// the next would not (bisection to a millimetre on the sortie's own flight time, which grows with
-// its length: the way home shortens by at most what the line lengthens).
-std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d, double usable_s,
-                                const Routes& routes, const InsideTest& inside) {
+// What one sortie may fly: the battery it takes off with (the first the charge the drone has,
+// battery_level x endurance; the next a full one) less the reserve and the layers' climb, seconds.
+struct SortieTimes {
+  double first_s;
+  double later_s;
+};
+
+SortieTimes usable_times(const SurveyPlan& plan, const DronePlan& d) {
+  const double keep = 1 - plan.request.reserve;
+  const double room_s = layer_room_s(plan, d);
+  return {*d.endurance_s * d.battery_level * keep - room_s, *d.endurance_s * keep - room_s};
+}
+
+// Cuts one drone's survey path into sorties that each fit their usable time, exactly at the
+// length where the next would not (bisection to a millimetre on the sortie's own flight time,
+// which grows with its length: the way home shortens by at most what the line lengthens).
+std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d,
+                                const SortieTimes& usable, const Routes& routes,
+                                const InsideTest& inside) {
   const MissionSettings settings = mission_settings(plan, d);
   const SurveyPath& path = d.work.path;
   const double total = path.length_m();
@@ -35,13 +49,13 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d, doub
   std::vector<Sortie> out;
   double from = 0;
   while (from < total - 1e-6) {
+    const double usable_s = out.empty() ? usable.first_s : usable.later_s;
     double lo = 0, hi = total - from;
     if (sortie(from, total).flight_time_s > usable_s) {
       if (sortie(from, from + std::min(hi, 1e-3)).flight_time_s > usable_s)
-        throw InputError("drone " + d.name +
-                         " cannot fly to the survey and back within its "
-                         "endurance less the reserve (" +
-                         duration_text(usable_s) +
+        throw InputError("drone " + d.name + " cannot fly to the survey and back within its " +
+                         std::string(out.empty() && d.battery_level < 1 ? "charge" : "endurance") +
+                         " less the reserve (" + duration_text(usable_s) +
                          "); it cannot fly even one metre of it per sortie");
       while (hi - lo > 1e-3) {
         const double mid = (lo + hi) / 2;
@@ -66,6 +80,12 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d, doub
 
 }  // namespace
 
+double layer_room_s(const SurveyPlan& plan, const DronePlan& d) {
+  // deconflict(): one layer per other drone at most.
+  const double layer_m = static_cast<double>(plan.drones.size() - 1) * plan.request.layer_spacing_m;
+  return layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
+}
+
 void sorties(SurveyPlan& plan) {
   if (!plan.request.sorties) return;
   const Routes& routes = routes_of(plan);
@@ -77,14 +97,9 @@ void sorties(SurveyPlan& plan) {
       throw InputError("cutting flights into sorties needs each drone's endurance; drone " +
                            d.name + " has none",
                        {base::Remedy::endurance});
-    // Room for the climb to and descent from the highest altitude layer the drone may be given
-    // afterwards (deconflict: one layer per other drone at most).
-    const double layer_m =
-        static_cast<double>(plan.drones.size() - 1) * plan.request.layer_spacing_m;
-    const double usable_s = *d.endurance_s * (1 - plan.request.reserve) -
-                            layer_m * (1 / d.climb_speed_m_s + 1 / d.descent_speed_m_s);
-    if (d.mission.flight_time_s <= usable_s) continue;  // one flight does it
-    d.sorties = cut_sorties(plan, d, usable_s, routes, inside);
+    const SortieTimes usable = usable_times(plan, d);
+    if (d.mission.flight_time_s <= usable.first_s) continue;  // one flight does it
+    d.sorties = cut_sorties(plan, d, usable, routes, inside);
   }
 }
 

@@ -13,7 +13,6 @@ namespace swath::base {
 /// option names); each program words it in its own options (apps/common/remedy_text.cpp).
 enum class Remedy : std::uint8_t {
   add_drones_or_battery,  ///< more drones, or more range per drone
-  balance_by_time,        ///< divide the work by flight time, not by share
   allow_partial,          ///< accept a plan that leaves part of the area unflown
   far_home,               ///< accept a home up to the far limit
   far_home_limit,         ///< (beyond even the far limit: nothing to change but the home)
@@ -24,6 +23,7 @@ enum class Remedy : std::uint8_t {
   origin,           ///< place an area in local metres on the map
   local_csv,        ///< read a CSV area as x,y metres
   endurance,        ///< give the drones an endurance
+  sorties,          ///< cut each drone's flight into battery-sized sorties
 };
 
 /// Bad input from a user's file or arguments. what() is one sentence naming the file, the place

@@ -21,6 +21,9 @@ struct DroneResource {
   double speed_m_s = 5.0;         ///< > 0
   std::optional<double> range_m;  ///< absent when only a capability is known
   double capability = 1.0;        ///< relative share when no range is known, > 0
+  /// The longest flight it may make, seconds, climbs, stops and descents included (its charge);
+  /// absent: no limit. A share whose measured flight is longer counts as beyond its range.
+  std::optional<double> flight_limit_s;
 };
 
 struct DroneWork {
@@ -39,6 +42,9 @@ struct DivisionResult {
   double unflown_path_m = 0.0;           ///< path division: what the fleet's budgets cannot reach
   double makespan_s = 0.0;               ///< the longest estimated_time_s
   double proportional_makespan_s = 0.0;  ///< the same for capability-proportional cuts
+  /// Balance::capability: the proportional shares were beyond a drone's range or flight time
+  /// limit and were re-cut as Balance::makespan cuts.
+  bool recut_within_limits = false;
 };
 
 /// A drone's whole flight over a part of the survey, as its mission will fly it.
@@ -61,9 +67,13 @@ using FlightMeasure = std::function<FlightCost(std::size_t drone, const SurveyPa
 /// included, each at its own speed, within its range) is smallest, by bisection on that time.
 /// With `measure`, times (estimated_time_s, makespans, the balance) are the measured flights and
 /// a drone's range is checked against the measured length; without it, straight home legs at
-/// cruise speed. Throws base::InputError when a drone cannot even fly its home cost.
+/// cruise speed. A drone's flight_limit_s is checked on the measured flight (`measure`, else
+/// `limit`: the times stay the straight legs'); proportional pieces beyond a drone's limits are
+/// re-cut as the balance cuts (a short fleet: each drone the longest piece within its limits).
+/// Throws base::InputError when a drone cannot even fly its home cost.
 DivisionResult divide_path(const SurveyPath& path, const std::vector<DroneResource>& drones,
-                           Balance balance, const FlightMeasure& measure = {});
+                           Balance balance, const FlightMeasure& measure = {},
+                           const FlightMeasure& limit = {});
 
 /// Plans a band for a drone: the band's pieces -> its survey path.
 using BandSweep =
@@ -103,7 +113,7 @@ using LaneSweep =
 /// the lanes, the fleet's order and swaps of the best: every pair up to 8 drones, adjacent ones
 /// beyond); then, within 2 % of that makespan, the cuts whose longest over shortest flight is
 /// smallest (each cut moved to where its two drones' times cross, from several starts). A share
-/// over its drone's range counts as infinitely long. Every lane is flown exactly once: the pieces
+/// over its drone's limits counts as infinitely long. Every lane is flown exactly once: the pieces
 /// of a lane add up to it (a lane under a micrometre goes whole to the share holding its start).
 /// Regions: a partition of `share_area` (`rings` when empty; outer rings counter-clockwise, holes
 /// clockwise), their areas the shares: each row of lanes (rows end halfway between lane
@@ -131,7 +141,8 @@ using LaneSweep =
 /// `proportional_makespan_s`: cuts in proportion to the corrected capabilities, bands in fleet
 /// order; Balance::capability returns those cuts (shares of the lanes' length, the paper's
 /// Algorithm 4 on the plan's own lanes: every lane flown, so the side overlap holds across the
-/// bands' seams). Home costs and budgets as divide_region(); throws base::InputError as it does.
+/// bands' seams) where every share is within its drone's limits, else the balance's cuts. Home
+/// costs and budgets as divide_region(); throws base::InputError as it does.
 DivisionResult divide_lanes(const std::vector<geometry::Ring>& rings, double angle_deg,
                             const std::vector<SweepLine>& lanes,
                             const std::vector<DroneResource>& drones, const LaneSweep& sweep,

@@ -81,6 +81,8 @@ struct SurveyRequest {
   unsigned threads = 0;
   /// Divide the survey among this fleet (absent: one drone).
   std::optional<vehicle::Fleet> fleet;
+  /// How messages name the fleet: its file (empty: --drones N, "the fleet").
+  std::string fleet_name;
   DivisionMode division = DivisionMode::path;
   Balance balance = Balance::capability;
   /// A fleet that cannot fly the whole path flies what it can instead of refusing.
@@ -185,6 +187,11 @@ struct DronePlan {
   double descent_speed_m_s = vehicle::Drone{}.descent_speed_m_s;  ///< the fleet's, or the default
   double accel_m_s2 = vehicle::Drone{}.accel_m_s2;  ///< the drone's (ArduCopter's WPNAV_ACCEL)
   std::optional<double> endurance_s;                ///< flight time on a full charge, when known
+  /// The share of a full charge it takes off with (the fleet's battery_level; 1 otherwise).
+  double battery_level = 1.0;
+  /// Whether the fleet file gives its battery (battery_level and endurance_s): then no flight of
+  /// it is written longer than its charge (a sortie after the first: a full one), else refused.
+  bool charge_from_fleet = false;
   /// Its part of the survey (with a fleet: the division's share, budgets and region).
   DroneWork work;
   DroneMission mission;            ///< the whole flight

@@ -91,6 +91,11 @@ struct Routes {
 /// tables, the open's grown zones) is the same for every step, so it is done once a plan.
 const Routes& routes_of(SurveyPlan& plan);
 
+/// The time drone `d` may spend climbing to and descending from the highest altitude layer
+/// deconflict() may give it (one per other drone of the plan), seconds: what a flight sized
+/// before the layers are known keeps free of its battery.
+double layer_room_s(const SurveyPlan& plan, const DronePlan& d);
+
 /// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
 MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone);
 
