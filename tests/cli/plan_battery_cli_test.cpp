@@ -1,0 +1,152 @@
+// `swath plan` with drones of a fleet file's batteries: no flight longer than the charge a drone
+// takes off with, sorties sized to it, the warning and the refusal that say so.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+
+namespace swath::test {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// A fleet file at the meadow's home of drones at 5 m/s, each (name, battery_level, endurance_s,
+// its own home where `own_home`: three-quads' charlie's), written into `dir`; its path.
+struct BatteryDrone {
+  std::string name;
+  double level, endurance_s;
+  bool own_home = false;
+};
+
+std::string battery_fleet(const std::string& dir, const std::vector<BatteryDrone>& drones) {
+  fs::create_directories(dir);
+  const std::string path = dir + "/fleet.yaml";
+  std::ofstream file(path);
+  file << "home: {lat: 47.3965, lon: 8.5405, alt: 0}\ndrones:\n";
+  for (const BatteryDrone& d : drones)
+    file << "  - {name: " << d.name << ", battery_level: " << d.level
+         << ", endurance_s: " << d.endurance_s << ", speed_m_s: 5"
+         << (d.own_home ? ", home: {lat: 47.3982, lon: 8.5468}}\n" : "}\n");
+  return path;
+}
+
+// Every flight of each drone as summary.json gives it (its sorties in order, or its one flight).
+std::map<std::string, std::vector<double>> flight_times(const json& summary) {
+  std::map<std::string, std::vector<double>> out;
+  for (const json& d : summary["drones"]) {
+    std::vector<double>& times = out[d["name"].get<std::string>()];
+    if (d.contains("sorties") && d["sorties"].is_array() && !d["sorties"].empty()) {
+      for (const json& s : d["sorties"]) times.push_back(s["flight_time_s"].get<double>());
+    } else {
+      times.push_back(d["flight_time_s"].get<double>());
+    }
+  }
+  return out;
+}
+
+const std::string kMeadow40 =
+    "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 ";
+
+TEST(PlanCli, RegionDivisionKeepsEveryFlightWithinItsCharge) {
+  // weak: 0.35 x 1200 s = 420 s of charge, 2100 m of range, which count no climb, stop or
+  // descent: its band by makespan took 499 s, by capability 459 s.
+  const std::string dir = fresh_dir("charge-region");
+  const std::string fleet = battery_fleet(dir, {{"full", 1.0, 1200}, {"weak", 0.35, 1200}});
+  for (const std::string balance : {"makespan", "capability"}) {
+    const std::string out = dir + "/" + balance;
+    const CliRun run = run_swath(kMeadow40 + "--fleet " + fleet + " --division region --balance " +
+                                 balance + " -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << balance << ": " << run.err;
+    auto times = flight_times(json::parse(read_text(out + "/summary.json")));
+    ASSERT_EQ(times["full"].size(), 1u);
+    EXPECT_LE(times["full"][0], 1200.0) << balance;
+    EXPECT_LE(times["weak"][0], 420.0) << balance;
+    EXPECT_GT(times["weak"][0], 0.0) << balance;
+    EXPECT_EQ(run.err.find("swath plan: warning: shares in proportion to the capabilities would "
+                           "fly a drone beyond its range or charge") != std::string::npos,
+              balance == "capability")
+        << run.err;
+  }
+}
+
+TEST(PlanCli, AFlightLongerThanItsChargeIsRefusedNamingTheFleetFile) {
+  // One drone of 0.5 x 1200 s: the meadow at 40 m takes 23 min; no division can re-cut it.
+  const std::string dir = fresh_dir("charge-refused");
+  const std::string fleet = battery_fleet(dir, {{"solo", 0.5, 1200}});
+  for (const std::string balance : {"makespan", "capability"}) {
+    const std::string out = dir + "/" + balance;
+    const CliRun run = run_swath(kMeadow40 + "--fleet " + fleet + " --division region --balance " +
+                                 balance + " -o " + out);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_NE(run.err.find("swath plan: drone solo's flight takes 23 min"), std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find(", longer than the 10 min 00 s its battery holds (battery_level 0.5 x "
+                           "endurance_s 1200 in " +
+                           fleet +
+                           "); add drones or battery, or cut the flights into sorties with "
+                           "--sorties auto\n"),
+              std::string::npos)
+        << run.err;
+    // Not the balance on flight time: both balances have cut on it (where capability shares were
+    // too long); it was advised with --balance makespan given.
+    EXPECT_EQ(run.err.find("--balance"), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+}
+
+TEST(PlanCli, TheEnduranceWarningCountsTheBatteryLevel) {
+  // 0.3 x 5000 s = 1500 s of charge, 1200 s less the 20 % reserve: the meadow's 23 min flight is
+  // warned about (against the 5000 s endurance it was not).
+  const std::string dir = fresh_dir("charge-warning");
+  const std::string fleet = battery_fleet(dir, {{"part", 0.3, 5000}});
+  const CliRun run = run_swath(kMeadow40 + "--fleet " + fleet + " -o " + dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(dir + "/out/summary.json"));
+  const double flight_s = s["drones"][0]["flight_time_s"].get<double>();
+  ASSERT_GT(flight_s, 1200.0);
+  ASSERT_LE(flight_s, 1500.0);
+  EXPECT_NE(
+      run.err.find("swath plan: warning: drone part's flight takes " +
+                   s["drones"][0]["flight_time"].get<std::string>() +
+                   ", longer than the 25 min 00 s its battery holds (30 % of 1:23:20) less "
+                   "the 20 % reserve; cut it into sorties with --sorties auto, or add drones"),
+      std::string::npos)
+      << run.err;
+}
+
+TEST(PlanCli, TheFirstSortieFitsTheChargeTheLaterOnesAFullBattery) {
+  // low: 0.4 x 600 s; weak: 0.3 x 1200 s, short of its share in one battery (once refused "longer
+  // than its range" under --sorties auto). Sortie 1 flies the charge less the 20 % reserve.
+  const std::string dir = fresh_dir("charge-sorties");
+  const std::vector<std::vector<BatteryDrone>> fleets{
+      {{"full", 1.0, 600}, {"low", 0.4, 600, true}},
+      {{"full", 1.0, 1200}, {"weak", 0.3, 1200, true}}};
+  for (std::size_t f = 0; f < fleets.size(); ++f) {
+    const std::string sub = dir + "/" + std::to_string(f);
+    const std::string fleet = battery_fleet(sub, fleets[f]);
+    const CliRun run =
+        run_swath(kMeadow40 + "--fleet " + fleet + " --sorties auto -o " + sub + "/out");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    auto times = flight_times(json::parse(read_text(sub + "/out/summary.json")));
+    for (const BatteryDrone& d : fleets[f]) {
+      const std::vector<double>& t = times[d.name];
+      ASSERT_FALSE(t.empty()) << d.name;
+      EXPECT_LE(t[0], d.level * d.endurance_s * 0.8 + 1e-6) << d.name;
+      for (std::size_t k = 1; k < t.size(); ++k)
+        EXPECT_LE(t[k], d.endurance_s * 0.8 + 1e-6) << d.name << " sortie " << k + 1;
+    }
+    EXPECT_GT(times[fleets[f][1].name].size(), 1u) << "the low drone flies sorties";
+  }
+}
+
+}  // namespace
+}  // namespace swath::test
