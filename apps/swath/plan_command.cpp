@@ -354,15 +354,18 @@ void PlanCommand::add_terrain_energy_options(CLI::App& app) {
                  "Fixed-wing: bank limit, degrees; sets the minimum turn radius v^2 / (g tan bank)")
       ->capture_default_str();
   app.add_option("--sorties", sorties_,
-                 "auto: cut each drone's flight into sorties that fit its endurance less the "
-                 "reserve (NAME-1.plan, NAME-2.plan, ...); off: one flight")
+                 "auto: cut each drone's flight into sorties, the first within the charge it "
+                 "takes off with (the fleet's battery_level x endurance), the later ones a full "
+                 "battery's endurance, less the reserve (NAME-1.plan, NAME-2.plan, ...); off: one "
+                 "flight")
       ->check(CLI::IsMember({"auto", "off"}))
       ->capture_default_str();
   app.add_option("--endurance", endurance_s_,
                  "Flight time on a full battery, seconds, for drones the fleet gives none "
                  "(sorties, and the warning when a flight is longer)");
   app.add_option("--reserve", reserve_,
-                 "Share of the endurance kept in hand for sorties and the endurance warning")
+                 "Share of the charge a flight takes off with kept in hand, for sorties and the "
+                 "endurance warning")
       ->capture_default_str();
   app.add_option("--energy-plan", energy_plan_,
                  "Also write the zigzag as a stage plan for 'swath-energy run' under this file "
