@@ -1,8 +1,10 @@
 #include "swath/fleet/event_check.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -260,29 +262,89 @@ class Checker {
   }
 
   // R11–R13 for the positions an event carries: drones' (drone_state, drone_mode) and targets
-  // (dispatch).
+  // (dispatch, a forecast place's position, a stand-by's relief).
   void envelope(const json& e, const std::string& ev, std::optional<long long> drone) {
-    if (ev != "drone_state" && ev != "drone_mode" && ev != "dispatch") return;
+    const bool target = ev == "dispatch" || ev == "position" || ev == "relief";
+    if (ev != "drone_state" && ev != "drone_mode" && !target) return;
     const auto x = number(e, "x_m"), y = number(e, "y_m"), z = number(e, "alt_m");
     if (!x || !y || !z) return;
-    const std::string who =
-        ev == "dispatch" ? "a dispatch target" : "drone " + std::to_string(drone.value_or(-1));
-    if (ev != "dispatch") out_.max_altitude_m = std::max(out_.max_altitude_m, *z);
+    const std::string who = ev == "dispatch"   ? "a dispatch target"
+                            : ev == "position" ? "a forecast place"
+                            : ev == "relief"   ? "a stand-by place"
+                                               : "drone " + std::to_string(drone.value_or(-1));
+    if (!target) out_.max_altitude_m = std::max(out_.max_altitude_m, *z);
     if (*z > ceiling_m_ + 1e-6)
       bad(n_, "R12",
           who + " at " + std::to_string(*z) + " m, above the ceiling of " +
               std::to_string(ceiling_m_) + " m");
-    bool in = inclusions_.empty();
-    for (const auto& r : inclusions_) in = in || inside(r, *x, *y);
-    if (!in) bad(n_, "R13", who + " outside the inclusion fence");
-    for (const auto& r : exclusions_)
-      if (inside(r, *x, *y)) bad(n_, "R13", who + " inside an exclusion fence");
+    const std::string refusal = fence_refusal(*x, *y);
+    if (!refusal.empty()) bad(n_, "R13", who + " " + refusal);
+    if (!target && drone) leg_from_last(*drone, {*x, *y, *z}, refusal.empty(), e);
     if (ev == "drone_state" && drone) {
       const auto t = number(e, "t_s").value_or(-1);
       if (t != batch_t_) close_state_batch();
       batch_t_ = t;
       if (*z > 0 && text(e, "state") != "lost") batch_.push_back({*x, *y, *z});
     }
+  }
+
+  // "" when (x, y) is inside the inclusion fence and outside every exclusion, else why not.
+  std::string fence_refusal(double x, double y) const {
+    bool in = inclusions_.empty();
+    for (const auto& r : inclusions_) in = in || inside(r, x, y);
+    if (!in) return "outside the inclusion fence";
+    for (const auto& r : exclusions_)
+      if (inside(r, x, y)) return "inside an exclusion fence";
+    return "";
+  }
+
+  // Where (0..1) the segment a-b crosses or touches the rings' edges.
+  std::vector<double> crossings(
+      const std::array<double, 3>& a, const std::array<double, 3>& b,
+      const std::vector<std::vector<std::array<double, 2>>>& rings) const {
+    std::vector<double> out;
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    for (const auto& ring : rings)
+      for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+        const double ex = ring[i][0] - ring[j][0], ey = ring[i][1] - ring[j][1];
+        const double den = dx * ey - dy * ex;
+        if (std::abs(den) < 1e-12) continue;  // parallel: its ends are other edges' crossings
+        const double wx = ring[j][0] - a[0], wy = ring[j][1] - a[1];
+        const double t = (wx * ey - wy * ex) / den, u = (wx * dy - wy * dx) / den;
+        if (t > 0 && t < 1 && u >= -1e-12 && u <= 1 + 1e-12) out.push_back(t);
+      }
+    return out;
+  }
+
+  // R13 between two logged positions of a drone in flight: the straight leg between them (what
+  // the drone flies between samples) judged piece by piece, split where it crosses a fence edge,
+  // so a leg across a strip narrower than a second's flight is seen. Its height is linear along
+  // the leg, so the ceiling (R12) holds on it when it holds at both ends.
+  void leg_from_last(long long drone, const std::array<double, 3>& p, bool p_inside,
+                     const json& e) {
+    const bool lost = text(e, "state") == "lost";
+    const auto it = last_position_.find(drone);
+    if (it != last_position_.end() && it->second.inside && p_inside && !lost) {
+      const auto& a = it->second.at;
+      std::vector<double> ts = crossings(a, p, inclusions_);
+      const auto more = crossings(a, p, exclusions_);
+      ts.insert(ts.end(), more.begin(), more.end());
+      ts.push_back(0);
+      ts.push_back(1);
+      std::sort(ts.begin(), ts.end());
+      for (std::size_t k = 1; k < ts.size(); ++k) {
+        if (ts[k] - ts[k - 1] < 1e-9) continue;
+        const double m = (ts[k] + ts[k - 1]) / 2;
+        const std::string why = fence_refusal(a[0] + m * (p[0] - a[0]), a[1] + m * (p[1] - a[1]));
+        if (why.empty()) continue;
+        bad(n_, "R13",
+            "drone " + std::to_string(drone) + "'s leg from (" + std::to_string(a[0]) + ", " +
+                std::to_string(a[1]) + ") to (" + std::to_string(p[0]) + ", " +
+                std::to_string(p[1]) + ") m passes " + why);
+        break;
+      }
+    }
+    last_position_[drone] = {p, p_inside && !lost};
   }
 
   // R11: the airborne drones of one drone_state time, pairwise.
@@ -307,6 +369,11 @@ class Checker {
   double ceiling_m_ = 120, separation_m_ = 5;
   std::vector<std::vector<std::array<double, 2>>> inclusions_, exclusions_;
   std::vector<std::array<double, 3>> batch_;  // airborne drones at batch_t_
+  struct Logged {
+    std::array<double, 3> at;
+    bool inside;  // inside the fence and not lost: a leg from it is judged
+  };
+  std::map<long long, Logged> last_position_;  // drone → its last logged position
   double batch_t_ = -1;
   std::map<long long, long long> latest_segment_, bound_;  // task → segment; same_drone → drone
   std::set<long long> same_drone_tasks_;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -184,6 +185,46 @@ TEST(EventCheck, CeilingAndFenceBreachesFail) {
   EXPECT_TRUE(with(150, 0, 20).count("R13"));  // outside the inclusion
   EXPECT_TRUE(with(70, 70, 20).count("R13"));  // inside the exclusion
   EXPECT_FALSE(with(50, 50, 20).count("R13"));
+}
+
+// R13 on the leg between two logged positions: a drone that crosses a 2 m exclusion strip, or
+// cuts across a U-shaped inclusion's notch, between two samples 1 s apart breaks it though both
+// samples lie inside the envelope.
+TEST(EventCheck, ALegBetweenSamplesThroughTheFenceFails) {
+  const std::string start =
+      R"({"t_s":0,"ev":"run_start","drones":[{"drone":0,"soc":1}],"envelope":{"ceiling_m":120,)"
+      R"("separation_m":5,"inclusions":[[[-50,-50],[250,-50],[250,250],[150,250],[150,50],)"
+      R"([50,50],[50,250],[-50,250]]],"exclusions":[[[100,-40],[102,-40],[102,40],[100,40]]]}})";
+  const auto flight = [&](std::array<double, 2> a, std::array<double, 2> b) {
+    const auto state = [](double t_s, std::array<double, 2> p) {
+      return json{{"t_s", t_s},  {"ev", "drone_state"}, {"drone", 0}, {"x_m", p[0]},
+                  {"y_m", p[1]}, {"alt_m", 20},         {"soc", 0.9}, {"state", "flying"}}
+          .dump();
+    };
+    const std::vector<std::string> v = {start, state(1, a), state(2, b),
+                                        R"({"t_s":3,"ev":"run_end"})"};
+    return check_events(join(v));
+  };
+  const EventCheck across_strip = flight({95, 0}, {105, 0});
+  ASSERT_EQ(across_strip.violations.size(), 1U);
+  EXPECT_EQ(across_strip.violations[0].rule, "R13");
+  EXPECT_NE(across_strip.violations[0].message.find("inside an exclusion fence"), std::string::npos)
+      << across_strip.violations[0].message;
+  EXPECT_TRUE(flight({95, 0}, {99, 0}).ok());     // beside the strip, along it
+  EXPECT_TRUE(flight({95, 45}, {105, 45}).ok());  // past the strip's end
+  const EventCheck across_notch = flight({40, 200}, {160, 200});
+  ASSERT_EQ(across_notch.violations.size(), 1U);
+  EXPECT_NE(across_notch.violations[0].message.find("outside the inclusion fence"),
+            std::string::npos)
+      << across_notch.violations[0].message;
+  EXPECT_TRUE(flight({40, 200}, {40, 0}).ok());  // down the U's left arm
+  // A forecast place in the strip, sent to but not yet reached, breaks it too.
+  const std::vector<std::string> sent = {
+      start, R"({"t_s":1,"ev":"position","drone":0,"x_m":101,"y_m":0,"alt_m":20,"p":1})",
+      R"({"t_s":2,"ev":"run_end"})"};
+  const EventCheck c = check_events(join(sent));
+  ASSERT_EQ(c.violations.size(), 1U);
+  EXPECT_EQ(c.violations[0].message, "a forecast place inside an exclusion fence");
 }
 
 // Targets outside the envelope are errors to the app, never flown: above the ceiling, outside
