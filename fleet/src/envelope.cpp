@@ -1,6 +1,8 @@
 #include "swath/fleet/envelope.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/local_frame.hpp"
@@ -28,6 +30,69 @@ std::string LocalEnvelope::refusal_xy(double x_m, double y_m) const {
   }
   for (const auto& r : exclusions)
     if (inside(r, x_m, y_m)) return "inside an exclusion fence";
+  return "";
+}
+
+namespace {
+
+using Rings = std::vector<std::vector<std::array<double, 2>>>;
+
+// Where (0..1, ends excluded) the segment a-b meets an edge of `rings`.
+void crossings(const vehicle::Vec3& a, const vehicle::Vec3& b, const Rings& rings,
+               std::vector<double>& out) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  for (const auto& ring : rings)
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const double ex = ring[i][0] - ring[j][0], ey = ring[i][1] - ring[j][1];
+      const double den = dx * ey - dy * ex;
+      if (std::abs(den) < 1e-12) continue;  // parallel: its ends are its neighbours' crossings
+      const double wx = ring[j][0] - a.x, wy = ring[j][1] - a.y;
+      const double t = (wx * ey - wy * ex) / den, u = (wx * dy - wy * dx) / den;
+      if (t > 0 && t < 1 && u >= -1e-12 && u <= 1 + 1e-12) out.push_back(t);
+    }
+}
+
+// Twice the signed area of p-q-r: > 0 when r lies left of p→q.
+double turn(double px, double py, double qx, double qy, double rx, double ry) {
+  return (qx - px) * (ry - py) - (qy - py) * (rx - px);
+}
+
+}  // namespace
+
+// Between two crossings of fence edges a leg is wholly inside or wholly outside, so each piece's
+// midpoint stands for the piece.
+std::string LocalEnvelope::leg_refusal(const vehicle::Vec3& a, const vehicle::Vec3& b) const {
+  if (std::string why = refusal_xy(a.x, a.y); !why.empty()) return why;
+  if (std::string why = refusal_xy(b.x, b.y); !why.empty()) return why;
+  std::vector<double> ts{0, 1};
+  crossings(a, b, inclusions, ts);
+  crossings(a, b, exclusions, ts);
+  std::sort(ts.begin(), ts.end());
+  for (std::size_t k = 1; k < ts.size(); ++k) {
+    if (ts[k] - ts[k - 1] < 1e-9) continue;
+    const double m = (ts[k] + ts[k - 1]) / 2;
+    if (std::string why = refusal_xy(a.x + m * (b.x - a.x), a.y + m * (b.y - a.y)); !why.empty())
+      return why;
+  }
+  return "";
+}
+
+std::string LocalEnvelope::triangle_refusal(const vehicle::Vec3& a, const vehicle::Vec3& b,
+                                            const vehicle::Vec3& c) const {
+  if (!fenced()) return "";
+  for (const auto& [p, q] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}})
+    if (std::string why = leg_refusal(*p, *q); !why.empty()) return why;
+  // Sides inside a simple inclusion polygon keep the triangle inside it; an exclusion wholly
+  // within the triangle is found by its vertices.
+  for (const auto& ring : exclusions)
+    for (const auto& [x, y] : ring) {
+      const double ab = turn(a.x, a.y, b.x, b.y, x, y), bc = turn(b.x, b.y, c.x, c.y, x, y),
+                   ca = turn(c.x, c.y, a.x, a.y, x, y);
+      const bool boxed = x >= std::min({a.x, b.x, c.x}) && x <= std::max({a.x, b.x, c.x}) &&
+                         y >= std::min({a.y, b.y, c.y}) && y <= std::max({a.y, b.y, c.y});
+      if (boxed && ((ab >= 0 && bc >= 0 && ca >= 0) || (ab <= 0 && bc <= 0 && ca <= 0)))
+        return "around an exclusion fence";
+    }
   return "";
 }
 

@@ -426,8 +426,8 @@ double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
   return length / cruise_m_s + cruise_m_s / accel_m_s2;
 }
 
-// Binding, sensing, fence, flight time and charge (there, serve, home above the reserve). A
-// forecast is a place only: no binding, no sensor, no service.
+// Binding, sensing, fence (the legs there and home too), flight time and charge (there, serve, home
+// above the reserve). A forecast is a place only: no binding, no sensor, no service.
 bool Utility::pair_feasible(std::size_t d, std::size_t r) const {
   const Snapshot& s = snapshot_;
   const DroneState& dr = s.drones[d];
@@ -441,6 +441,8 @@ bool Utility::pair_feasible(std::size_t d, std::size_t r) const {
   bool ok = (!q.bound_drone || *q.bound_drone == static_cast<int>(d)) &&
             (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
             (dr.can_sense || !q.needs_sensor) && inside_fence(s.fence, q.location_m);
+  if (ok && s.envelope)
+    ok = s.envelope->triangle_refusal(dr.position_m, q.location_m, dr.home_m).empty();
   if (ok && std::isfinite(dr.remaining_flight_s))
     ok = s.eta.eta_s(dr.position_m, q.location_m) + q.service_s +
              s.eta.eta_s(q.location_m, dr.home_m) <=

@@ -258,6 +258,86 @@ TEST(Envelope, TargetsOutsideTheEnvelopeAreRefusedNeverFlown) {
   EXPECT_LE(c.max_altitude_m, 120);
 }
 
+// The tester's U-shaped inclusion: x -50..250, y -50..250 but for a notch x 50..150 above y 50.
+const std::vector<std::vector<std::array<double, 2>>> kUFence = {
+    {{-50, -50}, {250, -50}, {250, 250}, {150, 250}, {150, 50}, {50, 50}, {50, 250}, {-50, 250}}};
+
+std::vector<json> events_named(const std::string& jsonl, const std::string& ev) {
+  std::vector<json> out;
+  for (const auto& l : lines_of(jsonl))
+    if (const json e = json::parse(l); e["ev"] == ev) out.push_back(e);
+  return out;
+}
+
+// Legs are straight: a drone waiting at a (left arm) is not sent across the notch to c (right
+// arm); the drone whose home lies under c flies it. The checker judges every leg between logged
+// positions, so a crossing would break R13.
+TEST(Envelope, NoLegCrossesTheFenceBetweenItsEnds) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  s.envelope.inclusions = kUFence;
+  const std::string text =
+      "kind: static\ntasks:\n"
+      "  - {name: a, actions: [{fly_to: {x_m: 0, y_m: 200}}, {hover: 2}]}\n"
+      "  - {name: c, after: [a], actions: [{fly_to: {x_m: 200, y_m: 200}}, {hover: 2}]}\n";
+  std::vector<DroneSpec> drones = drones_in_a_row(2, 0);
+  drones[1].home_m = {200, -40, 0};
+  const RunRecord r = run_app(app_named("static"), *worlds::parse_world(text, "w.yaml"), drones, s);
+  ASSERT_TRUE(r.completed) << r.failure;
+  const EventCheck c = check_events(r.events_jsonl);
+  for (const auto& v : c.violations) ADD_FAILURE() << v.line << " " << v.rule << " " << v.message;
+  int to_c = 0;
+  for (const json& e : events_named(r.events_jsonl, "dispatch"))
+    if (e["x_m"].get<double>() > 150) {
+      EXPECT_EQ(e["drone"], 1) << e.dump();
+      ++to_c;
+    }
+  EXPECT_EQ(to_c, 1);
+}
+
+// A target no drone can reach by a straight leg inside the fence fails at once, saying why; the
+// target in reach is flown; nothing is logged outside the fence.
+TEST(Envelope, ATargetOutOfReachInsideTheFenceFailsSayingWhy) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  s.envelope.inclusions = kUFence;
+  const std::string text =
+      "kind: static\ntasks:\n"
+      "  - {name: far, actions: [{fly_to: {x_m: 180, y_m: 180}}, {hover: 2}]}\n"
+      "  - {name: near, actions: [{fly_to: {x_m: 200, y_m: 0}}, {hover: 2}]}\n";
+  const RunRecord r = static_run(text, s, 1);
+  const EventCheck c = check_events(r.events_jsonl);
+  for (const auto& v : c.violations) ADD_FAILURE() << v.line << " " << v.rule << " " << v.message;
+  const std::vector<json> failed = events_named(r.events_jsonl, "task_failed");
+  ASSERT_EQ(failed.size(), 1U);
+  const std::string reason = failed[0]["reason"];
+  EXPECT_NE(reason.find("fly_to (180, 180, 0) m is out of reach"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("outside the inclusion fence"), std::string::npos) << reason;
+  EXPECT_EQ(events_named(r.events_jsonl, "task_done").size(), 2U);  // near and the app's main
+}
+
+// Speculative positioning keeps the fence: the place a drone was sent to on a forecast, with an
+// exclusion around it, is flown to no more, and every leg of the run stays outside it.
+TEST(Envelope, NoDroneIsPositionedAtAForecastPlaceInsideAnExclusion) {
+  const auto world = worlds::parse_world("kind: road\nseed: 3\nsteps: 8\n", "w.yaml");
+  RuntimeSettings s;
+  s.app_name = "road";
+  s.forecaster = "constant-velocity";
+  s.max_time_s = 1200;
+  const RunRecord open = run_app(app_named("road"), *world, drones_in_a_row(3, 5), s);
+  const std::vector<json> sent = events_named(open.events_jsonl, "position");
+  ASSERT_FALSE(sent.empty());
+  const double x = sent[0]["x_m"], y = sent[0]["y_m"];
+  s.envelope.exclusions = {{{x - 2, y - 2}, {x + 2, y - 2}, {x + 2, y + 2}, {x - 2, y + 2}}};
+  const RunRecord fenced = run_app(app_named("road"), *world, drones_in_a_row(3, 5), s);
+  const EventCheck c = check_events(fenced.events_jsonl);
+  for (const auto& v : c.violations) ADD_FAILURE() << v.line << " " << v.rule << " " << v.message;
+  for (const json& e : events_named(fenced.events_jsonl, "position"))
+    EXPECT_GT(std::max(std::abs(e["x_m"].get<double>() - x), std::abs(e["y_m"].get<double>() - y)),
+              2)
+        << e.dump();
+}
+
 // The fleet must fit: 100 drones 5 m apart from 20 m do not fit under 120 m (21 do, 22 do not);
 // a home outside the inclusion fence is refused before anything flies.
 TEST(Envelope, AFleetThatCannotFitIsRefused) {

@@ -38,6 +38,7 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
   settings_.layer_step_m = std::max(settings.layer_step_m, settings.envelope.separation_m);
   settings_.disc_m = std::max(settings.disc_m, settings.envelope.separation_m);
   check_envelope(specs);
+  envelope_ = std::make_shared<const LocalEnvelope>(settings_.envelope);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     Drone d;
     d.spec = specs[i];

@@ -267,6 +267,7 @@ class Runtime final : public detail::Core {
   void stand_by(Drone& e, const Drone& d, const Vec3& at, double leave_s);
 
   void check_envelope(const std::vector<DroneSpec>& specs) const;
+  void check_reachable(const Vec3& to, const std::string& at) const;
   json envelope_json() const;
   void check_target(const Vec3& to) const;
   // Separation (runtime/separation.cpp): is the leg (none: hovering where it is) that d would
@@ -343,6 +344,7 @@ class Runtime final : public detail::Core {
   const App& app_;
   const World& world_;
   RuntimeSettings settings_;
+  std::shared_ptr<const LocalEnvelope> envelope_;  // settings_.envelope, shared with snapshots
   vehicle::SplitMix64 app_rng_, sched_rng_;
   std::unique_ptr<Scheduler> scheduler_;
   std::vector<Drone> drones_;

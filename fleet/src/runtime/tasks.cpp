@@ -53,6 +53,22 @@ void Runtime::check_target(const Vec3& to) const {
   if (!(to.z >= 0)) throw ActionFailed(at() + "below home (heights are 0 < h ≤ the ceiling)");
   const std::string why = settings_.envelope.refusal(to);
   if (!why.empty()) throw ActionFailed(at() + why);
+  check_reachable(to, at());
+}
+
+// Legs are straight and a drone must be able to turn straight home from anywhere on them, so a
+// target is flown only by a drone whose straight leg home from it stays inside the fence
+// (Utility::pair_feasible); with no such drone the task fails now, saying why, rather than waiting
+// for a drone that never comes.
+void Runtime::check_reachable(const Vec3& to, const std::string& at) const {
+  if (!settings_.envelope.fenced()) return;
+  std::string why;
+  for (const Drone& d : drones_) {
+    why = settings_.envelope.leg_refusal(d.spec.home_m, to);
+    if (why.empty()) return;
+  }
+  throw ActionFailed(at + "out of reach: the straight leg to it from every drone's home passes " +
+                     why + " (legs are flown straight, not routed round the fence)");
 }
 
 Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::string& name,

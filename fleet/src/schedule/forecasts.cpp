@@ -32,13 +32,14 @@ void Runtime::update_forecasts() {
   log(json{{"ev", "forecast"}, {"forecasts", list}});
 }
 
-// The forecasts not already shown by a visible request, and q between the visible requests
-// (avoid-mutual: docs/swath-fleet.md, 'Speculation and avoid-mutual'; pairs below 0.01 left out, as
-// the scheduler's neighbour lists).
+// The forecasts inside the fence and not already shown by a visible request, and q between the
+// visible requests (avoid-mutual: docs/swath-fleet.md, 'Speculation and avoid-mutual'; pairs below
+// 0.01 left out, as the scheduler's neighbour lists).
 void Runtime::add_forecasts(Snapshot& s, const std::vector<int>& req_task) const {
   if (!forecaster_) return;
   for (const ForecastRequest& f : forecasts_)
-    if (f.p > 0 && std::none_of(s.requests.begin(), s.requests.end(), [&](const Request& r) {
+    if (f.p > 0 && settings_.envelope.refusal_xy(f.location_m.x, f.location_m.y).empty() &&
+        std::none_of(s.requests.begin(), s.requests.end(), [&](const Request& r) {
           return vehicle::horizontal_distance(r.location_m, f.location_m) <= settings_.hit_within_m;
         })) {
       ForecastRequest g = f;

@@ -47,6 +47,8 @@ void Runtime::relieve() {
       const Vec3 to{at.x, at.y, e.layer_m};
       Vec3 from = position_at(e, now_);
       if (e.mode == Mode::landed) from.z = 0;
+      // Its legs there and home inside the fence (as a scheduled drone's: Utility::pair_feasible).
+      if (!settings_.envelope.triangle_refusal(from, to, e.spec.home_m).empty()) continue;
       const double eta = Leg(from, to, e.spec.kinematics()).duration_s();
       // Worth it only when it can stay at least the margin beyond the hand-over.
       const double airborne_s = e.mode == Mode::landed ? now_ : e.airborne_since;

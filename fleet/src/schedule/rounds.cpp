@@ -18,6 +18,7 @@ Snapshot Runtime::snapshot_base() const {
   s.eta.approach_within_m = k.approach_within_m;
   s.weights = settings_.weights;
   s.fence = world_.fence();
+  if (settings_.envelope.fenced()) s.envelope = envelope_;
   // Charge: there, serve, home above the reserve.
   EnergyFeasibility e;
   e.battery = first.battery;

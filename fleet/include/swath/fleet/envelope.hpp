@@ -55,6 +55,16 @@ struct LocalEnvelope {
   std::string refusal(const vehicle::Vec3& p) const;
   /// The same for the horizontal position alone (homes, fly_to targets before their height).
   std::string refusal_xy(double x_m, double y_m) const;
+  /// Whether it has any fence polygon (else every place at the right height is inside).
+  bool fenced() const { return !inclusions.empty() || !exclusions.empty(); }
+  /// "" when the straight horizontal leg a-b stays inside the fence, else why not ("outside the
+  /// inclusion fence", "inside an exclusion fence" somewhere along it).
+  std::string leg_refusal(const vehicle::Vec3& a, const vehicle::Vec3& b) const;
+  /// "" when the triangle a-b-c lies inside the fence: its sides stay inside and no exclusion
+  /// lies within it. A drone flying a to b with home c is then inside whenever it turns straight
+  /// home on the way (the runtime flies straight legs).
+  std::string triangle_refusal(const vehicle::Vec3& a, const vehicle::Vec3& b,
+                               const vehicle::Vec3& c) const;
 };
 
 /// `fence` in the local frame at `origin`.

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "swath/energy/battery.hpp"
+#include "swath/fleet/envelope.hpp"
 #include "swath/fleet/forecaster.hpp"
 #include "swath/vehicle/random.hpp"
 #include "swath/vehicle/vec3.hpp"
@@ -107,6 +108,10 @@ struct Snapshot {
   std::optional<EnergyFeasibility> energy;  ///< none: charge is not checked
   /// The fence (local metres, x/y; empty: none): requests outside it are infeasible.
   std::vector<std::array<double, 2>> fence;
+  /// The safety envelope's fence (none: not fenced): a pair is feasible only when the triangle of
+  /// the drone's position, the target and its home lies inside it, so every leg it flies for the
+  /// target, and a straight return home from anywhere on them, stays inside.
+  std::shared_ptr<const LocalEnvelope> envelope;
 };
 
 /// The state of charge a drone lands with after serving `r` and flying home (eq. 12 per leg).
