@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -402,6 +403,35 @@ TEST(FleetCli, AHundredDronesAreRefusedUnderTheCeilingAndTwentyOneFly) {
   EXPECT_LE(top_m, 120.0);
   EXPECT_EQ(top_m, 120.0);  // drone 21's layer: 20 + 5 × 20
   EXPECT_EQ(run_swath_fleet("check " + dir + "/fit").exit_code, 0);
+}
+
+// A bow-tie fence polygon is bad input: exit 2, one sentence naming the file, the feature and
+// where it crosses itself; nothing written.
+TEST(FleetCli, ASelfCrossingFenceIsRefusedNamingWhereItCrosses) {
+  const std::string dir = fresh_dir("fleet-bowtie");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/bowtie.geojson")
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+         R"("geometry":{"type":"Polygon","coordinates":[[[-71.0948,42.3596],[-71.0936,42.3606],)"
+         R"([-71.0936,42.3596],[-71.0948,42.3606],[-71.0948,42.3596]]]}}]})";
+  std::ofstream(dir + "/fleet.yaml")
+      << "fence: {geojson: bowtie.geojson}\ndrones:\n  - {name: a, speed_m_s: 10}\n";
+  std::ofstream(dir + "/world.yaml")
+      << "kind: static\norigin: {lat: 42.3601, lon: -71.0942}\nsensors: {cam: {time_s: 2}}\n"
+         "tasks:\n  - {name: t, actions: [{fly_to: {x_m: 10, y_m: 0}}, {sense: cam}]}\n";
+  const CliRun r = run_swath_fleet("run static --world " + dir + "/world.yaml --fleet " + dir +
+                                   "/fleet.yaml -o " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 2);
+  const std::string head =
+      dir + "/bowtie.geojson: features[0]: the fence polygon crosses itself at ";
+  ASSERT_NE(r.err.find(head), std::string::npos) << r.err;
+  double lat = 0, lon = 0;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + r.err.find(head) + head.size(), "%lf, %lf", &lat, &lon), 2)
+      << r.err;
+  EXPECT_NEAR(lat, 42.3601, 1e-4);
+  EXPECT_NEAR(lon, -71.0942, 1e-4);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 
 }  // namespace

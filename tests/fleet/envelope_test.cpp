@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -503,6 +504,26 @@ TEST(Envelope, MalformedFenceFilesAreInputErrors) {
     } catch (const base::InputError& x) {
       EXPECT_EQ(std::string(x.what()).rfind("f.geojson", 0), 0u) << x.what();
     }
+  }
+}
+
+// A fence polygon that crosses itself (a bow-tie) is refused naming the file, the feature and
+// where it crosses, as swath plan refuses such a zone.
+TEST(Envelope, ASelfCrossingFencePolygonIsRefusedSayingWhere) {
+  const std::string bowtie =
+      R"({"type":"FeatureCollection","features":[{"type":"Feature","geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[8.0,47.0],[8.01,47.01],[8.01,47.0],[8.0,47.01],[8.0,47.0]]]}}]})";
+  try {
+    parse_fence_geojson(bowtie, "bow.geojson");
+    ADD_FAILURE() << "a bow-tie fence accepted";
+  } catch (const base::InputError& x) {
+    const std::string m = x.what();
+    const std::string head = "bow.geojson: features[0]: the fence polygon crosses itself at ";
+    ASSERT_EQ(m.rfind(head, 0), 0U) << m;
+    double lat = 0, lon = 0;
+    ASSERT_EQ(std::sscanf(m.c_str() + head.size(), "%lf, %lf", &lat, &lon), 2) << m;
+    EXPECT_NEAR(lat, 47.005, 1e-4);
+    EXPECT_NEAR(lon, 8.005, 1e-4);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
@@ -13,6 +14,9 @@
 #include "swath/base/utf8.hpp"
 #include "swath/base/yaml_input.hpp"
 #include "swath/base/yaml_map.hpp"
+#include "swath/geometry/classification.hpp"
+#include "swath/geometry/local_frame.hpp"
+#include "swath/geometry/polygon.hpp"
 
 namespace swath::vehicle {
 namespace {
@@ -258,16 +262,40 @@ std::vector<geometry::GeoPoint> ring_of(const json& coords, const std::string& w
   return out;
 }
 
+// A fence ring that crosses or touches itself (a bow-tie) has no inside the runtime, the checker
+// and an autopilot agree on: refused with the place, as swath plan refuses such a zone.
+void refuse_crossing_ring(const std::vector<geometry::GeoPoint>& ring_deg,
+                          const std::string& where) {
+  const geometry::LocalFrame frame(ring_deg.front());
+  geometry::Ring local;
+  for (const geometry::GeoPoint& g : ring_deg) local.push_back(frame.to_local(g));
+  const geometry::Ring normal = geometry::normalise_ring(local, true).ring;
+  if (normal.size() < 3) throw InputError(where + ": the fence polygon encloses no area");
+  const auto crossing = geometry::find_crossing(geometry::Polygon{normal, {}});
+  if (!crossing) return;
+  const geometry::GeoPoint p = frame.to_geo(crossing->point);
+  std::ostringstream s;
+  s.precision(8);
+  s << where << ": the fence polygon crosses itself at " << p.lat_deg << ", " << p.lon_deg
+    << " (lat, lon); a fence polygon must be a simple polygon: fix the vertex order";
+  throw InputError(s.str());
+}
+
 // A geometry's polygons (outer rings; holes are refused: give an exclusion instead).
 void add_geometry(const json& g, bool inclusion, const std::string& where,
                   std::vector<FencePolygon>& out) {
   const std::string type = type_of(g);
+  std::size_t part = 0;
   const auto polygon = [&](const json& rings) {
     if (!rings.is_array() || rings.empty())
       throw InputError(where + ": a Polygon's coordinates are a list of rings");
     if (rings.size() > 1)
       throw InputError(where + ": a fence polygon with holes; give each hole as an exclusion");
-    out.push_back({ring_of(rings[0], where), inclusion});
+    const std::string named =
+        type == "MultiPolygon" ? where + " polygon " + std::to_string(part++) : where;
+    std::vector<geometry::GeoPoint> ring = ring_of(rings[0], named);
+    refuse_crossing_ring(ring, named);
+    out.push_back({std::move(ring), inclusion});
   };
   if (type == "Polygon") {
     polygon(member(g, "coordinates"));
