@@ -9,6 +9,7 @@
 #include <pybind11/embed.h>
 #include <pybind11/stl.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -426,11 +427,18 @@ std::string type_name(const py::handle h) {
   return py::str(h.get_type().attr("__name__"));
 }
 
+/// A real number as Python and NumPy give them (int, float, numpy.float32, numpy.int64, ...): a
+/// number that converts to float, not a bool, a complex or a string.
+bool is_real_number(const py::handle h) {
+  return PyNumber_Check(h.ptr()) && !py::isinstance<py::bool_>(h) && !PyComplex_Check(h.ptr()) &&
+         !py::isinstance<py::str>(h) && !py::isinstance<py::bytes>(h);
+}
+
 double number_arg(const py::handle h, const std::string& call, const std::string& name) {
-  if ((!py::isinstance<py::float_>(h) && !py::isinstance<py::int_>(h)) ||
-      py::isinstance<py::bool_>(h))
+  if (!is_real_number(h))
     throw py::type_error(call + ": " + name + " must be a number, not a " + type_name(h));
-  const double v = h.cast<double>();
+  const double v = PyFloat_AsDouble(h.ptr());
+  if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
   if (!std::isfinite(v))
     throw py::value_error(call + ": " + name + " must be finite, not " + base::shortest_text(v));
   return v;
@@ -543,10 +551,17 @@ std::vector<double> read_values(const std::string& sensor, const py::object& fn,
             "\" must return a list of numbers, not a " + type_of(got);
     else
       for (const py::handle v : got)
-        if (why.empty() && (!py::isinstance<py::float_>(v) && !py::isinstance<py::int_>(v)))
+        if (why.empty() && !is_real_number(v))
           why = definition_of(fn) + ": sensor \"" + sensor +
                 "\" must return a list of numbers; it holds a " + type_of(v);
-    if (why.empty()) return got.cast<std::vector<double>>();
+    if (why.empty()) {
+      std::vector<double> values;
+      for (const py::handle v : got) {
+        values.push_back(PyFloat_AsDouble(v.ptr()));
+        if (values.back() == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+      }
+      return values;
+    }
   } catch (py::error_already_set& e) {
     why = host->sentence(e);
   }
@@ -636,8 +651,11 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
   types.task_killed = py::exception<void>(m, "TaskKilled", PyExc_BaseException);
 
   // os._exit would end swath-fleet itself, exit 0 with no file written: an app's os._exit(n)
-  // raises SystemExit instead, as sys.exit does (its task fails; the run's files are written).
+  // raises SystemExit instead, as sys.exit does (its task fails; the run's files are written). A
+  // child the app forked (multiprocessing ends its children with os._exit) exits as asked.
+  static const pid_t swath_pid = getpid();
   m.def("_exit", [](int status) {
+    if (getpid() != swath_pid) _exit(status);
     PyErr_SetString(PyExc_SystemExit, ("os._exit(" + std::to_string(status) +
                                        "): an app ends by returning from APP, not the process")
                                           .c_str());

@@ -83,7 +83,8 @@ std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points
   // point it may end at (Litchi flies home from there and back out to it), else at its last row.
   std::size_t first = 0;
   while (true) {
-    std::size_t end = std::min(points.size(), first + std::max<std::size_t>(settings.max_rows, 2));
+    std::size_t end =
+        first + std::min(points.size() - first, std::max<std::size_t>(settings.max_rows, 2));
     if (end < points.size() && settings.may_end_at)
       for (std::size_t last = end - 1; last > first; --last)
         if (settings.may_end_at(last)) {

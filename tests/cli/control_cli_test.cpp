@@ -22,7 +22,7 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-std::vector<std::vector<double>> csv_rows(const std::string& text, std::size_t* columns) {
+std::vector<std::vector<double>> numeric_csv_rows(const std::string& text, std::size_t* columns) {
   std::istringstream in(text);
   std::string line;
   std::getline(in, line);
@@ -66,7 +66,7 @@ TEST(ControlCli, SwathsPlanIsFlownInWindAndItsFilesAgree) {
   EXPECT_EQ(s["plan_check"]["inside_no_fly_m"], 0.0);
   // The timeseries: one row per 20 ms, each as wide as the header; its last SoC is the summary's.
   std::size_t columns = 0;
-  const auto rows = csv_rows(read_text(out + "/timeseries.csv"), &columns);
+  const auto rows = numeric_csv_rows(read_text(out + "/timeseries.csv"), &columns);
   EXPECT_EQ(columns, 23u + 4 + 4 + 5);  // 4 rotors: pwm and omega
   const double t = s["flight_time_s"].get<double>();
   EXPECT_NEAR(static_cast<double>(rows.size()), t / 0.02, 1.0);
@@ -79,7 +79,7 @@ TEST(ControlCli, SwathsPlanIsFlownInWindAndItsFilesAgree) {
                          rows[k][3] - rows[k - 1][3]);
   EXPECT_NEAR(length, s["distance_m"].get<double>(), 0.02 * length);
   // rate.csv: a row per second, 400 time-triggered executions in each whole one.
-  const auto seconds = csv_rows(read_text(out + "/rate.csv"), &columns);
+  const auto seconds = numeric_csv_rows(read_text(out + "/rate.csv"), &columns);
   ASSERT_GE(seconds.size(), static_cast<std::size_t>(t));
   for (std::size_t k = 0; k + 1 < seconds.size(); ++k) EXPECT_EQ(seconds[k][1], 400) << k;
   for (const char* png : {"trajectory.png", "attitude.png", "energy.png", "triggers.png"}) {

@@ -324,6 +324,28 @@ TEST(MissionWriters, LitchiPartsReadBackAsTheFlightsPoints) {
   }
 }
 
+// The cuts worked out by hand: 200 points, parts may end at points 50 and 97 only. Part 1 ends at
+// 97 (the last allowed within its 99 rows: 98 rows), part 2 has no allowed point after its first
+// and ends at its 99th row (point 195), part 3 holds the rest (points 195 to 199).
+TEST(MissionWriters, LitchiPartsEndAtTheLastAllowedPointWorkedByHand) {
+  Rng rng{std::mt19937(7)};
+  const auto points = random_points(rng, 200);
+  missions::LitchiSettings settings;
+  settings.max_rows = 99;
+  settings.speed_m_s = 5;
+  settings.may_end_at = [](std::size_t i) { return i == 50 || i == 97; };
+  const auto parts = missions::write_litchi_csv(points, settings);
+  ASSERT_EQ(parts.size(), 3u);
+  const std::size_t rows[] = {98, 99, 5};
+  const std::size_t first[] = {0, 97, 195};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Mission read = missions::parse_mission(parts[k], "part.csv");
+    expect_waypoints({points.begin() + std::ptrdiff_t(first[k]),
+                      points.begin() + std::ptrdiff_t(first[k] + rows[k])},
+                     read, "part " + std::to_string(k + 1));
+  }
+}
+
 // The speed in force on each leg of a read mission, as ArduPilot flies its items: the last
 // DO_CHANGE_SPEED (178, param2 m/s) before a waypoint (16) sets the leg into it.
 std::vector<double> leg_speeds_m_s(const Mission& read) {

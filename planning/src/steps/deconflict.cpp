@@ -182,7 +182,9 @@ bool clash(const SurveyPlan& plan, const TimedFlight& f, double f_s, const Timed
 // 10 s step where its climb and descent miss every placed lower flight's time near its home and
 // every placed higher flight's climb and descent miss its own time near theirs. A sortie launches
 // no earlier than the one before it lands by the estimate plus what that estimate may be short
-// (5 % and its unsure_s()): a late landing would otherwise shift it out of its slot.
+// (5 % and its unsure_s()), and the battery change after it: a late landing would otherwise shift
+// it out of its slot, and a pilot needs the time to land, swap and arm.
+constexpr double kBatteryChange_s = 120.0;
 std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<TimedFlight>& all) {
   const std::size_t n = all.size();
   std::vector<std::size_t> order(n);
@@ -196,7 +198,8 @@ std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<Tim
     int first_step = 0;
     if (i > 0 && all[i - 1].drone == all[i].drone) {  // a later sortie: placed after its previous
       const TimedFlight& before = all[i - 1];
-      const double landed_s = offset[i - 1] + 1.05 * before.end_s() + before.unsure_s;
+      const double landed_s =
+          offset[i - 1] + 1.05 * before.end_s() + before.unsure_s + kBatteryChange_s;
       first_step = static_cast<int>(std::ceil(landed_s / 10.0 - 1e-9));
     }
     for (int step = first_step; step < first_step + 10'000; ++step) {

@@ -234,8 +234,11 @@ void check_counts(const SurveyPlan& plan) {
 
 void missions(SurveyPlan& plan) {
   // PX4's RTL climbs to RTL_RETURN_ALT (60 m by default) before it flies home, through the other
-  // drones' layers: several drones' PX4 flights fly home at their own layer and land there.
-  if (plan.request.firmware == Firmware::px4 && plan.drones.size() > 1) plan.request.land = true;
+  // drones' layers: several drones' PX4 multirotor flights fly home at their own layer and land
+  // there (a plane's landing needs an approach: its RTL is left to the check).
+  if (plan.request.firmware == Firmware::px4 && plan.drones.size() > 1 &&
+      plan.request.vehicle == Vehicle::multirotor)
+    plan.request.land = true;
   const Routes& routes = routes_of(plan);
   const InsideTest inside = routes.inside_test();
   for (DronePlan& d : plan.drones) {

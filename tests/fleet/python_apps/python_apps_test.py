@@ -21,8 +21,12 @@ from concurrent.futures import ThreadPoolExecutor
 
 try:
     import numpy as np
+    HAVE_NUMPY = True
+except ImportError:
+    HAVE_NUMPY = False
+try:
     import sklearn  # noqa: F401  (share/apps/wifi_sklearn.py's, Debian's python3-sklearn)
-    HAVE_SKLEARN = True
+    HAVE_SKLEARN = HAVE_NUMPY
 except ImportError:
     HAVE_SKLEARN = False
 
@@ -285,6 +289,25 @@ class PythonApps(unittest.TestCase):
             self.assertIn(app + " line 4: ", r.stderr)
             self.assertIn(why, r.stderr)
             self.check_passes(out)
+
+    @unittest.skipUnless(HAVE_NUMPY, "needs numpy (Debian's python3-numpy)")
+    def test_numpy_numbers_are_numbers(self):
+        # Apps compute with NumPy: its scalars are numbers to fly_to, hover and metric, and a
+        # sensor may return them (or an array).
+        app = self.app("np.py", "import numpy as np\n"
+                       "def t(bee):\n"
+                       "    bee.act('fly_to', np.float32(12.5), np.int64(7), np.float64(0)).value\n"
+                       "    bee.act('hover', np.float32(1.5)).value\n"
+                       "    bee.metric('m', np.float32(2.5))\n"
+                       "    return 1\n"
+                       "def APP(bee):\n    bee.newTask(t).value\n")
+        out = self.out("np")
+        r = run(app, "hotspot", out, "--drones", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "summary.json")) as f:
+            self.assertEqual(json.load(f)["app_metrics"]["m"], 2.5)
+        self.assertTrue(any(e["ev"] == "dispatch" for e in events(out)))
+        self.check_passes(out)
 
     def test_os_exit_in_a_task_does_not_end_the_run(self):
         app = self.app("osexit.py", "import os\ndef t(bee):\n    os._exit(0)\n"
