@@ -130,8 +130,9 @@ double verified_separation_m(const std::string& dir) {
 }
 
 TEST(PlanCli, SortiesOfDronesSharingAHomeAreStaggered) {
-  // docs/safety-notes.md: each sortie launched at its own time, after the one before it landed,
-  // its climb and descent at home missing the lower layer's drone there.
+  // docs/safety-notes.md: each sortie launched at its own time, after the one before it landed
+  // and 2 min for the battery change, its climb and descent at home missing the lower layer's drone
+  // there.
   const std::string out = fresh_dir("sorties-shared-home");
   const CliRun run = run_swath(
       "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --sorties auto "
@@ -147,7 +148,7 @@ TEST(PlanCli, SortiesOfDronesSharingAHomeAreStaggered) {
     for (std::size_t k = 1; k < sorties.size(); ++k)
       EXPECT_GE(sorties[k]["launch_offset_s"].get<double>(),
                 sorties[k - 1]["launch_offset_s"].get<double>() +
-                    sorties[k - 1]["flight_time_s"].get<double>())
+                    sorties[k - 1]["flight_time_s"].get<double>() + 120.0)
           << d["name"] << " sortie " << k + 1;
   }
   // The upper drone flies beside the lower one, not after all its sorties.
@@ -156,6 +157,36 @@ TEST(PlanCli, SortiesOfDronesSharingAHomeAreStaggered) {
   EXPECT_LT(upper_s, s["drones"][0]["sorties"].back()["launch_offset_s"].get<double>());
   EXPECT_NE(run.out.find("sortie 2"), std::string::npos);
   EXPECT_GE(verified_separation_m(out), 10.0);
+}
+
+// Drones at homes 700 m apart never wait for each other at home: each drone's next sortie then
+// launches as soon as its last has landed (by the estimate and its slack) and the pilot has had
+// the 2 min docs/safety-notes.md gives for the battery change.
+TEST(PlanCli, SortiesWaitForTheBatteryChange) {
+  const std::string dir = fresh_dir("sorties-battery-change");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/fleet.yaml")
+      << "home: {lat: 47.3960, lon: 8.5380}\ndrones:\n"
+         "  - {name: a, endurance_s: 420, battery_level: 1.0, speed_m_s: 5}\n"
+         "  - {name: b, endurance_s: 420, battery_level: 1.0, speed_m_s: 5,"
+         " home: {lat: 47.3990, lon: 8.5460}}\n";
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --sorties auto "
+      "--fleet " +
+      dir + "/fleet.yaml -o " + dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(dir + "/out/summary.json"));
+  for (const json& d : s["drones"]) {
+    const json& sorties = d["sorties"];
+    ASSERT_GE(sorties.size(), 2u);
+    for (std::size_t k = 1; k < sorties.size(); ++k)
+      EXPECT_GE(sorties[k]["launch_offset_s"].get<double>() -
+                    sorties[k - 1]["launch_offset_s"].get<double>() -
+                    sorties[k - 1]["flight_time_s"].get<double>(),
+                120.0)
+          << d["name"] << " sortie " << k + 1;
+  }
+  EXPECT_GE(verified_separation_m(dir + "/out"), 10.0);
 }
 
 TEST(PlanCli, Px4FleetsLandAtHomeInsteadOfClimbingToTheReturnAltitude) {
@@ -187,6 +218,14 @@ TEST(PlanCli, Px4FleetsLandAtHomeInsteadOfClimbingToTheReturnAltitude) {
   ASSERT_EQ(run_swath(args + dir + "/ap").exit_code, 0);
   const json ap = json::parse(read_text(dir + "/ap/drone-1.plan"));
   EXPECT_EQ(ap["mission"]["items"].back()["command"], 20);
+  // A plane's landing needs its approach: PX4 fixed wings of a fleet keep their RTL.
+  ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+                      "--vehicle fixedwing --firmware px4 --drones 2 -o " +
+                      dir + "/px4-plane")
+                .exit_code,
+            0);
+  const json plane = json::parse(read_text(dir + "/px4-plane/drone-1.plan"));
+  EXPECT_EQ(plane["mission"]["items"].back()["command"], 20);
 }
 
 // The heights (third numbers) of a drone's path in mission.kml, its Placemark named `name`.

@@ -1,6 +1,7 @@
 // Litchi mission CSV (docs/swath-plan.md), written by swath::missions (writers.hpp) from the
 // flight's export points.
 #include <cmath>
+#include <functional>
 
 #include "../steps/leg_within.hpp"
 #include "common.hpp"
@@ -24,13 +25,15 @@ constexpr double kCutMargin_m = 0.5;
 // asks of the part.
 class PartEnds {
  public:
-  PartEnds(const SurveyPlan& plan, const Flight& flight, std::vector<Point2> local)
-      : plan_(plan), flight_(flight), local_(std::move(local)) {}
+  /// `points` and `local` (the same points in the plan's frame) are kept by reference.
+  PartEnds(const SurveyPlan& plan, const Flight& flight,
+           const std::vector<missions::ExportPoint>& points, const std::vector<Point2>& local)
+      : plan_(plan), flight_(flight), points_(points), local_(local) {}
 
-  bool operator()(std::size_t i, const std::vector<missions::ExportPoint>& points) const {
+  bool operator()(std::size_t i) const {
     if (i == 0 || i >= local_.size()) return false;
     const Point2 home = flight_.drone->home, at = local_[i];
-    const double into_m_s = points[i - 1].speed_m_s > 0 ? points[i - 1].speed_m_s : cruise_m_s();
+    const double into_m_s = points_[i - 1].speed_m_s > 0 ? points_[i - 1].speed_m_s : cruise_m_s();
     return clear(at, home) && clear(at, overrun(local_[i - 1], at, into_m_s)) &&
            clear(at, overrun(home, at, cruise_m_s()));
   }
@@ -52,7 +55,8 @@ class PartEnds {
   }
   const SurveyPlan& plan_;
   const Flight& flight_;
-  std::vector<Point2> local_;
+  const std::vector<missions::ExportPoint>& points_;
+  const std::vector<Point2>& local_;
 };
 
 }  // namespace
@@ -66,8 +70,8 @@ std::vector<std::string> litchi_csv(const SurveyPlan& plan, const Flight& flight
   settings.trigger_value = files::trigger_value(flight);
   std::vector<Point2> local;
   const std::vector<missions::ExportPoint> points = files::export_points(plan, flight, &local);
-  const PartEnds ends(plan, flight, std::move(local));
-  settings.may_end_at = [&](std::size_t i) { return ends(i, points); };
+  const PartEnds ends(plan, flight, points, local);
+  settings.may_end_at = std::cref(ends);
   return missions::write_litchi_csv(points, settings);
 }
 

@@ -175,6 +175,9 @@ bool clash(const SurveyPlan& plan, const TimedFlight& f, double f_s, const Timed
                  slack_s);
 }
 
+// Between a drone's sorties: the pilot lands it, swaps its battery and arms it again, seconds.
+constexpr double kBatteryChange_s = 120.0;
+
 // Launch offsets of every flight: a drone climbs and descends at its home through every lower
 // layer, so no drone of a lower layer may be near that home then. Flights are placed round by
 // round (every drone's first sortie, then every second one, ...: sorties interleave instead of
@@ -183,8 +186,7 @@ bool clash(const SurveyPlan& plan, const TimedFlight& f, double f_s, const Timed
 // every placed higher flight's climb and descent miss its own time near theirs. A sortie launches
 // no earlier than the one before it lands by the estimate plus what that estimate may be short
 // (5 % and its unsure_s()), and the battery change after it: a late landing would otherwise shift
-// it out of its slot, and a pilot needs the time to land, swap and arm.
-constexpr double kBatteryChange_s = 120.0;
+// it out of its slot, and a pilot needs the time to land, swap and arm (kBatteryChange_s).
 std::vector<double> launch_offsets(const SurveyPlan& plan, const std::vector<TimedFlight>& all) {
   const std::size_t n = all.size();
   std::vector<std::size_t> order(n);
