@@ -6,6 +6,7 @@
 
 #include "swath/base/number_text.hpp"
 #include "swath/geometry/local_frame.hpp"
+#include "swath/geometry/polygon.hpp"
 #include "swath/geometry/predicates.hpp"
 
 namespace swath::fleet {
@@ -94,6 +95,63 @@ std::string LocalEnvelope::triangle_refusal(const vehicle::Vec3& a, const vehicl
         return "around an exclusion fence";
     }
   return "";
+}
+
+namespace {
+
+// The router's area: inclusions counter-clockwise, exclusions clockwise (holes). Exclusions alone
+// get an outer ring 10 km beyond them, so that a way round them exists near them.
+std::vector<geometry::Ring> router_rings(const LocalEnvelope& e) {
+  std::vector<geometry::Ring> rings;
+  const auto add = [&](const std::vector<std::array<double, 2>>& ring, bool ccw) {
+    geometry::Ring r;
+    for (const auto& [x, y] : ring) r.push_back({x, y});
+    if ((geometry::signed_area(r) > 0) != ccw) std::reverse(r.begin(), r.end());
+    rings.push_back(std::move(r));
+  };
+  for (const auto& ring : e.inclusions) add(ring, true);
+  if (e.inclusions.empty()) {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    for (const auto& ring : e.exclusions)
+      for (const auto& [x, y] : ring)
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+    const double m = 10000;
+    add({{x0 - m, y0 - m}, {x1 + m, y0 - m}, {x1 + m, y1 + m}, {x0 - m, y1 + m}}, true);
+  }
+  for (const auto& ring : e.exclusions) add(ring, false);
+  return rings;
+}
+
+}  // namespace
+
+void LocalEnvelope::build_routes() {
+  if (!fenced()) return;
+  router = std::make_shared<const geometry::VisibilityRouter>(
+      router_rings(*this), geometry::Routing::routed, kRouteCornerAllowance_m);
+}
+
+std::vector<vehicle::Vec3> LocalEnvelope::route(const vehicle::Vec3& a,
+                                                const vehicle::Vec3& b) const {
+  if (leg_refusal(a, b).empty()) return {b};
+  if (!router) return {};
+  const std::vector<geometry::Point2> path = router->path({a.x, a.y}, {b.x, b.y});
+  // The router's own idea of inside (ring parity) is not the fence's (any inclusion, no
+  // exclusion) where inclusions overlap: every leg is judged as the fence judges it.
+  std::vector<vehicle::Vec3> stops;
+  vehicle::Vec3 from = a;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const vehicle::Vec3 to = i + 1 == path.size() ? b : vehicle::Vec3{path[i].x, path[i].y, b.z};
+    if (!leg_refusal(from, to).empty()) return {};
+    stops.push_back(to);
+    from = to;
+  }
+  return stops;
+}
+
+bool LocalEnvelope::reachable(const vehicle::Vec3& a, const vehicle::Vec3& b,
+                              const vehicle::Vec3& home) const {
+  if (!routes()) return triangle_refusal(a, b, home).empty();
+  return !route(a, b).empty() && !route(b, home).empty();
 }
 
 std::string LocalEnvelope::refusal(const vehicle::Vec3& p) const {

@@ -416,6 +416,19 @@ double landing_soc(const EnergyFeasibility& e, const EtaModel& eta, const DroneS
 }
 
 double EtaModel::eta_s(const Vec3& from, const Vec3& to) const {
+  if (!routes || !routes->routes()) return leg_s(from, to);
+  const std::vector<Vec3> way = routes->route(from, to);
+  if (way.size() < 2) return leg_s(from, to);  // straight, or no way (then not feasible)
+  double s = 0;
+  Vec3 at = from;
+  for (const Vec3& stop : way) {
+    s += leg_s(at, stop);
+    at = stop;
+  }
+  return s;
+}
+
+double EtaModel::leg_s(const Vec3& from, const Vec3& to) const {
   // Level flight: drones fly at their altitude layers, so only the horizontal distance counts.
   const double length = std::hypot(to.x - from.x, to.y - from.y);
   if (!(length > 0)) return 0.0;
@@ -441,8 +454,7 @@ bool Utility::pair_feasible(std::size_t d, std::size_t r) const {
   bool ok = (!q.bound_drone || *q.bound_drone == static_cast<int>(d)) &&
             (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
             (dr.can_sense || !q.needs_sensor) && inside_fence(s.fence, q.location_m);
-  if (ok && s.envelope)
-    ok = s.envelope->triangle_refusal(dr.position_m, q.location_m, dr.home_m).empty();
+  if (ok && s.envelope) ok = s.envelope->reachable(dr.position_m, q.location_m, dr.home_m);
   if (ok && std::isfinite(dr.remaining_flight_s))
     ok = s.eta.eta_s(dr.position_m, q.location_m) + q.service_s +
              s.eta.eta_s(q.location_m, dr.home_m) <=

@@ -296,25 +296,76 @@ TEST(Envelope, NoLegCrossesTheFenceBetweenItsEnds) {
   EXPECT_EQ(to_c, 1);
 }
 
-// A target no drone can reach by a straight leg inside the fence fails at once, saying why; the
-// target in reach is flown; nothing is logged outside the fence.
-TEST(Envelope, ATargetOutOfReachInsideTheFenceFailsSayingWhy) {
+// An L-shaped field: x 0..200 along y 0..60, and x 0..60 up to y 200; an exclusion at
+// x 100..120, y 20..40; a second inclusion apart from it at x 300..340.
+const std::vector<std::vector<std::array<double, 2>>> kLFence = {
+    {{0, 0}, {200, 0}, {200, 60}, {60, 60}, {60, 200}, {0, 200}},
+    {{300, 0}, {340, 0}, {340, 40}, {300, 40}}};
+
+// Every position a drone logged (drone_mode, drone_state), as x, y.
+std::vector<std::array<double, 2>> logged_positions(const std::string& jsonl) {
+  std::vector<std::array<double, 2>> out;
+  for (const auto& l : lines_of(jsonl))
+    if (const json e = json::parse(l);
+        (e["ev"] == "drone_mode" || e["ev"] == "drone_state") && e.contains("x_m"))
+      out.push_back({e["x_m"].get<double>(), e["y_m"].get<double>()});
+  return out;
+}
+
+// A target round the L's corner is reached by the way round it, stop by stop, and the way home
+// likewise (sent home by a battery drop there): every logged position inside the fence, every
+// leg between them too (the checker's R13), the target visited. A target outside the fence, in an
+// exclusion, or in an inclusion no home reaches fails at once, saying why.
+TEST(Envelope, ATargetRoundTheFencesCornerIsReachedByTheWayRoundIt) {
   RuntimeSettings s;
   s.app_name = "static";
-  s.envelope.inclusions = kUFence;
+  s.envelope.inclusions = kLFence;
+  s.envelope.exclusions = {{{100, 20}, {120, 20}, {120, 40}, {100, 40}}};
+  s.faults = {{50, 0, FaultKind::battery_drop, 10, 0.2}};  // in the hover at the far arm's end
   const std::string text =
       "kind: static\ntasks:\n"
-      "  - {name: far, actions: [{fly_to: {x_m: 180, y_m: 180}}, {hover: 2}]}\n"
-      "  - {name: near, actions: [{fly_to: {x_m: 200, y_m: 0}}, {hover: 2}]}\n";
-  const RunRecord r = static_run(text, s, 1);
+      "  - {name: round, actions: [{fly_to: {x_m: 20, y_m: 180}}, {hover: 30}]}\n"
+      "  - {name: out, actions: [{fly_to: {x_m: 150, y_m: 150}}]}\n"
+      "  - {name: ex, actions: [{fly_to: {x_m: 110, y_m: 30}}]}\n"
+      "  - {name: island, actions: [{fly_to: {x_m: 320, y_m: 20}}]}\n";
+  std::vector<DroneSpec> drones = drones_in_a_row(1, 0);
+  drones[0].home_m = {180, 20, 0};
+  const RunRecord r = run_app(app_named("static"), *worlds::parse_world(text, "w.yaml"), drones, s);
   const EventCheck c = check_events(r.events_jsonl);
   for (const auto& v : c.violations) ADD_FAILURE() << v.line << " " << v.rule << " " << v.message;
-  const std::vector<json> failed = events_named(r.events_jsonl, "task_failed");
-  ASSERT_EQ(failed.size(), 1U);
-  const std::string reason = failed[0]["reason"];
-  EXPECT_NE(reason.find("fly_to (180, 180, 0) m is out of reach"), std::string::npos) << reason;
-  EXPECT_NE(reason.find("outside the inclusion fence"), std::string::npos) << reason;
-  EXPECT_EQ(events_named(r.events_jsonl, "task_done").size(), 2U);  // near and the app's main
+  LocalEnvelope fence;
+  fence.inclusions = s.envelope.inclusions;
+  fence.exclusions = s.envelope.exclusions;
+  bool visited = false;
+  const auto positions = logged_positions(r.events_jsonl);
+  for (const auto& [x, y] : positions) {
+    EXPECT_EQ(fence.refusal_xy(x, y), "") << x << " " << y;
+    visited = visited || std::hypot(x - 20, y - 180) < 1e-6;
+  }
+  EXPECT_TRUE(visited);
+  // Sent home from the far arm by the battery drop, it lands at home by the way round (R13 above
+  // judged each of its legs), then comes back for the hover.
+  int charging_at_home = 0;
+  for (const json& e : events_named(r.events_jsonl, "drone_mode"))
+    if (e["state"] == "charging" && e["at_s"].get<double>() > 50)
+      charging_at_home +=
+          std::hypot(e["x_m"].get<double>() - 180, e["y_m"].get<double>() - 20) < 1e-6;
+  EXPECT_EQ(charging_at_home, 1);
+  std::map<std::string, std::string> failed;
+  for (const json& e : events_named(r.events_jsonl, "task_failed"))
+    failed[std::to_string(e["task"].get<int>())] = e["reason"];
+  ASSERT_EQ(failed.size(), 3U) << r.events_jsonl;
+  std::string reasons;
+  for (const auto& [task, why] : failed) reasons += why + "\n";
+  EXPECT_NE(reasons.find("fly_to (150, 150, 0) m is outside the inclusion fence"),
+            std::string::npos)
+      << reasons;
+  EXPECT_NE(reasons.find("fly_to (110, 30, 0) m is inside an exclusion fence"), std::string::npos)
+      << reasons;
+  EXPECT_NE(reasons.find("fly_to (320, 20, 0) m is out of reach: no way to it inside the fence"),
+            std::string::npos)
+      << reasons;
+  EXPECT_EQ(events_named(r.events_jsonl, "task_done").size(), 2U);  // round and the app's main
 }
 
 // Speculative positioning keeps the fence: the place a drone was sent to on a forecast, with an

@@ -61,8 +61,9 @@ void Runtime::abort_run(const std::string& reason, AbortAction action, bool by_e
     if (!airborne(d)) continue;
     if (action == AbortAction::land)
       backend_.land(d.index, now_);
-    else
+    else if (!settings_.envelope.routes())
       backend_.return_home(d.index, now_);
+    // With routes (a simulated fleet) model_abort commands the way home round the fence.
     try {
       integrate(d, now_);  // where it is now, for the record
     } catch (const std::exception&) {
@@ -88,6 +89,10 @@ void Runtime::model_abort(Drone& d, AbortAction action) {
   if (action == AbortAction::rtl) {
     if (d.mode == Mode::returning) return;
     const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
+    if (settings_.envelope.routes()) {
+      start_leg(d, home, Mode::returning, now_);
+      return;
+    }
     const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
     d.leg = next_leg(current, now_ - d.leg_start, d.pos, home, d.spec.kinematics());
     d.leg_start = now_;
@@ -95,6 +100,7 @@ void Runtime::model_abort(Drone& d, AbortAction action) {
     return;
   }
   d.leg.reset();
+  d.route.clear();
   set_mode(d, Mode::hovering, now_);  // descending where it is; the run ends now
 }
 
@@ -112,6 +118,7 @@ void Runtime::pause_run(const std::string& reason) {
     d.relieving = -1;
     integrate(d, now_);
     d.leg.reset();
+    d.route.clear();
     backend_.pause(d.index, now_);
     set_mode(d, Mode::hovering, now_);
   }

@@ -111,8 +111,8 @@ double Runtime::must_leave_at(const Drone& d) const {
 double Runtime::leave_from(const Drone& d, const Vec3& place, double airborne_s, double soc_s,
                            double extra_flight_s) const {
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
-  const double back_s = Leg(place, home, d.spec.kinematics()).duration_s() +
-                        d.layer_m / d.spec.kinematics().descent_m_s + 2 * settings_.tick_s;
+  const double back_s =
+      way_s(d, place, home) + d.layer_m / d.spec.kinematics().descent_m_s + 2 * settings_.tick_s;
   const double cruise_w = cruise_power_w(d.spec, settings_.wind.velocity3_m_s());
   const double need =
       d.spec.battery.reserve_soc +
@@ -129,8 +129,7 @@ bool Runtime::must_go_home(const Drone& d, double t) const {
       d.mode == Mode::returning)
     return false;
   const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
-  const Leg back(d.pos, home, d.spec.kinematics());
-  const double back_s = back.duration_s() + d.layer_m / d.spec.kinematics().descent_m_s;
+  const double back_s = way_s(d, d.pos, home) + d.layer_m / d.spec.kinematics().descent_m_s;
   if (t - d.airborne_since + back_s + 2 * settings_.tick_s >= d.spec.max_flight_time_s) return true;
   const double cruise_w = cruise_power_w(d.spec, settings_.wind.velocity3_m_s());
   const double landing =

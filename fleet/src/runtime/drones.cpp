@@ -6,7 +6,8 @@ namespace swath::fleet::rt {
 
 Vec3 Runtime::position_at(const Drone& d, double t) const {
   if (d.reported && d.mode != Mode::charging && d.mode != Mode::landed) return *d.reported;
-  if (on_leg(d.mode) && d.leg) return d.leg->position_at(t - d.leg_start);
+  if (on_leg(d.mode) && d.leg)
+    return way_position(*d.leg, d.route, t - d.leg_start, d.spec.kinematics());
   return d.pos;
 }
 
@@ -52,19 +53,52 @@ double Runtime::next_event(const Drone& d) const {
   return std::min(e, leave_time(d));
 }
 
+std::vector<Vec3> Runtime::stops(const Vec3& from, const Vec3& to) const {
+  std::vector<Vec3> way = settings_.envelope.route(from, to);
+  if (way.empty()) way = {to};
+  return way;
+}
+
+double Runtime::way_s(const Drone& d, const Vec3& from, const Vec3& to) const {
+  double s = 0;
+  Vec3 at = from;
+  for (const Vec3& stop : stops(from, to)) {
+    s += Leg(at, stop, d.spec.kinematics()).duration_s();
+    at = stop;
+  }
+  return s;
+}
+
+// A leg round the fence is flown stop by stop (each a straight leg), the target last.
 void Runtime::start_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   integrate(d, t);
+  const std::vector<Vec3> way = stops(d.pos, to);
+  d.route.assign(way.begin() + 1, way.end());
+  fly_leg(d, way.front(), mode, t);
+}
+
+void Runtime::fly_leg(Drone& d, const Vec3& to, Mode mode, double t) {
   const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
   if (d.mode == Mode::landed) d.airborne_since = t;
   d.leg = next_leg(current, t - d.leg_start, d.pos, to, d.spec.kinematics());
   d.leg_start = t;
-  set_mode(d, mode, t);
+  set_mode(d, mode, t);  // logs the stop: `check` judges the legs between logged positions
   command_leg(d, to, mode, t);
 }
 
-// The vehicle is told to fly what the model just started (the simulated fleet starts the same leg).
+// A bend of the drone's route reached (it stopped there): on to the next stop.
+void Runtime::next_stop(Drone& d, double t) {
+  integrate(d, t);
+  d.pos = d.reported ? *d.reported : d.leg->to();
+  const Vec3 to = d.route.front();
+  d.route.erase(d.route.begin());
+  fly_leg(d, to, d.mode, t);
+}
+
+// The vehicle is told to fly what the model just started (the simulated fleet starts the same
+// leg); on the way home, the route's bends are flown as legs and the last one as the return.
 void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode, double t) {
-  if (mode == Mode::returning) {
+  if (mode == Mode::returning && d.route.empty()) {
     backend_.return_home(d.index, t);
     return;
   }
@@ -84,6 +118,7 @@ void Runtime::stop(Drone& d, double t) {
     return;
   }
   d.leg.reset();
+  d.route.clear();
   backend_.hold(d.index, t);
   set_mode(d, Mode::hovering, t);
 }
@@ -321,13 +356,21 @@ void Runtime::step_drone(Drone& d, double t) {
   switch (d.mode) {
     case Mode::flying:
     case Mode::positioning:
-      if (t >= backend_.arrival_s(d.index)) arrive(d, t);
+      if (t < backend_.arrival_s(d.index)) break;
+      if (d.route.empty())
+        arrive(d, t);
+      else
+        next_stop(d, t);
       break;
     case Mode::acting:
       if (t >= d.act_end) finish_action(d, t);
       break;
     case Mode::returning:
-      if (t >= backend_.arrival_s(d.index)) land_home(d, t);
+      if (t < backend_.arrival_s(d.index)) break;
+      if (d.route.empty())
+        land_home(d, t);
+      else
+        next_stop(d, t);
       break;
     case Mode::charging:
       if (t >= d.charge_end) {

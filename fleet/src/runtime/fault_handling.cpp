@@ -76,6 +76,7 @@ void Runtime::apply_fault(const FaultEvent& f) {
       d.held_for = -1;
       leave_spot(d);
       d.leg.reset();
+      d.route.clear();
       for (const Pending& p : d.buffered) {
         Action& a = tasks_[static_cast<std::size_t>(p.task)].actions[p.action];
         if (a.state == ActionState::completed) a.state = ActionState::pending;

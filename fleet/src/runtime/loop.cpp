@@ -38,6 +38,9 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
   settings_.layer_step_m = std::max(settings.layer_step_m, settings.envelope.separation_m);
   settings_.disc_m = std::max(settings.disc_m, settings.envelope.separation_m);
   check_envelope(specs);
+  // Routes round the fence only where the vehicles follow the way home the runtime gives them:
+  // real ones return home straight (RTL, their own failsafe), so they keep straight legs.
+  if (!backend_.reports_every_tick()) settings_.envelope.build_routes();
   envelope_ = std::make_shared<const LocalEnvelope>(settings_.envelope);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     Drone d;
@@ -108,6 +111,7 @@ void Runtime::poll_backend() {
       requeue(d, "vehicle_refused");
       leave_spot(d);
       d.leg.reset();
+      d.route.clear();
       // Refused in the air (a target outside the fence): it still goes home and lands; the
       // backend does nothing for a vehicle already down.
       if (d.mode != Mode::landed && d.mode != Mode::charging) backend_.return_home(d.index, now_);
@@ -132,7 +136,9 @@ void Runtime::poll_backend() {
       d.link_back = now_;
       recover(d, now_);
     }
-    if ((d.mode == Mode::flying || d.mode == Mode::positioning) && r.arrived)
+    if (on_leg(d.mode) && r.arrived && !d.route.empty())
+      next_stop(d, now_);
+    else if ((d.mode == Mode::flying || d.mode == Mode::positioning) && r.arrived)
       arrive(d, now_);
     else if (d.mode == Mode::returning && r.landed_home)
       land_home(d, now_);

@@ -138,6 +138,9 @@ struct Drone {
   double t_mark = 0;  // energy and position are integrated up to here
   std::optional<Leg> leg;
   double leg_start = 0;
+  // The stops after the leg's end on its way round the fence (LocalEnvelope::route), the target
+  // last; empty when the leg ends at the target.
+  std::vector<Vec3> route;
   double act_end = 0, charge_end = 0, hold_until = 0;
   int task = -1;  // flying to or acting for
   std::size_t action = 0;
@@ -159,6 +162,28 @@ struct Drone {
   // Sent home but its way was not clear (separation.cpp): tries again then, for this reason.
   double home_retry_s = std::numeric_limits<double>::infinity();
   std::string home_why;
+};
+
+// A drone's way: its leg, then a leg to each of the route's stops after it, each from rest (it
+// stops at every bend); hovering at the last. Where it is `since_s` after the leg began.
+inline Vec3 way_position(const Leg& leg, const std::vector<Vec3>& rest, double since_s,
+                         const Kinematics& k) {
+  if (rest.empty() || since_s <= leg.duration_s()) return leg.position_at(since_s);
+  double t = since_s - leg.duration_s();
+  Vec3 from = leg.to();
+  for (const Vec3& stop : rest) {
+    const Leg next(from, stop, k);
+    if (t <= next.duration_s()) return next.position_at(t);
+    t -= next.duration_s();
+    from = stop;
+  }
+  return from;
+}
+
+// A way a drone may begin (runtime/separation.cpp): its first leg and the stops after it.
+struct Way {
+  Leg leg;
+  std::vector<Vec3> rest;
 };
 
 inline bool on_leg(Mode m) {
@@ -272,8 +297,8 @@ class Runtime final : public detail::Core {
   void check_target(const Vec3& to) const;
   // Separation (runtime/separation.cpp): is the leg (none: hovering where it is) that d would
   // begin at t0 clear of every climb and, when it climbs, of every airborne drone?
-  Leg candidate_leg(const Drone& d, const Vec3& to, double t) const;
-  bool clear_to_fly(const Drone& d, const std::optional<Leg>& leg, double t0) const;
+  Way candidate_leg(const Drone& d, const Vec3& to, double t) const;
+  bool clear_to_fly(const Drone& d, const std::optional<Way>& way, double t0) const;
   Vec3 dispatch_target(const Drone& d, const Task& t) const;
   double retry_s_ = kInf;  // a plan waited for separation: schedule again then
 
@@ -309,6 +334,15 @@ class Runtime final : public detail::Core {
   void finish_action(Drone& d, double t);
   void land_home(Drone& d, double t);
   void start_leg(Drone& d, const Vec3& to, Mode mode, double t);
+  void fly_leg(Drone& d, const Vec3& to, Mode mode, double t);
+  void next_stop(Drone& d, double t);
+  /// Where the drone's way ends: the last stop of its route, else its leg's end.
+  static Vec3 way_end(const Drone& d) { return d.route.empty() ? d.leg->to() : d.route.back(); }
+  /// The stops of d's way from `from` to `to` (LocalEnvelope::route; the straight leg when the
+  /// fence gives none, which the checks before the flight rule out).
+  std::vector<Vec3> stops(const Vec3& from, const Vec3& to) const;
+  /// The flight time of d's way from `from` to `to` along its stops, s.
+  double way_s(const Drone& d, const Vec3& from, const Vec3& to) const;
   void start_action_or_release(Drone& d, double t);
   void release(Drone& d, double t);
   void go_home(Drone& d, double t, const std::string& why);

@@ -3,8 +3,9 @@
 //
 // Why it holds. Every leg is flown at the drone's own layer and layers are separation_m apart, so
 // two drones at their layers are apart; what is left is a drone climbing from its home to its
-// layer through the layers below. Each airborne drone has a *prediction*: its current leg, then
-// hovering where it ends (or where it is). A drone's plan changes only by a new leg or a stop, and
+// layer through the layers below. Each airborne drone has a *prediction*: its current leg (and,
+// on a way round the fence, the legs to the route's later stops, each from rest), then hovering
+// where it ends (or where it is). A drone's plan changes only by a new leg or a stop, and
 // each is allowed only when it is clear: (a) its new path keeps separation_m from every drone now
 // climbing, until that climb ends, and (b) a path that begins with a climb keeps separation_m,
 // during the climb, from the prediction of every airborne drone. A plan that is not clear is not
@@ -35,17 +36,25 @@ double top_speed_m_s(const Drone& d) {
 
 }  // namespace
 
-Leg Runtime::candidate_leg(const Drone& d, const Vec3& to, double t) const {
+Way Runtime::candidate_leg(const Drone& d, const Vec3& to, double t) const {
   const Leg* current = on_leg(d.mode) && d.leg ? &*d.leg : nullptr;
   Vec3 from = position_at(d, t);
   if (d.mode == Mode::landed || d.mode == Mode::charging) from.z = 0;
-  return next_leg(current, t - d.leg_start, from, to, d.spec.kinematics());
+  // Round the fence: the whole way is the plan checked (a bend is no new plan).
+  std::vector<Vec3> way = stops(from, to);
+  const Vec3 first = way.front();
+  way.erase(way.begin());
+  return {next_leg(current, t - d.leg_start, from, first, d.spec.kinematics()), std::move(way)};
 }
 
-bool Runtime::clear_to_fly(const Drone& d, const std::optional<Leg>& leg, double t0) const {
+bool Runtime::clear_to_fly(const Drone& d, const std::optional<Way>& way, double t0) const {
   const double sep_m = settings_.envelope.separation_m;
   const Vec3 here = position_at(d, t0);
-  const auto mine = [&](double t) { return leg ? leg->position_at(t - t0) : here; };
+  const Kinematics& k = d.spec.kinematics();
+  const auto mine = [&](double t) {
+    return way ? way_position(way->leg, way->rest, t - t0, k) : here;
+  };
+  const Leg* leg = way ? &way->leg : nullptr;
   const auto apart_until = [&](const Drone& j, double end_s) {
     const double margin_m = (top_speed_m_s(d) + top_speed_m_s(j)) * kSample_s / 2;
     for (double t = now_;; t = std::min(end_s, t + kSample_s)) {

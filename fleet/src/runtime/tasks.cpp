@@ -56,12 +56,17 @@ void Runtime::check_target(const Vec3& to) const {
   check_reachable(to, at());
 }
 
-// Legs are straight and a drone must be able to turn straight home from anywhere on them, so a
-// target is flown only by a drone whose straight leg home from it stays inside the fence
+// A target is flown only by a drone with a way home from it inside the fence
 // (Utility::pair_feasible); with no such drone the task fails now, saying why, rather than waiting
-// for a drone that never comes.
+// for a drone that never comes. Round the fence when the runtime routes (LocalEnvelope::route),
+// else straight: a drone must be able to turn straight home from anywhere on its legs.
 void Runtime::check_reachable(const Vec3& to, const std::string& at) const {
   if (!settings_.envelope.fenced()) return;
+  if (settings_.envelope.routes()) {
+    for (const Drone& d : drones_)
+      if (!settings_.envelope.route(d.spec.home_m, to).empty()) return;
+    throw ActionFailed(at + "out of reach: no way to it inside the fence from any drone's home");
+  }
   std::string why;
   for (const Drone& d : drones_) {
     why = settings_.envelope.leg_refusal(d.spec.home_m, to);

@@ -39,7 +39,7 @@ void Runtime::relieve() {
       continue;
     const double leave_s = must_leave_at(d);
     if (!std::isfinite(leave_s)) continue;
-    Vec3 at = d.leg && on_leg(d.mode) ? d.leg->to() : position_at(d, now_);
+    Vec3 at = d.leg && on_leg(d.mode) ? way_end(d) : position_at(d, now_);
     Drone* best = nullptr;
     double best_eta = kInf;
     for (Drone& e : drones_) {
@@ -48,8 +48,8 @@ void Runtime::relieve() {
       Vec3 from = position_at(e, now_);
       if (e.mode == Mode::landed) from.z = 0;
       // Its legs there and home inside the fence (as a scheduled drone's: Utility::pair_feasible).
-      if (!settings_.envelope.triangle_refusal(from, to, e.spec.home_m).empty()) continue;
-      const double eta = Leg(from, to, e.spec.kinematics()).duration_s();
+      if (!settings_.envelope.reachable(from, to, e.spec.home_m)) continue;
+      const double eta = way_s(e, from, to);
       // Worth it only when it can stay at least the margin beyond the hand-over.
       const double airborne_s = e.mode == Mode::landed ? now_ : e.airborne_since;
       if (leave_from(e, to, airborne_s, now_, eta) < leave_s + settings_.relief_margin_s) continue;

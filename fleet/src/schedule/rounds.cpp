@@ -19,6 +19,7 @@ Snapshot Runtime::snapshot_base() const {
   s.weights = settings_.weights;
   s.fence = world_.fence();
   if (settings_.envelope.fenced()) s.envelope = envelope_;
+  if (envelope_->routes()) s.eta.routes = envelope_.get();
   // Charge: there, serve, home above the reserve.
   EnergyFeasibility e;
   e.battery = first.battery;
@@ -36,7 +37,7 @@ void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
   for (const Drone& d : drones_) {
     if (d.mode == Mode::acting || d.mode == Mode::held)
       discs.push_back({d.pos, d.mode == Mode::acting ? d.task : d.held_for});
-    if (d.mode == Mode::flying && d.task >= 0 && d.leg) discs.push_back({d.leg->to(), d.task});
+    if (d.mode == Mode::flying && d.task >= 0 && d.leg) discs.push_back({way_end(d), d.task});
   }
   for (Task& t : tasks_) {
     if (!t.has_work()) continue;

@@ -15,10 +15,12 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "swath/geometry/point.hpp"
+#include "swath/geometry/visibility.hpp"
 #include "swath/vehicle/fleet_file.hpp"
 #include "swath/vehicle/vec3.hpp"
 
@@ -65,7 +67,27 @@ struct LocalEnvelope {
   /// home on the way (the runtime flies straight legs).
   std::string triangle_refusal(const vehicle::Vec3& a, const vehicle::Vec3& b,
                                const vehicle::Vec3& c) const;
+  /// The stops of the way from a to b inside the fence, b last (the bends at b's height): b alone
+  /// when the straight leg stays inside; else, once build_routes() has run, the shortest path
+  /// inside the fence and out of the exclusions (geometry::VisibilityRouter, its bends
+  /// kRouteCornerAllowance_m off the corners), every leg of it checked by leg_refusal(). Empty
+  /// when there is no such way.
+  std::vector<vehicle::Vec3> route(const vehicle::Vec3& a, const vehicle::Vec3& b) const;
+  /// Lets route() bend round the fence (the runtime does it when its vehicles can follow a bent
+  /// way home: the simulated fleet).
+  void build_routes();
+  /// Whether a drone at `a` with home `home` may be given target b: with routes, a way there and a
+  /// way home from it inside the fence (from anywhere on the way, which stays inside, the way home
+  /// is routed as well); without, the triangle a-b-home inside it (straight ways home).
+  bool reachable(const vehicle::Vec3& a, const vehicle::Vec3& b, const vehicle::Vec3& home) const;
+  bool routes() const { return router != nullptr; }
+  /// Shared by the envelope's copies; its tables fill as it answers (one thread at a time).
+  std::shared_ptr<const geometry::VisibilityRouter> router;
 };
+
+/// How far a route's bend keeps off its fence corner, m: an autopilot cuts a bend (ArduCopter by
+/// up to ~1.7 m in SITL), as swath plan's lanes allow.
+inline constexpr double kRouteCornerAllowance_m = 2.0;
 
 /// `fence` in the local frame at `origin`.
 LocalEnvelope local_envelope(const Envelope& e, const geometry::GeoPoint& origin);

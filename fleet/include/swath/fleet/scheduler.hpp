@@ -70,7 +70,12 @@ struct EtaModel {
   double accel_m_s2 = 2.0;       ///< > 0
   double approach_m_s = 2.0;     ///< (0, cruise_m_s]
   double approach_within_m = 0;  ///< ≥ 0; 0: no approach phase
+  /// A fence that routes (LocalEnvelope::route; null: none): the time is the way round it, each
+  /// leg from rest to rest.
+  const LocalEnvelope* routes = nullptr;
   double eta_s(const Vec3& from, const Vec3& to) const;
+  /// The time of one straight leg.
+  double leg_s(const Vec3& from, const Vec3& to) const;
 };
 
 /// The weights of the sub-utilities (the weights YAML; w_closest ≡ 1).
@@ -108,9 +113,10 @@ struct Snapshot {
   std::optional<EnergyFeasibility> energy;  ///< none: charge is not checked
   /// The fence (local metres, x/y; empty: none): requests outside it are infeasible.
   std::vector<std::array<double, 2>> fence;
-  /// The safety envelope's fence (none: not fenced): a pair is feasible only when the triangle of
-  /// the drone's position, the target and its home lies inside it, so every leg it flies for the
-  /// target, and a straight return home from anywhere on them, stays inside.
+  /// The safety envelope's fence (none: not fenced): a pair is feasible only when the target is
+  /// reachable from the drone's position and its home from the target
+  /// (LocalEnvelope::reachable), so every leg it flies for the target, and the way home from
+  /// anywhere on them, stays inside.
   std::shared_ptr<const LocalEnvelope> envelope;
 };
 
