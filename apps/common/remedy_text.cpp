@@ -46,6 +46,9 @@ std::string with_remedies(const std::string& what, const std::vector<Remedy>& re
       case Remedy::sorties:
         phrases.push_back("cut the flights into sorties with --sorties auto");
         break;
+      case Remedy::higher_altitude:
+        phrases.push_back("fly higher with a larger --altitude (fewer lines)");
+        break;
       case Remedy::endurance:
         phrases.push_back("give --endurance S, or endurance_s for the drone in the fleet file");
         break;

@@ -361,11 +361,12 @@ void PlanCommand::add_terrain_energy_options(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "off"}))
       ->capture_default_str();
   app.add_option("--endurance", endurance_s_,
-                 "Flight time on a full battery, seconds, for drones the fleet gives none "
-                 "(sorties, and the warning when a flight is longer)");
+                 "Flight time on a full battery, seconds, for drones the fleet gives none: "
+                 "sorties, and without them a flight longer than the charge less the reserve is "
+                 "refused");
   app.add_option("--reserve", reserve_,
                  "Share of the charge a flight takes off with kept in hand, for sorties and the "
-                 "endurance warning")
+                 "flight-time refusal (0: the whole charge may be flown)")
       ->capture_default_str();
   app.add_option("--energy-plan", energy_plan_,
                  "Also write the zigzag as a stage plan for 'swath-energy run' under this file "

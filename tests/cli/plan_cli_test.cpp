@@ -796,9 +796,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 40 --fleet "
                 "share/fleets/short-range.yaml "
                 "--division region",
-                "drone tiny-1's flight takes 12 min 13 s, longer than the 5 min 00 s its battery "
-                "holds (battery_level 0.5 x endurance_s 600 in share/fleets/short-range.yaml); "
-                "add drones or battery, or cut the flights into sorties with --sorties auto"},
+                "drone tiny-1's flight takes 12 min 13 s, longer than the 4 min 00 s its battery "
+                "gives less the 20 % reserve (battery_level 0.5 x endurance_s 600 in "
+                "share/fleets/short-range.yaml, --reserve 0.2); add drones or battery, cut the "
+                "flights into sorties with --sorties auto, or fly higher with a larger --altitude "
+                "(fewer lines)"},
         BadPlan{"zero_drones",
                 "share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --drones 0",
                 "--drones 0 drones is outside the range swath accepts, 1 to 100"},

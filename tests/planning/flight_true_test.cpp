@@ -565,8 +565,9 @@ TEST(FlightTrue, SortiesFitTheBatteryAndTogetherFlyTheWholeSurvey) {
   r.reserve = 0.2;
   r.sorties = true;
   const SurveyPlan plan = plan_survey(r);
-  SurveyRequest whole_r = r;
+  SurveyRequest whole_r = r;  // the uncut flight: no battery (with one it would be refused)
   whole_r.sorties = false;
+  whole_r.endurance_s.reset();
   const SurveyPlan whole = plan_survey(whole_r);
   const DronePlan& d = plan.drones.at(0);
   ASSERT_GE(d.sorties.size(), 3u);
@@ -627,13 +628,20 @@ TEST(FlightTrue, SanityWarningsNameTheLimitAndTheWayOut) {
   EXPECT_TRUE(std::any_of(h.warnings.begin(), h.warnings.end(), [](const std::string& w) {
     return w.find("above 120 m") != std::string::npos;
   }));
+  // A flight longer than the endurance less the reserve is refused, sorties among the ways out.
   SurveyRequest longer = test::meadow_request(60);
   longer.endurance_s = 300;
-  const SurveyPlan l = plan_survey(longer);
-  EXPECT_TRUE(std::any_of(l.warnings.begin(), l.warnings.end(), [](const std::string& w) {
-    return w.find("--sorties auto") != std::string::npos &&
-           w.find("5 min 00 s") != std::string::npos;
-  }));
+  try {
+    plan_survey(longer);
+    ADD_FAILURE() << "a flight longer than its 300 s endurance was planned";
+  } catch (const base::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("longer than the 4 min 00 s its battery gives less the "
+                                         "20 % reserve"),
+              std::string::npos)
+        << e.what();
+    const auto& remedies = e.remedies();
+    EXPECT_NE(std::find(remedies.begin(), remedies.end(), base::Remedy::sorties), remedies.end());
+  }
   // A swapped home is refused with the reading that lies at the area.
   SurveyRequest swapped = test::meadow_request(60);
   swapped.home = GeoPoint{8.5405, 47.3965, 0};

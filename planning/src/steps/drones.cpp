@@ -77,12 +77,15 @@ void name_drones(SurveyPlan& plan) {
   }
 }
 
-// The longest flight the division may give a drone: its charge, less room for the climb to and
-// descent from the highest layer deconflict() may give it afterwards (the metres of its range
-// count neither the climbs nor the stops: 435 s on a 360 s charge passed within 1800 m).
+// The longest flight the division may give a drone: its charge less the reserve (what checks()
+// lets it fly), less room for the climb to and descent from the highest layer deconflict() may
+// give it afterwards (the metres of its range count neither the climbs nor the stops: 435 s on a
+// 360 s charge passed within 1800 m).
 std::optional<double> flight_limit_s(const SurveyPlan& plan, const DronePlan& d) {
-  if (!d.charge_from_fleet) return std::nullopt;
-  return *d.endurance_s * d.battery_level - layer_room_s(plan, d);
+  // --endurance or the fleet's endurance_s; with sorties a share flies as many batteries as it
+  // needs.
+  if (!d.endurance_s || plan.request.sorties) return std::nullopt;
+  return *d.endurance_s * d.battery_level * (1 - plan.request.reserve) - layer_room_s(plan, d);
 }
 
 std::vector<DroneResource> resources_of(const SurveyPlan& plan) {

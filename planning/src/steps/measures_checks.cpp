@@ -81,32 +81,63 @@ std::vector<base::Remedy> battery_remedies(const SurveyRequest& r) {
   return out;
 }
 
-// No flight is written longer than the battery it takes off with (docs/swath-plan.md): the
+// No sortie is written longer than the battery it takes off with (docs/swath-plan.md): the
 // charge the fleet file gives (battery_level x endurance_s; a sortie after the first, a full
 // battery), in flight time as the mission flies it (climbs, stops and descents, the layer, the
-// terrain), whatever the division or --allow-partial made of it.
-void check_charge(const SurveyPlan& plan, const DronePlan& d) {
-  if (!d.charge_from_fleet) return;
-  const std::vector<const DroneMission*> flights = flights_of(d);
-  for (std::size_t k = 0; k < flights.size(); ++k) {
+// terrain). The sorties step cut each within it less the reserve: this is the last word.
+void check_sortie_charge(const SurveyPlan& plan, const DronePlan& d) {
+  if (!d.charge_from_fleet || d.sorties.empty()) return;
+  for (std::size_t k = 0; k < d.sorties.size(); ++k) {
     const double battery_s = *d.endurance_s * (k == 0 ? d.battery_level : 1.0);
-    const double flight_s = flights[k]->flight_time_s;
+    const double flight_s = d.sorties[k].mission.flight_time_s;
     if (flight_s <= battery_s * (1 + 1e-9)) continue;
-    const std::string flight =
-        d.sorties.empty() ? "'s flight" : "'s sortie " + std::to_string(k + 1);
     const std::string battery =
         k == 0 ? "battery_level " + base::shortest_text(d.battery_level) + " x endurance_s " +
                      base::shortest_text(*d.endurance_s)
                : "a full battery, endurance_s " + base::shortest_text(*d.endurance_s);
-    throw InputError("drone " + d.name + flight + " takes " + duration_text(flight_s) +
-                         ", longer than the " + duration_text(battery_s) + " its battery holds (" +
-                         battery + in_fleet_file(plan.request) + ")",
+    throw InputError("drone " + d.name + "'s sortie " + std::to_string(k + 1) + " takes " +
+                         duration_text(flight_s) + ", longer than the " + duration_text(battery_s) +
+                         " its battery holds (" + battery + in_fleet_file(plan.request) + ")",
                      battery_remedies(plan.request));
   }
 }
 
+// Where the charge a drone takes off with comes from, for the refusal: the fleet file's keys or
+// the options, and the reserve (a pilot who lands with less in hand says so with --reserve).
+std::string charge_source(const SurveyPlan& plan, const DronePlan& d) {
+  const std::string reserve = base::shortest_text(plan.request.reserve);
+  if (d.charge_from_fleet)
+    return "battery_level " + base::shortest_text(d.battery_level) + " x endurance_s " +
+           base::shortest_text(*d.endurance_s) + in_fleet_file(plan.request) + ", --reserve " +
+           reserve;
+  const std::string level = d.battery_level < 1
+                                ? "battery_level " + base::shortest_text(d.battery_level) +
+                                      in_fleet_file(plan.request) + " x "
+                                : "";
+  return level + "--endurance " + base::shortest_text(*d.endurance_s) + ", --reserve " + reserve;
+}
+
+// A drone's one flight (no sorties) must land with the reserve in hand: the charge it takes off
+// with (battery_level x endurance) less the reserve the sorties keep, in flight time as the
+// mission flies it. A drone that runs out mid-survey is not safe by construction: refused, not
+// warned (docs/swath-plan.md).
+void check_flight_within_charge(const SurveyPlan& plan, const DronePlan& d) {
+  if (!d.endurance_s || !d.sorties.empty()) return;
+  const double usable_s = *d.endurance_s * d.battery_level * (1 - plan.request.reserve);
+  const double flight_s = d.mission.flight_time_s;
+  if (flight_s <= usable_s * (1 + 1e-9)) return;
+  std::vector<base::Remedy> remedies = battery_remedies(plan.request);
+  remedies.push_back(base::Remedy::higher_altitude);
+  throw InputError("drone " + d.name + "'s flight takes " + duration_text(flight_s) +
+                       ", longer than the " + duration_text(usable_s) +
+                       " its battery gives less the " + fixed_text(100 * plan.request.reserve, 0) +
+                       " % reserve (" + charge_source(plan, d) + ")",
+                   remedies);
+}
+
 void check_range(const SurveyPlan& plan, const DronePlan& d, std::vector<std::string>& warnings) {
-  // With sorties a drone flies as many batteries as its share needs (check_charge: each fits).
+  // With sorties a drone flies as many batteries as its share needs (check_sortie_charge: each
+  // fits).
   if (!plan.request.fleet || plan.request.sorties) return;
   const auto range = plan.request.fleet->drones[static_cast<std::size_t>(d.number - 1)].range_m();
   if (!range || !d.sorties.empty() || d.mission.path_length_m <= *range) return;
@@ -135,20 +166,7 @@ void warn_about_drone(const SurveyPlan& plan, const DronePlan& d,
                          "hold fewer): divide it among drones or drop --waypoint-spacing");
       break;
     }
-  // docs/swath-plan.md: a flight longer than the charge it takes off with less the reserve.
-  if (d.endurance_s && d.sorties.empty()) {
-    const double charge_s = *d.endurance_s * d.battery_level;
-    const std::string battery = d.battery_level < 1
-                                    ? "the " + duration_text(charge_s) + " its battery holds (" +
-                                          base::shortest_text(100 * d.battery_level) + " % of " +
-                                          duration_text(*d.endurance_s) + ")"
-                                    : "its " + duration_text(*d.endurance_s) + " endurance";
-    if (d.mission.flight_time_s > charge_s * (1 - plan.request.reserve))
-      warnings.push_back("drone " + d.name + "'s flight takes " +
-                         duration_text(d.mission.flight_time_s) + ", longer than " + battery +
-                         " less the " + fixed_text(100 * plan.request.reserve, 0) +
-                         " % reserve; cut it into sorties with --sorties auto, or add drones");
-  } else if (!d.endurance_s && d.sorties.empty()) {
+  if (!d.endurance_s && d.sorties.empty()) {
     // No endurance given: against a typical one (an 18-hour single-drone plan went unwarned).
     const double typical_s = plan.request.vehicle == Vehicle::multirotor
                                  ? kTypicalMultirotorEndurance_s
@@ -261,7 +279,10 @@ void checks(SurveyPlan& plan) {
                        fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
                        " m² unseen), less than 99.9 %: parts of it are too narrow or too "
                        "pointed for the lines to reach (coverage.png with --render shows where)");
-  for (const DronePlan& d : plan.drones) check_charge(plan, d);
+  for (const DronePlan& d : plan.drones) {
+    check_sortie_charge(plan, d);
+    check_flight_within_charge(plan, d);
+  }
   if (plan.division.recut_within_limits)
     warnings.push_back(
         "shares in proportion to the capabilities would fly a drone beyond its range or charge; "

@@ -24,6 +24,7 @@ enum class Remedy : std::uint8_t {
   local_csv,        ///< read a CSV area as x,y metres
   endurance,        ///< give the drones an endurance
   sorties,          ///< cut each drone's flight into battery-sized sorties
+  higher_altitude,  ///< fly higher: a wider footprint, fewer lines, a shorter flight
 };
 
 /// Bad input from a user's file or arguments. what() is one sentence naming the file, the place
