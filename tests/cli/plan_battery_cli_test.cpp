@@ -74,6 +74,12 @@ TEST(PlanCli, RegionDivisionKeepsEveryFlightWithinItsCharge) {
                            "fly a drone beyond its range or charge") != std::string::npos,
               balance == "capability")
         << run.err;
+    // summary.json says how the shares were cut: by makespan either way, the capability asked
+    // for re-cut (it said "capability" over shares that were not in proportion).
+    const json division = json::parse(read_text(out + "/summary.json"))["division"];
+    EXPECT_EQ(division["balance"], "makespan") << balance;
+    EXPECT_EQ(division.contains("balance_asked"), balance == "capability") << division.dump();
+    if (balance == "capability") EXPECT_EQ(division["balance_asked"], "capability");
   }
 }
 

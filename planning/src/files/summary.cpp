@@ -110,6 +110,12 @@ ordered_json flight_json(const SurveyPlan& plan) {
           {"fence_margin_m", round_to(plan.fence_margin_m, 3)}};
 }
 
+// How the shares were cut: as asked, or by makespan where shares in proportion to the
+// capabilities would have flown a drone beyond its range or charge (the recut's warning).
+const char* division_balance(const SurveyRequest& r, const DivisionResult& dv) {
+  return r.balance == Balance::makespan || dv.recut_within_limits ? "makespan" : "capability";
+}
+
 }  // namespace
 
 std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>& files) {
@@ -200,7 +206,7 @@ std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>&
     const DivisionResult& dv = plan.division;
     j["division"] = {
         {"mode", r.division == DivisionMode::path ? "path" : "region"},
-        {"balance", r.balance == Balance::makespan ? "makespan" : "capability"},
+        {"balance", division_balance(r, dv)},
         {"makespan_s", round_to(longest, 2)},
         {"max_over_min_flight_time", shortest > 0 && std::isfinite(shortest)
                                          ? ordered_json(round_to(longest / shortest, 4))
@@ -212,6 +218,8 @@ std::string summary_json(const SurveyPlan& plan, const std::vector<std::string>&
                           ? round_to(100 * (1 - dv.makespan_s / dv.proportional_makespan_s), 3)
                           : 0.0)},
         {"unflown_path_m", round_to(dv.unflown_path_m, 3)}};
+    // Where the balance asked for is not the one the shares were cut by (docs/formats.md).
+    if (dv.recut_within_limits) j["division"]["balance_asked"] = "capability";
   }
   j["home"] = {{"lat_deg", round_to(plan.home.lat_deg, 9)},
                {"lon_deg", round_to(plan.home.lon_deg, 9)}};
