@@ -68,8 +68,14 @@ void verify_before_writing(const std::vector<std::pair<std::string, std::string>
   std::string more;
   if (report.violations.size() > 1)
     more = " (and " + std::to_string(report.violations.size() - 1) + " more violation(s))";
-  const std::string hint =
-      v.check == "ceiling" ? "; give --ceiling M to fly higher where a permit allows it" : "";
+  std::string hint;
+  if (v.check == "ceiling") hint = "; give --ceiling M to fly higher where a permit allows it";
+  // Litchi flies a split flight's parts from home and back, later than the .plan flies the
+  // same waypoints: the other drones are elsewhere by then.
+  if (v.check == "separation" && v.text.find("-litchi-") != std::string::npos)
+    hint =
+        "; Litchi flies each part of a split flight from home and back: fewer waypoints (a "
+        "larger --waypoint-spacing) keep it in one part, or leave out --litchi";
   throw base::InputError("the plan's files fail the preflight check (" + v.check + "): " + v.text +
                          more + "; nothing written" + hint);
 }

@@ -276,7 +276,10 @@ DroneFile flown_in_place(const DroneFile& plan, missions::Mission twin, std::str
   twin.inclusion_circles = m.inclusion_circles;
   twin.exclusion_circles = m.exclusion_circles;
   twin.rally_points = m.rally_points;
-  return {std::move(twin), plan.launch_offset_s, std::move(sorties_of), true};
+  const std::string drone = plan.drone.empty()
+                                ? (plan.sorties_of.empty() ? plan.mission.source : plan.sorties_of)
+                                : plan.drone;
+  return {std::move(twin), plan.launch_offset_s, std::move(sorties_of), true, drone};
 }
 
 }  // namespace

@@ -123,6 +123,12 @@ Approach least_separation(const FlownPath& a, double a_launch_s, const FlownPath
   return best;
 }
 
+// The drone that flies a file (DroneFile::drone).
+const std::string& drone_of(const DroneFile& d) {
+  if (!d.drone.empty()) return d.drone;
+  return d.sorties_of.empty() ? d.mission.source : d.sorties_of;
+}
+
 void check_separation(const std::vector<DroneFile>& drones, const std::vector<FlownPath>& paths,
                       const geometry::LocalFrame& frame, const CheckOptions& options,
                       Report& report) {
@@ -135,8 +141,9 @@ void check_separation(const std::vector<DroneFile>& drones, const std::vector<Fl
   Approach least;
   for (std::size_t i = 0; i < paths.size(); ++i)
     for (std::size_t j = i + 1; j < paths.size(); ++j) {
-      if (!drones[i].sorties_of.empty() && drones[i].sorties_of == drones[j].sorties_of) continue;
-      if (drones[i].instead || drones[j].instead) continue;  // one drone flies either file
+      // One drone flies its sorties in turn, and either its .plan or a twin of it; a twin is
+      // checked against the other drones' files (theirs or their twins) at its own times.
+      if (drone_of(drones[i]) == drone_of(drones[j])) continue;
       const Approach a = least_separation(paths[i], drones[i].launch_offset_s, paths[j],
                                           drones[j].launch_offset_s);
       least.distance_m = std::min(least.distance_m, a.distance_m);

@@ -239,6 +239,76 @@ TEST(VerifyCli, SplitLitchiPartsAreFlownFromTheirPlansHomeAndJoinedAgainstIt) {
       << differs.out;
 }
 
+// A second drone (a QGC WPL file saved as intruder.plan) hovering at 60 m over the point 15 % of
+// the way from home to part 3's first row, the way part 2 flies home and part 3 flies out, which
+// the .plan never flies: against the .plan it keeps its distance, against the Litchi parts, flown
+// in turn from the .plan's launch as its drone would fly them, it does not. The twins were never
+// checked for separation (the parts were 'instead' of the .plan and skipped).
+TEST(VerifyCli, ASplitLitchiPartsWayHomeIsCheckedAgainstTheOtherDrones) {
+  const std::string dir = fresh_dir("swath-verify-litchi-separation");
+  ASSERT_EQ(run_swath(kVineyardLitchi + " -o " + dir + "/out").exit_code, 0);
+  const std::string out = dir + "/out";
+  const auto rows = csv_rows(read_text(out + "/drone-1-litchi-3.csv"));
+  ASSERT_EQ(rows.at(0).at(2), "altitude(m)");
+  const double home_lat = 46.2276, home_lon = 7.5917;
+  const double lat = home_lat + 0.15 * (std::stod(rows.at(1).at(0)) - home_lat);
+  const double lon = home_lon + 0.15 * (std::stod(rows.at(1).at(1)) - home_lon);
+  const std::string at = std::to_string(lat) + "\t" + std::to_string(lon);
+  write(dir + "/intruder.plan", "QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t" + at + "\t0\t1\n" +
+                                    "1\t0\t3\t22\t0\t0\t0\t0\t" + at + "\t60\t1\n" +
+                                    "2\t0\t3\t16\t3000\t0\t0\t0\t" + at + "\t60\t1\n" +
+                                    "3\t0\t3\t21\t0\t0\t0\t0\t" + at + "\t0\t1\n");
+  // The .plan alone beside it: never within the 10 m.
+  const CliRun apart =
+      run_swath("verify " + out + "/drone-1.plan " + dir + "/intruder.plan --json");
+  EXPECT_EQ(apart.exit_code, 0) << apart.out;
+  // With its Litchi parts: part 2's way home (or part 3's way out) flies through it.
+  std::filesystem::rename(dir + "/intruder.plan", out + "/intruder.plan");
+  const CliRun run = run_swath("verify " + out + " --json");
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  const json j = json::parse(run.out);
+  ASSERT_FALSE(j["violations"].empty()) << run.out;
+  for (const json& v : j["violations"]) {
+    EXPECT_EQ(v["check"], "separation") << v.dump();
+    const std::string text = v["text"].get<std::string>();
+    EXPECT_NE(text.find(out + "/intruder.plan and " + out + "/drone-1-litchi-"), std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("drone-1.plan"), std::string::npos) << text;
+  }
+  for (const json& c : j["checks"])
+    if (c["check"] == "separation") EXPECT_LT(c["value"].get<double>(), 10.0) << c.dump();
+}
+
+// The vineyard pair from one home, each flight split into Litchi parts: alpha's part 1 comes home
+// and its part 2 leaves as bravo, launched 400 s after alpha's .plan by the plan's stagger, takes
+// off there (the layers and the stagger are set on the .plans, which fly no such trips). swath
+// plan's own check flies the parts in turn against the other drone and refuses the plan, exit 2,
+// nothing written; without --litchi it is written. (It was written, and flown so, two drones on one
+// pad.)
+TEST(VerifyCli, PlanRefusesLitchiPartsWhoseWaysHomeMeetAnotherDrone) {
+  if (const char* env = std::getenv("SWATH_PLAN_VERIFY"); env && std::string(env) == "0")
+    GTEST_SKIP() << "SWATH_PLAN_VERIFY=0 turns swath plan's check off";
+  const std::string dir = fresh_dir("swath-verify-litchi-pair");
+  const std::string pair =
+      "plan share/fields/vineyard.kml --camera sony-ilce-qx1 --altitude 60 --fleet "
+      "share/fleets/vineyard-pair.yaml --division region --waypoint-spacing 10 -o ";
+  ASSERT_EQ(run_swath(pair + dir + "/plans").exit_code, 0);
+  const CliRun run = run_swath(pair + dir + "/litchi --litchi");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/litchi"));
+  const std::regex met(
+      R"(swath plan: the plan's files fail the preflight check \(separation\): )"
+      R"((\S+) and (\S+) come within ([0-9.]+) m of each other at t = ([0-9.]+) s)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.err, m, met)) << run.err;
+  const std::string a = m[1], b = m[2];
+  EXPECT_TRUE(a.find("-litchi-") != std::string::npos || b.find("-litchi-") != std::string::npos)
+      << run.err;
+  EXPECT_NE(a.substr(0, 5), b.substr(0, 5)) << "two drones: " << run.err;
+  EXPECT_LT(std::stod(m[3]), 10.0);
+  EXPECT_NE(run.err.find("leave out --litchi"), std::string::npos) << run.err;
+}
+
 // A zone across the straight way out to part 3 of a plan made without it: planned with the zone,
 // the parts are cut where Litchi's straight ways home and back keep clear of it
 // (docs/swath-plan.md), so the plan passes its own check, which flies every part from home and

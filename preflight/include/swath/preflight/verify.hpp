@@ -50,9 +50,13 @@ struct DroneFile {
   /// Empty: a drone alone.
   std::string sorties_of;
   /// Flies in place of another drone's file (a twin of its .plan, or a part of its split Litchi
-  /// twin): checked as a flight of its own, never for separation (it is not in the air beside the
-  /// file it stands for), and its photos are not counted again.
+  /// twin): checked as a flight of its own, and for separation as its drone against the other
+  /// drones' files at its own times (a split Litchi flight's trips home and back between parts
+  /// make it longer than its .plan); its photos are not counted again.
   bool instead = false;
+  /// The drone that flies the file: files of one drone are never checked against each other
+  /// (one drone flies one at a time). Empty: sorties_of, else the file itself.
+  std::string drone;
 };
 
 /// A check that failed somewhere.
