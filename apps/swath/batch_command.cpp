@@ -1,6 +1,9 @@
 #include "batch_command.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -32,6 +35,9 @@ struct Job {
   std::string file, name, dir;
   std::size_t index = 0;
   bool single = false;  ///< the file holds only this area: no --feature
+  /// A feature that is no area (no geometry, a point, an open line): why, for its row; it has no
+  /// `swath plan` and no directory.
+  std::string not_an_area;
 };
 
 // A directory name from an area's name: letters, digits, '-', '_' and '.' kept, the rest '_'.
@@ -114,6 +120,49 @@ void check_plan_options(const std::vector<std::string>& plan_args, const std::st
   } catch (const CLI::ParseError& e) {
     throw InputError("the plan options: " + std::string(e.what()));
   }
+  check.check_options();  // the camera, the numbers, the files they name: as each plan would
+}
+
+// Whether `inner` is `outer` or lies inside it (both existing or not; symbolic links resolved).
+bool same_or_inside(const fs::path& inner, const fs::path& outer) {
+  std::error_code ec;
+  const fs::path in = fs::weakly_canonical(fs::absolute(inner), ec);
+  const fs::path out = fs::weakly_canonical(fs::absolute(outer), ec);
+  if (ec) return false;
+  auto i = in.begin();
+  for (auto o = out.begin(); o != out.end(); ++o, ++i)
+    if (o->empty())
+      break;  // a trailing separator
+    else if (i == in.end() || *i != *o)
+      return false;
+  return true;
+}
+
+// The output directory, refused before anything is planned: a file in its way (-o afile,
+// -o afile/sub), or inside the directory of areas, where the next batch would list its batch.csv
+// and batch.geojson as areas.
+void check_output_directory(const std::string& output, const std::string& areas) {
+  std::error_code ec;
+  for (fs::path at = fs::absolute(output); !at.empty(); at = at.parent_path()) {
+    if (fs::exists(at, ec) && !fs::is_directory(at, ec))
+      throw InputError(output + ": cannot create the output directory (" +
+                       (at == fs::absolute(output) ? std::string("a file of that name")
+                                                   : at.string() + ", a file,") +
+                       " is in the way)");
+    if (fs::exists(at, ec) || at == at.parent_path()) break;
+  }
+  if (fs::is_directory(areas, ec) && same_or_inside(output, areas))
+    throw InputError(output + ": the output directory is inside the directory of areas " + areas +
+                     " (a next batch would plan its files as areas); give -o outside it");
+}
+
+// The output directory created (a system's refusal, /proc/nope, is bad input as for swath plan).
+void create_output_directory(const std::string& output) {
+  std::error_code ec;
+  fs::create_directories(output, ec);
+  if (ec || !fs::is_directory(output))
+    throw InputError(output + ": cannot create the output directory (" +
+                     (ec ? ec.message() : std::string("a file of that name is in the way")) + ")");
 }
 
 // Whether `object`'s members GeoJSON reads are spelled as GeoJSON spells them: GDAL's reader takes
@@ -177,7 +226,7 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
   bool gdal_loaded = false;
   auto add_file = [&](const fs::path& file) {
     if (directory && gdal_loaded && one_polygon_geojson(file)) {
-      jobs.push_back({file.string(), file.stem().string(), "", 0, true});
+      jobs.push_back({file.string(), file.stem().string(), "", 0, true, {}});
       return;
     }
     std::vector<geometry::AreaEntry> found;
@@ -187,16 +236,24 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
       found = geometry::list_areas(file, options);
     } catch (const std::exception&) {
       // One bad file of a directory is its own row: its `swath plan` says why, exit 2 (the
-      // batch's exit 3); the other files are planned. A file given alone is refused as before.
-      if (!directory) throw;
-      jobs.push_back({file.string(), file.stem().string(), "", 0, true});
+      // batch's exit 3); the other files are planned. A file given alone is refused with the
+      // sentence its `swath plan` would give where it has one of its own (an empty file: "the
+      // file is empty", not GDAL's "cannot open it as a vector file"), else the listing's.
+      if (!directory) {
+        geometry::read_field(file, options);
+        throw;
+      }
+      jobs.push_back({file.string(), file.stem().string(), "", 0, true, {}});
       return;
     }
+    const auto areas = static_cast<std::size_t>(std::count_if(
+        found.begin(), found.end(), [](const auto& a) { return a.not_an_area.empty(); }));
     for (const auto& a : found)
-      jobs.push_back(
-          {file.string(),
-           found.size() == 1 && file.extension() != ".gpkg" ? file.stem().string() : a.name, "",
-           a.index, found.size() == 1});
+      jobs.push_back({file.string(),
+                      areas == 1 && a.not_an_area.empty() && file.extension() != ".gpkg"
+                          ? file.stem().string()
+                          : a.name,
+                      "", a.index, areas == 1, a.not_an_area});
   };
   if (directory) {
     std::vector<fs::path> files;
@@ -211,10 +268,13 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
     if (files.empty()) throw InputError(areas + ": no area files in this directory");
     for (const fs::path& f : files) add_file(f);
   } else {
+    // A missing file is said so as swath plan says it, before its extension is looked at.
+    if (!fs::is_regular_file(areas)) (void)base::read_text_file(areas, "area file");
     add_file(areas);
   }
   std::set<std::string> used = {"batch.csv", "batch.geojson"};  // the batch's own files
   for (Job& j : jobs) {
+    if (!j.not_an_area.empty()) continue;  // no directory
     std::string dir = directory_name(j.name);
     for (int k = 2; used.count(dir); ++k) dir = directory_name(j.name) + "-" + std::to_string(k);
     used.insert(dir);
@@ -260,9 +320,13 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<PlanRes
     t.failed += !ok;
     // Names and messages are bytes from the user's files: valid UTF-8 before JSON and CSV.
     const std::string name = base::valid_utf8(j.name), message = base::valid_utf8(r.message);
-    json props{
-        {"area", name},       {"file", base::valid_utf8(j.file)}, {"index", j.index},
-        {"directory", j.dir}, {"status", batch_status(r)},        {"exit_code", r.exit_code}};
+    const bool area = j.not_an_area.empty();  // a feature that is no area has no index
+    json props{{"area", name},
+               {"file", base::valid_utf8(j.file)},
+               {"index", area ? json(j.index) : json(nullptr)},
+               {"directory", j.dir},
+               {"status", batch_status(r)},
+               {"exit_code", r.exit_code}};
     std::string numbers = ",,,,,";
     if (ok) {
       const json s =
@@ -278,22 +342,106 @@ BatchTables batch_tables(const std::vector<Job>& jobs, const std::vector<PlanRes
       numbers = base::fixed_text(area_m2, 3) + "," + base::fixed_text(lines, 0) + "," +
                 base::fixed_text(photos, 0) + "," + base::fixed_text(length, 3) + "," +
                 base::fixed_text(time, 3) + "," + std::to_string(s["drones"].size());
+      // batch.csv's columns, in its order; counts as integers.
       props["area_m2"] = area_m2;
+      props["lines"] = static_cast<std::int64_t>(std::llround(lines));
+      props["photos"] = static_cast<std::int64_t>(std::llround(photos));
       props["path_length_m"] = length;
       props["flight_time_s"] = time;
-      props["photos"] = photos;
+      props["drones"] = s["drones"].size();
     } else {
       props["message"] = message;
     }
+    // The directory as it is named on disk: directory_name() keeps only letters, digits, '-',
+    // '_' and '.', which carry no formula a spreadsheet could run (a function needs brackets),
+    // so it takes no apostrophe.
     t.csv += csv_field(name) + "," + csv_field(base::valid_utf8(j.file)) + "," +
-             std::to_string(j.index) + "," + csv_field(j.dir) + "," + batch_status(r) + "," +
+             (area ? std::to_string(j.index) : "") + "," + j.dir + "," + batch_status(r) + "," +
              std::to_string(r.exit_code) + "," + numbers + "," + csv_field(ok ? "" : message) +
              "\n";
-    features.push_back(json{
-        {"type", "Feature"}, {"properties", props}, {"geometry", outline_geojson(j, options)}});
+    features.push_back(json{{"type", "Feature"},
+                            {"properties", props},
+                            {"geometry", area ? outline_geojson(j, options) : json(nullptr)}});
   }
   t.geojson = json{{"type", "FeatureCollection"}, {"features", features}}.dump(1) + "\n";
   return t;
+}
+
+// A file swath wrote, whole ("" where there is none or it cannot be read).
+std::string read_small_file(const fs::path& path) {
+  try {
+    return base::read_text_file(path, "file");
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+
+// Text's CSV rows, cell by cell (RFC 4180: a quoted cell may hold commas, quotes, line breaks).
+std::vector<std::vector<std::string>> csv_cells(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+      rows.back().back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (!quoted && c == ',') {
+      rows.back().emplace_back();
+    } else if (!quoted && c == '\n') {
+      rows.emplace_back(1);
+    } else {
+      rows.back().back() += c;
+    }
+  }
+  return rows;
+}
+
+// The area directories the batch before wrote into `output`: its batch.csv's `directory` column,
+// where the batch's manifest lists batch.csv (swath wrote it; a user's file of that name is not
+// read).
+std::set<std::string> earlier_directories(const fs::path& output) {
+  const std::string manifest = read_small_file(output / ".swath-batch.files");
+  if (manifest.find("\nbatch.csv\n") == std::string::npos) return {};
+  const auto rows = csv_cells(read_small_file(output / "batch.csv"));
+  std::set<std::string> dirs;
+  if (rows.empty() || rows[0].size() < 4 || rows[0][3] != "directory") return dirs;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (rows[i].size() > 3 && !rows[i][3].empty()) dirs.insert(rows[i][3]);
+  return dirs;
+}
+
+// Whether `name` is a temporary or kept old file a plan ended by SIGKILL leaves (OutputSet's
+// `.NAME.tmp-` or `.NAME.old-` and 16 hex digits).
+bool plan_leftover(const std::string& name) {
+  constexpr std::size_t kTail = 5 + 16;
+  if (name.size() <= 1 + kTail || name[0] != '.') return false;
+  const std::string tail = name.substr(name.size() - kTail);
+  return (tail.starts_with(".tmp-") || tail.starts_with(".old-")) &&
+         std::all_of(tail.begin() + 5, tail.end(), [](char c) {
+           return std::isdigit(static_cast<unsigned char>(c)) || (c >= 'a' && c <= 'f');
+         });
+}
+
+// An area directory of this batch or the one before whose area this batch did not plan: the
+// plan swath wrote there (the files its .swath-plan.files lists, the manifest, a killed plan's
+// temporaries) removed, and the directory once empty, so that no row's failure sits beside a
+// complete plan (an older one, or one a timed-out worker finished as it was ended). Anything
+// else in it is the user's and stays. A name that is not a plain directory (a symbolic link) is
+// left alone.
+void remove_plan_directory(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec))) return;
+  std::istringstream manifest(read_small_file(dir / ".swath-plan.files"));
+  for (std::string name; std::getline(manifest, name);)
+    if (!name.empty() && name[0] != '#' && name.find('/') == std::string::npos && name != "." &&
+        name != "..")
+      fs::remove(dir / name, ec);
+  fs::remove(dir / ".swath-plan.files", ec);
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (plan_leftover(e.path().filename().string())) fs::remove(e.path(), ec);
+  fs::remove(dir, ec);  // only when empty
 }
 
 // The `swath plan` command line of one area.
@@ -308,10 +456,43 @@ std::vector<std::string> command_line(const Job& j, const std::string& layer,
   return argv;
 }
 
+// Each area's result: a feature that is no area refused by its own sentence, the others planned
+// by the workers.
+std::vector<PlanResult> plan_jobs(const std::vector<Job>& jobs,
+                                  const std::vector<std::vector<std::string>>& commands,
+                                  int parallel, bool progress, double timeout_s) {
+  std::vector<std::vector<std::string>> planned;
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (jobs[i].not_an_area.empty()) planned.push_back(commands[i]);
+  const std::vector<PlanResult> answers = plan_in_workers(planned, parallel, progress, timeout_s);
+  std::vector<PlanResult> results;
+  std::size_t next = 0;
+  for (const Job& j : jobs)
+    results.push_back(j.not_an_area.empty() ? answers[next++]
+                                            : PlanResult{base::kExitBadInput, j.not_an_area});
+  return results;
+}
+
+// The area directories of the batch before that this one has not planned into, and those of its
+// own areas that failed: each plan removed (remove_plan_directory()).
+void remove_unplanned(const fs::path& output, std::set<std::string> earlier,
+                      const std::vector<Job>& jobs, const std::vector<PlanResult>& results) {
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    if (jobs[i].dir.empty()) continue;
+    if (results[i].exit_code == base::kExitSuccess && !results[i].timed_out)
+      earlier.erase(jobs[i].dir);
+    else
+      earlier.insert(jobs[i].dir);
+  }
+  for (const std::string& dir : earlier)
+    if (directory_name(dir) == dir) remove_plan_directory(output / dir);  // never ../ or a path
+}
+
 }  // namespace
 
 int BatchCommand::run() {
   check_plan_options(plan_args_, areas_, output_);
+  check_output_directory(output_, areas_);
   geometry::FieldReadOptions options;
   if (!layer_.empty()) options.layer = layer_;
   if (!name_field_.empty()) options.name_field = name_field_;
@@ -319,13 +500,19 @@ int BatchCommand::run() {
   std::vector<std::vector<std::string>> commands;
   for (const Job& j : jobs) commands.push_back(command_line(j, layer_, plan_args_, output_));
   if (emit_jobs_) {
-    std::string lines;  // all of them before any is printed: a refused name prints none
-    for (const auto& argv : commands) {
+    std::string lines, warnings;  // all of them before any is printed: a refused name prints none
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      if (!jobs[i].not_an_area.empty()) {  // no command line plans it
+        warnings += "swath batch: warning: " + jobs[i].not_an_area + "\n";
+        continue;
+      }
+      const auto& argv = commands[i];
       std::string line;
       for (const std::string& a : argv) line += (line.empty() ? "" : " ") + shell_word(a);
       lines += line + "\n";
     }
     std::cout << lines;
+    std::cerr << warnings;
     if (timeout_s_ > 0)
       std::cerr << "swath batch: warning: --timeout-s does not reach the command lines printed; "
                    "give the engine's own limit (e.g. GNU parallel's --timeout)\n";
@@ -341,10 +528,12 @@ int BatchCommand::run() {
       argv.insert(
           argv.end(),
           {"--threads", std::to_string(std::max(1u, base::machine_threads() / unsigned(jobs_)))});
-  fs::create_directories(output_);
-  const std::vector<PlanResult> results = plan_in_workers(commands, jobs_, progress_, timeout_s_);
+  create_output_directory(output_);
+  const std::set<std::string> earlier = earlier_directories(output_);
+  const std::vector<PlanResult> results = plan_jobs(jobs, commands, jobs_, progress_, timeout_s_);
   const BatchTables tables = batch_tables(jobs, results, output_, options);
   base::OutputSet set(output_, "batch", {base::OutputSet::Mode::amend, 10.0});
+  remove_unplanned(output_, earlier, jobs, results);  // under the batch's lock
   set.add("batch.csv", tables.csv);
   set.add("batch.geojson", tables.geojson);
   set.commit();

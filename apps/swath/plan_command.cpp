@@ -423,6 +423,26 @@ planning::SurveyRequest PlanCommand::request() const {
   } else if (!origin_.empty()) {
     throw InputError("--origin only applies to a --local area");
   }
+  fill_request(request);
+  return request;
+}
+
+void PlanCommand::check_options() {
+  if (!config_.empty())
+    apply_mission_config(
+        *app_, base::read_text_file(config_, "mission config", base::kMaxConfigFileBytes), config_);
+  if (camera_.empty()) throw InputError("no camera: give --camera (see 'swath cameras')");
+  check_numbers();
+  if (local_ && origin_.empty())
+    throw InputError("a --local area needs --origin LAT,LON to place it on the map");
+  if (!local_ && !origin_.empty()) throw InputError("--origin only applies to a --local area");
+  if (local_) parse_lat_lon(origin_, "--origin");
+  planning::SurveyRequest request;
+  fill_request(request);
+  check_file_options();
+}
+
+void PlanCommand::fill_request(planning::SurveyRequest& request) const {
   request.camera = planning::find_camera(camera_, share_dir() / "cameras");
 
   std::optional<planning::DetectionMode> pattern;
@@ -529,7 +549,6 @@ planning::SurveyRequest PlanCommand::request() const {
   request.endurance_s = endurance_s_;
   request.reserve = reserve_;
   request.terrain = terrain();
-  return request;
 }
 
 std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
@@ -539,6 +558,8 @@ std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
                        " needs --terrain DEM (the ground's heights)");
     if (!dem_units_.empty())
       throw InputError("--dem-units needs --terrain DEM (the ground's heights)");
+    if (app_ && app_->count("--dem-heights") > 0)
+      throw InputError("--dem-heights needs --terrain DEM (the ground's heights)");
     return std::nullopt;
   }
   base::check_range(terrain_tolerance_m_, planning::limits::kTerrainTolerance_m,
@@ -555,12 +576,16 @@ std::optional<planning::TerrainRequest> PlanCommand::terrain() const {
   return t;
 }
 
-std::vector<std::pair<std::string, std::string>> PlanCommand::files(
-    const planning::SurveyPlan& plan) const {
+void PlanCommand::check_file_options() const {
   if (!basemap_url_.empty() && !html_)
     throw InputError("--basemap-url draws behind plan.html: give --html too");
   if (!basemap_.empty() && !html_ && !render_)
     throw InputError("--basemap draws behind coverage.png or plan.html: give --render or --html");
+}
+
+std::vector<std::pair<std::string, std::string>> PlanCommand::files(
+    const planning::SurveyPlan& plan) const {
+  check_file_options();
   const planning::FileOptions options{fence_files_, litchi_, dji_, qgc_survey_};
   auto files = planning::survey_files(plan, options);
   export_warnings_ = planning::export_warnings(plan, options);

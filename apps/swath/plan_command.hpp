@@ -21,6 +21,10 @@ class PlanCommand : public Command {
   }
   void setup(CLI::App& app) override;
   int run() override;
+  /// The options checked as run() would before planning, without reading the area (swath
+  /// batch, once for all its areas): its mission config applied, the numbers, the camera, the
+  /// files they name (fleet, zones, DEM). Throws InputError with run()'s sentence.
+  void check_options();
 
  private:
   /// setup()'s groups of options.
@@ -35,6 +39,10 @@ class PlanCommand : public Command {
   void check_numbers() const;
   /// The steps of run(): the request from the options, the files of the plan, what to print.
   planning::SurveyRequest request() const;
+  /// Everything of the request but the area (request() reads it first).
+  void fill_request(planning::SurveyRequest& request) const;
+  /// The mission files' options that need each other (--basemap and --render or --html).
+  void check_file_options() const;
   std::optional<planning::TerrainRequest> terrain() const;
   std::vector<std::pair<std::string, std::string>> files(const planning::SurveyPlan& plan) const;
   /// What the files about to be written are checked against (swath verify's checks).

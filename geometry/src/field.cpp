@@ -251,7 +251,7 @@ std::vector<AreaEntry> list_areas(const std::filesystem::path& path,
   const FieldFormat format = options.format ? *options.format : format_from_extension(path);
   if (format == FieldFormat::csv || format == FieldFormat::wkt) {
     read_field(path, options);  // refuses a bad file as a plan would
-    return {{path.stem().string(), 0}};
+    return {{path.stem().string(), 0, {}}};
   }
   return detail::list_ogr_areas(path.string(), options);
 }

@@ -389,22 +389,36 @@ struct LayerArea {
 };
 
 // Every area of the layer (at most 100,000), a MultiPolygon's parts one by one ("<name>, part
-// K", K from 0); none: refused with the first feature's reason.
-std::vector<LayerArea> layer_areas(OGRLayer& layer, int name_index, const std::string& source) {
+// K", K from 0); none: refused with the first feature's reason. `listing` (swath batch): each
+// area's entry and, in the file's order, each feature that is no area with why (a batch reports
+// it in a row of its own instead of leaving it out unseen).
+std::vector<LayerArea> layer_areas(OGRLayer& layer, int name_index, const std::string& source,
+                                   std::vector<AreaEntry>* listing = nullptr) {
   std::vector<LayerArea> areas;
   std::string first_refusal;
+  std::size_t position = 0;  // the feature's among all of the layer's
   layer.ResetReading();
   for (auto& f : layer) {
+    const std::size_t feature_position = position++;
     std::string why;
     auto parts = feature_areas(f->GetGeometryRef(), why);
     std::string name = std::to_string(areas.size());
-    if (name_index >= 0 && f->IsFieldSetAndNotNull(name_index))
-      name = f->GetFieldAsString(name_index);
+    const bool named = name_index >= 0 && f->IsFieldSetAndNotNull(name_index);
+    if (named) name = f->GetFieldAsString(name_index);
     if (parts.empty()) {
       if (first_refusal.empty()) first_refusal = "feature " + name + " " + why;
+      const std::string place = "feature " + std::to_string(feature_position);
+      if (listing)
+        listing->push_back({named ? name : place, 0,
+                            source + ": " + place + (named ? " (\"" + name + "\") " : " ") + why +
+                                "; it is not planned (an area is a polygon or a closed "
+                                "line)"});
       continue;
     }
     for (std::size_t k = 0; k < parts.size(); ++k) {
+      if (listing)
+        listing->push_back(
+            {parts.size() == 1 ? name : name + ", part " + std::to_string(k), areas.size(), {}});
       areas.push_back({std::move(parts[k]),
                        parts.size() == 1 ? name : name + ", part " + std::to_string(k),
                        areas.size()});
@@ -644,11 +658,8 @@ RawField read_or_list(const std::string& path, const FieldReadOptions& options,
   if (list && options.only_areas_as) refuse_non_areas(*ds, options, path);
   OGRLayer* layer = choose_layer(*ds, options, path);
   auto read = std::make_shared<LayerRead>();
-  read->areas = layer_areas(*layer, name_field_index(*layer, options, path), path);
-  if (list) {  // swath batch: every area of the layer, nothing read
-    for (const LayerArea& c : read->areas) list->push_back({c.name, c.index});
-    return {};
-  }
+  read->areas = layer_areas(*layer, name_field_index(*layer, options, path), path, list);
+  if (list) return {};  // swath batch: every area of the layer, nothing read
   read->layer_name = layer->GetName();
   if (const OGRSpatialReference* crs = layer->GetSpatialRef()) read->crs.reset(crs->Clone());
   last_layers().keep(path, key, read);

@@ -6,6 +6,7 @@
 // jobs are those GDAL's listing of each file alone gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -189,6 +190,175 @@ TEST(BatchScratch, AreasOfOneNameGetDistinctDirectories) {
     EXPECT_NE(jobs[i].find("--feature " + std::to_string(i) + " "), std::string::npos) << jobs[i];
     EXPECT_EQ(jobs[i].substr(jobs[i].size() - std::min(tail.size(), jobs[i].size())), tail);
   }
+}
+
+const std::string kPlanOptions = " --camera sony-ilce-qx1 --altitude 60";
+
+// A directory of areas: meadow and bowtie (which crosses itself) from share/fields.
+std::string areas_dir(const std::string& dir) {
+  fs::create_directories(dir + "/areas");
+  fs::copy_file(source_path("share/fields/meadow.geojson"), dir + "/areas/meadow.geojson");
+  return dir + "/areas";
+}
+
+// The plan options are checked once, as swath plan checks them, before any area is listed or
+// planned: one sentence, exit 2, nothing written (each area's row said it again, exit 3).
+TEST(BatchScratch, PlanOptionsAreRefusedBeforeAnythingIsWritten) {
+  const std::string dir = fresh_dir("batch-options");
+  const std::string areas = areas_dir(dir);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--camera nope --altitude 60", "--camera nope"},
+      {"--camera sony-ilce-qx1 --altitude -5", "--altitude -5"},
+      {kPlanOptions + " --home 95,8", "--home '95,8'"},
+      {kPlanOptions + " --terrain " + dir + "/none.asc", "none.asc: cannot open"},
+      {kPlanOptions + " --exclude " + dir + "/none.geojson", "none.geojson: cannot open"},
+      {"--camera sony-ilce-qx1", "needs --altitude M or --gsd CM"},
+      {kPlanOptions + " --dem-heights ellipsoid", "--dem-heights needs --terrain"},
+  };
+  for (const auto& [options, said] : cases) {
+    const CliRun r = run_swath("batch " + areas + " -o " + dir + "/out " + options);
+    EXPECT_EQ(r.exit_code, 2) << options << ": " << r.err;
+    EXPECT_NE(r.err.find(said), std::string::npos) << options << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/out")) << options;
+  }
+  const CliRun emitted =
+      run_swath("batch " + areas + " -o " + dir + "/out --emit-jobs --camera nope --altitude 60");
+  EXPECT_EQ(emitted.exit_code, 2) << emitted.err;
+  EXPECT_EQ(emitted.out, "");  // no command line that would fail
+  // swath plan refuses --dem-heights without a DEM as it refuses --dem-units.
+  const CliRun plan = run_swath("plan " + areas + "/meadow.geojson -o " + dir + "/out" +
+                                kPlanOptions + " --dem-heights geoid");
+  EXPECT_EQ(plan.exit_code, 2) << plan.err;
+  EXPECT_NE(plan.err.find("--dem-heights needs --terrain"), std::string::npos) << plan.err;
+}
+
+// An output directory that cannot be created, or that lies in the directory of areas (whose next
+// batch would plan batch.csv and batch.geojson as areas), is bad input: exit 2, nothing written.
+// A missing or empty area file is refused with swath plan's sentence.
+TEST(BatchScratch, OutputAndAreaPathsAreRefusedAsSwathPlanRefusesThem) {
+  const std::string dir = fresh_dir("batch-output");
+  const std::string areas = areas_dir(dir);
+  std::ofstream(dir + "/afile") << "x";
+  for (const std::string& out : {dir + "/afile", dir + "/afile/sub"}) {
+    const CliRun r = run_swath("batch " + areas + " -o " + out + kPlanOptions);
+    EXPECT_EQ(r.exit_code, 2) << out << ": " << r.err;
+    EXPECT_NE(r.err.find(out + ": cannot create the output directory"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(read_text(dir + "/afile"), "x");
+  for (const std::string& out : {areas, areas + "/", areas + "/out"}) {
+    const CliRun r = run_swath("batch " + areas + " -o " + out + kPlanOptions);
+    EXPECT_EQ(r.exit_code, 2) << out << ": " << r.err;
+    EXPECT_NE(r.err.find("inside the directory of areas"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(files_in(areas), 1u);  // meadow alone: no batch.csv, no area directory
+  const CliRun missing = run_swath("batch " + dir + "/none -o " + dir + "/out" + kPlanOptions);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("none: cannot open the area file"), std::string::npos) << missing.err;
+  std::ofstream(dir + "/empty.geojson").flush();
+  const CliRun empty =
+      run_swath("batch " + dir + "/empty.geojson -o " + dir + "/out" + kPlanOptions);
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.err.find("empty.geojson: the file is empty"), std::string::npos) << empty.err;
+  EXPECT_FALSE(fs::exists(dir + "/out"));
+}
+
+// A feature without geometry or with a point's is a row of its own, refused saying why (it was
+// left out and the batch said "4 of 4 areas planned", exit 0); the areas keep their positions.
+TEST(BatchScratch, FeaturesThatAreNoAreaAreRefusedRows) {
+  const std::string dir = fresh_dir("batch-gaps");
+  fs::create_directories(dir);
+  const auto at = [](double lon) {
+    return R"({"type": "Polygon", "coordinates": [)" + square(lon, 47.3) + "]}";
+  };
+  std::ofstream(dir + "/gaps.geojson") << collection(
+      {feature("nogeom", "null"), feature("a", at(8.5)),
+       feature("pt", R"({"type": "Point", "coordinates": [8.52, 47.3]})"), feature("b", at(8.51))});
+  const CliRun r = run_swath("batch " + dir + "/gaps.geojson -o " + dir + "/out" + kPlanOptions);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  const auto rows = csv_rows(read_text(dir + "/out/batch.csv"));
+  ASSERT_EQ(rows.size(), 5u);
+  const std::vector<std::string> names{"nogeom", "a", "pt", "b"}, index{"", "0", "", "1"},
+      status{"refused", "planned", "refused", "planned"};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(rows[i + 1][0], names[i]);
+    EXPECT_EQ(rows[i + 1][2], index[i]);
+    EXPECT_EQ(rows[i + 1][4], status[i]);
+  }
+  const std::string csv = read_text(dir + "/out/batch.csv");
+  EXPECT_NE(csv.find("feature 0 (\"\"nogeom\"\") has no geometry"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("feature 2 (\"\"pt\"\") is a Point"), std::string::npos) << csv;
+  const auto geojson = nlohmann::json::parse(read_text(dir + "/out/batch.geojson"));
+  ASSERT_EQ(geojson["features"].size(), 4u);
+  EXPECT_TRUE(geojson["features"][2]["geometry"].is_null());
+  const CliRun emitted =
+      run_swath("batch " + dir + "/gaps.geojson -o " + dir + "/out --emit-jobs" + kPlanOptions);
+  EXPECT_EQ(emitted.exit_code, 0);
+  EXPECT_EQ(std::count(emitted.out.begin(), emitted.out.end(), '\n'), 2);
+  EXPECT_NE(emitted.err.find("warning: " + dir + "/gaps.geojson: feature 2"), std::string::npos)
+      << emitted.err;
+}
+
+// A rerun into the same -o: the area directories of the batch before that this batch does not
+// plan into (a file renamed away, an area now refused or timed out) lose their plan, so that no
+// complete plan sits under a row that failed; what the user put there stays.
+TEST(BatchScratch, AreaDirectoriesOfFailedOrGoneAreasLoseTheirPlans) {
+  const std::string dir = fresh_dir("batch-stale");
+  const std::string areas = areas_dir(dir);
+  fs::copy_file(source_path("share/fields/meadow.geojson"), areas + "/gone.geojson");
+  fs::copy_file(source_path("share/fields/meadow.geojson"), areas + "/kept.geojson");
+  const std::string out = dir + "/out";
+  ASSERT_EQ(run_swath("batch " + areas + " -o " + out + kPlanOptions).exit_code, 0);
+  ASSERT_TRUE(fs::exists(out + "/meadow/.swath-plan.files"));
+  std::ofstream(out + "/kept/notes.txt") << "mine";
+  fs::create_directories(out + "/mine");  // no batch's
+  fs::remove(areas + "/gone.geojson");
+  fs::remove(areas + "/kept.geojson");
+  fs::copy_file(source_path("share/fields/bowtie.geojson"), areas + "/meadow.geojson",
+                fs::copy_options::overwrite_existing);
+  const CliRun r = run_swath("batch " + areas + " -o " + out + kPlanOptions);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(csv_rows(read_text(out + "/batch.csv")).at(1).at(4), "refused");
+  EXPECT_FALSE(fs::exists(out + "/meadow"));
+  EXPECT_FALSE(fs::exists(out + "/gone"));
+  EXPECT_EQ(directory_files(out + "/kept").size(), 1u);  // notes.txt alone
+  EXPECT_TRUE(fs::is_directory(out + "/mine"));
+
+  // An area that runs out of time: its directory holds no plan, the old one removed.
+  fs::copy_file(source_path("share/fields/meadow.geojson"), areas + "/meadow.geojson",
+                fs::copy_options::overwrite_existing);
+  ASSERT_EQ(run_swath("batch " + areas + " -o " + out + kPlanOptions).exit_code, 0);
+  ASSERT_TRUE(fs::exists(out + "/meadow/.swath-plan.files"));
+  const CliRun late =
+      run_swath("batch " + areas + " -o " + out + kPlanOptions + " --timeout-s 0.001");
+  EXPECT_EQ(late.exit_code, 3) << late.err;
+  EXPECT_EQ(csv_rows(read_text(out + "/batch.csv")).at(1).at(4), "timed-out");
+  EXPECT_FALSE(fs::exists(out + "/meadow"));
+}
+
+// batch.csv's directory column names the directory as it is on disk (a name starting with '-'
+// is no formula a spreadsheet runs: it holds no brackets); the area's name keeps the apostrophe
+// that stops a spreadsheet running it. batch.geojson has batch.csv's columns, counts as integers.
+TEST(BatchScratch, TablesNameTheRealDirectoryAndAgree) {
+  const std::string dir = fresh_dir("batch-tables");
+  fs::create_directories(dir + "/areas");
+  fs::copy_file(source_path("share/fields/meadow.geojson"), dir + "/areas/-dash.geojson");
+  const CliRun r = run_swath("batch " + dir + "/areas -o " + dir + "/out" + kPlanOptions);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = csv_rows(read_text(dir + "/out/batch.csv"));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1][0], "'-dash");
+  EXPECT_EQ(rows[1][3], "-dash");
+  EXPECT_TRUE(fs::exists(dir + "/out/" + rows[1][3] + "/summary.json"));
+  const auto props =
+      nlohmann::json::parse(read_text(dir + "/out/batch.geojson"))["features"][0]["properties"];
+  EXPECT_EQ(props["area"], "-dash");
+  for (std::size_t c = 7; c < 12; ++c) {  // lines, photos, path_length_m, flight_time_s, drones
+    ASSERT_TRUE(props.contains(rows[0][c])) << rows[0][c];
+    EXPECT_NEAR(props[rows[0][c]].get<double>(), std::stod(rows[1][c]), 5e-4) << rows[0][c];
+  }
+  for (const char* count : {"lines", "photos", "drones"})
+    EXPECT_TRUE(props[count].is_number_integer()) << count << ": " << props[count];
 }
 
 }  // namespace

@@ -69,11 +69,15 @@ Field read_field(const std::filesystem::path& path, const FieldReadOptions& opti
 struct AreaEntry {
   std::string name;   ///< the area's name (its name field), or its position as text
   std::size_t index;  ///< 0-based position among the layer's areas: --feature INDEX reads it
+  /// A feature of the layer that is no area (no geometry, a point, an open line): the sentence
+  /// that says so, naming the file and the feature's position; `index` then means nothing.
+  std::string not_an_area;
 };
 
 /// The areas of `path` that read_field could choose with --feature (one entry for a file of one
-/// area; the layer as `options` choose it). Throws InputError when the file cannot be read or
-/// holds no area.
+/// area; the layer as `options` choose it), and in the file's order an entry for each feature
+/// that is no area (not_an_area). Throws InputError when the file cannot be read or holds no
+/// area.
 std::vector<AreaEntry> list_areas(const std::filesystem::path& path,
                                   const FieldReadOptions& options = {});
 
