@@ -708,6 +708,10 @@ bool module_sample(const std::string& path, double asked_unit_m,
   return guarded(error,
                  [&] { detail::sample_raster(path, asked_unit_m, points, values, resolution_m); });
 }
+bool module_bends(const std::string& path, double asked_unit_m, const GeoPoint& a,
+                  const GeoPoint& b, std::vector<double>& fractions, std::string& error) {
+  return guarded(error, [&] { detail::raster_bends(path, asked_unit_m, a, b, fractions); });
+}
 bool module_grid(const std::string& name, std::string& path, std::string& error) {
   return guarded(error, [&] { path = detail::proj_grid(name); });
 }
@@ -738,7 +742,8 @@ const detail::GisModule kModule{detail::kGisModuleAbi,
                                 module_imagery,
                                 module_png,
                                 detail::imagery_opens,
-                                detail::area_reads};
+                                detail::area_reads,
+                                module_bends};
 
 }  // namespace
 

@@ -16,7 +16,7 @@
 namespace swath::geometry::detail {
 
 /// Bumped whenever GisModule or the types it passes change.
-inline constexpr int kGisModuleAbi = 8;
+inline constexpr int kGisModuleAbi = 9;
 
 struct GisModule {
   int abi;
@@ -43,6 +43,9 @@ struct GisModule {
   std::size_t (*imagery_opens)(const std::string& path);
   /// field_ogr.hpp's area_reads (since ABI 7).
   std::size_t (*area_reads)(const std::string& path);
+  /// raster_gdal.hpp's raster_bends (since ABI 9).
+  bool (*bends)(const std::string& path, double asked_unit_m, const GeoPoint& a, const GeoPoint& b,
+                std::vector<double>& fractions, std::string& error);
 };
 
 /// The module, opened on the first call (gis_loader.cpp). Throws std::runtime_error when it is

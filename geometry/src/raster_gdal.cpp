@@ -393,6 +393,31 @@ void sample_raster(const std::string& path, double asked_unit_m,
   }
 }
 
+void raster_bends(const std::string& path, double asked_unit_m, const GeoPoint& a,
+                  const GeoPoint& b, std::vector<double>& fractions) {
+  const std::lock_guard<std::mutex> lock(rasters_guard());
+  Raster& r = raster(path, asked_unit_m);
+  fractions.clear();
+  double x[2] = {a.lon_deg, b.lon_deg}, y[2] = {a.lat_deg, b.lat_deg};
+  int ok[2] = {1, 1};
+  if (r.from_wgs84 && (!r.from_wgs84->Transform(2, x, y, nullptr, ok) || !ok[0] || !ok[1])) return;
+  const double* t = r.inverse;
+  // Between pixel centres: the bilinear cells' edges are at whole numbers of u and v.
+  const double u[2] = {t[0] + t[1] * x[0] + t[2] * y[0] - 0.5,
+                       t[0] + t[1] * x[1] + t[2] * y[1] - 0.5};
+  const double v[2] = {t[3] + t[4] * x[0] + t[5] * y[0] - 0.5,
+                       t[3] + t[4] * x[1] + t[5] * y[1] - 0.5};
+  for (const double* w : {u, v}) {
+    if (!(std::abs(w[1] - w[0]) > 0)) continue;
+    const double lo = std::min(w[0], w[1]), hi = std::max(w[0], w[1]);
+    for (double k = std::floor(lo) + 1; k < hi; ++k) {
+      const double f = (k - w[0]) / (w[1] - w[0]);
+      if (f > 0 && f < 1) fractions.push_back(f);
+    }
+  }
+  std::sort(fractions.begin(), fractions.end());
+}
+
 DemReads raster_reads(const std::string& path) {
   const std::lock_guard<std::mutex> lock(rasters_guard());
   auto& open = open_rasters();

@@ -19,6 +19,13 @@ void sample_raster(const std::string& path, double asked_unit_m,
                    const std::vector<GeoPoint>& points, std::vector<double>& values,
                    double& resolution_m);
 
+/// Where the straight line a-b (WGS84) crosses the lines through the raster's pixel centres, as
+/// fractions of a-b in (0, 1), increasing: the bilinear surface may bend there, and between two of
+/// them it is a quadratic in the fraction (the line taken straight in the raster's CRS: over a leg
+/// of 100 m the two lines part by millimetres). Empty where the ends cannot be transformed.
+void raster_bends(const std::string& path, double asked_unit_m, const GeoPoint& a,
+                  const GeoPoint& b, std::vector<double>& fractions);
+
 /// What sample_raster() has read of `path` so far (zero when it is not open).
 DemReads raster_reads(const std::string& path);
 

@@ -284,49 +284,56 @@ void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, bo
   }
 }
 
+namespace {
+
+// The least and the most height of a leg above the ground (a DEM), or above home without one (a
+// straight leg is highest and lowest at an end), and where.
+struct LegHeights {
+  double least_m = 0, most_m = 0;
+  Point2 least_at, most_at;
+};
+
+LegHeights leg_heights(const FileContext& f, const geometry::Ground* ground, const Leg& l) {
+  const auto xy = [&](double t) { return l.from.xy() + (l.to.xy() - l.from.xy()) * t; };
+  if (!ground) {
+    return {std::min(l.from.z_m, l.to.z_m), std::max(l.from.z_m, l.to.z_m),
+            l.to.z_m < l.from.z_m ? l.to.xy() : l.from.xy(),
+            l.to.z_m > l.from.z_m ? l.to.xy() : l.from.xy()};
+  }
+  // Sampled where the ground's worst point under the straight leg lies (every half pixel, every
+  // row and column of pixel centres it crosses, and the extremes between): a cliff between two
+  // samples a half pixel apart hid a leg 3 m into the ground.
+  const geometry::GroundProfile p = geometry::ground_profile(
+      *ground, [&](double t) { return f.frame->to_geo(xy(t)); },
+      geometry::distance(l.from.xy(), l.to.xy()));
+  for (const double g : p.ground_m)
+    if (!std::isfinite(g) || !std::isfinite(f.home_ground_amsl_m))  // no ground: as flat at home
+      return leg_heights(f, nullptr, l);
+  const double home = f.home_ground_amsl_m;
+  const geometry::HeightAboveGround h =
+      geometry::height_above_ground(p, 0, p.t.size() - 1, l.from.z_m + home, l.to.z_m + home);
+  return {h.least_m, h.most_m, xy(h.t_least), xy(h.t_most)};
+}
+
+}  // namespace
+
 void check_heights(const FileContext& f, const CheckOptions& options, Checked& out) {
   const geometry::Ground* ground = options.ground.get();
   for (const Leg& l : f.path->legs) {
     if (l.kind == LegKind::hold) continue;
-    // Points along the leg: its ends without a DEM (a straight leg is highest at an end), every
-    // half DEM pixel with one.
-    const double h = geometry::distance(l.from.xy(), l.to.xy());
-    const int n = ground ? std::max(1, static_cast<int>(std::ceil(h / ground->resolution_m()))) : 1;
-    std::vector<Point3> at;
-    for (int k = 0; k <= n; ++k) {
-      const double s = static_cast<double>(k) / n;
-      at.push_back({l.from.x + s * (l.to.x - l.from.x), l.from.y + s * (l.to.y - l.from.y),
-                    l.from.z_m + s * (l.to.z_m - l.from.z_m)});
-    }
-    // Each point's position on the Earth: for the DEM, else only for a violation's place (most
-    // legs have none, and the conversion is the costly part of this check without a DEM).
-    auto geo_at = [&](std::size_t k) { return f.frame->to_geo(at[k].xy()); };
-    std::vector<double> ground_m(at.size(), 0.0);
-    if (ground) {
-      std::vector<geometry::GeoPoint> geo;
-      for (std::size_t k = 0; k < at.size(); ++k) geo.push_back(geo_at(k));
-      ground_m = ground->heights_m(geo);
-      const double home = f.home_ground_amsl_m;
-      for (double& g : ground_m) g = std::isfinite(g) && std::isfinite(home) ? g - home : 0.0;
-    }
-    double worst_high = -kInf, worst_low = kInf;
-    std::size_t high_k = 0, low_k = 0;
-    for (std::size_t k = 0; k < at.size(); ++k) {
-      const double above = at[k].z_m - ground_m[k];
-      if (above > worst_high) worst_high = above, high_k = k;
-      if (above < worst_low) worst_low = above, low_k = k;
-    }
+    const LegHeights h = leg_heights(f, ground, l);
+    const double worst_high = h.most_m, worst_low = h.least_m;
     if (worst_high > out.max_height_m) out.max_height_m = worst_high;
     if (worst_high > options.ceiling_m + kTolerance_m)
-      out.violations.push_back({"ceiling", l.place, geo_at(high_k), worst_high - options.ceiling_m,
-                                l.place + " flies at " + fixed_text(worst_high, 1) + " m above " +
-                                    (ground ? "the ground" : "home") + ", " +
-                                    fixed_text(worst_high - options.ceiling_m, 1) +
-                                    " m above the " + fixed_text(options.ceiling_m, 1) +
-                                    " m ceiling"});
+      out.violations.push_back(
+          {"ceiling", l.place, f.frame->to_geo(h.most_at), worst_high - options.ceiling_m,
+           l.place + " flies at " + fixed_text(worst_high, 1) + " m above " +
+               (ground ? "the ground" : "home") + ", " +
+               fixed_text(worst_high - options.ceiling_m, 1) + " m above the " +
+               fixed_text(options.ceiling_m, 1) + " m ceiling"});
     // Without a DEM the ground is taken as flat at home's height: below home is below it.
     if (!ground && worst_low < -kTolerance_m)
-      out.violations.push_back({"ground", l.place, geo_at(low_k), -worst_low,
+      out.violations.push_back({"ground", l.place, f.frame->to_geo(h.least_at), -worst_low,
                                 l.place + " flies " + fixed_text(-worst_low, 1) +
                                     " m below home, under the ground (without a DEM, --terrain, "
                                     "taken as flat at home's height)"});
@@ -334,8 +341,10 @@ void check_heights(const FileContext& f, const CheckOptions& options, Checked& o
       out.min_height_m = std::min(out.min_height_m, worst_low);
       if (worst_low < options.min_height_m - kTolerance_m)
         out.violations.push_back(
-            {"ground", l.place, geo_at(low_k), options.min_height_m - worst_low,
-             l.place + " passes " + fixed_text(worst_low, 1) + " m above the ground, " +
+            {"ground", l.place, f.frame->to_geo(h.least_at), options.min_height_m - worst_low,
+             l.place +
+                 (worst_low < 0 ? " goes " + fixed_text(-worst_low, 1) + " m into the ground, "
+                                : " passes " + fixed_text(worst_low, 1) + " m above the ground, ") +
                  fixed_text(options.min_height_m - worst_low, 1) + " m below the least " +
                  fixed_text(options.min_height_m, 1) + " m"});
     }

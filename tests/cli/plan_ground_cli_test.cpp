@@ -184,6 +184,123 @@ TEST(PlanCli, TheTerrainFrameAgreesWithItsLitchiAndDjiTwinsOverTheGround) {
       << moved.out;
 }
 
+// A ground of 400 m with a 100 m cliff between two columns of pixel centres (lon 8.54095 and
+// 8.54105) and a 40 m one-pixel spike east of it (centre 47.39735, 8.54155), 0.0001 deg pixels.
+std::string cliff_and_spike_dem() {
+  std::ostringstream out;
+  out << "ncols 40\nnrows 25\nxllcorner 8.539\nyllcorner 47.396\ncellsize 0.0001\n"
+         "NODATA_value -9999\n";
+  for (int row = 0; row < 25; ++row) {
+    for (int col = 0; col < 40; ++col) {
+      const bool spike = col == 25 && row == 11;  // its centre 47.396 + (25 - 11 - 0.5) * cell
+      out << (col ? " " : "") << (col >= 20 ? 500 : 400) + (spike ? 40 : 0);
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+// Every straight leg between two waypoints of a .plan in the relative frame, measured against the
+// DEM every 5 cm: the least height above the ground.
+double least_height_between_waypoints(const json& plan, const AsciiGrid& dem) {
+  const json home = plan["mission"]["plannedHomePosition"];
+  const double home_ground = dem.at(home[0], home[1]);
+  double least_m = 1e9;
+  const json* prev = nullptr;
+  for (const json& item : plan["mission"]["items"]) {
+    if (item["command"] != 16) continue;
+    if (prev) {
+      const double lat0 = (*prev)["params"][4], lon0 = (*prev)["params"][5];
+      const double z0 = (*prev)["params"][6], lat1 = item["params"][4];
+      const double lon1 = item["params"][5], z1 = item["params"][6];
+      const double length_m =
+          std::hypot((lat1 - lat0) * 111'320.0, (lon1 - lon0) * 111'320.0 * std::cos(0.8272));
+      const int n = std::max(1, static_cast<int>(std::ceil(length_m / 0.05)));
+      for (int k = 0; k <= n; ++k) {
+        const double t = static_cast<double>(k) / n;
+        const double ground = dem.at(lat0 + t * (lat1 - lat0), lon0 + t * (lon1 - lon0));
+        least_m = std::min(least_m, home_ground + z0 + t * (z1 - z0) - ground);
+      }
+    }
+    prev = &item;
+  }
+  return least_m;
+}
+
+// Terrain following over a cliff and a spike: no straight leg between the waypoints passes lower
+// than the height asked less the tolerance (10 m of 12, the default 2 m), measured here between
+// the waypoints too; summary and verify report the same. Sampled every half pixel, the profile
+// missed the cliff's top edge and a leg 11 m long crossed it 3 m inside the ground.
+TEST(PlanCli, TerrainFollowingNeverDipsBelowTheToleranceOverACliffOrASpike) {
+  const std::string dir = fresh_dir("plan-terrain-cliff");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/cliff.asc") << cliff_and_spike_dem();
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type": "Polygon", "coordinates": [[[8.5400, 47.3970], [8.5420, 47.3970], )"
+         R"([8.5420, 47.3976], [8.5400, 47.3976], [8.5400, 47.3970]]]})";
+  const CliRun run = run_swath("plan " + dir +
+                               "/field.geojson --camera sony-ilce-qx1 --altitude "
+                               "12 --angle 90 --home 47.3973,8.5395 --terrain " +
+                               dir + "/cliff.asc -o " + dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const AsciiGrid dem(dir + "/cliff.asc");
+  const json plan = json::parse(read_text(dir + "/out/drone-1.plan"));
+  const double least_m = least_height_between_waypoints(plan, dem);
+  EXPECT_GE(least_m, 10.0 - 0.01);
+  const json t = json::parse(read_text(dir + "/out/summary.json"))["terrain"];
+  EXPECT_EQ(t["ground_min_m"].get<double>(), 400.0);
+  EXPECT_GT(t["ground_max_m"].get<double>(), 530.0);  // a line over the spike, near its top
+  EXPECT_GE(t["agl_min_m"].get<double>(), 10.0 - 0.01);
+  EXPECT_LE(t["agl_min_m"].get<double>(), least_m + 0.01);  // the summary's least is the true one
+  const CliRun verify = run_swath("verify " + dir + "/out --terrain " + dir + "/cliff.asc");
+  EXPECT_EQ(verify.exit_code, 0) << verify.out;
+}
+
+// A hand-made leg across the cliff, 12 m above the ground at both ends (1.5 m beyond the pixel
+// centres the cliff lies between), passes 2.3 m inside the ground at the cliff's top edge: verify
+// --terrain names it. Sampled every half pixel (0, 5.25, 10.5 m) it was 12 m high everywhere.
+TEST(VerifyCli, ALegIntoTheGroundBetweenTheDemsSamplesIsCaught) {
+  const std::string dir = fresh_dir("verify-terrain-cliff");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/cliff.asc") << cliff_and_spike_dem();
+  const double lat = 47.3973, m_per_lon_deg = 111'320.0 * std::cos(lat * M_PI / 180);
+  const double west = 8.54095 - 1.5 / m_per_lon_deg, east = 8.54105 + 1.5 / m_per_lon_deg;
+  const auto item = [](int command, int id, double lat_deg, double lon_deg, double alt_m) {
+    return json{{"autoContinue", true},
+                {"command", command},
+                {"doJumpId", id},
+                {"frame", 3},
+                {"params", {0, 0, 0, nullptr, lat_deg, lon_deg, alt_m}},
+                {"type", "SimpleItem"}};
+  };
+  const json plan = {
+      {"fileType", "Plan"},
+      {"groundStation", "QGroundControl"},
+      {"version", 1},
+      {"geoFence", {{"circles", json::array()}, {"polygons", json::array()}, {"version", 2}}},
+      {"rallyPoints", {{"points", json::array()}, {"version", 2}}},
+      {"mission",
+       {{"cruiseSpeed", 5},
+        {"firmwareType", 3},
+        {"globalPlanAltitudeMode", 1},
+        {"hoverSpeed", 5},
+        {"plannedHomePosition", {lat, 8.5395, 400.0}},
+        {"vehicleType", 2},
+        {"version", 2},
+        {"items",
+         {item(22, 1, lat, 8.5395, 12), item(16, 2, lat, west, 12), item(16, 3, lat, east, 112),
+          item(16, 4, lat + 0.0003, east, 112), item(16, 5, lat + 0.0003, west, 12),
+          item(21, 6, lat, 8.5395, 0)}}}}};
+  std::ofstream(dir + "/cliff.plan") << plan.dump();
+  const CliRun run = run_swath("verify " + dir + "/cliff.plan --terrain " + dir + "/cliff.asc");
+  EXPECT_EQ(run.exit_code, 4) << run.out;
+  const std::string named = "VIOLATION ground: " + dir + "/cliff.plan: item 3 goes ";
+  const std::size_t at = run.out.find(named);
+  ASSERT_NE(at, std::string::npos) << run.out;
+  EXPECT_NEAR(std::stod(run.out.substr(at + named.size())), 2.3, 0.1) << run.out;
+  EXPECT_NE(run.out.find("at 47.3973000, 8.5410500 (lat, lon)"), std::string::npos) << run.out;
+}
+
 }  // namespace
 }  // namespace swath::test
 

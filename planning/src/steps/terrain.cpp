@@ -12,6 +12,9 @@ namespace {
 
 using base::fixed_text;
 
+// A leg may pass this much lower than the tolerance allows: rounding, not a dip.
+constexpr double kDip_m = 1e-6;
+
 struct Follower {
   const SurveyPlan& plan;
   const TerrainRequest& request;
@@ -25,34 +28,53 @@ struct Follower {
     return "(" + fixed_text(g.lat_deg, 6) + ", " + fixed_text(g.lon_deg, 6) + ")";
   }
 
-  // The ground along a-b at `n` + 1 evenly spaced points, a and b included.
-  std::vector<double> profile(geometry::Point2 a, geometry::Point2 b, std::size_t n,
-                              const std::string& whose) const {
-    std::vector<geometry::GeoPoint> at;
-    for (std::size_t k = 0; k <= n; ++k) {
-      const double t = n == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(n);
-      at.push_back(geo({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}));
+  // The ground along a-b (ground_profile: where its worst point under a straight leg lies).
+  geometry::GroundProfile profile(geometry::Point2 a, geometry::Point2 b,
+                                  const std::string& whose) const {
+    const auto at = [&](double t) {
+      return geometry::Point2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+    };
+    geometry::GroundProfile p = geometry::ground_profile(
+        *request.ground, [&](double t) { return geo(at(t)); }, std::hypot(b.x - a.x, b.y - a.y));
+    for (std::size_t k = 0; k < p.t.size(); ++k)
+      if (!std::isfinite(p.ground_m[k]))
+        throw base::InputError(request.ground->source() + ": the DEM has no height at " +
+                               place(at(p.t[k])) + ", on " + whose +
+                               ": give a DEM that covers the homes, the area and the legs between");
+    return p;
+  }
+
+  // The samples to fly over (Douglas-Peucker within the tolerance), then every straight leg
+  // between them measured against the ground between the samples too: where one passes lower
+  // than the tolerance allows (over a hump between samples), the worst point becomes a sample and
+  // the profile is simplified again. Lower is the unsafe side and is never left; higher (over a
+  // hollow between samples) costs only photo quality, and the summary's range reports it.
+  std::vector<std::size_t> breaks(geometry::GroundProfile& p, double length_m) const {
+    constexpr int kRounds = 32;  // each round samples the dips; a few suffice
+    std::vector<std::size_t> keep;
+    for (int round = 0; round < kRounds; ++round) {
+      std::vector<double> along(p.t.size());
+      for (std::size_t k = 0; k < p.t.size(); ++k) along[k] = p.t[k] * length_m;
+      keep = profile_breaks(along, p.ground_m, request.tolerance_m);
+      std::vector<double> dips;
+      for (std::size_t q = 0; q + 1 < keep.size(); ++q) {
+        const std::size_t a = keep[q], b = keep[q + 1];
+        const geometry::HeightAboveGround h =
+            geometry::height_above_ground(p, a, b, p.ground_m[a], p.ground_m[b]);
+        if (h.least_m < -request.tolerance_m - kDip_m) dips.push_back(h.t_least);
+      }
+      if (dips.empty()) break;
+      for (const double t : dips) p.add(t);
     }
-    std::vector<double> g = request.ground->heights_m(at);
-    for (std::size_t k = 0; k < g.size(); ++k)
-      if (!std::isfinite(g[k]))
-        throw base::InputError(
-            request.ground->source() + ": the DEM has no height at " +
-            place({a.x + (n == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(n)) *
-                             (b.x - a.x),
-                   a.y + (n == 0 ? 0.0 : static_cast<double>(k) / static_cast<double>(n)) *
-                             (b.y - a.y)}) +
-            ", on " + whose + ": give a DEM that covers the homes, the area and the legs between");
-    return g;
+    return keep;
   }
 
   // The waypoints of one flight at the height above ground; waypoints added on the legs.
   void follow(const DronePlan& d, DroneMission& m) {
     const std::string whose = "drone " + d.name + "'s flight";
     const double agl = plan.imaging.altitude_m + d.layer_m;
-    const double home_ground = profile(m.home, m.home, 0, whose)[0];
+    const double home_ground = profile(m.home, m.home, whose).ground_m[0];
     m.home_amsl_m = home_ground;
-    const double step = request.ground->resolution_m();
     std::vector<MissionItem> out;
     geometry::Point2 prev = m.home;
     bool airborne = false;
@@ -69,29 +91,24 @@ struct Follower {
       } else if (leg && airborne) {
         const geometry::Point2 to = item.kind == ItemKind::land ? m.home : item.position;
         const double length = std::hypot(to.x - prev.x, to.y - prev.y);
-        const auto n = static_cast<std::size_t>(std::ceil(length / step));
-        const std::vector<double> g = profile(prev, to, n, whose);
-        std::vector<double> along(g.size());
-        for (std::size_t k = 0; k < g.size(); ++k)
-          along[k] = n == 0 ? 0.0 : length * static_cast<double>(k) / static_cast<double>(n);
-        const std::vector<std::size_t> keep = g.size() < 2
-                                                  ? std::vector<std::size_t>{0}
-                                                  : profile_breaks(along, g, request.tolerance_m);
-        measure(along, g, keep, d);
+        geometry::GroundProfile g = profile(prev, to, whose);
+        const std::vector<std::size_t> keep =
+            length > 0 ? breaks(g, length) : std::vector<std::size_t>{0};
+        measure(g, keep, length, d);
         // A landing flies to home level at its last height, then descends: a last waypoint above
         // home first, so that the leg there follows the ground like the others.
         const bool landing = item.kind == ItemKind::land && keep.size() > 1 && length > 0;
         for (std::size_t q = 1; q + (landing ? 0 : 1) < keep.size(); ++q) {
-          const double t = along[keep[q]] / length;
+          const double t = g.t[keep[q]];
           MissionItem added;
           added.kind = ItemKind::waypoint;
           added.position = {prev.x + t * (to.x - prev.x), prev.y + t * (to.y - prev.y)};
-          set(added, g[keep[q]]);
+          set(added, g.ground_m[keep[q]]);
           out.push_back(added);
           ++facts.waypoints_added;
           ++m.waypoint_count;
         }
-        set(item, g.back());
+        set(item, g.ground_m.back());
         prev = to;
       }
       out.push_back(item);
@@ -99,23 +116,24 @@ struct Follower {
     m.items = std::move(out);
   }
 
-  // Heights above ground between the kept samples (straight lines), ground range, steepness.
-  void measure(const std::vector<double>& along, const std::vector<double>& g,
-               const std::vector<std::size_t>& keep, const DronePlan& d) {
+  // Heights above ground along the straight lines between the kept samples (their least and most
+  // between samples too), ground range, steepness.
+  void measure(const geometry::GroundProfile& g, const std::vector<std::size_t>& keep,
+               double length_m, const DronePlan& d) {
     const double agl = plan.imaging.altitude_m + d.layer_m;
     for (std::size_t q = 0; q + 1 < keep.size(); ++q) {
       const std::size_t a = keep[q], b = keep[q + 1];
-      const double span = along[b] - along[a];
+      const geometry::HeightAboveGround h =
+          geometry::height_above_ground(g, a, b, g.ground_m[a] + agl, g.ground_m[b] + agl);
+      facts.agl_min_m = std::min(facts.agl_min_m, h.least_m);
+      facts.agl_max_m = std::max(facts.agl_max_m, h.most_m);
       for (std::size_t k = a; k <= b; ++k) {
-        const double t = span > 0 ? (along[k] - along[a]) / span : 0.0;
-        const double flown = g[a] + agl + t * (g[b] - g[a]);
-        facts.agl_min_m = std::min(facts.agl_min_m, flown - g[k]);
-        facts.agl_max_m = std::max(facts.agl_max_m, flown - g[k]);
-        facts.ground_min_m = std::min(facts.ground_min_m, g[k]);
-        facts.ground_max_m = std::max(facts.ground_max_m, g[k]);
+        facts.ground_min_m = std::min(facts.ground_min_m, g.ground_m[k]);
+        facts.ground_max_m = std::max(facts.ground_max_m, g.ground_m[k]);
       }
+      const double span = (g.t[b] - g.t[a]) * length_m;
       if (span <= 0) continue;
-      const double vertical_m_s = (g[b] - g[a]) / span * d.speed_m_s;
+      const double vertical_m_s = (g.ground_m[b] - g.ground_m[a]) / span * d.speed_m_s;
       facts.climb_max_m_s = std::max(facts.climb_max_m_s, vertical_m_s);
       facts.descent_max_m_s = std::min(facts.descent_max_m_s, vertical_m_s);
       if (vertical_m_s > d.climb_speed_m_s || -vertical_m_s > d.descent_speed_m_s) {

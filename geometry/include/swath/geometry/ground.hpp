@@ -4,7 +4,9 @@
 // through the GIS module (GDAL, opened on the first DEM like any GIS file).
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +25,46 @@ class Ground {
   virtual double resolution_m() const = 0;
   /// What it is, for messages and the summary ("dem.tif").
   virtual std::string source() const = 0;
+  /// Where the ground along the straight line a-b may bend, as fractions of a-b in (0, 1),
+  /// increasing: between two of them it is a quadratic in the fraction (a DEM, bilinear between
+  /// pixel centres, bends where the line crosses a row or column of centres). nullopt: the ground
+  /// does not say; it is then sampled every resolution_m and taken as straight between samples.
+  virtual std::optional<std::vector<double>> bends(const GeoPoint& a, const GeoPoint& b) const;
 };
+
+/// The ground under a straight leg, sampled where its worst point can be found (ground_profile).
+struct GroundProfile {
+  /// A stretch of the leg where the ground is a quadratic in t:
+  /// ground(t) = g0_m + slope_m * (t - t0) + curve_m * (t - t0) * (t - t_mid).
+  struct Piece {
+    double t0 = 0, t1 = 0, t_mid = 0;
+    double g0_m = 0, slope_m = 0, curve_m = 0;
+    double at(double x) const {
+      return g0_m + slope_m * (x - t0) + curve_m * (x - t0) * (x - t_mid);
+    }
+  };
+  std::vector<double> t;         ///< fractions of the leg, 0 and 1 first and last, increasing
+  std::vector<double> ground_m;  ///< the ground at each, metres above mean sea level; NaN: none
+  std::vector<Piece> pieces;     ///< covering 0..1 in order
+  /// Adds a sample at t (0 < t < 1) with the ground its piece gives; its index.
+  std::size_t add(double t);
+};
+
+/// The ground under the straight leg `at`(0) to `at`(1) (`length_m` long): every resolution_m,
+/// at every bend the ground reports (in stretches of at most 100 m, so that a leg straight in the
+/// caller's frame stays straight in the DEM's within millimetres) and half way between bends.
+GroundProfile ground_profile(const Ground& ground, const std::function<GeoPoint(double)>& at,
+                             double length_m);
+
+/// The least and the most of (a line's height - the ground) over the profile between samples
+/// `first` and `last`, the line going from z_first_m to z_last_m (metres above mean sea level),
+/// and where (fractions of the leg): within a quadratic piece its extreme, not only its samples.
+struct HeightAboveGround {
+  double least_m = 0, most_m = 0;
+  double t_least = 0, t_most = 0;
+};
+HeightAboveGround height_above_ground(const GroundProfile& profile, std::size_t first,
+                                      std::size_t last, double z_first_m, double z_last_m);
 
 /// What a DEM's heights are measured from.
 enum class DemHeights {

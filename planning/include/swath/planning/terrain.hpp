@@ -2,8 +2,9 @@
 // Terrain following (docs/swath-plan.md): the flight held at a constant height above the
 // ground a DEM describes. Every leg between two waypoints is a straight line in space, so the
 // planner adds waypoints where the ground departs from the straight line between the waypoints
-// kept by more than a tolerance (Douglas-Peucker on the ground profile of the leg): between them
-// the height above ground stays within the tolerance of the one asked for.
+// kept by more than a tolerance (Douglas-Peucker on the ground profile of the leg, sampled where
+// the DEM's surface bends), and where a leg still passes lower than that between the samples:
+// nowhere is the height above ground less than the one asked for less the tolerance.
 
 #include <limits>
 #include <memory>
@@ -38,8 +39,8 @@ struct TerrainFacts {
   double height_above_ground_m = 0.0;  ///< asked for (the imaging altitude)
   double tolerance_m = 0.0;
   double ground_min_m = 0.0, ground_max_m = 0.0;  ///< under the flights, above mean sea level
-  /// Height above ground along every leg but take-off and landing, sampled at the DEM's
-  /// resolution between the waypoints as flown (straight lines).
+  /// Height above ground along every leg but take-off and landing, between the waypoints as
+  /// flown (straight lines): the least and the most over the DEM's surface (ground_profile).
   double agl_min_m = 0.0, agl_max_m = 0.0;
   double gsd_min_m = 0.0, gsd_max_m = 0.0;  ///< the ground sample distance at those heights
   std::size_t waypoints_added = 0;          ///< over every flight (sorties included)
