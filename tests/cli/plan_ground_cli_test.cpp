@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -184,45 +185,54 @@ TEST(PlanCli, TheTerrainFrameAgreesWithItsLitchiAndDjiTwinsOverTheGround) {
       << moved.out;
 }
 
-// A ground of 400 m with a 100 m cliff between two columns of pixel centres (lon 8.54095 and
-// 8.54105) and a 40 m one-pixel spike east of it (centre 47.39735, 8.54155), 0.0001 deg pixels.
-std::string cliff_and_spike_dem() {
+// A 40 x 25 ESRI ASCII grid of 0.0001 deg pixels from lon 8.539, lat 47.396, each pixel's height
+// `height_m`(column, row from the north).
+std::string grid_dem(const std::function<int(int, int)>& height_m) {
   std::ostringstream out;
   out << "ncols 40\nnrows 25\nxllcorner 8.539\nyllcorner 47.396\ncellsize 0.0001\n"
          "NODATA_value -9999\n";
   for (int row = 0; row < 25; ++row) {
-    for (int col = 0; col < 40; ++col) {
-      const bool spike = col == 25 && row == 11;  // its centre 47.396 + (25 - 11 - 0.5) * cell
-      out << (col ? " " : "") << (col >= 20 ? 500 : 400) + (spike ? 40 : 0);
-    }
+    for (int col = 0; col < 40; ++col) out << (col ? " " : "") << height_m(col, row);
     out << '\n';
   }
   return out.str();
 }
 
-// Every straight leg between two waypoints of a .plan in the relative frame, measured against the
-// DEM every 5 cm: the least height above the ground.
+// A ground of 400 m with a 100 m cliff between two columns of pixel centres (lon 8.54095 and
+// 8.54105) and a 40 m one-pixel spike east of it (centre 47.39735, 8.54155).
+std::string cliff_and_spike_dem() {
+  return grid_dem([](int col, int row) {
+    const bool spike = col == 25 && row == 11;
+    return (col >= 20 ? 500 : 400) + (spike ? 40 : 0);
+  });
+}
+
+// Every straight leg between two waypoints of a .plan in the relative frame, and its return to
+// launch (straight home at the last waypoint's height), measured against the DEM every 5 cm: the
+// least height above the ground.
 double least_height_between_waypoints(const json& plan, const AsciiGrid& dem) {
   const json home = plan["mission"]["plannedHomePosition"];
   const double home_ground = dem.at(home[0], home[1]);
   double least_m = 1e9;
+  const auto leg = [&](double lat0, double lon0, double z0, double lat1, double lon1, double z1) {
+    const double length_m =
+        std::hypot((lat1 - lat0) * 111'320.0, (lon1 - lon0) * 111'320.0 * std::cos(0.8272));
+    const int n = std::max(1, static_cast<int>(std::ceil(length_m / 0.05)));
+    for (int k = 0; k <= n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      const double ground = dem.at(lat0 + t * (lat1 - lat0), lon0 + t * (lon1 - lon0));
+      least_m = std::min(least_m, home_ground + z0 + t * (z1 - z0) - ground);
+    }
+  };
   const json* prev = nullptr;
   for (const json& item : plan["mission"]["items"]) {
-    if (item["command"] != 16) continue;
-    if (prev) {
-      const double lat0 = (*prev)["params"][4], lon0 = (*prev)["params"][5];
-      const double z0 = (*prev)["params"][6], lat1 = item["params"][4];
-      const double lon1 = item["params"][5], z1 = item["params"][6];
-      const double length_m =
-          std::hypot((lat1 - lat0) * 111'320.0, (lon1 - lon0) * 111'320.0 * std::cos(0.8272));
-      const int n = std::max(1, static_cast<int>(std::ceil(length_m / 0.05)));
-      for (int k = 0; k <= n; ++k) {
-        const double t = static_cast<double>(k) / n;
-        const double ground = dem.at(lat0 + t * (lat1 - lat0), lon0 + t * (lon1 - lon0));
-        least_m = std::min(least_m, home_ground + z0 + t * (z1 - z0) - ground);
-      }
-    }
-    prev = &item;
+    const json& p = item["params"];
+    if (prev && item["command"] == 16)
+      leg((*prev)["params"][4], (*prev)["params"][5], (*prev)["params"][6], p[4], p[5], p[6]);
+    if (prev && item["command"] == 20)
+      leg((*prev)["params"][4], (*prev)["params"][5], (*prev)["params"][6], home[0], home[1],
+          (*prev)["params"][6]);
+    if (item["command"] == 16) prev = &item;
   }
   return least_m;
 }
@@ -253,6 +263,37 @@ TEST(PlanCli, TerrainFollowingNeverDipsBelowTheToleranceOverACliffOrASpike) {
   EXPECT_GE(t["agl_min_m"].get<double>(), 10.0 - 0.01);
   EXPECT_LE(t["agl_min_m"].get<double>(), least_m + 0.01);  // the summary's least is the true one
   const CliRun verify = run_swath("verify " + dir + "/out --terrain " + dir + "/cliff.asc");
+  EXPECT_EQ(verify.exit_code, 0) << verify.out;
+}
+
+// The way home over terrain: a 30 m wall one pixel wide (centre lon 8.53985) between home and the
+// field. ArduPilot's RTL flies straight home at the last waypoint's height, 12 m above the field,
+// and went through the wall (the plan's check refused it, 18 m into the ground); the way home is
+// now waypoints over the ground ending above home, then the RTL.
+TEST(PlanCli, TheWayHomeFollowsTheGroundOverAWall) {
+  const std::string dir = fresh_dir("plan-terrain-wall");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/wall.asc") << grid_dem([](int col, int) { return col == 8 ? 430 : 400; });
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type": "Polygon", "coordinates": [[[8.5405, 47.3970], [8.5420, 47.3970], )"
+         R"([8.5420, 47.3976], [8.5405, 47.3976], [8.5405, 47.3970]]]})";
+  const CliRun run = run_swath("plan " + dir +
+                               "/field.geojson --camera sony-ilce-qx1 --altitude 12 --angle 90 "
+                               "--home 47.3973,8.5395 --terrain " +
+                               dir + "/wall.asc -o " + dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json plan = json::parse(read_text(dir + "/out/drone-1.plan"));
+  EXPECT_GE(least_height_between_waypoints(plan, AsciiGrid(dir + "/wall.asc")), 10.0 - 0.01);
+  const json& items = plan["mission"]["items"];
+  ASSERT_EQ(items.back()["command"], 20);
+  const json* last = nullptr;  // the last waypoint: above home, at the height asked
+  for (const json& item : items)
+    if (item["command"] == 16) last = &item;
+  ASSERT_NE(last, nullptr);
+  EXPECT_NEAR((*last)["params"][4].get<double>(), 47.3973, 1e-7);
+  EXPECT_NEAR((*last)["params"][5].get<double>(), 8.5395, 1e-7);
+  EXPECT_NEAR((*last)["params"][6].get<double>(), 12.0, 0.001);
+  const CliRun verify = run_swath("verify " + dir + "/out --terrain " + dir + "/wall.asc");
   EXPECT_EQ(verify.exit_code, 0) << verify.out;
 }
 

@@ -83,22 +83,30 @@ struct Follower {
       item.altitude_amsl_m = ground + agl;
     };
     for (MissionItem item : m.items) {
-      const bool leg = item.kind == ItemKind::waypoint || item.kind == ItemKind::land;
+      const bool home_bound =
+          item.kind == ItemKind::land || item.kind == ItemKind::return_to_launch;
+      const bool leg = item.kind == ItemKind::waypoint || home_bound;
       if (item.kind == ItemKind::takeoff) {
         set(item, home_ground);
         airborne = true;
         prev = m.home;
       } else if (leg && airborne) {
-        const geometry::Point2 to = item.kind == ItemKind::land ? m.home : item.position;
+        const geometry::Point2 to = home_bound ? m.home : item.position;
         const double length = std::hypot(to.x - prev.x, to.y - prev.y);
         geometry::GroundProfile g = profile(prev, to, whose);
+        if (item.kind == ItemKind::return_to_launch && level_return_holds(g, agl)) {
+          out.push_back(item);
+          continue;
+        }
         const std::vector<std::size_t> keep =
             length > 0 ? breaks(g, length) : std::vector<std::size_t>{0};
         measure(g, keep, length, d);
-        // A landing flies to home level at its last height, then descends: a last waypoint above
-        // home first, so that the leg there follows the ground like the others.
-        const bool landing = item.kind == ItemKind::land && keep.size() > 1 && length > 0;
-        for (std::size_t q = 1; q + (landing ? 0 : 1) < keep.size(); ++q) {
+        // A landing flies to home level at its last height, then descends; a return to launch
+        // flies straight home at the last height (ArduPilot climbs to RTL_ALT first, never
+        // lower), over whatever rises on the way: a last waypoint above home first, so that the
+        // way home follows the ground like the other legs.
+        const bool homing = home_bound && keep.size() > 1 && length > 0;
+        for (std::size_t q = 1; q + (homing ? 0 : 1) < keep.size(); ++q) {
           const double t = g.t[keep[q]];
           MissionItem added;
           added.kind = ItemKind::waypoint;
@@ -108,12 +116,22 @@ struct Follower {
           ++facts.waypoints_added;
           ++m.waypoint_count;
         }
-        set(item, g.ground_m.back());
+        if (item.kind != ItemKind::return_to_launch) set(item, g.ground_m.back());
         prev = to;
       }
       out.push_back(item);
     }
     m.items = std::move(out);
+  }
+
+  // Whether a return to launch flown level at the last waypoint's height stays within the
+  // tolerance of the height asked above the ground on its way home (flat ground: no waypoint).
+  bool level_return_holds(const geometry::GroundProfile& g, double agl_m) const {
+    const double z_m = g.ground_m.front() + agl_m;
+    const geometry::HeightAboveGround h =
+        geometry::height_above_ground(g, 0, g.t.size() - 1, z_m, z_m);
+    return h.least_m >= agl_m - request.tolerance_m - kDip_m &&
+           h.most_m <= agl_m + request.tolerance_m + kDip_m;
   }
 
   // Heights above ground along the straight lines between the kept samples (their least and most
