@@ -215,8 +215,10 @@ std::size_t check_plan(const Surface& f, const std::string& name, double toleran
   return plan.terrain->waypoints_added;
 }
 
-TEST(TerrainPlan, ASlopeNeedsNoWaypointsAndARidgeAndAPitGetThemWithinTheTolerance) {
-  EXPECT_EQ(check_plan(kSlope, "plan-slope", 1.0), 0u);  // a plane under a straight leg: linear
+TEST(TerrainPlan, ASlopesLegsNeedNoWaypointsAndARidgeAndAPitGetThemWithinTheTolerance) {
+  // A plane under a straight leg: linear, no waypoint within the legs. One is added: above home,
+  // ending the way home, which RTL's level flight at the last height would not keep over a slope.
+  EXPECT_EQ(check_plan(kSlope, "plan-slope", 1.0), 1u);
   const std::size_t ridge_2 = check_plan(kRidge, "plan-ridge", 2.0);
   const std::size_t ridge_05 = check_plan(kRidge, "plan-ridge-fine", 0.5);
   const std::size_t pit = check_plan(kPit, "plan-pit", 2.0);
