@@ -418,7 +418,9 @@ HeightConverter::HeightConverter(const missions::Mission& mission, const geometr
       ground_(ground),
       home_amsl_m_(mission.home_amsl_m),
       home_amsl_known_(mission.home_amsl_known) {
-  if (!home_amsl_known_ && ground_ != nullptr) {
+  // With a DEM an AMSL altitude is measured against the DEM's ground, home's included: a file's
+  // home altitude is often 0 or off by the autopilot's GPS, and the clearances are the DEM's.
+  if (ground_ != nullptr) {
     const double h = ground_->heights_m({mission.home}).at(0);
     if (std::isfinite(h)) {
       home_amsl_m_ = h;

@@ -74,6 +74,24 @@ void warn_about_fence_storage(const missions::Mission& m, Report& report) {
   if (!warning.empty()) report.warnings.push_back(m.source + ": " + warning);
 }
 
+// A file's home altitude further than this from the DEM's ground at home is said: its AMSL
+// altitudes are measured against the DEM, which the pilot may not have meant (GPS and DEM
+// heights agree within a few metres; QGC files often carry 0).
+constexpr double kHomeAltitudeSlackM = 5.0;
+
+void warn_about_home_altitude(const missions::Mission& m, const geometry::Ground* ground,
+                              Report& report) {
+  const bool any_amsl = std::any_of(m.items.begin(), m.items.end(), [](const missions::Item& i) {
+    return i.altitude_frame == missions::AltitudeFrame::amsl;
+  });
+  if (ground == nullptr || !any_amsl || !m.home_amsl_known) return;
+  const double dem_m = ground->heights_m({m.home}).at(0);
+  if (!std::isfinite(dem_m) || std::abs(m.home_amsl_m - dem_m) <= kHomeAltitudeSlackM) return;
+  report.warnings.push_back(m.source + ": the home altitude " + fixed_text(m.home_amsl_m, 1) +
+                            " m differs from the DEM's ground at home, " + fixed_text(dem_m, 1) +
+                            " m; the altitudes above sea level are checked against the DEM");
+}
+
 // The least distance between two points moving linearly over [0, span]: relative position
 // r0 + v t, least |r| where the derivative of |r|^2 vanishes, clamped to the interval.
 std::pair<double, double> closest_approach(Point3 r0, Point3 v, double span_s) {
@@ -320,6 +338,7 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
     check_fences(f, inclusions(d.mission, frame), any_one, checked);
     // A flight in another's place carries that file's fences: said once, of that file.
     if (!d.instead) warn_about_fence_storage(d.mission, report);
+    warn_about_home_altitude(d.mission, options.ground.get(), report);
     check_heights(f, options, checked);
     if (d.instead)
       check_photos_instead(f, area, checked);

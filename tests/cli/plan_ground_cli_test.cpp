@@ -342,6 +342,62 @@ TEST(VerifyCli, ALegIntoTheGroundBetweenTheDemsSamplesIsCaught) {
   EXPECT_NE(run.out.find("at 47.3973000, 8.5410500 (lat, lon)"), std::string::npos) << run.out;
 }
 
+// A .plan of waypoints above mean sea level (frame 0) over a flat 400 m DEM: home altitude
+// `home_m` in the file, every leg at `legs_m`.
+json amsl_plan(double home_m, double legs_m) {
+  const double lat = 47.3973;
+  const auto item = [](int command, int id, double lat_deg, double lon_deg, double alt_m) {
+    return json{{"autoContinue", true},
+                {"command", command},
+                {"doJumpId", id},
+                {"frame", 0},
+                {"params", {0, 0, 0, nullptr, lat_deg, lon_deg, alt_m}},
+                {"type", "SimpleItem"}};
+  };
+  return {{"fileType", "Plan"},
+          {"groundStation", "QGroundControl"},
+          {"version", 1},
+          {"geoFence", {{"circles", json::array()}, {"polygons", json::array()}, {"version", 2}}},
+          {"rallyPoints", {{"points", json::array()}, {"version", 2}}},
+          {"mission",
+           {{"cruiseSpeed", 5},
+            {"firmwareType", 3},
+            {"globalPlanAltitudeMode", 2},
+            {"hoverSpeed", 5},
+            {"plannedHomePosition", {lat, 8.5395, home_m}},
+            {"vehicleType", 2},
+            {"version", 2},
+            {"items",
+             {item(22, 1, lat, 8.5395, legs_m), item(16, 2, lat, 8.5405, legs_m),
+              item(16, 3, lat + 0.0003, 8.5405, legs_m), item(21, 4, lat, 8.5395, 0)}}}}};
+}
+
+// With a DEM, altitudes above sea level are measured against the DEM's ground, not against the
+// file's home altitude: legs 20 m under the DEM behind a home altitude 40 m low passed ("lowest
+// 20.0 m above the ground"), and right legs behind QGC's home altitude 0 flew "420 m above the
+// ground" into the ceiling.
+TEST(VerifyCli, AltitudesAboveSeaLevelAreMeasuredAgainstTheDemWhateverTheHomeAltitude) {
+  const std::string dir = fresh_dir("verify-terrain-amsl");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/flat.asc") << grid_dem([](int, int) { return 400; });
+  std::ofstream(dir + "/under.plan") << amsl_plan(360, 380).dump();
+  const CliRun under = run_swath("verify " + dir + "/under.plan --terrain " + dir + "/flat.asc");
+  EXPECT_EQ(under.exit_code, 4) << under.out;
+  const std::string named = "VIOLATION ground: " + dir + "/under.plan: item 3 goes ";
+  const std::size_t at = under.out.find(named);
+  ASSERT_NE(at, std::string::npos) << under.out;
+  EXPECT_NEAR(std::stod(under.out.substr(at + named.size())), 20.0, 0.05) << under.out;
+  EXPECT_NE(under.out.find("the home altitude 360.0 m differs from the DEM's ground at home, "
+                           "400.0 m"),
+            std::string::npos)
+      << under.out;
+  std::ofstream(dir + "/home0.plan") << amsl_plan(0, 420).dump();
+  const CliRun home0 = run_swath("verify " + dir + "/home0.plan --terrain " + dir + "/flat.asc");
+  EXPECT_EQ(home0.exit_code, 0) << home0.out;
+  EXPECT_NE(home0.out.find("lowest 20.0 m above the ground"), std::string::npos) << home0.out;
+  EXPECT_NE(home0.out.find("the home altitude 0.0 m differs"), std::string::npos) << home0.out;
+}
+
 }  // namespace
 }  // namespace swath::test
 

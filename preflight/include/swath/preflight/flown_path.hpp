@@ -100,7 +100,8 @@ struct FlownPath {
 
 /// Heights of points above the drone's home, metres, for an item in its frame. Without `ground`,
 /// terrain-relative altitudes are read as above home (flat ground); AMSL ones need the file's home
-/// altitude (or the DEM's at home).
+/// altitude. With `ground`, home's altitude is the DEM's ground there (the file's where the DEM
+/// has none), so AMSL altitudes are measured against the DEM whatever the file's home says.
 class HeightConverter {
  public:
   HeightConverter(const missions::Mission& mission, const geometry::Ground* ground);
