@@ -398,6 +398,29 @@ TEST(VerifyCli, AltitudesAboveSeaLevelAreMeasuredAgainstTheDemWhateverTheHomeAlt
   EXPECT_NE(home0.out.find("the home altitude 0.0 m differs"), std::string::npos) << home0.out;
 }
 
+// Terrain following lets legs down to --altitude less --terrain-tolerance above the ground: below
+// the 5 m the plan's check demands, the option is refused before anything is planned (20 m less
+// 30 m planned legs into the ground, then the check refused "item 25" naming no option).
+TEST(PlanCli, ATerrainToleranceReachingBelowTheLeastHeightIsRefused) {
+  const std::string dir = fresh_dir("plan-terrain-tolerance");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/flat.asc") << grid_dem([](int, int) { return 400; });
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type": "Polygon", "coordinates": [[[8.5405, 47.3970], [8.5420, 47.3970], )"
+         R"([8.5420, 47.3976], [8.5405, 47.3976], [8.5405, 47.3970]]]})";
+  const std::string args = "plan " + dir + "/field.geojson --camera sony-ilce-qx1 --altitude 20 " +
+                           "--home 47.3973,8.5395 --terrain " + dir + "/flat.asc -o " + dir;
+  const CliRun wide = run_swath(args + "/wide --terrain-tolerance 30");
+  EXPECT_EQ(wide.exit_code, 2) << wide.err;
+  EXPECT_NE(wide.err.find("--terrain-tolerance 30.0 m at an altitude of 20.0 m (--altitude) lets "
+                          "legs pass -10.0 m above the ground, below the least 5.0 m: give at "
+                          "most --terrain-tolerance 15.0 or a higher --altitude"),
+            std::string::npos)
+      << wide.err;
+  EXPECT_FALSE(fs::exists(dir + "/wide"));
+  EXPECT_EQ(run_swath(args + "/edge --terrain-tolerance 15").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace swath::test
 

@@ -2,9 +2,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/planning/limits.hpp"
 #include "swath/planning/survey_steps.hpp"
 
 namespace swath::planning::steps {
@@ -162,6 +164,24 @@ struct Follower {
   }
 };
 
+std::string tolerance_or_altitude(double altitude_m) {
+  const double most_m = altitude_m - kLeastHeightAboveGround_m;
+  if (most_m < limits::kTerrainTolerance_m.lo) return "a higher --altitude";
+  return "at most --terrain-tolerance " + fixed_text(most_m, 1) + " or a higher --altitude";
+}
+
+// Legs may pass the tolerance below the altitude: refused where that is below the least height
+// the plan's check demands, before a plan it would refuse is made.
+void check_least_height(double altitude_m, double tolerance_m) {
+  const double lowest_m = altitude_m - tolerance_m;
+  if (lowest_m >= kLeastHeightAboveGround_m) return;
+  throw base::InputError(
+      "--terrain-tolerance " + fixed_text(tolerance_m, 1) + " m at an altitude of " +
+      fixed_text(altitude_m, 1) + " m (--altitude) lets legs pass " + fixed_text(lowest_m, 1) +
+      " m above the ground, below the least " + fixed_text(kLeastHeightAboveGround_m, 1) +
+      " m: give " + tolerance_or_altitude(altitude_m));
+}
+
 }  // namespace
 
 void terrain(SurveyPlan& plan) {
@@ -171,6 +191,7 @@ void terrain(SurveyPlan& plan) {
   if (!(request.tolerance_m > 0))
     throw base::InputError("--terrain-tolerance must be > 0 m (got " +
                            fixed_text(request.tolerance_m, 3) + ")");
+  check_least_height(plan.imaging.altitude_m, request.tolerance_m);
   TerrainFacts facts;
   facts.source = request.ground->source();
   facts.frame = request.frame;
