@@ -421,6 +421,31 @@ TEST(PlanCli, ATerrainToleranceReachingBelowTheLeastHeightIsRefused) {
   EXPECT_EQ(run_swath(args + "/edge --terrain-tolerance 15").exit_code, 0);
 }
 
+// Litchi and DJI Pilot 2 take waypoints down to 200 m below the take-off point: a home on a
+// 700 m plateau over a field at 400 m puts the lines 250 m below it at 50 m, refused (written).
+TEST(PlanCli, LitchiAndDjiRefuseWaypointsMoreThan200MetresBelowTheTakeOff) {
+  const std::string dir = fresh_dir("plan-terrain-deep");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/deep.asc") << grid_dem([](int col, int) { return col < 5 ? 700 : 400; });
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type": "Polygon", "coordinates": [[[8.5405, 47.3970], [8.5420, 47.3970], )"
+         R"([8.5420, 47.3976], [8.5405, 47.3976], [8.5405, 47.3970]]]})";
+  const std::string args = "plan " + dir + "/field.geojson --camera dji-mavic-3e --altitude 50 " +
+                           "--home 47.3973,8.5392 --terrain " + dir + "/deep.asc -o " + dir;
+  for (const auto& [flag, app] :
+       {std::pair{"--litchi", "Litchi's"}, std::pair{"--dji", "DJI Pilot 2's"}}) {
+    const CliRun run = run_swath(args + "/out " + flag);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_NE(run.err.find(std::string(flag) + ": the altitude -250.0 m is below " + app +
+                           " lowest waypoint, 200 m below the take-off point"),
+              std::string::npos)
+        << run.err;
+    EXPECT_FALSE(fs::exists(dir + "/out"));
+  }
+  const CliRun plain = run_swath(args + "/plain");
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+}
+
 }  // namespace
 }  // namespace swath::test
 

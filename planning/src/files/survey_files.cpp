@@ -1,6 +1,7 @@
 // The set of files of a plan, and its flights.
 #include <algorithm>
 #include <tuple>
+#include <utility>
 
 #include "common.hpp"
 #include "swath/base/input_error.hpp"
@@ -47,11 +48,25 @@ void check_exports(const SurveyPlan& plan, const FileOptions& options) {
     }
   if (std::string why; options.qgc_survey && !qgc_survey_possible(plan, &why))
     throw InputError("--qgc-survey: " + why + "; use the .plan of waypoints instead");
-  if (!options.litchi) return;
-  double highest_m = plan.imaging.altitude_m;  // with terrain, waypoints climb with the ground
+  if (!options.litchi && !options.dji) return;
+  // With terrain, waypoints climb and descend with the ground: a valley below home goes below it.
+  double highest_m = plan.imaging.altitude_m, lowest_m = plan.imaging.altitude_m;
   for (const Flight& f : flights_of(plan))
     for (const MissionItem& item : f.mission->items)
-      if (positional(item.kind)) highest_m = std::max(highest_m, item.altitude_m);
+      if (positional(item.kind)) {
+        highest_m = std::max(highest_m, item.altitude_m);
+        lowest_m = std::min(lowest_m, item.altitude_m);
+      }
+  if (lowest_m < kDjiMinAltitude_m) {
+    const auto [flag, app] =
+        options.litchi ? std::pair{"--litchi", "Litchi's"} : std::pair{"--dji", "DJI Pilot 2's"};
+    throw InputError(std::string(flag) + ": the altitude " + base::fixed_text(lowest_m, 1) +
+                     " m is below " + app +
+                     " lowest waypoint, 200 m below the take-off point; take off lower down "
+                     "(--home) or drop " +
+                     flag);
+  }
+  if (!options.litchi) return;
   if (highest_m > kLitchiMaxAltitude_m)
     throw InputError("--litchi: the altitude " + base::fixed_text(highest_m, 1) +
                      " m is above Litchi's highest waypoint, 500 m above the take-off point");

@@ -72,6 +72,8 @@ inline constexpr std::size_t kLitchiMaxWaypoints = 99;
 inline constexpr double kLitchiMaxSpeed_m_s = 15.0;
 /// Litchi's highest waypoint altitude above the take-off point, m.
 inline constexpr double kLitchiMaxAltitude_m = 500.0;
+/// Litchi's and DJI Pilot 2's lowest waypoint altitude relative to the take-off point, m.
+inline constexpr double kDjiMinAltitude_m = -200.0;
 /// The most points a DJI WPML wayline numbers (wpml:index 0 to 65535).
 inline constexpr std::size_t kWpmlMaxWaypoints = 65'536;
 
@@ -114,7 +116,8 @@ struct FileOptions {
 
 /// Throws base::InputError (one sentence naming the option) when the plan cannot be exported as
 /// `options` asks: Litchi and DJI Pilot 2 fly multirotors only; Litchi flies at most
-/// kLitchiMaxSpeed_m_s and kLitchiMaxAltitude_m; a WPML wayline holds kWpmlMaxWaypoints;
+/// kLitchiMaxSpeed_m_s and kLitchiMaxAltitude_m; neither below kDjiMinAltitude_m; a WPML wayline
+/// holds kWpmlMaxWaypoints;
 /// --qgc-survey needs qgc_survey_possible().
 void check_exports(const SurveyPlan& plan, const FileOptions& options);
 
