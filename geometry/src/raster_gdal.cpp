@@ -96,6 +96,22 @@ double heights_unit_m(GDALRasterBand& band, double asked_unit_m, const std::stri
   return unit_m;
 }
 
+// A DEM without a CRS is read as longitudes and latitudes; one whose corners cannot be (a
+// projected grid whose .prj was left behind) is refused as such, not as "no height" at a home.
+void check_degrees(const double gt[6], int width, int height, const std::string& path) {
+  for (const int col : {0, width})
+    for (const int row : {0, height}) {
+      const double x = gt[0] + gt[1] * col + gt[2] * row, y = gt[3] + gt[4] * col + gt[5] * row;
+      if (std::abs(x) <= 180 && std::abs(y) <= 90) continue;
+      char corner[64];  // the module links no swath_base (number_text)
+      std::snprintf(corner, sizeof corner, "(%.1f, %.1f)", x, y);
+      throw InputError(path + ": the DEM has no coordinate reference system and its corner " +
+                       corner +
+                       " is no longitude and latitude; give its CRS in a .prj file beside it "
+                       "(same name, .prj: e.g. gdalsrsinfo -o wkt_esri EPSG:32632)");
+    }
+}
+
 Raster open_raster(const std::string& path, double asked_unit_m) {
   confine_gdal();
   const std::string local = local_gdal_path(path, "DEM");
@@ -139,6 +155,7 @@ Raster open_raster(const std::string& path, double asked_unit_m) {
         throw InputError(path + ": its CRS cannot be reached from WGS84 (" + gdal_error() + ")");
     }
   } else {
+    check_degrees(gt, r.width, r.height, path);
     unit_m = 111'320.0;  // no CRS: longitude/latitude degrees, as for area files
   }
   r.pixel_m = std::min(px, py) * unit_m;

@@ -159,6 +159,26 @@ TEST(DemGround, BadFilesAreRefusedNamingThem) {
   }
 }
 
+// An ESRI ASCII grid in UTM metres whose .prj was left behind is read as degrees: it said "the
+// DEM has no height at" the home, as if the DEM missed the area. One in degrees still reads.
+TEST(DemGround, AProjectedGridWithoutItsPrjIsRefusedAsHavingNoCrs) {
+  const fs::path utm = dem_scratch() / "utm-no-prj.asc";
+  std::ofstream(utm) << "ncols 2\nnrows 2\nxllcorner " << kCentre.east_m << "\nyllcorner "
+                     << kCentre.north_m << "\ncellsize 5\nNODATA_value -9999\n400 400\n400 400\n";
+  try {
+    dem_ground(utm.string())->heights_m({{47.3986, 8.5424}});
+    ADD_FAILURE() << "read";
+  } catch (const base::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind(utm.string() + ": the DEM has no coordinate reference system", 0), 0u) << m;
+    EXPECT_NE(m.find("give its CRS in a .prj file beside it"), std::string::npos) << m;
+  }
+  const fs::path degrees = dem_scratch() / "degrees-no-prj.asc";
+  std::ofstream(degrees) << "ncols 2\nnrows 2\nxllcorner 8.54\nyllcorner 47.39\ncellsize 0.01\n"
+                            "NODATA_value -9999\n400 400\n400 400\n";
+  EXPECT_NEAR(dem_ground(degrees.string())->heights_m({{47.40, 8.55}}).at(0), 400.0, 1e-9);
+}
+
 TEST(DemGround, EllipsoidalHeightsLoseTheEgm96Undulation) {
   // EGM96 at (0, 0): N = 17.16 m (NGA's published value); the 15' grid interpolates it.
   EXPECT_NEAR(geoid_undulation_m({{0, 0, 0}})[0], 17.16, 0.05);
