@@ -299,7 +299,8 @@ Report verify_files(const Files& files, const CheckOptions& options) {
   std::vector<Twin> twins;
   std::map<std::string, geometry::GeoPoint> split_homes;  // a split flight's: its first part's
   for (const std::string& name : drones) {
-    DroneFile d{missions::parse_mission(*by_name.at(name), name), 0.0, ""};
+    DroneFile d;
+    d.mission = missions::parse_mission(*by_name.at(name), name);
     for (const auto& [fence_name, text] : files)
       if (is_fence_file(fence_name, text)) missions::add_wpl_fences(d.mission, text, fence_name);
     set_launch(d, name, by_file);

@@ -845,8 +845,8 @@ TEST(VerifyFiles, ASetWithoutAMissionFileIsBadInput) {
 // ---- Photos: swath verify's count of a written .plan against swath plan's planned photos ----
 
 double verified_photos(const planning::SurveyPlan& plan, const planning::Flight& f) {
-  const DroneFile d{missions::parse_mission(planning::qgc_plan(plan, f), f.file_stem + ".plan"),
-                    0.0, ""};
+  DroneFile d;
+  d.mission = missions::parse_mission(planning::qgc_plan(plan, f), f.file_stem + ".plan");
   const Report r = verify({d}, {});
   for (const Figure& g : r.figures)
     if (g.check == "photos" && g.value) return *g.value;
