@@ -215,9 +215,19 @@ bool one_polygon_geojson(const fs::path& file) {
   }
 }
 
+// Whether an area's directory `dir` under `output` may be written: not the batch's own files, not
+// a name another area has, and not the area path or a directory holding it (an area "fields" of
+// -o anc2 into anc2/fields, the directory of areas itself, left its plan there as areas for the
+// next batch).
+bool free_directory(const std::string& dir, const std::set<std::string>& used,
+                    const std::string& output, const std::string& areas) {
+  return !used.count(dir) && !same_or_inside(areas, fs::path(output) / dir);
+}
+
 // Every area of the file (or of each area file in the directory, by name), each with its own
-// sub-directory name.
-std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOptions& options) {
+// sub-directory under `output`.
+std::vector<Job> list_jobs(const std::string& areas, const std::string& output,
+                           const geometry::FieldReadOptions& options) {
   std::vector<Job> jobs;
   const bool directory = fs::is_directory(areas);
   // The first GIS file is listed by GDAL whatever it holds: GDAL is then loaded, and the jobs
@@ -276,7 +286,8 @@ std::vector<Job> list_jobs(const std::string& areas, const geometry::FieldReadOp
   for (Job& j : jobs) {
     if (!j.not_an_area.empty()) continue;  // no directory
     std::string dir = directory_name(j.name);
-    for (int k = 2; used.count(dir); ++k) dir = directory_name(j.name) + "-" + std::to_string(k);
+    for (int k = 2; !free_directory(dir, used, output, areas); ++k)
+      dir = directory_name(j.name) + "-" + std::to_string(k);
     used.insert(dir);
     j.dir = dir;
   }
@@ -496,7 +507,7 @@ int BatchCommand::run() {
   geometry::FieldReadOptions options;
   if (!layer_.empty()) options.layer = layer_;
   if (!name_field_.empty()) options.name_field = name_field_;
-  const std::vector<Job> jobs = list_jobs(areas_, options);
+  const std::vector<Job> jobs = list_jobs(areas_, output_, options);
   std::vector<std::vector<std::string>> commands;
   for (const Job& j : jobs) commands.push_back(command_line(j, layer_, plan_args_, output_));
   if (emit_jobs_) {

@@ -233,6 +233,42 @@ TEST(BatchScratch, PlanOptionsAreRefusedBeforeAnythingIsWritten) {
   EXPECT_NE(plan.err.find("--dem-heights needs --terrain"), std::string::npos) << plan.err;
 }
 
+// The directory of each area in batch.csv, by area name.
+std::map<std::string, std::string> area_directories(const std::string& output) {
+  std::map<std::string, std::string> dirs;
+  const auto rows = csv_rows(read_text(output + "/batch.csv"));
+  for (std::size_t i = 1; i < rows.size(); ++i) dirs[rows[i][0]] = rows[i][3];
+  return dirs;
+}
+
+// An area's directory is never the area path nor a directory holding it: -o anc for anc/fields/
+// planned the area "fields" into anc/fields, among the areas, and the next batch planned its
+// mission.geojson, photos.csv, ... as areas. Such an area gets the next free name.
+TEST(BatchScratch, NoAreaIsPlannedIntoTheDirectoryOfAreas) {
+  const std::string dir = fresh_dir("batch-own-dir");
+  const std::string areas = dir + "/anc/fields";
+  fs::create_directories(areas);
+  fs::copy_file(source_path("share/fields/meadow.geojson"), areas + "/fields.geojson");
+  fs::copy_file(source_path("share/fields/meadow.geojson"), areas + "/A.geojson");
+  for (int run = 0; run < 2; ++run) {
+    const CliRun r = run_swath("batch " + areas + " -o " + dir + "/anc" + kPlanOptions);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("2 of 2 areas planned"), std::string::npos) << r.out;
+    const auto dirs = area_directories(dir + "/anc");
+    EXPECT_EQ(dirs.at("fields"), "fields-2");
+    EXPECT_EQ(dirs.at("A"), "A");
+    EXPECT_EQ(files_in(areas), 2u);  // the two area files alone
+  }
+  // A single file's directory, -o its parent's parent.
+  fs::create_directories(dir + "/src-only/src");
+  fs::copy_file(source_path("share/fields/meadow.geojson"), dir + "/src-only/src/src.geojson");
+  const CliRun r = run_swath("batch " + dir + "/src-only/src/src.geojson -o " + dir + "/src-only" +
+                             kPlanOptions);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(area_directories(dir + "/src-only").at("src"), "src-2");
+  EXPECT_EQ(files_in(dir + "/src-only/src"), 1u);
+}
+
 // An output directory that cannot be created, or that lies in the directory of areas (whose next
 // batch would plan batch.csv and batch.geojson as areas), is bad input: exit 2, nothing written.
 // A missing or empty area file is refused with swath plan's sentence.
