@@ -747,7 +747,7 @@ int PlanCommand::run() {
   }();
   const auto set = files(plan);
   verify_before_writing(set, check_options(plan));
-  base::write_files_atomically(output_, set, "plan");
+  base::write_files_atomically(output_, set, "plan", /*keep_unlisted=*/true);
   report(plan, set);
   return base::kExitSuccess;
 }

@@ -287,6 +287,7 @@ OutputSet::OutputSet(fs::path directory, std::string kind, Options options)
   // Names other kinds of set wrote here are not ours to replace.
   for (const auto& item : fs::directory_iterator(directory_, ec)) {
     const std::string other = kind_of_manifest(item.path().filename().string());
+    if (other == kind_) own_ = read_manifest(item.path());
     if (other.empty() || other == kind_) continue;
     for (std::string& name : read_manifest(item.path()))
       foreign_.push_back(std::move(name) + '\t' + other);
@@ -318,6 +319,20 @@ void OutputSet::check_name(const std::string& name) const {
                        entry.substr(tab + 1) +
                        " in this directory; write into another directory instead");
   }
+  if (options_.keep_unlisted) check_listed(name);
+}
+
+// A file of that name that no manifest lists is the user's (or an older swath's, which wrote no
+// manifest): replacing it, and removing it with the next set, would lose it. A directory in the
+// way is switch_in()'s to say.
+void OutputSet::check_listed(const std::string& name) const {
+  struct stat st {};
+  const fs::path path = directory_ / name;
+  if (::lstat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode) ||
+      std::find(own_.begin(), own_.end(), name) != own_.end())
+    return;
+  throw InputError(path.string() + ": a file swath did not write (no " + manifest_name(kind_) +
+                   " here lists it) would be replaced; move it, or choose another -o");
 }
 
 bool OutputSet::has(const std::string& name) const {
@@ -538,8 +553,8 @@ void set_rename_function(std::function<int(const char*, const char*)> rename) {
 
 void write_files_atomically(const fs::path& directory,
                             const std::vector<std::pair<std::string, std::string>>& files,
-                            const std::string& kind) {
-  OutputSet set(directory, kind);
+                            const std::string& kind, bool keep_unlisted) {
+  OutputSet set(directory, kind, {OutputSet::Mode::replace, 10.0, keep_unlisted});
   for (const auto& [name, content] : files) set.add(name, content);
   set.commit();
 }

@@ -335,6 +335,31 @@ TEST(BatchScratch, FeaturesThatAreNoAreaAreRefusedRows) {
       << emitted.err;
 }
 
+// A file the user put in an area's directory is never replaced, nor removed by the next batch:
+// the area's row is refused with swath plan's sentence naming it (it was replaced, exit 0, then
+// listed in .swath-plan.files and deleted by a rerun that no longer planned the area).
+TEST(BatchScratch, AUsersFileInAnAreasDirectorySurvivesTheBatchAndTheNext) {
+  const std::string dir = fresh_dir("batch-user-file");
+  const std::string areas = areas_dir(dir);
+  fs::create_directories(dir + "/out/meadow");
+  const std::string notes = "MY OWN NOTES\n";
+  std::ofstream(dir + "/out/meadow/photos.csv") << notes;
+  const CliRun r = run_swath("batch " + areas + " -o " + dir + "/out" + kPlanOptions);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  const auto rows = csv_rows(read_text(dir + "/out/batch.csv"));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1][4], "refused");
+  const std::string csv = read_text(dir + "/out/batch.csv");  // the message holds commas
+  EXPECT_NE(csv.find("meadow/photos.csv: a file swath did not write"), std::string::npos) << csv;
+  EXPECT_EQ(read_text(dir + "/out/meadow/photos.csv"), notes);
+  EXPECT_EQ(files_in(dir + "/out/meadow"), 1u);  // nothing of the plan beside it
+  fs::create_directories(dir + "/other");
+  fs::copy_file(source_path("share/fields/meadow.geojson"), dir + "/other/field.geojson");
+  const CliRun next = run_swath("batch " + dir + "/other -o " + dir + "/out" + kPlanOptions);
+  EXPECT_EQ(next.exit_code, 0) << next.err;
+  EXPECT_EQ(read_text(dir + "/out/meadow/photos.csv"), notes);
+}
+
 // A rerun into the same -o: the area directories of the batch before that this batch does not
 // plan into (a file renamed away, an area now refused or timed out) lose their plan, so that no
 // complete plan sits under a row that failed; what the user put there stays.

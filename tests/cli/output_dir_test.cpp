@@ -146,6 +146,38 @@ TEST(OutputDir, AReplanRemovesTheStaleFilesOfTheOldPlanOnly) {
   EXPECT_EQ(read_text(out + "/pilot-notes.txt"), "mine") << "swath removes only what it wrote";
 }
 
+// A file no swath run wrote (listed in no manifest here: the user's, or an older swath's that
+// wrote none) is never replaced: the plan is refused naming it, exit 2, nothing written. A file
+// the plan before wrote is replaced as ever.
+TEST(OutputDir, AFileSwathDidNotWriteIsNeverReplaced) {
+  for (const std::string name : {"photos.csv", "summary.json"}) {
+    const std::string out = fresh_dir("unlisted-" + name);
+    fs::create_directories(out);
+    const std::string mine = "MY OWN NOTES\n";
+    std::ofstream(out + "/" + name) << mine;
+    const CliRun r = run_swath(
+        "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + out);
+    EXPECT_EQ(r.exit_code, 2) << name;
+    EXPECT_EQ(r.err, "swath plan: " + out + "/" + name +
+                         ": a file swath did not write (no .swath-plan.files here lists it) "
+                         "would be replaced; move it, or choose another -o\n");
+    EXPECT_EQ(read_text(out + "/" + name), mine);
+    EXPECT_EQ(directory_files(out).size(), 1u) << name;
+    fs::remove(out + "/" + name);
+    ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
+                        "-o " +
+                        out)
+                  .exit_code,
+              0);
+    EXPECT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 70 "
+                        "-o " +
+                        out)
+                  .exit_code,
+              0)
+        << "the plan before's files are replaced";
+  }
+}
+
 TEST(OutputDir, OtherProgramsAndExtraNamesNeverReplaceThePlan) {
   const std::string out = fresh_dir("foreign");
   ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "

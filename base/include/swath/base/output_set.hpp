@@ -11,7 +11,8 @@
 //   the same kind removes the files the old manifest lists and the new set does not write (stale
 //   drone-3.plan after a re-plan with two drones); swath never removes a file it did not write.
 //   A file another kind's manifest lists is never replaced (swath-energy run -o into a plan
-//   directory is refused instead of overwriting the plan's summary.json).
+//   directory is refused instead of overwriting the plan's summary.json). With keep_unlisted, a
+//   file no manifest lists is not replaced either (the user's photos.csv in a plan's directory).
 // - SIGINT, SIGTERM and SIGHUP are blocked while the files are renamed into place, so a signal
 //   leaves the whole old set or the whole new one; a rename that fails part way (a directory in the
 //   way) is undone, the old files back under their names (kept as hard links meanwhile); a SIGINT
@@ -41,6 +42,9 @@ class OutputSet {
   struct Options {
     Mode mode = Mode::replace;
     double lock_wait_s = 10.0;  ///< how long to wait for another run's lock, seconds
+    /// Refuse a name whose file is there but listed in no manifest of the directory (the user's
+    /// own, or one an older swath wrote without a manifest) instead of replacing it.
+    bool keep_unlisted = false;
   };
 
   /// Opens `directory` (created if missing) for a set of `kind` ("plan", "energy-run": letters,
@@ -91,8 +95,9 @@ class OutputSet {
  private:
   struct Entry;
   void check_name(const std::string& name) const;
-  Entry& open_entry(const std::string& name);    ///< checked name
-  Entry& create_entry(const std::string& name);  ///< the temporary for any name
+  void check_listed(const std::string& name) const;  ///< keep_unlisted's refusal
+  Entry& open_entry(const std::string& name);        ///< checked name
+  Entry& create_entry(const std::string& name);      ///< the temporary for any name
   /// Renames every temporary onto its name, all or none (signals blocked by the caller).
   void switch_in();
   /// Removes the hidden temporaries and kept old files a killed run left of these names.
@@ -107,6 +112,7 @@ class OutputSet {
   bool committed_ = false;
   std::vector<std::unique_ptr<Entry>> entries_;
   std::vector<std::string> foreign_;  ///< names other kinds' manifests list
+  std::vector<std::string> own_;      ///< names this kind's manifest lists
 };
 
 namespace testing {
@@ -121,6 +127,6 @@ void set_rename_function(std::function<int(const char*, const char*)> rename);
 /// Writes `files` (name, content) as one set of `kind` (OutputSet, Mode::replace) and commits it.
 void write_files_atomically(const std::filesystem::path& directory,
                             const std::vector<std::pair<std::string, std::string>>& files,
-                            const std::string& kind = "files");
+                            const std::string& kind = "files", bool keep_unlisted = false);
 
 }  // namespace swath::base
