@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 #include "field_ogr.hpp"
 #include "raw_field.hpp"
@@ -260,6 +262,38 @@ std::size_t area_file_reads(const std::filesystem::path& path) {
   return detail::area_reads(path.string());
 }
 
+namespace {
+
+// A GeoJSON collection of several features is counted as list_areas() counts it, so that swath
+// plan, --feature and swath batch agree on its areas (a closed line is one, an empty polygon is
+// none): several areas are refused naming the first two (--feature's indices); a lone area that
+// is no polygon (a closed line beside a point) is read through OGR as --feature reads it. The
+// options for that read, or none: swath's own reader reads the file (a collection of one
+// feature, or one whose lone area is its polygon).
+std::optional<FieldReadOptions> lone_listed_area(const std::filesystem::path& path,
+                                                 const std::string& text,
+                                                 const FieldReadOptions& options) {
+  const detail::GeojsonCollection collection = detail::geojson_collection(text, path.string());
+  if (collection.features < 2) return std::nullopt;
+  std::vector<AreaEntry> areas;
+  try {
+    areas = list_areas(path, options);
+  } catch (const InputError&) {
+    return std::nullopt;  // no area: swath's reader says why in its own words
+  }
+  std::erase_if(areas, [](const AreaEntry& a) { return !a.not_an_area.empty(); });
+  if (areas.size() > 1)
+    detail::fail(path.string(), "features " + std::to_string(areas[0].index) + " and " +
+                                    std::to_string(areas[1].index) +
+                                    " are both areas; choose one with --feature NAME or INDEX");
+  if (areas.size() != 1 || collection.polygonal) return std::nullopt;
+  FieldReadOptions chosen = options;
+  chosen.feature = std::to_string(areas[0].index);
+  return chosen;
+}
+
+}  // namespace
+
 Field read_field(const std::filesystem::path& path, const FieldReadOptions& options) {
   const std::string source = path.string();
   // A missing file or a directory is said so before its extension is looked at.
@@ -279,6 +313,9 @@ Field read_field(const std::filesystem::path& path, const FieldReadOptions& opti
   if (format == FieldFormat::geojson && text.find("\"crs\"") != std::string::npos &&
       text.find("CRS84") == std::string::npos && text.find("EPSG::4326") == std::string::npos)
     return field_from_raw(detail::read_ogr(source, options), source, true);
+  if (format == FieldFormat::geojson && text.find("FeatureCollection") != std::string::npos)
+    if (const auto chosen = lone_listed_area(path, text, options))
+      return field_from_raw(detail::read_ogr(source, *chosen), source, true);
   return parse_field(text, format, source, options.local_metres);
 }
 

@@ -71,6 +71,19 @@ RawField parse_geometry(const json& geometry, const std::string& source, const s
 
 }  // namespace
 
+GeojsonCollection geojson_collection(const std::string& text, const std::string& source) {
+  const json root = base::parse_json_document(text, source);
+  const json* features = type_of(root) == "FeatureCollection" && root.contains("features")
+                             ? &root["features"]
+                             : nullptr;
+  if (!features || !features->is_array()) return {};
+  GeojsonCollection out{features->size(), false};
+  for (const json& f : *features)
+    out.polygonal = out.polygonal || (f.is_object() && f.contains("geometry") &&
+                                      is_polygonal(type_of(f["geometry"])));
+  return out;
+}
+
 RawField parse_geojson(const std::string& text, const std::string& source) {
   const json root = base::parse_json_document(text, source);
   const std::string type = type_of(root);

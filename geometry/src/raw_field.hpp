@@ -50,6 +50,13 @@ inline std::string shown(const std::string& piece) {
 }
 
 RawField parse_geojson(const std::string& text, const std::string& source);
+/// A GeoJSON FeatureCollection's feature count and whether any feature's geometry is a Polygon or
+/// MultiPolygon ({0, false} for any other GeoJSON). Throws InputError as parse_geojson() does.
+struct GeojsonCollection {
+  std::size_t features = 0;
+  bool polygonal = false;
+};
+GeojsonCollection geojson_collection(const std::string& text, const std::string& source);
 RawField parse_kml(const std::string& text, const std::string& source);
 RawField parse_csv(const std::string& text, const std::string& source, bool local_metres);
 

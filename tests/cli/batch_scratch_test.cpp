@@ -360,6 +360,47 @@ TEST(BatchScratch, AUsersFileInAnAreasDirectorySurvivesTheBatchAndTheNext) {
   EXPECT_EQ(read_text(dir + "/out/meadow/photos.csv"), notes);
 }
 
+// swath plan counts a file's areas as --feature and swath batch do (the area listing): a closed
+// line is an area, an empty polygon is none. A polygon, a point and a closed line were planned as
+// the polygon alone, exit 0; a polygon, a closed line and an empty polygon were "features 0 and
+// 2 are both areas" (the empty one, which --feature calls no area).
+TEST(BatchScratch, PlanCountsAreasAsBatchAndFeatureDo) {
+  const std::string dir = fresh_dir("batch-count");
+  fs::create_directories(dir);
+  const std::string polygon = R"({"type": "Polygon", "coordinates": [)" + square(8.5, 47.3) + "]}";
+  const std::string line = R"({"type": "LineString", "coordinates": [[8.52, 47.3], [8.522, 47.3],)"
+                           R"( [8.522, 47.301], [8.52, 47.3]]})";
+  const std::string point = R"({"type": "Point", "coordinates": [8.53, 47.3]})";
+  const std::string empty = R"({"type": "Polygon", "coordinates": []})";
+  std::ofstream(dir + "/mix3.geojson")
+      << collection({feature("A", polygon), feature("pt", point), feature("ln", line)});
+  std::ofstream(dir + "/mix3b.geojson")
+      << collection({feature("A", polygon), feature("ln", line), feature("none", empty)});
+  std::ofstream(dir + "/lone.geojson") << collection({feature("pt", point), feature("ln", line)});
+  for (const std::string name : {"mix3", "mix3b"}) {
+    const std::string file = dir + "/" + name + ".geojson";
+    const CliRun plan = run_swath("plan " + file + " -o " + dir + "/p-" + name + kPlanOptions);
+    EXPECT_EQ(plan.exit_code, 2) << name << ": " << plan.err;
+    EXPECT_NE(plan.err.find(file + ": features 0 and 1 are both areas"), std::string::npos)
+        << plan.err;
+    EXPECT_FALSE(fs::exists(dir + "/p-" + name));
+    const CliRun batch = run_swath("batch " + file + " -o " + dir + "/b-" + name + kPlanOptions);
+    const auto rows = csv_rows(read_text(dir + "/b-" + name + "/batch.csv"));
+    const auto planned = std::count_if(rows.begin(), rows.end(),
+                                       [](const auto& row) { return row[4] == "planned"; });
+    EXPECT_EQ(planned, 2) << name;
+  }
+  // The lone area, a closed line beside a point, is planned as --feature 0 plans it.
+  const CliRun lone =
+      run_swath("plan " + dir + "/lone.geojson -o " + dir + "/p-lone" + kPlanOptions);
+  ASSERT_EQ(lone.exit_code, 0) << lone.err;
+  const CliRun chosen =
+      run_swath("plan " + dir + "/lone.geojson --feature 0 -o " + dir + "/p-chosen" + kPlanOptions);
+  ASSERT_EQ(chosen.exit_code, 0) << chosen.err;
+  EXPECT_EQ(read_text(dir + "/p-lone/mission.geojson"),
+            read_text(dir + "/p-chosen/mission.geojson"));
+}
+
 // A rerun into the same -o: the area directories of the batch before that this batch does not
 // plan into (a file renamed away, an area now refused or timed out) lose their plan, so that no
 // complete plan sits under a row that failed; what the user put there stays.
