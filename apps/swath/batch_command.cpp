@@ -13,6 +13,7 @@
 #include "batch_workers.hpp"
 #include "plan_command.hpp"
 #include "shell_text.hpp"
+#include "swath/base/csv_text.hpp"
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/json_document.hpp"
@@ -387,39 +388,22 @@ std::string read_small_file(const fs::path& path) {
   }
 }
 
-// Text's CSV rows, cell by cell (RFC 4180: a quoted cell may hold commas, quotes, line breaks).
-std::vector<std::vector<std::string>> csv_cells(const std::string& text) {
-  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
-  bool quoted = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quoted && c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
-      rows.back().back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (!quoted && c == ',') {
-      rows.back().emplace_back();
-    } else if (!quoted && c == '\n') {
-      rows.emplace_back(1);
-    } else {
-      rows.back().back() += c;
-    }
-  }
-  return rows;
-}
-
 // The area directories the batch before wrote into `output`: its batch.csv's `directory` column,
 // where the batch's manifest lists batch.csv (swath wrote it; a user's file of that name is not
 // read).
 std::set<std::string> earlier_directories(const fs::path& output) {
   const std::string manifest = read_small_file(output / ".swath-batch.files");
   if (manifest.find("\nbatch.csv\n") == std::string::npos) return {};
-  const auto rows = csv_cells(read_small_file(output / "batch.csv"));
+  const std::string text = read_small_file(output / "batch.csv");
+  // Messages may hold line breaks and names '#': records as swath wrote them, no comments.
+  base::CsvText csv(text, "batch.csv", base::CsvText::Records::quoted_breaks);
   std::set<std::string> dirs;
-  if (rows.empty() || rows[0].size() < 4 || rows[0][3] != "directory") return dirs;
-  for (std::size_t i = 1; i < rows.size(); ++i)
-    if (rows[i].size() > 3 && !rows[i][3].empty()) dirs.insert(rows[i][3]);
+  try {
+    if (!csv.next() || csv.cells().size() < 4 || csv.cells()[3] != "directory") return dirs;
+    while (csv.next())
+      if (csv.cells().size() > 3 && !csv.cells()[3].empty()) dirs.insert(csv.cells()[3]);
+  } catch (const InputError&) {  // a batch.csv edited out of shape: the rows before it
+  }
   return dirs;
 }
 

@@ -49,54 +49,75 @@ char detect_separator(std::string_view line) {
   return comma ? ',' : semicolon ? ';' : tab ? '\t' : ',';
 }
 
+// How many lines `text` ends: every LF, CRLF or lone CR.
+int line_breaks(std::string_view text) {
+  int breaks = 0;
+  for (std::size_t i = 0; i < text.size(); ++i)
+    breaks += text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
+  return breaks;
+}
+
 }  // namespace
 
-CsvText::CsvText(std::string_view text, std::string source)
-    : text_(text), source_(std::move(source)) {
+CsvText::CsvText(std::string_view text, std::string source, Records records)
+    : text_(text), source_(std::move(source)), records_(records) {
   if (text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;  // UTF-8 BOM
+}
+
+// Where the record from pos_ on ends: its first line break (LF, CRLF or a lone CR), outside
+// quotes with quoted_breaks; the end of the text if none.
+std::size_t CsvText::record_end() const {
+  if (comments()) return std::min(text_.find_first_of("\r\n", pos_), text_.size());
+  bool quoted = false;
+  for (std::size_t i = pos_; i < text_.size(); ++i) {
+    if (text_[i] == '"') quoted = !quoted;
+    if (!quoted && (text_[i] == '\r' || text_[i] == '\n')) return i;
+  }
+  return text_.size();
 }
 
 bool CsvText::next() {
   while (pos_ <= text_.size()) {
-    // A line ends at LF, CRLF or a lone CR.
-    auto eol = text_.find_first_of("\r\n", pos_);
-    if (eol == std::string_view::npos) eol = text_.size();
-    const std::string_view line = trimmed(text_.substr(pos_, eol - pos_));
-    pos_ = eol + (text_.substr(eol, 2) == "\r\n" ? 2 : 1);
-    ++line_;
-    const std::string_view values = trimmed(before_comment(line));
+    const std::size_t end = record_end();
+    const std::string_view record = trimmed(text_.substr(pos_, end - pos_));
+    line_ = lines_ended_ + 1;
+    lines_ended_ += line_breaks(record) + 1;
+    pos_ = end + (text_.substr(end, 2) == "\r\n" ? 2 : 1);
+    const std::string_view values = comments() ? trimmed(before_comment(record)) : record;
     if (values.empty()) continue;
     if (!detected_) {
       separator_ = detect_separator(values);
       detected_ = true;
     }
-    split(line);
+    split(record);
     return true;
   }
   return false;
 }
 
-// The cells of a line split at the separator, each trimmed; a cell in double quotes may hold the
-// separator or '#', and "" inside it is one quote. Text after a closing quote is refused; '#'
-// outside quotes ends the line.
-void CsvText::split(std::string_view line) {
+// The cells of a record split at the separator, each trimmed; a cell in double quotes may hold the
+// separator or '#' (and line breaks with quoted_breaks), and "" inside it is one quote. Text after
+// a closing quote is refused; with comments, '#' outside quotes ends the record.
+void CsvText::split(std::string_view record) {
   cells_.clear();
   const auto fail = [&](const std::string& problem) {
     throw InputError(source_ + ": line " + std::to_string(line_) + ": column " +
                      std::to_string(cells_.size() + 1) + " " + problem);
   };
   const auto blank = [&](std::size_t i) {
-    return i < line.size() && line[i] != separator_ && (line[i] == ' ' || line[i] == '\t');
+    return i < record.size() && record[i] != separator_ && (record[i] == ' ' || record[i] == '\t');
   };
   std::size_t i = 0;
   while (true) {
     while (blank(i)) ++i;
-    if (i < line.size() && line[i] == '"') {
+    if (i < record.size() && record[i] == '"') {
       std::string cell;
       for (++i;; ++i) {
-        if (i >= line.size()) fail("opens a quote that the line does not close");
-        if (line[i] == '"') {
-          if (i + 1 < line.size() && line[i + 1] == '"') {
+        if (i >= record.size())
+          fail(comments() ? "opens a quote that the line does not close"
+                          : "opens a quote that the text does not close");
+        if (record[i] == '"') {
+          if (i + 1 < record.size() && record[i + 1] == '"') {
             cell += '"';
             ++i;
             continue;
@@ -104,20 +125,18 @@ void CsvText::split(std::string_view line) {
           ++i;
           break;
         }
-        cell += line[i];
+        cell += record[i];
       }
       while (blank(i)) ++i;
-      if (i < line.size() && line[i] != separator_ && line[i] != '#')
-        fail("has text after its closing quote");
+      if (i < record.size() && !ends_cell(record[i])) fail("has text after its closing quote");
       cells_.emplace_back(trimmed(cell));
     } else {
-      auto end = line.find_first_of(separator_ == ',' ? ",#" : separator_ == ';' ? ";#" : "\t#", i);
-      if (end == std::string_view::npos) end = line.size();
-      cells_.emplace_back(trimmed(line.substr(i, end - i)));
-      i = end;
+      const std::size_t start = i;
+      while (i < record.size() && !ends_cell(record[i])) ++i;
+      cells_.emplace_back(trimmed(record.substr(start, i - start)));
     }
-    if (i >= line.size() || line[i] == '#') break;
-    ++i;  // the separator
+    if (i >= record.size() || record[i] != separator_) break;  // the end, or a comment
+    ++i;                                                       // the separator
   }
 }
 

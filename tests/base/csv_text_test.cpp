@@ -17,8 +17,9 @@ namespace {
 
 using Lines = std::vector<std::pair<int, std::vector<std::string>>>;
 
-Lines lines_of(const std::string& text, char* separator = nullptr) {
-  CsvText csv(text, "t.csv");
+Lines lines_of(const std::string& text, char* separator = nullptr,
+               CsvText::Records records = CsvText::Records::lines) {
+  CsvText csv(text, "t.csv", records);
   Lines out;
   while (csv.next()) out.push_back({csv.line(), csv.cells()});
   if (separator) *separator = csv.separator();
@@ -83,6 +84,33 @@ TEST(CsvText, MalformedQuotingNamesTheLineAndColumn) {
   // A quote a comment would have closed is still open: the '#' is inside it.
   EXPECT_EQ(refusal("a,b\r\r\"1 # x\n"),
             "t.csv: line 3: column 1 opens a quote that the line does not close");
+}
+
+// batch.csv as swath writes it: a quoted message holding line breaks (LF and CRLF) is one cell of
+// one record, and an area name starting with '#' is text, quoted or not; each record is numbered
+// by its first line.
+TEST(CsvText, QuotedBreaksHoldLineBreaksInQuotesAndNoComments) {
+  const std::string text =
+      "area,directory,message\n"
+      "#4 north,x-4,\"line one\nline two, \"\"quoted\"\"\"\n"
+      "\"#plain\",d,\"a\r\nb\"\r\n"
+      "\n"
+      "last,e,\n";
+  EXPECT_EQ(lines_of(text, nullptr, CsvText::Records::quoted_breaks),
+            (Lines{{1, {"area", "directory", "message"}},
+                   {2, {"#4 north", "x-4", "line one\nline two, \"quoted\""}},
+                   {4, {"#plain", "d", "a\r\nb"}},
+                   {7, {"last", "e", ""}}}));
+  // Line by line the '#' starts a comment and the quote is open at the line's end.
+  EXPECT_EQ(lines_of("name,dir\n#4 north,x-4\n"), (Lines{{1, {"name", "dir"}}}));
+  EXPECT_EQ(refusal("m\n\"a\nb\"\n"),
+            "t.csv: line 2: column 1 opens a quote that the line does not close");
+  try {
+    lines_of("a,b\n1,\"2\n3\n", nullptr, CsvText::Records::quoted_breaks);
+    ADD_FAILURE() << "accepted a quote never closed";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "t.csv: line 2: column 2 opens a quote that the text does not close");
+  }
 }
 
 // whitespace_fields against reading std::string after std::string from an istringstream (the WPL

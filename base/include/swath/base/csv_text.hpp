@@ -1,6 +1,6 @@
 #pragma once
-// CSV text as spreadsheets and GIS tools write it, split into cells line by line: the one
-// tokenizer of every swath CSV reader (areas, trigger data).
+// CSV text as spreadsheets and GIS tools write it, split into cells a line (or a record) at a time:
+// the one tokenizer of every swath CSV reader (areas, trigger data, the batch before's batch.csv).
 //
 // Dialects: cells may be quoted (RFC 4180, "" inside quotes is a quote, a quoted cell may hold
 // the separator or '#'); the separator is ',', or ';' or a tab when the first line holding values
@@ -8,6 +8,10 @@
 // too); lines end in LF, CRLF or a lone CR (old Mac); a UTF-8 BOM is skipped. '#' outside quotes
 // starts a comment to the end of the line: a whole line ("# corners") or after the values
 // ("12.5,55.1 # corner"); blank lines and lines of only a comment hold no values.
+//
+// Records::quoted_breaks reads CSV that swath wrote (batch.csv) as RFC 4180 has it: a quoted cell
+// may hold line breaks, so a record ends at a line break outside quotes, and '#' is text anywhere
+// (an area's name may hold one). The readers of the user's areas and trigger data keep lines.
 
 #include <optional>
 #include <string>
@@ -18,16 +22,22 @@ namespace swath::base {
 
 class CsvText {
  public:
-  /// `text` is kept by reference and must outlive the reader; `source` names it in messages.
-  CsvText(std::string_view text, std::string source);
+  /// Where a record ends: `lines`, at every line break, '#' outside quotes starting a comment;
+  /// `quoted_breaks`, at a line break outside quotes, no comments.
+  enum class Records { lines, quoted_breaks };
 
-  /// Moves to the next line holding values and splits it into cells, each trimmed of spaces and
+  /// `text` is kept by reference and must outlive the reader; `source` names it in messages.
+  CsvText(std::string_view text, std::string source, Records records = Records::lines);
+
+  /// Moves to the next record holding values and splits it into cells, each trimmed of spaces and
   /// tabs; false at the end of the text. Throws InputError ("SOURCE: line N: column K opens a
-  /// quote that the line does not close", "... has text after its closing quote").
+  /// quote that the line does not close", "... has text after its closing quote"; with
+  /// quoted_breaks "... that the text does not close").
   bool next();
-  /// The cells of the current line.
+  /// The cells of the current record.
   const std::vector<std::string>& cells() const { return cells_; }
-  /// The current line's number, 1-based (every LF, CRLF or lone CR ends one line).
+  /// The number of the current record's first line, 1-based (every LF, CRLF or lone CR ends one
+  /// line, inside quotes too).
   int line() const { return line_; }
   /// The separator, from the first line holding values: ',', ';' or '\t' (',' before that line).
   char separator() const { return separator_; }
@@ -39,12 +49,17 @@ class CsvText {
   static std::optional<double> number(std::string_view cell, char separator);
 
  private:
-  void split(std::string_view line);
+  std::size_t record_end() const;
+  bool comments() const { return records_ == Records::lines; }
+  bool ends_cell(char c) const { return c == separator_ || (comments() && c == '#'); }
+  void split(std::string_view record);
 
   std::string_view text_;
   std::string source_;
+  Records records_;
   std::size_t pos_ = 0;
   int line_ = 0;
+  int lines_ended_ = 0;  // the line breaks before pos_
   bool detected_ = false;
   char separator_ = ',';
   std::vector<std::string> cells_;
