@@ -6,6 +6,7 @@
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/base/range_check.hpp"
 #include "swath/energy/sim_config.hpp"
 #include "swath/geometry/field.hpp"
@@ -76,7 +77,8 @@ void VerifyCommand::setup(CLI::App& app) {
                  "Highest flight, metres above the ground (above home without --terrain); "
                  "default 120, the common legal limit");
   app.add_option("--min-height", min_height_m_,
-                 "With --terrain: least height above the ground on cruise legs (default 5 m)");
+                 "With --terrain: least height above the ground on cruise legs (default " +
+                     base::fixed_text(geometry::kLeastHeightAboveGround_m, 0) + " m)");
   app.add_option("--separation", separation_m_,
                  "Least 3-D distance between two drones at the same time (default 10 m)");
   app.add_flag("--fence-union", fence_union_,

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "swath/geometry/ground.hpp"
 
 namespace swath::apps {
 
@@ -32,7 +33,7 @@ class VerifyCommand : public Command {
   std::string dem_units_;  ///< --dem-units m|ft|us-ft; empty: the DEM's own, else metres
   std::string drone_;
   double ceiling_m_ = 120.0;
-  double min_height_m_ = 5.0;
+  double min_height_m_ = geometry::kLeastHeightAboveGround_m;
   double separation_m_ = 10.0;
   bool json_ = false;
   bool fence_union_ = false;

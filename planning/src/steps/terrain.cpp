@@ -165,7 +165,7 @@ struct Follower {
 };
 
 std::string tolerance_or_altitude(double altitude_m) {
-  const double most_m = altitude_m - kLeastHeightAboveGround_m;
+  const double most_m = altitude_m - geometry::kLeastHeightAboveGround_m;
   if (most_m < limits::kTerrainTolerance_m.lo) return "a higher --altitude";
   return "at most --terrain-tolerance " + fixed_text(most_m, 1) + " or a higher --altitude";
 }
@@ -174,11 +174,11 @@ std::string tolerance_or_altitude(double altitude_m) {
 // the plan's check demands, before a plan it would refuse is made.
 void check_least_height(double altitude_m, double tolerance_m) {
   const double lowest_m = altitude_m - tolerance_m;
-  if (lowest_m >= kLeastHeightAboveGround_m) return;
+  if (lowest_m >= geometry::kLeastHeightAboveGround_m) return;
   throw base::InputError(
       "--terrain-tolerance " + fixed_text(tolerance_m, 1) + " m at an altitude of " +
       fixed_text(altitude_m, 1) + " m (--altitude) lets legs pass " + fixed_text(lowest_m, 1) +
-      " m above the ground, below the least " + fixed_text(kLeastHeightAboveGround_m, 1) +
+      " m above the ground, below the least " + fixed_text(geometry::kLeastHeightAboveGround_m, 1) +
       " m: give " + tolerance_or_altitude(altitude_m));
 }
 

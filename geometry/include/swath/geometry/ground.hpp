@@ -14,6 +14,11 @@
 
 namespace swath::geometry {
 
+/// The least height above the ground a leg may pass at, metres: what swath plan's check and swath
+/// verify demand (preflight::CheckOptions::min_height_m, --min-height's default); terrain following
+/// refuses an altitude less --terrain-tolerance below it. In geometry, below both of them.
+inline constexpr double kLeastHeightAboveGround_m = 5.0;
+
 /// Heights of the ground above mean sea level (orthometric, the EGM96 geoid as zero).
 class Ground {
  public:

@@ -24,11 +24,6 @@ enum class AltitudeFrame {
              ///< data (ArduPilot TERRAIN_ENABLE) keeps the height; swath still adds the waypoints
 };
 
-/// The least height above the ground a leg may pass at, metres: what swath plan's check demands
-/// (preflight::CheckOptions::min_height_m, swath verify's --min-height default). Terrain following
-/// refuses an altitude less --terrain-tolerance below it.
-inline constexpr double kLeastHeightAboveGround_m = 5.0;
-
 struct TerrainRequest {
   std::shared_ptr<const geometry::Ground> ground;  ///< required
   /// The most the height above ground may depart from the one asked for between waypoints,

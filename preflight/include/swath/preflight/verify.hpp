@@ -29,8 +29,9 @@ struct CheckOptions {
   /// The surveyed area's outer rings, if known: a leg with the camera on that never meets them is
   /// a transit.
   std::vector<std::vector<geometry::GeoPoint>> area;
-  double ceiling_m = 120.0;    ///< above the ground (with `ground`) or above home
-  double min_height_m = 5.0;   ///< least height above the ground along cruise legs (with `ground`)
+  double ceiling_m = 120.0;  ///< above the ground (with `ground`) or above home
+  /// least height above the ground along cruise legs (with `ground`)
+  double min_height_m = geometry::kLeastHeightAboveGround_m;
   double separation_m = 10.0;  ///< least 3-D distance between two drones at the same time
   std::shared_ptr<const geometry::Ground> ground;
   std::optional<energy::DroneProfile> drone;
