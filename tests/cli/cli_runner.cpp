@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace swath::test {
@@ -43,6 +44,16 @@ std::map<std::string, std::string> directory_files(const std::string& dir) {
     if (e.is_regular_file())
       out[std::filesystem::relative(e.path(), dir).string()] = read_text(e.path().string());
   return out;
+}
+
+nlohmann::json qgc_item(int command, int id, double lat_deg, double lon_deg, double alt_m,
+                        int frame) {
+  return {{"autoContinue", true},
+          {"command", command},
+          {"doJumpId", id},
+          {"frame", frame},
+          {"params", {0, 0, 0, nullptr, lat_deg, lon_deg, alt_m}},
+          {"type", "SimpleItem"}};
 }
 
 std::vector<std::vector<std::string>> csv_rows(const std::string& text) {

@@ -2,6 +2,7 @@
 // Runs the built command-line programs the way a user does and captures what they say.
 
 #include <map>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,12 @@ std::string source_path(const std::string& relative);
 
 /// Every file under `dir` (recursively) by its path relative to `dir`, with its bytes.
 std::map<std::string, std::string> directory_files(const std::string& dir);
+
+/// A QGroundControl .plan mission item (a SimpleItem) of MAV_CMD `command`, `id` its doJumpId,
+/// at lat/lon and `alt_m` metres in MAV_FRAME `frame` (3: above home; 0: above mean sea level),
+/// its other parameters 0 (yaw none).
+nlohmann::json qgc_item(int command, int id, double lat_deg, double lon_deg, double alt_m,
+                        int frame = 3);
 
 /// CSV text read back: a row per line (the header first), cells split at commas.
 std::vector<std::vector<std::string>> csv_rows(const std::string& text);

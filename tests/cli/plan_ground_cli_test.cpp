@@ -237,32 +237,48 @@ double least_height_between_waypoints(const json& plan, const AsciiGrid& dem) {
   return least_m;
 }
 
+// A field (from `field_west_lon_deg` to 8.5420 E, 47.3970 to 47.3976 N) planned at 12 m, lines
+// east-west, from a home west of it (47.3973, 8.5395) following the ground of `dem_text`: in the
+// fresh directory `name`, the DEM as dem.asc and the plan in out/.
+struct TerrainCase {
+  std::string dir;
+  CliRun plan;
+  std::string dem() const { return dir + "/dem.asc"; }
+  json drone_plan() const { return json::parse(read_text(dir + "/out/drone-1.plan")); }
+  CliRun verify() const { return run_swath("verify " + dir + "/out --terrain " + dem()); }
+};
+
+TerrainCase terrain_case(const std::string& name, const std::string& dem_text,
+                         double field_west_lon_deg = 8.5400) {
+  TerrainCase c{fresh_dir(name), {}};
+  fs::create_directories(c.dir);
+  std::ofstream(c.dem()) << dem_text;
+  const std::string west = base::fixed_text(field_west_lon_deg, 4);
+  std::ofstream(c.dir + "/field.geojson")
+      << R"({"type": "Polygon", "coordinates": [[[)" << west << R"(, 47.3970], [8.5420, 47.3970], )"
+      << R"([8.5420, 47.3976], [)" << west << R"(, 47.3976], [)" << west << R"(, 47.3970]]]})";
+  c.plan = run_swath("plan " + c.dir +
+                     "/field.geojson --camera sony-ilce-qx1 --altitude 12 --angle 90 "
+                     "--home 47.3973,8.5395 --terrain " +
+                     c.dem() + " -o " + c.dir + "/out");
+  return c;
+}
+
 // Terrain following over a cliff and a spike: no straight leg between the waypoints passes lower
 // than the height asked less the tolerance (10 m of 12, the default 2 m), measured here between
 // the waypoints too; summary and verify report the same. Sampled every half pixel, the profile
 // missed the cliff's top edge and a leg 11 m long crossed it 3 m inside the ground.
 TEST(PlanCli, TerrainFollowingNeverDipsBelowTheToleranceOverACliffOrASpike) {
-  const std::string dir = fresh_dir("plan-terrain-cliff");
-  fs::create_directories(dir);
-  std::ofstream(dir + "/cliff.asc") << cliff_and_spike_dem();
-  std::ofstream(dir + "/field.geojson")
-      << R"({"type": "Polygon", "coordinates": [[[8.5400, 47.3970], [8.5420, 47.3970], )"
-         R"([8.5420, 47.3976], [8.5400, 47.3976], [8.5400, 47.3970]]]})";
-  const CliRun run = run_swath("plan " + dir +
-                               "/field.geojson --camera sony-ilce-qx1 --altitude "
-                               "12 --angle 90 --home 47.3973,8.5395 --terrain " +
-                               dir + "/cliff.asc -o " + dir + "/out");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const AsciiGrid dem(dir + "/cliff.asc");
-  const json plan = json::parse(read_text(dir + "/out/drone-1.plan"));
-  const double least_m = least_height_between_waypoints(plan, dem);
+  const TerrainCase c = terrain_case("plan-terrain-cliff", cliff_and_spike_dem());
+  ASSERT_EQ(c.plan.exit_code, 0) << c.plan.err;
+  const double least_m = least_height_between_waypoints(c.drone_plan(), AsciiGrid(c.dem()));
   EXPECT_GE(least_m, 10.0 - 0.01);
-  const json t = json::parse(read_text(dir + "/out/summary.json"))["terrain"];
+  const json t = json::parse(read_text(c.dir + "/out/summary.json"))["terrain"];
   EXPECT_EQ(t["ground_min_m"].get<double>(), 400.0);
   EXPECT_GT(t["ground_max_m"].get<double>(), 530.0);  // a line over the spike, near its top
   EXPECT_GE(t["agl_min_m"].get<double>(), 10.0 - 0.01);
   EXPECT_LE(t["agl_min_m"].get<double>(), least_m + 0.01);  // the summary's least is the true one
-  const CliRun verify = run_swath("verify " + dir + "/out --terrain " + dir + "/cliff.asc");
+  const CliRun verify = c.verify();
   EXPECT_EQ(verify.exit_code, 0) << verify.out;
 }
 
@@ -271,19 +287,11 @@ TEST(PlanCli, TerrainFollowingNeverDipsBelowTheToleranceOverACliffOrASpike) {
 // and went through the wall (the plan's check refused it, 18 m into the ground); the way home is
 // now waypoints over the ground ending above home, then the RTL.
 TEST(PlanCli, TheWayHomeFollowsTheGroundOverAWall) {
-  const std::string dir = fresh_dir("plan-terrain-wall");
-  fs::create_directories(dir);
-  std::ofstream(dir + "/wall.asc") << grid_dem([](int col, int) { return col == 8 ? 430 : 400; });
-  std::ofstream(dir + "/field.geojson")
-      << R"({"type": "Polygon", "coordinates": [[[8.5405, 47.3970], [8.5420, 47.3970], )"
-         R"([8.5420, 47.3976], [8.5405, 47.3976], [8.5405, 47.3970]]]})";
-  const CliRun run = run_swath("plan " + dir +
-                               "/field.geojson --camera sony-ilce-qx1 --altitude 12 --angle 90 "
-                               "--home 47.3973,8.5395 --terrain " +
-                               dir + "/wall.asc -o " + dir + "/out");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const json plan = json::parse(read_text(dir + "/out/drone-1.plan"));
-  EXPECT_GE(least_height_between_waypoints(plan, AsciiGrid(dir + "/wall.asc")), 10.0 - 0.01);
+  const TerrainCase c = terrain_case(
+      "plan-terrain-wall", grid_dem([](int col, int) { return col == 8 ? 430 : 400; }), 8.5405);
+  ASSERT_EQ(c.plan.exit_code, 0) << c.plan.err;
+  const json plan = c.drone_plan();
+  EXPECT_GE(least_height_between_waypoints(plan, AsciiGrid(c.dem())), 10.0 - 0.01);
   const json& items = plan["mission"]["items"];
   ASSERT_EQ(items.back()["command"], 20);
   const json* last = nullptr;  // the last waypoint: above home, at the height asked
@@ -293,8 +301,27 @@ TEST(PlanCli, TheWayHomeFollowsTheGroundOverAWall) {
   EXPECT_NEAR((*last)["params"][4].get<double>(), 47.3973, 1e-7);
   EXPECT_NEAR((*last)["params"][5].get<double>(), 8.5395, 1e-7);
   EXPECT_NEAR((*last)["params"][6].get<double>(), 12.0, 0.001);
-  const CliRun verify = run_swath("verify " + dir + "/out --terrain " + dir + "/wall.asc");
+  const CliRun verify = c.verify();
   EXPECT_EQ(verify.exit_code, 0) << verify.out;
+}
+
+// A QGroundControl .plan for ArduCopter without fences or rally points: `home` [lat, lon, alt],
+// `altitude_mode` its globalPlanAltitudeMode (1 above home, 2 above mean sea level), `items`.
+json qgc_plan(const json& home, int altitude_mode, const json& items) {
+  return {{"fileType", "Plan"},
+          {"groundStation", "QGroundControl"},
+          {"version", 1},
+          {"geoFence", {{"circles", json::array()}, {"polygons", json::array()}, {"version", 2}}},
+          {"rallyPoints", {{"points", json::array()}, {"version", 2}}},
+          {"mission",
+           {{"cruiseSpeed", 5},
+            {"firmwareType", 3},
+            {"globalPlanAltitudeMode", altitude_mode},
+            {"hoverSpeed", 5},
+            {"plannedHomePosition", home},
+            {"vehicleType", 2},
+            {"version", 2},
+            {"items", items}}}};
 }
 
 // A hand-made leg across the cliff, 12 m above the ground at both ends (1.5 m beyond the pixel
@@ -306,32 +333,11 @@ TEST(VerifyCli, ALegIntoTheGroundBetweenTheDemsSamplesIsCaught) {
   std::ofstream(dir + "/cliff.asc") << cliff_and_spike_dem();
   const double lat = 47.3973, m_per_lon_deg = 111'320.0 * std::cos(lat * M_PI / 180);
   const double west = 8.54095 - 1.5 / m_per_lon_deg, east = 8.54105 + 1.5 / m_per_lon_deg;
-  const auto item = [](int command, int id, double lat_deg, double lon_deg, double alt_m) {
-    return json{{"autoContinue", true},
-                {"command", command},
-                {"doJumpId", id},
-                {"frame", 3},
-                {"params", {0, 0, 0, nullptr, lat_deg, lon_deg, alt_m}},
-                {"type", "SimpleItem"}};
-  };
-  const json plan = {
-      {"fileType", "Plan"},
-      {"groundStation", "QGroundControl"},
-      {"version", 1},
-      {"geoFence", {{"circles", json::array()}, {"polygons", json::array()}, {"version", 2}}},
-      {"rallyPoints", {{"points", json::array()}, {"version", 2}}},
-      {"mission",
-       {{"cruiseSpeed", 5},
-        {"firmwareType", 3},
-        {"globalPlanAltitudeMode", 1},
-        {"hoverSpeed", 5},
-        {"plannedHomePosition", {lat, 8.5395, 400.0}},
-        {"vehicleType", 2},
-        {"version", 2},
-        {"items",
-         {item(22, 1, lat, 8.5395, 12), item(16, 2, lat, west, 12), item(16, 3, lat, east, 112),
-          item(16, 4, lat + 0.0003, east, 112), item(16, 5, lat + 0.0003, west, 12),
-          item(21, 6, lat, 8.5395, 0)}}}}};
+  const json plan =
+      qgc_plan({lat, 8.5395, 400.0}, 1,
+               {qgc_item(22, 1, lat, 8.5395, 12), qgc_item(16, 2, lat, west, 12),
+                qgc_item(16, 3, lat, east, 112), qgc_item(16, 4, lat + 0.0003, east, 112),
+                qgc_item(16, 5, lat + 0.0003, west, 12), qgc_item(21, 6, lat, 8.5395, 0)});
   std::ofstream(dir + "/cliff.plan") << plan.dump();
   const CliRun run = run_swath("verify " + dir + "/cliff.plan --terrain " + dir + "/cliff.asc");
   EXPECT_EQ(run.exit_code, 4) << run.out;
@@ -346,30 +352,11 @@ TEST(VerifyCli, ALegIntoTheGroundBetweenTheDemsSamplesIsCaught) {
 // `home_m` in the file, every leg at `legs_m`.
 json amsl_plan(double home_m, double legs_m) {
   const double lat = 47.3973;
-  const auto item = [](int command, int id, double lat_deg, double lon_deg, double alt_m) {
-    return json{{"autoContinue", true},
-                {"command", command},
-                {"doJumpId", id},
-                {"frame", 0},
-                {"params", {0, 0, 0, nullptr, lat_deg, lon_deg, alt_m}},
-                {"type", "SimpleItem"}};
-  };
-  return {{"fileType", "Plan"},
-          {"groundStation", "QGroundControl"},
-          {"version", 1},
-          {"geoFence", {{"circles", json::array()}, {"polygons", json::array()}, {"version", 2}}},
-          {"rallyPoints", {{"points", json::array()}, {"version", 2}}},
-          {"mission",
-           {{"cruiseSpeed", 5},
-            {"firmwareType", 3},
-            {"globalPlanAltitudeMode", 2},
-            {"hoverSpeed", 5},
-            {"plannedHomePosition", {lat, 8.5395, home_m}},
-            {"vehicleType", 2},
-            {"version", 2},
-            {"items",
-             {item(22, 1, lat, 8.5395, legs_m), item(16, 2, lat, 8.5405, legs_m),
-              item(16, 3, lat + 0.0003, 8.5405, legs_m), item(21, 4, lat, 8.5395, 0)}}}}};
+  const int amsl = 0;  // MAV_FRAME_GLOBAL
+  return qgc_plan(
+      {lat, 8.5395, home_m}, 2,
+      {qgc_item(22, 1, lat, 8.5395, legs_m, amsl), qgc_item(16, 2, lat, 8.5405, legs_m, amsl),
+       qgc_item(16, 3, lat + 0.0003, 8.5405, legs_m, amsl), qgc_item(21, 4, lat, 8.5395, 0, amsl)});
 }
 
 // With a DEM, altitudes above sea level are measured against the DEM's ground, not against the

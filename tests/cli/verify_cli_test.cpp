@@ -417,12 +417,7 @@ TEST(VerifyCli, ASecondInclusionFenceOverPartOfTheFlightIsBreachedUnlessAUnion) 
 // (home 130 m west-south-west of it), with `firmware` its firmwareType.
 std::string rally_plan(int firmware, double rally_lat_deg) {
   const auto item = [](int command, int id, double lat, double lon) {
-    return json{{"autoContinue", true},
-                {"command", command},
-                {"doJumpId", id},
-                {"frame", 3},
-                {"params", {0, 0, 0, nullptr, lat, lon, 40}},
-                {"type", "SimpleItem"}};
+    return qgc_item(command, id, lat, lon, 40);
   };
   const json plan = {
       {"fileType", "Plan"},
