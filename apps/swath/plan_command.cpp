@@ -663,11 +663,12 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
     const planning::TerrainFacts& t = *plan.terrain;
     std::printf(
         "  terrain    ground %s to %s m, %s m above it (%s to %s m flown, GSD %s to %s "
-        "cm/px), %zu waypoints added, %s frame\n",
+        "cm/px), %zu waypoint%s added, %s frame\n",
         fixed_text(t.ground_min_m, 1).c_str(), fixed_text(t.ground_max_m, 1).c_str(),
         fixed_text(t.height_above_ground_m, 1).c_str(), fixed_text(t.agl_min_m, 1).c_str(),
         fixed_text(t.agl_max_m, 1).c_str(), fixed_text(t.gsd_min_m * 100, 3).c_str(),
-        fixed_text(t.gsd_max_m * 100, 3).c_str(), t.waypoints_added, planning::frame_name(t.frame));
+        fixed_text(t.gsd_max_m * 100, 3).c_str(), t.waypoints_added,
+        t.waypoints_added == 1 ? "" : "s", planning::frame_name(t.frame));
   }
   for (const planning::DronePlan& d : plan.drones) {
     const planning::DroneMission& m = d.mission;

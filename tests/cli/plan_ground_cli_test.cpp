@@ -278,6 +278,10 @@ TEST(PlanCli, TerrainFollowingNeverDipsBelowTheToleranceOverACliffOrASpike) {
   EXPECT_GT(t["ground_max_m"].get<double>(), 530.0);  // a line over the spike, near its top
   EXPECT_GE(t["agl_min_m"].get<double>(), 10.0 - 0.01);
   EXPECT_LE(t["agl_min_m"].get<double>(), least_m + 0.01);  // the summary's least is the true one
+  EXPECT_NE(c.plan.out.find(", " + std::to_string(t["waypoints_added"].get<int>()) +
+                            " waypoints added, relative frame\n"),
+            std::string::npos)
+      << c.plan.out;
   const CliRun verify = c.verify();
   EXPECT_EQ(verify.exit_code, 0) << verify.out;
 }
@@ -322,6 +326,20 @@ json qgc_plan(const json& home, int altitude_mode, const json& items) {
             {"vehicleType", 2},
             {"version", 2},
             {"items", items}}}};
+}
+
+// Over a plane sloping up to the east, 2 m a pixel, the legs follow the ground as they are: only
+// the way home gains a waypoint, above home, and the summary says so in the singular.
+TEST(PlanCli, OneWaypointAddedIsSaidInTheSingular) {
+  const TerrainCase c =
+      terrain_case("plan-terrain-slope", grid_dem([](int col, int) { return 400 + 2 * col; }));
+  ASSERT_EQ(c.plan.exit_code, 0) << c.plan.err;
+  const json t = json::parse(read_text(c.dir + "/out/summary.json"))["terrain"];
+  EXPECT_EQ(t["waypoints_added"], 1);
+  EXPECT_NE(c.plan.out.find(" m flown, GSD 0.319 to 0.319 cm/px), 1 waypoint added, relative "
+                            "frame\n"),
+            std::string::npos)
+      << c.plan.out;
 }
 
 // A hand-made leg across the cliff, 12 m above the ground at both ends (1.5 m beyond the pixel
