@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "cli_runner.hpp"
+#include "swath/base/csv_text.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
 
 namespace swath::test {
@@ -461,6 +463,48 @@ TEST(BatchScratch, TablesNameTheRealDirectoryAndAgree) {
   }
   for (const char* count : {"lines", "photos", "drones"})
     EXPECT_TRUE(props[count].is_number_integer()) << count << ": " << props[count];
+}
+
+// batch.csv guards the user's text as OWASP lists: an area's name starting with =, +, -, @, a tab
+// or a carriage return gets a leading apostrophe (a negative number for a name too), one starting
+// with none stays as it is; the numbers swath writes (index, exit code, the measures) never get
+// one. batch.geojson has the names as they are.
+TEST(BatchScratch, TablesGuardTheUsersTextAsOwaspListsAndNoNumber) {
+  using nlohmann::json;
+  const std::string dir = fresh_dir("batch-guard");
+  fs::create_directories(dir + "/areas");
+  const std::vector<std::string> names{"=a", "+b", "-c", "@d", "\te", "\rf", "-5", "plain"};
+  json features = json::array();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const double w = 8.54 + 0.002 * static_cast<double>(k), e = w + 0.001, s = 47.397, n = s + 7e-4;
+    const json ring = {{w, s}, {e, s}, {e, n}, {w, n}, {w, s}};
+    features.push_back({{"type", "Feature"},
+                        {"properties", {{"name", names[k]}}},
+                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}});
+  }
+  std::ofstream(dir + "/areas/plots.geojson")
+      << json{{"type", "FeatureCollection"}, {"features", features}}.dump();
+  const CliRun r = run_swath("batch " + dir + "/areas -o " + dir + "/out" + kPlanOptions);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = read_text(dir + "/out/batch.csv");
+  base::CsvText csv(text, "batch.csv", base::CsvText::Records::quoted_breaks);
+  ASSERT_TRUE(csv.next());
+  const std::vector<std::string> header = csv.cells();
+  const json geojson = json::parse(read_text(dir + "/out/batch.geojson"))["features"];
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    ASSERT_TRUE(csv.next()) << text;
+    const std::vector<std::string>& cells = csv.cells();
+    ASSERT_EQ(cells.size(), header.size()) << text;
+    EXPECT_EQ(cells[0], (names[k] == "plain" ? "" : "'") + names[k]);
+    EXPECT_EQ(geojson[k]["properties"]["area"], names[k]);
+    for (std::size_t c = 0; c < header.size(); ++c) {
+      if (header[c] == "area" || header[c] == "file" || header[c] == "directory" ||
+          header[c] == "status" || header[c] == "message")
+        continue;
+      double value = 0;
+      EXPECT_TRUE(base::parse_number(cells[c], value)) << header[c] << ": " << cells[c];
+    }
+  }
 }
 
 }  // namespace

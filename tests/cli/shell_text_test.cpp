@@ -95,6 +95,9 @@ TEST(ShellText, CsvTextIsNeverAFormulaAndReadsBackAsWritten) {
   EXPECT_EQ(apps::csv_field("+1"), "'+1");
   EXPECT_EQ(apps::csv_field("-2,3"), "\"'-2,3\"");
   EXPECT_EQ(apps::csv_field("@SUM(A1)"), "'@SUM(A1)");
+  EXPECT_EQ(apps::csv_field("\t=1+2"), "'\t=1+2");
+  EXPECT_EQ(apps::csv_field("\r=1+2"), "\"'\r=1+2\"");
+  EXPECT_EQ(apps::csv_field("-5"), "'-5");  // text, not a number: the caller writes numbers
   EXPECT_EQ(apps::csv_field("meadow, north"), "\"meadow, north\"");
   EXPECT_EQ(apps::csv_field("a-b=c"), "a-b=c");  // only the first character makes a formula
   EXPECT_EQ(apps::csv_field(""), "");
