@@ -15,6 +15,7 @@
 #include "plan_html.hpp"
 #include "progress_bar.hpp"
 #include "swath/base/file_text.hpp"
+#include "swath/base/freed_memory.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/base/output_set.hpp"
@@ -732,6 +733,7 @@ preflight::CheckOptions PlanCommand::check_options(const planning::SurveyPlan& p
 }
 
 int PlanCommand::run() {
+  base::heap_on_huge_pages();
   if (!config_.empty())
     apply_mission_config(
         *app_, base::read_text_file(config_, "mission config", base::kMaxConfigFileBytes), config_);

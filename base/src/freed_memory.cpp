@@ -3,11 +3,51 @@
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
+#include <sys/mman.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 
 namespace swath::base {
+
+namespace {
+
+// Set by heap_on_huge_pages(): the heaps of the threads parallel_for() starts are marked too.
+std::atomic<bool> huge_heap_pages{false};
+
+// The heap's top grown by a block it then keeps (below M_MMAP_THRESHOLD, and M_TRIM_THRESHOLD
+// is not reached: keep_freed_memory()), the whole 2 MiB pages inside it marked for transparent
+// huge pages. Untouched, the block costs address space only.
+void mark_heap_top() {
+#if defined(__GLIBC__) && defined(MADV_HUGEPAGE)
+  constexpr std::size_t kBlock_bytes = 30u << 20, kHugePage_bytes = 2u << 20;
+  void* const block = std::malloc(kBlock_bytes);
+  if (block == nullptr) return;
+  const auto at = reinterpret_cast<std::uintptr_t>(block);
+  const std::uintptr_t begin = (at + kHugePage_bytes - 1) & ~std::uintptr_t{kHugePage_bytes - 1};
+  const std::uintptr_t end = (at + kBlock_bytes) & ~std::uintptr_t{kHugePage_bytes - 1};
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+  std::free(block);
+#endif
+}
+
+}  // namespace
+
+void heap_on_huge_pages() {
+  if (const char* env = std::getenv("SWATH_HUGE_PAGES");
+      env != nullptr && std::strcmp(env, "0") == 0)
+    return;
+  mark_heap_top();
+  huge_heap_pages = true;
+}
+
+void thread_heap_started() {
+  if (huge_heap_pages.load(std::memory_order_relaxed)) mark_heap_top();
+}
 
 void keep_freed_memory() {
 #if defined(__GLIBC__)

@@ -11,6 +11,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "swath/base/freed_memory.hpp"
+
 namespace swath::base {
 
 /// The machine's hardware threads, at least 1: the default of every `threads` below.
@@ -54,7 +56,10 @@ void parallel_for(std::size_t count, unsigned threads, F&& f) {
   std::vector<std::thread> helpers;
   for (std::size_t k = 1; k < workers; ++k) {
     try {
-      helpers.emplace_back(work, unsigned(k));
+      helpers.emplace_back([&work, k] {
+        thread_heap_started();
+        work(unsigned(k));
+      });
     } catch (const std::system_error&) {  // no thread to be had: fewer do the work
       break;
     }
