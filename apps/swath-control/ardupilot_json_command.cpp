@@ -195,7 +195,10 @@ int ControlArduPilotJsonCommand::run() {
   settings.seed = seed_;
   settings.source = vehicle_file.source;
   control::ArduPilotJsonServer server(settings);
-  if (!output_.empty()) base::OutputSet probe(output_, "control-ardupilot-json");  // not committed
+  if (!output_.empty()) {  // refused before serving, not after the flight
+    const base::OutputSet probe(output_, "control-ardupilot-json");  // not committed
+    base::check_output_names(output_, "control-ardupilot-json", {"flight.csv", "summary.json"});
+  }
   JsonUdpSocket socket(address_, port_);
 
   const control::MotorMap& map = server.motor_map();

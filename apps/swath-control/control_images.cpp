@@ -363,6 +363,10 @@ ControlPicture triggers_picture(const std::vector<control::RateRow>& rates, cons
   return out;
 }
 
+std::vector<std::string> control_image_names() {
+  return {"trajectory.png", "attitude.png", "energy.png", "triggers.png"};
+}
+
 void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
                         const control::SimulationSummary& summary, const FlightSeries& flight,
                         const std::vector<control::RateRow>& rates, const Raster& raster,

@@ -99,6 +99,9 @@ ControlPicture sweep_picture(const std::vector<SweptCurve>& curves, const std::s
                              const std::string& x_label, const std::string& y_label, int width_px,
                              int height_px);
 
+/// The names of the four pictures add_control_images() writes.
+std::vector<std::string> control_image_names();
+
 /// The four pictures into the output set as PNG.
 void add_control_images(base::OutputSet& set, const control::SimulationSettings& settings,
                         const control::SimulationSummary& summary, const FlightSeries& flight,

@@ -120,6 +120,11 @@ int ControlRunCommand::run() {
 
   // 2. The flight, its rows streamed into the output set's temporaries.
   base::OutputSet set(output_, "control-run");
+  // The files added after the flight refused before it too: no flight for nothing.
+  std::vector<std::string> later{"summary.json"};
+  if (!no_pictures_)
+    for (const std::string& name : control_image_names()) later.push_back(name);
+  base::check_output_names(output_, "control-run", later);
   base::OutputSet::Stream& rows = set.stream("timeseries.csv");
   base::OutputSet::Stream& seconds = set.stream("rate.csv");
   const std::vector<std::string> triggers = control::trigger_sensor_names(settings.physics);

@@ -44,6 +44,9 @@ int RunCommand::run() {
   // The rows stream into the set's temporaries as they are taken: memory stays flat however
   // long the flight. Opened only now: bad input above leaves nothing behind.
   base::OutputSet set(output_, "energy-run");
+  // The files added after the flight refused before it too: no simulation for nothing.
+  base::check_output_names(output_, "energy-run",
+                           {"control.csv", "summary.json", "trajectory.png", "energy.png"});
   base::OutputSet::Stream& trajectory = set.stream("trajectory.csv");
   base::OutputSet::Stream& energy_rows = set.stream("energy.csv");
   trajectory << energy::trajectory_csv_header();

@@ -333,6 +333,13 @@ std::string timing_json(const fleet::RunRecord& r) {
          "\n";
 }
 
+std::vector<std::string> run_file_names(bool pictures) {
+  std::vector<std::string> names{"events.jsonl", "dtg.json", "summary.json", "tracks.geojson",
+                                 "timing.json"};
+  if (pictures) names.insert(names.end(), {"tracks.png", "gantt.png"});
+  return names;
+}
+
 void add_run_files(base::OutputSet& set, const PreparedRun& p, const fleet::RunRecord& r) {
   set.add("events.jsonl", r.events_jsonl);
   set.add("dtg.json", r.dtg_json);

@@ -77,5 +77,7 @@ std::string timing_json(const fleet::RunRecord& r);
 /// The five files of a run (events.jsonl, dtg.json, summary.json, tracks.geojson, timing.json)
 /// added to `set` (run and replay write the same set).
 void add_run_files(base::OutputSet& set, const PreparedRun& p, const fleet::RunRecord& r);
+/// The names add_run_files() writes, and with `pictures` run --render's tracks.png and gantt.png.
+std::vector<std::string> run_file_names(bool pictures);
 
 }  // namespace swath::apps

@@ -142,6 +142,16 @@ void FleetReplayCommand::setup(CLI::App& app) {
                "recorded cancels are played as recorded");
 }
 
+// Where the replay of runs_[i] goes: -o, or with several runs a directory in it named as the run.
+fs::path FleetReplayCommand::output_directory(std::size_t i) const {
+  fs::path dir = output_;
+  if (runs_.size() > 1) {
+    const fs::path run = fs::path(runs_[i]).lexically_normal();
+    dir /= run.filename().empty() ? run.parent_path().filename() : run.filename();
+  }
+  return dir;
+}
+
 int FleetReplayCommand::run() {
   o_.seed_given = seed_option_->count() > 0;
   if (!o_.fleet.empty() && o_.drones > 0) throw InputError("give --fleet or --drones, not both");
@@ -167,15 +177,14 @@ int FleetReplayCommand::run() {
       throw InputError(run + ": the same directory name as " + name_of[name] +
                        ": their replays would share " + output_ + "/" + name);
   }
+  // Every replay's directory checked before the first is written: a refusal writes nothing.
+  for (std::size_t i = 0; i < runs_.size(); ++i)
+    base::check_output_names(output_directory(i), "fleet-run", run_file_names(false));
   int incomplete = 0;
   for (std::size_t i = 0; i < runs_.size(); ++i) {
     PreparedRun& p = prepared[i];
     const fleet::RunRecord r = fleet::run_app(p.app, *p.world, p.drones, p.settings);
-    fs::path dir = output_;
-    if (runs_.size() > 1) {
-      const fs::path run = fs::path(runs_[i]).lexically_normal();
-      dir /= run.filename().empty() ? run.parent_path().filename() : run.filename();
-    }
+    const fs::path dir = output_directory(i);
     base::OutputSet set(dir, "fleet-run");
     add_run_files(set, p, r);
     set.commit();

@@ -4,6 +4,7 @@
 // with its fleet, scheduler, weights and seed unless the options say otherwise.
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ class FleetReplayCommand : public Command {
   int run() override;
 
  private:
+  std::filesystem::path output_directory(std::size_t i) const;
+
   std::vector<std::string> runs_;
   std::string output_;
   ReplayOverrides o_;

@@ -226,6 +226,8 @@ int FleetRunCommand::run() {
       world_seed_option_->count() > 0 ? prepare_run(request_, world_seed_) : prepare_run(request_);
   if (pace_ > 0 && backend_ == "mavlink")
     throw InputError("--pace is for --backend sim (vehicles fly on the wall clock)");
+  // Refused now, not after a flight whose record would then have nowhere to go.
+  base::check_output_names(output_, "fleet-run", run_file_names(render_));
   std::unique_ptr<fleet::MavlinkFleet> vehicles;
   const RunControl* control_made = nullptr;  // once made: a signal cuts the final wait short
   if (backend_ == "mavlink") {

@@ -82,6 +82,11 @@ namespace {
 using fleet::FreeWeight;
 using fleet::Trial;
 
+// The files a tuning writes into its -o directory (the last step of tune ask/tell too).
+std::vector<std::string> tune_file_names() {
+  return {"weights.yaml", "tune.csv", "held_out.csv", "summary.json"};
+}
+
 // Completion times on the held-out seeds, per configuration.
 struct HeldOut {
   std::vector<double> reactive, start, tuned;
@@ -245,6 +250,8 @@ int FleetTuneCommand::run() {
         "RUN..)");
   check_last_seed();
   const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked first
+  // Refused before the trials are flown, not after.
+  base::check_output_names(output_, "fleet-tune", tune_file_names());
   if (replay_ == "trace")
     if (const std::string why = fleet::schedule_dependence(request_.app); !why.empty())
       throw InputError("--replay trace: " + why);
@@ -519,6 +526,7 @@ int FleetTuneCommand::ask() {
       throw InputError(state_ + " does not exist: to start a tuning give APP, --world and -o DIR");
     check_last_seed();
     const PreparedRun check = prepare_run(request_, request_.seed);  // every input checked
+    base::check_output_names(output_, "fleet-tune", tune_file_names());
     const std::string runs = absolute_path(
         runs_dir_.empty() ? fs::path(state_).replace_extension("").string() + "-runs" : runs_dir_);
     st = json{{"tune_state", 1},

@@ -523,6 +523,8 @@ int BatchCommand::run() {
       argv.insert(
           argv.end(),
           {"--threads", std::to_string(std::max(1u, base::machine_threads() / unsigned(jobs_)))});
+  // The user's batch.csv refused before any area is planned into the directory, not after.
+  base::check_output_names(output_, "batch", {"batch.csv", "batch.geojson"});
   create_output_directory(output_);
   const std::set<std::string> earlier = earlier_directories(output_);
   const std::vector<PlanResult> results = plan_jobs(jobs, commands, jobs_, progress_, timeout_s_);

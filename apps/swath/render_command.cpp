@@ -21,6 +21,48 @@ std::string read(const std::filesystem::path& path) {
   return base::read_text_file(path, "swath plan file");
 }
 
+// A file render writes: the page or a picture, and whether the user named it.
+struct RenderedFile {
+  std::filesystem::path path;
+  std::string content;
+  bool named = false;    ///< by --coverage or --paths: replaces what is there, as asked
+  const char* remedy{};  ///< else what to do about a file of the user's in its place
+};
+
+// Into the plan's own directory a file joins the plan's set (a re-plan replaces it); anywhere
+// else it is a set of its own, never a plan's. A name render chose itself never replaces a file
+// no manifest lists (the user's own coverage.png).
+struct Placement {
+  std::filesystem::path directory;
+  std::string kind;
+  base::OutputSet::Options options;
+};
+
+Placement placement(const RenderedFile& file, const std::filesystem::path& plan) {
+  const std::filesystem::path parent = file.path.has_parent_path() ? file.path.parent_path() : ".";
+  std::error_code ec;
+  const bool plan_directory = std::filesystem::equivalent(parent, plan, ec);
+  base::OutputSet::Options options{base::OutputSet::Mode::amend, 10.0, !file.named};
+  if (file.remedy != nullptr) options.unlisted_remedy = file.remedy;
+  return {parent, plan_directory ? "plan" : "render", options};
+}
+
+// Every file checked before any is written: a refused picture leaves no page behind either.
+void write(const std::vector<RenderedFile>& files, const std::filesystem::path& dir) {
+  for (const RenderedFile& file : files) {
+    const Placement where = placement(file, dir);
+    base::check_output_names(where.directory, where.kind, {file.path.filename().string()},
+                             where.options);
+  }
+  for (const RenderedFile& file : files) {
+    const Placement where = placement(file, dir);
+    base::OutputSet set(where.directory, where.kind, where.options);
+    set.add(file.path.filename().string(), file.content);
+    set.commit();
+    std::cout << "swath render: wrote " << file.path.string() << '\n';
+  }
+}
+
 }  // namespace
 
 std::string RenderCommand::html_page(const std::filesystem::path& dir) const {
@@ -34,13 +76,6 @@ std::string RenderCommand::html_page(const std::filesystem::path& dir) const {
     return base::read_text_file(dir / name, "swath plan file");
   };
   return plan_html(lookup, dir_, basemap_url_, basemap_);
-}
-
-void RenderCommand::write_html(const std::filesystem::path& dir, const std::string& page) const {
-  base::OutputSet set(dir, "plan", {base::OutputSet::Mode::amend, 10.0});
-  set.add("plan.html", page);
-  set.commit();
-  std::cout << "swath render: wrote " << (dir / "plan.html").string() << '\n';
 }
 
 void RenderCommand::setup(CLI::App& app) {
@@ -64,9 +99,10 @@ int RenderCommand::run() {
   if (!basemap_url_.empty() && !html_)
     throw base::InputError("--basemap-url draws behind plan.html: give --html too");
   // Everything made before anything is written: a refused basemap leaves no page behind.
-  const std::string page = html_ ? html_page(dir) : "";
+  std::vector<RenderedFile> files;
+  if (html_) files.push_back({dir / "plan.html", html_page(dir), false, "move it"});
   if (html_ && coverage_.empty() && paths_.empty()) {
-    write_html(dir, page);
+    write(files, dir);
     return base::kExitSuccess;
   }
   const auto [w, h] = parse_size(size_);
@@ -77,27 +113,14 @@ int RenderCommand::run() {
       planning::parse_plan_figures(read(dir / "summary.json"), (dir / "summary.json").string());
   CoverageImage image = coverage_image(features, figures, w, h);
   if (!basemap_.empty()) put_basemap_under(image, basemap_);
-  const std::filesystem::path coverage =
-      coverage_.empty() ? dir / "coverage.png" : std::filesystem::path(coverage_);
-  std::vector<std::pair<std::filesystem::path, std::string>> out{
-      {coverage, render::encode_png(render::draw(image.scene, image.view))}};
+  files.push_back({coverage_.empty() ? dir / "coverage.png" : std::filesystem::path(coverage_),
+                   render::encode_png(render::draw(image.scene, image.view)), !coverage_.empty(),
+                   "move it, or give --coverage another file"});
   if (!paths_.empty()) {
     image.scene.strips.clear();
-    out.push_back({paths_, render::encode_png(render::draw(image.scene, image.view))});
+    files.push_back({paths_, render::encode_png(render::draw(image.scene, image.view)), true});
   }
-  if (html_) write_html(dir, page);
-  for (const auto& [path, png] : out) {
-    // Into the plan's own directory the picture joins the plan's set (a re-plan replaces it);
-    // anywhere else it is a set of its own, never a plan's.
-    const std::filesystem::path parent = path.has_parent_path() ? path.parent_path() : ".";
-    std::error_code ec;
-    const bool plan_directory = std::filesystem::equivalent(parent, dir, ec);
-    base::OutputSet set(parent, plan_directory ? "plan" : "render",
-                        {base::OutputSet::Mode::amend, 10.0});
-    set.add(path.filename().string(), png);
-    set.commit();
-    std::cout << "swath render: wrote " << path.string() << '\n';
-  }
+  write(files, dir);
   return base::kExitSuccess;
 }
 

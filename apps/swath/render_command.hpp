@@ -20,7 +20,6 @@ class RenderCommand : public Command {
 
  private:
   std::string html_page(const std::filesystem::path& dir) const;
-  void write_html(const std::filesystem::path& dir, const std::string& page) const;
 
   std::string dir_;
   std::string coverage_;

@@ -222,6 +222,44 @@ std::string holder_of(const fs::path& dir) {
   return {};
 }
 
+// The names this kind's manifest in `dir` lists (`own`) and those other kinds' list, each as
+// "NAME\tKIND" (`foreign`).
+void read_manifests(const fs::path& dir, const std::string& kind, std::vector<std::string>& own,
+                    std::vector<std::string>& foreign) {
+  std::error_code ec;
+  for (const auto& item : fs::directory_iterator(dir, ec)) {
+    const std::string other = kind_of_manifest(item.path().filename().string());
+    if (other == kind) own = read_manifest(item.path());
+    if (other.empty() || other == kind) continue;
+    for (std::string& name : read_manifest(item.path()))
+      foreign.push_back(std::move(name) + '\t' + other);
+  }
+}
+
+// Names other kinds of set wrote here are not ours to replace. A file of that name that no
+// manifest lists is the user's (or an older swath's, which wrote no manifest): replacing it, and
+// removing it with the next set, would lose it (unless keep_unlisted is off). A directory in the
+// way is switch_in()'s to say.
+void refuse_theirs(const fs::path& dir, const std::string& kind, const std::string& name,
+                   const std::vector<std::string>& own, const std::vector<std::string>& foreign,
+                   const OutputSet::Options& options) {
+  for (const std::string& entry : foreign) {
+    const auto tab = entry.find('\t');
+    if (entry.compare(0, tab, name) == 0 && tab == name.size())
+      throw InputError(dir.string() + "/" + name + " belongs to the files of a swath " +
+                       entry.substr(tab + 1) +
+                       " in this directory; write into another directory instead");
+  }
+  if (!options.keep_unlisted) return;
+  struct stat st {};
+  const fs::path path = dir / name;
+  if (::lstat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode) ||
+      std::find(own.begin(), own.end(), name) != own.end())
+    return;
+  throw InputError(path.string() + ": a file swath did not write (no " + manifest_name(kind) +
+                   " here lists it) would be replaced; " + options.unlisted_remedy);
+}
+
 }  // namespace
 
 struct OutputSet::Entry {
@@ -284,14 +322,7 @@ OutputSet::OutputSet(fs::path directory, std::string kind, Options options)
                      std::strerror(saved) + ")");
   }
 
-  // Names other kinds of set wrote here are not ours to replace.
-  for (const auto& item : fs::directory_iterator(directory_, ec)) {
-    const std::string other = kind_of_manifest(item.path().filename().string());
-    if (other == kind_) own_ = read_manifest(item.path());
-    if (other.empty() || other == kind_) continue;
-    for (std::string& name : read_manifest(item.path()))
-      foreign_.push_back(std::move(name) + '\t' + other);
-  }
+  read_manifests(directory_, kind_, own_, foreign_);
 }
 
 OutputSet::~OutputSet() {
@@ -312,27 +343,7 @@ void OutputSet::check_name(const std::string& name) const {
     throw InputError(directory_.string() + "/" + name +
                      " would be written twice by this command (two outputs share the name); "
                      "choose another name");
-  for (const std::string& entry : foreign_) {
-    const auto tab = entry.find('\t');
-    if (entry.compare(0, tab, name) == 0 && tab == name.size())
-      throw InputError(directory_.string() + "/" + name + " belongs to the files of a swath " +
-                       entry.substr(tab + 1) +
-                       " in this directory; write into another directory instead");
-  }
-  if (options_.keep_unlisted) check_listed(name);
-}
-
-// A file of that name that no manifest lists is the user's (or an older swath's, which wrote no
-// manifest): replacing it, and removing it with the next set, would lose it. A directory in the
-// way is switch_in()'s to say.
-void OutputSet::check_listed(const std::string& name) const {
-  struct stat st {};
-  const fs::path path = directory_ / name;
-  if (::lstat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode) ||
-      std::find(own_.begin(), own_.end(), name) != own_.end())
-    return;
-  throw InputError(path.string() + ": a file swath did not write (no " + manifest_name(kind_) +
-                   " here lists it) would be replaced; move it, or choose another -o");
+  refuse_theirs(directory_, kind_, name, own_, foreign_, options_);
 }
 
 bool OutputSet::has(const std::string& name) const {
@@ -557,6 +568,15 @@ void write_files_atomically(const fs::path& directory,
   OutputSet set(directory, kind, {OutputSet::Mode::replace, 10.0, keep_unlisted});
   for (const auto& [name, content] : files) set.add(name, content);
   set.commit();
+}
+
+void check_output_names(const fs::path& directory, const std::string& kind,
+                        const std::vector<std::string>& names, const OutputSet::Options& options) {
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) return;  // nothing there to replace
+  std::vector<std::string> own, foreign;
+  read_manifests(directory, kind, own, foreign);
+  for (const std::string& name : names) refuse_theirs(directory, kind, name, own, foreign, options);
 }
 
 }  // namespace swath::base

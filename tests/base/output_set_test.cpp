@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <string>
 
@@ -174,6 +175,56 @@ TEST(OutputSet, ANameAnotherKindWroteIsRefusedBeforeAnythingIsWritten) {
   }
   EXPECT_EQ(slurp(dir / "summary.json"), "plan");
   EXPECT_THROW(run.add("energy.csv", "again"), InputError) << "a name twice in one set";
+}
+
+// A file no manifest lists (the user's summary.json, or an older swath's that wrote none) is never
+// replaced by default, by any kind of set: refused naming it, with the set's remedy, nothing
+// written. A set told to replace it (a file the user named) does; check_output_names() refuses
+// the same names, another kind's included, and writes or creates nothing.
+TEST(OutputSet, AFileNoManifestListsIsKeptUnlessTheSetIsToldOtherwise) {
+  const fs::path dir = fresh("unlisted");
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << "mine";
+  const auto refusal = [&](const std::function<void()>& write) {
+    try {
+      write();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("not refused");
+  };
+  const std::string sentence = (dir / "summary.json").string() +
+                               ": a file swath did not write (no .swath-energy-run.files here "
+                               "lists it) would be replaced; ";
+  EXPECT_EQ(refusal([&] {
+              write_files_atomically(dir, {{"summary.json", "run"}}, "energy-run");
+            }),
+            sentence + "move it, or choose another -o");
+  OutputSet::Options options;
+  options.unlisted_remedy = "move it";
+  EXPECT_EQ(refusal([&] {
+              check_output_names(dir, "energy-run", {"a.csv", "summary.json"}, options);
+            }),
+            sentence + "move it");
+  EXPECT_EQ(listing(dir), std::set<std::string>{"summary.json"});
+  EXPECT_EQ(slurp(dir / "summary.json"), "mine");
+  EXPECT_EQ(refusal([&] { check_output_names(dir / "not-there", "energy-run", {"summary.json"}); }),
+            "not refused");
+  EXPECT_FALSE(fs::exists(dir / "not-there"));
+  // Told to replace it: replaced, and listed from now on, so a set of that kind replaces it again.
+  options.keep_unlisted = false;
+  {
+    OutputSet set(dir, "energy-run", options);
+    set.add("summary.json", "run 1");
+    set.commit();
+  }
+  write_files_atomically(dir, {{"summary.json", "run 2"}}, "energy-run");
+  EXPECT_EQ(slurp(dir / "summary.json"), "run 2");
+  // Another kind's file is refused as ever, by the check too.
+  EXPECT_NE(refusal([&] {
+              check_output_names(dir, "control-run", {"summary.json"});
+            }).find("summary.json belongs to the files of a swath energy-run"),
+            std::string::npos);
 }
 
 TEST(OutputSet, ARefusalAfterOpeningLeavesNoDirectoryBehind) {

@@ -507,5 +507,22 @@ TEST(BatchScratch, TablesGuardTheUsersTextAsOwaspListsAndNoNumber) {
   }
 }
 
+// The user's batch.csv in -o is never replaced: the batch is refused naming it before any area
+// is planned, exit 2, nothing written.
+TEST(BatchScratch, AUsersBatchCsvIsRefusedBeforeAnyAreaIsPlanned) {
+  const std::string dir = fresh_dir("batch-users-csv");
+  const std::string areas = areas_dir(dir);
+  fs::create_directories(dir + "/out");
+  const std::string mine = "MY OWN TABLE\n";
+  std::ofstream(dir + "/out/batch.csv") << mine;
+  const CliRun r = run_swath("batch " + areas + " -o " + dir + "/out" + kPlanOptions);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "swath batch: " + dir +
+                       "/out/batch.csv: a file swath did not write (no .swath-batch.files here "
+                       "lists it) would be replaced; move it, or choose another -o\n");
+  EXPECT_EQ(directory_files(dir + "/out"),
+            (std::map<std::string, std::string>{{"batch.csv", mine}}));
+}
+
 }  // namespace
 }  // namespace swath::test

@@ -240,6 +240,46 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
   }
 }
 
+// A file of the user's named as one swath-energy writes (summary.json, soc.csv) is never
+// replaced: the run and the budget are refused naming it, exit 2, nothing written; the files of
+// their own run before are replaced as ever.
+TEST(EnergyCli, AFileSwathDidNotWriteIsNeverReplaced) {
+  const std::string out = fresh_dir("energy-users-file");
+  std::filesystem::create_directories(out);
+  const std::string mine = "MY OWN SUMMARY\n";
+  std::ofstream(out + "/summary.json") << mine;
+  const std::string run = "run plans/survey.stages --config plans/survey-sim.yaml -o " + out;
+  const CliRun refused = run_swath_energy(run);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(refused.err, "swath-energy run: " + out +
+                             "/summary.json: a file swath did not write (no "
+                             ".swath-energy-run.files here lists it) would be replaced; move it, "
+                             "or choose another -o\n");
+  EXPECT_EQ(read_text(out + "/summary.json"), mine);
+  EXPECT_EQ(directory_files(out).size(), 1u);
+  std::filesystem::rename(out + "/summary.json", out + ".mine");
+  ASSERT_EQ(run_swath_energy(run).exit_code, 0);
+  ASSERT_EQ(run_swath_energy(run).exit_code, 0) << "its own files are replaced";
+  EXPECT_TRUE(json::parse(read_text(out + "/summary.json"))["completed"].get<bool>());
+
+  const std::string plan = fresh_dir("energy-users-file-plan");
+  ASSERT_EQ(
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + plan)
+          .exit_code,
+      0);
+  const std::string budget_out = fresh_dir("energy-users-file-budget");
+  std::filesystem::create_directories(budget_out);
+  std::ofstream(budget_out + "/soc.csv") << mine;
+  const std::string budget =
+      "budget " + plan + "/mission.geojson --drone share/drones/quad-5ah.yaml -o " + budget_out;
+  const CliRun kept = run_swath_energy(budget);
+  EXPECT_EQ(kept.exit_code, 2);
+  EXPECT_NE(kept.err.find(budget_out + "/soc.csv: a file swath did not write"), std::string::npos)
+      << kept.err;
+  EXPECT_EQ(read_text(budget_out + "/soc.csv"), mine);
+  EXPECT_EQ(directory_files(budget_out).size(), 1u);
+}
+
 }  // namespace
 }  // namespace swath::test
 

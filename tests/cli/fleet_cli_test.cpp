@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -432,6 +433,52 @@ TEST(FleetCli, ASelfCrossingFenceIsRefusedNamingWhereItCrosses) {
   EXPECT_NEAR(lon, -71.0942, 1e-4);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/out"));
+}
+
+// A file of the user's named as one swath-fleet writes is never replaced, by run, replay or
+// render: refused naming it, exit 2, nothing written (run before it flies, replay before its
+// first run's files); the files of their own run before are replaced as ever.
+TEST(FleetCli, AFileSwathDidNotWriteIsNeverReplaced) {
+  const std::string dir = fresh_dir("fleet-users-file");
+  const std::string mine = "MY OWN TRACKS\n";
+  fs::create_directories(dir + "/run");
+  std::ofstream(dir + "/run/tracks.geojson") << mine;
+  const std::string run = "run hotspot --world hotspot --drones 2 --seed 5 -o " + dir + "/run";
+  const CliRun refused = run_swath_fleet(run);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(refused.err, "swath-fleet run: " + dir +
+                             "/run/tracks.geojson: a file swath did not write (no "
+                             ".swath-fleet-run.files here lists it) would be replaced; move it, "
+                             "or choose another -o\n");
+  EXPECT_EQ(read_text(dir + "/run/tracks.geojson"), mine);
+  EXPECT_EQ(directory_files(dir + "/run").size(), 1u);
+  fs::remove(dir + "/run/tracks.geojson");
+  ASSERT_EQ(run_swath_fleet(run).exit_code, 0);
+  ASSERT_EQ(run_swath_fleet(run).exit_code, 0) << "its own files are replaced";
+  ASSERT_EQ(run_swath_fleet("run hotspot --world hotspot --drones 2 --seed 6 -o " + dir + "/run2")
+                .exit_code,
+            0);
+
+  // render into the run: the user's gantt.png there stays.
+  std::ofstream(dir + "/run/gantt.png") << mine;
+  const std::map<std::string, std::string> before = directory_files(dir + "/run");
+  const CliRun render = run_swath_fleet("render " + dir + "/run");
+  EXPECT_EQ(render.exit_code, 2);
+  EXPECT_NE(render.err.find(dir + "/run/gantt.png: a file swath did not write"), std::string::npos)
+      << render.err;
+  EXPECT_EQ(directory_files(dir + "/run"), before);
+
+  // replay of two runs: the second's directory holds the user's dtg.json; neither is written.
+  fs::create_directories(dir + "/replay/run2");
+  std::ofstream(dir + "/replay/run2/dtg.json") << mine;
+  const CliRun replay =
+      run_swath_fleet("replay " + dir + "/run " + dir + "/run2 -o " + dir + "/replay");
+  EXPECT_EQ(replay.exit_code, 2);
+  EXPECT_NE(replay.err.find(dir + "/replay/run2/dtg.json: a file swath did not write"),
+            std::string::npos)
+      << replay.err;
+  EXPECT_EQ(directory_files(dir + "/replay"),
+            (std::map<std::string, std::string>{{"run2/dtg.json", mine}}));
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
 
 #include "../../apps/swath/coverage_image.hpp"
 #include "cli_runner.hpp"
@@ -136,6 +138,47 @@ TEST(RenderCli, NotAPlanIsAClearError) {
       fresh_dir("small"));
   EXPECT_EQ(size.exit_code, 2);
   EXPECT_NE(size.err.find("--size '10x10'"), std::string::npos) << size.err;
+}
+
+// `swath render DIR` never replaces a file of the user's in the plan's directory named as one it
+// writes there (coverage.png, plan.html): refused naming it, exit 2, nothing written (the page
+// not either); a picture it drew before is replaced, and a file named with --coverage is written
+// as asked.
+TEST(RenderCli, AFileSwathDidNotWriteIsNeverReplaced) {
+  namespace fs = std::filesystem;
+  const std::string out = fresh_dir("render-users-file");
+  ASSERT_EQ(
+      run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + out)
+          .exit_code,
+      0);
+  const std::string mine = "MY OWN PICTURE\n";
+  std::ofstream(out + "/coverage.png") << mine;
+  std::map<std::string, std::string> before = directory_files(out);
+  const CliRun picture = run_swath("render " + out + " --html --paths " + out + "/paths.png");
+  EXPECT_EQ(picture.exit_code, 2);
+  EXPECT_EQ(picture.err, "swath render: " + out +
+                             "/coverage.png: a file swath did not write (no .swath-plan.files "
+                             "here lists it) would be replaced; move it, or give --coverage "
+                             "another file\n");
+  EXPECT_EQ(directory_files(out), before) << "neither the page nor the paths are written";
+  fs::rename(out + "/coverage.png", out + "/mine.png");
+  std::ofstream(out + "/plan.html") << mine;
+  before = directory_files(out);
+  const CliRun page = run_swath("render " + out + " --html --coverage " + out + "/coverage.png");
+  EXPECT_EQ(page.exit_code, 2);
+  EXPECT_EQ(page.err, "swath render: " + out +
+                          "/plan.html: a file swath did not write (no .swath-plan.files here "
+                          "lists it) would be replaced; move it\n");
+  EXPECT_EQ(directory_files(out), before) << "the picture is not drawn either";
+  fs::remove(out + "/plan.html");
+  for (const int width : {500, 400}) {  // the second replaces the first's picture
+    const CliRun drawn = run_swath("render " + out + " --size " + std::to_string(width) + "x300");
+    ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
+    EXPECT_EQ(render::decode_png(read_text(out + "/coverage.png")).width, width);
+  }
+  const CliRun named = run_swath("render " + out + " --coverage " + out + "/mine.png");
+  ASSERT_EQ(named.exit_code, 0) << named.err;
+  EXPECT_EQ(render::decode_png(read_text(out + "/mine.png")).width, 1600);
 }
 
 }  // namespace

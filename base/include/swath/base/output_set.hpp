@@ -11,8 +11,9 @@
 //   the same kind removes the files the old manifest lists and the new set does not write (stale
 //   drone-3.plan after a re-plan with two drones); swath never removes a file it did not write.
 //   A file another kind's manifest lists is never replaced (swath-energy run -o into a plan
-//   directory is refused instead of overwriting the plan's summary.json). With keep_unlisted, a
-//   file no manifest lists is not replaced either (the user's photos.csv in a plan's directory).
+//   directory is refused instead of overwriting the plan's summary.json). A file no manifest lists
+//   is not replaced either (the user's photos.csv or trace.csv in an output directory), unless the
+//   set is told to (keep_unlisted false: a file the user named on the command line).
 // - SIGINT, SIGTERM and SIGHUP are blocked while the files are renamed into place, so a signal
 //   leaves the whole old set or the whole new one; a rename that fails part way (a directory in the
 //   way) is undone, the old files back under their names (kept as hard links meanwhile); a SIGINT
@@ -44,7 +45,9 @@ class OutputSet {
     double lock_wait_s = 10.0;  ///< how long to wait for another run's lock, seconds
     /// Refuse a name whose file is there but listed in no manifest of the directory (the user's
     /// own, or one an older swath wrote without a manifest) instead of replacing it.
-    bool keep_unlisted = false;
+    bool keep_unlisted = true;
+    /// The end of that refusal's sentence: what the user can do instead.
+    const char* unlisted_remedy = "move it, or choose another -o";
   };
 
   /// Opens `directory` (created if missing) for a set of `kind` ("plan", "energy-run": letters,
@@ -75,7 +78,8 @@ class OutputSet {
   };
 
   /// Adds a file with its whole content. Throws InputError for a name that is not a plain file
-  /// name, that the set already has, or that another kind's manifest in the directory lists.
+  /// name, that the set already has, that another kind's manifest in the directory lists, or
+  /// (keep_unlisted) whose file is there and listed in no manifest.
   void add(const std::string& name, std::string_view content);
   /// Adds a file to be written piece by piece; the reference stays valid until commit(). Same
   /// refusals as add().
@@ -95,9 +99,8 @@ class OutputSet {
  private:
   struct Entry;
   void check_name(const std::string& name) const;
-  void check_listed(const std::string& name) const;  ///< keep_unlisted's refusal
-  Entry& open_entry(const std::string& name);        ///< checked name
-  Entry& create_entry(const std::string& name);      ///< the temporary for any name
+  Entry& open_entry(const std::string& name);    ///< checked name
+  Entry& create_entry(const std::string& name);  ///< the temporary for any name
   /// Renames every temporary onto its name, all or none (signals blocked by the caller).
   void switch_in();
   /// Removes the hidden temporaries and kept old files a killed run left of these names.
@@ -127,6 +130,14 @@ void set_rename_function(std::function<int(const char*, const char*)> rename);
 /// Writes `files` (name, content) as one set of `kind` (OutputSet, Mode::replace) and commits it.
 void write_files_atomically(const std::filesystem::path& directory,
                             const std::vector<std::pair<std::string, std::string>>& files,
-                            const std::string& kind = "files", bool keep_unlisted = false);
+                            const std::string& kind = "files", bool keep_unlisted = true);
+
+/// Refuses `names` as a set of `kind` in `directory` would refuse them (another kind's files; with
+/// keep_unlisted, files no manifest lists), writing and locking nothing: a command checks its
+/// output before work it cannot redo (a flight over MAVLink) or before its first of several sets.
+/// Throws InputError; a directory that is not there yet refuses nothing.
+void check_output_names(const std::filesystem::path& directory, const std::string& kind,
+                        const std::vector<std::string>& names,
+                        const OutputSet::Options& options = {});
 
 }  // namespace swath::base
