@@ -1,14 +1,12 @@
 #include "view_command.hpp"
 
-#include <unistd.h>
-
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "swath/base/file_text.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
+#include "swath/base/output_set.hpp"
 #include "swath/fleet/event_replay.hpp"
 #include "swath/web/live_page.hpp"
 
@@ -27,18 +25,17 @@ int FleetViewCommand::run() {
   const fleet::RunRecord record = fleet::replay_record(events, events_path);
   const fs::path page = output_.empty() ? fs::path(run_) / "view.html" : fs::path(output_);
   const std::string html = web::replay_page(run_, events);
-  // Whole or not at all: written beside the page, then renamed onto it.
-  const fs::path partial = page.string() + ".partial-" + std::to_string(::getpid());
-  {
-    std::ofstream out(partial, std::ios::binary);
-    out << html;
-    if (!out.flush()) {
-      std::error_code ignored;
-      fs::remove(partial, ignored);
-      throw base::InputError(page.string() + ": cannot be written");
-    }
-  }
-  fs::rename(partial, page);
+  // Whole or not at all, as every output set. In the run's directory (the default) the page never
+  // replaces a file no manifest lists (the user's own view.html); a page named with -o is written
+  // as asked.
+  base::OutputSet::Options options;
+  options.mode = base::OutputSet::Mode::amend;  // pages of other names stay
+  options.keep_unlisted = output_.empty();
+  options.unlisted_remedy = "move it, or name another page with -o";
+  base::OutputSet set(page.has_parent_path() ? page.parent_path() : fs::path("."), "fleet-view",
+                      options);
+  set.add(page.filename().string(), html);
+  set.commit();
   std::cout << page.string() << ": " << record.drones.size() << " drone"
             << (record.drones.size() == 1 ? "" : "s") << ", " << base::fixed_text(record.end_s, 1)
             << " s\n";

@@ -435,8 +435,8 @@ TEST(FleetCli, ASelfCrossingFenceIsRefusedNamingWhereItCrosses) {
   EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 
-// A file of the user's named as one swath-fleet writes is never replaced, by run, replay or
-// render: refused naming it, exit 2, nothing written (run before it flies, replay before its
+// A file of the user's named as one swath-fleet writes is never replaced, by run, replay, render
+// or view: refused naming it, exit 2, nothing written (run before it flies, replay before its
 // first run's files); the files of their own run before are replaced as ever.
 TEST(FleetCli, AFileSwathDidNotWriteIsNeverReplaced) {
   const std::string dir = fresh_dir("fleet-users-file");
@@ -479,6 +479,19 @@ TEST(FleetCli, AFileSwathDidNotWriteIsNeverReplaced) {
       << replay.err;
   EXPECT_EQ(directory_files(dir + "/replay"),
             (std::map<std::string, std::string>{{"run2/dtg.json", mine}}));
+
+  // view's page in the run: the user's view.html stays; a page named with -o is written as asked.
+  std::ofstream(dir + "/run/view.html") << mine;
+  const CliRun view = run_swath_fleet("view " + dir + "/run");
+  EXPECT_EQ(view.exit_code, 2);
+  EXPECT_EQ(view.err, "swath-fleet view: " + dir +
+                          "/run/view.html: a file swath did not write (no "
+                          ".swath-fleet-view.files here lists it) would be replaced; move it, or "
+                          "name another page with -o\n");
+  EXPECT_EQ(read_text(dir + "/run/view.html"), mine);
+  const CliRun named = run_swath_fleet("view " + dir + "/run -o " + dir + "/run/view.html");
+  ASSERT_EQ(named.exit_code, 0) << named.err;
+  EXPECT_EQ(read_text(dir + "/run/view.html").rfind("<!DOCTYPE html>", 0), 0u);
 }
 
 }  // namespace
