@@ -479,6 +479,122 @@ TEST(Envelope, EveryAppKeepsItsDronesApartAndUnderTheCeiling) {
   }
 }
 
+// A drone's logged positions (drone_state, drone_mode at its own at_s) in time order: the trace
+// a reader of events.jsonl sees; between two of them the drone is taken to fly straight at an
+// even pace, as the checker's R13 takes it.
+struct Fix {
+  double t_s;
+  std::array<double, 3> at;
+  std::string state;
+};
+std::map<int, std::vector<Fix>> trace_of(const std::string& events_jsonl) {
+  std::map<int, std::vector<Fix>> out;
+  for (const auto& l : lines_of(events_jsonl)) {
+    const json e = json::parse(l);
+    if ((e["ev"] != "drone_state" && e["ev"] != "drone_mode") || e["state"] == "lost") continue;
+    const double t_s = e.value("at_s", e["t_s"].get<double>());
+    out[e["drone"].get<int>()].push_back({t_s, {e["x_m"], e["y_m"], e["alt_m"]}, e["state"]});
+  }
+  for (auto& [drone, fixes] : out)
+    std::stable_sort(fixes.begin(), fixes.end(),
+                     [](const Fix& a, const Fix& b) { return a.t_s < b.t_s; });
+  return out;
+}
+std::array<double, 3> where_at(const std::vector<Fix>& fixes, double t_s) {
+  if (t_s <= fixes.front().t_s) return fixes.front().at;
+  for (std::size_t i = 1; i < fixes.size(); ++i) {
+    if (t_s > fixes[i].t_s) continue;
+    const Fix &a = fixes[i - 1], &b = fixes[i];
+    const double f = b.t_s > a.t_s ? (t_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
+    return {a.at[0] + f * (b.at[0] - a.at[0]), a.at[1] + f * (b.at[1] - a.at[1]),
+            a.at[2] + f * (b.at[2] - a.at[2])};
+  }
+  return fixes.back().at;
+}
+// The least 3-D distance between two airborne drones of the trace, every 0.01 s.
+double least_separation_m(const std::map<int, std::vector<Fix>>& trace, double end_s) {
+  double least = 1e9;
+  for (double t = 0; t <= end_s; t += 0.01)
+    for (auto i = trace.begin(); i != trace.end(); ++i)
+      for (auto j = std::next(i); j != trace.end(); ++j) {
+        const auto a = where_at(i->second, t), b = where_at(j->second, t);
+        if (a[2] > 0 && b[2] > 0)
+          least = std::min(least, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+      }
+  return least;
+}
+
+// The landing is flown, not dropped: drone b (layer 25 m) comes home while drone a works 40 s at
+// (1, 2) at 20 m, 3.6 m across from b's home (4, 0). Straight down there b would pass 3.6 m
+// from a (as it did when the landing was instant at home); it holds over its home at 25 m until
+// a has left, then descends, sample by sample in the log, and lands.
+TEST(Envelope, ALandingHoldsOverHomeUntilItsWayDownIsClear) {
+  const auto world = worlds::parse_world(
+      "kind: static\nsensors: {camera: {time_s: 2.0}}\ntasks:\n"
+      "  - {name: p1, actions: [{fly_to: {x_m: 40, y_m: 0}}, {sense: camera}]}\n"
+      "  - {name: watch, after: [p1], actions: [{fly_to: {x_m: 1, y_m: 2}}, {hover: 40}]}\n"
+      "  - {name: away, after: [watch], actions: [{fly_to: {x_m: -40, y_m: 30}}, {hover: 20}]}\n",
+      "w.yaml");
+  std::vector<DroneSpec> fleet = drones_in_a_row(2, 4);
+  fleet[0].max_flight_time_s = 600;
+  fleet[1].max_flight_time_s = 70;
+  RuntimeSettings s;
+  s.app_name = "static";
+  const RunRecord r = run_app(app_named("static"), *world, fleet, s);
+  ASSERT_TRUE(r.completed) << r.failure;
+  const EventCheck c = check_events(r.events_jsonl);
+  EXPECT_TRUE(c.ok()) << c.violations.front().rule << " " << c.violations.front().message;
+  const auto trace = trace_of(r.events_jsonl);
+  EXPECT_GE(least_separation_m(trace, r.end_s), 5.0 - 1e-6);
+  // b over its home at 25 m: first when it arrives, last when it starts down; then on the ground.
+  double over_from_s = -1, over_to_s = -1, down_s = -1;
+  int descending = 0;  // positions logged between the two
+  for (const Fix& f : trace.at(1)) {
+    if (f.at[0] != 4 || f.at[1] != 0) continue;
+    if (f.state == "returning" && f.at[2] == 25) {
+      if (over_from_s < 0) over_from_s = f.t_s;
+      over_to_s = f.t_s;
+    } else if (f.state == "returning" && over_from_s > 0) {
+      ++descending;
+    } else if (f.state == "charging" && down_s < 0) {
+      down_s = f.t_s;
+    }
+  }
+  ASSERT_GT(over_from_s, 0) << "b came home";
+  ASSERT_GT(down_s, 0) << "b landed";
+  EXPECT_GT(over_to_s - over_from_s, 5.0) << "b held over its home";
+  EXPECT_NEAR(down_s - over_to_s, 25.0 / fleet[1].kinematics().descent_m_s, 1e-5);
+  EXPECT_GE(descending, 7);
+}
+
+// Heights change no faster than the drones climb and descend: case 5's short flights from homes
+// 1 m apart take off and land again and again; every pair of consecutive positions in the log
+// keeps |Δz| within the vertical speed × Δt, every landing is logged on its way down, and the
+// airborne drones stay apart between the samples as at them.
+TEST(Envelope, HeightsInTheLogChangeNoFasterThanTheVerticalSpeed) {
+  const auto world = worlds::parse_world("kind: tracking\nseed: 3\nduration_s: 300\n", "w.yaml");
+  std::vector<DroneSpec> fleet = drones_in_a_row(2, 1);
+  for (DroneSpec& d : fleet) d.max_flight_time_s = 60, d.recharge_s = 30;
+  RuntimeSettings s;
+  s.app_name = "tracking";
+  const RunRecord r = run_app(app_named("tracking"), *world, fleet, s);
+  ASSERT_TRUE(r.completed) << r.failure;
+  EXPECT_TRUE(check_events(r.events_jsonl).ok());
+  const auto trace = trace_of(r.events_jsonl);
+  int landings_seen = 0;
+  for (const auto& [drone, fixes] : trace) {
+    const Kinematics k = fleet[static_cast<std::size_t>(drone)].kinematics();
+    for (std::size_t i = 1; i < fixes.size(); ++i) {
+      const double dz = fixes[i].at[2] - fixes[i - 1].at[2], dt = fixes[i].t_s - fixes[i - 1].t_s;
+      EXPECT_LE(dz, k.climb_m_s * dt + 1e-5) << "drone " << drone << " at " << fixes[i].t_s;
+      EXPECT_LE(-dz, k.descent_m_s * dt + 1e-5) << "drone " << drone << " at " << fixes[i].t_s;
+      landings_seen += fixes[i].at[2] == 0 && dz < 0;
+    }
+  }
+  EXPECT_GE(landings_seen, 4);
+  EXPECT_GE(least_separation_m(trace, r.end_s), 5.0 - 1e-6);
+}
+
 // The fleet file's envelope keys and its GeoJSON fence.
 TEST(Envelope, FleetFileKeysAndGeoJsonFence) {
   const auto dir = std::filesystem::temp_directory_path() / "swath-envelope-test";

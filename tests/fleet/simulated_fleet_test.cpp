@@ -44,7 +44,7 @@ TEST(SimulatedFleet, ALegArrivesWhenTheClosedFormSaysAndReportsItsTarget) {
   EXPECT_EQ(r.position_m.z, 20);
 }
 
-TEST(SimulatedFleet, ARetargetKeepsTheLegRuleAHoldStopsAndAReturnLandsAtHome) {
+TEST(SimulatedFleet, ARetargetKeepsTheLegRuleAHoldStopsAndAReturnDescendsToHome) {
   const DroneSpec d = drone_at("a", {0, 0, 0});
   const Kinematics& k = d.kinematics();
   SimulatedFleet fleet({d}, 20, 3);
@@ -65,13 +65,19 @@ TEST(SimulatedFleet, ARetargetKeepsTheLegRuleAHoldStopsAndAReturnLandsAtHome) {
   const Vec3 held = second.position_at(4);
   EXPECT_EQ(fleet.report(0).position_m.x, held.x);
   EXPECT_EQ(fleet.report(0).position_m.y, held.y);
-  // Home from there at its altitude, then down: landed at home.
+  // Home from there at its altitude, then down at the descent speed: landed at home.
   fleet.return_home(0, t2 + 30);
-  const double home_s = t2 + 30 + Leg(held, {0, 0, held.z}, k).duration_s();
+  const double over_home_s = t2 + 30 + Leg(held, {0, 0, held.z}, k).duration_s();
+  const double home_s = over_home_s + held.z / k.descent_m_s;
   EXPECT_EQ(fleet.arrival_s(0), home_s);
+  fleet.advance_to(over_home_s + 2);
+  const VehicleReport down = fleet.report(0);
+  EXPECT_FALSE(down.landed_home);
+  EXPECT_NEAR(down.position_m.z, held.z - 2 * k.descent_m_s, 1e-9);
   fleet.advance_to(home_s);
   const VehicleReport r = fleet.report(0);
   EXPECT_TRUE(r.landed_home);
+  EXPECT_EQ(r.position_m.x, 0);
   EXPECT_EQ(r.position_m.z, 0);
 }
 

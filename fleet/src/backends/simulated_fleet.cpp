@@ -31,12 +31,17 @@ bool SimulatedFleet::moving(const Vehicle& v, double t_s) {
   return v.leg && t_s < v.leg_start_s + v.leg->duration_s();
 }
 
+// A homing leg ends over home: the vehicle then descends there at its descent speed.
+Leg SimulatedFleet::descent(const Vehicle& v) {
+  const Vec3 top = v.leg->to();
+  return Leg(top, {top.x, top.y, 0}, v.kinematics);
+}
+
 Vec3 SimulatedFleet::position(const Vehicle& v, double t_s) {
   if (!v.leg) return v.at_m;
   if (moving(v, t_s)) return v.leg->position_at(t_s - v.leg_start_s);
-  Vec3 end = v.leg->to();
-  if (v.homing) end.z = 0;  // landed
-  return end;
+  if (!v.homing) return v.leg->to();
+  return descent(v).position_at(t_s - v.leg_start_s - v.leg->duration_s());
 }
 
 void SimulatedFleet::fly(Vehicle& v, double t_s, const Vec3& to_m, bool homing) {
@@ -65,14 +70,11 @@ void SimulatedFleet::hold(int drone, double t_s) {
   v.homing = false;
 }
 
-// Down where it is. The run ends with the landing order (an abort), so the descent is not
-// flown: the vehicle is on the ground at once.
+// Down where it is, at the descent speed (the runtime's landing over home, or an abort's).
 void SimulatedFleet::land(int drone, double t_s) {
   Vehicle& v = at(drone);
   const Vec3 here = position(v, t_s);
-  v.at_m = {here.x, here.y, 0};
-  v.leg.reset();
-  v.homing = false;
+  fly(v, t_s, {here.x, here.y, 0}, true);
 }
 
 void SimulatedFleet::advance_to(double t_s) {
@@ -85,7 +87,7 @@ VehicleReport SimulatedFleet::report(int drone) const {
   r.link_up = true;
   r.position_known = true;
   r.position_m = position(v, now_s_);
-  const bool ended = v.leg && !moving(v, now_s_);
+  const bool ended = v.leg && now_s_ >= arrival_s(drone);
   r.arrived = ended && !v.homing;
   r.landed_home = ended && v.homing;
   return r;
@@ -93,7 +95,9 @@ VehicleReport SimulatedFleet::report(int drone) const {
 
 double SimulatedFleet::arrival_s(int drone) const {
   const Vehicle& v = at(drone);
-  return v.leg ? v.leg_start_s + v.leg->duration_s() : std::numeric_limits<double>::infinity();
+  if (!v.leg) return std::numeric_limits<double>::infinity();
+  const double end_s = v.leg_start_s + v.leg->duration_s();
+  return v.homing ? end_s + descent(v).duration_s() : end_s;
 }
 
 }  // namespace swath::fleet

@@ -85,6 +85,7 @@ void Runtime::model_abort(Drone& d, AbortAction action) {
   leave_spot(d);
   d.relieving = -1;
   d.held_for = -1;
+  d.land_retry_s = kInf;
   integrate(d, now_);
   if (action == AbortAction::rtl) {
     if (d.mode == Mode::returning) return;

@@ -32,8 +32,10 @@ double Runtime::next_event(const Drone& d) const {
   switch (d.mode) {
     case Mode::flying:
     case Mode::positioning:
-    case Mode::returning:
       e = backend_.arrival_s(d.index);  // infinity when the vehicle's report ends it
+      break;
+    case Mode::returning:  // holding over home, it asks for its descent again then
+      e = std::isfinite(d.land_retry_s) ? d.land_retry_s : backend_.arrival_s(d.index);
       break;
     case Mode::acting:
       e = d.act_end;
@@ -96,9 +98,10 @@ void Runtime::next_stop(Drone& d, double t) {
 }
 
 // The vehicle is told to fly what the model just started (the simulated fleet starts the same
-// leg); on the way home, the route's bends are flown as legs and the last one as the return.
+// leg); on the way home, the route's bends are flown as legs and the last one as the return. A
+// model flies that last one to above home like any leg: its landing is the runtime's (descend).
 void Runtime::command_leg(Drone& d, const Vec3& to, Mode mode, double t) {
-  if (mode == Mode::returning && d.route.empty()) {
+  if (mode == Mode::returning && d.route.empty() && backend_.reports_every_tick()) {
     backend_.return_home(d.index, t);
     return;
   }
@@ -325,8 +328,29 @@ void Runtime::finish_action(Drone& d, double t) {
   start_action_or_release(d, t);
 }
 
-// Home reached: the descent from the layer is part of the flight, then the recharge (a swap or a
-// charge to full, case 5's 30 s).
+// Over home at the end of the way home (a model's vehicle): the landing, straight down at the
+// descent speed, logged as it is flown. It is a new plan like a take-off's climb and begun only
+// when clear of the other drones (separation.cpp); else the drone holds over its home at its
+// altitude and asks again at the next tick (a drone landing near it lands first).
+void Runtime::descend(Drone& d, double t) {
+  integrate(d, t);
+  d.pos = d.leg->to();
+  const Way down{Leg(d.pos, {d.pos.x, d.pos.y, 0}, d.spec.kinematics()), {}};
+  if (!clear_to_fly(d, down, t)) {
+    if (!std::isfinite(d.land_retry_s)) backend_.hold(d.index, t);
+    d.land_retry_s = t + settings_.tick_s;
+    return;
+  }
+  d.land_retry_s = kInf;
+  d.leg = down.leg;
+  d.leg_start = t;
+  set_mode(d, Mode::returning, t);  // logs the top of the descent
+  backend_.land(d.index, t);
+}
+
+// Down at home: the recharge (a swap or a charge to full, case 5's 30 s). A vehicle that lands
+// itself (a real one's return to launch) ends its model leg over home: its descent from there is
+// counted here.
 void Runtime::land_home(Drone& d, double t) {
   d.pos = d.leg->to();
   d.leg.reset();
@@ -366,11 +390,17 @@ void Runtime::step_drone(Drone& d, double t) {
       if (t >= d.act_end) finish_action(d, t);
       break;
     case Mode::returning:
+      if (std::isfinite(d.land_retry_s)) {
+        if (t >= d.land_retry_s - 1e-9) descend(d, t);
+        break;
+      }
       if (t < backend_.arrival_s(d.index)) break;
-      if (d.route.empty())
-        land_home(d, t);
-      else
+      if (!d.route.empty())
         next_stop(d, t);
+      else if (d.leg->to().z > 0)
+        descend(d, t);
+      else
+        land_home(d, t);
       break;
     case Mode::charging:
       if (t >= d.charge_end) {

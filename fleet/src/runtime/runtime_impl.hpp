@@ -162,6 +162,8 @@ struct Drone {
   // Sent home but its way was not clear (separation.cpp): tries again then, for this reason.
   double home_retry_s = std::numeric_limits<double>::infinity();
   std::string home_why;
+  // Over its home with its descent not clear (separation.cpp): holds there, tries again then.
+  double land_retry_s = std::numeric_limits<double>::infinity();
 };
 
 // A drone's way: its leg, then a leg to each of the route's stops after it, each from rest (it
@@ -332,6 +334,7 @@ class Runtime final : public detail::Core {
   void sample_along(const Action& fa, const Leg& flown, double flown_from, Reading& r);
   void arrive(Drone& d, double t);
   void finish_action(Drone& d, double t);
+  void descend(Drone& d, double t);
   void land_home(Drone& d, double t);
   void start_leg(Drone& d, const Vec3& to, Mode mode, double t);
   void fly_leg(Drone& d, const Vec3& to, Mode mode, double t);

@@ -1,6 +1,6 @@
 #pragma once
-// The seam between the runtime and the vehicles it flies (docs/swath-fleet.md). The runtime talks to
-// a Backend only: the simulated fleet (backends/, SimulatedFleet: legs in closed form, made by
+// The seam between the runtime and the vehicles it flies (docs/swath-fleet.md). The runtime talks
+// to a Backend only: the simulated fleet (backends/, SimulatedFleet: legs in closed form, made by
 // run_app when RuntimeSettings::backend is null) and real or emulated autopilots (MavlinkFleet,
 // mavlink_fleet.hpp) implement it.
 //
@@ -51,9 +51,12 @@ class Backend {
   /// Starts action `name` where the vehicle holds (a sense: a photo); its duration is the
   /// runtime's.
   virtual void act(int drone, const std::string& name, bool sense) = 0;
-  /// Home and land (a return to launch).
+  /// Home and land (a return to launch): how real vehicles end a way home. A model's way home
+  /// is flown with go_to to above home and landed with land(), so that the runtime can hold it
+  /// there until its descent is clear of the other drones.
   virtual void return_home(int drone, double t_s) = 0;
-  /// Lands where it is (an abort with `--on-abort land`, `swath-fleet ctl land-all`).
+  /// Lands where it is (an abort with `--on-abort land`, `swath-fleet ctl land-all`; a model's
+  /// landing over home); a model's arrival_s is then its touch-down.
   virtual void land(int drone, double t_s) = 0;
   /// A pause (`swath-fleet ctl pause`): the vehicle stops where it is and holds there. By
   /// default what hold() does.

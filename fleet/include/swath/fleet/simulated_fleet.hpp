@@ -2,10 +2,10 @@
 // The simulated fleet (docs/swath-fleet.md) behind the runtime's Backend: each vehicle flies its
 // DroneSpec's kinematics exactly, leg by leg in closed form (leg.hpp): to the target's altitude,
 // then level with the approach rule and bounded accelerations; home: the same to above home,
-// then down and landed. It has no clock and no I/O of its own: a command starts a leg at the
-// time it is given, and arrival_s() tells the runtime when each leg ends, so time jumps from
-// event to event. Its links never drop by themselves (injected faults are the runtime's:
-// docs/swath-fleet.md, 'Faults').
+// then down at the descent speed and landed (land: down where it is). It has no clock and no I/O of
+// its own: a command starts a leg at the time it is given, and arrival_s() tells the runtime when
+// each leg ends, so time jumps from event to event. Its links never drop by themselves (injected
+// faults are the runtime's: docs/swath-fleet.md, 'Faults').
 
 #include <optional>
 #include <string>
@@ -44,11 +44,12 @@ class SimulatedFleet final : public Backend {
     Vec3 at_m;  // where it is when not on a leg
     std::optional<Leg> leg;
     double leg_start_s = 0;
-    bool homing = false;  // the leg ends on the ground at home
+    bool homing = false;  // after the leg, down to the ground (descent())
   };
   Vehicle& at(int drone);
   const Vehicle& at(int drone) const;
   static bool moving(const Vehicle& v, double t_s);
+  static Leg descent(const Vehicle& v);
   static Vec3 position(const Vehicle& v, double t_s);
   static void fly(Vehicle& v, double t_s, const Vec3& to_m, bool homing);
 
