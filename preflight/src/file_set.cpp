@@ -34,6 +34,7 @@ std::string stem_of(const std::string& name, const std::string& tail) {
 struct Launch {
   double offset_s = 0.0;
   std::string sorties_of;
+  std::size_t sortie = 0;  ///< from 1, in the summary's order
 };
 
 std::map<std::string, Launch> launches(const Files& files) {
@@ -56,7 +57,7 @@ std::map<std::string, Launch> launches(const Files& files) {
         if (sortie_file && sortie_file->is_string())
           out[sortie_file->get<std::string>()] = {
               own && own->is_number() ? own->get<double>() : launch.offset_s,
-              file->get<std::string>()};
+              file->get<std::string>(), k + 1};
       }
     }
   }
@@ -251,6 +252,7 @@ void set_launch(DroneFile& d, const std::string& name,
   if (const auto it = by_file.find(stem); it != by_file.end()) {
     d.launch_offset_s = it->second.offset_s;
     d.sorties_of = it->second.sorties_of;
+    d.sortie = it->second.sortie;
   }
   if (part && d.sorties_of.empty()) d.sorties_of = stem + "-litchi";
 }
@@ -279,7 +281,13 @@ DroneFile flown_in_place(const DroneFile& plan, missions::Mission twin, std::str
   const std::string drone = plan.drone.empty()
                                 ? (plan.sorties_of.empty() ? plan.mission.source : plan.sorties_of)
                                 : plan.drone;
-  return {std::move(twin), plan.launch_offset_s, std::move(sorties_of), true, drone};
+  DroneFile d;
+  d.mission = std::move(twin);
+  d.launch_offset_s = plan.launch_offset_s;
+  d.sorties_of = std::move(sorties_of);
+  d.instead = true;
+  d.drone = drone;
+  return d;
 }
 
 }  // namespace

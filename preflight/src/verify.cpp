@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <tuple>
 
 #include "checks.hpp"
 #include "swath/base/number_text.hpp"
@@ -295,17 +297,27 @@ std::vector<Violation> worst_per_place(std::vector<Violation> all) {
 }
 
 // Each sortie after the first of its drone launches at its own launch offset or when the one
-// before it has landed, whichever is later (one drone flies one sortie at a time).
+// before it has landed, whichever is later (one drone flies one sortie at a time). The one before
+// is the one launched before it, or of the same offset the one numbered before it, not the one
+// listed before it: a directory lists drone-1-10.plan before drone-1-2.plan. Files of one offset
+// and number (a split Litchi flight's parts) keep their order.
 std::vector<DroneFile> sorties_in_turn(std::vector<DroneFile> drones,
                                        const std::vector<FlownPath>& paths) {
-  for (std::size_t i = 0; i < drones.size(); ++i) {
+  std::vector<std::size_t> order(drones.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::tie(drones[a].launch_offset_s, drones[a].sortie) <
+           std::tie(drones[b].launch_offset_s, drones[b].sortie);
+  });
+  std::map<std::string, std::size_t> last_of;  // each drone's sortie launched last so far
+  for (const std::size_t i : order) {
     if (drones[i].sorties_of.empty()) continue;
-    for (std::size_t k = i; k-- > 0;)
-      if (drones[k].sorties_of == drones[i].sorties_of) {
-        drones[i].launch_offset_s =
-            std::max(drones[i].launch_offset_s, drones[k].launch_offset_s + paths[k].duration_s);
-        break;
-      }
+    const auto [before, first] = last_of.try_emplace(drones[i].sorties_of, i);
+    if (first) continue;
+    const std::size_t k = before->second;
+    drones[i].launch_offset_s =
+        std::max(drones[i].launch_offset_s, drones[k].launch_offset_s + paths[k].duration_s);
+    before->second = i;
   }
   return drones;
 }

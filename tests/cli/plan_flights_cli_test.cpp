@@ -159,6 +159,48 @@ TEST(PlanCli, SortiesOfDronesSharingAHomeAreStaggered) {
   EXPECT_GE(verified_separation_m(out), 10.0);
 }
 
+// The seconds after the first launch at which `swath verify DIR` flies `file` (its "flight"
+// figure).
+double verified_launch_s(const json& report, const std::string& file) {
+  for (const json& c : report["checks"]) {
+    if (c["check"] != "flight") continue;
+    const std::string text = c["text"].get<std::string>();
+    const std::size_t at = text.find("/" + file + " ");
+    if (at == std::string::npos) return -1;
+    const std::size_t t = text.find("from t = ", at);
+    return std::stod(text.substr(t + 9));
+  }
+  return -1;
+}
+
+// Two drones of 12 sorties each from one home: swath verify flies each sortie at summary.json's
+// launch time, after the one numbered before it (a directory lists drone-1-10.plan before
+// drone-1-2.plan: sortie 2 was flown after sortie 12, at home as drone-2's sortie 2 launched
+// there, and verify refused what swath plan wrote).
+TEST(PlanCli, VerifyFliesSortiesInTheirOrderNotTheDirectorysOrder) {
+  const std::string dir = fresh_dir("sorties-in-order");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type":"Polygon","coordinates":[[[8.0,47.0],[8.006,47.0],[8.006,47.004],)"
+      << R"([8.0,47.004],[8.0,47.0]]]})";
+  const CliRun run = run_swath("plan " + dir +
+                               "/field.geojson --camera sentera-6x --altitude 50 --home "
+                               "47.002,8.003 --drones 2 --sorties auto --endurance 360 -o " +
+                               dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(dir + "/out/summary.json"));
+  const CliRun verified = run_swath("verify " + dir + "/out --json");
+  EXPECT_EQ(verified.exit_code, 0) << verified.out;
+  const json report = json::parse(verified.out);
+  for (const json& d : s["drones"]) {
+    ASSERT_GE(d["sorties"].size(), 10u) << d["name"];
+    for (const json& sortie : d["sorties"])
+      EXPECT_NEAR(verified_launch_s(report, sortie["file"].get<std::string>() + ".plan"),
+                  sortie["launch_offset_s"].get<double>(), 0.51)
+          << sortie["file"];
+  }
+}
+
 // Drones at homes 700 m apart never wait for each other at home: each drone's next sortie then
 // launches as soon as its last has landed (by the estimate and its slack) and the pilot has had
 // the 2 min docs/safety-notes.md gives for the battery change.
