@@ -717,15 +717,16 @@ void PlanCommand::report(const planning::SurveyPlan& plan,
 preflight::CheckOptions PlanCommand::check_options(const planning::SurveyPlan& plan) const {
   preflight::CheckOptions options;
   // The area's holes and the zones as the user gave them (not as grown or simplified for the
-  // fences), named as the planner's messages name them; not the area's outline for the photo
-  // check: a repaired or split area's lines are planned over pieces the file's ring does not
-  // describe.
+  // fences), named as the planner's messages name them. The photo check's area is what the lines
+  // cross (the flown area, --repair's pieces), not the file's ring: a repaired area's lines are
+  // planned over pieces the file's ring does not describe, a hull's over ground outside it.
   const std::size_t holes = plan.request.field.polygon.holes.size();
   for (std::size_t k = 0; k < plan.no_fly_geo.size(); ++k)
     options.zones.push_back(
         {k < holes ? "hole " + std::to_string(k + 1) + " of " + field_  // as swath verify's
                    : planning::no_fly_name(plan, k),
          plan.no_fly_geo[k]});
+  options.area = planning::lined_area(plan);
   options.clearance_m = plan.request.clearance_m;
   options.ceiling_m = ceiling_m_;
   if (plan.request.terrain) options.ground = plan.request.terrain->ground;

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "swath/base/number_text.hpp"
+#include "swath/geometry/predicates.hpp"
 #include "swath/vehicle/kinematics.hpp"
 
 namespace swath::planning {
@@ -407,6 +408,40 @@ std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<doubl
   }
   while (pieces.size() < cuts_m.size() + 1) pieces.push_back({{path.points.back()}, {}});
   return pieces;
+}
+
+namespace {
+
+// Whether the segment [a, b] has a point inside or on one of `rings`.
+bool meets_rings(Point2 a, Point2 b, const std::vector<geometry::Ring>& rings) {
+  for (const geometry::Ring& ring : rings) {
+    if (geometry::locate_point(a, ring) != geometry::Containment::outside) return true;
+    for (std::size_t k = 0; k < ring.size(); ++k)
+      if (geometry::segments_intersect(a, b, ring[k], ring[(k + 1) % ring.size()])) return true;
+  }
+  return false;
+}
+
+// The run of line segments [from, to) of the piece becomes a transit where none meets `rings`.
+void transit_if_outside(SurveyPath& piece, std::size_t from, std::size_t to,
+                        const std::vector<geometry::Ring>& rings) {
+  for (std::size_t k = from; k < to; ++k)
+    if (meets_rings(piece.points[k], piece.points[k + 1], rings)) return;
+  for (std::size_t k = from; k < to; ++k) piece.on_line[k] = 0;
+}
+
+}  // namespace
+
+void transit_stubs_outside(SurveyPath& piece, const std::vector<geometry::Ring>& rings) {
+  const std::size_t n = piece.on_line.size();
+  if (rings.empty() || n == 0) return;
+  std::size_t first_end = 0;
+  while (first_end < n && piece.on_line[first_end]) ++first_end;
+  std::size_t last_start = n;
+  while (last_start > 0 && piece.on_line[last_start - 1]) --last_start;
+  if (first_end > 0) transit_if_outside(piece, 0, first_end, rings);
+  // A piece of one line throughout was decided above.
+  if (last_start < n && last_start > 0) transit_if_outside(piece, last_start, n, rings);
 }
 
 std::vector<Point2> photo_positions(Point2 start, Point2 end, double trigger_distance_m) {

@@ -10,6 +10,7 @@
 #include "swath/base/number_text.hpp"
 #include "swath/base/utf8.hpp"
 #include "swath/planning/survey.hpp"
+#include "swath/planning/survey_steps.hpp"
 
 namespace swath::planning {
 namespace {
@@ -41,6 +42,12 @@ int drone_of(const json& properties, const std::string& where) {
 }
 
 }  // namespace
+
+std::vector<GeoRing> lined_area(const SurveyPlan& plan) {
+  std::vector<GeoRing> out;
+  for (const geometry::Ring& ring : steps::lined_rings(plan)) out.push_back(geo_ring(plan, ring));
+  return out;
+}
 
 PlanFeatures plan_features(const SurveyPlan& plan) {
   PlanFeatures f;

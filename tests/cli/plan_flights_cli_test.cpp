@@ -201,6 +201,38 @@ TEST(PlanCli, VerifyFliesSortiesInTheirOrderNotTheDirectorysOrder) {
   }
 }
 
+// A cut in a line's 40 m turnaround beyond the area leaves the next flight a stub of the line
+// outside the area, flown with the camera off (it was left triggering: swath verify --area refused
+// "a transit outside the area"): three drones' division over a narrow point of a field, and one
+// drone's sorties over a square.
+TEST(PlanCli, AStubOfALineOutsideTheAreaIsATransit) {
+  struct Case {
+    std::string field, options;
+  };
+  const std::vector<Case> cases{
+      {R"({"type":"Polygon","coordinates":[[[0.000293851,0.006043726],)"
+       R"([-0.001713716,0.005131289],[-0.001589737,0.004858509],[0.000145049,0.005646968],)"
+       R"([0.001248188,0.003219814],[0.001520968,0.003343793],[0.000293851,0.006043726]]]})",
+       "--drones 3"},
+      {R"({"type":"Polygon","coordinates":[[[7.997362689,46.998201358],[8.002637311,46.998201358],)"
+       R"([8.002637311,47.001798642],[7.997362689,47.001798642],[7.997362689,46.998201358]]]})",
+       "--sorties auto --endurance 400"}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.options);
+    const std::string dir = fresh_dir("stub-outside-area");
+    fs::create_directories(dir);
+    std::ofstream(dir + "/field.geojson") << c.field;
+    const CliRun run = run_swath("plan " + dir +
+                                 "/field.geojson --camera dji-mavic-3e --altitude 80 --turnaround "
+                                 "40 " +
+                                 c.options + " -o " + dir + "/out");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const CliRun verified = run_swath("verify " + dir + "/out --area " + dir + "/field.geojson");
+    EXPECT_EQ(verified.exit_code, 0) << verified.out;
+    EXPECT_NE(verified.out.find(" 0 in transits"), std::string::npos) << verified.out;
+  }
+}
+
 // Drones at homes 700 m apart never wait for each other at home: each drone's next sortie then
 // launches as soon as its last has landed (by the estimate and its slack) and the pilot has had
 // the 2 min docs/safety-notes.md gives for the battery change.

@@ -329,6 +329,16 @@ void check_split_size(const geometry::Polygon& area) {
                      {base::Remedy::simplify_zones, base::Remedy::concave_hull});
 }
 
+}  // namespace
+
+std::vector<geometry::Ring> lined_rings(const SurveyPlan& plan) {
+  std::vector<geometry::Ring> out{plan.flown_area.outer};
+  out.insert(out.end(), plan.extra_pieces.begin(), plan.extra_pieces.end());
+  return out;
+}
+
+namespace {
+
 // The handling and the area the sweep flies.
 void choose_handling(SurveyPlan& plan) {
   const geometry::Classification& c = plan.facts.classification;

@@ -223,6 +223,9 @@ void drones(SurveyPlan& plan) {
                     r.balance == Balance::makespan ? measure : FlightMeasure{}, measure);
   else
     plan.division = divide_by_lanes(plan, routes, resources, spacing, measure);
+  // A cut in a line's turnaround beyond the area leaves a drone a stub of it outside the area.
+  const std::vector<geometry::Ring> lined = lined_rings(plan);
+  for (DroneWork& w : plan.division.drones) transit_stubs_outside(w.path, lined);
   for (std::size_t i = 0; i < plan.drones.size(); ++i)
     plan.drones[i].work = plan.division.drones[i];
 }

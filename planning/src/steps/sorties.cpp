@@ -11,13 +11,16 @@ namespace {
 using base::fixed_text;
 using base::InputError;
 
-// The part of `path` from `from_m` to `to_m` along it.
-SurveyPath piece_of(const SurveyPath& path, double from_m, double to_m) {
+// The part of `path` from `from_m` to `to_m` along it, a stub of a line outside the area that a
+// cut in its turnaround leaves flown as a transit.
+SurveyPath piece_of(const SurveyPath& path, double from_m, double to_m,
+                    const std::vector<geometry::Ring>& lined) {
   std::vector<double> cuts;
   if (from_m > 0) cuts.push_back(from_m);
   if (to_m < path.length_m()) cuts.push_back(to_m);
-  const std::vector<SurveyPath> pieces = cut_path(path, cuts);
-  return pieces[from_m > 0 ? 1 : 0];
+  SurveyPath piece = cut_path(path, cuts)[from_m > 0 ? 1 : 0];
+  transit_stubs_outside(piece, lined);
+  return piece;
 }
 
 // What one sortie may fly: the battery it takes off with (the first the charge the drone has,
@@ -42,9 +45,10 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d,
   const MissionSettings settings = mission_settings(plan, d);
   const SurveyPath& path = d.work.path;
   const double total = path.length_m();
+  const std::vector<geometry::Ring> lined = lined_rings(plan);
   auto sortie = [&](double from, double to) {
-    return mission_for_path(d.number, d.home, piece_of(path, from, to), settings, routes.leg(),
-                            inside);
+    return mission_for_path(d.number, d.home, piece_of(path, from, to, lined), settings,
+                            routes.leg(), inside);
   };
   std::vector<Sortie> out;
   double from = 0;
@@ -67,7 +71,7 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d,
     Sortie s;
     s.number = static_cast<int>(out.size() + 1);
     s.mission = sortie(from, from + lo);
-    s.resume = piece_of(path, from, from + lo).points.front();
+    s.resume = piece_of(path, from, from + lo, lined).points.front();
     s.photos = planned_photos(s.mission, plan.imaging.trigger_distance_m);
     out.push_back(std::move(s));
     from += lo;

@@ -185,6 +185,12 @@ SurveyPath survey_path(const std::vector<SweepLine>& ordered_lines,
 /// every cut: consecutive pieces that together are the path.
 std::vector<SurveyPath> cut_path(const SurveyPath& path, const std::vector<double>& cuts_m);
 
+/// Turns into transits (camera off) the piece's first and last survey lines where what the piece
+/// holds of them meets none of `rings`: a division's or a sortie's cut in a line's turnaround
+/// beyond the area leaves the next piece a stub of it outside the area, and the camera takes no
+/// photos outside the area except on a line that crosses it.
+void transit_stubs_outside(SurveyPath& piece, const std::vector<geometry::Ring>& rings);
+
 /// Builds the mission for a survey path: takeoff at home to the survey altitude, the speed, the
 /// gimbal, the path's first point, then every point with the camera on along the lines only
 /// (started at each line, stopped at its end; with photos_in_turns kept on through turns that

@@ -20,6 +20,10 @@ using missions::PlanFeatures;
 /// The features of a plan.
 PlanFeatures plan_features(const SurveyPlan& plan);
 
+/// What the plan's survey lines cross, on the map (steps::lined_rings): the area for the photos
+/// check of the plan's own files.
+std::vector<GeoRing> lined_area(const SurveyPlan& plan);
+
 /// The figures the pictures print, from summary.json (docs/formats.md).
 struct PlanFigures {
   double covered_fraction = 0;

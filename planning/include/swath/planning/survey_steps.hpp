@@ -99,6 +99,10 @@ double layer_room_s(const SurveyPlan& plan, const DronePlan& d);
 /// The mission settings of one drone of the plan (altitude, its speed, camera, vehicle, end).
 MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone);
 
+/// What a survey line crosses (local frame): the flown area's outline (the hull with --concave
+/// hull) and --repair's pieces. A run of the camera that meets none of them is a transit.
+std::vector<geometry::Ring> lined_rings(const SurveyPlan& plan);
+
 /// The most vertices of one of `rings` (0 for none): what a fence polygon must fit.
 std::size_t most_vertices(const std::vector<geometry::Ring>& rings);
 
