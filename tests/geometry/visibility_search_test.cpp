@@ -298,6 +298,14 @@ struct VisibilityRouterSearchProbe {
                                          double limit, bool groups) {
     return r.search_run(a, b, limit, groups);
   }
+  /// How many pairs of graph nodes the router has tested for sight so far.
+  static std::size_t pairs_tested(const VisibilityRouter& r) {
+    std::size_t tested = 0;
+    for (std::size_t i = 0; i < r.nodes_.size(); ++i)
+      for (std::size_t j = i + 1; j < r.nodes_.size(); ++j)
+        tested += r.nodes_known(i, j) != VisibilityRouter::kUnknown;
+    return tested;
+  }
 };
 
 namespace {
@@ -332,6 +340,37 @@ TEST(VisibilityRouterSearch, GroupsLeaveOutWhatMeasuringEveryLegLeavesOut) {
     }
   }
   EXPECT_GT(unanswered, std::size_t(kQueries / 8));
+}
+
+// A point clearly outside the area (a line end past the outline by its turnaround) sees no corner,
+// so no inside path reaches it: the straight leg, as the full search says, and known at once. The
+// lazy search from an inside point settled every corner first, testing the sight between them
+// (with turnarounds on a 3,000-vertex outline, 45 s a plan); now it tests none.
+TEST(VisibilityRouterSearch, APointClearlyOutsideIsAnsweredWithoutASearch) {
+  test::Rng rng(1827);
+  const std::vector<Ring> rings = hundreds_of_corners(rng, 0);
+  const VisibilityRouter router(rings, Routing::routed, 2.0);
+  EagerRouter eager(rings, 2.0);
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const Point2& p : rings[0])
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  std::uniform_real_distribution<double> along(0, 1), beyond_m(1, 20);
+  std::vector<Point2> inside = path_ends(rng, rings, 40);
+  std::erase_if(inside, [&](Point2 p) { return !router.contains(p); });
+  ASSERT_GT(inside.size(), 20u);
+  for (int q = 0; q < 40; ++q) {
+    // Beyond each side of the outline's box in turn.
+    const double u = along(rng), d = beyond_m(rng);
+    const Point2 outside = q % 4 == 0   ? Point2{x0 - d, y0 + u * (y1 - y0)}
+                           : q % 4 == 1 ? Point2{x1 + d, y0 + u * (y1 - y0)}
+                           : q % 4 == 2 ? Point2{x0 + u * (x1 - x0), y0 - d}
+                                        : Point2{x0 + u * (x1 - x0), y1 + d};
+    const Point2 a = inside[std::size_t(q) % inside.size()];
+    const std::vector<Point2> straight{a, outside};
+    EXPECT_EQ(router.path(a, outside), straight) << q;
+    EXPECT_EQ(eager.path(a, outside), straight) << q;
+  }
+  EXPECT_EQ(VisibilityRouterSearchProbe::pairs_tested(router), 0u);
 }
 
 // A fresh copy (another thread's router) answers as the original, whatever the original has been
