@@ -245,6 +245,7 @@ Candidate sweep_decomposition(const std::vector<geometry::Ring>& rings, geometry
     sweep.angle_deg = angle;
     sweep.lines.reserve(by_y.size());
     for (const auto& [y, l] : by_y) sweep.lines.push_back(l);
+    keep_turnarounds_out(sweep.lines, s.turnaround_m, s.keep_out_rings);
     c.cells.push_back(std::move(d.cell_rings[cell]));
     c.sweeps.push_back(std::move(sweep));
   }
@@ -282,6 +283,7 @@ Candidate sweep_runs(const std::vector<geometry::Ring>& rings, double angle, con
         l.start = l.start - d;
         l.end = l.end + d;
       }
+  for (Sweep& sweep : c.sweeps) keep_turnarounds_out(sweep.lines, s.turnaround_m, s.keep_out_rings);
   return c;
 }
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "lane_scan.hpp"
+#include "swath/geometry/predicates.hpp"
 #include "swath/geometry/turn.hpp"
 
 namespace swath::planning {
@@ -428,6 +429,59 @@ bool one_walk_finds_both(const std::vector<double>& ys, double y_min, double y_m
 }
 
 }  // namespace
+
+namespace {
+
+// Whether p lies in the keep-out rings (even-odd over outer rings and their holes) or on one.
+bool in_or_on(Point2 p, const std::vector<geometry::Ring>& keep_out) {
+  bool inside = false;
+  for (const geometry::Ring& ring : keep_out) {
+    const geometry::Containment c = geometry::locate_point(p, ring);
+    if (c == geometry::Containment::on_boundary) return true;
+    if (c == geometry::Containment::inside) inside = !inside;
+  }
+  return inside;
+}
+
+// The end of the turnaround from `from` (the line's own end) towards `to`: `to` where the segment
+// meets no keep-out ring, else the first point it meets one (`from` itself when it lies in one).
+Point2 turnaround_end(Point2 from, Point2 to, const std::vector<geometry::Ring>& keep_out) {
+  if (in_or_on(from, keep_out)) return from;
+  const double x_lo = std::min(from.x, to.x), x_hi = std::max(from.x, to.x);
+  const double y_lo = std::min(from.y, to.y), y_hi = std::max(from.y, to.y);
+  Point2 end = to;
+  double end_m = std::numeric_limits<double>::infinity();
+  for (const geometry::Ring& ring : keep_out)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      // An edge whose box misses the segment's cannot meet it (no predicate needed).
+      if (std::max(a.x, b.x) < x_lo || std::min(a.x, b.x) > x_hi || std::max(a.y, b.y) < y_lo ||
+          std::min(a.y, b.y) > y_hi || !geometry::segments_intersect(from, to, a, b))
+        continue;
+      const Point2 q = geometry::segments_common_point(from, to, a, b);
+      const double q_m = geometry::distance(from, q);
+      if (q_m < end_m) end_m = q_m, end = q;
+    }
+  return end;
+}
+
+}  // namespace
+
+void keep_turnarounds_out(std::vector<SweepLine>& lines, double turnaround_m,
+                          const std::vector<geometry::Ring>& keep_out) {
+  if (keep_out.empty() || !(turnaround_m > 0)) return;
+  for (SweepLine& l : lines) {
+    const double length_m = geometry::distance(l.start, l.end);
+    if (!(length_m > 0)) continue;
+    // A line of no length of its own (a point lane) is its two turnarounds from its middle.
+    const Point2 d = (l.end - l.start) * (std::min(turnaround_m, length_m / 2) / length_m);
+    const Point2 first = l.start + d, last = l.end - d;  // the line's own ends
+    const Point2 start = turnaround_end(first, l.start, keep_out);
+    const Point2 end = turnaround_end(last, l.end, keep_out);
+    l.start = start;
+    l.end = end;
+  }
+}
 
 Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& s) {
   if (!(s.line_spacing_m > 0) || !(s.footprint_width_m >= s.line_spacing_m) ||

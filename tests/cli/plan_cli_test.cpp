@@ -389,6 +389,69 @@ std::pair<double, double> lat_lon_after(const std::string& text, const std::stri
   return {lat, lon};
 }
 
+// A square zone file, [lon0, lon1] x [lat0, lat1].
+std::string square_zone(double lon0, double lat0, double lon1, double lat1) {
+  std::ostringstream s;
+  s.precision(10);
+  s << R"({"type":"Polygon","coordinates":[[[)" << lon0 << "," << lat0 << "],[" << lon1 << ","
+    << lat0 << "],[" << lon1 << "," << lat1 << "],[" << lon0 << "," << lat1 << "],[" << lon0 << ","
+    << lat0 << "]]]}";
+  return s.str();
+}
+
+// Metres east and north of ZoneFiles' area's south-west corner (8.54, 47.398), near enough.
+constexpr double kEast_m_per_deg = 75540, kNorth_m_per_deg = 111180;
+
+// Distance from a point to the box [x0, x1] x [y0, y1], metres.
+double to_box_m(double x, double y, double x0, double y0, double x1, double y1) {
+  return std::hypot(std::max({x0 - x, 0.0, x - x1}), std::max({y0 - y, 0.0, y - y1}));
+}
+
+// --turnaround extends each line past both ends; where that would enter a zone's clearance band
+// (a zone inside the area, one just past its east edge) the extension stops at the band, and
+// elsewhere it is flown whole (every turnaround with a zone inside the area was refused: "item 30
+// comes within 4.97 m of no-fly zone ...", or "finds no way round ... lower --clearance").
+TEST(PlanCli, TurnaroundsStopAtTheZonesClearanceBand) {
+  const ZoneFiles files("zones-turnaround");
+  // Metres from the area's south-west corner: the middle zone 30 x 30 m, the east one 8 m past
+  // the east edge (204 m), 45 m tall.
+  const double mx0 = 87, my0 = 85, mx1 = 117, my1 = 115, ex0 = 212, ey0 = 45, ex1 = 230, ey1 = 90;
+  auto zone = [&](const std::string& name, double x0, double y0, double x1, double y1) {
+    return files.write(name,
+                       square_zone(8.54 + x0 / kEast_m_per_deg, 47.398 + y0 / kNorth_m_per_deg,
+                                   8.54 + x1 / kEast_m_per_deg, 47.398 + y1 / kNorth_m_per_deg));
+  };
+  const std::string middle = zone("middle.geojson", mx0, my0, mx1, my1);
+  const std::string east = zone("east.geojson", ex0, ey0, ex1, ey1);
+  const CliRun run = files.plan(middle + " --exclude " + east, "--turnaround 20 --angle 90");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json summary = json::parse(read_text(files.dir + "/out/summary.json"));
+  EXPECT_GE(summary["flight"]["min_no_fly_distance_m"].get<double>(), 5.0 - 0.005);
+  const json mission = json::parse(read_text(files.dir + "/out/mission.geojson"));
+  double west_most_m = 0, east_free_m = 0, east_cut_m = 0;
+  std::size_t ends = 0;
+  for (const json& f : mission["features"]) {
+    if (f["properties"].value("role", "") != "sweep") continue;
+    for (const json& c : f["geometry"]["coordinates"]) {
+      const double x = (c[0].get<double>() - 8.54) * kEast_m_per_deg;
+      const double y = (c[1].get<double>() - 47.398) * kNorth_m_per_deg;
+      ++ends;
+      EXPECT_GE(to_box_m(x, y, mx0, my0, mx1, my1), 5.0 - 0.05) << x << ", " << y;
+      EXPECT_GE(to_box_m(x, y, ex0, ey0, ex1, ey1), 5.0 - 0.05) << x << ", " << y;
+      west_most_m = std::max(west_most_m, -x);
+      if (y > ey0 && y < ey1) east_cut_m = std::max(east_cut_m, x - 204);
+      if (y < ey0 - 5 || y > ey1 + 5) east_free_m = std::max(east_free_m, x - 204);
+    }
+  }
+  ASSERT_GT(ends, 8u);
+  EXPECT_NEAR(west_most_m, 20, 0.5);  // the turnaround, whole where nothing is near
+  EXPECT_NEAR(east_free_m, 20, 0.5);
+  EXPECT_NEAR(east_cut_m, 3, 0.5);  // beside the east zone: up to its band, 8 - 5 m
+  const CliRun verify =
+      run_swath("verify " + files.dir + "/out --exclude " + middle + " --exclude " + east);
+  EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
+}
+
 // A power line or a mast in an --exclude file beside a polygon was skipped unseen (the plan flew
 // over the line): such a file is refused, naming the feature, its type and where it lies, in each
 // reader a zone file can take (GeoJSON, KML, a GIS file through GDAL), nothing written.

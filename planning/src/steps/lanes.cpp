@@ -85,6 +85,7 @@ SplitSettings split_settings(const SurveyPlan& plan) {
   s.footprint_width_m = plan.imaging.footprint_across_m;
   s.placement = plan.request.placement;
   s.turnaround_m = plan.turnaround_m;
+  s.keep_out_rings = plan.no_fly_grown;
   s.scan_step_deg = plan.request.split_scan_step_deg;
   s.cells = plan.request.split_cells;
   s.threads = plan.request.threads;
@@ -152,8 +153,9 @@ std::vector<SweepLine> one_pass(SurveyPlan& plan, const Routes& routes,
     return sp.lines;
   }
   const geometry::Polygon flown{plan.planning_rings.front(), {}};
-  const Sweep sweep =
+  Sweep sweep =
       plan_sweep(flown, sweep_settings(plan, angle_deg.value_or(plan.direction.angle_deg)));
+  keep_turnarounds_out(sweep.lines, plan.turnaround_m, plan.no_fly_grown);
   check_line_count(plan, sweep.lines.size());
   if (first) {
     plan.sweep = sweep;
@@ -188,7 +190,8 @@ Routes::Routes(const SurveyPlan& plan)
              in_cells(plan) ? geometry::Routing::routed : geometry::Routing::measure_only,
              kCornerAllowance_m),
       open(open_rings(plan), geometry::Routing::routed, kCornerAllowance_m),
-      no_fly_(plan.no_fly) {}
+      no_fly_(plan.no_fly),
+      turnaround_m_(plan.turnaround_m) {}
 
 const Routes& routes_of(SurveyPlan& plan) {
   if (!plan.routes) plan.routes = std::make_shared<const Routes>(plan);
@@ -220,7 +223,8 @@ std::vector<Point2> Routes::around(Point2 a, Point2 b) const {
     throw InputError("the leg from (" + base::fixed_text(a.x, 1) + ", " + base::fixed_text(a.y, 1) +
                      ") to (" + base::fixed_text(b.x, 1) + ", " + base::fixed_text(b.y, 1) +
                      ") m (east, north of the area's frame) finds no way round the no-fly zones "
-                     "and would cross one; move the home or the zones, or lower --clearance");
+                     "and would cross one; move the home or the zones, or lower " +
+                     (turnaround_m_ > 0 ? "--turnaround or " : "") + "--clearance");
   return between(path);
 }
 

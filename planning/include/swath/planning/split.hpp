@@ -56,6 +56,9 @@ struct SplitSettings {
   /// Where lanes may cross outside the rings to join their pieces (--outside-margin: the outline
   /// grown by the margin, less the grown zones); empty: nowhere. Runs only.
   std::vector<geometry::Ring> bridge_rings;
+  /// Where no turnaround goes (keep_turnarounds_out()): the no-fly zones grown by the clearance,
+  /// each part's outer ring then its holes; empty: anywhere.
+  std::vector<geometry::Ring> keep_out_rings;
   SplitDirections directions = SplitDirections::one;
   /// Threads for the direction search (0: the machine's); the plan is the same for any number.
   unsigned threads = 0;

@@ -85,6 +85,7 @@ struct Routes {
   /// none and the straight leg would cross a zone.
   std::vector<geometry::Point2> around(geometry::Point2 a, geometry::Point2 b) const;
   std::vector<geometry::Ring> no_fly_;  // a copy: the routes may outlive a copy of the plan
+  double turnaround_m_ = 0.0;           // named in the refusal as one thing to lower
 };
 
 /// The plan's shared routes, built on first use. Each router's pre-processing (its visibility

@@ -69,6 +69,14 @@ struct Sweep {
 /// would hold no area are dropped. Throws std::invalid_argument on settings out of range.
 Sweep plan_sweep(const geometry::Polygon& area, const SweepSettings& settings);
 
+/// Each line's turnarounds (its first and last `turnaround_m`, the extension plan_sweep() and the
+/// split add beyond both ends) cut where they first meet `keep_out` (the no-fly zones grown by the
+/// clearance, each part's outer ring then its holes: the even-odd rule), dropped where the line's
+/// own end lies in or on it: a turnaround flown into a zone's clearance band broke the clearance
+/// the lines themselves keep. Lines whose turnarounds meet nothing are left as they are.
+void keep_turnarounds_out(std::vector<SweepLine>& lines, double turnaround_m,
+                          const std::vector<geometry::Ring>& keep_out);
+
 /// Line offsets (rotated-frame y) for an area spanning [y_min, y_max].
 std::vector<double> line_offsets(double y_min, double y_max, double spacing_m,
                                  double footprint_width_m, LinePlacement placement);
