@@ -452,6 +452,52 @@ TEST(PlanCli, TurnaroundsStopAtTheZonesClearanceBand) {
   EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
 }
 
+// A home within a zone's clearance, or so near it that the drone stopping there at 5 m/s (5 m at
+// 2.5 m/s^2) runs into the clearance, is refused naming the home, how far it is from which zone
+// and what to change (the plan's check refused it as "item 1 comes within 3.35 m" or "item 76
+// (its stopping margin) comes within 4.77 m", naming no home); the clearance it names plans.
+TEST(PlanCli, AHomeNearAZoneIsRefusedSayingHowFar) {
+  const ZoneFiles files("zones-home-near");
+  const std::string middle =
+      files.write("middle.geojson", square_zone(8.54115, 47.39877, 8.54155, 47.39904));
+  auto home_south_of = [&](double metres) {
+    std::ostringstream s;
+    s.precision(10);
+    s << 47.39877 - metres / kNorth_m_per_deg << ",8.54135";
+    return s.str();
+  };
+  const std::string near = "swath plan: --home ";
+  for (const double metres : {3.0, 7.8}) {
+    SCOPED_TRACE(metres);
+    const std::string home = home_south_of(metres);
+    const CliRun run = files.plan(middle, "--home " + home);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_FALSE(fs::exists(files.dir + "/out"));
+    const std::string head = near + home + " lies ";
+    ASSERT_EQ(run.err.rfind(head, 0), 0u) << run.err;
+    const double said_m = std::stod(run.err.substr(head.size()));
+    EXPECT_NEAR(said_m, metres, 0.1) << run.err;
+    const std::string why = " m from no-fly zone " + middle +
+                            ", less than the 5.0 m --clearance and the 5.0 m its drone may run on "
+                            "past home as it stops; move --home at least 10.0 m from the zone";
+    EXPECT_NE(run.err.find(why), std::string::npos) << run.err;
+    if (metres < 5) {
+      EXPECT_TRUE(run.err.ends_with("at least 10.0 m from the zone\n")) << run.err;
+      continue;
+    }
+    const std::string lower = ", or lower --clearance to ";
+    const std::size_t at = run.err.find(lower);
+    ASSERT_NE(at, std::string::npos) << run.err;
+    const std::string clearance = run.err.substr(at + lower.size(), 3);
+    EXPECT_EQ(run.err.substr(at + lower.size() + 3), " m\n");
+    EXPECT_NEAR(std::stod(clearance), said_m - 5, 0.1);
+    const CliRun lowered = files.plan(middle, "--home " + home + " --clearance " + clearance);
+    EXPECT_EQ(lowered.exit_code, 0) << lowered.err;
+  }
+  const CliRun far = files.plan(middle, "--home " + home_south_of(12));
+  EXPECT_EQ(far.exit_code, 0) << far.err;
+}
+
 // A power line or a mast in an --exclude file beside a polygon was skipped unseen (the plan flew
 // over the line): such a file is refused, naming the feature, its type and where it lies, in each
 // reader a zone file can take (GeoJSON, KML, a GIS file through GDAL), nothing written.

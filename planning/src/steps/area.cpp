@@ -11,6 +11,7 @@
 #include "swath/geometry/offset.hpp"
 #include "swath/geometry/predicates.hpp"
 #include "swath/geometry/repair.hpp"
+#include "swath/missions/stopping.hpp"
 #include "swath/planning/survey_steps.hpp"
 
 namespace swath::planning::steps {
@@ -129,28 +130,70 @@ void collect_no_fly(SurveyPlan& plan) {
   }
 }
 
+// How far a multirotor arriving home at its cruise speed may run on past it, metres (the
+// preflight check's stopping margin, missions::stopping_distance_m); a fixed wing does not stop.
+double home_overrun_m(const SurveyRequest& r, const vehicle::Drone* drone) {
+  if (r.vehicle != Vehicle::multirotor) return 0.0;
+  const double plan_speed_m_s = r.speed_m_s.value_or(5.0);
+  if (drone)
+    return missions::stopping_distance_m(drone->speed_m_s.value_or(plan_speed_m_s),
+                                         drone->accel_m_s2);
+  return missions::stopping_distance_m(plan_speed_m_s, vehicle::kDefaultAccel_m_s2);
+}
+
+// A home within the clearance of a zone, or so near that its drone's stop there runs into the
+// clearance: the take-off or the landing breaks it, and the plan's check refused it naming only
+// a waypoint ("item 1 comes within 3.35 m", "item 76 (its stopping margin)").
+void check_home_clear_of_zone(const SurveyPlan& plan, const std::string& what,
+                              const std::string& home_text, geometry::Point2 p, std::size_t k,
+                              double overrun_m) {
+  const double clearance_m = plan.request.clearance_m;
+  const double distance_m = geometry::least_distance({p}, {plan.no_fly[k]});
+  const double needed_m = clearance_m + overrun_m;
+  if (!(distance_m < needed_m)) return;
+  std::string why = "less than the " + fixed_text(clearance_m, 1) + " m --clearance";
+  if (overrun_m > 0)
+    why += " and the " + fixed_text(overrun_m, 1) + " m its drone may run on past home as it stops";
+  // Rounded the safe way: the distance asked up, the clearance that fits down.
+  const double lowered_m = std::floor((distance_m - overrun_m) * 10) / 10;
+  std::string remedy = "move " + what + " at least " +
+                       fixed_text(std::ceil(needed_m * 10) / 10, 1) + " m from the zone";
+  if (lowered_m > 0) remedy += ", or lower --clearance to " + fixed_text(lowered_m, 1) + " m";
+  throw InputError(home_text + " lies " + fixed_text(distance_m, 1) + " m from " +
+                   no_fly_name(plan, k) + ", " + why + "; " + remedy);
+}
+
 // A home inside a hole or no-fly zone, or on its edge: every take-off and landing enters it (the
-// router then found "no way round" for a leg, naming neither the home nor the zone).
-void check_home_outside_zones(const SurveyPlan& plan, const GeoPoint& home,
-                              const std::string& what) {
+// router then found "no way round" for a leg, naming neither the home nor the zone). Nor may it
+// lie within the clearance (with the drone's stop) of one.
+void check_home_outside_zones(const SurveyPlan& plan, const GeoPoint& home, const std::string& what,
+                              double overrun_m) {
   const geometry::Point2 p = plan.request.field.frame->to_local(home);
+  const std::string home_text =
+      what + " " + base::shortest_text(home.lat_deg) + "," + base::shortest_text(home.lon_deg);
   for (std::size_t k = 0; k < plan.no_fly.size(); ++k)
     if (geometry::locate_point(p, plan.no_fly[k]) != geometry::Containment::outside)
-      throw InputError(what + " " + base::shortest_text(home.lat_deg) + "," +
-                       base::shortest_text(home.lon_deg) + " lies inside (or on the edge of) " +
-                       no_fly_name(plan, k) + "; give a home outside the zones");
+      throw InputError(home_text + " lies inside (or on the edge of) " + no_fly_name(plan, k) +
+                       "; give a home outside the zones");
+  for (std::size_t k = 0; k < plan.no_fly.size(); ++k)
+    check_home_clear_of_zone(plan, what, home_text, p, k, overrun_m);
 }
 
 // Every home the plan will use against the zones, named as the user gave it.
 void check_homes_outside_zones(const SurveyPlan& plan) {
   const SurveyRequest& r = plan.request;
-  if (r.home) check_home_outside_zones(plan, *r.home, "--home");
+  if (r.home) check_home_outside_zones(plan, *r.home, "--home", home_overrun_m(r, nullptr));
   if (!r.fleet) return;
   if (std::isfinite(r.fleet->home.lat_deg) &&
-      r.fleet->home != r.home.value_or(GeoPoint{NAN, NAN, 0}))
-    check_home_outside_zones(plan, r.fleet->home, "the fleet's home");
+      r.fleet->home != r.home.value_or(GeoPoint{NAN, NAN, 0})) {
+    double overrun_m = 0.0;  // the farthest of the drones that fly from it
+    for (const vehicle::Drone& d : r.fleet->drones)
+      if (!d.home) overrun_m = std::max(overrun_m, home_overrun_m(r, &d));
+    check_home_outside_zones(plan, r.fleet->home, "the fleet's home", overrun_m);
+  }
   for (const vehicle::Drone& d : r.fleet->drones)
-    if (d.home) check_home_outside_zones(plan, *d.home, "drone " + d.name + "'s home");
+    if (d.home)
+      check_home_outside_zones(plan, *d.home, "drone " + d.name + "'s home", home_overrun_m(r, &d));
 }
 
 // Whether no-fly zones cross the area's boundary or each other, or lie outside the area: then the
