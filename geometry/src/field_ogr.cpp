@@ -131,9 +131,11 @@ RawField to_raw(const OGRPolygon& poly, const std::string& where) {
     raw.rings.push_back(std::move(ring));
   };
   if (!poly.getExteriorRing()) return raw;  // as_polygon refuses empty geometries first
-  add(poly.getExteriorRing(), "outer ring");
+  // Rings named as the GeoJSON reader names them: "outer ring (ring 0)", "hole 0 (ring 1)".
+  add(poly.getExteriorRing(), "outer ring (ring 0)");
   for (int k = 0; k < poly.getNumInteriorRings(); ++k)
-    add(poly.getInteriorRing(k), "hole " + std::to_string(k));
+    add(poly.getInteriorRing(k),
+        "hole " + std::to_string(k) + " (ring " + std::to_string(k + 1) + ")");
   return raw;
 }
 
@@ -386,6 +388,7 @@ struct LayerArea {
   std::unique_ptr<OGRPolygon> polygon;
   std::string name;  ///< its name field, or its position among the layer's areas
   std::size_t index;
+  bool named = false;  ///< `name` is its name field's
 };
 
 // Every area of the layer (at most 100,000), a MultiPolygon's parts one by one ("<name>, part
@@ -421,7 +424,7 @@ std::vector<LayerArea> layer_areas(OGRLayer& layer, int name_index, const std::s
             {parts.size() == 1 ? name : name + ", part " + std::to_string(k), areas.size(), {}});
       areas.push_back({std::move(parts[k]),
                        parts.size() == 1 ? name : name + ", part " + std::to_string(k),
-                       areas.size()});
+                       areas.size(), named});
       if (areas.size() > 100000)
         throw InputError(source + ": more than 100,000 areas in one layer");
     }
@@ -483,7 +486,10 @@ RawField area_of(const LayerRead& read, const FieldReadOptions& options, const s
   CPLErrorReset();  // a transformation's failure names its own error, not an earlier one
   const std::unique_ptr<OGRPolygon> poly(read.areas[chosen].polygon->clone());
   to_wgs84(*poly, read.crs.get(), path);
-  return to_raw(*poly, "area " + read.areas[chosen].name);
+  // Named as --feature and the messages naming a zone of several name it ("feature 2"), an
+  // area file's and a zone file's alike: a zone is no area.
+  const LayerArea& area = read.areas[chosen];
+  return to_raw(*poly, "feature " + (area.named ? "\"" + area.name + "\"" : area.name));
 }
 
 // The layers last read, kept for the next read of the same file: `swath batch` plans area after

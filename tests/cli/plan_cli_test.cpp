@@ -498,6 +498,27 @@ TEST(PlanCli, AHomeNearAZoneIsRefusedSayingHowFar) {
   EXPECT_EQ(far.exit_code, 0) << far.err;
 }
 
+// A zone of a file of several whose vertices lie on one line is named as every other message
+// names a zone's ring ("feature 1, outer ring (ring 0)"), not as an area ("area 1, outer ring").
+TEST(PlanCli, AFlatZoneOfSeveralIsNamedByItsFeature) {
+  const ZoneFiles files("zones-flat");
+  auto feature = [](const std::string& geometry) {
+    return R"({"type":"Feature","properties":{},"geometry":)" + geometry + "}";
+  };
+  const std::string zones = files.write(
+      "zones.geojson", R"({"type":"FeatureCollection","features":[)" +
+                           feature(square_zone(8.5405, 47.3985, 8.541, 47.399)) + "," +
+                           feature(R"({"type":"Polygon","coordinates":[[[8.5411,47.3985],)"
+                                   R"([8.5412,47.3986],[8.5413,47.3987],[8.5411,47.3985]]]})") +
+                           "]}");
+  const CliRun run = files.plan(zones);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(run.err, "swath plan: " + zones +
+                         ": feature 1, outer ring (ring 0) encloses no area (its vertices lie on "
+                         "one line)\n");
+  EXPECT_FALSE(fs::exists(files.dir + "/out"));
+}
+
 // A power line or a mast in an --exclude file beside a polygon was skipped unseen (the plan flew
 // over the line): such a file is refused, naming the feature, its type and where it lies, in each
 // reader a zone file can take (GeoJSON, KML, a GIS file through GDAL), nothing written.
