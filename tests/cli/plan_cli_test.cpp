@@ -478,8 +478,9 @@ TEST(PlanCli, AHomeNearAZoneIsRefusedSayingHowFar) {
     const double said_m = std::stod(run.err.substr(head.size()));
     EXPECT_NEAR(said_m, metres, 0.1) << run.err;
     const std::string why = " m from no-fly zone " + middle +
-                            ", less than the 5.0 m --clearance and the 5.0 m its drone may run on "
-                            "past home as it stops; move --home at least 10.0 m from the zone";
+                            ", less than the 10.0 m it must keep (the 5.0 m --clearance and the "
+                            "5.0 m its drone may run on past home as it stops); move --home at "
+                            "least 10.0 m from the zone";
     EXPECT_NE(run.err.find(why), std::string::npos) << run.err;
     if (metres < 5) {
       EXPECT_TRUE(run.err.ends_with("at least 10.0 m from the zone\n")) << run.err;

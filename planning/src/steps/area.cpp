@@ -151,13 +151,15 @@ void check_home_clear_of_zone(const SurveyPlan& plan, const std::string& what,
   const double distance_m = geometry::least_distance({p}, {plan.no_fly[k]});
   const double needed_m = clearance_m + overrun_m;
   if (!(distance_m < needed_m)) return;
+  // Rounded the safe way: the distance asked up, the clearance that fits down.
+  const std::string needed_text = fixed_text(std::ceil(needed_m * 10) / 10, 1);
   std::string why = "less than the " + fixed_text(clearance_m, 1) + " m --clearance";
   if (overrun_m > 0)
-    why += " and the " + fixed_text(overrun_m, 1) + " m its drone may run on past home as it stops";
-  // Rounded the safe way: the distance asked up, the clearance that fits down.
+    why = "less than the " + needed_text + " m it must keep (the " + fixed_text(clearance_m, 1) +
+          " m --clearance and the " + fixed_text(overrun_m, 1) +
+          " m its drone may run on past home as it stops)";
   const double lowered_m = std::floor((distance_m - overrun_m) * 10) / 10;
-  std::string remedy = "move " + what + " at least " +
-                       fixed_text(std::ceil(needed_m * 10) / 10, 1) + " m from the zone";
+  std::string remedy = "move " + what + " at least " + needed_text + " m from the zone";
   if (lowered_m > 0) remedy += ", or lower --clearance to " + fixed_text(lowered_m, 1) + " m";
   throw InputError(home_text + " lies " + fixed_text(distance_m, 1) + " m from " +
                    no_fly_name(plan, k) + ", " + why + "; " + remedy);
