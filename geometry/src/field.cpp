@@ -143,6 +143,32 @@ Field parse_field(const std::string& text, FieldFormat format, const std::string
 
 namespace {
 
+// How far an outer ring's edge may stray from the frame's chord before points are inserted along
+// it. The area's edge promises no clearance (a line end half a metre off it is well within the
+// photos' overlap), and a point on a gently bowing edge is a reflex vertex: at 1 cm a convex
+// field's 800 m east-west side at 47° would make it concave and split it into cells. Holes (and
+// zones, densified again in the plan's frame) keep kEdgeDepartureTolerance_m: clearance is kept
+// from them.
+constexpr double kOuterEdgeDepartureTolerance_m = 0.5;
+
+// RFC 7946: an edge is straight in longitude and latitude. Where such an edge strays from the
+// frame's chord (a long one, far from the equator), points along it keep the ring the shape
+// drawn for every later stage; each inserted point takes its edge's first vertex's number.
+void densify_long_edges(const LocalFrame& frame, NormalisedRing& ring, std::vector<GeoPoint>& geo,
+                        double tolerance_m) {
+  std::vector<std::size_t> from;
+  std::vector<GeoPoint> dense = densify_lonlat_edges(frame, geo, &from, tolerance_m);
+  if (dense.size() == geo.size()) return;
+  std::vector<std::size_t> index;
+  ring.ring.clear();
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    ring.ring.push_back(frame.to_local(dense[k]));
+    index.push_back(ring.source_index[from[k]]);
+  }
+  ring.source_index = std::move(index);
+  geo = std::move(dense);
+}
+
 Field field_from_raw(detail::RawField raw, const std::string& source, bool geographic) {
   std::size_t vertices = 0;
   for (const detail::RawRing& ring : raw.rings) vertices += ring.points.size();
@@ -187,6 +213,8 @@ Field field_from_raw(detail::RawField raw, const std::string& source, bool geogr
         geo.push_back({p.y, wrap_longitude(p.x), 0.0});
         p = field.frame->to_local(geo.back());
       }
+      densify_long_edges(*field.frame, normalised, geo,
+                         r == 0 ? kOuterEdgeDepartureTolerance_m : kEdgeDepartureTolerance_m);
       // Except about a pole: a ring round the South Pole turns the other way on the ground than
       // in longitude and latitude (every vertex was reflex, and the cells failed). The local
       // plane decides, and the first vertex stays first as in normalise_ring().

@@ -186,7 +186,7 @@ void check_zones(const FileContext& f, const std::vector<LocalZone>& zones, doub
         out.least_clearance_where = zone.name;
       }
       // Touching a zone counts as entering it, whatever the clearance asked.
-      if (d.distance_m <= 0 || d.distance_m < asked - kTolerance_m)
+      if (d.distance_m <= 0 || d.distance_m < asked - kTolerance_m - zone.slack_m)
         out.violations.push_back(
             {"no-fly zone", piece_name(piece), f.frame->to_geo(d.at), asked - d.distance_m,
              d.distance_m <= 0
@@ -275,7 +275,7 @@ void check_fences(const FileContext& f, const std::vector<LocalZone>& fences, bo
     // The fence left: the straight leg's, or the one the track is farthest out of where it is.
     const std::size_t fence = t.bow_m > 0 ? margin(m.at, m.at).second : chord_fence;
     out.least_fence_margin_m = std::min(out.least_fence_margin_m, m.distance_m);
-    if (m.distance_m < -kTolerance_m)
+    if (m.distance_m < -kTolerance_m - fences[fence].slack_m)
       out.violations.push_back(
           {"fence", piece_name(piece), f.frame->to_geo(m.at), -m.distance_m,
            piece_name(piece) + " is " + fixed_text(-m.distance_m, 2) + " m outside " +

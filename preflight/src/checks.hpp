@@ -30,6 +30,10 @@ struct LocalZone {
   geometry::Ring ring;
   double radius_m = 0.0;   ///< > 0: a circle
   bool own_fence = false;  ///< the file's own exclusion fence: not entered (no clearance)
+  /// How far the ring may stray from the shape it stands for: its edges, straight in longitude
+  /// and latitude, are followed within kEdgeDepartureTolerance_m (densify_lonlat_edges), here and
+  /// in the plan's own frame; the most they bow in the frame, up to that tolerance.
+  double slack_m = 0.0;
 };
 
 /// A straight piece of the flight to check: a leg or a stopping overrun.

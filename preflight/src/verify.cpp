@@ -17,17 +17,31 @@ namespace {
 using base::fixed_text;
 using geometry::Point2;
 
+// A fence, zone or area as the autopilot (and RFC 7946) reads it: each edge straight in longitude
+// and latitude, followed in the frame within kEdgeDepartureTolerance_m by points along it (a long
+// edge's chord in the frame strays from it by metres: a route could pass inside the chord and
+// outside the fence the autopilot tests).
 geometry::Ring local_ring(const geometry::LocalFrame& frame,
                           const std::vector<geometry::GeoPoint>& ring) {
   geometry::Ring out;
-  for (const geometry::GeoPoint& g : ring) out.push_back(frame.to_local(g));
+  for (const geometry::GeoPoint& g : geometry::densify_lonlat_edges(frame, ring))
+    out.push_back(frame.to_local(g));
   if (out.size() > 1 && out.front() == out.back()) out.pop_back();
   return out;
 }
 
+// A ring zone or fence, measured with the slack its edges' bow leaves (LocalZone::slack_m): the
+// plan follows them in its own frame within the same tolerance.
+LocalZone ring_zone(std::string name, const geometry::LocalFrame& frame,
+                    const std::vector<geometry::GeoPoint>& ring, bool own_fence) {
+  const double slack_m = std::min(geometry::kEdgeDepartureTolerance_m,
+                                  geometry::largest_lonlat_departure_m(frame, ring));
+  return {std::move(name), local_ring(frame, ring), 0, own_fence, slack_m};
+}
+
 std::vector<LocalZone> user_zones(const CheckOptions& options, const geometry::LocalFrame& frame) {
   std::vector<LocalZone> out;
-  for (const Zone& z : options.zones) out.push_back({z.name, local_ring(frame, z.ring), 0, false});
+  for (const Zone& z : options.zones) out.push_back(ring_zone(z.name, frame, z.ring, false));
   return out;
 }
 
@@ -35,13 +49,14 @@ std::vector<LocalZone> own_exclusions(const missions::Mission& m,
                                       const geometry::LocalFrame& frame) {
   std::vector<LocalZone> out;
   for (std::size_t i = 0; i < m.exclusion_fences.size(); ++i)
-    out.push_back({m.source + "'s exclusion fence " + std::to_string(i + 1),
-                   local_ring(frame, m.exclusion_fences[i]), 0, true});
+    out.push_back(ring_zone(m.source + "'s exclusion fence " + std::to_string(i + 1), frame,
+                            m.exclusion_fences[i], true));
   for (std::size_t i = 0; i < m.exclusion_circles.size(); ++i)
     out.push_back({m.source + "'s exclusion circle " + std::to_string(i + 1),
                    {frame.to_local(m.exclusion_circles[i].centre)},
                    m.exclusion_circles[i].radius_m,
-                   true});
+                   true,
+                   0.0});
   return out;
 }
 
@@ -56,12 +71,13 @@ std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::Lo
                : m.source + "'s inclusion " + kind + " " + std::to_string(i + 1);
   };
   for (std::size_t i = 0; i < rings.size(); ++i)
-    out.push_back({name("fence", i), local_ring(frame, rings[i]), 0, false});
+    out.push_back(ring_zone(name("fence", i), frame, rings[i], false));
   for (std::size_t i = 0; i < m.inclusion_circles.size(); ++i)
     out.push_back({name("circle", i),
                    {frame.to_local(m.inclusion_circles[i].centre)},
                    m.inclusion_circles[i].radius_m,
-                   false});
+                   false,
+                   0.0});
   return out;
 }
 

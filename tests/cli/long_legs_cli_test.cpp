@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_runner.hpp"
 #include "swath/planning/mission.hpp"
 
@@ -122,6 +124,137 @@ TEST(ZoneRing, AFieldRingedByZonesIsPlannedInsideTheRing) {
                 "--altitude 60 --exclude " + dir + "/ring.geojson -o " + dir + "/out");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run_swath("verify " + dir + "/out --exclude " + dir + "/ring.geojson").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace swath::test
+
+// Long edges are straight in longitude and latitude: as GeoJSON draws them (RFC 7946) and as
+// ArduPilot and PX4 test fences. Measured here from the written .plan alone, in latitude and
+// longitude, with the test's own tests (no frame of swath's).
+namespace swath::test {
+namespace {
+
+struct PlanRead {
+  std::vector<LatLon> waypoints;                          // home first, then every position
+  std::vector<std::vector<LatLon>> inclusion, exclusion;  // geoFence polygons
+};
+
+PlanRead read_plan(const std::string& path) {
+  const nlohmann::json plan = nlohmann::json::parse(read_text(path));
+  PlanRead out;
+  const auto& home = plan["mission"]["plannedHomePosition"];
+  out.waypoints.push_back({home[0].get<double>(), home[1].get<double>()});
+  for (const auto& item : plan["mission"]["items"])
+    if (item.value("command", 0) == 16)
+      out.waypoints.push_back({item["params"][4].get<double>(), item["params"][5].get<double>()});
+  for (const auto& polygon : plan["geoFence"]["polygons"]) {
+    std::vector<LatLon> ring;
+    for (const auto& p : polygon["polygon"])
+      ring.push_back({p[0].get<double>(), p[1].get<double>()});
+    (polygon["inclusion"].get<bool>() ? out.inclusion : out.exclusion).push_back(ring);
+  }
+  return out;
+}
+
+// Ray casting in latitude and longitude, as AC_PolyFence_loader and PX4's geofence do.
+bool inside_lat_lon(LatLon p, const std::vector<LatLon>& ring) {
+  bool inside = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+    if ((ring[i].lat > p.lat) != (ring[j].lat > p.lat) &&
+        p.lon < ring[j].lon + (ring[i].lon - ring[j].lon) * (p.lat - ring[j].lat) /
+                                  (ring[i].lat - ring[j].lat))
+      inside = !inside;
+  return inside;
+}
+
+// Metres of latitude per degree at `lat_deg` on WGS84 (the meridian's radius of curvature).
+double metres_per_degree_lat(double lat_deg) {
+  const double a = 6378137.0, f = 1 / 298.257223563, e2 = f * (2 - f);
+  const double s = std::sin(lat_deg * kDeg);
+  return a * (1 - e2) / std::pow(1 - e2 * s * s, 1.5) * kDeg;
+}
+
+// A 600 m field at 65 N crossed by a 10 m no-fly corridor 4.7 km long along the parallel, two
+// vertices a side: its long edges, parallels as drawn, bow 0.9 m north of the chord between
+// their ends (the lines stopped 4.0 m from the zone, 5 m asked). Every leg keeps the clearance
+// from the corridor as drawn, measured in latitude (its edges are parallels).
+TEST(LongEdges, AThinZoneAtSixtyFiveNorthIsKeptClearAsDrawn) {
+  const std::string dir = fresh_dir("long-edge-zone");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type":"Polygon","coordinates":[[[9.993623,64.997306],[10.006377,64.997306],)"
+      << R"([10.006377,65.002694],[9.993623,65.002694],[9.993623,64.997306]]]})";
+  const double south = 64.999955034, north = 65.000044966, west = 9.95, east = 10.05;
+  std::ofstream(dir + "/zone.geojson")
+      << R"({"type":"Polygon","coordinates":[[[9.95,64.999955034],[10.05,64.999955034],)"
+      << R"([10.05,65.000044966],[9.95,65.000044966],[9.95,64.999955034]]]})";
+  const CliRun run =
+      run_swath("plan " + dir + "/field.geojson --camera dji-phantom-4-pro " +
+                "--altitude 60 --angle 0 --exclude " + dir + "/zone.geojson -o " + dir + "/out");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const PlanRead plan = read_plan(dir + "/out/drone-1.plan");
+  ASSERT_GT(plan.waypoints.size(), 10u);
+  const double m_per_deg = metres_per_degree_lat(65.0);
+  const auto clearance_m = [&](LatLon p) {
+    if (p.lon < west || p.lon > east) return 1e9;
+    if (p.lat > south && p.lat < north) return 0.0;
+    return std::min(std::abs(p.lat - south), std::abs(p.lat - north)) * m_per_deg;
+  };
+  double least = 1e9;
+  for (std::size_t k = 0; k + 1 < plan.waypoints.size(); ++k) {
+    const LatLon a = plan.waypoints[k], b = plan.waypoints[k + 1];
+    least = std::min({least, clearance_m(a), clearance_m(b)});
+    const bool crosses = (a.lat < south) != (b.lat < south) || (a.lat > north) != (b.lat > north);
+    if (crosses && std::max(a.lon, b.lon) >= west && std::min(a.lon, b.lon) <= east) least = 0;
+  }
+  EXPECT_GE(least, 5.0 - 0.02);  // 1 cm for the edges followed, 1 cm for positions written
+  // The exclusion fence holds the corridor as drawn where it bows most, in latitude and longitude.
+  ASSERT_FALSE(plan.exclusion.empty());
+  for (const LatLon p : {LatLon{south + 2e-7, 10.0}, LatLon{north - 2e-7, 10.0}})
+    EXPECT_TRUE(std::any_of(plan.exclusion.begin(), plan.exclusion.end(),
+                            [&](const auto& ring) { return inside_lat_lon(p, ring); }))
+        << p.lat << "," << p.lon;
+}
+
+// A 300 m square and a home 87 km away: the inclusion fence's 86 km edges, written with two
+// vertices, bowed 40 m across the route in latitude and longitude. Every waypoint lies inside the
+// written fence as the autopilot tests it.
+TEST(LongEdges, AFarHomesRouteStaysInsideItsFenceInLatitudeAndLongitude) {
+  const std::string dir = fresh_dir("long-edge-fence");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/field.geojson")
+      << R"({"type":"Polygon","coordinates":[[[-0.007982031,47.107651018],)"
+      << R"([-0.004017969,47.107651018],[-0.004017969,47.110348982],)"
+      << R"([-0.007982031,47.110348982],[-0.007982031,47.107651018]]]})";
+  for (const std::string firmware : {"ardupilot", "px4"}) {
+    const CliRun run = run_swath("plan " + dir + "/field.geojson --camera parrot-sequoia-rgb " +
+                                 "--altitude 120 --home 47.181121612,1.129817403 --far-home " +
+                                 "--firmware " + firmware + " -o " + dir + "/" + firmware);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const PlanRead plan = read_plan(dir + "/" + firmware + "/drone-1.plan");
+    ASSERT_EQ(plan.inclusion.size(), 1u);
+    ASSERT_GT(plan.waypoints.size(), 20u);
+    std::size_t outside = 0;
+    for (const LatLon& p : plan.waypoints) outside += !inside_lat_lon(p, plan.inclusion.front());
+    EXPECT_EQ(outside, 0u) << firmware;
+  }
+}
+
+// A .plan the planner wrote before fences followed their long edges (trimmed to its way home):
+// its waypoints lie inside the chords of the fence's 86 km edges, up to 40 m outside the fence
+// ArduPilot tests. swath verify reads the fence's edges as the autopilot does and refuses it.
+TEST(LongEdges, VerifyRefusesWaypointsOutsideAFencesLongEdgesInLatitudeAndLongitude) {
+  const std::string dir = fresh_dir("long-edge-verify");
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(source_path("tests/fixtures/farhome-old.plan"), dir + "/drone-1.plan");
+  const CliRun run = run_swath("verify " + dir + "/drone-1.plan");
+  EXPECT_EQ(run.exit_code, 4) << run.out << run.err;
+  const std::size_t at = run.out.find("m outside the inclusion fence");
+  ASSERT_NE(at, std::string::npos) << run.out;
+  const std::size_t figure = run.out.find("reaches ");
+  ASSERT_NE(figure, std::string::npos) << run.out;
+  EXPECT_GT(std::stod(run.out.substr(figure + 8)), 30.0) << run.out;
 }
 
 }  // namespace

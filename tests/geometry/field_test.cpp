@@ -87,6 +87,41 @@ TEST(GeoJson, RingsRoundAPoleAreOrientedOnTheGround) {
   }
 }
 
+// RFC 7946: an edge is straight in longitude and latitude. A 20 km edge along the 65th parallel
+// bows 17 m from the local frame's chord between its ends: it is read with points along the
+// parallel, each taking its edge's first vertex's number (within 0.5 m for the outer ring, 1 cm
+// for a hole); the short sides are kept as they are.
+TEST(GeoJson, LongEdgesAreReadStraightInLongitudeAndLatitude) {
+  const Field f = parse_field(
+      R"({"type":"Polygon","coordinates":[[[9.79,64.999],[10.21,64.999],[10.21,65.001],[9.79,65.001]],)"
+      R"([[9.8,64.9995],[9.8,65.0005],[10.2,65.0005],[10.2,64.9995]]]})",
+      FieldFormat::geojson, "p");
+  ASSERT_EQ(f.polygon.holes.size(), 1u);
+  for (std::size_t r = 0; r < 2; ++r) {
+    const Ring& ring = r == 0 ? f.polygon.outer : f.polygon.holes[0];
+    const std::vector<double> parallels =
+        r == 0 ? std::vector<double>{64.999, 65.001} : std::vector<double>{64.9995, 65.0005};
+    const double tolerance_m = r == 0 ? 0.5 : 0.01;
+    ASSERT_GT(ring.size(), 8u) << r;
+    ASSERT_EQ(f.geo_rings[r].size(), ring.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const GeoPoint g = f.frame->to_geo(ring[i]);
+      EXPECT_TRUE(std::abs(g.lat_deg - parallels[0]) < 1e-9 ||
+                  std::abs(g.lat_deg - parallels[1]) < 1e-9)
+          << r << " " << i << ": " << g.lat_deg;
+      EXPECT_NEAR(g.lat_deg, f.geo_rings[r][i].lat_deg, 1e-9);
+      EXPECT_LT(f.source_index[r][i], 4u);
+    }
+    // Every chord along a parallel strays from it within the tolerance: its middle's latitude.
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const GeoPoint a = f.frame->to_geo(ring[i]), b = f.frame->to_geo(ring[(i + 1) % ring.size()]);
+      if (std::abs(a.lat_deg - b.lat_deg) > 1e-9) continue;  // a short north-south side
+      const GeoPoint m = f.frame->to_geo((ring[i] + ring[(i + 1) % ring.size()]) * 0.5);
+      EXPECT_LT(std::abs(m.lat_deg - a.lat_deg) * 111360, tolerance_m) << r << " " << i;
+    }
+  }
+}
+
 TEST(GeoJson, HolesAreClockwiseAndSubtracted) {
   const Field f = parse_field(
       R"({"type":"Polygon","coordinates":[[[0,0],[0.01,0],[0.01,0.01],[0,0.01]],[[0.002,0.002],[0.004,0.002],[0.004,0.004],[0.002,0.004]]]})",

@@ -118,8 +118,13 @@ void collect_no_fly(SurveyPlan& plan) {
     plan.no_fly_geo.push_back(field.geo_rings.at(h + 1));
   }
   for (std::size_t k = 0; k < plan.request.exclusions.size(); ++k) {
+    // A zone's edges are straight in longitude and latitude as drawn (RFC 7946): long ones are
+    // followed in the frame. Its exclusion fence is written as given: an autopilot reads those
+    // edges the same way.
     geometry::Ring local;
-    for (const GeoPoint& g : plan.request.exclusions[k]) local.push_back(field.frame->to_local(g));
+    for (const GeoPoint& g :
+         geometry::densify_lonlat_edges(*field.frame, plan.request.exclusions[k]))
+      local.push_back(field.frame->to_local(g));
     geometry::NormalisedRing hole = geometry::normalise_ring(local, false);
     if (hole.ring.size() < 3)
       throw InputError(no_fly_name(plan, plan.no_fly.size()) +

@@ -172,13 +172,18 @@ std::vector<std::vector<geometry::GeoPoint>> exclusion_fences(const SurveyPlan& 
           geometry::grow_simplified({plan.no_fly[z]}, 0.0, share * c);
       if (grown.size() != 1 || grown.front().size() > kFenceVertexLimit) continue;
       fences[z].clear();
-      for (const geometry::Point2& p : grown.front())
-        fences[z].push_back(plan.request.field.frame->to_geo(p));
+      const geometry::LocalFrame& frame = *plan.request.field.frame;
+      for (const geometry::Point2& p : geometry::densify_local_edges(frame, grown.front()))
+        fences[z].push_back(frame.to_geo(p));
       break;
     }
   }
   return fences;
 }
+
+// How far a written inclusion fence's edge, straight in longitude and latitude, may stray from
+// the fence swath planned, as a share of the fence's margin (fences()).
+constexpr double kFenceEdgeShareOfMargin = 0.01;
 
 // A counter-clockwise rectangle `half_width_m` either side of a-b and past its ends.
 geometry::Ring strip_along(geometry::Point2 a, geometry::Point2 b, double half_width_m) {
@@ -263,9 +268,20 @@ void fences(SurveyPlan& plan) {
   std::vector<geometry::Ring> strips;
   for (const auto& [a, b] : flown_legs(plan))
     if (!detail::leg_within(a, b, plan.fence)) strips.push_back(strip_along(a, b, 0.5));
-  if (strips.empty()) return;
-  outlines.insert(outlines.end(), strips.begin(), strips.end());
-  plan.fence = fence_for(outlines, plan.fence_margin_m);
+  if (!strips.empty()) {
+    outlines.insert(outlines.end(), strips.begin(), strips.end());
+    plan.fence = fence_for(outlines, plan.fence_margin_m);
+  }
+  // An autopilot tests the fence with edges straight in longitude and latitude: a long edge (a
+  // far home's transit, 80 km) bows away from the chord planned around by tens of metres, so
+  // points along the chord keep each written edge within 1 % of the margin of it (at least
+  // kEdgeDepartureTolerance_m): what is flown keeps 99 % of the margin from the fence the
+  // autopilot tests, with a few points (ArduPilot's fence storage holds ~70).
+  const double tolerance_m =
+      std::max(geometry::kEdgeDepartureTolerance_m, plan.fence_margin_m * kFenceEdgeShareOfMargin);
+  if (plan.request.field.frame)
+    for (geometry::Ring& ring : plan.fence)
+      ring = geometry::densify_local_edges(*plan.request.field.frame, ring, tolerance_m);
 }
 
 }  // namespace swath::planning::steps

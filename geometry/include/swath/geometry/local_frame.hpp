@@ -2,6 +2,8 @@
 
 #include <GeographicLib/LocalCartesian.hpp>
 
+#include <vector>
+
 #include "swath/geometry/point.hpp"
 
 namespace swath::geometry {
@@ -30,5 +32,33 @@ class LocalFrame {
 /// Geodesic distance on the WGS84 ellipsoid between two points (altitudes ignored), metres;
 /// accurate to nanometres at any distance (GeographicLib::Geodesic, Karney 2013).
 double geodesic_distance_m(const GeoPoint& a, const GeoPoint& b);
+
+/// How far an edge straight in longitude and latitude (RFC 7946's reading of an area file, and
+/// the one ArduPilot and PX4 test fences by) may stray from the frame's straight chord between
+/// its ends before points are inserted along it: 1 cm, the precision swath writes positions at
+/// (7 decimals of a degree, 1.1 cm) and far below any GNSS fix. A 1 km east-west edge at 47° N
+/// strays 2 cm, at 65° N 4 cm; fields' edges (tens to hundreds of metres) stray under a millimetre.
+inline constexpr double kEdgeDepartureTolerance_m = 0.01;
+
+/// `ring` (closed by its last vertex's edge back to the first) with points inserted along each
+/// edge's line straight in longitude and latitude, wherever that line strays from the frame's
+/// straight chord by more than `tolerance_m`, so that the ring's chords in the frame follow the
+/// shape as drawn. `from_vertex`, if given, receives for each output point the index of the
+/// input vertex whose edge it lies on. Short edges are kept as they are.
+std::vector<GeoPoint> densify_lonlat_edges(const LocalFrame& frame,
+                                           const std::vector<GeoPoint>& ring,
+                                           std::vector<std::size_t>* from_vertex = nullptr,
+                                           double tolerance_m = kEdgeDepartureTolerance_m);
+
+/// The most any edge of `ring` (closed as above), straight in longitude and latitude, strays
+/// from the frame's chord between its ends, metres.
+double largest_lonlat_departure_m(const LocalFrame& frame, const std::vector<GeoPoint>& ring);
+
+/// The reverse, for a ring swath writes (a fence): `ring` in the frame (closed as above) with
+/// points inserted along each chord wherever the line straight in longitude and latitude between
+/// its ends' positions strays from it by more than `tolerance_m`, so that an autopilot's
+/// lon/lat-straight edges follow the ring swath planned in.
+std::vector<Point2> densify_local_edges(const LocalFrame& frame, const std::vector<Point2>& ring,
+                                        double tolerance_m = kEdgeDepartureTolerance_m);
 
 }  // namespace swath::geometry
