@@ -31,8 +31,8 @@ struct LocalZone {
   double radius_m = 0.0;   ///< > 0: a circle
   bool own_fence = false;  ///< the file's own exclusion fence: not entered (no clearance)
   /// How far the ring may stray from the shape it stands for: its edges, straight in longitude
-  /// and latitude, are followed within kEdgeDepartureTolerance_m (densify_lonlat_edges), here and
-  /// in the plan's own frame; the most they bow in the frame, up to that tolerance.
+  /// and latitude, bow from their chords in a frame, and swath plan reads a zone's within 5 cm
+  /// of the edge as drawn (verify.cpp's kPlanEdgeSlack_m): the most they bow, up to that.
   double slack_m = 0.0;
 };
 

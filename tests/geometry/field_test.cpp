@@ -89,7 +89,7 @@ TEST(GeoJson, RingsRoundAPoleAreOrientedOnTheGround) {
 
 // RFC 7946: an edge is straight in longitude and latitude. A 20 km edge along the 65th parallel
 // bows 17 m from the local frame's chord between its ends: it is read with points along the
-// parallel, each taking its edge's first vertex's number (within 0.5 m for the outer ring, 1 cm
+// parallel, each taking its edge's first vertex's number (within 0.5 m for the outer ring, 5 cm
 // for a hole); the short sides are kept as they are.
 TEST(GeoJson, LongEdgesAreReadStraightInLongitudeAndLatitude) {
   const Field f = parse_field(
@@ -101,7 +101,7 @@ TEST(GeoJson, LongEdgesAreReadStraightInLongitudeAndLatitude) {
     const Ring& ring = r == 0 ? f.polygon.outer : f.polygon.holes[0];
     const std::vector<double> parallels =
         r == 0 ? std::vector<double>{64.999, 65.001} : std::vector<double>{64.9995, 65.0005};
-    const double tolerance_m = r == 0 ? 0.5 : 0.01;
+    const double tolerance_m = r == 0 ? 0.5 : 0.05;
     ASSERT_GT(ring.size(), 8u) << r;
     ASSERT_EQ(f.geo_rings[r].size(), ring.size());
     for (std::size_t i = 0; i < ring.size(); ++i) {
