@@ -148,10 +148,8 @@ namespace {
 // photos' overlap), and a point on a gently bowing edge is a reflex vertex: at 1 cm a convex
 // field's 800 m east-west side at 47° would make it concave and split it into cells.
 constexpr double kOuterEdgeDepartureTolerance_m = 0.5;
-// A hole's edges are followed within 5 cm (a zone's too, planning/src/steps/area.cpp): the
-// preflight check allows as much where an edge bows (LocalZone::slack_m); a field's holes, tens
-// to hundreds of metres across, bow less and are read as they are.
-constexpr double kHoleEdgeDepartureTolerance_m = 0.05;
+// A hole's edges are followed as a zone's are (kZoneEdgeDepartureTolerance_m): a field's holes,
+// tens to hundreds of metres across, bow less and are read as they are.
 
 // RFC 7946: an edge is straight in longitude and latitude. Where such an edge strays from the
 // frame's chord (a long one, far from the equator), points along it keep the ring the shape
@@ -216,7 +214,7 @@ Field field_from_raw(detail::RawField raw, const std::string& source, bool geogr
         p = field.frame->to_local(geo.back());
       }
       densify_long_edges(*field.frame, normalised, geo,
-                         r == 0 ? kOuterEdgeDepartureTolerance_m : kHoleEdgeDepartureTolerance_m);
+                         r == 0 ? kOuterEdgeDepartureTolerance_m : kZoneEdgeDepartureTolerance_m);
       // Except about a pole: a ring round the South Pole turns the other way on the ground than
       // in longitude and latitude (every vertex was reflex, and the cells failed). The local
       // plane decides, and the first vertex stays first as in normalise_ring().

@@ -32,7 +32,7 @@ struct LocalZone {
   bool own_fence = false;  ///< the file's own exclusion fence: not entered (no clearance)
   /// How far the ring may stray from the shape it stands for: its edges, straight in longitude
   /// and latitude, bow from their chords in a frame, and swath plan reads a zone's within 5 cm
-  /// of the edge as drawn (verify.cpp's kPlanEdgeSlack_m): the most they bow, up to that.
+  /// of the edge as drawn (geometry::kZoneEdgeDepartureTolerance_m): the most they bow, up to that.
   double slack_m = 0.0;
 };
 

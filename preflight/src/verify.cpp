@@ -30,16 +30,12 @@ geometry::Ring local_ring(const geometry::LocalFrame& frame,
   return out;
 }
 
-// How far the plan may read a zone's or hole's edge off the edge as drawn (swath plan follows an
-// edge that bows more than this from its chord within it: planning/src/steps/area.cpp).
-constexpr double kPlanEdgeSlack_m = 0.05;
-
 // A ring zone or fence, measured with the slack its edges' bow leaves (LocalZone::slack_m): the
 // plan reads a zone's edges, in its own frame, within as much of the edge as drawn.
 LocalZone ring_zone(std::string name, const geometry::LocalFrame& frame,
                     const std::vector<geometry::GeoPoint>& ring, bool own_fence) {
-  const double slack_m =
-      std::min(kPlanEdgeSlack_m, geometry::largest_lonlat_departure_m(frame, ring));
+  const double slack_m = std::min(geometry::kZoneEdgeDepartureTolerance_m,
+                                  geometry::largest_lonlat_departure_m(frame, ring));
   return {std::move(name), local_ring(frame, ring), 0, own_fence, slack_m};
 }
 

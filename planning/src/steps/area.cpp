@@ -110,11 +110,6 @@ void check_homes(const SurveyRequest& request, const geometry::Field& field) {
       check_home_near_area(*d.home, "drone " + d.name + "'s home", field, request.far_home);
 }
 
-// How far the plan's reading of a zone's edge may stray from the edge as drawn (collect_no_fly):
-// 5 cm, what the preflight check allows where an edge bows (preflight's LocalZone::slack_m), as
-// for a hole (geometry/src/field.cpp). Zones of edges up to a kilometre are read as they are.
-constexpr double kZoneEdgeDepartureTolerance_m = 0.05;
-
 // The no-fly zones: the field's holes, then the --exclude zones (as given and in the frame).
 void collect_no_fly(SurveyPlan& plan) {
   const geometry::Field& field = plan.request.field;
@@ -128,8 +123,9 @@ void collect_no_fly(SurveyPlan& plan) {
     // from the zone as drawn. Its exclusion fence is written as
     // given: an autopilot reads those edges the same way.
     geometry::Ring local;
-    for (const GeoPoint& g : geometry::densify_lonlat_edges(
-             *field.frame, plan.request.exclusions[k], nullptr, kZoneEdgeDepartureTolerance_m))
+    for (const GeoPoint& g :
+         geometry::densify_lonlat_edges(*field.frame, plan.request.exclusions[k], nullptr,
+                                        geometry::kZoneEdgeDepartureTolerance_m))
       local.push_back(field.frame->to_local(g));
     geometry::NormalisedRing hole = geometry::normalise_ring(local, false);
     if (hole.ring.size() < 3)

@@ -40,6 +40,12 @@ double geodesic_distance_m(const GeoPoint& a, const GeoPoint& b);
 /// strays 2 cm, at 65° N 4 cm; fields' edges (tens to hundreds of metres) stray under a millimetre.
 inline constexpr double kEdgeDepartureTolerance_m = 0.01;
 
+/// How far swath plan reads a hole's or no-fly zone's edge off its lon/lat line (the plan follows
+/// an edge that bows more within this), and so the slack the preflight check allows a zone where
+/// its edges bow: 5 cm. At 1 cm the random-layout safety test's 1.2 km zones, bowing 1-2 cm,
+/// left plans a few millimetres short of the clearance from the zone as drawn.
+inline constexpr double kZoneEdgeDepartureTolerance_m = 0.05;
+
 /// `ring` (closed by its last vertex's edge back to the first) with points inserted along each
 /// edge's line straight in longitude and latitude, wherever that line strays from the frame's
 /// straight chord by more than `tolerance_m`, so that the ring's chords in the frame follow the
