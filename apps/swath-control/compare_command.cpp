@@ -259,6 +259,11 @@ int ControlCompareCommand::run() {
           runs.push_back(
               {env, stem(vehicle), mode.name, "", r.seed, prepare_flight(r).settings, {}});
         }
+  const bool pictures = !no_pictures_ && modes.size() > 1;
+  // A file of the user's in the way is refused before the flights, not after them.
+  std::vector<std::string> written{"runs.csv", "comparison.json", "comparison.md"};
+  if (pictures) written.insert(written.end(), {"improvement.png", "rate.png"});
+  base::check_output_names(output_, "control-compare", written);
   base::OutputSet set(output_, "control-compare");
   const unsigned jobs = jobs_ > 0 ? jobs_ : base::machine_threads();
   fly_all(runs, std::min<unsigned>(jobs, static_cast<unsigned>(runs.size())), progress_);
@@ -273,7 +278,7 @@ int ControlCompareCommand::run() {
   set.add("runs.csv", runs_csv(runs));
   set.add("comparison.json", base::json_text(j, 1) + "\n");
   set.add("comparison.md", c.md);
-  if (!no_pictures_ && modes.size() > 1) {
+  if (pictures) {
     std::vector<std::string> names;
     for (const Mode& m : modes) names.push_back(m.name);
     auto png = [](const ControlPicture& p) {

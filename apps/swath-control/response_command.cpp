@@ -188,6 +188,12 @@ int ControlResponseCommand::run() {
       throw InputError("--set " + s + ": response runs the task at --rate-hz without a scheduler");
   const control::SimulationSettings settings = prepare_flight(request).settings;
 
+  // A file of the user's in the way is refused before the test, not after it.
+  base::check_output_names(
+      output_, "control-response",
+      chirp ? std::vector<std::string>{"response.csv", "bode.csv", "margins.csv", "bode.png"}
+            : std::vector<std::string>{"response.csv", "step.csv", "step.png"});
+
   // 2. The test, then every file at once.
   const control::ResponseResult r = control::run_response(settings, test_);
   base::OutputSet set(output_, "control-response");

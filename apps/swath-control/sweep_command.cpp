@@ -189,6 +189,10 @@ int ControlSweepCommand::run() {
           for (int seed = 1; seed <= seeds_; ++seed)
             add(env, vehicle, baseline_, baseline_per_value ? values[v] : "-", baseline_per_value,
                 seed);
+  // A file of the user's in the way is refused before the flights, not after them.
+  std::vector<std::string> written{"runs.csv", "sweep.md"};
+  if (!no_pictures_) written.push_back("sweep.png");
+  base::check_output_names(output_, "control-sweep", written);
   base::OutputSet set(output_, "control-sweep");
   const unsigned jobs = jobs_ > 0 ? jobs_ : base::machine_threads();
   fly_all(flights, std::min<unsigned>(jobs, static_cast<unsigned>(flights.size())), progress_);

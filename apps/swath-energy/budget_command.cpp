@@ -26,6 +26,9 @@ int BudgetCommand::run() {
   const energy::DroneProfile drone = energy::read_drone_profile(drone_);
   for (const std::string& w : drone.warnings)
     std::cerr << "swath-energy budget: warning: " << w << '\n';
+  // A file of the user's in the way is refused before the budget, not after it.
+  if (!output_.empty())
+    base::check_output_names(output_, "energy-budget", {"budget.json", "soc.csv"});
   std::vector<energy::DroneBudget> budgets;
   for (const auto& m : missions) budgets.push_back(energy::budget(m, drone));
   const std::string json = energy::budget_json(budgets, drone);

@@ -82,6 +82,8 @@ int FleetForecastsCommand::run() {
       throw InputError("--forecasters: unknown forecaster \"" + n +
                        "\": use gmf, constant-velocity or none");
   const PreparedRun check = prepare_run(request_);  // every input read before any run
+  // A file of the user's in the way is refused before the runs, not after them.
+  base::check_output_names(output_, "fleet-forecasts", {"forecasts.csv", "summary.json"});
   std::vector<fleet::Dtg> runs;
   std::vector<std::uint64_t> seeds;
   for (int k = 0; k < seeds_; ++k) {

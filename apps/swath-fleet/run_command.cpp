@@ -591,6 +591,8 @@ int FleetCompareCommand::run() {
     throw InputError("--seed " + std::to_string(request_.seed) + " --seeds " +
                      std::to_string(seeds_) + ": the last seed would be beyond 9007199254740991");
   PreparedRun check = prepare_run(request_);  // every input read before any run
+  // A file of the user's in the way is refused before the runs, not after them.
+  base::check_output_names(output_, "fleet-compare", {"compare.csv", "summary.json"});
   // predictive = sa + GMF (+ q) + relief with the default or --weights weights, its histories the
   // reactive runs of the other seeds: those run first.
   const bool predictive = std::find(names.begin(), names.end(), "predictive") != names.end();

@@ -275,6 +275,7 @@ CollectedRun read_run(const std::string& run) {
 }  // namespace
 
 int FleetCollectCommand::run() {
+  base::check_output_names(output_, "fleet-collect", {"collect.csv"});
   std::vector<CollectedRun> runs;
   for (const std::string& r : runs_) runs.push_back(read_run(r));
   const CollectedRun& first = runs.front();

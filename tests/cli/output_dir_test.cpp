@@ -178,6 +178,29 @@ TEST(OutputDir, AFileSwathDidNotWriteIsNeverReplaced) {
   }
 }
 
+// The programs whose work takes long (runs over many seeds) refuse a file of the user's in the
+// way before that work, not after it: swath-fleet compare and forecasts print their tables to
+// stdout as they finish the runs, so nothing on stdout shows no run was made.
+TEST(OutputDir, AFileInTheWayIsRefusedBeforeTheRuns) {
+  const std::string mine = "MY OWN TABLE\n";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"compare road --world road --drones 2 --seeds 2 --schedulers reactive,greedy",
+       "compare.csv"},
+      {"forecasts road --world road --seeds 2", "forecasts.csv"}};
+  for (const auto& [command, name] : cases) {
+    const std::string out = fresh_dir("in-the-way-" + name);
+    fs::create_directories(out);
+    std::ofstream(out + "/" + name) << mine;
+    const CliRun r = run_swath_fleet(command + " -o " + out);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_NE(r.err.find(out + "/" + name + ": a file swath did not write"), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out, "") << command << ": runs were made before the refusal";
+    EXPECT_EQ(read_text(out + "/" + name), mine);
+    EXPECT_EQ(directory_files(out).size(), 1u) << command;
+  }
+}
+
 TEST(OutputDir, OtherProgramsAndExtraNamesNeverReplaceThePlan) {
   const std::string out = fresh_dir("foreign");
   ASSERT_EQ(run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 "
