@@ -75,6 +75,17 @@ std::string row_text(const Row& row, const LitchiSettings& s) {
 
 }  // namespace
 
+std::string write_litchi_part(const std::vector<ExportPoint>& points,
+                              std::optional<std::size_t> resumed_row,
+                              const LitchiSettings& settings) {
+  std::string text = header();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    text += row_text({&points[i], i + 1 < points.size() ? &points[i + 1] : nullptr,
+                      resumed_row && i == *resumed_row},
+                     settings);
+  return text;
+}
+
 std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points,
                                           const LitchiSettings& settings) {
   std::vector<std::string> parts;
@@ -91,11 +102,9 @@ std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points
           end = last + 1;
           break;
         }
-    std::string text = header();
-    for (std::size_t i = first; i < end; ++i)
-      text += row_text({&points[i], i + 1 < end ? &points[i + 1] : nullptr, i == first && i > 0},
-                       settings);
-    parts.push_back(std::move(text));
+    const std::vector<ExportPoint> part(points.begin() + first, points.begin() + end);
+    parts.push_back(write_litchi_part(
+        part, first > 0 ? std::optional<std::size_t>(0) : std::nullopt, settings));
     if (end >= points.size()) break;
     first = end - 1;
   }

@@ -90,15 +90,27 @@ bool same_point(const Waypoint& a, const Waypoint& b) {
          std::abs(a.above_home_m - b.above_home_m) <= 0.01;
 }
 
+// How many waypoints the end of `out` and the start of `next` share mirrored: a part of a split
+// Litchi flight that cannot fly home straight from where it stops carries a way home round the
+// zones, and the next part the same way back out reversed, up to the point it resumes at, which
+// both hold. 0: none; 1: the next part starts where the one before ended.
+std::size_t mirrored(const std::vector<Waypoint>& out, const std::vector<Waypoint>& next) {
+  std::size_t k = 0;
+  while (k < out.size() && k < next.size() && same_point(out[out.size() - 1 - k], next[k])) ++k;
+  return k;
+}
+
 // A twin's waypoints: the parts of a split Litchi flight joined, each part after the first
-// starting where the one before ended (that waypoint once).
+// starting where the one before ended (that waypoint once), the ways home and back out between
+// them left out (they are flown and checked as the parts' own legs, not the .plan's).
 std::vector<Waypoint> joined_waypoints(const std::vector<missions::Mission>& parts,
                                        const geometry::Ground* ground) {
   std::vector<Waypoint> out;
   for (const missions::Mission& part : parts) {
     const std::vector<Waypoint> w = waypoints(part, ground);
-    const bool resumes = !out.empty() && !w.empty() && same_point(out.back(), w.front());
-    out.insert(out.end(), w.begin() + (resumes ? 1 : 0), w.end());
+    const std::size_t shared = mirrored(out, w);
+    if (shared > 1) out.resize(out.size() - (shared - 1));
+    out.insert(out.end(), w.begin() + static_cast<std::ptrdiff_t>(shared), w.end());
   }
   return out;
 }

@@ -348,15 +348,14 @@ std::string kml_coordinates(const std::vector<geometry::GeoPoint>& points, doubl
   return s;
 }
 
-namespace {
-
-// The true bearing of the geodesic from a to b at a (at_end: at b), degrees in [0, 360).
 double bearing_deg(const geometry::GeoPoint& a, const geometry::GeoPoint& b, bool at_end) {
   double azi1 = 0, azi2 = 0;
   GeographicLib::Geodesic::WGS84().Inverse(a.lat_deg, a.lon_deg, b.lat_deg, b.lon_deg, azi1, azi2);
   const double azi = at_end ? azi2 : azi1;
   return azi < 0 ? azi + 360.0 : azi;
 }
+
+namespace {
 
 // The legs' headings: each point faces along the leg it starts, the last along the leg it ends;
 // a point where the flight does not move (a leg shorter than a millimetre) keeps the heading

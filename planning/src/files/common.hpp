@@ -68,6 +68,10 @@ PhotoTexts photo_texts(const SurveyPlan& plan);
 /// A waypoint as the DJI and Litchi exports write it (swath/missions/writers.hpp).
 using ExportPoint = missions::ExportPoint;
 
+/// The true bearing of the geodesic from a to b at a (at_end: at b), degrees in [0, 360): an
+/// export point's heading.
+double bearing_deg(const geometry::GeoPoint& a, const geometry::GeoPoint& b, bool at_end);
+
 /// The export points of a flight (see ExportPoint).
 /// `local`, if given, gets each point's position in the plan's frame (metres), in their order.
 std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight,

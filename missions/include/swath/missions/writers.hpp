@@ -50,6 +50,13 @@ struct LitchiSettings {
   std::function<bool(std::size_t)> may_end_at;
 };
 
+/// One Litchi mission CSV of `points`, one row each (as write_litchi_csv() writes a part; the
+/// last row's leg photographs nothing, it has none); the row `resumed_row`, when given, resumes a
+/// part before it: its hold and photo were done at the end of that part and are not repeated.
+std::string write_litchi_part(const std::vector<ExportPoint>& points,
+                              std::optional<std::size_t> resumed_row,
+                              const LitchiSettings& settings);
+
 /// Litchi mission CSV (--litchi): Litchi's column set, one row per point (see
 /// planning::litchi_csv for the columns; a row's speed is its leg's to the next row, as Litchi's
 /// and DJI's waypoint missions read it); one text per part of at most max_rows rows, part k + 1

@@ -87,7 +87,10 @@ inline constexpr std::size_t kWpmlMaxWaypoints = 65'536;
 /// point (gimbalmode 2), the drone's speed, holds as stay actions, hover shots as photo actions,
 /// photo_distinterval (distance) or photo_timeinterval (time) on the waypoints whose next leg the
 /// camera triggers on, -1 elsewhere. One text per part of at most kLitchiMaxWaypoints rows; part
-/// k + 1 starts at the point part k ends at.
+/// k + 1 starts at the point part k ends at, after the way back out to it where part k ends with a
+/// way home round the no-fly zones (rows of their own, camera off: Litchi flies home straight from
+/// a part's last row). Throws base::InputError where no point within a part's rows has a way home
+/// that keeps clear and fits.
 std::vector<std::string> litchi_csv(const SurveyPlan& plan, const Flight& flight);
 
 /// DJI WPML (--dji, docs/swath-plan.md): wpmz/waylines.wpml (what the aircraft executes) and
