@@ -166,8 +166,9 @@ struct Cut {
       "of at most " + std::to_string(kLitchiMaxWaypoints) +
       " waypoints: from none of its waypoints " + std::to_string(first + 1) + " to " +
       std::to_string(last + 1) +
-      " does a way home around the no-fly zones, inside the fence, fit in the rows "
-      "left; fewer waypoints (a larger --waypoint-spacing, or none) may let it");
+      " does a way home round the no-fly zones that keeps clear inside the fence (its legs and "
+      "the stops at its bends) fit in the rows left; fewer waypoints (a larger "
+      "--waypoint-spacing, or none) or a lower --speed may let it");
 }
 
 // The end of the part of at most `rows` rows that begins at point `first`: the last point a
