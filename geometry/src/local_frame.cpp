@@ -85,30 +85,36 @@ int pieces_for(double departure_m, double tol_m) {
   return static_cast<int>(std::clamp(std::ceil(std::sqrt(departure_m / tol_m)), 2.0, 1024.0));
 }
 
-// The points strictly between a and b that make each piece's lon/lat line and chord agree.
-void split_lonlat(const LocalFrame& frame, const GeoPoint& a, const GeoPoint& b, double tol_m,
-                  int depth, std::vector<GeoPoint>& out) {
-  const double departure_m = lonlat_departure_m(frame, a, b, frame.to_local(a), frame.to_local(b));
-  if (depth >= kMaxEdgeSplits || departure_m <= tol_m) return;
-  const int n = pieces_for(departure_m, tol_m);
-  GeoPoint from = a;
-  for (int k = 1; k <= n; ++k) {
-    const GeoPoint to = k == n ? b : along_lonlat(a, b, static_cast<double>(k) / n);
-    split_lonlat(frame, from, to, tol_m, depth + 1, out);
-    if (k < n) out.push_back(to);
-    from = to;
-  }
+// How far an edge strays, for a ring as drawn (its ends in lon/lat) and a ring in the frame.
+double edge_departure_m(const LocalFrame& frame, const GeoPoint& a, const GeoPoint& b) {
+  return lonlat_departure_m(frame, a, b, frame.to_local(a), frame.to_local(b));
 }
 
-void split_local(const LocalFrame& frame, Point2 A, Point2 B, double tol_m, int depth,
-                 std::vector<Point2>& out) {
-  const double departure_m = lonlat_departure_m(frame, frame.to_geo(A), frame.to_geo(B), A, B);
+double edge_departure_m(const LocalFrame& frame, Point2 A, Point2 B) {
+  return lonlat_departure_m(frame, frame.to_geo(A), frame.to_geo(B), A, B);
+}
+
+// The point a share `t` along the line the edge is straight in: lon/lat for a ring as drawn, the
+// chord for a ring in the frame (its lon/lat lines are made to follow the chord).
+GeoPoint along_edge(const GeoPoint& a, const GeoPoint& b, double t) {
+  return along_lonlat(a, b, t);
+}
+
+Point2 along_edge(Point2 A, Point2 B, double t) {
+  return A + (B - A) * t;
+}
+
+// The points strictly between a and b that make each piece's lon/lat line and chord agree.
+template <class P>
+void split_edge(const LocalFrame& frame, const P& a, const P& b, double tol_m, int depth,
+                std::vector<P>& out) {
+  const double departure_m = edge_departure_m(frame, a, b);
   if (depth >= kMaxEdgeSplits || departure_m <= tol_m) return;
   const int n = pieces_for(departure_m, tol_m);
-  Point2 from = A;
+  P from = a;
   for (int k = 1; k <= n; ++k) {
-    const Point2 to = k == n ? B : A + (B - A) * (static_cast<double>(k) / n);
-    split_local(frame, from, to, tol_m, depth + 1, out);
+    const P to = k == n ? b : along_edge(a, b, static_cast<double>(k) / n);
+    split_edge(frame, from, to, tol_m, depth + 1, out);
     if (k < n) out.push_back(to);
     from = to;
   }
@@ -125,7 +131,7 @@ std::vector<GeoPoint> densify_lonlat_edges(const LocalFrame& frame,
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const std::size_t before = out.size();
     out.push_back(ring[i]);
-    split_lonlat(frame, ring[i], ring[(i + 1) % ring.size()], tolerance_m, 0, out);
+    split_edge(frame, ring[i], ring[(i + 1) % ring.size()], tolerance_m, 0, out);
     for (std::size_t k = before + 1; k < out.size(); ++k) out[k].alt_m = ring[i].alt_m;
     if (from_vertex) from_vertex->resize(out.size(), i);
   }
@@ -135,9 +141,7 @@ std::vector<GeoPoint> densify_lonlat_edges(const LocalFrame& frame,
 double largest_lonlat_departure_m(const LocalFrame& frame, const std::vector<GeoPoint>& ring) {
   double most = 0;
   for (std::size_t i = 0; i < ring.size(); ++i) {
-    const GeoPoint& a = ring[i];
-    const GeoPoint& b = ring[(i + 1) % ring.size()];
-    most = std::max(most, lonlat_departure_m(frame, a, b, frame.to_local(a), frame.to_local(b)));
+    most = std::max(most, edge_departure_m(frame, ring[i], ring[(i + 1) % ring.size()]));
   }
   return most;
 }
@@ -147,7 +151,7 @@ std::vector<Point2> densify_local_edges(const LocalFrame& frame, const std::vect
   std::vector<Point2> out;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     out.push_back(ring[i]);
-    split_local(frame, ring[i], ring[(i + 1) % ring.size()], tolerance_m, 0, out);
+    split_edge(frame, ring[i], ring[(i + 1) % ring.size()], tolerance_m, 0, out);
   }
   return out;
 }
