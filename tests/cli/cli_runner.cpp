@@ -1,5 +1,6 @@
 #include "cli_runner.hpp"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -82,6 +83,39 @@ CliRun run_swath_control(const std::string& args) {
 
 CliRun run_swath_fleet(const std::string& args) {
   return run_program(SWATH_FLEET_BINARY, args);
+}
+
+namespace {
+
+CliRun run_named(const std::string& program, const std::string& args) {
+  if (program == "swath") return run_swath(args);
+  if (program == "swath-energy") return run_swath_energy(args);
+  if (program == "swath-control") return run_swath_control(args);
+  if (program == "swath-fleet") return run_swath_fleet(args);
+  ADD_FAILURE() << "no program " << program << " is built for the tests";
+  return {};
+}
+
+}  // namespace
+
+void expect_users_file_survives(const std::string& program, const std::string& args,
+                                const std::string& dir, const std::string& name) {
+  const std::string mine = "MY OWN " + name + "\n", path = dir + "/" + name;
+  std::filesystem::create_directories(dir);
+  std::ofstream(path) << mine;
+  const CliRun refused = run_named(program, args);
+  EXPECT_EQ(refused.exit_code, 2);
+  const std::string command = args.substr(0, args.find(' '));  // its list: .swath-fleet-run.files
+  EXPECT_EQ(refused.err, program + " " + command + ": " + path +
+                             ": a file swath did not write (no ." + program + "-" + command +
+                             ".files here lists it) would be replaced; move it, or choose "
+                             "another -o\n");
+  EXPECT_EQ(read_text(path), mine);
+  EXPECT_EQ(directory_files(dir).size(), 1u);
+  std::filesystem::remove(path);
+  ASSERT_EQ(run_named(program, args).exit_code, 0);
+  const CliRun again = run_named(program, args);
+  ASSERT_EQ(again.exit_code, 0) << "its own files are replaced: " << again.err;
 }
 
 CliRun run_program(const std::string& binary, const std::string& args) {

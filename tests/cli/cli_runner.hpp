@@ -27,6 +27,13 @@ CliRun run_swath_control(const std::string& args);
 /// run_program() of the built `swath-fleet`.
 CliRun run_swath_fleet(const std::string& args);
 
+/// A file of the user's in -o `dir`, `name` there, that the run `args` of `program` ("swath-fleet",
+/// its command the first word of `args`) would write: the run is refused in one sentence naming
+/// it, exit 2, the file as it was and nothing else in `dir`. The file taken away, the run writes,
+/// and again (its own files are replaced). Fatal failures: call it in ASSERT_NO_FATAL_FAILURE.
+void expect_users_file_survives(const std::string& program, const std::string& args,
+                                const std::string& dir, const std::string& name);
+
 /// A fresh empty directory under the system's temporary directory (removed first if present).
 std::string fresh_dir(const std::string& name);
 

@@ -439,22 +439,8 @@ TEST(ControlCli, ThePictureShowsTheNoFlyZoneAndTheStartWhereTheyAre) {
 // before are replaced as ever.
 TEST(ControlCli, AFileSwathDidNotWriteIsNeverReplaced) {
   const std::string out = fresh_dir("control-users-file");
-  fs::create_directories(out);
-  const std::string mine = "MY OWN PICTURE\n";
-  std::ofstream(out + "/trajectory.png") << mine;
   const std::string run = "run random:4@30x30 --max-time 0.001 --size 600x450 -o " + out;
-  const CliRun refused = run_swath_control(run);
-  EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_EQ(refused.err, "swath-control run: " + out +
-                             "/trajectory.png: a file swath did not write (no "
-                             ".swath-control-run.files here lists it) would be replaced; move "
-                             "it, or choose another -o\n");
-  EXPECT_EQ(read_text(out + "/trajectory.png"), mine);
-  EXPECT_EQ(directory_files(out).size(), 1u);
-  fs::remove(out + "/trajectory.png");
-  ASSERT_EQ(run_swath_control(run).exit_code, 0);
-  const CliRun again = run_swath_control(run);
-  ASSERT_EQ(again.exit_code, 0) << again.err;
+  ASSERT_NO_FATAL_FAILURE(expect_users_file_survives("swath-control", run, out, "trajectory.png"));
   EXPECT_EQ(render::decode_png(read_text(out + "/trajectory.png")).width, 600);
 }
 

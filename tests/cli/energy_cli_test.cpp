@@ -245,21 +245,8 @@ TEST(EnergyCli, SurveyEnergyPlanIsFlownAndReplanned) {
 // their own run before are replaced as ever.
 TEST(EnergyCli, AFileSwathDidNotWriteIsNeverReplaced) {
   const std::string out = fresh_dir("energy-users-file");
-  std::filesystem::create_directories(out);
-  const std::string mine = "MY OWN SUMMARY\n";
-  std::ofstream(out + "/summary.json") << mine;
   const std::string run = "run plans/survey.stages --config plans/survey-sim.yaml -o " + out;
-  const CliRun refused = run_swath_energy(run);
-  EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_EQ(refused.err, "swath-energy run: " + out +
-                             "/summary.json: a file swath did not write (no "
-                             ".swath-energy-run.files here lists it) would be replaced; move it, "
-                             "or choose another -o\n");
-  EXPECT_EQ(read_text(out + "/summary.json"), mine);
-  EXPECT_EQ(directory_files(out).size(), 1u);
-  std::filesystem::rename(out + "/summary.json", out + ".mine");
-  ASSERT_EQ(run_swath_energy(run).exit_code, 0);
-  ASSERT_EQ(run_swath_energy(run).exit_code, 0) << "its own files are replaced";
+  ASSERT_NO_FATAL_FAILURE(expect_users_file_survives("swath-energy", run, out, "summary.json"));
   EXPECT_TRUE(json::parse(read_text(out + "/summary.json"))["completed"].get<bool>());
 
   const std::string plan = fresh_dir("energy-users-file-plan");
@@ -267,6 +254,7 @@ TEST(EnergyCli, AFileSwathDidNotWriteIsNeverReplaced) {
       run_swath("plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 60 -o " + plan)
           .exit_code,
       0);
+  const std::string mine = "MY OWN STATE OF CHARGE\n";
   const std::string budget_out = fresh_dir("energy-users-file-budget");
   std::filesystem::create_directories(budget_out);
   std::ofstream(budget_out + "/soc.csv") << mine;
