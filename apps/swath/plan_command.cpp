@@ -21,6 +21,7 @@
 #include "swath/base/output_set.hpp"
 #include "swath/geometry/geotiff.hpp"
 #include "swath/geometry/ground.hpp"
+#include "swath/missions/writers.hpp"
 #include "swath/planning/coverage_grid.hpp"
 #include "swath/planning/limits.hpp"
 #include "swath/planning/plan_features.hpp"
@@ -529,6 +530,9 @@ void PlanCommand::fill_request(planning::SurveyRequest& request) const {
   request.vehicle =
       vehicle_ == "fixedwing" ? planning::Vehicle::fixedwing : planning::Vehicle::multirotor;
   request.speed_m_s = speed_m_s_;
+  // DJI flies no slower than 1 m/s: every file of the plan approaches its stops beside no-fly
+  // zones at that speed at least, and the stops are placed for its overrun.
+  if (dji_) request.slowest_approach_m_s = missions::kDjiMinSpeed_m_s;
   request.clearance_m = clearance_m_;
   request.outside_margin_m = outside_margin_m_;
   request.boundary_clearance_m = boundary_clearance_m_;

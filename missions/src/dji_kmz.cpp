@@ -13,6 +13,7 @@
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/mavlink/commands.hpp"
+#include "swath/missions/writers.hpp"
 
 namespace swath::missions {
 namespace {
@@ -124,8 +125,11 @@ void add_wayline(const pugi::xml_node& folder, const std::string& in, Mission& m
         !(std::abs(lat) <= 90 && std::abs(lon) <= 180))
       throw InputError(where + ": coordinates must be 'longitude,latitude'");
     // A waypoint's speed is its leg's to the next (DJI's waypointSpeed): a change after it; the
-    // first one's also before it, the flight out to it being at that speed too.
-    const double v = number(p, "wpml:waypointSpeed", where);
+    // first one's also before it, the flight out to it being at that speed too. The aircraft
+    // flies no slower than kDjiMinSpeed_m_s: a slower one is read as that (and overruns a stop
+    // by as much).
+    const double written = number(p, "wpml:waypointSpeed", where);
+    const double v = written > 0 ? std::max(written, kDjiMinSpeed_m_s) : written;
     const auto set_speed = [&] {
       if (v > 0 && v != speed)
         m.items.push_back(command(Cmd::do_change_speed, 1, speed = v, where));

@@ -17,9 +17,10 @@ namespace {
 
 using base::fixed_text;
 
-// WPML's limits: globalTransitionalSpeed [0, 15] m/s, takeOffSecurityHeight [2, 1500] m.
-constexpr double kMaxTransitionalSpeed_m_s = 15.0;
-constexpr double kMinSecurityHeight_m = 2.0, kMaxSecurityHeight_m = 1500.0;
+// WPML's limits: globalTransitionalSpeed [0, 15] m/s, takeOffSecurityHeight up to 1500 m (swath
+// plan --dji refuses a survey above it: nothing here cuts it short); 2 m at least.
+constexpr double kMaxTransitionalSpeed_m_s = kDjiMaxSpeed_m_s;
+constexpr double kMinSecurityHeight_m = 2.0, kMaxSecurityHeight_m = kDjiMaxHeight_m;
 
 // What both files describe.
 struct Wayline {

@@ -257,7 +257,10 @@ std::vector<WplRow> wpl_rows(const std::string& text, const std::string& source)
                          ": a WPL row has 12 fields (index, current, frame, command, 4 params, "
                          "latitude, longitude, altitude, autocontinue); found " +
                          std::to_string(k));
-      if (!base::parse_number(fields[k], f[k]) || !std::isfinite(f[k]))
+      // Params 1-4 (fields 5-8) may have no value, NaN (as a .plan's null); the rest may not.
+      const bool may_be_nan = k >= 4 && k < 8;
+      if (!base::parse_number(fields[k], f[k]) || std::isinf(f[k]) ||
+          (std::isnan(f[k]) && !may_be_nan))
         throw InputError(where() + ": field " + std::to_string(k + 1) + " '" +
                          std::string(fields[k].substr(0, 40)) + "' is not a number");
     }

@@ -20,10 +20,13 @@ constexpr int number(MavFrame f) {
   return static_cast<int>(f);
 }
 
-// A row: index, current, frame, command, seven params (NaN as 0; latitude and longitude to 1e-9
-// degrees, the others to 1e-6), autocontinue 1. Appended to `out` (no string per row or number).
+// A row: index, current, frame, command, seven params (latitude and longitude to 1e-9 degrees,
+// the others to 1e-6), autocontinue 1. Appended to `out` (no string per row or number). A value
+// that is none (NaN, a .plan's null) is 0, or with `nan_params` in params 1-4 "NaN": PX4 reads a
+// yaw of 0 as north, NaN as the yaw left as it is, and QGroundControl's WPL reader
+// (QString::toDouble: letters lower-cased, then "nan") reads "NaN" back as NaN.
 void append_wpl_row(std::string& out, std::size_t index, int current, int frame, int command,
-                    const std::array<double, 7>& p) {
+                    const std::array<double, 7>& p, bool nan_params = false) {
   base::append_integer_text(out, index);
   out += '\t';
   base::append_integer_text(out, current);
@@ -33,7 +36,10 @@ void append_wpl_row(std::string& out, std::size_t index, int current, int frame,
   base::append_integer_text(out, command);
   for (std::size_t k = 0; k < 7; ++k) {
     out += '\t';
-    base::append_fixed_text(out, std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
+    if (nan_params && k < 4 && std::isnan(p[k]))
+      out += "NaN";
+    else
+      base::append_fixed_text(out, std::isnan(p[k]) ? 0.0 : p[k], k == 4 || k == 5 ? 9 : 6);
   }
   out += "\t1\n";
 }
@@ -52,8 +58,10 @@ std::string write_wpl(const Mission& mission) {
   append_wpl_row(out, 0, 1, number(MavFrame::global), number(Cmd::nav_waypoint),
                  {0, 0, 0, 0, home.lat_deg, home.lon_deg, mission.home_amsl_m});
   std::size_t index = 1;
+  // ArduPilot's files keep 0 for no value (the files swath has always written for it).
+  const bool nan_params = mission.autopilot == Autopilot::px4;
   for (const Item& item : mission.items)
-    append_wpl_row(out, index++, 0, item.frame, item.command, params_of(item));
+    append_wpl_row(out, index++, 0, item.frame, item.command, params_of(item), nan_params);
   return out;
 }
 

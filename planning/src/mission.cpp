@@ -30,12 +30,12 @@ double braking_s(double v, double slow, double a) {
 
 // Builds the items and the path of one mission step by step.
 // Approaches to stops beside the zones (MissionBuilder::slow_approaches): the least distance
-// before the stop the slow speed is set and how far past it the cruise speed is set again, metres,
-// and the slowest speed set, m/s (ArduCopter's least WPNAV_SPEED, 20 cm/s: an overrun of 8 mm).
+// before the stop the slow speed is set and how far past it the cruise speed is set again, metres
+// (the slowest speed set is MissionSettings::slowest_approach_m_s).
 constexpr double kSlowApproach_m = 0.5;
-constexpr double kSlowest_m_s = 0.2;
-// How far a stop with less free run than the overrun at kSlowest_m_s (8 mm at 2.5 m/s²) is moved
-// back along its incoming leg at most, metres (MissionBuilder::slow_approaches).
+// How far a stop with less free run than the overrun at kSlowestApproach_m_s (8 mm at 2.5 m/s²)
+// is moved back along its incoming leg at most, metres (MissionBuilder::slow_approaches); a
+// slower least approach speed (--dji: 1 m/s, 20 cm) adds its longer overrun to it.
 constexpr double kMostNudge_m = 0.02;
 constexpr double kMergeWithin_m = 0.05;
 // Braking room kept beyond what braking to the slow speed takes, metres: the files' rounding and
@@ -159,27 +159,27 @@ class MissionBuilder {
  private:
   // Stops (a hold, a turn sharper than kStopTurn_deg) where the overrun at the cruise speed would
   // reach a zone's clearance band (s.free_run_m) are approached slowly: the speed cut to what stops
-  // within the free run (at least kSlowest_m_s) early enough that the vehicle, braking at no more
-  // than s.accel_m_s2 from the cruise speed, is that slow at the stop (reachable_speed_m_s; a cut
-  // kSlowApproach_m before the stop left ArduCopter SITL flights 2 to 7 cm inside the clearance),
-  // and back to the cruise speed at a waypoint kSlowApproach_m past it. A DO_CHANGE_SPEED after a
-  // waypoint takes effect at that waypoint or (ArduPilot runs DO items while flying to the
-  // waypoint before them) earlier: the cut follows a waypoint added that far before the stop on
-  // its incoming leg, or where that leg is too short, an earlier waypoint far enough back or the
-  // stop before (at rest there anyway). Fast again from no earlier than the stop itself. Returns
-  // the time the slow legs add, seconds.
+  // within the free run (at least s.slowest_approach_m_s) early enough that the vehicle, braking at
+  // no more than s.accel_m_s2 from the cruise speed, is that slow at the stop (reachable_speed_m_s;
+  // a cut kSlowApproach_m before the stop left ArduCopter SITL flights 2 to 7 cm inside the
+  // clearance), and back to the cruise speed at a waypoint kSlowApproach_m past it. A
+  // DO_CHANGE_SPEED after a waypoint takes effect at that waypoint or (ArduPilot runs DO items
+  // while flying to the waypoint before them) earlier: the cut follows a waypoint added that far
+  // before the stop on its incoming leg, or where that leg is too short, an earlier waypoint far
+  // enough back or the stop before (at rest there anyway). Fast again from no earlier than the stop
+  // itself. Returns the time the slow legs add, seconds.
   double slow_approaches() {
     if (!s_.free_run_m || s_.vehicle != Vehicle::multirotor || m_.path.size() < 3) return 0.0;
     const double v = s_.speed_m_s, a = s_.accel_m_s2;
     const double overrun_m = stop_overrun_m(v, a);
-    const double slowest_overrun_m = stop_overrun_m(kSlowest_m_s, a);
+    const double slowest_overrun_m = stop_overrun_m(s_.slowest_approach_m_s, a);
     std::vector<std::size_t> item_of{0};  // path index -> item index (0: takeoff at home)
     for (std::size_t k = 1; k < m_.items.size(); ++k)
       if (m_.items[k].kind == ItemKind::waypoint) item_of.push_back(k);
     // Even the slowest approach runs slowest_overrun_m on: a stop with less free run (on the
     // clearance band's edge: a line start entered from the home leg, the bend of a route, a line
     // end that could not be drawn back) moves back along its incoming leg by what that needs and
-    // 2 mm, at most kMostNudge_m (the preflight check refused such plans 1 to 8 mm short: half of
+    // 2 mm, at most most_nudge_m() (the preflight check refused such plans 1 to 8 mm short: half of
     // a test's random layouts with zones). First, in flight order: a stop moved turns the leg
     // into the next one, and with it the direction that stop overruns in.
     for (std::size_t i = 1; i + 1 < m_.path.size() && i < item_of.size(); ++i) {
@@ -205,7 +205,7 @@ class MissionBuilder {
       const double free_m = s_.free_run_m(p, u);
       if (free_m >= overrun_m) continue;
       const double slow_m_s =
-          std::max(kSlowest_m_s, std::sqrt(2 * a * std::max(free_m - 0.05, 0.0)));
+          std::max(s_.slowest_approach_m_s, std::sqrt(2 * a * std::max(free_m - 0.05, 0.0)));
       if (slow_m_s >= v) continue;
       const double brake_m = (v * v - slow_m_s * slow_m_s) / (2 * a) + kBrakeMargin_m;
       const double lead_m = std::max(kSlowApproach_m, brake_m);
@@ -322,9 +322,15 @@ class MissionBuilder {
       const double free_m = s_.free_run_m(q, (q - before) * (1 / in_m));
       if (free_m >= slowest_m + 1e-3) return t > 0 ? std::optional<Point2>(q) : std::nullopt;
       t += slowest_m + 2e-3 - free_m;
-      if (t > kMostNudge_m || t >= room_m) return std::nullopt;
+      if (t > most_nudge_m() || t >= room_m) return std::nullopt;
     }
     return std::nullopt;
+  }
+
+  // kMostNudge_m, and the overrun a least approach speed above kSlowestApproach_m_s adds.
+  double most_nudge_m() const {
+    return kMostNudge_m + (stop_overrun_m(s_.slowest_approach_m_s, s_.accel_m_s2) -
+                           stop_overrun_m(kSlowestApproach_m_s, s_.accel_m_s2));
   }
 
   // Moves path point i (item k, and a line starting or ending there) to q; returns q.
@@ -578,13 +584,13 @@ DrawnBack stops_drawn_back(const SurveyPath& path, const MissionSettings& s,
     const Point2 off = from_line ? (has_off ? path.points[i + 1] : p) : out.points[i - 1];
     if (has_off && !inside(q, off)) {
       // Too far to draw back with the leg off the line kept inside: the slow approach takes over
-      // (slow_approaches()). Even at its slowest it runs stop_overrun_m(kSlowest_m_s) on, 8 mm at
-      // 0.2 m/s: where the free run is shorter (an end on the clearance band's edge), the end
-      // still moves back by what the slowest stop needs and 2 mm, a centimetre at most, where the
-      // leg off the line then stays inside or was outside already (a turn round the end of a
+      // (slow_approaches()). Even at its slowest it runs stop_overrun_m(s.slowest_approach_m_s) on,
+      // 8 mm at 0.2 m/s: where the free run is shorter (an end on the clearance band's edge), the
+      // end still moves back by what the slowest stop needs and 2 mm, a centimetre at most, where
+      // the leg off the line then stays inside or was outside already (a turn round the end of a
       // zone that cuts the area): the preflight check refused such plans 8 mm short.
       const double small = shortfall_m(s, p, along, before, from_line,
-                                       stop_overrun_m(kSlowest_m_s, s.accel_m_s2) + 2e-3);
+                                       stop_overrun_m(s.slowest_approach_m_s, s.accel_m_s2) + 2e-3);
       if (!(small > 0 && small < t)) continue;
       q = p + (along - p) * (small / length_m);
       if (!inside(q, off) && inside(p, off)) continue;

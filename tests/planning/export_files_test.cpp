@@ -561,7 +561,8 @@ TEST(Exports, RefusedWhereTheAppCannotFlyThePlan) {
   EXPECT_EQ(message(plan, {}), "accepted");
   SurveyPlan fast = meadow(60, [](SurveyRequest& r) { r.speed_m_s = 18; });
   EXPECT_NE(message(fast, litchi).find("faster than Litchi's waypoint speeds"), std::string::npos);
-  EXPECT_EQ(message(fast, dji), "accepted");
+  EXPECT_NE(message(fast, dji).find("--dji: drone drone-1 flies at 18.0 m/s, outside DJI's"),
+            std::string::npos);
   // A wayline numbers at most 65,536 points.
   SurveyPlan big = meadow(60);
   std::vector<MissionItem>& items = big.drones[0].mission.items;
@@ -571,7 +572,7 @@ TEST(Exports, RefusedWhereTheAppCannotFlyThePlan) {
   EXPECT_EQ(message(big, dji), "accepted");
   items.insert(items.end() - 1, MissionItem{});
   EXPECT_NE(message(big, dji).find("--dji: flight drone-1 has 65537 waypoints"), std::string::npos);
-  // DJI's transitional speed is capped at WPML's 15 m/s; the waypoints keep the plan's 18.
+  // The writer on its own caps the transitional speed at WPML's 15 m/s; the waypoints keep 18.
   pugi::xml_document w;
   ASSERT_TRUE(w.load_string(dji_waylines_wpml(fast, flights_of(fast).at(0)).c_str()));
   const pugi::xml_node doc = w.child("kml").child("Document");

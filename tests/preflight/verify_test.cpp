@@ -260,10 +260,10 @@ TEST(Verify, AnInclusionCircleBesideAPolygonMustHoldToo) {
 }
 
 // A DJI KMZ of waylines (Folders) of points in local metres around kOrigin, each point 40 m above
-// the take-off point, its missionConfig climbing to `take_off_m` first and returning home at
-// `rth_m` (finishAction goHome).
+// the take-off point at `speed` m/s, its missionConfig climbing to `take_off_m` first and
+// returning home at `rth_m` (finishAction goHome).
 std::string kmz(const std::vector<std::vector<geometry::Point2>>& waylines, double take_off_m,
-                double rth_m) {
+                double rth_m, const std::string& speed = "5") {
   const geometry::LocalFrame frame(kOrigin);
   std::string xml =
       R"(<?xml version="1.0" encoding="UTF-8"?><kml xmlns="http://www.opengis.net/kml/2.2" )"
@@ -278,7 +278,8 @@ std::string kmz(const std::vector<std::vector<geometry::Point2>>& waylines, doub
       xml += "<Placemark><Point><coordinates>" + base::fixed_text(g.lon_deg, 9) + "," +
              base::fixed_text(g.lat_deg, 9) +
              "</coordinates></Point><wpml:executeHeight>40</wpml:executeHeight>"
-             "<wpml:waypointSpeed>5</wpml:waypointSpeed></Placemark>";
+             "<wpml:waypointSpeed>" +
+             speed + "</wpml:waypointSpeed></Placemark>";
     }
     xml += "</Folder>";
   }
@@ -301,6 +302,24 @@ TEST(Verify, EveryWaylineOfAKmzIsFlownInTurn) {
       << v->place;
   EXPECT_EQ(find(verify({kmz_drone(kmz({{{0, 0}, {100, 0}}}, 20, 40))}, o), "no-fly zone"),
             nullptr);
+}
+
+TEST(Verify, AKmzIsFlownNoSlowerThanDjisLeastSpeed) {
+  // A stop at (100, 0) 0.15 m short of a wall: at 0.2 m/s it would run 8 mm on, but DJI flies no
+  // slower than 1 m/s, which runs 0.2 m on (1 / (2 x 2.5)), into the wall.
+  CheckOptions o;
+  o.clearance_m = 0;
+  o.zones = {{"wall", square(100.15, -10, 120, 10)}};
+  const std::vector<std::vector<geometry::Point2>> line = {{{-20, 0}, {100, 0}}};
+  for (const char* speed : {"0.2", "1"}) {
+    const Report r = verify({kmz_drone(kmz(line, 20, 40, speed))}, o);
+    const Violation* v = find(r, "no-fly zone");
+    ASSERT_NE(v, nullptr) << speed << " m/s: " << report_text(r);
+    EXPECT_NE(v->place.find("stopping margin"), std::string::npos) << v->place;
+  }
+  // Stopped 0.25 m short, the wall is out of reach at 1 m/s.
+  o.zones = {{"wall", square(100.25, -10, 120, 10)}};
+  EXPECT_EQ(find(verify({kmz_drone(kmz(line, 20, 40, "0.2"))}, o), "no-fly zone"), nullptr);
 }
 
 TEST(Verify, AKmzClimbsToItsTakeOffSecurityHeightAndReturnsAtItsRthHeight) {

@@ -28,6 +28,40 @@ std::string mission_geojson(const SurveyPlan& plan) {
   return mission_geojson(plan_features(plan));
 }
 
+namespace {
+
+// DJI Pilot 2 flies waypoint speeds from 1 to 15 m/s: a cruise speed outside is refused, as is a
+// slow-down before a stop beside a no-fly zone below 1 m/s (swath plan --dji plans none:
+// SurveyRequest::slowest_approach_m_s), which DJI would fly at 1 m/s and overrun further.
+void check_dji_speeds(const SurveyPlan& plan) {
+  using base::fixed_text;
+  for (const DronePlan& d : plan.drones)
+    if (!(d.speed_m_s >= missions::kDjiMinSpeed_m_s && d.speed_m_s <= missions::kDjiMaxSpeed_m_s))
+      throw base::InputError("--dji: drone " + d.name + " flies at " + fixed_text(d.speed_m_s, 1) +
+                             " m/s, outside DJI's waypoint speeds (1 to 15 m/s); set --speed or "
+                             "the fleet's speed_m_s within them");
+  for (const Flight& f : flights_of(plan))
+    for (const MissionItem& item : f.mission->items)
+      if (item.kind == ItemKind::change_speed && item.value < missions::kDjiMinSpeed_m_s)
+        throw base::InputError("--dji: flight " + f.file_stem + " slows to " +
+                               fixed_text(item.value, 2) +
+                               " m/s before a stop beside a no-fly zone, below DJI's least "
+                               "waypoint speed (1 m/s); plan with a slowest approach of 1 m/s");
+}
+
+// DJI Pilot 2 takes heights up to 1500 m above the take-off point (takeOffSecurityHeight; WPML
+// documents no other limit for executeHeight): a survey above is refused, not cut.
+void check_dji_heights(const SurveyPlan& plan, double highest_m) {
+  for (const DronePlan& d : plan.drones)
+    highest_m = std::max(highest_m, plan.imaging.altitude_m + d.layer_m);
+  if (highest_m > missions::kDjiMaxHeight_m)
+    throw base::InputError("--dji: the altitude " + base::fixed_text(highest_m, 1) +
+                           " m is above DJI Pilot 2's highest, 1500 m above the take-off point "
+                           "(takeOffSecurityHeight); fly lower or drop --dji");
+}
+
+}  // namespace
+
 void check_exports(const SurveyPlan& plan, const FileOptions& options) {
   using base::InputError;
   for (const auto& [asked, flag, app] : {std::tuple{options.litchi, "--litchi", "Litchi"},
@@ -65,6 +99,10 @@ void check_exports(const SurveyPlan& plan, const FileOptions& options) {
                      " lowest waypoint, 200 m below the take-off point; take off lower down "
                      "(--home) or drop " +
                      flag);
+  }
+  if (options.dji) {
+    check_dji_speeds(plan);
+    check_dji_heights(plan, highest_m);
   }
   if (!options.litchi) return;
   if (highest_m > kLitchiMaxAltitude_m)

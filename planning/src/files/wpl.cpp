@@ -5,7 +5,11 @@
 namespace swath::planning {
 
 std::string wpl_110(const SurveyPlan& plan, const Flight& flight) {
-  return missions::write_wpl(files::mission_file(plan, flight));
+  missions::Mission m = files::mission_file(plan, flight);
+  // PX4's: params with no value written as such (missions::write_wpl).
+  m.autopilot = plan.request.firmware == Firmware::px4 ? missions::Autopilot::px4
+                                                       : missions::Autopilot::ardupilot;
+  return missions::write_wpl(m);
 }
 
 std::string fence_waypoints(const SurveyPlan& plan) {

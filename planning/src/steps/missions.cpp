@@ -110,6 +110,7 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
   s.climb_speed_m_s = drone.climb_speed_m_s;
   s.descent_speed_m_s = drone.descent_speed_m_s;
   s.accel_m_s2 = drone.accel_m_s2;
+  s.slowest_approach_m_s = plan.request.slowest_approach_m_s;
   // A leg long enough to bow (at high latitudes, far homes) is written as several; most legs are
   // ruled out by the cheap bound, without converting their ends.
   if (const auto& frame = plan.request.field.frame) {

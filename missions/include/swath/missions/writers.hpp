@@ -65,6 +65,13 @@ std::string write_litchi_part(const std::vector<ExportPoint>& points,
 std::vector<std::string> write_litchi_csv(const std::vector<ExportPoint>& points,
                                           const LitchiSettings& settings);
 
+/// DJI WPML's waypoint speeds (waypointSpeed, autoFlightSpeed), m/s: the aircraft flies no
+/// slower than 1 m/s, and 15 m/s is the Mavic 3 Enterprise's and the enterprise aircraft's most.
+inline constexpr double kDjiMinSpeed_m_s = 1.0;
+inline constexpr double kDjiMaxSpeed_m_s = 15.0;
+/// WPML's highest takeOffSecurityHeight above the take-off point, m (its range [1.2, 1500]).
+inline constexpr double kDjiMaxHeight_m = 1500.0;
+
 /// What a DJI WPML wayline says beside its points.
 struct DjiSettings {
   bool land = false;              ///< finishAction autoLand (else goHome)
@@ -128,7 +135,8 @@ struct QgcSurvey {
 std::string write_qgc_plan(const Mission& mission, const QgcPlanSettings& settings,
                            const QgcSurvey* survey = nullptr);
 
-/// QGC WPL 110 (Mission Planner): row 0 the home (AMSL, frame 0), then the items.
+/// QGC WPL 110 (Mission Planner): row 0 the home (AMSL, frame 0), then the items. A value that is
+/// none (NaN) is 0; for a PX4 mission (Mission::autopilot) params 1-4 of none are "NaN".
 std::string write_wpl(const Mission& mission);
 
 /// WPL 110 fence file (ArduPilot 4's polygon fences): NAV_FENCE_POLYGON_VERTEX_INCLUSION items

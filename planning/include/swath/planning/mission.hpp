@@ -107,6 +107,10 @@ inline double reachable_speed_m_s(double before_m_s, double commanded_m_s, doubl
   return std::max(commanded_m_s, std::sqrt(std::max(braked_sq, 0.0)));
 }
 
+/// The slowest approach to a stop beside a no-fly zone, m/s: ArduCopter's least WPNAV_SPEED,
+/// 20 cm/s, an overrun of 8 mm at 2.5 m/s².
+inline constexpr double kSlowestApproach_m_s = 0.2;
+
 struct MissionSettings {
   double altitude_m = 0.0;                              ///< > 0, above home
   double speed_m_s = 0.0;                               ///< > 0, cruise speed over the whole path
@@ -129,6 +133,9 @@ struct MissionSettings {
   /// The drone's acceleration and braking (vehicle::Drone::accel_m_s2): the flight time's legs
   /// and stop_overrun_m(), > 0.
   double accel_m_s2 = swath::vehicle::kDefaultAccel_m_s2;
+  /// The slowest a stop beside a no-fly zone is approached at, m/s: kSlowestApproach_m_s, or
+  /// what the files' app flies at least (DJI Pilot 2: 1 m/s); the stops are placed for its overrun.
+  double slowest_approach_m_s = kSlowestApproach_m_s;
   /// How far an autopilot steering in latitude and longitude strays from the straight leg a -> b,
   /// metres (geometry::AutopilotTrack::bow_m about the drone's home). A leg that strays more than
   /// kMaxBow_m is written as the fewest equal legs that each stray at most kSplitBow_m

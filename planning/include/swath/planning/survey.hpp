@@ -93,6 +93,9 @@ struct SurveyRequest {
   Firmware firmware = Firmware::ardupilot;
   Vehicle vehicle = Vehicle::multirotor;
   std::optional<double> speed_m_s;  ///< absent: 5 m/s multirotor, 15 m/s fixed wing
+  /// The slowest approach to a stop beside a no-fly zone (MissionSettings::slowest_approach_m_s):
+  /// swath plan --dji asks DJI's least waypoint speed, 1 m/s, for every file of the plan.
+  double slowest_approach_m_s = kSlowestApproach_m_s;
   /// Fly at the imaging altitude above the ground of a DEM (terrain.hpp) instead of above home.
   std::optional<TerrainRequest> terrain;
   /// docs/swath-plan.md: no waypoint and no leg closer than this to a hole or no-fly zone.
