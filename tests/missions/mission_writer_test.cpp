@@ -410,7 +410,7 @@ TEST(MissionWriters, DjiKmzReadsBackAsItsPoints) {
     Rng rng{std::mt19937(seed)};
     auto points = random_points(rng, 2 + rng.below(60));
     for (missions::ExportPoint& p : points)  // a slower approach here and there
-      p.speed_m_s = rng.below(4) == 0 ? rng.rounded(0.5, 0.9, 3) : 0.0;
+      p.speed_m_s = rng.below(4) == 0 ? rng.rounded(0.5, 2.5, 3) : 0.0;
     missions::DjiSettings settings;
     settings.speed_m_s = rng.rounded(1, 15, 3);
     settings.altitude_m = 60;
@@ -422,14 +422,16 @@ TEST(MissionWriters, DjiKmzReadsBackAsItsPoints) {
     // The speed: a DO_CHANGE_SPEED (178) before the first waypoint, param2 m/s.
     ASSERT_FALSE(read.items.empty());
     EXPECT_EQ(read.items.front().command, 178);
-    const double first_m_s = points[0].speed_m_s > 0 ? points[0].speed_m_s : settings.speed_m_s;
-    EXPECT_EQ(read.items.front().params[1], first_m_s);
+    // DJI flies no slower than 1 m/s: a slower point's speed is read as that.
+    const auto flown_m_s = [&](const missions::ExportPoint& p) {
+      return p.speed_m_s > 0 ? std::max(p.speed_m_s, 1.0) : settings.speed_m_s;
+    };
+    EXPECT_EQ(read.items.front().params[1], flown_m_s(points[0]));
     // Each waypoint's speed is its leg's to the next, read back so.
     const std::vector<double> legs = leg_speeds_m_s(read);
     ASSERT_EQ(legs.size() + 1, points.size());
     for (std::size_t i = 0; i < legs.size(); ++i)
-      EXPECT_EQ(legs[i], points[i].speed_m_s > 0 ? points[i].speed_m_s : settings.speed_m_s)
-          << "leg " << i;
+      EXPECT_EQ(legs[i], flown_m_s(points[i])) << "leg " << i;
   }
 }
 
