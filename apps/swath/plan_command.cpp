@@ -296,9 +296,11 @@ void PlanCommand::add_mission_file_options(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--crosshatch", crosshatch_,
                "Fly the lines a second time at 90 degrees (for 3-D models)");
-  app.add_option("--fence-margin", fence_margin_m_,
-                 "The .plan's inclusion fence: the area grown by this many metres (default: "
-                 "turnaround + half the footprint width + 10 m)");
+  app.add_option(
+      "--fence-margin", fence_margin_m_,
+      "The .plan's inclusion fence: the area grown by this many metres (default: "
+      "turnaround + half the footprint width + 10 m, or for a multirotor turnaround + its "
+      "stopping distance + 5 m where that is larger)");
   app.add_option("--layer-spacing", layer_spacing_m_,
                  "Drones of one plan whose paths come within 10 m of each other fly this many "
                  "metres apart in height (altitude layers above the imaging altitude)")

@@ -157,3 +157,21 @@ std::vector<Point2> densify_local_edges(const LocalFrame& frame, const std::vect
 }
 
 }  // namespace swath::geometry
+
+namespace swath::geometry {
+
+std::optional<AntimeridianEdge> edge_across_antimeridian(const std::vector<GeoPoint>& ring) {
+  const auto wrapped = [](GeoPoint g) {
+    if (g.lon_deg > 180) g.lon_deg -= 360;
+    if (g.lon_deg < -180) g.lon_deg += 360;
+    return g;
+  };
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const GeoPoint a = wrapped(ring[i]), b = wrapped(ring[i + 1 < ring.size() ? i + 1 : 0]);
+    // 180 itself is refused: an edge half the world long has no side the autopilot keeps.
+    if (std::abs(b.lon_deg - a.lon_deg) >= 180) return AntimeridianEdge{i, a, b};
+  }
+  return std::nullopt;
+}
+
+}  // namespace swath::geometry

@@ -168,6 +168,18 @@ std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m) {
   return out;
 }
 
+std::vector<Ring> grow_each(const std::vector<Ring>& rings, double distance_m) {
+  std::vector<BMulti> parts;
+  for (const Ring& r : rings) {
+    if (r.size() < 3) continue;
+    const BMulti one{polygon_of(r)};
+    parts.push_back(distance_m > 0 ? buffered(one, distance_m) : one);
+  }
+  std::vector<Ring> out;
+  for (const BPolygon& p : united(std::move(parts))) out.push_back(ring_of(p.outer(), true));
+  return out;
+}
+
 std::vector<Ring> grow_keeping_holes(const std::vector<Ring>& rings, double distance_m) {
   const BMulti input = multi_of(rings);
   return rings_with_holes(distance_m > 0 ? buffered(input, distance_m) : input);

@@ -63,6 +63,7 @@ struct Checked {
   double least_clearance_m = std::numeric_limits<double>::infinity();
   std::string least_clearance_where;
   bool fence_checked = false;
+  bool fence_across_antimeridian = false;  ///< an inclusion fence left out: it crosses ±180°
   double least_fence_margin_m = std::numeric_limits<double>::infinity();
   std::size_t most_inclusion_fences = 0;  ///< in one file
   double max_height_m = -std::numeric_limits<double>::infinity();

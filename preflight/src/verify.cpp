@@ -39,18 +39,43 @@ LocalZone ring_zone(std::string name, const geometry::LocalFrame& frame,
   return {std::move(name), local_ring(frame, ring), 0, own_fence, slack_m};
 }
 
-std::vector<LocalZone> user_zones(const CheckOptions& options, const geometry::LocalFrame& frame) {
-  std::vector<LocalZone> out;
-  for (const Zone& z : options.zones) out.push_back(ring_zone(z.name, frame, z.ring, false));
-  return out;
+// A fence or zone with an edge across the ±180° meridian as its longitudes are written
+// (geometry::edge_across_antimeridian): ArduPilot and PX4 compare fences in raw longitude, where
+// its edge runs the long way round and the shape is the rest of the globe's band, not the one
+// drawn; the frame would measure the shape drawn and pass it. Said as a violation of `check`; the
+// ring is then left out of the frame's checks, which would measure a shape nobody flies against.
+bool across_antimeridian(const std::string& check, const std::string& name,
+                         const std::vector<geometry::GeoPoint>& ring, Checked& out) {
+  const auto edge = geometry::edge_across_antimeridian(ring);
+  if (!edge) return false;
+  const auto at = [](const geometry::GeoPoint& g) {
+    return fixed_text(g.lat_deg, 7) + ", " + fixed_text(g.lon_deg, 7);
+  };
+  out.violations.push_back(
+      {check, name, edge->a, std::abs(edge->b.lon_deg - edge->a.lon_deg),
+       name + " crosses the ±180° meridian (its edge from " + at(edge->a) + " to " + at(edge->b) +
+           ", lat, lon): ArduPilot and PX4 compare fences in raw longitude, where that edge runs "
+           "the long way round the globe and the fence is not the shape drawn"});
+  return true;
 }
 
-std::vector<LocalZone> own_exclusions(const missions::Mission& m,
-                                      const geometry::LocalFrame& frame) {
+std::vector<LocalZone> user_zones(const CheckOptions& options, const geometry::LocalFrame& frame,
+                                  Checked& out) {
+  std::vector<LocalZone> zones;
+  for (const Zone& z : options.zones)
+    if (!across_antimeridian("no-fly zone", z.name, z.ring, out))
+      zones.push_back(ring_zone(z.name, frame, z.ring, false));
+  return zones;
+}
+
+std::vector<LocalZone> own_exclusions(const missions::Mission& m, const geometry::LocalFrame& frame,
+                                      Checked& checked) {
   std::vector<LocalZone> out;
-  for (std::size_t i = 0; i < m.exclusion_fences.size(); ++i)
-    out.push_back(ring_zone(m.source + "'s exclusion fence " + std::to_string(i + 1), frame,
-                            m.exclusion_fences[i], true));
+  for (std::size_t i = 0; i < m.exclusion_fences.size(); ++i) {
+    const std::string name = m.source + "'s exclusion fence " + std::to_string(i + 1);
+    if (!across_antimeridian("no-fly zone", name, m.exclusion_fences[i], checked))
+      out.push_back(ring_zone(name, frame, m.exclusion_fences[i], true));
+  }
   for (std::size_t i = 0; i < m.exclusion_circles.size(); ++i)
     out.push_back({m.source + "'s exclusion circle " + std::to_string(i + 1),
                    {frame.to_local(m.exclusion_circles[i].centre)},
@@ -62,7 +87,8 @@ std::vector<LocalZone> own_exclusions(const missions::Mission& m,
 
 // Named as the violations say them: "the inclusion fence" when there is one, else which one
 // (numbered in the file's order, polygons and circles each from 1).
-std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::LocalFrame& frame) {
+std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::LocalFrame& frame,
+                                  Checked& checked) {
   std::vector<LocalZone> out;
   const auto rings = missions::distinct_rings(m.inclusion_fences);
   const bool one = rings.size() + m.inclusion_circles.size() == 1;
@@ -70,8 +96,15 @@ std::vector<LocalZone> inclusions(const missions::Mission& m, const geometry::Lo
     return one ? std::string("the inclusion fence")
                : m.source + "'s inclusion " + kind + " " + std::to_string(i + 1);
   };
-  for (std::size_t i = 0; i < rings.size(); ++i)
-    out.push_back(ring_zone(name("fence", i), frame, rings[i], false));
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    const std::string fence = name("fence", i);
+    // Said as the file's: "the inclusion fence" alone names no file.
+    const std::string said = one ? m.source + "'s inclusion fence" : fence;
+    if (across_antimeridian("fence", said, rings[i], checked))
+      checked.fence_across_antimeridian = true;
+    else
+      out.push_back(ring_zone(fence, frame, rings[i], false));
+  }
   for (std::size_t i = 0; i < m.inclusion_circles.size(); ++i)
     out.push_back({name("circle", i),
                    {frame.to_local(m.inclusion_circles[i].centre)},
@@ -270,7 +303,13 @@ void add_figures(const Checked& c, const CheckOptions& o, bool any_zone, Report&
               : "reaches " + fixed_text(-c.least_fence_margin_m, 2) + " m outside") +
              fences_held(c, o) + " (home, rally points, every leg and stopping margin)"});
   else
-    report.figures.push_back({"fence", false, {}, "no inclusion fence in the files"});
+    report.figures.push_back(
+        {"fence",
+         false,
+         {},
+         c.fence_across_antimeridian
+             ? "an inclusion fence crosses the ±180° meridian (violation below)"
+             : "no inclusion fence in the files"});
   report.figures.push_back({"ceiling", true, c.max_height_m,
                             "highest " + fixed_text(c.max_height_m, 1) + " m above " +
                                 (o.ground ? "the ground" : "home") + " (ceiling " +
@@ -344,11 +383,11 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
   Report report;
   if (drones.empty()) return report;
   const geometry::LocalFrame frame(drones.front().mission.home);
-  const std::vector<LocalZone> zones = user_zones(options, frame);
+  Checked checked;
+  const std::vector<LocalZone> zones = user_zones(options, frame, checked);
   std::vector<geometry::Ring> area;
   for (const auto& ring : options.area) area.push_back(local_ring(frame, ring));
   std::vector<FlownPath> paths;
-  Checked checked;
   bool any_zone = !zones.empty();
   for (const DroneFile& d : drones) {
     report.files.push_back(d.mission.source);
@@ -357,13 +396,13 @@ Report verify(const std::vector<DroneFile>& drones, const CheckOptions& options)
     for (const auto& r : d.mission.rally_points) f.rally_points.push_back(frame.to_local(r));
     if (options.ground) f.home_ground_amsl_m = options.ground->heights_m({d.mission.home}).at(0);
     std::vector<LocalZone> all = zones;
-    for (LocalZone& z : own_exclusions(d.mission, frame)) all.push_back(std::move(z));
+    for (LocalZone& z : own_exclusions(d.mission, frame, checked)) all.push_back(std::move(z));
     any_zone = any_zone || all.size() > zones.size();
     check_zones(f, all, options.clearance_m, checked);
     // FENCE_OPTIONS' union is ArduPilot's; PX4 always requires every inclusion fence.
     const bool any_one =
         options.fence_union && d.mission.autopilot == missions::Autopilot::ardupilot;
-    check_fences(f, inclusions(d.mission, frame), any_one, checked);
+    check_fences(f, inclusions(d.mission, frame, checked), any_one, checked);
     // A flight in another's place carries that file's fences: said once, of that file.
     if (!d.instead) warn_about_fence_storage(d.mission, report);
     warn_about_home_altitude(d.mission, options.ground.get(), report);

@@ -577,27 +577,51 @@ TEST(BatchCli, AMultiPolygonIsOneRowPerPart) {
 namespace swath::test {
 namespace {
 
-// Issue 16: a field across the antimeridian was planned 11,900 km away with exit 0. Every
-// waypoint of every written file must lie in the field's box, on either side of ±180.
-TEST(PlanCli, AFieldAcrossTheAntimeridianIsFlownWhereItIs) {
-  const std::string out = fresh_dir("antimeridian");
+// A field across the antimeridian: its inclusion fence, with edges from 179.99x to -179.99x,
+// is read by ArduPilot and PX4 in raw longitude as the rest of its latitude band, home and every
+// waypoint outside it; no autopilot fence can hold it (longitudes beyond ±180 are invalid). Refused
+// before anything is written, naming the edge.
+TEST(PlanCli, AFieldAcrossTheAntimeridianIsRefused) {
+  const std::string out = fresh_dir("antimeridian") + "/out";
   const CliRun run = run_swath(
       "plan tests/fixtures/antimeridian.geojson --camera sony-ilce-qx1 --altitude 100 -o " + out);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const nlohmann::json plan = nlohmann::json::parse(read_text(out + "/drone-1.plan"));
-  int positions = 0;
-  for (const auto& item : plan["mission"]["items"]) {
-    if (item["command"] != 16) continue;
-    const double lat = item["params"][4], lon = item["params"][5];
-    EXPECT_GE(lat, -16.5001);
-    EXPECT_LE(lat, -16.4899);
-    EXPECT_GE(std::abs(lon), 179.9899) << lon;  // within 0.01° of ±180, on either side
-    ++positions;
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("tests/fixtures/antimeridian.geojson: the area crosses the ±180° "
+                         "meridian (its edge from -16.5000000, 179.9900000 to -16.5000000, "
+                         "-179.9900000, lat, lon), where ArduPilot's and PX4's fences, compared in "
+                         "raw longitude, cannot hold it"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// An area short of the meridian whose fence, grown by the margin, would reach across it: refused
+// naming the fence; with a margin that stays short of it the plan is written, every fence vertex
+// and waypoint on the east side (positive longitude), as the autopilot compares them.
+TEST(PlanCli, AFenceReachingAcrossTheAntimeridianIsRefused) {
+  const std::string dir = fresh_dir("antimeridian-fence");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/area.geojson")
+      << R"({"type":"Polygon","coordinates":[[[179.9990,-17.0],[179.9998,-17.0],)"
+      << R"([179.9998,-16.9992],[179.9990,-16.9992],[179.9990,-17.0]]]})";
+  const std::string plan = "plan " + dir + "/area.geojson --camera dji-mavic-3e --altitude 40 ";
+  const CliRun refused = run_swath(plan + "-o " + dir + "/out");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("the inclusion fence (the area grown by the "), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("crosses the ±180° meridian"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  const CliRun written = run_swath(plan + "--fence-margin 5 -o " + dir + "/out");
+  ASSERT_EQ(written.exit_code, 0) << written.err;
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir + "/out/drone-1.plan"));
+  int vertices = 0;
+  for (const auto& v : j["geoFence"]["polygons"][0]["polygon"]) {
+    EXPECT_GT(v[1].get<double>(), 179.99) << v;
+    ++vertices;
   }
-  EXPECT_GT(positions, 10);
-  const nlohmann::json summary = nlohmann::json::parse(read_text(out + "/summary.json"));
-  EXPECT_NEAR(summary["area"]["area_m2"].get<double>(), 2.363e6, 0.01e6);
-  EXPECT_LT(summary["drones"][0]["path_length_m"].get<double>(), 60000.0);
+  EXPECT_GE(vertices, 4);
+  for (const auto& item : j["mission"]["items"])
+    if (item["command"] == 16) EXPECT_GT(item["params"][5].get<double>(), 179.99) << item;
 }
 
 }  // namespace

@@ -620,3 +620,37 @@ TEST(VerifyCli, PlanRefusesAnAltitudeAboveTheCeilingUnlessRaised) {
 
 }  // namespace
 }  // namespace swath::test
+
+namespace swath::test {
+namespace {
+
+// A fence across the ±180° meridian, as swath plan wrote it for a 213 m square from 179.999 to
+// -179.999 (tests/fixtures/verify/antimeridian-fence.plan): ArduPilot and PX4 compare a fence's
+// edges in raw longitude, where this one is the rest of its latitude band, home and every
+// waypoint outside it; the check, measuring in a frame that wraps longitude, passed it. Refused
+// as an inclusion fence, and as an exclusion fence (the same ring marked so).
+TEST(VerifyCli, RefusesAFenceAcrossTheAntimeridian) {
+  const std::string fixture = "tests/fixtures/verify/antimeridian-fence.plan";
+  const CliRun run = run_swath("verify " + fixture);
+  EXPECT_EQ(run.exit_code, 4) << run.out << run.err;
+  EXPECT_NE(
+      run.out.find("VIOLATION fence: " + fixture +
+                   "'s inclusion fence crosses the ±180° meridian (its edge from -17.0003447, "
+                   "179.9990000 to -17.0003447, -179.9990000, lat, lon)"),
+      std::string::npos)
+      << run.out;
+  const std::string dir = fresh_dir("swath-verify-antimeridian");
+  std::filesystem::create_directories(dir);
+  json plan = json::parse(read_text(source_path(fixture)));
+  plan["geoFence"]["polygons"][0]["inclusion"] = false;
+  write(dir + "/drone-1.plan", plan.dump());
+  const CliRun exclusion = run_swath("verify " + dir + "/drone-1.plan");
+  EXPECT_EQ(exclusion.exit_code, 4) << exclusion.out << exclusion.err;
+  EXPECT_NE(exclusion.out.find("VIOLATION no-fly zone: " + dir +
+                               "/drone-1.plan's exclusion fence 1 crosses the ±180° meridian"),
+            std::string::npos)
+      << exclusion.out;
+}
+
+}  // namespace
+}  // namespace swath::test

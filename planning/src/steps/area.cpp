@@ -110,6 +110,34 @@ void check_homes(const SurveyRequest& request, const geometry::Field& field) {
       check_home_near_area(*d.home, "drone " + d.name + "'s home", field, request.far_home);
 }
 
+}  // namespace
+
+void refuse_across_antimeridian(const std::vector<GeoPoint>& ring, const std::string& what) {
+  const auto edge = geometry::edge_across_antimeridian(ring);
+  if (!edge) return;
+  const auto at = [](const GeoPoint& g) {
+    return fixed_text(g.lat_deg, 7) + ", " + fixed_text(g.lon_deg, 7);
+  };
+  throw InputError(what + " crosses the ±180° meridian (its edge from " + at(edge->a) + " to " +
+                   at(edge->b) +
+                   ", lat, lon), where ArduPilot's and PX4's fences, compared in "
+                   "raw longitude, cannot hold it; plan each side of the meridian on its own");
+}
+
+namespace {
+
+// The outer ring and the zones, before any planning: each becomes a fence (the area grown by the
+// margin, a zone as given), which an autopilot cannot hold across the ±180° meridian. The grown
+// fence is checked again when it is made (fences()).
+void refuse_rings_across_antimeridian(const SurveyPlan& plan) {
+  const geometry::Field& field = plan.request.field;
+  std::vector<GeoPoint> outer;
+  for (const geometry::Point2& p : field.polygon.outer) outer.push_back(field.frame->to_geo(p));
+  refuse_across_antimeridian(outer, field.source + ": the area");
+  for (std::size_t k = 0; k < plan.no_fly_geo.size(); ++k)
+    refuse_across_antimeridian(plan.no_fly_geo[k], no_fly_name(plan, k));
+}
+
 // The no-fly zones: the field's holes, then the --exclude zones (as given and in the frame).
 void collect_no_fly(SurveyPlan& plan) {
   const geometry::Field& field = plan.request.field;
@@ -468,6 +496,7 @@ void area(SurveyPlan& plan) {
   if (plan.request.repair) repair_outer_ring(plan);
   plan.area = field.polygon;
   collect_no_fly(plan);
+  refuse_rings_across_antimeridian(plan);
   check_homes_outside_zones(plan);
   plan.facts = geometry::describe_area(plan.area);
   if (zones_need_cutting(plan)) {

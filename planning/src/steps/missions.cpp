@@ -7,6 +7,7 @@
 
 #include "leg_within.hpp"
 #include "swath/base/input_error.hpp"
+#include "swath/base/number_text.hpp"
 #include "swath/geometry/autopilot_track.hpp"
 #include "swath/geometry/offset.hpp"
 #include "swath/geometry/predicates.hpp"
@@ -143,8 +144,8 @@ namespace {
 // 80 % of the margin in turn until it fits: still holding everything within the margin, reaching
 // at most 2 (margin + tolerance) + tolerance beyond the outline. Other outlines are grown exactly,
 // the fence at the margin.
-std::vector<geometry::Ring> fence_for(const std::vector<geometry::Ring>& outlines,
-                                      double margin_m) {
+std::vector<geometry::Ring> grown_fence(const std::vector<geometry::Ring>& outlines,
+                                        double margin_m) {
   std::size_t vertices = 0;
   for (const geometry::Ring& r : outlines) vertices += r.size();
   std::vector<geometry::Ring> fence =
@@ -153,6 +154,33 @@ std::vector<geometry::Ring> fence_for(const std::vector<geometry::Ring>& outline
   for (const double share : {0.1, 0.2, 0.4, 0.8}) {
     if (most_vertices(fence) <= kFenceVertexLimit) break;
     fence = geometry::grow_simplified(outlines, margin_m, share * margin_m);
+  }
+  return fence;
+}
+
+// Whether every vertex of every outline lies inside the fence (not outside every ring of it).
+bool holds_outlines(const std::vector<geometry::Ring>& fence,
+                    const std::vector<geometry::Ring>& outlines) {
+  for (const geometry::Ring& outline : outlines)
+    for (const geometry::Point2 p : outline)
+      if (std::none_of(fence.begin(), fence.end(), [p](const geometry::Ring& r) {
+            return geometry::locate_point(p, r) != geometry::Containment::outside;
+          }))
+        return false;
+  return true;
+}
+
+std::vector<geometry::Ring> fence_for(const std::vector<geometry::Ring>& outlines,
+                                      double margin_m) {
+  std::vector<geometry::Ring> fence = grown_fence(outlines, margin_m);
+  // Boost's buffer of an area with many strips reaching out of it (a crosshatch's overruns at
+  // 12 m/s and more) returned fences missing strips, or in several polygons the vehicle had to be
+  // inside all of: the meadow at 20 m, 12 m/s, left a stop 4.33 m outside its fence, at a 20 m
+  // margin the home 279 m outside one of five. Such a fence is grown again piece by piece.
+  if (!holds_outlines(fence, outlines)) return geometry::grow_each(outlines, margin_m);
+  if (fence.size() > 1) {  // separate pieces (a repaired area's) stay separate
+    std::vector<geometry::Ring> each = geometry::grow_each(outlines, margin_m);
+    if (each.size() < fence.size()) return each;
   }
   return fence;
 }
@@ -238,6 +266,23 @@ void check_counts(const SurveyPlan& plan) {
                            "; fly higher, lower the overlaps or split the area");
 }
 
+namespace {
+
+// The default fence margin: the turnaround, half the footprint and 10 m, or where a multirotor's
+// stop runs further past a line's end (stop_overrun_m at the fastest drone's speed: 28.8 m at
+// 12 m/s against 24.5 m on the meadow at 20 m) that overrun and 5 m more, so that what the
+// preflight check adds past each stop lies inside the area's own fence rather than in strips
+// grown out of it one by one. At 5 m/s (a 5 m overrun) the first is always the larger.
+double default_fence_margin_m(const SurveyPlan& plan) {
+  double overrun_m = 0.0;
+  if (plan.request.vehicle == Vehicle::multirotor)
+    for (const DronePlan& d : plan.drones)
+      overrun_m = std::max(overrun_m, stop_overrun_m(d.speed_m_s));
+  return plan.turnaround_m + std::max(plan.imaging.footprint_across_m / 2 + 10, overrun_m + 5);
+}
+
+}  // namespace
+
 void missions(SurveyPlan& plan) {
   // PX4's RTL climbs to RTL_RETURN_ALT (60 m by default) before it flies home, through the other
   // drones' layers: several drones' PX4 multirotor flights fly home at their own layer and land
@@ -253,10 +298,29 @@ void missions(SurveyPlan& plan) {
     d.photos = planned_photos(d.mission, plan.imaging.trigger_distance_m);
   }
   check_counts(plan);
-  plan.fence_margin_m = plan.request.fence_margin_m.value_or(
-      plan.turnaround_m + plan.imaging.footprint_across_m / 2 + 10);
+  plan.fence_margin_m = plan.request.fence_margin_m.value_or(default_fence_margin_m(plan));
   plan.exclusion_fences_geo = exclusion_fences(plan);
 }
+
+namespace {
+
+// The fences as written, in raw longitude: an area near the ±180° meridian whose fence, grown by
+// the margin and the flown legs, reaches across it is refused here, before any file is made.
+void refuse_fences_across_antimeridian(const SurveyPlan& plan) {
+  if (!plan.request.field.frame) return;
+  for (const geometry::Ring& ring : plan.fence) {
+    std::vector<geometry::GeoPoint> geo;
+    for (const geometry::Point2& p : ring) geo.push_back(plan.request.field.frame->to_geo(p));
+    refuse_across_antimeridian(geo, "the inclusion fence (the area grown by the " +
+                                        base::fixed_text(plan.fence_margin_m, 1) +
+                                        " m fence margin, with every leg flown)");
+  }
+  for (std::size_t z = 0; z < plan.exclusion_fences_geo.size(); ++z)
+    refuse_across_antimeridian(plan.exclusion_fences_geo[z],
+                               "the exclusion fence of " + no_fly_name(plan, z));
+}
+
+}  // namespace
 
 void fences(SurveyPlan& plan) {
   // The inclusion fence holds what is flown (docs/swath-plan.md): the area, and every leg of
@@ -283,6 +347,7 @@ void fences(SurveyPlan& plan) {
   if (plan.request.field.frame)
     for (geometry::Ring& ring : plan.fence)
       ring = geometry::densify_local_edges(*plan.request.field.frame, ring, tolerance_m);
+  refuse_fences_across_antimeridian(plan);
 }
 
 }  // namespace swath::planning::steps

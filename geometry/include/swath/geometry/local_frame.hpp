@@ -2,6 +2,7 @@
 
 #include <GeographicLib/LocalCartesian.hpp>
 
+#include <optional>
 #include <vector>
 
 #include "swath/geometry/point.hpp"
@@ -66,5 +67,17 @@ double largest_lonlat_departure_m(const LocalFrame& frame, const std::vector<Geo
 /// lon/lat-straight edges follow the ring swath planned in.
 std::vector<Point2> densify_local_edges(const LocalFrame& frame, const std::vector<Point2>& ring,
                                         double tolerance_m = kEdgeDepartureTolerance_m);
+
+/// An edge of a ring whose longitudes, as written, differ by 180 degrees or more: ArduPilot
+/// (AC_PolyFence_loader::breached, Polygon_outside on the stored int32 latitude and longitude)
+/// and PX4 (Geofence::insidePolygon) test a fence's edges in raw longitude, without wrapping, so
+/// such an edge runs the long way round the globe and the fence is not the shape meant (a field
+/// across the ±180° meridian becomes the rest of its latitude band). Longitudes beyond ±180 are
+/// no way out: ArduPilot refuses them (check_lng). One ±180 wrap of each longitude first.
+struct AntimeridianEdge {
+  std::size_t from = 0;  ///< the edge from vertex `from` to the next (the first after the last)
+  GeoPoint a, b;         ///< its ends, longitudes in [-180, 180]
+};
+std::optional<AntimeridianEdge> edge_across_antimeridian(const std::vector<GeoPoint>& ring);
 
 }  // namespace swath::geometry

@@ -19,6 +19,12 @@ namespace swath::geometry {
 /// counter-clockwise.
 std::vector<Ring> grow(const std::vector<Ring>& rings, double distance_m);
 
+/// grow() of each ring on its own, the results then united: the same shape, reached another way.
+/// Boost's buffer of the union of many overlapping pieces (an area with dozens of 1 m strips
+/// reaching out of it, the fence of a fast crosshatch) can return a wrong shape (pieces missing,
+/// several polygons); a single simple ring's buffer and the union of buffers do not.
+std::vector<Ring> grow_each(const std::vector<Ring>& rings, double distance_m);
+
 /// grow(), with the holes a union encloses kept: each part's outer ring counter-clockwise followed
 /// by its holes clockwise (subtract()'s obstacles take them so). For no-fly zones: zones that
 /// ring a field leave it, and a home inside, free; filled, they covered the whole area.

@@ -52,6 +52,12 @@ void terrain(SurveyPlan& plan);
 /// outward to kFenceVertexLimit vertices where it can; each home inside.
 void fences(SurveyPlan& plan);
 
+/// Refuses (InputError) a ring `what` (the area, a zone, a fence) with an edge across the ±180°
+/// meridian as its longitudes would be written (geometry::edge_across_antimeridian): ArduPilot's
+/// and PX4's fences, compared in raw longitude, cannot hold it.
+void refuse_across_antimeridian(const std::vector<geometry::GeoPoint>& ring,
+                                const std::string& what);
+
 /// 8. measures: coverage, the clearance actually kept, turns and transits outside the area.
 void measures(SurveyPlan& plan);
 
