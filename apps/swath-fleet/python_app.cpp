@@ -522,6 +522,8 @@ PyFuture act(PyTask* t, const py::args& a) {
 PyFuture new_task(PyTask* t, const py::object& fn, const py::args& a, bool same_drone,
                   bool interruptible, const py::object& kind) {
   Ctx& ctx = *acting(t).ctx;
+  if (py::module_::import("inspect").attr("iscoroutinefunction")(fn).cast<bool>())
+    throw py::type_error("bee.newTask: fn must be a plain function (def), not an async one");
   PyTask& child = host->new_task();
   PyFrameObject* frame = PyEval_GetFrame();  // the app's line calling newTask
   child.spawned_at =
@@ -799,7 +801,17 @@ double max_time_arg(int argc, char** argv, double fallback) {
 
 /// The world kind the app runs in: its WORLD, else the kind of the --world file.
 std::string world_kind_of(const py::dict& globals, int argc, char** argv) {
-  if (globals.contains("WORLD")) return py::str(globals["WORLD"]);
+  if (globals.contains("WORLD")) {
+    const py::object world = globals["WORLD"];
+    const std::vector<std::string>& kinds = worlds::world_kinds();
+    if (py::isinstance<py::str>(world) &&
+        std::find(kinds.begin(), kinds.end(), world.cast<std::string>()) != kinds.end())
+      return world.cast<std::string>();
+    std::string names;
+    for (const std::string& k : kinds) names += (names.empty() ? "" : ", ") + k;
+    throw std::invalid_argument("WORLD must name a world kind (" + names + "), not " +
+                                py::repr(world).cast<std::string>());
+  }
   for (int i = 1; i + 1 < argc; ++i)
     if (std::string(argv[i]) == "--world") try {
         const std::string file = world_path(argv[i + 1]);
@@ -811,6 +823,43 @@ std::string world_kind_of(const py::dict& globals, int argc, char** argv) {
         // run reports the world's error itself
       }
   return "static";
+}
+
+/// A file name as Python spells it (os.fsdecode): any bytes the system allows, not only UTF-8.
+py::object file_name(const std::string& path) {
+  return py::module_::import("os").attr("fsdecode")(py::bytes(path));
+}
+
+/// The app file read here (its bytes, whatever its name's characters) and run in `globals`,
+/// compiled under its own name so that tracebacks and SyntaxErrors name it.
+void run_file(const std::string& path, py::dict& globals) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::invalid_argument("cannot be read");
+  const py::module_ builtins = py::module_::import("builtins");
+  builtins.attr("exec")(builtins.attr("compile")(py::bytes(text.str()), file_name(path), "exec"),
+                        globals);
+}
+
+/// APP must be a plain function: an async one (or a generator) would run nothing when called.
+void check_app(const py::dict& globals) {
+  if (!globals.contains("APP") || !PyCallable_Check(globals["APP"].ptr()))
+    throw std::invalid_argument("defines no function APP(bee)");
+  const py::module_ inspect = py::module_::import("inspect");
+  for (const char* test : {"iscoroutinefunction", "isasyncgenfunction", "isgeneratorfunction"})
+    if (inspect.attr(test)(globals["APP"]).cast<bool>())
+      throw std::invalid_argument(
+          "APP must be a plain function (def APP(bee): ...), not an async function or a "
+          "generator, which would run nothing when called");
+}
+
+/// NAME: a non-empty string (the name the runs log).
+std::string app_name(const py::object& name) {
+  if (!py::isinstance<py::str>(name) || name.cast<std::string>().empty())
+    throw std::invalid_argument("NAME must be a non-empty string, not " +
+                                py::repr(name).cast<std::string>());
+  return name.cast<std::string>();
 }
 
 }  // namespace
@@ -825,6 +874,17 @@ int fleet_main_with_python(int argc, char** argv) {
   }
   // Sets and dicts of strings iterate in one order from run to run (same seed, same bytes).
   setenv("PYTHONHASHSEED", "0", 0);
+  // File names and files in UTF-8 (Python's UTF-8 mode) whatever the process's locale: swath-fleet
+  // never sets one, so Python would take ASCII, and an app in a folder named in any other
+  // characters could not import the modules beside it.
+  PyPreConfig preconfig;
+  PyPreConfig_InitPythonConfig(&preconfig);
+  preconfig.utf8_mode = 1;
+  if (PyStatus status = Py_PreInitialize(&preconfig); PyStatus_Exception(status)) {
+    std::cerr << "swath-fleet: " << path << ": Python cannot start: "
+              << (status.err_msg ? status.err_msg : "preinitialisation failed") << "\n";
+    return 2;
+  }
   // swath-fleet's own SIGINT and SIGTERM handling stays (the run's abort, exit 130 and 143).
   py::scoped_interpreter interpreter(false);
   Host h;
@@ -835,19 +895,16 @@ int fleet_main_with_python(int argc, char** argv) {
   try {
     py::dict globals;
     globals["__name__"] = "__swath_app__";
-    globals["__file__"] = path;
+    globals["__file__"] = file_name(path);
     globals["__builtins__"] = py::module_::import("builtins");
     const py::module_ fleet_module = py::module_::import("swath_fleet");
     for (const char* module : {"os", "posix"})
       py::module_::import(module).attr("_exit") = fleet_module.attr("_exit");
     // The app's folder on the path: an app may import modules of its own from beside it.
     py::module_::import("sys").attr("path").attr("insert")(
-        0, std::filesystem::absolute(path).parent_path().string());
-    py::eval_file(path, globals);
-    if (!globals.contains("APP") || !PyCallable_Check(globals["APP"].ptr())) {
-      std::cerr << "swath-fleet: " << path << ": defines no function APP(bee)\n";
-      return 2;
-    }
+        0, file_name(std::filesystem::absolute(path).parent_path().string()));
+    run_file(path, globals);
+    check_app(globals);
     h.app_fn = globals["APP"];
     if (globals.contains("SENSORS")) {
       check_sensors(globals["SENSORS"]);
@@ -860,7 +917,7 @@ int fleet_main_with_python(int argc, char** argv) {
     }
     const std::string kind = world_kind_of(globals, argc, argv);
     // NAME: the name the runs log (a built-in app's, for the same events and histories).
-    name = globals.contains("NAME") ? py::str(globals["NAME"]).cast<std::string>() : path;
+    name = globals.contains("NAME") ? app_name(globals["NAME"]) : path;
     fleet::register_app({name, "Python app " + path,
                          [](Ctx& c) {
                            PyTask& t = host->new_task();
@@ -871,8 +928,8 @@ int fleet_main_with_python(int argc, char** argv) {
   } catch (py::error_already_set& e) {
     std::cerr << "swath-fleet: " << h.sentence(e) << "\n";
     return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "swath-fleet: " << path << ": " << e.what() << "\n";
+  } catch (const std::exception& e) {  // whatever else loading throws is bad input too
+    std::cerr << "swath-fleet: " << path << ": " << one_line(e.what()) << "\n";
     return 2;
   }
   std::vector<char*> args(argv, argv + argc);

@@ -199,8 +199,8 @@ std::string layers_refusal(int drones, double base_m, double step_m, double ceil
          " needs altitude layers up to " + base::shortest_text(top_m) + " m (" +
          base::shortest_text(base_m) + " m + " + base::shortest_text(step_m) +
          " m apart), above the ceiling of " + base::shortest_text(ceiling_m) + " m: at most " +
-         std::to_string(fit) +
-         " drones fit (raise ceiling_m or lower separation_m in the fleet file)";
+         std::to_string(fit) + (fit == 1 ? " drone fits" : " drones fit") +
+         " (raise ceiling_m or lower separation_m in the fleet file)";
 }
 
 // A vertex is at most 36 bytes of run_start ("[-20015086.796021,-20015086.796021],"): 20,000 of

@@ -410,6 +410,7 @@ TEST(Envelope, AFleetThatCannotFitIsRefused) {
   EXPECT_EQ(refusal(21, s), "");
   EXPECT_EQ(layers_refusal(21, 20, 5, 120), "");
   EXPECT_NE(layers_refusal(22, 20, 5, 120), "");
+  EXPECT_NE(layers_refusal(2, 20, 5, 24).find("at most 1 drone fits ("), std::string::npos);
   RuntimeSettings fenced = s;
   fenced.envelope.inclusions = {{{-10, -10}, {8, -10}, {8, 10}, {-10, 10}}};
   EXPECT_NE(refusal(3, fenced).find("d2's home (10.0, 0.0) m is outside the inclusion fence"),

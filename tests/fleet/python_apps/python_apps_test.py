@@ -342,7 +342,9 @@ class PythonApps(unittest.TestCase):
             f.write(b"\xff\xfe bad\n")
         r = run(app, "hotspot", self.out("binary"))
         self.assertEqual(r.returncode, 2)
-        self.assertIn(app + ": SyntaxError: ", r.stderr)  # no line: Python gives none
+        # The file is compiled from its bytes: Python places the undecodable byte on line 1.
+        self.assertIn(app + " line 1: SyntaxError: ", r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertNotIn("line None", r.stderr)
         self.assertFalse(os.path.exists(self.out("binary")))
 

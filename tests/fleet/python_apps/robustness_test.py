@@ -109,6 +109,44 @@ class Robustness(unittest.TestCase):
                              "action's name is missing (fly_to, sense, hover, custom)")
         self.assertEqual(logs[0], logs[1])
 
+    # ---- loading ------------------------------------------------------------------------------
+
+    def test_an_app_at_a_non_ascii_path_runs(self):
+        app = self.out("ünï/app.py")
+        os.makedirs(os.path.dirname(app))
+        shutil.copy(os.path.join(APPS, "hotspot.py"), app)
+        with open(os.path.join(os.path.dirname(app), "helper_ü.py"), "w") as f:
+            f.write("X = 1\n")
+        with open(app, "a") as f:
+            f.write("import helper_ü  # noqa: E402  (beside the app)\n")
+        out = self.out("unicode")
+        r = run(app, "hotspot", out, "--drones", "2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("final_distance_to_source_m", summary(out)["app_metrics"])
+        bad = self.app("ünï/bad.py", "def APP(bee):\n    return 1 +\n")
+        r = run(bad, "hotspot", self.out("bad"))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn(bad + " line 2: SyntaxError", r.stderr)
+
+    def test_bad_world_name_or_async_app_is_bad_input(self):
+        cases = {
+            "WORLD = 5\ndef APP(bee):\n    pass\n": "WORLD must name a world kind (",
+            "WORLD = 'moon'\ndef APP(bee):\n    pass\n": ", not 'moon'",
+            "NAME = 7\ndef APP(bee):\n    pass\n": "NAME must be a non-empty string, not 7",
+            "async def APP(bee):\n    pass\n": "APP must be a plain function (def APP(bee): ...)",
+            "def APP(bee):\n    yield 1\n": "APP must be a plain function",
+        }
+        for i, (text, want) in enumerate(cases.items()):
+            app, out = self.app("bad%d.py" % i, text), self.out("bad%d" % i)
+            r = run(app, "hotspot", out)
+            self.assertEqual(r.returncode, 2, text + r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertTrue(r.stderr.startswith("swath-fleet: " + app + ": "), r.stderr)
+            self.assertIn(want, r.stderr)
+            self.assertNotIn("register_app", r.stderr)
+            self.assertFalse(os.path.exists(out))
+
 
 if __name__ == "__main__":
     unittest.main(argv=sys.argv[:1], verbosity=2)
