@@ -35,6 +35,7 @@
 #include "../../fleet/apps/src/gaussian_process.hpp"  // the wifi app's, for wifi.py's parity
 #include "fleet_inputs.hpp"
 #include "fleet_main.hpp"
+#include "python_baton.hpp"
 #include "run_control.hpp"
 #include "swath/base/number_text.hpp"
 #include "swath/fleet/apps.hpp"
@@ -50,6 +51,9 @@ constexpr double kMaxSenseS = 3600;
 constexpr std::size_t kMaxNameBytes = 256;
 constexpr std::size_t kMaxMessageBytes = 1000;
 constexpr int kMaxLiveTasks = 2000;
+/// How long a task stopped by a signal or --max-time may go on ignoring TaskKilled (a bare
+/// except) before the runtime abandons its thread: stopping must not depend on the app.
+constexpr double kStopGraceS = 2;
 }  // namespace
 
 namespace swath::apps {
@@ -58,49 +62,6 @@ namespace {
 using fleet::Co;
 using fleet::Ctx;
 using fleet::Reading;
-
-/// Who may run: the runtime (kRuntime) or one Python task (its slot). Each side waits on a
-/// condition of its own, so a hand-over wakes one thread, not every task's (thousands live).
-class Baton {
- public:
-  static constexpr int kRuntime = -1;
-  /// Runtime side: lets task `slot` run and waits until it hands the baton back, calling
-  /// `on_stall` every 100 ms of wall time meanwhile (a task that keeps its turn).
-  template <class OnStall>
-  void run(int slot, std::condition_variable& task_cv, OnStall on_stall) {
-    std::unique_lock lock(m_);
-    turn_ = slot;
-    task_cv.notify_one();
-    while (!runtime_cv_.wait_for(lock, std::chrono::milliseconds(100),
-                                 [&] { return turn_ == kRuntime; })) {
-      lock.unlock();
-      on_stall();
-      lock.lock();
-    }
-  }
-  /// Python side: hands the baton back and waits for this task's next turn.
-  void yield(int slot, std::condition_variable& task_cv) {
-    std::unique_lock lock(m_);
-    turn_ = kRuntime;
-    runtime_cv_.notify_one();
-    task_cv.wait(lock, [&] { return turn_ == slot; });
-  }
-  void wait_turn(int slot, std::condition_variable& task_cv) {
-    std::unique_lock lock(m_);
-    task_cv.wait(lock, [&] { return turn_ == slot; });
-  }
-  /// Python side, when the task's function has returned.
-  void finish() {
-    std::lock_guard lock(m_);
-    turn_ = kRuntime;
-    runtime_cv_.notify_one();
-  }
-
- private:
-  std::mutex m_;
-  std::condition_variable runtime_cv_;
-  int turn_ = kRuntime;
-};
 
 /// What a Python task's future refers to: an action's reading or a task's end.
 using Awaited = std::variant<fleet::Future<Reading>, fleet::TaskHandle<void>>;
@@ -120,12 +81,14 @@ struct PyTask {
   std::thread thread;
   std::condition_variable turn_cv;  // the Baton wakes this task's thread through it
   unsigned long python_thread = 0;  // PyThread_get_thread_ident() of the thread
-  bool started = false, finished = false, killed = false;
+  bool started = false;
+  std::atomic<bool> finished = false, killed = false;
+  bool abandoned = false;  // runtime side: the thread ignored TaskKilled past kStopGraceS
   /// Why the runtime stopped the task while it kept its turn (a signal, the wall-clock bound);
   /// set before the exception is raised in its thread, read there (its task_failed reason).
   std::string stopped_why;
   std::string spawned_at;  // "app.py line N" of its newTask call
-  std::chrono::steady_clock::time_point stopped_at;
+  std::chrono::steady_clock::time_point stopped_at, first_stopped_at;
   Yield yield = Yield::returned;
   Awaited awaited;
   std::string error;        // the sentence of a Python exception, or an ActionFailed reason
@@ -185,7 +148,7 @@ class Host {
   /// Runtime side: a task whose frame is gone (cancelled, or the run over) unwinds its Python
   /// code: every wait and action raises TaskKilled until the function returns.
   void kill(PyTask& t) {
-    if (!t.started || t.finished) return;
+    if (!t.started || t.finished || t.abandoned) return;
     t.killed = true;
     run_turn(t);
     join_if_finished(t);
@@ -194,7 +157,12 @@ class Host {
   void kill_all() {
     for (auto& t : tasks_) kill(*t);
     for (auto& t : tasks_)
-      if (t->thread.joinable()) t->thread.join();
+      if (t->thread.joinable() && !t->abandoned) t->thread.join();
+  }
+  /// A task was abandoned: its thread may run on, so the process must end without joining it
+  /// or finalising Python under it.
+  bool any_abandoned() const {
+    return std::any_of(tasks_.begin(), tasks_.end(), [](const auto& t) { return t->abandoned; });
   }
   /// With the GIL held: drops the Python objects.
   void clear() {
@@ -221,7 +189,8 @@ class Host {
     if (t.finished && t.thread.joinable()) t.thread.join();
   }
   std::atomic<int> threads_alive_{0};
-  void stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_began);
+  bool stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_began);
+  void abandon(PyTask& t);
   std::deque<std::unique_ptr<PyTask>> tasks_;
 };
 
@@ -232,12 +201,23 @@ std::string one_line(const std::string& message);
 // is stopped when a signal asks for the abort or after max_wall_s, so neither hangs the run.
 void Host::run_turn(PyTask& t) {
   const auto began = std::chrono::steady_clock::now();
-  baton.run(t.slot, t.turn_cv, [&] { stop_if_due(t, began); });
+  baton.run(t.slot, t.turn_cv, [&] { return stop_if_due(t, began); });
+  if (t.abandoned) abandon(t);
+}
+
+// The turn is the runtime's again (Baton::run): the task fails with why it was stopped, and its
+// thread, which may be anywhere in Python or C code, is never waited for again.
+void Host::abandon(PyTask& t) {
+  t.killed = true;  // any call it still makes into swath_fleet raises TaskKilled
+  t.yield = Yield::raised;
+  t.error = path + ": " + t.stopped_why + "; abandoned " + base::shortest_text(kStopGraceS) +
+            " s later (it went on, catching TaskKilled or inside a C call)";
 }
 
 // Raises TaskKilled in the task's thread (at its next Python line); again each second, as an app
-// may catch the first in a bare except. Its task then fails with `stopped_why`.
-void Host::stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_began) {
+// may catch the first in a bare except. Its task then fails with `stopped_why`. True (abandon
+// it) once it has kept its turn kStopGraceS past the first TaskKilled.
+bool Host::stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_began) {
   const auto now = std::chrono::steady_clock::now();
   std::string why;
   if (const int s = noted_signal(); s != 0)
@@ -246,13 +226,19 @@ void Host::stop_if_due(PyTask& t, std::chrono::steady_clock::time_point turn_beg
   else if (std::chrono::duration<double>(now - turn_began).count() > max_wall_s)
     why = "kept its turn (never waited on a future) for more than --max-time, " +
           base::shortest_text(max_wall_s) + " s of wall-clock time";
-  if (why.empty() || t.python_thread == 0) return;
-  if (!t.stopped_why.empty() && now - t.stopped_at < std::chrono::seconds(1)) return;
+  if (why.empty()) return false;
+  if (!t.stopped_why.empty() &&
+      std::chrono::duration<double>(now - t.first_stopped_at).count() > kStopGraceS)
+    return t.abandoned = true;
+  if (t.python_thread == 0) return false;
+  if (!t.stopped_why.empty() && now - t.stopped_at < std::chrono::seconds(1)) return false;
   py::gil_scoped_acquire gil;  // the task's thread lets it go at its switch interval
-  if (t.finished) return;
+  if (t.finished) return false;
+  if (t.stopped_why.empty()) t.first_stopped_at = now;
   t.stopped_why = why;
   t.stopped_at = now;
   PyThreadState_SetAsyncExc(t.python_thread, error_types().task_killed.ptr());
+  return false;
 }
 
 // The message is cut to kMaxMessageBytes (at a character's start): it is a task_failed reason,
@@ -302,6 +288,9 @@ std::string Host::where(py::error_already_set& e) const {
 
 void Host::thread_main(PyTask& t) {
   baton.wait_turn(t.slot, t.turn_cv);
+  Yield yield = Yield::returned;
+  std::string error;
+  bool propagated = false;
   {
     py::gil_scoped_acquire gil;
     current_task = &t;
@@ -312,32 +301,35 @@ void Host::thread_main(PyTask& t) {
             py::module_::import("swath_fleet").attr("Bee")(py::capsule(&t, "swath_fleet.task"));
         t.result = t.is_main ? app_fn(bee) : t.fn(bee, *py::tuple(t.args));
       }
-      t.yield = Yield::returned;
     } catch (py::error_already_set& e) {
       const ErrorTypes& types = error_types();
       if (t.killed) {
-        t.yield = Yield::returned;
+        yield = Yield::returned;
       } else if (!t.stopped_why.empty()) {
-        t.yield = Yield::raised;
-        t.error = where(e) + ": " + t.stopped_why;
+        yield = Yield::raised;
+        error = where(e) + ": " + t.stopped_why;
       } else if (e.matches(types.action_failed)) {
-        t.yield = Yield::action_failed;
-        t.error = py::str(e.value());
+        yield = Yield::action_failed;
+        error = one_line(py::str(e.value()));
       } else if (e.matches(types.task_cancelled)) {
-        t.yield = Yield::cancelled;
+        yield = Yield::cancelled;
       } else {
-        t.yield = Yield::raised;
-        t.propagated = e.matches(types.task_failed);
+        yield = Yield::raised;
+        propagated = e.matches(types.task_failed);
         // A task_failed exception carries the sentence of the task it came from.
-        t.error =
-            e.matches(types.task_failed) ? py::str(e.value()).cast<std::string>() : sentence(e);
+        error = propagated ? py::str(e.value()).cast<std::string>() : sentence(e);
       }
     }
     current_task = nullptr;
   }
-  t.finished = true;
   --threads_alive_;
-  baton.finish();
+  baton.finish(t.slot, [&] {
+    t.yield = yield;
+    t.error = error;
+    t.propagated = propagated;
+    t.finished = true;
+  });
+  t.finished = true;
 }
 
 /// Ends a task's Python thread when its frame is destroyed with the thread still waiting.
@@ -407,11 +399,12 @@ struct PyFuture {
             "Future.value is read inside a task");
     if (me->killed) raise(error_types().task_killed, "the task's run is over");
     if (!ready()) {
-      me->awaited = awaited;
-      me->yield = Yield::awaiting;
       {
         py::gil_scoped_release nogil;
-        host->baton.yield(me->slot, me->turn_cv);
+        host->baton.yield(me->slot, me->turn_cv, [&] {
+          me->awaited = awaited;
+          me->yield = Yield::awaiting;
+        });
       }
       if (me->killed) raise(error_types().task_killed, "the task's run is over");
     }
@@ -713,7 +706,11 @@ PYBIND11_EMBEDDED_MODULE(swath_fleet, m) {
 
   py::class_<PyFuture>(m, "Future")
       .def_property_readonly("value", &PyFuture::value)
-      .def("done", &PyFuture::ready);
+      .def("done", [](const PyFuture& f) {
+        if (current_task != nullptr && current_task->killed)  // its run is over or abandoned
+          raise(error_types().task_killed, "the task's run is over");
+        return f.ready();
+      });
 
   py::class_<PyTask, std::unique_ptr<PyTask, py::nodelete>>(m, "Bee")
       .def(py::init(
@@ -939,6 +936,11 @@ int fleet_main_with_python(int argc, char** argv) {
     py::gil_scoped_release nogil;  // the tasks' threads take it in turn
     code = fleet_main(argc, args.data());
     h.kill_all();
+    if (h.any_abandoned()) {  // the files are written; its thread may hold Python for ever
+      std::cout.flush();
+      std::cerr.flush();
+      std::_Exit(code);
+    }
   }
   world_wrapper() = nullptr;  // its dict goes with the GIL held
   h.clear();

@@ -62,6 +62,63 @@ class Robustness(unittest.TestCase):
     def failed_reasons(self, out):
         return [e.get("reason", "") for e in events(out) if e["ev"] == "task_failed"]
 
+    # ---- stopping whatever the app does -------------------------------------------------------
+
+    def stop(self, text, *extra, sig=None, after="spinning"):
+        """Runs the app (paced), sends `sig` once stderr says `after`; the exit code, stderr, the
+        wall seconds from the signal (or the start) to the end, and the output folder."""
+        app, out = self.app("stop.py", text), self.out("stop")
+        p = subprocess.Popen([FLEET, "run", app, "--world", "hotspot", "--drones", "1", "--pace",
+                              "20", "-o", out, *extra],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        try:
+            start = time.monotonic()
+            if sig is not None:
+                while after not in p.stderr.readline():
+                    pass
+                start = time.monotonic()
+                p.send_signal(sig)
+            _, err = p.communicate(timeout=40)
+        finally:
+            if p.poll() is None:
+                p.kill()
+                p.communicate()
+        return p.returncode, err, time.monotonic() - start, out
+
+    BARE_EXCEPT = ("import sys\n"
+                   "def t(bee):\n"
+                   "    bee.act('fly_to', 20.0, 0.0).value\n"
+                   "    print('spinning', file=sys.stderr, flush=True)\n"
+                   "    while True:\n"
+                   "        try:\n"
+                   "            while True:\n"
+                   "                pass\n"
+                   "        except:  # noqa: E722  (also catches TaskKilled)\n"
+                   "            pass\n"
+                   "def APP(bee):\n"
+                   "    bee.newTask(t).value\n")
+
+    def test_a_signal_stops_an_app_that_catches_task_killed(self):
+        for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+            rc, err, took_s, out = self.stop(self.BARE_EXCEPT, sig=sig)
+            self.assertEqual(rc, code, err)
+            self.assertLess(took_s, 10)
+            ev = events(out)
+            self.assertEqual(ev[-1]["ev"], "run_end")
+            self.assertEqual([e["command"] for e in ev if e["ev"] == "abort_command"], ["rtl"])
+            self.assertIn("stop.py: stopped by %s while it kept its turn; abandoned 2 s later" %
+                          signal.Signals(sig).name, "\n".join(self.failed_reasons(out)))
+            self.check_passes(out)
+
+    def test_max_time_stops_an_app_inside_a_c_call(self):
+        rc, err, took_s, out = self.stop("import time\ndef APP(bee):\n    time.sleep(1000)\n",
+                                         "--max-time", "2")
+        self.assertEqual(rc, 4, err)
+        self.assertLess(took_s, 15)
+        self.assertIn("kept its turn (never waited on a future) for more than --max-time, 2 s of "
+                      "wall-clock time; abandoned 2 s later", "\n".join(self.failed_reasons(out)))
+        self.check_passes(out)
+
     # ---- what an app sees and what the log says -----------------------------------------------
 
     def test_refusals_at_the_call_raise_action_failed(self):
