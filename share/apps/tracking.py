@@ -20,12 +20,17 @@ def APP(bee):
     last_drone = -1
     while bee.now_s < w.duration_s:
         ahead = min(bee.now_s - t_last + 2.0, 10.0)  # beyond: a guess
+        asked_s = bee.now_s
         look = bee.newTask(sense_at, lx + vx * ahead, ly + vy * ahead, "camera",
                            kind="tracking-look")
         try:
             r = look.value
         except ActionFailed:
-            continue  # a lost look: look again
+            # A look lost on the way: look again. One refused at once (the walker left the
+            # fence) would be refused again at the same instant, forever: stop following.
+            if bee.now_s == asked_s:
+                break
+            continue
         looks += 1
         if last_drone >= 0 and r.drone != last_drone:
             handoffs += 1

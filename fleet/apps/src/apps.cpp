@@ -179,12 +179,16 @@ Co<void> tracking_main(Ctx& c) {
   while (c.now_s() < w.duration_s) {
     const double ahead = std::min(c.now_s() - t_last + 2.0, 10.0);  // beyond: a guess
     const Vec3 target{last.x + vx * ahead, last.y + vy * ahead, 0};
+    const double asked_s = c.now_s();
     auto h = c.spawn(look, {}, sense_at, target, std::string("camera"));
     Reading r;
     try {
       r = co_await h;
     } catch (const fleet::ActionFailed&) {
-      continue;  // a lost look: look again
+      // A look lost on the way: look again. One refused at once (the walker left the fence):
+      // the same look would be refused again at the same instant, forever; stop following.
+      if (c.now_s() == asked_s) break;
+      continue;
     }
     ++looks;
     if (last_drone >= 0 && r.drone != last_drone) ++handoffs;

@@ -327,6 +327,13 @@ bool Runtime::loop(Task& main) {
                         " s) of wall-clock time without letting the clock move";
       return true;
     }
+    if (instant_runaway_) {
+      record_.failure = "the app created more than " + std::to_string(kMaxTasksPerInstant) +
+                        " tasks at " + base::shortest_text(now_) +
+                        " s without letting the clock move (a task that fails at once, retried "
+                        "at once?)";
+      return true;
+    }
     // A signal that came while the app ran (a Python task stopped for it fails the main)
     // is still the run's abort.
     if (main.status != TaskStatus::running) return !(abort_waiting() && take_orders());

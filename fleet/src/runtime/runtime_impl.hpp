@@ -22,6 +22,10 @@ namespace swath::fleet::rt {
 
 using json = nlohmann::ordered_json;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Tasks an app may create at one instant of simulated time: a task failing at once and retried
+/// at once (a refused fly_to in a loop) would otherwise grow memory and the log without bound
+/// while the clock stands still, where max_time_s cannot end it.
+constexpr int kMaxTasksPerInstant = 20000;
 
 enum class ActionType { fly_to = 0, sense = 1, hover = 2, custom = 3 };
 enum class ActionState { pending, running, completed, delivered, dropped };
@@ -321,6 +325,8 @@ class Runtime final : public detail::Core {
   void wake(detail::StateBase& s);
   void resolve_action(Task& t, std::size_t a, const Reading& r, int drone);
   void fail_action_futures(Task& t, std::exception_ptr e);
+  /// Counts a task created now; past kMaxTasksPerInstant at one instant the run is to end.
+  void count_created_at_instant();
   void destroy_frames();
   int dtg_sync_node(Task& t);
 
@@ -395,6 +401,10 @@ class Runtime final : public detail::Core {
   int current_ = -1;
   bool changed_ = true;
   bool wall_stalled_ = false;  // resume_ready ran max_time_s of wall time without the clock moving
+  // Tasks created at instant_s_ (kMaxTasksPerInstant); instant_runaway_ once past the bound.
+  double instant_s_ = -1;
+  int created_at_instant_ = 0;
+  bool instant_runaway_ = false;
   std::uint64_t seq_ = 0;
   double next_state_log_ = 0;
   RunRecord record_;

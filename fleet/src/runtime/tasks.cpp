@@ -32,6 +32,7 @@ int Runtime::spawn(int parent, const Kind& kind, Flags flags,
     p.last_armed.reset();
   }
   dtg_changed_ = true;
+  count_created_at_instant();
   log(json{{"ev", "task_created"},
            {"task", t.id},
            {"kind", t.kind},
@@ -41,6 +42,14 @@ int Runtime::spawn(int parent, const Kind& kind, Flags flags,
   t.root = t.start(*t.ctx);
   ready_.push_back({t.id, t.root, nullptr});
   return t.id;
+}
+
+void Runtime::count_created_at_instant() {
+  if (now_ != instant_s_) {
+    instant_s_ = now_;
+    created_at_instant_ = 0;
+  }
+  if (++created_at_instant_ > kMaxTasksPerInstant) instant_runaway_ = true;
 }
 
 // A fly_to inside the envelope or an error to the app, never flown: a height of 0 is the drone's
@@ -177,7 +186,7 @@ void Runtime::resume_ready() {
     // An app whose tasks wake each other without end never empties ready_ nor lets the clock
     // move: a waiting abort goes first (loop() takes it next), and max_time_s bounds the wall
     // time spent here too (loop() then ends the run as not completed).
-    if (abort_waiting()) return;
+    if (abort_waiting() || instant_runaway_) return;
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() >
         settings_.max_time_s) {
       wall_stalled_ = true;

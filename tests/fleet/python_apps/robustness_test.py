@@ -62,6 +62,42 @@ class Robustness(unittest.TestCase):
     def failed_reasons(self, out):
         return [e.get("reason", "") for e in events(out) if e["ev"] == "task_failed"]
 
+    # ---- zero simulated time ------------------------------------------------------------------
+
+    def test_tracking_stops_following_a_walker_outside_the_fence(self):
+        # The look the fence refuses would be refused again at the same instant: the built-in
+        # app and tracking.py stop following, with the same bytes.
+        cpp, py = self.out("cpp"), self.out("py")
+        a = run("tracking", "tracking", cpp, "--fleet", FENCED, "--seed", "1", timeout=60)
+        self.assertEqual(a.returncode, 0, a.stderr)
+        self.check_passes(cpp)
+        self.assertEqual(len(self.failed_reasons(cpp)), 1, self.failed_reasons(cpp))
+        self.assertIn("outside", self.failed_reasons(cpp)[0])
+        self.assertGreater(summary(cpp)["app_metrics"]["looks"], 0)
+        b = run(os.path.join(APPS, "tracking.py"), "tracking", py, "--fleet", FENCED, "--seed", "1",
+                timeout=60)
+        self.assertEqual(b.returncode, 0, b.stderr)
+        with open(os.path.join(cpp, "events.jsonl"), "rb") as f, \
+                open(os.path.join(py, "events.jsonl"), "rb") as g:
+            self.assertEqual(f.read(), g.read())
+
+    def test_tasks_created_at_one_instant_are_bounded(self):
+        # An app of its own retrying a refused fly_to at once, for ever: the run ends (exit 4).
+        loop = self.app("loop.py", "from swath_fleet import ActionFailed\n"
+                        "def t(bee):\n    return bee.act('fly_to', 1000.0, 0.0).value\n"
+                        "def APP(bee):\n    while True:\n        try:\n"
+                        "            bee.newTask(t).value\n        except ActionFailed:\n"
+                        "            pass\n")
+        out = self.out("loop")
+        r = run(loop, "tracking", out, "--fleet", FENCED, "--max-time", "60", timeout=300)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        s = summary(out)
+        self.assertIn("created more than 20000 tasks at 0 s without letting the clock move",
+                      s["failure"])
+        created = sum(1 for e in events(out) if e["ev"] == "task_created")
+        self.assertLessEqual(created, 20002)
+        self.check_passes(out)
+
     # ---- stopping whatever the app does -------------------------------------------------------
 
     def stop(self, text, *extra, sig=None, after="spinning"):
