@@ -22,6 +22,11 @@ namespace swath::fleet::rt {
 
 using json = nlohmann::ordered_json;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// An app's metrics in summary.json: at most kMaxMetrics names taking at most kMaxMetricBytes
+/// (escaped names and values), so that summary.json stays far below the 4 MiB its readers
+/// (collect, render, replay) accept.
+constexpr std::size_t kMaxMetrics = 10000;
+constexpr std::size_t kMaxMetricBytes = std::size_t{2} << 20;
 /// Tasks an app may create at one instant of simulated time: a task failing at once and retried
 /// at once (a refused fly_to in a loop) would otherwise grow memory and the log without bound
 /// while the clock stands still, where max_time_s cannot end it.
@@ -236,7 +241,7 @@ class Runtime final : public detail::Core {
   double now_s() const override { return now_; }
   const World& world() const override { return world_; }
   vehicle::SplitMix64& random() override { return app_rng_; }
-  void metric(const std::string& name, double value) override { record_.metrics[name] = value; }
+  void metric(const std::string& name, double value) override;
 
  private:
   // Logging.
@@ -405,6 +410,7 @@ class Runtime final : public detail::Core {
   double instant_s_ = -1;
   int created_at_instant_ = 0;
   bool instant_runaway_ = false;
+  std::size_t metric_bytes_ = 0;  // the app's metrics in summary.json (kMaxMetricBytes)
   std::uint64_t seq_ = 0;
   double next_state_log_ = 0;
   RunRecord record_;

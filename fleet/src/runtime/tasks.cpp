@@ -3,6 +3,8 @@
 
 #include <chrono>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 #include "runtime/runtime_impl.hpp"
 #include "swath/base/number_text.hpp"
@@ -50,6 +52,42 @@ void Runtime::count_created_at_instant() {
     created_at_instant_ = 0;
   }
   if (++created_at_instant_ > kMaxTasksPerInstant) instant_runaway_ = true;
+}
+
+namespace {
+/// A metric's bytes in summary.json: its name escaped (a control character as \u00XX) and room
+/// for the punctuation and the value.
+std::size_t metric_json_bytes(const std::string& name) {
+  std::size_t bytes = 32;
+  for (const char c : name)
+    bytes += static_cast<unsigned char>(c) < 0x20 ? 6 : (c == '"' || c == '\\') ? 2 : 1;
+  return bytes;
+}
+
+/// The start of a metric's name for a message: control characters as \xNN (a NUL would end it).
+std::string name_for_message(const std::string& name) {
+  std::string shown;
+  for (std::size_t i = 0; i < name.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    constexpr char hex[] = "0123456789abcdef";
+    shown += c < 0x20 ? std::string{'\\', 'x', hex[c >> 4], hex[c & 15]} : std::string(1, name[i]);
+  }
+  return shown + (name.size() > 40 ? "..." : "");
+}
+}  // namespace
+
+void Runtime::metric(const std::string& name, double value) {
+  if (!record_.metrics.contains(name)) {
+    const std::size_t bytes = metric_json_bytes(name);
+    if (record_.metrics.size() >= kMaxMetrics || metric_bytes_ + bytes > kMaxMetricBytes)
+      throw std::length_error(
+          "metric \"" + name_for_message(name) + "\": more than " + std::to_string(kMaxMetrics) +
+          " metric names or 2 MiB of them in "
+          "summary.json, swath-fleet's limit for one run (so that collect, render and replay "
+          "read it)");
+    metric_bytes_ += bytes;
+  }
+  record_.metrics[name] = value;
 }
 
 // A fly_to inside the envelope or an error to the app, never flown: a height of 0 is the drone's

@@ -202,6 +202,34 @@ class Robustness(unittest.TestCase):
                              "action's name is missing (fly_to, sense, hover, custom)")
         self.assertEqual(logs[0], logs[1])
 
+    def test_metrics_are_bounded_and_summary_stays_readable(self):
+        # 250 NULs and 4 digits: 1,536 bytes each in summary.json as counted, 1,365 fit 2 MiB.
+        app = self.app("metrics.py", "def APP(bee):\n    for i in range(1365):\n"
+                       "        bee.metric('\\x00' * 250 + '%04d' % i, i)\n"
+                       "    bee.metric('\\x00' * 250 + '0000', -1)  # a name again: no new one\n"
+                       "    bee.metric('\\x00' * 250 + 'more', 1)\n")
+        out = self.out("metrics")
+        start = time.monotonic()
+        r = run(app, "hotspot", out, "--drones", "1")
+        self.assertLess(time.monotonic() - start, 30)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn(app + " line 5: ValueError: metric \"" + "\\x00" * 40 + "...\": more than "
+                      "10000 metric names or 2 MiB of them in summary.json", r.stderr)
+        self.assertLess(os.path.getsize(os.path.join(out, "summary.json")), 4 << 20)
+        metrics = summary(out)["app_metrics"]
+        self.assertEqual(len(metrics), 1365)
+        self.assertEqual(metrics["\x00" * 250 + "0000"], -1)
+        # Short names: 10,000 fit (the readings of python_apps_test's world reader), not 10,001.
+        many = self.app("many.py", "def APP(bee):\n    for i in range(10001):\n"
+                        "        bee.metric('r%05d' % i, i)\n")
+        r = run(many, "hotspot", self.out("many"), "--drones", "1")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn(many + " line 3: ValueError: metric \"r10000\": more than 10000", r.stderr)
+        self.assertEqual(len(summary(self.out("many"))["app_metrics"]), 10000)
+        c = subprocess.run([FLEET, "collect", out, "-o", self.out("col")], capture_output=True,
+                           text=True, timeout=60)
+        self.assertEqual(c.returncode, 0, c.stderr)
+
     # ---- loading ------------------------------------------------------------------------------
 
     def test_an_app_at_a_non_ascii_path_runs(self):
