@@ -138,9 +138,71 @@ bool heights_comparable(const Waypoint& a, const Waypoint& b, const geometry::Gr
   return ground != nullptr || a.terrain == b.terrain;
 }
 
+// DJI's waypoint spacing as the Litchi and DJI writers keep it (docs/swath-plan.md): a .plan
+// waypoint closer than 0.5 m to one flown is merged into it, a .plan leg longer than 2,000 m is
+// flown through points on it. Allowed here with the writers' rounding.
+// The writers merge below 0.51 m (common.hpp kDjiMergeBelow_m); 1 cm more for their rounding.
+constexpr double kMergedWithin_m = 0.51 + 0.01;
+constexpr double kOnLeg_m = 0.05;
+
+double apart_3d_m(const Waypoint& a, const Waypoint& b) {
+  return std::hypot(geometry::geodesic_distance_m(a.at, b.at), a.above_home_m - b.above_home_m);
+}
+
+// Whether w lies on the .plan's leg from a to b (strictly between its ends, at its height there):
+// a point a Litchi or DJI file splits a long leg with.
+bool on_leg(const Waypoint& w, const Waypoint& a, const Waypoint& b) {
+  const geometry::LocalFrame frame(a.at);
+  const geometry::Point2 p = frame.to_local(w.at), q = frame.to_local(b.at);
+  const double length_m = std::hypot(q.x, q.y);
+  if (!(length_m > 0)) return false;
+  const double t = (p.x * q.x + p.y * q.y) / (length_m * length_m);
+  const double off_m = std::abs(p.x * q.y - p.y * q.x) / length_m;
+  const double height_m = a.above_home_m + (b.above_home_m - a.above_home_m) * t;
+  return t > 0 && t < 1 && off_m <= kOnLeg_m && std::abs(w.above_home_m - height_m) <= 0.01;
+}
+
+// The twin's waypoints b set against the .plan's a, in order: each pair, or for Litchi and DJI
+// files a .plan waypoint merged into a neighbour flown (skipped), a point on a long .plan leg or a
+// first point above home (passed). Stops at the first pair that is neither: k and j are the indices
+// reached there.
+struct Matching {
+  std::size_t k = 0, j = 0;
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  ///< (a's, b's) at the same place
+};
+
+Matching matched(const std::vector<Waypoint>& a, const std::vector<Waypoint>& b, bool dji,
+                 const geometry::GeoPoint& home) {
+  Matching m;
+  std::size_t& k = m.k;
+  std::size_t& j = m.j;
+  while (k < a.size() && j < b.size()) {
+    if (dji && j > 0 && apart_3d_m(a[k], b[j - 1]) <= kMergedWithin_m &&
+        geometry::geodesic_distance_m(a[k].at, b[j].at) > 0.01) {
+      ++k;  // merged into the point flown before
+    } else if (geometry::geodesic_distance_m(a[k].at, b[j].at) <= 0.01) {
+      m.pairs.push_back({k++, j++});
+    } else if (dji && j == 0 && geometry::geodesic_distance_m(b[0].at, home) <= 0.01) {
+      ++j;  // the rise above home to the .plan's take-off altitude that the flight starts with
+    } else if (dji && apart_3d_m(a[k], b[j]) <= kMergedWithin_m) {
+      ++k;  // merged into the point flown next
+    } else if (dji && k > 0 && on_leg(b[j], a[k - 1], a[k])) {
+      ++j;
+    } else {
+      break;
+    }
+  }
+  // The .plan's last waypoints merged into the file's last.
+  while (dji && k < a.size() && j == b.size() && j > 0 &&
+         apart_3d_m(a[k], b[j - 1]) <= kMergedWithin_m)
+    ++k;
+  return m;
+}
+
 // A twin agrees when it flies the .plan's waypoints, in order, at the same heights (to the
-// writers' rounding); a Litchi or DJI file may add its last row at home (the landing). Returns
-// how many heights could not be compared (terrain frame against above home, without a DEM).
+// writers' rounding); a Litchi or DJI file may add its last row at home (the landing), and keeps
+// DJI's waypoint spacing (matched()). Returns how many heights could not be compared
+// (terrain frame against above home, without a DEM).
 std::size_t check_twin(const missions::Mission& plan, const Twin& twin,
                        const geometry::Ground* ground, Report& report) {
   const std::vector<Waypoint> a = waypoints(plan, ground), b = joined_waypoints(twin.parts, ground);
@@ -149,23 +211,30 @@ std::size_t check_twin(const missions::Mission& plan, const Twin& twin,
   const bool litchi = format == "Litchi CSV" || format == "DJI WPML";
   std::string problem;
   const missions::Mission* in = &twin.parts.front();
-  std::size_t k = 0, unknown_heights = 0;
-  for (; k < std::min(a.size(), b.size()) && problem.empty(); ++k) {
-    const double apart_m = geometry::geodesic_distance_m(a[k].at, b[k].at);
-    in = b[k].file;
-    if (apart_m > 0.01)
-      problem =
-          waypoint_name(b[k], k + 1) + " lies " + fixed_text(apart_m, 2) + " m from the .plan's";
-    else if (!heights_comparable(a[k], b[k], ground))
+  std::size_t unknown_heights = 0;
+  const Matching m = matched(a, b, litchi, plan.home);
+  for (const auto& [k, j] : m.pairs) {
+    in = b[j].file;
+    if (!heights_comparable(a[k], b[j], ground)) {
       ++unknown_heights;
-    else if (std::abs(a[k].above_home_m - b[k].above_home_m) > 0.01)
-      problem = waypoint_name(b[k], k + 1) + " flies at " + fixed_text(b[k].above_home_m, 2) +
+    } else if (std::abs(a[k].above_home_m - b[j].above_home_m) > 0.01) {
+      problem = waypoint_name(b[j], k + 1) + " flies at " + fixed_text(b[j].above_home_m, 2) +
                 " m above home, the .plan's at " + fixed_text(a[k].above_home_m, 2) + " m";
+      break;
+    }
+  }
+  const std::size_t k_end = m.k, j_end = m.j;
+  if (problem.empty() && k_end < a.size() && j_end < b.size()) {
+    in = b[j_end].file;
+    problem = waypoint_name(b[j_end], k_end + 1) + " lies " +
+              fixed_text(geometry::geodesic_distance_m(a[k_end].at, b[j_end].at), 2) +
+              " m from the .plan's";
   }
   // The one row a Litchi or DJI file may add is its landing at home, nowhere else.
-  const bool lands_at_home = litchi && b.size() == a.size() + 1 &&
-                             geometry::geodesic_distance_m(b.back().at, plan.home) <= 0.01;
-  if (problem.empty() && litchi && b.size() == a.size() + 1 && !lands_at_home) {
+  const bool one_more = litchi && k_end == a.size() && j_end + 1 == b.size();
+  const bool lands_at_home =
+      one_more && geometry::geodesic_distance_m(b.back().at, plan.home) <= 0.01;
+  if (problem.empty() && one_more && !lands_at_home) {
     in = b.back().file;
     problem = waypoint_name(b.back(), b.size()) + ", past the .plan's last, lies " +
               fixed_text(geometry::geodesic_distance_m(b.back().at, plan.home), 2) +
@@ -174,7 +243,7 @@ std::size_t check_twin(const missions::Mission& plan, const Twin& twin,
   if (!problem.empty()) {
     report.violations.push_back({"agreement", in->source, std::nullopt, 0.0,
                                  in->source + " differs from " + plan.source + ": " + problem});
-  } else if (a.size() != b.size() && !lands_at_home) {
+  } else if ((k_end != a.size() || j_end != b.size()) && !lands_at_home) {
     report.violations.push_back({"agreement", twin.parts.front().source, std::nullopt, 0.0,
                                  twin_name(twin) + " from " + plan.source + ": " +
                                      std::to_string(b.size()) + " waypoints, the .plan " +

@@ -373,19 +373,39 @@ void set_headings(std::vector<ExportPoint>& points) {
   }
 }
 
+// DJI and Litchi fly out to their first waypoint at its leg's speed (the check reads them so:
+// missions/src/mission.cpp, dji_kmz.cpp). Where the flight's first leg is slowed (its approach to
+// a stop beside a zone begins there), that would fly the whole way out from home slowly, minutes
+// longer than the .plan and into the next drone's launch: such a flight first rises above home to
+// the .plan's take-off altitude, as the .plan does, and flies out from there at the flight's
+// speed.
+void start_at_take_off(const SurveyPlan& plan, const Flight& flight,
+                       std::vector<ExportPoint>& points, std::vector<geometry::Point2>& local) {
+  const std::vector<MissionItem>& items = flight.mission->items;
+  if (points.empty() || items.empty() || items.front().kind != ItemKind::takeoff) return;
+  const double cruise_m_s = flight.drone->speed_m_s;
+  if (!(points.front().speed_m_s > 0) || points.front().speed_m_s == cruise_m_s) return;
+  const MissionItem& take_off = items.front();
+  points.insert(points.begin(), ExportPoint{geo(plan, take_off.position), take_off.altitude_m, 0.0,
+                                            false, 0.0, false, cruise_m_s});
+  local.insert(local.begin(), take_off.position);
+}
+
 }  // namespace
 
 std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight,
                                        std::vector<geometry::Point2>* local) {
   std::vector<ExportPoint> points;
+  std::vector<geometry::Point2> own_local;
+  if (local == nullptr) local = &own_local;
   bool camera_on = false;
   double speed_m_s = 0.0;  // in force: a change after a waypoint sets the leg that follows it
   const auto add = [&](const MissionItem& item, double altitude_m, double hold_s) {
     if (!points.empty()) points.back().photo_leg = camera_on;
     points.push_back({geo(plan, item.position), altitude_m, 0.0, false, hold_s, false, speed_m_s});
-    if (local) local->push_back(item.position);
+    local->push_back(item.position);
   };
-  if (local) local->clear();
+  local->clear();
   for (const MissionItem& item : flight.mission->items) {
     switch (item.kind) {
       case ItemKind::waypoint:
@@ -411,6 +431,8 @@ std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& fli
         break;
     }
   }
+  start_at_take_off(plan, flight, points, *local);
+  fit_dji_spacing(plan, flight.drone->speed_m_s, points, *local);
   set_headings(points);
   return points;
 }

@@ -77,6 +77,21 @@ double bearing_deg(const geometry::GeoPoint& a, const geometry::GeoPoint& b, boo
 std::vector<ExportPoint> export_points(const SurveyPlan& plan, const Flight& flight,
                                        std::vector<geometry::Point2>* local = nullptr);
 
+/// DJI's waypoint spacing (DJIMutableWaypointMission addWaypoint; Litchi flies DJI's waypoint
+/// missions): adjacent waypoints 0.5 m to 2,000 m apart in three dimensions.
+constexpr double kDjiLeastLeg_m = 0.5;
+constexpr double kDjiLongestLeg_m = 2000.0;
+/// Points are merged below this, 2 % above DJI's least: a distance on a sphere (as an app may
+/// measure it) differs from the ellipsoid's geodesic by up to 0.5 %.
+constexpr double kDjiMergeBelow_m = 0.51;
+
+/// The export points (and their local positions, in step) fitted to DJI's spacing: a point closer
+/// than kDjiMergeBelow_m to the one kept before it is merged into that one (the stop's position,
+/// the slower approach, the leg on from the later one), a leg longer than kDjiLongestLeg_m is
+/// split by points on it that fly it as its start does (camera, speed). Headings are left to set.
+void fit_dji_spacing(const SurveyPlan& plan, double cruise_m_s, std::vector<ExportPoint>& points,
+                     std::vector<geometry::Point2>& local);
+
 /// The flight's camera trigger value on photo legs: metres between photos (distance mode) or
 /// seconds (time mode); 0 in hover mode.
 double trigger_value(const Flight& flight);

@@ -1,5 +1,7 @@
 // Step 7 of plan_survey(): battery-sized sorties (survey_steps.hpp, docs/swath-plan.md).
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "swath/base/input_error.hpp"
 #include "swath/base/number_text.hpp"
@@ -21,6 +23,40 @@ SurveyPath piece_of(const SurveyPath& path, double from_m, double to_m,
   SurveyPath piece = cut_path(path, cuts)[from_m > 0 ? 1 : 0];
   transit_stubs_outside(piece, lined);
   return piece;
+}
+
+// A sortie's cut closer than this to a waypoint of the path is moved onto it (or this far off
+// it): the cut is a waypoint of both sorties, and one a few millimetres from another (the
+// bisection's millimetre landing beside a line's end) is no leg a DJI or Litchi mission takes
+// (0.5 m at least between waypoints) nor any autopilot needs.
+constexpr double kCutOffWaypoint_m = 0.6;
+
+// Where along the path each of its points lies, metres, summed as cut_path() sums it (so that a
+// cut there lands on the point itself).
+std::vector<double> point_distances_m(const SurveyPath& path) {
+  std::vector<double> at{0.0};
+  double walked = 0;
+  for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+    walked += geometry::distance(path.points[i], path.points[i + 1]);
+    at.push_back(walked);
+  }
+  return at;
+}
+
+// The cut at `to_m` (after `from_m`) moved off the path's points nearby: back onto a point
+// just before it; forward onto one just after it where the sortie still `fits` to there, else
+// back to kCutOffWaypoint_m before that one (onto the point before where the leg is short).
+double cut_off_waypoints_m(double from_m, double to_m, const std::vector<double>& at,
+                           const std::function<bool(double)>& fits) {
+  const auto next = std::upper_bound(at.begin(), at.end(), to_m);
+  if (next != at.begin() && to_m - *(next - 1) < kCutOffWaypoint_m && *(next - 1) > from_m)
+    return *(next - 1);
+  if (next == at.end() || *next - to_m >= kCutOffWaypoint_m) return to_m;
+  if (fits(*next)) return *next;
+  const double back_m = *next - kCutOffWaypoint_m;
+  const double before_m = *(next - 1);
+  if (back_m - before_m >= kCutOffWaypoint_m) return back_m;
+  return before_m > from_m ? before_m : to_m;
 }
 
 // What one sortie may fly: the battery it takes off with (the first the charge the drone has,
@@ -50,6 +86,7 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d,
     return mission_for_path(d.number, d.home, piece_of(path, from, to, lined), settings,
                             routes.leg(), inside);
   };
+  const std::vector<double> at = point_distances_m(path);
   std::vector<Sortie> out;
   double from = 0;
   while (from < total - 1e-6) {
@@ -68,13 +105,18 @@ std::vector<Sortie> cut_sorties(const SurveyPlan& plan, const DronePlan& d,
     } else {
       lo = total - from;
     }
+    double to = from + lo;
+    if (lo < total - from)
+      to = cut_off_waypoints_m(from, to, at, [&](double end_m) {
+        return sortie(from, end_m).flight_time_s <= usable_s;
+      });
     Sortie s;
     s.number = static_cast<int>(out.size() + 1);
-    s.mission = sortie(from, from + lo);
-    s.resume = piece_of(path, from, from + lo, lined).points.front();
+    s.mission = sortie(from, to);
+    s.resume = piece_of(path, from, to, lined).points.front();
     s.photos = planned_photos(s.mission, plan.imaging.trigger_distance_m);
     out.push_back(std::move(s));
-    from += lo;
+    from = to;
     if (out.size() > 1000)
       throw InputError("drone " + d.name +
                        " would need more than 1000 sorties; check its endurance");
