@@ -273,6 +273,7 @@ std::string summary_json(const PreparedRun& p, const fleet::RunRecord& r) {
            {"requeued", r.requeued},
            {"duplicate_results", r.duplicate_results},
            {"faults", r.faults_happened},
+           {"battery_exhausted", r.battery_exhausted},
            {"faults_scheduled", p.settings.faults.size()},
            {"app_metrics", metrics}};
   if (!r.failure.empty()) out["failure"] = r.failure;

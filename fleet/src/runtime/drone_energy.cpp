@@ -124,6 +124,22 @@ double Runtime::leave_from(const Drone& d, const Vec3& place, double airborne_s,
                                      hover_power_w(d.spec, settings_.wind.velocity3_m_s())));
 }
 
+// The most a drone draws: level flight from still air to cruise into the wind (the power curve's
+// ends bound it), climbing, descending.
+namespace {
+double most_power_w(const DroneSpec& s, const Vec3& wind) {
+  return std::max({energy::level_flight_power_w(s.power.mechanical, 0.0) + s.power.payload_w,
+                   cruise_power_w(s, wind), hover_power_w(s, wind), climb_power_w(s),
+                   descent_power_w(s)});
+}
+}  // namespace
+
+double Runtime::exhausted_at(const Drone& d) const {
+  if (!airborne(d)) return kInf;
+  const double most_w = most_power_w(d.spec, settings_.wind.velocity3_m_s());
+  return d.t_mark + energy::seconds_to_soc(d.spec.battery, d.soc, 0.0, most_w) - settings_.tick_s;
+}
+
 bool Runtime::must_go_home(const Drone& d, double t) const {
   if (d.mode == Mode::landed || d.mode == Mode::charging || d.mode == Mode::lost ||
       d.mode == Mode::returning)

@@ -51,6 +51,7 @@ double Runtime::next_event(const Drone& d) const {
   }
   if (!d.link_up) e = std::min(e, d.link_back);
   if (!d.sensor_ok) e = std::min(e, d.sensor_back);
+  e = std::min(e, exhausted_at(d));
   if (std::isfinite(d.home_retry_s)) return std::min(e, d.home_retry_s);  // instead of leaving
   return std::min(e, leave_time(d));
 }
@@ -157,7 +158,10 @@ void Runtime::go_home(Drone& d, double t, const std::string& why) {
   d.relieving = -1;
   if (d.held_for >= 0) d.held_for = -1;
   integrate(d, t);
-  const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.pos.z > 0 ? d.pos.z : d.layer_m};
+  // Home at its own layer: a drone climbing when sent home (a fault mid-climb) finishes its climb
+  // first. Stopping between layers would put it in another drone's, which that drone's legs were
+  // cleared against it leaving.
+  const Vec3 home{d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
   d.home_retry_s = kInf;
   // A real vehicle out of reach flies home by its own failsafe: nothing the runtime can hold.
   const bool failsafe = !d.link_up && backend_.reports_every_tick();
@@ -370,6 +374,10 @@ void Runtime::land_home(Drone& d, double t) {
 void Runtime::step_drone(Drone& d, double t) {
   integrate(d, t);
   recover(d, t);
+  if (t >= exhausted_at(d) - 1e-9) {
+    exhaust(d, t);
+    return;
+  }
   if (std::isfinite(d.home_retry_s) && t >= d.home_retry_s - 1e-9) {
     d.home_retry_s = kInf;
     if (d.mode != Mode::landed && d.mode != Mode::charging && d.mode != Mode::lost) {

@@ -364,6 +364,11 @@ class Runtime final : public detail::Core {
   void requeue(Drone& d, const std::string& reason);
   void unserve(Drone& d);
   bool must_go_home(const Drone& d, double t) const;
+  /// When an airborne drone comes within a tick of running out of charge at the most it can
+  /// draw (drone_energy.cpp); infinity on the ground.
+  double exhausted_at(const Drone& d) const;
+  void exhaust(Drone& d, double t);
+  void lose_drone(Drone& d, const std::string& reason, double t);
   double leave_time(const Drone& d) const;  ///< when a hovering drone must head home
   bool available(const Drone& d) const;
 

@@ -178,6 +178,7 @@ struct RunRecord {
   int speculative_positions = 0, speculative_hits = 0, speculative_misses = 0;
   int reliefs = 0;              ///< stand-bys sent (relief)
   int faults_happened = 0;      ///< faults applied during the run (a `fault` event each)
+  int battery_exhausted = 0;    ///< drones down where their charge ran out (an event each)
   double decision_s_total = 0;  ///< wall time in the scheduler (timing.json only)
   double forecast_s_total = 0;  ///< wall time in the forecaster (timing.json only)
   /// Served and cancelled request places (t_s, x_m, y_m) for the pictures.
