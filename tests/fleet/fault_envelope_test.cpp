@@ -15,6 +15,7 @@
 
 #include "swath/fleet/apps.hpp"
 #include "swath/fleet/faults.hpp"
+#include "swath/fleet/fleet_file.hpp"
 #include "swath/fleet/runtime.hpp"
 #include "swath/vehicle/random.hpp"
 #include "swath/worlds/worlds.hpp"
@@ -231,6 +232,114 @@ TEST(FaultEnvelope, RandomFaultsKeepSeparationCeilingAndCharge) {
   EXPECT_GT(faults_in_all, 1000);  // the schedules did fault
   RecordProperty("faults", faults_in_all);
   RecordProperty("battery_exhausted", exhausted);
+}
+
+// ---- The tester's smallest cases (/work/t-fleet/min), in process. ----
+
+std::vector<DroneSpec> two_on_one_home(double d0_max_flight_s) {
+  return parse_fleet_file(
+      "drones:\n"
+      "  - {name: d0, endurance_s: 900, speed_m_s: 10, home_m: {x_m: 0, y_m: 0},"
+      " max_flight_time_s: " +
+          std::to_string(d0_max_flight_s) +
+          "}\n"
+          "  - {name: d1, endurance_s: 900, speed_m_s: 10, home_m: {x_m: 0, y_m: 0}}\n",
+      "fleet.yaml", {42.3601, -71.0942});
+}
+
+// Each drone's landings (the times it begins charging) in `events_jsonl`.
+std::map<int, std::vector<double>> landings(const std::string& events_jsonl) {
+  std::map<int, std::vector<double>> out;
+  for (const json& e : events_of(events_jsonl))
+    if (e.value("ev", "") == "drone_mode" && e["state"] == "charging")
+      out[e["drone"].get<int>()].push_back(e["at_s"].get<double>());
+  return out;
+}
+
+// d1's battery drops while d0 hovers over their shared home: both hold over it, d0 at 20 m and
+// d1 at 25 m. d0, lowest, must land (d1 straight above it is not in its way down), then d1; both
+// within d0's 45 s flight time and d1's charge, nobody run dry.
+TEST(FaultEnvelope, LowestOverASharedHomeLandsFirst) {
+  const auto world = worlds::parse_world(
+      "kind: static\ntasks:\n"
+      "  - {name: t0, actions: [{fly_to: {x_m: -2.6, y_m: -7.1}}, {hover: 5}]}\n"
+      "  - {name: t1, actions: [{fly_to: {x_m: -0.4, y_m: 7.4}}, {hover: 40}]}\n",
+      "w.yaml");
+  FaultEvent drop;
+  drop.t_s = 29;
+  drop.drone = 1;
+  drop.kind = FaultKind::battery_drop;
+  drop.soc = 0.15;
+  RuntimeSettings s = settings(1, {drop});
+  s.max_time_s = 600;
+  const RunRecord run = run_app(static_app(), *world, two_on_one_home(45), s);
+  EXPECT_TRUE(breaches(run.events_jsonl).empty());
+  EXPECT_EQ(run.battery_exhausted, 0);
+  const auto landed = landings(run.events_jsonl);
+  ASSERT_TRUE(landed.count(0) && landed.count(1));
+  EXPECT_LE(landed.at(0).front(), 45.0);  // d0's max_flight_time_s, from its take-off at 0
+  EXPECT_LT(landed.at(0).front(), landed.at(1).front());
+  EXPECT_LT(landed.at(1).front(), 60.0);
+}
+
+// drone 1 (of two in a row 6 m apart) loses its link 7 s into its climb, at 21 m of 25: it
+// finishes the climb before it heads home, and drone 0 at 20 m passes it at least 5 m away.
+TEST(FaultEnvelope, LinkLossMidClimbFinishesTheClimb) {
+  const auto world = worlds::parse_world(
+      "kind: static\ntasks:\n"
+      "  - {name: t0, actions: [{fly_to: {x_m: 5.2, y_m: -1.8}}, {hover: 5}]}\n"
+      "  - {name: t1, actions: [{fly_to: {x_m: 12.8, y_m: -1.6}}, {hover: 5}]}\n"
+      "  - {name: t2, actions: [{fly_to: {x_m: 11.9, y_m: 16.7}}, {hover: 20}]}\n",
+      "w.yaml");
+  std::vector<DroneSpec> drones(2);
+  for (int i = 0; i < 2; ++i) {
+    drones[static_cast<std::size_t>(i)].drone.name = "drone-" + std::to_string(i + 1);
+    drones[static_cast<std::size_t>(i)].home_m = {6.0 * i, 0, 0};
+  }
+  FaultEvent loss;
+  loss.t_s = 7;
+  loss.drone = 1;
+  loss.duration_s = 10;
+  const RunRecord run = run_app(static_app(), *world, drones, settings(1, {loss}));
+  EXPECT_TRUE(breaches(run.events_jsonl).empty());
+  // After the fault's own line (at 21 m) and until it is down, drone 1 is logged at its layer.
+  for (const json& e : events_of(run.events_jsonl)) {
+    if (e.value("ev", "") != "drone_mode" || e["drone"] != 1 || e["at_s"].get<double>() <= 7.0)
+      continue;
+    if (e["state"] == "charging") break;
+    EXPECT_EQ(e["alt_m"].get<double>(), 25.0) << e.dump();
+  }
+}
+
+// A battery drop to 1 % 30 m out: the drone cannot reach home and comes down where it is before
+// its charge goes below 0, logged (battery_exhausted, then lost at 0 m) and counted.
+TEST(FaultEnvelope, ChargeRunningOutBringsTheDroneDownWhereItIs) {
+  const auto world = worlds::parse_world(
+      "kind: static\ntasks:\n  - {name: t0, actions: [{fly_to: {x_m: 30, y_m: 0}}, {hover: "
+      "60}]}\n",
+      "w.yaml");
+  std::vector<DroneSpec> drones(2);
+  drones[0].drone.name = "d0";
+  drones[1].drone.name = "d1";
+  drones[1].home_m = {0, 6, 0};
+  FaultEvent drop;
+  drop.t_s = 20;
+  drop.drone = 0;
+  drop.kind = FaultKind::battery_drop;
+  drop.soc = 0.001;
+  const RunRecord run = run_app(static_app(), *world, drones, settings(1, {drop}));
+  EXPECT_TRUE(breaches(run.events_jsonl).empty());
+  EXPECT_EQ(run.battery_exhausted, 1);
+  EXPECT_GE(run.drones[0].final_soc, 0.0);
+  bool logged = false, down = false;
+  for (const json& e : events_of(run.events_jsonl)) {
+    if (e.value("ev", "") == "battery_exhausted" && e["drone"] == 0) logged = true;
+    if (logged && e.value("ev", "") == "drone_mode" && e["drone"] == 0 && e["state"] == "lost")
+      down = down || e["alt_m"].get<double>() == 0.0;
+  }
+  EXPECT_TRUE(logged);
+  EXPECT_TRUE(down);
+  EXPECT_TRUE(run.completed);  // d1 takes over the hover
 }
 
 }  // namespace
