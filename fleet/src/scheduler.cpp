@@ -487,7 +487,8 @@ Utility::Utility(const Snapshot& s)
     for (std::size_t r = 0; r < targets_; ++r) {
       const bool ok = pair_feasible(d, r);
       feasible_[d * targets_ + r] = ok ? 1 : 0;
-      eta_[d * targets_ + r] = s.eta.eta_s(s.drones[d].position_m, place(r));
+      eta_[d * targets_ + r] =
+          s.drones[d].takeoff_s + s.eta.eta_s(s.drones[d].position_m, place(r));
       if (ok) horizon_s_ = std::max(horizon_s_, 1.0 + eta_[d * targets_ + r]);
     }
   const Weights& w = s.weights;

@@ -528,7 +528,8 @@ double least_separation_m(const std::map<int, std::vector<Fix>>& trace, double e
 // The landing is flown, not dropped: drone b (layer 25 m) comes home while drone a works 40 s at
 // (1, 2) at 20 m, 3.6 m across from b's home (4, 0). Straight down there b would pass 3.6 m
 // from a (as it did when the landing was instant at home); it holds over its home at 25 m until
-// a has left, then descends, sample by sample in the log, and lands.
+// a has left, then descends, sample by sample in the log, and lands. a climbs at 2 m/s (10 s to
+// its layer, b 8.3 s to its own), so b, 4 m nearer, is the one sent to p1 and a takes the watch.
 TEST(Envelope, ALandingHoldsOverHomeUntilItsWayDownIsClear) {
   const auto world = worlds::parse_world(
       "kind: static\nsensors: {camera: {time_s: 2.0}}\ntasks:\n"
@@ -538,6 +539,7 @@ TEST(Envelope, ALandingHoldsOverHomeUntilItsWayDownIsClear) {
       "w.yaml");
   std::vector<DroneSpec> fleet = drones_in_a_row(2, 4);
   fleet[0].max_flight_time_s = 600;
+  fleet[0].drone.climb_speed_m_s = 2;
   fleet[1].max_flight_time_s = 70;
   RuntimeSettings s;
   s.app_name = "static";

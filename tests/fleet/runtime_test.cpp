@@ -151,6 +151,32 @@ TEST(Runtime, OneTaskCompletesWhenTheClosedFormSays) {
   EXPECT_EQ(results, 2);  // fly_to and sense
 }
 
+// The scheduler counts a landed drone's climb to its layer (scheduler.hpp, DroneState::takeoff_s).
+// a serves the first probe over its home and hovers there; the second probe is 40 m from a and
+// 5 m from b's home, but b climbs at 0.25 m/s (100 s to its 25 m layer) where a flies there in
+// ~15 s: a is sent, and the run ends when a's flight says. Counting the level leg alone sent b.
+TEST(Runtime, AnAirborneDroneIsSentBeforeALandedOneThatWouldClimbLonger) {
+  const ProbeWorld world;
+  App app{"two probes", "", [](Ctx& c) -> Co<void> {
+            auto first = c.spawn(Kind{"probe"}, {}, probe_at, Vec3{0, 0, 0});
+            co_await first;
+            auto second = c.spawn(Kind{"probe"}, {}, probe_at, Vec3{40, 0, 0});
+            co_await second;
+          }};
+  DroneSpec slow = drone("b", {45, 0, 0});
+  slow.drone.climb_speed_m_s = 0.25;
+  const RunRecord r = run_app(app, world, {drone("a"), slow}, RuntimeSettings{});
+  ASSERT_TRUE(r.completed) << r.failure;
+  std::vector<int> dispatched;
+  for (const auto& e : events(r))
+    if (e["ev"] == "dispatch") dispatched.push_back(e["drone"].get<int>());
+  ASSERT_FALSE(dispatched.empty());
+  for (int d : dispatched) EXPECT_EQ(d, 0);
+  // a: climb 20 m, sense 3 s, 40 m level, sense 3 s; well under b's climb alone.
+  const double a_alone = 20.0 / 3.0 + 3.0 + rest_to_rest_s(40, 10, 2, 20, 2) + 3.0;
+  EXPECT_LT(r.completion_time_s, a_alone + 1.0);
+}
+
 TEST(Runtime, EnergyEqualsTheBudgetOfTheSameLegs) {
   // Without accelerations and the approach phase, the simulated drone flies the legs of a
   // waypoint mission at constant speed: its energy is `swath-energy budget`'s for that mission

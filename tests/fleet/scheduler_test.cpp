@@ -96,6 +96,34 @@ TEST(Scheduler, TheEtaIsTheTrapezoid) {
   EXPECT_EQ(m.eta_s({1, 2, 3}, {1, 2, 3}), 0.0);
 }
 
+// A drone on the ground climbs to its layer before its first leg: the eta a pair is valued by
+// starts with that climb. One request, a landed drone beside it (30 s to climb) and an airborne
+// one 60 m off (11 s away): every scheduler sends the airborne one, and the two etas are the
+// climb plus the trapezoid and the trapezoid alone.
+TEST(Scheduler, ALandedDroneCountsItsClimbBeforeItsFirstLeg) {
+  Snapshot s;
+  DroneState landed, flying;
+  landed.position_m = {2, 0, 30};
+  landed.takeoff_s = 30;
+  flying.position_m = {-60, 0, 30};
+  s.drones = {landed, flying};
+  Request q;
+  q.location_m = {0, 0, 30};
+  s.requests = {q};
+  const Utility u(s);
+  EXPECT_NEAR(u.eta_s(0, 0), 30 + s.eta.eta_s(landed.position_m, q.location_m), 1e-12);
+  EXPECT_NEAR(u.eta_s(1, 0), s.eta.eta_s(flying.position_m, q.location_m), 1e-12);
+  EXPECT_GT(u.eta_s(0, 0), u.eta_s(1, 0));
+  for (const char* name : {"greedy", "hungarian", "sa"}) {
+    auto rng = vehicle::SplitMix64::stream(1, "sa");
+    const Assignment a = make_scheduler(name)->assign(s, rng);
+    ASSERT_EQ(a.size(), 2u) << name;
+    EXPECT_FALSE(a[0]) << name;
+    ASSERT_TRUE(a[1]) << name;
+    EXPECT_EQ(*a[1], 0) << name;
+  }
+}
+
 // SA against exhaustive search on the 500 small instances `make(seed)` gives (docs/swath-fleet.md,
 // 'Checked'): the optimum in ≥ 99 %, never more than 1 % below; `also` sees each instance and SA's
 // answer.

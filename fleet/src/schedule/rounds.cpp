@@ -100,6 +100,7 @@ void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
     ds.home_m = {d.spec.home_m.x, d.spec.home_m.y, d.layer_m};
     ds.soc = d.soc;
     ds.can_sense = d.sensor_ok;
+    if (d.mode == Mode::landed) ds.takeoff_s = d.layer_m / d.spec.kinematics().climb_m_s;
     if (std::isfinite(d.spec.max_flight_time_s)) {
       // What is left once the descent at home and two ticks of margin are set aside.
       const double used = d.mode == Mode::landed ? 0.0 : now_ - d.airborne_since;

@@ -42,6 +42,10 @@ struct DroneState {
   /// Reserved for a non-interruptible task (docs/swath-fleet.md): only this request (index) may be
   /// given to it; -1 when that task shows none now.
   std::optional<int> only_request;
+  /// Time before it can fly its first leg, s: the climb to its layer when it is on the ground
+  /// (0 airborne). Part of every eta it is given, so that a landed drone is not preferred to an
+  /// airborne one that reaches the request first.
+  double takeoff_s = 0;
 };
 
 /// What a pair costs in charge (paper 004 eq. 12 via energy::Battery): fly there at cruise
