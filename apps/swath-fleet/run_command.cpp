@@ -379,7 +379,8 @@ int FleetRenderCommand::run() {
   const FleetPicture gantt = gantt_picture(r, width_px, std::max(200, height_px / 3));
   set.add("gantt.png", render::encode_png(render::draw(gantt.scene, gantt.view)));
   set.commit();
-  std::cout << "swath-fleet render: " << r.drones.size() << " drones over "
+  std::cout << "swath-fleet render: " << r.drones.size()
+            << (r.drones.size() == 1 ? " drone over " : " drones over ")
             << base::fixed_text(r.end_s, 1) << " s -> " << (in_place ? run_ : output_)
             << "/tracks.png, gantt.png\n";
   return base::kExitSuccess;
