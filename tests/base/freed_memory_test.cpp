@@ -79,7 +79,7 @@ int huge_page_eligible(const void* address) {
 }
 
 // The kernel's mode for transparent huge pages ("always", "madvise", "never"; "": unknown).
-std::string huge_page_mode() {
+[[maybe_unused]] std::string huge_page_mode() {
   std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string text;
   std::getline(in, text);
@@ -92,7 +92,7 @@ std::string huge_page_mode() {
 // The checks of the test below, in a process of their own: exit 0 when they hold, else the
 // number of the first that fails (a heap other tests fragmented and trimmed first would put the
 // block marked among its free chunks, not at its top, where a fresh process's plan grows).
-[[noreturn]] void check_huge_heap_pages() {
+[[noreturn, maybe_unused]] void check_huge_heap_pages() {
   constexpr std::size_t kBlock = 8 << 20;
   keep_freed_memory();
   heap_on_huge_pages();

@@ -23,7 +23,7 @@ struct DroneResource {
   double capability = 1.0;        ///< relative share when no range is known, > 0
   /// The longest flight it may make, seconds, climbs, stops and descents included (its charge);
   /// absent: no limit. A share whose measured flight is longer counts as beyond its range.
-  std::optional<double> flight_limit_s;
+  std::optional<double> flight_limit_s = std::nullopt;
 };
 
 struct DroneWork {

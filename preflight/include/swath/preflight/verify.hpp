@@ -57,7 +57,7 @@ struct DroneFile {
   bool instead = false;
   /// The drone that flies the file: files of one drone are never checked against each other
   /// (one drone flies one at a time). Empty: sorties_of, else the file itself.
-  std::string drone;
+  std::string drone = {};
   /// Its place among its drone's sorties (from 1; summary.json's order): it flies after those
   /// before it where their launch offsets tie. 0: not a sortie.
   std::size_t sortie = 0;
