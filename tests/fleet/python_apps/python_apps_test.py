@@ -20,6 +20,9 @@ import unittest
 from types import SimpleNamespace
 from concurrent.futures import ThreadPoolExecutor
 
+import fleet_runs
+from fleet_runs import events
+
 try:
     import numpy as np
     HAVE_NUMPY = True
@@ -49,18 +52,8 @@ def read_bytes(path):
         return f.read()
 
 
-def events(out):
-    with open(os.path.join(out, "events.jsonl")) as f:
-        return [json.loads(line) for line in f]
-
-
-class PythonApps(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.addCleanup(self.tmp.cleanup)
-
-    def out(self, name):
-        return os.path.join(self.tmp.name, name)
+class PythonApps(fleet_runs.RunsInTemporaryDirectory):
+    FLEET = FLEET
 
     def test_tasks_futures_cancellation(self):
         out = self.out("run")
@@ -149,19 +142,6 @@ class PythonApps(unittest.TestCase):
         self.assertFalse(os.path.exists(out))
 
     # ---- apps that keep their turn, spawn without end, or break their sensors ----------------
-
-    def app(self, name, text):
-        path = self.out(name)
-        with open(path, "w") as f:
-            f.write(text)
-        return path
-
-    def check_passes(self, out):
-        c = subprocess.run([FLEET, "check", out], capture_output=True, text=True)
-        self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
-
-    def failed_reasons(self, out):
-        return [e.get("reason", "") for e in events(out) if e["ev"] == "task_failed"]
 
     def wait_for_stderr(self, p, text, timeout_s=60):
         # Reads the raw pipe, not readline(): at the end of a run that has exited, readline()

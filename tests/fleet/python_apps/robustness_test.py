@@ -7,15 +7,16 @@ signal or --max-time whatever the app's Python does; a refusal at the call is Ac
 task_failed reason is one line and the same from run to run; an app's metrics keep summary.json
 readable; a file at a non-ASCII path loads; a bad WORLD, NAME or async APP is bad input.
 """
-import json
 import os
 import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 import unittest
+
+import fleet_runs
+from fleet_runs import events, summary
 
 FLEET, SOURCE = sys.argv[1], sys.argv[2]
 HERE = os.path.join(SOURCE, "tests", "fleet", "python_apps")
@@ -30,37 +31,8 @@ def run(app, world, out, *extra, timeout=120):
                           capture_output=True, text=True, timeout=timeout)
 
 
-def events(out):
-    with open(os.path.join(out, "events.jsonl")) as f:
-        return [json.loads(line) for line in f]
-
-
-def summary(out):
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
-
-
-class Robustness(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.addCleanup(self.tmp.cleanup)
-
-    def out(self, name):
-        return os.path.join(self.tmp.name, name)
-
-    def app(self, name, text):
-        path = self.out(name)
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, "w") as f:
-            f.write(text)
-        return path
-
-    def check_passes(self, out):
-        c = subprocess.run([FLEET, "check", out], capture_output=True, text=True)
-        self.assertEqual(c.returncode, 0, c.stdout + c.stderr)
-
-    def failed_reasons(self, out):
-        return [e.get("reason", "") for e in events(out) if e["ev"] == "task_failed"]
+class Robustness(fleet_runs.RunsInTemporaryDirectory):
+    FLEET = FLEET
 
     # ---- zero simulated time ------------------------------------------------------------------
 
