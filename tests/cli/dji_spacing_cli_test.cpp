@@ -6,7 +6,6 @@
 // waypoint. Also several drones whose first leg is slowed (the DJI and Litchi flights flew out
 // from home at the slow speed, minutes late, into the next drone's launch).
 #include <gtest/gtest.h>
-#include <zip.h>
 #include <pugixml.hpp>
 
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/zip_entries.hpp"
 #include "cli_runner.hpp"
 
 namespace swath::test {
@@ -53,20 +53,10 @@ std::vector<Position> litchi_positions(const std::string& path) {
 }
 
 std::string unzipped(const std::string& path, const char* entry) {
-  int error = 0;
-  zip_t* archive = zip_open(path.c_str(), ZIP_RDONLY, &error);
-  EXPECT_NE(archive, nullptr) << path;
-  if (archive == nullptr) return "";
-  std::string content;
-  zip_stat_t st;
-  if (zip_stat(archive, entry, 0, &st) == 0) {
-    content.resize(st.size);
-    zip_file_t* file = zip_fopen(archive, entry, 0);
-    EXPECT_EQ(zip_fread(file, content.data(), st.size), static_cast<zip_int64_t>(st.size));
-    zip_fclose(file);
-  }
-  zip_close(archive);
-  return content;
+  const auto entries = zip_entries(read_text(path));
+  const bool found = entries && entries->count(entry) == 1;
+  EXPECT_TRUE(found) << path << " has no " << entry;
+  return found ? entries->at(entry) : "";
 }
 
 std::vector<Position> kmz_positions(const std::string& path) {

@@ -3,7 +3,6 @@
 // the PX4 .waypoints' params "no value" (NaN) where the .plan has null. Asserted on the written
 // files parsed back (the KMZ unzipped with libzip, its XML parsed with pugixml).
 #include <gtest/gtest.h>
-#include <zip.h>
 
 #include <cmath>
 #include <filesystem>
@@ -14,38 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "../support/zip_entries.hpp"
 #include "cli_runner.hpp"
 
 namespace swath::test {
 namespace {
 
 using nlohmann::json;
-
-// The entries of a zip archive by name, with their bytes (none when it is no zip).
-std::map<std::string, std::string> kmz_entries(const std::string& bytes) {
-  std::map<std::string, std::string> out;
-  zip_error_t error;
-  zip_error_init(&error);
-  zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
-  zip_t* archive = source ? zip_open_from_source(source, ZIP_RDONLY, &error) : nullptr;
-  if (archive == nullptr) {
-    if (source) zip_source_free(source);
-    zip_error_fini(&error);
-    return out;
-  }
-  for (zip_int64_t i = 0; i < zip_get_num_entries(archive, 0); ++i) {
-    zip_stat_t st;
-    zip_stat_index(archive, static_cast<zip_uint64_t>(i), 0, &st);
-    std::string content(st.size, '\0');
-    zip_file_t* file = zip_fopen_index(archive, static_cast<zip_uint64_t>(i), 0);
-    zip_fread(file, content.data(), st.size);
-    zip_fclose(file);
-    out[st.name] = content;
-  }
-  zip_close(archive);
-  zip_error_fini(&error);
-  return out;
-}
 
 // Every speed a waylines.wpml sets: the wayline's autoFlightSpeed and each waypointSpeed.
 std::vector<double> wpml_speeds(const std::string& wpml) {
@@ -69,9 +43,10 @@ TEST(PlanFormatsCli, DjiSlowDownsBesideZonesAreWithinDjisSpeedsAndPassTheCheck) 
                                "--turnaround 30 -o " +
                                out);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const auto entries = kmz_entries(read_text(out + "/drone-1.kmz"));
-  ASSERT_EQ(entries.count("wpmz/waylines.wpml"), 1u);
-  const std::vector<double> speeds = wpml_speeds(entries.at("wpmz/waylines.wpml"));
+  const auto entries = zip_entries(read_text(out + "/drone-1.kmz"));
+  ASSERT_TRUE(entries);
+  ASSERT_EQ(entries->count("wpmz/waylines.wpml"), 1u);
+  const std::vector<double> speeds = wpml_speeds(entries->at("wpmz/waylines.wpml"));
   ASSERT_GT(speeds.size(), 10u);
   std::size_t slowed = 0;
   for (double v : speeds) {

@@ -3,7 +3,6 @@
 // checked against the planned mission: points, heights, speeds, headings (an independent bearing
 // on the WGS84 ellipsoid's local radii), photos (against the planned photo count), splits.
 #include <gtest/gtest.h>
-#include <zip.h>
 #include <pugixml.hpp>
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "../support/zip_entries.hpp"
 #include "meadow_survey.hpp"
 #include "swath/base/input_error.hpp"
 #include "swath/geometry/local_frame.hpp"
@@ -286,30 +286,11 @@ TEST(LitchiCsv, HoverShotsTimeTriggerAndLanding) {
 
 // ---- DJI: the KMZ unzipped with libzip's reader, its XML parsed with pugixml ----
 
+// The KMZ's entries; none, and a failure, when libzip cannot read it.
 std::map<std::string, std::string> unzip(const std::string& bytes) {
-  std::map<std::string, std::string> out;
-  zip_error_t error;
-  zip_error_init(&error);
-  zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
-  zip_t* archive =
-      source ? zip_open_from_source(source, ZIP_RDONLY | ZIP_CHECKCONS, &error) : nullptr;
-  EXPECT_NE(archive, nullptr) << zip_error_strerror(&error);
-  if (archive == nullptr) {
-    if (source) zip_source_free(source);
-    return out;
-  }
-  for (zip_int64_t i = 0; i < zip_get_num_entries(archive, 0); ++i) {
-    zip_stat_t st;
-    zip_stat_index(archive, static_cast<zip_uint64_t>(i), 0, &st);
-    std::string content(st.size, '\0');
-    zip_file_t* file = zip_fopen_index(archive, static_cast<zip_uint64_t>(i), 0);
-    EXPECT_EQ(zip_fread(file, content.data(), st.size), static_cast<zip_int64_t>(st.size));
-    zip_fclose(file);
-    out[st.name] = content;
-  }
-  zip_close(archive);
-  zip_error_fini(&error);
-  return out;
+  auto entries = test::zip_entries(bytes);
+  EXPECT_TRUE(entries) << "libzip cannot read the KMZ";
+  return entries.value_or(std::map<std::string, std::string>{});
 }
 
 std::string text(const pugi::xml_node& n, const char* child) {
