@@ -177,6 +177,48 @@ TEST(Runtime, AnAirborneDroneIsSentBeforeALandedOneThatWouldClimbLonger) {
   EXPECT_LT(r.completion_time_s, a_alone + 1.0);
 }
 
+// The no-feasible-drone clock (docs/swath-fleet.md) runs only while a drone is free and the
+// request goes without one: a photo waiting 700 s for the one drone's hover is served after it;
+// a photo 900 m off that a drone of 60 s flights cannot reach fails once the drone has been free
+// 600 s without taking it, and the run goes on to its end.
+TEST(Runtime, ARequestWaitingForABusyDroneIsServedOneNoDroneCanTakeFails) {
+  const auto apps = builtin_apps();
+  const App& app =
+      *std::find_if(apps.begin(), apps.end(), [](const App& a) { return a.name == "static"; });
+  auto failures = [](const RunRecord& r) {
+    std::vector<double> at_s;
+    for (const auto& e : events(r))
+      if (e["ev"] == "task_failed") {
+        EXPECT_EQ(e["reason"], "no_feasible_drone");
+        at_s.push_back(e["t_s"].get<double>());
+      }
+    return at_s;
+  };
+  RuntimeSettings s;
+  s.app_name = "static";
+  const auto busy = worlds::parse_world(
+      "kind: static\nsensors: {camera: {time_s: 2.0}}\ntasks:\n"
+      "  - {name: long, actions: [{fly_to: {x_m: 10, y_m: 0}}, {hover: 700}]}\n"
+      "  - {name: photo, actions: [{fly_to: {x_m: 20, y_m: 0}}, {sense: camera}]}\n",
+      "busy.yaml");
+  const RunRecord served = run_app(app, *busy, {drone("a")}, s);
+  ASSERT_TRUE(served.completed) << served.failure;
+  EXPECT_TRUE(failures(served).empty());
+  EXPECT_GT(served.completion_time_s, 700);
+
+  const auto far = worlds::parse_world(
+      "kind: static\nsensors: {camera: {time_s: 2.0}}\ntasks:\n"
+      "  - {name: far, actions: [{fly_to: {x_m: 900, y_m: 0}}, {sense: camera}]}\n",
+      "far.yaml");
+  DroneSpec short_flights = drone("a");
+  short_flights.max_flight_time_s = 60;
+  const RunRecord failed = run_app(app, *far, {short_flights}, s);
+  ASSERT_TRUE(failed.completed) << failed.failure;
+  const std::vector<double> at_s = failures(failed);
+  ASSERT_EQ(at_s.size(), 1u);
+  EXPECT_NEAR(at_s[0], s.no_feasible_s, s.tick_s + 1e-9);  // free on the ground from the start
+}
+
 TEST(Runtime, EnergyEqualsTheBudgetOfTheSameLegs) {
   // Without accelerations and the approach phase, the simulated drone flies the legs of a
   // waypoint mission at constant speed: its energy is `swath-energy budget`'s for that mission

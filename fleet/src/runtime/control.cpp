@@ -131,7 +131,10 @@ void Runtime::resume_run(const std::string& reason) {
   paused_ = false;
   const double paused_s = now_ - paused_since_s_;
   for (Task& t : tasks_)
-    if (t.has_work() && t.serving < 0 && t.requested) t.visible_since_s += paused_s;
+    if (t.has_work() && t.serving < 0 && t.requested) {
+      t.visible_since_s += paused_s;
+      t.unserved_since_s += paused_s;  // infinity stays infinity
+    }
   log(json{{"ev", "resumed"}, {"reason", reason}, {"paused_s", round6(paused_s)}});
   changed_ = true;
 }

@@ -198,7 +198,7 @@ Task& Runtime::start_main() {
 void Runtime::fail_unserved() {
   for (Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested &&
-        now_ - t.visible_since_s >= settings_.no_feasible_s) {
+        now_ - t.unserved_since_s >= settings_.no_feasible_s) {
       fail_action_futures(t, std::make_exception_ptr(ActionFailed("no_feasible_drone")));
       finish_task(t, TaskStatus::failed, "no_feasible_drone");
     }
@@ -216,7 +216,7 @@ double Runtime::next_happening() const {
   next = std::min(next, retry_s_);
   for (const Task& t : tasks_)
     if (t.has_work() && t.serving < 0 && t.requested)
-      next = std::min(next, t.visible_since_s + settings_.no_feasible_s);
+      next = std::min(next, t.unserved_since_s + settings_.no_feasible_s);
   // External vehicles report at any time: every tick (real runs sleep to the next tick;
   // docs/swath-fleet.md, 'The runtime').
   if (backend_.reports_every_tick()) next = std::min(next, now_ + settings_.tick_s);

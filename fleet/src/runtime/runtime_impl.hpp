@@ -104,6 +104,9 @@ struct Task {
   Vec3 location;             // where its last fly_to goes
   bool has_location = false;
   double created_s = 0, ended_s = -1, visible_since_s = -1;
+  // The no-feasible-drone clock: since when a round left a drone free and this request without
+  // one (note_unserved); infinity while it is not running.
+  double unserved_since_s = std::numeric_limits<double>::infinity();
   std::optional<Vec3> first_loc;
   std::vector<int> drones_used;
   int sync_node = -1;  // the sync node its latest awaits formed; -1 after it did something else
@@ -316,6 +319,7 @@ class Runtime final : public detail::Core {
   // The run's steps (run() is their loop).
   Task& start_main();
   void fail_unserved();
+  void note_unserved(const Snapshot& s, const Assignment& a, const std::vector<int>& req_task);
   double next_happening() const;
   bool advance_clock(double next, std::int64_t& tick_index);
   void step_drones_to_now();

@@ -68,6 +68,7 @@ void Runtime::add_requests(Snapshot& s, std::vector<int>& req_task) {
     if (!t.requested) {
       t.requested = true;
       t.visible_since_s = now_;
+      t.unserved_since_s = kInf;
       log(at_json(json{{"ev", "request_visible"}, {"task", t.id}, {"segment", t.segment}},
                   r.location_m, json{{"service_s", round6(r.service_s)}}));
       note_hits(r.location_m, t.id);
@@ -220,7 +221,35 @@ void Runtime::schedule() {
       assignment.push_back(json{{"drone", drone_of[i]}, {"forecast", k - req_task.size()}});
   }
   log(json{{"ev", "schedule"}, {"assignment", assignment}});
+  note_unserved(s, a, req_task);
   apply_assignment(s, a, req_task, drone_of);
+}
+
+// The no-feasible-drone clock of each visible request (docs/swath-fleet.md): it runs while a
+// round leaves a drone free (nothing, or only a forecast place: a request it could serve would
+// outrank that) and the request without a drone, or no drone is left to fly at all; it stops
+// when the request is given to a drone or every drone is busy (a held drone, or one kept for its
+// non-interruptible task, is not free). A request that waits for busy drones never fails for that.
+void Runtime::note_unserved(const Snapshot& s, const Assignment& a,
+                            const std::vector<int>& req_task) {
+  const auto visible = static_cast<int>(req_task.size());
+  std::vector<char> given(req_task.size(), 0);
+  bool free_drone = false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] && *a[i] < visible)
+      given[static_cast<std::size_t>(*a[i])] = 1;
+    else if (!s.drones[i].only_request)
+      free_drone = true;
+  }
+  const bool none_left = std::all_of(drones_.begin(), drones_.end(),
+                                     [](const Drone& d) { return d.mode == Mode::lost; });
+  for (std::size_t k = 0; k < req_task.size(); ++k) {
+    Task& t = tasks_[static_cast<std::size_t>(req_task[k])];
+    if (given[k] || !(free_drone || none_left))
+      t.unserved_since_s = kInf;
+    else if (!std::isfinite(t.unserved_since_s))
+      t.unserved_since_s = now_;
+  }
 }
 
 }  // namespace swath::fleet::rt

@@ -95,7 +95,7 @@ struct RuntimeSettings {
   double hold_s = 10;            ///< non-interruptible tasks keep their drone this long, s
   double max_time_s = 3600;      ///< a run that has not completed by then ends (exit 4), s
   double state_period_s = 1.0;   ///< drone_state events, s (> 0)
-  double no_feasible_s = 600;    ///< a request no drone can take fails after this, s
+  double no_feasible_s = 600;    ///< a request no free drone takes fails after this, s
   double layer_base_m = 20;      ///< altitude of drone 0's layer, m
   double layer_step_m = 5;       ///< between layers, m (at least envelope.separation_m is used)
   /// The safety envelope (envelope.hpp): ceiling, separation, fence. Every fly_to is checked
