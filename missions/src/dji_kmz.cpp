@@ -112,6 +112,29 @@ std::optional<double> config_height_m(const pugi::xml_node& config, const char* 
   return h;
 }
 
+// The seconds the aircraft hovers on reaching placemark `p` (number `k` of its wayline): the
+// hoverTime of each hover action in its reachPoint action groups that start and end on it (DJI
+// Pilot 2 stops there for that long, as a .plan's held waypoint or a Litchi stay). A group over
+// several points is not read as a hold (no stop is taken for granted).
+double hover_s(const pugi::xml_node& p, std::size_t k, const std::string& where) {
+  double hold_s = 0.0;
+  for (const pugi::xml_node& g : p.children("wpml:actionGroup")) {
+    if (std::string(g.child("wpml:actionTrigger").child("wpml:actionTriggerType").text().get()) !=
+        "reachPoint")
+      continue;
+    const std::string in = where + ": action group " + g.child("wpml:actionGroupId").text().get();
+    const double start = number(g, "wpml:actionGroupStartIndex", in);
+    const double end = number(g, "wpml:actionGroupEndIndex", in);
+    if (start != static_cast<double>(k) || end != start) continue;
+    for (const pugi::xml_node& a : g.children("wpml:action"))
+      if (std::string(a.child("wpml:actionActuatorFunc").text().get()) == "hover") {
+        const double t = number(a.child("wpml:actionActuatorFuncParam"), "wpml:hoverTime", in);
+        if (t > 0) hold_s += t;
+      }
+  }
+  return hold_s;
+}
+
 // One wayline (a Folder) appended to `m`: its waypoints, speeds and photo triggers. `speed` is
 // the speed in force, carried from one wayline to the next as the aircraft flies them in turn.
 void add_wayline(const pugi::xml_node& folder, const std::string& in, Mission& m, double& speed) {
@@ -144,6 +167,8 @@ void add_wayline(const pugi::xml_node& folder, const std::string& in, Mission& m
     w.position = {lat, lon, 0.0};
     w.altitude_m = number(p, "wpml:executeHeight", where);
     w.place = where;
+    // A hover on arrival is a hold (param1): the aircraft is at rest there.
+    w.params[0] = hover_s(p, index.size(), where);
     m.items.push_back(w);
     index.push_back(m.items.size());
     set_speed();
