@@ -133,6 +133,7 @@ class MissionBuilder {
     camera(false);
     route_to(m_.home, route);
     through_to(m_.home);  // the way home, to the landing or the return to launch
+    home_stop();
     if (s_.land) {
       if (s_.vehicle == Vehicle::fixedwing)
         m_.items.push_back({ItemKind::land_start, m_.home, 0.0});
@@ -157,6 +158,29 @@ class MissionBuilder {
   DroneMission& mission() { return m_; }
 
  private:
+  // The flight ends with a stop at home (the return to launch or the landing there), which may run
+  // on past home along the leg into it as any stop does: where that overrun would reach a zone's
+  // clearance band (a default home keeps only the clearance), the flight flies to home as a
+  // waypoint first, so that slow_approaches() approaches it slowly (a DO_CHANGE_SPEED before it:
+  // ArduCopter's RTL flies at RTL_SPEED, not the speed the mission set), and returns or lands
+  // from there.
+  void home_stop() {
+    if (!s_.free_run_m || s_.vehicle != Vehicle::multirotor || m_.path.size() < 2) return;
+    const Point2 from = at();
+    const double in_m = geometry::distance(from, m_.home);
+    if (!(in_m >= kMergeWithin_m)) return;
+    const double free_m = s_.free_run_m(m_.home, (m_.home - from) * (1 / in_m));
+    // From a stop just before (a hold, a turn a degree sharper than kStopTurn_deg, as stops_at())
+    // the drone reaches no more than sqrt(2 a d) over the d to home, as the check reckons it.
+    double arrive_m_s = s_.speed_m_s;
+    const Point2 before = m_.path[m_.path.size() - 2];
+    if (holds_.back() > 0 || (geometry::distance(before, from) > 0 &&
+                              turn_deg(before, from, m_.home) > kStopTurn_deg + 1))
+      arrive_m_s = std::min(arrive_m_s, std::sqrt(2 * s_.accel_m_s2 * in_m));
+    if (free_m >= stop_overrun_m(arrive_m_s, s_.accel_m_s2) + 0.01) return;
+    waypoint(m_.home);
+  }
+
   // Stops (a hold, a turn sharper than kStopTurn_deg) where the overrun at the cruise speed would
   // reach a zone's clearance band (s.free_run_m) are approached slowly: the speed cut to what stops
   // within the free run (at least s.slowest_approach_m_s) early enough that the vehicle, braking at
@@ -210,7 +234,7 @@ class MissionBuilder {
       const double brake_m = (v * v - slow_m_s * slow_m_s) / (2 * a) + kBrakeMargin_m;
       const double lead_m = std::max(kSlowApproach_m, brake_m);
       const double past_m = std::min(kSlowApproach_m, out_m / 2);
-      if (!cut_after_[i]) fast_again(i, item_of, p, after, out_m, past_m);
+      if (!cut_after_[i] && !ends_flight(i)) fast_again(i, item_of, p, after, out_m, past_m);
       if (lead_m < in_m - kMergeWithin_m) {
         // Items: ..., w_in, slow, p, (its DO items), w_out, cruise, (the next waypoint) ...
         const Point2 w_in = p - u * lead_m;
@@ -276,7 +300,13 @@ class MissionBuilder {
     const double out_m = geometry::distance(p, after);
     if (!(geometry::distance(before, p) > 0)) return false;
     const bool held = holds_[i] > 0 || (out_m <= 0 && holds_[i + 1] > 0);
-    return held || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg);
+    return held || ends_flight(i) || (out_m > 0 && turn_deg(before, p, after) > kStopTurn_deg);
+  }
+
+  // Whether path point i is a waypoint on home right before the return or landing there
+  // (home_stop()): the flight's last stop, with no cruise speed again after it.
+  bool ends_flight(std::size_t i) const {
+    return i + 2 == m_.path.size() && !(geometry::distance(m_.path[i], m_.path[i + 1]) > 0);
   }
 
   // Whether the vehicle surely stops at path point j (a hold, or a turn a degree sharper than
