@@ -454,6 +454,12 @@ bool Utility::pair_feasible(std::size_t d, std::size_t r) const {
   bool ok = (!q.bound_drone || *q.bound_drone == static_cast<int>(d)) &&
             (!dr.only_request || *dr.only_request == static_cast<int>(r)) &&
             (dr.can_sense || !q.needs_sensor) && inside_fence(s.fence, q.location_m);
+  // Not the target it has: given before that drone took off, it was checked against its climb.
+  const bool keeps = dr.target && *dr.target == static_cast<int>(r);
+  for (const LandingColumn& c : s.landing_columns)
+    if (ok && !keeps && c.drone != static_cast<int>(d) && c.home_m.z > dr.home_m.z)
+      ok =
+          std::hypot(q.location_m.x - c.home_m.x, q.location_m.y - c.home_m.y) >= s.column_radius_m;
   if (ok && s.envelope) ok = s.envelope->reachable(dr.position_m, q.location_m, dr.home_m);
   if (ok && std::isfinite(dr.remaining_flight_s))
     ok = s.eta.eta_s(dr.position_m, q.location_m) + q.service_s +

@@ -282,6 +282,43 @@ TEST(FaultEnvelope, LowestOverASharedHomeLandsFirst) {
   EXPECT_LT(landed.at(1).front(), 60.0);
 }
 
+// A drone is not sent to work in the column of an airborne drone of a higher layer (scheduler.hpp,
+// LandingColumn): b (25 m) comes home early on a battery drop while a (20 m) is free and a
+// 900 s hover waits at b's home. Sent there while b was out, a hovered under b's column and b
+// held over it until its battery ran out and it came down through a (the tester's case); now the
+// hover waits until b is down, b lands at once, and no battery runs dry.
+TEST(FaultEnvelope, NoDroneIsSentToWorkUnderTheColumnOfOneStillToLand) {
+  const auto world = worlds::parse_world(
+      "kind: static\ntasks:\n"
+      "  - {name: far1, actions: [{fly_to: {x_m: -80, y_m: 0}}, {hover: 200}]}\n"
+      "  - {name: far2, actions: [{fly_to: {x_m: 60, y_m: 0}}, {hover: 1}]}\n"
+      "  - {name: block, after: [far2], actions: [{fly_to: {x_m: -6, y_m: 0}}, {hover: 900}]}\n",
+      "w.yaml");
+  std::vector<DroneSpec> drones(2);
+  drones[0].drone.name = "a";
+  drones[1].drone.name = "b";
+  drones[1].home_m = {-6, 0, 0};
+  FaultEvent drop;
+  drop.t_s = 60;
+  drop.drone = 1;
+  drop.kind = FaultKind::battery_drop;
+  drop.soc = 0.1;
+  RuntimeSettings s = settings(1, {drop});
+  s.max_time_s = 1500;
+  const RunRecord run = run_app(static_app(), *world, drones, s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  EXPECT_TRUE(breaches(run.events_jsonl).empty());
+  EXPECT_EQ(run.battery_exhausted, 0);
+  // Whenever a drone is sent to b's home, b is on the ground or is that drone.
+  const std::vector<json> events = events_of(run.events_jsonl);
+  std::string b_mode = "landed";
+  for (const json& e : events) {
+    if (e["ev"] == "drone_mode" && e["drone"] == 1) b_mode = e["state"].get<std::string>();
+    if (e["ev"] == "dispatch" && e["drone"] != 1 && std::abs(e["x_m"].get<double>() + 6) < 1e-9)
+      EXPECT_TRUE(b_mode == "landed" || b_mode == "charging") << e.dump() << " b " << b_mode;
+  }
+}
+
 // drone 1 (of two in a row 6 m apart) loses its link 7 s into its climb, at 21 m of 25: it
 // finishes the climb before it heads home, and drone 0 at 20 m passes it at least 5 m away.
 TEST(FaultEnvelope, LinkLossMidClimbFinishesTheClimb) {

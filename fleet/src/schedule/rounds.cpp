@@ -126,6 +126,15 @@ void Runtime::add_drones(Snapshot& s, const std::vector<int>& req_task,
     drone_of.push_back(d.index);
     s.drones.push_back(ds);
   }
+  // Where the airborne drones land (scheduler.hpp, LandingColumn).
+  s.column_radius_m = settings_.envelope.separation_m;
+  for (const Drone& d : drones_)
+    if (airborne(d)) {
+      const auto it = std::find(drone_of.begin(), drone_of.end(), d.index);
+      s.landing_columns.push_back(
+          {{d.spec.home_m.x, d.spec.home_m.y, d.layer_m},
+           it == drone_of.end() ? -1 : static_cast<int>(it - drone_of.begin())});
+    }
   for (Request& r : s.requests)
     if (r.bound_drone) {
       auto it = std::find(drone_of.begin(), drone_of.end(), *r.bound_drone);

@@ -105,6 +105,14 @@ struct MutualPair {
   double q = 0;  ///< (0, 1]
 };
 
+/// The column an airborne drone lands through: the vertical above its home up to its layer. A drone
+/// of a lower layer staying within separation of it would hold that landing (docs/swath-fleet.md,
+/// 'Safety envelope'), for as long as it works there, whatever the charge left.
+struct LandingColumn {
+  Vec3 home_m;     ///< x, y: its home; z: its layer (local metres)
+  int drone = -1;  ///< the drone landing there (index into Snapshot::drones); -1: not offered now
+};
+
 struct Snapshot {
   std::vector<DroneState> drones;
   std::vector<Request> requests;
@@ -122,6 +130,11 @@ struct Snapshot {
   /// (LocalEnvelope::reachable), so every leg it flies for the target, and the way home from
   /// anywhere on them, stays inside.
   std::shared_ptr<const LocalEnvelope> envelope;
+  /// Homes of the airborne drones: a target within `column_radius_m` (horizontally) of one is
+  /// infeasible for a drone of a lower layer (its home_m.z), so no drone is sent to work where it
+  /// would keep another from landing.
+  std::vector<LandingColumn> landing_columns;
+  double column_radius_m = 0;  ///< the envelope's separation_m
 };
 
 /// The state of charge a drone lands with after serving `r` and flying home (eq. 12 per leg).
