@@ -158,10 +158,10 @@ PreparedRun prepare_run(const FleetRequest& r, std::optional<std::uint64_t> worl
     throw InputError(r.fleet + ": " + fence);
   if (p.world->has_origin) p.settings.origin = p.world->origin;
   // Checked again by the runtime; here too so that nothing (no vehicle link) is opened first.
-  const std::string fit =
-      fleet::layers_refusal(static_cast<int>(p.drones.size()), p.settings.layer_base_m,
-                            std::max(p.settings.layer_step_m, envelope.separation_m),
-                            std::min(envelope.ceiling_m, envelope.fence.max_altitude_m));
+  const std::string fit = fleet::layers_refusal(
+      static_cast<int>(p.drones.size()), p.settings.layer_base_m,
+      std::max(p.settings.layer_step_m, envelope.separation_m), envelope.ceiling_m,
+      envelope.fence.max_altitude_m, envelope.separation_m > p.settings.layer_step_m);
   if (!fit.empty())
     throw InputError((r.fleet.empty() ? "--drones " + std::to_string(p.drones.size()) : r.fleet) +
                      ": " + fit);

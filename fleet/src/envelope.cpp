@@ -191,16 +191,22 @@ Envelope envelope_of(const vehicle::FleetFile& file) {
   return e;
 }
 
-std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m) {
+std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m,
+                           double fence_height_m, bool separation_sets_step) {
+  const double limit_m = std::min(ceiling_m, fence_height_m);
   const double top_m = base_m + step_m * static_cast<double>(std::max(0, drones - 1));
-  if (top_m <= ceiling_m + 1e-9) return "";
-  const int fit = base_m > ceiling_m ? 0 : static_cast<int>((ceiling_m - base_m) / step_m) + 1;
+  if (top_m <= limit_m + 1e-9) return "";
+  const int fit = base_m > limit_m ? 0 : static_cast<int>((limit_m - base_m) / step_m) + 1;
+  const bool fence = fence_height_m < ceiling_m;
   return "a fleet of " + std::to_string(drones) + (drones == 1 ? " drone" : " drones") +
          " needs altitude layers up to " + base::shortest_text(top_m) + " m (" +
-         base::shortest_text(base_m) + " m + " + base::shortest_text(step_m) +
-         " m apart), above the ceiling of " + base::shortest_text(ceiling_m) + " m: at most " +
-         std::to_string(fit) + (fit == 1 ? " drone fits" : " drones fit") +
-         " (raise ceiling_m or lower separation_m in the fleet file)";
+         base::shortest_text(base_m) + " m + " + base::shortest_text(step_m) + " m apart), above " +
+         (fence ? "the fence's max_altitude_m of " : "the ceiling of ") +
+         base::shortest_text(limit_m) + " m: at most " + std::to_string(fit) +
+         (fit == 1 ? " drone fits" : " drones fit") + " (raise " +
+         (fence ? "the fence's max_altitude_m" : "ceiling_m") +
+         (separation_sets_step ? " or lower separation_m" : "") + " in the fleet file, or fly " +
+         (fit == 1 ? "one drone" : "fewer drones") + ")";
 }
 
 // A vertex is at most 36 bytes of run_start ("[-20015086.796021,-20015086.796021],"): 20,000 of

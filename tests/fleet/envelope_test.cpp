@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -408,9 +409,19 @@ TEST(Envelope, AFleetThatCannotFitIsRefused) {
   EXPECT_NE(refusal(100, s).find("above the ceiling of 120 m"), std::string::npos);
   EXPECT_NE(refusal(22, s).find("at most 21 drones fit"), std::string::npos);
   EXPECT_EQ(refusal(21, s), "");
-  EXPECT_EQ(layers_refusal(21, 20, 5, 120), "");
-  EXPECT_NE(layers_refusal(22, 20, 5, 120), "");
-  EXPECT_NE(layers_refusal(2, 20, 5, 24).find("at most 1 drone fits ("), std::string::npos);
+  constexpr double kNoFenceHeight = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(layers_refusal(21, 20, 5, 120, kNoFenceHeight, false), "");
+  EXPECT_NE(layers_refusal(22, 20, 5, 120, kNoFenceHeight, false), "");
+  // The limit named is the lower one, and separation_m is offered only where it spaces the layers.
+  const std::string ceiling = layers_refusal(2, 20, 5, 24, kNoFenceHeight, false);
+  EXPECT_NE(ceiling.find("above the ceiling of 24 m: at most 1 drone fits (raise ceiling_m in"),
+            std::string::npos)
+      << ceiling;
+  const std::string fence = layers_refusal(3, 20, 8, 120, 30, true);
+  EXPECT_NE(fence.find("above the fence's max_altitude_m of 30 m: at most 2 drones fit (raise "
+                       "the fence's max_altitude_m or lower separation_m in"),
+            std::string::npos)
+      << fence;
   RuntimeSettings fenced = s;
   fenced.envelope.inclusions = {{{-10, -10}, {8, -10}, {8, 10}, {-10, 10}}};
   EXPECT_NE(refusal(3, fenced).find("d2's home (10.0, 0.0) m is outside the inclusion fence"),

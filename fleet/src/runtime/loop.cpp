@@ -36,6 +36,7 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
     throw base::InputError("the backend has " + std::to_string(backend_.vehicles()) +
                            " vehicles for a fleet of " + std::to_string(specs.size()) + " drones");
   settings_.layer_step_m = std::max(settings.layer_step_m, settings.envelope.separation_m);
+  layer_step_is_separation_ = settings.envelope.separation_m > settings.layer_step_m;
   settings_.disc_m = std::max(settings.disc_m, settings.envelope.separation_m);
   check_envelope(specs);
   // Routes round the fence only where the vehicles follow the way home the runtime gives them:
@@ -66,9 +67,9 @@ Runtime::Runtime(const App& app, const World& world, const std::vector<DroneSpec
 // take-off rule (separation.cpp) then lets one drone climb there at a time.
 void Runtime::check_envelope(const std::vector<DroneSpec>& specs) const {
   const LocalEnvelope& e = settings_.envelope;
-  const double top_m = std::min(e.ceiling_m, e.fence_max_altitude_m);
-  const std::string layers = layers_refusal(static_cast<int>(specs.size()), settings_.layer_base_m,
-                                            settings_.layer_step_m, top_m);
+  const std::string layers =
+      layers_refusal(static_cast<int>(specs.size()), settings_.layer_base_m, settings_.layer_step_m,
+                     e.ceiling_m, e.fence_max_altitude_m, layer_step_is_separation_);
   if (!layers.empty()) throw base::InputError(layers);
   if (const std::string fence = fence_size_refusal(e); !fence.empty())
     throw base::InputError(fence);

@@ -401,6 +401,7 @@ class Runtime final : public detail::Core {
   const App& app_;
   const World& world_;
   RuntimeSettings settings_;
+  bool layer_step_is_separation_ = false;  // separation_m, not layer_step_m, spaces the layers
   std::shared_ptr<const LocalEnvelope> envelope_;  // settings_.envelope, shared with snapshots
   vehicle::SplitMix64 app_rng_, sched_rng_;
   std::unique_ptr<Scheduler> scheduler_;

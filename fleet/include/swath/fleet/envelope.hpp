@@ -96,9 +96,12 @@ LocalEnvelope local_envelope(const Envelope& e, const geometry::GeoPoint& origin
 /// and fence), the defaults for what it does not give.
 Envelope envelope_of(const vehicle::FleetFile& file);
 
-/// The altitude layers (drone i at base_m + step_m × i) of `drones` drones under `ceiling_m`:
-/// "" when they fit, else one sentence saying why not.
-std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m);
+/// The altitude layers (drone i at base_m + step_m × i) of `drones` drones under the lower of
+/// `ceiling_m` and the fence's `fence_height_m`: "" when they fit, else one sentence naming the
+/// limit and what would lift it (lowering separation_m only where it sets the step:
+/// `separation_sets_step`).
+std::string layers_refusal(int drones, double base_m, double step_m, double ceiling_m,
+                           double fence_height_m, bool separation_sets_step);
 
 /// The most vertices a run's fence may have, its inclusions and exclusions together: the log's
 /// run_start carries them, and a line of events.jsonl is at most 1 MiB (`check`, `render`).
