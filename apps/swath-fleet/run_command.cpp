@@ -235,6 +235,15 @@ int FleetRunCommand::run() {
     fleet::MavlinkFleetSettings settings;
     settings.origin = p.world->origin;
     settings.fence_m = p.world->fence();
+    // Checked again by the runtime; here before any vehicle link is opened.
+    fleet::LocalEnvelope world_fence;
+    if (settings.fence_m.size() >= 3) world_fence.inclusions.push_back(settings.fence_m);
+    for (const fleet::DroneSpec& d : p.drones)
+      if (!world_fence.refusal_xy(d.home_m.x, d.home_m.y).empty())
+        throw InputError(d.drone.name + "'s home (" + base::fixed_text(d.home_m.x, 1) + ", " +
+                         base::fixed_text(d.home_m.y, 1) +
+                         ") m is outside the world's fence, which the vehicles carry: give homes "
+                         "inside it (a fleet file's home_m)");
     // The fleet file's fence polygons too: every one is uploaded, read back and checked.
     settings.inclusions_m = p.settings.envelope.inclusions;
     settings.exclusions_m = p.settings.envelope.exclusions;

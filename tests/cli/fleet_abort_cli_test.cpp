@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -321,6 +322,26 @@ TEST(FleetAbortCli, VehicleOptionsAndBadKeyFilesAreRefusedInOneSentence) {
     EXPECT_NE(r.err.find(sentence), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << args;
   }
+}
+
+// Vehicles carry the world's fence (uploaded as an inclusion fence): a home outside it is refused
+// before any link is opened (nothing listens on these ports); the simulated fleet may start there.
+TEST(FleetAbortCli, AVehicleHomeOutsideTheWorldsFenceIsRefusedBeforeAnyLink) {
+  const std::string dir = socket_dir("fleet-home-outside");
+  const std::string out = dir + "/run";
+  std::string urls;
+  for (int i = 0; i < 6; ++i)
+    urls += (i ? "," : "") + std::string("udp:127.0.0.1:") + std::to_string(14961 + i);
+  const CliRun r = run_swath_fleet(
+      "run wifi --world rf_field --drones 6 --backend mavlink --vehicles " + urls + " -o " + out);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("drone-6's home (30.0, 0.0) m is outside the world's fence"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  const CliRun sim = run_swath_fleet("run wifi --world rf_field --drones 6 -o " + out);
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
 }
 
 }  // namespace

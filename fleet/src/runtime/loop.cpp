@@ -76,10 +76,20 @@ void Runtime::check_envelope(const std::vector<DroneSpec>& specs) const {
   const auto where = [](const Vec3& p) {
     return "(" + base::fixed_text(p.x, 1) + ", " + base::fixed_text(p.y, 1) + ") m";
   };
+  // Real vehicles also carry the world's own fence (its rectangle, uploaded as an inclusion fence
+  // by a MAVLink run): one at home outside it would be outside its own fence before it flies. A
+  // simulated drone may start outside it (the scheduler serves nothing outside it).
+  LocalEnvelope world_fence;
+  if (const auto ring = world_.fence(); ring.size() >= 3 && backend_.reports_every_tick())
+    world_fence.inclusions.push_back(ring);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const Vec3& h = specs[i].home_m;
     if (const std::string why = e.refusal_xy(h.x, h.y); !why.empty())
       throw base::InputError(specs[i].drone.name + "'s home " + where(h) + " is " + why);
+    if (!world_fence.refusal_xy(h.x, h.y).empty())
+      throw base::InputError(specs[i].drone.name + "'s home " + where(h) +
+                             " is outside the world's fence, which the vehicles carry: give "
+                             "homes inside it (a fleet file's home_m)");
   }
 }
 
