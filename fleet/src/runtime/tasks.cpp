@@ -219,7 +219,7 @@ void Runtime::wake(detail::StateBase& s) {
 }
 
 void Runtime::resume_ready() {
-  const auto began = std::chrono::steady_clock::now();
+  auto began = std::chrono::steady_clock::now();
   while (!ready_.empty()) {
     // An app whose tasks wake each other without end never empties ready_ nor lets the clock
     // move: a waiting abort goes first (loop() takes it next), and max_time_s bounds the wall
@@ -235,8 +235,14 @@ void Runtime::resume_ready() {
     Task& t = tasks_.at(static_cast<std::size_t>(w.task));
     if (t.status != TaskStatus::running || t.frame_gone) continue;
     current_ = t.id;
+    const auto resumed = std::chrono::steady_clock::now();
     w.handle.resume();
     current_ = -1;
+    // One task that kept its turn past the bound (an app's busy loop, stopped and failed with its
+    // own reason) is not the tasks waking each other: the bound starts again after it.
+    if (const auto after = std::chrono::steady_clock::now();
+        std::chrono::duration<double>(after - resumed).count() > settings_.max_time_s)
+      began = after;
     if (t.root.done() && t.status == TaskStatus::running) {
       if (t.result->error) {
         std::string why = "exception";

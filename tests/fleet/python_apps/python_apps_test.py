@@ -195,15 +195,21 @@ class PythonApps(fleet_runs.RunsInTemporaryDirectory):
             self.check_passes(out)
 
     def test_max_time_bounds_the_wall_time_of_an_app_that_never_waits(self):
-        spin = self.app("spin_main.py", "def APP(bee):\n    while True:\n        pass\n")
+        # A task spawned first is ready when the main is stopped: the run still fails for the
+        # main's own reason.
+        spin = self.app("spin_main.py", "def APP(bee):\n    bee.newTask(lambda b: b.act('hover', 1.0).value)\n"
+                        "    while True:\n        pass\n")
         out = self.out("spin")
         start = time.monotonic()
         r = subprocess.run([FLEET, "run", spin, "--world", "hotspot", "--drones", "1",
                             "--max-time", "2", "-o", out], capture_output=True, text=True, timeout=60)
         self.assertLess(time.monotonic() - start, 30)
         self.assertEqual(r.returncode, 4, r.stderr)
-        self.assertRegex(r.stderr, re.escape(spin) + " line [23]: kept its turn \\(never waited on a "
+        self.assertRegex(r.stderr, re.escape(spin) + " line [34]: kept its turn \\(never waited on a "
                          "future\\) for more than --max-time, 2 s of wall-clock time")
+        # The run failed for the main's own reason, not for tasks waking each other.
+        self.assertNotIn("kept waking each other", r.stderr)
+        self.assertEqual(fleet_runs.summary(out)["failure"], "the app's main failed")
         self.check_passes(out)
         # Tasks that only spawn and return keep the runtime busy without the clock moving: the
         # hover the main waits for never comes.
