@@ -152,6 +152,10 @@ DtgStep parse_step(const nlohmann::json& j, const std::string& where,
   } else {
     throw InputError(where + ": a script step is one of act, await, spawn, cancel, delay_s");
   }
+  if (const auto* r = json_find(j, "raised")) {
+    if (!r->is_boolean()) throw InputError(where + ": raised: expected true or false");
+    s.raised = r->get<bool>();
+  }
   if (const auto* q = json_find(j, "seq")) s.seq = json_integer(*q, 0, 1LL << 53, where + ": seq");
   return s;
 }
@@ -247,9 +251,10 @@ Dtg parse_dtg(const std::string& text, const std::string& source) {
       // An await names actions queued before it; a spawn follows the spawned task's creation.
       if (acts) continue;
       for (int a : n.script.back().actions)
-        if (a < 0 || a >= static_cast<int>(std::count_if(
-                              n.script.begin(), n.script.end(),
-                              [](const DtgStep& x) { return x.op == DtgStep::Op::act; })))
+        if (a < 0 || a >= static_cast<int>(
+                              std::count_if(n.script.begin(), n.script.end(), [](const DtgStep& x) {
+                                return x.op == DtgStep::Op::act && !x.raised;  // refused: no aN
+                              })))
           throw InputError(where + "[" + std::to_string(k) + "]: awaits action a" +
                            std::to_string(a) + ", not queued before it");
     }

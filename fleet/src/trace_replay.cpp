@@ -39,11 +39,16 @@ Future<Reading> replay_action(Ctx& c, const DtgStep& s) {
 }
 
 // One recorded task's program, step by step. Awaited tasks that failed or were cancelled are
-// passed over (the app went on, or the recorded task failed there too and its status says so);
-// a failure of its own action ends this task as failed, as an app's body would.
+// passed over (the app went on) unless the recorded await threw and ended the task there; a
+// failure of its own action ends this task as failed, as an app's body would. A step the app saw
+// throw (`raised`: a call refused at the fence or out of reach, an await of a task that had
+// failed) throws here too when the replay's does: at the last step of a task that failed, the
+// error ends it (with this run's reason, the recorded one when nothing else changed), elsewhere
+// the app caught it and went on.
 Co<void> replay_task(Ctx& c, std::shared_ptr<TraceRun> run, int node) {
   const DtgNode& n = run->dtg.nodes[static_cast<std::size_t>(node)];
-  std::vector<Future<Reading>> actions;
+  std::vector<Future<Reading>> actions;     // by the recorded action's index ("aN")
+  std::vector<Future<Reading>> unrecorded;  // calls refused then, queued in this run
   // The tasks it spawned, by their recorded end: an await of one already done left no step, so
   // before each step every child that had ended before it in the recording is awaited here (at
   // once when it is done here too, as then).
@@ -61,7 +66,8 @@ Co<void> replay_task(Ctx& c, std::shared_ptr<TraceRun> run, int node) {
     while (next_child < children.size() && before >= 0 && children[next_child].first < before) {
       const TaskHandle<void> h =
           run->handles[static_cast<std::size_t>(children[next_child++].second)];
-      if (h.id() < 0) continue;
+      // Done already: nothing to wait for (an await of it by the app is a step of its own).
+      if (h.id() < 0 || h.ready()) continue;
       try {
         co_await h;
       } catch (const ActionFailed&) {
@@ -70,9 +76,19 @@ Co<void> replay_task(Ctx& c, std::shared_ptr<TraceRun> run, int node) {
     }
     if (i == step_count) break;
     const DtgStep& s = n.script[i];
+    // The recorded error ended the task here: this run's, if it has one, ends it too.
+    const bool ends_here = s.raised && i + 1 == step_count && n.status == DtgStatus::failed;
     switch (s.op) {
       case DtgStep::Op::act:
-        actions.push_back(replay_action(c, s));
+        if (!s.raised) {
+          actions.push_back(replay_action(c, s));
+          break;
+        }
+        try {
+          unrecorded.push_back(replay_action(c, s));
+        } catch (...) {
+          if (ends_here) throw;
+        }
         break;
       case DtgStep::Op::spawn: {
         const int k = s.tasks.front();
@@ -111,7 +127,9 @@ Co<void> replay_task(Ctx& c, std::shared_ptr<TraceRun> run, int node) {
           try {
             co_await h;
           } catch (const ActionFailed&) {
+            if (ends_here) throw;
           } catch (const TaskCancelled&) {
+            if (ends_here) throw;
           }
         }
         break;
@@ -120,6 +138,7 @@ Co<void> replay_task(Ctx& c, std::shared_ptr<TraceRun> run, int node) {
   }
   // The recorded task ended after its last step: a body returns once its results are in.
   for (const Future<Reading>& f : actions) co_await f;
+  for (const Future<Reading>& f : unrecorded) co_await f;
 }
 
 }  // namespace

@@ -103,6 +103,59 @@ TEST(TraceReplay, ReplaysItsOwnRecordingByteForByte) {
   EXPECT_EQ(twice.events_jsonl, recorded.events_jsonl);
 }
 
+// Every way a task fails replays as it happened (the tester's fence case: three fly_tos refused
+// at the fence came back as task_done at 0.0 s, their scripts empty): a call refused at the
+// fence or out of reach, a task awaiting one that failed (`after`), a same_drone task whose drone
+// is lost, a request no drone is left to take. Replayed with the run's own settings, the run byte
+// for byte: its events and its dtg.json.
+TEST(TraceReplay, TasksThatFailedReplayAsTheyFailed) {
+  RuntimeSettings s;
+  s.app_name = "static";
+  s.no_feasible_s = 60;
+  // A U (x -50..250, y -50..250 but for a notch x 50..150 above y 50) and a square no drone's
+  // home is in.
+  s.envelope.inclusions = {
+      {{-50, -50}, {250, -50}, {250, 250}, {150, 250}, {150, 50}, {50, 50}, {50, 250}, {-50, 250}},
+      {{400, -50}, {450, -50}, {450, 50}, {400, 50}}};
+  s.faults = {{.t_s = 60, .drone = 0, .kind = FaultKind::motor_failure},
+              {.t_s = 60, .drone = 1, .kind = FaultKind::motor_failure}};
+  const auto world = worlds::parse_world(
+      "kind: static\nsensors: {camera: {time_s: 2.0}}\ntasks:\n"
+      "  - {name: out, actions: [{fly_to: {x_m: 300, y_m: 0}}, {sense: camera}]}\n"
+      "  - {name: notch, actions: [{fly_to: {x_m: 100, y_m: 100}}]}\n"
+      "  - {name: far, actions: [{fly_to: {x_m: 420, y_m: 0}}, {sense: camera}]}\n"
+      "  - {name: next, after: [out], actions: [{fly_to: {x_m: 20, y_m: 20}}]}\n"
+      "  - {name: near, actions: [{fly_to: {x_m: 0, y_m: 20}}, {sense: camera}]}\n"
+      "  - name: pinned\n    same_drone: true\n    actions:\n"
+      "      - fly_to: {x_m: 0, y_m: 150}\n      - hover: 60\n      - fly_to: {x_m: 0, y_m: 200}\n"
+      "  - name: late\n    after: [near]\n    actions:\n"
+      "      - fly_to: {x_m: 200, y_m: 0}\n      - hover: 60\n",
+      "w.yaml");
+  const std::vector<DroneSpec> fleet{drone("a"), drone("b", {10, 0, 0})};
+  const RunRecord recorded = run_app(app_named("static"), *world, fleet, s);
+  ASSERT_TRUE(recorded.completed) << recorded.failure;
+  std::map<std::string, int> reasons;  // each failure's kind, from the recorded events
+  for (std::size_t at = 0;
+       (at = recorded.events_jsonl.find("\"task_failed\"", at)) != std::string::npos; ++at) {
+    const auto e = nlohmann::json::parse(recorded.events_jsonl.substr(
+        recorded.events_jsonl.rfind('\n', at) + 1,
+        recorded.events_jsonl.find('\n', at) - recorded.events_jsonl.rfind('\n', at) - 1));
+    const std::string why = e["reason"];
+    ++reasons[why.find("outside the inclusion fence") != std::string::npos ? "fence"
+              : why.find("out of reach") != std::string::npos              ? "reach"
+                                                                           : why];
+  }
+  // out, and next after it; notch; far; pinned's drone lost; late: no drone left.
+  EXPECT_EQ(reasons, (std::map<std::string, int>{
+                         {"fence", 3}, {"reach", 1}, {"drone_lost", 1}, {"no_feasible_drone", 1}}));
+  const RunRecord replay =
+      run_app(make_trace_app(parse_dtg(recorded.dtg_json, "dtg.json")), *world, fleet, s);
+  ASSERT_TRUE(replay.completed) << replay.failure;
+  EXPECT_EQ(replay.tasks_by_outcome, recorded.tasks_by_outcome);
+  EXPECT_EQ(replay.events_jsonl, recorded.events_jsonl);
+  EXPECT_EQ(replay.dtg_json, recorded.dtg_json);
+}
+
 TEST(TraceReplay, RecordedCancelsFireWithTheirTrigger) {
   // Case 2 cancels cells from inside the cell that made them known: replayed with the recorded
   // scheduler and fleet, the same cells are cancelled, by the same issuers.

@@ -85,6 +85,9 @@ struct ScriptStep {
   std::vector<int> refs;  // await: task id, or -(action + 1); spawn, cancel: the task id
   bool any = false;
   std::uint64_t seq = 0;
+  // act: the call threw (refused: outside the fence, out of reach, ...), no action queued;
+  // await: it threw (the awaited task failed or was cancelled). The app saw the error there.
+  bool raised = false;
 };
 
 struct Task {
@@ -117,7 +120,7 @@ struct Task {
   int segment = -1;        // the head segment's index (0, 1, ...: each new head is the next)
   std::size_t segment_head = static_cast<std::size_t>(-1);  // its first action
   // Its program as the runtime saw it, in order (dtg.json "script", for trace replay): actions
-  // queued, awaits that suspended, spawns, cancels and compute delays.
+  // queued or refused, awaits that suspended or threw, spawns, cancels and compute delays.
   std::vector<ScriptStep> script;
   std::shared_ptr<bool> last_armed;  // the `any` its latest await step belongs to
   std::int64_t ended_seq = -1;       // its end in the order of all script steps and ends
@@ -241,6 +244,7 @@ class Runtime final : public detail::Core {
   Future<void> delay(int task, double cost_s) override;
   void suspended(int task, detail::StateBase& awaited, std::coroutine_handle<> h,
                  std::shared_ptr<bool> armed) override;
+  void raised(int task, detail::StateBase& awaited, bool suspended) override;
   double now_s() const override { return now_; }
   const World& world() const override { return world_; }
   vehicle::SplitMix64& random() override { return app_rng_; }

@@ -64,6 +64,7 @@ std::string Runtime::dtg_json() const {
           step["delay_s"] = st.s;
           break;
       }
+      if (st.raised) step["raised"] = true;
       step["seq"] = st.seq;
       script.push_back(std::move(step));
     }

@@ -1,6 +1,7 @@
 // Tasks and coroutines: spawn, actions and their futures, awaits (each a step of the task's
 // script), wake-ups, ends.
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <stdexcept>
@@ -135,14 +136,25 @@ Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::stri
            ActionState::pending,
            {},
            0.0};
-  if (type == 4) {  // fly_sensing: a fly_to that reads `name` every duration_s on the way
-    world_.sense_time_s(name);  // an unknown sensor fails here, at the call
-    if (!(duration_s > 0)) throw ActionFailed("fly_sensing needs a period > 0 s");
-    a.sample_sensor = name;
-    a.sample_period_s = duration_s;
+  // The script keeps the call exactly (full precision), so a replay flies the same targets; a
+  // call refused here is kept too (raised), so that a replay refuses it where the app saw it.
+  ScriptStep step{ScriptStep::act, type >= 0 && type <= 4 ? type : 3, to, name, duration_s};
+  try {
+    if (type == 4) {  // fly_sensing: a fly_to that reads `name` every duration_s on the way
+      world_.sense_time_s(name);  // an unknown sensor fails here, at the call
+      if (!(duration_s > 0)) throw ActionFailed("fly_sensing needs a period > 0 s");
+      a.sample_sensor = name;
+      a.sample_period_s = duration_s;
+    }
+    if (a.type == ActionType::sense) a.duration_s = world_.sense_time_s(name);
+    if (a.type == ActionType::fly_to) check_target(to);
+  } catch (...) {
+    step.raised = true;
+    step.seq = script_seq_++;
+    t.script.push_back(std::move(step));
+    t.last_armed.reset();
+    throw;
   }
-  if (a.type == ActionType::sense) a.duration_s = world_.sense_time_s(name);
-  if (a.type == ActionType::fly_to) check_target(to);
   if (a.type == ActionType::fly_to) {
     t.location = to;
     t.has_location = true;
@@ -150,15 +162,8 @@ Future<Reading> Runtime::act(int task, int type, const Vec3& to, const std::stri
   }
   t.actions.push_back(std::move(a));
   t.sync_node = -1;
-  // The script keeps the call exactly (full precision), so a replay flies the same targets.
-  t.script.push_back({ScriptStep::act,
-                      type >= 0 && type <= 4 ? type : 3,
-                      to,
-                      name,
-                      duration_s,
-                      {},
-                      false,
-                      script_seq_++});
+  step.seq = script_seq_++;
+  t.script.push_back(std::move(step));
   t.last_armed.reset();
   if (t.serving < 0) changed_ = true;
   return Future<Reading>(state, this);
@@ -204,6 +209,26 @@ void Runtime::suspended(int task, detail::StateBase& awaited, std::coroutine_han
     edges_.push_back({{false, awaited.task}, {true, node}, DtgEdgeType::sync});
     dtg_changed_ = true;
   }
+}
+
+// An await that throws is a step of the script even when it did not suspend (the awaited task
+// had already failed): the app saw the error there, and a replay must see it at the same point.
+void Runtime::raised(int task, detail::StateBase& awaited, bool suspended) {
+  if (task < 0) return;
+  Task& t = tasks_.at(static_cast<std::size_t>(task));
+  std::optional<int> ref;
+  if (awaited.task >= 0) ref = awaited.task;
+  for (std::size_t a = 0; !ref && a < t.actions.size(); ++a)
+    if (t.actions[a].result.get() == &awaited) ref = -static_cast<int>(a) - 1;
+  if (!ref) return;
+  if (suspended && !t.script.empty() && t.script.back().op == ScriptStep::await &&
+      std::find(t.script.back().refs.begin(), t.script.back().refs.end(), *ref) !=
+          t.script.back().refs.end()) {
+    t.script.back().raised = true;  // the step its suspension recorded
+    return;
+  }
+  t.script.push_back({ScriptStep::await, 0, {}, {}, 0, {*ref}, false, script_seq_++, true});
+  t.last_armed.reset();
 }
 
 void Runtime::wake(detail::StateBase& s) {

@@ -35,6 +35,10 @@ struct DtgStep {
   std::vector<int> tasks;
   std::vector<int> actions;  ///< await: indices of the task's own actions awaited
   bool any = false;          ///< await: one `any` over all of them (else each in turn)
+  /// The app saw this step throw — act: the call was refused (outside the fence, out of reach,
+  /// ...), no action queued, so it has no "aN"; await: an awaited task had failed or was
+  /// cancelled. A task whose script ends at such a step, failed, let the error end it.
+  bool raised = false;
   /// Its place in the order of all steps and task ends of the run (-1: not recorded).
   std::int64_t seq = -1;
 };

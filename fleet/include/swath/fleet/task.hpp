@@ -97,12 +97,10 @@ template <class T>
 struct StateAwaiter {
   std::shared_ptr<State<T>> state;
   Core* core;
+  bool suspended = false;  ///< the await suspended (its script step is recorded then)
   bool await_ready() const noexcept;
   void await_suspend(std::coroutine_handle<> h);
-  T await_resume() {
-    if (state->error) std::rethrow_exception(state->error);
-    if constexpr (!std::is_void_v<T>) return *state->value;
-  }
+  T await_resume();
 };
 
 }  // namespace detail
@@ -237,6 +235,9 @@ class Core {
   virtual Future<void> delay(int task, double cost_s) = 0;
   virtual void suspended(int task, StateBase& awaited, std::coroutine_handle<> h,
                          std::shared_ptr<bool> armed) = 0;
+  /// The await of `awaited` by task `task` throws (the awaited task failed or was cancelled, or
+  /// the action failed): the app sees the error there, which its script records.
+  virtual void raised(int /*task*/, StateBase& /*awaited*/, bool /*suspended*/) {}
   virtual double now_s() const = 0;
   virtual const World& world() const = 0;
   virtual vehicle::SplitMix64& random() = 0;
@@ -249,7 +250,16 @@ bool StateAwaiter<T>::await_ready() const noexcept {
 }
 template <class T>
 void StateAwaiter<T>::await_suspend(std::coroutine_handle<> h) {
+  suspended = true;
   core->suspended(core->current_task(), *state, h, nullptr);
+}
+template <class T>
+T StateAwaiter<T>::await_resume() {
+  if (state->error) {
+    if (core) core->raised(core->current_task(), *state, suspended);
+    std::rethrow_exception(state->error);
+  }
+  if constexpr (!std::is_void_v<T>) return *state->value;
 }
 
 }  // namespace detail

@@ -4,7 +4,9 @@
 // runtime saw it ("script": actions queued, awaits that suspended, spawns, cancels, compute delays,
 // in order), so the replay's tasks appear when their recorded predecessors are done *in this run*
 // plus the recorded delay, act where and how the recorded ones did (same places, actions,
-// same_drone / interruptible), and recorded cancels fire when their issuer reaches them.
+// same_drone / interruptible), and recorded cancels fire when their issuer reaches them. Steps the
+// app saw throw ("raised": a call refused at the fence or out of reach, an await of a task that
+// failed) throw again here; a failed task whose script ends at one ends with that error.
 //
 // Valid where the graph does not depend on the schedule (cases 1, 3, 4, 5 of docs/swath-fleet.md,
 // 'Case studies'): with another scheduler or fleet the places stay the recorded ones, which the
