@@ -173,7 +173,7 @@ Field field_from_raw(detail::RawField raw, const std::string& source, bool geogr
   std::size_t vertices = 0;
   for (const detail::RawRing& ring : raw.rings) vertices += ring.points.size();
   if (vertices > kMaxFieldVertices)
-    fail(source, "the area has " + std::to_string(vertices) +
+    fail(source, "its polygons have " + std::to_string(vertices) +
                      " vertices, more than swath's limit of " + std::to_string(kMaxFieldVertices) +
                      "; simplify it first (a survey rarely needs "
                      "vertices closer than a metre)");

@@ -90,7 +90,7 @@ TEST(BadInput, AnAreaOverTheVertexLimitIsRefusedQuickly) {
   }
   const CliRun run = run_swath("classify --local " + file);
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.err.find("the area has " + std::to_string(geometry::kMaxFieldVertices + 1) +
+  EXPECT_NE(run.err.find("its polygons have " + std::to_string(geometry::kMaxFieldVertices + 1) +
                          " vertices, more than swath's limit of " +
                          std::to_string(geometry::kMaxFieldVertices)),
             std::string::npos)

@@ -495,5 +495,28 @@ TEST(PlanCli, TheDefaultHomeKeepsTheClearanceFromTheZones) {
                              "clear of the zones, or lower --clearance\n");
 }
 
+// A wide clearance round a zone keeps the lines off much of the area: the warning names the
+// clearance first (it blamed narrow or pointed parts alone), and summary.json's coverage is the
+// share the warning gives.
+TEST(PlanCli, CoverageLostToAZonesClearanceIsSaidSo) {
+  const std::string out = fresh_dir("zones-clearance-coverage");
+  const CliRun run = run_swath(
+      "plan share/fields/meadow.geojson --camera sony-ilce-qx1 --altitude 50 --exclude "
+      "share/zones/meadow-pond.geojson --clearance 60 -o " +
+      out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json s = json::parse(read_text(out + "/summary.json"));
+  const double covered = s["coverage"]["covered_fraction"].get<double>();
+  ASSERT_LT(covered, 0.95);
+  EXPECT_NE(run.err.find("warning: the photos cover " + base::fixed_text(100 * covered, 2) +
+                         " % of the area"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("the lines keep --clearance (60.0 m) from the holes and no-fly zones, "
+                         "or parts of it"),
+            std::string::npos)
+      << run.err;
+}
+
 }  // namespace
 }  // namespace swath::test

@@ -81,8 +81,8 @@ struct ScriptStep {
   int act_type = 0;  // Ctx's action types: fly_to 0, sense 1, hover 2, custom 3, fly_sensing 4
   Vec3 to;
   std::string name;
-  double s = 0;           // hover/custom duration, fly_sensing period, delay cost
-  std::vector<int> refs;  // await: task id, or -(action + 1); spawn, cancel: the task id
+  double s = 0;                // hover/custom duration, fly_sensing period, delay cost
+  std::vector<int> refs = {};  // await: task id, or -(action + 1); spawn, cancel: the task id
   bool any = false;
   std::uint64_t seq = 0;
   // act: the call threw (refused: outside the fence, out of reach, ...), no action queued;

@@ -273,12 +273,19 @@ void checks(SurveyPlan& plan) {
   // can reach inside it (a strip round a large hole, a star's points), said rather than left to the
   // summary (a 2,000-point star was covered 95 % with no word). Not where the fleet leaves path
   // unflown (--allow-partial): that is said above.
+  // With holes or zones, their clearance keeps the lines off ground too (a small field inside
+  // a wide --clearance: 2 % covered), which the sentence says first.
   if (plan.coverage.covered_fraction < kPromisedCoverage && plan.division.unflown_path_m == 0)
-    warnings.push_back("the photos cover " + fixed_text(100 * plan.coverage.covered_fraction, 2) +
-                       " % of the area (" +
-                       fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
-                       " m² unseen), less than 99.9 %: parts of it are too narrow or too "
-                       "pointed for the lines to reach (coverage.png with --render shows where)");
+    warnings.push_back(
+        "the photos cover " + fixed_text(100 * plan.coverage.covered_fraction, 2) +
+        " % of the area (" + fixed_text(plan.coverage.area_m2 - plan.coverage.covered_area_m2, 1) +
+        " m² unseen), less than 99.9 %: " +
+        (plan.no_fly.empty() || !(r.clearance_m > 0)
+             ? std::string()
+             : "the lines keep --clearance (" + fixed_text(r.clearance_m, 1) +
+                   " m) from the holes and no-fly zones, or ") +
+        "parts of it are too narrow or too pointed for the lines to reach (coverage.png with "
+        "--render shows where)");
   for (const DronePlan& d : plan.drones) {
     check_sortie_charge(plan, d);
     check_flight_within_charge(plan, d);
