@@ -197,6 +197,25 @@ App static_app() {
   return {};
 }
 
+// Drones `a` at (0, 0) and `b` at `b_home`, the defaults otherwise.
+std::vector<DroneSpec> two_drones(const std::string& a, const std::string& b, Vec3 b_home) {
+  std::vector<DroneSpec> drones(2);
+  drones[0].drone.name = a;
+  drones[1].drone.name = b;
+  drones[1].home_m = b_home;
+  return drones;
+}
+
+// A battery drop of `drone` to `soc` at `t_s`.
+FaultEvent battery_drop(double t_s, int drone, double soc) {
+  FaultEvent f;
+  f.t_s = t_s;
+  f.drone = drone;
+  f.kind = FaultKind::battery_drop;
+  f.soc = soc;
+  return f;
+}
+
 RuntimeSettings settings(std::uint64_t seed, std::vector<FaultEvent> f) {
   RuntimeSettings s;
   s.app_name = "static";
@@ -265,11 +284,7 @@ TEST(FaultEnvelope, LowestOverASharedHomeLandsFirst) {
       "  - {name: t0, actions: [{fly_to: {x_m: -2.6, y_m: -7.1}}, {hover: 5}]}\n"
       "  - {name: t1, actions: [{fly_to: {x_m: -0.4, y_m: 7.4}}, {hover: 40}]}\n",
       "w.yaml");
-  FaultEvent drop;
-  drop.t_s = 29;
-  drop.drone = 1;
-  drop.kind = FaultKind::battery_drop;
-  drop.soc = 0.15;
+  const FaultEvent drop = battery_drop(29, 1, 0.15);
   RuntimeSettings s = settings(1, {drop});
   s.max_time_s = 600;
   const RunRecord run = run_app(static_app(), *world, two_on_one_home(45), s);
@@ -294,15 +309,8 @@ TEST(FaultEnvelope, NoDroneIsSentToWorkUnderTheColumnOfOneStillToLand) {
       "  - {name: far2, actions: [{fly_to: {x_m: 60, y_m: 0}}, {hover: 1}]}\n"
       "  - {name: block, after: [far2], actions: [{fly_to: {x_m: -6, y_m: 0}}, {hover: 900}]}\n",
       "w.yaml");
-  std::vector<DroneSpec> drones(2);
-  drones[0].drone.name = "a";
-  drones[1].drone.name = "b";
-  drones[1].home_m = {-6, 0, 0};
-  FaultEvent drop;
-  drop.t_s = 60;
-  drop.drone = 1;
-  drop.kind = FaultKind::battery_drop;
-  drop.soc = 0.1;
+  const std::vector<DroneSpec> drones = two_drones("a", "b", {-6, 0, 0});
+  const FaultEvent drop = battery_drop(60, 1, 0.1);
   RuntimeSettings s = settings(1, {drop});
   s.max_time_s = 1500;
   const RunRecord run = run_app(static_app(), *world, drones, s);
@@ -355,15 +363,8 @@ TEST(FaultEnvelope, ChargeRunningOutBringsTheDroneDownWhereItIs) {
       "kind: static\ntasks:\n  - {name: t0, actions: [{fly_to: {x_m: 30, y_m: 0}}, {hover: "
       "60}]}\n",
       "w.yaml");
-  std::vector<DroneSpec> drones(2);
-  drones[0].drone.name = "d0";
-  drones[1].drone.name = "d1";
-  drones[1].home_m = {0, 6, 0};
-  FaultEvent drop;
-  drop.t_s = 20;
-  drop.drone = 0;
-  drop.kind = FaultKind::battery_drop;
-  drop.soc = 0.001;
+  const std::vector<DroneSpec> drones = two_drones("d0", "d1", {0, 6, 0});
+  const FaultEvent drop = battery_drop(20, 0, 0.001);
   const RunRecord run = run_app(static_app(), *world, drones, settings(1, {drop}));
   EXPECT_TRUE(breaches(run.events_jsonl).empty());
   EXPECT_EQ(run.battery_exhausted, 1);
