@@ -26,11 +26,13 @@ void Runtime::apply_fault(const FaultEvent& f) {
   if (f.drone < 0 || static_cast<std::size_t>(f.drone) >= drones_.size()) return;
   Drone& d = drones_[static_cast<std::size_t>(f.drone)];
   integrate(d, now_);
-  log(json{{"ev", "fault"},
-           {"drone", d.index},
-           {"fault", fault_name(f.kind)},
-           {"duration_s", round6(f.duration_s)},
-           {"soc", round6(std::max(0.0, d.soc))}});
+  json e{{"ev", "fault"}, {"drone", d.index}, {"fault", fault_name(f.kind)}};
+  if (f.kind == FaultKind::link_loss || f.kind == FaultKind::sensor_failure)
+    e["duration_s"] = round6(f.duration_s);
+  e["soc"] = round6(std::max(0.0, d.soc));
+  if (f.kind == FaultKind::battery_drop)
+    e["to_soc"] = round6(std::max(0.0, std::min(d.soc, f.soc)));
+  log(e);
   ++record_.faults_happened;
   if (d.mode == Mode::lost) return;
   switch (f.kind) {
