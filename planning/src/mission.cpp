@@ -80,12 +80,18 @@ class MissionBuilder {
   // Waypoints flown through on the way from here to `p` where the straight leg would stray
   // (MissionSettings::bow_m): it bows as the square of its length, so n equal legs stray 1/n^2
   // of it.
+  // Past that, as many as keep each leg's track out of the zones' clearance band
+  // (MissionSettings::pieces_kept_clear).
   void through_to(Point2 p) {
-    if (!s_.bow_m || m_.path.empty()) return;
+    if (m_.path.empty()) return;
     const Point2 from = at();
-    const double bow = s_.bow_m(from, p);
-    if (!(bow > kMaxBow_m)) return;
-    const int n = static_cast<int>(std::min(1000.0, std::ceil(std::sqrt(bow / kSplitBow_m))));
+    int n = 1;
+    if (s_.bow_m) {
+      const double bow = s_.bow_m(from, p);
+      if (bow > kMaxBow_m)
+        n = static_cast<int>(std::min(1000.0, std::ceil(std::sqrt(bow / kSplitBow_m))));
+    }
+    if (s_.pieces_kept_clear) n = std::max(n, s_.pieces_kept_clear(from, p, n));
     for (int k = 1; k < n; ++k) {
       const Point2 q = from + (p - from) * (static_cast<double>(k) / n);
       m_.items.push_back({ItemKind::waypoint, q, s_.altitude_m, 0.0});

@@ -97,6 +97,41 @@ double ray_to_rings_m(geometry::Point2 p, geometry::Point2 u,
   return least;
 }
 
+// Whether the track an autopilot flies along leg a-b (`track`) keeps the clearance of the zones
+// wherever the straight leg keeps it: no nearer any of them than the clearance, or where the leg
+// itself comes nearer (a line end on the band), than the leg less a negligible bow. Ruled out
+// by the cheap bound first, then by the bow measured; else the tracks are measured.
+bool track_keeps_clear(const geometry::AutopilotTrack& track, geometry::Point2 a,
+                       geometry::Point2 b, const std::vector<geometry::Ring>& zones,
+                       double clearance_m) {
+  using geometry::AutopilotTrack;
+  const double bound = track.bow_bound_m(a, b);
+  if (bound < AutopilotTrack::kNegligibleBow_m) return true;
+  const double chord_m = geometry::least_distance({a, b}, zones);
+  if (chord_m - bound >= clearance_m) return true;
+  const double bow = track.bow_m(a, b);
+  if (bow < AutopilotTrack::kNegligibleBow_m || chord_m - bow >= clearance_m) return true;
+  const double keep_m = std::min(clearance_m, chord_m - AutopilotTrack::kNegligibleBow_m);
+  for (const std::vector<geometry::Point2>& points :
+       track.tracks(a, b, AutopilotTrack::pieces_for(bow)))
+    if (geometry::least_distance(points, zones) < keep_m) return false;
+  return true;
+}
+
+// Whether each of `n` equal legs a-b is cut into (as MissionBuilder::through_to cuts it) keeps
+// the clearance on its track.
+bool pieces_keep_clear(const geometry::AutopilotTrack& track, geometry::Point2 a,
+                       geometry::Point2 b, int n, const std::vector<geometry::Ring>& zones,
+                       double clearance_m) {
+  geometry::Point2 from = a;
+  for (int k = 1; k <= n; ++k) {
+    const geometry::Point2 to = k == n ? b : a + (b - a) * (static_cast<double>(k) / n);
+    if (!track_keeps_clear(track, from, to, zones, clearance_m)) return false;
+    from = to;
+  }
+  return true;
+}
+
 }  // namespace
 
 MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone) {
@@ -119,6 +154,23 @@ MissionSettings mission_settings(const SurveyPlan& plan, const DronePlan& drone)
     s.bow_m = [track](geometry::Point2 a, geometry::Point2 b) {
       return track->bow_bound_m(a, b) > kMaxBow_m ? track->bow_m(a, b) : 0.0;
     };
+    // A leg beside a zone may keep only centimetres more than the clearance: its track must not
+    // stray across them (the preflight check measures it). The first guess: legs straying no
+    // more than the leg's slack; then twice as many until every track keeps clear.
+    if (!plan.no_fly.empty())
+      s.pieces_kept_clear = [track, &plan](geometry::Point2 a, geometry::Point2 b, int pieces) {
+        const std::vector<geometry::Ring>& zones = plan.no_fly;
+        const double clearance_m = plan.request.clearance_m;
+        if (pieces_keep_clear(*track, a, b, pieces, zones, clearance_m)) return pieces;
+        const double slack_m = std::max(geometry::least_distance({a, b}, zones) - clearance_m,
+                                        geometry::AutopilotTrack::kNegligibleBow_m);
+        int n = std::max(
+            pieces + 1,
+            static_cast<int>(std::min(1000.0, std::ceil(std::sqrt(track->bow_m(a, b) / slack_m)))));
+        while (n < 1000 && !pieces_keep_clear(*track, a, b, n, zones, clearance_m))
+          n = std::min(1000, 2 * n);
+        return n;
+      };
   }
   // Stop at line ends beside a no-fly zone (within the clearance and the corner allowance): a
   // turn flown through there would swing towards the zone.

@@ -141,6 +141,11 @@ struct MissionSettings {
   /// kMaxBow_m is written as the fewest equal legs that each stray at most kSplitBow_m
   /// (intermediate waypoints, flown through): the track stays with the plan. Empty: never.
   std::function<double(geometry::Point2, geometry::Point2)> bow_m;
+  /// The equal legs, at least `pieces` (what bow_m asks), that leg a -> b is written as so that
+  /// the track the autopilot flies along each keeps the no-fly zones' clearance wherever the
+  /// straight leg keeps it: a long line beside a hole may keep only centimetres more than the
+  /// clearance, less than its track strays within kMaxBow_m (at most 1000). Empty: `pieces`.
+  std::function<int(geometry::Point2, geometry::Point2, int pieces)> pieces_kept_clear;
 };
 
 /// Legs straying less than this are written whole: 25 cm, an east-west leg of 3.4 km at 47
